@@ -1,0 +1,37 @@
+# Entry points: `make demo` (set up, build, run the demo) and `make test`
+# (set up, build, run every test). CMake does the real work in build/.
+BUILD ?= build
+TYPE ?= RelWithDebInfo
+JOBS ?= $(shell nproc)
+PREFIX ?= /usr/local
+
+.PHONY: all setup configure build debug test demo bench install clean
+
+all: build
+
+setup:
+	@scripts/setup.sh
+
+configure: setup
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(TYPE) -DCMAKE_INSTALL_PREFIX=$(PREFIX) >/dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+debug:
+	@$(MAKE) --no-print-directory build BUILD=build-debug TYPE=Debug
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@$(BUILD)/shell/smql demo
+
+bench: build
+	@$(BUILD)/bench/smql_bench --out docs/benchmarks.md
+
+install: build
+	@cmake --install $(BUILD)
+
+clean:
+	@rm -rf $(BUILD) build-debug

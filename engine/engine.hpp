@@ -1,0 +1,39 @@
+// The embeddable engine: open a database, run SMQL statements, get rows.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/result.hpp"
+
+namespace smql {
+
+namespace storage { class Database; }
+
+class Engine {
+public:
+    // Opens (creating if needed) the database in `directory`. Throws smql::Error.
+    static std::unique_ptr<Engine> open(const std::string& directory, bool readOnly = false);
+    ~Engine();
+
+    // Runs every `;`-separated statement of `text`; returns one ResultSet per
+    // statement. Throws smql::Error on the first failing statement; statements
+    // before it have run (each is atomic on its own).
+    std::vector<ResultSet> execute(std::string_view text);
+
+    // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
+    std::string currentScene() const;
+    std::vector<std::string> knownCategories() const;
+
+    storage::Database& database();
+
+    struct State;
+
+private:
+    explicit Engine(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace smql

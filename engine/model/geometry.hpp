@@ -1,0 +1,43 @@
+// Exact measures on upright oriented boxes. An upright box is a prism (a
+// rectangle in the floor plane times a height interval), so gaps, overlaps
+// and containment split into a 2D footprint part and a 1D vertical part.
+#pragma once
+
+#include <array>
+
+#include "engine/model/types.hpp"
+
+namespace smql::model {
+
+struct Vec2 {
+    double x = 0, y = 0;
+};
+
+struct Aabb {
+    Vec3 min, max;
+};
+
+Aabb worldAabb(const Box& box);
+std::array<Vec2, 4> footprint(const Box& box);  // counter-clockwise corners
+double footprintArea(const Box& box);
+double volume(const Box& box);
+inline double bottom(const Box& b) { return b.center.z - b.size.z / 2; }
+inline double top(const Box& b) { return b.center.z + b.size.z / 2; }
+
+// Area of the intersection of the two footprints (m^2).
+double footprintOverlap(const Box& a, const Box& b);
+// Shortest distance between the footprints in the floor plane; 0 when they meet.
+double horizontalGap(const Box& a, const Box& b);
+// Gap between the height intervals; 0 when they overlap.
+double verticalGap(const Box& a, const Box& b);
+// Length of the overlap of the height intervals; 0 when disjoint.
+double verticalOverlap(const Box& a, const Box& b);
+// Shortest distance between the two solids (0 when they touch or intersect).
+double distance(const Box& a, const Box& b);
+double centerDistance(const Box& a, const Box& b);
+// Share of a's volume that lies inside b, in [0, 1].
+double fractionInside(const Box& a, const Box& b);
+// Is the point inside the box's footprint (grown by `margin` metres on each side)?
+bool footprintContains(const Box& box, Vec2 point, double margin = 0);
+
+}  // namespace smql::model

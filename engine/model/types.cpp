@@ -1,0 +1,36 @@
+#include "engine/model/types.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace smql::model {
+
+namespace {
+constexpr std::array<std::string_view, 6> kKindNames = {"scene", "room", "anchor", "object", "description", "frame"};
+constexpr std::array<std::string_view, 11> kRelationNames = {
+    "on", "in", "above", "below", "near", "attached", "left_of", "right_of", "in_front_of", "behind", "between"};
+}  // namespace
+
+std::string_view toString(NodeKind kind) { return kKindNames[static_cast<std::size_t>(kind)]; }
+
+std::optional<NodeKind> nodeKindFromString(std::string_view text) {
+    auto it = std::find(kKindNames.begin(), kKindNames.end(), text);
+    if (it == kKindNames.end()) return std::nullopt;
+    return static_cast<NodeKind>(it - kKindNames.begin());
+}
+
+std::string_view toString(RelationType type) { return kRelationNames[static_cast<std::size_t>(type)]; }
+
+std::optional<RelationType> relationTypeFromString(std::string_view text) {
+    auto it = std::find(kRelationNames.begin(), kRelationNames.end(), text);
+    if (it == kRelationNames.end()) return std::nullopt;
+    return static_cast<RelationType>(it - kRelationNames.begin());
+}
+
+const std::string* Node::attribute(std::string_view name) const {
+    for (const auto& a : attributes)
+        if (a.name == name) return &a.value;
+    return nullptr;
+}
+
+}  // namespace smql::model

@@ -1,0 +1,117 @@
+// The on-disk memory: one LMDB environment per database directory. LMDB types
+// never leave storage/; callers see these classes and the model types.
+//
+// Contract: any number of ReadTransactions (each a consistent MVCC snapshot,
+// never blocked by the writer) and at most one WriteTransaction at a time per
+// process (LMDB serialises writers across processes). A WriteTransaction that
+// is destroyed without commit() leaves the database exactly as it was.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/model/types.hpp"
+
+namespace smql::storage {
+
+inline constexpr std::uint32_t kSchemaVersion = 1;
+
+struct OpenOptions {
+    bool readOnly = false;
+    bool create = true;                              // create the directory and database if missing
+    std::uint64_t mapSize = std::uint64_t(1) << 38;  // virtual address space reserved (256 GiB); not disk
+};
+
+class ReadTransaction;
+class WriteTransaction;
+
+class Database {
+public:
+    // Throws smql::Error(ErrorKind::Storage) when the directory cannot be
+    // opened, is not an smql database, or has another schema version.
+    static std::unique_ptr<Database> open(const std::string& directory, const OpenOptions& options = {});
+    ~Database();
+    Database(const Database&) = delete;
+    Database& operator=(const Database&) = delete;
+
+    ReadTransaction beginRead() const;
+    WriteTransaction beginWrite();
+
+    const std::string& directory() const;
+    std::uint64_t fileSizeBytes() const;
+
+    struct Impl;
+
+private:
+    explicit Database(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+class ReadTransaction {
+public:
+    ReadTransaction(ReadTransaction&&) noexcept;
+    ReadTransaction& operator=(ReadTransaction&&) noexcept;
+    ~ReadTransaction();
+
+    std::uint64_t transactionId() const;
+
+    std::vector<model::SceneInfo> scenes() const;
+    std::optional<model::SceneInfo> scene(model::NodeId sceneId) const;
+    std::optional<model::SceneInfo> sceneByName(std::string_view name) const;
+
+    std::optional<model::Node> node(model::NodeId id) const;
+    std::vector<model::NodeId> children(model::NodeId parent) const;
+    // Every node of a scene (the scene node itself included), in id order.
+    void forEachNodeInScene(model::NodeId sceneId, const std::function<void(const model::Node&)>& visit) const;
+    // Relations whose subject or object is `id`.
+    std::vector<model::Relation> relationsOf(model::NodeId id) const;
+    void forEachRelationInScene(model::NodeId sceneId, const std::function<void(const model::Relation&)>& visit) const;
+
+    // Label index: nodes with this exact category in every scene (or one), in id order.
+    std::vector<model::NodeId> nodesWithCategory(std::string_view category,
+                                                 model::NodeId sceneId = model::kNoNode) const;
+    // Every distinct category with its node count, across all scenes.
+    std::vector<std::pair<std::string, std::uint64_t>> categories() const;
+    std::optional<model::NodeId> nodeBySourceId(model::NodeId sceneId, std::int64_t sourceId) const;
+
+    std::optional<std::string> setting(std::string_view key) const;
+    std::vector<std::pair<std::string, std::string>> settings() const;
+
+    struct Impl;
+    explicit ReadTransaction(std::unique_ptr<Impl> impl);
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+class WriteTransaction {
+public:
+    WriteTransaction(WriteTransaction&&) noexcept;
+    WriteTransaction& operator=(WriteTransaction&&) noexcept;
+    ~WriteTransaction();  // aborts unless committed
+
+    // Stores a whole scene: assigns database ids to the scene node and every
+    // node of `data` (mapping local ids, parents and relation ends), fills
+    // every index. Returns the new scene's id. Throws smql::Error(Input) when
+    // a scene with the same name exists or local ids are inconsistent.
+    model::NodeId importScene(const model::SceneData& data);
+    // Removes a scene with all its nodes, relations and index entries.
+    void dropScene(model::NodeId sceneId);
+    void putSetting(std::string_view key, std::string_view value);
+    void eraseSetting(std::string_view key);
+
+    void commit();
+
+    struct Impl;
+    explicit WriteTransaction(std::unique_ptr<Impl> impl);
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace smql::storage
