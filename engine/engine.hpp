@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/model/types.hpp"
 #include "engine/result.hpp"
 
 namespace smql {
@@ -22,6 +23,13 @@ public:
     // statement. Throws smql::Error on the first failing statement; statements
     // before it have run (each is atomic on its own).
     std::vector<ResultSet> execute(std::string_view text);
+
+    // Stores an imported scene in one write transaction, after giving its
+    // objects their parents (support, else the nearest upright anchor).
+    // Returns the new scene's id; the scene becomes the current one.
+    model::NodeId importScene(model::SceneData scene);
+    // A stored scene in the import/export form (local ids renumbered 1..n).
+    model::SceneData exportScene(const std::string& name);
 
     // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
     std::string currentScene() const;

@@ -1,0 +1,60 @@
+// One scene as the executor sees it: every node decoded once, with the
+// category, source-id and children lookups and the R-tree. Built from a read
+// transaction the first time a scene is queried and reused until the scene's
+// version changes, so a query touches LMDB only to check that version.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "storage/spatial_index.hpp"
+
+namespace smql::storage { class ReadTransaction; }
+
+namespace smql::exec {
+
+using Slot = std::uint32_t;  // a node's position in SceneSnapshot::nodes
+
+class SceneSnapshot {
+public:
+    static std::shared_ptr<const SceneSnapshot> load(const storage::ReadTransaction& txn, const model::SceneInfo& info);
+
+    const model::SceneInfo& info() const { return info_; }
+    const std::vector<model::Node>& nodes() const { return nodes_; }
+    const model::Node& node(Slot slot) const { return nodes_[slot]; }
+    std::optional<Slot> slotOf(model::NodeId id) const;
+    std::optional<Slot> slotOfSource(std::int64_t sourceId) const;
+    // Slots of a category (visible and hidden), in id order; empty when the scene has none.
+    const std::vector<Slot>& withCategory(std::string_view category) const;
+    const std::vector<Slot>& children(Slot slot) const;
+    const std::vector<Slot>& slotsOfKind(model::NodeKind kind) const;
+    std::vector<std::string> categories() const;
+    // Names of the attributes any node of the scene carries (color, material ...), sorted.
+    const std::vector<std::string>& attributeNames() const { return attributeNames_; }
+    const storage::SpatialIndex& spatialIndex() const { return rtree_; }
+    const std::vector<model::Relation>& storedRelations() const { return relations_; }
+
+    // "room0 / wall#3 / sofa#12 / cushion#40"
+    std::string path(Slot slot) const;
+    static std::string label(const model::Node& node);  // "sofa#12"
+
+private:
+    model::SceneInfo info_;
+    std::vector<model::Node> nodes_;
+    std::unordered_map<model::NodeId, Slot> slotById_;
+    std::unordered_map<std::int64_t, Slot> slotBySource_;
+    std::unordered_map<std::string, std::vector<Slot>> slotsByCategory_;
+    std::vector<std::vector<Slot>> children_;
+    std::vector<std::vector<Slot>> slotsByKind_;
+    std::vector<std::string> attributeNames_;
+    storage::SpatialIndex rtree_;
+    std::vector<model::Relation> relations_;
+};
+
+}  // namespace smql::exec

@@ -1,0 +1,21 @@
+// Result sets as text: an aligned table for people, CSV and JSON for programs.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/result.hpp"
+
+namespace smql {
+
+std::string valueText(const Value& value);
+nlohmann::json valueJson(const Value& value);
+// {"id": 12, "category": "sofa", "box": {"center": [...], "size": [...], "yaw": 0.0}, ...}
+nlohmann::json rowJson(const ResultSet& result, std::size_t row);
+// {"columns": [...], "rows": [{...}], "message": "..."}
+nlohmann::json resultJson(const ResultSet& result);
+std::string formatTable(const ResultSet& result);
+std::string formatCsv(const ResultSet& result);
+
+}  // namespace smql

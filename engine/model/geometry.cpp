@@ -1,0 +1,148 @@
+#include "engine/model/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace smql::model {
+
+namespace {
+
+double cross(Vec2 o, Vec2 a, Vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
+
+double polygonArea(const std::vector<Vec2>& poly) {
+    double twice = 0;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec2& p = poly[i];
+        const Vec2& q = poly[(i + 1) % poly.size()];
+        twice += p.x * q.y - q.x * p.y;
+    }
+    return std::abs(twice) / 2;
+}
+
+double pointSegmentDistance(Vec2 p, Vec2 a, Vec2 b) {
+    double dx = b.x - a.x, dy = b.y - a.y;
+    double len2 = dx * dx + dy * dy;
+    double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+    double ex = a.x + t * dx - p.x, ey = a.y + t * dy - p.y;
+    return std::sqrt(ex * ex + ey * ey);
+}
+
+// Separating-axis test for two rectangles: the edge normals of both are the only candidate axes.
+bool footprintsSeparated(const std::array<Vec2, 4>& a, const std::array<Vec2, 4>& b) {
+    for (const auto* poly : {&a, &b}) {
+        for (int i = 0; i < 2; ++i) {
+            Vec2 edge{(*poly)[i + 1].x - (*poly)[i].x, (*poly)[i + 1].y - (*poly)[i].y};
+            Vec2 axis{-edge.y, edge.x};
+            double minA = std::numeric_limits<double>::max(), maxA = -minA, minB = minA, maxB = -minA;
+            for (const auto& p : a) {
+                double d = p.x * axis.x + p.y * axis.y;
+                minA = std::min(minA, d), maxA = std::max(maxA, d);
+            }
+            for (const auto& p : b) {
+                double d = p.x * axis.x + p.y * axis.y;
+                minB = std::min(minB, d), maxB = std::max(maxB, d);
+            }
+            if (maxA < minB || maxB < minA) return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+std::array<Vec2, 4> footprint(const Box& box) {
+    double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    double hx = box.size.x / 2, hy = box.size.y / 2;
+    std::array<Vec2, 4> corners;
+    const double signs[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int i = 0; i < 4; ++i) {
+        double lx = signs[i][0] * hx, ly = signs[i][1] * hy;
+        corners[i] = {box.center.x + c * lx - s * ly, box.center.y + s * lx + c * ly};
+    }
+    return corners;
+}
+
+Aabb worldAabb(const Box& box) {
+    double c = std::abs(std::cos(box.yaw)), s = std::abs(std::sin(box.yaw));
+    double hx = (c * box.size.x + s * box.size.y) / 2;
+    double hy = (s * box.size.x + c * box.size.y) / 2;
+    double hz = box.size.z / 2;
+    return {{box.center.x - hx, box.center.y - hy, box.center.z - hz},
+            {box.center.x + hx, box.center.y + hy, box.center.z + hz}};
+}
+
+double footprintArea(const Box& box) { return box.size.x * box.size.y; }
+double volume(const Box& box) { return box.size.x * box.size.y * box.size.z; }
+
+double footprintOverlap(const Box& a, const Box& b) {
+    // Sutherland-Hodgman: clip a's rectangle by each edge of b's (both convex, counter-clockwise).
+    auto fa = footprint(a);
+    auto fb = footprint(b);
+    std::vector<Vec2> poly(fa.begin(), fa.end());
+    for (int i = 0; i < 4 && !poly.empty(); ++i) {
+        Vec2 e0 = fb[i], e1 = fb[(i + 1) % 4];
+        std::vector<Vec2> clipped;
+        clipped.reserve(poly.size() + 4);
+        for (std::size_t k = 0; k < poly.size(); ++k) {
+            Vec2 p = poly[k], q = poly[(k + 1) % poly.size()];
+            double sp = cross(e0, e1, p), sq = cross(e0, e1, q);
+            if (sp >= 0) clipped.push_back(p);
+            if ((sp >= 0) != (sq >= 0)) {
+                double t = sp / (sp - sq);
+                clipped.push_back({p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)});
+            }
+        }
+        poly = std::move(clipped);
+    }
+    return poly.size() < 3 ? 0.0 : polygonArea(poly);
+}
+
+double horizontalGap(const Box& a, const Box& b) {
+    auto fa = footprint(a);
+    auto fb = footprint(b);
+    if (!footprintsSeparated(fa, fb)) return 0.0;
+    double best = std::numeric_limits<double>::max();
+    for (int i = 0; i < 4; ++i) {
+        for (int j = 0; j < 4; ++j) {
+            best = std::min(best, pointSegmentDistance(fa[i], fb[j], fb[(j + 1) % 4]));
+            best = std::min(best, pointSegmentDistance(fb[i], fa[j], fa[(j + 1) % 4]));
+        }
+    }
+    return best;
+}
+
+double verticalGap(const Box& a, const Box& b) {
+    return std::max(0.0, std::max(bottom(a), bottom(b)) - std::min(top(a), top(b)));
+}
+
+double verticalOverlap(const Box& a, const Box& b) {
+    return std::max(0.0, std::min(top(a), top(b)) - std::max(bottom(a), bottom(b)));
+}
+
+double distance(const Box& a, const Box& b) {
+    // Prisms: the closest points split into a floor-plane part and a height part.
+    double h = horizontalGap(a, b), v = verticalGap(a, b);
+    return std::sqrt(h * h + v * v);
+}
+
+double centerDistance(const Box& a, const Box& b) {
+    double dx = a.center.x - b.center.x, dy = a.center.y - b.center.y, dz = a.center.z - b.center.z;
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+double fractionInside(const Box& a, const Box& b) {
+    double va = volume(a);
+    if (va <= 0) return 0.0;
+    return std::clamp(footprintOverlap(a, b) * verticalOverlap(a, b) / va, 0.0, 1.0);
+}
+
+bool footprintContains(const Box& box, Vec2 point, double margin) {
+    double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    double dx = point.x - box.center.x, dy = point.y - box.center.y;
+    double lx = c * dx + s * dy, ly = -s * dx + c * dy;
+    return std::abs(lx) <= box.size.x / 2 + margin && std::abs(ly) <= box.size.y / 2 + margin;
+}
+
+}  // namespace smql::model

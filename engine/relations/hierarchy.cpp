@@ -1,0 +1,53 @@
+#include "engine/relations/hierarchy.hpp"
+
+#include <limits>
+#include <vector>
+
+#include "engine/model/geometry.hpp"
+#include "engine/relations/predicates.hpp"
+
+namespace smql::relations {
+
+using model::Node;
+
+void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
+    std::vector<const Node*> objects, uprightAnchors, otherAnchors;
+    for (const Node& n : scene.nodes) {
+        if (n.geometry == model::GeometryKind::None) continue;
+        if (n.kind == model::NodeKind::Object) objects.push_back(&n);
+        if (n.kind != model::NodeKind::Anchor) continue;
+        // Floors and ceilings are a last resort: every standing object touches the floor.
+        bool upright = isVerticalPlane(n) || n.geometry == model::GeometryKind::Box;
+        (upright ? uprightAnchors : otherAnchors).push_back(&n);
+    }
+    const auto& anchors = uprightAnchors.empty() ? otherAnchors : uprightAnchors;
+
+    std::vector<model::NodeId> parents(scene.nodes.size(), model::kNoNode);
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+        const Node& a = scene.nodes[i];
+        if (a.kind != model::NodeKind::Object || a.parent != model::kNoNode || a.geometry == model::GeometryKind::None)
+            continue;
+        // The supporter right under `a`: of all that support it, the one whose top is highest
+        // (a book on a plate on a table hangs below the plate). Support requires the supporter's
+        // centre to be strictly lower, so the tree has no cycles.
+        const Node* best = nullptr;
+        for (const Node* b : objects) {
+            if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
+            if (b->box.center.z >= a.box.center.z) continue;
+            if (supportScore(a, *b, thresholds) <= 0) continue;
+            if (!best || model::top(b->box) > model::top(best->box)) best = b;
+        }
+        if (!best) {
+            double bestDistance = std::numeric_limits<double>::max();
+            for (const Node* anchor : anchors) {
+                double d = model::distance(a.box, anchor->box);
+                if (d < bestDistance) bestDistance = d, best = anchor;
+            }
+        }
+        if (best) parents[i] = best->id;
+    }
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i)
+        if (parents[i] != model::kNoNode) scene.nodes[i].parent = parents[i];
+}
+
+}  // namespace smql::relations

@@ -1,0 +1,39 @@
+#include "engine/relations/thresholds.hpp"
+
+namespace smql::relations {
+
+const std::vector<SettingInfo>& settingsCatalogue() {
+    static const std::vector<SettingInfo> catalogue = {
+        {"near.distance", SettingUnit::Metres, &Thresholds::nearDistance, "near: largest gap between the two boxes"},
+        {"on.min_overlap", SettingUnit::Ratio, &Thresholds::onMinOverlap,
+         "on/in: footprint overlap as a share of the smaller footprint"},
+        {"on.min_rise", SettingUnit::Ratio, &Thresholds::onMinRise,
+         "on/in: height of a's centre above b's bottom, as a share of b's height"},
+        {"on.max_gap", SettingUnit::Metres, &Thresholds::onMaxGap, "on/in: largest gap from b's top up to a's bottom"},
+        {"in.min_inside", SettingUnit::Ratio, &Thresholds::inMinInside, "in: share of a's volume inside b's box"},
+        {"above.min_overlap", SettingUnit::Ratio, &Thresholds::aboveMinOverlap,
+         "above/below: footprint overlap as a share of the smaller footprint"},
+        {"above.tolerance", SettingUnit::Metres, &Thresholds::aboveTolerance,
+         "above/below: how far a's bottom may sink under b's top"},
+        {"attached.max_gap", SettingUnit::Metres, &Thresholds::attachedMaxGap,
+         "attached: largest gap to a wall, door, window or pillar"},
+        {"lateral.min_offset", SettingUnit::Metres, &Thresholds::lateralMinOffset,
+         "left_of/right_of/in_front_of/behind: smallest centre offset along the viewer's axis"},
+        {"between.max_offset", SettingUnit::Metres, &Thresholds::betweenMaxOffset,
+         "between: largest distance of a's centre from the segment joining the other two"},
+    };
+    return catalogue;
+}
+
+const SettingInfo* findSetting(std::string_view name) {
+    // Predicates with a single threshold answer to their own name (`SET near = 0.8 m`).
+    static const std::pair<std::string_view, std::string_view> aliases[] = {
+        {"near", "near.distance"}, {"attached", "attached.max_gap"}, {"between", "between.max_offset"}};
+    for (const auto& [alias, full] : aliases)
+        if (name == alias) name = full;
+    for (const auto& s : settingsCatalogue())
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+}  // namespace smql::relations

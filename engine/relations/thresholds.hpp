@@ -1,0 +1,38 @@
+// The named thresholds of the spatial predicates (docs/relations.md gives the
+// formulas). Users see them with SHOW SETTINGS and change them with SET.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace smql::relations {
+
+struct Thresholds {
+    double nearDistance = 0.5;      // near: box-to-box gap at most this (m)
+    double onMinOverlap = 0.5;      // on/in: footprint overlap over the smaller footprint
+    double onMinRise = 0.5;         // on/in: a's centre at least this share of b's height above b's bottom
+    double onMaxGap = 0.1;          // on/in: a's bottom at most this far above b's top (m)
+    double inMinInside = 0.5;       // in: share of a's volume inside b
+    double aboveMinOverlap = 0.1;   // above/below: footprint overlap over the smaller footprint
+    double aboveTolerance = 0.05;   // above/below: a's bottom may sink this far under b's top (m)
+    double attachedMaxGap = 0.05;   // attached: gap to a wall, door, window or pillar at most this (m)
+    double lateralMinOffset = 0.1;  // left_of, right_of, in_front_of, behind: centre offset at least this (m)
+    double betweenMaxOffset = 0.5;  // between: a's centre at most this far from the segment b-c (m)
+};
+
+enum class SettingUnit { Metres, Ratio };
+
+struct SettingInfo {
+    std::string name;  // "near.distance"
+    SettingUnit unit;
+    double Thresholds::*field;
+    std::string meaning;
+};
+
+const std::vector<SettingInfo>& settingsCatalogue();
+// Finds a setting by name or short alias (`near` = `near.distance`).
+const SettingInfo* findSetting(std::string_view name);
+
+}  // namespace smql::relations

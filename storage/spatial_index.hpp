@@ -1,0 +1,37 @@
+// A packed R-tree over the world-aligned bounds of a scene's boxes
+// (Boost.Geometry, bulk-loaded), built in memory when a scene is first queried.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "engine/model/geometry.hpp"
+
+namespace smql::storage {
+
+class SpatialIndex {
+public:
+    struct Entry {
+        model::Aabb bounds;
+        std::uint32_t slot;  // the caller's handle (a position in its node array)
+    };
+
+    SpatialIndex();
+    explicit SpatialIndex(const std::vector<Entry>& entries);  // packs (bulk-loads) the tree
+    SpatialIndex(SpatialIndex&&) noexcept;
+    SpatialIndex& operator=(SpatialIndex&&) noexcept;
+    ~SpatialIndex();
+
+    // Slots whose bounds intersect `region` (unordered).
+    void intersecting(const model::Aabb& region, std::vector<std::uint32_t>& out) const;
+    // The `k` slots whose bounds are closest to `region` (by bounds distance, nearest first).
+    void nearest(const model::Aabb& region, std::size_t k, std::vector<std::uint32_t>& out) const;
+    std::size_t size() const;
+
+private:
+    struct Tree;
+    std::unique_ptr<Tree> tree_;
+};
+
+}  // namespace smql::storage

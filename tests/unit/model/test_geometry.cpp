@@ -1,0 +1,52 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "engine/model/geometry.hpp"
+#include "engine/model/names.hpp"
+
+using namespace smql::model;
+
+namespace {
+Box box(double x, double y, double z, double sx, double sy, double sz, double yaw = 0) {
+    return Box{{x, y, z}, {sx, sy, sz}, yaw};
+}
+}  // namespace
+
+TEST_CASE("footprint overlap of axis-aligned and rotated boxes") {
+    CHECK(footprintOverlap(box(0, 0, 0, 2, 2, 1), box(1, 1, 0, 2, 2, 1)) == Approx(1.0));
+    CHECK(footprintOverlap(box(0, 0, 0, 2, 2, 1), box(3, 0, 0, 2, 2, 1)) == Approx(0.0));
+    // A unit square turned 45 degrees inside a 2x2 square: the whole unit area overlaps.
+    CHECK(footprintOverlap(box(0, 0, 0, 1, 1, 1, M_PI / 4), box(0, 0, 0, 2, 2, 1)) == Approx(1.0));
+    // Two unit squares, one turned 45 degrees about the same centre: the regular octagon, 2(sqrt2 - 1).
+    CHECK(footprintOverlap(box(0, 0, 0, 1, 1, 1, M_PI / 4), box(0, 0, 0, 1, 1, 1)) == Approx(2 * (std::sqrt(2.0) - 1)));
+}
+
+TEST_CASE("distances between prisms split into floor and height parts") {
+    CHECK(horizontalGap(box(0, 0, 0, 1, 1, 1), box(3, 0, 0, 1, 1, 1)) == Approx(2.0));
+    CHECK(verticalGap(box(0, 0, 0, 1, 1, 1), box(0, 0, 3, 1, 1, 1)) == Approx(2.0));
+    CHECK(distance(box(0, 0, 0, 1, 1, 1), box(4, 0, 4, 1, 1, 1)) == Approx(std::sqrt(18.0)));
+    CHECK(distance(box(0, 0, 0, 1, 1, 1), box(0.5, 0, 0, 1, 1, 1)) == Approx(0.0));
+    // A box turned 45 degrees reaches sqrt(2)/2 from its centre along x.
+    CHECK(horizontalGap(box(0, 0, 0, 1, 1, 1, M_PI / 4), box(2, 0, 0, 1, 1, 1)) ==
+          Approx(2 - 0.5 - std::sqrt(2.0) / 2).margin(1e-9));
+}
+
+TEST_CASE("containment and world bounds") {
+    CHECK(fractionInside(box(0, 0, 0, 1, 1, 1), box(0, 0, 0, 2, 2, 2)) == Approx(1.0));
+    CHECK(fractionInside(box(0.5, 0, 0, 1, 1, 1), box(0, 0, 0, 1, 1, 1)) == Approx(0.5));
+    auto a = worldAabb(box(0, 0, 0, 2, 1, 1, M_PI / 2));
+    CHECK(a.max.x == Approx(0.5));
+    CHECK(a.max.y == Approx(1.0));
+    CHECK(footprintContains(box(0, 0, 0, 2, 1, 1, M_PI / 2), {0.0, 0.9}));
+    CHECK_FALSE(footprintContains(box(0, 0, 0, 2, 1, 1, M_PI / 2), {0.9, 0.0}));
+}
+
+TEST_CASE("nearest names for did-you-mean hints") {
+    CHECK(editDistance("sofa", "sopha") == 2);
+    auto close = nearestNames("cushon", {"cushion", "chair", "table"});
+    REQUIRE_FALSE(close.empty());
+    CHECK(close.front() == "cushion");
+    CHECK(nearestNames("zzzzzz", {"cushion", "chair"}).empty());
+    CHECK(joinAlternatives({"a", "b", "c"}) == "a, b or c");
+}
