@@ -305,10 +305,14 @@ struct StatementRunner {
 }  // namespace
 
 std::vector<ResultSet> Engine::execute(std::string_view text) {
+    std::vector<ResultSet> results;
+    execute(text, [&](ResultSet&& rs) { results.push_back(std::move(rs)); });
+    return results;
+}
+
+void Engine::execute(std::string_view text, const std::function<void(ResultSet&&)>& onResult) {
     std::lock_guard lock(state_->mutex);
     auto statements = state_->parse(text);
-    std::vector<ResultSet> results;
-    results.reserve(statements->size());
     for (const auto& statement : *statements) {
         auto start = std::chrono::steady_clock::now();
         auto txn = state_->db->beginRead();
@@ -316,9 +320,8 @@ std::vector<ResultSet> Engine::execute(std::string_view text) {
         auto rs = runner.run(statement);
         rs.elapsedMicroseconds =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-        results.push_back(std::move(rs));
+        onResult(std::move(rs));
     }
-    return results;
 }
 
 model::NodeId Engine::importScene(model::SceneData scene) {

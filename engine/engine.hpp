@@ -1,6 +1,7 @@
 // The embeddable engine: open a database, run SMQL statements, get rows.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -23,6 +24,9 @@ public:
     // statement. Throws smql::Error on the first failing statement; statements
     // before it have run (each is atomic on its own).
     std::vector<ResultSet> execute(std::string_view text);
+    // The same, handing each statement's result over as soon as it is ready,
+    // so a caller can print the statements before a failing one.
+    void execute(std::string_view text, const std::function<void(ResultSet&&)>& onResult);
 
     // Stores an imported scene in one write transaction, after giving its
     // objects their parents (support, else the nearest upright anchor).

@@ -1,5 +1,6 @@
 #include "engine/relations/hierarchy.hpp"
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -9,6 +10,11 @@
 namespace smql::relations {
 
 using model::Node;
+
+namespace {
+// A parent's footprint is at least half its child's.
+constexpr double kMinSupporterArea = 0.5;
+}  // namespace
 
 void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
     std::vector<const Node*> objects, uprightAnchors, otherAnchors;
@@ -27,15 +33,18 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
         const Node& a = scene.nodes[i];
         if (a.kind != model::NodeKind::Object || a.parent != model::kNoNode || a.geometry == model::GeometryKind::None)
             continue;
-        // The supporter right under `a`: of all that support it, the one whose top is highest
-        // (a book on a plate on a table hangs below the plate). Support requires the supporter's
-        // centre to be strictly lower, so the tree has no cycles.
+        // The supporter right under `a`: of all that support it and are not much smaller than it
+        // (a sofa does not rest on the blanket lying on it), the one whose top is closest to a's
+        // bottom (a book on a plate on a table hangs below the plate). Support requires the
+        // supporter's centre to be strictly lower, so the tree has no cycles.
         const Node* best = nullptr;
+        auto contact = [&](const Node* b) { return std::abs(model::bottom(a.box) - model::top(b->box)); };
         for (const Node* b : objects) {
             if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
             if (b->box.center.z >= a.box.center.z) continue;
+            if (model::footprintArea(b->box) < kMinSupporterArea * model::footprintArea(a.box)) continue;
             if (supportScore(a, *b, thresholds) <= 0) continue;
-            if (!best || model::top(b->box) > model::top(best->box)) best = b;
+            if (!best || contact(b) < contact(best)) best = b;
         }
         if (!best) {
             double bestDistance = std::numeric_limits<double>::max();

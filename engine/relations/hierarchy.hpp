@@ -1,5 +1,5 @@
 // Gives every node of an imported scene its place in the tree (DESIGN.md 3):
-// an object resting on another object hangs below it; any other object hangs
+// an object resting on another object (not much smaller than it) hangs below it; any other object hangs
 // below the nearest upright anchor (wall, door, window, pillar); anchors hang
 // below the scene root.
 #pragma once

@@ -1,0 +1,44 @@
+#include "ingest/import/common.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "engine/error.hpp"
+
+namespace smql::import::detail {
+
+std::string readTextFile(const std::string& path, const std::string& hint) {
+    auto fail = [&](std::string_view why) {
+        throw Error(ErrorKind::Input, path + ": cannot read file: " + std::string(why), std::nullopt, hint);
+    };
+    std::error_code ec;
+    auto status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) fail("no such file");
+    // ifstream happily "opens" a directory and then reads nothing.
+    if (std::filesystem::is_directory(status)) fail("it is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(std::strerror(errno));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) fail("read error");
+    return std::move(text).str();
+}
+
+std::string lowerCase(std::string_view text) {
+    std::string out(text);
+    for (char& c : out)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return out;
+}
+
+double normaliseYaw(double yaw) {
+    double turned = std::remainder(yaw, 2 * std::numbers::pi);  // [-pi, pi]
+    return turned <= -std::numbers::pi ? turned + 2 * std::numbers::pi : turned;
+}
+
+}  // namespace smql::import::detail

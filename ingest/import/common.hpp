@@ -1,0 +1,24 @@
+// Helpers shared by the importers: file reading, plausibility limits, and
+// small conversions. Internal to ingest/import.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace smql::import::detail {
+
+// Plausibility limits for imported geometry (metres): anything beyond them is
+// a unit mix-up or a corrupt file, not a room.
+inline constexpr double kMaxCoordinate = 1e4;
+inline constexpr double kMaxSize = 1000;
+
+// The whole file as bytes; throws an Input error naming the file when it
+// does not exist, is not a regular file, or cannot be read.
+std::string readTextFile(const std::string& path, const std::string& hint);
+
+std::string lowerCase(std::string_view text);
+
+// The same angle in (-pi, pi].
+double normaliseYaw(double yaw);
+
+}  // namespace smql::import::detail

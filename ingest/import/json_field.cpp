@@ -1,0 +1,222 @@
+#include "ingest/import/json_field.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "ingest/import/common.hpp"
+
+namespace smql::import::detail {
+
+namespace {
+
+// nlohmann's messages start with "[json.exception.x.n] parse error at line L, column C: ";
+// the location is reported our way, so keep only the reason.
+std::string reasonOf(const std::string& what) {
+    std::size_t column = what.find("column ");
+    std::size_t colon = what.find(": ", column == std::string::npos ? 0 : column);
+    if (colon != std::string::npos) return what.substr(colon + 2);
+    std::size_t bracket = what.find("] ");
+    return bracket == std::string::npos ? what : what.substr(bracket + 2);
+}
+
+SourceLocation locationOfByte(const std::string& text, std::size_t byte) {
+    // `byte` is 1-based and may point one past the end (unexpected end of input).
+    std::size_t pos = std::min(byte == 0 ? 0 : byte - 1, text.size());
+    auto begin = text.begin();
+    int line = 1 + static_cast<int>(std::count(begin, begin + static_cast<std::ptrdiff_t>(pos), '\n'));
+    std::size_t lineStart = 0;
+    if (pos > 0) {
+        std::size_t newline = text.rfind('\n', pos - 1);
+        if (newline != std::string::npos) lineStart = newline + 1;
+    }
+    return SourceLocation{line, static_cast<int>(pos - lineStart) + 1, 1};
+}
+
+std::string describe(const Json& value) {
+    switch (value.type()) {
+        case Json::value_t::null: return "null";
+        case Json::value_t::boolean: return "a boolean";
+        case Json::value_t::string: return "a string";
+        case Json::value_t::array: return fmt::format("an array of {}", value.size());
+        case Json::value_t::object: return "an object";
+        case Json::value_t::number_integer:
+        case Json::value_t::number_unsigned:
+        case Json::value_t::number_float: return "a number";
+        default: return "an unsupported value";
+    }
+}
+
+// Tracks where the parser is, so that a repeated key can be reported by path.
+class DuplicateKeyCheck {
+public:
+    explicit DuplicateKeyCheck(const JsonSource& source) : source_(&source) {}
+
+    bool operator()(int, Json::parse_event_t event, Json& parsed) {
+        switch (event) {
+            case Json::parse_event_t::object_start:
+            case Json::parse_event_t::array_start:
+                countElement();
+                frames_.push_back(Frame{event == Json::parse_event_t::object_start, {}, 0, {}});
+                break;
+            case Json::parse_event_t::key: {
+                Frame& top = frames_.back();
+                top.key = parsed.get<std::string>();
+                if (!top.keys.insert(top.key).second)
+                    throw Error(ErrorKind::Input,
+                                fmt::format("{}: {}: key appears twice in the same object", source_->file, path()),
+                                std::nullopt, source_->hint);
+                break;
+            }
+            case Json::parse_event_t::value: countElement(); break;
+            case Json::parse_event_t::object_end:
+            case Json::parse_event_t::array_end: frames_.pop_back(); break;
+        }
+        return true;
+    }
+
+private:
+    struct Frame {
+        bool isObject;
+        std::string key;        // member being read (objects)
+        std::size_t count;      // elements started so far (arrays)
+        std::set<std::string> keys;
+    };
+
+    void countElement() {
+        if (!frames_.empty() && !frames_.back().isObject) ++frames_.back().count;
+    }
+
+    std::string path() const {
+        std::string out;
+        for (const Frame& f : frames_) {
+            if (f.isObject)
+                out += (out.empty() ? "" : ".") + f.key;
+            else
+                out += fmt::format("[{}]", f.count - 1);
+        }
+        return out;
+    }
+
+    const JsonSource* source_;
+    std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+Json parseJsonFile(const JsonSource& source) {
+    std::string text = readTextFile(source.file, source.hint);
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+        throw Error(ErrorKind::Input, source.file + ": the file is empty", std::nullopt, source.hint);
+    try {
+        return Json::parse(text, DuplicateKeyCheck(source));
+    } catch (const Json::parse_error& e) {
+        SourceLocation where = locationOfByte(text, e.byte);
+        throw Error(ErrorKind::Input,
+                    fmt::format("{}:{}:{}: not valid JSON: {}", source.file, where.line, where.column, reasonOf(e.what())),
+                    where, source.hint);
+    } catch (const Json::exception& e) {
+        // Number overflow (1e999): nlohmann gives no position for it.
+        throw Error(ErrorKind::Input, fmt::format("{}: not valid JSON: {}", source.file, reasonOf(e.what())),
+                    std::nullopt, source.hint);
+    }
+}
+
+void Field::fail(std::string_view what) const {
+    std::string message = path_.empty() ? fmt::format("{}: {}", source_->file, what)
+                                        : fmt::format("{}: {}: {}", source_->file, path_, what);
+    throw Error(ErrorKind::Input, std::move(message), std::nullopt, source_->hint);
+}
+
+void Field::expectObject() const {
+    if (!value_->is_object()) fail("expected an object, got " + describe(*value_));
+}
+
+Field Field::at(std::string_view key) const {
+    std::optional<Field> member = find(key);
+    if (!member) fail(fmt::format("missing field '{}'", key));
+    return *member;
+}
+
+std::optional<Field> Field::find(std::string_view key) const {
+    expectObject();
+    auto it = value_->find(std::string(key));
+    if (it == value_->end()) return std::nullopt;
+    return Field(*it, *source_, path_.empty() ? std::string(key) : path_ + "." + std::string(key));
+}
+
+void Field::allowOnly(std::initializer_list<std::string_view> keys) const {
+    expectObject();
+    for (const auto& [key, value] : value_->items())
+        if (std::find(keys.begin(), keys.end(), key) == keys.end())
+            Field(value, *source_, path_.empty() ? key : path_ + "." + key).fail("unknown field");
+}
+
+std::vector<std::pair<std::string, Field>> Field::members() const {
+    expectObject();
+    std::vector<std::pair<std::string, Field>> out;
+    for (const auto& [key, value] : value_->items())
+        out.emplace_back(key, Field(value, *source_, path_.empty() ? key : path_ + "." + key));
+    return out;
+}
+
+std::size_t Field::size() const {
+    if (!value_->is_array()) fail("expected an array, got " + describe(*value_));
+    return value_->size();
+}
+
+Field Field::operator[](std::size_t index) const {
+    return Field((*value_)[index], *source_, fmt::format("{}[{}]", path_, index));
+}
+
+double Field::number() const {
+    // JSON cannot spell NaN or infinity, and the parser rejects overflowing
+    // literals, so every number that arrives here is finite.
+    if (!value_->is_number()) fail("expected a number, got " + describe(*value_));
+    return value_->get<double>();
+}
+
+std::int64_t Field::integer() const {
+    if (value_->is_number_unsigned()) {
+        if (value_->get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+            fail("integer too large");
+        return static_cast<std::int64_t>(value_->get<std::uint64_t>());
+    }
+    if (!value_->is_number_integer()) fail("expected an integer, got " + describe(*value_));
+    return value_->get<std::int64_t>();
+}
+
+std::uint64_t Field::unsignedInteger() const {
+    if (value_->is_number_integer() && !value_->is_number_unsigned())
+        fail(fmt::format("expected a non-negative integer, got {}", value_->get<std::int64_t>()));
+    if (!value_->is_number_unsigned()) fail("expected a non-negative integer, got " + describe(*value_));
+    return value_->get<std::uint64_t>();
+}
+
+std::string Field::string() const {
+    if (!value_->is_string()) fail("expected a string, got " + describe(*value_));
+    return value_->get<std::string>();
+}
+
+bool Field::boolean() const {
+    if (!value_->is_boolean()) fail("expected true or false, got " + describe(*value_));
+    return value_->get<bool>();
+}
+
+std::vector<double> Field::numbers(std::size_t count) const {
+    if (!value_->is_array()) fail(fmt::format("expected an array of {} numbers, got {}", count, describe(*value_)));
+    if (value_->size() != count) fail(fmt::format("expected {} numbers, got {}", count, value_->size()));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < count; ++i) out.push_back((*this)[i].number());
+    return out;
+}
+
+model::Vec3 Field::vec3() const {
+    std::vector<double> v = numbers(3);
+    return {v[0], v[1], v[2]};
+}
+
+}  // namespace smql::import::detail

@@ -1,0 +1,139 @@
+// Replica's info_semantic.json -> SceneData (docs/formats.md, "Replica").
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "ingest/import/common.hpp"
+#include "ingest/import/importers.hpp"
+#include "ingest/import/json_field.hpp"
+#include "ingest/import/viewpoint.hpp"
+
+namespace smql::import {
+
+namespace {
+
+using detail::Field;
+using detail::kMaxCoordinate;
+using detail::kMaxSize;
+
+// Quaternions this close to unit norm are float round-off and get normalised;
+// anything further off is a corrupt rotation.
+constexpr double kQuaternionNormTolerance = 1e-3;
+// A box whose own z axis leans further than this from world z is not upright
+// and is folded to its world AABB.
+constexpr double kMaxTiltDegrees = 10;
+
+struct ClassMapping {
+    model::NodeKind kind;
+    model::GeometryKind geometry;
+};
+
+ClassMapping mapClass(const std::string& category) {
+    using model::GeometryKind;
+    using model::NodeKind;
+    for (const char* plane : {"wall", "door", "window", "blinds", "floor", "ceiling"})
+        if (category == plane) return {NodeKind::Anchor, GeometryKind::Plane};
+    for (const char* solid : {"pillar", "beam", "stair"})
+        if (category == solid) return {NodeKind::Anchor, GeometryKind::Box};
+    return {NodeKind::Object, GeometryKind::Box};
+}
+
+void checkCoordinate(const Field& field, const model::Vec3& v, std::string_view what) {
+    for (double c : {v.x, v.y, v.z})
+        if (std::abs(c) > kMaxCoordinate)
+            field.fail(fmt::format("{} ({}, {}, {}) is more than {} m from the origin", what, v.x, v.y, v.z,
+                                   kMaxCoordinate));
+}
+
+model::Vec3 readSizes(const Field& field) {
+    model::Vec3 sizes = field.vec3();
+    for (double s : {sizes.x, sizes.y, sizes.z})
+        if (!(s > 0) || s > kMaxSize)
+            field.fail(fmt::format("size {} is out of range: sizes must be in (0, {}] m", s, kMaxSize));
+    return sizes;
+}
+
+Eigen::Matrix3d readRotation(const Field& field) {
+    std::vector<double> q = field.numbers(4);  // x, y, z, w
+    Eigen::Quaterniond quaternion(q[3], q[0], q[1], q[2]);
+    double norm = quaternion.norm();
+    if (std::abs(norm - 1) > kQuaternionNormTolerance)
+        field.fail(fmt::format("quaternion (x, y, z, w) has norm {:.6g}, expected a unit quaternion", norm));
+    return quaternion.normalized().toRotationMatrix();
+}
+
+model::Node readObject(const Field& object, model::NodeId localId) {
+    model::Node node;
+    node.id = localId;
+    node.sourceId = object.at("id").integer();
+
+    Field className = object.at("class_name");
+    node.category = detail::lowerCase(className.string());
+    if (node.category.empty()) className.fail("empty class name");
+    ClassMapping mapping = mapClass(node.category);
+    node.kind = mapping.kind;
+    node.geometry = mapping.geometry;
+    node.hidden = node.category == "undefined";
+
+    Field orientedBox = object.at("oriented_bbox");
+    Field abb = orientedBox.at("abb");
+    Field orientation = orientedBox.at("orientation");
+    Field centerField = abb.at("center");
+    model::Vec3 center = centerField.vec3();
+    checkCoordinate(centerField, center, "centre");
+    model::Vec3 sizes = readSizes(abb.at("sizes"));
+    Eigen::Matrix3d rotation = readRotation(orientation.at("rotation"));
+    Field translationField = orientation.at("translation");
+    model::Vec3 translation = translationField.vec3();
+    checkCoordinate(translationField, translation, "translation");
+
+    // abb.center is in the box's frame (habitat-sim's reading of Replica).
+    Eigen::Vector3d world = rotation * Eigen::Vector3d(center.x, center.y, center.z) +
+                            Eigen::Vector3d(translation.x, translation.y, translation.z);
+    node.box.center = {world.x(), world.y(), world.z()};
+    checkCoordinate(orientedBox, node.box.center, "world centre");
+
+    if (rotation(2, 2) >= std::cos(kMaxTiltDegrees * std::numbers::pi / 180)) {
+        node.box.size = sizes;
+        node.box.yaw = std::atan2(rotation(1, 0), rotation(0, 0));
+    } else {
+        Eigen::Vector3d extents = rotation.cwiseAbs() * Eigen::Vector3d(sizes.x, sizes.y, sizes.z);
+        node.box.size = {extents.x(), extents.y(), extents.z()};
+        node.box.yaw = 0;
+    }
+    return node;
+}
+
+}  // namespace
+
+model::SceneData readReplica(const std::string& path, const std::string& sceneName) {
+    detail::JsonSource source{path,
+                              "expected Replica's info_semantic.json: objects[] with id, class_name and "
+                              "oriented_bbox {abb {center, sizes}, orientation {rotation [x, y, z, w], translation}}"};
+    detail::Json root = detail::parseJsonFile(source);
+    Field objects = Field(root, source).at("objects");
+    if (objects.size() == 0) objects.fail("empty: expected at least one object");
+
+    model::SceneData scene;
+    std::unordered_map<std::int64_t, std::size_t> indexOfId;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        Field object = objects[i];
+        model::Node node = readObject(object, i + 1);
+        auto [it, fresh] = indexOfId.emplace(*node.sourceId, i);
+        if (!fresh) object.at("id").fail(fmt::format("duplicate id {} (also objects[{}].id)", *node.sourceId, it->second));
+        scene.nodes.push_back(std::move(node));
+    }
+
+    scene.info.name = sceneName;
+    scene.info.source = "replica:" + path;
+    scene.info.nodeCount = scene.nodes.size();
+    detail::ViewpointChoice view = detail::defaultViewpoint(scene.nodes);
+    scene.info.viewpoint = view.viewpoint;
+    scene.info.viewpointNote = std::move(view.note);
+    return scene;
+}
+
+}  // namespace smql::import

@@ -1,0 +1,24 @@
+// The documented default viewpoint of an imported scene (docs/formats.md,
+// "Default viewpoint"): it gives left/right/front/back their meaning until a
+// user sets another one. Internal to ingest/import.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/model/types.hpp"
+
+namespace smql::import::detail {
+
+inline constexpr double kEyeHeight = 1.6;     // above the floor, metres
+inline constexpr double kStepInside = 0.5;    // from the door's centre into the room, metres
+
+struct ViewpointChoice {
+    model::Viewpoint viewpoint;
+    std::string note;  // how it was chosen, for SceneInfo::viewpointNote
+};
+
+// `nodes` must hold at least one node with geometry.
+ViewpointChoice defaultViewpoint(const std::vector<model::Node>& nodes);
+
+}  // namespace smql::import::detail

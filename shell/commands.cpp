@@ -1,0 +1,116 @@
+#include "shell/commands.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "engine/engine.hpp"
+#include "engine/error.hpp"
+#include "engine/format.hpp"
+#include "ingest/generate/room_generator.hpp"
+#include "ingest/import/importers.hpp"
+#include "shell/session.hpp"
+
+namespace smql::shell {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string defaultSceneName(const std::string& format, const std::string& file) {
+    fs::path p = fs::absolute(file);
+    // Replica files are all called info_semantic.json: the folder names the scene.
+    if (format == "replica") return p.parent_path().filename().string();
+    return p.stem().string();
+}
+
+std::string summary(const model::SceneData& scene) {
+    std::size_t anchors = 0, objects = 0, hidden = 0;
+    for (const auto& n : scene.nodes) {
+        anchors += n.kind == model::NodeKind::Anchor;
+        objects += n.kind == model::NodeKind::Object && !n.hidden;
+        hidden += n.hidden;
+    }
+    return fmt::format("{} nodes: {} anchors, {} objects, {} hidden", scene.nodes.size(), anchors, objects, hidden);
+}
+
+}  // namespace
+
+int importCommand(const std::string& format, const std::string& file, const std::string& dbDir,
+                  const std::string& sceneName) {
+    auto start = std::chrono::steady_clock::now();
+    // Read and validate the whole file before the database is touched.
+    std::string name = sceneName.empty() ? defaultSceneName(format, file) : sceneName;
+    model::SceneData scene = format == "replica"     ? import::readReplica(file, name)
+                             : format == "spatiallm" ? import::readSpatialLm(file, name)
+                                                     : import::readSceneJson(file);
+    if (format == "json" && !sceneName.empty()) scene.info.name = sceneName;
+    auto engine = Engine::open(dbDir);
+    engine->importScene(scene);
+    std::cout << fmt::format("imported scene '{}' ({}) into {} in {:.1f} ms\n", scene.info.name, summary(scene), dbDir,
+                             millisecondsSince(start));
+    return 0;
+}
+
+int exportCommand(const std::string&, const std::string& dbDir, const std::string& sceneName,
+                  const std::string& outFile) {
+    auto engine = Engine::open(dbDir, /*readOnly=*/true);
+    std::string json = import::writeSceneJson(engine->exportScene(sceneName));
+    if (outFile.empty()) {
+        std::cout << json << "\n";
+        return 0;
+    }
+    std::ofstream out(outFile);
+    out << json << "\n";
+    if (!out)
+        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", outFile), std::nullopt, "check the folder exists");
+    std::cerr << fmt::format("exported scene to {}\n", outFile);
+    return 0;
+}
+
+int demoCommand(const std::string& dbDirOption) {
+    std::string dbDir = dbDirOption;
+    if (dbDir.empty()) {
+        std::string pattern = (fs::temp_directory_path() / "smql-demo-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw Error(ErrorKind::Usage, "cannot create a folder under /tmp");
+        dbDir = pattern;
+    }
+    std::cout << "smql demo: a generated room (no external data), stored, then queried.\n\n";
+    auto start = std::chrono::steady_clock::now();
+    model::SceneData room = generate::generateRoom({.seed = 7, .objectCount = 36, .name = "demo-room"});
+    auto engine = Engine::open(dbDir);
+    engine->importScene(room);
+    std::cout << fmt::format("built scene 'demo-room' ({}) in {} in {:.1f} ms\n\n", summary(room), dbDir,
+                             millisecondsSince(start));
+
+    Session session(*engine, std::cout, std::cerr, OutputFormat::Table);
+    session.setTimer(true);
+    const char* examples[] = {
+        "SHOW TREE",
+        "FIND object WHERE on(table) OR on(desk) PATH",
+        "FIND chair WHERE near(table) OR near(desk)",
+        "FIND object NEAREST TO door LIMIT 3",
+        "COUNT object WHERE near(wall.left, 1 m)",
+        "FIND object WHERE color = 'red' ORDER BY distance(door) LIMIT 3 PATH",
+        "RELATE (FIND cushion LIMIT 1) TO sofa",
+        "EXPLAIN FIND lamp WHERE on(desk) AND near(window, 2 m)",
+    };
+    bool ok = true;
+    for (const char* statement : examples) {
+        std::cout << "smql> " << statement << ";\n";
+        ok &= session.runStatements(statement);
+        std::cout << "\n";
+    }
+    std::cout << fmt::format("Explore it yourself: smql {}\n", dbDir);
+    return ok ? 0 : 1;
+}
+
+}  // namespace smql::shell

@@ -1,0 +1,200 @@
+#include <fstream>
+#include <functional>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
+
+#include "ingest/import/importers.hpp"
+#include "tests/unit/import/import_support.hpp"
+
+using smql::import::readReplica;
+using smql::import::readSceneJson;
+using smql::import::writeSceneJson;
+using smql::import::test::replicaPath;
+using smql::import::test::requireInputError;
+using smql::import::test::TempDir;
+using namespace smql::model;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+// The Replica scene with every field of the format in use.
+SceneData richScene() {
+    SceneData scene = readReplica(replicaPath(), "room0");
+    scene.info.captureTime = "2019-06-11T10:00:00Z";
+    scene.info.alignment = {0, -1, 0, 0.5, 1, 0, 0, 1.0 / 3, 0, 0, 1, 0, 0, 0, 0, 1};
+    scene.info.scale = 0.999;
+    scene.nodes[0].parent = 60;  // table 93 on the rug
+    scene.nodes[0].attributes = {{"color", "brown"}, {"material", "wood"}, {"size", "small"}};
+    scene.nodes[0].text = "a small \"wooden\" table\nby the window";
+    scene.nodes[0].confidence = 0.7f;
+    Node frame;
+    frame.id = scene.nodes.size() + 1;
+    frame.kind = NodeKind::Frame;
+    frame.text = "frame 1";
+    scene.nodes.push_back(frame);
+    scene.info.nodeCount = scene.nodes.size();
+    scene.relations.push_back({1, 60, RelationType::On, 0.9f, 3, kNoNode});
+    scene.relations.push_back({2, 1, RelationType::LeftOf, 0.55f, 1, frame.id});
+    return scene;
+}
+
+}  // namespace
+
+TEST_CASE("smql JSON: the Replica scene round-trips", "[import][json]") {
+    TempDir dir;
+    SECTION("as imported") {
+        SceneData scene = readReplica(replicaPath(), "room0");
+        std::string written = writeSceneJson(scene);
+        std::string path = dir.write("room0.json", written);
+        SceneData back = readSceneJson(path);
+        CHECK(back.info == scene.info);
+        CHECK(back.nodes == scene.nodes);
+        CHECK(back.relations == scene.relations);
+        CHECK(writeSceneJson(back) == written);
+    }
+    SECTION("with attributes, parents, text, a frame and relations") {
+        SceneData scene = richScene();
+        std::string written = writeSceneJson(scene);
+        SceneData back = readSceneJson(dir.write("rich.json", written));
+        CHECK(back.info == scene.info);
+        CHECK(back.nodes == scene.nodes);
+        CHECK(back.relations == scene.relations);
+        CHECK(writeSceneJson(back) == written);
+        CHECK_THAT(written, Catch::Contains("\"confidence\": 0.7,"));
+    }
+}
+
+TEST_CASE("smql JSON: optional fields take their defaults", "[import][json]") {
+    TempDir dir;
+    std::string path = dir.write("min.json", R"({"smql_scene": 1, "scene": {"name": "tiny"}, "nodes": [
+        {"id": 1, "kind": "anchor", "category": "floor", "geometry": "plane",
+         "box": {"center": [0, 0, 0], "size": [4, 3, 0.05]}},
+        {"id": 2, "kind": "object", "parent": 1, "category": "mug",
+         "box": {"center": [1, 1, 0.1], "size": [0.1, 0.1, 0.12], "yaw": 0.5}}]})");
+    SceneData scene = readSceneJson(path);
+    CHECK(scene.info.name == "tiny");
+    CHECK(scene.info.alignment == kIdentity);
+    CHECK(scene.info.scale == 1.0);
+    CHECK(scene.info.nodeCount == 2);
+    REQUIRE(scene.nodes.size() == 2);
+    CHECK(scene.nodes[0].geometry == GeometryKind::Plane);
+    CHECK(scene.nodes[1].geometry == GeometryKind::Box);  // a box without "geometry" is a box
+    CHECK(scene.nodes[1].parent == 1);
+    CHECK(scene.nodes[1].confidence == 1.0f);
+    CHECK_FALSE(scene.nodes[1].sourceId);
+    CHECK_FALSE(scene.nodes[1].hidden);
+    CHECK(scene.relations.empty());
+    std::string written = writeSceneJson(scene);
+    CHECK(writeSceneJson(readSceneJson(dir.write("again.json", written))) == written);
+}
+
+TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON path", "[import][json][malformed]") {
+    TempDir dir;
+    Json base = Json::parse(writeSceneJson(richScene()));
+    auto mutated = [&](const std::function<void(Json&)>& change) {
+        Json file = base;
+        change(file);
+        return dir.write("scene.json", file.dump(2));
+    };
+    auto read = [](const std::string& path) { return [path] { readSceneJson(path); }; };
+
+    SECTION("missing file") {
+        std::string path = dir.path("none.json");
+        requireInputError(read(path), {path, "no such file"});
+    }
+    SECTION("truncated") {
+        std::string path = dir.write("cut.json", base.dump(2).substr(0, 300));
+        requireInputError(read(path), {path + ":", "not valid JSON"});
+    }
+    SECTION("unsupported version") {
+        std::string path = mutated([](Json& f) { f["smql_scene"] = 2; });
+        requireInputError(read(path), {path, "smql_scene: unsupported version 2"});
+    }
+    SECTION("missing scene name") {
+        std::string path = mutated([](Json& f) { f["scene"].erase("name"); });
+        requireInputError(read(path), {path, "scene: missing field 'name'"});
+    }
+    SECTION("alignment with 15 numbers") {
+        std::string path = mutated([](Json& f) { f["scene"]["alignment"].erase(15); });
+        requireInputError(read(path), {path, "scene.alignment: expected 16 numbers, got 15"});
+    }
+    SECTION("a misspelt field") {
+        std::string path = mutated([](Json& f) { f["nodes"][4]["hiden"] = true; });
+        requireInputError(read(path), {path, "nodes[4].hiden: unknown field"});
+    }
+    SECTION("unknown kind") {
+        std::string path = mutated([](Json& f) { f["nodes"][3]["kind"] = "furniture"; });
+        requireInputError(read(path), {path, "nodes[3].kind: unknown kind 'furniture'"});
+    }
+    SECTION("unknown geometry") {
+        std::string path = mutated([](Json& f) { f["nodes"][3]["geometry"] = "sphere"; });
+        requireInputError(read(path), {path, "nodes[3].geometry: unknown geometry 'sphere'"});
+    }
+    SECTION("geometry without a box") {
+        std::string path = mutated([](Json& f) { f["nodes"][5].erase("box"); });
+        requireInputError(read(path), {path, "nodes[5]: missing field 'box'"});
+    }
+    SECTION("negative size") {
+        std::string path = mutated([](Json& f) { f["nodes"][6]["box"]["size"][0] = -1.0; });
+        requireInputError(read(path), {path, "nodes[6].box.size", "-1"});
+    }
+    SECTION("parent that is not a node") {
+        std::string path = mutated([](Json& f) { f["nodes"][2]["parent"] = 500; });
+        requireInputError(read(path), {path, "nodes[2].parent: parent 500 is not the id of a node"});
+    }
+    SECTION("cycle in parents") {
+        std::string path = mutated([](Json& f) {
+            f["nodes"][1]["parent"] = 3;
+            f["nodes"][2]["parent"] = 2;
+        });
+        requireInputError(read(path), {path, "parents form a cycle: 2 -> 3 -> 2"});
+    }
+    SECTION("duplicate node ids") {
+        std::string path = mutated([](Json& f) { f["nodes"][7]["id"] = 3; });
+        requireInputError(read(path), {path, "nodes[7].id: duplicate id 3"});
+    }
+    SECTION("an id out of range") {
+        std::string path = mutated([](Json& f) { f["nodes"][7]["id"] = 0; });
+        requireInputError(read(path), {path, "nodes[7].id: id 0 is out of range"});
+    }
+    SECTION("an attribute that is not a string") {
+        std::string path = mutated([](Json& f) { f["nodes"][0]["attributes"]["size"] = 3; });
+        requireInputError(read(path), {path, "nodes[0].attributes.size: expected a string"});
+    }
+    SECTION("confidence above 1") {
+        std::string path = mutated([](Json& f) { f["nodes"][0]["confidence"] = 1.5; });
+        requireInputError(read(path), {path, "nodes[0].confidence", "out of range"});
+    }
+    SECTION("unknown relation type") {
+        std::string path = mutated([](Json& f) { f["relations"][0]["type"] = "under"; });
+        requireInputError(read(path), {path, "relations[0].type: unknown relation type 'under'"});
+    }
+    SECTION("relation to a missing node") {
+        std::string path = mutated([](Json& f) { f["relations"][1]["object"] = 1000; });
+        requireInputError(read(path), {path, "relations[1].object: 1000 is not the id of a node"});
+    }
+    SECTION("relation frame that is not a frame") {
+        std::string path = mutated([](Json& f) { f["relations"][1]["frame"] = 5; });
+        requireInputError(read(path), {path, "relations[1].frame: node 5 has kind anchor, not frame"});
+    }
+    SECTION("support of zero") {
+        std::string path = mutated([](Json& f) { f["relations"][0]["support"] = 0; });
+        requireInputError(read(path), {path, "relations[0].support"});
+    }
+}
+
+TEST_CASE("smql JSON: the example in docs/formats.md reads and writes back unchanged", "[import][json]") {
+    std::ifstream doc(std::string(SMQL_SOURCE_DIR) + "/docs/formats.md");
+    std::string text((std::istreambuf_iterator<char>(doc)), std::istreambuf_iterator<char>());
+    std::size_t begin = text.find("```json\n");
+    REQUIRE(begin != std::string::npos);
+    begin += 8;
+    std::string example = text.substr(begin, text.find("```", begin) - begin);
+
+    TempDir dir;
+    SceneData scene = readSceneJson(dir.write("example.json", example));
+    CHECK(scene.nodes.size() == 3);
+    CHECK(scene.relations.size() == 1);
+    CHECK(writeSceneJson(scene) == example);
+}
