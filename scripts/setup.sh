@@ -7,7 +7,7 @@ packages=(
   liblmdb-dev lmdb-utils libboost-dev libeigen3-dev
   antlr4 libantlr4-runtime-dev default-jre-headless
   libfmt-dev nlohmann-json3-dev libcli11-dev libreadline-dev
-  catch2 libsqlite3-dev
+  catch2 libsqlite3-dev python3
 )
 
 missing=()

@@ -100,8 +100,8 @@ int demoCommand(const std::string& dbDirOption) {
         "FIND object NEAREST TO door LIMIT 3",
         "COUNT object WHERE near(wall.left, 1 m)",
         "FIND object WHERE color = 'red' ORDER BY distance(door) LIMIT 3 PATH",
-        "RELATE (FIND cushion LIMIT 1) TO sofa",
-        "EXPLAIN FIND lamp WHERE on(desk) AND near(window, 2 m)",
+        "RELATE (FIND cushion WHERE on(sofa) LIMIT 1) TO sofa",
+        "EXPLAIN FIND object WHERE on(desk) AND near(window, 2 m)",
     };
     bool ok = true;
     for (const char* statement : examples) {

@@ -246,7 +246,9 @@ ResultSet Executor::relate(const binder::BoundRelate& r) const {
             std::string sentence;
             for (const auto& hit : hits) {
                 rs.rows.push_back({la, std::string(relations::toString(hit.predicate)), lb, hit.score, gap});
-                std::string phrase = fmt::format("{} {}", relations::toString(hit.predicate), lb);
+                std::string words(relations::toString(hit.predicate));
+                std::replace(words.begin(), words.end(), '_', ' ');  // "left of", "in front of"
+                std::string phrase = fmt::format("{} {}", words, lb);
                 if (hit.predicate == relations::Predicate::Near) phrase += fmt::format(" ({:.1f} m)", gap);
                 sentence += (sentence.empty() ? la + " is " : "; ") + phrase;
             }

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# The smql command as a user runs it. Usage: shell_test.sh SMQL_BINARY SHARED_DATA_DIR
+set -u
+smql=$1
+data=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+
+check() {  # check NAME COMMAND...: passes when the command succeeds
+  local name=$1
+  shift
+  if "$@" >"$work/out" 2>"$work/err"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAIL: $name"
+    sed 's/^/  out: /' "$work/out" | head -20
+    sed 's/^/  err: /' "$work/err" | head -20
+  fi
+}
+
+db=$work/r0
+replica=$data/replica-room0/info_semantic.json
+
+check "import replica" "$smql" import replica "$replica" --db "$db" --scene room0
+check "FIND with PATH lists cushions with their paths" \
+  bash -c "'$smql' '$db' -c 'FIND cushion WHERE on(sofa) PATH' | grep -q 'room0 / .*sofa#.* / cushion#'"
+check "--format json is valid JSON with ids, categories, boxes and paths" \
+  bash -c "'$smql' '$db' --format json -c 'FIND cushion WHERE on(sofa) PATH' | python3 -c '
+import json, sys
+r = json.load(sys.stdin)
+assert len(r[\"rows\"]) == 7, r
+for row in r[\"rows\"]:
+    assert isinstance(row[\"id\"], int) and row[\"category\"] == \"cushion\"
+    assert len(row[\"box\"][\"center\"]) == 3 and all(s > 0 for s in row[\"box\"][\"size\"])
+    assert row[\"path\"].startswith(\"room0 / \")
+'"
+check "csv output has a header" bash -c "'$smql' '$db' --format csv -c 'FIND sofa' | head -1 | grep -qx 'id,category,source_id,box'"
+check "RELATE answers in words" bash -c "'$smql' '$db' -c 'RELATE src#35 TO src#55' | grep -q 'is in plant-stand#'"
+
+# Errors: non-zero exit, line and column, a caret, a hint; JSON errors for programs.
+check "a syntax error exits non-zero" bash -c "! '$smql' '$db' -c 'FIND cushion WHER on(sofa)'"
+check "a syntax error shows line, column and caret" \
+  bash -c "'$smql' '$db' -c 'FIND cushion WHER on(sofa)' 2>&1 | grep -q 'line 1, column' && '$smql' '$db' -c 'FIND cushion WHER on(sofa)' 2>&1 | grep -q '\^'"
+check "an unknown category gets a hint" bash -c "'$smql' '$db' -c 'FIND cushon' 2>&1 | grep -q 'did you mean cushion'"
+check "errors in json format are JSON" \
+  bash -c "'$smql' '$db' --format json -c 'FIND cushon' 2>&1 >/dev/null | python3 -c 'import json,sys; e=json.load(sys.stdin)[\"error\"]; assert e[\"column\"] == 6 and \"cushion\" in e[\"hint\"]'"
+
+# Scripts: -f and standard input; statements before a failing one still print.
+printf 'USE SCENE %s;\n-- a comment\nCOUNT cushion\n  WHERE on(sofa);\n' "'room0'" >"$work/script.smql"
+check "-f runs a script" bash -c "'$smql' '$db' -f '$work/script.smql' | grep -qx '7'"
+check "piped statements run" bash -c "printf 'COUNT sofa;' | '$smql' '$db' | grep -qx '2'"
+check "statements before an error are printed" bash -c "'$smql' '$db' -c 'COUNT sofa; FIND nope' 2>/dev/null | grep -qx '2'"
+
+# Bad input leaves the database as it was.
+before=$("$smql" "$db" --format json -c 'SHOW SCENES')
+head -c 3000 "$replica" >"$work/truncated.json"
+check "a truncated file is rejected naming the file" \
+  bash -c "! '$smql' import replica '$work/truncated.json' --db '$db' --scene broken 2>'$work/e' && grep -q 'truncated.json' '$work/e'"
+printf 'wall_0=Wall(0,0,0,4,0,0,2.7,0.1)\nbbox_0=Bbox(chair,1,nan,0.4,0,0.5,0.5,0.9)\n' >"$work/layout.txt"
+check "NaN in a SpatialLM line is rejected with file:line" \
+  bash -c "! '$smql' import spatiallm '$work/layout.txt' --db '$db' 2>'$work/e' && grep -q 'layout.txt:2' '$work/e'"
+check "an existing scene name is refused" bash -c "! '$smql' import replica '$replica' --db '$db' --scene room0"
+after=$("$smql" "$db" --format json -c 'SHOW SCENES')
+check "the database is unchanged after rejected imports" test "$before" = "$after"
+
+# JSON export round trip.
+check "export json" "$smql" export json --db "$db" --scene room0 -o "$work/room0.json"
+check "import json" "$smql" import json "$work/room0.json" --db "$work/copy"
+check "the copy answers the same" bash -c "diff <('$smql' '$db' -c 'FIND cushion WHERE on(sofa) PATH' | cut -c1-200 | awk '{print \$2, \$3}') <('$smql' '$work/copy' -c 'FIND cushion WHERE on(sofa) PATH' | awk '{print \$2, \$3}')"
+
+check "smql demo runs" bash -c "'$smql' demo --db '$work/demo' | grep -q 'Explore it yourself'"
+check "smql test reports a closing line" bash -c "'$smql' test /dev/null | tail -1 | grep -qx '0 passed, 0 failed'"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
