@@ -1,5 +1,6 @@
 #include "engine/engine.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -28,15 +29,22 @@ namespace {
 bool isAllScenes(std::string_view name) { return name == "*" || name == "all"; }
 
 constexpr std::size_t kStatementCacheSize = 512;
+// Decoded scenes kept in memory; the least recently used one goes first.
+constexpr std::size_t kSnapshotCacheSize = 32;
 
 }  // namespace
 
 struct Engine::State {
     std::unique_ptr<storage::Database> db;
     relations::Thresholds thresholds;
-    std::string sceneName;  // empty: the most recently imported scene
+    std::string sceneName;  // empty until chosen: USE SCENE, an import, or the most recent scene
     bool allScenes = false;
-    std::unordered_map<model::NodeId, std::shared_ptr<const SceneSnapshot>> snapshots;
+    struct CachedSnapshot {
+        std::shared_ptr<const SceneSnapshot> snapshot;
+        std::uint64_t lastUse = 0;
+    };
+    std::unordered_map<model::NodeId, CachedSnapshot> snapshots;
+    std::uint64_t useCounter = 0;
     std::unordered_map<std::string, std::shared_ptr<const std::vector<ast::Statement>>> statements;
     std::mutex mutex;
 
@@ -59,16 +67,27 @@ struct Engine::State {
         if (scenes.empty())
             throw Error(ErrorKind::Binding, "the database holds no scene yet", std::nullopt,
                         "import one: smql import replica info_semantic.json --db DIR (or smql demo)");
+        // The most recently imported scene, chosen once: later statements keep using it.
         const auto* latest = &scenes.front();
         for (const auto& s : scenes)
             if (s.id > latest->id) latest = &s;
+        sceneName = latest->name;
         return *latest;
     }
 
     std::shared_ptr<const SceneSnapshot> snapshot(const storage::ReadTransaction& txn, const model::SceneInfo& info) {
-        auto& cached = snapshots[info.id];
-        if (!cached || cached->info().version != info.version) cached = SceneSnapshot::load(txn, info);
-        return cached;
+        auto it = snapshots.find(info.id);
+        if (it == snapshots.end() || it->second.snapshot->info().version != info.version) {
+            if (it == snapshots.end() && snapshots.size() >= kSnapshotCacheSize) {
+                auto oldest = std::min_element(snapshots.begin(), snapshots.end(), [](const auto& a, const auto& b) {
+                    return a.second.lastUse < b.second.lastUse;
+                });
+                snapshots.erase(oldest);
+            }
+            it = snapshots.insert_or_assign(info.id, CachedSnapshot{SceneSnapshot::load(txn, info), 0}).first;
+        }
+        it->second.lastUse = ++useCounter;
+        return it->second.snapshot;
     }
 };
 

@@ -27,6 +27,17 @@ struct OpenOptions {
     std::uint64_t mapSize = std::uint64_t(1) << 38;  // virtual address space reserved (256 GiB); not disk
 };
 
+// Entries and pages of one sub-database, for SHOW/bench diagnostics of where
+// the bytes of a database go.
+struct TableStats {
+    std::string name;
+    std::uint64_t entries = 0;
+    // Branch, leaf and overflow pages times the page size, as LMDB counts
+    // them: for the DUPSORT tables (children, labels, relations) that is the
+    // key tree only, without the pages of long duplicate lists.
+    std::uint64_t bytes = 0;
+};
+
 class ReadTransaction;
 class WriteTransaction;
 
@@ -39,10 +50,16 @@ public:
     Database(const Database&) = delete;
     Database& operator=(const Database&) = delete;
 
+    // Thread-safe: any thread may begin reads, each a snapshot of the last commit.
     ReadTransaction beginRead() const;
+    // Blocks while another WriteTransaction (of any process) is open; the
+    // transaction must stay on the thread that began it. Throws
+    // smql::Error(Storage) on a read-only database.
     WriteTransaction beginWrite();
 
     const std::string& directory() const;
+    bool readOnly() const;
+    // Size of data.mdb on disk (the file grows with the data, not with mapSize).
     std::uint64_t fileSizeBytes() const;
 
     struct Impl;
@@ -65,22 +82,33 @@ public:
     std::optional<model::SceneInfo> sceneByName(std::string_view name) const;
 
     std::optional<model::Node> node(model::NodeId id) const;
+    // node(), decoding into `into` so a loop reuses one Node's string capacity.
+    // Returns false (leaving `into` untouched) when there is no such node.
+    bool readNode(model::NodeId id, model::Node& into) const;
+    // Nodes in the whole database, scene nodes included; O(1).
+    std::uint64_t nodeCount() const;
+    // Children in id order, which is the order the importer listed them in.
     std::vector<model::NodeId> children(model::NodeId parent) const;
     // Every node of a scene (the scene node itself included), in id order.
     void forEachNodeInScene(model::NodeId sceneId, const std::function<void(const model::Node&)>& visit) const;
-    // Relations whose subject or object is `id`.
+    // Relations whose subject or object is `id`: those with `id` as subject
+    // first, then those with `id` as object.
     std::vector<model::Relation> relationsOf(model::NodeId id) const;
     void forEachRelationInScene(model::NodeId sceneId, const std::function<void(const model::Relation&)>& visit) const;
 
-    // Label index: nodes with this exact category in every scene (or one), in id order.
+    // Label index: nodes with this exact category in every scene (or one), in
+    // id order. Scene nodes (whose category is the scene name) and nodes with
+    // an empty category are not in the index.
     std::vector<model::NodeId> nodesWithCategory(std::string_view category,
                                                  model::NodeId sceneId = model::kNoNode) const;
-    // Every distinct category with its node count, across all scenes.
+    // Every distinct category with its node count, across all scenes, by name (byte order).
     std::vector<std::pair<std::string, std::uint64_t>> categories() const;
     std::optional<model::NodeId> nodeBySourceId(model::NodeId sceneId, std::int64_t sourceId) const;
 
     std::optional<std::string> setting(std::string_view key) const;
     std::vector<std::pair<std::string, std::string>> settings() const;
+
+    std::vector<TableStats> tableStats() const;
 
     struct Impl;
     explicit ReadTransaction(std::unique_ptr<Impl> impl);
@@ -98,11 +126,17 @@ public:
     // Stores a whole scene: assigns database ids to the scene node and every
     // node of `data` (mapping local ids, parents and relation ends), fills
     // every index. Returns the new scene's id. Throws smql::Error(Input) when
-    // a scene with the same name exists or local ids are inconsistent.
+    // a scene with the same name exists or local ids are inconsistent; those
+    // checks run before the first write, so the transaction stays usable.
+    // The scene gets one contiguous block of ids: the scene node, then the
+    // nodes of `data` in list order (docs/storage.md relies on this).
     model::NodeId importScene(const model::SceneData& data);
-    // Removes a scene with all its nodes, relations and index entries.
+    // Removes a scene with all its nodes, relations and index entries. Ids are
+    // never reused. Throws smql::Error(Binding) when there is no such scene.
     void dropScene(model::NodeId sceneId);
+    // Throws smql::Error(Usage) for an empty key or one over 503 bytes (LMDB's key limit).
     void putSetting(std::string_view key, std::string_view value);
+    // Erasing a setting that is not set does nothing.
     void eraseSetting(std::string_view key);
 
     void commit();

@@ -1,0 +1,149 @@
+// SMQL, the smql query language. docs/language.md is the user reference.
+//
+// The parser (engine/parser/parser.cpp) splits a script into statements at
+// `;` and parses each one with the `statement` rule, so the grammar never sees
+// the separators. Checks that need words rather than token types (clause
+// order, sides, units, LIMIT values) live in the tree walker, where they can
+// say what is wrong in plain words.
+grammar Smql;
+
+// ---------------------------------------------------------------- statements
+
+statement    : EXPLAIN? command EOF ;
+
+command      : findStmt | countStmt | relateStmt | describeStmt | showStmt | useStmt | setStmt ;
+
+// Clauses are a loop rather than a fixed sequence: the walker checks their
+// order and reports "WHERE must come before LIMIT" instead of a bare
+// "unexpected WHERE", and lets PATH stand anywhere after the target.
+findStmt     : FIND ref findClause* ;
+findClause   : viewClause | whereClause | nearestClause | orderClause | limitClause | PATH ;
+
+countStmt    : COUNT ref countClause* ;
+countClause  : viewClause | whereClause ;
+
+relateStmt   : RELATE ref TO ref viewClause? ;
+describeStmt : DESCRIBE ref ;
+showStmt     : SHOW ( SCENES | TREE ref? | SETTINGS ) ;
+// `USE SCENE *` (or `all`): every scene at once.
+useStmt      : USE SCENE ( name | STRING | STAR ) ;
+setStmt      : SET settingName EQ setValue ;
+settingName  : name ( DOT name )* ;
+setValue     : quantity | STRING | name ;
+
+viewClause    : VIEW FROM ref ( FACING ref )? ;
+whereClause   : WHERE orExpr ;
+nearestClause : NEAREST TO ref ;
+orderClause   : ORDER BY DISTANCE LPAREN ref RPAREN ( ASC | DESC )? ;
+limitClause   : LIMIT MINUS? NUMBER ;
+
+// ---------------------------------------------------------------- references
+
+ref          : namedRef | NODE_ID | SOURCE_ID | subQuery ;
+namedRef     : ( name | STRING ) ( DOT side=name )? ;
+subQuery     : LPAREN FIND ref findClause* RPAREN ;
+
+// ---------------------------------------------------------------- conditions
+// NOT binds tighter than AND, AND tighter than OR.
+
+orExpr       : andExpr ( OR andExpr )* ;
+andExpr      : notExpr ( AND notExpr )* ;
+notExpr      : NOT notExpr | atom ;
+atom         : LPAREN orExpr RPAREN | predicate | comparison ;
+predicate    : name LPAREN ref ( COMMA ref )* ( COMMA distance )? RPAREN ;
+comparison   : name compareOp quantityOrString ;
+compareOp    : EQ | NE | LT | LE | GT | GE | LIKE ;
+quantityOrString : quantity | STRING ;
+
+// A unit is any identifier here; the walker accepts m, cm and mm and names
+// anything else, which reads better than a token-level error.
+quantity     : MINUS? NUMBER unit=IDENT? ;
+distance     : NUMBER unit=IDENT? ;
+
+// Every keyword except the logical ones can also be a name, so a category
+// called `scene`, `tree` or `path`, or a setting called `limit`, still works.
+name         : IDENT
+             | FIND | COUNT | RELATE | DESCRIBE | SHOW | USE | SET | EXPLAIN
+             | VIEW | FROM | FACING | WHERE | NEAREST | TO | ORDER | BY | DISTANCE | ASC | DESC
+             | LIMIT | PATH | SCENES | SCENE | TREE | SETTINGS
+             ;
+
+// ---------------------------------------------------------------- tokens
+// Keywords are case-insensitive. Their order here is the order hints list
+// them in ("expected VIEW FROM, WHERE, NEAREST TO, ...").
+
+FIND     : F I N D ;
+COUNT    : C O U N T ;
+RELATE   : R E L A T E ;
+DESCRIBE : D E S C R I B E ;
+SHOW     : S H O W ;
+USE      : U S E ;
+SET      : S E T ;
+EXPLAIN  : E X P L A I N ;
+VIEW     : V I E W ;
+FROM     : F R O M ;
+FACING   : F A C I N G ;
+WHERE    : W H E R E ;
+NEAREST  : N E A R E S T ;
+TO       : T O ;
+ORDER    : O R D E R ;
+BY       : B Y ;
+DISTANCE : D I S T A N C E ;
+ASC      : A S C ;
+DESC     : D E S C ;
+LIMIT    : L I M I T ;
+PATH     : P A T H ;
+SCENES   : S C E N E S ;
+SCENE    : S C E N E ;
+TREE     : T R E E ;
+SETTINGS : S E T T I N G S ;
+AND      : A N D ;
+OR       : O R ;
+NOT      : N O T ;
+LIKE     : L I K E ;
+
+SOURCE_ID : S R C '#' [0-9]+ ;
+NODE_ID   : '#' [0-9]+ ;
+
+// Letters, digits and `_`, with single hyphens inside (`plant-stand`); a
+// hyphen must be followed by a letter or digit, so `a--note` is `a` plus a
+// comment.
+IDENT    : [a-zA-Z_] [a-zA-Z0-9_]* ( '-' [a-zA-Z0-9_]+ )* ;
+NUMBER   : [0-9]+ ( '.' [0-9]* )? | '.' [0-9]+ ;
+
+// A quote inside a string is written twice: 'it''s'. Strings may span lines.
+STRING   : '\'' ( ~'\'' | '\'\'' )* '\''
+         | '"' ( ~'"' | '""' )* '"'
+         ;
+// Without its closing quote a string runs to the end of the text; this
+// token exists so the walker can say "unterminated string" at the opening
+// quote.
+UNTERMINATED_STRING : '\'' ( ~'\'' | '\'\'' )* | '"' ( ~'"' | '""' )* ;
+
+EQ     : '=' ;
+NE     : '!=' | '<>' ;
+LE     : '<=' ;
+GE     : '>=' ;
+LT     : '<' ;
+GT     : '>' ;
+LPAREN : '(' ;
+RPAREN : ')' ;
+COMMA  : ',' ;
+DOT    : '.' ;
+SEMI   : ';' ;
+MINUS  : '-' ;
+STAR   : '*' ;
+
+COMMENT : '--' ~[\r\n]* -> skip ;
+WS      : [ \t\r\n\f]+ -> skip ;
+
+// Anything else becomes a token the parser rejects with a located message,
+// so the lexer itself never fails.
+UNKNOWN_CHAR : . ;
+
+fragment A : [aA] ; fragment B : [bB] ; fragment C : [cC] ; fragment D : [dD] ;
+fragment E : [eE] ; fragment F : [fF] ; fragment G : [gG] ; fragment H : [hH] ;
+fragment I : [iI] ; fragment K : [kK] ; fragment L : [lL] ; fragment M : [mM] ;
+fragment N : [nN] ; fragment O : [oO] ; fragment P : [pP] ; fragment R : [rR] ;
+fragment S : [sS] ; fragment T : [tT] ; fragment U : [uU] ; fragment V : [vV] ;
+fragment W : [wW] ; fragment X : [xX] ; fragment Y : [yY] ;

@@ -1,0 +1,334 @@
+#include "storage/codec.hpp"
+
+#include <bit>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+
+namespace smql::storage::codec {
+
+namespace {
+
+constexpr std::string_view kCorruptHint =
+    "the database file is damaged; restore it from a backup, or drop the scene and import it again";
+
+enum NodeFlags : std::uint8_t { kHidden = 1, kHasSourceId = 2, kHasBox = 4 };
+
+constexpr auto kLastNodeKind = static_cast<std::uint8_t>(model::NodeKind::Frame);
+constexpr auto kLastGeometry = static_cast<std::uint8_t>(model::GeometryKind::Plane);
+constexpr auto kLastRelationType = static_cast<std::uint8_t>(model::RelationType::Between);
+
+void putBigEndian64(std::uint8_t* p, std::uint64_t v) {
+    for (int i = 7; i >= 0; --i) {
+        p[i] = static_cast<std::uint8_t>(v);
+        v >>= 8;
+    }
+}
+
+void putLittleEndian(std::uint8_t* p, std::uint64_t v, int bytes) {
+    for (int i = 0; i < bytes; ++i) {
+        p[i] = static_cast<std::uint8_t>(v);
+        v >>= 8;
+    }
+}
+
+std::uint64_t getLittleEndian(const std::uint8_t* p, int bytes) {
+    std::uint64_t v = 0;
+    for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
+    return v;
+}
+
+class Writer {
+public:
+    explicit Writer(std::string& out) : out_(out) {}
+
+    void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
+    void u32(std::uint32_t v) { fixed(v, 4); }
+    void u64(std::uint64_t v) { fixed(v, 8); }
+    void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
+    void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+    void varint(std::uint64_t v) {
+        while (v >= 0x80) {
+            u8(static_cast<std::uint8_t>(v | 0x80));
+            v >>= 7;
+        }
+        u8(static_cast<std::uint8_t>(v));
+    }
+    void str(std::string_view s) {
+        varint(s.size());
+        out_.append(s);
+    }
+
+private:
+    void fixed(std::uint64_t v, int bytes) {
+        std::uint8_t buf[8];
+        putLittleEndian(buf, v, bytes);
+        out_.append(reinterpret_cast<const char*>(buf), bytes);
+    }
+    std::string& out_;
+};
+
+class Reader {
+public:
+    Reader(std::string_view bytes, std::string_view what, model::NodeId id)
+        : begin_(reinterpret_cast<const std::uint8_t*>(bytes.data())),
+          p_(begin_),
+          end_(begin_ + bytes.size()),
+          what_(what),
+          id_(id) {}
+
+    std::uint8_t u8() { return *take(1); }
+    std::uint32_t u32() { return static_cast<std::uint32_t>(getLittleEndian(take(4), 4)); }
+    std::uint64_t u64() { return getLittleEndian(take(8), 8); }
+    float f32() { return std::bit_cast<float>(u32()); }
+    double f64() { return std::bit_cast<double>(u64()); }
+    std::uint64_t varint() {
+        std::uint64_t v = 0;
+        for (int shift = 0; shift < 64; shift += 7) {
+            std::uint8_t b = u8();
+            v |= std::uint64_t(b & 0x7f) << shift;
+            if (!(b & 0x80)) return v;
+        }
+        corrupt("a length field is malformed");
+    }
+    std::string_view str() {
+        std::uint64_t n = varint();
+        if (n > remaining()) corrupt(fmt::format("a string of {} bytes runs past the end", n));
+        auto s = std::string_view(reinterpret_cast<const char*>(p_), n);
+        p_ += n;
+        return s;
+    }
+    std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
+    void expectEnd() {
+        if (p_ != end_) corrupt(fmt::format("{} unexpected bytes at the end", remaining()));
+    }
+    void expectFormat(std::uint8_t expected) {
+        std::uint8_t format = u8();
+        if (format != expected)
+            corrupt(fmt::format("format version {} (this smql reads version {})", format, expected));
+    }
+    [[noreturn]] void corrupt(std::string_view why) const {
+        // Id 0 is never a node: it marks records that are not keyed by id (meta entries).
+        std::string subject = id_ == model::kNoNode ? fmt::format("corrupt {}", what_)
+                                                    : fmt::format("corrupt {} record for id {}", what_, id_);
+        throw Error(ErrorKind::Storage, fmt::format("{}: {} (byte {} of {})", subject, why, p_ - begin_, end_ - begin_),
+                    std::nullopt, std::string(kCorruptHint));
+    }
+
+private:
+    const std::uint8_t* take(std::size_t n) {
+        if (remaining() < n) corrupt("truncated");
+        const std::uint8_t* at = p_;
+        p_ += n;
+        return at;
+    }
+
+    const std::uint8_t* begin_;
+    const std::uint8_t* p_;
+    const std::uint8_t* end_;
+    std::string_view what_;
+    model::NodeId id_;
+};
+
+}  // namespace
+
+IdKey idKey(model::NodeId id) {
+    IdKey key;
+    putBigEndian64(key.data(), id);
+    return key;
+}
+
+model::NodeId idFromKey(std::string_view bytes, std::string_view what) {
+    if (bytes.size() != 8)
+        throw Error(ErrorKind::Storage, fmt::format("corrupt {} key: {} bytes instead of 8", what, bytes.size()),
+                    std::nullopt, std::string(kCorruptHint));
+    return readBigEndian64(reinterpret_cast<const std::uint8_t*>(bytes.data()));
+}
+
+void encodeNode(const model::Node& node, std::string& out) {
+    out.clear();
+    std::size_t strings = node.category.size() + node.text.size();
+    for (const auto& a : node.attributes) strings += a.name.size() + a.value.size() + 4;
+    out.reserve(24 + 8 + 56 + strings + 8);
+
+    const bool hasBox = node.box != model::Box{};
+    std::uint8_t flags = (node.hidden ? kHidden : 0) | (node.sourceId ? kHasSourceId : 0) | (hasBox ? kHasBox : 0);
+    Writer w(out);
+    w.u8(kNodeFormat);
+    w.u8(static_cast<std::uint8_t>(node.kind));
+    w.u8(static_cast<std::uint8_t>(node.geometry));
+    w.u8(flags);
+    w.u64(node.scene);
+    w.u64(node.parent);
+    w.f32(node.confidence);
+    if (node.sourceId) w.u64(static_cast<std::uint64_t>(*node.sourceId));
+    if (hasBox) {
+        const auto& b = node.box;
+        for (double v : {b.center.x, b.center.y, b.center.z, b.size.x, b.size.y, b.size.z, b.yaw}) w.f64(v);
+    }
+    w.str(node.category);
+    w.varint(node.attributes.size());
+    for (const auto& a : node.attributes) {
+        w.str(a.name);
+        w.str(a.value);
+    }
+    w.str(node.text);
+}
+
+void decodeNode(model::NodeId id, std::string_view bytes, model::Node& out) {
+    Reader r(bytes, "node", id);
+    r.expectFormat(kNodeFormat);
+    std::uint8_t kind = r.u8();
+    if (kind > kLastNodeKind) r.corrupt(fmt::format("unknown node kind {}", kind));
+    std::uint8_t geometry = r.u8();
+    if (geometry > kLastGeometry) r.corrupt(fmt::format("unknown geometry kind {}", geometry));
+    std::uint8_t flags = r.u8();
+    if (flags & ~(kHidden | kHasSourceId | kHasBox)) r.corrupt(fmt::format("unknown flags {:#x}", flags));
+
+    out.id = id;
+    out.kind = static_cast<model::NodeKind>(kind);
+    out.geometry = static_cast<model::GeometryKind>(geometry);
+    out.hidden = flags & kHidden;
+    out.scene = r.u64();
+    out.parent = r.u64();
+    out.confidence = r.f32();
+    if (flags & kHasSourceId)
+        out.sourceId = static_cast<std::int64_t>(r.u64());
+    else
+        out.sourceId.reset();
+    if (flags & kHasBox) {
+        auto& b = out.box;
+        for (double* v : {&b.center.x, &b.center.y, &b.center.z, &b.size.x, &b.size.y, &b.size.z, &b.yaw}) *v = r.f64();
+    } else {
+        out.box = model::Box{};
+    }
+    out.category.assign(r.str());
+    std::uint64_t attributes = r.varint();
+    // Each attribute takes at least two length bytes: a bound that keeps a
+    // corrupt count from reserving gigabytes.
+    if (attributes > r.remaining() / 2) r.corrupt(fmt::format("attribute count {} exceeds the record", attributes));
+    out.attributes.resize(attributes);
+    for (auto& a : out.attributes) {
+        a.name.assign(r.str());
+        a.value.assign(r.str());
+    }
+    out.text.assign(r.str());
+    r.expectEnd();
+}
+
+model::Node decodeNode(model::NodeId id, std::string_view bytes) {
+    model::Node node;
+    decodeNode(id, bytes, node);
+    return node;
+}
+
+void encodeScene(const model::SceneInfo& scene, std::string& out) {
+    out.clear();
+    out.reserve(1 + 8 * 23 + scene.name.size() + scene.source.size() + scene.captureTime.size() +
+                scene.viewpointNote.size() + 16);
+    Writer w(out);
+    w.u8(kSceneFormat);
+    for (double v : scene.alignment) w.f64(v);
+    w.f64(scene.scale);
+    w.f64(scene.viewpoint.position.x);
+    w.f64(scene.viewpoint.position.y);
+    w.f64(scene.viewpoint.position.z);
+    w.f64(scene.viewpoint.facingYaw);
+    w.u64(scene.nodeCount);
+    w.u64(scene.version);
+    w.str(scene.name);
+    w.str(scene.source);
+    w.str(scene.captureTime);
+    w.str(scene.viewpointNote);
+}
+
+model::SceneInfo decodeScene(model::NodeId id, std::string_view bytes) {
+    Reader r(bytes, "scene", id);
+    r.expectFormat(kSceneFormat);
+    model::SceneInfo scene;
+    scene.id = id;
+    for (double& v : scene.alignment) v = r.f64();
+    scene.scale = r.f64();
+    scene.viewpoint.position.x = r.f64();
+    scene.viewpoint.position.y = r.f64();
+    scene.viewpoint.position.z = r.f64();
+    scene.viewpoint.facingYaw = r.f64();
+    scene.nodeCount = r.u64();
+    scene.version = r.u64();
+    scene.name = r.str();
+    scene.source = r.str();
+    scene.captureTime = r.str();
+    scene.viewpointNote = r.str();
+    r.expectEnd();
+    return scene;
+}
+
+// Layout: format, side, other end (BE), type, frame (BE), score (f32 LE), support (u32 LE).
+RelationEntry encodeRelationEntry(const model::Relation& relation, RelationSide keySide) {
+    RelationEntry e{};
+    e[0] = kRelationFormat;
+    e[1] = static_cast<std::uint8_t>(keySide);
+    putBigEndian64(&e[2], keySide == RelationSide::Subject ? relation.object : relation.subject);
+    e[10] = static_cast<std::uint8_t>(relation.type);
+    putBigEndian64(&e[11], relation.frame);
+    putLittleEndian(&e[19], std::bit_cast<std::uint32_t>(relation.score), 4);
+    putLittleEndian(&e[23], relation.support, 4);
+    return e;
+}
+
+RelationSide relationEntrySide(std::string_view entry) {
+    return static_cast<RelationSide>(static_cast<std::uint8_t>(entry[1]));
+}
+
+model::Relation decodeRelationEntry(model::NodeId keyId, std::string_view entry) {
+    Reader r(entry, "relation", keyId);
+    if (entry.size() != kRelationEntrySize)
+        r.corrupt(fmt::format("{} bytes instead of {}", entry.size(), kRelationEntrySize));
+    r.expectFormat(kRelationFormat);
+    std::uint8_t side = r.u8();
+    if (side > 1) r.corrupt(fmt::format("unknown relation side {}", side));
+    const auto* p = reinterpret_cast<const std::uint8_t*>(entry.data());
+    model::NodeId other = readBigEndian64(p + 2);
+    std::uint8_t type = p[10];
+    if (type > kLastRelationType) r.corrupt(fmt::format("unknown relation type {}", type));
+
+    model::Relation relation;
+    relation.subject = side == 0 ? keyId : other;
+    relation.object = side == 0 ? other : keyId;
+    relation.type = static_cast<model::RelationType>(type);
+    relation.frame = readBigEndian64(p + 11);
+    relation.score = std::bit_cast<float>(static_cast<std::uint32_t>(getLittleEndian(p + 19, 4)));
+    relation.support = static_cast<std::uint32_t>(getLittleEndian(p + 23, 4));
+    return relation;
+}
+
+LabelEntry labelEntry(model::NodeId sceneId, model::NodeId nodeId) {
+    LabelEntry e;
+    putBigEndian64(e.data(), sceneId);
+    putBigEndian64(e.data() + 8, nodeId);
+    return e;
+}
+
+SourceKey sourceKey(model::NodeId sceneId, std::int64_t sourceId) {
+    SourceKey k;
+    putBigEndian64(k.data(), sceneId);
+    putBigEndian64(k.data() + 8, static_cast<std::uint64_t>(sourceId) ^ (std::uint64_t(1) << 63));
+    return k;
+}
+
+std::string encodeU64(std::uint64_t value) {
+    std::string out;
+    Writer(out).u64(value);
+    return out;
+}
+
+std::uint64_t decodeU64(std::string_view bytes, std::string_view what) {
+    Reader r(bytes, what, 0);
+    std::uint64_t v = r.u64();
+    r.expectEnd();
+    return v;
+}
+
+}  // namespace smql::storage::codec

@@ -1,0 +1,70 @@
+// Compact binary records and index keys of the on-disk layout (docs/storage.md
+// describes every byte). Private to storage/: callers only ever see model types.
+//
+// Records are little-endian with a format-version byte first, a fixed header,
+// then length-prefixed strings (LEB128 lengths). Keys and index entries hold
+// ids big-endian, so LMDB's default memcmp order is numeric order. Decoding
+// reads straight from the bytes it is given (the memory map) and throws
+// smql::Error(Storage, "corrupt ...") instead of reading past the end.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "engine/model/types.hpp"
+
+namespace smql::storage::codec {
+
+inline constexpr std::uint8_t kNodeFormat = 1;
+inline constexpr std::uint8_t kSceneFormat = 1;
+inline constexpr std::uint8_t kRelationFormat = 1;
+
+using IdKey = std::array<std::uint8_t, 8>;
+IdKey idKey(model::NodeId id);
+// Throws when `bytes` is not 8 bytes long; `what` names the index for the message.
+model::NodeId idFromKey(std::string_view bytes, std::string_view what);
+
+// Node record (key: idKey(node.id)). The id is the key, so it is not stored twice.
+void encodeNode(const model::Node& node, std::string& out);
+// Decodes into `out`, reusing its string and vector capacity (hot loops keep one Node).
+void decodeNode(model::NodeId id, std::string_view bytes, model::Node& out);
+model::Node decodeNode(model::NodeId id, std::string_view bytes);
+
+// Scene record (key: idKey(scene.id)).
+void encodeScene(const model::SceneInfo& scene, std::string& out);
+model::SceneInfo decodeScene(model::NodeId id, std::string_view bytes);
+
+// A relation is stored twice, once under each end; the entry says which end
+// the key is and holds the other one. Fixed size, so the relation index can
+// be a DUPFIXED table read a page at a time.
+enum class RelationSide : std::uint8_t { Subject = 0, Object = 1 };
+inline constexpr std::size_t kRelationEntrySize = 27;
+using RelationEntry = std::array<std::uint8_t, kRelationEntrySize>;
+RelationEntry encodeRelationEntry(const model::Relation& relation, RelationSide keySide);
+RelationSide relationEntrySide(std::string_view entry);
+model::Relation decodeRelationEntry(model::NodeId keyId, std::string_view entry);
+
+// Label index entry (duplicate value under the category key): scene id then
+// node id, so one scene's nodes of a category are one contiguous range.
+inline constexpr std::size_t kLabelEntrySize = 16;
+using LabelEntry = std::array<std::uint8_t, kLabelEntrySize>;
+LabelEntry labelEntry(model::NodeId sceneId, model::NodeId nodeId);
+
+// Source-id index key: scene id then the source id, sign-flipped big-endian so
+// negative ids sort before positive ones.
+using SourceKey = std::array<std::uint8_t, 16>;
+SourceKey sourceKey(model::NodeId sceneId, std::int64_t sourceId);
+
+// Little-endian fixed-width values for meta entries.
+std::string encodeU64(std::uint64_t value);
+std::uint64_t decodeU64(std::string_view bytes, std::string_view what);
+
+inline std::uint64_t readBigEndian64(const std::uint8_t* p) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i) v = (v << 8) | p[i];
+    return v;
+}
+
+}  // namespace smql::storage::codec

@@ -1,0 +1,749 @@
+#include "storage/database.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <filesystem>
+#include <unordered_map>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "storage/codec.hpp"
+#include "storage/lmdb_env.hpp"
+
+namespace smql::storage {
+
+using model::Node;
+using model::NodeId;
+using model::SceneInfo;
+
+struct Database::Impl {
+    std::shared_ptr<Environment> env;
+    std::string directory;
+    bool readOnly;
+};
+
+struct ReadTransaction::Impl {
+    Impl(std::shared_ptr<Environment> environment, MDB_txn* transaction)
+        : env(std::move(environment)), txn(transaction) {}
+    ~Impl() {
+        for (MDB_cursor* cursor : cursors)
+            if (cursor) mdb_cursor_close(cursor);
+        mdb_txn_abort(txn);
+    }
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    std::shared_ptr<Environment> env;  // keeps the environment open while the snapshot lives
+    MDB_txn* txn;
+    // One cursor per table, kept for the transaction's life: opening a cursor
+    // allocates, and lookups such as children() run many times per query.
+    mutable std::array<MDB_cursor*, kTableCount> cursors{};
+    mutable std::array<bool, kTableCount> cursorBusy{};
+};
+
+struct WriteTransaction::Impl {
+    Impl(std::shared_ptr<Environment> environment, MDB_txn* transaction)
+        : env(std::move(environment)), txn(transaction) {}
+    ~Impl() {
+        if (txn) mdb_txn_abort(txn);
+    }
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+
+    std::shared_ptr<Environment> env;
+    MDB_txn* txn;         // null once committed
+    std::string record;   // encode buffer, reused across records
+};
+
+namespace {
+
+constexpr std::string_view kImportHint = "fix the importer or the file it read";
+
+std::optional<std::string_view> lookup(const Environment& env, MDB_txn* txn, Table table, MDB_val key,
+                                       std::string_view operation) {
+    MDB_val value;
+    int rc = mdb_get(txn, env.dbi(table), &key, &value);
+    if (rc == MDB_NOTFOUND) return std::nullopt;
+    env.check(rc, operation);
+    return fromVal(value);
+}
+
+std::optional<SceneInfo> readScene(const Environment& env, MDB_txn* txn, NodeId sceneId) {
+    auto key = codec::idKey(sceneId);
+    auto bytes = lookup(env, txn, Table::Scenes, toVal(key), "reading a scene");
+    if (!bytes) return std::nullopt;
+    return codec::decodeScene(sceneId, *bytes);
+}
+
+std::optional<NodeId> readSceneId(const Environment& env, MDB_txn* txn, std::string_view name) {
+    if (name.empty() || name.size() > env.maxKeySize()) return std::nullopt;
+    auto bytes = lookup(env, txn, Table::SceneNames, toVal(name), "looking up a scene name");
+    if (!bytes) return std::nullopt;
+    return codec::idFromKey(*bytes, "scene name index");
+}
+
+std::string settingKey(std::string_view key) {
+    std::string full;
+    full.reserve(kSettingPrefix.size() + key.size());
+    full.append(kSettingPrefix).append(key);
+    return full;
+}
+
+bool validSettingKey(const Environment& env, std::string_view key) {
+    return !key.empty() && kSettingPrefix.size() + key.size() <= env.maxKeySize();
+}
+
+std::size_t duplicateCount(const Environment& env, MDB_cursor* cursor) {
+    std::size_t count = 0;
+    env.check(mdb_cursor_count(cursor, &count), "counting index entries");
+    return count;
+}
+
+// Calls visit(entry) for each duplicate of the key `cursor` was just
+// positioned on, reading the fixed-size entries a page at a time straight from
+// the map; visit returns false to stop. `first` is the value the positioning
+// call returned and `count` the key's duplicate count.
+template <class Visit>
+void forEachDuplicate(const Environment& env, MDB_cursor* cursor, const MDB_val& first, std::size_t count,
+                      std::size_t entrySize, Visit&& visit) {
+    if (first.mv_size != entrySize)
+        throw Error(ErrorKind::Storage,
+                    fmt::format("corrupt index entry: {} bytes instead of {}", first.mv_size, entrySize),
+                    std::nullopt, "the database file is damaged; restore it from a backup");
+    // A key with a single value has no duplicate page for MDB_GET_MULTIPLE to return.
+    if (count == 1) {
+        visit(fromVal(first));
+        return;
+    }
+    MDB_val key, block;
+    int rc = mdb_cursor_get(cursor, &key, &block, MDB_GET_MULTIPLE);
+    while (rc == MDB_SUCCESS) {
+        const char* entries = static_cast<const char*>(block.mv_data);
+        for (std::size_t at = 0; at + entrySize <= block.mv_size; at += entrySize)
+            if (!visit(std::string_view(entries + at, entrySize))) return;
+        rc = mdb_cursor_get(cursor, &key, &block, MDB_NEXT_MULTIPLE);
+    }
+    if (rc != MDB_NOTFOUND) env.fail(rc, "reading index entries");
+}
+
+// Borrows the transaction's cached cursor for a table, or opens a private one
+// when the cached one is in use further up the stack (a visitor calling back
+// into the same transaction).
+class TableCursor {
+public:
+    TableCursor(const ReadTransaction::Impl& txn, Table table) : txn_(txn), slot_(static_cast<std::size_t>(table)) {
+        if (txn.cursors[slot_] && txn.cursorBusy[slot_]) {
+            txn.env->check(mdb_cursor_open(txn.txn, txn.env->dbi(table), &cursor_), "opening a cursor");
+            owned_ = true;
+            return;
+        }
+        if (!txn.cursors[slot_])
+            txn.env->check(mdb_cursor_open(txn.txn, txn.env->dbi(table), &txn.cursors[slot_]), "opening a cursor");
+        cursor_ = txn.cursors[slot_];
+        txn.cursorBusy[slot_] = true;
+    }
+    ~TableCursor() {
+        if (owned_)
+            mdb_cursor_close(cursor_);
+        else
+            txn_.cursorBusy[slot_] = false;
+    }
+    TableCursor(const TableCursor&) = delete;
+    TableCursor& operator=(const TableCursor&) = delete;
+
+    int get(MDB_val& key, MDB_val& value, MDB_cursor_op op) const { return mdb_cursor_get(cursor_, &key, &value, op); }
+    MDB_cursor* cursor() const { return cursor_; }
+
+private:
+    const ReadTransaction::Impl& txn_;
+    std::size_t slot_;
+    MDB_cursor* cursor_ = nullptr;
+    bool owned_ = false;
+};
+
+void endOfScan(const Environment& env, int rc, std::string_view operation) {
+    if (rc != MDB_SUCCESS && rc != MDB_NOTFOUND) env.fail(rc, operation);
+}
+
+[[noreturn]] void importError(std::string message) {
+    throw Error(ErrorKind::Input, std::move(message), std::nullopt, std::string(kImportHint));
+}
+
+// Checks a scene's local ids before anything is written, and returns the
+// position of each local id in data.nodes (its database id is sceneId + 1 + position).
+std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, const model::SceneData& data) {
+    const std::string& name = data.info.name;
+    if (name.empty())
+        throw Error(ErrorKind::Input, "a scene needs a name", std::nullopt, "name it with --scene");
+    if (name.size() > env.maxKeySize())
+        throw Error(ErrorKind::Input,
+                    fmt::format("scene name '{}...' is too long ({} bytes; at most {})", name.substr(0, 40),
+                                name.size(), env.maxKeySize()),
+                    std::nullopt, "choose a shorter name with --scene");
+
+    std::unordered_map<NodeId, std::size_t> position;
+    position.reserve(data.nodes.size());
+    for (std::size_t i = 0; i < data.nodes.size(); ++i) {
+        const Node& node = data.nodes[i];
+        if (node.id == model::kNoNode)
+            importError(fmt::format("scene '{}': node #{} has local id 0; local ids start at 1", name, i + 1));
+        auto [it, inserted] = position.emplace(node.id, i);
+        if (!inserted)
+            importError(fmt::format("scene '{}': local id {} is used by node #{} and node #{}", name, node.id,
+                                    it->second + 1, i + 1));
+        if (node.kind == model::NodeKind::Scene)
+            importError(fmt::format("scene '{}': node {} has kind scene; the import creates the scene node itself",
+                                    name, node.id));
+        if (node.category.find('\0') != std::string::npos)
+            importError(fmt::format("scene '{}': the category of node {} contains a NUL character", name, node.id));
+        if (node.category.size() > env.maxKeySize())
+            importError(fmt::format("scene '{}': the category of node {} is {} bytes long; at most {}", name,
+                                    node.id, node.category.size(), env.maxKeySize()));
+    }
+
+    std::unordered_map<std::int64_t, NodeId> bySourceId;
+    for (const Node& node : data.nodes) {
+        if (node.parent != model::kNoNode && !position.contains(node.parent))
+            importError(fmt::format("scene '{}': node {} has parent {}, which is not a node of the scene", name,
+                                    node.id, node.parent));
+        if (node.sourceId) {
+            auto [it, inserted] = bySourceId.emplace(*node.sourceId, node.id);
+            if (!inserted)
+                importError(fmt::format("scene '{}': source id {} is used by node {} and node {}", name,
+                                        *node.sourceId, it->second, node.id));
+        }
+    }
+
+    // The parents must form a tree under the scene node: walk up from every
+    // node once, marking nodes on the current walk to catch cycles.
+    enum class Mark : std::uint8_t { Unseen, OnWalk, Done };
+    std::vector<Mark> marks(data.nodes.size(), Mark::Unseen);
+    std::vector<std::size_t> walk;
+    for (std::size_t start = 0; start < data.nodes.size(); ++start) {
+        walk.clear();
+        std::size_t at = start;
+        while (marks[at] == Mark::Unseen) {
+            marks[at] = Mark::OnWalk;
+            walk.push_back(at);
+            NodeId parent = data.nodes[at].parent;
+            if (parent == model::kNoNode) break;
+            at = position.at(parent);
+            if (marks[at] == Mark::OnWalk)
+                importError(fmt::format("scene '{}': the parents of node {} form a cycle", name, data.nodes[at].id));
+        }
+        for (std::size_t i : walk) marks[i] = Mark::Done;
+    }
+
+    for (std::size_t i = 0; i < data.relations.size(); ++i) {
+        const model::Relation& r = data.relations[i];
+        for (NodeId end : {r.subject, r.object})
+            if (!position.contains(end))
+                importError(fmt::format("scene '{}': relation #{} ({}) refers to node {}, which is not a node of "
+                                        "the scene",
+                                        name, i + 1, model::toString(r.type), end));
+        if (r.frame != model::kNoNode && !position.contains(r.frame))
+            importError(fmt::format("scene '{}': relation #{} ({}) was seen from frame {}, which is not a node of "
+                                    "the scene",
+                                    name, i + 1, model::toString(r.type), r.frame));
+    }
+    return position;
+}
+
+std::uint64_t readNextId(const Environment& env, MDB_txn* txn) {
+    auto bytes = lookup(env, txn, Table::Meta, toVal(kNextIdKey), "reading the next id");
+    if (!bytes)
+        throw Error(ErrorKind::Storage, fmt::format("database {} is damaged: its meta table has no next id",
+                                                    env.directory()),
+                    std::nullopt, "restore it from a backup, or import its scenes again into a new database");
+    return codec::decodeU64(*bytes, "next id");
+}
+
+void put(const Environment& env, MDB_cursor* cursor, MDB_val key, MDB_val value, unsigned flags,
+         std::string_view operation) {
+    env.check(mdb_cursor_put(cursor, &key, &value, flags), operation);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- Database
+
+Database::Database(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Database::~Database() = default;
+
+std::unique_ptr<Database> Database::open(const std::string& directory, const OpenOptions& options) {
+    auto env = Environment::open(directory, options);
+    return std::unique_ptr<Database>(new Database(std::make_unique<Impl>(Impl{env, directory, options.readOnly})));
+}
+
+ReadTransaction Database::beginRead() const {
+    MDB_txn* txn = nullptr;
+    impl_->env->check(mdb_txn_begin(impl_->env->env(), nullptr, MDB_RDONLY, &txn), "beginning a read transaction");
+    return ReadTransaction(std::make_unique<ReadTransaction::Impl>(impl_->env, txn));
+}
+
+WriteTransaction Database::beginWrite() {
+    if (impl_->readOnly)
+        throw Error(ErrorKind::Storage, fmt::format("database {} is open read-only", impl_->directory), std::nullopt,
+                    "open it without read-only to change it");
+    MDB_txn* txn = nullptr;
+    impl_->env->check(mdb_txn_begin(impl_->env->env(), nullptr, 0, &txn), "beginning a write transaction");
+    return WriteTransaction(std::make_unique<WriteTransaction::Impl>(impl_->env, txn));
+}
+
+const std::string& Database::directory() const { return impl_->directory; }
+bool Database::readOnly() const { return impl_->readOnly; }
+
+std::uint64_t Database::fileSizeBytes() const {
+    std::error_code ec;
+    auto size = std::filesystem::file_size(std::filesystem::path(impl_->directory) / kDataFile, ec);
+    if (ec)
+        throw Error(ErrorKind::Storage,
+                    fmt::format("cannot read the size of {}/{}: {}", impl_->directory, kDataFile, ec.message()));
+    return size;
+}
+
+// --------------------------------------------------------- ReadTransaction
+
+ReadTransaction::ReadTransaction(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+ReadTransaction::ReadTransaction(ReadTransaction&&) noexcept = default;
+ReadTransaction& ReadTransaction::operator=(ReadTransaction&&) noexcept = default;
+ReadTransaction::~ReadTransaction() = default;
+
+std::uint64_t ReadTransaction::transactionId() const { return mdb_txn_id(impl_->txn); }
+
+std::vector<SceneInfo> ReadTransaction::scenes() const {
+    const Environment& env = *impl_->env;
+    TableCursor cursor(*impl_, Table::Scenes);
+    std::vector<SceneInfo> out;
+    MDB_val key, value;
+    int rc = cursor.get(key, value, MDB_FIRST);
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT))
+        out.push_back(codec::decodeScene(codec::idFromKey(fromVal(key), "scene"), fromVal(value)));
+    endOfScan(env, rc, "listing scenes");
+    return out;
+}
+
+std::optional<SceneInfo> ReadTransaction::scene(NodeId sceneId) const {
+    return readScene(*impl_->env, impl_->txn, sceneId);
+}
+
+std::optional<SceneInfo> ReadTransaction::sceneByName(std::string_view name) const {
+    auto id = readSceneId(*impl_->env, impl_->txn, name);
+    if (!id) return std::nullopt;
+    return readScene(*impl_->env, impl_->txn, *id);
+}
+
+bool ReadTransaction::readNode(NodeId id, Node& into) const {
+    auto key = codec::idKey(id);
+    auto bytes = lookup(*impl_->env, impl_->txn, Table::Nodes, toVal(key), "reading a node");
+    if (!bytes) return false;
+    codec::decodeNode(id, *bytes, into);
+    return true;
+}
+
+std::optional<Node> ReadTransaction::node(NodeId id) const {
+    std::optional<Node> out;
+    auto key = codec::idKey(id);
+    auto bytes = lookup(*impl_->env, impl_->txn, Table::Nodes, toVal(key), "reading a node");
+    if (bytes) codec::decodeNode(id, *bytes, out.emplace());
+    return out;
+}
+
+std::uint64_t ReadTransaction::nodeCount() const {
+    MDB_stat stat{};
+    impl_->env->check(mdb_stat(impl_->txn, impl_->env->dbi(Table::Nodes), &stat), "counting nodes");
+    return stat.ms_entries;
+}
+
+std::vector<NodeId> ReadTransaction::children(NodeId parent) const {
+    const Environment& env = *impl_->env;
+    TableCursor cursor(*impl_, Table::Children);
+    std::vector<NodeId> out;
+    auto key = codec::idKey(parent);
+    MDB_val k = toVal(key), value;
+    int rc = cursor.get(k, value, MDB_SET_KEY);
+    if (rc == MDB_NOTFOUND) return out;
+    env.check(rc, "reading children");
+    std::size_t count = duplicateCount(env, cursor.cursor());
+    out.reserve(count);
+    forEachDuplicate(env, cursor.cursor(), value, count, sizeof(NodeId), [&](std::string_view entry) {
+        out.push_back(codec::readBigEndian64(reinterpret_cast<const std::uint8_t*>(entry.data())));
+        return true;
+    });
+    return out;
+}
+
+// Scene ids are contiguous blocks (the scene node first), so a scene's nodes
+// are the run of node records from its id on that carry its id as their scene.
+void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<void(const Node&)>& visit) const {
+    const Environment& env = *impl_->env;
+    TableCursor cursor(*impl_, Table::Nodes);
+    auto from = codec::idKey(sceneId);
+    MDB_val key = toVal(from), value;
+    Node node;
+    int rc = cursor.get(key, value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
+        codec::decodeNode(codec::idFromKey(fromVal(key), "node"), fromVal(value), node);
+        if (node.scene != sceneId) return;
+        visit(node);
+    }
+    endOfScan(env, rc, "reading the nodes of a scene");
+}
+
+std::vector<model::Relation> ReadTransaction::relationsOf(NodeId id) const {
+    const Environment& env = *impl_->env;
+    TableCursor cursor(*impl_, Table::Relations);
+    std::vector<model::Relation> out;
+    auto key = codec::idKey(id);
+    MDB_val k = toVal(key), value;
+    int rc = cursor.get(k, value, MDB_SET_KEY);
+    if (rc == MDB_NOTFOUND) return out;
+    env.check(rc, "reading relations");
+    std::size_t count = duplicateCount(env, cursor.cursor());
+    out.reserve(count);
+    forEachDuplicate(env, cursor.cursor(), value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
+        out.push_back(codec::decodeRelationEntry(id, entry));
+        return true;
+    });
+    return out;
+}
+
+// One range scan over the relation index keys of the scene's id block; each
+// relation is reported once, from its subject's entries (which sort first).
+void ReadTransaction::forEachRelationInScene(NodeId sceneId,
+                                             const std::function<void(const model::Relation&)>& visit) const {
+    const Environment& env = *impl_->env;
+    auto info = readScene(env, impl_->txn, sceneId);
+    if (!info) return;
+    const NodeId last = sceneId + info->nodeCount;
+    TableCursor cursor(*impl_, Table::Relations);
+    auto from = codec::idKey(sceneId);
+    MDB_val key = toVal(from), value;
+    int rc = cursor.get(key, value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT_NODUP)) {
+        NodeId id = codec::idFromKey(fromVal(key), "relation index");
+        if (id > last) return;
+        std::size_t count = duplicateCount(env, cursor.cursor());
+        forEachDuplicate(env, cursor.cursor(), value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
+            if (codec::relationEntrySide(entry) != codec::RelationSide::Subject) return false;
+            visit(codec::decodeRelationEntry(id, entry));
+            return true;
+        });
+    }
+    endOfScan(env, rc, "reading the relations of a scene");
+}
+
+std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category, NodeId sceneId) const {
+    const Environment& env = *impl_->env;
+    std::vector<NodeId> out;
+    if (category.empty() || category.size() > env.maxKeySize()) return out;
+    TableCursor cursor(*impl_, Table::Labels);
+    MDB_val key = toVal(category), value;
+    auto idAt = [](const char* p) { return codec::readBigEndian64(reinterpret_cast<const std::uint8_t*>(p)); };
+
+    if (sceneId == model::kNoNode) {
+        int rc = cursor.get(key, value, MDB_SET_KEY);
+        if (rc == MDB_NOTFOUND) return out;
+        env.check(rc, "reading the label index");
+        std::size_t count = duplicateCount(env, cursor.cursor());
+        out.reserve(count);
+        // Entries sort by (scene, node); scenes are contiguous id blocks, so that is id order.
+        forEachDuplicate(env, cursor.cursor(), value, count, codec::kLabelEntrySize, [&](std::string_view entry) {
+            out.push_back(idAt(entry.data() + 8));
+            return true;
+        });
+        return out;
+    }
+
+    auto from = codec::labelEntry(sceneId, 0);
+    value = toVal(from);
+    int rc = cursor.get(key, value, MDB_GET_BOTH_RANGE);
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT_DUP)) {
+        if (value.mv_size != codec::kLabelEntrySize)
+            throw Error(ErrorKind::Storage, fmt::format("corrupt label index entry for '{}'", category), std::nullopt,
+                        "the database file is damaged; restore it from a backup");
+        const char* entry = static_cast<const char*>(value.mv_data);
+        if (idAt(entry) != sceneId) return out;
+        out.push_back(idAt(entry + 8));
+    }
+    endOfScan(env, rc, "reading the label index");
+    return out;
+}
+
+std::vector<std::pair<std::string, std::uint64_t>> ReadTransaction::categories() const {
+    const Environment& env = *impl_->env;
+    TableCursor cursor(*impl_, Table::Labels);
+    std::vector<std::pair<std::string, std::uint64_t>> out;
+    MDB_val key, value;
+    int rc = cursor.get(key, value, MDB_FIRST);
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT_NODUP))
+        out.emplace_back(std::string(fromVal(key)), duplicateCount(env, cursor.cursor()));
+    endOfScan(env, rc, "listing categories");
+    return out;
+}
+
+std::optional<NodeId> ReadTransaction::nodeBySourceId(NodeId sceneId, std::int64_t sourceId) const {
+    auto key = codec::sourceKey(sceneId, sourceId);
+    auto bytes = lookup(*impl_->env, impl_->txn, Table::SourceIds, toVal(key), "looking up a source id");
+    if (!bytes) return std::nullopt;
+    return codec::idFromKey(*bytes, "source id index");
+}
+
+std::optional<std::string> ReadTransaction::setting(std::string_view key) const {
+    if (!validSettingKey(*impl_->env, key)) return std::nullopt;
+    auto bytes = lookup(*impl_->env, impl_->txn, Table::Meta, toVal(settingKey(key)), "reading a setting");
+    if (!bytes) return std::nullopt;
+    return std::string(*bytes);
+}
+
+std::vector<std::pair<std::string, std::string>> ReadTransaction::settings() const {
+    const Environment& env = *impl_->env;
+    TableCursor cursor(*impl_, Table::Meta);
+    std::vector<std::pair<std::string, std::string>> out;
+    MDB_val key = toVal(kSettingPrefix), value;
+    int rc = cursor.get(key, value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
+        std::string_view name = fromVal(key);
+        if (!name.starts_with(kSettingPrefix)) return out;
+        name.remove_prefix(kSettingPrefix.size());
+        out.emplace_back(std::string(name), std::string(fromVal(value)));
+    }
+    endOfScan(env, rc, "listing settings");
+    return out;
+}
+
+std::vector<TableStats> ReadTransaction::tableStats() const {
+    std::vector<TableStats> out;
+    for (std::size_t i = 0; i < kTableCount; ++i) {
+        MDB_stat stat{};
+        impl_->env->check(mdb_stat(impl_->txn, impl_->env->dbi(static_cast<Table>(i)), &stat), "reading table stats");
+        out.push_back({kTables[i].name, stat.ms_entries,
+                       std::uint64_t(stat.ms_branch_pages + stat.ms_leaf_pages + stat.ms_overflow_pages) * stat.ms_psize});
+    }
+    return out;
+}
+
+// -------------------------------------------------------- WriteTransaction
+
+WriteTransaction::WriteTransaction(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+WriteTransaction::WriteTransaction(WriteTransaction&&) noexcept = default;
+WriteTransaction& WriteTransaction::operator=(WriteTransaction&&) noexcept = default;
+WriteTransaction::~WriteTransaction() = default;
+
+NodeId WriteTransaction::importScene(const model::SceneData& data) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    MDB_txn* txn = impl_->txn;
+    std::string& record = impl_->record;
+    const std::string& name = data.info.name;
+
+    // Everything that can be wrong with the input is found before the first write.
+    auto position = validateScene(env, data);
+    if (readSceneId(env, txn, name))
+        throw Error(ErrorKind::Input, fmt::format("a scene named '{}' already exists", name), std::nullopt,
+                    "drop it first or choose another name with --scene");
+
+    const NodeId sceneId = readNextId(env, txn);
+    const std::uint64_t nodeCount = data.nodes.size();
+    auto databaseId = [&](NodeId local) {
+        return local == model::kNoNode ? sceneId : sceneId + 1 + position.at(local);
+    };
+
+    // Nodes: ids above every existing key, in ascending order, so MDB_APPEND
+    // fills pages completely and skips the search.
+    {
+        Cursor nodes(env, txn, Table::Nodes);
+        Node sceneNode;
+        sceneNode.id = sceneId;
+        sceneNode.kind = model::NodeKind::Scene;
+        sceneNode.scene = sceneId;
+        sceneNode.category = name;
+        codec::encodeNode(sceneNode, record);
+        auto key = codec::idKey(sceneId);
+        put(env, nodes.get(), toVal(key), toVal(record), MDB_APPEND, "storing the scene node");
+
+        Node mapped;
+        for (std::size_t i = 0; i < data.nodes.size(); ++i) {
+            mapped = data.nodes[i];
+            mapped.id = sceneId + 1 + i;
+            mapped.scene = sceneId;
+            mapped.parent = databaseId(data.nodes[i].parent);
+            codec::encodeNode(mapped, record);
+            key = codec::idKey(mapped.id);
+            put(env, nodes.get(), toVal(key), toVal(record), MDB_APPEND, "storing a node");
+        }
+    }
+
+    // Children: (parent, child) sorted, so each parent's duplicates append
+    // (MDB_APPENDDUP) and the key searches walk the tree in order.
+    {
+        std::vector<std::pair<NodeId, NodeId>> edges;
+        edges.reserve(data.nodes.size());
+        for (std::size_t i = 0; i < data.nodes.size(); ++i)
+            edges.emplace_back(databaseId(data.nodes[i].parent), sceneId + 1 + i);
+        std::sort(edges.begin(), edges.end());
+        Cursor children(env, txn, Table::Children);
+        for (const auto& [parent, child] : edges) {
+            auto key = codec::idKey(parent), value = codec::idKey(child);
+            put(env, children.get(), toVal(key), toVal(value), MDB_APPENDDUP, "storing a child link");
+        }
+    }
+
+    // Label index: categories interleave with other scenes' keys, so plain puts.
+    {
+        Cursor labels(env, txn, Table::Labels);
+        for (std::size_t i = 0; i < data.nodes.size(); ++i) {
+            const std::string& category = data.nodes[i].category;
+            if (category.empty()) continue;
+            auto entry = codec::labelEntry(sceneId, sceneId + 1 + i);
+            put(env, labels.get(), toVal(category), toVal(entry), 0, "storing a label");
+        }
+    }
+
+    // Source ids: keys start with the new (largest) scene id, so sorted keys append.
+    {
+        std::vector<std::pair<codec::SourceKey, NodeId>> sources;
+        for (std::size_t i = 0; i < data.nodes.size(); ++i)
+            if (data.nodes[i].sourceId)
+                sources.emplace_back(codec::sourceKey(sceneId, *data.nodes[i].sourceId), sceneId + 1 + i);
+        std::sort(sources.begin(), sources.end());
+        Cursor index(env, txn, Table::SourceIds);
+        for (const auto& [key, id] : sources) {
+            auto value = codec::idKey(id);
+            put(env, index.get(), toVal(key), toVal(value), MDB_APPEND, "storing a source id");
+        }
+    }
+
+    // Relations: one entry under each end, sorted so duplicates append;
+    // identical relations collapse into one entry.
+    {
+        std::vector<std::pair<NodeId, codec::RelationEntry>> entries;
+        entries.reserve(2 * data.relations.size());
+        for (const model::Relation& local : data.relations) {
+            model::Relation r = local;
+            r.subject = databaseId(local.subject);
+            r.object = databaseId(local.object);
+            r.frame = local.frame == model::kNoNode ? model::kNoNode : databaseId(local.frame);
+            entries.emplace_back(r.subject, codec::encodeRelationEntry(r, codec::RelationSide::Subject));
+            entries.emplace_back(r.object, codec::encodeRelationEntry(r, codec::RelationSide::Object));
+        }
+        std::sort(entries.begin(), entries.end());
+        entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
+        Cursor relations(env, txn, Table::Relations);
+        for (const auto& [id, entry] : entries) {
+            auto key = codec::idKey(id);
+            put(env, relations.get(), toVal(key), toVal(entry), MDB_APPENDDUP, "storing a relation");
+        }
+    }
+
+    {
+        SceneInfo info = data.info;
+        info.id = sceneId;
+        info.nodeCount = nodeCount;
+        info.version = 1;
+        codec::encodeScene(info, record);
+        auto key = codec::idKey(sceneId);
+        Cursor scenes(env, txn, Table::Scenes);
+        put(env, scenes.get(), toVal(key), toVal(record), MDB_NOOVERWRITE, "storing the scene");
+        Cursor names(env, txn, Table::SceneNames);
+        put(env, names.get(), toVal(name), toVal(key), MDB_NOOVERWRITE, "storing the scene name");
+        std::string nextId = codec::encodeU64(sceneId + 1 + nodeCount);
+        Cursor meta(env, txn, Table::Meta);
+        put(env, meta.get(), toVal(kNextIdKey), toVal(nextId), 0, "storing the next id");
+    }
+    return sceneId;
+}
+
+void WriteTransaction::dropScene(NodeId sceneId) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    MDB_txn* txn = impl_->txn;
+    auto info = readScene(env, txn, sceneId);
+    if (!info)
+        throw Error(ErrorKind::Binding, fmt::format("no scene with id {}", sceneId), std::nullopt,
+                    "SHOW SCENES lists the scenes of the database");
+
+    // What the index entries are keyed by, copied out of the map before any
+    // delete can move the pages it points into.
+    struct Doomed {
+        NodeId id;
+        std::string category;
+        std::optional<std::int64_t> sourceId;
+        bool labelled;
+    };
+    std::vector<Doomed> doomed;
+    doomed.reserve(info->nodeCount + 1);
+    {
+        Cursor nodes(env, txn, Table::Nodes);
+        auto from = codec::idKey(sceneId);
+        MDB_val key = toVal(from), value;
+        Node node;
+        int rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_SET_RANGE);
+        for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_NEXT)) {
+            codec::decodeNode(codec::idFromKey(fromVal(key), "node"), fromVal(value), node);
+            if (node.scene != sceneId) break;
+            bool labelled = node.kind != model::NodeKind::Scene && !node.category.empty();
+            doomed.push_back({node.id, labelled ? node.category : std::string(), node.sourceId, labelled});
+        }
+        endOfScan(env, rc, "reading the nodes of a scene");
+    }
+
+    auto erase = [&](Table table, MDB_val key, MDB_val* value) {
+        int rc = mdb_del(txn, env.dbi(table), &key, value);
+        if (rc != MDB_NOTFOUND) env.check(rc, "dropping a scene");
+    };
+    for (const Doomed& node : doomed) {
+        auto key = codec::idKey(node.id);
+        erase(Table::Nodes, toVal(key), nullptr);
+        erase(Table::Children, toVal(key), nullptr);
+        erase(Table::Relations, toVal(key), nullptr);
+        if (node.labelled) {
+            auto entry = codec::labelEntry(sceneId, node.id);
+            MDB_val value = toVal(entry);
+            erase(Table::Labels, toVal(node.category), &value);
+        }
+        if (node.sourceId) {
+            auto source = codec::sourceKey(sceneId, *node.sourceId);
+            erase(Table::SourceIds, toVal(source), nullptr);
+        }
+    }
+    auto key = codec::idKey(sceneId);
+    erase(Table::Scenes, toVal(key), nullptr);
+    erase(Table::SceneNames, toVal(info->name), nullptr);
+}
+
+void WriteTransaction::putSetting(std::string_view key, std::string_view value) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    if (!validSettingKey(env, key))
+        throw Error(ErrorKind::Usage,
+                    key.empty() ? std::string("a setting needs a name")
+                                : fmt::format("setting name '{}...' is too long ({} bytes; at most {})",
+                                              key.substr(0, 40), key.size(),
+                                              env.maxKeySize() - kSettingPrefix.size()),
+                    std::nullopt, "SHOW SETTINGS lists the settings in use");
+    std::string fullKey = settingKey(key);
+    MDB_val k = toVal(fullKey), v = toVal(value);
+    env.check(mdb_put(impl_->txn, env.dbi(Table::Meta), &k, &v, 0), "storing a setting");
+}
+
+void WriteTransaction::eraseSetting(std::string_view key) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    if (!validSettingKey(env, key)) return;
+    std::string fullKey = settingKey(key);
+    MDB_val k = toVal(fullKey);
+    int rc = mdb_del(impl_->txn, env.dbi(Table::Meta), &k, nullptr);
+    if (rc != MDB_NOTFOUND) env.check(rc, "erasing a setting");
+}
+
+void WriteTransaction::commit() {
+    assert(impl_->txn && "WriteTransaction committed twice");
+    // LMDB frees the transaction whether or not the commit succeeds.
+    MDB_txn* txn = std::exchange(impl_->txn, nullptr);
+    impl_->env->check(mdb_txn_commit(txn), "committing");
+}
+
+}  // namespace smql::storage

@@ -1,0 +1,272 @@
+#include "storage/lmdb_env.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "storage/codec.hpp"
+
+namespace smql::storage {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each ReadTransaction holds a reader slot (MDB_NOTLS ties slots to
+// transactions, not threads), so leave room for many concurrent readers.
+constexpr unsigned kMaxReaders = 512;
+
+[[noreturn]] void openError(const std::string& message, std::string hint) {
+    throw Error(ErrorKind::Storage, message, std::nullopt, std::move(hint));
+}
+
+[[noreturn]] void notSmqlDatabase(const std::string& directory, std::string_view why) {
+    openError(fmt::format("{} is not an smql database: {}", directory, why),
+              "give the directory of an smql database, or a new or empty directory to create one");
+}
+
+// Environments open in this process, by (pid, device, inode) of the directory.
+// The pid keeps a child forked while an environment was open from reusing the
+// parent's handle, which LMDB forbids.
+using RegistryKey = std::tuple<pid_t, dev_t, ino_t>;
+
+std::recursive_mutex& registryMutex() {
+    // Recursive: an Environment that fails half-way through open() is destroyed
+    // while open() still holds the lock, and its destructor takes it too.
+    static std::recursive_mutex mutex;
+    return mutex;
+}
+
+std::map<RegistryKey, std::weak_ptr<Environment>>& registry() {
+    static std::map<RegistryKey, std::weak_ptr<Environment>> environments;
+    return environments;
+}
+
+void checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta) {
+    MDB_val key = toVal(kSchemaVersionKey), value;
+    int rc = mdb_get(txn, meta, &key, &value);
+    if (rc == MDB_NOTFOUND) notSmqlDatabase(directory, "its meta table has no schema version");
+    if (rc != MDB_SUCCESS)
+        openError(fmt::format("cannot read the schema version of {}: {}", directory, mdb_strerror(rc)), {});
+    std::uint64_t version = codec::decodeU64(fromVal(value), "schema version");
+    if (version == kSchemaVersion) return;
+    openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
+                          kSchemaVersion),
+              version > kSchemaVersion
+                  ? "it was written by a newer smql: open it with that smql, or upgrade this one"
+                  : "it was written by an older smql: import its scenes again into a new database");
+}
+
+// Every path below that the directory cannot be an smql database ends in an
+// Error before LMDB is asked to create anything in it.
+void checkDirectory(const std::string& directory, const OpenOptions& options) {
+    std::error_code ec;
+    fs::file_status status = fs::status(directory, ec);
+    if (ec && status.type() != fs::file_type::not_found)
+        openError(fmt::format("cannot open database {}: {}", directory, ec.message()),
+                  "check that the path and its parent directories are readable");
+    if (status.type() == fs::file_type::not_found) {
+        if (!options.create || options.readOnly)
+            openError(fmt::format("no database at {}", directory),
+                      "check the path; smql creates a database only when it opens it for writing");
+        fs::create_directories(directory, ec);
+        if (ec)
+            openError(fmt::format("cannot create database directory {}: {}", directory, ec.message()),
+                      "check that the parent directory exists and is writable");
+        return;
+    }
+    if (!fs::is_directory(status))
+        openError(fmt::format("database path {} is not a directory", directory),
+                  "a database is a directory: give the path of one, or of a new directory to create");
+
+    if (fs::exists(fs::path(directory) / kDataFile, ec)) return;
+    fs::directory_iterator entries(directory, ec);
+    if (ec)
+        openError(fmt::format("cannot read database directory {}: {}", directory, ec.message()),
+                  "check the permissions of the directory");
+    for (const auto& entry : entries)
+        if (entry.path().filename() != "lock.mdb")
+            notSmqlDatabase(directory, fmt::format("it holds other files (such as {}) but no {}",
+                                                   entry.path().filename().string(), kDataFile));
+    if (!options.create || options.readOnly)
+        openError(fmt::format("no database at {} (the directory is empty)", directory),
+                  "open it once for writing to create the database");
+}
+
+}  // namespace
+
+std::shared_ptr<Environment> Environment::open(const std::string& directory, const OpenOptions& options) {
+    checkDirectory(directory, options);
+
+    struct stat st {};
+    if (::stat(directory.c_str(), &st) != 0)
+        openError(fmt::format("cannot open database {}: {}", directory, std::strerror(errno)), {});
+    RegistryKey registryKey{::getpid(), st.st_dev, st.st_ino};
+
+    std::lock_guard lock(registryMutex());
+    if (auto it = registry().find(registryKey); it != registry().end())
+        if (auto shared = it->second.lock()) {
+            if (shared->readOnly() && !options.readOnly)
+                openError(fmt::format("database {} is already open read-only in this process", directory),
+                          "close it first, or open this handle read-only too");
+            return shared;
+        }
+
+    MDB_env* env = nullptr;
+    int rc = mdb_env_create(&env);
+    if (rc != MDB_SUCCESS) openError(fmt::format("cannot open database {}: {}", directory, mdb_strerror(rc)), {});
+    // Owned from here on, so every failure below closes the environment.
+    std::shared_ptr<Environment> environment(new Environment(env, directory, options.readOnly));
+    environment->check(mdb_env_set_maxdbs(env, kMaxTables), "setting the table count");
+    environment->check(mdb_env_set_maxreaders(env, kMaxReaders), "setting the reader count");
+    environment->check(mdb_env_set_mapsize(env, options.mapSize), "setting the map size");
+
+    // MDB_NOTLS: a ReadTransaction may move between threads (thread pools, the C API).
+    unsigned flags = MDB_NOTLS | (options.readOnly ? MDB_RDONLY : 0);
+    rc = mdb_env_open(env, directory.c_str(), flags, 0644);
+    if (rc == MDB_INVALID || rc == MDB_VERSION_MISMATCH)
+        notSmqlDatabase(directory, fmt::format("its {} is not an LMDB file this smql can read", kDataFile));
+    if (rc == EACCES || rc == EPERM || rc == EROFS)
+        openError(fmt::format("cannot open database {}: {}", directory, mdb_strerror(rc)),
+                  options.readOnly ? "check the permissions of the directory, data.mdb and lock.mdb"
+                                   : "check the permissions, or open the database read-only");
+    environment->check(rc, "opening");
+
+    // Free the reader slots of processes that died holding a read transaction,
+    // so they do not pin old pages forever. Costs one pass over the reader table.
+    int deadReaders = 0;
+    environment->check(mdb_reader_check(env, &deadReaders), "clearing stale readers");
+
+    environment->openTables(options.create);
+    registry()[registryKey] = environment;
+    return environment;
+}
+
+Environment::Environment(MDB_env* env, std::string directory, bool readOnly)
+    : env_(env), directory_(std::move(directory)), readOnly_(readOnly) {}
+
+Environment::~Environment() {
+    // Closing under the registry lock: a concurrent open() of the same
+    // directory must not create a second environment while this one still
+    // holds the directory's locks.
+    std::lock_guard lock(registryMutex());
+    mdb_env_close(env_);
+    std::erase_if(registry(), [](const auto& entry) { return entry.second.expired(); });
+}
+
+// Reads the meta table in a read transaction first, so opening never waits for
+// a writer in another process; only a brand-new database takes a write
+// transaction. No step depends on the amount of data stored.
+void Environment::openTables(bool create) {
+    MDB_txn* txn = nullptr;
+    check(mdb_txn_begin(env_, nullptr, MDB_RDONLY, &txn), "beginning a read transaction");
+    MDB_dbi meta = 0;
+    int rc = mdb_dbi_open(txn, kTables[0].name, kTables[0].flags, &meta);
+    if (rc == MDB_NOTFOUND) {
+        MDB_stat mainStat{};
+        MDB_dbi main = 0;
+        rc = mdb_dbi_open(txn, nullptr, 0, &main);
+        if (rc == MDB_SUCCESS) rc = mdb_stat(txn, main, &mainStat);
+        mdb_txn_abort(txn);
+        check(rc, "reading the main table");
+        if (mainStat.ms_entries != 0) notSmqlDatabase(directory_, "it is an LMDB database without smql's meta table");
+        if (readOnly_ || !create)
+            openError(fmt::format("database {} is empty (it was never initialised)", directory_),
+                      "open it once for writing to initialise it");
+
+        check(mdb_txn_begin(env_, nullptr, 0, &txn), "beginning a write transaction");
+        for (std::size_t i = 0; i < kTableCount; ++i) {
+            rc = mdb_dbi_open(txn, kTables[i].name, kTables[i].flags | MDB_CREATE, &dbis_[i]);
+            if (rc != MDB_SUCCESS) {
+                mdb_txn_abort(txn);
+                fail(rc, fmt::format("creating table {}", kTables[i].name));
+            }
+        }
+        // Another process may have initialised it between the two transactions.
+        MDB_val key = toVal(kSchemaVersionKey), value;
+        rc = mdb_get(txn, dbis_[0], &key, &value);
+        if (rc == MDB_NOTFOUND) {
+            std::string version = codec::encodeU64(kSchemaVersion), nextId = codec::encodeU64(1);
+            MDB_val versionVal = toVal(version), nextKey = toVal(kNextIdKey), nextVal = toVal(nextId);
+            rc = mdb_put(txn, dbis_[0], &key, &versionVal, 0);
+            if (rc == MDB_SUCCESS) rc = mdb_put(txn, dbis_[0], &nextKey, &nextVal, 0);
+        }
+        if (rc != MDB_SUCCESS) {
+            mdb_txn_abort(txn);
+            fail(rc, "initialising the meta table");
+        }
+        check(mdb_txn_commit(txn), "committing the new database");
+        return;
+    }
+    if (rc == MDB_INCOMPATIBLE) {
+        mdb_txn_abort(txn);
+        notSmqlDatabase(directory_, "its 'meta' entry is not an smql meta table");
+    }
+    if (rc != MDB_SUCCESS) {
+        mdb_txn_abort(txn);
+        fail(rc, "opening the meta table");
+    }
+    try {
+        checkSchemaVersion(directory_, txn, meta);
+    } catch (...) {
+        mdb_txn_abort(txn);
+        throw;
+    }
+    dbis_[0] = meta;
+    for (std::size_t i = 1; i < kTableCount; ++i) {
+        rc = mdb_dbi_open(txn, kTables[i].name, kTables[i].flags, &dbis_[i]);
+        if (rc != MDB_SUCCESS) {
+            mdb_txn_abort(txn);
+            if (rc == MDB_NOTFOUND || rc == MDB_INCOMPATIBLE)
+                openError(fmt::format("database {} is damaged: table {} is {}", directory_, kTables[i].name,
+                                      rc == MDB_NOTFOUND ? "missing" : "of the wrong kind"),
+                          "restore it from a backup, or import its scenes again into a new database");
+            fail(rc, fmt::format("opening table {}", kTables[i].name));
+        }
+    }
+    // Committing a read transaction is what makes its table handles usable by later transactions.
+    check(mdb_txn_commit(txn), "opening the tables");
+}
+
+void Environment::fail(int rc, std::string_view operation) const {
+    std::string hint;
+    switch (rc) {
+        case MDB_MAP_FULL: {
+            MDB_envinfo info{};
+            mdb_env_info(env_, &info);
+            hint = fmt::format("the database reached its map size ({} bytes); open it with a larger map size",
+                               info.me_mapsize);
+            break;
+        }
+        case MDB_READERS_FULL:
+            hint = fmt::format("more than {} read transactions are open at once; close idle ones", kMaxReaders);
+            break;
+        case MDB_CORRUPTED:
+        case MDB_PAGE_NOTFOUND:
+            hint = "the database file is damaged; restore it from a backup";
+            break;
+        case EACCES:
+        case EROFS:
+            hint = "check the permissions of the database directory and its files";
+            break;
+        default: break;
+    }
+    throw Error(ErrorKind::Storage,
+                fmt::format("{} failed on database {}: {}", operation, directory_, mdb_strerror(rc)), std::nullopt,
+                std::move(hint));
+}
+
+Cursor::Cursor(const Environment& env, MDB_txn* txn, Table table) {
+    env.check(mdb_cursor_open(txn, env.dbi(table), &cursor_), "opening a cursor");
+}
+
+}  // namespace smql::storage

@@ -1,0 +1,101 @@
+// The LMDB environment behind a Database: opening and validating a database
+// directory, the named sub-databases ("tables") and small helpers around the
+// LMDB C API. Private to storage/ (LMDB types never leave it).
+#pragma once
+
+#include <lmdb.h>
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "storage/database.hpp"
+
+namespace smql::storage {
+
+enum class Table : std::size_t { Meta, Nodes, Scenes, SceneNames, Children, Labels, SourceIds, Relations };
+inline constexpr std::size_t kTableCount = 8;
+
+struct TableSpec {
+    const char* name;
+    unsigned flags;
+};
+
+// The layout of docs/storage.md. Flags are persistent: changing one is a schema change.
+inline constexpr std::array<TableSpec, kTableCount> kTables = {{
+    {"meta", 0},
+    {"nodes", 0},
+    {"scenes", 0},
+    {"scene_names", 0},
+    {"children", MDB_DUPSORT | MDB_DUPFIXED},
+    {"labels", MDB_DUPSORT | MDB_DUPFIXED},
+    {"source_ids", 0},
+    {"relations", MDB_DUPSORT | MDB_DUPFIXED},
+}};
+
+// Room for the tables still to come (vectors, blobs, spatial index) without
+// touching the environment setup.
+inline constexpr unsigned kMaxTables = 32;
+
+inline constexpr std::string_view kSchemaVersionKey = "schema_version";
+inline constexpr std::string_view kNextIdKey = "next_id";
+inline constexpr std::string_view kSettingPrefix = "setting:";
+inline constexpr std::string_view kDataFile = "data.mdb";
+
+class Environment {
+public:
+    // Opens (or creates) the environment of `directory`. Within one process a
+    // directory maps to one shared Environment: LMDB forbids opening the same
+    // environment twice in a process (closing one copy would drop the other's
+    // POSIX locks).
+    static std::shared_ptr<Environment> open(const std::string& directory, const OpenOptions& options);
+    ~Environment();
+    Environment(const Environment&) = delete;
+    Environment& operator=(const Environment&) = delete;
+
+    MDB_env* env() const { return env_; }
+    MDB_dbi dbi(Table table) const { return dbis_[static_cast<std::size_t>(table)]; }
+    const std::string& directory() const { return directory_; }
+    bool readOnly() const { return readOnly_; }
+    // LMDB's key size limit (511 bytes in Debian's build); names used as keys are checked against it.
+    std::size_t maxKeySize() const { return static_cast<std::size_t>(mdb_env_get_maxkeysize(env_)); }
+
+    // Throws smql::Error(Storage) naming the database, the operation and LMDB's reason.
+    [[noreturn]] void fail(int rc, std::string_view operation) const;
+    void check(int rc, std::string_view operation) const {
+        if (rc != MDB_SUCCESS) fail(rc, operation);
+    }
+
+private:
+    Environment(MDB_env* env, std::string directory, bool readOnly);
+    void openTables(bool create);
+
+    MDB_env* env_;
+    std::string directory_;
+    bool readOnly_;
+    std::array<MDB_dbi, kTableCount> dbis_{};
+};
+
+inline MDB_val toVal(std::string_view s) { return {s.size(), const_cast<char*>(s.data())}; }
+template <std::size_t N>
+MDB_val toVal(const std::array<std::uint8_t, N>& bytes) {
+    return {N, const_cast<std::uint8_t*>(bytes.data())};
+}
+inline std::string_view fromVal(const MDB_val& v) { return {static_cast<const char*>(v.mv_data), v.mv_size}; }
+
+// A cursor closed on scope exit; for write transactions, where cursors are not reused.
+class Cursor {
+public:
+    Cursor(const Environment& env, MDB_txn* txn, Table table);
+    ~Cursor() { mdb_cursor_close(cursor_); }
+    Cursor(const Cursor&) = delete;
+    Cursor& operator=(const Cursor&) = delete;
+    MDB_cursor* get() const { return cursor_; }
+
+private:
+    MDB_cursor* cursor_ = nullptr;
+};
+
+}  // namespace smql::storage

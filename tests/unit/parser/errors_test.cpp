@@ -1,0 +1,274 @@
+// Syntax errors: message, location and hint; isIncomplete for the shell.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <unistd.h>
+
+#include "engine/parser/parser.hpp"
+
+using namespace smql;
+namespace parser = smql::parser;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+
+namespace {
+
+Error errorOf(std::string_view text) {
+    try {
+        parser::parse(text);
+    } catch (const Error& error) {
+        CHECK(error.kind() == ErrorKind::Syntax);
+        return error;
+    }
+    FAIL("expected a syntax error for: " << text);
+    throw std::logic_error("unreachable");
+}
+
+SourceLocation whereOf(const Error& error) {
+    REQUIRE(error.where());
+    return *error.where();
+}
+
+}  // namespace
+
+TEST_CASE("a misspelt clause keyword after the target", "[parser][errors]") {
+    Error error = errorOf("FIND cushion WHER on(sofa)");
+    CHECK(error.message() == "unexpected 'WHER'");
+    CHECK(whereOf(error).line == 1);
+    CHECK(whereOf(error).column == 14);
+    CHECK(whereOf(error).length == 4);
+    CHECK_THAT(error.hint(), StartsWith("did you mean WHERE?"));
+    CHECK_THAT(error.hint(), Contains("VIEW FROM, WHERE, NEAREST TO, ORDER BY, LIMIT, PATH or ';'"));
+}
+
+TEST_CASE("a misspelt keyword after a condition", "[parser][errors]") {
+    Error error = errorOf("FIND mug WHERE on(desk) ODER BY distance(door)");
+    CHECK(error.message() == "unexpected 'ODER'");
+    CHECK(whereOf(error).column == 25);
+    CHECK_THAT(error.hint(), StartsWith("did you mean ORDER?"));
+    CHECK_THAT(error.hint(), Contains("AND, OR,"));
+}
+
+TEST_CASE("a misspelt statement keyword", "[parser][errors]") {
+    Error error = errorOf("FIMD sofa");
+    CHECK(error.message() == "'FIMD' does not start a statement");
+    CHECK(whereOf(error).column == 1);
+    CHECK(error.hint() == "did you mean FIND?");
+    CHECK(errorOf("DESCIRBE #4").hint() == "did you mean DESCRIBE?");
+    CHECK_THAT(errorOf("SELECT * FROM mug").hint(), StartsWith("a statement starts with"));
+
+    Error unknown = errorOf("HELLO world");
+    CHECK(unknown.hint() == "a statement starts with FIND, COUNT, RELATE, DESCRIBE, SHOW, USE, SET or EXPLAIN");
+}
+
+TEST_CASE("an error on line 2 of a script", "[parser][errors][locations]") {
+    Error error = errorOf("SHOW SCENES;\nFIND mug WHERE colr 'red';\nSHOW TREE");
+    CHECK(whereOf(error).line == 2);
+    CHECK(whereOf(error).column == 21);
+    CHECK(error.message() == "unexpected 'red'");
+    CHECK_THAT(error.hint(), Contains("a comparison (=, !=, <, <=, >, >=, LIKE)"));
+    std::string rendered = error.render("SHOW SCENES;\nFIND mug WHERE colr 'red';\nSHOW TREE");
+    CHECK_THAT(rendered, Contains("line 2, column 21"));
+    CHECK_THAT(rendered, Contains("\n  FIND mug WHERE colr 'red';\n                      ^^^^^"));
+}
+
+TEST_CASE("the first error in the text wins", "[parser][errors]") {
+    Error error = errorOf("FIND a LIMIT 2.5; FIND b WHER c");
+    CHECK_THAT(error.message(), Contains("LIMIT needs a whole number"));
+    CHECK(whereOf(error).column == 14);
+}
+
+TEST_CASE("an unterminated string", "[parser][errors]") {
+    Error error = errorOf("FIND mug WHERE color = 'red");
+    CHECK(error.message() == "unterminated string");
+    CHECK(whereOf(error).column == 24);
+    CHECK(whereOf(error).length == 1);
+    CHECK_THAT(error.hint(), Contains("close it with '"));
+    CHECK(errorOf("FIND \"indoor plant").message() == "unterminated string");
+    // A string may span lines, so a missing quote swallows the rest.
+    CHECK(errorOf("FIND 'a;\nFIND b;").message() == "unterminated string");
+}
+
+TEST_CASE("unbalanced parentheses", "[parser][errors]") {
+    Error open = errorOf("FIND x WHERE (on(desk) AND near(door)");
+    CHECK(open.message() == "'(' is never closed");
+    CHECK(whereOf(open).column == 14);
+    CHECK(open.hint() == "add ')' at the end");
+    CHECK(errorOf("FIND x WHERE near(door;").hint() == "add ')' before the ';'");
+
+    Error extra = errorOf("FIND x WHERE on(desk))");
+    CHECK(extra.message() == "')' has no matching '('");
+    CHECK(whereOf(extra).column == 22);
+}
+
+TEST_CASE("missing numbers and unknown units", "[parser][errors]") {
+    Error missing = errorOf("FIND x WHERE near(window, cm)");
+    CHECK(missing.message() == "missing number before 'cm'");
+    CHECK(whereOf(missing).column == 27);
+    CHECK_THAT(missing.hint(), Contains("near(window, 1.5 m)"));
+
+    Error unit = errorOf("FIND x WHERE near(window, 1.5 km)");
+    CHECK(unit.message() == "'km' is not a unit");
+    CHECK(whereOf(unit).column == 31);
+    CHECK(unit.hint() == "the units are m, cm and mm, as in 30 cm");
+
+    // A misspelt keyword after a number reads as a unit: say which keyword.
+    Error keyword = errorOf("FIND x WHERE size > 3 LIMT 4");
+    CHECK(keyword.message() == "'LIMT' is not a unit");
+    CHECK(whereOf(keyword).column == 23);
+    CHECK_THAT(keyword.hint(), Contains("did you mean LIMIT?"));
+
+    Error noNumber = errorOf("FIND x WHERE height >");
+    CHECK(noNumber.message() == "unexpected end of input after '>'");
+    CHECK(noNumber.hint() == "expected a quoted string or a number");
+}
+
+TEST_CASE("LIMIT needs a whole number of 0 or more", "[parser][errors]") {
+    Error fraction = errorOf("FIND x LIMIT 2.5");
+    CHECK(fraction.message() == "LIMIT needs a whole number, not 2.5");
+    CHECK(whereOf(fraction).column == 14);
+
+    Error negative = errorOf("FIND x LIMIT -3");
+    CHECK(negative.message() == "LIMIT cannot be negative");
+    CHECK(whereOf(negative).column == 14);
+    CHECK(whereOf(negative).length == 2);
+
+    Error word = errorOf("FIND x LIMIT ten");
+    CHECK(word.message() == "unexpected 'ten'");
+    CHECK(word.hint() == "expected a number");
+
+    CHECK_THAT(errorOf("FIND x LIMIT 99999999999999999999").message(), Contains("too large"));
+}
+
+TEST_CASE("empty input", "[parser][errors]") {
+    for (const char* text : {"", "   \n\t", "-- only a comment\n", ";;"}) {
+        INFO(text);
+        Error error = errorOf(text);
+        CHECK_THAT(error.message(), StartsWith("empty input"));
+        CHECK_THAT(error.hint(), Contains("FIND"));
+    }
+}
+
+TEST_CASE("a statement that ends too early", "[parser][errors]") {
+    Error end = errorOf("FIND mug WHERE");
+    CHECK(end.message() == "unexpected end of input after 'WHERE'");
+    CHECK(whereOf(end).column == 15);
+    CHECK(end.hint() == "expected a condition such as on(desk) or color = 'red'");
+
+    Error semicolon = errorOf("FIND mug WHERE ; SHOW SCENES");
+    CHECK(semicolon.message() == "unexpected ';' after 'WHERE'");
+    CHECK(whereOf(semicolon).column == 16);
+
+    Error target = errorOf("DESCRIBE");
+    CHECK_THAT(target.hint(), Contains("a reference"));
+}
+
+TEST_CASE("text values need quotes", "[parser][errors]") {
+    Error error = errorOf("FIND mug WHERE color = red");
+    CHECK(error.message() == "unexpected 'red'");
+    CHECK(whereOf(error).column == 24);
+    CHECK(error.hint() == "text goes in quotes: 'red'");
+}
+
+TEST_CASE("clauses out of order or repeated", "[parser][errors]") {
+    Error order = errorOf("FIND x LIMIT 3 WHERE on(y)");
+    CHECK(order.message() == "WHERE must come before LIMIT");
+    CHECK(whereOf(order).column == 16);
+
+    Error twice = errorOf("FIND x WHERE on(y) WHERE near(z)");
+    CHECK(twice.message() == "WHERE given twice");
+    CHECK(twice.hint() == "combine the conditions with AND");
+
+    CHECK(errorOf("FIND x PATH LIMIT 2 PATH").message() == "PATH given twice");
+    CHECK(errorOf("COUNT x WHERE on(y) VIEW FROM door").message() == "VIEW FROM must come before WHERE");
+
+    Error count = errorOf("COUNT chair LIMIT 3");
+    CHECK(count.message() == "unexpected 'LIMIT'");
+    CHECK_THAT(count.hint(), Contains("VIEW FROM, WHERE or ';'"));
+}
+
+TEST_CASE("bad references", "[parser][errors]") {
+    Error side = errorOf("FIND x WHERE near(wall.top)");
+    CHECK(side.message() == "unknown side 'top'");
+    CHECK(whereOf(side).column == 24);
+    CHECK_THAT(side.hint(), Contains("left, right, front or back"));
+
+    Error hash = errorOf("DESCRIBE # 42");
+    CHECK(hash.message() == "'#' must be followed by a node id");
+    CHECK(whereOf(hash).column == 10);
+
+    CHECK_THAT(errorOf("DESCRIBE #99999999999999999999").message(), Contains("too large"));
+    CHECK(errorOf("FIND ''").message() == "a quoted name cannot be empty");
+    CHECK(errorOf("DESCRIBE src #93").message() == "unexpected '#93'");
+}
+
+TEST_CASE("stray characters and missing separators", "[parser][errors]") {
+    Error stray = errorOf("FIND mug @ desk");
+    CHECK(stray.message() == "unexpected character '@'");
+    CHECK(whereOf(stray).column == 10);
+
+    Error joined = errorOf("FIND mug FIND cup");
+    CHECK(joined.message() == "unexpected 'FIND'");
+    CHECK(joined.hint() == "end the statement before FIND with ';'");
+
+    Error show = errorOf("SHOW TABLES");
+    CHECK(show.hint() == "expected SCENES, TREE or SETTINGS");
+
+    Error order = errorOf("FIND mug ORDER BY size");
+    CHECK(order.hint() == "expected distance(...)");
+
+    Error nested = errorOf("EXPLAIN EXPLAIN FIND x");
+    CHECK(nested.message() == "'EXPLAIN' does not start a statement");
+
+    Error utf8 = errorOf("FIND \xff\xfe");
+    CHECK_THAT(utf8.message(), Contains("UTF-8"));
+}
+
+TEST_CASE("parsing never prints and never throws anything but smql::Error", "[parser][errors]") {
+    // Capture stderr: ANTLR's console listeners must be gone.
+    std::fflush(stderr);
+    int saved = dup(fileno(stderr));
+    std::FILE* capture = std::tmpfile();
+    REQUIRE(capture);
+    dup2(fileno(capture), fileno(stderr));
+
+    const std::string query =
+        "FIND mug VIEW FROM door FACING 'indoor plant' WHERE color = 'red' AND NOT near(wall.left, 1.5 m) "
+        "OR on((FIND desk WHERE id >= #3)) NEAREST TO src#9 LIMIT 3 PATH; SET on.min_overlap = 30 cm";
+    std::size_t failures = 0;
+    auto attempt = [&](const std::string& text) {
+        try {
+            parser::parse(text);
+        } catch (const Error&) {
+            ++failures;
+        }
+    };
+    // Every prefix and every single-character deletion.
+    for (std::size_t n = 0; n <= query.size(); ++n) attempt(query.substr(0, n));
+    for (std::size_t i = 0; i < query.size(); ++i) attempt(query.substr(0, i) + query.substr(i + 1));
+
+    std::fflush(stderr);
+    dup2(saved, fileno(stderr));
+    close(saved);
+    CHECK(std::ftell(capture) == 0);
+    std::fclose(capture);
+    CHECK(failures > 0);
+}
+
+TEST_CASE("isIncomplete tells the shell to keep reading", "[parser][incomplete]") {
+    CHECK(parser::isIncomplete("FIND mug"));
+    CHECK(parser::isIncomplete("FIND mug WHERE"));
+    CHECK(parser::isIncomplete("SHOW SCENES;\nFIND mug"));
+    CHECK(parser::isIncomplete("FIND mug WHERE on(desk;"));          // open parenthesis
+    CHECK(parser::isIncomplete("FIND mug WHERE color = 'red;"));     // open quote
+    CHECK(parser::isIncomplete("FIND \"indoor\nplant"));              // open double quote
+    CHECK(parser::isIncomplete("FIND mug -- a comment;"));           // the ';' is inside the comment
+
+    CHECK_FALSE(parser::isIncomplete("FIND mug;"));
+    CHECK_FALSE(parser::isIncomplete("FIND mug;  -- done\n"));
+    CHECK_FALSE(parser::isIncomplete("FIND mug WHERE text = 'a;b';"));
+    CHECK_FALSE(parser::isIncomplete("FIND mug WHERE on(desk));"));  // an error, but complete: parse() reports it
+    CHECK_FALSE(parser::isIncomplete(""));
+    CHECK_FALSE(parser::isIncomplete("   "));
+    CHECK_FALSE(parser::isIncomplete("-- only a comment"));
+}

@@ -1,0 +1,77 @@
+// Scratch directories and scene builders shared by the storage tests.
+#pragma once
+
+#include <stdlib.h>
+
+#include <filesystem>
+#include <string>
+
+#include "engine/model/types.hpp"
+
+namespace smql::storage::testing {
+
+// A fresh directory under the system temp dir, removed with everything in it.
+class TempDir {
+public:
+    TempDir() {
+        std::string pattern = (std::filesystem::temp_directory_path() / "smql-storage-XXXXXX").string();
+        if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+        path_ = pattern;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    std::string path() const { return path_.string(); }
+    std::string sub(const std::string& name) const { return (path_ / name).string(); }
+
+private:
+    std::filesystem::path path_;
+};
+
+inline model::Node localNode(model::NodeId id, model::NodeKind kind, model::NodeId parent, std::string category) {
+    model::Node node;
+    node.id = id;
+    node.kind = kind;
+    node.parent = parent;
+    node.category = std::move(category);
+    return node;
+}
+
+// A scene of `count` nodes with local ids 1..count: node 1 is a room holding
+// up to 3000 objects directly (more than a page of child entries), the rest
+// hang one below another. Categories cycle through five names; node 2 is
+// `near` the next 2000 nodes (many relation entries under one key).
+inline model::SceneData largeScene(std::string name, std::size_t count, std::string extraCategory = {}) {
+    static const char* kCategories[] = {"chair", "table", "lamp", "book", "cup"};
+    model::SceneData data;
+    data.info.name = std::move(name);
+    data.info.source = "test:large";
+    data.nodes.reserve(count);
+    data.nodes.push_back(localNode(1, model::NodeKind::Room, model::kNoNode, "room"));
+    for (std::size_t i = 2; i <= count; ++i) {
+        model::NodeId parent = i <= 3001 ? 1 : i - 3000;
+        std::string category = !extraCategory.empty() && i % 7 == 0 ? extraCategory : kCategories[i % 5];
+        model::Node node = localNode(i, model::NodeKind::Object, parent, std::move(category));
+        node.geometry = model::GeometryKind::Box;
+        node.box = {{double(i) * 0.01, 1, 0.5}, {0.2, 0.2, 0.2}, 0};
+        node.attributes = {{"color", i % 2 ? "red" : "blue"}};
+        node.sourceId = std::int64_t(i) * 10;
+        node.text = "object number " + std::to_string(i);
+        data.nodes.push_back(std::move(node));
+    }
+    for (std::size_t i = 3; i <= count && i <= 2002; ++i)
+        data.relations.push_back({2, i, model::RelationType::Near, 0.5f, 1, model::kNoNode});
+    return data;
+}
+
+inline std::size_t countCategory(const model::SceneData& data, std::string_view category) {
+    std::size_t n = 0;
+    for (const auto& node : data.nodes) n += node.category == category;
+    return n;
+}
+
+}  // namespace smql::storage::testing
