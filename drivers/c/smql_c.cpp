@@ -1,0 +1,332 @@
+// The C API over smql::Engine. Every entry point catches everything: a C
+// caller sees a status and an error text, never an exception.
+#include "smql.h"
+
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "engine/engine.hpp"
+#include "engine/error.hpp"
+#include "engine/format.hpp"
+#include "engine/result.hpp"
+#include "ingest/import/importers.hpp"
+
+namespace {
+
+struct LastError {
+    smql_status status = SMQL_OK;
+    std::string text;
+    int line = 0;
+    int column = 0;
+};
+
+}  // namespace
+
+struct smql_db {
+    std::unique_ptr<smql::Engine> engine;  // null when smql_open failed: the handle only reports why
+    // Errors are kept per calling thread so that threads sharing a handle
+    // read their own error; an entry exists only while its last call failed.
+    mutable std::mutex errorsMutex;
+    std::unordered_map<std::thread::id, LastError> errors;
+};
+
+struct smql_result {
+    smql::ResultSet set;                // the last statement's columns and rows
+    std::vector<std::string> messages;  // one per statement that ran
+    // JSON text is made on first request and kept until the result is freed;
+    // readers on several threads may ask at once, hence the mutex.
+    mutable std::mutex cacheMutex;
+    mutable std::unordered_map<std::size_t, std::string> rowJson;
+    mutable std::optional<std::string> resultJson;
+};
+
+namespace {
+
+constexpr const char* kNullHandleMessage = "misuse: the smql_db handle is NULL";
+
+smql_status statusOf(smql::ErrorKind kind) {
+    switch (kind) {
+        case smql::ErrorKind::Syntax: return SMQL_ERROR_SYNTAX;
+        case smql::ErrorKind::Binding: return SMQL_ERROR_BINDING;
+        case smql::ErrorKind::Input: return SMQL_ERROR_INPUT;
+        case smql::ErrorKind::Storage: return SMQL_ERROR_STORAGE;
+        case smql::ErrorKind::Usage: return SMQL_ERROR_USAGE;
+    }
+    return SMQL_ERROR_INTERNAL;
+}
+
+smql_type typeOf(smql::ValueType type) {
+    switch (type) {
+        case smql::ValueType::Null: return SMQL_NULL;
+        case smql::ValueType::Integer: return SMQL_INTEGER;
+        case smql::ValueType::Real: return SMQL_REAL;
+        case smql::ValueType::Text: return SMQL_TEXT;
+        case smql::ValueType::Box: return SMQL_BOX;
+    }
+    return SMQL_INVALID;
+}
+
+const LastError* lastError(const smql_db* db) {
+    std::lock_guard lock(db->errorsMutex);
+    auto it = db->errors.find(std::this_thread::get_id());
+    // Only this thread writes its own entry, and unordered_map keeps element
+    // addresses stable across other threads' inserts, so the pointer may
+    // outlive the lock.
+    return it == db->errors.end() ? nullptr : &it->second;
+}
+
+void forgetError(smql_db* db) noexcept {
+    std::lock_guard lock(db->errorsMutex);
+    db->errors.erase(std::this_thread::get_id());
+}
+
+smql_status recordError(smql_db* db, smql_status status, std::string text, int line = 0, int column = 0) {
+    std::lock_guard lock(db->errorsMutex);
+    db->errors[std::this_thread::get_id()] = LastError{status, std::move(text), line, column};
+    return status;
+}
+
+// Runs `body` on an open handle, turning every exception into a status and
+// the handle's error text; `source` is the statement text carets point into.
+template <class Body>
+smql_status guarded(smql_db* db, std::string_view source, Body&& body) noexcept {
+    try {
+        try {
+            body();
+        } catch (const smql::Error& e) {
+            int line = e.where() ? e.where()->line : 0;
+            int column = e.where() ? e.where()->column : 0;
+            return recordError(db, statusOf(e.kind()), e.render(source), line, column);
+        } catch (const std::bad_alloc&) {
+            return recordError(db, SMQL_ERROR_INTERNAL, "internal error: out of memory");
+        } catch (const std::exception& e) {
+            return recordError(db, SMQL_ERROR_INTERNAL, std::string("internal error: ") + e.what());
+        } catch (...) {
+            return recordError(db, SMQL_ERROR_INTERNAL, "internal error: unknown exception");
+        }
+        forgetError(db);
+        return SMQL_OK;
+    } catch (...) {
+        // Recording the error needed memory that is not there: report the
+        // status without a text rather than a stale one.
+        forgetError(db);
+        return SMQL_ERROR_INTERNAL;
+    }
+}
+
+smql_status misuse(smql_db* db, const char* what) noexcept {
+    try {
+        return recordError(db, SMQL_ERROR_MISUSE, std::string("misuse: ") + what);
+    } catch (...) {
+        forgetError(db);
+        return SMQL_ERROR_MISUSE;
+    }
+}
+
+// The checks every call on a handle starts with; SMQL_OK when it may go on.
+smql_status checkOpen(smql_db* db) noexcept {
+    if (!db) return SMQL_ERROR_MISUSE;
+    if (db->engine) return SMQL_OK;
+    return misuse(db, "this handle failed to open: read smql_errmsg right after smql_open, then smql_close it");
+}
+
+std::string defaultSceneName(std::string_view format, const std::string& path) {
+    std::filesystem::path p = std::filesystem::absolute(path);
+    // Replica files are all called info_semantic.json: the folder names the scene.
+    if (format == "replica") return p.parent_path().filename().string();
+    return p.stem().string();
+}
+
+const smql::Value* cell(const smql_result* res, std::size_t row, std::size_t col) {
+    if (!res || row >= res->set.rows.size() || col >= res->set.rows[row].size()) return nullptr;
+    return &res->set.rows[row][col];
+}
+
+std::string dumpJson(const nlohmann::json& json) {
+    // Text read from user files may hold invalid UTF-8: replace it, never throw.
+    return json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+}  // namespace
+
+const char* smql_version(void) { return SMQL_VERSION_STRING; }
+
+const char* smql_status_string(smql_status status) {
+    switch (status) {
+        case SMQL_OK: return "ok";
+        case SMQL_ERROR_SYNTAX: return "syntax error";
+        case SMQL_ERROR_BINDING: return "name does not resolve";
+        case SMQL_ERROR_INPUT: return "bad input file";
+        case SMQL_ERROR_STORAGE: return "storage error";
+        case SMQL_ERROR_USAGE: return "usage error";
+        case SMQL_ERROR_MISUSE: return "API misuse";
+        case SMQL_ERROR_INTERNAL: return "internal error";
+    }
+    return "unknown status";
+}
+
+smql_status smql_open(const char* dir, int flags, smql_db** out) {
+    if (!out) return SMQL_ERROR_MISUSE;
+    *out = new (std::nothrow) smql_db();
+    if (!*out) return SMQL_ERROR_INTERNAL;
+    smql_db* db = *out;
+    if (!dir) return misuse(db, "smql_open: dir is NULL");
+    if (flags & ~SMQL_OPEN_READONLY) return misuse(db, "smql_open: unknown flag bits (only SMQL_OPEN_READONLY exists)");
+    return guarded(db, {}, [&] { db->engine = smql::Engine::open(dir, (flags & SMQL_OPEN_READONLY) != 0); });
+}
+
+void smql_close(smql_db* db) { delete db; }
+
+const char* smql_errmsg(const smql_db* db) {
+    if (!db) return kNullHandleMessage;
+    const LastError* error = lastError(db);
+    return error ? error->text.c_str() : "";
+}
+
+smql_status smql_errcode(const smql_db* db) {
+    if (!db) return SMQL_ERROR_MISUSE;
+    const LastError* error = lastError(db);
+    return error ? error->status : SMQL_OK;
+}
+
+int smql_error_line(const smql_db* db) {
+    const LastError* error = db ? lastError(db) : nullptr;
+    return error ? error->line : 0;
+}
+
+int smql_error_column(const smql_db* db) {
+    const LastError* error = db ? lastError(db) : nullptr;
+    return error ? error->column : 0;
+}
+
+smql_status smql_execute(smql_db* db, const char* statements, smql_result** out) {
+    if (out) *out = nullptr;
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!statements) return misuse(db, "smql_execute: statements is NULL");
+    return guarded(db, statements, [&] {
+        auto sets = db->engine->execute(statements);
+        if (!out) return;
+        auto result = std::make_unique<smql_result>();
+        for (const auto& set : sets) result->messages.push_back(set.message);
+        if (!sets.empty()) result->set = std::move(sets.back());
+        *out = result.release();
+    });
+}
+
+smql_status smql_import_file(smql_db* db, const char* format, const char* path, const char* scene_name) {
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!format || !path) return misuse(db, "smql_import_file: format and path must not be NULL");
+    return guarded(db, {}, [&] {
+        std::string_view kind = format;
+        if (kind != "replica" && kind != "spatiallm" && kind != "json")
+            throw smql::Error(smql::ErrorKind::Usage, "unknown import format '" + std::string(kind) + "'",
+                              std::nullopt, "use \"replica\", \"spatiallm\" or \"json\"");
+        std::string name = scene_name ? scene_name : defaultSceneName(kind, path);
+        // The whole file is read and checked before the database is touched.
+        smql::model::SceneData scene = kind == "replica"     ? smql::import::readReplica(path, name)
+                                       : kind == "spatiallm" ? smql::import::readSpatialLm(path, name)
+                                                             : smql::import::readSceneJson(path);
+        if (kind == "json" && scene_name) scene.info.name = scene_name;
+        db->engine->importScene(std::move(scene));
+    });
+}
+
+void smql_result_free(smql_result* res) { delete res; }
+
+size_t smql_column_count(const smql_result* res) { return res ? res->set.columns.size() : 0; }
+
+size_t smql_row_count(const smql_result* res) { return res ? res->set.rows.size() : 0; }
+
+const char* smql_column_name(const smql_result* res, size_t col) {
+    if (!res || col >= res->set.columns.size()) return nullptr;
+    return res->set.columns[col].name.c_str();
+}
+
+smql_type smql_column_type(const smql_result* res, size_t col) {
+    if (!res || col >= res->set.columns.size()) return SMQL_INVALID;
+    return typeOf(res->set.columns[col].type);
+}
+
+smql_type smql_value_type(const smql_result* res, size_t row, size_t col) {
+    const smql::Value* value = cell(res, row, col);
+    return value ? typeOf(smql::typeOf(*value)) : SMQL_INVALID;
+}
+
+smql_status smql_value_int64(const smql_result* res, size_t row, size_t col, int64_t* out) {
+    const smql::Value* value = cell(res, row, col);
+    const auto* integer = value ? std::get_if<std::int64_t>(value) : nullptr;
+    if (!integer || !out) return SMQL_ERROR_MISUSE;
+    *out = *integer;
+    return SMQL_OK;
+}
+
+smql_status smql_value_double(const smql_result* res, size_t row, size_t col, double* out) {
+    const smql::Value* value = cell(res, row, col);
+    if (!value || !out) return SMQL_ERROR_MISUSE;
+    if (const auto* real = std::get_if<double>(value)) {
+        *out = *real;
+        return SMQL_OK;
+    }
+    if (const auto* integer = std::get_if<std::int64_t>(value)) {
+        *out = static_cast<double>(*integer);
+        return SMQL_OK;
+    }
+    return SMQL_ERROR_MISUSE;
+}
+
+smql_status smql_value_text(const smql_result* res, size_t row, size_t col, const char** out) {
+    const smql::Value* value = cell(res, row, col);
+    const auto* text = value ? std::get_if<std::string>(value) : nullptr;
+    if (!text || !out) return SMQL_ERROR_MISUSE;
+    *out = text->c_str();
+    return SMQL_OK;
+}
+
+smql_status smql_value_box(const smql_result* res, size_t row, size_t col, smql_box* out) {
+    const smql::Value* value = cell(res, row, col);
+    const auto* box = value ? std::get_if<smql::model::Box>(value) : nullptr;
+    if (!box || !out) return SMQL_ERROR_MISUSE;
+    *out = smql_box{{box->center.x, box->center.y, box->center.z}, {box->size.x, box->size.y, box->size.z}, box->yaw};
+    return SMQL_OK;
+}
+
+const char* smql_row_json(const smql_result* res, size_t row) {
+    if (!res || row >= res->set.rows.size()) return nullptr;
+    try {
+        std::lock_guard lock(res->cacheMutex);
+        auto it = res->rowJson.find(row);
+        if (it == res->rowJson.end()) it = res->rowJson.emplace(row, dumpJson(smql::rowJson(res->set, row))).first;
+        return it->second.c_str();
+    } catch (...) {
+        return nullptr;  // out of memory
+    }
+}
+
+const char* smql_result_json(const smql_result* res) {
+    if (!res) return nullptr;
+    try {
+        std::lock_guard lock(res->cacheMutex);
+        if (!res->resultJson) res->resultJson = dumpJson(smql::resultJson(res->set));
+        return res->resultJson->c_str();
+    } catch (...) {
+        return nullptr;  // out of memory
+    }
+}
+
+const char* smql_result_message(const smql_result* res) { return res ? res->set.message.c_str() : nullptr; }
+
+size_t smql_statement_count(const smql_result* res) { return res ? res->messages.size() : 0; }
+
+const char* smql_statement_message(const smql_result* res, size_t index) {
+    if (!res || index >= res->messages.size()) return nullptr;
+    return res->messages[index].c_str();
+}

@@ -1,0 +1,268 @@
+/*
+ * The C API from C: import, query, typed access, JSON, errors, misuse,
+ * read-only handles and threads sharing one handle. Needs SMQL_SHARED_DATA
+ * (the folder holding replica-room0/). Last line: "N passed, M failed".
+ */
+#define _XOPEN_SOURCE 700 /* mkdtemp, nftw */
+
+#include <ftw.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "smql.h"
+
+static int passed = 0, failed = 0;
+
+#define CHECK(cond)                                                                 \
+    do {                                                                            \
+        if (cond) {                                                                 \
+            ++passed;                                                               \
+        } else {                                                                    \
+            ++failed;                                                               \
+            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
+        }                                                                           \
+    } while (0)
+
+static const char* const kReplica = SMQL_SHARED_DATA "/replica-room0/info_semantic.json";
+static const char* const kQuery = "FIND cushion WHERE on(sofa) PATH";
+
+static int contains(const char* text, const char* part) { return text && strstr(text, part) != NULL; }
+
+static int remove_entry(const char* path, const struct stat* st, int flag, struct FTW* ftw) {
+    (void)st, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+static int column_index(const smql_result* res, const char* name) {
+    for (size_t c = 0; c < smql_column_count(res); ++c)
+        if (strcmp(smql_column_name(res, c), name) == 0) return (int)c;
+    return -1;
+}
+
+static void test_misuse(void) {
+    smql_result* res = (smql_result*)&passed; /* any non-NULL: must come back NULL */
+    CHECK(smql_execute(NULL, kQuery, &res) == SMQL_ERROR_MISUSE);
+    CHECK(res == NULL);
+    CHECK(smql_import_file(NULL, "replica", kReplica, NULL) == SMQL_ERROR_MISUSE);
+    CHECK(smql_open("somewhere", 0, NULL) == SMQL_ERROR_MISUSE);
+    CHECK(smql_errcode(NULL) == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(NULL), "NULL"));
+
+    int64_t i = 0;
+    smql_box box;
+    CHECK(smql_column_count(NULL) == 0 && smql_row_count(NULL) == 0 && smql_statement_count(NULL) == 0);
+    CHECK(smql_column_name(NULL, 0) == NULL);
+    CHECK(smql_column_type(NULL, 0) == SMQL_INVALID);
+    CHECK(smql_value_type(NULL, 0, 0) == SMQL_INVALID);
+    CHECK(smql_value_int64(NULL, 0, 0, &i) == SMQL_ERROR_MISUSE);
+    CHECK(smql_value_box(NULL, 0, 0, &box) == SMQL_ERROR_MISUSE);
+    CHECK(smql_row_json(NULL, 0) == NULL && smql_result_json(NULL) == NULL && smql_result_message(NULL) == NULL);
+    smql_close(NULL);
+    smql_result_free(NULL);
+
+    CHECK(strlen(smql_version()) > 0);
+    CHECK(strcmp(smql_status_string(SMQL_ERROR_SYNTAX), "syntax error") == 0);
+}
+
+static void test_open_failure(const char* base) {
+    char missing[4096];
+    snprintf(missing, sizeof missing, "%s/does-not-exist", base);
+    smql_db* db = NULL;
+    CHECK(smql_open(missing, SMQL_OPEN_READONLY, &db) == SMQL_ERROR_STORAGE);
+    CHECK(db != NULL);
+    CHECK(contains(smql_errmsg(db), "no database"));
+    CHECK(smql_errcode(db) == SMQL_ERROR_STORAGE);
+    CHECK(smql_execute(db, kQuery, NULL) == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "failed to open"));
+    smql_close(db);
+
+    db = NULL;
+    CHECK(smql_open(missing, 0x100, &db) == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "flag"));
+    smql_close(db);
+}
+
+static void test_import(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    CHECK(smql_import_file(db, "replica", kReplica, NULL) == SMQL_OK);
+    CHECK(strcmp(smql_errmsg(db), "") == 0 && smql_errcode(db) == SMQL_OK);
+
+    CHECK(smql_import_file(db, "replica", SMQL_SHARED_DATA "/no-such-file.json", "other") == SMQL_ERROR_INPUT);
+    CHECK(contains(smql_errmsg(db), "no-such-file.json"));
+    CHECK(smql_import_file(db, "obj", kReplica, NULL) == SMQL_ERROR_USAGE);
+    CHECK(contains(smql_errmsg(db), "hint"));
+    CHECK(smql_import_file(db, "replica", NULL, NULL) == SMQL_ERROR_MISUSE);
+    smql_close(db);
+}
+
+static void test_query(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, kQuery, &res) == SMQL_OK);
+    CHECK(res != NULL);
+    /* The result owns its data: it outlives the handle. */
+    smql_close(db);
+    if (!res) return;
+
+    size_t rows = smql_row_count(res);
+    CHECK(rows > 0);
+    int id = column_index(res, "id"), category = column_index(res, "category"), box = column_index(res, "box"),
+        path = column_index(res, "path");
+    CHECK(id >= 0 && category >= 0 && box >= 0 && path >= 0);
+    if (id < 0 || category < 0 || box < 0 || path < 0) {
+        smql_result_free(res);
+        return;
+    }
+    CHECK(smql_column_type(res, (size_t)id) == SMQL_INTEGER);
+    CHECK(smql_column_type(res, (size_t)category) == SMQL_TEXT);
+    CHECK(smql_column_type(res, (size_t)box) == SMQL_BOX);
+    CHECK(smql_column_type(res, (size_t)path) == SMQL_TEXT);
+
+    for (size_t r = 0; r < rows; ++r) {
+        int64_t node = 0;
+        const char* text = NULL;
+        smql_box b;
+        CHECK(smql_value_int64(res, r, (size_t)id, &node) == SMQL_OK && node > 0);
+        CHECK(smql_value_text(res, r, (size_t)category, &text) == SMQL_OK && strcmp(text, "cushion") == 0);
+        CHECK(smql_value_text(res, r, (size_t)path, &text) == SMQL_OK && contains(text, " / cushion#"));
+        CHECK(smql_value_box(res, r, (size_t)box, &b) == SMQL_OK);
+        CHECK(b.size[0] > 0 && b.size[1] > 0 && b.size[2] > 0);
+        const char* json = smql_row_json(res, r);
+        CHECK(json && json[0] == '{' && contains(json, "\"category\":\"cushion\"") && contains(json, "\"center\""));
+        CHECK(smql_row_json(res, r) == json); /* made once, kept until freed */
+    }
+
+    /* Wrong type, bad row, bad column: misuse, *out untouched. */
+    int64_t untouched = 42;
+    double real = 0;
+    CHECK(smql_value_int64(res, 0, (size_t)category, &untouched) == SMQL_ERROR_MISUSE && untouched == 42);
+    CHECK(smql_value_double(res, 0, (size_t)id, &real) == SMQL_OK && real > 0); /* integers widen */
+    CHECK(smql_value_int64(res, rows, (size_t)id, &untouched) == SMQL_ERROR_MISUSE);
+    CHECK(smql_value_type(res, rows, 0) == SMQL_INVALID);
+    CHECK(smql_value_type(res, 0, smql_column_count(res)) == SMQL_INVALID);
+    CHECK(smql_column_name(res, smql_column_count(res)) == NULL);
+    CHECK(smql_row_json(res, rows) == NULL);
+
+    const char* all = smql_result_json(res);
+    CHECK(all && strncmp(all, "{\"columns\":", 11) == 0 && contains(all, "\"rows\":[{"));
+    CHECK(smql_statement_count(res) == 1 && strcmp(smql_result_message(res), "") == 0);
+    smql_result_free(res);
+}
+
+static void test_statements_and_errors(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+
+    /* Several statements: the last one's rows, every one's message. */
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, "SET near = 0.8 m; FIND cushion WHERE on(sofa)", &res) == SMQL_OK);
+    CHECK(smql_statement_count(res) == 2);
+    CHECK(contains(smql_statement_message(res, 0), "near"));
+    CHECK(smql_statement_message(res, 2) == NULL);
+    CHECK(smql_row_count(res) > 0);
+    smql_result_free(res);
+
+    res = NULL;
+    CHECK(smql_execute(db, "FIND cushion WHERE on(", &res) == SMQL_ERROR_SYNTAX);
+    CHECK(res == NULL);
+    CHECK(smql_errcode(db) == SMQL_ERROR_SYNTAX);
+    CHECK(contains(smql_errmsg(db), "line 1"));
+    CHECK(contains(smql_errmsg(db), "^")); /* the caret under the spot */
+    CHECK(smql_error_line(db) == 1 && smql_error_column(db) > 0);
+
+    CHECK(smql_execute(db, "FIND cushion;\nFIND sofa WHERE on(", NULL) == SMQL_ERROR_SYNTAX);
+    CHECK(contains(smql_errmsg(db), "line 2") && smql_error_line(db) == 2);
+
+    CHECK(smql_execute(db, "FIND unicorn", NULL) == SMQL_ERROR_BINDING);
+    CHECK(contains(smql_errmsg(db), "unicorn"));
+
+    /* A call that succeeds clears this thread's error. */
+    CHECK(smql_execute(db, kQuery, NULL) == SMQL_OK);
+    CHECK(strcmp(smql_errmsg(db), "") == 0 && smql_errcode(db) == SMQL_OK && smql_error_line(db) == 0);
+    CHECK(smql_execute(db, NULL, NULL) == SMQL_ERROR_MISUSE);
+    smql_close(db);
+}
+
+static void test_read_only(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, SMQL_OPEN_READONLY, &db) == SMQL_OK);
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, kQuery, &res) == SMQL_OK);
+    CHECK(smql_row_count(res) > 0);
+    smql_result_free(res);
+
+    CHECK(smql_import_file(db, "replica", kReplica, "second") == SMQL_ERROR_STORAGE);
+    CHECK(contains(smql_errmsg(db), "read-only"));
+    /* The failed import left the handle usable and the database unchanged. */
+    CHECK(smql_execute(db, "SHOW SCENES", &res) == SMQL_OK);
+    CHECK(smql_row_count(res) == 1);
+    smql_result_free(res);
+    smql_close(db);
+}
+
+/* Threads sharing one handle: each must read its own error, never another's. */
+struct worker {
+    smql_db* db;
+    int bad; /* this worker sends statements that do not parse */
+    int failures;
+};
+
+static void* work(void* arg) {
+    struct worker* w = (struct worker*)arg;
+    for (int i = 0; i < 25; ++i) {
+        smql_result* res = NULL;
+        if (w->bad) {
+            if (smql_execute(w->db, "FIND cushion WHERE on(", &res) != SMQL_ERROR_SYNTAX || res) ++w->failures;
+            if (!contains(smql_errmsg(w->db), "line 1") || smql_errcode(w->db) != SMQL_ERROR_SYNTAX) ++w->failures;
+        } else {
+            if (smql_execute(w->db, kQuery, &res) != SMQL_OK || smql_row_count(res) == 0) ++w->failures;
+            if (strcmp(smql_errmsg(w->db), "") != 0 || smql_errcode(w->db) != SMQL_OK) ++w->failures;
+            smql_result_free(res);
+        }
+    }
+    return NULL;
+}
+
+static void test_threads(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, SMQL_OPEN_READONLY, &db) == SMQL_OK);
+    struct worker workers[4];
+    pthread_t threads[4];
+    for (int t = 0; t < 4; ++t) {
+        workers[t].db = db;
+        workers[t].bad = t % 2;
+        workers[t].failures = 0;
+        CHECK(pthread_create(&threads[t], NULL, work, &workers[t]) == 0);
+    }
+    for (int t = 0; t < 4; ++t) {
+        pthread_join(threads[t], NULL);
+        CHECK(workers[t].failures == 0);
+    }
+    smql_close(db);
+}
+
+int main(void) {
+    char base[] = "/tmp/smql-c-api-XXXXXX";
+    if (!mkdtemp(base)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s/db", base);
+
+    test_misuse();
+    test_open_failure(base);
+    test_import(dir);
+    test_query(dir);
+    test_statements_and_errors(dir);
+    test_read_only(dir);
+    test_threads(dir);
+
+    nftw(base, remove_entry, 8, FTW_DEPTH | FTW_PHYS);
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed == 0 ? 0 : 1;
+}
