@@ -8,6 +8,7 @@ packages=(
   antlr4 libantlr4-runtime-dev default-jre-headless
   libfmt-dev nlohmann-json3-dev libcli11-dev libreadline-dev
   catch2 libsqlite3-dev python3
+  libopencv-dev libpcl-dev colmap
 )
 
 missing=()

@@ -1,0 +1,69 @@
+// A capture as the ingest pipeline sees it, whatever layout it came in:
+// frames (colour, optional depth and instance masks), camera intrinsics and,
+// when known, camera poses. Readers in this folder fill it; they check every
+// file they name exists and is readable, so later stages can trust it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/model/types.hpp"
+
+namespace smql::ingest {
+
+// Pinhole camera, no distortion, in pixels of the frames' working resolution.
+struct Intrinsics {
+    int width = 0, height = 0;
+    double fx = 0, fy = 0, cx = 0, cy = 0;
+    friend bool operator==(const Intrinsics&, const Intrinsics&) = default;
+};
+
+// Camera-to-world: a world point is rotation * p_camera + translation. The
+// camera looks along +z with x to the right and y down (the OpenCV convention).
+struct Pose {
+    std::array<double, 9> rotation = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
+    model::Vec3 translation;
+};
+
+struct CaptureFrame {
+    int index = 0;            // position in the capture, from 0
+    double time = 0;          // seconds from the start (index / fps when the layout has no times)
+    std::string colorPath;    // an image OpenCV reads
+    std::string depthPath;    // 16-bit depth image (PNG or PGM), empty without depth
+    std::string instancePath; // 16-bit instance mask (0 = none), empty without masks
+    std::optional<Pose> pose;
+};
+
+struct SparsePoint {
+    model::Vec3 position;
+    std::array<std::uint8_t, 3> color{};
+};
+
+struct Capture {
+    std::string path;    // what the user named
+    std::string layout;  // rgbd | tum | nerfstudio | colmap | images | video | synth
+    Intrinsics intrinsics;
+    double depthScale = 1000;  // depth image units per metre
+    bool metric = true;        // poses and points in metres (sensors) or up to scale (SfM)
+    std::vector<CaptureFrame> frames;
+    std::vector<SparsePoint> points;  // reconstructed 3D points, when the layout has them
+    std::string labelsPath;           // instance id -> category (+ attributes), JSON, with masks
+    std::string detectionsPath;       // COCO-results style detections, JSON
+};
+
+struct CaptureOptions {
+    double fps = 1.0;               // sampling of videos and image folders
+    int workingWidth = 640;         // frames wider than this are scaled down (docs/ingest.md)
+    std::optional<double> depthScale;
+    std::optional<Intrinsics> intrinsics;
+    std::string workDirectory;      // where decoded video frames go (a temp folder by default)
+};
+
+// Recognises the layout of `path` (a folder or a file) and reads it. Throws
+// smql::Error(ErrorKind::Input) naming the file and what is wrong.
+Capture readCapture(const std::string& path, const CaptureOptions& options = {});
+
+}  // namespace smql::ingest
