@@ -158,7 +158,15 @@ struct StatementRunner {
     ResultSet runBody(const ast::DescribeStmt& describe, const ast::Statement&) {
         auto snap = scene();
         auto nodes = binderFor(*snap).bindRef(describe.target, relations::viewFrame(snap->info().viewpoint));
-        return exec::Executor(*snap, state.thresholds).describe(nodes);
+        auto rs = exec::Executor(*snap, state.thresholds).describe(nodes);
+        // Evidence lives in the blob table, not in the snapshot: list it from the transaction.
+        for (Slot slot : nodes.slots) {
+            auto id = snap->node(slot).id;
+            for (const auto& blob : txn.blobsOf(id))
+                rs.rows.push_back({static_cast<std::int64_t>(id), std::string("evidence"),
+                                   fmt::format("{} ({}, {} bytes)", blob.name, blob.mediaType, blob.size)});
+        }
+        return rs;
     }
 
     ResultSet runBody(const ast::ShowStmt& show, const ast::Statement&) {

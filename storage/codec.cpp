@@ -331,4 +331,44 @@ std::uint64_t decodeU64(std::string_view bytes, std::string_view what) {
     return v;
 }
 
+std::string blobKey(model::NodeId nodeId, std::string_view name) {
+    auto id = idKey(nodeId);
+    std::string key(reinterpret_cast<const char*>(id.data()), id.size());
+    key.append(name);
+    return key;
+}
+
+void encodeBlob(const model::Blob& blob, std::string& out) {
+    out.clear();
+    out.reserve(2 + blob.mediaType.size() + 10 + blob.bytes.size());
+    Writer w(out);
+    w.u8(kBlobFormat);
+    w.str(blob.mediaType);
+    w.str(blob.bytes);
+}
+
+std::pair<std::string_view, std::string_view> peekBlob(std::string_view key, std::string_view bytes,
+                                                       std::uint64_t& size) {
+    model::NodeId node = idFromKey(key.substr(0, std::min<std::size_t>(key.size(), 8)), "blob");
+    Reader r(bytes, "blob", node);
+    r.expectFormat(kBlobFormat);
+    std::string_view mediaType = r.str();
+    size = r.str().size();
+    r.expectEnd();
+    return {key.substr(8), mediaType};
+}
+
+model::Blob decodeBlob(std::string_view key, std::string_view bytes) {
+    model::NodeId node = idFromKey(key.substr(0, std::min<std::size_t>(key.size(), 8)), "blob");
+    Reader r(bytes, "blob", node);
+    r.expectFormat(kBlobFormat);
+    model::Blob blob;
+    blob.node = node;
+    blob.name = std::string(key.substr(8));
+    blob.mediaType = std::string(r.str());
+    blob.bytes = std::string(r.str());
+    r.expectEnd();
+    return blob;
+}
+
 }  // namespace smql::storage::codec

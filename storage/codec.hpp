@@ -18,6 +18,7 @@
 namespace smql::storage::codec {
 
 inline constexpr std::uint8_t kNodeFormat = 1;
+inline constexpr std::uint8_t kBlobFormat = 1;
 inline constexpr std::uint8_t kSceneFormat = 1;
 inline constexpr std::uint8_t kRelationFormat = 1;
 
@@ -56,6 +57,15 @@ LabelEntry labelEntry(model::NodeId sceneId, model::NodeId nodeId);
 // negative ids sort before positive ones.
 using SourceKey = std::array<std::uint8_t, 16>;
 SourceKey sourceKey(model::NodeId sceneId, std::int64_t sourceId);
+
+// Blob key: the node id (big-endian) then the blob's name, so a node's blobs are one range.
+std::string blobKey(model::NodeId nodeId, std::string_view name);
+// Blob record: format byte, media type, then the bytes.
+void encodeBlob(const model::Blob& blob, std::string& out);
+// `key` is the blob key the record was stored under.
+model::Blob decodeBlob(std::string_view key, std::string_view bytes);
+// Name and media type without copying the bytes; `size` gets the byte count.
+std::pair<std::string_view, std::string_view> peekBlob(std::string_view key, std::string_view bytes, std::uint64_t& size);
 
 // Little-endian fixed-width values for meta entries.
 std::string encodeU64(std::uint64_t value);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <filesystem>
+#include <set>
 #include <unordered_map>
 #include <utility>
 
@@ -171,6 +172,21 @@ void endOfScan(const Environment& env, int rc, std::string_view operation) {
     throw Error(ErrorKind::Input, std::move(message), std::nullopt, std::string(kImportHint));
 }
 
+// Deletes every blob of a node: its keys are one range starting with the node's id.
+void eraseBlobs(const Environment& env, MDB_txn* txn, NodeId node) {
+    Cursor cursor(env, txn, Table::Blobs);
+    auto prefix = codec::idKey(node);
+    std::string_view want(reinterpret_cast<const char*>(prefix.data()), prefix.size());
+    for (;;) {
+        MDB_val key = toVal(prefix), value;
+        int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
+        if (rc == MDB_NOTFOUND) return;
+        env.check(rc, "dropping blobs");
+        if (fromVal(key).substr(0, prefix.size()) != want) return;
+        env.check(mdb_cursor_del(cursor.get(), 0), "dropping a blob");
+    }
+}
+
 // Checks a scene's local ids before anything is written, and returns the
 // position of each local id in data.nodes (its database id is sceneId + 1 + position).
 std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, const model::SceneData& data) {
@@ -234,6 +250,19 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
                 importError(fmt::format("scene '{}': the parents of node {} form a cycle", name, data.nodes[at].id));
         }
         for (std::size_t i : walk) marks[i] = Mark::Done;
+    }
+
+    std::set<std::pair<NodeId, std::string_view>> blobNames;
+    for (const model::Blob& blob : data.blobs) {
+        if (!position.contains(blob.node))
+            importError(fmt::format("scene '{}': blob '{}' belongs to node {}, which is not a node of the scene", name,
+                                    blob.name, blob.node));
+        if (blob.name.empty() || blob.name.size() + sizeof(NodeId) > env.maxKeySize() || blob.mediaType.size() > 255)
+            importError(fmt::format("scene '{}': blob '{}' of node {} needs a name of 1 to {} bytes and a media type "
+                                    "of at most 255",
+                                    name, blob.name.substr(0, 40), blob.node, env.maxKeySize() - sizeof(NodeId)));
+        if (!blobNames.emplace(blob.node, blob.name).second)
+            importError(fmt::format("scene '{}': node {} has two blobs named '{}'", name, blob.node, blob.name));
     }
 
     for (std::size_t i = 0; i < data.relations.size(); ++i) {
@@ -491,6 +520,33 @@ std::optional<NodeId> ReadTransaction::nodeBySourceId(NodeId sceneId, std::int64
     return codec::idFromKey(*bytes, "source id index");
 }
 
+std::vector<ReadTransaction::BlobInfo> ReadTransaction::blobsOf(NodeId id) const {
+    const Environment& env = *impl_->env;
+    TableCursor cursor(*impl_, Table::Blobs);
+    auto prefix = codec::idKey(id);
+    std::string_view want(reinterpret_cast<const char*>(prefix.data()), prefix.size());
+    std::vector<BlobInfo> out;
+    MDB_val key = toVal(prefix), value;
+    int rc = cursor.get(key, value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS && fromVal(key).substr(0, prefix.size()) == want; rc = cursor.get(key, value, MDB_NEXT)) {
+        BlobInfo info;
+        auto [name, mediaType] = codec::peekBlob(fromVal(key), fromVal(value), info.size);
+        info.name = std::string(name);
+        info.mediaType = std::string(mediaType);
+        out.push_back(std::move(info));
+    }
+    endOfScan(env, rc, "listing blobs");
+    return out;
+}
+
+std::optional<model::Blob> ReadTransaction::blob(NodeId id, std::string_view name) const {
+    std::string key = codec::blobKey(id, name);
+    if (key.size() > impl_->env->maxKeySize()) return std::nullopt;
+    auto bytes = lookup(*impl_->env, impl_->txn, Table::Blobs, toVal(key), "reading a blob");
+    if (!bytes) return std::nullopt;
+    return codec::decodeBlob(key, *bytes);
+}
+
 std::optional<std::string> ReadTransaction::setting(std::string_view key) const {
     if (!validSettingKey(*impl_->env, key)) return std::nullopt;
     auto bytes = lookup(*impl_->env, impl_->txn, Table::Meta, toVal(settingKey(key)), "reading a setting");
@@ -638,6 +694,18 @@ NodeId WriteTransaction::importScene(const model::SceneData& data) {
         }
     }
 
+    // Blobs: keys start with the new node ids, so sorted keys append.
+    {
+        std::vector<std::pair<std::string, const model::Blob*>> blobs;
+        for (const model::Blob& blob : data.blobs) blobs.emplace_back(codec::blobKey(databaseId(blob.node), blob.name), &blob);
+        std::sort(blobs.begin(), blobs.end());
+        Cursor table(env, txn, Table::Blobs);
+        for (const auto& [key, blob] : blobs) {
+            codec::encodeBlob(*blob, record);
+            put(env, table.get(), toVal(key), toVal(record), MDB_APPEND, "storing a blob");
+        }
+    }
+
     {
         SceneInfo info = data.info;
         info.id = sceneId;
@@ -699,6 +767,7 @@ void WriteTransaction::dropScene(NodeId sceneId) {
         erase(Table::Nodes, toVal(key), nullptr);
         erase(Table::Children, toVal(key), nullptr);
         erase(Table::Relations, toVal(key), nullptr);
+        eraseBlobs(env, txn, node.id);
         if (node.labelled) {
             auto entry = codec::labelEntry(sceneId, node.id);
             MDB_val value = toVal(entry);

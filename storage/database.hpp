@@ -105,6 +105,15 @@ public:
     std::vector<std::pair<std::string, std::uint64_t>> categories() const;
     std::optional<model::NodeId> nodeBySourceId(model::NodeId sceneId, std::int64_t sourceId) const;
 
+    // Binary attachments of a node (evidence crops), by name.
+    struct BlobInfo {
+        std::string name;
+        std::string mediaType;
+        std::uint64_t size = 0;
+    };
+    std::vector<BlobInfo> blobsOf(model::NodeId id) const;
+    std::optional<model::Blob> blob(model::NodeId id, std::string_view name) const;
+
     std::optional<std::string> setting(std::string_view key) const;
     std::vector<std::pair<std::string, std::string>> settings() const;
 

@@ -15,8 +15,8 @@
 
 namespace smql::storage {
 
-enum class Table : std::size_t { Meta, Nodes, Scenes, SceneNames, Children, Labels, SourceIds, Relations };
-inline constexpr std::size_t kTableCount = 8;
+enum class Table : std::size_t { Meta, Nodes, Scenes, SceneNames, Children, Labels, SourceIds, Relations, Blobs };
+inline constexpr std::size_t kTableCount = 9;
 
 struct TableSpec {
     const char* name;
@@ -33,6 +33,7 @@ inline constexpr std::array<TableSpec, kTableCount> kTables = {{
     {"labels", MDB_DUPSORT | MDB_DUPFIXED},
     {"source_ids", 0},
     {"relations", MDB_DUPSORT | MDB_DUPFIXED},
+    {"blobs", 0},
 }};
 
 // Room for the tables still to come (vectors, blobs, spatial index) without

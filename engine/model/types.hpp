@@ -109,6 +109,16 @@ struct SceneInfo {
     friend bool operator==(const SceneInfo&, const SceneInfo&) = default;
 };
 
+// A binary attachment of a node: an evidence crop (JPEG) of an object, say.
+// `node` is a local id in SceneData, a database id once stored.
+struct Blob {
+    NodeId node = kNoNode;
+    std::string name;       // unique per node: "evidence-1.jpg"
+    std::string mediaType;  // "image/jpeg"
+    std::string bytes;
+    friend bool operator==(const Blob&, const Blob&) = default;
+};
+
 // A whole scene as an importer produces it, before it has database ids.
 // Node ids here are local (1..n, unique within the scene data); `parent`
 // refers to local ids, kNoNode meaning "child of the scene root". Relations
@@ -118,6 +128,7 @@ struct SceneData {
     SceneInfo info;
     std::vector<Node> nodes;
     std::vector<Relation> relations;
+    std::vector<Blob> blobs;
 };
 
 }  // namespace smql::model

@@ -644,3 +644,57 @@ TEST_CASE("read transactions are snapshots", "[storage][database][mvcc]") {
     ReadTransaction moved = std::move(after);
     REQUIRE(moved.sceneByName("kitchen"));
 }
+
+TEST_CASE("blobs are stored with their scene, listed per node and dropped with it") {
+    TempDir dir;
+    auto db = Database::open(dir.path());
+    model::SceneData scene;
+    scene.info.name = "with-evidence";
+    model::Node mug;
+    mug.id = 1;
+    mug.category = "mug";
+    scene.nodes.push_back(mug);
+    std::string jpeg("\xff\xd8\xff\xe0 not really a jpeg \0 with a zero", 32);
+    scene.blobs.push_back({1, "evidence-1.jpg", "image/jpeg", jpeg});
+    scene.blobs.push_back({1, "evidence-2.jpg", "image/jpeg", "xyz"});
+    model::NodeId sceneId;
+    {
+        auto write = db->beginWrite();
+        sceneId = write.importScene(scene);
+        write.commit();
+    }
+    model::NodeId mugId = sceneId + 1;
+    {
+        auto read = db->beginRead();
+        auto list = read.blobsOf(mugId);
+        REQUIRE(list.size() == 2);
+        CHECK(list[0].name == "evidence-1.jpg");
+        CHECK(list[0].mediaType == "image/jpeg");
+        CHECK(list[0].size == jpeg.size());
+        auto blob = read.blob(mugId, "evidence-1.jpg");
+        REQUIRE(blob);
+        CHECK(blob->bytes == jpeg);
+        CHECK(blob->node == mugId);
+        CHECK_FALSE(read.blob(mugId, "missing.jpg"));
+        CHECK(read.blobsOf(sceneId).empty());
+    }
+    // A blob of a node that is not in the scene, or a duplicate name, is rejected before any write.
+    auto bad = scene;
+    bad.info.name = "bad";
+    bad.blobs.push_back({7, "x.jpg", "image/jpeg", "x"});
+    {
+        auto write = db->beginWrite();
+        CHECK_THROWS_AS(write.importScene(bad), Error);
+    }
+    bad.blobs.back() = {1, "evidence-1.jpg", "image/jpeg", "again"};
+    {
+        auto write = db->beginWrite();
+        CHECK_THROWS_AS(write.importScene(bad), Error);
+    }
+    {
+        auto write = db->beginWrite();
+        write.dropScene(sceneId);
+        write.commit();
+    }
+    CHECK(db->beginRead().blobsOf(mugId).empty());
+}
