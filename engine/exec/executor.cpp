@@ -284,7 +284,11 @@ ResultSet Executor::describe(const binder::NodeSet& nodes) const {
         if (!n.text.empty()) add("text", n.text);
         if (n.hidden) add("hidden", "yes (left out of queries unless named)");
         std::string kids;
-        for (Slot c : scene_.children(s)) kids += (kids.empty() ? "" : ", ") + SceneSnapshot::label(scene_.node(c));
+        for (Slot c : scene_.children(s)) {
+            const Node& child = scene_.node(c);
+            if (child.kind == model::NodeKind::Description) add("description", child.text);
+            else kids += (kids.empty() ? "" : ", ") + SceneSnapshot::label(child);
+        }
         if (!kids.empty()) add("children", kids);
     }
     return rs;
@@ -293,7 +297,7 @@ ResultSet Executor::describe(const binder::NodeSet& nodes) const {
 ResultSet Executor::tree(std::optional<Slot> root) const {
     ResultSet rs;
     rs.columns = {{"id", ValueType::Integer}, {"depth", ValueType::Integer}, {"node", ValueType::Text}};
-    std::size_t hidden = 0;
+    std::size_t hidden = 0, descriptions = 0;
     // Depth-first, children in id order, so the listing reads like the path of each node.
     std::vector<std::pair<Slot, std::int64_t>> stack;
     Slot start = root.value_or(*scene_.slotOf(scene_.info().id));
@@ -306,12 +310,20 @@ ResultSet Executor::tree(std::optional<Slot> root) const {
             ++hidden;
             continue;
         }
+        // Descriptions are text about their parent (DESCRIBE shows them), not places in the tree.
+        if (n.kind == model::NodeKind::Description) {
+            ++descriptions;
+            continue;
+        }
         rs.rows.push_back({static_cast<std::int64_t>(n.id), depth,
                            std::string(2 * depth, ' ') + SceneSnapshot::label(n)});
         const auto& kids = scene_.children(slot);
         for (auto it = kids.rbegin(); it != kids.rend(); ++it) stack.push_back({*it, depth + 1});
     }
     if (hidden) rs.message = fmt::format("{} hidden node{} not shown (e.g. unlabelled parts)", hidden, hidden == 1 ? "" : "s");
+    if (descriptions)
+        rs.message += fmt::format("{}{} description{} not shown (DESCRIBE #id lists an object's)", rs.message.empty() ? "" : "; ",
+                                  descriptions, descriptions == 1 ? "" : "s");
     return rs;
 }
 

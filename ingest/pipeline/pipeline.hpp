@@ -1,0 +1,65 @@
+// Capture -> metric memory (DESIGN.md section 7): frames, geometry, metric
+// alignment, anchors, objects, attributes, relations, two-layer descriptions.
+// The result is one SceneData that the engine stores in one transaction.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "ingest/capture/capture.hpp"
+
+namespace smql::ingest {
+
+enum class GeometrySource { Given, Colmap, Auto };
+enum class ObjectSource { Masks, Detections, Cluster, Auto };
+
+struct IngestOptions {
+    std::string sceneName;
+    GeometrySource geometry = GeometrySource::Auto;
+    ObjectSource objects = ObjectSource::Auto;
+    std::optional<double> scale;  // metres per capture unit, overriding the alignment's estimate
+    int workingWidth = 640;
+    int structureStride = 4;          // every n-th pixel of each frame feeds the structure cloud
+    double structureVoxel = 0.05;     // m
+    int objectStride = 2;             // every n-th pixel of an instance mask is lifted
+    double objectVoxel = 0.02;        // m
+    int minInstancePixels = 150;      // smaller mask fragments in a frame are ignored
+    int minObjectViews = 1;           // an instance needs this many views to become an object
+    int descriptionAgreement = 2;     // views that must agree before a scene-level phrase is promoted
+    double agreementShare = 0.6;      // ... and the share of its views they must be
+    int evidenceSize = 160;           // longest side of an evidence crop (pixels)
+};
+
+// Progress of a long ingest, stage by stage. Implementations print a bar, JSON
+// lines or nothing (shell/ingest_command.cpp).
+class ProgressSink {
+public:
+    virtual ~ProgressSink() = default;
+    virtual void stageStarted(const std::string& stage, std::size_t steps) = 0;
+    virtual void advanced(std::size_t done) = 0;
+    virtual void stageFinished(const std::string& stage, double seconds, const std::string& summary) = 0;
+    virtual void note(const std::string& text) = 0;
+};
+
+struct StageTiming {
+    std::string stage;
+    double seconds = 0;
+    std::string summary;
+};
+
+struct IngestResult {
+    model::SceneData scene;
+    std::vector<StageTiming> stages;
+    std::vector<std::string> notes;
+};
+
+// Throws smql::Error(Input) for captures the chosen sources cannot handle
+// (naming what to try instead). A `cancelled` callback returning true stops
+// the work between frames with Error(Usage, "cancelled").
+IngestResult ingestCapture(const Capture& capture, const IngestOptions& options, ProgressSink& progress,
+                           const std::function<bool()>& cancelled = {});
+
+}  // namespace smql::ingest

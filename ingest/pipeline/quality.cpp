@@ -1,0 +1,143 @@
+#include "ingest/pipeline/quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "engine/model/geometry.hpp"
+
+namespace smql::ingest {
+
+using model::Box;
+using model::Node;
+using model::NodeId;
+
+namespace {
+
+bool isStructural(const Node& n) {
+    return n.kind == model::NodeKind::Anchor && (n.category == "wall" || n.category == "door" || n.category == "window");
+}
+
+bool counts(const Node& n) { return !n.hidden && n.geometry != model::GeometryKind::None; }
+
+// Plane segments are compared as slabs 0.3 m thick: where exactly a wall's
+// thin box sits within its thickness is not what the check is about.
+Box slab(const Box& b) {
+    Box out = b;
+    if (out.size.x < out.size.y) out.size.x = std::max(out.size.x, 0.3);
+    else out.size.y = std::max(out.size.y, 0.3);
+    return out;
+}
+
+double overlapOfSmaller(const Box& a, const Box& b) {
+    double inter = model::footprintOverlap(a, b) * model::verticalOverlap(a, b);
+    double smaller = std::min(model::volume(a), model::volume(b));
+    return smaller > 0 ? inter / smaller : 0.0;
+}
+
+// Greedy one-to-one matching, best score first; returns truth id -> ingested id.
+template <class Score>
+std::unordered_map<NodeId, NodeId> match(const std::vector<const Node*>& truth, const std::vector<const Node*>& ingested,
+                                         double threshold, Score score) {
+    std::vector<std::tuple<double, NodeId, NodeId>> pairs;
+    for (const Node* t : truth)
+        for (const Node* i : ingested) {
+            if (t->category != i->category) continue;
+            double s = score(*t, *i);
+            if (s >= threshold) pairs.emplace_back(s, t->id, i->id);
+        }
+    std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
+    std::unordered_map<NodeId, NodeId> out;
+    std::set<NodeId> used;
+    for (const auto& [s, t, i] : pairs) {
+        if (out.contains(t) || used.contains(i)) continue;
+        out.emplace(t, i);
+        used.insert(i);
+    }
+    return out;
+}
+
+}  // namespace
+
+double boxIou(const Box& a, const Box& b) {
+    double inter = model::footprintOverlap(a, b) * model::verticalOverlap(a, b);
+    double uni = model::volume(a) + model::volume(b) - inter;
+    return uni > 0 ? inter / uni : 0.0;
+}
+
+QualityReport compareToTruth(const model::SceneData& ingested, const model::SceneData& truth,
+                             const QualityOptions& options) {
+    auto seen = [&](const Node& n) { return options.visible.empty() || options.visible.contains(n.id); };
+    std::vector<const Node*> truthAnchors, truthObjects, gotAnchors, gotObjects;
+    for (const Node& n : truth.nodes) {
+        if (!counts(n) || !seen(n)) continue;
+        if (isStructural(n)) truthAnchors.push_back(&n);
+        if (n.kind == model::NodeKind::Object) truthObjects.push_back(&n);
+    }
+    for (const Node& n : ingested.nodes) {
+        if (!counts(n)) continue;
+        if (isStructural(n)) gotAnchors.push_back(&n);
+        if (n.kind == model::NodeKind::Object) gotObjects.push_back(&n);
+    }
+
+    QualityReport report;
+    auto anchorMatch = match(truthAnchors, gotAnchors, 0.5,
+                             [](const Node& t, const Node& i) { return overlapOfSmaller(slab(t.box), slab(i.box)); });
+    auto objectMatch = match(truthObjects, gotObjects, options.objectIou,
+                             [](const Node& t, const Node& i) { return boxIou(t.box, i.box); });
+    report.anchors = {static_cast<int>(truthAnchors.size()), static_cast<int>(gotAnchors.size()),
+                      static_cast<int>(anchorMatch.size())};
+    report.objects = {static_cast<int>(truthObjects.size()), static_cast<int>(gotObjects.size()),
+                      static_cast<int>(objectMatch.size())};
+
+    std::unordered_map<NodeId, const Node*> truthById, gotById;
+    for (const Node& n : truth.nodes) truthById.emplace(n.id, &n);
+    for (const Node& n : ingested.nodes) gotById.emplace(n.id, &n);
+    std::unordered_map<NodeId, NodeId> truthToGot = objectMatch;
+    truthToGot.insert(anchorMatch.begin(), anchorMatch.end());
+
+    double centerError = 0;
+    for (const auto& [t, i] : objectMatch) {
+        const Node& tn = *truthById.at(t);
+        const Node& in = *gotById.at(i);
+        centerError += model::centerDistance(tn.box, in.box);
+        if (const std::string* want = tn.attribute("color")) {
+            ++report.colorChecked;
+            const std::string* got = in.attribute("color");
+            report.colorCorrect += got && *got == *want;
+        }
+        // The parent is right when the ingested parent is the match of the truth parent
+        // (the scene root matches the scene root).
+        ++report.parentChecked;
+        if (tn.parent == model::kNoNode) {
+            report.parentCorrect += in.parent == model::kNoNode;
+        } else if (auto m = truthToGot.find(tn.parent); m != truthToGot.end()) {
+            report.parentCorrect += in.parent == m->second;
+        }
+    }
+    report.meanCenterError = objectMatch.empty() ? 0.0 : centerError / objectMatch.size();
+    return report;
+}
+
+model::SceneData inCaptureFrame(const model::SceneData& ingested) {
+    // alignment: aligned = A * capture, A = [s R | t]; undo it for centres and yaws.
+    const auto& a = ingested.info.alignment;
+    double s = std::cbrt(a[0] * (a[5] * a[10] - a[6] * a[9]) - a[1] * (a[4] * a[10] - a[6] * a[8]) +
+                         a[2] * (a[4] * a[9] - a[5] * a[8]));
+    if (!(s > 0)) s = 1;
+    model::SceneData out = ingested;
+    double yawOffset = std::atan2(a[4], a[0]);  // the alignment's turn about z
+    for (auto& n : out.nodes) {
+        model::Vec3 c = n.box.center;
+        double px = c.x - a[3], py = c.y - a[7], pz = c.z - a[11];
+        // R^T (p - t) / s
+        n.box.center = {(a[0] * px + a[4] * py + a[8] * pz) / (s * s), (a[1] * px + a[5] * py + a[9] * pz) / (s * s),
+                        (a[2] * px + a[6] * py + a[10] * pz) / (s * s)};
+        n.box.size = {n.box.size.x / s, n.box.size.y / s, n.box.size.z / s};
+        n.box.yaw -= yawOffset;
+    }
+    return out;
+}
+
+}  // namespace smql::ingest

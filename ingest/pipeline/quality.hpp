@@ -1,0 +1,52 @@
+// How close an ingested scene is to the ground truth of a synthetic capture
+// (`smql check-ingest`): anchors and objects matched one to one, then
+// precision / recall / F1, colour accuracy and parent accuracy on the matches.
+#pragma once
+
+#include <set>
+#include <string>
+
+#include "engine/model/types.hpp"
+
+namespace smql::ingest {
+
+struct MatchCounts {
+    int truth = 0;      // truth nodes that count (seen in the capture)
+    int predicted = 0;  // ingested nodes
+    int matched = 0;
+    double precision() const { return predicted ? double(matched) / predicted : 0.0; }
+    double recall() const { return truth ? double(matched) / truth : 0.0; }
+    double f1() const {
+        double p = precision(), r = recall();
+        return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
+    }
+};
+
+struct QualityReport {
+    MatchCounts anchors;  // walls, doors and windows
+    MatchCounts objects;  // same category and 3D IoU >= the threshold
+    int colorChecked = 0, colorCorrect = 0;
+    int parentChecked = 0, parentCorrect = 0;
+    double meanCenterError = 0;  // metres, over matched objects
+    double colorAccuracy() const { return colorChecked ? double(colorCorrect) / colorChecked : 0.0; }
+    double parentAccuracy() const { return parentChecked ? double(parentCorrect) / parentChecked : 0.0; }
+};
+
+struct QualityOptions {
+    double objectIou = 0.25;
+    // Truth nodes (local ids) the capture shows; empty = all of them.
+    std::set<model::NodeId> visible;
+};
+
+// Both scenes in the same frame (the truth's). Node ids are each scene's own.
+QualityReport compareToTruth(const model::SceneData& ingested, const model::SceneData& truth,
+                             const QualityOptions& options = {});
+
+// 3D intersection over union of two upright boxes.
+double boxIou(const model::Box& a, const model::Box& b);
+
+// The ingested scene brought back into the capture's frame (undoing the
+// alignment stored on the scene), where a synthetic capture's truth lives.
+model::SceneData inCaptureFrame(const model::SceneData& ingested);
+
+}  // namespace smql::ingest

@@ -1,0 +1,205 @@
+// `smql ingest`, `smql check-ingest` and `smql export evidence`.
+#include "shell/ingest_command.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/engine.hpp"
+#include "engine/error.hpp"
+#include "ingest/capture/capture.hpp"
+#include "ingest/import/importers.hpp"
+#include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/quality.hpp"
+#include "storage/database.hpp"
+
+namespace smql::shell {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::atomic<bool> interrupted{false};
+
+// A bar with the stage's name on a terminal; one line per stage otherwise.
+class TerminalProgress : public ingest::ProgressSink {
+public:
+    explicit TerminalProgress(bool tty) : tty_(tty) {}
+    void stageStarted(const std::string& stage, std::size_t steps) override { stage_ = stage, steps_ = steps; }
+    void advanced(std::size_t done) override {
+        if (!tty_ || steps_ <= 1) return;
+        int width = 30, filled = static_cast<int>(width * done / steps_);
+        std::cerr << fmt::format("\r{:<10} [{}{}] {}/{}", stage_, std::string(filled, '#'), std::string(width - filled, ' '),
+                                 done, steps_)
+                  << std::flush;
+    }
+    void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
+        if (tty_) std::cerr << "\r\033[K";
+        std::cerr << fmt::format("{:<10} {:7.2f} s  {}\n", stage, seconds, summary);
+    }
+    void note(const std::string& text) override {
+        if (tty_) std::cerr << "\r\033[K";
+        std::cerr << "note: " << text << "\n";
+    }
+
+private:
+    bool tty_;
+    std::string stage_;
+    std::size_t steps_ = 0;
+};
+
+// One JSON object per line on standard error, for scripts.
+class JsonProgress : public ingest::ProgressSink {
+public:
+    void stageStarted(const std::string& stage, std::size_t steps) override {
+        emit({{"event", "stage_started"}, {"stage", stage}, {"steps", steps}});
+    }
+    void advanced(std::size_t) override {}
+    void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
+        emit({{"event", "stage_finished"}, {"stage", stage}, {"seconds", seconds}, {"summary", summary}});
+    }
+    void note(const std::string& text) override { emit({{"event", "note"}, {"text", text}}); }
+
+private:
+    static void emit(const nlohmann::json& j) { std::cerr << j.dump() << "\n"; }
+};
+
+class QuietProgress : public ingest::ProgressSink {
+public:
+    void stageStarted(const std::string&, std::size_t) override {}
+    void advanced(std::size_t) override {}
+    void stageFinished(const std::string&, double, const std::string&) override {}
+    void note(const std::string&) override {}
+};
+
+ingest::GeometrySource geometrySource(const std::string& name) {
+    if (name == "given") return ingest::GeometrySource::Given;
+    if (name == "colmap") return ingest::GeometrySource::Colmap;
+    return ingest::GeometrySource::Auto;
+}
+
+ingest::ObjectSource objectSource(const std::string& name) {
+    if (name == "masks") return ingest::ObjectSource::Masks;
+    if (name == "detections") return ingest::ObjectSource::Detections;
+    if (name == "cluster") return ingest::ObjectSource::Cluster;
+    return ingest::ObjectSource::Auto;
+}
+
+}  // namespace
+
+int ingestCommand(const IngestArguments& args) {
+    auto start = std::chrono::steady_clock::now();
+    ingest::CaptureOptions captureOptions;
+    captureOptions.fps = args.fps;
+    ingest::Capture capture = ingest::readCapture(args.capture, captureOptions);
+
+    ingest::IngestOptions options;
+    options.sceneName = args.scene.empty() ? fs::absolute(args.capture).lexically_normal().filename().string() : args.scene;
+    if (options.sceneName.empty()) options.sceneName = fs::absolute(args.capture).parent_path().filename().string();
+    options.geometry = geometrySource(args.geometry);
+    options.objects = objectSource(args.objects);
+    options.scale = args.scale;
+
+    std::unique_ptr<ingest::ProgressSink> progress;
+    if (args.log == "json") progress = std::make_unique<JsonProgress>();
+    else if (args.log == "quiet") progress = std::make_unique<QuietProgress>();
+    else progress = std::make_unique<TerminalProgress>(isatty(STDERR_FILENO));
+
+    // Ctrl-C stops between frames; nothing has been written then, and the database stays as it was.
+    auto previous = std::signal(SIGINT, [](int) { interrupted = true; });
+    ingest::IngestResult result;
+    try {
+        result = ingest::ingestCapture(capture, options, *progress, [] { return interrupted.load(); });
+    } catch (...) {
+        std::signal(SIGINT, previous);
+        throw;
+    }
+    std::signal(SIGINT, previous);
+
+    auto writeStart = std::chrono::steady_clock::now();
+    auto engine = Engine::open(args.db);
+    engine->importScene(result.scene);
+    double writeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
+    progress->stageFinished("write", writeSeconds, fmt::format("one transaction into {}", args.db));
+
+    double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::size_t objects = 0, anchors = 0;
+    for (const auto& n : result.scene.nodes) objects += n.kind == model::NodeKind::Object, anchors += n.kind == model::NodeKind::Anchor;
+    if (args.log != "quiet")
+        std::cout << fmt::format("ingested '{}' into scene '{}': {} frames, {} anchors, {} objects in {:.1f} s ({:.1f} frames/s)\n",
+                                 args.capture, result.scene.info.name, capture.frames.size(), anchors, objects, total,
+                                 capture.frames.size() / std::max(total, 1e-9));
+    return 0;
+}
+
+int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, const std::string& sceneName,
+                       const std::string& format) {
+    auto engine = Engine::open(dbDir, /*readOnly=*/true);
+    model::SceneData ingested = ingest::inCaptureFrame(engine->exportScene(sceneName));
+    model::SceneData truth = import::readSceneJson(truthPath);
+    ingest::QualityOptions options;
+    // visibility.json beside the truth says which truth nodes the capture shows at all.
+    fs::path visibility = fs::path(truthPath).parent_path() / "visibility.json";
+    if (fs::exists(visibility)) {
+        std::ifstream in(visibility);
+        auto j = nlohmann::json::parse(in);
+        for (const auto& [id, frames] : j.items())
+            if (frames.get<int>() > 0) options.visible.insert(std::stoull(id));
+    }
+    auto r = ingest::compareToTruth(ingested, truth, options);
+    if (format == "json") {
+        nlohmann::json j = {
+            {"anchors", {{"truth", r.anchors.truth}, {"ingested", r.anchors.predicted}, {"matched", r.anchors.matched},
+                         {"precision", r.anchors.precision()}, {"recall", r.anchors.recall()}, {"f1", r.anchors.f1()}}},
+            {"objects", {{"truth", r.objects.truth}, {"ingested", r.objects.predicted}, {"matched", r.objects.matched},
+                         {"precision", r.objects.precision()}, {"recall", r.objects.recall()}, {"f1", r.objects.f1()}}},
+            {"color_accuracy", r.colorAccuracy()},
+            {"parent_accuracy", r.parentAccuracy()},
+            {"mean_center_error_m", r.meanCenterError}};
+        std::cout << j.dump(2) << "\n";
+        return 0;
+    }
+    std::cout << fmt::format("anchors  F1 {:.2f}  (precision {:.2f}, recall {:.2f}; {} matched of {} true, {} ingested)\n",
+                             r.anchors.f1(), r.anchors.precision(), r.anchors.recall(), r.anchors.matched, r.anchors.truth,
+                             r.anchors.predicted);
+    std::cout << fmt::format("objects  F1 {:.2f}  (precision {:.2f}, recall {:.2f}; {} matched of {} true, {} ingested; 3D IoU >= {})\n",
+                             r.objects.f1(), r.objects.precision(), r.objects.recall(), r.objects.matched, r.objects.truth,
+                             r.objects.predicted, options.objectIou);
+    std::cout << fmt::format("color    accuracy {:.2f}  ({} of {})\n", r.colorAccuracy(), r.colorCorrect, r.colorChecked);
+    std::cout << fmt::format("parent   accuracy {:.2f}  ({} of {})\n", r.parentAccuracy(), r.parentCorrect, r.parentChecked);
+    std::cout << fmt::format("centres  mean error {:.3f} m over matched objects\n", r.meanCenterError);
+    return 0;
+}
+
+int exportEvidenceCommand(const std::string& dbDir, const std::string& node, const std::string& outDir) {
+    std::string digits = node.rfind('#', 0) == 0 ? node.substr(1) : node;
+    model::NodeId id = 0;
+    try {
+        id = std::stoull(digits);
+    } catch (const std::exception&) {
+        throw Error(ErrorKind::Usage, fmt::format("'{}' is not a node id", node), std::nullopt, "smql export evidence '#42' DIR --db DB");
+    }
+    auto db = storage::Database::open(dbDir, {.readOnly = true, .create = false});
+    auto txn = db->beginRead();
+    if (!txn.node(id)) throw Error(ErrorKind::Binding, fmt::format("no node #{} in {}", id, dbDir));
+    auto blobs = txn.blobsOf(id);
+    if (blobs.empty()) throw Error(ErrorKind::Binding, fmt::format("node #{} has no evidence", id), std::nullopt,
+                                   "evidence comes from ingested captures; DESCRIBE #id lists it");
+    fs::create_directories(outDir);
+    for (const auto& info : blobs) {
+        auto blob = txn.blob(id, info.name);
+        fs::path path = fs::path(outDir) / info.name;
+        std::ofstream(path, std::ios::binary) << blob->bytes;
+        std::cout << path.string() << "\n";
+    }
+    return 0;
+}
+
+}  // namespace smql::shell
