@@ -297,8 +297,8 @@ struct StatementRunner {
         if (where)
             throw Error(ErrorKind::Binding, "across all scenes, FIND and COUNT take no WHERE", where->where,
                         "metric predicates need one scene: USE SCENE 'name'");
-        auto ids = txn.nodesWithCategory(target.name);
-        if (ids.empty()) {
+        std::uint64_t total = txn.countWithCategory(target.name);
+        if (total == 0) {
             std::vector<std::string> names;
             for (const auto& [name, count] : txn.categories()) names.push_back(name);
             auto close = model::nearestNames(target.name, names);
@@ -308,22 +308,23 @@ struct StatementRunner {
         ResultSet rs;
         if (countOnly) {
             rs.columns = {{"count", ValueType::Integer}};
-            rs.rows.push_back({static_cast<std::int64_t>(ids.size())});
+            rs.rows.push_back({static_cast<std::int64_t>(total)});
             return rs;
         }
+        auto ids = txn.nodesWithCategory(target.name, model::kNoNode,
+                                         limit ? static_cast<std::size_t>(*limit) : SIZE_MAX);
         rs.columns = {{"id", ValueType::Integer},
                       {"category", ValueType::Text},
                       {"scene", ValueType::Integer},
                       {"source_id", ValueType::Integer},
                       {"box", ValueType::Box}};
-        std::size_t n = limit ? std::min<std::size_t>(ids.size(), static_cast<std::size_t>(*limit)) : ids.size();
-        rs.rows.reserve(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            auto node = txn.node(ids[i]);
-            if (!node) continue;
-            rs.rows.push_back({static_cast<std::int64_t>(node->id), node->category, static_cast<std::int64_t>(node->scene),
-                               node->sourceId ? Value(*node->sourceId) : Value(std::monostate{}),
-                               node->geometry == model::GeometryKind::None ? Value(std::monostate{}) : Value(node->box)});
+        rs.rows.reserve(ids.size());
+        model::Node node;
+        for (auto id : ids) {
+            if (!txn.readNode(id, node)) continue;
+            rs.rows.push_back({static_cast<std::int64_t>(node.id), node.category, static_cast<std::int64_t>(node.scene),
+                               node.sourceId ? Value(*node.sourceId) : Value(std::monostate{}),
+                               node.geometry == model::GeometryKind::None ? Value(std::monostate{}) : Value(node.box)});
         }
         return rs;
     }

@@ -1,6 +1,7 @@
 // The sub-commands of `smql` besides the shell itself.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,5 +17,8 @@ int exportCommand(const std::string& format, const std::string& dbDir, const std
 int demoCommand(const std::string& dbDir);
 // `smql test FILE...`: runs declarative query suites (*.smqlt); see docs/testing.md.
 int testCommand(const std::vector<std::string>& files);
+// `smql synth --out DIR [--seed N] [--frames K] [--objects N] [--force]`: a synthetic RGB-D capture
+// of a generated room with ground truth (docs/ingest.md, "Synthetic captures").
+int synthCommand(const std::string& outDir, std::uint64_t seed, int frames, int objects, bool force);
 
 }  // namespace smql::shell

@@ -149,9 +149,14 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
     fs::path visibility = fs::path(truthPath).parent_path() / "visibility.json";
     if (fs::exists(visibility)) {
         std::ifstream in(visibility);
-        auto j = nlohmann::json::parse(in);
-        for (const auto& [id, frames] : j.items())
-            if (frames.get<int>() > 0) options.visible.insert(std::stoull(id));
+        try {
+            auto j = nlohmann::json::parse(in);
+            for (const auto& entry : j.at("instances"))
+                if (entry.at("frames").get<int>() > 0) options.visible.insert(entry.at("id").get<model::NodeId>());
+        } catch (const nlohmann::json::exception& e) {
+            throw Error(ErrorKind::Input, fmt::format("{}: {}", visibility.string(), e.what()), std::nullopt,
+                        "visibility.json holds {\"instances\": [{\"id\": 1, \"frames\": 12}]}");
+        }
     }
     auto r = ingest::compareToTruth(ingested, truth, options);
     if (format == "json") {

@@ -464,7 +464,8 @@ void ReadTransaction::forEachRelationInScene(NodeId sceneId,
     endOfScan(env, rc, "reading the relations of a scene");
 }
 
-std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category, NodeId sceneId) const {
+std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category, NodeId sceneId,
+                                                       std::size_t limit) const {
     const Environment& env = *impl_->env;
     std::vector<NodeId> out;
     if (category.empty() || category.size() > env.maxKeySize()) return out;
@@ -477,11 +478,12 @@ std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category
         if (rc == MDB_NOTFOUND) return out;
         env.check(rc, "reading the label index");
         std::size_t count = duplicateCount(env, cursor.cursor());
-        out.reserve(count);
+        out.reserve(std::min(count, limit));
         // Entries sort by (scene, node); scenes are contiguous id blocks, so that is id order.
         forEachDuplicate(env, cursor.cursor(), value, count, codec::kLabelEntrySize, [&](std::string_view entry) {
+            if (out.size() == limit) return false;
             out.push_back(idAt(entry.data() + 8));
-            return true;
+            return out.size() < limit;
         });
         return out;
     }
@@ -494,11 +496,22 @@ std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category
             throw Error(ErrorKind::Storage, fmt::format("corrupt label index entry for '{}'", category), std::nullopt,
                         "the database file is damaged; restore it from a backup");
         const char* entry = static_cast<const char*>(value.mv_data);
-        if (idAt(entry) != sceneId) return out;
+        if (idAt(entry) != sceneId || out.size() == limit) return out;
         out.push_back(idAt(entry + 8));
     }
     endOfScan(env, rc, "reading the label index");
     return out;
+}
+
+std::uint64_t ReadTransaction::countWithCategory(std::string_view category) const {
+    const Environment& env = *impl_->env;
+    if (category.empty() || category.size() > env.maxKeySize()) return 0;
+    TableCursor cursor(*impl_, Table::Labels);
+    MDB_val key = toVal(category), value;
+    int rc = cursor.get(key, value, MDB_SET_KEY);
+    if (rc == MDB_NOTFOUND) return 0;
+    env.check(rc, "reading the label index");
+    return duplicateCount(env, cursor.cursor());
 }
 
 std::vector<std::pair<std::string, std::uint64_t>> ReadTransaction::categories() const {

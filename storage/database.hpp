@@ -100,7 +100,10 @@ public:
     // id order. Scene nodes (whose category is the scene name) and nodes with
     // an empty category are not in the index.
     std::vector<model::NodeId> nodesWithCategory(std::string_view category,
-                                                 model::NodeId sceneId = model::kNoNode) const;
+                                                 model::NodeId sceneId = model::kNoNode,
+                                                 std::size_t limit = SIZE_MAX) const;
+    // How many nodes of every scene have this category: one index lookup, no scan.
+    std::uint64_t countWithCategory(std::string_view category) const;
     // Every distinct category with its node count, across all scenes, by name (byte order).
     std::vector<std::pair<std::string, std::uint64_t>> categories() const;
     std::optional<model::NodeId> nodeBySourceId(model::NodeId sceneId, std::int64_t sourceId) const;

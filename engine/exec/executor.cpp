@@ -135,25 +135,48 @@ bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame&
             return !matches(expr.children.front(), slot, frame);
         case BoundExpr::Kind::Compare:
             return compare(expr, scene_.node(slot));
-        case BoundExpr::Kind::Predicate: {
-            const Node& a = scene_.node(slot);
-            for (Slot b : expr.args[0].slots) {
-                if (b == slot) continue;
-                if (expr.args.size() == 1) {
-                    if (relations::evaluate(expr.predicate, a, scene_.node(b), thresholds_, frame, nullptr,
-                                            expr.nearDistance) > 0)
-                        return true;
-                    continue;
-                }
-                for (Slot c : expr.args[1].slots)
-                    if (c != slot && c != b &&
-                        relations::evaluate(expr.predicate, a, scene_.node(b), thresholds_, frame, &scene_.node(c)) > 0)
-                        return true;
-            }
-            return false;
-        }
+        case BoundExpr::Kind::Predicate:
+            return holdsForSome(expr, slot, frame);
     }
     return false;
+}
+
+const std::vector<char>& Executor::membership(const binder::NodeSet& set) const {
+    auto [it, inserted] = membership_.try_emplace(&set);
+    if (inserted) {
+        it->second.assign(scene_.nodes().size(), 0);
+        for (Slot s : set.slots) it->second[s] = 1;
+    }
+    return it->second;
+}
+
+bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::Frame& frame) const {
+    const Node& a = scene_.node(slot);
+    if (expr.args.size() == 2) {
+        for (Slot b : expr.args[0].slots)
+            for (Slot c : expr.args[1].slots)
+                if (b != slot && c != slot && c != b &&
+                    relations::evaluate(expr.predicate, a, scene_.node(b), thresholds_, frame, &scene_.node(c)) > 0)
+                    return true;
+        return false;
+    }
+    double nearDistance = expr.nearDistance.value_or(thresholds_.nearDistance);
+    // Where a reference must be for the predicate to hold: a cheap bounds test before the exact one.
+    auto region = relations::referenceRegion(expr.predicate, scene_.bounds(slot), nearDistance, thresholds_);
+    auto holds = [&](Slot b) {
+        if (b == slot || (region && !relations::intersects(scene_.bounds(b), *region))) return false;
+        return relations::evaluate(expr.predicate, a, scene_.node(b), thresholds_, frame, nullptr, expr.nearDistance) > 0;
+    };
+    const auto& refs = expr.args[0].slots;
+    constexpr std::size_t kIndexedReferences = 32;
+    if (region && refs.size() > kIndexedReferences) {
+        // Many references: the R-tree names the few close enough, the set keeps its own.
+        const auto& member = membership(expr.args[0]);
+        std::vector<Slot> close;
+        scene_.spatialIndex().intersecting(*region, close);
+        return std::any_of(close.begin(), close.end(), [&](Slot b) { return member[b] && holds(b); });
+    }
+    return std::any_of(refs.begin(), refs.end(), holds);
 }
 
 bool Executor::inTarget(const binder::Target& target, Slot slot) const {
@@ -168,8 +191,43 @@ bool Executor::inTarget(const binder::Target& target, Slot slot) const {
     return false;
 }
 
+std::optional<std::vector<Hit>> Executor::nearestFirst(const planner::FindPlan& plan) const {
+    const auto& f = *plan.find;
+    if (!f.distanceTo || f.distanceTo->slots.size() != 1 || !f.limit || f.descending || plan.probe) return std::nullopt;
+    const Slot ref = f.distanceTo->slots.front();
+    const auto want = static_cast<std::size_t>(*f.limit);
+    const model::Aabb& around = scene_.bounds(ref);
+    auto boundsGap = [&](const model::Aabb& b) {
+        double dx = std::max({0.0, b.min.x - around.max.x, around.min.x - b.max.x});
+        double dy = std::max({0.0, b.min.y - around.max.y, around.min.y - b.max.y});
+        double dz = std::max({0.0, b.min.z - around.max.z, around.min.z - b.max.z});
+        return std::sqrt(dx * dx + dy * dy + dz * dz);
+    };
+    const auto& index = scene_.spatialIndex();
+    for (std::size_t k = std::max<std::size_t>(4 * want, 32);; k *= 4) {
+        std::vector<Slot> near;
+        index.nearest(around, k, near);
+        std::vector<Hit> hits;
+        for (Slot s : near) {
+            if ((f.nearest && s == ref) || !inTarget(f.target, s) || (f.where && !matches(*f.where, s, f.frame))) continue;
+            hits.push_back({s, model::distance(scene_.node(s).box, scene_.node(ref).box)});
+        }
+        std::sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
+            return a.distance != b.distance ? a.distance < b.distance : scene_.node(a.slot).id < scene_.node(b.slot).id;
+        });
+        // A box is never nearer than its bounds, so boxes beyond the last returned bounds cannot beat
+        // an answer strictly nearer than those bounds.
+        bool wholeIndex = near.size() < k || k >= index.size();
+        if (wholeIndex || (hits.size() >= want && hits[want - 1].distance < boundsGap(scene_.bounds(near.back())))) {
+            if (hits.size() > want) hits.resize(want);
+            return hits;
+        }
+    }
+}
+
 std::vector<Hit> Executor::find(const planner::FindPlan& plan) const {
     const auto& f = *plan.find;
+    if (auto hits = nearestFirst(plan)) return *hits;
     std::vector<Slot> candidates;
     if (plan.probe) {
         for (const auto& region : plan.probe->regions) scene_.spatialIndex().intersecting(region, candidates);
@@ -187,6 +245,8 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) const {
         hits.push_back({s, 0});
     }
     if (f.distanceTo) {
+        // Nodes without a place have no distance to order by.
+        std::erase_if(hits, [&](const Hit& h) { return scene_.node(h.slot).geometry == model::GeometryKind::None; });
         for (auto& h : hits) h.distance = distanceToSet(scene_.node(h.slot), *f.distanceTo, scene_, f.nearest);
         if (f.nearest) {
             // NEAREST TO x: x itself is not an answer.

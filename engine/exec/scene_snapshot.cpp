@@ -18,6 +18,7 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::load(const storage::ReadTran
     const auto count = static_cast<Slot>(snap->nodes_.size());
     snap->children_.resize(count);
     snap->slotsByKind_.resize(6);
+    snap->bounds_.resize(count);
     std::vector<storage::SpatialIndex::Entry> entries;
     entries.reserve(count);
     for (Slot s = 0; s < count; ++s) {
@@ -26,8 +27,9 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::load(const storage::ReadTran
         if (n.sourceId) snap->slotBySource_.emplace(*n.sourceId, s);
         snap->slotsByCategory_[n.category].push_back(s);
         snap->slotsByKind_[static_cast<std::size_t>(n.kind)].push_back(s);
+        snap->bounds_[s] = model::worldAabb(n.box);
         if (n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene)
-            entries.push_back({model::worldAabb(n.box), s});
+            entries.push_back({snap->bounds_[s], s});
         for (const auto& a : n.attributes) snap->attributeNames_.push_back(a.name);
     }
     std::sort(snap->attributeNames_.begin(), snap->attributeNames_.end());

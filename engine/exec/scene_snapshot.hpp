@@ -28,6 +28,8 @@ public:
     const model::SceneInfo& info() const { return info_; }
     const std::vector<model::Node>& nodes() const { return nodes_; }
     const model::Node& node(Slot slot) const { return nodes_[slot]; }
+    // World-aligned bounds of a node's box (empty-looking for nodes without geometry).
+    const model::Aabb& bounds(Slot slot) const { return bounds_[slot]; }
     std::optional<Slot> slotOf(model::NodeId id) const;
     std::optional<Slot> slotOfSource(std::int64_t sourceId) const;
     // Slots of a category (visible and hidden), in id order; empty when the scene has none.
@@ -47,6 +49,7 @@ public:
 private:
     model::SceneInfo info_;
     std::vector<model::Node> nodes_;
+    std::vector<model::Aabb> bounds_;
     std::unordered_map<model::NodeId, Slot> slotById_;
     std::unordered_map<std::int64_t, Slot> slotBySource_;
     std::unordered_map<std::string, std::vector<Slot>> slotsByCategory_;

@@ -11,42 +11,10 @@ using relations::Predicate;
 
 namespace {
 
-constexpr double kUnbounded = 1e9;
-
 // Predicates that hold only near the reference node, so an R-tree probe can find their candidates.
 bool isLocal(Predicate p) {
     return p == Predicate::On || p == Predicate::In || p == Predicate::Above || p == Predicate::Below ||
            p == Predicate::Near || p == Predicate::Attached;
-}
-
-// Where a node must have its bounds for `predicate(node, reference)` to hold:
-// a necessary condition, so the R-tree returns a superset that the filter then checks.
-std::optional<model::Aabb> probeRegion(Predicate p, const model::Node& ref, double nearDistance,
-                                       const relations::Thresholds& t) {
-    model::Aabb b = model::worldAabb(ref.box);
-    switch (p) {
-        case Predicate::On:
-        case Predicate::In:
-            b.max.z += t.onMaxGap;
-            return b;
-        case Predicate::Above:
-            b.min.z = b.max.z - t.aboveTolerance;
-            b.max.z = kUnbounded;
-            return b;
-        case Predicate::Below:
-            b.max.z = b.min.z + t.aboveTolerance;
-            b.min.z = -kUnbounded;
-            return b;
-        case Predicate::Near:
-        case Predicate::Attached: {
-            double d = p == Predicate::Near ? nearDistance : t.attachedMaxGap;
-            b.min = {b.min.x - d, b.min.y - d, b.min.z - d};
-            b.max = {b.max.x + d, b.max.y + d, b.max.z + d};
-            return b;
-        }
-        default:
-            return std::nullopt;  // lateral and ternary predicates are half-spaces: not worth a probe
-    }
 }
 
 std::string literalText(const ast::Literal& literal) {
@@ -125,7 +93,7 @@ FindPlan planFind(const binder::BoundFind& find, const exec::SceneSnapshot& scen
     RTreeProbe probe;
     double nearDistance = best->nearDistance.value_or(t.nearDistance);
     for (auto slot : best->args[0].slots)
-        probe.regions.push_back(*probeRegion(best->predicate, scene.node(slot), nearDistance, t));
+        probe.regions.push_back(*relations::candidateRegion(best->predicate, scene.bounds(slot), nearDistance, t));
     probe.description = describe(*best);
     plan.probe = std::move(probe);
     return plan;

@@ -27,6 +27,8 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
         (upright ? uprightAnchors : otherAnchors).push_back(&n);
     }
     const auto& anchors = uprightAnchors.empty() ? otherAnchors : uprightAnchors;
+    std::vector<model::Aabb> objectBounds;
+    for (const Node* o : objects) objectBounds.push_back(model::worldAabb(o->box));
 
     std::vector<model::NodeId> parents(scene.nodes.size(), model::kNoNode);
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
@@ -39,9 +41,12 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
         // supporter's centre to be strictly lower, so the tree has no cycles.
         const Node* best = nullptr;
         auto contact = [&](const Node* b) { return std::abs(model::bottom(a.box) - model::top(b->box)); };
-        for (const Node* b : objects) {
+        auto within = referenceRegion(Predicate::On, model::worldAabb(a.box), 0, thresholds);
+        for (std::size_t k = 0; k < objects.size(); ++k) {
+            const Node* b = objects[k];
             if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
-            if (b->box.center.z >= a.box.center.z) continue;
+            // A cheap bounds test first: most pairs are far apart.
+            if (b->box.center.z >= a.box.center.z || !intersects(objectBounds[k], *within)) continue;
             if (model::footprintArea(b->box) < kMinSupporterArea * model::footprintArea(a.box)) continue;
             if (supportScore(a, *b, thresholds) <= 0) continue;
             if (!best || contact(b) < contact(best)) best = b;

@@ -198,4 +198,59 @@ std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& 
     return hits;
 }
 
+namespace {
+constexpr double kUnbounded = 1e9;
+
+model::Aabb grown(model::Aabb b, double d) {
+    b.min = {b.min.x - d, b.min.y - d, b.min.z - d};
+    b.max = {b.max.x + d, b.max.y + d, b.max.z + d};
+    return b;
+}
+}  // namespace
+
+std::optional<model::Aabb> candidateRegion(Predicate p, const model::Aabb& ref, double nearDistance, const Thresholds& t) {
+    model::Aabb b = ref;
+    switch (p) {
+        case Predicate::On:
+        case Predicate::In:
+            // a's footprint overlaps b's and a's bottom is at most on.max_gap above b's top.
+            b.max.z += t.onMaxGap;
+            return b;
+        case Predicate::Above:
+            b.min.z = b.max.z - t.aboveTolerance;
+            b.max.z = kUnbounded;
+            return b;
+        case Predicate::Below:
+            b.max.z = b.min.z + t.aboveTolerance;
+            b.min.z = -kUnbounded;
+            return b;
+        case Predicate::Near: return grown(b, nearDistance);
+        case Predicate::Attached: return grown(b, t.attachedMaxGap);
+        default: return std::nullopt;
+    }
+}
+
+std::optional<model::Aabb> referenceRegion(Predicate p, const model::Aabb& a, double nearDistance, const Thresholds& t) {
+    model::Aabb b = a;
+    switch (p) {
+        case Predicate::On:
+        case Predicate::In:
+            // b's footprint overlaps a's and b's top reaches to within on.max_gap of a's bottom.
+            b.min.z -= t.onMaxGap;
+            b.max.z = kUnbounded;
+            return b;
+        case Predicate::Above:
+            b.max.z = b.min.z + t.aboveTolerance;
+            b.min.z = -kUnbounded;
+            return b;
+        case Predicate::Below:
+            b.min.z = b.max.z - t.aboveTolerance;
+            b.max.z = kUnbounded;
+            return b;
+        case Predicate::Near: return grown(b, nearDistance);
+        case Predicate::Attached: return grown(b, t.attachedMaxGap);
+        default: return std::nullopt;
+    }
+}
+
 }  // namespace smql::relations

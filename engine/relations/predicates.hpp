@@ -56,6 +56,17 @@ struct RelationHit {
 // view-relative ones, then near (the score says how clearly each holds).
 std::vector<RelationHit> relate(const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame);
 
+// Necessary regions, for index probes and quick rejection: when p(a, ref)
+// holds, a's world bounds intersect candidateRegion(p, ref); when p(a, b)
+// holds, b's bounds intersect referenceRegion(p, a). Empty for predicates that
+// hold far away (the view-relative ones and between).
+std::optional<model::Aabb> candidateRegion(Predicate p, const model::Aabb& ref, double nearDistance, const Thresholds& t);
+std::optional<model::Aabb> referenceRegion(Predicate p, const model::Aabb& a, double nearDistance, const Thresholds& t);
+inline bool intersects(const model::Aabb& a, const model::Aabb& b) {
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
+           b.min.z <= a.max.z;
+}
+
 // The support relation that makes `b` the parent of `a` in the tree, if any.
 double supportScore(const model::Node& a, const model::Node& b, const Thresholds& t);
 

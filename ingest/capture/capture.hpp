@@ -14,7 +14,10 @@
 
 namespace smql::ingest {
 
-// Pinhole camera, no distortion, in pixels of the frames' working resolution.
+// Pinhole camera, no distortion, in pixels. Pixel centres sit at integer
+// coordinates (the OpenCV convention: the top-left pixel's centre is (0, 0)).
+// Capture::intrinsics describe the images as stored (width x height);
+// loadFrame returns them scaled to the working resolution.
 struct Intrinsics {
     int width = 0, height = 0;
     double fx = 0, fy = 0, cx = 0, cy = 0;
@@ -35,6 +38,9 @@ struct CaptureFrame {
     std::string depthPath;    // 16-bit depth image (PNG or PGM), empty without depth
     std::string instancePath; // 16-bit instance mask (0 = none), empty without masks
     std::optional<Pose> pose;
+    // This frame's own camera when it differs from Capture::intrinsics (COLMAP
+    // models with several cameras, nerfstudio per-frame intrinsics).
+    std::optional<Intrinsics> intrinsics;
 };
 
 struct SparsePoint {
@@ -52,6 +58,10 @@ struct Capture {
     std::vector<SparsePoint> points;  // reconstructed 3D points, when the layout has them
     std::string labelsPath;           // instance id -> category (+ attributes), JSON, with masks
     std::string detectionsPath;       // COCO-results style detections, JSON
+    // What the reader assumed or ignored (default intrinsics, ignored lens
+    // distortion, where decoded video frames went...), one sentence each, for
+    // the user: the pipeline prints them.
+    std::vector<std::string> notes;
 };
 
 struct CaptureOptions {
@@ -60,10 +70,12 @@ struct CaptureOptions {
     std::optional<double> depthScale;
     std::optional<Intrinsics> intrinsics;
     std::string workDirectory;      // where decoded video frames go (a temp folder by default)
+    std::string imageDirectory;     // COLMAP: the images the model was made from (found beside it by default)
 };
 
 // Recognises the layout of `path` (a folder or a file) and reads it. Throws
-// smql::Error(ErrorKind::Input) naming the file and what is wrong.
+// smql::Error(ErrorKind::Input) naming the file and what is wrong. Layouts and
+// the detection order: docs/formats.md, "Captures (smql ingest)".
 Capture readCapture(const std::string& path, const CaptureOptions& options = {});
 
 }  // namespace smql::ingest

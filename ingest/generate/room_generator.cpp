@@ -56,7 +56,7 @@ class Builder {
 public:
     explicit Builder(const RoomOptions& o) : rng_(o.seed), options_(o) {}
 
-    model::SceneData build() {
+    GeneratedRoom build() {
         // Each cell holds about six objects: size the floor for the requested count.
         int cells = std::max(1, (options_.objectCount + 5) / 6);
         int cols = std::max(2, static_cast<int>(std::ceil(std::sqrt(cells * 1.3))));
@@ -78,7 +78,7 @@ public:
         // Default viewpoint: just inside the door at eye height, looking into the room (+y).
         scene_.info.viewpoint = {{doorX_, 0.6, 1.6}, M_PI / 2};
         scene_.info.viewpointNote = "standing 0.6 m inside the door at eye height (1.6 m), facing into the room";
-        return std::move(scene_);
+        return {std::move(scene_), std::move(supports_)};
     }
 
 private:
@@ -132,7 +132,7 @@ private:
         double yaw = (pick(4) == 0 ? M_PI / 2 : 0) + uniform(-0.05, 0.05);
         double cx = x0 + kCell / 2 + uniform(-0.3, 0.3), cy = y0 + kCell / 2 + uniform(-0.3, 0.3);
         Box main{{cx, cy, sz / 2}, {sx, sy, sz}, yaw};
-        add(NodeKind::Object, kind.category, GeometryKind::Box, main);
+        model::NodeId mainId = add(NodeKind::Object, kind.category, GeometryKind::Box, main);
 
         std::string_view category = kind.category;
         if ((category == "desk" || category == "table") && objects_ < options_.objectCount) {
@@ -152,20 +152,25 @@ private:
             double wx = cx + std::cos(yaw) * lx - std::sin(yaw) * ly;
             double wy = cy + std::sin(yaw) * lx + std::cos(yaw) * ly;
             double s = uniform(0.85, 1.15);
-            add(NodeKind::Object, small.category, GeometryKind::Box,
-                {{wx, wy, sz + small.sz * s / 2}, {small.sx * s, small.sy * s, small.sz * s}, yaw + uniform(-0.3, 0.3)});
+            model::NodeId id = add(NodeKind::Object, small.category, GeometryKind::Box,
+                                   {{wx, wy, sz + small.sz * s / 2}, {small.sx * s, small.sy * s, small.sz * s},
+                                    yaw + uniform(-0.3, 0.3)});
+            supports_.push_back({id, mainId});
         }
     }
 
     std::mt19937_64 rng_;
     RoomOptions options_;
     model::SceneData scene_;
+    std::vector<Support> supports_;
     double width_ = 0, depth_ = 0, doorX_ = 0;
     int objects_ = 0;
 };
 
 }  // namespace
 
-model::SceneData generateRoom(const RoomOptions& options) { return Builder(options).build(); }
+model::SceneData generateRoom(const RoomOptions& options) { return Builder(options).build().scene; }
+
+GeneratedRoom generateRoomWithSupports(const RoomOptions& options) { return Builder(options).build(); }
 
 }  // namespace smql::generate

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/model/types.hpp"
 
@@ -20,5 +21,19 @@ struct RoomOptions {
 };
 
 model::SceneData generateRoom(const RoomOptions& options);
+
+// What the generator put on what: each small thing with the furniture piece it
+// was placed on (local ids). `smql synth` turns these into on/in labels.
+struct Support {
+    model::NodeId object = model::kNoNode;
+    model::NodeId supporter = model::kNoNode;
+};
+
+struct GeneratedRoom {
+    model::SceneData scene;  // exactly what generateRoom returns for the same options
+    std::vector<Support> supports;
+};
+
+GeneratedRoom generateRoomWithSupports(const RoomOptions& options);
 
 }  // namespace smql::generate

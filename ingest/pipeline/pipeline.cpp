@@ -220,7 +220,9 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
         if (alignment.ceilingHeight)
             addNode(NodeKind::Anchor, "ceiling", model::GeometryKind::Plane,
                     {{(x0 + x1) / 2, (y0 + y1) / 2, *alignment.ceilingHeight + 0.01}, {x1 - x0, y1 - y0, 0.02}, 0});
-        walls = findWalls(aligned);
+        std::vector<model::Vec3> cameraPositions;
+        for (const auto& c : cameras) cameraPositions.push_back(alignment.apply(c.translation));
+        walls = findWalls(aligned, cameraPositions);
         for (const auto& w : walls) {
             Node& wall = addNode(NodeKind::Anchor, "wall", model::GeometryKind::Plane, w.box());
             wall.confidence = static_cast<float>(w.confidence);

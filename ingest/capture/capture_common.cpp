@@ -1,0 +1,310 @@
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "engine/error.hpp"
+#include "ingest/capture/capture_detail.hpp"
+#include "ingest/import/common.hpp"
+
+namespace smql::ingest::capture_detail {
+
+void fail(const std::string& file, std::string_view what, std::string_view hint) {
+    throw Error(ErrorKind::Input, fmt::format("{}: {}", file, what), std::nullopt, std::string(hint));
+}
+
+void failAt(const std::string& file, int line, std::string_view what, std::string_view hint) {
+    if (line <= 0) fail(file, what, hint);  // binary files: `file` already says where
+    throw Error(ErrorKind::Input, fmt::format("{}:{}: {}", file, line, what), SourceLocation{line, 0, 1},
+                std::string(hint));
+}
+
+std::string lowerCase(std::string_view text) { return import::detail::lowerCase(text); }
+
+std::string extensionOf(const fs::path& path) {
+    std::string ext = path.extension().string();
+    if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+    return lowerCase(ext);
+}
+
+bool isImageExtension(std::string_view ext) { return ext == "jpg" || ext == "jpeg" || ext == "png"; }
+
+bool isVideoExtension(std::string_view ext) {
+    static constexpr std::string_view kVideo[] = {"mp4", "avi", "mov", "mkv", "webm", "m4v", "mpg", "mpeg",
+                                                  "wmv", "flv", "3gp", "ts",  "mts", "m2ts", "ogv", "mjpeg"};
+    return std::find(std::begin(kVideo), std::end(kVideo), ext) != std::end(kVideo);
+}
+
+namespace {
+bool isDigit(char c) { return c >= '0' && c <= '9'; }
+}  // namespace
+
+bool naturalLess(std::string_view a, std::string_view b) {
+    std::size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+        if (isDigit(a[i]) && isDigit(b[j])) {
+            std::size_t iEnd = i, jEnd = j;
+            while (iEnd < a.size() && isDigit(a[iEnd])) ++iEnd;
+            while (jEnd < b.size() && isDigit(b[jEnd])) ++jEnd;
+            std::string_view da = a.substr(i, iEnd - i), db = b.substr(j, jEnd - j);
+            da.remove_prefix(std::min(da.find_first_not_of('0'), da.size()));
+            db.remove_prefix(std::min(db.find_first_not_of('0'), db.size()));
+            if (da.size() != db.size()) return da.size() < db.size();
+            if (da != db) return da < db;
+            i = iEnd;
+            j = jEnd;
+        } else {
+            if (a[i] != b[j]) return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]);
+            ++i;
+            ++j;
+        }
+    }
+    if (i == a.size() && j != b.size()) return true;
+    if (j == b.size() && i != a.size()) return false;
+    return a < b;  // equal but for leading zeros
+}
+
+std::vector<fs::path> listFiles(const fs::path& dir) {
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        std::string name = it->path().filename().string();
+        if (name.empty() || name[0] == '.') continue;
+        std::error_code statError;
+        if (it->is_regular_file(statError)) files.push_back(it->path());
+    }
+    if (ec) fail(dir.string(), "cannot list the folder: " + ec.message());
+    std::sort(files.begin(), files.end(), [](const fs::path& x, const fs::path& y) {
+        return naturalLess(x.filename().string(), y.filename().string());
+    });
+    return files;
+}
+
+std::optional<long long> frameNumber(const fs::path& file) {
+    std::string stem = file.stem().string();
+    if (stem.empty() || stem.size() > 15 || !std::all_of(stem.begin(), stem.end(), isDigit)) return std::nullopt;
+    return std::stoll(stem);
+}
+
+std::string readText(const fs::path& file, std::string_view hint) {
+    return import::detail::readTextFile(file.string(), std::string(hint));
+}
+
+std::vector<TextLine> allLines(std::string_view text) {
+    std::vector<TextLine> lines;
+    int number = 0;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        std::size_t end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view line = text.substr(pos, end - pos);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        lines.push_back(TextLine{++number, line});
+        pos = end + 1;
+    }
+    return lines;
+}
+
+std::vector<TextLine> dataLines(std::string_view text) {
+    std::vector<TextLine> lines;
+    for (const TextLine& line : allLines(text)) {
+        std::size_t first = line.text.find_first_not_of(" \t");
+        if (first == std::string_view::npos || line.text[first] == '#') continue;
+        lines.push_back(line);
+    }
+    return lines;
+}
+
+std::vector<std::string_view> splitWhitespace(std::string_view text) {
+    std::vector<std::string_view> tokens;
+    std::size_t pos = 0;
+    while (true) {
+        pos = text.find_first_not_of(" \t\r\n", pos);
+        if (pos == std::string_view::npos) break;
+        std::size_t end = text.find_first_of(" \t\r\n", pos);
+        if (end == std::string_view::npos) end = text.size();
+        tokens.push_back(text.substr(pos, end - pos));
+        pos = end;
+    }
+    return tokens;
+}
+
+std::optional<double> parseNumber(std::string_view token) {
+    if (!token.empty() && token[0] == '+') token.remove_prefix(1);
+    double value = 0;
+    auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (token.empty() || ec != std::errc() || end != token.data() + token.size()) return std::nullopt;
+    return value;
+}
+
+std::vector<double> parseNumbers(const std::string& file, int line, const std::vector<std::string_view>& tokens,
+                                 std::string_view hint) {
+    std::vector<double> values;
+    values.reserve(tokens.size());
+    for (std::size_t i = 0; i < tokens.size(); ++i) {
+        std::optional<double> value = parseNumber(tokens[i]);
+        if (!value) failAt(file, line, fmt::format("value {} '{}' is not a number", i + 1, tokens[i]), hint);
+        if (!std::isfinite(*value)) failAt(file, line, fmt::format("value {} '{}' is not finite", i + 1, tokens[i]), hint);
+        values.push_back(*value);
+    }
+    return values;
+}
+
+Pose poseFromQuaternion(const std::string& file, int line, double tx, double ty, double tz, double qx, double qy,
+                        double qz, double qw, std::string_view hint) {
+    for (double v : {tx, ty, tz, qx, qy, qz, qw})
+        if (!std::isfinite(v)) failAt(file, line, "the pose holds a number that is not finite", hint);
+    Eigen::Quaterniond q(qw, qx, qy, qz);
+    double norm = q.norm();
+    if (!(norm > 1e-9)) failAt(file, line, "the rotation quaternion has zero norm", hint);
+    q.coeffs() /= norm;
+    Eigen::Matrix3d r = q.toRotationMatrix();
+    Pose pose;
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) pose.rotation[row * 3 + col] = r(row, col);
+    pose.translation = {tx, ty, tz};
+    return pose;
+}
+
+Pose inverse(const Pose& pose) {
+    Pose out;
+    const auto& r = pose.rotation;
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) out.rotation[row * 3 + col] = r[col * 3 + row];
+    const model::Vec3& t = pose.translation;
+    const auto& o = out.rotation;
+    out.translation = {-(o[0] * t.x + o[1] * t.y + o[2] * t.z), -(o[3] * t.x + o[4] * t.y + o[5] * t.z),
+                       -(o[6] * t.x + o[7] * t.y + o[8] * t.z)};
+    return out;
+}
+
+Intrinsics kinectDefault(int width, int height) {
+    double f = 525.0 * width / 640.0;
+    return Intrinsics{width, height, f, f, (width - 1) / 2.0, (height - 1) / 2.0};
+}
+
+Intrinsics guessedIntrinsics(int width, int height) {
+    double f = 1.2 * width;
+    return Intrinsics{width, height, f, f, (width - 1) / 2.0, (height - 1) / 2.0};
+}
+
+Intrinsics scaleIntrinsics(const Intrinsics& in, int width, int height) {
+    if (in.width == width && in.height == height) return in;
+    double sx = static_cast<double>(width) / in.width, sy = static_cast<double>(height) / in.height;
+    // Pixel centres at integer coordinates: the image edge is at -0.5.
+    return Intrinsics{width, height, in.fx * sx, in.fy * sy, (in.cx + 0.5) * sx - 0.5, (in.cy + 0.5) * sy - 0.5};
+}
+
+Intrinsics userIntrinsics(const Intrinsics& given, int width, int height) {
+    auto bad = [](std::string_view what) {
+        throw Error(ErrorKind::Usage, fmt::format("intrinsics: {}", what), std::nullopt,
+                    "give fx, fy > 0 and cx, cy in pixels (width and height 0 = the images' size)");
+    };
+    for (double v : {given.fx, given.fy, given.cx, given.cy})
+        if (!std::isfinite(v)) bad("a value is not finite");
+    if (given.fx <= 0 || given.fy <= 0) bad(fmt::format("fx and fy must be > 0, got {} and {}", given.fx, given.fy));
+    if (given.width < 0 || given.height < 0 || (given.width == 0) != (given.height == 0))
+        bad(fmt::format("width and height must both be > 0 or both 0, got {}x{}", given.width, given.height));
+    Intrinsics out = given;
+    if (out.width == 0) {
+        out.width = width;
+        out.height = height;
+    }
+    return out;
+}
+
+void checkDepthScale(double scale, const std::string& from) {
+    if (!std::isfinite(scale) || scale <= 0)
+        throw Error(ErrorKind::Usage, fmt::format("{}: depth scale must be a positive number, got {}", from, scale),
+                    std::nullopt, "the depth scale is depth image units per metre: 1000 for millimetres");
+}
+
+void checkImageFile(const fs::path& file, std::string_view what, std::string_view hint) {
+    std::error_code ec;
+    auto status = fs::status(file, ec);
+    if (!fs::exists(status)) fail(file.string(), fmt::format("{} is missing", what), hint);
+    if (!fs::is_regular_file(status)) fail(file.string(), fmt::format("{} is not a regular file", what), hint);
+    bool readable = false;
+    try {
+        readable = cv::haveImageReader(file.string());
+    } catch (const cv::Exception&) {
+        readable = false;
+    }
+    if (!readable)
+        fail(file.string(), fmt::format("{}: not an image OpenCV can read (unknown or damaged file signature)", what),
+             hint);
+}
+
+namespace {
+
+cv::Mat readImage(const std::string& file, int flags, std::string_view what) {
+    std::error_code ec;
+    auto status = fs::status(file, ec);
+    if (!fs::exists(status)) fail(file, fmt::format("{} is missing", what));
+    if (!fs::is_regular_file(status)) fail(file, fmt::format("{} is not a regular file", what));
+    cv::Mat image;
+    try {
+        image = cv::imread(file, flags);
+    } catch (const cv::Exception& e) {
+        fail(file, fmt::format("cannot decode the {}: {}", what, e.err));
+    }
+    if (image.empty()) fail(file, fmt::format("cannot decode the {} (damaged, or a format OpenCV does not read)", what));
+    return image;
+}
+
+const char* depthName(int depth) {
+    switch (depth) {
+        case CV_8U: return "8-bit";
+        case CV_8S: return "8-bit signed";
+        case CV_16U: return "16-bit";
+        case CV_16S: return "16-bit signed";
+        case CV_32S: return "32-bit integer";
+        case CV_32F: return "32-bit float";
+        case CV_64F: return "64-bit float";
+        default: return "unknown";
+    }
+}
+
+}  // namespace
+
+cv::Mat readColorImage(const std::string& file) { return readImage(file, cv::IMREAD_COLOR, "colour image"); }
+
+cv::Mat readDepthImage(const std::string& file) {
+    cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image");
+    if (depth.channels() != 1) fail(file, fmt::format("a depth image has one channel, this one has {}", depth.channels()));
+    if (depth.depth() != CV_16U && depth.depth() != CV_32F)
+        fail(file, fmt::format("depth must be a 16-bit image (or 32-bit float metres), this one is {}",
+                               depthName(depth.depth())));
+    return depth;
+}
+
+cv::Mat readMaskImage(const std::string& file) {
+    cv::Mat mask = readImage(file, cv::IMREAD_UNCHANGED, "instance mask");
+    if (mask.channels() != 1)
+        fail(file, fmt::format("an instance mask has one channel, this one has {}", mask.channels()));
+    if (mask.depth() == CV_8U) {
+        cv::Mat wide;
+        mask.convertTo(wide, CV_16U);
+        return wide;
+    }
+    if (mask.depth() != CV_16U)
+        fail(file, fmt::format("an instance mask is a 16-bit image, this one is {}", depthName(mask.depth())));
+    return mask;
+}
+
+bool Sampler::take(double time) {
+    if (step_ <= 0) return true;
+    if (!next_) {
+        next_ = time + step_;
+        return true;
+    }
+    if (time < *next_ - tolerance_) return false;
+    while (*next_ - tolerance_ <= time) *next_ += step_;
+    return true;
+}
+
+}  // namespace smql::ingest::capture_detail

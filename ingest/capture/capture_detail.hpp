@@ -1,0 +1,146 @@
+// Helpers shared by the capture readers and the frame loader: errors, file
+// listing, text lines, numbers, poses, default intrinsics and image checks.
+// Internal to ingest/capture.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "ingest/capture/capture.hpp"
+
+namespace smql::ingest::capture_detail {
+
+namespace fs = std::filesystem;
+
+// Hints, one per layout, recalled in every error about that layout.
+inline constexpr const char* kRgbdHint =
+    "an rgbd capture is a folder with color/ and depth/ (images named by frame number: 1.png, 2.png... "
+    "depth 16-bit PNG or PGM) and pose.txt (one line per frame: tx ty tz qx qy qz qw, camera-to-world); "
+    "camera.json {width,height,fx,fy,cx,cy,depth_scale} is optional";
+inline constexpr const char* kTumHint =
+    "a TUM RGB-D capture holds rgb.txt and depth.txt ('timestamp file' per line) and groundtruth.txt "
+    "('timestamp tx ty tz qx qy qz qw'); lines starting with '#' are comments";
+inline constexpr const char* kNerfstudioHint =
+    "transforms.json needs fl_x (or camera_angle_x), w, h and frames[] with file_path and a 4x4 "
+    "transform_matrix (camera-to-world, OpenGL convention); depth_file_path is optional";
+inline constexpr const char* kColmapHint =
+    "a COLMAP sparse model is cameras.txt, images.txt, points3D.txt (or the .bin files) as written by "
+    "`colmap mapper` / `colmap model_converter`; the images go in images/ beside the model or are named "
+    "with the image-directory option";
+inline constexpr const char* kImagesHint = "an image folder holds .jpg, .jpeg or .png files, read in natural order";
+inline constexpr const char* kVideoHint = "any video OpenCV's videoio (FFmpeg) decodes: mp4, avi, mov, mkv...";
+
+// smql::Error(Input) "<file>: <what>", or "<file>:<line>: <what>" with the line in where().
+[[noreturn]] void fail(const std::string& file, std::string_view what, std::string_view hint = {});
+[[noreturn]] void failAt(const std::string& file, int line, std::string_view what, std::string_view hint = {});
+
+std::string lowerCase(std::string_view text);
+std::string extensionOf(const fs::path& path);  // lower case, without the dot
+bool isImageExtension(std::string_view ext);     // jpg, jpeg, png
+bool isVideoExtension(std::string_view ext);
+
+// "2.png" < "10.png": runs of digits compare as numbers.
+bool naturalLess(std::string_view a, std::string_view b);
+
+// Regular files directly in `dir`, hidden ones (".x") left out, in natural order of their names.
+std::vector<fs::path> listFiles(const fs::path& dir);
+
+// The stem as a frame number when it is all digits ("0007" -> 7).
+std::optional<long long> frameNumber(const fs::path& file);
+
+// The whole text file; errors name the file.
+std::string readText(const fs::path& file, std::string_view hint);
+
+// Lines that hold data: blank lines and '#' comments are skipped. `number` is 1-based.
+struct TextLine {
+    int number = 0;
+    std::string_view text;
+};
+std::vector<TextLine> dataLines(std::string_view text);
+// Every line, numbered, blank ones included (COLMAP's images.txt needs them).
+std::vector<TextLine> allLines(std::string_view text);
+std::vector<std::string_view> splitWhitespace(std::string_view text);
+
+// A whole token as a number; std::nullopt when it is not one. NaN and infinity
+// parse (so that the caller can say "not finite" rather than "not a number").
+std::optional<double> parseNumber(std::string_view token);
+// Every token as a finite number, or an error at file:line naming the token.
+std::vector<double> parseNumbers(const std::string& file, int line, const std::vector<std::string_view>& tokens,
+                                 std::string_view hint);
+
+// Camera-to-world pose from a translation and a quaternion; the quaternion is
+// normalised. Errors (non-finite, zero norm) at file:line.
+Pose poseFromQuaternion(const std::string& file, int line, double tx, double ty, double tz, double qx, double qy,
+                        double qz, double qw, std::string_view hint);
+Pose inverse(const Pose& pose);
+
+// Kinect default (fx = fy = 525 at 640 px wide, centred principal point).
+Intrinsics kinectDefault(int width, int height);
+// A guess for an unknown camera: fx = fy = 1.2 * width, centred principal point.
+Intrinsics guessedIntrinsics(int width, int height);
+// Scales intrinsics to an image of another size (same camera, resized image).
+Intrinsics scaleIntrinsics(const Intrinsics& in, int width, int height);
+// Options' intrinsics, checked, with width/height 0 meaning "the images' size".
+Intrinsics userIntrinsics(const Intrinsics& given, int width, int height);
+void checkDepthScale(double scale, const std::string& from);
+
+// The image must exist and have a signature OpenCV recognises (a cheap check
+// reading the file's first bytes). `what` names its role ("colour image").
+void checkImageFile(const fs::path& file, std::string_view what, std::string_view hint);
+
+// Decoded images; errors name the file.
+cv::Mat readColorImage(const std::string& file);
+cv::Mat readDepthImage(const std::string& file);  // CV_16U or CV_32F, one channel
+cv::Mat readMaskImage(const std::string& file);   // CV_16U, one channel (8-bit masks are widened)
+
+// A frame's images as stored, decoded, with depth and mask sizes checked
+// against the colour image (errors name the file and both sizes).
+struct RawFrame {
+    cv::Mat color;      // CV_8UC3
+    cv::Mat depth;      // CV_16U or CV_32F, empty without depth
+    cv::Mat instances;  // CV_16U, empty without masks
+};
+RawFrame readRawFrame(const CaptureFrame& frame);
+
+// Intrinsics for an image of width x height: scaled when they were given for
+// another size with the same aspect ratio, else an error naming the image.
+Intrinsics fitIntrinsics(const Intrinsics& in, int width, int height, const std::string& imageFile,
+                         std::string_view source);
+
+// camera.json of rgbd (and TUM) captures: {width,height,fx,fy,cx,cy,depth_scale}.
+struct CameraJson {
+    Intrinsics intrinsics;
+    std::optional<double> depthScale;
+};
+CameraJson readCameraJson(const fs::path& file, std::string_view hint);
+
+// Keeps the first time of every 1/fps step: a time is taken when it reaches the
+// next target minus `tolerance`. fps <= 0 keeps every time.
+class Sampler {
+public:
+    Sampler(double fps, double tolerance) : step_(fps > 0 ? 1.0 / fps : 0), tolerance_(tolerance) {}
+    bool take(double time);
+
+private:
+    double step_;
+    double tolerance_;
+    std::optional<double> next_;
+};
+
+// One reader per layout. `dir` is the folder (or file) the layout was found in.
+Capture readRgbd(const fs::path& dir, const CaptureOptions& options);
+Capture readTum(const fs::path& dir, const CaptureOptions& options);
+Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& options);
+Capture readColmap(const fs::path& modelDir, const CaptureOptions& options);
+Capture readImageFolder(const fs::path& dir, const std::vector<fs::path>& images, const CaptureOptions& options);
+Capture readVideo(const fs::path& file, const CaptureOptions& options);
+
+// The COLMAP model files in `dir` ("bin" or "txt"), or std::nullopt.
+std::optional<std::string> colmapModelFormat(const fs::path& dir);
+
+}  // namespace smql::ingest::capture_detail

@@ -1,0 +1,147 @@
+// Captures without poses: a folder of images, or a video file decoded to PNGs.
+#include <cmath>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "engine/error.hpp"
+#include "ingest/capture/capture_detail.hpp"
+
+namespace smql::ingest::capture_detail {
+
+Capture readImageFolder(const fs::path& dir, const std::vector<fs::path>& images, const CaptureOptions& options) {
+    Capture capture;
+    capture.layout = "images";
+    capture.metric = false;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        checkImageFile(images[i], "image", kImagesHint);
+        CaptureFrame frame;
+        frame.index = static_cast<int>(i);
+        frame.time = options.fps > 0 ? i / options.fps : static_cast<double>(i);
+        frame.colorPath = images[i].string();
+        capture.frames.push_back(std::move(frame));
+    }
+    RawFrame first = readRawFrame(capture.frames.front());
+    const int width = first.color.cols, height = first.color.rows;
+    if (options.intrinsics) {
+        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
+        fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath, "the intrinsics option");
+    } else {
+        capture.intrinsics = guessedIntrinsics(width, height);
+        capture.notes.push_back(fmt::format(
+            "{}: the camera is unknown: intrinsics guessed as fx = fy = 1.2 x width = {:g} with a centred principal "
+            "point; give the intrinsics for better geometry",
+            dir.string(), capture.intrinsics.fx));
+    }
+    if (options.depthScale) capture.depthScale = *options.depthScale;
+    return capture;
+}
+
+namespace {
+
+fs::path makeWorkDirectory(const CaptureOptions& options, std::vector<std::string>& notes) {
+    std::error_code ec;
+    if (!options.workDirectory.empty()) {
+        fs::path dir = options.workDirectory;
+        fs::create_directories(dir, ec);
+        if (ec || !fs::is_directory(dir, ec))
+            throw Error(ErrorKind::Usage,
+                        fmt::format("{}: cannot create the work folder for decoded video frames: {}", dir.string(),
+                                    ec ? ec.message() : "not a folder"));
+        return dir;
+    }
+    fs::path base = fs::temp_directory_path(ec);
+    if (ec) base = "/tmp";
+    std::string pattern = (base / "smql-video-XXXXXX").string();
+    if (!mkdtemp(pattern.data()))
+        throw Error(ErrorKind::Usage, fmt::format("{}: cannot create a temporary folder for decoded video frames: {}",
+                                                  base.string(), std::strerror(errno)));
+    notes.push_back(fmt::format("decoded video frames written to {} (remove it when done, or choose the folder with "
+                                "the work-directory option)",
+                                pattern));
+    return pattern;
+}
+
+}  // namespace
+
+Capture readVideo(const fs::path& file, const CaptureOptions& options) {
+    Capture capture;
+    capture.layout = "video";
+    capture.metric = false;
+    const std::string path = file.string();
+
+    cv::VideoCapture video;
+    try {
+        // FFmpeg first: it reads nearly everything, and the other back-ends are noisy when they fail.
+        if (!video.open(path, cv::CAP_FFMPEG)) video.open(path, cv::CAP_ANY);
+    } catch (const cv::Exception& e) {
+        fail(path, fmt::format("cannot open the video: {}", e.err), kVideoHint);
+    }
+    if (!video.isOpened())
+        fail(path, "not a video OpenCV can open (unknown format, missing decoder or damaged file)", kVideoHint);
+
+    double containerFps = video.get(cv::CAP_PROP_FPS);
+    if (!std::isfinite(containerFps) || containerFps <= 0 || containerFps > 1000) {
+        capture.notes.push_back(
+            fmt::format("{}: the container gives no frame rate ({}): 30 frames per second assumed", path, containerFps));
+        containerFps = 30;
+    }
+
+    fs::path workDir = makeWorkDirectory(options, capture.notes);
+    Sampler sampler(options.fps, 0.5 / containerFps);
+    cv::Mat image, written;
+    cv::Size nativeSize;
+    long long number = 0;
+    try {
+        for (; video.grab(); ++number) {
+            double time = number / containerFps;
+            if (!sampler.take(time)) continue;
+            if (!video.retrieve(image) || image.empty())
+                fail(path, fmt::format("cannot decode frame {} (at {:.2f} s)", number, time), kVideoHint);
+            if (image.channels() == 1)
+                cv::cvtColor(image, image, cv::COLOR_GRAY2BGR);
+            else if (image.channels() == 4)
+                cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
+            if (nativeSize.empty()) nativeSize = image.size();
+            if (options.workingWidth > 0 && image.cols > options.workingWidth) {
+                int height = std::max(1, static_cast<int>(std::lround(
+                                             static_cast<double>(image.rows) * options.workingWidth / image.cols)));
+                cv::resize(image, written, cv::Size(options.workingWidth, height), 0, 0, cv::INTER_AREA);
+            } else {
+                written = image;
+            }
+            CaptureFrame frame;
+            frame.index = static_cast<int>(capture.frames.size());
+            frame.time = time;
+            frame.colorPath = (workDir / fmt::format("frame_{:06d}.png", frame.index)).string();
+            if (!cv::imwrite(frame.colorPath, written))
+                throw Error(ErrorKind::Usage, fmt::format("{}: cannot write a decoded video frame", frame.colorPath));
+            capture.frames.push_back(std::move(frame));
+        }
+    } catch (const cv::Exception& e) {
+        fail(path, fmt::format("decoding failed at frame {}: {}", number, e.err), kVideoHint);
+    }
+    if (capture.frames.empty()) fail(path, "no frame could be decoded from the video", kVideoHint);
+
+    cv::Mat first = readColorImage(capture.frames.front().colorPath);
+    if (options.intrinsics) {
+        Intrinsics given = userIntrinsics(*options.intrinsics, nativeSize.width, nativeSize.height);
+        given = fitIntrinsics(given, nativeSize.width, nativeSize.height, path, "the intrinsics option");
+        capture.intrinsics = scaleIntrinsics(given, first.cols, first.rows);
+    } else {
+        capture.intrinsics = guessedIntrinsics(first.cols, first.rows);
+        capture.notes.push_back(fmt::format(
+            "{}: the camera is unknown: intrinsics guessed as fx = fy = 1.2 x width with a centred principal point; "
+            "give the intrinsics for better geometry",
+            path));
+    }
+    if (options.depthScale) capture.depthScale = *options.depthScale;
+    return capture;
+}
+
+}  // namespace smql::ingest::capture_detail

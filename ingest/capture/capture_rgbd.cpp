@@ -1,0 +1,362 @@
+// RGB-D captures: our rgbd folder (color/ depth/ pose.txt) and the TUM RGB-D
+// benchmark layout (rgb.txt depth.txt groundtruth.txt).
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "ingest/capture/capture_detail.hpp"
+#include "ingest/import/json_field.hpp"
+
+namespace smql::ingest::capture_detail {
+
+namespace {
+
+using import::detail::Field;
+using import::detail::JsonSource;
+
+double frameTime(int index, double fps) { return fps > 0 ? index / fps : index; }
+
+bool pathExists(const fs::path& path) {
+    std::error_code ec;
+    return fs::exists(path, ec);
+}
+
+// Images named by frame number in `dir`, in numeric order.
+std::vector<std::pair<long long, fs::path>> numberedImages(const fs::path& dir, std::string_view what,
+                                                           std::vector<std::string>& notes) {
+    std::vector<std::pair<long long, fs::path>> out;
+    std::vector<std::string> ignored;
+    for (const fs::path& file : listFiles(dir)) {
+        if (std::optional<long long> number = frameNumber(file))
+            out.emplace_back(*number, file);
+        else
+            ignored.push_back(file.filename().string());
+    }
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 1; i < out.size(); ++i)
+        if (out[i].first == out[i - 1].first)
+            fail(out[i].second.string(),
+                 fmt::format("two {}s for frame {}: {} and {}", what, out[i].first,
+                             out[i - 1].second.filename().string(), out[i].second.filename().string()),
+                 kRgbdHint);
+    if (!ignored.empty())
+        notes.push_back(fmt::format("{}: ignored {} file(s) not named by a frame number ({}{})", dir.string(),
+                                    ignored.size(), ignored.front(), ignored.size() > 1 ? ", ..." : ""));
+    return out;
+}
+
+std::vector<Pose> readPoseFile(const fs::path& file) {
+    std::string text = readText(file, kRgbdHint);
+    std::vector<Pose> poses;
+    for (const TextLine& line : dataLines(text)) {
+        std::vector<std::string_view> tokens = splitWhitespace(line.text);
+        if (tokens.size() != 7)
+            failAt(file.string(), line.number,
+                   fmt::format("expected 7 numbers (tx ty tz qx qy qz qw), got {}", tokens.size()), kRgbdHint);
+        std::vector<double> v = parseNumbers(file.string(), line.number, tokens, kRgbdHint);
+        poses.push_back(poseFromQuaternion(file.string(), line.number, v[0], v[1], v[2], v[3], v[4], v[5], v[6],
+                                           kRgbdHint));
+    }
+    return poses;
+}
+
+// A JSON file the capture names (labels, detections): it must at least parse.
+std::string checkedJson(const fs::path& file, std::string_view hint) {
+    import::detail::parseJsonFile(JsonSource{file.string(), std::string(hint)});
+    return file.string();
+}
+
+}  // namespace
+
+CameraJson readCameraJson(const fs::path& file, std::string_view hint) {
+    JsonSource source{file.string(), std::string(hint)};
+    import::detail::Json json = import::detail::parseJsonFile(source);
+    Field root(json, source);
+    root.allowOnly({"width", "height", "fx", "fy", "cx", "cy", "depth_scale"});
+    CameraJson out;
+    auto positiveInt = [&](std::string_view key) {
+        Field f = root.at(key);
+        std::int64_t v = f.integer();
+        if (v <= 0 || v > 100000) f.fail(fmt::format("expected a positive number of pixels, got {}", v));
+        return static_cast<int>(v);
+    };
+    auto positive = [&](const Field& f) {
+        double v = f.number();
+        if (v <= 0) f.fail(fmt::format("expected a positive number, got {}", v));
+        return v;
+    };
+    out.intrinsics.width = positiveInt("width");
+    out.intrinsics.height = positiveInt("height");
+    out.intrinsics.fx = positive(root.at("fx"));
+    out.intrinsics.fy = positive(root.at("fy"));
+    out.intrinsics.cx = root.at("cx").number();
+    out.intrinsics.cy = root.at("cy").number();
+    if (std::optional<Field> scale = root.find("depth_scale")) out.depthScale = positive(*scale);
+    return out;
+}
+
+Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
+    Capture capture;
+    capture.layout = "rgbd";
+    capture.metric = true;
+    const fs::path colorDir = dir / "color", depthDir = dir / "depth", instanceDir = dir / "instance";
+    const fs::path poseFile = dir / "pose.txt", cameraFile = dir / "camera.json";
+
+    auto colors = numberedImages(colorDir, "colour image", capture.notes);
+    if (colors.empty())
+        fail(colorDir.string(), "no frames: expected images named by frame number (1.png, 2.png...)", kRgbdHint);
+    auto depthList = numberedImages(depthDir, "depth image", capture.notes);
+    std::map<long long, fs::path> depths(depthList.begin(), depthList.end());
+    std::map<long long, fs::path> masks;
+    bool hasMasks = fs::is_directory(instanceDir);
+    if (hasMasks) {
+        auto maskList = numberedImages(instanceDir, "instance mask", capture.notes);
+        masks.insert(maskList.begin(), maskList.end());
+    }
+
+    if (!pathExists(poseFile))
+        fail(poseFile.string(), "missing: an rgbd capture needs one camera pose per frame", kRgbdHint);
+    std::vector<Pose> poses = readPoseFile(poseFile);
+    if (poses.size() < colors.size())
+        fail(poseFile.string(),
+             fmt::format("{} pose line(s) for {} frames: line i holds the pose of the i-th frame in frame-number order",
+                         poses.size(), colors.size()),
+             kRgbdHint);
+    if (poses.size() > colors.size())
+        capture.notes.push_back(fmt::format("{} has {} pose lines for {} frames: the extra lines are ignored",
+                                            poseFile.string(), poses.size(), colors.size()));
+
+    for (std::size_t i = 0; i < colors.size(); ++i) {
+        const auto& [number, colorPath] = colors[i];
+        auto depth = depths.find(number);
+        if (depth == depths.end())
+            fail(depthDir.string(), fmt::format("no depth image for frame {} ({})", number, colorPath.string()),
+                 kRgbdHint);
+        checkImageFile(colorPath, "colour image", kRgbdHint);
+        checkImageFile(depth->second, "depth image", kRgbdHint);
+        CaptureFrame frame;
+        frame.index = static_cast<int>(i);
+        frame.time = frameTime(frame.index, options.fps);
+        frame.colorPath = colorPath.string();
+        frame.depthPath = depth->second.string();
+        if (hasMasks) {
+            auto mask = masks.find(number);
+            if (mask == masks.end())
+                fail(instanceDir.string(),
+                     fmt::format("no instance mask for frame {} ({}): with instance/, every frame needs one", number,
+                                 colorPath.string()),
+                     kRgbdHint);
+            checkImageFile(mask->second, "instance mask", kRgbdHint);
+            frame.instancePath = mask->second.string();
+        }
+        frame.pose = poses[i];
+        capture.frames.push_back(std::move(frame));
+    }
+    if (depths.size() > colors.size())
+        capture.notes.push_back(fmt::format("{}: {} depth image(s) without a colour image are ignored",
+                                            depthDir.string(), depths.size() - colors.size()));
+
+    if (hasMasks) {
+        if (pathExists(dir / "labels.json"))
+            capture.labelsPath = checkedJson(dir / "labels.json", "labels.json maps instance ids to categories");
+        else
+            capture.notes.push_back(fmt::format("{} has instance masks but no labels.json: the masks have no categories",
+                                                dir.string()));
+    }
+    if (pathExists(dir / "detections.json"))
+        capture.detectionsPath =
+            checkedJson(dir / "detections.json", "detections.json holds COCO-results style detections");
+
+    std::optional<CameraJson> camera;
+    if (pathExists(cameraFile)) camera = readCameraJson(cameraFile, kRgbdHint);
+
+    RawFrame first = readRawFrame(capture.frames.front());
+    const int width = first.color.cols, height = first.color.rows;
+    if (options.intrinsics) {
+        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
+    } else if (camera) {
+        capture.intrinsics = camera->intrinsics;
+    } else {
+        capture.intrinsics = kinectDefault(width, height);
+        capture.notes.push_back(fmt::format(
+            "no camera.json in {}: using the default intrinsics of a Kinect (fx = fy = {:g}, cx = {:g}, cy = {:g} for "
+            "{}x{}); add camera.json or give the intrinsics for exact geometry",
+            dir.string(), capture.intrinsics.fx, capture.intrinsics.cx, capture.intrinsics.cy, width, height));
+    }
+    fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath,
+                  options.intrinsics ? "the intrinsics option" : cameraFile.string());
+    capture.depthScale = options.depthScale ? *options.depthScale
+                         : camera && camera->depthScale ? *camera->depthScale
+                                                        : 1000.0;
+    return capture;
+}
+
+// ---------------------------------------------------------------------------
+// TUM RGB-D
+
+namespace {
+
+constexpr double kTumMaxDt = 0.02;  // seconds, for depth association and ground truth
+
+struct Stamped {
+    double time = 0;
+    std::string file;
+};
+
+std::vector<Stamped> readStampedList(const fs::path& file) {
+    std::string text = readText(file, kTumHint);
+    std::vector<Stamped> out;
+    for (const TextLine& line : dataLines(text)) {
+        std::vector<std::string_view> tokens = splitWhitespace(line.text);
+        if (tokens.size() != 2)
+            failAt(file.string(), line.number, fmt::format("expected 'timestamp file', got {} values", tokens.size()),
+                   kTumHint);
+        double time = parseNumbers(file.string(), line.number, {tokens[0]}, kTumHint)[0];
+        out.push_back(Stamped{time, std::string(tokens[1])});
+    }
+    std::stable_sort(out.begin(), out.end(), [](const Stamped& a, const Stamped& b) { return a.time < b.time; });
+    return out;
+}
+
+struct PoseSample {
+    double time = 0;
+    Eigen::Vector3d position;
+    Eigen::Quaterniond rotation;
+};
+
+std::vector<PoseSample> readGroundTruth(const fs::path& file) {
+    std::string text = readText(file, kTumHint);
+    std::vector<PoseSample> out;
+    for (const TextLine& line : dataLines(text)) {
+        std::vector<std::string_view> tokens = splitWhitespace(line.text);
+        if (tokens.size() != 8)
+            failAt(file.string(), line.number,
+                   fmt::format("expected 8 numbers (timestamp tx ty tz qx qy qz qw), got {}", tokens.size()), kTumHint);
+        std::vector<double> v = parseNumbers(file.string(), line.number, tokens, kTumHint);
+        poseFromQuaternion(file.string(), line.number, v[1], v[2], v[3], v[4], v[5], v[6], v[7], kTumHint);  // checks
+        Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+        q.normalize();
+        out.push_back(PoseSample{v[0], Eigen::Vector3d(v[1], v[2], v[3]), q});
+    }
+    std::stable_sort(out.begin(), out.end(),
+                     [](const PoseSample& a, const PoseSample& b) { return a.time < b.time; });
+    return out;
+}
+
+Pose toPose(const Eigen::Vector3d& position, const Eigen::Quaterniond& rotation) {
+    Eigen::Matrix3d r = rotation.toRotationMatrix();
+    Pose pose;
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) pose.rotation[row * 3 + col] = r(row, col);
+    pose.translation = {position.x(), position.y(), position.z()};
+    return pose;
+}
+
+// Interpolated between the samples around `time` when both are within
+// kTumMaxDt, else the nearest sample within kTumMaxDt, else none.
+std::optional<Pose> poseAt(const std::vector<PoseSample>& samples, double time) {
+    auto after = std::lower_bound(samples.begin(), samples.end(), time,
+                                  [](const PoseSample& s, double t) { return s.time < t; });
+    if (after != samples.end() && after->time == time) return toPose(after->position, after->rotation);
+    if (after != samples.end() && after != samples.begin()) {
+        const PoseSample& before = *(after - 1);
+        if (time - before.time <= kTumMaxDt && after->time - time <= kTumMaxDt) {
+            double a = (time - before.time) / (after->time - before.time);
+            return toPose((1 - a) * before.position + a * after->position, before.rotation.slerp(a, after->rotation));
+        }
+    }
+    const PoseSample* nearest = nullptr;
+    if (after != samples.end()) nearest = &*after;
+    if (after != samples.begin() && (!nearest || time - (after - 1)->time < nearest->time - time))
+        nearest = &*(after - 1);
+    if (nearest && std::abs(nearest->time - time) <= kTumMaxDt) return toPose(nearest->position, nearest->rotation);
+    return std::nullopt;
+}
+
+}  // namespace
+
+Capture readTum(const fs::path& dir, const CaptureOptions& options) {
+    Capture capture;
+    capture.layout = "tum";
+    capture.metric = true;
+    const fs::path rgbFile = dir / "rgb.txt", depthFile = dir / "depth.txt", gtFile = dir / "groundtruth.txt";
+    const fs::path cameraFile = dir / "camera.json";
+
+    std::vector<Stamped> rgb = readStampedList(rgbFile);
+    if (rgb.empty()) fail(rgbFile.string(), "no frames listed", kTumHint);
+    if (!pathExists(depthFile)) fail(depthFile.string(), "missing: a TUM capture needs depth.txt beside rgb.txt", kTumHint);
+    std::vector<Stamped> depth = readStampedList(depthFile);
+    std::vector<PoseSample> groundTruth;
+    if (pathExists(gtFile))
+        groundTruth = readGroundTruth(gtFile);
+    else
+        capture.notes.push_back(fmt::format("{} not found: the frames have no poses", gtFile.string()));
+
+    // Each rgb frame with the nearest depth image within kTumMaxDt; the others are dropped.
+    std::vector<std::pair<const Stamped*, const Stamped*>> pairs;
+    for (const Stamped& colour : rgb) {
+        auto after = std::lower_bound(depth.begin(), depth.end(), colour.time,
+                                      [](const Stamped& s, double t) { return s.time < t; });
+        const Stamped* best = nullptr;
+        if (after != depth.end()) best = &*after;
+        if (after != depth.begin() && (!best || colour.time - (after - 1)->time < best->time - colour.time))
+            best = &*(after - 1);
+        if (best && std::abs(best->time - colour.time) <= kTumMaxDt) pairs.emplace_back(&colour, best);
+    }
+    if (pairs.empty())
+        fail(rgbFile.string(),
+             fmt::format("no rgb frame has a depth image within {} s in {}", kTumMaxDt, depthFile.string()), kTumHint);
+    if (pairs.size() < rgb.size())
+        capture.notes.push_back(fmt::format("{} of {} rgb frames have no depth image within {} s and are skipped",
+                                            rgb.size() - pairs.size(), rgb.size(), kTumMaxDt));
+
+    Sampler sampler(options.fps, 1e-3);
+    double start = pairs.front().first->time;
+    int withoutPose = 0;
+    for (const auto& [colour, depthImage] : pairs) {
+        if (!sampler.take(colour->time)) continue;
+        CaptureFrame frame;
+        frame.index = static_cast<int>(capture.frames.size());
+        frame.time = colour->time - start;
+        fs::path colorPath = dir / colour->file, depthPath = dir / depthImage->file;
+        checkImageFile(colorPath, "colour image", kTumHint);
+        checkImageFile(depthPath, "depth image", kTumHint);
+        frame.colorPath = colorPath.string();
+        frame.depthPath = depthPath.string();
+        if (!groundTruth.empty()) frame.pose = poseAt(groundTruth, colour->time);
+        if (!frame.pose) ++withoutPose;
+        capture.frames.push_back(std::move(frame));
+    }
+    if (withoutPose > 0 && !groundTruth.empty())
+        capture.notes.push_back(fmt::format("{} of {} frames have no ground-truth pose within {} s in {}", withoutPose,
+                                            capture.frames.size(), kTumMaxDt, gtFile.string()));
+
+    std::optional<CameraJson> camera;
+    if (pathExists(cameraFile)) camera = readCameraJson(cameraFile, kTumHint);
+    RawFrame first = readRawFrame(capture.frames.front());
+    const int width = first.color.cols, height = first.color.rows;
+    if (options.intrinsics) {
+        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
+    } else if (camera) {
+        capture.intrinsics = camera->intrinsics;
+    } else {
+        capture.intrinsics = kinectDefault(width, height);
+        capture.notes.push_back(fmt::format(
+            "TUM capture without camera.json: using the default intrinsics fx = fy = {:g}, cx = {:g}, cy = {:g} "
+            "(the TUM ROS default for {}x{}); give the intrinsics of the sequence's camera (freiburg1/2/3) for exact "
+            "geometry",
+            capture.intrinsics.fx, capture.intrinsics.cx, capture.intrinsics.cy, width, height));
+    }
+    fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath,
+                  options.intrinsics ? "the intrinsics option" : cameraFile.string());
+    capture.depthScale = options.depthScale ? *options.depthScale
+                         : camera && camera->depthScale ? *camera->depthScale
+                                                        : 5000.0;
+    return capture;
+}
+
+}  // namespace smql::ingest::capture_detail

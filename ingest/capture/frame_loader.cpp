@@ -1,0 +1,98 @@
+#include "ingest/capture/frame_loader.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+
+#include "engine/error.hpp"
+#include "ingest/capture/capture_detail.hpp"
+
+namespace smql::ingest {
+
+using namespace capture_detail;
+
+namespace capture_detail {
+
+RawFrame readRawFrame(const CaptureFrame& frame) {
+    RawFrame raw;
+    raw.color = readColorImage(frame.colorPath);
+    auto checkSize = [&](const cv::Mat& image, const std::string& file, std::string_view what) {
+        if (image.size() != raw.color.size())
+            fail(file, fmt::format("{} is {}x{} but the colour image {} is {}x{}", what, image.cols, image.rows,
+                                   frame.colorPath, raw.color.cols, raw.color.rows));
+    };
+    if (!frame.depthPath.empty()) {
+        raw.depth = readDepthImage(frame.depthPath);
+        checkSize(raw.depth, frame.depthPath, "the depth image");
+    }
+    if (!frame.instancePath.empty()) {
+        raw.instances = readMaskImage(frame.instancePath);
+        checkSize(raw.instances, frame.instancePath, "the instance mask");
+    }
+    return raw;
+}
+
+Intrinsics fitIntrinsics(const Intrinsics& in, int width, int height, const std::string& imageFile,
+                         std::string_view source) {
+    if (in.width == width && in.height == height) return in;
+    // The same camera with the image resized (COLMAP run on full-size photos,
+    // nerfstudio's downscaled images/): same aspect ratio within a pixel.
+    if (in.width > 0 && in.height > 0 &&
+        std::abs(static_cast<double>(in.height) * width / in.width - height) <= 1.0)
+        return scaleIntrinsics(in, width, height);
+    fail(imageFile, fmt::format("the image is {}x{} but the intrinsics ({}) are for {}x{}, another aspect ratio", width,
+                                height, source, in.width, in.height));
+}
+
+}  // namespace capture_detail
+
+FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int workingWidth) {
+    RawFrame raw = readRawFrame(frame);
+    FrameImages out;
+    const int width = raw.color.cols, height = raw.color.rows;
+    const Intrinsics& stored = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
+    if (capture.layout == "images" && !frame.intrinsics &&
+        std::abs(static_cast<double>(stored.height) * width / std::max(1, stored.width) - height) > 1.0) {
+        // A folder of photos may mix portrait and landscape: the guess follows each image.
+        out.intrinsics = guessedIntrinsics(width, height);
+    } else {
+        out.intrinsics = fitIntrinsics(stored, width, height, frame.colorPath, "the capture's");
+    }
+
+    if (!raw.depth.empty()) {
+        if (raw.depth.depth() == CV_16U) {
+            if (!(capture.depthScale > 0)) fail(frame.depthPath, "the capture's depth scale is not positive");
+            raw.depth.convertTo(out.depth, CV_32F, 1.0 / capture.depthScale);
+        } else {
+            out.depth = raw.depth.clone();  // already metres
+            cv::patchNaNs(out.depth, 0);
+            cv::max(out.depth, 0.0, out.depth);
+            out.depth.setTo(0, out.depth == std::numeric_limits<float>::infinity());
+        }
+    }
+    out.instances = raw.instances;
+
+    if (workingWidth > 0 && width > workingWidth) {
+        int newHeight = std::max(1, static_cast<int>(std::lround(static_cast<double>(height) * workingWidth / width)));
+        cv::Size size(workingWidth, newHeight);
+        cv::resize(raw.color, out.color, size, 0, 0, cv::INTER_AREA);
+        if (!out.depth.empty()) {
+            cv::Mat small;
+            cv::resize(out.depth, small, size, 0, 0, cv::INTER_NEAREST);
+            out.depth = small;
+        }
+        if (!out.instances.empty()) {
+            cv::Mat small;
+            cv::resize(out.instances, small, size, 0, 0, cv::INTER_NEAREST);
+            out.instances = small;
+        }
+        out.intrinsics = scaleIntrinsics(out.intrinsics, workingWidth, newHeight);
+    } else {
+        out.color = raw.color;
+    }
+    return out;
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,349 @@
+#include "ingest/geometry/alignment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "ingest/geometry/pcl_ops.hpp"
+#include "ingest/geometry/robust.hpp"
+
+namespace smql::ingest {
+
+using detail::fromEigen;
+using detail::toEigen;
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+// Typical distance from a hand-held camera to the surfaces it sees indoors:
+// turns metre thresholds into the units of a scale-free cloud before its scale is known.
+constexpr double kTypicalViewingDistance = 2.5;
+
+std::string fixed(double value, int digits = 2) {
+    std::ostringstream out;
+    out.setf(std::ios::fixed);
+    out.precision(digits);
+    out << value;
+    return out.str();
+}
+
+Eigen::Matrix3d rotationOf(const Pose& pose) {
+    return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(pose.rotation.data());
+}
+
+// Cloud units per metre, before the scale is known.
+double unitEstimate(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options,
+                    std::vector<std::string>& notes) {
+    if (options.scale) return 1.0 / *options.scale;
+    if (options.metric) return 1.0;
+    std::vector<double> distances;
+    const std::size_t step = std::max<std::size_t>(1, world.size() / 20000);
+    for (std::size_t i = 0; i < world.size(); i += step) {
+        Eigen::Vector3d p = toEigen(world.points[i]);
+        double best = std::numeric_limits<double>::max();
+        if (world.frames[i] < cameras.size()) {
+            best = (p - toEigen(cameras[world.frames[i]].translation)).norm();
+        } else {
+            for (const auto& camera : cameras) best = std::min(best, (p - toEigen(camera.translation)).norm());
+        }
+        if (best < std::numeric_limits<double>::max()) distances.push_back(best);
+    }
+    if (distances.empty()) {
+        notes.push_back("scale-free capture without cameras: thresholds taken in cloud units");
+        return 1.0;
+    }
+    double unit = detail::median(distances) / kTypicalViewingDistance;
+    return unit > 0 ? unit : 1.0;
+}
+
+struct HorizontalPlane {
+    Plane plane;
+    double height = 0;  // -offset: the plane's height along its (up-pointing) normal
+    double level = 0;   // median height of its inliers along a common reference normal: comparable between planes
+    std::vector<std::size_t> inliers;
+};
+
+// Least-squares plane through the points (smallest principal axis), normal along `up`; its level is
+// measured along `reference`.
+HorizontalPlane fitHorizontal(const PointCloud& world, std::vector<std::size_t> inliers, const Eigen::Vector3d& up,
+                              const Eigen::Vector3d& reference) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (auto i : inliers) mean += toEigen(world.points[i]);
+    mean /= static_cast<double>(inliers.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (auto i : inliers) {
+        Eigen::Vector3d d = toEigen(world.points[i]) - mean;
+        covariance += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    Eigen::Vector3d n = solver.eigenvectors().col(0).normalized();
+    if (n.dot(up) < 0) n = -n;
+    std::vector<double> heights, levels;
+    for (auto i : inliers) {
+        heights.push_back(n.dot(toEigen(world.points[i])));
+        levels.push_back(reference.dot(toEigen(world.points[i])));
+    }
+    HorizontalPlane out;
+    out.height = detail::median(std::move(heights));
+    out.level = detail::median(std::move(levels));
+    out.plane = {fromEigen(n), -out.height, inliers.size()};
+    out.inliers = std::move(inliers);
+    return out;
+}
+
+// Heading: the dominant direction, modulo 90 degrees, of the horizontal normals of flat vertical surfaces,
+// in the levelled frame. Returns radians in [-pi/4, pi/4) or nullopt with too few votes.
+std::optional<double> manhattanHeading(const PointCloud& world, const Eigen::Matrix3d& level, double unit,
+                                       const AlignOptions& options, std::size_t& votes) {
+    auto normals = pcl_ops::estimateNormals(world.points, options.normalRadius * unit, 5);
+    const double maxVertical = std::sin(options.verticalSurfaceTolerance * kDegree);
+    constexpr int kBins = 90;  // one degree each
+    std::vector<double> histogram(kBins, 0.0);
+    std::vector<double> angles;  // theta mod 90 deg, in [0, 90) degrees
+    for (const auto& n : normals) {
+        if (n.curvature > options.maxCurvature) continue;
+        Eigen::Vector3d v = level * toEigen(n.normal);
+        if (v.squaredNorm() < 0.5 || std::abs(v.z()) > maxVertical) continue;
+        double degrees = std::atan2(v.y(), v.x()) / kDegree;
+        degrees = std::fmod(std::fmod(degrees, 90.0) + 90.0, 90.0);
+        angles.push_back(degrees);
+        histogram[static_cast<int>(degrees) % kBins] += 1;
+    }
+    votes = angles.size();
+    if (votes < options.minHeadingVotes) return std::nullopt;
+    int peak = 0;
+    double best = -1;
+    for (int b = 0; b < kBins; ++b) {
+        double smoothed = 0;
+        for (int w = -2; w <= 2; ++w) smoothed += histogram[(b + w + kBins) % kBins] * (3 - std::abs(w));
+        if (smoothed > best) best = smoothed, peak = b;
+    }
+    // Refine: circular mean (period 90 deg, so on 4 theta) of the votes within 5 degrees of the peak.
+    double peakDegrees = peak + 0.5, sumCos = 0, sumSin = 0;
+    for (double a : angles) {
+        double gap = std::fmod(a - peakDegrees + 135.0, 90.0) - 45.0;
+        if (std::abs(gap) > 5.0) continue;
+        sumCos += std::cos(4 * a * kDegree);
+        sumSin += std::sin(4 * a * kDegree);
+    }
+    double heading = std::atan2(sumSin, sumCos) / 4;  // (-45, 45] degrees
+    if (heading >= std::numbers::pi / 4) heading -= std::numbers::pi / 2;
+    return heading;
+}
+
+}  // namespace
+
+double Plane::signedDistance(const model::Vec3& p) const {
+    return normal.x * p.x + normal.y * p.y + normal.z * p.z + offset;
+}
+
+model::Vec3 Alignment::apply(const model::Vec3& p) const {
+    const auto& m = transform;
+    return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+            m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
+}
+
+std::array<double, 9> Alignment::rotation() const {
+    std::array<double, 9> r{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r[i * 3 + j] = transform[i * 4 + j] / scale;
+    return r;
+}
+
+Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options) {
+    Alignment out;
+    auto& notes = out.notes;
+
+    // Up prior: cameras are held roughly upright, and a camera's y axis points down.
+    Eigen::Vector3d prior = Eigen::Vector3d::Zero();
+    for (const auto& camera : cameras) prior -= rotationOf(camera).col(1);
+    if (prior.norm() < 1e-9) {
+        prior = options.upPrior ? toEigen(*options.upPrior) : Eigen::Vector3d::UnitZ();
+        notes.push_back(cameras.empty() ? "up prior: no cameras, " + std::string(options.upPrior ? "given" : "+z")
+                                        : "up prior: cameras disagree, +z");
+    }
+    prior.normalize();
+
+    const double unit = unitEstimate(world, cameras, options, notes);
+
+    // Horizontal planes, largest first, by iterated RANSAC around the prior.
+    std::vector<std::size_t> remaining(world.size());
+    for (std::size_t i = 0; i < remaining.size(); ++i) remaining[i] = i;
+    const std::size_t minPlane =
+        std::max(options.minPlanePoints, static_cast<std::size_t>(options.minPlaneShare * world.size()));
+    pcl_ops::PlaneSearch search;
+    search.axis = fromEigen(prior);
+    search.constraint = pcl_ops::PlaneConstraint::NormalAlongAxis;
+    search.epsAngle = options.horizontalTolerance * kDegree;
+    search.distance = options.planeDistance * unit;
+    std::vector<HorizontalPlane> extracted;
+    for (int k = 0; k < options.maxHorizontalPlanes && remaining.size() >= minPlane; ++k) {
+        auto found = pcl_ops::segmentPlane(world.points, remaining, search);
+        if (!found || found->inliers.size() < minPlane) break;
+        std::vector<char> taken(world.size(), 0);
+        for (auto i : found->inliers) taken[i] = 1;
+        std::erase_if(remaining, [&](std::size_t i) { return taken[i] != 0; });
+        extracted.push_back(fitHorizontal(world, std::move(found->inliers), prior, prior));
+    }
+    // Levels along the strongest plane's normal: the prior may be tens of degrees off.
+    Eigen::Vector3d reference = prior;
+    std::size_t strongest = 0;
+    for (const auto& p : extracted)
+        if (p.inliers.size() > strongest) strongest = p.inliers.size(), reference = toEigen(p.plane.normal);
+    for (auto& p : extracted) {
+        std::vector<double> levels;
+        for (auto i : p.inliers) levels.push_back(reference.dot(toEigen(world.points[i])));
+        p.level = detail::median(std::move(levels));
+    }
+    // One surface can come out as several RANSAC planes (depth noise and small registration errors make a
+    // floor seen from several views a few centimetres thick): planes at the same level become one.
+    std::sort(extracted.begin(), extracted.end(), [](const auto& a, const auto& b) { return a.level < b.level; });
+    std::vector<HorizontalPlane> planes;
+    for (auto& p : extracted) {
+        if (!planes.empty() && p.level - planes.back().level <= options.sameLevel * unit &&
+            toEigen(p.plane.normal).dot(toEigen(planes.back().plane.normal)) >= std::cos(options.sameLevelAngle * kDegree)) {
+            auto merged = std::move(planes.back().inliers);
+            merged.insert(merged.end(), p.inliers.begin(), p.inliers.end());
+            planes.back() = fitHorizontal(world, std::move(merged), prior, reference);
+        } else {
+            planes.push_back(std::move(p));
+        }
+    }
+
+    auto cameraHeights = [&](const Eigen::Vector3d& n) {
+        std::vector<double> heights;
+        for (const auto& camera : cameras) heights.push_back(n.dot(toEigen(camera.translation)));
+        return heights;
+    };
+    const double clearance = options.cameraClearance * unit;
+
+    // Floor: the lowest large horizontal plane below every camera.
+    const HorizontalPlane* floor = nullptr;
+    {
+        std::vector<const HorizontalPlane*> below;
+        for (const auto& p : planes) {
+            auto heights = cameraHeights(toEigen(p.plane.normal));
+            if (heights.empty() || p.height < *std::min_element(heights.begin(), heights.end()) - clearance)
+                below.push_back(&p);
+        }
+        std::size_t biggest = 0;
+        for (const auto* p : below) biggest = std::max(biggest, p->plane.inliers);
+        for (const auto* p : below) {
+            if (static_cast<double>(p->plane.inliers) < options.largePlaneShare * static_cast<double>(biggest))
+                continue;
+            if (!floor || p->level < floor->level) floor = p;
+        }
+    }
+    Eigen::Vector3d up = prior;
+    if (floor) {
+        up = toEigen(floor->plane.normal);
+        out.floorHeight = floor->height;
+        out.floorFound = true;
+        out.floorInliers = floor->plane.inliers;
+        notes.push_back("floor: plane with " + std::to_string(floor->plane.inliers) + " of " +
+                        std::to_string(world.size()) + " points, " +
+                        fixed(std::acos(std::clamp(up.dot(prior), -1.0, 1.0)) / kDegree, 1) +
+                        " deg from the cameras' up");
+    } else {
+        std::vector<double> heights;
+        for (const auto& p : world.points) heights.push_back(prior.dot(toEigen(p)));
+        out.floorHeight = detail::quantile(heights, 0.02);
+        notes.push_back("floor: no horizontal plane below the cameras; up from the cameras, floor at the lowest 2% "
+                        "of points");
+    }
+    out.up = fromEigen(up);
+
+    // Ceiling: the largest horizontal plane above every camera, parallel to the floor.
+    const HorizontalPlane* ceiling = nullptr;
+    if (floor && !cameras.empty()) {
+        for (const auto& p : planes) {
+            auto heights = cameraHeights(toEigen(p.plane.normal));
+            double angle = std::acos(std::clamp(toEigen(p.plane.normal).dot(up), -1.0, 1.0));
+            if (p.height > *std::max_element(heights.begin(), heights.end()) + clearance &&
+                angle <= options.ceilingParallel * kDegree && (!ceiling || p.plane.inliers > ceiling->plane.inliers))
+                ceiling = &p;
+        }
+    }
+
+    // The ceiling's height above the floor, measured along the floor's normal.
+    double ceilingAbove = 0;
+    if (ceiling) {
+        std::vector<double> heights;
+        for (auto i : ceiling->inliers) heights.push_back(up.dot(toEigen(world.points[i])));
+        ceilingAbove = detail::median(std::move(heights)) - out.floorHeight;
+    }
+
+    // Level: floor normal -> +z. Then heading about +z.
+    Eigen::Matrix3d level = Eigen::Quaterniond::FromTwoVectors(up, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    std::size_t votes = 0;
+    auto heading = manhattanHeading(world, level, unit, options, votes);
+    if (heading) {
+        out.heading = -*heading;
+        notes.push_back("heading: walls at " + fixed(*heading / kDegree, 1) + " deg (mod 90) from " +
+                        std::to_string(votes) + " vertical-surface normals, turned to the x/y axes");
+    } else {
+        notes.push_back("heading: only " + std::to_string(votes) + " vertical-surface normals; left unchanged");
+    }
+    Eigen::Matrix3d rotation = Eigen::AngleAxisd(out.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix() * level;
+
+    // Scale.
+    if (options.scale) {
+        out.scale = *options.scale;
+        notes.push_back("scale: " + fixed(out.scale, 4) + " as given");
+    } else if (options.metric) {
+        out.scale = 1;
+        notes.push_back("scale: 1 (metric capture)");
+    } else if (ceiling && floor) {
+        out.scale = options.ceilingHeight / ceilingAbove;
+        notes.push_back("scale: floor-to-ceiling taken as " + fixed(options.ceilingHeight) + " m");
+    } else if (!cameras.empty()) {
+        std::vector<double> heights = cameraHeights(up);
+        for (auto& h : heights) h -= out.floorHeight;
+        double medianHeight = detail::median(heights);
+        if (medianHeight > 0) {
+            out.scale = options.cameraHeight / medianHeight;
+            notes.push_back("scale: median camera height taken as " + fixed(options.cameraHeight) + " m");
+        } else {
+            notes.push_back("scale: cameras not above the floor; left at 1");
+        }
+    } else {
+        notes.push_back("scale: no cameras and no ceiling; left at 1");
+    }
+    if (ceiling && floor) {
+        out.ceilingHeight = out.scale * ceilingAbove;
+        notes.push_back("ceiling: plane with " + std::to_string(ceiling->plane.inliers) + " points, " +
+                        fixed(*out.ceilingHeight) + " m above the floor");
+    }
+
+    Eigen::Matrix3d scaled = out.scale * rotation;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) out.transform[i * 4 + j] = scaled(i, j);
+    out.transform[3] = 0;
+    out.transform[7] = 0;
+    out.transform[11] = -out.scale * out.floorHeight;  // (R p).z = up . p, the floor's height
+    out.transform[12] = out.transform[13] = out.transform[14] = 0;
+    out.transform[15] = 1;
+    return out;
+}
+
+PointCloud transformed(const PointCloud& cloud, const Alignment& alignment) {
+    PointCloud out = cloud;
+    for (auto& p : out.points) p = alignment.apply(p);
+    return out;
+}
+
+Pose transformed(const Pose& pose, const Alignment& alignment) {
+    Pose out;
+    Eigen::Matrix3d r = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(alignment.rotation().data());
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> rotated = r * rotationOf(pose);
+    std::copy(rotated.data(), rotated.data() + 9, out.rotation.begin());
+    out.translation = alignment.apply(pose.translation);
+    return out;
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,73 @@
+// Metric alignment: turns a capture's world frame into smql's frame, where
+// the floor is z = 0, +z is up, the room's dominant walls run along x and y,
+// and units are metres (docs/ingest.md, "Geometry and metric alignment").
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "ingest/capture/capture.hpp"
+#include "ingest/geometry/point_cloud.hpp"
+
+namespace smql::ingest {
+
+// normal . p + offset = 0, unit normal.
+struct Plane {
+    model::Vec3 normal{0, 0, 1};
+    double offset = 0;
+    std::size_t inliers = 0;
+    double signedDistance(const model::Vec3& p) const;
+};
+
+// Every length here is in metres; for scale-free captures alignCapture first
+// converts them to the cloud's units with a rough unit estimate (docs/ingest.md).
+struct AlignOptions {
+    bool metric = true;             // Capture::metric: poses and points already in metres
+    std::optional<double> scale;    // metres per cloud unit, overriding the estimate (and 1 for metric)
+    double cameraHeight = 1.5;      // assumed median camera height above the floor (scale-free captures)
+    double ceilingHeight = 2.6;     // assumed floor-to-ceiling height (scale-free, ceiling found)
+    std::optional<model::Vec3> upPrior;  // used only when there are no cameras (default +z)
+
+    double planeDistance = 0.03;           // RANSAC inlier distance for floor and ceiling
+    double horizontalTolerance = 30;       // degrees a floor candidate may tilt from the up prior
+    int maxHorizontalPlanes = 6;           // horizontal planes extracted before choosing the floor
+    double minPlaneShare = 0.02;           // a horizontal plane needs this share of all points ...
+    std::size_t minPlanePoints = 100;      // ... and at least this many
+    double sameLevel = 0.1;                // planes whose inliers' median heights differ less are one surface ...
+    double sameLevelAngle = 5;             // ... when their normals are within this many degrees
+    double largePlaneShare = 0.25;         // "large": this share of the biggest candidate below the cameras
+    double cameraClearance = 0.2;          // the floor lies this far below every camera, the ceiling above
+    double ceilingParallel = 5;            // degrees between the ceiling's and the floor's normals
+
+    double normalRadius = 0.1;             // neighbourhood of the surface normals used for the heading
+    double verticalSurfaceTolerance = 15;  // degrees a normal may tilt from horizontal and still vote
+    double maxCurvature = 0.05;            // flatness a neighbourhood needs to vote
+    std::size_t minHeadingVotes = 50;      // fewer voting normals: heading 0
+};
+
+struct Alignment {
+    model::Transform transform = model::kIdentity;  // capture -> aligned: p' = scale * R * p + t
+    double scale = 1;                               // metres per capture unit
+    model::Vec3 up{0, 0, 1};                        // floor normal in the capture frame
+    double floorHeight = 0;                         // floor's height along `up`, capture frame and units
+    double heading = 0;                             // radians turned about +z after levelling
+    bool floorFound = false;
+    std::size_t floorInliers = 0;
+    std::optional<double> ceilingHeight;            // aligned frame (metres above the floor), when found
+    std::vector<std::string> notes;                 // how each choice was made, for SHOW SCENES and logs
+
+    model::Vec3 apply(const model::Vec3& p) const;
+    std::array<double, 9> rotation() const;         // R, row-major, without the scale
+};
+
+// Floor, heading and scale of a capture's world-frame cloud; `cameras` are
+// the capture's camera-to-world poses (may be empty).
+Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options = {});
+
+PointCloud transformed(const PointCloud& cloud, const Alignment& alignment);
+Pose transformed(const Pose& pose, const Alignment& alignment);
+
+}  // namespace smql::ingest

@@ -1,0 +1,32 @@
+// Class-agnostic objects from an aligned cloud: Euclidean clusters and the
+// upright boxes around them.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "ingest/geometry/point_cloud.hpp"
+
+namespace smql::ingest {
+
+// PCL EuclideanClusterExtraction (kd-tree): points chained by gaps of at most
+// `tolerance` metres form a cluster; clusters outside [minPoints, maxPoints]
+// are dropped. Index lists into `cloud` (sorted), largest cluster first.
+// Remove floor, ceiling and walls first (nonStructuralPoints in walls.hpp)
+// and pass the rest as `indices`; the overload without indices clusters all points.
+std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud,
+                                                        const std::vector<std::size_t>& indices, double tolerance,
+                                                        std::size_t minPoints, std::size_t maxPoints);
+std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud, double tolerance,
+                                                        std::size_t minPoints, std::size_t maxPoints);
+
+// An upright box around points (docs/ingest.md): height from the robust range
+// of z, yaw and footprint from the minimum-area rectangle of the xy points
+// after outliers are trimmed. The box's x axis runs along the longer side of
+// the footprint; yaw is in (-pi/2, pi/2]. Fewer than 3 points give a box of
+// size 0 at their mean.
+model::Box uprightBox(const std::vector<model::Vec3>& points);
+model::Box uprightBox(const PointCloud& cloud, const std::vector<std::size_t>& indices);
+
+}  // namespace smql::ingest

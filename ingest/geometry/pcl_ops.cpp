@@ -1,0 +1,130 @@
+// The one translation unit that includes PCL (see pcl_ops.hpp).
+#include "ingest/geometry/pcl_ops.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <pcl/ModelCoefficients.h>
+#include <pcl/PointIndices.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/method_types.h>
+#include <pcl/sample_consensus/model_types.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+#include <pcl/segmentation/sac_segmentation.h>
+
+namespace smql::ingest::pcl_ops {
+
+namespace {
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const std::vector<model::Vec3>& points) {
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+    cloud->points.reserve(points.size());
+    for (const auto& p : points)
+        cloud->points.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
+    cloud->width = static_cast<std::uint32_t>(cloud->points.size());
+    cloud->height = 1;
+    cloud->is_dense = true;
+    return cloud;
+}
+
+pcl::IndicesPtr toPclIndices(const std::vector<std::size_t>& indices) {
+    auto out = std::make_shared<pcl::Indices>();
+    out->reserve(indices.size());
+    for (auto i : indices) out->push_back(static_cast<pcl::index_t>(i));
+    return out;
+}
+
+}  // namespace
+
+std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points,
+                                       const std::vector<std::size_t>& indices, const PlaneSearch& search) {
+    if (indices.size() < 3) return std::nullopt;
+    auto cloud = toPcl(points);
+    pcl::SACSegmentation<pcl::PointXYZ> sac;  // fixed seed (12345): runs repeat
+    sac.setModelType(search.constraint == PlaneConstraint::NormalAlongAxis ? pcl::SACMODEL_PERPENDICULAR_PLANE
+                                                                            : pcl::SACMODEL_PARALLEL_PLANE);
+    sac.setMethodType(pcl::SAC_RANSAC);
+    sac.setAxis(Eigen::Vector3f(static_cast<float>(search.axis.x), static_cast<float>(search.axis.y),
+                                static_cast<float>(search.axis.z)));
+    sac.setEpsAngle(search.epsAngle);
+    sac.setDistanceThreshold(search.distance);
+    sac.setMaxIterations(search.maxIterations);
+    sac.setOptimizeCoefficients(search.optimise);
+    sac.setInputCloud(cloud);
+    sac.setIndices(toPclIndices(indices));
+    pcl::ModelCoefficients coefficients;
+    pcl::PointIndices inliers;
+    sac.segment(inliers, coefficients);
+    if (inliers.indices.empty() || coefficients.values.size() != 4) return std::nullopt;
+
+    double a = coefficients.values[0], b = coefficients.values[1], c = coefficients.values[2],
+           d = coefficients.values[3];
+    double norm = std::sqrt(a * a + b * b + c * c);
+    if (!(norm > 0)) return std::nullopt;
+    PlaneFound found;
+    found.normal = {a / norm, b / norm, c / norm};
+    found.offset = d / norm;
+    found.inliers.reserve(inliers.indices.size());
+    for (auto i : inliers.indices) found.inliers.push_back(static_cast<std::size_t>(i));
+    return found;
+}
+
+std::vector<std::vector<std::size_t>> euclideanClusters(const std::vector<model::Vec3>& points,
+                                                        const std::vector<std::size_t>& indices,
+                                                        double tolerance, std::size_t minPoints,
+                                                        std::size_t maxPoints) {
+    std::vector<std::vector<std::size_t>> clusters;
+    if (indices.empty()) return clusters;
+    auto cloud = toPcl(points);
+    auto tree = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
+    pcl::EuclideanClusterExtraction<pcl::PointXYZ> extraction;
+    extraction.setClusterTolerance(tolerance);
+    extraction.setMinClusterSize(static_cast<pcl::uindex_t>(std::max<std::size_t>(minPoints, 1)));
+    extraction.setMaxClusterSize(static_cast<pcl::uindex_t>(std::max(maxPoints, minPoints)));
+    extraction.setSearchMethod(tree);
+    extraction.setInputCloud(cloud);
+    extraction.setIndices(toPclIndices(indices));
+    std::vector<pcl::PointIndices> found;
+    extraction.extract(found);  // PCL returns them largest first
+    clusters.reserve(found.size());
+    for (const auto& cluster : found) {
+        std::vector<std::size_t> members(cluster.indices.begin(), cluster.indices.end());
+        std::sort(members.begin(), members.end());
+        clusters.push_back(std::move(members));
+    }
+    return clusters;
+}
+
+std::vector<SurfaceNormal> estimateNormals(const std::vector<model::Vec3>& points, double radius,
+                                           int minNeighbours) {
+    std::vector<SurfaceNormal> normals(points.size(), SurfaceNormal{{0, 0, 0}, 1});
+    if (points.empty()) return normals;
+    auto cloud = toPcl(points);
+    pcl::search::KdTree<pcl::PointXYZ> tree;
+    tree.setInputCloud(cloud);
+    pcl::Indices neighbours;
+    std::vector<float> distances;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        int found = tree.radiusSearch(cloud->points[i], radius, neighbours, distances);
+        if (found < std::max(minNeighbours, 3)) continue;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (auto j : neighbours) mean += Eigen::Vector3d(points[j].x, points[j].y, points[j].z);
+        mean /= found;
+        Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+        for (auto j : neighbours) {
+            Eigen::Vector3d d = Eigen::Vector3d(points[j].x, points[j].y, points[j].z) - mean;
+            covariance += d * d.transpose();
+        }
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+        double total = solver.eigenvalues().sum();
+        if (!(total > 0)) continue;
+        Eigen::Vector3d n = solver.eigenvectors().col(0);  // smallest eigenvalue first
+        normals[i] = {{n.x(), n.y(), n.z()}, solver.eigenvalues()(0) / total};
+    }
+    return normals;
+}
+
+}  // namespace smql::ingest::pcl_ops

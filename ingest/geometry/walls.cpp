@@ -1,0 +1,244 @@
+#include "ingest/geometry/walls.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include <Eigen/Eigenvalues>
+
+#include "ingest/geometry/pcl_ops.hpp"
+#include "ingest/geometry/robust.hpp"
+
+namespace smql::ingest {
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+
+struct Candidate {
+    Eigen::Vector2d normal;
+    double offset = 0;
+    std::vector<std::size_t> inliers;
+};
+
+double alongOf(const Eigen::Vector2d& normal, const model::Vec3& p) { return -normal.y() * p.x + normal.x() * p.y; }
+
+double offsetOf(const Eigen::Vector2d& normal, const PointCloud& cloud, const std::vector<std::size_t>& inliers) {
+    std::vector<double> offsets;
+    offsets.reserve(inliers.size());
+    for (auto i : inliers) offsets.push_back(-(normal.x() * cloud.points[i].x + normal.y() * cloud.points[i].y));
+    return detail::median(std::move(offsets));
+}
+
+// Least-squares vertical plane through the inliers: the smallest principal axis of their footprint.
+void refit(Candidate& c, const PointCloud& cloud) {
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (auto i : c.inliers) mean += Eigen::Vector2d(cloud.points[i].x, cloud.points[i].y);
+    mean /= static_cast<double>(c.inliers.size());
+    Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+    for (auto i : c.inliers) {
+        Eigen::Vector2d d = Eigen::Vector2d(cloud.points[i].x, cloud.points[i].y) - mean;
+        covariance += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(covariance);
+    Eigen::Vector2d n = solver.eigenvectors().col(0).normalized();
+    if (n.dot(c.normal) < 0) n = -n;
+    c.normal = n;
+    c.offset = offsetOf(n, cloud, c.inliers);
+}
+
+std::pair<double, double> alongSpan(const Candidate& c, const PointCloud& cloud) {
+    std::vector<double> along;
+    along.reserve(c.inliers.size());
+    for (auto i : c.inliers) along.push_back(alongOf(c.normal, cloud.points[i]));
+    return detail::robustRange(std::move(along));
+}
+
+// Splits a plane's inliers where they leave a gap wider than maxGap along the plane.
+std::vector<Candidate> splitAtGaps(const Candidate& plane, const PointCloud& cloud, double maxGap) {
+    std::vector<std::pair<double, std::size_t>> order;
+    order.reserve(plane.inliers.size());
+    for (auto i : plane.inliers) order.emplace_back(alongOf(plane.normal, cloud.points[i]), i);
+    std::sort(order.begin(), order.end());
+    std::vector<Candidate> runs;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        if (k == 0 || order[k].first - order[k - 1].first > maxGap) runs.push_back({plane.normal, plane.offset, {}});
+        runs.back().inliers.push_back(order[k].second);
+    }
+    return runs;
+}
+
+}  // namespace
+
+model::Box WallSegment::box() const {
+    model::Vec3 d = direction();
+    double a = (along0 + along1) / 2;
+    model::Box b;
+    b.center = {-offset * normal.x + a * d.x, -offset * normal.y + a * d.y, (z0 + z1) / 2};
+    b.size = {along1 - along0, thickness, z1 - z0};
+    b.yaw = std::atan2(d.y, d.x);
+    return b;
+}
+
+std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<model::Vec3>& cameras,
+                                   const WallOptions& options) {
+    std::vector<std::size_t> above;
+    for (std::size_t i = 0; i < aligned.size(); ++i)
+        if (aligned.points[i].z > options.minPointHeight) above.push_back(i);
+    const std::size_t views = std::set<std::uint32_t>(aligned.frames.begin(), aligned.frames.end()).size();
+    const std::size_t minFrames = std::min(options.minFrames, std::max<std::size_t>(views, 1));
+
+    // Iterated RANSAC: take the strongest vertical plane, remove its inliers, repeat.
+    std::vector<Candidate> candidates;
+    std::vector<std::size_t> remaining = above;
+    pcl_ops::PlaneSearch search;
+    search.axis = {0, 0, 1};
+    search.constraint = pcl_ops::PlaneConstraint::NormalAcrossAxis;
+    search.epsAngle = options.verticalTolerance * kDegree;
+    search.distance = options.distance;
+    std::vector<char> taken(aligned.size(), 0);
+    for (int k = 0; k < options.maxPlanes && remaining.size() >= options.minInliers; ++k) {
+        auto found = pcl_ops::segmentPlane(aligned.points, remaining, search);
+        if (!found || found->inliers.size() < options.minInliers) break;
+        for (auto i : found->inliers) taken[i] = 1;
+        std::erase_if(remaining, [&](std::size_t i) { return taken[i] != 0; });
+        Eigen::Vector2d n(found->normal.x, found->normal.y);
+        if (n.norm() < 1e-6) continue;
+        Candidate plane{n.normalized(), 0, std::move(found->inliers)};
+        plane.offset = offsetOf(plane.normal, aligned, plane.inliers);
+        for (auto& run : splitAtGaps(plane, aligned, options.maxGap))
+            if (run.inliers.size() >= options.minInliers / 4) candidates.push_back(std::move(run));
+    }
+
+    // Point the normals into the room: towards most cameras, else towards most of the cloud.
+    for (auto& c : candidates) {
+        std::size_t front = 0, back = 0;
+        for (const auto& p : cameras) {
+            double s = c.normal.x() * p.x + c.normal.y() * p.y + c.offset;
+            if (s > 0) ++front;
+            else if (s < 0) ++back;
+        }
+        if (front != back) {
+            if (back > front) c.normal = -c.normal, c.offset = -c.offset;
+            continue;
+        }
+        for (auto i : above) {
+            double s = c.normal.x() * aligned.points[i].x + c.normal.y() * aligned.points[i].y + c.offset;
+            if (s > options.distance) ++front;
+            else if (s < -options.distance) ++back;
+        }
+        if (back > front) c.normal = -c.normal, c.offset = -c.offset;
+    }
+
+    // Merge near-duplicates: parallel, same side, close offsets, touching extents.
+    const double mergeCos = std::cos(options.mergeAngle * kDegree);
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t i = 0; i < candidates.size() && !merged; ++i) {
+            for (std::size_t j = i + 1; j < candidates.size() && !merged; ++j) {
+                auto& a = candidates[i];
+                auto& b = candidates[j];
+                if (a.normal.dot(b.normal) < mergeCos || std::abs(a.offset - b.offset) > options.mergeOffset) continue;
+                auto [a0, a1] = alongSpan(a, aligned);
+                auto [b0, b1] = alongSpan(b, aligned);
+                if (std::max(a0, b0) - std::min(a1, b1) > options.maxGap) continue;
+                if (b.inliers.size() > a.inliers.size()) std::swap(a, b);  // keep the stronger one's orientation
+                a.inliers.insert(a.inliers.end(), b.inliers.begin(), b.inliers.end());
+                refit(a, aligned);
+                candidates.erase(candidates.begin() + static_cast<std::ptrdiff_t>(j));
+                merged = true;
+            }
+        }
+    }
+
+    std::vector<WallSegment> walls;
+    for (const auto& c : candidates) {
+        if (c.inliers.size() < options.minInliers) continue;
+        WallSegment wall;
+        wall.normal = {c.normal.x(), c.normal.y(), 0};
+        wall.offset = c.offset;
+        wall.inliers = c.inliers.size();
+        std::tie(wall.along0, wall.along1) = alongSpan(c, aligned);
+        std::vector<double> heights, residuals;
+        std::map<std::uint32_t, std::size_t> perFrame;
+        for (auto i : c.inliers) {
+            heights.push_back(aligned.points[i].z);
+            residuals.push_back(std::abs(wall.signedDistance(aligned.points[i])));
+            ++perFrame[aligned.frames[i]];
+        }
+        std::tie(wall.z0, wall.z1) = detail::robustRange(std::move(heights));
+        wall.thickness = std::max(0.02, 2 * detail::quantile(std::move(residuals), 0.9));
+        const double frameFloor = std::max(3.0, options.frameShare * static_cast<double>(c.inliers.size()));
+        for (const auto& [frame, count] : perFrame)
+            if (static_cast<double>(count) >= frameFloor) ++wall.frames;
+        if (wall.frames < minFrames || wall.z1 - wall.z0 < options.minHeight || wall.length() < options.minLength)
+            continue;
+
+        // Walls bound the room: few points lie behind them (doorways and windows let some through). A
+        // free-standing cabinet has the far wall behind it.
+        std::size_t front = 0, behind = 0;
+        for (auto i : above) {
+            const auto& p = aligned.points[i];
+            double a = alongOf(c.normal, p);
+            if (a < wall.along0 || a > wall.along1 || p.z < wall.z0 || p.z > wall.z1) continue;
+            double s = wall.signedDistance(p);
+            if (s > options.behindDistance) ++front;
+            else if (s < -options.behindDistance) ++behind;
+        }
+        if (front + behind > 0 &&
+            static_cast<double>(behind) > options.maxBehindShare * static_cast<double>(front + behind))
+            continue;
+
+        double support = std::min(1.0, static_cast<double>(wall.inliers) / (4.0 * options.minInliers));
+        double views_ = std::min(1.0, static_cast<double>(wall.frames) / 3.0);
+        wall.confidence = 0.5 * support + 0.5 * views_;
+        walls.push_back(wall);
+    }
+    // Furniture standing against a wall (a cabinet front, a sideboard) makes a parallel plane just inside
+    // it: of parallel segments that overlap along the wall and lie less than layerDistance apart, only the
+    // outermost one is the wall.
+    const double parallelCos = std::cos(options.mergeAngle * kDegree);
+    std::vector<char> inner(walls.size(), 0);
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+        for (std::size_t j = 0; j < walls.size(); ++j) {
+            const auto& a = walls[i];
+            const auto& b = walls[j];
+            if (i == j || a.normal.x * b.normal.x + a.normal.y * b.normal.y < parallelCos) continue;
+            // b lies behind a (farther from the room) by less than layerDistance?
+            double depth = b.offset - a.offset;
+            if (depth <= options.mergeOffset || depth > options.layerDistance) continue;
+            double overlap = std::min(a.along1, b.along1) - std::max(a.along0, b.along0);
+            if (overlap > 0.5 * std::min(a.length(), b.length())) inner[i] = 1;
+        }
+    }
+    std::vector<WallSegment> outer;
+    for (std::size_t i = 0; i < walls.size(); ++i)
+        if (!inner[i]) outer.push_back(walls[i]);
+    std::sort(outer.begin(), outer.end(), [](const auto& a, const auto& b) { return a.inliers > b.inliers; });
+    return outer;
+}
+
+std::vector<std::size_t> nonStructuralPoints(const PointCloud& aligned, const std::vector<WallSegment>& walls,
+                                             const StructureOptions& options) {
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < aligned.size(); ++i) {
+        const auto& p = aligned.points[i];
+        if (p.z < options.floorMargin) continue;
+        if (options.ceilingHeight && p.z > *options.ceilingHeight - options.ceilingMargin) continue;
+        bool onWall = false;
+        for (const auto& wall : walls) {
+            double a = wall.direction().x * p.x + wall.direction().y * p.y;
+            const double margin = std::max(options.wallMargin, wall.thickness / 2);
+            if (std::abs(wall.signedDistance(p)) <= margin && a >= wall.along0 - margin && a <= wall.along1 + margin) {
+                onWall = true;
+                break;
+            }
+        }
+        if (!onWall) kept.push_back(i);
+    }
+    return kept;
+}
+
+}  // namespace smql::ingest

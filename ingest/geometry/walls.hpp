@@ -1,0 +1,68 @@
+// Wall planes of an aligned cloud (z up, floor at z = 0, metres).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "ingest/geometry/point_cloud.hpp"
+
+namespace smql::ingest {
+
+struct WallSegment {
+    model::Vec3 normal;        // horizontal unit vector pointing into the room
+    double offset = 0;         // normal . p + offset = 0
+    double along0 = 0, along1 = 0;  // extent along direction()
+    double z0 = 0, z1 = 0;     // extent in height
+    double thickness = 0.02;   // spread of the inliers across the plane
+    std::size_t inliers = 0;
+    std::size_t frames = 0;    // views that saw it
+    double confidence = 0;     // 0..1, from support (inliers and views)
+
+    // The wall's own horizontal axis: the normal turned +90 degrees about +z.
+    model::Vec3 direction() const { return {-normal.y, normal.x, 0}; }
+    double signedDistance(const model::Vec3& p) const { return normal.x * p.x + normal.y * p.y + offset; }
+    double length() const { return along1 - along0; }
+    // A thin upright box (GeometryKind::Plane in the model): x along the wall, y its thickness, z its height.
+    model::Box box() const;
+};
+
+struct WallOptions {
+    double minPointHeight = 0.1;   // only points above this (metres over the floor) take part
+    double distance = 0.04;        // RANSAC inlier distance
+    double verticalTolerance = 10; // degrees a plane's normal may tilt from horizontal
+    int maxPlanes = 15;            // RANSAC rounds (accepted or not)
+    std::size_t minInliers = 200;  // points a wall needs (tuned for 5 cm voxels)
+    std::size_t minFrames = 2;     // views that saw it (capped at the number of views in the cloud)
+    double frameShare = 0.02;      // a view "saw" a wall when it holds this share of its inliers (and >= 3)
+    double minHeight = 1.0;        // height extent a wall needs
+    double minLength = 0.5;        // length a wall needs
+    double maxGap = 1.0;           // inliers farther apart than this along the plane form separate segments
+    double behindDistance = 0.3;   // a point this far behind a wall was seen through it (depth noise is less)
+    double maxBehindShare = 0.2;   // walls bound the room: of the points over a segment, at most this share behind it
+    double layerDistance = 1.0;    // a parallel, overlapping segment up to this far in front of a wall is furniture
+    double mergeAngle = 10;        // degrees: near-duplicate planes ...
+    double mergeOffset = 0.1;      // ... with offsets this close (and touching extents) are merged
+};
+
+// Vertical planes by iterated RANSAC (docs/ingest.md), strongest first.
+// `cameras` are the camera positions in the aligned frame (may be empty):
+// walls face the cameras, which stand inside the room.
+std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<model::Vec3>& cameras,
+                                   const WallOptions& options = {});
+
+// Indices of the points that are neither floor (z < floorMargin), ceiling (z
+// > ceilingHeight - ceilingMargin, when known) nor within wallMargin (or half
+// the wall's thickness, if more) of a wall segment: what object clustering
+// starts from.
+struct StructureOptions {
+    double floorMargin = 0.05;
+    double wallMargin = 0.1;
+    double ceilingMargin = 0.1;
+    std::optional<double> ceilingHeight;
+};
+std::vector<std::size_t> nonStructuralPoints(const PointCloud& aligned, const std::vector<WallSegment>& walls,
+                                             const StructureOptions& options = {});
+
+}  // namespace smql::ingest

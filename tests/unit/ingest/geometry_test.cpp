@@ -1,0 +1,487 @@
+// Geometry stages of ingest: back-projection, metric alignment, walls,
+// Euclidean clusters and upright boxes, on synthetic clouds with known answers
+// and on the real RGB-D frames in ../shared/data/rgbd-dining.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/model/geometry.hpp"
+#include "ingest/geometry/alignment.hpp"
+#include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/point_cloud.hpp"
+#include "ingest/geometry/walls.hpp"
+
+using namespace smql;
+using namespace smql::ingest;
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+struct Mat3 {
+    double m[3][3];
+    model::Vec3 operator*(const model::Vec3& v) const {
+        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+                m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+    }
+    Mat3 operator*(const Mat3& o) const {
+        Mat3 r{};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                for (int k = 0; k < 3; ++k) r.m[i][j] += m[i][k] * o.m[k][j];
+        return r;
+    }
+};
+
+Mat3 rotX(double a) { return {{{1, 0, 0}, {0, std::cos(a), -std::sin(a)}, {0, std::sin(a), std::cos(a)}}}; }
+Mat3 rotY(double a) { return {{{std::cos(a), 0, std::sin(a)}, {0, 1, 0}, {-std::sin(a), 0, std::cos(a)}}}; }
+Mat3 rotZ(double a) { return {{{std::cos(a), -std::sin(a), 0}, {std::sin(a), std::cos(a), 0}, {0, 0, 1}}}; }
+
+Mat3 fromRowMajor(const std::array<double, 9>& r) {
+    return {{{r[0], r[1], r[2]}, {r[3], r[4], r[5]}, {r[6], r[7], r[8]}}};
+}
+std::array<double, 9> toRowMajor(const Mat3& m) {
+    return {m.m[0][0], m.m[0][1], m.m[0][2], m.m[1][0], m.m[1][1], m.m[1][2], m.m[2][0], m.m[2][1], m.m[2][2]};
+}
+
+double dot(const model::Vec3& a, const model::Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double norm(const model::Vec3& a) { return std::sqrt(dot(a, a)); }
+double angleDeg(const model::Vec3& a, const model::Vec3& b) {
+    return std::acos(std::clamp(dot(a, b) / (norm(a) * norm(b)), -1.0, 1.0)) / kDeg;
+}
+model::Vec3 add(const model::Vec3& a, const model::Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+model::Vec3 mul(double s, const model::Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
+
+// A camera at `position` looking horizontally along `yaw` (about +z), pitched down by `pitch`.
+Pose camera(const model::Vec3& position, double yaw, double pitch) {
+    // Camera axes for yaw 0, level: looks along +x, y down (-z), x right (-y).
+    Mat3 level{{{0, 0, 1}, {-1, 0, 0}, {0, -1, 0}}};
+    Pose pose;
+    pose.rotation = toRowMajor(rotZ(yaw) * rotY(pitch) * level);
+    pose.translation = position;
+    return pose;
+}
+
+// A synthetic room in metres, z up: floor x in [-2, 4], y in [1, 6]; wall A on x = -2 and wall B on
+// y = 1, both 2.5 m high; a free-standing cabinet (1.0 x 0.5 x 1.3) in the room; optionally a ceiling
+// at `ceiling`. 5 cm sampling, 1 cm Gaussian noise, each point tagged with one of 4 views.
+struct Room {
+    PointCloud cloud;
+    std::vector<Pose> cameras;
+};
+
+Room syntheticRoom(std::optional<double> ceiling = std::nullopt, double cameraHeight = 1.5) {
+    Room room;
+    std::mt19937 rng(7);
+    std::normal_distribution<double> noise(0, 0.01);
+    std::uniform_int_distribution<std::uint32_t> view(0, 3);
+    auto put = [&](double x, double y, double z) {
+        room.cloud.push({x + noise(rng), y + noise(rng), z + noise(rng)}, {200, 200, 200}, view(rng));
+    };
+    const double s = 0.05;
+    for (double x = -2; x <= 4 + 1e-9; x += s)
+        for (double y = 1; y <= 6 + 1e-9; y += s) {
+            put(x, y, 0);
+            if (ceiling) put(x, y, *ceiling);
+        }
+    for (double y = 1; y <= 6 + 1e-9; y += s)
+        for (double z = 0; z <= 2.5 + 1e-9; z += s) put(-2, y, z);  // wall A
+    for (double x = -2; x <= 4 + 1e-9; x += s)
+        for (double z = 0; z <= 2.5 + 1e-9; z += s) put(x, 1, z);  // wall B
+    // Cabinet: x in [0.5, 1.5], y in [3.25, 3.75], z in [0, 1.3]: four sides and a top.
+    for (double z = 0; z <= 1.3 + 1e-9; z += s) {
+        for (double x = 0.5; x <= 1.5 + 1e-9; x += s) put(x, 3.25, z), put(x, 3.75, z);
+        for (double y = 3.25; y <= 3.75 + 1e-9; y += s) put(0.5, y, z), put(1.5, y, z);
+    }
+    for (double x = 0.5; x <= 1.5 + 1e-9; x += s)
+        for (double y = 3.25; y <= 3.75 + 1e-9; y += s) put(x, y, 1.3);
+    // Four views walking through the room, looking at the walls, pitched 10 degrees down.
+    room.cameras = {camera({2.5, 4.5, cameraHeight}, 200 * kDeg, 10 * kDeg),
+                    camera({2.0, 5.0, cameraHeight}, 235 * kDeg, 10 * kDeg),
+                    camera({1.0, 4.5, cameraHeight}, 190 * kDeg, 10 * kDeg),
+                    camera({3.0, 3.0, cameraHeight}, 260 * kDeg, 10 * kDeg)};
+    return room;
+}
+
+std::string notesOf(const Alignment& a) {
+    std::string text;
+    for (const auto& n : a.notes) text += n + "\n";
+    return text;
+}
+
+// Moves the room into a capture frame: p' = scale * R p + t.
+void distort(Room& room, const Mat3& r, const model::Vec3& t, double scale) {
+    for (auto& p : room.cloud.points) p = add(mul(scale, r * p), t);
+    for (auto& c : room.cameras) {
+        c.rotation = toRowMajor(r * fromRowMajor(c.rotation));
+        c.translation = add(mul(scale, r * c.translation), t);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("backProject puts depth pixels where the camera pose says", "[ingest][geometry]") {
+    // A 4 x 3 depth image, 2 m everywhere except one pixel without reading and one beyond maxDepth.
+    std::vector<float> depth(12, 2.0f);
+    depth[1] = 0.0f;
+    depth[2] = 9.0f;
+    std::vector<std::uint8_t> rgb(36, 0);
+    rgb[3 * 5 + 0] = 10, rgb[3 * 5 + 1] = 20, rgb[3 * 5 + 2] = 30;
+    DepthView view;
+    view.width = 4, view.height = 3, view.metres = depth.data(), view.rgb = rgb.data();
+    view.intrinsics = {4, 3, 2.0, 2.0, 1.0, 1.0};
+    // Camera at (1, 2, 3) looking along world +x, y down = world -z.
+    Pose pose = camera({1, 2, 3}, 0, 0);
+    PointCloud cloud = backProject(view, pose, 7, 1, 6.0);
+    REQUIRE(cloud.size() == 10);  // 12 pixels minus "no reading" minus "too far"
+    // Pixel (u=1, v=1) is the principal point: 2 m straight ahead.
+    const auto& centre = cloud.points[3];  // row 0 kept u = 0, 3; row 1 starts with u = 0, then u = 1
+    CHECK(centre.x == Approx(3.0));
+    CHECK(centre.y == Approx(2.0));
+    CHECK(centre.z == Approx(3.0));
+    CHECK(cloud.colors[3] == std::array<std::uint8_t, 3>{10, 20, 30});
+    CHECK(std::all_of(cloud.frames.begin(), cloud.frames.end(), [](auto f) { return f == 7; }));
+    // Pixel (u=3, v=0): right of and above the centre -> world -y (right) and +z (up).
+    const auto& corner = cloud.points[1];
+    CHECK(corner.x == Approx(3.0));
+    CHECK(corner.y == Approx(2.0 - 2.0));
+    CHECK(corner.z == Approx(3.0 + 1.0));
+    // Stride 2 visits (0,0), (2,0), (0,2), (2,2); (2,0) is beyond maxDepth.
+    CHECK(backProject(view, pose, 0, 2, 6.0).size() == 3);
+}
+
+TEST_CASE("voxelDownsample keeps one point per voxel, with a colour and a frame", "[ingest][geometry]") {
+    PointCloud cloud;
+    cloud.push({0.01, 0.01, 0.01}, {0, 0, 0}, 0);
+    cloud.push({0.03, 0.03, 0.03}, {100, 100, 100}, 1);
+    cloud.push({0.021, 0.019, 0.02}, {200, 200, 200}, 2);  // nearest to the voxel's mean
+    cloud.push({0.51, 0.01, 0.01}, {9, 9, 9}, 3);
+    PointCloud down = voxelDownsample(cloud, 0.1);
+    REQUIRE(down.size() == 2);
+    CHECK(down.points[0].x == Approx((0.01 + 0.03 + 0.021) / 3));
+    CHECK(down.colors[0] == std::array<std::uint8_t, 3>{100, 100, 100});
+    CHECK(down.frames[0] == 2);
+    CHECK(down.frames[1] == 3);
+}
+
+TEST_CASE("alignment levels a tilted, turned and shifted room", "[ingest][geometry]") {
+    // The room rotated by a known tilt (14 and -6 degrees) and yaw (-35), and shifted; cameras pitched
+    // down 10 degrees, so their up prior is off and the floor plane has to correct it.
+    Room room = syntheticRoom();
+    const Mat3 r = rotZ(-35 * kDeg) * rotX(14 * kDeg) * rotY(-6 * kDeg);
+    distort(room, r, {1.3, -0.7, 2.1}, 1.0);
+    Alignment a = alignCapture(room.cloud, room.cameras, AlignOptions{});
+    INFO(notesOf(a));
+    CHECK(a.floorFound);
+    CHECK(angleDeg(a.up, r * model::Vec3{0, 0, 1}) < 1.0);  // up recovered within 1 degree
+    CHECK(a.scale == 1.0);                                   // metric capture
+    CHECK_FALSE(a.ceilingHeight);
+
+    PointCloud aligned = transformed(room.cloud, a);
+    // The floor's points (the first 121 x 101 in the cloud) sit at z ~ 0.
+    std::vector<double> floorZ;
+    for (std::size_t i = 0; i < 121 * 101; ++i) floorZ.push_back(aligned.points[i].z);
+    std::sort(floorZ.begin(), floorZ.end());
+    CHECK(std::abs(floorZ[floorZ.size() / 2]) < 0.01);
+
+    // The walls come out axis-aligned: normals within 2 degrees of +-x / +-y, perpendicular.
+    std::vector<model::Vec3> cameras;
+    for (const auto& c : room.cameras) cameras.push_back(transformed(c, a).translation);
+    auto walls = findWalls(aligned, cameras);
+    REQUIRE(walls.size() == 2);
+    for (const auto& w : walls) {
+        double best = 90;
+        for (model::Vec3 axis : {model::Vec3{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}})
+            best = std::min(best, angleDeg(w.normal, axis));
+        CHECK(best < 2.0);
+    }
+    CHECK(angleDeg(walls[0].normal, walls[1].normal) == Approx(90).margin(2));
+
+    // Cameras keep their 1.5 m above the floor, and their orientation follows the rotation.
+    for (const auto& c : room.cameras) {
+        Pose p = transformed(c, a);
+        CHECK(p.translation.z == Approx(1.5).margin(0.02));
+        model::Vec3 down{p.rotation[1], p.rotation[4], p.rotation[7]};  // camera y axis in the aligned frame
+        CHECK(angleDeg(down, {0, 0, -1}) == Approx(10).margin(1));    // the 10 degree pitch
+    }
+}
+
+TEST_CASE("a scale-free capture gets its scale from the camera height or the ceiling", "[ingest][geometry]") {
+    AlignOptions options;
+    options.metric = false;
+    SECTION("no ceiling: median camera height = options.cameraHeight") {
+        // Cameras 1.6 m above the floor, the whole capture in units of 0.4 m.
+        Room room = syntheticRoom(std::nullopt, 1.6);
+        distort(room, rotX(20 * kDeg), {0.3, 0.2, -1.0}, 0.4);
+        options.cameraHeight = 1.6;
+        Alignment a = alignCapture(room.cloud, room.cameras, options);
+        INFO(notesOf(a));
+        CHECK(a.scale == Approx(1 / 0.4).epsilon(0.01));
+        CHECK(transformed(room.cameras[0], a).translation.z == Approx(1.6).margin(0.02));
+        CHECK_FALSE(a.ceilingHeight);
+    }
+    SECTION("a ceiling parallel to the floor above the cameras wins: floor-to-ceiling = 2.6 m") {
+        // A 2.8 m room (cameras at 1.4 m, which alone would give a different scale), in units of 0.4 m.
+        Room room = syntheticRoom(2.8, 1.4);
+        distort(room, rotY(-15 * kDeg), {2.0, 0.0, 0.5}, 0.4);
+        Alignment a = alignCapture(room.cloud, room.cameras, options);
+        INFO(notesOf(a));
+        REQUIRE(a.ceilingHeight);
+        CHECK(*a.ceilingHeight == Approx(2.6).margin(0.02));
+        CHECK(a.scale == Approx(2.6 / (2.8 * 0.4)).epsilon(0.01));
+        CHECK(angleDeg(a.up, rotY(-15 * kDeg) * model::Vec3{0, 0, 1}) < 1.0);
+    }
+    SECTION("an explicit scale overrides both") {
+        Room room = syntheticRoom(2.8, 1.4);
+        options.scale = 2.0;
+        Alignment a = alignCapture(room.cloud, room.cameras, options);
+        CHECK(a.scale == 2.0);
+        CHECK(transformed(room.cameras[0], a).translation.z == Approx(2.8).margin(0.03));
+    }
+}
+
+TEST_CASE("findWalls finds exactly the two walls, not the cabinet, with their offsets and extents",
+          "[ingest][geometry]") {
+    // Already aligned: wall A on x = -2 (facing +x), wall B on y = 1 (facing +y), 2.5 m high; the
+    // free-standing 1.3 m cabinet's faces are vertical planes too, but the walls stand behind them.
+    Room room = syntheticRoom();
+    std::vector<model::Vec3> cameras;
+    for (const auto& c : room.cameras) cameras.push_back(c.translation);
+    auto walls = findWalls(room.cloud, cameras);
+    REQUIRE(walls.size() == 2);
+    const WallSegment* a = nullptr;
+    const WallSegment* b = nullptr;
+    for (const auto& w : walls) (std::abs(w.normal.x) > 0.9 ? a : b) = &w;
+    REQUIRE(a);
+    REQUIRE(b);
+    CHECK(angleDeg(a->normal, {1, 0, 0}) < 1.0);  // into the room
+    CHECK(angleDeg(b->normal, {0, 1, 0}) < 1.0);
+    CHECK(a->offset == Approx(2.0).margin(0.01));   // x + 2 = 0
+    CHECK(b->offset == Approx(-1.0).margin(0.01));  // y - 1 = 0
+    // Wall A runs along y in [1, 6] (direction +y); wall B along x in [-2, 4] (direction -x).
+    CHECK(a->along0 == Approx(1.0).margin(0.05));
+    CHECK(a->along1 == Approx(6.0).margin(0.05));
+    CHECK(b->along0 == Approx(-4.0).margin(0.05));
+    CHECK(b->along1 == Approx(2.0).margin(0.05));
+    for (const auto* w : {a, b}) {
+        CHECK(w->z0 == Approx(0.1).margin(0.05));  // only points above 0.1 m take part
+        CHECK(w->z1 == Approx(2.5).margin(0.05));
+        CHECK(w->frames == 4);
+        CHECK(w->confidence > 0.9);
+    }
+    model::Box box = a->box();
+    CHECK(box.center.x == Approx(-2.0).margin(0.02));
+    CHECK(box.center.y == Approx(3.5).margin(0.05));
+    CHECK(box.size.x == Approx(5.0).margin(0.1));
+    CHECK(box.size.y < 0.1);
+
+    SECTION("minimum height: a low wall is not a wall") {
+        WallOptions tall;
+        tall.minHeight = 2.5;
+        CHECK(findWalls(room.cloud, cameras, tall).empty());
+    }
+    SECTION("minimum views: a wall seen from one view of four is not kept") {
+        PointCloud oneView = room.cloud;
+        std::fill(oneView.frames.begin(), oneView.frames.end(), 0u);
+        oneView.frames[0] = 1;  // the cloud holds two views; every wall point comes from view 0
+        CHECK(findWalls(oneView, cameras).empty());
+    }
+}
+
+TEST_CASE("euclideanClusters separates two blobs", "[ingest][geometry]") {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    PointCloud cloud;
+    auto blob = [&](model::Vec3 c, double radius, std::uint32_t tag, int n) {
+        for (int i = 0; i < n;) {
+            model::Vec3 d{unit(rng), unit(rng), unit(rng)};
+            if (norm(d) > 1) continue;
+            cloud.push(add(c, mul(radius, d)), {0, 0, 0}, tag);
+            ++i;
+        }
+    };
+    blob({0, 0, 0.5}, 0.2, 0, 800);
+    blob({0.7, 0.2, 0.6}, 0.2, 1, 500);  // 0.33 m gap between the surfaces
+    blob({3, 3, 3}, 0.01, 2, 5);          // too small to count
+    auto clusters = euclideanClusters(cloud, 0.08, 20, 100000);
+    REQUIRE(clusters.size() == 2);
+    CHECK(clusters[0].size() == 800);  // largest first
+    CHECK(clusters[1].size() == 500);
+    for (std::size_t k = 0; k < 2; ++k)
+        for (auto i : clusters[k]) CHECK(cloud.frames[i] == k);
+    // With a tolerance wider than the gap they chain into one.
+    CHECK(euclideanClusters(cloud, 0.4, 20, 100000).size() == 1);
+    // maxPoints drops clusters that are too big.
+    CHECK(euclideanClusters(cloud, 0.08, 20, 600).size() == 1);
+}
+
+TEST_CASE("uprightBox recovers a rotated box from points inside it", "[ingest][geometry]") {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    const model::Box truth{{1.2, -0.7, 0.9}, {1.2, 0.6, 0.8}, 30 * kDeg};
+    std::vector<model::Vec3> points;
+    for (int i = 0; i < 5000; ++i) {
+        double x = u(rng) * truth.size.x, y = u(rng) * truth.size.y, z = u(rng) * truth.size.z;
+        double c = std::cos(truth.yaw), s = std::sin(truth.yaw);
+        points.push_back({truth.center.x + c * x - s * y, truth.center.y + s * x + c * y, truth.center.z + z});
+    }
+    // Stray points (depth noise, a neighbour's edge) are trimmed.
+    for (int i = 0; i < 15; ++i) points.push_back({truth.center.x + 1.5 + 0.05 * i, truth.center.y, 2.5});
+    model::Box box = uprightBox(points);
+    CHECK(box.center.x == Approx(truth.center.x).margin(0.02));
+    CHECK(box.center.y == Approx(truth.center.y).margin(0.02));
+    CHECK(box.center.z == Approx(truth.center.z).margin(0.02));
+    CHECK(box.size.x == Approx(truth.size.x).margin(0.02));
+    CHECK(box.size.y == Approx(truth.size.y).margin(0.02));
+    CHECK(box.size.z == Approx(truth.size.z).margin(0.02));
+    CHECK(box.yaw / kDeg == Approx(30).margin(2));
+
+    SECTION("the x axis follows the longer side, yaw stays in (-90, 90]") {
+        for (auto& p : points) std::swap(p.x, p.y);  // mirror: the long side now runs at 60 degrees
+        model::Box mirrored = uprightBox(points);
+        CHECK(mirrored.size.x == Approx(1.2).margin(0.02));
+        CHECK(mirrored.yaw / kDeg == Approx(60).margin(2));
+    }
+}
+
+namespace {
+
+// A binary 16-bit PGM (P5, maxval > 255, big-endian samples) as metres.
+std::vector<float> readDepthPgm(const std::string& path, int& width, int& height, double unitsPerMetre) {
+    std::ifstream in(path, std::ios::binary);
+    REQUIRE(in);
+    std::string magic;
+    int maxval = 0;
+    in >> magic >> width >> height >> maxval;
+    REQUIRE(magic == "P5");
+    REQUIRE(maxval > 255);
+    in.get();  // the single whitespace before the samples
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(width) * height * 2);
+    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    REQUIRE(in.gcount() == static_cast<std::streamsize>(bytes.size()));
+    std::vector<float> metres(static_cast<std::size_t>(width) * height);
+    for (std::size_t i = 0; i < metres.size(); ++i)
+        metres[i] = static_cast<float>(((bytes[2 * i] << 8) | bytes[2 * i + 1]) / unitsPerMetre);
+    return metres;
+}
+
+// rgbd-dining: 5 frames, poses `tx ty tz qx qy qz qw` camera-to-world, depth in millimetres.
+struct Dining {
+    PointCloud cloud;
+    std::vector<Pose> cameras;
+};
+
+Dining loadDining(int stride, double voxel) {
+    const std::string root = std::string(SMQL_SHARED_DATA) + "/rgbd-dining";
+    Dining dining;
+    std::ifstream poses(root + "/pose.txt");
+    REQUIRE(poses);
+    Intrinsics k;
+    k.width = 640, k.height = 480, k.fx = 518.0, k.fy = 519.0, k.cx = 325.5, k.cy = 253.5;
+    PointCloud all;
+    for (int n = 1; n <= 5; ++n) {
+        double tx, ty, tz, qx, qy, qz, qw;
+        REQUIRE(poses >> tx >> ty >> tz >> qx >> qy >> qz >> qw);
+        Pose pose;
+        pose.rotation = {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw),     2 * (qx * qz + qy * qw),
+                         2 * (qx * qy + qz * qw),     1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw),
+                         2 * (qx * qz - qy * qw),     2 * (qy * qz + qx * qw),     1 - 2 * (qx * qx + qy * qy)};
+        pose.translation = {tx, ty, tz};
+        dining.cameras.push_back(pose);
+        DepthView view;
+        auto metres = readDepthPgm(root + "/depth/" + std::to_string(n) + ".pgm", view.width, view.height, 1000.0);
+        view.metres = metres.data();
+        view.intrinsics = k;
+        append(all, backProject(view, pose, static_cast<std::uint32_t>(n - 1), stride));
+    }
+    dining.cloud = voxelDownsample(all, voxel);
+    return dining;
+}
+
+}  // namespace
+
+TEST_CASE("rgbd-dining: the floor becomes z = 0, walls and a table-top cluster are found", "[ingest][geometry][real]") {
+    // Real Kinect frames (5 views, every 4th pixel, 5 cm voxels). What it checks:
+    //  - after alignCapture the floor (carpet pixels at the bottom left of frame 1, picked independently
+    //    of the alignment) is level within 5 degrees of +z and at z ~ 0;
+    //  - at least one wall is found, vertical by construction and seen from two or more views;
+    //  - clustering what is left after removing floor and walls gives a cluster whose box stands on or
+    //    above the floor and reaches table height (the dining table with its chairs).
+    Dining dining = loadDining(4, 0.05);
+    REQUIRE(dining.cloud.size() > 5000);
+    Alignment a = alignCapture(dining.cloud, dining.cameras, AlignOptions{});
+    INFO(notesOf(a));
+    REQUIRE(a.floorFound);
+    CHECK(a.scale == 1.0);
+
+    // The carpet patch of frame 1 (u in [80, 220), v in [400, 475)), aligned: fit z = ax + by + c.
+    {
+        int width = 0, height = 0;
+        auto metres = readDepthPgm(std::string(SMQL_SHARED_DATA) + "/rgbd-dining/depth/1.pgm", width, height, 1000.0);
+        for (int v = 0; v < height; ++v)
+            for (int u = 0; u < width; ++u)
+                if (u < 80 || u >= 220 || v < 400 || v >= 475) metres[static_cast<std::size_t>(v) * width + u] = 0;
+        DepthView view;
+        view.width = width, view.height = height, view.metres = metres.data();
+        view.intrinsics = {640, 480, 518.0, 519.0, 325.5, 253.5};
+        PointCloud carpet = transformed(backProject(view, dining.cameras[0], 0, 2), a);
+        REQUIRE(carpet.size() > 500);
+        double s[3][4] = {};  // normal equations of z = ax + by + c
+        for (const auto& p : carpet.points) {
+            double row[3] = {p.x, p.y, 1};
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 3; ++j) s[i][j] += row[i] * row[j];
+                s[i][3] += row[i] * p.z;
+            }
+        }
+        for (int i = 0; i < 3; ++i)  // Gauss-Jordan
+            for (int k = 0; k < 3; ++k) {
+                if (k == i) continue;
+                double f = s[k][i] / s[i][i];
+                for (int j = 0; j < 4; ++j) s[k][j] -= f * s[i][j];
+            }
+        double slopeX = s[0][3] / s[0][0], slopeY = s[1][3] / s[1][1];
+        double tilt = std::atan(std::sqrt(slopeX * slopeX + slopeY * slopeY)) / kDeg;
+        std::vector<double> z;
+        for (const auto& p : carpet.points) z.push_back(p.z);
+        std::sort(z.begin(), z.end());
+        INFO("carpet tilt " << tilt << " deg, median z " << z[z.size() / 2]);
+        CHECK(tilt < 5.0);
+        CHECK(std::abs(z[z.size() / 2]) < 0.05);
+    }
+
+    PointCloud aligned = transformed(dining.cloud, a);
+    std::vector<model::Vec3> cameras;
+    for (const auto& c : dining.cameras) cameras.push_back(transformed(c, a).translation);
+    for (const auto& c : cameras) CHECK(c.z == Approx(1.4).margin(0.3));  // a hand-held sensor's height
+    auto walls = findWalls(aligned, cameras);
+    REQUIRE(!walls.empty());
+    for (const auto& w : walls) {
+        INFO("wall normal (" << w.normal.x << ", " << w.normal.y << ") offset " << w.offset);
+        CHECK(w.frames >= 2);
+        CHECK(w.z1 - w.z0 >= 1.0);
+    }
+
+    StructureOptions structure;
+    structure.ceilingHeight = a.ceilingHeight;
+    auto rest = nonStructuralPoints(aligned, walls, structure);
+    auto clusters = euclideanClusters(aligned, rest, 0.1, 50, 100000);
+    REQUIRE(!clusters.empty());
+    bool tableTop = false;
+    for (const auto& c : clusters) {
+        model::Box box = uprightBox(aligned, c);
+        INFO("cluster of " << c.size() << " at (" << box.center.x << ", " << box.center.y << ", " << box.center.z
+                           << ") size (" << box.size.x << ", " << box.size.y << ", " << box.size.z << ")");
+        if (c.size() >= 500 && model::bottom(box) > -0.05 && model::top(box) > 0.7 && model::top(box) < 1.6)
+            tableTop = true;
+    }
+    CHECK(tableTop);
+}
