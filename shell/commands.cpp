@@ -11,7 +11,8 @@
 #include "engine/engine.hpp"
 #include "engine/error.hpp"
 #include "engine/format.hpp"
-#include "ingest/generate/room_generator.hpp"
+#include "ingest/synth/synth.hpp"
+#include "shell/ingest_command.hpp"
 #include "ingest/import/importers.hpp"
 #include "shell/session.hpp"
 
@@ -77,31 +78,40 @@ int exportCommand(const std::string&, const std::string& dbDir, const std::strin
 }
 
 int demoCommand(const std::string& dbDirOption) {
-    std::string dbDir = dbDirOption;
-    if (dbDir.empty()) {
+    std::string workDir = dbDirOption;
+    if (workDir.empty()) {
         std::string pattern = (fs::temp_directory_path() / "smql-demo-XXXXXX").string();
         if (!mkdtemp(pattern.data())) throw Error(ErrorKind::Usage, "cannot create a folder under /tmp");
-        dbDir = pattern;
+        workDir = pattern;
     }
-    std::cout << "smql demo: a generated room (no external data), stored, then queried.\n\n";
-    auto start = std::chrono::steady_clock::now();
-    model::SceneData room = generate::generateRoom({.seed = 7, .objectCount = 36, .name = "demo-room"});
-    auto engine = Engine::open(dbDir);
-    engine->importScene(room);
-    std::cout << fmt::format("built scene 'demo-room' ({}) in {} in {:.1f} ms\n\n", summary(room), dbDir,
-                             millisecondsSince(start));
+    std::string capture = (fs::path(workDir) / "capture").string();
+    std::string memory = (fs::path(workDir) / "memory").string();
+    std::cout << "smql demo: a synthetic RGB-D walk through a generated room (no external data),\n"
+                 "ingested into a metric memory, then queried.\n\n";
+    auto synth = synth::writeSynth(capture, {.seed = 7, .frames = 40, .objects = 24, .force = true});
+    std::cout << fmt::format("1. captured {} frames of a {} into {} in {:.1f} s\n\n", synth.scene.poses.size(),
+                             "generated room", capture, synth.totalSeconds);
+    std::cout << "2. smql ingest " << capture << " --db " << memory << "\n";
+    IngestArguments ingest;
+    ingest.capture = capture;
+    ingest.db = memory;
+    ingest.scene = "demo-room";
+    if (fs::exists(memory)) fs::remove_all(memory);  // a fresh memory each run
+    ingestCommand(ingest);
 
+    std::cout << "\n3. queries\n\n";
+    auto engine = Engine::open(memory);
     Session session(*engine, std::cout, std::cerr, OutputFormat::Table);
     session.setTimer(true);
     const char* examples[] = {
         "SHOW TREE",
         "FIND object WHERE on(table) OR on(desk) PATH",
-        "FIND chair WHERE near(table) OR near(desk)",
+        "FIND object WHERE color = 'red' PATH",
         "FIND object NEAREST TO door LIMIT 3",
         "COUNT object WHERE near(wall.left, 1 m)",
-        "FIND object WHERE color = 'red' ORDER BY distance(door) LIMIT 3 PATH",
-        "RELATE (FIND cushion WHERE on(sofa) LIMIT 1) TO sofa",
-        "EXPLAIN FIND object WHERE on(desk) AND near(window, 2 m)",
+        "RELATE (FIND object WHERE on(table) LIMIT 1) TO table",
+        "DESCRIBE (FIND object WHERE on(table) LIMIT 1)",
+        "EXPLAIN FIND object WHERE on(table) AND near(window, 2 m)",
     };
     bool ok = true;
     for (const char* statement : examples) {
@@ -109,7 +119,7 @@ int demoCommand(const std::string& dbDirOption) {
         ok &= session.runStatements(statement);
         std::cout << "\n";
     }
-    std::cout << fmt::format("Explore it yourself: smql {}\n", dbDir);
+    std::cout << fmt::format("Explore it yourself: smql {}\n", memory);
     return ok ? 0 : 1;
 }
 

@@ -93,6 +93,15 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
     }
 
     fs::path workDir = makeWorkDirectory(options, capture.notes);
+    // A temporary folder of ours does not outlive a failed read.
+    struct RemoveOnFailure {
+        fs::path dir;
+        bool armed;
+        ~RemoveOnFailure() {
+            std::error_code ignored;
+            if (armed) fs::remove_all(dir, ignored);
+        }
+    } cleanup{workDir, options.workDirectory.empty()};
     Sampler sampler(options.fps, 0.5 / containerFps);
     cv::Mat image, written;
     cv::Size nativeSize;
@@ -141,6 +150,7 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
             path));
     }
     if (options.depthScale) capture.depthScale = *options.depthScale;
+    cleanup.armed = false;
     return capture;
 }
 

@@ -29,12 +29,16 @@ std::uint64_t mix64(std::uint64_t x) {
     return x;
 }
 
-// A value in [-1, 1] attached to one lattice point.
-double latticeValue(std::int64_t ix, std::int64_t iy, std::int64_t iz, std::uint64_t seed) {
-    std::uint64_t h = mix64(seed ^ (static_cast<std::uint64_t>(ix) * 0x9E3779B97F4A7C15ULL) ^
-                            (static_cast<std::uint64_t>(iy) * 0xC2B2AE3D27D4EB4FULL) ^
-                            (static_cast<std::uint64_t>(iz) * 0x165667B19E3779F9ULL));
-    return static_cast<double>(h >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+// A value in [-1, 1] attached to one lattice point (a 32-bit integer hash: cheap, and
+// plenty for a texture).
+double latticeValue(std::uint32_t hx, std::uint32_t hy, std::uint32_t hz, std::uint32_t seed) {
+    std::uint32_t x = seed ^ hx ^ hy ^ hz;
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return static_cast<double>(x) * (2.0 / 4294967296.0) - 1.0;
 }
 
 double smooth(double t) { return t * t * (3 - 2 * t); }
@@ -42,12 +46,18 @@ double smooth(double t) { return t * t * (3 - 2 * t); }
 // Value noise: lattice values interpolated with a smoothstep, in [-1, 1].
 double valueNoise(double x, double y, double z, std::uint64_t seed) {
     double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
-    auto ix = static_cast<std::int64_t>(fx), iy = static_cast<std::int64_t>(fy), iz = static_cast<std::int64_t>(fz);
+    auto ix = static_cast<std::uint32_t>(static_cast<std::int64_t>(fx)),
+         iy = static_cast<std::uint32_t>(static_cast<std::int64_t>(fy)),
+         iz = static_cast<std::uint32_t>(static_cast<std::int64_t>(fz));
     double tx = smooth(x - fx), ty = smooth(y - fy), tz = smooth(z - fz);
+    const std::uint32_t hx[2] = {ix * 0x8da6b343U, (ix + 1) * 0x8da6b343U};
+    const std::uint32_t hy[2] = {iy * 0xd8163841U, (iy + 1) * 0xd8163841U};
+    const std::uint32_t hz[2] = {iz * 0xcb1ab31fU, (iz + 1) * 0xcb1ab31fU};
+    const auto s = static_cast<std::uint32_t>(mix64(seed));
     double c[2][2][2];
     for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b)
-            for (int d = 0; d < 2; ++d) c[a][b][d] = latticeValue(ix + a, iy + b, iz + d, seed);
+            for (int d = 0; d < 2; ++d) c[a][b][d] = latticeValue(hx[a], hy[b], hz[d], s);
     auto lerp = [](double p, double q, double t) { return p + (q - p) * t; };
     double x00 = lerp(c[0][0][0], c[1][0][0], tx), x10 = lerp(c[0][1][0], c[1][1][0], tx);
     double x01 = lerp(c[0][0][1], c[1][0][1], tx), x11 = lerp(c[0][1][1], c[1][1][1], tx);
