@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 
 #include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/geometry/robust.hpp"
@@ -34,6 +33,24 @@ std::string fixed(double value, int digits = 2) {
 
 Eigen::Matrix3d rotationOf(const Pose& pose) {
     return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(pose.rotation.data());
+}
+
+// The smallest rotation taking unit vector `from` to unit vector `to` (Rodrigues). Written out because
+// Eigen's Quaternion::FromTwoVectors drags in JacobiSVD, which costs ~10 s of compile time.
+Eigen::Matrix3d rotationTaking(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    Eigen::Vector3d axis = from.cross(to);
+    double sine = axis.norm(), cosine = from.dot(to);
+    if (sine < 1e-12) {
+        if (cosine > 0) return Eigen::Matrix3d::Identity();
+        // Opposite: half a turn about any axis perpendicular to `from`.
+        Eigen::Vector3d other = std::abs(from.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+        Eigen::Vector3d k = from.cross(other).normalized();
+        return 2 * k * k.transpose() - Eigen::Matrix3d::Identity();
+    }
+    Eigen::Vector3d k = axis / sine;
+    Eigen::Matrix3d cross;
+    cross << 0, -k.z(), k.y(), k.z(), 0, -k.x(), -k.y(), k.x(), 0;
+    return Eigen::Matrix3d::Identity() + sine * cross + (1 - cosine) * cross * cross;
 }
 
 // Cloud units per metre, before the scale is known.
@@ -279,7 +296,7 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     }
 
     // Level: floor normal -> +z. Then heading about +z.
-    Eigen::Matrix3d level = Eigen::Quaterniond::FromTwoVectors(up, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    Eigen::Matrix3d level = rotationTaking(up, Eigen::Vector3d::UnitZ());
     std::size_t votes = 0;
     auto heading = manhattanHeading(world, level, unit, options, votes);
     if (heading) {
@@ -289,7 +306,9 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     } else {
         notes.push_back("heading: only " + std::to_string(votes) + " vertical-surface normals; left unchanged");
     }
-    Eigen::Matrix3d rotation = Eigen::AngleAxisd(out.heading, Eigen::Vector3d::UnitZ()).toRotationMatrix() * level;
+    Eigen::Matrix3d turn;
+    turn << std::cos(out.heading), -std::sin(out.heading), 0, std::sin(out.heading), std::cos(out.heading), 0, 0, 0, 1;
+    Eigen::Matrix3d rotation = turn * level;
 
     // Scale.
     if (options.scale) {

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <set>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 
 #include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/geometry/robust.hpp"
@@ -42,8 +42,9 @@ void refit(Candidate& c, const PointCloud& cloud) {
         Eigen::Vector2d d = Eigen::Vector2d(cloud.points[i].x, cloud.points[i].y) - mean;
         covariance += d * d.transpose();
     }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(covariance);
-    Eigen::Vector2d n = solver.eigenvectors().col(0).normalized();
+    // The footprint's principal axis is at angle theta; the normal is perpendicular to it.
+    double theta = 0.5 * std::atan2(2 * covariance(0, 1), covariance(0, 0) - covariance(1, 1));
+    Eigen::Vector2d n(-std::sin(theta), std::cos(theta));
     if (n.dot(c.normal) < 0) n = -n;
     c.normal = n;
     c.offset = offsetOf(n, cloud, c.inliers);
@@ -192,8 +193,8 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
             continue;
 
         double support = std::min(1.0, static_cast<double>(wall.inliers) / (4.0 * options.minInliers));
-        double views_ = std::min(1.0, static_cast<double>(wall.frames) / 3.0);
-        wall.confidence = 0.5 * support + 0.5 * views_;
+        double seen = std::min(1.0, static_cast<double>(wall.frames) / 3.0);
+        wall.confidence = 0.5 * support + 0.5 * seen;
         walls.push_back(wall);
     }
     // Furniture standing against a wall (a cabinet front, a sideboard) makes a parallel plane just inside
