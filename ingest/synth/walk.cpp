@@ -1,6 +1,7 @@
 #include "ingest/synth/walk.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -140,15 +141,53 @@ std::vector<ingest::Pose> planWalk(const model::SceneData& scene, const WalkOpti
         break;
     }
 
+    // Only what reaches up near eye height can come closer than the clearance.
+    const double eye = room.floorTop + options.eyeHeight;
     std::vector<const model::Box*> obstacles;
     for (const model::Node& n : scene.nodes)
-        if (n.kind == model::NodeKind::Object && n.geometry != model::GeometryKind::None) obstacles.push_back(&n.box);
-    auto clearance = [&](const Eigen::Vector3d& p) {
-        double d = std::min({p.x() - room.x0, room.x1 - p.x(), p.y() - room.y0, room.y1 - p.y()});
+        if (n.kind == model::NodeKind::Object && n.geometry != model::GeometryKind::None &&
+            model::top(n.box) > eye - options.clearance - 0.05)
+            obstacles.push_back(&n.box);
+    auto clearance = [&](double x, double y, double z) {
+        double d = std::min({x - room.x0, room.x1 - x, y - room.y0, room.y1 - y});
         d = d >= 0.35 ? std::numeric_limits<double>::max() : -1;  // stay off the walls
-        for (const model::Box* box : obstacles) d = std::min(d, pointBoxDistance(p, *box));
+        for (const model::Box* box : obstacles) d = std::min(d, pointBoxDistance(Eigen::Vector3d(x, y, z), *box));
         return d;
     };
+
+    // Walk around whatever the loop runs into (a tall shelf): a sideways offset from the loop,
+    // chosen for the whole walk at once (dynamic programming over samples 5 cm apart) so that
+    // the detour is short, gradual (at most 45 degrees off the loop) and keeps the clearance.
+    constexpr double kSample = 0.05, kOffsetStep = 0.05;
+    constexpr int kOffsets = 24;  // offsets -1.2 .. +1.2 m
+    constexpr int kStates = 2 * kOffsets + 1;
+    const int samples = std::max(2, static_cast<int>(std::ceil(loop.length() / kSample)));
+    const double ds = loop.length() / samples;
+    std::vector<std::array<double, kStates>> cost(samples);
+    std::vector<std::array<int, kStates>> from(samples);
+    for (int i = 0; i < samples; ++i) {
+        double x, y, heading;
+        loop.at(start + i * ds, x, y, heading);
+        for (int o = 0; o < kStates; ++o) {
+            double offset = (o - kOffsets) * kOffsetStep;
+            double c = clearance(x - std::sin(heading) * offset, y + std::cos(heading) * offset, eye);
+            double local = std::abs(offset) + (c < options.clearance ? 1000 + 1000 * (options.clearance - c) : 0);
+            if (i == 0) {
+                cost[i][o] = local;
+                continue;
+            }
+            cost[i][o] = std::numeric_limits<double>::max();
+            for (int p = std::max(0, o - 1); p <= std::min(kStates - 1, o + 1); ++p)
+                if (cost[i - 1][p] < cost[i][o]) cost[i][o] = cost[i - 1][p], from[i][o] = p;
+            cost[i][o] += local;
+        }
+    }
+    std::vector<double> offsets(samples);
+    int state = static_cast<int>(std::min_element(cost.back().begin(), cost.back().end()) - cost.back().begin());
+    for (int i = samples - 1; i >= 0; --i) {
+        offsets[i] = (state - kOffsets) * kOffsetStep;
+        if (i > 0) state = from[i][state];
+    }
 
     const std::uint64_t seed = options.seed;
     const double phaseYaw = 2 * kPi * unitFromSeed(seed, 1), phasePitch = 2 * kPi * unitFromSeed(seed, 2),
@@ -161,19 +200,15 @@ std::vector<ingest::Pose> planWalk(const model::SceneData& scene, const WalkOpti
         double s = start + loop.length() * k / frames;
         double x, y, heading;
         loop.at(s, x, y, heading);
-        double z = room.floorTop + options.eyeHeight + 0.015 * std::sin(2 * kPi * s / 0.65 + phaseBob);
+        double z = eye + 0.015 * std::sin(2 * kPi * s / 0.65 + phaseBob);
         Eigen::Vector3d inward(-std::sin(heading), std::cos(heading), 0);
-
-        // Step around anything the loop runs into (a tall shelf): sideways, nearest first.
-        Eigen::Vector3d position(x, y, z), best = position;
-        double bestClearance = clearance(position);
-        for (int step = 1; step <= 24 && bestClearance < options.clearance; ++step) {
-            double offset = (step % 2 ? 1 : -1) * 0.1 * ((step + 1) / 2);
-            Eigen::Vector3d candidate = position + offset * inward;
-            double c = clearance(candidate);
-            if (c > bestClearance) best = candidate, bestClearance = c;
-        }
-        position = best;
+        // The detour at this point of the walk, between the two nearest samples.
+        double along = (s - start) / ds;
+        int i0 = std::min(samples - 1, static_cast<int>(along));
+        int i1 = std::min(samples - 1, i0 + 1);
+        double w = std::clamp(along - i0, 0.0, 1.0);
+        double offset = offsets[i0] * (1 - w) + offsets[i1] * w;
+        Eigen::Vector3d position = Eigen::Vector3d(x, y, z) + offset * inward;
 
         double yaw = heading + lookAhead + 4 * kDegree * std::sin(2 * kPi * s / 2.3 + phaseYaw);
         double pitch = 15 * kDegree + 2.5 * kDegree * std::sin(2 * kPi * s / 3.1 + phasePitch);
