@@ -65,7 +65,7 @@ struct Capture {
 };
 
 struct CaptureOptions {
-    double fps = 1.0;               // sampling of videos and image folders
+    double fps = 1.0;               // sampling of videos and TUM sequences (0 = every frame); image folders keep every image
     int workingWidth = 640;         // frames wider than this are scaled down (docs/ingest.md)
     std::optional<double> depthScale;
     std::optional<Intrinsics> intrinsics;
