@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 namespace smql::model {
 
@@ -11,11 +10,19 @@ namespace {
 
 double cross(Vec2 o, Vec2 a, Vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
-double polygonArea(const std::vector<Vec2>& poly) {
+// A convex polygon with room for what clipping a rectangle by a rectangle can make (at most 8
+// corners): footprint overlaps run in the inner loops of queries and imports, so no heap.
+struct SmallPolygon {
+    std::array<Vec2, 12> corners;
+    std::size_t size = 0;
+    void push(Vec2 p) { corners[size++] = p; }
+};
+
+double polygonArea(const SmallPolygon& poly) {
     double twice = 0;
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-        const Vec2& p = poly[i];
-        const Vec2& q = poly[(i + 1) % poly.size()];
+    for (std::size_t i = 0; i < poly.size; ++i) {
+        const Vec2& p = poly.corners[i];
+        const Vec2& q = poly.corners[(i + 1) % poly.size];
         twice += p.x * q.y - q.x * p.y;
     }
     return std::abs(twice) / 2;
@@ -80,23 +87,23 @@ double footprintOverlap(const Box& a, const Box& b) {
     // Sutherland-Hodgman: clip a's rectangle by each edge of b's (both convex, counter-clockwise).
     auto fa = footprint(a);
     auto fb = footprint(b);
-    std::vector<Vec2> poly(fa.begin(), fa.end());
-    for (int i = 0; i < 4 && !poly.empty(); ++i) {
+    SmallPolygon poly;
+    for (const auto& p : fa) poly.push(p);
+    for (int i = 0; i < 4 && poly.size > 0; ++i) {
         Vec2 e0 = fb[i], e1 = fb[(i + 1) % 4];
-        std::vector<Vec2> clipped;
-        clipped.reserve(poly.size() + 4);
-        for (std::size_t k = 0; k < poly.size(); ++k) {
-            Vec2 p = poly[k], q = poly[(k + 1) % poly.size()];
+        SmallPolygon clipped;
+        for (std::size_t k = 0; k < poly.size; ++k) {
+            Vec2 p = poly.corners[k], q = poly.corners[(k + 1) % poly.size];
             double sp = cross(e0, e1, p), sq = cross(e0, e1, q);
-            if (sp >= 0) clipped.push_back(p);
+            if (sp >= 0) clipped.push(p);
             if ((sp >= 0) != (sq >= 0)) {
                 double t = sp / (sp - sq);
-                clipped.push_back({p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)});
+                clipped.push({p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)});
             }
         }
-        poly = std::move(clipped);
+        poly = clipped;
     }
-    return poly.size() < 3 ? 0.0 : polygonArea(poly);
+    return poly.size < 3 ? 0.0 : polygonArea(poly);
 }
 
 double horizontalGap(const Box& a, const Box& b) {

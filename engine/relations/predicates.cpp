@@ -31,11 +31,12 @@ constexpr std::array<NamedPredicate, 13> kNames = {{{"on", Predicate::On},
                                                      {"between", Predicate::Between}}};
 
 // Categories are open vocabulary; `plant stand`, `plant_stand` and `plant-stand` are one word here.
-std::string normalised(std::string_view category) {
-    std::string out(category);
-    for (char& ch : out)
-        if (ch == ' ' || ch == '_') ch = '-';
-    return out;
+bool sameCategory(std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) return false;
+    auto fold = [](char c) { return c == ' ' || c == '_' ? '-' : c; };
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (fold(a[i]) != fold(b[i])) return false;
+    return true;
 }
 
 bool hasGeometry(const Node& n) { return n.geometry != model::GeometryKind::None; }
@@ -92,9 +93,11 @@ Affordance affordanceOf(std::string_view category) {
         "cabinet", "base-cabinet", "wall-cabinet", "cupboard", "wardrobe", "closet", "drawer",
         "chest-of-drawers", "dresser", "shelf-unit", "bookcase", "bookshelf", "fridge", "refrigerator",
         "microwave", "oven", "dishwasher", "washing-machine", "kitchen-cabinet", "nightstand"};
-    std::string c = normalised(category);
-    if (std::find(holders.begin(), holders.end(), c) != holders.end()) return Affordance::Holder;
-    if (std::find(enclosures.begin(), enclosures.end(), c) != enclosures.end()) return Affordance::Enclosure;
+    auto listed = [&](const auto& names) {
+        return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return sameCategory(n, category); });
+    };
+    if (listed(holders)) return Affordance::Holder;
+    if (listed(enclosures)) return Affordance::Enclosure;
     return Affordance::Surface;
 }
 
@@ -157,7 +160,7 @@ double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, 
             return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
         }
         case Predicate::Attached: {
-            if (!isVerticalPlane(a) && !isVerticalPlane(b) && normalised(b.category) != "pillar") return 0.0;
+            if (!isVerticalPlane(a) && !isVerticalPlane(b) && !sameCategory(b.category, "pillar")) return 0.0;
             double d = model::distance(a.box, b.box);
             return d <= t.attachedMaxGap ? std::max(0.01, 1.0 - d / std::max(t.attachedMaxGap, 1e-3)) : 0.0;
         }
