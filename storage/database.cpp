@@ -31,7 +31,7 @@ struct ReadTransaction::Impl {
     ~Impl() {
         for (MDB_cursor* cursor : cursors)
             if (cursor) mdb_cursor_close(cursor);
-        mdb_txn_abort(txn);
+        env->endReader(txn);
     }
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
@@ -307,9 +307,7 @@ std::unique_ptr<Database> Database::open(const std::string& directory, const Ope
 }
 
 ReadTransaction Database::beginRead() const {
-    MDB_txn* txn = nullptr;
-    impl_->env->check(mdb_txn_begin(impl_->env->env(), nullptr, MDB_RDONLY, &txn), "beginning a read transaction");
-    return ReadTransaction(std::make_unique<ReadTransaction::Impl>(impl_->env, txn));
+    return ReadTransaction(std::make_unique<ReadTransaction::Impl>(impl_->env, impl_->env->beginReader()));
 }
 
 WriteTransaction Database::beginWrite() {

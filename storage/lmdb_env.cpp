@@ -154,7 +154,41 @@ std::shared_ptr<Environment> Environment::open(const std::string& directory, con
 Environment::Environment(MDB_env* env, std::string directory, bool readOnly)
     : env_(env), directory_(std::move(directory)), readOnly_(readOnly) {}
 
+namespace {
+// Enough for the threads that query one database at once; more are aborted when they end.
+constexpr std::size_t kMaxIdleReaders = 16;
+}  // namespace
+
+MDB_txn* Environment::beginReader() {
+    MDB_txn* txn = nullptr;
+    {
+        std::lock_guard lock(readersMutex_);
+        if (!idleReaders_.empty()) {
+            txn = idleReaders_.back();
+            idleReaders_.pop_back();
+        }
+    }
+    if (txn) {
+        int rc = mdb_txn_renew(txn);
+        if (rc == MDB_SUCCESS) return txn;
+        mdb_txn_abort(txn);
+    }
+    check(mdb_txn_begin(env_, nullptr, MDB_RDONLY, &txn), "beginning a read transaction");
+    return txn;
+}
+
+void Environment::endReader(MDB_txn* txn) {
+    mdb_txn_reset(txn);
+    std::lock_guard lock(readersMutex_);
+    if (idleReaders_.size() < kMaxIdleReaders) {
+        idleReaders_.push_back(txn);
+        return;
+    }
+    mdb_txn_abort(txn);
+}
+
 Environment::~Environment() {
+    for (MDB_txn* txn : idleReaders_) mdb_txn_abort(txn);
     // Closing under the registry lock: a concurrent open() of the same
     // directory must not create a second environment while this one still
     // holds the directory's locks.

@@ -8,6 +8,8 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <mutex>
+#include <vector>
 #include <string>
 #include <string_view>
 
@@ -63,6 +65,11 @@ public:
     // LMDB's key size limit (511 bytes in Debian's build); names used as keys are checked against it.
     std::size_t maxKeySize() const { return static_cast<std::size_t>(mdb_env_get_maxkeysize(env_)); }
 
+    // Read transactions come from a pool of reset ones: renewing a transaction
+    // reuses its reader slot, where beginning one takes LMDB's reader lock.
+    MDB_txn* beginReader();
+    void endReader(MDB_txn* txn);
+
     // Throws smql::Error(Storage) naming the database, the operation and LMDB's reason.
     [[noreturn]] void fail(int rc, std::string_view operation) const;
     void check(int rc, std::string_view operation) const {
@@ -77,6 +84,8 @@ private:
     std::string directory_;
     bool readOnly_;
     std::array<MDB_dbi, kTableCount> dbis_{};
+    std::mutex readersMutex_;
+    std::vector<MDB_txn*> idleReaders_;
 };
 
 inline MDB_val toVal(std::string_view s) { return {s.size(), const_cast<char*>(s.data())}; }
