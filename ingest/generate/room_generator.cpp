@@ -57,8 +57,9 @@ public:
     explicit Builder(const RoomOptions& o) : rng_(o.seed), options_(o) {}
 
     GeneratedRoom build() {
-        // Each cell holds about six objects: size the floor for the requested count.
-        int cells = std::max(1, (options_.objectCount + 5) / 6);
+        // A cell holds four objects on average (a piece, sometimes chairs, small things on top):
+        // size the floor for 3.5 per cell so that the cells hold the requested count.
+        int cells = std::max(1, (options_.objectCount * 2 + 6) / 7);
         int cols = std::max(2, static_cast<int>(std::ceil(std::sqrt(cells * 1.3))));
         int rows = std::max(2, (cells + cols - 1) / cols);
         width_ = cols * kCell;

@@ -177,6 +177,26 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
         if (wall.frames < minFrames || wall.z1 - wall.z0 < options.minHeight || wall.length() < options.minLength)
             continue;
 
+        // A wall is a surface, not a few lines: its inliers fill much of its extent. A vertical plane
+        // through a strip of ceiling and the fronts of some furniture spans the room's height but
+        // leaves most cells of its extent empty.
+        {
+            const double cell = options.coverageCell;
+            auto columns = static_cast<std::size_t>(std::ceil(wall.length() / cell));
+            auto rows = static_cast<std::size_t>(std::ceil((wall.z1 - wall.z0) / cell));
+            std::vector<char> filled(std::max<std::size_t>(1, columns * rows), 0);
+            for (auto i : c.inliers) {
+                const auto& p = aligned.points[i];
+                double a = alongOf(c.normal, p);
+                if (a < wall.along0 || a > wall.along1 || p.z < wall.z0 || p.z > wall.z1) continue;
+                auto col = std::min(columns - 1, static_cast<std::size_t>((a - wall.along0) / cell));
+                auto row = std::min(rows - 1, static_cast<std::size_t>((p.z - wall.z0) / cell));
+                filled[row * columns + col] = 1;
+            }
+            double coverage = static_cast<double>(std::count(filled.begin(), filled.end(), 1)) / filled.size();
+            if (coverage < options.minCoverage) continue;
+        }
+
         // Walls bound the room: few points lie behind them (doorways and windows let some through). A
         // free-standing cabinet has the far wall behind it.
         std::size_t front = 0, behind = 0;
@@ -188,9 +208,12 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
             if (s > options.behindDistance) ++front;
             else if (s < -options.behindDistance) ++behind;
         }
+        // Judged against the room in front, and against the segment's own surface: a tall shelf's face
+        // has a busy room in front of it, but a whole wall's worth of points behind.
         if (front + behind > 0 &&
             static_cast<double>(behind) > options.maxBehindShare * static_cast<double>(front + behind))
             continue;
+        if (static_cast<double>(behind) > options.maxBehindOfSurface * static_cast<double>(wall.inliers)) continue;
 
         double support = std::min(1.0, static_cast<double>(wall.inliers) / (4.0 * options.minInliers));
         double seen = std::min(1.0, static_cast<double>(wall.frames) / 3.0);

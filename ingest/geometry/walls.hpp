@@ -42,6 +42,9 @@ struct WallOptions {
     double behindDistance = 0.3;   // a point this far behind a wall was seen through it (depth noise is less)
     double maxBehindShare = 0.2;   // walls bound the room: of the points over a segment, at most this share behind it
     double layerDistance = 1.0;    // a parallel, overlapping segment up to this far in front of a wall is furniture
+    double coverageCell = 0.25;    // the extent is cut into cells of this side ...
+    double minCoverage = 0.4;      // ... and a wall's inliers fill at least this share of them
+    double maxBehindOfSurface = 0.3;  // ... and at most this many per inlier of the segment itself
     double mergeAngle = 10;        // degrees: near-duplicate planes ...
     double mergeOffset = 0.1;      // ... with offsets this close (and touching extents) are merged
 };

@@ -1,0 +1,55 @@
+// The query classes of the benchmark, run on one data set by both systems:
+// every distinct query is first answered by both and the answers compared
+// (a mismatch throws), then each class is timed query by query.
+#pragma once
+
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "bench/data_set.hpp"
+#include "bench/stats.hpp"
+
+namespace smql::bench {
+
+// The shape of the queries (docs/benchmarks.md's method section states them).
+inline constexpr int kRelatePairsPerScene = 8;
+inline constexpr int kNearestLimit = 5;
+inline constexpr int kCategoryLimit = 100;
+
+struct WorkloadOptions {
+    int queries = 2000;      // timed executions per query class and system
+    int rounds = 5;          // the executions split into rounds; percentiles are the median over rounds
+    int sampledScenes = 10;  // scenes the single-scene classes run in, spread over the data set
+    int openRepeats = 11;    // opens timed per system (the median is reported)
+};
+
+struct ClassResult {
+    std::string name;  // the query, as the report shows it
+    bool twoPredicateFind = false;  // what the FIND latency target is about
+    Percentiles smql;  // p50 and p99: medians over the rounds
+    Percentiles sqlite;
+    std::size_t verified = 0;   // distinct queries whose answers were compared (and matched)
+    double meanAnswer = 0;      // mean rows per answer (the count itself for COUNT)
+};
+
+// Medians over WorkloadOptions::openRepeats, in microseconds.
+struct OpenTimes {
+    double smqlOpen = 0;
+    double smqlFirstQuery = 0;  // open + USE SCENE + the first FIND (which loads the scene)
+    double sqliteOpen = 0;      // open + pragmas + preparing the statements
+    double sqliteFirstQuery = 0;
+};
+
+struct WorkloadResult {
+    std::vector<ClassResult> classes;
+    // The first FIND after USE SCENE: smql decodes the scene into memory then.
+    Percentiles smqlSceneSwitch;
+    Percentiles sqliteSceneSwitch;
+    OpenTimes open;
+};
+
+WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, std::ostream& progress);
+
+}  // namespace smql::bench
