@@ -184,7 +184,7 @@ std::string renderMarkdown(const Report& report) {
     line(fmt::format(
         "- Data: `generateRoom({{seed = scene index, objectCount, name = room_<index>}})` (ingest/generate): walls, a door, "
         "windows, furniture groups on a grid of 2.6 m cells and small coloured things resting on the furniture; the floor "
-        "grows with the object count (a 2,000-object room is a 55 m x 42 m hall). The generator stores fewer objects than it is asked for (its furniture groups average about 4 objects per cell where it budgets 6): the data set table gives both. Each scene is imported with "
+        "grows with the object count (a 2,000-object room is a hall of 28 x 21 cells, 73 m x 55 m). The data set table gives the objects asked for and stored. Each scene is imported with "
         "`Engine::importScene` (one write transaction, tree derivation included), then read back and inserted into "
         "SQLite with the same ids, parents and boxes in one transaction per scene. Both systems sync each commit "
         "(LMDB's default; SQLite WAL with `synchronous=FULL`)."));

@@ -1,5 +1,6 @@
 // RGB-D captures: our rgbd folder (color/ depth/ pose.txt) and the TUM RGB-D
 // benchmark layout (rgb.txt depth.txt groundtruth.txt).
+#include <functional>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -15,6 +16,7 @@ namespace smql::ingest::capture_detail {
 
 namespace {
 
+
 using import::detail::Field;
 using import::detail::JsonSource;
 
@@ -23,6 +25,31 @@ double frameTime(int index, double fps) { return fps > 0 ? index / fps : index; 
 bool pathExists(const fs::path& path) {
     std::error_code ec;
     return fs::exists(path, ec);
+}
+
+// The camera of an RGB-D capture: the intrinsics option, else camera.json, else the Kinect default
+// (with the note `defaultNote` words), fitted to the first frame's size; and the depth scale: the
+// option, else camera.json's, else `defaultDepthScale`.
+void chooseCamera(Capture& capture, const CaptureOptions& options, const fs::path& cameraFile, std::string_view hint,
+                  double defaultDepthScale,
+                  const std::function<std::string(const Intrinsics&, int width, int height)>& defaultNote) {
+    std::optional<CameraJson> camera;
+    if (pathExists(cameraFile)) camera = readCameraJson(cameraFile, hint);
+    RawFrame first = readRawFrame(capture.frames.front());
+    const int width = first.color.cols, height = first.color.rows;
+    if (options.intrinsics) {
+        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
+    } else if (camera) {
+        capture.intrinsics = camera->intrinsics;
+    } else {
+        capture.intrinsics = kinectDefault(width, height);
+        capture.notes.push_back(defaultNote(capture.intrinsics, width, height));
+    }
+    capture.intrinsics = fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath,
+                                       options.intrinsics ? "the intrinsics option" : cameraFile.string());
+    capture.depthScale = options.depthScale                 ? *options.depthScale
+                         : camera && camera->depthScale ? *camera->depthScale
+                                                        : defaultDepthScale;
 }
 
 // Images named by frame number in `dir`, in numeric order.
@@ -171,27 +198,12 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
         capture.detectionsPath =
             checkedJson(dir / "detections.json", "detections.json holds COCO-results style detections");
 
-    std::optional<CameraJson> camera;
-    if (pathExists(cameraFile)) camera = readCameraJson(cameraFile, kRgbdHint);
-
-    RawFrame first = readRawFrame(capture.frames.front());
-    const int width = first.color.cols, height = first.color.rows;
-    if (options.intrinsics) {
-        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
-    } else if (camera) {
-        capture.intrinsics = camera->intrinsics;
-    } else {
-        capture.intrinsics = kinectDefault(width, height);
-        capture.notes.push_back(fmt::format(
+    chooseCamera(capture, options, cameraFile, kRgbdHint, 1000.0, [&](const Intrinsics& k, int width, int height) {
+        return fmt::format(
             "no camera.json in {}: using the default intrinsics of a Kinect (fx = fy = {:g}, cx = {:g}, cy = {:g} for "
             "{}x{}); add camera.json or give the intrinsics for exact geometry",
-            dir.string(), capture.intrinsics.fx, capture.intrinsics.cx, capture.intrinsics.cy, width, height));
-    }
-    fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath,
-                  options.intrinsics ? "the intrinsics option" : cameraFile.string());
-    capture.depthScale = options.depthScale ? *options.depthScale
-                         : camera && camera->depthScale ? *camera->depthScale
-                                                        : 1000.0;
+            dir.string(), k.fx, k.cx, k.cy, width, height);
+    });
     return capture;
 }
 
@@ -335,27 +347,13 @@ Capture readTum(const fs::path& dir, const CaptureOptions& options) {
         capture.notes.push_back(fmt::format("{} of {} frames have no ground-truth pose within {} s in {}", withoutPose,
                                             capture.frames.size(), kTumMaxDt, gtFile.string()));
 
-    std::optional<CameraJson> camera;
-    if (pathExists(cameraFile)) camera = readCameraJson(cameraFile, kTumHint);
-    RawFrame first = readRawFrame(capture.frames.front());
-    const int width = first.color.cols, height = first.color.rows;
-    if (options.intrinsics) {
-        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
-    } else if (camera) {
-        capture.intrinsics = camera->intrinsics;
-    } else {
-        capture.intrinsics = kinectDefault(width, height);
-        capture.notes.push_back(fmt::format(
+    chooseCamera(capture, options, cameraFile, kTumHint, 5000.0, [](const Intrinsics& k, int width, int height) {
+        return fmt::format(
             "TUM capture without camera.json: using the default intrinsics fx = fy = {:g}, cx = {:g}, cy = {:g} "
             "(the TUM ROS default for {}x{}); give the intrinsics of the sequence's camera (freiburg1/2/3) for exact "
             "geometry",
-            capture.intrinsics.fx, capture.intrinsics.cx, capture.intrinsics.cy, width, height));
-    }
-    fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath,
-                  options.intrinsics ? "the intrinsics option" : cameraFile.string());
-    capture.depthScale = options.depthScale ? *options.depthScale
-                         : camera && camera->depthScale ? *camera->depthScale
-                                                        : 5000.0;
+            k.fx, k.cx, k.cy, width, height);
+    });
     return capture;
 }
 

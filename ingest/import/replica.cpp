@@ -127,12 +127,7 @@ model::SceneData readReplica(const std::string& path, const std::string& sceneNa
         scene.nodes.push_back(std::move(node));
     }
 
-    scene.info.name = sceneName;
-    scene.info.source = "replica:" + path;
-    scene.info.nodeCount = scene.nodes.size();
-    detail::ViewpointChoice view = detail::defaultViewpoint(scene.nodes);
-    scene.info.viewpoint = view.viewpoint;
-    scene.info.viewpointNote = std::move(view.note);
+    detail::finishScene(scene, sceneName, "replica:" + path);
     return scene;
 }
 

@@ -258,12 +258,7 @@ model::SceneData readSpatialLm(const std::string& path, const std::string& scene
     if (scene.nodes.empty())
         throw Error(ErrorKind::Input, path + ": no walls, doors, windows or bboxes in the file", std::nullopt,
                     std::string(kHint));
-    scene.info.name = sceneName;
-    scene.info.source = "spatiallm:" + path;
-    scene.info.nodeCount = scene.nodes.size();
-    detail::ViewpointChoice view = detail::defaultViewpoint(scene.nodes);
-    scene.info.viewpoint = view.viewpoint;
-    scene.info.viewpointNote = std::move(view.note);
+    detail::finishScene(scene, sceneName, "spatiallm:" + path);
     return scene;
 }
 

@@ -124,4 +124,13 @@ ViewpointChoice defaultViewpoint(const std::vector<Node>& nodes) {
     return choice;
 }
 
+void finishScene(model::SceneData& scene, const std::string& name, std::string source) {
+    scene.info.name = name;
+    scene.info.source = std::move(source);
+    scene.info.nodeCount = scene.nodes.size();
+    ViewpointChoice view = defaultViewpoint(scene.nodes);
+    scene.info.viewpoint = view.viewpoint;
+    scene.info.viewpointNote = std::move(view.note);
+}
+
 }  // namespace smql::import::detail
