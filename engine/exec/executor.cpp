@@ -335,7 +335,7 @@ ResultSet Executor::describe(const binder::NodeSet& nodes) const {
         if (n.geometry != model::GeometryKind::None) {
             const auto& b = n.box;
             add("center", fmt::format("({:.3f}, {:.3f}, {:.3f}) m", b.center.x, b.center.y, b.center.z));
-            add("size", fmt::format("{:.3f} x {:.3f} x {:.3f} m", b.size.x, b.size.y, b.size.z));
+            add("dimensions", fmt::format("{:.3f} x {:.3f} x {:.3f} m", b.size.x, b.size.y, b.size.z));
             add("yaw", fmt::format("{:.1f} deg", b.yaw * 180.0 / M_PI));
             add("geometry", n.geometry == model::GeometryKind::Plane ? "plane segment" : "box");
         }

@@ -71,8 +71,11 @@ const std::vector<Slot>& SceneSnapshot::slotsOfKind(model::NodeKind kind) const 
 std::vector<std::string> SceneSnapshot::categories() const {
     std::vector<std::string> out;
     for (const auto& [name, slots] : slotsByCategory_) {
+        // Descriptions and frames are about places, not places: they are not categories to ask for.
         bool queryable = std::any_of(slots.begin(), slots.end(), [&](Slot s) {
-            return !nodes_[s].hidden && nodes_[s].kind != model::NodeKind::Scene;
+            auto kind = nodes_[s].kind;
+            return !nodes_[s].hidden && kind != model::NodeKind::Scene && kind != model::NodeKind::Description &&
+                   kind != model::NodeKind::Frame;
         });
         if (queryable) out.push_back(name);
     }

@@ -25,7 +25,7 @@ struct IngestOptions {
     int structureStride = 4;          // every n-th pixel of each frame feeds the structure cloud
     double structureVoxel = 0.05;     // m
     int objectStride = 2;             // every n-th pixel of an instance mask is lifted
-    double objectVoxel = 0.02;        // m
+    double objectVoxel = 0.01;        // m
     int minInstancePixels = 150;      // smaller mask fragments in a frame are ignored
     int minObjectViews = 1;           // an instance needs this many views to become an object
     int descriptionAgreement = 2;     // views that must agree before a scene-level phrase is promoted

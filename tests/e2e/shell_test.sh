@@ -71,7 +71,7 @@ check "export json" "$smql" export json --db "$db" --scene room0 -o "$work/room0
 check "import json" "$smql" import json "$work/room0.json" --db "$work/copy"
 check "the copy answers the same" bash -c "diff <('$smql' '$db' -c 'FIND cushion WHERE on(sofa) PATH' | cut -c1-200 | awk '{print \$2, \$3}') <('$smql' '$work/copy' -c 'FIND cushion WHERE on(sofa) PATH' | awk '{print \$2, \$3}')"
 
-check "smql demo runs" bash -c "'$smql' demo --db '$work/demo' | grep -q 'Explore it yourself'"
+check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"
 check "smql test reports a closing line" bash -c "'$smql' test /dev/null | tail -1 | grep -qx '0 passed, 0 failed'"
 
 echo "$passed passed, $failed failed"
