@@ -71,6 +71,33 @@ check "export json" "$smql" export json --db "$db" --scene room0 -o "$work/room0
 check "import json" "$smql" import json "$work/room0.json" --db "$work/copy"
 check "the copy answers the same" bash -c "diff <('$smql' '$db' -c 'FIND cushion WHERE on(sofa) PATH' | cut -c1-200 | awk '{print \$2, \$3}') <('$smql' '$work/copy' -c 'FIND cushion WHERE on(sofa) PATH' | awk '{print \$2, \$3}')"
 
+# Ingest from the command line: a small synthetic capture, progress as JSON lines, the quality report,
+# evidence crops, and the real rgbd-dining frames.
+check "synth writes a capture" "$smql" synth --out "$work/capture" --seed 2 --frames 12
+check "ingest logs stages as JSON lines" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --log json 2>'$work/log' >/dev/null && python3 -c '
+import json, sys
+stages = [json.loads(l) for l in open(sys.argv[1])]
+names = [e[\"stage\"] for e in stages if e[\"event\"] == \"stage_finished\"]
+assert names == [\"frames\", \"align\", \"anchors\", \"objects\", \"relations\", \"write\"], names
+' '$work/log'"
+check "check-ingest reports F1 as JSON" bash -c "'$smql' check-ingest '$work/memory' --truth '$work/capture/truth.json' --format json | python3 -c '
+import json, sys
+r = json.load(sys.stdin)
+assert r[\"objects\"][\"f1\"] > 0.5 and 0 <= r[\"color_accuracy\"] <= 1, r
+'"
+check "ingested objects have scene-level text" bash -c "'$smql' '$work/memory' --format json -c \"FIND object WHERE text LIKE '% on the %' LIMIT 1\" | grep -q '\"id\"'"
+check "DESCRIBE lists evidence" bash -c "'$smql' '$work/memory' -c 'DESCRIBE (FIND object LIMIT 1)' | grep -q 'evidence.*image/jpeg'"
+node=$("$smql" "$work/memory" --format csv -c 'FIND object LIMIT 1' | sed -n 2p | cut -d, -f1)
+check "export evidence writes JPEG crops" bash -c "'$smql' export evidence '#$node' '$work/crops' --db '$work/memory' >/dev/null && python3 -c '
+import glob, sys
+crops = glob.glob(sys.argv[1] + \"/*.jpg\")
+assert crops and all(open(c, \"rb\").read(2) == bytes([0xff, 0xd8]) for c in crops), crops
+' '$work/crops'"
+check "a second ingest of the same place is a new scene" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet && '$smql' '$work/memory' -c 'SHOW SCENES' | grep -q again"
+check "an ingest into a taken scene name is refused" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet"
+check "rgbd-dining ingests without labels" bash -c "'$smql' ingest '$data/rgbd-dining' --db '$work/dining' --quiet && '$smql' '$work/dining' -c 'COUNT object' | sed -n 3p | grep -qv '^0$'"
+check "a capture that is not one is refused naming it" bash -c "mkdir -p '$work/empty' && ! '$smql' ingest '$work/empty' --db '$work/x' 2>'$work/e' && grep -q empty '$work/e'"
+
 check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"
 check "smql test reports a closing line" bash -c "'$smql' test /dev/null | tail -1 | grep -qx '0 passed, 0 failed'"
 
