@@ -386,6 +386,14 @@ model::SceneData Engine::exportScene(const std::string& name) {
         copy.parent = parent == local.end() ? model::kNoNode : parent->second;
         out.nodes.push_back(std::move(copy));
     }
+    for (const auto& n : snap->nodes()) {
+        if (n.kind == model::NodeKind::Scene) continue;
+        for (const auto& info : txn.blobsOf(n.id))
+            if (auto blob = txn.blob(n.id, info.name)) {
+                blob->node = local.at(n.id);
+                out.blobs.push_back(std::move(*blob));
+            }
+    }
     for (auto r : snap->storedRelations()) {
         r.subject = local.at(r.subject);
         r.object = local.at(r.object);

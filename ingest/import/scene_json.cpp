@@ -293,6 +293,69 @@ void checkRelations(const Field& relationsField, const std::vector<model::Relati
 
 }  // namespace
 
+namespace {
+
+constexpr std::string_view kBase64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+std::string toBase64(std::string_view bytes) {
+    std::string out;
+    out.reserve((bytes.size() + 2) / 3 * 4);
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        std::uint32_t chunk = std::uint32_t(std::uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) chunk |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
+        if (i + 2 < bytes.size()) chunk |= std::uint8_t(bytes[i + 2]);
+        out += kBase64[chunk >> 18 & 63];
+        out += kBase64[chunk >> 12 & 63];
+        out += i + 1 < bytes.size() ? kBase64[chunk >> 6 & 63] : '=';
+        out += i + 2 < bytes.size() ? kBase64[chunk & 63] : '=';
+    }
+    return out;
+}
+
+std::string fromBase64(const Field& field) {
+    std::string text = field.string();
+    if (text.size() % 4 != 0) field.fail("base64 text must come in groups of 4 characters");
+    std::string out;
+    out.reserve(text.size() / 4 * 3);
+    for (std::size_t i = 0; i < text.size(); i += 4) {
+        std::uint32_t chunk = 0;
+        int padding = 0;
+        for (std::size_t k = 0; k < 4; ++k) {
+            char c = text[i + k];
+            std::size_t value = 0;
+            if (c == '=' && i + 4 == text.size() && k >= 2) {
+                ++padding;
+            } else {
+                value = kBase64.find(c);
+                if (value == std::string_view::npos || padding)
+                    field.fail(fmt::format("'{}' at {} is not base64", c, i + k));
+            }
+            chunk = chunk << 6 | static_cast<std::uint32_t>(value);
+        }
+        out += static_cast<char>(chunk >> 16 & 255);
+        if (padding < 2) out += static_cast<char>(chunk >> 8 & 255);
+        if (padding < 1) out += static_cast<char>(chunk & 255);
+    }
+    return out;
+}
+
+model::Blob readBlob(const Field& field, const std::vector<model::Node>& nodes) {
+    field.allowOnly({"node", "name", "media_type", "base64"});
+    model::Blob blob;
+    Field node = field.at("node");
+    blob.node = node.unsignedInteger();
+    if (std::none_of(nodes.begin(), nodes.end(), [&](const model::Node& n) { return n.id == blob.node; }))
+        node.fail(fmt::format("{} is not the id of a node", blob.node));
+    Field name = field.at("name");
+    blob.name = name.string();
+    if (blob.name.empty()) name.fail("a blob needs a name");
+    blob.mediaType = field.at("media_type").string();
+    blob.bytes = fromBase64(field.at("base64"));
+    return blob;
+}
+
+}  // namespace
+
 std::string writeSceneJson(const model::SceneData& scene) {
     const model::SceneInfo& info = scene.info;
     Json root;
@@ -309,6 +372,13 @@ std::string writeSceneJson(const model::SceneData& scene) {
     for (const model::Node& node : scene.nodes) root["nodes"].push_back(nodeJson(node));
     root["relations"] = Json::array();
     for (const model::Relation& relation : scene.relations) root["relations"].push_back(relationJson(relation));
+    // Evidence crops travel as base64; scenes without any keep the shorter form.
+    if (!scene.blobs.empty()) {
+        root["blobs"] = Json::array();
+        for (const model::Blob& blob : scene.blobs)
+            root["blobs"].push_back(
+                {{"node", blob.node}, {"name", blob.name}, {"media_type", blob.mediaType}, {"base64", toBase64(blob.bytes)}});
+    }
     std::string out;
     writePretty(root, 0, out);
     return out + "\n";
@@ -320,7 +390,7 @@ model::SceneData readSceneJson(const std::string& path) {
                               "\"relations\": [...]} (docs/formats.md)"};
     Json root = detail::parseJsonFile(source);
     Field top(root, source);
-    top.allowOnly({"smql_scene", "scene", "nodes", "relations"});
+    top.allowOnly({"smql_scene", "scene", "nodes", "relations", "blobs"});
     Field version = top.at("smql_scene");
     if (version.integer() != kFormatVersion)
         version.fail(fmt::format("unsupported version {} (this build reads version {})", version.integer(),
@@ -335,6 +405,8 @@ model::SceneData readSceneJson(const std::string& path) {
         for (std::size_t i = 0; i < relations->size(); ++i) scene.relations.push_back(readRelation((*relations)[i]));
         checkRelations(*relations, scene.relations, scene.nodes);
     }
+    if (auto blobs = top.find("blobs"))
+        for (std::size_t i = 0; i < blobs->size(); ++i) scene.blobs.push_back(readBlob((*blobs)[i], scene.nodes));
     scene.info.nodeCount = scene.nodes.size();
     return scene;
 }

@@ -63,6 +63,16 @@ TEST_CASE("smql JSON: the Replica scene round-trips", "[import][json]") {
         CHECK(writeSceneJson(back) == written);
         CHECK_THAT(written, Catch::Contains("\"confidence\": 0.7,"));
     }
+    SECTION("with evidence blobs of every length modulo 3, binary bytes included") {
+        SceneData scene = readReplica(replicaPath(), "room0");
+        scene.blobs.push_back({1, "evidence-frame3.jpg", "image/jpeg", std::string("\xff\xd8\xff\0\x01\x80", 6)});
+        scene.blobs.push_back({2, "a.bin", "application/octet-stream", "ab"});
+        scene.blobs.push_back({2, "b.bin", "application/octet-stream", "abcd"});
+        std::string written = writeSceneJson(scene);
+        SceneData back = readSceneJson(dir.write("blobs.json", written));
+        CHECK(back.blobs == scene.blobs);
+        CHECK(writeSceneJson(back) == written);
+    }
 }
 
 TEST_CASE("smql JSON: optional fields take their defaults", "[import][json]") {
@@ -106,6 +116,16 @@ TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON p
     SECTION("truncated") {
         std::string path = dir.write("cut.json", base.dump(2).substr(0, 300));
         requireInputError(read(path), {path + ":", "not valid JSON"});
+    }
+    SECTION("a blob that is not base64, or of no node") {
+        std::string path = mutated([](Json& f) {
+            f["blobs"] = Json::array({{{"node", 1}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", "ab!d"}}});
+        });
+        requireInputError(read(path), {path, "blobs[0].base64", "not base64"});
+        path = mutated([](Json& f) {
+            f["blobs"] = Json::array({{{"node", 99999}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", ""}}});
+        });
+        requireInputError(read(path), {path, "blobs[0].node", "not the id of a node"});
     }
     SECTION("unsupported version") {
         std::string path = mutated([](Json& f) { f["smql_scene"] = 2; });
