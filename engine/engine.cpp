@@ -363,7 +363,7 @@ model::NodeId Engine::importScene(model::SceneData scene) {
     return id;
 }
 
-model::SceneData Engine::exportScene(const std::string& name) {
+model::SceneData Engine::readScene(const std::string& name) {
     std::lock_guard lock(state_->mutex);
     auto txn = state_->db->beginRead();
     auto info = name.empty() ? state_->currentScene(txn) : txn.sceneByName(name).value_or(model::SceneInfo{});
@@ -373,37 +373,43 @@ model::SceneData Engine::exportScene(const std::string& name) {
     auto snap = state_->snapshot(txn, info);
     model::SceneData out;
     out.info = info;
+    for (const auto& n : snap->nodes()) {
+        if (n.kind == model::NodeKind::Scene) continue;
+        out.nodes.push_back(n);
+        for (const auto& blob : txn.blobsOf(n.id))
+            if (auto stored = txn.blob(n.id, blob.name)) out.blobs.push_back(std::move(*stored));
+    }
+    out.relations = snap->storedRelations();
+    return out;
+}
+
+model::SceneData Engine::exportScene(const std::string& name) {
+    model::SceneData out = readScene(name);
     // Local ids 1..n in database-id order; the scene root is implied by parent 0.
     std::unordered_map<model::NodeId, model::NodeId> local;
-    for (const auto& n : snap->nodes())
-        if (n.kind != model::NodeKind::Scene) local.emplace(n.id, local.size() + 1);
-    for (const auto& n : snap->nodes()) {
-        if (n.kind == model::NodeKind::Scene) continue;
-        model::Node copy = n;
-        copy.id = local.at(n.id);
-        copy.scene = model::kNoNode;
-        auto parent = local.find(n.parent);
-        copy.parent = parent == local.end() ? model::kNoNode : parent->second;
-        out.nodes.push_back(std::move(copy));
+    for (const auto& n : out.nodes) local.emplace(n.id, local.size() + 1);
+    auto localId = [&](model::NodeId id) {
+        auto it = local.find(id);
+        return it == local.end() ? model::kNoNode : it->second;
+    };
+    for (auto& n : out.nodes) {
+        n.id = localId(n.id);
+        n.parent = localId(n.parent);
+        n.scene = model::kNoNode;
     }
-    for (const auto& n : snap->nodes()) {
-        if (n.kind == model::NodeKind::Scene) continue;
-        for (const auto& info : txn.blobsOf(n.id))
-            if (auto blob = txn.blob(n.id, info.name)) {
-                blob->node = local.at(n.id);
-                out.blobs.push_back(std::move(*blob));
-            }
-    }
-    for (auto r : snap->storedRelations()) {
-        r.subject = local.at(r.subject);
-        r.object = local.at(r.object);
-        if (r.frame != model::kNoNode) r.frame = local.at(r.frame);
-        out.relations.push_back(r);
-    }
+    for (auto& r : out.relations) r.subject = localId(r.subject), r.object = localId(r.object), r.frame = localId(r.frame);
+    for (auto& b : out.blobs) b.node = localId(b.node);
     out.info.id = model::kNoNode;
     out.info.nodeCount = 0;
     out.info.version = 0;
     return out;
+}
+
+void Engine::updateNodes(const std::vector<model::Node>& nodes) {
+    std::lock_guard lock(state_->mutex);
+    auto txn = state_->db->beginWrite();
+    txn.updateNodes(nodes);
+    txn.commit();
 }
 
 std::string Engine::currentScene() const {

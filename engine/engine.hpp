@@ -34,6 +34,11 @@ public:
     model::NodeId importScene(model::SceneData scene);
     // A stored scene in the import/export form (local ids renumbered 1..n).
     model::SceneData exportScene(const std::string& name);
+    // A stored scene as it is, with its database ids (the most recent when `name` is empty).
+    model::SceneData readScene(const std::string& name);
+    // Rewrites stored nodes' attributes, text, confidence or box in one transaction
+    // (storage::WriteTransaction::updateNodes says what may change).
+    void updateNodes(const std::vector<model::Node>& nodes);
 
     // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
     std::string currentScene() const;

@@ -3,12 +3,16 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <ctime>
+#include <unordered_map>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
+#include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -79,6 +83,45 @@ public:
     void note(const std::string&) override {}
 };
 
+// --update SCENE: the objects of the capture that match objects of the scene (same category, boxes
+// overlapping by IoU >= 0.25) refresh those objects' last-seen time; nothing else of the scene changes,
+// and the capture's other objects are reported, not added.
+int updateScene(Engine& engine, const IngestArguments& args, const model::SceneData& observed,
+                std::chrono::steady_clock::time_point writeStart, ingest::ProgressSink& progress) {
+    model::SceneData stored = engine.readScene(args.update);
+    auto pairs = ingest::matchObjects(stored, observed, 0.25);
+    std::unordered_map<model::NodeId, const model::Node*> storedById;
+    for (const auto& n : stored.nodes) storedById.emplace(n.id, &n);
+    std::vector<model::Node> updated;
+    for (const auto& [storedId, observedId] : pairs) {
+        model::Node node = *storedById.at(storedId);
+        auto set = [&](const std::string& name, const std::string& value) {
+            auto it = std::find_if(node.attributes.begin(), node.attributes.end(), [&](const auto& a) { return a.name == name; });
+            if (it == node.attributes.end()) node.attributes.push_back({name, value});
+            else it->value = value;
+        };
+        const std::string* seen = node.attribute("captures");
+        set("captures", std::to_string((seen ? std::stoi(*seen) : 1) + 1));
+        set("last_seen_at", observed.info.captureTime);
+        std::sort(node.attributes.begin(), node.attributes.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+        updated.push_back(std::move(node));
+    }
+    engine.updateNodes(updated);
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
+    progress.stageFinished("write", seconds, fmt::format("updated {} objects of scene '{}'", updated.size(), args.update));
+    std::size_t observedObjects = 0, storedObjects = 0;
+    for (const auto& n : observed.nodes) observedObjects += n.kind == model::NodeKind::Object;
+    for (const auto& n : stored.nodes) storedObjects += n.kind == model::NodeKind::Object && !n.hidden;
+    if (args.log != "quiet")
+        std::cout << fmt::format(
+            "updated scene '{}': {} objects seen again (last_seen_at {}); {} objects of the capture are not in the "
+            "scene and were not added (ingest without --update to keep them as a scene); {} objects of the scene "
+            "were not seen this time\n",
+            args.update, updated.size(), observed.info.captureTime, observedObjects - updated.size(),
+            storedObjects - updated.size());
+    return 0;
+}
+
 ingest::GeometrySource geometrySource(const std::string& name) {
     if (name == "given") return ingest::GeometrySource::Given;
     if (name == "colmap") return ingest::GeometrySource::Colmap;
@@ -96,6 +139,8 @@ ingest::ObjectSource objectSource(const std::string& name) {
 
 int ingestCommand(const IngestArguments& args) {
     auto start = std::chrono::steady_clock::now();
+    // A scene to update must exist before the work starts, not after it.
+    if (!args.update.empty()) Engine::open(args.db)->readScene(args.update);
     ingest::CaptureOptions captureOptions;
     captureOptions.fps = args.fps;
     ingest::Capture capture = ingest::readCapture(args.capture, captureOptions);
@@ -123,8 +168,19 @@ int ingestCommand(const IngestArguments& args) {
     }
     std::signal(SIGINT, previous);
 
+    // When the place was seen: the time of this ingest, on the scene and on every object.
+    std::string now = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::time(nullptr)));
+    if (result.scene.info.captureTime.empty()) result.scene.info.captureTime = now;
+    for (auto& n : result.scene.nodes)
+        if (n.kind == model::NodeKind::Object) {
+            n.attributes.push_back({"first_seen_at", result.scene.info.captureTime});
+            n.attributes.push_back({"last_seen_at", result.scene.info.captureTime});
+            std::sort(n.attributes.begin(), n.attributes.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+        }
+
     auto writeStart = std::chrono::steady_clock::now();
     auto engine = Engine::open(args.db);
+    if (!args.update.empty()) return updateScene(*engine, args, result.scene, writeStart, *progress);
     engine->importScene(result.scene);
     double writeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
     progress->stageFinished("write", writeSeconds, fmt::format("one transaction into {}", args.db));

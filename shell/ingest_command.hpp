@@ -15,6 +15,7 @@ struct IngestArguments {
     double fps = 1.0;
     std::optional<double> scale;
     std::string log = "bar";        // bar | quiet | json
+    std::string update;             // a scene of the same place to update instead of adding a new one
 };
 
 // `smql ingest CAPTURE --db DIR`: capture -> one new scene, in one transaction.

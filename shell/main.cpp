@@ -95,6 +95,9 @@ int runSubcommand(int argc, char** argv) {
     ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")->check(CLI::PositiveNumber);
     ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")->check(CLI::PositiveNumber);
     ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");
+    ingestCmd->add_option("--update", ingestArgs.update,
+                          "refresh the last-seen time of the objects of this scene that the capture sees again, "
+                          "instead of adding a new scene");
     ingestCmd->add_option("--log", ingestArgs.log, "progress as a bar (default), json lines, or quiet")
         ->check(CLI::IsMember({"bar", "json", "quiet"}));
 

@@ -794,6 +794,42 @@ void WriteTransaction::dropScene(NodeId sceneId) {
     erase(Table::SceneNames, toVal(info->name), nullptr);
 }
 
+void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    MDB_txn* txn = impl_->txn;
+    std::set<NodeId> scenes;
+    // Check every node before the first write, so a refused update writes nothing.
+    for (const Node& node : nodes) {
+        auto key = codec::idKey(node.id);
+        auto bytes = lookup(env, txn, Table::Nodes, toVal(key), "reading a node");
+        if (!bytes) importError(fmt::format("node #{} does not exist", node.id));
+        Node stored = codec::decodeNode(node.id, *bytes);
+        if (stored.kind != node.kind || stored.scene != node.scene || stored.parent != node.parent ||
+            stored.category != node.category || stored.sourceId != node.sourceId || stored.kind == model::NodeKind::Scene)
+            importError(fmt::format("node #{}: an update may change attributes, text, confidence and the box, not its "
+                                    "kind, scene, parent, category or source id",
+                                    node.id));
+        scenes.insert(node.scene);
+    }
+    for (const Node& node : nodes) {
+        codec::encodeNode(node, impl_->record);
+        auto key = codec::idKey(node.id);
+        MDB_val k = toVal(key), v = toVal(impl_->record);
+        env.check(mdb_put(txn, env.dbi(Table::Nodes), &k, &v, 0), "updating a node");
+    }
+    // A new version tells every cached snapshot of these scenes to reload.
+    for (NodeId sceneId : scenes) {
+        auto info = readScene(env, txn, sceneId);
+        if (!info) continue;
+        ++info->version;
+        codec::encodeScene(*info, impl_->record);
+        auto key = codec::idKey(sceneId);
+        MDB_val k = toVal(key), v = toVal(impl_->record);
+        env.check(mdb_put(txn, env.dbi(Table::Scenes), &k, &v, 0), "updating a scene's version");
+    }
+}
+
 void WriteTransaction::putSetting(std::string_view key, std::string_view value) {
     assert(impl_->txn && "WriteTransaction used after commit()");
     const Environment& env = *impl_->env;

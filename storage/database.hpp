@@ -147,6 +147,11 @@ public:
     // never reused. Throws smql::Error(Binding) when there is no such scene.
     void dropScene(model::NodeId sceneId);
     // Throws smql::Error(Usage) for an empty key or one over 503 bytes (LMDB's key limit).
+    // Rewrites stored nodes in place (attributes, text, confidence, box): the
+    // id, kind, scene, parent and category must stay as they are, since the
+    // indexes hold them. Bumps the version of each scene touched. Throws
+    // smql::Error(Input) for a node that does not exist or changes a fixed field.
+    void updateNodes(const std::vector<model::Node>& nodes);
     void putSetting(std::string_view key, std::string_view value);
     // Erasing a setting that is not set does nothing.
     void eraseSetting(std::string_view key);

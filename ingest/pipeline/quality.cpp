@@ -120,6 +120,17 @@ QualityReport compareToTruth(const model::SceneData& ingested, const model::Scen
     return report;
 }
 
+std::vector<std::pair<NodeId, NodeId>> matchObjects(const model::SceneData& reference, const model::SceneData& other,
+                                                    double minIou) {
+    std::vector<const Node*> a, b;
+    for (const Node& n : reference.nodes)
+        if (n.kind == model::NodeKind::Object && counts(n)) a.push_back(&n);
+    for (const Node& n : other.nodes)
+        if (n.kind == model::NodeKind::Object && counts(n)) b.push_back(&n);
+    auto pairs = match(a, b, minIou, [](const Node& x, const Node& y) { return boxIou(x.box, y.box); });
+    return {pairs.begin(), pairs.end()};
+}
+
 model::SceneData inCaptureFrame(const model::SceneData& ingested) {
     // alignment: aligned = A * capture, A = [s R | t]; undo it for centres and yaws.
     const auto& a = ingested.info.alignment;

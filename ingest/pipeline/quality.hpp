@@ -5,6 +5,8 @@
 
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/model/types.hpp"
 
@@ -41,6 +43,11 @@ struct QualityOptions {
 // Both scenes in the same frame (the truth's). Node ids are each scene's own.
 QualityReport compareToTruth(const model::SceneData& ingested, const model::SceneData& truth,
                              const QualityOptions& options = {});
+
+// The objects of two scenes of one place paired one to one: same category,
+// 3D IoU >= minIou, best pairs first. Pairs of (reference id, other id).
+std::vector<std::pair<model::NodeId, model::NodeId>> matchObjects(const model::SceneData& reference,
+                                                                  const model::SceneData& other, double minIou);
 
 // 3D intersection over union of two upright boxes.
 double boxIou(const model::Box& a, const model::Box& b);

@@ -698,3 +698,45 @@ TEST_CASE("blobs are stored with their scene, listed per node and dropped with i
     }
     CHECK(db->beginRead().blobsOf(mugId).empty());
 }
+
+TEST_CASE("updateNodes rewrites attributes in place and bumps the scene version") {
+    TempDir dir;
+    auto db = Database::open(dir.path());
+    model::SceneData scene;
+    scene.info.name = "updated";
+    model::Node mug;
+    mug.id = 1;
+    mug.category = "mug";
+    mug.attributes = {{"last_seen_at", "2026-01-01"}};
+    scene.nodes.push_back(mug);
+    model::NodeId sceneId;
+    {
+        auto write = db->beginWrite();
+        sceneId = write.importScene(scene);
+        write.commit();
+    }
+    auto before = db->beginRead().scene(sceneId)->version;
+    auto stored = *db->beginRead().node(sceneId + 1);
+    stored.attributes = {{"last_seen_at", "2026-02-01"}};
+    {
+        auto write = db->beginWrite();
+        write.updateNodes({stored});
+        write.commit();
+    }
+    auto read = db->beginRead();
+    CHECK(*read.node(sceneId + 1)->attribute("last_seen_at") == "2026-02-01");
+    CHECK(read.scene(sceneId)->version == before + 1);
+    CHECK(read.nodesWithCategory("mug").size() == 1);
+    // A changed category (an indexed field) or a missing node is refused, and nothing is written.
+    auto renamed = stored;
+    renamed.category = "cup";
+    renamed.attributes = {{"last_seen_at", "2026-03-01"}};
+    auto missing = stored;
+    missing.id = 999;
+    {
+        auto write = db->beginWrite();
+        CHECK_THROWS_AS(write.updateNodes({renamed}), Error);
+        CHECK_THROWS_AS(write.updateNodes({stored, missing}), Error);
+    }
+    CHECK(*db->beginRead().node(sceneId + 1)->attribute("last_seen_at") == "2026-02-01");
+}

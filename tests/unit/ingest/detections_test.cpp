@@ -1,0 +1,155 @@
+// Objects from detections.json: the file's checks, and a synthetic capture's
+// perfect-detector output ingested with masks ignored (polygons, then boxes only).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/error.hpp"
+#include "ingest/capture/capture.hpp"
+#include "ingest/pipeline/detections.hpp"
+#include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/quality.hpp"
+#include "ingest/synth/synth.hpp"
+
+using namespace smql;
+using namespace smql::ingest;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ScratchDir {
+    fs::path path;
+    ScratchDir() {
+        std::string pattern = (fs::temp_directory_path() / "smql-detections-XXXXXX").string();
+        path = mkdtemp(pattern.data());
+    }
+    ~ScratchDir() { fs::remove_all(path); }
+};
+
+class Silent : public ProgressSink {
+public:
+    void stageStarted(const std::string&, std::size_t) override {}
+    void advanced(std::size_t) override {}
+    void stageFinished(const std::string&, double, const std::string&) override {}
+    void note(const std::string&) override {}
+};
+
+// A capture of two 640x480 frames (1.png, 2.png); no images are read by readDetections.
+Capture twoFrames(const ScratchDir& dir, const std::string& detections) {
+    Capture c;
+    c.path = dir.path.string();
+    c.intrinsics = {640, 480, 525, 525, 319.5, 239.5};
+    for (int i = 0; i < 2; ++i) {
+        CaptureFrame f;
+        f.index = i;
+        f.colorPath = (dir.path / "color" / fmt::format("{}.png", i + 1)).string();
+        c.frames.push_back(f);
+    }
+    c.detectionsPath = (dir.path / "detections.json").string();
+    std::ofstream(c.detectionsPath) << detections;
+    return c;
+}
+
+void expectError(const std::string& json, const std::string& field) {
+    ScratchDir dir;
+    auto capture = twoFrames(dir, json);
+    INFO(json);
+    try {
+        readDetections(capture);
+        FAIL("no error");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Input);
+        CHECK_THAT(e.message(), Catch::Contains("detections.json"));
+        CHECK_THAT(e.message(), Catch::Contains(field));
+    }
+}
+
+struct Measured {
+    double objectsF1 = 0, color = 0;
+};
+
+Measured ingestDetections(const std::string& capturePath, const synth::SynthResult& synth) {
+    Silent silent;
+    IngestOptions options;
+    options.sceneName = "synth-3";
+    options.objects = ObjectSource::Detections;
+    auto result = ingestCapture(readCapture(capturePath), options, silent);
+    QualityOptions quality;
+    for (const auto& [id, frames] : synth.framesSeen)
+        if (frames > 0) quality.visible.insert(id);
+    auto r = compareToTruth(inCaptureFrame(result.scene), synth.scene.truth, quality);
+    return {r.objects.f1(), r.colorAccuracy()};
+}
+
+}  // namespace
+
+TEST_CASE("detections.json: a valid file, by name and by frame number", "[ingest][detections]") {
+    ScratchDir dir;
+    auto capture = twoFrames(dir, R"({"detections": [
+        {"image": "2.png", "label": "mug", "score": 0.9, "bbox": [10, 20, 30, 40]},
+        {"image_id": 1, "category": "chair", "score": 0.5, "bbox": [0, 0, 640, 480],
+         "segmentation": [[1, 1, 100, 1, 100, 100]]}]})");
+    auto detections = readDetections(capture);
+    REQUIRE(detections.size() == 2);
+    REQUIRE(detections[0].size() == 1);
+    REQUIRE(detections[1].size() == 1);
+    CHECK(detections[1][0].category == "mug");
+    CHECK(detections[1][0].box == cv::Rect2d(10, 20, 30, 40));
+    CHECK(detections[1][0].polygons.empty());
+    CHECK(detections[0][0].category == "chair");
+    REQUIRE(detections[0][0].polygons.size() == 1);
+    CHECK(detections[0][0].polygons[0].size() == 3);
+}
+
+TEST_CASE("detections.json: format errors name the file and the field", "[ingest][detections]") {
+    expectError(R"({"nothing": 1})", "detections: expected an array");
+    expectError(R"([{"label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4]}])", "detections[0].image: missing");
+    expectError(R"([{"image": "1.png", "score": 0.9, "bbox": [1, 2, 3, 4]}])", "detections[0].label: missing");
+    expectError(R"([{"image": "1.png", "label": "mug", "bbox": [1, 2, 3, 4]}])", "detections[0].score: missing");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": "high", "bbox": [1, 2, 3, 4]}])",
+                "detections[0].score: expected a number");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9}])", "detections[0].bbox: missing");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3]}])", "detections[0].bbox: expected");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [600, 2, 100, 4]}])",
+                "detections[0].bbox: [600, 2, 100, 4] lies outside the 640x480 image");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4]},
+                    {"image": "9.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4]}])",
+                "detections[1].image: '9.png' is not a frame");
+    expectError(R"([{"image_id": 7, "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4]}])",
+                "detections[0].image_id: 7 is not a frame number");
+    expectError(R"([{"image": "1.png", "label": 3, "score": 0.9, "bbox": [1, 2, 3, 4]}])", "detections[0].label: expected");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
+                     "segmentation": {"size": [480, 640], "counts": "abc"}}])",
+                "detections[0].segmentation: RLE masks are not supported");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4], "segmentation": [[1, 2, 3]]}])",
+                "detections[0].segmentation[0]: expected a polygon");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, -3, 4]}])",
+                "detections[0].bbox: width and height must be positive");
+}
+
+TEST_CASE("detections: a synthetic capture's perfect detections, polygons and boxes only", "[ingest][detections]") {
+    ScratchDir dir;
+    auto capturePath = (dir.path / "capture").string();
+    auto synth = synth::writeSynth(capturePath, {.seed = 3, .frames = 30, .objects = 24});
+
+    auto withPolygons = ingestDetections(capturePath, synth);
+    std::cout << fmt::format("synth seed 3, 30 frames, detections with polygons: objects F1 {:.2f}, color {:.2f}\n",
+                             withPolygons.objectsF1, withPolygons.color);
+    CHECK(withPolygons.objectsF1 >= 0.8);
+    CHECK(withPolygons.color >= 0.8);
+
+    // The same detections without their outlines: the box and the depth band must do.
+    auto file = fs::path(capturePath) / "detections.json";
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(file));
+    for (auto& d : j["detections"]) d.erase("segmentation");
+    std::ofstream(file) << j.dump();
+    auto boxesOnly = ingestDetections(capturePath, synth);
+    std::cout << fmt::format("synth seed 3, 30 frames, detections as boxes only: objects F1 {:.2f}, color {:.2f}\n",
+                             boxesOnly.objectsF1, boxesOnly.color);
+    CHECK(boxesOnly.objectsF1 >= 0.6);
+}
