@@ -30,6 +30,17 @@ struct EvidenceCrop {
     std::string jpeg;
 };
 
+// Everything the frame pass gathers about one physical instance, whichever
+// source found it (a mask id, or detections associated across views): the
+// object stage builds nodes from these alone.
+struct ObjectTrack {
+    std::string category;
+    model::NodeKind kind = model::NodeKind::Object;  // Anchor: walls, floor, ceiling, door, window
+    std::string material;
+    std::vector<Observation> views;
+    EvidenceCrop evidence;
+};
+
 // Lifts every instance of one frame with enough pixels. `stride` samples the
 // mask; pixels without depth give colour samples but no points.
 std::vector<Observation> observeInstances(const FrameImages& images, const Pose& pose, std::uint32_t frame,

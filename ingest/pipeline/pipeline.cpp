@@ -20,6 +20,7 @@
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/geometry/walls.hpp"
 #include "ingest/pipeline/colors.hpp"
+#include "ingest/pipeline/detections.hpp"
 #include "ingest/pipeline/observations.hpp"
 
 namespace smql::ingest {
@@ -86,12 +87,6 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
-// Everything the frame pass gathers about one instance.
-struct InstanceTrack {
-    std::vector<Observation> views;
-    EvidenceCrop evidence;
-};
-
 std::string sizeWord(const model::Box& b) {
     double v = model::volume(b);
     return v < 0.01 ? "small" : v < 0.3 ? "medium" : "large";
@@ -128,19 +123,26 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
                     std::nullopt, "give depth images, or a COLMAP model with points3D");
     bool hasMasks = !capture.labelsPath.empty() &&
                     std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return !f.instancePath.empty(); });
+    bool hasDetections = !capture.detectionsPath.empty() && hasDepth;
     ObjectSource objects = options.objects;
-    if (objects == ObjectSource::Auto) objects = hasMasks ? ObjectSource::Masks : ObjectSource::Cluster;
+    if (objects == ObjectSource::Auto)
+        objects = hasMasks ? ObjectSource::Masks : hasDetections ? ObjectSource::Detections : ObjectSource::Cluster;
     if (objects == ObjectSource::Masks && !hasMasks)
         throw Error(ErrorKind::Input, fmt::format("{}: --objects masks needs instance/ masks and labels.json", capture.path),
                     std::nullopt, "use --objects cluster for captures without masks");
-    if (objects == ObjectSource::Detections)
-        throw Error(ErrorKind::Usage, "--objects detections is not available yet in this version", std::nullopt,
-                    "use --objects masks or --objects cluster");
+    if (objects == ObjectSource::Detections && !hasDetections)
+        throw Error(ErrorKind::Input,
+                    fmt::format("{}: --objects detections needs detections.json and depth images", capture.path),
+                    std::nullopt, "use --objects cluster for captures without detections");
     auto labels = objects == ObjectSource::Masks ? readLabels(capture.labelsPath) : std::map<std::uint16_t, InstanceLabel>{};
+    auto detections = objects == ObjectSource::Detections ? readDetections(capture) : std::vector<std::vector<Detection>>{};
 
     // ---- Frames: one pass; each frame feeds the structure cloud and the instance tracks.
+    // Masks give tracks by their ids; detections are associated into tracks across views.
     PointCloud structure;
-    std::map<std::uint16_t, InstanceTrack> tracks;
+    std::map<std::uint16_t, ObjectTrack> instanceTracks;
+    DetectionTracker tracker;
+    std::vector<ObjectTrack> tracks;
     std::vector<Pose> cameras;
     {
         Stage stage(progress, result.stages, "frames", capture.frames.size());
@@ -157,20 +159,48 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
                 append(structure, voxelDownsample(pending, options.structureVoxel));
                 pending = PointCloud{};
             }
+            auto keepEvidence = [&](ObjectTrack& track, const Observation& o) {
+                if (o.pixels > track.evidence.pixels)
+                    track.evidence = {o.pixels, static_cast<std::uint32_t>(i),
+                                      encodeCrop(images.color, o.bounds, options.evidenceSize)};
+            };
             if (objects == ObjectSource::Masks) {
                 for (auto& o : observeInstances(images, pose, static_cast<std::uint32_t>(i), options.objectStride,
                                                 options.minInstancePixels)) {
-                    auto& track = tracks[o.instance];
-                    if (o.pixels > track.evidence.pixels)
-                        track.evidence = {o.pixels, static_cast<std::uint32_t>(i),
-                                          encodeCrop(images.color, o.bounds, options.evidenceSize)};
+                    auto& track = instanceTracks[o.instance];
+                    keepEvidence(track, o);
                     track.views.push_back(std::move(o));
+                }
+            } else if (objects == ObjectSource::Detections) {
+                const Intrinsics& stored = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
+                auto seen = observeDetections(images, pose, static_cast<std::uint32_t>(i), detections[i], stored.width,
+                                              options.objectStride, options.minInstancePixels);
+                // The most confident detections found tracks first.
+                std::stable_sort(seen.begin(), seen.end(), [&](const Observation& a, const Observation& b) {
+                    return detections[i][a.instance].score > detections[i][b.instance].score;
+                });
+                for (auto& o : seen) {
+                    const std::string& category = detections[i][o.instance].category;
+                    ObjectTrack& track = tracker.add(std::move(o), category);
+                    keepEvidence(track, track.views.back());
                 }
             }
             progress.advanced(i + 1);
         }
         append(structure, pending);
         structure = voxelDownsample(structure, options.structureVoxel);
+        if (objects == ObjectSource::Masks) {
+            for (auto& [instance, track] : instanceTracks) {
+                auto label = labels.find(instance);
+                if (label == labels.end()) continue;  // an unlabelled mask value
+                track.category = label->second.category;
+                track.kind = label->second.kind;
+                track.material = label->second.material;
+                tracks.push_back(std::move(track));
+            }
+        } else {
+            tracks = tracker.take();
+        }
         stage.finish(fmt::format("{} frames, {} structure points, {} instances", capture.frames.size(), structure.size(),
                                  tracks.size()));
     }
@@ -233,17 +263,16 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
     }
 
     // ---- Objects (and labelled doors/windows) from the instance tracks, or clusters.
-    std::map<std::uint16_t, NodeId> instanceNode;
+    std::map<std::size_t, NodeId> trackNode;  // position in tracks -> its node
     {
         Stage stage(progress, result.stages, "objects", tracks.size());
         std::size_t done = 0;
-        for (auto& [instance, track] : tracks) {
+        for (std::size_t t = 0; t < tracks.size(); ++t) {
+            auto& track = tracks[t];
             progress.advanced(++done);
-            auto label = labels.find(instance);
-            if (label == labels.end()) continue;  // an unlabelled mask value
-            const auto& category = label->second.category;
+            const auto& category = track.category;
             bool opening = category == "door" || category == "window";
-            if (label->second.kind == NodeKind::Anchor && !opening) continue;  // walls, floor, ceiling: geometry's job
+            if (track.kind == NodeKind::Anchor && !opening) continue;  // walls, floor, ceiling: geometry's job
             if (static_cast<int>(track.views.size()) < options.minObjectViews) continue;
 
             PointCloud cloud;
@@ -274,7 +303,7 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
                 auto color = nameColor(colors);
                 node.attributes.push_back({"color", color.name});
                 node.attributes.push_back({"size", sizeWord(box)});
-                if (!label->second.material.empty()) node.attributes.push_back({"material", label->second.material});
+                if (!track.material.empty()) node.attributes.push_back({"material", track.material});
             }
             auto [first, last] = std::minmax_element(track.views.begin(), track.views.end(),
                                                      [](const auto& a, const auto& b) { return a.frame < b.frame; });
@@ -286,7 +315,7 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
             if (!track.evidence.jpeg.empty())
                 scene.blobs.push_back({node.id, fmt::format("evidence-frame{}.jpg", capture.frames[track.evidence.frame].index),
                                        "image/jpeg", std::move(track.evidence.jpeg)});
-            instanceNode.emplace(instance, node.id);
+            trackNode.emplace(t, node.id);
         }
         if (objects == ObjectSource::Cluster) {
             StructureOptions structureOptions;
@@ -347,9 +376,10 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
         // instances are seen; promoted to allocentric when enough views agree.
         std::map<std::pair<NodeId, NodeId>, std::pair<int, int>> votes;  // (a, b) -> (left votes, views together)
         std::map<std::uint32_t, std::vector<std::pair<NodeId, double>>> byFrame;
-        for (const auto& [instance, track] : tracks) {
-            auto node = instanceNode.find(instance);
-            if (node == instanceNode.end()) continue;
+        for (std::size_t t = 0; t < tracks.size(); ++t) {
+            const auto& track = tracks[t];
+            auto node = trackNode.find(t);
+            if (node == trackNode.end()) continue;
             for (const auto& v : track.views) byFrame[v.frame].push_back({node->second, v.centreX});
         }
         for (const auto& [frame, seen] : byFrame)
@@ -376,9 +406,10 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
         // Each view names the colour it sees; the scene-level phrase uses a colour only when
         // enough views agree on it.
         std::map<NodeId, std::vector<std::pair<std::uint32_t, std::string>>> viewColors;
-        for (const auto& [instance, track] : tracks) {
-            auto node = instanceNode.find(instance);
-            if (node == instanceNode.end() || nodeById(node->second).kind != NodeKind::Object) continue;
+        for (std::size_t t = 0; t < tracks.size(); ++t) {
+            const auto& track = tracks[t];
+            auto node = trackNode.find(t);
+            if (node == trackNode.end() || nodeById(node->second).kind != NodeKind::Object) continue;
             for (const auto& v : track.views) viewColors[node->second].push_back({v.frame, nameColor(v.colors).name});
         }
         auto agreedColor = [&](NodeId id) -> std::optional<std::string> {

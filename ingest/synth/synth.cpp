@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "engine/error.hpp"
 #include "engine/model/geometry.hpp"
@@ -33,7 +34,7 @@ namespace {
 // The files and folders a capture consists of: what --force replaces.
 const char* const kOutputs[] = {"color",         "depth",          "instance",        "pose.txt",
                                 "camera.json",   "labels.json",    "truth.json",      "relations.json",
-                                "visibility.json"};
+                                "visibility.json", "detections.json"};
 
 constexpr double kNearLabelDistance = 0.5;
 
@@ -75,6 +76,40 @@ void prepareDirectory(const fs::path& dir, bool force) {
         fs::create_directories(dir / sub, ec);
         if (ec) throw Error(ErrorKind::Usage, "cannot create " + (dir / sub).string() + ": " + ec.message());
     }
+}
+
+// What a perfect detector would report for one frame: every visible object, door
+// and window (walls, floor and ceiling are structure, not detections) with its
+// mask's box and outline, in id order so the file is deterministic.
+std::vector<Json> detectFrame(const cv::Mat& instance, const std::vector<int>& counts, const model::SceneData& truth,
+                              const std::string& image) {
+    std::vector<Json> out;
+    for (std::size_t id = 1; id < counts.size(); ++id) {
+        if (counts[id] < kMinVisiblePixels || id > truth.nodes.size()) continue;
+        const model::Node& n = truth.nodes[id - 1];
+        bool opening = n.category == "door" || n.category == "window";
+        if (n.kind != model::NodeKind::Object && !opening) continue;
+        cv::Mat mask = instance == static_cast<int>(id);
+        cv::Rect box = cv::boundingRect(mask);
+        std::vector<std::vector<cv::Point>> contours;
+        cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+        Json detection = {{"image", image}, {"label", n.category}, {"score", 1},
+                          {"bbox", {box.x, box.y, box.width, box.height}}};
+        auto largest = std::max_element(contours.begin(), contours.end(), [](const auto& a, const auto& b) {
+            return cv::contourArea(a) < cv::contourArea(b);
+        });
+        if (largest != contours.end()) {
+            std::vector<cv::Point> polygon;
+            cv::approxPolyDP(*largest, polygon, 1.0, true);
+            if (polygon.size() >= 3) {
+                Json flat = Json::array();
+                for (const auto& p : polygon) flat.push_back(p.x), flat.push_back(p.y);
+                detection["segmentation"] = Json::array({flat});
+            }
+        }
+        out.push_back(std::move(detection));
+    }
+    return out;
 }
 
 std::string jsonLines(const std::string& key, const std::vector<Json>& entries, const Json& head = Json::object()) {
@@ -149,6 +184,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
     // Frames are independent: two workers render and write them, each frame's files depending
     // only on its pose, so the output does not depend on the scheduling.
     std::vector<std::vector<int>> pixels(cameras.size());
+    std::vector<std::vector<Json>> detections(cameras.size());
     std::atomic<std::size_t> next{0};
     std::mutex failureMutex;
     std::exception_ptr failure;
@@ -179,6 +215,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
                 writePng(dir / "color" / name, color);
                 writePng(dir / "depth" / name, depth);
                 writePng(dir / "instance" / name, instance);
+                detections[f] = detectFrame(instance, counts, truth, name);
             }
         } catch (...) {
             std::lock_guard lock(failureMutex);
@@ -225,6 +262,10 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
               jsonLines("relationships", relations,
                         {{"scene", truth.info.name},
                          {"format", "[subject_id, object_id, predicate_id, predicate]; ids are truth.json node ids"}}));
+    std::vector<Json> allDetections;
+    for (auto& frameDetections : detections)
+        for (auto& d : frameDetections) allDetections.push_back(std::move(d));
+    writeText(dir / "detections.json", jsonLines("detections", allDetections));
     writeText(dir / "truth.json", import::writeSceneJson(truth) + "\n");
     result.totalSeconds = secondsSince(start);
     return result;

@@ -1,0 +1,325 @@
+#include "ingest/pipeline/detections.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "engine/error.hpp"
+
+namespace smql::ingest {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kHint =
+    "detections.json is a JSON array (or {\"detections\": [...]}) of {\"image\": \"12.png\" or \"image_id\": 12, "
+    "\"label\": \"mug\", \"score\": 0.87, \"bbox\": [x, y, w, h], optional \"segmentation\": [[x1, y1, x2, y2, ...]]}";
+
+// The frame number in a colour file's name ("0007.jpg" = 7), as the readers number frames.
+std::optional<long long> numberOf(const fs::path& file) {
+    std::string stem = file.stem().string();
+    if (stem.empty() || stem.size() > 15 || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        return std::nullopt;
+    return std::stoll(stem);
+}
+
+}  // namespace
+
+std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
+    const std::string& path = capture.detectionsPath;
+    auto fail = [&](const std::string& what) { throw Error(ErrorKind::Input, fmt::format("{}: {}", path, what), std::nullopt, kHint); };
+    std::ifstream in(path);
+    if (!in) fail("cannot read the file");
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+        fail(fmt::format("not valid JSON ({})", e.what()));
+    }
+    if (j.is_object() && j.contains("detections")) j = j["detections"];
+    if (!j.is_array()) fail("detections: expected an array");
+
+    std::map<std::string, std::size_t> byName;
+    std::map<long long, std::size_t> byNumber;
+    for (std::size_t f = 0; f < capture.frames.size(); ++f) {
+        fs::path file(capture.frames[f].colorPath);
+        byName.emplace(file.filename().string(), f);
+        if (auto n = numberOf(file)) byNumber.emplace(*n, f);
+    }
+
+    std::vector<std::vector<Detection>> out(capture.frames.size());
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const auto& e = j[i];
+        auto bad = [&](const std::string& field, const std::string& what) { fail(fmt::format("detections[{}].{}: {}", i, field, what)); };
+        if (!e.is_object()) fail(fmt::format("detections[{}]: expected an object", i));
+
+        std::size_t frame = 0;
+        if (e.contains("image")) {
+            if (!e["image"].is_string()) bad("image", "expected a file name (string)");
+            auto name = fs::path(e["image"].get<std::string>()).filename().string();
+            auto it = byName.find(name);
+            if (it == byName.end()) bad("image", fmt::format("'{}' is not a frame of the capture", name));
+            frame = it->second;
+        } else if (e.contains("image_id")) {
+            if (!e["image_id"].is_number_integer()) bad("image_id", "expected a frame number (integer)");
+            auto id = e["image_id"].get<long long>();
+            auto it = byNumber.find(id);
+            if (it == byNumber.end()) bad("image_id", fmt::format("{} is not a frame number of the capture", id));
+            frame = it->second;
+        } else {
+            bad("image", "missing (give \"image\": the colour file name, or \"image_id\": the frame number)");
+        }
+
+        Detection d;
+        const char* labelKey = e.contains("label") ? "label" : "category";
+        if (!e.contains(labelKey)) bad("label", "missing (give \"label\" or \"category\")");
+        if (!e[labelKey].is_string() || e[labelKey].get<std::string>().empty()) bad(labelKey, "expected a non-empty string");
+        d.category = e[labelKey].get<std::string>();
+
+        if (!e.contains("score")) bad("score", "missing");
+        if (!e["score"].is_number()) bad("score", "expected a number");
+        d.score = e["score"].get<double>();
+        if (!std::isfinite(d.score)) bad("score", "not finite");
+
+        const Intrinsics& K = capture.frames[frame].intrinsics ? *capture.frames[frame].intrinsics : capture.intrinsics;
+        if (!e.contains("bbox")) bad("bbox", "missing");
+        const auto& b = e["bbox"];
+        if (!b.is_array() || b.size() != 4 || !std::all_of(b.begin(), b.end(), [](const auto& v) { return v.is_number(); }))
+            bad("bbox", "expected [x, y, w, h] (4 numbers)");
+        double x = b[0].get<double>(), y = b[1].get<double>(), w = b[2].get<double>(), h = b[3].get<double>();
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(w) || !std::isfinite(h)) bad("bbox", "not finite");
+        if (w <= 0 || h <= 0) bad("bbox", "width and height must be positive");
+        // Half a pixel of slack: detectors round box edges to the image border either way.
+        if (x < -0.5 || y < -0.5 || x + w > K.width + 0.5 || y + h > K.height + 0.5)
+            bad("bbox", fmt::format("[{}, {}, {}, {}] lies outside the {}x{} image", x, y, w, h, K.width, K.height));
+        d.box = cv::Rect2d(x, y, w, h);
+
+        if (e.contains("segmentation") && !e["segmentation"].is_null()) {
+            const auto& s = e["segmentation"];
+            if (s.is_object()) bad("segmentation", "RLE masks are not supported; give polygons [[x1, y1, x2, y2, ...], ...] or leave it out");
+            if (!s.is_array()) bad("segmentation", "expected a list of polygons [[x1, y1, x2, y2, ...], ...]");
+            for (std::size_t k = 0; k < s.size(); ++k) {
+                const auto& poly = s[k];
+                std::string field = fmt::format("segmentation[{}]", k);
+                if (!poly.is_array() || poly.size() < 6 || poly.size() % 2)
+                    bad(field, "expected a polygon of at least 3 points: [x1, y1, x2, y2, x3, y3, ...]");
+                std::vector<cv::Point2d> points;
+                for (std::size_t p = 0; p < poly.size(); p += 2) {
+                    if (!poly[p].is_number() || !poly[p + 1].is_number()) bad(field, "expected numbers");
+                    double px = poly[p].get<double>(), py = poly[p + 1].get<double>();
+                    if (!std::isfinite(px) || !std::isfinite(py)) bad(field, "not finite");
+                    if (px < -0.5 || py < -0.5 || px > K.width + 0.5 || py > K.height + 0.5)
+                        bad(field, fmt::format("point ({}, {}) lies outside the {}x{} image", px, py, K.width, K.height));
+                    points.emplace_back(px, py);
+                }
+                d.polygons.push_back(std::move(points));
+            }
+        }
+        out[frame].push_back(std::move(d));
+    }
+    return out;
+}
+
+std::vector<Observation> observeDetections(const FrameImages& images, const Pose& pose, std::uint32_t frame,
+                                           const std::vector<Detection>& detections, int storedWidth, int stride,
+                                           int minPixels) {
+    std::vector<Observation> out;
+    if (images.depth.empty()) return out;
+    const auto& K = images.intrinsics;
+    const auto& R = pose.rotation;
+    const auto& t = pose.translation;
+    // Detections are in stored-image pixels; frames are loaded at the working resolution.
+    double scale = storedWidth > 0 ? double(K.width) / storedWidth : 1.0;
+    // Pixel centres sit at integer coordinates, so scaling maps centre to centre.
+    auto toWorking = [&](cv::Point2d p) { return cv::Point2d((p.x + 0.5) * scale - 0.5, (p.y + 0.5) * scale - 0.5); };
+    constexpr int kShift = 3;  // fillPoly's sub-pixel bits: keeps small polygons' shapes at low resolution
+
+    cv::Mat1b mask(images.depth.size());
+    for (std::size_t d = 0; d < detections.size(); ++d) {
+        const Detection& det = detections[d];
+        if (det.score < kMinDetectionScore) continue;
+        mask.setTo(0);
+        std::vector<std::vector<cv::Point>> polys;
+        auto fixed = [&](cv::Point2d p) {
+            p = toWorking(p);
+            return cv::Point(static_cast<int>(std::lround(p.x * (1 << kShift))), static_cast<int>(std::lround(p.y * (1 << kShift))));
+        };
+        if (!det.polygons.empty()) {
+            for (const auto& poly : det.polygons) {
+                polys.emplace_back();
+                for (const auto& p : poly) polys.back().push_back(fixed(p));
+            }
+        } else {
+            // The box [x, y, w, h] covers the pixels whose centres lie in x .. x + w - 1.
+            cv::Point2d a(det.box.x, det.box.y), b(det.box.x + det.box.width - 1, det.box.y + det.box.height - 1);
+            polys.push_back({fixed(a), fixed({b.x, a.y}), fixed(b), fixed({a.x, b.y})});
+        }
+        cv::fillPoly(mask, polys, cv::Scalar(255), cv::LINE_8, kShift);
+        int area = cv::countNonZero(mask);
+        if (area < minPixels) continue;
+
+        // The median depth inside the mask is the object's: most of a good mask is on it.
+        std::vector<float> depths;
+        for (int y = 0; y < mask.rows; ++y) {
+            const auto* m = mask.ptr<std::uint8_t>(y);
+            const float* z = images.depth.ptr<float>(y);
+            for (int x = 0; x < mask.cols; ++x)
+                if (m[x] && z[x] > 0) depths.push_back(z[x]);
+        }
+        if (depths.empty()) continue;
+        auto mid = depths.begin() + depths.size() / 2;
+        std::nth_element(depths.begin(), mid, depths.end());
+        double median = *mid;
+
+        Observation o;
+        o.frame = frame;
+        o.instance = static_cast<std::uint16_t>(d);
+        int kept = 0, x0 = INT32_MAX, y0 = INT32_MAX, x1 = -1, y1 = -1;
+        double sumX = 0;
+        std::vector<cv::Vec3b> samples;
+        for (int y = 0; y < mask.rows; ++y) {
+            const auto* m = mask.ptr<std::uint8_t>(y);
+            const float* z = images.depth.ptr<float>(y);
+            const auto* bgr = images.color.ptr<cv::Vec3b>(y);
+            for (int x = 0; x < mask.cols; ++x) {
+                if (!m[x] || !(z[x] > 0) || std::abs(z[x] - median) > kDetectionDepthBand) continue;
+                ++kept;
+                sumX += x;
+                x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+                if (y % stride || x % stride) continue;
+                samples.push_back(bgr[x]);
+                double zz = z[x];
+                double cx = (x - K.cx) / K.fx * zz, cy = (y - K.cy) / K.fy * zz;
+                o.points.push_back({R[0] * cx + R[1] * cy + R[2] * zz + t.x, R[3] * cx + R[4] * cy + R[5] * zz + t.y,
+                                    R[6] * cx + R[7] * cy + R[8] * zz + t.z});
+            }
+        }
+        if (kept < minPixels || o.points.empty()) continue;
+        o.pixels = kept;
+        o.bounds = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+        o.centreX = sumX / kept / mask.cols;
+        cv::Mat(samples, true).copyTo(o.colors);
+        out.push_back(std::move(o));
+    }
+    return out;
+}
+
+namespace {
+
+// Padded volume of axis-aligned bounds. Bounds are padded by 2 cm: a surface seen face-on (a window, a
+// table top) has no thickness, and boxes without volume would never overlap.
+double paddedVolume(const model::Vec3& lo, const model::Vec3& hi) {
+    constexpr double kPad = 0.02;
+    return std::max(0.0, hi.x - lo.x + 2 * kPad) * std::max(0.0, hi.y - lo.y + 2 * kPad) *
+           std::max(0.0, hi.z - lo.z + 2 * kPad);
+}
+
+}  // namespace
+
+// How well `b` fits the track `a` (IoU, then centroid distance); nullopt when the rule rejects it.
+std::optional<std::pair<double, double>> DetectionTracker::fit(const Extent& a, const Extent& b) {
+    auto centroid = [](const Extent& e) {
+        double n = std::max<std::size_t>(e.count, 1);
+        return model::Vec3{e.sum.x / n, e.sum.y / n, e.sum.z / n};
+    };
+    model::Vec3 lo{std::max(a.lo.x, b.lo.x), std::max(a.lo.y, b.lo.y), std::max(a.lo.z, b.lo.z)};
+    model::Vec3 hi{std::min(a.hi.x, b.hi.x), std::min(a.hi.y, b.hi.y), std::min(a.hi.z, b.hi.z)};
+    double inter = paddedVolume(lo, hi);
+    double va = paddedVolume(a.lo, a.hi), vb = paddedVolume(b.lo, b.hi);
+    double iou = inter / (va + vb - inter);
+    // A partial view of a large thing (the end of a sofa) overlaps little of its bounds but lies inside them.
+    double inside = inter / std::min(va, vb);
+    model::Vec3 ca = centroid(a), cb = centroid(b);
+    double distance = std::sqrt((ca.x - cb.x) * (ca.x - cb.x) + (ca.y - cb.y) * (ca.y - cb.y) + (ca.z - cb.z) * (ca.z - cb.z));
+    // The larger of the two extents: a track started by a sliver (a seat seen edge-on) must still take
+    // the full view that comes next.
+    double extent = std::max({a.hi.x - a.lo.x, a.hi.y - a.lo.y, a.hi.z - a.lo.z, b.hi.x - b.lo.x, b.hi.y - b.lo.y,
+                              b.hi.z - b.lo.z});
+    if (iou < 0.1 && inside < 0.5 && distance > std::max(0.3, extent / 2)) return std::nullopt;
+    return std::make_pair(iou, distance);
+}
+
+void DetectionTracker::merge(Extent& into, const Extent& from) {
+    into.lo = {std::min(into.lo.x, from.lo.x), std::min(into.lo.y, from.lo.y), std::min(into.lo.z, from.lo.z)};
+    into.hi = {std::max(into.hi.x, from.hi.x), std::max(into.hi.y, from.hi.y), std::max(into.hi.z, from.hi.z)};
+    into.sum = {into.sum.x + from.sum.x, into.sum.y + from.sum.y, into.sum.z + from.sum.z};
+    into.count += from.count;
+    into.frames.insert(from.frames.begin(), from.frames.end());
+}
+
+std::vector<ObjectTrack> DetectionTracker::take() {
+    // Greedy association depends on the order views come in: a track started by a sliver may miss views
+    // that came before it grew. Tracks of one category that the rule joins, and that never share a
+    // frame, are one thing: merge them until nothing changes.
+    std::vector<bool> gone(tracks_.size(), false);
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (std::size_t a = 0; a < tracks_.size(); ++a)
+            for (std::size_t b = a + 1; b < tracks_.size() && !gone[a]; ++b) {
+                if (gone[b] || tracks_[a].category != tracks_[b].category) continue;
+                const auto& fa = extents_[a].frames;
+                if (std::any_of(extents_[b].frames.begin(), extents_[b].frames.end(), [&](auto f) { return fa.contains(f); }))
+                    continue;
+                if (!fit(extents_[a], extents_[b])) continue;
+                merge(extents_[a], extents_[b]);
+                auto& views = tracks_[a].views;
+                for (auto& v : tracks_[b].views) views.push_back(std::move(v));
+                std::stable_sort(views.begin(), views.end(), [](const auto& x, const auto& y) { return x.frame < y.frame; });
+                if (tracks_[b].evidence.pixels > tracks_[a].evidence.pixels) tracks_[a].evidence = std::move(tracks_[b].evidence);
+                gone[b] = true;
+                changed = true;
+            }
+    }
+    std::vector<ObjectTrack> out;
+    for (std::size_t k = 0; k < tracks_.size(); ++k)
+        if (!gone[k]) out.push_back(std::move(tracks_[k]));
+    tracks_.clear();
+    extents_.clear();
+    return out;
+}
+
+ObjectTrack& DetectionTracker::add(Observation observation, const std::string& category) {
+    Extent mine;
+    for (const auto& p : observation.points) {
+        mine.lo = {std::min(mine.lo.x, p.x), std::min(mine.lo.y, p.y), std::min(mine.lo.z, p.z)};
+        mine.hi = {std::max(mine.hi.x, p.x), std::max(mine.hi.y, p.y), std::max(mine.hi.z, p.z)};
+        mine.sum = {mine.sum.x + p.x, mine.sum.y + p.y, mine.sum.z + p.z};
+    }
+    mine.count = observation.points.size();
+    mine.frames.insert(observation.frame);
+
+    // The best candidate: the largest overlap, then the nearest centroid.
+    std::size_t best = tracks_.size();
+    double bestIou = -1, bestDistance = 1e18;
+    for (std::size_t k = 0; k < tracks_.size(); ++k) {
+        // Two detections of one frame are two things (detectors suppress duplicates).
+        if (tracks_[k].category != category || extents_[k].frames.contains(observation.frame)) continue;
+        auto f = fit(extents_[k], mine);
+        if (!f) continue;
+        auto [iou, distance] = *f;
+        if (iou > bestIou + 1e-9 || (std::abs(iou - bestIou) <= 1e-9 && distance < bestDistance))
+            best = k, bestIou = iou, bestDistance = distance;
+    }
+    if (best == tracks_.size()) {
+        ObjectTrack track;
+        track.category = category;
+        // Structure is geometry's job; doors and windows become anchors like labelled masks.
+        if (category == "wall" || category == "floor" || category == "ceiling" || category == "door" || category == "window")
+            track.kind = model::NodeKind::Anchor;
+        tracks_.push_back(std::move(track));
+        extents_.emplace_back();
+    }
+    merge(extents_[best], mine);
+    tracks_[best].views.push_back(std::move(observation));
+    return tracks_[best];
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,75 @@
+// Objects from an open-vocabulary detector's output (detections.json,
+// COCO-results style; docs/formats.md "detections.json"): reading and
+// checking the file, lifting each detection of a frame into an Observation,
+// and associating observations across views, since detections carry no
+// identity from one frame to the next.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <utility>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "ingest/capture/capture.hpp"
+#include "ingest/capture/frame_loader.hpp"
+#include "ingest/pipeline/observations.hpp"
+
+namespace smql::ingest {
+
+// Detections under this score are ignored: open-vocabulary detectors emit many
+// low-confidence guesses that would become phantom objects.
+inline constexpr double kMinDetectionScore = 0.3;
+// Pixels whose depth is farther than this from the median depth inside the
+// mask are dropped: a box (or a loose polygon) also covers the background.
+inline constexpr double kDetectionDepthBand = 0.25;  // m
+
+struct Detection {
+    std::string category;
+    double score = 0;
+    cv::Rect2d box;                                   // pixels of the stored image
+    std::vector<std::vector<cv::Point2d>> polygons;   // empty: the box is the mask
+};
+
+// Reads capture.detectionsPath; the result has one list per capture frame (by
+// position). Throws smql::Error(Input) "<file>: detections[i].field: ..." on
+// missing fields, wrong types, non-finite numbers, boxes outside the image,
+// images the capture does not have, and RLE segmentations.
+std::vector<std::vector<Detection>> readDetections(const Capture& capture);
+
+// Lifts the frame's detections (score >= kMinDetectionScore) into observations;
+// Observation::instance is the detection's position in `detections`.
+// `storedWidth` is the width of the image the detections were made on.
+std::vector<Observation> observeDetections(const FrameImages& images, const Pose& pose, std::uint32_t frame,
+                                           const std::vector<Detection>& detections, int storedWidth, int stride,
+                                           int minPixels);
+
+// Greedy association of observations into tracks (docs/ingest.md, "Objects
+// from detections"): an observation joins the track of its category, not yet
+// seen in its frame, whose 3D bounds overlap the observation's by IoU >= 0.1
+// or whose centroid lies within max(0.3 m, half the track's largest extent) of
+// the observation's; else it starts a new track.
+class DetectionTracker {
+public:
+    // Returns the track the observation joined (to update its evidence).
+    ObjectTrack& add(Observation observation, const std::string& category);
+    // The tracks, after merging those the rule joins that never share a frame (order independence).
+    std::vector<ObjectTrack> take();
+    std::size_t size() const { return tracks_.size(); }
+
+private:
+    struct Extent {
+        model::Vec3 lo{1e18, 1e18, 1e18}, hi{-1e18, -1e18, -1e18}, sum{0, 0, 0};
+        std::size_t count = 0;
+        std::set<std::uint32_t> frames;
+    };
+    static std::optional<std::pair<double, double>> fit(const Extent& track, const Extent& observation);
+    static void merge(Extent& into, const Extent& from);
+    std::vector<ObjectTrack> tracks_;
+    std::vector<Extent> extents_;
+};
+
+}  // namespace smql::ingest
