@@ -21,6 +21,7 @@
 #include "ingest/capture/capture.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "storage/database.hpp"
 
@@ -73,14 +74,6 @@ public:
 
 private:
     static void emit(const nlohmann::json& j) { std::cerr << j.dump() << "\n"; }
-};
-
-class QuietProgress : public ingest::ProgressSink {
-public:
-    void stageStarted(const std::string&, std::size_t) override {}
-    void advanced(std::size_t) override {}
-    void stageFinished(const std::string&, double, const std::string&) override {}
-    void note(const std::string&) override {}
 };
 
 // --update SCENE: the objects of the capture that match objects of the scene (same category, boxes
@@ -154,7 +147,7 @@ int ingestCommand(const IngestArguments& args) {
 
     std::unique_ptr<ingest::ProgressSink> progress;
     if (args.log == "json") progress = std::make_unique<JsonProgress>();
-    else if (args.log == "quiet") progress = std::make_unique<QuietProgress>();
+    else if (args.log == "quiet") progress = std::make_unique<ingest::SilentProgress>();
     else progress = std::make_unique<TerminalProgress>(isatty(STDERR_FILENO));
 
     // Ctrl-C stops between frames; nothing has been written then, and the database stays as it was.

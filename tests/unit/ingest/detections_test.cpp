@@ -13,31 +13,17 @@
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/detections.hpp"
 #include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/progress.hpp"
+#include "scratch_dir.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/synth.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
+using smql::ingest::test::ScratchDir;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct ScratchDir {
-    fs::path path;
-    ScratchDir() {
-        std::string pattern = (fs::temp_directory_path() / "smql-detections-XXXXXX").string();
-        path = mkdtemp(pattern.data());
-    }
-    ~ScratchDir() { fs::remove_all(path); }
-};
-
-class Silent : public ProgressSink {
-public:
-    void stageStarted(const std::string&, std::size_t) override {}
-    void advanced(std::size_t) override {}
-    void stageFinished(const std::string&, double, const std::string&) override {}
-    void note(const std::string&) override {}
-};
 
 // A capture of two 640x480 frames (1.png, 2.png); no images are read by readDetections.
 Capture twoFrames(const ScratchDir& dir, const std::string& detections) {
@@ -74,7 +60,7 @@ struct Measured {
 };
 
 Measured ingestDetections(const std::string& capturePath, const synth::SynthResult& synth) {
-    Silent silent;
+    SilentProgress silent;
     IngestOptions options;
     options.sceneName = "synth-3";
     options.objects = ObjectSource::Detections;

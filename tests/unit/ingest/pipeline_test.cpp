@@ -16,38 +16,20 @@
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/progress.hpp"
+#include "scratch_dir.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/synth.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
-
-namespace {
-
-struct ScratchDir {
-    std::filesystem::path path;
-    ScratchDir() {
-        std::string pattern = (std::filesystem::temp_directory_path() / "smql-pipeline-XXXXXX").string();
-        path = mkdtemp(pattern.data());
-    }
-    ~ScratchDir() { std::filesystem::remove_all(path); }
-};
-
-class Silent : public ProgressSink {
-public:
-    void stageStarted(const std::string&, std::size_t) override {}
-    void advanced(std::size_t) override {}
-    void stageFinished(const std::string&, double, const std::string&) override {}
-    void note(const std::string&) override {}
-};
-
-}  // namespace
+using smql::ingest::test::ScratchDir;
 
 TEST_CASE("a synthetic RGB-D capture with masks meets the quality thresholds") {
     ScratchDir dir;
     auto capturePath = (dir.path / "capture").string();
     auto synth = synth::writeSynth(capturePath, {.seed = 3, .frames = 40, .objects = 24});
-    Silent silent;
+    SilentProgress silent;
     IngestOptions options;
     options.sceneName = "synth-3";
     auto result = ingestCapture(readCapture(capturePath), options, silent);
@@ -88,7 +70,7 @@ TEST_CASE("rgbd-dining (real, 5 frames, no labels): floor, walls and table-top o
     // What this checks: after alignment the floor normal is within 5 degrees of +z (the floor is
     // level), at least one wall is found, the clustering fallback yields objects, and one of them
     // (the table-top region) has a box that lies above the floor.
-    Silent silent;
+    SilentProgress silent;
     IngestOptions options;
     options.sceneName = "dining";
     auto capture = readCapture(std::string(SMQL_SHARED_DATA) + "/rgbd-dining");

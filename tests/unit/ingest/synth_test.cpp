@@ -23,6 +23,7 @@
 #include "ingest/synth/palette.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/synth.hpp"
+#include "scratch_dir.hpp"
 #include "ingest/synth/walk.hpp"
 
 namespace fs = std::filesystem;
@@ -31,24 +32,6 @@ using Json = nlohmann::json;
 
 namespace {
 
-class TempDir {
-public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "smql-synth-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = pattern;
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    fs::path path(const std::string& name = "") const { return name.empty() ? path_ : path_ / name; }
-
-private:
-    fs::path path_;
-};
 
 std::string slurp(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -130,15 +113,15 @@ double pointBoxDistance(V p, const model::Box& box) {
 
 // One capture shared by the tests that only read it.
 struct Fixture {
-    TempDir dir;
+    ingest::test::ScratchDir dir;
     synth::SynthOptions options{.seed = 3, .frames = 8, .objects = 24};
     synth::SynthResult result;
     std::vector<synth::Surface> surfaces;
     Fixture() {
-        result = synth::writeSynth(dir.path("capture").string(), options);
+        result = synth::writeSynth((dir.path / "capture").string(), options);
         surfaces = synth::surfacesOf(result.scene.truth);
     }
-    fs::path file(const std::string& name) const { return dir.path("capture") / name; }
+    fs::path file(const std::string& name) const { return (dir.path / "capture") / name; }
     synth::Image image(const std::string& kind, int frame) const {
         return synth::readImage(file(kind + "/" + std::to_string(frame) + ".png").string());
     }
@@ -477,45 +460,45 @@ TEST_CASE("synth: visibility counts and object colours match the pixels", "[inge
 }
 
 TEST_CASE("synth: a seed gives byte-identical files", "[ingest][synth]") {
-    TempDir dir;
+    ingest::test::ScratchDir dir;
     synth::SynthOptions options{.seed = 5, .frames = 3, .objects = 12};
-    synth::writeSynth(dir.path("a").string(), options);
-    synth::writeSynth(dir.path("b").string(), options);
+    synth::writeSynth((dir.path / "a").string(), options);
+    synth::writeSynth((dir.path / "b").string(), options);
     std::vector<std::string> files;
-    for (const auto& entry : fs::recursive_directory_iterator(dir.path("a")))
-        if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), dir.path("a")).string());
+    for (const auto& entry : fs::recursive_directory_iterator((dir.path / "a")))
+        if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), (dir.path / "a")).string());
     std::sort(files.begin(), files.end());
     CHECK(files.size() == 3 * 3 + 7);
     for (const std::string& name : files) {
         INFO(name);
-        REQUIRE(fs::exists(dir.path("b") / name));
-        CHECK(slurp(dir.path("a") / name) == slurp(dir.path("b") / name));
+        REQUIRE(fs::exists((dir.path / "b") / name));
+        CHECK(slurp((dir.path / "a") / name) == slurp((dir.path / "b") / name));
     }
     options.seed = 6;
-    synth::writeSynth(dir.path("c").string(), options);
-    CHECK(slurp(dir.path("a") / "color/1.png") != slurp(dir.path("c") / "color/1.png"));
+    synth::writeSynth((dir.path / "c").string(), options);
+    CHECK(slurp((dir.path / "a") / "color/1.png") != slurp((dir.path / "c") / "color/1.png"));
 }
 
 TEST_CASE("synth: a non-empty folder is refused unless forced", "[ingest][synth]") {
-    TempDir dir;
-    fs::create_directories(dir.path("out"));
-    std::ofstream(dir.path("out/notes.txt")) << "mine";
+    ingest::test::ScratchDir dir;
+    fs::create_directories((dir.path / "out"));
+    std::ofstream((dir.path / "out/notes.txt")) << "mine";
     synth::SynthOptions options{.seed = 2, .frames = 2, .objects = 6};
     try {
-        synth::writeSynth(dir.path("out").string(), options);
+        synth::writeSynth((dir.path / "out").string(), options);
         FAIL("no error");
     } catch (const Error& e) {
         CHECK(e.kind() == ErrorKind::Usage);
         CHECK_THAT(e.message(), Catch::Contains("not empty"));
     }
-    CHECK_FALSE(fs::exists(dir.path("out/color")));
+    CHECK_FALSE(fs::exists((dir.path / "out/color")));
     options.force = true;
-    synth::writeSynth(dir.path("out").string(), options);
-    CHECK(fs::exists(dir.path("out/color/2.png")));
+    synth::writeSynth((dir.path / "out").string(), options);
+    CHECK(fs::exists((dir.path / "out/color/2.png")));
     // A forced rewrite with fewer frames leaves no frame of the earlier capture behind; other files stay.
     options.frames = 1;
-    synth::writeSynth(dir.path("out").string(), options);
-    CHECK(fs::exists(dir.path("out/color/1.png")));
-    CHECK_FALSE(fs::exists(dir.path("out/color/2.png")));
-    CHECK(slurp(dir.path("out/notes.txt")) == "mine");
+    synth::writeSynth((dir.path / "out").string(), options);
+    CHECK(fs::exists((dir.path / "out/color/1.png")));
+    CHECK_FALSE(fs::exists((dir.path / "out/color/2.png")));
+    CHECK(slurp((dir.path / "out/notes.txt")) == "mine");
 }
