@@ -21,7 +21,7 @@ std::string valueText(const Value& value) {
     return "";
 }
 
-nlohmann::json valueJson(const Value& value) {
+nlohmann::ordered_json valueJson(const Value& value) {
     switch (typeOf(value)) {
         case ValueType::Null: return nullptr;
         case ValueType::Integer: return std::get<std::int64_t>(value);
@@ -37,18 +37,18 @@ nlohmann::json valueJson(const Value& value) {
     return nullptr;
 }
 
-nlohmann::json rowJson(const ResultSet& result, std::size_t row) {
-    nlohmann::json out = nlohmann::json::object();
+nlohmann::ordered_json rowJson(const ResultSet& result, std::size_t row) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
     for (std::size_t c = 0; c < result.columns.size(); ++c) out[result.columns[c].name] = valueJson(result.rows[row][c]);
     return out;
 }
 
-nlohmann::json resultJson(const ResultSet& result) {
-    nlohmann::json columns = nlohmann::json::array();
+nlohmann::ordered_json resultJson(const ResultSet& result) {
+    nlohmann::ordered_json columns = nlohmann::ordered_json::array();
     for (const auto& c : result.columns) columns.push_back(c.name);
-    nlohmann::json rows = nlohmann::json::array();
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (std::size_t r = 0; r < result.rows.size(); ++r) rows.push_back(rowJson(result, r));
-    nlohmann::json out = {{"columns", columns}, {"rows", rows}};
+    nlohmann::ordered_json out = {{"columns", columns}, {"rows", rows}};
     if (!result.message.empty()) out["message"] = result.message;
     return out;
 }

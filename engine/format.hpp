@@ -10,11 +10,11 @@
 namespace smql {
 
 std::string valueText(const Value& value);
-nlohmann::json valueJson(const Value& value);
+nlohmann::ordered_json valueJson(const Value& value);
 // {"id": 12, "category": "sofa", "box": {"center": [...], "size": [...], "yaw": 0.0}, ...}
-nlohmann::json rowJson(const ResultSet& result, std::size_t row);
+nlohmann::ordered_json rowJson(const ResultSet& result, std::size_t row);
 // {"columns": [...], "rows": [{...}], "message": "..."}
-nlohmann::json resultJson(const ResultSet& result);
+nlohmann::ordered_json resultJson(const ResultSet& result);
 std::string formatTable(const ResultSet& result);
 std::string formatCsv(const ResultSet& result);
 

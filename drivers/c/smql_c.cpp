@@ -151,7 +151,7 @@ const smql::Value* cell(const smql_result* res, std::size_t row, std::size_t col
     return &res->set.rows[row][col];
 }
 
-std::string dumpJson(const nlohmann::json& json) {
+std::string dumpJson(const nlohmann::ordered_json& json) {
     // Text read from user files may hold invalid UTF-8: replace it, never throw.
     return json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
