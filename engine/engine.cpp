@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -57,7 +58,19 @@ struct Engine::State {
         return parsed;
     }
 
+    // The current scene as of the last statement, and the snapshot id it was read in: while no write
+    // has committed since, it is still right, and the statement skips the lookup.
+    std::optional<model::SceneInfo> resolved;
+    std::uint64_t resolvedInTransaction = 0;
+
     model::SceneInfo currentScene(const storage::ReadTransaction& txn) {
+        if (resolved && resolved->name == sceneName && resolvedInTransaction == txn.transactionId()) return *resolved;
+        resolved = lookUpCurrentScene(txn);
+        resolvedInTransaction = txn.transactionId();
+        return *resolved;
+    }
+
+    model::SceneInfo lookUpCurrentScene(const storage::ReadTransaction& txn) {
         if (!sceneName.empty()) {
             if (auto info = txn.sceneByName(sceneName)) return *info;
             throw Error(ErrorKind::Binding, fmt::format("scene '{}' no longer exists", sceneName), std::nullopt,
