@@ -1,5 +1,6 @@
 #include "ingest/pipeline/observations.hpp"
 
+#include <algorithm>
 #include <unordered_map>
 
 #include <opencv2/imgcodecs.hpp>
@@ -64,6 +65,107 @@ std::vector<Observation> observeInstances(const FrameImages& images, const Pose&
     }
     for (std::size_t i = 0; i < out.size(); ++i) cv::Mat(samples[i], true).copyTo(out[i].colors);
     return out;
+}
+
+void liftSparsePoints(std::vector<Observation>& observations, const FrameImages& images, const Pose& pose,
+                      const std::vector<SparsePoint>& points, std::vector<std::uint32_t>& inView, double depthBand) {
+    if (images.instances.empty() || observations.empty()) return;
+    const auto& K = images.intrinsics;
+    const auto& R = pose.rotation;
+    const auto& t = pose.translation;
+    std::unordered_map<std::uint16_t, std::size_t> slot;
+    for (std::size_t i = 0; i < observations.size(); ++i) slot.emplace(observations[i].instance, i);
+    std::vector<std::vector<std::pair<double, std::uint32_t>>> hits(observations.size());  // (depth, point)
+    inView.resize(points.size(), 0);
+    for (std::uint32_t index = 0; index < points.size(); ++index) {
+        const auto& p = points[index].position;
+        double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
+        // camera = R^T (p - t)
+        double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
+               z = R[2] * dx + R[5] * dy + R[8] * dz;
+        if (!(z > 1e-6)) continue;
+        int u = static_cast<int>(std::lround(K.fx * x / z + K.cx)), v = static_cast<int>(std::lround(K.fy * y / z + K.cy));
+        if (u < 0 || v < 0 || u >= images.instances.cols || v >= images.instances.rows) continue;
+        ++inView[index];
+        auto it = slot.find(images.instances.at<std::uint16_t>(v, u));
+        if (it == slot.end()) continue;
+        hits[it->second].push_back({z, index});
+    }
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+        auto& h = hits[i];
+        if (h.empty()) continue;
+        std::sort(h.begin(), h.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        double median = h[h.size() / 2].first;
+        double nearest = h[h.size() / 10].first;  // robust to a stray point in front
+        double band = depthBand * median;
+        for (const auto& [z, p] : h)
+            if (z >= nearest - band && z <= nearest + band) observations[i].sparse.push_back(p);
+    }
+}
+
+void keepConsistentSparsePoints(std::vector<ObjectTrack*>& tracks, const std::vector<SparsePoint>& points,
+                                const std::vector<std::uint32_t>& inView, int minVotes, double minShare) {
+    // votes[track][point]: frames where the point fell on that track's instance.
+    std::vector<std::unordered_map<std::uint32_t, int>> votes(tracks.size());
+    for (std::size_t t = 0; t < tracks.size(); ++t)
+        for (const auto& v : tracks[t]->views)
+            for (auto p : v.sparse) ++votes[t][p];
+    for (std::size_t t = 0; t < tracks.size(); ++t)
+        for (auto& v : tracks[t]->views)
+            for (auto p : v.sparse) {
+                int n = votes[t][p];
+                if (n >= minVotes && n >= minShare * inView[p]) v.points.push_back(points[p].position);
+            }
+}
+
+void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, int grid, double minShare) {
+    std::unordered_map<std::uint32_t, const MaskView*> byFrame;
+    for (const auto& m : masks) byFrame.emplace(m.frame, &m);
+    for (ObjectTrack* track : tracks) {
+        std::vector<model::Vec3> seed;
+        for (const auto& v : track->views) seed.insert(seed.end(), v.points.begin(), v.points.end());
+        if (seed.size() < 10 || track->views.empty()) continue;
+        std::uint16_t instance = track->views.front().instance;
+        double lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            std::vector<double> c;
+            for (const auto& p : seed) c.push_back(a == 0 ? p.x : a == 1 ? p.y : p.z);
+            std::sort(c.begin(), c.end());
+            lo[a] = c[c.size() / 20];
+            hi[a] = c[c.size() - 1 - c.size() / 20];
+        }
+        double grow = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+        for (int a = 0; a < 3; ++a) lo[a] -= grow / 2, hi[a] += grow / 2;
+        std::vector<const MaskView*> views;
+        for (const auto& v : track->views)
+            if (auto it = byFrame.find(v.frame); it != byFrame.end()) views.push_back(it->second);
+        std::vector<model::Vec3> hull;
+        for (int i = 0; i < grid; ++i)
+            for (int j = 0; j < grid; ++j)
+                for (int k = 0; k < grid; ++k) {
+                    model::Vec3 p{lo[0] + (i + 0.5) * (hi[0] - lo[0]) / grid, lo[1] + (j + 0.5) * (hi[1] - lo[1]) / grid,
+                                  lo[2] + (k + 0.5) * (hi[2] - lo[2]) / grid};
+                    int seen = 0, inside = 0;
+                    for (const MaskView* m : views) {
+                        const auto& R = m->pose.rotation;
+                        const auto& t = m->pose.translation;
+                        double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
+                        double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
+                               z = R[2] * dx + R[5] * dy + R[8] * dz;
+                        if (!(z > 1e-6)) continue;
+                        const auto& K = m->intrinsics;
+                        int u = static_cast<int>(std::lround(K.fx * x / z + K.cx));
+                        int v = static_cast<int>(std::lround(K.fy * y / z + K.cy));
+                        if (u < 0 || v < 0 || u >= m->instances.cols || v >= m->instances.rows) continue;
+                        ++seen;
+                        if (m->instances.at<std::uint16_t>(v, u) == instance) ++inside;
+                    }
+                    if (seen >= 2 && inside >= minShare * seen) hull.push_back(p);
+                }
+        if (hull.size() < 10) continue;
+        for (auto& v : track->views) v.points.clear();
+        track->views.front().points = std::move(hull);
+    }
 }
 
 std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size) {

@@ -22,6 +22,7 @@ struct Observation {
     int pixels = 0;                   // mask area in the frame
     cv::Rect bounds;                  // mask bounding box
     double centreX = 0;               // mask centroid, as a share of the image width (0 left, 1 right)
+    std::vector<std::uint32_t> sparse; // indices of Capture::points on the mask (frames without depth)
 };
 
 struct EvidenceCrop {
@@ -45,6 +46,40 @@ struct ObjectTrack {
 // mask; pixels without depth give colour samples but no points.
 std::vector<Observation> observeInstances(const FrameImages& images, const Pose& pose, std::uint32_t frame,
                                           int stride, int minPixels);
+
+// Frames without depth (COLMAP captures): every sparse point whose projection
+// falls on an instance's mask pixel joins that instance's observation (its
+// index goes to Observation::sparse). Points seen through the instance are
+// dropped: only those within `depthBand` (a share of the median depth of the
+// instance's points) of its nearest points are kept. `inView` counts, per
+// point, the frames it projects into (for the cross-view vote in
+// keepConsistentSparsePoints).
+void liftSparsePoints(std::vector<Observation>& observations, const FrameImages& images, const Pose& pose,
+                      const std::vector<SparsePoint>& points, std::vector<std::uint32_t>& inView, double depthBand = 0.25);
+
+// Keeps in each view only the sparse points that fall on the same instance in
+// at least `minVotes` frames and in at least `minShare` of the frames that see
+// them (rejecting background points at mask edges), and fills
+// Observation::points with them.
+void keepConsistentSparsePoints(std::vector<ObjectTrack*>& tracks, const std::vector<SparsePoint>& points,
+                                const std::vector<std::uint32_t>& inView, int minVotes = 2, double minShare = 0.5);
+
+// One frame's instance mask kept (down-sampled) for carving, with its camera.
+struct MaskView {
+    std::uint32_t frame = 0;
+    cv::Mat instances;  // CV_16U
+    Intrinsics intrinsics;  // scaled to `instances`
+    Pose pose;
+};
+
+// Sparse points see only the textured faces an object shows the cameras: a
+// box around them is often flat. Each track with enough sparse points is
+// replaced by its visual hull: the voxels of a region around its points
+// (grown by its largest side) that project onto the instance's mask in at
+// least `minShare` of the frames that observed it. The hull's voxel centres
+// become the track's points (in its first view).
+void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, int grid = 28,
+                      double minShare = 0.8);
 
 // A JPEG of the instance's bounding box (padded 10%), longest side `size`.
 std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size);

@@ -9,6 +9,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
 #include <nlohmann/json.hpp>
 
 #include "engine/error.hpp"
@@ -101,26 +102,47 @@ std::string words(relations::Predicate p) {
 
 }  // namespace
 
-IngestResult ingestCapture(const Capture& capture, const IngestOptions& options, ProgressSink& progress,
+IngestResult ingestCapture(const Capture& input, const IngestOptions& options, ProgressSink& progress,
                            const std::function<bool()>& cancelled) {
     IngestResult result;
     auto note = [&](const std::string& text) {
         result.notes.push_back(text);
         progress.note(text);
     };
-    for (const auto& n : capture.notes) note(n);
+    for (const auto& n : input.notes) note(n);
 
-    bool hasPoses = std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
-    if (options.geometry == GeometrySource::Colmap)
-        throw Error(ErrorKind::Usage, "--geometry colmap is not available yet in this version", std::nullopt,
-                    "give captures with camera poses (--geometry given)");
-    if (!hasPoses)
-        throw Error(ErrorKind::Input, fmt::format("{}: some frames have no camera pose", capture.path), std::nullopt,
+    bool hasPoses = std::all_of(input.frames.begin(), input.frames.end(), [](const auto& f) { return f.pose.has_value(); });
+    bool useColmap = options.geometry == GeometrySource::Colmap || (options.geometry == GeometrySource::Auto && !hasPoses);
+    if (options.geometry == GeometrySource::Given && !hasPoses)
+        throw Error(ErrorKind::Input, fmt::format("{}: some frames have no camera pose", input.path), std::nullopt,
+                    "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP "
+                    "model; or let COLMAP find them (--geometry colmap)");
+    // ---- COLMAP: poses and sparse points from the colour frames alone.
+    std::optional<Capture> reconstructed;
+    if (useColmap) {
+        Stage stage(progress, result.stages, "colmap", 1);
+        reconstructed = input;
+        bool hadDepth = false;
+        for (auto& f : reconstructed->frames) {
+            hadDepth = hadDepth || !f.depthPath.empty();
+            f.depthPath.clear();
+        }
+        if (hadDepth) note("--geometry colmap: depth images are ignored (COLMAP's poses are up to scale)");
+        ColmapRun run = runColmap(*reconstructed, options.colmap);
+        for (const auto& n : run.notes) note(n);
+        progress.advanced(1);
+        stage.finish(fmt::format("{} of {} frames registered, {} points, log {}", run.registered,
+                                 reconstructed->frames.size(), run.points, run.logPath));
+    }
+    const Capture& capture = reconstructed ? *reconstructed : input;
+    std::size_t posed = std::count_if(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
+    if (posed == 0)
+        throw Error(ErrorKind::Input, fmt::format("{}: no frame has a camera pose", capture.path), std::nullopt,
                     "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP model");
     bool hasDepth = std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return !f.depthPath.empty(); });
     if (!hasDepth && capture.points.empty())
         throw Error(ErrorKind::Input, fmt::format("{}: the frames have no depth and the capture no 3D points", capture.path),
-                    std::nullopt, "give depth images, or a COLMAP model with points3D");
+                    std::nullopt, "give depth images, or a COLMAP model with points3D (or --geometry colmap)");
     bool hasMasks = !capture.labelsPath.empty() &&
                     std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return !f.instancePath.empty(); });
     bool hasDetections = !capture.detectionsPath.empty() && hasDepth;
@@ -144,15 +166,24 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
     DetectionTracker tracker;
     std::vector<ObjectTrack> tracks;
     std::vector<Pose> cameras;
+    std::vector<std::size_t> cameraFrames;  // capture position of each camera
+    std::vector<std::uint32_t> inView;      // sparse points: frames each one projects into
+    std::vector<MaskView> maskViews;        // frames without depth: masks for carving
     {
         Stage stage(progress, result.stages, "frames", capture.frames.size());
         PointCloud pending;
         for (std::size_t i = 0; i < capture.frames.size(); ++i) {
             if (cancelled && cancelled()) throw Error(ErrorKind::Usage, "cancelled; nothing was written");
             const auto& frame = capture.frames[i];
+            if (!frame.pose) {
+                note(fmt::format("frame {} has no camera pose (not registered): skipped", frame.index));
+                progress.advanced(i + 1);
+                continue;
+            }
             FrameImages images = loadFrame(capture, frame, options.workingWidth);
             const Pose& pose = *frame.pose;
             cameras.push_back(pose);
+            cameraFrames.push_back(i);
             append(pending, backProject(images, pose, static_cast<std::uint32_t>(i), options.structureStride));
             // Down-sample as we go so memory stays flat over long captures.
             if (pending.size() > 400000) {
@@ -165,8 +196,21 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
                                       encodeCrop(images.color, o.bounds, options.evidenceSize)};
             };
             if (objects == ObjectSource::Masks) {
-                for (auto& o : observeInstances(images, pose, static_cast<std::uint32_t>(i), options.objectStride,
-                                                options.minInstancePixels)) {
+                auto seen = observeInstances(images, pose, static_cast<std::uint32_t>(i), options.objectStride,
+                                             options.minInstancePixels);
+                if (!hasDepth) {
+                    liftSparsePoints(seen, images, pose, capture.points, inView, options.sparseDepthBand);
+                    MaskView m;
+                    m.frame = static_cast<std::uint32_t>(i);
+                    cv::resize(images.instances, m.instances, cv::Size(), 0.25, 0.25, cv::INTER_NEAREST);
+                    double sx = double(m.instances.cols) / images.instances.cols, sy = double(m.instances.rows) / images.instances.rows;
+                    const auto& K = images.intrinsics;
+                    m.intrinsics = {m.instances.cols, m.instances.rows, K.fx * sx, K.fy * sy, (K.cx + 0.5) * sx - 0.5,
+                                    (K.cy + 0.5) * sy - 0.5};
+                    m.pose = pose;
+                    maskViews.push_back(std::move(m));
+                }
+                for (auto& o : seen) {
                     auto& track = instanceTracks[o.instance];
                     keepEvidence(track, o);
                     track.views.push_back(std::move(o));
@@ -189,7 +233,17 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
         }
         append(structure, pending);
         structure = voxelDownsample(structure, options.structureVoxel);
+        if (!hasDepth) {
+            // The capture's sparse points (COLMAP) are the structure: already sparse, in the capture's units.
+            for (const auto& p : capture.points) structure.push(p.position, p.color, 0);
+        }
         if (objects == ObjectSource::Masks) {
+            if (!hasDepth) {
+                std::vector<ObjectTrack*> all;
+                for (auto& [instance, track] : instanceTracks) all.push_back(&track);
+                keepConsistentSparsePoints(all, capture.points, inView);
+                carveVisualHulls(all, maskViews);
+            }
             for (auto& [instance, track] : instanceTracks) {
                 auto label = labels.find(instance);
                 if (label == labels.end()) continue;  // an unlabelled mask value
@@ -219,6 +273,8 @@ IngestResult ingestCapture(const Capture& capture, const IngestOptions& options,
                                  alignment.heading * 180 / M_PI, alignment.scale));
     }
     PointCloud aligned = transformed(structure, alignment);
+    for (std::size_t c = 0; c < cameras.size(); ++c)
+        result.cameraCentres.push_back({cameraFrames[c], alignment.apply(cameras[c].translation)});
 
     model::SceneData& scene = result.scene;
     scene.info.name = options.sceneName;

@@ -10,6 +10,7 @@
 
 #include "engine/model/types.hpp"
 #include "ingest/capture/capture.hpp"
+#include "ingest/geometry/colmap_runner.hpp"
 
 namespace smql::ingest {
 
@@ -31,6 +32,8 @@ struct IngestOptions {
     int descriptionAgreement = 2;     // views that must agree before a scene-level phrase is promoted
     double agreementShare = 0.6;      // ... and the share of its views they must be
     int evidenceSize = 160;           // longest side of an evidence crop (pixels)
+    ColmapOptions colmap;             // --geometry colmap (and auto for captures without poses)
+    double sparseDepthBand = 0.25;    // sparse points lifted onto a mask: within this share of the median depth
 };
 
 // Progress of a long ingest, stage by stage. Implementations print a bar, JSON
@@ -54,6 +57,9 @@ struct IngestResult {
     model::SceneData scene;
     std::vector<StageTiming> stages;
     std::vector<std::string> notes;
+    // Every frame that had a pose: (position in the capture, camera centre in
+    // the aligned frame, metres). For checking COLMAP runs against truth poses.
+    std::vector<std::pair<std::size_t, model::Vec3>> cameraCentres;
 };
 
 // Throws smql::Error(Input) for captures the chosen sources cannot handle
