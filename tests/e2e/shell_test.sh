@@ -96,6 +96,12 @@ assert crops and all(open(c, \"rb\").read(2) == bytes([0xff, 0xd8]) for c in cro
 check "evidence survives a JSON export and import" bash -c "'$smql' export json --db '$work/memory' -o '$work/memory.json' 2>/dev/null && '$smql' import json '$work/memory.json' --db '$work/copied' --scene copied >/dev/null && '$smql' '$work/copied' -c 'DESCRIBE (FIND object LIMIT 1)' | grep -q 'evidence.*image/jpeg'"
 check "--update refreshes the objects seen again" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --update capture 2>/dev/null | grep -q 'objects seen again' && '$smql' '$work/memory' -c 'USE SCENE capture; COUNT object WHERE captures = 2' | tail -1 | grep -qv '^0$'"
 check "--update of a missing scene is refused before any work" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --update nowhere 2>&1 | grep -q frames"
+# Ctrl-C during an ingest: it stops, says so, exits non-zero, and writes nothing.
+check "a longer capture" "$smql" synth --out "$work/long" --seed 4 --frames 150
+check "Ctrl-C stops an ingest with nothing written" bash -c "
+  '$smql' ingest '$work/long' --db '$work/interrupted' --quiet 2>'$work/int.err' &
+  pid=\$!; sleep 1.5; kill -INT \$pid; wait \$pid; status=\$?
+  [ \$status -ne 0 ] && grep -q cancelled '$work/int.err' && ! '$smql' '$work/interrupted' -c 'SHOW SCENES' | grep -q long"
 check "a second ingest of the same place is a new scene" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet && '$smql' '$work/memory' -c 'SHOW SCENES' | grep -q again"
 check "an ingest into a taken scene name is refused" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet"
 check "rgbd-dining ingests without labels" bash -c "'$smql' ingest '$data/rgbd-dining' --db '$work/dining' --quiet && '$smql' '$work/dining' -c 'COUNT object' | sed -n 3p | grep -qv '^0$'"
