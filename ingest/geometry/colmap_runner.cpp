@@ -159,8 +159,11 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
     if (run.registered < capture.frames.size())
         run.notes.push_back(fmt::format("COLMAP registered {} of {} frames; the others are skipped", run.registered,
                                         capture.frames.size()));
-    run.notes.push_back(fmt::format("COLMAP work folder (images, database, models, log): {}", run.workDirectory));
-    if (!options.keepWorkDirectory) fs::remove_all(work, ec);
+    // A successful run's work folder goes unless asked to stay; a failed one stays for its log.
+    if (options.keepWorkDirectory)
+        run.notes.push_back(fmt::format("COLMAP work folder (images, database, models, log): {}", run.workDirectory));
+    else
+        fs::remove_all(work, ec);
     return run;
 }
 

@@ -15,7 +15,7 @@ struct ColmapOptions {
     std::string command = "colmap";  // looked up on PATH
     int exhaustiveUpTo = 60;         // exhaustive_matcher up to this many frames, sequential_matcher above
     int threads = -1;                // COLMAP's num_threads (-1: all cores)
-    bool keepWorkDirectory = true;   // the work folder (images, database, models, colmap.log) stays for inspection
+    bool keepWorkDirectory = false;  // keep the work folder (images, database, models, colmap.log) after a success too
 };
 
 struct ColmapRun {

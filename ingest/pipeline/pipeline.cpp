@@ -131,8 +131,8 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
         ColmapRun run = runColmap(*reconstructed, options.colmap);
         for (const auto& n : run.notes) note(n);
         progress.advanced(1);
-        stage.finish(fmt::format("{} of {} frames registered, {} points, log {}", run.registered,
-                                 reconstructed->frames.size(), run.points, run.logPath));
+        stage.finish(fmt::format("{} of {} frames registered, {} points", run.registered,
+                                 reconstructed->frames.size(), run.points));
     }
     const Capture& capture = reconstructed ? *reconstructed : input;
     std::size_t posed = std::count_if(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
