@@ -357,7 +357,7 @@ ResultSet Executor::describe(const binder::NodeSet& nodes) const {
 ResultSet Executor::tree(std::optional<Slot> root) const {
     ResultSet rs;
     rs.columns = {{"id", ValueType::Integer}, {"depth", ValueType::Integer}, {"node", ValueType::Text}};
-    std::size_t hidden = 0, descriptions = 0;
+    std::size_t hidden = 0, descriptions = 0, frames = 0;
     // Depth-first, children in id order, so the listing reads like the path of each node.
     std::vector<std::pair<Slot, std::int64_t>> stack;
     Slot start = root.value_or(*scene_.slotOf(scene_.info().id));
@@ -370,9 +370,10 @@ ResultSet Executor::tree(std::optional<Slot> root) const {
             ++hidden;
             continue;
         }
-        // Descriptions are text about their parent (DESCRIBE shows them), not places in the tree.
-        if (n.kind == model::NodeKind::Description) {
-            ++descriptions;
+        // Descriptions are text about their parent (DESCRIBE shows them) and frames are where the
+        // camera stood (FIND frame lists them): neither is a place in the tree.
+        if (n.kind == model::NodeKind::Description || n.kind == model::NodeKind::Frame) {
+            ++(n.kind == model::NodeKind::Frame ? frames : descriptions);
             continue;
         }
         rs.rows.push_back({static_cast<std::int64_t>(n.id), depth,
@@ -384,6 +385,9 @@ ResultSet Executor::tree(std::optional<Slot> root) const {
     if (descriptions)
         rs.message += fmt::format("{}{} description{} not shown (DESCRIBE #id lists an object's)", rs.message.empty() ? "" : "; ",
                                   descriptions, descriptions == 1 ? "" : "s");
+    if (frames)
+        rs.message += fmt::format("{}{} frame{} not shown (FIND frame lists them)", rs.message.empty() ? "" : "; ", frames,
+                                  frames == 1 ? "" : "s");
     return rs;
 }
 

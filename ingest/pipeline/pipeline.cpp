@@ -438,14 +438,30 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
             if (node == trackNode.end()) continue;
             for (const auto& v : track.views) byFrame[v.frame].push_back({node->second, v.centreX});
         }
+        // Each frame that saw objects is a frame node (its camera centre as a small box): the
+        // view-local relations point at it.
+        std::map<std::uint32_t, NodeId> frameNode;
+        for (std::size_t c = 0; c < cameras.size(); ++c) {
+            auto position = static_cast<std::uint32_t>(cameraFrames[c]);
+            if (!byFrame.contains(position)) continue;
+            model::Vec3 centre = alignment.apply(cameras[c].translation);
+            Node& f = addNode(NodeKind::Frame, "frame", model::GeometryKind::Box, {centre, {0.05, 0.05, 0.05}, 0});
+            f.text = capture.frames[position].colorPath;
+            f.attributes = {{"frame", std::to_string(capture.frames[position].index)}};
+            frameNode.emplace(position, f.id);
+        }
         for (const auto& [frame, seen] : byFrame)
             for (const auto& [a, ax] : seen)
                 for (const auto& [b, bx] : seen) {
                     if (a >= b) continue;
                     auto& vote = votes[{a, b}];
                     ++vote.second;
-                    if (ax < bx - 0.05) ++vote.first;
-                    else if (ax > bx + 0.05) --vote.first;
+                    // As seen in this frame: left of / right of in the image, by at least 5% of its width.
+                    std::optional<relations::Predicate> local;
+                    if (ax < bx - 0.05) ++vote.first, local = relations::Predicate::LeftOf;
+                    else if (ax > bx + 0.05) --vote.first, local = relations::Predicate::RightOf;
+                    if (local)
+                        scene.relations.push_back({a, b, relations::relationType(*local), 1.0f, 1, frameNode.at(frame)});
                 }
         std::map<NodeId, std::vector<std::string>> lateralPhrases;
         auto nodeById = [&](NodeId id) -> const Node& { return scene.nodes[id - 1]; };

@@ -57,6 +57,22 @@ TEST_CASE("a synthetic RGB-D capture with masks meets the quality thresholds") {
         descriptions += n.kind == model::NodeKind::Description;
     }
     CHECK(descriptions >= objects);
+    // Lateral order is recorded per view (edges tagged with a frame node) and consolidated when
+    // views agree (allocentric edges, frame 0, support = agreeing views).
+    std::size_t viewLocal = 0, consolidated = 0;
+    for (const auto& r : result.scene.relations) {
+        if (r.type != model::RelationType::LeftOf && r.type != model::RelationType::RightOf) continue;
+        if (r.frame == model::kNoNode) {
+            ++consolidated;
+            CHECK(r.support >= 2);
+        } else {
+            ++viewLocal;
+            CHECK(result.scene.nodes.at(r.frame - 1).kind == model::NodeKind::Frame);
+        }
+    }
+    CHECK(viewLocal > consolidated);
+    CHECK(consolidated > 0);
+
     std::set<model::NodeId> withEvidence;
     for (const auto& blob : result.scene.blobs) {
         CHECK(blob.bytes.substr(0, 2) == "\xff\xd8");  // a JPEG
