@@ -384,22 +384,36 @@ std::uint64_t ReadTransaction::nodeCount() const {
     return stat.ms_entries;
 }
 
-std::vector<NodeId> ReadTransaction::children(NodeId parent) const {
-    const Environment& env = *impl_->env;
-    TableCursor cursor(*impl_, Table::Children);
-    std::vector<NodeId> out;
-    auto key = codec::idKey(parent);
+namespace {
+
+// Every duplicate under `id`'s key in a DUPFIXED table, decoded entry by entry.
+template <class T, class Decode>
+std::vector<T> readDuplicates(const ReadTransaction::Impl& impl, Table table, NodeId id, std::size_t entrySize,
+                              std::string_view operation, Decode decode) {
+    const Environment& env = *impl.env;
+    TableCursor cursor(impl, table);
+    std::vector<T> out;
+    auto key = codec::idKey(id);
     MDB_val k = toVal(key), value;
     int rc = cursor.get(k, value, MDB_SET_KEY);
     if (rc == MDB_NOTFOUND) return out;
-    env.check(rc, "reading children");
+    env.check(rc, operation);
     std::size_t count = duplicateCount(env, cursor.cursor());
     out.reserve(count);
-    forEachDuplicate(env, cursor.cursor(), value, count, sizeof(NodeId), [&](std::string_view entry) {
-        out.push_back(codec::readBigEndian64(reinterpret_cast<const std::uint8_t*>(entry.data())));
+    forEachDuplicate(env, cursor.cursor(), value, count, entrySize, [&](std::string_view entry) {
+        out.push_back(decode(entry));
         return true;
     });
     return out;
+}
+
+}  // namespace
+
+std::vector<NodeId> ReadTransaction::children(NodeId parent) const {
+    return readDuplicates<NodeId>(*impl_, Table::Children, parent, sizeof(NodeId), "reading children",
+                                  [](std::string_view entry) {
+                                      return codec::readBigEndian64(reinterpret_cast<const std::uint8_t*>(entry.data()));
+                                  });
 }
 
 // Scene ids are contiguous blocks (the scene node first), so a scene's nodes
@@ -420,21 +434,8 @@ void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<voi
 }
 
 std::vector<model::Relation> ReadTransaction::relationsOf(NodeId id) const {
-    const Environment& env = *impl_->env;
-    TableCursor cursor(*impl_, Table::Relations);
-    std::vector<model::Relation> out;
-    auto key = codec::idKey(id);
-    MDB_val k = toVal(key), value;
-    int rc = cursor.get(k, value, MDB_SET_KEY);
-    if (rc == MDB_NOTFOUND) return out;
-    env.check(rc, "reading relations");
-    std::size_t count = duplicateCount(env, cursor.cursor());
-    out.reserve(count);
-    forEachDuplicate(env, cursor.cursor(), value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
-        out.push_back(codec::decodeRelationEntry(id, entry));
-        return true;
-    });
-    return out;
+    return readDuplicates<model::Relation>(*impl_, Table::Relations, id, codec::kRelationEntrySize, "reading relations",
+                                           [id](std::string_view entry) { return codec::decodeRelationEntry(id, entry); });
 }
 
 // One range scan over the relation index keys of the scene's id block; each
