@@ -23,6 +23,7 @@
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
+#include "ingest/synth/walk.hpp"
 #include "storage/database.hpp"
 
 namespace smql::shell {
@@ -191,8 +192,30 @@ int ingestCommand(const IngestArguments& args) {
 int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, const std::string& sceneName,
                        const std::string& format) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    model::SceneData ingested = ingest::inCaptureFrame(engine->exportScene(sceneName));
+    model::SceneData stored = engine->exportScene(sceneName);
     model::SceneData truth = import::readSceneJson(truthPath);
+
+    // Into the truth's frame: through the true camera poses beside the truth (pose.txt, as smql synth
+    // writes it) when the scene has its cameras as frame nodes, which also measures the metric scale of
+    // scale-free (COLMAP) runs; else by undoing the scene's stored alignment.
+    std::vector<std::pair<model::Vec3, model::Vec3>> cameras;
+    fs::path poseFile = fs::path(truthPath).parent_path() / "pose.txt";
+    if (fs::exists(poseFile)) {
+        std::vector<ingest::Pose> poses;
+        std::ifstream in(poseFile);
+        for (std::string line; std::getline(in, line);)
+            if (!line.empty()) poses.push_back(synth::parsePoseLine(line));
+        for (const auto& n : stored.nodes) {
+            const std::string* frame = n.attribute("frame");
+            if (n.kind != model::NodeKind::Frame || !frame) continue;
+            // Frame numbers count the capture's frames from 0, in the order of pose.txt's lines.
+            std::size_t position = std::stoul(*frame);
+            if (position < poses.size()) cameras.push_back({n.box.center, poses[position].translation});
+        }
+    }
+    std::optional<ingest::CameraRegistration> registration;
+    if (cameras.size() >= 3) registration = ingest::registerByCameras(stored, cameras);
+    model::SceneData ingested = registration ? registration->mapped : ingest::inCaptureFrame(stored);
     ingest::QualityOptions options;
     // visibility.json beside the truth says which truth nodes the capture shows at all.
     fs::path visibility = fs::path(truthPath).parent_path() / "visibility.json";
@@ -215,6 +238,7 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
             {"objects", {{"truth", r.objects.truth}, {"ingested", r.objects.predicted}, {"matched", r.objects.matched},
                          {"precision", r.objects.precision()}, {"recall", r.objects.recall()}, {"f1", r.objects.f1()}}},
             {"color_accuracy", r.colorAccuracy()},
+            {"scale_error", registration ? nlohmann::json(std::abs(registration->scale - 1)) : nlohmann::json(nullptr)},
             {"parent_accuracy", r.parentAccuracy()},
             {"mean_center_error_m", r.meanCenterError}};
         std::cout << j.dump(2) << "\n";
@@ -229,6 +253,9 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
     std::cout << fmt::format("color    accuracy {:.2f}  ({} of {})\n", r.colorAccuracy(), r.colorCorrect, r.colorChecked);
     std::cout << fmt::format("parent   accuracy {:.2f}  ({} of {})\n", r.parentAccuracy(), r.parentCorrect, r.parentChecked);
     std::cout << fmt::format("centres  mean error {:.3f} m over matched objects\n", r.meanCenterError);
+    if (registration)
+        std::cout << fmt::format("scale    off by {:.1f}% (similarity from {} cameras to the true poses, residual {:.3f} m)\n",
+                                 100 * std::abs(registration->scale - 1), cameras.size(), registration->residual);
     return 0;
 }
 

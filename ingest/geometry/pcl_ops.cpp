@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <pcl/ModelCoefficients.h>
+#include <pcl/console/print.h>
 #include <pcl/PointIndices.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -19,7 +20,18 @@ namespace smql::ingest::pcl_ops {
 
 namespace {
 
+// PCL prints its own warnings (degenerate RANSAC samples on sparse clouds) to the terminal: the
+// stages report what matters themselves, so PCL speaks only of errors.
+void quietPcl() {
+    static const bool quieted = [] {
+        pcl::console::setVerbosityLevel(pcl::console::L_ERROR);
+        return true;
+    }();
+    (void)quieted;
+}
+
 pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const std::vector<model::Vec3>& points) {
+    quietPcl();
     auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
     cloud->points.reserve(points.size());
     for (const auto& p : points)

@@ -5,6 +5,8 @@
 #include <map>
 #include <unordered_map>
 
+#include <Eigen/Geometry>
+
 #include "engine/model/geometry.hpp"
 
 namespace smql::ingest {
@@ -129,6 +131,34 @@ std::vector<std::pair<NodeId, NodeId>> matchObjects(const model::SceneData& refe
         if (n.kind == model::NodeKind::Object && counts(n)) b.push_back(&n);
     auto pairs = match(a, b, minIou, [](const Node& x, const Node& y) { return boxIou(x.box, y.box); });
     return {pairs.begin(), pairs.end()};
+}
+
+CameraRegistration registerByCameras(const model::SceneData& ingested,
+                                     const std::vector<std::pair<model::Vec3, model::Vec3>>& cameras) {
+    const auto n = static_cast<Eigen::Index>(cameras.size());
+    Eigen::Matrix3Xd from(3, n), to(3, n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+        const auto& [a, b] = cameras[static_cast<std::size_t>(k)];
+        from.col(k) << a.x, a.y, a.z;
+        to.col(k) << b.x, b.y, b.z;
+    }
+    Eigen::Matrix4d T = Eigen::umeyama(from, to, true);
+    CameraRegistration out;
+    out.scale = T.block<3, 1>(0, 0).norm();
+    Eigen::Matrix3d R = T.block<3, 3>(0, 0) / out.scale;
+    Eigen::Vector3d shift = T.block<3, 1>(0, 3);
+    for (Eigen::Index k = 0; k < n; ++k) out.residual += ((out.scale * R * from.col(k) + shift) - to.col(k)).norm();
+    out.residual /= std::max<Eigen::Index>(n, 1);
+    // Both frames are z-up, so the rotation is a turn about z.
+    double yaw = std::atan2(R(1, 0), R(0, 0));
+    out.mapped = ingested;
+    for (auto& node : out.mapped.nodes) {
+        Eigen::Vector3d m = out.scale * R * Eigen::Vector3d(node.box.center.x, node.box.center.y, node.box.center.z) + shift;
+        node.box.center = {m.x(), m.y(), m.z()};
+        node.box.size = {node.box.size.x * out.scale, node.box.size.y * out.scale, node.box.size.z * out.scale};
+        node.box.yaw += yaw;
+    }
+    return out;
 }
 
 model::SceneData inCaptureFrame(const model::SceneData& ingested) {

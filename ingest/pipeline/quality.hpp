@@ -52,6 +52,19 @@ std::vector<std::pair<model::NodeId, model::NodeId>> matchObjects(const model::S
 // 3D intersection over union of two upright boxes.
 double boxIou(const model::Box& a, const model::Box& b);
 
+// An ingested scene mapped into the truth frame by the similarity (Umeyama)
+// that best carries its camera centres onto the true ones: how scale-free
+// (COLMAP) runs are compared with the truth. `scale` is that similarity's
+// scale: 1 when the ingest got the metric scale right.
+struct CameraRegistration {
+    model::SceneData mapped;
+    double scale = 1;
+    double residual = 0;  // mean camera distance after the mapping (m)
+};
+// Pairs of (camera centre in the ingested scene, true camera centre); at least 3.
+CameraRegistration registerByCameras(const model::SceneData& ingested,
+                                     const std::vector<std::pair<model::Vec3, model::Vec3>>& cameras);
+
 // The ingested scene brought back into the capture's frame (undoing the
 // alignment stored on the scene), where a synthetic capture's truth lives.
 model::SceneData inCaptureFrame(const model::SceneData& ingested);
