@@ -84,6 +84,7 @@ check "check-ingest reports F1 as JSON" bash -c "'$smql' check-ingest '$work/mem
 import json, sys
 r = json.load(sys.stdin)
 assert r[\"objects\"][\"f1\"] > 0.5 and 0 <= r[\"color_accuracy\"] <= 1, r
+assert r[\"scale_error\"] is not None and r[\"scale_error\"] < 0.01, r
 '"
 check "ingested objects have scene-level text" bash -c "'$smql' '$work/memory' --format json -c \"FIND object WHERE text LIKE '% on the %' LIMIT 1\" | grep -q '\"id\"'"
 check "DESCRIBE lists evidence" bash -c "'$smql' '$work/memory' -c 'DESCRIBE (FIND object LIMIT 1)' | grep -q 'evidence.*image/jpeg'"
