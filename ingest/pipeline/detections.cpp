@@ -1,5 +1,6 @@
 #include "ingest/pipeline/detections.hpp"
 
+#include <functional>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -29,6 +30,62 @@ std::optional<long long> numberOf(const fs::path& file) {
     if (stem.empty() || stem.size() > 15 || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
         return std::nullopt;
     return std::stoll(stem);
+}
+
+}  // namespace
+
+namespace {
+
+// COCO run-length masks: {"size": [height, width], "counts": [...] or "..."}. Runs alternate
+// background and object, starting with background, over the pixels in column-major order; the string
+// form packs each run in 5-bit groups (6 bits a character from '0'), after the second run as the
+// difference from the run two before (pycocotools' rleFrString).
+cv::Mat1b decodeRle(const nlohmann::json& s, const Intrinsics& K, const std::function<void(const std::string&)>& bad) {
+    if (!s.contains("size") || !s["size"].is_array() || s["size"].size() != 2 || !s["size"][0].is_number_integer() ||
+        !s["size"][1].is_number_integer())
+        bad("RLE mask: expected \"size\": [height, width]");
+    long long height = s["size"][0].get<long long>(), width = s["size"][1].get<long long>();
+    if (height != K.height || width != K.width)
+        bad(fmt::format("RLE mask of {}x{} for a {}x{} image", width, height, K.width, K.height));
+    std::vector<long long> runs;
+    if (!s.contains("counts")) bad("RLE mask: missing \"counts\"");
+    const auto& counts = s["counts"];
+    if (counts.is_array()) {
+        for (const auto& c : counts) {
+            if (!c.is_number_integer() || c.get<long long>() < 0) bad("RLE mask: counts must be whole numbers >= 0");
+            runs.push_back(c.get<long long>());
+        }
+    } else if (counts.is_string()) {
+        const std::string text = counts.get<std::string>();
+        for (std::size_t p = 0; p < text.size();) {
+            long long x = 0;
+            int k = 0;
+            bool more = true;
+            while (more) {
+                if (p >= text.size() || k > 12) bad("RLE mask: counts string is truncated");
+                int c = text[p++] - 48;
+                if (c < 0 || c > 63) bad("RLE mask: counts string holds a character outside '0'..'o'");
+                x |= static_cast<long long>(c & 0x1f) << (5 * k);
+                more = c & 0x20;
+                ++k;
+                if (!more && (c & 0x10)) x |= -1LL << (5 * k);
+            }
+            if (runs.size() > 2) x += runs[runs.size() - 2];
+            runs.push_back(x);
+        }
+    } else {
+        bad("RLE mask: counts must be a list of numbers or a string");
+    }
+    cv::Mat1b mask = cv::Mat1b::zeros(static_cast<int>(height), static_cast<int>(width));
+    long long at = 0, total = height * width;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        if (runs[r] < 0 || at + runs[r] > total) bad("RLE mask: the runs do not add up to the image's size");
+        if (r % 2 == 1)
+            for (long long q = at; q < at + runs[r]; ++q) mask(static_cast<int>(q % height), static_cast<int>(q / height)) = 255;
+        at += runs[r];
+    }
+    if (at != total) bad(fmt::format("RLE mask: the runs cover {} pixels, the image has {}", at, total));
+    return mask;
 }
 
 }  // namespace
@@ -104,8 +161,12 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
 
         if (e.contains("segmentation") && !e["segmentation"].is_null()) {
             const auto& s = e["segmentation"];
-            if (s.is_object()) bad("segmentation", "RLE masks are not supported; give polygons [[x1, y1, x2, y2, ...], ...] or leave it out");
-            if (!s.is_array()) bad("segmentation", "expected a list of polygons [[x1, y1, x2, y2, ...], ...]");
+            if (s.is_object()) {
+                d.rle = decodeRle(s, K, [&](const std::string& what) { bad("segmentation", what); });
+                out[frame].push_back(std::move(d));
+                continue;
+            }
+            if (!s.is_array()) bad("segmentation", "expected a list of polygons [[x1, y1, x2, y2, ...], ...] or an RLE mask");
             for (std::size_t k = 0; k < s.size(); ++k) {
                 const auto& poly = s[k];
                 std::string field = fmt::format("segmentation[{}]", k);
@@ -152,7 +213,9 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
             p = toWorking(p);
             return cv::Point(static_cast<int>(std::lround(p.x * (1 << kShift))), static_cast<int>(std::lround(p.y * (1 << kShift))));
         };
-        if (!det.polygons.empty()) {
+        if (!det.rle.empty()) {
+            cv::resize(det.rle, mask, mask.size(), 0, 0, cv::INTER_NEAREST);
+        } else if (!det.polygons.empty()) {
             for (const auto& poly : det.polygons) {
                 polys.emplace_back();
                 for (const auto& p : poly) polys.back().push_back(fixed(p));
@@ -162,7 +225,7 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
             cv::Point2d a(det.box.x, det.box.y), b(det.box.x + det.box.width - 1, det.box.y + det.box.height - 1);
             polys.push_back({fixed(a), fixed({b.x, a.y}), fixed(b), fixed({a.x, b.y})});
         }
-        cv::fillPoly(mask, polys, cv::Scalar(255), cv::LINE_8, kShift);
+        if (!polys.empty()) cv::fillPoly(mask, polys, cv::Scalar(255), cv::LINE_8, kShift);
         int area = cv::countNonZero(mask);
         if (area < minPixels) continue;
 

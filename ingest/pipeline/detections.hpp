@@ -31,13 +31,15 @@ struct Detection {
     std::string category;
     double score = 0;
     cv::Rect2d box;                                   // pixels of the stored image
-    std::vector<std::vector<cv::Point2d>> polygons;   // empty: the box is the mask
+    std::vector<std::vector<cv::Point2d>> polygons;   // COCO polygons, pixels of the stored image
+    cv::Mat1b rle;                                    // a COCO RLE mask decoded (stored image size)
+    // Neither polygons nor an RLE mask: the box is the mask.
 };
 
 // Reads capture.detectionsPath; the result has one list per capture frame (by
 // position). Throws smql::Error(Input) "<file>: detections[i].field: ..." on
 // missing fields, wrong types, non-finite numbers, boxes outside the image,
-// images the capture does not have, and RLE segmentations.
+// images the capture does not have, and RLE masks that do not decode to the image's size.
 std::vector<std::vector<Detection>> readDetections(const Capture& capture);
 
 // Lifts the frame's detections (score >= kMinDetectionScore) into observations;

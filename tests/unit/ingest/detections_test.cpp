@@ -111,7 +111,10 @@ TEST_CASE("detections.json: format errors name the file and the field", "[ingest
     expectError(R"([{"image": "1.png", "label": 3, "score": 0.9, "bbox": [1, 2, 3, 4]}])", "detections[0].label: expected");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
                      "segmentation": {"size": [480, 640], "counts": "abc"}}])",
-                "detections[0].segmentation: RLE masks are not supported");
+                "detections[0].segmentation: RLE mask: counts string is truncated");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
+                     "segmentation": {"size": [48, 64], "counts": [3072]}}])",
+                "detections[0].segmentation: RLE mask of 64x48 for a 640x480 image");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4], "segmentation": [[1, 2, 3]]}])",
                 "detections[0].segmentation[0]: expected a polygon");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, -3, 4]}])",
@@ -138,4 +141,26 @@ TEST_CASE("detections: a synthetic capture's perfect detections, polygons and bo
     std::cout << fmt::format("synth seed 3, 30 frames, detections as boxes only: objects F1 {:.2f}, color {:.2f}\n",
                              boxesOnly.objectsF1, boxesOnly.color);
     CHECK(boxesOnly.objectsF1 >= 0.6);
+}
+
+TEST_CASE("COCO RLE masks decode, as counts and as the compressed string") {
+    // Columns 10 and 11, rows 100..149, of a 640x480 image: runs in column-major order.
+    const long long h = 480, first = 10 * h + 100;
+    std::string counts = fmt::format("[{}, 50, 430, 50, {}]", first, 640 * h - (first + 50 + 430 + 50));
+    for (const std::string& form : {counts, std::string(R"("Ti4b1^=0lXV9")")}) {
+        ScratchDir dir;
+        auto capture = twoFrames(dir, R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [10, 100, 2, 50],
+                                           "segmentation": {"size": [480, 640], "counts": )" + form + "}}]");
+        auto detections = readDetections(capture);
+        INFO(form);
+        REQUIRE(detections[0].size() == 1);
+        const cv::Mat1b& mask = detections[0][0].rle;
+        REQUIRE(mask.rows == 480);
+        REQUIRE(mask.cols == 640);
+        CHECK(cv::countNonZero(mask) == 100);
+        CHECK(mask(100, 10) == 255);
+        CHECK(mask(149, 11) == 255);
+        CHECK(mask(99, 10) == 0);
+        CHECK(mask(100, 12) == 0);
+    }
 }
