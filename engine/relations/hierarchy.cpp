@@ -14,6 +14,8 @@ using model::Node;
 namespace {
 // A parent's footprint is at least half its child's.
 constexpr double kMinSupporterArea = 0.5;
+// Metres by which a wall may be farther than a door or window and still be the parent.
+constexpr double kWallPreference = 0.15;
 }  // namespace
 
 void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
@@ -52,11 +54,17 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
             if (!best || contact(b) < contact(best)) best = b;
         }
         if (!best) {
-            double bestDistance = std::numeric_limits<double>::max();
+            // The nearest anchor; but a door or window set in a wall is no nearer, for this purpose,
+            // than the wall itself: a wall within kWallPreference of the nearest anchor wins, so the
+            // tree does not flip between a wall and its window over a few centimetres.
+            double bestDistance = std::numeric_limits<double>::max(), wallDistance = bestDistance;
+            const Node* wall = nullptr;
             for (const Node* anchor : anchors) {
                 double d = model::distance(a.box, anchor->box);
                 if (d < bestDistance) bestDistance = d, best = anchor;
+                if (anchor->category == "wall" && d < wallDistance) wallDistance = d, wall = anchor;
             }
+            if (wall && wallDistance <= bestDistance + kWallPreference) best = wall;
         }
         if (best) parents[i] = best->id;
     }
