@@ -262,11 +262,13 @@ BoundFind Binder::bindFind(const ast::FindStmt& find) const {
     return out;
 }
 
+// COUNT is a FIND without order, limit or path that returns only how many.
 BoundFind Binder::bindCount(const ast::CountStmt& count) const {
-    BoundFind out;
-    out.frame = bindView(count.view, out.viewDescription);
-    out.target = bindTarget(count.target, out.frame);
-    if (count.where) out.where = bindExpr(*count.where, out.frame);
+    ast::FindStmt find;
+    find.target = count.target;
+    find.view = count.view;
+    find.where = count.where;
+    BoundFind out = bindFind(find);
     out.countOnly = true;
     return out;
 }
