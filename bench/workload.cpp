@@ -55,9 +55,9 @@ Answer smqlAnswer(const ResultSet& rs, AnswerColumn column) {
     for (const auto& row : rs.rows) {
         const Value& v = row[static_cast<std::size_t>(index)];
         if (column == AnswerColumn::Relation) {
-            auto p = relations::predicateFromName(std::get<std::string>(v));
+            const auto* p = relations::predicateNamed(std::get<std::string>(v));
             if (!p) throw std::runtime_error(fmt::format("smql answered an unknown relation '{}'", std::get<std::string>(v)));
-            out.push_back(static_cast<std::int64_t>(*p));
+            out.push_back(static_cast<std::int64_t>(p->predicate));
         } else {
             out.push_back(std::get<std::int64_t>(v));
         }

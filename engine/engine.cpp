@@ -26,9 +26,6 @@ using exec::Slot;
 
 namespace {
 
-// "*" or "all": FIND and COUNT by category and attributes across every scene.
-bool isAllScenes(std::string_view name) { return name == "*" || name == "all"; }
-
 constexpr std::size_t kStatementCacheSize = 512;
 // Decoded scenes kept in memory; the least recently used one goes first.
 constexpr std::size_t kSnapshotCacheSize = 32;
@@ -37,9 +34,7 @@ constexpr std::size_t kSnapshotCacheSize = 32;
 
 struct Engine::State {
     std::unique_ptr<storage::Database> db;
-    relations::Thresholds thresholds;
-    std::string sceneName;  // empty until chosen: USE SCENE, an import, or the most recent scene
-    bool allScenes = false;
+    exec::Session session;
     struct CachedSnapshot {
         std::shared_ptr<const SceneSnapshot> snapshot;
         std::uint64_t lastUse = 0;
@@ -64,16 +59,17 @@ struct Engine::State {
     std::uint64_t resolvedInTransaction = 0;
 
     model::SceneInfo currentScene(const storage::ReadTransaction& txn) {
-        if (resolved && resolved->name == sceneName && resolvedInTransaction == txn.transactionId()) return *resolved;
+        if (resolved && resolved->name == session.sceneName && resolvedInTransaction == txn.transactionId())
+            return *resolved;
         resolved = lookUpCurrentScene(txn);
         resolvedInTransaction = txn.transactionId();
         return *resolved;
     }
 
     model::SceneInfo lookUpCurrentScene(const storage::ReadTransaction& txn) {
-        if (!sceneName.empty()) {
-            if (auto info = txn.sceneByName(sceneName)) return *info;
-            throw Error(ErrorKind::Binding, fmt::format("scene '{}' no longer exists", sceneName), std::nullopt,
+        if (!session.sceneName.empty()) {
+            if (auto info = txn.sceneByName(session.sceneName)) return *info;
+            throw Error(ErrorKind::Binding, fmt::format("scene '{}' no longer exists", session.sceneName), std::nullopt,
                         "SHOW SCENES lists the scenes; USE SCENE 'name' picks one");
         }
         auto scenes = txn.scenes();
@@ -84,7 +80,7 @@ struct Engine::State {
         const auto* latest = &scenes.front();
         for (const auto& s : scenes)
             if (s.id > latest->id) latest = &s;
-        sceneName = latest->name;
+        session.sceneName = latest->name;
         return *latest;
     }
 
@@ -118,233 +114,6 @@ std::unique_ptr<Engine> Engine::open(const std::string& directory, bool readOnly
 
 storage::Database& Engine::database() { return *state_->db; }
 
-namespace {
-
-struct StatementRunner {
-    Engine::State& state;
-    const storage::ReadTransaction& txn;
-
-    binder::Binder binderFor(const SceneSnapshot& scene) const {
-        binder::BindContext ctx{
-            scene, state.thresholds,
-            [this](const std::string& category) { return !txn.nodesWithCategory(category).empty(); },
-            [this, &scene](const ast::FindStmt& find) {
-                auto bound = binderFor(scene).bindFind(find);
-                auto plan = planner::planFind(bound, scene, state.thresholds);
-                std::vector<Slot> slots;
-                for (const auto& hit : exec::Executor(scene, state.thresholds).find(plan)) slots.push_back(hit.slot);
-                std::sort(slots.begin(), slots.end());
-                return slots;
-            }};
-        return binder::Binder(std::move(ctx));
-    }
-
-    ResultSet run(const ast::Statement& statement) {
-        return std::visit([&](const auto& body) { return runBody(body, statement); }, statement.body);
-    }
-
-    std::shared_ptr<const SceneSnapshot> scene() { return state.snapshot(txn, state.currentScene(txn)); }
-
-    ResultSet runBody(const ast::FindStmt& find, const ast::Statement&) {
-        if (state.allScenes) return findAcrossScenes(find.target, find.where ? &*find.where : nullptr, find.limit, false);
-        auto snap = scene();
-        auto bound = binderFor(*snap).bindFind(find);
-        auto plan = planner::planFind(bound, *snap, state.thresholds);
-        return exec::Executor(*snap, state.thresholds).findRows(plan);
-    }
-
-    ResultSet runBody(const ast::CountStmt& count, const ast::Statement&) {
-        if (state.allScenes)
-            return findAcrossScenes(count.target, count.where ? &*count.where : nullptr, std::nullopt, true);
-        auto snap = scene();
-        auto bound = binderFor(*snap).bindCount(count);
-        auto plan = planner::planFind(bound, *snap, state.thresholds);
-        return exec::Executor(*snap, state.thresholds).findRows(plan);
-    }
-
-    ResultSet runBody(const ast::RelateStmt& relate, const ast::Statement&) {
-        auto snap = scene();
-        auto bound = binderFor(*snap).bindRelate(relate);
-        return exec::Executor(*snap, state.thresholds).relate(bound);
-    }
-
-    ResultSet runBody(const ast::DescribeStmt& describe, const ast::Statement&) {
-        auto snap = scene();
-        auto nodes = binderFor(*snap).bindRef(describe.target, relations::viewFrame(snap->info().viewpoint));
-        auto rs = exec::Executor(*snap, state.thresholds).describe(nodes);
-        // Evidence lives in the blob table, not in the snapshot: list it from the transaction.
-        for (Slot slot : nodes.slots) {
-            auto id = snap->node(slot).id;
-            for (const auto& blob : txn.blobsOf(id))
-                rs.rows.push_back({static_cast<std::int64_t>(id), std::string("evidence"),
-                                   fmt::format("{} ({}, {} bytes)", blob.name, blob.mediaType, blob.size)});
-        }
-        return rs;
-    }
-
-    ResultSet runBody(const ast::ShowStmt& show, const ast::Statement&) {
-        switch (show.what) {
-            case ast::ShowStmt::What::Scenes: return showScenes();
-            case ast::ShowStmt::What::Settings: return showSettings();
-            case ast::ShowStmt::What::Tree: {
-                auto snap = scene();
-                std::optional<Slot> root;
-                if (show.root) {
-                    auto nodes = binderFor(*snap).bindRef(*show.root, relations::viewFrame(snap->info().viewpoint));
-                    if (nodes.slots.size() != 1)
-                        throw Error(ErrorKind::Binding,
-                                    fmt::format("SHOW TREE needs one node; {} names {}", nodes.description,
-                                                nodes.slots.size()),
-                                    show.root->where, "use #id or src#id");
-                    root = nodes.slots.front();
-                }
-                return exec::Executor(*snap, state.thresholds).tree(root);
-            }
-        }
-        return {};
-    }
-
-    ResultSet runBody(const ast::UseStmt& use, const ast::Statement&) {
-        ResultSet rs;
-        if (isAllScenes(use.scene)) {
-            state.allScenes = true;
-            rs.message = "using all scenes: FIND and COUNT by category and attributes";
-            return rs;
-        }
-        if (!txn.sceneByName(use.scene)) {
-            std::vector<std::string> names;
-            for (const auto& s : txn.scenes()) names.push_back(s.name);
-            auto close = model::nearestNames(use.scene, names);
-            throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", use.scene), use.where,
-                        close.empty() ? "SHOW SCENES lists the scenes" : "did you mean " + model::joinAlternatives(close) + "?");
-        }
-        state.sceneName = use.scene;
-        state.allScenes = false;
-        rs.message = fmt::format("using scene '{}'", use.scene);
-        return rs;
-    }
-
-    ResultSet runBody(const ast::SetStmt& set, const ast::Statement&) {
-        const auto* setting = relations::findSetting(set.name);
-        if (!setting) {
-            std::vector<std::string> names;
-            for (const auto& s : relations::settingsCatalogue()) names.push_back(s.name);
-            auto close = model::nearestNames(set.name, names);
-            throw Error(ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,
-                        close.empty() ? "SHOW SETTINGS lists them" : "did you mean " + model::joinAlternatives(close) + "?");
-        }
-        double value = 0;
-        if (const auto* d = std::get_if<ast::Distance>(&set.value)) {
-            if (setting->unit != relations::SettingUnit::Metres)
-                throw Error(ErrorKind::Binding, fmt::format("{} is a ratio, not a distance", setting->name), set.where,
-                            fmt::format("SET {} = 0.5", setting->name));
-            value = d->metres;
-        } else if (const auto* number = std::get_if<double>(&set.value)) {
-            value = *number;  // a bare number for a distance setting is taken as metres
-        } else {
-            throw Error(ErrorKind::Binding, fmt::format("{} takes a number", setting->name), set.where,
-                        setting->unit == relations::SettingUnit::Metres ? fmt::format("SET {} = 0.8 m", setting->name)
-                                                                        : fmt::format("SET {} = 0.5", setting->name));
-        }
-        bool ratio = setting->unit == relations::SettingUnit::Ratio;
-        if (!std::isfinite(value) || value < 0 || (ratio && value > 1) || (!ratio && value > 100))
-            throw Error(ErrorKind::Binding, fmt::format("{} out of range for {}", value, setting->name), set.where,
-                        ratio ? "ratios lie in [0, 1]" : "distances lie in [0, 100] m");
-        state.thresholds.*(setting->field) = value;
-        ResultSet rs;
-        rs.message = fmt::format("{} = {}{}", setting->name, value, ratio ? "" : " m");
-        return rs;
-    }
-
-    ResultSet runBody(const ast::ExplainStmt& explain, const ast::Statement&) {
-        ResultSet rs;
-        rs.columns = {{"plan", ValueType::Text}};
-        const auto& inner = *explain.inner;
-        auto snap = scene();
-        auto binder = binderFor(*snap);
-        std::optional<binder::BoundFind> bound;
-        if (const auto* find = std::get_if<ast::FindStmt>(&inner.body)) bound = binder.bindFind(*find);
-        if (const auto* count = std::get_if<ast::CountStmt>(&inner.body)) bound = binder.bindCount(*count);
-        if (!bound) {
-            rs.rows.push_back({std::string("Evaluate the statement directly (no plan choices)")});
-            return rs;
-        }
-        auto plan = planner::planFind(*bound, *snap, state.thresholds);
-        for (auto& line : plan.explain()) rs.rows.push_back({std::move(line)});
-        return rs;
-    }
-
-    ResultSet showScenes() {
-        ResultSet rs;
-        rs.columns = {{"name", ValueType::Text},  {"id", ValueType::Integer},   {"nodes", ValueType::Integer},
-                      {"source", ValueType::Text}, {"viewpoint", ValueType::Text}, {"current", ValueType::Text}};
-        auto scenes = txn.scenes();
-        std::optional<model::NodeId> current;
-        if (!scenes.empty() && !state.allScenes) current = state.currentScene(txn).id;
-        for (const auto& s : scenes) {
-            std::string vp = fmt::format("({:.2f}, {:.2f}, {:.2f}) facing {:.0f} deg", s.viewpoint.position.x,
-                                         s.viewpoint.position.y, s.viewpoint.position.z,
-                                         s.viewpoint.facingYaw * 180.0 / M_PI);
-            rs.rows.push_back({s.name, static_cast<std::int64_t>(s.id), static_cast<std::int64_t>(s.nodeCount), s.source,
-                               vp, std::string(current && *current == s.id ? "*" : "")});
-        }
-        return rs;
-    }
-
-    ResultSet showSettings() {
-        ResultSet rs;
-        rs.columns = {{"name", ValueType::Text}, {"value", ValueType::Real}, {"unit", ValueType::Text},
-                      {"meaning", ValueType::Text}};
-        for (const auto& s : relations::settingsCatalogue())
-            rs.rows.push_back({s.name, state.thresholds.*(s.field),
-                               std::string(s.unit == relations::SettingUnit::Metres ? "m" : "ratio"), s.meaning});
-        return rs;
-    }
-
-    // Category search over every scene through the label index: no snapshot is loaded.
-    ResultSet findAcrossScenes(const ast::Ref& target, const ast::Expr* where, std::optional<std::int64_t> limit,
-                               bool countOnly) {
-        if (target.kind != ast::Ref::Kind::Name)
-            throw Error(ErrorKind::Binding, "across all scenes, FIND and COUNT take a category", target.where,
-                        "USE SCENE 'name' to query one scene by id, side or sub-query");
-        if (where)
-            throw Error(ErrorKind::Binding, "across all scenes, FIND and COUNT take no WHERE", where->where,
-                        "metric predicates need one scene: USE SCENE 'name'");
-        std::uint64_t total = txn.countWithCategory(target.name);
-        if (total == 0) {
-            std::vector<std::string> names;
-            for (const auto& [name, count] : txn.categories()) names.push_back(name);
-            auto close = model::nearestNames(target.name, names);
-            throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in any scene", target.name),
-                        target.where, close.empty() ? "" : "did you mean " + model::joinAlternatives(close) + "?");
-        }
-        ResultSet rs;
-        if (countOnly) {
-            rs.columns = {{"count", ValueType::Integer}};
-            rs.rows.push_back({static_cast<std::int64_t>(total)});
-            return rs;
-        }
-        auto ids = txn.nodesWithCategory(target.name, model::kNoNode,
-                                         limit ? static_cast<std::size_t>(*limit) : SIZE_MAX);
-        rs.columns = {{"id", ValueType::Integer},
-                      {"category", ValueType::Text},
-                      {"scene", ValueType::Integer},
-                      {"source_id", ValueType::Integer},
-                      {"box", ValueType::Box}};
-        rs.rows.reserve(ids.size());
-        model::Node node;
-        for (auto id : ids) {
-            if (!txn.readNode(id, node)) continue;
-            rs.rows.push_back({static_cast<std::int64_t>(node.id), node.category, static_cast<std::int64_t>(node.scene),
-                               node.sourceId ? Value(*node.sourceId) : Value(std::monostate{}),
-                               node.geometry == model::GeometryKind::None ? Value(std::monostate{}) : Value(node.box)});
-        }
-        return rs;
-    }
-};
-
-}  // namespace
-
 std::vector<ResultSet> Engine::execute(std::string_view text) {
     std::vector<ResultSet> results;
     execute(text, [&](ResultSet&& rs) { results.push_back(std::move(rs)); });
@@ -357,8 +126,11 @@ void Engine::execute(std::string_view text, const std::function<void(ResultSet&&
     for (const auto& statement : *statements) {
         auto start = std::chrono::steady_clock::now();
         auto txn = state_->db->beginRead();
-        StatementRunner runner{*state_, txn};
-        auto rs = runner.run(statement);
+        binder::Binder binder({txn, state_->session, [&] {
+                                   return state_->snapshot(txn, state_->currentScene(txn));
+                               }});
+        auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement)));
+        auto rs = exec::Executor(txn, state_->session, plan).run();
         rs.elapsedMicroseconds =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
         onResult(std::move(rs));
@@ -367,12 +139,12 @@ void Engine::execute(std::string_view text, const std::function<void(ResultSet&&
 
 model::NodeId Engine::importScene(model::SceneData scene) {
     std::lock_guard lock(state_->mutex);
-    relations::assignParents(scene, state_->thresholds);
+    relations::assignParents(scene, state_->session.thresholds);
     auto txn = state_->db->beginWrite();
     auto id = txn.importScene(scene);
     txn.commit();
-    state_->sceneName = scene.info.name;
-    state_->allScenes = false;
+    state_->session.sceneName = scene.info.name;
+    state_->session.allScenes = false;
     return id;
 }
 
@@ -427,7 +199,7 @@ void Engine::updateNodes(const std::vector<model::Node>& nodes) {
 
 std::string Engine::currentScene() const {
     std::lock_guard lock(state_->mutex);
-    if (state_->allScenes) return "*";
+    if (state_->session.allScenes) return "*";
     auto txn = state_->db->beginRead();
     auto scenes = txn.scenes();
     if (scenes.empty()) return {};

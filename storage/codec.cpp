@@ -18,7 +18,6 @@ enum NodeFlags : std::uint8_t { kHidden = 1, kHasSourceId = 2, kHasBox = 4 };
 
 constexpr auto kLastNodeKind = static_cast<std::uint8_t>(model::NodeKind::Frame);
 constexpr auto kLastGeometry = static_cast<std::uint8_t>(model::GeometryKind::Plane);
-constexpr auto kLastRelationType = static_cast<std::uint8_t>(model::RelationType::Between);
 
 void putBigEndian64(std::uint8_t* p, std::uint64_t v) {
     for (int i = 7; i >= 0; --i) {
@@ -292,7 +291,7 @@ model::Relation decodeRelationEntry(model::NodeId keyId, std::string_view entry)
     const auto* p = reinterpret_cast<const std::uint8_t*>(entry.data());
     model::NodeId other = readBigEndian64(p + 2);
     std::uint8_t type = p[10];
-    if (type > kLastRelationType) r.corrupt(fmt::format("unknown relation type {}", type));
+    if (type >= model::kRelationTypeCount) r.corrupt(fmt::format("unknown relation type {}", type));
 
     model::Relation relation;
     relation.subject = side == 0 ? keyId : other;

@@ -1,8 +1,11 @@
 // Bound statements: names resolved to node sets of one scene, units to
-// metres, the viewpoint to a frame. What the planner consumes.
+// metres, settings and scenes checked. What the planner consumes. A bound
+// statement is immutable once made; plans share it, so nothing in a plan can
+// outlive what it points at.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -15,11 +18,22 @@
 namespace smql::binder {
 
 using exec::Slot;
+struct BoundFind;
 
-// The nodes a reference stands for, and how to say it ("sofa (2 nodes)").
+// The nodes a reference stands for, and how to say it ("sofa (2 nodes)"). Names, ids and kind
+// words are resolved by the binder. A side of the room (`wall.left`) depends on the viewpoint and a
+// sub-query on its own answer: both are resolved by the executor when the statement runs.
 struct NodeSet {
-    std::vector<Slot> slots;
+    enum class Source { Nodes, Side, SubQuery };
+    Source source = Source::Nodes;
+    std::vector<Slot> slots;                    // Nodes: the nodes; Side: the candidates, in id order
+    std::string side;                           // Side: left | right | front | back
+    std::shared_ptr<const BoundFind> subquery;  // SubQuery: planned and run by the executor
+    std::size_t id = 0;                         // numbered per statement; the executor's caches use it
     std::string description;
+
+    // How many nodes it holds, or at most holds, for the planner's choices.
+    std::size_t estimate() const;
 };
 
 // What FIND / COUNT range over: a category, a kind of node, or given nodes.
@@ -29,7 +43,6 @@ struct Target {
     std::string category;
     model::NodeKind nodeKind = model::NodeKind::Object;
     NodeSet nodes;  // the candidates, in id order (for every kind)
-    std::string description;
 };
 
 struct BoundExpr {
@@ -47,10 +60,17 @@ struct BoundExpr {
     ast::Literal literal;
 };
 
+// Where the viewer stands for the lateral predicates and sides: the scene's default viewpoint, or
+// `VIEW FROM x [FACING y]` (resolved in the default viewpoint's frame).
+struct BoundView {
+    std::optional<NodeSet> from;
+    std::optional<NodeSet> facing;
+    std::string description;
+};
+
 struct BoundFind {
     Target target;
-    relations::Frame frame;
-    std::string viewDescription;
+    BoundView view;
     std::optional<BoundExpr> where;
     std::optional<NodeSet> distanceTo;  // ORDER BY distance(x) / NEAREST TO x
     bool nearest = false;               // NEAREST TO: the reference nodes themselves are left out
@@ -60,11 +80,51 @@ struct BoundFind {
     bool countOnly = false;
 };
 
+// FIND / COUNT of a category under USE SCENE '*': every scene, through the label index.
+struct BoundCatalogFind {
+    std::string category;
+    std::optional<std::int64_t> limit;
+    bool countOnly = false;
+};
+
 struct BoundRelate {
     NodeSet subject;
     NodeSet object;
-    relations::Frame frame;
-    std::string viewDescription;
+    BoundView view;
+};
+
+struct BoundDescribe {
+    NodeSet nodes;
+};
+
+struct BoundShowScenes {};
+struct BoundShowSettings {};
+struct BoundShowTree {
+    std::optional<NodeSet> root;  // one node (checked when it runs), or the scene root
+};
+
+struct BoundUse {
+    std::string scene;  // a stored scene's name; empty with allScenes
+    bool allScenes = false;
+};
+
+struct BoundSet {
+    const relations::SettingInfo* setting = nullptr;
+    double value = 0;
+};
+
+struct BoundStatement;
+struct BoundExplain {
+    std::shared_ptr<const BoundStatement> inner;
+};
+
+struct BoundStatement {
+    std::variant<BoundFind, BoundCatalogFind, BoundRelate, BoundDescribe, BoundShowScenes, BoundShowSettings,
+                 BoundShowTree, BoundUse, BoundSet, BoundExplain>
+        body;
+    // The scene the names were bound in; null for statements that need none (USE, SET, SHOW SCENES ...).
+    std::shared_ptr<const exec::SceneSnapshot> scene;
+    std::size_t setCount = 0;  // NodeSet ids run from 0 to setCount - 1
 };
 
 }  // namespace smql::binder

@@ -1,13 +1,19 @@
-// Runs bound, planned statements over one scene snapshot.
+// Runs a planned statement over one read transaction. One file per statement
+// (exec_<statement>.cpp); node sets, frames and FIND's filter live in
+// executor.cpp and exec_find.cpp. An Executor lives for one statement: its
+// caches (resolved sets, membership tables) are indexed by the statement's
+// NodeSet ids and die with it.
 #pragma once
 
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "engine/binder/bound.hpp"
+#include "engine/exec/session.hpp"
 #include "engine/planner/planner.hpp"
 #include "engine/result.hpp"
+
+namespace smql::storage { class ReadTransaction; }
 
 namespace smql::exec {
 
@@ -18,29 +24,47 @@ struct Hit {
 
 class Executor {
 public:
-    Executor(const SceneSnapshot& scene, const relations::Thresholds& thresholds)
-        : scene_(scene), thresholds_(thresholds) {}
+    // `session` is read for the thresholds and changed by USE and SET.
+    Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan);
 
-    std::vector<Hit> find(const planner::FindPlan& plan) const;
-    ResultSet findRows(const planner::FindPlan& plan) const;
-    ResultSet relate(const binder::BoundRelate& relate) const;
-    ResultSet describe(const binder::NodeSet& nodes) const;
-    ResultSet tree(std::optional<Slot> root) const;
+    ResultSet run();
+    // The nodes a FIND plan (the statement's or a sub-query's) answers, in order.
+    std::vector<Hit> find(const planner::FindPlan& plan);
 
 private:
-    bool matches(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame) const;
-    bool holdsForSome(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame) const;
-    const std::vector<char>& membership(const binder::NodeSet& set) const;
-    // NEAREST TO / ORDER BY distance(x) LIMIT k around one node: the R-tree's
-    // nearest boxes, widened until no box outside can beat the k-th answer.
-    std::optional<std::vector<Hit>> nearestFirst(const planner::FindPlan& plan) const;
-    bool compare(const binder::BoundExpr& expr, const model::Node& node) const;
-    bool inTarget(const binder::Target& target, Slot slot) const;
+    ResultSet run(const binder::BoundFind& find);
+    ResultSet run(const binder::BoundCatalogFind& find);
+    ResultSet run(const binder::BoundRelate& relate);
+    ResultSet run(const binder::BoundDescribe& describe);
+    ResultSet run(const binder::BoundShowScenes& show);
+    ResultSet run(const binder::BoundShowSettings& show);
+    ResultSet run(const binder::BoundShowTree& show);
+    ResultSet run(const binder::BoundUse& use);
+    ResultSet run(const binder::BoundSet& set);
+    ResultSet run(const binder::BoundExplain& explain);
 
-    const SceneSnapshot& scene_;
-    const relations::Thresholds& thresholds_;
-    // Per query: which slots a large reference set holds, for R-tree lookups of references.
-    mutable std::unordered_map<const binder::NodeSet*, std::vector<char>> membership_;
+    const SceneSnapshot& scene() const { return *plan_.statement->scene; }
+    // The nodes of a set: as bound, or resolved now (a side in `frame`, a sub-query's answer).
+    const std::vector<Slot>& slots(const binder::NodeSet& set, const relations::Frame& frame);
+    const std::vector<Slot>& resolveSide(const binder::NodeSet& set, const relations::Frame& frame);
+    // Which slots a large set holds, for R-tree lookups of references.
+    const std::vector<char>& membership(const binder::NodeSet& set, const relations::Frame& frame);
+    relations::Frame frame(const binder::BoundView& view);
+    relations::Frame defaultFrame() const;
+
+    bool matches(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
+    bool holdsForSome(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
+    bool compare(const binder::BoundExpr& expr, const model::Node& node) const;
+    bool inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame);
+    std::vector<Hit> nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame);
+    std::vector<Hit> filtered(const planner::FindPlan& plan, const relations::Frame& frame);
+
+    const storage::ReadTransaction& txn_;
+    Session& session_;
+    const planner::Plan& plan_;
+    const relations::Thresholds thresholds_;  // as the statement started
+    std::vector<std::optional<std::vector<Slot>>> resolved_;  // by NodeSet id
+    std::vector<std::vector<char>> membership_;               // by NodeSet id; empty until needed
 };
 
 }  // namespace smql::exec

@@ -7,8 +7,6 @@ namespace smql::model {
 
 namespace {
 constexpr std::array<std::string_view, 6> kKindNames = {"scene", "room", "anchor", "object", "description", "frame"};
-constexpr std::array<std::string_view, 11> kRelationNames = {
-    "on", "in", "above", "below", "near", "attached", "left_of", "right_of", "in_front_of", "behind", "between"};
 }  // namespace
 
 std::string_view toString(NodeKind kind) { return kKindNames[static_cast<std::size_t>(kind)]; }

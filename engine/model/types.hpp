@@ -65,9 +65,15 @@ struct Node {
     friend bool operator==(const Node&, const Node&) = default;
 };
 
+// The relation vocabulary as stored: a code on disk and a word in files. New codes go at the end.
+// Each code is a predicate of the query language; engine/relations/predicates.cpp gives each its
+// formula in one table, which the compiler checks against this list.
 enum class RelationType : std::uint8_t {
     On = 0, In, Above, Below, Near, Attached, LeftOf, RightOf, InFrontOf, Behind, Between
 };
+inline constexpr std::array<std::string_view, 11> kRelationNames = {
+    "on", "in", "above", "below", "near", "attached", "left_of", "right_of", "in_front_of", "behind", "between"};
+inline constexpr std::size_t kRelationTypeCount = kRelationNames.size();
 std::string_view toString(RelationType type);
 std::optional<RelationType> relationTypeFromString(std::string_view text);
 

@@ -1,34 +1,56 @@
-// Bound FIND/COUNT -> physical plan. The one optimisation that matters at
-// this size: push a local spatial predicate (on, in, above, below, near,
-// attached) into the R-tree, so only boxes around the reference nodes are
-// visited instead of every node of the target.
+// Bound statement -> plan. The choices that matter at this size are made here
+// and nowhere else, so EXPLAIN prints the plan that runs:
+//  - a local spatial predicate (on, in, above, below, near, attached) over few
+//    reference nodes is pushed into the R-tree: only boxes around those nodes
+//    are visited instead of every node of the target;
+//  - NEAREST TO / ORDER BY distance(x) LIMIT k around one node is a top-k
+//    nearest-first search of the R-tree;
+//  - under USE SCENE '*', FIND and COUNT read the label index of every scene;
+//  - every sub-query gets a plan of its own, run before the statement needs it.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/binder/bound.hpp"
-#include "engine/model/geometry.hpp"
 
 namespace smql::planner {
 
-struct RTreeProbe {
-    std::vector<model::Aabb> regions;  // one per reference node
-    std::string description;           // "on(sofa (2 nodes))"
+// How FIND gathers its candidates.
+enum class Access {
+    Scan,          // every node of the target
+    RTreeProbe,    // the boxes around the reference nodes of one local conjunct
+    NearestFirst,  // top k by distance to one node: the R-tree's nearest boxes, widened until exact
 };
 
 struct FindPlan {
-    const binder::BoundFind* find = nullptr;
-    std::optional<RTreeProbe> probe;  // absent: scan the target's nodes
+    std::shared_ptr<const binder::BoundFind> find;
+    Access access = Access::Scan;
+    std::size_t probeConjunct = 0;  // RTreeProbe: the top-level conjunct that drives the probe
+
+    // The conjunct an R-tree probe is built from.
+    const binder::BoundExpr& probeTerm() const;
+};
+
+struct Plan {
+    std::shared_ptr<const binder::BoundStatement> statement;  // the plan shares what it runs
+    std::optional<FindPlan> find;                              // FIND / COUNT in one scene
+    std::vector<std::shared_ptr<const FindPlan>> subqueries;   // by NodeSet id; null where none
+    std::shared_ptr<const Plan> explained;                     // EXPLAIN: the inner statement's plan
 
     // The plan as EXPLAIN prints it, one operator per line, root first.
     std::vector<std::string> explain() const;
 };
 
-FindPlan planFind(const binder::BoundFind& find, const exec::SceneSnapshot& scene,
-                  const relations::Thresholds& thresholds);
+Plan plan(std::shared_ptr<const binder::BoundStatement> statement);
+// The access path for one FIND; plan() uses it for the statement and each sub-query.
+FindPlan planFind(std::shared_ptr<const binder::BoundFind> find);
 
+// The WHERE clause as EXPLAIN and errors print it.
 std::string describe(const binder::BoundExpr& expr);
+// The top-level conjuncts of a WHERE clause: each must hold for every row.
+std::vector<const binder::BoundExpr*> conjuncts(const binder::BoundExpr& where);
 
 }  // namespace smql::planner

@@ -43,12 +43,12 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
         // supporter's centre to be strictly lower, so the tree has no cycles.
         const Node* best = nullptr;
         auto contact = [&](const Node* b) { return std::abs(model::bottom(a.box) - model::top(b->box)); };
-        auto within = referenceRegion(Predicate::On, model::worldAabb(a.box), 0, thresholds);
+        auto within = spec(Predicate::On).referenceRegion(model::worldAabb(a.box), 0, thresholds);
         for (std::size_t k = 0; k < objects.size(); ++k) {
             const Node* b = objects[k];
             if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
             // A cheap bounds test first: most pairs are far apart.
-            if (b->box.center.z >= a.box.center.z || !intersects(objectBounds[k], *within)) continue;
+            if (b->box.center.z >= a.box.center.z || !intersects(objectBounds[k], within)) continue;
             if (model::footprintArea(b->box) < kMinSupporterArea * model::footprintArea(a.box)) continue;
             if (supportScore(a, *b, thresholds) <= 0) continue;
             if (!best || contact(b) < contact(best)) best = b;

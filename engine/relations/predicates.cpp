@@ -12,24 +12,6 @@ using model::Node;
 
 namespace {
 
-struct NamedPredicate {
-    std::string_view name;
-    Predicate predicate;
-};
-constexpr std::array<NamedPredicate, 13> kNames = {{{"on", Predicate::On},
-                                                     {"in", Predicate::In},
-                                                     {"inside", Predicate::In},
-                                                     {"above", Predicate::Above},
-                                                     {"below", Predicate::Below},
-                                                     {"under", Predicate::Below},
-                                                     {"near", Predicate::Near},
-                                                     {"attached", Predicate::Attached},
-                                                     {"left_of", Predicate::LeftOf},
-                                                     {"right_of", Predicate::RightOf},
-                                                     {"in_front_of", Predicate::InFrontOf},
-                                                     {"behind", Predicate::Behind},
-                                                     {"between", Predicate::Between}}};
-
 // Categories are open vocabulary; `plant stand`, `plant_stand` and `plant-stand` are one word here.
 bool sameCategory(std::string_view a, std::string_view b) {
     if (a.size() != b.size()) return false;
@@ -63,26 +45,6 @@ double offsetScore(double offset, double threshold) {
 }
 
 }  // namespace
-
-std::optional<Predicate> predicateFromName(std::string_view name) {
-    for (const auto& n : kNames)
-        if (n.name == name) return n.predicate;
-    return std::nullopt;
-}
-
-std::string_view toString(Predicate p) {
-    for (const auto& n : kNames)
-        if (n.predicate == p) return n.name;
-    return "?";
-}
-
-model::RelationType relationType(Predicate p) { return static_cast<model::RelationType>(static_cast<int>(p)); }
-
-bool isLateral(Predicate p) {
-    return p == Predicate::LeftOf || p == Predicate::RightOf || p == Predicate::InFrontOf || p == Predicate::Behind;
-}
-
-int arity(Predicate p) { return p == Predicate::Between ? 2 : 1; }
 
 Affordance affordanceOf(std::string_view category) {
     static const std::array<std::string_view, 26> holders = {
@@ -129,79 +91,8 @@ double supportScore(const Node& a, const Node& b, const Thresholds& t) {
     return std::min(1.0, share);
 }
 
-double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame, const Node* c,
-                std::optional<double> nearDistance) {
-    if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
-    switch (p) {
-        case Predicate::On: {
-            Affordance kind = affordanceOf(b.category);
-            if (kind == Affordance::Holder) return 0.0;
-            if (kind == Affordance::Enclosure && contained(a, b, t)) return 0.0;
-            return supportScore(a, b, t);
-        }
-        case Predicate::In: {
-            Affordance kind = affordanceOf(b.category);
-            if (kind == Affordance::Surface) return 0.0;
-            double inside = model::fractionInside(a.box, b.box);
-            if (inside >= t.inMinInside) return inside;
-            return kind == Affordance::Holder ? supportScore(a, b, t) : 0.0;
-        }
-        case Predicate::Above: {
-            if (model::bottom(a.box) < model::top(b.box) - t.aboveTolerance) return 0.0;
-            double share = overlapShare(a.box, b.box);
-            return share >= t.aboveMinOverlap && share > 0 ? std::min(1.0, share) : 0.0;
-        }
-        case Predicate::Below:
-            return evaluate(Predicate::Above, b, a, t, frame);
-        case Predicate::Near: {
-            double limit = nearDistance.value_or(t.nearDistance);
-            double d = model::distance(a.box, b.box);
-            if (d > limit) return 0.0;
-            return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
-        }
-        case Predicate::Attached: {
-            if (!isVerticalPlane(a) && !isVerticalPlane(b) && !sameCategory(b.category, "pillar")) return 0.0;
-            double d = model::distance(a.box, b.box);
-            return d <= t.attachedMaxGap ? std::max(0.01, 1.0 - d / std::max(t.attachedMaxGap, 1e-3)) : 0.0;
-        }
-        case Predicate::LeftOf:
-            return offsetScore(dot(centreOffset(a, b), frame.right), t.lateralMinOffset);
-        case Predicate::RightOf:
-            return offsetScore(dot(centreOffset(b, a), frame.right), t.lateralMinOffset);
-        case Predicate::InFrontOf:
-            return offsetScore(dot(centreOffset(a, b), frame.forward), t.lateralMinOffset);
-        case Predicate::Behind:
-            return offsetScore(dot(centreOffset(b, a), frame.forward), t.lateralMinOffset);
-        case Predicate::Between: {
-            if (!c || !hasGeometry(*c)) return 0.0;
-            model::Vec2 seg = centreOffset(b, *c);
-            double len2 = dot(seg, seg);
-            if (len2 <= 1e-9) return 0.0;
-            model::Vec2 rel = centreOffset(b, a);
-            double along = dot(rel, seg) / len2;
-            if (along <= 0 || along >= 1) return 0.0;
-            double px = rel.x - along * seg.x, py = rel.y - along * seg.y;
-            double off = std::sqrt(px * px + py * py);
-            return off <= t.betweenMaxOffset ? std::max(0.01, 1.0 - off / std::max(t.betweenMaxOffset, 1e-3)) : 0.0;
-        }
-    }
-    return 0.0;
-}
-
-std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& t, const Frame& frame) {
-    // Most specific first: what holds a thing, then what it touches, then order in space, then proximity.
-    static constexpr std::array<Predicate, 10> order = {
-        Predicate::In,     Predicate::On,      Predicate::Attached,  Predicate::Above,  Predicate::Below,
-        Predicate::LeftOf, Predicate::RightOf, Predicate::InFrontOf, Predicate::Behind, Predicate::Near};
-    std::vector<RelationHit> hits;
-    for (Predicate p : order) {
-        double score = evaluate(p, a, b, t, frame);
-        if (score > 0) hits.push_back({p, score});
-    }
-    return hits;
-}
-
 namespace {
+
 constexpr double kUnbounded = 1e9;
 
 model::Aabb grown(model::Aabb b, double d) {
@@ -209,51 +100,178 @@ model::Aabb grown(model::Aabb b, double d) {
     b.max = {b.max.x + d, b.max.y + d, b.max.z + d};
     return b;
 }
-}  // namespace
 
-std::optional<model::Aabb> candidateRegion(Predicate p, const model::Aabb& ref, double nearDistance, const Thresholds& t) {
-    model::Aabb b = ref;
-    switch (p) {
-        case Predicate::On:
-        case Predicate::In:
-            // a's footprint overlaps b's and a's bottom is at most on.max_gap above b's top.
-            b.max.z += t.onMaxGap;
-            return b;
-        case Predicate::Above:
-            b.min.z = b.max.z - t.aboveTolerance;
-            b.max.z = kUnbounded;
-            return b;
-        case Predicate::Below:
-            b.max.z = b.min.z + t.aboveTolerance;
-            b.min.z = -kUnbounded;
-            return b;
-        case Predicate::Near: return grown(b, nearDistance);
-        case Predicate::Attached: return grown(b, t.attachedMaxGap);
-        default: return std::nullopt;
-    }
+// The formulas, one per predicate; docs/relations.md states each.
+
+double onScore(const PredicateInputs& in) {
+    Affordance kind = affordanceOf(in.b.category);
+    if (kind == Affordance::Holder) return 0.0;
+    if (kind == Affordance::Enclosure && contained(in.a, in.b, in.t)) return 0.0;
+    return supportScore(in.a, in.b, in.t);
 }
 
-std::optional<model::Aabb> referenceRegion(Predicate p, const model::Aabb& a, double nearDistance, const Thresholds& t) {
+double inScore(const PredicateInputs& in) {
+    Affordance kind = affordanceOf(in.b.category);
+    if (kind == Affordance::Surface) return 0.0;
+    double inside = model::fractionInside(in.a.box, in.b.box);
+    if (inside >= in.t.inMinInside) return inside;
+    return kind == Affordance::Holder ? supportScore(in.a, in.b, in.t) : 0.0;
+}
+
+double aboveScore(const Node& a, const Node& b, const Thresholds& t) {
+    if (model::bottom(a.box) < model::top(b.box) - t.aboveTolerance) return 0.0;
+    double share = overlapShare(a.box, b.box);
+    return share >= t.aboveMinOverlap && share > 0 ? std::min(1.0, share) : 0.0;
+}
+double aboveScore(const PredicateInputs& in) { return aboveScore(in.a, in.b, in.t); }
+double belowScore(const PredicateInputs& in) { return aboveScore(in.b, in.a, in.t); }
+
+double nearScore(const PredicateInputs& in) {
+    double d = model::distance(in.a.box, in.b.box);
+    if (d > in.nearDistance) return 0.0;
+    return in.nearDistance > 0 ? std::max(0.01, 1.0 - d / in.nearDistance) : 1.0;
+}
+
+double attachedScore(const PredicateInputs& in) {
+    if (!isVerticalPlane(in.a) && !isVerticalPlane(in.b) && !sameCategory(in.b.category, "pillar")) return 0.0;
+    double d = model::distance(in.a.box, in.b.box);
+    double limit = in.t.attachedMaxGap;
+    return d <= limit ? std::max(0.01, 1.0 - d / std::max(limit, 1e-3)) : 0.0;
+}
+
+double leftOfScore(const PredicateInputs& in) {
+    return offsetScore(dot(centreOffset(in.a, in.b), in.frame.right), in.t.lateralMinOffset);
+}
+double rightOfScore(const PredicateInputs& in) {
+    return offsetScore(dot(centreOffset(in.b, in.a), in.frame.right), in.t.lateralMinOffset);
+}
+double inFrontOfScore(const PredicateInputs& in) {
+    return offsetScore(dot(centreOffset(in.a, in.b), in.frame.forward), in.t.lateralMinOffset);
+}
+double behindScore(const PredicateInputs& in) {
+    return offsetScore(dot(centreOffset(in.b, in.a), in.frame.forward), in.t.lateralMinOffset);
+}
+
+double betweenScore(const PredicateInputs& in) {
+    if (!in.c || !hasGeometry(*in.c)) return 0.0;
+    model::Vec2 seg = centreOffset(in.b, *in.c);
+    double len2 = dot(seg, seg);
+    if (len2 <= 1e-9) return 0.0;
+    model::Vec2 rel = centreOffset(in.b, in.a);
+    double along = dot(rel, seg) / len2;
+    if (along <= 0 || along >= 1) return 0.0;
+    double px = rel.x - along * seg.x, py = rel.y - along * seg.y;
+    double off = std::sqrt(px * px + py * py);
+    double limit = in.t.betweenMaxOffset;
+    return off <= limit ? std::max(0.01, 1.0 - off / std::max(limit, 1e-3)) : 0.0;
+}
+
+// Where a must be when on(a, ref) / in(a, ref) holds: a's footprint overlaps ref's and a's bottom is at
+// most on.max_gap above ref's top.
+model::Aabb restingOnRegion(const model::Aabb& ref, double, const Thresholds& t) {
+    model::Aabb b = ref;
+    b.max.z += t.onMaxGap;
+    return b;
+}
+// Where the support must be for on(a, b) / in(a, b): its footprint overlaps a's and its top reaches
+// to within on.max_gap of a's bottom.
+model::Aabb supportRegion(const model::Aabb& a, double, const Thresholds& t) {
     model::Aabb b = a;
-    switch (p) {
-        case Predicate::On:
-        case Predicate::In:
-            // b's footprint overlaps a's and b's top reaches to within on.max_gap of a's bottom.
-            b.min.z -= t.onMaxGap;
-            b.max.z = kUnbounded;
-            return b;
-        case Predicate::Above:
-            b.max.z = b.min.z + t.aboveTolerance;
-            b.min.z = -kUnbounded;
-            return b;
-        case Predicate::Below:
-            b.min.z = b.max.z - t.aboveTolerance;
-            b.max.z = kUnbounded;
-            return b;
-        case Predicate::Near: return grown(b, nearDistance);
-        case Predicate::Attached: return grown(b, t.attachedMaxGap);
-        default: return std::nullopt;
+    b.min.z -= t.onMaxGap;
+    b.max.z = kUnbounded;
+    return b;
+}
+// The column over a box (from just under its top) and the column under it (to just over its bottom).
+model::Aabb columnAbove(const model::Aabb& around, double, const Thresholds& t) {
+    model::Aabb b = around;
+    b.min.z = b.max.z - t.aboveTolerance;
+    b.max.z = kUnbounded;
+    return b;
+}
+model::Aabb columnBelow(const model::Aabb& around, double, const Thresholds& t) {
+    model::Aabb b = around;
+    b.max.z = b.min.z + t.aboveTolerance;
+    b.min.z = -kUnbounded;
+    return b;
+}
+model::Aabb withinNear(const model::Aabb& around, double nearDistance, const Thresholds&) {
+    return grown(around, nearDistance);
+}
+model::Aabb withinAttached(const model::Aabb& around, double, const Thresholds& t) {
+    return grown(around, t.attachedMaxGap);
+}
+
+using P = Predicate;
+// One row per predicate, in code order (model::RelationType). Columns: predicate, alias, arity,
+// view-relative, takes a distance, formula, candidate region, reference region, RELATE rank, usage.
+constexpr PredicateSpec kPredicates[] = {
+    {P::On, "", 1, false, false, onScore, restingOnRegion, supportRegion, 2, "on(desk)"},
+    {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)"},
+    {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)"},
+    {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)"},
+    {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 10, "near(sofa) or near(sofa, 1.5 m)"},
+    {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)"},
+    {P::LeftOf, "", 1, true, false, leftOfScore, nullptr, nullptr, 6, "left_of(window)"},
+    {P::RightOf, "", 1, true, false, rightOfScore, nullptr, nullptr, 7, "right_of(window)"},
+    {P::InFrontOf, "", 1, true, false, inFrontOfScore, nullptr, nullptr, 8, "in_front_of(sofa)"},
+    {P::Behind, "", 1, true, false, behindScore, nullptr, nullptr, 9, "behind(sofa)"},
+    {P::Between, "", 2, false, false, betweenScore, nullptr, nullptr, 0,
+     "between(lamp, sofa): the target lies between the two"},
+};
+
+constexpr bool rowsInCodeOrder() {
+    for (std::size_t i = 0; i < std::size(kPredicates); ++i)
+        if (static_cast<std::size_t>(kPredicates[i].predicate) != i) return false;
+    return true;
+}
+static_assert(std::size(kPredicates) == model::kRelationTypeCount,
+              "every relation type in engine/model/types.hpp needs its row in kPredicates");
+static_assert(rowsInCodeOrder(), "kPredicates rows must follow model::RelationType's order");
+
+// RELATE's order, derived once from the ranks.
+std::vector<const PredicateSpec*> relateOrder() {
+    std::vector<const PredicateSpec*> out;
+    for (const auto& row : kPredicates)
+        if (row.relateRank > 0) out.push_back(&row);
+    std::sort(out.begin(), out.end(), [](const auto* a, const auto* b) { return a->relateRank < b->relateRank; });
+    return out;
+}
+
+}  // namespace
+
+std::span<const PredicateSpec> predicates() { return kPredicates; }
+
+const PredicateSpec& spec(Predicate p) { return kPredicates[static_cast<std::size_t>(p)]; }
+
+const PredicateSpec* predicateNamed(std::string_view word) {
+    for (const auto& row : kPredicates)
+        if (row.name() == word || (!row.alias.empty() && row.alias == word)) return &row;
+    return nullptr;
+}
+
+std::vector<std::string> predicateWords() {
+    std::vector<std::string> out;
+    for (const auto& row : kPredicates) {
+        out.emplace_back(row.name());
+        if (!row.alias.empty()) out.emplace_back(row.alias);
     }
+    return out;
+}
+
+double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame, const Node* c,
+                std::optional<double> nearDistance) {
+    if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
+    return spec(p).evaluate({a, b, c, t, frame, nearDistance.value_or(t.nearDistance)});
+}
+
+std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& t, const Frame& frame) {
+    static const auto order = relateOrder();
+    std::vector<RelationHit> hits;
+    for (const auto* row : order) {
+        double score = evaluate(row->predicate, a, b, t, frame);
+        if (score > 0) hits.push_back({row->predicate, score});
+    }
+    return hits;
 }
 
 }  // namespace smql::relations

@@ -1,9 +1,16 @@
 // The metric spatial predicates, evaluated on boxes in the aligned (z-up)
 // frame. Each returns a score in (0, 1] when it holds and 0 when it does not;
 // docs/relations.md states each formula with its thresholds.
+//
+// The predicates are one table (predicates.cpp, `kPredicates`): a row gives a
+// predicate's words, arity, whether it needs a viewpoint, its formula and the
+// regions an index probe may use. The binder, planner, executor, RELATE and
+// the shell's completion all read that table; nothing else lists predicates.
 #pragma once
 
 #include <optional>
+#include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -13,16 +20,55 @@
 
 namespace smql::relations {
 
-enum class Predicate { On, In, Above, Below, Near, Attached, LeftOf, RightOf, InFrontOf, Behind, Between };
+// A predicate is a stored relation type: what a query asks and what ingest records share one code.
+using Predicate = model::RelationType;
 
-// `inside` and `under` are accepted as aliases of `in` and `below`.
-std::optional<Predicate> predicateFromName(std::string_view name);
-std::string_view toString(Predicate p);
-model::RelationType relationType(Predicate p);
-// Lateral predicates need a viewpoint; vertical ones do not.
-bool isLateral(Predicate p);
-// How many reference arguments the predicate takes (between: 2, others: 1).
-int arity(Predicate p);
+struct Frame {
+    model::Vec2 forward{0, 1};  // unit vector the viewer faces
+    model::Vec2 right{1, 0};    // forward turned 90 degrees clockwise
+    model::Vec2 position{0, 0};
+};
+Frame viewFrame(const model::Viewpoint& viewpoint);
+
+// What a formula sees: `p(a, b)` or `between(a, b, c)`.
+struct PredicateInputs {
+    const model::Node& a;
+    const model::Node& b;
+    const model::Node* c;  // the second reference of a two-reference predicate
+    const Thresholds& t;
+    const Frame& frame;     // lateral predicates measure in it
+    double nearDistance;    // near's limit: the threshold, or the distance written in near(x, 1 m)
+};
+
+struct PredicateSpec {
+    Predicate predicate;
+    std::string_view alias;  // a second accepted word (`inside`, `under`), or empty
+    int arity;               // reference arguments: 1, or 2 for between
+    bool viewRelative;       // measured in the viewer's frame (VIEW FROM)
+    bool takesDistance;      // accepts near(x, 1 m)
+    double (*evaluate)(const PredicateInputs&);
+    // Necessary regions, for index probes and quick rejection: when p(a, ref) holds, a's world bounds
+    // intersect candidateRegion(ref); when p(a, b) holds, b's bounds intersect referenceRegion(a).
+    // Null for predicates that can hold far away, which no index probe can serve.
+    model::Aabb (*candidateRegion)(const model::Aabb& ref, double nearDistance, const Thresholds& t);
+    model::Aabb (*referenceRegion)(const model::Aabb& a, double nearDistance, const Thresholds& t);
+    int relateRank;           // position in RELATE's answer, most specific first; 0: RELATE leaves it out
+    std::string_view usage;   // how to write it, for error hints
+
+    std::string_view name() const { return model::toString(predicate); }
+    // Holds only close to its reference, so an R-tree probe around the reference finds every candidate.
+    bool local() const { return candidateRegion != nullptr; }
+};
+
+// Every predicate, in code order.
+std::span<const PredicateSpec> predicates();
+const PredicateSpec& spec(Predicate p);
+// By name or alias; null when no predicate has that word.
+const PredicateSpec* predicateNamed(std::string_view word);
+// Every word that names a predicate (names and aliases), for hints and completion.
+std::vector<std::string> predicateWords();
+
+inline std::string_view toString(Predicate p) { return model::toString(p); }
 
 // What a supporting category affords: things resting on a Holder are *in* it
 // (a plant in a plant stand, fruit in a basket); things inside an Enclosure's
@@ -34,15 +80,7 @@ Affordance affordanceOf(std::string_view category);
 // A vertical plane anchor: a wall, door, window or the like.
 bool isVerticalPlane(const model::Node& node);
 
-struct Frame {
-    model::Vec2 forward{0, 1};  // unit vector the viewer faces
-    model::Vec2 right{1, 0};    // forward turned 90 degrees clockwise
-    model::Vec2 position{0, 0};
-};
-Frame viewFrame(const model::Viewpoint& viewpoint);
-
-// The score of `p(a, b)`, or of `between(a, b, c)`. `frame` is used by the
-// lateral predicates; `nearDistance` overrides the threshold for near(x, 1 m).
+// The score of `p(a, b)`, or of `between(a, b, c)`. `nearDistance` overrides the threshold for near(x, 1 m).
 double evaluate(Predicate p, const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame,
                 const model::Node* c = nullptr, std::optional<double> nearDistance = std::nullopt);
 
@@ -51,17 +89,11 @@ struct RelationHit {
     double score;
 };
 
-// Every binary relation that holds from a to b, best first: containment and
-// support (in, on, attached) before vertical order (above, below), then the
-// view-relative ones, then near (the score says how clearly each holds).
+// Every binary relation that holds from a to b, in the table's RELATE order: containment and
+// support (in, on, attached) before vertical order (above, below), then the view-relative ones,
+// then near (the score says how clearly each holds).
 std::vector<RelationHit> relate(const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame);
 
-// Necessary regions, for index probes and quick rejection: when p(a, ref)
-// holds, a's world bounds intersect candidateRegion(p, ref); when p(a, b)
-// holds, b's bounds intersect referenceRegion(p, a). Empty for predicates that
-// hold far away (the view-relative ones and between).
-std::optional<model::Aabb> candidateRegion(Predicate p, const model::Aabb& ref, double nearDistance, const Thresholds& t);
-std::optional<model::Aabb> referenceRegion(Predicate p, const model::Aabb& a, double nearDistance, const Thresholds& t);
 inline bool intersects(const model::Aabb& a, const model::Aabb& b) {
     return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
            b.min.z <= a.max.z;

@@ -424,7 +424,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
                 if (a == b) continue;
                 for (auto p : {relations::Predicate::On, relations::Predicate::In}) {
                     double score = relations::evaluate(p, *a, *b, thresholds, none);
-                    if (score > 0) scene.relations.push_back({a->id, b->id, relations::relationType(p), static_cast<float>(score), 1, 0});
+                    if (score > 0) scene.relations.push_back({a->id, b->id, p, static_cast<float>(score), 1, 0});
                 }
             }
 
@@ -461,7 +461,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
                     if (ax < bx - 0.05) ++vote.first, local = relations::Predicate::LeftOf;
                     else if (ax > bx + 0.05) --vote.first, local = relations::Predicate::RightOf;
                     if (local)
-                        scene.relations.push_back({a, b, relations::relationType(*local), 1.0f, 1, frameNode.at(frame)});
+                        scene.relations.push_back({a, b, *local, 1.0f, 1, frameNode.at(frame)});
                 }
         std::map<NodeId, std::vector<std::string>> lateralPhrases;
         auto nodeById = [&](NodeId id) -> const Node& { return scene.nodes[id - 1]; };
@@ -470,7 +470,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
             int agree = std::abs(vote.first);
             if (vote.second < options.descriptionAgreement || agree < options.agreementShare * vote.second) continue;
             auto p = vote.first > 0 ? relations::Predicate::LeftOf : relations::Predicate::RightOf;
-            scene.relations.push_back({a, b, relations::relationType(p), static_cast<float>(double(agree) / vote.second),
+            scene.relations.push_back({a, b, p, static_cast<float>(double(agree) / vote.second),
                                        static_cast<std::uint32_t>(agree), 0});
             lateralPhrases[a].push_back(fmt::format("{} the {}", words(p), nodeById(b).category));
         }

@@ -33,16 +33,27 @@ struct PlannedScene {
         snapshot = exec::SceneSnapshot::load(read, *read.sceneByName("big"));
     }
 
-    binder::BoundFind bind(const std::string& text) const {
+    exec::Session session;
+
+    // Bound and planned as the engine does it, in this scene.
+    planner::Plan plan(const std::string& text) {
         auto statements = parser::parse(text);
-        binder::Binder b({*snapshot, thresholds, nullptr, nullptr});
-        return b.bindFind(std::get<ast::FindStmt>(statements.front().body));
+        auto read = db->beginRead();
+        binder::Binder b({read, session, [&] { return snapshot; }});
+        return planner::plan(std::make_shared<const binder::BoundStatement>(b.bind(statements.front())));
     }
 
-    std::vector<exec::Slot> run(const planner::FindPlan& plan) const {
+    // The plan with its FIND's access path replaced.
+    static planner::Plan withAccess(planner::Plan plan, planner::Access access) {
+        plan.find->access = access;
+        return plan;
+    }
+
+    std::vector<exec::Slot> run(const planner::Plan& plan, bool sorted = true) {
+        auto read = db->beginRead();
         std::vector<exec::Slot> out;
-        for (const auto& hit : exec::Executor(*snapshot, thresholds).find(plan)) out.push_back(hit.slot);
-        std::sort(out.begin(), out.end());
+        for (const auto& hit : exec::Executor(read, session, plan).find(*plan.find)) out.push_back(hit.slot);
+        if (sorted) std::sort(out.begin(), out.end());
         return out;
     }
 };
@@ -61,48 +72,59 @@ TEST_CASE("R-tree probes return exactly what a scan returns") {
     int probed = 0;
     for (const char* q : queries) {
         INFO(q);
-        auto bound = scene.bind(q);
-        auto plan = planner::planFind(bound, *scene.snapshot, scene.thresholds);
-        probed += plan.probe.has_value();
-        auto scan = plan;
-        scan.probe.reset();
-        auto viaProbe = scene.run(plan);
-        CHECK(viaProbe == scene.run(scan));
+        auto plan = scene.plan(q);
+        probed += plan.find->access == planner::Access::RTreeProbe;
+        CHECK(scene.run(plan) == scene.run(PlannedScene::withAccess(plan, planner::Access::Scan)));
     }
     CHECK(probed >= 8);  // the predicates over few reference nodes are pushed down
 }
 
 TEST_CASE("the planner scans when the reference set is large and for view-relative predicates") {
     PlannedScene scene;
-    auto wide = scene.bind("FIND mug WHERE near(object)");
-    CHECK_FALSE(planner::planFind(wide, *scene.snapshot, scene.thresholds).probe);
-    auto lateral = scene.bind("FIND object WHERE left_of(door)");
-    CHECK_FALSE(planner::planFind(lateral, *scene.snapshot, scene.thresholds).probe);
+    CHECK(scene.plan("FIND mug WHERE near(object)").find->access == planner::Access::Scan);
+    CHECK(scene.plan("FIND object WHERE left_of(door)").find->access == planner::Access::Scan);
     // The smallest reference set drives the probe.
-    auto both = scene.bind("FIND object WHERE near(wall) AND on(door)");
-    auto plan = planner::planFind(both, *scene.snapshot, scene.thresholds);
-    REQUIRE(plan.probe);
-    CHECK(plan.probe->description.rfind("on(door", 0) == 0);
+    auto both = scene.plan("FIND object WHERE near(wall) AND on(door)");
+    REQUIRE(both.find->access == planner::Access::RTreeProbe);
+    CHECK(both.find->probeTerm().predicate == relations::Predicate::On);
 }
 
 TEST_CASE("NEAREST TO through the R-tree gives the scan's answer") {
     PlannedScene scene;
+    int nearestFirst = 0;
     for (const char* q : {"FIND object NEAREST TO door LIMIT 5", "FIND object NEAREST TO ceiling LIMIT 3",
                           "FIND chair ORDER BY distance(window) LIMIT 4", "FIND object WHERE color = 'red' NEAREST TO door LIMIT 2",
                           "FIND node NEAREST TO door LIMIT 40"}) {
         INFO(q);
-        auto bound = scene.bind(q);
-        auto plan = planner::planFind(bound, *scene.snapshot, scene.thresholds);
-        std::vector<exec::Slot> fast;
-        for (const auto& hit : exec::Executor(*scene.snapshot, scene.thresholds).find(plan)) fast.push_back(hit.slot);
-        // The same order without a limit (a full scan and sort), cut afterwards.
-        auto unlimited = bound;
-        unlimited.limit.reset();
-        auto all = planner::planFind(unlimited, *scene.snapshot, scene.thresholds);
-        std::vector<exec::Slot> slow;
-        for (const auto& hit : exec::Executor(*scene.snapshot, scene.thresholds).find(all)) slow.push_back(hit.slot);
-        slow.resize(std::min(slow.size(), fast.size()));
-        CHECK(fast.size() == std::min<std::size_t>(*bound.limit, fast.size()));
+        auto plan = scene.plan(q);
+        nearestFirst += plan.find->access == planner::Access::NearestFirst;
+        auto fast = scene.run(plan, false);
+        // The same order from a scan and a sort.
+        auto slow = scene.run(PlannedScene::withAccess(plan, planner::Access::Scan), false);
+        CHECK(fast.size() == std::min<std::size_t>(*plan.find->find->limit, slow.size()));
         CHECK(fast == slow);
+    }
+    CHECK(nearestFirst == 4);  // all but the one ordered by distance to several windows
+}
+
+TEST_CASE("sub-queries are planned, and run by the executor once") {
+    PlannedScene scene;
+    auto plan = scene.plan("FIND object WHERE near((FIND table LIMIT 1)) AND on((FIND desk))");
+    std::size_t subqueries = 0;
+    for (const auto& sub : plan.subqueries) subqueries += sub != nullptr;
+    CHECK(subqueries == 2);
+    // The same answer as the references named directly.
+    auto direct = scene.plan("FIND object WHERE near(#" +
+                             std::to_string(scene.snapshot->node(scene.snapshot->withCategory("table").front()).id) +
+                             ") AND on(desk)");
+    CHECK(scene.run(plan) == scene.run(direct));
+}
+
+TEST_CASE("LIMIT 0 answers no rows on every access path") {
+    PlannedScene scene;
+    for (const char* q : {"FIND object NEAREST TO door LIMIT 0", "FIND object LIMIT 0",
+                          "FIND object WHERE near(door) LIMIT 0", "FIND object ORDER BY distance(door) DESC LIMIT 0"}) {
+        INFO(q);
+        CHECK(scene.run(scene.plan(q)).empty());
     }
 }

@@ -141,6 +141,44 @@ TEST_CASE_METHOD(Fixture, "EXPLAIN shows the R-tree push-down") {
     CHECK(std::get<std::string>(scan.rows.back()[0]).find("view") != std::string::npos);
 }
 
+namespace {
+std::string planText(const ResultSet& rs) {
+    std::string plan;
+    for (const auto& row : rs.rows) plan += std::get<std::string>(row[0]) + "\n";
+    return plan;
+}
+}  // namespace
+
+TEST_CASE_METHOD(Fixture, "EXPLAIN prints the plan that runs: top-k, sub-queries, all scenes") {
+    auto nearest = planText(q("EXPLAIN FIND object NEAREST TO door LIMIT 5"));
+    CHECK(nearest.find("Top 5 nearest to door (1 node), without itself: R-tree nearest-first search") !=
+          std::string::npos);
+    CHECK(nearest.find("Scan") == std::string::npos);
+    // Several reference nodes: every candidate is measured and sorted.
+    auto sorted = planText(q("EXPLAIN FIND object ORDER BY distance(wall) LIMIT 2"));
+    CHECK(sorted.find("Sort by distance to wall (4 nodes)") != std::string::npos);
+    CHECK(sorted.find("Scan object") != std::string::npos);
+    auto sub = planText(q("EXPLAIN FIND object WHERE near((FIND mug WHERE color = 'red'))"));
+    CHECK(sub.find("Sub-query 1, run once before its first use:") != std::string::npos);
+    CHECK(sub.find("Filter color = 'red'") != std::string::npos);
+    CHECK(planText(q("EXPLAIN RELATE mug TO desk")).find("Relate each node of mug (1 node)") != std::string::npos);
+    CHECK(planText(q("EXPLAIN SET near = 1 m")).find("Set near.distance = 1") != std::string::npos);
+    // EXPLAIN runs nothing: the setting is unchanged.
+    CHECK(sources(q("FIND object WHERE near(plant)")).empty());
+    q("USE SCENE '*'");
+    auto across = planText(q("EXPLAIN FIND mug LIMIT 3"));
+    CHECK(across.find("Label index scan of 'mug' across all scenes") != std::string::npos);
+    CHECK(planText(q("EXPLAIN COUNT mug")).find("Count 'mug' in every scene") != std::string::npos);
+    CHECK_THROWS_WITH(q("FIND mug NEAREST TO door LIMIT 1"), Catch::Contains("across all scenes"));
+}
+
+TEST_CASE_METHOD(Fixture, "LIMIT 0 answers no rows") {
+    CHECK(q("FIND object NEAREST TO door LIMIT 0").rows.empty());
+    CHECK(q("FIND object WHERE on(desk) LIMIT 0").rows.empty());
+    q("USE SCENE '*'");
+    CHECK(q("FIND mug LIMIT 0").rows.empty());
+}
+
 TEST_CASE_METHOD(Fixture, "SET and SHOW SETTINGS change the thresholds") {
     CHECK(sources(q("FIND object WHERE near(plant)")).empty());
     q("SET near = 2.5 m");

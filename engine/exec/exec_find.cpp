@@ -1,0 +1,320 @@
+// FIND and COUNT: gather candidates by the planned access path, filter by WHERE, order, limit,
+// project. Across scenes: the label index.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "engine/exec/executor.hpp"
+#include "engine/model/geometry.hpp"
+#include "storage/database.hpp"
+
+namespace smql::exec {
+
+using binder::BoundExpr;
+using model::Node;
+using planner::Access;
+
+namespace {
+
+std::string lower(std::string_view text) {
+    std::string out(text);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+// SQL LIKE: % any run, _ any one character; case-insensitive.
+bool like(std::string_view text, std::string_view pattern) {
+    if (pattern.empty()) return text.empty();
+    if (pattern[0] == '%') {
+        for (std::size_t i = 0; i <= text.size(); ++i)
+            if (like(text.substr(i), pattern.substr(1))) return true;
+        return false;
+    }
+    if (text.empty()) return false;
+    bool same = pattern[0] == '_' || std::tolower(static_cast<unsigned char>(pattern[0])) ==
+                                         std::tolower(static_cast<unsigned char>(text[0]));
+    return same && like(text.substr(1), pattern.substr(1));
+}
+
+// A node's field as a comparison sees it: built-in fields first, then stored attributes.
+std::optional<std::variant<double, std::string>> field(const Node& n, const std::string& name) {
+    const auto& s = n.box.size;
+    if (name == "category") return n.category;
+    if (name == "kind") return std::string(model::toString(n.kind));
+    if (name == "text") return n.text;
+    if (name == "id") return static_cast<double>(n.id);
+    if (name == "source_id") {
+        if (!n.sourceId) return std::nullopt;
+        return static_cast<double>(*n.sourceId);
+    }
+    if (name == "confidence") return static_cast<double>(n.confidence);
+    if (n.geometry != model::GeometryKind::None) {
+        if (name == "height") return s.z;
+        if (name == "width") return std::max(s.x, s.y);
+        if (name == "depth") return std::min(s.x, s.y);
+        if (name == "volume") return model::volume(n.box);
+        if (name == "x") return n.box.center.x;
+        if (name == "y") return n.box.center.y;
+        if (name == "z") return n.box.center.z;
+    }
+    if (const std::string* v = n.attribute(name)) return *v;
+    return std::nullopt;
+}
+
+template <typename T>
+bool ordered(ast::CompareOp op, const T& a, const T& b) {
+    switch (op) {
+        case ast::CompareOp::Eq: return a == b;
+        case ast::CompareOp::Ne: return a != b;
+        case ast::CompareOp::Lt: return a < b;
+        case ast::CompareOp::Le: return a <= b;
+        case ast::CompareOp::Gt: return a > b;
+        case ast::CompareOp::Ge: return a >= b;
+        case ast::CompareOp::Like: return false;
+    }
+    return false;
+}
+
+Value boxValue(const Node& n) {
+    if (n.geometry == model::GeometryKind::None) return std::monostate{};
+    return n.box;
+}
+
+Value sourceValue(const Node& n) {
+    if (!n.sourceId) return std::monostate{};
+    return *n.sourceId;
+}
+
+}  // namespace
+
+bool Executor::compare(const BoundExpr& expr, const Node& node) const {
+    auto value = field(node, expr.attribute);
+    if (!value) return false;  // a node without the field never matches, as NULL in SQL
+    if (auto* text = std::get_if<std::string>(&expr.literal)) {
+        std::string have = std::holds_alternative<std::string>(*value)
+                               ? std::get<std::string>(*value)
+                               : fmt::format("{}", std::get<double>(*value));
+        if (expr.op == ast::CompareOp::Like) return like(have, *text);
+        return ordered(expr.op, lower(have), lower(*text));
+    }
+    double want = std::holds_alternative<double>(expr.literal) ? std::get<double>(expr.literal)
+                                                               : static_cast<double>(std::get<std::int64_t>(expr.literal));
+    double have;
+    if (auto* d = std::get_if<double>(&*value)) {
+        have = *d;
+    } else {
+        const auto& s = std::get<std::string>(*value);
+        char* end = nullptr;
+        have = std::strtod(s.c_str(), &end);
+        if (s.empty() || *end != '\0') return false;
+    }
+    if (expr.op == ast::CompareOp::Like) return false;
+    return ordered(expr.op, have, want);
+}
+
+bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
+    switch (expr.kind) {
+        case BoundExpr::Kind::And:
+            return std::all_of(expr.children.begin(), expr.children.end(),
+                               [&](const BoundExpr& c) { return matches(c, slot, frame); });
+        case BoundExpr::Kind::Or:
+            return std::any_of(expr.children.begin(), expr.children.end(),
+                               [&](const BoundExpr& c) { return matches(c, slot, frame); });
+        case BoundExpr::Kind::Not:
+            return !matches(expr.children.front(), slot, frame);
+        case BoundExpr::Kind::Compare:
+            return compare(expr, scene().node(slot));
+        case BoundExpr::Kind::Predicate:
+            return holdsForSome(expr, slot, frame);
+    }
+    return false;
+}
+
+bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
+    const auto& snap = scene();
+    const Node& a = snap.node(slot);
+    const auto& spec = relations::spec(expr.predicate);
+    if (expr.args.size() == 2) {
+        const auto& second = slots(expr.args[1], frame);
+        for (Slot b : slots(expr.args[0], frame))
+            for (Slot c : second)
+                if (b != slot && c != slot && c != b &&
+                    relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, &snap.node(c)) > 0)
+                    return true;
+        return false;
+    }
+    double nearDistance = expr.nearDistance.value_or(thresholds_.nearDistance);
+    // Where a reference must be for the predicate to hold: a cheap bounds test before the exact one.
+    std::optional<model::Aabb> region;
+    if (spec.referenceRegion) region = spec.referenceRegion(snap.bounds(slot), nearDistance, thresholds_);
+    auto holds = [&](Slot b) {
+        if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
+        return relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, nullptr, expr.nearDistance) > 0;
+    };
+    const auto& refs = slots(expr.args[0], frame);
+    constexpr std::size_t kIndexedReferences = 32;
+    if (region && refs.size() > kIndexedReferences) {
+        // Many references: the R-tree names the few close enough, the set keeps its own.
+        const auto& member = membership(expr.args[0], frame);
+        std::vector<Slot> close;
+        snap.spatialIndex().intersecting(*region, close);
+        return std::any_of(close.begin(), close.end(), [&](Slot b) { return member[b] && holds(b); });
+    }
+    return std::any_of(refs.begin(), refs.end(), holds);
+}
+
+bool Executor::inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame) {
+    const Node& n = scene().node(slot);
+    switch (target.kind) {
+        case binder::Target::Kind::Category: return n.category == target.category;
+        case binder::Target::Kind::NodeKind: return n.kind == target.nodeKind && !n.hidden;
+        case binder::Target::Kind::AnyNode: return n.kind != model::NodeKind::Scene && !n.hidden;
+        case binder::Target::Kind::Nodes: {
+            const auto& nodes = slots(target.nodes, frame);
+            return std::binary_search(nodes.begin(), nodes.end(), slot);
+        }
+    }
+    return false;
+}
+
+std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame) {
+    const auto& f = *plan.find;
+    const auto& snap = scene();
+    const Slot ref = slots(*f.distanceTo, frame).front();
+    const auto want = static_cast<std::size_t>(*f.limit);
+    const model::Aabb& around = snap.bounds(ref);
+    auto boundsGap = [&](const model::Aabb& b) {
+        double dx = std::max({0.0, b.min.x - around.max.x, around.min.x - b.max.x});
+        double dy = std::max({0.0, b.min.y - around.max.y, around.min.y - b.max.y});
+        double dz = std::max({0.0, b.min.z - around.max.z, around.min.z - b.max.z});
+        return std::sqrt(dx * dx + dy * dy + dz * dz);
+    };
+    const auto& index = snap.spatialIndex();
+    for (std::size_t k = std::max<std::size_t>(4 * want, 32);; k *= 4) {
+        std::vector<Slot> near;
+        index.nearest(around, k, near);
+        std::vector<Hit> hits;
+        for (Slot s : near) {
+            if ((f.nearest && s == ref) || !inTarget(f.target, s, frame) || (f.where && !matches(*f.where, s, frame)))
+                continue;
+            hits.push_back({s, model::distance(snap.node(s).box, snap.node(ref).box)});
+        }
+        std::sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
+            return a.distance != b.distance ? a.distance < b.distance : snap.node(a.slot).id < snap.node(b.slot).id;
+        });
+        // A box is never nearer than its bounds, so boxes beyond the last returned bounds cannot beat
+        // an answer strictly nearer than those bounds.
+        bool wholeIndex = near.size() < k || k >= index.size();
+        if (wholeIndex || (hits.size() >= want && hits[want - 1].distance < boundsGap(snap.bounds(near.back())))) {
+            if (hits.size() > want) hits.resize(want);
+            return hits;
+        }
+    }
+}
+
+std::vector<Hit> Executor::filtered(const planner::FindPlan& plan, const relations::Frame& frame) {
+    const auto& f = *plan.find;
+    const auto& snap = scene();
+    std::vector<Slot> candidates;
+    if (plan.access == Access::RTreeProbe) {
+        const BoundExpr& term = plan.probeTerm();
+        const auto& spec = relations::spec(term.predicate);
+        double nearDistance = term.nearDistance.value_or(thresholds_.nearDistance);
+        for (Slot ref : slots(term.args[0], frame))
+            snap.spatialIndex().intersecting(spec.candidateRegion(snap.bounds(ref), nearDistance, thresholds_),
+                                             candidates);
+        std::sort(candidates.begin(), candidates.end());
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+        std::erase_if(candidates, [&](Slot s) { return !inTarget(f.target, s, frame); });
+    } else {
+        candidates = slots(f.target.nodes, frame);
+    }
+    std::vector<Hit> hits;
+    hits.reserve(candidates.size());
+    for (Slot s : candidates)
+        if (!f.where || matches(*f.where, s, frame)) hits.push_back({s, 0});
+    return hits;
+}
+
+std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
+    const auto& f = *plan.find;
+    if (f.limit && *f.limit <= 0) return {};
+    const auto& snap = scene();
+    relations::Frame viewer = frame(f.view);
+    if (plan.access == Access::NearestFirst) return nearestFirst(plan, viewer);
+
+    std::vector<Hit> hits = filtered(plan, viewer);
+    if (f.distanceTo) {
+        const auto& refs = slots(*f.distanceTo, viewer);
+        // Nodes without a place have no distance to order by; NEAREST TO x leaves x itself out.
+        std::erase_if(hits, [&](const Hit& h) {
+            return snap.node(h.slot).geometry == model::GeometryKind::None ||
+                   (f.nearest && std::find(refs.begin(), refs.end(), h.slot) != refs.end());
+        });
+        for (auto& h : hits) {
+            h.distance = std::numeric_limits<double>::infinity();
+            for (Slot r : refs) h.distance = std::min(h.distance, model::distance(snap.node(h.slot).box, snap.node(r).box));
+        }
+        std::stable_sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
+            if (a.distance != b.distance) return f.descending ? a.distance > b.distance : a.distance < b.distance;
+            return snap.node(a.slot).id < snap.node(b.slot).id;
+        });
+    }
+    if (f.limit && hits.size() > static_cast<std::size_t>(*f.limit)) hits.resize(static_cast<std::size_t>(*f.limit));
+    return hits;
+}
+
+ResultSet Executor::run(const binder::BoundFind& f) {
+    auto hits = find(*plan_.find);
+    ResultSet rs;
+    if (f.countOnly) {
+        rs.columns = {{"count", ValueType::Integer}};
+        rs.rows.push_back({static_cast<std::int64_t>(hits.size())});
+        return rs;
+    }
+    rs.columns = {{"id", ValueType::Integer},
+                  {"category", ValueType::Text},
+                  {"source_id", ValueType::Integer},
+                  {"box", ValueType::Box}};
+    if (f.distanceTo) rs.columns.push_back({"distance", ValueType::Real});
+    if (f.path) rs.columns.push_back({"path", ValueType::Text});
+    rs.rows.reserve(hits.size());
+    for (const auto& h : hits) {
+        const Node& n = scene().node(h.slot);
+        std::vector<Value> row{static_cast<std::int64_t>(n.id), n.category, sourceValue(n), boxValue(n)};
+        if (f.distanceTo) row.emplace_back(h.distance);
+        if (f.path) row.emplace_back(scene().path(h.slot));
+        rs.rows.push_back(std::move(row));
+    }
+    return rs;
+}
+
+// Category search over every scene through the label index: no snapshot is loaded.
+ResultSet Executor::run(const binder::BoundCatalogFind& f) {
+    ResultSet rs;
+    if (f.countOnly) {
+        rs.columns = {{"count", ValueType::Integer}};
+        rs.rows.push_back({static_cast<std::int64_t>(txn_.countWithCategory(f.category))});
+        return rs;
+    }
+    std::size_t limit = f.limit ? static_cast<std::size_t>(std::max<std::int64_t>(*f.limit, 0)) : SIZE_MAX;
+    auto ids = limit == 0 ? std::vector<model::NodeId>{} : txn_.nodesWithCategory(f.category, model::kNoNode, limit);
+    rs.columns = {{"id", ValueType::Integer},
+                  {"category", ValueType::Text},
+                  {"scene", ValueType::Integer},
+                  {"source_id", ValueType::Integer},
+                  {"box", ValueType::Box}};
+    rs.rows.reserve(ids.size());
+    model::Node node;
+    for (auto id : ids) {
+        if (!txn_.readNode(id, node)) continue;
+        rs.rows.push_back({static_cast<std::int64_t>(node.id), node.category, static_cast<std::int64_t>(node.scene),
+                           sourceValue(node), boxValue(node)});
+    }
+    return rs;
+}
+
+}  // namespace smql::exec

@@ -1,0 +1,46 @@
+// RELATE: every relation that holds from each subject node to each object node, as rows and as
+// sentences.
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "engine/exec/executor.hpp"
+#include "engine/model/geometry.hpp"
+
+namespace smql::exec {
+
+ResultSet Executor::run(const binder::BoundRelate& r) {
+    relations::Frame viewer = frame(r.view);
+    const auto& subjects = slots(r.subject, viewer);
+    const auto& objects = slots(r.object, viewer);
+    ResultSet rs;
+    rs.columns = {{"subject", ValueType::Text}, {"relation", ValueType::Text}, {"object", ValueType::Text},
+                  {"score", ValueType::Real},   {"distance", ValueType::Real}};
+    std::vector<std::string> sentences;
+    for (Slot a : subjects) {
+        for (Slot b : objects) {
+            if (a == b) continue;
+            const model::Node& na = scene().node(a);
+            const model::Node& nb = scene().node(b);
+            auto hits = relations::relate(na, nb, thresholds_, viewer);
+            double gap = model::distance(na.box, nb.box);
+            std::string la = SceneSnapshot::label(na), lb = SceneSnapshot::label(nb);
+            std::string sentence;
+            for (const auto& hit : hits) {
+                rs.rows.push_back({la, std::string(relations::toString(hit.predicate)), lb, hit.score, gap});
+                std::string words(relations::toString(hit.predicate));
+                std::replace(words.begin(), words.end(), '_', ' ');  // "left of", "in front of"
+                std::string phrase = fmt::format("{} {}", words, lb);
+                if (relations::spec(hit.predicate).takesDistance) phrase += fmt::format(" ({:.1f} m)", gap);
+                sentence += (sentence.empty() ? la + " is " : "; ") + phrase;
+            }
+            if (hits.empty()) sentence = fmt::format("no relation holds from {} to {} ({:.1f} m apart)", la, lb, gap);
+            sentences.push_back(sentence);
+        }
+    }
+    for (std::size_t i = 0; i < sentences.size() && i < 20; ++i) rs.message += (i ? "\n" : "") + sentences[i];
+    if (sentences.size() > 20) rs.message += fmt::format("\n... {} more pairs in the rows", sentences.size() - 20);
+    return rs;
+}
+
+}  // namespace smql::exec

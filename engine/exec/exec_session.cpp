@@ -1,0 +1,28 @@
+// USE and SET: the statements that change the session, when they run.
+#include <fmt/format.h>
+
+#include "engine/exec/executor.hpp"
+
+namespace smql::exec {
+
+ResultSet Executor::run(const binder::BoundUse& use) {
+    ResultSet rs;
+    session_.allScenes = use.allScenes;
+    if (use.allScenes) {
+        rs.message = "using all scenes: FIND and COUNT by category and attributes";
+        return rs;
+    }
+    session_.sceneName = use.scene;
+    rs.message = fmt::format("using scene '{}'", use.scene);
+    return rs;
+}
+
+ResultSet Executor::run(const binder::BoundSet& set) {
+    session_.thresholds.*(set.setting->field) = set.value;
+    ResultSet rs;
+    bool ratio = set.setting->unit == relations::SettingUnit::Ratio;
+    rs.message = fmt::format("{} = {}{}", set.setting->name, set.value, ratio ? "" : " m");
+    return rs;
+}
+
+}  // namespace smql::exec

@@ -1,0 +1,159 @@
+// EXPLAIN's text: the plan's operators, root first, each indented under its parent.
+#include <fmt/format.h>
+
+#include "engine/planner/planner.hpp"
+
+namespace smql::planner {
+
+using binder::BoundExpr;
+
+namespace {
+
+std::string literalText(const ast::Literal& literal) {
+    return std::visit(
+        [](const auto& v) -> std::string {
+            if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::string>)
+                return fmt::format("'{}'", v);
+            else
+                return fmt::format("{}", v);
+        },
+        literal);
+}
+
+std::string_view opText(ast::CompareOp op) {
+    switch (op) {
+        case ast::CompareOp::Eq: return "=";
+        case ast::CompareOp::Ne: return "!=";
+        case ast::CompareOp::Lt: return "<";
+        case ast::CompareOp::Le: return "<=";
+        case ast::CompareOp::Gt: return ">";
+        case ast::CompareOp::Ge: return ">=";
+        case ast::CompareOp::Like: return "LIKE";
+    }
+    return "?";
+}
+
+// Operators from the root down; `indent` nests each under the one before.
+struct Lines {
+    std::vector<std::string> out;
+    std::size_t depth = 0;
+    void add(std::string line) { out.push_back(std::string(2 * depth++, ' ') + std::move(line)); }
+    void note(std::string line) { out.push_back(std::string(2 * depth, ' ') + std::move(line)); }
+};
+
+void explainFind(const FindPlan& plan, Lines& lines) {
+    const auto& f = *plan.find;
+    if (f.countOnly) {
+        lines.add("Count");
+    } else {
+        std::string columns = "id, category, source_id, box";
+        if (f.distanceTo) columns += ", distance";
+        if (f.path) columns += ", path";
+        lines.add("Project " + columns);
+        if (f.limit) lines.add(fmt::format("Limit {}", *f.limit));
+    }
+    std::string keep = f.target.nodes.description;
+    switch (plan.access) {
+        case Access::NearestFirst:
+            lines.add(fmt::format("Top {} nearest to {}{}: R-tree nearest-first search, widened until no box "
+                                  "outside can beat the last answer",
+                                  *f.limit, f.distanceTo->description, f.nearest ? ", without itself" : ""));
+            if (f.where) lines.add("Filter " + describe(*f.where));
+            lines.add("Keep " + keep);
+            break;
+        case Access::RTreeProbe:
+        case Access::Scan:
+            if (f.distanceTo)
+                lines.add(fmt::format("Sort by distance to {}{}{}", f.distanceTo->description,
+                                      f.descending ? " descending" : "", f.nearest ? ", without itself" : ""));
+            if (f.where) lines.add("Filter " + describe(*f.where));
+            if (plan.access == Access::RTreeProbe)
+                lines.add(fmt::format("R-tree probe for {} around each reference node, keep {}",
+                                      describe(plan.probeTerm()), keep));
+            else
+                lines.add("Scan " + keep);
+            break;
+    }
+    lines.note("(view: " + f.view.description + ")");
+}
+
+struct StatementLines {
+    const Plan& plan;
+    Lines& lines;
+
+    void operator()(const binder::BoundFind&) const { explainFind(*plan.find, lines); }
+    void operator()(const binder::BoundCatalogFind& f) const {
+        if (f.countOnly) {
+            lines.add(fmt::format("Count '{}' in every scene from the label index's counts", f.category));
+            return;
+        }
+        lines.add("Project id, category, scene, source_id, box");
+        if (f.limit) lines.add(fmt::format("Limit {}", *f.limit));
+        lines.add(fmt::format("Label index scan of '{}' across all scenes, reading each node", f.category));
+    }
+    void operator()(const binder::BoundRelate& r) const {
+        lines.add(fmt::format("Relate each node of {} to each node of {}", r.subject.description, r.object.description));
+        lines.note("(view: " + r.view.description + ")");
+    }
+    void operator()(const binder::BoundDescribe& d) const {
+        lines.add(fmt::format("Describe {}, with evidence from the blob table", d.nodes.description));
+    }
+    void operator()(const binder::BoundShowScenes&) const { lines.add("Read the scene table"); }
+    void operator()(const binder::BoundShowSettings&) const { lines.add("List the settings of this session"); }
+    void operator()(const binder::BoundShowTree& t) const {
+        lines.add("Walk the tree depth-first from " + (t.root ? t.root->description : std::string("the scene root")));
+    }
+    void operator()(const binder::BoundUse& u) const {
+        lines.add(u.allScenes ? std::string("Switch the session to all scenes")
+                              : fmt::format("Switch the session to scene '{}'", u.scene));
+    }
+    void operator()(const binder::BoundSet& s) const {
+        lines.add(fmt::format("Set {} = {} for this session", s.setting->name, s.value));
+    }
+    void operator()(const binder::BoundExplain&) const {
+        for (auto& line : plan.explained->explain()) lines.out.push_back(std::move(line));
+    }
+};
+
+}  // namespace
+
+std::string describe(const BoundExpr& expr) {
+    switch (expr.kind) {
+        case BoundExpr::Kind::And:
+        case BoundExpr::Kind::Or: {
+            std::string out;
+            for (const auto& c : expr.children) {
+                if (!out.empty()) out += expr.kind == BoundExpr::Kind::And ? " AND " : " OR ";
+                bool group = c.kind == BoundExpr::Kind::And || c.kind == BoundExpr::Kind::Or;
+                out += group ? "(" + describe(c) + ")" : describe(c);
+            }
+            return out;
+        }
+        case BoundExpr::Kind::Not:
+            return "NOT " + describe(expr.children.front());
+        case BoundExpr::Kind::Predicate: {
+            std::string out = std::string(relations::toString(expr.predicate)) + "(";
+            for (std::size_t i = 0; i < expr.args.size(); ++i) out += (i ? ", " : "") + expr.args[i].description;
+            if (expr.nearDistance) out += fmt::format(", {} m", *expr.nearDistance);
+            return out + ")";
+        }
+        case BoundExpr::Kind::Compare:
+            return fmt::format("{} {} {}", expr.attribute, opText(expr.op), literalText(expr.literal));
+    }
+    return {};
+}
+
+std::vector<std::string> Plan::explain() const {
+    Lines lines;
+    std::visit(StatementLines{*this, lines}, statement->body);
+    // Sub-queries run first, each once, when the statement first needs their nodes.
+    for (std::size_t id = 0; id < subqueries.size(); ++id) {
+        if (!subqueries[id]) continue;
+        lines.depth = 0;
+        lines.add(fmt::format("Sub-query {}, run once before its first use:", id));
+        explainFind(*subqueries[id], lines);
+    }
+    return lines.out;
+}
+
+}  // namespace smql::planner

@@ -1,0 +1,58 @@
+// FIND / COUNT in one scene: the access path.
+#include "engine/planner/planner.hpp"
+
+namespace smql::planner {
+
+using binder::BoundExpr;
+using binder::NodeSet;
+
+std::vector<const BoundExpr*> conjuncts(const BoundExpr& where) {
+    std::vector<const BoundExpr*> out;
+    if (where.kind == BoundExpr::Kind::And)
+        for (const auto& c : where.children) out.push_back(&c);
+    else
+        out.push_back(&where);
+    return out;
+}
+
+const BoundExpr& FindPlan::probeTerm() const { return *conjuncts(*find->where)[probeConjunct]; }
+
+namespace {
+
+// The smallest local conjunct with one reference, if a probe around its references beats a scan.
+std::optional<std::size_t> probeConjunct(const binder::BoundFind& find) {
+    if (!find.where) return std::nullopt;
+    auto terms = conjuncts(*find.where);
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+        const BoundExpr* c = terms[i];
+        if (c->kind != BoundExpr::Kind::Predicate || c->args.size() != 1) continue;
+        if (!relations::spec(c->predicate).local()) continue;
+        if (!best || c->args[0].estimate() < terms[*best]->args[0].estimate()) best = i;
+    }
+    // A probe costs a tree descent per reference node; a scan costs a test per target node.
+    if (!best || terms[*best]->args[0].estimate() * 4 >= find.target.nodes.estimate()) return std::nullopt;
+    return best;
+}
+
+// Exactly one reference node, known before the statement runs: a name, id or side.
+bool oneReference(const NodeSet& set) {
+    return (set.source == NodeSet::Source::Nodes && set.slots.size() == 1) || set.source == NodeSet::Source::Side;
+}
+
+}  // namespace
+
+FindPlan planFind(std::shared_ptr<const binder::BoundFind> find) {
+    FindPlan plan;
+    plan.find = std::move(find);
+    const auto& f = *plan.find;
+    if (auto probe = probeConjunct(f)) {
+        plan.access = Access::RTreeProbe;
+        plan.probeConjunct = *probe;
+    } else if (f.distanceTo && oneReference(*f.distanceTo) && f.limit && !f.descending) {
+        plan.access = Access::NearestFirst;
+    }
+    return plan;
+}
+
+}  // namespace smql::planner
