@@ -14,6 +14,7 @@
 #include "ingest/synth/synth.hpp"
 #include "shell/ingest_command.hpp"
 #include "ingest/import/importers.hpp"
+#include "ingest/import/registry.hpp"
 #include "shell/session.hpp"
 
 namespace smql::shell {
@@ -24,13 +25,6 @@ namespace {
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-std::string defaultSceneName(const std::string& format, const std::string& file) {
-    fs::path p = fs::absolute(file);
-    // Replica files are all called info_semantic.json: the folder names the scene.
-    if (format == "replica") return p.parent_path().filename().string();
-    return p.stem().string();
 }
 
 std::string summary(const model::SceneData& scene) {
@@ -49,11 +43,7 @@ int importCommand(const std::string& format, const std::string& file, const std:
                   const std::string& sceneName) {
     auto start = std::chrono::steady_clock::now();
     // Read and validate the whole file before the database is touched.
-    std::string name = sceneName.empty() ? defaultSceneName(format, file) : sceneName;
-    model::SceneData scene = format == "replica"     ? import::readReplica(file, name)
-                             : format == "spatiallm" ? import::readSpatialLm(file, name)
-                                                     : import::readSceneJson(file);
-    if (format == "json" && !sceneName.empty()) scene.info.name = sceneName;
+    model::SceneData scene = import::read(format, file, sceneName);
     auto engine = Engine::open(dbDir);
     engine->importScene(scene);
     std::cout << fmt::format("imported scene '{}' ({}) into {} in {:.1f} ms\n", scene.info.name, summary(scene), dbDir,

@@ -11,6 +11,8 @@
 #include <CLI/CLI.hpp>
 
 #include "engine/error.hpp"
+#include "engine/model/names.hpp"
+#include "ingest/import/registry.hpp"
 #include "shell/commands.hpp"
 #include "shell/ingest_command.hpp"
 #include "shell/session.hpp"
@@ -64,9 +66,9 @@ int runSubcommand(int argc, char** argv) {
 
     auto* import = app.add_subcommand("import", "import a scene layout file into a database (one transaction)");
     std::string importFormat, importFile, importDb, importScene;
-    import->add_option("format", importFormat, "replica, spatiallm or json")
+    import->add_option("format", importFormat, smql::model::joinAlternatives(smql::import::formatNames()))
         ->required()
-        ->check(CLI::IsMember({"replica", "spatiallm", "json"}));
+        ->check(CLI::IsMember(smql::import::formatNames()));
     import->add_option("file", importFile, "the file to import")->required();
     import->add_option("--db", importDb, "database directory (created if missing)")->required();
     import->add_option("--scene", importScene, "scene name (default: from the file, else the file's folder name)");

@@ -12,8 +12,9 @@
 #include "engine/engine.hpp"
 #include "engine/error.hpp"
 #include "engine/format.hpp"
+#include "engine/model/names.hpp"
 #include "ingest/generate/room_generator.hpp"
-#include "ingest/import/importers.hpp"
+#include "ingest/import/registry.hpp"
 #include "shell/commands.hpp"
 
 namespace smql::shell {
@@ -79,7 +80,9 @@ std::vector<Block> parseSuite(const std::string& path) {
 
 void load(Engine& engine, const Block& block, const fs::path& suiteDir) {
     const auto& a = block.args;
-    if (a.empty()) throw Error(ErrorKind::Input, "load needs a source: replica, spatiallm, json or demo");
+    if (a.empty())
+        throw Error(ErrorKind::Input,
+                    fmt::format("load needs a source: {} or demo", model::joinAlternatives(import::formatNames())));
     auto option = [&](const std::string& key, const std::string& fallback) {
         auto it = std::find(a.begin(), a.end(), key);
         return it != a.end() && it + 1 != a.end() ? *(it + 1) : fallback;
@@ -92,11 +95,7 @@ void load(Engine& engine, const Block& block, const fs::path& suiteDir) {
     }
     if (a.size() < 2) throw Error(ErrorKind::Input, "load " + a[0] + " needs a file");
     std::string file = (suiteDir / a[1]).string();
-    std::string scene = option("scene", fs::path(file).parent_path().filename().string());
-    if (a[0] == "replica") engine.importScene(import::readReplica(file, scene));
-    else if (a[0] == "spatiallm") engine.importScene(import::readSpatialLm(file, scene));
-    else if (a[0] == "json") engine.importScene(import::readSceneJson(file));
-    else throw Error(ErrorKind::Input, "unknown load source '" + a[0] + "'");
+    engine.importScene(import::read(a[0], file, option("scene", "")));
 }
 
 // Runs one block; returns an empty string when it passed, else what went wrong.

@@ -18,7 +18,7 @@
 #include "engine/error.hpp"
 #include "engine/format.hpp"
 #include "engine/result.hpp"
-#include "ingest/import/importers.hpp"
+#include "ingest/import/registry.hpp"
 
 namespace {
 
@@ -139,13 +139,6 @@ smql_status checkOpen(smql_db* db) noexcept {
     return misuse(db, "this handle failed to open: read smql_errmsg right after smql_open, then smql_close it");
 }
 
-std::string defaultSceneName(std::string_view format, const std::string& path) {
-    std::filesystem::path p = std::filesystem::absolute(path);
-    // Replica files are all called info_semantic.json: the folder names the scene.
-    if (format == "replica") return p.parent_path().filename().string();
-    return p.stem().string();
-}
-
 const smql::Value* cell(const smql_result* res, std::size_t row, std::size_t col) {
     if (!res || row >= res->set.rows.size() || col >= res->set.rows[row].size()) return nullptr;
     return &res->set.rows[row][col];
@@ -226,17 +219,8 @@ smql_status smql_import_file(smql_db* db, const char* format, const char* path, 
     if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
     if (!format || !path) return misuse(db, "smql_import_file: format and path must not be NULL");
     return guarded(db, {}, [&] {
-        std::string_view kind = format;
-        if (kind != "replica" && kind != "spatiallm" && kind != "json")
-            throw smql::Error(smql::ErrorKind::Usage, "unknown import format '" + std::string(kind) + "'",
-                              std::nullopt, "use \"replica\", \"spatiallm\" or \"json\"");
-        std::string name = scene_name ? scene_name : defaultSceneName(kind, path);
         // The whole file is read and checked before the database is touched.
-        smql::model::SceneData scene = kind == "replica"     ? smql::import::readReplica(path, name)
-                                       : kind == "spatiallm" ? smql::import::readSpatialLm(path, name)
-                                                             : smql::import::readSceneJson(path);
-        if (kind == "json" && scene_name) scene.info.name = scene_name;
-        db->engine->importScene(std::move(scene));
+        db->engine->importScene(smql::import::read(format, path, scene_name ? scene_name : ""));
     });
 }
 

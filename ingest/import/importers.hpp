@@ -13,14 +13,17 @@
 
 namespace smql::import {
 
-// Replica's info_semantic.json (objects[] with oriented boxes).
+// Each reader names the scene `sceneName`, or by its format's rule when that is empty.
+// registry.hpp lists them as import formats; `import::read` dispatches by name.
+
+// Replica's info_semantic.json (objects[] with oriented boxes); by default the folder names the scene.
 model::SceneData readReplica(const std::string& path, const std::string& sceneName);
 
-// A SpatialLM layout text (wall_0=Wall(...), door_0=Door(...), bbox_0=Bbox(...)).
+// A SpatialLM layout text (wall_0=Wall(...), door_0=Door(...), bbox_0=Bbox(...)); by default the file's stem.
 model::SceneData readSpatialLm(const std::string& path, const std::string& sceneName);
 
-// The smql JSON scene format ({"smql_scene": 1, ...}); the scene name comes from the file.
-model::SceneData readSceneJson(const std::string& path);
+// The smql JSON scene format ({"smql_scene": 1, ...}); by default the name the file gives.
+model::SceneData readSceneJson(const std::string& path, const std::string& sceneName = {});
 
 // Pretty JSON in the smql scene format, keys in a fixed order, doubles with
 // enough digits that readSceneJson gives back an equal SceneData.

@@ -1,5 +1,6 @@
 // Replica's info_semantic.json -> SceneData (docs/formats.md, "Replica").
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <unordered_map>
 
@@ -8,6 +9,7 @@
 
 #include "ingest/import/common.hpp"
 #include "ingest/import/importers.hpp"
+
 #include "ingest/import/json_field.hpp"
 #include "ingest/import/viewpoint.hpp"
 
@@ -127,7 +129,9 @@ model::SceneData readReplica(const std::string& path, const std::string& sceneNa
         scene.nodes.push_back(std::move(node));
     }
 
-    detail::finishScene(scene, sceneName, "replica:" + path);
+    // Replica files are all called info_semantic.json: without a name, the folder names the scene.
+    std::string name = sceneName.empty() ? std::filesystem::absolute(path).parent_path().filename().string() : sceneName;
+    detail::finishScene(scene, name, "replica:" + path);
     return scene;
 }
 

@@ -384,7 +384,7 @@ std::string writeSceneJson(const model::SceneData& scene) {
     return out + "\n";
 }
 
-model::SceneData readSceneJson(const std::string& path) {
+model::SceneData readSceneJson(const std::string& path, const std::string& sceneName) {
     detail::JsonSource source{path,
                               "expected an smql scene file: {\"smql_scene\": 1, \"scene\": {...}, \"nodes\": [...], "
                               "\"relations\": [...]} (docs/formats.md)"};
@@ -408,6 +408,7 @@ model::SceneData readSceneJson(const std::string& path) {
     if (auto blobs = top.find("blobs"))
         for (std::size_t i = 0; i < blobs->size(); ++i) scene.blobs.push_back(readBlob((*blobs)[i], scene.nodes));
     scene.info.nodeCount = scene.nodes.size();
+    if (!sceneName.empty()) scene.info.name = sceneName;
     return scene;
 }
 

@@ -2,6 +2,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <string_view>
 #include <vector>
@@ -258,7 +259,8 @@ model::SceneData readSpatialLm(const std::string& path, const std::string& scene
     if (scene.nodes.empty())
         throw Error(ErrorKind::Input, path + ": no walls, doors, windows or bboxes in the file", std::nullopt,
                     std::string(kHint));
-    detail::finishScene(scene, sceneName, "spatiallm:" + path);
+    std::string name = sceneName.empty() ? std::filesystem::path(path).stem().string() : sceneName;
+    detail::finishScene(scene, name, "spatiallm:" + path);
     return scene;
 }
 
