@@ -40,6 +40,10 @@ public:
     // (storage::WriteTransaction::updateNodes says what may change).
     void updateNodes(const std::vector<model::Node>& nodes);
 
+    // Stops the statement running in another thread (Error(Interrupted)); safe from any thread and
+    // from a signal handler. Without a running statement it does nothing.
+    void interrupt();
+
     // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
     std::string currentScene() const;
     std::vector<std::string> knownCategories() const;
