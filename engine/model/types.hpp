@@ -71,8 +71,8 @@ struct Node {
 enum class RelationType : std::uint8_t {
     On = 0, In, Above, Below, Near, Attached, LeftOf, RightOf, InFrontOf, Behind, Between
 };
-inline constexpr std::array<std::string_view, 11> kRelationNames = {
-    "on", "in", "above", "below", "near", "attached", "left_of", "right_of", "in_front_of", "behind", "between"};
+inline constexpr auto kRelationNames = std::to_array<std::string_view>(
+    {"on", "in", "above", "below", "near", "attached", "left_of", "right_of", "in_front_of", "behind", "between"});
 inline constexpr std::size_t kRelationTypeCount = kRelationNames.size();
 std::string_view toString(RelationType type);
 std::optional<RelationType> relationTypeFromString(std::string_view text);

@@ -79,7 +79,7 @@ Frame viewFrame(const model::Viewpoint& viewpoint) {
 }
 
 double supportScore(const Node& a, const Node& b, const Thresholds& t) {
-    if (&a == &b || a.id == b.id && a.id != model::kNoNode) return 0.0;
+    if (&a == &b || (a.id == b.id && a.id != model::kNoNode)) return 0.0;
     if (!hasGeometry(a) || !hasGeometry(b) || isVerticalPlane(b)) return 0.0;
     double share = overlapShare(a.box, b.box);
     if (share < t.onMinOverlap) return 0.0;
