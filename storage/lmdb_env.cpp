@@ -1,5 +1,6 @@
 #include "storage/lmdb_env.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -27,6 +28,13 @@ constexpr unsigned kMaxReaders = 512;
 
 [[noreturn]] void openError(const std::string& message, std::string hint) {
     throw Error(ErrorKind::Storage, message, std::nullopt, std::move(hint));
+}
+
+constexpr std::string_view kDamagedHint =
+    "restore the directory from a backup, or import its scenes again into a new database";
+
+[[noreturn]] void damaged(const std::string& directory, std::string_view why) {
+    openError(fmt::format("database {} is damaged: {}", directory, why), std::string(kDamagedHint));
 }
 
 [[noreturn]] void notSmqlDatabase(const std::string& directory, std::string_view why) {
@@ -66,6 +74,32 @@ void checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta
                   : "it was written by an older smql: import its scenes again into a new database");
 }
 
+// A data.mdb of 0 bytes is what LMDB would silently initialise as a new,
+// empty database, losing every scene the directory held. It is legitimately
+// empty only for the instant another process is creating it, and then that
+// process holds LMDB's exclusive lock on lock.mdb (taken before data.mdb is
+// created, released after its first meta pages are written): mdb_env_open
+// waits for that lock, so then the open goes ahead. F_GETLK only asks; it
+// takes no lock, so closing the descriptor cannot drop one of ours either.
+void checkEmptyDataFile(const std::string& directory) {
+    struct stat data {};
+    if (::stat((fs::path(directory) / kDataFile).c_str(), &data) != 0 || data.st_size != 0) return;
+    int fd = ::open((fs::path(directory) / kLockFile).c_str(), O_RDONLY | O_CLOEXEC);
+    bool beingCreated = false;
+    if (fd >= 0) {
+        struct flock probe {};
+        probe.l_type = F_WRLCK;
+        probe.l_whence = SEEK_SET;
+        probe.l_start = 0;
+        probe.l_len = 1;
+        beingCreated = ::fcntl(fd, F_GETLK, &probe) == 0 && probe.l_type != F_UNLCK;
+        ::close(fd);
+    }
+    if (!beingCreated)
+        damaged(directory, fmt::format("its {} is empty (0 bytes); smql does not re-create a database in place",
+                                       kDataFile));
+}
+
 // Every path below that the directory cannot be an smql database ends in an
 // Error before LMDB is asked to create anything in it.
 void checkDirectory(const std::string& directory, const OpenOptions& options) {
@@ -88,7 +122,10 @@ void checkDirectory(const std::string& directory, const OpenOptions& options) {
         openError(fmt::format("database path {} is not a directory", directory),
                   "a database is a directory: give the path of one, or of a new directory to create");
 
-    if (fs::exists(fs::path(directory) / kDataFile, ec)) return;
+    if (fs::exists(fs::path(directory) / kDataFile, ec)) {
+        checkEmptyDataFile(directory);
+        return;
+    }
     fs::directory_iterator entries(directory, ec);
     if (ec)
         openError(fmt::format("cannot read database directory {}: {}", directory, ec.message()),
@@ -140,6 +177,7 @@ std::shared_ptr<Environment> Environment::open(const std::string& directory, con
                   options.readOnly ? "check the permissions of the directory, data.mdb and lock.mdb"
                                    : "check the permissions, or open the database read-only");
     environment->check(rc, "opening");
+    environment->checkFileSize();
 
     // Free the reader slots of processes that died holding a read transaction,
     // so they do not pin old pages forever. Costs one pass over the reader table.
@@ -195,6 +233,27 @@ Environment::~Environment() {
     std::lock_guard lock(registryMutex());
     mdb_env_close(env_);
     std::erase_if(registry(), [](const auto& entry) { return entry.second.expired(); });
+}
+
+// LMDB maps data.mdb and reads pages straight from the map: a page past the
+// end of a file that was cut short (a copy interrupted, a full disk, a
+// truncate) is SIGBUS on first touch, not an error. The meta pages were read
+// with pread by mdb_env_open and say where the last committed page is, so the
+// file must reach at least that far before any transaction looks at the map.
+void Environment::checkFileSize() const {
+    MDB_envinfo info{};
+    MDB_stat stat{};
+    check(mdb_env_info(env_, &info), "reading the environment");
+    check(mdb_env_stat(env_, &stat), "reading the environment");
+    int fd = -1;
+    check(mdb_env_get_fd(env_, &fd), "reading the environment");
+    struct stat file {};
+    if (::fstat(fd, &file) != 0) fail(errno, "reading the size of data.mdb");
+    const std::uint64_t needed = (std::uint64_t(info.me_last_pgno) + 1) * stat.ms_psize;
+    if (std::uint64_t(file.st_size) < needed)
+        damaged(directory_, fmt::format("its {} is {} bytes, but its last committed page ends at byte {} (the file "
+                                        "was cut short)",
+                                        kDataFile, file.st_size, needed));
 }
 
 // Reads the meta table in a read transaction first, so opening never waits for

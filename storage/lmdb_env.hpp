@@ -46,6 +46,7 @@ inline constexpr std::string_view kSchemaVersionKey = "schema_version";
 inline constexpr std::string_view kNextIdKey = "next_id";
 inline constexpr std::string_view kSettingPrefix = "setting:";
 inline constexpr std::string_view kDataFile = "data.mdb";
+inline constexpr std::string_view kLockFile = "lock.mdb";
 
 class Environment {
 public:
@@ -79,6 +80,7 @@ public:
 private:
     Environment(MDB_env* env, std::string directory, bool readOnly);
     void openTables(bool create);
+    void checkFileSize() const;
 
     MDB_env* env_;
     std::string directory_;

@@ -1,0 +1,114 @@
+// Damaged database files: every kind of damage is a clear smql::Error at
+// open or on the read that meets it, never a crash and never an answer.
+#include <catch2/catch.hpp>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/error.hpp"
+#include "storage/database.hpp"
+#include "storage_test_support.hpp"
+
+using namespace smql;
+using namespace smql::storage;
+using namespace smql::storage::testing;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs `body` in a forked child and returns its wait status, so a crash
+// (SIGBUS from a page past the end of the file) fails the test instead of
+// killing the test binary.
+template <class Body>
+int inChild(Body&& body) {
+    pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        try {
+            ::_exit(body() ? 0 : 1);
+        } catch (...) {
+            ::_exit(3);
+        }
+    }
+    int status = 0;
+    REQUIRE(::waitpid(child, &status, 0) == child);
+    return status;
+}
+
+std::string openErrorMessage(const std::string& path, const OpenOptions& options) {
+    try {
+        auto db = Database::open(path, options);
+        db->beginRead().scenes();
+    } catch (const Error& e) {
+        return e.message() + " | " + e.hint();
+    }
+    return "no error";
+}
+
+void makeDatabase(const std::string& path, std::size_t nodes) {
+    auto db = Database::open(path);
+    auto txn = db->beginWrite();
+    txn.importScene(largeScene("big", nodes));
+    txn.commit();
+}
+
+}  // namespace
+
+TEST_CASE("a data.mdb cut short is reported as damaged instead of crashing", "[storage][damage]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path, 5000);
+    const auto data = fs::path(path) / "data.mdb";
+    const auto size = fs::file_size(data);
+    REQUIRE(size > 64 * 4096);
+    fs::resize_file(data, size / 2);
+
+    for (bool readOnly : {false, true}) {
+        CAPTURE(readOnly);
+        int status = inChild([&] {
+            std::string message = openErrorMessage(path, {.readOnly = readOnly, .create = false});
+            return message.find("database " + path + " is damaged") != std::string::npos &&
+                   message.find("cut short") != std::string::npos && message.find("backup") != std::string::npos;
+        });
+        REQUIRE(WIFEXITED(status));
+        REQUIRE(WEXITSTATUS(status) == 0);
+    }
+    REQUIRE(fs::file_size(data) == size / 2);  // the refused open changed nothing
+}
+
+TEST_CASE("a data.mdb truncated to 0 bytes is never re-created in place", "[storage][damage]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path, 10);
+    fs::resize_file(fs::path(path) / "data.mdb", 0);
+
+    for (bool readOnly : {false, true}) {
+        CAPTURE(readOnly);
+        std::string message = openErrorMessage(path, {.readOnly = readOnly, .create = true});
+        REQUIRE_THAT(message, Catch::Contains("database " + path + " is damaged"));
+        REQUIRE_THAT(message, Catch::Contains("data.mdb is empty"));
+        REQUIRE(fs::file_size(fs::path(path) / "data.mdb") == 0);
+    }
+}
+
+TEST_CASE("only an absent directory, or an empty one, makes a new database", "[storage][damage]") {
+    TempDir tmp;
+    SECTION("an absent directory is created when asked to") {
+        Database::open(tmp.sub("new"), {.create = true});
+        REQUIRE(fs::is_regular_file(tmp.sub("new/data.mdb")));
+    }
+    SECTION("an absent directory is not created without the create flag") {
+        REQUIRE_THAT(openErrorMessage(tmp.sub("new"), {.create = false}), Catch::Contains("no database at"));
+        REQUIRE_FALSE(fs::exists(tmp.sub("new")));
+    }
+    SECTION("an empty directory is initialised") {
+        fs::create_directory(tmp.sub("empty"));
+        Database::open(tmp.sub("empty"));
+        REQUIRE(fs::is_regular_file(tmp.sub("empty/data.mdb")));
+    }
+}
