@@ -47,16 +47,21 @@ constexpr std::string_view kDamagedHint =
 // parent's handle, which LMDB forbids.
 using RegistryKey = std::tuple<pid_t, dev_t, ino_t>;
 
+// The registry and its mutex are never destroyed: a database may be closed
+// from an atexit() handler (the C API's users do), and a handler registered
+// before the first open runs after every static object made since, so a
+// static registry would already be gone. They are reachable to the end, so
+// leak checkers do not report them.
 std::recursive_mutex& registryMutex() {
     // Recursive: an Environment that fails half-way through open() is destroyed
     // while open() still holds the lock, and its destructor takes it too.
-    static std::recursive_mutex mutex;
-    return mutex;
+    static auto* mutex = new std::recursive_mutex;
+    return *mutex;
 }
 
 std::map<RegistryKey, std::weak_ptr<Environment>>& registry() {
-    static std::map<RegistryKey, std::weak_ptr<Environment>> environments;
-    return environments;
+    static auto* environments = new std::map<RegistryKey, std::weak_ptr<Environment>>;
+    return *environments;
 }
 
 void checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta) {
