@@ -19,7 +19,8 @@
 
 namespace smql::storage {
 
-inline constexpr std::uint32_t kSchemaVersion = 1;
+// 2: every record and relation entry ends in a CRC32C (docs/storage.md).
+inline constexpr std::uint32_t kSchemaVersion = 2;
 
 struct OpenOptions {
     bool readOnly = false;

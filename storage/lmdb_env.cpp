@@ -76,7 +76,8 @@ void checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta
                           kSchemaVersion),
               version > kSchemaVersion
                   ? "it was written by a newer smql: open it with that smql, or upgrade this one"
-                  : "it was written by an older smql: import its scenes again into a new database");
+                  : "it was written by an older smql: export its scenes with that smql (smql export json) and "
+                    "import them into a new database with this one");
 }
 
 // A data.mdb of 0 bytes is what LMDB would silently initialise as a new,

@@ -8,8 +8,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 
 #include "engine/error.hpp"
+#include "storage/codec.hpp"
 #include "storage/database.hpp"
 #include "storage_test_support.hpp"
 
@@ -111,4 +114,87 @@ TEST_CASE("only an absent directory, or an empty one, makes a new database", "[s
         Database::open(tmp.sub("empty"));
         REQUIRE(fs::is_regular_file(tmp.sub("empty/data.mdb")));
     }
+}
+
+namespace {
+
+// Flips one bit of `record` where it sits in data.mdb (records are stored
+// whole on their leaf page); returns false when the bytes are not found once.
+bool flipInFile(const std::string& path, const std::string& record, std::size_t offsetInRecord) {
+    std::string file;
+    {
+        std::ifstream in(fs::path(path) / "data.mdb", std::ios::binary);
+        file.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    auto at = file.find(record);
+    if (at == std::string::npos || file.find(record, at + 1) != std::string::npos) return false;
+    std::fstream out(fs::path(path) / "data.mdb", std::ios::binary | std::ios::in | std::ios::out);
+    out.seekp(static_cast<std::streamoff>(at + offsetInRecord));
+    out.put(static_cast<char>(record[offsetInRecord] ^ 0x04));
+    return bool(out);
+}
+
+std::string errorOf(const std::function<void()>& read) {
+    try {
+        read();
+    } catch (const Error& e) {
+        REQUIRE(e.kind() == ErrorKind::Storage);
+        REQUIRE_FALSE(e.hint().empty());
+        return e.message();
+    }
+    return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("a byte flipped in a stored record is reported with its scene, never answered", "[storage][damage]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path, 100);
+    model::NodeId sceneId = 0;
+    model::Node victim;
+    {
+        auto db = Database::open(path);
+        auto txn = db->beginRead();
+        sceneId = txn.sceneByName("big")->id;
+        victim = *txn.node(sceneId + 57);
+    }
+    REQUIRE(victim.text == "object number 57");
+    std::string record;
+    codec::encodeNode(victim, record);
+
+    SECTION("in a node's text") {
+        // "object number 57" would read as "object number 37" without the checksum.
+        REQUIRE(flipInFile(path, record, record.find("57")));
+    }
+    SECTION("in a node's box") {
+        REQUIRE(flipInFile(path, record, 24 + 8 + 3));  // after the header and source id: the centre's x
+    }
+
+    auto db = Database::open(path);
+    auto txn = db->beginRead();
+    const std::string expected = "corrupt record in scene 'big' of database " + path + ": node record for id " +
+                                 std::to_string(victim.id) + ": checksum mismatch";
+    REQUIRE_THAT(errorOf([&] { txn.node(victim.id); }), Catch::StartsWith(expected));
+    REQUIRE_THAT(errorOf([&] { txn.forEachNodeInScene(sceneId, [](const model::Node&) {}); }),
+                 Catch::StartsWith(expected));
+    // The records around it are intact and still read.
+    REQUIRE(txn.node(victim.id - 1)->text == "object number 56");
+    REQUIRE(txn.node(victim.id + 1)->text == "object number 58");
+}
+
+TEST_CASE("a damaged scene record is named through its scene node", "[storage][damage]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path, 10);
+    std::string record;
+    {
+        auto db = Database::open(path);
+        codec::encodeScene(*db->beginRead().sceneByName("big"), record);
+    }
+    REQUIRE(flipInFile(path, record, record.find("test:large")));
+    auto db = Database::open(path);
+    auto txn = db->beginRead();
+    REQUIRE_THAT(errorOf([&] { txn.scenes(); }), Catch::StartsWith("corrupt record in scene 'big'"));
+    REQUIRE_THAT(errorOf([&] { txn.sceneByName("big"); }), Catch::Contains("scene record for id 1: checksum mismatch"));
 }
