@@ -367,7 +367,11 @@ WriteTransaction Database::beginWrite() {
                     "open it without read-only to change it");
     MDB_txn* txn = nullptr;
     impl_->env->check(mdb_txn_begin(impl_->env->env(), nullptr, 0, &txn), "beginning a write transaction");
-    return WriteTransaction(std::make_unique<WriteTransaction::Impl>(impl_->env, txn));
+    // Owned from here on, so a refusal below aborts the transaction.
+    WriteTransaction write(std::make_unique<WriteTransaction::Impl>(impl_->env, txn));
+    // Checked once the writer lock is held: the lock file may have gone while this waited for it.
+    impl_->env->checkLockFile("beginning a write transaction");
+    return write;
 }
 
 const std::string& Database::directory() const { return impl_->directory; }
@@ -919,6 +923,9 @@ void WriteTransaction::eraseSetting(std::string_view key) {
 
 void WriteTransaction::commit() {
     assert(impl_->txn && "WriteTransaction committed twice");
+    // Again right before the commit: a transaction that began under the old
+    // lock file must not overwrite what a writer under a new one committed.
+    impl_->env->checkLockFile("committing");
     // LMDB frees the transaction whether or not the commit succeeds.
     MDB_txn* txn = std::exchange(impl_->txn, nullptr);
     impl_->env->check(mdb_txn_commit(txn), "committing");

@@ -184,6 +184,9 @@ std::shared_ptr<Environment> Environment::open(const std::string& directory, con
                                    : "check the permissions, or open the database read-only");
     environment->check(rc, "opening");
     environment->checkFileSize();
+    struct stat lockFile {};
+    if (::stat((fs::path(directory) / kLockFile).c_str(), &lockFile) == 0)
+        environment->lockFile_ = std::pair(lockFile.st_dev, lockFile.st_ino);
 
     // Free the reader slots of processes that died holding a read transaction,
     // so they do not pin old pages forever. Costs one pass over the reader table.
@@ -334,6 +337,22 @@ void Environment::openTables(bool create) {
     }
     // Committing a read transaction is what makes its table handles usable by later transactions.
     check(mdb_txn_commit(txn), "opening the tables");
+}
+
+void Environment::checkLockFile(std::string_view operation) const {
+    if (!lockFile_) return;
+    struct stat now {};
+    const bool present = ::stat((fs::path(directory_) / kLockFile).c_str(), &now) == 0;
+    if (present && now.st_dev == lockFile_->first && now.st_ino == lockFile_->second) return;
+    throw Error(ErrorKind::Storage,
+                fmt::format("{} refused on database {}: its lock file {}/{} was {} while this process had the "
+                            "database open, so writers are no longer serialised and this write could undo another "
+                            "process's commits",
+                            operation, directory_, directory_, kLockFile, present ? "removed or replaced" : "removed"),
+                std::nullopt,
+                fmt::format("{} is part of the database: close every process that uses {}, then open it again "
+                            "(`smql check {}` lists the processes still holding the old lock file)",
+                            kLockFile, directory_, directory_));
 }
 
 void Environment::fail(int rc, std::string_view operation) const {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <optional>
 
 #include "engine/error.hpp"
 #include "storage/codec.hpp"
@@ -197,4 +198,66 @@ TEST_CASE("a damaged scene record is named through its scene node", "[storage][d
     auto txn = db->beginRead();
     REQUIRE_THAT(errorOf([&] { txn.scenes(); }), Catch::StartsWith("corrupt record in scene 'big'"));
     REQUIRE_THAT(errorOf([&] { txn.sceneByName("big"); }), Catch::Contains("scene record for id 1: checksum mismatch"));
+}
+
+TEST_CASE("a write under a lock file removed while the database was open is refused", "[storage][lockfile]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path, 10);
+    auto db = Database::open(path);
+
+    // A transaction begun under the original lock file...
+    std::optional<WriteTransaction> write(db->beginWrite());
+    write->importScene(largeScene("from-the-first-process", 20));
+    fs::remove(fs::path(path) / "lock.mdb");
+
+    // ...then another process opens the database: LMDB makes a new lock file,
+    // whose writer mutex knows nothing of the first process's transaction.
+    int status = inChild([&] {
+        auto other = Database::open(path);
+        auto txn = other->beginWrite();
+        txn.importScene(largeScene("from-the-second-process", 20));
+        txn.commit();
+        return true;
+    });
+    REQUIRE(WIFEXITED(status));
+    REQUIRE(WEXITSTATUS(status) == 0);
+
+    auto refused = [&](const std::function<void()>& step, const std::string& operation) {
+        try {
+            step();
+        } catch (const Error& e) {
+            REQUIRE(e.kind() == ErrorKind::Storage);
+            REQUIRE_THAT(e.message(), Catch::StartsWith(operation + " refused on database " + path));
+            REQUIRE_THAT(e.message(), Catch::Contains("lock.mdb was removed"));
+            REQUIRE_THAT(e.hint(), Catch::Contains("close every process"));
+            return true;
+        }
+        return false;
+    };
+    // Committing would write a meta page based on a snapshot that lacks the
+    // second process's scene: that scene would be lost.
+    REQUIRE(refused([&] { write->commit(); }, "committing"));
+    write.reset();  // the refused transaction still holds the (old) writer lock until it is destroyed
+    REQUIRE(refused([&] { db->beginWrite(); }, "beginning a write transaction"));
+
+    // Reopened (under the new lock file, whose reader table has the latest commit),
+    // the database holds the second process's scene and nothing of the refused one.
+    db.reset();
+    db = Database::open(path);
+    auto txn = db->beginRead();
+    REQUIRE(txn.sceneByName("from-the-second-process"));
+    REQUIRE_FALSE(txn.sceneByName("from-the-first-process"));
+    REQUIRE(txn.sceneByName("big"));
+}
+
+TEST_CASE("a lock file replaced while the database was open is noticed too", "[storage][lockfile]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path, 10);
+    auto db = Database::open(path);
+    fs::copy_file(fs::path(path) / "lock.mdb", tmp.sub("lock-copy"));
+    fs::rename(tmp.sub("lock-copy"), fs::path(path) / "lock.mdb");
+    REQUIRE_THAT(errorOf([&] { db->beginWrite(); }), Catch::Contains("lock.mdb was removed or replaced"));
+    REQUIRE(db->beginRead().sceneByName("big"));  // reading goes on
 }
