@@ -896,6 +896,30 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
     }
 }
 
+std::optional<SceneInfo> WriteTransaction::sceneByName(std::string_view name) const {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    auto id = readSceneId(*impl_->env, impl_->txn, name);
+    if (!id) return std::nullopt;
+    return readScene(*impl_->env, impl_->txn, *id);
+}
+
+void WriteTransaction::forEachNodeInScene(NodeId sceneId, const std::function<void(const Node&)>& visit) const {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    Cursor cursor(env, impl_->txn, Table::Nodes);
+    auto from = codec::idKey(sceneId);
+    MDB_val key = toVal(from), value;
+    Node node;
+    int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
+        NodeId id = codec::idFromKey(fromVal(key), "node");
+        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, fromVal(value), node); });
+        if (node.scene != sceneId) return;
+        visit(node);
+    }
+    endOfScan(env, rc, "reading the nodes of a scene");
+}
+
 void WriteTransaction::putSetting(std::string_view key, std::string_view value) {
     assert(impl_->txn && "WriteTransaction used after commit()");
     const Environment& env = *impl_->env;
