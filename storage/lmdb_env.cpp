@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -106,9 +107,56 @@ void checkEmptyDataFile(const std::string& directory) {
                                        kDataFile));
 }
 
+// What an open that makes a new database created, so that a failure can
+// take it away again: a failed creation leaves nothing behind.
+struct Creation {
+    bool newDatabase = false;
+    std::vector<fs::path> createdDirectories;  // deepest first
+    bool lockFileExisted = false;
+
+    void undo(const std::string& directory) const {
+        if (!newDatabase) return;
+        std::error_code ec;
+        fs::remove(fs::path(directory) / kDataFile, ec);
+        if (!lockFileExisted) fs::remove(fs::path(directory) / kLockFile, ec);
+        for (const auto& created : createdDirectories) fs::remove(created, ec);  // only while empty
+    }
+};
+
+// The bytes free for this user on the file system holding `path`; nullopt when unknown.
+std::optional<std::uint64_t> freeBytes(const std::string& path) {
+    struct statvfs fsInfo {};
+    if (::statvfs(path.c_str(), &fsInfo) != 0) return std::nullopt;
+    return std::uint64_t(fsInfo.f_bavail) * fsInfo.f_frsize;
+}
+
+// A new database writes lock.mdb (~33 KB for 512 readers, through a shared
+// map: a page the file system cannot back is SIGBUS, not an error), the first
+// two meta pages and its tables. Below this much free space, creating is
+// refused up front instead.
+constexpr std::uint64_t kCreateMinimumFree = 1 << 20;
+
+// Its own type so that only a creation that ran out of space is undone: any
+// other failure may come from a second process creating the same database
+// at the same moment, whose files must stay.
+class NoSpace : public Error {
+public:
+    using Error::Error;
+};
+
+[[noreturn]] void noSpace(const std::string& directory, std::string_view operation, std::optional<std::uint64_t> free) {
+    throw NoSpace(ErrorKind::Storage,
+                fmt::format("{} failed on database {}: no space left on device{}", operation, directory,
+                            free ? fmt::format(" ({} bytes free on its file system)", *free) : std::string()),
+                std::nullopt,
+                "free some space on that file system (or move the database to another), then try again; the "
+                "database is as it was before");
+}
+
 // Every path below that the directory cannot be an smql database ends in an
 // Error before LMDB is asked to create anything in it.
-void checkDirectory(const std::string& directory, const OpenOptions& options) {
+Creation checkDirectory(const std::string& directory, const OpenOptions& options) {
+    Creation creation;
     std::error_code ec;
     fs::file_status status = fs::status(directory, ec);
     if (ec && status.type() != fs::file_type::not_found)
@@ -118,11 +166,15 @@ void checkDirectory(const std::string& directory, const OpenOptions& options) {
         if (!options.create || options.readOnly)
             openError(fmt::format("no database at {}", directory),
                       "check the path; smql creates a database only when it opens it for writing");
+        for (fs::path missing = fs::absolute(directory, ec).lexically_normal();
+             !missing.empty() && !fs::exists(missing, ec) && missing != missing.parent_path(); missing = missing.parent_path())
+            creation.createdDirectories.push_back(missing);
         fs::create_directories(directory, ec);
         if (ec)
             openError(fmt::format("cannot create database directory {}: {}", directory, ec.message()),
                       "check that the parent directory exists and is writable");
-        return;
+        creation.newDatabase = true;
+        return creation;
     }
     if (!fs::is_directory(status))
         openError(fmt::format("database path {} is not a directory", directory),
@@ -130,7 +182,7 @@ void checkDirectory(const std::string& directory, const OpenOptions& options) {
 
     if (fs::exists(fs::path(directory) / kDataFile, ec)) {
         checkEmptyDataFile(directory);
-        return;
+        return creation;
     }
     fs::directory_iterator entries(directory, ec);
     if (ec)
@@ -143,13 +195,29 @@ void checkDirectory(const std::string& directory, const OpenOptions& options) {
     if (!options.create || options.readOnly)
         openError(fmt::format("no database at {} (the directory is empty)", directory),
                   "open it once for writing to create the database");
+    creation.newDatabase = true;
+    creation.lockFileExisted = fs::exists(fs::path(directory) / kLockFile, ec);
+    return creation;
 }
 
 }  // namespace
 
 std::shared_ptr<Environment> Environment::open(const std::string& directory, const OpenOptions& options) {
-    checkDirectory(directory, options);
+    const Creation creation = checkDirectory(directory, options);
+    if (creation.newDatabase)
+        if (auto free = freeBytes(directory); free && *free < kCreateMinimumFree) {
+            creation.undo(directory);
+            noSpace(directory, "creating the database", free);
+        }
+    try {
+        return openChecked(directory, options);
+    } catch (const NoSpace&) {
+        creation.undo(directory);
+        throw;
+    }
+}
 
+std::shared_ptr<Environment> Environment::openChecked(const std::string& directory, const OpenOptions& options) {
     struct stat st {};
     if (::stat(directory.c_str(), &st) != 0)
         openError(fmt::format("cannot open database {}: {}", directory, std::strerror(errno)), {});
@@ -355,6 +423,10 @@ void Environment::checkLockFile(std::string_view operation) const {
                             kLockFile, directory_, directory_));
 }
 
+// Free space below which an I/O error from a write is taken to be a full
+// disk: after a short write the file system has less than the rest of it left.
+constexpr std::uint64_t kFullBelow = 256 << 10;
+
 void Environment::fail(int rc, std::string_view operation) const {
     std::string hint;
     switch (rc) {
@@ -375,6 +447,14 @@ void Environment::fail(int rc, std::string_view operation) const {
         case EACCES:
         case EROFS:
             hint = "check the permissions of the database directory and its files";
+            break;
+        case ENOSPC:
+        case EDQUOT:
+            noSpace(directory_, operation, freeBytes(directory_));
+        case EIO:
+            // LMDB reports a short write as EIO; on a local file system that is
+            // the disk filling up half-way through the transaction's pages.
+            if (auto free = freeBytes(directory_); free && *free < kFullBelow) noSpace(directory_, operation, free);
             break;
         default: break;
     }

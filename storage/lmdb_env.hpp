@@ -89,6 +89,8 @@ public:
 
 private:
     Environment(MDB_env* env, std::string directory, bool readOnly);
+    // open() once the directory is known to be fit: the environment itself.
+    static std::shared_ptr<Environment> openChecked(const std::string& directory, const OpenOptions& options);
     void openTables(bool create);
     void checkFileSize() const;
 
