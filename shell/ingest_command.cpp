@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <atomic>
 #include <ctime>
-#include <unordered_map>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
