@@ -1,6 +1,7 @@
 #include "engine/engine.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -43,6 +44,8 @@ struct Engine::State {
     std::uint64_t useCounter = 0;
     std::unordered_map<std::string, std::shared_ptr<const std::vector<ast::Statement>>> statements;
     std::mutex mutex;
+    // Set by interrupt() from any thread; the running statement polls it. Not under the mutex.
+    std::atomic<bool> interrupt{false};
 
     std::shared_ptr<const std::vector<ast::Statement>> parse(std::string_view text) {
         std::string key(text);
@@ -75,7 +78,7 @@ struct Engine::State {
         auto scenes = txn.scenes();
         if (scenes.empty())
             throw Error(ErrorKind::Binding, "the database holds no scene yet", std::nullopt,
-                        "import one: smql import replica info_semantic.json --db DIR (or smql demo)");
+                        "import or ingest a scene first (docs/formats.md lists the formats)");
         // The most recently imported scene, chosen once: later statements keep using it.
         const auto* latest = &scenes.front();
         for (const auto& s : scenes)
@@ -114,6 +117,8 @@ std::unique_ptr<Engine> Engine::open(const std::string& directory, bool readOnly
 
 storage::Database& Engine::database() { return *state_->db; }
 
+void Engine::interrupt() { state_->interrupt = true; }
+
 std::vector<ResultSet> Engine::execute(std::string_view text) {
     std::vector<ResultSet> results;
     execute(text, [&](ResultSet&& rs) { results.push_back(std::move(rs)); });
@@ -122,6 +127,7 @@ std::vector<ResultSet> Engine::execute(std::string_view text) {
 
 void Engine::execute(std::string_view text, const std::function<void(ResultSet&&)>& onResult) {
     std::lock_guard lock(state_->mutex);
+    state_->interrupt = false;  // an interrupt stops the statements running when it comes, not later ones
     auto statements = state_->parse(text);
     for (const auto& statement : *statements) {
         auto start = std::chrono::steady_clock::now();
@@ -130,7 +136,7 @@ void Engine::execute(std::string_view text, const std::function<void(ResultSet&&
                                    return state_->snapshot(txn, state_->currentScene(txn));
                                }});
         auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement)));
-        auto rs = exec::Executor(txn, state_->session, plan).run();
+        auto rs = exec::Executor(txn, state_->session, plan, &state_->interrupt).run();
         rs.elapsedMicroseconds =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
         onResult(std::move(rs));

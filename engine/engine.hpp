@@ -41,6 +41,10 @@ public:
     // (storage::WriteTransaction::updateNodes says what may change).
     void updateNodes(const std::vector<model::Node>& nodes);
 
+    // Stops the statement running in another thread (Error(Interrupted)); safe from any thread and
+    // from a signal handler. Without a running statement it does nothing.
+    void interrupt();
+
     // Which objects of a new capture of a place are objects already stored
     // for it: pairs of (stored node id, observed node id).
     using ObjectMatcher = std::function<std::vector<std::pair<model::NodeId, model::NodeId>>(

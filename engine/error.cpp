@@ -11,6 +11,8 @@ std::string_view toString(ErrorKind kind) {
         case ErrorKind::Input: return "input error";
         case ErrorKind::Storage: return "storage error";
         case ErrorKind::Usage: return "usage error";
+        case ErrorKind::Limit: return "limit exceeded";
+        case ErrorKind::Interrupted: return "interrupted";
     }
     return "error";
 }

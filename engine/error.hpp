@@ -16,6 +16,8 @@ enum class ErrorKind {
     Input,     // a malformed import file or capture
     Storage,   // the database cannot be opened / written (schema version, I/O)
     Usage,     // a command used wrongly (missing argument, bad flag value)
+    Limit,     // a statement would exceed a limit of the session (rows, pairs): SET raises it
+    Interrupted,  // Engine::interrupt (Ctrl-C, smql_interrupt) stopped the statement
 };
 
 std::string_view toString(ErrorKind kind);

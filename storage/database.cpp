@@ -243,7 +243,7 @@ void eraseBlobs(const Environment& env, MDB_txn* txn, NodeId node) {
 std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, const model::SceneData& data) {
     const std::string& name = data.info.name;
     if (name.empty())
-        throw Error(ErrorKind::Input, "a scene needs a name", std::nullopt, "name it with --scene");
+        throw Error(ErrorKind::Input, "a scene needs a name", std::nullopt, "give the scene a name when importing it");
     if (name.size() > env.maxKeySize())
         throw Error(ErrorKind::Input,
                     fmt::format("scene name '{}...' is too long ({} bytes; at most {})", name.substr(0, 40),

@@ -76,7 +76,9 @@ typedef enum smql_status {
     SMQL_ERROR_STORAGE = 4,  /* the database cannot be opened or written (read-only, schema, I/O) */
     SMQL_ERROR_USAGE = 5,    /* a statement or option used wrongly */
     SMQL_ERROR_MISUSE = 6,   /* the API used wrongly: NULL handle or argument, bad index, wrong type */
-    SMQL_ERROR_INTERNAL = 7  /* a bug or out of memory; the message says which */
+    SMQL_ERROR_INTERNAL = 7, /* a bug or out of memory; the message says which */
+    SMQL_ERROR_LIMIT = 8,    /* a statement would exceed a limit (max_rows, max_pairs); SET raises it */
+    SMQL_ERROR_INTERRUPTED = 9 /* smql_interrupt stopped the statement */
 } smql_status;
 
 typedef enum smql_type {
@@ -134,6 +136,11 @@ SMQL_API int smql_error_column(const smql_db* db);
  * discard them. On failure *out is NULL, the statements before the failing
  * one have run, and smql_errmsg tells what failed and where. */
 SMQL_API smql_status smql_execute(smql_db* db, const char* statements, smql_result** out);
+
+/* Stops the statement smql_execute is running on `db` in another thread: that call returns
+ * SMQL_ERROR_INTERRUPTED and changes nothing. Safe from any thread and from a signal handler; with
+ * no statement running it does nothing. NULL is ignored. */
+SMQL_API void smql_interrupt(smql_db* db);
 
 /* Imports a scene layout file in one write transaction and makes it the
  * current scene. format: "replica" (info_semantic.json), "spatiallm" (layout

@@ -60,6 +60,8 @@ smql_status statusOf(smql::ErrorKind kind) {
         case smql::ErrorKind::Input: return SMQL_ERROR_INPUT;
         case smql::ErrorKind::Storage: return SMQL_ERROR_STORAGE;
         case smql::ErrorKind::Usage: return SMQL_ERROR_USAGE;
+        case smql::ErrorKind::Limit: return SMQL_ERROR_LIMIT;
+        case smql::ErrorKind::Interrupted: return SMQL_ERROR_INTERRUPTED;
     }
     return SMQL_ERROR_INTERNAL;
 }
@@ -163,6 +165,8 @@ const char* smql_status_string(smql_status status) {
         case SMQL_ERROR_USAGE: return "usage error";
         case SMQL_ERROR_MISUSE: return "API misuse";
         case SMQL_ERROR_INTERNAL: return "internal error";
+        case SMQL_ERROR_LIMIT: return "limit exceeded";
+        case SMQL_ERROR_INTERRUPTED: return "interrupted";
     }
     return "unknown status";
 }
@@ -213,6 +217,10 @@ smql_status smql_execute(smql_db* db, const char* statements, smql_result** out)
         if (!sets.empty()) result->set = std::move(sets.back());
         *out = result.release();
     });
+}
+
+void smql_interrupt(smql_db* db) {
+    if (db && db->engine) db->engine->interrupt();
 }
 
 smql_status smql_import_file(smql_db* db, const char* format, const char* path, const char* scene_name) {

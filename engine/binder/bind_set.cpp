@@ -1,4 +1,5 @@
-// SET name = value: a threshold of the predicates, checked for its unit and range.
+// SET name = value: a threshold of the predicates, checked for its unit and range, or a limit of
+// the session (a positive whole number).
 #include <cmath>
 
 #include <fmt/format.h>
@@ -9,11 +10,31 @@
 
 namespace smql::binder {
 
+namespace {
+
+BoundSet bindLimit(const exec::LimitSetting& limit, const ast::SetStmt& set) {
+    const auto* number = std::get_if<double>(&set.value);
+    if (!number || !std::isfinite(*number) || *number < 1 || *number != std::floor(*number) || *number > 1e15)
+        throw Error(ErrorKind::Binding, fmt::format("{} takes a whole number of at least 1", limit.name), set.where,
+                    fmt::format("SET {} = 5000000", limit.name));
+    BoundSet out;
+    out.limit = &limit;
+    out.value = *number;
+    return out;
+}
+
+}  // namespace
+
 void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
+    if (const auto* limit = exec::findLimit(set.name)) {
+        out.body = bindLimit(*limit, set);
+        return;
+    }
     const auto* setting = relations::findSetting(set.name);
     if (!setting) {
         std::vector<std::string> names;
         for (const auto& s : relations::settingsCatalogue()) names.push_back(s.name);
+        for (const auto& s : exec::limitSettings()) names.emplace_back(s.name);
         auto close = model::nearestNames(set.name, names);
         throw Error(ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,
                     close.empty() ? "SHOW SETTINGS lists them" : "did you mean " + model::joinAlternatives(close) + "?");
@@ -34,7 +55,10 @@ void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
     if (!std::isfinite(value) || value < 0 || (ratio && value > 1) || (!ratio && value > 100))
         throw Error(ErrorKind::Binding, fmt::format("{} out of range for {}", value, setting->name), set.where,
                     ratio ? "ratios lie in [0, 1]" : "distances lie in [0, 100] m");
-    out.body = BoundSet{setting, value};
+    BoundSet bound;
+    bound.threshold = setting;
+    bound.value = value;
+    out.body = bound;
 }
 
 }  // namespace smql::binder

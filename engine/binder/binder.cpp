@@ -33,6 +33,13 @@ std::string describeSet(const std::string& name, std::size_t count) {
     return fmt::format("{} ({} node{})", name, count, count == 1 ? "" : "s");
 }
 
+NodeSet oneNode(Slot slot, std::string description) {
+    NodeSet set;
+    set.slots = {slot};
+    set.description = std::move(description);
+    return set;
+}
+
 }  // namespace
 
 std::size_t NodeSet::estimate() const {
@@ -125,7 +132,7 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
             if (!slot)
                 throw Error(ErrorKind::Binding, fmt::format("no node #{} in scene '{}'", ref.number, snap.info().name),
                             ref.where, "ids are global; SHOW TREE lists this scene's nodes, USE SCENE switches scenes");
-            return numbered(NodeSet{.slots = {*slot}, .description = exec::SceneSnapshot::label(snap.node(*slot))});
+            return numbered(oneNode(*slot, exec::SceneSnapshot::label(snap.node(*slot))));
         }
         case ast::Ref::Kind::SourceId: {
             auto slot = snap.slotOfSource(ref.number);
@@ -133,13 +140,14 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
                 throw Error(ErrorKind::Binding,
                             fmt::format("no node with source id {} in scene '{}'", ref.number, snap.info().name),
                             ref.where, "source ids are the ids of the imported file; they resolve in the current scene");
-            return numbered(NodeSet{
-                .slots = {*slot},
-                .description = fmt::format("src#{} = {}", ref.number, exec::SceneSnapshot::label(snap.node(*slot)))});
+            return numbered(
+                oneNode(*slot, fmt::format("src#{} = {}", ref.number, exec::SceneSnapshot::label(snap.node(*slot)))));
         }
         case ast::Ref::Kind::SubQuery: {
             // Numbered before its own references, so sub-queries count in the order they are written.
-            NodeSet set = numbered({.source = NodeSet::Source::SubQuery});
+            NodeSet set;
+            set.source = NodeSet::Source::SubQuery;
+            set = numbered(std::move(set));
             set.subquery = std::make_shared<const BoundFind>(bindFind(*ref.subquery));
             set.description = fmt::format("sub-query {}", set.id);
             return set;

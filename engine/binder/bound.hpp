@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/exec/scene_snapshot.hpp"
+#include "engine/exec/session.hpp"
 #include "engine/parser/ast.hpp"
 #include "engine/relations/predicates.hpp"
 
@@ -108,9 +109,13 @@ struct BoundUse {
     bool allScenes = false;
 };
 
+// SET: a threshold of the predicates or a limit of the session (one of the two).
 struct BoundSet {
-    const relations::SettingInfo* setting = nullptr;
+    const relations::SettingInfo* threshold = nullptr;
+    const exec::LimitSetting* limit = nullptr;
     double value = 0;
+
+    std::string_view name() const { return threshold ? std::string_view(threshold->name) : limit->name; }
 };
 
 struct BoundStatement;

@@ -198,6 +198,7 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
         index.nearest(around, k, near);
         std::vector<Hit> hits;
         for (Slot s : near) {
+            poll();
             if ((f.nearest && s == ref) || !inTarget(f.target, s, frame) || (f.where && !matches(*f.where, s, frame)))
                 continue;
             hits.push_back({s, model::distance(snap.node(s).box, snap.node(ref).box)});
@@ -234,8 +235,10 @@ std::vector<Hit> Executor::filtered(const planner::FindPlan& plan, const relatio
     }
     std::vector<Hit> hits;
     hits.reserve(candidates.size());
-    for (Slot s : candidates)
+    for (Slot s : candidates) {
+        poll();
         if (!f.where || matches(*f.where, s, frame)) hits.push_back({s, 0});
+    }
     return hits;
 }
 
@@ -270,6 +273,7 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
 ResultSet Executor::run(const binder::BoundFind& f) {
     auto hits = find(*plan_.find);
     ResultSet rs;
+    if (!f.countOnly) checkRows(hits.size());
     if (f.countOnly) {
         rs.columns = {{"count", ValueType::Integer}};
         rs.rows.push_back({static_cast<std::int64_t>(hits.size())});
@@ -301,7 +305,10 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
         return rs;
     }
     std::size_t limit = f.limit ? static_cast<std::size_t>(std::max<std::int64_t>(*f.limit, 0)) : SIZE_MAX;
+    // One row past the session's limit is enough to know it is exceeded.
+    limit = std::min(limit, static_cast<std::size_t>(session_.limits.maxRows) + 1);
     auto ids = limit == 0 ? std::vector<model::NodeId>{} : txn_.nodesWithCategory(f.category, model::kNoNode, limit);
+    checkRows(ids.size());
     rs.columns = {{"id", ValueType::Integer},
                   {"category", ValueType::Text},
                   {"scene", ValueType::Integer},

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/error.hpp"
 #include "engine/exec/executor.hpp"
 #include "engine/model/geometry.hpp"
 
@@ -13,12 +14,19 @@ ResultSet Executor::run(const binder::BoundRelate& r) {
     relations::Frame viewer = frame(r.view);
     const auto& subjects = slots(r.subject, viewer);
     const auto& objects = slots(r.object, viewer);
+    double pairs = static_cast<double>(subjects.size()) * static_cast<double>(objects.size());
+    if (pairs > static_cast<double>(session_.limits.maxPairs))
+        throw Error(ErrorKind::Limit,
+                    fmt::format("RELATE {} TO {} would compare {:.0f} pairs; the limit is {}", r.subject.description,
+                                r.object.description, pairs, session_.limits.maxPairs),
+                    std::nullopt, "name fewer nodes (an #id, a sub-query with LIMIT), or raise it: SET max_pairs = N");
     ResultSet rs;
     rs.columns = {{"subject", ValueType::Text}, {"relation", ValueType::Text}, {"object", ValueType::Text},
                   {"score", ValueType::Real},   {"distance", ValueType::Real}};
     std::vector<std::string> sentences;
     for (Slot a : subjects) {
         for (Slot b : objects) {
+            poll();
             if (a == b) continue;
             const model::Node& na = scene().node(a);
             const model::Node& nb = scene().node(b);

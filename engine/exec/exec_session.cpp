@@ -18,10 +18,15 @@ ResultSet Executor::run(const binder::BoundUse& use) {
 }
 
 ResultSet Executor::run(const binder::BoundSet& set) {
-    session_.thresholds.*(set.setting->field) = set.value;
     ResultSet rs;
-    bool ratio = set.setting->unit == relations::SettingUnit::Ratio;
-    rs.message = fmt::format("{} = {}{}", set.setting->name, set.value, ratio ? "" : " m");
+    if (set.limit) {
+        session_.limits.*(set.limit->field) = static_cast<std::int64_t>(set.value);
+        rs.message = fmt::format("{} = {}", set.limit->name, session_.limits.*(set.limit->field));
+        return rs;
+    }
+    session_.thresholds.*(set.threshold->field) = set.value;
+    bool ratio = set.threshold->unit == relations::SettingUnit::Ratio;
+    rs.message = fmt::format("{} = {}{}", set.threshold->name, set.value, ratio ? "" : " m");
     return rs;
 }
 

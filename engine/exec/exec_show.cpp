@@ -38,6 +38,9 @@ ResultSet Executor::run(const binder::BoundShowSettings&) {
     for (const auto& s : relations::settingsCatalogue())
         rs.rows.push_back({s.name, thresholds_.*(s.field),
                            std::string(s.unit == relations::SettingUnit::Metres ? "m" : "ratio"), s.meaning});
+    for (const auto& s : limitSettings())
+        rs.rows.push_back({std::string(s.name), static_cast<double>(session_.limits.*(s.field)), std::string("count"),
+                           std::string(s.meaning)});
     return rs;
 }
 

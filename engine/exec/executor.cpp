@@ -21,9 +21,20 @@ bool queryable(const Node& n) { return !n.hidden && n.kind != model::NodeKind::S
 
 }  // namespace
 
-Executor::Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan)
-    : txn_(txn), session_(session), plan_(plan), thresholds_(session.thresholds),
+Executor::Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan,
+                   const std::atomic<bool>* interrupt)
+    : txn_(txn), session_(session), plan_(plan), interrupt_(interrupt), thresholds_(session.thresholds),
       resolved_(plan.statement->setCount), membership_(plan.statement->setCount) {}
+
+void Executor::interrupted() {
+    throw Error(ErrorKind::Interrupted, "the statement was interrupted", std::nullopt, "nothing was changed");
+}
+
+void Executor::checkRows(std::size_t rows) const {
+    if (static_cast<std::int64_t>(rows) <= session_.limits.maxRows) return;
+    throw Error(ErrorKind::Limit, fmt::format("the answer has {} rows; the limit is {}", rows, session_.limits.maxRows),
+                std::nullopt, "add a LIMIT or a WHERE, or raise it: SET max_rows = N");
+}
 
 ResultSet Executor::run() {
     return std::visit([&](const auto& body) { return run(body); }, plan_.statement->body);

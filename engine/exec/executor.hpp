@@ -5,6 +5,7 @@
 // NodeSet ids and die with it.
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -24,8 +25,10 @@ struct Hit {
 
 class Executor {
 public:
-    // `session` is read for the thresholds and changed by USE and SET.
-    Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan);
+    // `session` is read for the thresholds and limits, and changed by USE and SET. When `interrupt`
+    // turns true (from another thread), the statement stops with Error(Interrupted).
+    Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan,
+             const std::atomic<bool>* interrupt = nullptr);
 
     ResultSet run();
     // The nodes a FIND plan (the statement's or a sub-query's) answers, in order.
@@ -44,6 +47,12 @@ private:
     ResultSet run(const binder::BoundExplain& explain);
 
     const SceneSnapshot& scene() const { return *plan_.statement->scene; }
+    // Called once per unit of work (a candidate, a pair): throws once the statement is interrupted.
+    void poll() {
+        if (interrupt_ && (++work_ & 1023) == 0 && interrupt_->load(std::memory_order_relaxed)) interrupted();
+    }
+    [[noreturn]] static void interrupted();
+    void checkRows(std::size_t rows) const;
     // The nodes of a set: as bound, or resolved now (a side in `frame`, a sub-query's answer).
     const std::vector<Slot>& slots(const binder::NodeSet& set, const relations::Frame& frame);
     const std::vector<Slot>& resolveSide(const binder::NodeSet& set, const relations::Frame& frame);
@@ -62,6 +71,8 @@ private:
     const storage::ReadTransaction& txn_;
     Session& session_;
     const planner::Plan& plan_;
+    const std::atomic<bool>* interrupt_;
+    std::uint64_t work_ = 0;
     const relations::Thresholds thresholds_;  // as the statement started
     std::vector<std::optional<std::vector<Slot>>> resolved_;  // by NodeSet id
     std::vector<std::vector<char>> membership_;               // by NodeSet id; empty until needed

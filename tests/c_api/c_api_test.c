@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -247,6 +248,47 @@ static void test_threads(const char* dir) {
     smql_close(db);
 }
 
+/* smql_interrupt from another thread stops a long statement with SMQL_ERROR_INTERRUPTED. */
+struct long_statement {
+    smql_db* db;
+    smql_status status;
+    int said_interrupted; /* errors are per thread: read in the thread that failed */
+    volatile int done;
+};
+
+static void* run_long_statement(void* arg) {
+    struct long_statement* job = arg;
+    /* Every pair of the room's nodes, many times over: seconds of work without an interrupt. */
+    char text[4096] = "SET max_pairs = 1000000";
+    for (int i = 0; i < 100; ++i) strcat(text, "; RELATE node TO node");
+    job->status = smql_execute(job->db, text, NULL);
+    job->said_interrupted = contains(smql_errmsg(job->db), "interrupted");
+    job->done = 1;
+    return NULL;
+}
+
+static void test_interrupt(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    smql_interrupt(NULL); /* ignored */
+    smql_interrupt(db);   /* nothing running: no effect on the next statement */
+    CHECK(smql_execute(db, kQuery, NULL) == SMQL_OK);
+    struct long_statement job = {db, SMQL_OK, 0, 0};
+    pthread_t thread;
+    CHECK(pthread_create(&thread, NULL, run_long_statement, &job) == 0);
+    /* An interrupt that comes before the statement starts is dropped: keep sending until it ends. */
+    struct timespec pause = {0, 1000000};
+    while (!job.done) {
+        smql_interrupt(db);
+        nanosleep(&pause, NULL);
+    }
+    pthread_join(thread, NULL);
+    CHECK(job.status == SMQL_ERROR_INTERRUPTED);
+    CHECK(job.said_interrupted);
+    CHECK(smql_execute(db, kQuery, NULL) == SMQL_OK);
+    smql_close(db);
+}
+
 /* The child of test_close_at_exit: an atexit() handler registered before the
  * first smql_open closes the handles. Handlers run in the reverse order of
  * registration, so it runs after the library's own static objects, which were
@@ -308,6 +350,7 @@ int main(int argc, char** argv) {
     test_statements_and_errors(dir);
     test_read_only(dir);
     test_threads(dir);
+    test_interrupt(dir);
     test_close_at_exit(dir, base);
 
     nftw(base, remove_entry, 8, FTW_DEPTH | FTW_PHYS);

@@ -1,0 +1,19 @@
+#include "engine/exec/session.hpp"
+
+namespace smql::exec {
+
+const std::vector<LimitSetting>& limitSettings() {
+    static const std::vector<LimitSetting> settings = {
+        {"max_rows", &Limits::maxRows, "most rows one statement may return"},
+        {"max_pairs", &Limits::maxPairs, "most node pairs one RELATE may compare"},
+    };
+    return settings;
+}
+
+const LimitSetting* findLimit(std::string_view name) {
+    for (const auto& s : limitSettings())
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+}  // namespace smql::exec
