@@ -220,4 +220,51 @@ std::vector<std::string> Engine::knownCategories() const {
     return out;
 }
 
+// -------------------------------------------------------- refreshing a scene
+
+Engine::SceneRefresh Engine::refreshScene(const std::string& name, const model::SceneData& observed,
+                                          const ObjectMatcher& match) {
+    std::lock_guard lock(state_->mutex);
+    // Reading in the write transaction is what makes the counts exact: a
+    // second refresher waits for this one's commit before it reads them.
+    auto txn = state_->db->beginWrite();
+    std::string sceneName = name;
+    if (sceneName.empty()) sceneName = state_->currentScene(state_->db->beginRead()).name;
+    auto info = txn.sceneByName(sceneName);
+    if (!info)
+        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", sceneName), std::nullopt,
+                    "SHOW SCENES lists the scenes");
+    model::SceneData stored;
+    stored.info = *info;
+    txn.forEachNodeInScene(info->id, [&](const model::Node& n) {
+        if (n.kind != model::NodeKind::Scene) stored.nodes.push_back(n);
+    });
+
+    std::unordered_map<model::NodeId, const model::Node*> storedById;
+    for (const auto& n : stored.nodes) storedById.emplace(n.id, &n);
+    std::vector<model::Node> updated;
+    for (const auto& [storedId, observedId] : match(stored, observed)) {
+        model::Node node = *storedById.at(storedId);
+        auto set = [&](const std::string& attribute, const std::string& value) {
+            auto it = std::find_if(node.attributes.begin(), node.attributes.end(),
+                                   [&](const auto& a) { return a.name == attribute; });
+            if (it == node.attributes.end()) node.attributes.push_back({attribute, value});
+            else it->value = value;
+        };
+        const std::string* seen = node.attribute("captures");
+        set("captures", std::to_string((seen ? std::stoi(*seen) : 1) + 1));
+        set("last_seen_at", observed.info.captureTime);
+        std::sort(node.attributes.begin(), node.attributes.end(),
+                  [](const auto& a, const auto& b) { return a.name < b.name; });
+        updated.push_back(std::move(node));
+    }
+    txn.updateNodes(updated);
+    txn.commit();
+
+    SceneRefresh out;
+    out.seenAgain = updated.size();
+    for (const auto& n : stored.nodes) out.storedObjects += n.kind == model::NodeKind::Object && !n.hidden;
+    return out;
+}
+
 }  // namespace smql

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/model/types.hpp"
@@ -43,6 +44,22 @@ public:
     // Stops the statement running in another thread (Error(Interrupted)); safe from any thread and
     // from a signal handler. Without a running statement it does nothing.
     void interrupt();
+
+    // Which objects of a new capture of a place are objects already stored
+    // for it: pairs of (stored node id, observed node id).
+    using ObjectMatcher = std::function<std::vector<std::pair<model::NodeId, model::NodeId>>(
+        const model::SceneData& stored, const model::SceneData& observed)>;
+    struct SceneRefresh {
+        std::size_t seenAgain = 0;      // stored objects the capture saw again (and that were updated)
+        std::size_t storedObjects = 0;  // visible objects of the stored scene
+    };
+    // Merges a new capture of the place into the stored scene `name` (the
+    // most recent when empty): each stored object `match` pairs with an
+    // observed one gets `captures` = stored + 1 (1 when unset) and
+    // `last_seen_at` = observed.info.captureTime; nothing else changes. The
+    // read and the write are one write transaction, so refreshes of one scene
+    // from several processes at once never lose one another's counts.
+    SceneRefresh refreshScene(const std::string& name, const model::SceneData& observed, const ObjectMatcher& match);
 
     // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
     std::string currentScene() const;

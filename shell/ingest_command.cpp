@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <atomic>
 #include <ctime>
-#include <unordered_map>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -82,37 +81,20 @@ private:
 // and the capture's other objects are reported, not added.
 int updateScene(Engine& engine, const IngestArguments& args, const model::SceneData& observed,
                 std::chrono::steady_clock::time_point writeStart, ingest::ProgressSink& progress) {
-    model::SceneData stored = engine.readScene(args.update);
-    auto pairs = ingest::matchObjects(stored, observed, 0.25);
-    std::unordered_map<model::NodeId, const model::Node*> storedById;
-    for (const auto& n : stored.nodes) storedById.emplace(n.id, &n);
-    std::vector<model::Node> updated;
-    for (const auto& [storedId, observedId] : pairs) {
-        model::Node node = *storedById.at(storedId);
-        auto set = [&](const std::string& name, const std::string& value) {
-            auto it = std::find_if(node.attributes.begin(), node.attributes.end(), [&](const auto& a) { return a.name == name; });
-            if (it == node.attributes.end()) node.attributes.push_back({name, value});
-            else it->value = value;
-        };
-        const std::string* seen = node.attribute("captures");
-        set("captures", std::to_string((seen ? std::stoi(*seen) : 1) + 1));
-        set("last_seen_at", observed.info.captureTime);
-        std::sort(node.attributes.begin(), node.attributes.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-        updated.push_back(std::move(node));
-    }
-    engine.updateNodes(updated);
+    auto refresh = engine.refreshScene(args.update, observed, [](const model::SceneData& stored, const model::SceneData& seen) {
+        return ingest::matchObjects(stored, seen, 0.25);
+    });
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
-    progress.stageFinished("write", seconds, fmt::format("updated {} objects of scene '{}'", updated.size(), args.update));
-    std::size_t observedObjects = 0, storedObjects = 0;
+    progress.stageFinished("write", seconds, fmt::format("updated {} objects of scene '{}'", refresh.seenAgain, args.update));
+    std::size_t observedObjects = 0;
     for (const auto& n : observed.nodes) observedObjects += n.kind == model::NodeKind::Object;
-    for (const auto& n : stored.nodes) storedObjects += n.kind == model::NodeKind::Object && !n.hidden;
     if (args.log != "quiet")
         std::cout << fmt::format(
             "updated scene '{}': {} objects seen again (last_seen_at {}); {} objects of the capture are not in the "
             "scene and were not added (ingest without --update to keep them as a scene); {} objects of the scene "
             "were not seen this time\n",
-            args.update, updated.size(), observed.info.captureTime, observedObjects - updated.size(),
-            storedObjects - updated.size());
+            args.update, refresh.seenAgain, observed.info.captureTime, observedObjects - refresh.seenAgain,
+            refresh.storedObjects - refresh.seenAgain);
     return 0;
 }
 

@@ -2,7 +2,7 @@
 //   smql DIR                       interactive shell
 //   smql DIR -c 'STATEMENT;'       run statements, print, exit (non-zero on error)
 //   smql DIR -f script.smql        run a script
-//   smql import|export|demo|test|synth|ingest|check-ingest   see --help of each
+//   smql import|export|demo|test|synth|ingest|check-ingest|check   see --help of each
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -23,7 +23,7 @@ constexpr const char* kVersion = "smql 0.1.0";
 
 int runShell(int argc, char** argv) {
     CLI::App app{"smql: an embedded spatial memory engine. `smql DIR` opens the shell on a database directory;\n"
-                 "sub-commands: import, export, ingest, check-ingest, synth, demo, test (smql COMMAND --help)."};
+                 "sub-commands: import, export, ingest, check-ingest, check, synth, demo, test (smql COMMAND --help)."};
     std::string dir, command, script, format = "table";
     bool readOnly = false, timer = false;
     app.add_option("database", dir, "database directory (created if missing)")->required();
@@ -129,7 +129,13 @@ int runSubcommand(int argc, char** argv) {
     synth->add_option("--objects", synthObjects, "objects in the room (default 24)")->check(CLI::Range(1, 5000));
     synth->add_flag("--force", synthForce, "write into a non-empty folder, replacing an earlier capture's files");
 
+    auto* checkDbCmd = app.add_subcommand("check", "verify a database: records and their checksums, scene trees, "
+                                                   "indexes, lock file; exit status 1 when anything is wrong");
+    std::string checkDbDir;
+    checkDbCmd->add_option("database", checkDbDir, "database directory")->required()->check(CLI::ExistingDirectory);
+
     CLI11_PARSE(app, argc, argv);
+    if (checkDbCmd->parsed()) return smql::shell::checkCommand(checkDbDir);
     if (import->parsed()) return smql::shell::importCommand(importFormat, importFile, importDb, importScene);
     if (exportCmd->parsed() && exportFormat == "evidence") {
         if (exportEvidence.size() != 2)
@@ -156,7 +162,7 @@ int main(int argc, char** argv) {
     try {
         std::string first = argc > 1 ? argv[1] : "";
         if (first == "import" || first == "export" || first == "demo" || first == "test" || first == "synth" ||
-            first == "ingest" || first == "check-ingest")
+            first == "ingest" || first == "check-ingest" || first == "check")
             return runSubcommand(argc, argv);
         return runShell(argc, argv);
     } catch (const smql::Error& e) {

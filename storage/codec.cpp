@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "engine/error.hpp"
+#include "storage/crc32c.hpp"
 
 namespace smql::storage::codec {
 
@@ -69,6 +70,15 @@ private:
     std::string& out_;
 };
 
+std::string_view keyView(const IdKey& key) { return {reinterpret_cast<const char*>(key.data()), key.size()}; }
+
+// Appends the CRC32C of `key` and everything in `out` so far.
+void seal(std::string_view key, std::string& out) {
+    std::uint8_t crc[kChecksumSize];
+    putLittleEndian(crc, crc32c(out, crc32c(key)), kChecksumSize);
+    out.append(reinterpret_cast<const char*>(crc), kChecksumSize);
+}
+
 class Reader {
 public:
     Reader(std::string_view bytes, std::string_view what, model::NodeId id)
@@ -77,6 +87,20 @@ public:
           end_(begin_ + bytes.size()),
           what_(what),
           id_(id) {}
+
+    // Checks the CRC32C at the end of the record against `key` and the bytes
+    // before it, then leaves those bytes to be read: a damaged record is
+    // refused before any of its fields is believed.
+    void checkSealed(std::string_view key) {
+        if (remaining() < kChecksumSize + 1) corrupt("truncated");
+        end_ -= kChecksumSize;
+        std::uint32_t stored = static_cast<std::uint32_t>(getLittleEndian(end_, kChecksumSize));
+        std::uint32_t actual = crc32c(std::string_view(reinterpret_cast<const char*>(begin_), end_ - begin_), crc32c(key));
+        if (stored != actual) {
+            end_ += kChecksumSize;
+            corrupt(fmt::format("checksum mismatch (stored {:08x}, computed {:08x})", stored, actual));
+        }
+    }
 
     std::uint8_t u8() { return *take(1); }
     std::uint32_t u32() { return static_cast<std::uint32_t>(getLittleEndian(take(4), 4)); }
@@ -110,10 +134,8 @@ public:
     }
     [[noreturn]] void corrupt(std::string_view why) const {
         // Id 0 is never a node: it marks records that are not keyed by id (meta entries).
-        std::string subject = id_ == model::kNoNode ? fmt::format("corrupt {}", what_)
-                                                    : fmt::format("corrupt {} record for id {}", what_, id_);
-        throw Error(ErrorKind::Storage, fmt::format("{}: {} (byte {} of {})", subject, why, p_ - begin_, end_ - begin_),
-                    std::nullopt, std::string(kCorruptHint));
+        std::string subject = id_ == model::kNoNode ? std::string(what_) : fmt::format("{} record for id {}", what_, id_);
+        throw CorruptRecord(fmt::format("{}: {} (byte {} of {})", subject, why, p_ - begin_, end_ - begin_));
     }
 
 private:
@@ -133,6 +155,9 @@ private:
 
 }  // namespace
 
+CorruptRecord::CorruptRecord(std::string detail)
+    : Error(ErrorKind::Storage, "corrupt " + detail, std::nullopt, std::string(kCorruptHint)), detail_(std::move(detail)) {}
+
 IdKey idKey(model::NodeId id) {
     IdKey key;
     putBigEndian64(key.data(), id);
@@ -140,9 +165,7 @@ IdKey idKey(model::NodeId id) {
 }
 
 model::NodeId idFromKey(std::string_view bytes, std::string_view what) {
-    if (bytes.size() != 8)
-        throw Error(ErrorKind::Storage, fmt::format("corrupt {} key: {} bytes instead of 8", what, bytes.size()),
-                    std::nullopt, std::string(kCorruptHint));
+    if (bytes.size() != 8) throw CorruptRecord(fmt::format("{} key: {} bytes instead of 8", what, bytes.size()));
     return readBigEndian64(reinterpret_cast<const std::uint8_t*>(bytes.data()));
 }
 
@@ -150,7 +173,7 @@ void encodeNode(const model::Node& node, std::string& out) {
     out.clear();
     std::size_t strings = node.category.size() + node.text.size();
     for (const auto& a : node.attributes) strings += a.name.size() + a.value.size() + 4;
-    out.reserve(24 + 8 + 56 + strings + 8);
+    out.reserve(24 + 8 + 56 + strings + 8 + kChecksumSize);
 
     const bool hasBox = node.box != model::Box{};
     std::uint8_t flags = (node.hidden ? kHidden : 0) | (node.sourceId ? kHasSourceId : 0) | (hasBox ? kHasBox : 0);
@@ -174,10 +197,12 @@ void encodeNode(const model::Node& node, std::string& out) {
         w.str(a.value);
     }
     w.str(node.text);
+    seal(keyView(idKey(node.id)), out);
 }
 
 void decodeNode(model::NodeId id, std::string_view bytes, model::Node& out) {
     Reader r(bytes, "node", id);
+    r.checkSealed(keyView(idKey(id)));
     r.expectFormat(kNodeFormat);
     std::uint8_t kind = r.u8();
     if (kind > kLastNodeKind) r.corrupt(fmt::format("unknown node kind {}", kind));
@@ -226,7 +251,7 @@ model::Node decodeNode(model::NodeId id, std::string_view bytes) {
 void encodeScene(const model::SceneInfo& scene, std::string& out) {
     out.clear();
     out.reserve(1 + 8 * 23 + scene.name.size() + scene.source.size() + scene.captureTime.size() +
-                scene.viewpointNote.size() + 16);
+                scene.viewpointNote.size() + 16 + kChecksumSize);
     Writer w(out);
     w.u8(kSceneFormat);
     for (double v : scene.alignment) w.f64(v);
@@ -241,10 +266,12 @@ void encodeScene(const model::SceneInfo& scene, std::string& out) {
     w.str(scene.source);
     w.str(scene.captureTime);
     w.str(scene.viewpointNote);
+    seal(keyView(idKey(scene.id)), out);
 }
 
 model::SceneInfo decodeScene(model::NodeId id, std::string_view bytes) {
     Reader r(bytes, "scene", id);
+    r.checkSealed(keyView(idKey(id)));
     r.expectFormat(kSceneFormat);
     model::SceneInfo scene;
     scene.id = id;
@@ -264,7 +291,8 @@ model::SceneInfo decodeScene(model::NodeId id, std::string_view bytes) {
     return scene;
 }
 
-// Layout: format, side, other end (BE), type, frame (BE), score (f32 LE), support (u32 LE).
+// Layout: format, side, other end (BE), type, frame (BE), score (f32 LE), support (u32 LE),
+// CRC32C of the key (the id the entry is stored under) and the 27 bytes before it.
 RelationEntry encodeRelationEntry(const model::Relation& relation, RelationSide keySide) {
     RelationEntry e{};
     e[0] = kRelationFormat;
@@ -274,6 +302,9 @@ RelationEntry encodeRelationEntry(const model::Relation& relation, RelationSide 
     putBigEndian64(&e[11], relation.frame);
     putLittleEndian(&e[19], std::bit_cast<std::uint32_t>(relation.score), 4);
     putLittleEndian(&e[23], relation.support, 4);
+    auto key = idKey(keySide == RelationSide::Subject ? relation.subject : relation.object);
+    std::string_view body(reinterpret_cast<const char*>(e.data()), kRelationEntrySize - kChecksumSize);
+    putLittleEndian(&e[27], crc32c(body, crc32c(keyView(key))), kChecksumSize);
     return e;
 }
 
@@ -285,6 +316,7 @@ model::Relation decodeRelationEntry(model::NodeId keyId, std::string_view entry)
     Reader r(entry, "relation", keyId);
     if (entry.size() != kRelationEntrySize)
         r.corrupt(fmt::format("{} bytes instead of {}", entry.size(), kRelationEntrySize));
+    r.checkSealed(keyView(idKey(keyId)));
     r.expectFormat(kRelationFormat);
     std::uint8_t side = r.u8();
     if (side > 1) r.corrupt(fmt::format("unknown relation side {}", side));
@@ -337,19 +369,21 @@ std::string blobKey(model::NodeId nodeId, std::string_view name) {
     return key;
 }
 
-void encodeBlob(const model::Blob& blob, std::string& out) {
+void encodeBlob(std::string_view key, const model::Blob& blob, std::string& out) {
     out.clear();
-    out.reserve(2 + blob.mediaType.size() + 10 + blob.bytes.size());
+    out.reserve(2 + blob.mediaType.size() + 10 + blob.bytes.size() + kChecksumSize);
     Writer w(out);
     w.u8(kBlobFormat);
     w.str(blob.mediaType);
     w.str(blob.bytes);
+    seal(key, out);
 }
 
 std::pair<std::string_view, std::string_view> peekBlob(std::string_view key, std::string_view bytes,
                                                        std::uint64_t& size) {
     model::NodeId node = idFromKey(key.substr(0, std::min<std::size_t>(key.size(), 8)), "blob");
     Reader r(bytes, "blob", node);
+    r.checkSealed(key);
     r.expectFormat(kBlobFormat);
     std::string_view mediaType = r.str();
     size = r.str().size();
@@ -360,6 +394,7 @@ std::pair<std::string_view, std::string_view> peekBlob(std::string_view key, std
 model::Blob decodeBlob(std::string_view key, std::string_view bytes) {
     model::NodeId node = idFromKey(key.substr(0, std::min<std::size_t>(key.size(), 8)), "blob");
     Reader r(bytes, "blob", node);
+    r.checkSealed(key);
     r.expectFormat(kBlobFormat);
     model::Blob blob;
     blob.node = node;

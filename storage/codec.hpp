@@ -2,10 +2,11 @@
 // describes every byte). Private to storage/: callers only ever see model types.
 //
 // Records are little-endian with a format-version byte first, a fixed header,
-// then length-prefixed strings (LEB128 lengths). Keys and index entries hold
-// ids big-endian, so LMDB's default memcmp order is numeric order. Decoding
+// then length-prefixed strings (LEB128 lengths), and end in a CRC32C of their
+// key and their bytes. Keys and index entries hold ids big-endian, so LMDB's
+// default memcmp order is numeric order. Decoding checks the checksum first,
 // reads straight from the bytes it is given (the memory map) and throws
-// smql::Error(Storage, "corrupt ...") instead of reading past the end.
+// CorruptRecord instead of reading past the end or answering from damaged bytes.
 #pragma once
 
 #include <array>
@@ -13,14 +14,30 @@
 #include <string>
 #include <string_view>
 
+#include "engine/error.hpp"
 #include "engine/model/types.hpp"
 
 namespace smql::storage::codec {
 
-inline constexpr std::uint8_t kNodeFormat = 1;
-inline constexpr std::uint8_t kBlobFormat = 1;
-inline constexpr std::uint8_t kSceneFormat = 1;
-inline constexpr std::uint8_t kRelationFormat = 1;
+// Format 2 added the checksum (schema version 2).
+inline constexpr std::uint8_t kNodeFormat = 2;
+inline constexpr std::uint8_t kBlobFormat = 2;
+inline constexpr std::uint8_t kSceneFormat = 2;
+inline constexpr std::uint8_t kRelationFormat = 2;
+// The CRC32C at the end of every record and relation entry.
+inline constexpr std::size_t kChecksumSize = 4;
+
+// What every decoder throws: an Error(Storage) "corrupt <detail>", where the
+// detail names the record ("node record for id 42: checksum mismatch"). The
+// codec does not know the scene; the reader that does adds it.
+class CorruptRecord : public Error {
+public:
+    explicit CorruptRecord(std::string detail);
+    const std::string& detail() const { return detail_; }
+
+private:
+    std::string detail_;
+};
 
 using IdKey = std::array<std::uint8_t, 8>;
 IdKey idKey(model::NodeId id);
@@ -41,7 +58,7 @@ model::SceneInfo decodeScene(model::NodeId id, std::string_view bytes);
 // the key is and holds the other one. Fixed size, so the relation index can
 // be a DUPFIXED table read a page at a time.
 enum class RelationSide : std::uint8_t { Subject = 0, Object = 1 };
-inline constexpr std::size_t kRelationEntrySize = 27;
+inline constexpr std::size_t kRelationEntrySize = 27 + kChecksumSize;
 using RelationEntry = std::array<std::uint8_t, kRelationEntrySize>;
 RelationEntry encodeRelationEntry(const model::Relation& relation, RelationSide keySide);
 RelationSide relationEntrySide(std::string_view entry);
@@ -60,8 +77,9 @@ SourceKey sourceKey(model::NodeId sceneId, std::int64_t sourceId);
 
 // Blob key: the node id (big-endian) then the blob's name, so a node's blobs are one range.
 std::string blobKey(model::NodeId nodeId, std::string_view name);
-// Blob record: format byte, media type, then the bytes.
-void encodeBlob(const model::Blob& blob, std::string& out);
+// Blob record: format byte, media type, then the bytes. `key` is the blob key
+// it is stored under (the blob's node id is a local id during an import).
+void encodeBlob(std::string_view key, const model::Blob& blob, std::string& out);
 // `key` is the blob key the record was stored under.
 model::Blob decodeBlob(std::string_view key, std::string_view bytes);
 // Name and media type without copying the bytes; `size` gets the byte count.

@@ -71,11 +71,62 @@ std::optional<std::string_view> lookup(const Environment& env, MDB_txn* txn, Tab
     return fromVal(value);
 }
 
+// The scene whose id block holds `id`, named for an error message: the scene
+// with the greatest id not above it. Read defensively, since the damaged
+// record may be the one that names it: the scene record, else the scene
+// node, else the name index, else the id.
+std::string sceneNameFor(const Environment& env, MDB_txn* txn, NodeId id) {
+    try {
+        Cursor cursor(env, txn, Table::Scenes);
+        auto from = codec::idKey(id);
+        MDB_val key = toVal(from), value;
+        int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
+        if (rc == MDB_SUCCESS && codec::idFromKey(fromVal(key), "scene") != id)
+            rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_PREV);
+        else if (rc == MDB_NOTFOUND)
+            rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_LAST);
+        if (rc != MDB_SUCCESS) return fmt::format("unknown (no scene holds id {})", id);
+        const NodeId sceneId = codec::idFromKey(fromVal(key), "scene");
+        try {
+            return fmt::format("'{}'", codec::decodeScene(sceneId, fromVal(value)).name);
+        } catch (const codec::CorruptRecord&) {
+        }
+        try {
+            auto nodeKey = codec::idKey(sceneId);
+            if (auto bytes = lookup(env, txn, Table::Nodes, toVal(nodeKey), "reading a node"))
+                return fmt::format("'{}'", codec::decodeNode(sceneId, *bytes).category);
+        } catch (const codec::CorruptRecord&) {
+        }
+        Cursor names(env, txn, Table::SceneNames);
+        for (rc = mdb_cursor_get(names.get(), &key, &value, MDB_FIRST); rc == MDB_SUCCESS;
+             rc = mdb_cursor_get(names.get(), &key, &value, MDB_NEXT))
+            if (value.mv_size == 8 && codec::idFromKey(fromVal(value), "scene name index") == sceneId)
+                return fmt::format("'{}'", fromVal(key));
+        return fmt::format("#{}", sceneId);
+    } catch (const Error&) {
+        return fmt::format("unknown (the scene holding id {} cannot be read)", id);
+    }
+}
+
+// Runs `decode` and reports a corrupt record as "corrupt record in scene X":
+// which scene is damaged is what a user needs to restore or re-import.
+template <class Decode>
+auto decodeInScene(const Environment& env, MDB_txn* txn, NodeId id, Decode&& decode) -> decltype(decode()) {
+    try {
+        return decode();
+    } catch (const codec::CorruptRecord& e) {
+        throw Error(ErrorKind::Storage,
+                    fmt::format("corrupt record in scene {} of database {}: {}", sceneNameFor(env, txn, id),
+                                env.directory(), e.detail()),
+                    std::nullopt, e.hint());
+    }
+}
+
 std::optional<SceneInfo> readScene(const Environment& env, MDB_txn* txn, NodeId sceneId) {
     auto key = codec::idKey(sceneId);
     auto bytes = lookup(env, txn, Table::Scenes, toVal(key), "reading a scene");
     if (!bytes) return std::nullopt;
-    return codec::decodeScene(sceneId, *bytes);
+    return decodeInScene(env, txn, sceneId, [&] { return codec::decodeScene(sceneId, *bytes); });
 }
 
 std::optional<NodeId> readSceneId(const Environment& env, MDB_txn* txn, std::string_view name) {
@@ -316,7 +367,11 @@ WriteTransaction Database::beginWrite() {
                     "open it without read-only to change it");
     MDB_txn* txn = nullptr;
     impl_->env->check(mdb_txn_begin(impl_->env->env(), nullptr, 0, &txn), "beginning a write transaction");
-    return WriteTransaction(std::make_unique<WriteTransaction::Impl>(impl_->env, txn));
+    // Owned from here on, so a refusal below aborts the transaction.
+    WriteTransaction write(std::make_unique<WriteTransaction::Impl>(impl_->env, txn));
+    // Checked once the writer lock is held: the lock file may have gone while this waited for it.
+    impl_->env->checkLockFile("beginning a write transaction");
+    return write;
 }
 
 const std::string& Database::directory() const { return impl_->directory; }
@@ -347,7 +402,10 @@ std::vector<SceneInfo> ReadTransaction::scenes() const {
     MDB_val key, value;
     int rc = cursor.get(key, value, MDB_FIRST);
     for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT))
-        out.push_back(codec::decodeScene(codec::idFromKey(fromVal(key), "scene"), fromVal(value)));
+    {
+        NodeId id = codec::idFromKey(fromVal(key), "scene");
+        out.push_back(decodeInScene(env, impl_->txn, id, [&] { return codec::decodeScene(id, fromVal(value)); }));
+    }
     endOfScan(env, rc, "listing scenes");
     return out;
 }
@@ -366,7 +424,7 @@ bool ReadTransaction::readNode(NodeId id, Node& into) const {
     auto key = codec::idKey(id);
     auto bytes = lookup(*impl_->env, impl_->txn, Table::Nodes, toVal(key), "reading a node");
     if (!bytes) return false;
-    codec::decodeNode(id, *bytes, into);
+    decodeInScene(*impl_->env, impl_->txn, id, [&] { codec::decodeNode(id, *bytes, into); });
     return true;
 }
 
@@ -374,7 +432,7 @@ std::optional<Node> ReadTransaction::node(NodeId id) const {
     std::optional<Node> out;
     auto key = codec::idKey(id);
     auto bytes = lookup(*impl_->env, impl_->txn, Table::Nodes, toVal(key), "reading a node");
-    if (bytes) codec::decodeNode(id, *bytes, out.emplace());
+    if (bytes) decodeInScene(*impl_->env, impl_->txn, id, [&] { codec::decodeNode(id, *bytes, out.emplace()); });
     return out;
 }
 
@@ -426,7 +484,8 @@ void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<voi
     Node node;
     int rc = cursor.get(key, value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
-        codec::decodeNode(codec::idFromKey(fromVal(key), "node"), fromVal(value), node);
+        NodeId id = codec::idFromKey(fromVal(key), "node");
+        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, fromVal(value), node); });
         if (node.scene != sceneId) return;
         visit(node);
     }
@@ -435,7 +494,11 @@ void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<voi
 
 std::vector<model::Relation> ReadTransaction::relationsOf(NodeId id) const {
     return readDuplicates<model::Relation>(*impl_, Table::Relations, id, codec::kRelationEntrySize, "reading relations",
-                                           [id](std::string_view entry) { return codec::decodeRelationEntry(id, entry); });
+                                           [&](std::string_view entry) {
+                                               return decodeInScene(*impl_->env, impl_->txn, id, [&] {
+                                                   return codec::decodeRelationEntry(id, entry);
+                                               });
+                                           });
 }
 
 // One range scan over the relation index keys of the scene's id block; each
@@ -456,7 +519,7 @@ void ReadTransaction::forEachRelationInScene(NodeId sceneId,
         std::size_t count = duplicateCount(env, cursor.cursor());
         forEachDuplicate(env, cursor.cursor(), value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
             if (codec::relationEntrySide(entry) != codec::RelationSide::Subject) return false;
-            visit(codec::decodeRelationEntry(id, entry));
+            visit(decodeInScene(env, impl_->txn, id, [&] { return codec::decodeRelationEntry(id, entry); }));
             return true;
         });
     }
@@ -542,7 +605,8 @@ std::vector<ReadTransaction::BlobInfo> ReadTransaction::blobsOf(NodeId id) const
     int rc = cursor.get(key, value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS && fromVal(key).substr(0, prefix.size()) == want; rc = cursor.get(key, value, MDB_NEXT)) {
         BlobInfo info;
-        auto [name, mediaType] = codec::peekBlob(fromVal(key), fromVal(value), info.size);
+        auto [name, mediaType] =
+            decodeInScene(env, impl_->txn, id, [&] { return codec::peekBlob(fromVal(key), fromVal(value), info.size); });
         info.name = std::string(name);
         info.mediaType = std::string(mediaType);
         out.push_back(std::move(info));
@@ -556,7 +620,7 @@ std::optional<model::Blob> ReadTransaction::blob(NodeId id, std::string_view nam
     if (key.size() > impl_->env->maxKeySize()) return std::nullopt;
     auto bytes = lookup(*impl_->env, impl_->txn, Table::Blobs, toVal(key), "reading a blob");
     if (!bytes) return std::nullopt;
-    return codec::decodeBlob(key, *bytes);
+    return decodeInScene(*impl_->env, impl_->txn, id, [&] { return codec::decodeBlob(key, *bytes); });
 }
 
 std::optional<std::string> ReadTransaction::setting(std::string_view key) const {
@@ -713,7 +777,7 @@ NodeId WriteTransaction::importScene(const model::SceneData& data) {
         std::sort(blobs.begin(), blobs.end());
         Cursor table(env, txn, Table::Blobs);
         for (const auto& [key, blob] : blobs) {
-            codec::encodeBlob(*blob, record);
+            codec::encodeBlob(key, *blob, record);
             put(env, table.get(), toVal(key), toVal(record), MDB_APPEND, "storing a blob");
         }
     }
@@ -762,7 +826,8 @@ void WriteTransaction::dropScene(NodeId sceneId) {
         Node node;
         int rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_SET_RANGE);
         for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_NEXT)) {
-            codec::decodeNode(codec::idFromKey(fromVal(key), "node"), fromVal(value), node);
+            NodeId id = codec::idFromKey(fromVal(key), "node");
+            decodeInScene(env, txn, id, [&] { codec::decodeNode(id, fromVal(value), node); });
             if (node.scene != sceneId) break;
             bool labelled = node.kind != model::NodeKind::Scene && !node.category.empty();
             doomed.push_back({node.id, labelled ? node.category : std::string(), node.sourceId, labelled});
@@ -805,7 +870,7 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
         auto key = codec::idKey(node.id);
         auto bytes = lookup(env, txn, Table::Nodes, toVal(key), "reading a node");
         if (!bytes) importError(fmt::format("node #{} does not exist", node.id));
-        Node stored = codec::decodeNode(node.id, *bytes);
+        Node stored = decodeInScene(env, txn, node.id, [&] { return codec::decodeNode(node.id, *bytes); });
         if (stored.kind != node.kind || stored.scene != node.scene || stored.parent != node.parent ||
             stored.category != node.category || stored.sourceId != node.sourceId || stored.kind == model::NodeKind::Scene)
             importError(fmt::format("node #{}: an update may change attributes, text, confidence and the box, not its "
@@ -829,6 +894,30 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
         MDB_val k = toVal(key), v = toVal(impl_->record);
         env.check(mdb_put(txn, env.dbi(Table::Scenes), &k, &v, 0), "updating a scene's version");
     }
+}
+
+std::optional<SceneInfo> WriteTransaction::sceneByName(std::string_view name) const {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    auto id = readSceneId(*impl_->env, impl_->txn, name);
+    if (!id) return std::nullopt;
+    return readScene(*impl_->env, impl_->txn, *id);
+}
+
+void WriteTransaction::forEachNodeInScene(NodeId sceneId, const std::function<void(const Node&)>& visit) const {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    Cursor cursor(env, impl_->txn, Table::Nodes);
+    auto from = codec::idKey(sceneId);
+    MDB_val key = toVal(from), value;
+    Node node;
+    int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
+        NodeId id = codec::idFromKey(fromVal(key), "node");
+        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, fromVal(value), node); });
+        if (node.scene != sceneId) return;
+        visit(node);
+    }
+    endOfScan(env, rc, "reading the nodes of a scene");
 }
 
 void WriteTransaction::putSetting(std::string_view key, std::string_view value) {
@@ -858,6 +947,9 @@ void WriteTransaction::eraseSetting(std::string_view key) {
 
 void WriteTransaction::commit() {
     assert(impl_->txn && "WriteTransaction committed twice");
+    // Again right before the commit: a transaction that began under the old
+    // lock file must not overwrite what a writer under a new one committed.
+    impl_->env->checkLockFile("committing");
     // LMDB frees the transaction whether or not the commit succeeds.
     MDB_txn* txn = std::exchange(impl_->txn, nullptr);
     impl_->env->check(mdb_txn_commit(txn), "committing");

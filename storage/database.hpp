@@ -19,7 +19,8 @@
 
 namespace smql::storage {
 
-inline constexpr std::uint32_t kSchemaVersion = 1;
+// 2: every record and relation entry ends in a CRC32C (docs/storage.md).
+inline constexpr std::uint32_t kSchemaVersion = 2;
 
 struct OpenOptions {
     bool readOnly = false;
@@ -153,6 +154,11 @@ public:
     // smql::Error(Input) for a node that does not exist or changes a fixed field.
     void updateNodes(const std::vector<model::Node>& nodes);
     void putSetting(std::string_view key, std::string_view value);
+    // Reads in this transaction, for read-modify-write changes that another
+    // writer must not interleave with (it waits for this transaction).
+    std::optional<model::SceneInfo> sceneByName(std::string_view name) const;
+    // Every node of a scene (the scene node itself included), in id order.
+    void forEachNodeInScene(model::NodeId sceneId, const std::function<void(const model::Node&)>& visit) const;
     // Erasing a setting that is not set does nothing.
     void eraseSetting(std::string_view key);
 

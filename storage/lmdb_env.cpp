@@ -1,6 +1,8 @@
 #include "storage/lmdb_env.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -29,6 +31,13 @@ constexpr unsigned kMaxReaders = 512;
     throw Error(ErrorKind::Storage, message, std::nullopt, std::move(hint));
 }
 
+constexpr std::string_view kDamagedHint =
+    "restore the directory from a backup, or import its scenes again into a new database";
+
+[[noreturn]] void damaged(const std::string& directory, std::string_view why) {
+    openError(fmt::format("database {} is damaged: {}", directory, why), std::string(kDamagedHint));
+}
+
 [[noreturn]] void notSmqlDatabase(const std::string& directory, std::string_view why) {
     openError(fmt::format("{} is not an smql database: {}", directory, why),
               "give the directory of an smql database, or a new or empty directory to create one");
@@ -39,16 +48,21 @@ constexpr unsigned kMaxReaders = 512;
 // parent's handle, which LMDB forbids.
 using RegistryKey = std::tuple<pid_t, dev_t, ino_t>;
 
+// The registry and its mutex are never destroyed: a database may be closed
+// from an atexit() handler (the C API's users do), and a handler registered
+// before the first open runs after every static object made since, so a
+// static registry would already be gone. They are reachable to the end, so
+// leak checkers do not report them.
 std::recursive_mutex& registryMutex() {
     // Recursive: an Environment that fails half-way through open() is destroyed
     // while open() still holds the lock, and its destructor takes it too.
-    static std::recursive_mutex mutex;
-    return mutex;
+    static auto* mutex = new std::recursive_mutex;
+    return *mutex;
 }
 
 std::map<RegistryKey, std::weak_ptr<Environment>>& registry() {
-    static std::map<RegistryKey, std::weak_ptr<Environment>> environments;
-    return environments;
+    static auto* environments = new std::map<RegistryKey, std::weak_ptr<Environment>>;
+    return *environments;
 }
 
 void checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta) {
@@ -63,12 +77,86 @@ void checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta
                           kSchemaVersion),
               version > kSchemaVersion
                   ? "it was written by a newer smql: open it with that smql, or upgrade this one"
-                  : "it was written by an older smql: import its scenes again into a new database");
+                  : "it was written by an older smql: export its scenes with that smql (smql export json) and "
+                    "import them into a new database with this one");
+}
+
+// A data.mdb of 0 bytes is what LMDB would silently initialise as a new,
+// empty database, losing every scene the directory held. It is legitimately
+// empty only for the instant another process is creating it, and then that
+// process holds LMDB's exclusive lock on lock.mdb (taken before data.mdb is
+// created, released after its first meta pages are written): mdb_env_open
+// waits for that lock, so then the open goes ahead. F_GETLK only asks; it
+// takes no lock, so closing the descriptor cannot drop one of ours either.
+void checkEmptyDataFile(const std::string& directory) {
+    struct stat data {};
+    if (::stat((fs::path(directory) / kDataFile).c_str(), &data) != 0 || data.st_size != 0) return;
+    int fd = ::open((fs::path(directory) / kLockFile).c_str(), O_RDONLY | O_CLOEXEC);
+    bool beingCreated = false;
+    if (fd >= 0) {
+        struct flock probe {};
+        probe.l_type = F_WRLCK;
+        probe.l_whence = SEEK_SET;
+        probe.l_start = 0;
+        probe.l_len = 1;
+        beingCreated = ::fcntl(fd, F_GETLK, &probe) == 0 && probe.l_type != F_UNLCK;
+        ::close(fd);
+    }
+    if (!beingCreated)
+        damaged(directory, fmt::format("its {} is empty (0 bytes); smql does not re-create a database in place",
+                                       kDataFile));
+}
+
+// What an open that makes a new database created, so that a failure can
+// take it away again: a failed creation leaves nothing behind.
+struct Creation {
+    bool newDatabase = false;
+    std::vector<fs::path> createdDirectories;  // deepest first
+    bool lockFileExisted = false;
+
+    void undo(const std::string& directory) const {
+        if (!newDatabase) return;
+        std::error_code ec;
+        fs::remove(fs::path(directory) / kDataFile, ec);
+        if (!lockFileExisted) fs::remove(fs::path(directory) / kLockFile, ec);
+        for (const auto& created : createdDirectories) fs::remove(created, ec);  // only while empty
+    }
+};
+
+// The bytes free for this user on the file system holding `path`; nullopt when unknown.
+std::optional<std::uint64_t> freeBytes(const std::string& path) {
+    struct statvfs fsInfo {};
+    if (::statvfs(path.c_str(), &fsInfo) != 0) return std::nullopt;
+    return std::uint64_t(fsInfo.f_bavail) * fsInfo.f_frsize;
+}
+
+// A new database writes lock.mdb (~33 KB for 512 readers, through a shared
+// map: a page the file system cannot back is SIGBUS, not an error), the first
+// two meta pages and its tables. Below this much free space, creating is
+// refused up front instead.
+constexpr std::uint64_t kCreateMinimumFree = 1 << 20;
+
+// Its own type so that only a creation that ran out of space is undone: any
+// other failure may come from a second process creating the same database
+// at the same moment, whose files must stay.
+class NoSpace : public Error {
+public:
+    using Error::Error;
+};
+
+[[noreturn]] void noSpace(const std::string& directory, std::string_view operation, std::optional<std::uint64_t> free) {
+    throw NoSpace(ErrorKind::Storage,
+                fmt::format("{} failed on database {}: no space left on device{}", operation, directory,
+                            free ? fmt::format(" ({} bytes free on its file system)", *free) : std::string()),
+                std::nullopt,
+                "free some space on that file system (or move the database to another), then try again; the "
+                "database is as it was before");
 }
 
 // Every path below that the directory cannot be an smql database ends in an
 // Error before LMDB is asked to create anything in it.
-void checkDirectory(const std::string& directory, const OpenOptions& options) {
+Creation checkDirectory(const std::string& directory, const OpenOptions& options) {
+    Creation creation;
     std::error_code ec;
     fs::file_status status = fs::status(directory, ec);
     if (ec && status.type() != fs::file_type::not_found)
@@ -78,17 +166,24 @@ void checkDirectory(const std::string& directory, const OpenOptions& options) {
         if (!options.create || options.readOnly)
             openError(fmt::format("no database at {}", directory),
                       "check the path; smql creates a database only when it opens it for writing");
+        for (fs::path missing = fs::absolute(directory, ec).lexically_normal();
+             !missing.empty() && !fs::exists(missing, ec) && missing != missing.parent_path(); missing = missing.parent_path())
+            creation.createdDirectories.push_back(missing);
         fs::create_directories(directory, ec);
         if (ec)
             openError(fmt::format("cannot create database directory {}: {}", directory, ec.message()),
                       "check that the parent directory exists and is writable");
-        return;
+        creation.newDatabase = true;
+        return creation;
     }
     if (!fs::is_directory(status))
         openError(fmt::format("database path {} is not a directory", directory),
                   "a database is a directory: give the path of one, or of a new directory to create");
 
-    if (fs::exists(fs::path(directory) / kDataFile, ec)) return;
+    if (fs::exists(fs::path(directory) / kDataFile, ec)) {
+        checkEmptyDataFile(directory);
+        return creation;
+    }
     fs::directory_iterator entries(directory, ec);
     if (ec)
         openError(fmt::format("cannot read database directory {}: {}", directory, ec.message()),
@@ -100,13 +195,29 @@ void checkDirectory(const std::string& directory, const OpenOptions& options) {
     if (!options.create || options.readOnly)
         openError(fmt::format("no database at {} (the directory is empty)", directory),
                   "open it once for writing to create the database");
+    creation.newDatabase = true;
+    creation.lockFileExisted = fs::exists(fs::path(directory) / kLockFile, ec);
+    return creation;
 }
 
 }  // namespace
 
 std::shared_ptr<Environment> Environment::open(const std::string& directory, const OpenOptions& options) {
-    checkDirectory(directory, options);
+    const Creation creation = checkDirectory(directory, options);
+    if (creation.newDatabase)
+        if (auto free = freeBytes(directory); free && *free < kCreateMinimumFree) {
+            creation.undo(directory);
+            noSpace(directory, "creating the database", free);
+        }
+    try {
+        return openChecked(directory, options);
+    } catch (const NoSpace&) {
+        creation.undo(directory);
+        throw;
+    }
+}
 
+std::shared_ptr<Environment> Environment::openChecked(const std::string& directory, const OpenOptions& options) {
     struct stat st {};
     if (::stat(directory.c_str(), &st) != 0)
         openError(fmt::format("cannot open database {}: {}", directory, std::strerror(errno)), {});
@@ -140,6 +251,10 @@ std::shared_ptr<Environment> Environment::open(const std::string& directory, con
                   options.readOnly ? "check the permissions of the directory, data.mdb and lock.mdb"
                                    : "check the permissions, or open the database read-only");
     environment->check(rc, "opening");
+    environment->checkFileSize();
+    struct stat lockFile {};
+    if (::stat((fs::path(directory) / kLockFile).c_str(), &lockFile) == 0)
+        environment->lockFile_ = std::pair(lockFile.st_dev, lockFile.st_ino);
 
     // Free the reader slots of processes that died holding a read transaction,
     // so they do not pin old pages forever. Costs one pass over the reader table.
@@ -195,6 +310,27 @@ Environment::~Environment() {
     std::lock_guard lock(registryMutex());
     mdb_env_close(env_);
     std::erase_if(registry(), [](const auto& entry) { return entry.second.expired(); });
+}
+
+// LMDB maps data.mdb and reads pages straight from the map: a page past the
+// end of a file that was cut short (a copy interrupted, a full disk, a
+// truncate) is SIGBUS on first touch, not an error. The meta pages were read
+// with pread by mdb_env_open and say where the last committed page is, so the
+// file must reach at least that far before any transaction looks at the map.
+void Environment::checkFileSize() const {
+    MDB_envinfo info{};
+    MDB_stat stat{};
+    check(mdb_env_info(env_, &info), "reading the environment");
+    check(mdb_env_stat(env_, &stat), "reading the environment");
+    int fd = -1;
+    check(mdb_env_get_fd(env_, &fd), "reading the environment");
+    struct stat file {};
+    if (::fstat(fd, &file) != 0) fail(errno, "reading the size of data.mdb");
+    const std::uint64_t needed = (std::uint64_t(info.me_last_pgno) + 1) * stat.ms_psize;
+    if (std::uint64_t(file.st_size) < needed)
+        damaged(directory_, fmt::format("its {} is {} bytes, but its last committed page ends at byte {} (the file "
+                                        "was cut short)",
+                                        kDataFile, file.st_size, needed));
 }
 
 // Reads the meta table in a read transaction first, so opening never waits for
@@ -271,6 +407,26 @@ void Environment::openTables(bool create) {
     check(mdb_txn_commit(txn), "opening the tables");
 }
 
+void Environment::checkLockFile(std::string_view operation) const {
+    if (!lockFile_) return;
+    struct stat now {};
+    const bool present = ::stat((fs::path(directory_) / kLockFile).c_str(), &now) == 0;
+    if (present && now.st_dev == lockFile_->first && now.st_ino == lockFile_->second) return;
+    throw Error(ErrorKind::Storage,
+                fmt::format("{} refused on database {}: its lock file {}/{} was {} while this process had the "
+                            "database open, so writers are no longer serialised and this write could undo another "
+                            "process's commits",
+                            operation, directory_, directory_, kLockFile, present ? "removed or replaced" : "removed"),
+                std::nullopt,
+                fmt::format("{} is part of the database: close every process that uses {}, then open it again "
+                            "(`smql check {}` lists the processes still holding the old lock file)",
+                            kLockFile, directory_, directory_));
+}
+
+// Free space below which an I/O error from a write is taken to be a full
+// disk: after a short write the file system has less than the rest of it left.
+constexpr std::uint64_t kFullBelow = 256 << 10;
+
 void Environment::fail(int rc, std::string_view operation) const {
     std::string hint;
     switch (rc) {
@@ -291,6 +447,14 @@ void Environment::fail(int rc, std::string_view operation) const {
         case EACCES:
         case EROFS:
             hint = "check the permissions of the database directory and its files";
+            break;
+        case ENOSPC:
+        case EDQUOT:
+            noSpace(directory_, operation, freeBytes(directory_));
+        case EIO:
+            // LMDB reports a short write as EIO; on a local file system that is
+            // the disk filling up half-way through the transaction's pages.
+            if (auto free = freeBytes(directory_); free && *free < kFullBelow) noSpace(directory_, operation, free);
             break;
         default: break;
     }

@@ -4,11 +4,14 @@
 #pragma once
 
 #include <lmdb.h>
+#include <sys/types.h>
 
 #include <array>
 #include <cstddef>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <utility>
 #include <vector>
 #include <string>
 #include <string_view>
@@ -46,6 +49,7 @@ inline constexpr std::string_view kSchemaVersionKey = "schema_version";
 inline constexpr std::string_view kNextIdKey = "next_id";
 inline constexpr std::string_view kSettingPrefix = "setting:";
 inline constexpr std::string_view kDataFile = "data.mdb";
+inline constexpr std::string_view kLockFile = "lock.mdb";
 
 class Environment {
 public:
@@ -70,6 +74,13 @@ public:
     MDB_txn* beginReader();
     void endReader(MDB_txn* txn);
 
+    // Throws smql::Error(Storage) when lock.mdb is no longer the file this
+    // environment opened (removed, or replaced by a new one). LMDB's writer
+    // mutex and reader table live in that file: a process that opens the
+    // database after the removal makes a new lock file, and its writes are no
+    // longer serialised with ours, so a write from here could undo its commits.
+    void checkLockFile(std::string_view operation) const;
+
     // Throws smql::Error(Storage) naming the database, the operation and LMDB's reason.
     [[noreturn]] void fail(int rc, std::string_view operation) const;
     void check(int rc, std::string_view operation) const {
@@ -78,12 +89,18 @@ public:
 
 private:
     Environment(MDB_env* env, std::string directory, bool readOnly);
+    // open() once the directory is known to be fit: the environment itself.
+    static std::shared_ptr<Environment> openChecked(const std::string& directory, const OpenOptions& options);
     void openTables(bool create);
+    void checkFileSize() const;
 
     MDB_env* env_;
     std::string directory_;
     bool readOnly_;
     std::array<MDB_dbi, kTableCount> dbis_{};
+    // Device and inode of lock.mdb when this environment opened it; unset
+    // when LMDB runs without one (a read-only file system).
+    std::optional<std::pair<dev_t, ino_t>> lockFile_;
     std::mutex readersMutex_;
     std::vector<MDB_txn*> idleReaders_;
 };

@@ -115,7 +115,9 @@ SMQL_API const char* smql_status_string(smql_status status);
  * smql_close(*out). Every other call on such a handle gives SMQL_ERROR_MISUSE. */
 SMQL_API smql_status smql_open(const char* dir, int flags, smql_db** out);
 
-/* Closes the handle; NULL is a no-op. Results it produced stay valid. */
+/* Closes the handle; NULL is a no-op. Results it produced stay valid. Safe at
+ * process exit too: from an atexit() handler (registered before or after the
+ * first smql_open) or a static destructor. */
 SMQL_API void smql_close(smql_db* db);
 
 /* The calling thread's last error on `db`: multi-line text with the position,

@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "smql.h"
 
@@ -287,7 +289,52 @@ static void test_interrupt(const char* dir) {
     smql_close(db);
 }
 
-int main(void) {
+/* The child of test_close_at_exit: an atexit() handler registered before the
+ * first smql_open closes the handles. Handlers run in the reverse order of
+ * registration, so it runs after the library's own static objects, which were
+ * made later (at the first open), are destroyed. Two handles, one on a new
+ * database whose query fails, so closing has real work to do. */
+static smql_db* exit_dbs[2] = {NULL, NULL};
+static const char* exit_marker = NULL;
+
+static void close_at_exit(void) {
+    smql_close(exit_dbs[0]);
+    smql_close(exit_dbs[1]);
+    FILE* marker = fopen(exit_marker, "w");
+    if (marker) fclose(marker);
+}
+
+static int close_at_exit_child(const char* dir, const char* fresh, const char* marker) {
+    exit_marker = marker;
+    if (atexit(close_at_exit) != 0) return 2;
+    if (smql_open(dir, 0, &exit_dbs[0]) != SMQL_OK || smql_open(fresh, 0, &exit_dbs[1]) != SMQL_OK) return 3;
+    if (smql_execute(exit_dbs[0], kQuery, NULL) != SMQL_OK) return 4;
+    if (smql_execute(exit_dbs[1], kQuery, NULL) != SMQL_ERROR_BINDING) return 5; /* no scene yet */
+    return 0;
+}
+
+static void test_close_at_exit(const char* dir, const char* base) {
+    char marker[4096], fresh[4096];
+    snprintf(marker, sizeof marker, "%s/closed-at-exit", base);
+    snprintf(fresh, sizeof fresh, "%s/exit-db", base);
+    pid_t child = fork();
+    CHECK(child >= 0);
+    if (child == 0) {
+        /* A fresh process image: nothing of smql is initialised before atexit(). */
+        execl("/proc/self/exe", "smql_c_api_tests", "close-at-exit", dir, fresh, marker, (char*)NULL);
+        _exit(127);
+    }
+    int status = 0;
+    CHECK(waitpid(child, &status, 0) == child);
+    if (WIFSIGNALED(status)) fprintf(stderr, "close-at-exit: the child died of signal %d\n", WTERMSIG(status));
+    if (WIFEXITED(status) && WEXITSTATUS(status) != 0) fprintf(stderr, "close-at-exit: the child exited with %d\n", WEXITSTATUS(status));
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    CHECK(access(marker, F_OK) == 0);
+}
+
+int main(int argc, char** argv) {
+    if (argc == 5 && strcmp(argv[1], "close-at-exit") == 0) return close_at_exit_child(argv[2], argv[3], argv[4]);
+
     char base[] = "/tmp/smql-c-api-XXXXXX";
     if (!mkdtemp(base)) {
         perror("mkdtemp");
@@ -304,6 +351,7 @@ int main(void) {
     test_read_only(dir);
     test_threads(dir);
     test_interrupt(dir);
+    test_close_at_exit(dir, base);
 
     nftw(base, remove_entry, 8, FTW_DEPTH | FTW_PHYS);
     printf("%d passed, %d failed\n", passed, failed);

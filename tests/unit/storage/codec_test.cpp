@@ -5,6 +5,7 @@
 
 #include "engine/error.hpp"
 #include "storage/codec.hpp"
+#include "storage/crc32c.hpp"
 
 using namespace smql;
 using namespace smql::storage;
@@ -99,8 +100,8 @@ TEST_CASE("a node record with nothing set is small", "[storage][codec]") {
     node.scene = 1;
     node.parent = 1;
     node.category = "chair";
-    // 24-byte header + 1+5 category + 1 attribute count + 1 text length.
-    REQUIRE(encoded(node).size() == 32);
+    // 24-byte header + 1+5 category + 1 attribute count + 1 text length + 4 checksum.
+    REQUIRE(encoded(node).size() == 36);
 }
 
 TEST_CASE("corrupt node records throw instead of reading out of bounds", "[storage][codec]") {
@@ -112,8 +113,12 @@ TEST_CASE("corrupt node records throw instead of reading out of bounds", "[stora
     }
     SECTION("trailing bytes") { requireCorrupt([&] { codec::decodeNode(42, bytes + "x"); }); }
     SECTION("another format version") {
-        std::string changed = bytes;
+        // A record with a valid checksum but a format this smql does not read.
+        std::string changed = bytes.substr(0, bytes.size() - codec::kChecksumSize);
         changed[0] = 9;
+        auto key = codec::idKey(42);
+        std::uint32_t crc = crc32c(changed, crc32c(std::string_view(reinterpret_cast<const char*>(key.data()), 8)));
+        for (int i = 0; i < 4; ++i) changed.push_back(static_cast<char>(crc >> (8 * i)));
         try {
             codec::decodeNode(42, changed);
             FAIL("no error");
@@ -192,4 +197,52 @@ TEST_CASE("keys sort numerically under memcmp", "[storage][codec]") {
     REQUIRE(codec::sourceKey(3, std::numeric_limits<std::int64_t>::max()) < codec::sourceKey(4, -100));
     REQUIRE(codec::labelEntry(1, 900) < codec::labelEntry(2, 3));
     REQUIRE_THROWS_AS(codec::idFromKey("short", "test"), Error);
+}
+
+TEST_CASE("crc32c matches the Castagnoli check values", "[storage][codec]") {
+    REQUIRE(crc32c("") == 0);
+    REQUIRE(crc32c("123456789") == 0xE3069283u);  // the standard check value
+    REQUIRE(crc32c(std::string(32, '\0')) == 0x8A9136AAu);  // RFC 3720 B.4: 32 bytes of zeros
+    REQUIRE(crc32c(std::string(32, '\xff')) == 0x62A8AB43u);  // RFC 3720 B.4: 32 bytes of ones
+    // Any split of the input continues the same checksum, at every alignment.
+    const std::string text = "the quick brown fox jumps over the lazy dog, twice over";
+    for (std::size_t cut = 0; cut <= text.size(); ++cut)
+        REQUIRE(crc32c(text.substr(cut), crc32c(text.substr(0, cut))) == crc32c(text));
+}
+
+TEST_CASE("every byte flip in a record is caught by its checksum", "[storage][codec]") {
+    SECTION("node records") {
+        const std::string bytes = encoded(fullNode());
+        for (std::size_t at = 0; at < bytes.size(); ++at)
+            for (unsigned char bit : {0x01, 0x80}) {
+                std::string flipped = bytes;
+                flipped[at] = static_cast<char>(flipped[at] ^ bit);
+                try {
+                    codec::decodeNode(42, flipped);
+                    FAIL("byte " << at << " flipped was decoded");
+                } catch (const codec::CorruptRecord& e) {
+                    REQUIRE_THAT(e.message(), Catch::Contains("node record for id 42"));
+                    REQUIRE_THAT(e.message(), Catch::Contains("checksum mismatch"));
+                }
+            }
+    }
+    SECTION("a record under another key") {
+        // A flipped bit in a key moves a record to another id: the key is in the checksum.
+        requireCorrupt([&] { codec::decodeNode(43, encoded(fullNode())); });
+    }
+    SECTION("scene records and relation entries") {
+        model::SceneInfo scene;
+        scene.id = 5;
+        scene.name = "kitchen";
+        std::string bytes;
+        codec::encodeScene(scene, bytes);
+        bytes[bytes.size() / 2] ^= 0x10;
+        requireCorrupt([&] { codec::decodeScene(5, bytes); });
+
+        auto entry = codec::encodeRelationEntry({10, 20, model::RelationType::On, 0.5f, 1, 0}, codec::RelationSide::Subject);
+        entry[20] ^= 0x01;  // the score
+        requireCorrupt([&] {
+            codec::decodeRelationEntry(10, std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));
+        });
+    }
 }

@@ -346,9 +346,41 @@ TEST_CASE("open refuses what is not an smql database", "[storage][database][erro
     }
 }
 
+namespace {
+
+// Rewrites the schema version of the database at `path`, as another smql would have written it.
+void setSchemaVersion(const std::string& path, std::uint64_t version) {
+    MDB_env* env = nullptr;
+    REQUIRE(mdb_env_create(&env) == 0);
+    REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
+    REQUIRE(mdb_env_open(env, path.c_str(), 0, 0644) == 0);
+    MDB_txn* txn = nullptr;
+    REQUIRE(mdb_txn_begin(env, nullptr, 0, &txn) == 0);
+    MDB_dbi meta;
+    REQUIRE(mdb_dbi_open(txn, "meta", 0, &meta) == 0);
+    std::string bytes = codec::encodeU64(version);
+    MDB_val key = toVal(kSchemaVersionKey), value = toVal(bytes);
+    REQUIRE(mdb_put(txn, meta, &key, &value, 0) == 0);
+    REQUIRE(mdb_txn_commit(txn) == 0);
+    mdb_env_close(env);
+}
+
+}  // namespace
+
+TEST_CASE("a database of schema version 1 (records without checksums) is refused with the way forward",
+          "[storage][database][errors]") {
+    TempDir tmp;
+    Database::open(tmp.path());
+    setSchemaVersion(tmp.path(), 1);
+    auto error = openError(tmp.path());
+    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 1; this smql reads version 2");
+    REQUIRE_THAT(error.hint(), Catch::Contains("older smql"));
+    REQUIRE_THAT(error.hint(), Catch::Contains("smql export json"));
+}
+
 TEST_CASE("open refuses another schema version", "[storage][database][errors]") {
     TempDir tmp;
-    Database::open(tmp.path());  // a valid version-1 database, closed again
+    Database::open(tmp.path());  // a valid database, closed again
 
     // Rewrite its schema version the way a future smql would.
     MDB_env* env = nullptr;

@@ -1,0 +1,25 @@
+// `smql check DB`: what is wrong with a database, if anything (storage::checkDatabase).
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "shell/commands.hpp"
+#include "storage/check.hpp"
+
+namespace smql::shell {
+
+int checkCommand(const std::string& dbDir) {
+    auto report = storage::checkDatabase(dbDir);
+    for (const auto& problem : report.problems) std::cout << "problem: " << problem << "\n";
+    if (!report.ok()) {
+        std::cout << fmt::format("{}: {} problem{} found\n", dbDir, report.problems.size(),
+                                 report.problems.size() == 1 ? "" : "s");
+        return 1;
+    }
+    std::cout << fmt::format("{}: ok ({} scenes, {} nodes, {} relations, {} blobs; every record's checksum, the "
+                             "trees, the indexes and the lock file checked)\n",
+                             dbDir, report.scenes, report.nodes, report.relations, report.blobs);
+    return 0;
+}
+
+}  // namespace smql::shell

@@ -1,0 +1,220 @@
+#include "storage/check.hpp"
+
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "storage/database.hpp"
+
+namespace smql::storage {
+
+namespace {
+
+namespace fs = std::filesystem;
+using model::Node;
+using model::NodeId;
+
+struct FileId {
+    dev_t device;
+    ino_t inode;
+};
+
+// The processes (other than this one) that map `data`, and for each the
+// lock files it maps, from /proc/*/maps: LMDB maps both data.mdb and
+// lock.mdb, so a process that maps this data.mdb but not the current
+// lock.mdb has the database open under a lock file that was removed or
+// replaced. Processes of other users are invisible without privileges.
+std::map<pid_t, std::vector<std::string>> lockFilesOfProcessesMapping(const FileId& data, const std::optional<FileId>& lock,
+                                                                     bool& mapsCurrentLock) {
+    std::map<pid_t, std::vector<std::string>> out;
+    mapsCurrentLock = false;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator("/proc", ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.empty() || !std::all_of(name.begin(), name.end(), ::isdigit)) continue;
+        const pid_t pid = static_cast<pid_t>(std::stol(name));
+        if (pid == ::getpid()) continue;
+        std::ifstream maps(entry.path() / "maps");
+        bool mapsData = false, current = false;
+        std::vector<std::string> others;
+        for (std::string line; std::getline(maps, line);) {
+            std::istringstream fields(line);
+            std::string range, perms, offset, device, path;
+            unsigned long inode = 0;
+            if (!(fields >> range >> perms >> offset >> device >> inode)) continue;
+            std::getline(fields >> std::ws, path);
+            unsigned major = 0, minor = 0;
+            if (std::sscanf(device.c_str(), "%x:%x", &major, &minor) != 2) continue;
+            const dev_t dev = makedev(major, minor);
+            if (dev == data.device && inode == data.inode) mapsData = true;
+            if (path.find("lock.mdb") == std::string::npos) continue;
+            if (lock && dev == lock->device && inode == lock->inode) current = true;
+            else others.push_back(path);
+        }
+        if (!mapsData) continue;
+        mapsCurrentLock |= current;
+        if (!current) out[pid] = others;
+    }
+    return out;
+}
+
+void checkLockFile(const std::string& directory, CheckReport& report) {
+    struct stat data {}, lock {};
+    if (::stat((fs::path(directory) / "data.mdb").c_str(), &data) != 0) return;  // the open reports it
+    std::optional<FileId> lockId;
+    if (::stat((fs::path(directory) / "lock.mdb").c_str(), &lock) == 0) lockId = FileId{lock.st_dev, lock.st_ino};
+    bool anyCurrent = false;
+    auto stale = lockFilesOfProcessesMapping({data.st_dev, data.st_ino}, lockId, anyCurrent);
+    for (const auto& [pid, locks] : stale)
+        report.problems.push_back(fmt::format(
+            "lock.mdb: process {} has the database open under {}, not under the current {}/lock.mdb: its writes are "
+            "not serialised with other processes' (the lock file was removed or replaced while it ran); stop it",
+            pid, locks.empty() ? std::string("no lock file") : fmt::format("the lock file {}", locks.front()),
+            directory));
+}
+
+// Everything about one scene: its records, its tree and its index entries.
+struct SceneCounts {
+    std::uint64_t nodes = 0, children = 0, labels = 0, sourceIds = 0, relationEntries = 0, blobs = 0;
+};
+
+SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info, CheckReport& report) {
+    SceneCounts counts;
+    const std::string scene = fmt::format("scene '{}' (#{})", info.name, info.id);
+    // One damaged record can break every node below it: the first problems of a
+    // scene say what is wrong, the rest are counted.
+    constexpr std::size_t kShownPerScene = 20;
+    std::size_t found = 0;
+    auto problem = [&](std::string what) {
+        if (found++ < kShownPerScene) report.problems.push_back(fmt::format("{}: {}", scene, what));
+    };
+
+    std::vector<Node> nodes;
+    try {
+        txn.forEachNodeInScene(info.id, [&](const Node& n) { nodes.push_back(n); });
+    } catch (const Error& e) {
+        problem(e.message());
+        return counts;
+    }
+    counts.nodes = nodes.size();
+    if (nodes.empty() || nodes.front().id != info.id || nodes.front().kind != model::NodeKind::Scene)
+        problem("its scene node is missing");
+    else if (nodes.front().category != info.name)
+        problem(fmt::format("its scene node is named '{}'", nodes.front().category));
+    if (nodes.size() != info.nodeCount + 1)
+        problem(fmt::format("the scene record counts {} nodes, the node table holds {}", info.nodeCount,
+                            nodes.size() == 0 ? 0 : nodes.size() - 1));
+    if (auto byName = txn.sceneByName(info.name); !byName || byName->id != info.id)
+        problem("the scene name index does not lead to it");
+
+    std::set<NodeId> ids;
+    for (const Node& n : nodes) ids.insert(n.id);
+    std::map<NodeId, std::vector<NodeId>> childrenOf;
+    std::map<std::string, std::vector<NodeId>> byCategory;
+    for (const Node& n : nodes) {
+        if (n.kind == model::NodeKind::Scene) continue;
+        if (n.parent == model::kNoNode || !ids.contains(n.parent))
+            problem(fmt::format("node #{} has parent #{}, which is not a node of the scene", n.id, n.parent));
+        childrenOf[n.parent].push_back(n.id);
+        ++counts.children;
+        if (!n.category.empty()) byCategory[n.category].push_back(n.id), ++counts.labels;
+        if (n.sourceId) {
+            ++counts.sourceIds;
+            if (txn.nodeBySourceId(info.id, *n.sourceId) != n.id)
+                problem(fmt::format("the source id index does not lead from src#{} to node #{}", *n.sourceId, n.id));
+        }
+    }
+    try {
+        for (const Node& n : nodes) {
+            auto indexed = txn.children(n.id);
+            auto expected = childrenOf[n.id];
+            if (indexed != expected)
+                problem(fmt::format("the children index lists {} children of node #{}, the node records {}",
+                                    indexed.size(), n.id, expected.size()));
+            for (const auto& blob : txn.blobsOf(n.id)) {
+                txn.blob(n.id, blob.name);
+                ++counts.blobs;
+            }
+        }
+        for (const auto& [category, expected] : byCategory)
+            if (txn.nodesWithCategory(category, info.id) != expected)
+                problem(fmt::format("the label index for '{}' does not match the {} nodes of that category", category,
+                                    expected.size()));
+        txn.forEachRelationInScene(info.id, [&](const model::Relation& r) {
+            ++counts.relationEntries;
+            if (!ids.contains(r.subject) || !ids.contains(r.object)) {
+                problem(fmt::format("a {} relation joins #{} and #{}, not both nodes of the scene", model::toString(r.type),
+                                    r.subject, r.object));
+                return;
+            }
+            auto other = txn.relationsOf(r.object);
+            if (std::find(other.begin(), other.end(), r) == other.end())
+                problem(fmt::format("the {} relation of #{} to #{} is stored under its subject only",
+                                    model::toString(r.type), r.subject, r.object));
+        });
+    } catch (const Error& e) {
+        problem(e.message());
+    }
+    if (found > kShownPerScene)
+        report.problems.push_back(fmt::format("{}: and {} more problems", scene, found - kShownPerScene));
+    return counts;
+}
+
+}  // namespace
+
+CheckReport checkDatabase(const std::string& directory) {
+    CheckReport report;
+    checkLockFile(directory, report);
+    std::unique_ptr<Database> db;
+    try {
+        db = Database::open(directory, {.readOnly = true, .create = false});
+    } catch (const Error& e) {
+        report.problems.push_back(e.message());
+        return report;
+    }
+    auto txn = db->beginRead();
+    std::vector<model::SceneInfo> scenes;
+    try {
+        scenes = txn.scenes();
+    } catch (const Error& e) {
+        report.problems.push_back(e.message());
+        return report;
+    }
+    SceneCounts total;
+    for (const auto& info : scenes) {
+        SceneCounts counts = checkScene(txn, info, report);
+        total.nodes += counts.nodes;
+        total.children += counts.children;
+        total.labels += counts.labels;
+        total.sourceIds += counts.sourceIds;
+        total.relationEntries += counts.relationEntries;
+        total.blobs += counts.blobs;
+    }
+    report.scenes = scenes.size();
+    report.nodes = total.nodes;
+    report.relations = total.relationEntries;
+    report.blobs = total.blobs;
+
+    // Entries no scene accounts for: what a scene check cannot see from the inside.
+    std::map<std::string, std::uint64_t> expected = {
+        {"nodes", total.nodes},        {"scenes", scenes.size()},       {"scene_names", scenes.size()},
+        {"children", total.children},  {"labels", total.labels},        {"source_ids", total.sourceIds},
+        {"relations", 2 * total.relationEntries}};
+    for (const auto& stats : txn.tableStats())
+        if (auto it = expected.find(stats.name); it != expected.end() && stats.entries != it->second)
+            report.problems.push_back(fmt::format("table {} holds {} entries, the scenes account for {}", stats.name,
+                                                  stats.entries, it->second));
+    return report;
+}
+
+}  // namespace smql::storage

@@ -1,0 +1,192 @@
+// storage::checkDatabase (`smql check DB`): a sound database passes, and each
+// kind of damage is reported as a problem naming where it is.
+#include <catch2/catch.hpp>
+
+#include <lmdb.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "storage/check.hpp"
+#include "storage/codec.hpp"
+#include "storage/database.hpp"
+#include "storage/lmdb_env.hpp"
+#include "storage_test_support.hpp"
+
+using namespace smql;
+using namespace smql::storage;
+using namespace smql::storage::testing;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+void makeDatabase(const std::string& path) {
+    auto db = Database::open(path);
+    auto txn = db->beginWrite();
+    auto data = largeScene("big", 300);
+    data.blobs.push_back({5, "crop.jpg", "image/jpeg", std::string(100, 'j')});
+    txn.importScene(data);
+    txn.importScene(largeScene("small", 20));
+    txn.commit();
+}
+
+// Deletes one entry straight through LMDB, as damage or a bug elsewhere would.
+void deleteEntry(const std::string& path, const char* table, std::string_view key, std::optional<std::string_view> value) {
+    MDB_env* env = nullptr;
+    REQUIRE(mdb_env_create(&env) == 0);
+    REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
+    REQUIRE(mdb_env_open(env, path.c_str(), 0, 0644) == 0);
+    MDB_txn* txn = nullptr;
+    REQUIRE(mdb_txn_begin(env, nullptr, 0, &txn) == 0);
+    MDB_dbi dbi;
+    REQUIRE(mdb_dbi_open(txn, table, 0, &dbi) == 0);
+    MDB_val k = toVal(key), v;
+    if (value) v = toVal(*value);
+    REQUIRE(mdb_del(txn, dbi, &k, value ? &v : nullptr) == 0);
+    REQUIRE(mdb_txn_commit(txn) == 0);
+    mdb_env_close(env);
+}
+
+std::string keyOf(model::NodeId id) {
+    auto key = codec::idKey(id);
+    return {reinterpret_cast<const char*>(key.data()), key.size()};
+}
+
+bool reported(const CheckReport& report, const std::string& part) {
+    for (const auto& problem : report.problems)
+        if (problem.find(part) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("a sound database passes the check", "[storage][check]") {
+    TempDir tmp;
+    makeDatabase(tmp.sub("db"));
+    auto report = checkDatabase(tmp.sub("db"));
+    INFO((report.problems.empty() ? std::string() : report.problems.front()));
+    REQUIRE(report.ok());
+    REQUIRE(report.scenes == 2);
+    REQUIRE(report.nodes == 301 + 21);
+    REQUIRE(report.relations == 298 + 18);
+    REQUIRE(report.blobs == 1);
+}
+
+TEST_CASE("the check reports each kind of damage", "[storage][check]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path);
+    model::NodeId big = 0;
+    {
+        auto db = Database::open(path);
+        big = db->beginRead().sceneByName("big")->id;
+    }
+
+    SECTION("a record with a flipped byte") {
+        model::Node node;
+        {
+            auto db = Database::open(path);
+            node = *db->beginRead().node(big + 40);
+        }
+        std::string record;
+        codec::encodeNode(node, record);
+        std::string file;
+        {
+            std::ifstream in(fs::path(path) / "data.mdb", std::ios::binary);
+            file.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        auto at = file.find(record);
+        REQUIRE(at != std::string::npos);
+        std::fstream out(fs::path(path) / "data.mdb", std::ios::binary | std::ios::in | std::ios::out);
+        out.seekp(static_cast<std::streamoff>(at + record.size() - 8));
+        out.put(static_cast<char>(record[record.size() - 8] ^ 1));
+        out.close();
+        auto report = checkDatabase(path);
+        REQUIRE_FALSE(report.ok());
+        REQUIRE(reported(report, "corrupt record in scene 'big'"));
+        REQUIRE(reported(report, "node record for id " + std::to_string(node.id)));
+    }
+    SECTION("a missing label entry") {
+        auto entry = codec::labelEntry(big, big + 7);
+        std::string category;
+        {
+            auto db = Database::open(path);
+            category = db->beginRead().node(big + 7)->category;
+        }
+        deleteEntry(path, "labels", category, std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));
+        auto report = checkDatabase(path);
+        REQUIRE(reported(report, "scene 'big' (#" + std::to_string(big) + "): the label index for '" + category + "'"));
+        REQUIRE(reported(report, "table labels holds"));
+    }
+    SECTION("a missing node record") {
+        // The room (the scene's first node after the scene node): every object hangs below it.
+        deleteEntry(path, "nodes", keyOf(big + 1), std::nullopt);
+        auto report = checkDatabase(path);
+        REQUIRE(reported(report, "the scene record counts 300 nodes, the node table holds 299"));
+        REQUIRE(reported(report, "node #" + std::to_string(big + 2) + " has parent #" + std::to_string(big + 1) +
+                                     ", which is not a node of the scene"));
+    }
+    SECTION("a relation stored under one end only") {
+        std::vector<model::Relation> relations;
+        {
+            auto db = Database::open(path);
+            relations = db->beginRead().relationsOf(big + 3);
+        }
+        REQUIRE_FALSE(relations.empty());
+        const auto& r = relations.front();
+        auto entry = codec::encodeRelationEntry(r, codec::RelationSide::Object);
+        deleteEntry(path, "relations", keyOf(r.object),
+                    std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));
+        auto report = checkDatabase(path);
+        REQUIRE(reported(report, "is stored under its subject only"));
+    }
+    SECTION("a data file cut short") {
+        fs::resize_file(fs::path(path) / "data.mdb", fs::file_size(fs::path(path) / "data.mdb") / 2);
+        auto report = checkDatabase(path);
+        REQUIRE(report.problems.size() == 1);
+        REQUIRE_THAT(report.problems.front(), Catch::Contains("cut short"));
+    }
+}
+
+TEST_CASE("the check names a process that has the database open under a removed lock file", "[storage][check]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path);
+    int ready[2];
+    REQUIRE(::pipe(ready) == 0);
+    pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        ::close(ready[0]);
+        try {
+            auto db = Database::open(path);
+            db->beginRead().scenes();
+            char c = 'r';
+            if (::write(ready[1], &c, 1) != 1) ::_exit(2);
+            ::pause();
+        } catch (...) {
+            ::_exit(3);
+        }
+        ::_exit(0);
+    }
+    ::close(ready[1]);
+    char c = 0;
+    REQUIRE(::read(ready[0], &c, 1) == 1);
+    ::close(ready[0]);
+
+    REQUIRE(checkDatabase(path).ok());  // the child uses the current lock file
+    fs::remove(fs::path(path) / "lock.mdb");
+    auto report = checkDatabase(path);
+    ::kill(child, SIGKILL);
+    ::waitpid(child, nullptr, 0);
+
+    REQUIRE(reported(report, "lock.mdb: process " + std::to_string(child) + " has the database open under"));
+    REQUIRE(reported(report, "(deleted)"));
+    // With that process gone, the new lock file is the only one: nothing to report.
+    REQUIRE(checkDatabase(path).ok());
+}
