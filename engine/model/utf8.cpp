@@ -38,4 +38,20 @@ std::optional<std::size_t> invalidUtf8At(std::string_view text) {
     return std::nullopt;
 }
 
+std::string escapeInvalidUtf8(std::string_view text) {
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    std::string out;
+    out.reserve(text.size());
+    while (std::optional<std::size_t> bad = invalidUtf8At(text)) {
+        const auto byte = static_cast<unsigned char>(text[*bad]);
+        out.append(text.substr(0, *bad));
+        out += "\\x";
+        out += kHex[byte >> 4];
+        out += kHex[byte & 15];
+        text.remove_prefix(*bad + 1);
+    }
+    out.append(text);
+    return out;
+}
+
 }  // namespace smql::model

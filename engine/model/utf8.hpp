@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace smql::model {
@@ -13,5 +14,9 @@ namespace smql::model {
 // sequence (RFC 3629: no overlong forms, no surrogates, nothing above
 // U+10FFFF), or std::nullopt when the whole text is valid.
 std::optional<std::size_t> invalidUtf8At(std::string_view text);
+
+// `text` with every byte that is not part of a well-formed UTF-8 character
+// written as \xNN, for messages that quote what a file holds.
+std::string escapeInvalidUtf8(std::string_view text);
 
 }  // namespace smql::model
