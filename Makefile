@@ -5,7 +5,9 @@ TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc)
 PREFIX ?= /usr/local
 
-.PHONY: all setup configure build debug test demo bench install clean
+FUZZ_SECONDS ?= 60
+
+.PHONY: all setup configure build debug test demo bench fuzz install clean
 
 all: build
 
@@ -30,8 +32,12 @@ demo: build
 bench: build
 	@$(BUILD)/bench/smql_bench --out docs/benchmarks.md
 
+# libFuzzer targets, built with clang in build-fuzz, each run FUZZ_SECONDS seconds; fails on a crash.
+fuzz: setup
+	@scripts/fuzz.sh $(FUZZ_SECONDS)
+
 install: build
 	@cmake --install $(BUILD)
 
 clean:
-	@rm -rf $(BUILD) build-debug
+	@rm -rf $(BUILD) build-debug build-fuzz

@@ -53,6 +53,14 @@ nlohmann::ordered_json resultJson(const ResultSet& result) {
     return out;
 }
 
+std::string jsonText(const nlohmann::ordered_json& value) {
+    return value.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+std::string jsonText(const nlohmann::json& value) {
+    return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 std::string formatTable(const ResultSet& result) {
     if (result.columns.empty()) return {};
     std::vector<std::size_t> width(result.columns.size());
@@ -95,7 +103,7 @@ std::string formatCsv(const ResultSet& result) {
     out += "\n";
     for (const auto& row : result.rows) {
         for (std::size_t c = 0; c < row.size(); ++c) {
-            std::string cell = typeOf(row[c]) == ValueType::Box ? valueJson(row[c]).dump() : valueText(row[c]);
+            std::string cell = typeOf(row[c]) == ValueType::Box ? jsonText(valueJson(row[c])) : valueText(row[c]);
             out += (c ? "," : "") + quote(cell);
         }
         out += "\n";

@@ -15,6 +15,11 @@ nlohmann::ordered_json valueJson(const Value& value);
 nlohmann::ordered_json rowJson(const ResultSet& result, std::size_t row);
 // {"columns": [...], "rows": [{...}], "message": "..."}
 nlohmann::ordered_json resultJson(const ResultSet& result);
+// JSON text, compact. Text that is not UTF-8 (a database written before
+// imports checked it) comes out with U+FFFD in place of the bad bytes instead
+// of failing the whole answer.
+std::string jsonText(const nlohmann::ordered_json& value);
+std::string jsonText(const nlohmann::json& value);
 std::string formatTable(const ResultSet& result);
 std::string formatCsv(const ResultSet& result);
 

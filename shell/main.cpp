@@ -27,7 +27,7 @@ int runShell(int argc, char** argv) {
     std::string dir, command, script, format = "table";
     bool readOnly = false, timer = false;
     app.add_option("database", dir, "database directory (created if missing)")->required();
-    app.add_option("-c,--command", command, "run these statements and exit");
+    auto* commandOption = app.add_option("-c,--command", command, "run these statements and exit");
     app.add_option("-f,--file", script, "run the statements of this file and exit")->check(CLI::ExistingFile);
     app.add_option("--format", format, "output format: table, json or csv")->check(CLI::IsMember({"table", "json", "csv"}));
     app.add_flag("--read-only", readOnly, "open the database read-only");
@@ -35,6 +35,11 @@ int runShell(int argc, char** argv) {
     app.set_version_flag("--version", kVersion);
     CLI11_PARSE(app, argc, argv);
 
+    // `-c ""` (an unset variable in a script, say) would otherwise fall through
+    // to reading standard input or the interactive shell and exit 0.
+    if (commandOption->count() > 0 && command.find_first_not_of(" \t\r\n") == std::string::npos)
+        throw smql::Error(smql::ErrorKind::Usage, "-c was given no statement", std::nullopt,
+                          "write the statements after -c, as in smql DB -c 'SHOW SCENES'");
     auto outputFormat = smql::shell::parseFormat(format);
     auto engine = smql::Engine::open(dir, readOnly);
     if (command.empty() && script.empty()) {

@@ -49,7 +49,7 @@ Session::Session(Engine& engine, std::ostream& out, std::ostream& err, OutputFor
 
 void Session::print(const ResultSet& result) {
     switch (format_) {
-        case OutputFormat::Json: out_ << resultJson(result).dump() << "\n"; break;
+        case OutputFormat::Json: out_ << jsonText(resultJson(result)) << "\n"; break;
         case OutputFormat::Csv: out_ << formatCsv(result); break;
         case OutputFormat::Table:
             out_ << formatTable(result);
@@ -71,7 +71,7 @@ bool Session::runStatements(std::string_view text) {
             nlohmann::json j = {{"error", {{"kind", toString(e.kind())}, {"message", e.message()}}}};
             if (e.where()) j["error"]["line"] = e.where()->line, j["error"]["column"] = e.where()->column;
             if (!e.hint().empty()) j["error"]["hint"] = e.hint();
-            err_ << j.dump() << "\n";
+            err_ << jsonText(j) << "\n";
         } else {
             err_ << e.render(text) << "\n";
         }

@@ -2,6 +2,8 @@
 
 #include <mutex>
 
+#include <fmt/format.h>
+
 #include "engine/parser/ast_builder.hpp"
 #include "engine/parser/source.hpp"
 #include "engine/parser/statement_parser.hpp"
@@ -19,6 +21,49 @@ std::mutex& antlrMutex() {
     return mutex;
 }
 
+// Rejects a statement too long or too deeply nested to parse safely, before
+// ANTLR sees it. Nesting is what the recursive rules will recurse on: each
+// open parenthesis (conditions and sub-queries alike) and each NOT of a chain
+// (`NOT NOT x` recurses without parentheses).
+void checkLimits(const Source& source, const StatementSlice& slice) {
+    const auto& tokens = source.tokens();
+    const antlr4::Token& first = *tokens[slice.begin];
+    const antlr4::Token& last = *tokens[slice.end - 1];
+    const std::size_t length = last.getStopIndex() + 1 - first.getStartIndex();
+    if (length > kMaxStatementLength)
+        throw Error(ErrorKind::Syntax,
+                    fmt::format("the statement is {} characters long; the limit is {}", length, kMaxStatementLength),
+                    locationOf(first), "split it into shorter statements");
+
+    std::vector<std::size_t> opened;  // the levels each open parenthesis added (its NOTs and itself)
+    std::size_t depth = 0, nots = 0;
+    for (std::size_t i = slice.begin; i < slice.end; ++i) {
+        const antlr4::Token& token = *tokens[i];
+        switch (token.getType()) {
+            case SmqlLexer::NOT: ++nots; break;
+            case SmqlLexer::LPAREN:
+                opened.push_back(nots + 1);
+                depth += nots + 1;
+                nots = 0;
+                break;
+            case SmqlLexer::RPAREN:
+                if (!opened.empty()) {
+                    depth -= opened.back();
+                    opened.pop_back();
+                }
+                nots = 0;
+                break;
+            default: nots = 0; break;
+        }
+        if (depth + nots > kMaxNestingDepth)
+            throw Error(ErrorKind::Syntax,
+                        fmt::format("the statement nests more than {} levels deep (parentheses, sub-queries and NOT "
+                                    "together)",
+                                    kMaxNestingDepth),
+                        locationOf(token), "write the condition with fewer levels, or split it into several statements");
+    }
+}
+
 }  // namespace
 
 std::vector<ast::Statement> parse(std::string_view text) {
@@ -32,6 +77,7 @@ std::vector<ast::Statement> parse(std::string_view text) {
     // Statement by statement, so the error reported is the first one in the text.
     std::vector<ast::Statement> statements;
     for (const StatementSlice& slice : slices) {
+        checkLimits(source, slice);
         StatementParser parser(source, slice);
         statements.push_back(buildStatement(parser.parse(), source));
     }

@@ -1,6 +1,7 @@
 // Text -> AST. The only place that knows about ANTLR.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -8,6 +9,14 @@
 #include "engine/parser/ast.hpp"
 
 namespace smql::parser {
+
+// Limits on one statement (docs/language.md, "Limits"). The parser is a
+// recursive descent: each level of nesting costs stack in ANTLR's rules, the
+// tree walker, the binder and the executor, so nesting is bounded before any
+// of them runs, as SQLite bounds expression depth (SQLITE_MAX_EXPR_DEPTH).
+// Real statements nest a handful of levels and run to a few hundred characters.
+inline constexpr std::size_t kMaxNestingDepth = 100;       // parentheses, sub-queries and NOTs together
+inline constexpr std::size_t kMaxStatementLength = 100000; // characters
 
 // Parses one or more `;`-separated statements. Throws smql::Error
 // (ErrorKind::Syntax) with the line, column and a hint at the first error;

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
+#include "engine/model/utf8.hpp"
+
 namespace smql::parser {
 
 using grammar::SmqlLexer;
@@ -24,13 +28,27 @@ public:
 }  // namespace
 
 Source::Source(std::string_view text) {
-    try {
-        input_ = std::make_unique<antlr4::ANTLRInputStream>(std::string(text));
-    } catch (const std::exception&) {
-        // The runtime decodes UTF-8 up front and throws on malformed bytes.
-        throw Error(ErrorKind::Syntax, "the text is not valid UTF-8", std::nullopt,
-                    "save the query as UTF-8 text");
+    // Checked here rather than left to the runtime, whose decoder swallows
+    // the bytes after a bad one (a quote among them reads as an unterminated
+    // string) instead of saying where the text stops being UTF-8.
+    if (std::optional<std::size_t> bad = model::invalidUtf8At(text)) {
+        std::string_view before = text.substr(0, *bad);
+        std::size_t lineStart = before.rfind('\n');
+        lineStart = lineStart == std::string_view::npos ? 0 : lineStart + 1;
+        int line = 1 + static_cast<int>(std::count(before.begin(), before.end(), '\n'));
+        // Columns count characters: skip UTF-8 continuation bytes.
+        int column = 1 + static_cast<int>(std::count_if(before.begin() + static_cast<std::ptrdiff_t>(lineStart),
+                                                         before.end(), [](char c) {
+                                                             return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+                                                         }));
+        throw Error(ErrorKind::Syntax,
+                    fmt::format("the text is not valid UTF-8: byte {} (0x{:02X}) does not start or continue a "
+                                "UTF-8 character",
+                                *bad + 1, static_cast<unsigned char>(text[*bad])),
+                    SourceLocation{line, column, 1},
+                    "save the query as UTF-8 text (a Latin-1 or Windows-1252 file must be converted, e.g. with iconv)");
     }
+    input_ = std::make_unique<antlr4::ANTLRInputStream>(std::string(text));
     static LexerErrors lexerErrors;
     lexer_ = std::make_unique<SmqlLexer>(input_.get());
     lexer_->removeErrorListeners();

@@ -131,6 +131,18 @@ std::string expectedWords(const std::vector<std::size_t>& types, bool afterNumbe
     return joinAlternatives(words);
 }
 
+// NaN and infinity are words to the lexer, so `near(door, NaN m)` would read
+// as a name followed by an unexpected unit.
+bool isNotANumberWord(const antlr4::Token* token) {
+    if (!token || token->getType() != SmqlLexer::IDENT) return false;
+    std::string word = lowerCase(token->getText());
+    return word == "nan" || word == "inf" || word == "infinity";
+}
+
+bool isUnitToken(const antlr4::Token* token) {
+    return token && token->getType() == SmqlLexer::IDENT && unitsPerMetre(lowerCase(token->getText()));
+}
+
 std::string commandList() {
     std::vector<std::string> words;
     for (std::size_t type = SmqlLexer::FIND; startsCommand(type); ++type) words.push_back(tokenName(type));
@@ -205,6 +217,25 @@ Error syntaxError(const Source& source, const StatementSlice& slice, std::size_t
     if (atEnd && !open.empty() && expected.count(SmqlLexer::RPAREN))
         return Error(ErrorKind::Syntax, "'(' is never closed", locationOf(*open.back()),
                      source.hasTerminator(slice) ? "add ')' before the ';'" : "add ')' at the end");
+
+    // Numbers that are not finite, and negative distances: say what is wrong
+    // with the number rather than with the unit after it.
+    const antlr4::Token* next =
+        !atEnd && failedAt + 1 < slice.end - slice.begin ? tokens[slice.begin + failedAt + 1].get() : nullptr;
+    const antlr4::Token* notANumber = isNotANumberWord(offending) && expected.count(SmqlLexer::NUMBER) ? offending
+                                      : isUnitToken(offending) && isNotANumberWord(previous)          ? previous
+                                                                                                       : nullptr;
+    if (notANumber)
+        return Error(ErrorKind::Syntax, fmt::format("'{}' is not a number", notANumber->getText()),
+                     locationOf(*notANumber), "distances and values are finite numbers, as in 1.5 m");
+    if (type == SmqlLexer::MINUS && expected.count(SmqlLexer::NUMBER) && !expected.count(SmqlLexer::MINUS) && next &&
+        next->getType() == SmqlLexer::NUMBER) {
+        const antlr4::Token* unit = failedAt + 2 < slice.end - slice.begin ? tokens[slice.begin + failedAt + 2].get()
+                                                                            : nullptr;
+        return Error(ErrorKind::Syntax, "a distance cannot be negative",
+                     span(*offending, isUnitToken(unit) ? *unit : *next),
+                     "write a distance of 0 or more, as in near(door, 1.5 m)");
+    }
 
     // The grammar took the word after a number as its unit, so the parse
     // failed one token later than the real mistake.

@@ -121,6 +121,8 @@ std::vector<Image> readImagesText(const fs::path& path) {
         std::vector<double> v = parseNumbers(file, line.number, {tokens.begin() + 1, tokens.begin() + 8}, kColmapHint);
         image.worldToCamera =
             poseFromQuaternion(file, line.number, v[4], v[5], v[6], v[1], v[2], v[3], v[0], kColmapHint);
+        checkPosition(file, line.number, fmt::format("the camera of image {} ('{}')", image.id, tokens[9]),
+                      inverse(image.worldToCamera).translation, kColmapHint);
         image.camera = integerAt(file, line.number, tokens[8], "camera id");
         image.name = std::string(tokens[9]);
         image.where = fmt::format("{}:{}", file, line.number);
@@ -150,6 +152,7 @@ std::vector<SparsePoint> readPointsText(const fs::path& path) {
             failAt(file, line.number, "expected POINT3D_ID X Y Z R G B ERROR and (IMAGE_ID POINT2D_IDX) pairs",
                    kColmapHint);
         std::vector<double> xyz = parseNumbers(file, line.number, {tokens.begin() + 1, tokens.begin() + 4}, kColmapHint);
+        checkPosition(file, line.number, fmt::format("point {}", tokens[0]), {xyz[0], xyz[1], xyz[2]}, kColmapHint);
         SparsePoint point;
         point.position = {xyz[0], xyz[1], xyz[2]};
         for (int c = 0; c < 3; ++c) {
@@ -263,6 +266,7 @@ std::vector<Image> readImagesBinary(const fs::path& path) {
         image.name = in.readString(what);
         image.where = fmt::format("{}: image {} ('{}')", in.file(), image.id, image.name);
         image.worldToCamera = poseFromQuaternion(image.where, 0, t[0], t[1], t[2], q[1], q[2], q[3], q[0], kColmapHint);
+        checkPosition(image.where, 0, "the camera", inverse(image.worldToCamera).translation, kColmapHint);
         std::uint64_t points2d = in.read<std::uint64_t>(what);
         in.skip(points2d, 24, what);
         images.push_back(std::move(image));
@@ -284,6 +288,7 @@ std::vector<SparsePoint> readPointsBinary(const fs::path& path) {
         for (double& v : xyz) v = in.read<double>(what);
         if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
             fail(in.file(), fmt::format("point {}: position is not finite", id), kColmapHint);
+        checkPosition(in.file(), 0, fmt::format("point {}", id), {xyz[0], xyz[1], xyz[2]}, kColmapHint);
         point.position = {xyz[0], xyz[1], xyz[2]};
         for (auto& c : point.color) c = in.read<std::uint8_t>(what);
         in.read<double>(what);  // reprojection error

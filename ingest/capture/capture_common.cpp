@@ -182,6 +182,17 @@ Pose inverse(const Pose& pose) {
     return out;
 }
 
+void checkPosition(const std::string& file, int line, std::string_view what, const model::Vec3& position,
+                   std::string_view hint) {
+    constexpr double limit = import::detail::kMaxCoordinate;
+    if (std::abs(position.x) <= limit && std::abs(position.y) <= limit && std::abs(position.z) <= limit) return;
+    failAt(file, line,
+           fmt::format("{} is at ({:g}, {:g}, {:g}), beyond {:g} m from the origin: positions must lie within {:g} "
+                       "on every axis (a unit mix-up or a geo-referenced model?)",
+                       what, position.x, position.y, position.z, limit, limit),
+           hint);
+}
+
 Intrinsics kinectDefault(int width, int height) {
     double f = 525.0 * width / 640.0;
     return Intrinsics{width, height, f, f, (width - 1) / 2.0, (height - 1) / 2.0};

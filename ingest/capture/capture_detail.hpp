@@ -79,6 +79,14 @@ Pose poseFromQuaternion(const std::string& file, int line, double tx, double ty,
                         double qz, double qw, std::string_view hint);
 Pose inverse(const Pose& pose);
 
+// Where a camera or point may be: within import::detail::kMaxCoordinate
+// (10 km) of the origin on every axis, as imported scenes. A pose of 1e39 m
+// becomes Inf in the single-precision clouds and aborts PCL; anything beyond
+// a few km is a unit mix-up or a geo-referenced model, never a room.
+// Throws an Input error at file:line naming `what` ("the camera of frame 3").
+void checkPosition(const std::string& file, int line, std::string_view what, const model::Vec3& position,
+                   std::string_view hint);
+
 // Kinect default (fx = fy = 525 at 640 px wide, centred principal point).
 Intrinsics kinectDefault(int width, int height);
 // A guess for an unknown camera: fx = fy = 1.2 * width, centred principal point.

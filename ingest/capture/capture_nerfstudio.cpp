@@ -7,6 +7,7 @@
 
 #include "engine/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/import/common.hpp"
 #include "ingest/import/json_field.hpp"
 
 namespace smql::ingest::capture_detail {
@@ -88,6 +89,13 @@ Pose readTransform(const Field& field) {
     for (int row = 0; row < 3; ++row)
         for (int col = 0; col < 3; ++col) pose.rotation[row * 3 + col] = r(row, col);
     pose.translation = {m(0, 3), m(1, 3), m(2, 3)};
+    // Field::fail names the file and the frame's JSON path.
+    constexpr double limit = import::detail::kMaxCoordinate;
+    for (double c : {m(0, 3), m(1, 3), m(2, 3)})
+        if (std::abs(c) > limit)
+            field.fail(fmt::format("the camera is at ({:g}, {:g}, {:g}), beyond {:g} m from the origin: positions must "
+                                   "lie within {:g} on every axis (a unit mix-up or a geo-referenced model?)",
+                                   m(0, 3), m(1, 3), m(2, 3), limit, limit));
     return pose;
 }
 

@@ -87,6 +87,8 @@ std::vector<Pose> readPoseFile(const fs::path& file) {
         std::vector<double> v = parseNumbers(file.string(), line.number, tokens, kRgbdHint);
         poses.push_back(poseFromQuaternion(file.string(), line.number, v[0], v[1], v[2], v[3], v[4], v[5], v[6],
                                            kRgbdHint));
+        checkPosition(file.string(), line.number, fmt::format("the camera of frame {} (in frame-number order)", poses.size()),
+                      poses.back().translation, kRgbdHint);
     }
     return poses;
 }
@@ -250,6 +252,8 @@ std::vector<PoseSample> readGroundTruth(const fs::path& file) {
                    fmt::format("expected 8 numbers (timestamp tx ty tz qx qy qz qw), got {}", tokens.size()), kTumHint);
         std::vector<double> v = parseNumbers(file.string(), line.number, tokens, kTumHint);
         poseFromQuaternion(file.string(), line.number, v[1], v[2], v[3], v[4], v[5], v[6], v[7], kTumHint);  // checks
+        checkPosition(file.string(), line.number, fmt::format("the camera at time {}", tokens[0]), {v[1], v[2], v[3]},
+                      kTumHint);
         Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
         q.normalize();
         out.push_back(PoseSample{v[0], Eigen::Vector3d(v[1], v[2], v[3]), q});

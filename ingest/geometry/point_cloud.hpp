@@ -34,14 +34,17 @@ struct DepthView {
     Intrinsics intrinsics;
 };
 
+// Readings farther than this (metres) are noise for room-scale sensors.
+inline constexpr double kMaxDepthReading = 6.0;
+
 // Depth pixels of one frame as world points, through the camera-to-world
 // `pose`: every `stride`-th pixel in both directions; pixels without a reading
 // (0, NaN) and readings beyond `maxDepth` metres are dropped. Every point
 // carries `frame` and its pixel's colour. Frames without depth give nothing.
 PointCloud backProject(const FrameImages& images, const Pose& pose, std::uint32_t frame, int stride = 2,
-                       double maxDepth = 6.0);
+                       double maxDepth = kMaxDepthReading);
 PointCloud backProject(const DepthView& depth, const Pose& pose, std::uint32_t frame, int stride = 2,
-                       double maxDepth = 6.0);
+                       double maxDepth = kMaxDepthReading);
 
 // One point per occupied voxel of edge `voxel`: the mean position and mean
 // colour of the voxel's points, and the frame of the point nearest that mean

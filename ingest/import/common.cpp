@@ -8,6 +8,8 @@
 #include <numbers>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "engine/error.hpp"
 
 namespace smql::import::detail {
@@ -34,6 +36,12 @@ std::string lowerCase(std::string_view text) {
     for (char& c : out)
         if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
     return out;
+}
+
+std::string angleProblem(double radians) {
+    if (std::abs(radians) <= kMaxAngle) return {};
+    return fmt::format("{} is not an angle in radians: angles must lie within +-4 pi (two turns){}", radians,
+                       std::abs(radians) <= 720 ? "; degrees must be converted to radians" : "");
 }
 
 double normaliseYaw(double yaw) {

@@ -11,12 +11,19 @@ namespace smql::import::detail {
 // a unit mix-up or a corrupt file, not a room.
 inline constexpr double kMaxCoordinate = 1e4;
 inline constexpr double kMaxSize = 1000;
+// Angles (radians): a box's yaw turns at most two whole turns either way.
+// Files write angles in (-pi, pi]; a larger one is degrees written as radians
+// or garbage (a yaw of 1e300 has no digits left below a whole turn).
+inline constexpr double kMaxAngle = 4 * 3.141592653589793;
 
 // The whole file as bytes; throws an Input error naming the file when it
 // does not exist, is not a regular file, or cannot be read.
 std::string readTextFile(const std::string& path, const std::string& hint);
 
 std::string lowerCase(std::string_view text);
+
+// "<what> <value> is beyond +-4 pi radians ..." when |value| > kMaxAngle, else empty.
+std::string angleProblem(double radians);
 
 // The same angle in (-pi, pi].
 double normaliseYaw(double yaw);

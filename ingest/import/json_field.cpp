@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "engine/error.hpp"
+#include "engine/model/utf8.hpp"
 #include "ingest/import/common.hpp"
 
 namespace smql::import::detail {
@@ -15,12 +16,14 @@ namespace {
 
 // nlohmann's messages start with "[json.exception.x.n] parse error at line L, column C: ";
 // the location is reported our way, so keep only the reason.
+// The text it quotes ("last read: ...") is the file's raw bytes, which need
+// not be UTF-8.
 std::string reasonOf(const std::string& what) {
     std::size_t column = what.find("column ");
     std::size_t colon = what.find(": ", column == std::string::npos ? 0 : column);
-    if (colon != std::string::npos) return what.substr(colon + 2);
+    if (colon != std::string::npos) return model::escapeInvalidUtf8(what.substr(colon + 2));
     std::size_t bracket = what.find("] ");
-    return bracket == std::string::npos ? what : what.substr(bracket + 2);
+    return model::escapeInvalidUtf8(bracket == std::string::npos ? what : what.substr(bracket + 2));
 }
 
 SourceLocation locationOfByte(const std::string& text, std::size_t byte) {

@@ -70,6 +70,11 @@ Json relationJson(const model::Relation& relation) {
     return out;
 }
 
+// Text that is not UTF-8 is written with U+FFFD in its place rather than
+// failing the export: imports reject it, but a database written before they
+// did may hold some.
+std::string jsonText(const Json& value) { return value.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
 // Like dump(2), except that arrays of plain values (coordinates, the
 // alignment matrix) stay on one line instead of one number per line.
 void writePretty(const Json& value, int level, std::string& out) {
@@ -85,7 +90,7 @@ void writePretty(const Json& value, int level, std::string& out) {
             out += separator;
             separator = ",";
             newline(level + 1);
-            out += Json(key).dump() + ": ";
+            out += jsonText(Json(key)) + ": ";
             writePretty(member, level + 1, out);
         }
         newline(level);
@@ -105,12 +110,12 @@ void writePretty(const Json& value, int level, std::string& out) {
         out += '[';
         const char* separator = "";
         for (const Json& element : value) {
-            out += separator + element.dump();
+            out += separator + jsonText(element);
             separator = ", ";
         }
         out += ']';
     } else {
-        out += value.dump();
+        out += jsonText(value);
     }
 }
 
@@ -130,6 +135,12 @@ model::Vec3 coordinates(const Field& field) {
     return v;
 }
 
+double angle(const Field& field) {
+    double value = field.number();
+    if (std::string problem = detail::angleProblem(value); !problem.empty()) field.fail(problem);
+    return value;
+}
+
 model::Box readBox(const Field& field, bool needsExtent) {
     field.allowOnly({"center", "size", "yaw"});
     model::Box box;
@@ -140,7 +151,7 @@ model::Box readBox(const Field& field, bool needsExtent) {
         if ((needsExtent ? !(s > 0) : s < 0) || s > kMaxSize)
             sizeField.fail(fmt::format("size {} is out of range: sizes must be in {}0, {}] m", s,
                                        needsExtent ? "(" : "[", kMaxSize));
-    if (auto yaw = field.find("yaw")) box.yaw = yaw->number();
+    if (auto yaw = field.find("yaw")) box.yaw = angle(*yaw);
     return box;
 }
 
@@ -162,7 +173,7 @@ void readInfo(const Field& field, model::SceneInfo& info) {
     if (auto f = field.find("viewpoint")) {
         f->allowOnly({"position", "facing_yaw"});
         info.viewpoint.position = coordinates(f->at("position"));
-        info.viewpoint.facingYaw = f->at("facing_yaw").number();
+        info.viewpoint.facingYaw = angle(f->at("facing_yaw"));
     }
     if (auto f = field.find("viewpoint_note")) info.viewpointNote = f->string();
 }

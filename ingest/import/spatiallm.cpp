@@ -1,4 +1,5 @@
 // SpatialLM layout text -> SceneData (docs/formats.md, "SpatialLM layout").
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <fmt/ranges.h>
 
 #include "engine/error.hpp"
+#include "engine/model/utf8.hpp"
 #include "ingest/import/common.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/viewpoint.hpp"
@@ -76,6 +78,7 @@ public:
 
     void parseLine(int lineNumber, std::string_view line) {
         line_ = lineNumber;
+        checkUtf8(line);
         Token whole = trimmed(line, 0, line.size());
         if (whole.text.empty() || whole.text.front() == '#') return;
 
@@ -109,6 +112,10 @@ public:
         model::Node node;
         node.id = nodes_.size() + 1;
         node.sourceId = type->idBase + number;
+        // wall_1 and wall_01 are two names for one number, so one source id.
+        if (auto [it, fresh] = sourceIdAt_.emplace(*node.sourceId, std::pair{std::string(name.text), line_}); !fresh)
+            fail(name, fmt::format("'{}' has the same number as '{}' (line {}): both would get source id {}", name.text,
+                                   it->second.first, it->second.second, *node.sourceId));
         if (type->prefix == "wall")
             readWall(node, args, name);
         else if (type->prefix == "bbox")
@@ -125,6 +132,31 @@ private:
         throw Error(ErrorKind::Input, fmt::format("{}:{}: {}", path_, line_, what),
                     SourceLocation{line_, where.column, std::max(1, static_cast<int>(where.text.size()))},
                     std::string(kHint));
+    }
+
+    // Text that is not UTF-8 (a Latin-1 class name) would be stored and then
+    // break every JSON answer about it: reject it, naming the field.
+    void checkUtf8(std::string_view line) const {
+        std::optional<std::size_t> bad = model::invalidUtf8At(line);
+        if (!bad) return;
+        std::size_t equals = line.find('=');
+        std::size_t open = line.find('(', equals == std::string_view::npos ? 0 : equals);
+        std::string field = "the line";
+        if (equals != std::string_view::npos && *bad < equals) {
+            field = "name";
+        } else if (open != std::string_view::npos && *bad > open) {
+            std::string_view typeName = trimmed(line, equals + 1, open).text;
+            std::size_t index = static_cast<std::size_t>(std::count(line.begin() + open, line.begin() + *bad, ','));
+            field = fmt::format("value {}", index + 1);
+            for (const EntityType& t : entityTypes())
+                if (typeName == t.name && index < t.fields.size()) field = std::string(t.fields[index]);
+        } else if (equals != std::string_view::npos) {
+            field = "type";
+        }
+        fail(Token{line.substr(*bad, 1), static_cast<int>(*bad) + 1},
+             fmt::format("{}: byte 0x{:02X} at column {} is not UTF-8 (the file must be UTF-8 text; convert a Latin-1 "
+                         "file with iconv -f latin1 -t utf-8)",
+                         field, static_cast<unsigned char>(line[*bad]), *bad + 1));
     }
 
     std::int64_t entityNumber(const Token& name, const EntityType& type) const {
@@ -226,13 +258,16 @@ private:
         node.geometry = model::GeometryKind::Box;
         node.box.center = {coordinate(args[1], "position_x"), coordinate(args[2], "position_y"),
                            coordinate(args[3], "position_z")};
-        node.box.yaw = detail::normaliseYaw(number(args[4], "angle_z"));
+        double angle = number(args[4], "angle_z");
+        if (std::string problem = detail::angleProblem(angle); !problem.empty()) fail(args[4], "angle_z: " + problem);
+        node.box.yaw = detail::normaliseYaw(angle);
         node.box.size = {size(args[5], "scale_x"), size(args[6], "scale_y"), size(args[7], "scale_z")};
     }
 
     const std::string& path_;
     int line_ = 0;
     std::map<std::string, int> definedAt_;
+    std::map<std::int64_t, std::pair<std::string, int>> sourceIdAt_;  // source id -> name, line
     std::map<std::string, WallInfo> walls_;
     std::vector<model::Node> nodes_;
 };

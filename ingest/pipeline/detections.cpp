@@ -13,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "engine/error.hpp"
+#include "engine/model/utf8.hpp"
 
 namespace smql::ingest {
 
@@ -62,7 +63,10 @@ cv::Mat1b decodeRle(const nlohmann::json& s, const Intrinsics& K, const std::fun
             int k = 0;
             bool more = true;
             while (more) {
-                if (p >= text.size() || k > 12) bad("RLE mask: counts string is truncated");
+                if (p >= text.size()) bad("RLE mask: counts string is truncated");
+                // A run never exceeds the pixel count (< 2^34 for the largest images the readers
+                // accept), which 7 groups hold with its sign; more would also shift past 64 bits.
+                if (k == 7) bad("RLE mask: a run in the counts string is longer than any image");
                 int c = text[p++] - 48;
                 if (c < 0 || c > 63) bad("RLE mask: counts string holds a character outside '0'..'o'");
                 x |= static_cast<long long>(c & 0x1f) << (5 * k);
@@ -99,7 +103,7 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
     try {
         j = nlohmann::json::parse(in);
     } catch (const nlohmann::json::exception& e) {
-        fail(fmt::format("not valid JSON ({})", e.what()));
+        fail(fmt::format("not valid JSON ({})", model::escapeInvalidUtf8(e.what())));  // it quotes the file's bytes
     }
     if (j.is_object() && j.contains("detections")) j = j["detections"];
     if (!j.is_array()) fail("detections: expected an array");

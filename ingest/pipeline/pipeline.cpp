@@ -19,6 +19,7 @@
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/walls.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/detections.hpp"
@@ -233,6 +234,16 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
         }
         append(structure, pending);
         structure = voxelDownsample(structure, options.structureVoxel);
+        // Depth images that hold no reading (all zero, or every pixel out of
+        // range) would give an empty scene that looks like a success.
+        if (hasDepth && structure.size() == 0)
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: no depth reading in any frame: every depth image is empty (0 = no reading) "
+                                    "or farther than {:g} m",
+                                    capture.path, kMaxDepthReading),
+                        std::nullopt,
+                        "check the depth images and the depth scale (depth units per metre: 1000 for millimetres, "
+                        "5000 for TUM)");
         if (!hasDepth) {
             // The capture's sparse points (COLMAP) are the structure: already sparse, in the capture's units.
             for (const auto& p : capture.points) structure.push(p.position, p.color, 0);

@@ -48,6 +48,18 @@ check "an unknown category gets a hint" bash -c "'$smql' '$db' -c 'FIND cushon' 
 check "errors in json format are JSON" \
   bash -c "'$smql' '$db' --format json -c 'FIND cushon' 2>&1 >/dev/null | python3 -c 'import json,sys; e=json.load(sys.stdin)[\"error\"]; assert e[\"column\"] == 6 and \"cushion\" in e[\"hint\"]'"
 
+# Input the parser must refuse with a clear error rather than crash or accept.
+python3 -c "print('FIND cushion WHERE ' + '(' * 6000 + 'on(sofa)' + ')' * 6000)" >"$work/deep.smql"
+check "6,000 nested parentheses are refused, not a crash" \
+  bash -c "'$smql' '$db' -f '$work/deep.smql' 2>&1; test \$? -eq 1" 
+check "the nesting error says so" bash -c "'$smql' '$db' -f '$work/deep.smql' 2>&1 | grep -q 'nests more than 100 levels deep'"
+printf "FIND 'caf\xe9'" >"$work/latin1.smql"
+check "a byte that is not UTF-8 is named" \
+  bash -c "'$smql' '$db' -f '$work/latin1.smql' 2>&1 | grep -q 'not valid UTF-8: byte 10 (0xE9)'"
+check "a negative distance is named" \
+  bash -c "'$smql' '$db' -c 'FIND cushion WHERE near(sofa, -1 m)' 2>&1 | grep -q 'a distance cannot be negative'"
+check "-c with no statement is an error" bash -c "! '$smql' '$db' -c '' 2>'$work/empty.err' && grep -q -- '-c was given no statement' '$work/empty.err'"
+
 # Scripts: -f and standard input; statements before a failing one still print.
 printf 'USE SCENE %s;\n-- a comment\nCOUNT cushion\n  WHERE on(sofa);\n' "'room0'" >"$work/script.smql"
 check "-f runs a script" bash -c "'$smql' '$db' -f '$work/script.smql' | grep -qx '7'"
@@ -62,6 +74,9 @@ check "a truncated file is rejected naming the file" \
 printf 'wall_0=Wall(0,0,0,4,0,0,2.7,0.1)\nbbox_0=Bbox(chair,1,nan,0.4,0,0.5,0.5,0.9)\n' >"$work/layout.txt"
 check "NaN in a SpatialLM line is rejected with file:line" \
   bash -c "! '$smql' import spatiallm '$work/layout.txt' --db '$db' 2>'$work/e' && grep -q 'layout.txt:2' '$work/e'"
+printf 'wall_0=Wall(0,0,0,4,0,0,2.5,0)\nbbox_0=Bbox(caf\xe9,1,1,0.5,0,0.5,0.5,1)\n' >"$work/latin1.txt"
+check "a Latin-1 class in a SpatialLM file is refused with file, line and field" \
+  bash -c "! '$smql' import spatiallm '$work/latin1.txt' --db '$db' 2>'$work/latin1.err' && grep -q 'latin1.txt:2: .*class: byte 0xE9' '$work/latin1.err'"
 check "an existing scene name is refused" bash -c "! '$smql' import replica '$replica' --db '$db' --scene room0"
 after=$("$smql" "$db" --format json -c 'SHOW SCENES')
 check "the database is unchanged after rejected imports" test "$before" = "$after"

@@ -176,6 +176,14 @@ TEST_CASE("Replica: malformed files are rejected with the file and the field", "
         std::string path = dir.write("empty.json", "  \n");
         requireInputError([&] { readReplica(path, "r"); }, {path, "empty"});
     }
+    SECTION("a class name that is not UTF-8") {
+        std::string text = replicaJson().dump(1);
+        text.insert(text.find("\"class_name\": \"") + 15, "\xE9");
+        std::string path = dir.write("latin1.json", text);
+        int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + text.find('\xE9'), '\n'));
+        requireInputError([&] { readReplica(path, "r"); }, {path + ":" + std::to_string(line) + ":", "UTF-8", "\\xE9"},
+                          line);
+    }
     SECTION("truncated JSON reports line and column") {
         std::string text = replicaJson().dump(1);
         std::string path = dir.write("cut.json", text.substr(0, 5000));

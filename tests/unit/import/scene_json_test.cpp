@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/model/utf8.hpp"
 #include "ingest/import/importers.hpp"
 #include "tests/unit/import/import_support.hpp"
 
@@ -127,6 +128,24 @@ TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON p
         });
         requireInputError(read(path), {path, "blobs[0].node", "not the id of a node"});
     }
+    SECTION("a yaw that is not a plausible number of radians") {
+        std::string path = mutated([](Json& f) { f["nodes"][0]["box"]["yaw"] = 1e300; });
+        requireInputError(read(path), {path, "nodes[0].box.yaw: 1e+300 is not an angle in radians"});
+        path = mutated([](Json& f) { f["scene"]["viewpoint"]["facing_yaw"] = -180; });
+        requireInputError(read(path), {path, "scene.viewpoint.facing_yaw: -180 is not an angle", "degrees"});
+    }
+    SECTION("text that is not UTF-8 is named by line and column, and the message stays UTF-8") {
+        std::string text = base.dump(2);
+        std::size_t at = text.find("\"category\": \"") + 13;
+        text.insert(at, "caf\xE9");
+        std::string path = dir.write("latin1.json", text);
+        requireInputError(read(path), {path + ":", "not valid JSON", "\\xE9"});
+        try {
+            readSceneJson(path);
+        } catch (const smql::Error& e) {
+            CHECK_FALSE(smql::model::invalidUtf8At(e.message()).has_value());
+        }
+    }
     SECTION("unsupported version") {
         std::string path = mutated([](Json& f) { f["smql_scene"] = 2; });
         requireInputError(read(path), {path, "smql_scene: unsupported version 2"});
@@ -202,6 +221,15 @@ TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON p
         std::string path = mutated([](Json& f) { f["relations"][0]["support"] = 0; });
         requireInputError(read(path), {path, "relations[0].support"});
     }
+}
+
+TEST_CASE("smql JSON: text that is not UTF-8 is written with U+FFFD rather than failing the export", "[import][json]") {
+    // A database written before imports checked their text may hold some.
+    smql::model::SceneData scene = richScene();
+    scene.nodes[0].category = "caf\xE9";
+    std::string written;
+    REQUIRE_NOTHROW(written = writeSceneJson(scene));
+    CHECK_THAT(written, Catch::Contains("\"caf\xEF\xBF\xBD\""));
 }
 
 TEST_CASE("smql JSON: the example in docs/formats.md reads and writes back unchanged", "[import][json]") {

@@ -176,6 +176,35 @@ TEST_CASE("SpatialLM: malformed layouts are rejected with file:line", "[import][
         std::string path = withLine(6, "this is not a layout line");
         requireInputError(read(path), {path + ":6:", "expected <name>=<Type>(<values>)"}, 6);
     }
+    SECTION("a class name in Latin-1, not UTF-8") {
+        // "caf\xE9": é in Latin-1. Stored, it broke every JSON answer about it.
+        std::string path = withLine(9, "bbox_0=Bbox(caf\xE9,2,1.5,0.4,0.5,1.6,0.9,0.8)");
+        requireInputError(read(path), {path + ":9:", "class: byte 0xE9 at column 16 is not UTF-8", "iconv"}, 9);
+        path = withLine(2, "wall_\xFF=Wall(0,0,0,4,0,0,2.5,0)");
+        requireInputError(read(path), {path + ":2:", "name: byte 0xFF"}, 2);
+        path = withLine(8, "window_0=Window(wall_1,4,1.5,1\xB5,1.2,1.0)");
+        requireInputError(read(path), {path + ":8:", "position_z: byte 0xB5"}, 8);
+        path = withLine(9, "bbox_0=Bbox(caf\xC3\xA9,2,1.5,0.4,0.5,1.6,0.9,0.8)");  // é in UTF-8 is fine
+        CHECK(readSpatialLm(path, "r").nodes[6].category == "caf\xC3\xA9");
+    }
+    SECTION("two names for one number clash in their source id") {
+        std::string path = withLine(5, "wall_01=Wall(0,3,0,0,0,0,2.5,0)");
+        requireInputError(read(path), {path + ":5:", "'wall_01' has the same number as 'wall_1' (line 3)",
+                                       "source id 1"},
+                          5);
+        path = withLine(10, "bbox_000=Bbox(sofa, 1, 2.5, 0.45, -0.25, 2.0, 0.9, 0.9)");
+        requireInputError(read(path), {path + ":10:", "'bbox_000' has the same number as 'bbox_0' (line 9)",
+                                       "source id 3000"},
+                          10);
+    }
+    SECTION("an angle that is not a plausible number of radians") {
+        std::string path = withLine(9, "bbox_0=Bbox(table,2,1.5,0.4,1e300,1.6,0.9,0.8)");
+        requireInputError(read(path), {path + ":9:", "angle_z: 1e+300 is not an angle in radians", "4 pi"}, 9);
+        path = withLine(9, "bbox_0=Bbox(table,2,1.5,0.4,90,1.6,0.9,0.8)");
+        requireInputError(read(path), {path + ":9:", "angle_z: 90 is not an angle", "degrees"}, 9);
+        path = withLine(9, "bbox_0=Bbox(table,2,1.5,0.4,-12.5,1.6,0.9,0.8)");  // just within two turns
+        CHECK(readSpatialLm(path, "r").nodes[6].box.yaw == Approx(std::remainder(-12.5, 2 * std::numbers::pi)));
+    }
     SECTION("text after the closing parenthesis") {
         std::string path = withLine(2, "wall_0=Wall(0,0,0,4,0,0,2.5,0) extra");
         requireInputError(read(path), {path + ":2:", "after ')'"}, 2);

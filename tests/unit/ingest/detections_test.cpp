@@ -112,6 +112,13 @@ TEST_CASE("detections.json: format errors name the file and the field", "[ingest
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
                      "segmentation": {"size": [480, 640], "counts": "abc"}}])",
                 "detections[0].segmentation: RLE mask: counts string is truncated");
+    // Thirteen 5-bit groups: the old decoder shifted -1 by 65 bits (undefined behaviour).
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
+                     "segmentation": {"size": [480, 640], "counts": "PPPPPPPPPPPP@"}}])",
+                "detections[0].segmentation: RLE mask: a run in the counts string is longer than any image");
+    // Bytes of the file quoted in the message are escaped: messages stay UTF-8 (JSON error output needs it).
+    expectError("[{\"image\": \"1.png\", \"label\": \"caf\xE9\"}]", "not valid JSON");
+    expectError("[{\"image\": \"1.png\", \"label\": \"caf\xE9\"}]", "caf\\xE9");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
                      "segmentation": {"size": [48, 64], "counts": [3072]}}])",
                 "detections[0].segmentation: RLE mask of 64x48 for a 640x480 image");

@@ -272,3 +272,82 @@ TEST_CASE("isIncomplete tells the shell to keep reading", "[parser][incomplete]"
     CHECK_FALSE(parser::isIncomplete("   "));
     CHECK_FALSE(parser::isIncomplete("-- only a comment"));
 }
+
+TEST_CASE("a byte that is not UTF-8 is named by its position", "[parser][errors][utf8]") {
+    // A Latin-1 é (0xE9) inside a string: the runtime's decoder would swallow
+    // the closing quote and report an unterminated string.
+    Error error = errorOf("FIND mug;\nFIND 'caf\xE9' WHERE on(desk)");
+    CHECK_THAT(error.message(), StartsWith("the text is not valid UTF-8: byte 20 (0xE9)"));
+    CHECK(whereOf(error).line == 2);
+    CHECK(whereOf(error).column == 10);
+    CHECK_THAT(error.hint(), Contains("UTF-8"));
+    // Columns count characters: the 2-byte é before the bad byte is one column.
+    CHECK(whereOf(errorOf("FIND 'é\xFF'")).column == 8);
+    CHECK_THAT(errorOf("FIND \xC0\xAF").message(), Contains("byte 6 (0xC0)"));  // an overlong '/'
+    CHECK_THAT(errorOf("FIND '\xED\xA0\x80'").message(), Contains("byte 7 (0xED)"));  // a surrogate
+    CHECK_THAT(errorOf("FIND '\xE2\x82'").message(), Contains("byte 7 (0xE2)"));  // cut short
+    CHECK_NOTHROW(parser::parse("FIND 'café' WHERE label = '日本'"));
+}
+
+TEST_CASE("nesting is bounded before the recursive parser runs", "[parser][errors][limits]") {
+    auto parens = [](std::size_t n) {
+        return "FIND mug WHERE " + std::string(n, '(') + "on(desk)" + std::string(n, ')');
+    };
+    // The deepest statement allowed parses (on(desk) itself is one more level).
+    CHECK_NOTHROW(parser::parse(parens(parser::kMaxNestingDepth - 1)));
+
+    // 6,000 parentheses (a 12 KB statement) overflowed the stack.
+    Error deep = errorOf(parens(6000));
+    CHECK_THAT(deep.message(), Contains("nests more than 100 levels deep"));
+    CHECK(whereOf(deep).column == static_cast<int>(16 + parser::kMaxNestingDepth));  // the 101st parenthesis
+    CHECK_THAT(deep.hint(), Contains("fewer levels"));
+
+    std::string subqueries = "FIND mug WHERE near(";
+    for (int i = 0; i < 3000; ++i) subqueries += "(FIND ";
+    subqueries += "door" + std::string(3000, ')') + ")";
+    CHECK_THAT(errorOf(subqueries).message(), Contains("nests more than 100 levels deep"));
+
+    std::string nots = "FIND mug WHERE ";
+    for (int i = 0; i < 20000; ++i) nots += "NOT ";
+    CHECK_THAT(errorOf(nots + "on(desk)").message(), Contains("nests more than 100 levels deep"));
+
+    // NOTs and parentheses add up; closed parentheses give their levels back.
+    std::string mixed = "FIND mug WHERE ";
+    for (int i = 0; i < 60; ++i) mixed += "NOT (";
+    mixed += "on(desk)" + std::string(60, ')');
+    CHECK_THAT(errorOf(mixed).message(), Contains("nests more than 100 levels deep"));
+    std::string wide = "FIND mug WHERE on(desk)";
+    for (int i = 0; i < 500; ++i) wide += " OR (" + std::string(50, '(') + "on(desk)" + std::string(50, ')') + ")";
+    CHECK_NOTHROW(parser::parse(wide));
+}
+
+TEST_CASE("statement length is bounded", "[parser][errors][limits]") {
+    std::string name(parser::kMaxStatementLength - 7, 'x');
+    CHECK_NOTHROW(parser::parse("FIND '" + name + "'"));  // exactly the limit
+    Error error = errorOf("SHOW SCENES;\nFIND '" + name + "x'");
+    CHECK(error.message() == "the statement is 100001 characters long; the limit is 100000");
+    CHECK(whereOf(error).line == 2);
+    CHECK(whereOf(error).column == 1);
+    CHECK(error.hint() == "split it into shorter statements");
+}
+
+TEST_CASE("distances that are not finite or are negative", "[parser][errors]") {
+    Error nan = errorOf("FIND chair WHERE near(door, NaN m)");
+    CHECK(nan.message() == "'NaN' is not a number");
+    CHECK(whereOf(nan).column == 29);
+    CHECK(whereOf(nan).length == 3);
+    CHECK_THAT(nan.hint(), Contains("finite numbers"));
+    CHECK(errorOf("FIND chair WHERE near(door, inf m)").message() == "'inf' is not a number");
+    CHECK(errorOf("FIND chair WHERE height > Infinity m").message() == "'Infinity' is not a number");
+    CHECK(errorOf("FIND chair WHERE height < -inf").message() == "'inf' is not a number");
+    CHECK(errorOf("SET near = NaN m").message() == "'NaN' is not a number");
+
+    Error negative = errorOf("FIND chair WHERE near(door, -1 m)");
+    CHECK(negative.message() == "a distance cannot be negative");
+    CHECK(whereOf(negative).column == 29);
+    CHECK(whereOf(negative).length == 4);
+    CHECK_THAT(negative.hint(), Contains("0 or more"));
+    CHECK(errorOf("FIND chair WHERE near(door, -20)").message() == "a distance cannot be negative");
+    // A name that merely starts like one is still a name.
+    CHECK_THAT(errorOf("FIND chair WHERE near(door, nano m)").message(), Contains("unexpected 'm'"));
+}
