@@ -180,4 +180,8 @@ std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size) {
     return std::string(bytes.begin(), bytes.end());
 }
 
+void keepLargestEvidence(EvidenceCrop& evidence, const Observation& view, const cv::Mat& color, int size) {
+    if (view.pixels > evidence.pixels) evidence = {view.pixels, view.frame, encodeCrop(color, view.bounds, size)};
+}
+
 }  // namespace smql::ingest

@@ -84,4 +84,8 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
 // A JPEG of the instance's bounding box (padded 10%), longest side `size`.
 std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size);
 
+// Replaces `evidence` with a crop of `view` (from `color`, its frame's image)
+// when the view shows more of the instance than the one it came from.
+void keepLargestEvidence(EvidenceCrop& evidence, const Observation& view, const cv::Mat& color, int size);
+
 }  // namespace smql::ingest

@@ -1,6 +1,7 @@
-// Capture -> metric memory (DESIGN.md section 7): frames, geometry, metric
+// Capture -> metric memory (docs/ingest.md): frames, geometry, metric
 // alignment, anchors, objects, attributes, relations, two-layer descriptions.
 // The result is one SceneData that the engine stores in one transaction.
+// pipeline.cpp runs the stages (*_stage.hpp, stage_data.hpp) in order.
 #pragma once
 
 #include <functional>

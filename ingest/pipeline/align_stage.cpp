@@ -1,0 +1,30 @@
+#include "ingest/pipeline/align_stage.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace smql::ingest {
+
+AlignedCapture AlignStage::run(StageProgress& progress) {
+    AlignOptions align;
+    align.metric = capture.metric;
+    align.scale = options.scale;
+    std::vector<Pose> poses;
+    for (const auto& c : frames.cameras) poses.push_back(c.pose);
+    AlignedCapture out;
+    out.alignment = alignCapture(frames.structure, poses, align);
+    for (const auto& n : out.alignment.notes) progress.note(n);
+    if (!out.alignment.floorFound) progress.note("no floor plane found: the frame is levelled by the cameras' up direction");
+    out.cloud = transformed(frames.structure, out.alignment);
+    for (const auto& c : frames.cameras) out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));
+    return out;
+}
+
+std::string AlignStage::summary(const AlignedCapture& aligned) const {
+    const Alignment& a = aligned.alignment;
+    return fmt::format("floor {}, heading {:.1f} deg, scale {:.3f}", a.floorFound ? "found" : "not found",
+                       a.heading * 180 / M_PI, a.scale);
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,27 @@
+// The align stage: floor, heading and scale of the structure cloud (docs/ingest.md,
+// "Geometry and metric alignment"), and the cloud and cameras in the aligned frame.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "ingest/capture/capture.hpp"
+#include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/stage_data.hpp"
+#include "ingest/pipeline/stage_runner.hpp"
+
+namespace smql::ingest {
+
+struct AlignStage {
+    static constexpr std::string_view kName = "align";
+    const Capture& capture;
+    const IngestOptions& options;
+    const FramePass& frames;
+
+    std::size_t steps() const { return 1; }
+    AlignedCapture run(StageProgress& progress);
+    std::string summary(const AlignedCapture& aligned) const;
+};
+
+}  // namespace smql::ingest

@@ -1,0 +1,28 @@
+// The anchors stage: the floor (the aligned cloud's extent at z = 0), the
+// ceiling when the alignment found one, and walls from vertical planes, added
+// to the scene. Doors and windows come later, from the object source.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "ingest/geometry/walls.hpp"
+#include "ingest/pipeline/stage_data.hpp"
+#include "ingest/pipeline/stage_runner.hpp"
+
+namespace smql::ingest {
+
+struct AnchorsStage {
+    static constexpr std::string_view kName = "anchors";
+    const AlignedCapture& aligned;
+    model::SceneData& scene;
+
+    std::size_t steps() const { return 1; }
+    std::vector<WallSegment> run(StageProgress& progress);
+    std::string summary(const std::vector<WallSegment>& walls) const;
+};
+
+}  // namespace smql::ingest

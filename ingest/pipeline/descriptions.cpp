@@ -1,0 +1,82 @@
+#include "ingest/pipeline/descriptions.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "ingest/pipeline/colors.hpp"
+#include "ingest/pipeline/scene_nodes.hpp"
+
+namespace smql::ingest {
+
+using model::Node;
+using model::NodeId;
+using model::NodeKind;
+
+namespace {
+
+using ViewColors = std::map<NodeId, std::vector<std::pair<std::uint32_t, std::string>>>;  // object -> (frame, colour)
+
+// The colour most views name, when at least `descriptionAgreement` views (or
+// all, if fewer) and `agreementShare` of them name it.
+std::optional<std::string> agreedColor(const std::vector<std::pair<std::uint32_t, std::string>>& views,
+                                       const IngestOptions& options) {
+    std::map<std::string, int> counts;
+    for (const auto& [frame, name] : views) ++counts[name];
+    if (counts.empty()) return std::nullopt;
+    auto best = std::max_element(counts.begin(), counts.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+    int seen = static_cast<int>(views.size());
+    if (best->second < std::min(options.descriptionAgreement, seen) || best->second < options.agreementShare * seen)
+        return std::nullopt;
+    return best->first;
+}
+
+}  // namespace
+
+void describeObjects(model::SceneData& scene, const std::vector<TrackedNode>& tracked, const LateralPhrases& lateral,
+                     const Capture& capture, const IngestOptions& options) {
+    // Each view names the colour it sees; the scene-level phrase uses a colour only when
+    // enough views agree on it.
+    ViewColors viewColors;
+    for (const auto& t : tracked) {
+        if (nodeById(scene, t.node).kind != NodeKind::Object) continue;
+        for (const auto& v : t.views) viewColors[t.node].push_back({v.frame, nameColor(v.colors).name});
+    }
+
+    // Layer 2: the scene-level phrase, from what holds allocentrically (support) and what enough
+    // views agree on (colour, lateral order). It is the object's text, the default answer.
+    for (Node& n : scene.nodes) {
+        if (n.kind != NodeKind::Object) continue;
+        std::string support;
+        for (const auto& r : scene.relations)
+            if (r.subject == n.id && (r.type == model::RelationType::On || r.type == model::RelationType::In)) {
+                support = fmt::format(" {} the {}", model::toString(r.type), nodeById(scene, r.object).category);
+                break;
+            }
+        // Without views (clusters), the colour named from the object's points.
+        std::optional<std::string> color;
+        if (viewColors.empty()) {
+            if (auto attribute = n.attribute("color")) color = std::string(*attribute);
+        } else {
+            color = agreedColor(viewColors[n.id], options);
+        }
+        std::string head = (color ? *color + " " : std::string()) + n.category;
+        std::string scenePhrase = head + support;
+        if (auto it = lateral.find(n.id); it != lateral.end()) scenePhrase += ", " + it->second.front();
+        n.text = scenePhrase;
+    }
+    // Layer 1: a phrase per object per view, as description nodes below each object.
+    for (const auto& [id, views] : viewColors) {
+        std::string category = nodeById(scene, id).category;
+        for (const auto& [frame, colorName] : views) {
+            Node& d = addNode(scene, NodeKind::Description, "description", model::GeometryKind::None, {});
+            d.parent = id;
+            d.text = fmt::format("{} {}, seen in frame {}", colorName, category, capture.frames[frame].index);
+            d.attributes = {{"frame", std::to_string(capture.frames[frame].index)}, {"layer", "image"}};
+        }
+    }
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,68 @@
+#include "ingest/pipeline/frames_stage.hpp"
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "ingest/capture/frame_loader.hpp"
+#include "ingest/geometry/point_cloud.hpp"
+#include "ingest/pipeline/geometry_stage.hpp"
+
+namespace smql::ingest {
+
+namespace {
+
+// Structure points gathered before the next down-sampling: bounds memory on long captures.
+constexpr std::size_t kPendingStructurePoints = 400000;
+
+}  // namespace
+
+FramePass FramesStage::run(StageProgress& progress) {
+    FramePass pass;
+    PointCloud pending;
+    for (std::size_t i = 0; i < capture.frames.size(); ++i) {
+        progress.stopIfCancelled();
+        const auto& frame = capture.frames[i];
+        if (!frame.pose) {
+            progress.note(fmt::format("frame {} has no camera pose (not registered): skipped", frame.index));
+            progress.advanced(i + 1);
+            continue;
+        }
+        auto position = static_cast<std::uint32_t>(i);
+        FrameImages images = loadFrame(capture, frame, options.workingWidth);
+        const Pose& pose = *frame.pose;
+        pass.cameras.push_back({position, pose});
+        append(pending, backProject(images, pose, position, options.structureStride));
+        if (pending.size() > kPendingStructurePoints) {
+            append(pass.structure, voxelDownsample(pending, options.structureVoxel));
+            pending = PointCloud{};
+        }
+        finder.observe({position, frame, images, pose});
+        progress.advanced(i + 1);
+    }
+    append(pass.structure, pending);
+    pass.structure = voxelDownsample(pass.structure, options.structureVoxel);
+    bool hasDepth = framesHaveDepth(capture);
+    // Depth images that hold no reading (all zero, or every pixel out of range) would give an empty
+    // scene that looks like a success.
+    if (hasDepth && pass.structure.size() == 0)
+        throw Error(ErrorKind::Input,
+                    fmt::format("{}: no depth reading in any frame: every depth image is empty (0 = no reading) "
+                                "or farther than {:g} m",
+                                capture.path, kMaxDepthReading),
+                    std::nullopt,
+                    "check the depth images and the depth scale (depth units per metre: 1000 for millimetres, "
+                    "5000 for TUM)");
+    if (!hasDepth) {
+        // The capture's sparse points (COLMAP) are the structure: already sparse, in the capture's units.
+        for (const auto& p : capture.points) pass.structure.push(p.position, p.color, 0);
+    }
+    pass.tracks = finder.takeTracks();
+    return pass;
+}
+
+std::string FramesStage::summary(const FramePass& pass) const {
+    return fmt::format("{} frames, {} structure points, {} instances", capture.frames.size(), pass.structure.size(),
+                       pass.tracks.size());
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,55 @@
+#include "ingest/pipeline/geometry_stage.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "ingest/geometry/colmap_runner.hpp"
+
+namespace smql::ingest {
+
+bool usesColmap(const Capture& capture, GeometrySource geometry) {
+    bool hasPoses = std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
+    if (geometry == GeometrySource::Given && !hasPoses)
+        throw Error(ErrorKind::Input, fmt::format("{}: some frames have no camera pose", capture.path), std::nullopt,
+                    "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP "
+                    "model; or let COLMAP find them (--geometry colmap)");
+    return geometry == GeometrySource::Colmap || (geometry == GeometrySource::Auto && !hasPoses);
+}
+
+Reconstruction ColmapStage::run(StageProgress& progress) {
+    Reconstruction out{input};
+    bool hadDepth = false;
+    for (auto& f : out.capture.frames) {
+        hadDepth = hadDepth || !f.depthPath.empty();
+        f.depthPath.clear();
+    }
+    if (hadDepth) progress.note("--geometry colmap: depth images are ignored (COLMAP's poses are up to scale)");
+    ColmapRun run = runColmap(out.capture, options);
+    for (const auto& n : run.notes) progress.note(n);
+    progress.advanced(1);
+    out.registered = run.registered;
+    out.points = run.points;
+    return out;
+}
+
+std::string ColmapStage::summary(const Reconstruction& reconstruction) const {
+    return fmt::format("{} of {} frames registered, {} points", reconstruction.registered,
+                       reconstruction.capture.frames.size(), reconstruction.points);
+}
+
+void requirePosesAndStructure(const Capture& capture) {
+    if (std::none_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); }))
+        throw Error(ErrorKind::Input, fmt::format("{}: no frame has a camera pose", capture.path), std::nullopt,
+                    "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP model");
+    if (!framesHaveDepth(capture) && capture.points.empty())
+        throw Error(ErrorKind::Input, fmt::format("{}: the frames have no depth and the capture no 3D points", capture.path),
+                    std::nullopt, "give depth images, or a COLMAP model with points3D (or --geometry colmap)");
+}
+
+bool framesHaveDepth(const Capture& capture) {
+    return std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return !f.depthPath.empty(); });
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,39 @@
+// Where the capture's geometry comes from (docs/ingest.md, "--geometry"): the
+// poses and depth the capture carries, or COLMAP's poses and sparse points
+// from its colour frames (the `colmap` stage). Decides, runs COLMAP when
+// needed, and checks that the frames then have what the later stages need.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "ingest/capture/capture.hpp"
+#include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/stage_data.hpp"
+#include "ingest/pipeline/stage_runner.hpp"
+
+namespace smql::ingest {
+
+// Whether the poses come from COLMAP. Throws smql::Error(Input) when the given
+// poses were asked for and some frame has none.
+bool usesColmap(const Capture& capture, GeometrySource geometry);
+
+struct ColmapStage {
+    static constexpr std::string_view kName = "colmap";
+    const Capture& input;
+    const ColmapOptions& options;
+
+    std::size_t steps() const { return 1; }
+    Reconstruction run(StageProgress& progress);
+    std::string summary(const Reconstruction& reconstruction) const;
+};
+
+// Throws smql::Error(Input) unless some frame has a pose and the frames have
+// depth or the capture has 3D points.
+void requirePosesAndStructure(const Capture& capture);
+
+// Every frame has a depth image (else the structure is the capture's sparse points).
+bool framesHaveDepth(const Capture& capture);
+
+}  // namespace smql::ingest

@@ -1,0 +1,86 @@
+#include "ingest/pipeline/objects_stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <opencv2/core.hpp>
+
+#include "ingest/geometry/clusters.hpp"
+#include "ingest/pipeline/colors.hpp"
+#include "ingest/pipeline/scene_nodes.hpp"
+
+namespace smql::ingest {
+
+using model::GeometryKind;
+using model::NodeKind;
+
+namespace {
+
+// A door or window lies in its wall: the nearest wall's direction, the extent
+// of the points along it, and a thin depth.
+void setInWall(model::Box& box, const PointCloud& cloud, const std::vector<WallSegment>& walls) {
+    const WallSegment* nearest = &walls.front();
+    for (const auto& w : walls)
+        if (std::abs(w.signedDistance(box.center)) < std::abs(nearest->signedDistance(box.center))) nearest = &w;
+    model::Vec3 d = nearest->direction();
+    box.yaw = std::atan2(d.y, d.x);
+    double along0 = 1e9, along1 = -1e9;
+    for (const auto& p : cloud.points) {
+        double a = p.x * d.x + p.y * d.y;
+        along0 = std::min(along0, a), along1 = std::max(along1, a);
+    }
+    box.size = {along1 - along0, 0.05, box.size.z};
+}
+
+}  // namespace
+
+std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
+    std::vector<TrackedNode> made;
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+        auto& track = tracks[t];
+        progress.advanced(t + 1);
+        const auto& category = track.category;
+        bool opening = category == "door" || category == "window";
+        if (track.kind == NodeKind::Anchor && !opening) continue;  // walls, floor, ceiling: geometry's job
+        if (static_cast<int>(track.views.size()) < options.minObjectViews) continue;
+
+        PointCloud cloud;
+        for (const auto& v : track.views)
+            for (const auto& p : v.points) cloud.push(aligned.alignment.apply(p), {0, 0, 0}, v.frame);
+        if (cloud.size() < 10) continue;
+        cloud = voxelDownsample(cloud, options.objectVoxel);
+        model::Box box = uprightBox(cloud.points);
+        if (opening && !walls.empty()) setInWall(box, cloud, walls);
+        cv::Mat colors;
+        for (const auto& v : track.views) colors.push_back(v.colors);
+        model::Node& node = addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, category,
+                                    opening ? GeometryKind::Plane : GeometryKind::Box, box);
+        if (!opening) {
+            node.attributes.push_back({"color", nameColor(colors).name});
+            node.attributes.push_back({"size", sizeWord(box)});
+            if (!track.material.empty()) node.attributes.push_back({"material", track.material});
+        }
+        auto [first, last] = std::minmax_element(track.views.begin(), track.views.end(),
+                                                 [](const auto& a, const auto& b) { return a.frame < b.frame; });
+        node.attributes.push_back({"first_seen", std::to_string(capture.frames[first->frame].index)});
+        node.attributes.push_back({"last_seen", std::to_string(capture.frames[last->frame].index)});
+        node.attributes.push_back({"views", std::to_string(track.views.size())});
+        node.confidence = static_cast<float>(std::min(1.0, 0.5 + 0.1 * track.views.size()));
+        std::sort(node.attributes.begin(), node.attributes.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+        if (!track.evidence.jpeg.empty())
+            scene.blobs.push_back({node.id, fmt::format("evidence-frame{}.jpg", capture.frames[track.evidence.frame].index),
+                                   "image/jpeg", std::move(track.evidence.jpeg)});
+        made.push_back({node.id, std::move(track.views)});
+    }
+    finder.addStructureObjects(aligned, walls, scene, progress);
+    return made;
+}
+
+std::string ObjectsStage::summary(const std::vector<TrackedNode>&) const {
+    auto count = std::count_if(scene.nodes.begin(), scene.nodes.end(),
+                               [](const model::Node& n) { return n.kind == NodeKind::Object; });
+    return fmt::format("{} objects", count);
+}
+
+}  // namespace smql::ingest

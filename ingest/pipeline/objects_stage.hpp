@@ -1,0 +1,39 @@
+// The objects stage: every track with enough views becomes a node, an object
+// with an upright box and attributes (colour, size, material, views, first and
+// last seen), or a door or window as a thin plane in its wall; walls, floor
+// and ceiling tracks are left to the geometry. The evidence crops become the
+// nodes' blobs. Then the object source adds the objects it finds in the aligned
+// structure (clusters).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "ingest/capture/capture.hpp"
+#include "ingest/geometry/walls.hpp"
+#include "ingest/pipeline/object_finder.hpp"
+#include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/stage_data.hpp"
+#include "ingest/pipeline/stage_runner.hpp"
+
+namespace smql::ingest {
+
+struct ObjectsStage {
+    static constexpr std::string_view kName = "objects";
+    const Capture& capture;
+    const IngestOptions& options;
+    std::vector<ObjectTrack> tracks;  // consumed: their views and crops move on
+    const AlignedCapture& aligned;
+    const std::vector<WallSegment>& walls;
+    ObjectFinder& finder;
+    model::SceneData& scene;
+
+    std::size_t steps() const { return tracks.size(); }
+    std::vector<TrackedNode> run(StageProgress& progress);
+    std::string summary(const std::vector<TrackedNode>& nodes) const;
+};
+
+}  // namespace smql::ingest

@@ -1,0 +1,59 @@
+// What flows from one ingest stage to the next (ingest/pipeline/pipeline.cpp
+// runs them in this order; docs/ingest.md, "Stages"):
+//
+//   Capture --colmap--> Reconstruction (only without poses)
+//           --frames--> FramePass --align--> AlignedCapture
+//           --anchors--> walls --objects--> TrackedNodes --relations--> the scene
+//
+// The anchors, objects and relations stages also add their nodes and edges to
+// the model::SceneData being built, so node ids follow the stage order.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/model/types.hpp"
+#include "ingest/capture/capture.hpp"
+#include "ingest/geometry/alignment.hpp"
+#include "ingest/geometry/point_cloud.hpp"
+#include "ingest/pipeline/observations.hpp"
+
+namespace smql::ingest {
+
+// The capture again, with COLMAP's poses and sparse points instead of its own
+// poses and depth.
+struct Reconstruction {
+    Capture capture;
+    std::size_t registered = 0;  // frames that got a pose
+    std::size_t points = 0;
+};
+
+struct Camera {
+    std::uint32_t frame = 0;  // position in Capture::frames
+    Pose pose;                // camera-to-world, capture frame
+};
+
+// The one pass over the frames: everything later stages need, so the frames
+// are read once and memory stays flat.
+struct FramePass {
+    PointCloud structure;              // down-sampled, capture frame
+    std::vector<Camera> cameras;       // the frames that had a pose, in capture order
+    std::vector<ObjectTrack> tracks;   // from the object source
+};
+
+struct AlignedCapture {
+    Alignment alignment;
+    PointCloud cloud;                        // the structure cloud in the aligned frame
+    std::vector<model::Vec3> cameraCentres;  // of FramePass::cameras, aligned frame
+};
+
+// A node the objects stage made from a track (an object, a door, a window),
+// with the views it was seen in: what view-local relations and image-level
+// descriptions are made from.
+struct TrackedNode {
+    model::NodeId node = model::kNoNode;
+    std::vector<Observation> views;
+};
+
+}  // namespace smql::ingest

@@ -1,0 +1,126 @@
+// The ingest's stage runner (timing, progress and cancellation in one place),
+// and cancellation of a whole ingest between frames and between stages.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/error.hpp"
+#include "ingest/capture/capture.hpp"
+#include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/stage_runner.hpp"
+#include "ingest/synth/synth.hpp"
+#include "scratch_dir.hpp"
+
+using namespace smql;
+using namespace smql::ingest;
+using smql::ingest::test::ScratchDir;
+
+namespace {
+
+// Every event a sink gets, as one line each.
+class RecordingSink : public ProgressSink {
+public:
+    std::vector<std::string> events;
+    void stageStarted(const std::string& stage, std::size_t steps) override {
+        events.push_back("started " + stage + " " + std::to_string(steps));
+    }
+    void advanced(std::size_t done) override { events.push_back("advanced " + std::to_string(done)); }
+    void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
+        CHECK(seconds >= 0);
+        events.push_back("finished " + stage + ": " + summary);
+    }
+    void note(const std::string& text) override { events.push_back("note " + text); }
+};
+
+struct CountStage {
+    static constexpr std::string_view kName = "count";
+    int upTo;
+    std::size_t steps() const { return static_cast<std::size_t>(upTo); }
+    std::vector<int> run(StageProgress& progress) {
+        std::vector<int> out;
+        for (int i = 1; i <= upTo; ++i) {
+            out.push_back(i);
+            progress.advanced(static_cast<std::size_t>(i));
+        }
+        progress.note("counted");
+        return out;
+    }
+    std::string summary(const std::vector<int>& out) const { return std::to_string(out.size()) + " numbers"; }
+};
+
+// A stage that changes something in place, as the relations stage changes the scene.
+struct SumStage {
+    static constexpr std::string_view kName = "sum";
+    const std::vector<int>& numbers;
+    int& total;
+    std::size_t steps() const { return 1; }
+    void run(StageProgress&) {
+        for (int n : numbers) total += n;
+    }
+    std::string summary() const { return "total " + std::to_string(total); }
+};
+
+}  // namespace
+
+TEST_CASE("the stage runner reports, times and records each stage, and passes outputs on") {
+    RecordingSink sink;
+    IngestResult result;
+    StageRunner runner(sink, result, {});
+    runner.note("before any stage");
+    auto numbers = runner.run(CountStage{3});
+    int total = 0;
+    runner.run(SumStage{numbers, total});
+
+    CHECK(numbers == std::vector<int>{1, 2, 3});
+    CHECK(total == 6);
+    CHECK(sink.events == std::vector<std::string>{"note before any stage", "started count 3", "advanced 1", "advanced 2",
+                                                  "advanced 3", "note counted", "finished count: 3 numbers",
+                                                  "started sum 1", "finished sum: total 6"});
+    REQUIRE(result.stages.size() == 2);
+    CHECK(result.stages[0].stage == "count");
+    CHECK(result.stages[0].summary == "3 numbers");
+    CHECK(result.stages[1].stage == "sum");
+    CHECK(result.stages[1].summary == "total 6");
+    CHECK(result.notes == std::vector<std::string>{"before any stage", "counted"});
+}
+
+TEST_CASE("the stage runner stops between stages once cancelled") {
+    RecordingSink sink;
+    IngestResult result;
+    bool cancel = false;
+    StageRunner runner(sink, result, [&] { return cancel; });
+    auto numbers = runner.run(CountStage{2});
+    cancel = true;
+    int total = 0;
+    try {
+        runner.run(SumStage{numbers, total});
+        FAIL("a cancelled runner ran the next stage");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Usage);
+        CHECK(e.message() == "cancelled; nothing was written");
+    }
+    CHECK(total == 0);
+    CHECK(result.stages.size() == 1);
+    CHECK(sink.events.back() == "finished count: 2 numbers");
+}
+
+TEST_CASE("an ingest cancelled during the frame pass stops before the next frame") {
+    ScratchDir dir;
+    auto capturePath = (dir.path / "capture").string();
+    synth::writeSynth(capturePath, {.seed = 2, .frames = 6});
+    Capture capture = readCapture(capturePath);
+    RecordingSink sink;
+    int asked = 0;
+    // Asked once before the frames stage, then before each frame: stop before the third frame.
+    auto cancelled = [&] { return ++asked > 3; };
+    try {
+        ingestCapture(capture, IngestOptions{}, sink, cancelled);
+        FAIL("the ingest was not cancelled");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Usage);
+        CHECK(e.message() == "cancelled; nothing was written");
+    }
+    CHECK(sink.events == std::vector<std::string>{"started frames 6", "advanced 1", "advanced 2"});
+}
