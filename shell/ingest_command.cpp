@@ -24,7 +24,6 @@
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/walk.hpp"
-#include "storage/database.hpp"
 
 namespace smql::shell {
 
@@ -256,30 +255,6 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
     if (registration)
         std::cout << fmt::format("scale    off by {:.1f}% (similarity from {} cameras to the true poses, residual {:.3f} m)\n",
                                  100 * std::abs(registration->scale - 1), cameras.size(), registration->residual);
-    return 0;
-}
-
-int exportEvidenceCommand(const std::string& dbDir, const std::string& node, const std::string& outDir) {
-    std::string digits = node.rfind('#', 0) == 0 ? node.substr(1) : node;
-    model::NodeId id = 0;
-    try {
-        id = std::stoull(digits);
-    } catch (const std::exception&) {
-        throw Error(ErrorKind::Usage, fmt::format("'{}' is not a node id", node), std::nullopt, "smql export evidence '#42' DIR --db DB");
-    }
-    auto db = storage::Database::open(dbDir, {.readOnly = true, .create = false});
-    auto txn = db->beginRead();
-    if (!txn.node(id)) throw Error(ErrorKind::Binding, fmt::format("no node #{} in {}", id, dbDir));
-    auto blobs = txn.blobsOf(id);
-    if (blobs.empty()) throw Error(ErrorKind::Binding, fmt::format("node #{} has no evidence", id), std::nullopt,
-                                   "evidence comes from ingested captures; DESCRIBE #id lists it");
-    fs::create_directories(outDir);
-    for (const auto& info : blobs) {
-        auto blob = txn.blob(id, info.name);
-        fs::path path = fs::path(outDir) / info.name;
-        std::ofstream(path, std::ios::binary) << blob->bytes;
-        std::cout << path.string() << "\n";
-    }
     return 0;
 }
 

@@ -3,21 +3,26 @@
 //   smql DIR -c 'STATEMENT;'       run statements, print, exit (non-zero on error)
 //   smql DIR -f script.smql        run a script
 //   smql import|export|demo|test|synth|ingest|check-ingest   see --help of each
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "engine/error.hpp"
 #include "engine/model/names.hpp"
 #include "ingest/import/registry.hpp"
 #include "shell/commands.hpp"
-#include "shell/ingest_command.hpp"
+#include "shell/cli.hpp"
 #include "shell/session.hpp"
 
 namespace {
+
+namespace fs = std::filesystem;
 
 constexpr const char* kVersion = "smql 0.1.0";
 
@@ -33,7 +38,7 @@ int runShell(int argc, char** argv) {
     app.add_flag("--read-only", readOnly, "open the database read-only");
     app.add_flag("--timer", timer, "print each statement's time");
     app.set_version_flag("--version", kVersion);
-    CLI11_PARSE(app, argc, argv);
+    if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
 
     auto outputFormat = smql::shell::parseFormat(format);
     auto engine = smql::Engine::open(dir, readOnly);
@@ -60,8 +65,20 @@ int runShell(int argc, char** argv) {
     return 0;
 }
 
+// The capture commands live in smql-ingest beside this program (see shell/ingest_main.cpp): it
+// replaces this process, so its output, exit status and Ctrl-C behave as if it were smql itself.
+int runIngestTool(char** argv) {
+    std::error_code error;
+    fs::path self = fs::read_symlink("/proc/self/exe", error);
+    fs::path tool = (error ? fs::path(argv[0]) : self).parent_path() / "smql-ingest";
+    execv(tool.c_str(), argv);
+    throw smql::Error(smql::ErrorKind::Usage, fmt::format("cannot run {}: {}", tool.string(), std::strerror(errno)),
+                      std::nullopt, "smql-ingest is built and installed next to smql (cmake --build build --target smql-ingest)");
+}
+
 int runSubcommand(int argc, char** argv) {
     CLI::App app{"smql sub-commands"};
+    app.name("smql");
     app.require_subcommand(1);
 
     auto* import = app.add_subcommand("import", "import a scene layout file into a database (one transaction)");
@@ -83,53 +100,11 @@ int runSubcommand(int argc, char** argv) {
     exportCmd->add_option("--scene", exportScene, "scene name (default: the most recent)");
     exportCmd->add_option("-o,--output", exportOut, "output file (default: standard output)");
 
-    auto* ingestCmd = app.add_subcommand("ingest", "turn a capture (RGB-D folder, TUM, nerfstudio, COLMAP ...) into a new scene");
-    smql::shell::IngestArguments ingestArgs;
-    bool ingestQuiet = false;
-    std::optional<double> ingestScale;
-    ingestCmd->add_option("capture", ingestArgs.capture, "capture folder or file")->required()->check(CLI::ExistingPath);
-    ingestCmd->add_option("--db", ingestArgs.db, "database directory (created if missing)")->required();
-    ingestCmd->add_option("--scene", ingestArgs.scene, "scene name (default: the capture's folder name)");
-    ingestCmd->add_option("--geometry", ingestArgs.geometry, "given, colmap or auto (default)")
-        ->check(CLI::IsMember({"given", "colmap", "auto"}));
-    ingestCmd->add_option("--objects", ingestArgs.objects, "masks, detections, cluster or auto (default)")
-        ->check(CLI::IsMember({"masks", "detections", "cluster", "auto"}));
-    ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")->check(CLI::PositiveNumber);
-    ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")->check(CLI::PositiveNumber);
-    ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");
-    ingestCmd->add_option("--update", ingestArgs.update,
-                          "refresh the last-seen time of the objects of this scene that the capture sees again, "
-                          "instead of adding a new scene");
-    ingestCmd->add_option("--log", ingestArgs.log, "progress as a bar (default), json lines, or quiet")
-        ->check(CLI::IsMember({"bar", "json", "quiet"}));
-
-    auto* check = app.add_subcommand("check-ingest", "compare an ingested scene with a synthetic capture's truth");
-    std::string checkDb, checkTruth, checkScene, checkFormat = "table";
-    check->add_option("database", checkDb, "database directory")->required()->check(CLI::ExistingDirectory);
-    check->add_option("--truth", checkTruth, "truth.json of the capture (smql synth writes it)")->required()->check(CLI::ExistingFile);
-    check->add_option("--scene", checkScene, "scene name (default: the most recent)");
-    check->add_option("--format", checkFormat, "table or json")->check(CLI::IsMember({"table", "json"}));
-
-    auto* demo = app.add_subcommand("demo", "build a sample memory of a generated room and query it");
-    std::string demoDb;
-    demo->add_option("--db", demoDb, "where to build it (default: a new folder under /tmp)");
-
     auto* test = app.add_subcommand("test", "run declarative query suites (*.smqlt)");
     std::vector<std::string> testFiles;
     test->add_option("files", testFiles, "suite files")->required()->check(CLI::ExistingFile);
 
-    auto* synth = app.add_subcommand("synth", "write a synthetic RGB-D capture of a generated room, with ground truth");
-    std::string synthOut;
-    std::uint64_t synthSeed = 1;
-    int synthFrames = 60, synthObjects = 24;
-    bool synthForce = false;
-    synth->add_option("--out", synthOut, "output folder (refused when not empty, unless --force)")->required();
-    synth->add_option("--seed", synthSeed, "room and walk seed (default 1)");
-    synth->add_option("--frames", synthFrames, "frames along the walk (default 60)")->check(CLI::Range(1, 100000));
-    synth->add_option("--objects", synthObjects, "objects in the room (default 24)")->check(CLI::Range(1, 5000));
-    synth->add_flag("--force", synthForce, "write into a non-empty folder, replacing an earlier capture's files");
-
-    CLI11_PARSE(app, argc, argv);
+    if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
     if (import->parsed()) return smql::shell::importCommand(importFormat, importFile, importDb, importScene);
     if (exportCmd->parsed() && exportFormat == "evidence") {
         if (exportEvidence.size() != 2)
@@ -138,16 +113,7 @@ int runSubcommand(int argc, char** argv) {
         return smql::shell::exportEvidenceCommand(exportDb, exportEvidence[0], exportEvidence[1]);
     }
     if (exportCmd->parsed()) return smql::shell::exportCommand(exportFormat, exportDb, exportScene, exportOut);
-    if (ingestCmd->parsed()) {
-        ingestArgs.scale = ingestScale;
-        if (ingestQuiet) ingestArgs.log = "quiet";
-        return smql::shell::ingestCommand(ingestArgs);
-    }
-    if (check->parsed()) return smql::shell::checkIngestCommand(checkDb, checkTruth, checkScene, checkFormat);
-    if (demo->parsed()) return smql::shell::demoCommand(demoDb);
-    if (test->parsed()) return smql::shell::testCommand(testFiles);
-    if (synth->parsed()) return smql::shell::synthCommand(synthOut, synthSeed, synthFrames, synthObjects, synthForce);
-    return 2;
+    return smql::shell::testCommand(testFiles);
 }
 
 }  // namespace
@@ -155,9 +121,9 @@ int runSubcommand(int argc, char** argv) {
 int main(int argc, char** argv) {
     try {
         std::string first = argc > 1 ? argv[1] : "";
-        if (first == "import" || first == "export" || first == "demo" || first == "test" || first == "synth" ||
-            first == "ingest" || first == "check-ingest")
-            return runSubcommand(argc, argv);
+        if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo")
+            return runIngestTool(argv);
+        if (first == "import" || first == "export" || first == "test") return runSubcommand(argc, argv);
         return runShell(argc, argv);
     } catch (const smql::Error& e) {
         std::cerr << e.render() << "\n";
