@@ -1,5 +1,7 @@
 // `smql demo [--db DIR]`: a synthetic RGB-D walk through a generated room, ingested into a new
 // database and queried, so a first run needs no external data.
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -50,9 +52,10 @@ int demoCommand(const std::string& dbDirOption) {
     ingestCommand(ingest);
 
     std::cout << "\n3. queries\n\n";
-    auto engine = Engine::open(memory);
-    Session session(*engine, std::cout, std::cerr, OutputFormat::Table);
-    session.setTimer(true);
+    SessionOptions options;
+    options.timer = true;
+    options.fitTerminal = isatty(STDOUT_FILENO);
+    Session session(Engine::open(memory), std::cout, std::cerr, options);
     // Queries that hold for any generated room: whatever furniture the seed chose.
     const char* examples[] = {
         "SHOW TREE",
@@ -67,7 +70,7 @@ int demoCommand(const std::string& dbDirOption) {
     bool ok = true;
     for (const char* statement : examples) {
         std::cout << "smql> " << statement << ";\n";
-        ok &= session.runStatements(statement);
+        ok &= session.runScript(statement);
         std::cout << "\n";
     }
     std::cout << fmt::format("Explore it yourself: smql {}\n", memory);

@@ -1,6 +1,7 @@
-// `smql ingest`, `smql check-ingest` and `smql export evidence`.
+// `smql ingest` and `smql check-ingest`.
 #include "shell/ingest_command.hpp"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -33,17 +34,23 @@ namespace {
 
 std::atomic<bool> interrupted{false};
 
-// A bar with the stage's name on a terminal; one line per stage otherwise.
+// A bar with the stage's name on a terminal; one line per stage otherwise. The bar is redrawn in
+// place with \r, so it must stay shorter than the terminal: a line that wraps scrolls at every step.
 class TerminalProgress : public ingest::ProgressSink {
 public:
     explicit TerminalProgress(bool tty) : tty_(tty) {}
     void stageStarted(const std::string& stage, std::size_t steps) override { stage_ = stage, steps_ = steps; }
     void advanced(std::size_t done) override {
         if (!tty_ || steps_ <= 1) return;
-        int width = 30, filled = static_cast<int>(width * done / steps_);
-        std::cerr << fmt::format("\r{:<10} [{}{}] {}/{}", stage_, std::string(filled, '#'), std::string(width - filled, ' '),
-                                 done, steps_)
-                  << std::flush;
+        std::string counts = fmt::format(" {}/{}", done, steps_);
+        std::string name = fmt::format("{:<10}", stage_);
+        // name, " [", bar, "]", counts, and one column spare so the cursor never wraps.
+        int room = static_cast<int>(terminalColumns()) - static_cast<int>(name.size() + counts.size()) - 4;
+        int width = std::min(30, room);
+        std::string line = width >= 5 ? fmt::format("{} [{}{}]{}", name, std::string(width * done / steps_, '#'),
+                                                    std::string(width - width * done / steps_, ' '), counts)
+                                      : (name + counts).substr(0, std::max<std::size_t>(terminalColumns(), 2) - 1);
+        std::cerr << "\r" << line << "\033[K" << std::flush;
     }
     void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
         if (tty_) std::cerr << "\r\033[K";
@@ -55,6 +62,11 @@ public:
     }
 
 private:
+    static std::size_t terminalColumns() {
+        winsize size{};
+        return ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0 ? size.ws_col : 80;
+    }
+
     bool tty_;
     std::string stage_;
     std::size_t steps_ = 0;

@@ -1,13 +1,14 @@
 // The `smql` command: a shell over a database directory, and sub-commands.
 //   smql DIR                       interactive shell
-//   smql DIR -c 'STATEMENT;'       run statements, print, exit (non-zero on error)
-//   smql DIR -f script.smql        run a script
-//   smql import|export|demo|test|synth|ingest|check-ingest   see --help of each
+//   smql DIR 'STATEMENTS'          run statements, print, exit (also -c; -f FILE for a script)
+//   smql import|export|test        here; ingest|check-ingest|synth|demo in smql-ingest
+// Options follow sqlite3's where they mean the same (-json, -csv, -header, -cmd, -bail, -echo).
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -16,8 +17,10 @@
 #include "engine/error.hpp"
 #include "engine/model/names.hpp"
 #include "ingest/import/registry.hpp"
-#include "shell/commands.hpp"
 #include "shell/cli.hpp"
+#include "shell/commands.hpp"
+#include "shell/interrupt.hpp"
+#include "shell/repl.hpp"
 #include "shell/session.hpp"
 
 namespace {
@@ -26,43 +29,87 @@ namespace fs = std::filesystem;
 
 constexpr const char* kVersion = "smql 0.1.0";
 
+// sqlite3 users write long options with one dash (-csv, -header, -cmd). CLI11 would read `-csv` as
+// `-c sv`, so a single-dash word that names a long option becomes that option before parsing.
+std::vector<std::string> longOptionsWithOneDash(const CLI::App& app, int argc, char** argv) {
+    std::set<std::string, std::less<>> longNames;
+    for (const CLI::Option* option : app.get_options())
+        for (const std::string& name : option->get_lnames()) longNames.insert(name);
+    std::vector<std::string> args(argv, argv + argc);
+    for (std::size_t i = 1; i < args.size(); ++i) {
+        if (args[i] == "--") break;
+        const std::string& arg = args[i];
+        if (arg.size() > 2 && arg[0] == '-' && arg[1] != '-' && longNames.contains(std::string_view(arg).substr(1)))
+            args[i] = "-" + arg;
+    }
+    return args;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
 int runShell(int argc, char** argv) {
-    CLI::App app{"smql: an embedded spatial memory engine. `smql DIR` opens the shell on a database directory;\n"
-                 "sub-commands: import, export, ingest, check-ingest, synth, demo, test (smql COMMAND --help)."};
-    std::string dir, command, script, format = "table";
-    bool readOnly = false, timer = false;
+    CLI::App app{"smql: an embedded spatial memory engine.\n"
+                 "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits.\n"
+                 "Sub-commands: import, export, ingest, check-ingest, synth, demo, test (smql COMMAND --help).\n"
+                 "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd)."};
+    app.name("smql");
+    std::string dir, command, script, mode = "table";
+    std::vector<std::string> statements, startup;
+    smql::shell::SessionOptions options;
     app.add_option("database", dir, "database directory (created if missing)")->required();
+    app.add_option("statements", statements, "statements to run, then exit (as -c)");
     app.add_option("-c,--command", command, "run these statements and exit");
     app.add_option("-f,--file", script, "run the statements of this file and exit")->check(CLI::ExistingFile);
-    app.add_option("--format", format, "output format: table, json or csv")->check(CLI::IsMember({"table", "json", "csv"}));
-    app.add_flag("--read-only", readOnly, "open the database read-only");
-    app.add_flag("--timer", timer, "print each statement's time");
+    app.add_option("--cmd", startup, "run this statement or meta command first (repeatable; then the shell or the input)")
+        ->allow_extra_args(false);
+    app.add_option("--format,--mode", mode, "output mode: table, box, markdown, csv, tsv, json, jsonl")
+        ->check(CLI::IsMember({"table", "box", "markdown", "csv", "tsv", "json", "jsonl"}));
+    for (const char* name : {"table", "box", "markdown", "csv", "tsv", "json", "jsonl"})
+        app.add_flag_callback(fmt::format("--{}", name), [&mode, name] { mode = name; }, fmt::format("same as --format {}", name));
+    app.add_flag_callback("--tabs", [&mode] { mode = "tsv"; }, "same as --format tsv (sqlite3's name)");
+    app.add_flag_callback("--header,--headers", [&options] { options.output.headers = true; }, "print column names (the default)");
+    app.add_flag_callback("--noheader,--noheaders", [&options] { options.output.headers = false; }, "no column names");
+    app.add_flag("--bail", options.bail, "stop at the first error: after a --cmd, and in the interactive shell");
+    app.add_flag("--echo", options.echo, "print each statement before its result");
+    app.add_flag("--read-only,--readonly", options.readOnly, "open the database read-only");
+    app.add_flag("--timer", options.timer, "print each statement's time on standard error");
     app.set_version_flag("--version", kVersion);
-    if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
+    std::vector<std::string> args = longOptionsWithOneDash(app, argc, argv);
+    std::vector<char*> rewritten;
+    for (auto& a : args) rewritten.push_back(a.data());
+    if (auto status = smql::shell::parseArguments(app, static_cast<int>(rewritten.size()), rewritten.data())) return *status;
 
-    auto outputFormat = smql::shell::parseFormat(format);
-    auto engine = smql::Engine::open(dir, readOnly);
-    if (command.empty() && script.empty()) {
-        if (!isatty(STDIN_FILENO)) {
-            // Piped input: run it as a script.
-            std::stringstream text;
-            text << std::cin.rdbuf();
-            smql::shell::Session session(*engine, std::cout, std::cerr, outputFormat);
-            session.setTimer(timer);
-            return session.runStatements(text.str()) ? 0 : 1;
-        }
-        return smql::shell::runRepl(*engine, dir, outputFormat);
+    options.output.mode = smql::shell::parseOutputMode(mode);
+    options.fitTerminal = isatty(STDOUT_FILENO);
+    bool interactive = command.empty() && statements.empty() && script.empty() && isatty(STDIN_FILENO);
+    smql::shell::interrupt::install();
+    smql::shell::Session session(smql::Engine::open(dir, options.readOnly), std::cout, std::cerr, options);
+
+    bool failed = false;
+    for (const auto& text : startup) {
+        if (session.runScript(text)) continue;
+        if (options.bail) return 1;
+        failed = true;
     }
-    smql::shell::Session session(*engine, std::cout, std::cerr, outputFormat);
-    session.setTimer(timer);
-    if (!command.empty() && !session.runStatements(command)) return 1;
-    if (!script.empty()) {
-        std::ifstream in(script);
+    if (interactive) return smql::shell::runRepl(session, dir);
+
+    // Scripts stop at their first error: later statements may depend on the ones before.
+    auto fails = [&](const std::string& text) { return !session.quitRequested() && !session.runScript(text); };
+    if (!command.empty() && fails(command)) return 1;
+    for (const auto& text : statements)
+        if (fails(text)) return 1;
+    if (!script.empty() && fails(readFile(script))) return 1;
+    if (command.empty() && statements.empty() && script.empty()) {
         std::stringstream text;
-        text << in.rdbuf();
-        if (!session.runStatements(text.str())) return 1;
+        text << std::cin.rdbuf();
+        if (fails(text.str())) return 1;
     }
-    return 0;
+    return failed ? 1 : 0;
 }
 
 // The capture commands live in smql-ingest beside this program (see shell/ingest_main.cpp): it

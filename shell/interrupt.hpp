@@ -1,0 +1,15 @@
+// Ctrl-C in the shell cancels what is running (a statement, or the line being typed), never the
+// shell: SIGINT only raises a flag that the session and the line editor poll.
+#pragma once
+
+namespace smql::shell::interrupt {
+
+// Installs the SIGINT handler, without SA_RESTART so that a blocking read returns EINTR at once.
+// Three presses with nobody taking notice (a statement that does not stop) end the process, as in
+// sqlite3, so a stuck statement never traps the user.
+void install();
+// Whether Ctrl-C was pressed since the last clear().
+bool requested();
+void clear();
+
+}  // namespace smql::shell::interrupt
