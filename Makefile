@@ -5,7 +5,7 @@ TYPE ?= RelWithDebInfo
 JOBS ?= $(shell nproc)
 PREFIX ?= /usr/local
 
-.PHONY: all setup configure build debug test demo bench install clean
+.PHONY: all setup configure build debug test demo bench bench-startup install clean
 
 all: build
 
@@ -29,6 +29,11 @@ demo: build
 
 bench: build
 	@$(BUILD)/bench/smql_bench --out docs/benchmarks.md
+	@bench/startup.sh $(BUILD)/shell/smql
+
+# One query in a fresh process, smql next to sqlite3 (the table of docs/benchmarks.md, "Start-up").
+bench-startup: build
+	@bench/startup.sh $(BUILD)/shell/smql
 
 install: build
 	@cmake --install $(BUILD)
