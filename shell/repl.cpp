@@ -210,6 +210,10 @@ void onLine(char* raw) {
         if (step == Session::Step::Failed && loop->session.options().bail) loop->status = 1, loop->ended = true;
     }
     if (loop->session.quitRequested()) loop->ended = true;
+    if (loop->ended) {
+        rl_callback_handler_remove();  // no prompt after the last line
+        return;
+    }
     rl_set_prompt(step == Session::Step::More ? kContinuationPrompt : kPrompt);
 }
 
@@ -260,7 +264,7 @@ int runRepl(Session& session, const std::string& databaseDir) {
         rl_callback_read_char();
     }
     rl_callback_handler_remove();
-    std::cout << "\n";
+    if (!session.quitRequested()) std::cout << "\n";  // after Ctrl-D, whose prompt line is still open
     return state.status;
 }
 

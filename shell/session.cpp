@@ -146,7 +146,8 @@ bool Session::runStatements(std::string_view text, int firstLine, std::string_vi
         ok = false;
     } catch (const Interrupted&) {
         out().flush();
-        err_ << "interrupted\n" << std::flush;
+        // On a terminal the ^C echoed where the cursor was: the word goes on a line of its own.
+        err_ << (isatty(STDERR_FILENO) ? "\ninterrupted\n" : "interrupted\n") << std::flush;
         ok = false;
     }
     interrupt::clear();

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Ctrl-C in the interactive shell, typed into a real terminal (tmux): at the prompt it drops the
+# line, in a statement spanning lines it drops the statement, while statements run it cancels
+# them; the shell goes on every time. Also: a statement typed over two lines is one history entry.
+# Usage: ctrl_c_test.sh SMQL_BINARY
+set -u
+smql=$1
+work=$(mktemp -d)
+socket=smql-ctrl-c-$$
+trap 'tmux -L "$socket" kill-server 2>/dev/null; rm -rf "$work"' EXIT
+passed=0
+failed=0
+
+pass() { passed=$((passed + 1)); }
+fail() {
+  failed=$((failed + 1))
+  echo "FAIL: $1"
+  screen | grep -v '^$' | tail -15 | sed 's/^/  screen: /'
+}
+screen() { tmux -L "$socket" capture-pane -t shell -p -S -200; }
+# Text typed as is; tmux reads a trailing `;` as its command separator unless escaped.
+type_keys() {
+  local text=$1
+  [[ $text == *';' ]] && text="${text%;}\\;"
+  tmux -L "$socket" send-keys -t shell -l "$text"
+}
+press() { tmux -L "$socket" send-keys -t shell "$@"; }
+# wait_for PATTERN [SECONDS]: until the screen's last non-empty line matches (an extended regex;
+# tmux drops the spaces that end a line, so the prompt shows as `smql>`).
+wait_for() {
+  local deadline=$((SECONDS + ${2:-10}))
+  while ((SECONDS < deadline)); do
+    screen | grep -v '^$' | tail -1 | grep -Eq "$1" && return 0
+    sleep 0.1
+  done
+  return 1
+}
+alive() { tmux -L "$socket" list-panes -t shell -F '#{pane_dead}' 2>/dev/null | grep -qx 0; }
+
+# 400 objects on a circle 9 km across: no object lies between two others, so
+# `between(object, object)` tries every pair for every object, about a second per statement.
+python3 - "$work/ring.json" <<'PY' || exit 1
+import json, math, sys
+n = 400
+nodes = [{"id": i + 1, "kind": "object", "parent": 0, "category": ["chair", "sofa", "lamp"][i % 3], "geometry": "box",
+          "box": {"center": [9000 * math.cos(2 * math.pi * i / n), 9000 * math.sin(2 * math.pi * i / n), 0.4],
+                  "size": [0.5, 0.5, 0.8], "yaw": 0.0},
+          "attributes": {}, "confidence": 1.0, "source_id": i + 1, "text": "", "hidden": False} for i in range(n)]
+json.dump({"smql_scene": 1, "scene": {"name": "ring"}, "nodes": nodes, "relations": []}, open(sys.argv[1], "w"))
+PY
+"$smql" import json "$work/ring.json" --db "$work/db" --scene ring >/dev/null || exit 1
+for i in $(seq 20); do echo 'COUNT object WHERE between(object, object);'; done >"$work/slow.smql"
+
+mkdir -p "$work/home"
+# The pane stays after smql exits (remain-on-exit), so the test can see it leave.
+tmux -L "$socket" -f /dev/null new-session -d -s shell -x 100 -y 40 "sleep 0.5; HOME='$work/home' '$smql' '$work/db'"
+tmux -L "$socket" set-option -t shell remain-on-exit on
+if wait_for '^smql>$'; then pass; else fail "the shell shows its prompt"; fi
+
+type_keys 'FIND sof'
+sleep 0.3
+press C-c
+if wait_for '^smql>$' 5 && screen | grep -q '^smql> FIND sof\^C$' && alive; then pass; else fail "Ctrl-C at the prompt drops the line"; fi
+
+type_keys 'FIND sofa'; press Enter
+wait_for '^ +\.\.\.>$' 5
+press C-c
+wait_for '^smql>$' 5
+type_keys 'COUNT lamp;'; press Enter
+# Had the first line been kept, `FIND sofa COUNT lamp;` would be a syntax error.
+if wait_for '^smql>$' 5 && screen | grep -q '^(1 row)$' && ! screen | grep -q error && alive; then pass
+else fail "Ctrl-C on a continuation line drops the whole statement"; fi
+
+# Twenty slow statements: Ctrl-C stops the one running (or drops its result) and the rest.
+type_keys ".read $work/slow.smql"; press Enter
+sleep 1.5
+press C-c
+if wait_for '^smql>$' 5 && screen | grep -q '^interrupted$' && [ "$(screen | grep -c '^(1 row)$')" -lt 10 ] && alive; then pass
+else fail "Ctrl-C while statements run cancels them, not the shell"; fi
+
+type_keys 'COUNT sofa;'; press Enter
+if wait_for '^smql>$' 10 && [ "$(screen | grep -v '^$' | tail -3 | head -1)" = 133 ] && alive; then pass
+else fail "the shell answers after an interrupt"; fi
+
+type_keys 'COUNT chair'; press Enter
+type_keys 'WHERE near(lamp, 1 m);'; press Enter
+wait_for '^smql>$' 10
+type_keys '.quit'; press Enter
+sleep 0.5
+if grep -qx 'COUNT chair\\nWHERE near(lamp, 1 m);' "$work/home/.smql_history"; then pass
+else fail "a statement typed over two lines is one history entry"; sed 's/^/  history: /' "$work/home/.smql_history"; fi
+if ! alive; then pass; else fail ".quit leaves"; fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
