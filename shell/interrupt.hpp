@@ -2,6 +2,10 @@
 // shell: SIGINT only raises a flag that the session and the line editor poll.
 #pragma once
 
+namespace smql {
+class Engine;
+}
+
 namespace smql::shell::interrupt {
 
 // Installs the SIGINT handler, without SA_RESTART so that a blocking read returns EINTR at once.
@@ -11,5 +15,7 @@ void install();
 // Whether Ctrl-C was pressed since the last clear().
 bool requested();
 void clear();
+// The engine whose running statement Ctrl-C stops (Engine::interrupt); null for none.
+void watch(Engine* engine);
 
 }  // namespace smql::shell::interrupt

@@ -23,8 +23,12 @@ std::string trim(std::string_view s) {
     return std::string(s.substr(b, e - b + 1));
 }
 
-// Thrown from the result callback when Ctrl-C was pressed: the statements not yet run are dropped.
-struct Interrupted {};
+// Ctrl-C between two statements of one input (the engine stops a statement that is running):
+// the statements not yet run are dropped.
+Error interruptedBetweenStatements() {
+    return Error(ErrorKind::Interrupted, "the statement was interrupted", std::nullopt,
+                 "the statements after it in the input did not run");
+}
 
 constexpr std::string_view kHelp = R"(Statements end with ';' and may span lines. Examples:
   FIND cushion WHERE on(sofa) PATH;
@@ -76,9 +80,14 @@ std::size_t terminalColumns() {
 }  // namespace
 
 Session::Session(std::unique_ptr<Engine> engine, std::ostream& out, std::ostream& err, SessionOptions options)
-    : engine_(std::move(engine)), stdout_(out), err_(err), options_(options) {}
+    : engine_(std::move(engine)), stdout_(out), err_(err), options_(options) {
+    interrupt::watch(engine_.get());
+}
 
-Session::~Session() { finishOutput(); }
+Session::~Session() {
+    interrupt::watch(nullptr);
+    finishOutput();
+}
 
 std::ostream& Session::out() { return file_.is_open() ? file_ : stdout_; }
 
@@ -134,20 +143,16 @@ bool Session::runStatements(std::string_view text, int firstLine, std::string_vi
     bool ok = true;
     try {
         engine_->execute(text, [&](ResultSet&& result) {
-            if (interrupt::requested()) throw Interrupted{};
+            if (interrupt::requested()) throw interruptedBetweenStatements();
             print(result);
         });
-        if (interrupt::requested()) throw Interrupted{};
     } catch (const Error& e) {
+        // On a terminal the ^C was echoed where the cursor was: the message starts a line of its own.
+        if (e.kind() == ErrorKind::Interrupted && isatty(STDERR_FILENO)) err_ << "\n";
         // Locations are within `text`, which starts at line `firstLine` of `source`.
         std::optional<SourceLocation> where = e.where();
         if (where && where->line > 0) where->line += firstLine - 1;
         printError(Error(e.kind(), e.message(), where, e.hint()), source);
-        ok = false;
-    } catch (const Interrupted&) {
-        out().flush();
-        // On a terminal the ^C echoed where the cursor was: the word goes on a line of its own.
-        err_ << (isatty(STDERR_FILENO) ? "\ninterrupted\n" : "interrupted\n") << std::flush;
         ok = false;
     }
     interrupt::clear();
@@ -248,6 +253,7 @@ bool Session::runMeta(std::string_view line) {
             if (arg.empty()) throw Error(ErrorKind::Usage, ".open needs a database folder", std::nullopt, ".open /tmp/r0");
             auto engine = Engine::open(arg, options_.readOnly);
             finishOutput();
+            interrupt::watch(engine.get());
             engine_ = std::move(engine);
         } else {
             throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt,

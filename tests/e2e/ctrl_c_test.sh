@@ -75,7 +75,7 @@ else fail "Ctrl-C on a continuation line drops the whole statement"; fi
 type_keys ".read $work/slow.smql"; press Enter
 sleep 1.5
 press C-c
-if wait_for '^smql>$' 5 && screen | grep -q '^interrupted$' && [ "$(screen | grep -c '^(1 row)$')" -lt 10 ] && alive; then pass
+if wait_for '^smql>$' 5 && screen | grep -q '^interrupted: the statement was interrupted$' && [ "$(screen | grep -c '^(1 row)$')" -lt 10 ] && alive; then pass
 else fail "Ctrl-C while statements run cancels them, not the shell"; fi
 
 type_keys 'COUNT sofa;'; press Enter
