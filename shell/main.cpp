@@ -86,7 +86,15 @@ int runShell(int argc, char** argv) {
 
     options.output.mode = smql::shell::parseOutputMode(mode);
     options.fitTerminal = isatty(STDOUT_FILENO);
-    bool interactive = command.empty() && statements.empty() && script.empty() && isatty(STDIN_FILENO);
+    bool noScript = command.empty() && statements.empty() && script.empty();
+    bool interactive = noScript && isatty(STDIN_FILENO);
+    // Piped input is read whole before Ctrl-C is caught: an interrupted read would run half a script.
+    std::string piped;
+    if (noScript && !interactive) {
+        std::stringstream text;
+        text << std::cin.rdbuf();
+        piped = text.str();
+    }
     smql::shell::interrupt::install();
     smql::shell::Session session(smql::Engine::open(dir, options.readOnly), std::cout, std::cerr, options);
 
@@ -96,7 +104,7 @@ int runShell(int argc, char** argv) {
         if (options.bail) return 1;
         failed = true;
     }
-    if (interactive) return smql::shell::runRepl(session, dir);
+    if (interactive) return smql::shell::runRepl(session, dir) != 0 || failed ? 1 : 0;
 
     // Scripts stop at their first error: later statements may depend on the ones before.
     auto fails = [&](const std::string& text) { return !session.quitRequested() && !session.runScript(text); };
@@ -104,11 +112,7 @@ int runShell(int argc, char** argv) {
     for (const auto& text : statements)
         if (fails(text)) return 1;
     if (!script.empty() && fails(readFile(script))) return 1;
-    if (command.empty() && statements.empty() && script.empty()) {
-        std::stringstream text;
-        text << std::cin.rdbuf();
-        if (fails(text.str())) return 1;
-    }
+    if (noScript && fails(piped)) return 1;
     return failed ? 1 : 0;
 }
 
