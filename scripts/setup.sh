@@ -9,7 +9,7 @@ packages=(
   libfmt-dev nlohmann-json3-dev libcli11-dev libreadline-dev
   catch2 libsqlite3-dev python3
   libopencv-dev libpcl-dev colmap
-  tmux  # the shell's Ctrl-C test
+  tmux  # the shell's terminal test (Ctrl-C, widths)
 )
 
 missing=()

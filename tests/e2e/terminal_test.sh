@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Ctrl-C in the interactive shell, typed into a real terminal (tmux): at the prompt it drops the
-# line, in a statement spanning lines it drops the statement, while statements run it cancels
-# them; the shell goes on every time. Also: a statement typed over two lines is one history entry.
-# Usage: ctrl_c_test.sh SMQL_BINARY
+# The shell in a real terminal (tmux). Ctrl-C: at the prompt it drops the line, in a statement
+# spanning lines it drops the statement, while statements run it cancels them; the shell goes on
+# every time. A statement typed over two lines is one history entry. Tables fit the terminal's
+# width; the ingest progress bar stays on one line at 40 columns.
+# Usage: terminal_test.sh SMQL_BINARY
 set -u
 smql=$1
 work=$(mktemp -d)
-socket=smql-ctrl-c-$$
+socket=smql-terminal-$$
 trap 'tmux -L "$socket" kill-server 2>/dev/null; rm -rf "$work"' EXIT
 passed=0
 failed=0
@@ -82,6 +83,11 @@ type_keys 'COUNT sofa;'; press Enter
 if wait_for '^smql>$' 10 && [ "$(screen | grep -v '^$' | tail -3 | head -1)" = 133 ] && alive; then pass
 else fail "the shell answers after an interrupt"; fi
 
+# SHOW SETTINGS' meaning column alone is about 90 characters: rows are cut to the 100 columns.
+type_keys 'SHOW SETTINGS;'; press Enter
+if wait_for '^smql>$' 10 && screen | grep -q '^lateral\.min_offset .*…$' && ! screen | grep -q 'viewer.s axis'; then pass
+else fail "table rows fit the terminal's width"; fi
+
 type_keys 'COUNT chair'; press Enter
 type_keys 'WHERE near(lamp, 1 m);'; press Enter
 wait_for '^smql>$' 10
@@ -90,6 +96,15 @@ sleep 0.5
 if grep -qx 'COUNT chair\\nWHERE near(lamp, 1 m);' "$work/home/.smql_history"; then pass
 else fail "a statement typed over two lines is one history entry"; sed 's/^/  history: /' "$work/home/.smql_history"; fi
 if ! alive; then pass; else fail ".quit leaves"; fi
+
+# The ingest's progress bar is redrawn in place: at 40 columns it must not wrap, or every redraw
+# would scroll a line into the history of the terminal.
+"$smql" synth --out "$work/capture" --seed 2 --frames 20 >/dev/null || exit 1
+tmux -L "$socket" new-session -d -s ingest -x 40 -y 20 "'$smql' ingest '$work/capture' --db '$work/memory'; echo ingest-done; sleep 60"
+deadline=$((SECONDS + 60))
+until tmux -L "$socket" capture-pane -t ingest -p | grep -q ingest-done || ((SECONDS > deadline)); do sleep 0.2; done
+if [ "$(tmux -L "$socket" capture-pane -t ingest -p -S -1000 | grep -c '^frames ')" -eq 1 ]; then pass
+else fail "the progress bar stays on one line at 40 columns"; tmux -L "$socket" capture-pane -t ingest -p -S -1000 | sed 's/^/  ingest: /'; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
