@@ -17,5 +17,10 @@ bool requested();
 void clear();
 // The engine whose running statement Ctrl-C stops (Engine::interrupt); null for none.
 void watch(Engine* engine);
+// A file descriptor that becomes readable at each Ctrl-C, for a loop waiting on input with select():
+// a signal that comes while the loop is busy elsewhere still wakes its next wait. -1 before install().
+int wakeFd();
+// Empties wakeFd() after a wake-up.
+void drainWakeFd();
 
 }  // namespace smql::shell::interrupt

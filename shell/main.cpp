@@ -67,10 +67,10 @@ int runShell(int argc, char** argv) {
     app.add_option("-f,--file", script, "run the statements of this file and exit")->check(CLI::ExistingFile);
     app.add_option("--cmd", startup, "run this statement or meta command first (repeatable; then the shell or the input)")
         ->allow_extra_args(false);
-    app.add_option("--format,--mode", mode, "output mode: table, box, markdown, csv, tsv, json, jsonl")
-        ->check(CLI::IsMember({"table", "box", "markdown", "csv", "tsv", "json", "jsonl"}));
-    for (const char* name : {"table", "box", "markdown", "csv", "tsv", "json", "jsonl"})
-        app.add_flag_callback(fmt::format("--{}", name), [&mode, name] { mode = name; }, fmt::format("same as --format {}", name));
+    const std::vector<std::string> modes = smql::shell::outputModeNames();
+    app.add_option("--format,--mode", mode, "output mode (default table)")->check(CLI::IsMember(modes));
+    for (const std::string& name : modes)
+        app.add_flag_callback("--" + name, [&mode, name] { mode = name; }, "same as --format " + name);
     app.add_flag_callback("--tabs", [&mode] { mode = "tsv"; }, "same as --format tsv (sqlite3's name)");
     app.add_flag_callback("--header,--headers", [&options] { options.output.headers = true; }, "print column names (the default)");
     app.add_flag_callback("--noheader,--noheaders", [&options] { options.output.headers = false; }, "no column names");

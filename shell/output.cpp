@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "engine/error.hpp"
 #include "engine/format.hpp"
@@ -209,9 +210,14 @@ std::string delimited(const ResultSet& result, const OutputOptions& options, cha
 OutputMode parseOutputMode(std::string_view name) {
     for (const auto& [modeName, mode] : kModes)
         if (modeName == name) return mode;
-    std::string names;
-    for (const auto& entry : kModes) names += (names.empty() ? "" : ", ") + std::string(entry.first);
-    throw Error(ErrorKind::Usage, fmt::format("unknown output mode '{}'", name), std::nullopt, "modes: " + names);
+    throw Error(ErrorKind::Usage, fmt::format("unknown output mode '{}'", name), std::nullopt,
+                fmt::format("modes: {}", fmt::join(outputModeNames(), ", ")));
+}
+
+std::vector<std::string> outputModeNames() {
+    std::vector<std::string> names;
+    for (const auto& entry : kModes) names.emplace_back(entry.first);
+    return names;
 }
 
 std::string_view toString(OutputMode mode) {

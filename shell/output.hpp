@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "engine/result.hpp"
 
@@ -14,6 +15,8 @@ enum class OutputMode { Table, Box, Markdown, Csv, Tsv, Json, Jsonl };
 // table, box, markdown, csv, tsv, json, jsonl; throws Error(Usage) for another name.
 OutputMode parseOutputMode(std::string_view name);
 std::string_view toString(OutputMode mode);
+// Every mode's name, for options, hints and completion.
+std::vector<std::string> outputModeNames();
 
 struct OutputOptions {
     OutputMode mode = OutputMode::Table;

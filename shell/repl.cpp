@@ -36,11 +36,17 @@ constexpr std::size_t kHistoryKept = 1000;
 Session* completingSession = nullptr;
 std::vector<std::string> candidates;
 
-const std::vector<std::string>& metaCommands() {
-    static const std::vector<std::string> all{".bail",    ".categories", ".echo", ".exit",   ".format", ".headers",
-                                              ".help",    ".mode",       ".once", ".open",   ".output", ".q",
-                                              ".quit",    ".read",       ".scenes", ".timer", ".tree"};
-    return all;
+std::vector<std::string> metaCommandNames() {
+    std::vector<std::string> names;
+    for (const auto& command : Session::metaCommands())
+        for (const auto& name : command.names) names.emplace_back(name);
+    return names;
+}
+
+const Session::MetaCommand* metaCommandNamed(const std::string& name) {
+    for (const auto& command : Session::metaCommands())
+        if (std::find(command.names.begin(), command.names.end(), name) != command.names.end()) return &command;
+    return nullptr;
 }
 
 std::string upper(std::string word) {
@@ -74,11 +80,12 @@ std::vector<std::string> sceneNames(Engine& engine) {
 std::vector<std::string> candidatesFor(const std::string& text, int start) {
     std::string line(rl_line_buffer);
     bool lineStart = line.find_first_not_of(" \t") >= static_cast<std::size_t>(start);
-    if (lineStart && text.rfind('.', 0) == 0) return metaCommands();
-    std::string first = line.substr(0, line.find_first_of(" \t"));
+    if (lineStart && text.rfind('.', 0) == 0) return metaCommandNames();
     if (line.rfind('.', 0) == 0) {
-        if (first == ".mode" || first == ".format") return {"table", "box", "markdown", "csv", "tsv", "json", "jsonl"};
-        if (first == ".headers" || first == ".timer" || first == ".echo" || first == ".bail") return {"on", "off"};
+        const Session::MetaCommand* command = metaCommandNamed(line.substr(0, line.find_first_of(" \t")));
+        if (command && command->argument == Session::MetaArgument::Mode)
+            return outputModeNames();
+        if (command && command->argument == Session::MetaArgument::OnOff) return {"on", "off"};
         return {};
     }
     if (auto dot = text.find('.'); dot != std::string::npos) {
@@ -118,11 +125,12 @@ char* nextCandidate(const char* text, int state) {
 
 char** complete(const char* text, int start, int) {
     std::string line(rl_line_buffer);
-    std::string first = line.substr(0, line.find_first_of(" \t"));
-    // File names after the meta commands that take a file or a folder.
-    bool takesPath = first == ".read" || first == ".output" || first == ".once" || first == ".open";
-    rl_attempted_completion_over = !(takesPath && start > 0);
-    if (takesPath && start > 0) return nullptr;
+    // File names after the meta commands that take a file or a folder: readline's own completion.
+    const Session::MetaCommand* command =
+        line.rfind('.', 0) == 0 ? metaCommandNamed(line.substr(0, line.find_first_of(" \t"))) : nullptr;
+    bool takesPath = command && command->argument == Session::MetaArgument::Path && start > 0;
+    rl_attempted_completion_over = !takesPath;
+    if (takesPath) return nullptr;
     try {
         candidates = candidatesFor(text, start);
     } catch (const std::exception&) {
@@ -252,12 +260,19 @@ int runRepl(Session& session, const std::string& databaseDir) {
     std::cout << fmt::format("smql {} on {} (scene '{}'). .help for help, .quit to leave.\n", "0.1", databaseDir,
                              session.engine().currentScene());
     rl_callback_handler_install(kPrompt, onLine);
+    const int wake = interrupt::wakeFd();
     while (!state.ended) {
         fd_set input;
         FD_ZERO(&input);
         FD_SET(STDIN_FILENO, &input);
-        if (select(STDIN_FILENO + 1, &input, nullptr, nullptr, nullptr) < 0) {
+        if (wake >= 0) FD_SET(wake, &input);
+        if (select(std::max(STDIN_FILENO, wake) + 1, &input, nullptr, nullptr, nullptr) < 0) {
             if (errno != EINTR) break;
+            continue;  // the wake-up descriptor says whether it was Ctrl-C
+        }
+        if (wake >= 0 && FD_ISSET(wake, &input)) {
+            interrupt::drainWakeFd();
+            // Still set: pressed at the prompt. Cleared: a statement already took it.
             if (interrupt::requested()) cancelLine();
             continue;
         }

@@ -3,6 +3,7 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -30,28 +31,15 @@ Error interruptedBetweenStatements() {
                  "the statements after it in the input did not run");
 }
 
-constexpr std::string_view kHelp = R"(Statements end with ';' and may span lines. Examples:
+constexpr std::string_view kHelpStatements = R"(Statements end with ';' and may span lines. Examples:
   FIND cushion WHERE on(sofa) PATH;
   FIND object WHERE near(wall.left, 1 m) ORDER BY distance(door) LIMIT 5;
   RELATE src#72 TO src#73;       COUNT chair WHERE near(table);
   DESCRIBE #12;  SHOW SCENES;  USE SCENE 'room0';  SHOW TREE;  SHOW SETTINGS;
   SET near = 0.8 m;  EXPLAIN FIND lamp WHERE on(table);
 Meta commands:
-  .help                    this text
-  .scenes                  the scenes (SHOW SCENES)
-  .categories              the categories of every scene
-  .tree [#id]              the current scene's tree (SHOW TREE)
-  .mode MODE               output mode: table, box, markdown, csv, tsv, json, jsonl (.format too)
-  .headers on|off          column names in table, box, markdown, csv and tsv
-  .output [FILE]           results into FILE (none: back to standard output)
-  .once FILE               the next statement's results into FILE
-  .read FILE               run the statements and meta commands of FILE
-  .open DIR                switch to the database in DIR
-  .timer on|off            each statement's time, on standard error
-  .echo on|off             print each statement before its result
-  .bail on|off             leave the shell at the first error
-  .quit, .exit, .q         leave (Ctrl-D too)
-Ctrl-C cancels the running statement or the line being typed.
+)";
+constexpr std::string_view kHelpEnd = R"(Ctrl-C cancels the running statement or the line being typed.
 The language: docs/language.md; predicates and thresholds: docs/relations.md.
 )";
 
@@ -201,65 +189,96 @@ Session::Step Session::feedLine(std::string_view line) {
     return feed(pending_, line, 1, {});
 }
 
+// Every meta command, in the order .help lists them: the dispatcher, the help text and the
+// shell's completion all read this table.
+const std::vector<Session::MetaCommand>& Session::metaCommands() {
+    using Arg = MetaArgument;
+    static const std::vector<MetaCommand> table{
+        {{".help"}, "", "this text", Arg::None,
+         [](Session& s, const std::string&) {
+             s.out() << kHelpStatements;
+             for (const auto& c : metaCommands()) {
+                 std::string names;
+                 for (const auto& n : c.names) names += (names.empty() ? "" : ", ") + std::string(n);
+                 s.out() << fmt::format("  {:<24} {}\n", names + (c.usage.empty() ? "" : " " + std::string(c.usage)), c.does);
+             }
+             s.out() << kHelpEnd;
+             return true;
+         }},
+        {{".scenes"}, "", "the scenes (SHOW SCENES)", Arg::None,
+         [](Session& s, const std::string&) { return s.runStatements("SHOW SCENES", 1, {}); }},
+        {{".categories"}, "", "the categories of every scene", Arg::None,
+         [](Session& s, const std::string&) {
+             ResultSet categories;
+             categories.columns.push_back({"category", ValueType::Text});
+             for (const auto& c : s.engine_->knownCategories()) categories.rows.push_back({c});
+             s.print(categories);
+             if (s.once_) s.finishOutput();
+             return true;
+         }},
+        {{".tree"}, "[#id]", "the current scene's tree (SHOW TREE)", Arg::None,
+         [](Session& s, const std::string& arg) {
+             std::string statement = arg.empty() ? "SHOW TREE" : "SHOW TREE " + arg;
+             return s.runStatements(statement, 1, statement);
+         }},
+        {{".mode", ".format"}, "MODE", "output mode: table, box, markdown, csv, tsv, json, jsonl", Arg::Mode,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) {
+                 s.out() << "output mode: " << toString(s.options_.output.mode) << "\n";
+                 return true;
+             }
+             OutputMode mode = parseOutputMode(arg);
+             s.finishOutput();
+             s.options_.output.mode = mode;
+             return true;
+         }},
+        {{".headers"}, "on|off", "column names in table, box, markdown, csv and tsv", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.output.headers = onOff(".headers", arg), true; }},
+        {{".output"}, "[FILE]", "results into FILE (none: back to standard output)", Arg::Path,
+         [](Session& s, const std::string& arg) { return s.redirect(arg, false), true; }},
+        {{".once"}, "FILE", "the next statement's results into FILE", Arg::Path,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) throw Error(ErrorKind::Usage, ".once needs a file", std::nullopt, ".once results.csv");
+             return s.redirect(arg, true), true;
+         }},
+        {{".read"}, "FILE", "run the statements and meta commands of FILE", Arg::Path,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) throw Error(ErrorKind::Usage, ".read needs a file", std::nullopt, ".read queries.smql");
+             std::ifstream in(arg);
+             if (!in) throw Error(ErrorKind::Usage, fmt::format("cannot read {}", arg));
+             std::stringstream text;
+             text << in.rdbuf();
+             return s.runScript(text.str());
+         }},
+        {{".open"}, "DIR", "switch to the database in DIR", Arg::Path,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) throw Error(ErrorKind::Usage, ".open needs a database folder", std::nullopt, ".open /tmp/r0");
+             auto engine = Engine::open(arg, s.options_.readOnly);
+             s.finishOutput();
+             interrupt::watch(engine.get());
+             s.engine_ = std::move(engine);
+             return true;
+         }},
+        {{".timer"}, "on|off", "each statement's time, on standard error", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.timer = onOff(".timer", arg), true; }},
+        {{".echo"}, "on|off", "print each statement before its result", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.echo = onOff(".echo", arg), true; }},
+        {{".bail"}, "on|off", "leave the shell at the first error", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.bail = onOff(".bail", arg), true; }},
+        {{".quit", ".exit", ".q"}, "", "leave (Ctrl-D too)", Arg::None,
+         [](Session& s, const std::string&) { return s.quit_ = true, true; }},
+    };
+    return table;
+}
+
 bool Session::runMeta(std::string_view line) {
     std::string command = trim(line);
     std::string name = command.substr(0, command.find_first_of(" \t"));
     std::string arg = trim(std::string_view(command).substr(name.size()));
     try {
-        if (name == ".help") {
-            out() << kHelp;
-        } else if (name == ".quit" || name == ".exit" || name == ".q") {
-            quit_ = true;
-        } else if (name == ".scenes") {
-            return runStatements("SHOW SCENES", 1, {});
-        } else if (name == ".tree") {
-            std::string statement = arg.empty() ? "SHOW TREE" : "SHOW TREE " + arg;
-            return runStatements(statement, 1, statement);
-        } else if (name == ".categories") {
-            ResultSet categories;
-            categories.columns.push_back({"category", ValueType::Text});
-            for (const auto& c : engine_->knownCategories()) categories.rows.push_back({c});
-            print(categories);
-            if (once_) finishOutput();
-        } else if (name == ".mode" || name == ".format") {
-            if (arg.empty()) {
-                out() << "output mode: " << toString(options_.output.mode) << "\n";
-            } else {
-                OutputMode mode = parseOutputMode(arg);
-                finishOutput();
-                options_.output.mode = mode;
-            }
-        } else if (name == ".headers") {
-            options_.output.headers = onOff(name, arg);
-        } else if (name == ".timer") {
-            options_.timer = onOff(name, arg);
-        } else if (name == ".echo") {
-            options_.echo = onOff(name, arg);
-        } else if (name == ".bail") {
-            options_.bail = onOff(name, arg);
-        } else if (name == ".output") {
-            redirect(arg, false);
-        } else if (name == ".once") {
-            if (arg.empty()) throw Error(ErrorKind::Usage, ".once needs a file", std::nullopt, ".once results.csv");
-            redirect(arg, true);
-        } else if (name == ".read") {
-            if (arg.empty()) throw Error(ErrorKind::Usage, ".read needs a file", std::nullopt, ".read queries.smql");
-            std::ifstream in(arg);
-            if (!in) throw Error(ErrorKind::Usage, fmt::format("cannot read {}", arg));
-            std::stringstream text;
-            text << in.rdbuf();
-            return runScript(text.str());
-        } else if (name == ".open") {
-            if (arg.empty()) throw Error(ErrorKind::Usage, ".open needs a database folder", std::nullopt, ".open /tmp/r0");
-            auto engine = Engine::open(arg, options_.readOnly);
-            finishOutput();
-            interrupt::watch(engine.get());
-            engine_ = std::move(engine);
-        } else {
-            throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt,
-                        ".help lists the commands");
-        }
-        return true;
+        for (const auto& meta : metaCommands())
+            if (std::find(meta.names.begin(), meta.names.end(), name) != meta.names.end()) return meta.run(*this, arg);
+        throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt, ".help lists the commands");
     } catch (const Error& e) {
         printError(e, {});
         return false;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "engine/engine.hpp"
 #include "engine/error.hpp"
@@ -43,6 +44,18 @@ public:
     // Ctrl-C at the prompt: forgets the statement being typed.
     void discardPending() { pending_ = {}; }
     bool quitRequested() const { return quit_; }
+
+    // The meta commands (.mode, .read ...): names (the first is the main one), how the argument is
+    // written, what the command does, what may complete the argument, and the command itself.
+    enum class MetaArgument { None, Mode, OnOff, Path };
+    struct MetaCommand {
+        std::vector<std::string_view> names;
+        std::string_view usage;
+        std::string_view does;
+        MetaArgument argument;
+        bool (*run)(Session& session, const std::string& argument);  // false on error
+    };
+    static const std::vector<MetaCommand>& metaCommands();
 
     // Ends the output document: json's one array closes (a script is one document, as is each
     // input of the interactive shell). Also ends a .once redirection.
