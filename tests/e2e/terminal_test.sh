@@ -56,6 +56,7 @@ mkdir -p "$work/home"
 # The pane stays after smql exits (remain-on-exit), so the test can see it leave.
 tmux -L "$socket" -f /dev/null new-session -d -s shell -x 100 -y 40 "sleep 0.5; HOME='$work/home' '$smql' '$work/db'"
 tmux -L "$socket" set-option -t shell remain-on-exit on
+deadline=$((SECONDS + 60))
 if wait_for '^smql>$'; then pass; else fail "the shell shows its prompt"; fi
 
 type_keys 'FIND sof'
@@ -96,6 +97,15 @@ sleep 0.5
 if grep -qx 'COUNT chair\\nWHERE near(lamp, 1 m);' "$work/home/.smql_history"; then pass
 else fail "a statement typed over two lines is one history entry"; sed 's/^/  history: /' "$work/home/.smql_history"; fi
 if ! alive; then pass; else fail ".quit leaves"; fi
+
+# -bail: the interactive shell ends at its first error, with status 1.
+tmux -L "$socket" new-session -d -s bail -x 100 -y 20 "sleep 0.5; HOME='$work/home' '$smql' -bail '$work/db'; echo status=\$?; sleep 60"
+until tmux -L "$socket" capture-pane -t bail -p | grep -q '^smql>' || ((SECONDS > deadline)); do sleep 0.1; done
+tmux -L "$socket" send-keys -t bail -l 'COUNT sofa'; tmux -L "$socket" send-keys -t bail '\;' Enter
+tmux -L "$socket" send-keys -t bail -l 'FIND nothing'; tmux -L "$socket" send-keys -t bail '\;' Enter
+sleep 1
+if tmux -L "$socket" capture-pane -t bail -p | grep -q '^status=1$'; then pass
+else fail "-bail ends the interactive shell at the first error"; tmux -L "$socket" capture-pane -t bail -p | sed 's/^/  bail: /'; fi
 
 # The ingest's progress bar is redrawn in place: at 40 columns it must not wrap, or every redraw
 # would scroll a line into the history of the terminal.
