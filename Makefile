@@ -7,7 +7,7 @@ PREFIX ?= /usr/local
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build debug test demo bench fuzz install clean
+.PHONY: all setup configure build debug test demo bench bench-startup fuzz install clean
 
 all: build
 
@@ -31,6 +31,11 @@ demo: build
 
 bench: build
 	@$(BUILD)/bench/smql_bench --out docs/benchmarks.md
+	@bench/startup.sh $(BUILD)/shell/smql
+
+# One query in a fresh process, smql next to sqlite3 (the table of docs/benchmarks.md, "Start-up").
+bench-startup: build
+	@bench/startup.sh $(BUILD)/shell/smql
 
 # libFuzzer targets, built with clang in build-fuzz, each run FUZZ_SECONDS seconds; fails on a crash.
 fuzz: setup

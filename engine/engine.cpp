@@ -174,6 +174,16 @@ model::SceneData Engine::readScene(const std::string& name) {
     return out;
 }
 
+std::vector<model::Blob> Engine::evidence(model::NodeId node) {
+    std::lock_guard lock(state_->mutex);
+    auto txn = state_->db->beginRead();
+    if (!txn.node(node)) throw Error(ErrorKind::Binding, fmt::format("no node #{}", node), std::nullopt, "FIND lists node ids");
+    std::vector<model::Blob> out;
+    for (const auto& info : txn.blobsOf(node))
+        if (auto blob = txn.blob(node, info.name)) out.push_back(std::move(*blob));
+    return out;
+}
+
 model::SceneData Engine::exportScene(const std::string& name) {
     model::SceneData out = readScene(name);
     // Local ids 1..n in database-id order; the scene root is implied by parent 0.

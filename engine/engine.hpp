@@ -40,6 +40,9 @@ public:
     // Rewrites stored nodes' attributes, text, confidence or box in one transaction
     // (storage::WriteTransaction::updateNodes says what may change).
     void updateNodes(const std::vector<model::Node>& nodes);
+    // The evidence a node carries (the crops an ingest kept), by database id, in name order.
+    // Throws Error(Binding) when the database has no such node.
+    std::vector<model::Blob> evidence(model::NodeId node);
 
     // Stops the statement running in another thread (Error(Interrupted)); safe from any thread and
     // from a signal handler. Without a running statement it does nothing.

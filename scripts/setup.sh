@@ -10,6 +10,7 @@ packages=(
   catch2 libsqlite3-dev python3
   libopencv-dev libpcl-dev colmap
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer
+  tmux  # the shell's terminal test (Ctrl-C, widths)
 )
 
 missing=()

@@ -1,7 +1,6 @@
 #include "shell/commands.hpp"
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -11,11 +10,8 @@
 #include "engine/engine.hpp"
 #include "engine/error.hpp"
 #include "engine/format.hpp"
-#include "ingest/synth/synth.hpp"
-#include "shell/ingest_command.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
-#include "shell/session.hpp"
 
 namespace smql::shell {
 
@@ -67,51 +63,27 @@ int exportCommand(const std::string&, const std::string& dbDir, const std::strin
     return 0;
 }
 
-int demoCommand(const std::string& dbDirOption) {
-    std::string workDir = dbDirOption;
-    if (workDir.empty()) {
-        std::string pattern = (fs::temp_directory_path() / "smql-demo-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw Error(ErrorKind::Usage, "cannot create a folder under /tmp");
-        workDir = pattern;
+int exportEvidenceCommand(const std::string& dbDir, const std::string& node, const std::string& outDir) {
+    std::string digits = node.rfind('#', 0) == 0 ? node.substr(1) : node;
+    model::NodeId id = 0;
+    try {
+        id = std::stoull(digits);
+    } catch (const std::exception&) {
+        throw Error(ErrorKind::Usage, fmt::format("'{}' is not a node id", node), std::nullopt,
+                    "smql export evidence '#42' DIR --db DB");
     }
-    std::string capture = (fs::path(workDir) / "capture").string();
-    std::string memory = (fs::path(workDir) / "memory").string();
-    std::cout << "smql demo: a synthetic RGB-D walk through a generated room (no external data),\n"
-                 "ingested into a metric memory, then queried.\n\n";
-    auto synth = synth::writeSynth(capture, {.seed = 7, .frames = 40, .objects = 24, .force = true});
-    std::cout << fmt::format("1. captured {} frames of a {} into {} in {:.1f} s\n\n", synth.scene.poses.size(),
-                             "generated room", capture, synth.totalSeconds);
-    std::cout << "2. smql ingest " << capture << " --db " << memory << "\n";
-    IngestArguments ingest;
-    ingest.capture = capture;
-    ingest.db = memory;
-    ingest.scene = "demo-room";
-    if (fs::exists(memory)) fs::remove_all(memory);  // a fresh memory each run
-    ingestCommand(ingest);
-
-    std::cout << "\n3. queries\n\n";
-    auto engine = Engine::open(memory);
-    Session session(*engine, std::cout, std::cerr, OutputFormat::Table);
-    session.setTimer(true);
-    // Queries that hold for any generated room: whatever furniture the seed chose.
-    const char* examples[] = {
-        "SHOW TREE",
-        "FIND object WHERE on(object) PATH",
-        "FIND object WHERE color = 'red' PATH",
-        "FIND object NEAREST TO door LIMIT 3",
-        "COUNT object WHERE near(wall.left, 1 m)",
-        "RELATE (FIND object WHERE on(object) LIMIT 1) TO (FIND object NEAREST TO (FIND object WHERE on(object) LIMIT 1) LIMIT 1)",
-        "DESCRIBE (FIND object WHERE on(object) LIMIT 1)",
-        "EXPLAIN FIND object WHERE on(object) AND near(window, 2 m)",
-    };
-    bool ok = true;
-    for (const char* statement : examples) {
-        std::cout << "smql> " << statement << ";\n";
-        ok &= session.runStatements(statement);
-        std::cout << "\n";
+    auto engine = Engine::open(dbDir, /*readOnly=*/true);
+    auto blobs = engine->evidence(id);
+    if (blobs.empty())
+        throw Error(ErrorKind::Binding, fmt::format("node #{} has no evidence", id), std::nullopt,
+                    "evidence comes from ingested captures; DESCRIBE #id lists it");
+    fs::create_directories(outDir);
+    for (const auto& blob : blobs) {
+        fs::path path = fs::path(outDir) / blob.name;
+        std::ofstream(path, std::ios::binary) << blob.bytes;
+        std::cout << path.string() << "\n";
     }
-    std::cout << fmt::format("Explore it yourself: smql {}\n", memory);
-    return ok ? 0 : 1;
+    return 0;
 }
 
 }  // namespace smql::shell

@@ -1,6 +1,7 @@
-// `smql ingest`, `smql check-ingest` and `smql export evidence`.
+// `smql ingest` and `smql check-ingest`.
 #include "shell/ingest_command.hpp"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,7 +24,6 @@
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/walk.hpp"
-#include "storage/database.hpp"
 
 namespace smql::shell {
 
@@ -33,17 +33,23 @@ namespace {
 
 std::atomic<bool> interrupted{false};
 
-// A bar with the stage's name on a terminal; one line per stage otherwise.
+// A bar with the stage's name on a terminal; one line per stage otherwise. The bar is redrawn in
+// place with \r, so it must stay shorter than the terminal: a line that wraps scrolls at every step.
 class TerminalProgress : public ingest::ProgressSink {
 public:
     explicit TerminalProgress(bool tty) : tty_(tty) {}
     void stageStarted(const std::string& stage, std::size_t steps) override { stage_ = stage, steps_ = steps; }
     void advanced(std::size_t done) override {
         if (!tty_ || steps_ <= 1) return;
-        int width = 30, filled = static_cast<int>(width * done / steps_);
-        std::cerr << fmt::format("\r{:<10} [{}{}] {}/{}", stage_, std::string(filled, '#'), std::string(width - filled, ' '),
-                                 done, steps_)
-                  << std::flush;
+        std::string counts = fmt::format(" {}/{}", done, steps_);
+        std::string name = fmt::format("{:<10}", stage_);
+        // name, " [", bar, "]", counts, and one column spare so the cursor never wraps.
+        int room = static_cast<int>(terminalColumns()) - static_cast<int>(name.size() + counts.size()) - 4;
+        int width = std::min(30, room);
+        std::string line = width >= 5 ? fmt::format("{} [{}{}]{}", name, std::string(width * done / steps_, '#'),
+                                                    std::string(width - width * done / steps_, ' '), counts)
+                                      : (name + counts).substr(0, std::max<std::size_t>(terminalColumns(), 2) - 1);
+        std::cerr << "\r" << line << "\033[K" << std::flush;
     }
     void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
         if (tty_) std::cerr << "\r\033[K";
@@ -55,6 +61,11 @@ public:
     }
 
 private:
+    static std::size_t terminalColumns() {
+        winsize size{};
+        return ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0 ? size.ws_col : 80;
+    }
+
     bool tty_;
     std::string stage_;
     std::size_t steps_ = 0;
@@ -238,30 +249,6 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
     if (registration)
         std::cout << fmt::format("scale    off by {:.1f}% (similarity from {} cameras to the true poses, residual {:.3f} m)\n",
                                  100 * std::abs(registration->scale - 1), cameras.size(), registration->residual);
-    return 0;
-}
-
-int exportEvidenceCommand(const std::string& dbDir, const std::string& node, const std::string& outDir) {
-    std::string digits = node.rfind('#', 0) == 0 ? node.substr(1) : node;
-    model::NodeId id = 0;
-    try {
-        id = std::stoull(digits);
-    } catch (const std::exception&) {
-        throw Error(ErrorKind::Usage, fmt::format("'{}' is not a node id", node), std::nullopt, "smql export evidence '#42' DIR --db DB");
-    }
-    auto db = storage::Database::open(dbDir, {.readOnly = true, .create = false});
-    auto txn = db->beginRead();
-    if (!txn.node(id)) throw Error(ErrorKind::Binding, fmt::format("no node #{} in {}", id, dbDir));
-    auto blobs = txn.blobsOf(id);
-    if (blobs.empty()) throw Error(ErrorKind::Binding, fmt::format("node #{} has no evidence", id), std::nullopt,
-                                   "evidence comes from ingested captures; DESCRIBE #id lists it");
-    fs::create_directories(outDir);
-    for (const auto& info : blobs) {
-        auto blob = txn.blob(id, info.name);
-        fs::path path = fs::path(outDir) / info.name;
-        std::ofstream(path, std::ios::binary) << blob->bytes;
-        std::cout << path.string() << "\n";
-    }
     return 0;
 }
 

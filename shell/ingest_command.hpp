@@ -1,6 +1,7 @@
-// The ingest sub-commands of `smql` (docs/ingest.md).
+// The capture commands of `smql`, built into smql-ingest (docs/ingest.md).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -23,7 +24,11 @@ int ingestCommand(const IngestArguments& args);
 // `smql check-ingest DIR --truth TRUTH.json`: quality figures against a synthetic capture's truth.
 int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, const std::string& sceneName,
                        const std::string& format);
-// `smql export evidence '#id' DIR --db DB`: writes a node's evidence crops into DIR.
-int exportEvidenceCommand(const std::string& dbDir, const std::string& node, const std::string& outDir);
+// `smql synth --out DIR [--seed N] [--frames K] [--objects N] [--force]`: a synthetic RGB-D capture
+// of a generated room with ground truth (docs/ingest.md, "Synthetic captures").
+int synthCommand(const std::string& outDir, std::uint64_t seed, int frames, int objects, bool force);
+// `smql demo [--db DIR]`: a generated room captured, ingested into DIR (a new or empty folder) and
+// queried, with the answers and their timings.
+int demoCommand(const std::string& dbDir);
 
 }  // namespace smql::shell

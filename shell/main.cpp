@@ -1,72 +1,140 @@
 // The `smql` command: a shell over a database directory, and sub-commands.
 //   smql DIR                       interactive shell
-//   smql DIR -c 'STATEMENT;'       run statements, print, exit (non-zero on error)
-//   smql DIR -f script.smql        run a script
-//   smql import|export|demo|test|synth|ingest|check-ingest|check   see --help of each
+//   smql DIR 'STATEMENTS'          run statements, print, exit (also -c; -f FILE for a script)
+//   smql import|export|check|test  here; ingest|check-ingest|synth|demo in smql-ingest
+// Options follow sqlite3's where they mean the same (-json, -csv, -header, -cmd, -bail, -echo).
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "engine/error.hpp"
 #include "engine/model/names.hpp"
 #include "ingest/import/registry.hpp"
+#include "shell/cli.hpp"
 #include "shell/commands.hpp"
-#include "shell/ingest_command.hpp"
+#include "shell/interrupt.hpp"
+#include "shell/repl.hpp"
 #include "shell/session.hpp"
 
 namespace {
 
+namespace fs = std::filesystem;
+
 constexpr const char* kVersion = "smql 0.1.0";
 
+// sqlite3 users write long options with one dash (-csv, -header, -cmd). CLI11 would read `-csv` as
+// `-c sv`, so a single-dash word that names a long option becomes that option before parsing.
+std::vector<std::string> longOptionsWithOneDash(const CLI::App& app, int argc, char** argv) {
+    std::set<std::string, std::less<>> longNames;
+    for (const CLI::Option* option : app.get_options())
+        for (const std::string& name : option->get_lnames()) longNames.insert(name);
+    std::vector<std::string> args(argv, argv + argc);
+    for (std::size_t i = 1; i < args.size(); ++i) {
+        if (args[i] == "--") break;
+        const std::string& arg = args[i];
+        if (arg.size() > 2 && arg[0] == '-' && arg[1] != '-' && longNames.contains(std::string_view(arg).substr(1)))
+            args[i] = "-" + arg;
+    }
+    return args;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
 int runShell(int argc, char** argv) {
-    CLI::App app{"smql: an embedded spatial memory engine. `smql DIR` opens the shell on a database directory;\n"
-                 "sub-commands: import, export, ingest, check-ingest, check, synth, demo, test (smql COMMAND --help)."};
-    std::string dir, command, script, format = "table";
-    bool readOnly = false, timer = false;
+    CLI::App app{"smql: an embedded spatial memory engine.\n"
+                 "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits.\n"
+                 "Sub-commands: import, export, check, test, ingest, check-ingest, synth, demo (smql COMMAND --help).\n"
+                 "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd)."};
+    app.name("smql");
+    std::string dir, command, script, mode = "table";
+    std::vector<std::string> statements, startup;
+    smql::shell::SessionOptions options;
     app.add_option("database", dir, "database directory (created if missing)")->required();
+    app.add_option("statements", statements, "statements to run, then exit (as -c)");
     auto* commandOption = app.add_option("-c,--command", command, "run these statements and exit");
     app.add_option("-f,--file", script, "run the statements of this file and exit")->check(CLI::ExistingFile);
-    app.add_option("--format", format, "output format: table, json or csv")->check(CLI::IsMember({"table", "json", "csv"}));
-    app.add_flag("--read-only", readOnly, "open the database read-only");
-    app.add_flag("--timer", timer, "print each statement's time");
+    app.add_option("--cmd", startup, "run this statement or meta command first (repeatable; then the shell or the input)")
+        ->allow_extra_args(false);
+    const std::vector<std::string> modes = smql::shell::outputModeNames();
+    app.add_option("--format,--mode", mode, "output mode (default table)")->check(CLI::IsMember(modes));
+    for (const std::string& name : modes)
+        app.add_flag_callback("--" + name, [&mode, name] { mode = name; }, "same as --format " + name);
+    app.add_flag_callback("--tabs", [&mode] { mode = "tsv"; }, "same as --format tsv (sqlite3's name)");
+    app.add_flag_callback("--header,--headers", [&options] { options.output.headers = true; }, "print column names (the default)");
+    app.add_flag_callback("--noheader,--noheaders", [&options] { options.output.headers = false; }, "no column names");
+    app.add_flag("--bail", options.bail, "stop at the first error: after a --cmd, and in the interactive shell");
+    app.add_flag("--echo", options.echo, "print each statement before its result");
+    app.add_flag("--read-only,--readonly", options.readOnly, "open the database read-only");
+    app.add_flag("--timer", options.timer, "print each statement's time on standard error");
     app.set_version_flag("--version", kVersion);
-    CLI11_PARSE(app, argc, argv);
+    std::vector<std::string> args = longOptionsWithOneDash(app, argc, argv);
+    std::vector<char*> rewritten;
+    for (auto& a : args) rewritten.push_back(a.data());
+    if (auto status = smql::shell::parseArguments(app, static_cast<int>(rewritten.size()), rewritten.data())) return *status;
 
     // `-c ""` (an unset variable in a script, say) would otherwise fall through
     // to reading standard input or the interactive shell and exit 0.
     if (commandOption->count() > 0 && command.find_first_not_of(" \t\r\n") == std::string::npos)
         throw smql::Error(smql::ErrorKind::Usage, "-c was given no statement", std::nullopt,
                           "write the statements after -c, as in smql DB -c 'SHOW SCENES'");
-    auto outputFormat = smql::shell::parseFormat(format);
-    auto engine = smql::Engine::open(dir, readOnly);
-    if (command.empty() && script.empty()) {
-        if (!isatty(STDIN_FILENO)) {
-            // Piped input: run it as a script.
-            std::stringstream text;
-            text << std::cin.rdbuf();
-            smql::shell::Session session(*engine, std::cout, std::cerr, outputFormat);
-            session.setTimer(timer);
-            return session.runStatements(text.str()) ? 0 : 1;
-        }
-        return smql::shell::runRepl(*engine, dir, outputFormat);
-    }
-    smql::shell::Session session(*engine, std::cout, std::cerr, outputFormat);
-    session.setTimer(timer);
-    if (!command.empty() && !session.runStatements(command)) return 1;
-    if (!script.empty()) {
-        std::ifstream in(script);
+    options.output.mode = smql::shell::parseOutputMode(mode);
+    options.fitTerminal = isatty(STDOUT_FILENO);
+    bool noScript = command.empty() && statements.empty() && script.empty();
+    bool interactive = noScript && isatty(STDIN_FILENO);
+    // Piped input is read whole before Ctrl-C is caught: an interrupted read would run half a script.
+    std::string piped;
+    if (noScript && !interactive) {
         std::stringstream text;
-        text << in.rdbuf();
-        if (!session.runStatements(text.str())) return 1;
+        text << std::cin.rdbuf();
+        piped = text.str();
     }
-    return 0;
+    smql::shell::interrupt::install();
+    smql::shell::Session session(smql::Engine::open(dir, options.readOnly), std::cout, std::cerr, options);
+
+    bool failed = false;
+    for (const auto& text : startup) {
+        if (session.runScript(text)) continue;
+        if (options.bail) return 1;
+        failed = true;
+    }
+    if (interactive) return smql::shell::runRepl(session, dir) != 0 || failed ? 1 : 0;
+
+    // Scripts stop at their first error: later statements may depend on the ones before.
+    auto fails = [&](const std::string& text) { return !session.quitRequested() && !session.runScript(text); };
+    if (!command.empty() && fails(command)) return 1;
+    for (const auto& text : statements)
+        if (fails(text)) return 1;
+    if (!script.empty() && fails(readFile(script))) return 1;
+    if (noScript && fails(piped)) return 1;
+    return failed ? 1 : 0;
+}
+
+// The capture commands live in smql-ingest beside this program (see shell/ingest_main.cpp): it
+// replaces this process, so its output, exit status and Ctrl-C behave as if it were smql itself.
+int runIngestTool(char** argv) {
+    std::error_code error;
+    fs::path self = fs::read_symlink("/proc/self/exe", error);
+    fs::path tool = (error ? fs::path(argv[0]) : self).parent_path() / "smql-ingest";
+    execv(tool.c_str(), argv);
+    throw smql::Error(smql::ErrorKind::Usage, fmt::format("cannot run {}: {}", tool.string(), std::strerror(errno)),
+                      std::nullopt, "smql-ingest is built and installed next to smql (cmake --build build --target smql-ingest)");
 }
 
 int runSubcommand(int argc, char** argv) {
     CLI::App app{"smql sub-commands"};
+    app.name("smql");
     app.require_subcommand(1);
 
     auto* import = app.add_subcommand("import", "import a scene layout file into a database (one transaction)");
@@ -88,58 +156,16 @@ int runSubcommand(int argc, char** argv) {
     exportCmd->add_option("--scene", exportScene, "scene name (default: the most recent)");
     exportCmd->add_option("-o,--output", exportOut, "output file (default: standard output)");
 
-    auto* ingestCmd = app.add_subcommand("ingest", "turn a capture (RGB-D folder, TUM, nerfstudio, COLMAP ...) into a new scene");
-    smql::shell::IngestArguments ingestArgs;
-    bool ingestQuiet = false;
-    std::optional<double> ingestScale;
-    ingestCmd->add_option("capture", ingestArgs.capture, "capture folder or file")->required()->check(CLI::ExistingPath);
-    ingestCmd->add_option("--db", ingestArgs.db, "database directory (created if missing)")->required();
-    ingestCmd->add_option("--scene", ingestArgs.scene, "scene name (default: the capture's folder name)");
-    ingestCmd->add_option("--geometry", ingestArgs.geometry, "given, colmap or auto (default)")
-        ->check(CLI::IsMember({"given", "colmap", "auto"}));
-    ingestCmd->add_option("--objects", ingestArgs.objects, "masks, detections, cluster or auto (default)")
-        ->check(CLI::IsMember({"masks", "detections", "cluster", "auto"}));
-    ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")->check(CLI::PositiveNumber);
-    ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")->check(CLI::PositiveNumber);
-    ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");
-    ingestCmd->add_option("--update", ingestArgs.update,
-                          "refresh the last-seen time of the objects of this scene that the capture sees again, "
-                          "instead of adding a new scene");
-    ingestCmd->add_option("--log", ingestArgs.log, "progress as a bar (default), json lines, or quiet")
-        ->check(CLI::IsMember({"bar", "json", "quiet"}));
-
-    auto* check = app.add_subcommand("check-ingest", "compare an ingested scene with a synthetic capture's truth");
-    std::string checkDb, checkTruth, checkScene, checkFormat = "table";
-    check->add_option("database", checkDb, "database directory")->required()->check(CLI::ExistingDirectory);
-    check->add_option("--truth", checkTruth, "truth.json of the capture (smql synth writes it)")->required()->check(CLI::ExistingFile);
-    check->add_option("--scene", checkScene, "scene name (default: the most recent)");
-    check->add_option("--format", checkFormat, "table or json")->check(CLI::IsMember({"table", "json"}));
-
-    auto* demo = app.add_subcommand("demo", "build a sample memory of a generated room and query it");
-    std::string demoDb;
-    demo->add_option("--db", demoDb, "where to build it (default: a new folder under /tmp)");
-
     auto* test = app.add_subcommand("test", "run declarative query suites (*.smqlt)");
     std::vector<std::string> testFiles;
     test->add_option("files", testFiles, "suite files")->required()->check(CLI::ExistingFile);
-
-    auto* synth = app.add_subcommand("synth", "write a synthetic RGB-D capture of a generated room, with ground truth");
-    std::string synthOut;
-    std::uint64_t synthSeed = 1;
-    int synthFrames = 60, synthObjects = 24;
-    bool synthForce = false;
-    synth->add_option("--out", synthOut, "output folder (refused when not empty, unless --force)")->required();
-    synth->add_option("--seed", synthSeed, "room and walk seed (default 1)");
-    synth->add_option("--frames", synthFrames, "frames along the walk (default 60)")->check(CLI::Range(1, 100000));
-    synth->add_option("--objects", synthObjects, "objects in the room (default 24)")->check(CLI::Range(1, 5000));
-    synth->add_flag("--force", synthForce, "write into a non-empty folder, replacing an earlier capture's files");
 
     auto* checkDbCmd = app.add_subcommand("check", "verify a database: records and their checksums, scene trees, "
                                                    "indexes, lock file; exit status 1 when anything is wrong");
     std::string checkDbDir;
     checkDbCmd->add_option("database", checkDbDir, "database directory")->required()->check(CLI::ExistingDirectory);
 
-    CLI11_PARSE(app, argc, argv);
+    if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
     if (checkDbCmd->parsed()) return smql::shell::checkCommand(checkDbDir);
     if (import->parsed()) return smql::shell::importCommand(importFormat, importFile, importDb, importScene);
     if (exportCmd->parsed() && exportFormat == "evidence") {
@@ -149,16 +175,7 @@ int runSubcommand(int argc, char** argv) {
         return smql::shell::exportEvidenceCommand(exportDb, exportEvidence[0], exportEvidence[1]);
     }
     if (exportCmd->parsed()) return smql::shell::exportCommand(exportFormat, exportDb, exportScene, exportOut);
-    if (ingestCmd->parsed()) {
-        ingestArgs.scale = ingestScale;
-        if (ingestQuiet) ingestArgs.log = "quiet";
-        return smql::shell::ingestCommand(ingestArgs);
-    }
-    if (check->parsed()) return smql::shell::checkIngestCommand(checkDb, checkTruth, checkScene, checkFormat);
-    if (demo->parsed()) return smql::shell::demoCommand(demoDb);
-    if (test->parsed()) return smql::shell::testCommand(testFiles);
-    if (synth->parsed()) return smql::shell::synthCommand(synthOut, synthSeed, synthFrames, synthObjects, synthForce);
-    return 2;
+    return smql::shell::testCommand(testFiles);
 }
 
 }  // namespace
@@ -166,8 +183,9 @@ int runSubcommand(int argc, char** argv) {
 int main(int argc, char** argv) {
     try {
         std::string first = argc > 1 ? argv[1] : "";
-        if (first == "import" || first == "export" || first == "demo" || first == "test" || first == "synth" ||
-            first == "ingest" || first == "check-ingest" || first == "check")
+        if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo")
+            return runIngestTool(argv);
+        if (first == "import" || first == "export" || first == "test" || first == "check")
             return runSubcommand(argc, argv);
         return runShell(argc, argv);
     } catch (const smql::Error& e) {

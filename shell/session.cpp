@@ -1,11 +1,17 @@
 #include "shell/session.hpp"
 
-#include <ostream>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <iostream>
+#include <sstream>
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
 #include "engine/format.hpp"
+#include "engine/parser/parser.hpp"
+#include "shell/interrupt.hpp"
 
 namespace smql::shell {
 
@@ -18,93 +24,263 @@ std::string trim(std::string_view s) {
     return std::string(s.substr(b, e - b + 1));
 }
 
-constexpr std::string_view kHelp = R"(Statements end with ';' and may span lines. Examples:
+// Ctrl-C between two statements of one input (the engine stops a statement that is running):
+// the statements not yet run are dropped.
+Error interruptedBetweenStatements() {
+    return Error(ErrorKind::Interrupted, "the statement was interrupted", std::nullopt,
+                 "the statements after it in the input did not run");
+}
+
+constexpr std::string_view kHelpStatements = R"(Statements end with ';' and may span lines. Examples:
   FIND cushion WHERE on(sofa) PATH;
   FIND object WHERE near(wall.left, 1 m) ORDER BY distance(door) LIMIT 5;
   RELATE src#72 TO src#73;       COUNT chair WHERE near(table);
   DESCRIBE #12;  SHOW SCENES;  USE SCENE 'room0';  SHOW TREE;  SHOW SETTINGS;
   SET near = 0.8 m;  EXPLAIN FIND lamp WHERE on(table);
 Meta commands:
-  .help                 this text
-  .scenes               SHOW SCENES
-  .tree [#id]           SHOW TREE
-  .format table|json|csv  output format
-  .timer on|off         print each statement's time
-  .quit                 leave (Ctrl-D too)
+)";
+constexpr std::string_view kHelpEnd = R"(Ctrl-C cancels the running statement or the line being typed.
 The language: docs/language.md; predicates and thresholds: docs/relations.md.
 )";
 
+bool onOff(const std::string& command, const std::string& arg) {
+    if (arg == "on") return true;
+    if (arg == "off") return false;
+    throw Error(ErrorKind::Usage, fmt::format("{} takes on or off", command), std::nullopt, command + " on");
+}
+
+// Lines that hold no statement: blank, or a `--` comment.
+bool onlyComments(std::string_view text) {
+    std::istringstream lines{std::string(text)};
+    for (std::string line; std::getline(lines, line);) {
+        std::string t = trim(line);
+        if (!t.empty() && t.rfind("--", 0) != 0) return false;
+    }
+    return true;
+}
+
+std::size_t terminalColumns() {
+    winsize size{};
+    if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+    return 0;
+}
+
 }  // namespace
 
-OutputFormat parseFormat(std::string_view name) {
-    if (name == "table") return OutputFormat::Table;
-    if (name == "json") return OutputFormat::Json;
-    if (name == "csv") return OutputFormat::Csv;
-    throw Error(ErrorKind::Usage, fmt::format("unknown output format '{}'", name), std::nullopt,
-                "formats: table, json, csv");
+Session::Session(std::unique_ptr<Engine> engine, std::ostream& out, std::ostream& err, SessionOptions options)
+    : engine_(std::move(engine)), stdout_(out), err_(err), options_(options) {
+    interrupt::watch(engine_.get());
 }
 
-Session::Session(Engine& engine, std::ostream& out, std::ostream& err, OutputFormat format)
-    : engine_(engine), out_(out), err_(err), format_(format) {}
+Session::~Session() {
+    interrupt::watch(nullptr);
+    finishOutput();
+}
+
+std::ostream& Session::out() { return file_.is_open() ? file_ : stdout_; }
+
+void Session::finishOutput() {
+    if (documentOpen_) out() << "]\n";
+    documentOpen_ = false;
+    out().flush();
+    if (once_) file_.close(), once_ = false;
+}
+
+void Session::redirect(const std::string& path, bool once) {
+    finishOutput();
+    if (file_.is_open()) file_.close();
+    once_ = false;
+    if (path.empty()) return;
+    file_.open(path, std::ios::trunc);
+    if (!file_)
+        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path), std::nullopt, "check that the folder exists");
+    once_ = once;
+}
 
 void Session::print(const ResultSet& result) {
-    switch (format_) {
-        case OutputFormat::Json: out_ << jsonText(resultJson(result)) << "\n"; break;
-        case OutputFormat::Csv: out_ << formatCsv(result); break;
-        case OutputFormat::Table:
-            out_ << formatTable(result);
-            if (!result.columns.empty() && result.message.empty())
-                out_ << fmt::format("({} row{})\n", result.rows.size(), result.rows.size() == 1 ? "" : "s");
-            if (!result.message.empty()) out_ << result.message << "\n";
-            break;
+    if (options_.output.mode == OutputMode::Json) {
+        // One JSON document per script: the results as one array, opened by the first of them.
+        out() << (documentOpen_ ? ",\n" : "[") << jsonText(resultJson(result));
+        documentOpen_ = true;
+    } else {
+        OutputOptions output = options_.output;
+        bool toTerminal = options_.fitTerminal && !file_.is_open();
+        output.maxWidth = toTerminal ? terminalColumns() : 0;
+        out() << renderResult(result, output);
     }
-    if (timer_) out_ << fmt::format("time: {:.1f} us\n", result.elapsedMicroseconds);
+    // The time goes to standard error, so that standard output stays one parseable document.
+    if (options_.timer) err_ << fmt::format("time: {:.1f} us\n", result.elapsedMicroseconds) << std::flush;
 }
 
-bool Session::runStatements(std::string_view text) {
-    if (trim(text).empty()) return true;
-    try {
-        engine_.execute(text, [&](ResultSet&& result) { print(result); });
-        return true;
-    } catch (const Error& e) {
-        if (format_ == OutputFormat::Json) {
-            nlohmann::json j = {{"error", {{"kind", toString(e.kind())}, {"message", e.message()}}}};
-            if (e.where()) j["error"]["line"] = e.where()->line, j["error"]["column"] = e.where()->column;
-            if (!e.hint().empty()) j["error"]["hint"] = e.hint();
-            err_ << jsonText(j) << "\n";
-        } else {
-            err_ << e.render(text) << "\n";
-        }
-        return false;
+void Session::printError(const Error& e, std::string_view source) {
+    out().flush();
+    if (options_.output.mode == OutputMode::Json || options_.output.mode == OutputMode::Jsonl) {
+        nlohmann::json j = {{"error", {{"kind", toString(e.kind())}, {"message", e.message()}}}};
+        if (e.where()) j["error"]["line"] = e.where()->line, j["error"]["column"] = e.where()->column;
+        if (!e.hint().empty()) j["error"]["hint"] = e.hint();
+        err_ << jsonText(j) << "\n";
+    } else {
+        err_ << e.render(source) << "\n";
     }
+    err_.flush();
+}
+
+bool Session::runStatements(std::string_view text, int firstLine, std::string_view source) {
+    if (options_.echo) out() << trim(text) << "\n";
+    interrupt::clear();
+    bool ok = true;
+    try {
+        engine_->execute(text, [&](ResultSet&& result) {
+            if (interrupt::requested()) throw interruptedBetweenStatements();
+            print(result);
+        });
+    } catch (const Error& e) {
+        // On a terminal the ^C was echoed where the cursor was: the message starts a line of its own.
+        if (e.kind() == ErrorKind::Interrupted && isatty(STDERR_FILENO)) err_ << "\n";
+        // Locations are within `text`, which starts at line `firstLine` of `source`.
+        std::optional<SourceLocation> where = e.where();
+        if (where && where->line > 0) where->line += firstLine - 1;
+        printError(Error(e.kind(), e.message(), where, e.hint()), source);
+        ok = false;
+    }
+    interrupt::clear();
+    if (once_) finishOutput();
+    return ok;
+}
+
+Session::Step Session::feed(Pending& pending, std::string_view line, int lineNumber, std::string_view source) {
+    if (pending.text.empty()) {
+        std::string first = trim(line);
+        if (first.empty()) return Step::Done;
+        if (first[0] == '.') return runMeta(first) ? Step::Done : Step::Failed;
+        pending.firstLine = lineNumber;
+    }
+    pending.text += pending.text.empty() ? std::string(line) : "\n" + std::string(line);
+    if (onlyComments(pending.text)) {
+        pending = {};
+        return Step::Done;
+    }
+    if (parser::isIncomplete(pending.text)) return Step::More;
+    Pending statement = std::exchange(pending, {});
+    return runStatements(statement.text, statement.firstLine, source.empty() ? statement.text : source)
+               ? Step::Done
+               : Step::Failed;
+}
+
+bool Session::runScript(std::string_view text) {
+    Pending pending;
+    int lineNumber = 0;
+    std::size_t start = 0;
+    while (start <= text.size() && !quit_) {
+        std::size_t end = text.find('\n', start);
+        std::string_view line = text.substr(start, end == std::string_view::npos ? text.npos : end - start);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (feed(pending, line, ++lineNumber, text) == Step::Failed) return false;
+        if (end == std::string_view::npos) break;
+        start = end + 1;
+    }
+    // The end of the script ends the last statement, `;` or not.
+    if (!pending.text.empty() && !quit_) return runStatements(pending.text, pending.firstLine, text);
+    return true;
+}
+
+Session::Step Session::feedLine(std::string_view line) {
+    // Each statement typed is its own text: error locations count from its first line.
+    return feed(pending_, line, 1, {});
+}
+
+// Every meta command, in the order .help lists them: the dispatcher, the help text and the
+// shell's completion all read this table.
+const std::vector<Session::MetaCommand>& Session::metaCommands() {
+    using Arg = MetaArgument;
+    static const std::vector<MetaCommand> table{
+        {{".help"}, "", "this text", Arg::None,
+         [](Session& s, const std::string&) {
+             s.out() << kHelpStatements;
+             for (const auto& c : metaCommands()) {
+                 std::string names;
+                 for (const auto& n : c.names) names += (names.empty() ? "" : ", ") + std::string(n);
+                 s.out() << fmt::format("  {:<24} {}\n", names + (c.usage.empty() ? "" : " " + std::string(c.usage)), c.does);
+             }
+             s.out() << kHelpEnd;
+             return true;
+         }},
+        {{".scenes"}, "", "the scenes (SHOW SCENES)", Arg::None,
+         [](Session& s, const std::string&) { return s.runStatements("SHOW SCENES", 1, {}); }},
+        {{".categories"}, "", "the categories of every scene", Arg::None,
+         [](Session& s, const std::string&) {
+             ResultSet categories;
+             categories.columns.push_back({"category", ValueType::Text});
+             for (const auto& c : s.engine_->knownCategories()) categories.rows.push_back({c});
+             s.print(categories);
+             if (s.once_) s.finishOutput();
+             return true;
+         }},
+        {{".tree"}, "[#id]", "the current scene's tree (SHOW TREE)", Arg::None,
+         [](Session& s, const std::string& arg) {
+             std::string statement = arg.empty() ? "SHOW TREE" : "SHOW TREE " + arg;
+             return s.runStatements(statement, 1, statement);
+         }},
+        {{".mode", ".format"}, "MODE", "output mode: table, box, markdown, csv, tsv, json, jsonl", Arg::Mode,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) {
+                 s.out() << "output mode: " << toString(s.options_.output.mode) << "\n";
+                 return true;
+             }
+             OutputMode mode = parseOutputMode(arg);
+             s.finishOutput();
+             s.options_.output.mode = mode;
+             return true;
+         }},
+        {{".headers"}, "on|off", "column names in table, box, markdown, csv and tsv", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.output.headers = onOff(".headers", arg), true; }},
+        {{".output"}, "[FILE]", "results into FILE (none: back to standard output)", Arg::Path,
+         [](Session& s, const std::string& arg) { return s.redirect(arg, false), true; }},
+        {{".once"}, "FILE", "the next statement's results into FILE", Arg::Path,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) throw Error(ErrorKind::Usage, ".once needs a file", std::nullopt, ".once results.csv");
+             return s.redirect(arg, true), true;
+         }},
+        {{".read"}, "FILE", "run the statements and meta commands of FILE", Arg::Path,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) throw Error(ErrorKind::Usage, ".read needs a file", std::nullopt, ".read queries.smql");
+             std::ifstream in(arg);
+             if (!in) throw Error(ErrorKind::Usage, fmt::format("cannot read {}", arg));
+             std::stringstream text;
+             text << in.rdbuf();
+             return s.runScript(text.str());
+         }},
+        {{".open"}, "DIR", "switch to the database in DIR", Arg::Path,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) throw Error(ErrorKind::Usage, ".open needs a database folder", std::nullopt, ".open /tmp/r0");
+             auto engine = Engine::open(arg, s.options_.readOnly);
+             s.finishOutput();
+             interrupt::watch(engine.get());
+             s.engine_ = std::move(engine);
+             return true;
+         }},
+        {{".timer"}, "on|off", "each statement's time, on standard error", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.timer = onOff(".timer", arg), true; }},
+        {{".echo"}, "on|off", "print each statement before its result", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.echo = onOff(".echo", arg), true; }},
+        {{".bail"}, "on|off", "leave the shell at the first error", Arg::OnOff,
+         [](Session& s, const std::string& arg) { return s.options_.bail = onOff(".bail", arg), true; }},
+        {{".quit", ".exit", ".q"}, "", "leave (Ctrl-D too)", Arg::None,
+         [](Session& s, const std::string&) { return s.quit_ = true, true; }},
+    };
+    return table;
 }
 
 bool Session::runMeta(std::string_view line) {
     std::string command = trim(line);
-    std::string name = command.substr(0, command.find(' '));
-    std::string arg = command.size() > name.size() ? trim(command.substr(name.size())) : "";
+    std::string name = command.substr(0, command.find_first_of(" \t"));
+    std::string arg = trim(std::string_view(command).substr(name.size()));
     try {
-        if (name == ".help") {
-            out_ << kHelp;
-        } else if (name == ".quit" || name == ".exit") {
-            quit_ = true;
-        } else if (name == ".scenes") {
-            return runStatements("SHOW SCENES");
-        } else if (name == ".tree") {
-            return runStatements(arg.empty() ? "SHOW TREE" : "SHOW TREE " + arg);
-        } else if (name == ".format") {
-            format_ = parseFormat(arg);
-        } else if (name == ".timer") {
-            if (arg != "on" && arg != "off")
-                throw Error(ErrorKind::Usage, ".timer takes on or off", std::nullopt, ".timer on");
-            timer_ = arg == "on";
-        } else {
-            throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt,
-                        ".help lists the commands");
-        }
-        return true;
+        for (const auto& meta : metaCommands())
+            if (std::find(meta.names.begin(), meta.names.end(), name) != meta.names.end()) return meta.run(*this, arg);
+        throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt, ".help lists the commands");
     } catch (const Error& e) {
-        err_ << e.render() << "\n";
+        printError(e, {});
         return false;
     }
 }

@@ -1,42 +1,88 @@
-// A shell session over one engine: runs statement text and meta commands and
-// prints the results in the chosen format. Used by the REPL, `-c` and `-f`.
+// A shell session over one database: runs statement text and meta commands and prints the results
+// in the chosen output mode. The interactive shell, -c, -f, -cmd, piped input and `smql demo` all
+// go through it, so they read statements and print results the same way.
 #pragma once
 
+#include <fstream>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "engine/engine.hpp"
+#include "engine/error.hpp"
+#include "shell/output.hpp"
 
 namespace smql::shell {
 
-enum class OutputFormat { Table, Json, Csv };
-OutputFormat parseFormat(std::string_view name);  // throws Error(Usage)
+struct SessionOptions {
+    OutputOptions output;
+    bool fitTerminal = false;  // standard output is a terminal: table and box fit its width
+    bool timer = false;        // each statement's time on standard error
+    bool echo = false;         // each statement printed before its result
+    bool bail = false;         // the interactive shell ends at the first error (scripts always do)
+    bool readOnly = false;     // databases opened with .open are read-only too
+};
 
 class Session {
 public:
-    Session(Engine& engine, std::ostream& out, std::ostream& err, OutputFormat format);
+    Session(std::unique_ptr<Engine> engine, std::ostream& out, std::ostream& err, SessionOptions options);
+    ~Session();
 
-    // Runs statements; prints results or the error (with a caret under the spot). False on error.
-    bool runStatements(std::string_view text);
-    // Runs a `.command`; false on error. Sets quitRequested() for `.quit`.
-    bool runMeta(std::string_view line);
+    Engine& engine() { return *engine_; }
+    const SessionOptions& options() const { return options_; }
+
+    // Runs a script (-c, -f, a statement argument, piped input, .read): statements end with ';' and
+    // may span lines; a line that starts with '.' where no statement is open is a meta command.
+    // Stops at the first error, which is printed with its line in `text`; false then.
+    bool runScript(std::string_view text);
+
+    // The interactive shell, a line at a time. More: the statement goes on on the next line.
+    enum class Step { Done, More, Failed };
+    Step feedLine(std::string_view line);
+    // Ctrl-C at the prompt: forgets the statement being typed.
+    void discardPending() { pending_ = {}; }
     bool quitRequested() const { return quit_; }
-    void setTimer(bool on) { timer_ = on; }
+
+    // The meta commands (.mode, .read ...): names (the first is the main one), how the argument is
+    // written, what the command does, what may complete the argument, and the command itself.
+    enum class MetaArgument { None, Mode, OnOff, Path };
+    struct MetaCommand {
+        std::vector<std::string_view> names;
+        std::string_view usage;
+        std::string_view does;
+        MetaArgument argument;
+        bool (*run)(Session& session, const std::string& argument);  // false on error
+    };
+    static const std::vector<MetaCommand>& metaCommands();
+
+    // Ends the output document: json's one array closes (a script is one document, as is each
+    // input of the interactive shell). Also ends a .once redirection.
+    void finishOutput();
 
 private:
+    struct Pending {
+        std::string text;
+        int firstLine = 1;
+    };
+    Step feed(Pending& pending, std::string_view line, int lineNumber, std::string_view source);
+    bool runStatements(std::string_view text, int firstLine, std::string_view source);
+    bool runMeta(std::string_view line);
     void print(const ResultSet& result);
+    void printError(const Error& e, std::string_view source);
+    std::ostream& out();
+    void redirect(const std::string& path, bool once);
 
-    Engine& engine_;
-    std::ostream& out_;
+    std::unique_ptr<Engine> engine_;
+    std::ostream& stdout_;
     std::ostream& err_;
-    OutputFormat format_;
-    bool timer_ = false;
+    SessionOptions options_;
+    std::ofstream file_;        // .output / .once target while one is open
+    bool once_ = false;         // file_ closes after the next statement
+    bool documentOpen_ = false; // json: the array has begun
     bool quit_ = false;
+    Pending pending_;           // the interactive shell's statement being typed
 };
-
-// The interactive loop (readline: history in ~/.smql_history, multi-line
-// statements ended by `;`, completion of keywords and categories).
-int runRepl(Engine& engine, const std::string& databaseDir, OutputFormat format);
 
 }  // namespace smql::shell

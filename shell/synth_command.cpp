@@ -6,7 +6,7 @@
 
 #include "engine/model/geometry.hpp"
 #include "ingest/synth/synth.hpp"
-#include "shell/commands.hpp"
+#include "shell/ingest_command.hpp"
 
 namespace smql::shell {
 

@@ -1,11 +1,13 @@
 #include "engine/parser/ast_builder.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <optional>
 
 #include <fmt/format.h>
 
+#include "engine/parser/parser.hpp"
 #include "engine/parser/syntax_errors.hpp"
 #include "engine/parser/vocabulary.hpp"
 
@@ -271,7 +273,7 @@ private:
         if (!context.side) return;
         ref.kind = ast::Ref::Kind::Side;
         ref.side = nameOf(*context.side);
-        if (ref.side != "left" && ref.side != "right" && ref.side != "front" && ref.side != "back")
+        if (std::find(sides().begin(), sides().end(), ref.side) == sides().end())
             fail(span(*context.side), fmt::format("unknown side '{}'", context.side->getText()),
                  fmt::format("a side is left, right, front or back, as in {}.left", ref.name));
     }

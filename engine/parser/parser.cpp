@@ -114,4 +114,9 @@ const std::vector<std::string>& keywords() {
     return all;
 }
 
+const std::vector<std::string>& sides() {
+    static const std::vector<std::string> all{"left", "right", "front", "back"};
+    return all;
+}
+
 }  // namespace smql::parser

@@ -30,4 +30,7 @@ bool isIncomplete(std::string_view text);
 // Keywords, for shell completion and "did you mean" hints.
 const std::vector<std::string>& keywords();
 
+// The sides a reference can name (`wall.left`), for the parser's check and shell completion.
+const std::vector<std::string>& sides();
+
 }  // namespace smql::parser

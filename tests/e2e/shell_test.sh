@@ -30,7 +30,7 @@ check "FIND with PATH lists cushions with their paths" \
 check "--format json is valid JSON with ids, categories, boxes and paths" \
   bash -c "'$smql' '$db' --format json -c 'FIND cushion WHERE on(sofa) PATH' | python3 -c '
 import json, sys
-r = json.load(sys.stdin)
+r = json.load(sys.stdin)[0]
 assert len(r[\"rows\"]) == 7, r
 for row in r[\"rows\"]:
     assert isinstance(row[\"id\"], int) and row[\"category\"] == \"cushion\"
@@ -39,6 +39,45 @@ for row in r[\"rows\"]:
 '"
 check "csv output has a header" bash -c "'$smql' '$db' --format csv -c 'FIND sofa' | head -1 | grep -qx 'id,category,source_id,box'"
 check "RELATE answers in words" bash -c "'$smql' '$db' -c 'RELATE src#35 TO src#55' | grep -q 'is in plant-stand#'"
+
+# As sqlite3 users type it: single-dash long options, a statement after the database, output modes.
+check "a statement after the database runs" bash -c "'$smql' '$db' 'COUNT sofa' | grep -qx '2'"
+check "-csv is CSV (not -c sv)" bash -c "'$smql' '$db' -csv 'FIND sofa' | head -1 | grep -qx 'id,category,source_id,box'"
+check "-json prints one array for several statements" bash -c "'$smql' '$db' -json 'COUNT sofa; FIND sofa; SET near = 1 m' | python3 -c '
+import json, sys
+r = json.load(sys.stdin)
+assert [len(x[\"rows\"]) for x in r] == [1, 2, 0] and r[2][\"message\"] == \"near.distance = 1 m\", r
+'"
+check "--timer goes to stderr, so json stays one document" bash -c "'$smql' '$db' --json --timer -c 'COUNT sofa; COUNT chair' 2>'$work/timer' | python3 -c 'import json,sys; assert len(json.load(sys.stdin)) == 2' && [ \$(grep -c '^time: ' '$work/timer') -eq 2 ]"
+check "-jsonl prints one object per line" bash -c "'$smql' '$db' -jsonl 'COUNT sofa; COUNT chair' | python3 -c '
+import json, sys
+lines = sys.stdin.read().splitlines()
+assert len(lines) == 2 and all(json.loads(l)[\"rows\"][0][\"count\"] == 2 for l in lines), lines
+'"
+check "csv prints one header per result" test "$("$smql" "$db" -csv 'COUNT sofa; COUNT chair' | tr '\n' ' ')" = 'count 2 count 2 '
+check "-noheader drops the column names" test "$("$smql" "$db" -noheader -csv 'COUNT sofa')" = 2
+check "-tsv separates with tabs" test "$("$smql" "$db" -tsv 'FIND sofa LIMIT 1' | head -1)" = $'id\tcategory\tsource_id\tbox'
+check "-box draws a box" bash -c "'$smql' '$db' -box 'COUNT sofa' | head -1 | grep -q '^┌───────┐'"
+check "-markdown is a Markdown table" test "$("$smql" "$db" -markdown 'COUNT sofa' | head -2 | tr '\n' ' ')" = '| count | |-------| '
+check "-cmd runs before the statements" bash -c "'$smql' '$db' -csv -cmd 'SET near = 1.5 m' 'SHOW SETTINGS' | grep -q '^near.distance,1.500,m,'"
+check "a failing -cmd is reported, the rest runs, the status is 1" bash -c "'$smql' '$db' -cmd 'FIND nope' 'COUNT sofa' >'$work/o' 2>'$work/e'; [ \$? -eq 1 ] && grep -qx 2 '$work/o' && grep -q nope '$work/e'"
+check "-bail stops at a failing -cmd" bash -c "'$smql' '$db' -bail -cmd 'FIND nope' 'COUNT sofa' >'$work/o' 2>/dev/null; [ \$? -eq 1 ] && ! grep -q 2 '$work/o'"
+check "-echo prints each statement before its result" test "$("$smql" "$db" -echo -csv 'COUNT sofa' | tr '\n' ' ')" = 'COUNT sofa count 2 '
+status() { "$@" >/dev/null 2>&1; echo $?; }
+check "exit status 1 for an unknown option, a missing database, a bad mode, a bare sub-command; 0 for --help" \
+  test "$(status "$smql" "$db" --bogus) $(status "$smql") $(status "$smql" "$db" --format xml -c 'COUNT sofa') $(status "$smql" import) $(status "$smql" --help)" = "1 1 1 1 0"
+check "-help and -version work with one dash" bash -c "'$smql' -help | grep -q Usage && '$smql' -version | grep -q '^smql '"
+
+# Meta commands in scripts: .mode, .headers, .once, .output, .read, .categories, .scenes, .open.
+printf 'COUNT sofa;\n' >"$work/inner.smql"
+printf '%s\n' '.mode csv' '.headers off' ".once $work/once.txt" 'COUNT chair;' 'COUNT sofa;' ".output $work/out.txt" \
+  ".read $work/inner.smql" '.output' '.categories' '.scenes' ".open $work/empty-db" '.categories' >"$work/meta.smql"
+check "meta commands run from a script" bash -c "'$smql' '$db' -f '$work/meta.smql' >'$work/meta.out' &&
+  [ \"\$(cat '$work/once.txt')\" = 2 ] && [ \"\$(cat '$work/out.txt')\" = 2 ] && [ \"\$(head -1 '$work/meta.out')\" = 2 ] &&
+  grep -qx sofa '$work/meta.out' && grep -q '^room0,' '$work/meta.out' && tail -1 '$work/meta.out' | grep -q '^room0,' &&
+  [ \$(grep -cx sofa '$work/meta.out') -eq 1 ]"
+check "an unknown meta command is an error with a hint" bash -c "! '$smql' '$db' -c '.tables' 2>'$work/e' && grep -q 'hint: .help' '$work/e'"
+check "a script error names its line in the script" bash -c "printf 'COUNT sofa;\n\nFIND\n  nope;\n' | '$smql' '$db' 2>&1 >/dev/null | grep -q 'line 4, column 3'"
 
 # Errors: non-zero exit, line and column, a caret, a hint; JSON errors for programs.
 check "a syntax error exits non-zero" bash -c "! '$smql' '$db' -c 'FIND cushion WHER on(sofa)'"
@@ -124,6 +163,8 @@ check "rgbd-dining ingests without labels" bash -c "'$smql' ingest '$data/rgbd-d
 check "a capture that is not one is refused naming it" bash -c "mkdir -p '$work/empty' && ! '$smql' ingest '$work/empty' --db '$work/x' 2>'$work/e' && grep -q empty '$work/e'"
 
 check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"
+check "smql demo --db DIR builds the database at DIR" bash -c "'$smql' '$work/demo' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
+check "smql demo refuses a folder that is not empty, and leaves it alone" bash -c "! '$smql' demo --db '$db' 2>'$work/e' && grep -q 'not an empty folder' '$work/e' && ! '$smql' '$db' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
 check "smql test reports a closing line" bash -c "'$smql' test /dev/null | tail -1 | grep -qx '0 passed, 0 failed'"
 
 echo "$passed passed, $failed failed"

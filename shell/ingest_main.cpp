@@ -1,0 +1,82 @@
+// `smql-ingest`: the capture commands of `smql` (ingest, check-ingest, synth, demo). They need OpenCV
+// and PCL, whose ~250 shared libraries would otherwise load on every query; `smql` executes this
+// program, installed next to it, when one of these commands is asked for, passing its argv as is.
+#include <iostream>
+
+#include "engine/error.hpp"
+#include "shell/cli.hpp"
+#include "shell/ingest_command.hpp"
+
+namespace {
+
+int run(int argc, char** argv) {
+    CLI::App app{"smql capture commands: ingest, check-ingest, synth, demo"};
+    app.name("smql");
+    app.require_subcommand(1);
+
+    auto* ingestCmd = app.add_subcommand("ingest", "turn a capture (RGB-D folder, TUM, nerfstudio, COLMAP ...) into a new scene");
+    smql::shell::IngestArguments ingestArgs;
+    bool ingestQuiet = false;
+    std::optional<double> ingestScale;
+    ingestCmd->add_option("capture", ingestArgs.capture, "capture folder or file")->required()->check(CLI::ExistingPath);
+    ingestCmd->add_option("--db", ingestArgs.db, "database directory (created if missing)")->required();
+    ingestCmd->add_option("--scene", ingestArgs.scene, "scene name (default: the capture's folder name)");
+    ingestCmd->add_option("--geometry", ingestArgs.geometry, "given, colmap or auto (default)")
+        ->check(CLI::IsMember({"given", "colmap", "auto"}));
+    ingestCmd->add_option("--objects", ingestArgs.objects, "masks, detections, cluster or auto (default)")
+        ->check(CLI::IsMember({"masks", "detections", "cluster", "auto"}));
+    ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")->check(CLI::PositiveNumber);
+    ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")->check(CLI::PositiveNumber);
+    ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");
+    ingestCmd->add_option("--update", ingestArgs.update,
+                          "refresh the last-seen time of the objects of this scene that the capture sees again, "
+                          "instead of adding a new scene");
+    ingestCmd->add_option("--log", ingestArgs.log, "progress as a bar (default), json lines, or quiet")
+        ->check(CLI::IsMember({"bar", "json", "quiet"}));
+
+    auto* check = app.add_subcommand("check-ingest", "compare an ingested scene with a synthetic capture's truth");
+    std::string checkDb, checkTruth, checkScene, checkFormat = "table";
+    check->add_option("database", checkDb, "database directory")->required()->check(CLI::ExistingDirectory);
+    check->add_option("--truth", checkTruth, "truth.json of the capture (smql synth writes it)")->required()->check(CLI::ExistingFile);
+    check->add_option("--scene", checkScene, "scene name (default: the most recent)");
+    check->add_option("--format", checkFormat, "table or json")->check(CLI::IsMember({"table", "json"}));
+
+    auto* demo = app.add_subcommand("demo", "build a sample memory of a generated room and query it");
+    std::string demoDb;
+    demo->add_option("--db", demoDb, "the database to build: a new or empty folder (default: a new folder under /tmp)");
+
+    auto* synth = app.add_subcommand("synth", "write a synthetic RGB-D capture of a generated room, with ground truth");
+    std::string synthOut;
+    std::uint64_t synthSeed = 1;
+    int synthFrames = 60, synthObjects = 24;
+    bool synthForce = false;
+    synth->add_option("--out", synthOut, "output folder (refused when not empty, unless --force)")->required();
+    synth->add_option("--seed", synthSeed, "room and walk seed (default 1)");
+    synth->add_option("--frames", synthFrames, "frames along the walk (default 60)")->check(CLI::Range(1, 100000));
+    synth->add_option("--objects", synthObjects, "objects in the room (default 24)")->check(CLI::Range(1, 5000));
+    synth->add_flag("--force", synthForce, "write into a non-empty folder, replacing an earlier capture's files");
+
+    if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
+    if (ingestCmd->parsed()) {
+        ingestArgs.scale = ingestScale;
+        if (ingestQuiet) ingestArgs.log = "quiet";
+        return smql::shell::ingestCommand(ingestArgs);
+    }
+    if (check->parsed()) return smql::shell::checkIngestCommand(checkDb, checkTruth, checkScene, checkFormat);
+    if (demo->parsed()) return smql::shell::demoCommand(demoDb);
+    return smql::shell::synthCommand(synthOut, synthSeed, synthFrames, synthObjects, synthForce);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const smql::Error& e) {
+        std::cerr << e.render() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "smql: " << e.what() << "\n";
+        return 1;
+    }
+}
