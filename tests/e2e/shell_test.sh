@@ -109,7 +109,7 @@ check "rgbd-dining ingests without labels" bash -c "'$smql' ingest '$data/rgbd-d
 check "a capture that is not one is refused naming it" bash -c "mkdir -p '$work/empty' && ! '$smql' ingest '$work/empty' --db '$work/x' 2>'$work/e' && grep -q empty '$work/e'"
 
 check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"
-check "smql test reports a closing line" bash -c "'$smql' test /dev/null | tail -1 | grep -qx '0 passed, 0 failed'"
+check "an empty suite fails, with a closing line" bash -c "! '$smql' test /dev/null >'$work/t.out' && tail -1 '$work/t.out' | grep -qx '0 passed, 1 failed'"
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
