@@ -233,13 +233,7 @@ std::string check(smql::Engine& engine, const Block& block, const Statement& sta
     return block.expectError ? "succeeded, but the block expects an error" : "";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    if (argc < 4) {
-        std::cerr << "usage: smql_doc_examples SMQL_BINARY SHARED_DATA_DIR PAGE.md...\n";
-        return 2;
-    }
+int run(int argc, char** argv) {
     Databases databases(argv[1], argv[2]);
     int total = 0, failed = 0;
     for (int i = 3; i < argc; ++i) {
@@ -271,4 +265,20 @@ int main(int argc, char** argv) {
     std::cout << total << " statements, " << failed << " failed\n";
     if (total == 0) std::cout << "FAIL: no ```smql example found\n";
     return failed == 0 && total > 0 ? 0 : 1;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 4) {
+        std::cerr << "usage: smql_doc_examples SMQL_BINARY SHARED_DATA_DIR PAGE.md...\n";
+        return 2;
+    }
+    try {
+        return run(argc, argv);
+    } catch (const smql::Error& e) {
+        std::cout << "FAIL: " << e.render() << "\n";
+    } catch (const std::exception& e) {
+        std::cout << "FAIL: " << e.what() << "\n";
+    }
+    return 1;
 }
