@@ -165,7 +165,7 @@ check "a capture that is not one is refused naming it" bash -c "mkdir -p '$work/
 check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"
 check "smql demo --db DIR builds the database at DIR" bash -c "'$smql' '$work/demo' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
 check "smql demo refuses a folder that is not empty, and leaves it alone" bash -c "! '$smql' demo --db '$db' 2>'$work/e' && grep -q 'not an empty folder' '$work/e' && ! '$smql' '$db' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
-check "smql test reports a closing line" bash -c "'$smql' test /dev/null | tail -1 | grep -qx '0 passed, 0 failed'"
+check "an empty suite fails, with a closing line" bash -c "! '$smql' test /dev/null >'$work/t.out' && tail -1 '$work/t.out' | grep -qx '0 passed, 1 failed'"
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
