@@ -140,10 +140,12 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
     if (expr.args.size() == 2) {
         const auto& second = slots(expr.args[1], frame);
         for (Slot b : slots(expr.args[0], frame))
-            for (Slot c : second)
+            for (Slot c : second) {
+                poll();
                 if (b != slot && c != slot && c != b &&
                     relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, &snap.node(c)) > 0)
                     return true;
+            }
         return false;
     }
     double nearDistance = expr.nearDistance.value_or(thresholds_.nearDistance);
@@ -151,6 +153,7 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
     std::optional<model::Aabb> region;
     if (spec.referenceRegion) region = spec.referenceRegion(snap.bounds(slot), nearDistance, thresholds_);
     auto holds = [&](Slot b) {
+        poll();
         if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
         return relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, nullptr, expr.nearDistance) > 0;
     };

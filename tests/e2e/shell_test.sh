@@ -25,6 +25,7 @@ db=$work/r0
 replica=$data/replica-room0/info_semantic.json
 
 check "import replica" "$smql" import replica "$replica" --db "$db" --scene room0
+check "LIMIT 0 after NEAREST TO answers no rows" bash -c "'$smql' '$db' -csv -c 'FIND blinds NEAREST TO door LIMIT 0' | wc -l | grep -qx 1"
 check "FIND with PATH lists cushions with their paths" \
   bash -c "'$smql' '$db' -c 'FIND cushion WHERE on(sofa) PATH' | grep -q 'room0 / .*sofa#.* / cushion#'"
 check "--format json is valid JSON with ids, categories, boxes and paths" \
