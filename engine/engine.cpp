@@ -115,6 +115,8 @@ std::unique_ptr<Engine> Engine::open(const std::string& directory, bool readOnly
     return std::unique_ptr<Engine>(new Engine(std::move(state)));
 }
 
+storage::CheckReport Engine::check(const std::string& directory) { return storage::checkDatabase(directory); }
+
 storage::Database& Engine::database() { return *state_->db; }
 
 void Engine::interrupt() { state_->interrupt = true; }

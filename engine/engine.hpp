@@ -10,6 +10,7 @@
 
 #include "engine/model/types.hpp"
 #include "engine/result.hpp"
+#include "storage/check.hpp"
 
 namespace smql {
 
@@ -19,6 +20,9 @@ class Engine {
 public:
     // Opens (creating if needed) the database in `directory`. Throws smql::Error.
     static std::unique_ptr<Engine> open(const std::string& directory, bool readOnly = false);
+    // Verifies the database in `directory` without writing to it (storage::checkDatabase says what
+    // is checked); a database that cannot be opened is a problem in the report, not an exception.
+    static storage::CheckReport check(const std::string& directory);
     ~Engine();
 
     // Runs every `;`-separated statement of `text`; returns one ResultSet per

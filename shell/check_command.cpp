@@ -1,15 +1,15 @@
-// `smql check DB`: what is wrong with a database, if anything (storage::checkDatabase).
+// `smql check DB`: what is wrong with a database, if anything (Engine::check).
 #include <iostream>
 
 #include <fmt/format.h>
 
 #include "shell/commands.hpp"
-#include "storage/check.hpp"
+#include "engine/engine.hpp"
 
 namespace smql::shell {
 
 int checkCommand(const std::string& dbDir) {
-    auto report = storage::checkDatabase(dbDir);
+    auto report = Engine::check(dbDir);
     for (const auto& problem : report.problems) std::cout << "problem: " << problem << "\n";
     if (!report.ok()) {
         std::cout << fmt::format("{}: {} problem{} found\n", dbDir, report.problems.size(),
