@@ -37,16 +37,23 @@ template <typename S>
 using StageOutput = decltype(std::declval<S&>().run(std::declval<StageProgress&>()));
 
 // A stage whose output is added to the scene in place (relations) has no
-// output of its own: its summary then takes no argument.
+// output of its own: its summary then takes no argument. Two concepts joined by
+// ||, so the summary(output) form is only checked when there is an output.
+template <typename S>
+concept SummarisedInPlace = std::is_void_v<StageOutput<S>> && requires(S& stage) {
+    { stage.summary() } -> std::convertible_to<std::string>;
+};
+template <typename S>
+concept SummarisedOutput = !std::is_void_v<StageOutput<S>> && requires(S& stage, const StageOutput<S>& output) {
+    { stage.summary(output) } -> std::convertible_to<std::string>;
+};
+
 template <typename S>
 concept IngestStage = requires(S& stage, StageProgress& progress) {
     { S::kName } -> std::convertible_to<std::string_view>;
     { stage.steps() } -> std::convertible_to<std::size_t>;
     stage.run(progress);
-} && (std::is_void_v<StageOutput<S>> ? requires(S& stage) { { stage.summary() } -> std::convertible_to<std::string>; }
-                                     : requires(S& stage, const StageOutput<S>& output) {
-                                           { stage.summary(output) } -> std::convertible_to<std::string>;
-                                       });
+} && (SummarisedInPlace<S> || SummarisedOutput<S>);
 
 class StageRunner {
 public:
