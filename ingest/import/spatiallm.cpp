@@ -30,6 +30,9 @@ constexpr double kDefaultWallThickness = 0.02;
 
 // Source ids: walls keep n, doors 1000+n, windows 2000+n, bboxes 3000+n.
 constexpr std::int64_t kIdBlock = 1000;
+// Bbox numbers are open-ended but bounded, so 3000 + n stays a 64-bit integer (and exact in JSON readers
+// that use doubles).
+constexpr std::int64_t kMaxBboxNumber = 999'999'999'999;
 
 constexpr std::string_view kHint =
     "SpatialLM layout lines: wall_0=Wall(ax,ay,az,bx,by,bz,height,thickness), "
@@ -174,6 +177,8 @@ private:
         // Bboxes own the open-ended top of the id scheme; the other types share it in blocks.
         if (type.prefix != "bbox" && n >= kIdBlock)
             fail(name, fmt::format("{} numbers must be below {} (see the source id scheme)", type.prefix, kIdBlock));
+        if (n > kMaxBboxNumber)
+            fail(name, fmt::format("{} numbers must be at most {} (see the source id scheme)", type.prefix, kMaxBboxNumber));
         return n;
     }
 

@@ -128,6 +128,10 @@ TEST_CASE("SpatialLM: malformed layouts are rejected with file:line", "[import][
         std::string path = dir.write("empty.txt", "# only a comment\n\n");
         requireInputError(read(path), {path, "no walls, doors, windows or bboxes"});
     }
+    SECTION("a bbox number past the source id range") {
+        std::string path = withLine(9, "bbox_9223372036854775807=Bbox(sofa,1,2.5,0.45,0,2.0,0.9,0.9)");
+        requireInputError(read(path), {path + ":9:", "bbox numbers must be at most 999999999999"}, 9);
+    }
     SECTION("wrong arity") {
         std::string path = withLine(3, "wall_1=Wall(4,0,0,4,3,0,2.5)");
         requireInputError(read(path), {path + ":3:", "Wall takes 8 values", "got 7"}, 3);
