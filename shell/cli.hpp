@@ -1,9 +1,13 @@
 // Command-line parsing shared by `smql` and `smql-ingest`.
 #pragma once
 
+#include <exception>
+#include <iostream>
 #include <optional>
 
 #include <CLI/CLI.hpp>
+
+#include "engine/error.hpp"
 
 namespace smql::shell {
 
@@ -16,6 +20,20 @@ inline std::optional<int> parseArguments(CLI::App& app, int argc, char** argv) {
         return std::nullopt;
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 1;
+    }
+}
+
+// Runs a program's body; an error that escapes it is printed (with its hint) and is exit status 1.
+template <typename Body>
+int runReportingErrors(Body&& body) {
+    try {
+        return body();
+    } catch (const Error& e) {
+        std::cerr << e.render() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "smql: " << e.what() << "\n";
+        return 1;
     }
 }
 

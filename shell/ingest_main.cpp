@@ -70,13 +70,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const smql::Error& e) {
-        std::cerr << e.render() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "smql: " << e.what() << "\n";
-        return 1;
-    }
+    return smql::shell::runReportingErrors([&] { return run(argc, argv); });
 }

@@ -181,18 +181,12 @@ int runSubcommand(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
+    return smql::shell::runReportingErrors([&] {
         std::string first = argc > 1 ? argv[1] : "";
         if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo")
             return runIngestTool(argv);
         if (first == "import" || first == "export" || first == "test" || first == "check")
             return runSubcommand(argc, argv);
         return runShell(argc, argv);
-    } catch (const smql::Error& e) {
-        std::cerr << e.render() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "smql: " << e.what() << "\n";
-        return 1;
-    }
+    });
 }
