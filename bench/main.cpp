@@ -14,7 +14,7 @@
 #include "bench/report.hpp"
 #include "bench/stats.hpp"
 #include "bench/workload.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::bench {
 

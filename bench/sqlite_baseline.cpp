@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <sqlite3.h>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::bench {
 

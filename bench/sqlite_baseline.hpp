@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "engine/relations/predicates.hpp"
 
 namespace smql::bench {

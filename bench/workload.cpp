@@ -13,7 +13,7 @@
 
 #include "bench/sqlite_baseline.hpp"
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/database.hpp"
 
 namespace smql::bench {

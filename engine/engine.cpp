@@ -11,10 +11,10 @@
 #include <fmt/format.h>
 
 #include "engine/binder/binder.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/exec/executor.hpp"
 #include "engine/exec/scene_snapshot.hpp"
-#include "engine/model/names.hpp"
+#include "model/names.hpp"
 #include "engine/parser/parser.hpp"
 #include "engine/planner/planner.hpp"
 #include "engine/relations/hierarchy.hpp"

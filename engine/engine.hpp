@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "engine/model/types.hpp"
-#include "engine/result.hpp"
+#include "model/types.hpp"
+#include "model/result.hpp"
 #include "storage/check.hpp"
 
 namespace smql {

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/result.hpp"
+#include "model/result.hpp"
 
 namespace smql {
 

@@ -13,7 +13,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/detections.hpp"

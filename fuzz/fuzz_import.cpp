@@ -6,7 +6,7 @@
 // format promises: what writeSceneJson writes, readSceneJson reads back.
 #include <cstdio>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "ingest/import/importers.hpp"
 

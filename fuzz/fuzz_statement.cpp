@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/format.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "ingest/import/importers.hpp"

@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::shell {
 

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/format.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/synth/synth.hpp"
 #include "shell/ingest_command.hpp"
 #include "shell/session.hpp"

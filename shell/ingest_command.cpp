@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/pipeline/pipeline.hpp"

@@ -3,7 +3,7 @@
 // program, installed next to it, when one of these commands is asked for, passing its argv as is.
 #include <iostream>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "shell/cli.hpp"
 #include "shell/ingest_command.hpp"
 

@@ -14,8 +14,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/model/names.hpp"
+#include "model/error.hpp"
+#include "model/names.hpp"
 #include "ingest/import/registry.hpp"
 #include "shell/cli.hpp"
 #include "shell/commands.hpp"

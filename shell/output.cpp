@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/format.hpp"
 
 namespace smql::shell {

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/result.hpp"
+#include "model/result.hpp"
 
 namespace smql::shell {
 

@@ -10,9 +10,9 @@
 #include <fmt/format.h>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/format.hpp"
-#include "engine/model/names.hpp"
+#include "model/names.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/registry.hpp"
 #include "shell/commands.hpp"

@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include "ingest/synth/synth.hpp"
 #include "shell/ingest_command.hpp"
 

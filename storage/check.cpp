@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/database.hpp"
 
 namespace smql::storage {

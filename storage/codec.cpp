@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/crc32c.hpp"
 
 namespace smql::storage::codec {

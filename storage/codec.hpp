@@ -14,8 +14,8 @@
 #include <string>
 #include <string_view>
 
-#include "engine/error.hpp"
-#include "engine/model/types.hpp"
+#include "model/error.hpp"
+#include "model/types.hpp"
 
 namespace smql::storage::codec {
 

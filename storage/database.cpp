@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/codec.hpp"
 #include "storage/lmdb_env.hpp"
 

@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::storage {
 

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/codec.hpp"
 
 namespace smql::storage {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::storage {
 

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/format.hpp"
-#include "engine/result.hpp"
+#include "model/result.hpp"
 #include "ingest/import/registry.hpp"
 
 namespace {

@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 
 #include "engine/binder/binder.hpp"
-#include "engine/error.hpp"
-#include "engine/model/names.hpp"
+#include "model/error.hpp"
+#include "model/names.hpp"
 
 namespace smql::binder {
 

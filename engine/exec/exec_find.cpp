@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/exec/executor.hpp"
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include "storage/database.hpp"
 
 namespace smql::exec {

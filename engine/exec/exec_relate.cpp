@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/exec/executor.hpp"
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::exec {
 

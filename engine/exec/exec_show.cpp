@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "engine/exec/executor.hpp"
 #include "storage/database.hpp"
 

@@ -12,7 +12,7 @@
 #include "engine/binder/bound.hpp"
 #include "engine/exec/session.hpp"
 #include "engine/planner/planner.hpp"
-#include "engine/result.hpp"
+#include "model/result.hpp"
 
 namespace smql::storage { class ReadTransaction; }
 

@@ -12,7 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "storage/spatial_index.hpp"
 
 namespace smql::storage { class ReadTransaction; }

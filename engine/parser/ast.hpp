@@ -9,7 +9,7 @@
 #include <variant>
 #include <vector>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::ast {
 

@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/model/utf8.hpp"
+#include "model/utf8.hpp"
 
 namespace smql::parser {
 

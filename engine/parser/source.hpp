@@ -10,7 +10,7 @@
 
 #include "SmqlLexer.h"
 #include "antlr4-runtime.h"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::parser {
 

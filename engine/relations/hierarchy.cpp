@@ -4,7 +4,7 @@
 #include <limits>
 #include <vector>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include "engine/relations/predicates.hpp"
 
 namespace smql::relations {

@@ -4,7 +4,7 @@
 // below the scene root.
 #pragma once
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "engine/relations/thresholds.hpp"
 
 namespace smql::relations {

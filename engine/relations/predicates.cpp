@@ -225,7 +225,7 @@ constexpr bool rowsInCodeOrder() {
     return true;
 }
 static_assert(std::size(kPredicates) == model::kRelationTypeCount,
-              "every relation type in engine/model/types.hpp needs its row in kPredicates");
+              "every relation type in model/types.hpp needs its row in kPredicates");
 static_assert(rowsInCodeOrder(), "kPredicates rows must follow model::RelationType's order");
 
 // RELATE's order, derived once from the ranks.

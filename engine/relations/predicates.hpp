@@ -14,8 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/model/geometry.hpp"
-#include "engine/model/types.hpp"
+#include "model/geometry.hpp"
+#include "model/types.hpp"
 #include "engine/relations/thresholds.hpp"
 
 namespace smql::relations {

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 
 namespace smql::ingest::capture_detail {

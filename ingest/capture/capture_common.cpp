@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/import/common.hpp"
 

@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 
 namespace smql::ingest::capture_detail {

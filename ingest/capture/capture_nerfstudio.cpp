@@ -5,7 +5,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/import/common.hpp"
 #include "ingest/import/json_field.hpp"

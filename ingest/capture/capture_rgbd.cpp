@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/import/json_field.hpp"
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 
 namespace smql::ingest {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::generate {
 

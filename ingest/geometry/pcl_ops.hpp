@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest::pcl_ops {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 
 namespace smql::ingest {

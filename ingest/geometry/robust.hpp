@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest::detail {
 

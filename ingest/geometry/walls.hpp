@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 
 namespace smql::ingest {

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::import::detail {
 

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::import {
 

@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/model/utf8.hpp"
+#include "model/error.hpp"
+#include "model/utf8.hpp"
 #include "ingest/import/common.hpp"
 
 namespace smql::import::detail {

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::import::detail {
 

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/model/names.hpp"
+#include "model/error.hpp"
+#include "model/names.hpp"
 #include "ingest/import/importers.hpp"
 
 namespace smql::import {

@@ -11,8 +11,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "engine/error.hpp"
-#include "engine/model/utf8.hpp"
+#include "model/error.hpp"
+#include "model/utf8.hpp"
 #include "ingest/import/common.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/viewpoint.hpp"

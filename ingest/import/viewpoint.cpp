@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include "ingest/import/common.hpp"
 
 namespace smql::import::detail {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::import::detail {
 

@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "engine/error.hpp"
-#include "engine/model/utf8.hpp"
+#include "model/error.hpp"
+#include "model/utf8.hpp"
 
 namespace smql::ingest {
 

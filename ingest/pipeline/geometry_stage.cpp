@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/geometry/colmap_runner.hpp"
 
 namespace smql::ingest {

@@ -12,7 +12,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/walls.hpp"

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/pipeline/detections.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"

@@ -10,7 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 

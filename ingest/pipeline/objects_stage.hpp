@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/walls.hpp"
 #include "ingest/pipeline/object_finder.hpp"

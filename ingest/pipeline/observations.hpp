@@ -9,7 +9,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/capture/frame_loader.hpp"
 
 namespace smql::ingest {

@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 

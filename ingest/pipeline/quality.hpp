@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 

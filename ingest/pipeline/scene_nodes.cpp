@@ -1,6 +1,6 @@
 #include "ingest/pipeline/scene_nodes.hpp"
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 

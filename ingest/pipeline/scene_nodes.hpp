@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/point_cloud.hpp"

@@ -1,6 +1,6 @@
 #include "ingest/pipeline/stage_runner.hpp"
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest {
 

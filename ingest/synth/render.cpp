@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::synth {
 

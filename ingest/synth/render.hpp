@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/synth/palette.hpp"
 

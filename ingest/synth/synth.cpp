@@ -15,8 +15,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "engine/error.hpp"
-#include "engine/model/geometry.hpp"
+#include "model/error.hpp"
+#include "model/geometry.hpp"
 #include "engine/relations/hierarchy.hpp"
 #include "engine/relations/predicates.hpp"
 #include "ingest/generate/room_generator.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 
 namespace smql::synth {

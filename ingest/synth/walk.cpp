@@ -9,8 +9,8 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/error.hpp"
-#include "engine/model/geometry.hpp"
+#include "model/error.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::synth {
 

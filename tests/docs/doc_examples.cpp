@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace fs = std::filesystem;
 

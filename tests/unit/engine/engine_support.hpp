@@ -4,7 +4,7 @@
 #include <string>
 
 #include "engine/engine.hpp"
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::testing {
 

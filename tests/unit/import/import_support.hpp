@@ -10,7 +10,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::import::test {
 

@@ -2,10 +2,10 @@
 // format as a usage error that names the known ones.
 #include <catch2/catch.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
-#include "tests/unit/import/import_support.hpp"
+#include "import_support.hpp"
 
 using namespace smql;
 using import::test::TempDir;

@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include "ingest/import/importers.hpp"
-#include "tests/unit/import/import_support.hpp"
+#include "import_support.hpp"
 
 using smql::import::readReplica;
 using smql::import::test::replicaPath;

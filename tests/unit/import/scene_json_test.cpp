@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/model/utf8.hpp"
+#include "model/utf8.hpp"
 #include "ingest/import/importers.hpp"
-#include "tests/unit/import/import_support.hpp"
+#include "import_support.hpp"
 
 using smql::import::readReplica;
 using smql::import::readSceneJson;

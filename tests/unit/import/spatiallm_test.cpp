@@ -2,9 +2,9 @@
 #include <sstream>
 #include <numbers>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include "ingest/import/importers.hpp"
-#include "tests/unit/import/import_support.hpp"
+#include "import_support.hpp"
 
 using smql::import::readSpatialLm;
 using smql::import::test::requireInputError;

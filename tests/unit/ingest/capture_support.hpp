@@ -16,7 +16,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest::test {
 

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/detections.hpp"
 #include "ingest/pipeline/pipeline.hpp"

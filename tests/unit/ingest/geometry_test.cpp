@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/geometry/point_cloud.hpp"

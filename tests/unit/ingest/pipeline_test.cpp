@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 #include <Eigen/Eigenvalues>
 
 #include "ingest/capture/capture.hpp"

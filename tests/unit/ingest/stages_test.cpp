@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_runner.hpp"

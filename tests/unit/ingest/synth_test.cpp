@@ -17,8 +17,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.hpp"
-#include "engine/model/geometry.hpp"
+#include "model/error.hpp"
+#include "model/geometry.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/synth/palette.hpp"
 #include "ingest/synth/render.hpp"

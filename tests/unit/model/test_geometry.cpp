@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "engine/model/geometry.hpp"
-#include "engine/model/names.hpp"
+#include "model/geometry.hpp"
+#include "model/names.hpp"
 
 using namespace smql::model;
 

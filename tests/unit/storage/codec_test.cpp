@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/codec.hpp"
 #include "storage/crc32c.hpp"
 

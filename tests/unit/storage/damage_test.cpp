@@ -12,7 +12,7 @@
 #include <iterator>
 #include <optional>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/codec.hpp"
 #include "storage/database.hpp"
 #include "storage_test_support.hpp"

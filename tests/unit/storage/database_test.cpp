@@ -8,7 +8,7 @@
 #include <fstream>
 #include <thread>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/codec.hpp"
 #include "storage/database.hpp"
 #include "storage/lmdb_env.hpp"

@@ -11,7 +11,7 @@
 #include <mutex>
 #include <thread>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/database.hpp"
 #include "storage_test_support.hpp"
 

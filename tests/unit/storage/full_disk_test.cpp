@@ -11,7 +11,7 @@
 
 #include <filesystem>
 
-#include "engine/error.hpp"
+#include "model/error.hpp"
 #include "storage/check.hpp"
 #include "storage/database.hpp"
 #include "storage_test_support.hpp"

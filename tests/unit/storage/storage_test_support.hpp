@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::storage::testing {
 

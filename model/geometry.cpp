@@ -1,4 +1,4 @@
-#include "engine/model/geometry.hpp"
+#include "model/geometry.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "engine/error.hpp"
+#include "model/error.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 #include <algorithm>
 #include <array>

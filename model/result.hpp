@@ -6,7 +6,7 @@
 #include <variant>
 #include <vector>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql {
 

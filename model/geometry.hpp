@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "engine/model/types.hpp"
+#include "model/types.hpp"
 
 namespace smql::model {
 

@@ -1,4 +1,4 @@
-#include "engine/result.hpp"
+#include "model/result.hpp"
 
 namespace smql {
 

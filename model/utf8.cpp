@@ -1,4 +1,4 @@
-#include "engine/model/utf8.hpp"
+#include "model/utf8.hpp"
 
 namespace smql::model {
 

@@ -1,4 +1,4 @@
-#include "engine/model/names.hpp"
+#include "model/names.hpp"
 
 #include <algorithm>
 #include <cctype>
