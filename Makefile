@@ -7,7 +7,7 @@ PREFIX ?= /usr/local
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build debug test demo bench bench-startup fuzz install clean
+.PHONY: all setup configure build debug test demo bench bench-startup fuzz stress format lint install clean
 
 all: build
 
@@ -40,6 +40,22 @@ bench-startup: build
 # libFuzzer targets, built with clang in build-fuzz, each run FUZZ_SECONDS seconds; fails on a crash.
 fuzz: setup
 	@scripts/fuzz.sh $(FUZZ_SECONDS)
+
+# The fault tests that take minutes (scripts/stress.py; docs/testing.md, "Stress"): SIGKILL during
+# STRESS_RUNS imports and ingests, then one writer beside eight readers for STRESS_SECONDS.
+STRESS_RUNS ?= 200
+STRESS_SECONDS ?= 300
+stress: build
+	@scripts/stress.py $(BUILD)/shell/smql kill --runs $(STRESS_RUNS)
+	@scripts/stress.py $(BUILD)/shell/smql readers --seconds $(STRESS_SECONDS) --readers 8
+
+# The house format (.clang-format): `make format` rewrites the sources, `make lint` checks the format
+# and runs clang-tidy's short list (.clang-tidy); the test run includes lint as the test `lint`.
+format: setup
+	@scripts/sources.sh | xargs clang-format -i
+
+lint: configure
+	@scripts/lint.sh $(BUILD)
 
 install: build
 	@cmake --install $(BUILD)

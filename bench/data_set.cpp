@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include "bench/postgis_baseline.hpp"
 #include "bench/sqlite_baseline.hpp"
 #include "bench/stats.hpp"
 #include "engine/engine.hpp"
@@ -24,7 +25,8 @@ constexpr int kTreeSampleScenes = 3;
 
 std::string sceneName(int index) { return fmt::format("room_{}", index); }
 
-DataSet buildDataSet(const DataSetSpec& spec, const std::filesystem::path& directory, std::ostream& progress) {
+DataSet buildDataSet(const DataSetSpec& spec, const std::filesystem::path& directory, PostgresServer* postgres,
+                     std::ostream& progress) {
     DataSet out;
     out.spec = spec;
     out.smqlDirectory = directory / "smql";
@@ -33,6 +35,13 @@ DataSet buildDataSet(const DataSetSpec& spec, const std::filesystem::path& direc
 
     auto engine = Engine::open(out.smqlDirectory.string());
     SqliteBaseline sqlite(out.sqliteFile.string(), true);
+    std::unique_ptr<PostgisBaseline> postgis;
+    if (postgres) {
+        postgres->createDatabase(spec.label);
+        out.postgisConnection = postgres->connectionString(spec.label);
+        postgis = std::make_unique<PostgisBaseline>(out.postgisConnection, true);
+        postgis->beginLoad();
+    }
     const int step = std::max(1, spec.scenes / 10);
     auto started = Clock::now();
     for (int i = 0; i < spec.scenes; ++i) {
@@ -67,6 +76,11 @@ DataSet buildDataSet(const DataSetSpec& spec, const std::filesystem::path& direc
         t = Clock::now();
         sqlite.importScene(info, nodes);
         out.import.sqliteSeconds += microsecondsSince(t) / 1e6;
+        if (postgis) {
+            t = Clock::now();
+            postgis->addScene(info, nodes);
+            out.import.postgisSeconds += microsecondsSince(t) / 1e6;
+        }
 
         if ((i + 1) % step == 0 || i + 1 == spec.scenes) {
             fmt::print(progress, "  {}: {}/{} scenes imported ({:.0f} s)\n", spec.label, i + 1, spec.scenes,
@@ -75,6 +89,13 @@ DataSet buildDataSet(const DataSetSpec& spec, const std::filesystem::path& direc
         }
     }
     sqlite.checkpoint();
+    if (postgis) {
+        auto t = Clock::now();
+        postgis->endLoad();
+        out.import.postgisSeconds += microsecondsSince(t) / 1e6;
+        out.postgisBytes = postgis->databaseBytes();
+        fmt::print(progress, "  {}: PostGIS loaded and indexed ({:.0f} s)\n", spec.label, out.import.postgisSeconds);
+    }
     out.smqlBytes = engine->database().fileSizeBytes();
     out.sqliteBytes = std::filesystem::file_size(out.sqliteFile);
     return out;

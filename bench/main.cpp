@@ -5,12 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "bench/data_set.hpp"
+#include "bench/postgis_baseline.hpp"
 #include "bench/report.hpp"
 #include "bench/stats.hpp"
 #include "bench/workload.hpp"
@@ -31,6 +33,7 @@ struct Options {
     std::string out;
     std::string directory;
     bool keep = false;
+    bool postgis = true;
 };
 
 // The hand-written notes of an existing report: what follows the marker's line.
@@ -65,6 +68,16 @@ int run(const Options& options, const std::string& commandLine) {
     report.commandLine = commandLine;
     report.options = options.workload;
 
+    // The PostgreSQL cluster lives for the whole run; its destructor stops it and removes it, also on errors.
+    std::unique_ptr<PostgresServer> postgres;
+    if (options.postgis) {
+        std::string whyNot;
+        postgres = PostgresServer::start(whyNot);
+        report.postgis = postgres ? postgres->version() : "PostGIS skipped: " + whyNot;
+        if (!postgres) fmt::print("smql_bench: {}\n", report.postgis);
+    } else {
+        report.postgis = "PostGIS skipped (--no-postgis)";
+    }
     fs::path work = workDirectory(options.directory);
     fmt::print("smql_bench: databases under {}\n", work.string());
     const DataSetSpec specs[] = {{"small", 1, options.smallObjects}, {"large", options.scenes, options.objects}};
@@ -73,7 +86,7 @@ int run(const Options& options, const std::string& commandLine) {
             fmt::print("{}: {} scene(s) x {} objects\n", spec.label, spec.scenes, spec.objectsPerScene);
             std::cout.flush();
             DataSetRun run;
-            run.data = buildDataSet(spec, work / spec.label, std::cout);
+            run.data = buildDataSet(spec, work / spec.label, postgres.get(), std::cout);
             run.result = runWorkload(run.data, options.workload, std::cout);
             report.runs.push_back(std::move(run));
         }
@@ -117,6 +130,7 @@ int main(int argc, char** argv) {
     app.add_option("--out", options.out, "write the markdown report to this file (docs/benchmarks.md)");
     app.add_option("--dir", options.directory, "build the databases here (default: a new temporary directory)");
     app.add_flag("--keep", options.keep, "keep the databases after the run");
+    app.add_flag("--no-postgis{false}", options.postgis, "leave the PostGIS baseline out (no PostgreSQL cluster)");
     app.add_flag("--quick", options.quick, "tiny sizes and few queries, overriding the options above: a smoke test");
     CLI11_PARSE(app, argc, argv);
     if (options.quick) {

@@ -11,11 +11,11 @@
 namespace smql::bench {
 
 struct MachineInfo {
-    std::string cpu;       // model name from /proc/cpuinfo
-    unsigned cores = 0;    // what nproc counts
-    std::string date;      // UTC, ISO 8601
-    std::string build;     // CMake build type and compiler
-    std::string sqlite;    // library version
+    std::string cpu;     // model name from /proc/cpuinfo
+    unsigned cores = 0;  // what nproc counts
+    std::string date;    // UTC, ISO 8601
+    std::string build;   // CMake build type and compiler
+    std::string sqlite;  // library version
 };
 
 MachineInfo machineInfo();
@@ -30,11 +30,13 @@ struct Report {
     std::string commandLine;
     WorkloadOptions options;
     std::vector<DataSetRun> runs;  // the small data set first, the large one last
+    std::string postgis;           // the server's versions, or why PostGIS did not take part
     double totalSeconds = 0;
 };
 
 // The text after this marker in an existing report is hand-written analysis: a rewrite keeps it.
-inline constexpr const char* kNotesMarker = "<!-- smql_bench keeps everything below this line when it rewrites the file -->";
+inline constexpr const char* kNotesMarker =
+    "<!-- smql_bench keeps everything below this line when it rewrites the file -->";
 
 std::string renderMarkdown(const Report& report);
 

@@ -17,6 +17,9 @@ struct Percentiles {
     double p50 = 0;
     double p99 = 0;
     double max = 0;
+    // Over rounds (overRounds in workload.cpp): the lowest and highest round p50, the noise band.
+    double p50Low = 0;
+    double p50High = 0;
 };
 
 // Nearest-rank percentiles of `samples` (which it sorts).

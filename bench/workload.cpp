@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <unordered_map>
@@ -11,6 +13,7 @@
 #include <fmt/ostream.h>
 #include <fmt/ranges.h>
 
+#include "bench/postgis_baseline.hpp"
 #include "bench/sqlite_baseline.hpp"
 #include "engine/engine.hpp"
 #include "model/error.hpp"
@@ -25,7 +28,7 @@ namespace {
 // Surfaces that carry small things in the generated rooms, most common first:
 // a scene's FIND uses the first it has.
 constexpr std::array<std::string_view, 4> kSurfaces = {"table", "desk", "counter", "sofa"};
-constexpr std::array<std::string_view, 10> kSmallCategories = {"mug",  "book",  "lamp",  "plant", "laptop",
+constexpr std::array<std::string_view, 10> kSmallCategories = {"mug",    "book", "lamp", "plant", "laptop",
                                                                "bottle", "bowl", "vase", "clock", "cushion"};
 
 enum class AnswerColumn { Id, Relation, Count };
@@ -33,19 +36,16 @@ enum class AnswerColumn { Id, Relation, Count };
 struct Query {
     std::string text;
     AnswerColumn column;
-    std::function<Answer(SqliteBaseline&)> sqlite;
+    std::function<Answer(Baseline&)> baseline;
 };
 
 // Classes in report order; the single-scene ones come first.
 enum ClassIndex { kFindWindow, kFindChair, kRelate, kNearest, kCategoryAll, kCountAll, kClassCount };
 constexpr int kSingleSceneClasses = kCategoryAll;
 
-const std::array<const char*, kClassCount> kClassNames = {"FIND on(table) AND near(window, 1.5 m)",
-                                                          "FIND on(table) AND near(chair, 1 m)",
-                                                          "RELATE #a TO #b",
-                                                          "FIND object NEAREST TO door LIMIT 5",
-                                                          "FIND <category> LIMIT 100, all scenes",
-                                                          "COUNT <category>, all scenes"};
+const std::array<const char*, kClassCount> kClassNames = {
+    "FIND on(table) AND near(window, 1.5 m)", "FIND on(table) AND near(chair, 1 m)",   "RELATE #a TO #b",
+    "FIND object NEAREST TO door LIMIT 5",    "FIND <category> LIMIT 100, all scenes", "COUNT <category>, all scenes"};
 
 Answer smqlAnswer(const ResultSet& rs, AnswerColumn column) {
     Answer out;
@@ -56,7 +56,9 @@ Answer smqlAnswer(const ResultSet& rs, AnswerColumn column) {
         const Value& v = row[static_cast<std::size_t>(index)];
         if (column == AnswerColumn::Relation) {
             const auto* p = relations::predicateNamed(std::get<std::string>(v));
-            if (!p) throw std::runtime_error(fmt::format("smql answered an unknown relation '{}'", std::get<std::string>(v)));
+            if (!p)
+                throw std::runtime_error(
+                    fmt::format("smql answered an unknown relation '{}'", std::get<std::string>(v)));
             out.push_back(static_cast<std::int64_t>(p->predicate));
         } else {
             out.push_back(std::get<std::int64_t>(v));
@@ -72,26 +74,36 @@ std::string showAnswer(const Answer& a, AnswerColumn column) {
     return fmt::format("[{}]", fmt::join(names, ", "));
 }
 
-// Runs `query` on both systems and throws unless the answers are equal.
+// Throws unless a baseline's answer to `query` equals smql's.
+void requireEqual(const Answer& ours, const Answer& theirs, const Baseline& baseline, const Query& query,
+                  const std::string& where) {
+    if (ours != theirs)
+        throw std::runtime_error(fmt::format("answers differ in {} for `{}`:\n  smql:   {}\n  {}: {}", where,
+                                             query.text, showAnswer(ours, query.column), baseline.name(),
+                                             showAnswer(theirs, query.column)));
+}
+
+using Baselines = std::vector<std::unique_ptr<Baseline>>;
+
+// Runs `query` on every system and throws unless the answers are equal.
 // Returns the answer and each system's time for this (first) run.
 struct Checked {
     Answer answer;
     double smqlMicros;
-    double sqliteMicros;
+    std::vector<double> baselineMicros;
 };
-Checked check(Engine& engine, SqliteBaseline& sqlite, const Query& query, const std::string& where) {
+Checked check(Engine& engine, Baselines& baselines, const Query& query, const std::string& where) {
     auto t = Clock::now();
     auto results = engine.execute(query.text);
-    double smqlMicros = microsecondsSince(t);
-    t = Clock::now();
-    Answer theirs = query.sqlite(sqlite);
-    double sqliteMicros = microsecondsSince(t);
-    Answer ours = smqlAnswer(results.back(), query.column);
-    if (ours != theirs)
-        throw std::runtime_error(fmt::format("answers differ in {} for `{}`:\n  smql:   {}\n  sqlite: {}", where,
-                                             query.text, showAnswer(ours, query.column),
-                                             showAnswer(theirs, query.column)));
-    return {std::move(ours), smqlMicros, sqliteMicros};
+    Checked out{{}, microsecondsSince(t), {}};
+    out.answer = smqlAnswer(results.back(), query.column);
+    for (auto& baseline : baselines) {
+        t = Clock::now();
+        Answer theirs = query.baseline(*baseline);
+        out.baselineMicros.push_back(microsecondsSince(t));
+        requireEqual(out.answer, theirs, *baseline, query, where);
+    }
+    return out;
 }
 
 double answerSize(const Answer& a, AnswerColumn column) {
@@ -126,11 +138,12 @@ SceneQueries sceneQueries(Engine& engine, int sceneIndex) {
             "scene {} lacks a table-like surface, a window, a door or a chair; give it more objects (--objects)",
             out.name));
     PredicateTerm on{Predicate::On, std::string(*surface), std::nullopt};
-    for (auto [c, term] : {std::pair{kFindWindow, PredicateTerm{Predicate::Near, "window", 1.5}},
-                           std::pair{kFindChair, PredicateTerm{Predicate::Near, "chair", 1.0}}}) {
-        out.byClass[c].push_back({fmt::format("FIND object WHERE on({}) AND near({}, {} m)", *surface, term.category,
-                                              *term.nearDistance),
-                                  AnswerColumn::Id, [on, term](SqliteBaseline& s) { return s.findObjects(on, term); }});
+    for (const auto& [c, near] : {std::pair{kFindWindow, PredicateTerm{Predicate::Near, "window", 1.5}},
+                                  std::pair{kFindChair, PredicateTerm{Predicate::Near, "chair", 1.0}}}) {
+        const PredicateTerm& term = near;  // a lambda captures a variable, not a structured binding (clang 14)
+        out.byClass[c].push_back(
+            {fmt::format("FIND object WHERE on({}) AND near({}, {} m)", *surface, term.category, *term.nearDistance),
+             AnswerColumn::Id, [on, term](Baseline& s) { return s.findObjects(on, term); }});
     }
 
     std::vector<const model::Node*> objects;
@@ -141,7 +154,8 @@ SceneQueries sceneQueries(Engine& engine, int sceneIndex) {
         if (n.kind != model::NodeKind::Object) continue;
         objects.push_back(&n);
         auto parent = byId.find(n.parent);
-        if (parent != byId.end() && parent->second->kind == model::NodeKind::Object) resting.emplace_back(n.id, n.parent);
+        if (parent != byId.end() && parent->second->kind == model::NodeKind::Object)
+            resting.emplace_back(n.id, n.parent);
     }
     std::mt19937_64 rng(static_cast<std::uint64_t>(sceneIndex) + 1);
     std::shuffle(resting.begin(), resting.end(), rng);
@@ -152,12 +166,15 @@ SceneQueries sceneQueries(Engine& engine, int sceneIndex) {
         model::NodeId a = objects[anyObject(rng)]->id, b = nodes[anyNode(rng)].id;
         if (a != b) pairs.emplace_back(a, b);
     }
-    for (auto [a, b] : pairs)
+    for (const auto& pair : pairs) {
+        model::NodeId a = pair.first, b = pair.second;
         out.byClass[kRelate].push_back({fmt::format("RELATE #{} TO #{}", a, b), AnswerColumn::Relation,
-                                        [a, b](SqliteBaseline& s) { return s.relate(a, b); }});
+                                        [a, b](Baseline& s) { return s.relate(a, b); }});
+    }
 
-    out.byClass[kNearest].push_back({fmt::format("FIND object NEAREST TO door LIMIT {}", kNearestLimit), AnswerColumn::Id,
-                                     [](SqliteBaseline& s) { return s.nearestObjects("door", kNearestLimit); }});
+    out.byClass[kNearest].push_back({fmt::format("FIND object NEAREST TO door LIMIT {}", kNearestLimit),
+                                     AnswerColumn::Id,
+                                     [](Baseline& s) { return s.nearestObjects("door", kNearestLimit); }});
     return out;
 }
 
@@ -166,44 +183,64 @@ std::array<std::vector<Query>, kClassCount - kSingleSceneClasses> allSceneQuerie
     for (std::string_view c : kSmallCategories) {
         std::string category(c);
         out[0].push_back({fmt::format("FIND {} LIMIT {}", category, kCategoryLimit), AnswerColumn::Id,
-                          [category](SqliteBaseline& s) { return s.findCategoryAll(category, kCategoryLimit); }});
+                          [category](Baseline& s) { return s.findCategoryAll(category, kCategoryLimit); }});
         out[1].push_back({fmt::format("COUNT {}", category), AnswerColumn::Count,
-                          [category](SqliteBaseline& s) { return s.countCategoryAll(category); }});
+                          [category](Baseline& s) { return s.countCategoryAll(category); }});
     }
     return out;
 }
 
 // Samples per class, system and round, and what the checks saw.
 struct ClassSamples {
-    std::vector<std::vector<double>> smql, sqlite;
+    std::vector<std::vector<double>> smqlFresh, smqlRepeated;
+    std::vector<std::vector<std::vector<double>>> baselines;  // per baseline, per round
     std::size_t verified = 0;
     double answerTotal = 0;
 };
 
-// Answers each query on both systems and compares (which also warms both).
-void verify(Engine& engine, SqliteBaseline& sqlite, const std::vector<Query>& queries, const std::string& where,
+// Answers each query on every system and compares (which also warms them).
+void verify(Engine& engine, Baselines& baselines, const std::vector<Query>& queries, const std::string& where,
             ClassSamples& samples) {
     for (const auto& q : queries) {
-        auto checked = check(engine, sqlite, q, where);
+        auto checked = check(engine, baselines, q, where);
         ++samples.verified;
         samples.answerTotal += answerSize(checked.answer, q.column);
     }
 }
 
-// Times `reps` executions per system, cycling through the queries.
-void timeQueries(Engine& engine, SqliteBaseline& sqlite, const std::vector<Query>& queries, int reps,
-          std::vector<double>& smqlSamples, std::vector<double>& sqliteSamples) {
+// Times `reps` executions per system, cycling through the queries. smql runs
+// each query twice over: as fresh text (a numbered comment makes every text
+// new, so the engine parses, binds and plans it) and as the repeated text
+// (whose parse the engine has cached). Each fresh answer is checked against
+// every baseline's answer of the same execution, outside the timed calls.
+// Prepared statements: when the engine offers them, their timing is a third
+// smql loop here, next to these two, and a column in ClassResult.
+void timeQueries(Engine& engine, Baselines& baselines, const std::vector<Query>& queries, int reps, int round,
+                 const std::string& where, ClassSamples& samples) {
+    static std::uint64_t freshTexts = 0;
+    std::vector<Answer> answers;
     for (int i = 0; i < reps; ++i) {
         const auto& q = queries[static_cast<std::size_t>(i) % queries.size()];
+        std::string text = fmt::format("{} -- fresh text {}", q.text, ++freshTexts);
         auto t = Clock::now();
-        engine.execute(q.text);
-        smqlSamples.push_back(microsecondsSince(t));
+        auto results = engine.execute(text);
+        samples.smqlFresh[round].push_back(microsecondsSince(t));
+        answers.push_back(smqlAnswer(results.back(), q.column));
     }
     for (int i = 0; i < reps; ++i) {
         const auto& q = queries[static_cast<std::size_t>(i) % queries.size()];
         auto t = Clock::now();
-        q.sqlite(sqlite);
-        sqliteSamples.push_back(microsecondsSince(t));
+        engine.execute(q.text);
+        samples.smqlRepeated[round].push_back(microsecondsSince(t));
+    }
+    for (std::size_t b = 0; b < baselines.size(); ++b) {
+        for (int i = 0; i < reps; ++i) {
+            const auto& q = queries[static_cast<std::size_t>(i) % queries.size()];
+            auto t = Clock::now();
+            Answer theirs = q.baseline(*baselines[b]);
+            samples.baselines[b][round].push_back(microsecondsSince(t));
+            requireEqual(answers[static_cast<std::size_t>(i)], theirs, *baselines[b], q, where);
+        }
     }
 }
 
@@ -212,13 +249,17 @@ void timeQueries(Engine& engine, SqliteBaseline& sqlite, const std::vector<Query
 Percentiles overRounds(std::vector<std::vector<double>>& rounds) {
     std::vector<double> p50s, p99s;
     Percentiles out;
+    out.p50Low = std::numeric_limits<double>::infinity();
     for (auto& samples : rounds) {
         if (samples.empty()) continue;
         auto p = percentiles(samples);
         p50s.push_back(p.p50);
         p99s.push_back(p.p99);
         out.max = std::max(out.max, p.max);
+        out.p50Low = std::min(out.p50Low, p.p50);
+        out.p50High = std::max(out.p50High, p.p50);
     }
+    if (p50s.empty()) out.p50Low = 0;
     out.p50 = median(p50s);
     out.p99 = median(p99s);
     return out;
@@ -240,7 +281,7 @@ OpenTimes measureOpen(const DataSet& data, const Query& firstQuery, const std::s
         SqliteBaseline sqlite(data.sqliteFile.string(), false);
         sqliteOpen.push_back(microsecondsSince(t));
         sqlite.useScene(firstScene);
-        firstQuery.sqlite(sqlite);
+        firstQuery.baseline(sqlite);
         sqliteFirst.push_back(microsecondsSince(t));
     }
     return {median(smqlOpen), median(smqlFirst), median(sqliteOpen), median(sqliteFirst)};
@@ -251,17 +292,31 @@ OpenTimes measureOpen(const DataSet& data, const Query& firstQuery, const std::s
 WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, std::ostream& progress) {
     WorkloadResult result;
     const int rounds = std::max(1, options.rounds);
-    std::array<ClassSamples, kClassCount> samples;
-    for (auto& s : samples) s.smql.resize(rounds), s.sqlite.resize(rounds);
-    std::vector<double> smqlSwitch, sqliteSwitch;
     const int sampled = std::clamp(options.sampledScenes, 1, data.spec.scenes);
     // Executions per class, system, scene and round: at least options.queries in all.
     const int perSceneRound = (options.queries + sampled * rounds - 1) / (sampled * rounds);
     const int perRound = (options.queries + rounds - 1) / rounds;
     std::vector<SceneQueries> scenes;
+    std::array<ClassSamples, kClassCount> samples;
+    std::vector<double> smqlSwitch;
+    std::vector<std::vector<double>> baselineSwitch;
     {
         auto engine = Engine::open(data.smqlDirectory.string());
-        SqliteBaseline sqlite(data.sqliteFile.string(), false);
+        Baselines baselines;
+        baselines.push_back(std::make_unique<SqliteBaseline>(data.sqliteFile.string(), false));
+        if (!data.postgisConnection.empty())
+            baselines.push_back(std::make_unique<PostgisBaseline>(data.postgisConnection, false));
+        for (const auto& b : baselines) result.baselineNames.push_back(b->name());
+        baselineSwitch.resize(baselines.size());
+        for (auto& s : samples) {
+            s.smqlFresh.resize(rounds);
+            s.smqlRepeated.resize(rounds);
+            s.baselines.assign(baselines.size(), std::vector<std::vector<double>>(rounds));
+        }
+        auto useScene = [&](const std::string& name) {
+            engine->execute(fmt::format("USE SCENE '{}'", name));
+            for (auto& b : baselines) b->useScene(name);
+        };
         for (int k = 0; k < sampled; ++k) {
             int index = static_cast<int>(static_cast<long long>(k) * data.spec.scenes / sampled);
             const auto& scene = scenes.emplace_back(sceneQueries(*engine, index));
@@ -273,21 +328,21 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
                 engine->execute(find.text);
             } catch (const Error&) {
             }
-            engine->execute(fmt::format("USE SCENE '{}'", scene.name));
-            sqlite.useScene(scene.name);
+            useScene(scene.name);
             std::string where = fmt::format("{} scene {}", data.spec.label, scene.name);
-            auto first = check(*engine, sqlite, find, where);
+            auto first = check(*engine, baselines, find, where);
             smqlSwitch.push_back(first.smqlMicros);
-            sqliteSwitch.push_back(first.sqliteMicros);
-            for (int c = 0; c < kSingleSceneClasses; ++c) verify(*engine, sqlite, scene.byClass[c], where, samples[c]);
+            for (std::size_t b = 0; b < baselines.size(); ++b) baselineSwitch[b].push_back(first.baselineMicros[b]);
+            for (int c = 0; c < kSingleSceneClasses; ++c)
+                verify(*engine, baselines, scene.byClass[c], where, samples[c]);
         }
         // Rounds outside, scenes inside: each round spans every scene, and the rounds spread over the run.
         for (int r = 0; r < rounds; ++r) {
             for (const auto& scene : scenes) {
-                engine->execute(fmt::format("USE SCENE '{}'", scene.name));
-                sqlite.useScene(scene.name);
+                useScene(scene.name);
+                std::string where = fmt::format("{} scene {}", data.spec.label, scene.name);
                 for (int c = 0; c < kSingleSceneClasses; ++c)
-                    timeQueries(*engine, sqlite, scene.byClass[c], perSceneRound, samples[c].smql[r], samples[c].sqlite[r]);
+                    timeQueries(*engine, baselines, scene.byClass[c], perSceneRound, r, where, samples[c]);
             }
         }
         fmt::print(progress, "  {}: single-scene queries done in {} scene(s)\n", data.spec.label, sampled);
@@ -295,29 +350,32 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
 
         engine->execute("USE SCENE '*'");
         auto across = allSceneQueries();
+        const std::string where = data.spec.label + " (all scenes)";
         for (int c = kSingleSceneClasses; c < kClassCount; ++c)
-            verify(*engine, sqlite, across[c - kSingleSceneClasses], data.spec.label + " (all scenes)", samples[c]);
+            verify(*engine, baselines, across[c - kSingleSceneClasses], where, samples[c]);
         for (int r = 0; r < rounds; ++r)
             for (int c = kSingleSceneClasses; c < kClassCount; ++c)
-                timeQueries(*engine, sqlite, across[c - kSingleSceneClasses], perRound, samples[c].smql[r], samples[c].sqlite[r]);
+                timeQueries(*engine, baselines, across[c - kSingleSceneClasses], perRound, r, where, samples[c]);
         fmt::print(progress, "  {}: all-scene queries done\n", data.spec.label);
         progress.flush();
     }
-    // Both databases are closed now, so each open below starts from nothing but the OS page cache.
-    result.open = measureOpen(data, scenes.front().byClass[kFindWindow].front(), scenes.front().name, options.openRepeats);
+    // smql and SQLite are closed now, so each open below starts from nothing but the OS page cache.
+    result.open =
+        measureOpen(data, scenes.front().byClass[kFindWindow].front(), scenes.front().name, options.openRepeats);
 
     for (int c = 0; c < kClassCount; ++c) {
         ClassResult r;
         r.name = kClassNames[c];
         r.twoPredicateFind = c == kFindWindow || c == kFindChair;
-        r.smql = overRounds(samples[c].smql);
-        r.sqlite = overRounds(samples[c].sqlite);
+        r.smqlFresh = overRounds(samples[c].smqlFresh);
+        r.smqlRepeated = overRounds(samples[c].smqlRepeated);
+        for (auto& b : samples[c].baselines) r.baselines.push_back(overRounds(b));
         r.verified = samples[c].verified;
         r.meanAnswer = samples[c].verified ? samples[c].answerTotal / static_cast<double>(samples[c].verified) : 0;
         result.classes.push_back(std::move(r));
     }
     result.smqlSceneSwitch = percentiles(smqlSwitch);
-    result.sqliteSceneSwitch = percentiles(sqliteSwitch);
+    for (auto& b : baselineSwitch) result.baselineSceneSwitch.push_back(percentiles(b));
     return result;
 }
 

@@ -26,12 +26,13 @@ struct WorkloadOptions {
 };
 
 struct ClassResult {
-    std::string name;  // the query, as the report shows it
-    bool twoPredicateFind = false;  // what the FIND latency target is about
-    Percentiles smql;  // p50 and p99: medians over the rounds
-    Percentiles sqlite;
-    std::size_t verified = 0;   // distinct queries whose answers were compared (and matched)
-    double meanAnswer = 0;      // mean rows per answer (the count itself for COUNT)
+    std::string name;                    // the query, as the report shows it
+    bool twoPredicateFind = false;       // what the FIND latency target is about
+    Percentiles smqlFresh;               // new statement text each time: parse, bind, plan, run
+    Percentiles smqlRepeated;            // the same texts again: the engine's parse cache answers the parse
+    std::vector<Percentiles> baselines;  // per WorkloadResult::baselineNames
+    std::size_t verified = 0;            // distinct queries compared before timing (every timed answer is compared too)
+    double meanAnswer = 0;               // mean rows per answer (the count itself for COUNT)
 };
 
 // Medians over WorkloadOptions::openRepeats, in microseconds.
@@ -44,9 +45,10 @@ struct OpenTimes {
 
 struct WorkloadResult {
     std::vector<ClassResult> classes;
+    std::vector<std::string> baselineNames;  // "SQLite", then "PostGIS" when it took part
     // The first FIND after USE SCENE: smql decodes the scene into memory then.
     Percentiles smqlSceneSwitch;
-    Percentiles sqliteSceneSwitch;
+    std::vector<Percentiles> baselineSceneSwitch;
     OpenTimes open;
 };
 

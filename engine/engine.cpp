@@ -11,13 +11,15 @@
 #include <fmt/format.h>
 
 #include "engine/binder/binder.hpp"
-#include "model/error.hpp"
 #include "engine/exec/executor.hpp"
 #include "engine/exec/scene_snapshot.hpp"
-#include "model/names.hpp"
+#include "engine/history/scene_update.hpp"
 #include "engine/parser/parser.hpp"
 #include "engine/planner/planner.hpp"
 #include "engine/relations/hierarchy.hpp"
+#include "model/error.hpp"
+#include "model/instant.hpp"
+#include "model/names.hpp"
 #include "storage/database.hpp"
 
 namespace smql {
@@ -87,6 +89,21 @@ struct Engine::State {
         return *latest;
     }
 
+    // One statement through bind, plan and execute in its own read transaction; `values` fill
+    // its placeholders (binder/parameters.hpp). The caller holds the mutex.
+    ResultSet run(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values) {
+        auto start = std::chrono::steady_clock::now();
+        auto txn = db->beginRead();
+        binder::Binder binder({txn, session, [&] { return snapshot(txn, currentScene(txn)); },
+                               [&](const std::string& instant) { return snapshotAsOf(txn, instant); }});
+        auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement, values)));
+        storage::Database* writer = db->readOnly() ? nullptr : db.get();
+        auto rs = exec::Executor(txn, session, plan, &interrupt, writer).run();
+        rs.elapsedMicroseconds =
+            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+        return rs;
+    }
+
     std::shared_ptr<const SceneSnapshot> snapshot(const storage::ReadTransaction& txn, const model::SceneInfo& info) {
         auto it = snapshots.find(info.id);
         if (it == snapshots.end() || it->second.snapshot->info().version != info.version) {
@@ -100,6 +117,21 @@ struct Engine::State {
         }
         it->second.lastUse = ++useCounter;
         return it->second.snapshot;
+    }
+
+    // The current scene as the memory held it at `instant`: the newest version captured at or
+    // before it (the live one, or one from the history). Times compare in model::utcInstant's form.
+    std::shared_ptr<const SceneSnapshot> snapshotAsOf(const storage::ReadTransaction& txn, const std::string& instant) {
+        const model::SceneInfo live = currentScene(txn);
+        if (model::comparableInstant(live.captureTime) <= instant) return snapshot(txn, live);
+        auto versions = txn.history(live.name);
+        for (auto v = versions.rbegin(); v != versions.rend(); ++v)
+            if (model::comparableInstant(v->info.captureTime) <= instant) return SceneSnapshot::fromVersion(*v);
+        const std::string& first = versions.empty() ? live.captureTime : versions.front().info.captureTime;
+        throw Error(ErrorKind::Binding,
+                    fmt::format("scene '{}' was first captured at {}: the memory holds nothing of it at {}", live.name,
+                                first, instant),
+                    std::nullopt, "SHOW CHANGES lists the updates of the scene and their times");
     }
 };
 
@@ -131,19 +163,55 @@ void Engine::execute(std::string_view text, const std::function<void(ResultSet&&
     std::lock_guard lock(state_->mutex);
     state_->interrupt = false;  // an interrupt stops the statements running when it comes, not later ones
     auto statements = state_->parse(text);
-    for (const auto& statement : *statements) {
-        auto start = std::chrono::steady_clock::now();
-        auto txn = state_->db->beginRead();
-        binder::Binder binder({txn, state_->session, [&] {
-                                   return state_->snapshot(txn, state_->currentScene(txn));
-                               }});
-        auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement)));
-        auto rs = exec::Executor(txn, state_->session, plan, &state_->interrupt).run();
-        rs.elapsedMicroseconds =
-            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-        onResult(std::move(rs));
-    }
+    for (const auto& statement : *statements) onResult(state_->run(statement, {}));
 }
+
+PreparedStatement Engine::prepare(std::string_view text) {
+    std::shared_ptr<const std::vector<ast::Statement>> statements;
+    {
+        std::lock_guard lock(state_->mutex);
+        statements = state_->parse(text);
+    }
+    if (statements->size() != 1)
+        throw Error(ErrorKind::Usage,
+                    fmt::format("a prepared statement is one statement; this text holds {}", statements->size()),
+                    statements->at(1).where, "prepare each statement on its own");
+    // Shares the cached parse: the AST is immutable, and values go into copies of it.
+    return PreparedStatement(*this, std::shared_ptr<const ast::Statement>(statements, &statements->front()));
+}
+
+ResultSet Engine::executePrepared(const ast::Statement& statement,
+                                  const std::vector<std::optional<ParameterValue>>& values) {
+    std::lock_guard lock(state_->mutex);
+    state_->interrupt = false;  // as in execute(): only an interrupt during this run stops it
+    return state_->run(statement, values);
+}
+
+PreparedStatement::PreparedStatement(Engine& engine, std::shared_ptr<const ast::Statement> statement)
+    : engine_(&engine),
+      statement_(std::move(statement)),
+      slots_(binder::parameterSlots(*statement_)),
+      values_(slots_.size()) {}
+
+std::size_t PreparedStatement::parameterCount() const { return slots_.size(); }
+
+void PreparedStatement::bind(std::size_t index, ParameterValue value) {
+    if (index < 1 || index > slots_.size())
+        throw Error(ErrorKind::Usage,
+                    slots_.empty() ? fmt::format("no placeholder {}: the statement has none", index)
+                                   : fmt::format("no placeholder {}: the statement has {} (1 to {})", index,
+                                                 slots_.size(), slots_.size()),
+                    std::nullopt, "placeholders are numbered from 1, in the order ? are written or by $n");
+    if (auto why = binder::rejectedValue(slots_[index - 1], value))
+        throw Error(ErrorKind::Usage, *why, slots_[index - 1].placeholder.where);
+    values_[index - 1] = std::move(value);
+}
+
+void PreparedStatement::clearBindings() { std::fill(values_.begin(), values_.end(), std::nullopt); }
+
+ResultSet PreparedStatement::execute() { return engine_->executePrepared(*statement_, values_); }
+
+const std::string& PreparedStatement::text() const { return statement_->text; }
 
 model::NodeId Engine::importScene(model::SceneData scene) {
     std::lock_guard lock(state_->mutex);
@@ -179,7 +247,8 @@ model::SceneData Engine::readScene(const std::string& name) {
 std::vector<model::Blob> Engine::evidence(model::NodeId node) {
     std::lock_guard lock(state_->mutex);
     auto txn = state_->db->beginRead();
-    if (!txn.node(node)) throw Error(ErrorKind::Binding, fmt::format("no node #{}", node), std::nullopt, "FIND lists node ids");
+    if (!txn.node(node))
+        throw Error(ErrorKind::Binding, fmt::format("no node #{}", node), std::nullopt, "FIND lists node ids");
     std::vector<model::Blob> out;
     for (const auto& info : txn.blobsOf(node))
         if (auto blob = txn.blob(node, info.name)) out.push_back(std::move(*blob));
@@ -200,7 +269,8 @@ model::SceneData Engine::exportScene(const std::string& name) {
         n.parent = localId(n.parent);
         n.scene = model::kNoNode;
     }
-    for (auto& r : out.relations) r.subject = localId(r.subject), r.object = localId(r.object), r.frame = localId(r.frame);
+    for (auto& r : out.relations)
+        r.subject = localId(r.subject), r.object = localId(r.object), r.frame = localId(r.frame);
     for (auto& b : out.blobs) b.node = localId(b.node);
     out.info.id = model::kNoNode;
     out.info.nodeCount = 0;
@@ -213,6 +283,11 @@ void Engine::updateNodes(const std::vector<model::Node>& nodes) {
     auto txn = state_->db->beginWrite();
     txn.updateNodes(nodes);
     txn.commit();
+}
+
+void Engine::setAskTranslator(std::shared_ptr<const ask::Translator> translator) {
+    std::lock_guard lock(state_->mutex);
+    state_->session.askTranslator = std::move(translator);
 }
 
 std::string Engine::currentScene() const {
@@ -232,13 +307,47 @@ std::vector<std::string> Engine::knownCategories() const {
     return out;
 }
 
-// -------------------------------------------------------- refreshing a scene
-
-Engine::SceneRefresh Engine::refreshScene(const std::string& name, const model::SceneData& observed,
-                                          const ObjectMatcher& match) {
+Engine::SceneMap Engine::sceneMap(const std::string& name) {
     std::lock_guard lock(state_->mutex);
-    // Reading in the write transaction is what makes the counts exact: a
-    // second refresher waits for this one's commit before it reads them.
+    auto txn = state_->db->beginRead();
+    auto info = name.empty() ? std::optional(state_->currentScene(txn)) : txn.sceneByName(name);
+    if (!info)
+        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
+                    "SHOW SCENES lists the scenes");
+    auto snapshot = state_->snapshot(txn, *info);
+    SceneMap map;
+    map.scene.info = snapshot->info();
+    map.scene.nodes = snapshot->nodes();
+    map.scene.relations = snapshot->storedRelations();
+    map.graph = snapshot->guidance().graph;
+    return map;
+}
+
+// -------------------------------------------------------- updating a scene
+
+namespace {
+
+std::string utcNow() {
+    auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
+                       utc.tm_hour, utc.tm_min, utc.tm_sec);
+}
+
+}  // namespace
+
+std::string Engine::SceneUpdateReport::summary() const {
+    return fmt::format(
+        "updated scene '{}' as of {}: {} objects seen again where they were, {} moved, {} new, {} missing, {} not "
+        "looked at; the version before is kept in the scene's history (SHOW CHANGES lists the changes)",
+        scene, time, unchanged, moved, added, missing, unseen);
+}
+
+Engine::SceneUpdateReport Engine::updateScene(const std::string& name, const model::SceneData& observed) {
+    std::lock_guard lock(state_->mutex);
+    // Reading in the write transaction is what makes updates exact: a second updater waits
+    // for this one's commit before it reads the scene.
     auto txn = state_->db->beginWrite();
     std::string sceneName = name;
     if (sceneName.empty()) sceneName = state_->currentScene(state_->db->beginRead()).name;
@@ -246,37 +355,39 @@ Engine::SceneRefresh Engine::refreshScene(const std::string& name, const model::
     if (!info)
         throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", sceneName), std::nullopt,
                     "SHOW SCENES lists the scenes");
+    const std::string time =
+        observed.info.captureTime.empty() ? utcNow() : model::comparableInstant(observed.info.captureTime);
+    if (!info->captureTime.empty() && time < model::comparableInstant(info->captureTime))
+        throw Error(ErrorKind::Input,
+                    fmt::format("the capture was taken at {}, before the stored version of scene '{}' ({})", time,
+                                sceneName, info->captureTime),
+                    std::nullopt, "updates go forward in time: update with captures newer than the scene");
+
     model::SceneData stored;
     stored.info = *info;
-    txn.forEachNodeInScene(info->id, [&](const model::Node& n) {
-        if (n.kind != model::NodeKind::Scene) stored.nodes.push_back(n);
-    });
+    txn.forEachNodeInScene(info->id, [&](const model::Node& n) { stored.nodes.push_back(n); });
+    stored.relations = txn.relationsInScene(info->id);
 
-    std::unordered_map<model::NodeId, const model::Node*> storedById;
-    for (const auto& n : stored.nodes) storedById.emplace(n.id, &n);
-    std::vector<model::Node> updated;
-    for (const auto& [storedId, observedId] : match(stored, observed)) {
-        model::Node node = *storedById.at(storedId);
-        auto set = [&](const std::string& attribute, const std::string& value) {
-            auto it = std::find_if(node.attributes.begin(), node.attributes.end(),
-                                   [&](const auto& a) { return a.name == attribute; });
-            if (it == node.attributes.end()) node.attributes.push_back({attribute, value});
-            else it->value = value;
-        };
-        const std::string* seen = node.attribute("captures");
-        set("captures", std::to_string((seen ? std::stoi(*seen) : 1) + 1));
-        set("last_seen_at", observed.info.captureTime);
-        std::sort(node.attributes.begin(), node.attributes.end(),
-                  [](const auto& a, const auto& b) { return a.name < b.name; });
-        updated.push_back(std::move(node));
-    }
-    txn.updateNodes(updated);
+    history::SceneUpdate update = history::planUpdate(stored, observed, time);
+    relations::assignParents(update.next, state_->session.thresholds);
+    auto replaced = txn.replaceScene(info->id, update.next, time, update.changes, update.carried);
     txn.commit();
 
-    SceneRefresh out;
-    out.seenAgain = updated.size();
-    for (const auto& n : stored.nodes) out.storedObjects += n.kind == model::NodeKind::Object && !n.hidden;
-    return out;
+    SceneUpdateReport report;
+    report.scene = sceneName;
+    report.time = time;
+    report.version = replaced.superseded;
+    report.unchanged = update.unchanged;
+    report.moved = update.moved;
+    report.added = update.added;
+    report.missing = update.missing;
+    report.unseen = update.unseen;
+    report.changes = std::move(update.changes);
+    // The ids of the new version, as replaceScene stored them: local id k is the k-th node of the
+    // new block, which begins with the scene node.
+    for (auto& change : report.changes)
+        if (change.after != model::kNoNode) change.after = replaced.scene + change.after;
+    return report;
 }
 
 }  // namespace smql

@@ -3,18 +3,59 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include "model/types.hpp"
+#include "engine/binder/parameters.hpp"
+#include "engine/guide/route_graph.hpp"
 #include "model/result.hpp"
+#include "model/types.hpp"
 #include "storage/check.hpp"
 
 namespace smql {
 
-namespace storage { class Database; }
+namespace storage {
+class Database;
+}
+namespace ask {
+class Translator;
+}
+
+class Engine;
+
+// A statement parsed once and run many times with different values for its placeholders
+// (`FIND ? WHERE near(?, ?)`; docs/language.md, "Parameters"), as sqlite3_stmt. Running it
+// binds, plans and executes the parsed statement: the parser never sees it again, and a bound
+// value is data, never SMQL text. Made by Engine::prepare; the Engine must outlive it. Not for
+// use by two threads at once (the Engine is).
+class PreparedStatement {
+public:
+    // Placeholders are numbered 1..parameterCount(): `?` in the order written, `$n` by n.
+    std::size_t parameterCount() const;
+    // Binds placeholder `index` (1-based). Text for a name or a string; std::int64_t, double or
+    // Length (metres) for a number, a distance or LIMIT; std::monostate for NULL. Throws
+    // Error(Usage) for an index out of range or a value its place cannot take (text for LIMIT).
+    void bind(std::size_t index, ParameterValue value);
+    // Every placeholder unbound again; running then fails naming the first.
+    void clearBindings();
+    // Runs the statement with the values bound now. Throws smql::Error as Engine::execute does,
+    // and Error(Usage) naming a placeholder without a value.
+    ResultSet execute();
+    // The statement's text, for error messages.
+    const std::string& text() const;
+
+private:
+    friend class Engine;
+    PreparedStatement(Engine& engine, std::shared_ptr<const ast::Statement> statement);
+
+    Engine* engine_;
+    std::shared_ptr<const ast::Statement> statement_;
+    std::vector<binder::ParameterSlot> slots_;
+    std::vector<std::optional<ParameterValue>> values_;
+};
 
 class Engine {
 public:
@@ -32,6 +73,10 @@ public:
     // The same, handing each statement's result over as soon as it is ready,
     // so a caller can print the statements before a failing one.
     void execute(std::string_view text, const std::function<void(ResultSet&&)>& onResult);
+
+    // Parses one statement, placeholders allowed, to run later with values. Throws smql::Error
+    // for a syntax error, and Error(Usage) when `text` holds more than one statement.
+    PreparedStatement prepare(std::string_view text);
 
     // Stores an imported scene in one write transaction, after giving its
     // objects their parents (support, else the nearest upright anchor).
@@ -52,21 +97,39 @@ public:
     // from a signal handler. Without a running statement it does nothing.
     void interrupt();
 
-    // Which objects of a new capture of a place are objects already stored
-    // for it: pairs of (stored node id, observed node id).
-    using ObjectMatcher = std::function<std::vector<std::pair<model::NodeId, model::NodeId>>(
-        const model::SceneData& stored, const model::SceneData& observed)>;
-    struct SceneRefresh {
-        std::size_t seenAgain = 0;      // stored objects the capture saw again (and that were updated)
-        std::size_t storedObjects = 0;  // visible objects of the stored scene
+    // What an update found: counts of each kind of object, and the changes one by one
+    // (`before`: ids of the superseded version, kept in its history; `after`: ids of the new one).
+    struct SceneUpdateReport {
+        std::string scene;
+        std::string time;           // the capture time the new version carries
+        std::uint64_t version = 0;  // the number the superseded version has in the history
+        std::size_t unchanged = 0, moved = 0, added = 0, missing = 0, unseen = 0;
+        std::vector<model::ObjectChange> changes;
+        // "updated scene 'den' as of ...: 17 objects seen again where they were, 1 moved, ..."
+        std::string summary() const;
     };
-    // Merges a new capture of the place into the stored scene `name` (the
-    // most recent when empty): each stored object `match` pairs with an
-    // observed one gets `captures` = stored + 1 (1 when unset) and
-    // `last_seen_at` = observed.info.captureTime; nothing else changes. The
-    // read and the write are one write transaction, so refreshes of one scene
-    // from several processes at once never lose one another's counts.
-    SceneRefresh refreshScene(const std::string& name, const model::SceneData& observed, const ObjectMatcher& match);
+    // Merges a new capture of a place into its stored scene `name` (the current one when empty):
+    // objects are matched to the stored ones (docs/history.md), the scene becomes the next
+    // version (seen-again, moved and new objects; missing ones left out) and the superseded
+    // version goes to the scene's history with the changes, so SHOW CHANGES and AS OF can read
+    // it. The capture's time is observed.info.captureTime (now, when it has none), and must not
+    // be before the stored version's. One write transaction: concurrent updates of a scene
+    // serialise and neither is lost.
+    SceneUpdateReport updateScene(const std::string& name, const model::SceneData& observed);
+
+    // What a top-down map of a scene shows: its nodes, with database ids, and the decision-point
+    // graph guidance routes on (docs/guidance.md).
+    struct SceneMap {
+        model::SceneData scene;
+        guide::RouteGraph graph;
+    };
+    // The scene `name` (the current one when empty).
+    SceneMap sceneMap(const std::string& name);
+
+    // The translator ASK uses from now on: null restores the built-in rule-based one. Plug in a
+    // client of a language model's endpoint here (docs/ask.md); the SMQL it returns is parsed,
+    // bound, planned and run like any statement.
+    void setAskTranslator(std::shared_ptr<const ask::Translator> translator);
 
     // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
     std::string currentScene() const;
@@ -77,7 +140,10 @@ public:
     struct State;
 
 private:
+    friend class PreparedStatement;
     explicit Engine(std::unique_ptr<State> state);
+    ResultSet executePrepared(const ast::Statement& statement,
+                              const std::vector<std::optional<ParameterValue>>& values);
     std::unique_ptr<State> state_;
 };
 

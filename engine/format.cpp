@@ -8,10 +8,14 @@ namespace smql {
 
 std::string valueText(const Value& value) {
     switch (typeOf(value)) {
-        case ValueType::Null: return "";
-        case ValueType::Integer: return std::to_string(std::get<std::int64_t>(value));
-        case ValueType::Real: return fmt::format("{:.3f}", std::get<double>(value));
-        case ValueType::Text: return std::get<std::string>(value);
+        case ValueType::Null:
+            return "";
+        case ValueType::Integer:
+            return std::to_string(std::get<std::int64_t>(value));
+        case ValueType::Real:
+            return fmt::format("{:.3f}", std::get<double>(value));
+        case ValueType::Text:
+            return std::get<std::string>(value);
         case ValueType::Box: {
             const auto& b = std::get<model::Box>(value);
             return fmt::format("({:.2f}, {:.2f}, {:.2f}) {:.2f}x{:.2f}x{:.2f} yaw {:.0f}", b.center.x, b.center.y,
@@ -23,10 +27,14 @@ std::string valueText(const Value& value) {
 
 nlohmann::ordered_json valueJson(const Value& value) {
     switch (typeOf(value)) {
-        case ValueType::Null: return nullptr;
-        case ValueType::Integer: return std::get<std::int64_t>(value);
-        case ValueType::Real: return std::get<double>(value);
-        case ValueType::Text: return std::get<std::string>(value);
+        case ValueType::Null:
+            return nullptr;
+        case ValueType::Integer:
+            return std::get<std::int64_t>(value);
+        case ValueType::Real:
+            return std::get<double>(value);
+        case ValueType::Text:
+            return std::get<std::string>(value);
         case ValueType::Box: {
             const auto& b = std::get<model::Box>(value);
             return {{"center", {b.center.x, b.center.y, b.center.z}},
@@ -39,7 +47,8 @@ nlohmann::ordered_json valueJson(const Value& value) {
 
 nlohmann::ordered_json rowJson(const ResultSet& result, std::size_t row) {
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
-    for (std::size_t c = 0; c < result.columns.size(); ++c) out[result.columns[c].name] = valueJson(result.rows[row][c]);
+    for (std::size_t c = 0; c < result.columns.size(); ++c)
+        out[result.columns[c].name] = valueJson(result.rows[row][c]);
     return out;
 }
 

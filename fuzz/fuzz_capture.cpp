@@ -13,10 +13,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "model/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/detections.hpp"
+#include "model/error.hpp"
 
 using namespace smql;
 
@@ -29,7 +29,8 @@ struct Companion {
     std::string valid;  // what the file holds when the input replaces another one
 };
 
-void writeImages(const fuzz::Scratch& dir, const std::vector<std::string>& colour, const std::vector<std::string>& depth) {
+void writeImages(const fuzz::Scratch& dir, const std::vector<std::string>& colour,
+                 const std::vector<std::string>& depth) {
     cv::Mat bgr(kHeight, kWidth, CV_8UC3, cv::Scalar(40, 90, 160));
     cv::Mat mm(kHeight, kWidth, CV_16U, cv::Scalar(1500));
     for (const std::string& name : colour) cv::imwrite(dir.write(name, ""), bgr);
@@ -89,7 +90,8 @@ struct Layout {
 
     Layout() {
 #if SMQL_FUZZ_CAPTURE == 1  // rgbd: pose.txt
-        writeImages(dir, {"capture/color/1.png", "capture/color/2.png"}, {"capture/depth/1.png", "capture/depth/2.png"});
+        writeImages(dir, {"capture/color/1.png", "capture/color/2.png"},
+                    {"capture/depth/1.png", "capture/depth/2.png"});
         files = {{"pose.txt", "0 0 0 0 0 0 1\n0.1 0 0 0 0 0 1\n"}};
 #elif SMQL_FUZZ_CAPTURE == 2  // TUM
         writeImages(dir, {"capture/rgb/a.png"}, {"capture/depth/a.png"});
@@ -111,7 +113,7 @@ struct Layout {
         files = {{"transforms.json", R"({"fl_x": 10, "w": 8, "h": 6, "frames": [
             {"file_path": "images/0.png", "depth_file_path": "depth/0.png",
              "transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]})"}};
-#else  // detections.json: read against a capture of three 8x6 frames
+#else                         // detections.json: read against a capture of three 8x6 frames
         files = {{"detections.json", "[]"}};
 #endif
         for (const Companion& file : files) dir.write("capture/" + std::string(file.name), file.valid);
@@ -135,7 +137,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         input.remove_prefix(1);
     }
     for (std::size_t i = 0; i < capture.files.size(); ++i)
-        capture.dir.write("capture/" + std::string(capture.files[i].name), i == chosen ? input : capture.files[i].valid);
+        capture.dir.write("capture/" + std::string(capture.files[i].name),
+                          i == chosen ? input : capture.files[i].valid);
     try {
 #if SMQL_FUZZ_CAPTURE == 6
         ingest::Capture frames;

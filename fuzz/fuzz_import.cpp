@@ -6,9 +6,9 @@
 // format promises: what writeSceneJson writes, readSceneJson reads back.
 #include <cstdio>
 
-#include "model/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "ingest/import/importers.hpp"
+#include "model/error.hpp"
 
 using namespace smql;
 

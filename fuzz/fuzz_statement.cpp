@@ -13,10 +13,10 @@
 #include <memory>
 
 #include "engine/engine.hpp"
-#include "model/error.hpp"
 #include "engine/format.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "ingest/import/importers.hpp"
+#include "model/error.hpp"
 
 using namespace smql;
 

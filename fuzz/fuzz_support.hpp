@@ -41,7 +41,8 @@ public:
     std::string write(const std::string& name, std::string_view bytes) const {
         fs::path file = root_ / name;
         fs::create_directories(file.parent_path());
-        std::ofstream(file, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        std::ofstream(file, std::ios::binary | std::ios::trunc)
+            .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         return file.string();
     }
 

@@ -11,36 +11,61 @@ grammar Smql;
 
 statement    : EXPLAIN? command EOF ;
 
-command      : findStmt | countStmt | relateStmt | describeStmt | showStmt | useStmt | setStmt ;
+command      : findStmt | countStmt | relateStmt | describeStmt | showStmt | useStmt | setStmt
+             | askStmt | checkStmt | dropStmt | renameStmt | guideStmt
+             ;
 
 // Clauses are a loop rather than a fixed sequence: the walker checks their
 // order and reports "WHERE must come before LIMIT" instead of a bare
 // "unexpected WHERE", and lets PATH stand anywhere after the target.
 findStmt     : FIND ref findClause* ;
-findClause   : viewClause | whereClause | nearestClause | orderClause | limitClause | PATH ;
+findClause   : viewClause | whereClause | nearestClause | orderClause | limitClause | PATH | asOfClause
+             | returnClause ;
 
 countStmt    : COUNT ref countClause* ;
-countClause  : viewClause | whereClause ;
+countClause  : viewClause | whereClause | asOfClause ;
 
 relateStmt   : RELATE ref TO ref viewClause? ;
 describeStmt : DESCRIBE ref ;
-showStmt     : SHOW ( SCENES | TREE ref? | SETTINGS ) ;
+// `CHECK lamp left_of window`, `CHECK mug near window 1 m`, `CHECK lamp between sofa AND desk`:
+// yes or no for one predicate over single nodes.
+checkStmt    : CHECK ref name ref ( AND ref )? distance? viewClause? ;
+showStmt     : SHOW ( SCENES | TREE ref? | SETTINGS | CHANGES ( SINCE STRING )? | GRAPH | CATEGORIES | ATTRIBUTES ) ;
 // `USE SCENE *` (or `all`): every scene at once.
 useStmt      : USE SCENE ( name | STRING | STAR ) ;
 setStmt      : SET settingName EQ setValue ;
 settingName  : name ( DOT name )* ;
 setValue     : quantity | STRING | name ;
+// `ASK 'where is the mug?'`: a question in English, translated to SMQL by engine/ask.
+askStmt      : ASK STRING ;
+// Scenes by name, in one write transaction each (docs/history.md).
+dropStmt     : DROP SCENE sceneName ;
+renameStmt   : RENAME SCENE sceneName TO sceneName ;
+sceneName    : name | STRING ;
+// `GUIDE FROM door TO (FIND mug LIMIT 1)`: a route in steps (docs/guidance.md). HERE is the
+// scene's viewpoint; a point is (x, y) in metres in the scene's frame.
+guideStmt    : GUIDE FROM guideOrigin TO ref ;
+guideOrigin  : HERE | floorPoint | ref ;
+floorPoint   : LPAREN MINUS? NUMBER COMMA MINUS? NUMBER RPAREN ;
 
 viewClause    : VIEW FROM ref ( FACING ref )? ;
 whereClause   : WHERE orExpr ;
 nearestClause : NEAREST TO ref ;
-orderClause   : ORDER BY DISTANCE LPAREN ref RPAREN ( ASC | DESC )? ;
-limitClause   : LIMIT MINUS? NUMBER ;
+orderClause   : ORDER BY measure ( ASC | DESC )? ;
+// `RETURN id, color, center`: the columns FIND answers with, in that order.
+returnClause  : RETURN name ( COMMA name )* ;
+// What ORDER BY and comparisons measure: the distance to a reference, or an attribute (`height`).
+measure       : DISTANCE LPAREN ref RPAREN | name ;
+limitClause   : LIMIT ( MINUS? NUMBER | PARAM ) ;
+// `AS OF '2026-11-20'`: the scene as the memory held it then (docs/history.md).
+asOfClause    : AS OF STRING ;
 
 // ---------------------------------------------------------------- references
 
-ref          : namedRef | NODE_ID | SOURCE_ID | subQuery ;
-namedRef     : ( name | STRING ) ( DOT side=name )? ;
+ref          : namedRef | NODE_ID | SOURCE_ID | LABELLED_ID | subQuery ;
+// A placeholder (`?`, `$1`) stands for a name bound when a prepared statement runs
+// (docs/language.md, "Parameters"); in a predicate's last argument it may stand for the distance.
+namedRef     : ( name | STRING | PARAM ) ( DOT side=name )? ;
 subQuery     : LPAREN FIND ref findClause* RPAREN ;
 
 // ---------------------------------------------------------------- conditions
@@ -49,11 +74,13 @@ subQuery     : LPAREN FIND ref findClause* RPAREN ;
 orExpr       : andExpr ( OR andExpr )* ;
 andExpr      : notExpr ( AND notExpr )* ;
 notExpr      : NOT notExpr | atom ;
-atom         : LPAREN orExpr RPAREN | predicate | comparison ;
+atom         : LPAREN orExpr RPAREN | predicate | comparison | changedSince ;
 predicate    : name LPAREN ref ( COMMA ref )* ( COMMA distance )? RPAREN ;
-comparison   : name compareOp quantityOrString ;
+comparison   : measure ( compareOp quantityOrString | BETWEEN quantity AND quantity ) ;
+// `moved SINCE '2026-11-20'`, `added SINCE ...`, `seen SINCE ...`: the walker checks the word.
+changedSince : name SINCE STRING ;
 compareOp    : EQ | NE | LT | LE | GT | GE | LIKE ;
-quantityOrString : quantity | STRING ;
+quantityOrString : quantity | STRING | PARAM ;
 
 // A unit is any identifier here; the walker accepts m, cm and mm and names
 // anything else, which reads better than a token-level error.
@@ -66,6 +93,8 @@ name         : IDENT
              | FIND | COUNT | RELATE | DESCRIBE | SHOW | USE | SET | EXPLAIN
              | VIEW | FROM | FACING | WHERE | NEAREST | TO | ORDER | BY | DISTANCE | ASC | DESC
              | LIMIT | PATH | SCENES | SCENE | TREE | SETTINGS
+             | ASK | CHECK | DROP | RENAME | CATEGORIES | ATTRIBUTES | BETWEEN | RETURN | CHANGES | SINCE | AS | OF
+             | GUIDE | HERE | GRAPH
              ;
 
 // ---------------------------------------------------------------- tokens
@@ -79,6 +108,11 @@ DESCRIBE : D E S C R I B E ;
 SHOW     : S H O W ;
 USE      : U S E ;
 SET      : S E T ;
+ASK      : A S K ;
+CHECK    : C H E C K ;
+DROP     : D R O P ;
+RENAME   : R E N A M E ;
+GUIDE    : G U I D E ;
 EXPLAIN  : E X P L A I N ;
 VIEW     : V I E W ;
 FROM     : F R O M ;
@@ -97,6 +131,16 @@ SCENES   : S C E N E S ;
 SCENE    : S C E N E ;
 TREE     : T R E E ;
 SETTINGS : S E T T I N G S ;
+CATEGORIES : C A T E G O R I E S ;
+ATTRIBUTES : A T T R I B U T E S ;
+BETWEEN  : B E T W E E N ;
+RETURN   : R E T U R N ;
+CHANGES  : C H A N G E S ;
+SINCE    : S I N C E ;
+AS       : A S ;
+OF       : O F ;
+HERE     : H E R E ;
+GRAPH    : G R A P H ;
 AND      : A N D ;
 OR       : O R ;
 NOT      : N O T ;
@@ -104,12 +148,16 @@ LIKE     : L I K E ;
 
 SOURCE_ID : S R C '#' [0-9]+ ;
 NODE_ID   : '#' [0-9]+ ;
+// `sofa#50`, as results print a node: its category and id (the binder checks they agree).
+LABELLED_ID : [a-zA-Z_] [a-zA-Z0-9_]* ( '-' [a-zA-Z0-9_]+ )* '#' [0-9]+ ;
 
 // Letters, digits and `_`, with single hyphens inside (`plant-stand`); a
 // hyphen must be followed by a letter or digit, so `a--note` is `a` plus a
 // comment.
 IDENT    : [a-zA-Z_] [a-zA-Z0-9_]* ( '-' [a-zA-Z0-9_]+ )* ;
 NUMBER   : [0-9]+ ( '.' [0-9]* )? | '.' [0-9]+ ;
+// A placeholder: `?` (numbered in order) or `$1`, `$2`, ... (docs/language.md, "Parameters").
+PARAM    : '?' | '$' [0-9]+ ;
 
 // A quote inside a string is written twice: 'it''s'. Strings may span lines.
 STRING   : '\'' ( ~'\'' | '\'\'' )* '\''

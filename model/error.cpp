@@ -6,13 +6,20 @@ namespace smql {
 
 std::string_view toString(ErrorKind kind) {
     switch (kind) {
-        case ErrorKind::Syntax: return "syntax error";
-        case ErrorKind::Binding: return "error";
-        case ErrorKind::Input: return "input error";
-        case ErrorKind::Storage: return "storage error";
-        case ErrorKind::Usage: return "usage error";
-        case ErrorKind::Limit: return "limit exceeded";
-        case ErrorKind::Interrupted: return "interrupted";
+        case ErrorKind::Syntax:
+            return "syntax error";
+        case ErrorKind::Binding:
+            return "error";
+        case ErrorKind::Input:
+            return "input error";
+        case ErrorKind::Storage:
+            return "storage error";
+        case ErrorKind::Usage:
+            return "usage error";
+        case ErrorKind::Limit:
+            return "limit exceeded";
+        case ErrorKind::Interrupted:
+            return "interrupted";
     }
     return "error";
 }

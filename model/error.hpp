@@ -11,12 +11,12 @@
 namespace smql {
 
 enum class ErrorKind {
-    Syntax,    // the statement does not parse
-    Binding,   // names that do not resolve: unknown category, scene, setting, node
-    Input,     // a malformed import file or capture
-    Storage,   // the database cannot be opened / written (schema version, I/O)
-    Usage,     // a command used wrongly (missing argument, bad flag value)
-    Limit,     // a statement would exceed a limit of the session (rows, pairs): SET raises it
+    Syntax,       // the statement does not parse
+    Binding,      // names that do not resolve: unknown category, scene, setting, node
+    Input,        // a malformed import file or capture
+    Storage,      // the database cannot be opened / written (schema version, I/O)
+    Usage,        // a command used wrongly (missing argument, bad flag value)
+    Limit,        // a statement would exceed a limit of the session (rows, pairs): SET raises it
     Interrupted,  // Engine::interrupt (Ctrl-C, smql_interrupt) stopped the statement
 };
 

@@ -19,6 +19,18 @@ std::optional<NodeKind> nodeKindFromString(std::string_view text) {
 
 std::string_view toString(RelationType type) { return kRelationNames[static_cast<std::size_t>(type)]; }
 
+std::string_view toString(ChangeKind kind) {
+    switch (kind) {
+        case ChangeKind::Added:
+            return "added";
+        case ChangeKind::Moved:
+            return "moved";
+        case ChangeKind::Missing:
+            return "missing";
+    }
+    return "?";
+}
+
 std::optional<RelationType> relationTypeFromString(std::string_view text) {
     auto it = std::find(kRelationNames.begin(), kRelationNames.end(), text);
     if (it == kRelationNames.end()) return std::nullopt;

@@ -69,10 +69,25 @@ struct Node {
 // Each code is a predicate of the query language; engine/relations/predicates.cpp gives each its
 // formula in one table, which the compiler checks against this list.
 enum class RelationType : std::uint8_t {
-    On = 0, In, Above, Below, Near, Attached, LeftOf, RightOf, InFrontOf, Behind, Between
+    On = 0,
+    In,
+    Above,
+    Below,
+    Near,
+    Attached,
+    LeftOf,
+    RightOf,
+    InFrontOf,
+    Behind,
+    Between,
+    VisibleFrom,
+    Facing,
+    AtFrontOf,
+    AtBackOf
 };
 inline constexpr auto kRelationNames = std::to_array<std::string_view>(
-    {"on", "in", "above", "below", "near", "attached", "left_of", "right_of", "in_front_of", "behind", "between"});
+    {"on", "in", "above", "below", "near", "attached", "left_of", "right_of", "in_front_of", "behind", "between",
+     "visible_from", "facing", "at_front_of", "at_back_of"});
 inline constexpr std::size_t kRelationTypeCount = kRelationNames.size();
 std::string_view toString(RelationType type);
 std::optional<RelationType> relationTypeFromString(std::string_view text);
@@ -135,6 +150,33 @@ struct SceneData {
     std::vector<Node> nodes;
     std::vector<Relation> relations;
     std::vector<Blob> blobs;
+};
+
+// What an update of a scene (a new capture of the same place) found for one object. Objects
+// seen again where they were are not changes; docs/history.md says how objects are matched.
+enum class ChangeKind : std::uint8_t { Added = 0, Moved = 1, Missing = 2 };
+std::string_view toString(ChangeKind kind);  // "added", "moved", "missing"
+
+struct ObjectChange {
+    ChangeKind kind = ChangeKind::Added;
+    std::string category;
+    NodeId before = kNoNode;  // the object in the superseded version (moved, missing)
+    NodeId after = kNoNode;   // the object in the new version (added, moved)
+    Box from;                 // where it was (moved, missing)
+    Box to;                   // where it is (added, moved)
+    friend bool operator==(const ObjectChange&, const ObjectChange&) = default;
+};
+
+// A superseded state of a scene, kept when an update replaced it, with what that update changed.
+// Its ids are the database ids the scene had then (no longer live: the new version has its own).
+struct SceneVersion {
+    std::uint64_t number = 0;  // 1 for the first capture of the place, then counting up
+    SceneInfo info;
+    std::vector<Node> nodes;  // the scene node first, then the rest in id order
+    std::vector<Relation> relations;
+    std::string supersededAt;  // the capture time of the update that replaced it
+    std::vector<ObjectChange> changes;
+    friend bool operator==(const SceneVersion&, const SceneVersion&) = default;
 };
 
 }  // namespace smql::model

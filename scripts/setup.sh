@@ -7,10 +7,14 @@ packages=(
   liblmdb-dev lmdb-utils libboost-dev libeigen3-dev
   antlr4 libantlr4-runtime-dev default-jre-headless
   libfmt-dev nlohmann-json3-dev libcli11-dev libreadline-dev
-  catch2 libsqlite3-dev python3
+  wordnet-dev wordnet-base  # ASK: the WordNet library and its dictionary (read at run time)
+  catch2 libsqlite3-dev postgresql-15-postgis-3 libpq-dev python3
   libopencv-dev libpcl-dev colmap
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer
+  clang-format clang-tidy  # make format, make lint (scripts/lint.sh)
   tmux  # the shell's terminal test (Ctrl-C, widths)
+  python3-onnx python3-protobuf python3-numpy  # the detector's set-up (scripts/detector/setup.sh)
+  python3-opencv  # its verification against TF.js (scripts/detector/verify.sh)
 )
 
 missing=()
@@ -18,16 +22,20 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
-if ((${#missing[@]} == 0)); then
-  exit 0
+# npm comes with a Node.js that is already installed (NodeSource's nodejs bundles it and conflicts with
+# Debian's npm package), so the package is asked for only when there is no npm command.
+command -v npm >/dev/null || missing+=(npm)
+
+if ((${#missing[@]} > 0)); then
+  echo "smql setup: installing ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    SUDO=sudo
+  else
+    SUDO=
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "smql setup: installing ${missing[*]}"
-if [ "$(id -u)" -ne 0 ]; then
-  SUDO=sudo
-else
-  SUDO=
-fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+"$(dirname "${BASH_SOURCE[0]}")/detector/setup.sh"

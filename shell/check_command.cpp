@@ -3,8 +3,8 @@
 
 #include <fmt/format.h>
 
-#include "shell/commands.hpp"
 #include "engine/engine.hpp"
+#include "shell/commands.hpp"
 
 namespace smql::shell {
 
@@ -16,9 +16,10 @@ int checkCommand(const std::string& dbDir) {
                                  report.problems.size() == 1 ? "" : "s");
         return 1;
     }
-    std::cout << fmt::format("{}: ok ({} scenes, {} nodes, {} relations, {} blobs; every record's checksum, the "
-                             "trees, the indexes and the lock file checked)\n",
-                             dbDir, report.scenes, report.nodes, report.relations, report.blobs);
+    std::cout << fmt::format(
+        "{}: ok ({} scenes, {} nodes, {} relations, {} blobs; every record's checksum, the "
+        "trees, the indexes and the lock file checked)\n",
+        dbDir, report.scenes, report.nodes, report.relations, report.blobs);
     return 0;
 }
 

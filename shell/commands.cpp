@@ -8,10 +8,10 @@
 #include <fmt/format.h>
 
 #include "engine/engine.hpp"
-#include "model/error.hpp"
 #include "engine/format.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
+#include "model/error.hpp"
 
 namespace smql::shell {
 
@@ -36,11 +36,15 @@ std::string summary(const model::SceneData& scene) {
 }  // namespace
 
 int importCommand(const std::string& format, const std::string& file, const std::string& dbDir,
-                  const std::string& sceneName) {
+                  const std::string& sceneName, const std::string& update) {
     auto start = std::chrono::steady_clock::now();
     // Read and validate the whole file before the database is touched.
     model::SceneData scene = import::read(format, file, sceneName);
     auto engine = Engine::open(dbDir);
+    if (!update.empty()) {
+        std::cout << engine->updateScene(update, scene).summary() << "\n";
+        return 0;
+    }
     engine->importScene(scene);
     std::cout << fmt::format("imported scene '{}' ({}) into {} in {:.1f} ms\n", scene.info.name, summary(scene), dbDir,
                              millisecondsSince(start));

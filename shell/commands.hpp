@@ -6,9 +6,9 @@
 
 namespace smql::shell {
 
-// `smql import replica|spatiallm|json FILE --db DIR [--scene NAME]`
+// `smql import replica|spatiallm|json FILE --db DIR [--scene NAME | --update SCENE]`
 int importCommand(const std::string& format, const std::string& file, const std::string& dbDir,
-                  const std::string& sceneName);
+                  const std::string& sceneName, const std::string& update);
 // `smql export json --db DIR [--scene NAME] [-o FILE]`
 int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
                   const std::string& outFile);

@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "engine/engine.hpp"
-#include "model/error.hpp"
 #include "ingest/synth/synth.hpp"
+#include "model/error.hpp"
 #include "shell/ingest_command.hpp"
 #include "shell/session.hpp"
 
@@ -23,7 +23,8 @@ namespace {
 std::string newTempFolder(const std::string& prefix) {
     std::string pattern = (fs::temp_directory_path() / (prefix + "-XXXXXX")).string();
     if (!mkdtemp(pattern.data()))
-        throw Error(ErrorKind::Usage, fmt::format("cannot create a folder under {}", fs::temp_directory_path().string()));
+        throw Error(ErrorKind::Usage,
+                    fmt::format("cannot create a folder under {}", fs::temp_directory_path().string()));
     return pattern;
 }
 
@@ -63,7 +64,8 @@ int demoCommand(const std::string& dbDirOption) {
         "FIND object WHERE color = 'red' PATH",
         "FIND object NEAREST TO door LIMIT 3",
         "COUNT object WHERE near(wall.left, 1 m)",
-        "RELATE (FIND object WHERE on(object) LIMIT 1) TO (FIND object NEAREST TO (FIND object WHERE on(object) LIMIT 1) LIMIT 1)",
+        "RELATE (FIND object WHERE on(object) LIMIT 1) TO (FIND object NEAREST TO (FIND object WHERE on(object) LIMIT "
+        "1) LIMIT 1)",
         "DESCRIBE (FIND object WHERE on(object) LIMIT 1)",
         "EXPLAIN FIND object WHERE on(object) AND near(window, 2 m)",
     };

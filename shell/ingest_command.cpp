@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <ctime>
 #include <csignal>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -17,13 +17,13 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/engine.hpp"
-#include "model/error.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/walk.hpp"
+#include "model/error.hpp"
 
 namespace smql::shell {
 
@@ -87,25 +87,16 @@ private:
     static void emit(const nlohmann::json& j) { std::cerr << j.dump() << "\n"; }
 };
 
-// --update SCENE: the objects of the capture that match objects of the scene (same category, boxes
-// overlapping by IoU >= 0.25) refresh those objects' last-seen time; nothing else of the scene changes,
-// and the capture's other objects are reported, not added.
+// --update SCENE: the capture becomes the next version of the scene (Engine::updateScene says how
+// objects are matched); the superseded version stays in the scene's history.
 int updateScene(Engine& engine, const IngestArguments& args, const model::SceneData& observed,
                 std::chrono::steady_clock::time_point writeStart, ingest::ProgressSink& progress) {
-    auto refresh = engine.refreshScene(args.update, observed, [](const model::SceneData& stored, const model::SceneData& seen) {
-        return ingest::matchObjects(stored, seen, 0.25);
-    });
+    auto update = engine.updateScene(args.update, observed);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
-    progress.stageFinished("write", seconds, fmt::format("updated {} objects of scene '{}'", refresh.seenAgain, args.update));
-    std::size_t observedObjects = 0;
-    for (const auto& n : observed.nodes) observedObjects += n.kind == model::NodeKind::Object;
-    if (args.log != "quiet")
-        std::cout << fmt::format(
-            "updated scene '{}': {} objects seen again (last_seen_at {}); {} objects of the capture are not in the "
-            "scene and were not added (ingest without --update to keep them as a scene); {} objects of the scene "
-            "were not seen this time\n",
-            args.update, refresh.seenAgain, observed.info.captureTime, observedObjects - refresh.seenAgain,
-            refresh.storedObjects - refresh.seenAgain);
+    progress.stageFinished(
+        "write", seconds,
+        fmt::format("scene '{}' updated: version {} is in its history", update.scene, update.version));
+    if (args.log != "quiet") std::cout << update.summary() << "\n";
     return 0;
 }
 
@@ -118,6 +109,7 @@ ingest::GeometrySource geometrySource(const std::string& name) {
 ingest::ObjectSource objectSource(const std::string& name) {
     if (name == "masks") return ingest::ObjectSource::Masks;
     if (name == "detections") return ingest::ObjectSource::Detections;
+    if (name == "detect") return ingest::ObjectSource::Detect;
     if (name == "cluster") return ingest::ObjectSource::Cluster;
     return ingest::ObjectSource::Auto;
 }
@@ -133,16 +125,22 @@ int ingestCommand(const IngestArguments& args) {
     ingest::Capture capture = ingest::readCapture(args.capture, captureOptions);
 
     ingest::IngestOptions options;
-    options.sceneName = args.scene.empty() ? fs::absolute(args.capture).lexically_normal().filename().string() : args.scene;
+    options.sceneName =
+        args.scene.empty() ? fs::absolute(args.capture).lexically_normal().filename().string() : args.scene;
     if (options.sceneName.empty()) options.sceneName = fs::absolute(args.capture).parent_path().filename().string();
     options.geometry = geometrySource(args.geometry);
     options.objects = objectSource(args.objects);
+    options.detectorModel = args.detector;
+    options.detectorClasses = args.classes;
     options.scale = args.scale;
 
     std::unique_ptr<ingest::ProgressSink> progress;
-    if (args.log == "json") progress = std::make_unique<JsonProgress>();
-    else if (args.log == "quiet") progress = std::make_unique<ingest::SilentProgress>();
-    else progress = std::make_unique<TerminalProgress>(isatty(STDERR_FILENO));
+    if (args.log == "json")
+        progress = std::make_unique<JsonProgress>();
+    else if (args.log == "quiet")
+        progress = std::make_unique<ingest::SilentProgress>();
+    else
+        progress = std::make_unique<TerminalProgress>(isatty(STDERR_FILENO));
 
     // Ctrl-C stops between frames; nothing has been written then, and the database stays as it was.
     auto previous = std::signal(SIGINT, [](int) { interrupted = true; });
@@ -162,7 +160,8 @@ int ingestCommand(const IngestArguments& args) {
         if (n.kind == model::NodeKind::Object) {
             n.attributes.push_back({"first_seen_at", result.scene.info.captureTime});
             n.attributes.push_back({"last_seen_at", result.scene.info.captureTime});
-            std::sort(n.attributes.begin(), n.attributes.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+            std::sort(n.attributes.begin(), n.attributes.end(),
+                      [](const auto& a, const auto& b) { return a.name < b.name; });
         }
 
     auto writeStart = std::chrono::steady_clock::now();
@@ -174,11 +173,13 @@ int ingestCommand(const IngestArguments& args) {
 
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::size_t objects = 0, anchors = 0;
-    for (const auto& n : result.scene.nodes) objects += n.kind == model::NodeKind::Object, anchors += n.kind == model::NodeKind::Anchor;
+    for (const auto& n : result.scene.nodes)
+        objects += n.kind == model::NodeKind::Object, anchors += n.kind == model::NodeKind::Anchor;
     if (args.log != "quiet")
-        std::cout << fmt::format("ingested '{}' into scene '{}': {} frames, {} anchors, {} objects in {:.1f} s ({:.1f} frames/s)\n",
-                                 args.capture, result.scene.info.name, capture.frames.size(), anchors, objects, total,
-                                 capture.frames.size() / std::max(total, 1e-9));
+        std::cout << fmt::format(
+            "ingested '{}' into scene '{}': {} frames, {} anchors, {} objects in {:.1f} s ({:.1f} frames/s)\n",
+            args.capture, result.scene.info.name, capture.frames.size(), anchors, objects, total,
+            capture.frames.size() / std::max(total, 1e-9));
     return 0;
 }
 
@@ -226,10 +227,20 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
     auto r = ingest::compareToTruth(ingested, truth, options);
     if (format == "json") {
         nlohmann::json j = {
-            {"anchors", {{"truth", r.anchors.truth}, {"ingested", r.anchors.predicted}, {"matched", r.anchors.matched},
-                         {"precision", r.anchors.precision()}, {"recall", r.anchors.recall()}, {"f1", r.anchors.f1()}}},
-            {"objects", {{"truth", r.objects.truth}, {"ingested", r.objects.predicted}, {"matched", r.objects.matched},
-                         {"precision", r.objects.precision()}, {"recall", r.objects.recall()}, {"f1", r.objects.f1()}}},
+            {"anchors",
+             {{"truth", r.anchors.truth},
+              {"ingested", r.anchors.predicted},
+              {"matched", r.anchors.matched},
+              {"precision", r.anchors.precision()},
+              {"recall", r.anchors.recall()},
+              {"f1", r.anchors.f1()}}},
+            {"objects",
+             {{"truth", r.objects.truth},
+              {"ingested", r.objects.predicted},
+              {"matched", r.objects.matched},
+              {"precision", r.objects.precision()},
+              {"recall", r.objects.recall()},
+              {"f1", r.objects.f1()}}},
             {"color_accuracy", r.colorAccuracy()},
             {"scale_error", registration ? nlohmann::json(std::abs(registration->scale - 1)) : nlohmann::json(nullptr)},
             {"parent_accuracy", r.parentAccuracy()},
@@ -237,18 +248,22 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
         std::cout << j.dump(2) << "\n";
         return 0;
     }
-    std::cout << fmt::format("anchors  F1 {:.2f}  (precision {:.2f}, recall {:.2f}; {} matched of {} true, {} ingested)\n",
-                             r.anchors.f1(), r.anchors.precision(), r.anchors.recall(), r.anchors.matched, r.anchors.truth,
-                             r.anchors.predicted);
-    std::cout << fmt::format("objects  F1 {:.2f}  (precision {:.2f}, recall {:.2f}; {} matched of {} true, {} ingested; 3D IoU >= {})\n",
-                             r.objects.f1(), r.objects.precision(), r.objects.recall(), r.objects.matched, r.objects.truth,
-                             r.objects.predicted, options.objectIou);
-    std::cout << fmt::format("color    accuracy {:.2f}  ({} of {})\n", r.colorAccuracy(), r.colorCorrect, r.colorChecked);
-    std::cout << fmt::format("parent   accuracy {:.2f}  ({} of {})\n", r.parentAccuracy(), r.parentCorrect, r.parentChecked);
+    std::cout << fmt::format(
+        "anchors  F1 {:.2f}  (precision {:.2f}, recall {:.2f}; {} matched of {} true, {} ingested)\n", r.anchors.f1(),
+        r.anchors.precision(), r.anchors.recall(), r.anchors.matched, r.anchors.truth, r.anchors.predicted);
+    std::cout << fmt::format(
+        "objects  F1 {:.2f}  (precision {:.2f}, recall {:.2f}; {} matched of {} true, {} ingested; 3D IoU >= {})\n",
+        r.objects.f1(), r.objects.precision(), r.objects.recall(), r.objects.matched, r.objects.truth,
+        r.objects.predicted, options.objectIou);
+    std::cout << fmt::format("color    accuracy {:.2f}  ({} of {})\n", r.colorAccuracy(), r.colorCorrect,
+                             r.colorChecked);
+    std::cout << fmt::format("parent   accuracy {:.2f}  ({} of {})\n", r.parentAccuracy(), r.parentCorrect,
+                             r.parentChecked);
     std::cout << fmt::format("centres  mean error {:.3f} m over matched objects\n", r.meanCenterError);
     if (registration)
-        std::cout << fmt::format("scale    off by {:.1f}% (similarity from {} cameras to the true poses, residual {:.3f} m)\n",
-                                 100 * std::abs(registration->scale - 1), cameras.size(), registration->residual);
+        std::cout << fmt::format(
+            "scale    off by {:.1f}% (similarity from {} cameras to the true poses, residual {:.3f} m)\n",
+            100 * std::abs(registration->scale - 1), cameras.size(), registration->residual);
     return 0;
 }
 

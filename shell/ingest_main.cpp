@@ -6,6 +6,7 @@
 #include "model/error.hpp"
 #include "shell/cli.hpp"
 #include "shell/ingest_command.hpp"
+#include "shell/map_command.hpp"
 
 namespace {
 
@@ -14,19 +15,35 @@ int run(int argc, char** argv) {
     app.name("smql");
     app.require_subcommand(1);
 
-    auto* ingestCmd = app.add_subcommand("ingest", "turn a capture (RGB-D folder, TUM, nerfstudio, COLMAP ...) into a new scene");
+    auto* ingestCmd =
+        app.add_subcommand("ingest", "turn a capture (RGB-D folder, TUM, nerfstudio, COLMAP ...) into a new scene");
     smql::shell::IngestArguments ingestArgs;
     bool ingestQuiet = false;
     std::optional<double> ingestScale;
-    ingestCmd->add_option("capture", ingestArgs.capture, "capture folder or file")->required()->check(CLI::ExistingPath);
+    ingestCmd->add_option("capture", ingestArgs.capture, "capture folder or file")
+        ->required()
+        ->check(CLI::ExistingPath);
     ingestCmd->add_option("--db", ingestArgs.db, "database directory (created if missing)")->required();
     ingestCmd->add_option("--scene", ingestArgs.scene, "scene name (default: the capture's folder name)");
     ingestCmd->add_option("--geometry", ingestArgs.geometry, "given, colmap or auto (default)")
         ->check(CLI::IsMember({"given", "colmap", "auto"}));
-    ingestCmd->add_option("--objects", ingestArgs.objects, "masks, detections, cluster or auto (default)")
-        ->check(CLI::IsMember({"masks", "detections", "cluster", "auto"}));
-    ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")->check(CLI::PositiveNumber);
-    ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")->check(CLI::PositiveNumber);
+    ingestCmd
+        ->add_option("--objects", ingestArgs.objects,
+                     "masks, detections (detections.json), detect (the COCO detector), cluster or auto (default)")
+        ->check(CLI::IsMember({"masks", "detections", "detect", "cluster", "auto"}));
+    ingestCmd
+        ->add_option("--detector", ingestArgs.detector,
+                     "NanoDet ONNX model for --objects detect (default: the one scripts/detector/setup.sh installs)")
+        ->check(CLI::ExistingFile);
+    ingestCmd
+        ->add_option("--classes", ingestArgs.classes,
+                     "the detector's class names, one a line (default: "
+                     "coco.names beside the model)")
+        ->check(CLI::ExistingFile);
+    ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")
+        ->check(CLI::PositiveNumber);
+    ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")
+        ->check(CLI::PositiveNumber);
     ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");
     ingestCmd->add_option("--update", ingestArgs.update,
                           "refresh the last-seen time of the objects of this scene that the capture sees again, "
@@ -37,7 +54,9 @@ int run(int argc, char** argv) {
     auto* check = app.add_subcommand("check-ingest", "compare an ingested scene with a synthetic capture's truth");
     std::string checkDb, checkTruth, checkScene, checkFormat = "table";
     check->add_option("database", checkDb, "database directory")->required()->check(CLI::ExistingDirectory);
-    check->add_option("--truth", checkTruth, "truth.json of the capture (smql synth writes it)")->required()->check(CLI::ExistingFile);
+    check->add_option("--truth", checkTruth, "truth.json of the capture (smql synth writes it)")
+        ->required()
+        ->check(CLI::ExistingFile);
     check->add_option("--scene", checkScene, "scene name (default: the most recent)");
     check->add_option("--format", checkFormat, "table or json")->check(CLI::IsMember({"table", "json"}));
 
@@ -49,14 +68,33 @@ int run(int argc, char** argv) {
     std::string synthOut;
     std::uint64_t synthSeed = 1;
     int synthFrames = 60, synthObjects = 24;
-    bool synthForce = false;
+    bool synthForce = false, synthChanges = false;
     synth->add_option("--out", synthOut, "output folder (refused when not empty, unless --force)")->required();
     synth->add_option("--seed", synthSeed, "room and walk seed (default 1)");
     synth->add_option("--frames", synthFrames, "frames along the walk (default 60)")->check(CLI::Range(1, 100000));
     synth->add_option("--objects", synthObjects, "objects in the room (default 24)")->check(CLI::Range(1, 5000));
     synth->add_flag("--force", synthForce, "write into a non-empty folder, replacing an earlier capture's files");
+    synth->add_flag("--changes", synthChanges,
+                    "the same room and walk after a few small things moved, went and appeared (changes.json lists "
+                    "them): a second capture for `smql ingest --update`");
+
+    auto* map = app.add_subcommand("map", "draw a scene from above: anchors, objects and the guidance graph (PNG)");
+    std::string mapDb, mapScene, mapOut;
+    map->add_option("database", mapDb, "the database directory")->required();
+    map->add_option("--scene", mapScene, "the scene (default: the most recently stored)");
+    map->add_option("--out", mapOut, "the PNG file to write")->required();
+
+    auto* guide = app.add_subcommand("guide", "a route in steps, written as JSON, Markdown and a PNG map");
+    std::string guideDb, guideScene, guideFrom, guideTo, guideOut;
+    guide->add_option("database", guideDb, "the database directory")->required();
+    guide->add_option("--scene", guideScene, "the scene (default: the most recently stored)");
+    guide->add_option("--from", guideFrom, "where to start: a reference (door, '#12'), here, or (x, y)")->required();
+    guide->add_option("--to", guideTo, "where to go: a reference or a sub-query, (FIND mug LIMIT 1)")->required();
+    guide->add_option("--out", guideOut, "the folder for guide.json, guide.md and guide.png")->required();
 
     if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
+    if (map->parsed()) return smql::shell::mapCommand(mapDb, mapScene, mapOut);
+    if (guide->parsed()) return smql::shell::guideCommand(guideDb, guideScene, guideFrom, guideTo, guideOut);
     if (ingestCmd->parsed()) {
         ingestArgs.scale = ingestScale;
         if (ingestQuiet) ingestArgs.log = "quiet";
@@ -64,7 +102,12 @@ int run(int argc, char** argv) {
     }
     if (check->parsed()) return smql::shell::checkIngestCommand(checkDb, checkTruth, checkScene, checkFormat);
     if (demo->parsed()) return smql::shell::demoCommand(demoDb);
-    return smql::shell::synthCommand(synthOut, synthSeed, synthFrames, synthObjects, synthForce);
+    return smql::shell::synthCommand({.seed = synthSeed,
+                                      .frames = synthFrames,
+                                      .objects = synthObjects,
+                                      .force = synthForce,
+                                      .changes = synthChanges},
+                                     synthOut);
 }
 
 }  // namespace

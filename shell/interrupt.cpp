@@ -1,9 +1,9 @@
 #include "shell/interrupt.hpp"
 
-#include <atomic>
-#include <csignal>
 #include <fcntl.h>
 #include <unistd.h>
+#include <atomic>
+#include <csignal>
 
 #include "engine/engine.hpp"
 

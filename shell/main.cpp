@@ -3,6 +3,7 @@
 //   smql DIR 'STATEMENTS'          run statements, print, exit (also -c; -f FILE for a script)
 //   smql import|export|check|test  here; ingest|check-ingest|synth|demo in smql-ingest
 // Options follow sqlite3's where they mean the same (-json, -csv, -header, -cmd, -bail, -echo).
+#include <unistd.h>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -10,15 +11,15 @@
 #include <iostream>
 #include <set>
 #include <sstream>
-#include <unistd.h>
 
 #include <fmt/format.h>
 
+#include "ingest/import/registry.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
-#include "ingest/import/registry.hpp"
 #include "shell/cli.hpp"
 #include "shell/commands.hpp"
+#include "shell/eval_command.hpp"
 #include "shell/interrupt.hpp"
 #include "shell/repl.hpp"
 #include "shell/session.hpp"
@@ -53,10 +54,12 @@ std::string readFile(const std::string& path) {
 }
 
 int runShell(int argc, char** argv) {
-    CLI::App app{"smql: an embedded spatial memory engine.\n"
-                 "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits.\n"
-                 "Sub-commands: import, export, check, test, ingest, check-ingest, synth, demo (smql COMMAND --help).\n"
-                 "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd)."};
+    CLI::App app{
+        "smql: an embedded spatial memory engine.\n"
+        "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits.\n"
+        "Sub-commands: import, export, check, test, eval, ingest, check-ingest, synth, demo, map, guide (smql "
+        "COMMAND --help).\n"
+        "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd)."};
     app.name("smql");
     std::string dir, command, script, mode = "table";
     std::vector<std::string> statements, startup;
@@ -65,15 +68,20 @@ int runShell(int argc, char** argv) {
     app.add_option("statements", statements, "statements to run, then exit (as -c)");
     auto* commandOption = app.add_option("-c,--command", command, "run these statements and exit");
     app.add_option("-f,--file", script, "run the statements of this file and exit")->check(CLI::ExistingFile);
-    app.add_option("--cmd", startup, "run this statement or meta command first (repeatable; then the shell or the input)")
+    app.add_option("--cmd", startup,
+                   "run this statement or meta command first (repeatable; then the shell or the input)")
         ->allow_extra_args(false);
     const std::vector<std::string> modes = smql::shell::outputModeNames();
     app.add_option("--format,--mode", mode, "output mode (default table)")->check(CLI::IsMember(modes));
     for (const std::string& name : modes)
-        app.add_flag_callback("--" + name, [&mode, name] { mode = name; }, "same as --format " + name);
-    app.add_flag_callback("--tabs", [&mode] { mode = "tsv"; }, "same as --format tsv (sqlite3's name)");
-    app.add_flag_callback("--header,--headers", [&options] { options.output.headers = true; }, "print column names (the default)");
-    app.add_flag_callback("--noheader,--noheaders", [&options] { options.output.headers = false; }, "no column names");
+        app.add_flag_callback(
+            "--" + name, [&mode, name] { mode = name; }, "same as --format " + name);
+    app.add_flag_callback(
+        "--tabs", [&mode] { mode = "tsv"; }, "same as --format tsv (sqlite3's name)");
+    app.add_flag_callback(
+        "--header,--headers", [&options] { options.output.headers = true; }, "print column names (the default)");
+    app.add_flag_callback(
+        "--noheader,--noheaders", [&options] { options.output.headers = false; }, "no column names");
     app.add_flag("--bail", options.bail, "stop at the first error: after a --cmd, and in the interactive shell");
     app.add_flag("--echo", options.echo, "print each statement before its result");
     app.add_flag("--read-only,--readonly", options.readOnly, "open the database read-only");
@@ -82,7 +90,8 @@ int runShell(int argc, char** argv) {
     std::vector<std::string> args = longOptionsWithOneDash(app, argc, argv);
     std::vector<char*> rewritten;
     for (auto& a : args) rewritten.push_back(a.data());
-    if (auto status = smql::shell::parseArguments(app, static_cast<int>(rewritten.size()), rewritten.data())) return *status;
+    if (auto status = smql::shell::parseArguments(app, static_cast<int>(rewritten.size()), rewritten.data()))
+        return *status;
 
     // `-c ""` (an unset variable in a script, say) would otherwise fall through
     // to reading standard input or the interactive shell and exit 0.
@@ -129,7 +138,8 @@ int runIngestTool(char** argv) {
     fs::path tool = (error ? fs::path(argv[0]) : self).parent_path() / "smql-ingest";
     execv(tool.c_str(), argv);
     throw smql::Error(smql::ErrorKind::Usage, fmt::format("cannot run {}: {}", tool.string(), std::strerror(errno)),
-                      std::nullopt, "smql-ingest is built and installed next to smql (cmake --build build --target smql-ingest)");
+                      std::nullopt,
+                      "smql-ingest is built and installed next to smql (cmake --build build --target smql-ingest)");
 }
 
 int runSubcommand(int argc, char** argv) {
@@ -138,19 +148,24 @@ int runSubcommand(int argc, char** argv) {
     app.require_subcommand(1);
 
     auto* import = app.add_subcommand("import", "import a scene layout file into a database (one transaction)");
-    std::string importFormat, importFile, importDb, importScene;
+    std::string importFormat, importFile, importDb, importScene, importUpdate;
     import->add_option("format", importFormat, smql::model::joinAlternatives(smql::import::formatNames()))
         ->required()
         ->check(CLI::IsMember(smql::import::formatNames()));
     import->add_option("file", importFile, "the file to import")->required();
     import->add_option("--db", importDb, "database directory (created if missing)")->required();
     import->add_option("--scene", importScene, "scene name (default: from the file, else the file's folder name)");
+    import->add_option("--update", importUpdate,
+                       "a scene of the same place: the file becomes its next version (docs/history.md)");
 
-    auto* exportCmd = app.add_subcommand("export", "export a scene as JSON (export json), or a node's evidence crops "
-                                                    "(export evidence '#id' DIR)");
+    auto* exportCmd = app.add_subcommand("export",
+                                         "export a scene as JSON (export json), or a node's evidence crops "
+                                         "(export evidence '#id' DIR)");
     std::string exportFormat, exportDb, exportScene, exportOut;
     std::vector<std::string> exportEvidence;
-    exportCmd->add_option("format", exportFormat, "json or evidence")->required()->check(CLI::IsMember({"json", "evidence"}));
+    exportCmd->add_option("format", exportFormat, "json or evidence")
+        ->required()
+        ->check(CLI::IsMember({"json", "evidence"}));
     exportCmd->add_option("node_and_dir", exportEvidence, "for evidence: the node ('#42') and the folder to write to");
     exportCmd->add_option("--db", exportDb, "database directory")->required()->check(CLI::ExistingDirectory);
     exportCmd->add_option("--scene", exportScene, "scene name (default: the most recent)");
@@ -160,14 +175,26 @@ int runSubcommand(int argc, char** argv) {
     std::vector<std::string> testFiles;
     test->add_option("files", testFiles, "suite files")->required()->check(CLI::ExistingFile);
 
-    auto* checkDbCmd = app.add_subcommand("check", "verify a database: records and their checksums, scene trees, "
-                                                   "indexes, lock file; exit status 1 when anything is wrong");
+    auto* checkDbCmd = app.add_subcommand("check",
+                                          "verify a database: records and their checksums, scene trees, "
+                                          "indexes, lock file; exit status 1 when anything is wrong");
     std::string checkDbDir;
     checkDbCmd->add_option("database", checkDbDir, "database directory")->required()->check(CLI::ExistingDirectory);
 
+    auto* eval = app.add_subcommand("eval", "score a memory on an evaluation suite (docs/eval.md)");
+    std::string evalSuite, evalDb, evalScene, evalJson;
+    eval->add_option("suite", evalSuite, "the suite, as smql synth writes it (eval-suite.json)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    eval->add_option("--db", evalDb, "the database holding the memory")->required()->check(CLI::ExistingDirectory);
+    eval->add_option("--scene", evalScene, "the memory's scene (default: the suite's scene name)");
+    eval->add_option("--json", evalJson, "also write the metrics to this JSON file");
+
     if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
+    if (eval->parsed()) return smql::shell::evalCommand(evalSuite, evalDb, evalScene, evalJson);
     if (checkDbCmd->parsed()) return smql::shell::checkCommand(checkDbDir);
-    if (import->parsed()) return smql::shell::importCommand(importFormat, importFile, importDb, importScene);
+    if (import->parsed())
+        return smql::shell::importCommand(importFormat, importFile, importDb, importScene, importUpdate);
     if (exportCmd->parsed() && exportFormat == "evidence") {
         if (exportEvidence.size() != 2)
             throw smql::Error(smql::ErrorKind::Usage, "export evidence takes a node and a folder", std::nullopt,
@@ -183,9 +210,10 @@ int runSubcommand(int argc, char** argv) {
 int main(int argc, char** argv) {
     return smql::shell::runReportingErrors([&] {
         std::string first = argc > 1 ? argv[1] : "";
-        if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo")
+        if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo" || first == "map" ||
+            first == "guide")
             return runIngestTool(argv);
-        if (first == "import" || first == "export" || first == "test" || first == "check")
+        if (first == "import" || first == "export" || first == "test" || first == "check" || first == "eval")
             return runSubcommand(argc, argv);
         return runShell(argc, argv);
     });

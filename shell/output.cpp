@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "model/error.hpp"
 #include "engine/format.hpp"
+#include "model/error.hpp"
 
 namespace smql::shell {
 
@@ -134,7 +134,8 @@ std::string box(const ResultSet& result, const OutputOptions& options) {
     };
     auto line = [&](const std::vector<std::string>& cells) {
         std::string out = "│";
-        for (std::size_t c = 0; c < cells.size(); ++c) out += " " + padded(fit(cells[c], grid.widths[c]), grid.widths[c]) + " │";
+        for (std::size_t c = 0; c < cells.size(); ++c)
+            out += " " + padded(fit(cells[c], grid.widths[c]), grid.widths[c]) + " │";
         return out + "\n";
     };
     std::string out = rule("┌", "┬", "┐");
@@ -149,14 +150,16 @@ std::string markdown(const ResultSet& result, const OutputOptions& options) {
     Grid grid = gridOf(result);
     auto escape = [](std::string& cell) {
         std::string out;
-        for (char ch : cell) out += ch == '|' ? std::string("\\|") : ch == '\n' ? std::string("<br>") : std::string(1, ch);
+        for (char ch : cell)
+            out += ch == '|' ? std::string("\\|") : ch == '\n' ? std::string("<br>") : std::string(1, ch);
         cell = std::move(out);
     };
     // Markdown needs a header row to be a table; with headers off its cells stay empty.
     if (!options.headers) std::fill(grid.header.begin(), grid.header.end(), std::string());
     std::fill(grid.widths.begin(), grid.widths.end(), 3);  // a rule needs three dashes
     auto measure = [&](std::vector<std::string>& cells) {
-        for (std::size_t c = 0; c < cells.size(); ++c) escape(cells[c]), grid.widths[c] = std::max(grid.widths[c], displayWidth(cells[c]));
+        for (std::size_t c = 0; c < cells.size(); ++c)
+            escape(cells[c]), grid.widths[c] = std::max(grid.widths[c], displayWidth(cells[c]));
     };
     measure(grid.header);
     for (auto& row : grid.rows) measure(row);
@@ -186,18 +189,28 @@ std::string delimited(const ResultSet& result, const OutputOptions& options, cha
         // TSV has no quoting: tabs, line breaks and backslashes are escaped, so a row stays one line.
         for (char ch : cell) {
             switch (ch) {
-                case '\t': out += "\\t"; break;
-                case '\n': out += "\\n"; break;
-                case '\r': out += "\\r"; break;
-                case '\\': out += "\\\\"; break;
-                default: out += ch;
+                case '\t':
+                    out += "\\t";
+                    break;
+                case '\n':
+                    out += "\\n";
+                    break;
+                case '\r':
+                    out += "\\r";
+                    break;
+                case '\\':
+                    out += "\\\\";
+                    break;
+                default:
+                    out += ch;
             }
         }
         return out;
     };
     std::string out;
     auto line = [&](auto&& cellOf) {
-        for (std::size_t c = 0; c < result.columns.size(); ++c) out += (c ? std::string(1, separator) : "") + escape(cellOf(c));
+        for (std::size_t c = 0; c < result.columns.size(); ++c)
+            out += (c ? std::string(1, separator) : "") + escape(cellOf(c));
         out += "\n";
     };
     if (options.headers) line([&](std::size_t c) { return result.columns[c].name; });
@@ -227,18 +240,25 @@ std::string_view toString(OutputMode mode) {
 }
 
 std::size_t displayWidth(std::string_view text) {
-    return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) { return !isContinuationByte(c); }));
+    return static_cast<std::size_t>(
+        std::count_if(text.begin(), text.end(), [](char c) { return !isContinuationByte(c); }));
 }
 
 std::string renderResult(const ResultSet& result, const OutputOptions& options) {
     switch (options.mode) {
-        case OutputMode::Table: return table(result, options);
-        case OutputMode::Box: return box(result, options);
-        case OutputMode::Markdown: return markdown(result, options);
-        case OutputMode::Csv: return delimited(result, options, ',');
-        case OutputMode::Tsv: return delimited(result, options, '\t');
+        case OutputMode::Table:
+            return table(result, options);
+        case OutputMode::Box:
+            return box(result, options);
+        case OutputMode::Markdown:
+            return markdown(result, options);
+        case OutputMode::Csv:
+            return delimited(result, options, ',');
+        case OutputMode::Tsv:
+            return delimited(result, options, '\t');
         case OutputMode::Json:
-        case OutputMode::Jsonl: return jsonText(resultJson(result)) + "\n";
+        case OutputMode::Jsonl:
+            return jsonText(resultJson(result)) + "\n";
     }
     return {};
 }

@@ -20,8 +20,8 @@ std::vector<std::string> outputModeNames();
 
 struct OutputOptions {
     OutputMode mode = OutputMode::Table;
-    bool headers = true;        // column names in table, box, markdown, csv and tsv
-    std::size_t maxWidth = 0;   // table and box lines fit in this many columns (0: no limit)
+    bool headers = true;       // column names in table, box, markdown, csv and tsv
+    std::size_t maxWidth = 0;  // table and box lines fit in this many columns (0: no limit)
 };
 
 // One result in a text mode (not json, whose framing is the session's): the rows, then for table,

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <fstream>
@@ -60,7 +60,8 @@ std::string previousWord(int start) {
     auto end = before.find_last_not_of(" \t'\"");
     if (end == std::string::npos) return {};
     auto begin = before.find_last_of(" \t(,", end);
-    return upper(before.substr(begin == std::string::npos ? 0 : begin + 1, end - (begin == std::string::npos ? 0 : begin + 1) + 1));
+    return upper(before.substr(begin == std::string::npos ? 0 : begin + 1,
+                               end - (begin == std::string::npos ? 0 : begin + 1) + 1));
 }
 
 std::vector<std::string> sceneNames(Engine& engine) {
@@ -83,8 +84,11 @@ std::vector<std::string> candidatesFor(const std::string& text, int start) {
     if (lineStart && text.rfind('.', 0) == 0) return metaCommandNames();
     if (line.rfind('.', 0) == 0) {
         const Session::MetaCommand* command = metaCommandNamed(line.substr(0, line.find_first_of(" \t")));
-        if (command && command->argument == Session::MetaArgument::Mode)
-            return outputModeNames();
+        if (command && command->argument == Session::MetaArgument::Mode) {
+            auto modes = outputModeNames();
+            modes.emplace_back(Session::kAskMode);
+            return modes;
+        }
         if (command && command->argument == Session::MetaArgument::OnOff) return {"on", "off"};
         return {};
     }
@@ -117,7 +121,8 @@ char* nextCandidate(const char* text, int state) {
         if (strncasecmp(word.c_str(), text, length) != 0) continue;
         // Keywords complete in the case the user started typing in.
         std::string out = word;
-        if (lowerTyped) std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
+        if (lowerTyped)
+            std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
         return strdup(out.c_str());
     }
     return nullptr;

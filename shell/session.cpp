@@ -37,6 +37,7 @@ constexpr std::string_view kHelpStatements = R"(Statements end with ';' and may 
   RELATE src#72 TO src#73;       COUNT chair WHERE near(table);
   DESCRIBE #12;  SHOW SCENES;  USE SCENE 'room0';  SHOW TREE;  SHOW SETTINGS;
   SET near = 0.8 m;  EXPLAIN FIND lamp WHERE on(table);
+  ASK 'what is on the sofa?';    .mode ask: each line is a question in English
 Meta commands:
 )";
 constexpr std::string_view kHelpEnd = R"(Ctrl-C cancels the running statement or the line being typed.
@@ -93,7 +94,8 @@ void Session::redirect(const std::string& path, bool once) {
     if (path.empty()) return;
     file_.open(path, std::ios::trunc);
     if (!file_)
-        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path), std::nullopt, "check that the folder exists");
+        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path), std::nullopt,
+                    "check that the folder exists");
     once_ = once;
 }
 
@@ -148,11 +150,22 @@ bool Session::runStatements(std::string_view text, int firstLine, std::string_vi
     return ok;
 }
 
+bool Session::runQuestion(std::string_view line, int lineNumber) {
+    std::string question(line);
+    if (question.starts_with("--")) return true;  // a comment, as in SMQL
+    while (!question.empty() && question.back() == ';') question.pop_back();
+    std::string statement = "ASK '";
+    for (char c : question) statement += c == '\'' ? std::string("''") : std::string(1, c);
+    statement += "'";
+    return runStatements(statement, lineNumber, statement);
+}
+
 Session::Step Session::feed(Pending& pending, std::string_view line, int lineNumber, std::string_view source) {
     if (pending.text.empty()) {
         std::string first = trim(line);
         if (first.empty()) return Step::Done;
         if (first[0] == '.') return runMeta(first) ? Step::Done : Step::Failed;
+        if (askMode_) return runQuestion(first, lineNumber) ? Step::Done : Step::Failed;
         pending.firstLine = lineNumber;
     }
     pending.text += pending.text.empty() ? std::string(line) : "\n" + std::string(line);
@@ -162,9 +175,8 @@ Session::Step Session::feed(Pending& pending, std::string_view line, int lineNum
     }
     if (parser::isIncomplete(pending.text)) return Step::More;
     Pending statement = std::exchange(pending, {});
-    return runStatements(statement.text, statement.firstLine, source.empty() ? statement.text : source)
-               ? Step::Done
-               : Step::Failed;
+    return runStatements(statement.text, statement.firstLine, source.empty() ? statement.text : source) ? Step::Done
+                                                                                                        : Step::Failed;
 }
 
 bool Session::runScript(std::string_view text) {
@@ -194,20 +206,30 @@ Session::Step Session::feedLine(std::string_view line) {
 const std::vector<Session::MetaCommand>& Session::metaCommands() {
     using Arg = MetaArgument;
     static const std::vector<MetaCommand> table{
-        {{".help"}, "", "this text", Arg::None,
+        {{".help"},
+         "",
+         "this text",
+         Arg::None,
          [](Session& s, const std::string&) {
              s.out() << kHelpStatements;
              for (const auto& c : metaCommands()) {
                  std::string names;
                  for (const auto& n : c.names) names += (names.empty() ? "" : ", ") + std::string(n);
-                 s.out() << fmt::format("  {:<24} {}\n", names + (c.usage.empty() ? "" : " " + std::string(c.usage)), c.does);
+                 s.out() << fmt::format("  {:<24} {}\n", names + (c.usage.empty() ? "" : " " + std::string(c.usage)),
+                                        c.does);
              }
              s.out() << kHelpEnd;
              return true;
          }},
-        {{".scenes"}, "", "the scenes (SHOW SCENES)", Arg::None,
+        {{".scenes"},
+         "",
+         "the scenes (SHOW SCENES)",
+         Arg::None,
          [](Session& s, const std::string&) { return s.runStatements("SHOW SCENES", 1, {}); }},
-        {{".categories"}, "", "the categories of every scene", Arg::None,
+        {{".categories"},
+         "",
+         "the categories of every scene",
+         Arg::None,
          [](Session& s, const std::string&) {
              ResultSet categories;
              categories.columns.push_back({"category", ValueType::Text});
@@ -216,32 +238,56 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
              if (s.once_) s.finishOutput();
              return true;
          }},
-        {{".tree"}, "[#id]", "the current scene's tree (SHOW TREE)", Arg::None,
+        {{".tree"},
+         "[#id]",
+         "the current scene's tree (SHOW TREE)",
+         Arg::None,
          [](Session& s, const std::string& arg) {
              std::string statement = arg.empty() ? "SHOW TREE" : "SHOW TREE " + arg;
              return s.runStatements(statement, 1, statement);
          }},
-        {{".mode", ".format"}, "MODE", "output mode: table, box, markdown, csv, tsv, json, jsonl", Arg::Mode,
+        {{".mode", ".format"},
+         "MODE",
+         "output mode: table, box, markdown, csv, tsv, json, jsonl; ask: lines are questions",
+         Arg::Mode,
          [](Session& s, const std::string& arg) {
              if (arg.empty()) {
-                 s.out() << "output mode: " << toString(s.options_.output.mode) << "\n";
+                 s.out() << "output mode: " << toString(s.options_.output.mode)
+                         << (s.askMode_ ? " (lines are questions: .mode ask)" : "") << "\n";
+                 return true;
+             }
+             if (arg == kAskMode) {
+                 s.askMode_ = true;
                  return true;
              }
              OutputMode mode = parseOutputMode(arg);
              s.finishOutput();
              s.options_.output.mode = mode;
+             s.askMode_ = false;
              return true;
          }},
-        {{".headers"}, "on|off", "column names in table, box, markdown, csv and tsv", Arg::OnOff,
+        {{".headers"},
+         "on|off",
+         "column names in table, box, markdown, csv and tsv",
+         Arg::OnOff,
          [](Session& s, const std::string& arg) { return s.options_.output.headers = onOff(".headers", arg), true; }},
-        {{".output"}, "[FILE]", "results into FILE (none: back to standard output)", Arg::Path,
+        {{".output"},
+         "[FILE]",
+         "results into FILE (none: back to standard output)",
+         Arg::Path,
          [](Session& s, const std::string& arg) { return s.redirect(arg, false), true; }},
-        {{".once"}, "FILE", "the next statement's results into FILE", Arg::Path,
+        {{".once"},
+         "FILE",
+         "the next statement's results into FILE",
+         Arg::Path,
          [](Session& s, const std::string& arg) {
              if (arg.empty()) throw Error(ErrorKind::Usage, ".once needs a file", std::nullopt, ".once results.csv");
              return s.redirect(arg, true), true;
          }},
-        {{".read"}, "FILE", "run the statements and meta commands of FILE", Arg::Path,
+        {{".read"},
+         "FILE",
+         "run the statements and meta commands of FILE",
+         Arg::Path,
          [](Session& s, const std::string& arg) {
              if (arg.empty()) throw Error(ErrorKind::Usage, ".read needs a file", std::nullopt, ".read queries.smql");
              std::ifstream in(arg);
@@ -250,22 +296,38 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
              text << in.rdbuf();
              return s.runScript(text.str());
          }},
-        {{".open"}, "DIR", "switch to the database in DIR", Arg::Path,
+        {{".open"},
+         "DIR",
+         "switch to the database in DIR",
+         Arg::Path,
          [](Session& s, const std::string& arg) {
-             if (arg.empty()) throw Error(ErrorKind::Usage, ".open needs a database folder", std::nullopt, ".open /tmp/r0");
+             if (arg.empty())
+                 throw Error(ErrorKind::Usage, ".open needs a database folder", std::nullopt, ".open /tmp/r0");
              auto engine = Engine::open(arg, s.options_.readOnly);
              s.finishOutput();
              interrupt::watch(engine.get());
              s.engine_ = std::move(engine);
              return true;
          }},
-        {{".timer"}, "on|off", "each statement's time, on standard error", Arg::OnOff,
+        {{".timer"},
+         "on|off",
+         "each statement's time, on standard error",
+         Arg::OnOff,
          [](Session& s, const std::string& arg) { return s.options_.timer = onOff(".timer", arg), true; }},
-        {{".echo"}, "on|off", "print each statement before its result", Arg::OnOff,
+        {{".echo"},
+         "on|off",
+         "print each statement before its result",
+         Arg::OnOff,
          [](Session& s, const std::string& arg) { return s.options_.echo = onOff(".echo", arg), true; }},
-        {{".bail"}, "on|off", "leave the shell at the first error", Arg::OnOff,
+        {{".bail"},
+         "on|off",
+         "leave the shell at the first error",
+         Arg::OnOff,
          [](Session& s, const std::string& arg) { return s.options_.bail = onOff(".bail", arg), true; }},
-        {{".quit", ".exit", ".q"}, "", "leave (Ctrl-D too)", Arg::None,
+        {{".quit", ".exit", ".q"},
+         "",
+         "leave (Ctrl-D too)",
+         Arg::None,
          [](Session& s, const std::string&) { return s.quit_ = true, true; }},
     };
     return table;
@@ -278,7 +340,8 @@ bool Session::runMeta(std::string_view line) {
     try {
         for (const auto& meta : metaCommands())
             if (std::find(meta.names.begin(), meta.names.end(), name) != meta.names.end()) return meta.run(*this, arg);
-        throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt, ".help lists the commands");
+        throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt,
+                    ".help lists the commands");
     } catch (const Error& e) {
         printError(e, {});
         return false;

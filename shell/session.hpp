@@ -48,6 +48,9 @@ public:
     // The meta commands (.mode, .read ...): names (the first is the main one), how the argument is
     // written, what the command does, what may complete the argument, and the command itself.
     enum class MetaArgument { None, Mode, OnOff, Path };
+    // `.mode ask`: each line is a question in English, run as ASK '<line>'; `.mode MODE` returns
+    // to SMQL. The output mode stays what it was.
+    static constexpr std::string_view kAskMode = "ask";
     struct MetaCommand {
         std::vector<std::string_view> names;
         std::string_view usage;
@@ -68,6 +71,7 @@ private:
     };
     Step feed(Pending& pending, std::string_view line, int lineNumber, std::string_view source);
     bool runStatements(std::string_view text, int firstLine, std::string_view source);
+    bool runQuestion(std::string_view line, int lineNumber);
     bool runMeta(std::string_view line);
     void print(const ResultSet& result);
     void printError(const Error& e, std::string_view source);
@@ -78,11 +82,12 @@ private:
     std::ostream& stdout_;
     std::ostream& err_;
     SessionOptions options_;
-    std::ofstream file_;        // .output / .once target while one is open
-    bool once_ = false;         // file_ closes after the next statement
-    bool documentOpen_ = false; // json: the array has begun
+    std::ofstream file_;         // .output / .once target while one is open
+    bool once_ = false;          // file_ closes after the next statement
+    bool documentOpen_ = false;  // json: the array has begun
     bool quit_ = false;
-    Pending pending_;           // the interactive shell's statement being typed
+    bool askMode_ = false;  // .mode ask: lines are English questions
+    Pending pending_;       // the interactive shell's statement being typed
 };
 
 }  // namespace smql::shell

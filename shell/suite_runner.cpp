@@ -10,11 +10,11 @@
 #include <fmt/format.h>
 
 #include "engine/engine.hpp"
-#include "model/error.hpp"
 #include "engine/format.hpp"
-#include "model/names.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/registry.hpp"
+#include "model/error.hpp"
+#include "model/names.hpp"
 #include "shell/commands.hpp"
 
 namespace smql::shell {
@@ -59,9 +59,10 @@ std::vector<Block> parseSuite(const std::string& path) {
             if (blank || line[0] == '#') continue;
             auto words = splitWords(line);
             if (words[0] != "statement" && words[0] != "query" && words[0] != "load")
-                throw Error(ErrorKind::Input, fmt::format("{}:{}: expected 'statement', 'query' or 'load', got '{}'",
-                                                          path, number, words[0]),
-                            SourceLocation{number, 1, static_cast<int>(words[0].size())});
+                throw Error(
+                    ErrorKind::Input,
+                    fmt::format("{}:{}: expected 'statement', 'query' or 'load', got '{}'", path, number, words[0]),
+                    SourceLocation{number, 1, static_cast<int>(words[0].size())});
             blocks.push_back({number, words[0], {words.begin() + 1, words.end()}, {}, {}});
             open = &blocks.back();
             if (open->kind == "load") open = nullptr;
@@ -167,8 +168,10 @@ int testCommand(const std::vector<std::string>& files) {
             for (const auto& block : blocks) {
                 std::string problem;
                 try {
-                    if (block.kind == "load") load(*engine, block, fs::path(file).parent_path());
-                    else problem = runBlock(*engine, block);
+                    if (block.kind == "load")
+                        load(*engine, block, fs::path(file).parent_path());
+                    else
+                        problem = runBlock(*engine, block);
                 } catch (const Error& e) {
                     problem = e.render();
                 }

@@ -1,18 +1,17 @@
-// `smql synth --out DIR [--seed N] [--frames K] [--objects N] [--force]`:
+// `smql synth --out DIR [--seed N] [--frames K] [--objects N] [--force] [--changes]`:
 // a synthetic RGB-D capture of a generated room (docs/ingest.md, "Synthetic captures").
 #include <iostream>
 
 #include <fmt/format.h>
 
-#include "model/geometry.hpp"
 #include "ingest/synth/synth.hpp"
+#include "model/geometry.hpp"
 #include "shell/ingest_command.hpp"
 
 namespace smql::shell {
 
-int synthCommand(const std::string& outDir, std::uint64_t seed, int frames, int objects, bool force) {
-    synth::SynthResult result =
-        synth::writeSynth(outDir, {.seed = seed, .frames = frames, .objects = objects, .force = force});
+int synthCommand(const synth::SynthOptions& options, const std::string& outDir) {
+    synth::SynthResult result = synth::writeSynth(outDir, options);
     const model::SceneData& truth = result.scene.truth;
     int objectCount = 0, seen = 0;
     model::Vec3 size;
@@ -28,6 +27,18 @@ int synthCommand(const std::string& outDir, std::uint64_t seed, int frames, int 
         "{} anchors, {} relation labels\n",
         result.scene.poses.size(), truth.info.name, outDir, size.x, size.y, objectCount, seen,
         truth.nodes.size() - objectCount, result.scene.relations.size());
+    if (options.changes) {
+        std::size_t moved = 0, added = 0, removed = 0;
+        for (const auto& c : result.scene.changes) {
+            moved += c.kind == model::ChangeKind::Moved;
+            added += c.kind == model::ChangeKind::Added;
+            removed += c.kind == model::ChangeKind::Missing;
+        }
+        std::cout << fmt::format(
+            "changes since the room without --changes: {} moved, {} taken away, {} new "
+            "(changes.json)\n",
+            moved, removed, added);
+    }
     std::cout << fmt::format("frames rendered and written in {:.2f} s, {:.2f} s in all\n", result.frameSeconds,
                              result.totalSeconds);
     return 0;

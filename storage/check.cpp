@@ -34,8 +34,9 @@ struct FileId {
 // lock.mdb, so a process that maps this data.mdb but not the current
 // lock.mdb has the database open under a lock file that was removed or
 // replaced. Processes of other users are invisible without privileges.
-std::map<pid_t, std::vector<std::string>> lockFilesOfProcessesMapping(const FileId& data, const std::optional<FileId>& lock,
-                                                                     bool& mapsCurrentLock) {
+std::map<pid_t, std::vector<std::string>> lockFilesOfProcessesMapping(const FileId& data,
+                                                                      const std::optional<FileId>& lock,
+                                                                      bool& mapsCurrentLock) {
     std::map<pid_t, std::vector<std::string>> out;
     mapsCurrentLock = false;
     std::error_code ec;
@@ -58,8 +59,10 @@ std::map<pid_t, std::vector<std::string>> lockFilesOfProcessesMapping(const File
             const dev_t dev = makedev(major, minor);
             if (dev == data.device && inode == data.inode) mapsData = true;
             if (path.find("lock.mdb") == std::string::npos) continue;
-            if (lock && dev == lock->device && inode == lock->inode) current = true;
-            else others.push_back(path);
+            if (lock && dev == lock->device && inode == lock->inode)
+                current = true;
+            else
+                others.push_back(path);
         }
         if (!mapsData) continue;
         mapsCurrentLock |= current;
@@ -69,7 +72,8 @@ std::map<pid_t, std::vector<std::string>> lockFilesOfProcessesMapping(const File
 }
 
 void checkLockFile(const std::string& directory, CheckReport& report) {
-    struct stat data {}, lock {};
+    struct stat data {
+    }, lock{};
     if (::stat((fs::path(directory) / "data.mdb").c_str(), &data) != 0) return;  // the open reports it
     std::optional<FileId> lockId;
     if (::stat((fs::path(directory) / "lock.mdb").c_str(), &lock) == 0) lockId = FileId{lock.st_dev, lock.st_ino};
@@ -113,7 +117,7 @@ SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info,
         problem(fmt::format("its scene node is named '{}'", nodes.front().category));
     if (nodes.size() != info.nodeCount + 1)
         problem(fmt::format("the scene record counts {} nodes, the node table holds {}", info.nodeCount,
-                            nodes.size() == 0 ? 0 : nodes.size() - 1));
+                            nodes.empty() ? 0 : nodes.size() - 1));
     if (auto byName = txn.sceneByName(info.name); !byName || byName->id != info.id)
         problem("the scene name index does not lead to it");
 
@@ -153,8 +157,8 @@ SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info,
         txn.forEachRelationInScene(info.id, [&](const model::Relation& r) {
             ++counts.relationEntries;
             if (!ids.contains(r.subject) || !ids.contains(r.object)) {
-                problem(fmt::format("a {} relation joins #{} and #{}, not both nodes of the scene", model::toString(r.type),
-                                    r.subject, r.object));
+                problem(fmt::format("a {} relation joins #{} and #{}, not both nodes of the scene",
+                                    model::toString(r.type), r.subject, r.object));
                 return;
             }
             auto other = txn.relationsOf(r.object);
@@ -191,7 +195,13 @@ CheckReport checkDatabase(const std::string& directory) {
         return report;
     }
     SceneCounts total;
+    std::uint64_t versions = 0;
     for (const auto& info : scenes) {
+        try {
+            versions += txn.history(info.name).size();
+        } catch (const Error& e) {
+            report.problems.push_back(e.message());
+        }
         SceneCounts counts = checkScene(txn, info, report);
         total.nodes += counts.nodes;
         total.children += counts.children;
@@ -206,10 +216,14 @@ CheckReport checkDatabase(const std::string& directory) {
     report.blobs = total.blobs;
 
     // Entries no scene accounts for: what a scene check cannot see from the inside.
-    std::map<std::string, std::uint64_t> expected = {
-        {"nodes", total.nodes},        {"scenes", scenes.size()},       {"scene_names", scenes.size()},
-        {"children", total.children},  {"labels", total.labels},        {"source_ids", total.sourceIds},
-        {"relations", 2 * total.relationEntries}};
+    std::map<std::string, std::uint64_t> expected = {{"nodes", total.nodes},
+                                                     {"scenes", scenes.size()},
+                                                     {"scene_names", scenes.size()},
+                                                     {"children", total.children},
+                                                     {"labels", total.labels},
+                                                     {"source_ids", total.sourceIds},
+                                                     {"relations", 2 * total.relationEntries},
+                                                     {"history", versions}};
     for (const auto& stats : txn.tableStats())
         if (auto it = expected.find(stats.name); it != expected.end() && stats.entries != it->second)
             report.problems.push_back(fmt::format("table {} holds {} entries, the scenes account for {}", stats.name,

@@ -95,7 +95,8 @@ public:
         if (remaining() < kChecksumSize + 1) corrupt("truncated");
         end_ -= kChecksumSize;
         std::uint32_t stored = static_cast<std::uint32_t>(getLittleEndian(end_, kChecksumSize));
-        std::uint32_t actual = crc32c(std::string_view(reinterpret_cast<const char*>(begin_), end_ - begin_), crc32c(key));
+        std::uint32_t actual =
+            crc32c(std::string_view(reinterpret_cast<const char*>(begin_), end_ - begin_), crc32c(key));
         if (stored != actual) {
             end_ += kChecksumSize;
             corrupt(fmt::format("checksum mismatch (stored {:08x}, computed {:08x})", stored, actual));
@@ -134,7 +135,8 @@ public:
     }
     [[noreturn]] void corrupt(std::string_view why) const {
         // Id 0 is never a node: it marks records that are not keyed by id (meta entries).
-        std::string subject = id_ == model::kNoNode ? std::string(what_) : fmt::format("{} record for id {}", what_, id_);
+        std::string subject =
+            id_ == model::kNoNode ? std::string(what_) : fmt::format("{} record for id {}", what_, id_);
         throw CorruptRecord(fmt::format("{}: {} (byte {} of {})", subject, why, p_ - begin_, end_ - begin_));
     }
 
@@ -156,7 +158,8 @@ private:
 }  // namespace
 
 CorruptRecord::CorruptRecord(std::string detail)
-    : Error(ErrorKind::Storage, "corrupt " + detail, std::nullopt, std::string(kCorruptHint)), detail_(std::move(detail)) {}
+    : Error(ErrorKind::Storage, "corrupt " + detail, std::nullopt, std::string(kCorruptHint)),
+      detail_(std::move(detail)) {}
 
 IdKey idKey(model::NodeId id) {
     IdKey key;
@@ -403,6 +406,121 @@ model::Blob decodeBlob(std::string_view key, std::string_view bytes) {
     blob.bytes = std::string(r.str());
     r.expectEnd();
     return blob;
+}
+
+std::string historyPrefix(std::string_view sceneName) {
+    std::string key(sceneName);
+    key.push_back('\0');
+    return key;
+}
+
+std::string historyKey(std::string_view sceneName, std::uint64_t number) {
+    std::string key = historyPrefix(sceneName);
+    std::uint8_t be[8];
+    putBigEndian64(be, number);
+    key.append(reinterpret_cast<const char*>(be), sizeof be);
+    return key;
+}
+
+namespace {
+
+void writeBox(Writer& w, const model::Box& b) {
+    for (double v : {b.center.x, b.center.y, b.center.z, b.size.x, b.size.y, b.size.z, b.yaw}) w.f64(v);
+}
+
+model::Box readBox(Reader& r) {
+    model::Box b;
+    for (double* v : {&b.center.x, &b.center.y, &b.center.z, &b.size.x, &b.size.y, &b.size.z, &b.yaw}) *v = r.f64();
+    return b;
+}
+
+constexpr auto kLastChangeKind = static_cast<std::uint8_t>(model::ChangeKind::Missing);
+
+}  // namespace
+
+void encodeVersion(std::string_view key, const model::SceneVersion& version, std::string& out) {
+    out.clear();
+    Writer w(out);
+    w.u8(kVersionFormat);
+    w.u64(version.number);
+    std::string record;
+    encodeScene(version.info, record);
+    w.u64(version.info.id);
+    w.str(record);
+    w.varint(version.nodes.size());
+    for (const auto& node : version.nodes) {
+        encodeNode(node, record);
+        w.u64(node.id);
+        w.str(record);
+    }
+    w.varint(version.relations.size());
+    for (const auto& r : version.relations) {
+        w.u64(r.subject);
+        w.u64(r.object);
+        w.u8(static_cast<std::uint8_t>(r.type));
+        w.u64(r.frame);
+        w.f32(r.score);
+        w.u32(r.support);
+    }
+    w.str(version.supersededAt);
+    w.varint(version.changes.size());
+    for (const auto& c : version.changes) {
+        w.u8(static_cast<std::uint8_t>(c.kind));
+        w.str(c.category);
+        w.u64(c.before);
+        w.u64(c.after);
+        writeBox(w, c.from);
+        writeBox(w, c.to);
+    }
+    seal(key, out);
+}
+
+model::SceneVersion decodeVersion(std::string_view key, std::string_view bytes) {
+    Reader r(bytes, "history", model::kNoNode);
+    r.checkSealed(key);
+    r.expectFormat(kVersionFormat);
+    model::SceneVersion version;
+    version.number = r.u64();
+    model::NodeId sceneId = r.u64();
+    version.info = decodeScene(sceneId, r.str());
+    // Every node record is at least a dozen bytes, every relation 33: bounds that keep a
+    // corrupt count from reserving gigabytes.
+    std::uint64_t nodes = r.varint();
+    if (nodes > r.remaining() / 12) r.corrupt(fmt::format("node count {} exceeds the record", nodes));
+    version.nodes.resize(nodes);
+    for (auto& node : version.nodes) {
+        model::NodeId id = r.u64();
+        decodeNode(id, r.str(), node);
+    }
+    std::uint64_t relations = r.varint();
+    if (relations > r.remaining() / 33) r.corrupt(fmt::format("relation count {} exceeds the record", relations));
+    version.relations.resize(relations);
+    for (auto& rel : version.relations) {
+        rel.subject = r.u64();
+        rel.object = r.u64();
+        std::uint8_t type = r.u8();
+        if (type >= model::kRelationTypeCount) r.corrupt(fmt::format("unknown relation type {}", type));
+        rel.type = static_cast<model::RelationType>(type);
+        rel.frame = r.u64();
+        rel.score = r.f32();
+        rel.support = r.u32();
+    }
+    version.supersededAt = std::string(r.str());
+    std::uint64_t changes = r.varint();
+    if (changes > r.remaining() / 130) r.corrupt(fmt::format("change count {} exceeds the record", changes));
+    version.changes.resize(changes);
+    for (auto& c : version.changes) {
+        std::uint8_t kind = r.u8();
+        if (kind > kLastChangeKind) r.corrupt(fmt::format("unknown change kind {}", kind));
+        c.kind = static_cast<model::ChangeKind>(kind);
+        c.category = std::string(r.str());
+        c.before = r.u64();
+        c.after = r.u64();
+        c.from = readBox(r);
+        c.to = readBox(r);
+    }
+    r.expectEnd();
+    return version;
 }
 
 }  // namespace smql::storage::codec

@@ -24,6 +24,7 @@ inline constexpr std::uint8_t kNodeFormat = 2;
 inline constexpr std::uint8_t kBlobFormat = 2;
 inline constexpr std::uint8_t kSceneFormat = 2;
 inline constexpr std::uint8_t kRelationFormat = 2;
+inline constexpr std::uint8_t kVersionFormat = 1;
 // The CRC32C at the end of every record and relation entry.
 inline constexpr std::size_t kChecksumSize = 4;
 
@@ -83,7 +84,18 @@ void encodeBlob(std::string_view key, const model::Blob& blob, std::string& out)
 // `key` is the blob key the record was stored under.
 model::Blob decodeBlob(std::string_view key, std::string_view bytes);
 // Name and media type without copying the bytes; `size` gets the byte count.
-std::pair<std::string_view, std::string_view> peekBlob(std::string_view key, std::string_view bytes, std::uint64_t& size);
+std::pair<std::string_view, std::string_view> peekBlob(std::string_view key, std::string_view bytes,
+                                                       std::uint64_t& size);
+
+// History key: the scene's name, a zero byte, then the version number big-endian, so one scene's
+// superseded versions are one range in number order. Scene names hold no zero byte.
+std::string historyKey(std::string_view sceneName, std::uint64_t number);
+// The prefix of every history key of a scene.
+std::string historyPrefix(std::string_view sceneName);
+// History record: a superseded version of a scene (its scene record, node records and relations
+// as they were) and the changes of the update that replaced it.
+void encodeVersion(std::string_view key, const model::SceneVersion& version, std::string& out);
+model::SceneVersion decodeVersion(std::string_view key, std::string_view bytes);
 
 // Little-endian fixed-width values for meta entries.
 std::string encodeU64(std::uint64_t value);

@@ -54,8 +54,8 @@ struct WriteTransaction::Impl {
     Impl& operator=(const Impl&) = delete;
 
     std::shared_ptr<Environment> env;
-    MDB_txn* txn;         // null once committed
-    std::string record;   // encode buffer, reused across records
+    MDB_txn* txn;        // null once committed
+    std::string record;  // encode buffer, reused across records
 };
 
 namespace {
@@ -162,8 +162,8 @@ void forEachDuplicate(const Environment& env, MDB_cursor* cursor, const MDB_val&
                       std::size_t entrySize, Visit&& visit) {
     if (first.mv_size != entrySize)
         throw Error(ErrorKind::Storage,
-                    fmt::format("corrupt index entry: {} bytes instead of {}", first.mv_size, entrySize),
-                    std::nullopt, "the database file is damaged; restore it from a backup");
+                    fmt::format("corrupt index entry: {} bytes instead of {}", first.mv_size, entrySize), std::nullopt,
+                    "the database file is damaged; restore it from a backup");
     // A key with a single value has no duplicate page for MDB_GET_MULTIPLE to return.
     if (count == 1) {
         visit(fromVal(first));
@@ -238,17 +238,25 @@ void eraseBlobs(const Environment& env, MDB_txn* txn, NodeId node) {
     }
 }
 
+// Names key the name index and, followed by a zero byte and a version number, the history table.
+void checkSceneName(const Environment& env, std::string_view name) {
+    if (name.empty())
+        throw Error(ErrorKind::Input, "a scene needs a name", std::nullopt, "give the scene a name when importing it");
+    const std::size_t longest = env.maxKeySize() - codec::historyKey("", 0).size();
+    if (name.size() > longest)
+        throw Error(ErrorKind::Input,
+                    fmt::format("scene name '{}...' is too long ({} bytes; at most {})", name.substr(0, 40),
+                                name.size(), longest),
+                    std::nullopt, "choose a shorter name");
+    if (name.find('\0') != std::string_view::npos)
+        throw Error(ErrorKind::Input, "a scene name cannot hold a NUL character", std::nullopt, "choose another name");
+}
+
 // Checks a scene's local ids before anything is written, and returns the
 // position of each local id in data.nodes (its database id is sceneId + 1 + position).
 std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, const model::SceneData& data) {
     const std::string& name = data.info.name;
-    if (name.empty())
-        throw Error(ErrorKind::Input, "a scene needs a name", std::nullopt, "give the scene a name when importing it");
-    if (name.size() > env.maxKeySize())
-        throw Error(ErrorKind::Input,
-                    fmt::format("scene name '{}...' is too long ({} bytes; at most {})", name.substr(0, 40),
-                                name.size(), env.maxKeySize()),
-                    std::nullopt, "choose a shorter name with --scene");
+    checkSceneName(env, name);
 
     std::unordered_map<NodeId, std::size_t> position;
     position.reserve(data.nodes.size());
@@ -266,8 +274,8 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
         if (node.category.find('\0') != std::string::npos)
             importError(fmt::format("scene '{}': the category of node {} contains a NUL character", name, node.id));
         if (node.category.size() > env.maxKeySize())
-            importError(fmt::format("scene '{}': the category of node {} is {} bytes long; at most {}", name,
-                                    node.id, node.category.size(), env.maxKeySize()));
+            importError(fmt::format("scene '{}': the category of node {} is {} bytes long; at most {}", name, node.id,
+                                    node.category.size(), env.maxKeySize()));
     }
 
     std::unordered_map<std::int64_t, NodeId> bySourceId;
@@ -278,8 +286,8 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
         if (node.sourceId) {
             auto [it, inserted] = bySourceId.emplace(*node.sourceId, node.id);
             if (!inserted)
-                importError(fmt::format("scene '{}': source id {} is used by node {} and node {}", name,
-                                        *node.sourceId, it->second, node.id));
+                importError(fmt::format("scene '{}': source id {} is used by node {} and node {}", name, *node.sourceId,
+                                        it->second, node.id));
         }
     }
 
@@ -309,9 +317,10 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
             importError(fmt::format("scene '{}': blob '{}' belongs to node {}, which is not a node of the scene", name,
                                     blob.name, blob.node));
         if (blob.name.empty() || blob.name.size() + sizeof(NodeId) > env.maxKeySize() || blob.mediaType.size() > 255)
-            importError(fmt::format("scene '{}': blob '{}' of node {} needs a name of 1 to {} bytes and a media type "
-                                    "of at most 255",
-                                    name, blob.name.substr(0, 40), blob.node, env.maxKeySize() - sizeof(NodeId)));
+            importError(
+                fmt::format("scene '{}': blob '{}' of node {} needs a name of 1 to {} bytes and a media type "
+                            "of at most 255",
+                            name, blob.name.substr(0, 40), blob.node, env.maxKeySize() - sizeof(NodeId)));
         if (!blobNames.emplace(blob.node, blob.name).second)
             importError(fmt::format("scene '{}': node {} has two blobs named '{}'", name, blob.node, blob.name));
     }
@@ -320,13 +329,15 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
         const model::Relation& r = data.relations[i];
         for (NodeId end : {r.subject, r.object})
             if (!position.contains(end))
-                importError(fmt::format("scene '{}': relation #{} ({}) refers to node {}, which is not a node of "
-                                        "the scene",
-                                        name, i + 1, model::toString(r.type), end));
+                importError(
+                    fmt::format("scene '{}': relation #{} ({}) refers to node {}, which is not a node of "
+                                "the scene",
+                                name, i + 1, model::toString(r.type), end));
         if (r.frame != model::kNoNode && !position.contains(r.frame))
-            importError(fmt::format("scene '{}': relation #{} ({}) was seen from frame {}, which is not a node of "
-                                    "the scene",
-                                    name, i + 1, model::toString(r.type), r.frame));
+            importError(
+                fmt::format("scene '{}': relation #{} ({}) was seen from frame {}, which is not a node of "
+                            "the scene",
+                            name, i + 1, model::toString(r.type), r.frame));
     }
     return position;
 }
@@ -334,9 +345,9 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
 std::uint64_t readNextId(const Environment& env, MDB_txn* txn) {
     auto bytes = lookup(env, txn, Table::Meta, toVal(kNextIdKey), "reading the next id");
     if (!bytes)
-        throw Error(ErrorKind::Storage, fmt::format("database {} is damaged: its meta table has no next id",
-                                                    env.directory()),
-                    std::nullopt, "restore it from a backup, or import its scenes again into a new database");
+        throw Error(ErrorKind::Storage,
+                    fmt::format("database {} is damaged: its meta table has no next id", env.directory()), std::nullopt,
+                    "restore it from a backup, or import its scenes again into a new database");
     return codec::decodeU64(*bytes, "next id");
 }
 
@@ -401,8 +412,7 @@ std::vector<SceneInfo> ReadTransaction::scenes() const {
     std::vector<SceneInfo> out;
     MDB_val key, value;
     int rc = cursor.get(key, value, MDB_FIRST);
-    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT))
-    {
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
         NodeId id = codec::idFromKey(fromVal(key), "scene");
         out.push_back(decodeInScene(env, impl_->txn, id, [&] { return codec::decodeScene(id, fromVal(value)); }));
     }
@@ -468,10 +478,10 @@ std::vector<T> readDuplicates(const ReadTransaction::Impl& impl, Table table, No
 }  // namespace
 
 std::vector<NodeId> ReadTransaction::children(NodeId parent) const {
-    return readDuplicates<NodeId>(*impl_, Table::Children, parent, sizeof(NodeId), "reading children",
-                                  [](std::string_view entry) {
-                                      return codec::readBigEndian64(reinterpret_cast<const std::uint8_t*>(entry.data()));
-                                  });
+    return readDuplicates<NodeId>(
+        *impl_, Table::Children, parent, sizeof(NodeId), "reading children", [](std::string_view entry) {
+            return codec::readBigEndian64(reinterpret_cast<const std::uint8_t*>(entry.data()));
+        });
 }
 
 // Scene ids are contiguous blocks (the scene node first), so a scene's nodes
@@ -493,37 +503,71 @@ void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<voi
 }
 
 std::vector<model::Relation> ReadTransaction::relationsOf(NodeId id) const {
-    return readDuplicates<model::Relation>(*impl_, Table::Relations, id, codec::kRelationEntrySize, "reading relations",
-                                           [&](std::string_view entry) {
-                                               return decodeInScene(*impl_->env, impl_->txn, id, [&] {
-                                                   return codec::decodeRelationEntry(id, entry);
-                                               });
-                                           });
+    return readDuplicates<model::Relation>(
+        *impl_, Table::Relations, id, codec::kRelationEntrySize, "reading relations", [&](std::string_view entry) {
+            return decodeInScene(*impl_->env, impl_->txn, id, [&] { return codec::decodeRelationEntry(id, entry); });
+        });
 }
+
+namespace {
 
 // One range scan over the relation index keys of the scene's id block; each
 // relation is reported once, from its subject's entries (which sort first).
-void ReadTransaction::forEachRelationInScene(NodeId sceneId,
-                                             const std::function<void(const model::Relation&)>& visit) const {
-    const Environment& env = *impl_->env;
-    auto info = readScene(env, impl_->txn, sceneId);
+void scanSceneRelations(const Environment& env, MDB_txn* txn, MDB_cursor* cursor, NodeId sceneId,
+                        const std::function<void(const model::Relation&)>& visit) {
+    auto info = readScene(env, txn, sceneId);
     if (!info) return;
     const NodeId last = sceneId + info->nodeCount;
-    TableCursor cursor(*impl_, Table::Relations);
     auto from = codec::idKey(sceneId);
     MDB_val key = toVal(from), value;
-    int rc = cursor.get(key, value, MDB_SET_RANGE);
-    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT_NODUP)) {
+    int rc = mdb_cursor_get(cursor, &key, &value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor, &key, &value, MDB_NEXT_NODUP)) {
         NodeId id = codec::idFromKey(fromVal(key), "relation index");
         if (id > last) return;
-        std::size_t count = duplicateCount(env, cursor.cursor());
-        forEachDuplicate(env, cursor.cursor(), value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
+        std::size_t count = duplicateCount(env, cursor);
+        forEachDuplicate(env, cursor, value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
             if (codec::relationEntrySide(entry) != codec::RelationSide::Subject) return false;
-            visit(decodeInScene(env, impl_->txn, id, [&] { return codec::decodeRelationEntry(id, entry); }));
+            visit(decodeInScene(env, txn, id, [&] { return codec::decodeRelationEntry(id, entry); }));
             return true;
         });
     }
     endOfScan(env, rc, "reading the relations of a scene");
+}
+
+// A scene's superseded versions: the history keys with its name as prefix, oldest first.
+void scanHistory(const Environment& env, MDB_txn* txn, std::string_view sceneName,
+                 const std::function<void(std::string_view key, std::string_view value)>& visit) {
+    Cursor cursor(env, txn, Table::History);
+    const std::string prefix = codec::historyPrefix(sceneName);
+    MDB_val key = toVal(prefix), value;
+    int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS && fromVal(key).starts_with(prefix);
+         rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT))
+        visit(fromVal(key), fromVal(value));
+    endOfScan(env, rc, "reading the history of a scene");
+}
+
+}  // namespace
+
+void ReadTransaction::forEachRelationInScene(NodeId sceneId,
+                                             const std::function<void(const model::Relation&)>& visit) const {
+    TableCursor cursor(*impl_, Table::Relations);
+    scanSceneRelations(*impl_->env, impl_->txn, cursor.cursor(), sceneId, visit);
+}
+
+std::vector<model::SceneVersion> ReadTransaction::history(std::string_view sceneName) const {
+    std::vector<model::SceneVersion> out;
+    scanHistory(*impl_->env, impl_->txn, sceneName, [&](std::string_view key, std::string_view value) {
+        try {
+            out.push_back(codec::decodeVersion(key, value));
+        } catch (const codec::CorruptRecord& e) {
+            throw Error(ErrorKind::Storage,
+                        fmt::format("corrupt record in the history of scene '{}' of database {}: {}", sceneName,
+                                    impl_->env->directory(), e.detail()),
+                        std::nullopt, e.hint());
+        }
+    });
+    return out;
 }
 
 std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category, NodeId sceneId,
@@ -605,8 +649,8 @@ std::vector<ReadTransaction::BlobInfo> ReadTransaction::blobsOf(NodeId id) const
     int rc = cursor.get(key, value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS && fromVal(key).substr(0, prefix.size()) == want; rc = cursor.get(key, value, MDB_NEXT)) {
         BlobInfo info;
-        auto [name, mediaType] =
-            decodeInScene(env, impl_->txn, id, [&] { return codec::peekBlob(fromVal(key), fromVal(value), info.size); });
+        auto [name, mediaType] = decodeInScene(
+            env, impl_->txn, id, [&] { return codec::peekBlob(fromVal(key), fromVal(value), info.size); });
         info.name = std::string(name);
         info.mediaType = std::string(mediaType);
         out.push_back(std::move(info));
@@ -651,8 +695,9 @@ std::vector<TableStats> ReadTransaction::tableStats() const {
     for (std::size_t i = 0; i < kTableCount; ++i) {
         MDB_stat stat{};
         impl_->env->check(mdb_stat(impl_->txn, impl_->env->dbi(static_cast<Table>(i)), &stat), "reading table stats");
-        out.push_back({kTables[i].name, stat.ms_entries,
-                       std::uint64_t(stat.ms_branch_pages + stat.ms_leaf_pages + stat.ms_overflow_pages) * stat.ms_psize});
+        out.push_back(
+            {kTables[i].name, stat.ms_entries,
+             std::uint64_t(stat.ms_branch_pages + stat.ms_leaf_pages + stat.ms_overflow_pages) * stat.ms_psize});
     }
     return out;
 }
@@ -675,7 +720,7 @@ NodeId WriteTransaction::importScene(const model::SceneData& data) {
     auto position = validateScene(env, data);
     if (readSceneId(env, txn, name))
         throw Error(ErrorKind::Input, fmt::format("a scene named '{}' already exists", name), std::nullopt,
-                    "drop it first or choose another name with --scene");
+                    "choose another name, or remove the stored one first (DROP SCENE)");
 
     const NodeId sceneId = readNextId(env, txn);
     const std::uint64_t nodeCount = data.nodes.size();
@@ -773,7 +818,8 @@ NodeId WriteTransaction::importScene(const model::SceneData& data) {
     // Blobs: keys start with the new node ids, so sorted keys append.
     {
         std::vector<std::pair<std::string, const model::Blob*>> blobs;
-        for (const model::Blob& blob : data.blobs) blobs.emplace_back(codec::blobKey(databaseId(blob.node), blob.name), &blob);
+        for (const model::Blob& blob : data.blobs)
+            blobs.emplace_back(codec::blobKey(databaseId(blob.node), blob.name), &blob);
         std::sort(blobs.begin(), blobs.end());
         Cursor table(env, txn, Table::Blobs);
         for (const auto& [key, blob] : blobs) {
@@ -800,14 +846,17 @@ NodeId WriteTransaction::importScene(const model::SceneData& data) {
     return sceneId;
 }
 
-void WriteTransaction::dropScene(NodeId sceneId) {
-    assert(impl_->txn && "WriteTransaction used after commit()");
-    const Environment& env = *impl_->env;
-    MDB_txn* txn = impl_->txn;
-    auto info = readScene(env, txn, sceneId);
-    if (!info)
-        throw Error(ErrorKind::Binding, fmt::format("no scene with id {}", sceneId), std::nullopt,
-                    "SHOW SCENES lists the scenes of the database");
+namespace {
+
+[[noreturn]] void noSuchScene(NodeId sceneId) {
+    throw Error(ErrorKind::Binding, fmt::format("no scene with id {}", sceneId), std::nullopt,
+                "SHOW SCENES lists the scenes of the database");
+}
+
+// Deletes a scene's nodes, relations, index entries and records; its history stays.
+void eraseScene(const Environment& env, MDB_txn* txn, const SceneInfo& scene) {
+    const NodeId sceneId = scene.id;
+    const SceneInfo* info = &scene;
 
     // What the index entries are keyed by, copied out of the map before any
     // delete can move the pages it points into.
@@ -860,6 +909,149 @@ void WriteTransaction::dropScene(NodeId sceneId) {
     erase(Table::SceneNames, toVal(info->name), nullptr);
 }
 
+void eraseHistory(const Environment& env, MDB_txn* txn, std::string_view sceneName) {
+    std::vector<std::string> keys;
+    scanHistory(env, txn, sceneName, [&](std::string_view key, std::string_view) { keys.emplace_back(key); });
+    for (const auto& key : keys) {
+        MDB_val k = toVal(key);
+        env.check(mdb_del(txn, env.dbi(Table::History), &k, nullptr), "erasing the history of a scene");
+    }
+}
+
+}  // namespace
+
+void WriteTransaction::dropScene(NodeId sceneId) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    auto info = readScene(*impl_->env, impl_->txn, sceneId);
+    if (!info) noSuchScene(sceneId);
+    eraseScene(*impl_->env, impl_->txn, *info);
+    eraseHistory(*impl_->env, impl_->txn, info->name);
+}
+
+WriteTransaction::Replacement WriteTransaction::replaceScene(NodeId sceneId, model::SceneData data,
+                                                             const std::string& supersededAt,
+                                                             std::vector<model::ObjectChange> changes,
+                                                             const std::vector<std::pair<NodeId, NodeId>>& carried) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    MDB_txn* txn = impl_->txn;
+    auto info = readScene(env, txn, sceneId);
+    if (!info) noSuchScene(sceneId);
+    if (data.info.name != info->name)
+        throw Error(ErrorKind::Usage,
+                    fmt::format("a new version of scene '{}' cannot be named '{}'", info->name, data.info.name),
+                    std::nullopt, "RENAME SCENE gives a scene another name");
+
+    model::SceneVersion superseded;
+    superseded.info = *info;
+    forEachNodeInScene(sceneId, [&](const Node& n) { superseded.nodes.push_back(n); });
+    superseded.relations = relationsInScene(sceneId);
+    superseded.supersededAt = supersededAt;
+    superseded.number = 1;
+    scanHistory(env, txn, info->name, [&](std::string_view key, std::string_view) {
+        superseded.number =
+            codec::readBigEndian64(reinterpret_cast<const std::uint8_t*>(key.data()) + key.size() - 8) + 1;
+    });
+
+    // importScene gives the i-th node of `data` the id newScene + 1 + i.
+    std::unordered_map<NodeId, std::size_t> position;
+    for (std::size_t i = 0; i < data.nodes.size(); ++i) position.emplace(data.nodes[i].id, i);
+    std::vector<std::optional<std::size_t>> afterPosition;
+    for (const auto& change : changes) {
+        afterPosition.emplace_back();
+        if (change.after == model::kNoNode) continue;
+        auto at = position.find(change.after);
+        if (at == position.end())
+            throw Error(ErrorKind::Input,
+                        fmt::format("a change names local node {}, which the new version lacks", change.after),
+                        std::nullopt, std::string(kImportHint));
+        afterPosition.back() = at->second;
+    }
+
+    for (const auto& [storedId, local] : carried) {
+        Cursor cursor(env, txn, Table::Blobs);
+        auto prefix = codec::idKey(storedId);
+        std::string_view want(reinterpret_cast<const char*>(prefix.data()), prefix.size());
+        MDB_val key = toVal(want), value;
+        int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
+        for (; rc == MDB_SUCCESS && fromVal(key).starts_with(want);
+             rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
+            model::Blob blob =
+                decodeInScene(env, txn, storedId, [&] { return codec::decodeBlob(fromVal(key), fromVal(value)); });
+            blob.node = local;
+            data.blobs.push_back(std::move(blob));
+        }
+        endOfScan(env, rc, "reading the evidence of a node");
+    }
+
+    eraseScene(env, txn, *info);
+    const NodeId newScene = importScene(data);
+    for (std::size_t i = 0; i < changes.size(); ++i)
+        if (afterPosition[i]) changes[i].after = newScene + 1 + *afterPosition[i];
+    superseded.changes = std::move(changes);
+
+    std::string key = codec::historyKey(info->name, superseded.number);
+    codec::encodeVersion(key, superseded, impl_->record);
+    MDB_val k = toVal(key), v = toVal(impl_->record);
+    env.check(mdb_put(txn, env.dbi(Table::History), &k, &v, MDB_NOOVERWRITE), "storing a version of a scene");
+    return {newScene, superseded.number};
+}
+
+void WriteTransaction::renameScene(NodeId sceneId, const std::string& newName) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    MDB_txn* txn = impl_->txn;
+    auto info = readScene(env, txn, sceneId);
+    if (!info) noSuchScene(sceneId);
+    checkSceneName(env, newName);
+    if (newName == info->name) return;
+    if (readSceneId(env, txn, newName))
+        throw Error(ErrorKind::Input, fmt::format("a scene named '{}' already exists", newName), std::nullopt,
+                    "choose another name, or remove the stored one first (DROP SCENE)");
+    const std::string oldName = info->name;
+
+    // The scene record (a new version, so cached snapshots reload with the new name),
+    // the name index and the scene node, whose category is the scene's name.
+    info->name = newName;
+    ++info->version;
+    auto key = codec::idKey(sceneId);
+    codec::encodeScene(*info, impl_->record);
+    MDB_val k = toVal(key), v = toVal(impl_->record);
+    env.check(mdb_put(txn, env.dbi(Table::Scenes), &k, &v, 0), "renaming a scene");
+    MDB_val oldKey = toVal(oldName);
+    env.check(mdb_del(txn, env.dbi(Table::SceneNames), &oldKey, nullptr), "renaming a scene");
+    MDB_val newKey = toVal(newName), idVal = toVal(key);
+    env.check(mdb_put(txn, env.dbi(Table::SceneNames), &newKey, &idVal, MDB_NOOVERWRITE), "renaming a scene");
+    auto bytes = lookup(env, txn, Table::Nodes, toVal(key), "reading a node");
+    if (!bytes) throw Error(ErrorKind::Storage, fmt::format("scene '{}' has no scene node", oldName));
+    Node sceneNode = decodeInScene(env, txn, sceneId, [&] { return codec::decodeNode(sceneId, *bytes); });
+    sceneNode.category = newName;
+    codec::encodeNode(sceneNode, impl_->record);
+    v = toVal(impl_->record);
+    env.check(mdb_put(txn, env.dbi(Table::Nodes), &k, &v, 0), "renaming a scene");
+
+    // The history moves with the name: each record is sealed with its key, so it is re-encoded.
+    std::vector<model::SceneVersion> versions;
+    scanHistory(env, txn, oldName,
+                [&](std::string_view hk, std::string_view hv) { versions.push_back(codec::decodeVersion(hk, hv)); });
+    eraseHistory(env, txn, oldName);
+    for (auto& version : versions) {
+        std::string hk = codec::historyKey(newName, version.number);
+        codec::encodeVersion(hk, version, impl_->record);
+        MDB_val hkv = toVal(hk), hvv = toVal(impl_->record);
+        env.check(mdb_put(txn, env.dbi(Table::History), &hkv, &hvv, MDB_NOOVERWRITE), "renaming a scene");
+    }
+}
+
+std::vector<model::Relation> WriteTransaction::relationsInScene(NodeId sceneId) const {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    std::vector<model::Relation> out;
+    Cursor cursor(*impl_->env, impl_->txn, Table::Relations);
+    scanSceneRelations(*impl_->env, impl_->txn, cursor.get(), sceneId,
+                       [&](const model::Relation& r) { out.push_back(r); });
+    return out;
+}
+
 void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
     assert(impl_->txn && "WriteTransaction used after commit()");
     const Environment& env = *impl_->env;
@@ -872,10 +1064,12 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
         if (!bytes) importError(fmt::format("node #{} does not exist", node.id));
         Node stored = decodeInScene(env, txn, node.id, [&] { return codec::decodeNode(node.id, *bytes); });
         if (stored.kind != node.kind || stored.scene != node.scene || stored.parent != node.parent ||
-            stored.category != node.category || stored.sourceId != node.sourceId || stored.kind == model::NodeKind::Scene)
-            importError(fmt::format("node #{}: an update may change attributes, text, confidence and the box, not its "
-                                    "kind, scene, parent, category or source id",
-                                    node.id));
+            stored.category != node.category || stored.sourceId != node.sourceId ||
+            stored.kind == model::NodeKind::Scene)
+            importError(
+                fmt::format("node #{}: an update may change attributes, text, confidence and the box, not its "
+                            "kind, scene, parent, category or source id",
+                            node.id));
         scenes.insert(node.scene);
     }
     for (const Node& node : nodes) {
@@ -927,8 +1121,7 @@ void WriteTransaction::putSetting(std::string_view key, std::string_view value) 
         throw Error(ErrorKind::Usage,
                     key.empty() ? std::string("a setting needs a name")
                                 : fmt::format("setting name '{}...' is too long ({} bytes; at most {})",
-                                              key.substr(0, 40), key.size(),
-                                              env.maxKeySize() - kSettingPrefix.size()),
+                                              key.substr(0, 40), key.size(), env.maxKeySize() - kSettingPrefix.size()),
                     std::nullopt, "SHOW SETTINGS lists the settings in use");
     std::string fullKey = settingKey(key);
     MDB_val k = toVal(fullKey), v = toVal(value);

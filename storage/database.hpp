@@ -20,7 +20,8 @@
 namespace smql::storage {
 
 // 2: every record and relation entry ends in a CRC32C (docs/storage.md).
-inline constexpr std::uint32_t kSchemaVersion = 2;
+// 3: the history table keeps the versions of a scene that updates replaced.
+inline constexpr std::uint32_t kSchemaVersion = 3;
 
 struct OpenOptions {
     bool readOnly = false;
@@ -100,8 +101,7 @@ public:
     // Label index: nodes with this exact category in every scene (or one), in
     // id order. Scene nodes (whose category is the scene name) and nodes with
     // an empty category are not in the index.
-    std::vector<model::NodeId> nodesWithCategory(std::string_view category,
-                                                 model::NodeId sceneId = model::kNoNode,
+    std::vector<model::NodeId> nodesWithCategory(std::string_view category, model::NodeId sceneId = model::kNoNode,
                                                  std::size_t limit = SIZE_MAX) const;
     // How many nodes of every scene have this category: one index lookup, no scan.
     std::uint64_t countWithCategory(std::string_view category) const;
@@ -120,6 +120,9 @@ public:
 
     std::optional<std::string> setting(std::string_view key) const;
     std::vector<std::pair<std::string, std::string>> settings() const;
+
+    // The versions of a scene that updates replaced, oldest first (empty for a scene never updated).
+    std::vector<model::SceneVersion> history(std::string_view sceneName) const;
 
     std::vector<TableStats> tableStats() const;
 
@@ -144,9 +147,25 @@ public:
     // The scene gets one contiguous block of ids: the scene node, then the
     // nodes of `data` in list order (docs/storage.md relies on this).
     model::NodeId importScene(const model::SceneData& data);
-    // Removes a scene with all its nodes, relations and index entries. Ids are
-    // never reused. Throws smql::Error(Binding) when there is no such scene.
+    // Removes a scene with all its nodes, relations, index entries and history.
+    // Ids are never reused. Throws smql::Error(Binding) when there is no such scene.
     void dropScene(model::NodeId sceneId);
+    // Replaces a scene by a new version of the same place: the stored one (nodes,
+    // relations, scene record) goes to the history table as the next version, with
+    // `changes` (whose `after` ids are local ids of `data`, mapped here) and the time
+    // `supersededAt`; `data` is stored as importScene stores a scene, under the same
+    // name, with a new block of ids. The blobs of each stored node in `carried`
+    // (stored id, local id in `data`) move to its new id.
+    struct Replacement {
+        model::NodeId scene = model::kNoNode;  // the new version's scene id
+        std::uint64_t superseded = 0;          // the number the replaced version has in the history
+    };
+    Replacement replaceScene(model::NodeId sceneId, model::SceneData data, const std::string& supersededAt,
+                             std::vector<model::ObjectChange> changes,
+                             const std::vector<std::pair<model::NodeId, model::NodeId>>& carried = {});
+    // Gives a scene (and its history) another name. Throws smql::Error(Binding) when
+    // there is no such scene, smql::Error(Input) when the new name is taken or empty.
+    void renameScene(model::NodeId sceneId, const std::string& newName);
     // Throws smql::Error(Usage) for an empty key or one over 503 bytes (LMDB's key limit).
     // Rewrites stored nodes in place (attributes, text, confidence, box): the
     // id, kind, scene, parent and category must stay as they are, since the
@@ -159,6 +178,8 @@ public:
     std::optional<model::SceneInfo> sceneByName(std::string_view name) const;
     // Every node of a scene (the scene node itself included), in id order.
     void forEachNodeInScene(model::NodeId sceneId, const std::function<void(const model::Node&)>& visit) const;
+    // Every relation of a scene, once each.
+    std::vector<model::Relation> relationsInScene(model::NodeId sceneId) const;
     // Erasing a setting that is not set does nothing.
     void eraseSetting(std::string_view key);
 

@@ -65,14 +65,25 @@ std::map<RegistryKey, std::weak_ptr<Environment>>& registry() {
     return *environments;
 }
 
-void checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta) {
+// Schema 2 lacks only the history table (added empty by an upgrade in place).
+constexpr std::uint64_t kUpgradableSchemaVersion = 2;
+
+// Returns the stored version: kSchemaVersion, or kUpgradableSchemaVersion when `upgradable`.
+std::uint64_t checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta, bool upgradable) {
     MDB_val key = toVal(kSchemaVersionKey), value;
     int rc = mdb_get(txn, meta, &key, &value);
     if (rc == MDB_NOTFOUND) notSmqlDatabase(directory, "its meta table has no schema version");
     if (rc != MDB_SUCCESS)
         openError(fmt::format("cannot read the schema version of {}: {}", directory, mdb_strerror(rc)), {});
     std::uint64_t version = codec::decodeU64(fromVal(value), "schema version");
-    if (version == kSchemaVersion) return;
+    if (version == kSchemaVersion) return version;
+    if (version == kUpgradableSchemaVersion) {
+        if (upgradable) return version;
+        openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
+                              kSchemaVersion),
+                  "open it once for writing (without --read-only): that upgrades it in place, adding the empty "
+                  "history table of version 3");
+    }
     openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
                           kSchemaVersion),
               version > kSchemaVersion
@@ -103,8 +114,8 @@ void checkEmptyDataFile(const std::string& directory) {
         ::close(fd);
     }
     if (!beingCreated)
-        damaged(directory, fmt::format("its {} is empty (0 bytes); smql does not re-create a database in place",
-                                       kDataFile));
+        damaged(directory,
+                fmt::format("its {} is empty (0 bytes); smql does not re-create a database in place", kDataFile));
 }
 
 // What an open that makes a new database created, so that a failure can
@@ -146,11 +157,11 @@ public:
 
 [[noreturn]] void noSpace(const std::string& directory, std::string_view operation, std::optional<std::uint64_t> free) {
     throw NoSpace(ErrorKind::Storage,
-                fmt::format("{} failed on database {}: no space left on device{}", operation, directory,
-                            free ? fmt::format(" ({} bytes free on its file system)", *free) : std::string()),
-                std::nullopt,
-                "free some space on that file system (or move the database to another), then try again; the "
-                "database is as it was before");
+                  fmt::format("{} failed on database {}: no space left on device{}", operation, directory,
+                              free ? fmt::format(" ({} bytes free on its file system)", *free) : std::string()),
+                  std::nullopt,
+                  "free some space on that file system (or move the database to another), then try again; the "
+                  "database is as it was before");
 }
 
 // Every path below that the directory cannot be an smql database ends in an
@@ -167,7 +178,8 @@ Creation checkDirectory(const std::string& directory, const OpenOptions& options
             openError(fmt::format("no database at {}", directory),
                       "check the path; smql creates a database only when it opens it for writing");
         for (fs::path missing = fs::absolute(directory, ec).lexically_normal();
-             !missing.empty() && !fs::exists(missing, ec) && missing != missing.parent_path(); missing = missing.parent_path())
+             !missing.empty() && !fs::exists(missing, ec) && missing != missing.parent_path();
+             missing = missing.parent_path())
             creation.createdDirectories.push_back(missing);
         fs::create_directories(directory, ec);
         if (ec)
@@ -385,11 +397,18 @@ void Environment::openTables(bool create) {
         mdb_txn_abort(txn);
         fail(rc, "opening the meta table");
     }
+    std::uint64_t version = 0;
     try {
-        checkSchemaVersion(directory_, txn, meta);
+        version = checkSchemaVersion(directory_, txn, meta, !readOnly_);
     } catch (...) {
         mdb_txn_abort(txn);
         throw;
+    }
+    if (version != kSchemaVersion) {
+        mdb_txn_abort(txn);
+        upgradeSchema();
+        check(mdb_txn_begin(env_, nullptr, MDB_RDONLY, &txn), "beginning a read transaction");
+        check(mdb_dbi_open(txn, kTables[0].name, kTables[0].flags, &meta), "opening the meta table");
     }
     dbis_[0] = meta;
     for (std::size_t i = 1; i < kTableCount; ++i) {
@@ -405,6 +424,25 @@ void Environment::openTables(bool create) {
     }
     // Committing a read transaction is what makes its table handles usable by later transactions.
     check(mdb_txn_commit(txn), "opening the tables");
+}
+
+// Schema 2 -> 3 in one write transaction: the history table, then the version. Another process
+// may have upgraded it between our read and this write; then there is nothing left to do.
+void Environment::upgradeSchema() {
+    MDB_txn* txn = nullptr;
+    check(mdb_txn_begin(env_, nullptr, 0, &txn), "beginning a write transaction");
+    MDB_dbi meta = 0, history = 0;
+    int rc = mdb_dbi_open(txn, kTables[0].name, kTables[0].flags, &meta);
+    const auto& spec = kTables[static_cast<std::size_t>(Table::History)];
+    if (rc == MDB_SUCCESS) rc = mdb_dbi_open(txn, spec.name, spec.flags | MDB_CREATE, &history);
+    std::string version = codec::encodeU64(kSchemaVersion);
+    MDB_val key = toVal(kSchemaVersionKey), value = toVal(version);
+    if (rc == MDB_SUCCESS) rc = mdb_put(txn, meta, &key, &value, 0);
+    if (rc != MDB_SUCCESS) {
+        mdb_txn_abort(txn);
+        fail(rc, "upgrading the database to schema version 3");
+    }
+    check(mdb_txn_commit(txn), "upgrading the database to schema version 3");
 }
 
 void Environment::checkLockFile(std::string_view operation) const {
@@ -456,7 +494,8 @@ void Environment::fail(int rc, std::string_view operation) const {
             // the disk filling up half-way through the transaction's pages.
             if (auto free = freeBytes(directory_); free && *free < kFullBelow) noSpace(directory_, operation, free);
             break;
-        default: break;
+        default:
+            break;
     }
     throw Error(ErrorKind::Storage,
                 fmt::format("{} failed on database {}: {}", operation, directory_, mdb_strerror(rc)), std::nullopt,

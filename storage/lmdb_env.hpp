@@ -11,17 +11,28 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <utility>
-#include <vector>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "storage/database.hpp"
 
 namespace smql::storage {
 
-enum class Table : std::size_t { Meta, Nodes, Scenes, SceneNames, Children, Labels, SourceIds, Relations, Blobs };
-inline constexpr std::size_t kTableCount = 9;
+enum class Table : std::size_t {
+    Meta,
+    Nodes,
+    Scenes,
+    SceneNames,
+    Children,
+    Labels,
+    SourceIds,
+    Relations,
+    Blobs,
+    History
+};
+inline constexpr std::size_t kTableCount = 10;
 
 struct TableSpec {
     const char* name;
@@ -39,6 +50,7 @@ inline constexpr std::array<TableSpec, kTableCount> kTables = {{
     {"source_ids", 0},
     {"relations", MDB_DUPSORT | MDB_DUPFIXED},
     {"blobs", 0},
+    {"history", 0},
 }};
 
 // Room for the tables still to come (vectors, blobs, spatial index) without
@@ -92,6 +104,7 @@ private:
     // open() once the directory is known to be fit: the environment itself.
     static std::shared_ptr<Environment> openChecked(const std::string& directory, const OpenOptions& options);
     void openTables(bool create);
+    void upgradeSchema();
     void checkFileSize() const;
 
     MDB_env* env_;

@@ -67,22 +67,25 @@ extern "C" {
 
 typedef struct smql_db smql_db;
 typedef struct smql_result smql_result;
+typedef struct smql_stmt smql_stmt;
 
 typedef enum smql_status {
     SMQL_OK = 0,
-    SMQL_ERROR_SYNTAX = 1,   /* a statement does not parse */
-    SMQL_ERROR_BINDING = 2,  /* a name does not resolve: category, scene, setting, node */
-    SMQL_ERROR_INPUT = 3,    /* a malformed or missing import file */
-    SMQL_ERROR_STORAGE = 4,  /* the database cannot be opened or written (read-only, schema, I/O) */
-    SMQL_ERROR_USAGE = 5,    /* a statement or option used wrongly */
-    SMQL_ERROR_MISUSE = 6,   /* the API used wrongly: NULL handle or argument, bad index, wrong type */
-    SMQL_ERROR_INTERNAL = 7, /* a bug or out of memory; the message says which */
-    SMQL_ERROR_LIMIT = 8,    /* a statement would exceed a limit (max_rows, max_pairs); SET raises it */
-    SMQL_ERROR_INTERRUPTED = 9 /* smql_interrupt stopped the statement */
+    SMQL_ERROR_SYNTAX = 1,      /* a statement does not parse */
+    SMQL_ERROR_BINDING = 2,     /* a name does not resolve: category, scene, setting, node */
+    SMQL_ERROR_INPUT = 3,       /* a malformed or missing import file */
+    SMQL_ERROR_STORAGE = 4,     /* the database cannot be opened or written (read-only, schema, I/O) */
+    SMQL_ERROR_USAGE = 5,       /* a statement or option used wrongly */
+    SMQL_ERROR_MISUSE = 6,      /* the API used wrongly: NULL handle or argument, bad index, wrong type */
+    SMQL_ERROR_INTERNAL = 7,    /* a bug or out of memory; the message says which */
+    SMQL_ERROR_LIMIT = 8,       /* a statement would exceed a limit (max_rows, max_pairs); SET raises it */
+    SMQL_ERROR_INTERRUPTED = 9, /* smql_interrupt stopped the statement */
+    SMQL_ROW = 100,             /* smql_step: a row is ready (not an error) */
+    SMQL_DONE = 101             /* smql_step: the statement has run and every row was stepped over */
 } smql_status;
 
 typedef enum smql_type {
-    SMQL_INVALID = -1,  /* returned for a NULL result or an index out of range */
+    SMQL_INVALID = -1, /* returned for a NULL result or an index out of range */
     SMQL_NULL = 0,
     SMQL_INTEGER = 1,
     SMQL_REAL = 2,
@@ -137,7 +140,7 @@ SMQL_API int smql_error_column(const smql_db* db);
  * one have run, and smql_errmsg tells what failed and where. */
 SMQL_API smql_status smql_execute(smql_db* db, const char* statements, smql_result** out);
 
-/* Stops the statement smql_execute is running on `db` in another thread: that call returns
+/* Stops the statement smql_execute or smql_step is running on `db` in another thread: that call returns
  * SMQL_ERROR_INTERRUPTED and changes nothing. Safe from any thread and from a signal handler; with
  * no statement running it does nothing. NULL is ignored. */
 SMQL_API void smql_interrupt(smql_db* db);
@@ -148,6 +151,13 @@ SMQL_API void smql_interrupt(smql_db* db);
  * files are named after their folder, spatiallm files after the file, json
  * files keep the name they hold. */
 SMQL_API smql_status smql_import_file(smql_db* db, const char* format, const char* path, const char* scene_name);
+
+/* Reads a scene layout file (formats as for smql_import_file) as a new capture of the place
+ * stored as `scene_name` (NULL: the current scene) and makes it that scene's next version, in one
+ * write transaction: objects seen again, moved, new and missing are matched and recorded, and the
+ * version before stays in the scene's history (docs/history.md). SHOW CHANGES then lists what
+ * changed; smql_errmsg says why an update was refused. */
+SMQL_API smql_status smql_update_file(smql_db* db, const char* format, const char* path, const char* scene_name);
 
 /* ---- Results --------------------------------------------------------- */
 
@@ -184,6 +194,74 @@ SMQL_API const char* smql_result_message(const smql_result* res);
 /* How many statements ran, and the message of each (0-based, in order; NULL out of range). */
 SMQL_API size_t smql_statement_count(const smql_result* res);
 SMQL_API const char* smql_statement_message(const smql_result* res, size_t index);
+
+/* ---- Prepared statements --------------------------------------------
+ *
+ * One statement parsed once and run many times with values for its placeholders,
+ * `?` (numbered 1, 2, ... in order) or `$1`, `$2`, ... (docs/language.md, "Parameters"):
+ *
+ *     smql_stmt* stmt = NULL;
+ *     smql_prepare(db, "FIND ? WHERE near(?, ?)", &stmt);
+ *     smql_bind_text(stmt, 1, "cushion");
+ *     smql_bind_text(stmt, 2, "sofa");
+ *     smql_bind_double(stmt, 3, 0.5);                 (metres)
+ *     while (smql_step(stmt) == SMQL_ROW) puts(smql_stmt_row_json(stmt));
+ *     smql_reset(stmt);                               (then bind other values, step again)
+ *     smql_finalize(stmt);
+ *
+ * A bound value is data, never SMQL text: "O'Brien's mug" is a name, whatever its quotes.
+ * A statement belongs to its handle: finalize it before smql_close, and do not use one
+ * statement from two threads at once. Errors are read with smql_errmsg(db), as for every
+ * call on the handle. */
+
+/* Parses one statement; on SMQL_OK *out is a statement to bind and step (free it with
+ * smql_finalize). On failure *out is NULL and smql_errmsg(db) tells why; a text with more
+ * than one statement is SMQL_ERROR_USAGE. */
+SMQL_API smql_status smql_prepare(smql_db* db, const char* statement, smql_stmt** out);
+
+/* How many placeholders the statement has (the highest index); 0 for NULL. */
+SMQL_API int smql_bind_parameter_count(const smql_stmt* stmt);
+
+/* Bind a value to placeholder `index` (1-based); it stays bound until smql_clear_bindings or
+ * another bind, across smql_reset. Text is copied. A double is metres where a distance goes
+ * (near(?, ?)). SMQL_ERROR_MISUSE for a NULL argument, an index out of range, a value its
+ * place cannot take (a number for a name, text for LIMIT), or a statement stepped and not
+ * reset. NULL is accepted here and is an error when the statement runs. */
+SMQL_API smql_status smql_bind_text(smql_stmt* stmt, int index, const char* text);
+SMQL_API smql_status smql_bind_int(smql_stmt* stmt, int index, int64_t value);
+SMQL_API smql_status smql_bind_double(smql_stmt* stmt, int index, double value);
+SMQL_API smql_status smql_bind_null(smql_stmt* stmt, int index);
+
+/* The first step runs the statement with the values bound (a placeholder without one is
+ * SMQL_ERROR_USAGE naming it; smql_interrupt stops it with SMQL_ERROR_INTERRUPTED); each step
+ * then makes the next row current: SMQL_ROW while there is one, SMQL_DONE after the last (at
+ * once for statements without rows, whose sentence smql_stmt_message gives). After SMQL_DONE or
+ * an error, smql_step returns the same until smql_reset. */
+SMQL_API smql_status smql_step(smql_stmt* stmt);
+
+/* Forgets the run and its rows, keeping the bindings: the next smql_step runs it again. */
+SMQL_API smql_status smql_reset(smql_stmt* stmt);
+/* Unbinds every placeholder. */
+SMQL_API smql_status smql_clear_bindings(smql_stmt* stmt);
+/* Frees the statement; NULL is a no-op. */
+SMQL_API void smql_finalize(smql_stmt* stmt);
+
+/* The current row, after smql_step returned SMQL_ROW, read as the result accessors above read
+ * a row: same types, same sentinels (0, NULL, SMQL_INVALID, SMQL_ERROR_MISUSE) for NULL, a
+ * column out of range or no current row. Columns are known once the statement has run (after
+ * the first step). Text stays valid until the next step, reset or finalize. */
+SMQL_API size_t smql_stmt_column_count(const smql_stmt* stmt);
+SMQL_API const char* smql_stmt_column_name(const smql_stmt* stmt, size_t col);
+SMQL_API smql_type smql_stmt_column_type(const smql_stmt* stmt, size_t col);
+SMQL_API smql_type smql_stmt_value_type(const smql_stmt* stmt, size_t col);
+SMQL_API smql_status smql_stmt_value_int64(const smql_stmt* stmt, size_t col, int64_t* out);
+SMQL_API smql_status smql_stmt_value_double(const smql_stmt* stmt, size_t col, double* out);
+SMQL_API smql_status smql_stmt_value_text(const smql_stmt* stmt, size_t col, const char** out);
+SMQL_API smql_status smql_stmt_value_box(const smql_stmt* stmt, size_t col, smql_box* out);
+/* The current row as JSON (as smql_row_json); NULL without a current row. */
+SMQL_API const char* smql_stmt_row_json(const smql_stmt* stmt);
+/* The sentence the statement answered with ("" if none); NULL before it has run. */
+SMQL_API const char* smql_stmt_message(const smql_stmt* stmt);
 
 #ifdef __cplusplus
 }

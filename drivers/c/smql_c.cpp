@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "engine/engine.hpp"
-#include "model/error.hpp"
 #include "engine/format.hpp"
-#include "model/result.hpp"
 #include "ingest/import/registry.hpp"
+#include "model/error.hpp"
+#include "model/result.hpp"
 
 namespace {
 
@@ -49,30 +49,53 @@ struct smql_result {
     mutable std::optional<std::string> resultJson;
 };
 
+// A prepared statement: the engine's PreparedStatement, the text error carets point into, and the
+// rows of its current run, read one at a time by smql_step.
+struct smql_stmt {
+    smql_db* db;
+    std::string text;
+    smql::PreparedStatement prepared;
+    std::unique_ptr<smql_result> rows;  // null until the run; kept after it until smql_reset
+    smql_status finished = SMQL_OK;     // SMQL_DONE or the run's error, once smql_step has no more rows
+    std::size_t nextRow = 0;            // the row the next step makes current; current = nextRow - 1
+};
+
 namespace {
 
 constexpr const char* kNullHandleMessage = "misuse: the smql_db handle is NULL";
 
 smql_status statusOf(smql::ErrorKind kind) {
     switch (kind) {
-        case smql::ErrorKind::Syntax: return SMQL_ERROR_SYNTAX;
-        case smql::ErrorKind::Binding: return SMQL_ERROR_BINDING;
-        case smql::ErrorKind::Input: return SMQL_ERROR_INPUT;
-        case smql::ErrorKind::Storage: return SMQL_ERROR_STORAGE;
-        case smql::ErrorKind::Usage: return SMQL_ERROR_USAGE;
-        case smql::ErrorKind::Limit: return SMQL_ERROR_LIMIT;
-        case smql::ErrorKind::Interrupted: return SMQL_ERROR_INTERRUPTED;
+        case smql::ErrorKind::Syntax:
+            return SMQL_ERROR_SYNTAX;
+        case smql::ErrorKind::Binding:
+            return SMQL_ERROR_BINDING;
+        case smql::ErrorKind::Input:
+            return SMQL_ERROR_INPUT;
+        case smql::ErrorKind::Storage:
+            return SMQL_ERROR_STORAGE;
+        case smql::ErrorKind::Usage:
+            return SMQL_ERROR_USAGE;
+        case smql::ErrorKind::Limit:
+            return SMQL_ERROR_LIMIT;
+        case smql::ErrorKind::Interrupted:
+            return SMQL_ERROR_INTERRUPTED;
     }
     return SMQL_ERROR_INTERNAL;
 }
 
 smql_type typeOf(smql::ValueType type) {
     switch (type) {
-        case smql::ValueType::Null: return SMQL_NULL;
-        case smql::ValueType::Integer: return SMQL_INTEGER;
-        case smql::ValueType::Real: return SMQL_REAL;
-        case smql::ValueType::Text: return SMQL_TEXT;
-        case smql::ValueType::Box: return SMQL_BOX;
+        case smql::ValueType::Null:
+            return SMQL_NULL;
+        case smql::ValueType::Integer:
+            return SMQL_INTEGER;
+        case smql::ValueType::Real:
+            return SMQL_REAL;
+        case smql::ValueType::Text:
+            return SMQL_TEXT;
+        case smql::ValueType::Box:
+            return SMQL_BOX;
     }
     return SMQL_INVALID;
 }
@@ -157,16 +180,30 @@ const char* smql_version(void) { return SMQL_VERSION_STRING; }
 
 const char* smql_status_string(smql_status status) {
     switch (status) {
-        case SMQL_OK: return "ok";
-        case SMQL_ERROR_SYNTAX: return "syntax error";
-        case SMQL_ERROR_BINDING: return "name does not resolve";
-        case SMQL_ERROR_INPUT: return "bad input file";
-        case SMQL_ERROR_STORAGE: return "storage error";
-        case SMQL_ERROR_USAGE: return "usage error";
-        case SMQL_ERROR_MISUSE: return "API misuse";
-        case SMQL_ERROR_INTERNAL: return "internal error";
-        case SMQL_ERROR_LIMIT: return "limit exceeded";
-        case SMQL_ERROR_INTERRUPTED: return "interrupted";
+        case SMQL_OK:
+            return "ok";
+        case SMQL_ERROR_SYNTAX:
+            return "syntax error";
+        case SMQL_ERROR_BINDING:
+            return "name does not resolve";
+        case SMQL_ERROR_INPUT:
+            return "bad input file";
+        case SMQL_ERROR_STORAGE:
+            return "storage error";
+        case SMQL_ERROR_USAGE:
+            return "usage error";
+        case SMQL_ERROR_MISUSE:
+            return "API misuse";
+        case SMQL_ERROR_INTERNAL:
+            return "internal error";
+        case SMQL_ERROR_LIMIT:
+            return "limit exceeded";
+        case SMQL_ERROR_INTERRUPTED:
+            return "interrupted";
+        case SMQL_ROW:
+            return "row";
+        case SMQL_DONE:
+            return "done";
     }
     return "unknown status";
 }
@@ -230,6 +267,13 @@ smql_status smql_import_file(smql_db* db, const char* format, const char* path, 
         // The whole file is read and checked before the database is touched.
         db->engine->importScene(smql::import::read(format, path, scene_name ? scene_name : ""));
     });
+}
+
+smql_status smql_update_file(smql_db* db, const char* format, const char* path, const char* scene_name) {
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!format || !path) return misuse(db, "smql_update_file: format and path must not be NULL");
+    return guarded(
+        db, {}, [&] { db->engine->updateScene(scene_name ? scene_name : "", smql::import::read(format, path, "")); });
 }
 
 void smql_result_free(smql_result* res) { delete res; }
@@ -321,4 +365,146 @@ size_t smql_statement_count(const smql_result* res) { return res ? res->messages
 const char* smql_statement_message(const smql_result* res, size_t index) {
     if (!res || index >= res->messages.size()) return nullptr;
     return res->messages[index].c_str();
+}
+
+// ---- Prepared statements ------------------------------------------------
+
+namespace {
+
+// The current row, or nothing between steps.
+std::optional<std::size_t> currentRow(const smql_stmt* stmt) {
+    if (!stmt || !stmt->rows || stmt->nextRow == 0 || stmt->finished != SMQL_OK) return std::nullopt;
+    return stmt->nextRow - 1;
+}
+
+// Binds through the engine, which checks the index and the kind of value; its refusals are
+// the caller's misuse, as a bad index is in the result accessors.
+smql_status bindValue(smql_stmt* stmt, int index, smql::ParameterValue value, const char* call) noexcept {
+    if (!stmt) return SMQL_ERROR_MISUSE;
+    if (stmt->rows)
+        return misuse(stmt->db, (std::string(call) + ": the statement has run; smql_reset it before binding").c_str());
+    if (index < 1) return misuse(stmt->db, (std::string(call) + ": placeholders are numbered from 1").c_str());
+    try {
+        stmt->prepared.bind(static_cast<std::size_t>(index), std::move(value));
+    } catch (const smql::Error& e) {
+        return misuse(stmt->db, (std::string(call) + ": " + e.message()).c_str());
+    } catch (...) {
+        return SMQL_ERROR_INTERNAL;  // out of memory
+    }
+    forgetError(stmt->db);
+    return SMQL_OK;
+}
+
+}  // namespace
+
+smql_status smql_prepare(smql_db* db, const char* statement, smql_stmt** out) {
+    if (out) *out = nullptr;
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!statement || !out) return misuse(db, "smql_prepare: statement and out must not be NULL");
+    return guarded(db, statement,
+                   [&] { *out = new smql_stmt{db, statement, db->engine->prepare(statement), nullptr, SMQL_OK, 0}; });
+}
+
+int smql_bind_parameter_count(const smql_stmt* stmt) {
+    return stmt ? static_cast<int>(stmt->prepared.parameterCount()) : 0;
+}
+
+smql_status smql_bind_text(smql_stmt* stmt, int index, const char* text) {
+    if (stmt && !text) return misuse(stmt->db, "smql_bind_text: text is NULL (smql_bind_null binds NULL)");
+    try {
+        return bindValue(stmt, index, std::string(text ? text : ""), "smql_bind_text");
+    } catch (...) {
+        return SMQL_ERROR_INTERNAL;  // out of memory copying the text
+    }
+}
+
+smql_status smql_bind_int(smql_stmt* stmt, int index, int64_t value) {
+    return bindValue(stmt, index, std::int64_t{value}, "smql_bind_int");
+}
+
+smql_status smql_bind_double(smql_stmt* stmt, int index, double value) {
+    return bindValue(stmt, index, value, "smql_bind_double");
+}
+
+smql_status smql_bind_null(smql_stmt* stmt, int index) {
+    return bindValue(stmt, index, std::monostate{}, "smql_bind_null");
+}
+
+smql_status smql_step(smql_stmt* stmt) {
+    if (!stmt) return SMQL_ERROR_MISUSE;
+    if (stmt->finished != SMQL_OK) return stmt->finished;
+    if (!stmt->rows) {
+        smql_status status = guarded(stmt->db, stmt->text, [&] {
+            auto rows = std::make_unique<smql_result>();
+            rows->set = stmt->prepared.execute();
+            rows->messages.push_back(rows->set.message);
+            stmt->rows = std::move(rows);
+        });
+        if (status != SMQL_OK) return stmt->finished = status;
+    }
+    if (stmt->nextRow < stmt->rows->set.rows.size()) {
+        ++stmt->nextRow;
+        return SMQL_ROW;
+    }
+    return stmt->finished = SMQL_DONE;
+}
+
+smql_status smql_reset(smql_stmt* stmt) {
+    if (!stmt) return SMQL_ERROR_MISUSE;
+    stmt->rows.reset();
+    stmt->finished = SMQL_OK;
+    stmt->nextRow = 0;
+    return SMQL_OK;
+}
+
+smql_status smql_clear_bindings(smql_stmt* stmt) {
+    if (!stmt) return SMQL_ERROR_MISUSE;
+    stmt->prepared.clearBindings();
+    return SMQL_OK;
+}
+
+void smql_finalize(smql_stmt* stmt) { delete stmt; }
+
+size_t smql_stmt_column_count(const smql_stmt* stmt) { return stmt ? smql_column_count(stmt->rows.get()) : 0; }
+
+const char* smql_stmt_column_name(const smql_stmt* stmt, size_t col) {
+    return stmt ? smql_column_name(stmt->rows.get(), col) : nullptr;
+}
+
+smql_type smql_stmt_column_type(const smql_stmt* stmt, size_t col) {
+    return stmt ? smql_column_type(stmt->rows.get(), col) : SMQL_INVALID;
+}
+
+smql_type smql_stmt_value_type(const smql_stmt* stmt, size_t col) {
+    auto row = currentRow(stmt);
+    return row ? smql_value_type(stmt->rows.get(), *row, col) : SMQL_INVALID;
+}
+
+smql_status smql_stmt_value_int64(const smql_stmt* stmt, size_t col, int64_t* out) {
+    auto row = currentRow(stmt);
+    return row ? smql_value_int64(stmt->rows.get(), *row, col, out) : SMQL_ERROR_MISUSE;
+}
+
+smql_status smql_stmt_value_double(const smql_stmt* stmt, size_t col, double* out) {
+    auto row = currentRow(stmt);
+    return row ? smql_value_double(stmt->rows.get(), *row, col, out) : SMQL_ERROR_MISUSE;
+}
+
+smql_status smql_stmt_value_text(const smql_stmt* stmt, size_t col, const char** out) {
+    auto row = currentRow(stmt);
+    return row ? smql_value_text(stmt->rows.get(), *row, col, out) : SMQL_ERROR_MISUSE;
+}
+
+smql_status smql_stmt_value_box(const smql_stmt* stmt, size_t col, smql_box* out) {
+    auto row = currentRow(stmt);
+    return row ? smql_value_box(stmt->rows.get(), *row, col, out) : SMQL_ERROR_MISUSE;
+}
+
+const char* smql_stmt_row_json(const smql_stmt* stmt) {
+    auto row = currentRow(stmt);
+    return row ? smql_row_json(stmt->rows.get(), *row) : nullptr;
+}
+
+const char* smql_stmt_message(const smql_stmt* stmt) {
+    return stmt && stmt->rows ? stmt->rows->set.message.c_str() : nullptr;
 }

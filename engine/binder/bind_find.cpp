@@ -1,7 +1,9 @@
 // FIND and COUNT: in the current scene, or by category across every scene (USE SCENE '*').
 #include <fmt/format.h>
 
+#include "engine/ask/lexicon.hpp"
 #include "engine/binder/binder.hpp"
+#include "engine/exec/attributes.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "storage/database.hpp"
@@ -20,8 +22,31 @@ BoundFind Binder::bindFind(const ast::FindStmt& find) {
         out.distanceTo = bindRef(*find.nearestTo);
         out.nearest = true;
     } else if (find.orderBy) {
-        out.distanceTo = bindRef(find.orderBy->distanceTo);
+        if (find.orderBy->distanceTo) {
+            out.distanceTo = bindRef(*find.orderBy->distanceTo);
+        } else if (find.orderBy->attribute == "distance") {
+            throw Error(ErrorKind::Binding, "ORDER BY distance needs what to measure from", find.orderBy->where,
+                        "as in ORDER BY distance(door)");
+        } else {
+            comparable(find.orderBy->attribute, find.orderBy->where);
+            out.orderAttribute = find.orderBy->attribute;
+        }
         out.descending = find.orderBy->descending;
+    }
+    for (const auto& column : find.columns) {
+        bool known = exec::attributeIn(scene(), column) || (column == "distance" && out.distanceTo);
+        if (!known) {
+            std::vector<std::string> names;
+            for (const auto& attribute : exec::builtInAttributes()) names.emplace_back(attribute.name);
+            for (const auto& stored : scene().attributeNames()) names.push_back(stored);
+            if (out.distanceTo) names.emplace_back("distance");
+            auto close = model::nearestNames(column, names);
+            throw Error(ErrorKind::Binding, fmt::format("unknown column '{}' in RETURN", column), find.returnWhere,
+                        close.empty() ? "SHOW ATTRIBUTES lists the columns"
+                                      : fmt::format("did you mean {}? SHOW ATTRIBUTES lists the columns",
+                                                    model::joinAlternatives(close)));
+        }
+        out.columns.push_back(column);
     }
     out.limit = find.limit;
     out.path = find.path;
@@ -43,6 +68,10 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
     if (ctx_.txn.countWithCategory(target.name) == 0) {
         std::vector<std::string> names;
         for (const auto& [name, count] : ctx_.txn.categories()) names.push_back(name);
+        if (auto noun = absentThing(target.name, ask::Lexicon(names).lookUp(target.name))) {
+            notes_.push_back(fmt::format("no {} in any scene", *noun));
+            return BoundCatalogFind{*noun, limit, countOnly};
+        }
         auto close = model::nearestNames(target.name, names);
         throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in any scene", target.name), target.where,
                     close.empty() ? "" : "did you mean " + model::joinAlternatives(close) + "?");
@@ -51,9 +80,10 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
 }
 
 void Binder::bindStatement(const ast::FindStmt& find, BoundStatement& out) {
+    if (find.asOf) useVersion(*find.asOf);
     if (ctx_.session.allScenes) {
-        if (find.nearestTo || find.orderBy || find.path)
-            throw Error(ErrorKind::Binding, "across all scenes, FIND takes no NEAREST TO, ORDER BY or PATH",
+        if (find.nearestTo || find.orderBy || find.path || !find.columns.empty())
+            throw Error(ErrorKind::Binding, "across all scenes, FIND takes no NEAREST TO, ORDER BY, PATH or RETURN",
                         find.target.where, "these measure within one scene: USE SCENE 'name'");
         out.body = bindCatalogFind(find.target, find.where, find.view, find.limit, false);
         return;
@@ -63,6 +93,7 @@ void Binder::bindStatement(const ast::FindStmt& find, BoundStatement& out) {
 
 // COUNT is a FIND without order, limit or path that returns only how many.
 void Binder::bindStatement(const ast::CountStmt& count, BoundStatement& out) {
+    if (count.asOf) useVersion(*count.asOf);
     if (ctx_.session.allScenes) {
         out.body = bindCatalogFind(count.target, count.where, count.view, std::nullopt, true);
         return;

@@ -6,8 +6,8 @@ namespace smql::binder {
 void Binder::bindStatement(const ast::RelateStmt& relate, BoundStatement& out) {
     BoundRelate bound;
     bound.view = bindView(relate.view);
-    bound.subject = bindRef(relate.subject);
-    bound.object = bindRef(relate.object);
+    bound.subject = bindSingle(relate.subject, "RELATE");
+    bound.object = bindSingle(relate.object, "RELATE");
     out.body = std::move(bound);
 }
 

@@ -36,8 +36,9 @@ void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
         for (const auto& s : relations::settingsCatalogue()) names.push_back(s.name);
         for (const auto& s : exec::limitSettings()) names.emplace_back(s.name);
         auto close = model::nearestNames(set.name, names);
-        throw Error(ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,
-                    close.empty() ? "SHOW SETTINGS lists them" : "did you mean " + model::joinAlternatives(close) + "?");
+        throw Error(
+            ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,
+            close.empty() ? "SHOW SETTINGS lists them" : "did you mean " + model::joinAlternatives(close) + "?");
     }
     bool ratio = setting->unit == relations::SettingUnit::Ratio;
     double value = 0;

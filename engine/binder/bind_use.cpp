@@ -22,9 +22,9 @@ void Binder::bindStatement(const ast::UseStmt& use, BoundStatement& out) {
         std::vector<std::string> names;
         for (const auto& s : ctx_.txn.scenes()) names.push_back(s.name);
         auto close = model::nearestNames(use.scene, names);
-        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", use.scene), use.where,
-                    close.empty() ? "SHOW SCENES lists the scenes"
-                                  : "did you mean " + model::joinAlternatives(close) + "?");
+        throw Error(
+            ErrorKind::Binding, fmt::format("no scene named '{}'", use.scene), use.where,
+            close.empty() ? "SHOW SCENES lists the scenes" : "did you mean " + model::joinAlternatives(close) + "?");
     }
     out.body = BoundUse{use.scene, false};
 }

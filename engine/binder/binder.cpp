@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include "engine/ask/lexicon.hpp"
+#include "engine/ask/wordnet.hpp"
+#include "engine/exec/attributes.hpp"
+#include "engine/exec/singular.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "storage/database.hpp"
@@ -15,19 +19,41 @@ namespace {
 
 // Kind words name every node of a kind; plurals are accepted.
 std::optional<NodeKind> kindWord(const std::string& name) {
-    static const std::pair<std::string_view, NodeKind> words[] = {
-        {"object", NodeKind::Object}, {"objects", NodeKind::Object}, {"anchor", NodeKind::Anchor},
-        {"anchors", NodeKind::Anchor}, {"room", NodeKind::Room},     {"rooms", NodeKind::Room},
-        {"frame", NodeKind::Frame},   {"frames", NodeKind::Frame},   {"description", NodeKind::Description},
-        {"descriptions", NodeKind::Description}};
+    static const std::pair<std::string_view, NodeKind> words[] = {{"object", NodeKind::Object},
+                                                                  {"objects", NodeKind::Object},
+                                                                  {"anchor", NodeKind::Anchor},
+                                                                  {"anchors", NodeKind::Anchor},
+                                                                  {"room", NodeKind::Room},
+                                                                  {"rooms", NodeKind::Room},
+                                                                  {"frame", NodeKind::Frame},
+                                                                  {"frames", NodeKind::Frame},
+                                                                  {"description", NodeKind::Description},
+                                                                  {"descriptions", NodeKind::Description}};
     for (const auto& [word, kind] : words)
         if (name == word) return kind;
     return std::nullopt;
 }
 
-bool anyNodeWord(const std::string& name) { return name == "node" || name == "nodes" || name == "thing" || name == "things"; }
+bool anyNodeWord(const std::string& name) {
+    return name == "node" || name == "nodes" || name == "thing" || name == "things";
+}
 
 bool queryable(const Node& n) { return !n.hidden && n.kind != NodeKind::Scene; }
+
+// Whether some sense of a noun is a physical object in WordNet (a piano, a path; not a unicorn or
+// an idea): the things a scene could hold.
+bool physicalThing(const std::string& noun) {
+    static const std::optional<long> physicalObject = []() -> std::optional<long> {
+        for (const auto& sense : ask::wordnet::nounSenses("object"))
+            if (std::find(sense.words.begin(), sense.words.end(), "physical-object") != sense.words.end())
+                return sense.offset;
+        return std::nullopt;
+    }();
+    if (!physicalObject) return false;
+    for (const auto& sense : ask::wordnet::nounSenses(noun))
+        if (ask::wordnet::hypernymClosure(sense.offset).count(*physicalObject)) return true;
+    return false;
+}
 
 std::string describeSet(const std::string& name, std::size_t count) {
     return fmt::format("{} ({} node{})", name, count, count == 1 ? "" : "s");
@@ -44,20 +70,25 @@ NodeSet oneNode(Slot slot, std::string description) {
 
 std::size_t NodeSet::estimate() const {
     switch (source) {
-        case Source::Nodes: return slots.size();
-        case Source::Side: return 1;
+        case Source::Nodes:
+            return slots.size();
+        case Source::Side:
+            return 1;
         case Source::SubQuery:
-            return subquery->limit ? std::min(subquery->target.nodes.estimate(), static_cast<std::size_t>(*subquery->limit))
-                                   : subquery->target.nodes.estimate();
+            return subquery->limit
+                       ? std::min(subquery->target.nodes.estimate(), static_cast<std::size_t>(*subquery->limit))
+                       : subquery->target.nodes.estimate();
     }
     return slots.size();
 }
 
-BoundStatement Binder::bind(const ast::Statement& statement) {
+BoundStatement Binder::bind(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values) {
+    if (statement.parameterCount > 0) return bind(withParameters(statement, values));
     BoundStatement out;
     std::visit([&](const auto& body) { bindStatement(body, out); }, statement.body);
     out.scene = scene_;
     out.setCount = nextSetId_;
+    for (const auto& note : notes_) out.note += (out.note.empty() ? "" : "; ") + note;
     return out;
 }
 
@@ -82,15 +113,42 @@ std::string Binder::resolveCategory(const ast::Ref& ref) {
             if (!snap.withCategory(singular).empty()) return singular;
         }
     }
-    // Known in another scene: an empty match is an answer, not a typo.
-    if (!ctx_.txn.nodesWithCategory(name, model::kNoNode, 1).empty()) return name;
     auto known = snap.categories();
+    // Known in another scene, or a noun for a thing the scene does not hold ("piano"): an empty
+    // match is an answer, not a typo.
+    if (!ctx_.txn.nodesWithCategory(name, model::kNoNode, 1).empty()) return noted(name);
+    const ask::WordMatch match = ask::Lexicon(known).lookUp(name);
+    if (auto noun = absentThing(name, match)) return noted(*noun);
     auto close = model::nearestNames(name, known);
-    std::string hint = close.empty()
-                           ? fmt::format("this scene has: {}", model::joinAlternatives(known))
-                           : fmt::format("did you mean {}?", model::joinAlternatives(close));
+    if (close.empty()) close = match.categories;  // a synonym or a broader word: couch -> sofa
+    std::string hint = close.empty() ? fmt::format("this scene has: {}", model::joinAlternatives(known))
+                                     : fmt::format("did you mean {}?", model::joinAlternatives(close));
     throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in scene '{}'", name, snap.info().name),
                 ref.where, hint);
+}
+
+// A word WordNet knows as a noun, which names none of the scene's categories (not as a synonym,
+// a broader or a narrower word either: those are hints, given by the error).
+std::optional<std::string> Binder::absentThing(const std::string& name, const ask::WordMatch& match) {
+    if (match.how != ask::WordMatch::How::Absent) return std::nullopt;
+    std::string noun = match.lemma.empty() ? name : match.lemma;  // "pianos" -> piano
+    if (!physicalThing(noun)) return std::nullopt;
+    return noun;
+}
+
+std::string Binder::noted(std::string category) {
+    std::string note = fmt::format("no {} in scene '{}'", category, scene().info().name);
+    if (std::find(notes_.begin(), notes_.end(), note) == notes_.end()) notes_.push_back(std::move(note));
+    return category;
+}
+
+NodeSet Binder::bindSingle(const ast::Ref& ref, std::string_view role) {
+    NodeSet set = bindRef(ref);
+    if (inQuestion_) return set;
+    set.singleFor = role;
+    set.where = ref.where;
+    if (set.source == NodeSet::Source::Nodes) exec::requireOne(scene(), set, set.slots);
+    return set;
 }
 
 NodeSet Binder::bindName(const ast::Ref& ref) {
@@ -121,7 +179,7 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
         case ast::Ref::Kind::Name:
             return numbered(bindName(ref));
         case ast::Ref::Kind::Side: {
-            NodeSet set = bindName(ast::Ref{ast::Ref::Kind::Name, ref.name, {}, 0, nullptr, ref.where});
+            NodeSet set = bindName(ast::Ref{ast::Ref::Kind::Name, ref.name, {}, 0, nullptr, {}, ref.where});
             set.source = NodeSet::Source::Side;
             set.side = ref.side;
             set.description = fmt::format("{}.{}", ref.name, ref.side);
@@ -132,6 +190,11 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
             if (!slot)
                 throw Error(ErrorKind::Binding, fmt::format("no node #{} in scene '{}'", ref.number, snap.info().name),
                             ref.where, "ids are global; SHOW TREE lists this scene's nodes, USE SCENE switches scenes");
+            // `chair#50` where #50 is a sofa: the name and the id disagree, so neither is trusted.
+            if (const model::Node& node = snap.node(*slot); !ref.name.empty() && ref.name != node.category)
+                throw Error(ErrorKind::Binding,
+                            fmt::format("#{} is {}, not a {}", ref.number, exec::SceneSnapshot::label(node), ref.name),
+                            ref.where, fmt::format("write {} or #{}", exec::SceneSnapshot::label(node), ref.number));
             return numbered(oneNode(*slot, exec::SceneSnapshot::label(snap.node(*slot))));
         }
         case ast::Ref::Kind::SourceId: {
@@ -139,15 +202,23 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
             if (!slot)
                 throw Error(ErrorKind::Binding,
                             fmt::format("no node with source id {} in scene '{}'", ref.number, snap.info().name),
-                            ref.where, "source ids are the ids of the imported file; they resolve in the current scene");
+                            ref.where,
+                            "source ids are the ids of the imported file; they resolve in the current scene");
             return numbered(
                 oneNode(*slot, fmt::format("src#{} = {}", ref.number, exec::SceneSnapshot::label(snap.node(*slot)))));
         }
+        case ast::Ref::Kind::Param:
+            // Binder::bind puts values in first; a placeholder left here had none.
+            throw Error(ErrorKind::Usage, fmt::format("placeholder {} has no value", ref.placeholder.name()), ref.where,
+                        "run the statement prepared and bind its values");
         case ast::Ref::Kind::SubQuery: {
             // Numbered before its own references, so sub-queries count in the order they are written.
             NodeSet set;
             set.source = NodeSet::Source::SubQuery;
             set = numbered(std::move(set));
+            if (ref.subquery->asOf)
+                throw Error(ErrorKind::Binding, "AS OF belongs to the whole statement, not to a sub-query",
+                            ref.subquery->asOf->where, "write AS OF once, after the outer statement's target");
             set.subquery = std::make_shared<const BoundFind>(bindFind(*ref.subquery));
             set.description = fmt::format("sub-query {}", set.id);
             return set;
@@ -180,9 +251,9 @@ BoundView Binder::bindView(const std::optional<ast::View>& view) {
         out.description = "default viewpoint of scene '" + scene().info().name + "'";
         return out;
     }
-    out.from = bindRef(view->from);
+    out.from = bindSingle(view->from, "VIEW FROM");
     if (view->facing) {
-        out.facing = bindRef(*view->facing);
+        out.facing = bindSingle(*view->facing, "FACING");
         out.description = fmt::format("from {} facing {}", out.from->description, out.facing->description);
     } else {
         out.description = fmt::format("from {} facing the middle of the scene", out.from->description);
@@ -193,9 +264,15 @@ BoundView Binder::bindView(const std::optional<ast::View>& view) {
 BoundExpr Binder::bindExpr(const ast::Expr& expr) {
     BoundExpr out;
     switch (expr.kind) {
-        case ast::Expr::Kind::And: out.kind = BoundExpr::Kind::And; break;
-        case ast::Expr::Kind::Or: out.kind = BoundExpr::Kind::Or; break;
-        case ast::Expr::Kind::Not: out.kind = BoundExpr::Kind::Not; break;
+        case ast::Expr::Kind::And:
+            out.kind = BoundExpr::Kind::And;
+            break;
+        case ast::Expr::Kind::Or:
+            out.kind = BoundExpr::Kind::Or;
+            break;
+        case ast::Expr::Kind::Not:
+            out.kind = BoundExpr::Kind::Not;
+            break;
         case ast::Expr::Kind::Predicate: {
             out.kind = BoundExpr::Kind::Predicate;
             const auto* spec = relations::predicateNamed(expr.predicate);
@@ -231,10 +308,65 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
             out.attribute = expr.attribute;
             out.op = expr.op;
             out.literal = expr.literal;
+            if (expr.distanceTo) {
+                out.distanceTo = bindRef(*expr.distanceTo);
+                checkLiteral(expr, exec::AttributeMeasure::Length, "distance()");
+            } else {
+                checkLiteral(expr, comparable(expr.attribute, expr.where).measure, expr.attribute);
+            }
             return out;
     }
     for (const auto& child : expr.children) out.children.push_back(bindExpr(child));
     return out;
+}
+
+}  // namespace smql::binder
+
+namespace smql::binder {
+
+exec::AttributeInfo Binder::comparable(const std::string& name, SourceLocation where) {
+    if (auto attribute = exec::attributeIn(scene(), name)) {
+        if (attribute->measure == exec::AttributeMeasure::None)
+            throw Error(ErrorKind::Binding, fmt::format("{} cannot be compared or ordered", name), where,
+                        "compare its parts: x, y, z, height, width, depth, volume; RETURN shows it");
+        return *attribute;
+    }
+    // A question's attribute that no node here carries ("is the sofa grey?" where nothing records
+    // colours) is a no, as ASK words it, rather than an error about SMQL the user did not write.
+    if (inQuestion_) return exec::storedAttribute(name);
+    std::vector<std::string> names;
+    for (const auto& attribute : exec::builtInAttributes())
+        if (attribute.measure != exec::AttributeMeasure::None) names.emplace_back(attribute.name);
+    for (const auto& stored : scene().attributeNames()) names.push_back(stored);
+    auto close = model::nearestNames(name, names);
+    throw Error(
+        ErrorKind::Binding, fmt::format("unknown attribute '{}' in scene '{}'", name, scene().info().name), where,
+        close.empty() ? "SHOW ATTRIBUTES lists them"
+                      : fmt::format("did you mean {}? SHOW ATTRIBUTES lists them", model::joinAlternatives(close)));
+}
+
+// Lengths are written with their unit (`height > 80 cm`), so a bare `2` never silently means
+// metres; text attributes take a quoted string, numbers a number.
+void Binder::checkLiteral(const ast::Expr& expr, exec::AttributeMeasure measure, std::string_view what) {
+    const bool text = std::holds_alternative<std::string>(expr.literal);
+    switch (measure) {
+        case exec::AttributeMeasure::Length:
+            if (text || !(expr.literalHasUnit || expr.literalBound))
+                throw Error(ErrorKind::Binding, fmt::format("{} is a length: write the unit", what), expr.where,
+                            fmt::format("as in {} > 1.5 m, or 80 cm, or 300 mm", what));
+            return;
+        case exec::AttributeMeasure::Volume:
+        case exec::AttributeMeasure::Number:
+            if (text || (expr.literalHasUnit && !expr.literalBound))
+                throw Error(ErrorKind::Binding,
+                            fmt::format("{} is a number{}", what,
+                                        measure == exec::AttributeMeasure::Volume ? " of cubic metres" : ""),
+                            expr.where, fmt::format("write a bare number, as in {} > 0.5", what));
+            return;
+        case exec::AttributeMeasure::Text:
+        case exec::AttributeMeasure::None:
+            return;  // stored attributes are text that may hold numbers (captures >= 2)
+    }
 }
 
 }  // namespace smql::binder

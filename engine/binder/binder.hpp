@@ -9,10 +9,15 @@
 #include <memory>
 #include <string>
 
+#include "engine/ask/lexicon.hpp"
 #include "engine/binder/bound.hpp"
+#include "engine/binder/parameters.hpp"
+#include "engine/exec/attributes.hpp"
 #include "engine/exec/session.hpp"
 
-namespace smql::storage { class ReadTransaction; }
+namespace smql::storage {
+class ReadTransaction;
+}
 
 namespace smql::binder {
 
@@ -21,13 +26,17 @@ struct BindContext {
     const exec::Session& session;
     // The current scene's snapshot, loaded when a statement first needs one.
     std::function<std::shared_ptr<const exec::SceneSnapshot>()> currentScene;
+    // The current scene as it was at an instant (model::utcInstant's form): its version then.
+    std::function<std::shared_ptr<const exec::SceneSnapshot>(const std::string& instant)> sceneAsOf;
 };
 
 class Binder {
 public:
     explicit Binder(BindContext context) : ctx_(std::move(context)) {}
 
-    BoundStatement bind(const ast::Statement& statement);
+    // A statement with placeholders is bound with `values` put in first (parameters.hpp); without
+    // them, its first placeholder is an error.
+    BoundStatement bind(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values = {});
 
 private:
     // One per statement kind; each lives in bind_<statement>.cpp.
@@ -39,6 +48,13 @@ private:
     void bindStatement(const ast::UseStmt& use, BoundStatement& out);
     void bindStatement(const ast::SetStmt& set, BoundStatement& out);
     void bindStatement(const ast::ExplainStmt& explain, BoundStatement& out);
+    void bindStatement(const ast::AskStmt& ask, BoundStatement& out);
+    void bindStatement(const ast::DropSceneStmt& drop, BoundStatement& out);
+    void bindStatement(const ast::RenameSceneStmt& rename, BoundStatement& out);
+    void bindStatement(const ast::GuideStmt& guide, BoundStatement& out);
+    void bindStatement(const ast::CheckStmt& check, BoundStatement& out);
+    // AS OF: the statement reads the version of the current scene at that instant.
+    void useVersion(const ast::AsOf& asOf);
 
     BoundFind bindFind(const ast::FindStmt& find);
     BoundCatalogFind bindCatalogFind(const ast::Ref& target, const std::optional<ast::Expr>& where,
@@ -48,16 +64,31 @@ private:
     // Shared by the statements (binder.cpp).
     const exec::SceneSnapshot& scene();
     NodeSet bindRef(const ast::Ref& ref);
+    // A reference where one node is needed (`role` says where, for the error).
+    NodeSet bindSingle(const ast::Ref& ref, std::string_view role);
     Target bindTarget(const ast::Ref& ref);
     BoundView bindView(const std::optional<ast::View>& view);
     BoundExpr bindExpr(const ast::Expr& expr);
     NodeSet bindName(const ast::Ref& ref);
     std::string resolveCategory(const ast::Ref& ref);
+    // A noun for a physical thing (WordNet) that none of `known` stands for: its base form
+    // ("pianos" -> piano).
+    // `match` is the name looked up among the known categories (engine/ask/lexicon.hpp).
+    static std::optional<std::string> absentThing(const std::string& name, const ask::WordMatch& match);
+    // A category with no node here, remembered for the answer's note.
+    std::string noted(std::string category);
+    // An attribute a comparison or ORDER BY can use, or an error with the closest names.
+    exec::AttributeInfo comparable(const std::string& name, SourceLocation where);
+    static void checkLiteral(const ast::Expr& expr, exec::AttributeMeasure measure, std::string_view what);
     NodeSet numbered(NodeSet set);
 
     BindContext ctx_;
     std::shared_ptr<const exec::SceneSnapshot> scene_;
     std::size_t nextSetId_ = 0;
+    // Binding an ASK's translation: a question cannot name nodes by id, so its RELATE relates every
+    // pair and the answer sums them up in words (docs/ask.md).
+    bool inQuestion_ = false;
+    std::vector<std::string> notes_;  // said under the answer: "no piano in scene 'x'"
 };
 
 }  // namespace smql::binder

@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "engine/ask/translator.hpp"
 #include "engine/exec/scene_snapshot.hpp"
 #include "engine/exec/session.hpp"
 #include "engine/parser/ast.hpp"
@@ -32,6 +33,11 @@ struct NodeSet {
     std::shared_ptr<const BoundFind> subquery;  // SubQuery: planned and run by the executor
     std::size_t id = 0;                         // numbered per statement; the executor's caches use it
     std::string description;
+    // Where one node is needed (RELATE's sides, VIEW FROM, FACING, CHECK): what needs it, as
+    // "RELATE's first side". Empty for sets that may hold any number. The binder checks named sets;
+    // the executor checks a sub-query's answer.
+    std::string singleFor;
+    SourceLocation where;
 
     // How many nodes it holds, or at most holds, for the planner's choices.
     std::size_t estimate() const;
@@ -55,8 +61,10 @@ struct BoundExpr {
     std::vector<NodeSet> args;
     std::optional<double> nearDistance;
 
-    // Compare: a built-in field or a stored attribute against a literal.
+    // Compare: a built-in field or a stored attribute (exec/attributes.hpp), or the distance to a
+    // set, against a literal; lengths in metres.
     std::string attribute;
+    std::optional<NodeSet> distanceTo;
     ast::CompareOp op = ast::CompareOp::Eq;
     ast::Literal literal;
 };
@@ -75,7 +83,9 @@ struct BoundFind {
     std::optional<BoundExpr> where;
     std::optional<NodeSet> distanceTo;  // ORDER BY distance(x) / NEAREST TO x
     bool nearest = false;               // NEAREST TO: the reference nodes themselves are left out
+    std::string orderAttribute;         // ORDER BY height: a comparable built-in or stored attribute
     bool descending = false;
+    std::vector<std::string> columns;  // RETURN: checked names; empty for the default columns
     std::optional<std::int64_t> limit;
     bool path = false;
     bool countOnly = false;
@@ -94,14 +104,54 @@ struct BoundRelate {
     BoundView view;
 };
 
+// CHECK a pred b [AND c] [distance]: one predicate over single nodes, answered yes or no.
+struct BoundCheck {
+    NodeSet subject;
+    relations::Predicate predicate = relations::Predicate::Near;
+    std::vector<NodeSet> args;
+    std::optional<double> nearDistance;
+    BoundView view;
+};
+
 struct BoundDescribe {
     NodeSet nodes;
 };
 
 struct BoundShowScenes {};
+// SHOW CATEGORIES: category and count, in the current scene or (allScenes) per scene.
+struct BoundShowCategories {
+    bool allScenes = false;
+};
+struct BoundShowAttributes {};
 struct BoundShowSettings {};
 struct BoundShowTree {
     std::optional<NodeSet> root;  // one node (checked when it runs), or the scene root
+};
+
+// SHOW CHANGES [SINCE t]: the changes of the updates of one scene, from its history.
+struct BoundShowChanges {
+    std::string scene;
+    std::optional<std::string> since;  // an instant (model::utcInstant)
+};
+
+// GUIDE FROM origin TO goal: each end one node when it runs (else an ambiguity error); the origin
+// may instead be a floor point, or the scene's viewpoint (HERE: neither).
+struct BoundGuide {
+    std::optional<NodeSet> from;
+    std::optional<std::pair<double, double>> point;
+    NodeSet to;
+};
+
+// SHOW GRAPH: the decision points and edges guidance routes on.
+struct BoundShowGraph {};
+
+struct BoundDropScene {
+    std::string scene;
+};
+
+struct BoundRenameScene {
+    std::string scene;
+    std::string newName;
 };
 
 struct BoundUse {
@@ -123,13 +173,21 @@ struct BoundExplain {
     std::shared_ptr<const BoundStatement> inner;
 };
 
+// ASK: the question's translation and, when it runs, its SMQL bound like any statement.
+struct BoundAsk {
+    ask::Translation translation;
+    std::shared_ptr<const BoundStatement> inner;  // null when nothing runs (an unknown word, GUIDE)
+};
+
 struct BoundStatement {
     std::variant<BoundFind, BoundCatalogFind, BoundRelate, BoundDescribe, BoundShowScenes, BoundShowSettings,
-                 BoundShowTree, BoundUse, BoundSet, BoundExplain>
+                 BoundShowTree, BoundShowChanges, BoundShowGraph, BoundUse, BoundSet, BoundExplain, BoundAsk,
+                 BoundDropScene, BoundRenameScene, BoundGuide, BoundCheck, BoundShowCategories, BoundShowAttributes>
         body;
     // The scene the names were bound in; null for statements that need none (USE, SET, SHOW SCENES ...).
     std::shared_ptr<const exec::SceneSnapshot> scene;
     std::size_t setCount = 0;  // NodeSet ids run from 0 to setCount - 1
+    std::string note;          // said under the answer: "no piano in scene 'room0'"
 };
 
 }  // namespace smql::binder

@@ -14,7 +14,9 @@ ResultSet Executor::run(const binder::BoundDescribe& d) {
     for (Slot s : slots(d.nodes, defaultFrame())) {
         const model::Node& n = scene().node(s);
         auto id = static_cast<std::int64_t>(n.id);
-        auto add = [&](std::string_view name, std::string value) { rs.rows.push_back({id, std::string(name), std::move(value)}); };
+        auto add = [&](std::string_view name, std::string value) {
+            rs.rows.push_back({id, std::string(name), std::move(value)});
+        };
         add("kind", std::string(model::toString(n.kind)));
         add("category", n.category);
         add("path", scene().path(s));
@@ -33,8 +35,10 @@ ResultSet Executor::run(const binder::BoundDescribe& d) {
         std::string kids;
         for (Slot c : scene().children(s)) {
             const model::Node& child = scene().node(c);
-            if (child.kind == model::NodeKind::Description) add("description", child.text);
-            else kids += (kids.empty() ? "" : ", ") + SceneSnapshot::label(child);
+            if (child.kind == model::NodeKind::Description)
+                add("description", child.text);
+            else
+                kids += (kids.empty() ? "" : ", ") + SceneSnapshot::label(child);
         }
         if (!kids.empty()) add("children", kids);
         // Evidence lives in the blob table, not in the snapshot.

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/exec/attributes.hpp"
 #include "engine/exec/executor.hpp"
 #include "model/geometry.hpp"
 #include "storage/database.hpp"
@@ -39,41 +40,46 @@ bool like(std::string_view text, std::string_view pattern) {
     return same && like(text.substr(1), pattern.substr(1));
 }
 
-// A node's field as a comparison sees it: built-in fields first, then stored attributes.
-std::optional<std::variant<double, std::string>> field(const Node& n, const std::string& name) {
-    const auto& s = n.box.size;
-    if (name == "category") return n.category;
-    if (name == "kind") return std::string(model::toString(n.kind));
-    if (name == "text") return n.text;
-    if (name == "id") return static_cast<double>(n.id);
-    if (name == "source_id") {
-        if (!n.sourceId) return std::nullopt;
-        return static_cast<double>(*n.sourceId);
-    }
-    if (name == "confidence") return static_cast<double>(n.confidence);
-    if (n.geometry != model::GeometryKind::None) {
-        if (name == "height") return s.z;
-        if (name == "width") return std::max(s.x, s.y);
-        if (name == "depth") return std::min(s.x, s.y);
-        if (name == "volume") return model::volume(n.box);
-        if (name == "x") return n.box.center.x;
-        if (name == "y") return n.box.center.y;
-        if (name == "z") return n.box.center.z;
-    }
-    if (const std::string* v = n.attribute(name)) return *v;
+// An attribute's value as a comparison or ORDER BY sees it: a number or text; nothing for null.
+std::optional<std::variant<double, std::string>> comparable(const Value& value) {
+    if (const auto* whole = std::get_if<std::int64_t>(&value)) return static_cast<double>(*whole);
+    if (const auto* real = std::get_if<double>(&value)) return *real;
+    if (const auto* text = std::get_if<std::string>(&value)) return *text;
     return std::nullopt;
+}
+
+// A stored attribute's text as a number ("2" captures), when it is one.
+std::optional<double> number(const std::variant<double, std::string>& value) {
+    if (const auto* d = std::get_if<double>(&value)) return *d;
+    const auto& s = std::get<std::string>(value);
+    char* end = nullptr;
+    double parsed = std::strtod(s.c_str(), &end);
+    if (s.empty() || *end != '\0') return std::nullopt;
+    return parsed;
+}
+
+AttributeInfo attributeNamed(const std::string& name) {
+    if (const AttributeInfo* builtIn = builtInAttribute(name)) return *builtIn;
+    return storedAttribute(name);
 }
 
 template <typename T>
 bool ordered(ast::CompareOp op, const T& a, const T& b) {
     switch (op) {
-        case ast::CompareOp::Eq: return a == b;
-        case ast::CompareOp::Ne: return a != b;
-        case ast::CompareOp::Lt: return a < b;
-        case ast::CompareOp::Le: return a <= b;
-        case ast::CompareOp::Gt: return a > b;
-        case ast::CompareOp::Ge: return a >= b;
-        case ast::CompareOp::Like: return false;
+        case ast::CompareOp::Eq:
+            return a == b;
+        case ast::CompareOp::Ne:
+            return a != b;
+        case ast::CompareOp::Lt:
+            return a < b;
+        case ast::CompareOp::Le:
+            return a <= b;
+        case ast::CompareOp::Gt:
+            return a > b;
+        case ast::CompareOp::Ge:
+            return a >= b;
+        case ast::CompareOp::Like:
+            return false;
     }
     return false;
 }
@@ -90,29 +96,33 @@ Value sourceValue(const Node& n) {
 
 }  // namespace
 
-bool Executor::compare(const BoundExpr& expr, const Node& node) const {
-    auto value = field(node, expr.attribute);
+bool Executor::compare(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
+    std::optional<std::variant<double, std::string>> value;
+    if (expr.distanceTo) {
+        const auto& refs = slots(*expr.distanceTo, frame);
+        const Node& node = scene().node(slot);
+        if (node.geometry == model::GeometryKind::None || refs.empty()) return false;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (Slot r : refs)
+            if (r != slot) nearest = std::min(nearest, model::distance(node.box, scene().node(r).box));
+        if (std::isinf(nearest)) return false;  // only itself to measure from
+        value = nearest;
+    } else {
+        value = comparable(attributeValue(scene(), slot, attributeNamed(expr.attribute)));
+    }
     if (!value) return false;  // a node without the field never matches, as NULL in SQL
     if (auto* text = std::get_if<std::string>(&expr.literal)) {
-        std::string have = std::holds_alternative<std::string>(*value)
-                               ? std::get<std::string>(*value)
-                               : fmt::format("{}", std::get<double>(*value));
+        std::string have = std::holds_alternative<std::string>(*value) ? std::get<std::string>(*value)
+                                                                       : fmt::format("{}", std::get<double>(*value));
         if (expr.op == ast::CompareOp::Like) return like(have, *text);
         return ordered(expr.op, lower(have), lower(*text));
     }
-    double want = std::holds_alternative<double>(expr.literal) ? std::get<double>(expr.literal)
-                                                               : static_cast<double>(std::get<std::int64_t>(expr.literal));
-    double have;
-    if (auto* d = std::get_if<double>(&*value)) {
-        have = *d;
-    } else {
-        const auto& s = std::get<std::string>(*value);
-        char* end = nullptr;
-        have = std::strtod(s.c_str(), &end);
-        if (s.empty() || *end != '\0') return false;
-    }
-    if (expr.op == ast::CompareOp::Like) return false;
-    return ordered(expr.op, have, want);
+    double want = std::holds_alternative<double>(expr.literal)
+                      ? std::get<double>(expr.literal)
+                      : static_cast<double>(std::get<std::int64_t>(expr.literal));
+    std::optional<double> have = number(*value);
+    if (!have || expr.op == ast::CompareOp::Like) return false;
+    return ordered(expr.op, *have, want);
 }
 
 bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
@@ -126,7 +136,7 @@ bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame&
         case BoundExpr::Kind::Not:
             return !matches(expr.children.front(), slot, frame);
         case BoundExpr::Kind::Compare:
-            return compare(expr, scene().node(slot));
+            return compare(expr, slot, frame);
         case BoundExpr::Kind::Predicate:
             return holdsForSome(expr, slot, frame);
     }
@@ -135,6 +145,7 @@ bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame&
 
 bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
     const auto& snap = scene();
+    const SceneObstacles obstacles(snap);
     const Node& a = snap.node(slot);
     const auto& spec = relations::spec(expr.predicate);
     if (expr.args.size() == 2) {
@@ -155,7 +166,8 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
     auto holds = [&](Slot b) {
         poll();
         if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
-        return relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, nullptr, expr.nearDistance) > 0;
+        return relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, nullptr, expr.nearDistance,
+                                   &obstacles) > 0;
     };
     const auto& refs = slots(expr.args[0], frame);
     constexpr std::size_t kIndexedReferences = 32;
@@ -172,9 +184,12 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
 bool Executor::inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame) {
     const Node& n = scene().node(slot);
     switch (target.kind) {
-        case binder::Target::Kind::Category: return n.category == target.category;
-        case binder::Target::Kind::NodeKind: return n.kind == target.nodeKind && !n.hidden;
-        case binder::Target::Kind::AnyNode: return n.kind != model::NodeKind::Scene && !n.hidden;
+        case binder::Target::Kind::Category:
+            return n.category == target.category;
+        case binder::Target::Kind::NodeKind:
+            return n.kind == target.nodeKind && !n.hidden;
+        case binder::Target::Kind::AnyNode:
+            return n.kind != model::NodeKind::Scene && !n.hidden;
         case binder::Target::Kind::Nodes: {
             const auto& nodes = slots(target.nodes, frame);
             return std::binary_search(nodes.begin(), nodes.end(), slot);
@@ -219,17 +234,27 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
     }
 }
 
+model::Aabb Executor::probeRegion(const BoundExpr& term, const model::Aabb& around) const {
+    if (term.kind == BoundExpr::Kind::Compare) {
+        const double reach = std::holds_alternative<double>(term.literal)
+                                 ? std::get<double>(term.literal)
+                                 : static_cast<double>(std::get<std::int64_t>(term.literal));
+        const model::Vec3 pad{reach, reach, reach};
+        return {{around.min.x - pad.x, around.min.y - pad.y, around.min.z - pad.z},
+                {around.max.x + pad.x, around.max.y + pad.y, around.max.z + pad.z}};
+    }
+    double nearDistance = term.nearDistance.value_or(thresholds_.nearDistance);
+    return relations::spec(term.predicate).candidateRegion(around, nearDistance, thresholds_);
+}
+
 std::vector<Hit> Executor::filtered(const planner::FindPlan& plan, const relations::Frame& frame) {
     const auto& f = *plan.find;
     const auto& snap = scene();
     std::vector<Slot> candidates;
     if (plan.access == Access::RTreeProbe) {
         const BoundExpr& term = plan.probeTerm();
-        const auto& spec = relations::spec(term.predicate);
-        double nearDistance = term.nearDistance.value_or(thresholds_.nearDistance);
-        for (Slot ref : slots(term.args[0], frame))
-            snap.spatialIndex().intersecting(spec.candidateRegion(snap.bounds(ref), nearDistance, thresholds_),
-                                             candidates);
+        for (Slot ref : slots(*planner::probeReferences(term), frame))
+            snap.spatialIndex().intersecting(probeRegion(term, snap.bounds(ref)), candidates);
         std::sort(candidates.begin(), candidates.end());
         candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
         std::erase_if(candidates, [&](Slot s) { return !inTarget(f.target, s, frame); });
@@ -262,15 +287,53 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
         });
         for (auto& h : hits) {
             h.distance = std::numeric_limits<double>::infinity();
-            for (Slot r : refs) h.distance = std::min(h.distance, model::distance(snap.node(h.slot).box, snap.node(r).box));
+            for (Slot r : refs)
+                h.distance = std::min(h.distance, model::distance(snap.node(h.slot).box, snap.node(r).box));
         }
         std::stable_sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
             if (a.distance != b.distance) return f.descending ? a.distance > b.distance : a.distance < b.distance;
             return snap.node(a.slot).id < snap.node(b.slot).id;
         });
     }
+    if (!f.orderAttribute.empty()) orderByAttribute(plan, hits);
     if (f.limit && hits.size() > static_cast<std::size_t>(*f.limit)) hits.resize(static_cast<std::size_t>(*f.limit));
     return hits;
+}
+
+// ORDER BY an attribute: numbers by value, text case-insensitively; nodes without it go last in
+// either direction, and ties keep id order. With a LIMIT only the first k are sorted (the plan's top-k).
+void Executor::orderByAttribute(const planner::FindPlan& plan, std::vector<Hit>& hits) const {
+    const auto& f = *plan.find;
+    const AttributeInfo attribute = attributeNamed(f.orderAttribute);
+    struct Keyed {
+        Hit hit;
+        std::optional<double> number;
+        std::optional<std::string> text;
+        model::NodeId id;
+    };
+    std::vector<Keyed> keyed;
+    keyed.reserve(hits.size());
+    for (const Hit& h : hits) {
+        Keyed k{h, std::nullopt, std::nullopt, scene().node(h.slot).id};
+        if (auto value = comparable(attributeValue(scene(), h.slot, attribute))) {
+            k.number = number(*value);
+            if (!k.number) k.text = lower(std::get<std::string>(*value));
+        }
+        keyed.push_back(std::move(k));
+    }
+    auto before = [&](const Keyed& a, const Keyed& b) {
+        // numbers, then text, then nodes without the attribute
+        int rankA = a.number ? 0 : a.text ? 1 : 2, rankB = b.number ? 0 : b.text ? 1 : 2;
+        if (rankA != rankB) return rankA < rankB;
+        if (rankA == 0 && *a.number != *b.number) return f.descending ? *a.number > *b.number : *a.number < *b.number;
+        if (rankA == 1 && *a.text != *b.text) return f.descending ? *a.text > *b.text : *a.text < *b.text;
+        return a.id < b.id;
+    };
+    const auto k = plan.topK ? std::min(keyed.size(), static_cast<std::size_t>(*f.limit)) : keyed.size();
+    std::partial_sort(keyed.begin(), keyed.begin() + static_cast<std::ptrdiff_t>(k), keyed.end(), before);
+    keyed.resize(k);
+    hits.clear();
+    for (const Keyed& key : keyed) hits.push_back(key.hit);
 }
 
 ResultSet Executor::run(const binder::BoundFind& f) {
@@ -282,6 +345,7 @@ ResultSet Executor::run(const binder::BoundFind& f) {
         rs.rows.push_back({static_cast<std::int64_t>(hits.size())});
         return rs;
     }
+    if (!f.columns.empty()) return returned(f, hits);
     rs.columns = {{"id", ValueType::Integer},
                   {"category", ValueType::Text},
                   {"source_id", ValueType::Integer},
@@ -293,6 +357,31 @@ ResultSet Executor::run(const binder::BoundFind& f) {
         const Node& n = scene().node(h.slot);
         std::vector<Value> row{static_cast<std::int64_t>(n.id), n.category, sourceValue(n), boxValue(n)};
         if (f.distanceTo) row.emplace_back(h.distance);
+        if (f.path) row.emplace_back(scene().path(h.slot));
+        rs.rows.push_back(std::move(row));
+    }
+    return rs;
+}
+
+// RETURN a, b: the named columns in order, each typed as its attribute (SHOW ATTRIBUTES), then PATH.
+ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>& hits) const {
+    ResultSet rs;
+    std::vector<std::optional<AttributeInfo>> attributes;  // none: the distance column
+    for (const auto& column : f.columns) {
+        if (column == "distance" && !builtInAttribute(column) && f.distanceTo) {
+            attributes.emplace_back(std::nullopt);
+            rs.columns.push_back({column, ValueType::Real});
+        } else {
+            attributes.emplace_back(attributeNamed(column));
+            rs.columns.push_back({column, attributes.back()->type});
+        }
+    }
+    if (f.path) rs.columns.push_back({"path", ValueType::Text});
+    rs.rows.reserve(hits.size());
+    for (const auto& h : hits) {
+        std::vector<Value> row;
+        for (const auto& attribute : attributes)
+            row.push_back(attribute ? attributeValue(scene(), h.slot, *attribute) : Value(h.distance));
         if (f.path) row.emplace_back(scene().path(h.slot));
         rs.rows.push_back(std::move(row));
     }

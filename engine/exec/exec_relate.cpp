@@ -4,11 +4,28 @@
 
 #include <fmt/format.h>
 
-#include "model/error.hpp"
 #include "engine/exec/executor.hpp"
+#include "model/error.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::exec {
+
+std::string relationSentence(const model::Node& a, const model::Node& b,
+                             const std::vector<relations::RelationHit>& hits) {
+    const std::string la = SceneSnapshot::label(a), lb = SceneSnapshot::label(b);
+    const double gap = model::distance(a.box, b.box);
+    if (hits.empty()) return fmt::format("no relation holds from {} to {} ({:.1f} m apart)", la, lb, gap);
+    std::string sentence;
+    for (const auto& hit : hits) {
+        std::string words(relations::toString(hit.predicate));
+        std::replace(words.begin(), words.end(), '_', ' ');  // "left of", "in front of"
+        std::string phrase = fmt::format("{} {}", words, lb);
+        if (relations::spec(hit.predicate).takesDistance) phrase += fmt::format(" ({:.1f} m)", gap);
+        sentence += sentence.empty() ? la + " is " : "; ";
+        sentence += phrase;
+    }
+    return sentence;
+}
 
 ResultSet Executor::run(const binder::BoundRelate& r) {
     relations::Frame viewer = frame(r.view);
@@ -21,29 +38,25 @@ ResultSet Executor::run(const binder::BoundRelate& r) {
                                 r.object.description, pairs, session_.limits.maxPairs),
                     std::nullopt, "name fewer nodes (an #id, a sub-query with LIMIT), or raise it: SET max_pairs = N");
     ResultSet rs;
-    rs.columns = {{"subject", ValueType::Text}, {"relation", ValueType::Text}, {"object", ValueType::Text},
-                  {"score", ValueType::Real},   {"distance", ValueType::Real}};
+    rs.columns = {{"subject", ValueType::Text},
+                  {"relation", ValueType::Text},
+                  {"object", ValueType::Text},
+                  {"score", ValueType::Real},
+                  {"distance", ValueType::Real}};
     std::vector<std::string> sentences;
+    const SceneObstacles obstacles(scene());
     for (Slot a : subjects) {
         for (Slot b : objects) {
             poll();
             if (a == b) continue;
             const model::Node& na = scene().node(a);
             const model::Node& nb = scene().node(b);
-            auto hits = relations::relate(na, nb, thresholds_, viewer);
+            auto hits = relations::relate(na, nb, thresholds_, viewer, &obstacles);
             double gap = model::distance(na.box, nb.box);
             std::string la = SceneSnapshot::label(na), lb = SceneSnapshot::label(nb);
-            std::string sentence;
-            for (const auto& hit : hits) {
+            for (const auto& hit : hits)
                 rs.rows.push_back({la, std::string(relations::toString(hit.predicate)), lb, hit.score, gap});
-                std::string words(relations::toString(hit.predicate));
-                std::replace(words.begin(), words.end(), '_', ' ');  // "left of", "in front of"
-                std::string phrase = fmt::format("{} {}", words, lb);
-                if (relations::spec(hit.predicate).takesDistance) phrase += fmt::format(" ({:.1f} m)", gap);
-                sentence += (sentence.empty() ? la + " is " : "; ") + phrase;
-            }
-            if (hits.empty()) sentence = fmt::format("no relation holds from {} to {} ({:.1f} m apart)", la, lb, gap);
-            sentences.push_back(sentence);
+            sentences.push_back(relationSentence(na, nb, hits));
         }
     }
     for (std::size_t i = 0; i < sentences.size() && i < 20; ++i) rs.message += (i ? "\n" : "") + sentences[i];

@@ -4,15 +4,16 @@
 
 #include <fmt/format.h>
 
-#include "model/error.hpp"
+#include "engine/exec/attributes.hpp"
 #include "engine/exec/executor.hpp"
+#include "model/error.hpp"
 #include "storage/database.hpp"
 
 namespace smql::exec {
 
 ResultSet Executor::run(const binder::BoundShowScenes&) {
     ResultSet rs;
-    rs.columns = {{"name", ValueType::Text},  {"id", ValueType::Integer},   {"nodes", ValueType::Integer},
+    rs.columns = {{"name", ValueType::Text},   {"id", ValueType::Integer},     {"nodes", ValueType::Integer},
                   {"source", ValueType::Text}, {"viewpoint", ValueType::Text}, {"current", ValueType::Text}};
     auto scenes = txn_.scenes();
     // No scene chosen yet: the most recently imported one is current, from now on (as for a query).
@@ -21,9 +22,9 @@ ResultSet Executor::run(const binder::BoundShowScenes&) {
                                  return a.id < b.id;
                              })->name;
     for (const auto& s : scenes) {
-        std::string vp = fmt::format("({:.2f}, {:.2f}, {:.2f}) facing {:.0f} deg", s.viewpoint.position.x,
-                                     s.viewpoint.position.y, s.viewpoint.position.z,
-                                     s.viewpoint.facingYaw * 180.0 / M_PI);
+        std::string vp =
+            fmt::format("({:.2f}, {:.2f}, {:.2f}) facing {:.0f} deg", s.viewpoint.position.x, s.viewpoint.position.y,
+                        s.viewpoint.position.z, s.viewpoint.facingYaw * 180.0 / M_PI);
         bool current = !session_.allScenes && s.name == session_.sceneName;
         rs.rows.push_back({s.name, static_cast<std::int64_t>(s.id), static_cast<std::int64_t>(s.nodeCount), s.source,
                            vp, std::string(current ? "*" : "")});
@@ -33,8 +34,8 @@ ResultSet Executor::run(const binder::BoundShowScenes&) {
 
 ResultSet Executor::run(const binder::BoundShowSettings&) {
     ResultSet rs;
-    rs.columns = {{"name", ValueType::Text}, {"value", ValueType::Real}, {"unit", ValueType::Text},
-                  {"meaning", ValueType::Text}};
+    rs.columns = {
+        {"name", ValueType::Text}, {"value", ValueType::Real}, {"unit", ValueType::Text}, {"meaning", ValueType::Text}};
     for (const auto& s : relations::settingsCatalogue())
         rs.rows.push_back({s.name, thresholds_.*(s.field),
                            std::string(s.unit == relations::SettingUnit::Metres ? "m" : "ratio"), s.meaning});
@@ -44,17 +45,54 @@ ResultSet Executor::run(const binder::BoundShowSettings&) {
     return rs;
 }
 
+ResultSet Executor::run(const binder::BoundShowCategories& show) {
+    ResultSet rs;
+    if (show.allScenes) {
+        rs.columns = {{"scene", ValueType::Text}, {"category", ValueType::Text}, {"count", ValueType::Integer}};
+        auto categories = txn_.categories();
+        for (const auto& s : txn_.scenes())
+            for (const auto& [category, total] : categories) {
+                poll();
+                auto count = static_cast<std::int64_t>(txn_.nodesWithCategory(category, s.id).size());
+                if (count > 0) rs.rows.push_back({s.name, category, count});
+            }
+        return rs;
+    }
+    rs.columns = {{"category", ValueType::Text}, {"count", ValueType::Integer}};
+    for (const auto& category : scene().categories())
+        rs.rows.push_back({category, static_cast<std::int64_t>(scene().withCategory(category).size())});
+    return rs;
+}
+
+ResultSet Executor::run(const binder::BoundShowAttributes&) {
+    ResultSet rs;
+    rs.columns = {{"attribute", ValueType::Text},
+                  {"type", ValueType::Text},
+                  {"unit", ValueType::Text},
+                  {"use", ValueType::Text},
+                  {"meaning", ValueType::Text}};
+    auto add = [&](const AttributeInfo& a) {
+        std::string_view type = a.type == ValueType::Integer ? "integer"
+                                : a.type == ValueType::Real  ? "real"
+                                : a.type == ValueType::Box   ? "box"
+                                                             : "text";
+        std::string use = a.measure == AttributeMeasure::None ? "RETURN" : "WHERE, ORDER BY, RETURN";
+        rs.rows.push_back({std::string(a.name), std::string(type), std::string(a.unit), use, std::string(a.meaning)});
+    };
+    for (const auto& a : builtInAttributes()) add(a);
+    // Not an attribute of the node alone: it measures from a reference.
+    rs.rows.push_back({std::string("distance(x)"), std::string("real"), std::string("m"),
+                       std::string("WHERE, ORDER BY; RETURN distance after ORDER BY distance(x) or NEAREST TO x"),
+                       std::string("the gap between the node's box and the nearest box x names")});
+    if (plan_.statement->scene)
+        for (const auto& name : scene().attributeNames()) add(storedAttribute(name));
+    return rs;
+}
+
 ResultSet Executor::run(const binder::BoundShowTree& show) {
     const auto& snap = scene();
     Slot start = *snap.slotOf(snap.info().id);
-    if (show.root) {
-        const auto& nodes = slots(*show.root, defaultFrame());
-        if (nodes.size() != 1)
-            throw Error(ErrorKind::Binding,
-                        fmt::format("SHOW TREE needs one node; {} names {}", show.root->description, nodes.size()),
-                        std::nullopt, "use #id or src#id");
-        start = nodes.front();
-    }
+    if (show.root) start = slots(*show.root, defaultFrame()).front();  // one node, checked as bound
     ResultSet rs;
     rs.columns = {{"id", ValueType::Integer}, {"depth", ValueType::Integer}, {"node", ValueType::Text}};
     std::size_t hidden = 0, descriptions = 0, frames = 0;
@@ -74,17 +112,19 @@ ResultSet Executor::run(const binder::BoundShowTree& show) {
             ++(n.kind == model::NodeKind::Frame ? frames : descriptions);
             continue;
         }
-        rs.rows.push_back({static_cast<std::int64_t>(n.id), depth, std::string(2 * depth, ' ') + SceneSnapshot::label(n)});
+        rs.rows.push_back(
+            {static_cast<std::int64_t>(n.id), depth, std::string(2 * depth, ' ') + SceneSnapshot::label(n)});
         const auto& kids = snap.children(slot);
         for (auto it = kids.rbegin(); it != kids.rend(); ++it) stack.push_back({*it, depth + 1});
     }
-    if (hidden) rs.message = fmt::format("{} hidden node{} not shown (e.g. unlabelled parts)", hidden, hidden == 1 ? "" : "s");
+    if (hidden)
+        rs.message = fmt::format("{} hidden node{} not shown (e.g. unlabelled parts)", hidden, hidden == 1 ? "" : "s");
     if (descriptions)
-        rs.message += fmt::format("{}{} description{} not shown (DESCRIBE #id lists an object's)", rs.message.empty() ? "" : "; ",
-                                  descriptions, descriptions == 1 ? "" : "s");
+        rs.message += fmt::format("{}{} description{} not shown (DESCRIBE #id lists an object's)",
+                                  rs.message.empty() ? "" : "; ", descriptions, descriptions == 1 ? "" : "s");
     if (frames)
-        rs.message += fmt::format("{}{} frame{} not shown (FIND frame lists them)", rs.message.empty() ? "" : "; ", frames,
-                                  frames == 1 ? "" : "s");
+        rs.message += fmt::format("{}{} frame{} not shown (FIND frame lists them)", rs.message.empty() ? "" : "; ",
+                                  frames, frames == 1 ? "" : "s");
     return rs;
 }
 

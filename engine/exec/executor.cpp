@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/exec/singular.hpp"
 #include "model/error.hpp"
 
 namespace smql::exec {
@@ -22,9 +23,15 @@ bool queryable(const Node& n) { return !n.hidden && n.kind != model::NodeKind::S
 }  // namespace
 
 Executor::Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan,
-                   const std::atomic<bool>* interrupt)
-    : txn_(txn), session_(session), plan_(plan), interrupt_(interrupt), thresholds_(session.thresholds),
-      resolved_(plan.statement->setCount), membership_(plan.statement->setCount) {}
+                   const std::atomic<bool>* interrupt, storage::Database* db)
+    : txn_(txn),
+      session_(session),
+      plan_(plan),
+      interrupt_(interrupt),
+      db_(db),
+      thresholds_(session.thresholds),
+      resolved_(plan.statement->setCount),
+      membership_(plan.statement->setCount) {}
 
 void Executor::interrupted() {
     throw Error(ErrorKind::Interrupted, "the statement was interrupted", std::nullopt, "nothing was changed");
@@ -37,7 +44,10 @@ void Executor::checkRows(std::size_t rows) const {
 }
 
 ResultSet Executor::run() {
-    return std::visit([&](const auto& body) { return run(body); }, plan_.statement->body);
+    ResultSet rs = std::visit([&](const auto& body) { return run(body); }, plan_.statement->body);
+    const std::string& note = plan_.statement->note;
+    if (!note.empty()) rs.message += (rs.message.empty() ? "" : "\n") + note;
+    return rs;
 }
 
 const std::vector<Slot>& Executor::slots(const NodeSet& set, const relations::Frame& frame) {
@@ -49,6 +59,7 @@ const std::vector<Slot>& Executor::slots(const NodeSet& set, const relations::Fr
     std::vector<Slot> out;
     for (const auto& hit : find(*plan_.subqueries[set.id])) out.push_back(hit.slot);
     std::sort(out.begin(), out.end());
+    if (!set.singleFor.empty()) requireOne(scene(), set, out);
     resolved = std::move(out);
     return *resolved;
 }
@@ -65,7 +76,10 @@ const std::vector<Slot>& Executor::resolveSide(const NodeSet& set, const relatio
         double dx = c.x - frame.position.x, dy = c.y - frame.position.y;
         double lateral = dx * frame.right.x + dy * frame.right.y;
         double depth = dx * frame.forward.x + dy * frame.forward.y;
-        double along = set.side == "left" ? -lateral : set.side == "right" ? lateral : set.side == "front" ? depth : -depth;
+        double along = set.side == "left"    ? -lateral
+                       : set.side == "right" ? lateral
+                       : set.side == "front" ? depth
+                                             : -depth;
         double across = set.side == "left" || set.side == "right" ? depth : lateral;
         // Prefer candidates inside the 90-degree sector around that side, then the farthest out.
         bool inSector = along > 0 && along >= std::abs(across);
@@ -96,13 +110,15 @@ relations::Frame Executor::frame(const binder::BoundView& view) {
     relations::Frame standard = defaultFrame();
     if (!view.from) return standard;
     const auto& from = slots(*view.from, standard);
-    if (from.empty()) throw Error(ErrorKind::Binding, fmt::format("VIEW FROM {} names no node", view.from->description));
+    if (from.empty())
+        throw Error(ErrorKind::Binding, fmt::format("VIEW FROM {} names no node", view.from->description));
     const Node& origin = scene().node(from.front());
     model::Vec2 position = centre2(origin);
     model::Vec2 towards;
     if (view.facing) {
         const auto& facing = slots(*view.facing, standard);
-        if (facing.empty()) throw Error(ErrorKind::Binding, fmt::format("FACING {} names no node", view.facing->description));
+        if (facing.empty())
+            throw Error(ErrorKind::Binding, fmt::format("FACING {} names no node", view.facing->description));
         towards = centre2(scene().node(facing.front()));
     } else {
         // Without FACING the viewer looks into the room: towards the centre of all visible boxes.
@@ -115,9 +131,11 @@ relations::Frame Executor::frame(const binder::BoundView& view) {
     }
     double dx = towards.x - position.x, dy = towards.y - position.y;
     if (std::hypot(dx, dy) < 1e-6)
-        throw Error(ErrorKind::Binding, fmt::format("VIEW {}: the viewer and what it faces are at the same place",
-                                                    view.description));
-    return relations::viewFrame({{position.x, position.y, origin.box.center.z}, std::atan2(dy, dx)});
+        throw Error(ErrorKind::Binding,
+                    fmt::format("VIEW {}: the viewer and what it faces are at the same place", view.description));
+    relations::Frame viewer = relations::viewFrame({{position.x, position.y, origin.box.center.z}, std::atan2(dy, dx)});
+    viewer.headingGiven = view.facing.has_value();
+    return viewer;
 }
 
 ResultSet Executor::run(const binder::BoundExplain&) {

@@ -14,9 +14,17 @@
 #include "engine/planner/planner.hpp"
 #include "model/result.hpp"
 
-namespace smql::storage { class ReadTransaction; }
+namespace smql::storage {
+class Database;
+class ReadTransaction;
+}  // namespace smql::storage
 
 namespace smql::exec {
+
+// RELATE's sentence for one pair: "lamp#13 is left of window#9; near window#9 (0.4 m)", or that no
+// relation holds. CHECK gives it as its evidence.
+std::string relationSentence(const model::Node& a, const model::Node& b,
+                             const std::vector<relations::RelationHit>& hits);
 
 struct Hit {
     Slot slot;
@@ -26,9 +34,10 @@ struct Hit {
 class Executor {
 public:
     // `session` is read for the thresholds and limits, and changed by USE and SET. When `interrupt`
-    // turns true (from another thread), the statement stops with Error(Interrupted).
+    // turns true (from another thread), the statement stops with Error(Interrupted). `db` is where
+    // DROP and RENAME write (in a write transaction of their own); null for read-only callers.
     Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan,
-             const std::atomic<bool>* interrupt = nullptr);
+             const std::atomic<bool>* interrupt = nullptr, storage::Database* db = nullptr);
 
     ResultSet run();
     // The nodes a FIND plan (the statement's or a sub-query's) answers, in order.
@@ -38,13 +47,22 @@ private:
     ResultSet run(const binder::BoundFind& find);
     ResultSet run(const binder::BoundCatalogFind& find);
     ResultSet run(const binder::BoundRelate& relate);
+    ResultSet run(const binder::BoundCheck& check);
+    ResultSet run(const binder::BoundShowCategories& show);
+    ResultSet run(const binder::BoundShowAttributes& show);
     ResultSet run(const binder::BoundDescribe& describe);
     ResultSet run(const binder::BoundShowScenes& show);
     ResultSet run(const binder::BoundShowSettings& show);
     ResultSet run(const binder::BoundShowTree& show);
+    ResultSet run(const binder::BoundShowChanges& show);
+    ResultSet run(const binder::BoundDropScene& drop);
+    ResultSet run(const binder::BoundRenameScene& rename);
+    ResultSet run(const binder::BoundShowGraph& show);
+    ResultSet run(const binder::BoundGuide& guide);
     ResultSet run(const binder::BoundUse& use);
     ResultSet run(const binder::BoundSet& set);
     ResultSet run(const binder::BoundExplain& explain);
+    ResultSet run(const binder::BoundAsk& ask);
 
     const SceneSnapshot& scene() const { return *plan_.statement->scene; }
     // Called once per unit of work (a candidate, a pair): throws once the statement is interrupted.
@@ -53,6 +71,9 @@ private:
     }
     [[noreturn]] static void interrupted();
     void checkRows(std::size_t rows) const;
+    // The one visible node with a box a set holds; an error that lists the candidates (and how to
+    // pick one) when it holds several, and says so when it holds none. `role` names the end.
+    Slot single(const binder::NodeSet& set, std::string_view role);
     // The nodes of a set: as bound, or resolved now (a side in `frame`, a sub-query's answer).
     const std::vector<Slot>& slots(const binder::NodeSet& set, const relations::Frame& frame);
     const std::vector<Slot>& resolveSide(const binder::NodeSet& set, const relations::Frame& frame);
@@ -63,17 +84,22 @@ private:
 
     bool matches(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
     bool holdsForSome(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
-    bool compare(const binder::BoundExpr& expr, const model::Node& node) const;
+    bool compare(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
     bool inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame);
     std::vector<Hit> nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame);
     std::vector<Hit> filtered(const planner::FindPlan& plan, const relations::Frame& frame);
+    // Where the candidates of an R-tree probe around one reference's bounds lie (a superset).
+    model::Aabb probeRegion(const binder::BoundExpr& term, const model::Aabb& around) const;
+    void orderByAttribute(const planner::FindPlan& plan, std::vector<Hit>& hits) const;
+    ResultSet returned(const binder::BoundFind& find, const std::vector<Hit>& hits) const;
 
     const storage::ReadTransaction& txn_;
     Session& session_;
     const planner::Plan& plan_;
     const std::atomic<bool>* interrupt_;
+    storage::Database* db_;
     std::uint64_t work_ = 0;
-    const relations::Thresholds thresholds_;  // as the statement started
+    const relations::Thresholds thresholds_;                  // as the statement started
     std::vector<std::optional<std::vector<Slot>>> resolved_;  // by NodeSet id
     std::vector<std::vector<char>> membership_;               // by NodeSet id; empty until needed
 };

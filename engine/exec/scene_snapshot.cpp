@@ -10,10 +10,23 @@ namespace smql::exec {
 
 std::shared_ptr<const SceneSnapshot> SceneSnapshot::load(const storage::ReadTransaction& txn,
                                                          const model::SceneInfo& info) {
+    std::vector<model::Node> nodes;
+    nodes.reserve(info.nodeCount + 1);
+    txn.forEachNodeInScene(info.id, [&](const model::Node& n) { nodes.push_back(n); });
+    std::vector<model::Relation> relations;
+    txn.forEachRelationInScene(info.id, [&](const model::Relation& r) { relations.push_back(r); });
+    return build(info, std::move(nodes), std::move(relations));
+}
+
+std::shared_ptr<const SceneSnapshot> SceneSnapshot::fromVersion(const model::SceneVersion& version) {
+    return build(version.info, version.nodes, version.relations);
+}
+
+std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info, std::vector<model::Node> nodes,
+                                                          std::vector<model::Relation> relations) {
     auto snap = std::make_shared<SceneSnapshot>();
-    snap->info_ = info;
-    snap->nodes_.reserve(info.nodeCount + 1);
-    txn.forEachNodeInScene(info.id, [&](const model::Node& n) { snap->nodes_.push_back(n); });
+    snap->info_ = std::move(info);
+    snap->nodes_ = std::move(nodes);
 
     const auto count = static_cast<Slot>(snap->nodes_.size());
     snap->children_.resize(count);
@@ -40,8 +53,18 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::load(const storage::ReadTran
         if (parent != snap->slotById_.end()) snap->children_[parent->second].push_back(s);
     }
     snap->rtree_ = storage::SpatialIndex(entries);
-    txn.forEachRelationInScene(info.id, [&](const model::Relation& r) { snap->relations_.push_back(r); });
+    snap->relations_ = std::move(relations);
     return snap;
+}
+
+const SceneSnapshot::Guidance& SceneSnapshot::guidance() const {
+    std::call_once(guidanceBuilt_, [&] {
+        guide::GraphOptions options;
+        guide::FreeSpace space(nodes_, options);
+        guide::RouteGraph graph = guide::buildGraph(nodes_, space, options);
+        guidance_ = std::make_unique<const Guidance>(Guidance{std::move(space), std::move(graph), options});
+    });
+    return *guidance_;
 }
 
 std::optional<Slot> SceneSnapshot::slotOf(model::NodeId id) const {
@@ -100,6 +123,15 @@ std::string SceneSnapshot::path(Slot slot) const {
         out += label(nodes_[*it]);
     }
     return out;
+}
+
+void SceneObstacles::within(const model::Aabb& region, std::vector<const model::Node*>& out) const {
+    std::vector<Slot> slots;
+    scene_.spatialIndex().intersecting(region, slots);
+    for (Slot s : slots) {
+        const model::Node& n = scene_.node(s);
+        if (!n.hidden && n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene) out.push_back(&n);
+    }
 }
 
 }  // namespace smql::exec

@@ -6,16 +6,21 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
+#include "engine/guide/route_graph.hpp"
+#include "engine/relations/predicates.hpp"
 #include "model/types.hpp"
 #include "storage/spatial_index.hpp"
 
-namespace smql::storage { class ReadTransaction; }
+namespace smql::storage {
+class ReadTransaction;
+}
 
 namespace smql::exec {
 
@@ -24,6 +29,8 @@ using Slot = std::uint32_t;  // a node's position in SceneSnapshot::nodes
 class SceneSnapshot {
 public:
     static std::shared_ptr<const SceneSnapshot> load(const storage::ReadTransaction& txn, const model::SceneInfo& info);
+    // A superseded version from the scene's history (AS OF), with the ids it had then.
+    static std::shared_ptr<const SceneSnapshot> fromVersion(const model::SceneVersion& version);
 
     const model::SceneInfo& info() const { return info_; }
     const std::vector<model::Node>& nodes() const { return nodes_; }
@@ -42,11 +49,23 @@ public:
     const storage::SpatialIndex& spatialIndex() const { return rtree_; }
     const std::vector<model::Relation>& storedRelations() const { return relations_; }
 
+    // Where a person can walk and the decision points of guidance: built the first time GUIDE or
+    // SHOW GRAPH asks, then kept as long as the snapshot (a new version of the scene is a new one).
+    struct Guidance {
+        guide::FreeSpace space;
+        guide::RouteGraph graph;
+        guide::GraphOptions options;
+    };
+    const Guidance& guidance() const;
+
     // "room0 / wall#3 / sofa#12 / cushion#40"
     std::string path(Slot slot) const;
     static std::string label(const model::Node& node);  // "sofa#12"
 
 private:
+    static std::shared_ptr<const SceneSnapshot> build(model::SceneInfo info, std::vector<model::Node> nodes,
+                                                      std::vector<model::Relation> relations);
+
     model::SceneInfo info_;
     std::vector<model::Node> nodes_;
     std::vector<model::Aabb> bounds_;
@@ -58,6 +77,19 @@ private:
     std::vector<std::string> attributeNames_;
     storage::SpatialIndex rtree_;
     std::vector<model::Relation> relations_;
+    mutable std::once_flag guidanceBuilt_;
+    mutable std::unique_ptr<const Guidance> guidance_;
+};
+
+// The snapshot's boxes as what may stand between two nodes (visible_from, near): the R-tree names
+// the boxes in a region; hidden nodes and nodes without geometry never stand in the way.
+class SceneObstacles final : public relations::Obstacles {
+public:
+    explicit SceneObstacles(const SceneSnapshot& scene) : scene_(scene) {}
+    void within(const model::Aabb& region, std::vector<const model::Node*>& out) const override;
+
+private:
+    const SceneSnapshot& scene_;
 };
 
 }  // namespace smql::exec

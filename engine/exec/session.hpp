@@ -3,10 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "engine/ask/translator.hpp"
 #include "engine/relations/thresholds.hpp"
 
 namespace smql::exec {
@@ -14,8 +16,8 @@ namespace smql::exec {
 // Bounds on what one statement may build, so a query over large sets fails with a clear error instead
 // of exhausting memory (RELATE object TO object on a 2,000-node scene is four million pairs).
 struct Limits {
-    std::int64_t maxRows = 1'000'000;   // rows of one result
-    std::int64_t maxPairs = 100'000;    // node pairs RELATE may compare
+    std::int64_t maxRows = 1'000'000;  // rows of one result
+    std::int64_t maxPairs = 100'000;   // node pairs RELATE may compare
 };
 
 struct LimitSetting {
@@ -31,6 +33,8 @@ struct Session {
     bool allScenes = false;  // USE SCENE '*': FIND and COUNT by category across every scene
     relations::Thresholds thresholds;
     Limits limits;
+    // ASK's translator; null is the built-in rule-based one (Engine::setAskTranslator).
+    std::shared_ptr<const ask::Translator> askTranslator;
 };
 
 }  // namespace smql::exec

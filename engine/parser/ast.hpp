@@ -15,20 +15,32 @@ namespace smql::ast {
 
 struct FindStmt;
 
+// A placeholder, `?` or `$2`, standing for a value bound when a prepared statement runs
+// (engine/binder/parameters.hpp puts the values in). `?` are numbered in order of appearance.
+struct Placeholder {
+    std::size_t index = 0;  // 1-based
+    bool numbered = false;  // `$2` rather than `?`
+    SourceLocation where;
+    // How messages name it: "$2", or "? number 2" for the second `?`.
+    std::string name() const { return numbered ? "$" + std::to_string(index) : "? number " + std::to_string(index); }
+};
+
 // Something a query points at.
 struct Ref {
     enum class Kind {
         Name,      // a category (`sofa`, `'indoor plant'`) or a kind word (`object`, `anchor`, `node`)
         Side,      // `wall.left`: `name` = "wall", `side` = "left"
-        NodeId,    // `#42`
+        NodeId,    // `#42`, or `sofa#42` as results print it (`name` holds the category to check)
         SourceId,  // `src#93`
         SubQuery,  // `(FIND mug WHERE on(desk))`
+        Param,     // `?`, `$1`, `?.left`: a name bound later (`placeholder`; `side` when written)
     };
     Kind kind = Kind::Name;
-    std::string name;  // lower-cased; Name and Side
+    std::string name;  // lower-cased; Name and Side, and NodeId's category when written
     std::string side;  // left | right | front | back
     std::int64_t number = 0;
     std::shared_ptr<FindStmt> subquery;
+    Placeholder placeholder;  // Param
     SourceLocation where;
 };
 
@@ -52,10 +64,15 @@ struct Expr {
     std::vector<Ref> args;
     std::optional<Distance> threshold;
 
-    // Compare: `color = 'red'`, `source_id = 93`, `confidence >= 0.5`
+    // Compare: `color = 'red'`, `source_id = 93`, `confidence >= 0.5`, `height > 1 m`,
+    // `distance(sofa) < 2 m` (`distanceTo` set, `attribute` empty). BETWEEN is two of them under And.
     std::string attribute;  // lower-cased
+    std::optional<Ref> distanceTo;
     CompareOp op = CompareOp::Eq;
     Literal literal;
+    bool literalHasUnit = false;              // `2 m` rather than `2`: the binder checks it against lengths
+    bool literalBound = false;                // bound to a placeholder: a number there is metres where a length goes
+    std::optional<Placeholder> literalParam;  // `color = ?`: the literal is bound later
 
     SourceLocation where;
 };
@@ -67,25 +84,37 @@ struct View {
     SourceLocation where;
 };
 
-// `ORDER BY distance(door) DESC`
+// `ORDER BY distance(door) DESC`, `ORDER BY height`: one of the two is set.
 struct OrderBy {
-    Ref distanceTo;
+    std::optional<Ref> distanceTo;
+    std::string attribute;  // lower-cased
     bool descending = false;
+    SourceLocation where;
+};
+
+// `AS OF '2026-11-20'`: the instant, in model::utcInstant's form.
+struct AsOf {
+    std::string instant;
     SourceLocation where;
 };
 
 struct FindStmt {
     Ref target;
+    std::optional<AsOf> asOf;
     std::optional<View> view;
     std::optional<Expr> where;
     std::optional<Ref> nearestTo;  // NEAREST TO x: order by distance to x, ascending
     std::optional<OrderBy> orderBy;
     std::optional<std::int64_t> limit;
+    std::optional<Placeholder> limitParam;  // `LIMIT ?`: the limit is bound later
     bool path = false;
+    std::vector<std::string> columns;  // RETURN a, b: lower-cased, in order; empty for the default columns
+    SourceLocation returnWhere;
 };
 
 struct CountStmt {
     Ref target;
+    std::optional<AsOf> asOf;
     std::optional<View> view;
     std::optional<Expr> where;
 };
@@ -96,14 +125,46 @@ struct RelateStmt {
     std::optional<View> view;
 };
 
+// `CHECK lamp left_of window`, `CHECK mug near window 1 m`, `CHECK lamp between sofa AND desk`
+struct CheckStmt {
+    Ref subject;
+    std::string predicate;  // lower-cased
+    SourceLocation predicateWhere;
+    std::vector<Ref> args;  // one, or two for between
+    std::optional<Distance> threshold;
+    std::optional<View> view;
+};
+
 struct DescribeStmt {
     Ref target;
 };
 
 struct ShowStmt {
-    enum class What { Scenes, Tree, Settings };
+    enum class What { Scenes, Tree, Settings, Changes, Graph, Categories, Attributes };
     What what = What::Scenes;
-    std::optional<Ref> root;  // SHOW TREE #12: the subtree under a node
+    std::optional<Ref> root;           // SHOW TREE #12: the subtree under a node
+    std::optional<std::string> since;  // SHOW CHANGES SINCE '...': the instant (model::utcInstant)
+};
+
+// `DROP SCENE name`
+struct DropSceneStmt {
+    std::string scene;
+    SourceLocation where;
+};
+
+// `GUIDE FROM door TO mug`, `GUIDE FROM HERE TO ...`, `GUIDE FROM (1.5, 2) TO ...`
+struct GuideStmt {
+    std::optional<Ref> from;                         // a node; neither this nor `point`: HERE
+    std::optional<std::pair<double, double>> point;  // (x, y) in metres
+    Ref to;
+    SourceLocation where;
+};
+
+// `RENAME SCENE a TO b`
+struct RenameSceneStmt {
+    std::string scene;
+    std::string newName;
+    SourceLocation where;
 };
 
 struct UseStmt {
@@ -118,6 +179,12 @@ struct SetStmt {
     SourceLocation where;
 };
 
+// `ASK 'what is on the sofa?'`: the question as written (quotes removed, case kept).
+struct AskStmt {
+    std::string question;
+    SourceLocation where;  // the quoted question
+};
+
 struct Statement;
 
 struct ExplainStmt {
@@ -125,9 +192,13 @@ struct ExplainStmt {
 };
 
 struct Statement {
-    std::variant<FindStmt, CountStmt, RelateStmt, DescribeStmt, ShowStmt, UseStmt, SetStmt, ExplainStmt> body;
+    std::variant<FindStmt, CountStmt, RelateStmt, DescribeStmt, ShowStmt, UseStmt, SetStmt, ExplainStmt, AskStmt,
+                 DropSceneStmt, RenameSceneStmt, GuideStmt, CheckStmt>
+        body;
     std::string text;  // the statement's own source text, for EXPLAIN and errors
     SourceLocation where;
+    // The highest placeholder index (0: none); a statement with placeholders runs only prepared.
+    std::size_t parameterCount = 0;
 };
 
 }  // namespace smql::ast

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <map>
 #include <optional>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include "engine/parser/parser.hpp"
 #include "engine/parser/syntax_errors.hpp"
 #include "engine/parser/vocabulary.hpp"
+#include "model/instant.hpp"
 
 namespace smql::parser {
 
@@ -21,9 +23,7 @@ namespace {
     throw Error(ErrorKind::Syntax, std::move(message), where, std::move(hint));
 }
 
-std::string nameOf(SmqlParser::NameContext& name) {
-    return lowerCase(name.getText());
-}
+std::string nameOf(SmqlParser::NameContext& name) { return lowerCase(name.getText()); }
 
 // 'it''s' -> it's
 std::string unquote(const antlr4::Token& token) {
@@ -71,26 +71,137 @@ public:
     explicit AstBuilder(const Source& source) : source_(source) {}
 
     ast::Statement statement(SmqlParser::StatementContext& tree) {
+        numberPlaceholders(tree);
         SmqlParser::CommandContext& command = *tree.command();
-        if (!tree.EXPLAIN()) return statement(command, *tree.getStart());
+        if (!tree.EXPLAIN()) return withParameterCount(statement(command, *tree.getStart()));
         ast::ExplainStmt explain{std::make_shared<ast::Statement>(statement(command, *command.getStart()))};
-        return wrap(std::move(explain), *tree.getStart(), *command.getStop());
+        return withParameterCount(wrap(std::move(explain), *tree.getStart(), *command.getStop()));
     }
 
 private:
     const Source& source_;
+    // Each placeholder token's index, fixed before the walk: the walk does not visit the
+    // statement in text order (GUIDE reads its target first), but `?` count in text order.
+    std::map<const antlr4::Token*, std::size_t> placeholderIndex_;
+    std::size_t parameterCount_ = 0;
+
+    static void collectPlaceholders(antlr4::tree::ParseTree& tree, std::vector<const antlr4::Token*>& out) {
+        if (auto* terminal = dynamic_cast<antlr4::tree::TerminalNode*>(&tree)) {
+            if (terminal->getSymbol()->getType() == SmqlParser::PARAM) out.push_back(terminal->getSymbol());
+            return;
+        }
+        for (antlr4::tree::ParseTree* child : tree.children) collectPlaceholders(*child, out);
+    }
+
+    // `?` are numbered 1, 2, ... in order; `$n` carry their number. Mixing the two would leave
+    // the reader guessing which value goes where, so it is an error, as in SQL drivers.
+    void numberPlaceholders(SmqlParser::StatementContext& tree) {
+        std::vector<const antlr4::Token*> tokens;
+        collectPlaceholders(tree, tokens);
+        std::sort(tokens.begin(), tokens.end(), [](const antlr4::Token* a, const antlr4::Token* b) {
+            return a->getStartIndex() < b->getStartIndex();
+        });
+        std::size_t positional = 0;
+        const antlr4::Token* firstNumbered = nullptr;
+        const antlr4::Token* firstPositional = nullptr;
+        for (const antlr4::Token* token : tokens) {
+            const std::string text = token->getText();
+            std::size_t index = 0;
+            if (text == "?") {
+                if (!firstPositional) firstPositional = token;
+                index = ++positional;
+            } else {
+                if (!firstNumbered) firstNumbered = token;
+                const std::int64_t number = wholeNumber(std::string_view(text).substr(1), *token, "the placeholder");
+                if (number < 1 || number > static_cast<std::int64_t>(kMaxPlaceholder))
+                    fail(locationOf(*token), fmt::format("placeholder {} is out of range", text),
+                         fmt::format("number placeholders from $1 to ${}", kMaxPlaceholder));
+                index = static_cast<std::size_t>(number);
+            }
+            if (firstPositional && firstNumbered) {
+                const antlr4::Token& later = *std::max(firstPositional, firstNumbered, [](auto* a, auto* b) {
+                    return a->getStartIndex() < b->getStartIndex();
+                });
+                fail(locationOf(later), "a statement cannot mix ? and $1-style placeholders",
+                     "write every placeholder as ? (numbered in order) or every one as $1, $2, ...");
+            }
+            placeholderIndex_[token] = index;
+            parameterCount_ = std::max(parameterCount_, index);
+        }
+    }
+
+    ast::Placeholder placeholder(const antlr4::Token& token) const {
+        return ast::Placeholder{placeholderIndex_.at(&token), token.getText() != "?", locationOf(token)};
+    }
+
+    ast::Statement withParameterCount(ast::Statement statement) const {
+        statement.parameterCount = parameterCount_;
+        return statement;
+    }
 
     ast::Statement statement(SmqlParser::CommandContext& command, const antlr4::Token& first) {
         const antlr4::Token& last = *command.getStop();
         if (auto* find = command.findStmt()) return wrap(findStmt(*find->ref(), find->findClause()), first, last);
         if (auto* count = command.countStmt()) return wrap(countStmt(*count), first, last);
         if (auto* relate = command.relateStmt()) return wrap(relateStmt(*relate), first, last);
-        if (auto* describe = command.describeStmt())
-            return wrap(ast::DescribeStmt{ref(*describe->ref())}, first, last);
+        if (auto* check = command.checkStmt()) return wrap(checkStmt(*check), first, last);
+        if (auto* describe = command.describeStmt()) return wrap(ast::DescribeStmt{ref(*describe->ref())}, first, last);
         if (auto* show = command.showStmt()) return wrap(showStmt(*show), first, last);
         if (auto* use = command.useStmt()) return wrap(useStmt(*use), first, last);
+        if (auto* ask = command.askStmt())
+            return wrap(ast::AskStmt{unquote(*ask->STRING()->getSymbol()), locationOf(*ask->STRING()->getSymbol())},
+                        first, last);
+        if (auto* drop = command.dropStmt())
+            return wrap(ast::DropSceneStmt{sceneName(*drop->sceneName()), span(*drop)}, first, last);
+        if (auto* rename = command.renameStmt())
+            return wrap(
+                ast::RenameSceneStmt{sceneName(*rename->sceneName(0)), sceneName(*rename->sceneName(1)), span(*rename)},
+                first, last);
+        if (auto* guide = command.guideStmt()) return wrap(guideStmt(*guide), first, last);
         return wrap(setStmt(*command.setStmt()), first, last);
     }
+
+    ast::GuideStmt guideStmt(SmqlParser::GuideStmtContext& context) {
+        ast::GuideStmt guide;
+        guide.where = span(context);
+        guide.to = ref(*context.ref());
+        SmqlParser::GuideOriginContext& origin = *context.guideOrigin();
+        if (auto* point = origin.floorPoint()) {
+            auto coordinate = [&](std::size_t k) {
+                const antlr4::Token& number = *point->NUMBER(k)->getSymbol();
+                // A minus sign belongs to the number after it: the first when it precedes the comma.
+                bool negative = false;
+                for (auto* minus : point->MINUS())
+                    if (minus->getSymbol()->getTokenIndex() + 1 == number.getTokenIndex()) negative = true;
+                double value = realNumber(number);
+                return negative ? -value : value;
+            };
+            guide.point = std::pair{coordinate(0), coordinate(1)};
+        } else if (auto* from = origin.ref()) {
+            guide.from = ref(*from);
+        }
+        return guide;
+    }
+
+    // A bare scene name is a name like any other (lower case); a quoted one is kept as written.
+    std::string sceneName(SmqlParser::SceneNameContext& context) {
+        if (auto* bare = context.name()) return nameOf(*bare);
+        std::string name = unquote(*context.STRING()->getSymbol());
+        if (name.empty()) fail(span(context), "the scene name is empty", "SHOW SCENES lists the scene names");
+        return name;
+    }
+
+    // A time as a quoted string, in the memory's UTC form.
+    static std::string instant(antlr4::tree::TerminalNode& string) {
+        const antlr4::Token& token = *string.getSymbol();
+        std::string text = unquote(token);
+        if (auto utc = model::utcInstant(text)) return *utc;
+        fail(locationOf(token), fmt::format("'{}' is not a time", text),
+             "write a date or a date and time in ISO 8601, as in '2026-11-20' or '2026-11-20T14:30:00Z' (UTC unless "
+             "it names its offset)");
+    }
+
+    ast::AsOf asOf(SmqlParser::AsOfClauseContext& clause) { return {instant(*clause.STRING()), span(clause)}; }
 
     template <typename Body>
     ast::Statement wrap(Body body, const antlr4::Token& first, const antlr4::Token& last) {
@@ -114,8 +225,8 @@ private:
                  rank == 1 ? "combine the conditions with AND" : "keep one of them");
         if (lastRank && rank < *lastRank)
             fail(where, fmt::format("{} must come before {}", clauseNames[rank], clauseNames[*lastRank]),
-                 "write the clauses in the order VIEW FROM, WHERE, NEAREST TO, ORDER BY, LIMIT; PATH may go anywhere "
-                 "after the target");
+                 "write the clauses in the order VIEW FROM, WHERE, NEAREST TO, ORDER BY, LIMIT; PATH, RETURN and AS OF "
+                 "may go anywhere after the target");
         lastRank = rank;
     }
 
@@ -127,6 +238,9 @@ private:
             if (clause->PATH()) {
                 if (find.path) fail(span(*clause), "PATH given twice", "write PATH once");
                 find.path = true;
+            } else if (auto* asOfClause = clause->asOfClause()) {
+                if (find.asOf) fail(span(*clause), "AS OF given twice", "write AS OF once");
+                find.asOf = asOf(*asOfClause);
             } else if (auto* view = clause->viewClause()) {
                 checkOrder(0, span(*clause), lastRank);
                 find.view = viewClause(*view);
@@ -138,13 +252,32 @@ private:
                 find.nearestTo = ref(*nearest->ref());
             } else if (auto* order = clause->orderClause()) {
                 checkOrder(3, span(*clause), lastRank);
-                find.orderBy = ast::OrderBy{ref(*order->ref()), order->DESC() != nullptr, span(*order)};
+                find.orderBy = orderBy(*order);
+            } else if (auto* columns = clause->returnClause()) {
+                if (!find.columns.empty()) fail(span(*clause), "RETURN given twice", "list every column in one RETURN");
+                for (SmqlParser::NameContext* column : columns->name()) find.columns.push_back(nameOf(*column));
+                find.returnWhere = span(*clause);
             } else {
                 checkOrder(4, span(*clause), lastRank);
-                find.limit = limit(*clause->limitClause());
+                if (auto* param = clause->limitClause()->PARAM())
+                    find.limitParam = placeholder(*param->getSymbol());
+                else
+                    find.limit = limit(*clause->limitClause());
             }
         }
         return find;
+    }
+
+    ast::OrderBy orderBy(SmqlParser::OrderClauseContext& clause) {
+        ast::OrderBy order;
+        SmqlParser::MeasureContext& measure = *clause.measure();
+        if (auto* reference = measure.ref())
+            order.distanceTo = ref(*reference);
+        else
+            order.attribute = nameOf(*measure.name());
+        order.descending = clause.DESC() != nullptr;
+        order.where = span(clause);
+        return order;
     }
 
     std::int64_t limit(SmqlParser::LimitClauseContext& clause) {
@@ -161,7 +294,10 @@ private:
         count.target = ref(*context.ref());
         std::optional<std::size_t> lastRank;
         for (SmqlParser::CountClauseContext* clause : context.countClause()) {
-            if (auto* view = clause->viewClause()) {
+            if (auto* asOfClause = clause->asOfClause()) {
+                if (count.asOf) fail(span(*clause), "AS OF given twice", "write AS OF once");
+                count.asOf = asOf(*asOfClause);
+            } else if (auto* view = clause->viewClause()) {
                 checkOrder(0, span(*clause), lastRank);
                 count.view = viewClause(*view);
             } else {
@@ -178,10 +314,32 @@ private:
         return relate;
     }
 
+    ast::CheckStmt checkStmt(SmqlParser::CheckStmtContext& context) {
+        ast::CheckStmt check;
+        std::vector<SmqlParser::RefContext*> refs = context.ref();
+        check.subject = ref(*refs.front());
+        check.predicate = nameOf(*context.name());
+        check.predicateWhere = span(*context.name());
+        for (std::size_t i = 1; i < refs.size(); ++i) check.args.push_back(ref(*refs[i]));
+        if (auto* distance = context.distance()) {
+            const antlr4::Token& number = *distance->NUMBER()->getSymbol();
+            check.threshold = ast::Distance{realNumber(number) / perMetre(distance->unit), span(*distance)};
+        }
+        if (auto* view = context.viewClause()) check.view = viewClause(*view);
+        return check;
+    }
+
     ast::ShowStmt showStmt(SmqlParser::ShowStmtContext& context) {
         ast::ShowStmt show;
         if (context.SCENES()) show.what = ast::ShowStmt::What::Scenes;
         if (context.SETTINGS()) show.what = ast::ShowStmt::What::Settings;
+        if (context.GRAPH()) show.what = ast::ShowStmt::What::Graph;
+        if (context.CATEGORIES()) show.what = ast::ShowStmt::What::Categories;
+        if (context.ATTRIBUTES()) show.what = ast::ShowStmt::What::Attributes;
+        if (context.CHANGES()) {
+            show.what = ast::ShowStmt::What::Changes;
+            if (auto* since = context.STRING()) show.since = instant(*since);
+        }
         if (context.TREE()) {
             show.what = ast::ShowStmt::What::Tree;
             if (auto* root = context.ref()) show.root = ref(*root);
@@ -250,6 +408,13 @@ private:
         } else if (auto* node = context.NODE_ID()) {
             ref.kind = ast::Ref::Kind::NodeId;
             ref.number = wholeNumber(node->getText().substr(1), *node->getSymbol(), "node id");
+        } else if (auto* labelled = context.LABELLED_ID()) {
+            // `sofa#50`: the node #50, which must be a sofa.
+            ref.kind = ast::Ref::Kind::NodeId;
+            std::string text = labelled->getText();
+            std::size_t hash = text.rfind('#');
+            ref.name = lowerCase(text.substr(0, hash));
+            ref.number = wholeNumber(text.substr(hash + 1), *labelled->getSymbol(), "node id");
         } else if (auto* source = context.SOURCE_ID()) {
             ref.kind = ast::Ref::Kind::SourceId;
             std::string text = source->getText();
@@ -263,7 +428,10 @@ private:
     }
 
     void namedRef(SmqlParser::NamedRefContext& context, ast::Ref& ref) {
-        if (auto* string = context.STRING()) {
+        if (auto* param = context.PARAM()) {
+            ref.kind = ast::Ref::Kind::Param;
+            ref.placeholder = placeholder(*param->getSymbol());
+        } else if (auto* string = context.STRING()) {
             ref.name = lowerCase(unquote(*string->getSymbol()));
             if (ref.name.empty())
                 fail(locationOf(*string->getSymbol()), "a quoted name cannot be empty", "as in 'indoor plant'");
@@ -271,11 +439,12 @@ private:
             ref.name = nameOf(*context.name(0));
         }
         if (!context.side) return;
-        ref.kind = ast::Ref::Kind::Side;
+        if (ref.kind != ast::Ref::Kind::Param) ref.kind = ast::Ref::Kind::Side;
         ref.side = nameOf(*context.side);
         if (std::find(sides().begin(), sides().end(), ref.side) == sides().end())
             fail(span(*context.side), fmt::format("unknown side '{}'", context.side->getText()),
-                 fmt::format("a side is left, right, front or back, as in {}.left", ref.name));
+                 fmt::format("a side is left, right, front or back, as in {}.left",
+                             ref.kind == ast::Ref::Kind::Param ? context.PARAM()->getText() : ref.name));
     }
 
     // ------------------------------------------------------------ conditions
@@ -312,7 +481,26 @@ private:
     ast::Expr atom(SmqlParser::AtomContext& context) {
         if (auto* inner = context.orExpr()) return expr(*inner);
         if (auto* call = context.predicate()) return predicate(*call);
+        if (auto* change = context.changedSince()) return changedSince(*change);
         return comparison(*context.comparison());
+    }
+
+    // `moved SINCE t` reads the time attribute an update keeps: moved_at >= t (docs/history.md).
+    ast::Expr changedSince(SmqlParser::ChangedSinceContext& context) {
+        static constexpr std::pair<std::string_view, std::string_view> kWords[] = {
+            {"moved", "moved_at"}, {"added", "first_seen_at"}, {"seen", "last_seen_at"}};
+        const std::string word = nameOf(*context.name());
+        ast::Expr compare;
+        compare.kind = ast::Expr::Kind::Compare;
+        for (const auto& [name, attribute] : kWords)
+            if (word == name) compare.attribute = attribute;
+        if (compare.attribute.empty())
+            fail(span(*context.name()), fmt::format("'{}' cannot be followed by SINCE", word),
+                 "write moved SINCE, added SINCE or seen SINCE");
+        compare.op = ast::CompareOp::Ge;
+        compare.literal = instant(*context.STRING());
+        compare.where = span(context);
+        return compare;
     }
 
     ast::Expr predicate(SmqlParser::PredicateContext& context) {
@@ -337,10 +525,28 @@ private:
         return call;
     }
 
+    // `height BETWEEN 1 m AND 2 m` is `height >= 1 m AND height <= 2 m`.
     ast::Expr comparison(SmqlParser::ComparisonContext& context) {
         ast::Expr compare;
         compare.kind = ast::Expr::Kind::Compare;
-        compare.attribute = nameOf(*context.name());
+        SmqlParser::MeasureContext& measure = *context.measure();
+        if (auto* reference = measure.ref())
+            compare.distanceTo = ref(*reference);
+        else
+            compare.attribute = nameOf(*measure.name());
+        compare.where = span(context);
+        if (context.BETWEEN()) {
+            ast::Expr low = compare, high = compare;
+            low.op = ast::CompareOp::Ge;
+            quantity(*context.quantity(0), low);
+            high.op = ast::CompareOp::Le;
+            quantity(*context.quantity(1), high);
+            ast::Expr both;
+            both.kind = ast::Expr::Kind::And;
+            both.children = {std::move(low), std::move(high)};
+            both.where = compare.where;
+            return both;
+        }
         SmqlParser::CompareOpContext& op = *context.compareOp();
         compare.op = op.EQ()   ? ast::CompareOp::Eq
                      : op.NE() ? ast::CompareOp::Ne
@@ -350,25 +556,30 @@ private:
                      : op.GE() ? ast::CompareOp::Ge
                                : ast::CompareOp::Like;
         SmqlParser::QuantityOrStringContext& value = *context.quantityOrString();
-        if (auto* string = value.STRING()) {
+        if (auto* string = value.STRING())
             compare.literal = unquote(*string->getSymbol());  // values keep their case
-        } else {
-            SmqlParser::QuantityContext& quantity = *value.quantity();
-            const antlr4::Token& number = *quantity.NUMBER()->getSymbol();
-            const bool negative = quantity.MINUS() != nullptr;
-            if (quantity.unit) {
-                double metres = realNumber(number) / perMetre(quantity.unit);
-                compare.literal = negative ? -metres : metres;
-            } else if (isWhole(number)) {
-                std::int64_t whole = wholeNumber(number.getText(), number, "the number");
-                compare.literal = negative ? -whole : whole;
-            } else {
-                double real = realNumber(number);
-                compare.literal = negative ? -real : real;
-            }
-        }
-        compare.where = span(context);
+        else if (auto* param = value.PARAM())
+            compare.literalParam = placeholder(*param->getSymbol());
+        else
+            quantity(*value.quantity(), compare);
         return compare;
+    }
+
+    // A number with or without a unit, as a comparison's literal (a length in metres).
+    void quantity(SmqlParser::QuantityContext& quantity, ast::Expr& compare) {
+        const antlr4::Token& number = *quantity.NUMBER()->getSymbol();
+        const bool negative = quantity.MINUS() != nullptr;
+        compare.literalHasUnit = quantity.unit != nullptr;
+        if (quantity.unit) {
+            double metres = realNumber(number) / perMetre(quantity.unit);
+            compare.literal = negative ? -metres : metres;
+        } else if (isWhole(number)) {
+            std::int64_t whole = wholeNumber(number.getText(), number, "the number");
+            compare.literal = negative ? -whole : whole;
+        } else {
+            double real = realNumber(number);
+            compare.literal = negative ? -real : real;
+        }
     }
 };
 

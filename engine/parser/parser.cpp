@@ -1,5 +1,6 @@
 #include "engine/parser/parser.hpp"
 
+#include <atomic>
 #include <mutex>
 
 #include <fmt/format.h>
@@ -12,6 +13,8 @@
 namespace smql::parser {
 
 namespace {
+
+std::atomic<std::uint64_t> parsedCount{0};
 
 // The 4.9 C++ runtime shares its DFA cache between parser instances and is
 // known to race when several threads parse at once; a statement parses in
@@ -40,7 +43,9 @@ void checkLimits(const Source& source, const StatementSlice& slice) {
     for (std::size_t i = slice.begin; i < slice.end; ++i) {
         const antlr4::Token& token = *tokens[i];
         switch (token.getType()) {
-            case SmqlLexer::NOT: ++nots; break;
+            case SmqlLexer::NOT:
+                ++nots;
+                break;
             case SmqlLexer::LPAREN:
                 opened.push_back(nots + 1);
                 depth += nots + 1;
@@ -53,14 +58,17 @@ void checkLimits(const Source& source, const StatementSlice& slice) {
                 }
                 nots = 0;
                 break;
-            default: nots = 0; break;
+            default:
+                nots = 0;
+                break;
         }
         if (depth + nots > kMaxNestingDepth)
             throw Error(ErrorKind::Syntax,
                         fmt::format("the statement nests more than {} levels deep (parentheses, sub-queries and NOT "
                                     "together)",
                                     kMaxNestingDepth),
-                        locationOf(token), "write the condition with fewer levels, or split it into several statements");
+                        locationOf(token),
+                        "write the condition with fewer levels, or split it into several statements");
     }
 }
 
@@ -80,9 +88,12 @@ std::vector<ast::Statement> parse(std::string_view text) {
         checkLimits(source, slice);
         StatementParser parser(source, slice);
         statements.push_back(buildStatement(parser.parse(), source));
+        ++parsedCount;
     }
     return statements;
 }
+
+std::uint64_t statementsParsed() { return parsedCount.load(); }
 
 bool isIncomplete(std::string_view text) {
     std::lock_guard lock(antlrMutex());
@@ -93,10 +104,16 @@ bool isIncomplete(std::string_view text) {
         int depth = 0;
         for (const auto& token : tokens) {
             switch (token->getType()) {
-                case SmqlLexer::UNTERMINATED_STRING: return true;
-                case SmqlLexer::LPAREN: ++depth; break;
-                case SmqlLexer::RPAREN: depth = std::max(0, depth - 1); break;
-                default: break;
+                case SmqlLexer::UNTERMINATED_STRING:
+                    return true;
+                case SmqlLexer::LPAREN:
+                    ++depth;
+                    break;
+                case SmqlLexer::RPAREN:
+                    depth = std::max(0, depth - 1);
+                    break;
+                default:
+                    break;
             }
         }
         return depth > 0 || tokens.back()->getType() != SmqlLexer::SEMI;

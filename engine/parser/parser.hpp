@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,17 +16,26 @@ namespace smql::parser {
 // tree walker, the binder and the executor, so nesting is bounded before any
 // of them runs, as SQLite bounds expression depth (SQLITE_MAX_EXPR_DEPTH).
 // Real statements nest a handful of levels and run to a few hundred characters.
-inline constexpr std::size_t kMaxNestingDepth = 100;       // parentheses, sub-queries and NOTs together
-inline constexpr std::size_t kMaxStatementLength = 100000; // characters
+inline constexpr std::size_t kMaxNestingDepth = 100;        // parentheses, sub-queries and NOTs together
+inline constexpr std::size_t kMaxStatementLength = 100000;  // characters
+inline constexpr std::size_t kMaxPlaceholder = 999;         // the highest $n, as SQLite's default
 
 // Parses one or more `;`-separated statements. Throws smql::Error
 // (ErrorKind::Syntax) with the line, column and a hint at the first error;
 // never returns a partial list.
 std::vector<ast::Statement> parse(std::string_view text);
 
+// How many statements this process has parsed: a prepared statement's executions add none
+// (the engine's unit tests read it to prove so).
+std::uint64_t statementsParsed();
+
 // True when `text` ends inside an unfinished statement (no closing `;`,
 // open parenthesis or string): the shell keeps reading lines.
 bool isIncomplete(std::string_view text);
+
+// Names as the parser folds them (ASCII lower case), so that a name bound to a placeholder
+// matches the same name written in the statement.
+std::string lowerCase(std::string_view text);
 
 // Keywords, for shell completion and "did you mean" hints.
 const std::vector<std::string>& keywords();

@@ -18,8 +18,8 @@ namespace {
 // stderr.
 class LexerErrors : public antlr4::BaseErrorListener {
 public:
-    void syntaxError(antlr4::Recognizer*, antlr4::Token*, std::size_t line, std::size_t column,
-                     const std::string&, std::exception_ptr) override {
+    void syntaxError(antlr4::Recognizer*, antlr4::Token*, std::size_t line, std::size_t column, const std::string&,
+                     std::exception_ptr) override {
         throw Error(ErrorKind::Syntax, "unreadable character",
                     SourceLocation{static_cast<int>(line), static_cast<int>(column) + 1, 1});
     }
@@ -37,10 +37,9 @@ Source::Source(std::string_view text) {
         lineStart = lineStart == std::string_view::npos ? 0 : lineStart + 1;
         int line = 1 + static_cast<int>(std::count(before.begin(), before.end(), '\n'));
         // Columns count characters: skip UTF-8 continuation bytes.
-        int column = 1 + static_cast<int>(std::count_if(before.begin() + static_cast<std::ptrdiff_t>(lineStart),
-                                                         before.end(), [](char c) {
-                                                             return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-                                                         }));
+        int column =
+            1 + static_cast<int>(std::count_if(before.begin() + static_cast<std::ptrdiff_t>(lineStart), before.end(),
+                                               [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
         throw Error(ErrorKind::Syntax,
                     fmt::format("the text is not valid UTF-8: byte {} (0x{:02X}) does not start or continue a "
                                 "UTF-8 character",
@@ -85,14 +84,13 @@ SourceLocation Source::endOf(const StatementSlice& slice) const {
     }
     int line = static_cast<int>(last.getLine() + std::count(text.begin(), text.end(), '\n'));
     // Columns count characters, not bytes: skip UTF-8 continuation bytes.
-    int column = 1 + static_cast<int>(std::count_if(text.begin() + static_cast<std::ptrdiff_t>(newline) + 1, text.end(),
-                                                     [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+    int column =
+        1 + static_cast<int>(std::count_if(text.begin() + static_cast<std::ptrdiff_t>(newline) + 1, text.end(),
+                                           [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
     return SourceLocation{line, column, 1};
 }
 
-SourceLocation locationOf(const antlr4::Token& token) {
-    return span(token, token);
-}
+SourceLocation locationOf(const antlr4::Token& token) { return span(token, token); }
 
 SourceLocation span(const antlr4::Token& first, const antlr4::Token& last) {
     SourceLocation where{static_cast<int>(first.getLine()), static_cast<int>(first.getCharPositionInLine()) + 1, 1};
@@ -101,9 +99,8 @@ SourceLocation span(const antlr4::Token& first, const antlr4::Token& last) {
     if (stop == first.getStopIndex() && firstText.find('\n') != std::string::npos) {
         // A string running over several lines: underline its first line only.
         std::string_view firstLine = std::string_view(firstText).substr(0, firstText.find('\n'));
-        where.length = static_cast<int>(std::count_if(firstLine.begin(), firstLine.end(), [](char c) {
-            return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-        }));
+        where.length = static_cast<int>(std::count_if(
+            firstLine.begin(), firstLine.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
     } else {
         where.length = static_cast<int>(stop - first.getStartIndex() + 1);
     }
@@ -111,9 +108,7 @@ SourceLocation span(const antlr4::Token& first, const antlr4::Token& last) {
     return where;
 }
 
-SourceLocation span(antlr4::ParserRuleContext& context) {
-    return span(*context.getStart(), *context.getStop());
-}
+SourceLocation span(antlr4::ParserRuleContext& context) { return span(*context.getStart(), *context.getStop()); }
 
 std::string lowerCase(std::string_view text) {
     std::string lower(text);

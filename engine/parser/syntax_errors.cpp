@@ -55,8 +55,9 @@ struct Group {
 
 const std::vector<Group>& groups() {
     static const std::vector<Group> all = {
-        {{SmqlLexer::IDENT, SmqlLexer::STRING, SmqlLexer::NODE_ID, SmqlLexer::SOURCE_ID, SmqlLexer::LPAREN},
-         "a reference (a name, 'quoted name', #id, src#id or (FIND ...))"},
+        {{SmqlLexer::IDENT, SmqlLexer::STRING, SmqlLexer::NODE_ID, SmqlLexer::SOURCE_ID, SmqlLexer::LABELLED_ID,
+          SmqlLexer::LPAREN},
+         "a reference (a name, 'quoted name', #id, sofa#id, src#id or (FIND ...))"},
         {{SmqlLexer::NOT, SmqlLexer::LPAREN, SmqlLexer::IDENT}, "a condition such as on(desk) or color = 'red'"},
         {{SmqlLexer::EQ, SmqlLexer::NE, SmqlLexer::LT, SmqlLexer::LE, SmqlLexer::GT, SmqlLexer::GE, SmqlLexer::LIKE},
          "a comparison (=, !=, <, <=, >, >=, LIKE)"},
@@ -68,30 +69,59 @@ const std::vector<Group>& groups() {
 
 std::string describeToken(std::size_t type, bool afterNumber) {
     switch (type) {
-        case SmqlLexer::VIEW: return "VIEW FROM";
-        case SmqlLexer::NEAREST: return "NEAREST TO";
-        case SmqlLexer::ORDER: return "ORDER BY";
-        case SmqlLexer::DISTANCE: return "distance(...)";
+        case SmqlLexer::VIEW:
+            return "VIEW FROM";
+        case SmqlLexer::NEAREST:
+            return "NEAREST TO";
+        case SmqlLexer::ORDER:
+            return "ORDER BY";
+        case SmqlLexer::AS:
+            return "AS OF";
+        case SmqlLexer::DISTANCE:
+            return "distance(...)";
         // After a number an identifier can only be its unit.
-        case SmqlLexer::IDENT: return afterNumber ? "a unit (m, cm or mm)" : "a name";
-        case SmqlLexer::STRING: return "a quoted string";
-        case SmqlLexer::NUMBER: return "a number";
-        case SmqlLexer::NODE_ID: return "#id";
-        case SmqlLexer::SOURCE_ID: return "src#id";
-        case SmqlLexer::EQ: return "'='";
-        case SmqlLexer::NE: return "'!='";
-        case SmqlLexer::LE: return "'<='";
-        case SmqlLexer::GE: return "'>='";
-        case SmqlLexer::LT: return "'<'";
-        case SmqlLexer::GT: return "'>'";
-        case SmqlLexer::LPAREN: return "'('";
-        case SmqlLexer::RPAREN: return "')'";
-        case SmqlLexer::COMMA: return "','";
-        case SmqlLexer::DOT: return "'.'";
-        case SmqlLexer::MINUS: return "'-'";
-        case SmqlLexer::STAR: return "'*'";
-        case antlr4::Token::EOF: return "';'";
-        default: return tokenName(type);
+        case SmqlLexer::IDENT:
+            return afterNumber ? "a unit (m, cm or mm)" : "a name";
+        case SmqlLexer::STRING:
+            return "a quoted string";
+        case SmqlLexer::NUMBER:
+            return "a number";
+        case SmqlLexer::NODE_ID:
+            return "#id";
+        case SmqlLexer::SOURCE_ID:
+            return "src#id";
+        case SmqlLexer::LABELLED_ID:
+            return "name#id";
+        case SmqlLexer::EQ:
+            return "'='";
+        case SmqlLexer::NE:
+            return "'!='";
+        case SmqlLexer::LE:
+            return "'<='";
+        case SmqlLexer::GE:
+            return "'>='";
+        case SmqlLexer::LT:
+            return "'<'";
+        case SmqlLexer::GT:
+            return "'>'";
+        case SmqlLexer::LPAREN:
+            return "'('";
+        case SmqlLexer::RPAREN:
+            return "')'";
+        case SmqlLexer::COMMA:
+            return "','";
+        case SmqlLexer::DOT:
+            return "'.'";
+        case SmqlLexer::MINUS:
+            return "'-'";
+        case SmqlLexer::STAR:
+            return "'*'";
+        case SmqlLexer::PARAM:
+            return "a placeholder (? or $1)";
+        case antlr4::Token::EOF:
+            return "';'";
+        default:
+            return tokenName(type);
     }
 }
 
@@ -105,6 +135,9 @@ std::vector<std::size_t> meaningfulTypes(std::set<std::size_t> expected, bool af
     // `desk.left` makes '.' fit after nearly every name; it is almost never
     // what was missing.
     if (expected.size() > 1) expected.erase(SmqlLexer::DOT);
+    // A placeholder fits wherever a value does, but only prepared statements can use one; the
+    // hint names what can be written.
+    if (expected.size() > 1) expected.erase(SmqlLexer::PARAM);
     return {expected.begin(), expected.end()};
 }
 
@@ -123,7 +156,9 @@ std::string expectedWords(const std::vector<std::size_t>& types, bool afterNumbe
     }
     for (std::size_t type : rest) items.emplace_back(type, describeToken(type, afterNumber));
     // AND and OR continue the condition just written: they go first.
-    auto rank = [](std::size_t type) { return type == SmqlLexer::AND || type == SmqlLexer::OR ? std::size_t{0} : type; };
+    auto rank = [](std::size_t type) {
+        return type == SmqlLexer::AND || type == SmqlLexer::OR ? std::size_t{0} : type;
+    };
     std::stable_sort(items.begin(), items.end(),
                      [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
     std::vector<std::string> words;
@@ -194,9 +229,9 @@ Error syntaxError(const Source& source, const StatementSlice& slice, std::size_t
         char quote = offending->getText().front();
         SourceLocation at = where;
         at.length = 1;
-        return Error(ErrorKind::Syntax, "unterminated string", at,
-                     fmt::format("close it with {0}; a {0} inside a string is written twice, as in {0}it{0}{0}s{0}",
-                                 quote));
+        return Error(
+            ErrorKind::Syntax, "unterminated string", at,
+            fmt::format("close it with {0}; a {0} inside a string is written twice, as in {0}it{0}{0}s{0}", quote));
     }
     if (type == SmqlLexer::UNKNOWN_CHAR) {
         if (offending->getText() == "#")
@@ -223,15 +258,15 @@ Error syntaxError(const Source& source, const StatementSlice& slice, std::size_t
     const antlr4::Token* next =
         !atEnd && failedAt + 1 < slice.end - slice.begin ? tokens[slice.begin + failedAt + 1].get() : nullptr;
     const antlr4::Token* notANumber = isNotANumberWord(offending) && expected.count(SmqlLexer::NUMBER) ? offending
-                                      : isUnitToken(offending) && isNotANumberWord(previous)          ? previous
+                                      : isUnitToken(offending) && isNotANumberWord(previous)           ? previous
                                                                                                        : nullptr;
     if (notANumber)
         return Error(ErrorKind::Syntax, fmt::format("'{}' is not a number", notANumber->getText()),
                      locationOf(*notANumber), "distances and values are finite numbers, as in 1.5 m");
     if (type == SmqlLexer::MINUS && expected.count(SmqlLexer::NUMBER) && !expected.count(SmqlLexer::MINUS) && next &&
         next->getType() == SmqlLexer::NUMBER) {
-        const antlr4::Token* unit = failedAt + 2 < slice.end - slice.begin ? tokens[slice.begin + failedAt + 2].get()
-                                                                            : nullptr;
+        const antlr4::Token* unit =
+            failedAt + 2 < slice.end - slice.begin ? tokens[slice.begin + failedAt + 2].get() : nullptr;
         return Error(ErrorKind::Syntax, "a distance cannot be negative",
                      span(*offending, isUnitToken(unit) ? *unit : *next),
                      "write a distance of 0 or more, as in near(door, 1.5 m)");

@@ -18,10 +18,10 @@ using grammar::SmqlLexer;
 inline bool isKeyword(std::size_t type) { return type >= SmqlLexer::FIND && type <= SmqlLexer::LIKE; }
 
 // The keywords a name may also be (grammar rule `name`): all but the logical ones.
-inline bool isSoftKeyword(std::size_t type) { return type >= SmqlLexer::FIND && type <= SmqlLexer::SETTINGS; }
+inline bool isSoftKeyword(std::size_t type) { return type >= SmqlLexer::FIND && type <= SmqlLexer::GRAPH; }
 
-// Keywords that begin a command.
-inline bool startsCommand(std::size_t type) { return type >= SmqlLexer::FIND && type <= SmqlLexer::SET; }
+// Keywords that begin a command (the grammar declares them first, FIND .. GUIDE).
+inline bool startsCommand(std::size_t type) { return type >= SmqlLexer::FIND && type <= SmqlLexer::GUIDE; }
 
 // How many of a length unit make a metre (m, cm, mm; lower case), or
 // nothing for a word that is not a unit. Dividing by it rather than

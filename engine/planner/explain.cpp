@@ -22,13 +22,20 @@ std::string literalText(const ast::Literal& literal) {
 
 std::string_view opText(ast::CompareOp op) {
     switch (op) {
-        case ast::CompareOp::Eq: return "=";
-        case ast::CompareOp::Ne: return "!=";
-        case ast::CompareOp::Lt: return "<";
-        case ast::CompareOp::Le: return "<=";
-        case ast::CompareOp::Gt: return ">";
-        case ast::CompareOp::Ge: return ">=";
-        case ast::CompareOp::Like: return "LIKE";
+        case ast::CompareOp::Eq:
+            return "=";
+        case ast::CompareOp::Ne:
+            return "!=";
+        case ast::CompareOp::Lt:
+            return "<";
+        case ast::CompareOp::Le:
+            return "<=";
+        case ast::CompareOp::Gt:
+            return ">";
+        case ast::CompareOp::Ge:
+            return ">=";
+        case ast::CompareOp::Like:
+            return "LIKE";
     }
     return "?";
 }
@@ -46,8 +53,12 @@ void explainFind(const FindPlan& plan, Lines& lines) {
     if (f.countOnly) {
         lines.add("Count");
     } else {
-        std::string columns = "id, category, source_id, box";
-        if (f.distanceTo) columns += ", distance";
+        std::string columns;
+        for (const auto& column : f.columns) columns += (columns.empty() ? "" : ", ") + column;
+        if (columns.empty()) {
+            columns = "id, category, source_id, box";
+            if (f.distanceTo) columns += ", distance";
+        }
         if (f.path) columns += ", path";
         lines.add("Project " + columns);
         if (f.limit) lines.add(fmt::format("Limit {}", *f.limit));
@@ -55,9 +66,10 @@ void explainFind(const FindPlan& plan, Lines& lines) {
     std::string keep = f.target.nodes.description;
     switch (plan.access) {
         case Access::NearestFirst:
-            lines.add(fmt::format("Top {} nearest to {}{}: R-tree nearest-first search, widened until no box "
-                                  "outside can beat the last answer",
-                                  *f.limit, f.distanceTo->description, f.nearest ? ", without itself" : ""));
+            lines.add(
+                fmt::format("Top {} nearest to {}{}: R-tree nearest-first search, widened until no box "
+                            "outside can beat the last answer",
+                            *f.limit, f.distanceTo->description, f.nearest ? ", without itself" : ""));
             if (f.where) lines.add("Filter " + describe(*f.where));
             lines.add("Keep " + keep);
             break;
@@ -66,6 +78,12 @@ void explainFind(const FindPlan& plan, Lines& lines) {
             if (f.distanceTo)
                 lines.add(fmt::format("Sort by distance to {}{}{}", f.distanceTo->description,
                                       f.descending ? " descending" : "", f.nearest ? ", without itself" : ""));
+            if (!f.orderAttribute.empty() && plan.topK)
+                lines.add(fmt::format("Top {} by {}{}: partial sort, nodes without it last", *f.limit, f.orderAttribute,
+                                      f.descending ? " descending" : ""));
+            else if (!f.orderAttribute.empty())
+                lines.add(fmt::format("Sort by {}{}, nodes without it last", f.orderAttribute,
+                                      f.descending ? " descending" : ""));
             if (f.where) lines.add("Filter " + describe(*f.where));
             if (plan.access == Access::RTreeProbe)
                 lines.add(fmt::format("R-tree probe for {} around each reference node, keep {}",
@@ -92,8 +110,23 @@ struct StatementLines {
         lines.add(fmt::format("Label index scan of '{}' across all scenes, reading each node", f.category));
     }
     void operator()(const binder::BoundRelate& r) const {
-        lines.add(fmt::format("Relate each node of {} to each node of {}", r.subject.description, r.object.description));
+        lines.add(
+            fmt::format("Relate each node of {} to each node of {}", r.subject.description, r.object.description));
         lines.note("(view: " + r.view.description + ")");
+    }
+    void operator()(const binder::BoundCheck& c) const {
+        std::string args;
+        for (const auto& a : c.args) args += (args.empty() ? "" : " and ") + a.description;
+        lines.add(fmt::format("Check {} {} {}{}", c.subject.description, relations::toString(c.predicate), args,
+                              c.nearDistance ? fmt::format(" within {} m", *c.nearDistance) : std::string()));
+        lines.note("(view: " + c.view.description + ")");
+    }
+    void operator()(const binder::BoundShowCategories& s) const {
+        lines.add(s.allScenes ? std::string("Count each category of each scene from the label index")
+                              : std::string("Count the nodes of each category of the current scene"));
+    }
+    void operator()(const binder::BoundShowAttributes&) const {
+        lines.add("List the built-in attributes and those stored in the current scene");
     }
     void operator()(const binder::BoundDescribe& d) const {
         lines.add(fmt::format("Describe {}, with evidence from the blob table", d.nodes.description));
@@ -102,6 +135,30 @@ struct StatementLines {
     void operator()(const binder::BoundShowSettings&) const { lines.add("List the settings of this session"); }
     void operator()(const binder::BoundShowTree& t) const {
         lines.add("Walk the tree depth-first from " + (t.root ? t.root->description : std::string("the scene root")));
+    }
+    void operator()(const binder::BoundShowChanges& c) const {
+        lines.add(fmt::format("Read the history of scene '{}'{}", c.scene,
+                              c.since ? fmt::format(", updates at or after {}", *c.since) : std::string()));
+    }
+    void operator()(const binder::BoundShowGraph&) const {
+        lines.add("Build the scene's decision-point graph over its free floor (kept with the scene's snapshot)");
+    }
+    void operator()(const binder::BoundGuide& g) const {
+        std::string from = g.from    ? g.from->description
+                           : g.point ? fmt::format("the point ({}, {})", g.point->first, g.point->second)
+                                     : std::string("the scene's viewpoint");
+        lines.add(
+            fmt::format("Guide from {} to {}: shortest route on the decision-point graph (Dijkstra), "
+                        "told as steps",
+                        from, g.to.description));
+    }
+    void operator()(const binder::BoundDropScene& d) const {
+        lines.add(
+            fmt::format("Remove scene '{}' with its nodes, indexes and history, in one write transaction", d.scene));
+    }
+    void operator()(const binder::BoundRenameScene& r) const {
+        lines.add(
+            fmt::format("Rename scene '{}' to '{}' with its history, in one write transaction", r.scene, r.newName));
     }
     void operator()(const binder::BoundUse& u) const {
         lines.add(u.allScenes ? std::string("Switch the session to all scenes")
@@ -112,6 +169,11 @@ struct StatementLines {
     }
     void operator()(const binder::BoundExplain&) const {
         for (auto& line : plan.explained->explain()) lines.out.push_back(std::move(line));
+    }
+    void operator()(const binder::BoundAsk& a) const {
+        lines.add(fmt::format("Answer the question with {}{}", a.inner ? "" : "(not run) ", a.translation.smql));
+        if (!plan.asked) return;
+        for (auto& line : plan.asked->explain()) lines.out.push_back("  " + line);
     }
 };
 
@@ -138,6 +200,9 @@ std::string describe(const BoundExpr& expr) {
             return out + ")";
         }
         case BoundExpr::Kind::Compare:
+            if (expr.distanceTo)
+                return fmt::format("distance({}) {} {} m", expr.distanceTo->description, opText(expr.op),
+                                   literalText(expr.literal));
             return fmt::format("{} {} {}", expr.attribute, opText(expr.op), literalText(expr.literal));
     }
     return {};

@@ -17,6 +17,15 @@ std::vector<const BoundExpr*> conjuncts(const BoundExpr& where) {
 
 const BoundExpr& FindPlan::probeTerm() const { return *conjuncts(*find->where)[probeConjunct]; }
 
+const NodeSet* probeReferences(const BoundExpr& term) {
+    if (term.kind == BoundExpr::Kind::Predicate && term.args.size() == 1 && relations::spec(term.predicate).local())
+        return &term.args[0];
+    // distance(x) < d: within d of x's boxes, so within d of their bounds on every axis.
+    const bool upperBound = term.op == ast::CompareOp::Lt || term.op == ast::CompareOp::Le;
+    if (term.kind == BoundExpr::Kind::Compare && term.distanceTo && upperBound) return &*term.distanceTo;
+    return nullptr;
+}
+
 namespace {
 
 // The smallest local conjunct with one reference, if a probe around its references beats a scan.
@@ -25,13 +34,11 @@ std::optional<std::size_t> probeConjunct(const binder::BoundFind& find) {
     auto terms = conjuncts(*find.where);
     std::optional<std::size_t> best;
     for (std::size_t i = 0; i < terms.size(); ++i) {
-        const BoundExpr* c = terms[i];
-        if (c->kind != BoundExpr::Kind::Predicate || c->args.size() != 1) continue;
-        if (!relations::spec(c->predicate).local()) continue;
-        if (!best || c->args[0].estimate() < terms[*best]->args[0].estimate()) best = i;
+        const NodeSet* around = probeReferences(*terms[i]);
+        if (around && (!best || around->estimate() < probeReferences(*terms[*best])->estimate())) best = i;
     }
     // A probe costs a tree descent per reference node; a scan costs a test per target node.
-    if (!best || terms[*best]->args[0].estimate() * 4 >= find.target.nodes.estimate()) return std::nullopt;
+    if (!best || probeReferences(*terms[*best])->estimate() * 4 >= find.target.nodes.estimate()) return std::nullopt;
     return best;
 }
 
@@ -52,6 +59,7 @@ FindPlan planFind(std::shared_ptr<const binder::BoundFind> find) {
     } else if (f.distanceTo && oneReference(*f.distanceTo) && f.limit && !f.descending) {
         plan.access = Access::NearestFirst;
     }
+    plan.topK = !f.orderAttribute.empty() && f.limit.has_value();
     return plan;
 }
 

@@ -27,6 +27,7 @@ struct SubqueryPlanner {
     void expr(const BoundExpr& e) {
         for (const auto& c : e.children) expr(c);
         for (const auto& a : e.args) set(a);
+        set(e.distanceTo);
     }
     void find(const BoundFind& f) {
         view(f.view);
@@ -42,7 +43,16 @@ struct SubqueryPlanner {
         set(r.object);
     }
     void body(const binder::BoundDescribe& d) { set(d.nodes); }
+    void body(const binder::BoundCheck& c) {
+        view(c.view);
+        set(c.subject);
+        for (const auto& a : c.args) set(a);
+    }
     void body(const binder::BoundShowTree& t) { set(t.root); }
+    void body(const binder::BoundGuide& g) {
+        set(g.from);
+        set(g.to);
+    }
     void body(const auto&) {}
 };
 
@@ -58,6 +68,8 @@ Plan plan(std::shared_ptr<const binder::BoundStatement> statement) {
         out.find = planFind(std::shared_ptr<const BoundFind>(statement, find));
     if (const auto* explain = std::get_if<binder::BoundExplain>(&statement->body))
         out.explained = std::make_shared<const Plan>(plan(explain->inner));
+    if (const auto* ask = std::get_if<binder::BoundAsk>(&statement->body); ask && ask->inner)
+        out.asked = std::make_shared<const Plan>(plan(ask->inner));
     return out;
 }
 

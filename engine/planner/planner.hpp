@@ -5,6 +5,7 @@
 //    are visited instead of every node of the target;
 //  - NEAREST TO / ORDER BY distance(x) LIMIT k around one node is a top-k
 //    nearest-first search of the R-tree;
+//  - ORDER BY an attribute with a LIMIT keeps the top k (a partial sort), without one sorts all;
 //  - under USE SCENE '*', FIND and COUNT read the label index of every scene;
 //  - every sub-query gets a plan of its own, run before the statement needs it.
 #pragma once
@@ -29,6 +30,7 @@ struct FindPlan {
     std::shared_ptr<const binder::BoundFind> find;
     Access access = Access::Scan;
     std::size_t probeConjunct = 0;  // RTreeProbe: the top-level conjunct that drives the probe
+    bool topK = false;              // ORDER BY an attribute LIMIT k: only the first k are sorted
 
     // The conjunct an R-tree probe is built from.
     const binder::BoundExpr& probeTerm() const;
@@ -36,9 +38,10 @@ struct FindPlan {
 
 struct Plan {
     std::shared_ptr<const binder::BoundStatement> statement;  // the plan shares what it runs
-    std::optional<FindPlan> find;                              // FIND / COUNT in one scene
-    std::vector<std::shared_ptr<const FindPlan>> subqueries;   // by NodeSet id; null where none
-    std::shared_ptr<const Plan> explained;                     // EXPLAIN: the inner statement's plan
+    std::optional<FindPlan> find;                             // FIND / COUNT in one scene
+    std::vector<std::shared_ptr<const FindPlan>> subqueries;  // by NodeSet id; null where none
+    std::shared_ptr<const Plan> explained;                    // EXPLAIN: the inner statement's plan
+    std::shared_ptr<const Plan> asked;                        // ASK: the plan of the question's SMQL
 
     // The plan as EXPLAIN prints it, one operator per line, root first.
     std::vector<std::string> explain() const;
@@ -47,6 +50,10 @@ struct Plan {
 Plan plan(std::shared_ptr<const binder::BoundStatement> statement);
 // The access path for one FIND; plan() uses it for the statement and each sub-query.
 FindPlan planFind(std::shared_ptr<const binder::BoundFind> find);
+
+// The references an R-tree probe can gather candidates around: those of a local predicate with one
+// reference (on, near, ...) or of `distance(x) < d`; null for a conjunct that cannot drive a probe.
+const binder::NodeSet* probeReferences(const binder::BoundExpr& term);
 
 // The WHERE clause as EXPLAIN and errors print it.
 std::string describe(const binder::BoundExpr& expr);

@@ -4,8 +4,8 @@
 #include <limits>
 #include <vector>
 
-#include "model/geometry.hpp"
 #include "engine/relations/predicates.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::relations {
 

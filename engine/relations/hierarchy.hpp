@@ -4,8 +4,8 @@
 // below the scene root.
 #pragma once
 
-#include "model/types.hpp"
 #include "engine/relations/thresholds.hpp"
+#include "model/types.hpp"
 
 namespace smql::relations {
 

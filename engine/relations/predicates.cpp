@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
+
+#include "engine/relations/visibility.hpp"
 
 namespace smql::relations {
 
@@ -48,13 +51,14 @@ double offsetScore(double offset, double threshold) {
 
 Affordance affordanceOf(std::string_view category) {
     static const std::array<std::string_view, 26> holders = {
-        "plant-stand", "basket", "bowl", "box", "bin", "trash-can", "wastebasket", "vase", "pot",
-        "planter", "cup", "mug", "glass", "jar", "bag", "bucket", "sink", "bathtub", "crate",
-        "container", "basin", "pan", "tub", "flowerpot", "case", "backpack"};
+        "plant-stand", "basket",    "bowl",  "box",   "bin", "trash-can", "wastebasket", "vase",    "pot",
+        "planter",     "cup",       "mug",   "glass", "jar", "bag",       "bucket",      "sink",    "bathtub",
+        "crate",       "container", "basin", "pan",   "tub", "flowerpot", "case",        "backpack"};
     static const std::array<std::string_view, 20> enclosures = {
-        "cabinet", "base-cabinet", "wall-cabinet", "cupboard", "wardrobe", "closet", "drawer",
-        "chest-of-drawers", "dresser", "shelf-unit", "bookcase", "bookshelf", "fridge", "refrigerator",
-        "microwave", "oven", "dishwasher", "washing-machine", "kitchen-cabinet", "nightstand"};
+        "cabinet",  "base-cabinet", "wall-cabinet",     "cupboard",        "wardrobe",
+        "closet",   "drawer",       "chest-of-drawers", "dresser",         "shelf-unit",
+        "bookcase", "bookshelf",    "fridge",           "refrigerator",    "microwave",
+        "oven",     "dishwasher",   "washing-machine",  "kitchen-cabinet", "nightstand"};
     auto listed = [&](const auto& names) {
         return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return sameCategory(n, category); });
     };
@@ -62,6 +66,19 @@ Affordance affordanceOf(std::string_view category) {
     if (listed(enclosures)) return Affordance::Enclosure;
     return Affordance::Surface;
 }
+
+bool hasFront(std::string_view category) {
+    static const std::array<std::string_view, 24> fronted = {
+        "sofa",         "couch",    "armchair",   "chair",
+        "office-chair", "bed",      "tv",         "television",
+        "tv-screen",    "monitor",  "desk",       "cabinet",
+        "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
+        "nightstand",   "bookcase", "bookshelf",  "refrigerator",
+        "fridge",       "oven",     "dishwasher", "fireplace"};
+    return std::any_of(fronted.begin(), fronted.end(), [&](std::string_view n) { return sameCategory(n, category); });
+}
+
+model::Vec2 frontDirection(const Box& box) { return {std::cos(box.yaw), std::sin(box.yaw)}; }
 
 bool isVerticalPlane(const Node& node) {
     if (node.kind != model::NodeKind::Anchor) return false;
@@ -103,10 +120,14 @@ model::Aabb grown(model::Aabb b, double d) {
 
 // The formulas, one per predicate; docs/relations.md states each.
 
+// Real support, as Sr3D's "supported-by": most of a's own footprint lies over b (a box that only
+// grazes b's edge, or a large thing over a small one, is not on it), on top of the support rule.
 double onScore(const PredicateInputs& in) {
     Affordance kind = affordanceOf(in.b.category);
     if (kind == Affordance::Holder) return 0.0;
     if (kind == Affordance::Enclosure && contained(in.a, in.b, in.t)) return 0.0;
+    double own = model::footprintArea(in.a.box);
+    if (own <= 0 || model::footprintOverlap(in.a.box, in.b.box) / own < in.t.onMinOverlap) return 0.0;
     return supportScore(in.a, in.b, in.t);
 }
 
@@ -126,10 +147,32 @@ double aboveScore(const Node& a, const Node& b, const Thresholds& t) {
 double aboveScore(const PredicateInputs& in) { return aboveScore(in.a, in.b, in.t); }
 double belowScore(const PredicateInputs& in) { return aboveScore(in.b, in.a, in.t); }
 
+model::Vec3 centre(const Node& n) { return n.box.center; }
+
+// A wall stands between a and b when the line joining their centres passes through it and
+// neither centre lies in it.
+bool wallBetween(const Node& a, const Node& b, const Obstacles* obstacles) {
+    if (!obstacles) return false;
+    model::Aabb span = model::worldAabb(a.box);
+    const model::Aabb other = model::worldAabb(b.box);
+    span.min = {std::min(span.min.x, other.min.x), std::min(span.min.y, other.min.y),
+                std::min(span.min.z, other.min.z)};
+    span.max = {std::max(span.max.x, other.max.x), std::max(span.max.y, other.max.y),
+                std::max(span.max.z, other.max.z)};
+    std::vector<const Node*> around;
+    obstacles->within(span, around);
+    return std::any_of(around.begin(), around.end(), [&](const Node* w) {
+        if (w->id == a.id || w->id == b.id || !isVerticalPlane(*w) || !sameCategory(w->category, "wall")) return false;
+        if (pointInBox(centre(a), w->box) || pointInBox(centre(b), w->box)) return false;
+        return segmentCrosses(centre(a), centre(b), w->box);
+    });
+}
+
 double nearScore(const PredicateInputs& in) {
+    double limit = nearLimit(in.a, in.b, in.t, in.writtenDistance);
     double d = model::distance(in.a.box, in.b.box);
-    if (d > in.nearDistance) return 0.0;
-    return in.nearDistance > 0 ? std::max(0.01, 1.0 - d / in.nearDistance) : 1.0;
+    if (d > limit || wallBetween(in.a, in.b, in.obstacles)) return 0.0;
+    return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
 }
 
 double attachedScore(const PredicateInputs& in) {
@@ -165,6 +208,80 @@ double betweenScore(const PredicateInputs& in) {
     double limit = in.t.betweenMaxOffset;
     return off <= limit ? std::max(0.01, 1.0 - off / std::max(limit, 1e-3)) : 0.0;
 }
+
+// visible_from(a, x): from an eye at x, enough of a's sample points are in sight. With a heading
+// (VIEW FROM .. FACING ..) only what lies within kHalfFieldOfView of it counts.
+constexpr double kHalfFieldOfView = M_PI / 3;  // a person's 120 degrees of binocular field
+
+double visibleFromScore(const PredicateInputs& in) {
+    model::Vec3 eye = eyeAt(in.b.box);
+    std::vector<const Node*> obstacles;
+    if (in.obstacles) {
+        model::Aabb span = model::worldAabb(in.a.box);
+        span.min = {std::min(span.min.x, eye.x), std::min(span.min.y, eye.y), std::min(span.min.z, eye.z)};
+        span.max = {std::max(span.max.x, eye.x), std::max(span.max.y, eye.y), std::max(span.max.z, eye.z)};
+        in.obstacles->within(span, obstacles);
+    }
+    std::optional<ViewCone> cone;
+    if (in.frame.headingGiven)
+        cone = ViewCone{{in.frame.forward.x, in.frame.forward.y, 0},
+                        {in.frame.right.x, in.frame.right.y, 0},
+                        {0, 0, 1},
+                        std::tan(kHalfFieldOfView),
+                        std::numeric_limits<double>::infinity()};
+    double share = visibleShare(eye, in.a, obstacles, cone ? &*cone : nullptr, &in.b);
+    return share > 0 && share >= in.t.visibleMinShare ? share : 0.0;
+}
+
+// Sr3D's sections of a thing with a front widen by 10 degrees on each side beyond its sides.
+const double kSectionFlare = std::tan(10.0 * M_PI / 180.0);
+
+// Where `point` lies in box's own frame: `ahead` beyond its front face (negative: behind its back
+// face), `aside` beyond the section's flared side (<= 0: within the section).
+struct SectionPlace {
+    double ahead;
+    double aside;
+};
+SectionPlace placeInFront(const Box& box, model::Vec2 point, double direction) {
+    model::Vec2 front = frontDirection(box);
+    model::Vec2 left{-front.y, front.x};
+    model::Vec2 d{point.x - box.center.x, point.y - box.center.y};
+    double along = direction * dot(d, front) - box.size.x / 2;
+    double lateral = std::abs(dot(d, left));
+    return {along, lateral - box.size.y / 2 - kSectionFlare * std::max(0.0, along)};
+}
+
+// facing(a, b): a has a front, b's centre lies ahead of a's front face, and b's footprint reaches
+// into a's front section: a corner inside it, or corners on both sides of a's front axis (a chair
+// at the end of a long table faces the table).
+double facingScore(const PredicateInputs& in) {
+    if (!hasFront(in.a.category)) return 0.0;
+    SectionPlace middle = placeInFront(in.a.box, {in.b.box.center.x, in.b.box.center.y}, 1.0);
+    if (middle.ahead <= 0) return 0.0;
+    model::Vec2 front = frontDirection(in.a.box);
+    bool inside = false, leftSide = false, rightSide = false;
+    for (model::Vec2 corner : model::footprint(in.b.box)) {
+        SectionPlace p = placeInFront(in.a.box, corner, 1.0);
+        inside |= p.ahead > 0 && p.aside <= 0;
+        double side = front.x * (corner.y - in.a.box.center.y) - front.y * (corner.x - in.a.box.center.x);
+        leftSide |= side > 0;
+        rightSide |= side < 0;
+    }
+    if (!inside && !(leftSide && rightSide)) return 0.0;
+    // Straight ahead scores 1; the score falls as b's centre moves out of the section.
+    return 1.0 / (1.0 + std::max(0.0, middle.aside));
+}
+
+// at_front_of(a, b) / at_back_of(a, b): b has a front, a's centre lies in b's front (back) section
+// and a is near b.
+double sectionScore(const PredicateInputs& in, double direction) {
+    if (!hasFront(in.b.category)) return 0.0;
+    SectionPlace p = placeInFront(in.b.box, {in.a.box.center.x, in.a.box.center.y}, direction);
+    if (p.ahead <= 0 || p.aside > 0) return 0.0;
+    return nearScore(in);
+}
+double atFrontOfScore(const PredicateInputs& in) { return sectionScore(in, 1.0); }
+double atBackOfScore(const PredicateInputs& in) { return sectionScore(in, -1.0); }
 
 // Where a must be when on(a, ref) / in(a, ref) holds: a's footprint overlaps ref's and a's bottom is at
 // most on.max_gap above ref's top.
@@ -209,7 +326,7 @@ constexpr PredicateSpec kPredicates[] = {
     {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)"},
     {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)"},
     {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)"},
-    {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 10, "near(sofa) or near(sofa, 1.5 m)"},
+    {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 14, "near(sofa) or near(sofa, 1.5 m)"},
     {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)"},
     {P::LeftOf, "", 1, true, false, leftOfScore, nullptr, nullptr, 6, "left_of(window)"},
     {P::RightOf, "", 1, true, false, rightOfScore, nullptr, nullptr, 7, "right_of(window)"},
@@ -217,6 +334,13 @@ constexpr PredicateSpec kPredicates[] = {
     {P::Behind, "", 1, true, false, behindScore, nullptr, nullptr, 9, "behind(sofa)"},
     {P::Between, "", 2, false, false, betweenScore, nullptr, nullptr, 0,
      "between(lamp, sofa): the target lies between the two"},
+    {P::VisibleFrom, "", 1, false, false, visibleFromScore, nullptr, nullptr, 0,
+     "visible_from(door): in sight of an eye standing at the door"},
+    {P::Facing, "", 1, false, false, facingScore, nullptr, nullptr, 11, "facing(table): its front faces the table"},
+    {P::AtFrontOf, "", 1, false, false, atFrontOfScore, withinNear, withinNear, 12,
+     "at_front_of(sofa): by the sofa's own front"},
+    {P::AtBackOf, "", 1, false, false, atBackOfScore, withinNear, withinNear, 13,
+     "at_back_of(sofa): by the sofa's own back"},
 };
 
 constexpr bool rowsInCodeOrder() {
@@ -258,17 +382,24 @@ std::vector<std::string> predicateWords() {
     return out;
 }
 
-double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame, const Node* c,
-                std::optional<double> nearDistance) {
-    if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
-    return spec(p).evaluate({a, b, c, t, frame, nearDistance.value_or(t.nearDistance)});
+double nearLimit(const Node& a, const Node& b, const Thresholds& t, std::optional<double> writtenDistance) {
+    if (writtenDistance) return *writtenDistance;
+    auto size = [](const Node& n) { return std::max(n.box.size.x, n.box.size.y); };
+    return std::min(t.nearDistance, std::max(t.nearMinDistance, size(a) + size(b)));
 }
 
-std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& t, const Frame& frame) {
+double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame, const Node* c,
+                std::optional<double> writtenDistance, const Obstacles* obstacles) {
+    if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
+    return spec(p).evaluate({a, b, c, t, frame, writtenDistance, obstacles});
+}
+
+std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& t, const Frame& frame,
+                                const Obstacles* obstacles) {
     static const auto order = relateOrder();
     std::vector<RelationHit> hits;
     for (const auto* row : order) {
-        double score = evaluate(row->predicate, a, b, t, frame);
+        double score = evaluate(row->predicate, a, b, t, frame, nullptr, std::nullopt, obstacles);
         if (score > 0) hits.push_back({row->predicate, score});
     }
     return hits;

@@ -14,9 +14,9 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/relations/thresholds.hpp"
 #include "model/geometry.hpp"
 #include "model/types.hpp"
-#include "engine/relations/thresholds.hpp"
 
 namespace smql::relations {
 
@@ -27,8 +27,18 @@ struct Frame {
     model::Vec2 forward{0, 1};  // unit vector the viewer faces
     model::Vec2 right{1, 0};    // forward turned 90 degrees clockwise
     model::Vec2 position{0, 0};
+    bool headingGiven = false;  // VIEW FROM x FACING y: visible_from keeps to the field of view
 };
 Frame viewFrame(const model::Viewpoint& viewpoint);
+
+// The boxes that may stand between two nodes, for visible_from and near. The executor answers from
+// the scene's R-tree; a caller without a scene passes none, and then nothing stands between.
+class Obstacles {
+public:
+    virtual ~Obstacles() = default;
+    // Appends every node with geometry whose world bounds intersect `region`.
+    virtual void within(const model::Aabb& region, std::vector<const model::Node*>& out) const = 0;
+};
 
 // What a formula sees: `p(a, b)` or `between(a, b, c)`.
 struct PredicateInputs {
@@ -36,8 +46,9 @@ struct PredicateInputs {
     const model::Node& b;
     const model::Node* c;  // the second reference of a two-reference predicate
     const Thresholds& t;
-    const Frame& frame;     // lateral predicates measure in it
-    double nearDistance;    // near's limit: the threshold, or the distance written in near(x, 1 m)
+    const Frame& frame;                     // lateral predicates measure in it
+    std::optional<double> writtenDistance;  // the distance written in near(x, 1 m), if any
+    const Obstacles* obstacles;             // null: nothing stands between
 };
 
 struct PredicateSpec {
@@ -52,8 +63,8 @@ struct PredicateSpec {
     // Null for predicates that can hold far away, which no index probe can serve.
     model::Aabb (*candidateRegion)(const model::Aabb& ref, double nearDistance, const Thresholds& t);
     model::Aabb (*referenceRegion)(const model::Aabb& a, double nearDistance, const Thresholds& t);
-    int relateRank;           // position in RELATE's answer, most specific first; 0: RELATE leaves it out
-    std::string_view usage;   // how to write it, for error hints
+    int relateRank;          // position in RELATE's answer, most specific first; 0: RELATE leaves it out
+    std::string_view usage;  // how to write it, for error hints
 
     std::string_view name() const { return model::toString(predicate); }
     // Holds only close to its reference, so an R-tree probe around the reference finds every candidate.
@@ -77,12 +88,25 @@ inline std::string_view toString(Predicate p) { return model::toString(p); }
 enum class Affordance { Surface, Holder, Enclosure };
 Affordance affordanceOf(std::string_view category);
 
+// Whether things of this category have a front (a sofa, a chair, a tv; docs/relations.md lists
+// them): only those can face something or have things at their front or back.
+bool hasFront(std::string_view category);
+// The direction a box's front faces: its own +x axis (the yaw direction), in the floor plane.
+model::Vec2 frontDirection(const model::Box& box);
+
 // A vertical plane anchor: a wall, door, window or the like.
 bool isVerticalPlane(const model::Node& node);
 
-// The score of `p(a, b)`, or of `between(a, b, c)`. `nearDistance` overrides the threshold for near(x, 1 m).
+// The score of `p(a, b)`, or of `between(a, b, c)`. `writtenDistance` is the distance of near(x, 1 m);
+// `obstacles` what may stand between (walls for near, anything for visible_from).
 double evaluate(Predicate p, const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame,
-                const model::Node* c = nullptr, std::optional<double> nearDistance = std::nullopt);
+                const model::Node* c = nullptr, std::optional<double> writtenDistance = std::nullopt,
+                const Obstacles* obstacles = nullptr);
+
+// near's limit for the two boxes: the written distance, else the sum of their sizes (the longer
+// side of each footprint) kept between near.min_distance and near.distance.
+double nearLimit(const model::Node& a, const model::Node& b, const Thresholds& t,
+                 std::optional<double> writtenDistance = std::nullopt);
 
 struct RelationHit {
     Predicate predicate;
@@ -92,7 +116,8 @@ struct RelationHit {
 // Every binary relation that holds from a to b, in the table's RELATE order: containment and
 // support (in, on, attached) before vertical order (above, below), then the view-relative ones,
 // then near (the score says how clearly each holds).
-std::vector<RelationHit> relate(const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame);
+std::vector<RelationHit> relate(const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame,
+                                const Obstacles* obstacles = nullptr);
 
 inline bool intersects(const model::Aabb& a, const model::Aabb& b) {
     return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&

@@ -4,9 +4,12 @@ namespace smql::relations {
 
 const std::vector<SettingInfo>& settingsCatalogue() {
     static const std::vector<SettingInfo> catalogue = {
-        {"near.distance", SettingUnit::Metres, &Thresholds::nearDistance, "near: largest gap between the two boxes"},
+        {"near.distance", SettingUnit::Metres, &Thresholds::nearDistance,
+         "near: largest gap between the two boxes, however large they are"},
+        {"near.min_distance", SettingUnit::Metres, &Thresholds::nearMinDistance,
+         "near: a gap this small is near, however small the two things are"},
         {"on.min_overlap", SettingUnit::Ratio, &Thresholds::onMinOverlap,
-         "on/in: footprint overlap as a share of the smaller footprint"},
+         "on: share of a's footprint over b; in: share of the smaller footprint"},
         {"on.min_rise", SettingUnit::Ratio, &Thresholds::onMinRise,
          "on/in: height of a's centre above b's bottom, as a share of b's height"},
         {"on.max_gap", SettingUnit::Metres, &Thresholds::onMaxGap, "on/in: largest gap from b's top up to a's bottom"},
@@ -21,6 +24,8 @@ const std::vector<SettingInfo>& settingsCatalogue() {
          "left_of/right_of/in_front_of/behind: smallest centre offset along the viewer's axis"},
         {"between.max_offset", SettingUnit::Metres, &Thresholds::betweenMaxOffset,
          "between: largest distance of a's centre from the segment joining the other two"},
+        {"visible.min_share", SettingUnit::Ratio, &Thresholds::visibleMinShare,
+         "visible_from: share of a's sample points in sight of the eye"},
     };
     return catalogue;
 }

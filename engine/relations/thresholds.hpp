@@ -10,8 +10,11 @@
 namespace smql::relations {
 
 struct Thresholds {
-    double nearDistance = 0.5;      // near: box-to-box gap at most this (m)
-    double onMinOverlap = 0.5;      // on/in: footprint overlap over the smaller footprint
+    // near: the gap may reach the sum of the two things' sizes (twice their mean size), never less
+    // than near.min_distance nor more than near.distance (m); ReferIt3D's Sr3D gives all three.
+    double nearDistance = 1.0;
+    double nearMinDistance = 0.15;
+    double onMinOverlap = 0.5;      // on: share of a's own footprint over b; in: share of the smaller footprint
     double onMinRise = 0.5;         // on/in: a's centre at least this share of b's height above b's bottom
     double onMaxGap = 0.1;          // on/in: a's bottom at most this far above b's top (m)
     double inMinInside = 0.5;       // in: share of a's volume inside b
@@ -20,6 +23,7 @@ struct Thresholds {
     double attachedMaxGap = 0.05;   // attached: gap to a wall, door, window or pillar at most this (m)
     double lateralMinOffset = 0.1;  // left_of, right_of, in_front_of, behind: centre offset at least this (m)
     double betweenMaxOffset = 0.5;  // between: a's centre at most this far from the segment b-c (m)
+    double visibleMinShare = 0.25;  // visible_from: share of a's sample points the eye sees
 };
 
 enum class SettingUnit { Metres, Ratio };

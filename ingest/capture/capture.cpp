@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest {
 
@@ -116,9 +116,11 @@ Capture readCapture(const std::string& path, const CaptureOptions& options) {
                    name == "images.bin" || name == "points3d.bin") {
             capture = readColmap(target.has_parent_path() ? target.parent_path() : fs::path("."), options);
         } else if (isImageExtension(ext)) {
-            fail(path, "a single image is not a capture", "name the folder that holds the images; " + std::string(kLayoutsHint));
+            fail(path, "a single image is not a capture",
+                 "name the folder that holds the images; " + std::string(kLayoutsHint));
         } else if (ext == "json" || ext == "txt") {
-            fail(path, "not a capture file: smql reads transforms.json (nerfstudio) and COLMAP's cameras/images/points3D",
+            fail(path,
+                 "not a capture file: smql reads transforms.json (nerfstudio) and COLMAP's cameras/images/points3D",
                  kLayoutsHint);
         } else {
             capture = readVideo(target, options);

@@ -32,11 +32,11 @@ struct Pose {
 };
 
 struct CaptureFrame {
-    int index = 0;            // position in the capture, from 0
-    double time = 0;          // seconds from the start (index / fps when the layout has no times)
-    std::string colorPath;    // an image OpenCV reads
-    std::string depthPath;    // 16-bit depth image (PNG or PGM), empty without depth
-    std::string instancePath; // 16-bit instance mask (0 = none), empty without masks
+    int index = 0;             // position in the capture, from 0
+    double time = 0;           // seconds from the start (index / fps when the layout has no times)
+    std::string colorPath;     // an image OpenCV reads
+    std::string depthPath;     // 16-bit depth image (PNG or PGM), empty without depth
+    std::string instancePath;  // 16-bit instance mask (0 = none), empty without masks
     std::optional<Pose> pose;
     // This frame's own camera when it differs from Capture::intrinsics (COLMAP
     // models with several cameras, nerfstudio per-frame intrinsics).
@@ -65,12 +65,12 @@ struct Capture {
 };
 
 struct CaptureOptions {
-    double fps = 1.0;               // sampling of videos and TUM sequences (0 = every frame); image folders keep every image
-    int workingWidth = 640;         // frames wider than this are scaled down (docs/ingest.md)
+    double fps = 1.0;        // sampling of videos and TUM sequences (0 = every frame); image folders keep every image
+    int workingWidth = 640;  // frames wider than this are scaled down (docs/ingest.md)
     std::optional<double> depthScale;
     std::optional<Intrinsics> intrinsics;
-    std::string workDirectory;      // where decoded video frames go (a temp folder by default)
-    std::string imageDirectory;     // COLMAP: the images the model was made from (found beside it by default)
+    std::string workDirectory;   // where decoded video frames go (a temp folder by default)
+    std::string imageDirectory;  // COLMAP: the images the model was made from (found beside it by default)
 };
 
 // Recognises the layout of `path` (a folder or a file) and reads it. Throws

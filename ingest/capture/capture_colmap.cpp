@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest::capture_detail {
 
@@ -26,9 +26,17 @@ struct CameraModel {
     int params;
 };
 constexpr CameraModel kModels[] = {
-    {0, "SIMPLE_PINHOLE", 3}, {1, "PINHOLE", 4},         {2, "SIMPLE_RADIAL", 4},        {3, "RADIAL", 5},
-    {4, "OPENCV", 8},         {5, "OPENCV_FISHEYE", 8},  {6, "FULL_OPENCV", 12},         {7, "FOV", 5},
-    {8, "SIMPLE_RADIAL_FISHEYE", 4}, {9, "RADIAL_FISHEYE", 5}, {10, "THIN_PRISM_FISHEYE", 12},
+    {0, "SIMPLE_PINHOLE", 3},
+    {1, "PINHOLE", 4},
+    {2, "SIMPLE_RADIAL", 4},
+    {3, "RADIAL", 5},
+    {4, "OPENCV", 8},
+    {5, "OPENCV_FISHEYE", 8},
+    {6, "FULL_OPENCV", 12},
+    {7, "FOV", 5},
+    {8, "SIMPLE_RADIAL_FISHEYE", 4},
+    {9, "RADIAL_FISHEYE", 5},
+    {10, "THIN_PRISM_FISHEYE", 12},
 };
 
 const CameraModel* modelById(long long id) {
@@ -151,7 +159,8 @@ std::vector<SparsePoint> readPointsText(const fs::path& path) {
         if (tokens.size() < 8 || (tokens.size() - 8) % 2 != 0)
             failAt(file, line.number, "expected POINT3D_ID X Y Z R G B ERROR and (IMAGE_ID POINT2D_IDX) pairs",
                    kColmapHint);
-        std::vector<double> xyz = parseNumbers(file, line.number, {tokens.begin() + 1, tokens.begin() + 4}, kColmapHint);
+        std::vector<double> xyz =
+            parseNumbers(file, line.number, {tokens.begin() + 1, tokens.begin() + 4}, kColmapHint);
         checkPosition(file, line.number, fmt::format("point {}", tokens[0]), {xyz[0], xyz[1], xyz[2]}, kColmapHint);
         SparsePoint point;
         point.position = {xyz[0], xyz[1], xyz[2]};
@@ -195,16 +204,18 @@ public:
     std::uint64_t count(std::uint64_t minSize, std::string_view what) {
         auto n = read<std::uint64_t>(what);
         if (n > (data_.size() - pos_) / minSize)
-            fail(file_, fmt::format("the file says it holds {} {} but is too short for them (damaged or not a "
-                                    "COLMAP binary model)",
-                                    n, what),
+            fail(file_,
+                 fmt::format("the file says it holds {} {} but is too short for them (damaged or not a "
+                             "COLMAP binary model)",
+                             n, what),
                  kColmapHint);
         return n;
     }
     void expectEnd() {
         if (pos_ != data_.size())
-            fail(file_, fmt::format("{} bytes left over after the last entry (damaged or not a COLMAP binary model)",
-                                    data_.size() - pos_),
+            fail(file_,
+                 fmt::format("{} bytes left over after the last entry (damaged or not a COLMAP binary model)",
+                             data_.size() - pos_),
                  kColmapHint);
     }
     const std::string& file() const { return file_; }
@@ -214,8 +225,9 @@ private:
         if (data_.size() - pos_ < size) truncated(what);
     }
     [[noreturn]] void truncated(std::string_view what) {
-        fail(file_, fmt::format("the file ends at byte {} while reading {} (truncated or not a COLMAP binary model)",
-                                pos_, what),
+        fail(file_,
+             fmt::format("the file ends at byte {} while reading {} (truncated or not a COLMAP binary model)", pos_,
+                         what),
              kColmapHint);
     }
 
@@ -234,7 +246,8 @@ std::map<long long, Camera> readCamerasBinary(const fs::path& path) {
         auto modelId = in.read<std::int32_t>(what);
         Camera camera;
         camera.model = modelById(modelId);
-        if (!camera.model) fail(in.file(), fmt::format("camera {}: unknown camera model id {}", id, modelId), kColmapHint);
+        if (!camera.model)
+            fail(in.file(), fmt::format("camera {}: unknown camera model id {}", id, modelId), kColmapHint);
         camera.width = static_cast<long long>(in.read<std::uint64_t>(what));
         camera.height = static_cast<long long>(in.read<std::uint64_t>(what));
         for (int p = 0; p < camera.model->params; ++p) {
@@ -352,8 +365,8 @@ fs::path findImageDirectory(const fs::path& modelDir, const CaptureOptions& opti
     for (const fs::path& candidate : candidates)
         if (fs::is_directory(candidate, ec)) return candidate;
     fail(modelDir.string(),
-         fmt::format("cannot find the images of this COLMAP model: looked for {}, {} and {}",
-                     candidates[0].string(), candidates[1].string(), candidates[2].string()),
+         fmt::format("cannot find the images of this COLMAP model: looked for {}, {} and {}", candidates[0].string(),
+                     candidates[1].string(), candidates[2].string()),
          "name the folder the model was made from with the image-directory option");
 }
 
@@ -374,8 +387,8 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
     capture.metric = false;
     std::optional<std::string> format = colmapModelFormat(modelDir);
     if (!format)
-        fail(modelDir.string(), "not a COLMAP model: expected cameras.txt and images.txt, or cameras.bin and images.bin",
-             kColmapHint);
+        fail(modelDir.string(),
+             "not a COLMAP model: expected cameras.txt and images.txt, or cameras.bin and images.bin", kColmapHint);
     const bool binary = *format == "bin";
     const fs::path camerasFile = modelDir / ("cameras." + *format), imagesFile = modelDir / ("images." + *format);
     const fs::path pointsFile = modelDir / ("points3D." + *format);
@@ -427,13 +440,15 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
     }
 
     RawFrame first = readRawFrame(capture.frames.front());
-    if (options.intrinsics) capture.intrinsics = userIntrinsics(*options.intrinsics, first.color.cols, first.color.rows);
+    if (options.intrinsics)
+        capture.intrinsics = userIntrinsics(*options.intrinsics, first.color.cols, first.color.rows);
     fitIntrinsics(capture.intrinsics, first.color.cols, first.color.rows, capture.frames.front().colorPath,
                   options.intrinsics ? "the intrinsics option" : camerasFile.string());
     if (distorted && !options.intrinsics)
-        capture.notes.push_back(fmt::format("{}: lens distortion is ignored: the images are taken as pinhole images "
-                                            "(undistort them with `colmap image_undistorter` for exact geometry)",
-                                            camerasFile.string()));
+        capture.notes.push_back(
+            fmt::format("{}: lens distortion is ignored: the images are taken as pinhole images "
+                        "(undistort them with `colmap image_undistorter` for exact geometry)",
+                        camerasFile.string()));
     if (perFrame) capture.notes.push_back(fmt::format("{}: the images use several cameras", camerasFile.string()));
     if (options.depthScale) capture.depthScale = *options.depthScale;
     return capture;

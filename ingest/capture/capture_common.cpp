@@ -3,13 +3,13 @@
 #include <charconv>
 #include <cmath>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 #include <opencv2/imgcodecs.hpp>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/import/common.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest::capture_detail {
 
@@ -34,8 +34,8 @@ std::string extensionOf(const fs::path& path) {
 bool isImageExtension(std::string_view ext) { return ext == "jpg" || ext == "jpeg" || ext == "png"; }
 
 bool isVideoExtension(std::string_view ext) {
-    static constexpr std::string_view kVideo[] = {"mp4", "avi", "mov", "mkv", "webm", "m4v", "mpg", "mpeg",
-                                                  "wmv", "flv", "3gp", "ts",  "mts", "m2ts", "ogv", "mjpeg"};
+    static constexpr std::string_view kVideo[] = {"mp4", "avi", "mov", "mkv", "webm", "m4v",  "mpg", "mpeg",
+                                                  "wmv", "flv", "3gp", "ts",  "mts",  "m2ts", "ogv", "mjpeg"};
     return std::find(std::begin(kVideo), std::end(kVideo), ext) != std::end(kVideo);
 }
 
@@ -148,7 +148,8 @@ std::vector<double> parseNumbers(const std::string& file, int line, const std::v
     for (std::size_t i = 0; i < tokens.size(); ++i) {
         std::optional<double> value = parseNumber(tokens[i]);
         if (!value) failAt(file, line, fmt::format("value {} '{}' is not a number", i + 1, tokens[i]), hint);
-        if (!std::isfinite(*value)) failAt(file, line, fmt::format("value {} '{}' is not finite", i + 1, tokens[i]), hint);
+        if (!std::isfinite(*value))
+            failAt(file, line, fmt::format("value {} '{}' is not finite", i + 1, tokens[i]), hint);
         values.push_back(*value);
     }
     return values;
@@ -263,20 +264,29 @@ cv::Mat readImage(const std::string& file, int flags, std::string_view what) {
     } catch (const cv::Exception& e) {
         fail(file, fmt::format("cannot decode the {}: {}", what, e.err));
     }
-    if (image.empty()) fail(file, fmt::format("cannot decode the {} (damaged, or a format OpenCV does not read)", what));
+    if (image.empty())
+        fail(file, fmt::format("cannot decode the {} (damaged, or a format OpenCV does not read)", what));
     return image;
 }
 
 const char* depthName(int depth) {
     switch (depth) {
-        case CV_8U: return "8-bit";
-        case CV_8S: return "8-bit signed";
-        case CV_16U: return "16-bit";
-        case CV_16S: return "16-bit signed";
-        case CV_32S: return "32-bit integer";
-        case CV_32F: return "32-bit float";
-        case CV_64F: return "64-bit float";
-        default: return "unknown";
+        case CV_8U:
+            return "8-bit";
+        case CV_8S:
+            return "8-bit signed";
+        case CV_16U:
+            return "16-bit";
+        case CV_16S:
+            return "16-bit signed";
+        case CV_32S:
+            return "32-bit integer";
+        case CV_32F:
+            return "32-bit float";
+        case CV_64F:
+            return "64-bit float";
+        default:
+            return "unknown";
     }
 }
 
@@ -286,7 +296,8 @@ cv::Mat readColorImage(const std::string& file) { return readImage(file, cv::IMR
 
 cv::Mat readDepthImage(const std::string& file) {
     cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image");
-    if (depth.channels() != 1) fail(file, fmt::format("a depth image has one channel, this one has {}", depth.channels()));
+    if (depth.channels() != 1)
+        fail(file, fmt::format("a depth image has one channel, this one has {}", depth.channels()));
     if (depth.depth() != CV_16U && depth.depth() != CV_32F)
         fail(file, fmt::format("depth must be a 16-bit image (or 32-bit float metres), this one is {}",
                                depthName(depth.depth())));

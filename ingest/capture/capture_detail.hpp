@@ -41,7 +41,7 @@ inline constexpr const char* kVideoHint = "any video OpenCV's videoio (FFmpeg) d
 
 std::string lowerCase(std::string_view text);
 std::string extensionOf(const fs::path& path);  // lower case, without the dot
-bool isImageExtension(std::string_view ext);     // jpg, jpeg, png
+bool isImageExtension(std::string_view ext);    // jpg, jpeg, png
 bool isVideoExtension(std::string_view ext);
 
 // "2.png" < "10.png": runs of digits compare as numbers.

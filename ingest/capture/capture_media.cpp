@@ -1,6 +1,6 @@
 // Captures without poses: a folder of images, or a video file decoded to PNGs.
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -9,8 +9,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest::capture_detail {
 
@@ -50,9 +50,8 @@ fs::path makeWorkDirectory(const CaptureOptions& options, std::vector<std::strin
         fs::path dir = options.workDirectory;
         fs::create_directories(dir, ec);
         if (ec || !fs::is_directory(dir, ec))
-            throw Error(ErrorKind::Usage,
-                        fmt::format("{}: cannot create the work folder for decoded video frames: {}", dir.string(),
-                                    ec ? ec.message() : "not a folder"));
+            throw Error(ErrorKind::Usage, fmt::format("{}: cannot create the work folder for decoded video frames: {}",
+                                                      dir.string(), ec ? ec.message() : "not a folder"));
         return dir;
     }
     fs::path base = fs::temp_directory_path(ec);
@@ -61,9 +60,10 @@ fs::path makeWorkDirectory(const CaptureOptions& options, std::vector<std::strin
     if (!mkdtemp(pattern.data()))
         throw Error(ErrorKind::Usage, fmt::format("{}: cannot create a temporary folder for decoded video frames: {}",
                                                   base.string(), std::strerror(errno)));
-    notes.push_back(fmt::format("decoded video frames written to {} (remove it when done, or choose the folder with "
-                                "the work-directory option)",
-                                pattern));
+    notes.push_back(
+        fmt::format("decoded video frames written to {} (remove it when done, or choose the folder with "
+                    "the work-directory option)",
+                    pattern));
     return pattern;
 }
 
@@ -87,8 +87,8 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
 
     double containerFps = video.get(cv::CAP_PROP_FPS);
     if (!std::isfinite(containerFps) || containerFps <= 0 || containerFps > 1000) {
-        capture.notes.push_back(
-            fmt::format("{}: the container gives no frame rate ({}): 30 frames per second assumed", path, containerFps));
+        capture.notes.push_back(fmt::format("{}: the container gives no frame rate ({}): 30 frames per second assumed",
+                                            path, containerFps));
         containerFps = 30;
     }
 
@@ -118,8 +118,8 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
                 cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
             if (nativeSize.empty()) nativeSize = image.size();
             if (options.workingWidth > 0 && image.cols > options.workingWidth) {
-                int height = std::max(1, static_cast<int>(std::lround(
-                                             static_cast<double>(image.rows) * options.workingWidth / image.cols)));
+                int height = std::max(1, static_cast<int>(std::lround(static_cast<double>(image.rows) *
+                                                                      options.workingWidth / image.cols)));
                 cv::resize(image, written, cv::Size(options.workingWidth, height), 0, 0, cv::INTER_AREA);
             } else {
                 written = image;

@@ -2,13 +2,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/import/common.hpp"
 #include "ingest/import/json_field.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest::capture_detail {
 
@@ -93,9 +93,10 @@ Pose readTransform(const Field& field) {
     constexpr double limit = import::detail::kMaxCoordinate;
     for (double c : {m(0, 3), m(1, 3), m(2, 3)})
         if (std::abs(c) > limit)
-            field.fail(fmt::format("the camera is at ({:g}, {:g}, {:g}), beyond {:g} m from the origin: positions must "
-                                   "lie within {:g} on every axis (a unit mix-up or a geo-referenced model?)",
-                                   m(0, 3), m(1, 3), m(2, 3), limit, limit));
+            field.fail(
+                fmt::format("the camera is at ({:g}, {:g}, {:g}), beyond {:g} m from the origin: positions must "
+                            "lie within {:g} on every axis (a unit mix-up or a geo-referenced model?)",
+                            m(0, 3), m(1, 3), m(2, 3), limit, limit));
     return pose;
 }
 
@@ -194,19 +195,22 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
     }
 
     RawFrame first = readRawFrame(capture.frames.front());
-    if (options.intrinsics) capture.intrinsics = userIntrinsics(*options.intrinsics, first.color.cols, first.color.rows);
+    if (options.intrinsics)
+        capture.intrinsics = userIntrinsics(*options.intrinsics, first.color.cols, first.color.rows);
     fitIntrinsics(capture.intrinsics, first.color.cols, first.color.rows, capture.frames.front().colorPath,
                   options.intrinsics ? "the intrinsics option" : file);
 
     if (perFrame) capture.notes.push_back(fmt::format("{}: the frames have different intrinsics", file));
     if (distorted)
-        capture.notes.push_back(fmt::format("{}: lens distortion (k1, k2, p1, p2...) is ignored: frames are taken as "
-                                            "pinhole images",
-                                            file));
+        capture.notes.push_back(
+            fmt::format("{}: lens distortion (k1, k2, p1, p2...) is ignored: frames are taken as "
+                        "pinhole images",
+                        file));
     if (fisheye)
-        capture.notes.push_back(fmt::format("{}: fisheye camera read as a pinhole camera: geometry near the image "
-                                            "edges will be off",
-                                            file));
+        capture.notes.push_back(
+            fmt::format("{}: fisheye camera read as a pinhole camera: geometry near the image "
+                        "edges will be off",
+                        file));
     capture.metric = withDepth > 0;
     if (withDepth > 0 && withDepth < capture.frames.size())
         capture.notes.push_back(fmt::format("{}: {} of {} frames have depth", file, withDepth, capture.frames.size()));

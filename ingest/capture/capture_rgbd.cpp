@@ -1,21 +1,20 @@
 // RGB-D captures: our rgbd folder (color/ depth/ pose.txt) and the TUM RGB-D
 // benchmark layout (rgb.txt depth.txt groundtruth.txt).
-#include <functional>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/import/json_field.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest::capture_detail {
 
 namespace {
-
 
 using import::detail::Field;
 using import::detail::JsonSource;
@@ -47,7 +46,7 @@ void chooseCamera(Capture& capture, const CaptureOptions& options, const fs::pat
     }
     capture.intrinsics = fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath,
                                        options.intrinsics ? "the intrinsics option" : cameraFile.string());
-    capture.depthScale = options.depthScale                 ? *options.depthScale
+    capture.depthScale = options.depthScale             ? *options.depthScale
                          : camera && camera->depthScale ? *camera->depthScale
                                                         : defaultDepthScale;
 }
@@ -85,9 +84,10 @@ std::vector<Pose> readPoseFile(const fs::path& file) {
             failAt(file.string(), line.number,
                    fmt::format("expected 7 numbers (tx ty tz qx qy qz qw), got {}", tokens.size()), kRgbdHint);
         std::vector<double> v = parseNumbers(file.string(), line.number, tokens, kRgbdHint);
-        poses.push_back(poseFromQuaternion(file.string(), line.number, v[0], v[1], v[2], v[3], v[4], v[5], v[6],
-                                           kRgbdHint));
-        checkPosition(file.string(), line.number, fmt::format("the camera of frame {} (in frame-number order)", poses.size()),
+        poses.push_back(
+            poseFromQuaternion(file.string(), line.number, v[0], v[1], v[2], v[3], v[4], v[5], v[6], kRgbdHint));
+        checkPosition(file.string(), line.number,
+                      fmt::format("the camera of frame {} (in frame-number order)", poses.size()),
                       poses.back().translation, kRgbdHint);
     }
     return poses;
@@ -193,8 +193,8 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
         if (pathExists(dir / "labels.json"))
             capture.labelsPath = checkedJson(dir / "labels.json", "labels.json maps instance ids to categories");
         else
-            capture.notes.push_back(fmt::format("{} has instance masks but no labels.json: the masks have no categories",
-                                                dir.string()));
+            capture.notes.push_back(
+                fmt::format("{} has instance masks but no labels.json: the masks have no categories", dir.string()));
     }
     if (pathExists(dir / "detections.json"))
         capture.detectionsPath =
@@ -258,8 +258,7 @@ std::vector<PoseSample> readGroundTruth(const fs::path& file) {
         q.normalize();
         out.push_back(PoseSample{v[0], Eigen::Vector3d(v[1], v[2], v[3]), q});
     }
-    std::stable_sort(out.begin(), out.end(),
-                     [](const PoseSample& a, const PoseSample& b) { return a.time < b.time; });
+    std::stable_sort(out.begin(), out.end(), [](const PoseSample& a, const PoseSample& b) { return a.time < b.time; });
     return out;
 }
 
@@ -304,7 +303,8 @@ Capture readTum(const fs::path& dir, const CaptureOptions& options) {
 
     std::vector<Stamped> rgb = readStampedList(rgbFile);
     if (rgb.empty()) fail(rgbFile.string(), "no frames listed", kTumHint);
-    if (!pathExists(depthFile)) fail(depthFile.string(), "missing: a TUM capture needs depth.txt beside rgb.txt", kTumHint);
+    if (!pathExists(depthFile))
+        fail(depthFile.string(), "missing: a TUM capture needs depth.txt beside rgb.txt", kTumHint);
     std::vector<Stamped> depth = readStampedList(depthFile);
     std::vector<PoseSample> groundTruth;
     if (pathExists(gtFile))

@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest {
 
@@ -39,8 +39,7 @@ Intrinsics fitIntrinsics(const Intrinsics& in, int width, int height, const std:
     if (in.width == width && in.height == height) return in;
     // The same camera with the image resized (COLMAP run on full-size photos,
     // nerfstudio's downscaled images/): same aspect ratio within a pixel.
-    if (in.width > 0 && in.height > 0 &&
-        std::abs(static_cast<double>(in.height) * width / in.width - height) <= 1.0)
+    if (in.width > 0 && in.height > 0 && std::abs(static_cast<double>(in.height) * width / in.width - height) <= 1.0)
         return scaleIntrinsics(in, width, height);
     fail(imageFile, fmt::format("the image is {}x{} but the intrinsics ({}) are for {}x{}, another aspect ratio", width,
                                 height, source, in.width, in.height));

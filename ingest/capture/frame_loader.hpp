@@ -9,9 +9,9 @@
 namespace smql::ingest {
 
 struct FrameImages {
-    cv::Mat color;      // CV_8UC3, BGR
-    cv::Mat depth;      // CV_32F metres, 0 = no reading; empty without depth
-    cv::Mat instances;  // CV_16U instance ids, 0 = none; empty without masks
+    cv::Mat color;          // CV_8UC3, BGR
+    cv::Mat depth;          // CV_32F metres, 0 = no reading; empty without depth
+    cv::Mat instances;      // CV_16U instance ids, 0 = none; empty without masks
     Intrinsics intrinsics;  // scaled to these images
 };
 

@@ -45,10 +45,10 @@ constexpr std::array<SmallKind, 10> kSmall = {{{"mug", 0.09, 0.09, 0.1},
                                                {"clock", 0.2, 0.08, 0.2},
                                                {"cushion", 0.4, 0.4, 0.15}}};
 
-constexpr std::array<const char*, 11> kColors = {"red",    "orange", "yellow", "green", "blue", "purple",
-                                                 "pink",   "brown",  "black",  "white", "gray"};
+constexpr std::array<const char*, 11> kColors = {"red",  "orange", "yellow", "green", "blue", "purple",
+                                                 "pink", "brown",  "black",  "white", "gray"};
 
-constexpr double kCell = 2.6;         // side of a furniture cell (m)
+constexpr double kCell = 2.6;  // side of a furniture cell (m)
 constexpr double kWallHeight = 2.7;
 constexpr double kWallThickness = 0.1;
 
@@ -104,14 +104,17 @@ private:
     }
 
     void addStructure() {
-        add(NodeKind::Anchor, "floor", GeometryKind::Plane, {{width_ / 2, depth_ / 2, -0.01}, {width_, depth_, 0.02}, 0});
+        add(NodeKind::Anchor, "floor", GeometryKind::Plane,
+            {{width_ / 2, depth_ / 2, -0.01}, {width_, depth_, 0.02}, 0});
         add(NodeKind::Anchor, "ceiling", GeometryKind::Plane,
             {{width_ / 2, depth_ / 2, kWallHeight + 0.01}, {width_, depth_, 0.02}, 0});
         const double h = kWallHeight / 2, t = kWallThickness;
         // South, north, west, east: each wall's box x axis runs along the wall.
         add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{width_ / 2, -t / 2, h}, {width_, t, kWallHeight}, 0});
-        add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{width_ / 2, depth_ + t / 2, h}, {width_, t, kWallHeight}, 0});
-        add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{-t / 2, depth_ / 2, h}, {depth_, t, kWallHeight}, M_PI / 2});
+        add(NodeKind::Anchor, "wall", GeometryKind::Plane,
+            {{width_ / 2, depth_ + t / 2, h}, {width_, t, kWallHeight}, 0});
+        add(NodeKind::Anchor, "wall", GeometryKind::Plane,
+            {{-t / 2, depth_ / 2, h}, {depth_, t, kWallHeight}, M_PI / 2});
         add(NodeKind::Anchor, "wall", GeometryKind::Plane,
             {{width_ + t / 2, depth_ / 2, h}, {depth_, t, kWallHeight}, M_PI / 2});
         doorX_ = uniform(1.0, width_ - 1.0);
@@ -147,14 +150,16 @@ private:
         // Small things in slots along the top, each resting on it.
         int slots = kind.smallSlots;
         for (int i = 0; i < slots && objects_ < options_.objectCount; ++i) {
-            const SmallKind& small = category == "sofa" || category == "bed" ? kSmall[9] : kSmall[pick(kSmall.size() - 1)];
+            const SmallKind& small =
+                category == "sofa" || category == "bed" ? kSmall[9] : kSmall[pick(kSmall.size() - 1)];
             double along = (i + 0.5) / slots - 0.5;
             double lx = along * sx * 0.9, ly = uniform(-0.2, 0.2) * sy;
             double wx = cx + std::cos(yaw) * lx - std::sin(yaw) * ly;
             double wy = cy + std::sin(yaw) * lx + std::cos(yaw) * ly;
             double s = uniform(0.85, 1.15);
             model::NodeId id = add(NodeKind::Object, small.category, GeometryKind::Box,
-                                   {{wx, wy, sz + small.sz * s / 2}, {small.sx * s, small.sy * s, small.sz * s},
+                                   {{wx, wy, sz + small.sz * s / 2},
+                                    {small.sx * s, small.sy * s, small.sz * s},
                                     yaw + uniform(-0.3, 0.3)});
             supports_.push_back({id, mainId});
         }

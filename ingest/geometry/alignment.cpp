@@ -223,7 +223,8 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     std::vector<HorizontalPlane> planes;
     for (auto& p : extracted) {
         if (!planes.empty() && p.level - planes.back().level <= options.sameLevel * unit &&
-            toEigen(p.plane.normal).dot(toEigen(planes.back().plane.normal)) >= std::cos(options.sameLevelAngle * kDegree)) {
+            toEigen(p.plane.normal).dot(toEigen(planes.back().plane.normal)) >=
+                std::cos(options.sameLevelAngle * kDegree)) {
             auto merged = std::move(planes.back().inliers);
             merged.insert(merged.end(), p.inliers.begin(), p.inliers.end());
             planes.back() = fitHorizontal(world, std::move(merged), prior, reference);
@@ -270,8 +271,9 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
         std::vector<double> heights;
         for (const auto& p : world.points) heights.push_back(prior.dot(toEigen(p)));
         out.floorHeight = detail::quantile(heights, 0.02);
-        notes.push_back("floor: no horizontal plane below the cameras; up from the cameras, floor at the lowest 2% "
-                        "of points");
+        notes.push_back(
+            "floor: no horizontal plane below the cameras; up from the cameras, floor at the lowest 2% "
+            "of points");
     }
     out.up = fromEigen(up);
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 
@@ -25,22 +25,22 @@ struct Plane {
 // Every length here is in metres; for scale-free captures alignCapture first
 // converts them to the cloud's units with a rough unit estimate (docs/ingest.md).
 struct AlignOptions {
-    bool metric = true;             // Capture::metric: poses and points already in metres
-    std::optional<double> scale;    // metres per cloud unit, overriding the estimate (and 1 for metric)
-    double cameraHeight = 1.5;      // assumed median camera height above the floor (scale-free captures)
-    double ceilingHeight = 2.6;     // assumed floor-to-ceiling height (scale-free, ceiling found)
+    bool metric = true;                  // Capture::metric: poses and points already in metres
+    std::optional<double> scale;         // metres per cloud unit, overriding the estimate (and 1 for metric)
+    double cameraHeight = 1.5;           // assumed median camera height above the floor (scale-free captures)
+    double ceilingHeight = 2.6;          // assumed floor-to-ceiling height (scale-free, ceiling found)
     std::optional<model::Vec3> upPrior;  // used only when there are no cameras (default +z)
 
-    double planeDistance = 0.03;           // RANSAC inlier distance for floor and ceiling
-    double horizontalTolerance = 30;       // degrees a floor candidate may tilt from the up prior
-    int maxHorizontalPlanes = 6;           // horizontal planes extracted before choosing the floor
-    double minPlaneShare = 0.02;           // a horizontal plane needs this share of all points ...
-    std::size_t minPlanePoints = 100;      // ... and at least this many
-    double sameLevel = 0.1;                // planes whose inliers' median heights differ less are one surface ...
-    double sameLevelAngle = 5;             // ... when their normals are within this many degrees
-    double largePlaneShare = 0.25;         // "large": this share of the biggest candidate below the cameras
-    double cameraClearance = 0.2;          // the floor lies this far below every camera, the ceiling above
-    double ceilingParallel = 5;            // degrees between the ceiling's and the floor's normals
+    double planeDistance = 0.03;       // RANSAC inlier distance for floor and ceiling
+    double horizontalTolerance = 30;   // degrees a floor candidate may tilt from the up prior
+    int maxHorizontalPlanes = 6;       // horizontal planes extracted before choosing the floor
+    double minPlaneShare = 0.02;       // a horizontal plane needs this share of all points ...
+    std::size_t minPlanePoints = 100;  // ... and at least this many
+    double sameLevel = 0.1;            // planes whose inliers' median heights differ less are one surface ...
+    double sameLevelAngle = 5;         // ... when their normals are within this many degrees
+    double largePlaneShare = 0.25;     // "large": this share of the biggest candidate below the cameras
+    double cameraClearance = 0.2;      // the floor lies this far below every camera, the ceiling above
+    double ceilingParallel = 5;        // degrees between the ceiling's and the floor's normals
 
     double normalRadius = 0.1;             // neighbourhood of the surface normals used for the heading
     double verticalSurfaceTolerance = 15;  // degrees a normal may tilt from horizontal and still vote
@@ -56,11 +56,11 @@ struct Alignment {
     double heading = 0;                             // radians turned about +z after levelling
     bool floorFound = false;
     std::size_t floorInliers = 0;
-    std::optional<double> ceilingHeight;            // aligned frame (metres above the floor), when found
-    std::vector<std::string> notes;                 // how each choice was made, for SHOW SCENES and logs
+    std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
+    std::vector<std::string> notes;       // how each choice was made, for SHOW SCENES and logs
 
     model::Vec3 apply(const model::Vec3& p) const;
-    std::array<double, 9> rotation() const;         // R, row-major, without the scale
+    std::array<double, 9> rotation() const;  // R, row-major, without the scale
 };
 
 // Floor, heading and scale of a capture's world-frame cloud; `cameras` are

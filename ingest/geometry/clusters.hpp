@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 

@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture_detail.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest {
 
@@ -18,7 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kInstallHint = "install Debian's colmap (apt-get install colmap), or give a capture with camera poses";
+constexpr const char* kInstallHint =
+    "install Debian's colmap (apt-get install colmap), or give a capture with camera poses";
 constexpr const char* kRetryHint =
     "COLMAP needs overlapping, textured views: try more frames (a higher --fps for videos), slower camera motion "
     "with more overlap between neighbouring frames, or a capture with camera poses";
@@ -42,7 +43,7 @@ std::optional<std::string> findExecutable(const std::string& command) {
         if (end == std::string::npos) end = all.size();
         std::string dir = all.substr(start, end - start);
         if (!dir.empty()) {
-            std::string candidate = dir + "/" + command;
+            std::string candidate = fmt::format("{}/{}", dir, command);
             std::error_code ec;
             if (fs::is_regular_file(candidate, ec) && access(candidate.c_str(), X_OK) == 0) return candidate;
         }
@@ -62,14 +63,16 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
                                 options.command),
                     std::nullopt, kInstallHint);
     if (capture.frames.size() < 2)
-        throw Error(ErrorKind::Input, fmt::format("{}: COLMAP needs at least 2 frames, the capture has {}", capture.path,
-                                                  capture.frames.size()),
-                    std::nullopt, kRetryHint);
+        throw Error(
+            ErrorKind::Input,
+            fmt::format("{}: COLMAP needs at least 2 frames, the capture has {}", capture.path, capture.frames.size()),
+            std::nullopt, kRetryHint);
 
     ColmapRun run;
     std::string pattern = (fs::temp_directory_path() / "smql-colmap-XXXXXX").string();
     if (!mkdtemp(pattern.data()))
-        throw Error(ErrorKind::Input, fmt::format("cannot create a work folder under {}", fs::temp_directory_path().string()));
+        throw Error(ErrorKind::Input,
+                    fmt::format("cannot create a work folder under {}", fs::temp_directory_path().string()));
     const fs::path work = pattern;
     run.workDirectory = work.string();
     run.logPath = (work / "colmap.log").string();
@@ -89,11 +92,13 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
     }
 
     const Intrinsics& K = capture.intrinsics;
-    bool known = K.fx > 0 && K.fy > 0 && std::none_of(capture.frames.begin(), capture.frames.end(),
-                                                       [](const CaptureFrame& f) { return f.intrinsics.has_value(); });
-    std::string camera = known ? fmt::format(" --ImageReader.camera_model PINHOLE --ImageReader.single_camera 1 "
-                                             "--ImageReader.camera_params {},{},{},{}",
-                                             K.fx, K.fy, K.cx, K.cy)
+    bool known = K.fx > 0 && K.fy > 0 &&
+                 std::none_of(capture.frames.begin(), capture.frames.end(),
+                              [](const CaptureFrame& f) { return f.intrinsics.has_value(); });
+    std::string camera = known ? fmt::format(
+                                     " --ImageReader.camera_model PINHOLE --ImageReader.single_camera 1 "
+                                     "--ImageReader.camera_params {},{},{},{}",
+                                     K.fx, K.fy, K.cx, K.cy)
                                : std::string(" --ImageReader.camera_model SIMPLE_RADIAL --ImageReader.single_camera 1");
     std::string threads = fmt::format("{}", options.threads);
     bool exhaustive = static_cast<int>(capture.frames.size()) <= options.exhaustiveUpTo;
@@ -105,21 +110,23 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
          fmt::format("--database_path {} --image_path {}{} --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads {}",
                      shellQuoted(database.string()), shellQuoted(images.string()), camera, threads)},
         {exhaustive ? "exhaustive_matcher" : "sequential_matcher",
-         fmt::format("--database_path {} --SiftMatching.use_gpu 0 --SiftMatching.num_threads {}", shellQuoted(database.string()),
-                     threads)},
+         fmt::format("--database_path {} --SiftMatching.use_gpu 0 --SiftMatching.num_threads {}",
+                     shellQuoted(database.string()), threads)},
         {"mapper", fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {}",
-                               shellQuoted(database.string()), shellQuoted(images.string()), shellQuoted(sparse.string()), threads)},
+                               shellQuoted(database.string()), shellQuoted(images.string()),
+                               shellQuoted(sparse.string()), threads)},
     };
     for (const auto& step : steps) {
         std::string line = fmt::format("echo '$ colmap {}' >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
-                                       step.name, shellQuoted(run.logPath), shellQuoted(*colmap), step.name, step.arguments,
-                                       shellQuoted(run.logPath));
+                                       step.name, shellQuoted(run.logPath), shellQuoted(*colmap), step.name,
+                                       step.arguments, shellQuoted(run.logPath));
         int status = std::system(line.c_str());
         int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         if (code != 0)
-            throw Error(ErrorKind::Input,
-                        fmt::format("colmap {} failed (exit status {}); its output is in {}", step.name, code, run.logPath),
-                        std::nullopt, kRetryHint);
+            throw Error(
+                ErrorKind::Input,
+                fmt::format("colmap {} failed (exit status {}); its output is in {}", step.name, code, run.logPath),
+                std::nullopt, kRetryHint);
     }
 
     // The mapper writes one folder per model (sparse/0, sparse/1...): take the one with the most images.
@@ -138,10 +145,11 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
         }
     }
     if (!best)
-        throw Error(ErrorKind::Input,
-                    fmt::format("colmap mapper produced no model: no pair of frames could be registered; its output is in {}",
-                                run.logPath),
-                    std::nullopt, kRetryHint);
+        throw Error(
+            ErrorKind::Input,
+            fmt::format("colmap mapper produced no model: no pair of frames could be registered; its output is in {}",
+                        run.logPath),
+            std::nullopt, kRetryHint);
 
     for (auto& frame : capture.frames) frame.pose.reset();
     for (const auto& frame : best->frames) {

@@ -19,11 +19,11 @@ struct ColmapOptions {
 };
 
 struct ColmapRun {
-    std::string workDirectory;  // /tmp/smql-colmap-XXXXXX
-    std::string logPath;        // every command's output
-    std::size_t registered = 0; // frames that got a pose
-    std::size_t points = 0;     // sparse points
-    std::size_t models = 0;     // models the mapper wrote (the largest is used)
+    std::string workDirectory;   // /tmp/smql-colmap-XXXXXX
+    std::string logPath;         // every command's output
+    std::size_t registered = 0;  // frames that got a pose
+    std::size_t points = 0;      // sparse points
+    std::size_t models = 0;      // models the mapper wrote (the largest is used)
     std::vector<std::string> notes;
 };
 

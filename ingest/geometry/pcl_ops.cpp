@@ -4,10 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
 #include <pcl/ModelCoefficients.h>
-#include <pcl/console/print.h>
 #include <pcl/PointIndices.h>
+#include <pcl/console/print.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/method_types.h>
@@ -15,6 +14,7 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
+#include <Eigen/Eigenvalues>
 
 namespace smql::ingest::pcl_ops {
 
@@ -51,13 +51,13 @@ pcl::IndicesPtr toPclIndices(const std::vector<std::size_t>& indices) {
 
 }  // namespace
 
-std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points,
-                                       const std::vector<std::size_t>& indices, const PlaneSearch& search) {
+std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points, const std::vector<std::size_t>& indices,
+                                       const PlaneSearch& search) {
     if (indices.size() < 3) return std::nullopt;
     auto cloud = toPcl(points);
     pcl::SACSegmentation<pcl::PointXYZ> sac;  // fixed seed (12345): runs repeat
     sac.setModelType(search.constraint == PlaneConstraint::NormalAlongAxis ? pcl::SACMODEL_PERPENDICULAR_PLANE
-                                                                            : pcl::SACMODEL_PARALLEL_PLANE);
+                                                                           : pcl::SACMODEL_PARALLEL_PLANE);
     sac.setMethodType(pcl::SAC_RANSAC);
     sac.setAxis(Eigen::Vector3f(static_cast<float>(search.axis.x), static_cast<float>(search.axis.y),
                                 static_cast<float>(search.axis.z)));
@@ -85,9 +85,8 @@ std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points,
 }
 
 std::vector<std::vector<std::size_t>> euclideanClusters(const std::vector<model::Vec3>& points,
-                                                        const std::vector<std::size_t>& indices,
-                                                        double tolerance, std::size_t minPoints,
-                                                        std::size_t maxPoints) {
+                                                        const std::vector<std::size_t>& indices, double tolerance,
+                                                        std::size_t minPoints, std::size_t maxPoints) {
     std::vector<std::vector<std::size_t>> clusters;
     if (indices.empty()) return clusters;
     auto cloud = toPcl(points);
@@ -110,8 +109,7 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const std::vector<model:
     return clusters;
 }
 
-std::vector<SurfaceNormal> estimateNormals(const std::vector<model::Vec3>& points, double radius,
-                                           int minNeighbours) {
+std::vector<SurfaceNormal> estimateNormals(const std::vector<model::Vec3>& points, double radius, int minNeighbours) {
     std::vector<SurfaceNormal> normals(points.size(), SurfaceNormal{{0, 0, 0}, 1});
     if (points.empty()) return normals;
     auto cloud = toPcl(points);

@@ -21,39 +21,37 @@ enum class PlaneConstraint {
 struct PlaneSearch {
     model::Vec3 axis{0, 0, 1};
     PlaneConstraint constraint = PlaneConstraint::NormalAlongAxis;
-    double epsAngle = 0.5;       // radians the plane may deviate from the constraint
-    double distance = 0.03;      // inlier distance, in the cloud's units
+    double epsAngle = 0.5;   // radians the plane may deviate from the constraint
+    double distance = 0.03;  // inlier distance, in the cloud's units
     int maxIterations = 1000;
-    bool optimise = true;        // least-squares refit on the inliers
+    bool optimise = true;  // least-squares refit on the inliers
 };
 
 struct PlaneFound {
-    model::Vec3 normal;          // unit; normal . p + offset = 0
+    model::Vec3 normal;  // unit; normal . p + offset = 0
     double offset = 0;
     std::vector<std::size_t> inliers;  // indices into the points given
 };
 
 // RANSAC (fixed seed, so runs repeat) over points[indices]; nullopt when there
 // are fewer than 3 points or no plane satisfies the constraint.
-std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points,
-                                       const std::vector<std::size_t>& indices, const PlaneSearch& search);
+std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points, const std::vector<std::size_t>& indices,
+                                       const PlaneSearch& search);
 
 // PCL EuclideanClusterExtraction (kd-tree) over points[indices]: clusters of
 // points chained by gaps <= tolerance, sized within [minPoints, maxPoints],
 // largest first, as indices into `points`.
 std::vector<std::vector<std::size_t>> euclideanClusters(const std::vector<model::Vec3>& points,
-                                                        const std::vector<std::size_t>& indices,
-                                                        double tolerance, std::size_t minPoints,
-                                                        std::size_t maxPoints);
+                                                        const std::vector<std::size_t>& indices, double tolerance,
+                                                        std::size_t minPoints, std::size_t maxPoints);
 
 struct SurfaceNormal {
-    model::Vec3 normal;      // unit, sign arbitrary; zero when undefined
-    double curvature = 1;    // smallest eigenvalue / sum of eigenvalues (0 = perfectly flat)
+    model::Vec3 normal;    // unit, sign arbitrary; zero when undefined
+    double curvature = 1;  // smallest eigenvalue / sum of eigenvalues (0 = perfectly flat)
 };
 
 // Local plane fit (PCA of the neighbours within `radius`, kd-tree search) at
 // every point; points with fewer than `minNeighbours` neighbours get a zero normal.
-std::vector<SurfaceNormal> estimateNormals(const std::vector<model::Vec3>& points, double radius,
-                                           int minNeighbours);
+std::vector<SurfaceNormal> estimateNormals(const std::vector<model::Vec3>& points, double radius, int minNeighbours);
 
 }  // namespace smql::ingest::pcl_ops

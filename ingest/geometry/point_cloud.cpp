@@ -24,8 +24,7 @@ void PointCloud::push(const model::Vec3& point, std::array<std::uint8_t, 3> colo
     frames.push_back(frame);
 }
 
-PointCloud backProject(const DepthView& depth, const Pose& pose, std::uint32_t frame, int stride,
-                       double maxDepth) {
+PointCloud backProject(const DepthView& depth, const Pose& pose, std::uint32_t frame, int stride, double maxDepth) {
     PointCloud cloud;
     if (!depth.metres || depth.width <= 0 || depth.height <= 0) return cloud;
     assert(stride >= 1);
@@ -33,7 +32,8 @@ PointCloud backProject(const DepthView& depth, const Pose& pose, std::uint32_t f
     assert(k.fx > 0 && k.fy > 0);
     const auto& r = pose.rotation;
     const auto& t = pose.translation;
-    cloud.reserve(static_cast<std::size_t>(depth.height / stride + 1) * static_cast<std::size_t>(depth.width / stride + 1));
+    cloud.reserve(static_cast<std::size_t>(depth.height / stride + 1) *
+                  static_cast<std::size_t>(depth.width / stride + 1));
     for (int v = 0; v < depth.height; v += stride) {
         for (int u = 0; u < depth.width; u += stride) {
             const std::size_t pixel = static_cast<std::size_t>(v) * depth.width + u;
@@ -51,8 +51,7 @@ PointCloud backProject(const DepthView& depth, const Pose& pose, std::uint32_t f
     return cloud;
 }
 
-PointCloud backProject(const FrameImages& images, const Pose& pose, std::uint32_t frame, int stride,
-                       double maxDepth) {
+PointCloud backProject(const FrameImages& images, const Pose& pose, std::uint32_t frame, int stride, double maxDepth) {
     if (images.depth.empty()) return {};
     assert(images.depth.type() == CV_32F);
     cv::Mat depth = images.depth.isContinuous() ? images.depth : images.depth.clone();

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <utility>
 #include <vector>
 

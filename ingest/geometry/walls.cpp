@@ -118,8 +118,10 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
         std::size_t front = 0, back = 0;
         for (const auto& p : cameras) {
             double s = c.normal.x() * p.x + c.normal.y() * p.y + c.offset;
-            if (s > 0) ++front;
-            else if (s < 0) ++back;
+            if (s > 0)
+                ++front;
+            else if (s < 0)
+                ++back;
         }
         if (front != back) {
             if (back > front) c.normal = -c.normal, c.offset = -c.offset;
@@ -127,8 +129,10 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
         }
         for (auto i : above) {
             double s = c.normal.x() * aligned.points[i].x + c.normal.y() * aligned.points[i].y + c.offset;
-            if (s > options.distance) ++front;
-            else if (s < -options.distance) ++back;
+            if (s > options.distance)
+                ++front;
+            else if (s < -options.distance)
+                ++back;
         }
         if (back > front) c.normal = -c.normal, c.offset = -c.offset;
     }
@@ -205,8 +209,10 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
             double a = alongOf(c.normal, p);
             if (a < wall.along0 || a > wall.along1 || p.z < wall.z0 || p.z > wall.z1) continue;
             double s = wall.signedDistance(p);
-            if (s > options.behindDistance) ++front;
-            else if (s < -options.behindDistance) ++behind;
+            if (s > options.behindDistance)
+                ++front;
+            else if (s < -options.behindDistance)
+                ++behind;
         }
         // Judged against the room in front, and against the segment's own surface: a tall shelf's face
         // has a busy room in front of it, but a whole wall's worth of points behind.

@@ -5,20 +5,20 @@
 #include <optional>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 
 struct WallSegment {
-    model::Vec3 normal;        // horizontal unit vector pointing into the room
-    double offset = 0;         // normal . p + offset = 0
+    model::Vec3 normal;             // horizontal unit vector pointing into the room
+    double offset = 0;              // normal . p + offset = 0
     double along0 = 0, along1 = 0;  // extent along direction()
-    double z0 = 0, z1 = 0;     // extent in height
-    double thickness = 0.02;   // spread of the inliers across the plane
+    double z0 = 0, z1 = 0;          // extent in height
+    double thickness = 0.02;        // spread of the inliers across the plane
     std::size_t inliers = 0;
-    std::size_t frames = 0;    // views that saw it
-    double confidence = 0;     // 0..1, from support (inliers and views)
+    std::size_t frames = 0;  // views that saw it
+    double confidence = 0;   // 0..1, from support (inliers and views)
 
     // The wall's own horizontal axis: the normal turned +90 degrees about +z.
     model::Vec3 direction() const { return {-normal.y, normal.x, 0}; }
@@ -29,24 +29,24 @@ struct WallSegment {
 };
 
 struct WallOptions {
-    double minPointHeight = 0.1;   // only points above this (metres over the floor) take part
-    double distance = 0.04;        // RANSAC inlier distance
-    double verticalTolerance = 10; // degrees a plane's normal may tilt from horizontal
-    int maxPlanes = 15;            // RANSAC rounds (accepted or not)
-    std::size_t minInliers = 200;  // points a wall needs (tuned for 5 cm voxels)
-    std::size_t minFrames = 2;     // views that saw it (capped at the number of views in the cloud)
-    double frameShare = 0.02;      // a view "saw" a wall when it holds this share of its inliers (and >= 3)
-    double minHeight = 1.0;        // height extent a wall needs
-    double minLength = 0.5;        // length a wall needs
-    double maxGap = 1.0;           // inliers farther apart than this along the plane form separate segments
-    double behindDistance = 0.3;   // a point this far behind a wall was seen through it (depth noise is less)
-    double maxBehindShare = 0.2;   // walls bound the room: of the points over a segment, at most this share behind it
-    double layerDistance = 1.0;    // a parallel, overlapping segment up to this far in front of a wall is furniture
-    double coverageCell = 0.25;    // the extent is cut into cells of this side ...
-    double minCoverage = 0.4;      // ... and a wall's inliers fill at least this share of them
+    double minPointHeight = 0.1;    // only points above this (metres over the floor) take part
+    double distance = 0.04;         // RANSAC inlier distance
+    double verticalTolerance = 10;  // degrees a plane's normal may tilt from horizontal
+    int maxPlanes = 15;             // RANSAC rounds (accepted or not)
+    std::size_t minInliers = 200;   // points a wall needs (tuned for 5 cm voxels)
+    std::size_t minFrames = 2;      // views that saw it (capped at the number of views in the cloud)
+    double frameShare = 0.02;       // a view "saw" a wall when it holds this share of its inliers (and >= 3)
+    double minHeight = 1.0;         // height extent a wall needs
+    double minLength = 0.5;         // length a wall needs
+    double maxGap = 1.0;            // inliers farther apart than this along the plane form separate segments
+    double behindDistance = 0.3;    // a point this far behind a wall was seen through it (depth noise is less)
+    double maxBehindShare = 0.2;    // walls bound the room: of the points over a segment, at most this share behind it
+    double layerDistance = 1.0;     // a parallel, overlapping segment up to this far in front of a wall is furniture
+    double coverageCell = 0.25;     // the extent is cut into cells of this side ...
+    double minCoverage = 0.4;       // ... and a wall's inliers fill at least this share of them
     double maxBehindOfSurface = 0.3;  // ... and at most this many per inlier of the segment itself
-    double mergeAngle = 10;        // degrees: near-duplicate planes ...
-    double mergeOffset = 0.1;      // ... with offsets this close (and touching extents) are merged
+    double mergeAngle = 10;           // degrees: near-duplicate planes ...
+    double mergeOffset = 0.1;         // ... with offsets this close (and touching extents) are merged
 };
 
 // Vertical planes by iterated RANSAC (docs/ingest.md), strongest first.

@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
+#include "ingest/import/common.hpp"
 #include "model/error.hpp"
 #include "model/utf8.hpp"
-#include "ingest/import/common.hpp"
 
 namespace smql::import::detail {
 
@@ -41,15 +41,22 @@ SourceLocation locationOfByte(const std::string& text, std::size_t byte) {
 
 std::string describe(const Json& value) {
     switch (value.type()) {
-        case Json::value_t::null: return "null";
-        case Json::value_t::boolean: return "a boolean";
-        case Json::value_t::string: return "a string";
-        case Json::value_t::array: return fmt::format("an array of {}", value.size());
-        case Json::value_t::object: return "an object";
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::boolean:
+            return "a boolean";
+        case Json::value_t::string:
+            return "a string";
+        case Json::value_t::array:
+            return fmt::format("an array of {}", value.size());
+        case Json::value_t::object:
+            return "an object";
         case Json::value_t::number_integer:
         case Json::value_t::number_unsigned:
-        case Json::value_t::number_float: return "a number";
-        default: return "an unsupported value";
+        case Json::value_t::number_float:
+            return "a number";
+        default:
+            return "an unsupported value";
     }
 }
 
@@ -74,9 +81,13 @@ public:
                                 std::nullopt, source_->hint);
                 break;
             }
-            case Json::parse_event_t::value: countElement(); break;
+            case Json::parse_event_t::value:
+                countElement();
+                break;
             case Json::parse_event_t::object_end:
-            case Json::parse_event_t::array_end: frames_.pop_back(); break;
+            case Json::parse_event_t::array_end:
+                frames_.pop_back();
+                break;
         }
         return true;
     }
@@ -84,8 +95,8 @@ public:
 private:
     struct Frame {
         bool isObject;
-        std::string key;        // member being read (objects)
-        std::size_t count;      // elements started so far (arrays)
+        std::string key;    // member being read (objects)
+        std::size_t count;  // elements started so far (arrays)
         std::set<std::string> keys;
     };
 
@@ -118,9 +129,10 @@ Json parseJsonFile(const JsonSource& source) {
         return Json::parse(text, DuplicateKeyCheck(source));
     } catch (const Json::parse_error& e) {
         SourceLocation where = locationOfByte(text, e.byte);
-        throw Error(ErrorKind::Input,
-                    fmt::format("{}:{}:{}: not valid JSON: {}", source.file, where.line, where.column, reasonOf(e.what())),
-                    where, source.hint);
+        throw Error(
+            ErrorKind::Input,
+            fmt::format("{}:{}:{}: not valid JSON: {}", source.file, where.line, where.column, reasonOf(e.what())),
+            where, source.hint);
     } catch (const Json::exception& e) {
         // Number overflow (1e999): nlohmann gives no position for it.
         throw Error(ErrorKind::Input, fmt::format("{}: not valid JSON: {}", source.file, reasonOf(e.what())),

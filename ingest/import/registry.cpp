@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
+#include "ingest/import/importers.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
-#include "ingest/import/importers.hpp"
 
 namespace smql::import {
 

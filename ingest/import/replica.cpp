@@ -4,8 +4,8 @@
 #include <numbers>
 #include <unordered_map>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #include "ingest/import/common.hpp"
 #include "ingest/import/importers.hpp"
@@ -46,8 +46,8 @@ ClassMapping mapClass(const std::string& category) {
 void checkCoordinate(const Field& field, const model::Vec3& v, std::string_view what) {
     for (double c : {v.x, v.y, v.z})
         if (std::abs(c) > kMaxCoordinate)
-            field.fail(fmt::format("{} ({}, {}, {}) is more than {} m from the origin", what, v.x, v.y, v.z,
-                                   kMaxCoordinate));
+            field.fail(
+                fmt::format("{} ({}, {}, {}) is more than {} m from the origin", what, v.x, v.y, v.z, kMaxCoordinate));
 }
 
 model::Vec3 readSizes(const Field& field) {
@@ -125,12 +125,14 @@ model::SceneData readReplica(const std::string& path, const std::string& sceneNa
         Field object = objects[i];
         model::Node node = readObject(object, i + 1);
         auto [it, fresh] = indexOfId.emplace(*node.sourceId, i);
-        if (!fresh) object.at("id").fail(fmt::format("duplicate id {} (also objects[{}].id)", *node.sourceId, it->second));
+        if (!fresh)
+            object.at("id").fail(fmt::format("duplicate id {} (also objects[{}].id)", *node.sourceId, it->second));
         scene.nodes.push_back(std::move(node));
     }
 
     // Replica files are all called info_semantic.json: without a name, the folder names the scene.
-    std::string name = sceneName.empty() ? std::filesystem::absolute(path).parent_path().filename().string() : sceneName;
+    std::string name =
+        sceneName.empty() ? std::filesystem::absolute(path).parent_path().filename().string() : sceneName;
     detail::finishScene(scene, name, "replica:" + path);
     return scene;
 }

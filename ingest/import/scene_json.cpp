@@ -27,9 +27,12 @@ constexpr std::int64_t kFormatVersion = 1;
 
 const char* geometryName(model::GeometryKind geometry) {
     switch (geometry) {
-        case model::GeometryKind::None: return "none";
-        case model::GeometryKind::Box: return "box";
-        case model::GeometryKind::Plane: return "plane";
+        case model::GeometryKind::None:
+            return "none";
+        case model::GeometryKind::Box:
+            return "box";
+        case model::GeometryKind::Plane:
+            return "plane";
     }
     return "none";
 }
@@ -230,16 +233,17 @@ model::Relation readRelation(const Field& field) {
     Field type = field.at("type");
     auto parsedType = model::relationTypeFromString(type.string());
     if (!parsedType)
-        type.fail(fmt::format("unknown relation type '{}' (expected on, in, above, below, near, attached, left_of, "
-                              "right_of, in_front_of, behind or between)",
-                              type.json().get<std::string>()));
+        type.fail(
+            fmt::format("unknown relation type '{}' (expected on, in, above, below, near, attached, left_of, "
+                        "right_of, in_front_of, behind or between)",
+                        type.json().get<std::string>()));
     relation.type = *parsedType;
     if (auto f = field.find("score")) relation.score = static_cast<float>(numberIn(*f, 0, 1));
     if (auto f = field.find("support")) {
         std::uint64_t support = f->unsignedInteger();
         if (support == 0 || support > std::numeric_limits<std::uint32_t>::max())
-            f->fail(fmt::format("support {} is out of range [1, {}]", support,
-                                std::numeric_limits<std::uint32_t>::max()));
+            f->fail(
+                fmt::format("support {} is out of range [1, {}]", support, std::numeric_limits<std::uint32_t>::max()));
         relation.support = static_cast<std::uint32_t>(support);
     }
     if (auto f = field.find("frame")) relation.frame = f->unsignedInteger();
@@ -261,7 +265,8 @@ void checkTree(const Field& nodesField, const std::vector<model::Node>& nodes) {
     }
     for (std::size_t i = 0; i < n; ++i)
         if (nodes[i].parent > n)
-            nodesField[i].at("parent").fail(fmt::format("parent {} is not the id of a node in this file", nodes[i].parent));
+            nodesField[i].at("parent").fail(
+                fmt::format("parent {} is not the id of a node in this file", nodes[i].parent));
 
     enum class Mark { Unvisited, OnPath, Done };
     std::vector<Mark> mark(n + 1, Mark::Unvisited);
@@ -297,7 +302,8 @@ void checkRelations(const Field& relationsField, const std::vector<model::Relati
             const model::Node* frame = nodeOf(r.frame);
             if (!frame) field.at("frame").fail(fmt::format("{} is not the id of a node in this file", r.frame));
             if (frame->kind != model::NodeKind::Frame)
-                field.at("frame").fail(fmt::format("node {} has kind {}, not frame", r.frame, model::toString(frame->kind)));
+                field.at("frame").fail(
+                    fmt::format("node {} has kind {}, not frame", r.frame, model::toString(frame->kind)));
         }
     }
 }
@@ -387,8 +393,10 @@ std::string writeSceneJson(const model::SceneData& scene) {
     if (!scene.blobs.empty()) {
         root["blobs"] = Json::array();
         for (const model::Blob& blob : scene.blobs)
-            root["blobs"].push_back(
-                {{"node", blob.node}, {"name", blob.name}, {"media_type", blob.mediaType}, {"base64", toBase64(blob.bytes)}});
+            root["blobs"].push_back({{"node", blob.node},
+                                     {"name", blob.name},
+                                     {"media_type", blob.mediaType},
+                                     {"base64", toBase64(blob.bytes)}});
     }
     std::string out;
     writePretty(root, 0, out);
@@ -404,8 +412,8 @@ model::SceneData readSceneJson(const std::string& path, const std::string& scene
     top.allowOnly({"smql_scene", "scene", "nodes", "relations", "blobs"});
     Field version = top.at("smql_scene");
     if (version.integer() != kFormatVersion)
-        version.fail(fmt::format("unsupported version {} (this build reads version {})", version.integer(),
-                                 kFormatVersion));
+        version.fail(
+            fmt::format("unsupported version {} (this build reads version {})", version.integer(), kFormatVersion));
 
     model::SceneData scene;
     readInfo(top.at("scene"), scene.info);

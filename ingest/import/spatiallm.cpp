@@ -11,11 +11,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "model/error.hpp"
-#include "model/utf8.hpp"
 #include "ingest/import/common.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/viewpoint.hpp"
+#include "model/error.hpp"
+#include "model/utf8.hpp"
 
 namespace smql::import {
 
@@ -40,8 +40,8 @@ constexpr std::string_view kHint =
     "bbox_0=Bbox(class,x,y,z,angle_z,scale_x,scale_y,scale_z)";
 
 struct EntityType {
-    std::string_view name;     // as written after '='
-    std::string_view prefix;   // entity names are <prefix>_<n>
+    std::string_view name;    // as written after '='
+    std::string_view prefix;  // entity names are <prefix>_<n>
     std::vector<std::string_view> fields;
     std::int64_t idBase;
 };
@@ -51,7 +51,8 @@ const std::vector<EntityType>& entityTypes() {
         {"Wall", "wall", {"ax", "ay", "az", "bx", "by", "bz", "height", "thickness"}, 0},
         {"Door", "door", {"wall", "position_x", "position_y", "position_z", "width", "height"}, kIdBlock},
         {"Window", "window", {"wall", "position_x", "position_y", "position_z", "width", "height"}, 2 * kIdBlock},
-        {"Bbox", "bbox",
+        {"Bbox",
+         "bbox",
          {"class", "position_x", "position_y", "position_z", "angle_z", "scale_x", "scale_y", "scale_z"},
          3 * kIdBlock},
     };
@@ -100,7 +101,8 @@ public:
         for (const EntityType& t : entityTypes())
             if (typeName.text == t.name) type = &t;
         if (!type)
-            fail(typeName, fmt::format("unknown entity type '{}' (expected Wall, Door, Window or Bbox)", typeName.text));
+            fail(typeName,
+                 fmt::format("unknown entity type '{}' (expected Wall, Door, Window or Bbox)", typeName.text));
 
         std::int64_t number = entityNumber(name, *type);
         if (auto [it, fresh] = definedAt_.emplace(std::string(name.text), line_); !fresh)
@@ -173,12 +175,15 @@ private:
         std::string_view digits = text.substr(type.prefix.size() + 1);
         std::int64_t n = 0;
         auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
-        if (ec != std::errc() || end != digits.data() + digits.size() || !std::isdigit(static_cast<unsigned char>(digits.front()))) bad();
+        if (ec != std::errc() || end != digits.data() + digits.size() ||
+            !std::isdigit(static_cast<unsigned char>(digits.front())))
+            bad();
         // Bboxes own the open-ended top of the id scheme; the other types share it in blocks.
         if (type.prefix != "bbox" && n >= kIdBlock)
             fail(name, fmt::format("{} numbers must be below {} (see the source id scheme)", type.prefix, kIdBlock));
         if (n > kMaxBboxNumber)
-            fail(name, fmt::format("{} numbers must be at most {} (see the source id scheme)", type.prefix, kMaxBboxNumber));
+            fail(name,
+                 fmt::format("{} numbers must be at most {} (see the source id scheme)", type.prefix, kMaxBboxNumber));
         return n;
     }
 
@@ -230,14 +235,14 @@ private:
         if (thickness == 0) thickness = kDefaultWallThickness;
         double length = std::hypot(bx - ax, by - ay);
         if (!(length > 0) || length > kMaxSize)
-            fail(args[0], fmt::format("wall length {} is out of range: the segment must be in (0, {}] m long",
-                                      length, kMaxSize));
+            fail(args[0], fmt::format("wall length {} is out of range: the segment must be in (0, {}] m long", length,
+                                      kMaxSize));
 
         node.kind = model::NodeKind::Anchor;
         node.category = "wall";
         node.geometry = model::GeometryKind::Plane;
-        node.box = {{(ax + bx) / 2, (ay + by) / 2, az + height / 2}, {length, thickness, height},
-                    std::atan2(by - ay, bx - ax)};
+        node.box = {
+            {(ax + bx) / 2, (ay + by) / 2, az + height / 2}, {length, thickness, height}, std::atan2(by - ay, bx - ax)};
         walls_[std::string(name.text)] = {node.box.yaw, thickness};
     }
 
@@ -250,10 +255,10 @@ private:
         node.kind = model::NodeKind::Anchor;
         node.category = std::move(category);
         node.geometry = model::GeometryKind::Plane;
-        node.box = {{coordinate(args[1], "position_x"), coordinate(args[2], "position_y"),
-                     coordinate(args[3], "position_z")},
-                    {size(args[4], "width"), wall->second.thickness, size(args[5], "height")},
-                    wall->second.yaw};
+        node.box = {
+            {coordinate(args[1], "position_x"), coordinate(args[2], "position_y"), coordinate(args[3], "position_z")},
+            {size(args[4], "width"), wall->second.thickness, size(args[5], "height")},
+            wall->second.yaw};
     }
 
     void readBbox(model::Node& node, const std::vector<Token>& args) {

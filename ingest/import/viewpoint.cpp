@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "model/geometry.hpp"
 #include "ingest/import/common.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::import::detail {
 
@@ -95,7 +95,9 @@ ViewpointChoice defaultViewpoint(const std::vector<Node>& nodes) {
         baseText = walls.empty() ? "the lowest box bottom" : "the lowest wall bottom";
     }
 
-    auto distanceToCentre = [&](const Node& n) { return std::hypot(n.box.center.x - centre.x, n.box.center.y - centre.y); };
+    auto distanceToCentre = [&](const Node& n) {
+        return std::hypot(n.box.center.x - centre.x, n.box.center.y - centre.y);
+    };
     const Node* door = best(doors, [&](const Node& n) { return -distanceToCentre(n); });
 
     ViewpointChoice choice;
@@ -118,8 +120,8 @@ ViewpointChoice defaultViewpoint(const std::vector<Node>& nodes) {
         choice.viewpoint.position.x = centre.x;
         choice.viewpoint.position.y = centre.y;
         choice.viewpoint.facingYaw = std::numbers::pi / 2;
-        choice.note = fmt::format("at {}, eye height {} m above {}, facing +y ({})", centreText, kEyeHeight,
-                                  baseText, door ? "the door stands at that centre" : "no door");
+        choice.note = fmt::format("at {}, eye height {} m above {}, facing +y ({})", centreText, kEyeHeight, baseText,
+                                  door ? "the door stands at that centre" : "no door");
     }
     return choice;
 }
@@ -129,6 +131,14 @@ void finishScene(model::SceneData& scene, const std::string& name, std::string s
     scene.info.source = std::move(source);
     scene.info.nodeCount = scene.nodes.size();
     ViewpointChoice view = defaultViewpoint(scene.nodes);
+    // Eye height above a box near the coordinate limit would put the viewpoint
+    // past it, and the scene would no longer read back: hold it at the limit.
+    model::Vec3& eye = view.viewpoint.position;
+    if (std::abs(eye.x) > kMaxCoordinate || std::abs(eye.y) > kMaxCoordinate || std::abs(eye.z) > kMaxCoordinate) {
+        eye = {std::clamp(eye.x, -kMaxCoordinate, kMaxCoordinate), std::clamp(eye.y, -kMaxCoordinate, kMaxCoordinate),
+               std::clamp(eye.z, -kMaxCoordinate, kMaxCoordinate)};
+        view.note += fmt::format(", held within {} m of the origin", kMaxCoordinate);
+    }
     scene.info.viewpoint = view.viewpoint;
     scene.info.viewpointNote = std::move(view.note);
 }

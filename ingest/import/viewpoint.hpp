@@ -10,8 +10,8 @@
 
 namespace smql::import::detail {
 
-inline constexpr double kEyeHeight = 1.6;     // above the floor, metres
-inline constexpr double kStepInside = 0.5;    // from the door's centre into the room, metres
+inline constexpr double kEyeHeight = 1.6;   // above the floor, metres
+inline constexpr double kStepInside = 0.5;  // from the door's centre into the room, metres
 
 struct ViewpointChoice {
     model::Viewpoint viewpoint;

@@ -15,7 +15,8 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     AlignedCapture out;
     out.alignment = alignCapture(frames.structure, poses, align);
     for (const auto& n : out.alignment.notes) progress.note(n);
-    if (!out.alignment.floorFound) progress.note("no floor plane found: the frame is levelled by the cameras' up direction");
+    if (!out.alignment.floorFound)
+        progress.note("no floor plane found: the frame is levelled by the cameras' up direction");
     out.cloud = transformed(frames.structure, out.alignment);
     for (const auto& c : frames.cameras) out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));
     return out;

@@ -8,10 +8,10 @@
 #include <string_view>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/geometry/walls.hpp"
 #include "ingest/pipeline/stage_data.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 

@@ -9,9 +9,9 @@
 namespace smql::ingest {
 
 struct ColorEstimate {
-    std::string name;       // a palette name
-    double share = 0;       // share of the pixels in the dominant cluster
-    cv::Vec3f lab;          // the dominant cluster's mean (OpenCV 8-bit Lab scale)
+    std::string name;  // a palette name
+    double share = 0;  // share of the pixels in the dominant cluster
+    cv::Vec3f lab;     // the dominant cluster's mean (OpenCV 8-bit Lab scale)
 };
 
 // `pixels`: N x 1 CV_8UC3 BGR samples of one object. Two clusters (k-means in

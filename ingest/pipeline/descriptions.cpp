@@ -26,7 +26,8 @@ std::optional<std::string> agreedColor(const std::vector<std::pair<std::uint32_t
     std::map<std::string, int> counts;
     for (const auto& [frame, name] : views) ++counts[name];
     if (counts.empty()) return std::nullopt;
-    auto best = std::max_element(counts.begin(), counts.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+    auto best = std::max_element(counts.begin(), counts.end(),
+                                 [](const auto& a, const auto& b) { return a.second < b.second; });
     int seen = static_cast<int>(views.size());
     if (best->second < std::min(options.descriptionAgreement, seen) || best->second < options.agreementShare * seen)
         return std::nullopt;

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_data.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 

@@ -1,10 +1,10 @@
 #include "ingest/pipeline/detections.hpp"
 
-#include <functional>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -28,7 +28,8 @@ constexpr const char* kHint =
 // The frame number in a colour file's name ("0007.jpg" = 7), as the readers number frames.
 std::optional<long long> numberOf(const fs::path& file) {
     std::string stem = file.stem().string();
-    if (stem.empty() || stem.size() > 15 || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    if (stem.empty() || stem.size() > 15 ||
+        !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }))
         return std::nullopt;
     return std::stoll(stem);
 }
@@ -85,7 +86,8 @@ cv::Mat1b decodeRle(const nlohmann::json& s, const Intrinsics& K, const std::fun
     for (std::size_t r = 0; r < runs.size(); ++r) {
         if (runs[r] < 0 || at + runs[r] > total) bad("RLE mask: the runs do not add up to the image's size");
         if (r % 2 == 1)
-            for (long long q = at; q < at + runs[r]; ++q) mask(static_cast<int>(q % height), static_cast<int>(q / height)) = 255;
+            for (long long q = at; q < at + runs[r]; ++q)
+                mask(static_cast<int>(q % height), static_cast<int>(q / height)) = 255;
         at += runs[r];
     }
     if (at != total) bad(fmt::format("RLE mask: the runs cover {} pixels, the image has {}", at, total));
@@ -96,7 +98,9 @@ cv::Mat1b decodeRle(const nlohmann::json& s, const Intrinsics& K, const std::fun
 
 std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
     const std::string& path = capture.detectionsPath;
-    auto fail = [&](const std::string& what) { throw Error(ErrorKind::Input, fmt::format("{}: {}", path, what), std::nullopt, kHint); };
+    auto fail = [&](const std::string& what) {
+        throw Error(ErrorKind::Input, fmt::format("{}: {}", path, what), std::nullopt, kHint);
+    };
     std::ifstream in(path);
     if (!in) fail("cannot read the file");
     nlohmann::json j;
@@ -119,7 +123,9 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
     std::vector<std::vector<Detection>> out(capture.frames.size());
     for (std::size_t i = 0; i < j.size(); ++i) {
         const auto& e = j[i];
-        auto bad = [&](const std::string& field, const std::string& what) { fail(fmt::format("detections[{}].{}: {}", i, field, what)); };
+        auto bad = [&](const std::string& field, const std::string& what) {
+            fail(fmt::format("detections[{}].{}: {}", i, field, what));
+        };
         if (!e.is_object()) fail(fmt::format("detections[{}]: expected an object", i));
 
         std::size_t frame = 0;
@@ -142,7 +148,8 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
         Detection d;
         const char* labelKey = e.contains("label") ? "label" : "category";
         if (!e.contains(labelKey)) bad("label", "missing (give \"label\" or \"category\")");
-        if (!e[labelKey].is_string() || e[labelKey].get<std::string>().empty()) bad(labelKey, "expected a non-empty string");
+        if (!e[labelKey].is_string() || e[labelKey].get<std::string>().empty())
+            bad(labelKey, "expected a non-empty string");
         d.category = e[labelKey].get<std::string>();
 
         if (!e.contains("score")) bad("score", "missing");
@@ -153,7 +160,8 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
         const Intrinsics& K = capture.frames[frame].intrinsics ? *capture.frames[frame].intrinsics : capture.intrinsics;
         if (!e.contains("bbox")) bad("bbox", "missing");
         const auto& b = e["bbox"];
-        if (!b.is_array() || b.size() != 4 || !std::all_of(b.begin(), b.end(), [](const auto& v) { return v.is_number(); }))
+        if (!b.is_array() || b.size() != 4 ||
+            !std::all_of(b.begin(), b.end(), [](const auto& v) { return v.is_number(); }))
             bad("bbox", "expected [x, y, w, h] (4 numbers)");
         double x = b[0].get<double>(), y = b[1].get<double>(), w = b[2].get<double>(), h = b[3].get<double>();
         if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(w) || !std::isfinite(h)) bad("bbox", "not finite");
@@ -170,7 +178,8 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
                 out[frame].push_back(std::move(d));
                 continue;
             }
-            if (!s.is_array()) bad("segmentation", "expected a list of polygons [[x1, y1, x2, y2, ...], ...] or an RLE mask");
+            if (!s.is_array())
+                bad("segmentation", "expected a list of polygons [[x1, y1, x2, y2, ...], ...] or an RLE mask");
             for (std::size_t k = 0; k < s.size(); ++k) {
                 const auto& poly = s[k];
                 std::string field = fmt::format("segmentation[{}]", k);
@@ -182,7 +191,8 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
                     double px = poly[p].get<double>(), py = poly[p + 1].get<double>();
                     if (!std::isfinite(px) || !std::isfinite(py)) bad(field, "not finite");
                     if (px < -0.5 || py < -0.5 || px > K.width + 0.5 || py > K.height + 0.5)
-                        bad(field, fmt::format("point ({}, {}) lies outside the {}x{} image", px, py, K.width, K.height));
+                        bad(field,
+                            fmt::format("point ({}, {}) lies outside the {}x{} image", px, py, K.width, K.height));
                     points.emplace_back(px, py);
                 }
                 d.polygons.push_back(std::move(points));
@@ -215,7 +225,8 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
         std::vector<std::vector<cv::Point>> polys;
         auto fixed = [&](cv::Point2d p) {
             p = toWorking(p);
-            return cv::Point(static_cast<int>(std::lround(p.x * (1 << kShift))), static_cast<int>(std::lround(p.y * (1 << kShift))));
+            return cv::Point(static_cast<int>(std::lround(p.x * (1 << kShift))),
+                             static_cast<int>(std::lround(p.y * (1 << kShift))));
         };
         if (!det.rle.empty()) {
             cv::resize(det.rle, mask, mask.size(), 0, 0, cv::INTER_NEAREST);
@@ -305,11 +316,12 @@ std::optional<std::pair<double, double>> DetectionTracker::fit(const Extent& a, 
     // A partial view of a large thing (the end of a sofa) overlaps little of its bounds but lies inside them.
     double inside = inter / std::min(va, vb);
     model::Vec3 ca = centroid(a), cb = centroid(b);
-    double distance = std::sqrt((ca.x - cb.x) * (ca.x - cb.x) + (ca.y - cb.y) * (ca.y - cb.y) + (ca.z - cb.z) * (ca.z - cb.z));
+    double distance =
+        std::sqrt((ca.x - cb.x) * (ca.x - cb.x) + (ca.y - cb.y) * (ca.y - cb.y) + (ca.z - cb.z) * (ca.z - cb.z));
     // The larger of the two extents: a track started by a sliver (a seat seen edge-on) must still take
     // the full view that comes next.
-    double extent = std::max({a.hi.x - a.lo.x, a.hi.y - a.lo.y, a.hi.z - a.lo.z, b.hi.x - b.lo.x, b.hi.y - b.lo.y,
-                              b.hi.z - b.lo.z});
+    double extent = std::max(
+        {a.hi.x - a.lo.x, a.hi.y - a.lo.y, a.hi.z - a.lo.z, b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
     if (iou < 0.1 && inside < 0.5 && distance > std::max(0.3, extent / 2)) return std::nullopt;
     return std::make_pair(iou, distance);
 }
@@ -320,6 +332,13 @@ void DetectionTracker::merge(Extent& into, const Extent& from) {
     into.sum = {into.sum.x + from.sum.x, into.sum.y + from.sum.y, into.sum.z + from.sum.z};
     into.count += from.count;
     into.frames.insert(from.frames.begin(), from.frames.end());
+    for (const auto& [category, score] : from.votes) into.votes[category] += score;
+}
+
+void DetectionTracker::relabel(ObjectTrack& track, const Extent& extent) {
+    auto best = std::max_element(extent.votes.begin(), extent.votes.end(),
+                                 [](const auto& a, const auto& b) { return a.second < b.second; });
+    if (best != extent.votes.end()) track.category = best->first;
 }
 
 std::vector<ObjectTrack> DetectionTracker::take() {
@@ -333,14 +352,18 @@ std::vector<ObjectTrack> DetectionTracker::take() {
             for (std::size_t b = a + 1; b < tracks_.size() && !gone[a]; ++b) {
                 if (gone[b] || tracks_[a].category != tracks_[b].category) continue;
                 const auto& fa = extents_[a].frames;
-                if (std::any_of(extents_[b].frames.begin(), extents_[b].frames.end(), [&](auto f) { return fa.contains(f); }))
+                if (std::any_of(extents_[b].frames.begin(), extents_[b].frames.end(),
+                                [&](auto f) { return fa.contains(f); }))
                     continue;
                 if (!fit(extents_[a], extents_[b])) continue;
                 merge(extents_[a], extents_[b]);
+                relabel(tracks_[a], extents_[a]);
                 auto& views = tracks_[a].views;
                 for (auto& v : tracks_[b].views) views.push_back(std::move(v));
-                std::stable_sort(views.begin(), views.end(), [](const auto& x, const auto& y) { return x.frame < y.frame; });
-                if (tracks_[b].evidence.pixels > tracks_[a].evidence.pixels) tracks_[a].evidence = std::move(tracks_[b].evidence);
+                std::stable_sort(views.begin(), views.end(),
+                                 [](const auto& x, const auto& y) { return x.frame < y.frame; });
+                if (tracks_[b].evidence.pixels > tracks_[a].evidence.pixels)
+                    tracks_[a].evidence = std::move(tracks_[b].evidence);
                 gone[b] = true;
                 changed = true;
             }
@@ -353,7 +376,7 @@ std::vector<ObjectTrack> DetectionTracker::take() {
     return out;
 }
 
-ObjectTrack& DetectionTracker::add(Observation observation, const std::string& category) {
+ObjectTrack& DetectionTracker::add(Observation observation, const std::string& category, double score) {
     Extent mine;
     for (const auto& p : observation.points) {
         mine.lo = {std::min(mine.lo.x, p.x), std::min(mine.lo.y, p.y), std::min(mine.lo.z, p.z)};
@@ -362,15 +385,19 @@ ObjectTrack& DetectionTracker::add(Observation observation, const std::string& c
     }
     mine.count = observation.points.size();
     mine.frames.insert(observation.frame);
+    mine.votes[category] = score;
 
     // The best candidate: the largest overlap, then the nearest centroid.
     std::size_t best = tracks_.size();
     double bestIou = -1, bestDistance = 1e18;
     for (std::size_t k = 0; k < tracks_.size(); ++k) {
         // Two detections of one frame are two things (detectors suppress duplicates).
-        if (tracks_[k].category != category || extents_[k].frames.contains(observation.frame)) continue;
+        if (extents_[k].frames.contains(observation.frame)) continue;
+        bool sameCategory = tracks_[k].category == category;
+        if (!sameCategory && !voteLabels_) continue;
         auto f = fit(extents_[k], mine);
-        if (!f) continue;
+        // Another label joins only a track it overlaps closely: the same thing, named differently.
+        if (!f || (!sameCategory && f->first < kRelabelIou)) continue;
         auto [iou, distance] = *f;
         if (iou > bestIou + 1e-9 || (std::abs(iou - bestIou) <= 1e-9 && distance < bestDistance))
             best = k, bestIou = iou, bestDistance = distance;
@@ -379,12 +406,14 @@ ObjectTrack& DetectionTracker::add(Observation observation, const std::string& c
         ObjectTrack track;
         track.category = category;
         // Structure is geometry's job; doors and windows become anchors like labelled masks.
-        if (category == "wall" || category == "floor" || category == "ceiling" || category == "door" || category == "window")
+        if (category == "wall" || category == "floor" || category == "ceiling" || category == "door" ||
+            category == "window")
             track.kind = model::NodeKind::Anchor;
         tracks_.push_back(std::move(track));
         extents_.emplace_back();
     }
     merge(extents_[best], mine);
+    relabel(tracks_[best], extents_[best]);
     tracks_[best].views.push_back(std::move(observation));
     return tracks_[best];
 }

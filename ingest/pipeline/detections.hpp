@@ -6,10 +6,11 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <set>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -30,9 +31,9 @@ inline constexpr double kDetectionDepthBand = 0.25;  // m
 struct Detection {
     std::string category;
     double score = 0;
-    cv::Rect2d box;                                   // pixels of the stored image
-    std::vector<std::vector<cv::Point2d>> polygons;   // COCO polygons, pixels of the stored image
-    cv::Mat1b rle;                                    // a COCO RLE mask decoded (stored image size)
+    cv::Rect2d box;                                  // pixels of the stored image
+    std::vector<std::vector<cv::Point2d>> polygons;  // COCO polygons, pixels of the stored image
+    cv::Mat1b rle;                                   // a COCO RLE mask decoded (stored image size)
     // Neither polygons nor an RLE mask: the box is the mask.
 };
 
@@ -54,10 +55,19 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
 // seen in its frame, whose 3D bounds overlap the observation's by IoU >= 0.1
 // or whose centroid lies within max(0.3 m, half the track's largest extent) of
 // the observation's; else it starts a new track.
+//
+// With `voteLabels` (a closed-set detector, whose label for one thing may
+// change from view to view) an observation also joins a track of another
+// category whose bounds it overlaps by IoU >= kRelabelIou, and a track's
+// category is the one with the largest sum of scores over its views: one bad
+// view does not rename a sofa.
+inline constexpr double kRelabelIou = 0.3;
+
 class DetectionTracker {
 public:
+    explicit DetectionTracker(bool voteLabels = false) : voteLabels_(voteLabels) {}
     // Returns the track the observation joined (to update its evidence).
-    ObjectTrack& add(Observation observation, const std::string& category);
+    ObjectTrack& add(Observation observation, const std::string& category, double score = 1);
     // The tracks, after merging those the rule joins that never share a frame (order independence).
     std::vector<ObjectTrack> take();
     std::size_t size() const { return tracks_.size(); }
@@ -67,9 +77,12 @@ private:
         model::Vec3 lo{1e18, 1e18, 1e18}, hi{-1e18, -1e18, -1e18}, sum{0, 0, 0};
         std::size_t count = 0;
         std::set<std::uint32_t> frames;
+        std::map<std::string, double> votes;  // category -> sum of the scores of its views
     };
+    static void relabel(ObjectTrack& track, const Extent& extent);
     static std::optional<std::pair<double, double>> fit(const Extent& track, const Extent& observation);
     static void merge(Extent& into, const Extent& from);
+    bool voteLabels_;
     std::vector<ObjectTrack> tracks_;
     std::vector<Extent> extents_;
 };

@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include "model/error.hpp"
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest {
 
@@ -57,6 +57,7 @@ FramePass FramesStage::run(StageProgress& progress) {
         for (const auto& p : capture.points) pass.structure.push(p.position, p.color, 0);
     }
     pass.tracks = finder.takeTracks();
+    if (auto note = finder.frameNote(); !note.empty()) progress.note(note);
     return pass;
 }
 

@@ -4,13 +4,14 @@
 
 #include <fmt/format.h>
 
-#include "model/error.hpp"
 #include "ingest/geometry/colmap_runner.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest {
 
 bool usesColmap(const Capture& capture, GeometrySource geometry) {
-    bool hasPoses = std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
+    bool hasPoses =
+        std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
     if (geometry == GeometrySource::Given && !hasPoses)
         throw Error(ErrorKind::Input, fmt::format("{}: some frames have no camera pose", capture.path), std::nullopt,
                     "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP "
@@ -41,15 +42,18 @@ std::string ColmapStage::summary(const Reconstruction& reconstruction) const {
 
 void requirePosesAndStructure(const Capture& capture) {
     if (std::none_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); }))
-        throw Error(ErrorKind::Input, fmt::format("{}: no frame has a camera pose", capture.path), std::nullopt,
-                    "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP model");
+        throw Error(
+            ErrorKind::Input, fmt::format("{}: no frame has a camera pose", capture.path), std::nullopt,
+            "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP model");
     if (!framesHaveDepth(capture) && capture.points.empty())
-        throw Error(ErrorKind::Input, fmt::format("{}: the frames have no depth and the capture no 3D points", capture.path),
+        throw Error(ErrorKind::Input,
+                    fmt::format("{}: the frames have no depth and the capture no 3D points", capture.path),
                     std::nullopt, "give depth images, or a COLMAP model with points3D (or --geometry colmap)");
 }
 
 bool framesHaveDepth(const Capture& capture) {
-    return std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return !f.depthPath.empty(); });
+    return std::all_of(capture.frames.begin(), capture.frames.end(),
+                       [](const auto& f) { return !f.depthPath.empty(); });
 }
 
 }  // namespace smql::ingest

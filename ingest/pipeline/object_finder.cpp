@@ -8,7 +8,7 @@ namespace {
 
 struct ObjectSourceEntry {
     ObjectSource source;
-    bool (*usable)(const Capture&);
+    bool (*usable)(const Capture&, const IngestOptions&);
     std::unique_ptr<ObjectFinder> (*make)(const Capture&, const IngestOptions&);
 };
 
@@ -16,6 +16,7 @@ struct ObjectSourceEntry {
 constexpr ObjectSourceEntry kObjectSources[] = {
     {ObjectSource::Masks, masksUsable, makeMaskFinder},
     {ObjectSource::Detections, detectionsUsable, makeDetectionFinder},
+    {ObjectSource::Detect, detectorUsable, makeDetectorFinder},
     {ObjectSource::Cluster, clustersUsable, makeClusterFinder},
 };
 
@@ -23,7 +24,8 @@ constexpr ObjectSourceEntry kObjectSources[] = {
 
 std::unique_ptr<ObjectFinder> makeObjectFinder(const Capture& capture, const IngestOptions& options) {
     for (const auto& entry : kObjectSources) {
-        bool chosen = options.objects == ObjectSource::Auto ? entry.usable(capture) : options.objects == entry.source;
+        bool chosen =
+            options.objects == ObjectSource::Auto ? entry.usable(capture, options) : options.objects == entry.source;
         if (chosen) return entry.make(capture, options);
     }
     assert(!"every ObjectSource has an entry, and clusters are always usable");

@@ -42,13 +42,14 @@ public:
             node.attributes.push_back({"points", std::to_string(cluster.size())});
             node.confidence = 0.5f;
         }
-        progress.note(fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'", clusters.size()));
+        progress.note(
+            fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'", clusters.size()));
     }
 };
 
 }  // namespace
 
-bool clustersUsable(const Capture&) { return true; }
+bool clustersUsable(const Capture&, const IngestOptions&) { return true; }
 
 std::unique_ptr<ObjectFinder> makeClusterFinder(const Capture&, const IngestOptions&) {
     return std::make_unique<ClusterFinder>();

@@ -7,12 +7,12 @@
 #include <map>
 
 #include <fmt/format.h>
-#include <opencv2/imgproc.hpp>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 
-#include "model/error.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
+#include "model/error.hpp"
 
 namespace smql::ingest {
 
@@ -42,10 +42,12 @@ std::map<std::uint16_t, InstanceLabel> readLabels(const std::string& path) {
         const auto& e = j["instances"][i];
         if (!e.is_object() || !e.contains("id") || !e["id"].is_number_unsigned() || !e.contains("category") ||
             !e["category"].is_string())
-            throw Error(ErrorKind::Input, fmt::format("{}: instances[{}]: needs an id (1..65535) and a category", path, i));
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: instances[{}]: needs an id (1..65535) and a category", path, i));
         auto id = e["id"].get<std::uint64_t>();
         if (id == 0 || id > 65535)
-            throw Error(ErrorKind::Input, fmt::format("{}: instances[{}].id: {} is not a 16-bit mask value", path, i, id));
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: instances[{}].id: {} is not a 16-bit mask value", path, i, id));
         InstanceLabel label;
         label.category = e["category"].get<std::string>();
         if (e.contains("kind") && e["kind"] == "anchor") label.kind = model::NodeKind::Anchor;
@@ -58,7 +60,9 @@ std::map<std::uint16_t, InstanceLabel> readLabels(const std::string& path) {
 class MaskFinder : public ObjectFinder {
 public:
     MaskFinder(const Capture& capture, const IngestOptions& options)
-        : capture_(capture), options_(options), labels_(readLabels(capture.labelsPath)),
+        : capture_(capture),
+          options_(options),
+          labels_(readLabels(capture.labelsPath)),
           hasDepth_(framesHaveDepth(capture)) {}
 
     void observe(const PosedFrame& frame) override {
@@ -106,8 +110,8 @@ private:
         cv::resize(instances, m.instances, cv::Size(), 0.25, 0.25, cv::INTER_NEAREST);
         double sx = double(m.instances.cols) / instances.cols, sy = double(m.instances.rows) / instances.rows;
         const auto& K = frame.images.intrinsics;
-        m.intrinsics = {m.instances.cols, m.instances.rows, K.fx * sx, K.fy * sy, (K.cx + 0.5) * sx - 0.5,
-                        (K.cy + 0.5) * sy - 0.5};
+        m.intrinsics = {m.instances.cols, m.instances.rows,        K.fx * sx,
+                        K.fy * sy,        (K.cx + 0.5) * sx - 0.5, (K.cy + 0.5) * sy - 0.5};
         m.pose = frame.pose;
         return m;
     }
@@ -123,14 +127,15 @@ private:
 
 }  // namespace
 
-bool masksUsable(const Capture& capture) {
-    return !capture.labelsPath.empty() &&
-           std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return !f.instancePath.empty(); });
+bool masksUsable(const Capture& capture, const IngestOptions&) {
+    return !capture.labelsPath.empty() && std::all_of(capture.frames.begin(), capture.frames.end(),
+                                                      [](const auto& f) { return !f.instancePath.empty(); });
 }
 
 std::unique_ptr<ObjectFinder> makeMaskFinder(const Capture& capture, const IngestOptions& options) {
-    if (!masksUsable(capture))
-        throw Error(ErrorKind::Input, fmt::format("{}: --objects masks needs instance/ masks and labels.json", capture.path),
+    if (!masksUsable(capture, options))
+        throw Error(ErrorKind::Input,
+                    fmt::format("{}: --objects masks needs instance/ masks and labels.json", capture.path),
                     std::nullopt, "use --objects cluster for captures without masks");
     return std::make_unique<MaskFinder>(capture, options);
 }

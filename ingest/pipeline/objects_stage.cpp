@@ -67,9 +67,11 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         node.attributes.push_back({"last_seen", std::to_string(capture.frames[last->frame].index)});
         node.attributes.push_back({"views", std::to_string(track.views.size())});
         node.confidence = static_cast<float>(std::min(1.0, 0.5 + 0.1 * track.views.size()));
-        std::sort(node.attributes.begin(), node.attributes.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+        std::sort(node.attributes.begin(), node.attributes.end(),
+                  [](const auto& a, const auto& b) { return a.name < b.name; });
         if (!track.evidence.jpeg.empty())
-            scene.blobs.push_back({node.id, fmt::format("evidence-frame{}.jpg", capture.frames[track.evidence.frame].index),
+            scene.blobs.push_back({node.id,
+                                   fmt::format("evidence-frame{}.jpg", capture.frames[track.evidence.frame].index),
                                    "image/jpeg", std::move(track.evidence.jpeg)});
         made.push_back({node.id, std::move(track.views)});
     }

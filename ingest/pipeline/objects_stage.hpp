@@ -11,13 +11,13 @@
 #include <string_view>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/walls.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_data.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 

@@ -8,8 +8,8 @@
 
 namespace smql::ingest {
 
-std::vector<Observation> observeInstances(const FrameImages& images, const Pose& pose, std::uint32_t frame,
-                                          int stride, int minPixels) {
+std::vector<Observation> observeInstances(const FrameImages& images, const Pose& pose, std::uint32_t frame, int stride,
+                                          int minPixels) {
     std::vector<Observation> out;
     if (images.instances.empty()) return out;
     const auto& K = images.intrinsics;
@@ -84,7 +84,8 @@ void liftSparsePoints(std::vector<Observation>& observations, const FrameImages&
         double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
                z = R[2] * dx + R[5] * dy + R[8] * dz;
         if (!(z > 1e-6)) continue;
-        int u = static_cast<int>(std::lround(K.fx * x / z + K.cx)), v = static_cast<int>(std::lround(K.fy * y / z + K.cy));
+        int u = static_cast<int>(std::lround(K.fx * x / z + K.cx)),
+            v = static_cast<int>(std::lround(K.fy * y / z + K.cy));
         if (u < 0 || v < 0 || u >= images.instances.cols || v >= images.instances.rows) continue;
         ++inView[index];
         auto it = slot.find(images.instances.at<std::uint16_t>(v, u));
@@ -118,7 +119,8 @@ void keepConsistentSparsePoints(std::vector<ObjectTrack*>& tracks, const std::ve
             }
 }
 
-void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, int grid, double minShare) {
+void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, int grid,
+                      double minShare) {
     std::unordered_map<std::uint32_t, const MaskView*> byFrame;
     for (const auto& m : masks) byFrame.emplace(m.frame, &m);
     for (ObjectTrack* track : tracks) {
@@ -143,7 +145,8 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
         for (int i = 0; i < grid; ++i)
             for (int j = 0; j < grid; ++j)
                 for (int k = 0; k < grid; ++k) {
-                    model::Vec3 p{lo[0] + (i + 0.5) * (hi[0] - lo[0]) / grid, lo[1] + (j + 0.5) * (hi[1] - lo[1]) / grid,
+                    model::Vec3 p{lo[0] + (i + 0.5) * (hi[0] - lo[0]) / grid,
+                                  lo[1] + (j + 0.5) * (hi[1] - lo[1]) / grid,
                                   lo[2] + (k + 0.5) * (hi[2] - lo[2]) / grid};
                     int seen = 0, inside = 0;
                     for (const MaskView* m : views) {

@@ -9,20 +9,20 @@
 
 #include <opencv2/core.hpp>
 
-#include "model/types.hpp"
 #include "ingest/capture/frame_loader.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 
 struct Observation {
     std::uint32_t frame = 0;
     std::uint16_t instance = 0;
-    std::vector<model::Vec3> points;  // capture frame
-    cv::Mat colors;                   // N x 1 CV_8UC3 BGR samples
-    int pixels = 0;                   // mask area in the frame
-    cv::Rect bounds;                  // mask bounding box
-    double centreX = 0;               // mask centroid, as a share of the image width (0 left, 1 right)
-    std::vector<std::uint32_t> sparse; // indices of Capture::points on the mask (frames without depth)
+    std::vector<model::Vec3> points;    // capture frame
+    cv::Mat colors;                     // N x 1 CV_8UC3 BGR samples
+    int pixels = 0;                     // mask area in the frame
+    cv::Rect bounds;                    // mask bounding box
+    double centreX = 0;                 // mask centroid, as a share of the image width (0 left, 1 right)
+    std::vector<std::uint32_t> sparse;  // indices of Capture::points on the mask (frames without depth)
 };
 
 struct EvidenceCrop {
@@ -44,8 +44,8 @@ struct ObjectTrack {
 
 // Lifts every instance of one frame with enough pixels. `stride` samples the
 // mask; pixels without depth give colour samples but no points.
-std::vector<Observation> observeInstances(const FrameImages& images, const Pose& pose, std::uint32_t frame,
-                                          int stride, int minPixels);
+std::vector<Observation> observeInstances(const FrameImages& images, const Pose& pose, std::uint32_t frame, int stride,
+                                          int minPixels);
 
 // Frames without depth (COLMAP captures): every sparse point whose projection
 // falls on an instance's mask pixel joins that instance's observation (its
@@ -55,7 +55,8 @@ std::vector<Observation> observeInstances(const FrameImages& images, const Pose&
 // point, the frames it projects into (for the cross-view vote in
 // keepConsistentSparsePoints).
 void liftSparsePoints(std::vector<Observation>& observations, const FrameImages& images, const Pose& pose,
-                      const std::vector<SparsePoint>& points, std::vector<std::uint32_t>& inView, double depthBand = 0.25);
+                      const std::vector<SparsePoint>& points, std::vector<std::uint32_t>& inView,
+                      double depthBand = 0.25);
 
 // Keeps in each view only the sparse points that fall on the same instance in
 // at least `minVotes` frames and in at least `minShare` of the frames that see
@@ -67,7 +68,7 @@ void keepConsistentSparsePoints(std::vector<ObjectTrack*>& tracks, const std::ve
 // One frame's instance mask kept (down-sampled) for carving, with its camera.
 struct MaskView {
     std::uint32_t frame = 0;
-    cv::Mat instances;  // CV_16U
+    cv::Mat instances;      // CV_16U
     Intrinsics intrinsics;  // scaled to `instances`
     Pose pose;
 };

@@ -56,8 +56,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     model::SceneData& scene = result.scene;
     scene.info = sceneInfo(capture, options, frames, aligned);
     auto walls = runner.run(AnchorsStage{aligned, scene});
-    auto tracked =
-        runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
+    auto tracked = runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
     return result;
 }

@@ -9,32 +9,34 @@
 #include <string>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/colmap_runner.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 
 enum class GeometrySource { Given, Colmap, Auto };
-enum class ObjectSource { Masks, Detections, Cluster, Auto };
+enum class ObjectSource { Masks, Detections, Detect, Cluster, Auto };
 
 struct IngestOptions {
     std::string sceneName;
     GeometrySource geometry = GeometrySource::Auto;
     ObjectSource objects = ObjectSource::Auto;
+    std::string detectorModel;    // --detector: the ONNX model (default: defaultModelDir()/nanodet.onnx)
+    std::string detectorClasses;  // --classes: its class names (default: coco.names beside the model)
     std::optional<double> scale;  // metres per capture unit, overriding the alignment's estimate
     int workingWidth = 640;
-    int structureStride = 4;          // every n-th pixel of each frame feeds the structure cloud
-    double structureVoxel = 0.05;     // m
-    int objectStride = 2;             // every n-th pixel of an instance mask is lifted
-    double objectVoxel = 0.01;        // m
-    int minInstancePixels = 150;      // smaller mask fragments in a frame are ignored
-    int minObjectViews = 1;           // an instance needs this many views to become an object
-    int descriptionAgreement = 2;     // views that must agree before a scene-level phrase is promoted
-    double agreementShare = 0.6;      // ... and the share of its views they must be
-    int evidenceSize = 160;           // longest side of an evidence crop (pixels)
-    ColmapOptions colmap;             // --geometry colmap (and auto for captures without poses)
-    double sparseDepthBand = 0.25;    // sparse points lifted onto a mask: within this share of the median depth
+    int structureStride = 4;        // every n-th pixel of each frame feeds the structure cloud
+    double structureVoxel = 0.05;   // m
+    int objectStride = 2;           // every n-th pixel of an instance mask is lifted
+    double objectVoxel = 0.01;      // m
+    int minInstancePixels = 150;    // smaller mask fragments in a frame are ignored
+    int minObjectViews = 1;         // an instance needs this many views to become an object
+    int descriptionAgreement = 2;   // views that must agree before a scene-level phrase is promoted
+    double agreementShare = 0.6;    // ... and the share of its views they must be
+    int evidenceSize = 160;         // longest side of an evidence crop (pixels)
+    ColmapOptions colmap;           // --geometry colmap (and auto for captures without poses)
+    double sparseDepthBand = 0.25;  // sparse points lifted onto a mask: within this share of the median depth
 };
 
 // Progress of a long ingest, stage by stage. Implementations print a bar, JSON

@@ -18,7 +18,8 @@ using model::NodeId;
 namespace {
 
 bool isStructural(const Node& n) {
-    return n.kind == model::NodeKind::Anchor && (n.category == "wall" || n.category == "door" || n.category == "window");
+    return n.kind == model::NodeKind::Anchor &&
+           (n.category == "wall" || n.category == "door" || n.category == "window");
 }
 
 bool counts(const Node& n) { return !n.hidden && n.geometry != model::GeometryKind::None; }
@@ -27,8 +28,10 @@ bool counts(const Node& n) { return !n.hidden && n.geometry != model::GeometryKi
 // thin box sits within its thickness is not what the check is about.
 Box slab(const Box& b) {
     Box out = b;
-    if (out.size.x < out.size.y) out.size.x = std::max(out.size.x, 0.3);
-    else out.size.y = std::max(out.size.y, 0.3);
+    if (out.size.x < out.size.y)
+        out.size.x = std::max(out.size.x, 0.3);
+    else
+        out.size.y = std::max(out.size.y, 0.3);
     return out;
 }
 
@@ -40,8 +43,8 @@ double overlapOfSmaller(const Box& a, const Box& b) {
 
 // Greedy one-to-one matching, best score first; returns truth id -> ingested id.
 template <class Score>
-std::unordered_map<NodeId, NodeId> match(const std::vector<const Node*>& truth, const std::vector<const Node*>& ingested,
-                                         double threshold, Score score) {
+std::unordered_map<NodeId, NodeId> match(const std::vector<const Node*>& truth,
+                                         const std::vector<const Node*>& ingested, double threshold, Score score) {
     std::vector<std::tuple<double, NodeId, NodeId>> pairs;
     for (const Node* t : truth)
         for (const Node* i : ingested) {
@@ -153,7 +156,8 @@ CameraRegistration registerByCameras(const model::SceneData& ingested,
     double yaw = std::atan2(R(1, 0), R(0, 0));
     out.mapped = ingested;
     for (auto& node : out.mapped.nodes) {
-        Eigen::Vector3d m = out.scale * R * Eigen::Vector3d(node.box.center.x, node.box.center.y, node.box.center.z) + shift;
+        Eigen::Vector3d m =
+            out.scale * R * Eigen::Vector3d(node.box.center.x, node.box.center.y, node.box.center.z) + shift;
         node.box.center = {m.x(), m.y(), m.z()};
         node.box.size = {node.box.size.x * out.scale, node.box.size.y * out.scale, node.box.size.z * out.scale};
         node.box.yaw += yaw;

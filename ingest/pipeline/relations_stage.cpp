@@ -77,8 +77,10 @@ void RelationsStage::run(StageProgress&) {
                 ++vote.second;
                 // As seen in this frame: left of / right of in the image, by at least 5% of its width.
                 std::optional<relations::Predicate> local;
-                if (ax < bx - 0.05) ++vote.first, local = relations::Predicate::LeftOf;
-                else if (ax > bx + 0.05) --vote.first, local = relations::Predicate::RightOf;
+                if (ax < bx - 0.05)
+                    ++vote.first, local = relations::Predicate::LeftOf;
+                else if (ax > bx + 0.05)
+                    --vote.first, local = relations::Predicate::RightOf;
                 if (local) scene.relations.push_back({a, b, *local, 1.0f, 1, frameNode.at(frame)});
             }
     LateralPhrases lateral;

@@ -13,11 +13,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/pipeline/observations.hpp"
+#include "model/types.hpp"
 
 namespace smql::ingest {
 
@@ -37,9 +37,9 @@ struct Camera {
 // The one pass over the frames: everything later stages need, so the frames
 // are read once and memory stays flat.
 struct FramePass {
-    PointCloud structure;              // down-sampled, capture frame
-    std::vector<Camera> cameras;       // the frames that had a pose, in capture order
-    std::vector<ObjectTrack> tracks;   // from the object source
+    PointCloud structure;             // down-sampled, capture frame
+    std::vector<Camera> cameras;      // the frames that had a pose, in capture order
+    std::vector<ObjectTrack> tracks;  // from the object source
 };
 
 struct AlignedCapture {

@@ -44,7 +44,7 @@ concept SummarisedInPlace = std::is_void_v<StageOutput<S>> && requires(S& stage)
     { stage.summary() } -> std::convertible_to<std::string>;
 };
 template <typename S>
-concept SummarisedOutput = !std::is_void_v<StageOutput<S>> && requires(S& stage, const StageOutput<S>& output) {
+concept SummarisedOutput = !std::is_void_v<StageOutput<S>> && requires(S & stage, const StageOutput<S>& output) {
     { stage.summary(output) } -> std::convertible_to<std::string>;
 };
 
@@ -53,7 +53,8 @@ concept IngestStage = requires(S& stage, StageProgress& progress) {
     { S::kName } -> std::convertible_to<std::string_view>;
     { stage.steps() } -> std::convertible_to<std::size_t>;
     stage.run(progress);
-} && (SummarisedInPlace<S> || SummarisedOutput<S>);
+}
+&&(SummarisedInPlace<S> || SummarisedOutput<S>);
 
 class StageRunner {
 public:
@@ -65,8 +66,7 @@ public:
     // Checks for cancellation, reports the stage started, runs it, and reports
     // and records its time and summary.
     template <typename S, typename Stage = std::remove_cvref_t<S>>
-        requires IngestStage<Stage>
-    StageOutput<Stage> run(S&& stage) {
+    requires IngestStage<Stage> StageOutput<Stage> run(S&& stage) {
         progress_.stopIfCancelled();
         const std::string name(Stage::kName);
         sink_.stageStarted(name, stage.steps());

@@ -23,8 +23,8 @@ std::string_view nearestColorName(double r, double g, double b) {
 }
 
 Rgb neutralColor(std::string_view category) {
-    if (category == "wall") return {214, 208, 196};    // warm off-white
-    if (category == "floor") return {178, 160, 138};   // light oak
+    if (category == "wall") return {214, 208, 196};   // warm off-white
+    if (category == "floor") return {178, 160, 138};  // light oak
     if (category == "ceiling") return {236, 236, 232};
     if (category == "door") return {168, 138, 104};    // pale wood
     if (category == "window") return {196, 214, 226};  // pale sky behind glass

@@ -279,9 +279,12 @@ RenderedFrame Renderer::render(const ingest::Intrinsics& K, const ingest::Pose& 
                 for (int k = 0; k < n && !empty; ++k) {
                     const Edge& e = edges[k];
                     double rest = e.b * v + e.c;
-                    if (e.a > 0) lo = std::max(lo, std::floor(-rest / e.a) - 1);
-                    else if (e.a < 0) hi = std::min(hi, std::ceil(-rest / e.a) + 1);
-                    else if (rest < 0 || (rest == 0 && !e.owned)) empty = true;
+                    if (e.a > 0)
+                        lo = std::max(lo, std::floor(-rest / e.a) - 1);
+                    else if (e.a < 0)
+                        hi = std::min(hi, std::ceil(-rest / e.a) + 1);
+                    else if (rest < 0 || (rest == 0 && !e.owned))
+                        empty = true;
                 }
                 if (empty || lo > hi) continue;
                 std::size_t row = static_cast<std::size_t>(v) * W;

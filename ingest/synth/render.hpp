@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/synth/palette.hpp"
+#include "model/types.hpp"
 
 namespace smql::synth {
 
@@ -38,9 +38,9 @@ std::vector<Surface> surfacesOf(const model::SceneData& scene);
 
 struct RenderedFrame {
     int width = 0, height = 0;
-    std::vector<float> depth;              // metres along the camera z axis, 0 = nothing drawn
-    std::vector<std::uint16_t> instance;   // Surface::id of the visible surface, 0 = nothing
-    std::vector<std::uint8_t> rgb;         // 8-bit R, G, B per pixel, row-major
+    std::vector<float> depth;             // metres along the camera z axis, 0 = nothing drawn
+    std::vector<std::uint16_t> instance;  // Surface::id of the visible surface, 0 = nothing
+    std::vector<std::uint8_t> rgb;        // 8-bit R, G, B per pixel, row-major
 };
 
 class Renderer {

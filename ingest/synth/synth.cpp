@@ -6,7 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
+#include <random>
 #include <set>
 #include <thread>
 
@@ -15,14 +17,14 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "model/error.hpp"
-#include "model/geometry.hpp"
 #include "engine/relations/hierarchy.hpp"
 #include "engine/relations/predicates.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/walk.hpp"
+#include "model/error.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::synth {
 
@@ -32,9 +34,12 @@ using Json = nlohmann::ordered_json;
 namespace {
 
 // The files and folders a capture consists of: what --force replaces.
-const char* const kOutputs[] = {"color",         "depth",          "instance",        "pose.txt",
-                                "camera.json",   "labels.json",    "truth.json",      "relations.json",
-                                "visibility.json", "detections.json"};
+const char* const kOutputs[] = {"color",           "depth",           "instance",     "pose.txt",
+                                "camera.json",     "labels.json",     "truth.json",   "relations.json",
+                                "visibility.json", "detections.json", "changes.json", "eval-suite.json"};
+
+// How many small things --changes moves, takes away and puts down.
+constexpr int kChangesEach = 2;
 
 constexpr double kNearLabelDistance = 0.5;
 
@@ -46,7 +51,8 @@ void writeText(const fs::path& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
     out << text;
     out.close();
-    if (!out) throw Error(ErrorKind::Usage, "cannot write " + path.string(), std::nullopt, "check the folder is writable");
+    if (!out)
+        throw Error(ErrorKind::Usage, "cannot write " + path.string(), std::nullopt, "check the folder is writable");
 }
 
 void writePng(const fs::path& path, const cv::Mat& image) {
@@ -57,14 +63,14 @@ void writePng(const fs::path& path, const cv::Mat& image) {
     } catch (const cv::Exception&) {
         ok = false;
     }
-    if (!ok) throw Error(ErrorKind::Usage, "cannot write " + path.string(), std::nullopt, "check the folder is writable");
+    if (!ok)
+        throw Error(ErrorKind::Usage, "cannot write " + path.string(), std::nullopt, "check the folder is writable");
 }
 
 void prepareDirectory(const fs::path& dir, bool force) {
     std::error_code ec;
     if (fs::exists(dir, ec)) {
-        if (!fs::is_directory(dir, ec))
-            throw Error(ErrorKind::Usage, dir.string() + " exists and is not a folder");
+        if (!fs::is_directory(dir, ec)) throw Error(ErrorKind::Usage, dir.string() + " exists and is not a folder");
         if (!fs::is_empty(dir, ec)) {
             if (!force)
                 throw Error(ErrorKind::Usage, dir.string() + " is not empty", std::nullopt,
@@ -93,8 +99,8 @@ std::vector<Json> detectFrame(const cv::Mat& instance, const std::vector<int>& c
         cv::Rect box = cv::boundingRect(mask);
         std::vector<std::vector<cv::Point>> contours;
         cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-        Json detection = {{"image", image}, {"label", n.category}, {"score", 1},
-                          {"bbox", {box.x, box.y, box.width, box.height}}};
+        Json detection = {
+            {"image", image}, {"label", n.category}, {"score", 1}, {"bbox", {box.x, box.y, box.width, box.height}}};
         auto largest = std::max_element(contours.begin(), contours.end(), [](const auto& a, const auto& b) {
             return cv::contourArea(a) < cv::contourArea(b);
         });
@@ -125,6 +131,128 @@ std::string jsonLines(const std::string& key, const std::vector<Json>& entries, 
 
 ingest::Intrinsics synthIntrinsics() { return {640, 480, 525.0, 525.0, 319.5, 239.5}; }
 
+namespace {
+
+// Moves, removes and adds small things (what the generator placed on furniture), each resting on
+// a piece of furniture's top, deterministically from `seed`. Furniture stays, so the walk is the same.
+std::vector<model::ObjectChange> tidyUp(model::SceneData& truth, std::vector<generate::Support>& supports,
+                                        std::uint64_t seed) {
+    std::mt19937_64 rng(seed * 7919 + 17);
+    auto pick = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
+    auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+    auto byId = [&](model::NodeId id) -> model::Node& {
+        return *std::find_if(truth.nodes.begin(), truth.nodes.end(), [&](const model::Node& n) { return n.id == id; });
+    };
+    std::vector<model::NodeId> furniture;
+    for (const auto& s : supports)
+        if (std::find(furniture.begin(), furniture.end(), s.supporter) == furniture.end())
+            furniture.push_back(s.supporter);
+    if (supports.size() < 2 * kChangesEach || furniture.size() < 2)
+        throw Error(ErrorKind::Usage, "--changes needs a room with more small things: give it more --objects");
+
+    // A spot on top of a piece of furniture, away from the things already there and a metre from any
+    // thing of the same kind, so that which thing went where is never ambiguous.
+    auto spotOn = [&](model::NodeId supporter, const model::Node& thing) -> std::optional<model::Box> {
+        const model::Box& size = thing.box;
+        const model::Box& top = byId(supporter).box;
+        for (int attempt = 0; attempt < 20; ++attempt) {
+            double lx = uniform(-0.4, 0.4) * top.size.x, ly = uniform(-0.3, 0.3) * top.size.y;
+            model::Box placed = size;
+            placed.center = {top.center.x + std::cos(top.yaw) * lx - std::sin(top.yaw) * ly,
+                             top.center.y + std::sin(top.yaw) * lx + std::cos(top.yaw) * ly,
+                             model::top(top) + size.size.z / 2};
+            bool clear = std::none_of(truth.nodes.begin(), truth.nodes.end(), [&](const model::Node& n) {
+                if (n.kind != model::NodeKind::Object || n.id == supporter || n.id == thing.id) return false;
+                return model::distance(n.box, placed) < (n.category == thing.category ? 1.0 : 0.1);
+            });
+            if (clear) return placed;
+        }
+        return std::nullopt;
+    };
+
+    std::vector<model::ObjectChange> changes;
+    std::vector<std::size_t> order(supports.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    std::set<model::NodeId> removed;
+    // Each change is of a kind of thing no other change touches: two cushions that swapped
+    // places look the same as two that stayed.
+    std::set<std::string> changedKinds;
+    // Moved: the first few things that find a place on another piece of furniture.
+    std::size_t next = 0;
+    for (int moved = 0; moved < kChangesEach && next < order.size(); ++next) {
+        generate::Support& s = supports[order[next]];
+        model::NodeId to = furniture[pick(furniture.size())];
+        if (to == s.supporter)
+            to = furniture[(std::find(furniture.begin(), furniture.end(), to) - furniture.begin() + 1) %
+                           furniture.size()];
+        model::Node& thing = byId(s.object);
+        if (changedKinds.count(thing.category)) continue;
+        auto spot = spotOn(to, thing);
+        if (!spot) continue;
+        changedKinds.insert(thing.category);
+        changes.push_back({model::ChangeKind::Moved, thing.category, thing.id, thing.id, thing.box, *spot});
+        thing.box = *spot;
+        thing.parent = model::kNoNode;  // found anew: it rests on other furniture now
+        s.supporter = to;
+        ++moved;
+    }
+    // Removed: the next few.
+    for (int taken = 0; taken < kChangesEach && next < order.size(); ++next) {
+        const model::Node& thing = byId(supports[order[next]].object);
+        if (!changedKinds.insert(thing.category).second) continue;
+        ++taken;
+        changes.push_back({model::ChangeKind::Missing, thing.category, thing.id, model::kNoNode, thing.box, {}});
+        removed.insert(thing.id);
+    }
+    // Added: copies of things still there (same kind, size and colour), put on other furniture.
+    model::NodeId nextId = 0;
+    for (const auto& n : truth.nodes) nextId = std::max(nextId, n.id);
+    for (int added = 0, attempts = 0; added < kChangesEach && attempts < 50; ++attempts) {
+        const generate::Support& model = supports[pick(supports.size())];
+        if (removed.count(model.object)) continue;
+        model::NodeId on = furniture[pick(furniture.size())];
+        model::Node copy = byId(model.object);
+        if (changedKinds.count(copy.category)) continue;
+        auto spot = spotOn(on, copy);
+        if (!spot) continue;
+        changedKinds.insert(copy.category);
+        copy.id = ++nextId;
+        copy.box = *spot;
+        copy.parent = model::kNoNode;
+        copy.sourceId.reset();
+        changes.push_back({model::ChangeKind::Added, copy.category, model::kNoNode, copy.id, {}, copy.box});
+        truth.nodes.push_back(std::move(copy));
+        supports.push_back({nextId, on});
+        ++added;
+    }
+    std::erase_if(truth.nodes, [&](const model::Node& n) { return removed.count(n.id) > 0; });
+    std::erase_if(supports, [&](const generate::Support& s) { return removed.count(s.object) > 0; });
+
+    // Local ids run from 1 to the node count (truth.json is an smql scene file): renumber, and say
+    // `after` in the new numbers.
+    std::map<model::NodeId, model::NodeId> renumbered;
+    for (std::size_t i = 0; i < truth.nodes.size(); ++i) renumbered.emplace(truth.nodes[i].id, i + 1);
+    auto newId = [&](model::NodeId id) { return id == model::kNoNode ? id : renumbered.at(id); };
+    for (auto& n : truth.nodes) {
+        n.id = newId(n.id);
+        n.parent = newId(n.parent);
+    }
+    std::erase_if(truth.relations, [&](const model::Relation& r) {
+        return !renumbered.count(r.subject) || !renumbered.count(r.object);
+    });
+    for (auto& r : truth.relations) {
+        r.subject = newId(r.subject);
+        r.object = newId(r.object);
+        r.frame = renumbered.count(r.frame) ? newId(r.frame) : model::kNoNode;
+    }
+    for (auto& s : supports) s = {newId(s.object), newId(s.supporter)};
+    for (auto& c : changes) c.after = newId(c.after);
+    return changes;
+}
+
+}  // namespace
+
 SynthScene makeSynthScene(const SynthOptions& options) {
     if (options.frames < 1) throw Error(ErrorKind::Usage, "--frames must be at least 1");
     if (options.objects < 1) throw Error(ErrorKind::Usage, "--objects must be at least 1");
@@ -135,11 +263,22 @@ SynthScene makeSynthScene(const SynthOptions& options) {
     SynthScene out;
     out.truth = std::move(room.scene);
     out.truth.info.name = name;
-    out.truth.info.source = "synth:seed=" + std::to_string(options.seed) + ",objects=" + std::to_string(options.objects);
-    out.truth.info.nodeCount = out.truth.nodes.size();
+    // Fixed times keep the files reproducible; the room after --changes is a day later.
+    out.truth.info.captureTime = options.changes ? "2026-11-21T10:00:00Z" : "2026-11-20T10:00:00Z";
+    out.truth.info.source =
+        "synth:seed=" + std::to_string(options.seed) + ",objects=" + std::to_string(options.objects);
     relations::assignParents(out.truth);
+    // The walk is planned in the room as it was, so a capture with --changes walks the same path.
+    out.poses = planWalk(out.truth, {.frames = options.frames, .seed = options.seed});
+    if (options.changes) {
+        out.changes = tidyUp(out.truth, room.supports, options.seed);
+        relations::assignParents(out.truth);
+    }
+    out.truth.info.nodeCount = out.truth.nodes.size();
 
-    auto node = [&](model::NodeId id) -> const model::Node& { return out.truth.nodes.at(id - 1); };
+    std::map<model::NodeId, const model::Node*> byId;
+    for (const auto& n : out.truth.nodes) byId.emplace(n.id, &n);
+    auto node = [&](model::NodeId id) -> const model::Node& { return *byId.at(id); };
     // on / in: what the generator put where.
     std::set<std::pair<model::NodeId, model::NodeId>> supported;
     for (const generate::Support& s : room.supports) {
@@ -158,7 +297,6 @@ SynthScene makeSynthScene(const SynthOptions& options) {
             out.relations.push_back({nodes[j].id, nodes[i].id, 28, "near"});
         }
     }
-    out.poses = planWalk(out.truth, {.frames = options.frames, .seed = options.seed});
     return out;
 }
 
@@ -240,7 +378,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
     writeText(dir / "pose.txt", poses);
 
     auto number = [](double v) { return v == std::floor(v) ? Json(static_cast<std::int64_t>(v)) : Json(v); };
-    Json camera = {{"width", K.width}, {"height", K.height}, {"fx", number(K.fx)}, {"fy", number(K.fy)},
+    Json camera = {{"width", K.width},   {"height", K.height}, {"fx", number(K.fx)}, {"fy", number(K.fy)},
                    {"cx", number(K.cx)}, {"cy", number(K.cy)}, {"depth_scale", 1000}};
     writeText(dir / "camera.json", camera.dump() + "\n");
 
@@ -267,6 +405,50 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
         for (auto& d : frameDetections) allDetections.push_back(std::move(d));
     writeText(dir / "detections.json", jsonLines("detections", allDetections));
     writeText(dir / "truth.json", import::writeSceneJson(truth) + "\n");
+    // The evaluation suite (docs/eval.md): truth ids of what the walk saw; answers come from
+    // truth.json when `smql eval` runs.
+    {
+        std::vector<model::NodeId> things, anchors, doors;
+        for (const model::Node& n : truth.nodes) {
+            if (n.geometry == model::GeometryKind::None || result.framesSeen[n.id] == 0) continue;
+            if (n.kind == model::NodeKind::Object) things.push_back(n.id);
+            bool upright = n.category == "wall" || n.category == "door" || n.category == "window";
+            if (n.kind == model::NodeKind::Anchor && upright) anchors.push_back(n.id);
+            if (n.kind == model::NodeKind::Anchor && n.category == "door") doors.push_back(n.id);
+        }
+        Json suite = {{"smql_eval", 1},
+                      {"scene", truth.info.name},
+                      {"truth", "truth.json"},
+                      {"relative_position", Json::array()},
+                      {"guidance", Json::array()},
+                      {"retrieval", Json::array()}};
+        for (model::NodeId thing : things) {
+            for (model::NodeId anchor : anchors)
+                suite["relative_position"].push_back({{"subject", thing}, {"anchor", anchor}});
+            for (model::NodeId door : doors) suite["guidance"].push_back({{"from", door}, {"to", thing}});
+            suite["retrieval"].push_back({{"object", thing}});
+        }
+        writeText(dir / "eval-suite.json", suite.dump(1) + "\n");
+    }
+    if (options.changes) {
+        auto centre = [](const model::Box& b) { return Json::array({b.center.x, b.center.y, b.center.z}); };
+        std::vector<Json> changes;
+        for (const auto& c : result.scene.changes) {
+            Json change = {{"change", model::toString(c.kind)}, {"category", c.category}};
+            if (c.before != model::kNoNode) change["before_id"] = c.before;
+            if (c.after != model::kNoNode) change["after_id"] = c.after;
+            if (c.kind != model::ChangeKind::Added) change["from"] = centre(c.from);
+            if (c.kind != model::ChangeKind::Missing) change["to"] = centre(c.to);
+            if (c.after != model::kNoNode) change["frames_seen"] = result.framesSeen[c.after];
+            changes.push_back(change);
+        }
+        writeText(dir / "changes.json",
+                  jsonLines("changes", changes,
+                            {{"scene", truth.info.name},
+                             {"format",
+                              "ids are truth.json ids: before_id of the capture without --changes, "
+                              "after_id of this one; from/to are box centres in metres"}}));
+    }
     result.totalSeconds = secondsSince(start);
     return result;
 }

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
+#include "model/types.hpp"
 
 namespace smql::synth {
 
@@ -20,6 +20,9 @@ struct SynthOptions {
     int frames = 60;
     int objects = 24;    // objects in the generator's sense (furniture, chairs, small things)
     bool force = false;  // write into a non-empty folder, replacing an earlier capture's files
+    // The same room and walk after someone tidied up: a few small things moved to other furniture,
+    // a few taken away, a few new ones put down (changes.json lists them).
+    bool changes = false;
 };
 
 // An instance counts as seen in a frame when at least this many of its pixels are visible.
@@ -40,6 +43,9 @@ struct SynthScene {
     model::SceneData truth;  // parents assigned, name "synth-<seed>"
     std::vector<LabelledRelation> relations;
     std::vector<ingest::Pose> poses;  // frame N is poses[N - 1]
+    // With SynthOptions::changes: what differs from the capture without it. Ids are truth ids:
+    // `before` of the room without changes, `after` of this one (a moved thing keeps its id).
+    std::vector<model::ObjectChange> changes;
 };
 
 SynthScene makeSynthScene(const SynthOptions& options);

@@ -71,8 +71,7 @@ Room roomOf(const model::SceneData& scene) {
 // parametrised by arc length from the start of the south side.
 class Loop {
 public:
-    Loop(double x0, double y0, double x1, double y1, double radius)
-        : x0_(x0), y0_(y0), x1_(x1), y1_(y1), r_(radius) {
+    Loop(double x0, double y0, double x1, double y1, double radius) : x0_(x0), y0_(y0), x1_(x1), y1_(y1), r_(radius) {
         sx_ = (x1 - x0) - 2 * r_;
         sy_ = (y1 - y0) - 2 * r_;
         arc_ = kPi / 2 * r_;

@@ -8,17 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "model/types.hpp"
 #include "ingest/capture/capture.hpp"
+#include "model/types.hpp"
 
 namespace smql::synth {
 
 struct WalkOptions {
     int frames = 60;
     std::uint64_t seed = 1;
-    double eyeHeight = 1.55;   // metres above the floor
-    double wallInset = 1.0;    // the loop's distance from the walls (less in small rooms)
-    double clearance = 0.4;    // the camera keeps this far from every object box
+    double eyeHeight = 1.55;  // metres above the floor
+    double wallInset = 1.0;   // the loop's distance from the walls (less in small rooms)
+    double clearance = 0.4;   // the camera keeps this far from every object box
 };
 
 // One pose per frame (camera-to-world, OpenCV camera axes), evenly spaced

@@ -10,22 +10,22 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "smql.h"
 
 static int passed = 0, failed = 0;
 
-#define CHECK(cond)                                                                 \
-    do {                                                                            \
-        if (cond) {                                                                 \
-            ++passed;                                                               \
-        } else {                                                                    \
-            ++failed;                                                               \
+#define CHECK(cond)                                                                  \
+    do {                                                                             \
+        if (cond) {                                                                  \
+            ++passed;                                                                \
+        } else {                                                                     \
+            ++failed;                                                                \
             fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
-        }                                                                           \
+        }                                                                            \
     } while (0)
 
 static const char* const kReplica = SMQL_SHARED_DATA "/replica-room0/info_semantic.json";
@@ -101,6 +101,58 @@ static void test_import(const char* dir) {
     smql_close(db);
 }
 
+static void write_text(const char* path, const char* text) {
+    FILE* f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs(text, f);
+    fclose(f);
+}
+
+/* A second capture of a place becomes the next version of its scene; SHOW CHANGES reads it back. */
+static void test_update(const char* base) {
+    char dir[4096], before[4096], after[4096];
+    snprintf(dir, sizeof dir, "%s/update-db", base);
+    snprintf(before, sizeof before, "%s/before.txt", base);
+    snprintf(after, sizeof after, "%s/after.txt", base);
+    const char* walls =
+        "wall_0=Wall(0,0,0,4,0,0,2.5,0)\nwall_1=Wall(4,0,0,4,4,0,2.5,0)\n"
+        "wall_2=Wall(4,4,0,0,4,0,2.5,0)\nwall_3=Wall(0,4,0,0,0,0,2.5,0)\n";
+    char text[1024];
+    snprintf(text, sizeof text,
+             "%sbbox_0=Bbox(chair,1,1,0.45,0,0.5,0.5,0.9)\nbbox_1=Bbox(table,3,1,0.4,0,1.2,0.8,0.8)\n", walls);
+    write_text(before, text);
+    snprintf(text, sizeof text,
+             "%sbbox_0=Bbox(chair,1,3,0.45,0,0.5,0.5,0.9)\nbbox_1=Bbox(lamp,3,3,0.8,0,0.3,0.3,1.6)\n", walls);
+    write_text(after, text);
+
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    CHECK(smql_import_file(db, "spatiallm", before, "den") == SMQL_OK);
+    CHECK(smql_update_file(db, "spatiallm", after, "den") == SMQL_OK);
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, "SHOW CHANGES", &res) == SMQL_OK);
+    CHECK(smql_row_count(res) == 3);
+    int change = column_index(res, "change"), category = column_index(res, "category");
+    const char* kinds[3] = {"missing", "moved", "added"};
+    const char* categories[3] = {"table", "chair", "lamp"};
+    for (size_t r = 0; r < 3 && r < smql_row_count(res); ++r) {
+        const char* text_value = NULL;
+        CHECK(smql_value_text(res, r, (size_t)change, &text_value) == SMQL_OK && strcmp(text_value, kinds[r]) == 0);
+        CHECK(smql_value_text(res, r, (size_t)category, &text_value) == SMQL_OK &&
+              strcmp(text_value, categories[r]) == 0);
+    }
+    smql_result_free(res);
+
+    CHECK(smql_update_file(db, "spatiallm", after, "attic") == SMQL_ERROR_BINDING);
+    CHECK(contains(smql_errmsg(db), "no scene named 'attic'"));
+    CHECK(smql_update_file(db, "spatiallm", NULL, "den") == SMQL_ERROR_MISUSE);
+    CHECK(smql_execute(db, "RENAME SCENE den TO study; DROP SCENE study; SHOW SCENES", &res) == SMQL_OK);
+    CHECK(smql_row_count(res) == 0);
+    smql_result_free(res);
+    smql_close(db);
+}
+
 static void test_query(const char* dir) {
     smql_db* db = NULL;
     CHECK(smql_open(dir, 0, &db) == SMQL_OK);
@@ -153,6 +205,34 @@ static void test_query(const char* dir) {
     const char* all = smql_result_json(res);
     CHECK(all && strncmp(all, "{\"columns\":", 11) == 0 && contains(all, "\"rows\":[{"));
     CHECK(smql_statement_count(res) == 1 && strcmp(smql_result_message(res), "") == 0);
+    smql_result_free(res);
+}
+
+/* RETURN's columns keep their types: integers, reals in metres, text, null where a node has none. */
+static void test_returned_columns(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, "FIND cushion ORDER BY height DESC LIMIT 3 RETURN id, height, volume, center, parent",
+                       &res) == SMQL_OK);
+    smql_close(db);
+    if (!res) return;
+    CHECK(smql_column_count(res) == 5 && smql_row_count(res) == 3);
+    CHECK(strcmp(smql_column_name(res, 1), "height") == 0);
+    CHECK(smql_column_type(res, 0) == SMQL_INTEGER);
+    CHECK(smql_column_type(res, 1) == SMQL_REAL);
+    CHECK(smql_column_type(res, 2) == SMQL_REAL);
+    CHECK(smql_column_type(res, 3) == SMQL_TEXT);
+    CHECK(smql_column_type(res, 4) == SMQL_TEXT);
+    double previous = 1e9;
+    for (size_t r = 0; r < smql_row_count(res); ++r) {
+        double height = 0, volume = 0;
+        const char* centre = NULL;
+        CHECK(smql_value_double(res, r, 1, &height) == SMQL_OK && height > 0 && height <= previous);
+        CHECK(smql_value_double(res, r, 2, &volume) == SMQL_OK && volume > 0);
+        CHECK(smql_value_text(res, r, 3, &centre) == SMQL_OK && centre[0] == '(');
+        previous = height;
+    }
     smql_result_free(res);
 }
 
@@ -248,6 +328,242 @@ static void test_threads(const char* dir) {
     smql_close(db);
 }
 
+/* Steps a prepared statement to its end; the ids of its rows go to ids (up to max), the count is returned. */
+static size_t step_ids(smql_stmt* stmt, int64_t* ids, size_t max) {
+    size_t n = 0;
+    smql_status status;
+    while ((status = smql_step(stmt)) == SMQL_ROW) {
+        int64_t id = -1;
+        CHECK(smql_stmt_value_int64(stmt, 0, &id) == SMQL_OK);
+        if (n < max) ids[n] = id;
+        ++n;
+    }
+    CHECK(status == SMQL_DONE);
+    CHECK(smql_step(stmt) == SMQL_DONE); /* stays done until reset */
+    return n;
+}
+
+/* The ids smql_execute finds for the same statement written out, to compare with. */
+static size_t execute_ids(smql_db* db, const char* text, int64_t* ids, size_t max) {
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, text, &res) == SMQL_OK);
+    size_t n = smql_row_count(res);
+    for (size_t r = 0; r < n && r < max; ++r) CHECK(smql_value_int64(res, r, 0, &ids[r]) == SMQL_OK);
+    smql_result_free(res);
+    return n;
+}
+
+static int same_ids(const int64_t* a, size_t na, const int64_t* b, size_t nb) {
+    if (na != nb) return 0;
+    for (size_t i = 0; i < na; ++i)
+        if (a[i] != b[i]) return 0;
+    return 1;
+}
+
+/* Prepare once, bind, step, reset, bind again: the answers of the statements written out. */
+static void test_prepared(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    smql_stmt* stmt = NULL;
+    CHECK(smql_prepare(db, "FIND ? WHERE near(?, ?)", &stmt) == SMQL_OK);
+    CHECK(stmt != NULL);
+    CHECK(smql_bind_parameter_count(stmt) == 3);
+    CHECK(smql_stmt_column_count(stmt) == 0 && smql_stmt_row_json(stmt) == NULL); /* not run yet */
+
+    int64_t got[64], want[64];
+    CHECK(smql_bind_text(stmt, 1, "cushion") == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 2, "sofa") == SMQL_OK);
+    CHECK(smql_bind_double(stmt, 3, 0.5) == SMQL_OK);
+    size_t n_got = step_ids(stmt, got, 64);
+    size_t n_want = execute_ids(db, "FIND cushion WHERE near(sofa, 0.5 m)", want, 64);
+    CHECK(n_want > 0);
+    CHECK(same_ids(got, n_got, want, n_want));
+
+    /* Bound, not run: binding now is misuse until reset. */
+    CHECK(smql_bind_text(stmt, 1, "lamp") == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "smql_reset"));
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 1, "book") == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 2, "table") == SMQL_OK);
+    CHECK(smql_bind_int(stmt, 3, 1) == SMQL_OK); /* whole metres */
+    n_got = step_ids(stmt, got, 64);
+    n_want = execute_ids(db, "FIND book WHERE near(table, 1 m)", want, 64);
+    CHECK(n_want > 0);
+    CHECK(same_ids(got, n_got, want, n_want));
+
+    /* Row accessors on the current row, in the result API's style. */
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ROW);
+    int category = -1;
+    for (size_t c = 0; c < smql_stmt_column_count(stmt); ++c)
+        if (strcmp(smql_stmt_column_name(stmt, c), "category") == 0) category = (int)c;
+    const char* text = NULL;
+    CHECK(category >= 0 && smql_stmt_value_text(stmt, (size_t)category, &text) == SMQL_OK && strcmp(text, "book") == 0);
+    CHECK(smql_stmt_value_type(stmt, 0) == SMQL_INTEGER && smql_stmt_column_type(stmt, 0) == SMQL_INTEGER);
+    CHECK(smql_stmt_value_int64(stmt, (size_t)category, &got[0]) == SMQL_ERROR_MISUSE); /* text, not integer */
+    CHECK(smql_stmt_value_type(stmt, 999) == SMQL_INVALID);
+    CHECK(contains(smql_stmt_row_json(stmt), "\"category\":\"book\""));
+
+    /* Wrong index, wrong type. */
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 0, "mug") == SMQL_ERROR_MISUSE);
+    CHECK(smql_bind_text(stmt, 4, "mug") == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "no placeholder 4"));
+    CHECK(smql_bind_int(stmt, 1, 7) == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "stands for a name"));
+    CHECK(smql_bind_text(stmt, 3, "far") == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "stands for a distance"));
+    CHECK(smql_bind_text(stmt, 1, NULL) == SMQL_ERROR_MISUSE);
+    CHECK(smql_bind_text(NULL, 1, "mug") == SMQL_ERROR_MISUSE);
+    CHECK(smql_bind_parameter_count(NULL) == 0 && smql_step(NULL) == SMQL_ERROR_MISUSE);
+
+    /* Unbound and NULL placeholders are named when the statement runs. */
+    CHECK(smql_clear_bindings(stmt) == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ERROR_USAGE);
+    CHECK(contains(smql_errmsg(db), "placeholder ? number 1 has no value"));
+    CHECK(smql_step(stmt) == SMQL_ERROR_USAGE); /* the same until reset */
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 1, "cushion") == SMQL_OK);
+    CHECK(smql_bind_null(stmt, 2) == SMQL_OK);
+    CHECK(smql_bind_double(stmt, 3, 0.5) == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ERROR_USAGE);
+    CHECK(contains(smql_errmsg(db), "? number 2 is bound to NULL"));
+    smql_finalize(stmt);
+    smql_finalize(NULL);
+
+    /* $n placeholders, one used twice; LIMIT and a comparison bound. */
+    CHECK(smql_prepare(db, "FIND $1 WHERE near($2, 1 m) OR on($2) LIMIT $3", &stmt) == SMQL_OK);
+    CHECK(smql_bind_parameter_count(stmt) == 3);
+    CHECK(smql_bind_text(stmt, 3, "five") == SMQL_ERROR_MISUSE);
+    CHECK(smql_bind_text(stmt, 1, "cushion") == SMQL_OK && smql_bind_text(stmt, 2, "sofa") == SMQL_OK);
+    CHECK(smql_bind_int(stmt, 3, 1) == SMQL_OK);
+    CHECK(step_ids(stmt, got, 64) == 1);
+    smql_finalize(stmt);
+    CHECK(smql_prepare(db, "COUNT object WHERE category = ?", &stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 1, "lamp") == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ROW);
+    CHECK(smql_stmt_value_int64(stmt, 0, &got[0]) == SMQL_OK && got[0] == 6);
+    smql_finalize(stmt);
+
+    /* Errors of prepare: mixed placeholders, syntax, more than one statement. */
+    CHECK(smql_prepare(db, "FIND ? WHERE near($1)", &stmt) == SMQL_ERROR_SYNTAX);
+    CHECK(stmt == NULL && contains(smql_errmsg(db), "cannot mix"));
+    CHECK(smql_prepare(db, "FIND ? WHERE", &stmt) == SMQL_ERROR_SYNTAX);
+    CHECK(smql_prepare(db, "FIND ?; FIND ?", &stmt) == SMQL_ERROR_USAGE);
+    CHECK(smql_prepare(db, NULL, &stmt) == SMQL_ERROR_MISUSE);
+    /* Without values, a statement with placeholders fails naming the first. */
+    CHECK(smql_execute(db, "FIND ? WHERE near(sofa)", NULL) == SMQL_ERROR_USAGE);
+    CHECK(contains(smql_errmsg(db), "? number 1 has no value"));
+    smql_close(db);
+}
+
+/* A bound value is data: quotes in it are part of the name and never SMQL. */
+static void test_prepared_quotes(const char* base) {
+    char dir[4096], layout[4096];
+    snprintf(dir, sizeof dir, "%s/quotes-db", base);
+    snprintf(layout, sizeof layout, "%s/quotes.txt", base);
+    write_text(layout,
+               "wall_0=Wall(0,0,0,4,0,0,2.5,0)\nwall_1=Wall(4,0,0,4,4,0,2.5,0)\n"
+               "wall_2=Wall(4,4,0,0,4,0,2.5,0)\nwall_3=Wall(0,4,0,0,0,0,2.5,0)\n"
+               "bbox_0=Bbox(desk,2,2,0.375,0,1.2,0.6,0.75)\n"
+               "bbox_1=Bbox(o'brien's mug,2,2,0.8,0,0.08,0.08,0.1)\n"
+               "bbox_2=Bbox(it's,1.8,2,0.8,0,0.1,0.1,0.1)\n");
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    CHECK(smql_import_file(db, "spatiallm", layout, "office") == SMQL_OK);
+    smql_stmt* stmt = NULL;
+    CHECK(smql_prepare(db, "FIND ? WHERE on(?)", &stmt) == SMQL_OK);
+    const char* names[2] = {"O'Brien's mug", "it's"};
+    const char* stored[2] = {"o'brien's mug", "it's"};
+    for (int i = 0; i < 2; ++i) {
+        CHECK(smql_reset(stmt) == SMQL_OK);
+        CHECK(smql_bind_text(stmt, 1, names[i]) == SMQL_OK);
+        CHECK(smql_bind_text(stmt, 2, "desk") == SMQL_OK);
+        CHECK(smql_step(stmt) == SMQL_ROW);
+        const char* category = NULL;
+        CHECK(smql_stmt_value_text(stmt, 1, &category) == SMQL_OK && category && strcmp(category, stored[i]) == 0);
+        CHECK(smql_step(stmt) == SMQL_DONE);
+    }
+    /* SMQL in a value is a name that does not exist, not a statement. */
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 1, "mug') OR on(desk") == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ERROR_BINDING);
+    CHECK(contains(smql_errmsg(db), "unknown category"));
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 1, "x; DROP SCENE office") == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ERROR_BINDING);
+    smql_finalize(stmt);
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, "SHOW SCENES", &res) == SMQL_OK);
+    CHECK(smql_row_count(res) == 1);
+    smql_result_free(res);
+    smql_close(db);
+}
+
+/* smql_interrupt from another thread stops a prepared statement that is stepping its first row. */
+struct long_step {
+    smql_stmt* stmt;
+    smql_db* db;
+    smql_status status;
+    int said_interrupted;
+    volatile int done;
+};
+
+static void* step_long_statement(void* arg) {
+    struct long_step* job = arg;
+    job->status = smql_step(job->stmt);
+    job->said_interrupted = contains(smql_errmsg(job->db), "interrupted");
+    job->done = 1;
+    return NULL;
+}
+
+static void test_prepared_interrupt(const char* base) {
+    /* A synthetic hall of 2,025 objects on a 1 m grid: between(object, object) for every object
+     * weighs 4 million pairs per candidate, far more work than the test waits for. */
+    char dir[4096], layout[4096];
+    snprintf(dir, sizeof dir, "%s/hall-db", base);
+    snprintf(layout, sizeof layout, "%s/hall.txt", base);
+    FILE* f = fopen(layout, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs(
+        "wall_0=Wall(0,0,0,46,0,0,3,0)\nwall_1=Wall(46,0,0,46,46,0,3,0)\n"
+        "wall_2=Wall(46,46,0,0,46,0,3,0)\nwall_3=Wall(0,46,0,0,0,0,3,0)\n",
+        f);
+    for (int i = 0; i < 45 * 45; ++i)
+        fprintf(f, "bbox_%d=Bbox(crate,%d.5,%d.5,0.25,0,0.5,0.5,0.5)\n", i, 1 + i % 45, 1 + i / 45);
+    fclose(f);
+
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    CHECK(smql_import_file(db, "spatiallm", layout, "hall") == SMQL_OK);
+    CHECK(smql_execute(db, "SET max_pairs = 100000000; SET max_rows = 100000000", NULL) == SMQL_OK);
+    smql_stmt* stmt = NULL;
+    CHECK(smql_prepare(db, "COUNT ? WHERE between(?, ?)", &stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 1, "object") == SMQL_OK && smql_bind_text(stmt, 2, "object") == SMQL_OK &&
+          smql_bind_text(stmt, 3, "object") == SMQL_OK);
+    struct long_step job = {stmt, db, SMQL_OK, 0, 0};
+    pthread_t thread;
+    CHECK(pthread_create(&thread, NULL, step_long_statement, &job) == 0);
+    /* An interrupt that comes before the statement starts is dropped: keep sending until it ends. */
+    struct timespec pause = {0, 1000000};
+    while (!job.done) {
+        smql_interrupt(db);
+        nanosleep(&pause, NULL);
+    }
+    pthread_join(thread, NULL);
+    CHECK(job.status == SMQL_ERROR_INTERRUPTED);
+    CHECK(job.said_interrupted);
+    /* The statement is usable again after a reset. */
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_text(stmt, 1, "wall") == SMQL_OK && smql_bind_text(stmt, 2, "wall") == SMQL_OK &&
+          smql_bind_text(stmt, 3, "wall") == SMQL_OK);
+    smql_status again = smql_step(stmt);
+    CHECK(again == SMQL_ROW || again == SMQL_DONE);
+    smql_finalize(stmt);
+    smql_close(db);
+}
+
 /* smql_interrupt from another thread stops a long statement with SMQL_ERROR_INTERRUPTED. */
 struct long_statement {
     smql_db* db;
@@ -258,9 +574,9 @@ struct long_statement {
 
 static void* run_long_statement(void* arg) {
     struct long_statement* job = arg;
-    /* Every pair of the room's nodes, many times over: seconds of work without an interrupt. */
+    /* Every pair of the room's nodes for each node, many times over: seconds of work without an interrupt. */
     char text[4096] = "SET max_pairs = 1000000";
-    for (int i = 0; i < 100; ++i) strcat(text, "; RELATE node TO node");
+    for (int i = 0; i < 100; ++i) strcat(text, "; COUNT node WHERE between(node, node)");
     job->status = smql_execute(job->db, text, NULL);
     job->said_interrupted = contains(smql_errmsg(job->db), "interrupted");
     job->done = 1;
@@ -327,7 +643,8 @@ static void test_close_at_exit(const char* dir, const char* base) {
     int status = 0;
     CHECK(waitpid(child, &status, 0) == child);
     if (WIFSIGNALED(status)) fprintf(stderr, "close-at-exit: the child died of signal %d\n", WTERMSIG(status));
-    if (WIFEXITED(status) && WEXITSTATUS(status) != 0) fprintf(stderr, "close-at-exit: the child exited with %d\n", WEXITSTATUS(status));
+    if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+        fprintf(stderr, "close-at-exit: the child exited with %d\n", WEXITSTATUS(status));
     CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
     CHECK(access(marker, F_OK) == 0);
 }
@@ -346,11 +663,16 @@ int main(int argc, char** argv) {
     test_misuse();
     test_open_failure(base);
     test_import(dir);
+    test_update(base);
     test_query(dir);
+    test_returned_columns(dir);
     test_statements_and_errors(dir);
     test_read_only(dir);
     test_threads(dir);
     test_interrupt(dir);
+    test_prepared(dir);
+    test_prepared_quotes(base);
+    test_prepared_interrupt(base);
     test_close_at_exit(dir, base);
 
     nftw(base, remove_entry, 8, FTW_DEPTH | FTW_PHYS);

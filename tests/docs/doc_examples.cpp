@@ -63,8 +63,10 @@ std::vector<Statement> splitStatements(const std::vector<std::string>& lines, in
         for (std::size_t c = 0; c < l.size(); ++c) {
             char ch = l[c];
             if (quote) {
-                if (ch == quote && c + 1 < l.size() && l[c + 1] == quote) current.text += ch, ++c;
-                else if (ch == quote) quote = 0;
+                if (ch == quote && c + 1 < l.size() && l[c + 1] == quote)
+                    current.text += ch, ++c;
+                else if (ch == quote)
+                    quote = 0;
                 current.text += ch;
                 continue;
             }
@@ -123,8 +125,8 @@ std::vector<Block> readPage(const std::string& path) {
                 for (const auto& l : body) transcript |= l.rfind("smql> ", 0) == 0;
                 if (transcript && !open->expectError)
                     open->problem = "a transcript (smql> prompts) belongs in a `smql error` block";
-                open->statements = transcript ? readTranscript(body, open->line + 1)
-                                              : splitStatements(body, open->line + 1);
+                open->statements =
+                    transcript ? readTranscript(body, open->line + 1) : splitStatements(body, open->line + 1);
                 if (open->statements.empty()) open->problem = "the block holds no statement";
                 open = nullptr;
             } else if (open) {
@@ -145,8 +147,10 @@ std::vector<Block> readPage(const std::string& path) {
             open = &blocks.back();
             body.clear();
             for (std::size_t i = 1; i < words.size(); ++i) {
-                if (words[i] == "error") open->expectError = true;
-                else open->problem = "unknown word '" + words[i] + "' after ```smql (only `error` is known)";
+                if (words[i] == "error")
+                    open->expectError = true;
+                else
+                    open->problem = "unknown word '" + words[i] + "' after ```smql (only `error` is known)";
             }
             if (database.empty()) open->problem = "no database named before this block (<!-- smql-db: NAME -->)";
         }
@@ -181,7 +185,7 @@ public:
         std::string db = (work_ / name / "db").string();
         std::string smql = quote(smql_);
         std::vector<std::string> commands;
-        static const std::regex synth(R"(synth-(\d+))");
+        static const std::regex synth(R"(synth-(\d+))"), changed(R"(synth-(\d+)-changed)");
         std::smatch m;
         if (name == "replica-room0") {
             commands.push_back(smql + " import replica " + quote(data_ + "/replica-room0/info_semantic.json") +
@@ -190,8 +194,16 @@ public:
             std::string capture = (work_ / name / "capture").string();
             commands.push_back(smql + " synth --seed " + m[1].str() + " --frames 1 --out " + quote(capture));
             commands.push_back(smql + " import json " + quote(capture + "/truth.json") + " --db " + quote(db));
+        } else if (std::regex_match(name, m, changed)) {
+            // The room, then the same room after --changes as its next version.
+            std::string before = (work_ / name / "before").string(), after = (work_ / name / "after").string();
+            commands.push_back(smql + " synth --seed " + m[1].str() + " --frames 1 --out " + quote(before));
+            commands.push_back(smql + " synth --seed " + m[1].str() + " --frames 1 --changes --out " + quote(after));
+            commands.push_back(smql + " import json " + quote(before + "/truth.json") + " --db " + quote(db));
+            commands.push_back(smql + " import json " + quote(after + "/truth.json") + " --db " + quote(db) +
+                               " --update synth-" + m[1].str());
         } else {
-            problem = "unknown database '" + name + "' (known: replica-room0, synth-N)";
+            problem = "unknown database '" + name + "' (known: replica-room0, synth-N, synth-N-changed)";
         }
         for (const auto& command : commands) {
             std::string log = (work_ / name / "log.txt").string();
@@ -258,8 +270,7 @@ int run(int argc, char** argv) {
                           << "): " << statement.text << "\n  " << what << "\n";
             }
         }
-        if (pageRun || pageFailed)
-            std::cout << page << ": " << pageRun << " statements, " << pageFailed << " failed\n";
+        if (pageRun || pageFailed) std::cout << page << ": " << pageRun << " statements, " << pageFailed << " failed\n";
         total += pageRun, failed += pageFailed;
     }
     std::cout << total << " statements, " << failed << " failed\n";

@@ -77,6 +77,17 @@ check "meta commands run from a script" bash -c "'$smql' '$db' -f '$work/meta.sm
   [ \"\$(cat '$work/once.txt')\" = 2 ] && [ \"\$(cat '$work/out.txt')\" = 2 ] && [ \"\$(head -1 '$work/meta.out')\" = 2 ] &&
   grep -qx sofa '$work/meta.out' && grep -q '^room0,' '$work/meta.out' && tail -1 '$work/meta.out' | grep -q '^room0,' &&
   [ \$(grep -cx sofa '$work/meta.out') -eq 1 ]"
+# ASK and .mode ask: the acceptance questions on the imported Replica room, then lines as questions.
+check "ASK shows the SMQL and lists the cushions on the sofa" bash -c "'$smql' '$db' -c \"ASK 'what is on the sofa?'\" >'$work/ask' &&
+  grep -qx 'SMQL: FIND object WHERE on(sofa)' '$work/ask' && [ \$(grep -c ' cushion ' '$work/ask') -ge 5 ]"
+check "ASK 'is there a piano?' answers no" bash -c "'$smql' '$db' -c \"ASK 'is there a piano?'\" | grep -qx 'No, there is no piano.'"
+check "ASK 'how many cushions are on the sofa?' answers with a number" \
+  bash -c "'$smql' '$db' -c \"ASK 'how many cushions are on the sofa?'\" | grep -Eqx '[0-9]+ cushions are on the sofa\.'"
+printf '%s\n' '.mode ask' "is there a sofa?" "how many pianos are there?" '.mode' '.mode csv' 'COUNT sofa;' >"$work/ask.smql"
+check ".mode ask makes lines questions; .mode csv makes them SMQL again" bash -c "'$smql' '$db' -f '$work/ask.smql' >'$work/ask.out' &&
+  grep -q '^Yes, there are 2 sofas' '$work/ask.out' && grep -qx '0 pianos.' '$work/ask.out' &&
+  grep -qx 'output mode: table (lines are questions: .mode ask)' '$work/ask.out' && tail -1 '$work/ask.out' | grep -qx 2"
+check "a question ASK cannot read is an error with examples" bash -c "! '$smql' '$db' -c \"ASK 'hello'\" 2>'$work/e' && grep -q 'hint: ask as in' '$work/e'"
 check "an unknown meta command is an error with a hint" bash -c "! '$smql' '$db' -c '.tables' 2>'$work/e' && grep -q 'hint: .help' '$work/e'"
 check "a script error names its line in the script" bash -c "printf 'COUNT sofa;\n\nFIND\n  nope;\n' | '$smql' '$db' 2>&1 >/dev/null | grep -q 'line 4, column 3'"
 
@@ -151,6 +162,57 @@ assert crops and all(open(c, \"rb\").read(2) == bytes([0xff, 0xd8]) for c in cro
 ' '$work/crops'"
 check "evidence survives a JSON export and import" bash -c "'$smql' export json --db '$work/memory' -o '$work/memory.json' 2>/dev/null && '$smql' import json '$work/memory.json' --db '$work/copied' --scene copied >/dev/null && '$smql' '$work/copied' -c 'DESCRIBE (FIND object LIMIT 1)' | grep -q 'evidence.*image/jpeg'"
 check "--update refreshes the objects seen again" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --update capture 2>/dev/null | grep -q 'objects seen again' && '$smql' '$work/memory' -c 'USE SCENE capture; COUNT object WHERE captures = 2' | tail -1 | grep -qv '^0$'"
+check "an update by the same capture changes nothing" bash -c "'$smql' '$work/memory' -c 'USE SCENE capture; SHOW CHANGES' | grep -q '0 changes in 1 update'"
+check "import --update: the changed room's layout becomes the next version" bash -c "
+  '$smql' synth --out '$work/tidy-a' --seed 11 --frames 1 >/dev/null &&
+  '$smql' synth --out '$work/tidy-b' --seed 11 --frames 1 --changes >/dev/null &&
+  '$smql' import json '$work/tidy-a/truth.json' --db '$work/tidy' >/dev/null &&
+  '$smql' import json '$work/tidy-b/truth.json' --db '$work/tidy' --update synth-11 | grep -q '2 moved, 2 new, 2 missing' &&
+  test \$('$smql' '$work/tidy' --format csv -c 'SHOW CHANGES' | tail -n +2 | wc -l) = 6 &&
+  '$smql' '$work/tidy' -c \"RENAME SCENE 'synth-11' TO tidy; DROP SCENE tidy; SHOW SCENES\" | grep -q '(0 rows)'"
+check "smql guide writes a plan as JSON, Markdown and a PNG map" bash -c "
+  '$smql' synth --out '$work/route' --seed 11 --frames 1 >/dev/null &&
+  '$smql' import json '$work/route/truth.json' --db '$work/routes' >/dev/null &&
+  '$smql' guide '$work/routes' --from door --to mug --out '$work/plan' >/dev/null &&
+  python3 -c '
+import json, sys
+plan = json.load(open(sys.argv[1] + \"/guide.json\"))
+steps = plan[\"steps\"]
+assert steps[0][\"step\"] == 0 and steps[-1][\"instruction\"].startswith(\"The white mug\"), steps
+assert open(sys.argv[1] + \"/guide.png\", \"rb\").read(4) == bytes([0x89, 0x50, 0x4e, 0x47])
+assert \"| 0 | Start at the door. |\" in open(sys.argv[1] + \"/guide.md\").read()
+' '$work/plan'"
+check "smql map draws a scene" bash -c "'$smql' map '$work/routes' --out '$work/map.png' | grep -q 'decision points' && test -s '$work/map.png'"
+check "smql guide refuses an ambiguous goal and names the candidates" bash -c "
+  out=\$('$smql' guide '$work/routes' --from door --to window --out '$work/none' 2>&1); status=\$?
+  test \$status -eq 1 && grep -q 'window#9 at' <<<\"\$out\" && grep -q 'name one: window#' <<<\"\$out\" && test ! -e '$work/none'"
+check "smql eval: the truth itself scores 1; the changed room misses exactly the things that moved or went" bash -c "
+  '$smql' synth --out '$work/eval' --seed 11 --frames 8 >/dev/null &&
+  '$smql' synth --out '$work/eval-changed' --seed 11 --frames 8 --changes >/dev/null &&
+  '$smql' import json '$work/eval/truth.json' --db '$work/eval-truth' >/dev/null &&
+  '$smql' import json '$work/eval-changed/truth.json' --db '$work/eval-other' >/dev/null &&
+  '$smql' eval '$work/eval/eval-suite.json' --db '$work/eval-truth' --json '$work/eval-truth.json' >/dev/null &&
+  '$smql' eval '$work/eval/eval-suite.json' --db '$work/eval-other' --json '$work/eval-other.json' >/dev/null &&
+  python3 -c '
+import json, sys
+w = sys.argv[1]
+def metrics(name):
+    return {m[\"metric\"]: m for m in json.load(open(w + \"/\" + name))[\"metrics\"]}
+truth = metrics(\"eval-truth.json\")
+for name in (\"Acc_rel\", \"SR_nav\", \"StepComp\", \"SR_obj\", \"Acc_parent\", \"Acc_path\", \"Color Acc\", \"Loc@path\"):
+    assert truth[name][\"value\"] == 1.0 and truth[name][\"episodes\"] > 0, (name, truth[name])
+assert truth[\"SPL\"][\"value\"] > 0.99, truth[\"SPL\"]
+# SR_obj by hand: a sought thing is found when the changed room has one of its kind within 0.5 m.
+suite = json.load(open(w + \"/eval/eval-suite.json\"))
+before = {n[\"id\"]: n for n in json.load(open(w + \"/eval/truth.json\"))[\"nodes\"]}
+after = json.load(open(w + \"/eval-changed/truth.json\"))[\"nodes\"]
+def found(t):
+    return any(n[\"category\"] == t[\"category\"] and sum((a - b) ** 2 for a, b in zip(n[\"box\"][\"center\"], t[\"box\"][\"center\"])) <= 0.25 for n in after if \"box\" in n)
+sought = [before[e[\"object\"]] for e in suite[\"retrieval\"]]
+expected = sum(found(t) for t in sought) / len(sought)
+other = metrics(\"eval-other.json\")[\"SR_obj\"]
+assert expected < 1 and abs(other[\"value\"] - expected) < 1e-9, (other, expected)
+' '$work'"
 check "--update of a missing scene is refused before any work" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --update nowhere 2>&1 | grep -q frames"
 # Ctrl-C during an ingest: it stops, says so, exits non-zero, and writes nothing.
 check "a longer capture" "$smql" synth --out "$work/long" --seed 4 --frames 150
@@ -161,6 +223,19 @@ check "Ctrl-C stops an ingest with nothing written" bash -c "
 check "a second ingest of the same place is a new scene" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet && '$smql' '$work/memory' -c 'SHOW SCENES' | grep -q again"
 check "an ingest into a taken scene name is refused" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet"
 check "rgbd-dining ingests without labels" bash -c "'$smql' ingest '$data/rgbd-dining' --db '$work/dining' --quiet && '$smql' '$work/dining' -c 'COUNT object' | sed -n 3p | grep -qv '^0$'"
+# The detector (--objects detect) needs its model, which scripts/detector/setup.sh installs.
+if [ -f /usr/local/share/smql/models/nanodet.onnx ]; then
+  check "rgbd-dining with --objects detect gives named objects (chairs, a table), no unnamed ones" bash -c "
+    '$smql' ingest '$data/rgbd-dining' --db '$work/detected' --objects detect --quiet &&
+    '$smql' '$work/detected' -csv -c 'FIND object' | cut -d, -f2 | tail -n +2 >'$work/categories' &&
+    [ \$(grep -cx chair '$work/categories') -ge 2 ] && grep -qx table '$work/categories' &&
+    ! grep -qx object '$work/categories'"
+else
+  echo "skipped: --objects detect (no detector model; run scripts/detector/setup.sh)"
+fi
+check "--objects detect with a model but no class names is refused with a hint" bash -c "
+  touch '$work/lone.onnx' && ! '$smql' ingest '$data/rgbd-dining' --db '$work/nomodel' --objects detect \
+    --detector '$work/lone.onnx' 2>'$work/e' && grep -q 'coco.names' '$work/e' && grep -q 'scripts/detector/setup.sh' '$work/e'"
 check "a capture that is not one is refused naming it" bash -c "mkdir -p '$work/empty' && ! '$smql' ingest '$work/empty' --db '$work/x' 2>'$work/e' && grep -q empty '$work/e'"
 
 check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"

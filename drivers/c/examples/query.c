@@ -37,8 +37,12 @@ static void print_value(const smql_result* res, size_t row, size_t col) {
                    b.center[2], b.size[0], b.size[1], b.size[2], b.yaw);
             break;
         }
-        case SMQL_NULL: fputs("NULL", stdout); break;
-        case SMQL_INVALID: fputs("?", stdout); break;
+        case SMQL_NULL:
+            fputs("NULL", stdout);
+            break;
+        case SMQL_INVALID:
+            fputs("?", stdout);
+            break;
     }
 }
 

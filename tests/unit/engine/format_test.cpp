@@ -13,8 +13,9 @@ TEST_CASE("JSON output replaces bytes that are not UTF-8 instead of failing", "[
     result.message = "note \xFF";
     std::string text;
     REQUIRE_NOTHROW(text = jsonText(resultJson(result)));
-    CHECK(text == "{\"columns\":[\"category\"],\"rows\":[{\"category\":\"caf\xEF\xBF\xBD\"},{\"category\":\"sofa\"}],"
-                  "\"message\":\"note \xEF\xBF\xBD\"}");
+    CHECK(text ==
+          "{\"columns\":[\"category\"],\"rows\":[{\"category\":\"caf\xEF\xBF\xBD\"},{\"category\":\"sofa\"}],"
+          "\"message\":\"note \xEF\xBF\xBD\"}");
     nlohmann::json error = {{"error", {{"message", "bad \xE9"}}}};
     CHECK(jsonText(error) == "{\"error\":{\"message\":\"bad \xEF\xBF\xBD\"}}");
 }

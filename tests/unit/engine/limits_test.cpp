@@ -32,16 +32,21 @@ ErrorKind kindOf(const std::function<void()>& statement) {
 
 }  // namespace
 
-TEST_CASE("max_pairs bounds RELATE before any pair is compared") {
+// A typed RELATE relates two single nodes; a question's RELATE (ASK) relates every pair of its
+// names, and max_pairs bounds that.
+TEST_CASE("max_pairs bounds a question's RELATE before any pair is compared") {
     GeneratedRoom room;
     auto objects = std::get<std::int64_t>(room.q("COUNT object").rows[0][0]);
     REQUIRE(objects * objects > 100'000);  // over the default
-    CHECK(kindOf([&] { room.q("RELATE object TO object"); }) == ErrorKind::Limit);
-    CHECK_THROWS_WITH(room.q("RELATE object TO object"), Catch::Contains("pairs; the limit is 100000"));
+    const char* everyPair = "ASK 'where are the objects relative to the objects?'";
+    CHECK(kindOf([&] { room.q(everyPair); }) == ErrorKind::Limit);
+    CHECK_THROWS_WITH(room.q(everyPair), Catch::Contains("pairs; the limit is 100000"));
+    CHECK_THROWS_WITH(room.q("RELATE object TO object"), Catch::Contains("object is ambiguous"));
     room.q("SET max_pairs = 4");
-    CHECK(kindOf([&] { room.q("RELATE wall TO wall"); }) == ErrorKind::Limit);  // 4 walls: 16 pairs
+    const char* walls = "ASK 'where is the wall relative to the wall?'";
+    CHECK(kindOf([&] { room.q(walls); }) == ErrorKind::Limit);  // 4 walls: 16 pairs
     room.q("SET max_pairs = 16");
-    CHECK_NOTHROW(room.q("RELATE wall TO wall"));
+    CHECK_NOTHROW(room.q(walls));
 }
 
 TEST_CASE("max_rows bounds a result; LIMIT keeps under it") {
@@ -64,7 +69,8 @@ TEST_CASE("interrupt stops a running statement and leaves the engine usable") {
     GeneratedRoom room;
     room.q("SET max_pairs = 1000000");
     // About 160,000 pairs several times over; and few candidates with many pairs each (between).
-    for (const char* statement : {"RELATE object TO object; RELATE object TO object; RELATE object TO object",
+    for (const char* statement : {"ASK 'where are the objects relative to the objects?'; ASK 'where are the objects "
+                                  "relative to the objects?'",
                                   "COUNT object WHERE between(object, object)"}) {
         INFO(statement);
         std::atomic<bool> done{false};

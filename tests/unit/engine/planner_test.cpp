@@ -3,6 +3,8 @@
 // full scan returns.
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include "engine/binder/binder.hpp"
 #include "engine/exec/executor.hpp"
 #include "engine/parser/parser.hpp"
@@ -39,7 +41,7 @@ struct PlannedScene {
     planner::Plan plan(const std::string& text) {
         auto statements = parser::parse(text);
         auto read = db->beginRead();
-        binder::Binder b({read, session, [&] { return snapshot; }});
+        binder::Binder b({read, session, [&] { return snapshot; }, [&](const std::string&) { return snapshot; }});
         return planner::plan(std::make_shared<const binder::BoundStatement>(b.bind(statements.front())));
     }
 
@@ -79,6 +81,39 @@ TEST_CASE("R-tree probes return exactly what a scan returns") {
     CHECK(probed >= 8);  // the predicates over few reference nodes are pushed down
 }
 
+TEST_CASE("distance(x) < d probes the R-tree and returns what a scan returns") {
+    PlannedScene scene;
+    const char* queries[] = {
+        "FIND object WHERE distance(sofa) < 1 m",
+        "FIND object WHERE distance(door) <= 250 cm",
+        "FIND object WHERE distance(desk) < 0 m",
+        "FIND node WHERE distance(mug) < 3 m AND color = 'red'",
+        "FIND object WHERE distance(bed) < 50 cm AND on(bed)",
+    };
+    for (const char* q : queries) {
+        INFO(q);
+        auto plan = scene.plan(q);
+        CHECK(plan.find->access == planner::Access::RTreeProbe);
+        CHECK(scene.run(plan) == scene.run(PlannedScene::withAccess(plan, planner::Access::Scan)));
+    }
+    // A lower bound cannot be probed: everything far away qualifies.
+    CHECK(scene.plan("FIND object WHERE distance(sofa) > 1 m").find->access == planner::Access::Scan);
+}
+
+TEST_CASE("ORDER BY an attribute with a LIMIT is a top k of the full order") {
+    PlannedScene scene;
+    for (const char* order : {"height DESC", "volume", "x", "color DESC", "z"}) {
+        INFO(order);
+        auto top = scene.plan(fmt::format("FIND object ORDER BY {} LIMIT 7", order));
+        CHECK(top.find->topK);
+        auto full = scene.plan(fmt::format("FIND object ORDER BY {}", order));
+        CHECK_FALSE(full.find->topK);
+        auto all = scene.run(full, false);
+        all.resize(7);
+        CHECK(scene.run(top, false) == all);
+    }
+}
+
 TEST_CASE("the planner scans when the reference set is large and for view-relative predicates") {
     PlannedScene scene;
     CHECK(scene.plan("FIND mug WHERE near(object)").find->access == planner::Access::Scan);
@@ -92,9 +127,10 @@ TEST_CASE("the planner scans when the reference set is large and for view-relati
 TEST_CASE("NEAREST TO through the R-tree gives the scan's answer") {
     PlannedScene scene;
     int nearestFirst = 0;
-    for (const char* q : {"FIND object NEAREST TO door LIMIT 5", "FIND object NEAREST TO ceiling LIMIT 3",
-                          "FIND chair ORDER BY distance(window) LIMIT 4", "FIND object WHERE color = 'red' NEAREST TO door LIMIT 2",
-                          "FIND node NEAREST TO door LIMIT 40"}) {
+    for (const char* q :
+         {"FIND object NEAREST TO door LIMIT 5", "FIND object NEAREST TO ceiling LIMIT 3",
+          "FIND chair ORDER BY distance(window) LIMIT 4", "FIND object WHERE color = 'red' NEAREST TO door LIMIT 2",
+          "FIND node NEAREST TO door LIMIT 40"}) {
         INFO(q);
         auto plan = scene.plan(q);
         nearestFirst += plan.find->access == planner::Access::NearestFirst;

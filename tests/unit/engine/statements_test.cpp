@@ -34,21 +34,23 @@ model::SceneData handBuiltRoom(const std::string& name) {
         n.hidden = hidden;
         s.nodes.push_back(n);
     };
-    add(NodeKind::Anchor, "floor", GeometryKind::Plane, {{3, 2, -0.01}, {6, 4, 0.02}, 0});                       // 1
-    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{3, -0.05, 1.3}, {6, 0.1, 2.6}, 0});                     // 2 south
-    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{3, 4.05, 1.3}, {6, 0.1, 2.6}, 0});                      // 3 north
-    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{-0.05, 2, 1.3}, {4, 0.1, 2.6}, M_PI / 2});              // 4 west
-    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{6.05, 2, 1.3}, {4, 0.1, 2.6}, M_PI / 2});               // 5 east
-    add(NodeKind::Anchor, "door", GeometryKind::Plane, {{3, -0.05, 1.0}, {0.9, 0.1, 2.0}, 0});                   // 6
-    add(NodeKind::Anchor, "window", GeometryKind::Plane, {{1.5, 4.05, 1.5}, {1.2, 0.1, 1.2}, 0});                // 7
-    add(NodeKind::Object, "desk", GeometryKind::Box, {{0.5, 2, 0.375}, {0.6, 1.2, 0.75}, 0});                    // 8 west wall
+    add(NodeKind::Anchor, "floor", GeometryKind::Plane, {{3, 2, -0.01}, {6, 4, 0.02}, 0});           // 1
+    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{3, -0.05, 1.3}, {6, 0.1, 2.6}, 0});         // 2 south
+    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{3, 4.05, 1.3}, {6, 0.1, 2.6}, 0});          // 3 north
+    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{-0.05, 2, 1.3}, {4, 0.1, 2.6}, M_PI / 2});  // 4 west
+    add(NodeKind::Anchor, "wall", GeometryKind::Plane, {{6.05, 2, 1.3}, {4, 0.1, 2.6}, M_PI / 2});   // 5 east
+    add(NodeKind::Anchor, "door", GeometryKind::Plane, {{3, -0.05, 1.0}, {0.9, 0.1, 2.0}, 0});       // 6
+    add(NodeKind::Anchor, "window", GeometryKind::Plane, {{1.5, 4.05, 1.5}, {1.2, 0.1, 1.2}, 0});    // 7
+    add(NodeKind::Object, "desk", GeometryKind::Box, {{0.5, 2, 0.375}, {0.6, 1.2, 0.75}, 0});        // 8 west wall
     add(NodeKind::Object, "mug", GeometryKind::Box, {{0.5, 1.8, 0.8}, {0.1, 0.1, 0.1}, 0}, {{"color", "red"}});  // 9
-    add(NodeKind::Object, "book", GeometryKind::Box, {{0.5, 2.3, 0.77}, {0.2, 0.25, 0.04}, 0}, {{"color", "blue"}});  // 10
-    add(NodeKind::Object, "chair", GeometryKind::Box, {{1.1, 2, 0.45}, {0.5, 0.5, 0.9}, 0});                     // 11
-    add(NodeKind::Object, "sofa", GeometryKind::Box, {{5.4, 2, 0.45}, {0.9, 2.0, 0.9}, 0});                      // 12 east wall
-    add(NodeKind::Object, "cushion", GeometryKind::Box, {{5.4, 1.6, 0.7}, {0.4, 0.4, 0.3}, 0}, {{"color", "red"}});  // 13
-    add(NodeKind::Object, "plant", GeometryKind::Box, {{1.5, 3.6, 0.4}, {0.4, 0.4, 0.8}, 0});                    // 14 by the window
-    add(NodeKind::Object, "undefined", GeometryKind::Box, {{3, 2, 2.5}, {0.1, 0.1, 0.1}, 0}, {}, true);          // 15
+    add(NodeKind::Object, "book", GeometryKind::Box, {{0.5, 2.3, 0.77}, {0.2, 0.25, 0.04}, 0},
+        {{"color", "blue"}});                                                                 // 10
+    add(NodeKind::Object, "chair", GeometryKind::Box, {{1.1, 2, 0.45}, {0.5, 0.5, 0.9}, 0});  // 11
+    add(NodeKind::Object, "sofa", GeometryKind::Box, {{5.4, 2, 0.45}, {0.9, 2.0, 0.9}, 0});   // 12 east wall
+    add(NodeKind::Object, "cushion", GeometryKind::Box, {{5.4, 1.6, 0.7}, {0.4, 0.4, 0.3}, 0},
+        {{"color", "red"}});                                                                   // 13
+    add(NodeKind::Object, "plant", GeometryKind::Box, {{1.5, 3.6, 0.4}, {0.4, 0.4, 0.8}, 0});  // 14 by the window
+    add(NodeKind::Object, "undefined", GeometryKind::Box, {{3, 2, 2.5}, {0.1, 0.1, 0.1}, 0}, {}, true);  // 15
     return s;
 }
 
@@ -162,9 +164,10 @@ TEST_CASE_METHOD(Fixture, "EXPLAIN prints the plan that runs: top-k, sub-queries
     CHECK(sub.find("Sub-query 1, run once before its first use:") != std::string::npos);
     CHECK(sub.find("Filter color = 'red'") != std::string::npos);
     CHECK(planText(q("EXPLAIN RELATE mug TO desk")).find("Relate each node of mug (1 node)") != std::string::npos);
-    CHECK(planText(q("EXPLAIN SET near = 1 m")).find("Set near.distance = 1") != std::string::npos);
+    CHECK(planText(q("EXPLAIN SET near = 3 m")).find("Set near.distance = 3") != std::string::npos);
     // EXPLAIN runs nothing: the setting is unchanged.
-    CHECK(sources(q("FIND object WHERE near(plant)")).empty());
+    for (const auto& row : q("SHOW SETTINGS").rows)
+        if (std::get<std::string>(row[0]) == "near.distance") CHECK(std::get<double>(row[1]) == Approx(1.0));
     q("USE SCENE '*'");
     auto across = planText(q("EXPLAIN FIND mug LIMIT 3"));
     CHECK(across.find("Label index scan of 'mug' across all scenes") != std::string::npos);
@@ -180,6 +183,7 @@ TEST_CASE_METHOD(Fixture, "LIMIT 0 answers no rows") {
 }
 
 TEST_CASE_METHOD(Fixture, "SET and SHOW SETTINGS change the thresholds") {
+    q("SET near = 0.5 m");
     CHECK(sources(q("FIND object WHERE near(plant)")).empty());
     q("SET near = 2.5 m");
     CHECK_FALSE(sources(q("FIND object WHERE near(plant)")).empty());

@@ -2,10 +2,10 @@
 // format as a usage error that names the known ones.
 #include <catch2/catch.hpp>
 
-#include "model/error.hpp"
+#include "import_support.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
-#include "import_support.hpp"
+#include "model/error.hpp"
 
 using namespace smql;
 using import::test::TempDir;

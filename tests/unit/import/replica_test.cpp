@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/geometry.hpp"
-#include "ingest/import/importers.hpp"
 #include "import_support.hpp"
+#include "ingest/import/importers.hpp"
+#include "model/geometry.hpp"
 
 using smql::import::readReplica;
 using smql::import::test::replicaPath;
@@ -30,11 +30,12 @@ Json replicaJson() { return Json::parse(std::ifstream(replicaPath())); }
 
 // One object with the given rotation (x, y, z, w), box-frame centre and translation.
 std::string singleObject(const TempDir& dir, Json rotation, Json center, Json translation) {
-    Json file = {{"objects", Json::array({{{"id", 7},
-                                           {"class_name", "box"},
-                                           {"oriented_bbox",
-                                            {{"abb", {{"center", center}, {"sizes", {1.0, 2.0, 3.0}}}},
-                                             {"orientation", {{"rotation", rotation}, {"translation", translation}}}}}}})}};
+    Json file = {
+        {"objects", Json::array({{{"id", 7},
+                                  {"class_name", "box"},
+                                  {"oriented_bbox",
+                                   {{"abb", {{"center", center}, {"sizes", {1.0, 2.0, 3.0}}}},
+                                    {"orientation", {{"rotation", rotation}, {"translation", translation}}}}}}})}};
     return dir.write("single.json", file.dump());
 }
 

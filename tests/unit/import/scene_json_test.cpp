@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/utf8.hpp"
-#include "ingest/import/importers.hpp"
 #include "import_support.hpp"
+#include "ingest/import/importers.hpp"
+#include "model/utf8.hpp"
 
 using smql::import::readReplica;
 using smql::import::readSceneJson;
@@ -120,11 +120,13 @@ TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON p
     }
     SECTION("a blob that is not base64, or of no node") {
         std::string path = mutated([](Json& f) {
-            f["blobs"] = Json::array({{{"node", 1}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", "ab!d"}}});
+            f["blobs"] =
+                Json::array({{{"node", 1}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", "ab!d"}}});
         });
         requireInputError(read(path), {path, "blobs[0].base64", "not base64"});
         path = mutated([](Json& f) {
-            f["blobs"] = Json::array({{{"node", 99999}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", ""}}});
+            f["blobs"] =
+                Json::array({{{"node", 99999}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", ""}}});
         });
         requireInputError(read(path), {path, "blobs[0].node", "not the id of a node"});
     }

@@ -1,10 +1,10 @@
 #include <cmath>
-#include <sstream>
 #include <numbers>
+#include <sstream>
 
-#include "model/geometry.hpp"
-#include "ingest/import/importers.hpp"
 #include "import_support.hpp"
+#include "ingest/import/importers.hpp"
+#include "model/geometry.hpp"
 
 using smql::import::readSpatialLm;
 using smql::import::test::requireInputError;
@@ -98,14 +98,26 @@ TEST_CASE("SpatialLM: walls, doors, windows and bboxes", "[import][spatiallm]") 
 TEST_CASE("SpatialLM: no door means the centre of all boxes, facing +y", "[import][spatiallm]") {
     TempDir dir;
     // Windows line ends and a byte order mark are fine.
-    std::string path =
-        dir.write("boxes.txt", "\xEF\xBB\xBF" "bbox_0=Bbox(chair,1,1,0.5,0,1,1,1)\r\nbbox_1=Bbox(bed,3,5,0.25,0,2,2,0.5)\r\n");
+    std::string path = dir.write("boxes.txt",
+                                 "\xEF\xBB\xBF"
+                                 "bbox_0=Bbox(chair,1,1,0.5,0,1,1,1)\r\nbbox_1=Bbox(bed,3,5,0.25,0,2,2,0.5)\r\n");
     SceneData scene = readSpatialLm(path, "boxes");
     REQUIRE(scene.nodes.size() == 2);
     CHECK(scene.info.viewpoint.position.x == Approx(2.25));
     CHECK(scene.info.viewpoint.position.y == Approx(3.25));
     CHECK(scene.info.viewpoint.position.z == Approx(1.6));  // above the lowest box bottom (0)
     CHECK(scene.info.viewpoint.facingYaw == Approx(std::numbers::pi / 2));
+}
+
+TEST_CASE("SpatialLM: a box at the coordinate limit still gives a scene that reads back", "[import][spatiallm]") {
+    // Found by fuzz_import_spatiallm: eye height above this box is past the limit.
+    TempDir dir;
+    std::string path = dir.write("high.txt", "bbox_0=Bbox(chair,1,1,9999.45,0,0.5,0.5,0.9)\n");
+    SceneData scene = readSpatialLm(path, "high");
+    CHECK(scene.info.viewpoint.position.z == Approx(1e4));
+    CHECK_THAT(scene.info.viewpointNote, Catch::Contains("held within"));
+    SceneData again = smql::import::readSceneJson(dir.write("again.json", smql::import::writeSceneJson(scene)));
+    CHECK(again.info.viewpoint.position.z == Approx(1e4));
 }
 
 TEST_CASE("SpatialLM: malformed layouts are rejected with file:line", "[import][spatiallm][malformed]") {
@@ -193,13 +205,11 @@ TEST_CASE("SpatialLM: malformed layouts are rejected with file:line", "[import][
     }
     SECTION("two names for one number clash in their source id") {
         std::string path = withLine(5, "wall_01=Wall(0,3,0,0,0,0,2.5,0)");
-        requireInputError(read(path), {path + ":5:", "'wall_01' has the same number as 'wall_1' (line 3)",
-                                       "source id 1"},
-                          5);
+        requireInputError(read(path),
+                          {path + ":5:", "'wall_01' has the same number as 'wall_1' (line 3)", "source id 1"}, 5);
         path = withLine(10, "bbox_000=Bbox(sofa, 1, 2.5, 0.45, -0.25, 2.0, 0.9, 0.9)");
-        requireInputError(read(path), {path + ":10:", "'bbox_000' has the same number as 'bbox_0' (line 9)",
-                                       "source id 3000"},
-                          10);
+        requireInputError(read(path),
+                          {path + ":10:", "'bbox_000' has the same number as 'bbox_0' (line 9)", "source id 3000"}, 10);
     }
     SECTION("an angle that is not a plausible number of radians") {
         std::string path = withLine(9, "bbox_0=Bbox(table,2,1.5,0.4,1e300,1.6,0.9,0.8)");

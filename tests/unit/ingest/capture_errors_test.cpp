@@ -35,9 +35,8 @@ TEST_CASE("capture errors: nothing to read", "[capture][errors]") {
     SECTION("unknown layout: the error lists what was looked for") {
         dir.write("readme.md", "hello");
         dir.mkdir("color");  // without depth/
-        requireError([&] { readCapture(dir.path()); },
-                     {dir.path(), "no capture layout recognised", "color/ and depth/", "rgb.txt", "transforms.json",
-                      "sparse/0", ".png"});
+        requireError([&] { readCapture(dir.path()); }, {dir.path(), "no capture layout recognised", "color/ and depth/",
+                                                        "rgb.txt", "transforms.json", "sparse/0", ".png"});
     }
     SECTION("a single image") {
         std::string image = writeColor(dir, "a.png", 8, 8);
@@ -60,7 +59,8 @@ TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
 
     SECTION("a colour image without depth") {
         fs::remove(dir.path("depth/2.png"));
-        requireError([&] { readCapture(dir.path()); }, {dir.path("depth"), "no depth image for frame 2", dir.path("color/2.png")});
+        requireError([&] { readCapture(dir.path()); },
+                     {dir.path("depth"), "no depth image for frame 2", dir.path("color/2.png")});
     }
     SECTION("missing pose.txt") {
         fs::remove(dir.path("pose.txt"));
@@ -72,7 +72,8 @@ TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
     }
     SECTION("a pose line with 6 numbers") {
         dir.write("pose.txt", "# header\n0 0 0 0 0 0 1\n0 0 0 0 0 1\n");
-        requireError([&] { readCapture(dir.path()); }, {dir.path("pose.txt") + ":3:", "expected 7 numbers", "got 6"}, 3);
+        requireError([&] { readCapture(dir.path()); }, {dir.path("pose.txt") + ":3:", "expected 7 numbers", "got 6"},
+                     3);
     }
     SECTION("fewer pose lines than frames") {
         dir.write("pose.txt", "0 0 0 0 0 0 1\n");
@@ -96,7 +97,8 @@ TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
     }
     SECTION("a depth image of the wrong size: readCapture checks the first frame") {
         writeDepth(dir, "depth/1.png", 32, 24);
-        requireError([&] { readCapture(dir.path()); }, {dir.path("depth/1.png"), "32x24", "64x48", dir.path("color/1.png")});
+        requireError([&] { readCapture(dir.path()); },
+                     {dir.path("depth/1.png"), "32x24", "64x48", dir.path("color/1.png")});
     }
     SECTION("a depth image of the wrong size: loadFrame checks every frame") {
         writeDepth(dir, "depth/2.png", 64, 40);
@@ -117,7 +119,8 @@ TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
         requireError([&] { readCapture(dir.path()); }, {dir.path("camera.json"), "fx", "expected a number"});
     }
     SECTION("camera.json with a misspelt field") {
-        dir.write("camera.json", R"({"width": 64, "height": 48, "fx": 1, "fy": 1, "cx": 32, "cy": 24, "depthscale": 1})");
+        dir.write("camera.json",
+                  R"({"width": 64, "height": 48, "fx": 1, "fy": 1, "cx": 32, "cy": 24, "depthscale": 1})");
         requireError([&] { readCapture(dir.path()); }, {dir.path("camera.json"), "depthscale", "unknown field"});
     }
     SECTION("camera.json that is not JSON") {
@@ -186,20 +189,23 @@ TEST_CASE("capture errors: nerfstudio", "[capture][errors][nerfstudio]") {
                      {dir.path("transforms.json"), "frames[0].file_path", dir.path("images/9.png"), "no such file"});
     }
     SECTION("a transform that is not a rotation") {
-        dir.write("transforms.json",
-                  std::string(kTransformsHead) +
-                      R"({"file_path": "images/0.png", "transform_matrix": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]})");
+        dir.write(
+            "transforms.json",
+            std::string(kTransformsHead) +
+                R"({"file_path": "images/0.png", "transform_matrix": [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]})");
         requireError([&] { readCapture(dir.path()); },
                      {dir.path("transforms.json"), "frames[0].transform_matrix", "not a rotation"});
     }
     SECTION("a 4x3 matrix") {
-        dir.write("transforms.json", std::string(kTransformsHead) +
-                                         R"({"file_path": "images/0.png", "transform_matrix": [[1,0,0],[0,1,0],[0,0,1]]}]})");
+        dir.write("transforms.json",
+                  std::string(kTransformsHead) +
+                      R"({"file_path": "images/0.png", "transform_matrix": [[1,0,0],[0,1,0],[0,0,1]]}]})");
         requireError([&] { readCapture(dir.path()); }, {dir.path("transforms.json"), "frames[0].transform_matrix[0]"});
     }
     SECTION("no focal length") {
-        dir.write("transforms.json",
-                  R"({"w": 40, "h": 30, "frames": [{"file_path": "images/0.png", "transform_matrix": )" + identity + "}]}");
+        dir.write(
+            "transforms.json",
+            R"({"w": 40, "h": 30, "frames": [{"file_path": "images/0.png", "transform_matrix": )" + identity + "}]}");
         requireError([&] { readCapture(dir.path()); }, {dir.path("transforms.json"), "frames[0]", "no focal length"});
     }
     SECTION("no frames") {
@@ -210,8 +216,7 @@ TEST_CASE("capture errors: nerfstudio", "[capture][errors][nerfstudio]") {
 
 TEST_CASE("capture errors: COLMAP", "[capture][errors][colmap]") {
     TempDir dir;
-    const std::string images =
-        "# header\n1 1 0 0 0 0 0 0 1 a.png\n\n2 1 0 0 0 0 0 1 1 b.png\n1.0 2.0 -1\n";
+    const std::string images = "# header\n1 1 0 0 0 0 0 0 1 a.png\n\n2 1 0 0 0 0 0 1 1 b.png\n1.0 2.0 -1\n";
     writeColmapModel(dir, images);
     REQUIRE(readCapture(dir.path()).frames.size() == 2);
 
@@ -238,7 +243,8 @@ TEST_CASE("capture errors: COLMAP", "[capture][errors][colmap]") {
     }
     SECTION("a camera with the wrong number of parameters") {
         dir.write("sparse/0/cameras.txt", "# cameras\n1 PINHOLE 40 30 50 20 15\n");
-        requireError([&] { readCapture(dir.path()); }, {dir.path("sparse/0/cameras.txt") + ":2:", "takes 4 parameters"}, 2);
+        requireError([&] { readCapture(dir.path()); }, {dir.path("sparse/0/cameras.txt") + ":2:", "takes 4 parameters"},
+                     2);
     }
     SECTION("an image the image folder lacks") {
         fs::remove(dir.path("images/b.png"));

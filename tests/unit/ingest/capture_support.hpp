@@ -40,7 +40,9 @@ public:
     TempDir& operator=(const TempDir&) = delete;
 
     const fs::path& root() const { return path_; }
-    std::string path(const std::string& name = {}) const { return name.empty() ? path_.string() : (path_ / name).string(); }
+    std::string path(const std::string& name = {}) const {
+        return name.empty() ? path_.string() : (path_ / name).string();
+    }
     std::string write(const std::string& name, const std::string& content) const {
         fs::path file = path_ / name;
         fs::create_directories(file.parent_path());
@@ -61,8 +63,9 @@ inline std::string writeColor(const TempDir& dir, const std::string& name, int w
     cv::Mat image(height, width, CV_8UC3);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            image.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<uchar>((x * 4 + seed) % 256),
-                                                  static_cast<uchar>((y * 4 + seed) % 256), static_cast<uchar>(seed % 256));
+            image.at<cv::Vec3b>(y, x) =
+                cv::Vec3b(static_cast<uchar>((x * 4 + seed) % 256), static_cast<uchar>((y * 4 + seed) % 256),
+                          static_cast<uchar>(seed % 256));
     fs::path file = dir.root() / name;
     fs::create_directories(file.parent_path());
     REQUIRE(cv::imwrite(file.string(), image));

@@ -144,7 +144,8 @@ TEST_CASE("rgbd: camera.json, options, instance masks, labels and detections", "
     }
     dir.write("labels.json", R"({"7": "chair"})");
     dir.write("detections.json", "[]");
-    dir.write("camera.json", R"({"width": 64, "height": 48, "fx": 60, "fy": 61, "cx": 31, "cy": 23, "depth_scale": 500})");
+    dir.write("camera.json",
+              R"({"width": 64, "height": 48, "fx": 60, "fy": 61, "cx": 31, "cy": 23, "depth_scale": 500})");
 
     Capture capture = readCapture(dir.path());
     CHECK(capture.layout == "rgbd");

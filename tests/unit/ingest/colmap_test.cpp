@@ -10,12 +10,12 @@
 
 #include <fmt/format.h>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/synth.hpp"
+#include "model/error.hpp"
 #include "scratch_dir.hpp"
 
 using namespace smql;
@@ -62,7 +62,8 @@ TEST_CASE("an RGB-only synthetic capture through COLMAP meets the quality thresh
 
     // The aligned frame -> the truth frame: a similarity from the camera centres.
     std::vector<std::pair<model::Vec3, model::Vec3>> cameras;
-    for (const auto& [frame, centre] : result.cameraCentres) cameras.push_back({centre, truth.frames[frame].pose->translation});
+    for (const auto& [frame, centre] : result.cameraCentres)
+        cameras.push_back({centre, truth.frames[frame].pose->translation});
     auto registration = registerByCameras(result.scene, cameras);
     QualityOptions quality;
     for (const auto& [id, frames] : synth.framesSeen)

@@ -9,14 +9,14 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/detections.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
-#include "scratch_dir.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/synth.hpp"
+#include "model/error.hpp"
+#include "scratch_dir.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
@@ -100,7 +100,8 @@ TEST_CASE("detections.json: format errors name the file and the field", "[ingest
     expectError(R"([{"image": "1.png", "label": "mug", "score": "high", "bbox": [1, 2, 3, 4]}])",
                 "detections[0].score: expected a number");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9}])", "detections[0].bbox: missing");
-    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3]}])", "detections[0].bbox: expected");
+    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3]}])",
+                "detections[0].bbox: expected");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [600, 2, 100, 4]}])",
                 "detections[0].bbox: [600, 2, 100, 4] lies outside the 640x480 image");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4]},
@@ -108,7 +109,8 @@ TEST_CASE("detections.json: format errors name the file and the field", "[ingest
                 "detections[1].image: '9.png' is not a frame");
     expectError(R"([{"image_id": 7, "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4]}])",
                 "detections[0].image_id: 7 is not a frame number");
-    expectError(R"([{"image": "1.png", "label": 3, "score": 0.9, "bbox": [1, 2, 3, 4]}])", "detections[0].label: expected");
+    expectError(R"([{"image": "1.png", "label": 3, "score": 0.9, "bbox": [1, 2, 3, 4]}])",
+                "detections[0].label: expected");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
                      "segmentation": {"size": [480, 640], "counts": "abc"}}])",
                 "detections[0].segmentation: RLE mask: counts string is truncated");
@@ -122,8 +124,9 @@ TEST_CASE("detections.json: format errors name the file and the field", "[ingest
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4],
                      "segmentation": {"size": [48, 64], "counts": [3072]}}])",
                 "detections[0].segmentation: RLE mask of 64x48 for a 640x480 image");
-    expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4], "segmentation": [[1, 2, 3]]}])",
-                "detections[0].segmentation[0]: expected a polygon");
+    expectError(
+        R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4], "segmentation": [[1, 2, 3]]}])",
+        "detections[0].segmentation[0]: expected a polygon");
     expectError(R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, -3, 4]}])",
                 "detections[0].bbox: width and height must be positive");
 }
@@ -157,7 +160,8 @@ TEST_CASE("COCO RLE masks decode, as counts and as the compressed string") {
     for (const std::string& form : {counts, std::string(R"("Ti4b1^=0lXV9")")}) {
         ScratchDir dir;
         auto capture = twoFrames(dir, R"([{"image": "1.png", "label": "mug", "score": 0.9, "bbox": [10, 100, 2, 50],
-                                           "segmentation": {"size": [480, 640], "counts": )" + form + "}}]");
+                                           "segmentation": {"size": [480, 640], "counts": )" +
+                                          form + "}}]");
         auto detections = readDetections(capture);
         INFO(form);
         REQUIRE(detections[0].size() == 1);

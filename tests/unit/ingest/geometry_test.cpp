@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "model/geometry.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/walls.hpp"
+#include "model/geometry.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
@@ -182,7 +182,7 @@ TEST_CASE("alignment levels a tilted, turned and shifted room", "[ingest][geomet
     INFO(notesOf(a));
     CHECK(a.floorFound);
     CHECK(angleDeg(a.up, r * model::Vec3{0, 0, 1}) < 1.0);  // up recovered within 1 degree
-    CHECK(a.scale == 1.0);                                   // metric capture
+    CHECK(a.scale == 1.0);                                  // metric capture
     CHECK_FALSE(a.ceilingHeight);
 
     PointCloud aligned = transformed(room.cloud, a);
@@ -210,7 +210,7 @@ TEST_CASE("alignment levels a tilted, turned and shifted room", "[ingest][geomet
         Pose p = transformed(c, a);
         CHECK(p.translation.z == Approx(1.5).margin(0.02));
         model::Vec3 down{p.rotation[1], p.rotation[4], p.rotation[7]};  // camera y axis in the aligned frame
-        CHECK(angleDeg(down, {0, 0, -1}) == Approx(10).margin(1));    // the 10 degree pitch
+        CHECK(angleDeg(down, {0, 0, -1}) == Approx(10).margin(1));      // the 10 degree pitch
     }
 }
 
@@ -310,7 +310,7 @@ TEST_CASE("euclideanClusters separates two blobs", "[ingest][geometry]") {
     };
     blob({0, 0, 0.5}, 0.2, 0, 800);
     blob({0.7, 0.2, 0.6}, 0.2, 1, 500);  // 0.33 m gap between the surfaces
-    blob({3, 3, 3}, 0.01, 2, 5);          // too small to count
+    blob({3, 3, 3}, 0.01, 2, 5);         // too small to count
     auto clusters = euclideanClusters(cloud, 0.08, 20, 100000);
     REQUIRE(clusters.size() == 2);
     CHECK(clusters[0].size() == 800);  // largest first

@@ -6,11 +6,11 @@
 #include <string_view>
 #include <vector>
 
-#include "model/error.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
 #include "ingest/synth/synth.hpp"
+#include "model/error.hpp"
 #include "scratch_dir.hpp"
 
 using namespace smql;
@@ -75,9 +75,9 @@ TEST_CASE("the stage runner reports, times and records each stage, and passes ou
 
     CHECK(numbers == std::vector<int>{1, 2, 3});
     CHECK(total == 6);
-    CHECK(sink.events == std::vector<std::string>{"note before any stage", "started count 3", "advanced 1", "advanced 2",
-                                                  "advanced 3", "note counted", "finished count: 3 numbers",
-                                                  "started sum 1", "finished sum: total 6"});
+    CHECK(sink.events == std::vector<std::string>{
+                             "note before any stage", "started count 3", "advanced 1", "advanced 2", "advanced 3",
+                             "note counted", "finished count: 3 numbers", "started sum 1", "finished sum: total 6"});
     REQUIRE(result.stages.size() == 2);
     CHECK(result.stages[0].stage == "count");
     CHECK(result.stages[0].summary == "3 numbers");

@@ -17,21 +17,20 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
-#include "model/geometry.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/synth/palette.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/synth.hpp"
-#include "scratch_dir.hpp"
 #include "ingest/synth/walk.hpp"
+#include "model/error.hpp"
+#include "model/geometry.hpp"
+#include "scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace smql;
 using Json = nlohmann::json;
 
 namespace {
-
 
 std::string slurp(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -149,8 +148,8 @@ TEST_CASE("synth: the palette keeps names apart under shading", "[ingest][synth]
         }
         REQUIRE(synth::colorByName(c.name) == c.rgb);
     }
-    for (const char* name : {"red", "orange", "yellow", "green", "blue", "purple", "pink", "brown", "black", "white",
-                             "gray", "grey"})
+    for (const char* name :
+         {"red", "orange", "yellow", "green", "blue", "purple", "pink", "brown", "black", "white", "gray", "grey"})
         CHECK(synth::colorByName(name).has_value());
     CHECK_FALSE(synth::colorByName("taupe").has_value());
 }
@@ -359,7 +358,8 @@ TEST_CASE("synth: labels, truth, relations and visibility agree", "[ingest][synt
     CHECK(objects == 24);
 
     Json camera = Json::parse(slurp(f.file("camera.json")));
-    CHECK(camera == Json::parse(R"({"width":640,"height":480,"fx":525,"fy":525,"cx":319.5,"cy":239.5,"depth_scale":1000})"));
+    CHECK(camera ==
+          Json::parse(R"({"width":640,"height":480,"fx":525,"fy":525,"cx":319.5,"cy":239.5,"depth_scale":1000})"));
 
     Json labels = Json::parse(slurp(f.file("labels.json")));
     std::set<model::NodeId> labelled;
@@ -369,8 +369,10 @@ TEST_CASE("synth: labels, truth, relations and visibility agree", "[ingest][synt
         const model::Node& n = *byId[id];
         CHECK(l.at("category") == n.category);
         CHECK(l.at("kind") == std::string(model::toString(n.kind)));
-        if (const std::string* color = n.attribute("color")) CHECK(l.at("color") == *color);
-        else CHECK_FALSE(l.contains("color"));
+        if (const std::string* color = n.attribute("color"))
+            CHECK(l.at("color") == *color);
+        else
+            CHECK_FALSE(l.contains("color"));
         CHECK(labelled.insert(id).second);
     }
     for (const model::Node& n : truth.nodes)

@@ -98,7 +98,7 @@ TEST_CASE("predicate calls", "[parser][expr]") {
 TEST_CASE("comparison operators", "[parser][expr]") {
     using Op = ast::CompareOp;
     const std::vector<std::pair<const char*, Op>> cases = {
-        {"=", Op::Eq}, {"!=", Op::Ne}, {"<>", Op::Ne}, {"<", Op::Lt},   {"<=", Op::Le},
+        {"=", Op::Eq}, {"!=", Op::Ne}, {"<>", Op::Ne},     {"<", Op::Lt},      {"<=", Op::Le},
         {">", Op::Gt}, {">=", Op::Ge}, {"LIKE", Op::Like}, {"like", Op::Like},
     };
     for (const auto& [text, op] : cases) {

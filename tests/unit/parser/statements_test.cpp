@@ -37,7 +37,7 @@ TEST_CASE("FIND with every clause", "[parser][find]") {
     REQUIRE(find.where);
     CHECK(find.where->kind == ast::Expr::Kind::Compare);
     REQUIRE(find.orderBy);
-    CHECK(find.orderBy->distanceTo.name == "sofa");
+    CHECK(find.orderBy->distanceTo->name == "sofa");
     CHECK(find.orderBy->descending);
     CHECK(find.limit == 3);
     CHECK(find.path);
@@ -83,9 +83,7 @@ TEST_CASE("PATH may stand anywhere after the target", "[parser][find]") {
     }
 }
 
-TEST_CASE("LIMIT 0 is allowed", "[parser][find]") {
-    CHECK(bodyOf<ast::FindStmt>("FIND mug LIMIT 0").limit == 0);
-}
+TEST_CASE("LIMIT 0 is allowed", "[parser][find]") { CHECK(bodyOf<ast::FindStmt>("FIND mug LIMIT 0").limit == 0); }
 
 TEST_CASE("COUNT with a view and a condition", "[parser][count]") {
     auto count = bodyOf<ast::CountStmt>("COUNT chair VIEW FROM door WHERE near(table)");
@@ -262,7 +260,8 @@ TEST_CASE("sub-queries nest", "[parser][refs]") {
 }
 
 TEST_CASE("keywords are case-insensitive", "[parser][case]") {
-    auto find = bodyOf<ast::FindStmt>("find Mug where Color = 'Red' and NEAR(Window, 1 M) order by DISTANCE(door) desc limit 2 path");
+    auto find = bodyOf<ast::FindStmt>(
+        "find Mug where Color = 'Red' and NEAR(Window, 1 M) order by DISTANCE(door) desc limit 2 path");
     CHECK(find.target.name == "mug");
     REQUIRE(find.where);
     CHECK(find.where->kind == ast::Expr::Kind::And);
@@ -327,7 +326,7 @@ TEST_CASE("locations of views, orderings, distances and settings", "[parser][loc
     CHECK(find.view->facing->where.column == 32);
     CHECK(find.orderBy->where.column == 39);
     CHECK(find.orderBy->where.length == 28);  // ORDER BY distance(sofa) DESC
-    CHECK(find.orderBy->distanceTo.where.column == 57);
+    CHECK(find.orderBy->distanceTo->where.column == 57);
 
     auto near = bodyOf<ast::FindStmt>("FIND x WHERE near(window, 1.5 m)").where;
     CHECK(near->threshold->where.column == 27);
@@ -344,10 +343,101 @@ TEST_CASE("locations of views, orderings, distances and settings", "[parser][loc
 
 TEST_CASE("keywords() lists the upper-case keywords", "[parser][keywords]") {
     const auto& words = parser::keywords();
-    for (const char* word : {"FIND", "COUNT", "RELATE", "DESCRIBE", "SHOW", "USE", "SET", "EXPLAIN", "VIEW", "FROM",
-                             "FACING", "WHERE", "NEAREST", "TO", "ORDER", "BY", "ASC", "DESC", "LIMIT", "PATH",
-                             "SCENES", "SCENE", "TREE", "SETTINGS", "AND", "OR", "NOT", "LIKE"})
+    for (const char* word :
+         {"FIND",   "COUNT", "RELATE",  "DESCRIBE", "SHOW",  "USE", "SET", "EXPLAIN", "VIEW",  "FROM",
+          "FACING", "WHERE", "NEAREST", "TO",       "ORDER", "BY",  "ASC", "DESC",    "LIMIT", "PATH",
+          "SCENES", "SCENE", "TREE",    "SETTINGS", "AND",   "OR",  "NOT", "LIKE",    "GUIDE", "HERE",
+          "GRAPH",  "DROP",  "RENAME",  "CHANGES",  "SINCE", "AS",  "OF"})
         CHECK(std::find(words.begin(), words.end(), word) != words.end());
     CHECK(std::find(words.begin(), words.end(), "IDENT") == words.end());
-    CHECK(std::find(words.begin(), words.end(), "GUIDE") == words.end());
+    CHECK(std::find(words.begin(), words.end(), "STRING") == words.end());
+}
+
+TEST_CASE("ASK takes the question as a string, case and quotes kept", "[parser][ask]") {
+    auto ask = bodyOf<ast::AskStmt>("ask 'Where''s the Red mug?'");
+    CHECK(ask.question == "Where's the Red mug?");
+    CHECK(ask.where.column == 5);
+    CHECK(bodyOf<ast::AskStmt>("ASK \"is there a sofa?\"").question == "is there a sofa?");
+    // ASK is also a name, like the other statement words.
+    CHECK(targetOf("FIND ask").name == "ask");
+    CHECK_THROWS_AS(parser::parse("ASK where is the mug"), Error);
+    CHECK_THROWS_AS(parser::parse("ASK"), Error);
+}
+
+TEST_CASE("name#id is a node id with the category to check", "[parser][refs]") {
+    auto ref = targetOf("FIND Sofa#50");
+    CHECK(ref.kind == ast::Ref::Kind::NodeId);
+    CHECK(ref.number == 50);
+    CHECK(ref.name == "sofa");
+    CHECK(targetOf("FIND plant-stand#7").name == "plant-stand");
+    // `#50` alone names no category; src#50 stays a source id.
+    CHECK(targetOf("FIND #50").name.empty());
+    CHECK(targetOf("FIND src#50").kind == ast::Ref::Kind::SourceId);
+    auto relate = bodyOf<ast::RelateStmt>("RELATE lamp#13 TO window#9");
+    CHECK(relate.subject.number == 13);
+    CHECK(relate.object.name == "window");
+}
+
+TEST_CASE("CHECK: a predicate between references, with a distance and a view", "[parser][check]") {
+    auto check = bodyOf<ast::CheckStmt>("CHECK lamp LEFT_OF window#9");
+    CHECK(check.subject.name == "lamp");
+    CHECK(check.predicate == "left_of");
+    REQUIRE(check.args.size() == 1);
+    CHECK(check.args[0].number == 9);
+    CHECK_FALSE(check.threshold);
+    CHECK_FALSE(check.view);
+
+    auto near = bodyOf<ast::CheckStmt>("CHECK mug near window 30 cm VIEW FROM door");
+    REQUIRE(near.threshold);
+    CHECK(near.threshold->metres == Approx(0.3));
+    REQUIRE(near.view);
+    CHECK(near.view->from.name == "door");
+
+    auto between = bodyOf<ast::CheckStmt>("CHECK lamp between sofa AND (FIND desk LIMIT 1)");
+    REQUIRE(between.args.size() == 2);
+    CHECK(between.args[1].kind == ast::Ref::Kind::SubQuery);
+}
+
+TEST_CASE("SHOW CATEGORIES and SHOW ATTRIBUTES", "[parser][show]") {
+    CHECK(bodyOf<ast::ShowStmt>("show categories").what == ast::ShowStmt::What::Categories);
+    CHECK(bodyOf<ast::ShowStmt>("SHOW ATTRIBUTES").what == ast::ShowStmt::What::Attributes);
+    // The new keywords are still names.
+    CHECK(targetOf("FIND check").name == "check");
+    CHECK(targetOf("FIND categories").name == "categories");
+}
+
+TEST_CASE("ORDER BY an attribute, RETURN columns", "[parser][find]") {
+    auto find = bodyOf<ast::FindStmt>("FIND lamp ORDER BY Height DESC LIMIT 1 RETURN id, Color, center");
+    REQUIRE(find.orderBy);
+    CHECK_FALSE(find.orderBy->distanceTo);
+    CHECK(find.orderBy->attribute == "height");
+    CHECK(find.orderBy->descending);
+    CHECK(find.columns == std::vector<std::string>{"id", "color", "center"});
+    // RETURN may stand anywhere after the target, once.
+    CHECK(bodyOf<ast::FindStmt>("FIND mug RETURN id WHERE color = 'red'").columns.size() == 1);
+    CHECK_THROWS_WITH(parser::parse("FIND mug RETURN id RETURN color"), Catch::Contains("RETURN given twice"));
+}
+
+TEST_CASE("comparisons of distance(x), units remembered, BETWEEN as two bounds", "[parser][expr]") {
+    auto find = bodyOf<ast::FindStmt>("FIND object WHERE distance(sofa) < 2 m");
+    REQUIRE(find.where);
+    CHECK(find.where->kind == ast::Expr::Kind::Compare);
+    REQUIRE(find.where->distanceTo);
+    CHECK(find.where->distanceTo->name == "sofa");
+    CHECK(find.where->literalHasUnit);
+    CHECK(std::get<double>(find.where->literal) == 2.0);
+    CHECK_FALSE(bodyOf<ast::FindStmt>("FIND object WHERE height > 2").where->literalHasUnit);
+
+    auto band = bodyOf<ast::FindStmt>("FIND object WHERE height BETWEEN 50 cm AND 1 m AND on(desk)");
+    REQUIRE(band.where);
+    REQUIRE(band.where->kind == ast::Expr::Kind::And);
+    REQUIRE(band.where->children.size() == 2);  // (height BETWEEN ...) AND on(desk)
+    const ast::Expr& bounds = band.where->children[0];
+    REQUIRE(bounds.kind == ast::Expr::Kind::And);
+    CHECK(bounds.children[0].op == ast::CompareOp::Ge);
+    CHECK(std::get<double>(bounds.children[0].literal) == Approx(0.5));
+    CHECK(bounds.children[1].op == ast::CompareOp::Le);
+    CHECK(std::get<double>(bounds.children[1].literal) == 1.0);
+    // between(...) is still the predicate.
+    CHECK(bodyOf<ast::FindStmt>("FIND lamp WHERE between(sofa, desk)").where->predicate == "between");
 }

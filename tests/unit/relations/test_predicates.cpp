@@ -5,6 +5,7 @@
 
 #include "engine/relations/hierarchy.hpp"
 #include "engine/relations/predicates.hpp"
+#include "engine/relations/visibility.hpp"
 
 using namespace smql;
 using namespace smql::relations;
@@ -29,6 +30,26 @@ const Thresholds kT;
 const Frame kFrame = viewFrame({{0, -3, 1.6}, M_PI / 2});  // standing at y=-3 looking along +y
 
 double eval(Predicate p, const Node& a, const Node& b) { return evaluate(p, a, b, kT, kFrame); }
+
+// A scene's boxes as obstacles, without an index: every box is a candidate.
+class Boxes final : public Obstacles {
+public:
+    explicit Boxes(std::vector<Node> nodes) : nodes_(std::move(nodes)) {}
+    void within(const model::Aabb&, std::vector<const Node*>& out) const override {
+        for (const auto& n : nodes_) out.push_back(&n);
+    }
+
+private:
+    std::vector<Node> nodes_;
+};
+
+double evalAmong(Predicate p, const Node& a, const Node& b, const Obstacles& obstacles, const Frame& frame = kFrame) {
+    return evaluate(p, a, b, kT, frame, nullptr, std::nullopt, &obstacles);
+}
+
+Node wallAt(model::NodeId id, double y) {
+    return node(id, "wall", 0, y, 1.3, 8, 0.1, 2.6, model::NodeKind::Anchor, model::GeometryKind::Plane);
+}
 
 }  // namespace
 
@@ -73,12 +94,133 @@ TEST_CASE("in: holders take what they support, enclosures what they contain, sur
     CHECK(eval(Predicate::On, node(11, "cushion", 0, 0, 0.55, 0.4, 0.4, 0.1), chair) > 0);
 }
 
-TEST_CASE("near: distance threshold and explicit distance") {
+TEST_CASE("on: a graze or a large thing over a small one is not on it") {
+    // A 0.4 m box half over the table's edge at x = 0.5: 51 % of its own footprint over the table holds.
+    auto boxAt = [](double share) { return node(2, "box", 0.5 + 0.2 - 0.4 * share, 0, 0.9, 0.4, 0.4, 0.2); };
+    CHECK(eval(Predicate::On, boxAt(0.51), kTable) > 0);
+    CHECK(eval(Predicate::On, boxAt(0.49), kTable) == 0);
+    // A 1.2 m tabletop whose middle rests on a 0.4 m stool: the stool's whole footprint is under it (the
+    // smaller footprint's share is 1) but only 11 % of the tabletop's own footprint is over the stool.
+    Node stool = node(3, "stool", 0, 0, 0.2, 0.4, 0.4, 0.4);
+    Node top = node(4, "board", 0, 0, 0.45, 1.2, 1.2, 0.1);
+    CHECK(eval(Predicate::On, top, stool) == 0);
+    CHECK(eval(Predicate::Above, top, stool) > 0);
+}
+
+TEST_CASE("near: scale-aware limit between a floor and a ceiling") {
+    // A 0.5 m chair by the 1 m table: sizes sum to 1.5 m, kept at near.distance (1 m).
     auto at = [](double gap) { return node(2, "chair", 0.5 + gap + 0.25, 0, 0.4, 0.5, 0.5, 0.8); };
-    CHECK(eval(Predicate::Near, at(0.49), kTable) > 0);
-    CHECK(eval(Predicate::Near, at(0.51), kTable) == 0);
+    CHECK(eval(Predicate::Near, at(0.99), kTable) > 0);
+    CHECK(eval(Predicate::Near, at(1.01), kTable) == 0);
+    // A 0.1 m mug by a 0.2 m book: the limit is their sizes' sum, 0.3 m.
+    Node book = node(3, "book", 0, 0, 0.9, 0.2, 0.15, 0.05);
+    auto mug = [](double gap) { return node(4, "mug", 0.1 + gap + 0.05, 0, 0.9, 0.1, 0.1, 0.1); };
+    CHECK(eval(Predicate::Near, mug(0.29), book) > 0);
+    CHECK(eval(Predicate::Near, mug(0.31), book) == 0);
+    // Two 0.04 m things: their sizes sum to 0.08 m, below near.min_distance (0.15 m).
+    Node pen = node(5, "pen", 0, 0, 0.9, 0.04, 0.04, 0.02);
+    auto eraser = [](double gap) { return node(6, "eraser", 0.02 + gap + 0.02, 0, 0.9, 0.04, 0.04, 0.02); };
+    CHECK(eval(Predicate::Near, eraser(0.14), pen) > 0);
+    CHECK(eval(Predicate::Near, eraser(0.16), pen) == 0);
+    CHECK(nearLimit(pen, eraser(0.1), kT) == Approx(0.15));
     CHECK(evaluate(Predicate::Near, at(0.9), kTable, kT, kFrame, nullptr, 1.0) > 0);
     CHECK(evaluate(Predicate::Near, at(1.1), kTable, kT, kFrame, nullptr, 1.0) == 0);
+}
+
+TEST_CASE("near: a wall between two things keeps them apart") {
+    Node here = node(2, "chair", 0, -0.4, 0.4, 0.5, 0.5, 0.8);
+    Node there = node(3, "chair", 0, 0.4, 0.4, 0.5, 0.5, 0.8);  // 0.3 m apart
+    CHECK(evalAmong(Predicate::Near, here, there, Boxes({})) > 0);
+    CHECK(evalAmong(Predicate::Near, here, there, Boxes({wallAt(10, 0)})) == 0);
+    // A wall beside them, not between, changes nothing; nor does one a chair stands in.
+    CHECK(evalAmong(Predicate::Near, here, there, Boxes({wallAt(10, 1.0)})) > 0);
+    CHECK(evalAmong(Predicate::Near, here, there, Boxes({wallAt(10, 0.4)})) > 0);
+}
+
+TEST_CASE("visible_from: sight lines blocked by boxes, the sample share and the field of view") {
+    Node door = node(30, "door", 0, -3, 1.0, 0.9, 0.05, 2.0, model::NodeKind::Anchor, model::GeometryKind::Plane);
+    CHECK(eyeAt(door.box).z == Approx(1.6));
+    CHECK(eyeAt(kTable.box).z == Approx(0.8));               // lower than 1.6 m: the eye on its top
+    Node vase = node(31, "vase", 0, 0, 0.3, 0.2, 0.2, 0.4);  // on the floor, 3 m ahead of the door
+    CHECK(evalAmong(Predicate::VisibleFrom, vase, door, Boxes({})) == Approx(1.0));
+    // A screen 1 m in front of the vase, 1.2 m high: from 1.6 m the eye sees over it only when it is
+    // low enough; 2 m high hides every sample.
+    auto screen = [](double height) { return node(32, "screen", 0, -1, height / 2, 2, 0.05, height); };
+    CHECK(evalAmong(Predicate::VisibleFrom, vase, door, Boxes({screen(2.0)})) == 0);
+    CHECK(evalAmong(Predicate::VisibleFrom, vase, door, Boxes({screen(0.3)})) > 0);
+    // The field of view applies only with a heading: facing away from the vase hides it.
+    Frame away = viewFrame({{0, -3, 1.6}, -M_PI / 2});
+    away.headingGiven = true;
+    CHECK(evalAmong(Predicate::VisibleFrom, vase, door, Boxes({}), away) == 0);
+    Frame towards = viewFrame({{0, -3, 1.6}, M_PI / 2});
+    towards.headingGiven = true;
+    CHECK(evalAmong(Predicate::VisibleFrom, vase, door, Boxes({}), towards) > 0);
+    // 61 degrees off the heading is outside the 120 degree field, 59 degrees inside.
+    auto off = [&](double degrees) {
+        double r = degrees * M_PI / 180;
+        return node(33, "vase", 3 * std::sin(r), -3 + 3 * std::cos(r), 0.3, 0.01, 0.01, 0.4);
+    };
+    CHECK(evalAmong(Predicate::VisibleFrom, off(59), door, Boxes({}), towards) > 0);
+    CHECK(evalAmong(Predicate::VisibleFrom, off(61), door, Boxes({}), towards) == 0);
+    // The wall the door is set in holds the eye and does not block; a wall between does.
+    CHECK(evalAmong(Predicate::VisibleFrom, vase, door, Boxes({wallAt(10, -3)})) > 0);
+    CHECK(evalAmong(Predicate::VisibleFrom, vase, door, Boxes({wallAt(10, -1.5)})) == 0);
+}
+
+TEST_CASE("visible_from: the share of unblocked samples against visible.min_share") {
+    Node eye = node(30, "door", 0, -3, 1.0, 0.9, 0.05, 2.0, model::NodeKind::Anchor, model::GeometryKind::Plane);
+    // A 1 m cube on the floor 3 m ahead, its samples in three columns (x = -0.4, 0, 0.4) of nine.
+    Node cube = node(31, "box", 0, 0, 0.5, 1, 1, 1);
+    // A wide panel at y = -1 whose left edge moves to the right: it hides the columns of samples (9 each)
+    // on its side. Hiding two columns of three leaves 9/27 = 0.33 >= 0.25; hiding all leaves 0.
+    auto panel = [](double leftEdge) { return node(32, "panel", leftEdge + 5, -1, 1.5, 10, 0.05, 3.0); };
+    CHECK(visibleShare(eyeAt(eye.box), cube, std::vector<const Node*>{}, nullptr, &eye) == Approx(1.0));
+    Node twoColumns = panel(-0.2 / 3);  // covers the sight lines to x = 0 and x = 0.4, not x = -0.4
+    std::vector<const Node*> blocking{&twoColumns};
+    CHECK(visibleShare(eyeAt(eye.box), cube, blocking, nullptr, &eye) == Approx(9.0 / 27));
+    CHECK(evalAmong(Predicate::VisibleFrom, cube, eye, Boxes({twoColumns})) > 0);
+    Thresholds strict;
+    strict.visibleMinShare = 0.34;
+    Boxes panels({twoColumns});
+    CHECK(evaluate(Predicate::VisibleFrom, cube, eye, strict, kFrame, nullptr, std::nullopt, &panels) == 0);
+}
+
+TEST_CASE("facing and the intrinsic front and back") {
+    // A chair at x = -1 whose front (+x, yaw 0) looks at the table at the origin.
+    Node chair = node(40, "chair", -1, 0, 0.45, 0.5, 0.5, 0.9);
+    CHECK(frontDirection(chair.box).x == Approx(1.0));
+    CHECK(eval(Predicate::Facing, chair, kTable) > 0);
+    Node turned = chair;
+    turned.box.yaw = M_PI;  // its back to the table
+    CHECK(eval(Predicate::Facing, turned, kTable) == 0);
+    // Only categories with a front face anything.
+    Node stool = chair;
+    stool.category = "stool";
+    CHECK_FALSE(hasFront("stool"));
+    CHECK(eval(Predicate::Facing, stool, kTable) == 0);
+    // The section widens 10 degrees beyond the chair's sides: a 0.1 m lamp 2 m ahead whose farther
+    // corner is just inside is faced, just outside is not. That corner lies 2 - 0.25 + 0.05 = 1.8 m past
+    // the chair's front face, where the section reaches 0.25 + tan(10 deg) * 1.8 m to the side.
+    double reach = 0.25 + std::tan(10 * M_PI / 180) * 1.8;
+    auto lamp = [&](double lateral) { return node(41, "lamp", -1 + 2, lateral + 0.05, 0.5, 0.1, 0.1, 1.0); };
+    CHECK(eval(Predicate::Facing, chair, lamp(reach - 0.01)) > 0);
+    CHECK(eval(Predicate::Facing, chair, lamp(reach + 0.01)) == 0);
+    // A sofa facing +y (yaw 90 degrees): a coffee table 0.5 m ahead is at its front, not at its back.
+    Node sofa = node(42, "sofa", 0, 0, 0.45, 0.9, 2, 0.9);  // 0.9 m deep along its own x, 2 m wide
+    sofa.box.yaw = M_PI / 2;
+    Node coffee = node(43, "coffee-table", 0, 0.45 + 0.5 + 0.3, 0.25, 1.0, 0.6, 0.5);
+    CHECK(eval(Predicate::AtFrontOf, coffee, sofa) > 0);
+    CHECK(eval(Predicate::AtBackOf, coffee, sofa) == 0);
+    Node lampBehind = node(44, "lamp", 0, -0.45 - 0.3, 0.8, 0.3, 0.3, 1.6);
+    CHECK(eval(Predicate::AtBackOf, lampBehind, sofa) > 0);
+    CHECK(eval(Predicate::AtFrontOf, lampBehind, sofa) == 0);
+    // ...and it must be near: the coffee table 3 m ahead is not at the sofa's front.
+    Node far = coffee;
+    far.box.center.y = 3.5;
+    CHECK(eval(Predicate::AtFrontOf, far, sofa) == 0);
+    // The front is intrinsic: the viewer turning around changes nothing.
+    Frame back = viewFrame({{0, 3, 1.6}, -M_PI / 2});
+    CHECK(evaluate(Predicate::AtFrontOf, coffee, sofa, kT, back) > 0);
 }
 
 TEST_CASE("above and below") {
@@ -101,7 +243,8 @@ TEST_CASE("attached: to upright planes within the gap") {
     CHECK(eval(Predicate::Attached, far, wall) == 0);
     CHECK(eval(Predicate::Attached, picture, kTable) == 0);
     CHECK(isVerticalPlane(wall));
-    CHECK_FALSE(isVerticalPlane(node(22, "floor", 0, 0, 0, 4, 4, 0.05, model::NodeKind::Anchor, model::GeometryKind::Plane)));
+    CHECK_FALSE(
+        isVerticalPlane(node(22, "floor", 0, 0, 0, 4, 4, 0.05, model::NodeKind::Anchor, model::GeometryKind::Plane)));
 }
 
 TEST_CASE("lateral predicates follow the viewpoint") {
@@ -148,9 +291,9 @@ TEST_CASE("parents: support first, else the nearest upright anchor") {
     add(node(6, "mug", 0, 1.3, 0.87, 0.1, 0.1, 0.1));
     add(node(7, "chair", 1.5, -1, 0.4, 0.5, 0.5, 0.8));
     assignParents(scene);
-    CHECK(scene.nodes[3].parent == 1);  // table -> the wall it stands by
-    CHECK(scene.nodes[4].parent == 4);  // plate -> table
-    CHECK(scene.nodes[5].parent == 5);  // mug -> plate (the highest supporter)
-    CHECK(scene.nodes[6].parent == 2);  // chair -> nearest wall
+    CHECK(scene.nodes[3].parent == 1);               // table -> the wall it stands by
+    CHECK(scene.nodes[4].parent == 4);               // plate -> table
+    CHECK(scene.nodes[5].parent == 5);               // mug -> plate (the highest supporter)
+    CHECK(scene.nodes[6].parent == 2);               // chair -> nearest wall
     CHECK(scene.nodes[0].parent == model::kNoNode);  // anchors stay under the root
 }

@@ -36,7 +36,8 @@ void makeDatabase(const std::string& path) {
 }
 
 // Deletes one entry straight through LMDB, as damage or a bug elsewhere would.
-void deleteEntry(const std::string& path, const char* table, std::string_view key, std::optional<std::string_view> value) {
+void deleteEntry(const std::string& path, const char* table, std::string_view key,
+                 std::optional<std::string_view> value) {
     MDB_env* env = nullptr;
     REQUIRE(mdb_env_create(&env) == 0);
     REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
@@ -118,7 +119,8 @@ TEST_CASE("the check reports each kind of damage", "[storage][check]") {
             auto db = Database::open(path);
             category = db->beginRead().node(big + 7)->category;
         }
-        deleteEntry(path, "labels", category, std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));
+        deleteEntry(path, "labels", category,
+                    std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));
         auto report = checkDatabase(path);
         REQUIRE(reported(report, "scene 'big' (#" + std::to_string(big) + "): the label index for '" + category + "'"));
         REQUIRE(reported(report, "table labels holds"));

@@ -111,7 +111,9 @@ TEST_CASE("corrupt node records throw instead of reading out of bounds", "[stora
         for (std::size_t size = 0; size < bytes.size(); ++size)
             requireCorrupt([&] { codec::decodeNode(42, std::string_view(bytes.data(), size)); });
     }
-    SECTION("trailing bytes") { requireCorrupt([&] { codec::decodeNode(42, bytes + "x"); }); }
+    SECTION("trailing bytes") {
+        requireCorrupt([&] { codec::decodeNode(42, bytes + "x"); });
+    }
     SECTION("another format version") {
         // A record with a valid checksum but a format this smql does not read.
         std::string changed = bytes.substr(0, bytes.size() - codec::kChecksumSize);
@@ -172,7 +174,9 @@ TEST_CASE("relation entries round-trip from either end", "[storage][codec]") {
     model::Relation relation{10, 20, model::RelationType::InFrontOf, 0.625f, 17, 33};
     auto asSubject = codec::encodeRelationEntry(relation, codec::RelationSide::Subject);
     auto asObject = codec::encodeRelationEntry(relation, codec::RelationSide::Object);
-    auto view = [](const codec::RelationEntry& e) { return std::string_view(reinterpret_cast<const char*>(e.data()), e.size()); };
+    auto view = [](const codec::RelationEntry& e) {
+        return std::string_view(reinterpret_cast<const char*>(e.data()), e.size());
+    };
 
     REQUIRE(codec::relationEntrySide(view(asSubject)) == codec::RelationSide::Subject);
     REQUIRE(codec::relationEntrySide(view(asObject)) == codec::RelationSide::Object);
@@ -201,8 +205,8 @@ TEST_CASE("keys sort numerically under memcmp", "[storage][codec]") {
 
 TEST_CASE("crc32c matches the Castagnoli check values", "[storage][codec]") {
     REQUIRE(crc32c("") == 0);
-    REQUIRE(crc32c("123456789") == 0xE3069283u);  // the standard check value
-    REQUIRE(crc32c(std::string(32, '\0')) == 0x8A9136AAu);  // RFC 3720 B.4: 32 bytes of zeros
+    REQUIRE(crc32c("123456789") == 0xE3069283u);              // the standard check value
+    REQUIRE(crc32c(std::string(32, '\0')) == 0x8A9136AAu);    // RFC 3720 B.4: 32 bytes of zeros
     REQUIRE(crc32c(std::string(32, '\xff')) == 0x62A8AB43u);  // RFC 3720 B.4: 32 bytes of ones
     // Any split of the input continues the same checksum, at every alignment.
     const std::string text = "the quick brown fox jumps over the lazy dog, twice over";
@@ -239,7 +243,8 @@ TEST_CASE("every byte flip in a record is caught by its checksum", "[storage][co
         bytes[bytes.size() / 2] ^= 0x10;
         requireCorrupt([&] { codec::decodeScene(5, bytes); });
 
-        auto entry = codec::encodeRelationEntry({10, 20, model::RelationType::On, 0.5f, 1, 0}, codec::RelationSide::Subject);
+        auto entry =
+            codec::encodeRelationEntry({10, 20, model::RelationType::On, 0.5f, 1, 0}, codec::RelationSide::Subject);
         entry[20] ^= 0x01;  // the score
         requireCorrupt([&] {
             codec::decodeRelationEntry(10, std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));

@@ -309,7 +309,8 @@ TEST_CASE("open refuses what is not an smql database", "[storage][database][erro
     SECTION("a directory it may not read") {
         const std::string locked = tmp.sub("locked");
         Database::open(locked);
-        std::filesystem::permissions(tmp.path(), std::filesystem::perms::owner_all | std::filesystem::perms::others_exec);
+        std::filesystem::permissions(tmp.path(),
+                                     std::filesystem::perms::owner_all | std::filesystem::perms::others_exec);
         std::filesystem::permissions(locked, std::filesystem::perms::owner_all);
         auto check = [&] {
             auto error = openError(locked);
@@ -348,8 +349,9 @@ TEST_CASE("open refuses what is not an smql database", "[storage][database][erro
 
 namespace {
 
-// Rewrites the schema version of the database at `path`, as another smql would have written it.
-void setSchemaVersion(const std::string& path, std::uint64_t version) {
+// Rewrites the schema version of the database at `path`, as another smql would have written it;
+// `dropHistory` also deletes the history table, which databases before version 3 lack.
+void setSchemaVersion(const std::string& path, std::uint64_t version, bool dropHistory = false) {
     MDB_env* env = nullptr;
     REQUIRE(mdb_env_create(&env) == 0);
     REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
@@ -361,11 +363,35 @@ void setSchemaVersion(const std::string& path, std::uint64_t version) {
     std::string bytes = codec::encodeU64(version);
     MDB_val key = toVal(kSchemaVersionKey), value = toVal(bytes);
     REQUIRE(mdb_put(txn, meta, &key, &value, 0) == 0);
+    if (dropHistory) {
+        MDB_dbi history;
+        REQUIRE(mdb_dbi_open(txn, "history", 0, &history) == 0);
+        REQUIRE(mdb_drop(txn, history, 1) == 0);
+    }
     REQUIRE(mdb_txn_commit(txn) == 0);
     mdb_env_close(env);
 }
 
 }  // namespace
+
+TEST_CASE("a database of schema version 2 is upgraded in place by a writable open, not a read-only one",
+          "[storage][database]") {
+    TempDir tmp;
+    {
+        auto db = Database::open(tmp.path());
+        importCommitted(*db, kitchen());
+    }
+    setSchemaVersion(tmp.path(), 2, /*dropHistory=*/true);
+    auto error = openError(tmp.path(), {.readOnly = true});
+    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 2; this smql reads version 3");
+    REQUIRE_THAT(error.hint(), Catch::Contains("open it once for writing"));
+
+    auto db = Database::open(tmp.path());
+    auto read = db->beginRead();
+    REQUIRE(read.sceneByName("kitchen"));
+    REQUIRE(read.history("kitchen").empty());
+    REQUIRE(Database::open(tmp.path(), {.readOnly = true})->beginRead().sceneByName("kitchen"));
+}
 
 TEST_CASE("a database of schema version 1 (records without checksums) is refused with the way forward",
           "[storage][database][errors]") {
@@ -373,7 +399,7 @@ TEST_CASE("a database of schema version 1 (records without checksums) is refused
     Database::open(tmp.path());
     setSchemaVersion(tmp.path(), 1);
     auto error = openError(tmp.path());
-    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 1; this smql reads version 2");
+    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 1; this smql reads version 3");
     REQUIRE_THAT(error.hint(), Catch::Contains("older smql"));
     REQUIRE_THAT(error.hint(), Catch::Contains("smql export json"));
 }
@@ -399,9 +425,8 @@ TEST_CASE("open refuses another schema version", "[storage][database][errors]") 
 
     auto error = openError(tmp.path());
     REQUIRE(error.kind() == ErrorKind::Storage);
-    REQUIRE(error.message() ==
-            "database " + tmp.path() + " has schema version 7; this smql reads version " +
-                std::to_string(kSchemaVersion));
+    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 7; this smql reads version " +
+                                   std::to_string(kSchemaVersion));
     REQUIRE_THAT(error.hint(), Catch::Contains("newer smql"));
     REQUIRE_THAT(openError(tmp.path(), {.readOnly = true}).message(), Catch::Contains("schema version 7"));
 }
@@ -462,7 +487,7 @@ TEST_CASE("a duplicate scene name is rejected and changes nothing", "[storage][d
     auto error = errorOf([&] { txn.importScene(kitchen()); });
     REQUIRE(error.kind() == ErrorKind::Input);
     REQUIRE(error.message() == "a scene named 'kitchen' already exists");
-    REQUIRE(error.hint() == "drop it first or choose another name with --scene");
+    REQUIRE(error.hint() == "choose another name, or remove the stored one first (DROP SCENE)");
     txn.commit();  // the rejected import wrote nothing, so committing the rest changes nothing
 
     auto read = db->beginRead();

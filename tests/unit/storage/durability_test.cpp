@@ -26,8 +26,10 @@ namespace {
 bool waitPast(const std::atomic<std::uint64_t>& counter, std::uint64_t from) {
     auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
     while (counter.load() <= from)
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        else std::this_thread::yield();
+        if (std::chrono::steady_clock::now() > deadline)
+            return false;
+        else
+            std::this_thread::yield();
     return true;
 }
 
@@ -149,7 +151,9 @@ TEST_CASE("a writer killed before commit leaves no trace of its scene", "[storag
     }
 
     ::close(pipeFds[1]);
-    const char awaited = killPoint == KillPoint::InsideTransaction ? 'w' : killPoint == KillPoint::BetweenImports ? 'a' : 'b';
+    const char awaited = killPoint == KillPoint::InsideTransaction ? 'w'
+                         : killPoint == KillPoint::BetweenImports  ? 'a'
+                                                                   : 'b';
     char got = 0;
     while (got != awaited) REQUIRE(::read(pipeFds[0], &got, 1) == 1);
     if (killPoint == KillPoint::InsideTransaction)

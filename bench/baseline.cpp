@@ -1,0 +1,54 @@
+#include "bench/baseline.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace smql::bench {
+
+using relations::Predicate;
+
+ProbeMargins probeMargins(const PredicateTerm& term, const relations::Thresholds& thresholds) {
+    switch (term.predicate) {
+        case Predicate::On:
+        case Predicate::In:
+            return {0, 0, thresholds.onMaxGap};
+        case Predicate::Near: {
+            double d = term.nearDistance.value_or(thresholds.nearDistance);
+            return {d, d, d};
+        }
+        default:
+            throw std::logic_error(
+                fmt::format("the baselines have no probe for {}()", relations::toString(term.predicate)));
+    }
+}
+
+model::Aabb probeRegion(const PredicateTerm& term, const model::Node& reference,
+                        const relations::Thresholds& thresholds) {
+    ProbeMargins m = probeMargins(term, thresholds);
+    model::Aabb b = model::worldAabb(reference.box);
+    b.min = {b.min.x - m.horizontal, b.min.y - m.horizontal, b.min.z - m.below};
+    b.max = {b.max.x + m.horizontal, b.max.y + m.horizontal, b.max.z + m.above};
+    return b;
+}
+
+bool intersects(const model::Aabb& a, const model::Aabb& b) {
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
+           b.min.z <= a.max.z;
+}
+
+bool holds(const PredicateTerm& term, const model::Node& a, const model::Node& b,
+           const relations::Thresholds& thresholds, const relations::Frame& frame) {
+    return relations::evaluate(term.predicate, a, b, thresholds, frame, nullptr, term.nearDistance) > 0;
+}
+
+Answer nearestFirst(std::vector<std::pair<double, model::NodeId>> distances, int limit) {
+    auto k = std::min(distances.size(), static_cast<std::size_t>(std::max(limit, 0)));
+    std::partial_sort(distances.begin(), distances.begin() + static_cast<std::ptrdiff_t>(k), distances.end());
+    Answer out;
+    for (std::size_t i = 0; i < k; ++i) out.push_back(static_cast<std::int64_t>(distances[i].second));
+    return out;
+}
+
+}  // namespace smql::bench

@@ -1,0 +1,71 @@
+// What the benchmark asks of a baseline database (SQLite, PostGIS): the query
+// classes as an application on that database would answer them. SQL finds the
+// candidates; the exact geometry runs in C++ with the engine's own predicate
+// code (relations::evaluate), so every system answers with the same
+// definitions and only the data access differs.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/relations/predicates.hpp"
+#include "model/geometry.hpp"
+#include "model/types.hpp"
+
+namespace smql::bench {
+
+// An answer in a form all systems can be compared in: node ids in answer
+// order, a one-element count, or relation codes (relations::Predicate) in
+// the order RELATE lists them.
+using Answer = std::vector<std::int64_t>;
+
+// One metric predicate of a FIND: `near(window, 1.5 m)`.
+struct PredicateTerm {
+    relations::Predicate predicate = relations::Predicate::Near;
+    std::string category;
+    std::optional<double> nearDistance;
+};
+
+class Baseline {
+public:
+    virtual ~Baseline() = default;
+    // The name the report gives this system ("SQLite", "PostGIS").
+    virtual std::string name() const = 0;
+
+    // The scene the single-scene queries run against (an application keeps it, as USE SCENE does).
+    virtual void useScene(const std::string& scene) = 0;
+    // FIND object WHERE first AND second, in the current scene: ids in id order.
+    virtual Answer findObjects(const PredicateTerm& first, const PredicateTerm& second) = 0;
+    // RELATE #a TO #b from the scene's default viewpoint: the relations that hold, best first.
+    virtual Answer relate(model::NodeId a, model::NodeId b) = 0;
+    // FIND object NEAREST TO <category> LIMIT k: ids, nearest first (ties by id).
+    virtual Answer nearestObjects(const std::string& category, int limit) = 0;
+    // FIND <category> LIMIT n across every scene: ids in id order.
+    virtual Answer findCategoryAll(const std::string& category, int limit) = 0;
+    // COUNT <category> across every scene.
+    virtual Answer countCategoryAll(const std::string& category) = 0;
+};
+
+// Margins around a reference's world bounds where a node's bounds must lie
+// for `predicate(node, reference)` to hold: a necessary condition, so an
+// index probe of the region returns a superset of the answers.
+struct ProbeMargins {
+    double horizontal = 0;  // x and y, both ways
+    double below = 0;       // under the reference's bottom
+    double above = 0;       // over the reference's top
+};
+ProbeMargins probeMargins(const PredicateTerm& term, const relations::Thresholds& thresholds);
+model::Aabb probeRegion(const PredicateTerm& term, const model::Node& reference,
+                        const relations::Thresholds& thresholds);
+bool intersects(const model::Aabb& a, const model::Aabb& b);
+
+// Whether the term holds for node `a` and reference `b`, by the engine's formulas.
+bool holds(const PredicateTerm& term, const model::Node& a, const model::Node& b,
+           const relations::Thresholds& thresholds, const relations::Frame& frame);
+
+// The k nearest of `distances` (exact box distance, id), nearest first and ties by id, as smql orders them.
+Answer nearestFirst(std::vector<std::pair<double, model::NodeId>> distances, int limit);
+
+}  // namespace smql::bench

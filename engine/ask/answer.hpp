@@ -1,0 +1,23 @@
+// The answer to a question in words, from its translation and the rows its SMQL returned:
+// "2 cushions are on the sofa: cushion#12, cushion#14", "No, there is no piano", "3".
+#pragma once
+
+#include <string>
+
+#include "engine/ask/translator.hpp"
+#include "model/error.hpp"
+#include "model/result.hpp"
+
+namespace smql::ask {
+
+// `rows` is the result of running translation.smql (empty when it did not run).
+std::string answer(const Translation& translation, const ResultSet& rows, const std::string& scene);
+
+// The whole message ASK shows: the SMQL, the words it mapped, then the answer.
+std::string message(const Translation& translation, const std::string& answerText);
+
+// An error of the translated statement (when it was bound or when it ran), said of the question:
+// its location is in the SMQL, which the message quotes, not in the text the user typed.
+Error failedTranslation(const Error& error, const std::string& smql, std::optional<SourceLocation> question);
+
+}  // namespace smql::ask

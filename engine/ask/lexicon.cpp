@@ -1,0 +1,166 @@
+#include "engine/ask/lexicon.hpp"
+
+#include <algorithm>
+
+#include "engine/ask/wordnet.hpp"
+#include "model/names.hpp"
+
+namespace smql::ask {
+
+namespace {
+
+// A category's senses beyond these are rare meanings ("table" as a data table) that would make a
+// general word match it by accident.
+constexpr std::size_t kCategorySenses = 2;
+
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+void addUnique(std::vector<std::string>& v, const std::string& s) {
+    if (!contains(v, s)) v.push_back(s);
+}
+
+std::string hyphenated(std::string words) {
+    std::replace(words.begin(), words.end(), ' ', '-');
+    return words;
+}
+
+// English plurals WordNet may not list for a category it does not know ("wall-plugs").
+std::vector<std::string> singulars(const std::string& word) {
+    std::vector<std::string> out;
+    if (word.size() > 3 && word.ends_with("ies")) out.push_back(word.substr(0, word.size() - 3) + "y");
+    if (word.size() > 2 && word.ends_with("es")) out.push_back(word.substr(0, word.size() - 2));
+    if (word.size() > 1 && word.ends_with("s") && !word.ends_with("ss")) out.push_back(word.substr(0, word.size() - 1));
+    return out;
+}
+
+}  // namespace
+
+Lexicon::Lexicon(std::vector<std::string> sceneCategories) : categories_(std::move(sceneCategories)) {
+    std::sort(categories_.begin(), categories_.end());
+}
+
+const std::set<long>& Lexicon::ancestors(const std::string& category) const {
+    auto it = ancestors_.find(category);
+    if (it != ancestors_.end()) return it->second;
+    std::set<long> all;
+    auto senses = wordnet::nounSenses(category);
+    for (std::size_t i = 0; i < senses.size() && i < kCategorySenses; ++i)
+        all.merge(wordnet::hypernymClosure(senses[i].offset));
+    return ancestors_.emplace(category, std::move(all)).first->second;
+}
+
+WordMatch Lexicon::lookUp(const std::string& words) const {
+    const std::string word = hyphenated(words);
+    WordMatch match;
+    match.lemma = word;
+    if (contains(categories_, word)) {
+        match.how = WordMatch::How::Category;
+        match.categories = {word};
+        return match;
+    }
+    for (const auto& singular : singulars(word)) {
+        if (contains(categories_, singular)) {
+            match.how = WordMatch::How::Plural;
+            match.categories = {singular};
+            match.lemma = singular;
+            return match;
+        }
+    }
+    auto bases = wordnet::nounBaseForms(word);
+    for (const auto& base : bases) {
+        if (contains(categories_, base)) {
+            match.how = base == word ? WordMatch::How::Category : WordMatch::How::Plural;
+            match.categories = {base};
+            match.lemma = base;
+            return match;
+        }
+    }
+    if (!bases.empty()) {
+        match.lemma = bases.front();
+        // Synonyms: a category in one of the word's synsets ("couch" and sofa share one).
+        std::vector<wordnet::Sense> senses;
+        for (const auto& base : bases)
+            for (auto& sense : wordnet::nounSenses(base)) senses.push_back(std::move(sense));
+        for (const auto& sense : senses)
+            for (const auto& w : sense.words)
+                if (contains(categories_, w)) addUnique(match.categories, w);
+        if (!match.categories.empty()) {
+            match.how = WordMatch::How::Synonym;
+            return match;
+        }
+        // A more general word: every category with one of the word's senses above it.
+        for (const auto& category : categories_) {
+            const auto& above = ancestors(category);
+            for (const auto& sense : senses)
+                if (sense.common && above.count(sense.offset)) {
+                    addUnique(match.categories, category);
+                    break;
+                }
+        }
+        // A compound category whose last part is the word ("plant" -> indoor-plant): WordNet knows
+        // few of the hyphenated names imports use.
+        if (match.categories.empty())
+            for (const auto& category : categories_)
+                for (const auto& base : bases)
+                    if (category.ends_with("-" + base)) addUnique(match.categories, category);
+        if (!match.categories.empty()) {
+            match.how = WordMatch::How::Kind;
+            return match;
+        }
+        // A narrower word for a category ("pillow" -> cushion): the category is the word's first
+        // sense's direct hypernym.
+        if (!senses.empty())
+            for (const auto& parent : wordnet::hypernyms(senses.front().offset))
+                for (const auto& w : parent.words)
+                    if (contains(categories_, w)) addUnique(match.categories, w);
+        match.how = match.categories.empty() ? WordMatch::How::Absent : WordMatch::How::Broader;
+        return match;
+    }
+    // Not an English noun: a misspelt category, or the plural of one ("chiars")?
+    auto close = model::nearestNames(word, categories_, 1);
+    for (const auto& singular : singulars(word))
+        if (close.empty()) close = model::nearestNames(singular, categories_, 1);
+    if (!close.empty()) {
+        match.how = WordMatch::How::Spelling;
+        match.categories = close;
+        match.lemma = close.front();
+        return match;
+    }
+    // A plural of a word that is no noun in WordNet stays the word as written.
+    match.how = WordMatch::How::Unknown;
+    return match;
+}
+
+std::string pluralOf(const std::string& noun) {
+    if (noun.empty()) return noun;
+    if (noun.ends_with("s") || noun.ends_with("x") || noun.ends_with("ch") || noun.ends_with("sh")) return noun + "es";
+    bool consonantY = noun.size() > 1 && noun.ends_with("y") &&
+                      std::string_view("aeiou").find(noun[noun.size() - 2]) == std::string_view::npos;
+    return consonantY ? noun.substr(0, noun.size() - 1) + "ies" : noun + "s";
+}
+
+std::string describe(WordMatch::How how) {
+    switch (how) {
+        case WordMatch::How::Category:
+            return "category";
+        case WordMatch::How::Plural:
+            return "plural";
+        case WordMatch::How::Synonym:
+            return "synonym";
+        case WordMatch::How::Kind:
+            return "kinds of it";
+        case WordMatch::How::Broader:
+            return "the kind it is";
+        case WordMatch::How::Spelling:
+            return "spelling";
+        case WordMatch::How::Absent:
+            return "not in this scene";
+        case WordMatch::How::Unknown:
+            return "unknown word";
+    }
+    return {};
+}
+
+}  // namespace smql::ask

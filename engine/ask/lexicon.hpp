@@ -1,0 +1,47 @@
+// Words of a question -> the categories of the scene. A word names a category as it is
+// ("sofa"), as a plural ("mugs"), as a synonym ("couch" -> sofa), as a more general word that
+// covers several ("seat" -> chair, sofa, bench; "furniture" -> every furniture category), as a
+// narrower word for one ("pillow" -> cushion), or misspelt ("cushon" -> cushion). WordNet (wordnet.hpp) gives the
+// plurals, synonyms and hypernyms; the engine's did-you-mean gives the spelling.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace smql::ask {
+
+struct WordMatch {
+    enum class How { Category, Plural, Synonym, Kind, Broader, Spelling, Absent, Unknown };
+    How how = How::Unknown;
+    std::vector<std::string> categories;  // scene categories the word stands for (Category ... Spelling)
+    std::string lemma;                    // the base form ("pianos" -> piano), for answers
+};
+
+class Lexicon {
+public:
+    explicit Lexicon(std::vector<std::string> sceneCategories);
+
+    // `words` is one or more words of a noun phrase ("couch", "coffee table"). Absent: an English
+    // noun the scene has no category for ("piano"); Unknown: a word neither the scene nor WordNet
+    // knows, and that spells no category.
+    WordMatch lookUp(const std::string& words) const;
+
+    const std::vector<std::string>& categories() const { return categories_; }
+
+private:
+    // The synsets above each sense of a category (its first senses: the ones people mean).
+    const std::set<long>& ancestors(const std::string& category) const;
+
+    std::vector<std::string> categories_;
+    mutable std::map<std::string, std::set<long>> ancestors_;
+};
+
+// The English plural of a singular noun, for answers: "couch" -> couches, "switch" -> switches.
+std::string pluralOf(const std::string& noun);
+
+// "How" as the answer shows it: "couch -> sofa (synonym)".
+std::string describe(WordMatch::How how);
+
+}  // namespace smql::ask

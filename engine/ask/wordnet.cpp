@@ -1,0 +1,136 @@
+#include "engine/ask/wordnet.hpp"
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <vector>
+
+#include <wn.h>
+
+namespace smql::ask::wordnet {
+
+namespace {
+
+// One lock for the whole library: its searches share static buffers and file positions.
+std::mutex& lock() {
+    static std::mutex m;
+    return m;
+}
+
+// Called with the lock held.
+bool open() {
+    static const bool opened = wninit() == 0;
+    return opened;
+}
+
+std::string categorySpelling(const char* word) {
+    std::string out(word);
+    for (char& c : out) c = c == '_' || c == ' ' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+std::string wordNetSpelling(const std::string& word) {
+    std::string out = word;
+    std::replace(out.begin(), out.end(), '-', '_');
+    return out;
+}
+
+}  // namespace
+
+bool available() {
+    std::lock_guard guard(lock());
+    return open();
+}
+
+std::vector<std::string> nounBaseForms(const std::string& word) {
+    std::lock_guard guard(lock());
+    std::vector<std::string> out;
+    if (!open() || word.empty()) return out;
+    std::string key = wordNetSpelling(word);
+    // morphstr returns the first base form, then the next ones for a null argument. Its forms
+    // come first: "seats" is also a noun of its own in WordNet, but people mean seat.
+    for (char* form = morphstr(key.data(), NOUN); form; form = morphstr(nullptr, NOUN)) {
+        std::string base = categorySpelling(form);
+        if (std::find(out.begin(), out.end(), base) == out.end()) out.push_back(base);
+    }
+    if (IndexPtr index = index_lookup(key.data(), NOUN)) {
+        std::string self = categorySpelling(index->wd);
+        if (std::find(out.begin(), out.end(), self) == out.end()) out.push_back(self);
+        free_index(index);
+    }
+    return out;
+}
+
+std::vector<Sense> nounSenses(const std::string& word) {
+    std::lock_guard guard(lock());
+    // The categories of a scene are looked up with every question: keep what WordNet said (at most
+    // its vocabulary).
+    static std::map<std::string, std::vector<Sense>> known;
+    if (auto it = known.find(word); it != known.end()) return it->second;
+    std::vector<Sense> out;
+    if (!open() || word.empty()) return out;
+    std::string key = wordNetSpelling(word);
+    IndexPtr index = index_lookup(key.data(), NOUN);
+    if (!index) {
+        known.emplace(word, out);
+        return out;
+    }
+    for (int i = 0; i < index->off_cnt; ++i) {
+        SynsetPtr synset = read_synset(NOUN, static_cast<long>(index->offset[i]), key.data());
+        if (!synset) continue;
+        Sense sense{static_cast<long>(index->offset[i]), {}, i < std::max(index->tagged_cnt, 1)};
+        for (int w = 0; w < synset->wcount; ++w) sense.words.push_back(categorySpelling(synset->words[w]));
+        free_synset(synset);
+        out.push_back(std::move(sense));
+    }
+    free_index(index);
+    known.emplace(word, out);
+    return out;
+}
+
+std::vector<Sense> hypernyms(long offset) {
+    std::lock_guard guard(lock());
+    std::vector<Sense> out;
+    if (!open()) return out;
+    char noWord[] = "";  // no word to mark in the synset
+    SynsetPtr synset = read_synset(NOUN, offset, noWord);
+    if (!synset) return out;
+    for (int p = 0; p < synset->ptrcount; ++p) {
+        if ((synset->ptrtyp[p] != HYPERPTR && synset->ptrtyp[p] != INSTANCE) || synset->ppos[p] != NOUN) continue;
+        SynsetPtr parent = read_synset(NOUN, synset->ptroff[p], noWord);
+        if (!parent) continue;
+        Sense sense{synset->ptroff[p], {}, true};
+        for (int w = 0; w < parent->wcount; ++w) sense.words.push_back(categorySpelling(parent->words[w]));
+        free_synset(parent);
+        out.push_back(std::move(sense));
+    }
+    free_synset(synset);
+    return out;
+}
+
+std::set<long> hypernymClosure(long offset) {
+    std::lock_guard guard(lock());
+    // A scene's categories are asked about again with every question; their closures never change.
+    static std::map<long, std::set<long>> known;
+    if (auto it = known.find(offset); it != known.end()) return it->second;
+    std::set<long> seen{offset};
+    if (!open()) return seen;
+    std::vector<long> todo{offset};
+    while (!todo.empty()) {
+        long at = todo.back();
+        todo.pop_back();
+        char noWord[] = "";  // no word to mark in the synset
+        SynsetPtr synset = read_synset(NOUN, at, noWord);
+        if (!synset) continue;
+        for (int p = 0; p < synset->ptrcount; ++p) {
+            bool upward = synset->ptrtyp[p] == HYPERPTR || synset->ptrtyp[p] == INSTANCE;
+            if (upward && synset->ppos[p] == NOUN && seen.insert(synset->ptroff[p]).second)
+                todo.push_back(synset->ptroff[p]);
+        }
+        free_synset(synset);
+    }
+    known.emplace(offset, seen);
+    return seen;
+}
+
+}  // namespace smql::ask::wordnet

@@ -1,0 +1,38 @@
+// The few WordNet look-ups the English front-end needs: base forms of a word (plurals), its noun
+// senses with their synonyms, and the hypernyms above a sense. WordNet's C library keeps global
+// state (open files, static buffers) and is not thread-safe: every call here takes one mutex, so
+// engines in several threads may ask at once. The database files are the system's (Debian's
+// wordnet-base, /usr/share/wordnet; WNSEARCHDIR overrides it), opened on first use.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace smql::ask::wordnet {
+
+// A noun sense: its synset's place in data.noun and the words of the synset (lower case,
+// multi-word entries joined with '-', as the scene categories spell them: "coffee-table").
+struct Sense {
+    long offset = 0;
+    std::vector<std::string> words;
+    // Among the senses found in WordNet's tagged texts (always the first): the meanings people use.
+    // Rare senses ("bed" as a layer) would let a general word cover the wrong categories.
+    bool common = false;
+};
+
+// Whether the WordNet database could be opened; false leaves the front-end with exact names,
+// plurals and spelling only.
+bool available();
+// The noun base forms WordNet knows for `word` ("mice" -> mouse, "benches" -> bench), the word
+// itself first when it is a noun.
+std::vector<std::string> nounBaseForms(const std::string& word);
+// The noun senses of a base form, most frequent first; empty for a word WordNet does not know as
+// a noun.
+std::vector<Sense> nounSenses(const std::string& word);
+// The synsets directly above `offset` (hypernyms and instance-of).
+std::vector<Sense> hypernyms(long offset);
+// Every synset above `offset` through hypernym and instance-of links, `offset` included.
+std::set<long> hypernymClosure(long offset);
+
+}  // namespace smql::ask::wordnet

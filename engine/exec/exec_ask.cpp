@@ -1,0 +1,22 @@
+// ASK: runs the question's SMQL with an executor of its own (same read transaction and session),
+// then answers in words above its rows.
+#include "engine/ask/answer.hpp"
+#include "engine/exec/executor.hpp"
+#include "model/error.hpp"
+
+namespace smql::exec {
+
+ResultSet Executor::run(const binder::BoundAsk& ask) {
+    ResultSet rs;
+    if (plan_.asked) {
+        try {
+            rs = Executor(txn_, session_, *plan_.asked, interrupt_).run();
+        } catch (const Error& e) {
+            throw ask::failedTranslation(e, ask.translation.smql, std::nullopt);
+        }
+    }
+    rs.message = ask::message(ask.translation, ask::answer(ask.translation, rs, scene().info().name));
+    return rs;
+}
+
+}  // namespace smql::exec

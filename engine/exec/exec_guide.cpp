@@ -1,0 +1,157 @@
+// GUIDE and SHOW GRAPH: routes on the scene's decision-point graph, told as steps (docs/guidance.md).
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "engine/exec/executor.hpp"
+#include "engine/guide/route_steps.hpp"
+#include "model/error.hpp"
+
+namespace smql::exec {
+
+namespace {
+
+constexpr std::size_t kCandidatesShown = 8;
+
+Value nodeLabel(const SceneSnapshot& scene, model::NodeId id) {
+    auto slot = scene.slotOf(id);
+    return slot ? Value(SceneSnapshot::label(scene.node(*slot))) : Value();
+}
+
+Value nodeId(model::NodeId id) { return id == model::kNoNode ? Value() : Value(static_cast<std::int64_t>(id)); }
+
+}  // namespace
+
+Slot Executor::single(const binder::NodeSet& set, std::string_view role) {
+    std::vector<Slot> candidates;
+    for (Slot s : slots(set, defaultFrame())) {
+        const model::Node& n = scene().node(s);
+        if (!n.hidden && n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene)
+            candidates.push_back(s);
+    }
+    if (candidates.size() == 1) return candidates.front();
+    if (candidates.empty())
+        throw Error(ErrorKind::Binding,
+                    fmt::format("the {} names no node with a place in the scene ({})", role, set.description),
+                    std::nullopt, "FIND shows what a reference names");
+    std::string listed;
+    for (std::size_t i = 0; i < candidates.size() && i < kCandidatesShown; ++i) {
+        const model::Node& n = scene().node(candidates[i]);
+        listed += fmt::format("{}{} at ({:.1f}, {:.1f})", i ? ", " : "", SceneSnapshot::label(n), n.box.center.x,
+                              n.box.center.y);
+    }
+    if (candidates.size() > kCandidatesShown)
+        listed += fmt::format(" and {} more", candidates.size() - kCandidatesShown);
+    const model::Node& first = scene().node(candidates.front());
+    throw Error(
+        ErrorKind::Binding,
+        fmt::format("the {} is ambiguous: {} names {} nodes: {}", role, set.description, candidates.size(), listed),
+        std::nullopt,
+        fmt::format("name one: {}, or (FIND {} NEAREST TO door LIMIT 1)", SceneSnapshot::label(first), first.category));
+}
+
+ResultSet Executor::run(const binder::BoundShowGraph&) {
+    const auto& g = scene().guidance();
+    std::vector<std::size_t> degree(g.graph.points.size(), 0);
+    for (const auto& e : g.graph.edges) ++degree[e.a], ++degree[e.b];
+    ResultSet rs;
+    rs.columns = {{"point", ValueType::Integer}, {"kind", ValueType::Text}, {"x", ValueType::Real},
+                  {"y", ValueType::Real},        {"node", ValueType::Text}, {"node_id", ValueType::Integer},
+                  {"edges", ValueType::Integer}};
+    for (std::size_t i = 0; i < g.graph.points.size(); ++i) {
+        poll();
+        const auto& p = g.graph.points[i];
+        rs.rows.push_back({static_cast<std::int64_t>(i), std::string(guide::toString(p.kind)), p.at.x, p.at.y,
+                           nodeLabel(scene(), p.node), nodeId(p.node), static_cast<std::int64_t>(degree[i])});
+    }
+    checkRows(rs.rows.size());
+    rs.message = fmt::format("{} decision points, {} edges over {:.1f} m x {:.1f} m of floor", g.graph.points.size(),
+                             g.graph.edges.size(), g.space.width() * g.space.cell(), g.space.height() * g.space.cell());
+    return rs;
+}
+
+ResultSet Executor::run(const binder::BoundGuide& guide) {
+    const SceneSnapshot& snap = scene();
+    const auto& g = snap.guidance();
+    const model::Node& goal = snap.node(single(guide.to, "goal"));
+
+    // The start and the walker's heading there, when the origin gives one.
+    guide::Point start;
+    std::optional<double> heading;
+    std::string origin, startWords;
+    model::NodeId startNode = model::kNoNode;
+    if (guide.point) {
+        start = {guide.point->first, guide.point->second};
+        origin = fmt::format("({}, {})", guide.point->first, guide.point->second);
+        startWords = fmt::format("Start at {}.", origin);
+    } else if (!guide.from) {
+        const auto& view = snap.info().viewpoint;
+        start = {view.position.x, view.position.y};
+        heading = view.facingYaw;
+        origin = "here (the scene's viewpoint)";
+        startWords = "Start here, at the scene's viewpoint.";
+    } else {
+        const model::Node& from = snap.node(single(*guide.from, "start"));
+        origin = SceneSnapshot::label(from);
+        startNode = from.id;
+        startWords = fmt::format("Start {} the {}.", from.category == "door" ? "at" : "beside", from.category);
+        start = {from.box.center.x, from.box.center.y};
+        // From a door: its side nearest the goal, facing away from the door. From anything else: the
+        // point beside it, as for a goal.
+        std::optional<guide::Point> best;
+        for (const auto& p : g.graph.points)
+            if (p.node == from.id &&
+                (!best || std::hypot(p.at.x - goal.box.center.x, p.at.y - goal.box.center.y) <
+                              std::hypot(best->x - goal.box.center.x, best->y - goal.box.center.y)))
+                best = p.at;
+        if (best) {
+            if (from.category == "door") heading = std::atan2(best->y - start.y, best->x - start.x);
+            start = *best;
+        }
+    }
+    auto onFloor = g.space.nearestFree(start, 1.0);
+    if (!onFloor)
+        throw Error(ErrorKind::Binding,
+                    fmt::format("the start {} is not on free floor: nothing in the scene is walkable within 1 m of "
+                                "({:.1f}, {:.1f})",
+                                origin, start.x, start.y),
+                    std::nullopt, "SHOW GRAPH lists the decision points; start from one of them, a door or HERE");
+
+    std::optional<guide::Point> end;
+    for (const auto& p : g.graph.points)
+        if (p.kind == guide::PointKind::Approach && p.node == goal.id) end = p.at;
+    if (!end) end = g.space.nearestFree({goal.box.center.x, goal.box.center.y}, 1.5);
+    if (!end)
+        throw Error(ErrorKind::Binding,
+                    fmt::format("no route to {}: no free floor within 1.5 m of it is connected to the rest of "
+                                "the room",
+                                SceneSnapshot::label(goal)),
+                    std::nullopt, "SHOW GRAPH lists where the graph reaches");
+
+    auto route = guide::shortestRoute(g.graph, g.space, *onFloor, *end, g.options);
+    if (!route)
+        throw Error(ErrorKind::Binding,
+                    fmt::format("no route from {} to {}: the free floor around them is not connected (a way must be "
+                                "{} m wide)",
+                                origin, SceneSnapshot::label(goal), 2 * g.options.bodyRadius),
+                    std::nullopt, "SHOW GRAPH lists the decision points and how many edges each has");
+
+    ResultSet rs;
+    rs.columns = {{"step", ValueType::Integer},        {"instruction", ValueType::Text}, {"landmark", ValueType::Text},
+                  {"landmark_id", ValueType::Integer}, {"x", ValueType::Real},           {"y", ValueType::Real},
+                  {"distance", ValueType::Real}};
+    // Step 0 is where the walk begins, so the rows hold the whole route.
+    rs.rows.push_back(
+        {std::int64_t{0}, startWords, nodeLabel(snap, startNode), nodeId(startNode), onFloor->x, onFloor->y, 0.0});
+    auto steps = guide::describeRoute(*route, snap.nodes(), goal, heading);
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        const auto& step = steps[i];
+        rs.rows.push_back({static_cast<std::int64_t>(i + 1), step.instruction, nodeLabel(snap, step.landmark),
+                           nodeId(step.landmark), step.at.x, step.at.y, step.distance});
+    }
+    rs.message = fmt::format("{:.1f} m from {} to {} in {} steps", route->length, origin, SceneSnapshot::label(goal),
+                             steps.size());
+    return rs;
+}
+
+}  // namespace smql::exec

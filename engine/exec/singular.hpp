@@ -1,0 +1,16 @@
+// References that must name one node (RELATE's sides, VIEW FROM, FACING, CHECK): a bare name that
+// matches several is an error listing them, never a choice made for the user nor every pair.
+#pragma once
+
+#include <vector>
+
+#include "engine/binder/bound.hpp"
+#include "engine/exec/scene_snapshot.hpp"
+
+namespace smql::exec {
+
+// Throws unless `slots`, what `set` names, is exactly one node: none says so, several are listed
+// as typed-back names (`window#12`) with where each is, and how to pick one.
+void requireOne(const SceneSnapshot& scene, const binder::NodeSet& set, const std::vector<Slot>& slots);
+
+}  // namespace smql::exec

@@ -1,0 +1,296 @@
+#include "engine/guide/route_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/dijkstra_shortest_paths.hpp>
+
+#include "model/geometry.hpp"
+
+namespace smql::guide {
+
+namespace {
+
+using model::Node;
+using model::NodeKind;
+
+bool solid(const Node& n) { return !n.hidden && n.geometry != model::GeometryKind::None; }
+
+// Distance from p to the upright box's floor footprint (0 inside).
+double footprintDistance(const model::Box& box, Point p) {
+    double dx = p.x - box.center.x, dy = p.y - box.center.y;
+    double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    double u = std::abs(c * dx + s * dy) - box.size.x / 2;  // along the box's own x axis
+    double v = std::abs(-s * dx + c * dy) - box.size.y / 2;
+    return std::hypot(std::max(u, 0.0), std::max(v, 0.0));
+}
+
+double distance(Point a, Point b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// The rectangle people walk in: the floor's boxes, else the walls', else every box's.
+model::Aabb floorRectangle(const std::vector<Node>& nodes, double& floorZ) {
+    model::Aabb out{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), 0},
+                    {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), 0}};
+    floorZ = std::numeric_limits<double>::infinity();
+    for (const char* category : {"floor", "wall", ""}) {
+        for (const Node& n : nodes) {
+            if (!solid(n) || (*category && n.category != category)) continue;
+            if (!*category && n.kind != NodeKind::Anchor && n.kind != NodeKind::Object) continue;
+            model::Aabb box = model::worldAabb(n.box);
+            out.min.x = std::min(out.min.x, box.min.x);
+            out.min.y = std::min(out.min.y, box.min.y);
+            out.max.x = std::max(out.max.x, box.max.x);
+            out.max.y = std::max(out.max.y, box.max.y);
+            floorZ = std::min(floorZ, model::bottom(n.box));
+        }
+        if (out.min.x <= out.max.x) break;
+    }
+    if (!(out.min.x <= out.max.x)) out = {{0, 0, 0}, {0, 0, 0}};
+    if (!std::isfinite(floorZ)) floorZ = 0;
+    return out;
+}
+
+bool isDoor(const Node& n) { return n.kind == NodeKind::Anchor && n.category == "door" && solid(n); }
+
+// A door's two sides: unit normal of its face (its thinner horizontal axis).
+Point doorNormal(const model::Box& box) {
+    bool thinAlongX = box.size.x < box.size.y;
+    double angle = box.yaw + (thinAlongX ? 0.0 : M_PI / 2);
+    return {std::cos(angle), std::sin(angle)};
+}
+
+}  // namespace
+
+std::string_view toString(PointKind kind) {
+    switch (kind) {
+        case PointKind::Door:
+            return "door";
+        case PointKind::Approach:
+            return "approach";
+        case PointKind::Junction:
+            return "junction";
+        case PointKind::Camera:
+            return "camera";
+    }
+    return "?";
+}
+
+FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options) : cell_(options.cell) {
+    double floorZ = 0;
+    model::Aabb floor = floorRectangle(nodes, floorZ);
+    minX_ = floor.min.x;
+    minY_ = floor.min.y;
+    width_ = std::max(1, static_cast<int>(std::ceil((floor.max.x - floor.min.x) / cell_)));
+    height_ = std::max(1, static_cast<int>(std::ceil((floor.max.y - floor.min.y) / cell_)));
+    cells_.assign(static_cast<std::size_t>(width_) * height_, 1);
+
+    // Marks the cells whose centres lie within `grow` of the box's footprint.
+    auto mark = [&](const model::Box& box, double grow, std::uint8_t value) {
+        model::Aabb b = model::worldAabb(box);
+        int i0 = std::max(0, static_cast<int>(std::floor((b.min.x - grow - minX_) / cell_)));
+        int i1 = std::min(width_ - 1, static_cast<int>(std::floor((b.max.x + grow - minX_) / cell_)));
+        int j0 = std::max(0, static_cast<int>(std::floor((b.min.y - grow - minY_) / cell_)));
+        int j1 = std::min(height_ - 1, static_cast<int>(std::floor((b.max.y + grow - minY_) / cell_)));
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+                if (footprintDistance(box, {minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_}) <= grow)
+                    cells_[static_cast<std::size_t>(j) * width_ + i] = value;
+    };
+    for (const Node& n : nodes) {
+        if (!solid(n)) continue;
+        bool wall = n.kind == NodeKind::Anchor && n.category == "wall";
+        bool standing = n.kind == NodeKind::Object && model::bottom(n.box) - floorZ < options.standingHeight;
+        if (wall || standing) mark(n.box, options.bodyRadius, 0);
+    }
+    // Doors open the walls they stand in: their width, through the wall and a body's radius beyond.
+    for (const Node& n : nodes) {
+        if (!isDoor(n)) continue;
+        model::Box passage = n.box;
+        bool thinAlongX = passage.size.x < passage.size.y;
+        (thinAlongX ? passage.size.x : passage.size.y) += 2 * (options.bodyRadius + cell_);
+        mark(passage, 0, 1);
+    }
+    // Where a capture's camera stood, someone walked.
+    for (const Node& n : nodes)
+        if (n.kind == NodeKind::Frame && n.geometry != model::GeometryKind::None)
+            mark({n.box.center, {0, 0, 0}, 0}, options.cell, 1);
+
+    // Connected stretches of free floor (4-neighbours), and the largest of them.
+    component_.assign(cells_.size(), -1);
+    std::vector<std::size_t> sizes, stack;
+    for (std::size_t start = 0; start < cells_.size(); ++start) {
+        if (!cells_[start] || component_[start] >= 0) continue;
+        const int label = static_cast<int>(sizes.size());
+        sizes.push_back(0);
+        stack.assign(1, start);
+        component_[start] = label;
+        while (!stack.empty()) {
+            std::size_t c = stack.back();
+            stack.pop_back();
+            ++sizes.back();
+            const int i = static_cast<int>(c % width_), j = static_cast<int>(c / width_);
+            for (auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                int ni = i + di, nj = j + dj;
+                if (ni < 0 || nj < 0 || ni >= width_ || nj >= height_) continue;
+                std::size_t n = static_cast<std::size_t>(nj) * width_ + ni;
+                if (cells_[n] && component_[n] < 0) {
+                    component_[n] = label;
+                    stack.push_back(n);
+                }
+            }
+        }
+    }
+    if (!sizes.empty()) mainComponent_ = static_cast<int>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+}
+
+bool FreeSpace::open(Point p) const {
+    int i = static_cast<int>(std::floor((p.x - minX_) / cell_)),
+        j = static_cast<int>(std::floor((p.y - minY_) / cell_));
+    if (i < 0 || j < 0 || i >= width_ || j >= height_) return false;
+    return component_[static_cast<std::size_t>(j) * width_ + i] == mainComponent_ && mainComponent_ >= 0;
+}
+
+bool FreeSpace::free(Point p) const {
+    int i = static_cast<int>(std::floor((p.x - minX_) / cell_)),
+        j = static_cast<int>(std::floor((p.y - minY_) / cell_));
+    if (i < 0 || j < 0 || i >= width_ || j >= height_) return false;
+    return freeCell(i, j);
+}
+
+bool FreeSpace::clear(Point a, Point b) const {
+    const double length = distance(a, b);
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / (cell_ / 2))));
+    for (int k = 0; k <= steps; ++k) {
+        double t = static_cast<double>(k) / steps;
+        if (!free({a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t})) return false;
+    }
+    return true;
+}
+
+std::optional<Point> FreeSpace::nearestFree(Point p, double radius) const {
+    std::optional<Point> best, bestOpen;
+    double bestDistance = radius, bestOpenDistance = radius;
+    const int reach = static_cast<int>(std::ceil(radius / cell_));
+    const int ci = static_cast<int>(std::floor((p.x - minX_) / cell_));
+    const int cj = static_cast<int>(std::floor((p.y - minY_) / cell_));
+    for (int j = std::max(0, cj - reach); j <= std::min(height_ - 1, cj + reach); ++j)
+        for (int i = std::max(0, ci - reach); i <= std::min(width_ - 1, ci + reach); ++i) {
+            if (!freeCell(i, j)) continue;
+            Point c{minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_};
+            double d = distance(p, c);
+            if (d <= bestDistance) bestDistance = d, best = c;
+            if (d <= bestOpenDistance && component_[static_cast<std::size_t>(j) * width_ + i] == mainComponent_)
+                bestOpenDistance = d, bestOpen = c;
+        }
+    return bestOpen ? bestOpen : best;
+}
+
+RouteGraph buildGraph(const std::vector<Node>& nodes, const FreeSpace& space, const GraphOptions& options) {
+    RouteGraph graph;
+    const Point centre{space.minX() + space.width() * space.cell() / 2,
+                       space.minY() + space.height() * space.cell() / 2};
+    for (const Node& n : nodes) {
+        if (!solid(n)) continue;
+        if (isDoor(n)) {
+            Point normal = doorNormal(n.box);
+            double out = std::min(n.box.size.x, n.box.size.y) / 2 + options.bodyRadius + 0.3;
+            for (double side : {1.0, -1.0}) {
+                Point p{n.box.center.x + side * normal.x * out, n.box.center.y + side * normal.y * out};
+                if (auto snapped = space.nearestFree(p, 0.5)) graph.points.push_back({*snapped, PointKind::Door, n.id});
+            }
+        } else if (n.kind == NodeKind::Object) {
+            // Beside the thing, on the side that faces the open room when there is a choice.
+            std::optional<Point> best;
+            double away = options.bodyRadius + 0.15;
+            double c = std::cos(n.box.yaw), s = std::sin(n.box.yaw);
+            for (int k = 0; k < 8; ++k) {
+                double a = k * M_PI / 4;
+                double u = std::cos(a) * (n.box.size.x / 2 + away), v = std::sin(a) * (n.box.size.y / 2 + away);
+                Point p{n.box.center.x + c * u - s * v, n.box.center.y + s * u + c * v};
+                if (!space.open(p)) continue;
+                if (!best || distance(p, centre) < distance(*best, centre)) best = p;
+            }
+            if (!best) best = space.nearestFree({n.box.center.x, n.box.center.y}, 1.5);
+            if (best) graph.points.push_back({*best, PointKind::Approach, n.id});
+        } else if (n.kind == NodeKind::Frame && space.free({n.box.center.x, n.box.center.y})) {
+            graph.points.push_back({{n.box.center.x, n.box.center.y}, PointKind::Camera, n.id});
+        }
+    }
+    for (double y = space.minY() + options.lattice / 2; y < space.minY() + space.height() * space.cell();
+         y += options.lattice)
+        for (double x = space.minX() + options.lattice / 2; x < space.minX() + space.width() * space.cell();
+             x += options.lattice)
+            if (space.free({x, y})) graph.points.push_back({{x, y}, PointKind::Junction, model::kNoNode});
+
+    // Edges between points that see each other: only pairs in neighbouring buckets of maxEdge.
+    std::map<std::pair<long, long>, std::vector<std::size_t>> buckets;
+    auto bucketOf = [&](Point p) {
+        return std::pair<long, long>{static_cast<long>(std::floor(p.x / options.maxEdge)),
+                                     static_cast<long>(std::floor(p.y / options.maxEdge))};
+    };
+    for (std::size_t i = 0; i < graph.points.size(); ++i) buckets[bucketOf(graph.points[i].at)].push_back(i);
+    for (std::size_t i = 0; i < graph.points.size(); ++i) {
+        auto [bx, by] = bucketOf(graph.points[i].at);
+        for (long dx = -1; dx <= 1; ++dx)
+            for (long dy = -1; dy <= 1; ++dy) {
+                auto bucket = buckets.find({bx + dx, by + dy});
+                if (bucket == buckets.end()) continue;
+                for (std::size_t j : bucket->second) {
+                    if (j <= i) continue;
+                    double d = distance(graph.points[i].at, graph.points[j].at);
+                    if (d <= options.maxEdge && space.clear(graph.points[i].at, graph.points[j].at))
+                        graph.edges.push_back({i, j, d});
+                }
+            }
+    }
+    return graph;
+}
+
+std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& space, Point from, Point to,
+                                   const GraphOptions& options) {
+    using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                                        boost::property<boost::edge_weight_t, double>>;
+    const std::size_t n = graph.points.size();
+    const std::size_t start = n, goal = n + 1;
+    Graph g(n + 2);
+    for (const Edge& e : graph.edges) boost::add_edge(e.a, e.b, e.length, g);
+    // The two ends join every decision point they see, and each other.
+    for (std::size_t i = 0; i < n; ++i) {
+        Point p = graph.points[i].at;
+        if (distance(from, p) <= options.maxEdge && space.clear(from, p))
+            boost::add_edge(start, i, distance(from, p), g);
+        if (distance(to, p) <= options.maxEdge && space.clear(to, p)) boost::add_edge(goal, i, distance(to, p), g);
+    }
+    if (space.clear(from, to)) boost::add_edge(start, goal, distance(from, to), g);
+
+    std::vector<std::size_t> previous(n + 2);
+    std::vector<double> distances(n + 2, std::numeric_limits<double>::infinity());
+    boost::dijkstra_shortest_paths(g, start, boost::predecessor_map(previous.data()).distance_map(distances.data()));
+    // Dijkstra leaves an unreached vertex its own predecessor (and the largest double as distance).
+    if (previous[goal] == goal) return std::nullopt;
+
+    std::vector<Point> path;
+    std::vector<std::size_t> backwards;
+    for (std::size_t v = goal; v != start; v = previous[v]) backwards.push_back(v);
+    path.push_back(from);
+    for (auto it = backwards.rbegin(); it != backwards.rend(); ++it)
+        path.push_back(*it == goal ? to : graph.points[*it].at);
+
+    // Straightened: from each waypoint, on to the farthest later one in plain view. The lattice's
+    // zigzags are not decisions a walker makes.
+    Route route;
+    route.waypoints.push_back(path.front());
+    for (std::size_t i = 0; i + 1 < path.size();) {
+        std::size_t next = path.size() - 1;
+        while (next > i + 1 && !space.clear(path[i], path[next])) --next;
+        route.length += distance(path[i], path[next]);
+        route.waypoints.push_back(path[next]);
+        i = next;
+    }
+    return route;
+}
+
+}  // namespace smql::guide

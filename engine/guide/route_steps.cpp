@@ -1,0 +1,151 @@
+#include "engine/guide/route_steps.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "model/geometry.hpp"
+
+namespace smql::guide {
+
+namespace {
+
+using model::Node;
+using model::NodeKind;
+
+double wrap(double a) {
+    while (a > M_PI) a -= 2 * M_PI;
+    while (a <= -M_PI) a += 2 * M_PI;
+    return a;
+}
+
+double degrees(double radians) { return radians * 180 / M_PI; }
+
+// Legs shorter than this (metres) are not steps of their own.
+constexpr double kShortestStep = 0.4;
+
+// "Turn left. " / "Turn right. " / "Turn around. " / "" for a change of heading.
+std::string turn(double change) {
+    double d = degrees(wrap(change));
+    if (std::abs(d) <= kStraightDegrees) return "";
+    if (std::abs(d) >= 180 - kStraightDegrees) return "Turn around. ";
+    return d > 0 ? "Turn left. " : "Turn right. ";
+}
+
+std::string howFar(double metres) {
+    if (metres < 0.75) return "a few steps";
+    if (metres < 1.5) return "about 1 m";
+    return fmt::format("about {:.0f} m", metres);
+}
+
+// What a person sees as a landmark: doors, windows and furniture-sized things.
+bool landmarkLike(const Node& n) {
+    if (n.hidden || n.geometry == model::GeometryKind::None) return false;
+    if (n.kind == NodeKind::Anchor) return n.category == "door" || n.category == "window";
+    return n.kind == NodeKind::Object && n.box.size.x * n.box.size.y >= 0.3;
+}
+
+double footprintGap(const model::Box& box, Point p) {
+    double dx = p.x - box.center.x, dy = p.y - box.center.y;
+    double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    double u = std::abs(c * dx + s * dy) - box.size.x / 2, v = std::abs(-s * dx + c * dy) - box.size.y / 2;
+    return std::hypot(std::max(u, 0.0), std::max(v, 0.0));
+}
+
+// The landmark nearest the end of a leg (within 1.5 m of it), not the goal itself.
+const Node* landmarkAt(const std::vector<Node>& nodes, Point p, model::NodeId goal) {
+    const Node* best = nullptr;
+    double bestGap = 1.5;
+    for (const Node& n : nodes) {
+        if (n.id == goal || !landmarkLike(n)) continue;
+        double gap = footprintGap(n.box, p);
+        if (gap < bestGap) {
+            bestGap = gap;
+            best = &n;
+        }
+    }
+    return best;
+}
+
+// "the red mug on the desk", "the lamp by the wall"
+std::string thingWithSupport(const std::vector<Node>& nodes, const Node& goal) {
+    std::string out = "the ";
+    if (const std::string* colour = goal.attribute("color")) out += *colour + " ";
+    out += goal.category;
+    for (const Node& n : nodes)
+        if (n.id == goal.parent) {
+            if (n.kind == NodeKind::Object) out += " on the " + n.category;
+            if (n.kind == NodeKind::Anchor) out += " by the " + n.category;
+        }
+    return out;
+}
+
+}  // namespace
+
+std::vector<Step> describeRoute(const Route& route, const std::vector<Node>& nodes, const Node& goal,
+                                std::optional<double> startHeading) {
+    // Legs, with nearly straight runs merged: a decision is a turn, not every graph node.
+    struct Leg {
+        Point from, to;
+        double heading, length;
+    };
+    std::vector<Leg> legs;
+    for (std::size_t i = 1; i < route.waypoints.size(); ++i) {
+        Point a = route.waypoints[i - 1], b = route.waypoints[i];
+        double length = std::hypot(b.x - a.x, b.y - a.y);
+        if (length < 1e-6) continue;
+        double heading = std::atan2(b.y - a.y, b.x - a.x);
+        // A step of less than a stride, or nearly straight on, continues the leg before it.
+        bool shortStep = length < kShortestStep;
+        if (!legs.empty() &&
+            (shortStep || std::abs(degrees(wrap(heading - legs.back().heading))) <= kStraightDegrees / 2)) {
+            Leg& last = legs.back();
+            last.to = b;
+            last.length += length;
+            last.heading = std::atan2(b.y - last.from.y, b.x - last.from.x);
+            continue;
+        }
+        legs.push_back({a, b, heading, length});
+    }
+
+    std::vector<Step> steps;
+    std::optional<double> heading = startHeading;
+    for (const Leg& leg : legs) {
+        Step step;
+        step.instruction = heading ? turn(leg.heading - *heading) : "";
+        const Node* landmark = landmarkAt(nodes, leg.to, goal.id);
+        // A landmark the last step named already says nothing new.
+        if (landmark && !steps.empty() && steps.back().landmark == landmark->id) landmark = nullptr;
+        step.instruction += fmt::format("Walk {}{}.", howFar(leg.length),
+                                        landmark ? " toward the " + landmark->category : std::string());
+        if (landmark) step.landmark = landmark->id;
+        step.at = leg.to;
+        step.distance = leg.length;
+        steps.push_back(std::move(step));
+        heading = leg.heading;
+    }
+
+    // Where the goal is from the last point, as the walker faces.
+    Point end = route.waypoints.back();
+    double dx = goal.box.center.x - end.x, dy = goal.box.center.y - end.y;
+    double away = std::hypot(dx, dy);
+    std::string where = "right here";
+    if (away > 0.05 && heading) {
+        double d = degrees(wrap(std::atan2(dy, dx) - *heading));
+        where = std::abs(d) <= 45    ? "ahead"
+                : std::abs(d) >= 135 ? "behind you"
+                : d > 0              ? "on your left"
+                                     : "on your right";
+    }
+    std::string sentence = thingWithSupport(nodes, goal);
+    sentence[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(sentence[0])));
+    Step last;
+    last.instruction =
+        fmt::format("{} is {}{}.", sentence, where == "right here" ? "" : fmt::format("{:.1f} m ", away), where);
+    last.landmark = goal.id;
+    last.at = {goal.box.center.x, goal.box.center.y};
+    steps.push_back(std::move(last));
+    return steps;
+}
+
+}  // namespace smql::guide

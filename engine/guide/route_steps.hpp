@@ -1,0 +1,29 @@
+// A route in words: each leg a step that names a landmark, the turn relative to the walker's
+// heading and the distance; the last step says where the goal is (docs/guidance.md).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/guide/route_graph.hpp"
+#include "model/types.hpp"
+
+namespace smql::guide {
+
+struct Step {
+    std::string instruction;                  // "Turn right. Walk about 2 m toward the sofa."
+    model::NodeId landmark = model::kNoNode;  // the thing the step names, if any
+    Point at;                                 // where the step ends
+    double distance = 0;                      // metres walked in it
+};
+
+// Turns within this angle are "go straight"; beyond 180 minus it, "turn around" (degrees).
+inline constexpr double kStraightDegrees = 30;
+
+// `nodes` are the scene's (for landmarks and the goal's support); `goal` the thing sought;
+// `startHeading` the walker's heading at the start (radians about +z), when known.
+std::vector<Step> describeRoute(const Route& route, const std::vector<model::Node>& nodes, const model::Node& goal,
+                                std::optional<double> startHeading);
+
+}  // namespace smql::guide

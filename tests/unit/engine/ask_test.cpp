@@ -1,0 +1,178 @@
+// ASK end to end: the English questions of tests/ask/questions.json over the generated room of
+// seed 7 (36 objects, the room of tests/suites/language.smqlt) and Replica room 0. Each question
+// names the SMQL it must translate to and/or words its answer must contain; the test prints the
+// share answered correctly and requires the floor docs/ask.md reports.
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include <fmt/format.h>
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/ask/translator.hpp"
+#include "engine_support.hpp"
+#include "ingest/generate/room_generator.hpp"
+#include "ingest/import/importers.hpp"
+
+using namespace smql;
+using smql::testing::run;
+using smql::testing::TempDir;
+
+namespace {
+
+// The ASK statement for a question: quotes inside it are doubled.
+std::string askStatement(const std::string& question) {
+    std::string out = "ASK '";
+    for (char c : question) out += c == '\'' ? std::string("''") : std::string(1, c);
+    return out + "'";
+}
+
+std::unique_ptr<Engine> openWithBothRooms(const TempDir& dir) {
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(generate::generateRoom({.seed = 7, .objectCount = 36, .name = "demo-room"}));
+    engine->importScene(import::readReplica(testing::replicaRoom0(), "replica-room0"));
+    return engine;
+}
+
+// The SMQL line of an ASK's message.
+std::string smqlOf(const std::string& message) {
+    auto line = message.substr(0, message.find('\n'));
+    auto colon = line.find(": ");
+    return colon == std::string::npos ? line : line.substr(colon + 2);
+}
+
+}  // namespace
+
+TEST_CASE("ASK answers the English question set", "[ask]") {
+    TempDir dir;
+    auto engine = openWithBothRooms(dir);
+    std::ifstream in(std::string(SMQL_SOURCE_DIR) + "/tests/ask/questions.json");
+    REQUIRE(in);
+    auto set = nlohmann::json::parse(in);
+    std::size_t total = 0, correct = 0;
+    std::string scene;
+    for (const auto& q : set["questions"]) {
+        ++total;
+        if (q["scene"] != scene) {
+            scene = q["scene"];
+            run(*engine, fmt::format("USE SCENE '{}'", scene));
+        }
+        std::string question = q["q"];
+        std::string got, failure;
+        try {
+            got = run(*engine, askStatement(question)).message;
+            if (q.contains("error")) failure = "expected an error";
+        } catch (const Error& e) {
+            got = e.message() + " / " + e.hint();
+            if (!q.contains("error"))
+                failure = "error: " + got;
+            else if (got.find(q["error"].get<std::string>()) == std::string::npos)
+                failure = "wrong error";
+        }
+        // A statement that failed when it ran names its SMQL in the error: "(in: GUIDE FROM ...)".
+        bool failedToRun = q.contains("error") && got.find("(in: ") != std::string::npos;
+        if (failure.empty() && q.contains("smql") &&
+            (failedToRun ? got.find("(in: " + q["smql"].get<std::string>() + ")") == std::string::npos
+                         : smqlOf(got) != q["smql"].get<std::string>()))
+            failure = "SMQL differs";
+        if (failure.empty() && q.contains("answer") && got.find(q["answer"].get<std::string>()) == std::string::npos)
+            failure = "answer lacks the expected words";
+        if (failure.empty()) {
+            ++correct;
+        } else {
+            std::cout << fmt::format("[{}] {}: {}\n  expected: {}\n  got: {}\n", scene, question, failure, q.dump(),
+                                     got);
+        }
+    }
+    double share = static_cast<double>(correct) / static_cast<double>(total);
+    std::cout << fmt::format("ASK question set: {} of {} answered correctly ({:.1f}%)\n", correct, total, 100 * share);
+    CHECK(total >= 150);
+    CHECK(share >= set["floor"].get<double>());
+}
+
+TEST_CASE("ASK on Replica room 0: the acceptance questions", "[ask]") {
+    TempDir dir;
+    auto engine = openWithBothRooms(dir);
+    run(*engine, "USE SCENE 'replica-room0'");
+
+    auto sofa = run(*engine, "ASK 'what is on the sofa?'");
+    CHECK(sofa.message.starts_with("SMQL: FIND object WHERE on(sofa)\n"));
+    // The rows are FIND's: the cushions on the sofas are among them, and the answer names them.
+    int category = sofa.columnIndex("category");
+    REQUIRE(category >= 0);
+    std::size_t cushions = 0;
+    for (const auto& row : sofa.rows) cushions += std::get<std::string>(row[category]) == "cushion";
+    CHECK(cushions >= 5);
+    CHECK(sofa.message.find("cushion#") != std::string::npos);
+
+    auto piano = run(*engine, "ASK 'is there a piano?'");
+    CHECK(piano.message.find("No, there is no piano") != std::string::npos);
+    CHECK(piano.rows.empty());
+
+    auto count = run(*engine, "ASK 'how many cushions are on the sofa?'");
+    REQUIRE(count.rows.size() == 1);
+    auto n = std::get<std::int64_t>(count.rows[0][0]);
+    CHECK(count.message.find(fmt::format("\n{} cushions are on the sofa", n)) != std::string::npos);
+    CHECK(n == std::get<std::int64_t>(run(*engine, "COUNT cushion WHERE on(sofa)").rows.at(0).at(0)));
+    CHECK(n > 0);
+}
+
+TEST_CASE("ASK reports what it cannot translate, and runs a plugged-in translator's SMQL", "[ask]") {
+    TempDir dir;
+    auto engine = openWithBothRooms(dir);
+    run(*engine, "USE SCENE 'demo-room'");
+    CHECK_THROWS_WITH(run(*engine, "ASK 'colorless green ideas sleep furiously'"),
+                      Catch::Contains("cannot translate the question"));
+    CHECK_THROWS_WITH(run(*engine, "ASK ''"), Catch::Contains("cannot translate"));
+
+    // A translator from elsewhere (a language model's client, say): its SMQL is parsed, bound and run.
+    struct Fixed : ask::Translator {
+        ask::Translation translate(const ask::Question& q) const override {
+            ask::Translation t;
+            t.kind = ask::QuestionKind::Count;
+            t.smql = q.text == "bad" ? "FIND mug WHERE" : q.text == "write" ? "SET near = 3 m" : "COUNT mug";
+            t.subject = "mug", t.subjectPlural = "mugs";
+            return t;
+        }
+    };
+    engine->setAskTranslator(std::make_shared<Fixed>());
+    auto mugs = run(*engine, "ASK 'anything at all'");
+    CHECK(mugs.message.starts_with("SMQL: COUNT mug\n"));
+    CHECK(mugs.rows.size() == 1);
+    CHECK_THROWS_WITH(run(*engine, "ASK 'bad'"), Catch::Contains("the question's SMQL failed"));
+    CHECK_THROWS_WITH(run(*engine, "ASK 'write'"), Catch::Contains("one statement that reads"));
+    engine->setAskTranslator(nullptr);
+    CHECK(run(*engine, "ASK 'how many mugs?'").message.starts_with("SMQL: COUNT mug\n"));
+}
+
+TEST_CASE("ASK from several threads: WordNet's look-ups take turns and every answer is the same", "[ask]") {
+    // Two engines (two databases) translate at once; WordNet's C library is shared global state.
+    TempDir dirA, dirB;
+    auto a = openWithBothRooms(dirA);
+    auto b = openWithBothRooms(dirB);
+    const std::vector<std::string> questions{
+        "how many seats are there?",   "is there a carpet?",   "what furniture is near the door?",
+        "how many pillows are there?", "where is the cushon?", "is there a piano?"};
+    auto answers = [&](Engine& engine) {
+        std::vector<std::string> out;
+        // An error is kept as an answer: an exception must not leave a thread.
+        for (int round = 0; round < 5; ++round)
+            for (const auto& q : questions) {
+                try {
+                    out.push_back(run(engine, askStatement(q)).message);
+                } catch (const Error& e) {
+                    out.push_back("error: " + e.message());
+                }
+            }
+        return out;
+    };
+    std::vector<std::string> fromA, fromB;
+    std::thread ta([&] { fromA = answers(*a); });
+    std::thread tb([&] { fromB = answers(*b); });
+    ta.join();
+    tb.join();
+    CHECK(fromA == fromB);
+    REQUIRE(fromA.size() == questions.size() * 5);
+    CHECK(fromA[0].find("seats -> chair, sofa, stool (kinds of it)") != std::string::npos);
+}

@@ -1,0 +1,152 @@
+// Guidance: free space, the decision-point graph, routes and their steps (engine/guide), and the
+// GUIDE and SHOW GRAPH statements over them.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "engine/guide/route_graph.hpp"
+#include "engine/guide/route_steps.hpp"
+#include "engine_support.hpp"
+
+using namespace smql;
+using namespace smql::testing;
+using model::NodeKind;
+
+namespace {
+
+model::Node node(model::NodeId id, NodeKind kind, std::string category, model::Vec3 centre, model::Vec3 size,
+                 double yaw = 0) {
+    model::Node n;
+    n.id = id;
+    n.kind = kind;
+    n.category = std::move(category);
+    n.geometry = kind == NodeKind::Anchor ? model::GeometryKind::Plane : model::GeometryKind::Box;
+    n.box = {centre, size, yaw};
+    return n;
+}
+
+// Two rooms side by side, 4 m x 4 m each, split by a wall at x = 4 with a door at y = 1 (when
+// `door`); a table stands in the left room, a mug on it; a lamp stands in the right room.
+model::SceneData twoRooms(bool door) {
+    model::SceneData s;
+    s.info.name = "flat";
+    s.info.viewpoint = {{1, 3, 1.6}, 0};
+    model::NodeId id = 1;
+    s.nodes.push_back(node(id++, NodeKind::Anchor, "floor", {4, 2, 0}, {8, 4, 0.02}));
+    s.nodes.push_back(node(id++, NodeKind::Anchor, "wall", {4, 0, 1.25}, {8, 0.1, 2.5}));
+    s.nodes.push_back(node(id++, NodeKind::Anchor, "wall", {4, 4, 1.25}, {8, 0.1, 2.5}));
+    s.nodes.push_back(node(id++, NodeKind::Anchor, "wall", {0, 2, 1.25}, {0.1, 4, 2.5}));
+    s.nodes.push_back(node(id++, NodeKind::Anchor, "wall", {8, 2, 1.25}, {0.1, 4, 2.5}));
+    s.nodes.push_back(node(id++, NodeKind::Anchor, "wall", {4, 2, 1.25}, {0.1, 4, 2.5}));  // the split
+    if (door) s.nodes.push_back(node(id++, NodeKind::Anchor, "door", {4, 1, 1.05}, {0.1, 0.9, 2.1}));
+    s.nodes.push_back(node(id++, NodeKind::Object, "table", {2, 2, 0.4}, {1.2, 0.8, 0.8}));
+    s.nodes.push_back(node(id++, NodeKind::Object, "mug", {2, 2, 0.85}, {0.1, 0.1, 0.1}));
+    s.nodes.push_back(node(id++, NodeKind::Object, "lamp", {6.5, 3, 0.8}, {0.3, 0.3, 1.6}));
+    return s;
+}
+
+std::vector<model::Node> nodesOf(const model::SceneData& s) { return s.nodes; }
+
+}  // namespace
+
+TEST_CASE("free space: walls and standing things block, things on them do not, doors open walls", "[guide]") {
+    guide::GraphOptions options;
+    auto withDoor = nodesOf(twoRooms(true));
+    guide::FreeSpace space(withDoor, options);
+    CHECK(space.free({1, 1}));
+    CHECK_FALSE(space.free({2, 2}));    // under the table
+    CHECK_FALSE(space.free({2.7, 2}));  // within a body's radius of it
+    CHECK(space.free({3.0, 2}));        // beyond
+    CHECK_FALSE(space.free({4, 3}));    // the split wall
+    CHECK(space.free({4, 1}));          // the door in it
+    CHECK_FALSE(space.free({0.1, 1}));  // against the outer wall
+    CHECK_FALSE(space.free({9, 1}));    // outside the floor
+    CHECK(space.clear({1, 1}, {3.5, 1}));
+    CHECK_FALSE(space.clear({3.5, 3}, {4.5, 3}));
+    guide::FreeSpace closed(nodesOf(twoRooms(false)), options);
+    CHECK_FALSE(closed.free({4, 1}));
+}
+
+TEST_CASE("the shortest route goes through the door; without one there is none", "[guide]") {
+    guide::GraphOptions options;
+    auto nodes = nodesOf(twoRooms(true));
+    guide::FreeSpace space(nodes, options);
+    auto graph = guide::buildGraph(nodes, space, options);
+    std::size_t doors = 0, approaches = 0;
+    for (const auto& p : graph.points) {
+        doors += p.kind == guide::PointKind::Door;
+        approaches += p.kind == guide::PointKind::Approach;
+    }
+    CHECK(doors == 2);       // one on each side
+    CHECK(approaches == 3);  // table, mug, lamp
+    auto route = guide::shortestRoute(graph, space, {1, 3}, {6.5, 2.5}, options);
+    REQUIRE(route);
+    bool throughDoor = false;
+    for (std::size_t i = 1; i < route->waypoints.size(); ++i) {
+        auto a = route->waypoints[i - 1], b = route->waypoints[i];
+        if ((a.x - 4) * (b.x - 4) <= 0) {  // this leg crosses the wall's line
+            double y = a.y + (b.y - a.y) * (4 - a.x) / (b.x - a.x);
+            throughDoor = std::abs(y - 1) < 0.45;
+        }
+    }
+    CHECK(throughDoor);
+    CHECK(route->length > std::hypot(5.5, 0.5));  // longer than the straight line through the wall
+
+    auto closedNodes = nodesOf(twoRooms(false));
+    guide::FreeSpace closed(closedNodes, options);
+    auto closedGraph = guide::buildGraph(closedNodes, closed, options);
+    CHECK_FALSE(guide::shortestRoute(closedGraph, closed, {1, 3}, {6.5, 2.5}, options));
+}
+
+TEST_CASE("steps turn relative to the walker's heading and end by saying where the goal is", "[guide]") {
+    auto nodes = nodesOf(twoRooms(true));
+    const model::Node& lamp = nodes.back();
+    // East 3 m, then north 2 m; the lamp is then ahead-right... of a walker facing north at (4, 3)?
+    guide::Route route{{{1, 1}, {4, 1}, {4, 3}}, 5};
+    auto steps = guide::describeRoute(route, nodes, lamp, /*startHeading=*/M_PI / 2);  // facing north at first
+    REQUIRE(steps.size() == 3);
+    CHECK(steps[0].instruction.rfind("Turn right. Walk about 3 m", 0) == 0);
+    CHECK(steps[1].instruction.rfind("Turn left. Walk about 2 m", 0) == 0);
+    CHECK(steps[2].instruction == "The lamp is 2.5 m on your right.");
+    CHECK(steps[2].landmark == lamp.id);
+    auto noHeading = guide::describeRoute(route, nodes, lamp, std::nullopt);
+    CHECK(noHeading[0].instruction.rfind("Walk about 3 m", 0) == 0);
+}
+
+TEST_CASE("GUIDE answers in steps; ambiguous ends and closed-off goals are errors that say why", "[guide]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(twoRooms(true));
+    auto rs = run(*engine, "GUIDE FROM door TO lamp");
+    REQUIRE(rs.rows.size() >= 2);
+    CHECK(rs.rows.front()[1] == Value(std::string("Start at the door.")));
+    const auto& last = rs.rows.back();
+    CHECK_THAT(std::get<std::string>(last[1]), Catch::StartsWith("The lamp by the wall is"));
+    CHECK(std::get<std::string>(last[2]).rfind("lamp#", 0) == 0);
+    CHECK_THAT(rs.message, Catch::Contains("from door#"));
+
+    auto here = run(*engine, "GUIDE FROM HERE TO (FIND object WHERE on(table))");
+    CHECK_THAT(std::get<std::string>(here.rows.back()[1]), Catch::StartsWith("The mug on the table is"));
+    CHECK(run(*engine, "GUIDE FROM (1, 1) TO lamp").rows.size() >= 2);
+    CHECK(run(*engine, "SHOW GRAPH").rows.size() > 5);
+    CHECK_THAT(std::get<std::string>(run(*engine, "EXPLAIN GUIDE FROM door TO lamp").rows[0][0]),
+               Catch::Contains("Dijkstra"));
+
+    try {
+        engine->execute("GUIDE FROM door TO wall");
+        FAIL("an ambiguous goal was routed to");
+    } catch (const Error& e) {
+        CHECK_THAT(e.message(), Catch::Contains("the goal is ambiguous: wall (5 nodes)"));
+        CHECK_THAT(e.hint(), Catch::Contains("name one: wall#"));
+    }
+
+    TempDir closedDir;
+    auto closed = Engine::open(closedDir.path.string());
+    closed->importScene(twoRooms(false));
+    try {
+        closed->execute("GUIDE FROM table TO lamp");
+        FAIL("a route through a wall");
+    } catch (const Error& e) {
+        CHECK_THAT(e.message(), Catch::Contains("no route") && Catch::Contains("lamp#"));
+    }
+}

@@ -1,0 +1,153 @@
+// Prepared statements: parsed once, run with bound values, which are data and never SMQL.
+#include <catch2/catch.hpp>
+
+#include "engine/parser/parser.hpp"
+#include "engine_support.hpp"
+#include "ingest/generate/room_generator.hpp"
+#include "ingest/import/importers.hpp"
+
+using namespace smql;
+using namespace smql::testing;
+
+namespace {
+
+struct Room0 {
+    TempDir dir;
+    std::unique_ptr<Engine> engine = Engine::open(dir.path.string());
+    Room0() { engine->importScene(import::readReplica(replicaRoom0(), "replica-room0")); }
+};
+
+std::vector<std::int64_t> ids(const ResultSet& rs) {
+    std::vector<std::int64_t> out;
+    for (const auto& row : rs.rows) out.push_back(std::get<std::int64_t>(row.at(0)));
+    return out;
+}
+
+Error errorOf(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const Error& e) {
+        return e;
+    }
+    FAIL("expected an error");
+    return Error(ErrorKind::Usage, "");
+}
+
+}  // namespace
+
+TEST_CASE("a prepared statement answers as the statement written out, without parsing again", "[prepared]") {
+    Room0 room;
+    PreparedStatement find = room.engine->prepare("FIND ? WHERE near(?, ?)");
+    CHECK(find.parameterCount() == 3);
+
+    const std::uint64_t parsedBefore = parser::statementsParsed();
+    find.bind(1, std::string("cushion"));
+    find.bind(2, std::string("sofa"));
+    find.bind(3, Length{0.5});
+    auto cushions = ids(find.execute());
+    find.bind(1, std::string("book"));
+    find.bind(2, std::string("table"));
+    find.bind(3, std::int64_t{1});
+    auto books = ids(find.execute());
+    find.bind(3, 0.25);
+    auto closeBooks = ids(find.execute());
+    CHECK(parser::statementsParsed() == parsedBefore);
+
+    CHECK_FALSE(cushions.empty());
+    CHECK(cushions == ids(run(*room.engine, "FIND cushion WHERE near(sofa, 0.5 m)")));
+    CHECK(books == ids(run(*room.engine, "FIND book WHERE near(table, 1 m)")));
+    CHECK(closeBooks == ids(run(*room.engine, "FIND book WHERE near(table, 25 cm)")));
+}
+
+TEST_CASE("placeholders stand for sides, sub-query names, comparison values and LIMIT", "[prepared]") {
+    Room0 room;
+    PreparedStatement side = room.engine->prepare("FIND object WHERE near(?.left)");
+    side.bind(1, std::string("WALL"));  // folded to lower case as a written name is
+    CHECK(ids(side.execute()) == ids(run(*room.engine, "FIND object WHERE near(wall.left)")));
+
+    // The sub-query is copied before values go in: the second run sees its own value.
+    PreparedStatement sub = room.engine->prepare("FIND cushion WHERE on((FIND $1 LIMIT $2))");
+    sub.bind(1, std::string("sofa"));
+    sub.bind(2, std::int64_t{1});
+    CHECK(ids(sub.execute()) == ids(run(*room.engine, "FIND cushion WHERE on((FIND sofa LIMIT 1))")));
+    sub.bind(1, std::string("table"));
+    CHECK(ids(sub.execute()) == ids(run(*room.engine, "FIND cushion WHERE on((FIND table LIMIT 1))")));
+
+    PreparedStatement count = room.engine->prepare("COUNT object WHERE category = ? AND source_id > ?");
+    count.bind(1, std::string("lamp"));
+    count.bind(2, std::int64_t{0});
+    CHECK(count.execute().rows == run(*room.engine, "COUNT object WHERE category = 'lamp' AND source_id > 0").rows);
+
+    PreparedStatement explain = room.engine->prepare("EXPLAIN FIND ? LIMIT ?");
+    explain.bind(1, std::string("lamp"));
+    explain.bind(2, std::int64_t{2});
+    CHECK(explain.execute().message == run(*room.engine, "EXPLAIN FIND lamp LIMIT 2").message);
+}
+
+TEST_CASE("a bound value with quotes is a name, never SMQL", "[prepared]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    model::SceneData scene = generate::generateRoom({.seed = 3, .objectCount = 20, .name = "office"});
+    model::Node* renamed = nullptr;
+    for (auto& node : scene.nodes)
+        if (node.kind == model::NodeKind::Object && !renamed) renamed = &node;
+    REQUIRE(renamed);
+    renamed->category = "o'brien's mug";
+    engine->importScene(scene);
+
+    PreparedStatement find = engine->prepare("FIND ?");
+    find.bind(1, std::string("O'Brien's mug"));
+    ResultSet found = find.execute();
+    REQUIRE(found.rows.size() == 1);
+    CHECK(found.rows[0][1] == Value(std::string("o'brien's mug")));
+
+    PreparedStatement count = engine->prepare("COUNT object WHERE category = $1");
+    count.bind(1, std::string("o'brien's mug"));
+    CHECK(count.execute().rows.at(0).at(0) == Value(std::int64_t{1}));
+
+    // SMQL inside a value is part of an unknown name: a binding error, and the scene stays.
+    for (const char* injected : {"it's", "mug' OR on(desk", "x; DROP SCENE office"}) {
+        find.bind(1, std::string(injected));
+        CHECK(errorOf([&] { find.execute(); }).kind() == ErrorKind::Binding);
+    }
+    CHECK(run(*engine, "SHOW SCENES").rows.size() == 1);
+}
+
+TEST_CASE("binding errors name the placeholder", "[prepared]") {
+    Room0 room;
+    PreparedStatement find = room.engine->prepare("FIND ? WHERE near(?, ?) LIMIT ?");
+    CHECK(find.parameterCount() == 4);
+    CHECK_THAT(errorOf([&] { find.bind(0, std::string("x")); }).message(), Catch::Contains("no placeholder 0"));
+    CHECK_THAT(errorOf([&] { find.bind(5, std::string("x")); }).message(), Catch::Contains("has 4 (1 to 4)"));
+    CHECK_THAT(errorOf([&] { find.bind(1, std::int64_t{3}); }).message(),
+               Catch::Contains("? number 1 stands for a name, not an integer"));
+    CHECK_THAT(errorOf([&] { find.bind(3, std::string("far")); }).message(),
+               Catch::Contains("stands for a distance, not text"));
+    CHECK_THAT(errorOf([&] { find.bind(4, 2.5); }).message(), Catch::Contains("LIMIT's whole number"));
+
+    Error unbound = errorOf([&] { find.execute(); });
+    CHECK(unbound.kind() == ErrorKind::Usage);
+    CHECK_THAT(unbound.message(), Catch::Contains("placeholder ? number 1 has no value"));
+    REQUIRE(unbound.where());
+    CHECK(unbound.where()->column == 6);
+
+    find.bind(1, std::string("cushion"));
+    find.bind(2, std::string("sofa"));
+    find.bind(3, -1.0);
+    find.bind(4, std::int64_t{2});
+    CHECK_THAT(errorOf([&] { find.execute(); }).message(), Catch::Contains("cannot be -1"));
+    find.bind(3, std::monostate{});
+    CHECK_THAT(errorOf([&] { find.execute(); }).message(), Catch::Contains("? number 3 is bound to NULL"));
+    find.bind(3, 0.5);
+    find.bind(4, std::int64_t{-1});
+    CHECK_THAT(errorOf([&] { find.execute(); }).message(), Catch::Contains("cannot be negative"));
+    find.bind(4, std::int64_t{1});
+    CHECK(find.execute().rows.size() == 1);
+    find.clearBindings();
+    CHECK_THAT(errorOf([&] { find.execute(); }).message(), Catch::Contains("has no value"));
+
+    // Run without values, a statement with placeholders stops at the first.
+    CHECK_THAT(errorOf([&] { room.engine->execute("FIND lamp LIMIT $1"); }).message(),
+               Catch::Contains("placeholder $1 has no value"));
+    CHECK(errorOf([&] { room.engine->prepare("FIND ?; FIND ?"); }).kind() == ErrorKind::Usage);
+}
