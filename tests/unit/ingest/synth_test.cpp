@@ -470,7 +470,9 @@ TEST_CASE("synth: a seed gives byte-identical files", "[ingest][synth]") {
     for (const auto& entry : fs::recursive_directory_iterator((dir.path / "a")))
         if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), (dir.path / "a")).string());
     std::sort(files.begin(), files.end());
-    CHECK(files.size() == 3 * 3 + 7);
+    // color, depth and masks per frame; seven files of the capture; the evaluation suite.
+    CHECK(files.size() == 3 * 3 + 7 + 1);
+    CHECK(std::find(files.begin(), files.end(), "eval-suite.json") != files.end());
     for (const std::string& name : files) {
         INFO(name);
         REQUIRE(fs::exists((dir.path / "b") / name));
