@@ -7,7 +7,7 @@ PREFIX ?= /usr/local
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build debug test demo bench bench-startup fuzz stress format lint install clean
+.PHONY: all setup configure build debug test demo bench bench-startup bench-similar fuzz stress format lint install clean
 
 all: build
 
@@ -36,6 +36,10 @@ bench: build
 # One query in a fresh process, smql next to sqlite3 (the table of docs/benchmarks.md, "Start-up").
 bench-startup: build
 	@bench/startup.sh $(BUILD)/shell/smql
+
+# SIMILAR TO's search against a scan of every node's vector (docs/benchmarks.md, "SIMILAR TO").
+bench-similar: build
+	@$(BUILD)/bench/smql_bench_similar
 
 # libFuzzer targets, built with clang in build-fuzz, each run FUZZ_SECONDS seconds; fails on a crash.
 fuzz: setup

@@ -20,7 +20,7 @@ command      : findStmt | countStmt | relateStmt | describeStmt | showStmt | use
 // "unexpected WHERE", and lets PATH stand anywhere after the target.
 findStmt     : FIND ref findClause* ;
 findClause   : viewClause | whereClause | nearestClause | orderClause | limitClause | PATH | asOfClause
-             | returnClause ;
+             | returnClause | similarClause ;
 
 countStmt    : COUNT ref countClause* ;
 countClause  : viewClause | whereClause | asOfClause ;
@@ -51,6 +51,8 @@ floorPoint   : LPAREN MINUS? NUMBER COMMA MINUS? NUMBER RPAREN ;
 viewClause    : VIEW FROM ref ( FACING ref )? ;
 whereClause   : WHERE orExpr ;
 nearestClause : NEAREST TO ref ;
+// `SIMILAR TO 'soft thing to sit on'`: rows ranked by the similarity of their text (docs/similarity.md).
+similarClause : SIMILAR TO ( STRING | PARAM ) ;
 orderClause   : ORDER BY measure ( ASC | DESC )? ;
 // `RETURN id, color, center`: the columns FIND answers with, in that order.
 returnClause  : RETURN name ( COMMA name )* ;
@@ -94,7 +96,7 @@ name         : IDENT
              | VIEW | FROM | FACING | WHERE | NEAREST | TO | ORDER | BY | DISTANCE | ASC | DESC
              | LIMIT | PATH | SCENES | SCENE | TREE | SETTINGS
              | ASK | CHECK | DROP | RENAME | CATEGORIES | ATTRIBUTES | BETWEEN | RETURN | CHANGES | SINCE | AS | OF
-             | GUIDE | HERE | GRAPH
+             | GUIDE | HERE | GRAPH | SIMILAR
              ;
 
 // ---------------------------------------------------------------- tokens
@@ -119,6 +121,7 @@ FROM     : F R O M ;
 FACING   : F A C I N G ;
 WHERE    : W H E R E ;
 NEAREST  : N E A R E S T ;
+SIMILAR  : S I M I L A R ;
 TO       : T O ;
 ORDER    : O R D E R ;
 BY       : B Y ;

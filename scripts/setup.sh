@@ -7,7 +7,8 @@ packages=(
   liblmdb-dev lmdb-utils libboost-dev libeigen3-dev
   antlr4 libantlr4-runtime-dev default-jre-headless
   libfmt-dev nlohmann-json3-dev libcli11-dev libreadline-dev
-  wordnet-dev wordnet-base  # ASK: the WordNet library and its dictionary (read at run time)
+  wordnet-dev wordnet-base  # ASK and SIMILAR TO: the WordNet library and its dictionary (read at run time)
+  libhnswlib-dev  # SIMILAR TO's index on large scenes
   catch2 libsqlite3-dev postgresql-15-postgis-3 libpq-dev python3
   libopencv-dev libpcl-dev colmap
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer

@@ -133,4 +133,47 @@ std::set<long> hypernymClosure(long offset) {
     return seen;
 }
 
+std::string gloss(long offset) {
+    std::lock_guard guard(lock());
+    static std::map<long, std::string> known;
+    if (auto it = known.find(offset); it != known.end()) return it->second;
+    std::string out;
+    if (!open()) return out;
+    char noWord[] = "";  // no word to mark in the synset
+    if (SynsetPtr synset = read_synset(NOUN, offset, noWord)) {
+        // "(an upholstered seat for more than one person; \"an example\")": the words up to the examples.
+        out = synset->defn ? synset->defn : "";
+        free_synset(synset);
+        if (!out.empty() && out.front() == '(') out.erase(0, 1);
+        if (auto examples = out.find("; \""); examples != std::string::npos) out.resize(examples);
+        if (!out.empty() && out.back() == ')') out.pop_back();
+    }
+    known.emplace(offset, out);
+    return out;
+}
+
+std::vector<std::string> baseForms(const std::string& word) {
+    std::lock_guard guard(lock());
+    static std::map<std::string, std::vector<std::string>> known;
+    if (auto it = known.find(word); it != known.end()) return it->second;
+    std::vector<std::string> out;
+    auto add = [&](std::string form) {
+        if (std::find(out.begin(), out.end(), form) == out.end()) out.push_back(std::move(form));
+    };
+    if (open() && !word.empty()) {
+        std::string key = wordNetSpelling(word);
+        for (int pos : {NOUN, VERB, ADJ, ADV}) {
+            if (IndexPtr index = index_lookup(key.data(), pos)) {
+                add(categorySpelling(index->wd));
+                free_index(index);
+            }
+            for (char* form = morphstr(key.data(), pos); form; form = morphstr(nullptr, pos))
+                add(categorySpelling(form));
+        }
+    }
+    if (out.empty()) out.push_back(word);
+    known.emplace(word, out);
+    return out;
+}
+
 }  // namespace smql::ask::wordnet

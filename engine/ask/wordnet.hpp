@@ -34,5 +34,12 @@ std::vector<Sense> nounSenses(const std::string& word);
 std::vector<Sense> hypernyms(long offset);
 // Every synset above `offset` through hypernym and instance-of links, `offset` included.
 std::set<long> hypernymClosure(long offset);
+// The definition of the noun synset at `offset`, without its examples: "an upholstered seat for
+// more than one person". Empty when WordNet is missing.
+std::string gloss(long offset);
+// The base forms of a word in every part of speech, nouns first, then verbs, adjectives and
+// adverbs ("sitting" -> sitting, sit; "softer" -> soft; "chairs" -> chair); the word itself when
+// WordNet knows none.
+std::vector<std::string> baseForms(const std::string& word);
 
 }  // namespace smql::ask::wordnet

@@ -33,13 +33,26 @@ BoundFind Binder::bindFind(const ast::FindStmt& find) {
         }
         out.descending = find.orderBy->descending;
     }
+    if (find.similarTo) {
+        if (find.nearestTo || find.orderBy)
+            throw Error(ErrorKind::Binding,
+                        fmt::format("SIMILAR TO and {} both set an order", find.nearestTo ? "NEAREST TO" : "ORDER BY"),
+                        find.similarTo->where,
+                        "keep one; to rank the things near x by similarity, write WHERE near(x) SIMILAR TO '...'");
+        if (find.similarTo->text.find_first_not_of(" \t\n") == std::string::npos)
+            throw Error(ErrorKind::Binding, "SIMILAR TO needs words to compare with", find.similarTo->where,
+                        "describe the thing, as in SIMILAR TO 'soft thing to sit on'");
+        out.similarTo = find.similarTo->text;
+    }
     for (const auto& column : find.columns) {
-        bool known = exec::attributeIn(scene(), column) || (column == "distance" && out.distanceTo);
+        bool known = exec::attributeIn(scene(), column) || (column == "distance" && out.distanceTo) ||
+                     (column == "similarity" && out.similarTo);
         if (!known) {
             std::vector<std::string> names;
             for (const auto& attribute : exec::builtInAttributes()) names.emplace_back(attribute.name);
             for (const auto& stored : scene().attributeNames()) names.push_back(stored);
             if (out.distanceTo) names.emplace_back("distance");
+            if (out.similarTo) names.emplace_back("similarity");
             auto close = model::nearestNames(column, names);
             throw Error(ErrorKind::Binding, fmt::format("unknown column '{}' in RETURN", column), find.returnWhere,
                         close.empty() ? "SHOW ATTRIBUTES lists the columns"
@@ -82,8 +95,9 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
 void Binder::bindStatement(const ast::FindStmt& find, BoundStatement& out) {
     if (find.asOf) useVersion(*find.asOf);
     if (ctx_.session.allScenes) {
-        if (find.nearestTo || find.orderBy || find.path || !find.columns.empty())
-            throw Error(ErrorKind::Binding, "across all scenes, FIND takes no NEAREST TO, ORDER BY, PATH or RETURN",
+        if (find.nearestTo || find.orderBy || find.path || !find.columns.empty() || find.similarTo)
+            throw Error(ErrorKind::Binding,
+                        "across all scenes, FIND takes no NEAREST TO, ORDER BY, SIMILAR TO, PATH or RETURN",
                         find.target.where, "these measure within one scene: USE SCENE 'name'");
         out.body = bindCatalogFind(find.target, find.where, find.view, find.limit, false);
         return;

@@ -84,6 +84,7 @@ struct BoundFind {
     std::optional<NodeSet> distanceTo;  // ORDER BY distance(x) / NEAREST TO x
     bool nearest = false;               // NEAREST TO: the reference nodes themselves are left out
     std::string orderAttribute;         // ORDER BY height: a comparable built-in or stored attribute
+    std::optional<std::string> similarTo;  // SIMILAR TO 'text': ranked by similarity, most similar first
     bool descending = false;
     std::vector<std::string> columns;  // RETURN: checked names; empty for the default columns
     std::optional<std::int64_t> limit;

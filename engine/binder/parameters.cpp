@@ -56,7 +56,7 @@ bool isDistanceSlot(const ast::Expr& predicate, std::size_t argument) {
 
 // Every place a placeholder can stand, in one walk over a statement that callers may change:
 // `onName(ref)` for a reference, `onDistance(predicate)` for a predicate's trailing distance,
-// `onLiteral(comparison)`, `onLimit(find)`. Sub-queries and EXPLAIN's statement are shared
+// `onLiteral(comparison)`, `onLimit(find)`, `onSimilar(similarTo)`. Sub-queries and EXPLAIN's statement are shared
 // pointers in the AST; the walk copies them first, so changing the copy leaves the prepared
 // statement as it was.
 template <class Visitor>
@@ -78,6 +78,7 @@ private:
         if (find.nearestTo) ref(*find.nearestTo);
         if (find.orderBy && find.orderBy->distanceTo) ref(*find.orderBy->distanceTo);
         if (find.limitParam) visitor_.onLimit(find);
+        if (find.similarTo && find.similarTo->param) visitor_.onSimilar(*find.similarTo);
     }
     void body(ast::CountStmt& count) {
         ref(count.target);
@@ -151,6 +152,7 @@ struct SlotCollector {
     void onDistance(const ast::Expr& predicate) { add(predicate.args.back().placeholder, kNumberValue); }
     void onLiteral(const ast::Expr& comparison) { add(*comparison.literalParam, kAnyValue); }
     void onLimit(const ast::FindStmt& find) { add(*find.limitParam, kIntegerValue); }
+    void onSimilar(const ast::SimilarTo& similar) { add(*similar.param, kTextValue); }
 };
 
 // Puts the values in, checking each against its place.
@@ -229,6 +231,11 @@ struct ValueFiller {
                  "bind a whole number of 0 or more");
         find.limit = limit;
         find.limitParam.reset();
+    }
+
+    void onSimilar(ast::SimilarTo& similar) const {
+        similar.text = std::get<std::string>(valueOf(*similar.param, kTextValue));
+        similar.param.reset();
     }
 };
 

@@ -9,6 +9,7 @@
 
 #include "engine/exec/attributes.hpp"
 #include "engine/exec/executor.hpp"
+#include "engine/similar/text_embedder.hpp"
 #include "model/geometry.hpp"
 #include "storage/database.hpp"
 
@@ -88,6 +89,9 @@ Value boxValue(const Node& n) {
     if (n.geometry == model::GeometryKind::None) return std::monostate{};
     return n.box;
 }
+
+// Three decimals: the embedder's floats carry no more, and rows then print the same everywhere.
+double roundedSimilarity(double similarity) { return std::round(similarity * 1000) / 1000; }
 
 Value sourceValue(const Node& n) {
     if (!n.sourceId) return std::monostate{};
@@ -234,6 +238,43 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
     }
 }
 
+// SIMILAR TO over a large target without WHERE: the index's top k, widened until k of them are
+// in the target (hidden nodes and other kinds are in the index too).
+std::vector<Hit> Executor::similarFirst(const planner::FindPlan& plan, const relations::Frame& frame) {
+    const auto& f = *plan.find;
+    const auto& index = scene().embeddings();
+    const similar::Vector query = similar::embedQuery(*f.similarTo);
+    const auto want = static_cast<std::size_t>(*f.limit);
+    for (std::size_t k = std::max<std::size_t>(2 * want, 32);; k *= 4) {
+        poll();
+        std::vector<Hit> hits;
+        const auto matches = index.mostSimilar(query, k);
+        for (const auto& match : matches)
+            if (inTarget(f.target, match.position, frame)) hits.push_back({match.position, 0, match.similarity});
+        if (hits.size() >= want || matches.size() < k || k >= index.size()) {
+            if (hits.size() > want) hits.resize(want);
+            return hits;
+        }
+    }
+}
+
+// SIMILAR TO over filtered candidates: each one's similarity, exactly; those below
+// similar::kLeastSimilarity are left out, the rest go most similar first (ties in id order).
+void Executor::rankBySimilarity(const planner::FindPlan& plan, std::vector<Hit>& hits) const {
+    const auto& f = *plan.find;
+    const auto& snap = scene();
+    const auto& index = snap.embeddings();
+    const similar::Vector query = similar::embedQuery(*f.similarTo);
+    for (Hit& h : hits) h.similarity = index.similarity(h.slot, query);
+    std::erase_if(hits, [](const Hit& h) { return !(h.similarity >= similar::kLeastSimilarity); });
+    auto before = [&](const Hit& a, const Hit& b) {
+        return a.similarity != b.similarity ? a.similarity > b.similarity : snap.node(a.slot).id < snap.node(b.slot).id;
+    };
+    const auto k = plan.topK ? std::min(hits.size(), static_cast<std::size_t>(*f.limit)) : hits.size();
+    std::partial_sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(k), hits.end(), before);
+    hits.resize(k);
+}
+
 model::Aabb Executor::probeRegion(const BoundExpr& term, const model::Aabb& around) const {
     if (term.kind == BoundExpr::Kind::Compare) {
         const double reach = std::holds_alternative<double>(term.literal)
@@ -276,6 +317,7 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
     const auto& snap = scene();
     relations::Frame viewer = frame(f.view);
     if (plan.access == Access::NearestFirst) return nearestFirst(plan, viewer);
+    if (plan.access == Access::SimilarFirst) return similarFirst(plan, viewer);
 
     std::vector<Hit> hits = filtered(plan, viewer);
     if (f.distanceTo) {
@@ -296,6 +338,7 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
         });
     }
     if (!f.orderAttribute.empty()) orderByAttribute(plan, hits);
+    if (f.similarTo) rankBySimilarity(plan, hits);
     if (f.limit && hits.size() > static_cast<std::size_t>(*f.limit)) hits.resize(static_cast<std::size_t>(*f.limit));
     return hits;
 }
@@ -351,12 +394,14 @@ ResultSet Executor::run(const binder::BoundFind& f) {
                   {"source_id", ValueType::Integer},
                   {"box", ValueType::Box}};
     if (f.distanceTo) rs.columns.push_back({"distance", ValueType::Real});
+    if (f.similarTo) rs.columns.push_back({"similarity", ValueType::Real});
     if (f.path) rs.columns.push_back({"path", ValueType::Text});
     rs.rows.reserve(hits.size());
     for (const auto& h : hits) {
         const Node& n = scene().node(h.slot);
         std::vector<Value> row{static_cast<std::int64_t>(n.id), n.category, sourceValue(n), boxValue(n)};
         if (f.distanceTo) row.emplace_back(h.distance);
+        if (f.similarTo) row.emplace_back(roundedSimilarity(h.similarity));
         if (f.path) row.emplace_back(scene().path(h.slot));
         rs.rows.push_back(std::move(row));
     }
@@ -366,9 +411,11 @@ ResultSet Executor::run(const binder::BoundFind& f) {
 // RETURN a, b: the named columns in order, each typed as its attribute (SHOW ATTRIBUTES), then PATH.
 ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>& hits) const {
     ResultSet rs;
-    std::vector<std::optional<AttributeInfo>> attributes;  // none: the distance column
+    // none: the distance or similarity column
+    std::vector<std::optional<AttributeInfo>> attributes;
     for (const auto& column : f.columns) {
-        if (column == "distance" && !builtInAttribute(column) && f.distanceTo) {
+        const bool measured = (column == "distance" && f.distanceTo) || (column == "similarity" && f.similarTo);
+        if (measured && !builtInAttribute(column)) {
             attributes.emplace_back(std::nullopt);
             rs.columns.push_back({column, ValueType::Real});
         } else {
@@ -380,8 +427,12 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
     rs.rows.reserve(hits.size());
     for (const auto& h : hits) {
         std::vector<Value> row;
-        for (const auto& attribute : attributes)
-            row.push_back(attribute ? attributeValue(scene(), h.slot, *attribute) : Value(h.distance));
+        for (std::size_t i = 0; i < attributes.size(); ++i) {
+            if (attributes[i])
+                row.push_back(attributeValue(scene(), h.slot, *attributes[i]));
+            else
+                row.emplace_back(f.columns[i] == "similarity" ? roundedSimilarity(h.similarity) : h.distance);
+        }
         if (f.path) row.emplace_back(scene().path(h.slot));
         rs.rows.push_back(std::move(row));
     }

@@ -28,7 +28,8 @@ std::string relationSentence(const model::Node& a, const model::Node& b,
 
 struct Hit {
     Slot slot;
-    double distance = 0;  // to the ORDER BY / NEAREST TO reference, when there is one
+    double distance = 0;    // to the ORDER BY / NEAREST TO reference, when there is one
+    double similarity = 0;  // to the SIMILAR TO text, when there is one
 };
 
 class Executor {
@@ -87,6 +88,8 @@ private:
     bool compare(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
     bool inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame);
     std::vector<Hit> nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame);
+    std::vector<Hit> similarFirst(const planner::FindPlan& plan, const relations::Frame& frame);
+    void rankBySimilarity(const planner::FindPlan& plan, std::vector<Hit>& hits) const;
     std::vector<Hit> filtered(const planner::FindPlan& plan, const relations::Frame& frame);
     // Where the candidates of an R-tree probe around one reference's bounds lie (a superset).
     model::Aabb probeRegion(const binder::BoundExpr& term, const model::Aabb& around) const;

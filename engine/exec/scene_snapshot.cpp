@@ -67,6 +67,16 @@ const SceneSnapshot::Guidance& SceneSnapshot::guidance() const {
     return *guidance_;
 }
 
+const similar::EmbeddingIndex& SceneSnapshot::embeddings() const {
+    std::call_once(embeddingsBuilt_, [&] {
+        std::vector<similar::Vector> vectors;
+        vectors.reserve(nodes_.size());
+        for (const auto& node : nodes_) vectors.push_back(similar::embedNode(node));
+        embeddings_ = std::make_unique<const similar::EmbeddingIndex>(std::move(vectors));
+    });
+    return *embeddings_;
+}
+
 std::optional<Slot> SceneSnapshot::slotOf(model::NodeId id) const {
     auto it = slotById_.find(id);
     if (it == slotById_.end()) return std::nullopt;

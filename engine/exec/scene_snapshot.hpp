@@ -15,6 +15,7 @@
 
 #include "engine/guide/route_graph.hpp"
 #include "engine/relations/predicates.hpp"
+#include "engine/similar/embedding_index.hpp"
 #include "model/types.hpp"
 #include "storage/spatial_index.hpp"
 
@@ -57,6 +58,9 @@ public:
         guide::GraphOptions options;
     };
     const Guidance& guidance() const;
+    // The nodes' vectors for SIMILAR TO, by slot (docs/similarity.md): embedded the first time a
+    // query asks, then kept as long as the snapshot.
+    const similar::EmbeddingIndex& embeddings() const;
 
     // "room0 / wall#3 / sofa#12 / cushion#40"
     std::string path(Slot slot) const;
@@ -78,6 +82,8 @@ private:
     storage::SpatialIndex rtree_;
     std::vector<model::Relation> relations_;
     mutable std::once_flag guidanceBuilt_;
+    mutable std::once_flag embeddingsBuilt_;
+    mutable std::unique_ptr<const similar::EmbeddingIndex> embeddings_;
     mutable std::unique_ptr<const Guidance> guidance_;
 };
 

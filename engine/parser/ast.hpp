@@ -98,6 +98,13 @@ struct AsOf {
     SourceLocation where;
 };
 
+// `SIMILAR TO 'soft thing to sit on'` or `SIMILAR TO ?` (text bound later).
+struct SimilarTo {
+    std::string text;
+    std::optional<Placeholder> param;
+    SourceLocation where;
+};
+
 struct FindStmt {
     Ref target;
     std::optional<AsOf> asOf;
@@ -105,6 +112,7 @@ struct FindStmt {
     std::optional<Expr> where;
     std::optional<Ref> nearestTo;  // NEAREST TO x: order by distance to x, ascending
     std::optional<OrderBy> orderBy;
+    std::optional<SimilarTo> similarTo;  // rank by similarity, most similar first
     std::optional<std::int64_t> limit;
     std::optional<Placeholder> limitParam;  // `LIMIT ?`: the limit is bound later
     bool path = false;

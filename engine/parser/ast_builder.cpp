@@ -225,8 +225,9 @@ private:
                  rank == 1 ? "combine the conditions with AND" : "keep one of them");
         if (lastRank && rank < *lastRank)
             fail(where, fmt::format("{} must come before {}", clauseNames[rank], clauseNames[*lastRank]),
-                 "write the clauses in the order VIEW FROM, WHERE, NEAREST TO, ORDER BY, LIMIT; PATH, RETURN and AS OF "
-                 "may go anywhere after the target");
+                 "write the clauses in the order VIEW FROM, WHERE, NEAREST TO, ORDER BY, LIMIT; PATH, RETURN, SIMILAR "
+                 "TO "
+                 "and AS OF may go anywhere after the target");
         lastRank = rank;
     }
 
@@ -253,6 +254,15 @@ private:
             } else if (auto* order = clause->orderClause()) {
                 checkOrder(3, span(*clause), lastRank);
                 find.orderBy = orderBy(*order);
+            } else if (auto* similar = clause->similarClause()) {
+                if (find.similarTo)
+                    fail(span(*clause), "SIMILAR TO given twice", "describe what you look for in one text");
+                ast::SimilarTo similarTo{{}, std::nullopt, span(*clause)};
+                if (auto* param = similar->PARAM())
+                    similarTo.param = placeholder(*param->getSymbol());
+                else
+                    similarTo.text = unquote(*similar->STRING()->getSymbol());
+                find.similarTo = std::move(similarTo);
             } else if (auto* columns = clause->returnClause()) {
                 if (!find.columns.empty()) fail(span(*clause), "RETURN given twice", "list every column in one RETURN");
                 for (SmqlParser::NameContext* column : columns->name()) find.columns.push_back(nameOf(*column));

@@ -73,6 +73,8 @@ std::string describeToken(std::size_t type, bool afterNumber) {
             return "VIEW FROM";
         case SmqlLexer::NEAREST:
             return "NEAREST TO";
+        case SmqlLexer::SIMILAR:
+            return "SIMILAR TO";
         case SmqlLexer::ORDER:
             return "ORDER BY";
         case SmqlLexer::AS:

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "engine/planner/planner.hpp"
+#include "engine/similar/embedding_index.hpp"
 
 namespace smql::planner {
 
@@ -58,6 +59,7 @@ void explainFind(const FindPlan& plan, Lines& lines) {
         if (columns.empty()) {
             columns = "id, category, source_id, box";
             if (f.distanceTo) columns += ", distance";
+            if (f.similarTo) columns += ", similarity";
         }
         if (f.path) columns += ", path";
         lines.add("Project " + columns);
@@ -73,11 +75,22 @@ void explainFind(const FindPlan& plan, Lines& lines) {
             if (f.where) lines.add("Filter " + describe(*f.where));
             lines.add("Keep " + keep);
             break;
+        case Access::SimilarFirst:
+            lines.add(
+                fmt::format("Top {} most similar to '{}': search of the embedding index's distinct vectors "
+                            "(HNSW from {} of them), widened until {} pass",
+                            *f.limit, *f.similarTo, similar::EmbeddingIndex::kIndexedFrom, *f.limit));
+            lines.add("Keep " + keep);
+            break;
         case Access::RTreeProbe:
         case Access::Scan:
             if (f.distanceTo)
                 lines.add(fmt::format("Sort by distance to {}{}{}", f.distanceTo->description,
                                       f.descending ? " descending" : "", f.nearest ? ", without itself" : ""));
+            if (f.similarTo)
+                lines.add(fmt::format("{} by similarity to '{}': exact, each candidate's vector, none below {}",
+                                      plan.topK ? fmt::format("Top {}", *f.limit) : std::string("Sort"), *f.similarTo,
+                                      similar::kLeastSimilarity));
             if (!f.orderAttribute.empty() && plan.topK)
                 lines.add(fmt::format("Top {} by {}{}: partial sort, nodes without it last", *f.limit, f.orderAttribute,
                                       f.descending ? " descending" : ""));

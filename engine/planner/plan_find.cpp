@@ -42,6 +42,11 @@ std::optional<std::size_t> probeConjunct(const binder::BoundFind& find) {
     return best;
 }
 
+// From this many target nodes, SIMILAR TO ... LIMIT k without WHERE asks the embedding index
+// (one dot product per distinct vector, or HNSW) rather than computing every candidate's similarity:
+// a room's few hundred objects share a few dozen vectors.
+constexpr std::size_t kSimilarFirstFrom = 256;
+
 // Exactly one reference node, known before the statement runs: a name, id or side.
 bool oneReference(const NodeSet& set) {
     return (set.source == NodeSet::Source::Nodes && set.slots.size() == 1) || set.source == NodeSet::Source::Side;
@@ -58,8 +63,10 @@ FindPlan planFind(std::shared_ptr<const binder::BoundFind> find) {
         plan.probeConjunct = *probe;
     } else if (f.distanceTo && oneReference(*f.distanceTo) && f.limit && !f.descending) {
         plan.access = Access::NearestFirst;
+    } else if (f.similarTo && f.limit && !f.where && f.target.nodes.estimate() >= kSimilarFirstFrom) {
+        plan.access = Access::SimilarFirst;
     }
-    plan.topK = !f.orderAttribute.empty() && f.limit.has_value();
+    plan.topK = (!f.orderAttribute.empty() || f.similarTo) && f.limit.has_value();
     return plan;
 }
 

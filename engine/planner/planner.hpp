@@ -6,6 +6,8 @@
 //  - NEAREST TO / ORDER BY distance(x) LIMIT k around one node is a top-k
 //    nearest-first search of the R-tree;
 //  - ORDER BY an attribute with a LIMIT keeps the top k (a partial sort), without one sorts all;
+//  - SIMILAR TO ... LIMIT k without WHERE over a target of hundreds of nodes asks the embedding
+//    index for the top k; otherwise each candidate's similarity is computed;
 //  - under USE SCENE '*', FIND and COUNT read the label index of every scene;
 //  - every sub-query gets a plan of its own, run before the statement needs it.
 #pragma once
@@ -24,6 +26,8 @@ enum class Access {
     Scan,          // every node of the target
     RTreeProbe,    // the boxes around the reference nodes of one local conjunct
     NearestFirst,  // top k by distance to one node: the R-tree's nearest boxes, widened until exact
+    SimilarFirst,  // top k by similarity (SIMILAR TO) over a large target: the embedding index's
+                   // search, widened until k candidates pass the target
 };
 
 struct FindPlan {
