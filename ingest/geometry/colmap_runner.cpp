@@ -116,17 +116,21 @@ std::string diagnosis(const fs::path& database, std::size_t frames, int minMatch
                 "only {} of {} photos gave image features (blank, dark, blurred or textureless photos give none): "
                 "take sharper photos of textured surfaces",
                 s.imagesWithFeatures, frames);
-        std::string overlap = fmt::format(
-            "{} pairs share {} or more verified matches, the largest group of photos "
-            "linked that way holds {}",
-            s.overlappingPairs, minMatches, s.largestOverlapGroup);
+        std::string overlap = fmt::format("{} {} of photos {} {} or more verified matches", s.overlappingPairs,
+                                          s.overlappingPairs == 1 ? "pair" : "pairs",
+                                          s.overlappingPairs == 1 ? "shares" : "share", minMatches);
         if (s.overlappingImages < frames)
             return fmt::format(
                 "only {} of {} photos overlap enough with another ({}): take more views with overlap, each "
                 "neighbouring photo seeing much of what the last one saw",
                 s.overlappingImages, frames, overlap);
+        if (s.largestOverlapGroup < frames)
+            return fmt::format(
+                "every photo overlaps with another, but they fall apart into separate groups: the largest holds only "
+                "{} of {} photos ({}): take views that link the groups, with overlap",
+                s.largestOverlapGroup, frames, overlap);
         return fmt::format(
-            "all {} photos overlap with another ({}), but no model could be grown from them: the views may be too "
+            "all {} photos are linked by overlap ({}), but no model could be grown from them: the views may be too "
             "close together (move the camera between photos, not only turn it) or the matches fall on repeated "
             "patterns; take views from more places, with overlap",
             frames, overlap);
