@@ -229,8 +229,9 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
     const std::string threads = fmt::format("{}", options.threads);
     auto runStep = [&](const std::string& step, const std::string& arguments) {
         std::string line =
-            fmt::format("echo '$ colmap {} {}' >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1", step, arguments,
-                        shellQuoted(run.logPath), shellQuoted(*colmap), step, arguments, shellQuoted(run.logPath));
+            fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
+                        shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run.logPath),
+                        shellQuoted(*colmap), step, arguments, shellQuoted(run.logPath));
         int status = std::system(line.c_str());
         int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         if (code != 0) {
