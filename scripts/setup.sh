@@ -11,6 +11,7 @@ packages=(
   libhnswlib-dev  # SIMILAR TO's index on large scenes
   catch2 libsqlite3-dev postgresql-15-postgis-3 libpq-dev python3
   libopencv-dev libpcl-dev colmap
+  libexif-dev  # photos' EXIF focal length for an unknown camera (ingest/capture/camera_source.cpp)
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer
   clang-format clang-tidy  # make format, make lint (scripts/lint.sh)
   tmux  # the shell's terminal test (Ctrl-C, widths)

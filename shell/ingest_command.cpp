@@ -122,6 +122,8 @@ int ingestCommand(const IngestArguments& args) {
     if (!args.update.empty()) Engine::open(args.db)->readScene(args.update);
     ingest::CaptureOptions captureOptions;
     captureOptions.fps = args.fps;
+    if (!args.camera.empty()) captureOptions.intrinsics = ingest::parseCameraOption(args.camera);
+    captureOptions.horizontalFov = args.fov;
     ingest::Capture capture = ingest::readCapture(args.capture, captureOptions);
 
     ingest::IngestOptions options;
@@ -133,6 +135,8 @@ int ingestCommand(const IngestArguments& args) {
     options.detectorModel = args.detector;
     options.detectorClasses = args.classes;
     options.scale = args.scale;
+    options.colmap.maxImageSize = args.maxSize;
+    options.colmap.vocabularyTree = args.vocabularyTree;
 
     std::unique_ptr<ingest::ProgressSink> progress;
     if (args.log == "json")

@@ -19,8 +19,12 @@ struct IngestArguments {
     std::string classes;            // ... and its class names (default: coco.names beside the model)
     double fps = 1.0;
     std::optional<double> scale;
-    std::string log = "bar";  // bar | quiet | json
-    std::string update;       // a scene of the same place to update instead of adding a new one
+    std::string camera;          // --camera fx,fy,cx,cy (pixels of the images as stored)
+    std::optional<double> fov;   // --fov DEG, horizontal
+    int maxSize = 1024;          // --max-size: long side of the frames COLMAP sees (0: as stored)
+    std::string vocabularyTree;  // --vocab-tree: COLMAP's vocabulary tree, for loop detection
+    std::string log = "bar";     // bar | quiet | json
+    std::string update;          // a scene of the same place to update instead of adding a new one
 };
 
 // `smql ingest CAPTURE --db DIR`: capture -> one new scene, in one transaction.

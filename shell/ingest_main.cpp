@@ -25,7 +25,10 @@ int run(int argc, char** argv) {
         ->check(CLI::ExistingPath);
     ingestCmd->add_option("--db", ingestArgs.db, "database directory (created if missing)")->required();
     ingestCmd->add_option("--scene", ingestArgs.scene, "scene name (default: the capture's folder name)");
-    ingestCmd->add_option("--geometry", ingestArgs.geometry, "given, colmap or auto (default)")
+    ingestCmd
+        ->add_option("--geometry", ingestArgs.geometry,
+                     "given (the capture's poses), colmap (structure from motion on the colour frames) or auto "
+                     "(default: colmap when some frame has no pose)")
         ->check(CLI::IsMember({"given", "colmap", "auto"}));
     ingestCmd
         ->add_option("--objects", ingestArgs.objects,
@@ -42,6 +45,27 @@ int run(int argc, char** argv) {
         ->check(CLI::ExistingFile);
     ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")
         ->check(CLI::PositiveNumber);
+    auto* cameraOption =
+        ingestCmd->add_option("--camera", ingestArgs.camera,
+                              "the camera as fx,fy,cx,cy in pixels of the images as stored (default: the capture's "
+                              "camera.json or calibration, else the photos' EXIF focal length, else a stated guess); "
+                              "COLMAP keeps it fixed");
+    ingestCmd
+        ->add_option("--fov", ingestArgs.fov,
+                     "the horizontal field of view in degrees, when only that is known (COLMAP refines the focal "
+                     "length)")
+        ->excludes(cameraOption);
+    ingestCmd
+        ->add_option("--max-size", ingestArgs.maxSize,
+                     "COLMAP sees the frames scaled down to this many pixels on the long side (default 1024, 0 = "
+                     "as stored); poses and intrinsics come back in the frames' own pixels")
+        ->check(CLI::NonNegativeNumber);
+    ingestCmd
+        ->add_option("--vocab-tree", ingestArgs.vocabularyTree,
+                     "a COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection in sequential matching (Debian "
+                     "ships none; without it, loops are closed by matching 40 frames spread through the capture all "
+                     "against all)")
+        ->check(CLI::ExistingFile);
     ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")
         ->check(CLI::PositiveNumber);
     ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");

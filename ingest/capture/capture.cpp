@@ -98,6 +98,11 @@ Capture readCapture(const std::string& path, const CaptureOptions& options) {
         throw Error(ErrorKind::Usage, fmt::format("fps must be a number, got {}", options.fps), std::nullopt,
                     "frames per second to sample from videos and TUM sequences; 0 keeps every frame");
     if (options.depthScale) checkDepthScale(*options.depthScale, "depth scale option");
+    if (options.intrinsics && options.horizontalFov)
+        throw Error(
+            ErrorKind::Usage, "give the camera as --camera or as --fov, not both", std::nullopt,
+            "--camera fx,fy,cx,cy when the camera is calibrated, --fov DEG when only its field of view is known");
+    if (options.horizontalFov) checkFieldOfView(*options.horizontalFov);
 
     fs::path target(path);
     std::error_code ec;
@@ -129,6 +134,7 @@ Capture readCapture(const std::string& path, const CaptureOptions& options) {
         fail(path, "neither a folder nor a regular file", kLayoutsHint);
     }
     capture.path = path;
+    refuseMirroredCameras(capture);
     return capture;
 }
 

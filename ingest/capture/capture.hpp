@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "model/types.hpp"
@@ -43,6 +44,14 @@ struct CaptureFrame {
     std::optional<Intrinsics> intrinsics;
 };
 
+// Where a capture's intrinsics came from. COLMAP keeps measured intrinsics
+// fixed, refines approximate ones, and estimates guessed ones itself.
+enum class IntrinsicsOrigin {
+    Measured,     // --camera, camera.json, the layout's own calibration (COLMAP, nerfstudio)
+    Approximate,  // --fov, EXIF focal length (35 mm equivalent)
+    Guessed,      // nothing known: fx = fy = 1.2 x width (images, videos) or a Kinect's (RGB-D)
+};
+
 struct SparsePoint {
     model::Vec3 position;
     std::array<std::uint8_t, 3> color{};
@@ -52,6 +61,7 @@ struct Capture {
     std::string path;    // what the user named
     std::string layout;  // rgbd | tum | nerfstudio | colmap | images | video | synth
     Intrinsics intrinsics;
+    IntrinsicsOrigin intrinsicsOrigin = IntrinsicsOrigin::Measured;
     double depthScale = 1000;  // depth image units per metre
     bool metric = true;        // poses and points in metres (sensors) or up to scale (SfM)
     std::vector<CaptureFrame> frames;
@@ -68,14 +78,24 @@ struct CaptureOptions {
     double fps = 1.0;        // sampling of videos and TUM sequences (0 = every frame); image folders keep every image
     int workingWidth = 640;  // frames wider than this are scaled down (docs/ingest.md)
     std::optional<double> depthScale;
-    std::optional<Intrinsics> intrinsics;
-    std::string workDirectory;   // where decoded video frames go (a temp folder by default)
-    std::string imageDirectory;  // COLMAP: the images the model was made from (found beside it by default)
+    std::optional<Intrinsics> intrinsics;  // --camera (width, height 0: the images' size)
+    std::optional<double> horizontalFov;   // --fov, degrees: fx = fy from the image width, centred principal point
+    std::string workDirectory;             // where decoded video frames go (a temp folder by default)
+    std::string imageDirectory;            // COLMAP: the images the model was made from (found beside it by default)
 };
+
+// `--camera fx,fy,cx,cy` in pixels of the images as stored. Throws
+// smql::Error(Usage) naming the bad value (mirrored cameras, a negative focal
+// length, are refused).
+Intrinsics parseCameraOption(std::string_view text);
+// `--fov DEG`: the horizontal field of view, checked (0 < DEG < 180).
+double checkFieldOfView(double degrees);
 
 // Recognises the layout of `path` (a folder or a file) and reads it. Throws
 // smql::Error(ErrorKind::Input) naming the file and what is wrong. Layouts and
-// the detection order: docs/formats.md, "Captures (smql ingest)".
+// the detection order: docs/formats.md, "Captures (smql ingest)". A mirrored
+// (left-handed) camera, a pose whose rotation has determinant -1 or a negative
+// focal length, is refused naming the frame.
 Capture readCapture(const std::string& path, const CaptureOptions& options = {});
 
 }  // namespace smql::ingest

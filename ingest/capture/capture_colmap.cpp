@@ -342,6 +342,11 @@ Intrinsics intrinsicsOf(const Camera& camera, bool& distorted) {
     }
     for (std::size_t i = first; i < p.size(); ++i)
         if (p[i] != 0) distorted = true;
+    if (out.fx < 0 || out.fy < 0)
+        fail(
+            camera.where,
+            fmt::format("the camera is mirrored: focal length {} / {} is negative, which smql refuses", out.fx, out.fy),
+            kColmapHint);
     if (camera.width <= 0 || camera.height <= 0 || camera.width > 100000 || camera.height > 100000 || !(out.fx > 0) ||
         !(out.fy > 0))
         fail(camera.where,
@@ -432,7 +437,7 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
         frame.colorPath = colorPath.string();
         frame.pose = inverse(image.worldToCamera);
         if (i == 0) capture.intrinsics = intrinsics;
-        if (!options.intrinsics && !(intrinsics == capture.intrinsics)) {
+        if (!hasOptionIntrinsics(options) && !(intrinsics == capture.intrinsics)) {
             frame.intrinsics = intrinsics;
             perFrame = true;
         }
@@ -440,11 +445,13 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
     }
 
     RawFrame first = readRawFrame(capture.frames.front());
-    if (options.intrinsics)
-        capture.intrinsics = userIntrinsics(*options.intrinsics, first.color.cols, first.color.rows);
+    if (std::optional<Intrinsics> given = optionIntrinsics(options, first.color.cols, first.color.rows)) {
+        capture.intrinsics = *given;
+        capture.intrinsicsOrigin = optionOrigin(options);
+    }
     fitIntrinsics(capture.intrinsics, first.color.cols, first.color.rows, capture.frames.front().colorPath,
-                  options.intrinsics ? "the intrinsics option" : camerasFile.string());
-    if (distorted && !options.intrinsics)
+                  hasOptionIntrinsics(options) ? optionName(options) : camerasFile.string());
+    if (distorted && !hasOptionIntrinsics(options))
         capture.notes.push_back(
             fmt::format("{}: lens distortion is ignored: the images are taken as pinhole images "
                         "(undistort them with `colmap image_undistorter` for exact geometry)",

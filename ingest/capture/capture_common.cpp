@@ -218,7 +218,9 @@ Intrinsics userIntrinsics(const Intrinsics& given, int width, int height) {
     };
     for (double v : {given.fx, given.fy, given.cx, given.cy})
         if (!std::isfinite(v)) bad("a value is not finite");
-    if (given.fx <= 0 || given.fy <= 0) bad(fmt::format("fx and fy must be > 0, got {} and {}", given.fx, given.fy));
+    if (given.fx <= 0 || given.fy <= 0)
+        bad(fmt::format("fx and fy must be > 0 (a negative focal length is a mirrored camera), got {} and {}", given.fx,
+                        given.fy));
     if (given.width < 0 || given.height < 0 || (given.width == 0) != (given.height == 0))
         bad(fmt::format("width and height must both be > 0 or both 0, got {}x{}", given.width, given.height));
     Intrinsics out = given;

@@ -97,6 +97,29 @@ Intrinsics scaleIntrinsics(const Intrinsics& in, int width, int height);
 Intrinsics userIntrinsics(const Intrinsics& given, int width, int height);
 void checkDepthScale(double scale, const std::string& from);
 
+// The camera the options give (--camera, else --fov) for images of width x
+// height, or std::nullopt; optionName says which ("--camera"), optionOrigin
+// how well it is known (camera_source.cpp).
+std::optional<Intrinsics> optionIntrinsics(const CaptureOptions& options, int width, int height);
+const char* optionName(const CaptureOptions& options);
+IntrinsicsOrigin optionOrigin(const CaptureOptions& options);
+inline bool hasOptionIntrinsics(const CaptureOptions& options) {
+    return options.intrinsics.has_value() || options.horizontalFov.has_value();
+}
+
+// What a photo's EXIF says about its camera (libexif; nothing for files without EXIF).
+struct ExifCamera {
+    std::optional<double> focal35mm;  // FocalLengthIn35mmFilm, millimetres
+    int orientation = 1;              // 1 = as stored; others: OpenCV turns the image when it reads it
+};
+ExifCamera readExif(const fs::path& file);
+// A pinhole camera with the 35 mm equivalent focal length's diagonal field of view, centred.
+Intrinsics intrinsicsFrom35mm(double focal35mm, int width, int height);
+
+// Throws smql::Error(Input) naming the frame when a pose is mirrored (its
+// rotation's determinant is not positive) or a focal length is not positive.
+void refuseMirroredCameras(const Capture& capture);
+
 // The image must exist and have a signature OpenCV recognises (a cheap check
 // reading the file's first bytes). `what` names its role ("colour image").
 void checkImageFile(const fs::path& file, std::string_view what, std::string_view hint);

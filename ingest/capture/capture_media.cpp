@@ -14,6 +14,43 @@
 
 namespace smql::ingest::capture_detail {
 
+namespace {
+
+// Each photo's camera from its EXIF focal length (35 mm equivalent) when every photo has one, else
+// the stated guess for all: a capture's intrinsics are either all known or all guessed.
+void cameraFromExif(Capture& capture, const fs::path& dir, int width, int height) {
+    std::vector<std::optional<double>> focals;
+    std::size_t known = 0;
+    for (const CaptureFrame& frame : capture.frames) {
+        focals.push_back(readExif(frame.colorPath).focal35mm);
+        known += focals.back().has_value();
+    }
+    if (known == capture.frames.size()) {
+        capture.intrinsicsOrigin = IntrinsicsOrigin::Approximate;
+        for (std::size_t i = 0; i < capture.frames.size(); ++i) {
+            cv::Size size = i == 0 ? cv::Size(width, height) : readColorImage(capture.frames[i].colorPath).size();
+            Intrinsics k = intrinsicsFrom35mm(*focals[i], size.width, size.height);
+            if (i == 0)
+                capture.intrinsics = k;
+            else if (!(k == capture.intrinsics))
+                capture.frames[i].intrinsics = k;
+        }
+        capture.notes.push_back(fmt::format(
+            "{}: camera from the photos' EXIF focal length ({:g} mm equivalent in the first photo: fx = fy = {:.1f} "
+            "for {}x{}); give --camera or camera.json for exact geometry",
+            dir.string(), *focals.front(), capture.intrinsics.fx, width, height));
+        return;
+    }
+    capture.intrinsics = guessedIntrinsics(width, height);
+    capture.intrinsicsOrigin = IntrinsicsOrigin::Guessed;
+    capture.notes.push_back(fmt::format(
+        "{}: the camera is unknown ({} of {} photos give an EXIF focal length): intrinsics guessed as fx = fy = 1.2 x "
+        "width = {:g} with a centred principal point; give --camera, --fov or camera.json for better geometry",
+        dir.string(), known, capture.frames.size(), capture.intrinsics.fx));
+}
+
+}  // namespace
+
 Capture readImageFolder(const fs::path& dir, const std::vector<fs::path>& images, const CaptureOptions& options) {
     Capture capture;
     capture.layout = "images";
@@ -28,15 +65,24 @@ Capture readImageFolder(const fs::path& dir, const std::vector<fs::path>& images
     }
     RawFrame first = readRawFrame(capture.frames.front());
     const int width = first.color.cols, height = first.color.rows;
-    if (options.intrinsics) {
-        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
-        fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath, "the intrinsics option");
+    const fs::path cameraFile = dir / "camera.json";
+    std::error_code ec;
+    if (std::optional<Intrinsics> given = optionIntrinsics(options, width, height)) {
+        capture.intrinsics =
+            fitIntrinsics(*given, width, height, capture.frames.front().colorPath, optionName(options));
+        capture.intrinsicsOrigin = optionOrigin(options);
+        capture.notes.push_back(fmt::format("camera from {}: fx {:.1f}, fy {:.1f}, cx {:.1f}, cy {:.1f} for {}x{}",
+                                            optionName(options), capture.intrinsics.fx, capture.intrinsics.fy,
+                                            capture.intrinsics.cx, capture.intrinsics.cy, width, height));
+    } else if (fs::is_regular_file(cameraFile, ec)) {
+        CameraJson camera = readCameraJson(cameraFile, kImagesHint);
+        capture.intrinsics =
+            fitIntrinsics(camera.intrinsics, width, height, capture.frames.front().colorPath, cameraFile.string());
+        capture.notes.push_back(fmt::format("camera from {}: fx {:.1f}, fy {:.1f}, cx {:.1f}, cy {:.1f} for {}x{}",
+                                            cameraFile.string(), capture.intrinsics.fx, capture.intrinsics.fy,
+                                            capture.intrinsics.cx, capture.intrinsics.cy, width, height));
     } else {
-        capture.intrinsics = guessedIntrinsics(width, height);
-        capture.notes.push_back(fmt::format(
-            "{}: the camera is unknown: intrinsics guessed as fx = fy = 1.2 x width = {:g} with a centred principal "
-            "point; give the intrinsics for better geometry",
-            dir.string(), capture.intrinsics.fx));
+        cameraFromExif(capture, dir, width, height);
     }
     if (options.depthScale) capture.depthScale = *options.depthScale;
     return capture;
@@ -138,15 +184,26 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
     if (capture.frames.empty()) fail(path, "no frame could be decoded from the video", kVideoHint);
 
     cv::Mat first = readColorImage(capture.frames.front().colorPath);
-    if (options.intrinsics) {
-        Intrinsics given = userIntrinsics(*options.intrinsics, nativeSize.width, nativeSize.height);
-        given = fitIntrinsics(given, nativeSize.width, nativeSize.height, path, "the intrinsics option");
-        capture.intrinsics = scaleIntrinsics(given, first.cols, first.rows);
+    const fs::path cameraFile = file.has_parent_path() ? file.parent_path() / "camera.json" : fs::path("camera.json");
+    std::error_code ec;
+    if (std::optional<Intrinsics> given = optionIntrinsics(options, nativeSize.width, nativeSize.height)) {
+        given = fitIntrinsics(*given, nativeSize.width, nativeSize.height, path, optionName(options));
+        capture.intrinsics = scaleIntrinsics(*given, first.cols, first.rows);
+        capture.intrinsicsOrigin = optionOrigin(options);
+    } else if (fs::is_regular_file(cameraFile, ec)) {
+        CameraJson camera = readCameraJson(cameraFile, kVideoHint);
+        Intrinsics native =
+            fitIntrinsics(camera.intrinsics, nativeSize.width, nativeSize.height, path, cameraFile.string());
+        capture.intrinsics = scaleIntrinsics(native, first.cols, first.rows);
+        capture.notes.push_back(fmt::format("camera from {}: fx {:.1f}, fy {:.1f} for the video's {}x{}",
+                                            cameraFile.string(), native.fx, native.fy, nativeSize.width,
+                                            nativeSize.height));
     } else {
         capture.intrinsics = guessedIntrinsics(first.cols, first.rows);
+        capture.intrinsicsOrigin = IntrinsicsOrigin::Guessed;
         capture.notes.push_back(fmt::format(
             "{}: the camera is unknown: intrinsics guessed as fx = fy = 1.2 x width with a centred principal point; "
-            "give the intrinsics for better geometry",
+            "give --camera, --fov or camera.json beside the video for better geometry",
             path));
     }
     if (options.depthScale) capture.depthScale = *options.depthScale;

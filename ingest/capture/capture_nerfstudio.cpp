@@ -65,7 +65,8 @@ fs::path resolveImage(const fs::path& base, const Field& field) {
     return path.lexically_normal();
 }
 
-Pose readTransform(const Field& field) {
+// `image` names the frame in errors.
+Pose readTransform(const Field& field, std::string_view image) {
     std::size_t rows = field.size();
     if (rows != 3 && rows != 4) field.fail(fmt::format("expected a 4x4 (or 3x4) matrix, got {} rows", rows));
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
@@ -77,8 +78,12 @@ Pose readTransform(const Field& field) {
         field.fail("the last row of a camera-to-world matrix must be 0 0 0 1");
     Eigen::Matrix3d r = m.topLeftCorner<3, 3>();
     double error = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-    if (error > 1e-2 || r.determinant() <= 0)
-        field.fail("the rotation part is not a rotation (it is scaled, skewed or mirrored)");
+    if (r.determinant() <= 0)
+        field.fail(
+            fmt::format("the camera pose of frame '{}' is mirrored (left-handed): its rotation has determinant "
+                        "{:.3g}; smql takes right-handed poses only",
+                        image, r.determinant()));
+    if (error > 1e-2) field.fail("the rotation part is not a rotation (it is scaled or skewed)");
     Eigen::JacobiSVD<Eigen::Matrix3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
     r = svd.matrixU() * svd.matrixV().transpose();
     // OpenGL / Blender camera (x right, y up, looking along -z) to OpenCV
@@ -134,7 +139,7 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
         fs::path color = resolveImage(base, filePath);
         checkImageFile(color, "colour image", kNerfstudioHint);
         entry.frame.colorPath = color.string();
-        entry.frame.pose = readTransform(f.at("transform_matrix"));
+        entry.frame.pose = readTransform(f.at("transform_matrix"), entry.filePath);
         if (std::optional<Field> depth = f.find("depth_file_path")) {
             fs::path depthPath = resolveImage(base, *depth);
             checkImageFile(depthPath, "depth image", kNerfstudioHint);
@@ -172,7 +177,10 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
         else
             fy = fx;
         if (!(fx > 0) || !(fy > 0) || !std::isfinite(fx) || !std::isfinite(fy))
-            f.fail(fmt::format("focal lengths must be positive, got fl_x {} and fl_y {}", fx, fy));
+            f.fail(
+                fmt::format("focal lengths must be positive, got fl_x {} and fl_y {} (a negative focal length is a "
+                            "mirrored camera, which smql refuses)",
+                            fx, fy));
         // nerfstudio puts pixel centres at +0.5 (the image corner is 0); ours are at integers.
         double cx = cam.cx ? *cam.cx : *cam.w / 2, cy = cam.cy ? *cam.cy : *cam.h / 2;
         entry.intrinsics = Intrinsics{static_cast<int>(*cam.w), static_cast<int>(*cam.h), fx, fy, cx - 0.5, cy - 0.5};
@@ -187,7 +195,7 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
         frame.index = static_cast<int>(i);
         frame.time = options.fps > 0 ? i / options.fps : static_cast<double>(i);
         if (i == 0) capture.intrinsics = entries[i].intrinsics;
-        if (!options.intrinsics && !(entries[i].intrinsics == capture.intrinsics)) {
+        if (!hasOptionIntrinsics(options) && !(entries[i].intrinsics == capture.intrinsics)) {
             frame.intrinsics = entries[i].intrinsics;
             perFrame = true;
         }
@@ -195,10 +203,12 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
     }
 
     RawFrame first = readRawFrame(capture.frames.front());
-    if (options.intrinsics)
-        capture.intrinsics = userIntrinsics(*options.intrinsics, first.color.cols, first.color.rows);
+    if (std::optional<Intrinsics> given = optionIntrinsics(options, first.color.cols, first.color.rows)) {
+        capture.intrinsics = *given;
+        capture.intrinsicsOrigin = optionOrigin(options);
+    }
     fitIntrinsics(capture.intrinsics, first.color.cols, first.color.rows, capture.frames.front().colorPath,
-                  options.intrinsics ? "the intrinsics option" : file);
+                  hasOptionIntrinsics(options) ? optionName(options) : file);
 
     if (perFrame) capture.notes.push_back(fmt::format("{}: the frames have different intrinsics", file));
     if (distorted)

@@ -36,16 +36,18 @@ void chooseCamera(Capture& capture, const CaptureOptions& options, const fs::pat
     if (pathExists(cameraFile)) camera = readCameraJson(cameraFile, hint);
     RawFrame first = readRawFrame(capture.frames.front());
     const int width = first.color.cols, height = first.color.rows;
-    if (options.intrinsics) {
-        capture.intrinsics = userIntrinsics(*options.intrinsics, width, height);
+    if (std::optional<Intrinsics> given = optionIntrinsics(options, width, height)) {
+        capture.intrinsics = *given;
+        capture.intrinsicsOrigin = optionOrigin(options);
     } else if (camera) {
         capture.intrinsics = camera->intrinsics;
     } else {
         capture.intrinsics = kinectDefault(width, height);
+        capture.intrinsicsOrigin = IntrinsicsOrigin::Guessed;
         capture.notes.push_back(defaultNote(capture.intrinsics, width, height));
     }
     capture.intrinsics = fitIntrinsics(capture.intrinsics, width, height, capture.frames.front().colorPath,
-                                       options.intrinsics ? "the intrinsics option" : cameraFile.string());
+                                       hasOptionIntrinsics(options) ? optionName(options) : cameraFile.string());
     capture.depthScale = options.depthScale             ? *options.depthScale
                          : camera && camera->depthScale ? *camera->depthScale
                                                         : defaultDepthScale;
@@ -118,10 +120,19 @@ CameraJson readCameraJson(const fs::path& file, std::string_view hint) {
         if (v <= 0) f.fail(fmt::format("expected a positive number, got {}", v));
         return v;
     };
+    auto focal = [&](const Field& f) {
+        double v = f.number();
+        if (v <= 0)
+            f.fail(
+                fmt::format("the focal length must be > 0, got {} (a negative focal length is a mirrored camera, "
+                            "which smql refuses)",
+                            v));
+        return v;
+    };
     out.intrinsics.width = positiveInt("width");
     out.intrinsics.height = positiveInt("height");
-    out.intrinsics.fx = positive(root.at("fx"));
-    out.intrinsics.fy = positive(root.at("fy"));
+    out.intrinsics.fx = focal(root.at("fx"));
+    out.intrinsics.fy = focal(root.at("fy"));
     out.intrinsics.cx = root.at("cx").number();
     out.intrinsics.cy = root.at("cy").number();
     if (std::optional<Field> scale = root.find("depth_scale")) out.depthScale = positive(*scale);

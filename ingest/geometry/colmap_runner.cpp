@@ -3,13 +3,20 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/geometry/colmap_database.hpp"
 #include "model/error.hpp"
 
 namespace smql::ingest {
@@ -52,6 +59,86 @@ std::optional<std::string> findExecutable(const std::string& command) {
     return std::nullopt;
 }
 
+// A frame as COLMAP sees it: its image in the work folder, scaled down to the
+// run's maximum size, and the camera group (one COLMAP camera) it belongs to.
+struct WorkFrame {
+    std::size_t frame = 0;  // position in the capture
+    std::string name;       // relative to images/: "<group>/frame000000.png"
+    cv::Size original;      // the frame as stored (as OpenCV reads it)
+    cv::Size work;          // as COLMAP sees it
+};
+
+// Frames of one image size with one known camera (or an unknown one): one COLMAP camera.
+struct CameraGroup {
+    std::string folder;  // "1920x1080", "1920x1080-2" for a second known camera of that size
+    cv::Size original, work;
+    std::optional<Intrinsics> known;  // at the work size
+    std::vector<std::size_t> frames;  // indices into the work frames
+};
+
+cv::Size scaledDown(cv::Size size, int maxSize) {
+    int longSide = std::max(size.width, size.height);
+    if (maxSize <= 0 || longSide <= maxSize) return size;
+    double s = static_cast<double>(maxSize) / longSide;
+    return {std::max(1, static_cast<int>(std::lround(size.width * s))),
+            std::max(1, static_cast<int>(std::lround(size.height * s)))};
+}
+
+// The frame's camera at its stored size when the capture knows it; the guess is left to COLMAP.
+std::optional<Intrinsics> knownCamera(const Capture& capture, const CaptureFrame& frame, cv::Size size) {
+    if (capture.intrinsicsOrigin == IntrinsicsOrigin::Guessed) return std::nullopt;
+    const Intrinsics& k = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
+    if (!(k.fx > 0) || !(k.fy > 0) || k.width <= 0 || k.height <= 0) return std::nullopt;
+    if (std::abs(static_cast<double>(k.height) * size.width / k.width - size.height) > 1.0) return std::nullopt;
+    return capture_detail::scaleIntrinsics(k, size.width, size.height);
+}
+
+const char* originWords(IntrinsicsOrigin origin) {
+    switch (origin) {
+        case IntrinsicsOrigin::Measured:
+            return "kept fixed as given";
+        case IntrinsicsOrigin::Approximate:
+            return "refined from the approximate focal length (--fov or EXIF)";
+        case IntrinsicsOrigin::Guessed:
+            return "estimated by COLMAP, the camera being unknown";
+    }
+    return "";
+}
+
+// "only 2 of 8 photos overlap enough ...": what the database says, for an error.
+std::string diagnosis(const fs::path& database, std::size_t frames, int minMatches) {
+    std::error_code ec;
+    if (!fs::exists(database, ec)) return {};
+    try {
+        ColmapDatabaseSummary s = readColmapDatabase(database.string(), minMatches);
+        if (s.imagesWithFeatures < s.images)
+            return fmt::format(
+                "only {} of {} photos gave image features (blank, dark, blurred or textureless photos give none): "
+                "take sharper photos of textured surfaces",
+                s.imagesWithFeatures, frames);
+        std::string overlap = fmt::format("{} {} of photos {} {} or more verified matches", s.overlappingPairs,
+                                          s.overlappingPairs == 1 ? "pair" : "pairs",
+                                          s.overlappingPairs == 1 ? "shares" : "share", minMatches);
+        if (s.overlappingImages < frames)
+            return fmt::format(
+                "only {} of {} photos overlap enough with another ({}): take more views with overlap, each "
+                "neighbouring photo seeing much of what the last one saw",
+                s.overlappingImages, frames, overlap);
+        if (s.largestOverlapGroup < frames)
+            return fmt::format(
+                "every photo overlaps with another, but they fall apart into separate groups: the largest holds only "
+                "{} of {} photos ({}): take views that link the groups, with overlap",
+                s.largestOverlapGroup, frames, overlap);
+        return fmt::format(
+            "all {} photos are linked by overlap ({}), but no model could be grown from them: the views may be too "
+            "close together (move the camera between photos, not only turn it) or the matches fall on repeated "
+            "patterns; take views from more places, with overlap",
+            frames, overlap);
+    } catch (const Error& e) {
+        return e.what();
+    }
+}
+
 }  // namespace
 
 ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
@@ -80,54 +167,168 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
     fs::create_directories(images);
     fs::create_directories(sparse);
 
-    // Images by frame position, linked (not copied): names map back to frames.
-    std::map<std::string, std::size_t> frameByName;
+    // Frames into COLMAP's image folder, one sub-folder per camera group: linked when COLMAP can read
+    // them as they are, else written scaled down (and turned upright, as OpenCV reads them).
+    std::vector<WorkFrame> workFrames;
+    std::vector<CameraGroup> groups;
+    std::size_t scaled = 0;
     for (std::size_t i = 0; i < capture.frames.size(); ++i) {
-        fs::path source = fs::absolute(capture.frames[i].colorPath);
-        std::string name = fmt::format("frame{:06d}{}", i, capture_detail::lowerCase(source.extension().string()));
+        const CaptureFrame& frame = capture.frames[i];
         std::error_code ec;
-        fs::create_symlink(source, images / name, ec);
-        if (ec) fs::copy_file(source, images / name, fs::copy_options::overwrite_existing);
-        frameByName[name] = i;
-    }
+        cv::Mat image;
+        if (fs::is_regular_file(frame.colorPath, ec)) image = cv::imread(frame.colorPath, cv::IMREAD_COLOR);
+        if (image.empty()) {
+            run.notes.push_back(fmt::format("frame {} ({}) is listed but its image is missing or unreadable: skipped",
+                                            frame.index, frame.colorPath));
+            continue;
+        }
+        WorkFrame w{i, {}, image.size(), scaledDown(image.size(), options.maxImageSize)};
+        std::optional<Intrinsics> known = knownCamera(capture, frame, image.size());
+        if (known) known = capture_detail::scaleIntrinsics(*known, w.work.width, w.work.height);
+        auto group = std::find_if(groups.begin(), groups.end(),
+                                  [&](const CameraGroup& g) { return g.original == w.original && g.known == known; });
+        if (group == groups.end()) {
+            std::size_t sameSize = std::count_if(groups.begin(), groups.end(),
+                                                 [&](const CameraGroup& g) { return g.original == w.original; });
+            std::string folder = fmt::format("{}x{}", w.original.width, w.original.height);
+            if (sameSize > 0) folder += fmt::format("-{}", sameSize + 1);
+            groups.push_back(CameraGroup{folder, w.original, w.work, known, {}});
+            fs::create_directories(images / folder);
+            group = groups.end() - 1;
+        }
+        group->frames.push_back(workFrames.size());
 
-    const Intrinsics& K = capture.intrinsics;
-    bool known = K.fx > 0 && K.fy > 0 &&
-                 std::none_of(capture.frames.begin(), capture.frames.end(),
-                              [](const CaptureFrame& f) { return f.intrinsics.has_value(); });
-    std::string camera = known ? fmt::format(
-                                     " --ImageReader.camera_model PINHOLE --ImageReader.single_camera 1 "
-                                     "--ImageReader.camera_params {},{},{},{}",
-                                     K.fx, K.fy, K.cx, K.cy)
-                               : std::string(" --ImageReader.camera_model SIMPLE_RADIAL --ImageReader.single_camera 1");
-    std::string threads = fmt::format("{}", options.threads);
-    bool exhaustive = static_cast<int>(capture.frames.size()) <= options.exhaustiveUpTo;
-    struct Step {
-        std::string name, arguments;
-    };
-    std::vector<Step> steps = {
-        {"feature_extractor",
-         fmt::format("--database_path {} --image_path {}{} --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads {}",
-                     shellQuoted(database.string()), shellQuoted(images.string()), camera, threads)},
-        {exhaustive ? "exhaustive_matcher" : "sequential_matcher",
-         fmt::format("--database_path {} --SiftMatching.use_gpu 0 --SiftMatching.num_threads {}",
-                     shellQuoted(database.string()), threads)},
-        {"mapper", fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {}",
-                               shellQuoted(database.string()), shellQuoted(images.string()),
-                               shellQuoted(sparse.string()), threads)},
-    };
-    for (const auto& step : steps) {
-        std::string line = fmt::format("echo '$ colmap {}' >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
-                                       step.name, shellQuoted(run.logPath), shellQuoted(*colmap), step.name,
-                                       step.arguments, shellQuoted(run.logPath));
+        fs::path source = fs::absolute(frame.colorPath);
+        std::string extension = capture_detail::lowerCase(source.extension().string());
+        w.name = fmt::format("{}/frame{:06d}{}", group->folder, i, extension);
+        bool upright = capture_detail::readExif(source).orientation == 1;
+        if (w.work != w.original || !upright) {
+            cv::Mat small;
+            cv::resize(image, small, w.work, 0, 0, cv::INTER_AREA);
+            if (!cv::imwrite((images / w.name).string(), small, {cv::IMWRITE_JPEG_QUALITY, 95}))
+                throw Error(ErrorKind::Input, fmt::format("cannot write {}", (images / w.name).string()));
+            scaled += w.work != w.original;
+        } else {
+            fs::create_symlink(source, images / w.name, ec);
+            if (ec) fs::copy_file(source, images / w.name, fs::copy_options::overwrite_existing);
+        }
+        workFrames.push_back(std::move(w));
+    }
+    if (workFrames.size() < 2)
+        throw Error(ErrorKind::Input,
+                    fmt::format("{}: COLMAP needs at least 2 frames, {} of {} have a readable image", capture.path,
+                                workFrames.size(), capture.frames.size()),
+                    std::nullopt, kRetryHint);
+    if (scaled > 0)
+        run.notes.push_back(
+            fmt::format("COLMAP sees {} of {} frames scaled down to {} pixels on the long side "
+                        "(--max-size); poses and intrinsics are mapped back to the frames' own pixels",
+                        scaled, workFrames.size(), options.maxImageSize));
+    run.cameras = groups.size();
+
+    const std::string threads = fmt::format("{}", options.threads);
+    auto runStep = [&](const std::string& step, const std::string& arguments) {
+        std::string line =
+            fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
+                        shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run.logPath),
+                        shellQuoted(*colmap), step, arguments, shellQuoted(run.logPath));
         int status = std::system(line.c_str());
         int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        if (code != 0)
-            throw Error(
-                ErrorKind::Input,
-                fmt::format("colmap {} failed (exit status {}); its output is in {}", step.name, code, run.logPath),
-                std::nullopt, kRetryHint);
+        if (code != 0) {
+            std::string facts = step == "feature_extractor"
+                                    ? std::string()
+                                    : diagnosis(database, workFrames.size(), options.minMatches);
+            throw Error(ErrorKind::Input,
+                        fmt::format("colmap {} failed (exit status {}){}{}; its output is in {}", step, code,
+                                    facts.empty() ? "" : ": ", facts, run.logPath),
+                        std::nullopt, kRetryHint);
+        }
+    };
+
+    // One feature_extractor run per group, so that each image size gets a camera of its own even
+    // when the sizes share a folder of photos (COLMAP's single_camera would force one size on all).
+    for (const CameraGroup& group : groups) {
+        fs::path list = work / fmt::format("images-{}.txt", group.folder);
+        std::ofstream out(list);
+        for (std::size_t index : group.frames) out << workFrames[index].name << "\n";
+        out.close();
+        std::string camera =
+            group.known ? fmt::format("--ImageReader.camera_model PINHOLE --ImageReader.camera_params {},{},{},{}",
+                                      group.known->fx, group.known->fy, group.known->cx + 0.5, group.known->cy + 0.5)
+                        : std::string("--ImageReader.camera_model SIMPLE_RADIAL");
+        runStep("feature_extractor",
+                fmt::format("--database_path {} --image_path {} --image_list_path {} --ImageReader.single_camera 1 {} "
+                            "--SiftExtraction.use_gpu 0 --SiftExtraction.num_threads {}",
+                            shellQuoted(database.string()), shellQuoted(images.string()), shellQuoted(list.string()),
+                            camera, threads));
     }
+    ColmapDatabaseSummary extracted = readColmapDatabase(database.string(), options.minMatches);
+    if (extracted.imagesWithFeatures < 2)
+        throw Error(
+            ErrorKind::Input,
+            fmt::format("colmap feature_extractor: only {} of {} photos gave image features; its output is in {}",
+                        extracted.imagesWithFeatures, workFrames.size(), run.logPath),
+            std::nullopt,
+            "blank, dark, blurred or textureless photos give no features: take sharper photos of textured "
+            "surfaces");
+
+    // Frames in capture order (videos, RGB-D sequences) are matched with their neighbours; a photo
+    // folder's order says little, so small ones are matched all against all.
+    const bool ordered = capture.layout != "images";
+    const bool exhaustive = !ordered && static_cast<int>(workFrames.size()) <= options.exhaustiveUpTo;
+    std::error_code treeError;
+    const bool loops =
+        !exhaustive && !options.vocabularyTree.empty() && fs::is_regular_file(options.vocabularyTree, treeError);
+    run.matcher = exhaustive ? "exhaustive_matcher" : "sequential_matcher";
+    std::string matching = fmt::format(
+        "--database_path {} --SiftMatching.use_gpu 0 --SiftMatching.num_threads {} "
+        "--SiftMatching.min_num_inliers {}",
+        shellQuoted(database.string()), threads, options.minMatches);
+    if (!exhaustive) {
+        matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap 1",
+                                options.sequentialOverlap);
+        if (loops)
+            matching += fmt::format(" --SequentialMatching.loop_detection 1 --SequentialMatching.vocab_tree_path {}",
+                                    shellQuoted(options.vocabularyTree));
+    }
+    runStep(run.matcher, matching);
+
+    // Without a vocabulary tree, a walk that comes back to where it started is closed by matching a few
+    // frames spread evenly through the capture all against all (pairs matched already are skipped).
+    if (!exhaustive && !loops) {
+        std::size_t count = std::min<std::size_t>(workFrames.size(), std::max(options.loopFrames, 0));
+        fs::path pairsFile = work / "loop-pairs.txt";
+        std::ofstream pairs(pairsFile);
+        for (std::size_t a = 0; a < count; ++a)
+            for (std::size_t b = a + 1; b < count; ++b)
+                pairs << workFrames[a * workFrames.size() / count].name << " "
+                      << workFrames[b * workFrames.size() / count].name << "\n";
+        pairs.close();
+        if (count >= 2)
+            runStep("matches_importer",
+                    fmt::format("--database_path {} --match_list_path {} --match_type pairs --SiftMatching.use_gpu 0 "
+                                "--SiftMatching.num_threads {} --SiftMatching.min_num_inliers {}",
+                                shellQuoted(database.string()), shellQuoted(pairsFile.string()), threads,
+                                options.minMatches));
+        run.notes.push_back(fmt::format(
+            "COLMAP matched each frame with its {} neighbours in {} order; loop detection {}, so loops are closed by "
+            "matching {} frames spread through the capture all against all",
+            options.sequentialOverlap, ordered ? "capture" : "name",
+            options.vocabularyTree.empty()
+                ? "needs a vocabulary tree (vocab_tree_*.bin from COLMAP's site, given with --vocab-tree; Debian ships "
+                  "none)"
+                : fmt::format("is off: the vocabulary tree {} is not a file", options.vocabularyTree),
+            count));
+    }
+
+    // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
+    bool fixed = capture.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
+                 std::all_of(groups.begin(), groups.end(), [](const CameraGroup& g) { return g.known.has_value(); });
+    runStep("mapper", fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {} "
+                                  "--Mapper.min_num_matches {}{}",
+                                  shellQuoted(database.string()), shellQuoted(images.string()),
+                                  shellQuoted(sparse.string()), threads, options.minMatches,
+                                  fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""));
 
     // The mapper writes one folder per model (sparse/0, sparse/1...): take the one with the most images.
     CaptureOptions readOptions;
@@ -145,19 +346,39 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
         }
     }
     if (!best)
-        throw Error(
-            ErrorKind::Input,
-            fmt::format("colmap mapper produced no model: no pair of frames could be registered; its output is in {}",
-                        run.logPath),
-            std::nullopt, kRetryHint);
+        throw Error(ErrorKind::Input,
+                    fmt::format("colmap mapper made no model: {}; its output is in {}",
+                                diagnosis(database, workFrames.size(), options.minMatches), run.logPath),
+                    std::nullopt, kRetryHint);
 
+    // Poses are the same at any image size; intrinsics go back to each frame's own pixels.
+    std::map<std::string, const WorkFrame*> byName;
+    for (const WorkFrame& w : workFrames) byName[w.name] = &w;
     for (auto& frame : capture.frames) frame.pose.reset();
+    std::vector<std::pair<std::size_t, Intrinsics>> cameras;
     for (const auto& frame : best->frames) {
-        auto it = frameByName.find(fs::path(frame.colorPath).filename().string());
-        if (it == frameByName.end()) continue;
-        capture.frames[it->second].pose = frame.pose;
+        auto it = byName.find(fs::path(frame.colorPath).lexically_relative(images).generic_string());
+        if (it == byName.end()) continue;
+        const WorkFrame& w = *it->second;
+        capture.frames[w.frame].pose = frame.pose;
+        Intrinsics k = frame.intrinsics ? *frame.intrinsics : best->intrinsics;
+        cameras.emplace_back(w.frame, capture_detail::scaleIntrinsics(k, w.original.width, w.original.height));
         ++run.registered;
     }
+    std::sort(cameras.begin(), cameras.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (auto& frame : capture.frames) frame.intrinsics.reset();
+    for (const auto& [index, k] : cameras) {
+        if (index == cameras.front().first) capture.intrinsics = k;
+        if (!(k == capture.intrinsics)) capture.frames[index].intrinsics = k;
+    }
+    std::vector<std::string> described;
+    for (const auto& [index, k] : cameras) {
+        std::string text =
+            fmt::format("{}x{}: fx {:.1f}, fy {:.1f}, cx {:.1f}, cy {:.1f}", k.width, k.height, k.fx, k.fy, k.cx, k.cy);
+        if (std::find(described.begin(), described.end(), text) == described.end()) described.push_back(text);
+    }
+    run.notes.push_back(fmt::format("COLMAP's cameras in the frames' own pixels, {}: {}",
+                                    originWords(capture.intrinsicsOrigin), fmt::join(described, "; ")));
     capture.points = best->points;
     capture.metric = false;
     run.points = capture.points.size();

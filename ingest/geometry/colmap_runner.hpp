@@ -13,7 +13,12 @@ namespace smql::ingest {
 
 struct ColmapOptions {
     std::string command = "colmap";  // looked up on PATH
-    int exhaustiveUpTo = 60;         // exhaustive_matcher up to this many frames, sequential_matcher above
+    int maxImageSize = 1024;         // frames with a longer side are scaled down to it for COLMAP (0: as stored)
+    int exhaustiveUpTo = 60;         // unordered photo sets up to this many frames: exhaustive_matcher
+    int sequentialOverlap = 10;      // sequential_matcher: the neighbours each frame is matched with
+    std::string vocabularyTree;      // COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection; empty: none
+    int loopFrames = 40;             // without a tree: frames spread through the capture, matched all against all
+    int minMatches = 15;             // verified matches that make two frames overlap (COLMAP's mapper default)
     int threads = -1;                // COLMAP's num_threads (-1: all cores)
     bool keepWorkDirectory = false;  // keep the work folder (images, database, models, colmap.log) after a success too
 };
@@ -21,16 +26,21 @@ struct ColmapOptions {
 struct ColmapRun {
     std::string workDirectory;   // /tmp/smql-colmap-XXXXXX
     std::string logPath;         // every command's output
+    std::string matcher;         // exhaustive_matcher or sequential_matcher (then matches_importer closes loops)
+    std::size_t cameras = 0;     // COLMAP cameras: one per image size (and per known camera of that size)
     std::size_t registered = 0;  // frames that got a pose
     std::size_t points = 0;      // sparse points
     std::size_t models = 0;      // models the mapper wrote (the largest is used)
     std::vector<std::string> notes;
 };
 
-// Fills every registered frame's pose and the capture's points (replacing any
-// it had); frames COLMAP did not register keep no pose. Sets metric = false.
-// Throws smql::Error(Input) when `colmap` is missing (naming how to install
-// it) or a step fails or no model comes out (naming the step and the log).
+// Fills every registered frame's pose and intrinsics (in the frame's own
+// pixels: COLMAP sees the frames scaled down to maxImageSize) and the
+// capture's points (replacing any it had); frames COLMAP did not register, and
+// frames whose image is missing, keep no pose. Sets metric = false. Throws
+// smql::Error(Input) when `colmap` is missing (naming how to install it) or a
+// step fails or no model comes out (naming the step, what the database shows:
+// photos with features, photos that overlap, and what to do).
 ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {});
 
 }  // namespace smql::ingest

@@ -1,0 +1,163 @@
+// How COLMAP is driven (ingest/geometry/colmap_runner.cpp): one camera per
+// image size, frames scaled down before extraction with the intrinsics mapped
+// back to the frames' pixels, and failures that say how many photos overlap.
+// Photo sets are cut from `smql synth` frames (neighbouring frames overlap).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "ingest/capture/capture.hpp"
+#include "ingest/geometry/colmap_database.hpp"
+#include "ingest/geometry/colmap_runner.hpp"
+#include "ingest/synth/synth.hpp"
+#include "model/error.hpp"
+#include "scratch_dir.hpp"
+
+using namespace smql;
+using namespace smql::ingest;
+using smql::ingest::test::ScratchDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A synthetic walk of 30 frames; neighbouring frames overlap well.
+std::string writeWalk(const ScratchDir& dir) {
+    std::string path = (dir.path / "walk").string();
+    synth::writeSynth(path, {.seed = 3, .frames = 30, .objects = 24});
+    return path;
+}
+
+// Frame `number` (1-based) of the walk, resized to `size` when given, as photos/<name>.
+void copyFrame(const std::string& walk, int number, const fs::path& photos, const std::string& name,
+               cv::Size size = {}) {
+    cv::Mat image = cv::imread(fmt::format("{}/color/{}.png", walk, number), cv::IMREAD_COLOR);
+    REQUIRE(!image.empty());
+    if (!size.empty()) cv::resize(image, image, size, 0, 0, cv::INTER_CUBIC);
+    fs::create_directories(photos);
+    REQUIRE(cv::imwrite((photos / name).string(), image));
+}
+
+// The work folder of a run kept for inspection, removed at the end of the test.
+struct KeptWork {
+    std::string path;
+    ~KeptWork() {
+        std::error_code ignored;
+        if (!path.empty()) fs::remove_all(path, ignored);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("a photo set of mixed sizes gets one COLMAP camera per size", "[colmap]") {
+    ScratchDir dir;
+    std::string walk = writeWalk(dir);
+    fs::path photos = dir.path / "photos";
+    for (int i = 1; i <= 8; ++i)
+        copyFrame(walk, i, photos, fmt::format("p{}.png", i), i % 2 == 0 ? cv::Size(480, 360) : cv::Size());
+    Capture capture = readCapture(photos.string());
+    REQUIRE(capture.intrinsicsOrigin == IntrinsicsOrigin::Guessed);
+
+    ColmapOptions options;
+    options.keepWorkDirectory = true;
+    ColmapRun run = runColmap(capture, options);
+    KeptWork kept{run.workDirectory};
+
+    CHECK(run.cameras == 2);
+    CHECK(run.matcher == "exhaustive_matcher");  // a small unordered set
+    ColmapDatabaseSummary db = readColmapDatabase(run.workDirectory + "/database.db");
+    REQUIRE(db.cameras.size() == 2);
+    CHECK(db.cameras[0].width == 640);
+    CHECK(db.cameras[0].height == 480);
+    CHECK(db.cameras[1].width == 480);
+    CHECK(db.cameras[1].height == 360);
+    CHECK(db.cameras[0].model == "SIMPLE_RADIAL");  // unknown camera: COLMAP estimates it
+    CHECK(db.images == 8);
+
+    // Registered frames carry COLMAP's camera in their own pixels.
+    CHECK(run.registered >= 6);
+    for (const CaptureFrame& frame : capture.frames) {
+        if (!frame.pose) continue;
+        const Intrinsics& k = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
+        CHECK(k.width == cv::imread(frame.colorPath).cols);
+    }
+}
+
+TEST_CASE("photos that do not overlap fail at the mapper, saying how many overlap", "[colmap]") {
+    ScratchDir dir;
+    std::string walk = writeWalk(dir);
+    fs::path photos = dir.path / "photos";
+    copyFrame(walk, 1, photos, "p1.png");
+    copyFrame(walk, 2, photos, "p2.png");
+    // Six unrelated photos: smooth random blotches, each of its own seed.
+    for (int i = 3; i <= 8; ++i) {
+        cv::Mat noise(480, 640, CV_8UC3);
+        cv::RNG rng(static_cast<std::uint64_t>(1000 + i));
+        rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
+        cv::GaussianBlur(noise, noise, cv::Size(0, 0), 4);
+        REQUIRE(cv::imwrite((photos / fmt::format("p{}.png", i)).string(), noise));
+    }
+    Capture capture = readCapture(photos.string());
+    try {
+        runColmap(capture);
+        FAIL("expected COLMAP to fail");
+    } catch (const Error& e) {
+        INFO(e.message());
+        CHECK(e.kind() == ErrorKind::Input);
+        std::string message = e.message();
+        CHECK(message.find("colmap mapper") != std::string::npos);
+        CHECK(message.find("only 2 of 8 photos overlap enough") != std::string::npos);
+        CHECK(message.find("take more views with overlap") != std::string::npos);
+        CHECK(message.find("colmap.log") != std::string::npos);
+        // The failed run's folder stays for its log; it goes with the test.
+        std::size_t at = message.find("/tmp/smql-colmap-");
+        if (at != std::string::npos) {
+            std::error_code ignored;
+            fs::remove_all(message.substr(at, std::string("/tmp/smql-colmap-XXXXXX").size()), ignored);
+        }
+    }
+}
+
+TEST_CASE("1920-pixel frames reach COLMAP at 1024 and come back in their own pixels", "[colmap]") {
+    ScratchDir dir;
+    std::string walk = writeWalk(dir);
+    fs::path photos = dir.path / "photos";
+    for (int i = 1; i <= 6; ++i) copyFrame(walk, i, photos, fmt::format("p{}.png", i), cv::Size(1920, 1440));
+    // The synthetic camera (fx = fy = 525 at 640 x 480) at three times the size.
+    std::ofstream(photos / "camera.json")
+        << R"({"width": 1920, "height": 1440, "fx": 1575, "fy": 1575, "cx": 959.5, "cy": 719.5})";
+    Capture capture = readCapture(photos.string());
+    REQUIRE(capture.intrinsicsOrigin == IntrinsicsOrigin::Measured);
+
+    ColmapOptions options;
+    options.keepWorkDirectory = true;
+    ColmapRun run = runColmap(capture, options);
+    KeptWork kept{run.workDirectory};
+
+    // COLMAP saw 1024 x 768 frames with the camera scaled to them.
+    ColmapDatabaseSummary db = readColmapDatabase(run.workDirectory + "/database.db");
+    REQUIRE(db.cameras.size() == 1);
+    CHECK(db.cameras[0].model == "PINHOLE");
+    CHECK(db.cameras[0].width == 1024);
+    CHECK(db.cameras[0].height == 768);
+    CHECK(db.cameras[0].params[0] == Approx(1575.0 * 1024 / 1920));
+    CHECK(db.cameras[0].params[2] == Approx(512));  // COLMAP's pixel centres at +0.5: the image centre
+    cv::Mat seen = cv::imread(run.workDirectory + "/images/1920x1440/frame000000.png");
+    CHECK(seen.cols == 1024);
+    CHECK(seen.rows == 768);
+
+    // The frames keep their files; the camera comes back at 1920 x 1440, kept fixed as given.
+    CHECK(run.registered >= 5);
+    CHECK(capture.frames[0].colorPath == (photos / "p1.png").string());
+    CHECK(capture.intrinsics.width == 1920);
+    CHECK(capture.intrinsics.height == 1440);
+    CHECK(capture.intrinsics.fx == Approx(1575).epsilon(1e-9));
+    CHECK(capture.intrinsics.fy == Approx(1575).epsilon(1e-9));
+    CHECK(capture.intrinsics.cx == Approx(959.5).epsilon(1e-9));
+    CHECK(capture.intrinsics.cy == Approx(719.5).epsilon(1e-9));
+}
