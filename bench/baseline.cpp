@@ -43,6 +43,20 @@ bool holds(const PredicateTerm& term, const model::Node& a, const model::Node& b
     return relations::evaluate(term.predicate, a, b, thresholds, frame, nullptr, term.nearDistance) > 0;
 }
 
+Answer relateRows(const std::string& system, model::NodeId a, model::NodeId b, const std::vector<model::Node>& rows,
+                  const relations::Thresholds& thresholds, const relations::Frame& frame) {
+    auto find = [&](model::NodeId id) {
+        return std::find_if(rows.begin(), rows.end(), [&](auto& n) { return n.id == id; });
+    };
+    auto subject = find(a), object = find(b);
+    if (subject == rows.end() || object == rows.end())
+        throw std::runtime_error(fmt::format("{}: #{} or #{} is not in the current scene", system, a, b));
+    Answer out;
+    for (const auto& hit : relations::relate(*subject, *object, thresholds, frame))
+        out.push_back(static_cast<std::int64_t>(hit.predicate));
+    return out;
+}
+
 Answer nearestFirst(std::vector<std::pair<double, model::NodeId>> distances, int limit) {
     auto k = std::min(distances.size(), static_cast<std::size_t>(std::max(limit, 0)));
     std::partial_sort(distances.begin(), distances.begin() + static_cast<std::ptrdiff_t>(k), distances.end());

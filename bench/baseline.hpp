@@ -65,6 +65,11 @@ bool intersects(const model::Aabb& a, const model::Aabb& b);
 bool holds(const PredicateTerm& term, const model::Node& a, const model::Node& b,
            const relations::Thresholds& thresholds, const relations::Frame& frame);
 
+// RELATE #a TO #b from the rows a baseline read for the two nodes, in any order: the relations
+// that hold, best first, by the engine's formulas. Throws naming `system` when either is missing.
+Answer relateRows(const std::string& system, model::NodeId a, model::NodeId b, const std::vector<model::Node>& rows,
+                  const relations::Thresholds& thresholds, const relations::Frame& frame);
+
 // The k nearest of `distances` (exact box distance, id), nearest first and ties by id, as smql orders them.
 Answer nearestFirst(std::vector<std::pair<double, model::NodeId>> distances, int limit);
 

@@ -498,18 +498,9 @@ Answer PostgisBaseline::relate(model::NodeId a, model::NodeId b) {
     auto& m = *impl_;
     Result r = m.execute(
         "two_nodes", Parameters().add(static_cast<std::int64_t>(a)).add(static_cast<std::int64_t>(b)).add(m.sceneId));
-    Node row, subject, object;
-    int found = 0;
-    for (int i = 0; i < r.rows(); ++i) {
-        readNode(r, i, 0, row);
-        found += row.id == a ? 1 : 2;
-        (row.id == a ? subject : object) = row;
-    }
-    if (found != 3) throw std::runtime_error(fmt::format("postgres: #{} or #{} is not in the current scene", a, b));
-    Answer out;
-    for (const auto& hit : relations::relate(subject, object, m.thresholds, m.frame))
-        out.push_back(static_cast<std::int64_t>(hit.predicate));
-    return out;
+    std::vector<Node> rows(static_cast<std::size_t>(r.rows()));
+    for (int i = 0; i < r.rows(); ++i) readNode(r, i, 0, rows[static_cast<std::size_t>(i)]);
+    return relateRows("postgres", a, b, rows, m.thresholds, m.frame);
 }
 
 Answer PostgisBaseline::nearestObjects(const std::string& category, int limit) {

@@ -363,18 +363,9 @@ Answer SqliteBaseline::relate(model::NodeId a, model::NodeId b) {
     auto& m = *impl_;
     auto& s = *m.twoNodesInScene;
     s.bind(1, static_cast<std::int64_t>(a)).bind(2, static_cast<std::int64_t>(b)).bind(3, m.sceneId);
-    Node row, subject, object;
-    int found = 0;
-    while (s.step()) {
-        readNode(s, 0, row);
-        found += row.id == a ? 1 : 2;
-        (row.id == a ? subject : object) = row;
-    }
-    if (found != 3) throw std::runtime_error(fmt::format("sqlite: #{} or #{} is not in the current scene", a, b));
-    Answer out;
-    for (const auto& hit : relations::relate(subject, object, m.thresholds, m.frame))
-        out.push_back(static_cast<std::int64_t>(hit.predicate));
-    return out;
+    std::vector<Node> rows;
+    while (s.step()) readNode(s, 0, rows.emplace_back());
+    return relateRows("sqlite", a, b, rows, m.thresholds, m.frame);
 }
 
 Answer SqliteBaseline::nearestObjects(const std::string& category, int limit) {

@@ -81,9 +81,9 @@ struct BoundFind {
     Target target;
     BoundView view;
     std::optional<BoundExpr> where;
-    std::optional<NodeSet> distanceTo;  // ORDER BY distance(x) / NEAREST TO x
-    bool nearest = false;               // NEAREST TO: the reference nodes themselves are left out
-    std::string orderAttribute;         // ORDER BY height: a comparable built-in or stored attribute
+    std::optional<NodeSet> distanceTo;     // ORDER BY distance(x) / NEAREST TO x
+    bool nearest = false;                  // NEAREST TO: the reference nodes themselves are left out
+    std::string orderAttribute;            // ORDER BY height: a comparable built-in or stored attribute
     std::optional<std::string> similarTo;  // SIMILAR TO 'text': ranked by similarity, most similar first
     bool descending = false;
     std::vector<std::string> columns;  // RETURN: checked names; empty for the default columns

@@ -109,7 +109,7 @@ TEST_CASE("photos that do not overlap fail at the mapper, saying how many overla
     } catch (const Error& e) {
         INFO(e.message());
         CHECK(e.kind() == ErrorKind::Input);
-        std::string message = e.message();
+        const std::string& message = e.message();
         CHECK(message.find("colmap mapper") != std::string::npos);
         CHECK(message.find("only 2 of 8 photos overlap enough") != std::string::npos);
         CHECK(message.find("take more views with overlap") != std::string::npos);

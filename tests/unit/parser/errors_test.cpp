@@ -38,7 +38,8 @@ TEST_CASE("a misspelt clause keyword after the target", "[parser][errors]") {
     CHECK(whereOf(error).column == 14);
     CHECK(whereOf(error).length == 4);
     CHECK_THAT(error.hint(), StartsWith("did you mean WHERE?"));
-    CHECK_THAT(error.hint(), Contains("VIEW FROM, WHERE, NEAREST TO, SIMILAR TO, ORDER BY, LIMIT, PATH, RETURN, AS OF or ';'"));
+    CHECK_THAT(error.hint(),
+               Contains("VIEW FROM, WHERE, NEAREST TO, SIMILAR TO, ORDER BY, LIMIT, PATH, RETURN, AS OF or ';'"));
 }
 
 TEST_CASE("a misspelt keyword after a condition", "[parser][errors]") {
