@@ -43,6 +43,30 @@ bool holds(const PredicateTerm& term, const model::Node& a, const model::Node& b
     return relations::evaluate(term.predicate, a, b, thresholds, frame, nullptr, term.nearDistance) > 0;
 }
 
+TwoTermFind::TwoTermFind(const PredicateTerm& first, std::vector<model::Node> firstRefs, const PredicateTerm& second,
+                         std::vector<model::Node> secondRefs, const relations::Thresholds& thresholds,
+                         const relations::Frame& frame)
+    : firstRefs_(std::move(firstRefs)), secondRefs_(std::move(secondRefs)), thresholds_(thresholds), frame_(frame) {
+    const bool swap = secondRefs_.size() < firstRefs_.size();
+    probeTerm_ = swap ? &second : &first;
+    checkTerm_ = swap ? &first : &second;
+    probeRefs_ = swap ? &secondRefs_ : &firstRefs_;
+    for (const model::Node& ref : swap ? firstRefs_ : secondRefs_)
+        if (ref.geometry != model::GeometryKind::None)
+            checkRegions_.emplace_back(&ref, probeRegion(*checkTerm_, ref, thresholds_));
+}
+
+bool TwoTermFind::meetsProbe(const model::Node& candidate, const model::Node& reference) const {
+    return holds(*probeTerm_, candidate, reference, thresholds_, frame_);
+}
+
+bool TwoTermFind::meetsCheck(const model::Node& candidate) const {
+    const model::Aabb bounds = model::worldAabb(candidate.box);
+    return std::any_of(checkRegions_.begin(), checkRegions_.end(), [&](const auto& region) {
+        return intersects(bounds, region.second) && holds(*checkTerm_, candidate, *region.first, thresholds_, frame_);
+    });
+}
+
 Answer relateRows(const std::string& system, model::NodeId a, model::NodeId b, const std::vector<model::Node>& rows,
                   const relations::Thresholds& thresholds, const relations::Frame& frame) {
     auto find = [&](model::NodeId id) {

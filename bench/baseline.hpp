@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/relations/predicates.hpp"
@@ -64,6 +65,31 @@ bool intersects(const model::Aabb& a, const model::Aabb& b);
 // Whether the term holds for node `a` and reference `b`, by the engine's formulas.
 bool holds(const PredicateTerm& term, const model::Node& a, const model::Node& b,
            const relations::Thresholds& thresholds, const relations::Frame& frame);
+
+// FIND object WHERE first AND second as both baselines answer it: the candidates come from a probe
+// around the smaller reference set (as smql's planner chooses), and each one that meets that term is
+// checked against the other term through the regions of its references.
+class TwoTermFind {
+public:
+    TwoTermFind(const PredicateTerm& first, std::vector<model::Node> firstRefs, const PredicateTerm& second,
+                std::vector<model::Node> secondRefs, const relations::Thresholds& thresholds,
+                const relations::Frame& frame);
+    const PredicateTerm& probeTerm() const { return *probeTerm_; }
+    const std::vector<model::Node>& probeReferences() const { return *probeRefs_; }
+    // Whether `candidate` meets the probe term with `reference`, by the engine's formulas.
+    bool meetsProbe(const model::Node& candidate, const model::Node& reference) const;
+    // Whether `candidate` meets the other term with any of its references.
+    bool meetsCheck(const model::Node& candidate) const;
+
+private:
+    std::vector<model::Node> firstRefs_, secondRefs_;
+    const PredicateTerm* probeTerm_;
+    const PredicateTerm* checkTerm_;
+    const std::vector<model::Node>* probeRefs_;
+    std::vector<std::pair<const model::Node*, model::Aabb>> checkRegions_;
+    const relations::Thresholds& thresholds_;
+    const relations::Frame& frame_;
+};
 
 // RELATE #a TO #b from the rows a baseline read for the two nodes, in any order: the relations
 // that hold, best first, by the engine's formulas. Throws naming `system` when either is missing.

@@ -449,25 +449,13 @@ void PostgisBaseline::useScene(const std::string& scene) {
 
 Answer PostgisBaseline::findObjects(const PredicateTerm& first, const PredicateTerm& second) {
     auto& m = *impl_;
-    std::vector<Node> firstRefs = m.nodesOf(first.category);
-    std::vector<Node> secondRefs = m.nodesOf(second.category);
-    // Probe around the smaller reference set (as smql's planner does); check the other term on the survivors.
-    bool swap = secondRefs.size() < firstRefs.size();
-    const PredicateTerm& probeTerm = swap ? second : first;
-    const PredicateTerm& checkTerm = swap ? first : second;
-    const std::vector<Node>& probeRefs = swap ? secondRefs : firstRefs;
-    const std::vector<Node>& checkRefs = swap ? firstRefs : secondRefs;
+    const TwoTermFind find(first, m.nodesOf(first.category), second, m.nodesOf(second.category), m.thresholds, m.frame);
     std::unordered_map<model::NodeId, const Node*> probeById;
-    for (const Node& ref : probeRefs) probeById.emplace(ref.id, &ref);
-    std::vector<std::pair<const Node*, model::Aabb>> checkRegions;
-    for (const Node& ref : checkRefs)
-        if (ref.geometry != model::GeometryKind::None)
-            checkRegions.emplace_back(&ref, probeRegion(checkTerm, ref, m.thresholds));
-
-    ProbeMargins margins = probeMargins(probeTerm, m.thresholds);
+    for (const Node& ref : find.probeReferences()) probeById.emplace(ref.id, &ref);
+    ProbeMargins margins = probeMargins(find.probeTerm(), m.thresholds);
     Result r = m.execute("objects_near_references", Parameters()
                                                         .add(m.sceneId)
-                                                        .add(probeTerm.category)
+                                                        .add(find.probeTerm().category)
                                                         .add(margins.horizontal)
                                                         .add(margins.below)
                                                         .add(margins.above));
@@ -481,14 +469,9 @@ Answer PostgisBaseline::findObjects(const PredicateTerm& first, const PredicateT
         auto [at, isNew] = passed.try_emplace(candidate.id, false);
         if (at->second) continue;
         auto ref = probeById.find(static_cast<model::NodeId>(r.integer(i, referenceColumn)));
-        if (ref == probeById.end() || !holds(probeTerm, candidate, *ref->second, m.thresholds, m.frame)) continue;
+        if (ref == probeById.end() || !find.meetsProbe(candidate, *ref->second)) continue;
         at->second = true;
-        model::Aabb bounds = model::worldAabb(candidate.box);
-        if (std::any_of(checkRegions.begin(), checkRegions.end(), [&](const auto& region) {
-                return intersects(bounds, region.second) &&
-                       holds(checkTerm, candidate, *region.first, m.thresholds, m.frame);
-            }))
-            ids.push_back(static_cast<std::int64_t>(candidate.id));
+        if (find.meetsCheck(candidate)) ids.push_back(static_cast<std::int64_t>(candidate.id));
     }
     std::sort(ids.begin(), ids.end());
     return ids;

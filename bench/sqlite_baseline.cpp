@@ -321,38 +321,17 @@ void SqliteBaseline::useScene(const std::string& scene) {
 
 Answer SqliteBaseline::findObjects(const PredicateTerm& first, const PredicateTerm& second) {
     auto& m = *impl_;
-    std::vector<Node> firstRefs = m.nodesOf(first.category);
-    std::vector<Node> secondRefs = m.nodesOf(second.category);
-    // Probe around the smaller reference set (as smql's planner does); check the other term on the survivors.
-    bool swap = secondRefs.size() < firstRefs.size();
-    const PredicateTerm& probeTerm = swap ? second : first;
-    const PredicateTerm& checkTerm = swap ? first : second;
-    const std::vector<Node>& probeRefs = swap ? secondRefs : firstRefs;
-    const std::vector<Node>& checkRefs = swap ? firstRefs : secondRefs;
-
-    auto holds = [&](const PredicateTerm& term, const Node& a, const Node& b) {
-        return bench::holds(term, a, b, m.thresholds, m.frame);
-    };
-    // The other term's regions, so a candidate meets the exact test only for references it can satisfy.
-    std::vector<std::pair<const Node*, model::Aabb>> checkRegions;
-    for (const Node& ref : checkRefs)
-        if (ref.geometry != model::GeometryKind::None)
-            checkRegions.emplace_back(&ref, probeRegion(checkTerm, ref, m.thresholds));
-
+    const TwoTermFind find(first, m.nodesOf(first.category), second, m.nodesOf(second.category), m.thresholds, m.frame);
     std::unordered_set<std::int64_t> seen;
     Answer ids;
     Node candidate;
-    for (const Node& ref : probeRefs) {
+    for (const Node& ref : find.probeReferences()) {
         if (ref.geometry == model::GeometryKind::None) continue;
-        m.forEachObjectIn(probeRegion(probeTerm, ref, m.thresholds), candidate, [&](const Node& a) {
+        m.forEachObjectIn(probeRegion(find.probeTerm(), ref, m.thresholds), candidate, [&](const Node& a) {
             auto id = static_cast<std::int64_t>(a.id);
-            if (seen.contains(id) || !holds(probeTerm, a, ref)) return;
+            if (seen.contains(id) || !find.meetsProbe(a, ref)) return;
             seen.insert(id);
-            model::Aabb bounds = model::worldAabb(a.box);
-            if (std::any_of(checkRegions.begin(), checkRegions.end(), [&](const auto& region) {
-                    return intersects(bounds, region.second) && holds(checkTerm, a, *region.first);
-                }))
-                ids.push_back(id);
+            if (find.meetsCheck(a)) ids.push_back(id);
         });
     }
     std::sort(ids.begin(), ids.end());

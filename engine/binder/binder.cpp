@@ -261,6 +261,24 @@ BoundView Binder::bindView(const std::optional<ast::View>& view) {
     return out;
 }
 
+const relations::PredicateSpec& Binder::predicateNamed(const std::string& name, SourceLocation where) {
+    if (const auto* spec = relations::predicateNamed(name)) return *spec;
+    auto words = relations::predicateWords();
+    auto close = model::nearestNames(name, words);
+    throw Error(ErrorKind::Binding, fmt::format("unknown predicate '{}'", name), where,
+                close.empty() ? "predicates: " + model::joinAlternatives(words)
+                              : "did you mean " + model::joinAlternatives(close) + "?");
+}
+
+double Binder::predicateDistance(const relations::PredicateSpec& spec, const ast::Distance& distance) {
+    if (spec.takesDistance) return distance.metres;
+    std::string takers;
+    for (const auto& row : relations::predicates())
+        if (row.takesDistance) takers += fmt::format("{}{}()", takers.empty() ? "" : ", ", row.name());
+    throw Error(ErrorKind::Binding, fmt::format("only {} takes a distance, not {}()", takers, spec.name()),
+                distance.where, "SET changes the thresholds; SHOW SETTINGS lists them");
+}
+
 BoundExpr Binder::bindExpr(const ast::Expr& expr) {
     BoundExpr out;
     switch (expr.kind) {
@@ -275,31 +293,14 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
             break;
         case ast::Expr::Kind::Predicate: {
             out.kind = BoundExpr::Kind::Predicate;
-            const auto* spec = relations::predicateNamed(expr.predicate);
-            if (!spec) {
-                auto words = relations::predicateWords();
-                auto close = model::nearestNames(expr.predicate, words);
-                throw Error(ErrorKind::Binding, fmt::format("unknown predicate '{}'", expr.predicate), expr.where,
-                            close.empty() ? "predicates: " + model::joinAlternatives(words)
-                                          : "did you mean " + model::joinAlternatives(close) + "?");
-            }
-            out.predicate = spec->predicate;
-            if (static_cast<int>(expr.args.size()) != spec->arity)
+            const auto& spec = predicateNamed(expr.predicate, expr.where);
+            out.predicate = spec.predicate;
+            if (static_cast<int>(expr.args.size()) != spec.arity)
                 throw Error(ErrorKind::Binding,
-                            fmt::format("{}() takes {} reference{}, got {}", expr.predicate, spec->arity,
-                                        spec->arity == 1 ? "" : "s", expr.args.size()),
-                            expr.where, std::string(spec->usage));
-            if (expr.threshold) {
-                if (!spec->takesDistance) {
-                    std::string takers;
-                    for (const auto& row : relations::predicates())
-                        if (row.takesDistance) takers += fmt::format("{}{}()", takers.empty() ? "" : ", ", row.name());
-                    throw Error(ErrorKind::Binding,
-                                fmt::format("only {} takes a distance, not {}()", takers, expr.predicate),
-                                expr.threshold->where, "SET changes the thresholds; SHOW SETTINGS lists them");
-                }
-                out.nearDistance = expr.threshold->metres;
-            }
+                            fmt::format("{}() takes {} reference{}, got {}", expr.predicate, spec.arity,
+                                        spec.arity == 1 ? "" : "s", expr.args.size()),
+                            expr.where, std::string(spec.usage));
+            if (expr.threshold) out.nearDistance = predicateDistance(spec, *expr.threshold);
             for (const auto& arg : expr.args) out.args.push_back(bindRef(arg));
             return out;
         }

@@ -77,6 +77,10 @@ private:
     static std::optional<std::string> absentThing(const std::string& name, const ask::WordMatch& match);
     // A category with no node here, remembered for the answer's note.
     std::string noted(std::string category);
+    // The predicate called `name` (WHERE's calls, CHECK), or an error with the closest names.
+    static const relations::PredicateSpec& predicateNamed(const std::string& name, SourceLocation where);
+    // A distance given to a predicate: its metres, or an error naming the predicates that take one.
+    static double predicateDistance(const relations::PredicateSpec& spec, const ast::Distance& distance);
     // An attribute a comparison or ORDER BY can use, or an error with the closest names.
     exec::AttributeInfo comparable(const std::string& name, SourceLocation where);
     static void checkLiteral(const ast::Expr& expr, exec::AttributeMeasure measure, std::string_view what);

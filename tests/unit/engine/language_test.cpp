@@ -101,7 +101,7 @@ TEST_CASE("CHECK answers yes or no with the evidence") {
     // near with its distance: 0 m can never hold between two separate boxes; 100 m always does.
     CHECK(std::get<std::string>(room.q(fmt::format("CHECK mug#{} near door 100 m", mug)).rows[0][0]) == "yes");
     CHECK(std::get<std::string>(room.q(fmt::format("CHECK mug#{} near door 0 m", mug)).rows[0][0]) == "no");
-    CHECK_THAT(errorOf(room, "CHECK desk on door 1 m"), Catch::Contains("on takes no distance"));
+    CHECK_THAT(errorOf(room, "CHECK desk on door 1 m"), Catch::Contains("only near() takes a distance, not on()"));
     CHECK_THAT(errorOf(room, "CHECK desk between door"), Catch::Contains("between takes 2 references"));
     CHECK_THAT(errorOf(room, "CHECK desk nera door"), Catch::Contains("did you mean near?"));
 }
