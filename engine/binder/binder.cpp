@@ -314,6 +314,7 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
                 checkLiteral(expr, exec::AttributeMeasure::Length, "distance()");
             } else {
                 checkLiteral(expr, comparable(expr.attribute, expr.where).measure, expr.attribute);
+                out.builtIn = exec::builtInAttribute(expr.attribute);
             }
             return out;
     }

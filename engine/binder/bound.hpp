@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/ask/translator.hpp"
+#include "engine/exec/attributes.hpp"
 #include "engine/exec/scene_snapshot.hpp"
 #include "engine/exec/session.hpp"
 #include "engine/parser/ast.hpp"
@@ -64,6 +65,9 @@ struct BoundExpr {
     // Compare: a built-in field or a stored attribute (exec/attributes.hpp), or the distance to a
     // set, against a literal; lengths in metres.
     std::string attribute;
+    // The built-in attribute `attribute` names, resolved once here rather than per row; null for a
+    // stored attribute (color ...) or a distance.
+    const exec::AttributeInfo* builtIn = nullptr;
     std::optional<NodeSet> distanceTo;
     ast::CompareOp op = ast::CompareOp::Eq;
     ast::Literal literal;

@@ -112,7 +112,8 @@ bool Executor::compare(const BoundExpr& expr, Slot slot, const relations::Frame&
         if (std::isinf(nearest)) return false;  // only itself to measure from
         value = nearest;
     } else {
-        value = comparable(attributeValue(scene(), slot, attributeNamed(expr.attribute)));
+        value =
+            comparable(attributeValue(scene(), slot, expr.builtIn ? *expr.builtIn : storedAttribute(expr.attribute)));
     }
     if (!value) return false;  // a node without the field never matches, as NULL in SQL
     if (auto* text = std::get_if<std::string>(&expr.literal)) {
