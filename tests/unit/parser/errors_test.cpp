@@ -4,7 +4,7 @@
 #include <unistd.h>
 #include <cstdio>
 
-#include "engine/parser/parser.hpp"
+#include "parser_test_support.hpp"
 
 using namespace smql;
 namespace parser = smql::parser;
@@ -13,16 +13,7 @@ using Catch::Matchers::StartsWith;
 
 namespace {
 
-Error errorOf(std::string_view text) {
-    try {
-        parser::parse(text);
-    } catch (const Error& error) {
-        CHECK(error.kind() == ErrorKind::Syntax);
-        return error;
-    }
-    FAIL("expected a syntax error for: " << text);
-    throw std::logic_error("unreachable");
-}
+Error errorOf(std::string_view text) { return parser::testing::syntaxErrorOf(text); }
 
 SourceLocation whereOf(const Error& error) {
     REQUIRE(error.where());

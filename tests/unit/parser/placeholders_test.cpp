@@ -1,29 +1,15 @@
 // Placeholders: where they may stand, how they are numbered, and the errors of mixing them.
 #include <catch2/catch.hpp>
 
-#include "engine/parser/parser.hpp"
+#include "parser_test_support.hpp"
 
 using namespace smql;
 namespace parser = smql::parser;
+using smql::parser::testing::parseOne;
 
 namespace {
 
-ast::Statement parseOne(std::string_view text) {
-    std::vector<ast::Statement> statements = parser::parse(text);
-    REQUIRE(statements.size() == 1);
-    return statements.front();
-}
-
-std::string syntaxError(std::string_view text) {
-    try {
-        parser::parse(text);
-    } catch (const Error& e) {
-        CHECK(e.kind() == ErrorKind::Syntax);
-        return e.message();
-    }
-    FAIL("expected a syntax error");
-    return {};
-}
+std::string syntaxError(std::string_view text) { return parser::testing::syntaxErrorOf(text).message(); }
 
 }  // namespace
 

@@ -1,18 +1,13 @@
 // Every statement form, references, literals and source locations.
 #include <catch2/catch.hpp>
 
-#include "engine/parser/parser.hpp"
+#include "parser_test_support.hpp"
 
 using namespace smql;
 namespace parser = smql::parser;
+using smql::parser::testing::parseOne;
 
 namespace {
-
-ast::Statement parseOne(std::string_view text) {
-    std::vector<ast::Statement> statements = parser::parse(text);
-    REQUIRE(statements.size() == 1);
-    return statements.front();
-}
 
 template <typename Body>
 Body bodyOf(std::string_view text) {

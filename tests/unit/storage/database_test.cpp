@@ -216,13 +216,6 @@ void requireKitchenAndOffice(const ReadTransaction& txn) {
     REQUIRE(relationsIn(txn, 999).empty());
 }
 
-NodeId importCommitted(Database& db, const model::SceneData& data) {
-    auto txn = db.beginWrite();
-    NodeId id = txn.importScene(data);
-    txn.commit();
-    return id;
-}
-
 }  // namespace
 
 TEST_CASE("open creates a database, and reopening finds it", "[storage][database]") {

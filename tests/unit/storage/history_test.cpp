@@ -41,13 +41,6 @@ model::SceneData officeScene() {
     return data;
 }
 
-NodeId imported(Database& db, const model::SceneData& data) {
-    auto txn = db.beginWrite();
-    NodeId id = txn.importScene(data);
-    txn.commit();
-    return id;
-}
-
 }  // namespace
 
 TEST_CASE("a history record decodes to what was encoded, and a flipped byte is refused", "[storage][history]") {
@@ -73,8 +66,8 @@ TEST_CASE("a history record decodes to what was encoded, and a flipped byte is r
 TEST_CASE("replaceScene keeps the superseded version with its changes", "[storage][history]") {
     TempDir tmp;
     auto db = Database::open(tmp.path());
-    const NodeId first = imported(*db, den(1, true));
-    imported(*db, officeScene());
+    const NodeId first = importCommitted(*db, den(1, true));
+    importCommitted(*db, officeScene());
 
     model::SceneData next = den(2.5, false);
     const std::vector<model::ObjectChange> changes = {
@@ -158,8 +151,8 @@ TEST_CASE("replaceScene keeps the superseded version with its changes", "[storag
 TEST_CASE("renameScene refuses a taken or empty name and changes nothing", "[storage][history][errors]") {
     TempDir tmp;
     auto db = Database::open(tmp.path());
-    const NodeId den1 = imported(*db, den(1, true));
-    imported(*db, officeScene());
+    const NodeId den1 = importCommitted(*db, den(1, true));
+    importCommitted(*db, officeScene());
     auto txn = db->beginWrite();
     try {
         txn.renameScene(den1, "office");
@@ -179,7 +172,7 @@ TEST_CASE("renameScene refuses a taken or empty name and changes nothing", "[sto
 TEST_CASE("a new version must keep the scene's name", "[storage][history][errors]") {
     TempDir tmp;
     auto db = Database::open(tmp.path());
-    const NodeId id = imported(*db, den(1, true));
+    const NodeId id = importCommitted(*db, den(1, true));
     auto renamed = den(1, true);
     renamed.info.name = "elsewhere";
     auto txn = db->beginWrite();

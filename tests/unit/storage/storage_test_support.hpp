@@ -7,6 +7,7 @@
 #include <string>
 
 #include "model/types.hpp"
+#include "storage/database.hpp"
 
 namespace smql::storage::testing {
 
@@ -72,6 +73,14 @@ inline std::size_t countCategory(const model::SceneData& data, std::string_view 
     std::size_t n = 0;
     for (const auto& node : data.nodes) n += node.category == category;
     return n;
+}
+
+// Stores `data` in a write transaction of its own, committed; returns the scene's id.
+inline model::NodeId importCommitted(Database& db, const model::SceneData& data) {
+    auto txn = db.beginWrite();
+    model::NodeId id = txn.importScene(data);
+    txn.commit();
+    return id;
 }
 
 }  // namespace smql::storage::testing
