@@ -325,18 +325,6 @@ Engine::SceneMap Engine::sceneMap(const std::string& name) {
 
 // -------------------------------------------------------- updating a scene
 
-namespace {
-
-std::string utcNow() {
-    auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-    std::tm utc{};
-    gmtime_r(&now, &utc);
-    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
-                       utc.tm_hour, utc.tm_min, utc.tm_sec);
-}
-
-}  // namespace
-
 std::string Engine::SceneUpdateReport::summary() const {
     return fmt::format(
         "updated scene '{}' as of {}: {} objects seen again where they were, {} moved, {} new, {} missing, {} not "
@@ -356,7 +344,7 @@ Engine::SceneUpdateReport Engine::updateScene(const std::string& name, const mod
         throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", sceneName), std::nullopt,
                     "SHOW SCENES lists the scenes");
     const std::string time =
-        observed.info.captureTime.empty() ? utcNow() : model::comparableInstant(observed.info.captureTime);
+        observed.info.captureTime.empty() ? model::utcNow() : model::comparableInstant(observed.info.captureTime);
     if (!info->captureTime.empty() && time < model::comparableInstant(info->captureTime))
         throw Error(ErrorKind::Input,
                     fmt::format("the capture was taken at {}, before the stored version of scene '{}' ({})", time,

@@ -9,6 +9,14 @@ namespace smql::model {
 
 namespace {
 
+// Seconds since the epoch as the memory writes them.
+std::string written(std::time_t seconds) {
+    std::tm utc{};
+    gmtime_r(&seconds, &utc);
+    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
+                       utc.tm_hour, utc.tm_min, utc.tm_sec);
+}
+
 bool digits(std::string_view text, std::size_t at, std::size_t count) {
     if (at + count > text.size()) return false;
     for (std::size_t i = at; i < at + count; ++i)
@@ -70,12 +78,10 @@ std::optional<std::string> utcInstant(std::string_view text) {
     std::time_t seconds = timegm(&t);
     // timegm normalises 2026-02-30 to March 2nd: a date that changed does not exist.
     if (t.tm_mday != asWritten.tm_mday || t.tm_mon != asWritten.tm_mon) return std::nullopt;
-    seconds -= offsetSeconds;
-    std::tm utc{};
-    gmtime_r(&seconds, &utc);
-    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
-                       utc.tm_hour, utc.tm_min, utc.tm_sec);
+    return written(seconds - offsetSeconds);
 }
+
+std::string utcNow() { return written(std::time(nullptr)); }
 
 std::string comparableInstant(std::string_view text) {
     if (auto instant = utcInstant(text)) return *instant;

@@ -14,6 +14,9 @@ namespace smql::model {
 // second are dropped). nullopt for anything else, or a date that does not exist.
 std::optional<std::string> utcInstant(std::string_view text);
 
+// Now, in that form: the capture time of a capture that does not say when it was taken.
+std::string utcNow();
+
 // The instant, or the text itself when it is not one (an importer's own time format), so that
 // comparing two of them is at worst a comparison of the texts.
 std::string comparableInstant(std::string_view text);

@@ -7,12 +7,10 @@
 #include <algorithm>
 #include <atomic>
 #include <csignal>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
-#include <fmt/chrono.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -24,6 +22,7 @@
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/walk.hpp"
 #include "model/error.hpp"
+#include "model/instant.hpp"
 
 namespace smql::shell {
 
@@ -158,8 +157,7 @@ int ingestCommand(const IngestArguments& args) {
     std::signal(SIGINT, previous);
 
     // When the place was seen: the time of this ingest, on the scene and on every object.
-    std::string now = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::time(nullptr)));
-    if (result.scene.info.captureTime.empty()) result.scene.info.captureTime = now;
+    if (result.scene.info.captureTime.empty()) result.scene.info.captureTime = model::utcNow();
     for (auto& n : result.scene.nodes)
         if (n.kind == model::NodeKind::Object) {
             n.attributes.push_back({"first_seen_at", result.scene.info.captureTime});

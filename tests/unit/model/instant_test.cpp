@@ -21,3 +21,9 @@ TEST_CASE("what is not a time, or not a day that exists, is refused", "[model][i
     CHECK(comparableInstant("frame 12") == "frame 12");
     CHECK(comparableInstant("2026-11-21") == "2026-11-21T00:00:00Z");
 }
+
+TEST_CASE("now is written as every instant is", "[model][instant]") {
+    const std::string now = smql::model::utcNow();
+    CHECK(smql::model::utcInstant(now) == now);
+    CHECK(now > "2026-01-01T00:00:00Z");
+}
