@@ -28,7 +28,7 @@ int run(int argc, char** argv) {
     ingestCmd
         ->add_option("--geometry", ingestArgs.geometry,
                      "given (the capture's poses), colmap (structure from motion on the colour frames) or auto "
-                     "(default: colmap when some frame has no pose)")
+                     "(default: colmap when some frame has no pose, or without depth: then with the given poses)")
         ->check(CLI::IsMember({"given", "colmap", "auto"}));
     ingestCmd
         ->add_option("--objects", ingestArgs.objects,

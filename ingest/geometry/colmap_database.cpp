@@ -40,15 +40,32 @@ Statement prepare(sqlite3* db, const std::string& path, const char* sql) {
     return Statement(statement, sqlite3_finalize);
 }
 
-}  // namespace
-
-ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches) {
+Connection openReadOnly(const std::string& path) {
     sqlite3* raw = nullptr;
     int opened = sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
     Connection db(raw, sqlite3_close);
     if (opened != SQLITE_OK)
         throw Error(ErrorKind::Input, fmt::format("{}: cannot open COLMAP's database: {}", path,
                                                   raw ? sqlite3_errmsg(raw) : "out of memory"));
+    return db;
+}
+
+}  // namespace
+
+std::vector<ColmapDatabaseImage> readColmapImages(const std::string& path) {
+    Connection db = openReadOnly(path);
+    std::vector<ColmapDatabaseImage> out;
+    Statement images = prepare(db.get(), path, "SELECT image_id, camera_id, name FROM images ORDER BY image_id");
+    while (sqlite3_step(images.get()) == SQLITE_ROW) {
+        const auto* name = sqlite3_column_text(images.get(), 2);
+        out.push_back({sqlite3_column_int64(images.get(), 0), sqlite3_column_int64(images.get(), 1),
+                       name ? reinterpret_cast<const char*>(name) : ""});
+    }
+    return out;
+}
+
+ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches) {
+    Connection db = openReadOnly(path);
     ColmapDatabaseSummary out;
 
     Statement cameras = prepare(db.get(), path, "SELECT model, width, height, params FROM cameras ORDER BY camera_id");

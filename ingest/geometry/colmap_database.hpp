@@ -1,6 +1,6 @@
 // What COLMAP's database.db holds after feature extraction and matching,
-// counted with the sqlite3 C API: the cameras, which images have features and
-// which overlap. The COLMAP runner reads it to say why a reconstruction failed
+// read with the sqlite3 C API: the cameras, the images, which have features
+// and which overlap. The COLMAP runner reads it to say why a reconstruction failed
 // ("only 2 of 8 photos overlap enough") from facts rather than guesses.
 #pragma once
 
@@ -28,5 +28,14 @@ struct ColmapDatabaseSummary {
 // `minMatches`: the verified (inlier) matches a pair needs to count, the
 // mapper's --Mapper.min_num_matches.
 ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches = 15);
+
+// An image as the database numbers it: what a model given to COLMAP (given
+// poses to triangulate with) must name it and its camera.
+struct ColmapDatabaseImage {
+    long long id = 0;
+    long long camera = 0;
+    std::string name;  // relative to the image folder
+};
+std::vector<ColmapDatabaseImage> readColmapImages(const std::string& path);
 
 }  // namespace smql::ingest

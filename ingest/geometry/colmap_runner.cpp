@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <Eigen/Geometry>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -136,6 +137,41 @@ std::string diagnosis(const fs::path& database, std::size_t frames, int minMatch
             frames, overlap);
     } catch (const Error& e) {
         return e.what();
+    }
+}
+
+// The capture's poses as a COLMAP text model without points, its images and cameras numbered as the
+// database numbers them: what point_triangulator starts from. Each camera is a PINHOLE at the size
+// COLMAP sees its frames.
+void writePosedModel(const fs::path& folder, const fs::path& database, const Capture& capture,
+                     const std::vector<WorkFrame>& workFrames) {
+    fs::create_directories(folder);
+    std::map<std::string, const WorkFrame*> byName;
+    for (const WorkFrame& w : workFrames) byName[w.name] = &w;
+    std::ofstream cameras(folder / "cameras.txt"), images(folder / "images.txt");
+    std::ofstream(folder / "points3D.txt").close();
+    std::map<long long, bool> written;
+    for (const auto& image : readColmapImages(database.string())) {
+        auto it = byName.find(image.name);
+        if (it == byName.end()) continue;
+        const WorkFrame& w = *it->second;
+        const CaptureFrame& frame = capture.frames[w.frame];
+        if (!written[image.camera]) {
+            Intrinsics k = capture_detail::scaleIntrinsics(frame.intrinsics ? *frame.intrinsics : capture.intrinsics,
+                                                           w.work.width, w.work.height);
+            cameras << fmt::format("{} PINHOLE {} {} {:.17g} {:.17g} {:.17g} {:.17g}\n", image.camera, k.width,
+                                   k.height, k.fx, k.fy, k.cx + 0.5, k.cy + 0.5);
+            written[image.camera] = true;
+        }
+        // COLMAP stores world-to-camera: R' = R^T, t' = -R^T c.
+        const Pose& pose = *frame.pose;
+        Eigen::Matrix3d toCamera;
+        for (int row = 0; row < 3; ++row)
+            for (int col = 0; col < 3; ++col) toCamera(row, col) = pose.rotation[col * 3 + row];
+        Eigen::Vector3d t = -toCamera * Eigen::Vector3d(pose.translation.x, pose.translation.y, pose.translation.z);
+        Eigen::Quaterniond q(toCamera);
+        images << fmt::format("{} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {} {}\n\n", image.id, q.w(),
+                              q.x(), q.y(), q.z(), t.x(), t.y(), t.z(), image.camera, image.name);
     }
 }
 
@@ -321,6 +357,46 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
             count));
     }
 
+    // Frames that all have a pose (transforms.json without depth, RGB-D frames with the depth left out)
+    // keep it: COLMAP only triangulates the matched features with the given poses and cameras.
+    const bool posed = std::all_of(workFrames.begin(), workFrames.end(),
+                                   [&](const WorkFrame& w) { return capture.frames[w.frame].pose.has_value(); });
+    // A successful run's work folder goes unless asked to stay; a failed one stays for its log.
+    auto leaveWorkFolder = [&] {
+        std::error_code removeError;
+        if (options.keepWorkDirectory)
+            run.notes.push_back(
+                fmt::format("COLMAP work folder (images, database, models, log): {}", run.workDirectory));
+        else
+            fs::remove_all(work, removeError);
+    };
+    if (posed) {
+        const fs::path given = work / "given", triangulated = work / "triangulated";
+        writePosedModel(given, database, capture, workFrames);
+        fs::create_directories(triangulated);
+        runStep("point_triangulator",
+                fmt::format("--database_path {} --image_path {} --input_path {} --output_path {} "
+                            "--Mapper.num_threads {} --Mapper.ba_refine_focal_length 0 "
+                            "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0",
+                            shellQuoted(database.string()), shellQuoted(images.string()), shellQuoted(given.string()),
+                            shellQuoted(triangulated.string()), threads));
+        CaptureOptions readOptions;
+        readOptions.imageDirectory = images.string();
+        capture.points = capture_detail::readColmap(triangulated, readOptions).points;
+        run.points = capture.points.size();
+        run.registered = std::count_if(capture.frames.begin(), capture.frames.end(),
+                                       [](const CaptureFrame& f) { return f.pose.has_value(); });
+        run.notes.push_back(
+            fmt::format("COLMAP triangulated {} points with the capture's own poses and cameras", run.points));
+        if (run.points == 0)
+            throw Error(ErrorKind::Input,
+                        fmt::format("colmap point_triangulator found no 3D point: {}; its output is in {}",
+                                    diagnosis(database, workFrames.size(), options.minMatches), run.logPath),
+                        std::nullopt, kRetryHint);
+        leaveWorkFolder();
+        return run;
+    }
+
     // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
     bool fixed = capture.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
                  std::all_of(groups.begin(), groups.end(), [](const CameraGroup& g) { return g.known.has_value(); });
@@ -388,11 +464,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
     if (run.registered < capture.frames.size())
         run.notes.push_back(fmt::format("COLMAP registered {} of {} frames; the others are skipped", run.registered,
                                         capture.frames.size()));
-    // A successful run's work folder goes unless asked to stay; a failed one stays for its log.
-    if (options.keepWorkDirectory)
-        run.notes.push_back(fmt::format("COLMAP work folder (images, database, models, log): {}", run.workDirectory));
-    else
-        fs::remove_all(work, ec);
+    leaveWorkFolder();
     return run;
 }
 

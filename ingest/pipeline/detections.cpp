@@ -203,6 +203,59 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
     return out;
 }
 
+namespace {
+
+// Pixel centres sit at integer coordinates, so scaling maps centre to centre.
+cv::Point2d toWorking(cv::Point2d p, double scale) { return {(p.x + 0.5) * scale - 0.5, (p.y + 0.5) * scale - 0.5}; }
+
+// Paints the detection's mask (its RLE mask, else its polygons, else its box), scaled from the stored
+// image by `scale`, into `mask` with `value`.
+void drawDetection(const Detection& det, double scale, cv::Mat& mask, int value) {
+    constexpr int kShift = 3;  // fillPoly's sub-pixel bits: keeps small polygons' shapes at low resolution
+    auto fixed = [&](cv::Point2d p) {
+        p = toWorking(p, scale);
+        return cv::Point(static_cast<int>(std::lround(p.x * (1 << kShift))),
+                         static_cast<int>(std::lround(p.y * (1 << kShift))));
+    };
+    if (!det.rle.empty()) {
+        cv::Mat1b resized;
+        cv::resize(det.rle, resized, mask.size(), 0, 0, cv::INTER_NEAREST);
+        mask.setTo(value, resized);
+        return;
+    }
+    std::vector<std::vector<cv::Point>> polys;
+    for (const auto& poly : det.polygons) {
+        polys.emplace_back();
+        for (const auto& p : poly) polys.back().push_back(fixed(p));
+    }
+    if (polys.empty()) {
+        // The box [x, y, w, h] covers the pixels whose centres lie in x .. x + w - 1.
+        cv::Point2d a(det.box.x, det.box.y), b(det.box.x + det.box.width - 1, det.box.y + det.box.height - 1);
+        polys.push_back({fixed(a), fixed({b.x, a.y}), fixed(b), fixed({a.x, b.y})});
+    }
+    cv::fillPoly(mask, polys, cv::Scalar(value), cv::LINE_8, kShift);
+}
+
+double workingScale(const Intrinsics& K, int storedWidth) {
+    return storedWidth > 0 ? double(K.width) / storedWidth : 1.0;
+}
+
+}  // namespace
+
+cv::Mat detectionInstances(cv::Size size, const Intrinsics& K, const std::vector<Detection>& detections,
+                           int storedWidth) {
+    std::vector<std::size_t> order;
+    for (std::size_t d = 0; d < detections.size() && d + 1 < 65536; ++d)
+        if (detections[d].score >= kMinDetectionScore) order.push_back(d);
+    // The larger first, so a smaller thing in front (a mug on a table) keeps its pixels.
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return detections[a].box.area() > detections[b].box.area(); });
+    cv::Mat instances = cv::Mat::zeros(size, CV_16U);
+    double scale = workingScale(K, storedWidth);
+    for (auto d : order) drawDetection(detections[d], scale, instances, static_cast<int>(d + 1));
+    return instances;
+}
+
 std::vector<Observation> observeDetections(const FrameImages& images, const Pose& pose, std::uint32_t frame,
                                            const std::vector<Detection>& detections, int storedWidth, int stride,
                                            int minPixels) {
@@ -212,35 +265,14 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
     const auto& R = pose.rotation;
     const auto& t = pose.translation;
     // Detections are in stored-image pixels; frames are loaded at the working resolution.
-    double scale = storedWidth > 0 ? double(K.width) / storedWidth : 1.0;
-    // Pixel centres sit at integer coordinates, so scaling maps centre to centre.
-    auto toWorking = [&](cv::Point2d p) { return cv::Point2d((p.x + 0.5) * scale - 0.5, (p.y + 0.5) * scale - 0.5); };
-    constexpr int kShift = 3;  // fillPoly's sub-pixel bits: keeps small polygons' shapes at low resolution
+    double scale = workingScale(K, storedWidth);
 
     cv::Mat1b mask(images.depth.size());
-    for (std::size_t d = 0; d < detections.size(); ++d) {
+    for (std::size_t d = 0; d < detections.size() && d + 1 < 65536; ++d) {
         const Detection& det = detections[d];
         if (det.score < kMinDetectionScore) continue;
         mask.setTo(0);
-        std::vector<std::vector<cv::Point>> polys;
-        auto fixed = [&](cv::Point2d p) {
-            p = toWorking(p);
-            return cv::Point(static_cast<int>(std::lround(p.x * (1 << kShift))),
-                             static_cast<int>(std::lround(p.y * (1 << kShift))));
-        };
-        if (!det.rle.empty()) {
-            cv::resize(det.rle, mask, mask.size(), 0, 0, cv::INTER_NEAREST);
-        } else if (!det.polygons.empty()) {
-            for (const auto& poly : det.polygons) {
-                polys.emplace_back();
-                for (const auto& p : poly) polys.back().push_back(fixed(p));
-            }
-        } else {
-            // The box [x, y, w, h] covers the pixels whose centres lie in x .. x + w - 1.
-            cv::Point2d a(det.box.x, det.box.y), b(det.box.x + det.box.width - 1, det.box.y + det.box.height - 1);
-            polys.push_back({fixed(a), fixed({b.x, a.y}), fixed(b), fixed({a.x, b.y})});
-        }
-        if (!polys.empty()) cv::fillPoly(mask, polys, cv::Scalar(255), cv::LINE_8, kShift);
+        drawDetection(det, scale, mask, 255);
         int area = cv::countNonZero(mask);
         if (area < minPixels) continue;
 
@@ -259,7 +291,7 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
 
         Observation o;
         o.frame = frame;
-        o.instance = static_cast<std::uint16_t>(d);
+        o.instance = static_cast<std::uint16_t>(d + 1);
         int kept = 0, x0 = INT32_MAX, y0 = INT32_MAX, x1 = -1, y1 = -1;
         double sumX = 0;
         std::vector<cv::Vec3b> samples;

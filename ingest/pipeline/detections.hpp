@@ -43,12 +43,20 @@ struct Detection {
 // images the capture does not have, and RLE masks that do not decode to the image's size.
 std::vector<std::vector<Detection>> readDetections(const Capture& capture);
 
-// Lifts the frame's detections (score >= kMinDetectionScore) into observations;
-// Observation::instance is the detection's position in `detections`.
-// `storedWidth` is the width of the image the detections were made on.
+// Lifts the frame's detections (score >= kMinDetectionScore) into observations
+// with the frame's depth; Observation::instance is 1 + the detection's position
+// in `detections` (0 is no instance, as in masks). `storedWidth` is the width
+// of the image the detections were made on.
 std::vector<Observation> observeDetections(const FrameImages& images, const Pose& pose, std::uint32_t frame,
                                            const std::vector<Detection>& detections, int storedWidth, int stride,
                                            int minPixels);
+
+// Frames without depth: the frame's detections (score >= kMinDetectionScore)
+// painted into an instance image of `size` (CV_16U, the working resolution,
+// intrinsics `K`) with the value 1 + their position, the larger first so that
+// a smaller thing in front of a larger one keeps its pixels.
+cv::Mat detectionInstances(cv::Size size, const Intrinsics& K, const std::vector<Detection>& detections,
+                           int storedWidth);
 
 // Greedy association of observations into tracks (docs/ingest.md, "Objects
 // from detections"): an observation joins the track of its category, not yet

@@ -16,7 +16,9 @@ bool usesColmap(const Capture& capture, GeometrySource geometry) {
         throw Error(ErrorKind::Input, fmt::format("{}: some frames have no camera pose", capture.path), std::nullopt,
                     "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP "
                     "model; or let COLMAP find them (--geometry colmap)");
-    return geometry == GeometrySource::Colmap || (geometry == GeometrySource::Auto && !hasPoses);
+    // Poses without depth or points (transforms.json of photos) need COLMAP's points, triangulated with them.
+    bool hasStructure = framesHaveDepth(capture) || !capture.points.empty();
+    return geometry == GeometrySource::Colmap || (geometry == GeometrySource::Auto && (!hasPoses || !hasStructure));
 }
 
 Reconstruction ColmapStage::run(StageProgress& progress) {
@@ -26,7 +28,11 @@ Reconstruction ColmapStage::run(StageProgress& progress) {
         hadDepth = hadDepth || !f.depthPath.empty();
         f.depthPath.clear();
     }
-    if (hadDepth) progress.note("--geometry colmap: depth images are ignored (COLMAP's poses are up to scale)");
+    bool posed = std::all_of(out.capture.frames.begin(), out.capture.frames.end(),
+                             [](const auto& f) { return f.pose.has_value(); });
+    if (hadDepth)
+        progress.note(posed ? "--geometry colmap: depth images are ignored; COLMAP triangulates with the given poses"
+                            : "--geometry colmap: depth images are ignored (COLMAP's poses are up to scale)");
     ColmapRun run = runColmap(out.capture, options);
     for (const auto& n : run.notes) progress.note(n);
     progress.advanced(1);

@@ -8,7 +8,6 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
@@ -70,7 +69,7 @@ public:
                                      options_.minInstancePixels);
         if (!hasDepth_) {
             liftSparsePoints(seen, frame.images, frame.pose, capture_.points, inView_, options_.sparseDepthBand);
-            maskViews_.push_back(maskView(frame));
+            maskViews_.push_back(maskView(frame.position, frame.images.instances, frame.images.intrinsics, frame.pose));
         }
         for (auto& o : seen) {
             auto& track = tracks_[o.instance];
@@ -102,20 +101,6 @@ public:
                              StageProgress&) override {}
 
 private:
-    // The frame's masks at 1/4 resolution, enough to carve hulls with.
-    static MaskView maskView(const PosedFrame& frame) {
-        MaskView m;
-        m.frame = frame.position;
-        const cv::Mat& instances = frame.images.instances;
-        cv::resize(instances, m.instances, cv::Size(), 0.25, 0.25, cv::INTER_NEAREST);
-        double sx = double(m.instances.cols) / instances.cols, sy = double(m.instances.rows) / instances.rows;
-        const auto& K = frame.images.intrinsics;
-        m.intrinsics = {m.instances.cols, m.instances.rows,        K.fx * sx,
-                        K.fy * sy,        (K.cx + 0.5) * sx - 0.5, (K.cy + 0.5) * sy - 0.5};
-        m.pose = frame.pose;
-        return m;
-    }
-
     const Capture& capture_;
     const IngestOptions& options_;
     std::map<std::uint16_t, InstanceLabel> labels_;

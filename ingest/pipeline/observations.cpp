@@ -119,15 +119,14 @@ void keepConsistentSparsePoints(std::vector<ObjectTrack*>& tracks, const std::ve
             }
 }
 
-void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, int grid,
-                      double minShare) {
+void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, double minShare,
+                      int grid) {
     std::unordered_map<std::uint32_t, const MaskView*> byFrame;
     for (const auto& m : masks) byFrame.emplace(m.frame, &m);
     for (ObjectTrack* track : tracks) {
         std::vector<model::Vec3> seed;
         for (const auto& v : track->views) seed.insert(seed.end(), v.points.begin(), v.points.end());
         if (seed.size() < 10 || track->views.empty()) continue;
-        std::uint16_t instance = track->views.front().instance;
         double lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
             std::vector<double> c;
@@ -138,9 +137,17 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
         }
         double grow = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
         for (int a = 0; a < 3; ++a) lo[a] -= grow / 2, hi[a] += grow / 2;
-        std::vector<const MaskView*> views;
+        // Each view's own silhouette: its mask value (a mask keeps one per instance, detections
+        // number theirs per frame), or its box where the view keeps no mask.
+        struct Silhouette {
+            const MaskView* view;
+            std::uint16_t instance;
+            cv::Rect box;
+        };
+        std::vector<Silhouette> views;
         for (const auto& v : track->views)
-            if (auto it = byFrame.find(v.frame); it != byFrame.end()) views.push_back(it->second);
+            if (auto it = byFrame.find(v.frame); it != byFrame.end())
+                views.push_back({it->second, v.instance, v.bounds});
         std::vector<model::Vec3> hull;
         for (int i = 0; i < grid; ++i)
             for (int j = 0; j < grid; ++j)
@@ -149,7 +156,7 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
                                   lo[1] + (j + 0.5) * (hi[1] - lo[1]) / grid,
                                   lo[2] + (k + 0.5) * (hi[2] - lo[2]) / grid};
                     int seen = 0, inside = 0;
-                    for (const MaskView* m : views) {
+                    for (const auto& [m, instance, box] : views) {
                         const auto& R = m->pose.rotation;
                         const auto& t = m->pose.translation;
                         double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
@@ -159,9 +166,11 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
                         const auto& K = m->intrinsics;
                         int u = static_cast<int>(std::lround(K.fx * x / z + K.cx));
                         int v = static_cast<int>(std::lround(K.fy * y / z + K.cy));
-                        if (u < 0 || v < 0 || u >= m->instances.cols || v >= m->instances.rows) continue;
+                        if (u < 0 || v < 0 || u >= K.width || v >= K.height) continue;
                         ++seen;
-                        if (m->instances.at<std::uint16_t>(v, u) == instance) ++inside;
+                        if (m->instances.empty() ? box.contains({u, v})
+                                                 : m->instances.at<std::uint16_t>(v, u) == instance)
+                            ++inside;
                     }
                     if (seen >= 2 && inside >= minShare * seen) hull.push_back(p);
                 }
@@ -169,6 +178,17 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
         for (auto& v : track->views) v.points.clear();
         track->views.front().points = std::move(hull);
     }
+}
+
+MaskView maskView(std::uint32_t frame, const cv::Mat& instances, const Intrinsics& K, const Pose& pose) {
+    MaskView m;
+    m.frame = frame;
+    cv::resize(instances, m.instances, cv::Size(), 0.25, 0.25, cv::INTER_NEAREST);
+    double sx = double(m.instances.cols) / instances.cols, sy = double(m.instances.rows) / instances.rows;
+    m.intrinsics = {m.instances.cols, m.instances.rows,        K.fx * sx,
+                    K.fy * sy,        (K.cx + 0.5) * sx - 0.5, (K.cy + 0.5) * sy - 0.5};
+    m.pose = pose;
+    return m;
 }
 
 std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size) {

@@ -65,22 +65,30 @@ void liftSparsePoints(std::vector<Observation>& observations, const FrameImages&
 void keepConsistentSparsePoints(std::vector<ObjectTrack*>& tracks, const std::vector<SparsePoint>& points,
                                 const std::vector<std::uint32_t>& inView, int minVotes = 2, double minShare = 0.5);
 
-// One frame's instance mask kept (down-sampled) for carving, with its camera.
+// One frame's instance mask kept (down-sampled) for carving, with its camera;
+// or, for boxes, just the camera: each view's box (Observation::bounds) is its
+// silhouette.
 struct MaskView {
     std::uint32_t frame = 0;
-    cv::Mat instances;      // CV_16U
-    Intrinsics intrinsics;  // scaled to `instances`
+    cv::Mat instances;      // CV_16U; empty: the views' boxes are their silhouettes
+    Intrinsics intrinsics;  // scaled to `instances`, or the frame's (working resolution)
     Pose pose;
 };
+
+// The frame's instance image (working resolution, intrinsics `K`) at 1/4
+// resolution, enough to carve hulls with.
+MaskView maskView(std::uint32_t frame, const cv::Mat& instances, const Intrinsics& K, const Pose& pose);
 
 // Sparse points see only the textured faces an object shows the cameras: a
 // box around them is often flat. Each track with enough sparse points is
 // replaced by its visual hull: the voxels of a region around its points
-// (grown by its largest side) that project onto the instance's mask in at
-// least `minShare` of the frames that observed it. The hull's voxel centres
-// become the track's points (in its first view).
-void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, int grid = 28,
-                      double minShare = 0.8);
+// (grown by its largest side) that project onto the instance's silhouette in
+// at least `minShare` of the frames that observed it: each view's own mask
+// value (Observation::instance), or its box (Observation::bounds) where the
+// MaskView keeps no mask. The hull's voxel centres become the track's points
+// (in its first view).
+void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, double minShare = 0.8,
+                      int grid = 28);
 
 // A JPEG of the instance's bounding box (padded 10%), longest side `size`.
 std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size);

@@ -183,3 +183,31 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
         return note.starts_with("detector: nanodet.onnx on 5 frames") && note.ends_with("ms per frame");
     }));
 }
+
+// The same frames without their depth: COLMAP triangulates points with the frames' own poses, and
+// the detector's boxes are placed on those points.
+TEST_CASE("--objects detect on the real dining room without depth names chairs at metric scale") {
+    if (!installedDetector()) return;
+    auto capture = readCapture(diningPath());
+    for (auto& f : capture.frames) f.depthPath.clear();
+    IngestOptions options;
+    options.sceneName = "dining-rgb";
+    options.objects = ObjectSource::Auto;
+    SilentProgress silent;
+    auto result = ingestCapture(capture, options, silent);
+    CHECK(std::any_of(result.notes.begin(), result.notes.end(), [](const std::string& note) {
+        return note.starts_with("COLMAP triangulated") && note.ends_with("with the capture's own poses and cameras");
+    }));
+    std::vector<const model::Node*> chairs;
+    for (const auto& n : result.scene.nodes)
+        if (n.kind == model::NodeKind::Object) {
+            CHECK(n.category != "object");
+            if (n.category == "chair") chairs.push_back(&n);
+        }
+    REQUIRE(!chairs.empty());
+    // The given poses are metric, so a chair has a chair's size.
+    for (const auto* chair : chairs) {
+        CHECK(chair->box.size.z > 0.3);
+        CHECK(chair->box.size.z < 1.5);
+    }
+}

@@ -1,12 +1,15 @@
 // The ingest's stage runner (timing, progress and cancellation in one place),
-// and cancellation of a whole ingest between frames and between stages.
+// cancellation of a whole ingest between frames and between stages, and the
+// anchors stage's floor.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "ingest/capture/capture.hpp"
+#include "ingest/pipeline/anchors_stage.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
 #include "ingest/synth/synth.hpp"
@@ -123,4 +126,24 @@ TEST_CASE("an ingest cancelled during the frame pass stops before the next frame
         CHECK(e.message() == "cancelled; nothing was written");
     }
     CHECK(sink.events == std::vector<std::string>{"started frames 6", "advanced 1", "advanced 2"});
+}
+
+TEST_CASE("the floor spans the room, not the stray points far outside it") {
+    AlignedCapture aligned;
+    aligned.alignment.floorFound = true;
+    // A 4 x 5 m floor every 5 cm, and five strays 20 m away (sparse points seen through a window).
+    for (double x = 0; x <= 4; x += 0.05)
+        for (double y = 0; y <= 5; y += 0.05) aligned.cloud.push({x, y, 0}, {0, 0, 0}, 0);
+    for (int k = 0; k < 5; ++k) aligned.cloud.push({24.0 + k, -20.0, 0.5}, {0, 0, 0}, 0);
+    model::SceneData scene;
+    RecordingSink sink;
+    std::vector<std::string> notes;
+    StageProgress progress(sink, notes, [] { return false; });
+    AnchorsStage{aligned, scene}.run(progress);
+    auto floor = std::find_if(scene.nodes.begin(), scene.nodes.end(),
+                              [](const model::Node& n) { return n.category == "floor"; });
+    REQUIRE(floor != scene.nodes.end());
+    CHECK(floor->box.size.x == Approx(4).margin(0.1));
+    CHECK(floor->box.size.y == Approx(5).margin(0.1));
+    CHECK(floor->box.center.x == Approx(2).margin(0.1));
 }
