@@ -172,7 +172,8 @@ std::array<double, 9> Alignment::rotation() const {
     return r;
 }
 
-Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options) {
+Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options,
+                       const std::vector<NamedThing>& things) {
     Alignment out;
     auto& notes = out.notes;
 
@@ -319,21 +320,30 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     } else if (options.metric) {
         out.scale = 1;
         notes.push_back("scale: 1 (metric capture)");
-    } else if (ceiling && floor) {
-        out.scale = options.ceilingHeight / ceilingAbove;
-        notes.push_back("scale: floor-to-ceiling taken as " + fixed(options.ceilingHeight) + " m");
-    } else if (!cameras.empty()) {
-        std::vector<double> heights = cameraHeights(up);
-        for (auto& h : heights) h -= out.floorHeight;
-        double medianHeight = detail::median(heights);
-        if (medianHeight > 0) {
-            out.scale = options.cameraHeight / medianHeight;
-            notes.push_back("scale: median camera height taken as " + fixed(options.cameraHeight) + " m");
-        } else {
-            notes.push_back("scale: cameras not above the floor; left at 1");
-        }
     } else {
-        notes.push_back("scale: no cameras and no ceiling; left at 1");
+        std::vector<ScaleEstimate> estimates;
+        if (ceiling && floor)
+            estimates.push_back({"floor-to-ceiling taken as " + fixed(options.ceilingHeight) + " m",
+                                 options.ceilingHeight / ceilingAbove});
+        if (!cameras.empty()) {
+            std::vector<double> heights = cameraHeights(up);
+            for (auto& h : heights) h -= out.floorHeight;
+            double medianHeight = detail::median(heights);
+            if (medianHeight > 0)
+                estimates.push_back({"median camera height taken as " + fixed(options.cameraHeight) + " m",
+                                     options.cameraHeight / medianHeight});
+        }
+        if (floor)
+            if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight)) estimates.push_back(*heights);
+        if (estimates.empty()) {
+            notes.push_back(
+                "scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");
+        } else {
+            ScaleChoice choice = combineScales(estimates);
+            out.scale = choice.scale;
+            out.scaleSpread = choice.spread;
+            notes.push_back(choice.note);
+        }
     }
     if (ceiling && floor) {
         out.ceilingHeight = out.scale * ceilingAbove;

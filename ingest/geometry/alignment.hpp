@@ -10,6 +10,7 @@
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "ingest/geometry/scale_priors.hpp"
 #include "model/types.hpp"
 
 namespace smql::ingest {
@@ -57,6 +58,7 @@ struct Alignment {
     bool floorFound = false;
     std::size_t floorInliers = 0;
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
+    double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)
     std::vector<std::string> notes;       // how each choice was made, for SHOW SCENES and logs
 
     model::Vec3 apply(const model::Vec3& p) const;
@@ -64,8 +66,11 @@ struct Alignment {
 };
 
 // Floor, heading and scale of a capture's world-frame cloud; `cameras` are
-// the capture's camera-to-world poses (may be empty).
-Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options = {});
+// the capture's camera-to-world poses (may be empty); `things`, named objects
+// the capture shows, give the typical-heights prior of the scale
+// (scale_priors.hpp).
+Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options = {},
+                       const std::vector<NamedThing>& things = {});
 
 PointCloud transformed(const PointCloud& cloud, const Alignment& alignment);
 Pose transformed(const Pose& pose, const Alignment& alignment);

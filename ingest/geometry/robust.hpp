@@ -1,4 +1,4 @@
-// Small robust statistics shared by the geometry stages. Internal to ingest/geometry.
+// Small robust statistics shared by the geometry and the stages. Internal to smql_ingest.
 #pragma once
 
 #include <algorithm>

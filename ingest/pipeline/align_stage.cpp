@@ -12,8 +12,17 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     align.scale = options.scale;
     std::vector<Pose> poses;
     for (const auto& c : frames.cameras) poses.push_back(c.pose);
+    // Named things of a typical height are one of the scale's priors, when there is a scale to find.
+    std::vector<NamedThing> things;
+    if (!capture.metric && !options.scale)
+        for (const auto& track : frames.tracks) {
+            if (!typicalHeight(track.category)) continue;
+            NamedThing thing{track.category, {}};
+            for (const auto& v : track.views) thing.points.insert(thing.points.end(), v.points.begin(), v.points.end());
+            things.push_back(std::move(thing));
+        }
     AlignedCapture out;
-    out.alignment = alignCapture(frames.structure, poses, align);
+    out.alignment = alignCapture(frames.structure, poses, align, things);
     for (const auto& n : out.alignment.notes) progress.note(n);
     if (!out.alignment.floorFound)
         progress.note("no floor plane found: the frame is levelled by the cameras' up direction");

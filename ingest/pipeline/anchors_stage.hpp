@@ -1,5 +1,5 @@
-// The anchors stage: the floor (the aligned cloud's extent at z = 0, from the
-// 1st to the 99th percentile of x and y: strays do not stretch it), the
+// The anchors stage: the floor (the aligned cloud's extent at z = 0, without
+// outliers: strays do not stretch it), the
 // ceiling when the alignment found one, and walls from vertical planes, added
 // to the scene. Doors and windows come later, from the object source.
 #pragma once

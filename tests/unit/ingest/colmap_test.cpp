@@ -71,7 +71,11 @@ Measured ingestRegistered(const Capture& reconstructed, const Capture& truth, co
 TEST_CASE("an RGB-only synthetic capture through COLMAP meets the quality thresholds after a similarity") {
     ScratchDir dir;
     auto capturePath = (dir.path / "capture").string();
-    auto synth = synth::writeSynth(capturePath, {.seed = 3, .frames = 30, .objects = 24});
+    // SMQL_COLMAP_SEED measures another room, without the thresholds, which hold for seed 3 alone today
+    // (docs/ingest.md, "Detections without depth").
+    const char* seedVariable = std::getenv("SMQL_COLMAP_SEED");
+    const std::uint64_t seed = seedVariable ? std::strtoull(seedVariable, nullptr, 10) : 3;
+    auto synth = synth::writeSynth(capturePath, {.seed = seed, .frames = 30, .objects = 24});
     Capture truth = readCapture(capturePath);
     Capture rgb = truth;
     for (auto& f : rgb.frames) {
@@ -86,27 +90,27 @@ TEST_CASE("an RGB-only synthetic capture through COLMAP meets the quality thresh
     auto report = [&](const char* source, const Measured& m) {
         const auto& r = m.report;
         std::cout << fmt::format(
-            "COLMAP synth seed 3, 30 frames RGB only, {}: {} frames registered, colmap {:.1f} s; similarity scale "
+            "COLMAP synth seed {}, 30 frames RGB only, {}: {} frames registered, colmap {:.1f} s; similarity scale "
             "{:.3f} (scale error {:.1f}%), camera residual {:.3f} m; objects F1 {:.2f} (P {:.2f} R {:.2f}), "
             "anchors F1 {:.2f}, centre error {:.2f} m\n",
-            source, run.registered, colmapSeconds, m.scale, 100 * std::abs(m.scale - 1), m.residual, r.objects.f1(),
-            r.objects.precision(), r.objects.recall(), r.anchors.f1(), r.meanCenterError);
+            seed, source, run.registered, colmapSeconds, m.scale, 100 * std::abs(m.scale - 1), m.residual,
+            r.objects.f1(), r.objects.precision(), r.objects.recall(), r.anchors.f1(), r.meanCenterError);
     };
     auto masks = ingestRegistered(rgb, truth, synth, ObjectSource::Masks);
     report("masks", masks);
-    CHECK(std::abs(masks.scale - 1) <= 0.10);
-    CHECK(masks.report.objects.f1() >= 0.7);
-
     auto polygons = ingestRegistered(rgb, truth, synth, ObjectSource::Detections);
     report("detections with outlines", polygons);
-    CHECK(polygons.report.objects.f1() >= 0.7);
-
     auto file = std::filesystem::path(capturePath) / "detections.json";
     nlohmann::json j = nlohmann::json::parse(std::ifstream(file));
     for (auto& d : j["detections"]) d.erase("segmentation");
     std::ofstream(file) << j.dump();
     auto boxes = ingestRegistered(rgb, truth, synth, ObjectSource::Detections);
     report("detection boxes", boxes);
+    if (seedVariable) return;
+
+    CHECK(std::abs(masks.scale - 1) <= 0.10);
+    CHECK(masks.report.objects.f1() >= 0.7);
+    CHECK(polygons.report.objects.f1() >= 0.7);
     CHECK(boxes.report.objects.f1() >= 0.65);
 }
 

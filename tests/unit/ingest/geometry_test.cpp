@@ -214,7 +214,8 @@ TEST_CASE("alignment levels a tilted, turned and shifted room", "[ingest][geomet
     }
 }
 
-TEST_CASE("a scale-free capture gets its scale from the camera height or the ceiling", "[ingest][geometry]") {
+TEST_CASE("a scale-free capture gets its scale from the camera height, the ceiling and typical heights",
+          "[ingest][geometry]") {
     AlignOptions options;
     options.metric = false;
     SECTION("no ceiling: median camera height = options.cameraHeight") {
@@ -228,16 +229,40 @@ TEST_CASE("a scale-free capture gets its scale from the camera height or the cei
         CHECK(transformed(room.cameras[0], a).translation.z == Approx(1.6).margin(0.02));
         CHECK_FALSE(a.ceilingHeight);
     }
-    SECTION("a ceiling parallel to the floor above the cameras wins: floor-to-ceiling = 2.6 m") {
-        // A 2.8 m room (cameras at 1.4 m, which alone would give a different scale), in units of 0.4 m.
+    SECTION("a ceiling and the cameras are two priors: their median, with how far they disagree") {
+        // A 2.8 m room with cameras at 1.4 m, in units of 0.4 m: floor-to-ceiling (2.6 m) says 2.6 / 1.12
+        // metres per unit, the camera height (1.5 m) says 1.5 / 0.56.
         Room room = syntheticRoom(2.8, 1.4);
         distort(room, rotY(-15 * kDeg), {2.0, 0.0, 0.5}, 0.4);
         Alignment a = alignCapture(room.cloud, room.cameras, options);
         INFO(notesOf(a));
+        double ceiling = 2.6 / (2.8 * 0.4), cameras = 1.5 / (1.4 * 0.4), median = (ceiling + cameras) / 2;
+        CHECK(a.scale == Approx(median).epsilon(0.01));
+        CHECK(a.scaleSpread == Approx((cameras - ceiling) / median).epsilon(0.05));
         REQUIRE(a.ceilingHeight);
-        CHECK(*a.ceilingHeight == Approx(2.6).margin(0.02));
-        CHECK(a.scale == Approx(2.6 / (2.8 * 0.4)).epsilon(0.01));
+        CHECK(*a.ceilingHeight == Approx(2.8 * 0.4 * median).margin(0.02));
+        CHECK_THAT(notesOf(a), Catch::Contains("the median of 2 priors that agree within 14%"));
         CHECK(angleDeg(a.up, rotY(-15 * kDeg) * model::Vec3{0, 0, 1}) < 1.0);
+    }
+    SECTION("things of a typical height are a third prior") {
+        // Two tables (tops 0.75 m) and a chair (0.9 m) of the right heights in the same room: their
+        // answer, 2.5 metres per unit, is the median of the three.
+        Room room = syntheticRoom(2.8, 1.4);
+        std::vector<NamedThing> things;
+        for (auto [category, top] : {std::pair{"table", 0.75}, std::pair{"table", 0.75}, std::pair{"chair", 0.9}}) {
+            NamedThing thing{category, {}};
+            for (double z = 0; z <= top + 1e-9; z += 0.05) thing.points.push_back({0.5, 3.0, z});
+            things.push_back(std::move(thing));
+        }
+        const Mat3 r = rotY(-15 * kDeg);
+        distort(room, r, {2.0, 0.0, 0.5}, 0.4);
+        for (auto& thing : things)
+            for (auto& p : thing.points) p = add(mul(0.4, r * p), {2.0, 0.0, 0.5});
+        Alignment a = alignCapture(room.cloud, room.cameras, options, things);
+        INFO(notesOf(a));
+        CHECK(a.scale == Approx(2.5).epsilon(0.01));
+        CHECK_THAT(notesOf(a), Catch::Contains("the median of 3 priors"));
+        CHECK_THAT(notesOf(a), Catch::Contains("the typical heights of 1 chair (0.90 m), 2 tables (0.75 m): 2.5"));
     }
     SECTION("an explicit scale overrides both") {
         Room room = syntheticRoom(2.8, 1.4);

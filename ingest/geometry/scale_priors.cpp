@@ -1,0 +1,74 @@
+#include "ingest/geometry/scale_priors.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "ingest/geometry/robust.hpp"
+
+namespace smql::ingest {
+
+namespace {
+
+// Usual heights of standing furniture and doors, in metres: the common standard sizes (a dining
+// table's top at 28-30 in, a door 80 in), only where the kind varies by a tenth or so. Each name
+// takes an "s" in the plural.
+struct Typical {
+    std::string_view category;
+    double height;
+};
+constexpr Typical kTypicalHeights[] = {
+    {"table", 0.75},  {"desk", 0.75},   {"chair", 0.9}, {"sofa", 0.85},      {"bed", 0.55},
+    {"fridge", 1.75}, {"toilet", 0.75}, {"door", 2.03}, {"nightstand", 0.6},
+};
+
+}  // namespace
+
+std::optional<double> typicalHeight(std::string_view category) {
+    for (const auto& t : kTypicalHeights)
+        if (t.category == category) return t.height;
+    return std::nullopt;
+}
+
+std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
+                                              double floorHeight, std::size_t minThings) {
+    std::vector<double> estimates;
+    std::map<std::string, int> counted;
+    for (const auto& thing : things) {
+        auto height = typicalHeight(thing.category);
+        if (!height || thing.points.empty()) continue;
+        std::vector<double> along;
+        for (const auto& p : thing.points) along.push_back(up.x * p.x + up.y * p.y + up.z * p.z);
+        double top = detail::robustRange(std::move(along)).second - floorHeight;
+        if (!(top > 0)) continue;
+        estimates.push_back(*height / top);
+        ++counted[thing.category];
+    }
+    if (estimates.size() < std::max<std::size_t>(minThings, 1)) return std::nullopt;
+    std::string kinds;
+    for (const auto& [category, n] : counted)
+        kinds += fmt::format("{}{} {}{} ({:.2f} m)", kinds.empty() ? "" : ", ", n, category, n == 1 ? "" : "s",
+                             *typicalHeight(category));
+    return ScaleEstimate{fmt::format("the typical heights of {}", kinds), detail::median(std::move(estimates))};
+}
+
+ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {
+    assert(!estimates.empty());
+    std::vector<double> values;
+    for (const auto& e : estimates) values.push_back(e.scale);
+    ScaleChoice out;
+    out.scale = detail::median(values);
+    auto [low, high] = std::minmax_element(values.begin(), values.end());
+    out.spread = (*high - *low) / out.scale;
+    std::string each;
+    for (const auto& e : estimates) each += fmt::format("; {}: {:.4g}", e.prior, e.scale);
+    out.note = estimates.size() == 1
+                   ? fmt::format("scale: {:.4g} m per unit from one prior{}", out.scale, each)
+                   : fmt::format("scale: {:.4g} m per unit, the median of {} priors that agree within {:.0f}%{}",
+                                 out.scale, estimates.size(), 100 * out.spread, each);
+    return out;
+}
+
+}  // namespace smql::ingest

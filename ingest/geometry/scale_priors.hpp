@@ -1,0 +1,53 @@
+// Metric scale for captures whose poses are up to scale (COLMAP's): several
+// priors, each giving metres per capture unit, combined by their median and
+// reported with how well they agree (docs/ingest.md, "Geometry and metric
+// alignment"). The priors are the camera's height above the floor, the
+// floor-to-ceiling height, and the typical heights of things of known kinds
+// (a table's top, a chair's back, a door).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "model/types.hpp"
+
+namespace smql::ingest {
+
+// A thing a capture shows, named, with its points (capture frame).
+struct NamedThing {
+    std::string category;
+    std::vector<model::Vec3> points;
+};
+
+// A standing thing's usual height above the floor in metres (its top), for the
+// kinds whose height varies little: nullopt for the others.
+std::optional<double> typicalHeight(std::string_view category);
+
+// One prior's answer: metres per capture unit.
+struct ScaleEstimate {
+    std::string prior;  // "median camera height taken as 1.50 m"
+    double scale = 1;
+};
+
+// The heights prior: each named thing of a typical height, its top (the
+// highest of its points along `up`, outliers aside: detail::robustRange) above
+// `floorHeight`, gives one estimate;
+// their median is the prior's answer. nullopt with fewer than `minThings` such
+// things.
+std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
+                                              double floorHeight, std::size_t minThings = 2);
+
+struct ScaleChoice {
+    double scale = 1;
+    // (largest - smallest) / chosen, over the estimates: 0 with one estimate.
+    double spread = 0;
+    std::string note;  // the choice, each prior's answer and their agreement, for the ingest's notes
+};
+
+// The median of the estimates (at least one).
+ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates);
+
+}  // namespace smql::ingest
