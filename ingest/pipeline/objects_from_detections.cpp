@@ -30,6 +30,7 @@ void trackDetections(const PosedFrame& frame, const std::vector<Detection>& dete
     });
     for (auto& o : seen) {
         const Detection& detection = detections[o.instance];
+        o.embedding = detection.embedding;
         ObjectTrack& track = tracker.add(std::move(o), detection.category, detection.score);
         keepLargestEvidence(track.evidence, track.views.back(), frame.images.color, options.evidenceSize);
     }
