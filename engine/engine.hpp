@@ -36,8 +36,9 @@ public:
     // Placeholders are numbered 1..parameterCount(): `?` in the order written, `$n` by n.
     std::size_t parameterCount() const;
     // Binds placeholder `index` (1-based). Text for a name or a string; std::int64_t, double or
-    // Length (metres) for a number, a distance or LIMIT; std::monostate for NULL. Throws
-    // Error(Usage) for an index out of range or a value its place cannot take (text for LIMIT).
+    // Length (metres) for a number, a distance or LIMIT; std::vector<float> for SIMILAR TO's query
+    // in the space of the nodes' stored embeddings (docs/similarity.md); std::monostate for NULL.
+    // Throws Error(Usage) for an index out of range or a value its place cannot take (text for LIMIT).
     void bind(std::size_t index, ParameterValue value);
     // Every placeholder unbound again; running then fails naming the first.
     void clearBindings();

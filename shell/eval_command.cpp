@@ -124,7 +124,7 @@ public:
         relations::Thresholds thresholds;
         for (auto type : {model::RelationType::LeftOf, model::RelationType::RightOf}) {
             const auto& spec = relations::spec(type);
-            if (spec.evaluate({a, b, nullptr, thresholds, frame, thresholds.nearDistance}) > 0) return type;
+            if (spec.evaluate({a, b, nullptr, thresholds, frame, thresholds.nearDistance, nullptr}) > 0) return type;
         }
         return std::nullopt;
     }

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "model/embedding.hpp"
 #include "model/error.hpp"
 #include "storage/codec.hpp"
 #include "storage/lmdb_env.hpp"
@@ -312,6 +313,7 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
     }
 
     std::set<std::pair<NodeId, std::string_view>> blobNames;
+    std::optional<std::pair<NodeId, std::size_t>> embeddings;  // the first node with one, and its length
     for (const model::Blob& blob : data.blobs) {
         if (!position.contains(blob.node))
             importError(fmt::format("scene '{}': blob '{}' belongs to node {}, which is not a node of the scene", name,
@@ -323,6 +325,20 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
                             name, blob.name.substr(0, 40), blob.node, env.maxKeySize() - sizeof(NodeId)));
         if (!blobNames.emplace(blob.node, blob.name).second)
             importError(fmt::format("scene '{}': node {} has two blobs named '{}'", name, blob.node, blob.name));
+        if (blob.name != model::kEmbeddingBlob) continue;
+        // SIMILAR TO compares a bound vector with every node's: one model's vectors, one length.
+        std::size_t dimensions = 0;
+        try {
+            dimensions = model::readEmbedding(blob).size();
+        } catch (const Error& e) {
+            importError(fmt::format("scene '{}': the embedding of node {}: {}", name, blob.node, e.message()));
+        }
+        if (!embeddings) embeddings = {blob.node, dimensions};
+        if (embeddings->second != dimensions)
+            importError(
+                fmt::format("scene '{}': the embedding of node {} has {} dimensions, that of node {} has {}; "
+                            "a scene's embeddings come from one model",
+                            name, blob.node, dimensions, embeddings->first, embeddings->second));
     }
 
     for (std::size_t i = 0; i < data.relations.size(); ++i) {

@@ -231,6 +231,13 @@ SMQL_API smql_status smql_bind_text(smql_stmt* stmt, int index, const char* text
 SMQL_API smql_status smql_bind_int(smql_stmt* stmt, int index, int64_t value);
 SMQL_API smql_status smql_bind_double(smql_stmt* stmt, int index, double value);
 SMQL_API smql_status smql_bind_null(smql_stmt* stmt, int index);
+/* A vector of `count` floats (copied) for SIMILAR TO ?: the nodes are ranked by the cosine of it
+ * and the vector an external model gave each at ingest (docs/similarity.md), most similar first;
+ * nodes without one are left out. Only SIMILAR TO takes a vector (SMQL_ERROR_MISUSE elsewhere, and
+ * for NULL values or count < 1). When the statement runs, a vector that is not as long as the
+ * scene's embeddings, a scene without embeddings, and a zero or non-finite vector are
+ * SMQL_ERROR_USAGE. */
+SMQL_API smql_status smql_bind_vector(smql_stmt* stmt, int index, const float* values, int count);
 
 /* The first step runs the statement with the values bound (a placeholder without one is
  * SMQL_ERROR_USAGE naming it; smql_interrupt stops it with SMQL_ERROR_INTERRUPTED); each step

@@ -426,6 +426,16 @@ smql_status smql_bind_double(smql_stmt* stmt, int index, double value) {
     return bindValue(stmt, index, value, "smql_bind_double");
 }
 
+smql_status smql_bind_vector(smql_stmt* stmt, int index, const float* values, int count) {
+    if (stmt && (!values || count < 1))
+        return misuse(stmt->db, "smql_bind_vector: values must not be NULL and count must be 1 or more");
+    try {
+        return bindValue(stmt, index, std::vector<float>(values, values + (stmt ? count : 0)), "smql_bind_vector");
+    } catch (...) {
+        return SMQL_ERROR_INTERNAL;  // out of memory copying the vector
+    }
+}
+
 smql_status smql_bind_null(smql_stmt* stmt, int index) {
     return bindValue(stmt, index, std::monostate{}, "smql_bind_null");
 }

@@ -39,10 +39,14 @@ BoundFind Binder::bindFind(const ast::FindStmt& find) {
                         fmt::format("SIMILAR TO and {} both set an order", find.nearestTo ? "NEAREST TO" : "ORDER BY"),
                         find.similarTo->where,
                         "keep one; to rank the things near x by similarity, write WHERE near(x) SIMILAR TO '...'");
-        if (find.similarTo->text.find_first_not_of(" \t\n") == std::string::npos)
-            throw Error(ErrorKind::Binding, "SIMILAR TO needs words to compare with", find.similarTo->where,
-                        "describe the thing, as in SIMILAR TO 'soft thing to sit on'");
-        out.similarTo = find.similarTo->text;
+        if (!find.similarTo->vector.empty()) {
+            out.similarTo = BoundSimilarTo{{}, storedSpaceQuery(find.similarTo->vector, find.similarTo->where)};
+        } else {
+            if (find.similarTo->text.find_first_not_of(" \t\n") == std::string::npos)
+                throw Error(ErrorKind::Binding, "SIMILAR TO needs words to compare with", find.similarTo->where,
+                            "describe the thing, as in SIMILAR TO 'soft thing to sit on'");
+            out.similarTo = BoundSimilarTo{find.similarTo->text, {}};
+        }
     }
     for (const auto& column : find.columns) {
         bool known = exec::attributeIn(scene(), column) || (column == "distance" && out.distanceTo) ||
@@ -64,6 +68,29 @@ BoundFind Binder::bindFind(const ast::FindStmt& find) {
     out.limit = find.limit;
     out.path = find.path;
     return out;
+}
+
+// A bound vector is compared with the vectors an external model gave the scene's nodes: the scene
+// must have them, of the vector's length. The query is scaled to unit length, as they are.
+std::vector<float> Binder::storedSpaceQuery(const std::vector<float>& vector, SourceLocation where) {
+    const similar::EmbeddingIndex* stored = scene().storedEmbeddings(ctx_.txn);
+    if (!stored)
+        throw Error(
+            ErrorKind::Usage,
+            scene().historical()
+                ? fmt::format("scene '{}' as it was then has no stored embeddings to compare a vector with: "
+                              "a superseded version keeps no blobs",
+                              scene().info().name)
+                : fmt::format("scene '{}' has no stored embeddings to compare a vector with", scene().info().name),
+            where,
+            "give the entries of detections.json an \"embedding\" field at ingest (docs/formats.md), or "
+            "bind text to search the built-in text embedder's space");
+    if (stored->dimensions() != vector.size())
+        throw Error(ErrorKind::Usage,
+                    fmt::format("the scene's embeddings have {} dimensions; the bound vector has {}",
+                                stored->dimensions(), vector.size()),
+                    where, "bind the query's embedding from the model that made the scene's embeddings");
+    return similar::unitVector(vector);
 }
 
 BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::optional<ast::Expr>& where,

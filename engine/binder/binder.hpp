@@ -57,6 +57,8 @@ private:
     void useVersion(const ast::AsOf& asOf);
 
     BoundFind bindFind(const ast::FindStmt& find);
+    // SIMILAR TO's bound vector checked against the scene's stored embeddings, at unit length.
+    std::vector<float> storedSpaceQuery(const std::vector<float>& vector, SourceLocation where);
     BoundCatalogFind bindCatalogFind(const ast::Ref& target, const std::optional<ast::Expr>& where,
                                      const std::optional<ast::View>& view, std::optional<std::int64_t> limit,
                                      bool countOnly);

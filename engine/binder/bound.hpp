@@ -81,14 +81,22 @@ struct BoundView {
     std::string description;
 };
 
+// SIMILAR TO: a text, compared in the built-in text embedder's space, or a bound vector, compared
+// with the vectors an external model gave the scene's nodes at ingest (docs/similarity.md).
+struct BoundSimilarTo {
+    std::string text;           // empty for a vector
+    std::vector<float> vector;  // unit length, as long as the scene's embeddings; empty for a text
+    bool stored() const { return !vector.empty(); }
+};
+
 struct BoundFind {
     Target target;
     BoundView view;
     std::optional<BoundExpr> where;
-    std::optional<NodeSet> distanceTo;     // ORDER BY distance(x) / NEAREST TO x
-    bool nearest = false;                  // NEAREST TO: the reference nodes themselves are left out
-    std::string orderAttribute;            // ORDER BY height: a comparable built-in or stored attribute
-    std::optional<std::string> similarTo;  // SIMILAR TO 'text': ranked by similarity, most similar first
+    std::optional<NodeSet> distanceTo;        // ORDER BY distance(x) / NEAREST TO x
+    bool nearest = false;                     // NEAREST TO: the reference nodes themselves are left out
+    std::string orderAttribute;               // ORDER BY height: a comparable built-in or stored attribute
+    std::optional<BoundSimilarTo> similarTo;  // ranked by similarity, most similar first
     bool descending = false;
     std::vector<std::string> columns;  // RETURN: checked names; empty for the default columns
     std::optional<std::int64_t> limit;

@@ -7,6 +7,7 @@
 
 #include "engine/parser/parser.hpp"
 #include "engine/relations/predicates.hpp"
+#include "model/embedding.hpp"
 #include "model/error.hpp"
 
 namespace smql::binder {
@@ -15,18 +16,20 @@ namespace {
 
 constexpr unsigned kNumberValue = kIntegerValue | kRealValue | kLengthValue;
 constexpr unsigned kAnyValue = kTextValue | kNumberValue;
+constexpr unsigned kSimilarValue = kTextValue | kVectorValue;
 
 [[noreturn]] void fail(const ast::Placeholder& placeholder, std::string message, std::string hint) {
     throw Error(ErrorKind::Usage, std::move(message), placeholder.where, std::move(hint));
 }
 
 std::string_view kindName(const ParameterValue& value) {
-    static constexpr std::string_view kNames[] = {"NULL", "an integer", "a real number", "a length", "text"};
+    static constexpr std::string_view kNames[] = {"NULL",     "an integer", "a real number",
+                                                  "a length", "text",       "a vector"};
     return kNames[value.index()];
 }
 
 unsigned kindBit(const ParameterValue& value) {
-    static constexpr unsigned kBits[] = {0, kIntegerValue, kRealValue, kLengthValue, kTextValue};
+    static constexpr unsigned kBits[] = {0, kIntegerValue, kRealValue, kLengthValue, kTextValue, kVectorValue};
     return kBits[value.index()];
 }
 
@@ -34,6 +37,7 @@ std::string_view placeName(unsigned accepts) {
     if (accepts == kTextValue) return "a name";
     if (accepts == kIntegerValue) return "LIMIT's whole number";
     if (accepts == kNumberValue) return "a distance";
+    if (accepts == kSimilarValue) return "SIMILAR TO's text or vector";
     return "a value";
 }
 
@@ -41,6 +45,9 @@ std::string_view bindHint(unsigned accepts) {
     if (accepts == kTextValue) return "bind text, as in smql_bind_text(stmt, i, \"mug\")";
     if (accepts == kIntegerValue) return "bind a whole number of 0 or more, as in smql_bind_int(stmt, i, 5)";
     if (accepts == kNumberValue) return "bind a length in metres, as in smql_bind_double(stmt, i, 1.5)";
+    if (accepts == kSimilarValue)
+        return "bind text, as in smql_bind_text(stmt, i, \"soft thing\"), or a vector, as in "
+               "smql_bind_vector(stmt, i, values, 512)";
     return "bind text, a number or a length";
 }
 
@@ -152,7 +159,7 @@ struct SlotCollector {
     void onDistance(const ast::Expr& predicate) { add(predicate.args.back().placeholder, kNumberValue); }
     void onLiteral(const ast::Expr& comparison) { add(*comparison.literalParam, kAnyValue); }
     void onLimit(const ast::FindStmt& find) { add(*find.limitParam, kIntegerValue); }
-    void onSimilar(const ast::SimilarTo& similar) { add(*similar.param, kTextValue); }
+    void onSimilar(const ast::SimilarTo& similar) { add(*similar.param, kSimilarValue); }
 };
 
 // Puts the values in, checking each against its place.
@@ -214,7 +221,8 @@ struct ValueFiller {
                 if constexpr (std::is_same_v<T, Length>) {
                     comparison.literal = value.metres;
                     comparison.literalHasUnit = true;
-                } else if constexpr (!std::is_same_v<T, std::monostate>) {
+                } else if constexpr (!std::is_same_v<T, std::monostate> && !std::is_same_v<T, std::vector<float>>) {
+                    // A vector never gets here: a comparison does not accept one.
                     comparison.literal = value;  // text keeps its case, as a quoted string does
                     comparison.literalBound = true;
                 }
@@ -234,7 +242,17 @@ struct ValueFiller {
     }
 
     void onSimilar(ast::SimilarTo& similar) const {
-        similar.text = std::get<std::string>(valueOf(*similar.param, kTextValue));
+        const ParameterValue& value = valueOf(*similar.param, kSimilarValue);
+        if (const auto* vector = std::get_if<std::vector<float>>(&value)) {
+            if (auto problem = model::embeddingProblem(*vector))
+                fail(*similar.param,
+                     fmt::format("placeholder {} is bound to a vector SIMILAR TO cannot use: {}", similar.param->name(),
+                                 *problem),
+                     "bind the query's embedding from the model that made the scene's embeddings");
+            similar.vector = *vector;
+        } else {
+            similar.text = std::get<std::string>(value);
+        }
         similar.param.reset();
     }
 };

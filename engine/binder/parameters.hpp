@@ -20,20 +20,22 @@ struct Length {
     double metres = 0;
 };
 
-// One bound value: NULL (std::monostate), an integer, a real number, a length or text.
-using ParameterValue = std::variant<std::monostate, std::int64_t, double, Length, std::string>;
+// One bound value: NULL (std::monostate), an integer, a real number, a length, text, or a vector
+// (for SIMILAR TO: compared with the vectors an external model gave the scene's nodes).
+using ParameterValue = std::variant<std::monostate, std::int64_t, double, Length, std::string, std::vector<float>>;
 
 }  // namespace smql
 
 namespace smql::binder {
 
 // The kinds of value a placeholder accepts, as bits: a name takes text; a distance a number or a
-// length; LIMIT a whole number; a comparison any of them.
+// length; LIMIT a whole number; a comparison any of those; SIMILAR TO text or a vector.
 enum ParameterKind : unsigned {
     kTextValue = 1U << 0U,
     kIntegerValue = 1U << 1U,
     kRealValue = 1U << 2U,
     kLengthValue = 1U << 3U,
+    kVectorValue = 1U << 4U,
 };
 
 struct ParameterSlot {

@@ -239,35 +239,43 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
     }
 }
 
+// The space SIMILAR TO searches: the built-in text embedder's, with the text embedded once per
+// statement, or the vectors an external model gave the nodes, with the bound vector.
+Executor::SimilaritySpace Executor::similaritySpace(const binder::BoundSimilarTo& similarTo) const {
+    if (similarTo.stored()) return {*scene().storedEmbeddings(txn_), {}, similarTo.vector};
+    return {scene().embeddings(), similar::embedQuery(similarTo.text), {}};
+}
+
 // SIMILAR TO over a large target without WHERE: the index's top k, widened until k of them are
 // in the target (hidden nodes and other kinds are in the index too).
 std::vector<Hit> Executor::similarFirst(const planner::FindPlan& plan, const relations::Frame& frame) {
     const auto& f = *plan.find;
-    const auto& index = scene().embeddings();
-    const similar::Vector query = similar::embedQuery(*f.similarTo);
+    const SimilaritySpace space = similaritySpace(*f.similarTo);
     const auto want = static_cast<std::size_t>(*f.limit);
     for (std::size_t k = std::max<std::size_t>(2 * want, 32);; k *= 4) {
         poll();
         std::vector<Hit> hits;
-        const auto matches = index.mostSimilar(query, k);
+        const auto matches = space.index.mostSimilar(space.query(), k);
         for (const auto& match : matches)
             if (inTarget(f.target, match.position, frame)) hits.push_back({match.position, 0, match.similarity});
-        if (hits.size() >= want || matches.size() < k || k >= index.size()) {
+        if (hits.size() >= want || matches.size() < k || k >= space.index.size()) {
             if (hits.size() > want) hits.resize(want);
             return hits;
         }
     }
 }
 
-// SIMILAR TO over filtered candidates: each one's similarity, exactly; those below
-// similar::kLeastSimilarity are left out, the rest go most similar first (ties in id order).
+// SIMILAR TO over filtered candidates: each one's similarity, exactly; those without a vector or
+// below the space's least similarity are left out, the rest go most similar first (ties in id order).
 void Executor::rankBySimilarity(const planner::FindPlan& plan, std::vector<Hit>& hits) const {
     const auto& f = *plan.find;
     const auto& snap = scene();
-    const auto& index = snap.embeddings();
-    const similar::Vector query = similar::embedQuery(*f.similarTo);
-    for (Hit& h : hits) h.similarity = index.similarity(h.slot, query);
-    std::erase_if(hits, [](const Hit& h) { return !(h.similarity >= similar::kLeastSimilarity); });
+    const SimilaritySpace space = similaritySpace(*f.similarTo);
+    std::erase_if(hits, [&](Hit& h) {
+        if (!space.index.hasVector(h.slot)) return true;
+        h.similarity = space.index.similarity(h.slot, space.query());
+        return !(h.similarity >= space.index.least());
+    });
     auto before = [&](const Hit& a, const Hit& b) {
         return a.similarity != b.similarity ? a.similarity > b.similarity : snap.node(a.slot).id < snap.node(b.slot).id;
     };

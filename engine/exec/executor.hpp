@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "engine/binder/bound.hpp"
@@ -88,6 +89,13 @@ private:
     bool compare(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
     bool inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame);
     std::vector<Hit> nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame);
+    struct SimilaritySpace {
+        const similar::EmbeddingIndex& index;
+        similar::Vector text;           // the embedded text, in the built-in embedder's space
+        std::span<const float> vector;  // the bound vector (the bound statement keeps it), else empty
+        std::span<const float> query() const { return vector.empty() ? std::span<const float>(text) : vector; }
+    };
+    SimilaritySpace similaritySpace(const binder::BoundSimilarTo& similarTo) const;
     std::vector<Hit> similarFirst(const planner::FindPlan& plan, const relations::Frame& frame);
     void rankBySimilarity(const planner::FindPlan& plan, std::vector<Hit>& hits) const;
     std::vector<Hit> filtered(const planner::FindPlan& plan, const relations::Frame& frame);

@@ -1,9 +1,12 @@
 #include "engine/exec/scene_snapshot.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include <fmt/format.h>
 
+#include "model/embedding.hpp"
+#include "model/error.hpp"
 #include "storage/database.hpp"
 
 namespace smql::exec {
@@ -15,17 +18,18 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::load(const storage::ReadTran
     txn.forEachNodeInScene(info.id, [&](const model::Node& n) { nodes.push_back(n); });
     std::vector<model::Relation> relations;
     txn.forEachRelationInScene(info.id, [&](const model::Relation& r) { relations.push_back(r); });
-    return build(info, std::move(nodes), std::move(relations));
+    return build(info, std::move(nodes), std::move(relations), /*historical=*/false);
 }
 
 std::shared_ptr<const SceneSnapshot> SceneSnapshot::fromVersion(const model::SceneVersion& version) {
-    return build(version.info, version.nodes, version.relations);
+    return build(version.info, version.nodes, version.relations, /*historical=*/true);
 }
 
 std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info, std::vector<model::Node> nodes,
-                                                          std::vector<model::Relation> relations) {
+                                                          std::vector<model::Relation> relations, bool historical) {
     auto snap = std::make_shared<SceneSnapshot>();
     snap->info_ = std::move(info);
+    snap->historical_ = historical;
     snap->nodes_ = std::move(nodes);
 
     const auto count = static_cast<Slot>(snap->nodes_.size());
@@ -75,6 +79,42 @@ const similar::EmbeddingIndex& SceneSnapshot::embeddings() const {
         embeddings_ = std::make_unique<const similar::EmbeddingIndex>(std::move(vectors));
     });
     return *embeddings_;
+}
+
+const similar::EmbeddingIndex* SceneSnapshot::storedEmbeddings(const storage::ReadTransaction& txn) const {
+    std::call_once(storedEmbeddingsRead_, [&] {
+        if (historical_) return;
+        std::vector<float> vectors;
+        std::size_t dimensions = 0;
+        for (std::size_t s = 0; s < nodes_.size(); ++s) {
+            auto blob = txn.blob(nodes_[s].id, model::kEmbeddingBlob);
+            if (!blob) continue;
+            std::vector<float> vector;
+            try {
+                vector = model::readEmbedding(*blob);
+            } catch (const Error& e) {
+                throw Error(ErrorKind::Storage, fmt::format("the embedding of {}: {}", label(nodes_[s]), e.message()),
+                            std::nullopt, "smql check DB verifies the database");
+            }
+            if (dimensions == 0) {
+                dimensions = vector.size();
+                vectors.resize(nodes_.size() * dimensions);
+            }
+            // Storage refuses a scene whose embeddings differ in length.
+            if (vector.size() != dimensions)
+                throw Error(ErrorKind::Storage,
+                            fmt::format("the embedding of {} has {} dimensions, others in scene '{}' have {}",
+                                        label(nodes_[s]), vector.size(), info_.name, dimensions),
+                            std::nullopt, "smql check DB verifies the database");
+            const std::vector<float> unit = similar::unitVector(vector);
+            std::copy(unit.begin(), unit.end(), vectors.begin() + static_cast<std::ptrdiff_t>(s * dimensions));
+        }
+        if (dimensions == 0) return;
+        // An external model's cosine has no floor that means "unrelated": every node with a vector ranks.
+        storedEmbeddings_ =
+            std::make_unique<const similar::EmbeddingIndex>(dimensions, vectors, std::numeric_limits<float>::lowest());
+    });
+    return storedEmbeddings_.get();
 }
 
 std::optional<Slot> SceneSnapshot::slotOf(model::NodeId id) const {

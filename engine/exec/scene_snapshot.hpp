@@ -34,6 +34,8 @@ public:
     static std::shared_ptr<const SceneSnapshot> fromVersion(const model::SceneVersion& version);
 
     const model::SceneInfo& info() const { return info_; }
+    // Made from a superseded version (AS OF) rather than the stored scene.
+    bool historical() const { return historical_; }
     const std::vector<model::Node>& nodes() const { return nodes_; }
     const model::Node& node(Slot slot) const { return nodes_[slot]; }
     // World-aligned bounds of a node's box (empty-looking for nodes without geometry).
@@ -61,6 +63,11 @@ public:
     // The nodes' vectors for SIMILAR TO, by slot (docs/similarity.md): embedded the first time a
     // query asks, then kept as long as the snapshot.
     const similar::EmbeddingIndex& embeddings() const;
+    // The vectors an external model gave the nodes (their `embedding` blobs, model/embedding.hpp),
+    // scaled to unit length, by slot; null when no node has one. Read through `txn` (a transaction
+    // that sees this snapshot's version) the first time a query asks, then kept as long as the
+    // snapshot. A version from the history has none: a superseded version keeps no blobs.
+    const similar::EmbeddingIndex* storedEmbeddings(const storage::ReadTransaction& txn) const;
 
     // "room0 / wall#3 / sofa#12 / cushion#40"
     std::string path(Slot slot) const;
@@ -68,7 +75,7 @@ public:
 
 private:
     static std::shared_ptr<const SceneSnapshot> build(model::SceneInfo info, std::vector<model::Node> nodes,
-                                                      std::vector<model::Relation> relations);
+                                                      std::vector<model::Relation> relations, bool historical);
 
     model::SceneInfo info_;
     std::vector<model::Node> nodes_;
@@ -84,6 +91,9 @@ private:
     mutable std::once_flag guidanceBuilt_;
     mutable std::once_flag embeddingsBuilt_;
     mutable std::unique_ptr<const similar::EmbeddingIndex> embeddings_;
+    bool historical_ = false;
+    mutable std::once_flag storedEmbeddingsRead_;
+    mutable std::unique_ptr<const similar::EmbeddingIndex> storedEmbeddings_;
     mutable std::unique_ptr<const Guidance> guidance_;
 };
 

@@ -98,11 +98,12 @@ struct AsOf {
     SourceLocation where;
 };
 
-// `SIMILAR TO 'soft thing to sit on'` or `SIMILAR TO ?` (text bound later).
+// `SIMILAR TO 'soft thing to sit on'` or `SIMILAR TO ?` (text or a vector bound later).
 struct SimilarTo {
     std::string text;
     std::optional<Placeholder> param;
     SourceLocation where;
+    std::vector<float> vector;  // a bound vector (then `text` is empty)
 };
 
 struct FindStmt {

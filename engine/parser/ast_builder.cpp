@@ -257,7 +257,7 @@ private:
             } else if (auto* similar = clause->similarClause()) {
                 if (find.similarTo)
                     fail(span(*clause), "SIMILAR TO given twice", "describe what you look for in one text");
-                ast::SimilarTo similarTo{{}, std::nullopt, span(*clause)};
+                ast::SimilarTo similarTo{{}, std::nullopt, span(*clause), {}};
                 if (auto* param = similar->PARAM())
                     similarTo.param = placeholder(*param->getSymbol());
                 else

@@ -41,6 +41,17 @@ std::string_view opText(ast::CompareOp op) {
     return "?";
 }
 
+// What SIMILAR TO compares with: "'couch'" or "the bound vector (384 dimensions)".
+std::string similarQuery(const binder::BoundSimilarTo& similarTo) {
+    return similarTo.stored() ? fmt::format("the bound vector ({} dimensions)", similarTo.vector.size())
+                              : fmt::format("'{}'", similarTo.text);
+}
+
+// Which vectors it searches: the built-in text embedder's or those stored on the nodes at ingest.
+std::string_view similarSpace(const binder::BoundSimilarTo& similarTo) {
+    return similarTo.stored() ? "the space of the nodes' stored embeddings" : "the built-in text embedder's space";
+}
+
 // Operators from the root down; `indent` nests each under the one before.
 struct Lines {
     std::vector<std::string> out;
@@ -77,9 +88,10 @@ void explainFind(const FindPlan& plan, Lines& lines) {
             break;
         case Access::SimilarFirst:
             lines.add(
-                fmt::format("Top {} most similar to '{}': search of the embedding index's distinct vectors "
+                fmt::format("Top {} most similar to {} in {}: search of the embedding index's distinct vectors "
                             "(HNSW from {} of them), widened until {} pass",
-                            *f.limit, *f.similarTo, similar::EmbeddingIndex::kIndexedFrom, *f.limit));
+                            *f.limit, similarQuery(*f.similarTo), similarSpace(*f.similarTo),
+                            similar::EmbeddingIndex::kIndexedFrom, *f.limit));
             lines.add("Keep " + keep);
             break;
         case Access::RTreeProbe:
@@ -88,9 +100,11 @@ void explainFind(const FindPlan& plan, Lines& lines) {
                 lines.add(fmt::format("Sort by distance to {}{}{}", f.distanceTo->description,
                                       f.descending ? " descending" : "", f.nearest ? ", without itself" : ""));
             if (f.similarTo)
-                lines.add(fmt::format("{} by similarity to '{}': exact, each candidate's vector, none below {}",
-                                      plan.topK ? fmt::format("Top {}", *f.limit) : std::string("Sort"), *f.similarTo,
-                                      similar::kLeastSimilarity));
+                lines.add(fmt::format("{} by similarity to {} in {}: exact, each candidate's vector, {}",
+                                      plan.topK ? fmt::format("Top {}", *f.limit) : std::string("Sort"),
+                                      similarQuery(*f.similarTo), similarSpace(*f.similarTo),
+                                      f.similarTo->stored() ? std::string("nodes without one left out")
+                                                            : fmt::format("none below {}", similar::kLeastSimilarity)));
             if (!f.orderAttribute.empty() && plan.topK)
                 lines.add(fmt::format("Top {} by {}{}: partial sort, nodes without it last", *f.limit, f.orderAttribute,
                                       f.descending ? " descending" : ""));

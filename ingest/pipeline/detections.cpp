@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "model/embedding.hpp"
 #include "model/error.hpp"
 #include "model/utf8.hpp"
 
@@ -121,6 +123,7 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
     }
 
     std::vector<std::vector<Detection>> out(capture.frames.size());
+    std::optional<std::size_t> firstEmbedding;  // the first entry with one: every other has its length
     for (std::size_t i = 0; i < j.size(); ++i) {
         const auto& e = j[i];
         auto bad = [&](const std::string& field, const std::string& what) {
@@ -170,6 +173,27 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
         if (x < -0.5 || y < -0.5 || x + w > K.width + 0.5 || y + h > K.height + 0.5)
             bad("bbox", fmt::format("[{}, {}, {}, {}] lies outside the {}x{} image", x, y, w, h, K.width, K.height));
         d.box = cv::Rect2d(x, y, w, h);
+
+        if (e.contains("embedding") && !e["embedding"].is_null()) {
+            const auto& v = e["embedding"];
+            if (!v.is_array() || !std::all_of(v.begin(), v.end(), [](const auto& x) { return x.is_number(); }))
+                bad("embedding", "expected a list of numbers");
+            for (const auto& x : v) {
+                // Beyond float's range a value cannot be stored (and converting it is undefined).
+                const double value = x.get<double>();
+                if (!(std::abs(value) <= std::numeric_limits<float>::max()))
+                    bad("embedding", fmt::format("value {} ({}) is not a finite single-precision number",
+                                                 d.embedding.size(), value));
+                d.embedding.push_back(static_cast<float>(value));
+            }
+            if (auto problem = model::embeddingProblem(d.embedding)) bad("embedding", *problem);
+            if (!firstEmbedding) firstEmbedding = i;
+            const std::size_t length = j[*firstEmbedding]["embedding"].size();
+            if (d.embedding.size() != length)
+                bad("embedding", fmt::format("{} numbers, detections[{}].embedding has {}: the embeddings of one file "
+                                             "come from one model",
+                                             d.embedding.size(), *firstEmbedding, length));
+        }
 
         if (e.contains("segmentation") && !e["segmentation"].is_null()) {
             const auto& s = e["segmentation"];

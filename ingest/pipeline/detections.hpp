@@ -35,12 +35,14 @@ struct Detection {
     std::vector<std::vector<cv::Point2d>> polygons;  // COCO polygons, pixels of the stored image
     cv::Mat1b rle;                                   // a COCO RLE mask decoded (stored image size)
     // Neither polygons nor an RLE mask: the box is the mask.
+    std::vector<float> embedding;  // the detector's vector for what it saw; empty when it gave none
 };
 
 // Reads capture.detectionsPath; the result has one list per capture frame (by
 // position). Throws smql::Error(Input) "<file>: detections[i].field: ..." on
 // missing fields, wrong types, non-finite numbers, boxes outside the image,
-// images the capture does not have, and RLE masks that do not decode to the image's size.
+// images the capture does not have, RLE masks that do not decode to the image's size,
+// and embeddings that model::embeddingProblem refuses or that differ in length.
 std::vector<std::vector<Detection>> readDetections(const Capture& capture);
 
 // Lifts the frame's detections (score >= kMinDetectionScore) into observations

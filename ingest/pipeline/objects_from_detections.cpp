@@ -39,6 +39,7 @@ public:
         });
         for (auto& o : seen) {
             const Detection& detection = detections[o.instance - 1];
+            o.embedding = detection.embedding;
             ObjectTrack& track = tracker_.add(std::move(o), detection.category, detection.score);
             keepLargestEvidence(track.evidence, track.views.back(), frame.images.color, options_.evidenceSize);
         }

@@ -9,6 +9,7 @@
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
+#include "model/embedding.hpp"
 
 namespace smql::ingest {
 
@@ -31,6 +32,28 @@ void setInWall(model::Box& box, const PointCloud& cloud, const std::vector<WallS
         along0 = std::min(along0, a), along1 = std::max(along1, a);
     }
     box.size = {along1 - along0, 0.05, box.size.z};
+}
+
+// What the views' embeddings agree on: the mean of their unit vectors, at unit length. Empty when
+// no view has one, or when they cancel out (views pointing opposite ways say nothing).
+std::vector<float> meanEmbedding(const std::vector<Observation>& views) {
+    std::vector<double> sum;
+    for (const auto& view : views) {
+        if (view.embedding.empty()) continue;
+        if (sum.empty()) sum.assign(view.embedding.size(), 0.0);
+        double norm = 0;
+        for (float x : view.embedding) norm += static_cast<double>(x) * x;
+        norm = std::sqrt(norm);
+        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += view.embedding[i] / norm;
+    }
+    double norm = 0;
+    for (double x : sum) norm += x * x;
+    norm = std::sqrt(norm);
+    if (!(norm > 1e-6)) return {};
+    std::vector<float> mean;
+    mean.reserve(sum.size());
+    for (double x : sum) mean.push_back(static_cast<float>(x / norm));
+    return mean;
 }
 
 }  // namespace
@@ -73,6 +96,8 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             scene.blobs.push_back({node.id,
                                    fmt::format("evidence-frame{}.jpg", capture.frames[track.evidence.frame].index),
                                    "image/jpeg", std::move(track.evidence.jpeg)});
+        if (auto embedding = meanEmbedding(track.views); !embedding.empty())
+            scene.blobs.push_back(model::embeddingBlob(node.id, embedding));
         made.push_back({node.id, std::move(track.views)});
     }
     finder.addStructureObjects(aligned, walls, scene, progress);

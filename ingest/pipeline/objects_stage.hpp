@@ -2,8 +2,9 @@
 // with an upright box and attributes (colour, size, material, views, first and
 // last seen), or a door or window as a thin plane in its wall; walls, floor
 // and ceiling tracks are left to the geometry. The evidence crops become the
-// nodes' blobs. Then the object source adds the objects it finds in the aligned
-// structure (clusters).
+// nodes' blobs, and so does the normalised mean of the views' embeddings
+// (blob `embedding`, model/embedding.hpp) when the detections carry them. Then the object source adds the objects it
+// finds in the aligned structure (clusters).
 #pragma once
 
 #include <cstddef>

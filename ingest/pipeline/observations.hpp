@@ -23,6 +23,7 @@ struct Observation {
     cv::Rect bounds;                    // mask bounding box
     double centreX = 0;                 // mask centroid, as a share of the image width (0 left, 1 right)
     std::vector<std::uint32_t> sparse;  // indices of Capture::points on the mask (frames without depth)
+    std::vector<float> embedding;       // an external model's vector for this view (detections.json); may be empty
 };
 
 struct EvidenceCrop {
@@ -33,7 +34,8 @@ struct EvidenceCrop {
 
 // Everything the frame pass gathers about one physical instance, whichever
 // source found it (a mask id, or detections associated across views): the
-// object stage builds nodes from these alone.
+// object stage builds nodes from these alone (the node's embedding from its
+// views' embeddings).
 struct ObjectTrack {
     std::string category;
     model::NodeKind kind = model::NodeKind::Object;  // Anchor: walls, floor, ceiling, door, window

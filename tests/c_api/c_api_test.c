@@ -457,6 +457,77 @@ static void test_prepared(const char* dir) {
     smql_close(db);
 }
 
+/* SIMILAR TO ? with a vector ranks the nodes by the embeddings stored on them (blobs `embedding`,
+ * little-endian float32, here from a scene JSON file): mug (1, 0, 0), cup (0.8, 0.6, 0), book
+ * (0, 1, 0), plant (0, 0, 1); the lamp has none and is left out. */
+static void test_bind_vector(const char* base) {
+    char dir[4096], scene[4096];
+    snprintf(dir, sizeof dir, "%s/vector-db", base);
+    snprintf(scene, sizeof scene, "%s/vectors.json", base);
+    write_text(scene,
+               "{\"smql_scene\": 1, \"scene\": {\"name\": \"shelf\"}, \"nodes\": [\n"
+               "  {\"id\": 1, \"kind\": \"object\", \"category\": \"mug\", \"box\": {\"center\": [0, 0, 0.1], "
+               "\"size\": [0.1, 0.1, 0.1]}},\n"
+               "  {\"id\": 2, \"kind\": \"object\", \"category\": \"cup\", \"box\": {\"center\": [1, 0, 0.1], "
+               "\"size\": [0.1, 0.1, 0.1]}},\n"
+               "  {\"id\": 3, \"kind\": \"object\", \"category\": \"book\", \"box\": {\"center\": [2, 0, 0.1], "
+               "\"size\": [0.2, 0.1, 0.3]}},\n"
+               "  {\"id\": 4, \"kind\": \"object\", \"category\": \"plant\", \"box\": {\"center\": [3, 0, 0.2], "
+               "\"size\": [0.3, 0.3, 0.4]}},\n"
+               "  {\"id\": 5, \"kind\": \"object\", \"category\": \"lamp\", \"box\": {\"center\": [4, 0, 0.3], "
+               "\"size\": [0.2, 0.2, 0.6]}}],\n"
+               "\"blobs\": [\n"
+               "  {\"node\": 1, \"name\": \"embedding\", \"media_type\": \"application/x-float32\", "
+               "\"base64\": \"AACAPwAAAAAAAAAA\"},\n"
+               "  {\"node\": 2, \"name\": \"embedding\", \"media_type\": \"application/x-float32\", "
+               "\"base64\": \"zcxMP5qZGT8AAAAA\"},\n"
+               "  {\"node\": 3, \"name\": \"embedding\", \"media_type\": \"application/x-float32\", "
+               "\"base64\": \"AAAAAAAAgD8AAAAA\"},\n"
+               "  {\"node\": 4, \"name\": \"embedding\", \"media_type\": \"application/x-float32\", "
+               "\"base64\": \"AAAAAAAAAAAAAIA/\"}]}\n");
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    CHECK(smql_import_file(db, "json", scene, NULL) == SMQL_OK);
+
+    smql_stmt* stmt = NULL;
+    CHECK(smql_prepare(db, "FIND object SIMILAR TO ? RETURN category, similarity", &stmt) == SMQL_OK);
+    const float query[3] = {1.0f, 0.1f, 0.0f};
+    CHECK(smql_bind_vector(stmt, 1, query, 3) == SMQL_OK);
+    const char* order[4] = {"mug", "cup", "book", "plant"};
+    const double similarity[4] = {0.995, 0.856, 0.1, 0.0};
+    for (int r = 0; r < 4; ++r) {
+        CHECK(smql_step(stmt) == SMQL_ROW);
+        const char* category = NULL;
+        double value = -2;
+        CHECK(smql_stmt_value_text(stmt, 0, &category) == SMQL_OK && category && strcmp(category, order[r]) == 0);
+        CHECK(smql_stmt_value_double(stmt, 1, &value) == SMQL_OK && value == similarity[r]);
+    }
+    CHECK(smql_step(stmt) == SMQL_DONE); /* the lamp has no embedding */
+
+    /* A vector of another length than the scene's embeddings, when the statement runs. */
+    const float wide[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_vector(stmt, 1, wide, 4) == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ERROR_USAGE);
+    CHECK(contains(smql_errmsg(db), "the scene's embeddings have 3 dimensions; the bound vector has 4"));
+    /* Misuse: no values, no length, a vector where a name goes. */
+    CHECK(smql_reset(stmt) == SMQL_OK);
+    CHECK(smql_bind_vector(stmt, 1, NULL, 3) == SMQL_ERROR_MISUSE);
+    CHECK(smql_bind_vector(stmt, 1, query, 0) == SMQL_ERROR_MISUSE);
+    CHECK(smql_bind_vector(NULL, 1, query, 3) == SMQL_ERROR_MISUSE);
+    smql_finalize(stmt);
+    CHECK(smql_prepare(db, "FIND ? SIMILAR TO ?", &stmt) == SMQL_OK);
+    CHECK(smql_bind_vector(stmt, 1, query, 3) == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "stands for a name, not a vector"));
+    /* Text still searches the built-in embedder's space. */
+    CHECK(smql_bind_text(stmt, 1, "object") == SMQL_OK && smql_bind_text(stmt, 2, "light") == SMQL_OK);
+    CHECK(smql_step(stmt) == SMQL_ROW);
+    const char* first = NULL;
+    CHECK(smql_stmt_value_text(stmt, 1, &first) == SMQL_OK && first && strcmp(first, "lamp") == 0);
+    smql_finalize(stmt);
+    smql_close(db);
+}
+
 /* A bound value is data: quotes in it are part of the name and never SMQL. */
 static void test_prepared_quotes(const char* base) {
     char dir[4096], layout[4096];
@@ -672,6 +743,7 @@ int main(int argc, char** argv) {
     test_interrupt(dir);
     test_prepared(dir);
     test_prepared_quotes(base);
+    test_bind_vector(base);
     test_prepared_interrupt(base);
     test_close_at_exit(dir, base);
 

@@ -2,6 +2,7 @@
 // perfect-detector output ingested with masks ignored (polygons, then boxes only).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -9,12 +10,14 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/engine.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/detections.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/synth.hpp"
+#include "model/embedding.hpp"
 #include "model/error.hpp"
 #include "scratch_dir.hpp"
 
@@ -151,6 +154,95 @@ TEST_CASE("detections: a synthetic capture's perfect detections, polygons and bo
     std::cout << fmt::format("synth seed 3, 30 frames, detections as boxes only: objects F1 {:.2f}, color {:.2f}\n",
                              boxesOnly.objectsF1, boxesOnly.color);
     CHECK(boxesOnly.objectsF1 >= 0.6);
+}
+
+TEST_CASE("detections.json: an embedding per entry, checked like the other fields", "[ingest][detections]") {
+    ScratchDir dir;
+    auto capture = twoFrames(dir, R"([
+        {"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4], "embedding": [0.5, -1, 2e-3]},
+        {"image": "2.png", "label": "cup", "score": 0.9, "bbox": [1, 2, 3, 4]}])");
+    auto detections = readDetections(capture);
+    CHECK(detections[0].at(0).embedding == std::vector<float>{0.5F, -1.0F, 2e-3F});
+    CHECK(detections[1].at(0).embedding.empty());  // an entry may go without one
+
+    const std::string entry = R"({"image": "1.png", "label": "mug", "score": 0.9, "bbox": [1, 2, 3, 4], "embedding": )";
+    expectError("[" + entry + R"("0.5 1"}])", "detections[0].embedding: expected a list of numbers");
+    expectError("[" + entry + R"([0.5, "1"]}])", "detections[0].embedding: expected a list of numbers");
+    expectError("[" + entry + "[]}]", "detections[0].embedding: an embedding needs at least one number");
+    expectError("[" + entry + "[0, 0, 0]}]", "detections[0].embedding: every value is 0");
+    expectError("[" + entry + "[1, 1e39]}]", "detections[0].embedding: value 1 (1e+39) is not a finite");
+    expectError("[" + entry + "[1, 2]}, " + entry + "[1, 2, 3]}]",
+                "detections[1].embedding: 3 numbers, detections[0].embedding has 2");
+    std::string tooLong = "[1";
+    for (int i = 1; i < 4097; ++i) tooLong += ", 0";
+    expectError("[" + entry + tooLong + "]}]", "detections[0].embedding: 4097 numbers; an embedding has at most 4096");
+}
+
+TEST_CASE("detections: embeddings in detections.json become the objects' embedding blobs", "[ingest][detections]") {
+    ScratchDir dir;
+    auto capturePath = (dir.path / "capture").string();
+    synth::writeSynth(capturePath, {.seed = 5, .frames = 20, .objects = 10});
+
+    // Each label's own axis, plus a little of the next one that differs from view to view: the
+    // node's vector must still point along its category's axis, at unit length.
+    auto file = fs::path(capturePath) / "detections.json";
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(file));
+    std::vector<std::string> labels;
+    for (const auto& d : j["detections"]) labels.push_back(d["label"].get<std::string>());
+    std::sort(labels.begin(), labels.end());
+    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    const std::size_t dimensions = labels.size() + 1;
+    auto axis = [&](const std::string& label) {
+        return static_cast<std::size_t>(std::find(labels.begin(), labels.end(), label) - labels.begin());
+    };
+    std::size_t n = 0;
+    for (auto& d : j["detections"]) {
+        std::vector<float> v(dimensions, 0.0F);
+        const std::size_t a = axis(d["label"].get<std::string>());
+        v[a] = 3.0F;
+        v[a + 1] = static_cast<float>(n++ % 5) * 0.2F;
+        d["embedding"] = v;
+    }
+    std::ofstream(file) << j.dump();
+
+    SilentProgress silent;
+    IngestOptions options;
+    options.sceneName = "synth-5";
+    options.objects = ObjectSource::Detections;
+    auto result = ingestCapture(readCapture(capturePath), options, silent);
+
+    std::size_t objects = 0;
+    for (const auto& node : result.scene.nodes) {
+        if (node.kind != model::NodeKind::Object) continue;
+        ++objects;
+        INFO(node.category);
+        auto blob = std::find_if(result.scene.blobs.begin(), result.scene.blobs.end(),
+                                 [&](const model::Blob& b) { return b.node == node.id && b.name == "embedding"; });
+        REQUIRE(blob != result.scene.blobs.end());
+        CHECK(blob->mediaType == "application/x-float32");
+        const std::vector<float> v = model::readEmbedding(*blob);
+        REQUIRE(v.size() == dimensions);
+        double norm = 0;
+        for (float x : v) norm += static_cast<double>(x) * x;
+        CHECK(norm == Approx(1.0).epsilon(1e-5));
+        CHECK(static_cast<std::size_t>(std::max_element(v.begin(), v.end()) - v.begin()) == axis(node.category));
+    }
+    REQUIRE(objects >= 3);
+
+    // Stored, they answer a query vector along one category's axis with a thing of that category.
+    ScratchDir database;
+    auto engine = Engine::open((database.path / "db").string());
+    engine->importScene(result.scene);
+    const std::string wanted = std::find_if(result.scene.nodes.begin(), result.scene.nodes.end(), [](const auto& n) {
+                                   return n.kind == model::NodeKind::Object;
+                               })->category;
+    std::vector<float> query(dimensions, 0.0F);
+    query[axis(wanted)] = 1.0F;
+    auto statement = engine->prepare("FIND object SIMILAR TO ? LIMIT 1");
+    statement.bind(1, query);
+    auto rows = statement.execute().rows;
+    REQUIRE(rows.size() == 1);
+    CHECK(std::get<std::string>(rows[0][1]) == wanted);
 }
 
 TEST_CASE("COCO RLE masks decode, as counts and as the compressed string") {
