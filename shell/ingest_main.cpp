@@ -92,7 +92,7 @@ int run(int argc, char** argv) {
     std::string synthOut;
     std::uint64_t synthSeed = 1;
     int synthFrames = 60, synthObjects = 24;
-    bool synthForce = false, synthChanges = false;
+    bool synthForce = false, synthChanges = false, synthRgbOnly = false;
     synth->add_option("--out", synthOut, "output folder (refused when not empty, unless --force)")->required();
     synth->add_option("--seed", synthSeed, "room and walk seed (default 1)");
     synth->add_option("--frames", synthFrames, "frames along the walk (default 60)")->check(CLI::Range(1, 100000));
@@ -101,6 +101,9 @@ int run(int argc, char** argv) {
     synth->add_flag("--changes", synthChanges,
                     "the same room and walk after a few small things moved, went and appeared (changes.json lists "
                     "them): a second capture for `smql ingest --update`");
+    synth->add_flag("--rgb-only", synthRgbOnly,
+                    "only what a plain camera gives: the colour frames as photos in OUT/images (with camera.json and "
+                    "a perfect detector's detections.json), no depth, masks or poses");
 
     auto* map = app.add_subcommand("map", "draw a scene from above: anchors, objects and the guidance graph (PNG)");
     std::string mapDb, mapScene, mapOut;
@@ -130,7 +133,8 @@ int run(int argc, char** argv) {
                                       .frames = synthFrames,
                                       .objects = synthObjects,
                                       .force = synthForce,
-                                      .changes = synthChanges},
+                                      .changes = synthChanges,
+                                      .rgbOnly = synthRgbOnly},
                                      synthOut);
 }
 

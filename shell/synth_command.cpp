@@ -1,5 +1,6 @@
-// `smql synth --out DIR [--seed N] [--frames K] [--objects N] [--force] [--changes]`:
-// a synthetic RGB-D capture of a generated room (docs/ingest.md, "Synthetic captures").
+// `smql synth --out DIR [--seed N] [--frames K] [--objects N] [--force] [--changes] [--rgb-only]`:
+// a synthetic RGB-D capture of a generated room, or its colour frames alone as photos
+// (docs/ingest.md, "Synthetic captures").
 #include <iostream>
 
 #include <fmt/format.h>
@@ -39,6 +40,11 @@ int synthCommand(const synth::SynthOptions& options, const std::string& outDir) 
             "(changes.json)\n",
             moved, removed, added);
     }
+    if (options.rgbOnly)
+        std::cout << fmt::format(
+            "RGB only: the photos, camera.json and a perfect detector's detections.json are in {0}/images (no depth, "
+            "masks or poses); ingest that folder and compare with `smql check-ingest DB --truth {0}/truth.json`\n",
+            outDir);
     std::cout << fmt::format("frames rendered and written in {:.2f} s, {:.2f} s in all\n", result.frameSeconds,
                              result.totalSeconds);
     return 0;

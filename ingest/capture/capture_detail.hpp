@@ -150,6 +150,9 @@ struct CameraJson {
 };
 CameraJson readCameraJson(const fs::path& file, std::string_view hint);
 
+// A JSON file the capture names (labels, detections): its path, once it parses.
+std::string checkedJson(const fs::path& file, std::string_view hint);
+
 // Keeps the first time of every 1/fps step: a time is taken when it reaches the
 // next target minus `tolerance`. fps <= 0 keeps every time.
 class Sampler {

@@ -85,6 +85,10 @@ Capture readImageFolder(const fs::path& dir, const std::vector<fs::path>& images
         cameraFromExif(capture, dir, width, height);
     }
     if (options.depthScale) capture.depthScale = *options.depthScale;
+    // A detector's output beside the photos, as beside an rgbd capture's frames.
+    if (fs::is_regular_file(dir / "detections.json", ec))
+        capture.detectionsPath =
+            checkedJson(dir / "detections.json", "detections.json holds COCO-results style detections");
     return capture;
 }
 

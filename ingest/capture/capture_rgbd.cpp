@@ -95,13 +95,12 @@ std::vector<Pose> readPoseFile(const fs::path& file) {
     return poses;
 }
 
-// A JSON file the capture names (labels, detections): it must at least parse.
+}  // namespace
+
 std::string checkedJson(const fs::path& file, std::string_view hint) {
     import::detail::parseJsonFile(JsonSource{file.string(), std::string(hint)});
     return file.string();
 }
-
-}  // namespace
 
 CameraJson readCameraJson(const fs::path& file, std::string_view hint) {
     JsonSource source{file.string(), std::string(hint)};

@@ -59,15 +59,24 @@ ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {
     std::vector<double> values;
     for (const auto& e : estimates) values.push_back(e.scale);
     ScaleChoice out;
-    out.scale = detail::median(values);
     auto [low, high] = std::minmax_element(values.begin(), values.end());
+    // Two priors a factor apart leave no majority: one of them measured something wrong (a table top
+    // taken for the floor), and the more trusted one, listed first, is kept.
+    const bool split = values.size() == 2 && *high > kDisagreement * *low;
+    out.scale = split ? values.front() : detail::median(values);
     out.spread = (*high - *low) / out.scale;
     std::string each;
     for (const auto& e : estimates) each += fmt::format("; {}: {:.4g}", e.prior, e.scale);
-    out.note = estimates.size() == 1
-                   ? fmt::format("scale: {:.4g} m per unit from one prior{}", out.scale, each)
-                   : fmt::format("scale: {:.4g} m per unit, the median of {} priors that agree within {:.0f}%{}",
-                                 out.scale, estimates.size(), 100 * out.spread, each);
+    if (estimates.size() == 1)
+        out.note = fmt::format("scale: {:.4g} m per unit from one prior{}", out.scale, each);
+    else if (split)
+        out.note = fmt::format(
+            "scale: {:.4g} m per unit from the first of 2 priors that disagree by a factor of {:.1f}: check the "
+            "floor and the objects, or give --scale{}",
+            out.scale, *high / *low, each);
+    else
+        out.note = fmt::format("scale: {:.4g} m per unit, the median of {} priors that agree within {:.0f}%{}",
+                               out.scale, estimates.size(), 100 * out.spread, each);
     return out;
 }
 

@@ -47,7 +47,11 @@ struct ScaleChoice {
     std::string note;  // the choice, each prior's answer and their agreement, for the ingest's notes
 };
 
-// The median of the estimates (at least one).
+// Two estimates further apart than this factor disagree: the first is kept.
+inline constexpr double kDisagreement = 1.5;
+
+// The median of the estimates (at least one), given the most trusted first;
+// of two that disagree, the first.
 ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates);
 
 }  // namespace smql::ingest

@@ -17,8 +17,10 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     if (!capture.metric && !options.scale)
         for (const auto& track : frames.tracks) {
             if (!typicalHeight(track.category)) continue;
-            NamedThing thing{track.category, {}};
-            for (const auto& v : track.views) thing.points.insert(thing.points.end(), v.points.begin(), v.points.end());
+            NamedThing thing{track.category, track.surface};
+            if (thing.points.empty())
+                for (const auto& v : track.views)
+                    thing.points.insert(thing.points.end(), v.points.begin(), v.points.end());
             things.push_back(std::move(thing));
         }
     AlignedCapture out;

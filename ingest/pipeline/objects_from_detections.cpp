@@ -29,10 +29,11 @@ public:
         : capture_(capture), options_(options), hasDepth_(framesHaveDepth(capture)), tracker_(voteLabels) {}
 
     void observe(const PosedFrame& frame) override {
-        auto [detections, storedWidth] = detectionsOf(frame);
-        auto seen = hasDepth_ ? observeDetections(frame.images, frame.pose, frame.position, detections, storedWidth,
-                                                  options_.objectStride, options_.minInstancePixels)
-                              : observeSparse(frame, detections, storedWidth);
+        const FrameDetections found = detectionsOf(frame);
+        const std::vector<Detection>& detections = found.detections;
+        auto seen = hasDepth_ ? observeDetections(frame.images, frame.pose, frame.position, detections,
+                                                  found.storedWidth, options_.objectStride, options_.minInstancePixels)
+                              : observeSparse(frame, detections, found.storedWidth);
         // The most confident detections found tracks first.
         std::stable_sort(seen.begin(), seen.end(), [&](const Observation& a, const Observation& b) {
             return detections[a.instance - 1].score > detections[b.instance - 1].score;

@@ -175,6 +175,7 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
                     if (seen >= 2 && inside >= minShare * seen) hull.push_back(p);
                 }
         if (hull.size() < 10) continue;
+        track->surface = std::move(seed);
         for (auto& v : track->views) v.points.clear();
         track->views.front().points = std::move(hull);
     }

@@ -42,6 +42,9 @@ struct ObjectTrack {
     std::string material;
     std::vector<Observation> views;
     EvidenceCrop evidence;
+    // Where the views' points became a visual hull (carveVisualHulls): the sparse points it was carved
+    // around, which lie on the thing's surfaces (the hull of boxes reaches above a thing's top).
+    std::vector<model::Vec3> surface;
 };
 
 // Lifts every instance of one frame with enough pixels. `stride` samples the

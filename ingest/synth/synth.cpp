@@ -34,9 +34,10 @@ using Json = nlohmann::ordered_json;
 namespace {
 
 // The files and folders a capture consists of: what --force replaces.
-const char* const kOutputs[] = {"color",           "depth",           "instance",     "pose.txt",
-                                "camera.json",     "labels.json",     "truth.json",   "relations.json",
-                                "visibility.json", "detections.json", "changes.json", "eval-suite.json"};
+const char* const kOutputs[] = {"color",          "depth",           "instance",        "images",
+                                "pose.txt",       "camera.json",     "labels.json",     "truth.json",
+                                "relations.json", "visibility.json", "detections.json", "changes.json",
+                                "eval-suite.json"};
 
 // How many small things --changes moves, takes away and puts down.
 constexpr int kChangesEach = 2;
@@ -67,7 +68,7 @@ void writePng(const fs::path& path, const cv::Mat& image) {
         throw Error(ErrorKind::Usage, "cannot write " + path.string(), std::nullopt, "check the folder is writable");
 }
 
-void prepareDirectory(const fs::path& dir, bool force) {
+void prepareDirectory(const fs::path& dir, bool force, bool rgbOnly) {
     std::error_code ec;
     if (fs::exists(dir, ec)) {
         if (!fs::is_directory(dir, ec)) throw Error(ErrorKind::Usage, dir.string() + " exists and is not a folder");
@@ -78,7 +79,9 @@ void prepareDirectory(const fs::path& dir, bool force) {
             for (const char* name : kOutputs) fs::remove_all(dir / name, ec);
         }
     }
-    for (const char* sub : {"color", "depth", "instance"}) {
+    const std::vector<const char*> folders =
+        rgbOnly ? std::vector<const char*>{"images"} : std::vector<const char*>{"color", "depth", "instance"};
+    for (const char* sub : folders) {
         fs::create_directories(dir / sub, ec);
         if (ec) throw Error(ErrorKind::Usage, "cannot create " + (dir / sub).string() + ": " + ec.message());
     }
@@ -306,7 +309,9 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
     result.scene = makeSynthScene(options);
     result.intrinsics = synthIntrinsics();
     const fs::path dir(directory);
-    prepareDirectory(dir, options.force);
+    prepareDirectory(dir, options.force, options.rgbOnly);
+    // Where the capture's own files go: the photos' folder, or beside the frame folders.
+    const fs::path capture = options.rgbOnly ? dir / "images" : dir;
 
     const model::SceneData& truth = result.scene.truth;
     Renderer renderer(surfacesOf(truth));
@@ -350,9 +355,13 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
                     }
                 }
                 std::string name = std::to_string(f + 1) + ".png";
-                writePng(dir / "color" / name, color);
-                writePng(dir / "depth" / name, depth);
-                writePng(dir / "instance" / name, instance);
+                if (options.rgbOnly) {
+                    writePng(capture / name, color);
+                } else {
+                    writePng(dir / "color" / name, color);
+                    writePng(dir / "depth" / name, depth);
+                    writePng(dir / "instance" / name, instance);
+                }
                 detections[f] = detectFrame(instance, counts, truth, name);
             }
         } catch (...) {
@@ -378,9 +387,10 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
     writeText(dir / "pose.txt", poses);
 
     auto number = [](double v) { return v == std::floor(v) ? Json(static_cast<std::int64_t>(v)) : Json(v); };
-    Json camera = {{"width", K.width},   {"height", K.height}, {"fx", number(K.fx)}, {"fy", number(K.fy)},
-                   {"cx", number(K.cx)}, {"cy", number(K.cy)}, {"depth_scale", 1000}};
-    writeText(dir / "camera.json", camera.dump() + "\n");
+    Json camera = {{"width", K.width},   {"height", K.height}, {"fx", number(K.fx)},
+                   {"fy", number(K.fy)}, {"cx", number(K.cx)}, {"cy", number(K.cy)}};
+    if (!options.rgbOnly) camera["depth_scale"] = 1000;
+    writeText(capture / "camera.json", camera.dump() + "\n");
 
     std::vector<Json> labels, visibility, relations;
     for (const model::Node& n : truth.nodes) {
@@ -392,7 +402,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
     }
     for (const LabelledRelation& r : result.scene.relations)
         relations.push_back(Json::array({r.subject, r.object, r.predicateId, r.predicate}));
-    writeText(dir / "labels.json", jsonLines("instances", labels));
+    if (!options.rgbOnly) writeText(dir / "labels.json", jsonLines("instances", labels));  // the masks' names
     writeText(dir / "visibility.json",
               jsonLines("instances", visibility,
                         {{"min_pixels", kMinVisiblePixels}, {"frames", static_cast<int>(result.scene.poses.size())}}));
@@ -403,7 +413,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
     std::vector<Json> allDetections;
     for (auto& frameDetections : detections)
         for (auto& d : frameDetections) allDetections.push_back(std::move(d));
-    writeText(dir / "detections.json", jsonLines("detections", allDetections));
+    writeText(capture / "detections.json", jsonLines("detections", allDetections));
     writeText(dir / "truth.json", import::writeSceneJson(truth) + "\n");
     // The evaluation suite (docs/eval.md): truth ids of what the walk saw; answers come from
     // truth.json when `smql eval` runs.

@@ -23,6 +23,10 @@ struct SynthOptions {
     // The same room and walk after someone tidied up: a few small things moved to other furniture,
     // a few taken away, a few new ones put down (changes.json lists them).
     bool changes = false;
+    // Only what a plain camera gives: the colour frames as a photo folder (images/, with camera.json
+    // and the perfect detector's detections.json), no depth, masks or poses; the truth, and the true
+    // poses for check-ingest, stay beside it.
+    bool rgbOnly = false;
 };
 
 // An instance counts as seen in a frame when at least this many of its pixels are visible.

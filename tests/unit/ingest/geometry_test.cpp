@@ -510,3 +510,18 @@ TEST_CASE("rgbd-dining: the floor becomes z = 0, walls and a table-top cluster a
     }
     CHECK(tableTop);
 }
+
+TEST_CASE("scale priors: the median of three, and the more trusted of two that disagree", "[ingest][geometry]") {
+    ScaleChoice three = combineScales({{"camera", 0.9}, {"ceiling", 1.0}, {"heights", 3.0}});
+    CHECK(three.scale == 1.0);
+    CHECK(three.spread == Approx(2.1));
+    ScaleChoice agree = combineScales({{"camera", 0.9}, {"heights", 1.0}});
+    CHECK(agree.scale == Approx(0.95));
+    CHECK_THAT(agree.note, Catch::Contains("the median of 2 priors that agree within 11%"));
+    // Two beds measured from a wrong floor say ten times the camera height's answer: the camera wins.
+    ScaleChoice split = combineScales({{"camera", 0.55}, {"heights", 9.97}});
+    CHECK(split.scale == 0.55);
+    CHECK_THAT(split.note, Catch::Contains("disagree by a factor of 18.1"));
+    CHECK(typicalHeight("table") == 0.75);
+    CHECK_FALSE(typicalHeight("mug"));
+}

@@ -17,7 +17,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "ingest/capture/capture.hpp"
 #include "ingest/import/importers.hpp"
+#include "ingest/pipeline/detections.hpp"
 #include "ingest/synth/palette.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/synth.hpp"
@@ -505,4 +507,28 @@ TEST_CASE("synth: a non-empty folder is refused unless forced", "[ingest][synth]
     CHECK(fs::exists((dir.path / "out/color/1.png")));
     CHECK_FALSE(fs::exists((dir.path / "out/color/2.png")));
     CHECK(slurp((dir.path / "out/notes.txt")) == "mine");
+}
+
+TEST_CASE("synth --rgb-only: a photo folder with its camera and detections, the truth beside it", "[ingest][synth]") {
+    ingest::test::ScratchDir dir;
+    auto result = synth::writeSynth(dir.path.string(), {.seed = 2, .frames = 4, .rgbOnly = true});
+    namespace fs = std::filesystem;
+    for (const char* absent : {"color", "depth", "instance", "labels.json", "camera.json", "detections.json"})
+        CHECK_FALSE(fs::exists(dir.path / absent));
+    for (const char* present : {"pose.txt", "truth.json", "visibility.json", "images/camera.json"})
+        CHECK(fs::exists(dir.path / present));
+    CHECK_FALSE(Json::parse(std::ifstream(dir.path / "images/camera.json")).contains("depth_scale"));
+
+    ingest::Capture capture = ingest::readCapture((dir.path / "images").string());
+    CHECK(capture.layout == "images");
+    CHECK_FALSE(capture.metric);
+    REQUIRE(capture.frames.size() == 4);
+    for (const auto& frame : capture.frames) {
+        CHECK_FALSE(frame.pose);
+        CHECK(frame.depthPath.empty());
+    }
+    CHECK(capture.intrinsics == result.intrinsics);
+    REQUIRE(capture.detectionsPath == (dir.path / "images/detections.json").string());
+    auto detections = ingest::readDetections(capture);
+    CHECK(std::any_of(detections.begin(), detections.end(), [](const auto& frame) { return !frame.empty(); }));
 }
