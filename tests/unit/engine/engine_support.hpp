@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "engine/engine.hpp"
 #include "model/error.hpp"
@@ -24,6 +26,20 @@ inline std::string replicaRelations() { return std::string(SMQL_SHARED_DATA) + "
 inline ResultSet run(Engine& engine, const std::string& statement) {
     auto results = engine.execute(statement);
     return results.back();
+}
+
+// The category column (the second) of a FIND's rows.
+inline std::vector<std::string> categories(const ResultSet& rs) {
+    std::vector<std::string> out;
+    for (const auto& row : rs.rows) out.push_back(std::get<std::string>(row[1]));
+    return out;
+}
+
+// The last column of SIMILAR TO's rows: the similarity.
+inline std::vector<double> similarities(const ResultSet& rs) {
+    std::vector<double> out;
+    for (const auto& row : rs.rows) out.push_back(std::get<double>(row.back()));
+    return out;
 }
 
 }  // namespace smql::testing

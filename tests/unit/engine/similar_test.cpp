@@ -11,22 +11,12 @@
 #include "ingest/import/importers.hpp"
 
 using namespace smql;
+using smql::testing::categories;
 using smql::testing::run;
+using smql::testing::similarities;
 using smql::testing::TempDir;
 
 namespace {
-
-std::vector<std::string> categories(const ResultSet& rs) {
-    std::vector<std::string> out;
-    for (const auto& row : rs.rows) out.push_back(std::get<std::string>(row[1]));
-    return out;
-}
-
-std::vector<double> similarities(const ResultSet& rs) {
-    std::vector<double> out;
-    for (const auto& row : rs.rows) out.push_back(std::get<double>(row.back()));
-    return out;
-}
 
 std::unique_ptr<Engine> replicaEngine(const TempDir& dir) {
     auto engine = Engine::open(dir.path.string());
