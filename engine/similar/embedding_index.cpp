@@ -1,7 +1,6 @@
 #include "engine/similar/embedding_index.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <cmath>
 #include <mutex>
@@ -22,32 +21,6 @@ constexpr std::size_t kSeed = 100;         // the same graph for the same vector
 
 std::string_view bytesOf(std::span<const float> v) {
     return {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(float)};
-}
-
-bool isZero(std::span<const float> v) {
-    return std::all_of(v.begin(), v.end(), [](float x) { return x == 0.0F; });
-}
-
-// The dot product of two vectors of `length` floats, as similar::similarity computes it: eight
-// running sums the compiler keeps in SIMD registers (one sum would add in order, one product at a
-// time, since floating point does not reassociate without -ffast-math), then the tail.
-template <std::size_t kLanes = 8>
-float dotOf(const float* a, const float* b, std::size_t length) {
-    std::array<float, kLanes> sums{};
-    const std::size_t whole = length - length % kLanes;
-    for (std::size_t i = 0; i < whole; i += kLanes)
-        for (std::size_t lane = 0; lane < kLanes; ++lane) sums[lane] += a[i + lane] * b[i + lane];
-    float product = 0;
-    for (float sum : sums) product += sum;
-    for (std::size_t i = whole; i < length; ++i) product += a[i] * b[i];
-    return product;
-}
-
-float dot(std::span<const float> a, std::span<const float> b) {
-    // The text embedder's length as a constant lets the compiler unroll the loop: its exact scans
-    // run a fifth faster than with the length known only at run time (make bench-similar).
-    if (a.size() == kDimensions) return dotOf(a.data(), b.data(), kDimensions);
-    return dotOf(a.data(), b.data(), a.size());
 }
 
 }  // namespace
@@ -111,7 +84,7 @@ EmbeddingIndex& EmbeddingIndex::operator=(EmbeddingIndex&&) noexcept = default;
 
 float EmbeddingIndex::similarity(std::uint32_t position, std::span<const float> query) const {
     const std::uint32_t group = groupOf_[position];
-    return group == kNoGroup ? 0.0F : dot(vectorOf(group), query);
+    return group == kNoGroup ? 0.0F : similar::similarity(vectorOf(group), query);
 }
 
 std::vector<EmbeddingIndex::Match> EmbeddingIndex::mostSimilar(std::span<const float> query, std::size_t k) const {
@@ -126,7 +99,7 @@ std::vector<EmbeddingIndex::Match> EmbeddingIndex::mostSimilar(std::span<const f
     if (!graph_) {
         found.reserve(groups_.size());
         for (std::size_t g = 0; g < groups_.size(); ++g)
-            found.push_back({static_cast<std::uint32_t>(g), dot(vectorOf(g), query)});
+            found.push_back({static_cast<std::uint32_t>(g), similar::similarity(vectorOf(g), query)});
     } else {
         std::priority_queue<std::pair<float, hnswlib::labeltype>> nearest;
         {

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 #include <string_view>
 
 #include "model/types.hpp"
@@ -31,8 +32,9 @@ Vector embedQuery(std::string_view text);
 // Below this similarity a node and a text share a character trigram or a hash collision, not a
 // meaning: SIMILAR TO leaves such nodes out (a misspelt word's own match scores about 0.05).
 inline constexpr float kLeastSimilarity = 0.02F;
-// Cosine similarity of two vectors made here (unit length or zero): their dot product.
-float similarity(const Vector& a, const Vector& b);
-bool isZero(const Vector& v);
+// Cosine similarity of two unit-length (or zero) vectors of one length, made here or stored from an
+// external model: their dot product.
+float similarity(std::span<const float> a, std::span<const float> b);
+bool isZero(std::span<const float> v);
 
 }  // namespace smql::similar

@@ -266,15 +266,23 @@ double workingScale(const Intrinsics& K, int storedWidth) {
 
 }  // namespace
 
-cv::Mat detectionInstances(cv::Size size, const Intrinsics& K, const std::vector<Detection>& detections,
-                           int storedWidth) {
+cv::Rect detectionBounds(const Detection& detection, const Intrinsics& K, int storedWidth) {
+    const double scale = workingScale(K, storedWidth);
+    const cv::Rect2d& b = detection.box;
+    const cv::Point first(static_cast<int>(std::floor(b.x * scale)), static_cast<int>(std::floor(b.y * scale)));
+    const cv::Point end(static_cast<int>(std::ceil((b.x + b.width) * scale)),
+                        static_cast<int>(std::ceil((b.y + b.height) * scale)));
+    return cv::Rect(first, end) & cv::Rect(0, 0, K.width, K.height);
+}
+
+cv::Mat detectionInstances(const Intrinsics& K, const std::vector<Detection>& detections, int storedWidth) {
     std::vector<std::size_t> order;
     for (std::size_t d = 0; d < detections.size() && d + 1 < 65536; ++d)
         if (detections[d].score >= kMinDetectionScore) order.push_back(d);
     // The larger first, so a smaller thing in front (a mug on a table) keeps its pixels.
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return detections[a].box.area() > detections[b].box.area(); });
-    cv::Mat instances = cv::Mat::zeros(size, CV_16U);
+    cv::Mat instances = cv::Mat::zeros(K.height, K.width, CV_16U);
     double scale = workingScale(K, storedWidth);
     for (auto d : order) drawDetection(detections[d], scale, instances, static_cast<int>(d + 1));
     return instances;

@@ -54,11 +54,14 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
                                            int minPixels);
 
 // Frames without depth: the frame's detections (score >= kMinDetectionScore)
-// painted into an instance image of `size` (CV_16U, the working resolution,
-// intrinsics `K`) with the value 1 + their position, the larger first so that
-// a smaller thing in front of a larger one keeps its pixels.
-cv::Mat detectionInstances(cv::Size size, const Intrinsics& K, const std::vector<Detection>& detections,
-                           int storedWidth);
+// painted into an instance image at the working resolution (intrinsics `K`;
+// CV_16U) with the value 1 + their position, the larger first so that a
+// smaller thing in front of a larger one keeps its pixels.
+cv::Mat detectionInstances(const Intrinsics& K, const std::vector<Detection>& detections, int storedWidth);
+
+// The detection's whole box in the pixels of the working resolution
+// (intrinsics `K`), clipped to the image.
+cv::Rect detectionBounds(const Detection& detection, const Intrinsics& K, int storedWidth);
 
 // Greedy association of observations into tracks (docs/ingest.md, "Objects
 // from detections"): an observation joins the track of its category, not yet

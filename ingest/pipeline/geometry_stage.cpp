@@ -10,15 +10,14 @@
 namespace smql::ingest {
 
 bool usesColmap(const Capture& capture, GeometrySource geometry) {
-    bool hasPoses =
-        std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
+    bool hasPoses = framesHavePoses(capture);
     if (geometry == GeometrySource::Given && !hasPoses)
         throw Error(ErrorKind::Input, fmt::format("{}: some frames have no camera pose", capture.path), std::nullopt,
                     "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP "
                     "model; or let COLMAP find them (--geometry colmap)");
     // Poses without depth or points (transforms.json of photos) need COLMAP's points, triangulated with them.
-    bool hasStructure = framesHaveDepth(capture) || !capture.points.empty();
-    return geometry == GeometrySource::Colmap || (geometry == GeometrySource::Auto && (!hasPoses || !hasStructure));
+    return geometry == GeometrySource::Colmap ||
+           (geometry == GeometrySource::Auto && (!hasPoses || !hasStructure(capture)));
 }
 
 Reconstruction ColmapStage::run(StageProgress& progress) {
@@ -28,11 +27,10 @@ Reconstruction ColmapStage::run(StageProgress& progress) {
         hadDepth = hadDepth || !f.depthPath.empty();
         f.depthPath.clear();
     }
-    bool posed = std::all_of(out.capture.frames.begin(), out.capture.frames.end(),
-                             [](const auto& f) { return f.pose.has_value(); });
     if (hadDepth)
-        progress.note(posed ? "--geometry colmap: depth images are ignored; COLMAP triangulates with the given poses"
-                            : "--geometry colmap: depth images are ignored (COLMAP's poses are up to scale)");
+        progress.note(framesHavePoses(out.capture)
+                          ? "--geometry colmap: depth images are ignored; COLMAP triangulates with the given poses"
+                          : "--geometry colmap: depth images are ignored (COLMAP's poses are up to scale)");
     ColmapRun run = runColmap(out.capture, options);
     for (const auto& n : run.notes) progress.note(n);
     progress.advanced(1);
@@ -51,7 +49,7 @@ void requirePosesAndStructure(const Capture& capture) {
         throw Error(
             ErrorKind::Input, fmt::format("{}: no frame has a camera pose", capture.path), std::nullopt,
             "ingest needs camera poses: pose.txt (rgbd), groundtruth.txt (TUM), transforms.json or a COLMAP model");
-    if (!framesHaveDepth(capture) && capture.points.empty())
+    if (!hasStructure(capture))
         throw Error(ErrorKind::Input,
                     fmt::format("{}: the frames have no depth and the capture no 3D points", capture.path),
                     std::nullopt, "give depth images, or a COLMAP model with points3D (or --geometry colmap)");
@@ -60,6 +58,12 @@ void requirePosesAndStructure(const Capture& capture) {
 bool framesHaveDepth(const Capture& capture) {
     return std::all_of(capture.frames.begin(), capture.frames.end(),
                        [](const auto& f) { return !f.depthPath.empty(); });
+}
+
+bool hasStructure(const Capture& capture) { return framesHaveDepth(capture) || !capture.points.empty(); }
+
+bool framesHavePoses(const Capture& capture) {
+    return std::all_of(capture.frames.begin(), capture.frames.end(), [](const auto& f) { return f.pose.has_value(); });
 }
 
 }  // namespace smql::ingest

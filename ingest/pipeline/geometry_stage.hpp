@@ -35,5 +35,9 @@ void requirePosesAndStructure(const Capture& capture);
 
 // Every frame has a depth image (else the structure is the capture's sparse points).
 bool framesHaveDepth(const Capture& capture);
+// Every frame has a camera pose (else COLMAP finds them).
+bool framesHavePoses(const Capture& capture);
+// What places things in 3D: depth images, or the capture's 3D points.
+bool hasStructure(const Capture& capture);
 
 }  // namespace smql::ingest

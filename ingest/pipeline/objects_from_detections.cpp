@@ -6,7 +6,6 @@
 // detections", "Detections without depth" and "Detector").
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 
 #include <fmt/format.h>
 
@@ -82,22 +81,13 @@ private:
     std::vector<Observation> observeSparse(const PosedFrame& frame, const std::vector<Detection>& detections,
                                            int storedWidth) {
         FrameImages images = frame.images;
-        images.instances = detectionInstances(images.color.size(), images.intrinsics, detections, storedWidth);
+        images.instances = detectionInstances(images.intrinsics, detections, storedWidth);
         auto seen =
             observeInstances(images, frame.pose, frame.position, options_.objectStride, options_.minInstancePixels);
         liftSparsePoints(seen, images, frame.pose, capture_.points, inView_, options_.sparseDepthBand);
         // A detection's box is its silhouette for carving, whole: where a smaller one was painted over
         // it, the thing still stands behind.
-        double scale = double(images.intrinsics.width) / storedWidth;
-        const cv::Rect image(0, 0, images.color.cols, images.color.rows);
-        for (auto& o : seen) {
-            const cv::Rect2d& b = detections[o.instance - 1].box;
-            o.bounds = cv::Rect(cv::Point(static_cast<int>(std::floor(b.x * scale)),
-                                          static_cast<int>(std::floor(b.y * scale))),
-                                cv::Point(static_cast<int>(std::ceil((b.x + b.width) * scale)),
-                                          static_cast<int>(std::ceil((b.y + b.height) * scale)))) &
-                       image;
-        }
+        for (auto& o : seen) o.bounds = detectionBounds(detections[o.instance - 1], images.intrinsics, storedWidth);
         maskViews_.push_back({frame.position, cv::Mat(), images.intrinsics, frame.pose});
         std::erase_if(seen, [&](const Observation& o) {
             bool few = o.sparse.size() < kMinSparsePoints;
@@ -178,13 +168,10 @@ private:
     std::size_t detections_ = 0;
 };
 
-// Detections are placed in 3D with the frames' depth or, without depth, with the capture's sparse points.
-bool canPlace(const Capture& capture) { return framesHaveDepth(capture) || !capture.points.empty(); }
-
 }  // namespace
 
 bool detectionsUsable(const Capture& capture, const IngestOptions&) {
-    return !capture.detectionsPath.empty() && canPlace(capture);
+    return !capture.detectionsPath.empty() && hasStructure(capture);
 }
 
 std::unique_ptr<ObjectFinder> makeDetectionFinder(const Capture& capture, const IngestOptions& options) {
@@ -199,11 +186,11 @@ std::unique_ptr<ObjectFinder> makeDetectionFinder(const Capture& capture, const 
 }
 
 bool detectorUsable(const Capture& capture, const IngestOptions& options) {
-    return canPlace(capture) && findDetectorFiles(options.detectorModel, options.detectorClasses);
+    return hasStructure(capture) && findDetectorFiles(options.detectorModel, options.detectorClasses);
 }
 
 std::unique_ptr<ObjectFinder> makeDetectorFinder(const Capture& capture, const IngestOptions& options) {
-    if (!canPlace(capture))
+    if (!hasStructure(capture))
         throw Error(ErrorKind::Input, fmt::format("{}: --objects detect needs depth images or 3D points", capture.path),
                     std::nullopt, "frames without depth get 3D points from COLMAP (--geometry colmap)");
     auto files = findDetectorFiles(options.detectorModel, options.detectorClasses);
