@@ -186,7 +186,7 @@ int ingestCommand(const IngestArguments& args) {
 }
 
 int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, const std::string& sceneName,
-                       const std::string& format) {
+                       const std::string& format, bool misses) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
     model::SceneData stored = engine->exportScene(sceneName);
     model::SceneData truth = import::readSceneJson(truthPath);
@@ -247,6 +247,17 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
             {"scale_error", registration ? nlohmann::json(std::abs(registration->scale - 1)) : nlohmann::json(nullptr)},
             {"parent_accuracy", r.parentAccuracy()},
             {"mean_center_error_m", r.meanCenterError}};
+        if (misses) {
+            j["unmatched_objects"] = nlohmann::json::array();
+            for (const auto& u : r.unmatched)
+                j["unmatched_objects"].push_back(
+                    {{"side", u.inTruth ? "truth" : "ingested"},
+                     {"category", u.category},
+                     {"center", {u.box.center.x, u.box.center.y, u.box.center.z}},
+                     {"size", {u.box.size.x, u.box.size.y, u.box.size.z}},
+                     {"best_iou", u.bestIou},
+                     {"nearest_m", u.nearest < 0 ? nlohmann::json(nullptr) : nlohmann::json(u.nearest)}});
+        }
         std::cout << j.dump(2) << "\n";
         return 0;
     }
@@ -266,6 +277,14 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
         std::cout << fmt::format(
             "scale    off by {:.1f}% (similarity from {} cameras to the true poses, residual {:.3f} m)\n",
             100 * std::abs(registration->scale - 1), cameras.size(), registration->residual);
+    if (misses)
+        for (const auto& u : r.unmatched)
+            std::cout << fmt::format(
+                "{:<8} {:<12} at ({:.2f}, {:.2f}, {:.2f}) size {:.2f} x {:.2f} x {:.2f}  best IoU {:.2f}{}\n",
+                u.inTruth ? "missed" : "extra", u.category, u.box.center.x, u.box.center.y, u.box.center.z,
+                u.box.size.x, u.box.size.y, u.box.size.z, u.bestIou,
+                u.nearest < 0 ? std::string(", none of its category")
+                              : fmt::format(", nearest of its category {:.2f} m away", u.nearest));
     return 0;
 }
 

@@ -31,7 +31,7 @@ struct IngestArguments {
 int ingestCommand(const IngestArguments& args);
 // `smql check-ingest DIR --truth TRUTH.json`: quality figures against a synthetic capture's truth.
 int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, const std::string& sceneName,
-                       const std::string& format);
+                       const std::string& format, bool misses = false);
 // `smql synth --out DIR [--seed N] [--frames K] [--objects N] [--force] [--changes]`: a synthetic
 // RGB-D capture of a generated room with ground truth (docs/ingest.md, "Synthetic captures").
 int synthCommand(const synth::SynthOptions& options, const std::string& outDir);

@@ -77,12 +77,15 @@ int run(int argc, char** argv) {
 
     auto* check = app.add_subcommand("check-ingest", "compare an ingested scene with a synthetic capture's truth");
     std::string checkDb, checkTruth, checkScene, checkFormat = "table";
+    bool checkMisses = false;
     check->add_option("database", checkDb, "database directory")->required()->check(CLI::ExistingDirectory);
     check->add_option("--truth", checkTruth, "truth.json of the capture (smql synth writes it)")
         ->required()
         ->check(CLI::ExistingFile);
     check->add_option("--scene", checkScene, "scene name (default: the most recent)");
     check->add_option("--format", checkFormat, "table or json")->check(CLI::IsMember({"table", "json"}));
+    check->add_flag("--misses", checkMisses,
+                    "also list the objects without a match: truth objects missed and ingested objects the truth lacks");
 
     auto* demo = app.add_subcommand("demo", "build a sample memory of a generated room and query it");
     std::string demoDb;
@@ -127,7 +130,8 @@ int run(int argc, char** argv) {
         if (ingestQuiet) ingestArgs.log = "quiet";
         return smql::shell::ingestCommand(ingestArgs);
     }
-    if (check->parsed()) return smql::shell::checkIngestCommand(checkDb, checkTruth, checkScene, checkFormat);
+    if (check->parsed())
+        return smql::shell::checkIngestCommand(checkDb, checkTruth, checkScene, checkFormat, checkMisses);
     if (demo->parsed()) return smql::shell::demoCommand(demoDb);
     return smql::shell::synthCommand({.seed = synthSeed,
                                       .frames = synthFrames,

@@ -440,6 +440,13 @@ std::vector<ObjectTrack> DetectionTracker::take() {
     return out;
 }
 
+model::NodeKind detectionKind(const std::string& category) {
+    return category == "wall" || category == "floor" || category == "ceiling" || category == "door" ||
+                   category == "window"
+               ? model::NodeKind::Anchor
+               : model::NodeKind::Object;
+}
+
 ObjectTrack& DetectionTracker::add(Observation observation, const std::string& category, double score) {
     Extent mine;
     for (const auto& p : observation.points) {
@@ -469,10 +476,7 @@ ObjectTrack& DetectionTracker::add(Observation observation, const std::string& c
     if (best == tracks_.size()) {
         ObjectTrack track;
         track.category = category;
-        // Structure is geometry's job; doors and windows become anchors like labelled masks.
-        if (category == "wall" || category == "floor" || category == "ceiling" || category == "door" ||
-            category == "window")
-            track.kind = model::NodeKind::Anchor;
+        track.kind = detectionKind(category);
         tracks_.push_back(std::move(track));
         extents_.emplace_back();
     }

@@ -63,6 +63,10 @@ cv::Mat detectionInstances(const Intrinsics& K, const std::vector<Detection>& de
 // (intrinsics `K`), clipped to the image.
 cv::Rect detectionBounds(const Detection& detection, const Intrinsics& K, int storedWidth);
 
+// What a detection of `category` becomes: structure is geometry's job, and doors and windows become
+// anchors like labelled masks (Anchor); everything else an object.
+model::NodeKind detectionKind(const std::string& category);
+
 // Greedy association of observations into tracks (docs/ingest.md, "Objects
 // from detections"): an observation joins the track of its category, not yet
 // seen in its frame, whose 3D bounds overlap the observation's by IoU >= 0.1

@@ -13,6 +13,7 @@
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
+#include "ingest/pipeline/ray_tracks.hpp"
 #include "model/error.hpp"
 
 namespace smql::ingest {
@@ -40,6 +41,11 @@ public:
         for (auto& o : seen) {
             const Detection& detection = detections[o.instance - 1];
             o.embedding = detection.embedding;
+            if (!hasDepth_ && o.sparse.size() < kMinSparsePoints) {
+                EvidenceCrop crop{o.pixels, o.frame, encodeCrop(frame.images.color, o.bounds, options_.evidenceSize)};
+                unplaced_.push_back({std::move(o), detection.category, detection.score, std::move(crop)});
+                continue;
+            }
             ObjectTrack& track = tracker_.add(std::move(o), detection.category, detection.score);
             keepLargestEvidence(track.evidence, track.views.back(), frame.images.color, options_.evidenceSize);
         }
@@ -52,9 +58,11 @@ public:
     }
 
     std::string frameNote() const override {
-        if (hasDepth_ || withoutPoints_ == 0) return {};
-        return fmt::format("{} detections had fewer than {} sparse points on them and were left out", withoutPoints_,
-                           kMinSparsePoints);
+        if (hasDepth_ || unplacedCount_ == 0) return {};
+        return fmt::format(
+            "{} detections had too few sparse points on them; {} of them were placed by their boxes' "
+            "rays across views",
+            unplacedCount_, placedByRays_);
     }
 
     void addStructureObjects(const AlignedCapture&, const std::vector<WallSegment>&, model::SceneData&,
@@ -69,7 +77,8 @@ protected:
     const Capture& capture() const { return capture_; }
 
 private:
-    // A detection's view needs this many sparse points to be placed and associated in 3D.
+    // A detection's view needs this many sparse points to be placed and associated by them; with
+    // fewer, its box's ray places it (placeByRays).
     static constexpr std::size_t kMinSparsePoints = 3;
     // A box holds all of what it frames, so a voxel of the thing projects into every box of it: the
     // hull keeps only voxels inside all of them (F1 0.59 at 0.8, the masks' share, against 0.76 at 1
@@ -77,7 +86,8 @@ private:
     static constexpr double kBoxHullShare = 1.0;
 
     // Frames without depth: the sparse points that fall on each detection, nearest first (as for
-    // masks, liftSparsePoints); they stand in for its points until all views are in.
+    // masks, liftSparsePoints); they stand in for its points until all views are in. Views with too
+    // few of them wait for placeByRays.
     std::vector<Observation> observeSparse(const PosedFrame& frame, const std::vector<Detection>& detections,
                                            int storedWidth) {
         FrameImages images = frame.images;
@@ -89,18 +99,16 @@ private:
         // it, the thing still stands behind.
         for (auto& o : seen) o.bounds = detectionBounds(detections[o.instance - 1], images.intrinsics, storedWidth);
         maskViews_.push_back({frame.position, cv::Mat(), images.intrinsics, frame.pose});
-        std::erase_if(seen, [&](const Observation& o) {
-            bool few = o.sparse.size() < kMinSparsePoints;
-            withoutPoints_ += few;
-            return few;
-        });
         for (auto& o : seen)
-            for (auto p : o.sparse) o.points.push_back(capture_.points[p].position);
+            if (o.sparse.size() >= kMinSparsePoints)
+                for (auto p : o.sparse) o.points.push_back(capture_.points[p].position);
         return seen;
     }
 
     // Once every view is in: each track keeps the sparse points that fall on it across its views,
-    // then its visual hull (the intersection of its views' masks) gives its points.
+    // then its visual hull (the intersection of its views' boxes) gives its points. The views of
+    // tracks too few consistent points carve no hull for join the views without points, and all
+    // are placed by their boxes' rays (ray_tracks.hpp).
     void placeOnSparsePoints(std::vector<ObjectTrack>& tracks) {
         std::vector<ObjectTrack*> all;
         for (auto& track : tracks) {
@@ -109,15 +117,31 @@ private:
         }
         keepConsistentSparsePoints(all, capture_.points, inView_);
         carveVisualHulls(all, maskViews_, kBoxHullShare);
+        std::vector<ObjectTrack> carved;
+        for (auto& track : tracks) {
+            if (!track.surface.empty()) {
+                carved.push_back(std::move(track));
+                continue;
+            }
+            for (auto& v : track.views) {
+                EvidenceCrop crop = track.evidence.frame == v.frame ? track.evidence : EvidenceCrop{};
+                unplaced_.push_back({std::move(v), track.category, 1.0, std::move(crop)});
+            }
+        }
+        unplacedCount_ = unplaced_.size();
+        placedByRays_ = placeByRays(std::move(unplaced_), maskViews_, carved, options_.minObjectViews);
+        tracks = std::move(carved);
     }
 
     const Capture& capture_;
     const IngestOptions& options_;
     bool hasDepth_;
     DetectionTracker tracker_;
-    std::vector<std::uint32_t> inView_;  // without depth: frames each sparse point projects into
-    std::vector<MaskView> maskViews_;    // without depth: each frame's detections, for carving
-    std::size_t withoutPoints_ = 0;      // without depth: views left out for want of sparse points
+    std::vector<std::uint32_t> inView_;   // without depth: frames each sparse point projects into
+    std::vector<MaskView> maskViews_;     // without depth: each frame's detections, for carving
+    std::vector<UnplacedView> unplaced_;  // without depth: views too few sparse points placed
+    std::size_t unplacedCount_ = 0;       // without depth: how many views were not placed by sparse points
+    std::size_t placedByRays_ = 0;        // ... and how many of those their boxes' rays placed
 };
 
 class DetectionFinder : public DetectionLifter {

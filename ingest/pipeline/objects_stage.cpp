@@ -34,6 +34,15 @@ void setInWall(model::Box& box, const PointCloud& cloud, const std::vector<WallS
     box.size = {along1 - along0, 0.05, box.size.z};
 }
 
+// Nothing stands below the floor or above the ceiling: a hull carved from views that all look
+// down at a thing reaches under the floor, and the floor and ceiling bound it (a little slack for
+// the planes' own noise).
+bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
+    constexpr double kSlack = 0.02;  // m
+    if (alignment.floorFound && p.z < -kSlack) return false;
+    return !alignment.ceilingHeight || p.z <= *alignment.ceilingHeight + kSlack;
+}
+
 // What the views' embeddings agree on: the mean of their unit vectors, at unit length. Empty when
 // no view has one, or when they cancel out (views pointing opposite ways say nothing).
 std::vector<float> meanEmbedding(const std::vector<Observation>& views) {
@@ -70,7 +79,9 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
 
         PointCloud cloud;
         for (const auto& v : track.views)
-            for (const auto& p : v.points) cloud.push(aligned.alignment.apply(p), {0, 0, 0}, v.frame);
+            for (const auto& p : v.points)
+                if (auto q = aligned.alignment.apply(p); withinRoom(q, aligned.alignment))
+                    cloud.push(q, {0, 0, 0}, v.frame);
         if (cloud.size() < 10) continue;
         cloud = voxelDownsample(cloud, options.objectVoxel);
         model::Box box = uprightBox(cloud.points);

@@ -1,12 +1,22 @@
 #include "ingest/pipeline/observations.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace smql::ingest {
+
+namespace {
+
+// The pixel a projection (projectToImage) falls in.
+cv::Point pixelOf(const cv::Point2d& at) {
+    return {static_cast<int>(std::floor(at.x + 0.5)), static_cast<int>(std::floor(at.y + 0.5))};
+}
+
+}  // namespace
 
 std::vector<Observation> observeInstances(const FrameImages& images, const Pose& pose, std::uint32_t frame, int stride,
                                           int minPixels) {
@@ -119,10 +129,48 @@ void keepConsistentSparsePoints(std::vector<ObjectTrack*>& tracks, const std::ve
             }
 }
 
-void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, double minShare,
-                      int grid) {
+std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector<Observation>& views,
+                                     const std::vector<MaskView>& masks, double minShare, int grid) {
     std::unordered_map<std::uint32_t, const MaskView*> byFrame;
     for (const auto& m : masks) byFrame.emplace(m.frame, &m);
+    // Each view's own silhouette: its mask value (a mask keeps one per instance, detections
+    // number theirs per frame), or its box where the view keeps no mask.
+    struct Silhouette {
+        const MaskView* view;
+        std::uint16_t instance;
+        cv::Rect box;
+    };
+    std::vector<Silhouette> silhouettes;
+    for (const auto& v : views)
+        if (auto it = byFrame.find(v.frame); it != byFrame.end())
+            silhouettes.push_back({it->second, v.instance, v.bounds});
+    const auto& [lo, hi] = region;
+    std::vector<model::Vec3> hull;
+    for (int i = 0; i < grid; ++i)
+        for (int j = 0; j < grid; ++j)
+            for (int k = 0; k < grid; ++k) {
+                model::Vec3 p{lo.x + (i + 0.5) * (hi.x - lo.x) / grid, lo.y + (j + 0.5) * (hi.y - lo.y) / grid,
+                              lo.z + (k + 0.5) * (hi.z - lo.z) / grid};
+                int seen = 0, inside = 0;
+                for (const auto& [m, instance, box] : silhouettes) {
+                    auto at = projectToImage(p, m->pose, m->intrinsics);
+                    if (!at) continue;
+                    ++seen;
+                    if (m->instances.empty()) {
+                        // Box edges are pixel edges, half a pixel off the pixel centres `at` counts from.
+                        const cv::Rect2d box2d(box);
+                        inside += box2d.contains(cv::Point2d(at->x + 0.5, at->y + 0.5));
+                    } else {
+                        inside += m->instances.at<std::uint16_t>(pixelOf(*at)) == instance;
+                    }
+                }
+                if (seen >= 2 && inside >= minShare * seen) hull.push_back(p);
+            }
+    return hull;
+}
+
+void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, double minShare,
+                      int grid) {
     for (ObjectTrack* track : tracks) {
         std::vector<model::Vec3> seed;
         for (const auto& v : track->views) seed.insert(seed.end(), v.points.begin(), v.points.end());
@@ -137,48 +185,31 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
         }
         double grow = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
         for (int a = 0; a < 3; ++a) lo[a] -= grow / 2, hi[a] += grow / 2;
-        // Each view's own silhouette: its mask value (a mask keeps one per instance, detections
-        // number theirs per frame), or its box where the view keeps no mask.
-        struct Silhouette {
-            const MaskView* view;
-            std::uint16_t instance;
-            cv::Rect box;
-        };
-        std::vector<Silhouette> views;
-        for (const auto& v : track->views)
-            if (auto it = byFrame.find(v.frame); it != byFrame.end())
-                views.push_back({it->second, v.instance, v.bounds});
-        std::vector<model::Vec3> hull;
-        for (int i = 0; i < grid; ++i)
-            for (int j = 0; j < grid; ++j)
-                for (int k = 0; k < grid; ++k) {
-                    model::Vec3 p{lo[0] + (i + 0.5) * (hi[0] - lo[0]) / grid,
-                                  lo[1] + (j + 0.5) * (hi[1] - lo[1]) / grid,
-                                  lo[2] + (k + 0.5) * (hi[2] - lo[2]) / grid};
-                    int seen = 0, inside = 0;
-                    for (const auto& [m, instance, box] : views) {
-                        const auto& R = m->pose.rotation;
-                        const auto& t = m->pose.translation;
-                        double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
-                        double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
-                               z = R[2] * dx + R[5] * dy + R[8] * dz;
-                        if (!(z > 1e-6)) continue;
-                        const auto& K = m->intrinsics;
-                        int u = static_cast<int>(std::lround(K.fx * x / z + K.cx));
-                        int v = static_cast<int>(std::lround(K.fy * y / z + K.cy));
-                        if (u < 0 || v < 0 || u >= K.width || v >= K.height) continue;
-                        ++seen;
-                        if (m->instances.empty() ? box.contains({u, v})
-                                                 : m->instances.at<std::uint16_t>(v, u) == instance)
-                            ++inside;
-                    }
-                    if (seen >= 2 && inside >= minShare * seen) hull.push_back(p);
-                }
+        auto hull = carveRegion({{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}, track->views, masks, minShare, grid);
         if (hull.size() < 10) continue;
         track->surface = std::move(seed);
         for (auto& v : track->views) v.points.clear();
         track->views.front().points = std::move(hull);
     }
+}
+
+std::optional<cv::Point3d> projectToCamera(const model::Vec3& p, const Pose& pose, const Intrinsics& K) {
+    const auto& R = pose.rotation;
+    const auto& t = pose.translation;
+    double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
+    // camera = R^T (p - t)
+    double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
+           z = R[2] * dx + R[5] * dy + R[8] * dz;
+    if (!(z > 1e-6)) return std::nullopt;
+    return cv::Point3d(K.fx * x / z + K.cx, K.fy * y / z + K.cy, z);
+}
+
+std::optional<cv::Point2d> projectToImage(const model::Vec3& p, const Pose& pose, const Intrinsics& K) {
+    auto at = projectToCamera(p, pose, K);
+    // Within the image: nearest a pixel centre 0 .. size - 1.
+    if (!at || !(at->x >= -0.5 && at->y >= -0.5 && at->x < K.width - 0.5 && at->y < K.height - 0.5))
+        return std::nullopt;
+    return cv::Point2d(at->x, at->y);
 }
 
 MaskView maskView(std::uint32_t frame, const cv::Mat& instances, const Intrinsics& K, const Pose& pose) {

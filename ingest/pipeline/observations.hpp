@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,16 +85,33 @@ struct MaskView {
 // resolution, enough to carve hulls with.
 MaskView maskView(std::uint32_t frame, const cv::Mat& instances, const Intrinsics& K, const Pose& pose);
 
+// An axis-aligned region of the capture frame to carve a hull in.
+struct HullRegion {
+    model::Vec3 lo, hi;
+};
+
+// The visual hull of `views` inside `region`: the centres of a grid x grid x
+// grid lattice that project onto the view's silhouette (its mask value in the
+// frame's MaskView, or its box where the MaskView keeps no mask) in at least `minShare` of the views whose
+// image shows them, and in at least two.
+std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector<Observation>& views,
+                                     const std::vector<MaskView>& masks, double minShare, int grid = 28);
+
 // Sparse points see only the textured faces an object shows the cameras: a
 // box around them is often flat. Each track with enough sparse points is
 // replaced by its visual hull: the voxels of a region around its points
-// (grown by its largest side) that project onto the instance's silhouette in
-// at least `minShare` of the frames that observed it: each view's own mask
-// value (Observation::instance), or its box (Observation::bounds) where the
-// MaskView keeps no mask. The hull's voxel centres become the track's points
-// (in its first view).
+// (grown by its largest side) carved by carveRegion. The hull's voxel
+// centres become the track's points (in its first view), and the sparse
+// points it was carved around its surface.
 void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, double minShare = 0.8,
                       int grid = 28);
+
+// Where a capture-frame point falls in an image with camera-to-world `pose`
+// and intrinsics `K`, in pixels (pixel centres at whole numbers): nothing
+// when it is behind the camera or outside.
+std::optional<cv::Point2d> projectToImage(const model::Vec3& p, const Pose& pose, const Intrinsics& K);
+// The same, inside the image or not, with the point's depth along the camera's axis as z.
+std::optional<cv::Point3d> projectToCamera(const model::Vec3& p, const Pose& pose, const Intrinsics& K);
 
 // A JPEG of the instance's bounding box (padded 10%), longest side `size`.
 std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size);

@@ -122,6 +122,23 @@ QualityReport compareToTruth(const model::SceneData& ingested, const model::Scen
         }
     }
     report.meanCenterError = objectMatch.empty() ? 0.0 : centerError / objectMatch.size();
+
+    std::set<NodeId> gotMatched;
+    for (const auto& [t, i] : objectMatch) gotMatched.insert(i);
+    auto unmatched = [&](const Node& n, bool inTruth, const std::vector<const Node*>& others) {
+        UnmatchedObject u{inTruth, n.category, n.box};
+        for (const Node* o : others) {
+            if (o->category != n.category) continue;
+            u.bestIou = std::max(u.bestIou, boxIou(n.box, o->box));
+            double d = model::centerDistance(n.box, o->box);
+            if (u.nearest < 0 || d < u.nearest) u.nearest = d;
+        }
+        report.unmatched.push_back(std::move(u));
+    };
+    for (const Node* t : truthObjects)
+        if (!objectMatch.contains(t->id)) unmatched(*t, true, gotObjects);
+    for (const Node* i : gotObjects)
+        if (!gotMatched.contains(i->id)) unmatched(*i, false, truthObjects);
     return report;
 }
 

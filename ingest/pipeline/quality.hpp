@@ -24,12 +24,23 @@ struct MatchCounts {
     }
 };
 
+// An object on one side that found no match on the other: what it is, where, and how close the
+// nearest object of its category on the other side came.
+struct UnmatchedObject {
+    bool inTruth = true;  // a truth object the ingest missed; false: an ingested object the truth lacks
+    std::string category;
+    model::Box box;
+    double bestIou = 0;   // with any object of its category on the other side
+    double nearest = -1;  // centre distance to the nearest of them (m); -1 when there is none
+};
+
 struct QualityReport {
     MatchCounts anchors;  // walls, doors and windows
     MatchCounts objects;  // same category and 3D IoU >= the threshold
     int colorChecked = 0, colorCorrect = 0;
     int parentChecked = 0, parentCorrect = 0;
-    double meanCenterError = 0;  // metres, over matched objects
+    double meanCenterError = 0;              // metres, over matched objects
+    std::vector<UnmatchedObject> unmatched;  // truth objects first
     double colorAccuracy() const { return colorChecked ? double(colorCorrect) / colorChecked : 0.0; }
     double parentAccuracy() const { return parentChecked ? double(parentCorrect) / parentChecked : 0.0; }
 };
