@@ -10,28 +10,6 @@
 
 namespace smql::ingest {
 
-namespace {
-
-// Usual heights of standing furniture and doors, in metres: the common standard sizes (a dining
-// table's top at 28-30 in, a door 80 in), only where the kind varies by a tenth or so. Each name
-// takes an "s" in the plural.
-struct Typical {
-    std::string_view category;
-    double height;
-};
-constexpr Typical kTypicalHeights[] = {
-    {"table", 0.75},  {"desk", 0.75},   {"chair", 0.9}, {"sofa", 0.85},      {"bed", 0.55},
-    {"fridge", 1.75}, {"toilet", 0.75}, {"door", 2.03}, {"nightstand", 0.6},
-};
-
-}  // namespace
-
-std::optional<double> typicalHeight(std::string_view category) {
-    for (const auto& t : kTypicalHeights)
-        if (t.category == category) return t.height;
-    return std::nullopt;
-}
-
 std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
                                               double floorHeight, std::size_t minThings) {
     std::vector<double> estimates;

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ingest/geometry/typical_sizes.hpp"
 #include "model/types.hpp"
 
 namespace smql::ingest {
@@ -21,10 +22,6 @@ struct NamedThing {
     std::string category;
     std::vector<model::Vec3> points;
 };
-
-// A standing thing's usual height above the floor in metres (its top), for the
-// kinds whose height varies little: nullopt for the others.
-std::optional<double> typicalHeight(std::string_view category);
 
 // One prior's answer: metres per capture unit.
 struct ScaleEstimate {

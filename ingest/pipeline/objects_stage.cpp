@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
 #include "model/embedding.hpp"
@@ -41,6 +42,18 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
     constexpr double kSlack = 0.02;  // m
     if (alignment.floorFound && p.z < -kSlack) return false;
     return !alignment.ceilingHeight || p.z <= *alignment.ceilingHeight + kSlack;
+}
+
+// A hull carved without depth from a narrow range of directions stays long along the view, with
+// the thing near its middle: its box is cut about its centre to the largest footprint things of its
+// kind commonly have.
+void holdToFootprint(model::Box& box, const std::string& category) {
+    auto largest = largestFootprint(category);
+    if (!largest) return;
+    double& longer = box.size.x >= box.size.y ? box.size.x : box.size.y;
+    double& shorter = box.size.x >= box.size.y ? box.size.y : box.size.x;
+    longer = std::min(longer, largest->longer);
+    shorter = std::min(shorter, largest->shorter);
 }
 
 // What the views' embeddings agree on: the mean of their unit vectors, at unit length. Empty when
@@ -85,6 +98,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         if (cloud.size() < 10) continue;
         cloud = voxelDownsample(cloud, options.objectVoxel);
         model::Box box = uprightBox(cloud.points);
+        if (track.carved) holdToFootprint(box, category);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         cv::Mat colors;
         for (const auto& v : track.views) colors.push_back(v.colors);

@@ -188,6 +188,7 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
         auto hull = carveRegion({{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}, track->views, masks, minShare, grid);
         if (hull.size() < 10) continue;
         track->surface = std::move(seed);
+        track->carved = true;
         for (auto& v : track->views) v.points.clear();
         track->views.front().points = std::move(hull);
     }

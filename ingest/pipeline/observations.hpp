@@ -46,6 +46,9 @@ struct ObjectTrack {
     // Where the views' points became a visual hull (carveVisualHulls): the sparse points it was carved
     // around, which lie on the thing's surfaces (the hull of boxes reaches above a thing's top).
     std::vector<model::Vec3> surface;
+    // The points are a visual hull carved without depth (carveVisualHulls, placeByRays): seen from a
+    // narrow range of directions it stays long along the view.
+    bool carved = false;
 };
 
 // Lifts every instance of one frame with enough pixels. `stride` samples the

@@ -246,6 +246,7 @@ std::size_t placeByRays(std::vector<UnplacedView> unplaced, const std::vector<Ma
             grouper.use(i);
         }
         track.views.front().points = std::move(hull);
+        track.carved = true;
         used += group.size();
         placed.push_back(std::move(track));
     }
