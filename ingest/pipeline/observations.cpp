@@ -171,6 +171,8 @@ std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector
 
 void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, double minShare,
                       int grid) {
+    std::unordered_map<std::uint32_t, const MaskView*> byFrame;
+    for (const auto& m : masks) byFrame.emplace(m.frame, &m);
     for (ObjectTrack* track : tracks) {
         std::vector<model::Vec3> seed;
         for (const auto& v : track->views) seed.insert(seed.end(), v.points.begin(), v.points.end());
@@ -185,8 +187,23 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
         }
         double grow = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
         for (int a = 0; a < 3; ++a) lo[a] -= grow / 2, hi[a] += grow / 2;
-        auto hull = carveRegion({{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}, track->views, masks, minShare, grid);
+        const HullRegion region{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+        auto hull = carveRegion(region, track->views, masks, minShare, grid);
         if (hull.size() < 10) continue;
+        // Views of boxes the hull does not fill are of something else: carved again without them, once.
+        auto unfilled = [&](const Observation& v) {
+            auto m = byFrame.find(v.frame);
+            return m != byFrame.end() && m->second->instances.empty() && !hullFillsBox(hull, v.bounds, *m->second);
+        };
+        if (std::any_of(track->views.begin(), track->views.end(), unfilled)) {
+            std::vector<Observation> kept;
+            for (auto& v : track->views)
+                if (!unfilled(v)) kept.push_back(std::move(v));
+            if (kept.size() < 2) continue;
+            track->views = std::move(kept);
+            hull = carveRegion(region, track->views, masks, minShare, grid);
+            if (hull.size() < 10) continue;
+        }
         track->surface = std::move(seed);
         track->carved = true;
         for (auto& v : track->views) v.points.clear();
@@ -211,6 +228,17 @@ std::optional<cv::Point2d> projectToImage(const model::Vec3& p, const Pose& pose
     if (!at || !(at->x >= -0.5 && at->y >= -0.5 && at->x < K.width - 0.5 && at->y < K.height - 0.5))
         return std::nullopt;
     return cv::Point2d(at->x, at->y);
+}
+
+bool hullFillsBox(const std::vector<model::Vec3>& hull, const cv::Rect& bounds, const MaskView& camera) {
+    double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+    for (const auto& p : hull)
+        if (auto at = projectToCamera(p, camera.pose, camera.intrinsics))
+            x0 = std::min(x0, at->x), y0 = std::min(y0, at->y), x1 = std::max(x1, at->x), y1 = std::max(y1, at->y);
+    // Pixel centres to pixel edges.
+    double across = std::min(x1 + 0.5, double(bounds.x + bounds.width)) - std::max(x0 + 0.5, double(bounds.x));
+    double down = std::min(y1 + 0.5, double(bounds.y + bounds.height)) - std::max(y0 + 0.5, double(bounds.y));
+    return across >= kMinFill * bounds.width && down >= kMinFill * bounds.height;
 }
 
 MaskView maskView(std::uint32_t frame, const cv::Mat& instances, const Intrinsics& K, const Pose& pose) {

@@ -100,6 +100,13 @@ struct HullRegion {
 std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector<Observation>& views,
                                      const std::vector<MaskView>& masks, double minShare, int grid = 28);
 
+// Whether a hull's projection spans at least kMinFill of the box's width and
+// height in the view's image (`bounds` at the camera's resolution): so it does
+// in every view of one thing (more, where something in front cut the box
+// short); a view of another thing leaves much of its box empty.
+inline constexpr double kMinFill = 0.6;
+bool hullFillsBox(const std::vector<model::Vec3>& hull, const cv::Rect& bounds, const MaskView& camera);
+
 // Sparse points see only the textured faces an object shows the cameras: a
 // box around them is often flat. Each track with enough sparse points is
 // replaced by its visual hull: the voxels of a region around its points

@@ -235,6 +235,19 @@ std::size_t placeByRays(std::vector<UnplacedView> unplaced, const std::vector<Ma
         for (auto i : group) boxes.push_back(grouper.box(i)), views.push_back(unplaced[i].view);
         auto hull = carveRegion(regionAround(centre, boxes), views, cameras, 1.0);
         if (hull.size() < 10) continue;
+        // A view whose box the hull does not fill is of something else: the group is carved again
+        // without such views, once.
+        std::vector<std::size_t> filled;
+        for (auto i : group)
+            if (hullFillsBox(hull, unplaced[i].view.bounds, *grouper.box(i)->camera)) filled.push_back(i);
+        if (filled.size() < group.size()) {
+            if (filled.size() < enough) continue;
+            group = std::move(filled);
+            views.clear();
+            for (auto i : group) views.push_back(unplaced[i].view);
+            hull = carveRegion(regionAround(centre, boxes), views, cameras, 1.0);
+            if (hull.size() < 10) continue;
+        }
 
         ObjectTrack track;
         track.category = top.category;

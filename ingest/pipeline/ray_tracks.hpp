@@ -27,7 +27,9 @@ struct UnplacedView {
 // closest, and its group is the views, one per frame, whose box centre it falls
 // near (within kCentreShare of the box's width and height). A group of at least
 // `minViews` frames is carved from its boxes around its centre (carveRegion,
-// every box must hold a voxel) and appended to `placed` as a new track.
+// every box must hold a voxel) and appended to `placed` as a new track; views
+// whose box the hull does not fill (hullFillsBox) leave the group, which is
+// carved again without them.
 // `cameras` has every frame's camera (MaskView). Returns how many views were
 // used.
 inline constexpr double kMinRayAngle = 3;    // degrees
