@@ -275,6 +275,13 @@ cv::Rect detectionBounds(const Detection& detection, const Intrinsics& K, int st
     return cv::Rect(first, end) & cv::Rect(0, 0, K.width, K.height);
 }
 
+cv::Mat1b detectionOutline(const Detection& detection, const Intrinsics& K, int storedWidth) {
+    if (detection.polygons.empty() && detection.rle.empty()) return {};
+    cv::Mat1b whole = cv::Mat1b::zeros(K.height, K.width);
+    drawDetection(detection, workingScale(K, storedWidth), whole, 255);
+    return whole(detectionBounds(detection, K, storedWidth)).clone();
+}
+
 cv::Mat detectionInstances(const Intrinsics& K, const std::vector<Detection>& detections, int storedWidth) {
     std::vector<std::size_t> order;
     for (std::size_t d = 0; d < detections.size() && d + 1 < 65536; ++d)

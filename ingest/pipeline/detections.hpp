@@ -67,6 +67,10 @@ cv::Rect detectionBounds(const Detection& detection, const Intrinsics& K, int st
 // anchors like labelled masks (Anchor); everything else an object.
 model::NodeKind detectionKind(const std::string& category);
 
+// The detection's own outline (polygons or RLE mask) at the working
+// resolution, cropped to detectionBounds; empty when the box is all it gives.
+cv::Mat1b detectionOutline(const Detection& detection, const Intrinsics& K, int storedWidth);
+
 // Greedy association of observations into tracks (docs/ingest.md, "Objects
 // from detections"): an observation joins the track of its category, not yet
 // seen in its frame, whose 3D bounds overlap the observation's by IoU >= 0.1

@@ -95,9 +95,12 @@ private:
         auto seen =
             observeInstances(images, frame.pose, frame.position, options_.objectStride, options_.minInstancePixels);
         liftSparsePoints(seen, images, frame.pose, capture_.points, inView_, options_.sparseDepthBand);
-        // A detection's box is its silhouette for carving, whole: where a smaller one was painted over
-        // it, the thing still stands behind.
-        for (auto& o : seen) o.bounds = detectionBounds(detections[o.instance - 1], images.intrinsics, storedWidth);
+        // A detection's own outline (or its box) is its silhouette for carving, whole: where a smaller
+        // one was painted over it, the thing still stands behind.
+        for (auto& o : seen) {
+            o.bounds = detectionBounds(detections[o.instance - 1], images.intrinsics, storedWidth);
+            o.outline = detectionOutline(detections[o.instance - 1], images.intrinsics, storedWidth);
+        }
         maskViews_.push_back({frame.position, cv::Mat(), images.intrinsics, frame.pose});
         for (auto& o : seen)
             if (o.sparse.size() >= kMinSparsePoints)

@@ -139,11 +139,12 @@ std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector
         const MaskView* view;
         std::uint16_t instance;
         cv::Rect box;
+        const cv::Mat1b* outline;
     };
     std::vector<Silhouette> silhouettes;
     for (const auto& v : views)
         if (auto it = byFrame.find(v.frame); it != byFrame.end())
-            silhouettes.push_back({it->second, v.instance, v.bounds});
+            silhouettes.push_back({it->second, v.instance, v.bounds, &v.outline});
     const auto& [lo, hi] = region;
     std::vector<model::Vec3> hull;
     for (int i = 0; i < grid; ++i)
@@ -152,14 +153,15 @@ std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector
                 model::Vec3 p{lo.x + (i + 0.5) * (hi.x - lo.x) / grid, lo.y + (j + 0.5) * (hi.y - lo.y) / grid,
                               lo.z + (k + 0.5) * (hi.z - lo.z) / grid};
                 int seen = 0, inside = 0;
-                for (const auto& [m, instance, box] : silhouettes) {
+                for (const auto& [m, instance, box, outline] : silhouettes) {
                     auto at = projectToImage(p, m->pose, m->intrinsics);
                     if (!at) continue;
                     ++seen;
                     if (m->instances.empty()) {
-                        // Box edges are pixel edges, half a pixel off the pixel centres `at` counts from.
-                        const cv::Rect2d box2d(box);
-                        inside += box2d.contains(cv::Point2d(at->x + 0.5, at->y + 0.5));
+                        // The detection's outline, or its box; the pixel `at` falls in, from the box's corner.
+                        cv::Point pixel = pixelOf(*at) - box.tl();
+                        bool inBox = pixel.x >= 0 && pixel.y >= 0 && pixel.x < box.width && pixel.y < box.height;
+                        inside += inBox && (outline->empty() || (*outline)(pixel) != 0);
                     } else {
                         inside += m->instances.at<std::uint16_t>(pixelOf(*at)) == instance;
                     }

@@ -22,6 +22,7 @@ struct Observation {
     cv::Mat colors;                     // N x 1 CV_8UC3 BGR samples
     int pixels = 0;                     // mask area in the frame
     cv::Rect bounds;                    // mask bounding box
+    cv::Mat1b outline;                  // detections: their own outline inside `bounds` (empty: the box)
     double centreX = 0;                 // mask centroid, as a share of the image width (0 left, 1 right)
     std::vector<std::uint32_t> sparse;  // indices of Capture::points on the mask (frames without depth)
     std::vector<float> embedding;       // an external model's vector for this view (detections.json); may be empty

@@ -181,6 +181,59 @@ std::size_t joinPlaced(RayGrouper& grouper, const std::vector<UnplacedView>& unp
     return joined;
 }
 
+struct Bounds {
+    Vec lo{1e18, 1e18, 1e18}, hi{-1e18, -1e18, -1e18};
+    bool holds(const Vec& x) const {
+        return lo[0] <= x[0] && x[0] <= hi[0] && lo[1] <= x[1] && x[1] <= hi[1] && lo[2] <= x[2] && x[2] <= hi[2];
+    }
+};
+
+Bounds hullBounds(const ObjectTrack& track) {
+    Bounds b;
+    for (const auto& v : track.views)
+        for (const auto& p : v.points)
+            for (int a = 0; a < 3; ++a) b.lo[a] = std::min(b.lo[a], vec(p)[a]), b.hi[a] = std::max(b.hi[a], vec(p)[a]);
+    return b;
+}
+
+// One thing split into two carved tracks (its views associated apart): two tracks of a category
+// that never share a frame, each one's centre inside the other's hull bounds, become one, carved
+// from all their views in both regions.
+void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskView>& cameras) {
+    for (std::size_t a = 0; a < tracks.size(); ++a) {
+        if (!tracks[a].carved) continue;
+        for (std::size_t b = a + 1; b < tracks.size(); ++b) {
+            ObjectTrack &one = tracks[a], &other = tracks[b];
+            if (!other.carved || other.category != one.category || other.views.empty()) continue;
+            Bounds first = hullBounds(one), second = hullBounds(other);
+            auto c1 = trackCentre(one), c2 = trackCentre(other);
+            if (!c1 || !c2 || !second.holds(*c1) || !first.holds(*c2)) continue;
+            bool shareFrame = std::any_of(one.views.begin(), one.views.end(), [&](const Observation& v) {
+                return std::any_of(other.views.begin(), other.views.end(),
+                                   [&](const Observation& w) { return w.frame == v.frame; });
+            });
+            if (shareFrame) continue;
+            std::vector<Observation> views = one.views;
+            views.insert(views.end(), other.views.begin(), other.views.end());
+            HullRegion region;
+            for (int k = 0; k < 3; ++k) {
+                double lo = std::min(first.lo[k], second.lo[k]), hi = std::max(first.hi[k], second.hi[k]);
+                (k == 0 ? region.lo.x : k == 1 ? region.lo.y : region.lo.z) = lo;
+                (k == 0 ? region.hi.x : k == 1 ? region.hi.y : region.hi.z) = hi;
+            }
+            auto hull = carveRegion(region, views, cameras, 1.0);
+            if (hull.size() < 10) continue;
+            for (auto& v : views) v.points.clear();
+            views.front().points = std::move(hull);
+            one.views = std::move(views);
+            if (other.evidence.pixels > one.evidence.pixels) one.evidence = std::move(other.evidence);
+            one.surface.insert(one.surface.end(), other.surface.begin(), other.surface.end());
+            other.views.clear();
+        }
+    }
+    std::erase_if(tracks, [](const ObjectTrack& t) { return t.views.empty(); });
+}
+
 struct Candidate {
     Vec centre;
     std::string category;
@@ -263,6 +316,7 @@ std::size_t placeByRays(std::vector<UnplacedView> unplaced, const std::vector<Ma
         used += group.size();
         placed.push_back(std::move(track));
     }
+    mergeSplitTracks(placed, cameras);
     return used;
 }
 
