@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -268,7 +269,13 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
             fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
                         shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run.logPath),
                         shellQuoted(*colmap), step, arguments, shellQuoted(run.logPath));
+        auto start = std::chrono::steady_clock::now();
         int status = std::system(line.c_str());
+        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!run.steps.empty() && run.steps.back().first == step)
+            run.steps.back().second += seconds;
+        else
+            run.steps.emplace_back(step, seconds);
         int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         if (code != 0) {
             std::string facts = step == "feature_extractor"
@@ -361,8 +368,12 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
     // keep it: COLMAP only triangulates the matched features with the given poses and cameras.
     const bool posed = std::all_of(workFrames.begin(), workFrames.end(),
                                    [&](const WorkFrame& w) { return capture.frames[w.frame].pose.has_value(); });
-    // A successful run's work folder goes unless asked to stay; a failed one stays for its log.
+    // A successful run says where its time went, and its work folder goes unless asked to stay; a
+    // failed one stays for its log.
     auto leaveWorkFolder = [&] {
+        std::vector<std::string> times;
+        for (const auto& [step, seconds] : run.steps) times.push_back(fmt::format("{} {:.1f} s", step, seconds));
+        run.notes.push_back(fmt::format("COLMAP's steps: {}", fmt::join(times, ", ")));
         std::error_code removeError;
         if (options.keepWorkDirectory)
             run.notes.push_back(

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ingest/capture/capture.hpp"
@@ -31,6 +32,8 @@ struct ColmapRun {
     std::size_t registered = 0;  // frames that got a pose
     std::size_t points = 0;      // sparse points
     std::size_t models = 0;      // models the mapper wrote (the largest is used)
+    // Each COLMAP command run and its wall-clock seconds (a step run once per camera, summed), in order.
+    std::vector<std::pair<std::string, double>> steps;
     std::vector<std::string> notes;
 };
 
