@@ -1,13 +1,10 @@
 // Where a capture's camera comes from (--camera, --fov, camera.json, EXIF, the
 // stated guess) and the refusal of mirrored cameras and poses.
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <string>
 
-#include <libexif/exif-data.h>
-
 #include "capture_support.hpp"
+#include "exif_jpeg.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/capture_detail.hpp"
 
@@ -21,35 +18,6 @@ bool hasNote(const Capture& capture, const std::string& fragment) {
     for (const std::string& note : capture.notes)
         if (note.find(fragment) != std::string::npos) return true;
     return false;
-}
-
-// A JPEG with an EXIF block holding FocalLengthIn35mmFilm, made with libexif.
-void writeJpegWithFocal35(const TempDir& dir, const std::string& name, int width, int height, int focal35mm) {
-    std::string plain = writeColor(dir, name + ".plain.jpg", width, height);
-    std::ifstream in(plain, std::ios::binary);
-    std::string jpeg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    fs::remove(plain);
-
-    ExifData* exif = exif_data_new();
-    exif_data_set_byte_order(exif, EXIF_BYTE_ORDER_INTEL);
-    ExifEntry* entry = exif_entry_new();
-    exif_content_add_entry(exif->ifd[EXIF_IFD_EXIF], entry);
-    exif_entry_initialize(entry, EXIF_TAG_FOCAL_LENGTH_IN_35MM_FILM);
-    exif_set_short(entry->data, EXIF_BYTE_ORDER_INTEL, static_cast<ExifShort>(focal35mm));
-    exif_entry_unref(entry);
-    unsigned char* block = nullptr;
-    unsigned int size = 0;
-    exif_data_save_data(exif, &block, &size);
-    exif_data_unref(exif);
-    REQUIRE(block != nullptr);
-
-    // APP1 right after the start-of-image marker: FF E1, its length (big-endian, counting itself), the block.
-    std::string app1 = "\xFF\xE1";
-    app1 += static_cast<char>(((size + 2) >> 8) & 0xFF);
-    app1 += static_cast<char>((size + 2) & 0xFF);
-    app1.append(reinterpret_cast<const char*>(block), size);
-    free(block);
-    std::ofstream(dir.root() / name, std::ios::binary) << jpeg.substr(0, 2) + app1 + jpeg.substr(2);
 }
 
 }  // namespace
@@ -131,8 +99,8 @@ TEST_CASE("a photo folder's camera: options, camera.json, EXIF, else a stated gu
 
 TEST_CASE("photos' EXIF focal length (35 mm equivalent) gives their camera", "[capture][camera][exif]") {
     TempDir dir;
-    writeJpegWithFocal35(dir, "photos/a.jpg", 120, 80, 24);
-    writeJpegWithFocal35(dir, "photos/b.jpg", 120, 80, 24);
+    writeExifJpeg(dir, "photos/a.jpg", colorImage(120, 80), {.focal35mm = 24});
+    writeExifJpeg(dir, "photos/b.jpg", colorImage(120, 80), {.focal35mm = 24});
     REQUIRE(capture_detail::readExif(dir.path("photos/a.jpg")).focal35mm == 24);
 
     Capture capture = readCapture(dir.path("photos"));
@@ -146,6 +114,44 @@ TEST_CASE("photos' EXIF focal length (35 mm equivalent) gives their camera", "[c
         Capture mixed = readCapture(dir.path("photos"));
         CHECK(mixed.intrinsicsOrigin == IntrinsicsOrigin::Guessed);
         CHECK(hasNote(mixed, "2 of 3 photos give an EXIF focal length"));
+    }
+}
+
+TEST_CASE("photos stored on their side (EXIF orientation 6) are read upright", "[capture][camera][exif]") {
+    TempDir dir;
+    // Stored 64 x 48 (landscape), seen 48 x 64: the square of the top-left corner turns to the top right.
+    auto writePhotos = [&](const ExifTags& tags) {
+        for (const char* name : {"photos/a.jpg", "photos/b.jpg"}) writeExifJpeg(dir, name, markedImage(64, 48), tags);
+        REQUIRE(capture_detail::readExif(dir.path("photos/a.jpg")).orientation == 6);
+    };
+
+    SECTION("frames and the guessed camera have the turned size") {
+        writePhotos({.orientation = 6});
+        Capture capture = readCapture(dir.path("photos"));
+        CHECK(capture.intrinsicsOrigin == IntrinsicsOrigin::Guessed);
+        CHECK(capture.intrinsics.width == 48);
+        CHECK(capture.intrinsics.height == 64);
+        CHECK(capture.intrinsics.fx == Approx(1.2 * 48));
+        CHECK(capture.intrinsics.cx == Approx(23.5));
+        CHECK(capture.intrinsics.cy == Approx(31.5));
+        CHECK(hasNote(capture, "1.2 x width = 57.6"));
+        for (const CaptureFrame& frame : capture.frames) {
+            cv::Mat color = capture_detail::readRawFrame(frame).color;
+            CHECK(color.cols == 48);
+            CHECK(color.rows == 64);
+            CHECK(brightCorner(color) == "top-right");
+        }
+    }
+    SECTION("an EXIF focal length gives the camera at the turned size") {
+        writePhotos({.focal35mm = 24, .orientation = 6});
+        Capture capture = readCapture(dir.path("photos"));
+        CHECK(capture.intrinsicsOrigin == IntrinsicsOrigin::Approximate);
+        CHECK(capture.intrinsics.width == 48);
+        CHECK(capture.intrinsics.height == 64);
+        // The 35 mm frame's diagonal maps onto the photo's: 80 pixels whichever way it is turned.
+        CHECK(capture.intrinsics.fx == Approx(24 * 80 / std::hypot(36.0, 24.0)));
+        CHECK(capture.intrinsics.cx == Approx(23.5));
+        CHECK(hasNote(capture, "for 48x64"));
     }
 }
 

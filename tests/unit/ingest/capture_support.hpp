@@ -59,16 +59,20 @@ private:
 };
 
 // A BGR image whose pixels encode their position (so resampling is visible).
-inline std::string writeColor(const TempDir& dir, const std::string& name, int width, int height, int seed = 0) {
+inline cv::Mat colorImage(int width, int height, int seed = 0) {
     cv::Mat image(height, width, CV_8UC3);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             image.at<cv::Vec3b>(y, x) =
                 cv::Vec3b(static_cast<uchar>((x * 4 + seed) % 256), static_cast<uchar>((y * 4 + seed) % 256),
                           static_cast<uchar>(seed % 256));
+    return image;
+}
+
+inline std::string writeColor(const TempDir& dir, const std::string& name, int width, int height, int seed = 0) {
     fs::path file = dir.root() / name;
     fs::create_directories(file.parent_path());
-    REQUIRE(cv::imwrite(file.string(), image));
+    REQUIRE(cv::imwrite(file.string(), colorImage(width, height, seed)));
     return file.string();
 }
 

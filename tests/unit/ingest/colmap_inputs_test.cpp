@@ -21,6 +21,7 @@
 
 using namespace smql;
 using namespace smql::ingest;
+using smql::ingest::test::KeptWork;
 using smql::ingest::test::ScratchDir;
 namespace fs = std::filesystem;
 
@@ -42,15 +43,6 @@ void copyFrame(const std::string& walk, int number, const fs::path& photos, cons
     fs::create_directories(photos);
     REQUIRE(cv::imwrite((photos / name).string(), image));
 }
-
-// The work folder of a run kept for inspection, removed at the end of the test.
-struct KeptWork {
-    std::string path;
-    ~KeptWork() {
-        std::error_code ignored;
-        if (!path.empty()) fs::remove_all(path, ignored);
-    }
-};
 
 }  // namespace
 

@@ -24,4 +24,14 @@ struct ScratchDir {
     ScratchDir& operator=(const ScratchDir&) = delete;
 };
 
+// The work folder a COLMAP run left (kept for inspection, or by a failure for its log), removed at the
+// end of the test.
+struct KeptWork {
+    std::string path;
+    ~KeptWork() {
+        std::error_code ignored;
+        if (!path.empty()) std::filesystem::remove_all(path, ignored);
+    }
+};
+
 }  // namespace smql::ingest::test
