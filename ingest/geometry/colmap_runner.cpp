@@ -328,7 +328,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
         "--SiftMatching.min_num_inliers {}",
         shellQuoted(database.string()), threads, options.minMatches);
     if (!exhaustive) {
-        matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap 1",
+        matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap 0",
                                 options.sequentialOverlap);
         if (loops)
             matching += fmt::format(" --SequentialMatching.loop_detection 1 --SequentialMatching.vocab_tree_path {}",

@@ -16,9 +16,9 @@ struct ColmapOptions {
     std::string command = "colmap";  // looked up on PATH
     int maxImageSize = 1024;         // frames with a longer side are scaled down to it for COLMAP (0: as stored)
     int exhaustiveUpTo = 60;         // unordered photo sets up to this many frames: exhaustive_matcher
-    int sequentialOverlap = 10;      // sequential_matcher: the neighbours each frame is matched with
+    int sequentialOverlap = 8;       // sequential_matcher: the neighbours each frame is matched with
     std::string vocabularyTree;      // COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection; empty: none
-    int loopFrames = 40;             // without a tree: frames spread through the capture, matched all against all
+    int loopFrames = 30;             // without a tree: frames spread through the capture, matched all against all
     int minMatches = 15;             // verified matches that make two frames overlap (COLMAP's mapper default)
     int threads = -1;                // COLMAP's num_threads (-1: all cores)
     bool keepWorkDirectory = false;  // keep the work folder (images, database, models, colmap.log) after a success too

@@ -108,11 +108,13 @@ TEST_CASE("an RGB-only synthetic capture through COLMAP meets the quality thresh
     report("detection boxes", boxes);
     if (seedVariable) return;
 
-    // COLMAP is not bit-for-bit repeatable: over this session's runs masks gave F1 0.81-0.86, outlined
-    // detections 0.69-0.78 and boxes 0.72-0.76, so the floors sit below the lowest run.
+    // COLMAP is not bit-for-bit repeatable, so the floors sit below the runs measured (docs/ingest.md,
+    // "Detections without depth"): masks F1 0.86-0.92, outlined detections 0.84-0.88 at 1-2 % scale
+    // error, boxes 0.65-0.73.
     CHECK(std::abs(masks.scale - 1) <= 0.10);
-    CHECK(masks.report.objects.f1() >= 0.7);
-    CHECK(polygons.report.objects.f1() >= 0.6);
+    CHECK(masks.report.objects.f1() >= 0.75);
+    CHECK(std::abs(polygons.scale - 1) <= 0.05);
+    CHECK(polygons.report.objects.f1() >= 0.75);
     CHECK(boxes.report.objects.f1() >= 0.6);
 }
 
