@@ -43,7 +43,7 @@ public:
             o.embedding = detection.embedding;
             if (!hasDepth_ && o.sparse.size() < kMinSparsePoints) {
                 EvidenceCrop crop{o.pixels, o.frame, encodeCrop(frame.images.color, o.bounds, options_.evidenceSize)};
-                unplaced_.push_back({std::move(o), detection.category, detection.score, std::move(crop)});
+                unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
                 continue;
             }
             ObjectTrack& track = tracker_.add(std::move(o), detection.category, detection.score);
@@ -109,9 +109,9 @@ private:
     }
 
     // Once every view is in: each track keeps the sparse points that fall on it across its views,
-    // then its visual hull (the intersection of its views' boxes) gives its points. The views of
-    // tracks too few consistent points carve no hull for join the views without points, and all
-    // are placed by their boxes' rays (ray_tracks.hpp).
+    // then its visual hull (the intersection of its views' outlines) gives its points. A track whose
+    // consistent points were too few to carve a hull gives its views back, and they are placed with
+    // the views that had too few points of their own, by their boxes' rays (ray_tracks.hpp).
     void placeOnSparsePoints(std::vector<ObjectTrack>& tracks) {
         std::vector<ObjectTrack*> all;
         for (auto& track : tracks) {
@@ -128,7 +128,7 @@ private:
             }
             for (auto& v : track.views) {
                 EvidenceCrop crop = track.evidence.frame == v.frame ? track.evidence : EvidenceCrop{};
-                unplaced_.push_back({std::move(v), track.category, 1.0, std::move(crop)});
+                unplaced_.push_back({std::move(v), track.category, std::move(crop)});
             }
         }
         unplacedCount_ = unplaced_.size();

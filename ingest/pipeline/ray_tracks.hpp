@@ -15,7 +15,6 @@ namespace smql::ingest {
 struct UnplacedView {
     Observation view;  // bounds: the detection's box at the working resolution
     std::string category;
-    double score = 0;
     EvidenceCrop evidence;  // empty when a track's evidence came from another view
 };
 
@@ -26,12 +25,13 @@ struct UnplacedView {
 // category, in different frames, at least kMinRayAngle degrees apart) come
 // closest, and its group is the views, one per frame, whose box centre it falls
 // near (within kCentreShare of the box's width and height). A group of at least
-// `minViews` frames is carved from its boxes around its centre (carveRegion,
-// every box must hold a voxel) and appended to `placed` as a new track; views
-// whose box the hull does not fill (hullFillsBox) leave the group, which is
-// carved again without them.
-// `cameras` has every frame's camera (MaskView). Returns how many views were
-// used.
+// `minViews` frames (and 2) is carved around its centre from its views'
+// outlines or boxes (carveRegion: each must hold a voxel); views whose box the
+// hull does not fill (hullFillsBox) leave the group, which is carved again
+// without them, and the group becomes a new track in `placed`. Last, two
+// carved tracks of one category that never share a frame, each one's centre
+// inside the other's hull bounds, become one. `cameras` has every frame's
+// camera (MaskView). Returns how many views joined a track or became one.
 inline constexpr double kMinRayAngle = 3;    // degrees
 inline constexpr double kCentreShare = 0.3;  // of the box's width and height, from its centre
 std::size_t placeByRays(std::vector<UnplacedView> unplaced, const std::vector<MaskView>& cameras,

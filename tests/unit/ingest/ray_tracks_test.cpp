@@ -73,7 +73,7 @@ Scene circleAround(const std::vector<Thing>& things, int frames) {
             view.instance = instance;
             view.bounds = *box;
             view.pixels = box->area();
-            scene.views.push_back({view, thing.category, 1.0, {}});
+            scene.views.push_back({view, thing.category, {}});
         }
     }
     return scene;
