@@ -35,9 +35,9 @@ std::string nearestPaletteName(const cv::Vec3f& lab) {
 }  // namespace
 
 ColorEstimate nameColor(const cv::Mat& pixels) {
-    CV_Assert(pixels.type() == CV_8UC3 && pixels.cols == 1);
     ColorEstimate out;
-    if (pixels.rows == 0) return out;
+    if (pixels.empty()) return out;
+    CV_Assert(pixels.type() == CV_8UC3 && pixels.cols == 1);
     cv::Mat lab;
     cv::cvtColor(pixels, lab, cv::COLOR_BGR2Lab);
     cv::Mat samples;

@@ -17,7 +17,8 @@ struct ColorEstimate {
 // `pixels`: N x 1 CV_8UC3 BGR samples of one object. Two clusters (k-means in
 // Lab) separate the object's own colour from shadows and texture; the larger
 // names the object. Lightness counts half as much as hue in the distance, so
-// a dim red is still red.
+// a dim red is still red. No samples (an empty Mat: a view thinner than the
+// sampling stride) name nothing: an empty name.
 ColorEstimate nameColor(const cv::Mat& pixels);
 
 }  // namespace smql::ingest

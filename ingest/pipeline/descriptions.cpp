@@ -43,7 +43,8 @@ void describeObjects(model::SceneData& scene, const std::vector<TrackedNode>& tr
     ViewColors viewColors;
     for (const auto& t : tracked) {
         if (nodeById(scene, t.node).kind != NodeKind::Object) continue;
-        for (const auto& v : t.views) viewColors[t.node].push_back({v.frame, nameColor(v.colors).name});
+        for (const auto& v : t.views)
+            if (auto color = nameColor(v.colors).name; !color.empty()) viewColors[t.node].push_back({v.frame, color});
     }
 
     // Layer 2: the scene-level phrase, from what holds allocentrically (support) and what enough

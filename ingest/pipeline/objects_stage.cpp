@@ -105,7 +105,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         model::Node& node = addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, category,
                                     opening ? GeometryKind::Plane : GeometryKind::Box, box);
         if (!opening) {
-            node.attributes.push_back({"color", nameColor(colors).name});
+            if (auto color = nameColor(colors).name; !color.empty()) node.attributes.push_back({"color", color});
             node.attributes.push_back({"size", sizeWord(box)});
             if (!track.material.empty()) node.attributes.push_back({"material", track.material});
         }
