@@ -192,7 +192,10 @@ Bounds hullBounds(const ObjectTrack& track) {
     Bounds b;
     for (const auto& v : track.views)
         for (const auto& p : v.points)
-            for (int a = 0; a < 3; ++a) b.lo[a] = std::min(b.lo[a], vec(p)[a]), b.hi[a] = std::max(b.hi[a], vec(p)[a]);
+            for (int a = 0; a < 3; ++a) {
+                const double x = vec(p)[a];
+                b.lo[a] = std::min(b.lo[a], x), b.hi[a] = std::max(b.hi[a], x);
+            }
     return b;
 }
 
@@ -201,13 +204,17 @@ Bounds hullBounds(const ObjectTrack& track) {
 // from all their views in both regions.
 void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskView>& cameras) {
     for (std::size_t a = 0; a < tracks.size(); ++a) {
-        if (!tracks[a].carved) continue;
-        for (std::size_t b = a + 1; b < tracks.size(); ++b) {
-            ObjectTrack &one = tracks[a], &other = tracks[b];
+        ObjectTrack& one = tracks[a];
+        if (!one.carved) continue;
+        // One's bounds and centre, again only when a merge changes them.
+        Bounds first = hullBounds(one);
+        auto c1 = trackCentre(one);
+        for (std::size_t b = a + 1; b < tracks.size() && c1; ++b) {
+            ObjectTrack& other = tracks[b];
             if (!other.carved || other.category != one.category || other.views.empty()) continue;
-            Bounds first = hullBounds(one), second = hullBounds(other);
-            auto c1 = trackCentre(one), c2 = trackCentre(other);
-            if (!c1 || !c2 || !second.holds(*c1) || !first.holds(*c2)) continue;
+            Bounds second = hullBounds(other);
+            auto c2 = trackCentre(other);
+            if (!c2 || !second.holds(*c1) || !first.holds(*c2)) continue;
             bool shareFrame = std::any_of(one.views.begin(), one.views.end(), [&](const Observation& v) {
                 return std::any_of(other.views.begin(), other.views.end(),
                                    [&](const Observation& w) { return w.frame == v.frame; });
@@ -215,12 +222,10 @@ void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskVi
             if (shareFrame) continue;
             std::vector<Observation> views = one.views;
             views.insert(views.end(), other.views.begin(), other.views.end());
-            HullRegion region;
-            for (int k = 0; k < 3; ++k) {
-                double lo = std::min(first.lo[k], second.lo[k]), hi = std::max(first.hi[k], second.hi[k]);
-                (k == 0 ? region.lo.x : k == 1 ? region.lo.y : region.lo.z) = lo;
-                (k == 0 ? region.hi.x : k == 1 ? region.hi.y : region.hi.z) = hi;
-            }
+            const HullRegion region{{std::min(first.lo[0], second.lo[0]), std::min(first.lo[1], second.lo[1]),
+                                     std::min(first.lo[2], second.lo[2])},
+                                    {std::max(first.hi[0], second.hi[0]), std::max(first.hi[1], second.hi[1]),
+                                     std::max(first.hi[2], second.hi[2])}};
             auto hull = carveRegion(region, views, cameras, 1.0);
             if (hull.size() < 10) continue;
             for (auto& v : views) v.points.clear();
@@ -229,6 +234,8 @@ void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskVi
             if (other.evidence.pixels > one.evidence.pixels) one.evidence = std::move(other.evidence);
             one.surface.insert(one.surface.end(), other.surface.begin(), other.surface.end());
             other.views.clear();
+            first = hullBounds(one);
+            c1 = trackCentre(one);
         }
     }
     std::erase_if(tracks, [](const ObjectTrack& t) { return t.views.empty(); });
