@@ -136,6 +136,7 @@ int ingestCommand(const IngestArguments& args) {
     options.scale = args.scale;
     options.colmap.maxImageSize = args.maxSize;
     options.colmap.vocabularyTree = args.vocabularyTree;
+    options.colmap.workDirectory = args.colmapDir;
 
     std::unique_ptr<ingest::ProgressSink> progress;
     if (args.log == "json")

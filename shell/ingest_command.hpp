@@ -23,6 +23,7 @@ struct IngestArguments {
     std::optional<double> fov;   // --fov DEG, horizontal
     int maxSize = 1024;          // --max-size: long side of the frames COLMAP sees (0: as stored)
     std::string vocabularyTree;  // --vocab-tree: COLMAP's vocabulary tree, for loop detection
+    std::string colmapDir;       // --colmap-dir: COLMAP's kept work folder, its finished run read back
     std::string log = "bar";     // bar | quiet | json
     std::string update;          // a scene of the same place to update instead of adding a new one
 };

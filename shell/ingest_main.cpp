@@ -63,9 +63,13 @@ int run(int argc, char** argv) {
     ingestCmd
         ->add_option("--vocab-tree", ingestArgs.vocabularyTree,
                      "a COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection in sequential matching (Debian "
-                     "ships none; without it, loops are closed by matching 40 frames spread through the capture all "
+                     "ships none; without it, loops are closed by matching 30 frames spread through the capture all "
                      "against all)")
         ->check(CLI::ExistingFile);
+    ingestCmd->add_option("--colmap-dir", ingestArgs.colmapDir,
+                          "COLMAP works in this folder and leaves it (default: a new folder under /tmp, removed "
+                          "after a success); a later ingest of the same frames reads the finished run back instead "
+                          "of running COLMAP again");
     ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")
         ->check(CLI::PositiveNumber);
     ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");

@@ -68,6 +68,8 @@ struct WorkFrame {
     std::string name;       // relative to images/: "<group>/frame000000.png"
     cv::Size original;      // the frame as stored (as OpenCV reads it)
     cv::Size work;          // as COLMAP sees it
+    fs::path source;        // the frame's file
+    bool upright = true;    // stored upright (no EXIF turn)
 };
 
 // Frames of one image size with one known camera (or an unknown one): one COLMAP camera.
@@ -84,6 +86,84 @@ cv::Size scaledDown(cv::Size size, int maxSize) {
     double s = static_cast<double>(maxSize) / longSide;
     return {std::max(1, static_cast<int>(std::lround(size.width * s))),
             std::max(1, static_cast<int>(std::lround(size.height * s)))};
+}
+
+// The work folder: a new one under /tmp, or the one given (created when missing).
+fs::path makeWorkFolder(const std::string& given) {
+    if (!given.empty()) {
+        std::error_code ec;
+        fs::create_directories(given, ec);
+        if (ec || !fs::is_directory(given))
+            throw Error(ErrorKind::Input, fmt::format("cannot create the COLMAP work folder {}: {}", given,
+                                                      ec ? ec.message() : "not a folder"));
+        return fs::absolute(given);
+    }
+    std::string pattern = (fs::temp_directory_path() / "smql-colmap-XXXXXX").string();
+    if (!mkdtemp(pattern.data()))
+        throw Error(ErrorKind::Input,
+                    fmt::format("cannot create a work folder under {}", fs::temp_directory_path().string()));
+    return pattern;
+}
+
+// Empties a work folder before a run. A folder holding anything but an earlier run (its colmap.log)
+// is someone else's: refused rather than emptied.
+void clearWorkFolder(const fs::path& work) {
+    std::error_code ec;
+    if (fs::is_empty(work, ec)) return;
+    if (!fs::exists(work / "colmap.log"))
+        throw Error(
+            ErrorKind::Input,
+            fmt::format("the COLMAP work folder {} holds files of no COLMAP run; it would be emptied", work.string()),
+            std::nullopt, "give a new or empty folder, or one an earlier ingest ran COLMAP in");
+    for (const auto& entry : fs::directory_iterator(work)) fs::remove_all(entry.path());
+}
+
+// Links a frame into COLMAP's image folder when COLMAP can read it as it is, else writes it scaled
+// down and upright (as OpenCV reads it).
+void writeWorkImage(const WorkFrame& w, const fs::path& target) {
+    if (w.work == w.original && w.upright) {
+        std::error_code ec;
+        fs::create_symlink(w.source, target, ec);
+        if (ec) fs::copy_file(w.source, target);
+        return;
+    }
+    cv::Mat small;
+    cv::resize(cv::imread(w.source.string(), cv::IMREAD_COLOR), small, w.work, 0, 0, cv::INTER_AREA);
+    if (!cv::imwrite(target.string(), small, {cv::IMWRITE_JPEG_QUALITY, 95}))
+        throw Error(ErrorKind::Input, fmt::format("cannot write {}", target.string()));
+}
+
+std::string readText(const fs::path& file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// What a run's result depends on: its options and, per frame, the file (its length and time), its
+// size, the camera and any given pose. Two runs that describe alike give the same model.
+std::string describeRun(const Capture& capture, const std::vector<WorkFrame>& workFrames,
+                        const std::vector<CameraGroup>& groups, const ColmapOptions& options) {
+    std::string out = fmt::format(
+        "smql COLMAP run: max size {}, exhaustive up to {}, overlap {}, loop frames {}, min matches {}, "
+        "vocabulary tree '{}', layout {}\n",
+        options.maxImageSize, options.exhaustiveUpTo, options.sequentialOverlap, options.loopFrames, options.minMatches,
+        options.vocabularyTree, capture.layout);
+    for (const CameraGroup& g : groups) {
+        out += fmt::format("camera {} {}x{}", g.folder, g.work.width, g.work.height);
+        if (g.known)
+            out += fmt::format(" {:.17g} {:.17g} {:.17g} {:.17g}", g.known->fx, g.known->fy, g.known->cx, g.known->cy);
+        out += "\n";
+    }
+    for (const WorkFrame& w : workFrames) {
+        std::error_code ec;
+        out += fmt::format("{} {} {} bytes, written {}, {}x{}", w.name, w.source.string(), fs::file_size(w.source, ec),
+                           fs::last_write_time(w.source, ec).time_since_epoch().count(), w.original.width,
+                           w.original.height);
+        if (const auto& pose = capture.frames[w.frame].pose)
+            out += fmt::format(" pose {:.17g} {:.17g} {:.17g} {:.17g}", fmt::join(pose->rotation, " "),
+                               pose->translation.x, pose->translation.y, pose->translation.z);
+        out += "\n";
+    }
+    return out;
 }
 
 // The frame's camera at its stored size when the capture knows it; the guess is left to COLMAP.
@@ -193,16 +273,10 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
             std::nullopt, kRetryHint);
 
     ColmapRun run;
-    std::string pattern = (fs::temp_directory_path() / "smql-colmap-XXXXXX").string();
-    if (!mkdtemp(pattern.data()))
-        throw Error(ErrorKind::Input,
-                    fmt::format("cannot create a work folder under {}", fs::temp_directory_path().string()));
-    const fs::path work = pattern;
+    const fs::path work = makeWorkFolder(options.workDirectory);
     run.workDirectory = work.string();
     run.logPath = (work / "colmap.log").string();
     const fs::path images = work / "images", database = work / "database.db", sparse = work / "sparse";
-    fs::create_directories(images);
-    fs::create_directories(sparse);
 
     // Frames into COLMAP's image folder, one sub-folder per camera group: linked when COLMAP can read
     // them as they are, else written scaled down (and turned upright, as OpenCV reads them).
@@ -219,7 +293,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
                                             frame.index, frame.colorPath));
             continue;
         }
-        WorkFrame w{i, {}, image.size(), scaledDown(image.size(), options.maxImageSize)};
+        WorkFrame w{i, {}, image.size(), scaledDown(image.size(), options.maxImageSize), fs::absolute(frame.colorPath)};
         std::optional<Intrinsics> known = knownCamera(capture, frame, image.size());
         if (known) known = capture_detail::scaleIntrinsics(*known, w.work.width, w.work.height);
         auto group = std::find_if(groups.begin(), groups.end(),
@@ -230,25 +304,14 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
             std::string folder = fmt::format("{}x{}", w.original.width, w.original.height);
             if (sameSize > 0) folder += fmt::format("-{}", sameSize + 1);
             groups.push_back(CameraGroup{folder, w.original, w.work, known, {}});
-            fs::create_directories(images / folder);
             group = groups.end() - 1;
         }
         group->frames.push_back(workFrames.size());
 
-        fs::path source = fs::absolute(frame.colorPath);
-        std::string extension = capture_detail::lowerCase(source.extension().string());
+        std::string extension = capture_detail::lowerCase(w.source.extension().string());
         w.name = fmt::format("{}/frame{:06d}{}", group->folder, i, extension);
-        bool upright = capture_detail::readExif(source).orientation == 1;
-        if (w.work != w.original || !upright) {
-            cv::Mat small;
-            cv::resize(image, small, w.work, 0, 0, cv::INTER_AREA);
-            if (!cv::imwrite((images / w.name).string(), small, {cv::IMWRITE_JPEG_QUALITY, 95}))
-                throw Error(ErrorKind::Input, fmt::format("cannot write {}", (images / w.name).string()));
-            scaled += w.work != w.original;
-        } else {
-            fs::create_symlink(source, images / w.name, ec);
-            if (ec) fs::copy_file(source, images / w.name, fs::copy_options::overwrite_existing);
-        }
+        w.upright = capture_detail::readExif(w.source).orientation == 1;
+        scaled += w.work != w.original;
         workFrames.push_back(std::move(w));
     }
     if (workFrames.size() < 2)
@@ -256,6 +319,21 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
                     fmt::format("{}: COLMAP needs at least 2 frames, {} of {} have a readable image", capture.path,
                                 workFrames.size(), capture.frames.size()),
                     std::nullopt, kRetryHint);
+    // The run's inputs, written last: a folder whose record matches them holds this run, finished.
+    const fs::path record = work / "smql-run.txt";
+    const std::string inputs = describeRun(capture, workFrames, groups, options);
+    run.reused = !options.workDirectory.empty() && readText(record) == inputs;
+    if (run.reused) {
+        run.notes.push_back(
+            fmt::format("COLMAP's model of these {} frames read from {}, run there before (empty the "
+                        "folder to run COLMAP again)",
+                        workFrames.size(), run.workDirectory));
+    } else {
+        clearWorkFolder(work);
+        fs::create_directories(sparse);
+        for (const CameraGroup& group : groups) fs::create_directories(images / group.folder);
+        for (const WorkFrame& w : workFrames) writeWorkImage(w, images / w.name);
+    }
     if (scaled > 0)
         run.notes.push_back(
             fmt::format("COLMAP sees {} of {} frames scaled down to {} pixels on the long side "
@@ -265,6 +343,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
 
     const std::string threads = fmt::format("{}", options.threads);
     auto runStep = [&](const std::string& step, const std::string& arguments) {
+        if (run.reused) return;
         std::string line =
             fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
                         shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run.logPath),
@@ -368,14 +447,16 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
     // keep it: COLMAP only triangulates the matched features with the given poses and cameras.
     const bool posed = std::all_of(workFrames.begin(), workFrames.end(),
                                    [&](const WorkFrame& w) { return capture.frames[w.frame].pose.has_value(); });
-    // A successful run says where its time went, and its work folder goes unless asked to stay; a
-    // failed one stays for its log.
+    // A successful run says where its time went and records its inputs; its work folder goes unless
+    // asked to stay. A failed one stays for its log.
     auto leaveWorkFolder = [&] {
+        if (run.reused) return;
         std::vector<std::string> times;
         for (const auto& [step, seconds] : run.steps) times.push_back(fmt::format("{} {:.1f} s", step, seconds));
         run.notes.push_back(fmt::format("COLMAP's steps: {}", fmt::join(times, ", ")));
+        std::ofstream(record) << inputs;
         std::error_code removeError;
-        if (options.keepWorkDirectory)
+        if (options.keepWorkDirectory || !options.workDirectory.empty())
             run.notes.push_back(
                 fmt::format("COLMAP work folder (images, database, models, log): {}", run.workDirectory));
         else

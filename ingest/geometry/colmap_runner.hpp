@@ -22,6 +22,9 @@ struct ColmapOptions {
     int minMatches = 15;             // verified matches that make two frames overlap (COLMAP's mapper default)
     int threads = -1;                // COLMAP's num_threads (-1: all cores)
     bool keepWorkDirectory = false;  // keep the work folder (images, database, models, colmap.log) after a success too
+    // A work folder of one's own, always kept (empty: a new one under /tmp). When it holds the finished run of
+    // the same frames with the same options, COLMAP does not run again: its model is read back.
+    std::string workDirectory;
 };
 
 struct ColmapRun {
@@ -32,6 +35,7 @@ struct ColmapRun {
     std::size_t registered = 0;  // frames that got a pose
     std::size_t points = 0;      // sparse points
     std::size_t models = 0;      // models the mapper wrote (the largest is used)
+    bool reused = false;         // the work folder held this run already: no COLMAP step ran
     // Each COLMAP command run and its wall-clock seconds (a step run once per camera, summed), in order.
     std::vector<std::pair<std::string, double>> steps;
     std::vector<std::string> notes;

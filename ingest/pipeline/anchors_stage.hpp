@@ -1,7 +1,8 @@
 // The anchors stage: the floor (the aligned cloud's extent at z = 0, without
 // outliers: strays do not stretch it), the
 // ceiling when the alignment found one, and walls from vertical planes, added
-// to the scene. Doors and windows come later, from the object source.
+// to the scene. Doors and windows come later, from the object source and the
+// openings stage.
 #pragma once
 
 #include <cstddef>

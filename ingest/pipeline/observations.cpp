@@ -80,27 +80,19 @@ std::vector<Observation> observeInstances(const FrameImages& images, const Pose&
 void liftSparsePoints(std::vector<Observation>& observations, const FrameImages& images, const Pose& pose,
                       const std::vector<SparsePoint>& points, std::vector<std::uint32_t>& inView, double depthBand) {
     if (images.instances.empty() || observations.empty()) return;
-    const auto& K = images.intrinsics;
-    const auto& R = pose.rotation;
-    const auto& t = pose.translation;
     std::unordered_map<std::uint16_t, std::size_t> slot;
     for (std::size_t i = 0; i < observations.size(); ++i) slot.emplace(observations[i].instance, i);
     std::vector<std::vector<std::pair<double, std::uint32_t>>> hits(observations.size());  // (depth, point)
     inView.resize(points.size(), 0);
     for (std::uint32_t index = 0; index < points.size(); ++index) {
-        const auto& p = points[index].position;
-        double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
-        // camera = R^T (p - t)
-        double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
-               z = R[2] * dx + R[5] * dy + R[8] * dz;
-        if (!(z > 1e-6)) continue;
-        int u = static_cast<int>(std::lround(K.fx * x / z + K.cx)),
-            v = static_cast<int>(std::lround(K.fy * y / z + K.cy));
+        auto at = projectToCamera(points[index].position, pose, images.intrinsics);
+        if (!at) continue;
+        int u = static_cast<int>(std::lround(at->x)), v = static_cast<int>(std::lround(at->y));
         if (u < 0 || v < 0 || u >= images.instances.cols || v >= images.instances.rows) continue;
         ++inView[index];
         auto it = slot.find(images.instances.at<std::uint16_t>(v, u));
         if (it == slot.end()) continue;
-        hits[it->second].push_back({z, index});
+        hits[it->second].push_back({at->z, index});
     }
     for (std::size_t i = 0; i < observations.size(); ++i) {
         auto& h = hits[i];
@@ -145,6 +137,14 @@ std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector
     for (const auto& v : views)
         if (auto it = byFrame.find(v.frame); it != byFrame.end())
             silhouettes.push_back({it->second, v.instance, v.bounds, &v.outline});
+    // Neighbouring frames see much alike: tried in an order that spreads them (the golden-ratio
+    // sequence), a voxel outside the hull misses a silhouette sooner.
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t i = 0; i < silhouettes.size(); ++i)
+        order.emplace_back(std::fmod(static_cast<double>(i) * 0.6180339887498949, 1.0), i);
+    std::sort(order.begin(), order.end());
+    std::vector<Silhouette> spread;
+    for (const auto& entry : order) spread.push_back(silhouettes[entry.second]);
     const auto& [lo, hi] = region;
     std::vector<model::Vec3> hull;
     for (int i = 0; i < grid; ++i)
@@ -152,8 +152,11 @@ std::vector<model::Vec3> carveRegion(const HullRegion& region, const std::vector
             for (int k = 0; k < grid; ++k) {
                 model::Vec3 p{lo.x + (i + 0.5) * (hi.x - lo.x) / grid, lo.y + (j + 0.5) * (hi.y - lo.y) / grid,
                               lo.z + (k + 0.5) * (hi.z - lo.z) / grid};
-                int seen = 0, inside = 0;
-                for (const auto& [m, instance, box, outline] : silhouettes) {
+                int seen = 0, inside = 0, left = static_cast<int>(spread.size());
+                for (const auto& [m, instance, box, outline] : spread) {
+                    // Stop once even the views left, all inside, could not reach the share.
+                    if (inside + left < minShare * (seen + left)) break;
+                    --left;
                     auto at = projectToImage(p, m->pose, m->intrinsics);
                     if (!at) continue;
                     ++seen;
@@ -211,25 +214,6 @@ void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskV
         for (auto& v : track->views) v.points.clear();
         track->views.front().points = std::move(hull);
     }
-}
-
-std::optional<cv::Point3d> projectToCamera(const model::Vec3& p, const Pose& pose, const Intrinsics& K) {
-    const auto& R = pose.rotation;
-    const auto& t = pose.translation;
-    double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
-    // camera = R^T (p - t)
-    double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
-           z = R[2] * dx + R[5] * dy + R[8] * dz;
-    if (!(z > 1e-6)) return std::nullopt;
-    return cv::Point3d(K.fx * x / z + K.cx, K.fy * y / z + K.cy, z);
-}
-
-std::optional<cv::Point2d> projectToImage(const model::Vec3& p, const Pose& pose, const Intrinsics& K) {
-    auto at = projectToCamera(p, pose, K);
-    // Within the image: nearest a pixel centre 0 .. size - 1.
-    if (!at || !(at->x >= -0.5 && at->y >= -0.5 && at->x < K.width - 0.5 && at->y < K.height - 0.5))
-        return std::nullopt;
-    return cv::Point2d(at->x, at->y);
 }
 
 bool hullFillsBox(const std::vector<model::Vec3>& hull, const cv::Rect& bounds, const MaskView& camera) {

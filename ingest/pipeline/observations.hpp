@@ -2,6 +2,7 @@
 // frame), colour samples, where it was in the image, and an evidence crop.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -92,6 +93,14 @@ MaskView maskView(std::uint32_t frame, const cv::Mat& instances, const Intrinsic
 // An axis-aligned region of the capture frame to carve a hull in.
 struct HullRegion {
     model::Vec3 lo, hi;
+    bool holds(const model::Vec3& p) const {
+        return lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z;
+    }
+    // The smallest region that holds both.
+    HullRegion united(const HullRegion& other) const {
+        return {{std::min(lo.x, other.lo.x), std::min(lo.y, other.lo.y), std::min(lo.z, other.lo.z)},
+                {std::max(hi.x, other.hi.x), std::max(hi.y, other.hi.y), std::max(hi.z, other.hi.z)}};
+    }
 };
 
 // The visual hull of `views` inside `region`: the centres of a grid x grid x
@@ -117,12 +126,27 @@ bool hullFillsBox(const std::vector<model::Vec3>& hull, const cv::Rect& bounds, 
 void carveVisualHulls(std::vector<ObjectTrack*>& tracks, const std::vector<MaskView>& masks, double minShare = 0.8,
                       int grid = 28);
 
-// Where a capture-frame point falls in an image with camera-to-world `pose`
-// and intrinsics `K`, in pixels (pixel centres at whole numbers): nothing
-// when it is behind the camera or outside.
-std::optional<cv::Point2d> projectToImage(const model::Vec3& p, const Pose& pose, const Intrinsics& K);
-// The same, inside the image or not, with the point's depth along the camera's axis as z.
-std::optional<cv::Point3d> projectToCamera(const model::Vec3& p, const Pose& pose, const Intrinsics& K);
+// Where a capture-frame point falls in an image with camera-to-world `pose` and intrinsics `K`, in
+// pixels (pixel centres at whole numbers), with its depth along the camera's axis as z: nothing when it
+// is behind the camera. Inline, as the two below: carving calls them for every voxel in every view.
+inline std::optional<cv::Point3d> projectToCamera(const model::Vec3& p, const Pose& pose, const Intrinsics& K) {
+    const auto& R = pose.rotation;
+    const auto& t = pose.translation;
+    double dx = p.x - t.x, dy = p.y - t.y, dz = p.z - t.z;
+    // camera = R^T (p - t)
+    double x = R[0] * dx + R[3] * dy + R[6] * dz, y = R[1] * dx + R[4] * dy + R[7] * dz,
+           z = R[2] * dx + R[5] * dy + R[8] * dz;
+    if (!(z > 1e-6)) return std::nullopt;
+    return cv::Point3d(K.fx * x / z + K.cx, K.fy * y / z + K.cy, z);
+}
+// The same without the depth: nothing when it falls outside the image either.
+inline std::optional<cv::Point2d> projectToImage(const model::Vec3& p, const Pose& pose, const Intrinsics& K) {
+    auto at = projectToCamera(p, pose, K);
+    // Within the image: nearest a pixel centre 0 .. size - 1.
+    if (!at || !(at->x >= -0.5 && at->y >= -0.5 && at->x < K.width - 0.5 && at->y < K.height - 0.5))
+        return std::nullopt;
+    return cv::Point2d(at->x, at->y);
+}
 
 // A JPEG of the instance's bounding box (padded 10%), longest side `size`.
 std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size);

@@ -11,6 +11,7 @@
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/objects_stage.hpp"
+#include "ingest/pipeline/openings_stage.hpp"
 #include "ingest/pipeline/relations_stage.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
 
@@ -57,6 +58,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     scene.info = sceneInfo(capture, options, frames, aligned);
     auto walls = runner.run(AnchorsStage{aligned, scene});
     auto tracked = runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
+    runner.run(OpeningsStage{aligned, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
     return result;
 }

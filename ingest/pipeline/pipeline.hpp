@@ -1,5 +1,5 @@
 // Capture -> metric memory (docs/ingest.md): frames, geometry, metric
-// alignment, anchors, objects, attributes, relations, two-layer descriptions.
+// alignment, anchors, objects, attributes, openings, relations, two-layer descriptions.
 // The result is one SceneData that the engine stores in one transaction.
 // pipeline.cpp runs the stages (*_stage.hpp, stage_data.hpp) in order.
 #pragma once

@@ -19,6 +19,7 @@ namespace {
 using Vec = cv::Vec3d;
 
 Vec vec(const model::Vec3& p) { return {p.x, p.y, p.z}; }
+model::Vec3 point(const Vec& v) { return {v[0], v[1], v[2]}; }
 
 struct Ray {
     Vec origin, direction;  // unit direction
@@ -50,7 +51,7 @@ BoxView boxView(const Observation& view, const MaskView& camera) {
 
 // Where `x` falls in the view's image, and how deep: nothing behind the camera.
 std::optional<cv::Point3d> project(const Vec& x, const MaskView& camera) {
-    return projectToCamera({x[0], x[1], x[2]}, camera.pose, camera.intrinsics);
+    return projectToCamera(point(x), camera.pose, camera.intrinsics);
 }
 
 // How far `x` falls from the box's centre, in box widths or heights (the larger); nothing behind
@@ -181,21 +182,11 @@ std::size_t joinPlaced(RayGrouper& grouper, const std::vector<UnplacedView>& unp
     return joined;
 }
 
-struct Bounds {
-    Vec lo{1e18, 1e18, 1e18}, hi{-1e18, -1e18, -1e18};
-    bool holds(const Vec& x) const {
-        return lo[0] <= x[0] && x[0] <= hi[0] && lo[1] <= x[1] && x[1] <= hi[1] && lo[2] <= x[2] && x[2] <= hi[2];
-    }
-};
-
-Bounds hullBounds(const ObjectTrack& track) {
-    Bounds b;
+// The bounds of a track's points: its hull's, once carved.
+HullRegion hullBounds(const ObjectTrack& track) {
+    HullRegion b{{1e18, 1e18, 1e18}, {-1e18, -1e18, -1e18}};
     for (const auto& v : track.views)
-        for (const auto& p : v.points)
-            for (int a = 0; a < 3; ++a) {
-                const double x = vec(p)[a];
-                b.lo[a] = std::min(b.lo[a], x), b.hi[a] = std::max(b.hi[a], x);
-            }
+        for (const auto& p : v.points) b = b.united({p, p});
     return b;
 }
 
@@ -207,14 +198,14 @@ void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskVi
         ObjectTrack& one = tracks[a];
         if (!one.carved) continue;
         // One's bounds and centre, again only when a merge changes them.
-        Bounds first = hullBounds(one);
+        HullRegion first = hullBounds(one);
         auto c1 = trackCentre(one);
         for (std::size_t b = a + 1; b < tracks.size() && c1; ++b) {
             ObjectTrack& other = tracks[b];
             if (!other.carved || other.category != one.category || other.views.empty()) continue;
-            Bounds second = hullBounds(other);
+            HullRegion second = hullBounds(other);
             auto c2 = trackCentre(other);
-            if (!c2 || !second.holds(*c1) || !first.holds(*c2)) continue;
+            if (!c2 || !second.holds(point(*c1)) || !first.holds(point(*c2))) continue;
             bool shareFrame = std::any_of(one.views.begin(), one.views.end(), [&](const Observation& v) {
                 return std::any_of(other.views.begin(), other.views.end(),
                                    [&](const Observation& w) { return w.frame == v.frame; });
@@ -222,11 +213,7 @@ void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskVi
             if (shareFrame) continue;
             std::vector<Observation> views = one.views;
             views.insert(views.end(), other.views.begin(), other.views.end());
-            const HullRegion region{{std::min(first.lo[0], second.lo[0]), std::min(first.lo[1], second.lo[1]),
-                                     std::min(first.lo[2], second.lo[2])},
-                                    {std::max(first.hi[0], second.hi[0]), std::max(first.hi[1], second.hi[1]),
-                                     std::max(first.hi[2], second.hi[2])}};
-            auto hull = carveRegion(region, views, cameras, 1.0);
+            auto hull = carveRegion(first.united(second), views, cameras, 1.0);
             if (hull.size() < 10) continue;
             for (auto& v : views) v.points.clear();
             views.front().points = std::move(hull);

@@ -144,7 +144,7 @@ check "ingest logs stages as JSON lines" bash -c "'$smql' ingest '$work/capture'
 import json, sys
 stages = [json.loads(l) for l in open(sys.argv[1])]
 names = [e[\"stage\"] for e in stages if e[\"event\"] == \"stage_finished\"]
-assert names == [\"frames\", \"align\", \"anchors\", \"objects\", \"relations\", \"write\"], names
+assert names == [\"frames\", \"align\", \"anchors\", \"objects\", \"openings\", \"relations\", \"write\"], names
 ' '$work/log'"
 check "check-ingest reports F1 as JSON" bash -c "'$smql' check-ingest '$work/memory' --truth '$work/capture/truth.json' --format json | python3 -c '
 import json, sys
@@ -223,6 +223,16 @@ check "Ctrl-C stops an ingest with nothing written" bash -c "
 check "a second ingest of the same place is a new scene" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet && '$smql' '$work/memory' -c 'SHOW SCENES' | grep -q again"
 check "an ingest into a taken scene name is refused" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet"
 check "rgbd-dining ingests without labels" bash -c "'$smql' ingest '$data/rgbd-dining' --db '$work/dining' --quiet && '$smql' '$work/dining' -c 'COUNT object' | sed -n 3p | grep -qv '^0$'"
+check "rgbd-dining's archway is found as a door, an opening in the left wall" bash -c "'$smql' '$work/dining' -csv -c 'FIND door' | tail -n +2 | grep -q '^[0-9]*,door,'"
+if command -v colmap >/dev/null; then
+  check "--colmap-dir keeps COLMAP's run, and the same frames read it back without COLMAP" bash -c "
+    '$smql' ingest '$data/rgbd-dining' --db '$work/sfm1' --geometry colmap --colmap-dir '$work/sfm' --quiet &&
+    [ -f '$work/sfm/smql-run.txt' ] && cp '$work/sfm/colmap.log' '$work/sfm.log' &&
+    '$smql' ingest '$data/rgbd-dining' --db '$work/sfm2' --geometry colmap --colmap-dir '$work/sfm' >'$work/sfm.out' 2>&1 &&
+    grep -q 'read from $work/sfm, run there before' '$work/sfm.out' &&
+    cmp -s '$work/sfm/colmap.log' '$work/sfm.log' &&
+    diff <('$smql' '$work/sfm1' -csv -c 'FIND object') <('$smql' '$work/sfm2' -csv -c 'FIND object')"
+fi
 # The detector (--objects detect) needs its model, which scripts/detector/setup.sh installs.
 if [ -f /usr/local/share/smql/models/nanodet.onnx ]; then
   check "rgbd-dining with --objects detect gives named objects (chairs, a table), no unnamed ones" bash -c "

@@ -153,3 +153,45 @@ TEST_CASE("1920-pixel frames reach COLMAP at 1024 and come back in their own pix
     CHECK(capture.intrinsics.cx == Approx(959.5).epsilon(1e-9));
     CHECK(capture.intrinsics.cy == Approx(719.5).epsilon(1e-9));
 }
+
+TEST_CASE("a work folder of one's own keeps COLMAP's run for the same frames to read back", "[colmap]") {
+    ScratchDir dir;
+    std::string walk = writeWalk(dir);
+    fs::path photos = dir.path / "photos";
+    for (int i = 1; i <= 6; ++i) copyFrame(walk, i, photos, fmt::format("p{}.png", i));
+    ColmapOptions options;
+    options.workDirectory = (dir.path / "work").string();
+
+    Capture first = readCapture(photos.string());
+    ColmapRun ran = runColmap(first, options);
+    CHECK(!ran.reused);
+    CHECK(!ran.steps.empty());
+    REQUIRE(fs::exists(dir.path / "work" / "smql-run.txt"));
+    REQUIRE(ran.registered >= 5);
+
+    // The same frames again: no step runs, and the poses and points are the run's.
+    Capture second = readCapture(photos.string());
+    ColmapRun read = runColmap(second, options);
+    CHECK(read.reused);
+    CHECK(read.steps.empty());
+    CHECK(read.registered == ran.registered);
+    CHECK(second.points.size() == first.points.size());
+    for (std::size_t i = 0; i < first.frames.size(); ++i) {
+        REQUIRE(second.frames[i].pose.has_value() == first.frames[i].pose.has_value());
+        if (first.frames[i].pose)
+            CHECK(second.frames[i].pose->translation.x == first.frames[i].pose->translation.x);
+    }
+
+    // A photo written again is another input: COLMAP runs again (here `false`, which fails at once).
+    copyFrame(walk, 7, photos, "p3.png");
+    options.command = "false";
+    Capture changed = readCapture(photos.string());
+    CHECK_THROWS_WITH(runColmap(changed, options), Catch::Contains("colmap feature_extractor failed"));
+
+    // A folder of other files is refused, not emptied.
+    fs::create_directories(dir.path / "mine");
+    std::ofstream(dir.path / "mine" / "notes.txt") << "keep me";
+    options.workDirectory = (dir.path / "mine").string();
+    CHECK_THROWS_WITH(runColmap(changed, options), Catch::Contains("holds files of no COLMAP run"));
+    CHECK(fs::exists(dir.path / "mine" / "notes.txt"));
+}
