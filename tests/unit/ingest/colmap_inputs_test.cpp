@@ -178,8 +178,7 @@ TEST_CASE("a work folder of one's own keeps COLMAP's run for the same frames to 
     CHECK(second.points.size() == first.points.size());
     for (std::size_t i = 0; i < first.frames.size(); ++i) {
         REQUIRE(second.frames[i].pose.has_value() == first.frames[i].pose.has_value());
-        if (first.frames[i].pose)
-            CHECK(second.frames[i].pose->translation.x == first.frames[i].pose->translation.x);
+        if (first.frames[i].pose) CHECK(second.frames[i].pose->translation.x == first.frames[i].pose->translation.x);
     }
 
     // A photo written again is another input: COLMAP runs again (here `false`, which fails at once).
