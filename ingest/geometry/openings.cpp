@@ -9,13 +9,9 @@
 namespace smql::ingest {
 
 model::Box WallOpening::box(const WallSegment& w) const {
-    model::Vec3 d = w.direction();
-    double a = (along0 + along1) / 2;
-    model::Box b;
-    b.center = {-w.offset * w.normal.x + a * d.x, -w.offset * w.normal.y + a * d.y, (z0 + z1) / 2};
-    b.size = {along1 - along0, w.thickness, z1 - z0};
-    b.yaw = std::atan2(d.y, d.x);
-    return b;
+    WallSegment part = w;
+    part.along0 = along0, part.along1 = along1, part.z0 = z0, part.z1 = z1;
+    return part.box();
 }
 
 namespace {
