@@ -29,10 +29,7 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     if (!out.alignment.floorFound)
         progress.note("no floor plane found: the frame is levelled by the cameras' up direction");
     out.cloud = transformed(frames.structure, out.alignment);
-    for (const auto& c : frames.cameras) {
-        out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));
-        out.cameraFrames.push_back(c.frame);
-    }
+    for (const auto& c : frames.cameras) out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));
     return out;
 }
 

@@ -447,9 +447,10 @@ std::vector<ObjectTrack> DetectionTracker::take() {
     return out;
 }
 
+bool isOpening(const std::string& category) { return category == "door" || category == "window"; }
+
 model::NodeKind detectionKind(const std::string& category) {
-    return category == "wall" || category == "floor" || category == "ceiling" || category == "door" ||
-                   category == "window"
+    return category == "wall" || category == "floor" || category == "ceiling" || isOpening(category)
                ? model::NodeKind::Anchor
                : model::NodeKind::Object;
 }

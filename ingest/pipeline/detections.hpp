@@ -66,6 +66,8 @@ cv::Rect detectionBounds(const Detection& detection, const Intrinsics& K, int st
 // What a detection of `category` becomes: structure is geometry's job, and doors and windows become
 // anchors like labelled masks (Anchor); everything else an object.
 model::NodeKind detectionKind(const std::string& category);
+// Doors and windows: anchors that are openings in a wall (a plane segment in it).
+bool isOpening(const std::string& category);
 
 // The detection's own outline (polygons or RLE mask) at the working
 // resolution, cropped to detectionBounds; empty when the box is all it gives.

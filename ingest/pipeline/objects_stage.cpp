@@ -1,4 +1,5 @@
 #include "ingest/pipeline/objects_stage.hpp"
+#include "ingest/pipeline/detections.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -86,7 +87,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         auto& track = tracks[t];
         progress.advanced(t + 1);
         const auto& category = track.category;
-        bool opening = category == "door" || category == "window";
+        bool opening = isOpening(category);
         if (track.kind == NodeKind::Anchor && !opening) continue;  // walls, floor, ceiling: geometry's job
         if (static_cast<int>(track.views.size()) < options.minObjectViews) continue;
 

@@ -1,4 +1,5 @@
 #include "ingest/pipeline/openings_stage.hpp"
+#include "ingest/pipeline/detections.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,12 +17,11 @@ using model::NodeKind;
 std::vector<WallOpening> OpeningsStage::run(StageProgress& progress) {
     if (!depth || walls.empty()) return {};
     std::unordered_map<std::uint32_t, model::Vec3> cameras;
-    for (std::size_t c = 0; c < aligned.cameraCentres.size(); ++c)
-        cameras.emplace(aligned.cameraFrames[c], aligned.cameraCentres[c]);
+    for (const auto& [frame, centre] : cameraCentres) cameras.emplace(static_cast<std::uint32_t>(frame), centre);
     // Doors and windows the object source gave stand: an opening where one of them is, is that one.
     std::vector<model::Box> given;
     for (const auto& n : scene.nodes)
-        if (n.kind == NodeKind::Anchor && (n.category == "door" || n.category == "window")) given.push_back(n.box);
+        if (n.kind == NodeKind::Anchor && isOpening(n.category)) given.push_back(n.box);
     std::vector<WallOpening> added;
     for (const WallOpening& o : findOpenings(aligned.cloud, cameras, walls)) {
         model::Box box = o.box(walls[o.wall]);

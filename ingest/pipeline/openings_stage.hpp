@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ingest/geometry/openings.hpp"
@@ -20,6 +21,7 @@ namespace smql::ingest {
 struct OpeningsStage {
     static constexpr std::string_view kName = "openings";
     const AlignedCapture& aligned;
+    const std::vector<std::pair<std::size_t, model::Vec3>>& cameraCentres;  // frame, centre in the aligned frame
     const std::vector<WallSegment>& walls;
     bool depth;  // the cloud's points came from depth frames, each with its frame
     model::SceneData& scene;

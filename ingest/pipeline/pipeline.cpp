@@ -58,7 +58,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     scene.info = sceneInfo(capture, options, frames, aligned);
     auto walls = runner.run(AnchorsStage{aligned, scene});
     auto tracked = runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
-    runner.run(OpeningsStage{aligned, walls, framesHaveDepth(capture), scene});
+    runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
     return result;
 }

@@ -1,4 +1,5 @@
 #include "ingest/pipeline/quality.hpp"
+#include "ingest/pipeline/detections.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,8 +19,7 @@ using model::NodeId;
 namespace {
 
 bool isStructural(const Node& n) {
-    return n.kind == model::NodeKind::Anchor &&
-           (n.category == "wall" || n.category == "door" || n.category == "window");
+    return n.kind == model::NodeKind::Anchor && (n.category == "wall" || isOpening(n.category));
 }
 
 bool counts(const Node& n) { return !n.hidden && n.geometry != model::GeometryKind::None; }

@@ -44,9 +44,8 @@ struct FramePass {
 
 struct AlignedCapture {
     Alignment alignment;
-    PointCloud cloud;                         // the structure cloud in the aligned frame
-    std::vector<model::Vec3> cameraCentres;   // of FramePass::cameras, aligned frame
-    std::vector<std::uint32_t> cameraFrames;  // ... and the frame each belongs to
+    PointCloud cloud;                        // the structure cloud in the aligned frame
+    std::vector<model::Vec3> cameraCentres;  // of FramePass::cameras, aligned frame
 };
 
 // A node the objects stage made from a track (an object, a door, a window),
