@@ -315,11 +315,10 @@ Engine::SceneMap Engine::sceneMap(const std::string& name) {
         throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
                     "SHOW SCENES lists the scenes");
     auto snapshot = state_->snapshot(txn, *info);
-    SceneMap map;
-    map.scene.info = snapshot->info();
-    map.scene.nodes = snapshot->nodes();
-    map.scene.relations = snapshot->storedRelations();
-    map.graph = snapshot->guidance().graph;
+    const auto& guidance = snapshot->guidance();
+    SceneMap map{{snapshot->info(), snapshot->nodes(), snapshot->storedRelations(), {}},
+                 guidance.graph,
+                 guidance.space};
     return map;
 }
 

@@ -123,6 +123,7 @@ public:
     struct SceneMap {
         model::SceneData scene;
         guide::RouteGraph graph;
+        guide::FreeSpace space;  // the free floor the graph lies on, and what blocks the rest
     };
     // The scene `name` (the current one when empty).
     SceneMap sceneMap(const std::string& name);

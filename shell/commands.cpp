@@ -36,18 +36,29 @@ std::string summary(const model::SceneData& scene) {
 }  // namespace
 
 int importCommand(const std::string& format, const std::string& file, const std::string& dbDir,
-                  const std::string& sceneName, const std::string& update) {
+                  const std::string& sceneName, const std::string& update, bool all) {
     auto start = std::chrono::steady_clock::now();
-    // Read and validate the whole file before the database is touched.
-    model::SceneData scene = import::read(format, file, sceneName);
+    // Read and validate every scene before the database is touched.
+    std::vector<model::SceneData> scenes;
+    if (all) {
+        const import::ImportFormat* f = import::findFormat(format);
+        if (!f->scenes)
+            throw Error(ErrorKind::Usage, fmt::format("--all: a {} file holds one scene", format), std::nullopt,
+                        "import it without --all");
+        for (const std::string& name : f->scenes(file)) scenes.push_back(import::read(format, file, name));
+    } else {
+        scenes.push_back(import::read(format, file, sceneName));
+    }
     auto engine = Engine::open(dbDir);
     if (!update.empty()) {
-        std::cout << engine->updateScene(update, scene).summary() << "\n";
+        std::cout << engine->updateScene(update, scenes.front()).summary() << "\n";
         return 0;
     }
-    engine->importScene(scene);
-    std::cout << fmt::format("imported scene '{}' ({}) into {} in {:.1f} ms\n", scene.info.name, summary(scene), dbDir,
-                             millisecondsSince(start));
+    for (const model::SceneData& scene : scenes) {
+        engine->importScene(scene);
+        std::cout << fmt::format("imported scene '{}' ({}) into {} in {:.1f} ms\n", scene.info.name, summary(scene),
+                                 dbDir, millisecondsSince(start));
+    }
     return 0;
 }
 

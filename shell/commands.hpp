@@ -6,9 +6,10 @@
 
 namespace smql::shell {
 
-// `smql import replica|spatiallm|json FILE --db DIR [--scene NAME | --update SCENE]`
+// `smql import FORMAT FILE --db DIR [--scene NAME | --update SCENE | --all]`: --all imports every
+// scene of a file that holds several, all read and checked before the first is stored.
 int importCommand(const std::string& format, const std::string& file, const std::string& dbDir,
-                  const std::string& sceneName, const std::string& update);
+                  const std::string& sceneName, const std::string& update, bool all);
 // `smql export json --db DIR [--scene NAME] [-o FILE]`
 int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
                   const std::string& outFile);

@@ -16,6 +16,7 @@
 #include "engine/engine.hpp"
 #include "engine/guide/route_graph.hpp"
 #include "engine/relations/predicates.hpp"
+#include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
@@ -119,13 +120,12 @@ public:
         return rs;
     }
 
-    // Left or right of the anchor, as the memory's viewpoint sees it; nullopt: neither.
-    static std::optional<model::RelationType> lateral(const Node& a, const Node& b, const relations::Frame& frame) {
-        relations::Thresholds thresholds;
-        for (auto type : {model::RelationType::LeftOf, model::RelationType::RightOf}) {
-            const auto& spec = relations::spec(type);
-            if (spec.evaluate({a, b, nullptr, thresholds, frame, thresholds.nearDistance, nullptr}) > 0) return type;
-        }
+    // Left or right of the anchor in the true room, as the memory's viewpoint sees it; nullopt: neither.
+    std::optional<model::RelationType> lateral(const Node& a, const Node& b, const relations::Frame& frame) const {
+        const relations::Thresholds thresholds;
+        const relations::NodeObstacles obstacles(truth_.nodes);
+        for (auto type : {model::RelationType::LeftOf, model::RelationType::RightOf})
+            if (relations::evaluate(type, a, b, thresholds, frame, obstacles) > 0) return type;
         return std::nullopt;
     }
 
@@ -225,18 +225,25 @@ public:
         guide::GraphOptions thinOptions;
         thinOptions.bodyRadius = settings_.truthBody;
         guide::FreeSpace thinSpace(truth_.nodes, thinOptions);
-        Ratio success;
+        Ratio success, routed;
         std::vector<double> stepCompletion, spl, failedErrors, latency;
         for (const auto& e : episodes) {
-            const Node& from = truthNode(e["from"]);
+            // From a door (a truth node) or from a point of the floor.
+            const bool fromPoint = e.contains("from_point");
+            const Node* from = fromPoint ? nullptr : &truthNode(e["from"]);
+            const guide::Point origin = fromPoint ? guide::Point{e["from_point"][0].get<double>(),
+                                                                 e["from_point"][1].get<double>()}
+                                                  : guide::Point{from->box.center.x, from->box.center.y};
             const Node& to = truthNode(e["to"]);
-            const Node* start = match(from);
+            const Node* start = fromPoint ? nullptr : match(*from);
             const Node* goal = match(to);
             std::vector<guide::Point> walk;
             double walked = 0;
-            if (start && goal) {
+            if ((fromPoint || start) && goal) {
                 try {
-                    auto rs = query(fmt::format("GUIDE FROM #{} TO #{}", start->id, goal->id), latency);
+                    auto rs = query(fromPoint ? fmt::format("GUIDE FROM ({}, {}) TO #{}", origin.x, origin.y, goal->id)
+                                              : fmt::format("GUIDE FROM #{} TO #{}", start->id, goal->id),
+                                    latency);
                     int x = rs.columnIndex("x"), y = rs.columnIndex("y"), d = rs.columnIndex("distance");
                     // The last row is the goal itself, not a place walked to.
                     for (std::size_t i = 0; i + 1 < rs.rows.size(); ++i) {
@@ -247,11 +254,12 @@ public:
                     walk.clear();  // no route in the memory: the episode fails
                 }
             }
+            routed.add(!walk.empty());
             if (walk.empty()) {
                 success.add(false);
                 stepCompletion.push_back(0);
                 spl.push_back(0);
-                failedErrors.push_back(footprintGap(to.box, {from.box.center.x, from.box.center.y}));
+                failedErrors.push_back(footprintGap(to.box, origin));
                 continue;
             }
             double error = footprintGap(to.box, walk.back());
@@ -267,11 +275,14 @@ public:
             spl.push_back(reached ? shortest / std::max(walked, shortest) : 0);
             if (!reached) failedErrors.push_back(error);
         }
+        add(report, "guidance", "Reach", routed, latency);
         add(report, "guidance", "SR_nav", success, latency);
         addValue(report, "guidance", "StepComp", mean(stepCompletion), stepCompletion.size(), latency);
         addValue(report, "guidance", "SPL", mean(spl), spl.size(), latency);
         addValue(report, "guidance", "NE (m, failed)", mean(failedErrors), failedErrors.size(), latency);
     }
+
+    const std::string& sceneName() const { return memory_.info.name; }
 
 private:
     static double mean(const std::vector<double>& v) {
@@ -300,22 +311,133 @@ private:
 
 }  // namespace
 
-int evalCommand(const std::string& suitePath, const std::string& dbDir, const std::string& scene,
-                const std::string& jsonOut) {
-    std::ifstream in(suitePath);
+namespace {
+
+// A thing the suite asks about: an object with a box, not walked over (a rug) and not above a
+// walker's reach (a ceiling light).
+constexpr double kReachHeight = 1.8;
+
+// The anchors relative position is scored against: walls, doors and windows; in a layout without
+// them, the largest things standing on the floor, as the landmarks a person would name.
+constexpr std::size_t kFurnitureAnchors = 4;
+
+// A suite for a scene that is its own truth (docs/eval.md, "Suites for real layouts"): every thing
+// paired with every anchor and sought; every thing on the floor or on what stands there routed to
+// from every door (or, without doors, from the open floor nearest the room's middle).
+Json generateSuite(const model::SceneData& truth) {
+    const guide::GraphOptions options;
+    const guide::Footing footing(truth.nodes, options);
+    std::vector<const Node*> things, goals, anchors, doors, standing;
+    for (const Node& n : truth.nodes) {
+        if (n.hidden || n.geometry == model::GeometryKind::None) continue;
+        if (n.kind == model::NodeKind::Anchor) {
+            if (n.category == "wall" || n.category == "door" || n.category == "window") anchors.push_back(&n);
+            if (n.category == "door") doors.push_back(&n);
+        } else if (n.kind == model::NodeKind::Object && !footing.walkedOver(n) &&
+                   model::bottom(n.box) - footing.floor() < kReachHeight) {
+            things.push_back(&n);
+            if (footing.blocks(n)) standing.push_back(&n);
+            // Guidance goes to what stands on the floor or rests on something that does, not to
+            // what hangs on a wall (a picture, a wall plug).
+            if (footing.blocks(footing.support(n))) goals.push_back(&n);
+        }
+    }
+    Json suite{{"smql_eval", 1}, {"scene", truth.info.name}, {"truth", "truth.json"}};
+    if (anchors.empty()) {
+        std::sort(standing.begin(), standing.end(), [](const Node* a, const Node* b) {
+            return model::footprintArea(a->box) > model::footprintArea(b->box);
+        });
+        anchors.assign(standing.begin(), standing.begin() + std::min(standing.size(), kFurnitureAnchors));
+    }
+    Json relative = Json::array(), guidance = Json::array(), retrieval = Json::array();
+    for (const Node* t : things) {
+        for (const Node* a : anchors)
+            if (a != t) relative.push_back({{"subject", t->id}, {"anchor", a->id}});
+        retrieval.push_back({{"object", t->id}});
+    }
+    if (!doors.empty()) {
+        for (const Node* d : doors)
+            for (const Node* t : goals) guidance.push_back({{"from", d->id}, {"to", t->id}});
+    } else {
+        const guide::FreeSpace space(truth.nodes, options);
+        const guide::Point middle{space.minX() + space.width() * space.cell() / 2,
+                                  space.minY() + space.height() * space.cell() / 2};
+        if (auto start = space.nearestFree(middle, std::hypot(space.width(), space.height()) * space.cell()))
+            for (const Node* t : goals)
+                guidance.push_back({{"from_point", {std::round(start->x * 1000) / 1000, std::round(start->y * 1000) / 1000}},
+                                    {"to", t->id}});
+    }
+    suite["relative_position"] = relative;
+    suite["guidance"] = guidance;
+    suite["retrieval"] = retrieval;
+    return suite;
+}
+
+Json readSuite(const std::string& path) {
+    std::ifstream in(path);
     if (!in)
-        throw Error(ErrorKind::Input, fmt::format("cannot read the suite {}", suitePath), std::nullopt,
-                    "smql synth writes one as <out>/eval-suite.json");
+        throw Error(ErrorKind::Input, fmt::format("cannot read the suite {}", path), std::nullopt,
+                    "smql synth writes one as <out>/eval-suite.json; smql eval --write-suite DIR another");
     Json suite;
     try {
         suite = Json::parse(in);
     } catch (const nlohmann::json::exception& e) {
-        throw Error(ErrorKind::Input, fmt::format("{}: not a suite: {}", suitePath, e.what()), std::nullopt,
+        throw Error(ErrorKind::Input, fmt::format("{}: not a suite: {}", path, e.what()), std::nullopt,
                     "docs/eval.md describes the format");
     }
     if (!suite.contains("smql_eval") || !suite.contains("truth"))
-        throw Error(ErrorKind::Input, fmt::format("{}: not an smql evaluation suite", suitePath), std::nullopt,
+        throw Error(ErrorKind::Input, fmt::format("{}: not an smql evaluation suite", path), std::nullopt,
                     "docs/eval.md describes the format");
+    return suite;
+}
+
+std::string sceneLiteral(const std::string& name) {
+    std::string out = "'";
+    for (char c : name) out += c == '\'' ? std::string("''") : std::string(1, c);
+    return out + "'";
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    if (!out)
+        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path.string()), std::nullopt,
+                    "check that the folder exists and is writable");
+}
+
+}  // namespace
+
+int evalCommand(const EvalOptions& options) {
+    auto engine = Engine::open(options.db, /*readOnly=*/true);
+    std::vector<std::string> stored;
+    const auto shown = engine->execute("SHOW SCENES");
+    for (const auto& row : shown.back().rows) stored.push_back(std::get<std::string>(row[0]));
+    auto has = [&](const std::string& name) { return std::find(stored.begin(), stored.end(), name) != stored.end(); };
+
+    Json suite = options.suite.empty() ? Json() : readSuite(options.suite);
+    // The memory's scene: named, else the suite's when the database has it, else the only one.
+    std::string sceneName = options.scene;
+    if (sceneName.empty() && !options.suite.empty()) sceneName = suite.value("scene", std::string());
+    if (!options.scene.empty() || !sceneName.empty()) {
+        if (!has(sceneName) && options.scene.empty() && stored.size() == 1) sceneName = stored.front();
+        engine->execute("USE SCENE " + sceneLiteral(sceneName));
+    }
+    model::SceneData memory = engine->readScene(sceneName);
+
+    model::SceneData truth;
+    if (options.suite.empty()) {
+        truth = memory;
+        suite = generateSuite(truth);
+    } else {
+        const fs::path truthPath = fs::path(options.suite).parent_path() / suite["truth"].get<std::string>();
+        truth = import::read("json", truthPath.string());
+    }
+    if (!options.writeSuite.empty()) {
+        fs::create_directories(options.writeSuite);
+        writeFile(fs::path(options.writeSuite) / "truth.json", import::writeSceneJson(truth));
+        writeFile(fs::path(options.writeSuite) / "eval-suite.json", suite.dump(1) + "\n");
+    }
+
     Settings settings;
     if (auto s = suite.find("settings"); s != suite.end()) {
         settings.dThr = s->value("d_thr", settings.dThr);
@@ -323,18 +445,7 @@ int evalCommand(const std::string& suitePath, const std::string& dbDir, const st
         settings.tauMatch = s->value("tau_match", settings.tauMatch);
         settings.truthBody = s->value("truth_body_radius", settings.truthBody);
     }
-    const fs::path truthPath = fs::path(suitePath).parent_path() / suite["truth"].get<std::string>();
-    model::SceneData truth = import::read("json", truthPath.string());
-
-    auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    std::string sceneName = scene.empty() ? suite.value("scene", std::string()) : scene;
-    if (!sceneName.empty()) {
-        std::string quoted;
-        for (char c : sceneName) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-        engine->execute(fmt::format("USE SCENE '{}'", quoted));
-    }
-    Evaluation evaluation(*engine, std::move(truth), engine->readScene(sceneName), settings);
-
+    Evaluation evaluation(*engine, std::move(truth), std::move(memory), settings);
     Json report = Json::array();
     evaluation.relativePosition(suite.value("relative_position", Json::array()), report);
     evaluation.guidance(suite.value("guidance", Json::array()), report);
@@ -345,13 +456,13 @@ int evalCommand(const std::string& suitePath, const std::string& dbDir, const st
         std::cout << fmt::format("| {} | {} | {:.3f} | {} | {:.1f} |\n", row["task"].get<std::string>(),
                                  row["metric"].get<std::string>(), row["value"].get<double>(),
                                  row["episodes"].get<std::size_t>(), row["median_us"].get<double>());
-    if (!jsonOut.empty()) {
-        std::ofstream out(jsonOut);
-        out << Json{{"suite", suitePath}, {"database", dbDir}, {"metrics", report}}.dump(2) << "\n";
-        if (!out)
-            throw Error(ErrorKind::Usage, fmt::format("cannot write {}", jsonOut), std::nullopt,
-                        "check that the folder exists and is writable");
-    }
+    if (!options.jsonOut.empty())
+        writeFile(options.jsonOut, Json{{"suite", options.suite.empty() ? "generated" : options.suite},
+                                        {"database", options.db},
+                                        {"scene", evaluation.sceneName()},
+                                        {"metrics", report}}
+                                           .dump(2) +
+                                       "\n");
     return 0;
 }
 

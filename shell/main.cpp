@@ -157,6 +157,10 @@ int runSubcommand(int argc, char** argv) {
     import->add_option("--scene", importScene, "scene name (default: from the file, else the file's folder name)");
     import->add_option("--update", importUpdate,
                        "a scene of the same place: the file becomes its next version (docs/history.md)");
+    bool importAll = false;
+    import->add_flag("--all", importAll, "every scene of a file that holds several (vsibench), each under its name")
+        ->excludes("--scene")
+        ->excludes("--update");
 
     auto* exportCmd = app.add_subcommand("export",
                                          "export a scene as JSON (export json), or a node's evidence crops "
@@ -182,19 +186,25 @@ int runSubcommand(int argc, char** argv) {
     checkDbCmd->add_option("database", checkDbDir, "database directory")->required()->check(CLI::ExistingDirectory);
 
     auto* eval = app.add_subcommand("eval", "score a memory on an evaluation suite (docs/eval.md)");
-    std::string evalSuite, evalDb, evalScene, evalJson;
-    eval->add_option("suite", evalSuite, "the suite, as smql synth writes it (eval-suite.json)")
-        ->required()
+    smql::shell::EvalOptions evalOptions;
+    eval->add_option("suite", evalOptions.suite,
+                     "the suite (eval-suite.json, as smql synth writes it); without one, the scene is its own "
+                     "truth and the suite is generated from it")
         ->check(CLI::ExistingFile);
-    eval->add_option("--db", evalDb, "the database holding the memory")->required()->check(CLI::ExistingDirectory);
-    eval->add_option("--scene", evalScene, "the memory's scene (default: the suite's scene name)");
-    eval->add_option("--json", evalJson, "also write the metrics to this JSON file");
+    eval->add_option("--db", evalOptions.db, "the database holding the memory")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    eval->add_option("--scene", evalOptions.scene,
+                     "the memory's scene (default: the suite's scene name, else the database's only scene)");
+    eval->add_option("--json", evalOptions.jsonOut, "also write the metrics to this JSON file");
+    eval->add_option("--write-suite", evalOptions.writeSuite,
+                     "write the generated suite and its truth (eval-suite.json, truth.json) into this folder");
 
     if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
-    if (eval->parsed()) return smql::shell::evalCommand(evalSuite, evalDb, evalScene, evalJson);
+    if (eval->parsed()) return smql::shell::evalCommand(evalOptions);
     if (checkDbCmd->parsed()) return smql::shell::checkCommand(checkDbDir);
     if (import->parsed())
-        return smql::shell::importCommand(importFormat, importFile, importDb, importScene, importUpdate);
+        return smql::shell::importCommand(importFormat, importFile, importDb, importScene, importUpdate, importAll);
     if (exportCmd->parsed() && exportFormat == "evidence") {
         if (exportEvidence.size() != 2)
             throw smql::Error(smql::ErrorKind::Usage, "export evidence takes a node and a folder", std::nullopt,

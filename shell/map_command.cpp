@@ -76,16 +76,31 @@ Canvas drawScene(const Engine::SceneMap& map) {
     Canvas canvas(map.scene);
     const cv::Scalar wall(90, 90, 90), door(60, 160, 60), window(200, 140, 40), object(60, 60, 200),
         graph(225, 205, 170), text(40, 40, 40);
-    for (const auto& n : map.scene.nodes) {
-        if (n.geometry == model::GeometryKind::None || n.hidden) continue;
-        auto corners = canvas.footprint(n.box);
-        if (n.kind == model::NodeKind::Anchor) {
+    auto anchors = [&](bool floor) {
+        for (const auto& n : map.scene.nodes) {
+            if (n.geometry == model::GeometryKind::None || n.hidden || n.kind != model::NodeKind::Anchor ||
+                (n.category == "floor") != floor)
+                continue;
+            auto corners = canvas.footprint(n.box);
             if (n.category == "floor") cv::fillConvexPoly(canvas.image, corners, cv::Scalar(245, 245, 245));
             if (n.category == "wall") cv::fillConvexPoly(canvas.image, corners, wall);
             if (n.category == "door") cv::fillConvexPoly(canvas.image, corners, door);
             if (n.category == "window") cv::fillConvexPoly(canvas.image, corners, window);
         }
-    }
+    };
+    anchors(/*floor=*/true);
+    // The floor as guidance sees it: blocked cells (within a body's radius of what stands on the
+    // floor) shaded, and free pockets cut off from the room tinted.
+    const cv::Scalar blocked(215, 215, 240), pocket(170, 230, 250);
+    const auto& space = map.space;
+    for (int j = 0; j < space.height(); ++j)
+        for (int i = 0; i < space.width(); ++i) {
+            if (space.openCell(i, j)) continue;
+            const double x = space.minX() + i * space.cell(), y = space.minY() + j * space.cell();
+            cv::rectangle(canvas.image, canvas.at(x, y), canvas.at(x + space.cell(), y + space.cell()),
+                          space.freeCell(i, j) ? pocket : blocked, cv::FILLED);
+        }
+    anchors(/*floor=*/false);
     for (const auto& e : map.graph.edges)
         cv::line(canvas.image, canvas.at(map.graph.points[e.a].at.x, map.graph.points[e.a].at.y),
                  canvas.at(map.graph.points[e.b].at.x, map.graph.points[e.b].at.y), graph, 1, cv::LINE_AA);

@@ -17,9 +17,8 @@ ResultSet Executor::run(const binder::BoundCheck& c) {
     const model::Node& object = *args.front();
     const model::Node* third = args.size() > 1 ? args[1] : nullptr;
     const bool same = &subject == &object || (third && (&subject == third || &object == third));
-    const double score =
-        same ? 0.0 : relations::evaluate(c.predicate, subject, object, thresholds_, viewer, third, c.nearDistance);
-    const bool holds = score > 0;
+    const double answer = same ? 0.0 : score(c.predicate, subject, object, viewer, third, c.nearDistance);
+    const bool holds = answer > 0;
 
     std::string predicate(relations::toString(c.predicate));
     std::string objects = SceneSnapshot::label(object);
@@ -27,7 +26,7 @@ ResultSet Executor::run(const binder::BoundCheck& c) {
     ResultSet rs;
     rs.columns = {{"answer", ValueType::Text}, {"subject", ValueType::Text}, {"relation", ValueType::Text},
                   {"object", ValueType::Text}, {"score", ValueType::Real},   {"distance", ValueType::Real}};
-    rs.rows.push_back({std::string(holds ? "yes" : "no"), SceneSnapshot::label(subject), predicate, objects, score,
+    rs.rows.push_back({std::string(holds ? "yes" : "no"), SceneSnapshot::label(subject), predicate, objects, answer,
                        model::distance(subject.box, object.box)});
     std::string words = predicate;
     std::replace(words.begin(), words.end(), '_', ' ');
@@ -36,7 +35,7 @@ ResultSet Executor::run(const binder::BoundCheck& c) {
     if (c.nearDistance) rs.message += fmt::format(" (within {} m)", *c.nearDistance);
     if (same) rs.message += " (the same node)";
     // What does hold between the two: the evidence, in RELATE's words.
-    rs.message += "\n" + relationSentence(subject, object, relations::relate(subject, object, thresholds_, viewer));
+    rs.message += "\n" + relationSentence(subject, object, relate(subject, object, viewer));
     return rs;
 }
 

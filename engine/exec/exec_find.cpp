@@ -148,9 +148,18 @@ bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame&
     return false;
 }
 
+double Executor::score(relations::Predicate p, const Node& a, const Node& b, const relations::Frame& frame,
+                       const Node* c, std::optional<double> writtenDistance) const {
+    return relations::evaluate(p, a, b, thresholds_, frame, SceneObstacles(scene()), c, writtenDistance);
+}
+
+std::vector<relations::RelationHit> Executor::relate(const Node& a, const Node& b,
+                                                     const relations::Frame& frame) const {
+    return relations::relate(a, b, thresholds_, frame, SceneObstacles(scene()));
+}
+
 bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
     const auto& snap = scene();
-    const SceneObstacles obstacles(snap);
     const Node& a = snap.node(slot);
     const auto& spec = relations::spec(expr.predicate);
     if (expr.args.size() == 2) {
@@ -158,8 +167,7 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
         for (Slot b : slots(expr.args[0], frame))
             for (Slot c : second) {
                 poll();
-                if (b != slot && c != slot && c != b &&
-                    relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, &snap.node(c)) > 0)
+                if (b != slot && c != slot && c != b && score(expr.predicate, a, snap.node(b), frame, &snap.node(c)) > 0)
                     return true;
             }
         return false;
@@ -171,8 +179,7 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
     auto holds = [&](Slot b) {
         poll();
         if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
-        return relations::evaluate(expr.predicate, a, snap.node(b), thresholds_, frame, nullptr, expr.nearDistance,
-                                   &obstacles) > 0;
+        return score(expr.predicate, a, snap.node(b), frame, nullptr, expr.nearDistance) > 0;
     };
     const auto& refs = slots(expr.args[0], frame);
     constexpr std::size_t kIndexedReferences = 32;

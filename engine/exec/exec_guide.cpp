@@ -20,6 +20,32 @@ Value nodeLabel(const SceneSnapshot& scene, model::NodeId id) {
 
 Value nodeId(model::NodeId id) { return id == model::kNoNode ? Value() : Value(static_cast<std::int64_t>(id)); }
 
+// Why no route joins two points: the smaller of their stretches of free floor, and what closes it.
+Error noRoute(const SceneSnapshot& snap, const std::string& origin, const model::Node& goal, guide::Point start,
+              guide::Point end) {
+    const auto& g = snap.guidance();
+    constexpr std::size_t kBlockersNamed = 3;
+    double startArea = 0, endArea = 0;
+    auto aroundStart = g.space.enclosedBy(start, kBlockersNamed, startArea);
+    auto aroundEnd = g.space.enclosedBy(end, kBlockersNamed, endArea);
+    const bool goalSide = endArea <= startArea;
+    const auto& blockers = goalSide ? aroundEnd : aroundStart;
+    std::string named;
+    for (std::size_t i = 0; i < blockers.size(); ++i) {
+        auto slot = snap.slotOf(blockers[i]);
+        named += fmt::format("{}{}", i == 0 ? "" : i + 1 == blockers.size() ? " and " : ", ",
+                             slot ? SceneSnapshot::label(snap.node(*slot)) : fmt::format("#{}", blockers[i]));
+    }
+    return Error(ErrorKind::Binding,
+                 fmt::format("no route from {} to {}: the free floor {} ({:.1f} m^2) is closed off{} (a way must be "
+                             "{} m wide)",
+                             origin, SceneSnapshot::label(goal),
+                             goalSide ? "beside " + SceneSnapshot::label(goal) : "at the start",
+                             goalSide ? endArea : startArea, named.empty() ? "" : " by " + named,
+                             2 * g.options.bodyRadius),
+                 std::nullopt, "smql map draws the free floor and what blocks it; SHOW GRAPH lists the decision points");
+}
+
 }  // namespace
 
 Slot Executor::single(const binder::NodeSet& set, std::string_view role) {
@@ -129,12 +155,7 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
                     std::nullopt, "SHOW GRAPH lists where the graph reaches");
 
     auto route = guide::shortestRoute(g.graph, g.space, *onFloor, *end, g.options);
-    if (!route)
-        throw Error(ErrorKind::Binding,
-                    fmt::format("no route from {} to {}: the free floor around them is not connected (a way must be "
-                                "{} m wide)",
-                                origin, SceneSnapshot::label(goal), 2 * g.options.bodyRadius),
-                    std::nullopt, "SHOW GRAPH lists the decision points and how many edges each has");
+    if (!route) throw noRoute(snap, origin, goal, *onFloor, *end);
 
     ResultSet rs;
     rs.columns = {{"step", ValueType::Integer},        {"instruction", ValueType::Text}, {"landmark", ValueType::Text},

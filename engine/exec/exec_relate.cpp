@@ -44,14 +44,13 @@ ResultSet Executor::run(const binder::BoundRelate& r) {
                   {"score", ValueType::Real},
                   {"distance", ValueType::Real}};
     std::vector<std::string> sentences;
-    const SceneObstacles obstacles(scene());
     for (Slot a : subjects) {
         for (Slot b : objects) {
             poll();
             if (a == b) continue;
             const model::Node& na = scene().node(a);
             const model::Node& nb = scene().node(b);
-            auto hits = relations::relate(na, nb, thresholds_, viewer, &obstacles);
+            auto hits = relate(na, nb, viewer);
             double gap = model::distance(na.box, nb.box);
             std::string la = SceneSnapshot::label(na), lb = SceneSnapshot::label(nb);
             for (const auto& hit : hits)

@@ -84,6 +84,14 @@ private:
     relations::Frame frame(const binder::BoundView& view);
     relations::Frame defaultFrame() const;
 
+    // The one way the executor decides a predicate over two (or three) of the scene's nodes: FIND's
+    // filter, its index probes and sub-queries, COUNT, CHECK and RELATE all ask here, with the scene
+    // as what stands between and the statement's thresholds.
+    double score(relations::Predicate p, const model::Node& a, const model::Node& b, const relations::Frame& frame,
+                 const model::Node* c = nullptr, std::optional<double> writtenDistance = std::nullopt) const;
+    std::vector<relations::RelationHit> relate(const model::Node& a, const model::Node& b,
+                                               const relations::Frame& frame) const;
+
     bool matches(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
     bool holdsForSome(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
     bool compare(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);

@@ -31,10 +31,9 @@ double footprintDistance(const model::Box& box, Point p) {
 double distance(Point a, Point b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 // The rectangle people walk in: the floor's boxes, else the walls', else every box's.
-model::Aabb floorRectangle(const std::vector<Node>& nodes, double& floorZ) {
+model::Aabb floorRectangle(const std::vector<Node>& nodes) {
     model::Aabb out{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), 0},
                     {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), 0}};
-    floorZ = std::numeric_limits<double>::infinity();
     for (const char* category : {"floor", "wall", ""}) {
         for (const Node& n : nodes) {
             if (!solid(n) || (*category && n.category != category)) continue;
@@ -44,12 +43,10 @@ model::Aabb floorRectangle(const std::vector<Node>& nodes, double& floorZ) {
             out.min.y = std::min(out.min.y, box.min.y);
             out.max.x = std::max(out.max.x, box.max.x);
             out.max.y = std::max(out.max.y, box.max.y);
-            floorZ = std::min(floorZ, model::bottom(n.box));
         }
         if (out.min.x <= out.max.x) break;
     }
     if (!(out.min.x <= out.max.x)) out = {{0, 0, 0}, {0, 0, 0}};
-    if (!std::isfinite(floorZ)) floorZ = 0;
     return out;
 }
 
@@ -78,17 +75,64 @@ std::string_view toString(PointKind kind) {
     return "?";
 }
 
+double floorHeight(const std::vector<Node>& nodes) {
+    const Node* floor = nullptr;
+    for (const Node& n : nodes)
+        if (solid(n) && n.category == "floor" &&
+            (!floor || model::footprintArea(n.box) > model::footprintArea(floor->box)))
+            floor = &n;
+    return floor ? model::top(floor->box) : 0.0;
+}
+
+Footing::Footing(const std::vector<Node>& nodes, const GraphOptions& options)
+    : nodes_(nodes), options_(options), floor_(floorHeight(nodes)) {
+    for (const Node& n : nodes) byId_.emplace(n.id, &n);
+}
+
+bool Footing::walkedOver(const Node& n) const {
+    return n.kind == NodeKind::Object && model::top(n.box) - floor_ <= options_.walkOverHeight;
+}
+
+const Node* Footing::parentThing(const Node& n) const {
+    auto it = byId_.find(n.parent);
+    if (it == byId_.end() || it->second->kind != NodeKind::Object || !solid(*it->second) ||
+        walkedOver(*it->second))
+        return nullptr;
+    return it->second;
+}
+
+bool Footing::blocks(const Node& n) const {
+    if (!solid(n)) return false;
+    const bool standing = model::bottom(n.box) - floor_ < options_.standingHeight;
+    if (n.kind == NodeKind::Anchor)
+        return n.category == "wall" || (standing && n.geometry == model::GeometryKind::Box);
+    return n.kind == NodeKind::Object && standing && !walkedOver(n) && !parentThing(n);
+}
+
+const Node& Footing::support(const Node& n) const {
+    const Node* at = &n;
+    // A tree has no cycles; the bound only guards against a damaged one.
+    for (std::size_t depth = 0; depth < nodes_.size(); ++depth) {
+        const Node* up = parentThing(*at);
+        if (!up) break;
+        at = up;
+    }
+    return *at;
+}
+
 FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options) : cell_(options.cell) {
-    double floorZ = 0;
-    model::Aabb floor = floorRectangle(nodes, floorZ);
+    const Footing footing(nodes, options);
+    model::Aabb floor = floorRectangle(nodes);
     minX_ = floor.min.x;
     minY_ = floor.min.y;
     width_ = std::max(1, static_cast<int>(std::ceil((floor.max.x - floor.min.x) / cell_)));
     height_ = std::max(1, static_cast<int>(std::ceil((floor.max.y - floor.min.y) / cell_)));
     cells_.assign(static_cast<std::size_t>(width_) * height_, 1);
+    blockers_.assign(cells_.size(), model::kNoNode);
 
-    // Marks the cells whose centres lie within `grow` of the box's footprint.
-    auto mark = [&](const model::Box& box, double grow, std::uint8_t value) {
+    // Marks the cells whose centres lie within `grow` of the box's footprint: blocked by `by`, or
+    // free again when `by` is kNoNode.
+    auto mark = [&](const model::Box& box, double grow, model::NodeId by) {
         model::Aabb b = model::worldAabb(box);
         int i0 = std::max(0, static_cast<int>(std::floor((b.min.x - grow - minX_) / cell_)));
         int i1 = std::min(width_ - 1, static_cast<int>(std::floor((b.max.x + grow - minX_) / cell_)));
@@ -96,27 +140,29 @@ FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options
         int j1 = std::min(height_ - 1, static_cast<int>(std::floor((b.max.y + grow - minY_) / cell_)));
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i)
-                if (footprintDistance(box, {minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_}) <= grow)
-                    cells_[static_cast<std::size_t>(j) * width_ + i] = value;
+                if (footprintDistance(box, {minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_}) <= grow) {
+                    const std::size_t c = static_cast<std::size_t>(j) * width_ + i;
+                    cells_[c] = by == model::kNoNode;
+                    blockers_[c] = by;
+                }
     };
-    for (const Node& n : nodes) {
-        if (!solid(n)) continue;
-        bool wall = n.kind == NodeKind::Anchor && n.category == "wall";
-        bool standing = n.kind == NodeKind::Object && model::bottom(n.box) - floorZ < options.standingHeight;
-        if (wall || standing) mark(n.box, options.bodyRadius, 0);
-    }
-    // Doors open the walls they stand in: their width, through the wall and a body's radius beyond.
+    for (const Node& n : nodes)
+        if (footing.blocks(n)) mark(n.box, options.bodyRadius, n.id);
+    // Doors open the walls they stand in: through the wall and a body's radius beyond, as wide as a
+    // body's centre can pass (the door's width less a body's radius at each jamb).
     for (const Node& n : nodes) {
         if (!isDoor(n)) continue;
         model::Box passage = n.box;
         bool thinAlongX = passage.size.x < passage.size.y;
         (thinAlongX ? passage.size.x : passage.size.y) += 2 * (options.bodyRadius + cell_);
-        mark(passage, 0, 1);
+        double& width = thinAlongX ? passage.size.y : passage.size.x;
+        width = std::max(cell_, width - 2 * options.bodyRadius);
+        mark(passage, 0, model::kNoNode);
     }
     // Where a capture's camera stood, someone walked.
     for (const Node& n : nodes)
         if (n.kind == NodeKind::Frame && n.geometry != model::GeometryKind::None)
-            mark({n.box.center, {0, 0, 0}, 0}, options.cell, 1);
+            mark({n.box.center, {0, 0, 0}, 0}, options.cell, model::kNoNode);
 
     // Connected stretches of free floor (4-neighbours), and the largest of them.
     component_.assign(cells_.size(), -1);
@@ -144,14 +190,45 @@ FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options
         }
     }
     if (!sizes.empty()) mainComponent_ = static_cast<int>(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+    componentSizes_ = std::move(sizes);
 }
 
-bool FreeSpace::open(Point p) const {
+int FreeSpace::componentAt(Point p) const {
     int i = static_cast<int>(std::floor((p.x - minX_) / cell_)),
         j = static_cast<int>(std::floor((p.y - minY_) / cell_));
-    if (i < 0 || j < 0 || i >= width_ || j >= height_) return false;
-    return component_[static_cast<std::size_t>(j) * width_ + i] == mainComponent_ && mainComponent_ >= 0;
+    if (i < 0 || j < 0 || i >= width_ || j >= height_) return -1;
+    return component_[static_cast<std::size_t>(j) * width_ + i];
 }
+
+bool FreeSpace::connected(Point p, Point q) const {
+    int a = componentAt(p);
+    return a >= 0 && a == componentAt(q);
+}
+
+std::vector<model::NodeId> FreeSpace::enclosedBy(Point p, std::size_t most, double& area) const {
+    const int label = componentAt(p);
+    area = label >= 0 ? static_cast<double>(componentSizes_[label]) * cell_ * cell_ : 0;
+    std::map<model::NodeId, std::size_t> border;
+    for (int j = 0; j < height_ && label >= 0; ++j)
+        for (int i = 0; i < width_; ++i) {
+            if (component_[static_cast<std::size_t>(j) * width_ + i] != label) continue;
+            for (auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                int ni = i + di, nj = j + dj;
+                if (ni < 0 || nj < 0 || ni >= width_ || nj >= height_) continue;
+                if (model::NodeId by = blocker(ni, nj); by != model::kNoNode) ++border[by];
+            }
+        }
+    std::vector<std::pair<std::size_t, model::NodeId>> ranked;
+    for (auto [id, cells] : border) ranked.push_back({cells, id});
+    std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first > b.first : a.second < b.second;
+    });
+    std::vector<model::NodeId> out;
+    for (std::size_t k = 0; k < ranked.size() && k < most; ++k) out.push_back(ranked[k].second);
+    return out;
+}
+
+bool FreeSpace::open(Point p) const { return mainComponent_ >= 0 && componentAt(p) == mainComponent_; }
 
 bool FreeSpace::free(Point p) const {
     int i = static_cast<int>(std::floor((p.x - minX_) / cell_)),
@@ -188,7 +265,43 @@ std::optional<Point> FreeSpace::nearestFree(Point p, double radius) const {
     return bestOpen ? bestOpen : best;
 }
 
+namespace {
+
+// Where a walker stands to reach `goal`: on open floor beside its floor-standing support, a body's
+// radius and a little more from the support's footprint, at points every 0.2 m around it. Beside a
+// thing on the floor, the point nearest the middle of the room (its most open side); beside the
+// furniture a thing rests on, the point nearest the thing. Else the nearest free cell.
+std::optional<Point> approach(const Node& goal, const Node& support, const FreeSpace& space, Point centre,
+                              const GraphOptions& options) {
+    constexpr double kSpacing = 0.2;
+    const double away = options.bodyRadius + 0.15;
+    const model::Box& box = support.box;
+    const double hx = box.size.x / 2 + away, hy = box.size.y / 2 + away;
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const Point goalAt{goal.box.center.x, goal.box.center.y};
+    const Point target = &goal == &support ? centre : goalAt;
+    std::optional<Point> best;
+    // The rectangle's outline, walked side by side from corner to corner.
+    const std::pair<double, double> corners[] = {{hx, hy}, {-hx, hy}, {-hx, -hy}, {hx, -hy}, {hx, hy}};
+    for (std::size_t k = 0; k + 1 < std::size(corners); ++k) {
+        auto [u0, v0] = corners[k];
+        auto [u1, v1] = corners[k + 1];
+        const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(u1 - u0, v1 - v0) / kSpacing)));
+        for (int t = 0; t < steps; ++t) {
+            double u = u0 + (u1 - u0) * t / steps, v = v0 + (v1 - v0) * t / steps;
+            Point p{box.center.x + c * u - s * v, box.center.y + s * u + c * v};
+            if (space.open(p) && (!best || distance(p, target) < distance(*best, target))) best = p;
+        }
+    }
+    if (best) return best;
+    const double reach = std::max(1.5, std::hypot(hx, hy));
+    return space.nearestFree(goalAt, reach);
+}
+
+}  // namespace
+
 RouteGraph buildGraph(const std::vector<Node>& nodes, const FreeSpace& space, const GraphOptions& options) {
+    const Footing footing(nodes, options);
     RouteGraph graph;
     const Point centre{space.minX() + space.width() * space.cell() / 2,
                        space.minY() + space.height() * space.cell() / 2};
@@ -201,20 +314,9 @@ RouteGraph buildGraph(const std::vector<Node>& nodes, const FreeSpace& space, co
                 Point p{n.box.center.x + side * normal.x * out, n.box.center.y + side * normal.y * out};
                 if (auto snapped = space.nearestFree(p, 0.5)) graph.points.push_back({*snapped, PointKind::Door, n.id});
             }
-        } else if (n.kind == NodeKind::Object) {
-            // Beside the thing, on the side that faces the open room when there is a choice.
-            std::optional<Point> best;
-            double away = options.bodyRadius + 0.15;
-            double c = std::cos(n.box.yaw), s = std::sin(n.box.yaw);
-            for (int k = 0; k < 8; ++k) {
-                double a = k * M_PI / 4;
-                double u = std::cos(a) * (n.box.size.x / 2 + away), v = std::sin(a) * (n.box.size.y / 2 + away);
-                Point p{n.box.center.x + c * u - s * v, n.box.center.y + s * u + c * v};
-                if (!space.open(p)) continue;
-                if (!best || distance(p, centre) < distance(*best, centre)) best = p;
-            }
-            if (!best) best = space.nearestFree({n.box.center.x, n.box.center.y}, 1.5);
-            if (best) graph.points.push_back({*best, PointKind::Approach, n.id});
+        } else if (n.kind == NodeKind::Object && !footing.walkedOver(n)) {
+            if (auto p = approach(n, footing.support(n), space, centre, options))
+                graph.points.push_back({*p, PointKind::Approach, n.id});
         } else if (n.kind == NodeKind::Frame && space.free({n.box.center.x, n.box.center.y})) {
             graph.points.push_back({{n.box.center.x, n.box.center.y}, PointKind::Camera, n.id});
         }

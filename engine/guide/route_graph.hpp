@@ -1,12 +1,15 @@
 // Guidance: where a person can walk in a scene, as a graph of decision points, and the shortest
 // route between two places on it (docs/guidance.md). Built from the floor-projected free space:
-// the floor minus walls and floor-standing things, grown by a body radius; doors open the walls;
-// where a capture's camera went counts as free. Pure functions over model types.
+// the floor minus walls and the footprints of what stands on the floor, grown by a body radius;
+// flat things (rugs) are walked over, things lying on furniture leave the floor to it; doors open
+// the walls at their width less a body; where a capture's camera went counts as free. Pure
+// functions over model types.
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "model/types.hpp"
@@ -18,13 +21,42 @@ struct Point {
 };
 
 struct GraphOptions {
-    double bodyRadius = 0.25;  // metres kept from every obstacle
-    double cell = 0.1;         // the free-space grid's resolution (m)
+    double bodyRadius = 0.2;  // metres kept from every obstacle
+    double cell = 0.05;        // the free-space grid's resolution (m)
     double lattice = 1.0;      // spacing of the junction points laid over the free space (m)
     double maxEdge = 4.0;      // the longest straight segment an edge may be (m)
     // Things whose bottom is this close to the floor stand on it and block the way; higher ones
     // (a mug on a table, a picture on a wall) do not.
     double standingHeight = 0.3;
+    // Things whose top is at most this above the floor (rugs, mats, carpets) are walked over.
+    double walkOverHeight = 0.05;
+};
+
+// The floor's height: the top of the largest floor box, else 0 (scenes are stored in the upright
+// floor frame: docs/formats.md).
+double floorHeight(const std::vector<model::Node>& nodes);
+
+// How guidance sees each thing of a scene: what blocks the floor, and which floor-standing thing
+// carries what rests on furniture. Built once per scene over its nodes (which it must outlive).
+class Footing {
+public:
+    Footing(const std::vector<model::Node>& nodes, const GraphOptions& options);
+    double floor() const { return floor_; }
+    // Flat on the floor: walked over.
+    bool walkedOver(const model::Node& n) const;
+    // Its floor footprint closes the floor: a wall, a pillar, a thing standing on the floor that
+    // does not rest on furniture (a blanket over a bed's side leaves that floor to the bed).
+    bool blocks(const model::Node& n) const;
+    // The floor-standing thing under n, following the tree through the furniture it rests on (the
+    // bed under the pillow, the table under the plant in its pot); n itself when it rests on none.
+    const model::Node& support(const model::Node& n) const;
+
+private:
+    const model::Node* parentThing(const model::Node& n) const;
+    const std::vector<model::Node>& nodes_;
+    GraphOptions options_;
+    double floor_ = 0;
+    std::unordered_map<model::NodeId, const model::Node*> byId_;
 };
 
 enum class PointKind : std::uint8_t { Door, Approach, Junction, Camera };
@@ -54,18 +86,32 @@ public:
     // The open cell centre nearest to p within `radius` metres, else the nearest free one (in a
     // pocket of its own), if any.
     std::optional<Point> nearestFree(Point p, double radius) const;
+    // Whether p and q lie in one connected stretch of free floor.
+    bool connected(Point p, Point q) const;
+    // What closes off the free stretch around p from the rest of the floor: the things whose
+    // blocked cells border it, the longest border first, at most `most`; the stretch's size (m^2).
+    std::vector<model::NodeId> enclosedBy(Point p, std::size_t most, double& area) const;
+    // The thing (or wall) that blocks a cell; kNoNode for a free cell or one outside the floor.
+    model::NodeId blocker(int i, int j) const { return blockers_[static_cast<std::size_t>(j) * width_ + i]; }
     double minX() const { return minX_; }
     double minY() const { return minY_; }
     int width() const { return width_; }
     int height() const { return height_; }
     double cell() const { return cell_; }
     bool freeCell(int i, int j) const { return cells_[static_cast<std::size_t>(j) * width_ + i] != 0; }
+    // Free and part of the largest connected stretch (see open()).
+    bool openCell(int i, int j) const {
+        return mainComponent_ >= 0 && component_[static_cast<std::size_t>(j) * width_ + i] == mainComponent_;
+    }
 
 private:
     double cell_, minX_ = 0, minY_ = 0;
     int width_ = 0, height_ = 0;
-    std::vector<std::uint8_t> cells_;  // 1 = free
-    std::vector<int> component_;       // per cell: its connected stretch of free floor, -1 when blocked
+    int componentAt(Point p) const;
+    std::vector<std::uint8_t> cells_;       // 1 = free
+    std::vector<model::NodeId> blockers_;   // per blocked cell: what blocks it (kNoNode where free)
+    std::vector<int> component_;            // per cell: its connected stretch of free floor, -1 when blocked
+    std::vector<std::size_t> componentSizes_;
     int mainComponent_ = -1;
 };
 
@@ -74,9 +120,10 @@ struct RouteGraph {
     std::vector<Edge> edges;
 };
 
-// The decision points (each door from both sides, an approach point beside each object, junctions
-// on a lattice over the free space, the capture's camera positions) and the edges between those
-// that see each other within options.maxEdge.
+// The decision points (each door from both sides, an approach point beside each object — beside
+// its floor-standing support when it rests on furniture, nearest to it — junctions on a lattice
+// over the free space, the capture's camera positions) and the edges between those that see each
+// other within options.maxEdge.
 RouteGraph buildGraph(const std::vector<model::Node>& nodes, const FreeSpace& space, const GraphOptions& options);
 
 struct Route {

@@ -149,10 +149,16 @@ double belowScore(const PredicateInputs& in) { return aboveScore(in.b, in.a, in.
 
 model::Vec3 centre(const Node& n) { return n.box.center; }
 
-// A wall stands between a and b when the line joining their centres passes through it and
-// neither centre lies in it.
-bool wallBetween(const Node& a, const Node& b, const Obstacles* obstacles) {
-    if (!obstacles) return false;
+// An opening (a window, a door) in a wall or against it: the wall does not stand between it and
+// the room, whichever side of the wall's middle its box ends up.
+bool openingIn(const Node& opening, const Node& wall, const Thresholds& t) {
+    return isVerticalPlane(opening) && !sameCategory(opening.category, "wall") &&
+           model::distance(opening.box, wall.box) <= t.attachedMaxGap;
+}
+
+// A wall stands between a and b when the line joining their centres passes through it, neither
+// centre lies in it and neither is an opening in it.
+bool wallBetween(const Node& a, const Node& b, const Thresholds& t, const Obstacles& obstacles) {
     model::Aabb span = model::worldAabb(a.box);
     const model::Aabb other = model::worldAabb(b.box);
     span.min = {std::min(span.min.x, other.min.x), std::min(span.min.y, other.min.y),
@@ -160,10 +166,11 @@ bool wallBetween(const Node& a, const Node& b, const Obstacles* obstacles) {
     span.max = {std::max(span.max.x, other.max.x), std::max(span.max.y, other.max.y),
                 std::max(span.max.z, other.max.z)};
     std::vector<const Node*> around;
-    obstacles->within(span, around);
+    obstacles.within(span, around);
     return std::any_of(around.begin(), around.end(), [&](const Node* w) {
         if (w->id == a.id || w->id == b.id || !isVerticalPlane(*w) || !sameCategory(w->category, "wall")) return false;
         if (pointInBox(centre(a), w->box) || pointInBox(centre(b), w->box)) return false;
+        if (openingIn(a, *w, t) || openingIn(b, *w, t)) return false;
         return segmentCrosses(centre(a), centre(b), w->box);
     });
 }
@@ -171,7 +178,7 @@ bool wallBetween(const Node& a, const Node& b, const Obstacles* obstacles) {
 double nearScore(const PredicateInputs& in) {
     double limit = nearLimit(in.a, in.b, in.t, in.writtenDistance);
     double d = model::distance(in.a.box, in.b.box);
-    if (d > limit || wallBetween(in.a, in.b, in.obstacles)) return 0.0;
+    if (d > limit || wallBetween(in.a, in.b, in.t, in.obstacles)) return 0.0;
     return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
 }
 
@@ -216,12 +223,10 @@ constexpr double kHalfFieldOfView = M_PI / 3;  // a person's 120 degrees of bino
 double visibleFromScore(const PredicateInputs& in) {
     model::Vec3 eye = eyeAt(in.b.box);
     std::vector<const Node*> obstacles;
-    if (in.obstacles) {
-        model::Aabb span = model::worldAabb(in.a.box);
-        span.min = {std::min(span.min.x, eye.x), std::min(span.min.y, eye.y), std::min(span.min.z, eye.z)};
-        span.max = {std::max(span.max.x, eye.x), std::max(span.max.y, eye.y), std::max(span.max.z, eye.z)};
-        in.obstacles->within(span, obstacles);
-    }
+    model::Aabb span = model::worldAabb(in.a.box);
+    span.min = {std::min(span.min.x, eye.x), std::min(span.min.y, eye.y), std::min(span.min.z, eye.z)};
+    span.max = {std::max(span.max.x, eye.x), std::max(span.max.y, eye.y), std::max(span.max.z, eye.z)};
+    in.obstacles.within(span, obstacles);
     std::optional<ViewCone> cone;
     if (in.frame.headingGiven)
         cone = ViewCone{{in.frame.forward.x, in.frame.forward.y, 0},
@@ -388,21 +393,26 @@ double nearLimit(const Node& a, const Node& b, const Thresholds& t, std::optiona
     return std::min(t.nearDistance, std::max(t.nearMinDistance, size(a) + size(b)));
 }
 
-double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame, const Node* c,
-                std::optional<double> writtenDistance, const Obstacles* obstacles) {
+double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame,
+                const Obstacles& obstacles, const Node* c, std::optional<double> writtenDistance) {
     if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
     return spec(p).evaluate({a, b, c, t, frame, writtenDistance, obstacles});
 }
 
 std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& t, const Frame& frame,
-                                const Obstacles* obstacles) {
+                                const Obstacles& obstacles) {
     static const auto order = relateOrder();
     std::vector<RelationHit> hits;
     for (const auto* row : order) {
-        double score = evaluate(row->predicate, a, b, t, frame, nullptr, std::nullopt, obstacles);
+        double score = evaluate(row->predicate, a, b, t, frame, obstacles);
         if (score > 0) hits.push_back({row->predicate, score});
     }
     return hits;
+}
+
+void NodeObstacles::within(const model::Aabb& region, std::vector<const Node*>& out) const {
+    for (const Node& n : nodes_)
+        if (hasGeometry(n) && intersects(model::worldAabb(n.box), region)) out.push_back(&n);
 }
 
 }  // namespace smql::relations

@@ -31,13 +31,24 @@ struct Frame {
 };
 Frame viewFrame(const model::Viewpoint& viewpoint);
 
-// The boxes that may stand between two nodes, for visible_from and near. The executor answers from
-// the scene's R-tree; a caller without a scene passes none, and then nothing stands between.
+// The boxes that may stand between two nodes, for visible_from and near: every caller says what they
+// are, so that one pair gets one answer wherever it is asked. The executor answers from the scene's
+// R-tree; a caller that holds a scene's nodes without an index uses NodeObstacles.
 class Obstacles {
 public:
     virtual ~Obstacles() = default;
     // Appends every node with geometry whose world bounds intersect `region`.
     virtual void within(const model::Aabb& region, std::vector<const model::Node*>& out) const = 0;
+};
+
+// The nodes of a list, scanned (a scene being built, a truth file, a benchmark peer's rows).
+class NodeObstacles final : public Obstacles {
+public:
+    explicit NodeObstacles(std::span<const model::Node> nodes) : nodes_(nodes) {}
+    void within(const model::Aabb& region, std::vector<const model::Node*>& out) const override;
+
+private:
+    std::span<const model::Node> nodes_;
 };
 
 // What a formula sees: `p(a, b)` or `between(a, b, c)`.
@@ -48,7 +59,7 @@ struct PredicateInputs {
     const Thresholds& t;
     const Frame& frame;                     // lateral predicates measure in it
     std::optional<double> writtenDistance;  // the distance written in near(x, 1 m), if any
-    const Obstacles* obstacles;             // null: nothing stands between
+    const Obstacles& obstacles;             // what may stand between
 };
 
 struct PredicateSpec {
@@ -97,11 +108,12 @@ model::Vec2 frontDirection(const model::Box& box);
 // A vertical plane anchor: a wall, door, window or the like.
 bool isVerticalPlane(const model::Node& node);
 
-// The score of `p(a, b)`, or of `between(a, b, c)`. `writtenDistance` is the distance of near(x, 1 m);
-// `obstacles` what may stand between (walls for near, anything for visible_from).
+// The score of `p(a, b)`, or of `between(a, b, c)`: the one evaluation of a predicate, which every
+// path that decides one calls. `obstacles` is what may stand between (walls for near, anything for
+// visible_from); `writtenDistance` the distance of near(x, 1 m).
 double evaluate(Predicate p, const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame,
-                const model::Node* c = nullptr, std::optional<double> writtenDistance = std::nullopt,
-                const Obstacles* obstacles = nullptr);
+                const Obstacles& obstacles, const model::Node* c = nullptr,
+                std::optional<double> writtenDistance = std::nullopt);
 
 // near's limit for the two boxes: the written distance, else the sum of their sizes (the longer
 // side of each footprint) kept between near.min_distance and near.distance.
@@ -117,7 +129,7 @@ struct RelationHit {
 // support (in, on, attached) before vertical order (above, below), then the view-relative ones,
 // then near (the score says how clearly each holds).
 std::vector<RelationHit> relate(const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame,
-                                const Obstacles* obstacles = nullptr);
+                                const Obstacles& obstacles);
 
 inline bool intersects(const model::Aabb& a, const model::Aabb& b) {
     return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "model/types.hpp"
 
@@ -21,6 +22,12 @@ model::SceneData readReplica(const std::string& path, const std::string& sceneNa
 
 // A SpatialLM layout text (wall_0=Wall(...), door_0=Door(...), bbox_0=Bbox(...)); by default the file's stem.
 model::SceneData readSpatialLm(const std::string& path, const std::string& sceneName);
+
+// VSI-Bench's meta-info JSON: many rooms (ScanNet, ARKitScenes) of oriented boxes, keyed by name;
+// `sceneName` picks the room (it may be empty only when the file holds one).
+model::SceneData readVsiBench(const std::string& path, const std::string& sceneName);
+// The rooms such a file holds, in its order.
+std::vector<std::string> vsiBenchRooms(const std::string& path);
 
 // The smql JSON scene format ({"smql_scene": 1, ...}); by default the name the file gives.
 model::SceneData readSceneJson(const std::string& path, const std::string& sceneName = {});

@@ -15,6 +15,7 @@ constexpr ImportFormat kFormats[] = {
     {"replica", "Replica's info_semantic.json", readReplica},
     {"spatiallm", "a SpatialLM layout text", readSpatialLm},
     {"json", "the smql JSON scene format (smql export json)", readSceneJson},
+    {"vsibench", "VSI-Bench's meta-info JSON of ScanNet or ARKitScenes rooms", readVsiBench, vsiBenchRooms},
 };
 
 }  // namespace

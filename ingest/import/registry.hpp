@@ -18,6 +18,9 @@ struct ImportFormat {
     std::string_view description;  // for --help and error hints
     // Reads the whole file into a scene named `sceneName`, or by the format's rule when it is empty.
     model::SceneData (*read)(const std::string& path, const std::string& sceneName);
+    // The scenes a file holds, for formats whose files hold several (`read` then takes one by its
+    // name); null for formats of one scene a file.
+    std::vector<std::string> (*scenes)(const std::string& path) = nullptr;
 };
 
 std::span<const ImportFormat> formats();

@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 
 #include "ingest/import/common.hpp"
+#include "ingest/import/floor.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/json_field.hpp"
 
@@ -428,6 +429,7 @@ model::SceneData readSceneJson(const std::string& path, const std::string& scene
         for (std::size_t i = 0; i < blobs->size(); ++i) scene.blobs.push_back(readBlob((*blobs)[i], scene.nodes));
     scene.info.nodeCount = scene.nodes.size();
     if (!sceneName.empty()) scene.info.name = sceneName;
+    detail::standOnFloor(scene);
     return scene;
 }
 

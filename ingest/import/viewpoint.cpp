@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "ingest/import/common.hpp"
+#include "ingest/import/floor.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::import::detail {
@@ -129,16 +130,9 @@ ViewpointChoice defaultViewpoint(const std::vector<Node>& nodes) {
 void finishScene(model::SceneData& scene, const std::string& name, std::string source) {
     scene.info.name = name;
     scene.info.source = std::move(source);
+    standOnFloor(scene);
     scene.info.nodeCount = scene.nodes.size();
     ViewpointChoice view = defaultViewpoint(scene.nodes);
-    // Eye height above a box near the coordinate limit would put the viewpoint
-    // past it, and the scene would no longer read back: hold it at the limit.
-    model::Vec3& eye = view.viewpoint.position;
-    if (std::abs(eye.x) > kMaxCoordinate || std::abs(eye.y) > kMaxCoordinate || std::abs(eye.z) > kMaxCoordinate) {
-        eye = {std::clamp(eye.x, -kMaxCoordinate, kMaxCoordinate), std::clamp(eye.y, -kMaxCoordinate, kMaxCoordinate),
-               std::clamp(eye.z, -kMaxCoordinate, kMaxCoordinate)};
-        view.note += fmt::format(", held within {} m of the origin", kMaxCoordinate);
-    }
     scene.info.viewpoint = view.viewpoint;
     scene.info.viewpointNote = std::move(view.note);
 }

@@ -34,11 +34,12 @@ void addSupportRelations(model::SceneData& scene, const relations::Thresholds& t
     for (const auto& n : scene.nodes)
         if (n.kind == NodeKind::Object) things.push_back(&n);
     relations::Frame none;
+    const relations::NodeObstacles obstacles(scene.nodes);
     for (const Node* a : things)
         for (const Node* b : things) {
             if (a == b) continue;
             for (auto p : {relations::Predicate::On, relations::Predicate::In}) {
-                double score = relations::evaluate(p, *a, *b, thresholds, none);
+                double score = relations::evaluate(p, *a, *b, thresholds, none, obstacles);
                 if (score > 0) scene.relations.push_back({a->id, b->id, p, static_cast<float>(score), 1, 0});
             }
         }

@@ -92,15 +92,18 @@ TEST_CASE("Replica room0: box centres are R * abb.center + translation", "[impor
     CHECK(table.kind == NodeKind::Object);
     CHECK(table.box.center.x == Approx(5.20).margin(1e-2));
     CHECK(table.box.center.y == Approx(2.73).margin(1e-2));
-    CHECK(table.box.center.z == Approx(-1.15).margin(1e-2));
+    // Stored in the upright floor frame: the file's z less the floor's top (-1.47), kept in the alignment.
+    CHECK(table.box.center.z == Approx(-1.15 + 1.47).margin(1e-2));
+    CHECK(scene.info.alignment[11] == Approx(1.47).margin(1e-2));
     CHECK(table.box.yaw == Approx(0.23).margin(1e-2));
     CHECK(table.box.size.x == Approx(0.49288225173950195));
     CHECK(table.box.size.y == Approx(0.4848257303237915));
     CHECK(table.box.size.z == Approx(0.6780940890312195));
 
-    // The floor lies under the table and the door stands on the floor.
+    // The floor lies under the table, its top at z = 0, and the door stands on the floor.
     const Node& floor = bySourceId(scene, 25);
     CHECK(footprintContains(floor.box, {table.box.center.x, table.box.center.y}));
+    CHECK(top(floor.box) == Approx(0).margin(1e-9));
     CHECK(bottom(bySourceId(scene, 36).box) == Approx(top(floor.box)).margin(0.05));
 }
 
@@ -134,11 +137,13 @@ TEST_CASE("Replica: translation is added, tilted boxes fold to their world AABB"
         const Box& box = scene.nodes.at(0).box;
         CHECK(box.center.x == Approx(10).margin(1e-12));
         CHECK(box.center.y == Approx(21));
-        CHECK(box.center.z == Approx(30));
+        // The one box is what stands lowest: it stands on the floor, 28.5 m below where the file has it.
+        CHECK(box.center.z == Approx(1.5));
+        CHECK(scene.info.alignment[11] == Approx(-28.5));
         CHECK(box.yaw == Approx(std::numbers::pi / 2));
         CHECK(box.size == Vec3{1, 2, 3});
         // No floor, no door: at the centre of the boxes, eye height above the lowest bottom, facing +y.
-        CHECK(scene.info.viewpoint.position.z == Approx(30 - 1.5 + 1.6));
+        CHECK(scene.info.viewpoint.position.z == Approx(1.6));
         CHECK(scene.info.viewpoint.facingYaw == Approx(std::numbers::pi / 2));
     }
     SECTION("45 degrees about x") {

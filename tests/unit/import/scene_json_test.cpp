@@ -85,7 +85,11 @@ TEST_CASE("smql JSON: optional fields take their defaults", "[import][json]") {
          "box": {"center": [1, 1, 0.1], "size": [0.1, 0.1, 0.12], "yaw": 0.5}}]})");
     SceneData scene = readSceneJson(path);
     CHECK(scene.info.name == "tiny");
-    CHECK(scene.info.alignment == kIdentity);
+    // The floor's top was 2.5 cm up: the scene stands on it, the move kept in the alignment.
+    Transform moved = kIdentity;
+    moved[11] = -0.025;
+    CHECK(scene.info.alignment == moved);
+    CHECK(scene.nodes[1].box.center.z == Approx(0.075));
     CHECK(scene.info.scale == 1.0);
     CHECK(scene.info.nodeCount == 2);
     REQUIRE(scene.nodes.size() == 2);

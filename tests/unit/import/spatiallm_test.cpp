@@ -109,15 +109,22 @@ TEST_CASE("SpatialLM: no door means the centre of all boxes, facing +y", "[impor
     CHECK(scene.info.viewpoint.facingYaw == Approx(std::numbers::pi / 2));
 }
 
-TEST_CASE("SpatialLM: a box at the coordinate limit still gives a scene that reads back", "[import][spatiallm]") {
-    // Found by fuzz_import_spatiallm: eye height above this box is past the limit.
+TEST_CASE("SpatialLM: a box at the coordinate limit stands on the floor; a layout too tall to is refused",
+          "[import][spatiallm]") {
+    // Found by fuzz_import_spatiallm: eye height above this box was past the limit.
     TempDir dir;
     std::string path = dir.write("high.txt", "bbox_0=Bbox(chair,1,1,9999.45,0,0.5,0.5,0.9)\n");
     SceneData scene = readSpatialLm(path, "high");
-    CHECK(scene.info.viewpoint.position.z == Approx(1e4));
-    CHECK_THAT(scene.info.viewpointNote, Catch::Contains("held within"));
+    CHECK(scene.nodes.at(0).box.center.z == Approx(0.45));
+    CHECK(scene.info.viewpoint.position.z == Approx(1.6));
     SceneData again = smql::import::readSceneJson(dir.write("again.json", smql::import::writeSceneJson(scene)));
-    CHECK(again.info.viewpoint.position.z == Approx(1e4));
+    CHECK(again.nodes == scene.nodes);
+    CHECK(again.info == scene.info);
+    // Standing on the lower box puts the higher one past the limit: an error, not a scene that
+    // cannot be read back.
+    std::string tall = dir.write("tall.txt",
+                                 "bbox_0=Bbox(chair,1,1,-9999,0,0.5,0.5,0.9)\nbbox_1=Bbox(lamp,1,1,9999,0,0.5,0.5,0.9)\n");
+    CHECK_THROWS_WITH(readSpatialLm(tall, "tall"), Catch::Contains("more than 10000 m"));
 }
 
 TEST_CASE("SpatialLM: malformed layouts are rejected with file:line", "[import][spatiallm][malformed]") {

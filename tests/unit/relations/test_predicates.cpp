@@ -29,7 +29,9 @@ const Node kTable = node(1, "table", 0, 0, 0.4, 1, 1, 0.8);
 const Thresholds kT;
 const Frame kFrame = viewFrame({{0, -3, 1.6}, M_PI / 2});  // standing at y=-3 looking along +y
 
-double eval(Predicate p, const Node& a, const Node& b) { return evaluate(p, a, b, kT, kFrame); }
+const NodeObstacles kNothing{std::span<const Node>{}};
+
+double eval(Predicate p, const Node& a, const Node& b) { return evaluate(p, a, b, kT, kFrame, kNothing); }
 
 // A scene's boxes as obstacles, without an index: every box is a candidate.
 class Boxes final : public Obstacles {
@@ -44,7 +46,7 @@ private:
 };
 
 double evalAmong(Predicate p, const Node& a, const Node& b, const Obstacles& obstacles, const Frame& frame = kFrame) {
-    return evaluate(p, a, b, kT, frame, nullptr, std::nullopt, &obstacles);
+    return evaluate(p, a, b, kT, frame, obstacles);
 }
 
 Node wallAt(model::NodeId id, double y) {
@@ -123,8 +125,8 @@ TEST_CASE("near: scale-aware limit between a floor and a ceiling") {
     CHECK(eval(Predicate::Near, eraser(0.14), pen) > 0);
     CHECK(eval(Predicate::Near, eraser(0.16), pen) == 0);
     CHECK(nearLimit(pen, eraser(0.1), kT) == Approx(0.15));
-    CHECK(evaluate(Predicate::Near, at(0.9), kTable, kT, kFrame, nullptr, 1.0) > 0);
-    CHECK(evaluate(Predicate::Near, at(1.1), kTable, kT, kFrame, nullptr, 1.0) == 0);
+    CHECK(evaluate(Predicate::Near, at(0.9), kTable, kT, kFrame, kNothing, nullptr, 1.0) > 0);
+    CHECK(evaluate(Predicate::Near, at(1.1), kTable, kT, kFrame, kNothing, nullptr, 1.0) == 0);
 }
 
 TEST_CASE("near: a wall between two things keeps them apart") {
@@ -182,7 +184,7 @@ TEST_CASE("visible_from: the share of unblocked samples against visible.min_shar
     Thresholds strict;
     strict.visibleMinShare = 0.34;
     Boxes panels({twoColumns});
-    CHECK(evaluate(Predicate::VisibleFrom, cube, eye, strict, kFrame, nullptr, std::nullopt, &panels) == 0);
+    CHECK(evaluate(Predicate::VisibleFrom, cube, eye, strict, kFrame, panels) == 0);
 }
 
 TEST_CASE("facing and the intrinsic front and back") {
@@ -220,7 +222,7 @@ TEST_CASE("facing and the intrinsic front and back") {
     CHECK(eval(Predicate::AtFrontOf, far, sofa) == 0);
     // The front is intrinsic: the viewer turning around changes nothing.
     Frame back = viewFrame({{0, 3, 1.6}, -M_PI / 2});
-    CHECK(evaluate(Predicate::AtFrontOf, coffee, sofa, kT, back) > 0);
+    CHECK(evaluate(Predicate::AtFrontOf, coffee, sofa, kT, back, kNothing) > 0);
 }
 
 TEST_CASE("above and below") {
@@ -261,20 +263,20 @@ TEST_CASE("lateral predicates follow the viewpoint") {
     CHECK(eval(Predicate::Behind, kTable, nearer) > 0);
     // Turned around (looking along -y), left and right swap.
     Frame back = viewFrame({{0, 3, 1.6}, -M_PI / 2});
-    CHECK(evaluate(Predicate::RightOf, left, kTable, kT, back) > 0);
+    CHECK(evaluate(Predicate::RightOf, left, kTable, kT, back, kNothing) > 0);
 }
 
 TEST_CASE("between: on the segment within the offset") {
     Node a = node(2, "sofa", -2, 0, 0.4, 0.5, 0.5, 0.8), c = node(3, "lamp", 2, 0, 0.4, 0.5, 0.5, 0.8);
-    CHECK(evaluate(Predicate::Between, kTable, a, kT, kFrame, &c) > 0);
-    CHECK(evaluate(Predicate::Between, node(4, "x", 0, 0.49, 0, 0.1, 0.1, 0.1), a, kT, kFrame, &c) > 0);
-    CHECK(evaluate(Predicate::Between, node(4, "x", 0, 0.51, 0, 0.1, 0.1, 0.1), a, kT, kFrame, &c) == 0);
-    CHECK(evaluate(Predicate::Between, node(4, "x", 3, 0, 0, 0.1, 0.1, 0.1), a, kT, kFrame, &c) == 0);
+    CHECK(evaluate(Predicate::Between, kTable, a, kT, kFrame, kNothing, &c) > 0);
+    CHECK(evaluate(Predicate::Between, node(4, "x", 0, 0.49, 0, 0.1, 0.1, 0.1), a, kT, kFrame, kNothing, &c) > 0);
+    CHECK(evaluate(Predicate::Between, node(4, "x", 0, 0.51, 0, 0.1, 0.1, 0.1), a, kT, kFrame, kNothing, &c) == 0);
+    CHECK(evaluate(Predicate::Between, node(4, "x", 3, 0, 0, 0.1, 0.1, 0.1), a, kT, kFrame, kNothing, &c) == 0);
 }
 
 TEST_CASE("relate lists the most specific relation first") {
     Node mug = node(2, "mug", 0, 0, 0.9, 0.2, 0.2, 0.2);
-    auto hits = relate(mug, kTable, kT, kFrame);
+    auto hits = relate(mug, kTable, kT, kFrame, kNothing);
     REQUIRE(hits.size() >= 2);
     CHECK(hits.front().predicate == Predicate::On);
     CHECK(hits.back().predicate == Predicate::Near);
