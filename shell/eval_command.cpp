@@ -198,10 +198,14 @@ public:
             }
             path.add(samePath);
             locPath.add(locatedPath);
-            bool parentThere = hit && memoryChain.size() >= 2 && truthChain.size() >= 2 &&
-                               category(memoryChain, 1) == category(truthChain, 1) &&
-                               matchDistance(*memoryChain[memoryChain.size() - 2],
-                                             *truthChain[truthChain.size() - 2]) <= settings_.tauMatch;
+            // A thing whose parent is the room itself (a layout without anchors) has its parent
+            // located when the memory's is the room too.
+            bool parentThere = hit && (memoryChain.size() == 1 && truthChain.size() == 1
+                                           ? true
+                                           : memoryChain.size() >= 2 && truthChain.size() >= 2 &&
+                                                 category(memoryChain, 1) == category(truthChain, 1) &&
+                                                 matchDistance(*memoryChain[memoryChain.size() - 2],
+                                                               *truthChain[truthChain.size() - 2]) <= settings_.tauMatch);
             locParent.add(parentThere);
             if (const std::string* c = t.attribute("color")) {
                 const std::string* m = hit ? hit->attribute("color") : nullptr;
@@ -272,7 +276,9 @@ public:
             if (auto end = truthSpace.nearestFree(walk.back(), 1.0))
                 if (auto route = guide::shortestRoute(truthGraph, truthSpace, walk.front(), *end, truthOptions))
                     shortest = route->length;
-            spl.push_back(reached ? shortest / std::max(walked, shortest) : 0);
+            // A goal reached without a step (the start is beside it) is a perfect walk.
+            const double longer = std::max(walked, shortest);
+            spl.push_back(!reached ? 0 : longer > 0 ? shortest / longer : 1);
             if (!reached) failedErrors.push_back(error);
         }
         add(report, "guidance", "Reach", routed, latency);
@@ -426,7 +432,8 @@ int evalCommand(const EvalOptions& options) {
 
     model::SceneData truth;
     if (options.suite.empty()) {
-        truth = memory;
+        // The scene as a file (local ids, as `smql export json` writes it): the truth the suite names.
+        truth = engine->exportScene(memory.info.name);
         suite = generateSuite(truth);
     } else {
         const fs::path truthPath = fs::path(options.suite).parent_path() / suite["truth"].get<std::string>();

@@ -20,6 +20,13 @@ Value nodeLabel(const SceneSnapshot& scene, model::NodeId id) {
 
 Value nodeId(model::NodeId id) { return id == model::kNoNode ? Value() : Value(static_cast<std::int64_t>(id)); }
 
+// Where the walk to `goal` ends: its approach point, else the free floor nearest it.
+std::optional<guide::Point> approachTo(const SceneSnapshot::Guidance& g, const model::Node& goal) {
+    for (const auto& p : g.graph.points)
+        if (p.kind == guide::PointKind::Approach && p.node == goal.id) return p.at;
+    return g.space.nearestFree({goal.box.center.x, goal.box.center.y}, 1.5);
+}
+
 // Why no route joins two points: the smaller of their stretches of free floor, and what closes it.
 Error noRoute(const SceneSnapshot& snap, const std::string& origin, const model::Node& goal, guide::Point start,
               guide::Point end) {
@@ -122,14 +129,19 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
         startNode = from.id;
         startWords = fmt::format("Start {} the {}.", from.category == "door" ? "at" : "beside", from.category);
         start = {from.box.center.x, from.box.center.y};
-        // From a door: its side nearest the goal, facing away from the door. From anything else: the
-        // point beside it, as for a goal.
+        // From a door: its side from which the goal's floor is reached, else nearest the goal, facing
+        // away from the door. From anything else: the point beside it, as for a goal.
+        const guide::Point goalAt{goal.box.center.x, goal.box.center.y};
+        const auto goalEnd = approachTo(g, goal);
+        auto better = [&](guide::Point p, guide::Point than) {
+            const bool reaches = goalEnd && g.space.connected(p, *goalEnd);
+            const bool thanReaches = goalEnd && g.space.connected(than, *goalEnd);
+            if (reaches != thanReaches) return reaches;
+            return std::hypot(p.x - goalAt.x, p.y - goalAt.y) < std::hypot(than.x - goalAt.x, than.y - goalAt.y);
+        };
         std::optional<guide::Point> best;
         for (const auto& p : g.graph.points)
-            if (p.node == from.id &&
-                (!best || std::hypot(p.at.x - goal.box.center.x, p.at.y - goal.box.center.y) <
-                              std::hypot(best->x - goal.box.center.x, best->y - goal.box.center.y)))
-                best = p.at;
+            if (p.node == from.id && (!best || better(p.at, *best))) best = p.at;
         if (best) {
             if (from.category == "door") heading = std::atan2(best->y - start.y, best->x - start.x);
             start = *best;
@@ -143,10 +155,7 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
                                 origin, start.x, start.y),
                     std::nullopt, "SHOW GRAPH lists the decision points; start from one of them, a door or HERE");
 
-    std::optional<guide::Point> end;
-    for (const auto& p : g.graph.points)
-        if (p.kind == guide::PointKind::Approach && p.node == goal.id) end = p.at;
-    if (!end) end = g.space.nearestFree({goal.box.center.x, goal.box.center.y}, 1.5);
+    const auto end = approachTo(g, goal);
     if (!end)
         throw Error(ErrorKind::Binding,
                     fmt::format("no route to {}: no free floor within 1.5 m of it is connected to the rest of "

@@ -5,6 +5,10 @@
 #include <limits>
 #include <map>
 
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/multi_point.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 
@@ -48,6 +52,26 @@ model::Aabb floorRectangle(const std::vector<Node>& nodes) {
     }
     if (!(out.min.x <= out.max.x)) out = {{0, 0, 0}, {0, 0, 0}};
     return out;
+}
+
+namespace bg = boost::geometry;
+using Outline = bg::model::polygon<bg::model::d2::point_xy<double>>;
+
+// A layout of things without a floor or walls (a scan's boxes): the room is the convex hull of
+// their footprints, not the axis-aligned rectangle around them, which for a room at an angle
+// holds as much floor outside it as in it.
+std::optional<Outline> thingsOutline(const std::vector<Node>& nodes) {
+    bg::model::multi_point<bg::model::d2::point_xy<double>> corners;
+    for (const Node& n : nodes) {
+        if (!solid(n)) continue;
+        if (n.kind == NodeKind::Anchor && (n.category == "floor" || n.category == "wall")) return std::nullopt;
+        if (n.kind == NodeKind::Anchor || n.kind == NodeKind::Object)
+            for (model::Vec2 c : model::footprint(n.box)) bg::append(corners, bg::model::d2::point_xy<double>(c.x, c.y));
+    }
+    if (corners.size() < 3) return std::nullopt;
+    Outline hull;
+    bg::convex_hull(corners, hull);
+    return hull;
 }
 
 bool isDoor(const Node& n) { return n.kind == NodeKind::Anchor && n.category == "door" && solid(n); }
@@ -129,6 +153,12 @@ FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options
     height_ = std::max(1, static_cast<int>(std::ceil((floor.max.y - floor.min.y) / cell_)));
     cells_.assign(static_cast<std::size_t>(width_) * height_, 1);
     blockers_.assign(cells_.size(), model::kNoNode);
+    if (auto outline = thingsOutline(nodes))
+        for (int j = 0; j < height_; ++j)
+            for (int i = 0; i < width_; ++i)
+                if (!bg::covered_by(bg::model::d2::point_xy<double>(minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_),
+                                    *outline))
+                    cells_[static_cast<std::size_t>(j) * width_ + i] = 0;
 
     // Marks the cells whose centres lie within `grow` of the box's footprint: blocked by `by`, or
     // free again when `by` is kNoNode.
@@ -274,7 +304,7 @@ namespace {
 std::optional<Point> approach(const Node& goal, const Node& support, const FreeSpace& space, Point centre,
                               const GraphOptions& options) {
     constexpr double kSpacing = 0.2;
-    const double away = options.bodyRadius + 0.15;
+    const double away = options.bodyRadius + 0.1;
     const model::Box& box = support.box;
     const double hx = box.size.x / 2 + away, hy = box.size.y / 2 + away;
     const double c = std::cos(box.yaw), s = std::sin(box.yaw);
@@ -312,7 +342,7 @@ RouteGraph buildGraph(const std::vector<Node>& nodes, const FreeSpace& space, co
             double out = std::min(n.box.size.x, n.box.size.y) / 2 + options.bodyRadius + 0.3;
             for (double side : {1.0, -1.0}) {
                 Point p{n.box.center.x + side * normal.x * out, n.box.center.y + side * normal.y * out};
-                if (auto snapped = space.nearestFree(p, 0.5)) graph.points.push_back({*snapped, PointKind::Door, n.id});
+                if (auto snapped = space.nearestFree(p, 1.0)) graph.points.push_back({*snapped, PointKind::Door, n.id});
             }
         } else if (n.kind == NodeKind::Object && !footing.walkedOver(n)) {
             if (auto p = approach(n, footing.support(n), space, centre, options))
@@ -351,38 +381,28 @@ RouteGraph buildGraph(const std::vector<Node>& nodes, const FreeSpace& space, co
     return graph;
 }
 
-std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& space, Point from, Point to,
-                                   const GraphOptions& options) {
-    using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
-                                        boost::property<boost::edge_weight_t, double>>;
-    const std::size_t n = graph.points.size();
-    const std::size_t start = n, goal = n + 1;
-    Graph g(n + 2);
-    for (const Edge& e : graph.edges) boost::add_edge(e.a, e.b, e.length, g);
-    // The two ends join every decision point they see, and each other.
-    for (std::size_t i = 0; i < n; ++i) {
-        Point p = graph.points[i].at;
-        if (distance(from, p) <= options.maxEdge && space.clear(from, p))
-            boost::add_edge(start, i, distance(from, p), g);
-        if (distance(to, p) <= options.maxEdge && space.clear(to, p)) boost::add_edge(goal, i, distance(to, p), g);
-    }
-    if (space.clear(from, to)) boost::add_edge(start, goal, distance(from, to), g);
+namespace {
 
-    std::vector<std::size_t> previous(n + 2);
-    std::vector<double> distances(n + 2, std::numeric_limits<double>::infinity());
+using WeightedGraph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                                            boost::property<boost::edge_weight_t, double>>;
+
+// Vertices from `start` to `goal` along Dijkstra's predecessors; empty when goal was not reached.
+std::vector<std::size_t> shortestPath(const WeightedGraph& g, std::size_t start, std::size_t goal) {
+    std::vector<std::size_t> previous(boost::num_vertices(g));
+    std::vector<double> distances(previous.size(), std::numeric_limits<double>::infinity());
     boost::dijkstra_shortest_paths(g, start, boost::predecessor_map(previous.data()).distance_map(distances.data()));
     // Dijkstra leaves an unreached vertex its own predecessor (and the largest double as distance).
-    if (previous[goal] == goal) return std::nullopt;
+    if (previous[goal] == goal && goal != start) return {};
+    std::vector<std::size_t> path;
+    for (std::size_t v = goal; v != start; v = previous[v]) path.push_back(v);
+    path.push_back(start);
+    std::reverse(path.begin(), path.end());
+    return path;
+}
 
-    std::vector<Point> path;
-    std::vector<std::size_t> backwards;
-    for (std::size_t v = goal; v != start; v = previous[v]) backwards.push_back(v);
-    path.push_back(from);
-    for (auto it = backwards.rbegin(); it != backwards.rend(); ++it)
-        path.push_back(*it == goal ? to : graph.points[*it].at);
-
-    // Straightened: from each waypoint, on to the farthest later one in plain view. The lattice's
-    // zigzags are not decisions a walker makes.
+// Straightened: from each waypoint, on to the farthest later one in plain view. The lattice's and
+// the grid's zigzags are not decisions a walker makes.
+Route straightened(const std::vector<Point>& path, const FreeSpace& space) {
     Route route;
     route.waypoints.push_back(path.front());
     for (std::size_t i = 0; i + 1 < path.size();) {
@@ -393,6 +413,70 @@ std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& spa
         i = next;
     }
     return route;
+}
+
+// The way over the free cells themselves (8 neighbours, no corner cut), for two places the free
+// floor joins where the decision points do not see each other: a winding way between chairs.
+std::optional<Route> cellRoute(const FreeSpace& space, Point from, Point to) {
+    auto cellOf = [&](Point p) {
+        return std::pair{static_cast<int>(std::floor((p.x - space.minX()) / space.cell())),
+                         static_cast<int>(std::floor((p.y - space.minY()) / space.cell()))};
+    };
+    const int w = space.width(), h = space.height();
+    auto index = [&](int i, int j) { return static_cast<std::size_t>(j) * w + i; };
+    auto freeAt = [&](int i, int j) { return i >= 0 && j >= 0 && i < w && j < h && space.freeCell(i, j); };
+    auto [si, sj] = cellOf(from);
+    auto [gi, gj] = cellOf(to);
+    if (!freeAt(si, sj) || !freeAt(gi, gj)) return std::nullopt;
+    WeightedGraph g(static_cast<std::size_t>(w) * h);
+    const double step = space.cell(), diagonal = space.cell() * std::sqrt(2.0);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            if (!freeAt(i, j)) continue;
+            if (freeAt(i + 1, j)) boost::add_edge(index(i, j), index(i + 1, j), step, g);
+            if (freeAt(i, j + 1)) boost::add_edge(index(i, j), index(i, j + 1), step, g);
+            if (freeAt(i + 1, j + 1) && freeAt(i + 1, j) && freeAt(i, j + 1))
+                boost::add_edge(index(i, j), index(i + 1, j + 1), diagonal, g);
+            if (freeAt(i - 1, j + 1) && freeAt(i - 1, j) && freeAt(i, j + 1))
+                boost::add_edge(index(i, j), index(i - 1, j + 1), diagonal, g);
+        }
+    auto cells = shortestPath(g, index(si, sj), index(gi, gj));
+    if (cells.empty()) return std::nullopt;
+    // The cells where the way turns, between the two ends.
+    std::vector<Point> path{from};
+    for (std::size_t k = 1; k + 1 < cells.size(); ++k) {
+        const long before = static_cast<long>(cells[k]) - static_cast<long>(cells[k - 1]);
+        const long after = static_cast<long>(cells[k + 1]) - static_cast<long>(cells[k]);
+        if (before == after) continue;
+        const int i = static_cast<int>(cells[k] % w), j = static_cast<int>(cells[k] / w);
+        path.push_back({space.minX() + (i + 0.5) * space.cell(), space.minY() + (j + 0.5) * space.cell()});
+    }
+    path.push_back(to);
+    return straightened(path, space);
+}
+
+}  // namespace
+
+std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& space, Point from, Point to,
+                                   const GraphOptions& options) {
+    const std::size_t n = graph.points.size();
+    const std::size_t start = n, goal = n + 1;
+    WeightedGraph g(n + 2);
+    for (const Edge& e : graph.edges) boost::add_edge(e.a, e.b, e.length, g);
+    // The two ends join every decision point they see, and each other.
+    for (std::size_t i = 0; i < n; ++i) {
+        Point p = graph.points[i].at;
+        if (distance(from, p) <= options.maxEdge && space.clear(from, p))
+            boost::add_edge(start, i, distance(from, p), g);
+        if (distance(to, p) <= options.maxEdge && space.clear(to, p)) boost::add_edge(goal, i, distance(to, p), g);
+    }
+    if (space.clear(from, to)) boost::add_edge(start, goal, distance(from, to), g);
+
+    auto vertices = shortestPath(g, start, goal);
+    if (vertices.empty()) return space.connected(from, to) ? cellRoute(space, from, to) : std::nullopt;
+    std::vector<Point> path;
+    for (std::size_t v : vertices) path.push_back(v == start ? from : v == goal ? to : graph.points[v].at);
+    return straightened(path, space);
 }
 
 }  // namespace smql::guide

@@ -213,6 +213,30 @@ expected = sum(found(t) for t in sought) / len(sought)
 other = metrics(\"eval-other.json\")[\"SR_obj\"]
 assert expected < 1 and abs(other[\"value\"] - expected) < 1e-9, (other, expected)
 ' '$work'"
+# Real layouts: the Replica room and VSI-Bench's rooms, scored with the suite smql eval generates.
+check "GUIDE reaches at least 95% of the Replica room's floor-standing and supported things from the door" bash -c "
+  '$smql' import replica '$replica' --db '$work/replica-guide' >/dev/null &&
+  '$smql' eval --db '$work/replica-guide' --json '$work/replica-eval.json' >/dev/null &&
+  python3 -c '
+import json, sys
+m = {r[\"metric\"]: r for r in json.load(open(sys.argv[1]))[\"metrics\"]}
+assert m[\"Reach\"][\"episodes\"] >= 30 and m[\"Reach\"][\"value\"] >= 0.95, m[\"Reach\"]
+assert m[\"SR_nav\"][\"value\"] >= 0.95 and m[\"Acc_rel\"][\"value\"] == 1.0, m
+' '$work/replica-eval.json'"
+check "GUIDE from the door reaches the sofas, the coffee table and the plant on it" bash -c "
+  for goal in src#9 src#77 src#11 src#35; do '$smql' '$work/replica-guide' -c \"GUIDE FROM door TO \$goal\" | tail -1 | grep -q '^[0-9.]* m from door#' || exit 1; done"
+check "import vsibench --all imports every room of a VSI-Bench file, standing on its floor" bash -c "
+  '$smql' import vsibench '$data/real-layouts/scannet_meta_info_val.json' --db '$work/scannet' --all >'$work/scannet.out' &&
+  test \$(grep -c '^imported scene' '$work/scannet.out') -eq 88 &&
+  '$smql' '$work/scannet' -csv -c \"USE SCENE 'scene0251_00'; FIND door\" | tail -n +2 | grep -c ',door,' | grep -qx 3"
+check "import vsibench without --scene names the rooms of a file that holds several" bash -c "
+  ! '$smql' import vsibench '$data/real-layouts/arkitscenes_meta_info_val.json' --db '$work/none' 2>'$work/e' &&
+  grep -q 'holds 150 rooms' '$work/e' && grep -q -- '--all' '$work/e' && test ! -e '$work/none'"
+check "smql eval scores a real layout on the suite it generates, and writes the suite for another memory" bash -c "
+  '$smql' eval --db '$work/scannet' --scene scene0251_00 --write-suite '$work/layout-suite' >'$work/layout.md' &&
+  grep -q '| guidance | Reach |' '$work/layout.md' && test -s '$work/layout-suite/truth.json' &&
+  '$smql' eval '$work/layout-suite/eval-suite.json' --db '$work/scannet' --scene scene0251_00 >'$work/again.md' &&
+  diff <(cut -d'|' -f2-5 '$work/layout.md') <(cut -d'|' -f2-5 '$work/again.md')"
 check "--update of a missing scene is refused before any work" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --update nowhere 2>&1 | grep -q frames"
 # Ctrl-C during an ingest: it stops, says so, exits non-zero, and writes nothing.
 check "a longer capture" "$smql" synth --out "$work/long" --seed 4 --frames 150
