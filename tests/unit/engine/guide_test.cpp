@@ -7,6 +7,7 @@
 #include "engine/guide/route_graph.hpp"
 #include "engine/guide/route_steps.hpp"
 #include "engine_support.hpp"
+#include "ingest/import/importers.hpp"
 
 using namespace smql;
 using namespace smql::testing;
@@ -147,6 +148,108 @@ TEST_CASE("GUIDE answers in steps; ambiguous ends and closed-off goals are error
         closed->execute("GUIDE FROM table TO lamp");
         FAIL("a route through a wall");
     } catch (const Error& e) {
-        CHECK_THAT(e.message(), Catch::Contains("no route") && Catch::Contains("lamp#"));
+        // It says what closes the goal's side off: the walls around the right room.
+        CHECK_THAT(e.message(), Catch::Contains("no route") && Catch::Contains("lamp#") &&
+                                    Catch::Contains("closed off by") && Catch::Contains("wall#"));
+        CHECK_THAT(e.hint(), Catch::Contains("smql map"));
     }
+}
+
+namespace {
+
+// A bedroom 6 m x 4 m with its door in the left wall: a rug in the middle, a bed by the right
+// wall under a blanket that spills 0.4 m over its sides to the floor, a pillow on the bed, a
+// light on the ceiling. Parents are set as the tree sets them.
+std::vector<model::Node> bedroom(bool blanketOnBed) {
+    std::vector<model::Node> n;
+    n.push_back(node(1, NodeKind::Anchor, "floor", {3, 2, -0.01}, {6, 4, 0.02}));
+    n.push_back(node(2, NodeKind::Anchor, "wall", {3, 0, 1.25}, {6, 0.1, 2.5}));
+    n.push_back(node(3, NodeKind::Anchor, "wall", {3, 4, 1.25}, {6, 0.1, 2.5}));
+    n.push_back(node(4, NodeKind::Anchor, "wall", {0, 2, 1.25}, {0.1, 4, 2.5}));
+    n.push_back(node(5, NodeKind::Anchor, "wall", {6, 2, 1.25}, {0.1, 4, 2.5}));
+    n.push_back(node(6, NodeKind::Anchor, "door", {0, 1, 1.05}, {0.1, 0.9, 2.1}));
+    n.push_back(node(7, NodeKind::Object, "rug", {2.5, 2, 0.005}, {2.5, 1.8, 0.01}));
+    n.push_back(node(8, NodeKind::Object, "bed", {4.9, 2.5, 0.25}, {2.0, 1.6, 0.5}));
+    n.push_back(node(9, NodeKind::Object, "blanket", {4.9, 2.5, 0.3}, {2.0, 2.4, 0.6}));
+    n.push_back(node(10, NodeKind::Object, "pillow", {5.6, 2.5, 0.57}, {0.4, 0.6, 0.15}));
+    n.push_back(node(11, NodeKind::Object, "lamp", {2.5, 2, 2.45}, {0.6, 0.6, 0.05}));
+    if (blanketOnBed) n[8].parent = 8;
+    n[9].parent = 8;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("free space as in a real room: rugs are walked over, what lies on furniture leaves the floor to it",
+          "[guide]") {
+    guide::GraphOptions options;
+    auto nodes = bedroom(true);
+    guide::FreeSpace space(nodes, options);
+    CHECK(space.free({2.5, 2}));  // on the rug
+    CHECK(space.open({2.5, 2}));
+    // 0.3 m from the bed's side, 0.1 m from the blanket's edge: free, for the blanket is on the bed.
+    CHECK(space.free({4.9, 1.4}));
+    CHECK_FALSE(space.free({4.9, 1.6}));  // within a body's radius of the bed
+    auto loose = bedroom(false);
+    CHECK_FALSE(guide::FreeSpace(loose, options).free({4.9, 1.4}));  // a blanket on the floor blocks
+
+    // The pillow on the bed is approached beside the bed, on the side nearest the pillow.
+    auto graph = guide::buildGraph(nodes, space, options);
+    std::optional<guide::Point> pillow;
+    for (const auto& p : graph.points)
+        if (p.kind == guide::PointKind::Approach && p.node == 10) pillow = p.at;
+    REQUIRE(pillow);
+    CHECK(space.open(*pillow));
+    CHECK(std::hypot(pillow->x - 5.6, pillow->y - 2.5) < 1.2);  // the bed is 1.6 m wide: from its near side
+    // No approach to the rug: it is the floor one walks on.
+    for (const auto& p : graph.points) CHECK_FALSE((p.kind == guide::PointKind::Approach && p.node == 7));
+
+    // Steps name what a walker sees at eye level: not the ceiling light, not the rug under foot.
+    guide::Route route{{{0.5, 1}, {2.5, 2}, {4.5, 1.3}}, 4.4};
+    for (const auto& step : guide::describeRoute(route, nodes, nodes[9], std::nullopt)) {
+        CHECK(step.landmark != 11);
+        CHECK(step.landmark != 7);
+    }
+}
+
+TEST_CASE("two places the free floor joins are joined by a route, on real rooms", "[guide]") {
+    // ScanNet's rooms (VSI-Bench's boxes): winding ways between chairs that the decision points,
+    // 1 m apart, do not see through are walked on the free cells themselves.
+    const std::string file = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
+    auto rooms = import::vsiBenchRooms(file);
+    guide::GraphOptions options;
+    std::size_t pairs = 0;
+    for (std::size_t r = 0; r < rooms.size(); r += 4) {
+        auto nodes = import::readVsiBench(file, rooms[r]).nodes;
+        guide::FreeSpace space(nodes, options);
+        auto graph = guide::buildGraph(nodes, space, options);
+        std::vector<guide::Point> ends;
+        for (const auto& p : graph.points)
+            if (p.kind == guide::PointKind::Approach || p.kind == guide::PointKind::Door) ends.push_back(p.at);
+        for (std::size_t i = 0; i < ends.size(); i += 3)
+            for (std::size_t j = i + 1; j < ends.size(); j += 5) {
+                if (!space.connected(ends[i], ends[j])) continue;
+                ++pairs;
+                auto route = guide::shortestRoute(graph, space, ends[i], ends[j], options);
+                INFO(rooms[r] << ": (" << ends[i].x << ", " << ends[i].y << ") to (" << ends[j].x << ", " << ends[j].y
+                              << ")");
+                REQUIRE(route);
+                for (std::size_t k = 1; k < route->waypoints.size(); ++k)
+                    CHECK(space.clear(route->waypoints[k - 1], route->waypoints[k]));
+            }
+    }
+    CHECK(pairs > 150);
+}
+
+TEST_CASE("a layout without walls is the hull of its things, not the rectangle around them", "[guide]") {
+    // Two beds along a room turned 45 degrees: the rectangle's corners are outside the room.
+    std::vector<model::Node> nodes;
+    const double yaw = M_PI / 4;
+    nodes.push_back(node(1, NodeKind::Object, "bed", {0, 0, 0.3}, {2, 1.6, 0.6}, yaw));
+    nodes.push_back(node(2, NodeKind::Object, "bed", {3, 3, 0.3}, {2, 1.6, 0.6}, yaw));
+    nodes.push_back(node(3, NodeKind::Object, "chair", {3, 0, 0.4}, {0.5, 0.5, 0.8}, yaw));
+    nodes.push_back(node(4, NodeKind::Object, "chair", {0, 3, 0.4}, {0.5, 0.5, 0.8}, yaw));
+    guide::FreeSpace space(nodes, guide::GraphOptions{});
+    CHECK(space.free({1.5, 1.5}));         // between the beds
+    CHECK_FALSE(space.free({-0.9, -0.9}));  // the rectangle's corner, outside the room
 }
