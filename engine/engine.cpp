@@ -316,9 +316,8 @@ Engine::SceneMap Engine::sceneMap(const std::string& name) {
                     "SHOW SCENES lists the scenes");
     auto snapshot = state_->snapshot(txn, *info);
     const auto& guidance = snapshot->guidance();
-    SceneMap map{{snapshot->info(), snapshot->nodes(), snapshot->storedRelations(), {}},
-                 guidance.graph,
-                 guidance.space};
+    SceneMap map{
+        {snapshot->info(), snapshot->nodes(), snapshot->storedRelations(), {}}, guidance.graph, guidance.space};
     return map;
 }
 

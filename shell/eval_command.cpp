@@ -200,12 +200,13 @@ public:
             locPath.add(locatedPath);
             // A thing whose parent is the room itself (a layout without anchors) has its parent
             // located when the memory's is the room too.
-            bool parentThere = hit && (memoryChain.size() == 1 && truthChain.size() == 1
-                                           ? true
-                                           : memoryChain.size() >= 2 && truthChain.size() >= 2 &&
-                                                 category(memoryChain, 1) == category(truthChain, 1) &&
-                                                 matchDistance(*memoryChain[memoryChain.size() - 2],
-                                                               *truthChain[truthChain.size() - 2]) <= settings_.tauMatch);
+            bool parentThere =
+                hit && (memoryChain.size() == 1 && truthChain.size() == 1
+                            ? true
+                            : memoryChain.size() >= 2 && truthChain.size() >= 2 &&
+                                  category(memoryChain, 1) == category(truthChain, 1) &&
+                                  matchDistance(*memoryChain[memoryChain.size() - 2],
+                                                *truthChain[truthChain.size() - 2]) <= settings_.tauMatch);
             locParent.add(parentThere);
             if (const std::string* c = t.attribute("color")) {
                 const std::string* m = hit ? hit->attribute("color") : nullptr;
@@ -235,9 +236,9 @@ public:
             // From a door (a truth node) or from a point of the floor.
             const bool fromPoint = e.contains("from_point");
             const Node* from = fromPoint ? nullptr : &truthNode(e["from"]);
-            const guide::Point origin = fromPoint ? guide::Point{e["from_point"][0].get<double>(),
-                                                                 e["from_point"][1].get<double>()}
-                                                  : guide::Point{from->box.center.x, from->box.center.y};
+            const guide::Point origin =
+                fromPoint ? guide::Point{e["from_point"][0].get<double>(), e["from_point"][1].get<double>()}
+                          : guide::Point{from->box.center.x, from->box.center.y};
             const Node& to = truthNode(e["to"]);
             const Node* start = fromPoint ? nullptr : match(*from);
             const Node* goal = match(to);
@@ -370,8 +371,9 @@ Json generateSuite(const model::SceneData& truth) {
                                   space.minY() + space.height() * space.cell() / 2};
         if (auto start = space.nearestFree(middle, std::hypot(space.width(), space.height()) * space.cell()))
             for (const Node* t : goals)
-                guidance.push_back({{"from_point", {std::round(start->x * 1000) / 1000, std::round(start->y * 1000) / 1000}},
-                                    {"to", t->id}});
+                guidance.push_back(
+                    {{"from_point", {std::round(start->x * 1000) / 1000, std::round(start->y * 1000) / 1000}},
+                     {"to", t->id}});
     }
     suite["relative_position"] = relative;
     suite["guidance"] = guidance;

@@ -167,7 +167,8 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
         for (Slot b : slots(expr.args[0], frame))
             for (Slot c : second) {
                 poll();
-                if (b != slot && c != slot && c != b && score(expr.predicate, a, snap.node(b), frame, &snap.node(c)) > 0)
+                if (b != slot && c != slot && c != b &&
+                    score(expr.predicate, a, snap.node(b), frame, &snap.node(c)) > 0)
                     return true;
             }
         return false;

@@ -40,17 +40,20 @@ Error noRoute(const SceneSnapshot& snap, const std::string& origin, const model:
     std::string named;
     for (std::size_t i = 0; i < blockers.size(); ++i) {
         auto slot = snap.slotOf(blockers[i]);
-        named += fmt::format("{}{}", i == 0 ? "" : i + 1 == blockers.size() ? " and " : ", ",
+        named += fmt::format("{}{}",
+                             i == 0                     ? ""
+                             : i + 1 == blockers.size() ? " and "
+                                                        : ", ",
                              slot ? SceneSnapshot::label(snap.node(*slot)) : fmt::format("#{}", blockers[i]));
     }
-    return Error(ErrorKind::Binding,
-                 fmt::format("no route from {} to {}: the free floor {} ({:.1f} m^2) is closed off{} (a way must be "
-                             "{} m wide)",
-                             origin, SceneSnapshot::label(goal),
-                             goalSide ? "beside " + SceneSnapshot::label(goal) : "at the start",
-                             goalSide ? endArea : startArea, named.empty() ? "" : " by " + named,
-                             2 * g.options.bodyRadius),
-                 std::nullopt, "smql map draws the free floor and what blocks it; SHOW GRAPH lists the decision points");
+    return Error(
+        ErrorKind::Binding,
+        fmt::format("no route from {} to {}: the free floor {} ({:.1f} m^2) is closed off{} (a way must be "
+                    "{} m wide)",
+                    origin, SceneSnapshot::label(goal),
+                    goalSide ? "beside " + SceneSnapshot::label(goal) : "at the start", goalSide ? endArea : startArea,
+                    named.empty() ? "" : " by " + named, 2 * g.options.bodyRadius),
+        std::nullopt, "smql map draws the free floor and what blocks it; SHOW GRAPH lists the decision points");
 }
 
 }  // namespace

@@ -66,7 +66,8 @@ std::optional<Outline> thingsOutline(const std::vector<Node>& nodes) {
         if (!solid(n)) continue;
         if (n.kind == NodeKind::Anchor && (n.category == "floor" || n.category == "wall")) return std::nullopt;
         if (n.kind == NodeKind::Anchor || n.kind == NodeKind::Object)
-            for (model::Vec2 c : model::footprint(n.box)) bg::append(corners, bg::model::d2::point_xy<double>(c.x, c.y));
+            for (model::Vec2 c : model::footprint(n.box))
+                bg::append(corners, bg::model::d2::point_xy<double>(c.x, c.y));
     }
     if (corners.size() < 3) return std::nullopt;
     Outline hull;
@@ -119,8 +120,7 @@ bool Footing::walkedOver(const Node& n) const {
 
 const Node* Footing::parentThing(const Node& n) const {
     auto it = byId_.find(n.parent);
-    if (it == byId_.end() || it->second->kind != NodeKind::Object || !solid(*it->second) ||
-        walkedOver(*it->second))
+    if (it == byId_.end() || it->second->kind != NodeKind::Object || !solid(*it->second) || walkedOver(*it->second))
         return nullptr;
     return it->second;
 }
@@ -128,8 +128,7 @@ const Node* Footing::parentThing(const Node& n) const {
 bool Footing::blocks(const Node& n) const {
     if (!solid(n)) return false;
     const bool standing = model::bottom(n.box) - floor_ < options_.standingHeight;
-    if (n.kind == NodeKind::Anchor)
-        return n.category == "wall" || (standing && n.geometry == model::GeometryKind::Box);
+    if (n.kind == NodeKind::Anchor) return n.category == "wall" || (standing && n.geometry == model::GeometryKind::Box);
     return n.kind == NodeKind::Object && standing && !walkedOver(n) && !parentThing(n);
 }
 
@@ -156,8 +155,9 @@ FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options
     if (auto outline = thingsOutline(nodes))
         for (int j = 0; j < height_; ++j)
             for (int i = 0; i < width_; ++i)
-                if (!bg::covered_by(bg::model::d2::point_xy<double>(minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_),
-                                    *outline))
+                if (!bg::covered_by(
+                        bg::model::d2::point_xy<double>(minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_),
+                        *outline))
                     cells_[static_cast<std::size_t>(j) * width_ + i] = 0;
 
     // Marks the cells whose centres lie within `grow` of the box's footprint: blocked by `by`, or

@@ -22,9 +22,9 @@ struct Point {
 
 struct GraphOptions {
     double bodyRadius = 0.2;  // metres kept from every obstacle
-    double cell = 0.05;        // the free-space grid's resolution (m)
-    double lattice = 1.0;      // spacing of the junction points laid over the free space (m)
-    double maxEdge = 4.0;      // the longest straight segment an edge may be (m)
+    double cell = 0.05;       // the free-space grid's resolution (m)
+    double lattice = 1.0;     // spacing of the junction points laid over the free space (m)
+    double maxEdge = 4.0;     // the longest straight segment an edge may be (m)
     // Things whose bottom is this close to the floor stand on it and block the way; higher ones
     // (a mug on a table, a picture on a wall) do not.
     double standingHeight = 0.3;
@@ -108,9 +108,9 @@ private:
     double cell_, minX_ = 0, minY_ = 0;
     int width_ = 0, height_ = 0;
     int componentAt(Point p) const;
-    std::vector<std::uint8_t> cells_;       // 1 = free
-    std::vector<model::NodeId> blockers_;   // per blocked cell: what blocks it (kNoNode where free)
-    std::vector<int> component_;            // per cell: its connected stretch of free floor, -1 when blocked
+    std::vector<std::uint8_t> cells_;      // 1 = free
+    std::vector<model::NodeId> blockers_;  // per blocked cell: what blocks it (kNoNode where free)
+    std::vector<int> component_;           // per cell: its connected stretch of free floor, -1 when blocked
     std::vector<std::size_t> componentSizes_;
     int mainComponent_ = -1;
 };

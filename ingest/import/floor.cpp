@@ -41,8 +41,8 @@ std::optional<FloorFound> findFloor(const std::vector<model::Node>& nodes) {
         if (placed(n) && n.category != "ceiling") bottoms.push_back(model::bottom(n.box));
     if (bottoms.empty()) return std::nullopt;
     std::sort(bottoms.begin(), bottoms.end());
-    const std::size_t needed = std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(kFloorShare * bottoms.size())),
-                                                       1, kFloorMostNeeded);
+    const std::size_t needed =
+        std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(kFloorShare * bottoms.size())), 1, kFloorMostNeeded);
     for (std::size_t i = 0; i < bottoms.size(); ++i) {
         std::size_t end = i;
         while (end < bottoms.size() && bottoms[end] <= bottoms[i] + kLevelSpread) ++end;
@@ -59,12 +59,12 @@ std::optional<FloorFound> standOnFloor(model::SceneData& scene) {
         if (n.geometry == model::GeometryKind::None) continue;
         n.box.center.z -= dz;
         if (std::abs(n.box.center.z) > kMaxCoordinate)
-            throw Error(ErrorKind::Input,
-                        fmt::format("{}: standing on its floor ({} m, {}), {} #{} is {} m up: more than {} m",
-                                    scene.info.source, floor->height, floor->how, n.category,
-                                    n.sourceId ? *n.sourceId : static_cast<std::int64_t>(n.id), n.box.center.z,
-                                    kMaxCoordinate),
-                        std::nullopt, "a scene spans at most that much in height: check the file's units");
+            throw Error(
+                ErrorKind::Input,
+                fmt::format("{}: standing on its floor ({} m, {}), {} #{} is {} m up: more than {} m",
+                            scene.info.source, floor->height, floor->how, n.category,
+                            n.sourceId ? *n.sourceId : static_cast<std::int64_t>(n.id), n.box.center.z, kMaxCoordinate),
+                std::nullopt, "a scene spans at most that much in height: check the file's units");
     }
     scene.info.viewpoint.position.z -= dz;
     // aligned = T(0, 0, -dz) * A: the row of z loses dz times the homogeneous row (row-major 4x4).

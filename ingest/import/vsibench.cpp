@@ -39,7 +39,8 @@ Axes readAxes(const Field& field) {
     Axes axes{model::Vec3{v[0], v[1], v[2]}, model::Vec3{v[3], v[4], v[5]}, model::Vec3{v[6], v[7], v[8]}};
     for (std::size_t i = 0; i < 3; ++i) {
         if (std::abs(dot(axes[i], axes[i]) - 1) > kAxisTolerance)
-            field.fail(fmt::format("axis {} has length {:.4g}, expected unit axes", i, std::sqrt(dot(axes[i], axes[i]))));
+            field.fail(
+                fmt::format("axis {} has length {:.4g}, expected unit axes", i, std::sqrt(dot(axes[i], axes[i]))));
         for (std::size_t j = i + 1; j < 3; ++j)
             if (std::abs(dot(axes[i], axes[j])) > kAxisTolerance)
                 field.fail(fmt::format("axes {} and {} are not perpendicular", i, j));

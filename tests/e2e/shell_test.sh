@@ -237,6 +237,10 @@ check "smql eval scores a real layout on the suite it generates, and writes the 
   grep -q '| guidance | Reach |' '$work/layout.md' && test -s '$work/layout-suite/truth.json' &&
   '$smql' eval '$work/layout-suite/eval-suite.json' --db '$work/scannet' --scene scene0251_00 >'$work/again.md' &&
   diff <(cut -d'|' -f2-5 '$work/layout.md') <(cut -d'|' -f2-5 '$work/again.md')"
+check "smql eval scores the only scene of a database when the suite's scene is not there" bash -c "
+  '$smql' import json '$work/layout-suite/truth.json' --db '$work/renamed' --scene another-name >/dev/null &&
+  '$smql' eval '$work/layout-suite/eval-suite.json' --db '$work/renamed' >'$work/renamed.md' &&
+  diff <(cut -d'|' -f2-5 '$work/layout.md') <(cut -d'|' -f2-5 '$work/renamed.md')"
 check "--update of a missing scene is refused before any work" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --update nowhere 2>&1 | grep -q frames"
 # Ctrl-C during an ingest: it stops, says so, exits non-zero, and writes nothing.
 check "a longer capture" "$smql" synth --out "$work/long" --seed 4 --frames 150

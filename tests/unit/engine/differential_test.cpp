@@ -68,7 +68,8 @@ public:
             }
             for (auto y : spread(nodes_, 6)) {
                 compare(fmt::format("{}(#{})", p, y), fmt::format("{} #{}", p, y), y);
-                if (spec.takesDistance) compare(fmt::format("{}(#{}, 1.5 m)", p, y), fmt::format("{} #{} 1.5 m", p, y), y);
+                if (spec.takesDistance)
+                    compare(fmt::format("{}(#{}, 1.5 m)", p, y), fmt::format("{} #{} 1.5 m", p, y), y);
             }
             // A category as the reference: it holds for x when it holds for some node of it.
             categoryReference(p);
@@ -152,7 +153,8 @@ TEST_CASE("FIND, COUNT and CHECK answer every predicate alike, in every plan sha
     };
     add(import::readReplica(replicaRoom0(), "replica-room0"));
     add(generate::generateRoom({.seed = 7, .name = "generated-7"}));
-    const bool all = std::getenv("SMQL_DIFFERENTIAL_ROOMS") && std::string(std::getenv("SMQL_DIFFERENTIAL_ROOMS")) == "all";
+    const bool all =
+        std::getenv("SMQL_DIFFERENTIAL_ROOMS") && std::string(std::getenv("SMQL_DIFFERENTIAL_ROOMS")) == "all";
     for (const char* file : {"scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"}) {
         auto rooms = import::vsiBenchRooms(layouts(file));
         for (std::size_t i = 0; i < rooms.size(); i += all ? 1 : 10) add(import::readVsiBench(layouts(file), rooms[i]));

@@ -250,6 +250,6 @@ TEST_CASE("a layout without walls is the hull of its things, not the rectangle a
     nodes.push_back(node(3, NodeKind::Object, "chair", {3, 0, 0.4}, {0.5, 0.5, 0.8}, yaw));
     nodes.push_back(node(4, NodeKind::Object, "chair", {0, 3, 0.4}, {0.5, 0.5, 0.8}, yaw));
     guide::FreeSpace space(nodes, guide::GraphOptions{});
-    CHECK(space.free({1.5, 1.5}));         // between the beds
+    CHECK(space.free({1.5, 1.5}));          // between the beds
     CHECK_FALSE(space.free({-0.9, -0.9}));  // the rectangle's corner, outside the room
 }

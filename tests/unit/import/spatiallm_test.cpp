@@ -122,8 +122,8 @@ TEST_CASE("SpatialLM: a box at the coordinate limit stands on the floor; a layou
     CHECK(again.info == scene.info);
     // Standing on the lower box puts the higher one past the limit: an error, not a scene that
     // cannot be read back.
-    std::string tall = dir.write("tall.txt",
-                                 "bbox_0=Bbox(chair,1,1,-9999,0,0.5,0.5,0.9)\nbbox_1=Bbox(lamp,1,1,9999,0,0.5,0.5,0.9)\n");
+    std::string tall =
+        dir.write("tall.txt", "bbox_0=Bbox(chair,1,1,-9999,0,0.5,0.5,0.9)\nbbox_1=Bbox(lamp,1,1,9999,0,0.5,0.5,0.9)\n");
     CHECK_THROWS_WITH(readSpatialLm(tall, "tall"), Catch::Contains("more than 10000 m"));
 }
 
