@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "model/error.hpp"
+#include "shell/output_file.hpp"
 
 namespace smql::shell {
 
@@ -23,11 +24,14 @@ inline std::optional<int> parseArguments(CLI::App& app, int argc, char** argv) {
     }
 }
 
-// Runs a program's body; an error that escapes it is printed (with its hint) and is exit status 1.
+// Runs a program's body; an error that escapes it is printed (with its hint) and is exit status 1,
+// and so is standard output that could not be written (a full disk, /dev/full).
 template <typename Body>
 int runReportingErrors(Body&& body) {
     try {
-        return body();
+        const int status = body();
+        checkWritten(std::cout, "standard output");
+        return status;
     } catch (const Error& e) {
         std::cerr << e.render() << "\n";
         return 1;

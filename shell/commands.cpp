@@ -12,6 +12,7 @@
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
+#include "shell/output_file.hpp"
 
 namespace smql::shell {
 
@@ -68,12 +69,13 @@ int exportCommand(const std::string&, const std::string& dbDir, const std::strin
     std::string json = import::writeSceneJson(engine->exportScene(sceneName));
     if (outFile.empty()) {
         std::cout << json << "\n";
+        checkWritten(std::cout, "standard output");
         return 0;
     }
+    refuseDatabaseFile(outFile, dbDir);
     std::ofstream out(outFile);
     out << json << "\n";
-    if (!out)
-        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", outFile), std::nullopt, "check the folder exists");
+    checkWritten(out, outFile);
     std::cerr << fmt::format("exported scene to {}\n", outFile);
     return 0;
 }
@@ -95,7 +97,10 @@ int exportEvidenceCommand(const std::string& dbDir, const std::string& node, con
     fs::create_directories(outDir);
     for (const auto& blob : blobs) {
         fs::path path = fs::path(outDir) / blob.name;
-        std::ofstream(path, std::ios::binary) << blob.bytes;
+        refuseDatabaseFile(path.string(), dbDir);
+        std::ofstream out(path, std::ios::binary);
+        out << blob.bytes;
+        checkWritten(out, path.string());
         std::cout << path.string() << "\n";
     }
     return 0;

@@ -20,6 +20,7 @@
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
+#include "shell/output_file.hpp"
 
 namespace smql::shell {
 
@@ -405,12 +406,11 @@ std::string sceneLiteral(const std::string& name) {
     return out + "'";
 }
 
-void writeFile(const fs::path& path, const std::string& text) {
+void writeFile(const fs::path& path, const std::string& text, const std::string& database) {
+    refuseDatabaseFile(path.string(), database);
     std::ofstream out(path);
     out << text;
-    if (!out)
-        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path.string()), std::nullopt,
-                    "check that the folder exists and is writable");
+    checkWritten(out, path.string());
 }
 
 }  // namespace
@@ -443,8 +443,8 @@ int evalCommand(const EvalOptions& options) {
     }
     if (!options.writeSuite.empty()) {
         fs::create_directories(options.writeSuite);
-        writeFile(fs::path(options.writeSuite) / "truth.json", import::writeSceneJson(truth));
-        writeFile(fs::path(options.writeSuite) / "eval-suite.json", suite.dump(1) + "\n");
+        writeFile(fs::path(options.writeSuite) / "truth.json", import::writeSceneJson(truth), options.db);
+        writeFile(fs::path(options.writeSuite) / "eval-suite.json", suite.dump(1) + "\n", options.db);
     }
 
     Settings settings;
@@ -466,12 +466,14 @@ int evalCommand(const EvalOptions& options) {
                                  row["metric"].get<std::string>(), row["value"].get<double>(),
                                  row["episodes"].get<std::size_t>(), row["median_us"].get<double>());
     if (!options.jsonOut.empty())
-        writeFile(options.jsonOut, Json{{"suite", options.suite.empty() ? "generated" : options.suite},
-                                        {"database", options.db},
-                                        {"scene", evaluation.sceneName()},
-                                        {"metrics", report}}
-                                           .dump(2) +
-                                       "\n");
+        writeFile(options.jsonOut,
+                  Json{{"suite", options.suite.empty() ? "generated" : options.suite},
+                       {"database", options.db},
+                       {"scene", evaluation.sceneName()},
+                       {"metrics", report}}
+                          .dump(2) +
+                      "\n",
+                  options.db);
     return 0;
 }
 

@@ -46,13 +46,6 @@ std::vector<std::string> longOptionsWithOneDash(const CLI::App& app, int argc, c
     return args;
 }
 
-std::string readFile(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 int runShell(int argc, char** argv) {
     CLI::App app{
         "smql: an embedded spatial memory engine.\n"
@@ -85,6 +78,9 @@ int runShell(int argc, char** argv) {
     app.add_flag("--bail", options.bail, "stop at the first error: after a --cmd, and in the interactive shell");
     app.add_flag("--echo", options.echo, "print each statement before its result");
     app.add_flag("--read-only,--readonly", options.readOnly, "open the database read-only");
+    app.add_flag("--safe", options.safe,
+                 "safe mode, for statements from someone else: no meta command reads or writes files or opens "
+                 "another database (docs/shell.md, \"Untrusted input\")");
     app.add_flag("--timer", options.timer, "print each statement's time on standard error");
     app.set_version_flag("--version", kVersion);
     std::vector<std::string> args = longOptionsWithOneDash(app, argc, argv);
@@ -95,11 +91,12 @@ int runShell(int argc, char** argv) {
 
     // `-c ""` (an unset variable in a script, say) would otherwise fall through
     // to reading standard input or the interactive shell and exit 0.
-    if (commandOption->count() > 0 && command.find_first_not_of(" \t\r\n") == std::string::npos)
+    if (commandOption->count() > 0 && !smql::shell::holdsStatement(command))
         throw smql::Error(smql::ErrorKind::Usage, "-c was given no statement", std::nullopt,
                           "write the statements after -c, as in smql DB -c 'SHOW SCENES'");
     options.output.mode = smql::shell::parseOutputMode(mode);
     options.fitTerminal = isatty(STDOUT_FILENO);
+    options.database = dir;
     bool noScript = command.empty() && statements.empty() && script.empty();
     bool interactive = noScript && isatty(STDIN_FILENO);
     // Piped input is read whole before Ctrl-C is caught: an interrupted read would run half a script.
@@ -125,7 +122,7 @@ int runShell(int argc, char** argv) {
     if (!command.empty() && fails(command)) return 1;
     for (const auto& text : statements)
         if (fails(text)) return 1;
-    if (!script.empty() && fails(readFile(script))) return 1;
+    if (!script.empty() && fails(smql::shell::readScriptFile(script))) return 1;
     if (noScript && fails(piped)) return 1;
     return failed ? 1 : 0;
 }

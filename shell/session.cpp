@@ -4,6 +4,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -12,6 +15,7 @@
 #include "engine/format.hpp"
 #include "engine/parser/parser.hpp"
 #include "shell/interrupt.hpp"
+#include "shell/output_file.hpp"
 
 namespace smql::shell {
 
@@ -50,16 +54,6 @@ bool onOff(const std::string& command, const std::string& arg) {
     throw Error(ErrorKind::Usage, fmt::format("{} takes on or off", command), std::nullopt, command + " on");
 }
 
-// Lines that hold no statement: blank, or a `--` comment.
-bool onlyComments(std::string_view text) {
-    std::istringstream lines{std::string(text)};
-    for (std::string line; std::getline(lines, line);) {
-        std::string t = trim(line);
-        if (!t.empty() && t.rfind("--", 0) != 0) return false;
-    }
-    return true;
-}
-
 std::size_t terminalColumns() {
     winsize size{};
     if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
@@ -67,6 +61,35 @@ std::size_t terminalColumns() {
 }
 
 }  // namespace
+
+bool holdsStatement(std::string_view text) {
+    std::istringstream lines{std::string(text)};
+    for (std::string line; std::getline(lines, line);) {
+        std::string t = trim(line);
+        if (!t.empty() && t.rfind("--", 0) != 0) return true;
+    }
+    return false;
+}
+
+std::string readScriptFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(ErrorKind::Usage, fmt::format("cannot read {}: it is a folder", path), std::nullopt,
+                    "name a script file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw Error(ErrorKind::Usage, fmt::format("cannot read {}: {}", path, std::strerror(errno)), std::nullopt,
+                    "check the path");
+    std::string text(kMaxScriptBytes + 1, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxScriptBytes)
+        throw Error(
+            ErrorKind::Limit,
+            fmt::format("{} is more than {} MiB: a script holds statements, not data", path, kMaxScriptBytes >> 20),
+            std::nullopt, "split it, or import data with smql import");
+    return text;
+}
 
 Session::Session(std::unique_ptr<Engine> engine, std::ostream& out, std::ostream& err, SessionOptions options)
     : engine_(std::move(engine)), stdout_(out), err_(err), options_(options) {
@@ -92,10 +115,14 @@ void Session::redirect(const std::string& path, bool once) {
     if (file_.is_open()) file_.close();
     once_ = false;
     if (path.empty()) return;
+    refuseDatabaseFile(path, options_.database);
+    errno = 0;
     file_.open(path, std::ios::trunc);
     if (!file_)
-        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path), std::nullopt,
-                    "check that the folder exists");
+        throw Error(ErrorKind::Usage,
+                    fmt::format("cannot write {}{}", path, errno ? std::string(": ") + std::strerror(errno) : ""),
+                    std::nullopt, "check that the folder exists and can be written");
+    filePath_ = path;
     once_ = once;
 }
 
@@ -110,6 +137,8 @@ void Session::print(const ResultSet& result) {
         output.maxWidth = toTerminal ? terminalColumns() : 0;
         out() << renderResult(result, output);
     }
+    // A result that cannot be written is an error, not a silent empty file.
+    checkWritten(out(), file_.is_open() ? filePath_ : std::string("standard output"));
     // The time goes to standard error, so that standard output stays one parseable document.
     if (options_.timer) err_ << fmt::format("time: {:.1f} us\n", result.elapsedMicroseconds) << std::flush;
 }
@@ -169,7 +198,7 @@ Session::Step Session::feed(Pending& pending, std::string_view line, int lineNum
         pending.firstLine = lineNumber;
     }
     pending.text += pending.text.empty() ? std::string(line) : "\n" + std::string(line);
-    if (onlyComments(pending.text)) {
+    if (!holdsStatement(pending.text)) {
         pending = {};
         return Step::Done;
     }
@@ -290,11 +319,16 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
          Arg::Path,
          [](Session& s, const std::string& arg) {
              if (arg.empty()) throw Error(ErrorKind::Usage, ".read needs a file", std::nullopt, ".read queries.smql");
-             std::ifstream in(arg);
-             if (!in) throw Error(ErrorKind::Usage, fmt::format("cannot read {}", arg));
-             std::stringstream text;
-             text << in.rdbuf();
-             return s.runScript(text.str());
+             if (s.readDepth_ >= kMaxReadDepth)
+                 throw Error(
+                     ErrorKind::Limit,
+                     fmt::format(".read {}: scripts read within each other more than {} deep", arg, kMaxReadDepth),
+                     std::nullopt, "a script that reads itself never ends: check its .read lines");
+             const std::string text = readScriptFile(arg);
+             ++s.readDepth_;
+             const bool ok = s.runScript(text);
+             --s.readDepth_;
+             return ok;
          }},
         {{".open"},
          "DIR",
@@ -307,6 +341,7 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
              s.finishOutput();
              interrupt::watch(engine.get());
              s.engine_ = std::move(engine);
+             s.options_.database = arg;
              return true;
          }},
         {{".timer"},
@@ -324,6 +359,17 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
          "leave the shell at the first error",
          Arg::OnOff,
          [](Session& s, const std::string& arg) { return s.options_.bail = onOff(".bail", arg), true; }},
+        {{".safe"},
+         "on",
+         "safe mode from now on: no meta command reads or writes files or opens a database",
+         Arg::OnOff,
+         [](Session& s, const std::string& arg) {
+             if (!onOff(".safe", arg) && s.options_.safe)
+                 throw Error(ErrorKind::Usage, "safe mode cannot be left", std::nullopt,
+                             "start another smql without -safe");
+             s.options_.safe = s.options_.safe || onOff(".safe", arg);
+             return true;
+         }},
         {{".quit", ".exit", ".q"},
          "",
          "leave (Ctrl-D too)",
@@ -338,8 +384,14 @@ bool Session::runMeta(std::string_view line) {
     std::string name = command.substr(0, command.find_first_of(" \t"));
     std::string arg = trim(std::string_view(command).substr(name.size()));
     try {
-        for (const auto& meta : metaCommands())
-            if (std::find(meta.names.begin(), meta.names.end(), name) != meta.names.end()) return meta.run(*this, arg);
+        for (const auto& meta : metaCommands()) {
+            if (std::find(meta.names.begin(), meta.names.end(), name) == meta.names.end()) continue;
+            // Safe mode: .output with no file (back to standard output) is the one file command left.
+            if (options_.safe && meta.argument == MetaArgument::Path && !(name == ".output" && arg.empty()))
+                throw Error(ErrorKind::Usage, fmt::format("{} is not allowed in safe mode: it reaches files", name),
+                            std::nullopt, "safe mode (-safe, .safe on) runs statements only");
+            return meta.run(*this, arg);
+        }
         throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt,
                     ".help lists the commands");
     } catch (const Error& e) {

@@ -23,7 +23,22 @@ struct SessionOptions {
     bool echo = false;         // each statement printed before its result
     bool bail = false;         // the interactive shell ends at the first error (scripts always do)
     bool readOnly = false;     // databases opened with .open are read-only too
+    // Safe mode (-safe, .safe on), for statements and scripts from someone else: no meta command
+    // reads or writes a file or opens another database (.read, .output FILE, .once, .open).
+    bool safe = false;
+    std::string database;  // the open database's folder: no output is written into it
 };
+
+// Bounds on what a script may be (docs/shell.md, "Bounds"): .read and -f read at most this much,
+// and .read nests at most this deep (a script that reads itself stops there).
+inline constexpr std::size_t kMaxScriptBytes = 16 << 20;
+inline constexpr int kMaxReadDepth = 16;
+
+// A script file's text: an error for a missing file, a folder, or one of more than kMaxScriptBytes
+// (a device such as /dev/zero is read no further than that).
+std::string readScriptFile(const std::string& path);
+// Whether a text holds a statement or a meta command, not only blank lines and `--` comments.
+bool holdsStatement(std::string_view text);
 
 class Session {
 public:
@@ -83,11 +98,13 @@ private:
     std::ostream& err_;
     SessionOptions options_;
     std::ofstream file_;         // .output / .once target while one is open
+    std::string filePath_;       // its path, for errors
     bool once_ = false;          // file_ closes after the next statement
     bool documentOpen_ = false;  // json: the array has begun
     bool quit_ = false;
     bool askMode_ = false;  // .mode ask: lines are English questions
     Pending pending_;       // the interactive shell's statement being typed
+    int readDepth_ = 0;     // .read within .read
 };
 
 }  // namespace smql::shell

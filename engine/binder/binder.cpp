@@ -1,4 +1,5 @@
 #include "engine/binder/binder.hpp"
+#include "engine/parser/parser.hpp"
 
 #include <fmt/format.h>
 
@@ -309,6 +310,8 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
             out.attribute = expr.attribute;
             out.op = expr.op;
             out.literal = expr.literal;
+            if (const auto* text = std::get_if<std::string>(&expr.literal))
+                out.literalFolded = parser::lowerCase(*text);
             if (expr.distanceTo) {
                 out.distanceTo = bindRef(*expr.distanceTo);
                 checkLiteral(expr, exec::AttributeMeasure::Length, "distance()");

@@ -71,6 +71,7 @@ struct BoundExpr {
     std::optional<NodeSet> distanceTo;
     ast::CompareOp op = ast::CompareOp::Eq;
     ast::Literal literal;
+    std::string literalFolded;  // a text literal in lower case, folded once here rather than per row
 };
 
 // Where the viewer stands for the lateral predicates and sides: the scene's default viewpoint, or

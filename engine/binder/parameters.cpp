@@ -1,6 +1,8 @@
 #include "engine/binder/parameters.hpp"
 
+#include <cmath>
 #include <memory>
+#include <optional>
 #include <type_traits>
 
 #include <fmt/format.h>
@@ -162,6 +164,20 @@ struct SlotCollector {
     void onSimilar(const ast::SimilarTo& similar) { add(*similar.param, kSimilarValue); }
 };
 
+// What a statement's text cannot hold, a bound value cannot either: NaN and infinities (no
+// comparison answers for them), and texts longer than a quoted string may be.
+std::optional<std::string> unusableValue(const ast::Placeholder& placeholder, const ParameterValue& value) {
+    if (const double* number = std::get_if<double>(&value); number && !std::isfinite(*number))
+        return fmt::format("placeholder {} is bound to {}, which is not a number SMQL compares", placeholder.name(),
+                           *number);
+    if (const auto* length = std::get_if<Length>(&value); length && !std::isfinite(length->metres))
+        return fmt::format("placeholder {} is bound to a length of {} m", placeholder.name(), length->metres);
+    if (const auto* text = std::get_if<std::string>(&value); text && text->size() > parser::kMaxTextValue)
+        return fmt::format("placeholder {} is bound to {} bytes of text: at most {}", placeholder.name(), text->size(),
+                           parser::kMaxTextValue);
+    return std::nullopt;
+}
+
 // Puts the values in, checking each against its place.
 struct ValueFiller {
     const std::vector<std::optional<ParameterValue>>& values;
@@ -180,6 +196,8 @@ struct ValueFiller {
                  fmt::format("placeholder {} stands for {}, not {}", placeholder.name(), placeholderPlace(accepts),
                              kindName(value)),
                  std::string(bindHint(accepts)));
+        if (auto problem = unusableValue(placeholder, value))
+            fail(placeholder, *problem, "bind a value SMQL text could hold");
         return value;
     }
 
@@ -268,6 +286,7 @@ std::vector<ParameterSlot> parameterSlots(const ast::Statement& statement) {
 
 std::optional<std::string> rejectedValue(const ParameterSlot& slot, const ParameterValue& value) {
     if (std::holds_alternative<std::monostate>(value) || slot.placeholder.index == 0) return std::nullopt;
+    if (auto problem = unusableValue(slot.placeholder, value)) return problem;
     if (kindBit(value) & slot.accepts) return std::nullopt;
     return fmt::format("placeholder {} stands for {}, not {}: {}", slot.placeholder.name(), placeName(slot.accepts),
                        kindName(value), bindHint(slot.accepts));

@@ -120,7 +120,7 @@ bool Executor::compare(const BoundExpr& expr, Slot slot, const relations::Frame&
         std::string have = std::holds_alternative<std::string>(*value) ? std::get<std::string>(*value)
                                                                        : fmt::format("{}", std::get<double>(*value));
         if (expr.op == ast::CompareOp::Like) return like(have, *text);
-        return ordered(expr.op, lower(have), lower(*text));
+        return ordered(expr.op, lower(have), expr.literalFolded);
     }
     double want = std::holds_alternative<double>(expr.literal)
                       ? std::get<double>(expr.literal)

@@ -28,6 +28,9 @@ std::string nameOf(SmqlParser::NameContext& name) { return lowerCase(name.getTex
 // 'it''s' -> it's
 std::string unquote(const antlr4::Token& token) {
     std::string text = token.getText();
+    if (text.size() > kMaxTextValue + 2)
+        fail(locationOf(token), fmt::format("a quoted text of {} bytes: names, values and questions are at most {}",
+                                            text.size() - 2, kMaxTextValue));
     const char quote = text.front();
     std::string inner = text.substr(1, text.size() - 2);
     std::string out;

@@ -19,6 +19,9 @@ namespace smql::parser {
 inline constexpr std::size_t kMaxNestingDepth = 100;        // parentheses, sub-queries and NOTs together
 inline constexpr std::size_t kMaxStatementLength = 100000;  // characters
 inline constexpr std::size_t kMaxPlaceholder = 999;         // the highest $n, as SQLite's default
+// A quoted string or a text bound to a placeholder (a name, a value, a question, SIMILAR TO's
+// text): what is compared per row, or embedded, costs no more than this many bytes.
+inline constexpr std::size_t kMaxTextValue = 4096;
 
 // Parses one or more `;`-separated statements. Throws smql::Error
 // (ErrorKind::Syntax) with the line, column and a hint at the first error;

@@ -6,6 +6,7 @@
 #define _XOPEN_SOURCE 700 /* mkdtemp, nftw */
 
 #include <ftw.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -415,6 +416,21 @@ static void test_prepared(const char* dir) {
     CHECK(contains(smql_errmsg(db), "stands for a distance"));
     CHECK(smql_bind_text(stmt, 1, NULL) == SMQL_ERROR_MISUSE);
     CHECK(smql_bind_text(NULL, 1, "mug") == SMQL_ERROR_MISUSE);
+    /* What SMQL text cannot hold cannot be bound: NaN, an infinite distance, a text of 400 KB
+       (refused at once, its message not a copy of it). */
+    CHECK(smql_bind_double(stmt, 3, NAN) == SMQL_ERROR_MISUSE);
+    CHECK(contains(smql_errmsg(db), "not a number SMQL compares"));
+    CHECK(smql_bind_double(stmt, 3, INFINITY) == SMQL_ERROR_MISUSE);
+    {
+        size_t size = 400 * 1000;
+        char* huge = malloc(size + 1);
+        memset(huge, 'a', size);
+        huge[size] = '\0';
+        CHECK(smql_bind_text(stmt, 1, huge) == SMQL_ERROR_MISUSE);
+        CHECK(contains(smql_errmsg(db), "400000 bytes of text: at most 4096"));
+        CHECK(strlen(smql_errmsg(db)) < 2000);
+        free(huge);
+    }
     CHECK(smql_bind_parameter_count(NULL) == 0 && smql_step(NULL) == SMQL_ERROR_MISUSE);
 
     /* Unbound and NULL placeholders are named when the statement runs. */

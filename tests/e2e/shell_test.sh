@@ -213,6 +213,37 @@ expected = sum(found(t) for t in sought) / len(sought)
 other = metrics(\"eval-other.json\")[\"SR_obj\"]
 assert expected < 1 and abs(other[\"value\"] - expected) < 1e-9, (other, expected)
 ' '$work'"
+# The shell cannot destroy a database, and what it cannot write is an error (docs/shell.md).
+check "import a database to harden" "$smql" import replica "$replica" --db "$work/hard"
+check ".output and .once into the database's folder are refused, and the database stays whole" bash -c "
+  printf '.output $work/hard/data.mdb\nCOUNT cushion;\n' | '$smql' '$work/hard' 2>'$work/e'; [ \$? -eq 1 ] &&
+  grep -q 'would destroy the database' '$work/e' &&
+  ! printf '.once $work/hard/lock.mdb\nCOUNT cushion;\n' | '$smql' '$work/hard' 2>/dev/null &&
+  ! '$smql' export json --db '$work/hard' -o '$work/hard/x.json' 2>/dev/null && test ! -e '$work/hard/x.json' &&
+  '$smql' check '$work/hard' >/dev/null && '$smql' '$work/hard' 'COUNT cushion' | grep -qx 9"
+check ".read that reads itself stops with an error, not a crash" bash -c "
+  echo '.read $work/self.smql' >'$work/self.smql'; '$smql' '$work/hard' -c '.read $work/self.smql' 2>'$work/e'
+  [ \$? -eq 1 ] && grep -q 'more than 16 deep' '$work/e'"
+check "results that cannot be written are an error: /dev/full, .output /dev/full, .once into /proc" bash -c "
+  ! '$smql' '$work/hard' -c 'COUNT cushion' >/dev/full 2>'$work/e' && grep -q 'No space left' '$work/e' &&
+  ! '$smql' export json --db '$work/hard' >/dev/full 2>/dev/null &&
+  ! printf '.output /dev/full\nCOUNT cushion;\n' | '$smql' '$work/hard' 2>/dev/null &&
+  ! printf '.once /proc/self/status\nCOUNT cushion;\n' | '$smql' '$work/hard' 2>/dev/null"
+check "a script without a statement, a folder and /dev/zero as scripts are errors" bash -c "
+  ! '$smql' '$work/hard' -c '-- nothing' 2>/dev/null &&
+  ! '$smql' '$work/hard' -c '.read /tmp' 2>'$work/e' && grep -q 'it is a folder' '$work/e' &&
+  ! '$smql' '$work/hard' -c '.read /dev/zero' 2>'$work/e' && grep -q 'more than 16 MiB' '$work/e'"
+check "error messages show a NUL as \\x00 and cut a long name" bash -c "
+  ! '$smql' '$work/hard' -c \"\$(printf 'FIND a\\001b')\" 2>'$work/e' && grep -qF '\\x01' '$work/e' &&
+  ! '$smql' '$work/hard' -c \"FIND cushion WHERE category = '\$(head -c 6000 /dev/zero | tr '\\0' a)'\" 2>'$work/e' &&
+  grep -q 'at most 4096' '$work/e' && test \$(wc -c <'$work/e') -lt 2000"
+check "-safe and .safe on refuse .read, .output, .once and .open, and run statements" bash -c "
+  for meta in '.read $work/self.smql' '.output $work/o.txt' '.once $work/o.txt' '.open $work/hard'; do
+    ! '$smql' '$work/hard' -safe -c \"\$meta\" 2>'$work/e' && grep -q 'not allowed in safe mode' '$work/e' || exit 1
+  done
+  '$smql' '$work/hard' -safe -c 'COUNT cushion' | grep -qx 9 && test ! -e '$work/o.txt' &&
+  printf '.safe on\n.read $work/self.smql\n' | '$smql' '$work/hard' 2>&1 | grep -q 'not allowed in safe mode' &&
+  printf '.safe on\n.safe off\n' | '$smql' '$work/hard' 2>&1 | grep -q 'cannot be left'"
 # Real layouts: the Replica room and VSI-Bench's rooms, scored with the suite smql eval generates.
 check "GUIDE reaches at least 95% of the Replica room's floor-standing and supported things from the door" bash -c "
   '$smql' import replica '$replica' --db '$work/replica-guide' >/dev/null &&

@@ -317,13 +317,22 @@ TEST_CASE("nesting is bounded before the recursive parser runs", "[parser][error
 }
 
 TEST_CASE("statement length is bounded", "[parser][errors][limits]") {
-    std::string name(parser::kMaxStatementLength - 7, 'x');
-    CHECK_NOTHROW(parser::parse("FIND '" + name + "'"));  // exactly the limit
-    Error error = errorOf("SHOW SCENES;\nFIND '" + name + "x'");
+    std::string name(parser::kMaxStatementLength - 5, 'x');
+    CHECK_NOTHROW(parser::parse("FIND " + name));  // exactly the limit
+    Error error = errorOf("SHOW SCENES;\nFIND " + name + "x");
     CHECK(error.message() == "the statement is 100001 characters long; the limit is 100000");
     CHECK(whereOf(error).line == 2);
     CHECK(whereOf(error).column == 1);
     CHECK(error.hint() == "split it into shorter statements");
+}
+
+TEST_CASE("a quoted text is bounded: what is compared per row costs at most kMaxTextValue bytes",
+          "[parser][errors][limits]") {
+    const std::string longest(parser::kMaxTextValue, 'a');
+    CHECK_NOTHROW(parser::parse("FIND mug WHERE color = '" + longest + "'"));
+    Error error = errorOf("FIND mug WHERE color = '" + longest + "a'");
+    CHECK(error.message() == "a quoted text of 4097 bytes: names, values and questions are at most 4096");
+    CHECK(whereOf(error).column == 24);
 }
 
 TEST_CASE("distances that are not finite or are negative", "[parser][errors]") {
