@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 #include <Eigen/Geometry>
@@ -95,6 +96,41 @@ std::vector<Pose> readPoseFile(const fs::path& file) {
     return poses;
 }
 
+// Which pose line is which frame's. Line i holds the pose of the i-th frame in frame-number order,
+// counting every frame the capture has an image of (colour or depth): a colour image deleted from
+// the middle of a capture leaves its depth image, so the poses after it stay with their frames
+// (that frame is skipped, with a note). When the numbers have a gap that no image fills and the
+// file has a line for every number from the first to the last, line i is frame first + i. Any
+// other count cannot be matched and is an error, never a shift.
+std::map<long long, Pose> posesByFrame(const std::vector<Pose>& poses,
+                                       const std::vector<std::pair<long long, fs::path>>& colors,
+                                       const std::map<long long, fs::path>& depths, const fs::path& poseFile,
+                                       std::vector<std::string>& notes) {
+    std::set<long long> roster;
+    for (const auto& [number, path] : colors) roster.insert(number);
+    for (const auto& [number, path] : depths) roster.insert(number);
+    const long long first = *roster.begin(), last = *roster.rbegin();
+    const auto span = static_cast<std::size_t>(last - first + 1);
+    std::map<long long, Pose> out;
+    if (poses.size() >= roster.size() && (roster.size() == span || poses.size() < span)) {
+        std::size_t line = 0;
+        for (long long number : roster) out[number] = poses[line++];
+        if (poses.size() > roster.size())
+            notes.push_back(fmt::format("{} has {} pose lines for {} frames: the extra lines are ignored",
+                                        poseFile.string(), poses.size(), roster.size()));
+    } else if (poses.size() >= span) {
+        for (long long number : roster) out[number] = poses[static_cast<std::size_t>(number - first)];
+        notes.push_back(fmt::format("{}: frames {} to {} have gaps; pose line i is frame {} + i", poseFile.string(),
+                                    first, last, first));
+    } else {
+        fail(poseFile.string(),
+             fmt::format("{} pose line(s) for {} frames: line i holds the pose of the i-th frame in frame-number order",
+                         poses.size(), roster.size()),
+             kRgbdHint);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string checkedJson(const fs::path& file, std::string_view hint) {
@@ -160,14 +196,7 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
     if (!pathExists(poseFile))
         fail(poseFile.string(), "missing: an rgbd capture needs one camera pose per frame", kRgbdHint);
     std::vector<Pose> poses = readPoseFile(poseFile);
-    if (poses.size() < colors.size())
-        fail(poseFile.string(),
-             fmt::format("{} pose line(s) for {} frames: line i holds the pose of the i-th frame in frame-number order",
-                         poses.size(), colors.size()),
-             kRgbdHint);
-    if (poses.size() > colors.size())
-        capture.notes.push_back(fmt::format("{} has {} pose lines for {} frames: the extra lines are ignored",
-                                            poseFile.string(), poses.size(), colors.size()));
+    const std::map<long long, Pose> poseOf = posesByFrame(poses, colors, depths, poseFile, capture.notes);
 
     for (std::size_t i = 0; i < colors.size(); ++i) {
         const auto& [number, colorPath] = colors[i];
@@ -192,12 +221,18 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
             checkImageFile(mask->second, "instance mask", kRgbdHint);
             frame.instancePath = mask->second.string();
         }
-        frame.pose = poses[i];
+        frame.pose = poseOf.at(number);
         capture.frames.push_back(std::move(frame));
     }
-    if (depths.size() > colors.size())
-        capture.notes.push_back(fmt::format("{}: {} depth image(s) without a colour image are ignored",
-                                            depthDir.string(), depths.size() - colors.size()));
+    std::vector<long long> colourless;
+    for (const auto& [number, path] : depths)
+        if (std::none_of(colors.begin(), colors.end(), [&](const auto& c) { return c.first == number; }))
+            colourless.push_back(number);
+    if (!colourless.empty())
+        capture.notes.push_back(fmt::format("{}: {} depth image(s) without a colour image (frame {}{}): those frames "
+                                            "are skipped, and their poses with them",
+                                            depthDir.string(), colourless.size(), colourless.front(),
+                                            colourless.size() > 1 ? ", ..." : ""));
 
     if (hasMasks) {
         if (pathExists(dir / "labels.json"))

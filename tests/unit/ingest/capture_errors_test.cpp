@@ -53,6 +53,42 @@ TEST_CASE("capture errors: nothing to read", "[capture][errors]") {
     }
 }
 
+TEST_CASE("rgbd: poses stay with their frames when a colour image is missing", "[capture][errors][rgbd]") {
+    TempDir dir;
+    writeRgbd(dir, 5);  // frame i's camera at x = 0.1 i
+
+    SECTION("a colour image deleted from the middle: the frame is skipped, the later poses stay") {
+        fs::remove(dir.path("color/3.png"));
+        Capture capture = readCapture(dir.path());
+        REQUIRE(capture.frames.size() == 4);
+        for (const CaptureFrame& frame : capture.frames) {
+            const long long number = std::stoll(fs::path(frame.colorPath).stem().string());
+            CHECK(frame.pose->translation.x == Approx(0.1 * number));
+        }
+        CHECK(std::any_of(capture.notes.begin(), capture.notes.end(),
+                          [](const std::string& n) { return n.find("frame 3): those frames are skipped") != n.npos; }));
+    }
+    SECTION("both images of a frame gone: a line for every number from the first to the last keeps them") {
+        fs::remove(dir.path("color/3.png"));
+        fs::remove(dir.path("depth/3.png"));
+        Capture capture = readCapture(dir.path());
+        REQUIRE(capture.frames.size() == 4);
+        CHECK(capture.frames.back().pose->translation.x == Approx(0.5));
+    }
+    SECTION("both images of a frame gone and its line too: matched by frame order") {
+        fs::remove(dir.path("color/3.png"));
+        fs::remove(dir.path("depth/3.png"));
+        dir.write("pose.txt", "0.1 0 0 0 0 0 1\n0.2 0 0 0 0 0 1\n0.4 0 0 0 0 0 1\n0.5 0 0 0 0 0 1\n");
+        Capture capture = readCapture(dir.path());
+        REQUIRE(capture.frames.size() == 4);
+        CHECK(capture.frames.back().pose->translation.x == Approx(0.5));
+    }
+    SECTION("fewer lines than frames is an error, never a shift") {
+        dir.write("pose.txt", "0.1 0 0 0 0 0 1\n0.2 0 0 0 0 0 1\n");
+        requireError([&] { readCapture(dir.path()); }, {dir.path("pose.txt"), "2 pose line(s) for 5 frames"});
+    }
+}
+
 TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
     TempDir dir;
     writeRgbd(dir, 2);
