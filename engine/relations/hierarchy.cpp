@@ -1,8 +1,14 @@
 #include "engine/relations/hierarchy.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <utility>
 #include <vector>
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
 
 #include "engine/relations/predicates.hpp"
 #include "model/geometry.hpp"
@@ -16,6 +22,14 @@ namespace {
 constexpr double kMinSupporterArea = 0.5;
 // Metres by which a wall may be farther than a door or window and still be the parent.
 constexpr double kWallPreference = 0.15;
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using Corner = bg::model::point<double, 3, bg::cs::cartesian>;
+using Bounds = bg::model::box<Corner>;
+using Indexed = std::pair<Bounds, std::size_t>;
+
+Bounds toBounds(const model::Aabb& b) { return {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}; }
 }  // namespace
 
 void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
@@ -29,8 +43,13 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
         (upright ? uprightAnchors : otherAnchors).push_back(&n);
     }
     const auto& anchors = uprightAnchors.empty() ? otherAnchors : uprightAnchors;
-    std::vector<model::Aabb> objectBounds;
-    for (const Node* o : objects) objectBounds.push_back(model::worldAabb(o->box));
+    // The objects' bounds in an R-tree: a layout of 200,000 boxes asks each box's few neighbours,
+    // not every other box.
+    std::vector<Indexed> objectBounds;
+    for (std::size_t k = 0; k < objects.size(); ++k)
+        objectBounds.emplace_back(toBounds(model::worldAabb(objects[k]->box)), k);
+    const bgi::rtree<Indexed, bgi::rstar<16>> index(objectBounds);
+    std::vector<Indexed> near;
 
     std::vector<model::NodeId> parents(scene.nodes.size(), model::kNoNode);
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
@@ -44,11 +63,14 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
         const Node* best = nullptr;
         auto contact = [&](const Node* b) { return std::abs(model::bottom(a.box) - model::top(b->box)); };
         auto within = spec(Predicate::On).referenceRegion(model::worldAabb(a.box), 0, thresholds);
-        for (std::size_t k = 0; k < objects.size(); ++k) {
+        near.clear();
+        index.query(bgi::intersects(toBounds(within)), std::back_inserter(near));
+        // In the objects' order, so that of two equally close supporters the first wins, as it always has.
+        std::sort(near.begin(), near.end(), [](const Indexed& x, const Indexed& y) { return x.second < y.second; });
+        for (const auto& [bounds, k] : near) {
             const Node* b = objects[k];
             if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
-            // A cheap bounds test first: most pairs are far apart.
-            if (b->box.center.z >= a.box.center.z || !intersects(objectBounds[k], within)) continue;
+            if (b->box.center.z >= a.box.center.z) continue;
             if (model::footprintArea(b->box) < kMinSupporterArea * model::footprintArea(a.box)) continue;
             if (supportScore(a, *b, thresholds) <= 0) continue;
             if (!best || contact(b) < contact(best)) best = b;

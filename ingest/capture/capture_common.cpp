@@ -2,6 +2,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 
 #include <fmt/format.h>
 #include <Eigen/Geometry>
@@ -237,11 +238,55 @@ void checkDepthScale(double scale, const std::string& from) {
                     std::nullopt, "the depth scale is depth image units per metre: 1000 for millimetres");
 }
 
+std::optional<std::pair<int, int>> storedImageSize(const fs::path& file) {
+    // The header, and in a JPEG the segments before its frame header (EXIF may take 64 KB).
+    constexpr std::size_t kHeaderBytes = 1 << 20;
+    std::ifstream in(file, std::ios::binary);
+    std::string head(kHeaderBytes, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    auto byte = [&](std::size_t i) { return static_cast<unsigned>(static_cast<unsigned char>(head[i])); };
+    auto big16 = [&](std::size_t i) { return (byte(i) << 8) | byte(i + 1); };
+    auto big32 = [&](std::size_t i) { return (big16(i) << 16) | big16(i + 2); };
+    if (head.size() >= 24 && head.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 && head.compare(12, 4, "IHDR") == 0)
+        return std::pair{static_cast<int>(std::min(big32(16), 1u << 30)),
+                         static_cast<int>(std::min(big32(20), 1u << 30))};
+    if (head.size() < 4 || byte(0) != 0xFF || byte(1) != 0xD8) return std::nullopt;
+    for (std::size_t at = 2; at + 9 < head.size();) {
+        if (byte(at) != 0xFF) return std::nullopt;
+        const unsigned marker = byte(at + 1);
+        if (marker == 0xFF) {  // fill byte
+            ++at;
+            continue;
+        }
+        // SOF0 to SOF15, less DHT (C4), JPG (C8) and DAC (CC): the frame header, height then width.
+        if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC)
+            return std::pair{static_cast<int>(big16(at + 7)), static_cast<int>(big16(at + 5))};
+        at += 2 + big16(at + 2);
+    }
+    return std::nullopt;
+}
+
+namespace {
+
+// Before anything is decoded: an image past kMaxImagePixels is refused on its header's word.
+void refuseHugeImage(const fs::path& file, std::string_view what) {
+    auto size = storedImageSize(file);
+    if (size && static_cast<long long>(size->first) * size->second > kMaxImagePixels)
+        fail(file.string(),
+             fmt::format("{} of {} x {} pixels: more than {} megapixels", what, size->first, size->second,
+                         kMaxImagePixels / 1'000'000),
+             "scale the images down (a capture needs no more than a few megapixels a frame)");
+}
+
+}  // namespace
+
 void checkImageFile(const fs::path& file, std::string_view what, std::string_view hint) {
     std::error_code ec;
     auto status = fs::status(file, ec);
     if (!fs::exists(status)) fail(file.string(), fmt::format("{} is missing", what), hint);
     if (!fs::is_regular_file(status)) fail(file.string(), fmt::format("{} is not a regular file", what), hint);
+    refuseHugeImage(file, what);
     bool readable = false;
     try {
         readable = cv::haveImageReader(file.string());
@@ -260,6 +305,7 @@ cv::Mat readImage(const std::string& file, int flags, std::string_view what) {
     auto status = fs::status(file, ec);
     if (!fs::exists(status)) fail(file, fmt::format("{} is missing", what));
     if (!fs::is_regular_file(status)) fail(file, fmt::format("{} is not a regular file", what));
+    refuseHugeImage(file, what);
     cv::Mat image;
     try {
         image = cv::imread(file, flags);

@@ -124,6 +124,13 @@ void refuseMirroredCameras(const Capture& capture);
 // reading the file's first bytes). `what` names its role ("colour image").
 void checkImageFile(const fs::path& file, std::string_view what, std::string_view hint);
 
+// The most pixels an image may have (docs/ingest.md, "Bounds"): 100 megapixels, 300 MB decoded.
+// Checked on the file's header before anything is decoded.
+inline constexpr long long kMaxImagePixels = 100'000'000;
+// Width and height as a PNG's or a JPEG's header states them; nullopt for other formats (OpenCV
+// then decodes them under its own bound) and for headers it cannot read.
+std::optional<std::pair<int, int>> storedImageSize(const fs::path& file);
+
 // Decoded images; errors name the file.
 cv::Mat readColorImage(const std::string& file);
 cv::Mat readDepthImage(const std::string& file);  // CV_16U or CV_32F, one channel

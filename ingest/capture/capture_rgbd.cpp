@@ -229,10 +229,10 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
         if (std::none_of(colors.begin(), colors.end(), [&](const auto& c) { return c.first == number; }))
             colourless.push_back(number);
     if (!colourless.empty())
-        capture.notes.push_back(fmt::format("{}: {} depth image(s) without a colour image (frame {}{}): those frames "
-                                            "are skipped, and their poses with them",
-                                            depthDir.string(), colourless.size(), colourless.front(),
-                                            colourless.size() > 1 ? ", ..." : ""));
+        capture.notes.push_back(fmt::format(
+            "{}: {} depth image(s) without a colour image (frame {}{}): those frames "
+            "are skipped, and their poses with them",
+            depthDir.string(), colourless.size(), colourless.front(), colourless.size() > 1 ? ", ..." : ""));
 
     if (hasMasks) {
         if (pathExists(dir / "labels.json"))

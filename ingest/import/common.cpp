@@ -25,10 +25,18 @@ std::string readTextFile(const std::string& path, const std::string& hint) {
     if (std::filesystem::is_directory(status)) fail("it is a directory");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(std::strerror(errno));
-    std::ostringstream text;
-    text << in.rdbuf();
+    // Read in pieces up to the bound: a device (/dev/zero) or a huge file ends here, not in memory.
+    std::string text;
+    char piece[1 << 16];
+    while (in.read(piece, sizeof piece) || in.gcount() > 0) {
+        text.append(piece, static_cast<std::size_t>(in.gcount()));
+        if (text.size() > kMaxFileBytes)
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: more than {} MiB: a layout file is at most that", path, kMaxFileBytes >> 20),
+                        std::nullopt, hint);
+    }
     if (in.bad()) fail("read error");
-    return std::move(text).str();
+    return text;
 }
 
 std::string lowerCase(std::string_view text) {

@@ -2,6 +2,7 @@
 // small conversions. Internal to ingest/import.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -16,7 +17,11 @@ inline constexpr double kMaxSize = 1000;
 // or garbage (a yaw of 1e300 has no digits left below a whole turn).
 inline constexpr double kMaxAngle = 4 * 3.141592653589793;
 
-// The whole file as bytes; throws an Input error naming the file when it
+// The most bytes an imported file may have (docs/formats.md, "Bounds"): Replica's and SpatialLM's
+// files are megabytes; more is not a room's layout, and a device such as /dev/zero never ends.
+inline constexpr std::size_t kMaxFileBytes = std::size_t{256} << 20;
+
+// The whole file as bytes (at most kMaxFileBytes); throws an Input error naming the file when it
 // does not exist, is not a regular file, or cannot be read.
 std::string readTextFile(const std::string& path, const std::string& hint);
 

@@ -79,6 +79,13 @@ public:
                     throw Error(ErrorKind::Input,
                                 fmt::format("{}: {}: key appears twice in the same object", source_->file, path()),
                                 std::nullopt, source_->hint);
+                // The members keep the file's order, which costs a look along the object's members
+                // per member: an object of a few thousand is read in milliseconds, and more are refused.
+                if (top.keys.size() > kMaxObjectMembers)
+                    throw Error(ErrorKind::Input,
+                                fmt::format("{}: {}: an object of more than {} members", source_->file, path(),
+                                            kMaxObjectMembers),
+                                std::nullopt, source_->hint);
                 break;
             }
             case Json::parse_event_t::value:

@@ -19,6 +19,10 @@ namespace smql::import::detail {
 // Ordered, so that object members (attributes) keep the file's order.
 using Json = nlohmann::ordered_json;
 
+// The most members one JSON object of an imported file may have (docs/formats.md, "Bounds"): an
+// ordered object finds a member by looking along its members, so its cost grows with their square.
+inline constexpr std::size_t kMaxObjectMembers = 10000;
+
 // Which file a JSON value came from, and what to tell the user on an error.
 struct JsonSource {
     std::string file;

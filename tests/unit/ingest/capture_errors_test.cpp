@@ -4,11 +4,13 @@
 
 #include "capture_support.hpp"
 #include "ingest/capture/capture.hpp"
+#include "ingest/capture/capture_detail.hpp"
 #include "ingest/capture/frame_loader.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
 using namespace smql::ingest::test;
+using smql::ingest::capture_detail::storedImageSize;
 
 namespace {
 
@@ -87,6 +89,23 @@ TEST_CASE("rgbd: poses stay with their frames when a colour image is missing", "
         dir.write("pose.txt", "0.1 0 0 0 0 0 1\n0.2 0 0 0 0 0 1\n");
         requireError([&] { readCapture(dir.path()); }, {dir.path("pose.txt"), "2 pose line(s) for 5 frames"});
     }
+}
+
+TEST_CASE("images past 100 megapixels are refused on their header's word, before decoding", "[capture][errors]") {
+    TempDir dir;
+    writeRgbd(dir, 2);
+    // A PNG's header stating 20000 x 20000 pixels (1.2 GB decoded), and nothing after it.
+    std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16);
+    for (int side : {20000, 20000})
+        for (int shift : {24, 16, 8, 0}) png += static_cast<char>((side >> shift) & 0xFF);
+    png += std::string("\x08\x02\0\0\0", 5);
+    dir.write("color/2.png", png);
+    requireError([&] { readCapture(dir.path()); }, {dir.path("color/2.png"), "20000 x 20000 pixels", "100 megapixels"});
+    // The sizes read from headers are the images' own.
+    CHECK(storedImageSize(dir.path("color/1.png")) == std::pair{64, 48});
+    cv::imwrite(dir.path("photo.jpg"), colorImage(320, 200));
+    CHECK(storedImageSize(dir.path("photo.jpg")) == std::pair{320, 200});
+    CHECK(storedImageSize(diningPath() + "/color/1.png") == std::pair{640, 480});
 }
 
 TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
