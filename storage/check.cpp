@@ -223,6 +223,7 @@ CheckReport checkDatabase(const std::string& directory) {
                                                      {"labels", total.labels},
                                                      {"source_ids", total.sourceIds},
                                                      {"relations", 2 * total.relationEntries},
+                                                     {"blobs", total.blobs},
                                                      {"history", versions}};
     for (const auto& stats : txn.tableStats())
         if (auto it = expected.find(stats.name); it != expected.end() && stats.entries != it->second)

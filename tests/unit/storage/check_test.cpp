@@ -53,6 +53,26 @@ void deleteEntry(const std::string& path, const char* table, std::string_view ke
     mdb_env_close(env);
 }
 
+// Moves one entry to another key straight through LMDB, as a bit flipped in its key would.
+void moveEntry(const std::string& path, const char* table, const std::string& from, const std::string& to) {
+    MDB_env* env = nullptr;
+    REQUIRE(mdb_env_create(&env) == 0);
+    REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
+    REQUIRE(mdb_env_open(env, path.c_str(), 0, 0644) == 0);
+    MDB_txn* txn = nullptr;
+    REQUIRE(mdb_txn_begin(env, nullptr, 0, &txn) == 0);
+    MDB_dbi dbi;
+    REQUIRE(mdb_dbi_open(txn, table, 0, &dbi) == 0);
+    MDB_val k = toVal(from), v;
+    REQUIRE(mdb_get(txn, dbi, &k, &v) == 0);
+    std::string value(static_cast<const char*>(v.mv_data), v.mv_size);
+    MDB_val target = toVal(to), moved = toVal(value);
+    REQUIRE(mdb_put(txn, dbi, &target, &moved, 0) == 0);
+    REQUIRE(mdb_del(txn, dbi, &k, nullptr) == 0);
+    REQUIRE(mdb_txn_commit(txn) == 0);
+    mdb_env_close(env);
+}
+
 std::string keyOf(model::NodeId id) {
     auto key = codec::idKey(id);
     return {reinterpret_cast<const char*>(key.data()), key.size()};
@@ -146,6 +166,15 @@ TEST_CASE("the check reports each kind of damage", "[storage][check]") {
                     std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));
         auto report = checkDatabase(path);
         REQUIRE(reported(report, "is stored under its subject only"));
+    }
+    SECTION("a blob whose key names a node that is not there") {
+        // The crop of the big scene's node 5 (local), moved to an id no node has.
+        auto report = checkDatabase(path);
+        REQUIRE(report.blobs == 1);
+        moveEntry(path, "blobs", codec::blobKey(big + 5, "crop.jpg"), codec::blobKey(big + 100000, "crop.jpg"));
+        report = checkDatabase(path);
+        REQUIRE(report.blobs == 0);
+        REQUIRE(reported(report, "table blobs holds 1 entries, the scenes account for 0"));
     }
     SECTION("a data file cut short") {
         fs::resize_file(fs::path(path) / "data.mdb", fs::file_size(fs::path(path) / "data.mdb") / 2);
