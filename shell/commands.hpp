@@ -17,8 +17,9 @@ int exportCommand(const std::string& format, const std::string& dbDir, const std
 int exportEvidenceCommand(const std::string& dbDir, const std::string& node, const std::string& outDir);
 // `smql test FILE...`: runs declarative query suites (*.smqlt); see docs/testing.md.
 int testCommand(const std::vector<std::string>& files);
-// `smql check DB`: verifies a database (records, checksums, trees, indexes, lock file);
-// prints each problem, exit status 1 when there is one (docs/storage.md, "Checking a database").
-int checkCommand(const std::string& dbDir);
+// `smql check DB [--salvage OUT]`: verifies a database (records, checksums, trees, indexes, lock
+// file); prints each problem, exit status 1 when there is one (docs/storage.md, "Checking a
+// database"). With OUT, every scene that verifies is copied into the new database OUT.
+int checkCommand(const std::string& dbDir, const std::string& salvageInto);
 
 }  // namespace smql::shell

@@ -181,6 +181,9 @@ int runSubcommand(int argc, char** argv) {
                                           "indexes, lock file; exit status 1 when anything is wrong");
     std::string checkDbDir;
     checkDbCmd->add_option("database", checkDbDir, "database directory")->required()->check(CLI::ExistingDirectory);
+    std::string salvageInto;
+    checkDbCmd->add_option("--salvage", salvageInto,
+                           "copy every scene that verifies into this new database (docs/storage.md, \"Recovery\")");
 
     auto* eval = app.add_subcommand("eval", "score a memory on an evaluation suite (docs/eval.md)");
     smql::shell::EvalOptions evalOptions;
@@ -199,7 +202,7 @@ int runSubcommand(int argc, char** argv) {
 
     if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
     if (eval->parsed()) return smql::shell::evalCommand(evalOptions);
-    if (checkDbCmd->parsed()) return smql::shell::checkCommand(checkDbDir);
+    if (checkDbCmd->parsed()) return smql::shell::checkCommand(checkDbDir, salvageInto);
     if (import->parsed())
         return smql::shell::importCommand(importFormat, importFile, importDb, importScene, importUpdate, importAll);
     if (exportCmd->parsed() && exportFormat == "evidence") {

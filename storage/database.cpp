@@ -536,18 +536,33 @@ void scanSceneRelations(const Environment& env, MDB_txn* txn, MDB_cursor* cursor
     const NodeId last = sceneId + info->nodeCount;
     auto from = codec::idKey(sceneId);
     MDB_val key = toVal(from), value;
+    // Every relation is stored under both of its ends, both in the scene: as many entries under
+    // subjects as under objects, or an entry was lost or moved, and the scene's relations are not
+    // all here. Such a read fails rather than answer with some of them.
+    std::size_t subjects = 0, objects = 0;
     int rc = mdb_cursor_get(cursor, &key, &value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor, &key, &value, MDB_NEXT_NODUP)) {
         NodeId id = codec::idFromKey(fromVal(key), "relation index");
-        if (id > last) return;
+        if (id > last) break;
         std::size_t count = duplicateCount(env, cursor);
         forEachDuplicate(env, cursor, value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
-            if (codec::relationEntrySide(entry) != codec::RelationSide::Subject) return false;
+            if (codec::relationEntrySide(entry) != codec::RelationSide::Subject) {
+                ++objects;
+                return true;
+            }
+            ++subjects;
             visit(decodeInScene(env, txn, id, [&] { return codec::decodeRelationEntry(id, entry); }));
             return true;
         });
     }
-    endOfScan(env, rc, "reading the relations of a scene");
+    if (rc != MDB_SUCCESS) endOfScan(env, rc, "reading the relations of a scene");
+    if (subjects != objects)
+        throw Error(
+            ErrorKind::Storage,
+            fmt::format("the relations of scene '{}' in database {} are damaged: {} stored under their subject, "
+                        "{} under their object",
+                        info->name, env.directory(), subjects, objects),
+            std::nullopt, "smql check names what is damaged; smql check --salvage OUT keeps the sound scenes");
 }
 
 // A scene's superseded versions: the history keys with its name as prefix, oldest first.

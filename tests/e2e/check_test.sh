@@ -39,6 +39,25 @@ expect "a flipped byte is a corrupt record of its scene" 1 "^problem: scene 'roo
   "$smql" check "$work/flipped"
 expect "queries refuse it too" 1 "corrupt record in scene 'room0'" "$smql" "$work/flipped" -c "FIND sofa"
 
+# Recovery: a second scene beside the damaged one is salvaged into a new database, which checks ok;
+# the damaged scene is named and left out.
+cp -r "$db" "$work/two"
+"$smql" import replica "$data/replica-room0/info_semantic.json" --db "$work/two" --scene intact >/dev/null || exit 1
+python3 - "$work/two/data.mdb" <<'PY'
+import sys
+path = sys.argv[1]
+data = bytearray(open(path, "rb").read())
+at = data.find(b"\x04sofa")
+data[at + 2] ^= 0x20
+open(path, "wb").write(bytes(data))
+PY
+expect "--salvage copies the sound scenes and names the damaged one" 1 "left out: scene 'room0'" \
+  "$smql" check "$work/two" --salvage "$work/saved"
+expect "... the salvaged database checks ok with the sound scene" 0 "^$work/saved: ok (1 scenes, 93 nodes" \
+  "$smql" check "$work/saved"
+expect "... and answers as the original did" 0 "^2$" "$smql" "$work/saved" -c "USE SCENE 'intact'; COUNT sofa"
+expect "--salvage refuses a folder that holds files" 1 "not empty" "$smql" check "$db" --salvage "$work/saved"
+
 cp -r "$db" "$work/short"
 truncate -s 8192 "$work/short/data.mdb"
 expect "a data.mdb cut short" 1 "cut short" "$smql" check "$work/short"

@@ -166,6 +166,10 @@ TEST_CASE("the check reports each kind of damage", "[storage][check]") {
                     std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));
         auto report = checkDatabase(path);
         REQUIRE(reported(report, "is stored under its subject only"));
+        // A read of the scene's relations fails rather than answer with some of them.
+        auto db = Database::open(path, {.readOnly = true, .create = false});
+        REQUIRE_THROWS_WITH(db->beginRead().forEachRelationInScene(big, [](const model::Relation&) {}),
+                            Catch::Contains("relations of scene 'big'") && Catch::Contains("are damaged"));
     }
     SECTION("a blob whose key names a node that is not there") {
         // The crop of the big scene's node 5 (local), moved to an id no node has.
