@@ -46,12 +46,15 @@ fuzz: setup
 	@scripts/fuzz.sh $(FUZZ_SECONDS)
 
 # The fault tests that take minutes (scripts/stress.py; docs/testing.md, "Stress"): SIGKILL during
-# STRESS_RUNS imports and ingests, then one writer beside eight readers for STRESS_SECONDS.
+# STRESS_RUNS imports and ingests, one writer beside eight readers for STRESS_SECONDS, then
+# STRESS_FLIPS single-bit flips of a database, each followed by check and every class of read.
 STRESS_RUNS ?= 200
 STRESS_SECONDS ?= 300
+STRESS_FLIPS ?= 300
 stress: build
 	@scripts/stress.py $(BUILD)/shell/smql kill --runs $(STRESS_RUNS)
 	@scripts/stress.py $(BUILD)/shell/smql readers --seconds $(STRESS_SECONDS) --readers 8
+	@scripts/stress.py $(BUILD)/shell/smql flips --flips $(STRESS_FLIPS)
 
 # The house format (.clang-format): `make format` rewrites the sources, `make lint` checks the format
 # and runs clang-tidy's short list (.clang-tidy); the test run includes lint as the test `lint`.

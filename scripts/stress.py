@@ -3,6 +3,7 @@
 
   scripts/stress.py SMQL kill    [--runs 200]               SIGKILL during imports and ingests
   scripts/stress.py SMQL readers [--seconds 300 --readers 8]  one writer beside readers
+  scripts/stress.py SMQL flips   [--flips 400]              single-bit flips across data.mdb
 
 kill: a database holds two base scenes (the Replica room of ../shared/data and an ingested
 synthetic capture). Each run starts an import (a Replica room under a new name) or an ingest (a
@@ -14,6 +15,16 @@ clean run of the same input gives).
 readers: one process imports new scenes in a loop while N reader processes query in a loop. Every
 answer is checked: the base scene's counts never change, the list of scenes only grows, and every
 scene a reader sees is complete. Any error or wrong answer is counted and fails the run.
+
+flips: a database holds the Replica room and an ingested synthetic capture (with evidence blobs).
+Each run flips one random bit of a copy of its data.mdb, then runs `smql check` and every class of
+read (SHOW SCENES, FIND with paths, COUNT, RELATE, SHOW TREE, GUIDE, `smql export json` of each
+scene) and compares each answer with the undamaged database's. A read that exits 0 with another
+answer is a silent wrong answer; it counts against the test when the flipped byte lies where a
+checksum covers it (a record of 31 bytes or more: nodes, scenes, relation entries, blobs, history),
+and is reported apart when it lies in what LMDB alone keeps (page headers, keys, the fixed-size
+index entries of children and labels). A crash (a signal) counts against the test outside LMDB's
+branch pages, where LMDB itself follows the damaged pointer (docs/storage.md).
 
 Prints a table of the figures (docs/testing.md, "Stress") and exits 1 on any failure.
 """
@@ -191,6 +202,131 @@ def readers_test(smql, work, seconds, readers):
     return tally, failures
 
 
+PAGE = 4096
+P_BRANCH, P_LEAF, P_OVERFLOW, P_META, P_LEAF2 = 0x01, 0x02, 0x04, 0x08, 0x20
+F_BIGDATA, F_SUBDATA, F_DUPDATA = 0x01, 0x02, 0x04
+CHECKSUMMED = 31  # the shortest record that carries a checksum: a relation entry
+
+
+def u16(page, at):
+    return page[at] | page[at + 1] << 8
+
+
+def byte_kind(data, offset, overflow):
+    """Where a byte of data.mdb lies: 'checksummed', 'branch' (an LMDB branch page) or 'lmdb'."""
+    number = offset // PAGE
+    if number in overflow:
+        return "checksummed"  # the pages of a large value (a blob, a large record)
+    page = data[number * PAGE:(number + 1) * PAGE]
+    if len(page) < 16:
+        return "lmdb"
+    flags, at = u16(page, 10), offset % PAGE
+    if flags & P_BRANCH:
+        return "branch"
+    if flags & P_LEAF2:  # packed fixed-size entries: checksummed when relation entries
+        return "checksummed" if u16(page, 8) >= CHECKSUMMED and at >= 16 else "lmdb"
+    if not flags & P_LEAF:
+        return "lmdb"
+    lower = u16(page, 12)
+    for slot in range(16, lower, 2):
+        node = u16(page, slot)
+        if node + 8 > PAGE:
+            continue
+        size = u16(page, node) | u16(page, node + 2) << 16
+        node_flags, key_size = u16(page, node + 4), u16(page, node + 6)
+        start = node + 8 + key_size
+        if node_flags & (F_BIGDATA | F_SUBDATA):
+            continue
+        # A sub-page of duplicates starts with its own 16-byte header.
+        first = start + (16 if node_flags & F_DUPDATA else 0)
+        if first <= at < start + size and (size >= CHECKSUMMED or node_flags & F_DUPDATA):
+            return "checksummed"
+    return "lmdb"
+
+
+def overflow_pages(data):
+    """The page numbers that continue an overflow page (only the first has a header)."""
+    out = set()
+    for number in range(len(data) // PAGE):
+        page = data[number * PAGE:(number + 1) * PAGE]
+        if u16(page, 10) & P_OVERFLOW:
+            count = int.from_bytes(page[12:16], "little")
+            out.update(range(number + 1, number + count))
+    return out
+
+
+def read_answers(smql, scenes):
+    """Every class of read, as (name, exit status, output): statements through the shell, exports."""
+    out = [("SHOW SCENES", *answer(smql, [smql.db, "--json", "-c", "SHOW SCENES"]))]
+    for scene in scenes:
+        use = f"USE SCENE '{scene}'; "
+        for name, statement in (("FIND PATH", "FIND node PATH"), ("COUNT", "COUNT object"),
+                                ("RELATE", "RELATE object TO anchor"), ("SHOW TREE", "SHOW TREE"),
+                                ("GUIDE", "GUIDE FROM HERE TO (FIND object LIMIT 1)")):
+            out.append((f"{name} {scene}", *answer(smql, [smql.db, "--json", "-c", use + statement])))
+        out.append((f"export {scene}", *answer(smql, ["export", "json", "--db", smql.db, "--scene", scene])))
+    return out
+
+
+def answer(smql, args):
+    done = subprocess.run([smql.binary, *args], capture_output=True, text=True, errors="replace")
+    return done.returncode, done.stdout
+
+
+def flips_test(smql, work, flips, seed):
+    capture = work / "capture"
+    smql.run("synth", "--out", str(capture), "--seed", "7", "--frames", "12", "--objects", "8")
+    smql.run("import", "replica", str(REPLICA), "--db", smql.db, "--scene", "replica")
+    smql.run("ingest", str(capture), "--db", smql.db, "--scene", "capture", "--quiet")
+    scenes = ["replica", "capture"]
+    pristine_db = Path(smql.db)
+    truth = read_answers(smql, scenes)
+    data = (pristine_db / "data.mdb").read_bytes()
+    overflow = overflow_pages(data)
+    random.seed(seed)
+    tally = {"flips": 0, "found by check": 0, "reads refused": 0, "silent wrong answers (checksummed)": 0,
+             "silent wrong answers (LMDB's own bytes)": 0, "crashes": 0, "crashes in branch pages": 0}
+    failures = []
+    damaged = Smql(smql.binary, work / "flipped")
+    for _ in range(flips):
+        shutil.rmtree(damaged.db, ignore_errors=True)
+        shutil.copytree(pristine_db, damaged.db)
+        offset, bit = random.randrange(len(data)), random.randrange(8)
+        kind = byte_kind(data, offset, overflow)
+        with open(Path(damaged.db) / "data.mdb", "r+b") as f:
+            f.seek(offset)
+            byte = f.read(1)[0]
+            f.seek(offset)
+            f.write(bytes([byte ^ (1 << bit)]))
+        tally["flips"] += 1
+        def crashed(what):
+            tally["crashes in branch pages" if kind == "branch" else "crashes"] += 1
+            if kind != "branch":
+                kept = Path(tempfile.gettempdir()) / f"smql-flip-crash-{offset}-{bit}"
+                shutil.rmtree(kept, ignore_errors=True)
+                shutil.copytree(damaged.db, kept)
+                failures.append(f"crash: {what} after a flip at byte {offset}, bit {bit} ({kind}); kept in {kept}")
+
+        checked = damaged.check()
+        if checked.returncode < 0 or checked.returncode > 128:
+            crashed("smql check")
+            continue
+        tally["found by check"] += checked.returncode == 1
+        for (name, status, output), (_, truth_status, truth_output) in zip(read_answers(damaged, scenes), truth):
+            where = f"{name} after a flip at byte {offset}, bit {bit} ({kind})"
+            if status < 0 or status > 128:
+                crashed(name)
+            elif status != 0:
+                tally["reads refused"] += 1
+            elif output != truth_output:
+                key = "silent wrong answers (checksummed)" if kind == "checksummed" else \
+                    "silent wrong answers (LMDB's own bytes)"
+                tally[key] += 1
+                if kind == "checksummed":
+                    failures.append(f"silent wrong answer: {where}")
+    return tally, failures
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("smql", type=Path, help="the smql program")
@@ -201,6 +337,9 @@ def main():
     read = sub.add_parser("readers", help="one writer beside readers")
     read.add_argument("--seconds", type=float, default=300)
     read.add_argument("--readers", type=int, default=8)
+    flip = sub.add_parser("flips", help="single-bit flips across data.mdb")
+    flip.add_argument("--flips", type=int, default=400)
+    flip.add_argument("--seed", type=int, default=1)
     args = parser.parse_args()
 
     if not REPLICA.is_file():
@@ -211,6 +350,8 @@ def main():
     try:
         if args.test == "kill":
             tally, failures = kill_test(smql, work, args.runs, args.seed)
+        elif args.test == "flips":
+            tally, failures = flips_test(smql, work, args.flips, args.seed)
         else:
             tally, failures = readers_test(smql, work, args.seconds, args.readers)
     finally:

@@ -69,7 +69,7 @@ std::optional<std::string_view> lookup(const Environment& env, MDB_txn* txn, Tab
     int rc = mdb_get(txn, env.dbi(table), &key, &value);
     if (rc == MDB_NOTFOUND) return std::nullopt;
     env.check(rc, operation);
-    return fromVal(value);
+    return env.bytes(value);
 }
 
 // The scene whose id block holds `id`, named for an error message: the scene
@@ -82,14 +82,14 @@ std::string sceneNameFor(const Environment& env, MDB_txn* txn, NodeId id) {
         auto from = codec::idKey(id);
         MDB_val key = toVal(from), value;
         int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
-        if (rc == MDB_SUCCESS && codec::idFromKey(fromVal(key), "scene") != id)
+        if (rc == MDB_SUCCESS && codec::idFromKey(env.bytes(key), "scene") != id)
             rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_PREV);
         else if (rc == MDB_NOTFOUND)
             rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_LAST);
         if (rc != MDB_SUCCESS) return fmt::format("unknown (no scene holds id {})", id);
-        const NodeId sceneId = codec::idFromKey(fromVal(key), "scene");
+        const NodeId sceneId = codec::idFromKey(env.bytes(key), "scene");
         try {
-            return fmt::format("'{}'", codec::decodeScene(sceneId, fromVal(value)).name);
+            return fmt::format("'{}'", codec::decodeScene(sceneId, env.bytes(value)).name);
         } catch (const codec::CorruptRecord&) {
         }
         try {
@@ -101,8 +101,8 @@ std::string sceneNameFor(const Environment& env, MDB_txn* txn, NodeId id) {
         Cursor names(env, txn, Table::SceneNames);
         for (rc = mdb_cursor_get(names.get(), &key, &value, MDB_FIRST); rc == MDB_SUCCESS;
              rc = mdb_cursor_get(names.get(), &key, &value, MDB_NEXT))
-            if (value.mv_size == 8 && codec::idFromKey(fromVal(value), "scene name index") == sceneId)
-                return fmt::format("'{}'", fromVal(key));
+            if (value.mv_size == 8 && codec::idFromKey(env.bytes(value), "scene name index") == sceneId)
+                return fmt::format("'{}'", env.bytes(key));
         return fmt::format("#{}", sceneId);
     } catch (const Error&) {
         return fmt::format("unknown (the scene holding id {} cannot be read)", id);
@@ -167,7 +167,7 @@ void forEachDuplicate(const Environment& env, MDB_cursor* cursor, const MDB_val&
                     "the database file is damaged; restore it from a backup");
     // A key with a single value has no duplicate page for MDB_GET_MULTIPLE to return.
     if (count == 1) {
-        visit(fromVal(first));
+        visit(env.bytes(first));
         return;
     }
     MDB_val key, block;
@@ -234,7 +234,7 @@ void eraseBlobs(const Environment& env, MDB_txn* txn, NodeId node) {
         int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
         if (rc == MDB_NOTFOUND) return;
         env.check(rc, "dropping blobs");
-        if (fromVal(key).substr(0, prefix.size()) != want) return;
+        if (env.bytes(key).substr(0, prefix.size()) != want) return;
         env.check(mdb_cursor_del(cursor.get(), 0), "dropping a blob");
     }
 }
@@ -429,8 +429,8 @@ std::vector<SceneInfo> ReadTransaction::scenes() const {
     MDB_val key, value;
     int rc = cursor.get(key, value, MDB_FIRST);
     for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
-        NodeId id = codec::idFromKey(fromVal(key), "scene");
-        out.push_back(decodeInScene(env, impl_->txn, id, [&] { return codec::decodeScene(id, fromVal(value)); }));
+        NodeId id = codec::idFromKey(env.bytes(key), "scene");
+        out.push_back(decodeInScene(env, impl_->txn, id, [&] { return codec::decodeScene(id, env.bytes(value)); }));
     }
     endOfScan(env, rc, "listing scenes");
     return out;
@@ -510,8 +510,8 @@ void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<voi
     Node node;
     int rc = cursor.get(key, value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
-        NodeId id = codec::idFromKey(fromVal(key), "node");
-        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, fromVal(value), node); });
+        NodeId id = codec::idFromKey(env.bytes(key), "node");
+        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
         if (node.scene != sceneId) return;
         visit(node);
     }
@@ -542,7 +542,7 @@ void scanSceneRelations(const Environment& env, MDB_txn* txn, MDB_cursor* cursor
     std::size_t subjects = 0, objects = 0;
     int rc = mdb_cursor_get(cursor, &key, &value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor, &key, &value, MDB_NEXT_NODUP)) {
-        NodeId id = codec::idFromKey(fromVal(key), "relation index");
+        NodeId id = codec::idFromKey(env.bytes(key), "relation index");
         if (id > last) break;
         std::size_t count = duplicateCount(env, cursor);
         forEachDuplicate(env, cursor, value, count, codec::kRelationEntrySize, [&](std::string_view entry) {
@@ -572,9 +572,9 @@ void scanHistory(const Environment& env, MDB_txn* txn, std::string_view sceneNam
     const std::string prefix = codec::historyPrefix(sceneName);
     MDB_val key = toVal(prefix), value;
     int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
-    for (; rc == MDB_SUCCESS && fromVal(key).starts_with(prefix);
+    for (; rc == MDB_SUCCESS && env.bytes(key).starts_with(prefix);
          rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT))
-        visit(fromVal(key), fromVal(value));
+        visit(env.bytes(key), env.bytes(value));
     endOfScan(env, rc, "reading the history of a scene");
 }
 
@@ -658,7 +658,7 @@ std::vector<std::pair<std::string, std::uint64_t>> ReadTransaction::categories()
     MDB_val key, value;
     int rc = cursor.get(key, value, MDB_FIRST);
     for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT_NODUP))
-        out.emplace_back(std::string(fromVal(key)), duplicateCount(env, cursor.cursor()));
+        out.emplace_back(std::string(env.bytes(key)), duplicateCount(env, cursor.cursor()));
     endOfScan(env, rc, "listing categories");
     return out;
 }
@@ -678,10 +678,11 @@ std::vector<ReadTransaction::BlobInfo> ReadTransaction::blobsOf(NodeId id) const
     std::vector<BlobInfo> out;
     MDB_val key = toVal(prefix), value;
     int rc = cursor.get(key, value, MDB_SET_RANGE);
-    for (; rc == MDB_SUCCESS && fromVal(key).substr(0, prefix.size()) == want; rc = cursor.get(key, value, MDB_NEXT)) {
+    for (; rc == MDB_SUCCESS && env.bytes(key).substr(0, prefix.size()) == want;
+         rc = cursor.get(key, value, MDB_NEXT)) {
         BlobInfo info;
         auto [name, mediaType] = decodeInScene(
-            env, impl_->txn, id, [&] { return codec::peekBlob(fromVal(key), fromVal(value), info.size); });
+            env, impl_->txn, id, [&] { return codec::peekBlob(env.bytes(key), env.bytes(value), info.size); });
         info.name = std::string(name);
         info.mediaType = std::string(mediaType);
         out.push_back(std::move(info));
@@ -712,10 +713,10 @@ std::vector<std::pair<std::string, std::string>> ReadTransaction::settings() con
     MDB_val key = toVal(kSettingPrefix), value;
     int rc = cursor.get(key, value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
-        std::string_view name = fromVal(key);
+        std::string_view name = env.bytes(key);
         if (!name.starts_with(kSettingPrefix)) return out;
         name.remove_prefix(kSettingPrefix.size());
-        out.emplace_back(std::string(name), std::string(fromVal(value)));
+        out.emplace_back(std::string(name), std::string(env.bytes(value)));
     }
     endOfScan(env, rc, "listing settings");
     return out;
@@ -906,8 +907,8 @@ void eraseScene(const Environment& env, MDB_txn* txn, const SceneInfo& scene) {
         Node node;
         int rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_SET_RANGE);
         for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_NEXT)) {
-            NodeId id = codec::idFromKey(fromVal(key), "node");
-            decodeInScene(env, txn, id, [&] { codec::decodeNode(id, fromVal(value), node); });
+            NodeId id = codec::idFromKey(env.bytes(key), "node");
+            decodeInScene(env, txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
             if (node.scene != sceneId) break;
             bool labelled = node.kind != model::NodeKind::Scene && !node.category.empty();
             doomed.push_back({node.id, labelled ? node.category : std::string(), node.sourceId, labelled});
@@ -1005,10 +1006,10 @@ WriteTransaction::Replacement WriteTransaction::replaceScene(NodeId sceneId, mod
         std::string_view want(reinterpret_cast<const char*>(prefix.data()), prefix.size());
         MDB_val key = toVal(want), value;
         int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
-        for (; rc == MDB_SUCCESS && fromVal(key).starts_with(want);
+        for (; rc == MDB_SUCCESS && env.bytes(key).starts_with(want);
              rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
             model::Blob blob =
-                decodeInScene(env, txn, storedId, [&] { return codec::decodeBlob(fromVal(key), fromVal(value)); });
+                decodeInScene(env, txn, storedId, [&] { return codec::decodeBlob(env.bytes(key), env.bytes(value)); });
             blob.node = local;
             data.blobs.push_back(std::move(blob));
         }
@@ -1137,8 +1138,8 @@ void WriteTransaction::forEachNodeInScene(NodeId sceneId, const std::function<vo
     Node node;
     int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
     for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
-        NodeId id = codec::idFromKey(fromVal(key), "node");
-        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, fromVal(value), node); });
+        NodeId id = codec::idFromKey(env.bytes(key), "node");
+        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
         if (node.scene != sceneId) return;
         visit(node);
     }

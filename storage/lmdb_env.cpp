@@ -3,13 +3,17 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -264,6 +268,7 @@ std::shared_ptr<Environment> Environment::openChecked(const std::string& directo
                                    : "check the permissions, or open the database read-only");
     environment->check(rc, "opening");
     environment->checkFileSize();
+    environment->findMap();
     struct stat lockFile {};
     if (::stat((fs::path(directory) / kLockFile).c_str(), &lockFile) == 0)
         environment->lockFile_ = std::pair(lockFile.st_dev, lockFile.st_ino);
@@ -504,6 +509,47 @@ void Environment::fail(int rc, std::string_view operation) const {
 
 Cursor::Cursor(const Environment& env, MDB_txn* txn, Table table) {
     env.check(mdb_cursor_open(txn, env.dbi(table), &cursor_), "opening a cursor");
+}
+
+void Environment::findMap() {
+    struct stat data {};
+    if (::stat((fs::path(directory_) / kDataFile).c_str(), &data) != 0) return;
+    std::ifstream maps("/proc/self/maps");
+    for (std::string line; std::getline(maps, line);) {
+        std::istringstream fields(line);
+        std::string range, perms, offset, device;
+        unsigned long inode = 0;
+        if (!(fields >> range >> perms >> offset >> device >> inode) || inode != data.st_ino) continue;
+        unsigned major = 0, minor = 0;
+        unsigned long long begin = 0, end = 0;
+        if (std::sscanf(device.c_str(), "%x:%x", &major, &minor) != 2 || makedev(major, minor) != data.st_dev ||
+            std::sscanf(range.c_str(), "%llx-%llx", &begin, &end) != 2 ||
+            offset.find_first_not_of('0') != std::string::npos)
+            continue;
+        map_ = reinterpret_cast<const char*>(begin);
+        mapSize_ = static_cast<std::size_t>(end - begin);
+        return;
+    }
+}
+
+std::string_view Environment::bytes(const MDB_val& v) const {
+    const char* at = static_cast<const char*>(v.mv_data);
+    // Pages a write transaction has changed are in memory of its own, outside the map: only what
+    // lies in the map is read from the file, which ends after its last committed page.
+    if (map_ && at >= map_ && at < map_ + mapSize_) {
+        MDB_envinfo info{};
+        MDB_stat stat{};
+        mdb_env_info(env_, &info);
+        mdb_env_stat(env_, &stat);
+        const char* end = map_ + (info.me_last_pgno + 1) * static_cast<std::size_t>(stat.ms_psize);
+        if (at > end || v.mv_size > static_cast<std::size_t>(end - at))
+            throw Error(ErrorKind::Storage,
+                        fmt::format("database {} is damaged: a record of {} bytes reaches past the end of {}",
+                                    directory_, v.mv_size, kDataFile),
+                        std::nullopt,
+                        "smql check names what is damaged; smql check --salvage OUT keeps the sound scenes");
+    }
+    return {at, v.mv_size};
 }
 
 }  // namespace smql::storage

@@ -80,6 +80,10 @@ public:
     bool readOnly() const { return readOnly_; }
     // LMDB's key size limit (511 bytes in Debian's build); names used as keys are checked against it.
     std::size_t maxKeySize() const { return static_cast<std::size_t>(mdb_env_get_maxkeysize(env_)); }
+    // The bytes of a key or value LMDB returned, once they are known to lie in data.mdb: a flipped
+    // bit in a page's node header can give a size that reaches past the end of the file, and
+    // reading there is a SIGBUS. Throws a Storage error naming the damage instead.
+    std::string_view bytes(const MDB_val& v) const;
 
     // Read transactions come from a pool of reset ones: renewing a transaction
     // reuses its reader slot, where beginning one takes LMDB's reader lock.
@@ -107,9 +111,15 @@ private:
     void upgradeSchema();
     void checkFileSize() const;
 
+    // Where LMDB mapped data.mdb in this process (from /proc/self/maps: LMDB does not say), for
+    // bytes(); null when it cannot be found, and then bytes() trusts LMDB's sizes.
+    void findMap();
+
     MDB_env* env_;
     std::string directory_;
     bool readOnly_;
+    const char* map_ = nullptr;
+    std::size_t mapSize_ = 0;
     std::array<MDB_dbi, kTableCount> dbis_{};
     // Device and inode of lock.mdb when this environment opened it; unset
     // when LMDB runs without one (a read-only file system).
