@@ -22,9 +22,10 @@ read (SHOW SCENES, FIND with paths, COUNT, RELATE, SHOW TREE, GUIDE, `smql expor
 scene) and compares each answer with the undamaged database's. A read that exits 0 with another
 answer is a silent wrong answer; it counts against the test when the flipped byte lies where a
 checksum covers it (a record of 31 bytes or more: nodes, scenes, relation entries, blobs, history),
-and is reported apart when it lies in what LMDB alone keeps (page headers, keys, the fixed-size
-index entries of children and labels). A crash (a signal) counts against the test outside LMDB's
-branch pages, where LMDB itself follows the damaged pointer (docs/storage.md).
+and is reported apart when it lies in what LMDB alone keeps (keys, the fixed-size index entries of
+children and labels). A crash (a signal) counts against the test outside LMDB's page structure
+(branch pages, page headers and node pointers, node headers), which LMDB follows without checks
+(docs/storage.md).
 
 Prints a table of the figures (docs/testing.md, "Stress") and exits 1 on any failure.
 """
@@ -213,7 +214,9 @@ def u16(page, at):
 
 
 def byte_kind(data, offset, overflow):
-    """Where a byte of data.mdb lies: 'checksummed', 'branch' (an LMDB branch page) or 'lmdb'."""
+    """Where a byte of data.mdb lies: 'checksummed' (in a record smql seals), 'structure' (LMDB's
+    page structure: branch pages, page headers and node pointers, node headers) or 'lmdb' (other
+    bytes only LMDB keeps: keys, the fixed-size entries of children and labels)."""
     number = offset // PAGE
     if number in overflow:
         return "checksummed"  # the pages of a large value (a blob, a large record)
@@ -221,8 +224,8 @@ def byte_kind(data, offset, overflow):
     if len(page) < 16:
         return "lmdb"
     flags, at = u16(page, 10), offset % PAGE
-    if flags & P_BRANCH:
-        return "branch"
+    if flags & P_BRANCH or (flags & P_LEAF and not flags & P_LEAF2 and at < u16(page, 12)):
+        return "structure"
     if flags & P_LEAF2:  # packed fixed-size entries: checksummed when relation entries
         return "checksummed" if u16(page, 8) >= CHECKSUMMED and at >= 16 else "lmdb"
     if not flags & P_LEAF:
@@ -235,6 +238,8 @@ def byte_kind(data, offset, overflow):
         size = u16(page, node) | u16(page, node + 2) << 16
         node_flags, key_size = u16(page, node + 4), u16(page, node + 6)
         start = node + 8 + key_size
+        if node <= at < node + 8:
+            return "structure"
         if node_flags & (F_BIGDATA | F_SUBDATA):
             continue
         # A sub-page of duplicates starts with its own 16-byte header.
@@ -285,7 +290,7 @@ def flips_test(smql, work, flips, seed):
     overflow = overflow_pages(data)
     random.seed(seed)
     tally = {"flips": 0, "found by check": 0, "reads refused": 0, "silent wrong answers (checksummed)": 0,
-             "silent wrong answers (LMDB's own bytes)": 0, "crashes": 0, "crashes in branch pages": 0}
+             "silent wrong answers (LMDB's own bytes)": 0, "crashes": 0, "crashes in LMDB's page structure": 0}
     failures = []
     damaged = Smql(smql.binary, work / "flipped")
     for _ in range(flips):
@@ -300,8 +305,8 @@ def flips_test(smql, work, flips, seed):
             f.write(bytes([byte ^ (1 << bit)]))
         tally["flips"] += 1
         def crashed(what):
-            tally["crashes in branch pages" if kind == "branch" else "crashes"] += 1
-            if kind != "branch":
+            tally["crashes in LMDB's page structure" if kind == "structure" else "crashes"] += 1
+            if kind != "structure":
                 kept = Path(tempfile.gettempdir()) / f"smql-flip-crash-{offset}-{bit}"
                 shutil.rmtree(kept, ignore_errors=True)
                 shutil.copytree(damaged.db, kept)
