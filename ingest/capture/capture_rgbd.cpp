@@ -225,9 +225,9 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
         capture.frames.push_back(std::move(frame));
     }
     std::vector<long long> colourless;
-    for (const auto& [number, path] : depths)
-        if (std::none_of(colors.begin(), colors.end(), [&](const auto& c) { return c.first == number; }))
-            colourless.push_back(number);
+    for (const auto& depth : depths)
+        if (std::none_of(colors.begin(), colors.end(), [&](const auto& c) { return c.first == depth.first; }))
+            colourless.push_back(depth.first);
     if (!colourless.empty())
         capture.notes.push_back(fmt::format(
             "{}: {} depth image(s) without a colour image (frame {}{}): those frames "

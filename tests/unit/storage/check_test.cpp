@@ -38,39 +38,23 @@ void makeDatabase(const std::string& path) {
 // Deletes one entry straight through LMDB, as damage or a bug elsewhere would.
 void deleteEntry(const std::string& path, const char* table, std::string_view key,
                  std::optional<std::string_view> value) {
-    MDB_env* env = nullptr;
-    REQUIRE(mdb_env_create(&env) == 0);
-    REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
-    REQUIRE(mdb_env_open(env, path.c_str(), 0, 0644) == 0);
-    MDB_txn* txn = nullptr;
-    REQUIRE(mdb_txn_begin(env, nullptr, 0, &txn) == 0);
-    MDB_dbi dbi;
-    REQUIRE(mdb_dbi_open(txn, table, 0, &dbi) == 0);
-    MDB_val k = toVal(key), v;
-    if (value) v = toVal(*value);
-    REQUIRE(mdb_del(txn, dbi, &k, value ? &v : nullptr) == 0);
-    REQUIRE(mdb_txn_commit(txn) == 0);
-    mdb_env_close(env);
+    editTable(path, table, [&](MDB_txn* txn, MDB_dbi dbi) {
+        MDB_val k = toVal(key), v;
+        if (value) v = toVal(*value);
+        REQUIRE(mdb_del(txn, dbi, &k, value ? &v : nullptr) == 0);
+    });
 }
 
 // Moves one entry to another key straight through LMDB, as a bit flipped in its key would.
 void moveEntry(const std::string& path, const char* table, const std::string& from, const std::string& to) {
-    MDB_env* env = nullptr;
-    REQUIRE(mdb_env_create(&env) == 0);
-    REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
-    REQUIRE(mdb_env_open(env, path.c_str(), 0, 0644) == 0);
-    MDB_txn* txn = nullptr;
-    REQUIRE(mdb_txn_begin(env, nullptr, 0, &txn) == 0);
-    MDB_dbi dbi;
-    REQUIRE(mdb_dbi_open(txn, table, 0, &dbi) == 0);
-    MDB_val k = toVal(from), v;
-    REQUIRE(mdb_get(txn, dbi, &k, &v) == 0);
-    std::string value(static_cast<const char*>(v.mv_data), v.mv_size);
-    MDB_val target = toVal(to), moved = toVal(value);
-    REQUIRE(mdb_put(txn, dbi, &target, &moved, 0) == 0);
-    REQUIRE(mdb_del(txn, dbi, &k, nullptr) == 0);
-    REQUIRE(mdb_txn_commit(txn) == 0);
-    mdb_env_close(env);
+    editTable(path, table, [&](MDB_txn* txn, MDB_dbi dbi) {
+        MDB_val k = toVal(from), v;
+        REQUIRE(mdb_get(txn, dbi, &k, &v) == 0);
+        std::string value(static_cast<const char*>(v.mv_data), v.mv_size);
+        MDB_val target = toVal(to), moved = toVal(value);
+        REQUIRE(mdb_put(txn, dbi, &target, &moved, 0) == 0);
+        REQUIRE(mdb_del(txn, dbi, &k, nullptr) == 0);
+    });
 }
 
 std::string keyOf(model::NodeId id) {

@@ -345,24 +345,16 @@ namespace {
 // Rewrites the schema version of the database at `path`, as another smql would have written it;
 // `dropHistory` also deletes the history table, which databases before version 3 lack.
 void setSchemaVersion(const std::string& path, std::uint64_t version, bool dropHistory = false) {
-    MDB_env* env = nullptr;
-    REQUIRE(mdb_env_create(&env) == 0);
-    REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
-    REQUIRE(mdb_env_open(env, path.c_str(), 0, 0644) == 0);
-    MDB_txn* txn = nullptr;
-    REQUIRE(mdb_txn_begin(env, nullptr, 0, &txn) == 0);
-    MDB_dbi meta;
-    REQUIRE(mdb_dbi_open(txn, "meta", 0, &meta) == 0);
-    std::string bytes = codec::encodeU64(version);
-    MDB_val key = toVal(kSchemaVersionKey), value = toVal(bytes);
-    REQUIRE(mdb_put(txn, meta, &key, &value, 0) == 0);
-    if (dropHistory) {
-        MDB_dbi history;
-        REQUIRE(mdb_dbi_open(txn, "history", 0, &history) == 0);
-        REQUIRE(mdb_drop(txn, history, 1) == 0);
-    }
-    REQUIRE(mdb_txn_commit(txn) == 0);
-    mdb_env_close(env);
+    editTable(path, "meta", [&](MDB_txn* txn, MDB_dbi meta) {
+        std::string bytes = codec::encodeU64(version);
+        MDB_val key = toVal(kSchemaVersionKey), value = toVal(bytes);
+        REQUIRE(mdb_put(txn, meta, &key, &value, 0) == 0);
+        if (dropHistory) {
+            MDB_dbi history;
+            REQUIRE(mdb_dbi_open(txn, "history", 0, &history) == 0);
+            REQUIRE(mdb_drop(txn, history, 1) == 0);
+        }
+    });
 }
 
 }  // namespace

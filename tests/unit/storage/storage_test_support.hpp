@@ -1,15 +1,36 @@
 // Scratch directories and scene builders shared by the storage tests.
 #pragma once
 
+#include <lmdb.h>
 #include <stdlib.h>
 
 #include <filesystem>
 #include <string>
 
+#include <catch2/catch.hpp>
+
 #include "model/types.hpp"
 #include "storage/database.hpp"
+#include "storage/lmdb_env.hpp"
 
 namespace smql::storage::testing {
+
+// Changes one table of the database at `path` straight through LMDB, as damage, a bug elsewhere or
+// another smql would: `edit` gets the write transaction and the table, and what it did is committed.
+template <typename Edit>
+void editTable(const std::string& path, const char* table, Edit&& edit) {
+    MDB_env* env = nullptr;
+    REQUIRE(mdb_env_create(&env) == 0);
+    REQUIRE(mdb_env_set_maxdbs(env, kMaxTables) == 0);
+    REQUIRE(mdb_env_open(env, path.c_str(), 0, 0644) == 0);
+    MDB_txn* txn = nullptr;
+    REQUIRE(mdb_txn_begin(env, nullptr, 0, &txn) == 0);
+    MDB_dbi dbi;
+    REQUIRE(mdb_dbi_open(txn, table, 0, &dbi) == 0);
+    edit(txn, dbi);
+    REQUIRE(mdb_txn_commit(txn) == 0);
+    mdb_env_close(env);
+}
 
 // A fresh directory under the system temp dir, removed with everything in it.
 class TempDir {
