@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -85,6 +86,118 @@ void checkLockFile(const std::string& directory, CheckReport& report) {
             "not serialised with other processes' (the lock file was removed or replaced while it ran); stop it",
             pid, locks.empty() ? std::string("no lock file") : fmt::format("the lock file {}", locks.front()),
             directory));
+}
+
+// LMDB 0.9 follows its own page structure without checks: a flipped bit in a branch page, a page
+// header or a node pointer sends it outside the page, and the process stops inside LMDB. Before
+// LMDB is given the file, its B-trees are walked here with plain reads from the newer meta page,
+// and every page they reach is checked: its number, its kind and bounds, each node within it, each
+// child and overflow page within the file. Damage found here is reported instead of opening it.
+class PageWalk {
+public:
+    PageWalk(std::ifstream& file, std::uint64_t pages, std::size_t pageSize)
+        : file_(file), pages_(pages), pageSize_(pageSize) {}
+
+    // The meta page of the newer transaction: the roots of the free list and of the tables. A file
+    // shorter than its last page is left to the open, which says it was cut short.
+    void fromMeta() {
+        constexpr std::size_t kMeta = 16, kFreeRoot = kMeta + 24 + 40, kMainRoot = kFreeRoot + 48,
+                              kLastPage = kMainRoot + 8, kTxnId = kLastPage + 8;
+        const std::string first = page(0), second = page(1);
+        const std::string& meta = u64(second, kTxnId) > u64(first, kTxnId) ? second : first;
+        if (u64(meta, kLastPage) >= pages_) return;
+        tree(u64(meta, kFreeRoot), 0);
+        tree(u64(meta, kMainRoot), 0);
+    }
+    std::vector<std::string> problems;
+
+private:
+    static std::uint64_t u64(const std::string& b, std::size_t at) {
+        std::uint64_t v = 0;
+        for (int i = 7; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + i]);
+        return v;
+    }
+    static unsigned u16(const std::string& b, std::size_t at) {
+        return static_cast<unsigned char>(b[at]) | static_cast<unsigned>(static_cast<unsigned char>(b[at + 1])) << 8;
+    }
+    std::string page(std::uint64_t number) {
+        std::string out(pageSize_, '\0');
+        file_.clear();
+        file_.seekg(static_cast<std::streamoff>(number * pageSize_));
+        file_.read(out.data(), static_cast<std::streamsize>(pageSize_));
+        return out;
+    }
+    void damaged(std::uint64_t page, const std::string& what) {
+        if (problems.size() < kShown)
+            problems.push_back(fmt::format("data.mdb: page {} (LMDB's own structure) is damaged: {}", page, what));
+    }
+
+    void tree(std::uint64_t root, int depth) {
+        constexpr std::uint64_t kNoPage = ~std::uint64_t{0};
+        constexpr unsigned kBranch = 0x01, kLeaf = 0x02, kLeaf2 = 0x20, kBig = 0x01, kSub = 0x02, kDup = 0x04;
+        if (root == kNoPage || problems.size() >= kShown) return;
+        if (root < 2 || root >= pages_) return damaged(root, "a tree points to it, past the end of the file");
+        if (depth > kDeepest || !seen_.insert(root).second) return damaged(root, "a tree reaches it twice");
+        const std::string p = page(root);
+        if (u64(p, 0) != root) return damaged(root, fmt::format("it says it is page {}", u64(p, 0)));
+        const unsigned flags = u16(p, 10), lower = u16(p, 12), upper = u16(p, 14);
+        if (!(flags & (kBranch | kLeaf)) || lower < 16 || lower > upper || upper > pageSize_)
+            return damaged(root, fmt::format("flags {:#x}, lower {}, upper {}", flags, lower, upper));
+        const unsigned count = (lower - 16) / 2;
+        if (flags & kLeaf2) {
+            if (16 + std::size_t{count} * u16(p, 8) > pageSize_) damaged(root, "its fixed-size keys overrun it");
+            return;
+        }
+        for (unsigned i = 0; i < count; ++i) {
+            const std::size_t node = u16(p, 16 + 2 * i);
+            if (node < upper || node + 8 > pageSize_) return damaged(root, fmt::format("node {} lies outside it", i));
+            const unsigned lo = u16(p, node), hi = u16(p, node + 2), nodeFlags = u16(p, node + 4);
+            const std::size_t value = node + 8 + u16(p, node + 6);
+            if (value > pageSize_) return damaged(root, fmt::format("node {}'s key overruns it", i));
+            if (flags & kBranch) {
+                tree(lo | std::uint64_t{hi} << 16 | std::uint64_t{nodeFlags} << 32, depth + 1);
+                continue;
+            }
+            const std::size_t size = lo | std::size_t{hi} << 16;
+            if (nodeFlags & kBig) {
+                if (value + 8 > pageSize_) return damaged(root, fmt::format("node {} overruns it", i));
+                const std::uint64_t first = u64(p, value), spans = (size + 16 + pageSize_ - 1) / pageSize_;
+                if (first < 2 || first + spans > pages_)
+                    damaged(root, fmt::format("node {}'s value lies past the end of the file", i));
+                continue;
+            }
+            if (value + size > pageSize_) return damaged(root, fmt::format("node {}'s value overruns it", i));
+            if (nodeFlags & kSub) {
+                if (size < 48) return damaged(root, fmt::format("node {} holds no table", i));
+                tree(u64(p, value + 40), depth + 1);  // the table's MDB_db: its md_root
+            } else if (nodeFlags & kDup) {
+                const unsigned subLower = u16(p, value + 12), subUpper = u16(p, value + 14);
+                if (size < 16 || subLower < 16 || subLower > subUpper || subUpper > size)
+                    damaged(root, fmt::format("node {}'s duplicates are damaged", i));
+            }
+        }
+    }
+
+    static constexpr std::size_t kShown = 10;
+    static constexpr int kDeepest = 64;
+    std::ifstream& file_;
+    std::uint64_t pages_;
+    std::size_t pageSize_;
+    std::set<std::uint64_t> seen_;
+};
+
+// Every tree of data.mdb walked and its pages checked; false when one is damaged.
+bool checkPages(const std::string& directory, CheckReport& report) {
+    std::error_code ec;
+    const fs::path data = fs::path(directory) / "data.mdb";
+    const auto bytes = fs::file_size(data, ec);
+    const auto pageSize = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    std::ifstream file(data, std::ios::binary);
+    if (ec || !file || bytes < 2 * pageSize) return true;  // the open reports it
+    PageWalk walk(file, bytes / pageSize, pageSize);
+    walk.fromMeta();
+    for (auto& problem : walk.problems) report.problems.push_back(std::move(problem));
+    return walk.problems.empty();
 }
 
 // Everything about one scene: its records, its tree and its index entries.
@@ -179,6 +292,7 @@ SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info,
 CheckReport checkDatabase(const std::string& directory) {
     CheckReport report;
     checkLockFile(directory, report);
+    if (!checkPages(directory, report)) return report;
     std::unique_ptr<Database> db;
     try {
         db = Database::open(directory, {.readOnly = true, .create = false});

@@ -164,6 +164,27 @@ TEST_CASE("the check reports each kind of damage", "[storage][check]") {
         REQUIRE(report.blobs == 0);
         REQUIRE(reported(report, "table blobs holds 1 entries, the scenes account for 0"));
     }
+    SECTION("leaf pages' node pointers flipped: reported from the pages, never given to LMDB") {
+        const fs::path file = fs::path(path) / "data.mdb";
+        std::string bytes;
+        {
+            std::ifstream in(file, std::ios::binary);
+            bytes.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        // The first node pointer of every leaf page (free ones too) now points past the page's end.
+        const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+        std::size_t leaves = 0;
+        for (std::size_t p = 2; (p + 1) * page <= bytes.size(); ++p)
+            if ((static_cast<unsigned char>(bytes[p * page + 10]) & 0x22) == 0x02 &&
+                static_cast<unsigned char>(bytes[p * page + 12]) > 18) {
+                bytes[p * page + 17] = static_cast<char>(0x7F);
+                ++leaves;
+            }
+        REQUIRE(leaves > 0);
+        std::ofstream(file, std::ios::binary) << bytes;
+        auto report = checkDatabase(path);
+        REQUIRE(reported(report, "(LMDB's own structure) is damaged: node 0 lies outside it"));
+    }
     SECTION("a data file cut short") {
         fs::resize_file(fs::path(path) / "data.mdb", fs::file_size(fs::path(path) / "data.mdb") / 2);
         auto report = checkDatabase(path);
