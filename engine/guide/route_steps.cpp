@@ -43,12 +43,12 @@ std::string howFar(double metres) {
 constexpr double kEyeLevel = 1.8;
 
 // What a person sees as a landmark: doors, windows and furniture-sized things at eye level, not
-// what lies flat on the floor.
-bool landmarkLike(const Node& n, double floor) {
+// what lies flat on the floor (a rug is walked over, not walked toward).
+bool landmarkLike(const Node& n, const Footing& footing) {
     if (n.hidden || n.geometry == model::GeometryKind::None) return false;
     if (n.kind == NodeKind::Anchor) return n.category == "door" || n.category == "window";
     return n.kind == NodeKind::Object && n.box.size.x * n.box.size.y >= 0.3 &&
-           model::bottom(n.box) - floor < kEyeLevel && model::top(n.box) - floor > GraphOptions{}.walkOverHeight;
+           model::bottom(n.box) - footing.floor() < kEyeLevel && !footing.walkedOver(n);
 }
 
 double footprintGap(const model::Box& box, Point p) {
@@ -59,11 +59,11 @@ double footprintGap(const model::Box& box, Point p) {
 }
 
 // The landmark nearest the end of a leg (within 1.5 m of it), not the goal itself.
-const Node* landmarkAt(const std::vector<Node>& nodes, double floor, Point p, model::NodeId goal) {
+const Node* landmarkAt(const std::vector<Node>& nodes, const Footing& footing, Point p, model::NodeId goal) {
     const Node* best = nullptr;
     double bestGap = 1.5;
     for (const Node& n : nodes) {
-        if (n.id == goal || !landmarkLike(n, floor)) continue;
+        if (n.id == goal || !landmarkLike(n, footing)) continue;
         double gap = footprintGap(n.box, p);
         if (gap < bestGap) {
             bestGap = gap;
@@ -116,11 +116,11 @@ std::vector<Step> describeRoute(const Route& route, const std::vector<Node>& nod
 
     std::vector<Step> steps;
     std::optional<double> heading = startHeading;
-    const double floor = floorHeight(nodes);
+    const Footing footing(nodes, GraphOptions{});
     for (const Leg& leg : legs) {
         Step step;
         step.instruction = heading ? turn(leg.heading - *heading) : "";
-        const Node* landmark = landmarkAt(nodes, floor, leg.to, goal.id);
+        const Node* landmark = landmarkAt(nodes, footing, leg.to, goal.id);
         // A landmark the last step named already says nothing new.
         if (landmark && !steps.empty() && steps.back().landmark == landmark->id) landmark = nullptr;
         step.instruction += fmt::format("Walk {}{}.", howFar(leg.length),
