@@ -201,13 +201,12 @@ public:
             locPath.add(locatedPath);
             // A thing whose parent is the room itself (a layout without anchors) has its parent
             // located when the memory's is the room too.
+            const bool bothUnderRoom = memoryChain.size() == 1 && truthChain.size() == 1;
             bool parentThere =
-                hit && (memoryChain.size() == 1 && truthChain.size() == 1
-                            ? true
-                            : memoryChain.size() >= 2 && truthChain.size() >= 2 &&
-                                  category(memoryChain, 1) == category(truthChain, 1) &&
-                                  matchDistance(*memoryChain[memoryChain.size() - 2],
-                                                *truthChain[truthChain.size() - 2]) <= settings_.tauMatch);
+                hit && (bothUnderRoom || (memoryChain.size() >= 2 && truthChain.size() >= 2 &&
+                                          category(memoryChain, 1) == category(truthChain, 1) &&
+                                          matchDistance(*memoryChain[memoryChain.size() - 2],
+                                                        *truthChain[truthChain.size() - 2]) <= settings_.tauMatch));
             locParent.add(parentThere);
             if (const std::string* c = t.attribute("color")) {
                 const std::string* m = hit ? hit->attribute("color") : nullptr;

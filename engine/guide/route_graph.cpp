@@ -12,6 +12,7 @@
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 
+#include "model/floor.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::guide {
@@ -101,11 +102,7 @@ std::string_view toString(PointKind kind) {
 }
 
 double floorHeight(const std::vector<Node>& nodes) {
-    const Node* floor = nullptr;
-    for (const Node& n : nodes)
-        if (solid(n) && n.category == "floor" &&
-            (!floor || model::footprintArea(n.box) > model::footprintArea(floor->box)))
-            floor = &n;
+    const Node* floor = model::labelledFloor(nodes);
     return floor ? model::top(floor->box) : 0.0;
 }
 

@@ -7,6 +7,7 @@
 
 #include "ingest/import/common.hpp"
 #include "model/error.hpp"
+#include "model/floor.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::import::detail {
@@ -29,12 +30,8 @@ bool placed(const model::Node& n) {
 }  // namespace
 
 std::optional<FloorFound> findFloor(const std::vector<model::Node>& nodes) {
-    const model::Node* labelled = nullptr;
-    for (const model::Node& n : nodes)
-        if (placed(n) && n.category == "floor" &&
-            (!labelled || model::footprintArea(n.box) > model::footprintArea(labelled->box)))
-            labelled = &n;
-    if (labelled) return FloorFound{model::top(labelled->box), "the labelled floor's top"};
+    if (const model::Node* labelled = model::labelledFloor(nodes))
+        return FloorFound{model::top(labelled->box), "the labelled floor's top"};
 
     std::vector<double> bottoms;
     for (const model::Node& n : nodes)

@@ -10,6 +10,7 @@
 
 #include "ingest/import/common.hpp"
 #include "ingest/import/floor.hpp"
+#include "model/floor.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::import::detail {
@@ -56,11 +57,10 @@ const Node* best(const std::vector<const Node*>& nodes, Score score) {
 }  // namespace
 
 ViewpointChoice defaultViewpoint(const std::vector<Node>& nodes) {
-    std::vector<const Node*> boxes, floors, walls, doors;
+    std::vector<const Node*> boxes, walls, doors;
     for (const Node& n : nodes) {
         if (n.geometry == model::GeometryKind::None || n.hidden) continue;
         boxes.push_back(&n);
-        if (isAnchor(n, "floor")) floors.push_back(&n);
         if (isAnchor(n, "wall")) walls.push_back(&n);
         if (isAnchor(n, "door")) doors.push_back(&n);
     }
@@ -70,7 +70,7 @@ ViewpointChoice defaultViewpoint(const std::vector<Node>& nodes) {
             if (n.geometry != model::GeometryKind::None) boxes.push_back(&n);
     assert(!boxes.empty());
 
-    const Node* floor = best(floors, [](const Node& n) { return model::footprintArea(n.box); });
+    const Node* floor = model::labelledFloor(nodes);
     const Node* wall = best(walls, [](const Node& n) { return faceArea(n.box); });
 
     model::Vec2 centre;
