@@ -1,7 +1,11 @@
 #include "engine/ask/answer.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -128,6 +132,206 @@ std::string yesNo(const Translation& t, const ResultSet& rs) {
     return fmt::format("No, the {} is not {} ({}).", t.subject, t.condition, first);
 }
 
+std::optional<double> number(const Value& v) {
+    if (const auto* d = std::get_if<double>(&v)) return *d;
+    if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+    return std::nullopt;
+}
+
+// A length in the question's unit: "1.23 m", "123 cm".
+std::string length(double metres, const std::string& unit) {
+    if (unit == "cm") return fmt::format("{:.0f} cm", metres * 100.0);
+    return fmt::format("{:.2f} m", metres);
+}
+
+std::string distance(const Translation& t, const ResultSet& rs) {
+    int d = rs.columnIndex("distance");
+    auto names = labels(rs);
+    std::vector<std::string> parts;
+    for (std::size_t r = 0; r < rs.rows.size() && d >= 0; ++r)
+        if (auto metres = number(rs.rows[r][d]); metres && std::isfinite(*metres))
+            parts.push_back(fmt::format("{} is {} from the {}", names[r], length(*metres, t.unit), t.object));
+    if (parts.empty()) {
+        std::string absent = absentWords(t);
+        return absent.empty() ? fmt::format("There is no {} or no {} to measure between.", t.subject, t.object)
+                              : fmt::format("There is no {} here.", absent);
+    }
+    std::string how = " (measured between the closest points of their boxes)";
+    if (parts.size() == 1)
+        return fmt::format("The {} is {} from the {}{}: {}.", t.subject, length(*number(rs.rows.front()[d]), t.unit),
+                           t.object, how, parts.front());
+    return fmt::format("{} {}, nearest first{}: {}.", parts.size(), t.subjectPlural, how, listed(parts, "; "));
+}
+
+std::string size(const Translation& t, const ResultSet& rs) {
+    int w = rs.columnIndex("width"), dp = rs.columnIndex("depth"), h = rs.columnIndex("height"),
+        v = rs.columnIndex("volume");
+    auto names = labels(rs);
+    std::vector<std::string> parts;
+    for (std::size_t r = 0; r < rs.rows.size(); ++r) {
+        auto width = number(rs.rows[r][w]), depth = number(rs.rows[r][dp]), height = number(rs.rows[r][h]),
+             volume = number(rs.rows[r][v]);
+        if (!width || !depth || !height) {
+            parts.push_back(names[r] + " has no box");
+            continue;
+        }
+        const std::string& m = t.measure;
+        if (m == "height")
+            parts.push_back(fmt::format("{} is {} tall", names[r], length(*height, t.unit)));
+        else if (m == "width")
+            parts.push_back(fmt::format("{} is {} wide", names[r], length(*width, t.unit)));
+        else if (m == "depth")
+            parts.push_back(fmt::format("{} is {} deep", names[r], length(*depth, t.unit)));
+        else if (m == "longest")
+            parts.push_back(fmt::format("the longest side of {} is {}", names[r],
+                                        length(std::max({*width, *depth, *height}), t.unit)));
+        else if (m == "volume" && volume)
+            parts.push_back(fmt::format("{} takes {:.3f} m³", names[r], *volume));
+        else
+            parts.push_back(fmt::format("{} is {} wide, {} deep and {} tall", names[r], length(*width, t.unit),
+                                        length(*depth, t.unit), length(*height, t.unit)));
+    }
+    if (parts.empty()) return fmt::format("There is no {}{}.", t.subject, withCondition(t));
+    std::string out = listed(parts, "; ");
+    out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
+    return out + ".";
+}
+
+std::string boxSize(const model::Box& b) {
+    return fmt::format("{:.2f} x {:.2f} x {:.2f} m", b.size.x, b.size.y, b.size.z);
+}
+
+std::string superlative(const Translation& t, const ResultSet& rs) {
+    if (rs.rows.size() < t.pick) {
+        if (rs.rows.empty()) return fmt::format("There is no {}{}.", t.subject, withCondition(t));
+        return fmt::format("There are only {} {}{}.", rs.rows.size(), rs.rows.size() == 1 ? t.subject : t.subjectPlural,
+                           withCondition(t));
+    }
+    if (t.top > 1) {
+        // "the two largest objects": each, in order.
+        auto names = labels(rs);
+        names.resize(std::min(names.size(), t.top));
+        return fmt::format("The {} {}: {}.", t.measure, t.subjectPlural, listed(names));
+    }
+    const auto& row = rs.rows[t.pick - 1];
+    std::string name = labels(rs)[t.pick - 1];
+    static const std::array<std::string_view, 10> ordinals{"",      "second",  "third",  "fourth", "fifth",
+                                                           "sixth", "seventh", "eighth", "ninth",  "tenth"};
+    std::string ordinal = t.pick > 1 && t.pick <= ordinals.size() ? std::string(ordinals[t.pick - 1]) + " " : "";
+    std::string detail;
+    if (int d = rs.columnIndex("distance"); d >= 0) {
+        if (auto metres = number(row[d]); metres && std::isfinite(*metres))
+            detail = fmt::format(", {} away", length(*metres, t.unit));
+    } else if (int b = rs.columnIndex("box"); b >= 0) {
+        if (const auto* box = std::get_if<model::Box>(&row[b])) detail = fmt::format(", {}", boxSize(*box));
+    }
+    bool byDistance = t.measure.starts_with("closest") || t.measure.starts_with("nearest") ||
+                      t.measure.starts_with("farthest") || t.measure.starts_with("furthest");
+    std::string path;
+    if (int p = rs.columnIndex("path"); p >= 0) path = fmt::format(" ({})", text(row[p]));
+    if (byDistance) return fmt::format("{} is the {}{} {}{}{}.", name, ordinal, t.subject, t.measure, detail, path);
+    return fmt::format("{} is the {}{} {}{}{}.", name, ordinal, t.measure, t.subject, detail, path);
+}
+
+std::string direction(const Translation& t, const ResultSet& rs) {
+    int id = rs.columnIndex("id"), category = rs.columnIndex("category"), box = rs.columnIndex("box");
+    const std::array<std::string_view, 3> roleNames{"thing you stand by", "thing you face", "thing asked about"};
+    std::array<const std::vector<Value>*, 3> pickedRows{};
+    std::string notes;
+    for (std::size_t role = 0; role < 3 && role < t.roles.size(); ++role) {
+        std::vector<const std::vector<Value>*> found;
+        for (const auto& row : rs.rows)
+            if (std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
+                found.push_back(&row);
+        if (found.empty()) return fmt::format("There is no {} here.", roleNames[role]);
+        pickedRows[role] = found.front();
+        if (found.size() > 1)
+            notes += fmt::format(" There are {} of the {}; this takes {}#{}.", found.size(), roleNames[role],
+                                 text((*found.front())[category]), text((*found.front())[id]));
+    }
+    auto centre = [&](const std::vector<Value>* row) { return std::get<model::Box>((*row)[box]).center; };
+    model::Vec3 at = centre(pickedRows[0]), facing = centre(pickedRows[1]), asked = centre(pickedRows[2]);
+    double fx = facing.x - at.x, fy = facing.y - at.y, vx = asked.x - at.x, vy = asked.y - at.y;
+    // Counter-clockwise from the facing direction is to the left (z up).
+    double angle = std::atan2(fx * vy - fy * vx, fx * vx + fy * vy) * 180.0 / std::numbers::pi;
+    bool quadrants = std::find(t.choices.begin(), t.choices.end(), "front-left") != t.choices.end();
+    bool back = std::find(t.choices.begin(), t.choices.end(), "back") != t.choices.end();
+    std::string side = angle > 0 ? "left" : "right";
+    std::string word;
+    if (quadrants)
+        word = std::string(std::abs(angle) <= 90 ? "front-" : "back-") + side;
+    else if (back && std::abs(angle) >= 135)
+        word = "back";
+    else
+        word = side;
+    auto label = [&](const std::vector<Value>* row) { return text((*row)[category]) + "#" + text((*row)[id]); };
+    return fmt::format("The {} is to your {} ({} is {:.0f} degrees to the {} of the way from {} to {}).{}", t.subject,
+                       word, label(pickedRows[2]), std::abs(angle), side, label(pickedRows[0]), label(pickedRows[1]),
+                       notes);
+}
+
+std::string affordance(const Translation& t, const ResultSet& rs) {
+    if (rs.rows.empty()) return fmt::format("Nothing here to {}.", t.predicate);
+    return fmt::format("You can {} {}: {}", t.predicate,
+                       rs.rows.size() == 1 ? "1 thing" : fmt::format("{} things", rs.rows.size()), listed(labels(rs)));
+}
+
+std::string attribute(const Translation& t, const ResultSet& rs) {
+    int column = rs.columnIndex(t.measure);
+    auto names = labels(rs);
+    std::vector<std::string> parts;
+    for (std::size_t r = 0; r < rs.rows.size(); ++r) {
+        std::string value = column >= 0 ? text(rs.rows[r][column]) : "";
+        parts.push_back(value.empty() ? fmt::format("{} has no {} recorded", names[r], t.measure)
+                                      : fmt::format("{} is {}", names[r], value));
+    }
+    if (parts.empty()) return fmt::format("There is no {}{}.", t.subject, withCondition(t));
+    return listed(parts, "; ") + ".";
+}
+
+// "what is the lamp on?": the things the subject stands in that relation to.
+std::string reverse(const Translation& t, const ResultSet& rs) {
+    int relation = rs.columnIndex("relation"), subject = rs.columnIndex("subject"), object = rs.columnIndex("object");
+    std::map<std::string, std::vector<std::string>> held;  // subject -> objects
+    std::vector<std::string> order;
+    // Resting on a thing or hanging on it are both "on" in English; a subject that rests on
+    // something is said to be on that, not on the wall it touches.
+    auto isBackground = [&](const std::string& label) {
+        std::string category = label.substr(0, label.find('#'));
+        return std::find(t.background.begin(), t.background.end(), category) != t.background.end();
+    };
+    std::set<std::string> resting, onThings;  // subjects resting on something; on a thing, not an anchor
+    for (const auto& row : rs.rows)
+        if (text(row[relation]) == t.predicate) {
+            resting.insert(text(row[subject]));
+            if (!isBackground(text(row[object]))) onThings.insert(text(row[subject]));
+        }
+    for (const auto& row : rs.rows) {
+        std::string r = text(row[relation]), s = text(row[subject]);
+        bool match = r == t.predicate || (t.predicate == "on" && r == "attached" && !resting.count(s));
+        // On the rug, not on the floor and the rug.
+        if (!match || (onThings.count(s) && isBackground(text(row[object])))) continue;
+        if (!held.count(s)) order.push_back(s);
+        held[s].push_back(text(row[object]));
+    }
+    if (order.empty()) {
+        if (rs.rows.empty()) return fmt::format("There is no {} here.", t.subject);
+        return fmt::format("Nothing: the {} is not {} anything here.", t.subject, t.condition);
+    }
+    std::vector<std::string> parts;
+    for (const auto& s : order) parts.push_back(fmt::format("{} is {} {}", s, t.condition, listed(held[s], " and ")));
+    return listed(parts, "; ") + ".";
+}
+
+std::string changes(const ResultSet& rs) {
+    if (rs.rows.empty()) return "Nothing has changed since the scene was first captured.";
+    int change = rs.columnIndex("change"), category = rs.columnIndex("category"), id = rs.columnIndex("id");
+    std::vector<std::string> parts;
+    for (const auto& row : rs.rows)
+        parts.push_back(fmt::format("{}#{} {}", text(row[category]), text(row[id]), text(row[change])));
+    return fmt::format("{} change{}: {}", rs.rows.size(), rs.rows.size() == 1 ? "" : "s", listed(parts, "; "));
+}
+
 }  // namespace
 
 std::string answer(const Translation& t, const ResultSet& rs, const std::string& scene) {
@@ -157,6 +361,22 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
                         out += (out.empty() ? "" : " ") + *text;
             return out.empty() ? rs.message : out;
         }
+        case QuestionKind::Distance:
+            return distance(t, rs);
+        case QuestionKind::Size:
+            return size(t, rs);
+        case QuestionKind::Superlative:
+            return superlative(t, rs);
+        case QuestionKind::Direction:
+            return direction(t, rs);
+        case QuestionKind::Affordance:
+            return affordance(t, rs);
+        case QuestionKind::Attribute:
+            return attribute(t, rs);
+        case QuestionKind::Changes:
+            return changes(rs);
+        case QuestionKind::Reverse:
+            return reverse(t, rs);
         case QuestionKind::UnknownWord: {
             std::string out;
             for (const auto& note : t.notes) out += (out.empty() ? "" : "; ") + note;

@@ -1,22 +1,31 @@
-// The built-in translator: a question is normalised (lower case, contractions expanded,
-// punctuation dropped), its form is recognised by a short list of patterns (one per way of
-// asking), and its noun phrases are parsed by a small recursive descent:
-//   phrase    := determiner* modifier* noun+ condition*
-//   condition := predicate-words phrase [and phrase]          ("between the sofa and the lamp")
-// so "the desk near the left wall" is a desk with a condition of its own. Nouns go through the
-// Lexicon (scene categories, WordNet, did-you-mean).
+// The built-in translator: a recursive-descent reader of English questions. A question is cut into
+// words (phrase.hpp), its opening words say which kind of question it is, and each kind reads the
+// rest with the phrase grammar:
+//   question   := lead* ( direction | guidance | distance | size | attribute | choice | affordance
+//                       | visibility | changes | count | existence | relative | locate | relational
+//                       | yes-no ) unit?
+//   direction  := "if"? "i am"? "standing" place phrase "and"? "facing" phrase "is" phrase side-choices
+//   guidance   := ("how do i get" | "take me" | "what is the way") ("from" phrase | "to" phrase)+
+//   distance   := "how far is" phrase ("from" | "to") phrase | "what is the distance between" phrase "and" phrase
+//   size       := "how" size-word "is" phrase | "what is the" measure "of" phrase
+//   choice     := "which of these" (A, B, ...) "is" order | "which is" order "," A "or" B
+//   affordance := ("where" | "what") "can i" verb preposition?
+//   count      := "how many" phrase posts ("do" phrase "have")?
+//   ...
+// A form is tried when its opening words match; the first form that reads the whole question wins.
 #include <algorithm>
-#include <array>
-#include <cctype>
-#include <optional>
+#include <functional>
 #include <regex>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "engine/ask/lexicon.hpp"
+#include "engine/ask/phrase.hpp"
 #include "engine/ask/translator.hpp"
+#include "engine/ask/wordnet.hpp"
+#include "engine/relations/predicates.hpp"
 #include "model/error.hpp"
+#include "model/names.hpp"
 
 namespace smql::ask {
 
@@ -26,505 +35,126 @@ namespace {
 // question is a sentence, not a document.
 constexpr std::size_t kMaxQuestionWords = 60;
 
-using Tokens = std::vector<std::string>;
-
-// ------------------------------------------------------------------ words
-
-struct PredicateWords {
-    std::vector<std::string_view> words;
-    std::string_view predicate;
+// What a person can do with things, and the words for the things that afford it: each word goes
+// through the Lexicon like a noun of the question ("seat" -> chair, sofa, stool). The verbs' forms
+// ("sitting", "sat") reach them through WordNet's base forms.
+struct AffordanceRow {
+    std::string_view verb;
+    std::string_view things;  // words, ' ' between them
+    std::string_view how;     // the answer: "You can sit on ..."
+};
+constexpr AffordanceRow kAffordances[] = {
+    {"sit", "seat chair sofa stool bench", "sit on"},
+    {"lie", "bed sofa", "lie on"},
+    {"sleep", "bed sofa", "sleep on"},
+    {"rest", "bed sofa seat", "rest on"},
+    {"put", "table desk counter shelf", "put things on"},
+    {"place", "table desk counter shelf", "put things on"},
+    {"set", "table desk counter shelf", "put things on"},
+    {"store", "cabinet shelf drawer box basket wardrobe dresser", "store things in"},
+    {"keep", "cabinet shelf drawer box basket wardrobe dresser", "keep things in"},
+    {"open", "door window cabinet drawer refrigerator box wardrobe microwave oven", "open"},
+    {"work", "desk table", "work at"},
+    {"eat", "table counter", "eat at"},
+    {"cook", "stove oven microwave", "cook with"},
+    {"wash", "sink bathtub shower", "wash at"},
+    {"watch", "television monitor", "watch"},
+    {"read", "book lamp", "read with"},
 };
 
-// Longest first at each start, so "on the left of" wins over "on".
-const std::vector<PredicateWords>& predicateWords() {
-    static const std::vector<PredicateWords> table = [] {
-        std::vector<PredicateWords> t{
-            {{"to", "the", "left", "of"}, "left_of"},
-            {{"on", "the", "left", "of"}, "left_of"},
-            {{"on", "the", "left", "side", "of"}, "left_of"},
-            {{"left", "of"}, "left_of"},
-            {{"to", "the", "right", "of"}, "right_of"},
-            {{"on", "the", "right", "of"}, "right_of"},
-            {{"on", "the", "right", "side", "of"}, "right_of"},
-            {{"right", "of"}, "right_of"},
-            {{"in", "front", "of"}, "in_front_of"},
-            {{"in", "back", "of"}, "behind"},
-            {{"behind"}, "behind"},
-            {{"on", "top", "of"}, "on"},
-            {{"on"}, "on"},
-            {{"onto"}, "on"},
-            {{"upon"}, "on"},
-            {{"inside", "of"}, "in"},
-            {{"inside"}, "in"},
-            {{"in"}, "in"},
-            {{"within"}, "in"},
-            {{"above"}, "above"},
-            {{"over"}, "above"},
-            {{"below"}, "below"},
-            {{"under"}, "below"},
-            {{"underneath"}, "below"},
-            {{"beneath"}, "below"},
-            {{"near", "to"}, "near"},
-            {{"near"}, "near"},
-            {{"nearby"}, "near"},
-            {{"close", "to"}, "near"},
-            {{"next", "to"}, "near"},
-            {{"beside"}, "near"},
-            {{"besides"}, "near"},
-            {{"by"}, "near"},
-            {{"around"}, "near"},
-            {{"adjacent", "to"}, "near"},
-            {{"attached", "to"}, "attached"},
-            {{"fixed", "to"}, "attached"},
-            {{"mounted", "on"}, "attached"},
-            {{"hanging", "on"}, "attached"},
-            {{"between"}, "between"},
-        };
-        std::stable_sort(t.begin(), t.end(),
-                         [](const auto& a, const auto& b) { return a.words.size() > b.words.size(); });
-        return t;
-    }();
-    return table;
-}
+// The measure a size question asks for: "how tall" -> height.
+struct SizeWord {
+    std::string_view word;
+    std::string_view measure;
+};
+constexpr SizeWord kSizeWords[] = {
+    {"big", "size"},        {"large", "size"},      {"tall", "height"},    {"high", "height"},
+    {"wide", "width"},      {"long", "longest"},    {"deep", "depth"},     {"size", "size"},
+    {"height", "height"},   {"width", "width"},     {"length", "longest"}, {"depth", "depth"},
+    {"volume", "volume"},   {"dimensions", "size"}, {"dimension", "size"}, {"measurements", "size"},
+    {"thickness", "depth"},
+};
 
-bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words) {
-    return std::find(words.begin(), words.end(), word) != words.end();
-}
-
-bool isDeterminer(const std::string& w) {
-    return isOneOf(w, {"the", "a", "an", "any", "some", "all", "my", "our", "your", "this", "that", "these", "those",
-                       "every", "each", "of"});
-}
-
-bool isColour(const std::string& w) {
-    return isOneOf(w, {"red", "green", "blue", "white", "black", "gray", "grey", "brown", "yellow", "orange", "pink",
-                       "purple", "beige", "silver", "gold", "golden"});
-}
-
-bool isSideWord(const std::string& w) { return isOneOf(w, {"left", "right", "front", "back"}); }
-
-// Adjectives the memory has no attribute for: left out of the query, and said so.
-bool isIgnoredAdjective(const std::string& w) {
-    return isOneOf(w, {"big", "small", "large", "little", "tall", "short", "long", "old", "new", "wooden", "round",
-                       "square", "other", "single", "only", "nice", "tiny", "huge"});
-}
-
-// Words after a noun phrase that end it without being part of a condition.
-bool endsPhrase(const std::string& w) {
-    return isOneOf(
-        w, {"is",      "are",    "was",     "were",      "and",      "that",    "which",      "who",      "there",
-            "located", "placed", "sitting", "lying",     "standing", "resting", "kept",       "do",       "does",
-            "can",     "could",  "you",     "i",         "we",       "see",     "have",       "relative", "compared",
-            "with",    "from",   "to",      "currently", "right",    "now",     "altogether", "total",    "exactly"});
-}
-
-// Words for "anything" and kinds of node.
-std::optional<std::string> kindTarget(const std::string& w) {
-    if (isOneOf(w, {"object", "objects", "thing", "things", "one", "ones", "anything", "everything", "something",
-                    "stuff", "item", "items"}))
-        return "object";
-    if (isOneOf(w, {"anchor", "anchors"})) return "anchor";
+std::optional<std::string_view> sizeMeasure(const std::string& w) {
+    for (const auto& s : kSizeWords)
+        if (s.word == w) return s.measure;
     return std::nullopt;
 }
 
-// "in the room", "in this scene": the whole scene, no condition.
-bool isWholeScene(const std::string& w) {
-    return isOneOf(w, {"room", "scene", "house", "place", "space", "home", "apartment"});
-}
+// One reading of the words: a cursor with the look-ahead a recursive descent needs.
+struct Cursor {
+    const Words& w;
+    std::size_t i = 0;
 
-// Lower case, "what's" -> "what is", punctuation out, numbers kept ("1.5").
-Tokens normalise(const std::string& text) {
-    std::string s;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        unsigned char c = static_cast<unsigned char>(text[i]);
-        if (std::isalnum(c))
-            s += static_cast<char>(std::tolower(c));
-        else if (c == '\'' || c == '-')
-            s += static_cast<char>(c);
-        else if (c == '.' && i + 1 < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1])) &&
-                 !s.empty() && std::isdigit(static_cast<unsigned char>(s.back())))
-            s += '.';
-        else if (c >= 0x80)
-            s += static_cast<char>(c);  // letters outside ASCII stay, to be named as unknown
-        else
-            s += ' ';
+    bool done() const { return i >= w.size(); }
+    const std::string& peek(std::size_t k = 0) const {
+        static const std::string none;
+        return i + k < w.size() ? w[i + k] : none;
     }
-    static const std::array<std::pair<std::string_view, std::string_view>, 9> contractions{{
-        {"'s", " is"},
-        {"'re", " are"},
-        {"n't", " not"},
-        {"'m", " am"},
-        {"'ll", " will"},
-        {"'ve", " have"},
-        {"'d", " would"},
-        {"'", " "},
-        {"--", " "},
-    }};
-    for (const auto& [from, to] : contractions)
-        for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
-            s.replace(at, from.size(), to);
-    Tokens out;
-    std::istringstream words(s);
-    for (std::string w; words >> w;) {
-        while (!w.empty() && w.front() == '-') w.erase(w.begin());
-        while (!w.empty() && w.back() == '-') w.pop_back();
-        if (!w.empty()) out.push_back(w);
+    // The words of `seq` at the cursor: each position may offer alternatives split by '|'.
+    bool accept(std::initializer_list<std::string_view> seq) {
+        std::size_t k = i;
+        for (std::string_view alternatives : seq) {
+            if (k >= w.size()) return false;
+            bool any = false;
+            for (std::string_view rest = alternatives; !rest.empty() && !any;) {
+                std::size_t bar = rest.find('|');
+                any = w[k] == rest.substr(0, bar);
+                rest = bar == std::string_view::npos ? std::string_view{} : rest.substr(bar + 1);
+            }
+            if (!any) return false;
+            ++k;
+        }
+        i = k;
+        return true;
     }
-    return out;
-}
-
-std::string joined(const Tokens& t, std::size_t from, std::size_t to) {
-    std::string out;
-    for (std::size_t i = from; i < to && i < t.size(); ++i) out += (out.empty() ? "" : " ") + t[i];
-    return out;
-}
-
-// A name as SMQL writes it: bare when the grammar reads it back as the same name, else quoted.
-std::string smqlName(const std::string& name) {
-    static const std::regex bare("[a-z_][a-z0-9_]*(-[a-z0-9_]+)*");
-    bool reserved = isOneOf(name, {"and", "or", "not", "like"});
-    if (std::regex_match(name, bare) && !reserved) return name;
-    std::string quoted = "'";
-    for (char c : name) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-    return quoted + "'";
-}
-
-std::string smqlString(const std::string& text) { return "'" + std::regex_replace(text, std::regex("'"), "''") + "'"; }
-
-// ------------------------------------------------------------------ phrases
-
-struct Phrase;
-
-struct Condition {
-    std::string predicate;
-    std::vector<Phrase> args;
-    std::optional<double> metres;  // "within 1 m of the door"
-    std::string words;             // "on the desk near the left wall"
+    // Skips any of these words, but not one that begins a predicate's phrase ("hanging from").
+    void skip(std::initializer_list<std::string_view> words) {
+        while (!done() && isOneOf(w[i], words) && !PhraseParser::predicateAt(w, i)) ++i;
+    }
 };
 
-struct Phrase {
-    std::string words;                // as the answer says it: "red mug", "desk near the left wall"
-    std::string noun;                 // singular: "mug"
-    std::optional<std::string> kind;  // object / anchor: every node of that kind
-    std::string side;                 // wall.left: the side
-    std::vector<std::string> categories;
-    std::optional<std::string> colour;
-    std::vector<Condition> conditions;
-};
+Error cannotTranslate(const std::string& question, const std::string& detail, const std::string& suggestion) {
+    return Error(ErrorKind::Binding, fmt::format("cannot translate the question '{}'{}", question, detail),
+                 std::nullopt,
+                 suggestion.empty() ? "ask as in: where is the mug? what is on the desk? how many chairs are near the "
+                                      "table? how far is the sofa from the door? (docs/ask.md)"
+                                    : "did you mean: " + suggestion + " (docs/ask.md lists the questions ASK reads)");
+}
 
-class Parser {
+class QuestionReader {
 public:
-    Parser(const Lexicon& lexicon, Translation& out) : lexicon_(lexicon), out_(out) {}
+    QuestionReader(const Question& q, const Lexicon& lexicon) : question_(q), lexicon_(lexicon) {}
 
-    // The predicate whose words start at t[i], and how many words they take.
-    static std::optional<std::pair<std::string, std::size_t>> predicateAt(const Tokens& t, std::size_t i) {
-        // within 1.5 m of x / within 30 cm of x
-        if (i + 3 < t.size() && t[i] == "within" && std::regex_match(t[i + 1], std::regex("[0-9]+(\\.[0-9]+)?")) &&
-            isOneOf(t[i + 2], {"m", "metre", "metres", "meter", "meters", "cm", "centimetres", "centimeters"}) &&
-            t[i + 3] == "of")
-            return std::pair{std::string("near"), std::size_t{4}};
-        for (const auto& row : predicateWords()) {
-            if (i + row.words.size() > t.size()) continue;
-            bool match = true;
-            for (std::size_t k = 0; k < row.words.size() && match; ++k) match = t[i + k] == row.words[k];
-            if (match) return std::pair{std::string(row.predicate), row.words.size()};
-        }
-        return std::nullopt;
-    }
-
-    Phrase phrase(const Tokens& t, std::size_t& i, bool withConditions) {
-        Phrase p;
-        std::size_t start = i;
-        while (i < t.size() && isDeterminer(t[i])) ++i;
-        // The answer reads "no desk near the left wall", without the question's article.
-        const std::size_t wordsStart = i;
-        std::string side;
-        std::vector<std::string> nounWords;
-        for (; i < t.size(); ++i) {
-            const std::string& w = t[i];
-            if (predicateAt(t, i) && !(isSideWord(w) && nounWords.empty() && i + 1 < t.size() && t[i + 1] != "of"))
-                break;
-            if (endsPhrase(w) && !(w == "right" && nounWords.empty())) break;
-            if (isColour(w) && !nounWords.empty() && i + 1 == t.size()) break;  // "is the mug red?"
-            if (isColour(w) && nounWords.empty()) {
-                p.colour = w == "grey" ? "gray" : w;
-                continue;
-            }
-            if (isSideWord(w) && nounWords.empty()) {
-                side = w;
-                continue;
-            }
-            if (isIgnoredAdjective(w) && nounWords.empty()) {
-                out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such attribute", w));
-                continue;
-            }
-            nounWords.push_back(w);
-        }
-        // "the wall on the left"
-        if (side.empty() && i + 2 < t.size() && t[i] == "on" && t[i + 1] == "the" && isSideWord(t[i + 2]) &&
-            (i + 3 >= t.size() || (t[i + 3] != "of" && t[i + 3] != "side"))) {
-            side = t[i + 2];
-            i += 3;
-        }
-        if (nounWords.empty()) {
-            // "the red one" is any red thing; a side alone ("the left") names nothing.
-            if (!p.colour || !side.empty()) throw notUnderstood(t, start);
-            nounWords.push_back("object");
-        }
-        resolveNoun(p, nounWords);
-        if (!side.empty()) {
-            if (p.kind || p.categories.size() != 1)
-                throw Error(
-                    ErrorKind::Binding,
-                    fmt::format("'{} {}' names no side of the room", side, joined(nounWords, 0, nounWords.size())),
-                    std::nullopt, "sides are of one category: the left wall, the window on the right");
-            p.side = side;
-        }
-        if (withConditions) conditions(t, i, p);
-        p.words = joined(t, wordsStart, i);
-        return p;
-    }
-
-    // condition (and condition)*, each starting with predicate words.
-    void conditions(const Tokens& t, std::size_t& i, Phrase& p) {
-        while (i < t.size()) {
-            std::size_t at = i;
-            if (isOneOf(t[i], {"that", "which"}) && i + 1 < t.size() && isOneOf(t[i + 1], {"is", "are"}))
-                at += 2;
-            else if (t[i] == "and" && !p.conditions.empty())
-                at += 1;
-            while (at < t.size() &&
-                   isOneOf(t[at], {"located", "placed", "sitting", "lying", "standing", "resting", "kept"}))
-                ++at;
-            auto pred = predicateAt(t, at);
-            if (!pred) return;
-            i = at;
-            // "in the room": the whole scene.
-            std::size_t after = i + pred->second;
-            while (after < t.size() && isDeterminer(t[after])) ++after;
-            if (pred->first == "in" && after < t.size() && isWholeScene(t[after]) &&
-                (after + 1 == t.size() || !predicateAt(t, after + 1))) {
-                i = after + 1;
-                continue;
-            }
-            p.conditions.push_back(condition(t, i, *pred));
-        }
-    }
-
-    Condition condition(const Tokens& t, std::size_t& i, const std::pair<std::string, std::size_t>& pred) {
-        Condition c;
-        c.predicate = pred.first;
-        std::size_t start = i;
-        if (t[i] == "within" && pred.second == 4) {
-            double value = std::stod(t[i + 1]);
-            c.metres = t[i + 2].starts_with("c") ? value / 100.0 : value;
-        }
-        i += pred.second;
-        if (c.predicate == "between") {
-            c.args.push_back(phrase(t, i, false));
-            if (i >= t.size() || t[i] != "and")
-                throw Error(ErrorKind::Binding, "'between' needs two things: between the sofa and the lamp",
-                            std::nullopt, "ask as in: what is between the sofa and the lamp?");
-            ++i;
-        }
-        c.args.push_back(phrase(t, i, true));
-        c.words = joined(t, start, i);
-        return c;
-    }
-
-    Error notUnderstood(const Tokens& t, std::size_t at) const {
-        return Error(ErrorKind::Binding,
-                     fmt::format("cannot read a thing to look for in '{}'", joined(t, at, t.size())), std::nullopt,
-                     "name something the scene holds, as in: what is on the sofa?");
-    }
-
-private:
-    void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords) {
-        std::string all = joined(nounWords, 0, nounWords.size());
-        if (nounWords.size() == 1) {
-            if (auto kind = kindTarget(nounWords[0])) {
-                p.kind = *kind;
-                p.noun = "thing";
-                return;
-            }
-        }
-        // The whole phrase first ("coffee table", "wall plug"), then its last word ("table").
-        WordMatch match = lexicon_.lookUp(all);
-        std::string word = all;
-        // A phrase that names nothing here as a whole ("coffee mug", "ceiling fan") is read by its
-        // last word, unless WordNet maps the whole to kinds the scene has.
-        if (nounWords.size() > 1 && !isNamed(match) && match.how != WordMatch::How::Kind) {
-            WordMatch head = lexicon_.lookUp(nounWords.back());
-            out_.notes.push_back(fmt::format("'{}' is read as '{}'", all, nounWords.back()));
-            match = head;
-            word = nounWords.back();
-        }
-        p.noun = match.lemma;
-        if (match.how == WordMatch::How::Unknown) {
-            unknownWords_.push_back(word);
-            return;
-        }
-        p.categories = match.categories;
-        bool said =
-            std::any_of(out_.mappings.begin(), out_.mappings.end(), [&](const auto& m) { return m.word == word; });
-        if (match.how != WordMatch::How::Category && !said)
-            out_.mappings.push_back(WordMapping{word, match.categories, describe(match.how)});
-    }
-
-    static bool isNamed(const WordMatch& m) {
-        return m.how == WordMatch::How::Category || m.how == WordMatch::How::Plural || m.how == WordMatch::How::Synonym;
-    }
-
-    const Lexicon& lexicon_;
-    Translation& out_;
-    std::vector<std::string> unknownWords_;
-
-public:
-    // Words neither the scene nor WordNet knows: the answer names them and nothing runs.
-    const std::vector<std::string>& unknownWords() const { return unknownWords_; }
-};
-
-// ------------------------------------------------------------------ SMQL
-
-struct Smql {
-    std::string target;
-    std::vector<std::string> where;
-};
-
-std::string reference(const Phrase& p);
-
-std::string conditionText(const Condition& c) {
-    std::string args;
-    for (const auto& a : c.args) args += (args.empty() ? "" : ", ") + reference(a);
-    if (c.metres) {
-        // SMQL numbers have no exponent: fixed decimals, trailing zeros dropped ("1.5", "100").
-        std::string metres = fmt::format("{:.3f}", *c.metres);
-        metres.erase(metres.find_last_not_of('0') + 1);
-        if (metres.back() == '.') metres.pop_back();
-        args += ", " + metres + " m";
-    }
-    return fmt::format("{}({})", c.predicate, args);
-}
-
-Smql targetOf(const Phrase& p) {
-    Smql s;
-    if (p.kind) {
-        s.target = *p.kind;
-    } else if (!p.side.empty()) {
-        s.target = smqlName(p.categories.front()) + "." + p.side;
-    } else if (p.categories.size() == 1) {
-        s.target = smqlName(p.categories.front());
-    } else {
-        // Several categories, or none (an English noun the scene lacks: the answer is "none").
-        s.target = "node";
-        std::string any;
-        const std::vector<std::string> names = p.categories.empty() ? std::vector<std::string>{p.noun} : p.categories;
-        for (const auto& c : names) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(c));
-        s.where.push_back(names.size() > 1 ? "(" + any + ")" : any);
-    }
-    if (p.colour) s.where.push_back(fmt::format("color = {}", smqlString(*p.colour)));
-    for (const auto& c : p.conditions) s.where.push_back(conditionText(c));
-    return s;
-}
-
-std::string whereText(const std::vector<std::string>& where) {
-    std::string out;
-    for (const auto& w : where) out += (out.empty() ? " WHERE " : " AND ") + w;
-    return out;
-}
-
-std::string reference(const Phrase& p) {
-    Smql s = targetOf(p);
-    if (s.where.empty()) return s.target;
-    return "(FIND " + s.target + whereText(s.where) + ")";
-}
-
-std::string findText(const Phrase& p, bool path) {
-    Smql s = targetOf(p);
-    return "FIND " + s.target + whereText(s.where) + (path ? " PATH" : "");
-}
-
-std::string countText(const Phrase& p) {
-    Smql s = targetOf(p);
-    return "COUNT " + s.target + whereText(s.where);
-}
-
-// ------------------------------------------------------------------ question forms
-
-struct Form {
-    QuestionKind kind;
-    std::regex pattern;  // over the normalised question; groups are the phrases
-};
-
-const std::vector<Form>& forms() {
-    using K = QuestionKind;
-    auto re = [](const char* p) { return std::regex(p, std::regex::optimize); };
-    static const std::vector<Form> table{
-        {K::Guidance, re("^(?:how|where) (?:do|can|could|would|should|shall) (?:i|we|you) (?:get|go|walk|reach|find my "
-                         "way)(?: to)? (.+?) from (.+)$")},
-        {K::Guidance, re("^(?:how|where) (?:do|can|could|would|should|shall) (?:i|we|you) (?:get|go|walk|find my way) "
-                         "from (.+?) to (.+)$")},
-        {K::Guidance, re("^(?:please )?(?:take|guide|lead|bring|show) (?:me|us) (?:the way )?from (.+?) to (.+)$")},
-        {K::Guidance, re("^(?:please )?(?:take|guide|lead|bring|show) (?:me|us) (?:the way )?to (.+?) from (.+)$")},
-        {K::Guidance, re("^what is the (?:way|route|path) from (.+?) to (.+)$")},
-        {K::RelativePosition,
-         re("^where (?:is|are) (.+?) (?:relative to|in relation to|compared to|with respect to|from) (.+)$")},
-        {K::RelativePosition, re("^how (?:is|are) (.+?) (?:placed |positioned |located |oriented )?(?:relative to|in "
-                                 "relation to|with respect to) (.+)$")},
-        {K::RelativePosition, re("^(?:what is|how is|describe) the (?:relation|relationship|spatial relation|position) "
-                                 "(?:between|of) (.+?) (?:and|to|relative to) (.+)$")},
-        {K::RelativePosition, re("^how (?:does|do) (.+?) relate to (.+)$")},
-        {K::Count, re("^(?:how many|count|count the|count all|count all the|number of|what is the number of|tell me "
-                      "how many) (.+)$")},
-        {K::Existence, re("^(?:is|are) there (.+)$")},
-        {K::Existence, re("^(?:do|can|did) (?:you|i|we) (?:see|have|own|find|notice) (.+)$")},
-        {K::Existence, re("^(?:does|do) (?:the|this|my|our) (?:room|scene|place|house|home|apartment) "
-                          "(?:have|contain|include|hold) (.+)$")},
-        {K::Existence, re("^((?:any|anything|something) .+)$")},
-        {K::Locate, re("^where (?:exactly )?(?:is|are|was|were|would|do|did|can|could) (?:i find |i leave |i put |i "
-                       "see |we find |one find )?(.+?)(?: located| kept| placed| be)?$")},
-        {K::Locate, re("^where (.+?) (?:is|are|was|were)(?: located| kept)?$")},
-        {K::Locate, re("^(?:find|locate|where) (.+)$")},
-        {K::Relational, re("^(?:what|which) ?(.*?) (?:is|are|sits|sit|lies|lie|stands|stand|rests|rest|hangs|hang|do "
-                           "you see|can you see|can i find|do i have|is there|are there)(?: located| placed| lying| "
-                           "sitting| standing| resting| kept)? (.+)$")},
-        {K::Relational, re("^(?:show|list|give|tell)(?: me)?(?: about)?(?: all)?(?: of)? (.+)$")},
-        {K::YesNo, re("^(?:is|are) (.+)$")},
-        {K::YesNo, re("^(?:does|do) (.+?) (?:stand|stands|sit|sits|lie|lies|hang|hangs|rest|rests|be)( .+)$")},
-    };
-    return table;
-}
-
-Error cannotTranslate(const std::string& question) {
-    return Error(ErrorKind::Binding, fmt::format("cannot translate the question '{}'", question), std::nullopt,
-                 "ask as in: where is the mug? what is on the desk? is there a sofa? how many chairs are near the "
-                 "table? is the lamp left of the window? (docs/ask.md)");
-}
-
-class RuleTranslator final : public Translator {
-public:
-    Translation translate(const Question& question) const override {
-        Tokens tokens = normalise(question.text);
-        if (tokens.size() > kMaxQuestionWords)
-            throw Error(
-                ErrorKind::Binding,
-                fmt::format("the question has {} words; ASK reads at most {}", tokens.size(), kMaxQuestionWords),
-                std::nullopt, "ask one short question at a time");
-        // Politeness and filler at the start: "please", "can you tell me", "could you show me".
-        static const std::regex lead(
-            "^(?:please |hey |ok |so |now |and |excuse me |(?:can|could|would) you (?:please )?(?:tell me |say )?|tell "
-            "me |i want to know |i wonder )+");
-        std::string text = std::regex_replace(joined(tokens, 0, tokens.size()), lead, "");
-        text = std::regex_replace(text, std::regex(" please$"), "");
-        if (text.empty()) throw cannotTranslate(question.text);
-        Lexicon lexicon(question.categories);
-        for (const auto& form : forms()) {
-            std::smatch m;
-            if (!std::regex_match(text, m, form.pattern)) continue;
+    Translation read(const std::string& text) {
+        words_ = words(text);
+        takeUnit();
+        using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
+        static constexpr Form forms[] = {
+            &QuestionReader::direction,   &QuestionReader::guidance,  &QuestionReader::distance,
+            &QuestionReader::size,        &QuestionReader::attribute, &QuestionReader::affordance,
+            &QuestionReader::visibility,  &QuestionReader::changes,   &QuestionReader::count,
+            &QuestionReader::existence,   &QuestionReader::side,      &QuestionReader::relative,
+            &QuestionReader::superlative, &QuestionReader::reverse,   &QuestionReader::locate,
+            &QuestionReader::relational,  &QuestionReader::yesNo,
+        };
+        // A form whose words fit but whose phrases do not read says why, unless a later form reads
+        // the question.
+        std::optional<Error> firstError;
+        for (Form form : forms) {
             Translation out;
-            out.kind = form.kind;
-            Parser parser(lexicon, out);
-            if (!build(form.kind, m, parser, out)) continue;
+            out.unit = unit_;
+            PhraseParser parser(lexicon_, out, question_.planeCategories);
+            Cursor c{words_};
+            try {
+                if (!(this->*form)(c, parser, out) || !c.done()) continue;
+            } catch (const Error& e) {
+                // The generic "cannot read a thing" gives way to an error that says more.
+                bool generic = e.message().starts_with("cannot read a thing");
+                if (!firstError || (!generic && firstError->message().starts_with("cannot read a thing")))
+                    firstError = e;
+                continue;
+            }
             if (!parser.unknownWords().empty()) {
                 out.kind = QuestionKind::UnknownWord;
                 out.runnable = false;
@@ -533,145 +163,965 @@ public:
             }
             return out;
         }
-        throw cannotTranslate(question.text);
+        if (firstError) throw *firstError;
+        throw unreadable();
     }
+
+    // "which of these objects (sofa, tv, bed) ...": the choices, cut from the text before the words are.
+    void setChoices(std::vector<std::string> choices) { choices_ = std::move(choices); }
 
 private:
-    // Fills `out` from the pattern's groups; false when the groups do not read as that form (the
-    // next form is tried).
-    static bool build(QuestionKind kind, const std::smatch& m, Parser& parser, Translation& out) {
-        switch (kind) {
-            case QuestionKind::Guidance: {
-                bool fromFirst = m.str(0).find(" from ") < m.str(0).find(" to ");
-                Phrase destination = whole(parser, fromFirst ? m.str(2) : m.str(1));
-                Phrase start = whole(parser, fromFirst ? m.str(1) : m.str(2));
-                out.smql = fmt::format("GUIDE FROM {} TO {}", reference(start), reference(destination));
-                out.subject = destination.words;
-                out.object = start.words;
-                return true;
-            }
-            case QuestionKind::RelativePosition: {
-                Phrase a = whole(parser, m.str(1)), b = whole(parser, m.str(2));
-                out.smql = fmt::format("RELATE {} TO {}", reference(a), reference(b));
-                describeSubject(a, out);
-                out.object = b.words;
-                return true;
-            }
-            case QuestionKind::Count: {
-                Phrase p = subjectWithConditions(parser, m.str(1));
-                out.smql = countText(p);
-                describeSubject(p, out);
-                return true;
-            }
-            case QuestionKind::Existence: {
-                Phrase p = subjectWithConditions(parser, m.str(1));
-                out.smql = findText(p, false);
-                describeSubject(p, out);
-                return true;
-            }
-            case QuestionKind::Locate: {
-                Tokens t = normalise(m.str(1));
-                std::size_t i = 0;
-                Phrase p = parser.phrase(t, i, true);
-                if (i != t.size()) return false;
-                out.smql = findText(p, true);
-                describeSubject(p, out);
-                return true;
-            }
-            case QuestionKind::Relational: {
-                Tokens t = normalise(m.str(m.size() - 1));
-                Phrase p;
-                std::size_t i = 0;
-                if (m.size() == 3) {
-                    // what [objects] are <conditions>
-                    std::string what = m.str(1);
-                    if (!Parser::predicateAt(t, 0)) return false;
-                    Tokens w = normalise(what.empty() ? "object" : what);
-                    std::size_t k = 0;
-                    p = parser.phrase(w, k, false);
-                    if (k != w.size()) return false;
-                    parser.conditions(t, i, p);
-                } else {
-                    // show me <phrase with conditions>
-                    p = parser.phrase(t, i, true);
-                    if (!p.kind && p.conditions.empty()) {
-                        out.kind = QuestionKind::Locate;
-                        if (i != t.size()) return false;
-                        out.smql = findText(p, true);
-                        describeSubject(p, out);
-                        return true;
-                    }
-                }
-                if (i != t.size() || p.conditions.empty()) return false;
-                out.smql = findText(p, false);
-                describeSubject(p, out);
-                return true;
-            }
-            case QuestionKind::YesNo: {
-                Tokens t = normalise(m.str(1) + (m.size() > 2 ? m.str(2) : ""));
-                std::size_t i = 0;
-                Phrase subject = parser.phrase(t, i, false);
-                // "is the mug red?": whether there is such a thing.
-                if (i + 1 == t.size() && isColour(t[i]) && !subject.colour) {
-                    subject.colour = t[i] == "grey" ? "gray" : t[i];
-                    out.kind = QuestionKind::Existence;
-                    out.smql = findText(subject, false);
-                    describeSubject(subject, out);
-                    return true;
-                }
-                Phrase checked;
-                checked.noun = subject.noun;
-                parser.conditions(t, i, checked);
-                if (i != t.size() || checked.conditions.size() != 1) return false;
-                const Condition& c = checked.conditions.front();
-                describeSubject(subject, out);
-                out.predicate = c.predicate;
-                out.condition = c.words;
-                if (c.predicate == "between" || c.metres) {
-                    // RELATE compares two things; "between" takes three, a distance is a question of its own.
-                    subject.conditions.push_back(c);
-                    out.smql = findText(subject, false);
-                    out.kind = QuestionKind::Existence;
-                    return true;
-                }
-                out.object = c.args.front().words;
-                out.smql = fmt::format("RELATE {} TO {}", reference(subject), reference(c.args.front()));
-                return true;
-            }
-            case QuestionKind::UnknownWord:
+    // "(in meters)", "measured in centimeters", "in square meters" at the end: the answer's unit.
+    void takeUnit() {
+        auto unitOf = [](const std::string& w) -> std::optional<std::string> {
+            if (isOneOf(w, {"meters", "metres", "meter", "metre", "m"})) return "m";
+            if (isOneOf(w, {"centimeters", "centimetres", "centimeter", "centimetre", "cm"})) return "cm";
+            return std::nullopt;
+        };
+        std::size_t n = words_.size();
+        if (n >= 2 && unitOf(words_[n - 1]) && words_[n - 2] == "in") {
+            unit_ = *unitOf(words_[n - 1]);
+            words_.resize(n - 2);
+        } else if (n >= 3 && unitOf(words_[n - 1]) && words_[n - 2] == "square" && words_[n - 3] == "in") {
+            unit_ = "m^2";
+            words_.resize(n - 3);
+        }
+        if (!words_.empty() && words_.back() == "measured") words_.pop_back();
+    }
+
+    // ------------------------------------------------------------ forms
+
+    // If I am standing by the bed and facing the tv, is the door to my left or right?
+    bool direction(Cursor& c, PhraseParser& p, Translation& out) {
+        c.accept({"if|when|suppose|imagine"});
+        bool stand = c.accept({"i|you|we", "stand|sit"});
+        if (!stand) c.accept({"i|you|we", "am|are|was"});
+        if (!stand && !c.accept({"standing|stand|sitting|positioned|beginning"})) return false;
+        if (!c.accept({"by|at|near|beside"}) && !c.accept({"next", "to"})) return false;
+        Phrase at = p.phrase(c.w, c.i, false);
+        c.accept({"and"});
+        c.accept({"i|you|we", "am|are"});
+        if (!c.accept({"facing|face|looking"})) return false;
+        c.accept({"at|toward|towards"});
+        Phrase facing = p.phrase(c.w, c.i, false);
+        if (!c.accept({"is|are"})) return false;
+        Phrase asked = p.phrase(c.w, c.i, false);
+        c.accept({"to|on|at"});
+        c.accept({"my|the"});
+        for (; !c.done(); ++c.i) {
+            const std::string& w = c.peek();
+            if (isOneOf(w, {"left", "right", "back", "front", "behind", "front-left", "front-right", "back-left",
+                            "back-right"}))
+                out.choices.push_back(w == "behind" ? "back" : w);
+            else if (!isOneOf(w, {"or", "the", "of", "to", "my", "side", "and"}) &&
+                     !(facing.categories.size() && isOneOf(w, {facing.noun})))
+                break;
+        }
+        if (!c.done()) {
+            // "... to the left or the right of the tv": the thing faced, said again.
+            std::size_t save = c.i;
+            Phrase again = p.phrase(c.w, c.i, false);
+            if (again.categories != facing.categories) c.i = save;
+        }
+        if (out.choices.empty()) out.choices = {"left", "right"};
+        out.kind = QuestionKind::Direction;
+        out.roles = {at.categories, facing.categories, asked.categories};
+        std::vector<std::string> all;
+        for (const auto* ph : {&at, &facing, &asked}) {
+            const auto names = ph->categories.empty() ? std::vector<std::string>{ph->noun} : ph->categories;
+            for (const auto& n : names)
+                if (std::find(all.begin(), all.end(), n) == all.end()) all.push_back(n);
+        }
+        std::string any;
+        for (const auto& n : all) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(n));
+        out.smql = fmt::format("FIND node WHERE {} RETURN id, category, box", all.size() > 1 ? "(" + any + ")" : any);
+        out.subject = asked.words;
+        out.object = fmt::format("standing by the {} facing the {}", at.words, facing.words);
+        return true;
+    }
+
+    // How do I get to the sofa from the door? Take me from the door to the chair.
+    bool guidance(Cursor& c, PhraseParser& p, Translation& out) {
+        bool lead =
+            c.accept({"how|where", "do|can|could|would|should|shall", "i|we|you", "get|go|walk|reach|navigate|move"}) ||
+            c.accept({"how|where", "do|can|could|would|should|shall", "i|we|you", "find", "my|our", "way"}) ||
+            c.accept({"how", "to", "get|go|walk|reach"}) ||
+            c.accept({"take|guide|lead|bring|direct|navigate|walk", "me|us"}) ||
+            c.accept({"show", "me|us", "the", "way|route|path"}) ||
+            c.accept({"what|which", "is", "the", "way|route|path"}) ||
+            c.accept({"i", "want|need", "to", "go|get|walk"});
+        if (!lead) return false;
+        c.accept({"the", "way"});
+        std::optional<Phrase> from, to;
+        while (!c.done()) {
+            if (c.accept({"from"}))
+                from = p.phrase(c.w, c.i, true);
+            else if (c.accept({"to"}) || c.accept({"over", "to"}))
+                to = p.phrase(c.w, c.i, true);
+            else if (!to)
+                to = p.phrase(c.w, c.i, true);
+            else
                 return false;
         }
-        return false;
+        if (!to) return false;
+        out.kind = QuestionKind::Guidance;
+        std::string goal = reference(*to);
+        // Several things of the goal's kind: a person means the nearest one.
+        if (from && to->conditions.empty() && !to->order && to->categories.size() == 1 && to->side.empty() &&
+            repeated(to->categories.front()))
+            goal = fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", smqlName(to->categories.front()), reference(*from));
+        out.smql = fmt::format("GUIDE FROM {} TO {}", from ? reference(*from) : "HERE", goal);
+        out.subject = to->words;
+        out.object = from ? from->words : "here";
+        return true;
     }
 
-    static Phrase whole(Parser& parser, const std::string& text) {
-        Tokens t = normalise(text);
-        std::size_t i = 0;
-        Phrase p = parser.phrase(t, i, true);
-        if (i != t.size()) throw parser.notUnderstood(t, i);
-        return p;
+    // How far is the sofa from the tv? What is the distance between the bed and the door?
+    bool distance(Cursor& c, PhraseParser& p, Translation& out) {
+        std::optional<Phrase> a, b;
+        auto pair = [&](std::initializer_list<std::string_view> link) {
+            a = p.phrase(c.w, c.i, true);
+            c.accept({"away"});
+            if (!c.accept(link)) return false;
+            b = p.phrase(c.w, c.i, true);
+            c.accept({"apart"});
+            return true;
+        };
+        if (c.accept({"how", "far|close"})) {
+            c.skip({"away", "apart"});
+            if (c.accept({"is|are", "it", "from"})) {
+                if (!pair({"to"})) return false;
+            } else if (c.accept({"is|are"})) {
+                if (!pair({"from|to|and"})) return false;
+            } else {
+                // "(tell me) how far the door is from the window"
+                a = p.phrase(c.w, c.i, true);
+                if (!c.accept({"is|are"})) return false;
+                c.accept({"away"});
+                if (!c.accept({"from|to"})) return false;
+                b = p.phrase(c.w, c.i, true);
+            }
+        } else {
+            c.accept({"what|how", "is|far"});
+            c.accept({"the"});
+            c.skip({"direct", "straight", "straight-line", "euclidean", "shortest", "exact", "line"});
+            if (!c.accept({"distance|gap"})) return false;
+            if (c.accept({"between"})) {
+                if (!pair({"and"})) return false;
+            } else if (c.accept({"from|of"})) {
+                if (!pair({"to|from"})) return false;
+            } else {
+                return false;
+            }
+        }
+        out.kind = QuestionKind::Distance;
+        Phrase subject = *a;
+        subject.order = Order{"distance", false, {*b}, ""};
+        out.smql = findText(subject, false);
+        describeSubject(*a, out);
+        out.object = b->words;
+        return true;
     }
 
-    // "chairs are near the table", "chairs near the table", "pianos", "mugs do you see on the desk"
-    static Phrase subjectWithConditions(Parser& parser, const std::string& text) {
-        Tokens t = normalise(text);
-        std::size_t i = 0;
-        Phrase p = parser.phrase(t, i, true);
-        while (i < t.size() && endsPhrase(t[i]) && t[i] != "and") ++i;
-        parser.conditions(t, i, p);
-        while (i < t.size() && endsPhrase(t[i]) && t[i] != "and") ++i;
-        if (i != t.size()) throw parser.notUnderstood(t, i);
-        return p;
+    // How tall is the lamp? What is the length of the longest dimension of the table?
+    bool size(Cursor& c, PhraseParser& p, Translation& out) {
+        std::string measure;
+        if (c.accept({"how"}) && sizeMeasure(c.peek()) && isOneOf(c.peek(1), {"is", "are"})) {
+            measure = std::string(*sizeMeasure(c.peek()));
+            c.i += 2;
+        } else {
+            c.i = 0;
+            if (!c.accept({"what"})) return false;
+            if (isOneOf(c.peek(), {"size", "height", "width", "length"}) && isOneOf(c.peek(1), {"is", "are"})) {
+                // "what size is the table?"
+                measure = std::string(*sizeMeasure(c.peek()));
+                c.i += 2;
+            } else {
+                c.accept({"is|are"});
+                c.accept({"the"});
+                if (c.accept({"length", "of", "the", "longest|largest", "dimension|side"})) {
+                    measure = "longest";
+                    // "(length, width, or height)"
+                    c.skip({"length", "width", "or", "height", "and"});
+                } else if (auto m = sizeMeasure(c.peek()); m && c.peek(1) == "of") {
+                    measure = std::string(*m);
+                    c.i += 1;
+                } else {
+                    return false;
+                }
+                if (!c.accept({"of"})) return false;
+            }
+        }
+        std::size_t save = c.i;
+        c.skip({"the", "this", "my"});
+        if (isOneOf(c.peek(), {"room", "scene", "space", "house", "apartment"}) && c.i + 1 == c.w.size())
+            throw Error(ErrorKind::Binding, "the memory keeps no size of the room as a whole", std::nullopt,
+                        "ask about the things in it, as in: how big is the table?");
+        c.i = save;
+        Phrase thing = p.phrase(c.w, c.i, true);
+        out.kind = QuestionKind::Size;
+        out.measure = measure;
+        out.smql = findText(thing, false) + " RETURN id, category, width, depth, height, volume";
+        describeSubject(thing, out);
+        return true;
     }
+
+    // What colour is the sofa?
+    bool attribute(Cursor& c, PhraseParser& p, Translation& out) {
+        std::string measure;
+        Phrase thing;
+        if (c.accept({"what|which", "color|colour|colors|colours|shape|material|finish|texture|pattern"})) {
+            measure = c.w[c.i - 1];
+            if (c.accept({"is|are|does|do"})) {
+                thing = p.phrase(c.w, c.i, true);
+                c.accept({"have|has"});
+            } else {
+                // "what color recycling bin sits in the corner?"
+                thing = p.phrase(c.w, c.i, false);
+                c.skip({"is", "are", "sits", "sit", "stands", "stand", "hangs", "hang", "lies", "lie", "located",
+                        "placed"});
+                p.posts(c.w, c.i, thing);
+            }
+        } else if (c.accept(
+                       {"what", "is|are", "the", "color|colour|colors|colours|shape|material|finish|texture", "of"})) {
+            measure = c.w[c.i - 2];
+            thing = p.phrase(c.w, c.i, true);
+        } else if (c.accept({"what", "is|are"})) {
+            // "what is the chair made of?"
+            auto made = std::find(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), "made");
+            if (made == c.w.end() || made + 1 == c.w.end() || !isOneOf(*(made + 1), {"of", "from", "out"}))
+                return false;
+            if (!phraseWithin(c, p, static_cast<std::size_t>(made - c.w.begin()), thing)) return false;
+            c.i = c.w.size();
+            measure = "material";
+        } else {
+            return false;
+        }
+        if (measure.starts_with("colo")) measure = "color";
+        out.kind = QuestionKind::Attribute;
+        out.measure = measure;
+        const auto& known = question_.attributes;
+        bool kept = std::find(known.begin(), known.end(), measure) != known.end();
+        // Without colours in the scene the rows still name the things, and the answer says so.
+        out.smql = findText(thing, false) + (kept ? " RETURN id, category, " + measure : "");
+        describeSubject(thing, out);
+        return true;
+    }
+
+    // Where can I sit? What can I put things on? Is there a place to sleep?
+    bool affordance(Cursor& c, PhraseParser& p, Translation& out) {
+        bool lead = c.accept({"where|what", "can|could|should|do|may", "i|we|one|you"}) ||
+                    c.accept({"is|are", "there", "somewhere|anywhere|anything|something|a|any"}) ||
+                    c.accept({"what", "is", "there", "to"});
+        if (!lead) return false;
+        c.accept({"place|spot|seat|thing", "to"});
+        c.accept({"to"});
+        if (c.done()) return false;
+        const AffordanceRow* row = nullptr;
+        for (const auto& base : wordsFor(c.peek()))
+            for (const auto& r : kAffordances)
+                if (r.verb == base && !row) row = &r;
+        if (!row) return false;
+        ++c.i;
+        static const std::initializer_list<std::string_view> particles{
+            "down", "on", "in",   "at", "with", "things", "stuff",  "something", "my",
+            "the",  "it", "them", "up", "into", "onto",   "inside", "away"};
+        c.skip(particles);
+        if (!c.done()) {
+            // "where can I put my cup?": what is put does not change where.
+            p.phrase(c.w, c.i, false);
+            c.skip(particles);
+        }
+        std::vector<std::string> categories;
+        std::string things{row->things};
+        for (std::size_t at = 0; at < things.size();) {
+            std::size_t space = things.find(' ', at);
+            std::string word = things.substr(at, space - at);
+            WordMatch m = lexicon_.lookUp(word);
+            if (m.how != WordMatch::How::Spelling)
+                for (const auto& cat : m.categories)
+                    if (std::find(categories.begin(), categories.end(), cat) == categories.end())
+                        categories.push_back(cat);
+            at = space == std::string::npos ? things.size() : space + 1;
+        }
+        out.kind = QuestionKind::Affordance;
+        out.predicate = std::string(row->how);
+        if (categories.empty()) {
+            out.smql = fmt::format("FIND node WHERE category = {}",
+                                   smqlString(std::string(row->things.substr(0, row->things.find(' ')))));
+        } else {
+            std::string any;
+            for (const auto& cat : categories)
+                any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(cat));
+            out.smql = fmt::format("FIND node WHERE {}", categories.size() > 1 ? "(" + any + ")" : any);
+        }
+        out.subject = "thing";
+        out.subjectPlural = "things";
+        return true;
+    }
+
+    // Can I see the plant from the door? What can I see from the sofa?
+    bool visibility(Cursor& c, PhraseParser& p, Translation& out) {
+        bool what = c.accept({"what|which"});
+        std::optional<Phrase> thing;
+        if (what && !isOneOf(c.peek(), {"can", "could", "do", "is", "are"})) thing = p.phrase(c.w, c.i, false);
+        if (!c.accept({"can|could|do|would|will", "i|you|we|one", "see|view|spot|notice"}) &&
+            !c.accept({"is|are", "visible"}))
+            return false;
+        if (!what) thing = p.phrase(c.w, c.i, true);
+        if (!c.accept({"from"})) return false;
+        Phrase from = p.phrase(c.w, c.i, true);
+        Phrase target = thing ? *thing : Phrase{};
+        if (!thing) {
+            target.kind = "object";
+            target.noun = "thing";
+        }
+        Condition seen;
+        seen.predicate = "visible_from";
+        seen.args.push_back(from);
+        seen.words = "visible from the " + from.words;
+        target.conditions.push_back(seen);
+        out.kind = what ? QuestionKind::Relational : QuestionKind::Existence;
+        out.smql = findText(target, false);
+        describeSubject(target, out);
+        return true;
+    }
+
+    // What changed? What is new? Has anything moved?
+    bool changes(Cursor& c, PhraseParser&, Translation& out) {
+        bool lead = c.accept({"what|has|have|did", "anything|something"}) || c.accept({"what|anything"});
+        if (!lead) return false;
+        c.accept({"has|have|is|was"});
+        if (!c.accept({"changed|moved|new|different|gone|missing|disappeared|appeared|added|removed|change"}))
+            return false;
+        c.skip({"in", "the", "this", "room", "scene", "since", "recently", "lately", "last", "time", "here"});
+        out.kind = QuestionKind::Changes;
+        out.smql = "SHOW CHANGES";
+        return true;
+    }
+
+    // How many chairs are near the table? How many cushions do the sofas have?
+    bool count(Cursor& c, PhraseParser& p, Translation& out) {
+        bool lead = c.accept({"how", "many"}) || c.accept({"count"}) || c.accept({"number", "of"}) ||
+                    c.accept({"what", "is", "the", "number", "of"}) || c.accept({"tell", "me", "how", "many"});
+        if (!lead) return false;
+        c.accept({"all|the"});
+        c.accept({"the"});
+        Phrase thing = p.phrase(c.w, c.i, true);
+        c.skip({"is", "are", "there", "altogether", "total", "exactly", "currently", "right", "now"});
+        bool see = c.accept({"do|can|could", "you|i|we", "see"});
+        if (!see) c.accept({"do|can|could", "you|i|we", "have|find|count"});
+        c.skip({"is", "are", "there", "altogether", "total", "exactly", "currently", "right", "now"});
+        if (see && c.accept({"from"})) {
+            // "how many windows can I see from the door?"
+            Condition seen;
+            seen.predicate = "visible_from";
+            seen.args.push_back(p.phrase(c.w, c.i, true));
+            seen.words = "visible from the " + seen.args.front().words;
+            thing.conditions.push_back(seen);
+        }
+        p.posts(c.w, c.i, thing);
+        // "how many cushions do the sofas have": the holder comes last.
+        if (c.accept({"do|does"})) {
+            auto verb =
+                std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
+                    return isOneOf(w, {"have", "hold", "carry", "contain", "has"});
+                });
+            Phrase holder;
+            if (verb == c.w.end() || !phraseWithin(c, p, static_cast<std::size_t>(verb - c.w.begin()), holder))
+                return false;
+            // Things a cabinet contains are in it; things a sofa has are on it.
+            bool contains = *verb == "contain";
+            Condition held;
+            held.predicate = contains ? "in" : "on";
+            held.args.push_back(holder);
+            held.words = (contains ? "in the " : "on the ") + holder.words;
+            thing.conditions.push_back(held);
+            ++c.i;
+        }
+        c.skip({"is", "are", "there", "altogether", "total", "in", "the", "room"});
+        out.kind = QuestionKind::Count;
+        out.smql = countText(thing);
+        describeSubject(thing, out);
+        return true;
+    }
+
+    // Is there a sofa? Are there any mugs on the table? Does the room have a couch?
+    bool existence(Cursor& c, PhraseParser& p, Translation& out) {
+        bool lead = c.accept({"is|are", "there"}) || c.accept({"do|can|did", "you|i|we", "see|have|own|find|notice"}) ||
+                    c.accept({"does|do", "the|this|my|our", "room|scene|place|house|home|apartment",
+                              "have|contain|include|hold"}) ||
+                    (isOneOf(c.peek(), {"any", "anything", "something"}) && c.i == 0);
+        if (!lead) return false;
+        Phrase thing = p.phrase(c.w, c.i, true);
+        c.skip({"is", "are", "there", "here"});
+        p.posts(c.w, c.i, thing);
+        c.skip({"is", "are", "there", "here"});
+        out.kind = QuestionKind::Existence;
+        out.smql = findText(thing, false);
+        describeSubject(thing, out);
+        return true;
+    }
+
+    // Where is the lamp relative to the window? What is the relation between the mug and the desk?
+    bool relative(Cursor& c, PhraseParser& p, Translation& out) {
+        Phrase a, b;
+        if (c.accept({"where|how", "is|are"}) || c.accept({"how", "does|do"})) {
+            // The subject ends where "relative to" (or its like) begins.
+            static const std::vector<Words> links{{"relative", "to"},
+                                                  {"in", "relation", "to"},
+                                                  {"compared", "to"},
+                                                  {"with", "respect", "to"},
+                                                  {"relate", "to"},
+                                                  {"relates", "to"},
+                                                  {"from"}};
+            std::optional<std::size_t> link, linkWords;
+            for (std::size_t k = c.i; k < c.w.size() && !link; ++k)
+                for (const auto& l : links)
+                    if (k + l.size() <= c.w.size() && std::equal(l.begin(), l.end(), c.w.begin() + k)) {
+                        link = k;
+                        linkWords = l.size();
+                        break;
+                    }
+            if (!link) return false;
+            std::size_t end = *link;
+            while (end > c.i && isOneOf(c.w[end - 1], {"placed", "positioned", "located", "oriented", "situated"}))
+                --end;
+            if (!phraseWithin(c, p, end, a)) return false;
+            c.i = *link + *linkWords;
+            b = p.phrase(c.w, c.i, true);
+        } else if (c.accept({"what|how", "is"}) || c.accept({"describe"})) {
+            c.accept({"the"});
+            c.accept({"spatial"});
+            if (!c.accept({"relation|relationship|position"})) return false;
+            if (!c.accept({"between|of"})) return false;
+            a = p.phrase(c.w, c.i, true);
+            if (!c.accept({"and|to"}) && !c.accept({"relative", "to"})) return false;
+            b = p.phrase(c.w, c.i, true);
+        } else {
+            return false;
+        }
+        out.kind = QuestionKind::RelativePosition;
+        out.smql = fmt::format("RELATE {} TO {}", reference(a), reference(b));
+        describeSubject(a, out);
+        out.object = b.words;
+        return true;
+    }
+
+    // A phrase that must take exactly the words up to `end` (where a verb or link word follows).
+    static bool phraseWithin(Cursor& c, PhraseParser& p, std::size_t end, Phrase& out) {
+        Words head(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end));
+        std::size_t i = c.i;
+        out = p.phrase(head, i, true);
+        if (i != end) return false;
+        c.i = end;
+        return true;
+    }
+
+    // On what side of the bed is the lamp? What side of the desk are the chairs on?
+    bool side(Cursor& c, PhraseParser& p, Translation& out) {
+        c.accept({"on|to|at|in"});
+        if (!c.accept({"what|which", "side|part|corner|end|area"})) return false;
+        c.accept({"of"});
+        c.skip({"the", "this", "a"});
+        if (isOneOf(c.peek(), {"room", "scene", "house", "space"})) return false;  // where in the room: locate
+        Phrase b = p.phrase(c.w, c.i, true);
+        if (!c.accept({"is|are|does|do"})) return false;
+        std::size_t end = c.w.size();
+        while (end > c.i && isOneOf(c.w[end - 1], {"located", "placed", "on", "sit", "stand", "hang", "found", "kept"}))
+            --end;
+        Phrase a;
+        if (!phraseWithin(c, p, end, a)) return false;
+        c.i = c.w.size();
+        out.kind = QuestionKind::RelativePosition;
+        out.smql = fmt::format("RELATE {} TO {}", reference(a), reference(b));
+        describeSubject(a, out);
+        out.object = b.words;
+        return true;
+    }
+
+    // What is the lamp on? What is the cabinet next to? The desk is to the right of what? To the
+    // right of what is the black cabinet? What bed are the pillows on?
+    bool reverse(Cursor& c, PhraseParser& p, Translation& out) {
+        std::optional<Phrase> answerKind, subject;
+        std::optional<std::pair<std::string, std::size_t>> pred;
+        std::size_t predAt = 0;
+        auto predicateEnding = [&](std::size_t from, std::size_t to) {
+            // The predicate phrase that ends exactly at `to`.
+            for (std::size_t k = from; k < to; ++k)
+                if (auto found = PhraseParser::predicateAt(c.w, k); found && k + found->second == to) {
+                    pred = found;
+                    predAt = k;
+                    return true;
+                }
+            return false;
+        };
+        static const std::initializer_list<std::string_view> verbs{
+            "located", "placed", "sitting", "standing", "hanging", "lying", "resting",
+            "kept",    "sit",    "stand",   "hang",     "lie",     "rest",  "attach"};
+        if (c.accept({"what|which"})) {
+            // what is the lamp on? / what bed are the pillows on?
+            if (!isOneOf(c.peek(), {"is", "are", "does", "do"})) answerKind = p.phrase(c.w, c.i, false);
+            if (!c.accept({"is|are|does|do"})) return false;
+            if (!predicateEnding(c.i, c.w.size())) return false;
+            std::size_t end = predAt;
+            while (end > c.i && isOneOf(c.w[end - 1], verbs)) --end;
+            Phrase s;
+            if (!phraseWithin(c, p, end, s)) return false;
+            subject = s;
+            c.i = c.w.size();
+        } else if (auto found = PhraseParser::predicateAt(c.w, 0)) {
+            std::size_t k = found->second;
+            if (k < c.w.size() && c.w[k] == "what") {
+                // to the right of what is the black cabinet?
+                pred = found;
+                c.i = k + 1;
+                if (!c.accept({"is|are"})) return false;
+                subject = p.phrase(c.w, c.i, true);
+                c.skip({"located", "placed"});
+            } else {
+                // to the left of the sink is what?
+                Phrase thing{.noun = "thing", .kind = "object"};
+                p.posts(c.w, c.i, thing);
+                if (!c.accept({"is|are", "what"}) && !c.accept({"what", "is|are"})) return false;
+                out.kind = QuestionKind::Relational;
+                out.smql = findText(thing, false);
+                describeSubject(thing, out);
+                return true;
+            }
+        } else if (c.w.size() >= 2 && c.w.back() == "what") {
+            // the desk is to the right of what?
+            if (!predicateEnding(0, c.w.size() - 1)) return false;
+            std::size_t end = predAt;
+            while (end > 0 && isOneOf(c.w[end - 1], verbs)) --end;
+            if (end == 0 || !isOneOf(c.w[end - 1], {"is", "are"})) return false;
+            Phrase s;
+            if (!phraseWithin(c, p, end - 1, s)) return false;
+            subject = s;
+            c.i = c.w.size();
+        } else {
+            return false;
+        }
+        if (!pred || !subject) return false;
+        // What the subject is on or by may be an anchor too (a wall, the floor).
+        Phrase other = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "node"};
+        std::string predicate = pred->first;
+        // "what wall is the tv on": on a wall is hanging there.
+        if (predicate == "on" && answerKind &&
+            std::all_of(answerKind->categories.begin(), answerKind->categories.end(),
+                        [&](const std::string& cat) {
+                            return std::find(question_.planeCategories.begin(), question_.planeCategories.end(), cat) !=
+                                   question_.planeCategories.end();
+                        }) &&
+            !answerKind->categories.empty())
+            predicate = "attached";
+        out.kind = QuestionKind::Reverse;
+        out.predicate = predicate;
+        out.background = question_.anchorCategories;
+        out.smql = fmt::format("RELATE {} TO {}", reference(*subject), reference(other));
+        describeSubject(*subject, out);
+        out.object = other.kind ? "thing" : other.words;
+        out.condition = joined(c.w, predAt, predAt + pred->second);
+        return true;
+    }
+
+    // Which is the largest object? Which cushion is closest to the window? Which of these objects
+    // (sofa, tv, bed) is the closest to the door? What is the second largest table?
+    bool superlative(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"which|what"}) && !c.accept({"find|name"})) return false;
+        std::optional<Phrase> subject;
+        if (c.accept({"of", "these|those|the"})) {
+            c.skip({"objects", "things", "items", "ones", "following", "choices"});
+            if (choices_.empty()) return false;
+            Phrase any;
+            any.noun = "thing";
+            for (const auto& choice : choices_) {  // "sofa", "tv", "bed"
+                Words cw = words(choice);
+                std::size_t k = 0;
+                Phrase one = p.phrase(cw, k, false);
+                for (const auto& cat : one.categories.empty() ? std::vector<std::string>{one.noun} : one.categories)
+                    if (std::find(any.categories.begin(), any.categories.end(), cat) == any.categories.end())
+                        any.categories.push_back(cat);
+            }
+            subject = any;
+        } else if (!isOneOf(c.peek(), {"is", "are"})) {
+            subject = p.phrase(c.w, c.i, true);
+        }
+        if (c.accept({"is|are"})) {
+            c.accept({"the"});
+            if (!subject) subject = Phrase{.noun = "thing", .kind = "object"};
+            if (c.done()) return false;
+            // "closest to the window" orders the subject; "the largest (one)" may name it again.
+            std::string first = c.peek();
+            if (isOneOf(first, {"closest", "nearest", "farthest", "furthest"}) &&
+                isOneOf(c.peek(1), {"to", "from", "away"})) {
+                p.posts(c.w, c.i, *subject);
+            } else {
+                Phrase tail = p.phrase(c.w, c.i, true);
+                if (!tail.order) return false;
+                if (tail.kind == std::optional<std::string>("object")) {
+                    subject->order = tail.order;
+                    subject->pick = tail.pick;
+                    subject->top = tail.top;
+                    for (auto& cond : tail.conditions) subject->conditions.push_back(std::move(cond));
+                } else {
+                    subject = std::move(tail);
+                }
+            }
+        }
+        if (!subject || !subject->order) return false;
+        out.kind = QuestionKind::Superlative;
+        out.pick = std::max<std::size_t>(subject->pick, 1);
+        out.top = subject->top;
+        out.smql = findText(*subject, false);
+        out.measure = subject->order->words;
+        describeSubject(*subject, out);
+        return true;
+    }
+
+    // Where is the red mug? Find the bottle.
+    bool locate(Cursor& c, PhraseParser& p, Translation& out) {
+        // "what is the window above the table?", "in what part of the room is the sofa?"
+        if (c.accept({"in|on", "what|which", "part|side|corner|area", "of", "the", "room|scene"}) ||
+            c.accept({"in|on", "what|which", "part|side|corner|area"})) {
+            if (!c.accept({"is|are|does|do"})) return false;
+            Phrase thing;
+            std::size_t end = c.w.size();
+            while (end > c.i && isOneOf(c.w[end - 1], {"located", "placed", "kept", "sit", "stand", "hang", "go"}))
+                --end;
+            if (!phraseWithin(c, p, end, thing)) return false;
+            c.i = c.w.size();
+            return locateAnswer(thing, out);
+        }
+        if (c.accept({"what|which", "is|are", "the|a|an"})) {
+            c.i -= 1;
+            Phrase thing = p.phrase(c.w, c.i, true);
+            c.skip({"located", "placed"});
+            if (thing.conditions.empty() || !c.done()) return false;
+            return locateAnswer(thing, out);
+        }
+        bool where = c.accept({"where"});
+        if (where) {
+            c.accept({"exactly"});
+            if (c.accept({"does|do"})) {
+                // "where does the shower curtain hang?"
+                auto verb =
+                    std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
+                        return isOneOf(w, {"hang", "sit", "stand", "lie", "go", "belong", "rest", "stay"});
+                    });
+                if (verb == c.w.end()) return false;
+                Phrase thing;
+                if (!phraseWithin(c, p, static_cast<std::size_t>(verb - c.w.begin()), thing)) return false;
+                c.i = c.w.size();
+                return locateAnswer(thing, out);
+            }
+            bool verb = c.accept({"is|are|was|were|would|do|did|can|could"});
+            c.accept({"i|we|one|you", "find|leave|put|see|keep|left|get"});
+            if (!verb) {
+                // "where the lamp is"
+                Phrase thing = p.phrase(c.w, c.i, true);
+                if (!c.accept({"is|are|was|were"})) return false;
+                c.skip({"located", "kept"});
+                return locateAnswer(thing, out);
+            }
+        } else if (!c.accept({"find|locate|show|point"})) {
+            return false;
+        } else {
+            c.accept({"me"});
+            c.accept({"to"});
+        }
+        Phrase thing = p.phrase(c.w, c.i, true);
+        c.skip({"located", "kept", "placed", "be", "attached", "mounted", "positioned", "situated", "installed",
+                "stored", "hung", "hanging"});
+        if (!where && !thing.order && !thing.conditions.empty()) return false;  // "show me everything on ..."
+        return locateAnswer(thing, out);
+    }
+
+    bool locateAnswer(const Phrase& thing, Translation& out) {
+        out.kind = thing.order ? QuestionKind::Superlative : QuestionKind::Locate;
+        out.pick = std::max<std::size_t>(thing.pick, 1);
+        if (thing.order) out.measure = thing.order->words;
+        out.smql = findText(thing, true);
+        describeSubject(thing, out);
+        return true;
+    }
+
+    // What is on the desk near the left wall? Which chairs are near the table? Show me everything
+    // on the counter.
+    bool relational(Cursor& c, PhraseParser& p, Translation& out) {
+        Phrase thing;
+        if (c.accept({"what|which"})) {
+            std::size_t at = c.i;
+            static const std::initializer_list<std::string_view> verbs{"is",    "are",    "sits",   "sit",   "lies",
+                                                                       "lie",   "stands", "stand",  "rests", "rest",
+                                                                       "hangs", "hang",   "hanged", "hung"};
+            if (isOneOf(c.peek(), verbs) || isOneOf(c.peek(), {"do", "can", "could"})) {
+                thing.kind = "object";
+                thing.noun = "thing";
+            } else {
+                thing = p.phrase(c.w, c.i, false);
+                if (c.i == at) return false;
+            }
+            // "which chairs face the table?": the predicate is the verb.
+            bool verbIsPredicate = PhraseParser::predicateAt(c.w, c.i).has_value() && c.i > at;
+            if (!verbIsPredicate &&
+                !c.accept({"is|are|sits|sit|lies|lie|stands|stand|rests|rest|hangs|hang|hanged|hung"}) &&
+                !c.accept({"do|can", "you|i", "see|find|have"}) && !c.accept({"is|are", "there"}) &&
+                !c.accept({"can|could", "be", "seen|found"}))
+                return false;
+            c.accept({"there"});
+            std::size_t verbAt = c.i;
+            c.skip({"present", "seen", "found", "hanged", "hung", "directly", "just", "located", "placed", "sitting",
+                    "lying", "standing", "kept", "hanging", "positioned", "situated"});
+            std::size_t before = thing.conditions.size();
+            p.posts(c.w, c.i, thing);
+            if (thing.conditions.size() == before && thing.excluded.empty()) return false;
+            if (verbIsPredicate && thing.conditions.size() > before) {
+                // "face the table" reads in the answer as "facing the table": the table's first phrase.
+                auto& cond = thing.conditions[before];
+                std::size_t took = PhraseParser::predicateAt(c.w, verbAt)->second;
+                const auto* spec = relations::predicateNamed(cond.predicate);
+                std::size_t words = 1 + static_cast<std::size_t>(std::count(cond.words.begin(), cond.words.end(), ' '));
+                if (spec)
+                    cond.words = std::string(relations::englishPhrases(*spec).front()) + " " +
+                                 joined(c.w, verbAt + took, verbAt + words);
+            }
+        } else if (c.accept({"show|list|give|tell|name"})) {
+            c.accept({"me|us"});
+            c.accept({"about"});
+            c.accept({"all|every"});
+            c.accept({"of"});
+            thing = p.phrase(c.w, c.i, true);
+            if (!thing.kind && thing.conditions.empty()) return locateAnswer(thing, out);
+            if (thing.conditions.empty() && thing.excluded.empty()) return false;
+        } else {
+            return false;
+        }
+        out.kind = QuestionKind::Relational;
+        out.smql = findText(thing, false);
+        describeSubject(thing, out);
+        return true;
+    }
+
+    // Is the lamp left of the window? Does the lamp stand on the desk? Is the mug red?
+    bool yesNo(Cursor& c, PhraseParser& p, Translation& out) {
+        bool does = false;
+        if (!c.accept({"is|are"})) {
+            if (!c.accept({"does|do"})) return false;
+            does = true;
+        }
+        Phrase subject;
+        if (does) {
+            // "does the lamp stand on the desk": the subject ends at the verb.
+            auto verb =
+                std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
+                    return isOneOf(
+                        w, {"stand", "stands", "sit", "sits", "lie", "lies", "hang", "hangs", "rest", "rests", "be"});
+                });
+            if (verb == c.w.end()) return false;
+            std::size_t end = static_cast<std::size_t>(verb - c.w.begin());
+            if (!phraseWithin(c, p, end, subject)) return false;
+            ++c.i;
+        } else {
+            subject = p.phrase(c.w, c.i, false);
+        }
+        // "is the mug red?": whether there is such a thing.
+        if (c.i + 1 == c.w.size() && !subject.colour &&
+            isOneOf(c.peek(), {"red", "green", "blue", "white", "black", "gray", "grey", "brown", "yellow", "orange",
+                               "pink", "purple", "beige", "silver", "gold", "golden"})) {
+            subject.colour = c.peek() == "grey" ? "gray" : c.peek();
+            ++c.i;
+            out.kind = QuestionKind::Existence;
+            out.smql = findText(subject, false);
+            describeSubject(subject, out);
+            return true;
+        }
+        Phrase checked;
+        checked.noun = subject.noun;
+        p.posts(c.w, c.i, checked);
+        if (checked.conditions.size() != 1) return false;
+        const Condition& cond = checked.conditions.front();
+        describeSubject(subject, out);
+        out.kind = QuestionKind::YesNo;
+        out.predicate = cond.predicate;
+        out.condition = cond.words;
+        const auto* spec = relations::predicateNamed(cond.predicate);
+        if (cond.predicate == "between" || cond.metres || (spec && spec->relateRank == 0)) {
+            // RELATE compares two things: "between" takes three, a distance is a question of its own,
+            // and what RELATE leaves out (visible_from) is asked as a FIND.
+            subject.conditions.push_back(cond);
+            out.smql = findText(subject, false);
+            out.kind = QuestionKind::Existence;
+            return true;
+        }
+        out.object = cond.args.front().words;
+        out.smql = fmt::format("RELATE {} TO {}", reference(subject), reference(cond.args.front()));
+        return true;
+    }
+
+    // ------------------------------------------------------------ helpers
 
     static void describeSubject(const Phrase& p, Translation& out) {
         std::string adjectives = p.colour ? *p.colour + " " : "";
         std::string noun = !p.side.empty() ? p.side + " " + p.noun : p.noun;
+        std::replace(noun.begin(), noun.end(), '-', ' ');  // "trash-bin" is a trash bin in words
         out.subject = adjectives + noun;
         out.subjectPlural = adjectives + pluralOf(noun);
         std::string condition;
-        for (const auto& c : p.conditions) condition += (condition.empty() ? "" : " and ") + c.words;
+        for (const auto& c : p.conditions)
+            if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
         if (out.condition.empty()) out.condition = condition;
+    }
+
+    bool repeated(const std::string& category) const {
+        return std::find(question_.repeatedCategories.begin(), question_.repeatedCategories.end(), category) !=
+               question_.repeatedCategories.end();
+    }
+
+    static std::vector<std::string> wordsFor(const std::string& verb);
+
+    // Says which words were not read and offers the nearest question that can be.
+    Error unreadable() const;
+
+    const Question& question_;
+    const Lexicon& lexicon_;
+    Words words_;
+    std::string unit_ = "m";
+    std::vector<std::string> choices_;
+};
+
+std::vector<std::string> QuestionReader::wordsFor(const std::string& verb) {
+    std::vector<std::string> out{verb};
+    for (const auto& base : wordnet::baseForms(verb)) out.push_back(base);
+    return out;
+}
+
+// The questions ASK reads, one per form, for the did-you-mean of a question it cannot.
+struct Example {
+    std::string_view text;
+    std::string_view shape;  // with X and Y for the question's own nouns
+};
+constexpr Example kExamples[] = {
+    {"where is the mug", "where is the X?"},
+    {"what is on the desk", "what is on the X?"},
+    {"how many chairs are there", "how many Xs are there?"},
+    {"is there a sofa", "is there a X?"},
+    {"is the lamp left of the window", "is the X left of the Y?"},
+    {"how far is the sofa from the door", "how far is the X from the Y?"},
+    {"how big is the table", "how big is the X?"},
+    {"which is the largest object", "which is the largest X?"},
+    {"which chair is closest to the window", "which X is closest to the Y?"},
+    {"how do i get to the bed from the door", "how do I get to the X from the Y?"},
+    {"can i see the plant from the door", "can I see the X from the Y?"},
+    {"where can i sit", "where can I sit?"},
+    {"what color is the sofa", "what color is the X?"},
+    {"where is the lamp relative to the window", "where is the X relative to the Y?"},
+    {"what changed", "what changed?"},
+};
+
+Error QuestionReader::unreadable() const {
+    // The words that name things here, and the ones nothing reads.
+    std::vector<std::string> nouns, unread;
+    static const std::initializer_list<std::string_view> grammar{
+        "what", "where", "which", "how",  "is",   "are",  "the",  "a",    "an",   "there", "many",
+        "much", "can",   "i",     "you",  "do",   "does", "of",   "to",   "from", "in",    "on",
+        "and",  "or",    "me",    "my",   "it",   "this", "that", "be",   "get",  "far",   "big",
+        "see",  "find",  "any",   "some", "most", "than", "more", "with", "for",  "at",    "by"};
+    for (std::size_t k = 0; k < words_.size(); ++k) {
+        const std::string& w = words_[k];
+        if (isOneOf(w, grammar) || PhraseParser::predicateAt(words_, k)) continue;
+        WordMatch m = lexicon_.lookUp(w);
+        if (!m.categories.empty() && m.how != WordMatch::How::Spelling)
+            nouns.push_back(m.categories.front());
+        else if (m.how == WordMatch::How::Unknown || m.how == WordMatch::How::Spelling)
+            unread.push_back(w);
+    }
+    // The form whose words the question shares most of.
+    const Example* best = nullptr;
+    std::size_t bestShared = 0;
+    for (const auto& e : kExamples) {
+        Words ew = words(std::string(e.text));
+        std::size_t shared = 0;
+        for (const auto& w : ew)
+            if (std::find(words_.begin(), words_.end(), w) != words_.end()) ++shared;
+        if (shared > bestShared) {
+            bestShared = shared;
+            best = &e;
+        }
+    }
+    std::string suggestion;
+    if (best && bestShared >= 2) {
+        suggestion = std::string(best->shape);
+        auto put = [&](std::string_view slot, const std::string& noun) {
+            if (auto at = suggestion.find(slot); at != std::string::npos) suggestion.replace(at, slot.size(), noun);
+        };
+        put("X", nouns.size() > 0 ? nouns[0] : "mug");
+        put("Y", nouns.size() > 1 ? nouns[1] : "door");
+    }
+    std::string detail;
+    if (!unread.empty()) {
+        std::string list;
+        for (std::size_t k = 0; k < unread.size() && k < 6; ++k) list += (k ? "', '" : "") + unread[k];
+        detail = fmt::format(": not understood: '{}'", list);
+    }
+    return cannotTranslate(question_.text, detail, suggestion);
+}
+
+class RuleTranslator final : public Translator {
+public:
+    Translation translate(const Question& question) const override {
+        // One question: a second sentence explains the first ("The directions refer to ...").
+        std::string text = question.text;
+        if (auto mark = text.find('?'); mark != std::string::npos) text.erase(mark + 1);
+        // "which of these objects (sofa, tv, bed) is ...": the choices keep their commas.
+        std::vector<std::string> choices;
+        static const std::regex listed(R"(\(([^()]*,[^()]*)\))");
+        std::smatch m;
+        if (std::regex_search(text, m, listed)) {
+            std::string inner = m.str(1);
+            for (std::size_t at = 0; at <= inner.size();) {
+                std::size_t comma = inner.find(',', at);
+                std::string item = inner.substr(at, comma - at);
+                item = std::regex_replace(item, std::regex(R"(^\s*(or|and)\s+|^\s+|\s+$)"), "");
+                if (!item.empty()) choices.push_back(item);
+                if (comma == std::string::npos) break;
+                at = comma + 1;
+            }
+            text = m.prefix().str() + " " + m.suffix().str();
+        }
+        // "which is closer to the tv, the sofa or the stove?": the same as choosing among them.
+        static const std::regex closer(
+            R"(^\s*(?:which|what)(?: one)? is (closer|nearer|farther|further) (?:to|from) ([^,]+),(.+)\bor\b([^?]+)\??\s*$)",
+            std::regex::icase);
+        if (choices.empty() && std::regex_search(text, m, closer)) {
+            for (std::string item : {m.str(3), m.str(4)}) {
+                item = std::regex_replace(item, std::regex(R"(^[\s,]+|[\s,]+$)"), "");
+                if (!item.empty()) choices.push_back(item);
+            }
+            bool far = m.str(1) == "farther" || m.str(1) == "further";
+            text = fmt::format("which of these is the {} to {}?", far ? "farthest from" : "closest", m.str(2));
+            if (far) text = fmt::format("which of these is the farthest from {}?", m.str(2));
+        }
+        Words all = words(text);
+        if (all.size() > kMaxQuestionWords)
+            throw Error(ErrorKind::Binding,
+                        fmt::format("the question has {} words; ASK reads at most {}", all.size(), kMaxQuestionWords),
+                        std::nullopt, "ask one short question at a time");
+        // Politeness and framing at the start: "please", "can you tell me", "measuring from the
+        // closest point of each object" (how smql measures distances anyway).
+        static const std::regex lead(
+            "^(?:please |hey |ok |okay |so |now |and |excuse me |(?:can|could|would) you (?:please )?(?:tell me |say "
+            "|show me (?=where|what|which|how))?|tell me |i want to know |i wonder |i would like to know |measuring "
+            "from the closest point of each object |these are frames of a video )+");
+        std::string plain = std::regex_replace(joined(all, 0, all.size()), lead, "");
+        // "what type of chair ..." asks which chair.
+        plain = std::regex_replace(plain, std::regex("^what (?:type|kind|sort|types|kinds) of "), "which ");
+        plain = std::regex_replace(plain, std::regex(" please$"), "");
+        if (plain.empty()) throw cannotTranslate(question.text, "", "");
+        Lexicon lexicon(question.categories);
+        QuestionReader reader(question, lexicon);
+        reader.setChoices(std::move(choices));
+        return reader.read(plain);
     }
 };
 
@@ -698,6 +1148,22 @@ std::string_view toString(QuestionKind kind) {
             return "relative position";
         case QuestionKind::Guidance:
             return "guidance";
+        case QuestionKind::Distance:
+            return "distance";
+        case QuestionKind::Size:
+            return "size";
+        case QuestionKind::Superlative:
+            return "superlative";
+        case QuestionKind::Direction:
+            return "direction";
+        case QuestionKind::Affordance:
+            return "affordance";
+        case QuestionKind::Attribute:
+            return "attribute";
+        case QuestionKind::Changes:
+            return "changes";
+        case QuestionKind::Reverse:
+            return "reverse";
         case QuestionKind::UnknownWord:
             return "unknown word";
     }

@@ -21,6 +21,14 @@ enum class QuestionKind {
     Count,             // how many chairs are near the table?       COUNT chair WHERE near(table)
     RelativePosition,  // where is the lamp relative to the window? RELATE lamp TO window
     Guidance,          // how do I get to the fridge from the door? GUIDE FROM door TO fridge
+    Distance,          // how far is the sofa from the tv?          FIND sofa ORDER BY distance(tv)
+    Size,              // how tall is the lamp?                     FIND lamp RETURN id, category, width, ...
+    Superlative,       // which is the largest table?               FIND table ORDER BY volume DESC LIMIT 1
+    Direction,         // standing by the bed facing the tv, is the door to my left or right?
+    Affordance,        // where can I sit?                          FIND node WHERE category = 'chair' OR ...
+    Attribute,         // what colour is the sofa?                  FIND sofa RETURN id, category, color
+    Changes,           // what changed?                             SHOW CHANGES
+    Reverse,           // what is the lamp on?                      RELATE lamp TO object (the "on" rows)
     UnknownWord,       // a word neither the scene nor WordNet knows: nothing runs, the answer names it
 };
 
@@ -28,6 +36,16 @@ struct Question {
     std::string text;
     std::string scene;                    // the current scene's name
     std::vector<std::string> categories;  // the current scene's categories
+    // The categories whose nodes are all walls, doors or windows (vertical planes): things are on
+    // them by hanging ("the picture on the wall" is attached to it).
+    std::vector<std::string> planeCategories;
+    // The categories of which the scene holds more than one node ("take me to the chair": the nearest).
+    std::vector<std::string> repeatedCategories;
+    // The attributes some node of the scene carries (color, material ...).
+    std::vector<std::string> attributes;
+    // The categories of the scene's anchors (walls, floor, doors): what a thing is "on" only when
+    // it rests on nothing else.
+    std::vector<std::string> anchorCategories;
 };
 
 // One word of the question and the categories it was taken to mean ("couch" -> sofa).
@@ -50,6 +68,19 @@ struct Translation {
     std::string condition;      // "on the sofa", empty without one
     std::string predicate;      // YesNo: the relation the answer checks ("left_of")
     std::string object;         // YesNo: what it is checked against ("the window")
+
+    // Size: the measure asked ("height", "longest", "size"); Attribute: the attribute ("color").
+    std::string measure;
+    std::string unit = "m";  // the unit the question asks the answer in: m, cm
+    std::size_t pick = 1;    // Superlative: the row that answers ("the second largest": 2)
+    // Direction: the categories of the thing stood by, the thing faced and the thing asked about,
+    // and the answer's choices ("left", "right", "back"; or the four quadrants).
+    std::vector<std::vector<std::string>> roles;
+    std::vector<std::string> choices;
+    // Reverse: the anchor categories, named only when nothing else holds ("on the rug", not "on
+    // the floor and the rug").
+    std::vector<std::string> background;
+    std::size_t top = 1;  // Superlative: how many rows answer ("the two largest": 2)
 };
 
 class Translator {

@@ -176,4 +176,25 @@ std::vector<std::string> baseForms(const std::string& word) {
     return out;
 }
 
+bool isAdjectiveOnly(const std::string& word) {
+    std::lock_guard guard(lock());
+    static std::map<std::string, bool> known;
+    if (auto it = known.find(word); it != known.end()) return it->second;
+    bool adjective = false, noun = false;
+    if (open() && !word.empty()) {
+        std::string key = wordNetSpelling(word);
+        auto inIndex = [&](int pos) {
+            if (IndexPtr index = index_lookup(key.data(), pos)) {
+                free_index(index);
+                return true;
+            }
+            return morphstr(key.data(), pos) != nullptr;
+        };
+        adjective = inIndex(ADJ);
+        noun = inIndex(NOUN);
+    }
+    known.emplace(word, adjective && !noun);
+    return adjective && !noun;
+}
+
 }  // namespace smql::ask::wordnet

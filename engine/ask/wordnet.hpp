@@ -42,4 +42,8 @@ std::string gloss(long offset);
 // WordNet knows none.
 std::vector<std::string> baseForms(const std::string& word);
 
+// Whether WordNet knows the word as an adjective and not as a noun ("rectangular", "leather" is
+// also a noun): a modifier the memory keeps no attribute for.
+bool isAdjectiveOnly(const std::string& word);
+
 }  // namespace smql::ask::wordnet

@@ -3,9 +3,14 @@
 // and the executor run it in the ASK's read transaction.
 #include <fmt/format.h>
 
+#include <map>
+#include <set>
 #include "engine/ask/answer.hpp"
+
 #include "engine/binder/binder.hpp"
+#include "engine/exec/scene_snapshot.hpp"
 #include "engine/parser/parser.hpp"
+#include "engine/relations/predicates.hpp"
 #include "model/error.hpp"
 
 namespace smql::binder {
@@ -21,6 +26,27 @@ bool reads(const ast::Statement& statement) {
            std::holds_alternative<ast::ShowStmt>(body) || std::holds_alternative<ast::GuideStmt>(body);
 }
 
+// The question with what the translator needs of the scene: its categories, the ones that are
+// walls, doors or windows, and the ones it holds several of.
+ask::Question questionAbout(const std::string& text, const exec::SceneSnapshot& snap) {
+    ask::Question q{text, snap.info().name, snap.categories(), {}, {}, snap.attributeNames()};
+    std::map<std::string, std::pair<int, bool>> seen;  // category -> count, all vertical planes
+    std::set<std::string> anchors;
+    for (const auto& node : snap.nodes()) {
+        if (node.kind != model::NodeKind::Object && node.kind != model::NodeKind::Anchor) continue;
+        if (node.kind == model::NodeKind::Anchor) anchors.insert(node.category);
+        auto [it, fresh] = seen.try_emplace(node.category, 0, true);
+        ++it->second.first;
+        it->second.second = it->second.second && relations::isVerticalPlane(node);
+    }
+    for (const auto& [category, stats] : seen) {
+        if (stats.second) q.planeCategories.push_back(category);
+        if (stats.first > 1) q.repeatedCategories.push_back(category);
+    }
+    q.anchorCategories.assign(anchors.begin(), anchors.end());
+    return q;
+}
+
 }  // namespace
 
 void Binder::bindStatement(const ast::AskStmt& ask, BoundStatement& out) {
@@ -29,7 +55,7 @@ void Binder::bindStatement(const ast::AskStmt& ask, BoundStatement& out) {
         ctx_.session.askTranslator ? *ctx_.session.askTranslator : ask::ruleTranslator();
     BoundAsk bound;
     try {
-        bound.translation = translator.translate({ask.question, snap.info().name, snap.categories()});
+        bound.translation = translator.translate(questionAbout(ask.question, snap));
     } catch (const Error& e) {
         throw Error(e.kind(), e.message(), ask.where, e.hint());
     }

@@ -30,6 +30,26 @@ using Bounds = bg::model::box<Corner>;
 using Indexed = std::pair<Bounds, std::size_t>;
 
 Bounds toBounds(const model::Aabb& b) { return {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}; }
+
+// A thin upright slab (a picture, a mirror, a board: at most this thick, and three times as tall
+// as thick) that is attached to a wall hangs on that wall, whatever its lower edge touches: a picture
+// over a sofa is not on the sofa.
+constexpr double kHungThickness = 0.1;
+
+const Node* hangingWall(const Node& a, const std::vector<const Node*>& anchors, const Thresholds& t) {
+    double thickness = std::min(a.box.size.x, a.box.size.y);
+    if (thickness > kHungThickness || a.box.size.z < 3 * thickness) return nullptr;
+    static const Frame frame{};
+    static const NodeObstacles nothing{std::span<const Node>{}};
+    const Node* best = nullptr;
+    double bestScore = 0;
+    for (const Node* anchor : anchors) {
+        if (!isVerticalPlane(*anchor)) continue;
+        double score = evaluate(Predicate::Attached, a, *anchor, t, frame, nothing);
+        if (score > bestScore) bestScore = score, best = anchor;
+    }
+    return best;
+}
 }  // namespace
 
 void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
@@ -60,6 +80,10 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
         // (a sofa does not rest on the blanket lying on it), the one whose top is closest to a's
         // bottom (a book on a plate on a table hangs below the plate). Support requires the
         // supporter's centre to be strictly lower, so the tree has no cycles.
+        if (const Node* wall = hangingWall(a, anchors, thresholds)) {
+            parents[i] = wall->id;
+            continue;
+        }
         const Node* best = nullptr;
         auto contact = [&](const Node* b) { return std::abs(model::bottom(a.box) - model::top(b->box)); };
         auto within = spec(Predicate::On).referenceRegion(model::worldAabb(a.box), 0, thresholds);

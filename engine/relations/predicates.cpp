@@ -325,27 +325,37 @@ model::Aabb withinAttached(const model::Aabb& around, double, const Thresholds& 
 
 using P = Predicate;
 // One row per predicate, in code order (model::RelationType). Columns: predicate, alias, arity,
-// view-relative, takes a distance, formula, candidate region, reference region, RELATE rank, usage.
+// view-relative, takes a distance, formula, candidate region, reference region, RELATE rank, usage,
+// and the English phrases that ask for it (ASK's only list of them, '|' between phrases).
 constexpr PredicateSpec kPredicates[] = {
-    {P::On, "", 1, false, false, onScore, restingOnRegion, supportRegion, 2, "on(desk)"},
-    {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)"},
-    {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)"},
-    {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)"},
-    {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 14, "near(sofa) or near(sofa, 1.5 m)"},
-    {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)"},
-    {P::LeftOf, "", 1, true, false, leftOfScore, nullptr, nullptr, 6, "left_of(window)"},
-    {P::RightOf, "", 1, true, false, rightOfScore, nullptr, nullptr, 7, "right_of(window)"},
-    {P::InFrontOf, "", 1, true, false, inFrontOfScore, nullptr, nullptr, 8, "in_front_of(sofa)"},
-    {P::Behind, "", 1, true, false, behindScore, nullptr, nullptr, 9, "behind(sofa)"},
+    {P::On, "", 1, false, false, onScore, restingOnRegion, supportRegion, 2, "on(desk)",
+     "on|on top of|onto|upon|atop|sitting on|lying on|resting on|standing on|placed on|kept on|piled on"},
+    {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)",
+     "in|inside|inside of|within|stored in|kept in|contained in"},
+    {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)", "above|over|higher than"},
+    {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)",
+     "below|under|underneath|beneath|lower than"},
+    {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 14, "near(sofa) or near(sofa, 1.5 m)",
+     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|close by|against|at"},
+    {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)",
+     "attached to|fixed to|mounted on|hanging on|hanging from|hanging off|hung on|hangs on|hang on"},
+    {P::LeftOf, "", 1, true, false, leftOfScore, nullptr, nullptr, 6, "left_of(window)",
+     "left of|to the left of|on the left of|on the left side of|at the left of"},
+    {P::RightOf, "", 1, true, false, rightOfScore, nullptr, nullptr, 7, "right_of(window)",
+     "right of|to the right of|on the right of|on the right side of|at the right of"},
+    {P::InFrontOf, "", 1, true, false, inFrontOfScore, nullptr, nullptr, 8, "in_front_of(sofa)", "in front of"},
+    {P::Behind, "", 1, true, false, behindScore, nullptr, nullptr, 9, "behind(sofa)", "behind|in back of|beyond"},
     {P::Between, "", 2, false, false, betweenScore, nullptr, nullptr, 0,
-     "between(lamp, sofa): the target lies between the two"},
+     "between(lamp, sofa): the target lies between the two", "between|in between"},
     {P::VisibleFrom, "", 1, false, false, visibleFromScore, nullptr, nullptr, 0,
-     "visible_from(door): in sight of an eye standing at the door"},
-    {P::Facing, "", 1, false, false, facingScore, nullptr, nullptr, 11, "facing(table): its front faces the table"},
+     "visible_from(door): in sight of an eye standing at the door",
+     "visible from|seen from|in sight of|in view of|in sight from|seeable from"},
+    {P::Facing, "", 1, false, false, facingScore, nullptr, nullptr, 11, "facing(table): its front faces the table",
+     "facing|face|faces|facing toward|facing towards|turned toward|turned towards|pointing at|pointed at|looking at"},
     {P::AtFrontOf, "", 1, false, false, atFrontOfScore, withinNear, withinNear, 12,
-     "at_front_of(sofa): by the sofa's own front"},
+     "at_front_of(sofa): by the sofa's own front", "at the front of|at the foot of|at the end of"},
     {P::AtBackOf, "", 1, false, false, atBackOfScore, withinNear, withinNear, 13,
-     "at_back_of(sofa): by the sofa's own back"},
+     "at_back_of(sofa): by the sofa's own back", "at the back of|at the head of|behind the back of"},
 };
 
 constexpr bool rowsInCodeOrder() {
@@ -383,6 +393,16 @@ std::vector<std::string> predicateWords() {
     for (const auto& row : kPredicates) {
         out.emplace_back(row.name());
         if (!row.alias.empty()) out.emplace_back(row.alias);
+    }
+    return out;
+}
+
+std::vector<std::string_view> englishPhrases(const PredicateSpec& spec) {
+    std::vector<std::string_view> out;
+    for (std::string_view rest = spec.phrases; !rest.empty();) {
+        std::size_t bar = rest.find('|');
+        out.push_back(rest.substr(0, bar));
+        rest = bar == std::string_view::npos ? std::string_view{} : rest.substr(bar + 1);
     }
     return out;
 }

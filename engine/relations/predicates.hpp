@@ -4,7 +4,7 @@
 //
 // The predicates are one table (predicates.cpp, `kPredicates`): a row gives a
 // predicate's words, arity, whether it needs a viewpoint, its formula and the
-// regions an index probe may use. The binder, planner, executor, RELATE and
+// regions an index probe may use, and the English phrases that ask for it. The binder, planner, executor, RELATE and
 // the shell's completion all read that table; nothing else lists predicates.
 #pragma once
 
@@ -76,6 +76,9 @@ struct PredicateSpec {
     model::Aabb (*referenceRegion)(const model::Aabb& a, double nearDistance, const Thresholds& t);
     int relateRank;          // position in RELATE's answer, most specific first; 0: RELATE leaves it out
     std::string_view usage;  // how to write it, for error hints
+    // English phrases that ask for it, '|' between them ("on|on top of|onto"): the one list ASK
+    // reads (engine/ask), so every predicate is reachable from English.
+    std::string_view phrases;
 
     std::string_view name() const { return model::toString(predicate); }
     // Holds only close to its reference, so an R-tree probe around the reference finds every candidate.
@@ -89,6 +92,8 @@ const PredicateSpec& spec(Predicate p);
 const PredicateSpec* predicateNamed(std::string_view word);
 // Every word that names a predicate (names and aliases), for hints and completion.
 std::vector<std::string> predicateWords();
+// A predicate's English phrases, split ("on", "on top of", ...).
+std::vector<std::string_view> englishPhrases(const PredicateSpec& spec);
 
 inline std::string_view toString(Predicate p) { return model::toString(p); }
 

@@ -1,5 +1,6 @@
 // ASK end to end: the English questions of tests/ask/questions.json over the generated room of
-// seed 7 (36 objects, the room of tests/suites/language.smqlt) and Replica room 0. Each question
+// seed 7 (36 objects, the room of tests/suites/language.smqlt), Replica room 0 and two real rooms of
+// VSI-Bench (../shared/data/real-layouts). Each question
 // names the SMQL it must translate to and/or words its answer must contain; the test prints the
 // share answered correctly and requires the floor docs/ask.md reports.
 #include <fstream>
@@ -28,10 +29,15 @@ std::string askStatement(const std::string& question) {
     return out + "'";
 }
 
-std::unique_ptr<Engine> openWithBothRooms(const TempDir& dir) {
+std::unique_ptr<Engine> openWithTheRooms(const TempDir& dir) {
     auto engine = Engine::open(dir.path.string());
     engine->importScene(generate::generateRoom({.seed = 7, .objectCount = 36, .name = "demo-room"}));
     engine->importScene(import::readReplica(testing::replicaRoom0(), "replica-room0"));
+    // Two of VSI-Bench's own rooms, for its questions asked word for word.
+    const std::string layouts = std::string(SMQL_SHARED_DATA) + "/real-layouts/";
+    engine->importScene(import::readVsiBench(layouts + "scannet_meta_info_val.json", "scene0251_00"));
+    engine->importScene(import::readVsiBench(layouts + "arkitscenes_meta_info_val.json", "41069025"));
+    run(*engine, "USE SCENE 'replica-room0'");
     return engine;
 }
 
@@ -46,7 +52,7 @@ std::string smqlOf(const std::string& message) {
 
 TEST_CASE("ASK answers the English question set", "[ask]") {
     TempDir dir;
-    auto engine = openWithBothRooms(dir);
+    auto engine = openWithTheRooms(dir);
     std::ifstream in(std::string(SMQL_SOURCE_DIR) + "/tests/ask/questions.json");
     REQUIRE(in);
     auto set = nlohmann::json::parse(in);
@@ -93,7 +99,7 @@ TEST_CASE("ASK answers the English question set", "[ask]") {
 
 TEST_CASE("ASK on Replica room 0: the acceptance questions", "[ask]") {
     TempDir dir;
-    auto engine = openWithBothRooms(dir);
+    auto engine = openWithTheRooms(dir);
     run(*engine, "USE SCENE 'replica-room0'");
 
     auto sofa = run(*engine, "ASK 'what is on the sofa?'");
@@ -120,7 +126,7 @@ TEST_CASE("ASK on Replica room 0: the acceptance questions", "[ask]") {
 
 TEST_CASE("ASK reports what it cannot translate, and runs a plugged-in translator's SMQL", "[ask]") {
     TempDir dir;
-    auto engine = openWithBothRooms(dir);
+    auto engine = openWithTheRooms(dir);
     run(*engine, "USE SCENE 'demo-room'");
     CHECK_THROWS_WITH(run(*engine, "ASK 'colorless green ideas sleep furiously'"),
                       Catch::Contains("cannot translate the question"));
@@ -149,8 +155,8 @@ TEST_CASE("ASK reports what it cannot translate, and runs a plugged-in translato
 TEST_CASE("ASK from several threads: WordNet's look-ups take turns and every answer is the same", "[ask]") {
     // Two engines (two databases) translate at once; WordNet's C library is shared global state.
     TempDir dirA, dirB;
-    auto a = openWithBothRooms(dirA);
-    auto b = openWithBothRooms(dirB);
+    auto a = openWithTheRooms(dirA);
+    auto b = openWithTheRooms(dirB);
     const std::vector<std::string> questions{
         "how many seats are there?",   "is there a carpet?",   "what furniture is near the door?",
         "how many pillows are there?", "where is the cushon?", "is there a piano?"};

@@ -299,3 +299,16 @@ TEST_CASE("parents: support first, else the nearest upright anchor") {
     CHECK(scene.nodes[6].parent == 2);               // chair -> nearest wall
     CHECK(scene.nodes[0].parent == model::kNoNode);  // anchors stay under the root
 }
+
+TEST_CASE("parents: a picture over a sofa hangs on the wall behind it") {
+    // Replica room 0's picture#80: a 5 cm slab on the wall whose lower edge touches the sofa's back.
+    model::SceneData scene;
+    scene.nodes.push_back(
+        node(1, "wall", 0, 0, 1.3, 6, 0.04, 2.7, model::NodeKind::Anchor, model::GeometryKind::Plane));
+    scene.nodes.push_back(node(2, "sofa", 0, 0.7, 0.45, 2.4, 1.3, 0.9));
+    scene.nodes.push_back(node(3, "picture", 0, 0.05, 1.55, 1.8, 0.05, 1.27));
+    scene.nodes.push_back(node(4, "book", 0, 0.7, 0.95, 0.3, 0.2, 0.05));  // lies flat: still on the sofa
+    assignParents(scene);
+    CHECK(scene.nodes[2].parent == 1);
+    CHECK(scene.nodes[3].parent == 2);
+}

@@ -1,0 +1,667 @@
+#include "engine/ask/phrase.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <regex>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "engine/ask/wordnet.hpp"
+#include "engine/relations/predicates.hpp"
+#include "model/error.hpp"
+
+namespace smql::ask {
+
+namespace {
+
+constexpr std::size_t kMaxNounWords = 4;
+
+bool isDeterminer(const std::string& w) {
+    return isOneOf(w, {"the",   "a",     "an",    "any",  "some", "all", "my",    "our", "your", "this",    "that",
+                       "these", "those", "every", "each", "of",   "its", "their", "his", "her",  "another", "both"});
+}
+
+bool isColour(const std::string& w) {
+    return isOneOf(w, {"red", "green", "blue", "white", "black", "gray", "grey", "brown", "yellow", "orange", "pink",
+                       "purple", "beige", "silver", "gold", "golden"});
+}
+
+bool isSideWord(const std::string& w) { return isOneOf(w, {"left", "right", "front", "back"}); }
+
+// Adjectives the memory has no attribute for: left out of the query, and said so.
+bool isIgnoredAdjective(const std::string& w) {
+    return isOneOf(w, {"big",   "small",  "large", "little", "tall", "short", "long", "old",  "new",   "wooden",
+                       "round", "square", "other", "single", "only", "nice",  "tiny", "huge", "whole", "same"});
+}
+
+// Words after a noun phrase that end it without being part of a post.
+bool endsPhrase(const std::string& w) {
+    return isOneOf(w,
+                   {"is",        "are",     "was",        "were",       "and",       "or",      "that",     "which",
+                    "who",       "there",   "located",    "placed",     "sitting",   "lying",   "standing", "resting",
+                    "kept",      "do",      "does",       "can",        "could",     "you",     "i",        "we",
+                    "see",       "have",    "has",        "relative",   "compared",  "with",    "from",     "to",
+                    "currently", "right",   "now",        "altogether", "total",     "exactly", "than",     "if",
+                    "when",      "as",      "while",      "away",       "measured",  "in",      "hanging",  "hung",
+                    "attached",  "mounted", "positioned", "situated",   "installed", "stored",  "supported"});
+}
+
+// Words for "anything" and kinds of node.
+std::optional<std::string> kindTarget(const std::string& w) {
+    if (isOneOf(w, {"object", "objects", "thing", "things", "one", "ones", "anything", "everything", "something",
+                    "stuff", "item", "items", "furnishing", "furnishings"}))
+        return "object";
+    if (isOneOf(w, {"anchor", "anchors"})) return "anchor";
+    return std::nullopt;
+}
+
+// Parts of a thing: "the corner of the room", "the top of the stove", "the foot of the bed".
+bool isPartWord(const std::string& w) {
+    return isOneOf(w, {"corner", "top", "bottom", "side", "end", "middle", "center", "centre", "edge", "part", "area",
+                       "back", "front", "foot", "head", "surface", "rest"});
+}
+
+// "in the room", "in this scene": the whole scene, no condition.
+bool isWholeScene(const std::string& w) {
+    return isOneOf(w, {"room", "scene", "house", "place", "space", "home", "apartment", "area"});
+}
+
+// Superlatives and the measure they order by: "the largest table" is FIND table ORDER BY volume
+// DESC LIMIT 1.
+struct Superlative {
+    std::string_view word;
+    std::string_view measure;
+    bool descending;
+};
+constexpr std::array<Superlative, 14> kSuperlatives{{
+    {"largest", "volume", true},
+    {"biggest", "volume", true},
+    {"smallest", "volume", false},
+    {"tiniest", "volume", false},
+    {"littlest", "volume", false},
+    {"tallest", "height", true},
+    {"shortest", "height", false},
+    {"highest", "z", true},
+    {"topmost", "z", true},
+    {"lowest", "z", false},
+    {"longest", "width", true},
+    {"widest", "width", true},
+    {"narrowest", "width", false},
+    {"thinnest", "width", false},
+}};
+
+const Superlative* superlativeOf(const std::string& w) {
+    for (const auto& s : kSuperlatives)
+        if (s.word == w) return &s;
+    return nullptr;
+}
+
+// "closest to", "nearest", "farthest from": an order by distance to a phrase that follows.
+std::optional<bool> distanceOrderWord(const std::string& w) {
+    if (isOneOf(w, {"closest", "nearest"})) return false;
+    if (isOneOf(w, {"farthest", "furthest"})) return true;
+    return std::nullopt;
+}
+
+std::optional<std::size_t> ordinalOf(const std::string& w) {
+    static const std::array<std::string_view, 10> words{"first", "second",  "third",  "fourth", "fifth",
+                                                        "sixth", "seventh", "eighth", "ninth",  "tenth"};
+    static const std::array<std::string_view, 10> short_{"1st", "2nd", "3rd", "4th", "5th",
+                                                         "6th", "7th", "8th", "9th", "10th"};
+    for (std::size_t k = 0; k < words.size(); ++k)
+        if (w == words[k] || w == short_[k]) return k + 1;
+    return std::nullopt;
+}
+
+std::optional<std::size_t> cardinalOf(const std::string& w) {
+    static const std::array<std::string_view, 10> words{"one", "two",   "three", "four", "five",
+                                                        "six", "seven", "eight", "nine", "ten"};
+    for (std::size_t k = 0; k < words.size(); ++k)
+        if (w == words[k]) return k + 1;
+    if (w.size() <= 2 &&
+        std::all_of(w.begin(), w.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
+        return static_cast<std::size_t>(std::stoi(w));
+    return std::nullopt;
+}
+
+// "besides", "other than", "except (for)", "apart from": the words it takes, 0 when none.
+std::size_t exclusionAt(const Words& w, std::size_t i) {
+    if (i >= w.size()) return 0;
+    if (isOneOf(w[i], {"besides", "excluding"})) return 1;
+    if (i + 1 < w.size() && ((w[i] == "other" && w[i + 1] == "than") || (w[i] == "apart" && w[i + 1] == "from") ||
+                             (w[i] == "except" && w[i + 1] == "for") || (w[i] == "but" && w[i + 1] == "not")))
+        return 2;
+    return w[i] == "except" ? 1 : 0;
+}
+
+// Kinds told apart by their shape: a phrase whose words name a category by a shape the memory keeps
+// ("coffee table": a low table). Each is the category and a condition on the box.
+struct ShapedKind {
+    std::string_view words;
+    std::string_view category;
+    std::string_view condition;  // SMQL
+    std::string_view meaning;    // for the answer's Words line
+};
+constexpr std::array<ShapedKind, 7> kShapedKinds{{
+    {"coffee table", "table", "height < 0.55 m", "a low table"},
+    {"cocktail table", "table", "height < 0.55 m", "a low table"},
+    {"side table", "table", "width < 0.8 m", "a small table"},
+    {"end table", "table", "width < 0.8 m", "a small table"},
+    {"bedside table", "table", "width < 0.8 m", "a small table"},
+    {"dining table", "table", "height >= 0.6 m AND width >= 0.9 m", "a table to eat at"},
+    {"kitchen table", "table", "height >= 0.6 m AND width >= 0.9 m", "a table to eat at"},
+}};
+
+std::string hyphenated(std::string s) {
+    std::replace(s.begin(), s.end(), ' ', '-');
+    return s;
+}
+
+struct PredicatePhrase {
+    Words words;
+    std::string predicate;
+};
+
+// Every predicate's English phrases (the predicate table's), longest first at each start, so "on
+// the left of" wins over "on".
+const std::vector<PredicatePhrase>& predicatePhrases() {
+    static const std::vector<PredicatePhrase> table = [] {
+        std::vector<PredicatePhrase> t;
+        for (const auto& spec : relations::predicates())
+            for (std::string_view phrase : relations::englishPhrases(spec)) {
+                PredicatePhrase row;
+                row.predicate = std::string(spec.name());
+                std::istringstream in{std::string(phrase)};
+                for (std::string w; in >> w;) row.words.push_back(w);
+                t.push_back(std::move(row));
+            }
+        std::stable_sort(t.begin(), t.end(),
+                         [](const auto& a, const auto& b) { return a.words.size() > b.words.size(); });
+        return t;
+    }();
+    return table;
+}
+
+std::string conditionText(const Condition& c) {
+    std::string args;
+    for (const auto& a : c.args) args += (args.empty() ? "" : ", ") + reference(a);
+    if (c.metres) args += ", " + smqlMetres(*c.metres) + " m";
+    return fmt::format("{}({})", c.predicate, args);
+}
+
+std::string targetOf(const Phrase& p) {
+    if (p.kind) return *p.kind;
+    if (!p.side.empty()) return smqlName(p.categories.front()) + "." + p.side;
+    if (p.categories.size() == 1) return smqlName(p.categories.front());
+    return "node";
+}
+
+std::vector<std::string> conditionsOf(const Phrase& p) {
+    std::vector<std::string> where;
+    if (!p.kind && p.side.empty() && p.categories.size() != 1) {
+        // Several categories, or none (an English noun the scene lacks: the answer is "none").
+        const std::vector<std::string> names =
+            p.categories.empty() ? std::vector<std::string>{hyphenated(p.noun)} : p.categories;
+        std::string any;
+        for (const auto& c : names) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(c));
+        where.push_back(names.size() > 1 ? "(" + any + ")" : any);
+    }
+    for (const auto& e : p.excluded) {
+        // "besides the coffee table": not that kind of thing, with its own conditions.
+        std::vector<std::string> what = conditionsOf(e);
+        if (!e.kind && e.side.empty() && e.categories.size() == 1)
+            what.insert(what.begin(), fmt::format("category = {}", smqlString(e.categories.front())));
+        if (what.empty()) continue;
+        std::string all;
+        for (const auto& w : what) all += (all.empty() ? "" : " AND ") + w;
+        where.push_back(what.size() == 1 ? "NOT " + all : "NOT (" + all + ")");
+    }
+    if (p.colour) where.push_back(fmt::format("color = {}", smqlString(*p.colour)));
+    for (const auto& c : p.conditions)
+        where.push_back(c.predicate.starts_with("=") ? c.predicate.substr(1) : conditionText(c));
+    return where;
+}
+
+std::string orderText(const Phrase& p) {
+    if (!p.order) return {};
+    std::string measure =
+        p.order->measure == "distance" ? "distance(" + reference(p.order->to.front()) + ")" : p.order->measure;
+    return fmt::format(" ORDER BY {}{}", measure, p.order->descending ? " DESC" : "");
+}
+
+}  // namespace
+
+bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words) {
+    return std::find(words.begin(), words.end(), word) != words.end();
+}
+
+Words words(const std::string& text) {
+    // "chair(s)", "tv(s)", "box(es)": the benchmark's way of asking for a plural.
+    std::string plain = std::regex_replace(text, std::regex(R"(\((e?s)\))"), "$1");
+    plain = std::regex_replace(plain, std::regex("\xE2\x80\x99"), "'");  // the typographic apostrophe
+    std::string s;
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+        unsigned char c = static_cast<unsigned char>(plain[i]);
+        if (std::isalnum(c))
+            s += static_cast<char>(std::tolower(c));
+        else if (c == '\'' || c == '-')
+            s += static_cast<char>(c);
+        else if (c == '.' && i + 1 < plain.size() && std::isdigit(static_cast<unsigned char>(plain[i + 1])) &&
+                 !s.empty() && std::isdigit(static_cast<unsigned char>(s.back())))
+            s += '.';
+        else if (c >= 0x80)
+            s += static_cast<char>(c);  // letters outside ASCII stay, to be named as unknown
+        else
+            s += ' ';
+    }
+    static const std::array<std::pair<std::string_view, std::string_view>, 10> contractions{{
+        {"can't", "can not"},
+        {"'s", " is"},
+        {"'re", " are"},
+        {"n't", " not"},
+        {"'m", " am"},
+        {"'ll", " will"},
+        {"'ve", " have"},
+        {"'d", " would"},
+        {"'", " "},
+        {"--", " "},
+    }};
+    for (const auto& [from, to] : contractions)
+        for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+            s.replace(at, from.size(), to);
+    Words out;
+    std::istringstream in(s);
+    for (std::string w; in >> w;) {
+        while (!w.empty() && w.front() == '-') w.erase(w.begin());
+        while (!w.empty() && w.back() == '-') w.pop_back();
+        if (!w.empty()) out.push_back(w);
+    }
+    return out;
+}
+
+std::string joined(const Words& w, std::size_t from, std::size_t to) {
+    std::string out;
+    for (std::size_t i = from; i < to && i < w.size(); ++i) out += (out.empty() ? "" : " ") + w[i];
+    return out;
+}
+
+std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(const Words& w, std::size_t i) {
+    // within 1.5 m of x / within 30 cm of x
+    if (i + 3 < w.size() && w[i] == "within" && std::regex_match(w[i + 1], std::regex("[0-9]+(\\.[0-9]+)?")) &&
+        isOneOf(w[i + 2], {"m", "metre", "metres", "meter", "meters", "cm", "centimetres", "centimeters"}) &&
+        w[i + 3] == "of")
+        return std::pair{std::string("near"), std::size_t{4}};
+    for (const auto& row : predicatePhrases()) {
+        if (i + row.words.size() > w.size()) continue;
+        bool match = true;
+        for (std::size_t k = 0; k < row.words.size() && match; ++k) match = w[i + k] == row.words[k];
+        if (match) return std::pair{row.predicate, row.words.size()};
+    }
+    return std::nullopt;
+}
+
+Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
+    Phrase p;
+    std::size_t start = i;
+    while (i < w.size() && isDeterminer(w[i])) ++i;
+    // The answer reads "no desk near the left wall", without the question's article.
+    const std::size_t wordsStart = i;
+    std::string side;
+    std::vector<std::string> nounWords;
+    std::optional<bool> pendingDistance;  // "the nearest lamp to the sofa": the reference follows
+    std::string pendingWord;
+    for (; i < w.size(); ++i) {
+        const std::string& word = w[i];
+        if (nounWords.empty()) {
+            if (auto n = cardinalOf(word); n && *n > 1) {
+                p.top = *n;
+                continue;
+            }
+            if (auto k = ordinalOf(word)) {
+                p.pick = *k;
+                continue;
+            }
+            if (const auto* s = superlativeOf(word)) {
+                p.order = Order{std::string(s->measure), s->descending, {}, std::string(s->word)};
+                p.pick = std::max<std::size_t>(p.pick, 1);
+                continue;
+            }
+            if (auto far = distanceOrderWord(word); far && i + 1 < w.size() && !isOneOf(w[i + 1], {"to", "from"})) {
+                pendingDistance = *far;
+                pendingWord = word;
+                p.pick = std::max<std::size_t>(p.pick, 1);
+                continue;
+            }
+        }
+        if (predicateAt(w, i) && !(isSideWord(word) && nounWords.empty() && i + 1 < w.size() && w[i + 1] != "of"))
+            break;
+        if (exclusionAt(w, i) || (distanceOrderWord(word) && !nounWords.empty())) break;
+        // "can" ends a phrase as a verb ("what can I see"), but a trash can is a thing.
+        if (word == "can" && !nounWords.empty() &&
+            (i + 1 == w.size() || !isOneOf(w[i + 1], {"i", "you", "we", "one", "be", "see", "find"}))) {
+            nounWords.push_back(word);
+            continue;
+        }
+        if (endsPhrase(word) && !(word == "right" && nounWords.empty())) break;
+        // "the corner of the room", "the top of the stove": the part is read as the thing itself.
+        if (word == "of" && nounWords.size() == 1 && isPartWord(nounWords.front())) {
+            out_.notes.push_back(fmt::format("'{} of' is read as the thing itself", nounWords.front()));
+            nounWords.clear();
+            continue;
+        }
+        // "pieces of furniture", "a pair of shoes": the thing is what follows "of".
+        if (word == "of" && nounWords.size() == 1 &&
+            isOneOf(nounWords.front(), {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type",
+                                        "types", "bunch", "stack", "pile"})) {
+            nounWords.clear();
+            continue;
+        }
+        // An article inside the nouns starts another phrase ("the lamp the sofa" is two).
+        if (!nounWords.empty() && isDeterminer(word)) break;
+        if (isOneOf(word, {"will", "would", "should", "shall", "must", "might", "be", "been", "being", "had"})) break;
+        if (isColour(word) && !nounWords.empty() && i + 1 == w.size()) break;  // "is the mug red?"
+        if (isColour(word) && nounWords.empty()) {
+            p.colour = word == "grey" ? "gray" : word;
+            continue;
+        }
+        if (isSideWord(word) && nounWords.empty()) {
+            side = word;
+            if (i + 1 < w.size() && w[i + 1] == "side") ++i;  // "the right side"
+            continue;
+        }
+        if (nounWords.empty() && (isIgnoredAdjective(word) || wordnet::isAdjectiveOnly(word))) {
+            out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such attribute", word));
+            continue;
+        }
+        nounWords.push_back(word);
+    }
+    // "the wall on the left", "the window on the right side", "the lamp on the left hand side"
+    if (side.empty() && i + 2 < w.size() && w[i] == "on" && w[i + 1] == "the" && isSideWord(w[i + 2])) {
+        std::size_t k = i + 3;
+        if (k + 1 < w.size() && w[k] == "hand" && w[k + 1] == "side")
+            k += 2;
+        else if (k < w.size() && w[k] == "side")
+            k += 1;
+        if (k >= w.size() || w[k] != "of") {
+            side = w[i + 2];
+            i = k;
+        }
+    }
+    if (nounWords.empty()) {
+        // "the red one", "the largest" are any such thing; a side alone ("the left") names nothing.
+        if (!(p.colour || p.order || pendingDistance) || !side.empty()) throw notUnderstood(w, start);
+        nounWords.push_back("object");
+    }
+    // A name of a thing is a few words ("kitchen cabinet door"); more is a sentence read wrongly.
+    if (nounWords.size() > kMaxNounWords) throw notUnderstood(w, start);
+    resolveNoun(p, nounWords);
+    if (!side.empty()) {
+        // A side names one node of one category (wall.left); of anything else it is left out.
+        if (p.kind || p.categories.size() != 1)
+            out_.notes.push_back(fmt::format("'{}' is left out: sides are of one category (the left wall)", side));
+        else
+            p.side = side;
+    }
+    if (pendingDistance) {
+        // "the nearest lamp to the sofa", "the farthest chair from the door"
+        if (i < w.size() && isOneOf(w[i], {"to", "from"})) {
+            std::size_t toAt = i++;
+            Phrase to = phrase(w, i, false);
+            p.order = Order{"distance", *pendingDistance, {std::move(to)}, pendingWord + " " + joined(w, toAt, i)};
+        } else {
+            throw Error(ErrorKind::Binding, fmt::format("'{}' needs a thing to measure from", joined(w, wordsStart, i)),
+                        std::nullopt, "ask as in: which lamp is nearest to the sofa?");
+        }
+    }
+    if (withPosts) posts(w, i, p);
+    p.words = joined(w, wordsStart, i);
+    return p;
+}
+
+void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
+    while (i < w.size()) {
+        std::size_t at = i;
+        bool joinedByAnd = false;
+        if (isOneOf(w[i], {"that", "which", "who"}) && i + 1 < w.size() && isOneOf(w[i + 1], {"is", "are"}))
+            at += 2;
+        else if (w[i] == "and" && (!p.conditions.empty() || p.order || !p.excluded.empty())) {
+            at += 1;
+            joinedByAnd = true;
+        }
+        if (at < w.size() && isOneOf(w[at], {"is", "are"}) && joinedByAnd) ++at;
+        while (at < w.size() &&
+               isOneOf(w[at], {"located", "placed", "sitting", "lying", "standing", "resting", "kept", "hanging",
+                               "hung", "found", "situated", "the", "right", "directly", "just", "immediately"}) &&
+               !predicateAt(w, at))
+            ++at;
+        // besides the cushions / other than the lamps
+        if (std::size_t n = exclusionAt(w, at); n && nested_ == 0) {
+            i = at + n;
+            ++nested_;
+            p.excluded.push_back(phrase(w, i, false));
+            --nested_;
+            continue;
+        }
+        // closest to the window / farthest from the door
+        if (at < w.size()) {
+            if (auto far = distanceOrderWord(w[at])) {
+                std::size_t k = at + 1;
+                if (k < w.size() && isOneOf(w[k], {"to", "from"}))
+                    ++k;
+                else if (k + 1 < w.size() && w[k] == "away" && w[k + 1] == "from")
+                    k += 2;
+                i = k;
+                Phrase to = phrase(w, i, false);
+                p.order = Order{"distance", *far, {to}, joined(w, at, i)};
+                p.pick = std::max<std::size_t>(p.pick, 1);
+                continue;
+            }
+        }
+        auto pred = predicateAt(w, at);
+        if (!pred) return;
+        i = at;
+        // "in the room": the whole scene.
+        std::size_t after = i + pred->second;
+        while (after < w.size() && isDeterminer(w[after])) ++after;
+        // "in the corner of the room" is in the room.
+        if (after + 2 < w.size() && isPartWord(w[after]) && w[after + 1] == "of") {
+            after += 2;
+            while (after < w.size() && isDeterminer(w[after])) ++after;
+        }
+        if (pred->first == "in" && after < w.size() && isWholeScene(w[after]) &&
+            (after + 1 == w.size() || !predicateAt(w, after + 1))) {
+            i = after + 1;
+            continue;
+        }
+        p.conditions.push_back(condition(w, i, *pred));
+        // "near the curtain and the door": the same relation to each.
+        while (i + 1 < w.size() && w[i] == "and" && !predicateAt(w, i + 1) && !exclusionAt(w, i + 1) &&
+               !isOneOf(w[i + 1], {"is", "are", "that", "which"})) {
+            std::size_t k = i + 1;
+            Condition again = p.conditions.back();
+            ++nested_;
+            try {
+                again.args = {phrase(w, k, false)};
+            } catch (const Error&) {
+                --nested_;
+                break;
+            }
+            --nested_;
+            if (again.predicate == "between") break;
+            // The answer says "near the door and the window" once.
+            p.conditions.back().words += " " + joined(w, i, k);
+            again.words.clear();
+            p.conditions.push_back(std::move(again));
+            i = k;
+        }
+    }
+}
+
+Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pair<std::string, std::size_t>& pred) {
+    Condition c;
+    c.predicate = pred.first;
+    std::size_t start = i;
+    if (w[i] == "within" && pred.second == 4) {
+        double value = std::stod(w[i + 1]);
+        c.metres = w[i + 2].starts_with("c") ? value / 100.0 : value;
+    }
+    i += pred.second;
+    if (c.predicate == "between") {
+        ++nested_;
+        c.args.push_back(phrase(w, i, false));
+        --nested_;
+        if (i >= w.size() || w[i] != "and") {
+            // "between the two cabinets": between two things of one kind.
+            bool plural = i > 0 && w[i - 1] != c.args.front().noun && w[i - 1].ends_with("s");
+            if (!plural)
+                throw Error(ErrorKind::Binding, "'between' needs two things: between the sofa and the lamp",
+                            std::nullopt, "ask as in: what is between the sofa and the lamp?");
+            c.args.push_back(c.args.front());
+            c.words = joined(w, start, i);
+            return c;
+        }
+        ++i;
+    }
+    ++nested_;
+    c.args.push_back(phrase(w, i, true));
+    --nested_;
+    // Things are on a wall by hanging there: "the picture on the wall" is attached to it.
+    if (c.predicate == "on" && isPlane(c.args.front())) c.predicate = "attached";
+    c.words = joined(w, start, i);
+    return c;
+}
+
+bool PhraseParser::isPlane(const Phrase& p) const {
+    if (p.kind || p.categories.empty()) return false;
+    return std::all_of(p.categories.begin(), p.categories.end(), [&](const std::string& c) {
+        return std::find(planes_.begin(), planes_.end(), c) != planes_.end();
+    });
+}
+
+Error PhraseParser::notUnderstood(const Words& w, std::size_t at) const {
+    return Error(ErrorKind::Binding, fmt::format("cannot read a thing to look for in '{}'", joined(w, at, w.size())),
+                 std::nullopt, "name something the scene holds, as in: what is on the sofa?");
+}
+
+void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWords) {
+    std::string all = joined(nounWords, 0, nounWords.size());
+    if (nounWords.size() == 1) {
+        if (auto kind = kindTarget(nounWords[0])) {
+            p.kind = *kind;
+            p.noun = "thing";
+            return;
+        }
+    }
+    auto said = [&](const std::string& word) {
+        return std::any_of(out_.mappings.begin(), out_.mappings.end(), [&](const auto& m) { return m.word == word; });
+    };
+    // A kind told by its shape ("coffee table"), where the scene has the category but not the name.
+    for (const auto& shaped : kShapedKinds) {
+        if (shaped.words != all) continue;
+        WordMatch whole = lexicon_.lookUp(all);
+        if (whole.how == WordMatch::How::Category || whole.how == WordMatch::How::Plural) break;
+        const auto& cats = lexicon_.categories();
+        if (std::find(cats.begin(), cats.end(), std::string(shaped.category)) == cats.end()) break;
+        p.noun = all;
+        p.categories = {std::string(shaped.category)};
+        Condition shape;
+        shape.predicate = "=" + std::string(shaped.condition);
+        p.conditions.push_back(shape);
+        if (!said(all))
+            out_.mappings.push_back(
+                WordMapping{all, p.categories, fmt::format("{}: {}", shaped.meaning, std::string(shaped.condition))});
+        return;
+    }
+    // The whole phrase first ("coffee table", "wall plug"), then its last word ("table").
+    WordMatch match = lexicon_.lookUp(all);
+    std::string word = all;
+    auto isNamed = [](const WordMatch& m) {
+        return m.how == WordMatch::How::Category || m.how == WordMatch::How::Plural || m.how == WordMatch::How::Synonym;
+    };
+    // A phrase that names nothing here as a whole ("coffee mug") is read by its last word, unless
+    // WordNet knows the whole or maps it to kinds the scene has.
+    // A whole that WordNet knows ("trash can": a kind of bin) is not read by its head ("can").
+    bool wholeKnown = match.how == WordMatch::How::Absent || match.how == WordMatch::How::Broader;
+    if (nounWords.size() > 1 && !isNamed(match) && match.how != WordMatch::How::Kind && !wholeKnown) {
+        WordMatch head = lexicon_.lookUp(nounWords.back());
+        // A compound category of another kind is not the thing asked for: a "tv stand" is no
+        // plant-stand. The modifier must be a noun for that ("potted plant" is an indoor-plant).
+        const std::string& modifier = nounWords[nounWords.size() - 2];
+        bool nounModifier = !wordnet::nounSenses(modifier).empty() ||
+                            std::find(lexicon_.categories().begin(), lexicon_.categories().end(), modifier) !=
+                                lexicon_.categories().end();
+        if (nounModifier) {
+            std::erase_if(head.categories, [&](const std::string& c) {
+                return c.find('-') != std::string::npos && !c.starts_with(modifier + "-");
+            });
+            if (head.categories.empty() && head.how != WordMatch::How::Unknown) head.how = WordMatch::How::Absent;
+        }
+        if (head.how == WordMatch::How::Absent && nounModifier) {
+            // Neither the whole nor its head is here: the answer speaks of the whole ("no tv stand").
+            p.noun = all;
+            if (!said(all)) out_.mappings.push_back(WordMapping{all, {}, describe(WordMatch::How::Absent)});
+            return;
+        }
+        out_.notes.push_back(fmt::format("'{}' is read as '{}'", all, nounWords.back()));
+        match = head;
+        word = nounWords.back();
+    }
+    p.noun = match.lemma;
+    if (match.how == WordMatch::How::Unknown) {
+        unknownWords_.push_back(word);
+        return;
+    }
+    p.categories = match.categories;
+    if (match.how != WordMatch::How::Category && !said(word))
+        out_.mappings.push_back(WordMapping{word, match.categories, describe(match.how)});
+}
+
+// ------------------------------------------------------------------ SMQL
+
+std::string smqlName(const std::string& name) {
+    static const std::regex bare("[a-z_][a-z0-9_]*(-[a-z0-9_]+)*");
+    bool reserved = isOneOf(name, {"and", "or", "not", "like"});
+    if (std::regex_match(name, bare) && !reserved) return name;
+    return smqlString(name);
+}
+
+std::string smqlString(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
+    return quoted + "'";
+}
+
+std::string smqlMetres(double metres) {
+    std::string out = fmt::format("{:.3f}", metres);
+    out.erase(out.find_last_not_of('0') + 1);
+    if (out.back() == '.') out.pop_back();
+    return out;
+}
+
+std::string whereText(const Phrase& p) {
+    std::string out;
+    for (const auto& w : conditionsOf(p)) out += (out.empty() ? " WHERE " : " AND ") + w;
+    return out;
+}
+
+std::string reference(const Phrase& p) {
+    std::string where = whereText(p), order = orderText(p);
+    if (where.empty() && order.empty()) return targetOf(p);
+    // A reference names the pick-th thing of its order: "the lamp on the largest table".
+    std::string limit = p.order ? fmt::format(" LIMIT {}", std::max<std::size_t>(p.pick, 1)) : "";
+    return "(FIND " + targetOf(p) + where + order + limit + ")";
+}
+
+std::string findText(const Phrase& p, bool path, const std::string& view) {
+    std::string limit = p.order && p.pick ? fmt::format(" LIMIT {}", std::max(p.pick, p.top)) : "";
+    return "FIND " + targetOf(p) + (view.empty() ? "" : " " + view) + whereText(p) + orderText(p) + limit +
+           (path ? " PATH" : "");
+}
+
+std::string countText(const Phrase& p, const std::string& view) {
+    return "COUNT " + targetOf(p) + (view.empty() ? "" : " " + view) + whereText(p);
+}
+
+}  // namespace smql::ask

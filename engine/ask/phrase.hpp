@@ -1,0 +1,110 @@
+// The noun phrases of a question and the SMQL they become. A question is first cut into words
+// (`words()`: lower case, contractions expanded, "chair(s)" read as "chairs"), then read by a small
+// recursive descent:
+//   phrase    := determiner* ordinal? superlative? (colour | side | adjective)* noun+ post*
+//   post      := condition | order | exclusion | "that is" condition
+//   condition := predicate-phrase phrase ["and" phrase]       ("between the sofa and the lamp")
+//   order     := ("closest" | "nearest" | "farthest") ("to" | "from") phrase
+//   exclusion := ("besides" | "other than" | "except") phrase
+// so "the lamp on the table near the window" is a lamp with a condition whose table has one of its
+// own. The predicate phrases come from the predicate table (relations::englishPhrases); nouns go
+// through the Lexicon (scene categories, WordNet, did-you-mean).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/ask/lexicon.hpp"
+#include "engine/ask/translator.hpp"
+#include "model/error.hpp"
+
+namespace smql::ask {
+
+using Words = std::vector<std::string>;
+
+// The question's words: lower case, contractions expanded ("what's" -> what is), punctuation out,
+// decimal numbers kept ("1.5"), "tv(s)" read as "tvs".
+Words words(const std::string& text);
+std::string joined(const Words& w, std::size_t from, std::size_t to);
+
+bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words);
+
+struct Phrase;
+
+struct Condition {
+    std::string predicate;
+    std::vector<Phrase> args;
+    std::optional<double> metres;  // "within 1 m of the door"
+    std::string words;             // "on the desk near the left wall"
+};
+
+// ORDER BY: "the largest table" (volume, descending), "the cushion closest to the window".
+struct Order {
+    std::string measure;  // an attribute (volume, height, z, width), or "distance" to `to`
+    bool descending = false;
+    std::vector<Phrase> to;  // distance's reference (one phrase)
+    std::string words;       // "largest", "closest to the window"
+};
+
+struct Phrase {
+    std::string words;                // as the answer says it: "red mug", "desk near the left wall"
+    std::string noun;                 // singular: "mug"
+    std::optional<std::string> kind;  // object / anchor: every node of that kind
+    std::string side;                 // wall.left: the side
+    std::vector<std::string> categories;
+    std::optional<std::string> colour;
+    std::vector<Condition> conditions;
+    std::vector<Phrase> excluded;  // things left out: "besides the cushions"
+    std::optional<Order> order;
+    std::size_t pick = 0;  // an ordinal or a superlative: the pick-th in `order` (1 = first)
+    std::size_t top = 1;   // "the two largest": how many of `order` answer
+};
+
+class PhraseParser {
+public:
+    PhraseParser(const Lexicon& lexicon, Translation& out, std::vector<std::string> planeCategories)
+        : lexicon_(lexicon), out_(out), planes_(std::move(planeCategories)) {}
+
+    // The predicate whose phrase starts at w[i] and how many words it takes.
+    static std::optional<std::pair<std::string, std::size_t>> predicateAt(const Words& w, std::size_t i);
+
+    // A phrase from w[i]; `withPosts`: also its conditions, orders and exclusions.
+    Phrase phrase(const Words& w, std::size_t& i, bool withPosts);
+    // condition | order | exclusion, joined by "and", from w[i], onto `p`.
+    void posts(const Words& w, std::size_t& i, Phrase& p);
+
+    Error notUnderstood(const Words& w, std::size_t at) const;
+    // Words neither the scene nor WordNet knows: the answer names them and nothing runs.
+    const std::vector<std::string>& unknownWords() const { return unknownWords_; }
+
+private:
+    Condition condition(const Words& w, std::size_t& i, const std::pair<std::string, std::size_t>& pred);
+    void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords);
+    bool isPlane(const Phrase& p) const;
+
+    const Lexicon& lexicon_;
+    Translation& out_;
+    std::vector<std::string> planes_;
+    std::vector<std::string> unknownWords_;
+    int nested_ = 0;  // inside a condition's phrase: an exclusion belongs to the outer one
+};
+
+// ------------------------------------------------------------------ SMQL
+
+// A name as SMQL writes it: bare when the grammar reads it back as the same name, else quoted.
+std::string smqlName(const std::string& name);
+std::string smqlString(const std::string& text);
+// A number of metres as SMQL writes it: fixed decimals, trailing zeros dropped ("1.5", "100").
+std::string smqlMetres(double metres);
+
+// The phrase as a reference: `sofa`, `wall.left`, `(FIND desk WHERE near(window))`.
+std::string reference(const Phrase& p);
+// The phrase's WHERE conditions, " WHERE a AND b" or empty.
+std::string whereText(const Phrase& p);
+// FIND <phrase> [ORDER BY ..] [LIMIT ..] [PATH]; `view` is a VIEW FROM clause or empty.
+std::string findText(const Phrase& p, bool path, const std::string& view = {});
+std::string countText(const Phrase& p, const std::string& view = {});
+
+}  // namespace smql::ask

@@ -1,0 +1,202 @@
+#!/usr/bin/env python3
+"""ASK on public question sets about real rooms (docs/ask.md, "How well it answers").
+
+VSI-Bench's questions are asked word for word about the rooms of ../shared/data/real-layouts (its own
+validation rooms, imported with `smql import vsibench --all`) and scored against VSI-Bench's ground
+truth: exact choice for multiple-choice questions, mean relative accuracy (MRA, VSI-Bench's measure)
+for numbers. ScanQA's and SQA3D's questions, human-written about ScanNet rooms, are asked about the
+same rooms where they are among them, and counted as translated or not (their free-text answers are
+checked by hand on a sample, printed with --sample).
+
+    scripts/eval_ask.py --smql build/shell/smql --fixtures /path/to/question/files [--sample 40]
+
+The fixture folder holds vsibench_test.jsonl (VSI-Bench's test split as JSON lines),
+ScanQA_v1.0_val.json and sqa3d_v1_balanced_questions_test_scannetv2.json; each set that is absent is
+skipped with a note. Nothing here downloads.
+"""
+import argparse
+import collections
+import json
+import os
+import random
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+LAYOUTS = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "data", "real-layouts")
+
+
+def run_ask(smql, db, scene, question):
+    text = question.replace("'", "''")
+    started = time.perf_counter()
+    proc = subprocess.run([smql, db, "-json", "-c", f"USE SCENE '{scene}'; ASK '{text}'"],
+                          capture_output=True, text=True)
+    elapsed = time.perf_counter() - started
+    out = proc.stdout.strip()
+    try:
+        results = json.loads(out) if out.startswith("[") else []
+    except json.JSONDecodeError:
+        results = []
+    error = None
+    if proc.returncode != 0:
+        for line in (proc.stdout + proc.stderr).splitlines():
+            if line.startswith('{"error"'):
+                error = json.loads(line)["error"]["message"]
+        error = error or (proc.stderr.strip() or "failed")
+    answer = results[1] if len(results) > 1 else None
+    return answer, error, elapsed
+
+
+def mra(pred, truth):
+    """VSI-Bench's mean relative accuracy over the thresholds 0.50, 0.55, ..., 0.95."""
+    if pred is None or truth == 0:
+        return 0.0
+    rel = abs(pred - truth) / abs(truth)
+    return sum(rel < 1 - (0.5 + 0.05 * k) for k in range(10)) / 10
+
+
+def smql_of(answer):
+    return answer["message"].splitlines()[0] if answer and answer.get("message") else ""
+
+
+def predicted(qtype, answer, options):
+    """The answer's value in VSI-Bench's terms: a number, or an option's letter."""
+    if not answer:
+        return None
+    rows, message = answer["rows"], answer["message"]
+    if qtype == "object_counting":
+        return float(rows[0]["count"]) if rows else None
+    if qtype == "object_abs_distance":
+        values = [r["distance"] for r in rows if isinstance(r.get("distance"), (int, float))]
+        return min(values) if values else None
+    if qtype == "object_size_estimation":
+        sizes = [max(r["width"], r["depth"], r["height"]) * 100 for r in rows
+                 if all(isinstance(r.get(k), (int, float)) for k in ("width", "depth", "height"))]
+        return sizes[0] if len(sizes) == 1 else (sum(sizes) / len(sizes) if sizes else None)
+    if qtype.startswith("object_rel_direction"):
+        m = re.search(r"is to your ([a-z-]+)", message)
+        if not m:
+            return None
+        word = m.group(1)
+        for option in options or []:
+            letter, _, text = option.partition(". ")
+            if text.strip().lower() == word:
+                return letter
+        return None
+    if qtype == "object_rel_distance":
+        if not rows:
+            return None
+        category = rows[0]["category"].replace("-", " ")
+        for option in options or []:
+            letter, _, text = option.partition(". ")
+            if text.strip().lower() == category:
+                return letter
+        return None
+    return None
+
+
+def vsibench(args, db, scenes):
+    path = os.path.join(args.fixtures, "vsibench_test.jsonl")
+    if not os.path.exists(path):
+        print(f"note: {path} absent; VSI-Bench skipped")
+        return
+    questions = [json.loads(l) for l in open(path)]
+    questions = [q for q in questions if q["scene_name"] in scenes]
+    if args.limit:
+        random.Random(7).shuffle(questions)
+        questions = questions[: args.limit]
+    by_type = collections.defaultdict(lambda: {"n": 0, "translated": 0, "score": 0.0})
+    latencies, samples, failures = [], [], collections.Counter()
+    for q in questions:
+        answer, error, elapsed = run_ask(args.smql, db, q["scene_name"], q["question"])
+        latencies.append(elapsed)
+        row = by_type[q["question_type"]]
+        row["n"] += 1
+        if error:
+            failures[(q["question_type"], error[:90])] += 1
+            continue
+        row["translated"] += 1
+        pred = predicted(q["question_type"], answer, q.get("options"))
+        if q.get("options"):
+            row["score"] += 1.0 if pred == q["ground_truth"] else 0.0
+        else:
+            row["score"] += mra(pred, float(q["ground_truth"]))
+        samples.append((q, answer, pred))
+    print(f"\nVSI-Bench, {len(questions)} questions on {len(scenes)} real rooms")
+    print("| question type | questions | translated | score (choice: accuracy; number: MRA) |")
+    print("|---|---:|---:|---:|")
+    total = {"n": 0, "translated": 0, "score": 0.0}
+    for qtype in sorted(by_type):
+        r = by_type[qtype]
+        for k in total:
+            total[k] += r[k]
+        print(f"| {qtype} | {r['n']} | {r['translated'] / r['n']:.2f} | {r['score'] / r['n']:.2f} |")
+    print(f"| all | {total['n']} | {total['translated'] / max(total['n'], 1):.2f} | "
+          f"{total['score'] / max(total['n'], 1):.2f} |")
+    latencies.sort()
+    if latencies:
+        print(f"process per question (start, open, translate, answer): median {latencies[len(latencies) // 2] * 1000:.1f} ms")
+    print("most frequent refusals:")
+    for (qtype, error), n in failures.most_common(12):
+        print(f"  {n:5d}  {qtype}: {error}")
+    if args.sample:
+        print("\nsample of answers:")
+        for q, answer, pred in random.Random(11).sample(samples, min(args.sample, len(samples))):
+            print(f"- [{q['scene_name']}] {q['question'].splitlines()[0]}\n    truth {q['ground_truth']} "
+                  f"{q.get('options') or ''}; got {pred}: {answer['message'].splitlines()[-1][:200]}")
+
+
+def free_text(args, db, scenes, name, file, read):
+    path = os.path.join(args.fixtures, file)
+    if not os.path.exists(path):
+        print(f"note: {path} absent; {name} skipped")
+        return
+    questions = [(scene, text) for scene, text in read(json.load(open(path))) if scene in scenes]
+    if args.limit:
+        random.Random(7).shuffle(questions)
+        questions = questions[: args.limit]
+    translated, samples, failures = 0, [], collections.Counter()
+    for scene, text in questions:
+        answer, error, _ = run_ask(args.smql, db, scene, text)
+        if error:
+            failures[error[:80]] += 1
+        else:
+            translated += 1
+            samples.append((scene, text, answer))
+    print(f"\n{name}: {len(questions)} questions on rooms of real-layouts; translated {translated} "
+          f"({translated / max(len(questions), 1):.2f})")
+    for error, n in failures.most_common(8):
+        print(f"  {n:5d}  {error}")
+    if args.sample:
+        for scene, text, answer in random.Random(11).sample(samples, min(args.sample // 2, len(samples))):
+            print(f"- [{scene}] {text}\n    {smql_of(answer)} -> {answer['message'].splitlines()[-1][:160]}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--smql", default="build/shell/smql")
+    parser.add_argument("--fixtures", required=True, help="folder with the public question files")
+    parser.add_argument("--db", help="a database of the real layouts (made in a temporary folder if absent)")
+    parser.add_argument("--limit", type=int, default=0, help="ask at most this many questions of each set")
+    parser.add_argument("--sample", type=int, default=0, help="print this many answers to check by hand")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        db = args.db or os.path.join(tmp, "layouts")
+        if not os.path.exists(db):
+            for file in ("scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"):
+                subprocess.run([args.smql, "import", "vsibench", os.path.join(LAYOUTS, file), "--all", "--db", db],
+                               check=True, capture_output=True)
+        listing = subprocess.run([args.smql, db, "-json", "-c", "SHOW SCENES"], check=True, capture_output=True,
+                                 text=True).stdout
+        scenes = {r["name"] for r in json.loads(listing)[0]["rows"]}
+        vsibench(args, db, scenes)
+        free_text(args, db, scenes, "ScanQA (val)", "ScanQA_v1.0_val.json",
+                  lambda data: [(q["scene_id"], q["question"]) for q in data])
+        free_text(args, db, scenes, "SQA3D (test)", "sqa3d_v1_balanced_questions_test_scannetv2.json",
+                  lambda data: [(q["scene_id"], q["question"]) for q in data["questions"]])
+
+
+if __name__ == "__main__":
+    sys.exit(main())
