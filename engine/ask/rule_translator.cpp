@@ -214,7 +214,7 @@ private:
                             "back-right"}))
                 out.choices.push_back(w == "behind" ? "back" : w);
             else if (!isOneOf(w, {"or", "the", "of", "to", "my", "side", "and"}) &&
-                     !(facing.categories.size() && isOneOf(w, {facing.noun})))
+                     !(!facing.categories.empty() && isOneOf(w, {facing.noun})))
                 break;
         }
         if (!c.done()) {
@@ -1055,7 +1055,7 @@ Error QuestionReader::unreadable() const {
         auto put = [&](std::string_view slot, const std::string& noun) {
             if (auto at = suggestion.find(slot); at != std::string::npos) suggestion.replace(at, slot.size(), noun);
         };
-        put("X", nouns.size() > 0 ? nouns[0] : "mug");
+        put("X", !nouns.empty() ? nouns[0] : "mug");
         put("Y", nouns.size() > 1 ? nouns[1] : "door");
     }
     std::string detail;
