@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 #include "model/geometry.hpp"
 #include "model/types.hpp"
 

@@ -9,7 +9,7 @@
 #include "bench/sqlite_baseline.hpp"
 #include "bench/stats.hpp"
 #include "engine/engine.hpp"
-#include "engine/relations/hierarchy.hpp"
+#include "relations/hierarchy.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "storage/database.hpp"
 

@@ -11,21 +11,21 @@
 #include <fmt/format.h>
 
 #include "engine/binder/binder.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
 #include "engine/exec/executor.hpp"
-#include "engine/exec/scene_snapshot.hpp"
 #include "engine/history/scene_update.hpp"
 #include "engine/parser/parser.hpp"
 #include "engine/planner/planner.hpp"
-#include "engine/relations/hierarchy.hpp"
 #include "model/error.hpp"
 #include "model/instant.hpp"
 #include "model/names.hpp"
+#include "relations/hierarchy.hpp"
 #include "storage/database.hpp"
 
 namespace smql {
 
-using exec::SceneSnapshot;
-using exec::Slot;
+using catalog::SceneSnapshot;
+using catalog::Slot;
 
 namespace {
 
@@ -37,7 +37,7 @@ constexpr std::size_t kSnapshotCacheSize = 32;
 
 struct Engine::State {
     std::unique_ptr<storage::Database> db;
-    exec::Session session;
+    catalog::Session session;
     struct CachedSnapshot {
         std::shared_ptr<const SceneSnapshot> snapshot;
         std::uint64_t lastUse = 0;

@@ -66,7 +66,7 @@ struct Node {
 };
 
 // The relation vocabulary as stored: a code on disk and a word in files. New codes go at the end.
-// Each code is a predicate of the query language; engine/relations/predicates.cpp gives each its
+// Each code is a predicate of the query language; relations/predicates.cpp gives each its
 // formula in one table, which the compiler checks against this list.
 enum class RelationType : std::uint8_t {
     On = 0,

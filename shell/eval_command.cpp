@@ -15,7 +15,7 @@
 
 #include "engine/engine.hpp"
 #include "engine/guide/route_graph.hpp"
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"

@@ -18,8 +18,8 @@
 #include <fmt/format.h>
 
 #include "engine/parser/parser.hpp"
-#include "engine/relations/predicates.hpp"
-#include "engine/relations/thresholds.hpp"
+#include "relations/predicates.hpp"
+#include "relations/thresholds.hpp"
 #include "shell/interrupt.hpp"
 
 namespace smql::shell {

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "engine/ask/wordnet.hpp"
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 #include "model/error.hpp"
 
 namespace smql::ask {

@@ -23,7 +23,7 @@
 #include "engine/ask/phrase.hpp"
 #include "engine/ask/translator.hpp"
 #include "engine/ask/wordnet.hpp"
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 

@@ -8,10 +8,10 @@
 #include "engine/ask/answer.hpp"
 
 #include "engine/binder/binder.hpp"
-#include "engine/exec/scene_snapshot.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
 #include "engine/parser/parser.hpp"
-#include "engine/relations/predicates.hpp"
 #include "model/error.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::binder {
 
@@ -28,7 +28,7 @@ bool reads(const ast::Statement& statement) {
 
 // The question with what the translator needs of the scene: its categories, the ones that are
 // walls, doors or windows, and the ones it holds several of.
-ask::Question questionAbout(const std::string& text, const exec::SceneSnapshot& snap) {
+ask::Question questionAbout(const std::string& text, const catalog::SceneSnapshot& snap) {
     ask::Question q{text, snap.info().name, snap.categories(), {}, {}, snap.attributeNames()};
     std::map<std::string, std::pair<int, bool>> seen;  // category -> count, all vertical planes
     std::set<std::string> anchors;

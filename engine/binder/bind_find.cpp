@@ -3,7 +3,7 @@
 
 #include "engine/ask/lexicon.hpp"
 #include "engine/binder/binder.hpp"
-#include "engine/exec/attributes.hpp"
+#include "engine/catalog/attributes.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "storage/database.hpp"
@@ -49,11 +49,11 @@ BoundFind Binder::bindFind(const ast::FindStmt& find) {
         }
     }
     for (const auto& column : find.columns) {
-        bool known = exec::attributeIn(scene(), column) || (column == "distance" && out.distanceTo) ||
+        bool known = catalog::attributeIn(scene(), column) || (column == "distance" && out.distanceTo) ||
                      (column == "similarity" && out.similarTo);
         if (!known) {
             std::vector<std::string> names;
-            for (const auto& attribute : exec::builtInAttributes()) names.emplace_back(attribute.name);
+            for (const auto& attribute : catalog::builtInAttributes()) names.emplace_back(attribute.name);
             for (const auto& stored : scene().attributeNames()) names.push_back(stored);
             if (out.distanceTo) names.emplace_back("distance");
             if (out.similarTo) names.emplace_back("similarity");

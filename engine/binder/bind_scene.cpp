@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "engine/binder/binder.hpp"
-#include "engine/exec/scene_snapshot.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "storage/database.hpp"

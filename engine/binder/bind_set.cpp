@@ -12,7 +12,7 @@ namespace smql::binder {
 
 namespace {
 
-BoundSet bindLimit(const exec::LimitSetting& limit, const ast::SetStmt& set) {
+BoundSet bindLimit(const catalog::LimitSetting& limit, const ast::SetStmt& set) {
     const auto* number = std::get_if<double>(&set.value);
     if (!number || !std::isfinite(*number) || *number < 1 || *number != std::floor(*number) || *number > 1e15)
         throw Error(ErrorKind::Binding, fmt::format("{} takes a whole number of at least 1", limit.name), set.where,
@@ -26,7 +26,7 @@ BoundSet bindLimit(const exec::LimitSetting& limit, const ast::SetStmt& set) {
 }  // namespace
 
 void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
-    if (const auto* limit = exec::findLimit(set.name)) {
+    if (const auto* limit = catalog::findLimit(set.name)) {
         out.body = bindLimit(*limit, set);
         return;
     }
@@ -34,7 +34,7 @@ void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
     if (!setting) {
         std::vector<std::string> names;
         for (const auto& s : relations::settingsCatalogue()) names.push_back(s.name);
-        for (const auto& s : exec::limitSettings()) names.emplace_back(s.name);
+        for (const auto& s : catalog::limitSettings()) names.emplace_back(s.name);
         auto close = model::nearestNames(set.name, names);
         throw Error(
             ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,

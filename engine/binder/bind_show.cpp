@@ -1,6 +1,6 @@
 // SHOW SCENES | SETTINGS | TREE [x] | CHANGES [SINCE t] | GRAPH.
 #include "engine/binder/binder.hpp"
-#include "engine/exec/scene_snapshot.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
 #include "model/error.hpp"
 
 namespace smql::binder {

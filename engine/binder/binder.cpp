@@ -5,8 +5,8 @@
 
 #include "engine/ask/lexicon.hpp"
 #include "engine/ask/wordnet.hpp"
-#include "engine/exec/attributes.hpp"
-#include "engine/exec/singular.hpp"
+#include "engine/binder/singular.hpp"
+#include "engine/catalog/attributes.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "storage/database.hpp"
@@ -93,7 +93,7 @@ BoundStatement Binder::bind(const ast::Statement& statement, const std::vector<s
     return out;
 }
 
-const exec::SceneSnapshot& Binder::scene() {
+const catalog::SceneSnapshot& Binder::scene() {
     if (!scene_) scene_ = ctx_.currentScene();
     return *scene_;
 }
@@ -148,7 +148,7 @@ NodeSet Binder::bindSingle(const ast::Ref& ref, std::string_view role) {
     if (inQuestion_) return set;
     set.singleFor = role;
     set.where = ref.where;
-    if (set.source == NodeSet::Source::Nodes) exec::requireOne(scene(), set, set.slots);
+    if (set.source == NodeSet::Source::Nodes) binder::requireOne(scene(), set, set.slots);
     return set;
 }
 
@@ -193,10 +193,11 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
                             ref.where, "ids are global; SHOW TREE lists this scene's nodes, USE SCENE switches scenes");
             // `chair#50` where #50 is a sofa: the name and the id disagree, so neither is trusted.
             if (const model::Node& node = snap.node(*slot); !ref.name.empty() && ref.name != node.category)
-                throw Error(ErrorKind::Binding,
-                            fmt::format("#{} is {}, not a {}", ref.number, exec::SceneSnapshot::label(node), ref.name),
-                            ref.where, fmt::format("write {} or #{}", exec::SceneSnapshot::label(node), ref.number));
-            return numbered(oneNode(*slot, exec::SceneSnapshot::label(snap.node(*slot))));
+                throw Error(
+                    ErrorKind::Binding,
+                    fmt::format("#{} is {}, not a {}", ref.number, catalog::SceneSnapshot::label(node), ref.name),
+                    ref.where, fmt::format("write {} or #{}", catalog::SceneSnapshot::label(node), ref.number));
+            return numbered(oneNode(*slot, catalog::SceneSnapshot::label(snap.node(*slot))));
         }
         case ast::Ref::Kind::SourceId: {
             auto slot = snap.slotOfSource(ref.number);
@@ -205,8 +206,8 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
                             fmt::format("no node with source id {} in scene '{}'", ref.number, snap.info().name),
                             ref.where,
                             "source ids are the ids of the imported file; they resolve in the current scene");
-            return numbered(
-                oneNode(*slot, fmt::format("src#{} = {}", ref.number, exec::SceneSnapshot::label(snap.node(*slot)))));
+            return numbered(oneNode(
+                *slot, fmt::format("src#{} = {}", ref.number, catalog::SceneSnapshot::label(snap.node(*slot)))));
         }
         case ast::Ref::Kind::Param:
             // Binder::bind puts values in first; a placeholder left here had none.
@@ -314,10 +315,10 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
                 out.literalFolded = parser::lowerCase(*text);
             if (expr.distanceTo) {
                 out.distanceTo = bindRef(*expr.distanceTo);
-                checkLiteral(expr, exec::AttributeMeasure::Length, "distance()");
+                checkLiteral(expr, catalog::AttributeMeasure::Length, "distance()");
             } else {
                 checkLiteral(expr, comparable(expr.attribute, expr.where).measure, expr.attribute);
-                out.builtIn = exec::builtInAttribute(expr.attribute);
+                out.builtIn = catalog::builtInAttribute(expr.attribute);
             }
             return out;
     }
@@ -329,19 +330,19 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
 
 namespace smql::binder {
 
-exec::AttributeInfo Binder::comparable(const std::string& name, SourceLocation where) {
-    if (auto attribute = exec::attributeIn(scene(), name)) {
-        if (attribute->measure == exec::AttributeMeasure::None)
+catalog::AttributeInfo Binder::comparable(const std::string& name, SourceLocation where) {
+    if (auto attribute = catalog::attributeIn(scene(), name)) {
+        if (attribute->measure == catalog::AttributeMeasure::None)
             throw Error(ErrorKind::Binding, fmt::format("{} cannot be compared or ordered", name), where,
                         "compare its parts: x, y, z, height, width, depth, volume; RETURN shows it");
         return *attribute;
     }
     // A question's attribute that no node here carries ("is the sofa grey?" where nothing records
     // colours) is a no, as ASK words it, rather than an error about SMQL the user did not write.
-    if (inQuestion_) return exec::storedAttribute(name);
+    if (inQuestion_) return catalog::storedAttribute(name);
     std::vector<std::string> names;
-    for (const auto& attribute : exec::builtInAttributes())
-        if (attribute.measure != exec::AttributeMeasure::None) names.emplace_back(attribute.name);
+    for (const auto& attribute : catalog::builtInAttributes())
+        if (attribute.measure != catalog::AttributeMeasure::None) names.emplace_back(attribute.name);
     for (const auto& stored : scene().attributeNames()) names.push_back(stored);
     auto close = model::nearestNames(name, names);
     throw Error(
@@ -352,24 +353,24 @@ exec::AttributeInfo Binder::comparable(const std::string& name, SourceLocation w
 
 // Lengths are written with their unit (`height > 80 cm`), so a bare `2` never silently means
 // metres; text attributes take a quoted string, numbers a number.
-void Binder::checkLiteral(const ast::Expr& expr, exec::AttributeMeasure measure, std::string_view what) {
+void Binder::checkLiteral(const ast::Expr& expr, catalog::AttributeMeasure measure, std::string_view what) {
     const bool text = std::holds_alternative<std::string>(expr.literal);
     switch (measure) {
-        case exec::AttributeMeasure::Length:
+        case catalog::AttributeMeasure::Length:
             if (text || !(expr.literalHasUnit || expr.literalBound))
                 throw Error(ErrorKind::Binding, fmt::format("{} is a length: write the unit", what), expr.where,
                             fmt::format("as in {} > 1.5 m, or 80 cm, or 300 mm", what));
             return;
-        case exec::AttributeMeasure::Volume:
-        case exec::AttributeMeasure::Number:
+        case catalog::AttributeMeasure::Volume:
+        case catalog::AttributeMeasure::Number:
             if (text || (expr.literalHasUnit && !expr.literalBound))
                 throw Error(ErrorKind::Binding,
                             fmt::format("{} is a number{}", what,
-                                        measure == exec::AttributeMeasure::Volume ? " of cubic metres" : ""),
+                                        measure == catalog::AttributeMeasure::Volume ? " of cubic metres" : ""),
                             expr.where, fmt::format("write a bare number, as in {} > 0.5", what));
             return;
-        case exec::AttributeMeasure::Text:
-        case exec::AttributeMeasure::None:
+        case catalog::AttributeMeasure::Text:
+        case catalog::AttributeMeasure::None:
             return;  // stored attributes are text that may hold numbers (captures >= 2)
     }
 }

@@ -12,8 +12,8 @@
 #include "engine/ask/lexicon.hpp"
 #include "engine/binder/bound.hpp"
 #include "engine/binder/parameters.hpp"
-#include "engine/exec/attributes.hpp"
-#include "engine/exec/session.hpp"
+#include "engine/catalog/attributes.hpp"
+#include "engine/catalog/session.hpp"
 
 namespace smql::storage {
 class ReadTransaction;
@@ -23,11 +23,11 @@ namespace smql::binder {
 
 struct BindContext {
     const storage::ReadTransaction& txn;
-    const exec::Session& session;
+    const catalog::Session& session;
     // The current scene's snapshot, loaded when a statement first needs one.
-    std::function<std::shared_ptr<const exec::SceneSnapshot>()> currentScene;
+    std::function<std::shared_ptr<const catalog::SceneSnapshot>()> currentScene;
     // The current scene as it was at an instant (model::utcInstant's form): its version then.
-    std::function<std::shared_ptr<const exec::SceneSnapshot>(const std::string& instant)> sceneAsOf;
+    std::function<std::shared_ptr<const catalog::SceneSnapshot>(const std::string& instant)> sceneAsOf;
 };
 
 class Binder {
@@ -64,7 +64,7 @@ private:
                                      bool countOnly);
 
     // Shared by the statements (binder.cpp).
-    const exec::SceneSnapshot& scene();
+    const catalog::SceneSnapshot& scene();
     NodeSet bindRef(const ast::Ref& ref);
     // A reference where one node is needed (`role` says where, for the error).
     NodeSet bindSingle(const ast::Ref& ref, std::string_view role);
@@ -84,12 +84,12 @@ private:
     // A distance given to a predicate: its metres, or an error naming the predicates that take one.
     static double predicateDistance(const relations::PredicateSpec& spec, const ast::Distance& distance);
     // An attribute a comparison or ORDER BY can use, or an error with the closest names.
-    exec::AttributeInfo comparable(const std::string& name, SourceLocation where);
-    static void checkLiteral(const ast::Expr& expr, exec::AttributeMeasure measure, std::string_view what);
+    catalog::AttributeInfo comparable(const std::string& name, SourceLocation where);
+    static void checkLiteral(const ast::Expr& expr, catalog::AttributeMeasure measure, std::string_view what);
     NodeSet numbered(NodeSet set);
 
     BindContext ctx_;
-    std::shared_ptr<const exec::SceneSnapshot> scene_;
+    std::shared_ptr<const catalog::SceneSnapshot> scene_;
     std::size_t nextSetId_ = 0;
     // Binding an ASK's translation: a question cannot name nodes by id, so its RELATE relates every
     // pair and the answer sums them up in words (docs/ask.md).

@@ -12,15 +12,15 @@
 #include <vector>
 
 #include "engine/ask/translator.hpp"
-#include "engine/exec/attributes.hpp"
-#include "engine/exec/scene_snapshot.hpp"
-#include "engine/exec/session.hpp"
+#include "engine/catalog/attributes.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
+#include "engine/catalog/session.hpp"
 #include "engine/parser/ast.hpp"
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::binder {
 
-using exec::Slot;
+using catalog::Slot;
 struct BoundFind;
 
 // The nodes a reference stands for, and how to say it ("sofa (2 nodes)"). Names, ids and kind
@@ -67,7 +67,7 @@ struct BoundExpr {
     std::string attribute;
     // The built-in attribute `attribute` names, resolved once here rather than per row; null for a
     // stored attribute (color ...) or a distance.
-    const exec::AttributeInfo* builtIn = nullptr;
+    const catalog::AttributeInfo* builtIn = nullptr;
     std::optional<NodeSet> distanceTo;
     ast::CompareOp op = ast::CompareOp::Eq;
     ast::Literal literal;
@@ -176,7 +176,7 @@ struct BoundUse {
 // SET: a threshold of the predicates or a limit of the session (one of the two).
 struct BoundSet {
     const relations::SettingInfo* threshold = nullptr;
-    const exec::LimitSetting* limit = nullptr;
+    const catalog::LimitSetting* limit = nullptr;
     double value = 0;
 
     std::string_view name() const { return threshold ? std::string_view(threshold->name) : limit->name; }
@@ -199,7 +199,7 @@ struct BoundStatement {
                  BoundDropScene, BoundRenameScene, BoundGuide, BoundCheck, BoundShowCategories, BoundShowAttributes>
         body;
     // The scene the names were bound in; null for statements that need none (USE, SET, SHOW SCENES ...).
-    std::shared_ptr<const exec::SceneSnapshot> scene;
+    std::shared_ptr<const catalog::SceneSnapshot> scene;
     std::size_t setCount = 0;  // NodeSet ids run from 0 to setCount - 1
     std::string note;          // said under the answer: "no piano in scene 'room0'"
 };

@@ -8,9 +8,9 @@
 #include <fmt/format.h>
 
 #include "engine/parser/parser.hpp"
-#include "engine/relations/predicates.hpp"
 #include "model/embedding.hpp"
 #include "model/error.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::binder {
 

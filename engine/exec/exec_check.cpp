@@ -21,16 +21,16 @@ ResultSet Executor::run(const binder::BoundCheck& c) {
     const bool holds = answer > 0;
 
     std::string predicate(relations::toString(c.predicate));
-    std::string objects = SceneSnapshot::label(object);
-    if (third) objects += " and " + SceneSnapshot::label(*third);
+    std::string objects = catalog::SceneSnapshot::label(object);
+    if (third) objects += " and " + catalog::SceneSnapshot::label(*third);
     ResultSet rs;
     rs.columns = {{"answer", ValueType::Text}, {"subject", ValueType::Text}, {"relation", ValueType::Text},
                   {"object", ValueType::Text}, {"score", ValueType::Real},   {"distance", ValueType::Real}};
-    rs.rows.push_back({std::string(holds ? "yes" : "no"), SceneSnapshot::label(subject), predicate, objects, answer,
-                       model::distance(subject.box, object.box)});
+    rs.rows.push_back({std::string(holds ? "yes" : "no"), catalog::SceneSnapshot::label(subject), predicate, objects,
+                       answer, model::distance(subject.box, object.box)});
     std::string words = predicate;
     std::replace(words.begin(), words.end(), '_', ' ');
-    rs.message = fmt::format("{}: {} is {}{} {}", holds ? "yes" : "no", SceneSnapshot::label(subject),
+    rs.message = fmt::format("{}: {} is {}{} {}", holds ? "yes" : "no", catalog::SceneSnapshot::label(subject),
                              holds ? "" : "not ", words, objects);
     if (c.nearDistance) rs.message += fmt::format(" (within {} m)", *c.nearDistance);
     if (same) rs.message += " (the same node)";

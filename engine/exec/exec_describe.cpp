@@ -11,7 +11,7 @@ namespace smql::exec {
 ResultSet Executor::run(const binder::BoundDescribe& d) {
     ResultSet rs;
     rs.columns = {{"id", ValueType::Integer}, {"field", ValueType::Text}, {"value", ValueType::Text}};
-    for (Slot s : slots(d.nodes, defaultFrame())) {
+    for (catalog::Slot s : slots(d.nodes, defaultFrame())) {
         const model::Node& n = scene().node(s);
         auto id = static_cast<std::int64_t>(n.id);
         auto add = [&](std::string_view name, std::string value) {
@@ -33,12 +33,12 @@ ResultSet Executor::run(const binder::BoundDescribe& d) {
         if (!n.text.empty()) add("text", n.text);
         if (n.hidden) add("hidden", "yes (left out of queries unless named)");
         std::string kids;
-        for (Slot c : scene().children(s)) {
+        for (catalog::Slot c : scene().children(s)) {
             const model::Node& child = scene().node(c);
             if (child.kind == model::NodeKind::Description)
                 add("description", child.text);
             else
-                kids += (kids.empty() ? "" : ", ") + SceneSnapshot::label(child);
+                kids += (kids.empty() ? "" : ", ") + catalog::SceneSnapshot::label(child);
         }
         if (!kids.empty()) add("children", kids);
         // Evidence lives in the blob table, not in the snapshot.

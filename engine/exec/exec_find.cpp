@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/exec/attributes.hpp"
+#include "engine/catalog/attributes.hpp"
 #include "engine/exec/executor.hpp"
 #include "engine/similar/text_embedder.hpp"
 #include "model/geometry.hpp"
@@ -59,9 +59,9 @@ std::optional<double> number(const std::variant<double, std::string>& value) {
     return parsed;
 }
 
-AttributeInfo attributeNamed(const std::string& name) {
-    if (const AttributeInfo* builtIn = builtInAttribute(name)) return *builtIn;
-    return storedAttribute(name);
+catalog::AttributeInfo attributeNamed(const std::string& name) {
+    if (const catalog::AttributeInfo* builtIn = catalog::builtInAttribute(name)) return *builtIn;
+    return catalog::storedAttribute(name);
 }
 
 template <typename T>
@@ -100,20 +100,20 @@ Value sourceValue(const Node& n) {
 
 }  // namespace
 
-bool Executor::compare(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
+bool Executor::compare(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
     std::optional<std::variant<double, std::string>> value;
     if (expr.distanceTo) {
         const auto& refs = slots(*expr.distanceTo, frame);
         const Node& node = scene().node(slot);
         if (node.geometry == model::GeometryKind::None || refs.empty()) return false;
         double nearest = std::numeric_limits<double>::infinity();
-        for (Slot r : refs)
+        for (catalog::Slot r : refs)
             if (r != slot) nearest = std::min(nearest, model::distance(node.box, scene().node(r).box));
         if (std::isinf(nearest)) return false;  // only itself to measure from
         value = nearest;
     } else {
-        value =
-            comparable(attributeValue(scene(), slot, expr.builtIn ? *expr.builtIn : storedAttribute(expr.attribute)));
+        value = comparable(catalog::attributeValue(
+            scene(), slot, expr.builtIn ? *expr.builtIn : catalog::storedAttribute(expr.attribute)));
     }
     if (!value) return false;  // a node without the field never matches, as NULL in SQL
     if (auto* text = std::get_if<std::string>(&expr.literal)) {
@@ -130,7 +130,7 @@ bool Executor::compare(const BoundExpr& expr, Slot slot, const relations::Frame&
     return ordered(expr.op, *have, want);
 }
 
-bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
+bool Executor::matches(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
     switch (expr.kind) {
         case BoundExpr::Kind::And:
             return std::all_of(expr.children.begin(), expr.children.end(),
@@ -150,22 +150,22 @@ bool Executor::matches(const BoundExpr& expr, Slot slot, const relations::Frame&
 
 double Executor::score(relations::Predicate p, const Node& a, const Node& b, const relations::Frame& frame,
                        const Node* c, std::optional<double> writtenDistance) const {
-    return relations::evaluate(p, a, b, thresholds_, frame, SceneObstacles(scene()), c, writtenDistance);
+    return relations::evaluate(p, a, b, thresholds_, frame, catalog::SceneObstacles(scene()), c, writtenDistance);
 }
 
 std::vector<relations::RelationHit> Executor::relate(const Node& a, const Node& b,
                                                      const relations::Frame& frame) const {
-    return relations::relate(a, b, thresholds_, frame, SceneObstacles(scene()));
+    return relations::relate(a, b, thresholds_, frame, catalog::SceneObstacles(scene()));
 }
 
-bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::Frame& frame) {
+bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
     const auto& snap = scene();
     const Node& a = snap.node(slot);
     const auto& spec = relations::spec(expr.predicate);
     if (expr.args.size() == 2) {
         const auto& second = slots(expr.args[1], frame);
-        for (Slot b : slots(expr.args[0], frame))
-            for (Slot c : second) {
+        for (catalog::Slot b : slots(expr.args[0], frame))
+            for (catalog::Slot c : second) {
                 poll();
                 if (b != slot && c != slot && c != b &&
                     score(expr.predicate, a, snap.node(b), frame, &snap.node(c)) > 0)
@@ -177,7 +177,7 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
     // Where a reference must be for the predicate to hold: a cheap bounds test before the exact one.
     std::optional<model::Aabb> region;
     if (spec.referenceRegion) region = spec.referenceRegion(snap.bounds(slot), nearDistance, thresholds_);
-    auto holds = [&](Slot b) {
+    auto holds = [&](catalog::Slot b) {
         poll();
         if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
         return score(expr.predicate, a, snap.node(b), frame, nullptr, expr.nearDistance) > 0;
@@ -187,14 +187,14 @@ bool Executor::holdsForSome(const BoundExpr& expr, Slot slot, const relations::F
     if (region && refs.size() > kIndexedReferences) {
         // Many references: the R-tree names the few close enough, the set keeps its own.
         const auto& member = membership(expr.args[0], frame);
-        std::vector<Slot> close;
+        std::vector<catalog::Slot> close;
         snap.spatialIndex().intersecting(*region, close);
-        return std::any_of(close.begin(), close.end(), [&](Slot b) { return member[b] && holds(b); });
+        return std::any_of(close.begin(), close.end(), [&](catalog::Slot b) { return member[b] && holds(b); });
     }
     return std::any_of(refs.begin(), refs.end(), holds);
 }
 
-bool Executor::inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame) {
+bool Executor::inTarget(const binder::Target& target, catalog::Slot slot, const relations::Frame& frame) {
     const Node& n = scene().node(slot);
     switch (target.kind) {
         case binder::Target::Kind::Category:
@@ -214,7 +214,7 @@ bool Executor::inTarget(const binder::Target& target, Slot slot, const relations
 std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame) {
     const auto& f = *plan.find;
     const auto& snap = scene();
-    const Slot ref = slots(*f.distanceTo, frame).front();
+    const catalog::Slot ref = slots(*f.distanceTo, frame).front();
     const auto want = static_cast<std::size_t>(*f.limit);
     const model::Aabb& around = snap.bounds(ref);
     auto boundsGap = [&](const model::Aabb& b) {
@@ -225,10 +225,10 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
     };
     const auto& index = snap.spatialIndex();
     for (std::size_t k = std::max<std::size_t>(4 * want, 32);; k *= 4) {
-        std::vector<Slot> near;
+        std::vector<catalog::Slot> near;
         index.nearest(around, k, near);
         std::vector<Hit> hits;
-        for (Slot s : near) {
+        for (catalog::Slot s : near) {
             poll();
             if ((f.nearest && s == ref) || !inTarget(f.target, s, frame) || (f.where && !matches(*f.where, s, frame)))
                 continue;
@@ -308,20 +308,20 @@ model::Aabb Executor::probeRegion(const BoundExpr& term, const model::Aabb& arou
 std::vector<Hit> Executor::filtered(const planner::FindPlan& plan, const relations::Frame& frame) {
     const auto& f = *plan.find;
     const auto& snap = scene();
-    std::vector<Slot> candidates;
+    std::vector<catalog::Slot> candidates;
     if (plan.access == Access::RTreeProbe) {
         const BoundExpr& term = plan.probeTerm();
-        for (Slot ref : slots(*planner::probeReferences(term), frame))
+        for (catalog::Slot ref : slots(*planner::probeReferences(term), frame))
             snap.spatialIndex().intersecting(probeRegion(term, snap.bounds(ref)), candidates);
         std::sort(candidates.begin(), candidates.end());
         candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-        std::erase_if(candidates, [&](Slot s) { return !inTarget(f.target, s, frame); });
+        std::erase_if(candidates, [&](catalog::Slot s) { return !inTarget(f.target, s, frame); });
     } else {
         candidates = slots(f.target.nodes, frame);
     }
     std::vector<Hit> hits;
     hits.reserve(candidates.size());
-    for (Slot s : candidates) {
+    for (catalog::Slot s : candidates) {
         poll();
         if (!f.where || matches(*f.where, s, frame)) hits.push_back({s, 0});
     }
@@ -346,7 +346,7 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
         });
         for (auto& h : hits) {
             h.distance = std::numeric_limits<double>::infinity();
-            for (Slot r : refs)
+            for (catalog::Slot r : refs)
                 h.distance = std::min(h.distance, model::distance(snap.node(h.slot).box, snap.node(r).box));
         }
         std::stable_sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
@@ -364,7 +364,7 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
 // either direction, and ties keep id order. With a LIMIT only the first k are sorted (the plan's top-k).
 void Executor::orderByAttribute(const planner::FindPlan& plan, std::vector<Hit>& hits) const {
     const auto& f = *plan.find;
-    const AttributeInfo attribute = attributeNamed(f.orderAttribute);
+    const catalog::AttributeInfo attribute = attributeNamed(f.orderAttribute);
     struct Keyed {
         Hit hit;
         std::optional<double> number;
@@ -375,7 +375,7 @@ void Executor::orderByAttribute(const planner::FindPlan& plan, std::vector<Hit>&
     keyed.reserve(hits.size());
     for (const Hit& h : hits) {
         Keyed k{h, std::nullopt, std::nullopt, scene().node(h.slot).id};
-        if (auto value = comparable(attributeValue(scene(), h.slot, attribute))) {
+        if (auto value = comparable(catalog::attributeValue(scene(), h.slot, attribute))) {
             k.number = number(*value);
             if (!k.number) k.text = lower(std::get<std::string>(*value));
         }
@@ -429,10 +429,10 @@ ResultSet Executor::run(const binder::BoundFind& f) {
 ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>& hits) const {
     ResultSet rs;
     // none: the distance or similarity column
-    std::vector<std::optional<AttributeInfo>> attributes;
+    std::vector<std::optional<catalog::AttributeInfo>> attributes;
     for (const auto& column : f.columns) {
         const bool measured = (column == "distance" && f.distanceTo) || (column == "similarity" && f.similarTo);
-        if (measured && !builtInAttribute(column)) {
+        if (measured && !catalog::builtInAttribute(column)) {
             attributes.emplace_back(std::nullopt);
             rs.columns.push_back({column, ValueType::Real});
         } else {
@@ -446,7 +446,7 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
         std::vector<Value> row;
         for (std::size_t i = 0; i < attributes.size(); ++i) {
             if (attributes[i])
-                row.push_back(attributeValue(scene(), h.slot, *attributes[i]));
+                row.push_back(catalog::attributeValue(scene(), h.slot, *attributes[i]));
             else
                 row.emplace_back(f.columns[i] == "similarity" ? roundedSimilarity(h.similarity) : h.distance);
         }

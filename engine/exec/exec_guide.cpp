@@ -13,23 +13,23 @@ namespace {
 
 constexpr std::size_t kCandidatesShown = 8;
 
-Value nodeLabel(const SceneSnapshot& scene, model::NodeId id) {
+Value nodeLabel(const catalog::SceneSnapshot& scene, model::NodeId id) {
     auto slot = scene.slotOf(id);
-    return slot ? Value(SceneSnapshot::label(scene.node(*slot))) : Value();
+    return slot ? Value(catalog::SceneSnapshot::label(scene.node(*slot))) : Value();
 }
 
 Value nodeId(model::NodeId id) { return id == model::kNoNode ? Value() : Value(static_cast<std::int64_t>(id)); }
 
 // Where the walk to `goal` ends: its approach point, else the free floor nearest it.
-std::optional<guide::Point> approachTo(const SceneSnapshot::Guidance& g, const model::Node& goal) {
+std::optional<guide::Point> approachTo(const catalog::SceneSnapshot::Guidance& g, const model::Node& goal) {
     for (const auto& p : g.graph.points)
         if (p.kind == guide::PointKind::Approach && p.node == goal.id) return p.at;
     return g.space.nearestFree({goal.box.center.x, goal.box.center.y}, 1.5);
 }
 
 // Why no route joins two points: the smaller of their stretches of free floor, and what closes it.
-Error noRoute(const SceneSnapshot& snap, const std::string& origin, const model::Node& goal, guide::Point start,
-              guide::Point end) {
+Error noRoute(const catalog::SceneSnapshot& snap, const std::string& origin, const model::Node& goal,
+              guide::Point start, guide::Point end) {
     const auto& g = snap.guidance();
     constexpr std::size_t kBlockersNamed = 3;
     double startArea = 0, endArea = 0;
@@ -44,23 +44,23 @@ Error noRoute(const SceneSnapshot& snap, const std::string& origin, const model:
                              i == 0                     ? ""
                              : i + 1 == blockers.size() ? " and "
                                                         : ", ",
-                             slot ? SceneSnapshot::label(snap.node(*slot)) : fmt::format("#{}", blockers[i]));
+                             slot ? catalog::SceneSnapshot::label(snap.node(*slot)) : fmt::format("#{}", blockers[i]));
     }
     return Error(
         ErrorKind::Binding,
         fmt::format("no route from {} to {}: the free floor {} ({:.1f} m^2) is closed off{} (a way must be "
                     "{} m wide)",
-                    origin, SceneSnapshot::label(goal),
-                    goalSide ? "beside " + SceneSnapshot::label(goal) : "at the start", goalSide ? endArea : startArea,
-                    named.empty() ? "" : " by " + named, 2 * g.options.bodyRadius),
+                    origin, catalog::SceneSnapshot::label(goal),
+                    goalSide ? "beside " + catalog::SceneSnapshot::label(goal) : "at the start",
+                    goalSide ? endArea : startArea, named.empty() ? "" : " by " + named, 2 * g.options.bodyRadius),
         std::nullopt, "smql map draws the free floor and what blocks it; SHOW GRAPH lists the decision points");
 }
 
 }  // namespace
 
-Slot Executor::single(const binder::NodeSet& set, std::string_view role) {
-    std::vector<Slot> candidates;
-    for (Slot s : slots(set, defaultFrame())) {
+catalog::Slot Executor::single(const binder::NodeSet& set, std::string_view role) {
+    std::vector<catalog::Slot> candidates;
+    for (catalog::Slot s : slots(set, defaultFrame())) {
         const model::Node& n = scene().node(s);
         if (!n.hidden && n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene)
             candidates.push_back(s);
@@ -73,8 +73,8 @@ Slot Executor::single(const binder::NodeSet& set, std::string_view role) {
     std::string listed;
     for (std::size_t i = 0; i < candidates.size() && i < kCandidatesShown; ++i) {
         const model::Node& n = scene().node(candidates[i]);
-        listed += fmt::format("{}{} at ({:.1f}, {:.1f})", i ? ", " : "", SceneSnapshot::label(n), n.box.center.x,
-                              n.box.center.y);
+        listed += fmt::format("{}{} at ({:.1f}, {:.1f})", i ? ", " : "", catalog::SceneSnapshot::label(n),
+                              n.box.center.x, n.box.center.y);
     }
     if (candidates.size() > kCandidatesShown)
         listed += fmt::format(" and {} more", candidates.size() - kCandidatesShown);
@@ -83,7 +83,8 @@ Slot Executor::single(const binder::NodeSet& set, std::string_view role) {
         ErrorKind::Binding,
         fmt::format("the {} is ambiguous: {} names {} nodes: {}", role, set.description, candidates.size(), listed),
         std::nullopt,
-        fmt::format("name one: {}, or (FIND {} NEAREST TO door LIMIT 1)", SceneSnapshot::label(first), first.category));
+        fmt::format("name one: {}, or (FIND {} NEAREST TO door LIMIT 1)", catalog::SceneSnapshot::label(first),
+                    first.category));
 }
 
 ResultSet Executor::run(const binder::BoundShowGraph&) {
@@ -107,7 +108,7 @@ ResultSet Executor::run(const binder::BoundShowGraph&) {
 }
 
 ResultSet Executor::run(const binder::BoundGuide& guide) {
-    const SceneSnapshot& snap = scene();
+    const catalog::SceneSnapshot& snap = scene();
     const auto& g = snap.guidance();
     const model::Node& goal = snap.node(single(guide.to, "goal"));
 
@@ -128,7 +129,7 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
         startWords = "Start here, at the scene's viewpoint.";
     } else {
         const model::Node& from = snap.node(single(*guide.from, "start"));
-        origin = SceneSnapshot::label(from);
+        origin = catalog::SceneSnapshot::label(from);
         startNode = from.id;
         startWords = fmt::format("Start {} the {}.", from.category == "door" ? "at" : "beside", from.category);
         start = {from.box.center.x, from.box.center.y};
@@ -163,7 +164,7 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
         throw Error(ErrorKind::Binding,
                     fmt::format("no route to {}: no free floor within 1.5 m of it is connected to the rest of "
                                 "the room",
-                                SceneSnapshot::label(goal)),
+                                catalog::SceneSnapshot::label(goal)),
                     std::nullopt, "SHOW GRAPH lists where the graph reaches");
 
     auto route = guide::shortestRoute(g.graph, g.space, *onFloor, *end, g.options);
@@ -182,8 +183,8 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
         rs.rows.push_back({static_cast<std::int64_t>(i + 1), step.instruction, nodeLabel(snap, step.landmark),
                            nodeId(step.landmark), step.at.x, step.at.y, step.distance});
     }
-    rs.message = fmt::format("{:.1f} m from {} to {} in {} steps", route->length, origin, SceneSnapshot::label(goal),
-                             steps.size());
+    rs.message = fmt::format("{:.1f} m from {} to {} in {} steps", route->length, origin,
+                             catalog::SceneSnapshot::label(goal), steps.size());
     return rs;
 }
 

@@ -12,7 +12,7 @@ namespace smql::exec {
 
 std::string relationSentence(const model::Node& a, const model::Node& b,
                              const std::vector<relations::RelationHit>& hits) {
-    const std::string la = SceneSnapshot::label(a), lb = SceneSnapshot::label(b);
+    const std::string la = catalog::SceneSnapshot::label(a), lb = catalog::SceneSnapshot::label(b);
     const double gap = model::distance(a.box, b.box);
     if (hits.empty()) return fmt::format("no relation holds from {} to {} ({:.1f} m apart)", la, lb, gap);
     std::string sentence;
@@ -44,15 +44,15 @@ ResultSet Executor::run(const binder::BoundRelate& r) {
                   {"score", ValueType::Real},
                   {"distance", ValueType::Real}};
     std::vector<std::string> sentences;
-    for (Slot a : subjects) {
-        for (Slot b : objects) {
+    for (catalog::Slot a : subjects) {
+        for (catalog::Slot b : objects) {
             poll();
             if (a == b) continue;
             const model::Node& na = scene().node(a);
             const model::Node& nb = scene().node(b);
             auto hits = relate(na, nb, viewer);
             double gap = model::distance(na.box, nb.box);
-            std::string la = SceneSnapshot::label(na), lb = SceneSnapshot::label(nb);
+            std::string la = catalog::SceneSnapshot::label(na), lb = catalog::SceneSnapshot::label(nb);
             for (const auto& hit : hits)
                 rs.rows.push_back({la, std::string(relations::toString(hit.predicate)), lb, hit.score, gap});
             sentences.push_back(relationSentence(na, nb, hits));

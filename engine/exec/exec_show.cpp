@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/exec/attributes.hpp"
+#include "engine/catalog/attributes.hpp"
 #include "engine/exec/executor.hpp"
 #include "model/error.hpp"
 #include "storage/database.hpp"
@@ -39,7 +39,7 @@ ResultSet Executor::run(const binder::BoundShowSettings&) {
     for (const auto& s : relations::settingsCatalogue())
         rs.rows.push_back({s.name, thresholds_.*(s.field),
                            std::string(s.unit == relations::SettingUnit::Metres ? "m" : "ratio"), s.meaning});
-    for (const auto& s : limitSettings())
+    for (const auto& s : catalog::limitSettings())
         rs.rows.push_back({std::string(s.name), static_cast<double>(session_.limits.*(s.field)), std::string("count"),
                            std::string(s.meaning)});
     return rs;
@@ -71,33 +71,33 @@ ResultSet Executor::run(const binder::BoundShowAttributes&) {
                   {"unit", ValueType::Text},
                   {"use", ValueType::Text},
                   {"meaning", ValueType::Text}};
-    auto add = [&](const AttributeInfo& a) {
+    auto add = [&](const catalog::AttributeInfo& a) {
         std::string_view type = a.type == ValueType::Integer ? "integer"
                                 : a.type == ValueType::Real  ? "real"
                                 : a.type == ValueType::Box   ? "box"
                                                              : "text";
-        std::string use = a.measure == AttributeMeasure::None ? "RETURN" : "WHERE, ORDER BY, RETURN";
+        std::string use = a.measure == catalog::AttributeMeasure::None ? "RETURN" : "WHERE, ORDER BY, RETURN";
         rs.rows.push_back({std::string(a.name), std::string(type), std::string(a.unit), use, std::string(a.meaning)});
     };
-    for (const auto& a : builtInAttributes()) add(a);
+    for (const auto& a : catalog::builtInAttributes()) add(a);
     // Not an attribute of the node alone: it measures from a reference.
     rs.rows.push_back({std::string("distance(x)"), std::string("real"), std::string("m"),
                        std::string("WHERE, ORDER BY; RETURN distance after ORDER BY distance(x) or NEAREST TO x"),
                        std::string("the gap between the node's box and the nearest box x names")});
     if (plan_.statement->scene)
-        for (const auto& name : scene().attributeNames()) add(storedAttribute(name));
+        for (const auto& name : scene().attributeNames()) add(catalog::storedAttribute(name));
     return rs;
 }
 
 ResultSet Executor::run(const binder::BoundShowTree& show) {
     const auto& snap = scene();
-    Slot start = *snap.slotOf(snap.info().id);
+    catalog::Slot start = *snap.slotOf(snap.info().id);
     if (show.root) start = slots(*show.root, defaultFrame()).front();  // one node, checked as bound
     ResultSet rs;
     rs.columns = {{"id", ValueType::Integer}, {"depth", ValueType::Integer}, {"node", ValueType::Text}};
     std::size_t hidden = 0, descriptions = 0, frames = 0;
     // Depth-first, children in id order, so the listing reads like the path of each node.
-    std::vector<std::pair<Slot, std::int64_t>> stack{{start, 0}};
+    std::vector<std::pair<catalog::Slot, std::int64_t>> stack{{start, 0}};
     while (!stack.empty()) {
         auto [slot, depth] = stack.back();
         stack.pop_back();
@@ -113,7 +113,7 @@ ResultSet Executor::run(const binder::BoundShowTree& show) {
             continue;
         }
         rs.rows.push_back(
-            {static_cast<std::int64_t>(n.id), depth, std::string(2 * depth, ' ') + SceneSnapshot::label(n)});
+            {static_cast<std::int64_t>(n.id), depth, std::string(2 * depth, ' ') + catalog::SceneSnapshot::label(n)});
         const auto& kids = snap.children(slot);
         for (auto it = kids.rbegin(); it != kids.rend(); ++it) stack.push_back({*it, depth + 1});
     }

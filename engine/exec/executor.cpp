@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/exec/singular.hpp"
+#include "engine/binder/singular.hpp"
 #include "model/error.hpp"
 
 namespace smql::exec {
@@ -22,7 +22,7 @@ bool queryable(const Node& n) { return !n.hidden && n.kind != model::NodeKind::S
 
 }  // namespace
 
-Executor::Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan,
+Executor::Executor(const storage::ReadTransaction& txn, catalog::Session& session, const planner::Plan& plan,
                    const std::atomic<bool>* interrupt, storage::Database* db)
     : txn_(txn),
       session_(session),
@@ -50,13 +50,13 @@ ResultSet Executor::run() {
     return rs;
 }
 
-const std::vector<Slot>& Executor::slots(const NodeSet& set, const relations::Frame& frame) {
+const std::vector<catalog::Slot>& Executor::slots(const NodeSet& set, const relations::Frame& frame) {
     if (set.source == NodeSet::Source::Nodes) return set.slots;
     auto& resolved = resolved_[set.id];
     if (resolved) return *resolved;
     if (set.source == NodeSet::Source::Side) return resolveSide(set, frame);
     // A sub-query runs once, in the statement's read transaction, the first time its nodes are needed.
-    std::vector<Slot> out;
+    std::vector<catalog::Slot> out;
     for (const auto& hit : find(*plan_.subqueries[set.id])) out.push_back(hit.slot);
     std::sort(out.begin(), out.end());
     if (!set.singleFor.empty()) requireOne(scene(), set, out);
@@ -64,12 +64,12 @@ const std::vector<Slot>& Executor::slots(const NodeSet& set, const relations::Fr
     return *resolved;
 }
 
-const std::vector<Slot>& Executor::resolveSide(const NodeSet& set, const relations::Frame& frame) {
+const std::vector<catalog::Slot>& Executor::resolveSide(const NodeSet& set, const relations::Frame& frame) {
     // Each candidate's centre in the viewer's frame: `lateral` to the right, `depth` ahead.
-    std::optional<Slot> best;
+    std::optional<catalog::Slot> best;
     double bestScore = -std::numeric_limits<double>::infinity();
     bool bestInSector = false;
-    for (Slot s : set.slots) {
+    for (catalog::Slot s : set.slots) {
         const Node& n = scene().node(s);
         if (n.geometry == model::GeometryKind::None || n.hidden) continue;
         model::Vec2 c = centre2(n);
@@ -91,7 +91,7 @@ const std::vector<Slot>& Executor::resolveSide(const NodeSet& set, const relatio
                     fmt::format("no {} on the {} side of the viewpoint in scene '{}'",
                                 set.description.substr(0, set.description.find('.')), set.side, scene().info().name),
                     std::nullopt, "SHOW SCENES gives the default viewpoint; VIEW FROM x FACING y sets another");
-    resolved_[set.id] = std::vector<Slot>{*best};
+    resolved_[set.id] = std::vector<catalog::Slot>{*best};
     return *resolved_[set.id];
 }
 
@@ -99,7 +99,7 @@ const std::vector<char>& Executor::membership(const NodeSet& set, const relation
     auto& member = membership_[set.id];
     if (member.empty()) {
         member.assign(scene().nodes().size(), 0);
-        for (Slot s : slots(set, frame)) member[s] = 1;
+        for (catalog::Slot s : slots(set, frame)) member[s] = 1;
     }
     return member;
 }

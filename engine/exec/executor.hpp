@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/binder/bound.hpp"
-#include "engine/exec/session.hpp"
+#include "engine/catalog/session.hpp"
 #include "engine/planner/planner.hpp"
 #include "model/result.hpp"
 
@@ -28,7 +28,7 @@ std::string relationSentence(const model::Node& a, const model::Node& b,
                              const std::vector<relations::RelationHit>& hits);
 
 struct Hit {
-    Slot slot;
+    catalog::Slot slot;
     double distance = 0;    // to the ORDER BY / NEAREST TO reference, when there is one
     double similarity = 0;  // to the SIMILAR TO text, when there is one
 };
@@ -38,7 +38,7 @@ public:
     // `session` is read for the thresholds and limits, and changed by USE and SET. When `interrupt`
     // turns true (from another thread), the statement stops with Error(Interrupted). `db` is where
     // DROP and RENAME write (in a write transaction of their own); null for read-only callers.
-    Executor(const storage::ReadTransaction& txn, Session& session, const planner::Plan& plan,
+    Executor(const storage::ReadTransaction& txn, catalog::Session& session, const planner::Plan& plan,
              const std::atomic<bool>* interrupt = nullptr, storage::Database* db = nullptr);
 
     ResultSet run();
@@ -66,7 +66,7 @@ private:
     ResultSet run(const binder::BoundExplain& explain);
     ResultSet run(const binder::BoundAsk& ask);
 
-    const SceneSnapshot& scene() const { return *plan_.statement->scene; }
+    const catalog::SceneSnapshot& scene() const { return *plan_.statement->scene; }
     // Called once per unit of work (a candidate, a pair): throws once the statement is interrupted.
     void poll() {
         if (interrupt_ && (++work_ & 1023) == 0 && interrupt_->load(std::memory_order_relaxed)) interrupted();
@@ -75,10 +75,10 @@ private:
     void checkRows(std::size_t rows) const;
     // The one visible node with a box a set holds; an error that lists the candidates (and how to
     // pick one) when it holds several, and says so when it holds none. `role` names the end.
-    Slot single(const binder::NodeSet& set, std::string_view role);
+    catalog::Slot single(const binder::NodeSet& set, std::string_view role);
     // The nodes of a set: as bound, or resolved now (a side in `frame`, a sub-query's answer).
-    const std::vector<Slot>& slots(const binder::NodeSet& set, const relations::Frame& frame);
-    const std::vector<Slot>& resolveSide(const binder::NodeSet& set, const relations::Frame& frame);
+    const std::vector<catalog::Slot>& slots(const binder::NodeSet& set, const relations::Frame& frame);
+    const std::vector<catalog::Slot>& resolveSide(const binder::NodeSet& set, const relations::Frame& frame);
     // Which slots a large set holds, for R-tree lookups of references.
     const std::vector<char>& membership(const binder::NodeSet& set, const relations::Frame& frame);
     relations::Frame frame(const binder::BoundView& view);
@@ -92,10 +92,10 @@ private:
     std::vector<relations::RelationHit> relate(const model::Node& a, const model::Node& b,
                                                const relations::Frame& frame) const;
 
-    bool matches(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
-    bool holdsForSome(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
-    bool compare(const binder::BoundExpr& expr, Slot slot, const relations::Frame& frame);
-    bool inTarget(const binder::Target& target, Slot slot, const relations::Frame& frame);
+    bool matches(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
+    bool holdsForSome(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
+    bool compare(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
+    bool inTarget(const binder::Target& target, catalog::Slot slot, const relations::Frame& frame);
     std::vector<Hit> nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame);
     struct SimilaritySpace {
         const similar::EmbeddingIndex& index;
@@ -113,14 +113,14 @@ private:
     ResultSet returned(const binder::BoundFind& find, const std::vector<Hit>& hits) const;
 
     const storage::ReadTransaction& txn_;
-    Session& session_;
+    catalog::Session& session_;
     const planner::Plan& plan_;
     const std::atomic<bool>* interrupt_;
     storage::Database* db_;
     std::uint64_t work_ = 0;
-    const relations::Thresholds thresholds_;                  // as the statement started
-    std::vector<std::optional<std::vector<Slot>>> resolved_;  // by NodeSet id
-    std::vector<std::vector<char>> membership_;               // by NodeSet id; empty until needed
+    const relations::Thresholds thresholds_;                           // as the statement started
+    std::vector<std::optional<std::vector<catalog::Slot>>> resolved_;  // by NodeSet id
+    std::vector<std::vector<char>> membership_;                        // by NodeSet id; empty until needed
 };
 
 }  // namespace smql::exec

@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/relations/hierarchy.hpp"
-#include "engine/relations/predicates.hpp"
+#include "relations/hierarchy.hpp"
+#include "relations/predicates.hpp"
 #include "ingest/pipeline/descriptions.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
 

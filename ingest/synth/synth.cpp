@@ -17,8 +17,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "engine/relations/hierarchy.hpp"
-#include "engine/relations/predicates.hpp"
+#include "relations/hierarchy.hpp"
+#include "relations/predicates.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/synth/render.hpp"

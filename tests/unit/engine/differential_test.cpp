@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 #include "engine_support.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"

@@ -9,9 +9,9 @@
 #include "engine/exec/executor.hpp"
 #include "engine/parser/parser.hpp"
 #include "engine/planner/planner.hpp"
-#include "engine/relations/hierarchy.hpp"
 #include "engine_support.hpp"
 #include "ingest/generate/room_generator.hpp"
+#include "relations/hierarchy.hpp"
 #include "storage/database.hpp"
 
 using namespace smql;
@@ -22,7 +22,7 @@ namespace {
 struct PlannedScene {
     TempDir dir;
     std::unique_ptr<storage::Database> db = storage::Database::open(dir.path.string());
-    std::shared_ptr<const exec::SceneSnapshot> snapshot;
+    std::shared_ptr<const catalog::SceneSnapshot> snapshot;
     relations::Thresholds thresholds;
 
     PlannedScene() {
@@ -32,10 +32,10 @@ struct PlannedScene {
         write.importScene(scene);
         write.commit();
         auto read = db->beginRead();
-        snapshot = exec::SceneSnapshot::load(read, *read.sceneByName("big"));
+        snapshot = catalog::SceneSnapshot::load(read, *read.sceneByName("big"));
     }
 
-    exec::Session session;
+    catalog::Session session;
 
     // Bound and planned as the engine does it, in this scene.
     planner::Plan plan(const std::string& text) {
@@ -51,9 +51,9 @@ struct PlannedScene {
         return plan;
     }
 
-    std::vector<exec::Slot> run(const planner::Plan& plan, bool sorted = true) {
+    std::vector<catalog::Slot> run(const planner::Plan& plan, bool sorted = true) {
         auto read = db->beginRead();
-        std::vector<exec::Slot> out;
+        std::vector<catalog::Slot> out;
         for (const auto& hit : exec::Executor(read, session, plan).find(*plan.find)) out.push_back(hit.slot);
         if (sorted) std::sort(out.begin(), out.end());
         return out;

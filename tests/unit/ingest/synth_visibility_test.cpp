@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
 
-#include "engine/relations/thresholds.hpp"
-#include "engine/relations/visibility.hpp"
+#include "relations/thresholds.hpp"
+#include "relations/visibility.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/synth.hpp"
 

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "engine/relations/hierarchy.hpp"
-#include "engine/relations/predicates.hpp"
-#include "engine/relations/visibility.hpp"
+#include "relations/hierarchy.hpp"
+#include "relations/predicates.hpp"
+#include "relations/visibility.hpp"
 
 using namespace smql;
 using namespace smql::relations;

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "engine/ask/translator.hpp"
-#include "engine/relations/thresholds.hpp"
+#include "relations/thresholds.hpp"
 
-namespace smql::exec {
+namespace smql::catalog {
 
 // Bounds on what one statement may build, so a query over large sets fails with a clear error instead
 // of exhausting memory (RELATE object TO object on a 2,000-node scene is four million pairs).
@@ -37,4 +37,4 @@ struct Session {
     std::shared_ptr<const ask::Translator> askTranslator;
 };
 
-}  // namespace smql::exec
+}  // namespace smql::catalog

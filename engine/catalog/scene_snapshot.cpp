@@ -1,4 +1,4 @@
-#include "engine/exec/scene_snapshot.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -9,7 +9,7 @@
 #include "model/error.hpp"
 #include "storage/database.hpp"
 
-namespace smql::exec {
+namespace smql::catalog {
 
 std::shared_ptr<const SceneSnapshot> SceneSnapshot::load(const storage::ReadTransaction& txn,
                                                          const model::SceneInfo& info) {
@@ -184,4 +184,4 @@ void SceneObstacles::within(const model::Aabb& region, std::vector<const model::
     }
 }
 
-}  // namespace smql::exec
+}  // namespace smql::catalog

@@ -8,10 +8,10 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/exec/scene_snapshot.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
 #include "model/result.hpp"
 
-namespace smql::exec {
+namespace smql::catalog {
 
 // What a comparison's literal must be for an attribute.
 enum class AttributeMeasure {
@@ -41,4 +41,4 @@ std::optional<AttributeInfo> attributeIn(const SceneSnapshot& scene, std::string
 // The value of an attribute of one node, typed as its column; null where the node has none.
 Value attributeValue(const SceneSnapshot& scene, Slot slot, const AttributeInfo& attribute);
 
-}  // namespace smql::exec
+}  // namespace smql::catalog

@@ -1,4 +1,4 @@
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/relations/visibility.hpp"
+#include "relations/visibility.hpp"
 
 namespace smql::relations {
 

@@ -1,4 +1,4 @@
-#include "engine/relations/visibility.hpp"
+#include "relations/visibility.hpp"
 
 #include <algorithm>
 #include <cmath>

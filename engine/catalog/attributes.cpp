@@ -1,4 +1,4 @@
-#include "engine/exec/attributes.hpp"
+#include "engine/catalog/attributes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "model/geometry.hpp"
 
-namespace smql::exec {
+namespace smql::catalog {
 
 namespace {
 
@@ -86,4 +86,4 @@ Value attributeValue(const SceneSnapshot& scene, Slot slot, const AttributeInfo&
     return b;  // box
 }
 
-}  // namespace smql::exec
+}  // namespace smql::catalog

@@ -1,4 +1,4 @@
-#include "engine/relations/hierarchy.hpp"
+#include "relations/hierarchy.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 
-#include "engine/relations/predicates.hpp"
+#include "relations/predicates.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::relations {

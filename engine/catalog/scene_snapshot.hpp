@@ -14,16 +14,16 @@
 #include <vector>
 
 #include "engine/guide/route_graph.hpp"
-#include "engine/relations/predicates.hpp"
 #include "engine/similar/embedding_index.hpp"
 #include "model/types.hpp"
+#include "relations/predicates.hpp"
 #include "storage/spatial_index.hpp"
 
 namespace smql::storage {
 class ReadTransaction;
 }
 
-namespace smql::exec {
+namespace smql::catalog {
 
 using Slot = std::uint32_t;  // a node's position in SceneSnapshot::nodes
 
@@ -108,4 +108,4 @@ private:
     const SceneSnapshot& scene_;
 };
 
-}  // namespace smql::exec
+}  // namespace smql::catalog

@@ -1,6 +1,6 @@
-#include "engine/exec/session.hpp"
+#include "engine/catalog/session.hpp"
 
-namespace smql::exec {
+namespace smql::catalog {
 
 const std::vector<LimitSetting>& limitSettings() {
     static const std::vector<LimitSetting> settings = {
@@ -16,4 +16,4 @@ const LimitSetting* findLimit(std::string_view name) {
     return nullptr;
 }
 
-}  // namespace smql::exec
+}  // namespace smql::catalog

@@ -5,12 +5,13 @@
 #include <vector>
 
 #include "engine/binder/bound.hpp"
-#include "engine/exec/scene_snapshot.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
 
-namespace smql::exec {
+namespace smql::binder {
 
 // Throws unless `slots`, what `set` names, is exactly one node: none says so, several are listed
 // as typed-back names (`window#12`) with where each is, and how to pick one.
-void requireOne(const SceneSnapshot& scene, const binder::NodeSet& set, const std::vector<Slot>& slots);
+void requireOne(const catalog::SceneSnapshot& scene, const binder::NodeSet& set,
+                const std::vector<catalog::Slot>& slots);
 
-}  // namespace smql::exec
+}  // namespace smql::binder

@@ -1,4 +1,4 @@
-#include "engine/relations/thresholds.hpp"
+#include "relations/thresholds.hpp"
 
 namespace smql::relations {
 

@@ -1,30 +1,32 @@
-#include "engine/exec/singular.hpp"
+#include "engine/binder/singular.hpp"
 
 #include <fmt/format.h>
 
 #include "model/error.hpp"
 
-namespace smql::exec {
+namespace smql::binder {
 
 namespace {
 
 constexpr std::size_t kListed = 10;
 
 // "window#12 (on wall#3 at 1.2, 0.4, 1.5 m)": enough to tell the candidates apart.
-std::string candidate(const SceneSnapshot& scene, Slot slot) {
+std::string candidate(const catalog::SceneSnapshot& scene, catalog::Slot slot) {
     const model::Node& n = scene.node(slot);
     std::string where;
     if (auto parent = scene.slotOf(n.parent); parent && scene.node(*parent).kind != model::NodeKind::Scene)
-        where = "on " + SceneSnapshot::label(scene.node(*parent));
+        where = "on " + catalog::SceneSnapshot::label(scene.node(*parent));
     if (n.geometry != model::GeometryKind::None)
         where += fmt::format("{}at {:.1f}, {:.1f}, {:.1f} m", where.empty() ? "" : " ", n.box.center.x, n.box.center.y,
                              n.box.center.z);
-    return where.empty() ? SceneSnapshot::label(n) : fmt::format("{} ({})", SceneSnapshot::label(n), where);
+    return where.empty() ? catalog::SceneSnapshot::label(n)
+                         : fmt::format("{} ({})", catalog::SceneSnapshot::label(n), where);
 }
 
 }  // namespace
 
-void requireOne(const SceneSnapshot& scene, const binder::NodeSet& set, const std::vector<Slot>& slots) {
+void requireOne(const catalog::SceneSnapshot& scene, const binder::NodeSet& set,
+                const std::vector<catalog::Slot>& slots) {
     if (slots.size() == 1) return;
     // "window (3 nodes)" -> window: the count is said below.
     const std::string named = set.description.substr(0, set.description.find(" ("));
@@ -36,7 +38,7 @@ void requireOne(const SceneSnapshot& scene, const binder::NodeSet& set, const st
     for (std::size_t i = 0; i < slots.size() && i < kListed; ++i)
         listed += (i ? ", " : "") + candidate(scene, slots[i]);
     if (slots.size() > kListed) listed += fmt::format(" and {} more", slots.size() - kListed);
-    const std::string example = SceneSnapshot::label(scene.node(slots.front()));
+    const std::string example = catalog::SceneSnapshot::label(scene.node(slots.front()));
     const std::string landmark = category == "door" ? "window" : "door";
     throw Error(ErrorKind::Binding,
                 fmt::format("{} is ambiguous: {} needs one node and it names {}: {}", named, set.singleFor,
@@ -46,4 +48,4 @@ void requireOne(const SceneSnapshot& scene, const binder::NodeSet& set, const st
                             category, landmark));
 }
 
-}  // namespace smql::exec
+}  // namespace smql::binder

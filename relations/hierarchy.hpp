@@ -4,7 +4,7 @@
 // below the scene root.
 #pragma once
 
-#include "engine/relations/thresholds.hpp"
+#include "relations/thresholds.hpp"
 #include "model/types.hpp"
 
 namespace smql::relations {

@@ -14,7 +14,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/relations/thresholds.hpp"
+#include "relations/thresholds.hpp"
 #include "model/geometry.hpp"
 #include "model/types.hpp"
 
