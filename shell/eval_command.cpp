@@ -15,11 +15,11 @@
 
 #include "engine/engine.hpp"
 #include "engine/guide/route_graph.hpp"
-#include "relations/predicates.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
+#include "relations/predicates.hpp"
 #include "shell/output_file.hpp"
 
 namespace smql::shell {

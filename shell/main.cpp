@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -46,6 +47,25 @@ std::vector<std::string> longOptionsWithOneDash(const CLI::App& app, int argc, c
     return args;
 }
 
+// A database in a fresh temporary folder, removed with everything in it when the shell ends.
+struct TransientDatabase {
+    fs::path path;
+    TransientDatabase() {
+        std::string pattern = (fs::temp_directory_path() / "smql-XXXXXX").string();
+        if (!mkdtemp(pattern.data()))
+            throw smql::Error(smql::ErrorKind::Storage,
+                              fmt::format("cannot make a temporary database folder: {}", std::strerror(errno)),
+                              std::nullopt, "set TMPDIR to a folder you can write, or name a database");
+        path = pattern;
+    }
+    TransientDatabase(const TransientDatabase&) = delete;
+    TransientDatabase& operator=(const TransientDatabase&) = delete;
+    ~TransientDatabase() {
+        std::error_code ignored;
+        fs::remove_all(path, ignored);
+    }
+};
+
 int runShell(int argc, char** argv) {
     CLI::App app{
         "smql: an embedded spatial memory engine.\n"
@@ -57,7 +77,8 @@ int runShell(int argc, char** argv) {
     std::string dir, command, script, mode = "table";
     std::vector<std::string> statements, startup;
     smql::shell::SessionOptions options;
-    app.add_option("database", dir, "database directory (created if missing)")->required();
+    app.add_option("database", dir,
+                   "database directory (created if missing); none: a transient database, removed at exit");
     app.add_option("statements", statements, "statements to run, then exit (as -c)");
     auto* commandOption = app.add_option("-c,--command", command, "run these statements and exit");
     app.add_option("-f,--file", script, "run the statements of this file and exit")->check(CLI::ExistingFile);
@@ -71,6 +92,7 @@ int runShell(int argc, char** argv) {
             "--" + name, [&mode, name] { mode = name; }, "same as --format " + name);
     app.add_flag_callback(
         "--tabs", [&mode] { mode = "tsv"; }, "same as --format tsv (sqlite3's name)");
+    app.add_option("--separator", options.output.separator, "what list mode puts between values (default |)");
     app.add_flag_callback(
         "--header,--headers", [&options] { options.output.headers = true; }, "print column names (the default)");
     app.add_flag_callback(
@@ -96,6 +118,10 @@ int runShell(int argc, char** argv) {
                           "write the statements after -c, as in smql DB -c 'SHOW SCENES'");
     options.output.mode = smql::shell::parseOutputMode(mode);
     options.fitTerminal = isatty(STDOUT_FILENO);
+    // No database named: as sqlite3 opens one in memory, smql opens one in a temporary folder that
+    // is removed when the shell ends.
+    std::optional<TransientDatabase> transient;
+    if (dir.empty()) dir = transient.emplace().path.string();
     options.database = dir;
     bool noScript = command.empty() && statements.empty() && script.empty();
     bool interactive = noScript && isatty(STDIN_FILENO);
@@ -115,6 +141,9 @@ int runShell(int argc, char** argv) {
         if (options.bail) return 1;
         failed = true;
     }
+    if (interactive && transient)
+        std::cout << "Connected to a transient database, removed at exit. Use \".open DIR\" to open a "
+                     "database that stays.\n";
     if (interactive) return smql::shell::runRepl(session, dir) != 0 || failed ? 1 : 0;
 
     // Scripts stop at their first error: later statements may depend on the ones before.

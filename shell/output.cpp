@@ -15,12 +15,14 @@ namespace smql::shell {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, OutputMode>, 7> kModes{{
+constexpr std::array<std::pair<std::string_view, OutputMode>, 9> kModes{{
     {"table", OutputMode::Table},
     {"box", OutputMode::Box},
     {"markdown", OutputMode::Markdown},
     {"csv", OutputMode::Csv},
     {"tsv", OutputMode::Tsv},
+    {"list", OutputMode::List},
+    {"line", OutputMode::Line},
     {"json", OutputMode::Json},
     {"jsonl", OutputMode::Jsonl},
 }};
@@ -218,6 +220,33 @@ std::string delimited(const ResultSet& result, const OutputOptions& options, cha
     return out;
 }
 
+// sqlite3's list mode: the values as they are, the separator between them.
+std::string list(const ResultSet& result, const OutputOptions& options) {
+    if (result.columns.empty()) return result.message.empty() ? "" : result.message + "\n";
+    std::string out;
+    auto line = [&](auto&& cellOf) {
+        for (std::size_t c = 0; c < result.columns.size(); ++c) out += (c ? options.separator : "") + cellOf(c);
+        out += "\n";
+    };
+    if (options.headers) line([&](std::size_t c) { return result.columns[c].name; });
+    for (const auto& row : result.rows) line([&](std::size_t c) { return cellText(row[c], false); });
+    return out + (result.message.empty() ? "" : result.message + "\n");
+}
+
+// sqlite3's line mode: one "name = value" line per column, the names right-aligned, a blank line
+// between rows.
+std::string lines(const ResultSet& result) {
+    std::size_t width = 0;
+    for (const auto& c : result.columns) width = std::max(width, displayWidth(c.name));
+    std::string out;
+    for (std::size_t r = 0; r < result.rows.size(); ++r) {
+        if (r) out += "\n";
+        for (std::size_t c = 0; c < result.columns.size(); ++c)
+            out += fmt::format("{:>{}} = {}\n", result.columns[c].name, width, cellText(result.rows[r][c], false));
+    }
+    return out + (result.message.empty() ? "" : (out.empty() ? "" : "\n") + result.message + "\n");
+}
+
 }  // namespace
 
 OutputMode parseOutputMode(std::string_view name) {
@@ -256,6 +285,10 @@ std::string renderResult(const ResultSet& result, const OutputOptions& options) 
             return delimited(result, options, ',');
         case OutputMode::Tsv:
             return delimited(result, options, '\t');
+        case OutputMode::List:
+            return list(result, options);
+        case OutputMode::Line:
+            return lines(result);
         case OutputMode::Json:
         case OutputMode::Jsonl:
             return jsonText(resultJson(result)) + "\n";

@@ -10,9 +10,9 @@
 
 namespace smql::shell {
 
-enum class OutputMode { Table, Box, Markdown, Csv, Tsv, Json, Jsonl };
+enum class OutputMode { Table, Box, Markdown, Csv, Tsv, List, Line, Json, Jsonl };
 
-// table, box, markdown, csv, tsv, json, jsonl; throws Error(Usage) for another name.
+// table, box, markdown, csv, tsv, list, line, json, jsonl; throws Error(Usage) for another name.
 OutputMode parseOutputMode(std::string_view name);
 std::string_view toString(OutputMode mode);
 // Every mode's name, for options, hints and completion.
@@ -20,8 +20,9 @@ std::vector<std::string> outputModeNames();
 
 struct OutputOptions {
     OutputMode mode = OutputMode::Table;
-    bool headers = true;       // column names in table, box, markdown, csv and tsv
-    std::size_t maxWidth = 0;  // table and box lines fit in this many columns (0: no limit)
+    bool headers = true;          // column names in table, box, markdown, csv, tsv and list
+    std::size_t maxWidth = 0;     // table and box lines fit in this many columns (0: no limit)
+    std::string separator = "|";  // between the values of list mode (sqlite3's -separator)
 };
 
 // One result in a text mode (not json, whose framing is the session's): the rows, then for table,

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -14,12 +15,28 @@
 
 #include "engine/format.hpp"
 #include "engine/parser/parser.hpp"
+#include "model/names.hpp"
 #include "shell/interrupt.hpp"
 #include "shell/output_file.hpp"
 
 namespace smql::shell {
 
 namespace {
+
+// A separator as sqlite3 takes it: quotes around it dropped, \t and \n as a tab and a line break.
+std::string unquoted(std::string text) {
+    if (text.size() >= 2 && (text.front() == '"' || text.front() == '\'') && text.back() == text.front())
+        text = text.substr(1, text.size() - 2);
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '\\' && i + 1 < text.size() && (text[i + 1] == 't' || text[i + 1] == 'n')) {
+            out += text[++i] == 't' ? '\t' : '\n';
+            continue;
+        }
+        out += text[i];
+    }
+    return out;
+}
 
 std::string trim(std::string_view s) {
     auto b = s.find_first_not_of(" \t\r\n");
@@ -277,7 +294,7 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
          }},
         {{".mode", ".format"},
          "MODE",
-         "output mode: table, box, markdown, csv, tsv, json, jsonl; ask: lines are questions",
+         "output mode: table, box, markdown, csv, tsv, list, line, json, jsonl; ask: lines are questions",
          Arg::Mode,
          [](Session& s, const std::string& arg) {
              if (arg.empty()) {
@@ -297,9 +314,19 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
          }},
         {{".headers"},
          "on|off",
-         "column names in table, box, markdown, csv and tsv",
+         "column names in table, box, markdown, csv, tsv and list",
          Arg::OnOff,
          [](Session& s, const std::string& arg) { return s.options_.output.headers = onOff(".headers", arg), true; }},
+        {{".separator"},
+         "SEP",
+         "what list mode puts between values (default |)",
+         Arg::None,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty())
+                 throw Error(ErrorKind::Usage, ".separator needs a separator", std::nullopt, "as in .separator ,");
+             s.options_.output.separator = unquoted(arg);
+             return true;
+         }},
         {{".output"},
          "[FILE]",
          "results into FILE (none: back to standard output)",
@@ -379,6 +406,33 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
     return table;
 }
 
+namespace {
+
+// sqlite3's commands that smql has under another name: its users' hands type them first.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 8> kSqliteCommands{{
+    {".tables", ".scenes lists the scenes (SHOW SCENES); .categories the kinds of things in them"},
+    {".schema", "SHOW ATTRIBUTES lists what a node has; .categories the kinds of things"},
+    {".indexes", "EXPLAIN shows the index a statement uses"},
+    {".indices", "EXPLAIN shows the index a statement uses"},
+    {".dump", "smql export json DB --scene NAME writes a scene out"},
+    {".import", "smql import FORMAT FILE --db DB reads a scene in"},
+    {".databases", "the shell has one database open: .open DIR opens another"},
+    {".show", ".mode and .headers show the output settings"},
+}};
+
+}  // namespace
+
+std::string Session::unknownCommandHint(const std::string& name) {
+    for (const auto& [sqlite, smql] : kSqliteCommands)
+        if (sqlite == name) return std::string(smql);
+    std::vector<std::string> known;
+    for (const auto& meta : metaCommands())
+        for (auto n : meta.names) known.emplace_back(n);
+    if (auto close = model::nearestNames(name, known, 1); !close.empty())
+        return fmt::format("did you mean {}? (.help lists the commands)", close.front());
+    return ".help lists the commands";
+}
+
 bool Session::runMeta(std::string_view line) {
     std::string command = trim(line);
     std::string name = command.substr(0, command.find_first_of(" \t"));
@@ -392,8 +446,7 @@ bool Session::runMeta(std::string_view line) {
                             std::nullopt, "safe mode (-safe, .safe on) runs statements only");
             return meta.run(*this, arg);
         }
-        throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt,
-                    ".help lists the commands");
+        throw Error(ErrorKind::Usage, fmt::format("unknown command {}", name), std::nullopt, unknownCommandHint(name));
     } catch (const Error& e) {
         printError(e, {});
         return false;

@@ -74,6 +74,9 @@ public:
         bool (*run)(Session& session, const std::string& argument);  // false on error
     };
     static const std::vector<MetaCommand>& metaCommands();
+    // What to say of a command the shell does not have: sqlite3's name for one it has, or the
+    // nearest name.
+    static std::string unknownCommandHint(const std::string& name);
 
     // Ends the output document: json's one array closes (a script is one document, as is each
     // input of the interactive shell). Also ends a .once redirection.

@@ -58,6 +58,17 @@ assert len(lines) == 2 and all(json.loads(l)[\"rows\"][0][\"count\"] == 2 for l 
 check "csv prints one header per result" test "$("$smql" "$db" -csv 'COUNT sofa; COUNT chair' | tr '\n' ' ')" = 'count 2 count 2 '
 check "-noheader drops the column names" test "$("$smql" "$db" -noheader -csv 'COUNT sofa')" = 2
 check "-tsv separates with tabs" test "$("$smql" "$db" -tsv 'FIND sofa LIMIT 1' | head -1)" = $'id\tcategory\tsource_id\tbox'
+check "-list separates with | (sqlite3's list mode)" test "$("$smql" "$db" -list -noheader 'COUNT sofa; FIND sofa RETURN category, kind LIMIT 1')" = $'2\nsofa|object'
+check "-separator sets list mode's separator" test "$("$smql" "$db" -list -separator ';' 'FIND sofa RETURN category, kind LIMIT 1' | tail -1)" = 'sofa;object'
+check ".separator in a script" test "$("$smql" "$db" -list -noheader -c '.separator "\t"
+FIND sofa RETURN category, kind LIMIT 1')" = $'sofa\tobject'
+check "-line prints name = value per column" test "$("$smql" "$db" -line 'FIND sofa RETURN category, kind LIMIT 1')" = $'category = sofa\n    kind = object'
+check "sqlite3's .tables points to .scenes" bash -c "'$smql' '$db' -c '.tables' 2>&1 | grep -q 'hint: .scenes lists the scenes'"
+check "a misspelt command gets a did-you-mean" bash -c "'$smql' '$db' -c '.scens' 2>&1 | grep -q 'did you mean .scenes?'"
+check "no database: a transient one, removed at exit" bash -c "
+  before=\$(ls -d \"\${TMPDIR:-/tmp}\"/smql-?????? 2>/dev/null | wc -l)
+  out=\$(echo 'SHOW SCENES;' | '$smql' -csv) && [ \"\$out\" = 'name,id,nodes,source,viewpoint,current' ] &&
+  [ \$(ls -d \"\${TMPDIR:-/tmp}\"/smql-?????? 2>/dev/null | wc -l) -eq \$before ]"
 check "-box draws a box" bash -c "'$smql' '$db' -box 'COUNT sofa' | head -1 | grep -q '^┌───────┐'"
 check "-markdown is a Markdown table" test "$("$smql" "$db" -markdown 'COUNT sofa' | head -2 | tr '\n' ' ')" = '| count | |-------| '
 check "-cmd runs before the statements" bash -c "'$smql' '$db' -csv -cmd 'SET near = 1.5 m' 'SHOW SETTINGS' | grep -q '^near.distance,1.500,m,'"
@@ -65,8 +76,8 @@ check "a failing -cmd is reported, the rest runs, the status is 1" bash -c "'$sm
 check "-bail stops at a failing -cmd" bash -c "'$smql' '$db' -bail -cmd 'FIND nope' 'COUNT sofa' >'$work/o' 2>/dev/null; [ \$? -eq 1 ] && ! grep -q 2 '$work/o'"
 check "-echo prints each statement before its result" test "$("$smql" "$db" -echo -csv 'COUNT sofa' | tr '\n' ' ')" = 'COUNT sofa count 2 '
 status() { "$@" >/dev/null 2>&1; echo $?; }
-check "exit status 1 for an unknown option, a missing database, a bad mode, a bare sub-command; 0 for --help" \
-  test "$(status "$smql" "$db" --bogus) $(status "$smql") $(status "$smql" "$db" --format xml -c 'COUNT sofa') $(status "$smql" import) $(status "$smql" --help)" = "1 1 1 1 0"
+check "exit status 1 for an unknown option, a bad mode, a bare sub-command; 0 for --help" \
+  test "$(status "$smql" "$db" --bogus) $(status "$smql" "$db" --format xml -c 'COUNT sofa') $(status "$smql" import) $(status "$smql" --help)" = "1 1 1 0"
 check "-help and -version work with one dash" bash -c "'$smql' -help | grep -q Usage && '$smql' -version | grep -q '^smql '"
 
 # Meta commands in scripts: .mode, .headers, .once, .output, .read, .categories, .scenes, .open.
@@ -88,7 +99,7 @@ check ".mode ask makes lines questions; .mode csv makes them SMQL again" bash -c
   grep -q '^Yes, there are 2 sofas' '$work/ask.out' && grep -qx '0 pianos.' '$work/ask.out' &&
   grep -qx 'output mode: table (lines are questions: .mode ask)' '$work/ask.out' && tail -1 '$work/ask.out' | grep -qx 2"
 check "a question ASK cannot read is an error with examples" bash -c "! '$smql' '$db' -c \"ASK 'hello'\" 2>'$work/e' && grep -q 'hint: ask as in' '$work/e'"
-check "an unknown meta command is an error with a hint" bash -c "! '$smql' '$db' -c '.tables' 2>'$work/e' && grep -q 'hint: .help' '$work/e'"
+check "an unknown meta command is an error with a hint" bash -c "! '$smql' '$db' -c '.bogus' 2>'$work/e' && grep -q 'hint: .help' '$work/e'"
 check "a script error names its line in the script" bash -c "printf 'COUNT sofa;\n\nFIND\n  nope;\n' | '$smql' '$db' 2>&1 >/dev/null | grep -q 'line 4, column 3'"
 
 # Errors: non-zero exit, line and column, a caret, a hint; JSON errors for programs.
