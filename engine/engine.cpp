@@ -215,6 +215,7 @@ const std::string& PreparedStatement::text() const { return statement_->text; }
 
 model::NodeId Engine::importScene(model::SceneData scene) {
     std::lock_guard lock(state_->mutex);
+    history::stampSeen(scene, model::utcNow());
     relations::assignParents(scene, state_->session.thresholds);
     auto txn = state_->db->beginWrite();
     auto id = txn.importScene(scene);

@@ -157,16 +157,7 @@ int ingestCommand(const IngestArguments& args) {
     }
     std::signal(SIGINT, previous);
 
-    // When the place was seen: the time of this ingest, on the scene and on every object.
-    if (result.scene.info.captureTime.empty()) result.scene.info.captureTime = model::utcNow();
-    for (auto& n : result.scene.nodes)
-        if (n.kind == model::NodeKind::Object) {
-            n.attributes.push_back({"first_seen_at", result.scene.info.captureTime});
-            n.attributes.push_back({"last_seen_at", result.scene.info.captureTime});
-            std::sort(n.attributes.begin(), n.attributes.end(),
-                      [](const auto& a, const auto& b) { return a.name < b.name; });
-        }
-
+    // The scene's stamps (capture time, first and last seen) are the engine's, as for an import.
     auto writeStart = std::chrono::steady_clock::now();
     auto engine = Engine::open(args.db);
     if (!args.update.empty()) return updateScene(*engine, args, result.scene, writeStart, *progress);

@@ -79,6 +79,15 @@ std::vector<Block> parseSuite(const std::string& path) {
     return blocks;
 }
 
+// A suite's scenes are captured at one fixed instant, so that what they record (first_seen_at,
+// last_seen_at) and their answers do not change with the clock.
+constexpr const char* kSuiteCaptureTime = "2026-01-01T00:00:00Z";
+
+model::SceneData capturedAtSuiteTime(model::SceneData scene) {
+    if (scene.info.captureTime.empty()) scene.info.captureTime = kSuiteCaptureTime;
+    return scene;
+}
+
 void load(Engine& engine, const Block& block, const fs::path& suiteDir) {
     const auto& a = block.args;
     if (a.empty())
@@ -89,14 +98,15 @@ void load(Engine& engine, const Block& block, const fs::path& suiteDir) {
         return it != a.end() && it + 1 != a.end() ? *(it + 1) : fallback;
     };
     if (a[0] == "demo") {
-        engine.importScene(generate::generateRoom({.seed = std::stoull(option("seed", "7")),
-                                                   .objectCount = std::stoi(option("objects", "36")),
-                                                   .name = option("scene", "demo-room")}));
+        engine.importScene(
+            capturedAtSuiteTime(generate::generateRoom({.seed = std::stoull(option("seed", "7")),
+                                                        .objectCount = std::stoi(option("objects", "36")),
+                                                        .name = option("scene", "demo-room")})));
         return;
     }
     if (a.size() < 2) throw Error(ErrorKind::Input, "load " + a[0] + " needs a file");
     std::string file = (suiteDir / a[1]).string();
-    engine.importScene(import::read(a[0], file, option("scene", "")));
+    engine.importScene(capturedAtSuiteTime(import::read(a[0], file, option("scene", ""))));
 }
 
 // Runs one block; returns an empty string when it passed, else what went wrong.

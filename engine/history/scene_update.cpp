@@ -131,6 +131,20 @@ void seenAgain(Node& node, const std::string& time) {
 
 }  // namespace
 
+void stampSeen(model::SceneData& scene, const std::string& now) {
+    if (scene.info.captureTime.empty()) scene.info.captureTime = now;
+    for (auto& node : scene.nodes) {
+        if (node.kind != model::NodeKind::Object) continue;
+        auto has = [&](std::string_view name) {
+            return std::any_of(node.attributes.begin(), node.attributes.end(),
+                               [&](const model::Attribute& a) { return a.name == name; });
+        };
+        if (!has("first_seen_at")) node.attributes.push_back({"first_seen_at", scene.info.captureTime});
+        if (!has("last_seen_at")) node.attributes.push_back({"last_seen_at", scene.info.captureTime});
+        sortAttributes(node);
+    }
+}
+
 Matching matchObjects(const model::SceneData& stored, const model::SceneData& observed, const MatchRules& rules) {
     std::vector<const Node*> before, after;
     for (const Node& n : stored.nodes)

@@ -39,6 +39,12 @@ struct Matching {
     std::vector<model::NodeId> added;  // observed objects no stored object matches
 };
 
+// The stamps every new scene carries, wherever it comes from (an import, an ingest, the C API):
+// its capture time (now, when the source gives none) and on each object `first_seen_at` and
+// `last_seen_at` = that time, unless the source already has them (a scene exported and imported
+// again keeps its history).
+void stampSeen(model::SceneData& scene, const std::string& now);
+
 // `stored` holds database ids (its visible objects are matched), `observed` local ids.
 Matching matchObjects(const model::SceneData& stored, const model::SceneData& observed, const MatchRules& rules = {});
 

@@ -12,9 +12,11 @@
 #include <Eigen/Eigenvalues>
 #include "model/geometry.hpp"
 
+#include "engine/engine.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "ingest/import/importers.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
@@ -136,4 +138,27 @@ TEST_CASE("rgbd-dining (real, 5 frames, no labels): floor, walls and table-top o
     CHECK(walls >= 1);
     CHECK(objects >= 1);
     CHECK(above >= 1);
+
+    // Stored, an ingested scene carries the stamps an imported one does (the engine's, one rule):
+    // its capture time, and on every object first_seen_at = last_seen_at = that time.
+    ScratchDir database;
+    auto engine = Engine::open((database.path / "db").string());
+    engine->importScene(result.scene);
+    engine->importScene(
+        import::readReplica(std::string(SMQL_SHARED_DATA) + "/replica-room0/info_semantic.json", "replica"));
+    for (const std::string scene : {"dining", "replica"}) {
+        const model::SceneData stored = engine->readScene(scene);
+        INFO(scene);
+        REQUIRE(!stored.info.captureTime.empty());
+        for (const auto& n : stored.nodes) {
+            if (n.kind != model::NodeKind::Object) continue;
+            auto value = [&](std::string_view name) {
+                auto it = std::find_if(n.attributes.begin(), n.attributes.end(),
+                                       [&](const model::Attribute& a) { return a.name == name; });
+                return it == n.attributes.end() ? std::string("(unset)") : it->value;
+            };
+            CHECK(value("first_seen_at") == stored.info.captureTime);
+            CHECK(value("last_seen_at") == stored.info.captureTime);
+        }
+    }
 }
