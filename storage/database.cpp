@@ -741,96 +741,87 @@ WriteTransaction::WriteTransaction(WriteTransaction&&) noexcept = default;
 WriteTransaction& WriteTransaction::operator=(WriteTransaction&&) noexcept = default;
 WriteTransaction::~WriteTransaction() = default;
 
-NodeId WriteTransaction::importScene(const model::SceneData& data) {
-    assert(impl_->txn && "WriteTransaction used after commit()");
-    const Environment& env = *impl_->env;
-    MDB_txn* txn = impl_->txn;
-    std::string& record = impl_->record;
-    const std::string& name = data.info.name;
+namespace {
 
-    // Everything that can be wrong with the input is found before the first write.
-    auto position = validateScene(env, data);
-    if (readSceneId(env, txn, name))
-        throw Error(ErrorKind::Input, fmt::format("a scene named '{}' already exists", name), std::nullopt,
-                    "choose another name, or remove the stored one first (DROP SCENE)");
+// The records and index entries of a new scene, one writer per table, each in the order that lets
+// LMDB append (MDB_APPEND, MDB_APPENDDUP) where the keys allow it. `position` maps the scene's local
+// ids to positions in `data.nodes`; node i gets the database id sceneId + 1 + i.
+class SceneWriter {
+public:
+    SceneWriter(const Environment& env, MDB_txn* txn, std::string& record, const model::SceneData& data,
+                std::unordered_map<NodeId, std::size_t> position, NodeId sceneId)
+        : env_(env), txn_(txn), record_(record), data_(data), position_(std::move(position)), sceneId_(sceneId) {}
 
-    const NodeId sceneId = readNextId(env, txn);
-    const std::uint64_t nodeCount = data.nodes.size();
-    auto databaseId = [&](NodeId local) {
-        return local == model::kNoNode ? sceneId : sceneId + 1 + position.at(local);
-    };
-
-    // Nodes: ids above every existing key, in ascending order, so MDB_APPEND
-    // fills pages completely and skips the search.
-    {
-        Cursor nodes(env, txn, Table::Nodes);
+    // Nodes: ids above every existing key, in ascending order, so MDB_APPEND fills pages completely
+    // and skips the search.
+    void nodes() {
+        Cursor nodes(env_, txn_, Table::Nodes);
         Node sceneNode;
-        sceneNode.id = sceneId;
+        sceneNode.id = sceneId_;
         sceneNode.kind = model::NodeKind::Scene;
-        sceneNode.scene = sceneId;
-        sceneNode.category = name;
-        codec::encodeNode(sceneNode, record);
-        auto key = codec::idKey(sceneId);
-        put(env, nodes.get(), toVal(key), toVal(record), MDB_APPEND, "storing the scene node");
-
+        sceneNode.scene = sceneId_;
+        sceneNode.category = data_.info.name;
+        codec::encodeNode(sceneNode, record_);
+        auto key = codec::idKey(sceneId_);
+        put(env_, nodes.get(), toVal(key), toVal(record_), MDB_APPEND, "storing the scene node");
         Node mapped;
-        for (std::size_t i = 0; i < data.nodes.size(); ++i) {
-            mapped = data.nodes[i];
-            mapped.id = sceneId + 1 + i;
-            mapped.scene = sceneId;
-            mapped.parent = databaseId(data.nodes[i].parent);
-            codec::encodeNode(mapped, record);
+        for (std::size_t i = 0; i < data_.nodes.size(); ++i) {
+            mapped = data_.nodes[i];
+            mapped.id = idAt(i);
+            mapped.scene = sceneId_;
+            mapped.parent = databaseId(data_.nodes[i].parent);
+            codec::encodeNode(mapped, record_);
             key = codec::idKey(mapped.id);
-            put(env, nodes.get(), toVal(key), toVal(record), MDB_APPEND, "storing a node");
+            put(env_, nodes.get(), toVal(key), toVal(record_), MDB_APPEND, "storing a node");
         }
     }
 
-    // Children: (parent, child) sorted, so each parent's duplicates append
-    // (MDB_APPENDDUP) and the key searches walk the tree in order.
-    {
+    // Children: (parent, child) sorted, so each parent's duplicates append (MDB_APPENDDUP) and the
+    // key searches walk the tree in order.
+    void children() {
         std::vector<std::pair<NodeId, NodeId>> edges;
-        edges.reserve(data.nodes.size());
-        for (std::size_t i = 0; i < data.nodes.size(); ++i)
-            edges.emplace_back(databaseId(data.nodes[i].parent), sceneId + 1 + i);
+        edges.reserve(data_.nodes.size());
+        for (std::size_t i = 0; i < data_.nodes.size(); ++i)
+            edges.emplace_back(databaseId(data_.nodes[i].parent), idAt(i));
         std::sort(edges.begin(), edges.end());
-        Cursor children(env, txn, Table::Children);
+        Cursor children(env_, txn_, Table::Children);
         for (const auto& [parent, child] : edges) {
             auto key = codec::idKey(parent), value = codec::idKey(child);
-            put(env, children.get(), toVal(key), toVal(value), MDB_APPENDDUP, "storing a child link");
+            put(env_, children.get(), toVal(key), toVal(value), MDB_APPENDDUP, "storing a child link");
         }
     }
 
     // Label index: categories interleave with other scenes' keys, so plain puts.
-    {
-        Cursor labels(env, txn, Table::Labels);
-        for (std::size_t i = 0; i < data.nodes.size(); ++i) {
-            const std::string& category = data.nodes[i].category;
+    void labels() {
+        Cursor labels(env_, txn_, Table::Labels);
+        for (std::size_t i = 0; i < data_.nodes.size(); ++i) {
+            const std::string& category = data_.nodes[i].category;
             if (category.empty()) continue;
-            auto entry = codec::labelEntry(sceneId, sceneId + 1 + i);
-            put(env, labels.get(), toVal(category), toVal(entry), 0, "storing a label");
+            auto entry = codec::labelEntry(sceneId_, idAt(i));
+            put(env_, labels.get(), toVal(category), toVal(entry), 0, "storing a label");
         }
     }
 
     // Source ids: keys start with the new (largest) scene id, so sorted keys append.
-    {
+    void sourceIds() {
         std::vector<std::pair<codec::SourceKey, NodeId>> sources;
-        for (std::size_t i = 0; i < data.nodes.size(); ++i)
-            if (data.nodes[i].sourceId)
-                sources.emplace_back(codec::sourceKey(sceneId, *data.nodes[i].sourceId), sceneId + 1 + i);
+        for (std::size_t i = 0; i < data_.nodes.size(); ++i)
+            if (data_.nodes[i].sourceId)
+                sources.emplace_back(codec::sourceKey(sceneId_, *data_.nodes[i].sourceId), idAt(i));
         std::sort(sources.begin(), sources.end());
-        Cursor index(env, txn, Table::SourceIds);
+        Cursor index(env_, txn_, Table::SourceIds);
         for (const auto& [key, id] : sources) {
             auto value = codec::idKey(id);
-            put(env, index.get(), toVal(key), toVal(value), MDB_APPEND, "storing a source id");
+            put(env_, index.get(), toVal(key), toVal(value), MDB_APPEND, "storing a source id");
         }
     }
 
-    // Relations: one entry under each end, sorted so duplicates append;
-    // identical relations collapse into one entry.
-    {
+    // Relations: one entry under each end, sorted so duplicates append; identical relations
+    // collapse into one entry.
+    void relations() {
         std::vector<std::pair<NodeId, codec::RelationEntry>> entries;
-        entries.reserve(2 * data.relations.size());
-        for (const model::Relation& local : data.relations) {
+        entries.reserve(2 * data_.relations.size());
+        for (const model::Relation& local : data_.relations) {
             model::Relation r = local;
             r.subject = databaseId(local.subject);
             r.object = databaseId(local.object);
@@ -840,41 +831,80 @@ NodeId WriteTransaction::importScene(const model::SceneData& data) {
         }
         std::sort(entries.begin(), entries.end());
         entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
-        Cursor relations(env, txn, Table::Relations);
+        Cursor relations(env_, txn_, Table::Relations);
         for (const auto& [id, entry] : entries) {
             auto key = codec::idKey(id);
-            put(env, relations.get(), toVal(key), toVal(entry), MDB_APPENDDUP, "storing a relation");
+            put(env_, relations.get(), toVal(key), toVal(entry), MDB_APPENDDUP, "storing a relation");
         }
     }
 
     // Blobs: keys start with the new node ids, so sorted keys append.
-    {
+    void blobs() {
         std::vector<std::pair<std::string, const model::Blob*>> blobs;
-        for (const model::Blob& blob : data.blobs)
+        for (const model::Blob& blob : data_.blobs)
             blobs.emplace_back(codec::blobKey(databaseId(blob.node), blob.name), &blob);
         std::sort(blobs.begin(), blobs.end());
-        Cursor table(env, txn, Table::Blobs);
+        Cursor table(env_, txn_, Table::Blobs);
         for (const auto& [key, blob] : blobs) {
-            codec::encodeBlob(key, *blob, record);
-            put(env, table.get(), toVal(key), toVal(record), MDB_APPEND, "storing a blob");
+            codec::encodeBlob(key, *blob, record_);
+            put(env_, table.get(), toVal(key), toVal(record_), MDB_APPEND, "storing a blob");
         }
     }
 
-    {
-        SceneInfo info = data.info;
-        info.id = sceneId;
-        info.nodeCount = nodeCount;
+    // The scene's record, its name, and the next free id.
+    void scene() {
+        SceneInfo info = data_.info;
+        info.id = sceneId_;
+        info.nodeCount = data_.nodes.size();
         info.version = 1;
-        codec::encodeScene(info, record);
-        auto key = codec::idKey(sceneId);
-        Cursor scenes(env, txn, Table::Scenes);
-        put(env, scenes.get(), toVal(key), toVal(record), MDB_NOOVERWRITE, "storing the scene");
-        Cursor names(env, txn, Table::SceneNames);
-        put(env, names.get(), toVal(name), toVal(key), MDB_NOOVERWRITE, "storing the scene name");
-        std::string nextId = codec::encodeU64(sceneId + 1 + nodeCount);
-        Cursor meta(env, txn, Table::Meta);
-        put(env, meta.get(), toVal(kNextIdKey), toVal(nextId), 0, "storing the next id");
+        codec::encodeScene(info, record_);
+        auto key = codec::idKey(sceneId_);
+        Cursor scenes(env_, txn_, Table::Scenes);
+        put(env_, scenes.get(), toVal(key), toVal(record_), MDB_NOOVERWRITE, "storing the scene");
+        Cursor names(env_, txn_, Table::SceneNames);
+        put(env_, names.get(), toVal(info.name), toVal(key), MDB_NOOVERWRITE, "storing the scene name");
+        std::string nextId = codec::encodeU64(sceneId_ + 1 + data_.nodes.size());
+        Cursor meta(env_, txn_, Table::Meta);
+        put(env_, meta.get(), toVal(kNextIdKey), toVal(nextId), 0, "storing the next id");
     }
+
+private:
+    NodeId idAt(std::size_t i) const { return sceneId_ + 1 + i; }
+    NodeId databaseId(NodeId local) const {
+        return local == model::kNoNode ? sceneId_ : sceneId_ + 1 + position_.at(local);
+    }
+
+    const Environment& env_;
+    MDB_txn* txn_;
+    std::string& record_;
+    const model::SceneData& data_;
+    const std::unordered_map<NodeId, std::size_t> position_;
+    const NodeId sceneId_;
+};
+
+}  // namespace
+
+NodeId WriteTransaction::importScene(const model::SceneData& data) {
+    assert(impl_->txn && "WriteTransaction used after commit()");
+    const Environment& env = *impl_->env;
+    MDB_txn* txn = impl_->txn;
+    const std::string& name = data.info.name;
+
+    // Everything that can be wrong with the input is found before the first write.
+    auto position = validateScene(env, data);
+    if (readSceneId(env, txn, name))
+        throw Error(ErrorKind::Input, fmt::format("a scene named '{}' already exists", name), std::nullopt,
+                    "choose another name, or remove the stored one first (DROP SCENE)");
+
+    const NodeId sceneId = readNextId(env, txn);
+    SceneWriter write(env, txn, impl_->record, data, std::move(position), sceneId);
+    write.nodes();
+    write.children();
+    write.labels();
+    write.sourceIds();
+    write.relations();
+    write.blobs();
+    write.scene();
     return sceneId;
 }
 

@@ -183,139 +183,171 @@ Matching matchObjects(const model::SceneData& stored, const model::SceneData& ob
     return out;
 }
 
+namespace {
+
+// The next version, built phase by phase: which stored nodes stay, what each kept object's fate
+// does to it, the new objects, then the relations. Local ids are given in that order.
+class UpdatePlanner {
+public:
+    UpdatePlanner(const model::SceneData& stored, const model::SceneData& observed, const std::string& time,
+                  const Matching& matching)
+        : stored_(stored), observed_(observed), time_(time), matching_(matching) {
+        for (const auto& f : matching.stored) fateOf_.emplace(f.stored, &f);
+        for (const Node& n : observed.nodes) observedById_.emplace(n.id, &n);
+        for (const Node& n : stored.nodes) storedById_.emplace(n.id, &n);
+        auto& info = update_.next.info;
+        info = stored.info;
+        info.captureTime = time;
+        if (!observed.info.source.empty()) info.source = observed.info.source;
+    }
+
+    SceneUpdate plan() {
+        for (const Node* n : keptNodes()) keep(*n);
+        addNewObjects();
+        carryRelations();
+        update_.next.info.nodeCount = update_.next.nodes.size();
+        return std::move(update_);
+    }
+
+private:
+    const ObjectFate* fate(NodeId storedId) const {
+        auto it = fateOf_.find(storedId);
+        return it == fateOf_.end() ? nullptr : it->second;
+    }
+    bool gone(const Node& n) const { return fate(n.id) && fate(n.id)->fate == Fate::Missing; }
+    bool moved(NodeId storedId) const { return fate(storedId) && fate(storedId)->fate == Fate::Moved; }
+
+    // The stored nodes the new version keeps, in their order: every node but the missing objects
+    // (each a change) and the descriptions of nodes that are gone.
+    std::vector<const Node*> keptNodes() {
+        std::vector<const Node*> kept;
+        for (const Node& n : stored_.nodes) {
+            if (n.kind == NodeKind::Scene) continue;
+            if (gone(n)) {
+                ++update_.missing;
+                update_.changes.push_back({model::ChangeKind::Missing, n.category, n.id, model::kNoNode, n.box, {}});
+                continue;
+            }
+            auto parent = storedById_.find(n.parent);
+            if (n.kind == NodeKind::Description && parent != storedById_.end() && gone(*parent->second)) continue;
+            localOfStored_.emplace(n.id, nextLocal_++);
+            kept.push_back(&n);
+        }
+        return kept;
+    }
+
+    // A kept node as the new version has it: seen again, moved (to its new box) or unseen; with its
+    // parent, which structure and descriptions keep, and an object keeps unless either of them moved
+    // (otherwise the engine finds its parent anew: support, else the nearest upright anchor).
+    void keep(const Node& n) {
+        Node kept = n;
+        kept.id = localOfStored_.at(n.id);
+        kept.scene = model::kNoNode;
+        if (const ObjectFate* f = fate(n.id)) {
+            if (f->fate == Fate::Unchanged) ++update_.unchanged;
+            if (f->fate == Fate::Unseen) ++update_.unseen;
+            if (f->fate != Fate::Unseen) {
+                seenAgain(kept, time_);
+                localOfObserved_.emplace(f->observed, kept.id);
+            }
+            if (f->fate == Fate::Moved) {
+                ++update_.moved;
+                kept.box = observedById_.at(f->observed)->box;
+                setAttribute(kept, "moved_at", time_);
+                placedAnew_.insert(kept.id);
+                update_.changes.push_back({model::ChangeKind::Moved, n.category, n.id, kept.id, n.box, kept.box});
+            }
+        }
+        auto parent = localOfStored_.find(n.parent);
+        bool keepsParent = parent != localOfStored_.end();
+        if (n.kind == NodeKind::Object) keepsParent = keepsParent && !moved(n.id) && !moved(n.parent);
+        kept.parent = keepsParent ? parent->second : model::kNoNode;
+        sortAttributes(kept);
+        update_.carried.emplace_back(n.id, kept.id);
+        update_.next.nodes.push_back(std::move(kept));
+    }
+
+    // The new objects, with the descriptions and the evidence the capture gave them.
+    void addNewObjects() {
+        auto& next = update_.next;
+        std::set<std::int64_t> sourceIds;
+        for (const Node& n : next.nodes)
+            if (n.sourceId) sourceIds.insert(*n.sourceId);
+        std::set<NodeId> added(matching_.added.begin(), matching_.added.end());
+        auto place = [&](const Node& n, NodeId parent) {
+            Node fresh = n;
+            fresh.id = nextLocal_++;
+            fresh.scene = model::kNoNode;
+            fresh.parent = parent;
+            // A source id names a thing in one capture's files; the stored ones keep theirs.
+            if (fresh.sourceId && !sourceIds.insert(*fresh.sourceId).second) fresh.sourceId.reset();
+            localOfObserved_.emplace(n.id, fresh.id);
+            return fresh;
+        };
+        for (const Node& n : observed_.nodes) {
+            if (!added.count(n.id)) continue;
+            Node fresh = place(n, model::kNoNode);
+            ++update_.added;
+            setAttribute(fresh, "first_seen_at", time_);
+            setAttribute(fresh, "last_seen_at", time_);
+            setAttribute(fresh, "captures", "1");
+            sortAttributes(fresh);
+            placedAnew_.insert(fresh.id);
+            update_.changes.push_back({model::ChangeKind::Added, n.category, model::kNoNode, fresh.id, {}, n.box});
+            next.nodes.push_back(std::move(fresh));
+        }
+        for (const Node& n : observed_.nodes)
+            if (n.kind == NodeKind::Description && added.count(n.parent))
+                next.nodes.push_back(place(n, localOfObserved_.at(n.parent)));
+        for (const model::Blob& blob : observed_.blobs) {
+            if (!added.count(blob.node)) continue;
+            model::Blob b = blob;
+            b.node = localOfObserved_.at(blob.node);
+            next.blobs.push_back(std::move(b));
+        }
+    }
+
+    // Relations: the stored ones among what stayed in place, the capture's among what it placed.
+    void carryRelations() {
+        auto map = [](const std::unordered_map<NodeId, NodeId>& ids, NodeId id) -> std::optional<NodeId> {
+            if (id == model::kNoNode) return model::kNoNode;
+            auto it = ids.find(id);
+            if (it == ids.end()) return std::nullopt;
+            return it->second;
+        };
+        auto& relations = update_.next.relations;
+        for (const model::Relation& r : stored_.relations) {
+            auto s = map(localOfStored_, r.subject), o = map(localOfStored_, r.object),
+                 f = map(localOfStored_, r.frame);
+            if (!s || !o || !f || placedAnew_.count(*s) || placedAnew_.count(*o)) continue;
+            relations.push_back({*s, *o, r.type, r.score, r.support, *f});
+        }
+        for (const model::Relation& r : observed_.relations) {
+            auto s = map(localOfObserved_, r.subject), o = map(localOfObserved_, r.object);
+            if (!s || !o || (!placedAnew_.count(*s) && !placedAnew_.count(*o))) continue;
+            auto f = map(localOfObserved_, r.frame);
+            relations.push_back({*s, *o, r.type, r.score, r.support, f.value_or(model::kNoNode)});
+        }
+    }
+
+    const model::SceneData& stored_;
+    const model::SceneData& observed_;
+    const std::string& time_;
+    const Matching& matching_;
+    SceneUpdate update_;
+    std::unordered_map<NodeId, const ObjectFate*> fateOf_;
+    std::unordered_map<NodeId, const Node*> observedById_, storedById_;
+    NodeId nextLocal_ = 1;
+    std::unordered_map<NodeId, NodeId> localOfStored_, localOfObserved_;
+    std::set<NodeId> placedAnew_;  // local ids of moved and added objects: their parents and relations are new
+};
+
+}  // namespace
+
 SceneUpdate planUpdate(const model::SceneData& stored, const model::SceneData& observed, const std::string& time,
                        const MatchRules& rules) {
     const Matching matching = matchObjects(stored, observed, rules);
-    SceneUpdate update;
-    auto& next = update.next;
-    next.info = stored.info;
-    next.info.captureTime = time;
-    if (!observed.info.source.empty()) next.info.source = observed.info.source;
-
-    std::unordered_map<NodeId, const ObjectFate*> fateOf;
-    for (const auto& f : matching.stored) fateOf.emplace(f.stored, &f);
-    std::unordered_map<NodeId, const Node*> observedById;
-    for (const Node& n : observed.nodes) observedById.emplace(n.id, &n);
-
-    NodeId nextLocal = 1;
-    std::unordered_map<NodeId, NodeId> localOfStored, localOfObserved;
-    std::set<NodeId> placedAnew;  // local ids of moved and added objects: their parents and relations are new
-
-    // The stored nodes the new version keeps, in their order: every node but the missing
-    // objects and the descriptions of nodes that are gone.
-    std::unordered_map<NodeId, const Node*> storedById;
-    for (const Node& n : stored.nodes) storedById.emplace(n.id, &n);
-    auto gone = [&](const Node& n) {
-        auto fate = fateOf.find(n.id);
-        return fate != fateOf.end() && fate->second->fate == Fate::Missing;
-    };
-    std::vector<const Node*> keep;
-    for (const Node& n : stored.nodes) {
-        if (n.kind == NodeKind::Scene) continue;
-        if (gone(n)) {
-            ++update.missing;
-            update.changes.push_back({model::ChangeKind::Missing, n.category, n.id, model::kNoNode, n.box, {}});
-            continue;
-        }
-        auto parent = storedById.find(n.parent);
-        if (n.kind == NodeKind::Description && parent != storedById.end() && gone(*parent->second)) continue;
-        localOfStored.emplace(n.id, nextLocal++);
-        keep.push_back(&n);
-    }
-    auto movedNode = [&](NodeId storedId) {
-        auto fate = fateOf.find(storedId);
-        return fate != fateOf.end() && fate->second->fate == Fate::Moved;
-    };
-    for (const Node* n : keep) {
-        Node kept = *n;
-        kept.id = localOfStored.at(n->id);
-        kept.scene = model::kNoNode;
-        if (auto fate = fateOf.find(n->id); fate != fateOf.end()) {
-            const ObjectFate& f = *fate->second;
-            if (f.fate == Fate::Unchanged) ++update.unchanged;
-            if (f.fate == Fate::Unseen) ++update.unseen;
-            if (f.fate != Fate::Unseen) {
-                seenAgain(kept, time);
-                localOfObserved.emplace(f.observed, kept.id);
-            }
-            if (f.fate == Fate::Moved) {
-                ++update.moved;
-                kept.box = observedById.at(f.observed)->box;
-                setAttribute(kept, "moved_at", time);
-                placedAnew.insert(kept.id);
-                update.changes.push_back({model::ChangeKind::Moved, n->category, n->id, kept.id, n->box, kept.box});
-            }
-        }
-        // Structure and descriptions keep their parent. An object keeps its support unless
-        // either of them moved; otherwise the engine finds its parent anew (support, else
-        // the nearest upright anchor).
-        auto parent = localOfStored.find(n->parent);
-        bool keepsParent = parent != localOfStored.end();
-        if (n->kind == NodeKind::Object) keepsParent = keepsParent && !movedNode(n->id) && !movedNode(n->parent);
-        kept.parent = keepsParent ? parent->second : model::kNoNode;
-        sortAttributes(kept);
-        update.carried.emplace_back(n->id, kept.id);
-        next.nodes.push_back(std::move(kept));
-    }
-
-    // The new objects, with the descriptions the capture gave them.
-    std::set<std::int64_t> sourceIds;
-    for (const Node& n : next.nodes)
-        if (n.sourceId) sourceIds.insert(*n.sourceId);
-    std::set<NodeId> added(matching.added.begin(), matching.added.end());
-    auto place = [&](const Node& n, NodeId parent) {
-        Node fresh = n;
-        fresh.id = nextLocal++;
-        fresh.scene = model::kNoNode;
-        fresh.parent = parent;
-        // A source id names a thing in one capture's files; the stored ones keep theirs.
-        if (fresh.sourceId && !sourceIds.insert(*fresh.sourceId).second) fresh.sourceId.reset();
-        localOfObserved.emplace(n.id, fresh.id);
-        return fresh;
-    };
-    for (const Node& n : observed.nodes) {
-        if (!added.count(n.id)) continue;
-        Node fresh = place(n, model::kNoNode);
-        ++update.added;
-        setAttribute(fresh, "first_seen_at", time);
-        setAttribute(fresh, "last_seen_at", time);
-        setAttribute(fresh, "captures", "1");
-        sortAttributes(fresh);
-        placedAnew.insert(fresh.id);
-        update.changes.push_back({model::ChangeKind::Added, n.category, model::kNoNode, fresh.id, {}, n.box});
-        next.nodes.push_back(std::move(fresh));
-    }
-    for (const Node& n : observed.nodes)
-        if (n.kind == NodeKind::Description && added.count(n.parent))
-            next.nodes.push_back(place(n, localOfObserved.at(n.parent)));
-    // Evidence of the new objects comes from the capture.
-    for (const model::Blob& blob : observed.blobs) {
-        if (!added.count(blob.node)) continue;
-        model::Blob b = blob;
-        b.node = localOfObserved.at(blob.node);
-        next.blobs.push_back(std::move(b));
-    }
-
-    // Relations: the stored ones among what stayed, the capture's among what it placed.
-    auto map = [](const std::unordered_map<NodeId, NodeId>& ids, NodeId id) -> std::optional<NodeId> {
-        if (id == model::kNoNode) return model::kNoNode;
-        auto it = ids.find(id);
-        if (it == ids.end()) return std::nullopt;
-        return it->second;
-    };
-    for (const model::Relation& r : stored.relations) {
-        auto s = map(localOfStored, r.subject), o = map(localOfStored, r.object), f = map(localOfStored, r.frame);
-        if (!s || !o || !f || placedAnew.count(*s) || placedAnew.count(*o)) continue;
-        next.relations.push_back({*s, *o, r.type, r.score, r.support, *f});
-    }
-    for (const model::Relation& r : observed.relations) {
-        auto s = map(localOfObserved, r.subject), o = map(localOfObserved, r.object);
-        if (!s || !o || (!placedAnew.count(*s) && !placedAnew.count(*o))) continue;
-        auto f = map(localOfObserved, r.frame);
-        next.relations.push_back({*s, *o, r.type, r.score, r.support, f.value_or(model::kNoNode)});
-    }
-    next.info.nodeCount = next.nodes.size();
-    return update;
+    return UpdatePlanner(stored, observed, time, matching).plan();
 }
 
 }  // namespace smql::history

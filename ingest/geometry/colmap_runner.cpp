@@ -256,6 +256,348 @@ void writePosedModel(const fs::path& folder, const fs::path& database, const Cap
     }
 }
 
+// One run of COLMAP over a capture, phase by phase: the frames into its image folder, features,
+// matches (and loops closed), then points triangulated with the capture's own poses, or a model
+// made by the mapper and the largest one read back. Each phase is a method; the state they share
+// is the run's.
+class ColmapSession {
+public:
+    ColmapSession(Capture& capture, const ColmapOptions& options, std::string colmap)
+        : capture_(capture),
+          options_(options),
+          colmap_(std::move(colmap)),
+          work_(makeWorkFolder(options.workDirectory)),
+          images_(work_ / "images"),
+          database_(work_ / "database.db"),
+          sparse_(work_ / "sparse"),
+          record_(work_ / "smql-run.txt"),
+          threads_(fmt::format("{}", options.threads)) {
+        run_.workDirectory = work_.string();
+        run_.logPath = (work_ / "colmap.log").string();
+    }
+
+    ColmapRun run() {
+        gatherFrames();
+        prepareWorkFolder();
+        extractFeatures();
+        matchFeatures();
+        if (!exhaustive_ && !loops_) closeLoops();
+        // Frames that all have a pose (transforms.json without depth, RGB-D frames with the depth left
+        // out) keep it: COLMAP only triangulates the matched features with the given poses and cameras.
+        const bool posed = std::all_of(workFrames_.begin(), workFrames_.end(),
+                                       [&](const WorkFrame& w) { return capture_.frames[w.frame].pose.has_value(); });
+        if (posed)
+            triangulateWithPoses();
+        else
+            adoptModel(mapLargestModel());
+        leaveWorkFolder();
+        return std::move(run_);
+    }
+
+private:
+    // Frames into groups of one image size and one known camera: linked when COLMAP can read them
+    // as they are, else written scaled down (and turned upright, as OpenCV reads them).
+    void gatherFrames() {
+        for (std::size_t i = 0; i < capture_.frames.size(); ++i) {
+            const CaptureFrame& frame = capture_.frames[i];
+            std::error_code ec;
+            cv::Mat image;
+            if (fs::is_regular_file(frame.colorPath, ec)) image = cv::imread(frame.colorPath, cv::IMREAD_COLOR);
+            if (image.empty()) {
+                run_.notes.push_back(
+                    fmt::format("frame {} ({}) is listed but its image is missing or unreadable: skipped", frame.index,
+                                frame.colorPath));
+                continue;
+            }
+            WorkFrame w{
+                i, {}, image.size(), scaledDown(image.size(), options_.maxImageSize), fs::absolute(frame.colorPath)};
+            std::optional<Intrinsics> known = knownCamera(capture_, frame, image.size());
+            if (known) known = capture_detail::scaleIntrinsics(*known, w.work.width, w.work.height);
+            auto group = std::find_if(groups_.begin(), groups_.end(), [&](const CameraGroup& g) {
+                return g.original == w.original && g.known == known;
+            });
+            if (group == groups_.end()) {
+                std::size_t sameSize = std::count_if(groups_.begin(), groups_.end(),
+                                                     [&](const CameraGroup& g) { return g.original == w.original; });
+                std::string folder = fmt::format("{}x{}", w.original.width, w.original.height);
+                if (sameSize > 0) folder += fmt::format("-{}", sameSize + 1);
+                groups_.push_back(CameraGroup{folder, w.original, w.work, known, {}});
+                group = groups_.end() - 1;
+            }
+            group->frames.push_back(workFrames_.size());
+            std::string extension = capture_detail::lowerCase(w.source.extension().string());
+            w.name = fmt::format("{}/frame{:06d}{}", group->folder, i, extension);
+            w.upright = capture_detail::readExif(w.source).orientation == 1;
+            scaled_ += w.work != w.original;
+            workFrames_.push_back(std::move(w));
+        }
+        if (workFrames_.size() < 2)
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: COLMAP needs at least 2 frames, {} of {} have a readable image", capture_.path,
+                                    workFrames_.size(), capture_.frames.size()),
+                        std::nullopt, kRetryHint);
+        run_.cameras = groups_.size();
+    }
+
+    // The run's inputs are recorded last: a folder whose record matches them holds this run,
+    // finished, and is read instead of running COLMAP again.
+    void prepareWorkFolder() {
+        inputs_ = describeRun(capture_, workFrames_, groups_, options_);
+        run_.reused = !options_.workDirectory.empty() && readText(record_) == inputs_;
+        if (run_.reused) {
+            run_.notes.push_back(
+                fmt::format("COLMAP's model of these {} frames read from {}, run there before (empty the "
+                            "folder to run COLMAP again)",
+                            workFrames_.size(), run_.workDirectory));
+        } else {
+            clearWorkFolder(work_);
+            fs::create_directories(sparse_);
+            for (const CameraGroup& group : groups_) fs::create_directories(images_ / group.folder);
+            for (const WorkFrame& w : workFrames_) writeWorkImage(w, images_ / w.name);
+        }
+        if (scaled_ > 0)
+            run_.notes.push_back(
+                fmt::format("COLMAP sees {} of {} frames scaled down to {} pixels on the long side "
+                            "(--max-size); poses and intrinsics are mapped back to the frames' own pixels",
+                            scaled_, workFrames_.size(), options_.maxImageSize));
+    }
+
+    // One COLMAP command, its output appended to the log and its time to the step's.
+    void runStep(const std::string& step, const std::string& arguments) {
+        if (run_.reused) return;
+        std::string line =
+            fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
+                        shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run_.logPath),
+                        shellQuoted(colmap_), step, arguments, shellQuoted(run_.logPath));
+        auto start = std::chrono::steady_clock::now();
+        int status = std::system(line.c_str());
+        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!run_.steps.empty() && run_.steps.back().first == step)
+            run_.steps.back().second += seconds;
+        else
+            run_.steps.emplace_back(step, seconds);
+        int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        if (code == 0) return;
+        std::string facts =
+            step == "feature_extractor" ? std::string() : diagnosis(database_, workFrames_.size(), options_.minMatches);
+        throw Error(ErrorKind::Input,
+                    fmt::format("colmap {} failed (exit status {}){}{}; its output is in {}", step, code,
+                                facts.empty() ? "" : ": ", facts, run_.logPath),
+                    std::nullopt, kRetryHint);
+    }
+
+    // One feature_extractor run per group, so that each image size gets a camera of its own even
+    // when the sizes share a folder of photos (COLMAP's single_camera would force one size on all).
+    void extractFeatures() {
+        for (const CameraGroup& group : groups_) {
+            fs::path list = work_ / fmt::format("images-{}.txt", group.folder);
+            std::ofstream out(list);
+            for (std::size_t index : group.frames) out << workFrames_[index].name << "\n";
+            out.close();
+            std::string camera =
+                group.known ? fmt::format(
+                                  "--ImageReader.camera_model PINHOLE --ImageReader.camera_params "
+                                  "{},{},{},{}",
+                                  group.known->fx, group.known->fy, group.known->cx + 0.5, group.known->cy + 0.5)
+                            : std::string("--ImageReader.camera_model SIMPLE_RADIAL");
+            runStep("feature_extractor",
+                    fmt::format("--database_path {} --image_path {} --image_list_path {} --ImageReader.single_camera 1 "
+                                "{} --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads {}",
+                                shellQuoted(database_.string()), shellQuoted(images_.string()),
+                                shellQuoted(list.string()), camera, threads_));
+        }
+        ColmapDatabaseSummary extracted = readColmapDatabase(database_.string(), options_.minMatches);
+        if (extracted.imagesWithFeatures < 2)
+            throw Error(ErrorKind::Input,
+                        fmt::format("colmap feature_extractor: only {} of {} photos gave image features; its output "
+                                    "is in {}",
+                                    extracted.imagesWithFeatures, workFrames_.size(), run_.logPath),
+                        std::nullopt,
+                        "blank, dark, blurred or textureless photos give no features: take sharper photos of "
+                        "textured surfaces");
+    }
+
+    // Frames in capture order (videos, RGB-D sequences) are matched with their neighbours; a photo
+    // folder's order says little, so small ones are matched all against all.
+    void matchFeatures() {
+        ordered_ = capture_.layout != "images";
+        exhaustive_ = !ordered_ && static_cast<int>(workFrames_.size()) <= options_.exhaustiveUpTo;
+        std::error_code treeError;
+        loops_ =
+            !exhaustive_ && !options_.vocabularyTree.empty() && fs::is_regular_file(options_.vocabularyTree, treeError);
+        run_.matcher = exhaustive_ ? "exhaustive_matcher" : "sequential_matcher";
+        std::string matching = fmt::format(
+            "--database_path {} --SiftMatching.use_gpu 0 --SiftMatching.num_threads {} "
+            "--SiftMatching.min_num_inliers {}",
+            shellQuoted(database_.string()), threads_, options_.minMatches);
+        if (!exhaustive_) {
+            matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap 0",
+                                    options_.sequentialOverlap);
+            if (loops_)
+                matching +=
+                    fmt::format(" --SequentialMatching.loop_detection 1 --SequentialMatching.vocab_tree_path {}",
+                                shellQuoted(options_.vocabularyTree));
+        }
+        runStep(run_.matcher, matching);
+    }
+
+    // Without a vocabulary tree, a walk that comes back to where it started is closed by matching a
+    // few frames spread evenly through the capture all against all (pairs matched already are skipped).
+    void closeLoops() {
+        std::size_t count = std::min<std::size_t>(workFrames_.size(), std::max(options_.loopFrames, 0));
+        fs::path pairsFile = work_ / "loop-pairs.txt";
+        std::ofstream pairs(pairsFile);
+        for (std::size_t a = 0; a < count; ++a)
+            for (std::size_t b = a + 1; b < count; ++b)
+                pairs << workFrames_[a * workFrames_.size() / count].name << " "
+                      << workFrames_[b * workFrames_.size() / count].name << "\n";
+        pairs.close();
+        if (count >= 2)
+            runStep("matches_importer",
+                    fmt::format("--database_path {} --match_list_path {} --match_type pairs --SiftMatching.use_gpu 0 "
+                                "--SiftMatching.num_threads {} --SiftMatching.min_num_inliers {}",
+                                shellQuoted(database_.string()), shellQuoted(pairsFile.string()), threads_,
+                                options_.minMatches));
+        run_.notes.push_back(fmt::format(
+            "COLMAP matched each frame with its {} neighbours in {} order; loop detection {}, so loops are closed by "
+            "matching {} frames spread through the capture all against all",
+            options_.sequentialOverlap, ordered_ ? "capture" : "name",
+            options_.vocabularyTree.empty()
+                ? "needs a vocabulary tree (vocab_tree_*.bin from COLMAP's site, given with --vocab-tree; Debian ships "
+                  "none)"
+                : fmt::format("is off: the vocabulary tree {} is not a file", options_.vocabularyTree),
+            count));
+    }
+
+    void triangulateWithPoses() {
+        const fs::path given = work_ / "given", triangulated = work_ / "triangulated";
+        writePosedModel(given, database_, capture_, workFrames_);
+        fs::create_directories(triangulated);
+        runStep("point_triangulator",
+                fmt::format("--database_path {} --image_path {} --input_path {} --output_path {} "
+                            "--Mapper.num_threads {} --Mapper.ba_refine_focal_length 0 "
+                            "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0",
+                            shellQuoted(database_.string()), shellQuoted(images_.string()), shellQuoted(given.string()),
+                            shellQuoted(triangulated.string()), threads_));
+        CaptureOptions readOptions;
+        readOptions.imageDirectory = images_.string();
+        capture_.points = capture_detail::readColmap(triangulated, readOptions).points;
+        run_.points = capture_.points.size();
+        run_.registered = std::count_if(capture_.frames.begin(), capture_.frames.end(),
+                                        [](const CaptureFrame& f) { return f.pose.has_value(); });
+        run_.notes.push_back(
+            fmt::format("COLMAP triangulated {} points with the capture's own poses and cameras", run_.points));
+        if (run_.points == 0)
+            throw Error(ErrorKind::Input,
+                        fmt::format("colmap point_triangulator found no 3D point: {}; its output is in {}",
+                                    diagnosis(database_, workFrames_.size(), options_.minMatches), run_.logPath),
+                        std::nullopt, kRetryHint);
+    }
+
+    // The mapper writes one folder per model (sparse/0, sparse/1...): the one with the most images.
+    // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
+    Capture mapLargestModel() {
+        bool fixed =
+            capture_.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
+            std::all_of(groups_.begin(), groups_.end(), [](const CameraGroup& g) { return g.known.has_value(); });
+        runStep("mapper",
+                fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {} "
+                            "--Mapper.min_num_matches {}{}",
+                            shellQuoted(database_.string()), shellQuoted(images_.string()),
+                            shellQuoted(sparse_.string()), threads_, options_.minMatches,
+                            fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""));
+        CaptureOptions readOptions;
+        readOptions.imageDirectory = images_.string();
+        std::optional<Capture> best;
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(sparse_, ec)) {
+            if (!entry.is_directory() || !capture_detail::colmapModelFormat(entry.path())) continue;
+            ++run_.models;
+            try {
+                Capture model = capture_detail::readColmap(entry.path(), readOptions);
+                if (!best || model.frames.size() > best->frames.size()) best = std::move(model);
+            } catch (const Error& e) {
+                run_.notes.push_back(fmt::format("COLMAP model {} skipped: {}", entry.path().string(), e.what()));
+            }
+        }
+        if (!best)
+            throw Error(ErrorKind::Input,
+                        fmt::format("colmap mapper made no model: {}; its output is in {}",
+                                    diagnosis(database_, workFrames_.size(), options_.minMatches), run_.logPath),
+                        std::nullopt, kRetryHint);
+        return std::move(*best);
+    }
+
+    // The model's poses onto the capture's frames (poses are the same at any image size) and its
+    // cameras back in each frame's own pixels.
+    void adoptModel(const Capture& best) {
+        std::map<std::string, const WorkFrame*> byName;
+        for (const WorkFrame& w : workFrames_) byName[w.name] = &w;
+        for (auto& frame : capture_.frames) frame.pose.reset();
+        std::vector<std::pair<std::size_t, Intrinsics>> cameras;
+        for (const auto& frame : best.frames) {
+            auto it = byName.find(fs::path(frame.colorPath).lexically_relative(images_).generic_string());
+            if (it == byName.end()) continue;
+            const WorkFrame& w = *it->second;
+            capture_.frames[w.frame].pose = frame.pose;
+            Intrinsics k = frame.intrinsics ? *frame.intrinsics : best.intrinsics;
+            cameras.emplace_back(w.frame, capture_detail::scaleIntrinsics(k, w.original.width, w.original.height));
+            ++run_.registered;
+        }
+        std::sort(cameras.begin(), cameras.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (auto& frame : capture_.frames) frame.intrinsics.reset();
+        for (const auto& [index, k] : cameras) {
+            if (index == cameras.front().first) capture_.intrinsics = k;
+            if (!(k == capture_.intrinsics)) capture_.frames[index].intrinsics = k;
+        }
+        std::vector<std::string> described;
+        for (const auto& [index, k] : cameras) {
+            std::string text = fmt::format("{}x{}: fx {:.1f}, fy {:.1f}, cx {:.1f}, cy {:.1f}", k.width, k.height, k.fx,
+                                           k.fy, k.cx, k.cy);
+            if (std::find(described.begin(), described.end(), text) == described.end()) described.push_back(text);
+        }
+        run_.notes.push_back(fmt::format("COLMAP's cameras in the frames' own pixels, {}: {}",
+                                         originWords(capture_.intrinsicsOrigin), fmt::join(described, "; ")));
+        capture_.points = best.points;
+        capture_.metric = false;
+        run_.points = capture_.points.size();
+        if (run_.models > 1)
+            run_.notes.push_back(fmt::format("COLMAP made {} separate models; the largest ({} frames) is used",
+                                             run_.models, best.frames.size()));
+        if (run_.registered < capture_.frames.size())
+            run_.notes.push_back(fmt::format("COLMAP registered {} of {} frames; the others are skipped",
+                                             run_.registered, capture_.frames.size()));
+    }
+
+    // A successful run says where its time went and records its inputs; its work folder goes unless
+    // asked to stay. A failed one stays for its log.
+    void leaveWorkFolder() {
+        if (run_.reused) return;
+        std::vector<std::string> times;
+        for (const auto& [step, seconds] : run_.steps) times.push_back(fmt::format("{} {:.1f} s", step, seconds));
+        run_.notes.push_back(fmt::format("COLMAP's steps: {}", fmt::join(times, ", ")));
+        std::ofstream(record_) << inputs_;
+        std::error_code removeError;
+        if (options_.keepWorkDirectory || !options_.workDirectory.empty())
+            run_.notes.push_back(
+                fmt::format("COLMAP work folder (images, database, models, log): {}", run_.workDirectory));
+        else
+            fs::remove_all(work_, removeError);
+    }
+
+    Capture& capture_;
+    const ColmapOptions& options_;
+    const std::string colmap_;
+    const fs::path work_, images_, database_, sparse_, record_;
+    const std::string threads_;
+    ColmapRun run_;
+    std::vector<WorkFrame> workFrames_;
+    std::vector<CameraGroup> groups_;
+    std::size_t scaled_ = 0;
+    std::string inputs_;
+    bool ordered_ = false, exhaustive_ = false, loops_ = false;
+};
+
 }  // namespace
 
 ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
@@ -271,293 +613,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
             ErrorKind::Input,
             fmt::format("{}: COLMAP needs at least 2 frames, the capture has {}", capture.path, capture.frames.size()),
             std::nullopt, kRetryHint);
-
-    ColmapRun run;
-    const fs::path work = makeWorkFolder(options.workDirectory);
-    run.workDirectory = work.string();
-    run.logPath = (work / "colmap.log").string();
-    const fs::path images = work / "images", database = work / "database.db", sparse = work / "sparse";
-
-    // Frames into COLMAP's image folder, one sub-folder per camera group: linked when COLMAP can read
-    // them as they are, else written scaled down (and turned upright, as OpenCV reads them).
-    std::vector<WorkFrame> workFrames;
-    std::vector<CameraGroup> groups;
-    std::size_t scaled = 0;
-    for (std::size_t i = 0; i < capture.frames.size(); ++i) {
-        const CaptureFrame& frame = capture.frames[i];
-        std::error_code ec;
-        cv::Mat image;
-        if (fs::is_regular_file(frame.colorPath, ec)) image = cv::imread(frame.colorPath, cv::IMREAD_COLOR);
-        if (image.empty()) {
-            run.notes.push_back(fmt::format("frame {} ({}) is listed but its image is missing or unreadable: skipped",
-                                            frame.index, frame.colorPath));
-            continue;
-        }
-        WorkFrame w{i, {}, image.size(), scaledDown(image.size(), options.maxImageSize), fs::absolute(frame.colorPath)};
-        std::optional<Intrinsics> known = knownCamera(capture, frame, image.size());
-        if (known) known = capture_detail::scaleIntrinsics(*known, w.work.width, w.work.height);
-        auto group = std::find_if(groups.begin(), groups.end(),
-                                  [&](const CameraGroup& g) { return g.original == w.original && g.known == known; });
-        if (group == groups.end()) {
-            std::size_t sameSize = std::count_if(groups.begin(), groups.end(),
-                                                 [&](const CameraGroup& g) { return g.original == w.original; });
-            std::string folder = fmt::format("{}x{}", w.original.width, w.original.height);
-            if (sameSize > 0) folder += fmt::format("-{}", sameSize + 1);
-            groups.push_back(CameraGroup{folder, w.original, w.work, known, {}});
-            group = groups.end() - 1;
-        }
-        group->frames.push_back(workFrames.size());
-
-        std::string extension = capture_detail::lowerCase(w.source.extension().string());
-        w.name = fmt::format("{}/frame{:06d}{}", group->folder, i, extension);
-        w.upright = capture_detail::readExif(w.source).orientation == 1;
-        scaled += w.work != w.original;
-        workFrames.push_back(std::move(w));
-    }
-    if (workFrames.size() < 2)
-        throw Error(ErrorKind::Input,
-                    fmt::format("{}: COLMAP needs at least 2 frames, {} of {} have a readable image", capture.path,
-                                workFrames.size(), capture.frames.size()),
-                    std::nullopt, kRetryHint);
-    // The run's inputs, written last: a folder whose record matches them holds this run, finished.
-    const fs::path record = work / "smql-run.txt";
-    const std::string inputs = describeRun(capture, workFrames, groups, options);
-    run.reused = !options.workDirectory.empty() && readText(record) == inputs;
-    if (run.reused) {
-        run.notes.push_back(
-            fmt::format("COLMAP's model of these {} frames read from {}, run there before (empty the "
-                        "folder to run COLMAP again)",
-                        workFrames.size(), run.workDirectory));
-    } else {
-        clearWorkFolder(work);
-        fs::create_directories(sparse);
-        for (const CameraGroup& group : groups) fs::create_directories(images / group.folder);
-        for (const WorkFrame& w : workFrames) writeWorkImage(w, images / w.name);
-    }
-    if (scaled > 0)
-        run.notes.push_back(
-            fmt::format("COLMAP sees {} of {} frames scaled down to {} pixels on the long side "
-                        "(--max-size); poses and intrinsics are mapped back to the frames' own pixels",
-                        scaled, workFrames.size(), options.maxImageSize));
-    run.cameras = groups.size();
-
-    const std::string threads = fmt::format("{}", options.threads);
-    auto runStep = [&](const std::string& step, const std::string& arguments) {
-        if (run.reused) return;
-        std::string line =
-            fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
-                        shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run.logPath),
-                        shellQuoted(*colmap), step, arguments, shellQuoted(run.logPath));
-        auto start = std::chrono::steady_clock::now();
-        int status = std::system(line.c_str());
-        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!run.steps.empty() && run.steps.back().first == step)
-            run.steps.back().second += seconds;
-        else
-            run.steps.emplace_back(step, seconds);
-        int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        if (code != 0) {
-            std::string facts = step == "feature_extractor"
-                                    ? std::string()
-                                    : diagnosis(database, workFrames.size(), options.minMatches);
-            throw Error(ErrorKind::Input,
-                        fmt::format("colmap {} failed (exit status {}){}{}; its output is in {}", step, code,
-                                    facts.empty() ? "" : ": ", facts, run.logPath),
-                        std::nullopt, kRetryHint);
-        }
-    };
-
-    // One feature_extractor run per group, so that each image size gets a camera of its own even
-    // when the sizes share a folder of photos (COLMAP's single_camera would force one size on all).
-    for (const CameraGroup& group : groups) {
-        fs::path list = work / fmt::format("images-{}.txt", group.folder);
-        std::ofstream out(list);
-        for (std::size_t index : group.frames) out << workFrames[index].name << "\n";
-        out.close();
-        std::string camera =
-            group.known ? fmt::format("--ImageReader.camera_model PINHOLE --ImageReader.camera_params {},{},{},{}",
-                                      group.known->fx, group.known->fy, group.known->cx + 0.5, group.known->cy + 0.5)
-                        : std::string("--ImageReader.camera_model SIMPLE_RADIAL");
-        runStep("feature_extractor",
-                fmt::format("--database_path {} --image_path {} --image_list_path {} --ImageReader.single_camera 1 {} "
-                            "--SiftExtraction.use_gpu 0 --SiftExtraction.num_threads {}",
-                            shellQuoted(database.string()), shellQuoted(images.string()), shellQuoted(list.string()),
-                            camera, threads));
-    }
-    ColmapDatabaseSummary extracted = readColmapDatabase(database.string(), options.minMatches);
-    if (extracted.imagesWithFeatures < 2)
-        throw Error(
-            ErrorKind::Input,
-            fmt::format("colmap feature_extractor: only {} of {} photos gave image features; its output is in {}",
-                        extracted.imagesWithFeatures, workFrames.size(), run.logPath),
-            std::nullopt,
-            "blank, dark, blurred or textureless photos give no features: take sharper photos of textured "
-            "surfaces");
-
-    // Frames in capture order (videos, RGB-D sequences) are matched with their neighbours; a photo
-    // folder's order says little, so small ones are matched all against all.
-    const bool ordered = capture.layout != "images";
-    const bool exhaustive = !ordered && static_cast<int>(workFrames.size()) <= options.exhaustiveUpTo;
-    std::error_code treeError;
-    const bool loops =
-        !exhaustive && !options.vocabularyTree.empty() && fs::is_regular_file(options.vocabularyTree, treeError);
-    run.matcher = exhaustive ? "exhaustive_matcher" : "sequential_matcher";
-    std::string matching = fmt::format(
-        "--database_path {} --SiftMatching.use_gpu 0 --SiftMatching.num_threads {} "
-        "--SiftMatching.min_num_inliers {}",
-        shellQuoted(database.string()), threads, options.minMatches);
-    if (!exhaustive) {
-        matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap 0",
-                                options.sequentialOverlap);
-        if (loops)
-            matching += fmt::format(" --SequentialMatching.loop_detection 1 --SequentialMatching.vocab_tree_path {}",
-                                    shellQuoted(options.vocabularyTree));
-    }
-    runStep(run.matcher, matching);
-
-    // Without a vocabulary tree, a walk that comes back to where it started is closed by matching a few
-    // frames spread evenly through the capture all against all (pairs matched already are skipped).
-    if (!exhaustive && !loops) {
-        std::size_t count = std::min<std::size_t>(workFrames.size(), std::max(options.loopFrames, 0));
-        fs::path pairsFile = work / "loop-pairs.txt";
-        std::ofstream pairs(pairsFile);
-        for (std::size_t a = 0; a < count; ++a)
-            for (std::size_t b = a + 1; b < count; ++b)
-                pairs << workFrames[a * workFrames.size() / count].name << " "
-                      << workFrames[b * workFrames.size() / count].name << "\n";
-        pairs.close();
-        if (count >= 2)
-            runStep("matches_importer",
-                    fmt::format("--database_path {} --match_list_path {} --match_type pairs --SiftMatching.use_gpu 0 "
-                                "--SiftMatching.num_threads {} --SiftMatching.min_num_inliers {}",
-                                shellQuoted(database.string()), shellQuoted(pairsFile.string()), threads,
-                                options.minMatches));
-        run.notes.push_back(fmt::format(
-            "COLMAP matched each frame with its {} neighbours in {} order; loop detection {}, so loops are closed by "
-            "matching {} frames spread through the capture all against all",
-            options.sequentialOverlap, ordered ? "capture" : "name",
-            options.vocabularyTree.empty()
-                ? "needs a vocabulary tree (vocab_tree_*.bin from COLMAP's site, given with --vocab-tree; Debian ships "
-                  "none)"
-                : fmt::format("is off: the vocabulary tree {} is not a file", options.vocabularyTree),
-            count));
-    }
-
-    // Frames that all have a pose (transforms.json without depth, RGB-D frames with the depth left out)
-    // keep it: COLMAP only triangulates the matched features with the given poses and cameras.
-    const bool posed = std::all_of(workFrames.begin(), workFrames.end(),
-                                   [&](const WorkFrame& w) { return capture.frames[w.frame].pose.has_value(); });
-    // A successful run says where its time went and records its inputs; its work folder goes unless
-    // asked to stay. A failed one stays for its log.
-    auto leaveWorkFolder = [&] {
-        if (run.reused) return;
-        std::vector<std::string> times;
-        for (const auto& [step, seconds] : run.steps) times.push_back(fmt::format("{} {:.1f} s", step, seconds));
-        run.notes.push_back(fmt::format("COLMAP's steps: {}", fmt::join(times, ", ")));
-        std::ofstream(record) << inputs;
-        std::error_code removeError;
-        if (options.keepWorkDirectory || !options.workDirectory.empty())
-            run.notes.push_back(
-                fmt::format("COLMAP work folder (images, database, models, log): {}", run.workDirectory));
-        else
-            fs::remove_all(work, removeError);
-    };
-    if (posed) {
-        const fs::path given = work / "given", triangulated = work / "triangulated";
-        writePosedModel(given, database, capture, workFrames);
-        fs::create_directories(triangulated);
-        runStep("point_triangulator",
-                fmt::format("--database_path {} --image_path {} --input_path {} --output_path {} "
-                            "--Mapper.num_threads {} --Mapper.ba_refine_focal_length 0 "
-                            "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0",
-                            shellQuoted(database.string()), shellQuoted(images.string()), shellQuoted(given.string()),
-                            shellQuoted(triangulated.string()), threads));
-        CaptureOptions readOptions;
-        readOptions.imageDirectory = images.string();
-        capture.points = capture_detail::readColmap(triangulated, readOptions).points;
-        run.points = capture.points.size();
-        run.registered = std::count_if(capture.frames.begin(), capture.frames.end(),
-                                       [](const CaptureFrame& f) { return f.pose.has_value(); });
-        run.notes.push_back(
-            fmt::format("COLMAP triangulated {} points with the capture's own poses and cameras", run.points));
-        if (run.points == 0)
-            throw Error(ErrorKind::Input,
-                        fmt::format("colmap point_triangulator found no 3D point: {}; its output is in {}",
-                                    diagnosis(database, workFrames.size(), options.minMatches), run.logPath),
-                        std::nullopt, kRetryHint);
-        leaveWorkFolder();
-        return run;
-    }
-
-    // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
-    bool fixed = capture.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
-                 std::all_of(groups.begin(), groups.end(), [](const CameraGroup& g) { return g.known.has_value(); });
-    runStep("mapper", fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {} "
-                                  "--Mapper.min_num_matches {}{}",
-                                  shellQuoted(database.string()), shellQuoted(images.string()),
-                                  shellQuoted(sparse.string()), threads, options.minMatches,
-                                  fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""));
-
-    // The mapper writes one folder per model (sparse/0, sparse/1...): take the one with the most images.
-    CaptureOptions readOptions;
-    readOptions.imageDirectory = images.string();
-    std::optional<Capture> best;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(sparse, ec)) {
-        if (!entry.is_directory() || !capture_detail::colmapModelFormat(entry.path())) continue;
-        ++run.models;
-        try {
-            Capture model = capture_detail::readColmap(entry.path(), readOptions);
-            if (!best || model.frames.size() > best->frames.size()) best = std::move(model);
-        } catch (const Error& e) {
-            run.notes.push_back(fmt::format("COLMAP model {} skipped: {}", entry.path().string(), e.what()));
-        }
-    }
-    if (!best)
-        throw Error(ErrorKind::Input,
-                    fmt::format("colmap mapper made no model: {}; its output is in {}",
-                                diagnosis(database, workFrames.size(), options.minMatches), run.logPath),
-                    std::nullopt, kRetryHint);
-
-    // Poses are the same at any image size; intrinsics go back to each frame's own pixels.
-    std::map<std::string, const WorkFrame*> byName;
-    for (const WorkFrame& w : workFrames) byName[w.name] = &w;
-    for (auto& frame : capture.frames) frame.pose.reset();
-    std::vector<std::pair<std::size_t, Intrinsics>> cameras;
-    for (const auto& frame : best->frames) {
-        auto it = byName.find(fs::path(frame.colorPath).lexically_relative(images).generic_string());
-        if (it == byName.end()) continue;
-        const WorkFrame& w = *it->second;
-        capture.frames[w.frame].pose = frame.pose;
-        Intrinsics k = frame.intrinsics ? *frame.intrinsics : best->intrinsics;
-        cameras.emplace_back(w.frame, capture_detail::scaleIntrinsics(k, w.original.width, w.original.height));
-        ++run.registered;
-    }
-    std::sort(cameras.begin(), cameras.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (auto& frame : capture.frames) frame.intrinsics.reset();
-    for (const auto& [index, k] : cameras) {
-        if (index == cameras.front().first) capture.intrinsics = k;
-        if (!(k == capture.intrinsics)) capture.frames[index].intrinsics = k;
-    }
-    std::vector<std::string> described;
-    for (const auto& [index, k] : cameras) {
-        std::string text =
-            fmt::format("{}x{}: fx {:.1f}, fy {:.1f}, cx {:.1f}, cy {:.1f}", k.width, k.height, k.fx, k.fy, k.cx, k.cy);
-        if (std::find(described.begin(), described.end(), text) == described.end()) described.push_back(text);
-    }
-    run.notes.push_back(fmt::format("COLMAP's cameras in the frames' own pixels, {}: {}",
-                                    originWords(capture.intrinsicsOrigin), fmt::join(described, "; ")));
-    capture.points = best->points;
-    capture.metric = false;
-    run.points = capture.points.size();
-    if (run.models > 1)
-        run.notes.push_back(fmt::format("COLMAP made {} separate models; the largest ({} frames) is used", run.models,
-                                        best->frames.size()));
-    if (run.registered < capture.frames.size())
-        run.notes.push_back(fmt::format("COLMAP registered {} of {} frames; the others are skipped", run.registered,
-                                        capture.frames.size()));
-    leaveWorkFolder();
-    return run;
+    return ColmapSession(capture, options, *colmap).run();
 }
 
 }  // namespace smql::ingest
