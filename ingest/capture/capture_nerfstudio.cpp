@@ -105,6 +105,39 @@ Pose readTransform(const Field& field, std::string_view image) {
     return pose;
 }
 
+// A frame's pinhole camera from its fields (or the top level's): the image size (read from the first
+// image when not given), the focal lengths from fl_x/fl_y or the view angles, the principal point.
+Intrinsics frameIntrinsics(Field& f, CameraFields cam, const fs::path& color, std::optional<cv::Size>& firstImageSize) {
+    if (!cam.w || !cam.h) {
+        if (!firstImageSize) firstImageSize = readColorImage(color.string()).size();
+        if (!cam.w) cam.w = firstImageSize->width;
+        if (!cam.h) cam.h = firstImageSize->height;
+    }
+    if (*cam.w < 1 || *cam.h < 1 || *cam.w != std::floor(*cam.w) || *cam.h != std::floor(*cam.h))
+        f.fail(fmt::format("image size w x h must be positive integers, got {} x {}", *cam.w, *cam.h));
+    double fx = 0, fy = 0;
+    if (cam.flX)
+        fx = *cam.flX;
+    else if (cam.angleX)
+        fx = 0.5 * *cam.w / std::tan(0.5 * *cam.angleX);
+    else
+        f.fail("no focal length: give fl_x (pixels) or camera_angle_x (radians), here or at the top level");
+    if (cam.flY)
+        fy = *cam.flY;
+    else if (cam.angleY)
+        fy = 0.5 * *cam.h / std::tan(0.5 * *cam.angleY);
+    else
+        fy = fx;
+    if (!(fx > 0) || !(fy > 0) || !std::isfinite(fx) || !std::isfinite(fy))
+        f.fail(
+            fmt::format("focal lengths must be positive, got fl_x {} and fl_y {} (a negative focal length is a "
+                        "mirrored camera, which smql refuses)",
+                        fx, fy));
+    // nerfstudio puts pixel centres at +0.5 (the image corner is 0); ours are at integers.
+    double cx = cam.cx ? *cam.cx : *cam.w / 2, cy = cam.cy ? *cam.cy : *cam.h / 2;
+    return Intrinsics{static_cast<int>(*cam.w), static_cast<int>(*cam.h), fx, fy, cx - 0.5, cy - 0.5};
+}
+
 }  // namespace
 
 Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& options) {
@@ -153,37 +186,7 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
         std::string model = lowerCase(cam.model);
         if (model == "equirectangular") f.fail("equirectangular cameras are not supported (pinhole only)");
         if (model.find("fisheye") != std::string::npos) fisheye = true;
-        if (!cam.w || !cam.h) {
-            if (!firstImageSize) {
-                cv::Mat image = readColorImage(color.string());
-                firstImageSize = image.size();
-            }
-            if (!cam.w) cam.w = firstImageSize->width;
-            if (!cam.h) cam.h = firstImageSize->height;
-        }
-        if (*cam.w < 1 || *cam.h < 1 || *cam.w != std::floor(*cam.w) || *cam.h != std::floor(*cam.h))
-            f.fail(fmt::format("image size w x h must be positive integers, got {} x {}", *cam.w, *cam.h));
-        double fx = 0, fy = 0;
-        if (cam.flX)
-            fx = *cam.flX;
-        else if (cam.angleX)
-            fx = 0.5 * *cam.w / std::tan(0.5 * *cam.angleX);
-        else
-            f.fail("no focal length: give fl_x (pixels) or camera_angle_x (radians), here or at the top level");
-        if (cam.flY)
-            fy = *cam.flY;
-        else if (cam.angleY)
-            fy = 0.5 * *cam.h / std::tan(0.5 * *cam.angleY);
-        else
-            fy = fx;
-        if (!(fx > 0) || !(fy > 0) || !std::isfinite(fx) || !std::isfinite(fy))
-            f.fail(
-                fmt::format("focal lengths must be positive, got fl_x {} and fl_y {} (a negative focal length is a "
-                            "mirrored camera, which smql refuses)",
-                            fx, fy));
-        // nerfstudio puts pixel centres at +0.5 (the image corner is 0); ours are at integers.
-        double cx = cam.cx ? *cam.cx : *cam.w / 2, cy = cam.cy ? *cam.cy : *cam.h / 2;
-        entry.intrinsics = Intrinsics{static_cast<int>(*cam.w), static_cast<int>(*cam.h), fx, fy, cx - 0.5, cy - 0.5};
+        entry.intrinsics = frameIntrinsics(f, cam, color, firstImageSize);
         entries.push_back(std::move(entry));
     }
 

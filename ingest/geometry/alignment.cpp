@@ -172,12 +172,11 @@ std::array<double, 9> Alignment::rotation() const {
     return r;
 }
 
-Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options,
-                       const std::vector<NamedThing>& things) {
-    Alignment out;
-    auto& notes = out.notes;
+namespace {
 
-    // Up prior: cameras are held roughly upright, and a camera's y axis points down.
+// Up prior: cameras are held roughly upright, and a camera's y axis points down.
+Eigen::Vector3d upPrior(const std::vector<Pose>& cameras, const AlignOptions& options,
+                        std::vector<std::string>& notes) {
     Eigen::Vector3d prior = Eigen::Vector3d::Zero();
     for (const auto& camera : cameras) prior -= rotationOf(camera).col(1);
     if (prior.norm() < 1e-9) {
@@ -185,11 +184,15 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
         notes.push_back(cameras.empty() ? "up prior: no cameras, " + std::string(options.upPrior ? "given" : "+z")
                                         : "up prior: cameras disagree, +z");
     }
-    prior.normalize();
+    return prior.normalized();
+}
 
-    const double unit = unitEstimate(world, cameras, options, notes);
-
-    // Horizontal planes, largest first, by iterated RANSAC around the prior.
+// Horizontal planes by iterated RANSAC around the prior, each with its level along the strongest
+// plane's normal (the prior may be tens of degrees off); planes at the same level become one (depth
+// noise and small registration errors make a floor seen from several views a few centimetres
+// thick). Lowest first.
+std::vector<HorizontalPlane> horizontalPlanes(const PointCloud& world, const Eigen::Vector3d& prior, double unit,
+                                              const AlignOptions& options) {
     std::vector<std::size_t> remaining(world.size());
     for (std::size_t i = 0; i < remaining.size(); ++i) remaining[i] = i;
     const std::size_t minPlane =
@@ -208,7 +211,6 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
         std::erase_if(remaining, [&](std::size_t i) { return taken[i] != 0; });
         extracted.push_back(fitHorizontal(world, std::move(found->inliers), prior, prior));
     }
-    // Levels along the strongest plane's normal: the prior may be tens of degrees off.
     Eigen::Vector3d reference = prior;
     std::size_t strongest = 0;
     for (const auto& p : extracted)
@@ -218,8 +220,6 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
         for (auto i : p.inliers) levels.push_back(reference.dot(toEigen(world.points[i])));
         p.level = detail::median(std::move(levels));
     }
-    // One surface can come out as several RANSAC planes (depth noise and small registration errors make a
-    // floor seen from several views a few centimetres thick): planes at the same level become one.
     std::sort(extracted.begin(), extracted.end(), [](const auto& a, const auto& b) { return a.level < b.level; });
     std::vector<HorizontalPlane> planes;
     for (auto& p : extracted) {
@@ -233,31 +233,99 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
             planes.push_back(std::move(p));
         }
     }
+    return planes;
+}
 
-    auto cameraHeights = [&](const Eigen::Vector3d& n) {
-        std::vector<double> heights;
-        for (const auto& camera : cameras) heights.push_back(n.dot(toEigen(camera.translation)));
-        return heights;
-    };
+std::vector<double> cameraHeights(const std::vector<Pose>& cameras, const Eigen::Vector3d& n) {
+    std::vector<double> heights;
+    for (const auto& camera : cameras) heights.push_back(n.dot(toEigen(camera.translation)));
+    return heights;
+}
+
+// Floor: the lowest large horizontal plane below every camera.
+const HorizontalPlane* findFloor(const std::vector<HorizontalPlane>& planes, const std::vector<Pose>& cameras,
+                                 double clearance, const AlignOptions& options) {
+    std::vector<const HorizontalPlane*> below;
+    for (const auto& p : planes) {
+        auto heights = cameraHeights(cameras, toEigen(p.plane.normal));
+        if (heights.empty() || p.height < *std::min_element(heights.begin(), heights.end()) - clearance)
+            below.push_back(&p);
+    }
+    std::size_t biggest = 0;
+    for (const auto* p : below) biggest = std::max(biggest, p->plane.inliers);
+    const HorizontalPlane* floor = nullptr;
+    for (const auto* p : below) {
+        if (static_cast<double>(p->plane.inliers) < options.largePlaneShare * static_cast<double>(biggest)) continue;
+        if (!floor || p->level < floor->level) floor = p;
+    }
+    return floor;
+}
+
+// Ceiling: the largest horizontal plane above every camera, parallel to the floor.
+const HorizontalPlane* findCeiling(const std::vector<HorizontalPlane>& planes, const std::vector<Pose>& cameras,
+                                   const Eigen::Vector3d& up, double clearance, const AlignOptions& options) {
+    const HorizontalPlane* ceiling = nullptr;
+    for (const auto& p : planes) {
+        auto heights = cameraHeights(cameras, toEigen(p.plane.normal));
+        double angle = std::acos(std::clamp(toEigen(p.plane.normal).dot(up), -1.0, 1.0));
+        if (p.height > *std::max_element(heights.begin(), heights.end()) + clearance &&
+            angle <= options.ceilingParallel * kDegree && (!ceiling || p.plane.inliers > ceiling->plane.inliers))
+            ceiling = &p;
+    }
+    return ceiling;
+}
+
+// Scale: as given, 1 for a metric capture, else the priors that apply (floor to ceiling, the
+// cameras' height, the heights of named things) combined.
+void chooseScale(Alignment& out, const AlignOptions& options, double ceilingAbove, bool floorFound,
+                 const std::vector<Pose>& cameras, const Eigen::Vector3d& up, const std::vector<NamedThing>& things) {
+    auto& notes = out.notes;
+    if (options.scale) {
+        out.scale = *options.scale;
+        notes.push_back("scale: " + fixed(out.scale, 4) + " as given");
+        return;
+    }
+    if (options.metric) {
+        out.scale = 1;
+        notes.push_back("scale: 1 (metric capture)");
+        return;
+    }
+    std::vector<ScaleEstimate> estimates;
+    if (ceilingAbove > 0)
+        estimates.push_back(
+            {"floor-to-ceiling taken as " + fixed(options.ceilingHeight) + " m", options.ceilingHeight / ceilingAbove});
+    if (!cameras.empty()) {
+        std::vector<double> heights = cameraHeights(cameras, up);
+        for (auto& h : heights) h -= out.floorHeight;
+        double medianHeight = detail::median(heights);
+        if (medianHeight > 0)
+            estimates.push_back({"median camera height taken as " + fixed(options.cameraHeight) + " m",
+                                 options.cameraHeight / medianHeight});
+    }
+    if (floorFound)
+        if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight)) estimates.push_back(*heights);
+    if (estimates.empty()) {
+        notes.push_back("scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");
+        return;
+    }
+    ScaleChoice choice = combineScales(estimates);
+    out.scale = choice.scale;
+    out.scaleSpread = choice.spread;
+    notes.push_back(choice.note);
+}
+
+}  // namespace
+
+Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options,
+                       const std::vector<NamedThing>& things) {
+    Alignment out;
+    auto& notes = out.notes;
+    const Eigen::Vector3d prior = upPrior(cameras, options, notes);
+    const double unit = unitEstimate(world, cameras, options, notes);
+    const std::vector<HorizontalPlane> planes = horizontalPlanes(world, prior, unit, options);
     const double clearance = options.cameraClearance * unit;
 
-    // Floor: the lowest large horizontal plane below every camera.
-    const HorizontalPlane* floor = nullptr;
-    {
-        std::vector<const HorizontalPlane*> below;
-        for (const auto& p : planes) {
-            auto heights = cameraHeights(toEigen(p.plane.normal));
-            if (heights.empty() || p.height < *std::min_element(heights.begin(), heights.end()) - clearance)
-                below.push_back(&p);
-        }
-        std::size_t biggest = 0;
-        for (const auto* p : below) biggest = std::max(biggest, p->plane.inliers);
-        for (const auto* p : below) {
-            if (static_cast<double>(p->plane.inliers) < options.largePlaneShare * static_cast<double>(biggest))
-                continue;
-            if (!floor || p->level < floor->level) floor = p;
-        }
-    }
+    const HorizontalPlane* floor = findFloor(planes, cameras, clearance, options);
     Eigen::Vector3d up = prior;
     if (floor) {
         up = toEigen(floor->plane.normal);
@@ -278,19 +346,9 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     }
     out.up = fromEigen(up);
 
-    // Ceiling: the largest horizontal plane above every camera, parallel to the floor.
-    const HorizontalPlane* ceiling = nullptr;
-    if (floor && !cameras.empty()) {
-        for (const auto& p : planes) {
-            auto heights = cameraHeights(toEigen(p.plane.normal));
-            double angle = std::acos(std::clamp(toEigen(p.plane.normal).dot(up), -1.0, 1.0));
-            if (p.height > *std::max_element(heights.begin(), heights.end()) + clearance &&
-                angle <= options.ceilingParallel * kDegree && (!ceiling || p.plane.inliers > ceiling->plane.inliers))
-                ceiling = &p;
-        }
-    }
-
     // The ceiling's height above the floor, measured along the floor's normal.
+    const HorizontalPlane* ceiling =
+        floor && !cameras.empty() ? findCeiling(planes, cameras, up, clearance, options) : nullptr;
     double ceilingAbove = 0;
     if (ceiling) {
         std::vector<double> heights;
@@ -313,39 +371,8 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     turn << std::cos(out.heading), -std::sin(out.heading), 0, std::sin(out.heading), std::cos(out.heading), 0, 0, 0, 1;
     Eigen::Matrix3d rotation = turn * level;
 
-    // Scale.
-    if (options.scale) {
-        out.scale = *options.scale;
-        notes.push_back("scale: " + fixed(out.scale, 4) + " as given");
-    } else if (options.metric) {
-        out.scale = 1;
-        notes.push_back("scale: 1 (metric capture)");
-    } else {
-        std::vector<ScaleEstimate> estimates;
-        if (ceiling && floor)
-            estimates.push_back({"floor-to-ceiling taken as " + fixed(options.ceilingHeight) + " m",
-                                 options.ceilingHeight / ceilingAbove});
-        if (!cameras.empty()) {
-            std::vector<double> heights = cameraHeights(up);
-            for (auto& h : heights) h -= out.floorHeight;
-            double medianHeight = detail::median(heights);
-            if (medianHeight > 0)
-                estimates.push_back({"median camera height taken as " + fixed(options.cameraHeight) + " m",
-                                     options.cameraHeight / medianHeight});
-        }
-        if (floor)
-            if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight)) estimates.push_back(*heights);
-        if (estimates.empty()) {
-            notes.push_back(
-                "scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");
-        } else {
-            ScaleChoice choice = combineScales(estimates);
-            out.scale = choice.scale;
-            out.scaleSpread = choice.spread;
-            notes.push_back(choice.note);
-        }
-    }
-    if (ceiling && floor) {
+    chooseScale(out, options, ceiling ? ceilingAbove : 0, floor != nullptr, cameras, up, things);
+    if (ceiling) {
         out.ceilingHeight = out.scale * ceilingAbove;
         notes.push_back("ceiling: plane with " + std::to_string(ceiling->plane.inliers) + " points, " +
                         fixed(*out.ceilingHeight) + " m above the floor");

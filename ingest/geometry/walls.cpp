@@ -83,15 +83,12 @@ model::Box WallSegment::box() const {
     return b;
 }
 
-std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<model::Vec3>& cameras,
-                                   const WallOptions& options) {
-    std::vector<std::size_t> above;
-    for (std::size_t i = 0; i < aligned.size(); ++i)
-        if (aligned.points[i].z > options.minPointHeight) above.push_back(i);
-    const std::size_t views = std::set<std::uint32_t>(aligned.frames.begin(), aligned.frames.end()).size();
-    const std::size_t minFrames = std::min(options.minFrames, std::max<std::size_t>(views, 1));
+namespace {
 
-    // Iterated RANSAC: take the strongest vertical plane, remove its inliers, repeat.
+// Iterated RANSAC: take the strongest vertical plane, remove its inliers, repeat; each plane split
+// where its points leave a gap.
+std::vector<Candidate> verticalPlanes(const PointCloud& aligned, const std::vector<std::size_t>& above,
+                                      const WallOptions& options) {
     std::vector<Candidate> candidates;
     std::vector<std::size_t> remaining = above;
     pcl_ops::PlaneSearch search;
@@ -112,8 +109,12 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
         for (auto& run : splitAtGaps(plane, aligned, options.maxGap))
             if (run.inliers.size() >= options.minInliers / 4) candidates.push_back(std::move(run));
     }
+    return candidates;
+}
 
-    // Point the normals into the room: towards most cameras, else towards most of the cloud.
+// Point the normals into the room: towards most cameras, else towards most of the cloud.
+void faceIntoRoom(std::vector<Candidate>& candidates, const PointCloud& aligned, const std::vector<std::size_t>& above,
+                  const std::vector<model::Vec3>& cameras, const WallOptions& options) {
     for (auto& c : candidates) {
         std::size_t front = 0, back = 0;
         for (const auto& p : cameras) {
@@ -136,8 +137,10 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
         }
         if (back > front) c.normal = -c.normal, c.offset = -c.offset;
     }
+}
 
-    // Merge near-duplicates: parallel, same side, close offsets, touching extents.
+// Merge near-duplicates: parallel, same side, close offsets, touching extents.
+void mergeDuplicates(std::vector<Candidate>& candidates, const PointCloud& aligned, const WallOptions& options) {
     const double mergeCos = std::cos(options.mergeAngle * kDegree);
     for (bool merged = true; merged;) {
         merged = false;
@@ -157,78 +160,78 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
             }
         }
     }
+}
 
-    std::vector<WallSegment> walls;
-    for (const auto& c : candidates) {
-        if (c.inliers.size() < options.minInliers) continue;
-        WallSegment wall;
-        wall.normal = {c.normal.x(), c.normal.y(), 0};
-        wall.offset = c.offset;
-        wall.inliers = c.inliers.size();
-        std::tie(wall.along0, wall.along1) = alongSpan(c, aligned);
-        std::vector<double> heights, residuals;
-        std::map<std::uint32_t, std::size_t> perFrame;
-        for (auto i : c.inliers) {
-            heights.push_back(aligned.points[i].z);
-            residuals.push_back(std::abs(wall.signedDistance(aligned.points[i])));
-            ++perFrame[aligned.frames[i]];
-        }
-        std::tie(wall.z0, wall.z1) = detail::robustRange(std::move(heights));
-        wall.thickness = std::max(0.02, 2 * detail::quantile(std::move(residuals), 0.9));
-        const double frameFloor = std::max(3.0, options.frameShare * static_cast<double>(c.inliers.size()));
-        for (const auto& [frame, count] : perFrame)
-            if (static_cast<double>(count) >= frameFloor) ++wall.frames;
-        if (wall.frames < minFrames || wall.z1 - wall.z0 < options.minHeight || wall.length() < options.minLength)
-            continue;
-
-        // A wall is a surface, not a few lines: its inliers fill much of its extent. A vertical plane
-        // through a strip of ceiling and the fronts of some furniture spans the room's height but
-        // leaves most cells of its extent empty.
-        {
-            const double cell = options.coverageCell;
-            auto columns = static_cast<std::size_t>(std::ceil(wall.length() / cell));
-            auto rows = static_cast<std::size_t>(std::ceil((wall.z1 - wall.z0) / cell));
-            std::vector<char> filled(std::max<std::size_t>(1, columns * rows), 0);
-            for (auto i : c.inliers) {
-                const auto& p = aligned.points[i];
-                double a = alongOf(c.normal, p);
-                if (a < wall.along0 || a > wall.along1 || p.z < wall.z0 || p.z > wall.z1) continue;
-                auto col = std::min(columns - 1, static_cast<std::size_t>((a - wall.along0) / cell));
-                auto row = std::min(rows - 1, static_cast<std::size_t>((p.z - wall.z0) / cell));
-                filled[row * columns + col] = 1;
-            }
-            double coverage = static_cast<double>(std::count(filled.begin(), filled.end(), 1)) / filled.size();
-            if (coverage < options.minCoverage) continue;
-        }
-
-        // Walls bound the room: few points lie behind them (doorways and windows let some through). A
-        // free-standing cabinet has the far wall behind it.
-        std::size_t front = 0, behind = 0;
-        for (auto i : above) {
-            const auto& p = aligned.points[i];
-            double a = alongOf(c.normal, p);
-            if (a < wall.along0 || a > wall.along1 || p.z < wall.z0 || p.z > wall.z1) continue;
-            double s = wall.signedDistance(p);
-            if (s > options.behindDistance)
-                ++front;
-            else if (s < -options.behindDistance)
-                ++behind;
-        }
-        // Judged against the room in front, and against the segment's own surface: a tall shelf's face
-        // has a busy room in front of it, but a whole wall's worth of points behind.
-        if (front + behind > 0 &&
-            static_cast<double>(behind) > options.maxBehindShare * static_cast<double>(front + behind))
-            continue;
-        if (static_cast<double>(behind) > options.maxBehindOfSurface * static_cast<double>(wall.inliers)) continue;
-
-        double support = std::min(1.0, static_cast<double>(wall.inliers) / (4.0 * options.minInliers));
-        double seen = std::min(1.0, static_cast<double>(wall.frames) / 3.0);
-        wall.confidence = 0.5 * support + 0.5 * seen;
-        walls.push_back(wall);
+// The segment a candidate plane makes: its extent, thickness and the frames that saw it.
+WallSegment segmentOf(const Candidate& c, const PointCloud& aligned, const WallOptions& options) {
+    WallSegment wall;
+    wall.normal = {c.normal.x(), c.normal.y(), 0};
+    wall.offset = c.offset;
+    wall.inliers = c.inliers.size();
+    std::tie(wall.along0, wall.along1) = alongSpan(c, aligned);
+    std::vector<double> heights, residuals;
+    std::map<std::uint32_t, std::size_t> perFrame;
+    for (auto i : c.inliers) {
+        heights.push_back(aligned.points[i].z);
+        residuals.push_back(std::abs(wall.signedDistance(aligned.points[i])));
+        ++perFrame[aligned.frames[i]];
     }
-    // Furniture standing against a wall (a cabinet front, a sideboard) makes a parallel plane just inside
-    // it: of parallel segments that overlap along the wall and lie less than layerDistance apart, only the
-    // outermost one is the wall.
+    std::tie(wall.z0, wall.z1) = detail::robustRange(std::move(heights));
+    wall.thickness = std::max(0.02, 2 * detail::quantile(std::move(residuals), 0.9));
+    const double frameFloor = std::max(3.0, options.frameShare * static_cast<double>(c.inliers.size()));
+    for (const auto& [frame, count] : perFrame)
+        if (static_cast<double>(count) >= frameFloor) ++wall.frames;
+    return wall;
+}
+
+// A wall is a surface, not a few lines: its inliers fill much of its extent. A vertical plane through
+// a strip of ceiling and the fronts of some furniture spans the room's height but leaves most cells
+// of its extent empty.
+bool coversItsExtent(const WallSegment& wall, const Candidate& c, const PointCloud& aligned,
+                     const WallOptions& options) {
+    const double cell = options.coverageCell;
+    auto columns = static_cast<std::size_t>(std::ceil(wall.length() / cell));
+    auto rows = static_cast<std::size_t>(std::ceil((wall.z1 - wall.z0) / cell));
+    std::vector<char> filled(std::max<std::size_t>(1, columns * rows), 0);
+    for (auto i : c.inliers) {
+        const auto& p = aligned.points[i];
+        double a = alongOf(c.normal, p);
+        if (a < wall.along0 || a > wall.along1 || p.z < wall.z0 || p.z > wall.z1) continue;
+        auto col = std::min(columns - 1, static_cast<std::size_t>((a - wall.along0) / cell));
+        auto row = std::min(rows - 1, static_cast<std::size_t>((p.z - wall.z0) / cell));
+        filled[row * columns + col] = 1;
+    }
+    double coverage = static_cast<double>(std::count(filled.begin(), filled.end(), 1)) / filled.size();
+    return coverage >= options.minCoverage;
+}
+
+// Walls bound the room: few points lie behind them (doorways and windows let some through). A
+// free-standing cabinet has the far wall behind it. Judged against the room in front, and against
+// the segment's own surface: a tall shelf's face has a busy room in front of it, but a whole wall's
+// worth of points behind.
+bool boundsTheRoom(const WallSegment& wall, const Candidate& c, const PointCloud& aligned,
+                   const std::vector<std::size_t>& above, const WallOptions& options) {
+    std::size_t front = 0, behind = 0;
+    for (auto i : above) {
+        const auto& p = aligned.points[i];
+        double a = alongOf(c.normal, p);
+        if (a < wall.along0 || a > wall.along1 || p.z < wall.z0 || p.z > wall.z1) continue;
+        double s = wall.signedDistance(p);
+        if (s > options.behindDistance)
+            ++front;
+        else if (s < -options.behindDistance)
+            ++behind;
+    }
+    if (front + behind > 0 &&
+        static_cast<double>(behind) > options.maxBehindShare * static_cast<double>(front + behind))
+        return false;
+    return static_cast<double>(behind) <= options.maxBehindOfSurface * static_cast<double>(wall.inliers);
+}
+
+// Furniture standing against a wall (a cabinet front, a sideboard) makes a parallel plane just inside
+// it: of parallel segments that overlap along the wall and lie less than layerDistance apart, only the
+// outermost one is the wall. Strongest first.
+std::vector<WallSegment> outermost(const std::vector<WallSegment>& walls, const WallOptions& options) {
     const double parallelCos = std::cos(options.mergeAngle * kDegree);
     std::vector<char> inner(walls.size(), 0);
     for (std::size_t i = 0; i < walls.size(); ++i) {
@@ -248,6 +251,35 @@ std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<
         if (!inner[i]) outer.push_back(walls[i]);
     std::sort(outer.begin(), outer.end(), [](const auto& a, const auto& b) { return a.inliers > b.inliers; });
     return outer;
+}
+
+}  // namespace
+
+std::vector<WallSegment> findWalls(const PointCloud& aligned, const std::vector<model::Vec3>& cameras,
+                                   const WallOptions& options) {
+    std::vector<std::size_t> above;
+    for (std::size_t i = 0; i < aligned.size(); ++i)
+        if (aligned.points[i].z > options.minPointHeight) above.push_back(i);
+    const std::size_t views = std::set<std::uint32_t>(aligned.frames.begin(), aligned.frames.end()).size();
+    const std::size_t minFrames = std::min(options.minFrames, std::max<std::size_t>(views, 1));
+
+    std::vector<Candidate> candidates = verticalPlanes(aligned, above, options);
+    faceIntoRoom(candidates, aligned, above, cameras, options);
+    mergeDuplicates(candidates, aligned, options);
+
+    std::vector<WallSegment> walls;
+    for (const auto& c : candidates) {
+        if (c.inliers.size() < options.minInliers) continue;
+        WallSegment wall = segmentOf(c, aligned, options);
+        if (wall.frames < minFrames || wall.z1 - wall.z0 < options.minHeight || wall.length() < options.minLength)
+            continue;
+        if (!coversItsExtent(wall, c, aligned, options) || !boundsTheRoom(wall, c, aligned, above, options)) continue;
+        double support = std::min(1.0, static_cast<double>(wall.inliers) / (4.0 * options.minInliers));
+        double seen = std::min(1.0, static_cast<double>(wall.frames) / 3.0);
+        wall.confidence = 0.5 * support + 0.5 * seen;
+        walls.push_back(wall);
+    }
+    return outermost(walls, options);
 }
 
 std::vector<std::size_t> nonStructuralPoints(const PointCloud& aligned, const std::vector<WallSegment>& walls,

@@ -96,6 +96,63 @@ cv::Mat1b decodeRle(const nlohmann::json& s, const Intrinsics& K, const std::fun
     return mask;
 }
 
+// What a malformed field says: detections[i].FIELD: WHAT (it throws).
+using Complaint = std::function<void(const std::string& field, const std::string& what)>;
+
+// bbox: [x, y, w, h] in pixels, within the frame's image (half a pixel of slack: detectors round
+// box edges to the image border either way).
+cv::Rect2d readBox(const nlohmann::json& e, const Intrinsics& K, const Complaint& bad) {
+    if (!e.contains("bbox")) bad("bbox", "missing");
+    const auto& b = e["bbox"];
+    if (!b.is_array() || b.size() != 4 || !std::all_of(b.begin(), b.end(), [](const auto& v) { return v.is_number(); }))
+        bad("bbox", "expected [x, y, w, h] (4 numbers)");
+    double x = b[0].get<double>(), y = b[1].get<double>(), w = b[2].get<double>(), h = b[3].get<double>();
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(w) || !std::isfinite(h)) bad("bbox", "not finite");
+    if (w <= 0 || h <= 0) bad("bbox", "width and height must be positive");
+    if (x < -0.5 || y < -0.5 || x + w > K.width + 0.5 || y + h > K.height + 0.5)
+        bad("bbox", fmt::format("[{}, {}, {}, {}] lies outside the {}x{} image", x, y, w, h, K.width, K.height));
+    return cv::Rect2d(x, y, w, h);
+}
+
+// embedding: finite single-precision numbers.
+std::vector<float> readEmbedding(const nlohmann::json& v, const Complaint& bad) {
+    if (!v.is_array() || !std::all_of(v.begin(), v.end(), [](const auto& x) { return x.is_number(); }))
+        bad("embedding", "expected a list of numbers");
+    std::vector<float> out;
+    for (const auto& x : v) {
+        // Beyond float's range a value cannot be stored (and converting it is undefined).
+        const double value = x.get<double>();
+        if (!(std::abs(value) <= std::numeric_limits<float>::max()))
+            bad("embedding", fmt::format("value {} ({}) is not a finite single-precision number", out.size(), value));
+        out.push_back(static_cast<float>(value));
+    }
+    if (auto problem = model::embeddingProblem(out)) bad("embedding", *problem);
+    return out;
+}
+
+// segmentation as polygons: [[x1, y1, x2, y2, ...], ...] in pixels, within the image.
+std::vector<std::vector<cv::Point2d>> readPolygons(const nlohmann::json& s, const Intrinsics& K, const Complaint& bad) {
+    if (!s.is_array()) bad("segmentation", "expected a list of polygons [[x1, y1, x2, y2, ...], ...] or an RLE mask");
+    std::vector<std::vector<cv::Point2d>> out;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        const auto& poly = s[k];
+        std::string field = fmt::format("segmentation[{}]", k);
+        if (!poly.is_array() || poly.size() < 6 || poly.size() % 2)
+            bad(field, "expected a polygon of at least 3 points: [x1, y1, x2, y2, x3, y3, ...]");
+        std::vector<cv::Point2d> points;
+        for (std::size_t p = 0; p < poly.size(); p += 2) {
+            if (!poly[p].is_number() || !poly[p + 1].is_number()) bad(field, "expected numbers");
+            double px = poly[p].get<double>(), py = poly[p + 1].get<double>();
+            if (!std::isfinite(px) || !std::isfinite(py)) bad(field, "not finite");
+            if (px < -0.5 || py < -0.5 || px > K.width + 0.5 || py > K.height + 0.5)
+                bad(field, fmt::format("point ({}, {}) lies outside the {}x{} image", px, py, K.width, K.height));
+            points.emplace_back(px, py);
+        }
+        out.push_back(std::move(points));
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
@@ -161,32 +218,9 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
         if (!std::isfinite(d.score)) bad("score", "not finite");
 
         const Intrinsics& K = capture.frames[frame].intrinsics ? *capture.frames[frame].intrinsics : capture.intrinsics;
-        if (!e.contains("bbox")) bad("bbox", "missing");
-        const auto& b = e["bbox"];
-        if (!b.is_array() || b.size() != 4 ||
-            !std::all_of(b.begin(), b.end(), [](const auto& v) { return v.is_number(); }))
-            bad("bbox", "expected [x, y, w, h] (4 numbers)");
-        double x = b[0].get<double>(), y = b[1].get<double>(), w = b[2].get<double>(), h = b[3].get<double>();
-        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(w) || !std::isfinite(h)) bad("bbox", "not finite");
-        if (w <= 0 || h <= 0) bad("bbox", "width and height must be positive");
-        // Half a pixel of slack: detectors round box edges to the image border either way.
-        if (x < -0.5 || y < -0.5 || x + w > K.width + 0.5 || y + h > K.height + 0.5)
-            bad("bbox", fmt::format("[{}, {}, {}, {}] lies outside the {}x{} image", x, y, w, h, K.width, K.height));
-        d.box = cv::Rect2d(x, y, w, h);
-
+        d.box = readBox(e, K, bad);
         if (e.contains("embedding") && !e["embedding"].is_null()) {
-            const auto& v = e["embedding"];
-            if (!v.is_array() || !std::all_of(v.begin(), v.end(), [](const auto& x) { return x.is_number(); }))
-                bad("embedding", "expected a list of numbers");
-            for (const auto& x : v) {
-                // Beyond float's range a value cannot be stored (and converting it is undefined).
-                const double value = x.get<double>();
-                if (!(std::abs(value) <= std::numeric_limits<float>::max()))
-                    bad("embedding", fmt::format("value {} ({}) is not a finite single-precision number",
-                                                 d.embedding.size(), value));
-                d.embedding.push_back(static_cast<float>(value));
-            }
-            if (auto problem = model::embeddingProblem(d.embedding)) bad("embedding", *problem);
+            d.embedding = readEmbedding(e["embedding"], bad);
             if (!firstEmbedding) firstEmbedding = i;
             const std::size_t length = j[*firstEmbedding]["embedding"].size();
             if (d.embedding.size() != length)
@@ -197,30 +231,10 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
 
         if (e.contains("segmentation") && !e["segmentation"].is_null()) {
             const auto& s = e["segmentation"];
-            if (s.is_object()) {
+            if (s.is_object())
                 d.rle = decodeRle(s, K, [&](const std::string& what) { bad("segmentation", what); });
-                out[frame].push_back(std::move(d));
-                continue;
-            }
-            if (!s.is_array())
-                bad("segmentation", "expected a list of polygons [[x1, y1, x2, y2, ...], ...] or an RLE mask");
-            for (std::size_t k = 0; k < s.size(); ++k) {
-                const auto& poly = s[k];
-                std::string field = fmt::format("segmentation[{}]", k);
-                if (!poly.is_array() || poly.size() < 6 || poly.size() % 2)
-                    bad(field, "expected a polygon of at least 3 points: [x1, y1, x2, y2, x3, y3, ...]");
-                std::vector<cv::Point2d> points;
-                for (std::size_t p = 0; p < poly.size(); p += 2) {
-                    if (!poly[p].is_number() || !poly[p + 1].is_number()) bad(field, "expected numbers");
-                    double px = poly[p].get<double>(), py = poly[p + 1].get<double>();
-                    if (!std::isfinite(px) || !std::isfinite(py)) bad(field, "not finite");
-                    if (px < -0.5 || py < -0.5 || px > K.width + 0.5 || py > K.height + 0.5)
-                        bad(field,
-                            fmt::format("point ({}, {}) lies outside the {}x{} image", px, py, K.width, K.height));
-                    points.emplace_back(px, py);
-                }
-                d.polygons.push_back(std::move(points));
-            }
+            else
+                d.polygons = readPolygons(s, K, bad);
         }
         out[frame].push_back(std::move(d));
     }

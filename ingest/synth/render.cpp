@@ -184,6 +184,158 @@ std::vector<Surface> surfacesOf(const model::SceneData& scene) {
 
 Renderer::Renderer(std::vector<Surface> surfaces) : surfaces_(std::move(surfaces)) {}
 
+namespace {
+
+// The z-buffer the faces are drawn into: per pixel the nearest inverse depth and which face is there.
+struct Raster {
+    int width = 0, height = 0;
+    std::vector<double> inverseDepth;
+    std::vector<std::int32_t> faceAt;
+    std::vector<FaceRef> faces;
+};
+
+// One face of a box, its corners in camera coordinates (`cam`): clipped at the near plane, projected,
+// and its pixels drawn where it is the nearest so far.
+void rasteriseFace(const ingest::Intrinsics& K, const std::array<Vector3d, 8>& cam, const Vector3d& normalInCamera,
+                   int fi, int surface, Raster& raster) {
+    const auto& quad = kFaces[fi];
+    // The crossing point is always computed from the inside end, so two faces sharing an edge get
+    // the same point.
+    std::array<Vector3d, 8> poly;
+    int n = 0;
+    for (int k = 0; k < 4; ++k) {
+        const Vector3d& a = cam[quad[k]];
+        const Vector3d& b = cam[quad[(k + 1) % 4]];
+        bool aIn = a.z() >= kNearPlane, bIn = b.z() >= kNearPlane;
+        if (aIn) poly[n++] = a;
+        if (aIn != bIn) {
+            const Vector3d& in = aIn ? a : b;
+            const Vector3d& out = aIn ? b : a;
+            double s = (kNearPlane - in.z()) / (out.z() - in.z());
+            Vector3d p = in + s * (out - in);
+            p.z() = kNearPlane;
+            poly[n++] = p;
+        }
+    }
+    if (n < 3) return;
+
+    std::array<double, 8> xs, ys;
+    double area = 0;
+    for (int k = 0; k < n; ++k) {
+        xs[k] = K.fx * (poly[k].x() / poly[k].z()) + K.cx;
+        ys[k] = K.fy * (poly[k].y() / poly[k].z()) + K.cy;
+    }
+    for (int k = 0; k < n; ++k) area += xs[k] * ys[(k + 1) % n] - xs[(k + 1) % n] * ys[k];
+    if (!(std::abs(area) > 1e-9)) return;
+    if (area < 0) {
+        std::reverse(xs.begin(), xs.begin() + n);
+        std::reverse(ys.begin(), ys.begin() + n);
+    }
+    // Edge functions, positive inside. Two polygons sharing an edge get exactly negated
+    // coefficients, and exactly one of them owns the pixels on it.
+    std::array<Edge, 8> edges;
+    for (int k = 0; k < n; ++k) {
+        double x0 = xs[k], y0 = ys[k], x1 = xs[(k + 1) % n], y1 = ys[(k + 1) % n];
+        Edge& e = edges[k];
+        e.a = y0 - y1;
+        e.b = x1 - x0;
+        e.c = x0 * y1 - x1 * y0;
+        e.owned = e.a > 0 || (e.a == 0 && e.b > 0);
+    }
+    // Inverse depth is affine in (u, v) on a plane: 1/z = (n . ray) / (n . p0), ray = (xn, yn, 1).
+    const Vector3d& nc = normalInCamera;
+    double dc = nc.dot(cam[quad[0]]);
+    if (dc >= 0) return;
+    const double ia = nc.x() / (K.fx * dc), ib = nc.y() / (K.fy * dc),
+                 ic = (nc.z() - nc.x() * K.cx / K.fx - nc.y() * K.cy / K.fy) / dc;
+
+    double minX = xs[0], maxX = xs[0], minY = ys[0], maxY = ys[0];
+    for (int k = 1; k < n; ++k) {
+        minX = std::min(minX, xs[k]), maxX = std::max(maxX, xs[k]);
+        minY = std::min(minY, ys[k]), maxY = std::max(maxY, ys[k]);
+    }
+    int u0 = static_cast<int>(std::max(0.0, std::ceil(minX)));
+    int u1 = static_cast<int>(std::min<double>(raster.width - 1, std::floor(maxX)));
+    int v0 = static_cast<int>(std::max(0.0, std::ceil(minY)));
+    int v1 = static_cast<int>(std::min<double>(raster.height - 1, std::floor(maxY)));
+    if (u0 > u1 || v0 > v1) return;
+
+    auto faceIndex = static_cast<std::int32_t>(raster.faces.size());
+    raster.faces.push_back({surface, fi});
+    for (int v = v0; v <= v1; ++v) {
+        // A conservative span from the edges, then the exact test per pixel.
+        double lo = u0, hi = u1;
+        bool empty = false;
+        for (int k = 0; k < n && !empty; ++k) {
+            const Edge& e = edges[k];
+            double rest = e.b * v + e.c;
+            if (e.a > 0)
+                lo = std::max(lo, std::floor(-rest / e.a) - 1);
+            else if (e.a < 0)
+                hi = std::min(hi, std::ceil(-rest / e.a) + 1);
+            else if (rest < 0 || (rest == 0 && !e.owned))
+                empty = true;
+        }
+        if (empty || lo > hi) continue;
+        std::size_t row = static_cast<std::size_t>(v) * raster.width;
+        for (int u = static_cast<int>(lo); u <= static_cast<int>(hi); ++u) {
+            bool inside = true;
+            for (int k = 0; k < n && inside; ++k) {
+                const Edge& e = edges[k];
+                double value = e.a * u + e.b * v + e.c;
+                inside = !(value < 0 || (value == 0 && !e.owned));
+            }
+            if (!inside) continue;
+            double iz = ia * u + ib * v + ic;
+            if (iz > raster.inverseDepth[row + u]) {
+                raster.inverseDepth[row + u] = iz;
+                raster.faceAt[row + u] = faceIndex;
+            }
+        }
+    }
+}
+
+// A pixel's colour from its world point, so textures stick to surfaces: plain surfaces textured,
+// doors with grain, a frame and a handle, windows with a frame and a pale sky.
+std::array<std::uint8_t, 3> shade(const Surface& surface, const Geometry& g, int face, const Vector3d& world,
+                                  double footprint) {
+    const Vector3d& normal = g.normals[face];
+    double factor = kAmbient + kDiffuse * std::max(0.0, normal.dot(kLight));
+    model::Vec3 p{world.x(), world.y(), world.z()};
+    std::uint32_t seed = surfaceSeed(surface.id);
+    double r = surface.color.r, gr = surface.color.g, b = surface.color.b;
+    if (surface.look == Look::Plain) {
+        factor *= textureFactor(p, seed, footprint);
+    } else {
+        // Panel coordinates: `along` the wall from the panel's centre, `up` from its bottom.
+        const model::Box& box = surface.box;
+        bool alongX = box.size.x >= box.size.y;
+        double half = (alongX ? box.size.x : box.size.y) / 2, height = box.size.z;
+        Vector3d d = world - Vector3d(box.center.x, box.center.y, box.center.z);
+        double along = d.dot(alongX ? g.axisX : g.axisY);
+        double up = world.z() - model::bottom(box);
+        if (surface.look == Look::Door) {
+            factor *= textureFactor({p.x, p.y, p.z * 0.15}, seed, footprint);
+            if (std::abs(along) > half - 0.07 || up > height - 0.07) factor *= 0.82;
+            if (along > half - 0.17 && along < half - 0.09 && std::abs(up - 1.0) < 0.025) r = 70, gr = 70, b = 75;
+        } else {
+            bool frameBar = std::abs(along) > half - 0.06 || up < 0.06 || up > height - 0.06 ||
+                            std::abs(along) < 0.025 || std::abs(up - height / 2) < 0.025;
+            if (frameBar) {
+                r = 238, gr = 238, b = 232;
+                factor *= textureFactor(p, seed, footprint * 2);
+            } else {
+                double s = std::clamp(up / height, 0.0, 1.0);
+                r = 150 + 55 * s, gr = 185 + 40 * s, b = 220 + 20 * s;
+                factor = 1.0 + 0.05 * valueNoise(p.x * 3, p.y * 3, p.z * 3, seed);
+            }
+        }
+    }
+    return {toByte(r * factor), toByte(gr * factor), toByte(b * factor)};
+}
+
+}  // namespace
+
 RenderedFrame Renderer::render(const ingest::Intrinsics& K, const ingest::Pose& pose) const {
     const int W = K.width, H = K.height;
     Matrix3d R;
@@ -192,124 +344,25 @@ RenderedFrame Renderer::render(const ingest::Intrinsics& K, const ingest::Pose& 
     const Vector3d t(pose.translation.x, pose.translation.y, pose.translation.z);
     const Matrix3d Rt = R.transpose();
 
-    std::vector<double> inverseDepth(static_cast<std::size_t>(W) * H, 0.0);
-    std::vector<std::int32_t> faceAt(static_cast<std::size_t>(W) * H, -1);
-    std::vector<FaceRef> faces;
+    Raster raster{W,
+                  H,
+                  std::vector<double>(static_cast<std::size_t>(W) * H, 0.0),
+                  std::vector<std::int32_t>(static_cast<std::size_t>(W) * H, -1),
+                  {}};
     std::vector<Geometry> geometries;
     geometries.reserve(surfaces_.size());
-
     for (std::size_t si = 0; si < surfaces_.size(); ++si) {
         geometries.push_back(geometryOf(surfaces_[si].box));
         const Geometry& g = geometries.back();
         std::array<Vector3d, 8> cam;
         for (int i = 0; i < 8; ++i) cam[i] = Rt * (g.corners[i] - t);
-
         for (int fi = 0; fi < 6; ++fi) {
-            const auto& quad = kFaces[fi];
             // Back faces (and faces seen edge-on) are never visible on a closed box.
-            if (g.normals[fi].dot(t - g.corners[quad[0]]) <= 0) continue;
-
-            // Clip against the near plane. The crossing point is always computed from
-            // the inside end, so two faces sharing an edge get the same point.
-            std::array<Vector3d, 8> poly;
-            int n = 0;
-            for (int k = 0; k < 4; ++k) {
-                const Vector3d& a = cam[quad[k]];
-                const Vector3d& b = cam[quad[(k + 1) % 4]];
-                bool aIn = a.z() >= kNearPlane, bIn = b.z() >= kNearPlane;
-                if (aIn) poly[n++] = a;
-                if (aIn != bIn) {
-                    const Vector3d& in = aIn ? a : b;
-                    const Vector3d& out = aIn ? b : a;
-                    double s = (kNearPlane - in.z()) / (out.z() - in.z());
-                    Vector3d p = in + s * (out - in);
-                    p.z() = kNearPlane;
-                    poly[n++] = p;
-                }
-            }
-            if (n < 3) continue;
-
-            std::array<double, 8> xs, ys;
-            double area = 0;
-            for (int k = 0; k < n; ++k) {
-                xs[k] = K.fx * (poly[k].x() / poly[k].z()) + K.cx;
-                ys[k] = K.fy * (poly[k].y() / poly[k].z()) + K.cy;
-            }
-            for (int k = 0; k < n; ++k) area += xs[k] * ys[(k + 1) % n] - xs[(k + 1) % n] * ys[k];
-            if (!(std::abs(area) > 1e-9)) continue;
-            if (area < 0) {
-                std::reverse(xs.begin(), xs.begin() + n);
-                std::reverse(ys.begin(), ys.begin() + n);
-            }
-            // Edge functions, positive inside. Two polygons sharing an edge get exactly
-            // negated coefficients, and exactly one of them owns the pixels on it.
-            std::array<Edge, 8> edges;
-            for (int k = 0; k < n; ++k) {
-                double x0 = xs[k], y0 = ys[k], x1 = xs[(k + 1) % n], y1 = ys[(k + 1) % n];
-                Edge& e = edges[k];
-                e.a = y0 - y1;
-                e.b = x1 - x0;
-                e.c = x0 * y1 - x1 * y0;
-                e.owned = e.a > 0 || (e.a == 0 && e.b > 0);
-            }
-            // Inverse depth is affine in (u, v) on a plane: 1/z = (n . ray) / (n . p0), ray = (xn, yn, 1).
-            Vector3d nc = Rt * g.normals[fi];
-            double dc = nc.dot(cam[quad[0]]);
-            if (dc >= 0) continue;
-            const double ia = nc.x() / (K.fx * dc), ib = nc.y() / (K.fy * dc),
-                         ic = (nc.z() - nc.x() * K.cx / K.fx - nc.y() * K.cy / K.fy) / dc;
-
-            double minX = xs[0], maxX = xs[0], minY = ys[0], maxY = ys[0];
-            for (int k = 1; k < n; ++k) {
-                minX = std::min(minX, xs[k]), maxX = std::max(maxX, xs[k]);
-                minY = std::min(minY, ys[k]), maxY = std::max(maxY, ys[k]);
-            }
-            int u0 = static_cast<int>(std::max(0.0, std::ceil(minX)));
-            int u1 = static_cast<int>(std::min<double>(W - 1, std::floor(maxX)));
-            int v0 = static_cast<int>(std::max(0.0, std::ceil(minY)));
-            int v1 = static_cast<int>(std::min<double>(H - 1, std::floor(maxY)));
-            if (u0 > u1 || v0 > v1) continue;
-
-            auto faceIndex = static_cast<std::int32_t>(faces.size());
-            faces.push_back({static_cast<int>(si), fi});
-            for (int v = v0; v <= v1; ++v) {
-                // A conservative span from the edges, then the exact test per pixel.
-                double lo = u0, hi = u1;
-                bool empty = false;
-                for (int k = 0; k < n && !empty; ++k) {
-                    const Edge& e = edges[k];
-                    double rest = e.b * v + e.c;
-                    if (e.a > 0)
-                        lo = std::max(lo, std::floor(-rest / e.a) - 1);
-                    else if (e.a < 0)
-                        hi = std::min(hi, std::ceil(-rest / e.a) + 1);
-                    else if (rest < 0 || (rest == 0 && !e.owned))
-                        empty = true;
-                }
-                if (empty || lo > hi) continue;
-                std::size_t row = static_cast<std::size_t>(v) * W;
-                for (int u = static_cast<int>(lo); u <= static_cast<int>(hi); ++u) {
-                    bool inside = true;
-                    for (int k = 0; k < n; ++k) {
-                        const Edge& e = edges[k];
-                        double value = e.a * u + e.b * v + e.c;
-                        if (value < 0 || (value == 0 && !e.owned)) {
-                            inside = false;
-                            break;
-                        }
-                    }
-                    if (!inside) continue;
-                    double iz = ia * u + ib * v + ic;
-                    if (iz > inverseDepth[row + u]) {
-                        inverseDepth[row + u] = iz;
-                        faceAt[row + u] = faceIndex;
-                    }
-                }
-            }
+            if (g.normals[fi].dot(t - g.corners[kFaces[fi][0]]) <= 0) continue;
+            rasteriseFace(K, cam, Rt * g.normals[fi], fi, static_cast<int>(si), raster);
         }
     }
 
-    // Shading: every pixel from its world point, so textures stick to surfaces.
     RenderedFrame frame;
     frame.width = W;
     frame.height = H;
@@ -319,59 +372,19 @@ RenderedFrame Renderer::render(const ingest::Intrinsics& K, const ingest::Pose& 
     for (int v = 0; v < H; ++v) {
         for (int u = 0; u < W; ++u) {
             std::size_t i = static_cast<std::size_t>(v) * W + u;
-            if (faceAt[i] < 0) continue;
-            const FaceRef& ref = faces[faceAt[i]];
+            if (raster.faceAt[i] < 0) continue;
+            const FaceRef& ref = raster.faces[raster.faceAt[i]];
             const Surface& surface = surfaces_[ref.surface];
             const Geometry& g = geometries[ref.surface];
-            double z = 1.0 / inverseDepth[i];
+            double z = 1.0 / raster.inverseDepth[i];
             Vector3d ray((u - K.cx) / K.fx, (v - K.cy) / K.fy, 1.0);
-            Vector3d world = R * (ray * z) + t;
             frame.depth[i] = static_cast<float>(z);
             frame.instance[i] = static_cast<std::uint16_t>(surface.id);
-
-            const Vector3d& normal = g.normals[ref.face];
-            double shade = kAmbient + kDiffuse * std::max(0.0, normal.dot(kLight));
             // Metres per pixel on the surface: grows with distance and with a grazing view.
-            double cosine = std::abs(normal.dot(R * ray.normalized()));
+            double cosine = std::abs(g.normals[ref.face].dot(R * ray.normalized()));
             double footprint = z * ray.norm() / K.fx / std::max(cosine, 0.2);
-            model::Vec3 p{world.x(), world.y(), world.z()};
-            std::uint32_t seed = surfaceSeed(surface.id);
-            double r = surface.color.r, gr = surface.color.g, b = surface.color.b;
-            double factor = shade;
-            if (surface.look == Look::Plain) {
-                factor *= textureFactor(p, seed, footprint);
-            } else {
-                // Panel coordinates: `along` the wall from the panel's centre, `up` from its bottom.
-                const model::Box& box = surface.box;
-                bool alongX = box.size.x >= box.size.y;
-                double half = (alongX ? box.size.x : box.size.y) / 2, height = box.size.z;
-                Vector3d d = world - Vector3d(box.center.x, box.center.y, box.center.z);
-                double along = d.dot(alongX ? g.axisX : g.axisY);
-                double up = world.z() - model::bottom(box);
-                if (surface.look == Look::Door) {
-                    // Vertical grain, a darker frame and a handle.
-                    factor *= textureFactor({p.x, p.y, p.z * 0.15}, seed, footprint);
-                    if (std::abs(along) > half - 0.07 || up > height - 0.07) factor *= 0.82;
-                    if (along > half - 0.17 && along < half - 0.09 && std::abs(up - 1.0) < 0.025)
-                        r = 70, gr = 70, b = 75;
-                } else {
-                    bool frameBar = std::abs(along) > half - 0.06 || up < 0.06 || up > height - 0.06 ||
-                                    std::abs(along) < 0.025 || std::abs(up - height / 2) < 0.025;
-                    if (frameBar) {
-                        r = 238, gr = 238, b = 232;
-                        factor *= textureFactor(p, seed, footprint * 2);
-                    } else {
-                        // Glass: a pale sky, brighter towards the top, faint clouds.
-                        double s = std::clamp(up / height, 0.0, 1.0);
-                        r = 150 + 55 * s, gr = 185 + 40 * s, b = 220 + 20 * s;
-                        factor = 1.0 + 0.05 * valueNoise(p.x * 3, p.y * 3, p.z * 3, seed);
-                    }
-                }
-            }
-            std::uint8_t* out = &frame.rgb[i * 3];
-            out[0] = toByte(r * factor);
-            out[1] = toByte(gr * factor);
-            out[2] = toByte(b * factor);
+            auto rgb = shade(surface, g, ref.face, R * (ray * z) + t, footprint);
+            std::copy(rgb.begin(), rgb.end(), &frame.rgb[i * 3]);
         }
     }
     return frame;

@@ -17,14 +17,14 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "relations/hierarchy.hpp"
-#include "relations/predicates.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/walk.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
+#include "relations/hierarchy.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::synth {
 
@@ -303,31 +303,25 @@ SynthScene makeSynthScene(const SynthOptions& options) {
     return out;
 }
 
-SynthResult writeSynth(const std::string& directory, const SynthOptions& options) {
-    auto start = std::chrono::steady_clock::now();
-    SynthResult result;
-    result.scene = makeSynthScene(options);
-    result.intrinsics = synthIntrinsics();
-    const fs::path dir(directory);
-    prepareDirectory(dir, options.force, options.rgbOnly);
-    // Where the capture's own files go: the photos' folder, or beside the frame folders.
-    const fs::path capture = options.rgbOnly ? dir / "images" : dir;
+namespace {
 
+// What rendering the walk gives besides the files: per frame the pixels of each node (by id) and the
+// detections of its masks.
+struct RenderedWalk {
+    std::vector<std::vector<int>> pixels;
+    std::vector<std::vector<Json>> detections;
+};
+
+// Renders and writes every frame (colour, and depth and instance masks unless RGB-only). Frames are
+// independent: two workers render and write them, each frame's files depending only on its pose,
+// so the output does not depend on the scheduling.
+RenderedWalk renderWalk(const SynthResult& result, const SynthOptions& options, const fs::path& dir,
+                        const fs::path& capture, model::NodeId maxId) {
     const model::SceneData& truth = result.scene.truth;
-    Renderer renderer(surfacesOf(truth));
-    model::NodeId maxId = 0;
-    for (const model::Node& n : truth.nodes)
-        if (n.geometry != model::GeometryKind::None) {
-            maxId = std::max(maxId, n.id);
-            result.framesSeen[n.id] = 0;
-        }
-
+    const Renderer renderer(surfacesOf(truth));
     const ingest::Intrinsics& K = result.intrinsics;
     const auto& cameras = result.scene.poses;
-    // Frames are independent: two workers render and write them, each frame's files depending
-    // only on its pose, so the output does not depend on the scheduling.
-    std::vector<std::vector<int>> pixels(cameras.size());
-    std::vector<std::vector<Json>> detections(cameras.size());
+    RenderedWalk walk{std::vector<std::vector<int>>(cameras.size()), std::vector<std::vector<Json>>(cameras.size())};
     std::atomic<std::size_t> next{0};
     std::mutex failureMutex;
     std::exception_ptr failure;
@@ -337,7 +331,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
                 RenderedFrame frame = renderer.render(K, cameras[f]);
                 cv::Mat color(K.height, K.width, CV_8UC3), depth(K.height, K.width, CV_16UC1),
                     instance(K.height, K.width, CV_16UC1);
-                std::vector<int>& counts = pixels[f];
+                std::vector<int>& counts = walk.pixels[f];
                 counts.assign(maxId + 1, 0);
                 for (int v = 0; v < K.height; ++v) {
                     auto* c = color.ptr<std::uint8_t>(v);
@@ -362,7 +356,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
                     writePng(dir / "depth" / name, depth);
                     writePng(dir / "instance" / name, instance);
                 }
-                detections[f] = detectFrame(instance, counts, truth, name);
+                walk.detections[f] = detectFrame(instance, counts, truth, name);
             }
         } catch (...) {
             std::lock_guard lock(failureMutex);
@@ -370,35 +364,27 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
             next = cameras.size();
         }
     };
-    auto framesStart = std::chrono::steady_clock::now();
     {
         std::thread helper(work);
         work();
         helper.join();
     }
     if (failure) std::rethrow_exception(failure);
-    result.frameSeconds = secondsSince(framesStart);
-    std::string poses;
-    for (std::size_t f = 0; f < cameras.size(); ++f) {
-        poses += poseLine(cameras[f]) + "\n";
-        for (auto& [id, seen] : result.framesSeen)
-            if (pixels[f][id] >= kMinVisiblePixels) ++seen;
-    }
-    writeText(dir / "pose.txt", poses);
+    return walk;
+}
 
-    auto number = [](double v) { return v == std::floor(v) ? Json(static_cast<std::int64_t>(v)) : Json(v); };
-    Json camera = {{"width", K.width},   {"height", K.height}, {"fx", number(K.fx)},
-                   {"fy", number(K.fy)}, {"cx", number(K.cx)}, {"cy", number(K.cy)}};
-    if (!options.rgbOnly) camera["depth_scale"] = 1000;
-    writeText(capture / "camera.json", camera.dump() + "\n");
-
+// The truth beside the frames: labels of the masks, how many frames saw each node, the labelled
+// relations, the detections and truth.json.
+void writeTruth(const SynthResult& result, const SynthOptions& options, const fs::path& dir, const fs::path& capture,
+                std::vector<std::vector<Json>> detections) {
+    const model::SceneData& truth = result.scene.truth;
     std::vector<Json> labels, visibility, relations;
     for (const model::Node& n : truth.nodes) {
         if (n.geometry == model::GeometryKind::None) continue;
         Json label = {{"id", n.id}, {"category", n.category}, {"kind", model::toString(n.kind)}};
         if (const std::string* color = n.attribute("color")) label["color"] = *color;
         labels.push_back(label);
-        visibility.push_back({{"id", n.id}, {"frames", result.framesSeen[n.id]}});
+        visibility.push_back({{"id", n.id}, {"frames", result.framesSeen.at(n.id)}});
     }
     for (const LabelledRelation& r : result.scene.relations)
         relations.push_back(Json::array({r.subject, r.object, r.predicateId, r.predicate}));
@@ -415,50 +401,96 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
         for (auto& d : frameDetections) allDetections.push_back(std::move(d));
     writeText(capture / "detections.json", jsonLines("detections", allDetections));
     writeText(dir / "truth.json", import::writeSceneJson(truth) + "\n");
-    // The evaluation suite (docs/eval.md): truth ids of what the walk saw; answers come from
-    // truth.json when `smql eval` runs.
-    {
-        std::vector<model::NodeId> things, anchors, doors;
-        for (const model::Node& n : truth.nodes) {
-            if (n.geometry == model::GeometryKind::None || result.framesSeen[n.id] == 0) continue;
-            if (n.kind == model::NodeKind::Object) things.push_back(n.id);
-            bool upright = n.category == "wall" || n.category == "door" || n.category == "window";
-            if (n.kind == model::NodeKind::Anchor && upright) anchors.push_back(n.id);
-            if (n.kind == model::NodeKind::Anchor && n.category == "door") doors.push_back(n.id);
-        }
-        Json suite = {{"smql_eval", 1},
-                      {"scene", truth.info.name},
-                      {"truth", "truth.json"},
-                      {"relative_position", Json::array()},
-                      {"guidance", Json::array()},
-                      {"retrieval", Json::array()}};
-        for (model::NodeId thing : things) {
-            for (model::NodeId anchor : anchors)
-                suite["relative_position"].push_back({{"subject", thing}, {"anchor", anchor}});
-            for (model::NodeId door : doors) suite["guidance"].push_back({{"from", door}, {"to", thing}});
-            suite["retrieval"].push_back({{"object", thing}});
-        }
-        writeText(dir / "eval-suite.json", suite.dump(1) + "\n");
+}
+
+// The evaluation suite (docs/eval.md): truth ids of what the walk saw; answers come from truth.json
+// when `smql eval` runs.
+void writeEvalSuite(const SynthResult& result, const fs::path& dir) {
+    const model::SceneData& truth = result.scene.truth;
+    std::vector<model::NodeId> things, anchors, doors;
+    for (const model::Node& n : truth.nodes) {
+        if (n.geometry == model::GeometryKind::None || result.framesSeen.at(n.id) == 0) continue;
+        if (n.kind == model::NodeKind::Object) things.push_back(n.id);
+        bool upright = n.category == "wall" || n.category == "door" || n.category == "window";
+        if (n.kind == model::NodeKind::Anchor && upright) anchors.push_back(n.id);
+        if (n.kind == model::NodeKind::Anchor && n.category == "door") doors.push_back(n.id);
     }
-    if (options.changes) {
-        auto centre = [](const model::Box& b) { return Json::array({b.center.x, b.center.y, b.center.z}); };
-        std::vector<Json> changes;
-        for (const auto& c : result.scene.changes) {
-            Json change = {{"change", model::toString(c.kind)}, {"category", c.category}};
-            if (c.before != model::kNoNode) change["before_id"] = c.before;
-            if (c.after != model::kNoNode) change["after_id"] = c.after;
-            if (c.kind != model::ChangeKind::Added) change["from"] = centre(c.from);
-            if (c.kind != model::ChangeKind::Missing) change["to"] = centre(c.to);
-            if (c.after != model::kNoNode) change["frames_seen"] = result.framesSeen[c.after];
-            changes.push_back(change);
-        }
-        writeText(dir / "changes.json",
-                  jsonLines("changes", changes,
-                            {{"scene", truth.info.name},
-                             {"format",
-                              "ids are truth.json ids: before_id of the capture without --changes, "
-                              "after_id of this one; from/to are box centres in metres"}}));
+    Json suite = {{"smql_eval", 1},
+                  {"scene", truth.info.name},
+                  {"truth", "truth.json"},
+                  {"relative_position", Json::array()},
+                  {"guidance", Json::array()},
+                  {"retrieval", Json::array()}};
+    for (model::NodeId thing : things) {
+        for (model::NodeId anchor : anchors)
+            suite["relative_position"].push_back({{"subject", thing}, {"anchor", anchor}});
+        for (model::NodeId door : doors) suite["guidance"].push_back({{"from", door}, {"to", thing}});
+        suite["retrieval"].push_back({{"object", thing}});
     }
+    writeText(dir / "eval-suite.json", suite.dump(1) + "\n");
+}
+
+// --changes: what changed from the room without them, in truth ids.
+void writeChanges(const SynthResult& result, const fs::path& dir) {
+    auto centre = [](const model::Box& b) { return Json::array({b.center.x, b.center.y, b.center.z}); };
+    std::vector<Json> changes;
+    for (const auto& c : result.scene.changes) {
+        Json change = {{"change", model::toString(c.kind)}, {"category", c.category}};
+        if (c.before != model::kNoNode) change["before_id"] = c.before;
+        if (c.after != model::kNoNode) change["after_id"] = c.after;
+        if (c.kind != model::ChangeKind::Added) change["from"] = centre(c.from);
+        if (c.kind != model::ChangeKind::Missing) change["to"] = centre(c.to);
+        if (c.after != model::kNoNode) change["frames_seen"] = result.framesSeen.at(c.after);
+        changes.push_back(change);
+    }
+    writeText(dir / "changes.json",
+              jsonLines("changes", changes,
+                        {{"scene", result.scene.truth.info.name},
+                         {"format",
+                          "ids are truth.json ids: before_id of the capture without --changes, after_id of this one; "
+                          "from/to are box centres in metres"}}));
+}
+
+}  // namespace
+
+SynthResult writeSynth(const std::string& directory, const SynthOptions& options) {
+    auto start = std::chrono::steady_clock::now();
+    SynthResult result;
+    result.scene = makeSynthScene(options);
+    result.intrinsics = synthIntrinsics();
+    const fs::path dir(directory);
+    prepareDirectory(dir, options.force, options.rgbOnly);
+    // Where the capture's own files go: the photos' folder, or beside the frame folders.
+    const fs::path capture = options.rgbOnly ? dir / "images" : dir;
+
+    model::NodeId maxId = 0;
+    for (const model::Node& n : result.scene.truth.nodes)
+        if (n.geometry != model::GeometryKind::None) {
+            maxId = std::max(maxId, n.id);
+            result.framesSeen[n.id] = 0;
+        }
+    auto framesStart = std::chrono::steady_clock::now();
+    RenderedWalk walk = renderWalk(result, options, dir, capture, maxId);
+    result.frameSeconds = secondsSince(framesStart);
+
+    const auto& cameras = result.scene.poses;
+    std::string poses;
+    for (std::size_t f = 0; f < cameras.size(); ++f) {
+        poses += poseLine(cameras[f]) + "\n";
+        for (auto& [id, seen] : result.framesSeen)
+            if (walk.pixels[f][id] >= kMinVisiblePixels) ++seen;
+    }
+    writeText(dir / "pose.txt", poses);
+    const ingest::Intrinsics& K = result.intrinsics;
+    auto number = [](double v) { return v == std::floor(v) ? Json(static_cast<std::int64_t>(v)) : Json(v); };
+    Json camera = {{"width", K.width},   {"height", K.height}, {"fx", number(K.fx)},
+                   {"fy", number(K.fy)}, {"cx", number(K.cx)}, {"cy", number(K.cy)}};
+    if (!options.rgbOnly) camera["depth_scale"] = 1000;
+    writeText(capture / "camera.json", camera.dump() + "\n");
+
+    writeTruth(result, options, dir, capture, std::move(walk.detections));
+    writeEvalSuite(result, dir);
+    if (options.changes) writeChanges(result, dir);
     result.totalSeconds = secondsSince(start);
     return result;
 }
