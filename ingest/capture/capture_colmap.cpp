@@ -9,6 +9,7 @@
 #include <map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "ingest/capture/capture_detail.hpp"
 #include "model/error.hpp"
@@ -460,5 +461,44 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
     if (options.depthScale) capture.depthScale = *options.depthScale;
     return capture;
 }
+
+namespace {
+
+// The COLMAP model in `dir`, `dir/sparse/0` or `dir/sparse`.
+std::optional<fs::path> findColmapModel(const fs::path& dir, std::vector<std::string>& notes) {
+    if (colmapModelFormat(dir)) return dir;
+    fs::path sparse = dir / "sparse";
+    if (colmapModelFormat(sparse / "0")) {
+        std::vector<std::string> others;
+        std::error_code ec;
+        for (fs::directory_iterator it(sparse, ec), end; !ec && it != end; it.increment(ec)) {
+            std::string name = it->path().filename().string();
+            if (name != "0" && frameNumber(it->path()) && colmapModelFormat(it->path())) others.push_back(name);
+        }
+        if (!others.empty())
+            notes.push_back(fmt::format("{} holds several COLMAP models; reading sparse/0 (the others: {})",
+                                        sparse.string(), fmt::join(others, ", ")));
+        return sparse / "0";
+    }
+    if (colmapModelFormat(sparse)) return sparse;
+    return std::nullopt;
+}
+
+}  // namespace
+
+// A COLMAP sparse model: the folder (or its sparse/0 or sparse/), or one of its files named.
+extern const CaptureLayout kColmapLayout{
+    "colmap", "a COLMAP sparse model (cameras/images/points3D .txt or .bin, also in sparse/0/)",
+    "cameras + images .txt/.bin here or in sparse/0/ or sparse/ (COLMAP)",
+    [](const fs::path& target, std::vector<std::string>& notes) -> std::optional<fs::path> {
+        if (isDirectory(target)) return findColmapModel(target, notes);
+        static constexpr std::string_view kFiles[] = {"cameras.txt", "images.txt", "points3d.txt",
+                                                      "cameras.bin", "images.bin", "points3d.bin"};
+        std::string name = lowerCase(target.filename().string());
+        if (isFile(target) && std::find(std::begin(kFiles), std::end(kFiles), name) != std::end(kFiles))
+            return target.has_parent_path() ? target.parent_path() : fs::path(".");
+        return std::nullopt;
+    },
+    readColmap};
 
 }  // namespace smql::ingest::capture_detail

@@ -173,12 +173,32 @@ private:
     std::optional<double> next_;
 };
 
+// A capture layout: how a path (a folder or a file) is recognised as one, and its reader. The
+// layouts are one table (capture_layouts.cpp); readCapture tries them in its order, and its hint
+// and its error for a path no layout recognises are made from the rows.
+struct CaptureLayout {
+    std::string_view name;      // "rgbd"
+    std::string_view reads;     // what the hint says it reads: "an rgbd folder (color/ depth/ pose.txt)"
+    std::string_view looksFor;  // what the error says was looked for: "color/ and depth/ folders (rgbd)"
+    // The path the reader takes when `target` is one of its captures (the folder, transforms.json,
+    // the model's folder), else nothing; what it chose on the way goes to `notes`.
+    std::optional<fs::path> (*recognise)(const fs::path& target, std::vector<std::string>& notes);
+    Capture (*read)(const fs::path& path, const CaptureOptions& options);
+};
+// Every layout, in the order they are tried.
+const std::vector<const CaptureLayout*>& captureLayouts();
+// "smql reads: an rgbd folder (...), ..., or a video file": the hint of a capture smql cannot read.
+const std::string& layoutsHint();
+
+bool isDirectory(const fs::path& path);
+bool isFile(const fs::path& path);
+
 // One reader per layout. `dir` is the folder (or file) the layout was found in.
 Capture readRgbd(const fs::path& dir, const CaptureOptions& options);
 Capture readTum(const fs::path& dir, const CaptureOptions& options);
 Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& options);
 Capture readColmap(const fs::path& modelDir, const CaptureOptions& options);
-Capture readImageFolder(const fs::path& dir, const std::vector<fs::path>& images, const CaptureOptions& options);
+Capture readImageFolder(const fs::path& dir, const CaptureOptions& options);
 Capture readVideo(const fs::path& file, const CaptureOptions& options);
 
 // The COLMAP model files in `dir` ("bin" or "txt"), or std::nullopt.

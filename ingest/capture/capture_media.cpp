@@ -51,7 +51,19 @@ void cameraFromExif(Capture& capture, const fs::path& dir, int width, int height
 
 }  // namespace
 
-Capture readImageFolder(const fs::path& dir, const std::vector<fs::path>& images, const CaptureOptions& options) {
+namespace {
+
+std::vector<fs::path> imagesIn(const fs::path& dir) {
+    std::vector<fs::path> images;
+    for (const fs::path& file : listFiles(dir))
+        if (isImageExtension(extensionOf(file))) images.push_back(file);
+    return images;
+}
+
+}  // namespace
+
+Capture readImageFolder(const fs::path& dir, const CaptureOptions& options) {
+    const std::vector<fs::path> images = imagesIn(dir);
     Capture capture;
     capture.layout = "images";
     capture.metric = false;
@@ -214,5 +226,24 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
     cleanup.armed = false;
     return capture;
 }
+
+// A folder of photos (.jpg, .jpeg, .png), the last folder layout tried.
+extern const CaptureLayout kImageFolderLayout{
+    "images", "a folder of .jpg/.png images", ".jpg/.jpeg/.png files (image folder)",
+    [](const fs::path& target, std::vector<std::string>&) -> std::optional<fs::path> {
+        if (isDirectory(target) && !imagesIn(target).empty()) return target;
+        return std::nullopt;
+    },
+    readImageFolder};
+
+// A video file: any file that is no image, JSON or text file (OpenCV says whether it can read it).
+extern const CaptureLayout kVideoLayout{
+    "video", "a video file", "a video file",
+    [](const fs::path& target, std::vector<std::string>&) -> std::optional<fs::path> {
+        std::string ext = extensionOf(target);
+        if (isFile(target) && !isImageExtension(ext) && ext != "json" && ext != "txt") return target;
+        return std::nullopt;
+    },
+    readVideo};
 
 }  // namespace smql::ingest::capture_detail

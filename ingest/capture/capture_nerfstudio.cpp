@@ -233,4 +233,14 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
     return capture;
 }
 
+// transforms.json, named or in the folder.
+extern const CaptureLayout kNerfstudioLayout{
+    "nerfstudio", "a nerfstudio transforms.json", "transforms.json (nerfstudio)",
+    [](const fs::path& target, std::vector<std::string>&) -> std::optional<fs::path> {
+        if (isDirectory(target) && isFile(target / "transforms.json")) return target / "transforms.json";
+        if (isFile(target) && lowerCase(target.filename().string()) == "transforms.json") return target;
+        return std::nullopt;
+    },
+    readNerfstudio};
+
 }  // namespace smql::ingest::capture_detail

@@ -406,4 +406,20 @@ Capture readTum(const fs::path& dir, const CaptureOptions& options) {
     return capture;
 }
 
+extern const CaptureLayout kRgbdLayout{
+    "rgbd", "an rgbd folder (color/ depth/ pose.txt)", "color/ and depth/ folders (rgbd)",
+    [](const fs::path& target, std::vector<std::string>&) -> std::optional<fs::path> {
+        if (isDirectory(target / "color") && isDirectory(target / "depth")) return target;
+        return std::nullopt;
+    },
+    readRgbd};
+
+extern const CaptureLayout kTumLayout{"tum", "a TUM RGB-D folder (rgb.txt depth.txt groundtruth.txt)",
+                                      "rgb.txt (TUM RGB-D)",
+                                      [](const fs::path& target, std::vector<std::string>&) -> std::optional<fs::path> {
+                                          if (isFile(target / "rgb.txt")) return target;
+                                          return std::nullopt;
+                                      },
+                                      readTum};
+
 }  // namespace smql::ingest::capture_detail
