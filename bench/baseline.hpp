@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "relations/predicates.hpp"
 #include "model/geometry.hpp"
 #include "model/types.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::bench {
 

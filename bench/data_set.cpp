@@ -9,8 +9,8 @@
 #include "bench/sqlite_baseline.hpp"
 #include "bench/stats.hpp"
 #include "engine/engine.hpp"
-#include "relations/hierarchy.hpp"
 #include "ingest/generate/room_generator.hpp"
+#include "relations/hierarchy.hpp"
 #include "storage/database.hpp"
 
 namespace smql::bench {

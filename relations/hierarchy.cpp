@@ -10,8 +10,8 @@
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 
-#include "relations/predicates.hpp"
 #include "model/geometry.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::relations {
 

@@ -4,8 +4,8 @@
 // below the scene root.
 #pragma once
 
-#include "relations/thresholds.hpp"
 #include "model/types.hpp"
+#include "relations/thresholds.hpp"
 
 namespace smql::relations {
 

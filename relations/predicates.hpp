@@ -14,9 +14,9 @@
 #include <string_view>
 #include <vector>
 
-#include "relations/thresholds.hpp"
 #include "model/geometry.hpp"
 #include "model/types.hpp"
+#include "relations/thresholds.hpp"
 
 namespace smql::relations {
 

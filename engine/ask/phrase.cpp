@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "engine/ask/wordnet.hpp"
-#include "relations/predicates.hpp"
 #include "model/error.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ask {
 

@@ -23,9 +23,9 @@
 #include "engine/ask/phrase.hpp"
 #include "engine/ask/translator.hpp"
 #include "engine/ask/wordnet.hpp"
-#include "relations/predicates.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ask {
 

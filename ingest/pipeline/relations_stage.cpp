@@ -8,10 +8,10 @@
 
 #include <fmt/format.h>
 
-#include "relations/hierarchy.hpp"
-#include "relations/predicates.hpp"
 #include "ingest/pipeline/descriptions.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
+#include "relations/hierarchy.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ingest {
 

@@ -11,10 +11,10 @@
 
 #include <fmt/format.h>
 
-#include "relations/predicates.hpp"
 #include "engine_support.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"
+#include "relations/predicates.hpp"
 
 using namespace smql;
 using namespace smql::testing;

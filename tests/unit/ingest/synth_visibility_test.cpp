@@ -9,10 +9,10 @@
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
 
-#include "relations/thresholds.hpp"
-#include "relations/visibility.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/synth.hpp"
+#include "relations/thresholds.hpp"
+#include "relations/visibility.hpp"
 
 using namespace smql;
 
