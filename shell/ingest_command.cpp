@@ -105,14 +105,6 @@ ingest::GeometrySource geometrySource(const std::string& name) {
     return ingest::GeometrySource::Auto;
 }
 
-ingest::ObjectSource objectSource(const std::string& name) {
-    if (name == "masks") return ingest::ObjectSource::Masks;
-    if (name == "detections") return ingest::ObjectSource::Detections;
-    if (name == "detect") return ingest::ObjectSource::Detect;
-    if (name == "cluster") return ingest::ObjectSource::Cluster;
-    return ingest::ObjectSource::Auto;
-}
-
 }  // namespace
 
 int ingestCommand(const IngestArguments& args) {
@@ -130,7 +122,7 @@ int ingestCommand(const IngestArguments& args) {
         args.scene.empty() ? fs::absolute(args.capture).lexically_normal().filename().string() : args.scene;
     if (options.sceneName.empty()) options.sceneName = fs::absolute(args.capture).parent_path().filename().string();
     options.geometry = geometrySource(args.geometry);
-    options.objects = objectSource(args.objects);
+    options.objects = args.objects;
     options.detectorModel = args.detector;
     options.detectorClasses = args.classes;
     options.scale = args.scale;

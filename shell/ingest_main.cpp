@@ -3,6 +3,7 @@
 // program, installed next to it, when one of these commands is asked for, passing its argv as is.
 #include <iostream>
 
+#include "ingest/pipeline/object_finder.hpp"
 #include "model/error.hpp"
 #include "shell/cli.hpp"
 #include "shell/ingest_command.hpp"
@@ -30,10 +31,8 @@ int run(int argc, char** argv) {
                      "given (the capture's poses), colmap (structure from motion on the colour frames) or auto "
                      "(default: colmap when some frame has no pose, or without depth: then with the given poses)")
         ->check(CLI::IsMember({"given", "colmap", "auto"}));
-    ingestCmd
-        ->add_option("--objects", ingestArgs.objects,
-                     "masks, detections (detections.json), detect (the COCO detector), cluster or auto (default)")
-        ->check(CLI::IsMember({"masks", "detections", "detect", "cluster", "auto"}));
+    ingestCmd->add_option("--objects", ingestArgs.objects, smql::ingest::objectSourcesHelp())
+        ->check(CLI::IsMember(smql::ingest::objectSourceNames()));
     ingestCmd
         ->add_option("--detector", ingestArgs.detector,
                      "NanoDet ONNX model for --objects detect (default: the one scripts/detector/setup.sh installs)")

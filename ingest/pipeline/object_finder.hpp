@@ -1,8 +1,8 @@
-// Object sources (--objects, IngestOptions::objects): where a capture's
-// objects come from. Each source is an ObjectFinder in a file of its own
-// (objects_from_masks.cpp, objects_from_detections.cpp,
-// objects_from_clusters.cpp; the detector's in objects_from_detections.cpp) and one line in the table of
-// object_finder.cpp, which also sets the order `auto` tries them in. The frames stage shows a finder every posed frame
+// Object sources (--objects, IngestOptions::objects): where a capture's objects come from. Each
+// source is an ObjectFinder and its ObjectSourceSpec in a file of its own (objects_from_masks.cpp,
+// objects_from_detections.cpp, objects_from_clusters.cpp; the detector's in
+// objects_from_detections.cpp) and one line in the table of object_finder.cpp, which also sets the
+// order `auto` tries them in. The frames stage shows a finder every posed frame
 // and takes its tracks; the objects stage turns the tracks into nodes and then lets the finder add objects it finds in
 // the aligned structure instead.
 #pragma once
@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ingest/capture/capture.hpp"
@@ -47,21 +48,26 @@ public:
                                      model::SceneData& scene, StageProgress& progress) = 0;
 };
 
-// The finder for options.objects; `auto` takes the first source in the table
-// that the capture can feed. Throws smql::Error(Input) when the capture lacks
-// what the chosen source needs, or its files (labels, detections) are malformed.
-std::unique_ptr<ObjectFinder> makeObjectFinder(const Capture& capture, const IngestOptions& options);
+// An object source: its name (--objects NAME), what it is for the help text, whether the capture has
+// what it needs, and its finder (which throws smql::Error(Input), naming what is missing, when it
+// has not). The sources are one table (object_finder.cpp, SMQL_OBJECT_SOURCES); each source's file
+// defines its ObjectSourceSpec, named k<Name>Source.
+struct ObjectSourceSpec {
+    std::string_view name;
+    std::string_view does;  // "detections.json beside the frames"
+    bool (*usable)(const Capture& capture, const IngestOptions& options);
+    std::unique_ptr<ObjectFinder> (*make)(const Capture& capture, const IngestOptions& options);
+};
+// Every source, in the order `auto` tries them: the most specific evidence first.
+const std::vector<const ObjectSourceSpec*>& objectSources();
+// The names --objects takes: every source's, and "auto".
+std::vector<std::string> objectSourceNames();
+// "masks (the instance masks), ... or auto (default: ...)": for --help.
+std::string objectSourcesHelp();
 
-// The sources. `...Usable` says whether the capture has what the source needs;
-// `make...` throws smql::Error(Input), naming what is missing, when it has not.
-bool masksUsable(const Capture& capture, const IngestOptions& options);
-std::unique_ptr<ObjectFinder> makeMaskFinder(const Capture& capture, const IngestOptions& options);
-bool detectionsUsable(const Capture& capture, const IngestOptions& options);
-std::unique_ptr<ObjectFinder> makeDetectionFinder(const Capture& capture, const IngestOptions& options);
-// The detector run on the frames (--objects detect): needs depth and a prepared model.
-bool detectorUsable(const Capture& capture, const IngestOptions& options);
-std::unique_ptr<ObjectFinder> makeDetectorFinder(const Capture& capture, const IngestOptions& options);
-bool clustersUsable(const Capture& capture, const IngestOptions& options);
-std::unique_ptr<ObjectFinder> makeClusterFinder(const Capture& capture, const IngestOptions& options);
+// The finder for options.objects; `auto` takes the first source in the table that the capture can
+// feed. Throws smql::Error(Usage) for a name no source has, and smql::Error(Input) when the capture
+// lacks what the chosen source needs, or its files (labels, detections) are malformed.
+std::unique_ptr<ObjectFinder> makeObjectFinder(const Capture& capture, const IngestOptions& options);
 
 }  // namespace smql::ingest

@@ -55,4 +55,7 @@ std::unique_ptr<ObjectFinder> makeClusterFinder(const Capture&, const IngestOpti
     return std::make_unique<ClusterFinder>();
 }
 
+extern const ObjectSourceSpec kClusterSource{"cluster", "clusters of the points off the walls and floor",
+                                             clustersUsable, makeClusterFinder};
+
 }  // namespace smql::ingest

@@ -232,4 +232,9 @@ std::unique_ptr<ObjectFinder> makeDetectorFinder(const Capture& capture, const I
     return std::make_unique<DetectorFinder>(capture, *files, options);
 }
 
+extern const ObjectSourceSpec kDetectionsSource{"detections", "detections.json beside the frames", detectionsUsable,
+                                                makeDetectionFinder};
+extern const ObjectSourceSpec kDetectSource{"detect", "the COCO detector on the frames", detectorUsable,
+                                            makeDetectorFinder};
+
 }  // namespace smql::ingest

@@ -125,4 +125,6 @@ std::unique_ptr<ObjectFinder> makeMaskFinder(const Capture& capture, const Inges
     return std::make_unique<MaskFinder>(capture, options);
 }
 
+extern const ObjectSourceSpec kMasksSource{"masks", "the capture's instance masks", masksUsable, makeMaskFinder};
+
 }  // namespace smql::ingest

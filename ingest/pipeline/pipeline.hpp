@@ -16,12 +16,13 @@
 namespace smql::ingest {
 
 enum class GeometrySource { Given, Colmap, Auto };
-enum class ObjectSource { Masks, Detections, Detect, Cluster, Auto };
 
 struct IngestOptions {
     std::string sceneName;
     GeometrySource geometry = GeometrySource::Auto;
-    ObjectSource objects = ObjectSource::Auto;
+    // Where the objects come from: a source of the table in object_finder.cpp by name ("masks",
+    // "detections", "detect", "cluster"), or "auto", the first the capture can feed.
+    std::string objects = "auto";
     std::string detectorModel;    // --detector: the ONNX model (default: defaultModelDir()/nanodet.onnx)
     std::string detectorClasses;  // --classes: its class names (default: coco.names beside the model)
     std::optional<double> scale;  // metres per capture unit, overriding the alignment's estimate

@@ -47,7 +47,7 @@ struct Measured {
 };
 
 Measured ingestRegistered(const Capture& reconstructed, const Capture& truth, const synth::SynthResult& synth,
-                          ObjectSource objects) {
+                          const std::string& objects) {
     SilentProgress silent;
     IngestOptions options;
     options.sceneName = "synth-3-colmap";
@@ -96,15 +96,15 @@ TEST_CASE("an RGB-only synthetic capture through COLMAP meets the quality thresh
             seed, source, run.registered, colmapSeconds, m.scale, 100 * std::abs(m.scale - 1), m.residual,
             r.objects.f1(), r.objects.precision(), r.objects.recall(), r.anchors.f1(), r.meanCenterError);
     };
-    auto masks = ingestRegistered(rgb, truth, synth, ObjectSource::Masks);
+    auto masks = ingestRegistered(rgb, truth, synth, "masks");
     report("masks", masks);
-    auto polygons = ingestRegistered(rgb, truth, synth, ObjectSource::Detections);
+    auto polygons = ingestRegistered(rgb, truth, synth, "detections");
     report("detections with outlines", polygons);
     auto file = std::filesystem::path(capturePath) / "detections.json";
     nlohmann::json j = nlohmann::json::parse(std::ifstream(file));
     for (auto& d : j["detections"]) d.erase("segmentation");
     std::ofstream(file) << j.dump();
-    auto boxes = ingestRegistered(rgb, truth, synth, ObjectSource::Detections);
+    auto boxes = ingestRegistered(rgb, truth, synth, "detections");
     report("detection boxes", boxes);
     if (seedVariable) return;
 

@@ -66,7 +66,7 @@ Measured ingestDetections(const std::string& capturePath, const synth::SynthResu
     SilentProgress silent;
     IngestOptions options;
     options.sceneName = "synth-3";
-    options.objects = ObjectSource::Detections;
+    options.objects = "detections";
     auto result = ingestCapture(readCapture(capturePath), options, silent);
     QualityOptions quality;
     for (const auto& [id, frames] : synth.framesSeen)
@@ -208,7 +208,7 @@ TEST_CASE("detections: embeddings in detections.json become the objects' embeddi
     SilentProgress silent;
     IngestOptions options;
     options.sceneName = "synth-5";
-    options.objects = ObjectSource::Detections;
+    options.objects = "detections";
     auto result = ingestCapture(readCapture(capturePath), options, silent);
 
     std::size_t objects = 0;

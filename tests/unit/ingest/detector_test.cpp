@@ -100,7 +100,7 @@ TEST_CASE("labels from a closed-set detector are voted across views") {
 TEST_CASE("a missing detector model is an input error with a hint") {
     auto capture = readCapture(diningPath());
     IngestOptions options;
-    options.objects = ObjectSource::Detect;
+    options.objects = "detect";
     options.detectorModel = "/nonexistent/nanodet.onnx";
     SilentProgress silent;
     try {
@@ -159,9 +159,9 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
     options.sceneName = "dining";
     SilentProgress silent;
     SECTION("auto takes the detector for a capture with depth but neither masks nor detections") {
-        options.objects = ObjectSource::Auto;
+        options.objects = "auto";
     }
-    SECTION("asked for") { options.objects = ObjectSource::Detect; }
+    SECTION("asked for") { options.objects = "detect"; }
     auto result = ingestCapture(capture, options, silent);
     std::multiset<std::string> categories;
     for (const auto& n : result.scene.nodes)
@@ -192,7 +192,7 @@ TEST_CASE("--objects detect on the real dining room without depth names chairs a
     for (auto& f : capture.frames) f.depthPath.clear();
     IngestOptions options;
     options.sceneName = "dining-rgb";
-    options.objects = ObjectSource::Auto;
+    options.objects = "auto";
     SilentProgress silent;
     auto result = ingestCapture(capture, options, silent);
     CHECK(std::any_of(result.notes.begin(), result.notes.end(), [](const std::string& note) {

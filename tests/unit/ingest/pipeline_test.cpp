@@ -93,7 +93,7 @@ TEST_CASE("rgbd-dining (real, 5 frames, no labels): floor, walls and table-top o
     SilentProgress silent;
     IngestOptions options;
     options.sceneName = "dining";
-    options.objects = ObjectSource::Cluster;
+    options.objects = "cluster";
     auto capture = readCapture(std::string(SMQL_SHARED_DATA) + "/rgbd-dining");
     auto result = ingestCapture(capture, options, silent);
     // Levelness, measured apart from the pipeline: every frame's depth through the stored
