@@ -377,4 +377,12 @@ Engine::SceneUpdateReport Engine::updateScene(const std::string& name, const mod
     return report;
 }
 
+bool statementComplete(std::string_view text) {
+    return text.find_first_not_of(" \t\r\n") != std::string_view::npos && !parser::isIncomplete(text);
+}
+
+const std::vector<std::string>& languageKeywords() { return parser::keywords(); }
+
+const std::vector<std::string>& referenceSides() { return parser::sides(); }
+
 }  // namespace smql

@@ -149,4 +149,11 @@ private:
     std::unique_ptr<State> state_;
 };
 
+// The language as a front end needs it without the parser (the shell, smql_complete): whether a
+// text ends with a complete statement (a closing `;` outside strings and parentheses), as
+// sqlite3_complete says; the keywords and the sides of references, for completion.
+bool statementComplete(std::string_view text);
+const std::vector<std::string>& languageKeywords();
+const std::vector<std::string>& referenceSides();
+
 }  // namespace smql

@@ -17,7 +17,6 @@
 
 #include <fmt/format.h>
 
-#include "engine/parser/parser.hpp"
 #include "relations/predicates.hpp"
 #include "relations/thresholds.hpp"
 #include "shell/interrupt.hpp"
@@ -94,7 +93,7 @@ std::vector<std::string> candidatesFor(const std::string& text, int start) {
     }
     if (auto dot = text.find('.'); dot != std::string::npos) {
         std::vector<std::string> out;
-        for (const auto& side : parser::sides()) out.push_back(text.substr(0, dot + 1) + side);
+        for (const auto& side : referenceSides()) out.push_back(text.substr(0, dot + 1) + side);
         return out;
     }
     Engine& engine = completingSession->engine();
@@ -105,7 +104,7 @@ std::vector<std::string> candidatesFor(const std::string& text, int start) {
         return out;
     }
     if (previous == "SCENE") return sceneNames(engine);
-    std::vector<std::string> out = parser::keywords();
+    std::vector<std::string> out = languageKeywords();
     for (auto& word : relations::predicateWords()) out.push_back(std::move(word));
     for (auto& category : engine.knownCategories()) out.push_back(std::move(category));
     return out;

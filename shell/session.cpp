@@ -14,7 +14,6 @@
 #include <fmt/format.h>
 
 #include "engine/format.hpp"
-#include "engine/parser/parser.hpp"
 #include "model/names.hpp"
 #include "shell/interrupt.hpp"
 #include "shell/output_file.hpp"
@@ -219,7 +218,7 @@ Session::Step Session::feed(Pending& pending, std::string_view line, int lineNum
         pending = {};
         return Step::Done;
     }
-    if (parser::isIncomplete(pending.text)) return Step::More;
+    if (!statementComplete(pending.text)) return Step::More;
     Pending statement = std::exchange(pending, {});
     return runStatements(statement.text, statement.firstLine, source.empty() ? statement.text : source) ? Step::Done
                                                                                                         : Step::Failed;

@@ -110,6 +110,11 @@ SMQL_API const char* smql_version(void);
 /* A short English description of a status ("syntax error", ...); never NULL. */
 SMQL_API const char* smql_status_string(smql_status status);
 
+/* 1 when `statements` ends with a complete statement (a closing ';' outside strings and
+ * parentheses), 0 when more text is needed or there is none (NULL, blanks); as sqlite3_complete:
+ * a front end reading lines calls it to know when to run what it has. */
+SMQL_API int smql_complete(const char* statements);
+
 /* ---- Database handles ------------------------------------------------ */
 
 /* Opens the database in directory `dir`. On SMQL_OK *out is a usable handle.

@@ -178,6 +178,8 @@ std::string dumpJson(const nlohmann::ordered_json& json) {
 
 const char* smql_version(void) { return SMQL_VERSION_STRING; }
 
+int smql_complete(const char* statements) { return statements && smql::statementComplete(statements) ? 1 : 0; }
+
 const char* smql_status_string(smql_status status) {
     switch (status) {
         case SMQL_OK:

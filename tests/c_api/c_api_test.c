@@ -67,6 +67,9 @@ static void test_misuse(void) {
     smql_result_free(NULL);
 
     CHECK(strlen(smql_version()) > 0);
+    CHECK(smql_complete("COUNT sofa;") == 1 && smql_complete("COUNT sofa") == 0);
+    CHECK(smql_complete("FIND mug WHERE on(desk;") == 0 && smql_complete("FIND mug WHERE category = ';") == 0);
+    CHECK(smql_complete("  ") == 0 && smql_complete(NULL) == 0);
     CHECK(strcmp(smql_status_string(SMQL_ERROR_SYNTAX), "syntax error") == 0);
 }
 
