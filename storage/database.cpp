@@ -440,10 +440,37 @@ std::optional<SceneInfo> ReadTransaction::scene(NodeId sceneId) const {
     return readScene(*impl_->env, impl_->txn, sceneId);
 }
 
-std::optional<SceneInfo> ReadTransaction::sceneByName(std::string_view name) const {
-    auto id = readSceneId(*impl_->env, impl_->txn, name);
+namespace {
+
+// Scene ids are contiguous blocks (the scene node first), so a scene's nodes are the run of node
+// records from its id on that carry its id as their scene. `step(key, value, op)` moves a cursor
+// over the nodes table: a read transaction's cached one or a write transaction's own.
+template <class Step>
+void scanSceneNodes(const Environment& env, MDB_txn* txn, Step&& step, NodeId sceneId,
+                    const std::function<void(const Node&)>& visit) {
+    auto from = codec::idKey(sceneId);
+    MDB_val key = toVal(from), value;
+    Node node;
+    int rc = step(key, value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = step(key, value, MDB_NEXT)) {
+        NodeId id = codec::idFromKey(env.bytes(key), "node");
+        decodeInScene(env, txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
+        if (node.scene != sceneId) return;
+        visit(node);
+    }
+    endOfScan(env, rc, "reading the nodes of a scene");
+}
+
+std::optional<SceneInfo> sceneNamed(const Environment& env, MDB_txn* txn, std::string_view name) {
+    auto id = readSceneId(env, txn, name);
     if (!id) return std::nullopt;
-    return readScene(*impl_->env, impl_->txn, *id);
+    return readScene(env, txn, *id);
+}
+
+}  // namespace
+
+std::optional<SceneInfo> ReadTransaction::sceneByName(std::string_view name) const {
+    return sceneNamed(*impl_->env, impl_->txn, name);
 }
 
 bool ReadTransaction::readNode(NodeId id, Node& into) const {
@@ -500,22 +527,11 @@ std::vector<NodeId> ReadTransaction::children(NodeId parent) const {
         });
 }
 
-// Scene ids are contiguous blocks (the scene node first), so a scene's nodes
-// are the run of node records from its id on that carry its id as their scene.
 void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<void(const Node&)>& visit) const {
-    const Environment& env = *impl_->env;
     TableCursor cursor(*impl_, Table::Nodes);
-    auto from = codec::idKey(sceneId);
-    MDB_val key = toVal(from), value;
-    Node node;
-    int rc = cursor.get(key, value, MDB_SET_RANGE);
-    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
-        NodeId id = codec::idFromKey(env.bytes(key), "node");
-        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
-        if (node.scene != sceneId) return;
-        visit(node);
-    }
-    endOfScan(env, rc, "reading the nodes of a scene");
+    scanSceneNodes(
+        *impl_->env, impl_->txn,
+        [&](MDB_val& key, MDB_val& value, MDB_cursor_op op) { return cursor.get(key, value, op); }, sceneId, visit);
 }
 
 std::vector<model::Relation> ReadTransaction::relationsOf(NodeId id) const {
@@ -1154,26 +1170,16 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
 
 std::optional<SceneInfo> WriteTransaction::sceneByName(std::string_view name) const {
     assert(impl_->txn && "WriteTransaction used after commit()");
-    auto id = readSceneId(*impl_->env, impl_->txn, name);
-    if (!id) return std::nullopt;
-    return readScene(*impl_->env, impl_->txn, *id);
+    return sceneNamed(*impl_->env, impl_->txn, name);
 }
 
 void WriteTransaction::forEachNodeInScene(NodeId sceneId, const std::function<void(const Node&)>& visit) const {
     assert(impl_->txn && "WriteTransaction used after commit()");
-    const Environment& env = *impl_->env;
-    Cursor cursor(env, impl_->txn, Table::Nodes);
-    auto from = codec::idKey(sceneId);
-    MDB_val key = toVal(from), value;
-    Node node;
-    int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
-    for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
-        NodeId id = codec::idFromKey(env.bytes(key), "node");
-        decodeInScene(env, impl_->txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
-        if (node.scene != sceneId) return;
-        visit(node);
-    }
-    endOfScan(env, rc, "reading the nodes of a scene");
+    Cursor cursor(*impl_->env, impl_->txn, Table::Nodes);
+    scanSceneNodes(
+        *impl_->env, impl_->txn,
+        [&](MDB_val& key, MDB_val& value, MDB_cursor_op op) { return mdb_cursor_get(cursor.get(), &key, &value, op); },
+        sceneId, visit);
 }
 
 void WriteTransaction::putSetting(std::string_view key, std::string_view value) {
