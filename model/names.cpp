@@ -51,4 +51,10 @@ std::string joinAlternatives(const std::vector<std::string>& names) {
     return out;
 }
 
+std::string quoted(std::string_view text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+    return out + "'";
+}
+
 }  // namespace smql::model

@@ -18,4 +18,7 @@ std::vector<std::string> nearestNames(std::string_view word, const std::vector<s
 // "a, b or c"
 std::string joinAlternatives(const std::vector<std::string>& names);
 
+// Text as an SMQL string literal: in single quotes, a quote inside doubled ("it's" -> 'it''s').
+std::string quoted(std::string_view text);
+
 }  // namespace smql::model

@@ -19,6 +19,7 @@
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
+#include "model/names.hpp"
 #include "relations/predicates.hpp"
 #include "shell/output_file.hpp"
 
@@ -399,12 +400,6 @@ Json readSuite(const std::string& path) {
     return suite;
 }
 
-std::string sceneLiteral(const std::string& name) {
-    std::string out = "'";
-    for (char c : name) out += c == '\'' ? std::string("''") : std::string(1, c);
-    return out + "'";
-}
-
 void writeFile(const fs::path& path, const std::string& text, const std::string& database) {
     refuseDatabaseFile(path.string(), database);
     std::ofstream out(path);
@@ -427,7 +422,7 @@ int evalCommand(const EvalOptions& options) {
     if (sceneName.empty() && !options.suite.empty()) sceneName = suite.value("scene", std::string());
     if (!options.scene.empty() || !sceneName.empty()) {
         if (!has(sceneName) && options.scene.empty() && stored.size() == 1) sceneName = stored.front();
-        engine->execute("USE SCENE " + sceneLiteral(sceneName));
+        engine->execute("USE SCENE " + model::quoted(sceneName));
     }
     model::SceneData memory = engine->readScene(sceneName);
 

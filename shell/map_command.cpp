@@ -15,6 +15,7 @@
 #include "engine/engine.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
+#include "model/names.hpp"
 
 namespace smql::shell {
 
@@ -165,11 +166,7 @@ int mapCommand(const std::string& dbDir, const std::string& scene, const std::st
 int guideCommand(const std::string& dbDir, const std::string& scene, const std::string& from, const std::string& to,
                  const std::string& outDir) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    if (!scene.empty()) {
-        std::string quoted;
-        for (char c : scene) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-        engine->execute(fmt::format("USE SCENE '{}'", quoted));
-    }
+    if (!scene.empty()) engine->execute("USE SCENE " + model::quoted(scene));
     const std::string statement = fmt::format("GUIDE FROM {} TO {}", from, to);
     ResultSet rs = engine->execute(statement).back();
     auto steps = stepsOf(rs);

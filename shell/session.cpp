@@ -199,9 +199,7 @@ bool Session::runQuestion(std::string_view line, int lineNumber) {
     std::string question(line);
     if (question.starts_with("--")) return true;  // a comment, as in SMQL
     while (!question.empty() && question.back() == ';') question.pop_back();
-    std::string statement = "ASK '";
-    for (char c : question) statement += c == '\'' ? std::string("''") : std::string(1, c);
-    statement += "'";
+    std::string statement = "ASK " + model::quoted(question);
     return runStatements(statement, lineNumber, statement);
 }
 

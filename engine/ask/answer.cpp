@@ -240,8 +240,10 @@ std::string direction(const Translation& t, const ResultSet& rs) {
     std::string notes;
     for (std::size_t role = 0; role < 3 && role < t.roles.size(); ++role) {
         std::vector<const std::vector<Value>*> found;
+        // Only things with a box have a place to stand by or face.
         for (const auto& row : rs.rows)
-            if (std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
+            if (std::holds_alternative<model::Box>(row[box]) &&
+                std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
                 found.push_back(&row);
         if (found.empty()) return fmt::format("There is no {} here.", roleNames[role]);
         pickedRows[role] = found.front();

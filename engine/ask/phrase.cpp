@@ -10,6 +10,7 @@
 
 #include "engine/ask/wordnet.hpp"
 #include "model/error.hpp"
+#include "model/names.hpp"
 #include "relations/predicates.hpp"
 
 namespace smql::ask {
@@ -21,11 +22,6 @@ constexpr std::size_t kMaxNounWords = 4;
 bool isDeterminer(const std::string& w) {
     return isOneOf(w, {"the",   "a",     "an",    "any",  "some", "all", "my",    "our", "your", "this",    "that",
                        "these", "those", "every", "each", "of",   "its", "their", "his", "her",  "another", "both"});
-}
-
-bool isColour(const std::string& w) {
-    return isOneOf(w, {"red", "green", "blue", "white", "black", "gray", "grey", "brown", "yellow", "orange", "pink",
-                       "purple", "beige", "silver", "gold", "golden"});
 }
 
 bool isSideWord(const std::string& w) { return isOneOf(w, {"left", "right", "front", "back"}); }
@@ -219,8 +215,8 @@ std::vector<std::string> conditionsOf(const Phrase& p) {
         where.push_back(what.size() == 1 ? "NOT " + all : "NOT (" + all + ")");
     }
     if (p.colour) where.push_back(fmt::format("color = {}", smqlString(*p.colour)));
-    for (const auto& c : p.conditions)
-        where.push_back(c.predicate.starts_with("=") ? c.predicate.substr(1) : conditionText(c));
+    where.insert(where.end(), p.filters.begin(), p.filters.end());
+    for (const auto& c : p.conditions) where.push_back(conditionText(c));
     return where;
 }
 
@@ -235,6 +231,14 @@ std::string orderText(const Phrase& p) {
 
 bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words) {
     return std::find(words.begin(), words.end(), word) != words.end();
+}
+
+std::optional<std::string> colourOf(const std::string& word) {
+    if (word == "grey") return "gray";
+    if (isOneOf(word, {"red", "green", "blue", "white", "black", "gray", "brown", "yellow", "orange", "pink", "purple",
+                       "beige", "silver", "gold", "golden"}))
+        return word;
+    return std::nullopt;
 }
 
 Words words(const std::string& text) {
@@ -361,10 +365,12 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         // An article inside the nouns starts another phrase ("the lamp the sofa" is two).
         if (!nounWords.empty() && isDeterminer(word)) break;
         if (isOneOf(word, {"will", "would", "should", "shall", "must", "might", "be", "been", "being", "had"})) break;
-        if (isColour(word) && !nounWords.empty() && i + 1 == w.size()) break;  // "is the mug red?"
-        if (isColour(word) && nounWords.empty()) {
-            p.colour = word == "grey" ? "gray" : word;
-            continue;
+        if (auto colour = colourOf(word)) {
+            if (!nounWords.empty() && i + 1 == w.size()) break;  // "is the mug red?"
+            if (nounWords.empty()) {
+                p.colour = colour;
+                continue;
+            }
         }
         if (isSideWord(word) && nounWords.empty()) {
             side = word;
@@ -566,9 +572,7 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
         if (std::find(cats.begin(), cats.end(), std::string(shaped.category)) == cats.end()) break;
         p.noun = all;
         p.categories = {std::string(shaped.category)};
-        Condition shape;
-        shape.predicate = "=" + std::string(shaped.condition);
-        p.conditions.push_back(shape);
+        p.filters.emplace_back(shaped.condition);
         if (!said(all))
             out_.mappings.push_back(
                 WordMapping{all, p.categories, fmt::format("{}: {}", shaped.meaning, std::string(shaped.condition))});
@@ -627,11 +631,7 @@ std::string smqlName(const std::string& name) {
     return smqlString(name);
 }
 
-std::string smqlString(const std::string& text) {
-    std::string quoted = "'";
-    for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-    return quoted + "'";
-}
+std::string smqlString(const std::string& text) { return model::quoted(text); }
 
 std::string smqlMetres(double metres) {
     std::string out = fmt::format("{:.3f}", metres);

@@ -30,6 +30,8 @@ Words words(const std::string& text);
 std::string joined(const Words& w, std::size_t from, std::size_t to);
 
 bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words);
+// A colour word as the memory names it ("grey" is gray), or nothing.
+std::optional<std::string> colourOf(const std::string& word);
 
 struct Phrase;
 
@@ -56,7 +58,8 @@ struct Phrase {
     std::vector<std::string> categories;
     std::optional<std::string> colour;
     std::vector<Condition> conditions;
-    std::vector<Phrase> excluded;  // things left out: "besides the cushions"
+    std::vector<std::string> filters;  // comparisons the noun itself implies: "coffee table" is height < 0.55 m
+    std::vector<Phrase> excluded;      // things left out: "besides the cushions"
     std::optional<Order> order;
     std::size_t pick = 0;  // an ordinal or a superlative: the pick-th in `order` (1 = first)
     std::size_t top = 1;   // "the two largest": how many of `order` answer

@@ -267,8 +267,8 @@ private:
         out.kind = QuestionKind::Guidance;
         std::string goal = reference(*to);
         // Several things of the goal's kind: a person means the nearest one.
-        if (from && to->conditions.empty() && !to->order && to->categories.size() == 1 && to->side.empty() &&
-            repeated(to->categories.front()))
+        if (from && to->conditions.empty() && to->filters.empty() && !to->order && to->categories.size() == 1 &&
+            to->side.empty() && repeated(to->categories.front()))
             goal = fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", smqlName(to->categories.front()), reference(*from));
         out.smql = fmt::format("GUIDE FROM {} TO {}", from ? reference(*from) : "HERE", goal);
         out.subject = to->words;
@@ -764,6 +764,7 @@ private:
                     subject->pick = tail.pick;
                     subject->top = tail.top;
                     for (auto& cond : tail.conditions) subject->conditions.push_back(std::move(cond));
+                    for (auto& filter : tail.filters) subject->filters.push_back(std::move(filter));
                 } else {
                     subject = std::move(tail);
                 }
@@ -926,10 +927,8 @@ private:
             subject = p.phrase(c.w, c.i, false);
         }
         // "is the mug red?": whether there is such a thing.
-        if (c.i + 1 == c.w.size() && !subject.colour &&
-            isOneOf(c.peek(), {"red", "green", "blue", "white", "black", "gray", "grey", "brown", "yellow", "orange",
-                               "pink", "purple", "beige", "silver", "gold", "golden"})) {
-            subject.colour = c.peek() == "grey" ? "gray" : c.peek();
+        if (c.i + 1 == c.w.size() && !subject.colour && colourOf(c.peek())) {
+            subject.colour = colourOf(c.peek());
             ++c.i;
             out.kind = QuestionKind::Existence;
             out.smql = findText(subject, false);

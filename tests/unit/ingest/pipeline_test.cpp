@@ -17,6 +17,7 @@
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/import/importers.hpp"
+#include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
@@ -161,4 +162,21 @@ TEST_CASE("rgbd-dining (real, 5 frames, no labels): floor, walls and table-top o
             CHECK(value("last_seen_at") == stored.info.captureTime);
         }
     }
+}
+
+TEST_CASE("object sources: --objects takes the table's names; a misspelt one is an error with the nearest") {
+    IngestOptions options;
+    options.objects = "clustr";
+    try {
+        makeObjectFinder(Capture{}, options);
+        FAIL("an unknown object source was accepted");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Usage);
+        CHECK(std::string(e.message()) == "unknown object source 'clustr'");
+        CHECK(e.hint().find("did you mean cluster?") != std::string::npos);
+    }
+    options.objects = "cluster";
+    CHECK(makeObjectFinder(Capture{}, options) != nullptr);
+    const auto names = objectSourceNames();
+    CHECK(names == std::vector<std::string>{"masks", "detections", "detect", "cluster", "auto"});
 }

@@ -50,3 +50,9 @@ TEST_CASE("nearest names for did-you-mean hints") {
     CHECK(nearestNames("zzzzzz", {"cushion", "chair"}).empty());
     CHECK(joinAlternatives({"a", "b", "c"}) == "a, b or c");
 }
+
+TEST_CASE("SMQL string literals double their quotes") {
+    CHECK(quoted("sofa") == "'sofa'");
+    CHECK(quoted("it's") == "'it''s'");
+    CHECK(quoted("") == "''");
+}
