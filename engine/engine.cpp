@@ -225,6 +225,22 @@ model::NodeId Engine::importScene(model::SceneData scene) {
     return id;
 }
 
+void Engine::checkIngestTarget(const std::string& name, const std::string& update) {
+    std::lock_guard lock(state_->mutex);
+    if (state_->db->readOnly())
+        throw Error(ErrorKind::Storage, "the database is open read-only: an ingest cannot write its scene",
+                    std::nullopt, "open it read-write");
+    auto txn = state_->db->beginRead();
+    if (!update.empty() && !txn.sceneByName(update))
+        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}' to update", update), std::nullopt,
+                    "SHOW SCENES lists the scenes");
+    if (update.empty() && txn.sceneByName(name))
+        throw Error(ErrorKind::Input, fmt::format("a scene named '{}' already exists", name), std::nullopt,
+                    fmt::format("choose another name (--scene), make the capture its next version (--update {}), "
+                                "or remove the stored one first (DROP SCENE)",
+                                name));
+}
+
 model::SceneData Engine::readScene(const std::string& name) {
     std::lock_guard lock(state_->mutex);
     auto txn = state_->db->beginRead();

@@ -83,6 +83,9 @@ public:
     // objects their parents (support, else the nearest upright anchor).
     // Returns the new scene's id; the scene becomes the current one.
     model::NodeId importScene(model::SceneData scene);
+    // Before a long ingest: throws what importScene (a scene named `name` exists) or updateScene
+    // (no scene `update`) would throw after it, so that minutes of work are not lost to a name.
+    void checkIngestTarget(const std::string& name, const std::string& update);
     // A stored scene in the import/export form (local ids renumbered 1..n).
     model::SceneData exportScene(const std::string& name);
     // A stored scene as it is, with its database ids (the most recent when `name` is empty).

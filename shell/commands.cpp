@@ -42,7 +42,7 @@ int importCommand(const std::string& format, const std::string& file, const std:
     // Read and validate every scene before the database is touched.
     std::vector<model::SceneData> scenes;
     if (all) {
-        const import::ImportFormat* f = import::findFormat(format);
+        const import::SceneFormat* f = import::findFormat(format);
         if (!f->scenes)
             throw Error(ErrorKind::Usage, fmt::format("--all: a {} file holds one scene", format), std::nullopt,
                         "import it without --all");
@@ -63,18 +63,18 @@ int importCommand(const std::string& format, const std::string& file, const std:
     return 0;
 }
 
-int exportCommand(const std::string&, const std::string& dbDir, const std::string& sceneName,
+int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
                   const std::string& outFile) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    std::string json = import::writeSceneJson(engine->exportScene(sceneName));
+    std::string bytes = import::write(format, engine->exportScene(sceneName));
     if (outFile.empty()) {
-        std::cout << json << "\n";
+        std::cout << bytes;
         checkWritten(std::cout, "standard output");
         return 0;
     }
     refuseDatabaseFile(outFile, dbDir);
-    std::ofstream out(outFile);
-    out << json << "\n";
+    std::ofstream out(outFile, std::ios::binary);
+    out << bytes;
     checkWritten(out, outFile);
     std::cerr << fmt::format("exported scene to {}\n", outFile);
     return 0;

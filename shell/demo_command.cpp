@@ -47,9 +47,9 @@ int demoCommand(const std::string& dbDirOption) {
                              "generated room", capture, synth.totalSeconds);
     std::cout << "2. smql ingest " << capture << " --db " << memory << "\n";
     IngestArguments ingest;
-    ingest.capture = capture;
+    ingest.request.capture = capture;
+    ingest.request.scene = "demo-room";
     ingest.db = memory;
-    ingest.scene = "demo-room";
     ingestCommand(ingest);
 
     std::cout << "\n3. queries\n\n";

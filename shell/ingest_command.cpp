@@ -8,21 +8,16 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "engine/engine.hpp"
-#include "ingest/capture/capture.hpp"
-#include "ingest/import/importers.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
-#include "ingest/synth/walk.hpp"
 #include "model/error.hpp"
-#include "model/instant.hpp"
 
 namespace smql::shell {
 
@@ -86,49 +81,11 @@ private:
     static void emit(const nlohmann::json& j) { std::cerr << j.dump() << "\n"; }
 };
 
-// --update SCENE: the capture becomes the next version of the scene (Engine::updateScene says how
-// objects are matched); the superseded version stays in the scene's history.
-int updateScene(Engine& engine, const IngestArguments& args, const model::SceneData& observed,
-                std::chrono::steady_clock::time_point writeStart, ingest::ProgressSink& progress) {
-    auto update = engine.updateScene(args.update, observed);
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
-    progress.stageFinished(
-        "write", seconds,
-        fmt::format("scene '{}' updated: version {} is in its history", update.scene, update.version));
-    if (args.log != "quiet") std::cout << update.summary() << "\n";
-    return 0;
-}
-
-ingest::GeometrySource geometrySource(const std::string& name) {
-    if (name == "given") return ingest::GeometrySource::Given;
-    if (name == "colmap") return ingest::GeometrySource::Colmap;
-    return ingest::GeometrySource::Auto;
-}
-
-}  // namespace
-
-int ingestCommand(const IngestArguments& args) {
+int ingestInto(const IngestArguments& args) {
     auto start = std::chrono::steady_clock::now();
-    // A scene to update must exist before the work starts, not after it.
-    if (!args.update.empty()) Engine::open(args.db)->readScene(args.update);
-    ingest::CaptureOptions captureOptions;
-    captureOptions.fps = args.fps;
-    if (!args.camera.empty()) captureOptions.intrinsics = ingest::parseCameraOption(args.camera);
-    captureOptions.horizontalFov = args.fov;
-    ingest::Capture capture = ingest::readCapture(args.capture, captureOptions);
-
-    ingest::IngestOptions options;
-    options.sceneName =
-        args.scene.empty() ? fs::absolute(args.capture).lexically_normal().filename().string() : args.scene;
-    if (options.sceneName.empty()) options.sceneName = fs::absolute(args.capture).parent_path().filename().string();
-    options.geometry = geometrySource(args.geometry);
-    options.objects = args.objects;
-    options.detectorModel = args.detector;
-    options.detectorClasses = args.classes;
-    options.scale = args.scale;
-    options.colmap.maxImageSize = args.maxSize;
-    options.colmap.vocabularyTree = args.vocabularyTree;
-    options.colmap.workDirectory = args.colmapDir;
+    const ingest::IngestRequest& request = args.request;
+    // The scene's name is checked before the work starts, not after minutes of it.
+    Engine::open(args.db)->checkIngestTarget(ingest::sceneNameOf(request), request.update);
 
     std::unique_ptr<ingest::ProgressSink> progress;
     if (args.log == "json")
@@ -140,9 +97,9 @@ int ingestCommand(const IngestArguments& args) {
 
     // Ctrl-C stops between frames; nothing has been written then, and the database stays as it was.
     auto previous = std::signal(SIGINT, [](int) { interrupted = true; });
-    ingest::IngestResult result;
+    ingest::IngestRun run;
     try {
-        result = ingest::ingestCapture(capture, options, *progress, [] { return interrupted.load(); });
+        run = ingest::runIngest(request, *progress, [] { return interrupted.load(); });
     } catch (...) {
         std::signal(SIGINT, previous);
         throw;
@@ -152,65 +109,54 @@ int ingestCommand(const IngestArguments& args) {
     // The scene's stamps (capture time, first and last seen) are the engine's, as for an import.
     auto writeStart = std::chrono::steady_clock::now();
     auto engine = Engine::open(args.db);
-    if (!args.update.empty()) return updateScene(*engine, args, result.scene, writeStart, *progress);
-    engine->importScene(result.scene);
-    double writeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
-    progress->stageFinished("write", writeSeconds, fmt::format("one transaction into {}", args.db));
+    auto writeSeconds = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
+    };
+    if (!request.update.empty()) {
+        auto update = engine->updateScene(request.update, run.result.scene);
+        progress->stageFinished(
+            "write", writeSeconds(),
+            fmt::format("scene '{}' updated: version {} is in its history", update.scene, update.version));
+        if (args.log != "quiet") std::cout << update.summary() << "\n";
+        return 0;
+    }
+    engine->importScene(run.result.scene);
+    progress->stageFinished("write", writeSeconds(), fmt::format("one transaction into {}", args.db));
 
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::size_t objects = 0, anchors = 0;
-    for (const auto& n : result.scene.nodes)
+    for (const auto& n : run.result.scene.nodes)
         objects += n.kind == model::NodeKind::Object, anchors += n.kind == model::NodeKind::Anchor;
     if (args.log != "quiet")
         std::cout << fmt::format(
             "ingested '{}' into scene '{}': {} frames, {} anchors, {} objects in {:.1f} s ({:.1f} frames/s)\n",
-            args.capture, result.scene.info.name, capture.frames.size(), anchors, objects, total,
-            capture.frames.size() / std::max(total, 1e-9));
+            request.capture, run.result.scene.info.name, run.frames, anchors, objects, total,
+            run.frames / std::max(total, 1e-9));
     return 0;
+}
+
+}  // namespace
+
+int ingestCommand(const IngestArguments& args) {
+    // A database this ingest creates is removed again when the ingest fails: no empty database is
+    // left behind.
+    const bool creates = !fs::exists(args.db);
+    try {
+        return ingestInto(args);
+    } catch (...) {
+        std::error_code ignored;
+        if (creates) fs::remove_all(args.db, ignored);
+        throw;
+    }
 }
 
 int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, const std::string& sceneName,
                        const std::string& format, bool misses) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    model::SceneData stored = engine->exportScene(sceneName);
-    model::SceneData truth = import::readSceneJson(truthPath);
-
-    // Into the truth's frame: through the true camera poses beside the truth (pose.txt, as smql synth
-    // writes it) when the scene has its cameras as frame nodes, which also measures the metric scale of
-    // scale-free (COLMAP) runs; else by undoing the scene's stored alignment.
-    std::vector<std::pair<model::Vec3, model::Vec3>> cameras;
-    fs::path poseFile = fs::path(truthPath).parent_path() / "pose.txt";
-    if (fs::exists(poseFile)) {
-        std::vector<ingest::Pose> poses;
-        std::ifstream in(poseFile);
-        for (std::string line; std::getline(in, line);)
-            if (!line.empty()) poses.push_back(synth::parsePoseLine(line));
-        for (const auto& n : stored.nodes) {
-            const std::string* frame = n.attribute("frame");
-            if (n.kind != model::NodeKind::Frame || !frame) continue;
-            // Frame numbers count the capture's frames from 0, in the order of pose.txt's lines.
-            std::size_t position = std::stoul(*frame);
-            if (position < poses.size()) cameras.push_back({n.box.center, poses[position].translation});
-        }
-    }
-    std::optional<ingest::CameraRegistration> registration;
-    if (cameras.size() >= 3) registration = ingest::registerByCameras(stored, cameras);
-    model::SceneData ingested = registration ? registration->mapped : ingest::inCaptureFrame(stored);
-    ingest::QualityOptions options;
-    // visibility.json beside the truth says which truth nodes the capture shows at all.
-    fs::path visibility = fs::path(truthPath).parent_path() / "visibility.json";
-    if (fs::exists(visibility)) {
-        std::ifstream in(visibility);
-        try {
-            auto j = nlohmann::json::parse(in);
-            for (const auto& entry : j.at("instances"))
-                if (entry.at("frames").get<int>() > 0) options.visible.insert(entry.at("id").get<model::NodeId>());
-        } catch (const nlohmann::json::exception& e) {
-            throw Error(ErrorKind::Input, fmt::format("{}: {}", visibility.string(), e.what()), std::nullopt,
-                        "visibility.json holds {\"instances\": [{\"id\": 1, \"frames\": 12}]}");
-        }
-    }
-    auto r = ingest::compareToTruth(ingested, truth, options);
+    const ingest::TruthCheck check = ingest::checkAgainstTruth(engine->exportScene(sceneName), truthPath);
+    const ingest::QualityReport& r = check.report;
+    const auto& registration = check.registration;
+    const auto& options = check.options;
     if (format == "json") {
         nlohmann::json j = {
             {"anchors",
@@ -260,7 +206,7 @@ int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, c
     if (registration)
         std::cout << fmt::format(
             "scale    off by {:.1f}% (similarity from {} cameras to the true poses, residual {:.3f} m)\n",
-            100 * std::abs(registration->scale - 1), cameras.size(), registration->residual);
+            100 * std::abs(registration->scale - 1), check.cameras, registration->residual);
     if (misses)
         for (const auto& u : r.unmatched)
             std::cout << fmt::format(

@@ -1,31 +1,17 @@
 // The capture commands of `smql`, built into smql-ingest (docs/ingest.md).
 #pragma once
 
-#include <cstdint>
-#include <optional>
 #include <string>
 
+#include "ingest/pipeline/request.hpp"
 #include "ingest/synth/synth.hpp"
 
 namespace smql::shell {
 
 struct IngestArguments {
-    std::string capture;
+    ingest::IngestRequest request;  // the capture and the options of ingest::ingestOptions()
     std::string db;
-    std::string scene;
-    std::string geometry = "auto";  // given | colmap | auto
-    std::string objects = "auto";   // masks | detections | detect | cluster | auto
-    std::string detector;           // --objects detect: the ONNX model (default: the installed one)
-    std::string classes;            // ... and its class names (default: coco.names beside the model)
-    double fps = 1.0;
-    std::optional<double> scale;
-    std::string camera;          // --camera fx,fy,cx,cy (pixels of the images as stored)
-    std::optional<double> fov;   // --fov DEG, horizontal
-    int maxSize = 1024;          // --max-size: long side of the frames COLMAP sees (0: as stored)
-    std::string vocabularyTree;  // --vocab-tree: COLMAP's vocabulary tree, for loop detection
-    std::string colmapDir;       // --colmap-dir: COLMAP's kept work folder, its finished run read back
-    std::string log = "bar";     // bar | quiet | json
-    std::string update;          // a scene of the same place to update instead of adding a new one
+    std::string log = "bar";  // bar | quiet | json
 };
 
 // `smql ingest CAPTURE --db DIR`: capture -> one new scene, in one transaction.

@@ -3,7 +3,7 @@
 // program, installed next to it, when one of these commands is asked for, passing its argv as is.
 #include <iostream>
 
-#include "ingest/pipeline/object_finder.hpp"
+#include "ingest/pipeline/request.hpp"
 #include "model/error.hpp"
 #include "shell/cli.hpp"
 #include "shell/ingest_command.hpp"
@@ -20,61 +20,19 @@ int run(int argc, char** argv) {
         app.add_subcommand("ingest", "turn a capture (RGB-D folder, TUM, nerfstudio, COLMAP ...) into a new scene");
     smql::shell::IngestArguments ingestArgs;
     bool ingestQuiet = false;
-    std::optional<double> ingestScale;
-    ingestCmd->add_option("capture", ingestArgs.capture, "capture folder or file")
+    ingestCmd->add_option("capture", ingestArgs.request.capture, "capture folder or file")
         ->required()
         ->check(CLI::ExistingPath);
     ingestCmd->add_option("--db", ingestArgs.db, "database directory (created if missing)")->required();
-    ingestCmd->add_option("--scene", ingestArgs.scene, "scene name (default: the capture's folder name)");
-    ingestCmd
-        ->add_option("--geometry", ingestArgs.geometry,
-                     "given (the capture's poses), colmap (structure from motion on the colour frames) or auto "
-                     "(default: colmap when some frame has no pose, or without depth: then with the given poses)")
-        ->check(CLI::IsMember({"given", "colmap", "auto"}));
-    ingestCmd->add_option("--objects", ingestArgs.objects, smql::ingest::objectSourcesHelp())
-        ->check(CLI::IsMember(smql::ingest::objectSourceNames()));
-    ingestCmd
-        ->add_option("--detector", ingestArgs.detector,
-                     "NanoDet ONNX model for --objects detect (default: the one scripts/detector/setup.sh installs)")
-        ->check(CLI::ExistingFile);
-    ingestCmd
-        ->add_option("--classes", ingestArgs.classes,
-                     "the detector's class names, one a line (default: "
-                     "coco.names beside the model)")
-        ->check(CLI::ExistingFile);
-    ingestCmd->add_option("--fps", ingestArgs.fps, "frames per second sampled from videos (default 1)")
-        ->check(CLI::PositiveNumber);
-    auto* cameraOption =
-        ingestCmd->add_option("--camera", ingestArgs.camera,
-                              "the camera as fx,fy,cx,cy in pixels of the images as stored (default: the capture's "
-                              "camera.json or calibration, else the photos' EXIF focal length, else a stated guess); "
-                              "COLMAP keeps it fixed");
-    ingestCmd
-        ->add_option("--fov", ingestArgs.fov,
-                     "the horizontal field of view in degrees, when only that is known (COLMAP refines the focal "
-                     "length)")
-        ->excludes(cameraOption);
-    ingestCmd
-        ->add_option("--max-size", ingestArgs.maxSize,
-                     "COLMAP sees the frames scaled down to this many pixels on the long side (default 1024, 0 = "
-                     "as stored); poses and intrinsics come back in the frames' own pixels")
-        ->check(CLI::NonNegativeNumber);
-    ingestCmd
-        ->add_option("--vocab-tree", ingestArgs.vocabularyTree,
-                     "a COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection in sequential matching (Debian "
-                     "ships none; without it, loops are closed by matching 30 frames spread through the capture all "
-                     "against all)")
-        ->check(CLI::ExistingFile);
-    ingestCmd->add_option("--colmap-dir", ingestArgs.colmapDir,
-                          "COLMAP works in this folder and leaves it (default: a new folder under /tmp, removed "
-                          "after a success); a later ingest of the same frames reads the finished run back instead "
-                          "of running COLMAP again");
-    ingestCmd->add_option("--scale", ingestScale, "metres per capture unit, overriding the estimate")
-        ->check(CLI::PositiveNumber);
+    // The options smql_ingest and Python's smql.ingest take too, from their one table.
+    for (const auto& option : smql::ingest::ingestOptions())
+        ingestCmd
+            ->add_option_function<std::string>(
+                smql::ingest::optionFlag(option.name),
+                [&ingestArgs, &option](const std::string& value) { option.set(ingestArgs.request, value); },
+                option.help())
+            ->type_name(std::string(option.valueName));
     ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");
-    ingestCmd->add_option("--update", ingestArgs.update,
-                          "refresh the last-seen time of the objects of this scene that the capture sees again, "
-                          "instead of adding a new scene");
     ingestCmd->add_option("--log", ingestArgs.log, "progress as a bar (default), json lines, or quiet")
         ->check(CLI::IsMember({"bar", "json", "quiet"}));
 
@@ -129,7 +87,6 @@ int run(int argc, char** argv) {
     if (map->parsed()) return smql::shell::mapCommand(mapDb, mapScene, mapOut);
     if (guide->parsed()) return smql::shell::guideCommand(guideDb, guideScene, guideFrom, guideTo, guideOut);
     if (ingestCmd->parsed()) {
-        ingestArgs.scale = ingestScale;
         if (ingestQuiet) ingestArgs.log = "quiet";
         return smql::shell::ingestCommand(ingestArgs);
     }

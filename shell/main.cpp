@@ -175,9 +175,9 @@ int runSubcommand(int argc, char** argv) {
 
     auto* import = app.add_subcommand("import", "import a scene layout file into a database (one transaction)");
     std::string importFormat, importFile, importDb, importScene, importUpdate;
-    import->add_option("format", importFormat, smql::model::joinAlternatives(smql::import::formatNames()))
+    import->add_option("format", importFormat, smql::model::joinAlternatives(smql::import::readableFormats()))
         ->required()
-        ->check(CLI::IsMember(smql::import::formatNames()));
+        ->check(CLI::IsMember(smql::import::readableFormats()));
     import->add_option("file", importFile, "the file to import")->required();
     import->add_option("--db", importDb, "database directory (created if missing)")->required();
     import->add_option("--scene", importScene, "scene name (default: from the file, else the file's folder name)");
@@ -189,13 +189,15 @@ int runSubcommand(int argc, char** argv) {
         ->excludes("--update");
 
     auto* exportCmd = app.add_subcommand("export",
-                                         "export a scene as JSON (export json), or a node's evidence crops "
+                                         "export a scene as a file (export json), or a node's evidence crops "
                                          "(export evidence '#id' DIR)");
     std::string exportFormat, exportDb, exportScene, exportOut;
     std::vector<std::string> exportEvidence;
-    exportCmd->add_option("format", exportFormat, "json or evidence")
+    std::vector<std::string> exportFormats = smql::import::writableFormats();
+    exportFormats.emplace_back("evidence");
+    exportCmd->add_option("format", exportFormat, smql::model::joinAlternatives(exportFormats))
         ->required()
-        ->check(CLI::IsMember({"json", "evidence"}));
+        ->check(CLI::IsMember(exportFormats));
     exportCmd->add_option("node_and_dir", exportEvidence, "for evidence: the node ('#42') and the folder to write to");
     exportCmd->add_option("--db", exportDb, "database directory")->required()->check(CLI::ExistingDirectory);
     exportCmd->add_option("--scene", exportScene, "scene name (default: the most recent)");

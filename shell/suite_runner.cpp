@@ -92,7 +92,7 @@ void load(Engine& engine, const Block& block, const fs::path& suiteDir) {
     const auto& a = block.args;
     if (a.empty())
         throw Error(ErrorKind::Input,
-                    fmt::format("load needs a source: {} or demo", model::joinAlternatives(import::formatNames())));
+                    fmt::format("load needs a source: {} or demo", model::joinAlternatives(import::readableFormats())));
     auto option = [&](const std::string& key, const std::string& fallback) {
         auto it = std::find(a.begin(), a.end(), key);
         return it != a.end() && it + 1 != a.end() ? *(it + 1) : fallback;

@@ -71,10 +71,16 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// The reads, which both kinds of transaction offer: LMDB has one transaction type with a read-only
+// flag, and a WriteTransaction is a ReadTransaction that also writes (and reads what it wrote).
 class ReadTransaction {
 public:
     ReadTransaction(ReadTransaction&&) noexcept;
     ReadTransaction& operator=(ReadTransaction&&) noexcept;
+    // A WriteTransaction is read through a reference; moved into a ReadTransaction it could no longer
+    // be committed.
+    ReadTransaction(WriteTransaction&&) = delete;
+    ReadTransaction& operator=(WriteTransaction&&) = delete;
     ~ReadTransaction();
 
     std::uint64_t transactionId() const;
@@ -96,7 +102,9 @@ public:
     // Relations whose subject or object is `id`: those with `id` as subject
     // first, then those with `id` as object.
     std::vector<model::Relation> relationsOf(model::NodeId id) const;
+    // Every relation of a scene, once each.
     void forEachRelationInScene(model::NodeId sceneId, const std::function<void(const model::Relation&)>& visit) const;
+    std::vector<model::Relation> relationsInScene(model::NodeId sceneId) const;
 
     // Label index: nodes with this exact category in every scene (or one), in
     // id order. Scene nodes (whose category is the scene name) and nodes with
@@ -129,11 +137,18 @@ public:
     struct Impl;
     explicit ReadTransaction(std::unique_ptr<Impl> impl);
 
+protected:
+    // The transaction's state; asserts it is still open (only a WriteTransaction can be committed).
+    Impl& live() const;
+
 private:
     std::unique_ptr<Impl> impl_;
 };
 
-class WriteTransaction {
+// Reads in a write transaction (all of ReadTransaction's) see its own writes: a read-modify-write
+// change reads in the transaction it writes in, so another writer (which waits for this one) cannot
+// interleave with it.
+class WriteTransaction : public ReadTransaction {
 public:
     WriteTransaction(WriteTransaction&&) noexcept;
     WriteTransaction& operator=(WriteTransaction&&) noexcept;
@@ -166,30 +181,19 @@ public:
     // Gives a scene (and its history) another name. Throws smql::Error(Binding) when
     // there is no such scene, smql::Error(Input) when the new name is taken or empty.
     void renameScene(model::NodeId sceneId, const std::string& newName);
-    // Throws smql::Error(Usage) for an empty key or one over 503 bytes (LMDB's key limit).
     // Rewrites stored nodes in place (attributes, text, confidence, box): the
     // id, kind, scene, parent and category must stay as they are, since the
     // indexes hold them. Bumps the version of each scene touched. Throws
     // smql::Error(Input) for a node that does not exist or changes a fixed field.
     void updateNodes(const std::vector<model::Node>& nodes);
+    // Throws smql::Error(Usage) for an empty key or one over 503 bytes (LMDB's key limit).
     void putSetting(std::string_view key, std::string_view value);
-    // Reads in this transaction, for read-modify-write changes that another
-    // writer must not interleave with (it waits for this transaction).
-    std::optional<model::SceneInfo> sceneByName(std::string_view name) const;
-    // Every node of a scene (the scene node itself included), in id order.
-    void forEachNodeInScene(model::NodeId sceneId, const std::function<void(const model::Node&)>& visit) const;
-    // Every relation of a scene, once each.
-    std::vector<model::Relation> relationsInScene(model::NodeId sceneId) const;
     // Erasing a setting that is not set does nothing.
     void eraseSetting(std::string_view key);
 
     void commit();
 
-    struct Impl;
     explicit WriteTransaction(std::unique_ptr<Impl> impl);
-
-private:
-    std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace smql::storage

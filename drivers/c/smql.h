@@ -164,6 +164,64 @@ SMQL_API smql_status smql_import_file(smql_db* db, const char* format, const cha
  * changed; smql_errmsg says why an update was refused. */
 SMQL_API smql_status smql_update_file(smql_db* db, const char* format, const char* path, const char* scene_name);
 
+/* ---- Ingest ---------------------------------------------------------- */
+
+/* What an ingest reports as it goes (smql_ingest's progress callback). */
+typedef enum smql_progress_kind {
+    SMQL_PROGRESS_STAGE_STARTED = 0,  /* a stage begins; total: its steps (0 or 1: not counted) */
+    SMQL_PROGRESS_ADVANCED = 1,       /* done of total steps of the stage are done */
+    SMQL_PROGRESS_STAGE_FINISHED = 2, /* the stage ended after `seconds`; text: what it made */
+    SMQL_PROGRESS_NOTE = 3            /* text: a note on the capture (a default it used, what it skipped) */
+} smql_progress_kind;
+
+typedef struct smql_progress {
+    smql_progress_kind kind;
+    const char* stage; /* "frames", "geometry", "align", "objects", ..., "write"; "" for notes */
+    size_t done;
+    size_t total;
+    double seconds;
+    const char* text; /* never NULL; valid during the call only */
+} smql_progress;
+
+/* Called for each progress event, on the thread that called smql_ingest. Return 0 to go on;
+ * non-zero stops the ingest, as sqlite3_progress_handler's callback does. */
+typedef int (*smql_progress_callback)(void* user, const smql_progress* progress);
+
+/* Turns a capture (a folder of RGB-D frames, TUM, nerfstudio, COLMAP, photos, a video: the
+ * layouts of docs/ingest.md) into a new scene of the database, in one write transaction at the
+ * end, and makes it the current scene; `smql ingest CAPTURE --db DIR` is the same work.
+ *
+ * options: NULL, or a JSON object of the options `smql ingest --help` lists, named without the
+ * dashes and with '_' for '-': {"scene": "kitchen", "objects": "cluster", "max_size": 0,
+ * "update": "kitchen"}; values are text or numbers. An unknown name or a bad value is
+ * SMQL_ERROR_USAGE, and a scene name already stored (without "update") is SMQL_ERROR_INPUT,
+ * both before any work. progress may be NULL.
+ *
+ * The work runs outside the handle's lock (other threads may query meanwhile) and takes seconds
+ * to minutes. The progress callback returning non-zero, or smql_interrupt(db) from another
+ * thread, stops it at the next frame with SMQL_ERROR_INTERRUPTED; a failed or stopped ingest
+ * writes nothing. The first call loads libsmql_ingest.so, installed beside libsmql.so (the
+ * libraries for images and point clouds are loaded only by programs that ingest); without it
+ * the call fails with SMQL_ERROR_USAGE saying where it looked. Needs a read-write handle. */
+SMQL_API smql_status smql_ingest(smql_db* db, const char* capture, const char* options, smql_progress_callback progress,
+                                 void* user);
+
+/* Compares a stored scene with the ground truth of the synthetic capture it was ingested from
+ * (`smql check-ingest`; docs/ingest.md): truth is the capture's truth.json (smql synth writes it,
+ * with pose.txt and visibility.json beside it), scene NULL for the most recent. On SMQL_OK *out
+ * holds one row per figure: name (anchors_f1, objects_precision, color_accuracy, parent_accuracy,
+ * mean_center_error_m, scale_error when the cameras could be registered, ...) and value. Loads
+ * the ingest module as smql_ingest does. */
+SMQL_API smql_status smql_check_ingest(smql_db* db, const char* truth, const char* scene, smql_result** out);
+
+/* Scores a memory with the research system's metrics (docs/eval.md; `smql eval` is the same):
+ * relative position, guidance and object retrieval against a truth scene. suite: an evaluation
+ * suite file (smql synth writes one beside its capture), or NULL to generate one from the scene,
+ * which is then its own truth (an imported real layout). scene: the memory's scene, or NULL for
+ * the suite's (else the only or current one); it becomes the current scene. On SMQL_OK *out holds
+ * one row per metric: task, metric, value, episodes, median_us (of the statements it ran). */
+SMQL_API smql_status smql_evaluate(smql_db* db, const char* suite, const char* scene, smql_result** out);
+
 /* ---- Results --------------------------------------------------------- */
 
 /* Frees a result and every string taken from it; NULL is a no-op. */

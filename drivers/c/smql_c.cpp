@@ -2,6 +2,10 @@
 // caller sees a status and an error text, never an exception.
 #include "smql.h"
 
+#include <dlfcn.h>
+
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -15,8 +19,10 @@
 #include <vector>
 
 #include "engine/engine.hpp"
+#include "engine/eval/evaluation.hpp"
 #include "engine/format.hpp"
 #include "ingest/import/registry.hpp"
+#include "ingest_module.hpp"
 #include "model/error.hpp"
 #include "model/result.hpp"
 
@@ -37,6 +43,8 @@ struct smql_db {
     // read their own error; an entry exists only while its last call failed.
     mutable std::mutex errorsMutex;
     std::unordered_map<std::thread::id, LastError> errors;
+    // smql_interrupt's word to a running smql_ingest, which asks between frames.
+    std::atomic<bool> ingestInterrupted{false};
 };
 
 struct smql_result {
@@ -259,7 +267,9 @@ smql_status smql_execute(smql_db* db, const char* statements, smql_result** out)
 }
 
 void smql_interrupt(smql_db* db) {
-    if (db && db->engine) db->engine->interrupt();
+    if (!db || !db->engine) return;
+    db->engine->interrupt();
+    db->ingestInterrupted = true;
 }
 
 smql_status smql_import_file(smql_db* db, const char* format, const char* path, const char* scene_name) {
@@ -276,6 +286,125 @@ smql_status smql_update_file(smql_db* db, const char* format, const char* path, 
     if (!format || !path) return misuse(db, "smql_update_file: format and path must not be NULL");
     return guarded(
         db, {}, [&] { db->engine->updateScene(scene_name ? scene_name : "", smql::import::read(format, path, "")); });
+}
+
+namespace {
+
+// The ingest module's two steps, loaded once per process from the folder libsmql.so was loaded
+// from (its installed place, or the build tree's).
+struct IngestModule {
+    smql::capi::IngestStep read = nullptr;
+    smql::capi::IngestStep run = nullptr;
+    smql::capi::CheckStep check = nullptr;
+    std::string failure;  // why it could not be loaded
+};
+
+const IngestModule& ingestModule() {
+    static const IngestModule module = [] {
+        IngestModule out;
+        Dl_info self{};
+        std::filesystem::path path = smql::capi::kIngestModuleFile;
+        if (dladdr(reinterpret_cast<void*>(&smql_version), &self) && self.dli_fname)
+            path = std::filesystem::path(self.dli_fname).parent_path() / smql::capi::kIngestModuleFile;
+        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            const char* why = dlerror();
+            out.failure = "cannot load the ingest module " + path.string() + ": " + (why ? why : "unknown reason");
+            return out;
+        }
+        out.read = reinterpret_cast<smql::capi::IngestStep>(dlsym(handle, smql::capi::kReadEntry));
+        out.run = reinterpret_cast<smql::capi::IngestStep>(dlsym(handle, smql::capi::kRunEntry));
+        out.check = reinterpret_cast<smql::capi::CheckStep>(dlsym(handle, smql::capi::kCheckEntry));
+        if (!out.read || !out.run || !out.check) out.failure = path.string() + " is not smql's ingest module";
+        return out;
+    }();
+    return module;
+}
+
+const IngestModule& loadedIngestModule() {
+    const IngestModule& module = ingestModule();
+    if (!module.failure.empty())
+        throw smql::Error(smql::ErrorKind::Usage, module.failure, std::nullopt,
+                          "make install puts libsmql_ingest.so beside libsmql.so; smql ingest needs no module");
+    return module;
+}
+
+template <class Step, class Call>
+void runStep(Step step, Call& call) {
+    step(call);
+    if (call.error) throw *call.error;
+}
+
+}  // namespace
+
+smql_status smql_ingest(smql_db* db, const char* capture, const char* options, smql_progress_callback progress,
+                        void* user) {
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!capture) return misuse(db, "smql_ingest: capture must not be NULL");
+    return guarded(db, {}, [&] {
+        const IngestModule& module = loadedIngestModule();
+        smql::capi::IngestCall call;
+        call.capture = capture;
+        call.options = options ? options : "";
+        if (progress) call.progress = [&](const smql_progress& event) { return progress(user, &event) != 0; };
+        db->ingestInterrupted = false;
+        call.interrupted = &db->ingestInterrupted;
+        runStep(module.read, call);
+        // The name is checked before the work, not after it.
+        db->engine->checkIngestTarget(call.sceneName, call.update);
+        runStep(module.run, call);
+
+        auto start = std::chrono::steady_clock::now();
+        std::string summary;
+        if (call.update.empty()) {
+            db->engine->importScene(std::move(call.scene));
+            summary = "one transaction";
+        } else {
+            summary = db->engine->updateScene(call.update, call.scene).summary();
+        }
+        if (call.progress) {
+            double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            call.progress({SMQL_PROGRESS_STAGE_FINISHED, "write", 1, 1, seconds, summary.c_str()});
+        }
+    });
+}
+
+smql_status smql_check_ingest(smql_db* db, const char* truth, const char* scene, smql_result** out) {
+    if (out) *out = nullptr;
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!truth || !out) return misuse(db, "smql_check_ingest: truth and out must not be NULL");
+    return guarded(db, {}, [&] {
+        smql::capi::CheckCall call;
+        call.stored = db->engine->exportScene(scene ? scene : "");
+        call.truth = truth;
+        runStep(loadedIngestModule().check, call);
+        auto res = std::make_unique<smql_result>();
+        res->set.columns = {{"name", smql::ValueType::Text}, {"value", smql::ValueType::Real}};
+        for (const auto& [name, value] : call.figures) res->set.rows.push_back({name, value});
+        *out = res.release();
+    });
+}
+
+smql_status smql_evaluate(smql_db* db, const char* suite, const char* scene, smql_result** out) {
+    if (out) *out = nullptr;
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!out) return misuse(db, "smql_evaluate: out must not be NULL");
+    return guarded(db, {}, [&] {
+        auto report = smql::eval::evaluate(*db->engine, {.suite = suite ? suite : "", .scene = scene ? scene : ""});
+        auto res = std::make_unique<smql_result>();
+        using smql::ValueType;
+        res->set.columns = {{"task", ValueType::Text},
+                            {"metric", ValueType::Text},
+                            {"value", ValueType::Real},
+                            {"episodes", ValueType::Integer},
+                            {"median_us", ValueType::Real}};
+        for (const auto& m : report.metrics)
+            res->set.rows.push_back(
+                {m.task, m.metric, m.value, static_cast<std::int64_t>(m.episodes), m.medianMicroseconds});
+        res->set.message = "scored scene '" + report.scene + "'";
+        res->messages.push_back(res->set.message);
+        *out = res.release();
+    });
 }
 
 void smql_result_free(smql_result* res) { delete res; }

@@ -10,40 +10,57 @@ namespace smql::import {
 
 namespace {
 
-// One row per format; its reader is in <format>.cpp.
-constexpr ImportFormat kFormats[] = {
-    {"replica", "Replica's info_semantic.json", readReplica},
-    {"spatiallm", "a SpatialLM layout text", readSpatialLm},
-    {"json", "the smql JSON scene format (smql export json)", readSceneJson},
-    {"vsibench", "VSI-Bench's meta-info JSON of ScanNet or ARKitScenes rooms", readVsiBench, vsiBenchRooms},
+// One row per format; its reader and writer are in <format>.cpp.
+constexpr SceneFormat kFormats[] = {
+    {"replica", "Replica's info_semantic.json", readReplica, nullptr},
+    {"spatiallm", "a SpatialLM layout text", readSpatialLm, nullptr},
+    {"json", "the smql JSON scene format", readSceneJson,
+     [](const model::SceneData& scene) { return writeSceneJson(scene) + "\n"; }},
+    {"vsibench", "VSI-Bench's meta-info JSON of ScanNet or ARKitScenes rooms", readVsiBench, nullptr, vsiBenchRooms},
 };
 
-}  // namespace
-
-std::span<const ImportFormat> formats() { return kFormats; }
-
-std::vector<std::string> formatNames() {
+std::vector<std::string> namesWhere(bool (*has)(const SceneFormat&)) {
     std::vector<std::string> out;
-    for (const auto& f : kFormats) out.emplace_back(f.name);
+    for (const auto& f : kFormats)
+        if (has(f)) out.emplace_back(f.name);
     return out;
 }
 
-const ImportFormat* findFormat(std::string_view name) {
+// A format of `names` by its name, else Error(Usage) with the nearest of them.
+const SceneFormat& known(std::string_view name, const std::vector<std::string>& names, std::string_view what) {
+    const SceneFormat* f = findFormat(name);
+    for (const auto& n : names)
+        if (f && n == f->name) return *f;
+    auto close = model::nearestNames(std::string(name), names);
+    throw Error(ErrorKind::Usage, fmt::format("unknown {} format '{}'", what, name), std::nullopt,
+                close.empty() ? "formats: " + model::joinAlternatives(names)
+                              : "did you mean " + model::joinAlternatives(close) + "?");
+}
+
+}  // namespace
+
+std::span<const SceneFormat> formats() { return kFormats; }
+
+std::vector<std::string> readableFormats() {
+    return namesWhere([](const SceneFormat& f) { return f.read != nullptr; });
+}
+
+std::vector<std::string> writableFormats() {
+    return namesWhere([](const SceneFormat& f) { return f.write != nullptr; });
+}
+
+const SceneFormat* findFormat(std::string_view name) {
     for (const auto& f : kFormats)
         if (f.name == name) return &f;
     return nullptr;
 }
 
 model::SceneData read(std::string_view format, const std::string& path, const std::string& sceneName) {
-    const ImportFormat* f = findFormat(format);
-    if (!f) {
-        auto names = formatNames();
-        auto close = model::nearestNames(std::string(format), names);
-        throw Error(ErrorKind::Usage, fmt::format("unknown import format '{}'", format), std::nullopt,
-                    close.empty() ? "formats: " + model::joinAlternatives(names)
-                                  : "did you mean " + model::joinAlternatives(close) + "?");
-    }
-    return f->read(path, sceneName);
+    return known(format, readableFormats(), "import").read(path, sceneName);
+}
+
+std::string write(std::string_view format, const model::SceneData& scene) {
+    return known(format, writableFormats(), "export").write(scene);
 }
 
 }  // namespace smql::import

@@ -3,11 +3,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "ingest/import/importers.hpp"
+#include "ingest/synth/walk.hpp"
+#include "model/error.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::ingest {
@@ -200,6 +208,74 @@ model::SceneData inCaptureFrame(const model::SceneData& ingested) {
         n.box.yaw -= yawOffset;
     }
     return out;
+}
+
+namespace {
+
+// The true camera centres of pose.txt paired with the scene's frame nodes (numbered from 0 in the
+// order of pose.txt's lines).
+std::vector<std::pair<model::Vec3, model::Vec3>> cameraPairs(const model::SceneData& stored,
+                                                             const std::filesystem::path& poseFile) {
+    std::vector<std::pair<model::Vec3, model::Vec3>> cameras;
+    if (!std::filesystem::exists(poseFile)) return cameras;
+    std::vector<Pose> poses;
+    std::ifstream in(poseFile);
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty()) poses.push_back(synth::parsePoseLine(line));
+    for (const auto& n : stored.nodes) {
+        const std::string* frame = n.attribute("frame");
+        if (n.kind != model::NodeKind::Frame || !frame) continue;
+        std::size_t position = std::stoul(*frame);
+        if (position < poses.size()) cameras.push_back({n.box.center, poses[position].translation});
+    }
+    return cameras;
+}
+
+std::set<model::NodeId> visibleNodes(const std::filesystem::path& visibility) {
+    std::set<model::NodeId> visible;
+    if (!std::filesystem::exists(visibility)) return visible;
+    std::ifstream in(visibility);
+    try {
+        auto j = nlohmann::json::parse(in);
+        for (const auto& entry : j.at("instances"))
+            if (entry.at("frames").get<int>() > 0) visible.insert(entry.at("id").get<model::NodeId>());
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(ErrorKind::Input, fmt::format("{}: {}", visibility.string(), e.what()), std::nullopt,
+                    "visibility.json holds {\"instances\": [{\"id\": 1, \"frames\": 12}]}");
+    }
+    return visible;
+}
+
+}  // namespace
+
+TruthCheck checkAgainstTruth(const model::SceneData& stored, const std::string& truthPath) {
+    const model::SceneData truth = import::readSceneJson(truthPath);
+    const std::filesystem::path folder = std::filesystem::path(truthPath).parent_path();
+    TruthCheck check;
+    auto cameras = cameraPairs(stored, folder / "pose.txt");
+    check.cameras = cameras.size();
+    if (cameras.size() >= 3) check.registration = registerByCameras(stored, cameras);
+    model::SceneData ingested = check.registration ? check.registration->mapped : inCaptureFrame(stored);
+    check.options.visible = visibleNodes(folder / "visibility.json");
+    check.report = compareToTruth(ingested, truth, check.options);
+    return check;
+}
+
+std::vector<std::pair<std::string, double>> truthCheckFigures(const TruthCheck& check) {
+    const QualityReport& r = check.report;
+    std::vector<std::pair<std::string, double>> figures = {
+        {"anchors_f1", r.anchors.f1()},
+        {"anchors_precision", r.anchors.precision()},
+        {"anchors_recall", r.anchors.recall()},
+        {"objects_f1", r.objects.f1()},
+        {"objects_precision", r.objects.precision()},
+        {"objects_recall", r.objects.recall()},
+        {"color_accuracy", r.colorAccuracy()},
+        {"parent_accuracy", r.parentAccuracy()},
+        {"mean_center_error_m", r.meanCenterError},
+    };
+    if (check.registration) figures.emplace_back("scale_error", std::abs(check.registration->scale - 1));
+    return figures;
 }
 
 }  // namespace smql::ingest

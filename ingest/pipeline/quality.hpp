@@ -3,6 +3,7 @@
 // precision / recall / F1, colour accuracy and parent accuracy on the matches.
 #pragma once
 
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -79,5 +80,21 @@ CameraRegistration registerByCameras(const model::SceneData& ingested,
 // The ingested scene brought back into the capture's frame (undoing the
 // alignment stored on the scene), where a synthetic capture's truth lives.
 model::SceneData inCaptureFrame(const model::SceneData& ingested);
+
+// `smql check-ingest`: a stored scene against the truth.json of its synthetic capture. Into the
+// truth's frame through the true camera poses beside the truth (pose.txt, as smql synth writes
+// it) when the scene keeps its cameras as frame nodes, which also measures the metric scale of
+// scale-free (COLMAP) runs; else by undoing the scene's stored alignment. visibility.json beside
+// the truth, when there, says which truth nodes the capture shows at all.
+struct TruthCheck {
+    QualityReport report;
+    QualityOptions options;
+    std::optional<CameraRegistration> registration;
+    std::size_t cameras = 0;  // camera pairs the registration used
+};
+TruthCheck checkAgainstTruth(const model::SceneData& stored, const std::string& truthPath);
+
+// The figures of a check by name (anchors_f1, objects_recall, scale_error ...), for programs.
+std::vector<std::pair<std::string, double>> truthCheckFigures(const TruthCheck& check);
 
 }  // namespace smql::ingest

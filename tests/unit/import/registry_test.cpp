@@ -30,8 +30,12 @@ TEST_CASE("the registry reads every format it lists, naming scenes by each forma
     CHECK(import::read("json", json, "renamed").info.name == "renamed");
 
     std::vector<std::string> listed;
-    for (const auto& f : import::formats()) listed.emplace_back(f.name);
-    CHECK(listed == import::formatNames());
+    for (const auto& f : import::formats())
+        if (f.read) listed.emplace_back(f.name);
+    CHECK(listed == import::readableFormats());
+    CHECK(import::writableFormats() == std::vector<std::string>{"json"});
+    CHECK(import::read("json", dir.write("again.json", import::write("json", byDefault))).info.name == "kitchen");
+    CHECK_THROWS_WITH(import::write("jsn", byDefault), "unknown export format 'jsn'");
     CHECK(import::findFormat("replica") != nullptr);
 }
 

@@ -1,0 +1,113 @@
+// libsmql_ingest.so (ingest_module.hpp): smql_ingest's work, run in the ingest library.
+#include "ingest_module.hpp"
+
+#include <new>
+
+#include <nlohmann/json.hpp>
+
+#include "ingest/pipeline/quality.hpp"
+#include "ingest/pipeline/request.hpp"
+
+namespace smql::capi {
+
+namespace {
+
+// The options' JSON object, row by row through the option table (numbers as their text).
+ingest::IngestRequest requestOf(const IngestCall& call) {
+    ingest::IngestRequest request;
+    request.capture = call.capture;
+    if (call.options.empty()) return request;
+    nlohmann::json options;
+    try {
+        options = nlohmann::json::parse(call.options);
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(ErrorKind::Usage, std::string("smql_ingest: the options are not JSON: ") + e.what(), std::nullopt,
+                    R"(options are a JSON object, {"scene": "kitchen", "objects": "cluster"}, or NULL)");
+    }
+    if (!options.is_object())
+        throw Error(ErrorKind::Usage, "smql_ingest: the options are not a JSON object", std::nullopt,
+                    R"(options are a JSON object, {"scene": "kitchen", "objects": "cluster"}, or NULL)");
+    for (const auto& [name, value] : options.items()) {
+        if (!value.is_string() && !value.is_number())
+            throw Error(ErrorKind::Usage, "smql_ingest: option '" + name + "' is neither text nor a number");
+        ingest::setIngestOption(request, name, value.is_string() ? value.get<std::string>() : value.dump());
+    }
+    return request;
+}
+
+// Progress as the C API's events; a stop asked for by the callback or by smql_interrupt is kept,
+// so that the pipeline, which asks between frames, stops at its next question.
+class CallbackProgress : public ingest::ProgressSink {
+public:
+    explicit CallbackProgress(const IngestCall& call) : call_(call) {}
+
+    void stageStarted(const std::string& stage, std::size_t steps) override {
+        stage_ = stage, steps_ = steps;
+        send({SMQL_PROGRESS_STAGE_STARTED, stage_.c_str(), 0, steps, 0.0, ""});
+    }
+    void advanced(std::size_t done) override { send({SMQL_PROGRESS_ADVANCED, stage_.c_str(), done, steps_, 0.0, ""}); }
+    void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
+        send({SMQL_PROGRESS_STAGE_FINISHED, stage.c_str(), steps_, steps_, seconds, summary.c_str()});
+    }
+    void note(const std::string& text) override { send({SMQL_PROGRESS_NOTE, "", 0, 0, 0.0, text.c_str()}); }
+
+    bool stopped() const { return stopped_ || (call_.interrupted && call_.interrupted->load()); }
+
+private:
+    void send(const smql_progress& event) {
+        if (call_.progress && !stopped_ && call_.progress(event)) stopped_ = true;
+    }
+
+    const IngestCall& call_;
+    std::string stage_;
+    std::size_t steps_ = 0;
+    bool stopped_ = false;
+};
+
+template <class Call, class Step>
+void guarded(Call& call, Step&& step) noexcept {
+    try {
+        step();
+    } catch (const Error& e) {
+        call.error = e;
+    } catch (const std::bad_alloc&) {
+        call.error = Error(ErrorKind::Storage, "out of memory during the ingest");
+    } catch (const std::exception& e) {
+        call.error = Error(ErrorKind::Input, std::string("the ingest failed: ") + e.what());
+    } catch (...) {
+        call.error = Error(ErrorKind::Input, "the ingest failed with an unknown exception");
+    }
+}
+
+}  // namespace
+
+}  // namespace smql::capi
+
+extern "C" SMQL_API void smql_ingest_module_read(smql::capi::IngestCall& call) noexcept {
+    smql::capi::guarded(call, [&] {
+        auto request = smql::capi::requestOf(call);
+        call.sceneName = smql::ingest::sceneNameOf(request);
+        call.update = request.update;
+    });
+}
+
+extern "C" SMQL_API void smql_ingest_module_run(smql::capi::IngestCall& call) noexcept {
+    smql::capi::guarded(call, [&] {
+        smql::capi::CallbackProgress progress(call);
+        try {
+            auto run = smql::ingest::runIngest(smql::capi::requestOf(call), progress,
+                                               [&progress] { return progress.stopped(); });
+            call.scene = std::move(run.result.scene);
+            call.frames = run.frames;
+        } catch (const smql::Error&) {
+            if (!progress.stopped()) throw;
+            throw smql::Error(smql::ErrorKind::Interrupted, "the ingest was stopped; nothing was written");
+        }
+    });
+}
+
+extern "C" SMQL_API void smql_ingest_module_check(smql::capi::CheckCall& call) noexcept {
+    smql::capi::guarded(call, [&] {
+        call.figures = smql::ingest::truthCheckFigures(smql::ingest::checkAgainstTruth(call.stored, call.truth));
+    });
+}

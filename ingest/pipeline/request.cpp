@@ -1,0 +1,197 @@
+#include "ingest/pipeline/request.hpp"
+
+#include <charconv>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "ingest/pipeline/object_finder.hpp"
+#include "model/error.hpp"
+#include "model/names.hpp"
+
+namespace smql::ingest {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void badValue(std::string_view name, const std::string& value, const std::string& takes) {
+    throw Error(ErrorKind::Usage, fmt::format("{} {}: not a valid value", optionFlag(name), value), std::nullopt,
+                fmt::format("{} takes {}", optionFlag(name), takes));
+}
+
+double number(std::string_view name, const std::string& value, bool zeroAllowed) {
+    double out = 0;
+    auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
+    if (ec != std::errc() || end != value.data() + value.size() || !(out > 0 || (zeroAllowed && out == 0)))
+        badValue(name, value, zeroAllowed ? "a number, 0 or more" : "a number above 0");
+    return out;
+}
+
+std::string existingFile(std::string_view name, const std::string& value) {
+    std::error_code ec;
+    if (!fs::is_regular_file(value, ec))
+        throw Error(ErrorKind::Usage, fmt::format("{} {}: no such file", optionFlag(name), value));
+    return value;
+}
+
+std::string oneOf(std::string_view name, const std::string& value, const std::vector<std::string>& names) {
+    for (const auto& n : names)
+        if (n == value) return value;
+    std::string hint = fmt::format("{} takes {}", optionFlag(name), model::joinAlternatives(names));
+    if (auto close = model::nearestNames(value, names, 1); !close.empty())
+        hint = fmt::format("did you mean {}? {}", close.front(), hint);
+    throw Error(ErrorKind::Usage, fmt::format("{} {}: not a known value", optionFlag(name), value), std::nullopt, hint);
+}
+
+// The table's rows. Help texts are functions because some are made from other tables (objects).
+const std::vector<IngestOption> kIngestOptions = {
+    {"scene", "TEXT", [] { return std::string("scene name (default: the capture's folder name)"); },
+     [](IngestRequest& r, const std::string& v) { r.scene = v; }},
+    {"geometry", "TEXT",
+     [] {
+         return std::string(
+             "given (the capture's poses), colmap (structure from motion on the colour frames) or auto (default: "
+             "colmap when some frame has no pose, or without depth: then with the given poses)");
+     },
+     [](IngestRequest& r, const std::string& v) {
+         r.geometry = oneOf("geometry", v, {"given", "colmap", "auto"});
+     }},
+    {"objects", "TEXT", objectSourcesHelp,
+     [](IngestRequest& r, const std::string& v) { r.objects = oneOf("objects", v, objectSourceNames()); }},
+    {"detector", "FILE",
+     [] {
+         return std::string(
+             "NanoDet ONNX model for --objects detect (default: the one scripts/detector/setup.sh "
+             "installs)");
+     },
+     [](IngestRequest& r, const std::string& v) { r.detector = existingFile("detector", v); }},
+    {"classes", "FILE",
+     [] { return std::string("the detector's class names, one a line (default: coco.names beside the model)"); },
+     [](IngestRequest& r, const std::string& v) { r.classes = existingFile("classes", v); }},
+    {"fps", "NUMBER", [] { return std::string("frames per second sampled from videos (default 1)"); },
+     [](IngestRequest& r, const std::string& v) { r.fps = number("fps", v, false); }},
+    {"camera", "FX,FY,CX,CY",
+     [] {
+         return std::string(
+             "the camera in pixels of the images as stored (default: the capture's camera.json or calibration, "
+             "else the photos' EXIF focal length, else a stated guess); COLMAP keeps it fixed");
+     },
+     [](IngestRequest& r, const std::string& v) {
+         parseCameraOption(v);  // checked now, not after the capture is read
+         r.camera = v;
+     }},
+    {"fov", "DEGREES",
+     [] {
+         return std::string("the horizontal field of view, when only that is known (COLMAP refines the focal length)");
+     },
+     [](IngestRequest& r, const std::string& v) { r.fov = checkFieldOfView(number("fov", v, false)); }},
+    {"max_size", "PIXELS",
+     [] {
+         return std::string(
+             "COLMAP sees the frames scaled down to this many pixels on the long side (default 1024, 0 = as "
+             "stored); poses and intrinsics come back in the frames' own pixels");
+     },
+     [](IngestRequest& r, const std::string& v) {
+         double size = number("max_size", v, true);
+         if (size != static_cast<int>(size)) badValue("max_size", v, "a whole number of pixels");
+         r.maxSize = static_cast<int>(size);
+     }},
+    {"vocab_tree", "FILE",
+     [] {
+         return std::string(
+             "a COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection in sequential matching (Debian ships "
+             "none; without it, loops are closed by matching 30 frames spread through the capture all against "
+             "all)");
+     },
+     [](IngestRequest& r, const std::string& v) { r.vocabularyTree = existingFile("vocab_tree", v); }},
+    {"colmap_dir", "FOLDER",
+     [] {
+         return std::string(
+             "COLMAP works in this folder and leaves it (default: a new folder under /tmp, removed after a "
+             "success); a later ingest of the same frames reads the finished run back instead of running COLMAP "
+             "again");
+     },
+     [](IngestRequest& r, const std::string& v) { r.colmapDir = v; }},
+    {"scale", "NUMBER", [] { return std::string("metres per capture unit, overriding the estimate"); },
+     [](IngestRequest& r, const std::string& v) { r.scale = number("scale", v, false); }},
+    {"depth_scale", "NUMBER",
+     [] {
+         return std::string(
+             "units of the depth images per metre (1000 for millimetres, 5000 for TUM's), overriding the "
+             "capture's camera.json and the layout's default");
+     },
+     [](IngestRequest& r, const std::string& v) { r.depthScale = number("depth_scale", v, false); }},
+    {"update", "SCENE",
+     [] {
+         return std::string(
+             "make the capture the next version of this stored scene of the same place (docs/history.md) instead "
+             "of adding a new scene");
+     },
+     [](IngestRequest& r, const std::string& v) { r.update = v; }},
+};
+
+GeometrySource geometrySource(const std::string& name) {
+    if (name == "given") return GeometrySource::Given;
+    if (name == "colmap") return GeometrySource::Colmap;
+    return GeometrySource::Auto;
+}
+
+}  // namespace
+
+const std::vector<IngestOption>& ingestOptions() { return kIngestOptions; }
+
+std::string optionFlag(std::string_view name) {
+    std::string flag = "--" + std::string(name);
+    for (char& c : flag)
+        if (c == '_') c = '-';
+    return flag;
+}
+
+void setIngestOption(IngestRequest& request, std::string_view name, const std::string& value) {
+    std::vector<std::string> names;
+    for (const auto& option : kIngestOptions) {
+        if (option.name == name) return option.set(request, value);
+        names.emplace_back(option.name);
+    }
+    std::string hint = "the options are " + model::joinAlternatives(names);
+    if (auto close = model::nearestNames(name, names, 1); !close.empty())
+        hint = fmt::format("did you mean {}? {}", close.front(), hint);
+    throw Error(ErrorKind::Usage, fmt::format("unknown ingest option '{}'", name), std::nullopt, hint);
+}
+
+std::string sceneNameOf(const IngestRequest& request) {
+    if (!request.scene.empty()) return request.scene;
+    fs::path capture = fs::absolute(request.capture).lexically_normal();
+    std::string name = capture.filename().string();
+    return name.empty() ? capture.parent_path().filename().string() : name;
+}
+
+IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const std::function<bool()>& cancelled) {
+    if (!request.camera.empty() && request.fov)
+        throw Error(ErrorKind::Usage, "--camera and --fov both say what the camera is", std::nullopt,
+                    "give one: --camera when the focal length is known, --fov when only the field of view is");
+    CaptureOptions captureOptions;
+    captureOptions.fps = request.fps;
+    if (!request.camera.empty()) captureOptions.intrinsics = parseCameraOption(request.camera);
+    captureOptions.horizontalFov = request.fov;
+    captureOptions.depthScale = request.depthScale;
+    IngestRun run;
+    Capture capture = readCapture(request.capture, captureOptions);
+    run.frames = capture.frames.size();
+
+    IngestOptions options;
+    options.sceneName = sceneNameOf(request);
+    options.geometry = geometrySource(request.geometry);
+    options.objects = request.objects;
+    options.detectorModel = request.detector;
+    options.detectorClasses = request.classes;
+    options.scale = request.scale;
+    options.colmap.maxImageSize = request.maxSize;
+    options.colmap.vocabularyTree = request.vocabularyTree;
+    options.colmap.workDirectory = request.colmapDir;
+    run.result = ingestCapture(capture, options, progress, cancelled);
+    return run;
+}
+
+}  // namespace smql::ingest
