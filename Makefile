@@ -26,7 +26,9 @@ debug:
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-demo: build
+# The demo installs smql (under PREFIX) first, so that `smql`, the C library and `import smql` in
+# python3 work from anywhere afterwards.
+demo: install
 	@$(BUILD)/shell/smql demo
 
 bench: build

@@ -17,6 +17,7 @@ packages=(
   tmux  # the shell's terminal test (Ctrl-C, widths)
   python3-onnx python3-protobuf python3-numpy  # the detector's set-up (scripts/detector/setup.sh)
   python3-opencv  # its verification against TF.js (scripts/detector/verify.sh)
+  python3-dev pybind11-dev python3-pytest  # the Python package (python/) and its tests
 )
 
 missing=()

@@ -1,0 +1,219 @@
+"""The Python package against the real Replica room and the real RGB-D frames of ../shared/data."""
+import base64
+import json
+import os
+import pathlib
+import threading
+
+import numpy
+import pytest
+
+import smql
+
+DATA = pathlib.Path(os.environ.get("SMQL_SHARED_DATA", pathlib.Path(__file__).parents[3] / "shared" / "data"))
+REPLICA = DATA / "replica-room0" / "info_semantic.json"
+DINING = DATA / "rgbd-dining"
+
+
+@pytest.fixture(scope="module")
+def replica(tmp_path_factory):
+    path = tmp_path_factory.mktemp("replica") / "db"
+    smql.import_scene(REPLICA, path, format="replica")
+    return path
+
+
+@pytest.fixture
+def db(replica):
+    with smql.connect(replica, read_only=True) as connection:
+        yield connection
+
+
+def test_module_follows_pep_249():
+    assert smql.apilevel == "2.0" and smql.paramstyle == "qmark" and smql.threadsafety == 2
+    assert smql.version.count(".") == 2
+    for name in ("Warning", "Error", "InterfaceError", "DatabaseError", "DataError", "OperationalError",
+                 "IntegrityError", "InternalError", "ProgrammingError", "NotSupportedError"):
+        assert issubclass(getattr(smql, name), Exception)
+    assert issubclass(smql.ProgrammingError, smql.DatabaseError) and issubclass(smql.DatabaseError, smql.Error)
+
+
+def test_bound_parameters_answer_as_literals(db):
+    bound = db.execute("FIND ? WHERE on(?) PATH", ("cushion", "sofa")).fetchall()
+    literal = db.execute("FIND cushion WHERE on(sofa) PATH").fetchall()
+    assert bound == literal and len(bound) >= 3
+    assert all(isinstance(row, tuple) for row in bound)
+    # A distance bound as a number is metres.
+    near = db.execute("FIND ? WHERE near(?, ?)", ("cushion", "sofa", 0.5)).fetchall()
+    assert near == db.execute("FIND cushion WHERE near(sofa, 0.5 m)").fetchall()
+    # A name is data, never SMQL text.
+    with pytest.raises(smql.ProgrammingError) as error:
+        db.execute("FIND ? WHERE on(sofa)", ("cushion' OR 'x",))
+    assert "unknown category 'cushion' or 'x'" in str(error.value)
+
+
+def test_description_rows_and_fetching(db):
+    cur = db.cursor()
+    cur.execute("FIND cushion WHERE on(sofa) PATH")
+    names = [d[0] for d in cur.description]
+    assert names == ["id", "category", "source_id", "box", "path"]
+    assert [d[1] for d in cur.description] == [smql.INTEGER, smql.TEXT, smql.INTEGER, smql.BOX, smql.TEXT]
+    rows = cur.fetchall()
+    cur.execute("FIND cushion WHERE on(sofa) PATH")
+    assert cur.fetchone() == rows[0]
+    assert cur.fetchmany(2) == rows[1:3]
+    assert list(cur) == rows[3:]
+    assert cur.fetchone() is None
+    for row in rows:
+        assert row[1] == "cushion" and row[4].startswith("replica-room0 / ") and row[4].endswith(f"cushion#{row[0]}")
+
+
+def test_boxes_are_numpy(db):
+    cur = db.execute("FIND cushion WHERE on(sofa)")
+    rows = cur.fetchall()
+    boxes = cur.boxes()
+    assert boxes.shape == (len(rows), 7) and boxes.dtype == numpy.float64
+    assert numpy.allclose(boxes, numpy.array([row[3] for row in rows]))
+    assert (boxes[:, 3:6] > 0).all()
+    # The cushions rest on sofas: their bottoms are above the floor and below 1 m.
+    assert ((boxes[:, 2] - boxes[:, 5] / 2) > 0.2).all() and ((boxes[:, 2] - boxes[:, 5] / 2) < 1.0).all()
+    with pytest.raises(smql.ProgrammingError):
+        db.execute("COUNT cushion").boxes()
+
+
+def test_errors_carry_message_position_and_hint(db):
+    with pytest.raises(smql.ProgrammingError) as error:
+        db.execute("FIND cushon WHERE on(sofa)")
+    e = error.value
+    assert e.line == 1 and e.column == 6 and e.hint == "did you mean cushion?"
+    assert e.status_name == "name does not resolve" and "unknown category 'cushon'" in str(e)
+    with pytest.raises(smql.ProgrammingError) as error:
+        db.execute("FIND cushion WHERE on(sofa")
+    assert error.value.status_name == "syntax error" and error.value.line == 1
+    with pytest.raises(smql.ProgrammingError, match="Incorrect number of bindings"):
+        db.execute("FIND ? WHERE on(?)", ("cushion",))
+    with pytest.raises(smql.OperationalError):
+        db.import_scene(REPLICA, format="replica", scene="again")  # a read-only connection
+
+
+def test_bad_input_and_closed_connections(tmp_path, replica):
+    bad = tmp_path / "bad.json"
+    bad.write_text("{not json")
+    with smql.connect(tmp_path / "db") as connection:
+        with pytest.raises(smql.DataError):
+            connection.import_scene(bad)
+        with pytest.raises(smql.InterfaceError):
+            connection.execute("FIND ?", (object(),))
+    with pytest.raises(smql.ProgrammingError, match="closed"):
+        connection.execute("COUNT chair")
+    with pytest.raises(smql.OperationalError):
+        smql.connect(tmp_path / "missing", read_only=True)
+
+
+def test_messages_and_scripts(db):
+    cur = db.execute("RELATE #20 TO #21")
+    assert "wall-plug#20" in cur.message and cur.description
+    cur = db.executescript("SET near.distance = 2 m; USE SCENE 'replica-room0'")
+    assert "replica-room0" in cur.message and cur.description is None
+    assert db.execute("COUNT cushion WHERE near(sofa)").fetchone()[0] >= 5
+
+
+def test_similar_to_a_numpy_vector(tmp_path):
+    vectors = {1: [1, 0, 0], 2: [0.8, 0.6, 0], 3: [0, 1, 0]}
+    scene = {
+        "smql_scene": 1, "scene": {"name": "shelf"},
+        "nodes": [{"id": i, "kind": "object", "category": c, "box": {"center": [i, 0, 0.1], "size": [0.1, 0.1, 0.1]}}
+                  for i, c in ((1, "mug"), (2, "cup"), (3, "book"))],
+        "blobs": [{"node": i, "name": "embedding", "media_type": "application/x-float32",
+                   "base64": base64.b64encode(numpy.array(v, dtype="<f4").tobytes()).decode()}
+                  for i, v in vectors.items()],
+    }
+    path = tmp_path / "shelf.json"
+    path.write_text(json.dumps(scene))
+    with smql.connect(tmp_path / "db") as connection:
+        connection.import_scene(path)
+        cur = connection.execute("FIND object SIMILAR TO ? RETURN category, similarity",
+                                 (numpy.array([1.0, 0.1, 0.0]),))
+        rows = cur.fetchall()
+        assert [r[0] for r in rows] == ["mug", "cup", "book"]
+        assert rows[0][1] > rows[1][1] > rows[2][1]
+        with pytest.raises(smql.ProgrammingError, match="3 dimensions"):
+            connection.execute("FIND object SIMILAR TO ?", (numpy.ones(4, dtype=numpy.float32),))
+        with pytest.raises(smql.InterfaceError):
+            connection.execute("FIND object SIMILAR TO ?", (numpy.ones((2, 2)),))
+
+
+def test_ingest_with_progress(tmp_path):
+    events = []
+    scene = smql.ingest(DINING, tmp_path / "db", progress=events.append, scene="dining", objects="cluster")
+    assert scene == "dining"
+    kinds = {e.kind for e in events}
+    assert {"stage_started", "stage_finished"} <= kinds
+    assert events[-1].kind == "stage_finished" and events[-1].stage == "write"
+    assert any(e.stage == "frames" for e in events)
+    with smql.connect(tmp_path / "db", read_only=True) as connection:
+        objects = connection.execute("COUNT object").fetchone()[0]
+        assert objects > 0
+        # Stamped as an imported scene is.
+        assert connection.execute("COUNT object WHERE added SINCE '2000-01-01'").fetchone()[0] == objects
+    # Options are checked before the work.
+    with pytest.raises(smql.ProgrammingError) as error:
+        smql.ingest(DINING, tmp_path / "db", objcts="cluster")
+    assert error.value.hint.startswith("did you mean objects?")
+    with pytest.raises(smql.DataError, match="already exists"):
+        smql.ingest(DINING, tmp_path / "db", scene="dining")
+
+
+def test_progress_stops_and_raises(tmp_path):
+    with smql.connect(tmp_path / "db") as connection:
+        with pytest.raises(smql.OperationalError, match="stopped"):
+            connection.ingest(DINING, progress=lambda event: event.kind == "stage_finished")
+
+        def fails(event):
+            raise KeyError("from the callback")
+
+        with pytest.raises(KeyError, match="from the callback"):
+            connection.ingest(DINING, progress=fails)
+        assert connection.execute("SHOW SCENES").fetchall() == []
+
+
+def test_ingest_releases_the_gil_and_can_be_interrupted(tmp_path):
+    with smql.connect(tmp_path / "db") as connection:
+        started = threading.Event()
+        outcome = []
+
+        def run():
+            try:
+                connection.ingest(DINING, progress=lambda event: started.set())
+                outcome.append("finished")
+            except smql.OperationalError as e:
+                outcome.append(e.status_name)
+
+        worker = threading.Thread(target=run)
+        worker.start()
+        # This thread runs while the ingest works only because the ingest released the GIL.
+        assert started.wait(60)
+        connection.interrupt()
+        worker.join(120)
+        assert outcome == ["interrupted"]
+
+
+def test_threads_share_a_connection(db):
+    expected = db.execute("FIND cushion WHERE near(sofa) PATH").fetchall()
+    results = []
+
+    def query():
+        for _ in range(20):
+            results.append(db.execute("FIND cushion WHERE near(sofa) PATH").fetchall() == expected)
+
+    threads = [threading.Thread(target=query) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(results) == 80 and all(results)
+
+
+def test_evaluation_as_a_call(db):
+    metrics = {m["metric"]: m for m in db.evaluate(scene="replica-room0")}
+    assert metrics["SR_obj"]["value"] == 1.0 and metrics["SR_obj"]["episodes"] > 20
+    assert 0.0 <= metrics["SR_nav"]["value"] <= 1.0
