@@ -18,6 +18,9 @@ packages=(
   python3-onnx python3-protobuf python3-numpy  # the detector's set-up (scripts/detector/setup.sh)
   python3-opencv  # its verification against TF.js (scripts/detector/verify.sh)
   python3-dev pybind11-dev python3-pytest  # the Python package (python/) and its tests
+  python3-open3d  # the Python package's Open3D interop, and the reader of exported PLY and GLB in the tests
+  libtinygltf-dev gdal-bin  # smql export glb; GDAL's ogrinfo reads the GeoJSON export in the tests
+  libcpp-httplib-dev chromium  # smql view's HTTP server; the headless browser of its test
 )
 
 missing=()
@@ -42,3 +45,12 @@ if ((${#missing[@]} > 0)); then
 fi
 
 "$(dirname "${BASH_SOURCE[0]}")/detector/setup.sh"
+
+# The npm packages of web/package.json (three.js for `smql view`, the glTF validator and
+# playwright-core for the tests), as package-lock.json pins them; again only when the lock changed.
+web=$(cd "$(dirname "${BASH_SOURCE[0]}")/../web" && pwd)
+if ! cmp -s "$web/package-lock.json" "$web/node_modules/.smql-installed-lock"; then
+  echo "smql setup: installing web/package.json's npm packages"
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+  cp "$web/package-lock.json" "$web/node_modules/.smql-installed-lock"
+fi

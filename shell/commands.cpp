@@ -13,6 +13,7 @@
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
 #include "shell/output_file.hpp"
+#include "view/view.hpp"
 
 namespace smql::shell {
 
@@ -66,7 +67,8 @@ int importCommand(const std::string& format, const std::string& file, const std:
 int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
                   const std::string& outFile) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    std::string bytes = import::write(format, engine->exportScene(sceneName));
+    std::string bytes =
+        format == "html" ? view::standalonePage(*engine, sceneName) : import::write(format, engine->exportScene(sceneName));
     if (outFile.empty()) {
         std::cout << bytes;
         checkWritten(std::cout, "standard output");

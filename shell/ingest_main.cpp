@@ -8,6 +8,7 @@
 #include "shell/cli.hpp"
 #include "shell/ingest_command.hpp"
 #include "shell/map_command.hpp"
+#include "view/view.hpp"
 
 namespace {
 
@@ -83,7 +84,29 @@ int run(int argc, char** argv) {
     guide->add_option("--to", guideTo, "where to go: a reference or a sub-query, (FIND mug LIMIT 1)")->required();
     guide->add_option("--out", guideOut, "the folder for guide.json, guide.md and guide.png")->required();
 
+    auto* view = app.add_subcommand("view", "look at the memory in a browser: a local, read-only web page (docs/view.md)");
+    smql::view::ViewOptions viewOptions;
+    view->add_option("database", viewOptions.database, "the database directory")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    view->add_option("--host", viewOptions.host, "the address to listen on (default 127.0.0.1: this machine only)");
+    view->add_option("--port", viewOptions.port, "the port (default 8080; 0: any free one)")->check(CLI::Range(0, 65535));
+    view->add_option("--scene", viewOptions.scene, "the scene the page opens on (default: the most recently stored)");
+    view->add_option("--timeout", viewOptions.statementMilliseconds,
+                     "a statement running longer than this many milliseconds is interrupted (default 5000)")
+        ->check(CLI::PositiveNumber);
+
     if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
+    if (view->parsed()) {
+        smql::view::serve(viewOptions, [&](const std::string& url) {
+            std::cout << "smql view: serving " << viewOptions.database << " read-only at " << url
+                      << " (Ctrl-C stops)" << std::endl;
+            if (viewOptions.host != "127.0.0.1" && viewOptions.host != "localhost")
+                std::cerr << "warning: --host " << viewOptions.host
+                          << " lets other machines run statements on this database\n";
+        });
+        return 0;
+    }
     if (map->parsed()) return smql::shell::mapCommand(mapDb, mapScene, mapOut);
     if (guide->parsed()) return smql::shell::guideCommand(guideDb, guideScene, guideFrom, guideTo, guideOut);
     if (ingestCmd->parsed()) {

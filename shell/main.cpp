@@ -194,6 +194,7 @@ int runSubcommand(int argc, char** argv) {
     std::string exportFormat, exportDb, exportScene, exportOut;
     std::vector<std::string> exportEvidence;
     std::vector<std::string> exportFormats = smql::import::writableFormats();
+    exportFormats.emplace_back("html");  // the view's page as one file (docs/view.md)
     exportFormats.emplace_back("evidence");
     exportCmd->add_option("format", exportFormat, smql::model::joinAlternatives(exportFormats))
         ->required()
@@ -252,7 +253,7 @@ int main(int argc, char** argv) {
     return smql::shell::runReportingErrors([&] {
         std::string first = argc > 1 ? argv[1] : "";
         if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo" || first == "map" ||
-            first == "guide")
+            first == "guide" || first == "view")
             return runIngestTool(argv);
         if (first == "import" || first == "export" || first == "test" || first == "check" || first == "eval")
             return runSubcommand(argc, argv);

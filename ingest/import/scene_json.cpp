@@ -14,6 +14,7 @@
 #include "ingest/import/floor.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/json_field.hpp"
+#include "model/base64.hpp"
 
 namespace smql::import {
 
@@ -313,23 +314,6 @@ void checkRelations(const Field& relationsField, const std::vector<model::Relati
 
 namespace {
 
-constexpr std::string_view kBase64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-
-std::string toBase64(std::string_view bytes) {
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4);
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        std::uint32_t chunk = std::uint32_t(std::uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) chunk |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
-        if (i + 2 < bytes.size()) chunk |= std::uint8_t(bytes[i + 2]);
-        out += kBase64[chunk >> 18 & 63];
-        out += kBase64[chunk >> 12 & 63];
-        out += i + 1 < bytes.size() ? kBase64[chunk >> 6 & 63] : '=';
-        out += i + 2 < bytes.size() ? kBase64[chunk & 63] : '=';
-    }
-    return out;
-}
-
 std::string fromBase64(const Field& field) {
     std::string text = field.string();
     if (text.size() % 4 != 0) field.fail("base64 text must come in groups of 4 characters");
@@ -344,7 +328,7 @@ std::string fromBase64(const Field& field) {
             if (c == '=' && i + 4 == text.size() && k >= 2) {
                 ++padding;
             } else {
-                value = kBase64.find(c);
+                value = model::kBase64Digits.find(c);
                 if (value == std::string_view::npos || padding)
                     field.fail(fmt::format("'{}' at {} is not base64", c, i + k));
             }
@@ -397,7 +381,7 @@ std::string writeSceneJson(const model::SceneData& scene) {
             root["blobs"].push_back({{"node", blob.node},
                                      {"name", blob.name},
                                      {"media_type", blob.mediaType},
-                                     {"base64", toBase64(blob.bytes)}});
+                                     {"base64", model::toBase64(blob.bytes)}});
     }
     std::string out;
     writePretty(root, 0, out);
