@@ -7,7 +7,7 @@ PREFIX ?= /usr/local
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build debug test demo bench bench-startup bench-similar fuzz stress format lint install clean
+.PHONY: all setup configure build debug test demo bench bench-startup bench-similar bench-python fuzz stress format lint install clean
 
 all: build
 
@@ -38,6 +38,10 @@ bench: build
 # One query in a fresh process, smql next to sqlite3 (the table of docs/benchmarks.md, "Start-up").
 bench-startup: build
 	@bench/startup.sh $(BUILD)/shell/smql
+
+# The Python package against the C API and Python's sqlite3 (docs/benchmarks.md, "Python").
+bench-python: build
+	@/usr/bin/python3 bench/python_bench.py $(BUILD) ../shared/data --out docs/benchmarks.md
 
 # SIMILAR TO's search against a scan of every node's vector (docs/benchmarks.md, "SIMILAR TO").
 bench-similar: build

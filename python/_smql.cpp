@@ -100,7 +100,8 @@ public:
         }
         check(db_, status);
         std::vector<std::string> messages;
-        for (size_t i = 0; i < smql_statement_count(result); ++i) messages.emplace_back(smql_statement_message(result, i));
+        for (size_t i = 0; i < smql_statement_count(result); ++i)
+            messages.emplace_back(smql_statement_message(result, i));
         smql_result_free(result);
         return messages;
     }
@@ -109,8 +110,7 @@ public:
         if (db_) smql_interrupt(db_);
     }
 
-    void importFile(const std::string& format, const std::string& path, std::optional<std::string> scene,
-                    bool update) {
+    void importFile(const std::string& format, const std::string& path, std::optional<std::string> scene, bool update) {
         smql_status status;
         {
             py::gil_scoped_release release;
@@ -132,8 +132,8 @@ public:
             auto* c = static_cast<Context*>(user);
             py::gil_scoped_acquire acquire;
             try {
-                return py::bool_(c->progress(static_cast<int>(p->kind), p->stage, p->done, p->total, p->seconds,
-                                             p->text))
+                return py::bool_(
+                           c->progress(static_cast<int>(p->kind), p->stage, p->done, p->total, p->seconds, p->text))
                            ? 1
                            : 0;
             } catch (py::error_already_set& e) {
@@ -157,8 +157,8 @@ public:
         smql_status status;
         {
             py::gil_scoped_release release;
-            status = smql_evaluate(handle(), suite ? suite->c_str() : nullptr, scene ? scene->c_str() : nullptr,
-                                   &result);
+            status =
+                smql_evaluate(handle(), suite ? suite->c_str() : nullptr, scene ? scene->c_str() : nullptr, &result);
         }
         check(db_, status);
         return table(result);
@@ -240,33 +240,48 @@ public:
             auto vector = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
             if (!vector || vector.ndim() != 1)
                 raise(SMQL_ERROR_MISUSE,
-                      "misuse: parameter " + std::to_string(index) + " is neither None, a number, text nor a vector",
-                      0, 0);
+                      "misuse: parameter " + std::to_string(index) + " is neither None, a number, text nor a vector", 0,
+                      0);
             status = smql_bind_vector(stmt_, index, vector.data(), static_cast<int>(vector.size()));
         }
         check(database_.handle(), status);
     }
-    void clearBindings() { check(database_.handle(), smql_clear_bindings(stmt_)); }
-    void reset() { check(database_.handle(), smql_reset(stmt_)); }
+    void reset() {
+        check(database_.handle(), smql_reset(stmt_));
+        stepped_ = false;
+    }
 
-    // Runs the statement and returns every row as a tuple (boxes as 7-tuples: cx, cy, cz, sx, sy,
-    // sz, yaw), with the columns' names and types and the statement's sentence.
-    py::tuple run() {
+    // One run with these values for the placeholders, in one call (a Python call costs more than
+    // the C API's): every row as a tuple (boxes as 7-tuples: cx, cy, cz, sx, sy, sz, yaw), the
+    // cursor's description (PEP 249's 7-item column entries; None without columns) and the
+    // statement's sentence.
+    py::tuple execute(const py::sequence& parameters) {
+        if (stepped_) reset();
+        smql_clear_bindings(stmt_);
+        const auto count = static_cast<int>(parameters.size());
+        for (int i = 0; i < count; ++i) bind(i + 1, parameters[i]);
         smql_status status;
         {
             py::gil_scoped_release release;
             status = smql_step(stmt_);
         }
+        stepped_ = true;
         check(database_.handle(), status);
-        py::list columns;
         const size_t width = smql_stmt_column_count(stmt_);
-        for (size_t c = 0; c < width; ++c)
-            columns.append(py::make_tuple(smql_stmt_column_name(stmt_, c), static_cast<int>(smql_stmt_column_type(stmt_, c))));
+        py::object description = py::none();
+        if (width > 0) {
+            py::tuple columns(width);
+            for (size_t c = 0; c < width; ++c)
+                columns[c] =
+                    py::make_tuple(smql_stmt_column_name(stmt_, c), static_cast<int>(smql_stmt_column_type(stmt_, c)),
+                                   py::none(), py::none(), py::none(), py::none(), py::none());
+            description = std::move(columns);
+        }
         py::list rows;
         for (; status == SMQL_ROW; status = smql_step(stmt_)) rows.append(row(width));
         check(database_.handle(), status);
         const char* message = smql_stmt_message(stmt_);
-        return py::make_tuple(columns, rows, message ? message : "");
+        return py::make_tuple(description, rows, message ? message : "");
     }
 
 private:
@@ -307,6 +322,7 @@ private:
 
     Database& database_;
     smql_stmt* stmt_ = nullptr;
+    bool stepped_ = false;  // run since the last reset
 };
 
 }  // namespace
@@ -335,8 +351,5 @@ PYBIND11_MODULE(_smql, m) {
     py::class_<Statement>(m, "Statement")
         .def(py::init<Database&, const std::string&>(), py::keep_alive<1, 2>())
         .def_property_readonly("parameter_count", &Statement::parameterCount)
-        .def("bind", &Statement::bind)
-        .def("clear_bindings", &Statement::clearBindings)
-        .def("reset", &Statement::reset)
-        .def("run", &Statement::run);
+        .def("execute", &Statement::execute);
 }

@@ -8,7 +8,7 @@
 namespace smql::view {
 
 struct Asset {
-    std::string_view path;  // as requested: "/", "/assets/view.js", "/assets/three.module.min.js"
+    std::string_view path;       // as requested: "/", "/assets/view.js", "/assets/three.module.min.js"
     std::string_view mediaType;  // text/html, text/javascript ...: every file is UTF-8 text
     std::string_view bytes;
 };

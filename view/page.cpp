@@ -30,9 +30,9 @@ std::string standalonePage(Engine& engine, const std::string& scene) {
     std::string safeData = data;
     for (auto at = safeData.find("</"); at != std::string::npos; at = safeData.find("</", at + 3))
         safeData.replace(at, 2, "<\\/");
-    replaceElement("<script type=\"importmap\">", "</script>",
-                   "<script type=\"importmap\">" + jsonText(nlohmann::ordered_json{{"imports", imports}}) +
-                       "</script>");
+    replaceElement(
+        "<script type=\"importmap\">", "</script>",
+        "<script type=\"importmap\">" + jsonText(nlohmann::ordered_json{{"imports", imports}}) + "</script>");
     replaceElement("<link rel=\"stylesheet\"", ">", "<style>" + text("/assets/view.css") + "</style>");
     replaceElement("<script type=\"module\"", "</script>",
                    "<script type=\"application/json\" id=\"smql-scene\">" + safeData +

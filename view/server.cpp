@@ -48,10 +48,8 @@ private:
 };
 
 nlohmann::ordered_json errorJson(const Error& e, const std::string& statement) {
-    nlohmann::ordered_json out = {{"kind", toString(e.kind())},
-                                  {"message", e.message()},
-                                  {"hint", e.hint()},
-                                  {"text", e.render(statement)}};
+    nlohmann::ordered_json out = {
+        {"kind", toString(e.kind())}, {"message", e.message()}, {"hint", e.hint()}, {"text", e.render(statement)}};
     if (e.where()) out["line"] = e.where()->line, out["column"] = e.where()->column;
     return {{"error", out}};
 }
@@ -144,8 +142,8 @@ void serve(const ViewOptions& options, const std::function<void(const std::strin
         port = 0;
     }
     if (port == 0)
-        throw Error(ErrorKind::Usage, fmt::format("cannot listen on {}:{}", options.host, options.port),
-                    std::nullopt, "another program may use the port: --port N picks another, --port 0 any free one");
+        throw Error(ErrorKind::Usage, fmt::format("cannot listen on {}:{}", options.host, options.port), std::nullopt,
+                    "another program may use the port: --port N picks another, --port 0 any free one");
     listening(fmt::format("http://{}:{}/", options.host, port));
     server.listen_after_bind();
 }

@@ -17,9 +17,9 @@ namespace smql::view {
 struct ViewOptions {
     std::string database;
     std::string host = "127.0.0.1";
-    int port = 8080;               // 0: any free port
+    int port = 8080;                   // 0: any free port
     int statementMilliseconds = 5000;  // a statement running longer is interrupted
-    std::string scene;             // the scene the page opens on (default: the current one)
+    std::string scene;                 // the scene the page opens on (default: the current one)
 };
 
 // Serves until the process is stopped. `listening` is called with the port once the server is

@@ -178,25 +178,25 @@ class Connection:
     def _run(self, sql, parameters):
         with self._lock:
             self._check_open()
-            statement = self._statements.pop(sql, None)
+            statements = self._statements
+            statement = statements.get(sql)
             if statement is None:
-                statement = _smql.Statement(self._db, sql)
+                statement = statements[sql] = _smql.Statement(self._db, sql)
+                if len(statements) > self._cache_size:
+                    statements.popitem(last=False)
             else:
-                statement.reset()
-                statement.clear_bindings()
-            self._statements[sql] = statement
-            if len(self._statements) > self._cache_size:
-                self._statements.popitem(last=False)
+                statements.move_to_end(sql)
             if len(parameters) != statement.parameter_count:
                 raise ProgrammingError(
                     f"Incorrect number of bindings supplied. The current statement uses "
                     f"{statement.parameter_count}, and there are {len(parameters)} supplied.")
-            for index, value in enumerate(parameters, start=1):
-                statement.bind(index, value)
-            return statement.run()
+            return statement.execute(parameters)
 
 
 class Cursor:
+    __slots__ = ("connection", "arraysize", "description", "rowcount", "lastrowid", "message", "_rows", "_next",
+                 "_closed")
+
     def __init__(self, connection):
         self.connection = connection
         self.arraysize = 1
@@ -209,12 +209,12 @@ class Cursor:
         self._closed = False
 
     def execute(self, sql, parameters=()):
-        self._check_open()
+        if self._closed:
+            raise ProgrammingError("Cannot operate on a closed cursor.")
         if isinstance(parameters, (str, bytes)) or not hasattr(parameters, "__len__"):
             raise ProgrammingError("parameters are a sequence, one value per ? in the statement")
-        columns, rows, message = self.connection._run(sql, parameters)
-        self.description = tuple((name, code, None, None, None, None, None) for name, code in columns) or None
-        self._rows, self._next, self.message = rows, 0, message
+        self.description, self._rows, self.message = self.connection._run(sql, parameters)
+        self._next = 0
         self.rowcount = -1
         return self
 

@@ -217,3 +217,19 @@ def test_evaluation_as_a_call(db):
     metrics = {m["metric"]: m for m in db.evaluate(scene="replica-room0")}
     assert metrics["SR_obj"]["value"] == 1.0 and metrics["SR_obj"]["episodes"] > 20
     assert 0.0 <= metrics["SR_nav"]["value"] <= 1.0
+
+
+def test_open3d_interop(db):
+    o3d = pytest.importorskip("open3d", reason="python3-open3d is not installed")
+    import smql.open3d
+
+    cur = db.execute("FIND cushion WHERE on(sofa)")
+    rows, boxes = cur.fetchall(), cur.boxes()
+    obbs = smql.open3d.oriented_boxes(boxes)
+    assert len(obbs) == len(rows) and all(isinstance(b, o3d.geometry.OrientedBoundingBox) for b in obbs)
+    for obb, box in zip(obbs, boxes):
+        assert numpy.allclose(obb.center, box[:3]) and numpy.allclose(obb.extent, box[3:6])
+        assert obb.volume() == pytest.approx(box[3] * box[4] * box[5])
+    lines = smql.open3d.scene_lines(db, scene="replica-room0", statement="FIND object")
+    objects = db.execute("COUNT object").fetchone()[0]
+    assert len(lines.lines) == 12 * objects and len(lines.colors) == len(lines.lines)
