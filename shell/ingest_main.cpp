@@ -74,7 +74,11 @@ int run(int argc, char** argv) {
     std::string mapDb, mapScene, mapOut;
     map->add_option("database", mapDb, "the database directory")->required();
     map->add_option("--scene", mapScene, "the scene (default: the most recently stored)");
-    map->add_option("--out", mapOut, "the PNG file to write")->required();
+    map->add_option("--out", mapOut, "the file to write: map.png or map.svg")->required();
+    smql::view::MapOptions mapOptions;
+    map->add_flag("--fixtures", mapOptions.fixtures,
+                  "draw ceiling and wall fixtures too (lights, switches, plugs, pictures; left out by default)");
+    map->add_flag("--graph", mapOptions.graph, "draw guidance's decision-point graph too");
 
     auto* guide = app.add_subcommand("guide", "a route in steps, written as JSON, Markdown and a PNG map");
     std::string guideDb, guideScene, guideFrom, guideTo, guideOut;
@@ -84,13 +88,15 @@ int run(int argc, char** argv) {
     guide->add_option("--to", guideTo, "where to go: a reference or a sub-query, (FIND mug LIMIT 1)")->required();
     guide->add_option("--out", guideOut, "the folder for guide.json, guide.md and guide.png")->required();
 
-    auto* view = app.add_subcommand("view", "look at the memory in a browser: a local, read-only web page (docs/view.md)");
+    auto* view =
+        app.add_subcommand("view", "look at the memory in a browser: a local, read-only web page (docs/view.md)");
     smql::view::ViewOptions viewOptions;
     view->add_option("database", viewOptions.database, "the database directory")
         ->required()
         ->check(CLI::ExistingDirectory);
     view->add_option("--host", viewOptions.host, "the address to listen on (default 127.0.0.1: this machine only)");
-    view->add_option("--port", viewOptions.port, "the port (default 8080; 0: any free one)")->check(CLI::Range(0, 65535));
+    view->add_option("--port", viewOptions.port, "the port (default 8080; 0: any free one)")
+        ->check(CLI::Range(0, 65535));
     view->add_option("--scene", viewOptions.scene, "the scene the page opens on (default: the most recently stored)");
     view->add_option("--timeout", viewOptions.statementMilliseconds,
                      "a statement running longer than this many milliseconds is interrupted (default 5000)")
@@ -99,15 +105,15 @@ int run(int argc, char** argv) {
     if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
     if (view->parsed()) {
         smql::view::serve(viewOptions, [&](const std::string& url) {
-            std::cout << "smql view: serving " << viewOptions.database << " read-only at " << url
-                      << " (Ctrl-C stops)" << std::endl;
+            std::cout << "smql view: serving " << viewOptions.database << " read-only at " << url << " (Ctrl-C stops)"
+                      << std::endl;
             if (viewOptions.host != "127.0.0.1" && viewOptions.host != "localhost")
                 std::cerr << "warning: --host " << viewOptions.host
                           << " lets other machines run statements on this database\n";
         });
         return 0;
     }
-    if (map->parsed()) return smql::shell::mapCommand(mapDb, mapScene, mapOut);
+    if (map->parsed()) return smql::shell::mapCommand(mapDb, mapScene, mapOut, mapOptions);
     if (guide->parsed()) return smql::shell::guideCommand(guideDb, guideScene, guideFrom, guideTo, guideOut);
     if (ingestCmd->parsed()) {
         if (ingestQuiet) ingestArgs.log = "quiet";

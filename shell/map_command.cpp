@@ -16,15 +16,13 @@
 #include "model/error.hpp"
 #include "model/geometry.hpp"
 #include "model/names.hpp"
+#include "view/map.hpp"
 
 namespace smql::shell {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kPixelsPerMetre = 80;
-constexpr int kMargin = 40;
 
 // One row of GUIDE's answer, as the files show it.
 struct RouteStep {
@@ -34,91 +32,91 @@ struct RouteStep {
     double x = 0, y = 0, distance = 0;
 };
 
-// Scene metres to image pixels: x to the right, y up (the image's rows run down).
-struct Canvas {
-    model::Aabb bounds;
-    cv::Mat image;
-
-    explicit Canvas(const model::SceneData& scene) {
-        bounds = {{1e300, 1e300, 0}, {-1e300, -1e300, 0}};
-        for (const auto& n : scene.nodes) {
-            if (n.geometry == model::GeometryKind::None || n.hidden || n.kind == model::NodeKind::Scene) continue;
-            auto b = model::worldAabb(n.box);
-            bounds.min.x = std::min(bounds.min.x, b.min.x);
-            bounds.min.y = std::min(bounds.min.y, b.min.y);
-            bounds.max.x = std::max(bounds.max.x, b.max.x);
-            bounds.max.y = std::max(bounds.max.y, b.max.y);
-        }
-        if (bounds.min.x > bounds.max.x) bounds = {{0, 0, 0}, {1, 1, 0}};
-        int width = static_cast<int>((bounds.max.x - bounds.min.x) * kPixelsPerMetre) + 2 * kMargin;
-        int height = static_cast<int>((bounds.max.y - bounds.min.y) * kPixelsPerMetre) + 2 * kMargin;
-        image = cv::Mat(std::min(height, 8000), std::min(width, 8000), CV_8UC3, cv::Scalar(255, 255, 255));
-    }
-    cv::Point at(double x, double y) const {
-        return {static_cast<int>(std::lround(kMargin + (x - bounds.min.x) * kPixelsPerMetre)),
-                static_cast<int>(std::lround(image.rows - kMargin - (y - bounds.min.y) * kPixelsPerMetre))};
-    }
-    std::vector<cv::Point> footprint(const model::Box& box) const {
-        double c = std::cos(box.yaw), s = std::sin(box.yaw);
-        std::vector<cv::Point> corners;
-        for (auto [u, v] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
-            double dx = u * box.size.x / 2, dy = v * box.size.y / 2;
-            corners.push_back(at(box.center.x + c * dx - s * dy, box.center.y + s * dx + c * dy));
-        }
-        return corners;
-    }
-    void label(const std::string& text, cv::Point where, const cv::Scalar& colour) {
-        cv::putText(image, text, where + cv::Point(3, -3), cv::FONT_HERSHEY_SIMPLEX, 0.35, colour, 1, cv::LINE_AA);
-    }
-};
-
-// Anchors and objects from above, then the graph: the picture `smql map` writes.
-Canvas drawScene(const Engine::SceneMap& map) {
-    Canvas canvas(map.scene);
-    const cv::Scalar wall(90, 90, 90), door(60, 160, 60), window(200, 140, 40), object(60, 60, 200),
-        graph(225, 205, 170), text(40, 40, 40);
-    auto anchors = [&](bool floor) {
-        for (const auto& n : map.scene.nodes) {
-            if (n.geometry == model::GeometryKind::None || n.hidden || n.kind != model::NodeKind::Anchor ||
-                (n.category == "floor") != floor)
-                continue;
-            auto corners = canvas.footprint(n.box);
-            if (n.category == "floor") cv::fillConvexPoly(canvas.image, corners, cv::Scalar(245, 245, 245));
-            if (n.category == "wall") cv::fillConvexPoly(canvas.image, corners, wall);
-            if (n.category == "door") cv::fillConvexPoly(canvas.image, corners, door);
-            if (n.category == "window") cv::fillConvexPoly(canvas.image, corners, window);
-        }
-    };
-    anchors(/*floor=*/true);
-    // The floor as guidance sees it: blocked cells (within a body's radius of what stands on the
-    // floor) shaded, and free pockets cut off from the room tinted.
-    const cv::Scalar blocked(215, 215, 240), pocket(170, 230, 250);
-    const auto& space = map.space;
-    for (int j = 0; j < space.height(); ++j)
-        for (int i = 0; i < space.width(); ++i) {
-            if (space.openCell(i, j)) continue;
-            const double x = space.minX() + i * space.cell(), y = space.minY() + j * space.cell();
-            cv::rectangle(canvas.image, canvas.at(x, y), canvas.at(x + space.cell(), y + space.cell()),
-                          space.freeCell(i, j) ? pocket : blocked, cv::FILLED);
-        }
-    anchors(/*floor=*/false);
-    for (const auto& e : map.graph.edges)
-        cv::line(canvas.image, canvas.at(map.graph.points[e.a].at.x, map.graph.points[e.a].at.y),
-                 canvas.at(map.graph.points[e.b].at.x, map.graph.points[e.b].at.y), graph, 1, cv::LINE_AA);
-    for (const auto& p : map.graph.points) cv::circle(canvas.image, canvas.at(p.at.x, p.at.y), 2, graph, -1);
-    for (const auto& n : map.scene.nodes) {
-        if (n.geometry == model::GeometryKind::None || n.hidden || n.kind != model::NodeKind::Object) continue;
-        auto corners = canvas.footprint(n.box);
-        cv::polylines(canvas.image, corners, true, object, 1, cv::LINE_AA);
-        canvas.label(fmt::format("{}#{}", n.category, n.id), corners[3], text);
-    }
-    return canvas;
+cv::Scalar bgr(const view::Rgb& c) { return {double(c[2]), double(c[1]), double(c[0])}; }
+cv::Point pixel(const view::MapPlan::Point& p) {
+    return {static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y))};
 }
 
-void writePng(const cv::Mat& image, const fs::path& path) {
-    if (!cv::imwrite(path.string(), image))
-        throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path.string()), std::nullopt,
-                    "check that the folder exists and is writable");
+// OpenCV's Hershey font scaled to the layout's character advance.
+double fontScale() {
+    static const double scale = [] {
+        int baseline = 0;
+        const double advance =
+            cv::getTextSize("abcdefghijklmnopqrstuvwxyz#0123456789", cv::FONT_HERSHEY_SIMPLEX, 1.0, 1, &baseline)
+                .width /
+            37.0;
+        return view::kMapCharWidth / advance;
+    }();
+    return scale;
+}
+
+void drawText(cv::Mat& image, const std::string& text, double centreX, double baselineY, const cv::Scalar& colour,
+              bool centred = true) {
+    int baseline = 0;
+    const auto size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, fontScale(), 1, &baseline);
+    const int x = static_cast<int>(std::lround(centred ? centreX - size.width / 2.0 : centreX));
+    cv::putText(image, text, {x, static_cast<int>(std::lround(baselineY))}, cv::FONT_HERSHEY_SIMPLEX, fontScale(),
+                colour, 1, cv::LINE_AA);
+}
+
+// The map as a PNG: the same plan the SVG draws.
+cv::Mat renderPng(const view::MapPlan& plan) {
+    cv::Mat image(plan.height, plan.width, CV_8UC3, cv::Scalar(255, 255, 255));
+    for (const auto& s : plan.shapes) {
+        std::vector<cv::Point> corners;
+        for (const auto& p : s.corners) corners.push_back(pixel(p));
+        if (s.filled) cv::fillConvexPoly(image, corners, bgr(s.fill), cv::LINE_AA);
+        cv::polylines(image, corners, true, bgr(s.stroke), 1, cv::LINE_AA);
+    }
+    for (const auto& l : plan.segments)
+        cv::line(image, pixel(l.a), pixel(l.b), bgr(l.colour), std::max(1, static_cast<int>(std::lround(l.width))),
+                 cv::LINE_AA);
+    const cv::Scalar dark(40, 40, 40), white(255, 255, 255);
+    for (const auto& l : plan.labels) {
+        const double cx = l.box.left + l.box.width / 2, cy = l.box.top + l.box.height / 2;
+        if (l.marker) {
+            cv::circle(image, pixel({cx, cy}), static_cast<int>(l.box.width / 2), bgr(l.colour), cv::FILLED,
+                       cv::LINE_AA);
+            drawText(image, l.text, cx, cy + view::kMapTextHeight / 2 - 1.5, white);
+            continue;
+        }
+        cv::Rect box(static_cast<int>(l.box.left), static_cast<int>(l.box.top), static_cast<int>(l.box.width),
+                     static_cast<int>(l.box.height));
+        box &= cv::Rect(0, 0, image.cols, image.rows);
+        cv::Mat region = image(box);
+        cv::addWeighted(region, 0.25, cv::Mat(region.size(), region.type(), white), 0.75, 0, region);
+        drawText(image, l.text, cx, cy + view::kMapTextHeight / 2 - 1.5, dark);
+    }
+    const double line = view::kMapTextHeight + 6;
+    drawText(image, "Legend", plan.legendBox.left, plan.legendBox.top, dark, false);
+    for (std::size_t i = 0; i < plan.legend.size(); ++i) {
+        const double y = plan.legendBox.top + (i + 1) * line;
+        cv::rectangle(image, pixel({plan.legendBox.left, y - view::kMapTextHeight + 1}),
+                      pixel({plan.legendBox.left + 10, y + 1}), bgr(plan.legend[i].colour), cv::FILLED);
+        drawText(image, plan.legend[i].text, plan.legendBox.left + 16, y, dark, false);
+    }
+    if (!plan.key.empty()) {
+        drawText(image, "Numbered on the map", plan.keyBox.left, plan.keyBox.top, dark, false);
+        for (std::size_t i = 0; i < plan.key.size(); ++i)
+            drawText(image, plan.key[i], plan.keyBox.left, plan.keyBox.top + (i + 1) * line, dark, false);
+    }
+    const auto& bar = plan.scale;
+    cv::rectangle(image, pixel(bar.start), pixel({bar.start.x + bar.pixels, bar.start.y + 5}), dark, cv::FILLED);
+    drawText(image, bar.text, bar.start.x + bar.pixels + 6, bar.start.y + 6, dark, false);
+    return image;
+}
+
+// PNG or SVG, as the file's name says.
+void writeMap(const view::MapPlan& plan, const fs::path& path) {
+    if (path.extension() == ".svg") {
+        std::ofstream out(path);
+        out << view::renderSvg(plan);
+        if (out) return;
+    } else if (cv::imwrite(path.string(), renderPng(plan))) {
+        return;
+    }
+    throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path.string()), std::nullopt,
+                "check that the folder exists and is writable; the map is a .png or an .svg");
 }
 
 void writeText(const fs::path& path, const std::string& text) {
@@ -154,12 +152,19 @@ std::vector<RouteStep> stepsOf(const ResultSet& rs) {
 
 }  // namespace
 
-int mapCommand(const std::string& dbDir, const std::string& scene, const std::string& outFile) {
+int mapCommand(const std::string& dbDir, const std::string& scene, const std::string& outFile,
+               const view::MapOptions& options) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
     auto map = engine->sceneMap(scene);
-    writePng(drawScene(map).image, outFile);
-    std::cout << fmt::format("wrote the map of scene '{}' ({} nodes, {} decision points) to {}\n", map.scene.info.name,
-                             map.scene.nodes.size(), map.graph.points.size(), outFile);
+    const view::MapPlan plan = view::planMap(map, {}, options);
+    writeMap(plan, outFile);
+    std::cout << fmt::format("wrote the map of scene '{}' ({} nodes, {} decision points{}) to {}\n",
+                             map.scene.info.name, map.scene.nodes.size(), map.graph.points.size(),
+                             plan.fixturesLeftOut ? fmt::format("; {} ceiling and wall fixtures left out (--fixtures "
+                                                                "draws them)",
+                                                                plan.fixturesLeftOut)
+                                                  : std::string(),
+                             outFile);
     return 0;
 }
 
@@ -193,18 +198,9 @@ int guideCommand(const std::string& dbDir, const std::string& scene, const std::
                                 s.y, s.distance);
     writeText(dir / "guide.md", markdown);
 
-    Canvas canvas = drawScene(map);
-    const cv::Scalar route(40, 40, 220);
-    for (std::size_t i = 1; i < steps.size(); ++i)
-        cv::line(canvas.image, canvas.at(steps[i - 1].x, steps[i - 1].y), canvas.at(steps[i].x, steps[i].y), route, 2,
-                 cv::LINE_AA);
-    for (const auto& s : steps) {
-        cv::circle(canvas.image, canvas.at(s.x, s.y), 8, route, -1, cv::LINE_AA);
-        std::string number = std::to_string(s.step);
-        cv::putText(canvas.image, number, canvas.at(s.x, s.y) + cv::Point(-4 * static_cast<int>(number.size()), 4),
-                    cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-    }
-    writePng(canvas.image, dir / "guide.png");
+    std::vector<view::RouteMark> route;
+    for (const auto& s : steps) route.push_back({s.step, s.x, s.y});
+    writeMap(view::planMap(map, route, {}), dir / "guide.png");
     std::cout << fmt::format("{}\nwrote guide.json, guide.md and guide.png to {}\n", rs.message, outDir);
     return 0;
 }
