@@ -106,6 +106,15 @@ public:
         return messages;
     }
 
+    void exportScene(const std::string& format, std::optional<std::string> scene, const std::string& path) {
+        smql_status status;
+        {
+            py::gil_scoped_release release;
+            status = smql_export(handle(), format.c_str(), scene ? scene->c_str() : nullptr, path.c_str());
+        }
+        check(db_, status);
+    }
+
     void interrupt() {
         if (db_) smql_interrupt(db_);
     }
@@ -343,6 +352,7 @@ PYBIND11_MODULE(_smql, m) {
         .def("execute_script", &Database::executeScript)
         .def("interrupt", &Database::interrupt)
         .def("import_file", &Database::importFile)
+        .def("export", &Database::exportScene)
         .def("ingest", &Database::ingest)
         .def("evaluate", &Database::evaluate)
         .def("check_ingest", &Database::checkIngest);

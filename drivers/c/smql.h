@@ -164,6 +164,12 @@ SMQL_API smql_status smql_import_file(smql_db* db, const char* format, const cha
  * changed; smql_errmsg says why an update was refused. */
 SMQL_API smql_status smql_update_file(smql_db* db, const char* format, const char* path, const char* scene_name);
 
+/* Writes the stored scene `scene_name` (NULL: the current scene) to the file `path` in `format`:
+ * "json" (the smql scene format, which smql_import_file reads back), the other formats of
+ * `smql export` (docs/formats.md: glTF, PLY, GeoJSON, Spark-DSG ...), or "html" (the view's page
+ * as one file, docs/view.md). An unknown format is SMQL_ERROR_USAGE naming the known ones. */
+SMQL_API smql_status smql_export(smql_db* db, const char* format, const char* scene_name, const char* path);
+
 /* ---- Ingest ---------------------------------------------------------- */
 
 /* What an ingest reports as it goes (smql_ingest's progress callback). */

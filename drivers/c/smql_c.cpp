@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <mutex>
 #include <new>
@@ -25,6 +26,7 @@
 #include "ingest_module.hpp"
 #include "model/error.hpp"
 #include "model/result.hpp"
+#include "view/view.hpp"
 
 namespace {
 
@@ -404,6 +406,23 @@ smql_status smql_evaluate(smql_db* db, const char* suite, const char* scene, smq
         res->set.message = "scored scene '" + report.scene + "'";
         res->messages.push_back(res->set.message);
         *out = res.release();
+    });
+}
+
+smql_status smql_export(smql_db* db, const char* format, const char* scene_name, const char* path) {
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!format || !path) return misuse(db, "smql_export: format and path must not be NULL");
+    return guarded(db, {}, [&] {
+        const std::string scene = scene_name ? scene_name : "";
+        const std::string bytes = std::string_view(format) == "html"
+                                      ? smql::view::standalonePage(*db->engine, scene)
+                                      : smql::import::write(format, db->engine->exportScene(scene));
+        std::ofstream out(path, std::ios::binary);
+        out << bytes;
+        out.close();
+        if (!out)
+            throw smql::Error(smql::ErrorKind::Storage, std::string("cannot write ") + path, std::nullopt,
+                              "check that the folder exists and is writable");
     });
 }
 

@@ -156,6 +156,13 @@ class Connection:
             self._check_open()
             self._db.import_file(format, str(path), scene, update)
 
+    def export(self, path, format="json", scene=None):
+        """Writes a stored scene (default: the current one) to `path` in a format of `smql export`
+        (json, glb, ply, geojson, spark-dsg ..., or html: the view's page as one file)."""
+        with self._lock:
+            self._check_open()
+            self._db.export(format, scene, str(path))
+
     def evaluate(self, suite=None, scene=None):
         """The research system's metrics (docs/eval.md) as a list of dicts: task, metric, value,
         episodes, median_us. Without a suite the scene is its own truth."""

@@ -237,6 +237,31 @@ static void test_check_ingest(const char* base, const char* synth) {
     smql_close(db);
 }
 
+/* A scene written with smql_export reads back with smql_import_file, and the page as one file. */
+static void test_export(const char* dir, const char* base) {
+    char json[4096], html[4096], copy[4096];
+    snprintf(json, sizeof json, "%s/exported.json", base);
+    snprintf(html, sizeof html, "%s/exported.html", base);
+    snprintf(copy, sizeof copy, "%s/copy-db", base);
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, SMQL_OPEN_READONLY, &db) == SMQL_OK);
+    CHECK(smql_export(db, "json", "replica-room0", json) == SMQL_OK);
+    CHECK(smql_export(db, "html", NULL, html) == SMQL_OK);
+    CHECK(smql_export(db, "jsn", NULL, json) == SMQL_ERROR_USAGE && contains(smql_errmsg(db), "did you mean json"));
+    CHECK(smql_export(db, "json", "attic", json) == SMQL_ERROR_BINDING);
+    CHECK(smql_export(db, NULL, NULL, json) == SMQL_ERROR_MISUSE);
+    long long cushions = count_of(db, "COUNT cushion WHERE on(sofa)");
+    smql_close(db);
+    CHECK(smql_open(copy, 0, &db) == SMQL_OK);
+    CHECK(smql_import_file(db, "json", json, NULL) == SMQL_OK);
+    CHECK(cushions > 0 && count_of(db, "COUNT cushion WHERE on(sofa)") == cushions);
+    smql_close(db);
+    FILE* page = fopen(html, "r");
+    char head[16] = {0};
+    CHECK(page && fread(head, 1, 15, page) == 15 && strcmp(head, "<!doctype html>") == 0);
+    if (page) fclose(page);
+}
+
 /* The evaluation as a call: the Replica room scored as its own truth finds every object. */
 static void test_evaluate(const char* dir) {
     smql_db* db = NULL;
@@ -912,6 +937,7 @@ int main(int argc, char** argv) {
     if (argc >= 2) test_check_ingest(base, argv[1]);
     test_query(dir);
     test_evaluate(dir);
+    test_export(dir, base);
     test_returned_columns(dir);
     test_statements_and_errors(dir);
     test_read_only(dir);

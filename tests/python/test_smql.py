@@ -233,3 +233,14 @@ def test_open3d_interop(db):
     lines = smql.open3d.scene_lines(db, scene="replica-room0", statement="FIND object")
     objects = db.execute("COUNT object").fetchone()[0]
     assert len(lines.lines) == 12 * objects and len(lines.colors) == len(lines.lines)
+
+
+def test_export_and_import_back(db, tmp_path):
+    db.export(tmp_path / "room.json", scene="replica-room0")
+    with smql.connect(tmp_path / "copy") as copy:
+        copy.import_scene(tmp_path / "room.json", scene="again")
+        assert copy.execute("FIND cushion WHERE on(sofa)").fetchall() == db.execute("FIND cushion WHERE on(sofa)").fetchall()
+    db.export(tmp_path / "room.html", format="html")
+    assert (tmp_path / "room.html").read_text().startswith("<!doctype html>")
+    with pytest.raises(smql.ProgrammingError, match="unknown export format"):
+        db.export(tmp_path / "x", format="jsn")
