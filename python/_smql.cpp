@@ -172,12 +172,13 @@ public:
         check(db_, status);
         return table(result);
     }
-    py::tuple checkIngest(const std::string& truth, std::optional<std::string> scene) {
+    py::tuple checkIngest(std::optional<std::string> truth, std::optional<std::string> scene) {
         smql_result* result = nullptr;
         smql_status status;
         {
             py::gil_scoped_release release;
-            status = smql_check_ingest(handle(), truth.c_str(), scene ? scene->c_str() : nullptr, &result);
+            status = smql_check_ingest(handle(), truth ? truth->c_str() : nullptr, scene ? scene->c_str() : nullptr,
+                                       &result);
         }
         check(db_, status);
         return table(result);

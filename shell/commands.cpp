@@ -67,8 +67,10 @@ int importCommand(const std::string& format, const std::string& file, const std:
 int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
                   const std::string& outFile) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    std::string bytes =
-        format == "html" ? view::standalonePage(*engine, sceneName) : import::write(format, engine->exportScene(sceneName));
+    std::string bytes = format == "html"
+                            ? view::standalonePage(*engine, sceneName)
+                            : import::write(format, import::writesFileIds(format) ? engine->exportScene(sceneName)
+                                                                                  : engine->readScene(sceneName));
     if (outFile.empty()) {
         std::cout << bytes;
         checkWritten(std::cout, "standard output");

@@ -15,6 +15,7 @@
 
 #include "engine/engine.hpp"
 #include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "model/error.hpp"
@@ -150,9 +151,49 @@ int ingestCommand(const IngestArguments& args) {
     }
 }
 
+namespace {
+
+// check-ingest without a truth: the plausibility checks of a stored scene. Exit status 1 when one
+// of them would have refused the ingest.
+int checkPlausibilityCommand(Engine& engine, const std::string& sceneName, const std::string& format) {
+    const model::SceneData scene = engine.readScene(sceneName);
+    const auto report = ingest::checkPlausibility(scene, {.stored = true});
+    auto figure = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+    if (format == "json") {
+        nlohmann::json findings = nlohmann::json::array();
+        for (const auto& f : report.findings)
+            findings.push_back({{"check", f.check}, {"refuse", f.refuse}, {"what", f.what}, {"fix", f.fix}});
+        std::cout << nlohmann::json{{"scene", scene.info.name},
+                                    {"camera_height_m", figure(report.cameraHeight)},
+                                    {"ceiling_height_m", figure(report.ceilingHeight)},
+                                    {"size_ratio", figure(report.sizeRatio)},
+                                    {"named_things", report.namedThings},
+                                    {"findings", findings}}
+                         .dump(2)
+                  << "\n";
+        return report.refused() ? 1 : 0;
+    }
+    auto shown = [](const std::optional<double>& v, const char* unit) {
+        return v ? fmt::format("{:.2f}{}", *v, unit) : std::string("not measured");
+    };
+    std::cout << fmt::format("scene '{}'\n", scene.info.name);
+    std::cout << fmt::format("cameras  {} above the floor\n", shown(report.cameraHeight, " m"));
+    std::cout << fmt::format("ceiling  {} above the floor\n", shown(report.ceilingHeight, " m"));
+    std::cout << fmt::format("sizes    {} of their kinds' largest, over {} named things\n",
+                             shown(report.sizeRatio, "x"), report.namedThings);
+    for (const auto& f : report.findings)
+        std::cout << fmt::format("{} {}: {}\n  fix: {}\n", f.refuse ? "IMPLAUSIBLE" : "warning", f.check, f.what,
+                                 f.fix);
+    if (report.findings.empty()) std::cout << "looks like a room: every check passed\n";
+    return report.refused() ? 1 : 0;
+}
+
+}  // namespace
+
 int checkIngestCommand(const std::string& dbDir, const std::string& truthPath, const std::string& sceneName,
                        const std::string& format, bool misses) {
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
+    if (truthPath.empty()) return checkPlausibilityCommand(*engine, sceneName, format);
     const ingest::TruthCheck check = ingest::checkAgainstTruth(engine->exportScene(sceneName), truthPath);
     const ingest::QualityReport& r = check.report;
     const auto& registration = check.registration;

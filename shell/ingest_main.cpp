@@ -26,23 +26,29 @@ int run(int argc, char** argv) {
         ->check(CLI::ExistingPath);
     ingestCmd->add_option("--db", ingestArgs.db, "database directory (created if missing)")->required();
     // The options smql_ingest and Python's smql.ingest take too, from their one table.
-    for (const auto& option : smql::ingest::ingestOptions())
-        ingestCmd
-            ->add_option_function<std::string>(
-                smql::ingest::optionFlag(option.name),
-                [&ingestArgs, &option](const std::string& value) { option.set(ingestArgs.request, value); },
-                option.help())
-            ->type_name(std::string(option.valueName));
+    for (const auto& option : smql::ingest::ingestOptions()) {
+        const std::string flag = smql::ingest::optionFlag(option.name);
+        if (option.valueName.empty())
+            ingestCmd->add_flag_function(
+                flag, [&ingestArgs, &option](std::int64_t) { option.set(ingestArgs.request, "true"); }, option.help());
+        else
+            ingestCmd
+                ->add_option_function<std::string>(
+                    flag, [&ingestArgs, &option](const std::string& value) { option.set(ingestArgs.request, value); },
+                    option.help())
+                ->type_name(std::string(option.valueName));
+    }
     ingestCmd->add_flag("--quiet", ingestQuiet, "print nothing but errors");
     ingestCmd->add_option("--log", ingestArgs.log, "progress as a bar (default), json lines, or quiet")
         ->check(CLI::IsMember({"bar", "json", "quiet"}));
 
-    auto* check = app.add_subcommand("check-ingest", "compare an ingested scene with a synthetic capture's truth");
+    auto* check = app.add_subcommand("check-ingest",
+                                     "check an ingested scene: does it look like a room (cameras, ceiling, sizes), and "
+                                     "with --truth, how close it is to a synthetic capture's truth");
     std::string checkDb, checkTruth, checkScene, checkFormat = "table";
     bool checkMisses = false;
     check->add_option("database", checkDb, "database directory")->required()->check(CLI::ExistingDirectory);
     check->add_option("--truth", checkTruth, "truth.json of the capture (smql synth writes it)")
-        ->required()
         ->check(CLI::ExistingFile);
     check->add_option("--scene", checkScene, "scene name (default: the most recent)");
     check->add_option("--format", checkFormat, "table or json")->check(CLI::IsMember({"table", "json"}));

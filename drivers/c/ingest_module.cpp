@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/pipeline/request.hpp"
 
@@ -28,8 +29,9 @@ ingest::IngestRequest requestOf(const IngestCall& call) {
         throw Error(ErrorKind::Usage, "smql_ingest: the options are not a JSON object", std::nullopt,
                     R"(options are a JSON object, {"scene": "kitchen", "objects": "cluster"}, or NULL)");
     for (const auto& [name, value] : options.items()) {
-        if (!value.is_string() && !value.is_number())
-            throw Error(ErrorKind::Usage, "smql_ingest: option '" + name + "' is neither text nor a number");
+        if (!value.is_string() && !value.is_number() && !value.is_boolean())
+            throw Error(ErrorKind::Usage,
+                        "smql_ingest: option '" + name + "' is neither text, a number nor true/false");
         ingest::setIngestOption(request, name, value.is_string() ? value.get<std::string>() : value.dump());
     }
     return request;
@@ -108,6 +110,20 @@ extern "C" SMQL_API void smql_ingest_module_run(smql::capi::IngestCall& call) no
 
 extern "C" SMQL_API void smql_ingest_module_check(smql::capi::CheckCall& call) noexcept {
     smql::capi::guarded(call, [&] {
-        call.figures = smql::ingest::truthCheckFigures(smql::ingest::checkAgainstTruth(call.stored, call.truth));
+        if (!call.truth.empty()) {
+            call.figures = smql::ingest::truthCheckFigures(smql::ingest::checkAgainstTruth(call.stored, call.truth));
+            return;
+        }
+        // No truth: does the stored scene look like a room (plausibility.hpp)?
+        const auto report = smql::ingest::checkPlausibility(call.stored, {.stored = true});
+        auto add = [&](const char* name, const std::optional<double>& value) {
+            if (value) call.figures.emplace_back(name, *value);
+        };
+        add("camera_height_m", report.cameraHeight);
+        add("ceiling_height_m", report.ceilingHeight);
+        add("size_ratio", report.sizeRatio);
+        call.figures.emplace_back("named_things", static_cast<double>(report.namedThings));
+        call.figures.emplace_back("warnings", static_cast<double>(report.findings.size()));
+        call.figures.emplace_back("refused", report.refused() ? 1.0 : 0.0);
     });
 }

@@ -40,10 +40,10 @@ struct IngestCall {
     std::optional<Error> error;  // set when a step failed; the step's other outputs are then unset
 };
 
-// smql_check_ingest: a stored scene against a synthetic capture's truth.
+// smql_check_ingest: a stored scene against a synthetic capture's truth, or alone.
 struct CheckCall {
-    model::SceneData stored;                              // in
-    std::string truth;                                    // in: the truth.json path
+    model::SceneData stored;  // in
+    std::string truth;        // in: the truth.json path; "" for the plausibility checks alone
     std::vector<std::pair<std::string, double>> figures;  // out
     std::optional<Error> error;
 };

@@ -212,12 +212,14 @@ typedef int (*smql_progress_callback)(void* user, const smql_progress* progress)
 SMQL_API smql_status smql_ingest(smql_db* db, const char* capture, const char* options, smql_progress_callback progress,
                                  void* user);
 
-/* Compares a stored scene with the ground truth of the synthetic capture it was ingested from
- * (`smql check-ingest`; docs/ingest.md): truth is the capture's truth.json (smql synth writes it,
- * with pose.txt and visibility.json beside it), scene NULL for the most recent. On SMQL_OK *out
- * holds one row per figure: name (anchors_f1, objects_precision, color_accuracy, parent_accuracy,
- * mean_center_error_m, scale_error when the cameras could be registered, ...) and value. Loads
- * the ingest module as smql_ingest does. */
+/* Checks a stored scene (`smql check-ingest`; docs/ingest.md), scene NULL for the most recent. With
+ * truth, the capture's truth.json (smql synth writes it, with pose.txt and visibility.json beside
+ * it): how close the scene is to it. Without (NULL): whether it looks like a room at all
+ * ("Plausibility"). On SMQL_OK *out holds one row per figure: name and value; with a truth
+ * anchors_f1, objects_precision, color_accuracy, parent_accuracy, mean_center_error_m, scale_error
+ * (when the cameras could be registered) ...; without, camera_height_m, ceiling_height_m and
+ * size_ratio (those measured), named_things, warnings and refused (1 when an ingest would have
+ * refused it). Loads the ingest module as smql_ingest does. */
 SMQL_API smql_status smql_check_ingest(smql_db* db, const char* truth, const char* scene, smql_result** out);
 
 /* Scores a memory with the research system's metrics (docs/eval.md; `smql eval` is the same):

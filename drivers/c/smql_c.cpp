@@ -374,11 +374,11 @@ smql_status smql_ingest(smql_db* db, const char* capture, const char* options, s
 smql_status smql_check_ingest(smql_db* db, const char* truth, const char* scene, smql_result** out) {
     if (out) *out = nullptr;
     if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
-    if (!truth || !out) return misuse(db, "smql_check_ingest: truth and out must not be NULL");
+    if (!out) return misuse(db, "smql_check_ingest: out must not be NULL");
     return guarded(db, {}, [&] {
         smql::capi::CheckCall call;
         call.stored = db->engine->exportScene(scene ? scene : "");
-        call.truth = truth;
+        call.truth = truth ? truth : "";
         runStep(loadedIngestModule().check, call);
         auto res = std::make_unique<smql_result>();
         res->set.columns = {{"name", smql::ValueType::Text}, {"value", smql::ValueType::Real}};
@@ -414,9 +414,11 @@ smql_status smql_export(smql_db* db, const char* format, const char* scene_name,
     if (!format || !path) return misuse(db, "smql_export: format and path must not be NULL");
     return guarded(db, {}, [&] {
         const std::string scene = scene_name ? scene_name : "";
-        const std::string bytes = std::string_view(format) == "html"
-                                      ? smql::view::standalonePage(*db->engine, scene)
-                                      : smql::import::write(format, db->engine->exportScene(scene));
+        const std::string bytes =
+            std::string_view(format) == "html"
+                ? smql::view::standalonePage(*db->engine, scene)
+                : smql::import::write(format, smql::import::writesFileIds(format) ? db->engine->exportScene(scene)
+                                                                                  : db->engine->readScene(scene));
         std::ofstream out(path, std::ios::binary);
         out << bytes;
         out.close();

@@ -1,7 +1,7 @@
 // What things of a kind usually measure, in metres: the one table of sizes the
 // ingest knows. The scale priors take the heights of the kinds whose height
 // varies little; a hull carved without depth is held to the largest footprint
-// of its kind.
+// of its kind; the plausibility checks hold boxes to their kind's extent.
 #pragma once
 
 #include <optional>
@@ -19,5 +19,10 @@ struct Footprint {
     double longer = 0, shorter = 0;
 };
 std::optional<Footprint> largestFootprint(std::string_view category);
+
+// The largest side (height included) things of a kind commonly have, in metres; nullopt for kinds
+// the table lacks. A box named so that is several times longer is not that thing, or the
+// capture's scale is wrong (plausibility.hpp).
+std::optional<double> typicalExtent(std::string_view category);
 
 }  // namespace smql::ingest

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "model/types.hpp"
+
 namespace smql::import::detail {
 
 // Plausibility limits for imported geometry (metres): anything beyond them is
@@ -32,5 +34,8 @@ std::string angleProblem(double radians);
 
 // The same angle in (-pi, pi].
 double normaliseYaw(double yaw);
+
+// "none", "box" or "plane", as the JSON formats write a node's geometry.
+const char* geometryName(model::GeometryKind geometry);
 
 }  // namespace smql::import::detail

@@ -36,4 +36,21 @@ model::SceneData readSceneJson(const std::string& path, const std::string& scene
 // enough digits that readSceneJson gives back an equal SceneData.
 std::string writeSceneJson(const model::SceneData& scene);
 
+// Hydra's Spark-DSG scene graph JSON: its objects and rooms (places, agents and the mesh are
+// skipped); by default the scene name smql wrote into it, else the file's stem.
+model::SceneData readSparkDsg(const std::string& path, const std::string& sceneName);
+// The scene as a Spark-DSG graph: anchors and objects in the object layer, the scene and its rooms in
+// the room layer, parents as Hydra's interlayer edges (docs/formats.md, "Spark-DSG").
+std::string writeSparkDsg(const model::SceneData& scene);
+
+// The writers of the formats of other tools, for viewing a scene or handing it on: the drawn boxes
+// (export_support.hpp: walls, floor, doors, windows, objects), metres, described in docs/formats.md.
+// glTF 2.0, binary (.glb) and JSON with the buffer embedded (.gltf): box meshes, y up.
+std::string writeGlb(const model::SceneData& scene);
+std::string writeGltf(const model::SceneData& scene);
+// PLY, binary little endian: the boxes as one triangle mesh with colours per vertex, z up.
+std::string writePly(const model::SceneData& scene);
+// GeoJSON: the floor plan, one Polygon feature per box's footprint, in the scene's own metres.
+std::string writeGeoJson(const model::SceneData& scene);
+
 }  // namespace smql::import

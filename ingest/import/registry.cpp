@@ -15,8 +15,13 @@ constexpr SceneFormat kFormats[] = {
     {"replica", "Replica's info_semantic.json", readReplica, nullptr},
     {"spatiallm", "a SpatialLM layout text", readSpatialLm, nullptr},
     {"json", "the smql JSON scene format", readSceneJson,
-     [](const model::SceneData& scene) { return writeSceneJson(scene) + "\n"; }},
+     [](const model::SceneData& scene) { return writeSceneJson(scene) + "\n"; }, nullptr, true},
     {"vsibench", "VSI-Bench's meta-info JSON of ScanNet or ARKitScenes rooms", readVsiBench, nullptr, vsiBenchRooms},
+    {"spark-dsg", "Hydra's Spark-DSG scene graph JSON", readSparkDsg, writeSparkDsg},
+    {"glb", "glTF 2.0 binary: the boxes as meshes coloured by category", nullptr, writeGlb},
+    {"gltf", "glTF 2.0 JSON with the buffer embedded", nullptr, writeGltf},
+    {"ply", "PLY (binary): the boxes as a triangle mesh with colours", nullptr, writePly},
+    {"geojson", "GeoJSON floor plan: the boxes' footprints in metres", nullptr, writeGeoJson},
 };
 
 std::vector<std::string> namesWhere(bool (*has)(const SceneFormat&)) {
@@ -57,6 +62,11 @@ const SceneFormat* findFormat(std::string_view name) {
 
 model::SceneData read(std::string_view format, const std::string& path, const std::string& sceneName) {
     return known(format, readableFormats(), "import").read(path, sceneName);
+}
+
+bool writesFileIds(std::string_view format) {
+    const SceneFormat* f = findFormat(format);
+    return f && f->fileIds;
 }
 
 std::string write(std::string_view format, const model::SceneData& scene) {

@@ -24,6 +24,10 @@ struct SceneFormat {
     // The scenes a file holds, for formats whose files hold several (`read` then takes one by its
     // name); null for formats of one scene a file.
     std::vector<std::string> (*scenes)(const std::string& path) = nullptr;
+    // The writer is given the scene in its file form, ids renumbered 1..n (Engine::exportScene), as
+    // the smql JSON format keeps them for reading back; others get the database's ids
+    // (Engine::readScene), so that names and paths in the file are the ones queries print.
+    bool fileIds = false;
 };
 
 std::span<const SceneFormat> formats();
@@ -38,5 +42,7 @@ const SceneFormat* findFormat(std::string_view name);
 model::SceneData read(std::string_view format, const std::string& path, const std::string& sceneName = {});
 // The scene in `format`. Throws smql::Error(Usage) for a format smql does not write.
 std::string write(std::string_view format, const model::SceneData& scene);
+// Whether `format`'s writer takes the scene in its file form (SceneFormat::fileIds).
+bool writesFileIds(std::string_view format);
 
 }  // namespace smql::import

@@ -1,7 +1,6 @@
 // Replica's info_semantic.json -> SceneData (docs/formats.md, "Replica").
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -11,6 +10,7 @@
 #include "ingest/import/importers.hpp"
 
 #include "ingest/import/json_field.hpp"
+#include "ingest/import/oriented_box.hpp"
 #include "ingest/import/viewpoint.hpp"
 
 namespace smql::import {
@@ -20,13 +20,7 @@ namespace {
 using detail::Field;
 using detail::kMaxCoordinate;
 using detail::kMaxSize;
-
-// Quaternions this close to unit norm are float round-off and get normalised;
-// anything further off is a corrupt rotation.
-constexpr double kQuaternionNormTolerance = 1e-3;
-// A box whose own z axis leans further than this from world z is not upright
-// and is folded to its world AABB.
-constexpr double kMaxTiltDegrees = 10;
+using detail::kQuaternionNormTolerance;
 
 struct ClassMapping {
     model::NodeKind kind;
@@ -95,17 +89,8 @@ model::Node readObject(const Field& object, model::NodeId localId) {
     // abb.center is in the box's frame (habitat-sim's reading of Replica).
     Eigen::Vector3d world = rotation * Eigen::Vector3d(center.x, center.y, center.z) +
                             Eigen::Vector3d(translation.x, translation.y, translation.z);
-    node.box.center = {world.x(), world.y(), world.z()};
+    node.box = detail::uprightBox({world.x(), world.y(), world.z()}, sizes, rotation);
     checkCoordinate(orientedBox, node.box.center, "world centre");
-
-    if (rotation(2, 2) >= std::cos(kMaxTiltDegrees * std::numbers::pi / 180)) {
-        node.box.size = sizes;
-        node.box.yaw = std::atan2(rotation(1, 0), rotation(0, 0));
-    } else {
-        Eigen::Vector3d extents = rotation.cwiseAbs() * Eigen::Vector3d(sizes.x, sizes.y, sizes.z);
-        node.box.size = {extents.x(), extents.y(), extents.z()};
-        node.box.yaw = 0;
-    }
     return node;
 }
 

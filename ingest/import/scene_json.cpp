@@ -27,18 +27,6 @@ using detail::kMaxSize;
 
 constexpr std::int64_t kFormatVersion = 1;
 
-const char* geometryName(model::GeometryKind geometry) {
-    switch (geometry) {
-        case model::GeometryKind::None:
-            return "none";
-        case model::GeometryKind::Box:
-            return "box";
-        case model::GeometryKind::Plane:
-            return "plane";
-    }
-    return "none";
-}
-
 Json vec3(const model::Vec3& v) { return Json::array({v.x, v.y, v.z}); }
 
 // A float written as its shortest decimal ("0.7", not 0.699999988...); read
@@ -51,7 +39,7 @@ Json nodeJson(const model::Node& node) {
     out["kind"] = model::toString(node.kind);
     out["parent"] = node.parent;
     out["category"] = node.category;
-    out["geometry"] = geometryName(node.geometry);
+    out["geometry"] = detail::geometryName(node.geometry);
     // A box without geometry carries nothing, but is kept when set so that nothing is lost.
     if (node.geometry != model::GeometryKind::None || node.box != model::Box{})
         out["box"] = {{"center", vec3(node.box.center)}, {"size", vec3(node.box.size)}, {"yaw", node.box.yaw}};

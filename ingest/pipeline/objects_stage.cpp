@@ -10,6 +10,7 @@
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/pipeline/colors.hpp"
+#include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
 #include "model/embedding.hpp"
 
@@ -103,8 +104,17 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         cv::Mat colors;
         for (const auto& v : track.views) colors.push_back(v.colors);
-        model::Node& node = addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, category,
-                                    opening ? GeometryKind::Plane : GeometryKind::Box, box);
+        // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess.
+        const bool misnamed = !opening && !nameFitsBox(category, box);
+        if (misnamed)
+            progress.note(
+                fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
+                            "'object' with detected_as = {}",
+                            std::max({box.size.x, box.size.y, box.size.z}), category, category));
+        model::Node& node =
+            addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, misnamed ? std::string("object") : category,
+                    opening ? GeometryKind::Plane : GeometryKind::Box, box);
+        if (misnamed) node.attributes.push_back({"detected_as", category});
         if (!opening) {
             if (auto color = nameColor(colors).name; !color.empty()) node.attributes.push_back({"color", color});
             node.attributes.push_back({"size", sizeWord(box)});
@@ -115,7 +125,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         node.attributes.push_back({"first_seen", std::to_string(capture.frames[first->frame].index)});
         node.attributes.push_back({"last_seen", std::to_string(capture.frames[last->frame].index)});
         node.attributes.push_back({"views", std::to_string(track.views.size())});
-        node.confidence = static_cast<float>(std::min(1.0, 0.5 + 0.1 * track.views.size()));
+        node.confidence = static_cast<float>(std::min(1.0, 0.5 + 0.1 * track.views.size()) * (misnamed ? 0.5 : 1.0));
         std::sort(node.attributes.begin(), node.attributes.end(),
                   [](const auto& a, const auto& b) { return a.name < b.name; });
         if (!track.evidence.jpeg.empty())

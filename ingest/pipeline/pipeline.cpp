@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "model/error.hpp"
+
 #include "ingest/pipeline/align_stage.hpp"
 #include "ingest/pipeline/anchors_stage.hpp"
 #include "ingest/pipeline/frames_stage.hpp"
@@ -12,6 +14,7 @@
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/objects_stage.hpp"
 #include "ingest/pipeline/openings_stage.hpp"
+#include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/relations_stage.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
 
@@ -33,6 +36,25 @@ model::SceneInfo sceneInfo(const Capture& capture, const IngestOptions& options,
     info.viewpoint = {first.translation, std::atan2(R[5], R[2])};  // the camera's +z axis in the floor plane
     info.viewpointNote = "the first camera of the capture, facing where it looked";
     return info;
+}
+
+// The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
+// --force, so that no wrong memory is stored with exit status 0.
+void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options, StageRunner& runner) {
+    const ScaleSource source{.depth = framesHaveDepth(capture) && !options.scale,
+                             .depthScale = capture.depthScale,
+                             .given = options.scale.has_value()};
+    std::vector<double> cameraHeights;
+    for (const auto& [frame, centre] : result.cameraCentres) cameraHeights.push_back(centre.z);
+    const PlausibilityReport report = checkPlausibility(result.scene, source, std::move(cameraHeights));
+    const PlausibilityFinding* refusal = nullptr;
+    for (const auto& f : report.findings) {
+        runner.note(fmt::format("{} {}: {}; {}", f.refuse ? "implausible" : "warning:", f.check, f.what, f.fix));
+        if (f.refuse && !refusal) refusal = &f;
+    }
+    if (refusal && !options.force)
+        throw Error(ErrorKind::Input, fmt::format("this does not look like a room: {}", refusal->what), std::nullopt,
+                    refusal->fix + "; --force stores the memory anyway");
 }
 
 }  // namespace
@@ -60,6 +82,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     auto tracked = runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
+    checkRoom(result, capture, options, runner);
     return result;
 }
 

@@ -26,6 +26,7 @@ struct IngestOptions {
     std::string detectorModel;    // --detector: the ONNX model (default: defaultModelDir()/nanodet.onnx)
     std::string detectorClasses;  // --classes: its class names (default: coco.names beside the model)
     std::optional<double> scale;  // metres per capture unit, overriding the alignment's estimate
+    bool force = false;           // keep a memory the plausibility checks refuse (plausibility.hpp)
     int workingWidth = 640;
     int structureStride = 4;        // every n-th pixel of each frame feeds the structure cloud
     double structureVoxel = 0.05;   // m

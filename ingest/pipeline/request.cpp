@@ -129,6 +129,16 @@ const std::vector<IngestOption> kIngestOptions = {
              "of adding a new scene");
      },
      [](IngestRequest& r, const std::string& v) { r.update = v; }},
+    {"force", "",
+     [] {
+         return std::string(
+             "store the memory even when it does not look like a room (cameras, ceiling or things of implausible "
+             "size: a wrong depth unit or scale, docs/ingest.md \"Plausibility\"); it is refused otherwise");
+     },
+     [](IngestRequest& r, const std::string& v) {
+         if (v != "true" && v != "false" && v != "1" && v != "0") badValue("force", v, "true or false");
+         r.force = v == "true" || v == "1";
+     }},
 };
 
 GeometrySource geometrySource(const std::string& name) {
@@ -187,6 +197,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     options.detectorModel = request.detector;
     options.detectorClasses = request.classes;
     options.scale = request.scale;
+    options.force = request.force;
     options.colmap.maxImageSize = request.maxSize;
     options.colmap.vocabularyTree = request.vocabularyTree;
     options.colmap.workDirectory = request.colmapDir;

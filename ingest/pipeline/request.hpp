@@ -30,13 +30,14 @@ struct IngestRequest {
     std::string vocabularyTree;        // COLMAP's vocabulary tree, for loop detection
     std::string colmapDir;             // COLMAP's kept work folder; a finished run there is read back
     std::string update;                // a stored scene of the same place to make the next version of
+    bool force = false;                // store a memory the plausibility checks refuse
 };
 
 // One option by name: `name` as the C API and Python spell it (`max_size`); the shell's flag is
 // `--max-size`. `set` checks the value and throws smql::Error(Usage) saying what it takes.
 struct IngestOption {
     std::string_view name;
-    std::string_view valueName;  // for --help: TEXT, FILE, NUMBER ...
+    std::string_view valueName;  // for --help: TEXT, FILE, NUMBER ...; "" for a flag (true or false)
     std::string (*help)();
     void (*set)(IngestRequest& request, const std::string& value);
 };

@@ -171,11 +171,12 @@ class Connection:
             columns, rows = self._db.evaluate(None if suite is None else str(suite), scene)
         return [dict(zip(columns, row)) for row in rows]
 
-    def check_ingest(self, truth, scene=None):
-        """A stored scene against its synthetic capture's truth.json: {figure: value}."""
+    def check_ingest(self, truth=None, scene=None):
+        """A stored scene against its synthetic capture's truth.json, or without one whether it
+        looks like a room (docs/ingest.md, "Plausibility"): {figure: value}."""
         with self._lock:
             self._check_open()
-            _, rows = self._db.check_ingest(str(truth), scene)
+            _, rows = self._db.check_ingest(None if truth is None else str(truth), scene)
         return dict(rows)
 
     def _check_open(self):

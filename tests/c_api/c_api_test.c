@@ -219,7 +219,19 @@ static void test_check_ingest(const char* base, const char* synth) {
     smql_result* res = NULL;
     CHECK(smql_open(dir, 0, &db) == SMQL_OK);
     CHECK(smql_ingest(db, synth, NULL, NULL, NULL) == SMQL_OK);
-    CHECK(smql_check_ingest(db, NULL, NULL, &res) == SMQL_ERROR_MISUSE);
+    CHECK(smql_check_ingest(db, NULL, NULL, NULL) == SMQL_ERROR_MISUSE);
+    /* Without a truth: the plausibility checks. A generated room looks like one. */
+    CHECK(smql_check_ingest(db, NULL, NULL, &res) == SMQL_OK);
+    int plausible = 0;
+    for (size_t r = 0; r < smql_row_count(res); ++r) {
+        const char* name = NULL;
+        double value = -1;
+        CHECK(smql_value_text(res, r, 0, &name) == SMQL_OK && smql_value_double(res, r, 1, &value) == SMQL_OK);
+        if (name && strcmp(name, "camera_height_m") == 0) plausible += value > 1.0 && value < 2.0;
+        if (name && strcmp(name, "refused") == 0) plausible += value == 0.0;
+    }
+    CHECK(plausible == 2);
+    smql_result_free(res);
     CHECK(smql_check_ingest(db, "/nonexistent/truth.json", NULL, &res) == SMQL_ERROR_INPUT && res == NULL);
     CHECK(smql_check_ingest(db, truth, "synth-capture", &res) == SMQL_OK);
     int found = 0;

@@ -155,6 +155,9 @@ def test_ingest_with_progress(tmp_path):
         assert objects > 0
         # Stamped as an imported scene is.
         assert connection.execute("COUNT object WHERE added SINCE '2000-01-01'").fetchone()[0] == objects
+        # It looks like a room: the cameras at a person's height, nothing refused.
+        room = connection.check_ingest()
+        assert 1.0 < room["camera_height_m"] < 2.0 and room["refused"] == 0
     # Options are checked before the work.
     with pytest.raises(smql.ProgrammingError) as error:
         smql.ingest(DINING, tmp_path / "db", objcts="cluster")

@@ -33,9 +33,13 @@ TEST_CASE("the registry reads every format it lists, naming scenes by each forma
     for (const auto& f : import::formats())
         if (f.read) listed.emplace_back(f.name);
     CHECK(listed == import::readableFormats());
-    CHECK(import::writableFormats() == std::vector<std::string>{"json"});
+    CHECK(import::writableFormats() == std::vector<std::string>{"json", "spark-dsg", "glb", "gltf", "ply", "geojson"});
+    CHECK(import::readableFormats() ==
+          std::vector<std::string>{"replica", "spatiallm", "json", "vsibench", "spark-dsg"});
     CHECK(import::read("json", dir.write("again.json", import::write("json", byDefault))).info.name == "kitchen");
     CHECK_THROWS_WITH(import::write("jsn", byDefault), "unknown export format 'jsn'");
+    // A format smql only writes is no import format: the did-you-mean stays among the readable ones.
+    CHECK_THROWS_WITH(import::read("glb", layout), "unknown import format 'glb'");
     CHECK(import::findFormat("replica") != nullptr);
 }
 

@@ -1,0 +1,132 @@
+#include "ingest/pipeline/plausibility.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "ingest/geometry/typical_sizes.hpp"
+
+namespace smql::ingest {
+
+namespace {
+
+// Where people and robots hold cameras (m above the floor): warned outside the first range,
+// refused outside the second.
+constexpr double kCameraWarn[2] = {0.3, 2.3};
+constexpr double kCameraRefuse[2] = {0.12, 3.2};
+constexpr double kUsualCamera = 1.4;  // a phone held by a standing person
+// Rooms' ceilings (m).
+constexpr double kCeilingWarn[2] = {2.0, 5.0};
+constexpr double kCeilingRefuse[2] = {1.4, 9.0};
+// The median thing against its kind's largest side: about 0.6 in real rooms (most things are not
+// the largest of their kind).
+constexpr double kRatioWarn[2] = {0.25, 1.7};
+constexpr double kRatioRefuse[2] = {0.12, 3.0};
+constexpr double kUsualRatio = 0.6;
+constexpr std::size_t kMinNamedThings = 3;
+// When the cameras' height and the things' sizes both say the scale is off, the same way, their
+// geometric mean is the scale's error: refused past these factors. Each alone varies more (a robot's
+// low camera, a room of small things); together they are a wrong depth unit or --scale.
+constexpr double kAgreedRefuse[2] = {0.55, 1.8};
+// A box this many times its kind's largest side is not that kind.
+constexpr double kNameMismatch = 2.5;
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
+}
+
+double largestSide(const model::Box& box) { return std::max({box.size.x, box.size.y, box.size.z}); }
+
+// The fix for a scale off by `factor` (measured / usual): the depth unit, --scale, or the floor.
+std::string scaleFix(double factor, const ScaleSource& source) {
+    if (source.stored)
+        return fmt::format(
+            "sizes suggest the scale is {:.2g}x too {}: ingest the capture again with --depth-scale (depth in another "
+            "unit) or --scale",
+            factor >= 1 ? factor : 1 / factor, factor >= 1 ? "large" : "small");
+    if (source.depth)
+        return fmt::format(
+            "the depth images may be in another unit: give --depth-scale (depth units per metre: 1000 for "
+            "millimetres, 5000 for TUM); its measures suggest about --depth-scale {:.0f}",
+            source.depthScale * factor);
+    if (source.given)
+        return fmt::format("--scale may be wrong: the capture's measures suggest about {:.3g} times it", 1 / factor);
+    return fmt::format(
+        "the scale was estimated from the capture: give --scale (metres per capture unit), a camera.json with "
+        "depth, or more views of the floor and of things of known size; sizes suggest the scale is {:.2g}x too {}",
+        factor >= 1 ? factor : 1 / factor, factor >= 1 ? "large" : "small");
+}
+
+void judge(PlausibilityReport& report, const char* check, double value, const double warn[2], const double refuse[2],
+           const std::string& what, const std::string& fix) {
+    if (value >= warn[0] && value <= warn[1]) return;
+    const bool out = value < refuse[0] || value > refuse[1];
+    report.findings.push_back({check, out, what, fix});
+}
+
+}  // namespace
+
+bool PlausibilityReport::refused() const {
+    return std::any_of(findings.begin(), findings.end(), [](const auto& f) { return f.refuse; });
+}
+
+PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleSource& source,
+                                     std::vector<double> cameraHeights) {
+    PlausibilityReport report;
+    bool floor = false;
+    std::vector<double> frames, ratios;
+    for (const auto& n : scene.nodes) {
+        if (n.kind == model::NodeKind::Anchor && n.category == "floor") floor = true;
+        if (n.kind == model::NodeKind::Anchor && n.category == "ceiling") report.ceilingHeight = n.box.center.z;
+        if (n.kind == model::NodeKind::Frame) frames.push_back(n.box.center.z);
+        if (n.kind != model::NodeKind::Object || n.geometry == model::GeometryKind::None) continue;
+        if (auto usual = typicalExtent(n.category)) ratios.push_back(largestSide(n.box) / *usual);
+    }
+    std::vector<double>& cameras = !cameraHeights.empty() ? cameraHeights : frames;
+    if (cameras.empty() && scene.info.viewpoint.position != model::Vec3{}) cameras = {scene.info.viewpoint.position.z};
+    if (floor && !cameras.empty()) {
+        report.cameraHeight = median(cameras);
+        judge(report, "camera height", *report.cameraHeight, kCameraWarn, kCameraRefuse,
+              fmt::format("the cameras are {:.2f} m above the floor (people and robots hold them {:g} to {:g} m up)",
+                          *report.cameraHeight, kCameraWarn[0], kCameraWarn[1]),
+              *report.cameraHeight > 0 ? scaleFix(*report.cameraHeight / kUsualCamera, source)
+                                       : std::string("the floor found is above the cameras: check the capture"));
+    }
+    if (report.ceilingHeight)
+        judge(report, "ceiling height", *report.ceilingHeight, kCeilingWarn, kCeilingRefuse,
+              fmt::format("the ceiling is {:.2f} m above the floor (rooms: {:g} to {:g} m)", *report.ceilingHeight,
+                          kCeilingWarn[0], kCeilingWarn[1]),
+              scaleFix(*report.ceilingHeight / 2.6, source));
+    report.namedThings = ratios.size();
+    if (ratios.size() >= kMinNamedThings) {
+        report.sizeRatio = median(ratios);
+        judge(report, "sizes of named things", *report.sizeRatio, kRatioWarn, kRatioRefuse,
+              fmt::format("the named things are {:.2f} times the largest of their kinds, at the median of {} "
+                          "(real rooms: about {:g})",
+                          *report.sizeRatio, ratios.size(), kUsualRatio),
+              scaleFix(*report.sizeRatio / kUsualRatio, source));
+    }
+    if (report.cameraHeight && report.sizeRatio && *report.cameraHeight > 0) {
+        const double byCameras = *report.cameraHeight / kUsualCamera, bySizes = *report.sizeRatio / kUsualRatio;
+        const bool agree = (byCameras < 1) == (bySizes < 1);
+        const double factor = std::sqrt(byCameras * bySizes);
+        if (agree && (factor < kAgreedRefuse[0] || factor > kAgreedRefuse[1]))
+            report.findings.push_back(
+                {"scale", true,
+                 fmt::format("the cameras' height ({:.2f} m) and the named things' sizes ({:.2f} of their kinds' "
+                             "largest) both say the scale is about {:.2g}x too {}",
+                             *report.cameraHeight, *report.sizeRatio, factor >= 1 ? factor : 1 / factor,
+                             factor >= 1 ? "large" : "small"),
+                 scaleFix(factor, source)});
+    }
+    return report;
+}
+
+bool nameFitsBox(const std::string& category, const model::Box& box) {
+    auto usual = typicalExtent(category);
+    return !usual || largestSide(box) <= kNameMismatch * *usual;
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,51 @@
+// Is the memory a room at all? Checks on a scene, metric or not, with what a person knows of rooms
+// (docs/ingest.md, "Plausibility"): the cameras stand at a person's or a robot's height above the
+// floor, the ceiling is where ceilings are, and the named things have their kinds' sizes. A wrong
+// depth unit, a wrong --scale or a table top taken for the floor fails them. The ingest warns, and
+// past the limits refuses (--force keeps the memory anyway); `smql check-ingest DB` reports them
+// for a stored scene.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/types.hpp"
+
+namespace smql::ingest {
+
+struct PlausibilityFinding {
+    std::string check;  // "camera height", "ceiling height", "sizes of named things"
+    bool refuse = false;
+    std::string what;  // what was measured, and what was expected
+    std::string fix;   // what to do about it
+};
+
+struct PlausibilityReport {
+    std::vector<PlausibilityFinding> findings;  // every check that failed, warnings and refusals
+    std::optional<double> cameraHeight;         // median height of the cameras above the floor (m)
+    std::optional<double> ceilingHeight;        // m above the floor
+    std::optional<double> sizeRatio;            // median of (largest side / the kind's usual largest side)
+    std::size_t namedThings = 0;                // things of a kind whose size is known
+    bool refused() const;
+};
+
+// How the scene's scale came about, for the fix the findings name.
+struct ScaleSource {
+    bool stored = false;  // a stored scene, whose capture is not at hand: the fix names every option
+    bool depth = false;   // metric from depth images (depthScale units per metre)
+    double depthScale = 0;
+    bool given = false;  // --scale
+};
+
+// The checks on a scene in the upright floor frame (the floor at z = 0 when it was found).
+// `cameraHeights`: the heights of the capture's cameras when the caller has them (the ingest);
+// else those of the scene's frame nodes, else its viewpoint's (the first camera of a capture).
+PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleSource& source,
+                                     std::vector<double> cameraHeights = {});
+
+// A thing named by a detector whose box is far larger than things of that name ever are (a 1.8 m
+// cake): not that thing. The name is kept only as the guess `detected_as`.
+bool nameFitsBox(const std::string& category, const model::Box& box);
+
+}  // namespace smql::ingest

@@ -1,0 +1,165 @@
+// Does the memory look like a room (ingest/pipeline/plausibility.hpp): the checks on scenes made to
+// measure, the real RGB-D frames of ../shared/data/rgbd-dining read in their unit and in wrong ones,
+// and a detector's name far too small for its box (a synthetic capture whose sofa is called a cake).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "ingest/pipeline/plausibility.hpp"
+#include "ingest/pipeline/progress.hpp"
+#include "ingest/pipeline/request.hpp"
+#include "ingest/synth/synth.hpp"
+#include "model/error.hpp"
+#include "scratch_dir.hpp"
+
+using namespace smql;
+using namespace smql::ingest;
+using smql::ingest::test::ScratchDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+model::Node node(model::NodeKind kind, const std::string& category, model::Vec3 centre, model::Vec3 size) {
+    model::Node n;
+    n.kind = kind;
+    n.category = category;
+    n.geometry = model::GeometryKind::Box;
+    n.box = {centre, size, 0};
+    return n;
+}
+
+// A room as a person captures it, every length times `scale`.
+model::SceneData room(double scale) {
+    model::SceneData scene;
+    auto add = [&](model::NodeKind kind, const std::string& category, model::Vec3 c, model::Vec3 s) {
+        scene.nodes.push_back(
+            node(kind, category, {c.x * scale, c.y * scale, c.z * scale}, {s.x * scale, s.y * scale, s.z * scale}));
+    };
+    add(model::NodeKind::Anchor, "floor", {2, 2, 0}, {4, 4, 0.02});
+    add(model::NodeKind::Anchor, "ceiling", {2, 2, 2.6}, {4, 4, 0.02});
+    for (double x : {0.5, 1.5, 2.5}) add(model::NodeKind::Frame, "frame", {x, 0.5, 1.45}, {0.05, 0.05, 0.05});
+    add(model::NodeKind::Object, "table", {2, 2, 0.37}, {1.6, 0.9, 0.75});
+    add(model::NodeKind::Object, "chair", {1, 2, 0.45}, {0.5, 0.5, 0.9});
+    add(model::NodeKind::Object, "chair", {3, 2, 0.45}, {0.5, 0.5, 0.9});
+    add(model::NodeKind::Object, "sofa", {2, 3.5, 0.42}, {2.1, 0.9, 0.85});
+    add(model::NodeKind::Object, "mug", {2, 2, 0.8}, {0.09, 0.09, 0.1});
+    return scene;
+}
+
+bool has(const PlausibilityReport& report, const std::string& check, bool refuse) {
+    return std::any_of(report.findings.begin(), report.findings.end(),
+                       [&](const auto& f) { return f.check == check && f.refuse == refuse; });
+}
+
+IngestRun ingestDining(const std::string& options) {
+    IngestRequest request;
+    request.capture = std::string(SMQL_SHARED_DATA) + "/rgbd-dining";
+    const nlohmann::json parsed = nlohmann::json::parse(options);
+    for (const auto& [name, value] : parsed.items())
+        setIngestOption(request, name, value.is_string() ? value.get<std::string>() : value.dump());
+    SilentProgress silent;
+    return runIngest(request, silent);
+}
+
+}  // namespace
+
+TEST_CASE("plausibility: a room made to measure passes, the same room at the wrong scale does not",
+          "[ingest][plausibility]") {
+    const ScaleSource depth{.depth = true, .depthScale = 1000};
+    auto good = checkPlausibility(room(1.0), depth);
+    CHECK(good.findings.empty());
+    CHECK(*good.cameraHeight == Approx(1.45));
+    CHECK(*good.ceilingHeight == Approx(2.6));
+    CHECK(good.namedThings == 5);
+
+    // Millimetre depth read as TUM's fifth of a millimetre: everything a fifth of its size.
+    auto small = checkPlausibility(room(0.2), depth);
+    CHECK(small.refused());
+    CHECK(has(small, "camera height", false));
+    CHECK(has(small, "ceiling height", true));
+    CHECK(has(small, "scale", true));
+    const auto& scale =
+        *std::find_if(small.findings.begin(), small.findings.end(), [](const auto& f) { return f.check == "scale"; });
+    CHECK_THAT(scale.fix, Catch::Contains("--depth-scale"));
+    // Depth in centimetres read as millimetres: ten times too large.
+    auto large = checkPlausibility(room(10.0), depth);
+    CHECK(has(large, "camera height", true));
+    CHECK(has(large, "sizes of named things", true));
+    // A scale-free capture's fix is --scale.
+    CHECK_THAT(checkPlausibility(room(3.0), {}).findings.front().fix, Catch::Contains("--scale"));
+    // A robot's low camera alone is a warning, not a refusal: the things' sizes are right.
+    auto robot = room(1.0);
+    for (auto& n : robot.nodes)
+        if (n.kind == model::NodeKind::Frame) n.box.center.z = 0.25;
+    auto low = checkPlausibility(robot, depth);
+    CHECK(has(low, "camera height", false));
+    CHECK_FALSE(low.refused());
+}
+
+TEST_CASE("plausibility: a name far smaller than its box is not kept", "[ingest][plausibility]") {
+    CHECK_FALSE(nameFitsBox("cake", {{0, 0, 0.9}, {0.6, 0.5, 1.78}, 0}));
+    CHECK(nameFitsBox("cake", {{0, 0, 0.1}, {0.3, 0.3, 0.12}, 0}));
+    CHECK(nameFitsBox("table", {{0, 0, 0.4}, {1.8, 0.9, 0.75}, 0}));
+    CHECK_FALSE(nameFitsBox("table", {{0, 0, 0.4}, {6.5, 0.9, 0.75}, 0}));
+    CHECK(nameFitsBox("spaceship", {{0, 0, 0}, {40, 40, 40}, 0}));  // a kind of unknown size keeps its name
+}
+
+TEST_CASE("plausibility: real RGB-D frames in their unit pass, in another unit are refused with the fix",
+          "[ingest][plausibility]") {
+    const auto right = ingestDining("{}");
+    const auto report = checkPlausibility(right.result.scene, {.depth = true, .depthScale = 1000});
+    CHECK_FALSE(report.refused());
+    CHECK(*report.cameraHeight > 1.0);
+    CHECK(*report.cameraHeight < 1.8);
+
+    for (const char* wrong : {R"({"depth_scale": 5000})", R"({"depth_scale": 400})", R"({"depth_scale": 2000})"}) {
+        INFO(wrong);
+        try {
+            ingestDining(wrong);
+            FAIL("a wrong depth unit was stored");
+        } catch (const Error& e) {
+            CHECK(e.kind() == ErrorKind::Input);
+            CHECK_THAT(e.message(), Catch::Contains("does not look like a room"));
+            CHECK_THAT(e.hint(), Catch::Contains("--depth-scale"));
+            CHECK_THAT(e.hint(), Catch::Contains("--force"));
+        }
+    }
+    // --force keeps it, with the findings as notes.
+    const auto forced = ingestDining(R"({"depth_scale": 5000, "force": true})");
+    CHECK(std::any_of(forced.result.notes.begin(), forced.result.notes.end(),
+                      [](const std::string& n) { return n.find("implausible") != std::string::npos; }));
+}
+
+TEST_CASE("plausibility: a detector's 'cake' the size of a sofa is stored as an object", "[ingest][plausibility]") {
+    ScratchDir dir;
+    const auto capturePath = (dir.path / "capture").string();
+    synth::writeSynth(capturePath, {.seed = 3, .frames = 20, .objects = 24});
+    auto file = fs::path(capturePath) / "detections.json";
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(file));
+    std::size_t renamed = 0;
+    for (auto& d : j["detections"])
+        if (d["label"] == "sofa") d["label"] = "cake", ++renamed;
+    REQUIRE(renamed > 0);
+    std::ofstream(file) << j.dump();
+
+    IngestRequest request;
+    request.capture = capturePath;
+    request.objects = "detections";
+    SilentProgress silent;
+    const auto run = runIngest(request, silent);
+    std::size_t cakes = 0, guesses = 0;
+    for (const auto& n : run.result.scene.nodes) {
+        cakes += n.category == "cake";
+        if (const auto* guess = n.attribute("detected_as"); guess && *guess == "cake") {
+            CHECK(n.category == "object");
+            ++guesses;
+        }
+    }
+    CHECK(cakes == 0);
+    CHECK(guesses >= 1);
+    CHECK(std::any_of(run.result.notes.begin(), run.result.notes.end(),
+                      [](const std::string& n) { return n.find("detected as 'cake'") != std::string::npos; }));
+}
