@@ -2,6 +2,9 @@
 
 #include <string>
 #include <unordered_map>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "engine/format.hpp"
 
@@ -24,12 +27,13 @@ std::string_view geometryName(model::GeometryKind kind) {
 // "replica-room0 / wall#19 / sofa#50", as PATH prints it.
 std::string pathOf(const model::Node& node, const std::unordered_map<model::NodeId, const model::Node*>& byId,
                    const std::string& sceneName) {
-    std::string path = node.category + "#" + std::to_string(node.id);
-    for (auto it = byId.find(node.parent); it != byId.end(); it = byId.find(it->second->parent)) {
-        if (it->second->kind == model::NodeKind::Scene) break;
-        path = it->second->category + "#" + std::to_string(it->second->id) + " / " + path;
-    }
-    return sceneName + " / " + path;
+    std::vector<const model::Node*> chain{&node};
+    for (auto it = byId.find(node.parent); it != byId.end() && it->second->kind != model::NodeKind::Scene;
+         it = byId.find(it->second->parent))
+        chain.push_back(it->second);
+    std::string path = sceneName;
+    for (auto n = chain.rbegin(); n != chain.rend(); ++n) path += fmt::format(" / {}#{}", (*n)->category, (*n)->id);
+    return path;
 }
 
 }  // namespace

@@ -124,7 +124,7 @@ fs::path makeWorkDirectory(const CaptureOptions& options, std::vector<std::strin
                                                   base.string(), std::strerror(errno)));
     notes.push_back(
         fmt::format("decoded video frames written to {} (remove it when done, or choose the folder with "
-                    "the work-directory option)",
+                    "--video-frames)",
                     pattern));
     return pattern;
 }

@@ -1,6 +1,7 @@
 // nerfstudio (and instant-ngp style) transforms.json.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -48,7 +49,8 @@ struct FrameEntry {
     Intrinsics intrinsics;
 };
 
-fs::path resolveImage(const fs::path& base, const Field& field) {
+// The image a path names, nullopt when there is no such file.
+std::optional<fs::path> findImage(const fs::path& base, const Field& field) {
     std::string written = field.string();
     if (written.empty()) field.fail("empty path");
     fs::path path = fs::path(written).is_absolute() ? fs::path(written) : base / written;
@@ -61,8 +63,14 @@ fs::path resolveImage(const fs::path& base, const Field& field) {
             if (fs::exists(candidate, ec)) return candidate.lexically_normal();
         }
     }
-    if (!fs::exists(path, ec)) field.fail(fmt::format("{}: no such file", path.lexically_normal().string()));
+    if (!fs::exists(path, ec)) return std::nullopt;
     return path.lexically_normal();
+}
+
+fs::path resolveImage(const fs::path& base, const Field& field) {
+    auto path = findImage(base, field);
+    if (!path) field.fail(fmt::format("{}: no such file", (base / field.string()).lexically_normal().string()));
+    return *path;
 }
 
 // `image` names the frame in errors.
@@ -164,12 +172,18 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
     std::optional<cv::Size> firstImageSize;
     bool distorted = false, fisheye = false;
     std::size_t withDepth = 0;
+    std::vector<std::string> absent;  // frames listed whose image is not in the folder: skipped
     for (std::size_t i = 0; i < frames.size(); ++i) {
         Field f = frames[i];
         FrameEntry entry;
         Field filePath = f.at("file_path");
         entry.filePath = filePath.string();
-        fs::path color = resolveImage(base, filePath);
+        std::optional<fs::path> found = findImage(base, filePath);
+        if (!found) {
+            absent.push_back(entry.filePath);
+            continue;
+        }
+        const fs::path& color = *found;
         checkImageFile(color, "colour image", kNerfstudioHint);
         entry.frame.colorPath = color.string();
         entry.frame.pose = readTransform(f.at("transform_matrix"), entry.filePath);
@@ -190,6 +204,14 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
         entries.push_back(std::move(entry));
     }
 
+    if (entries.empty())
+        frames.fail(fmt::format("none of its {} frames' images is in the folder (the first: {})", frames.size(),
+                                (base / absent.front()).lexically_normal().string()));
+    if (!absent.empty())
+        capture.notes.push_back(
+            fmt::format("{}: {} of {} frames listed have no image in the folder and are skipped "
+                        "(the first: {})",
+                        file, absent.size(), frames.size(), absent.front()));
     std::stable_sort(entries.begin(), entries.end(),
                      [](const FrameEntry& a, const FrameEntry& b) { return naturalLess(a.filePath, b.filePath); });
     bool perFrame = false;

@@ -20,11 +20,12 @@ namespace smql::ingest::pcl_ops {
 
 namespace {
 
-// PCL prints its own warnings (degenerate RANSAC samples on sparse clouds) to the terminal: the
-// stages report what matters themselves, so PCL speaks only of errors.
+// PCL prints to the terminal what it meets on sparse clouds (RANSAC's "Sample points too similar
+// or collinear!" is printed as an error, and the fit just draws again): the stages report what
+// matters themselves, so PCL prints nothing.
 void quietPcl() {
     static const bool quieted = [] {
-        pcl::console::setVerbosityLevel(pcl::console::L_ERROR);
+        pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
         return true;
     }();
     (void)quieted;

@@ -69,6 +69,13 @@ const std::vector<IngestOption> kIngestOptions = {
     {"classes", "FILE",
      [] { return std::string("the detector's class names, one a line (default: coco.names beside the model)"); },
      [](IngestRequest& r, const std::string& v) { r.classes = existingFile("classes", v); }},
+    {"video_frames", "FOLDER",
+     [] {
+         return std::string(
+             "a video's decoded frames go to this folder and stay there (default: a new folder under /tmp, named in "
+             "a note)");
+     },
+     [](IngestRequest& r, const std::string& v) { r.videoFrames = v; }},
     {"fps", "NUMBER", [] { return std::string("frames per second sampled from videos (default 1)"); },
      [](IngestRequest& r, const std::string& v) { r.fps = number("fps", v, false); }},
     {"camera", "FX,FY,CX,CY",
@@ -186,6 +193,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     if (!request.camera.empty()) captureOptions.intrinsics = parseCameraOption(request.camera);
     captureOptions.horizontalFov = request.fov;
     captureOptions.depthScale = request.depthScale;
+    captureOptions.workDirectory = request.videoFrames;
     IngestRun run;
     Capture capture = readCapture(request.capture, captureOptions);
     run.frames = capture.frames.size();

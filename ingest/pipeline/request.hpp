@@ -22,6 +22,7 @@ struct IngestRequest {
     std::string detector;              // --objects detect: the ONNX model (default: the installed one)
     std::string classes;               // ... and its class names (default: coco.names beside the model)
     double fps = 1.0;                  // frames per second sampled from videos
+    std::string videoFrames;           // where a video's decoded frames go (default: a new temporary folder)
     std::optional<double> scale;       // metres per capture unit, overriding the estimate
     std::optional<double> depthScale;  // depth image units per metre, overriding the capture's
     std::string camera;                // fx,fy,cx,cy in pixels of the images as stored

@@ -1,5 +1,7 @@
 // The capture readers' errors: every one names the file (and the line for
 // text files) and is an Input error.
+#include <algorithm>
+#include <filesystem>
 #include <string>
 
 #include "capture_support.hpp"
@@ -237,11 +239,24 @@ TEST_CASE("capture errors: nerfstudio", "[capture][errors][nerfstudio]") {
     writeColor(dir, "images/0.png", 40, 30);
     const std::string identity = R"([[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]])";
 
-    SECTION("a frame whose image is missing") {
+    SECTION("no frame whose image is there") {
         dir.write("transforms.json", std::string(kTransformsHead) +
                                          R"({"file_path": "images/9.png", "transform_matrix": )" + identity + "}]}");
         requireError([&] { readCapture(dir.path()); },
-                     {dir.path("transforms.json"), "frames[0].file_path", dir.path("images/9.png"), "no such file"});
+                     {dir.path("transforms.json"), "frames", "none of its 1 frames' images", dir.path("images/9.png")});
+    }
+    SECTION("frames whose image is missing are skipped, with a note") {
+        dir.write("transforms.json", std::string(kTransformsHead) +
+                                         R"({"file_path": "images/9.png", "transform_matrix": )" + identity +
+                                         R"(}, {"file_path": "images/0.png", "transform_matrix": )" + identity + "}]}");
+        Capture capture = readCapture(dir.path());
+        REQUIRE(capture.frames.size() == 1);
+        CHECK(fs::path(capture.frames[0].colorPath).filename() == "0.png");
+        CHECK(std::any_of(capture.notes.begin(), capture.notes.end(), [](const std::string& n) {
+            return n.find(
+                       "1 of 2 frames listed have no image in the folder and are skipped (the first: images/9.png)") !=
+                   std::string::npos;
+        }));
     }
     SECTION("a transform that is not a rotation") {
         dir.write(
