@@ -17,6 +17,16 @@ std::optional<NodeKind> nodeKindFromString(std::string_view text) {
     return static_cast<NodeKind>(it - kKindNames.begin());
 }
 
+constexpr std::array<std::string_view, 3> kGeometryNames = {"none", "box", "plane"};
+
+std::string_view toString(GeometryKind kind) { return kGeometryNames[static_cast<std::size_t>(kind)]; }
+
+std::optional<GeometryKind> geometryKindFromString(std::string_view text) {
+    auto it = std::find(kGeometryNames.begin(), kGeometryNames.end(), text);
+    if (it == kGeometryNames.end()) return std::nullopt;
+    return static_cast<GeometryKind>(it - kGeometryNames.begin());
+}
+
 std::string_view toString(RelationType type) { return kRelationNames[static_cast<std::size_t>(type)]; }
 
 std::string_view toString(ChangeKind kind) {

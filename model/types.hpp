@@ -40,6 +40,10 @@ struct Box {
 
 enum class GeometryKind : std::uint8_t { None = 0, Box = 1, Plane = 2 };
 
+// "none", "box", "plane": the words files and answers use.
+std::string_view toString(GeometryKind kind);
+std::optional<GeometryKind> geometryKindFromString(std::string_view text);
+
 struct Attribute {
     std::string name;
     std::string value;

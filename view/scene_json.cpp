@@ -12,18 +12,6 @@ namespace smql::view {
 
 namespace {
 
-std::string_view geometryName(model::GeometryKind kind) {
-    switch (kind) {
-        case model::GeometryKind::Box:
-            return "box";
-        case model::GeometryKind::Plane:
-            return "plane";
-        case model::GeometryKind::None:
-            break;
-    }
-    return "none";
-}
-
 // "replica-room0 / wall#19 / sofa#50", as PATH prints it.
 std::string pathOf(const model::Node& node, const std::unordered_map<model::NodeId, const model::Node*>& byId,
                    const std::string& sceneName) {
@@ -52,7 +40,7 @@ nlohmann::ordered_json sceneJson(const model::SceneData& scene) {
                          {"kind", toString(n.kind)},
                          {"category", n.category},
                          {"parent", n.parent},
-                         {"geometry", geometryName(n.geometry)},
+                         {"geometry", model::toString(n.geometry)},
                          {"box", valueJson(n.box)},
                          {"path", pathOf(n, byId, scene.info.name)},
                          {"text", n.text},

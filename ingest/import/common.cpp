@@ -57,16 +57,4 @@ double normaliseYaw(double yaw) {
     return turned <= -std::numbers::pi ? turned + 2 * std::numbers::pi : turned;
 }
 
-const char* geometryName(model::GeometryKind geometry) {
-    switch (geometry) {
-        case model::GeometryKind::None:
-            return "none";
-        case model::GeometryKind::Box:
-            return "box";
-        case model::GeometryKind::Plane:
-            return "plane";
-    }
-    return "none";
-}
-
 }  // namespace smql::import::detail

@@ -35,7 +35,4 @@ std::string angleProblem(double radians);
 // The same angle in (-pi, pi].
 double normaliseYaw(double yaw);
 
-// "none", "box" or "plane", as the JSON formats write a node's geometry.
-const char* geometryName(model::GeometryKind geometry);
-
 }  // namespace smql::import::detail

@@ -39,7 +39,7 @@ Json nodeJson(const model::Node& node) {
     out["kind"] = model::toString(node.kind);
     out["parent"] = node.parent;
     out["category"] = node.category;
-    out["geometry"] = detail::geometryName(node.geometry);
+    out["geometry"] = model::toString(node.geometry);
     // A box without geometry carries nothing, but is kept when set so that nothing is lost.
     if (node.geometry != model::GeometryKind::None || node.box != model::Box{})
         out["box"] = {{"center", vec3(node.box.center)}, {"size", vec3(node.box.size)}, {"yaw", node.box.yaw}};
@@ -190,17 +190,14 @@ model::Node readNode(const Field& field) {
     if (auto f = field.find("category")) node.category = f->string();
 
     std::optional<Field> box = field.find("box");
-    std::string geometry = box ? "box" : "none";
+    node.geometry = box ? model::GeometryKind::Box : model::GeometryKind::None;
     if (auto f = field.find("geometry")) {
-        geometry = f->string();
-        if (geometry != "none" && geometry != "box" && geometry != "plane")
-            f->fail(fmt::format("unknown geometry '{}' (expected none, box or plane)", geometry));
+        auto geometry = model::geometryKindFromString(f->string());
+        if (!geometry) f->fail(fmt::format("unknown geometry '{}' (expected none, box or plane)", f->string()));
+        node.geometry = *geometry;
     }
-    node.geometry = geometry == "box"     ? model::GeometryKind::Box
-                    : geometry == "plane" ? model::GeometryKind::Plane
-                                          : model::GeometryKind::None;
     if (node.geometry != model::GeometryKind::None && !box)
-        field.fail(fmt::format("missing field 'box' (geometry is {})", geometry));
+        field.fail(fmt::format("missing field 'box' (geometry is {})", model::toString(node.geometry)));
     if (box) node.box = readBox(*box, node.geometry != model::GeometryKind::None);
 
     if (auto f = field.find("attributes"))

@@ -184,7 +184,7 @@ private:
     }
 
     Json smqlFields(const model::Node& n) const {
-        Json out = {{"kind", model::toString(n.kind)}, {"geometry", detail::geometryName(n.geometry)}};
+        Json out = {{"kind", model::toString(n.kind)}, {"geometry", model::toString(n.geometry)}};
         if (std::uint64_t parent = parentId(n, false); parent != sceneId_) out["parent"] = parent;
         if (n.sourceId) out["source_id"] = *n.sourceId;
         if (n.hidden) out["hidden"] = true;
