@@ -128,10 +128,15 @@ int ingestInto(const IngestArguments& args) {
     std::size_t objects = 0, anchors = 0;
     for (const auto& n : run.result.scene.nodes)
         objects += n.kind == model::NodeKind::Object, anchors += n.kind == model::NodeKind::Anchor;
+    // Frames that got no pose (COLMAP did not place them) did not make the memory: say how many did.
+    const std::size_t placed = run.result.cameraCentres.size();
+    const std::string frames = placed < run.frames ? fmt::format("{} frames ({} placed)", run.frames, placed)
+                                                   : fmt::format("{} frames", run.frames);
     if (args.log != "quiet")
         std::cout << fmt::format(
-            "ingested '{}' into scene '{}': {} frames, {} anchors, {} objects in {:.1f} s ({:.1f} frames/s)\n",
-            request.capture, run.result.scene.info.name, run.frames, anchors, objects, total,
+            "ingested '{}' into scene '{}': {}, {} anchors, {} objects in {:.1f} s ({:.1f} "
+            "frames/s)\n",
+            request.capture, run.result.scene.info.name, frames, anchors, objects, total,
             run.frames / std::max(total, 1e-9));
     return 0;
 }

@@ -193,7 +193,10 @@ std::string diagnosis(const fs::path& database, std::size_t frames, int minMatch
     if (!fs::exists(database, ec)) return {};
     try {
         ColmapDatabaseSummary s = readColmapDatabase(database.string(), minMatches);
-        if (s.imagesWithFeatures < s.images)
+        // A cause is named only when it is most of the story: two photos of 84 without features do
+        // not stop a model from growing (a real corridor set did fail, for want of a starting pair).
+        auto most = [](std::size_t part, std::size_t whole) { return 5 * part >= 4 * whole; };
+        if (!most(s.imagesWithFeatures, s.images))
             return fmt::format(
                 "only {} of {} photos gave image features (blank, dark, blurred or textureless photos give none): "
                 "take sharper photos of textured surfaces",
@@ -201,21 +204,22 @@ std::string diagnosis(const fs::path& database, std::size_t frames, int minMatch
         std::string overlap = fmt::format("{} {} of photos {} {} or more verified matches", s.overlappingPairs,
                                           s.overlappingPairs == 1 ? "pair" : "pairs",
                                           s.overlappingPairs == 1 ? "shares" : "share", minMatches);
-        if (s.overlappingImages < frames)
+        if (!most(s.overlappingImages, frames))
             return fmt::format(
                 "only {} of {} photos overlap enough with another ({}): take more views with overlap, each "
                 "neighbouring photo seeing much of what the last one saw",
                 s.overlappingImages, frames, overlap);
-        if (s.largestOverlapGroup < frames)
+        if (!most(s.largestOverlapGroup, frames))
             return fmt::format(
                 "every photo overlaps with another, but they fall apart into separate groups: the largest holds only "
                 "{} of {} photos ({}): take views that link the groups, with overlap",
                 s.largestOverlapGroup, frames, overlap);
         return fmt::format(
-            "all {} photos are linked by overlap ({}), but no model could be grown from them: the views may be too "
-            "close together (move the camera between photos, not only turn it) or the matches fall on repeated "
-            "patterns; take views from more places, with overlap",
-            frames, overlap);
+            "{} of {} photos are linked by overlap ({}), but COLMAP found no pair to start a model from (two views "
+            "with many matches seen from places far enough apart): the views may be too close together (move the "
+            "camera between photos, not only turn it) or the matches fall on repeated patterns; take views from more "
+            "places, with overlap",
+            s.largestOverlapGroup, frames, overlap);
     } catch (const Error& e) {
         return e.what();
     }
