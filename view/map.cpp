@@ -9,6 +9,7 @@
 
 #include "engine/guide/route_graph.hpp"
 #include "model/geometry.hpp"
+#include "model/presentation.hpp"
 
 namespace smql::view {
 
@@ -24,35 +25,10 @@ constexpr double kWallFixture = 0.1;     // m: a thing this thin that hangs on a
 const Rgb kWall{90, 90, 90}, kDoor{60, 160, 60}, kWindow{40, 140, 200}, kFloor{245, 245, 245}, kBlocked{240, 215, 215},
     kPocket{250, 230, 170}, kGraph{170, 205, 225}, kRoute{220, 40, 40}, kText{40, 40, 40};
 
-// The category's colour, as the view's page gives it (FNV-1a of the name to a hue).
+// The category's colour, as the exports and the view's page give it.
 Rgb categoryColour(const std::string& category) {
-    std::uint32_t h = 2166136261u;
-    for (unsigned char c : category) h = (h ^ c) * 16777619u;
-    const double hue = (h % 360) / 60.0, s = 0.55, l = 0.45;
-    const double chroma = (1 - std::abs(2 * l - 1)) * s, x = chroma * (1 - std::abs(std::fmod(hue, 2) - 1));
-    const double m = l - chroma / 2;
-    double r = 0, g = 0, b = 0;
-    switch (static_cast<int>(hue)) {
-        case 0:
-            r = chroma, g = x;
-            break;
-        case 1:
-            r = x, g = chroma;
-            break;
-        case 2:
-            g = chroma, b = x;
-            break;
-        case 3:
-            g = x, b = chroma;
-            break;
-        case 4:
-            r = x, b = chroma;
-            break;
-        default:
-            r = chroma, b = x;
-    }
-    auto byte = [m](double v) { return static_cast<unsigned char>(std::lround((v + m) * 255)); };
-    return {byte(r), byte(g), byte(b)};
+    const model::Rgb c = model::categoryColour(category);
+    return {c.r, c.g, c.b};
 }
 
 Rgb lighter(const Rgb& c, double towardsWhite) {

@@ -1,39 +1,24 @@
 #include "view/scene_json.hpp"
 
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "engine/format.hpp"
+#include "model/presentation.hpp"
 
 namespace smql::view {
 
-namespace {
-
-// "replica-room0 / wall#19 / sofa#50", as PATH prints it.
-std::string pathOf(const model::Node& node, const std::unordered_map<model::NodeId, const model::Node*>& byId,
-                   const std::string& sceneName) {
-    std::vector<const model::Node*> chain{&node};
-    for (auto it = byId.find(node.parent); it != byId.end() && it->second->kind != model::NodeKind::Scene;
-         it = byId.find(it->second->parent))
-        chain.push_back(it->second);
-    std::string path = sceneName;
-    for (auto n = chain.rbegin(); n != chain.rend(); ++n) path += fmt::format(" / {}#{}", (*n)->category, (*n)->id);
-    return path;
-}
-
-}  // namespace
-
 nlohmann::ordered_json sceneJson(const model::SceneData& scene) {
-    std::unordered_map<model::NodeId, const model::Node*> byId;
-    for (const auto& n : scene.nodes) byId.emplace(n.id, &n);
+    const std::vector<std::string> paths = model::nodePaths(scene);
     auto nodes = nlohmann::ordered_json::array();
-    for (const auto& n : scene.nodes) {
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+        const model::Node& n = scene.nodes[i];
         if (n.hidden || n.kind == model::NodeKind::Scene || n.kind == model::NodeKind::Frame ||
             n.geometry == model::GeometryKind::None)
             continue;
+        const model::Rgb colour = model::categoryColour(n.category);
         auto attributes = nlohmann::ordered_json::object();
         for (const auto& a : n.attributes) attributes[a.name] = a.value;
         nodes.push_back({{"id", n.id},
@@ -42,7 +27,8 @@ nlohmann::ordered_json sceneJson(const model::SceneData& scene) {
                          {"parent", n.parent},
                          {"geometry", model::toString(n.geometry)},
                          {"box", valueJson(n.box)},
-                         {"path", pathOf(n, byId, scene.info.name)},
+                         {"path", paths[i]},
+                         {"colour", fmt::format("#{:02x}{:02x}{:02x}", colour.r, colour.g, colour.b)},
                          {"text", n.text},
                          {"attributes", attributes}});
     }

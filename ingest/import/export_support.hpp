@@ -1,5 +1,6 @@
 // What the mesh and map writers (glTF, PLY, GeoJSON, Spark-DSG) share: which nodes are drawn, a
-// box's corners and faces, a colour per category and a node's path. Internal to ingest/import.
+// box's corners and faces (labels, paths and colours are model/presentation.hpp's). Internal to
+// ingest/import.
 #pragma once
 
 #include <array>
@@ -8,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "model/presentation.hpp"
 #include "model/types.hpp"
 
 namespace smql::import::detail {
@@ -39,21 +41,5 @@ inline constexpr std::array<std::array<std::uint8_t, 3>, 12> kBoxTriangles = {{
     {3, 0, 4},
     {3, 4, 7},
 }};
-
-struct Rgb {
-    std::uint8_t r = 0, g = 0, b = 0;
-    friend bool operator==(const Rgb&, const Rgb&) = default;
-};
-
-// One colour per category, the same in every scene and every format: fixed greys and browns for the
-// structure (walls, floor, doors, windows), a hue from the name's hash for everything else.
-Rgb categoryColour(std::string_view category);
-
-// `category#id`, as the engine names a node.
-std::string nodeLabel(const model::Node& node);
-
-// Every node's path from the scene down, as the engine prints it (`room0 / wall#19 / sofa#50 /
-// cushion#42`), in the order of scene.nodes.
-std::vector<std::string> nodePaths(const model::SceneData& scene);
 
 }  // namespace smql::import::detail

@@ -48,7 +48,7 @@ std::string jsonText(const Json& value) { return value.dump(-1, ' ', false, Json
 }  // namespace
 
 std::string writeGeoJson(const model::SceneData& scene) {
-    std::vector<std::string> paths = detail::nodePaths(scene);
+    std::vector<std::string> paths = model::nodePaths(scene);
     // One feature a line, so that two exports of a scene compare line by line.
     std::string out =
         R"({"type": "FeatureCollection", "name": )" + jsonText(Json(scene.info.name)) + R"(, "features": [)";

@@ -64,11 +64,11 @@ private:
         for (std::size_t i = 0; i < scene_.nodes.size(); ++i)
             gltfIndexOf.emplace(scene_.nodes[i].id, static_cast<int>(i) + 1);
 
-        std::vector<std::string> paths = detail::nodePaths(scene_);
+        std::vector<std::string> paths = model::nodePaths(scene_);
         for (std::size_t i = 0; i < scene_.nodes.size(); ++i) {
             const model::Node& node = scene_.nodes[i];
             tinygltf::Node gltfNode;
-            gltfNode.name = detail::nodeLabel(node);
+            gltfNode.name = model::nodeLabel(node);
             gltfNode.extras = extras(node, paths[i]);
             if (detail::isDrawn(node)) gltfNode.mesh = boxMesh(node);
             model_.nodes.push_back(std::move(gltfNode));
@@ -125,7 +125,7 @@ private:
         primitive.material = material(node.category);
         primitive.mode = TINYGLTF_MODE_TRIANGLES;
         tinygltf::Mesh mesh;
-        mesh.name = detail::nodeLabel(node);
+        mesh.name = model::nodeLabel(node);
         mesh.primitives.push_back(std::move(primitive));
         model_.meshes.push_back(std::move(mesh));
         return static_cast<int>(model_.meshes.size()) - 1;
@@ -134,7 +134,7 @@ private:
     int material(const std::string& category) {
         auto [it, fresh] = materialOf_.emplace(category, static_cast<int>(model_.materials.size()));
         if (!fresh) return it->second;
-        detail::Rgb colour = detail::categoryColour(category);
+        model::Rgb colour = model::categoryColour(category);
         tinygltf::Material m;
         m.name = category;
         m.pbrMetallicRoughness.baseColorFactor = {linearChannel(colour.r), linearChannel(colour.g),

@@ -28,7 +28,7 @@ std::string header(const model::SceneData& scene, const std::vector<const model:
     out += fmt::format("comment smql scene {}: {} boxes, metres, z up\n", oneLine(scene.info.name), boxes.size());
     // Which box is which: box k owns vertices 8k..8k+7 and faces 12k..12k+11.
     for (std::size_t k = 0; k < boxes.size(); ++k)
-        out += fmt::format("comment box {} {}\n", k, oneLine(detail::nodeLabel(*boxes[k])));
+        out += fmt::format("comment box {} {}\n", k, oneLine(model::nodeLabel(*boxes[k])));
     out += fmt::format(
         "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
         "property uchar red\nproperty uchar green\nproperty uchar blue\n",
@@ -47,7 +47,7 @@ std::string writePly(const model::SceneData& scene) {
 
     std::string out = header(scene, boxes);
     for (const model::Node* node : boxes) {
-        detail::Rgb colour = detail::categoryColour(node->category);
+        model::Rgb colour = model::categoryColour(node->category);
         for (const model::Vec3& corner : detail::boxCorners(node->box)) {
             for (double coordinate : {corner.x, corner.y, corner.z})
                 appendLittleEndian(out, std::bit_cast<std::uint32_t>(static_cast<float>(coordinate)));

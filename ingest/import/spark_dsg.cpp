@@ -135,7 +135,7 @@ private:
     // SemanticNodeAttributes' fields, which the object and room attributes extend.
     static Json semanticAttributes(const char* type, const std::string& name, const std::string& category,
                                    const Json& box, const model::Vec3& position, std::uint32_t label) {
-        detail::Rgb colour = detail::categoryColour(category);
+        model::Rgb colour = model::categoryColour(category);
         return {{"type", type},
                 {"metadata", Json::object()},
                 {"position", vec3(position)},
@@ -164,7 +164,7 @@ private:
         std::optional<model::Box> box;
         if (n.geometry != model::GeometryKind::None) box = n.box;
         Json attributes =
-            semanticAttributes(room ? "RoomNodeAttributes" : "ObjectNodeAttributes", detail::nodeLabel(n), n.category,
+            semanticAttributes(room ? "RoomNodeAttributes" : "ObjectNodeAttributes", model::nodeLabel(n), n.category,
                                boundingBox(box, "OBB"), n.box.center, labels_.at(layer).at(n.category));
         if (!room) {
             attributes["mesh_connections"] = Json::array();

@@ -37,18 +37,13 @@ let extras = new THREE.Group(); // hit outlines, the route and its step numbers
 world.add(extras);
 let bounds = new THREE.Box3();
 
-// A stable colour per category; anchors are drawn as a room's shell, not as furniture.
-function colourOf(category) {
-  let h = 2166136261;
-  for (const c of category) h = Math.imul(h ^ c.charCodeAt(0), 16777619);
-  return new THREE.Color().setHSL(((h >>> 0) % 360) / 360, 0.55, 0.55);
-}
-const SHELL = { wall: [0xc9ced4, 0.22], floor: [0xb8bdc3, 0.5], ceiling: [0xe0e3e6, 0.0], door: [0x9b6a3c, 0.55], window: [0x6fb7e6, 0.45] };
+// Each node comes with its category's colour (model/presentation.cpp: the exports and the map use
+// the same); the room's shell is drawn see-through, so that what stands in it shows.
+const SHELL_OPACITY = { wall: 0.22, floor: 0.5, ceiling: 0.0, door: 0.55, window: 0.45 };
 
 function style(node) {
-  const shell = SHELL[node.category];
-  if (shell) return { colour: new THREE.Color(shell[0]), opacity: shell[1] };
-  return { colour: colourOf(node.category), opacity: node.kind === 'anchor' ? 0.5 : 0.9 };
+  const opacity = SHELL_OPACITY[node.category] ?? (node.kind === 'anchor' ? 0.5 : 0.9);
+  return { colour: new THREE.Color(node.colour), opacity };
 }
 
 function build(data) {
@@ -74,7 +69,7 @@ function build(data) {
     world.add(mesh);
     meshes.set(node.id, mesh);
     bounds.expandByObject(mesh);
-    if (!SHELL[node.category] || node.category === 'door' || node.category === 'window')
+    if (!(node.category in SHELL_OPACITY) || node.category === 'door' || node.category === 'window')
       legend.set(node.category, look.colour.getStyle());
   }
   $('legend').replaceChildren(...[...legend.entries()].sort().map(([category, colour]) => {

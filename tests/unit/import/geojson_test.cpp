@@ -32,14 +32,14 @@ TEST_CASE("geojson: the Replica room's floor plan", "[import][geojson]") {
     CHECK(plan.at("name") == "replica-room0");
     CHECK_FALSE(plan.contains("crs"));
 
-    std::vector<std::string> paths = import::detail::nodePaths(scene);
+    std::vector<std::string> paths = model::nodePaths(scene);
     std::size_t next = 0;
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         const model::Node& n = scene.nodes[i];
         if (!import::detail::isDrawn(n)) continue;
         REQUIRE(next < plan.at("features").size());
         const Json& feature = plan.at("features")[next++];
-        INFO(import::detail::nodeLabel(n));
+        INFO(model::nodeLabel(n));
         CHECK(feature.at("type") == "Feature");
         CHECK(feature.at("id") == n.id);
         CHECK(feature.at("geometry").at("type") == "Polygon");

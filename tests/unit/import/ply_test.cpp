@@ -19,7 +19,7 @@ namespace {
 
 struct Vertex {
     model::Vec3 position;
-    import::detail::Rgb colour;
+    model::Rgb colour;
 };
 
 struct PlyMesh {
@@ -97,20 +97,20 @@ TEST_CASE("ply: the Replica room's boxes as one coloured triangle mesh", "[impor
     CHECK(mesh.headerLines.at(0) == "ply");
     CHECK(mesh.headerLines.at(1) == "format binary_little_endian 1.0");
     CHECK(mesh.headerLines.at(2) == "comment smql scene replica-room0: 79 boxes, metres, z up");
-    CHECK(mesh.headerLines.at(3) == "comment box 0 " + import::detail::nodeLabel(*boxes[0]));
+    CHECK(mesh.headerLines.at(3) == "comment box 0 " + model::nodeLabel(*boxes[0]));
     REQUIRE(mesh.vertices.size() == 8 * boxes.size());
     REQUIRE(mesh.faces.size() == 12 * boxes.size());
 
     for (std::size_t k = 0; k < boxes.size(); ++k) {
         const model::Node& n = *boxes[k];
-        INFO(import::detail::nodeLabel(n));
+        INFO(model::nodeLabel(n));
         std::array<model::Vec3, 8> corners = import::detail::boxCorners(n.box);
         for (std::size_t c = 0; c < 8; ++c) {
             const Vertex& v = mesh.vertices[8 * k + c];
             CHECK(v.position.x == Approx(corners[c].x).margin(1e-5));
             CHECK(v.position.y == Approx(corners[c].y).margin(1e-5));
             CHECK(v.position.z == Approx(corners[c].z).margin(1e-5));
-            CHECK(v.colour == import::detail::categoryColour(n.category));
+            CHECK(v.colour == model::categoryColour(n.category));
         }
         for (std::size_t f = 12 * k; f < 12 * (k + 1); ++f)
             for (std::uint32_t index : mesh.faces[f]) CHECK((index >= 8 * k && index < 8 * (k + 1)));
