@@ -10,6 +10,10 @@
 #include <string>
 #include <vector>
 
+namespace smql::fleet::pg {
+class LocalCluster;
+}
+
 namespace smql::bench {
 
 struct DataSetSpec {
@@ -42,7 +46,7 @@ struct DataSet {
     std::uint64_t postgisBytes = 0;  // pg_database_size
 };
 
-class PostgresServer;
+using PostgresServer = fleet::pg::LocalCluster;  // bench/postgis_baseline.hpp
 
 std::string sceneName(int index);
 

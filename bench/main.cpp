@@ -72,7 +72,7 @@ int run(const Options& options, const std::string& commandLine) {
     std::unique_ptr<PostgresServer> postgres;
     if (options.postgis) {
         std::string whyNot;
-        postgres = PostgresServer::start(whyNot);
+        postgres = startPostgres(whyNot);
         report.postgis = postgres ? postgres->version() : "PostGIS skipped: " + whyNot;
         if (!postgres) fmt::print("smql_bench: {}\n", report.postgis);
     } else {

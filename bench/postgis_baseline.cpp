@@ -1,10 +1,7 @@
 #include "bench/postgis_baseline.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <charconv>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string_view>
@@ -16,15 +13,9 @@
 
 namespace smql::bench {
 
-namespace fs = std::filesystem;
 using model::Node;
 
 namespace {
-
-// The socket lives in the cluster's own directory, so no other server shares
-// its name: a fixed port number is free there by construction.
-constexpr int kPort = 5432;
-constexpr const char* kUnprivilegedUser = "nobody";
 
 // Server settings for a read-mostly benchmark on a 2-core machine: a buffer
 // cache that holds the large data set, no JIT (it costs milliseconds per
@@ -32,7 +23,7 @@ constexpr const char* kUnprivilegedUser = "nobody";
 // statement, and room for the load (WAL size, index build memory). Commits
 // stay synchronous, as LMDB's and SQLite's are.
 constexpr const char* kServerSettings =
-    "-c listen_addresses='' -c shared_buffers=1GB -c jit=off -c plan_cache_mode=force_generic_plan "
+    "-c shared_buffers=1GB -c jit=off -c plan_cache_mode=force_generic_plan "
     "-c max_wal_size=8GB -c maintenance_work_mem=512MB -c work_mem=64MB -c autovacuum=off";
 
 // Statement triggers with transition tables count a whole COPY at once.
@@ -73,31 +64,6 @@ CREATE INDEX nodes_by_parent ON nodes(parent);
 
 constexpr const char* kNodeColumns =
     "n.id, n.kind, n.category, n.geometry, n.cx, n.cy, n.cz, n.sx, n.sy, n.sz, n.yaw, n.hidden";
-
-int run(const std::string& command) {
-    int status = std::system(command.c_str());
-    return status == -1 ? -1 : WEXITSTATUS(status);
-}
-
-// The newest PostgreSQL server installed the Debian way (/usr/lib/postgresql/<version>/bin).
-std::optional<fs::path> serverBinaries() {
-    std::optional<fs::path> best;
-    int bestVersion = 0;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator("/usr/lib/postgresql", ec)) {
-        int version = std::atoi(entry.path().filename().c_str());
-        if (version > bestVersion && fs::exists(entry.path() / "bin" / "initdb") &&
-            fs::exists(entry.path() / "bin" / "pg_ctl")) {
-            bestVersion = version;
-            best = entry.path() / "bin";
-        }
-    }
-    return best;
-}
-
-std::string asServerUser(const std::string& command) {
-    return geteuid() == 0 ? fmt::format("runuser -u {} -- {}", kUnprivilegedUser, command) : command;
-}
 
 struct Connection {
     PGconn* pg = nullptr;
@@ -209,63 +175,8 @@ private:
 
 // --- the server -------------------------------------------------------------
 
-std::unique_ptr<PostgresServer> PostgresServer::start(std::string& whyNot) {
-    auto binaries = serverBinaries();
-    if (!binaries) {
-        whyNot = "no PostgreSQL server under /usr/lib/postgresql/*/bin (Debian: postgresql-15-postgis-3)";
-        return nullptr;
-    }
-    std::string pattern = (fs::temp_directory_path() / "smql-bench-pg-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a directory for the PostgreSQL cluster");
-    std::unique_ptr<PostgresServer> server(new PostgresServer(*binaries, pattern));
-    if (geteuid() == 0 && run(fmt::format("chown {} {}", kUnprivilegedUser, pattern)) != 0)
-        throw std::runtime_error(fmt::format("cannot give {} to the user {}", pattern, kUnprivilegedUser));
-    const fs::path& dir = server->directory_;
-    if (run(asServerUser(fmt::format("{} -D {} -U postgres -A trust -E UTF8 --locale=C --no-sync > {} 2>&1",
-                                     (*binaries / "initdb").string(), (dir / "data").string(),
-                                     (dir / "initdb.log").string()))) != 0)
-        throw std::runtime_error(fmt::format("initdb failed; see {}", (dir / "initdb.log").string()));
-    if (run(asServerUser(fmt::format("{} -D {} -l {} -w -o \"-k {} -p {} {}\" start > /dev/null",
-                                     (*binaries / "pg_ctl").string(), (dir / "data").string(),
-                                     (dir / "server.log").string(), dir.string(), kPort, kServerSettings))) != 0)
-        throw std::runtime_error(
-            fmt::format("the PostgreSQL server did not start; see {}", (dir / "server.log").string()));
-    server->running_ = true;
-
-    Connection c(server->connectionString("postgres"));
-    Result available(PQexec(c.pg, "SELECT default_version FROM pg_available_extensions WHERE name = 'postgis'"));
-    check(c.pg, available, "looking for PostGIS");
-    if (available.rows() == 0) {
-        whyNot = "PostgreSQL has no PostGIS extension installed (Debian: postgresql-15-postgis-3)";
-        return nullptr;
-    }
-    server->version_ =
-        fmt::format("PostgreSQL {}, PostGIS {}", PQparameterStatus(c.pg, "server_version"), available.text(0, 0));
-    return server;
-}
-
-PostgresServer::PostgresServer(fs::path binaries, fs::path directory)
-    : binaries_(std::move(binaries)), directory_(std::move(directory)) {}
-
-PostgresServer::~PostgresServer() {
-    if (running_)
-        run(asServerUser(fmt::format("{} -D {} -m fast -w stop > /dev/null 2>&1", (binaries_ / "pg_ctl").string(),
-                                     (directory_ / "data").string())));
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-}
-
-std::string PostgresServer::connectionString(const std::string& database) const {
-    return fmt::format("host={} port={} user=postgres dbname={}", directory_.string(), kPort, database);
-}
-
-void PostgresServer::createDatabase(const std::string& database) {
-    {
-        Connection c(connectionString("postgres"));
-        exec(c.pg, fmt::format("CREATE DATABASE {}", database).c_str());
-    }
-    Connection c(connectionString(database));
-    exec(c.pg, "CREATE EXTENSION postgis; CREATE EXTENSION btree_gist");
+std::unique_ptr<PostgresServer> startPostgres(std::string& whyNot) {
+    return PostgresServer::start({.settings = kServerSettings, .prefix = "smql-bench-pg"}, whyNot);
 }
 
 // --- the baseline ------------------------------------------------------------

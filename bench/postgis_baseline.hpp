@@ -5,48 +5,23 @@
 // every query a prepared statement run with generic plans
 // (plan_cache_mode = force_generic_plan). Like the SQLite baseline, SQL finds
 // the candidates and the exact geometry runs in C++ with the engine's code.
-//
-// PostgresServer runs a private cluster for the benchmark: initdb into a new
-// temporary directory, the server listening only on a unix socket inside it,
-// stopped and the directory removed when the object dies (also when the run
-// fails). As root, initdb and the server run as the user `nobody` (PostgreSQL
-// refuses to run as root).
 #pragma once
 
-#include <filesystem>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/baseline.hpp"
+#include "fleet/pg/local_cluster.hpp"
 #include "model/types.hpp"
 
 namespace smql::bench {
 
-class PostgresServer {
-public:
-    // Starts a new cluster; nullopt (with the reason in `whyNot`) when
-    // PostgreSQL's server binaries or the PostGIS extension are not installed.
-    static std::unique_ptr<PostgresServer> start(std::string& whyNot);
-    ~PostgresServer();
-    PostgresServer(const PostgresServer&) = delete;
-    PostgresServer& operator=(const PostgresServer&) = delete;
-
-    // A libpq connection string for `database` on this server.
-    std::string connectionString(const std::string& database) const;
-    // Creates an empty database with the postgis and btree_gist extensions.
-    void createDatabase(const std::string& database);
-    // "PostgreSQL 15.5, PostGIS 3.3.2".
-    const std::string& version() const { return version_; }
-
-private:
-    PostgresServer(std::filesystem::path binaries, std::filesystem::path directory);
-    std::filesystem::path binaries_;
-    std::filesystem::path directory_;  // the cluster (data/), its socket and its log
-    bool running_ = false;
-    std::string version_;
-};
+// The benchmark's private PostgreSQL cluster: fleet/pg/local_cluster.hpp, shared with the fleet tests.
+using PostgresServer = fleet::pg::LocalCluster;
+// Starts one with the benchmark's server settings; nullptr (with the reason in `whyNot`) when
+// PostgreSQL's server binaries or the PostGIS extension are not installed.
+std::unique_ptr<PostgresServer> startPostgres(std::string& whyNot);
 
 class PostgisBaseline final : public Baseline {
 public:

@@ -6,6 +6,6 @@ cd "$(dirname "$0")/.."
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   git ls-files --cached --others --exclude-standard -- '*.cpp' '*.hpp' '*.c' '*.h'
 else
-  find model relations engine storage ingest shell drivers bench fuzz tests -type f \
+  find model relations engine storage ingest fleet shell drivers bench fuzz tests -type f \
     \( -name '*.cpp' -o -name '*.hpp' -o -name '*.c' -o -name '*.h' \) | sort
 fi
