@@ -11,9 +11,11 @@
 #include <fmt/format.h>
 
 #include "engine/binder/binder.hpp"
+#include "engine/binder/shape_cache.hpp"
 #include "engine/catalog/scene_snapshot.hpp"
 #include "engine/exec/executor.hpp"
 #include "engine/history/scene_update.hpp"
+#include "engine/parser/normalise.hpp"
 #include "engine/parser/parser.hpp"
 #include "engine/planner/planner.hpp"
 #include "model/error.hpp"
@@ -45,17 +47,35 @@ struct Engine::State {
     std::unordered_map<model::NodeId, CachedSnapshot> snapshots;
     std::uint64_t useCounter = 0;
     std::unordered_map<std::string, std::shared_ptr<const std::vector<ast::Statement>>> statements;
+    // Texts that differ from one seen before only in their literals (binder/shape_cache.hpp).
+    binder::ShapeCache shapes{static_cast<std::size_t>(session.limits.shapeCache)};
     std::mutex mutex;
     // Set by interrupt() from any thread; the running statement polls it. Not under the mutex.
     std::atomic<bool> interrupt{false};
 
-    std::shared_ptr<const std::vector<ast::Statement>> parse(std::string_view text) {
+    struct Parsed {
+        std::shared_ptr<const std::vector<ast::Statement>> statements;
+        bool fromShape = false;  // made from a cached shape: the parser has not seen this text
+    };
+
+    // The statements of `text`: the parse of the same text before, else (with `shaped`) a cached
+    // shape's statement with this text's literals, else the parser's, whose shape is then learned.
+    Parsed parse(std::string_view text, bool shaped) {
         std::string key(text);
-        if (auto it = statements.find(key); it != statements.end()) return it->second;
+        if (auto it = statements.find(key); it != statements.end()) return {it->second};
+        std::optional<parser::StatementShape> shape;
+        if (shaped && shapes.capacity() > 0) shape = parser::statementShape(text);
+        if (shape)
+            if (std::optional<ast::Statement> statement = shapes.statementOf(*shape, text)) {
+                auto one = std::make_shared<std::vector<ast::Statement>>();
+                one->push_back(std::move(*statement));
+                return {std::move(one), true};
+            }
         auto parsed = std::make_shared<const std::vector<ast::Statement>>(parser::parse(text));
+        if (shape && parsed->size() == 1) shapes.learn(*shape, parsed->front());
         if (statements.size() >= kStatementCacheSize) statements.clear();
         statements.emplace(std::move(key), parsed);
-        return parsed;
+        return {parsed};
     }
 
     // The current scene as of the last statement, and the snapshot id it was read in: while no write
@@ -99,6 +119,7 @@ struct Engine::State {
         auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement, values)));
         storage::Database* writer = db->readOnly() ? nullptr : db.get();
         auto rs = exec::Executor(txn, session, plan, &interrupt, writer).run();
+        shapes.setCapacity(static_cast<std::size_t>(session.limits.shapeCache));  // SET shape_cache, at once
         rs.elapsedMicroseconds =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
         return rs;
@@ -162,15 +183,34 @@ std::vector<ResultSet> Engine::execute(std::string_view text) {
 void Engine::execute(std::string_view text, const std::function<void(ResultSet&&)>& onResult) {
     std::lock_guard lock(state_->mutex);
     state_->interrupt = false;  // an interrupt stops the statements running when it comes, not later ones
-    auto statements = state_->parse(text);
-    for (const auto& statement : *statements) onResult(state_->run(statement, {}));
+    State::Parsed parsed = state_->parse(text, true);
+    if (parsed.fromShape) {
+        // A statement from a shape reads and changes nothing (parser/normalise.hpp), so when it
+        // fails it runs again from the parser's own reading, whose error names this text's
+        // places: a shape's locations are those of its placeholder text.
+        std::optional<ResultSet> result;
+        try {
+            result = state_->run(parsed.statements->front(), {});
+        } catch (const Error& e) {
+            if (e.kind() == ErrorKind::Interrupted) throw;
+        }
+        if (result) return onResult(std::move(*result));
+        parsed = state_->parse(text, false);
+    }
+    for (const auto& statement : *parsed.statements) onResult(state_->run(statement, {}));
+}
+
+binder::ShapeCacheStats Engine::shapeCacheStats() const {
+    std::lock_guard lock(state_->mutex);
+    return state_->shapes.stats();
 }
 
 PreparedStatement Engine::prepare(std::string_view text) {
     std::shared_ptr<const std::vector<ast::Statement>> statements;
     {
         std::lock_guard lock(state_->mutex);
-        statements = state_->parse(text);
+        // Not from a shape: the prepared statement's locations are its own text's.
+        statements = state_->parse(text, false).statements;
     }
     if (statements->size() != 1)
         throw Error(ErrorKind::Usage,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/binder/parameters.hpp"
+#include "engine/binder/shape_cache.hpp"
 #include "engine/guide/route_graph.hpp"
 #include "model/result.hpp"
 #include "model/types.hpp"
@@ -78,6 +79,10 @@ public:
     // Parses one statement, placeholders allowed, to run later with values. Throws smql::Error
     // for a syntax error, and Error(Usage) when `text` holds more than one statement.
     PreparedStatement prepare(std::string_view text);
+
+    // How the cache of statement shapes has done: a text that differs from one run before only in
+    // its literals skips the parser (docs/language.md, "Statement shapes"; SET shape_cache).
+    binder::ShapeCacheStats shapeCacheStats() const;
 
     // Stores an imported scene in one write transaction, after giving its
     // objects their parents (support, else the nearest upright anchor).

@@ -1,5 +1,5 @@
 // SET name = value: a threshold of the predicates, checked for its unit and range, or a limit of
-// the session (a positive whole number).
+// the session (a whole number, of at least 1 but for the shape cache's size, which 0 turns off).
 #include <cmath>
 
 #include <fmt/format.h>
@@ -14,9 +14,10 @@ namespace {
 
 BoundSet bindLimit(const catalog::LimitSetting& limit, const ast::SetStmt& set) {
     const auto* number = std::get_if<double>(&set.value);
-    if (!number || !std::isfinite(*number) || *number < 1 || *number != std::floor(*number) || *number > 1e15)
-        throw Error(ErrorKind::Binding, fmt::format("{} takes a whole number of at least 1", limit.name), set.where,
-                    fmt::format("SET {} = 5000000", limit.name));
+    if (!number || !std::isfinite(*number) || *number < static_cast<double>(limit.least) ||
+        *number != std::floor(*number) || *number > 1e15)
+        throw Error(ErrorKind::Binding, fmt::format("{} takes a whole number of at least {}", limit.name, limit.least),
+                    set.where, fmt::format("SET {} = 5000000", limit.name));
     BoundSet out;
     out.limit = &limit;
     out.value = *number;

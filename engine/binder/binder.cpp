@@ -87,6 +87,7 @@ BoundStatement Binder::bind(const ast::Statement& statement, const std::vector<s
     if (statement.parameterCount > 0) return bind(withParameters(statement, values));
     BoundStatement out;
     std::visit([&](const auto& body) { bindStatement(body, out); }, statement.body);
+    if (auto* explain = std::get_if<BoundExplain>(&out.body)) explain->fromShape = statement.fromShape;
     out.scene = scene_;
     out.setCount = nextSetId_;
     for (const auto& note : notes_) out.note += (out.note.empty() ? "" : "; ") + note;

@@ -185,6 +185,7 @@ struct BoundSet {
 struct BoundStatement;
 struct BoundExplain {
     std::shared_ptr<const BoundStatement> inner;
+    bool fromShape = false;  // the statement came from a cached statement shape (ast::Statement::fromShape)
 };
 
 // ASK: the question's translation and, when it runs, its SMQL bound like any statement.

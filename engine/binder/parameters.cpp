@@ -157,7 +157,7 @@ struct SlotCollector {
             slot.accepts &= accepts;
         }
     }
-    void onName(const ast::Ref& ref) { add(ref.placeholder, kTextValue); }
+    void onName(const ast::Ref& ref) { add(ref.placeholder, ref.placeholder.nodeId ? kIntegerValue : kTextValue); }
     void onDistance(const ast::Expr& predicate) { add(predicate.args.back().placeholder, kNumberValue); }
     void onLiteral(const ast::Expr& comparison) { add(*comparison.literalParam, kAnyValue); }
     void onLimit(const ast::FindStmt& find) { add(*find.limitParam, kIntegerValue); }
@@ -204,6 +204,11 @@ struct ValueFiller {
     static std::string_view placeholderPlace(unsigned accepts) { return placeName(accepts); }
 
     void onName(ast::Ref& ref) const {
+        if (ref.placeholder.nodeId) {
+            ref.number = std::get<std::int64_t>(valueOf(ref.placeholder, kIntegerValue));
+            ref.kind = ast::Ref::Kind::NodeId;
+            return;
+        }
         const auto& text = std::get<std::string>(valueOf(ref.placeholder, kTextValue));
         if (text.empty())
             fail(ref.placeholder, fmt::format("placeholder {} is bound to an empty name", ref.placeholder.name()),

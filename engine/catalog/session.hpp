@@ -18,12 +18,16 @@ namespace smql::catalog {
 struct Limits {
     std::int64_t maxRows = 1'000'000;  // rows of one result
     std::int64_t maxPairs = 100'000;   // node pairs RELATE may compare
+    // Statement shapes the engine keeps parsed, so that new literals skip the parser (0: none;
+    // engine/binder/shape_cache.hpp).
+    std::int64_t shapeCache = 1024;
 };
 
 struct LimitSetting {
     std::string_view name;
     std::int64_t Limits::*field;
     std::string_view meaning;
+    std::int64_t least = 1;  // the smallest value SET takes
 };
 const std::vector<LimitSetting>& limitSettings();
 const LimitSetting* findLimit(std::string_view name);

@@ -138,10 +138,13 @@ relations::Frame Executor::frame(const binder::BoundView& view) {
     return viewer;
 }
 
-ResultSet Executor::run(const binder::BoundExplain&) {
+ResultSet Executor::run(const binder::BoundExplain& explain) {
     ResultSet rs;
     rs.columns = {{"plan", ValueType::Text}};
     for (auto& line : plan_.explained->explain()) rs.rows.push_back({std::move(line)});
+    if (explain.fromShape)
+        rs.rows.push_back(
+            {std::string("Parse skipped: a cached statement shape, this text's literals bound as values")});
     return rs;
 }
 

@@ -20,6 +20,9 @@ struct FindStmt;
 struct Placeholder {
     std::size_t index = 0;  // 1-based
     bool numbered = false;  // `$2` rather than `?`
+    // Made by a statement shape for a node id taken out of the text (`#12`; parser/normalise.hpp):
+    // it binds an integer as the node id. A placeholder written in a statement never is one.
+    bool nodeId = false;
     SourceLocation where;
     // How messages name it: "$2", or "? number 2" for the second `?`.
     std::string name() const { return numbered ? "$" + std::to_string(index) : "? number " + std::to_string(index); }
@@ -208,6 +211,9 @@ struct Statement {
     SourceLocation where;
     // The highest placeholder index (0: none); a statement with placeholders runs only prepared.
     std::size_t parameterCount = 0;
+    // Made from a cached statement shape with this text's literals bound as values, rather than
+    // parsed (parser/normalise.hpp); EXPLAIN says so.
+    bool fromShape = false;
 };
 
 }  // namespace smql::ast

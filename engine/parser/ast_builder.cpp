@@ -71,7 +71,8 @@ double perMetre(const antlr4::Token* unit) {
 
 class AstBuilder {
 public:
-    explicit AstBuilder(const Source& source) : source_(source) {}
+    AstBuilder(const Source& source, const std::vector<bool>& nodeIdPlaceholders)
+        : source_(source), nodeIdPlaceholders_(nodeIdPlaceholders) {}
 
     ast::Statement statement(SmqlParser::StatementContext& tree) {
         numberPlaceholders(tree);
@@ -83,6 +84,7 @@ public:
 
 private:
     const Source& source_;
+    const std::vector<bool>& nodeIdPlaceholders_;
     // Each placeholder token's index, fixed before the walk: the walk does not visit the
     // statement in text order (GUIDE reads its target first), but `?` count in text order.
     std::map<const antlr4::Token*, std::size_t> placeholderIndex_;
@@ -134,7 +136,9 @@ private:
     }
 
     ast::Placeholder placeholder(const antlr4::Token& token) const {
-        return ast::Placeholder{placeholderIndex_.at(&token), token.getText() != "?", locationOf(token)};
+        const std::size_t index = placeholderIndex_.at(&token);
+        const bool nodeId = index <= nodeIdPlaceholders_.size() && nodeIdPlaceholders_[index - 1];
+        return ast::Placeholder{index, token.getText() != "?", nodeId, locationOf(token)};
     }
 
     ast::Statement withParameterCount(ast::Statement statement) const {
@@ -598,8 +602,9 @@ private:
 
 }  // namespace
 
-ast::Statement buildStatement(SmqlParser::StatementContext& tree, const Source& source) {
-    return AstBuilder(source).statement(tree);
+ast::Statement buildStatement(SmqlParser::StatementContext& tree, const Source& source,
+                              const std::vector<bool>& nodeIdPlaceholders) {
+    return AstBuilder(source, nodeIdPlaceholders).statement(tree);
 }
 
 }  // namespace smql::parser

@@ -10,6 +10,9 @@ namespace smql::parser {
 
 // Throws smql::Error (ErrorKind::Syntax) for a statement that parses but
 // does not make sense (`LIMIT 2.5`, `wall.top`, `WHERE` after `LIMIT`).
-ast::Statement buildStatement(grammar::SmqlParser::StatementContext& tree, const Source& source);
+// `nodeIdPlaceholders[k - 1]` marks placeholder k as a statement shape's node id
+// (ast::Placeholder::nodeId); empty for a statement as written.
+ast::Statement buildStatement(grammar::SmqlParser::StatementContext& tree, const Source& source,
+                              const std::vector<bool>& nodeIdPlaceholders = {});
 
 }  // namespace smql::parser

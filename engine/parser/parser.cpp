@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "engine/parser/ast_builder.hpp"
+#include "engine/parser/normalise.hpp"
 #include "engine/parser/source.hpp"
 #include "engine/parser/statement_parser.hpp"
 #include "engine/parser/vocabulary.hpp"
@@ -72,9 +73,8 @@ void checkLimits(const Source& source, const StatementSlice& slice) {
     }
 }
 
-}  // namespace
-
-std::vector<ast::Statement> parse(std::string_view text) {
+// parse(), with placeholders marked as node ids as buildStatement says.
+std::vector<ast::Statement> parseStatements(std::string_view text, const std::vector<bool>& nodeIdPlaceholders) {
     std::lock_guard lock(antlrMutex());
     Source source(text);
     std::vector<StatementSlice> slices = source.statements();
@@ -87,10 +87,23 @@ std::vector<ast::Statement> parse(std::string_view text) {
     for (const StatementSlice& slice : slices) {
         checkLimits(source, slice);
         StatementParser parser(source, slice);
-        statements.push_back(buildStatement(parser.parse(), source));
+        statements.push_back(buildStatement(parser.parse(), source, nodeIdPlaceholders));
         ++parsedCount;
     }
     return statements;
+}
+
+}  // namespace
+
+std::vector<ast::Statement> parse(std::string_view text) { return parseStatements(text, {}); }
+
+ast::Statement parseShape(const StatementShape& shape) {
+    std::vector<bool> nodeIds;
+    for (const ShapeLiteral& literal : shape.literals) nodeIds.push_back(literal.kind == ShapeLiteral::Kind::NodeId);
+    std::vector<ast::Statement> statements = parseStatements(shape.placeholderText(), nodeIds);
+    if (statements.size() != 1)
+        throw Error(ErrorKind::Syntax, "a statement shape holds one statement", statements.at(1).where);
+    return std::move(statements.front());
 }
 
 std::uint64_t statementsParsed() { return parsedCount.load(); }

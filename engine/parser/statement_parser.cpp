@@ -101,7 +101,25 @@ StatementParser::StatementParser(const Source& source, StatementSlice slice)
 
 StatementParser::~StatementParser() = default;
 
+// Two stages, as ANTLR's documentation advises: SLL prediction, cheaper, with an error strategy
+// that gives up at once, which reads every statement that is valid SMQL; only when it gives up,
+// the full LL prediction with the listener that locates the first error. A statement SLL reads
+// gets the tree LL would give it (the grammar has no ambiguity that needs the full context).
 SmqlParser::StatementContext& StatementParser::parse() {
+    auto* prediction = parser_->getInterpreter<antlr4::atn::ParserATNSimulator>();
+    prediction->setPredictionMode(antlr4::atn::PredictionMode::SLL);
+    parser_->setErrorHandler(std::make_shared<antlr4::BailErrorStrategy>());
+    parser_->removeErrorListeners();
+    try {
+        return *parser_->statement();
+    } catch (const antlr4::ParseCancellationException&) {
+        // Not SLL, or not SMQL: the second stage says which.
+    }
+    stream_->seek(0);
+    parser_->reset();
+    prediction->setPredictionMode(antlr4::atn::PredictionMode::LL);
+    parser_->setErrorHandler(std::make_shared<antlr4::DefaultErrorStrategy>());
+    parser_->addErrorListener(&stopAtFirstError);
     try {
         return *parser_->statement();
     } catch (const FirstError& error) {
