@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -16,6 +17,8 @@
 #include "bench/postgis_baseline.hpp"
 #include "bench/sqlite_baseline.hpp"
 #include "engine/engine.hpp"
+#include "engine/parser/normalise.hpp"
+#include "engine/parser/parser.hpp"
 #include "model/error.hpp"
 #include "storage/database.hpp"
 
@@ -33,10 +36,15 @@ constexpr std::array<std::string_view, 10> kSmallCategories = {"mug",    "book",
 
 enum class AnswerColumn { Id, Relation, Count };
 
+// A query as text, and as a prepared statement with the values its placeholders are bound to
+// (the same query: the answers of both are compared). A node id cannot be a placeholder, so
+// RELATE's prepared form is its text, prepared once per pair as an application would.
 struct Query {
     std::string text;
     AnswerColumn column;
     std::function<Answer(Baseline&)> baseline;
+    std::string prepared;
+    std::vector<ParameterValue> values;
 };
 
 // Classes in report order; the single-scene ones come first.
@@ -143,7 +151,10 @@ SceneQueries sceneQueries(Engine& engine, int sceneIndex) {
         const PredicateTerm& term = near;  // a lambda captures a variable, not a structured binding (clang 14)
         out.byClass[c].push_back(
             {fmt::format("FIND object WHERE on({}) AND near({}, {} m)", *surface, term.category, *term.nearDistance),
-             AnswerColumn::Id, [on, term](Baseline& s) { return s.findObjects(on, term); }});
+             AnswerColumn::Id,
+             [on, term](Baseline& s) { return s.findObjects(on, term); },
+             "FIND object WHERE on(?) AND near(?, ?)",
+             {std::string(*surface), term.category, Length{*term.nearDistance}}});
     }
 
     std::vector<const model::Node*> objects;
@@ -168,13 +179,16 @@ SceneQueries sceneQueries(Engine& engine, int sceneIndex) {
     }
     for (const auto& pair : pairs) {
         model::NodeId a = pair.first, b = pair.second;
-        out.byClass[kRelate].push_back({fmt::format("RELATE #{} TO #{}", a, b), AnswerColumn::Relation,
-                                        [a, b](Baseline& s) { return s.relate(a, b); }});
+        std::string text = fmt::format("RELATE #{} TO #{}", a, b);
+        out.byClass[kRelate].push_back(
+            {text, AnswerColumn::Relation, [a, b](Baseline& s) { return s.relate(a, b); }, text, {}});
     }
 
     out.byClass[kNearest].push_back({fmt::format("FIND object NEAREST TO door LIMIT {}", kNearestLimit),
                                      AnswerColumn::Id,
-                                     [](Baseline& s) { return s.nearestObjects("door", kNearestLimit); }});
+                                     [](Baseline& s) { return s.nearestObjects("door", kNearestLimit); },
+                                     "FIND object NEAREST TO ? LIMIT ?",
+                                     {std::string("door"), std::int64_t{kNearestLimit}}});
     return out;
 }
 
@@ -182,17 +196,23 @@ std::array<std::vector<Query>, kClassCount - kSingleSceneClasses> allSceneQuerie
     std::array<std::vector<Query>, kClassCount - kSingleSceneClasses> out;
     for (std::string_view c : kSmallCategories) {
         std::string category(c);
-        out[0].push_back({fmt::format("FIND {} LIMIT {}", category, kCategoryLimit), AnswerColumn::Id,
-                          [category](Baseline& s) { return s.findCategoryAll(category, kCategoryLimit); }});
-        out[1].push_back({fmt::format("COUNT {}", category), AnswerColumn::Count,
-                          [category](Baseline& s) { return s.countCategoryAll(category); }});
+        out[0].push_back({fmt::format("FIND {} LIMIT {}", category, kCategoryLimit),
+                          AnswerColumn::Id,
+                          [category](Baseline& s) { return s.findCategoryAll(category, kCategoryLimit); },
+                          "FIND ? LIMIT ?",
+                          {category, std::int64_t{kCategoryLimit}}});
+        out[1].push_back({fmt::format("COUNT {}", category),
+                          AnswerColumn::Count,
+                          [category](Baseline& s) { return s.countCategoryAll(category); },
+                          "COUNT ?",
+                          {category}});
     }
     return out;
 }
 
 // Samples per class, system and round, and what the checks saw.
 struct ClassSamples {
-    std::vector<std::vector<double>> smqlFresh, smqlRepeated;
+    std::vector<std::vector<double>> smqlFresh, smqlRepeated, smqlPrepared;
     std::vector<std::vector<std::vector<double>>> baselines;  // per baseline, per round
     std::size_t verified = 0;
     double answerTotal = 0;
@@ -208,15 +228,36 @@ void verify(Engine& engine, Baselines& baselines, const std::vector<Query>& quer
     }
 }
 
+// The engine's prepared statements, one per prepared text, made before the timing as an
+// application prepares its statements once.
+class PreparedStatements {
+public:
+    explicit PreparedStatements(Engine& engine) : engine_(engine) {}
+    PreparedStatement& of(const Query& query) {
+        auto it = statements_.find(query.prepared);
+        if (it == statements_.end()) it = statements_.emplace(query.prepared, engine_.prepare(query.prepared)).first;
+        return it->second;
+    }
+
+private:
+    Engine& engine_;
+    std::unordered_map<std::string, PreparedStatement> statements_;
+};
+
+// Binds the query's values and runs its prepared statement.
+ResultSet runPrepared(PreparedStatement& statement, const Query& query) {
+    for (std::size_t k = 0; k < query.values.size(); ++k) statement.bind(k + 1, query.values[k]);
+    return statement.execute();
+}
+
 // Times `reps` executions per system, cycling through the queries. smql runs
-// each query twice over: as fresh text (a numbered comment makes every text
-// new, so the engine parses, binds and plans it) and as the repeated text
-// (whose parse the engine has cached). Each fresh answer is checked against
-// every baseline's answer of the same execution, outside the timed calls.
-// Prepared statements: when the engine offers them, their timing is a third
-// smql loop here, next to these two, and a column in ClassResult.
-void timeQueries(Engine& engine, Baselines& baselines, const std::vector<Query>& queries, int reps, int round,
-                 const std::string& where, ClassSamples& samples) {
+// each query three times over: as fresh text (a numbered comment makes every text
+// new, so the engine never saw it verbatim), as the repeated text (whose parse the
+// engine has cached) and as a prepared statement with its values bound (as the
+// baselines run). Each fresh answer is checked against the prepared answer and every
+// baseline's answer of the same execution, outside the timed calls.
+void timeQueries(Engine& engine, PreparedStatements& prepared, Baselines& baselines, const std::vector<Query>& queries,
+                 int reps, int round, const std::string& where, ClassSamples& samples) {
     static std::uint64_t freshTexts = 0;
     std::vector<Answer> answers;
     for (int i = 0; i < reps; ++i) {
@@ -232,6 +273,17 @@ void timeQueries(Engine& engine, Baselines& baselines, const std::vector<Query>&
         auto t = Clock::now();
         engine.execute(q.text);
         samples.smqlRepeated[round].push_back(microsecondsSince(t));
+    }
+    for (int i = 0; i < reps; ++i) {
+        const auto& q = queries[static_cast<std::size_t>(i) % queries.size()];
+        PreparedStatement& statement = prepared.of(q);
+        auto t = Clock::now();
+        ResultSet rs = runPrepared(statement, q);
+        samples.smqlPrepared[round].push_back(microsecondsSince(t));
+        if (smqlAnswer(rs, q.column) != answers[static_cast<std::size_t>(i)])
+            throw std::runtime_error(fmt::format("smql's prepared `{}` answers {} in {}, its text `{}` answers {}",
+                                                 q.prepared, showAnswer(smqlAnswer(rs, q.column), q.column), where,
+                                                 q.text, showAnswer(answers[static_cast<std::size_t>(i)], q.column)));
     }
     for (std::size_t b = 0; b < baselines.size(); ++b) {
         for (int i = 0; i < reps; ++i) {
@@ -263,6 +315,23 @@ Percentiles overRounds(std::vector<std::vector<double>>& rounds) {
     out.p50 = median(p50s);
     out.p99 = median(p99s);
     return out;
+}
+
+// The p50 of ANTLR's parse and of the shape scan of `text`, each with a new comment per run as the
+// fresh texts have.
+std::pair<double, double> measureText(const std::string& text) {
+    constexpr int kRuns = 1000;
+    std::vector<double> parse, scan;
+    for (int i = 0; i < kRuns; ++i) {
+        const std::string fresh = fmt::format("{} -- text {}", text, i);
+        auto t = Clock::now();
+        parser::parse(fresh);
+        parse.push_back(microsecondsSince(t));
+        t = Clock::now();
+        if (!parser::statementShape(fresh)) throw std::runtime_error(fmt::format("`{}` has no statement shape", text));
+        scan.push_back(microsecondsSince(t));
+    }
+    return {median(parse), median(scan)};
 }
 
 OpenTimes measureOpen(const DataSet& data, const Query& firstQuery, const std::string& firstScene, int repeats) {
@@ -308,9 +377,11 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
             baselines.push_back(std::make_unique<PostgisBaseline>(data.postgisConnection, false));
         for (const auto& b : baselines) result.baselineNames.push_back(b->name());
         baselineSwitch.resize(baselines.size());
+        PreparedStatements prepared(*engine);
         for (auto& s : samples) {
             s.smqlFresh.resize(rounds);
             s.smqlRepeated.resize(rounds);
+            s.smqlPrepared.resize(rounds);
             s.baselines.assign(baselines.size(), std::vector<std::vector<double>>(rounds));
         }
         auto useScene = [&](const std::string& name) {
@@ -333,8 +404,10 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
             auto first = check(*engine, baselines, find, where);
             smqlSwitch.push_back(first.smqlMicros);
             for (std::size_t b = 0; b < baselines.size(); ++b) baselineSwitch[b].push_back(first.baselineMicros[b]);
-            for (int c = 0; c < kSingleSceneClasses; ++c)
+            for (int c = 0; c < kSingleSceneClasses; ++c) {
                 verify(*engine, baselines, scene.byClass[c], where, samples[c]);
+                for (const Query& q : scene.byClass[c]) prepared.of(q);
+            }
         }
         // Rounds outside, scenes inside: each round spans every scene, and the rounds spread over the run.
         for (int r = 0; r < rounds; ++r) {
@@ -342,7 +415,7 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
                 useScene(scene.name);
                 std::string where = fmt::format("{} scene {}", data.spec.label, scene.name);
                 for (int c = 0; c < kSingleSceneClasses; ++c)
-                    timeQueries(*engine, baselines, scene.byClass[c], perSceneRound, r, where, samples[c]);
+                    timeQueries(*engine, prepared, baselines, scene.byClass[c], perSceneRound, r, where, samples[c]);
             }
         }
         fmt::print(progress, "  {}: single-scene queries done in {} scene(s)\n", data.spec.label, sampled);
@@ -351,13 +424,17 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
         engine->execute("USE SCENE '*'");
         auto across = allSceneQueries();
         const std::string where = data.spec.label + " (all scenes)";
-        for (int c = kSingleSceneClasses; c < kClassCount; ++c)
+        for (int c = kSingleSceneClasses; c < kClassCount; ++c) {
             verify(*engine, baselines, across[c - kSingleSceneClasses], where, samples[c]);
+            for (const Query& q : across[c - kSingleSceneClasses]) prepared.of(q);
+        }
         for (int r = 0; r < rounds; ++r)
             for (int c = kSingleSceneClasses; c < kClassCount; ++c)
-                timeQueries(*engine, baselines, across[c - kSingleSceneClasses], perRound, r, where, samples[c]);
+                timeQueries(*engine, prepared, baselines, across[c - kSingleSceneClasses], perRound, r, where,
+                            samples[c]);
         fmt::print(progress, "  {}: all-scene queries done\n", data.spec.label);
         progress.flush();
+        result.shapes = engine->shapeCacheStats();
     }
     // smql and SQLite are closed now, so each open below starts from nothing but the OS page cache.
     result.open =
@@ -369,13 +446,23 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
         r.twoPredicateFind = c == kFindWindow || c == kFindChair;
         r.smqlFresh = overRounds(samples[c].smqlFresh);
         r.smqlRepeated = overRounds(samples[c].smqlRepeated);
+        r.smqlPrepared = overRounds(samples[c].smqlPrepared);
         for (auto& b : samples[c].baselines) r.baselines.push_back(overRounds(b));
+        const std::string first = c < kSingleSceneClasses ? scenes.front().byClass[c].front().text
+                                                          : allSceneQueries()[c - kSingleSceneClasses].front().text;
+        std::tie(r.parseMicros, r.shapeScanMicros) = measureText(first);
         r.verified = samples[c].verified;
         r.meanAnswer = samples[c].verified ? samples[c].answerTotal / static_cast<double>(samples[c].verified) : 0;
         result.classes.push_back(std::move(r));
     }
-    result.smqlSceneSwitch = percentiles(smqlSwitch);
-    for (auto& b : baselineSwitch) result.baselineSceneSwitch.push_back(percentiles(b));
+    auto sceneSwitch = [](std::vector<double>& samples) {
+        Percentiles p = percentiles(samples);  // sorts them
+        p.p50Low = samples.empty() ? 0 : samples.front();
+        p.p50High = p.max;
+        return p;
+    };
+    result.smqlSceneSwitch = sceneSwitch(smqlSwitch);
+    for (auto& b : baselineSwitch) result.baselineSceneSwitch.push_back(sceneSwitch(b));
     return result;
 }
 

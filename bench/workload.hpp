@@ -10,6 +10,7 @@
 
 #include "bench/data_set.hpp"
 #include "bench/stats.hpp"
+#include "engine/binder/shape_cache.hpp"
 
 namespace smql::bench {
 
@@ -30,9 +31,14 @@ struct ClassResult {
     bool twoPredicateFind = false;       // what the FIND latency target is about
     Percentiles smqlFresh;               // new statement text each time: parse, bind, plan, run
     Percentiles smqlRepeated;            // the same texts again: the engine's parse cache answers the parse
+    Percentiles smqlPrepared;            // Engine::prepare once, then bind and execute: the baselines' way
     std::vector<Percentiles> baselines;  // per WorkloadResult::baselineNames
-    std::size_t verified = 0;            // distinct queries compared before timing (every timed answer is compared too)
-    double meanAnswer = 0;               // mean rows per answer (the count itself for COUNT)
+    // What a new text costs before the binder, p50 in microseconds over the class's first query:
+    // ANTLR's parse into the AST, and the hand-written scan that finds the text's statement shape.
+    double parseMicros = 0;
+    double shapeScanMicros = 0;
+    std::size_t verified = 0;  // distinct queries compared before timing (every timed answer is compared too)
+    double meanAnswer = 0;     // mean rows per answer (the count itself for COUNT)
 };
 
 // Medians over WorkloadOptions::openRepeats, in microseconds.
@@ -46,10 +52,12 @@ struct OpenTimes {
 struct WorkloadResult {
     std::vector<ClassResult> classes;
     std::vector<std::string> baselineNames;  // "SQLite", then "PostGIS" when it took part
-    // The first FIND after USE SCENE: smql decodes the scene into memory then.
+    // The first FIND after USE SCENE: smql decodes the scene into memory then. One sample per scene
+    // visited; p50Low and p50High are the fastest and the slowest of them.
     Percentiles smqlSceneSwitch;
     std::vector<Percentiles> baselineSceneSwitch;
     OpenTimes open;
+    binder::ShapeCacheStats shapes;  // the engine's statement shapes at the end of the timed queries
 };
 
 WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, std::ostream& progress);
