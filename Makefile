@@ -7,7 +7,7 @@ PREFIX ?= /usr/local
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build debug test demo bench bench-startup bench-similar bench-python fuzz stress format lint install clean
+.PHONY: all setup configure build debug test demo bench bench-startup bench-similar bench-python bench-fleet fuzz stress format lint install clean
 
 all: build
 
@@ -47,20 +47,28 @@ bench-python: build
 bench-similar: build
 	@$(BUILD)/bench/smql_bench_similar
 
+# Push throughput into a fleet store in a private PostgreSQL cluster (docs/fleet.md, "Measured").
+bench-fleet: build
+	@$(BUILD)/bench/smql_bench_fleet
+
 # libFuzzer targets, built with clang in build-fuzz, each run FUZZ_SECONDS seconds; fails on a crash.
 fuzz: setup
 	@scripts/fuzz.sh $(FUZZ_SECONDS)
 
 # The fault tests that take minutes (scripts/stress.py; docs/testing.md, "Stress"): SIGKILL during
 # STRESS_RUNS imports and ingests, one writer beside eight readers for STRESS_SECONDS, then
-# STRESS_FLIPS single-bit flips of a database, each followed by check and every class of read.
+# STRESS_FLIPS single-bit flips of a database, each followed by check and every class of read, then
+# STRESS_FLEET_KILLS pushes to a fleet store killed at random moments (docs/fleet.md).
 STRESS_RUNS ?= 200
 STRESS_SECONDS ?= 300
 STRESS_FLIPS ?= 300
+STRESS_FLEET_KILLS ?= 100
 stress: build
 	@scripts/stress.py $(BUILD)/shell/smql kill --runs $(STRESS_RUNS)
 	@scripts/stress.py $(BUILD)/shell/smql readers --seconds $(STRESS_SECONDS) --readers 8
 	@scripts/stress.py $(BUILD)/shell/smql flips --flips $(STRESS_FLIPS)
+	@cd $(BUILD) && SMQL_FLEET_KILLS=$(STRESS_FLEET_KILLS) SMQL_FLEET_PROGRAM=shell/smql-fleet \
+		tests/fleet/smql_fleet_tests "pushes killed at random moments leave no partial or duplicated scene"
 
 # The house format (.clang-format): `make format` rewrites the sources, `make lint` checks the format
 # and runs clang-tidy's short list (.clang-tidy); the test run includes lint as the test `lint`.

@@ -1,7 +1,8 @@
 // The `smql` command: a shell over a database directory, and sub-commands.
 //   smql DIR                       interactive shell
 //   smql DIR 'STATEMENTS'          run statements, print, exit (also -c; -f FILE for a script)
-//   smql import|export|check|test  here; ingest|check-ingest|synth|demo in smql-ingest
+//   smql import|export|check|test  here; ingest|check-ingest|synth|demo in smql-ingest;
+//   smql fleet|push|pull           in smql-fleet
 // Options follow sqlite3's where they mean the same (-json, -csv, -header, -cmd, -bail, -echo).
 #include <unistd.h>
 #include <cerrno>
@@ -70,8 +71,8 @@ int runShell(int argc, char** argv) {
     CLI::App app{
         "smql: an embedded spatial memory engine.\n"
         "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits.\n"
-        "Sub-commands: import, export, check, test, eval, ingest, check-ingest, synth, demo, map, guide (smql "
-        "COMMAND --help).\n"
+        "Sub-commands: import, export, check, test, eval, ingest, check-ingest, synth, demo, map, guide, fleet, "
+        "push, pull (smql COMMAND --help).\n"
         "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd)."};
     app.name("smql");
     std::string dir, command, script, mode = "table";
@@ -156,16 +157,17 @@ int runShell(int argc, char** argv) {
     return failed ? 1 : 0;
 }
 
-// The capture commands live in smql-ingest beside this program (see shell/ingest_main.cpp): it
-// replaces this process, so its output, exit status and Ctrl-C behave as if it were smql itself.
-int runIngestTool(char** argv) {
+// The capture commands live in smql-ingest beside this program (see shell/ingest_main.cpp), the
+// fleet commands in smql-fleet (shell/fleet_main.cpp): it replaces this process, so its output,
+// exit status and Ctrl-C behave as if it were smql itself.
+int runTool(const char* name, char** argv) {
     std::error_code error;
     fs::path self = fs::read_symlink("/proc/self/exe", error);
-    fs::path tool = (error ? fs::path(argv[0]) : self).parent_path() / "smql-ingest";
+    fs::path tool = (error ? fs::path(argv[0]) : self).parent_path() / name;
     execv(tool.c_str(), argv);
-    throw smql::Error(smql::ErrorKind::Usage, fmt::format("cannot run {}: {}", tool.string(), std::strerror(errno)),
-                      std::nullopt,
-                      "smql-ingest is built and installed next to smql (cmake --build build --target smql-ingest)");
+    throw smql::Error(
+        smql::ErrorKind::Usage, fmt::format("cannot run {}: {}", tool.string(), std::strerror(errno)), std::nullopt,
+        fmt::format("{} is built and installed next to smql (cmake --build build --target {})", name, name));
 }
 
 int runSubcommand(int argc, char** argv) {
@@ -254,7 +256,8 @@ int main(int argc, char** argv) {
         std::string first = argc > 1 ? argv[1] : "";
         if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo" || first == "map" ||
             first == "guide" || first == "view")
-            return runIngestTool(argv);
+            return runTool("smql-ingest", argv);
+        if (first == "fleet" || first == "push" || first == "pull") return runTool("smql-fleet", argv);
         if (first == "import" || first == "export" || first == "test" || first == "check" || first == "eval")
             return runSubcommand(argc, argv);
         return runShell(argc, argv);

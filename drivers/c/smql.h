@@ -230,6 +230,30 @@ SMQL_API smql_status smql_check_ingest(smql_db* db, const char* truth, const cha
  * one row per metric: task, metric, value, episodes, median_us (of the statements it ran). */
 SMQL_API smql_status smql_evaluate(smql_db* db, const char* suite, const char* scene, smql_result** out);
 
+/* ---- Fleet ----------------------------------------------------------- */
+
+/* Sends every scene version of this database that the fleet store at `url` lacks (a PostgreSQL +
+ * PostGIS database that `smql fleet init URL` prepared; docs/fleet.md), each in one transaction of
+ * its own, idempotent: a push cut short at any moment and run again leaves no partial scene and no
+ * duplicate. `smql push DB URL` is the same work. url: postgresql://USER@HOST:PORT/DATABASE, given
+ * to libpq as it is (a password from ~/.pgpass or PGPASSWORD, TLS from sslmode=... or PGSSLMODE;
+ * smql stores nothing of it). The first push gives the database its device id (a random UUID kept
+ * in the database), so it needs a read-write handle once. On SMQL_OK, *out (when out is not NULL)
+ * holds one row: device, sent, present (versions the store had already), nodes, seconds. A store
+ * that cannot be reached, lacks the schema or has a newer one, or a role that may not write, is
+ * SMQL_ERROR_STORAGE with what to do. The first call loads libsmql_fleet.so, installed beside
+ * libsmql.so (libpq and its TLS libraries are loaded only by programs that talk to a store); without
+ * it the call fails with SMQL_ERROR_USAGE saying where it looked. */
+SMQL_API smql_status smql_push(smql_db* db, const char* url, smql_result** out);
+
+/* Brings version `version` (0: the newest) of the scene named `scene` from the fleet store at `url`
+ * into this database as a new scene of that name, stored exactly as it was pushed (its JSON export
+ * is the original's, byte for byte). device: the id of the device whose scene it is, or its first
+ * characters; NULL when only one device holds a scene of that name (else SMQL_ERROR_BINDING naming
+ * them). A name already stored here is SMQL_ERROR_INPUT. Needs a read-write handle; loads the fleet
+ * module as smql_push does. */
+SMQL_API smql_status smql_pull(smql_db* db, const char* url, const char* scene, const char* device, uint64_t version);
+
 /* ---- Results --------------------------------------------------------- */
 
 /* Frees a result and every string taken from it; NULL is a no-op. */

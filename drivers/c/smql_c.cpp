@@ -22,10 +22,13 @@
 #include "engine/engine.hpp"
 #include "engine/eval/evaluation.hpp"
 #include "engine/format.hpp"
+#include "fleet/local/local_scenes.hpp"
+#include "fleet_module.hpp"
 #include "ingest/import/registry.hpp"
 #include "ingest_module.hpp"
 #include "model/error.hpp"
 #include "model/result.hpp"
+#include "storage/database.hpp"
 #include "view/view.hpp"
 
 namespace {
@@ -41,6 +44,8 @@ struct LastError {
 
 struct smql_db {
     std::unique_ptr<smql::Engine> engine;  // null when smql_open failed: the handle only reports why
+    std::string directory;                 // smql_push and smql_pull read and write it through storage
+    bool readOnly = false;
     // Errors are kept per calling thread so that threads sharing a handle
     // read their own error; an entry exists only while its last call failed.
     mutable std::mutex errorsMutex;
@@ -227,7 +232,9 @@ smql_status smql_open(const char* dir, int flags, smql_db** out) {
     smql_db* db = *out;
     if (!dir) return misuse(db, "smql_open: dir is NULL");
     if (flags & ~SMQL_OPEN_READONLY) return misuse(db, "smql_open: unknown flag bits (only SMQL_OPEN_READONLY exists)");
-    return guarded(db, {}, [&] { db->engine = smql::Engine::open(dir, (flags & SMQL_OPEN_READONLY) != 0); });
+    db->directory = dir;
+    db->readOnly = (flags & SMQL_OPEN_READONLY) != 0;
+    return guarded(db, {}, [&] { db->engine = smql::Engine::open(dir, db->readOnly); });
 }
 
 void smql_close(smql_db* db) { delete db; }
@@ -384,6 +391,105 @@ smql_status smql_check_ingest(smql_db* db, const char* truth, const char* scene,
         res->set.columns = {{"name", smql::ValueType::Text}, {"value", smql::ValueType::Real}};
         for (const auto& [name, value] : call.figures) res->set.rows.push_back({name, value});
         *out = res.release();
+    });
+}
+
+namespace {
+
+// The fleet module's two calls, loaded once per process from the folder libsmql.so was loaded from.
+struct FleetModule {
+    smql::capi::PushStep push = nullptr;
+    smql::capi::FetchStep fetch = nullptr;
+    std::string failure;  // why it could not be loaded
+};
+
+const FleetModule& loadedFleetModule() {
+    static const FleetModule module = [] {
+        FleetModule out;
+        Dl_info self{};
+        std::filesystem::path path = smql::capi::kFleetModuleFile;
+        if (dladdr(reinterpret_cast<void*>(&smql_version), &self) && self.dli_fname)
+            path = std::filesystem::path(self.dli_fname).parent_path() / smql::capi::kFleetModuleFile;
+        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            const char* why = dlerror();
+            out.failure = "cannot load the fleet module " + path.string() + ": " + (why ? why : "unknown reason");
+            return out;
+        }
+        out.push = reinterpret_cast<smql::capi::PushStep>(dlsym(handle, smql::capi::kPushEntry));
+        out.fetch = reinterpret_cast<smql::capi::FetchStep>(dlsym(handle, smql::capi::kFetchEntry));
+        if (!out.push || !out.fetch) out.failure = path.string() + " is not smql's fleet module";
+        return out;
+    }();
+    if (!module.failure.empty())
+        throw smql::Error(smql::ErrorKind::Usage, module.failure, std::nullopt,
+                          "make install puts libsmql_fleet.so beside libsmql.so; smql push needs no module");
+    return module;
+}
+
+// The handle's database as storage sees it: within a process it shares the engine's environment.
+std::unique_ptr<smql::storage::Database> storageOf(const smql_db* db) {
+    return smql::storage::Database::open(db->directory, {.readOnly = db->readOnly, .create = false});
+}
+
+}  // namespace
+
+smql_status smql_push(smql_db* db, const char* url, smql_result** out) {
+    if (out) *out = nullptr;
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!url) return misuse(db, "smql_push: url must not be NULL");
+    return guarded(db, {}, [&] {
+        const FleetModule& module = loadedFleetModule();
+        auto database = storageOf(db);
+        smql::fleet::LocalSource local = smql::fleet::localSource(*database);
+        // No smql::Error crosses into the module: a failed read is kept here and reported as it was.
+        std::optional<smql::Error> readFailure;
+        local.read = [&](const std::string& scene) {
+            try {
+                return smql::fleet::readVersions(*database, scene);
+            } catch (const smql::Error& e) {
+                readFailure = e;
+                throw std::runtime_error(e.message());
+            }
+        };
+        smql::capi::PushCall call;
+        call.url = url;
+        call.local = &local;
+        module.push(call);
+        if (readFailure) throw *readFailure;
+        if (call.error) throw *call.error;
+        if (!out) return;
+        auto res = std::make_unique<smql_result>();
+        using smql::ValueType;
+        res->set.columns = {{"device", ValueType::Text},
+                            {"sent", ValueType::Integer},
+                            {"present", ValueType::Integer},
+                            {"nodes", ValueType::Integer},
+                            {"seconds", ValueType::Real}};
+        const auto& r = call.report;
+        res->set.rows.push_back({r.device, static_cast<std::int64_t>(r.sent), static_cast<std::int64_t>(r.present),
+                                 static_cast<std::int64_t>(r.nodes), r.seconds});
+        res->set.message = r.summary();
+        res->messages.push_back(res->set.message);
+        *out = res.release();
+    });
+}
+
+smql_status smql_pull(smql_db* db, const char* url, const char* scene, const char* device, uint64_t version) {
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!url || !scene) return misuse(db, "smql_pull: url and scene must not be NULL");
+    return guarded(db, {}, [&] {
+        if (db->readOnly)
+            throw smql::Error(smql::ErrorKind::Storage, "the database is open read-only: a pull cannot store its scene",
+                              std::nullopt, "open it read-write");
+        smql::capi::FetchCall call;
+        call.url = url;
+        call.request.scene = scene;
+        call.request.device = device ? device : "";
+        call.request.version = version;
+        loadedFleetModule().fetch(call);
+        if (call.error) throw *call.error;
+        smql::fleet::storePulled(*storageOf(db), call.pulled.version);
     });
 }
 

@@ -1,0 +1,65 @@
+// `smql-fleet`: the commands of `smql` that talk to a fleet store in PostgreSQL (fleet init, push,
+// pull; docs/fleet.md). libpq and the TLS and Kerberos libraries it loads would add milliseconds
+// to every query's start-up, so `smql` executes this program, installed next to it, for them.
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "fleet/fleet.hpp"
+#include "model/error.hpp"
+#include "shell/cli.hpp"
+#include "storage/database.hpp"
+
+namespace {
+
+int run(int argc, char** argv) {
+    CLI::App app{"smql fleet commands: fleet init, push, pull (docs/fleet.md)"};
+    app.name("smql");
+    app.require_subcommand(1);
+
+    auto* fleetCmd = app.add_subcommand("fleet", "manage a fleet store in PostgreSQL + PostGIS");
+    fleetCmd->require_subcommand(1);
+    auto* init = fleetCmd->add_subcommand("init", "create the store's schema in a database, or bring it up to date");
+    std::string initUrl;
+    init->add_option("url", initUrl, "the database: postgresql://USER@HOST:PORT/DATABASE")->required();
+
+    auto* push = app.add_subcommand("push", "send every scene version the fleet store lacks, each in one transaction");
+    std::string pushDb, pushUrl;
+    push->add_option("database", pushDb, "the local database directory")->required()->check(CLI::ExistingDirectory);
+    push->add_option("url", pushUrl, "the fleet store: postgresql://USER@HOST:PORT/DATABASE")->required();
+
+    auto* pull = app.add_subcommand("pull", "bring a scene from the fleet store into a local database");
+    std::string pullUrl, pullDb;
+    smql::fleet::PullRequest request;
+    pull->add_option("url", pullUrl, "the fleet store: postgresql://USER@HOST:PORT/DATABASE")->required();
+    pull->add_option("database", pullDb, "the local database directory (created if missing)")->required();
+    pull->add_option("--scene", request.scene, "the scene's name")->required();
+    pull->add_option("--device", request.device, "whose scene it is: the device's id, or its start");
+    pull->add_option("--version", request.version, "which version (default: the newest)")->check(CLI::PositiveNumber);
+
+    if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
+    if (init->parsed()) {
+        auto report = smql::fleet::init(initUrl);
+        std::cout << (report.before == report.after
+                          ? fmt::format("the fleet store is at schema version {}; nothing to do\n", report.after)
+                          : fmt::format("created the fleet store's schema: version {} (was {})\n", report.after,
+                                        report.before));
+        return 0;
+    }
+    if (push->parsed()) {
+        auto database = smql::storage::Database::open(pushDb, {.create = false});
+        std::cout << smql::fleet::push(*database, pushUrl).summary() << "\n";
+        return 0;
+    }
+    auto database = smql::storage::Database::open(pullDb);
+    auto pulled = smql::fleet::pull(pullUrl, request, *database);
+    std::cout << fmt::format("pulled version {} of scene '{}' (device {}, {} nodes) into {}\n", pulled.version.version,
+                             request.scene, pulled.device, pulled.version.data.nodes.size(), pullDb);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return smql::shell::runReportingErrors([&] { return run(argc, argv); });
+}
