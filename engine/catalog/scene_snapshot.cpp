@@ -161,7 +161,7 @@ std::vector<std::string> SceneSnapshot::categories() const {
 
 std::string SceneSnapshot::label(const model::Node& node) {
     if (node.kind == model::NodeKind::Scene) return node.category;
-    return fmt::format("{}#{}", node.category, node.id);
+    return node.category + '#' + std::to_string(node.id);
 }
 
 std::string SceneSnapshot::path(Slot slot) const {

@@ -12,17 +12,24 @@ namespace smql::exec {
 
 std::string relationSentence(const model::Node& a, const model::Node& b,
                              const std::vector<relations::RelationHit>& hits) {
-    const std::string la = catalog::SceneSnapshot::label(a), lb = catalog::SceneSnapshot::label(b);
-    const double gap = model::distance(a.box, b.box);
+    return relationSentence(catalog::SceneSnapshot::label(a), catalog::SceneSnapshot::label(b),
+                            model::distance(a.box, b.box), hits);
+}
+
+std::string relationSentence(std::string_view la, std::string_view lb, double gap,
+                             const std::vector<relations::RelationHit>& hits) {
     if (hits.empty()) return fmt::format("no relation holds from {} to {} ({:.1f} m apart)", la, lb, gap);
-    std::string sentence;
-    for (const auto& hit : hits) {
-        std::string words(relations::toString(hit.predicate));
-        std::replace(words.begin(), words.end(), '_', ' ');  // "left of", "in front of"
-        std::string phrase = fmt::format("{} {}", words, lb);
-        if (relations::spec(hit.predicate).takesDistance) phrase += fmt::format(" ({:.1f} m)", gap);
-        sentence += sentence.empty() ? la + " is " : "; ";
-        sentence += phrase;
+    std::string sentence(la);
+    sentence += " is ";
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+        if (i > 0) sentence += "; ";
+        const std::size_t words = sentence.size();
+        sentence += relations::toString(hits[i].predicate);
+        std::replace(sentence.begin() + static_cast<std::ptrdiff_t>(words), sentence.end(), '_',
+                     ' ');  // "left of", "in front of"
+        sentence += ' ';
+        sentence += lb;
+        if (relations::spec(hits[i].predicate).takesDistance) sentence += fmt::format(" ({:.1f} m)", gap);
     }
     return sentence;
 }
@@ -43,7 +50,10 @@ ResultSet Executor::run(const binder::BoundRelate& r) {
                   {"object", ValueType::Text},
                   {"score", ValueType::Real},
                   {"distance", ValueType::Real}};
+    // The message words the first pairs; the rows hold them all, so the others' sentences are not made.
+    constexpr std::size_t kPairsInWords = 20;
     std::vector<std::string> sentences;
+    std::size_t pairsCompared = 0;
     for (catalog::Slot a : subjects) {
         for (catalog::Slot b : objects) {
             poll();
@@ -53,13 +63,14 @@ ResultSet Executor::run(const binder::BoundRelate& r) {
             auto hits = relate(na, nb, viewer);
             double gap = model::distance(na.box, nb.box);
             std::string la = catalog::SceneSnapshot::label(na), lb = catalog::SceneSnapshot::label(nb);
+            if (++pairsCompared <= kPairsInWords) sentences.push_back(relationSentence(la, lb, gap, hits));
             for (const auto& hit : hits)
                 rs.rows.push_back({la, std::string(relations::toString(hit.predicate)), lb, hit.score, gap});
-            sentences.push_back(relationSentence(na, nb, hits));
         }
     }
-    for (std::size_t i = 0; i < sentences.size() && i < 20; ++i) rs.message += (i ? "\n" : "") + sentences[i];
-    if (sentences.size() > 20) rs.message += fmt::format("\n... {} more pairs in the rows", sentences.size() - 20);
+    for (std::size_t i = 0; i < sentences.size(); ++i) rs.message += (i ? "\n" : "") + sentences[i];
+    if (pairsCompared > kPairsInWords)
+        rs.message += fmt::format("\n... {} more pairs in the rows", pairsCompared - kPairsInWords);
     return rs;
 }
 

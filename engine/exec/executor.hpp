@@ -8,6 +8,8 @@
 #include <atomic>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/binder/bound.hpp"
@@ -24,6 +26,8 @@ namespace smql::exec {
 
 // RELATE's sentence for one pair: "lamp#13 is left of window#9; near window#9 (0.4 m)", or that no
 // relation holds. CHECK gives it as its evidence.
+std::string relationSentence(std::string_view subjectLabel, std::string_view objectLabel, double distance,
+                             const std::vector<relations::RelationHit>& hits);
 std::string relationSentence(const model::Node& a, const model::Node& b,
                              const std::vector<relations::RelationHit>& hits);
 
