@@ -38,9 +38,15 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
     snap->bounds_.resize(count);
     std::vector<storage::SpatialIndex::Entry> entries;
     entries.reserve(count);
+    snap->firstId_ = count > 0 ? snap->nodes_.front().id : model::kNoNode;
+    snap->idsInOneBlock_ = true;
+    for (Slot s = 0; s < count; ++s)
+        snap->idsInOneBlock_ = snap->idsInOneBlock_ && snap->nodes_[s].id == snap->firstId_ + s;
+    if (!snap->idsInOneBlock_) snap->slotById_.reserve(count);
+    snap->slotBySource_.reserve(count);
     for (Slot s = 0; s < count; ++s) {
         const auto& n = snap->nodes_[s];
-        snap->slotById_.emplace(n.id, s);
+        if (!snap->idsInOneBlock_) snap->slotById_.emplace(n.id, s);
         if (n.sourceId) snap->slotBySource_.emplace(*n.sourceId, s);
         snap->slotsByCategory_[n.category].push_back(s);
         snap->slotsByKind_[static_cast<std::size_t>(n.kind)].push_back(s);
@@ -55,10 +61,8 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
                 snap->attributeNames_.push_back(a.name);
     }
     std::sort(snap->attributeNames_.begin(), snap->attributeNames_.end());
-    for (Slot s = 0; s < count; ++s) {
-        auto parent = snap->slotById_.find(snap->nodes_[s].parent);
-        if (parent != snap->slotById_.end()) snap->children_[parent->second].push_back(s);
-    }
+    for (Slot s = 0; s < count; ++s)
+        if (std::optional<Slot> parent = snap->slotOf(snap->nodes_[s].parent)) snap->children_[*parent].push_back(s);
     snap->rtree_ = storage::SpatialIndex(entries);
     snap->relations_ = std::move(relations);
     return snap;
@@ -121,6 +125,10 @@ const similar::EmbeddingIndex* SceneSnapshot::storedEmbeddings(const storage::Re
 }
 
 std::optional<Slot> SceneSnapshot::slotOf(model::NodeId id) const {
+    if (idsInOneBlock_) {
+        if (id < firstId_ || id - firstId_ >= nodes_.size()) return std::nullopt;
+        return static_cast<Slot>(id - firstId_);
+    }
     auto it = slotById_.find(id);
     if (it == slotById_.end()) return std::nullopt;
     return it->second;

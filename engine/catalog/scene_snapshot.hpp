@@ -80,6 +80,11 @@ private:
     model::SceneInfo info_;
     std::vector<model::Node> nodes_;
     std::vector<model::Aabb> bounds_;
+    // A stored scene's ids are one block in slot order (storage gives a scene's nodes consecutive
+    // ids), so a slot is its id less the first; a scene rebuilt from its history may not be, and
+    // maps its ids.
+    bool idsInOneBlock_ = false;
+    model::NodeId firstId_ = 0;
     std::unordered_map<model::NodeId, Slot> slotById_;
     std::unordered_map<std::int64_t, Slot> slotBySource_;
     std::unordered_map<std::string, std::vector<Slot>> slotsByCategory_;
