@@ -39,8 +39,6 @@ bool anyNodeWord(const std::string& name) {
     return name == "node" || name == "nodes" || name == "thing" || name == "things";
 }
 
-bool queryable(const Node& n) { return !n.hidden && n.kind != NodeKind::Scene; }
-
 // Whether some sense of a noun is a physical object in WordNet (a piano, a path; not a unicorn or
 // an idea): the things a scene could hold.
 bool physicalThing(const std::string& noun) {
@@ -157,14 +155,12 @@ NodeSet Binder::bindName(const ast::Ref& ref) {
     NodeSet set;
     const auto& snap = scene();
     if (auto kind = kindWord(ref.name)) {
-        for (Slot s : snap.slotsOfKind(*kind))
-            if (queryable(snap.node(s))) set.slots.push_back(s);
+        set.slots = snap.shownOfKind(*kind);
         set.description = describeSet(ref.name, set.slots.size());
         return set;
     }
     if (anyNodeWord(ref.name)) {
-        for (Slot s = 0; s < snap.nodes().size(); ++s)
-            if (queryable(snap.node(s))) set.slots.push_back(s);
+        set.slots = snap.shownNodes();
         set.description = describeSet(ref.name, set.slots.size());
         return set;
     }

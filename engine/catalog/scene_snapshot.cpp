@@ -35,6 +35,7 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
     const auto count = static_cast<Slot>(snap->nodes_.size());
     snap->children_.resize(count);
     snap->slotsByKind_.resize(6);
+    snap->shownByKind_.resize(6);
     snap->bounds_.resize(count);
     std::vector<storage::SpatialIndex::Entry> entries;
     entries.reserve(count);
@@ -50,6 +51,10 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
         if (n.sourceId) snap->slotBySource_.emplace(*n.sourceId, s);
         snap->slotsByCategory_[n.category].push_back(s);
         snap->slotsByKind_[static_cast<std::size_t>(n.kind)].push_back(s);
+        if (!n.hidden && n.kind != model::NodeKind::Scene) {
+            snap->shownByKind_[static_cast<std::size_t>(n.kind)].push_back(s);
+            snap->shownNodes_.push_back(s);
+        }
         snap->bounds_[s] = model::worldAabb(n.box);
         if (n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene)
             entries.push_back({snap->bounds_[s], s});
@@ -150,6 +155,10 @@ const std::vector<Slot>& SceneSnapshot::children(Slot slot) const { return child
 
 const std::vector<Slot>& SceneSnapshot::slotsOfKind(model::NodeKind kind) const {
     return slotsByKind_[static_cast<std::size_t>(kind)];
+}
+
+const std::vector<Slot>& SceneSnapshot::shownOfKind(model::NodeKind kind) const {
+    return shownByKind_[static_cast<std::size_t>(kind)];
 }
 
 std::vector<std::string> SceneSnapshot::categories() const {

@@ -46,6 +46,10 @@ public:
     const std::vector<Slot>& withCategory(std::string_view category) const;
     const std::vector<Slot>& children(Slot slot) const;
     const std::vector<Slot>& slotsOfKind(model::NodeKind kind) const;
+    // What a kind word (`object`) or `node` names, in id order: the nodes that are not hidden,
+    // the scene's root left out. Made once with the snapshot, since most statements name one.
+    const std::vector<Slot>& shownOfKind(model::NodeKind kind) const;
+    const std::vector<Slot>& shownNodes() const { return shownNodes_; }
     std::vector<std::string> categories() const;
     // Names of the attributes any node of the scene carries (color, material ...), sorted.
     const std::vector<std::string>& attributeNames() const { return attributeNames_; }
@@ -90,6 +94,8 @@ private:
     std::unordered_map<std::string, std::vector<Slot>> slotsByCategory_;
     std::vector<std::vector<Slot>> children_;
     std::vector<std::vector<Slot>> slotsByKind_;
+    std::vector<std::vector<Slot>> shownByKind_;
+    std::vector<Slot> shownNodes_;
     std::vector<std::string> attributeNames_;
     storage::SpatialIndex rtree_;
     std::vector<model::Relation> relations_;
