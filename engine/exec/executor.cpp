@@ -31,7 +31,8 @@ Executor::Executor(const storage::ReadTransaction& txn, catalog::Session& sessio
       db_(db),
       thresholds_(session.thresholds),
       resolved_(plan.statement->setCount),
-      membership_(plan.statement->setCount) {}
+      membership_(plan.statement->setCount),
+      bounds_(plan.statement->setCount) {}
 
 void Executor::interrupted() {
     throw Error(ErrorKind::Interrupted, "the statement was interrupted", std::nullopt, "nothing was changed");
@@ -102,6 +103,17 @@ const std::vector<char>& Executor::membership(const NodeSet& set, const relation
         for (catalog::Slot s : slots(set, frame)) member[s] = 1;
     }
     return member;
+}
+
+const std::vector<model::Aabb>& Executor::boundsOf(const NodeSet& set, const relations::Frame& frame) {
+    auto& bounds = bounds_[set.id];
+    if (!bounds) {
+        const auto& nodes = slots(set, frame);
+        bounds.emplace();
+        bounds->reserve(nodes.size());
+        for (catalog::Slot s : nodes) bounds->push_back(scene().bounds(s));
+    }
+    return *bounds;
 }
 
 relations::Frame Executor::defaultFrame() const { return relations::viewFrame(scene().info().viewpoint); }

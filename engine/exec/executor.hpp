@@ -85,6 +85,9 @@ private:
     const std::vector<catalog::Slot>& resolveSide(const binder::NodeSet& set, const relations::Frame& frame);
     // Which slots a large set holds, for R-tree lookups of references.
     const std::vector<char>& membership(const binder::NodeSet& set, const relations::Frame& frame);
+    // The world bounds of a set's nodes, in the order of slots(set): one flat array, scanned for the
+    // references whose bounds meet a predicate's region.
+    const std::vector<model::Aabb>& boundsOf(const binder::NodeSet& set, const relations::Frame& frame);
     relations::Frame frame(const binder::BoundView& view);
     relations::Frame defaultFrame() const;
 
@@ -125,6 +128,7 @@ private:
     const relations::Thresholds thresholds_;                           // as the statement started
     std::vector<std::optional<std::vector<catalog::Slot>>> resolved_;  // by NodeSet id
     std::vector<std::vector<char>> membership_;                        // by NodeSet id; empty until needed
+    std::vector<std::optional<std::vector<model::Aabb>>> bounds_;      // by NodeSet id
 };
 
 }  // namespace smql::exec
