@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "ingest/geometry/floor_evidence.hpp"
 #include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/geometry/robust.hpp"
 
@@ -187,12 +188,28 @@ Eigen::Vector3d upPrior(const std::vector<Pose>& cameras, const AlignOptions& op
     return prior.normalized();
 }
 
-// Horizontal planes by iterated RANSAC around the prior, each with its level along the strongest
+// Whether a plane tilted further from the up prior than `horizontalTolerance` may still be the
+// floor or a table: it lies below every camera and the cameras look down at it. Cameras pitched
+// down at a desk all tilt their up prior towards where they look, by as much as they pitch; walls
+// in front of them face the way they look instead.
+bool seenFromAbove(const HorizontalPlane& plane, const std::vector<Pose>& cameras, const AlignOptions& options) {
+    if (cameras.empty()) return false;
+    const Eigen::Vector3d n = toEigen(plane.plane.normal);
+    std::vector<double> towards;
+    for (const auto& camera : cameras) {
+        if (n.dot(toEigen(camera.translation)) <= plane.height) return false;
+        towards.push_back(rotationOf(camera).col(2).dot(n));
+    }
+    return detail::median(std::move(towards)) < -std::sin(options.lookDownPitch * kDegree);
+}
+
+// Horizontal planes by iterated RANSAC around the prior (within `steepTolerance`, of which those
+// beyond `horizontalTolerance` only when seenFromAbove), each with its level along the strongest
 // plane's normal (the prior may be tens of degrees off); planes at the same level become one (depth
 // noise and small registration errors make a floor seen from several views a few centimetres
 // thick). Lowest first.
-std::vector<HorizontalPlane> horizontalPlanes(const PointCloud& world, const Eigen::Vector3d& prior, double unit,
-                                              const AlignOptions& options) {
+std::vector<HorizontalPlane> horizontalPlanes(const PointCloud& world, const std::vector<Pose>& cameras,
+                                              const Eigen::Vector3d& prior, double unit, const AlignOptions& options) {
     std::vector<std::size_t> remaining(world.size());
     for (std::size_t i = 0; i < remaining.size(); ++i) remaining[i] = i;
     const std::size_t minPlane =
@@ -200,16 +217,22 @@ std::vector<HorizontalPlane> horizontalPlanes(const PointCloud& world, const Eig
     pcl_ops::PlaneSearch search;
     search.axis = fromEigen(prior);
     search.constraint = pcl_ops::PlaneConstraint::NormalAlongAxis;
-    search.epsAngle = options.horizontalTolerance * kDegree;
+    search.epsAngle = (cameras.empty() ? options.horizontalTolerance : options.steepTolerance) * kDegree;
     search.distance = options.planeDistance * unit;
     std::vector<HorizontalPlane> extracted;
-    for (int k = 0; k < options.maxHorizontalPlanes && remaining.size() >= minPlane; ++k) {
+    // Planes passed over (walls, mostly) do not count against the limit, up to as many again.
+    for (int k = 0; static_cast<int>(extracted.size()) < options.maxHorizontalPlanes &&
+                    k < 2 * options.maxHorizontalPlanes && remaining.size() >= minPlane;
+         ++k) {
         auto found = pcl_ops::segmentPlane(world.points, remaining, search);
         if (!found || found->inliers.size() < minPlane) break;
         std::vector<char> taken(world.size(), 0);
         for (auto i : found->inliers) taken[i] = 1;
         std::erase_if(remaining, [&](std::size_t i) { return taken[i] != 0; });
-        extracted.push_back(fitHorizontal(world, std::move(found->inliers), prior, prior));
+        HorizontalPlane plane = fitHorizontal(world, std::move(found->inliers), prior, prior);
+        const double tilt = std::acos(std::clamp(toEigen(plane.plane.normal).dot(prior), -1.0, 1.0)) / kDegree;
+        if (tilt <= options.horizontalTolerance || seenFromAbove(plane, cameras, options))
+            extracted.push_back(std::move(plane));
     }
     Eigen::Vector3d reference = prior;
     std::size_t strongest = 0;
@@ -242,23 +265,42 @@ std::vector<double> cameraHeights(const std::vector<Pose>& cameras, const Eigen:
     return heights;
 }
 
-// Floor: the lowest large horizontal plane below every camera.
-const HorizontalPlane* findFloor(const std::vector<HorizontalPlane>& planes, const std::vector<Pose>& cameras,
-                                 double clearance, const AlignOptions& options) {
-    std::vector<const HorizontalPlane*> below;
+struct FloorChoice {
+    const HorizontalPlane* floor = nullptr;
+    const HorizontalPlane* tableTop = nullptr;  // the lowest plane passed over as a table top
+    SurfaceEvidence tableEvidence;
+};
+
+// Floor: the lowest large horizontal plane below every camera that is not a table top (what stands
+// on it says so: floor_evidence.hpp); "large" among the planes that are not table tops, so that the
+// floor seen in a few photos under a table that fills the others still counts.
+FloorChoice findFloor(const std::vector<HorizontalPlane>& planes, const std::vector<Pose>& cameras,
+                      const PointCloud& world, const std::vector<NamedThing>& things, double unit,
+                      const AlignOptions& options) {
+    const double clearance = options.cameraClearance * unit;
+    FloorChoice out;
+    std::vector<const HorizontalPlane*> candidates;
     for (const auto& p : planes) {
         auto heights = cameraHeights(cameras, toEigen(p.plane.normal));
-        if (heights.empty() || p.height < *std::min_element(heights.begin(), heights.end()) - clearance)
-            below.push_back(&p);
+        if (!heights.empty() && p.height >= *std::min_element(heights.begin(), heights.end()) - clearance) continue;
+        SurfaceEvidence evidence = weighSurface({p.plane.normal, p.height}, things, world.points, unit);
+        if (!evidence.tableTop()) {
+            candidates.push_back(&p);
+        } else if (!out.tableTop || p.level < out.tableTop->level) {
+            out.tableTop = &p;
+            out.tableEvidence = std::move(evidence);
+        }
     }
+    // Floors lie below tables.
+    if (out.tableTop)
+        std::erase_if(candidates, [&](const HorizontalPlane* p) { return p->level >= out.tableTop->level; });
     std::size_t biggest = 0;
-    for (const auto* p : below) biggest = std::max(biggest, p->plane.inliers);
-    const HorizontalPlane* floor = nullptr;
-    for (const auto* p : below) {
+    for (const auto* p : candidates) biggest = std::max(biggest, p->plane.inliers);
+    for (const auto* p : candidates) {
         if (static_cast<double>(p->plane.inliers) < options.largePlaneShare * static_cast<double>(biggest)) continue;
-        if (!floor || p->level < floor->level) floor = p;
+        if (!out.floor || p->level < out.floor->level) out.floor = p;
     }
-    return floor;
+    return out;
 }
 
 // Ceiling: the largest horizontal plane above every camera, parallel to the floor.
@@ -273,6 +315,53 @@ const HorizontalPlane* findCeiling(const std::vector<HorizontalPlane>& planes, c
             ceiling = &p;
     }
     return ceiling;
+}
+
+// Where the floor is: the plane chosen; else, under a table top, a table's height below it (with no
+// scale to give that height in the capture's units, as far below it as the cameras are above it,
+// which the camera-height prior then reads as a table's height); else under the lowest points.
+// Returns the floor's normal.
+Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const PointCloud& world,
+                           const Eigen::Vector3d& prior, const std::vector<Pose>& cameras,
+                           const AlignOptions& options) {
+    auto& notes = out.notes;
+    if (const HorizontalPlane* floor = choice.floor) {
+        const Eigen::Vector3d up = toEigen(floor->plane.normal);
+        out.floorHeight = floor->height;
+        out.floorFound = true;
+        out.floorInliers = floor->plane.inliers;
+        notes.push_back("floor: plane with " + std::to_string(floor->plane.inliers) + " of " +
+                        std::to_string(world.size()) + " points, " +
+                        fixed(std::acos(std::clamp(up.dot(prior), -1.0, 1.0)) / kDegree, 1) +
+                        " deg from the cameras' up");
+        if (choice.tableTop && choice.tableTop->level > floor->level)
+            notes.push_back("floor: a table top above it passed over: " + choice.tableEvidence.describe());
+        return up;
+    }
+    if (const HorizontalPlane* top = choice.tableTop) {
+        const Eigen::Vector3d up = toEigen(top->plane.normal);
+        const double tableHeight = typicalHeight("table").value_or(0.75);
+        double below = tableHeight;  // metres, then capture units
+        if (options.scale) {
+            below /= *options.scale;
+        } else if (!options.metric) {
+            auto heights = cameraHeights(cameras, up);
+            const double above = heights.empty() ? 0 : detail::median(heights) - top->height;
+            below = above > 0 ? above * tableHeight / (options.cameraHeight - tableHeight) : 0;
+        }
+        out.floorHeight = top->height - below;
+        out.floorNotSeen =
+            "the lowest horizontal surface below the cameras is a table top: " + choice.tableEvidence.describe();
+        notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + fixed(tableHeight) +
+                        " m below it, a table's usual height");
+        return up;
+    }
+    std::vector<double> heights;
+    for (const auto& p : world.points) heights.push_back(prior.dot(toEigen(p)));
+    out.floorHeight = detail::quantile(heights, 0.02);
+    notes.push_back(
+        "floor: no horizontal plane below the cameras; up from the cameras, floor at the lowest 2% of points");
+    return prior;
 }
 
 // Scale: as given, 1 for a metric capture, else the priors that apply (floor to ceiling, the
@@ -322,28 +411,12 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     auto& notes = out.notes;
     const Eigen::Vector3d prior = upPrior(cameras, options, notes);
     const double unit = unitEstimate(world, cameras, options, notes);
-    const std::vector<HorizontalPlane> planes = horizontalPlanes(world, prior, unit, options);
+    const std::vector<HorizontalPlane> planes = horizontalPlanes(world, cameras, prior, unit, options);
     const double clearance = options.cameraClearance * unit;
 
-    const HorizontalPlane* floor = findFloor(planes, cameras, clearance, options);
-    Eigen::Vector3d up = prior;
-    if (floor) {
-        up = toEigen(floor->plane.normal);
-        out.floorHeight = floor->height;
-        out.floorFound = true;
-        out.floorInliers = floor->plane.inliers;
-        notes.push_back("floor: plane with " + std::to_string(floor->plane.inliers) + " of " +
-                        std::to_string(world.size()) + " points, " +
-                        fixed(std::acos(std::clamp(up.dot(prior), -1.0, 1.0)) / kDegree, 1) +
-                        " deg from the cameras' up");
-    } else {
-        std::vector<double> heights;
-        for (const auto& p : world.points) heights.push_back(prior.dot(toEigen(p)));
-        out.floorHeight = detail::quantile(heights, 0.02);
-        notes.push_back(
-            "floor: no horizontal plane below the cameras; up from the cameras, floor at the lowest 2% "
-            "of points");
-    }
+    const FloorChoice choice = findFloor(planes, cameras, world, things, unit, options);
+    const HorizontalPlane* floor = choice.floor;
+    const Eigen::Vector3d up = placeFloor(out, choice, world, prior, cameras, options);
     out.up = fromEigen(up);
 
     // The ceiling's height above the floor, measured along the floor's normal.

@@ -33,7 +33,9 @@ struct AlignOptions {
     std::optional<model::Vec3> upPrior;  // used only when there are no cameras (default +z)
 
     double planeDistance = 0.03;       // RANSAC inlier distance for floor and ceiling
-    double horizontalTolerance = 30;   // degrees a floor candidate may tilt from the up prior
+    double horizontalTolerance = 30;   // degrees a floor candidate may tilt from the up prior ...
+    double steepTolerance = 65;        // ... or this many, when the cameras look down at it from above ...
+    double lookDownPitch = 15;         // ... pitched at least this many degrees towards it (the median)
     int maxHorizontalPlanes = 6;       // horizontal planes extracted before choosing the floor
     double minPlaneShare = 0.02;       // a horizontal plane needs this share of all points ...
     std::size_t minPlanePoints = 100;  // ... and at least this many
@@ -56,6 +58,9 @@ struct Alignment {
     double floorHeight = 0;                         // floor's height along `up`, capture frame and units
     double heading = 0;                             // radians turned about +z after levelling
     bool floorFound = false;
+    // Why no floor was found when a table top was (what stands on it); the floor is then placed a
+    // table's height below it. Empty otherwise.
+    std::string floorNotSeen;
     std::size_t floorInliers = 0;
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)

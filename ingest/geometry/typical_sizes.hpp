@@ -25,4 +25,9 @@ std::optional<Footprint> largestFootprint(std::string_view category);
 // capture's scale is wrong (plausibility.hpp).
 std::optional<double> typicalExtent(std::string_view category);
 
+// What things of a kind usually stand on: the floor (chairs, beds, doors), a table, desk or counter
+// (mugs, laptops, keyboards), or either or unknown.
+enum class Support { Floor, Surface, Either };
+Support usualSupport(std::string_view category);
+
 }  // namespace smql::ingest

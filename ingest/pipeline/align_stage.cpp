@@ -12,21 +12,20 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     align.scale = options.scale;
     std::vector<Pose> poses;
     for (const auto& c : frames.cameras) poses.push_back(c.pose);
-    // Named things of a typical height are one of the scale's priors, when there is a scale to find.
+    // Named things tell the floor from a table top (what stands on it), and those of a typical height
+    // are one of the scale's priors when there is a scale to find.
     std::vector<NamedThing> things;
-    if (!capture.metric && !options.scale)
-        for (const auto& track : frames.tracks) {
-            if (!typicalHeight(track.category)) continue;
-            NamedThing thing{track.category, track.surface};
-            if (thing.points.empty())
-                for (const auto& v : track.views)
-                    thing.points.insert(thing.points.end(), v.points.begin(), v.points.end());
-            things.push_back(std::move(thing));
-        }
+    for (const auto& track : frames.tracks) {
+        if (track.kind != model::NodeKind::Object) continue;
+        NamedThing thing{track.category, track.surface};
+        if (thing.points.empty())
+            for (const auto& v : track.views) thing.points.insert(thing.points.end(), v.points.begin(), v.points.end());
+        things.push_back(std::move(thing));
+    }
     AlignedCapture out;
     out.alignment = alignCapture(frames.structure, poses, align, things);
     for (const auto& n : out.alignment.notes) progress.note(n);
-    if (!out.alignment.floorFound)
+    if (!out.alignment.floorFound && out.alignment.floorNotSeen.empty())
         progress.note("no floor plane found: the frame is levelled by the cameras' up direction");
     out.cloud = transformed(frames.structure, out.alignment);
     for (const auto& c : frames.cameras) out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));

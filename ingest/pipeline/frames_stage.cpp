@@ -13,12 +13,27 @@ namespace {
 
 // Structure points gathered before the next down-sampling: bounds memory on long captures.
 constexpr std::size_t kPendingStructurePoints = 400000;
+// Frames whose depth is kept small for the check of the views against each other, spread over
+// the capture.
+constexpr std::size_t kSketchedFrames = 60;
+
+DepthSketch sketchOf(const FrameImages& images, const Pose& pose) {
+    const cv::Mat depth = images.depth.isContinuous() ? images.depth : images.depth.clone();
+    DepthView view;
+    view.width = depth.cols;
+    view.height = depth.rows;
+    view.metres = depth.ptr<float>(0);
+    view.intrinsics = images.intrinsics;
+    return sketchDepth(view, pose);
+}
 
 }  // namespace
 
 FramePass FramesStage::run(StageProgress& progress) {
     FramePass pass;
     PointCloud pending;
+    std::vector<DepthSketch> sketches;
+    const std::size_t sketchEvery = capture.frames.size() / kSketchedFrames + 1;
     for (std::size_t i = 0; i < capture.frames.size(); ++i) {
         progress.stopIfCancelled();
         const auto& frame = capture.frames[i];
@@ -32,6 +47,7 @@ FramePass FramesStage::run(StageProgress& progress) {
         const Pose& pose = *frame.pose;
         pass.cameras.push_back({position, pose});
         append(pending, backProject(images, pose, position, options.structureStride));
+        if (!images.depth.empty() && i % sketchEvery == 0) sketches.push_back(sketchOf(images, pose));
         if (pending.size() > kPendingStructurePoints) {
             append(pass.structure, voxelDownsample(pending, options.structureVoxel));
             pending = PointCloud{};
@@ -56,6 +72,11 @@ FramePass FramesStage::run(StageProgress& progress) {
         // The capture's sparse points (COLMAP) are the structure: already sparse, in the capture's units.
         for (const auto& p : capture.points) pass.structure.push(p.position, p.color, 0);
     }
+    pass.viewAgreement = compareViews(sketches);
+    if (pass.viewAgreement.tested())
+        progress.note(fmt::format("depth: the views agree at {:.0f}% of {} points seen from two frames ({} pairs)",
+                                  100 * pass.viewAgreement.share(),
+                                  pass.viewAgreement.agree + pass.viewAgreement.conflict, pass.viewAgreement.pairs));
     pass.tracks = finder.takeTracks();
     if (auto note = finder.frameNote(); !note.empty()) progress.note(note);
     return pass;

@@ -40,20 +40,25 @@ model::SceneInfo sceneInfo(const Capture& capture, const IngestOptions& options,
 
 // The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
 // --force, so that no wrong memory is stored with exit status 0.
-void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options, StageRunner& runner) {
+void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
+               const FramePass& frames, const Alignment& alignment, StageRunner& runner) {
     const ScaleSource source{.depth = framesHaveDepth(capture) && !options.scale,
                              .depthScale = capture.depthScale,
                              .given = options.scale.has_value()};
     std::vector<double> cameraHeights;
     for (const auto& [frame, centre] : result.cameraCentres) cameraHeights.push_back(centre.z);
-    const PlausibilityReport report = checkPlausibility(result.scene, source, std::move(cameraHeights));
+    PlausibilityReport report = checkPlausibility(result.scene, source, std::move(cameraHeights));
+    if (auto views = viewAgreementFinding(frames.viewAgreement))
+        report.findings.insert(report.findings.begin(), std::move(*views));
+    if (!alignment.floorNotSeen.empty())
+        report.findings.insert(report.findings.begin(), floorNotSeenFinding(alignment.floorNotSeen, source));
     const PlausibilityFinding* refusal = nullptr;
     for (const auto& f : report.findings) {
         runner.note(fmt::format("{} {}: {}; {}", f.refuse ? "implausible" : "warning:", f.check, f.what, f.fix));
         if (f.refuse && !refusal) refusal = &f;
     }
     if (refusal && !options.force)
-        throw Error(ErrorKind::Input, fmt::format("this does not look like a room: {}", refusal->what), std::nullopt,
+        throw Error(ErrorKind::Input, fmt::format("the memory would be wrong: {}", refusal->what), std::nullopt,
                     refusal->fix + "; --force stores the memory anyway");
 }
 
@@ -82,7 +87,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     auto tracked = runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
-    checkRoom(result, capture, options, runner);
+    checkRoom(result, capture, options, frames, aligned.alignment, runner);
     return result;
 }
 

@@ -29,6 +29,10 @@ constexpr std::size_t kMinNamedThings = 3;
 // geometric mean is the scale's error: refused past these factors. Each alone varies more (a robot's
 // low camera, a room of small things); together they are a wrong depth unit or --scale.
 constexpr double kAgreedRefuse[2] = {0.55, 1.8};
+// The share of points two frames see at the same depth: real captures with right poses 0.93 to
+// 0.99; mirrored images 0.58, depth in a unit 1.4x off 0.72 (docs/ingest.md, "Plausibility").
+constexpr double kAgreementWarn = 0.85;
+constexpr double kAgreementRefuse = 0.7;
 // A box this many times its kind's largest side is not that kind.
 constexpr double kNameMismatch = 2.5;
 
@@ -122,6 +126,29 @@ PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleS
                  scaleFix(factor, source)});
     }
     return report;
+}
+
+std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agreement) {
+    if (!agreement.tested() || agreement.share() >= kAgreementWarn) return std::nullopt;
+    return PlausibilityFinding{
+        "views", agreement.share() < kAgreementRefuse,
+        fmt::format("the frames' depth images disagree through their poses: of {} points seen from two frames, "
+                    "{:.0f}% are at the depth the other frame reads, {:.0f}% are seen through (captures with right "
+                    "poses: over {:.0f}% agree)",
+                    agreement.agree + agreement.conflict, 100 * agreement.share(), 100 * (1 - agreement.share()),
+                    100 * kAgreementWarn),
+        "check that the poses are camera-to-world with the camera looking along +z, x right and y down (a "
+        "mirrored image or a focal length's sign turned over mirrors every view), and the depth unit "
+        "(--depth-scale: depth units per metre)"};
+}
+
+PlausibilityFinding floorNotSeenFinding(const std::string& why, const ScaleSource& source) {
+    const bool scaled = source.depth || source.given;
+    return {"floor", !scaled, "the floor is not seen: " + why,
+            scaled ? std::string("the floor is placed a table's usual height below the table top; views that also show "
+                                 "the floor place it where it is")
+                   : std::string("photos without depth take their scale from the floor: give --scale (metres per "
+                                 "capture unit), or add photos that show the floor")};
 }
 
 bool nameFitsBox(const std::string& category, const model::Box& box) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ingest/geometry/view_consistency.hpp"
 #include "model/types.hpp"
 
 namespace smql::ingest {
@@ -43,6 +44,16 @@ struct ScaleSource {
 // else those of the scene's frame nodes, else its viewpoint's (the first camera of a capture).
 PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleSource& source,
                                      std::vector<double> cameraHeights = {});
+
+// The floor not seen, a table top instead (Alignment::floorNotSeen, `why`): the floor is then placed a
+// table's height below the top. With depth or --scale that is a warning; photos without either take
+// their scale from the floor, so the memory is refused.
+PlausibilityFinding floorNotSeenFinding(const std::string& why, const ScaleSource& source);
+
+// The depth images against each other through the poses (view_consistency.hpp): correct captures
+// agree at 90% or more of the points two frames see; mirrored images or poses, or a wrong depth unit,
+// far less. Warned, and refused past a limit; nullopt when they agree or were not tested.
+std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agreement);
 
 // A thing named by a detector whose box is far larger than things of that name ever are (a 1.8 m
 // cake): not that thing. The name is kept only as the guess `detected_as`.

@@ -16,6 +16,7 @@
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "ingest/geometry/view_consistency.hpp"
 #include "ingest/pipeline/observations.hpp"
 #include "model/types.hpp"
 
@@ -40,6 +41,7 @@ struct FramePass {
     PointCloud structure;             // down-sampled, capture frame
     std::vector<Camera> cameras;      // the frames that had a pose, in capture order
     std::vector<ObjectTrack> tracks;  // from the object source
+    ViewAgreement viewAgreement;      // the depth images against each other (frames with depth)
 };
 
 struct AlignedCapture {

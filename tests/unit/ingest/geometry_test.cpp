@@ -15,7 +15,9 @@
 
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/floor_evidence.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "ingest/geometry/view_consistency.hpp"
 #include "ingest/geometry/walls.hpp"
 #include "model/geometry.hpp"
 
@@ -524,4 +526,133 @@ TEST_CASE("scale priors: the median of three, and the more trusted of two that d
     CHECK_THAT(split.note, Catch::Contains("disagree by a factor of 18.1"));
     CHECK(typicalHeight("table") == 0.75);
     CHECK_FALSE(typicalHeight("mug"));
+}
+
+namespace {
+
+// A desk seen from close above, metres, z up: its top (2 x 1 m at 0.75 m) fills the views; on it a
+// mug, a keyboard and a laptop; beside it a chair reaching to the floor (each its sides and top). With
+// `floorPatch`, a strip of floor (0.6 x 0.5 m) in front of the desk is seen too.
+struct Desk {
+    PointCloud cloud;
+    std::vector<Pose> cameras;
+    std::vector<NamedThing> things;
+};
+
+Desk deskScene(bool floorPatch) {
+    Desk desk;
+    std::mt19937 rng(11);
+    std::normal_distribution<double> noise(0, 0.005);
+    auto put = [&](double x, double y, double z) {
+        desk.cloud.push({x + noise(rng), y + noise(rng), z + noise(rng)}, {180, 150, 120}, 0);
+    };
+    for (double x = 0; x <= 2 + 1e-9; x += 0.02)
+        for (double y = 0; y <= 1 + 1e-9; y += 0.02) put(x, y, 0.75);
+    if (floorPatch)
+        for (double x = 0.7; x <= 1.3 + 1e-9; x += 0.02)
+            for (double y = -0.7; y <= -0.2 + 1e-9; y += 0.02) put(x, y, 0);
+    auto thing = [&](const char* category, model::Vec3 low, model::Vec3 high) {
+        NamedThing t{category, {}};
+        for (double x = low.x; x <= high.x + 1e-9; x += 0.02)
+            for (double y = low.y; y <= high.y + 1e-9; y += 0.02)
+                for (double z = low.z; z <= high.z + 1e-9; z += 0.02) {
+                    const bool side = x - low.x < 0.01 || high.x - x < 0.01 || y - low.y < 0.01 || high.y - y < 0.01;
+                    if (side || high.z - z < 0.01) t.points.push_back({x, y, z}), put(x, y, z);  // no bottom
+                }
+        desk.things.push_back(std::move(t));
+    };
+    thing("mug", {0.3, 0.3, 0.75}, {0.38, 0.38, 0.85});
+    thing("keyboard", {0.8, 0.2, 0.75}, {1.25, 0.36, 0.78});
+    thing("laptop", {1.4, 0.3, 0.75}, {1.74, 0.54, 0.95});
+    thing("chair", {0.8, -0.6, 0.0}, {1.2, -0.2, 0.9});
+    for (double x : {0.5, 1.0, 1.5}) desk.cameras.push_back(camera({x, -0.4, 1.45}, 90 * kDeg, 50 * kDeg));
+    return desk;
+}
+
+}  // namespace
+
+TEST_CASE("a table top is not taken for the floor: what stands on it says so", "[ingest][geometry]") {
+    SECTION("the evidence: table things rest on the top, the chair reaches below it, nothing below the floor") {
+        const Desk desk = deskScene(true);
+        SurfaceEvidence top = weighSurface({{0, 0, 1}, 0.75}, desk.things, desk.cloud.points, 1.0);
+        CHECK(top.onTop.size() == 3);
+        CHECK(top.below == std::vector<std::string>{"chair"});
+        CHECK(top.tableTop());
+        SurfaceEvidence floor = weighSurface({{0, 0, 1}, 0.0}, desk.things, desk.cloud.points, 1.0);
+        CHECK(floor.standing == std::vector<std::string>{"chair"});
+        CHECK(floor.onTop.empty());
+        CHECK(floor.below.empty());
+        CHECK(floor.pointsBelow == 0);
+        CHECK_FALSE(floor.tableTop());
+    }
+    SECTION("a patch of floor seen below a desk that fills the views is the floor, though far smaller") {
+        const Desk desk = deskScene(true);
+        Alignment a = alignCapture(desk.cloud, desk.cameras, AlignOptions{}, desk.things);
+        INFO(notesOf(a));
+        CHECK(a.floorFound);
+        CHECK(a.floorHeight == Approx(0).margin(0.01));
+        CHECK(a.floorNotSeen.empty());
+        CHECK_THAT(notesOf(a), Catch::Contains("a table top above it passed over: 3 things that stand on tables"));
+    }
+    SECTION("no floor in view: said so, and the floor placed a table's height below the top") {
+        const Desk desk = deskScene(false);
+        Alignment a = alignCapture(desk.cloud, desk.cameras, AlignOptions{}, desk.things);
+        INFO(notesOf(a));
+        CHECK_FALSE(a.floorFound);
+        CHECK_THAT(a.floorNotSeen, Catch::Contains("is a table top: 3 things that stand on tables rest on it (mug, "
+                                                   "keyboard, laptop), 1 reaches below it (chair)"));
+        CHECK(a.floorHeight == Approx(0).margin(0.01));
+        CHECK(angleDeg(a.up, {0, 0, 1}) < 1.0);  // levelled by the table top, not the cameras' pitch
+    }
+    SECTION("photos without depth: as far below the top as the cameras are above it") {
+        // The same desk in units of 0.5 m: the cameras 0.7 m (1.4 units) above the top read as a
+        // table's height (1.5 - 0.75 m): 0.75 / 1.4 metres per unit.
+        Desk desk = deskScene(false);
+        for (auto& p : desk.cloud.points) p = mul(2, p);
+        for (auto& t : desk.things)
+            for (auto& p : t.points) p = mul(2, p);
+        for (auto& c : desk.cameras) c.translation = mul(2, c.translation);
+        AlignOptions options;
+        options.metric = false;
+        Alignment a = alignCapture(desk.cloud, desk.cameras, options, desk.things);
+        INFO(notesOf(a));
+        CHECK_FALSE(a.floorNotSeen.empty());
+        CHECK(a.scale == Approx(0.75 / 1.4).epsilon(0.03));
+        CHECK(a.floorHeight == Approx(1.5 - 1.4).margin(0.05));
+    }
+}
+
+TEST_CASE("rgbd-dining: the views' depths agree through the poses; mirrored or in another unit they do not",
+          "[ingest][geometry][real]") {
+    // The five real frames, as given, then each depth image turned upside down (what a focal length
+    // whose sign was "fixed" does to every view), then read in a unit 1.4x off.
+    const std::string root = std::string(SMQL_SHARED_DATA) + "/rgbd-dining";
+    const Dining dining = loadDining(8, 0.05);
+    auto sketches = [&](bool mirrored, double unitsPerMetre) {
+        std::vector<DepthSketch> out;
+        for (int n = 1; n <= 5; ++n) {
+            DepthView view;
+            auto metres =
+                readDepthPgm(root + "/depth/" + std::to_string(n) + ".pgm", view.width, view.height, unitsPerMetre);
+            if (mirrored)
+                for (int v = 0; v < view.height / 2; ++v)
+                    std::swap_ranges(metres.begin() + static_cast<std::ptrdiff_t>(v) * view.width,
+                                     metres.begin() + static_cast<std::ptrdiff_t>(v + 1) * view.width,
+                                     metres.begin() + static_cast<std::ptrdiff_t>(view.height - 1 - v) * view.width);
+            view.metres = metres.data();
+            view.intrinsics = {640, 480, 518.0, 519.0, 325.5, 253.5};
+            out.push_back(sketchDepth(view, dining.cameras[static_cast<std::size_t>(n - 1)]));
+        }
+        return out;
+    };
+    const ViewAgreement right = compareViews(sketches(false, 1000));
+    REQUIRE(right.tested());
+    CHECK(right.pairs == 10);
+    CHECK(right.share() > 0.85);
+    const ViewAgreement mirrored = compareViews(sketches(true, 1000));
+    REQUIRE(mirrored.tested());
+    CHECK(mirrored.share() < 0.7);
+    const ViewAgreement unit = compareViews(sketches(false, 700));
+    REQUIRE(unit.tested());
+    CHECK(unit.share() < 0.85);
 }

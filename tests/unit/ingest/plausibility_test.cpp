@@ -122,7 +122,7 @@ TEST_CASE("plausibility: real RGB-D frames in their unit pass, in another unit a
             FAIL("a wrong depth unit was stored");
         } catch (const Error& e) {
             CHECK(e.kind() == ErrorKind::Input);
-            CHECK_THAT(e.message(), Catch::Contains("does not look like a room"));
+            CHECK_THAT(e.message(), Catch::Contains("the memory would be wrong"));
             CHECK_THAT(e.hint(), Catch::Contains("--depth-scale"));
             CHECK_THAT(e.hint(), Catch::Contains("--force"));
         }
@@ -162,4 +162,24 @@ TEST_CASE("plausibility: a detector's 'cake' the size of a sofa is stored as an 
     CHECK(guesses >= 1);
     CHECK(std::any_of(run.result.notes.begin(), run.result.notes.end(),
                       [](const std::string& n) { return n.find("detected as 'cake'") != std::string::npos; }));
+}
+
+TEST_CASE("plausibility: views whose depths disagree are warned about, then refused, with the fix",
+          "[ingest][plausibility]") {
+    auto agreement = [](std::size_t agree, std::size_t conflict) {
+        ViewAgreement a;
+        a.pairs = 10, a.agree = agree, a.conflict = conflict;
+        return a;
+    };
+    CHECK_FALSE(viewAgreementFinding(agreement(9300, 700)));  // a real capture's 93%
+    CHECK_FALSE(viewAgreementFinding(agreement(100, 400)));   // too few points to say
+    auto unit = viewAgreementFinding(agreement(7800, 2200));  // warned
+    REQUIRE(unit);
+    CHECK_FALSE(unit->refuse);
+    auto mirrored = viewAgreementFinding(agreement(5800, 4200));
+    REQUIRE(mirrored);
+    CHECK(mirrored->refuse);
+    CHECK_THAT(mirrored->what, Catch::Contains("58% are at the depth the other frame reads"));
+    CHECK_THAT(mirrored->fix, Catch::Contains("x right and y down"));
+    CHECK_THAT(mirrored->fix, Catch::Contains("--depth-scale"));
 }

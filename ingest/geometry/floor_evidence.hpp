@@ -1,0 +1,38 @@
+// Is a horizontal surface the floor, or a table top? What stands on it says so: chairs and beds rise
+// from a floor, mugs and keyboards rest on tables, and nothing a capture names reaches below a
+// floor. Used by the alignment to choose the floor among the horizontal planes below the cameras
+// (docs/ingest.md, "Geometry and metric alignment").
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "ingest/geometry/scale_priors.hpp"
+#include "model/types.hpp"
+
+namespace smql::ingest {
+
+// A horizontal surface: unit normal (up) and height along it, in the cloud's units.
+struct Surface {
+    model::Vec3 up{0, 0, 1};
+    double height = 0;
+};
+
+struct SurfaceEvidence {
+    std::vector<std::string> standing;  // things that stand on floors, rising from it (a chair's legs and seat)
+    std::vector<std::string> onTop;     // things that stand on tables, resting on it (a mug, a keyboard)
+    std::vector<std::string> below;     // named things reaching well below it
+    double pointsBelow = 0;             // share of the cloud's points well below it
+
+    // More says "table top" than says "floor": the surface holds table things or has things under it.
+    bool tableTop() const;
+    std::string describe() const;  // "2 things that stand on tables rest on it (mug, keyboard), ..."
+};
+
+// What the named things and the cloud say of `surface`. `unit`: cloud units per metre (a rough
+// estimate for scale-free clouds), which turns the tolerances into the cloud's units.
+SurfaceEvidence weighSurface(const Surface& surface, const std::vector<NamedThing>& things,
+                             const std::vector<model::Vec3>& cloud, double unit);
+
+}  // namespace smql::ingest
