@@ -105,18 +105,19 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
     if (view)
         throw Error(ErrorKind::Binding, "across all scenes, FIND and COUNT take no VIEW", view->where,
                     "a viewpoint belongs to one scene: USE SCENE 'name'");
-    if (ctx_.txn.countWithCategory(target.name) == 0) {
+    const std::uint64_t count = ctx_.txn.countWithCategory(target.name);
+    if (count == 0) {
         std::vector<std::string> names;
         for (const auto& [name, count] : ctx_.txn.categories()) names.push_back(name);
         if (auto noun = absentThing(target.name, ask::Lexicon(names).lookUp(target.name))) {
             notes_.push_back(fmt::format("no {} in any scene", *noun));
-            return BoundCatalogFind{*noun, limit, countOnly};
+            return BoundCatalogFind{*noun, limit, countOnly, ctx_.txn.countWithCategory(*noun)};
         }
         auto close = model::nearestNames(target.name, names);
         throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in any scene", target.name), target.where,
                     close.empty() ? "" : "did you mean " + model::joinAlternatives(close) + "?");
     }
-    return BoundCatalogFind{target.name, limit, countOnly};
+    return BoundCatalogFind{target.name, limit, countOnly, count};
 }
 
 void Binder::bindStatement(const ast::FindStmt& find, BoundStatement& out) {

@@ -110,6 +110,9 @@ struct BoundCatalogFind {
     std::string category;
     std::optional<std::int64_t> limit;
     bool countOnly = false;
+    // The label index's count of the category, read by the binder in the statement's read
+    // transaction (which is COUNT's answer, so the executor does not read it again).
+    std::uint64_t count = 0;
 };
 
 struct BoundRelate {

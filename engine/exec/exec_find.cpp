@@ -467,7 +467,7 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
     ResultSet rs;
     if (f.countOnly) {
         rs.columns = {{"count", ValueType::Integer}};
-        rs.rows.push_back({static_cast<std::int64_t>(txn_.countWithCategory(f.category))});
+        rs.rows.push_back({static_cast<std::int64_t>(f.count)});
         return rs;
     }
     std::size_t limit = f.limit ? static_cast<std::size_t>(std::max<std::int64_t>(*f.limit, 0)) : SIZE_MAX;
