@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "fleet/predicates_sql.hpp"
 #include "fleet/schema.hpp"
 #include "fleet/store.hpp"
 #include "model/error.hpp"
@@ -16,6 +17,7 @@ InitReport init(const std::string& url) {
     InitReport report;
     report.before = migrate(store.connection());
     report.after = schemaVersion(store.connection());
+    report.predicates = installPredicates(store.connection(), report.predicatesMissing);
     return report;
 }
 

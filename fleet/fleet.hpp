@@ -16,8 +16,12 @@ namespace smql::fleet {
 struct InitReport {
     int before = 0;  // the store's schema version before (0: it had none)
     int after = 0;   // and now
+    // Whether the predicates' SQL functions are there (fleet/predicates_sql.hpp), and why not.
+    bool predicates = false;
+    std::string predicatesMissing;
 };
-// Creates the store's schema in the database the URL names, or brings it up to date.
+// Creates the store's schema in the database the URL names, or brings it up to date, then
+// (re)creates the predicates' functions when the server has smql_pg.so.
 InitReport init(const std::string& url);
 
 // Sends every scene version of the device that the store lacks, each in one transaction.

@@ -71,6 +71,14 @@ constexpr const char* kVersionTable =
     "CREATE TABLE IF NOT EXISTS smql.schema_version(version integer PRIMARY KEY, "
     "applied_at timestamptz NOT NULL DEFAULT now())";
 
+void rollbackQuietly(pg::Connection& c) {
+    try {
+        c.exec("ROLLBACK", "rolling back");
+    } catch (const Error&) {
+        // The connection is gone or the transaction already ended: nothing is committed either way.
+    }
+}
+
 // PostGIS and btree_gist (the GiST index on (scene, footprint) leads with a bigint): created when
 // missing, which needs a role allowed to; said plainly when the server has no PostGIS at all.
 void requireExtensions(pg::Connection& c) {
@@ -89,8 +97,12 @@ void requireExtensions(pg::Connection& c) {
     for (int i = 0; i < available.rows(); ++i) {
         std::string name(available.text(i, 0));
         try {
+            c.exec("BEGIN", "beginning to create an extension");
+            takeMigrationLock(c);
             c.exec(fmt::format("CREATE EXTENSION IF NOT EXISTS {}", name), fmt::format("creating extension {}", name));
+            c.exec("COMMIT", fmt::format("committing extension {}", name));
         } catch (const Error& e) {
+            rollbackQuietly(c);
             throw Error(ErrorKind::Storage, e.message(), std::nullopt,
                         fmt::format("a superuser (or the database's owner, for trusted extensions) runs CREATE "
                                     "EXTENSION {} in the database once; then run smql fleet init again",
@@ -99,15 +111,9 @@ void requireExtensions(pg::Connection& c) {
     }
 }
 
-void rollbackQuietly(pg::Connection& c) {
-    try {
-        c.exec("ROLLBACK", "rolling back");
-    } catch (const Error&) {
-        // The connection is gone or the transaction already ended: nothing is committed either way.
-    }
-}
-
 }  // namespace
+
+void takeMigrationLock(pg::Connection& c) { c.exec(kMigrationLock, "waiting for other migrations"); }
 
 int latestSchemaVersion() { return static_cast<int>(kMigrations.size()); }
 
@@ -127,7 +133,7 @@ int migrate(pg::Connection& c) {
     for (int target = 1; target <= latestSchemaVersion(); ++target) {
         c.exec("BEGIN", "beginning a migration");
         try {
-            c.exec(kMigrationLock, "waiting for other migrations");
+            takeMigrationLock(c);
             c.exec(kVersionTable, "creating the schema version table");
             if (schemaVersion(c) >= target) {
                 c.exec("COMMIT", "ending a migration");

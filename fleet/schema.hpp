@@ -18,6 +18,10 @@ int schemaVersion(pg::Connection& connection);
 // for a store of a newer version, a server without PostGIS, or a role that cannot create it.
 int migrate(pg::Connection& connection);
 
+// Inside a transaction: waits for other migrations (and predicate installs) of the store, until the
+// transaction ends, so that two inits at once take turns.
+void takeMigrationLock(pg::Connection& connection);
+
 // Throws smql::Error(Storage), with what to do, unless the store is at latestSchemaVersion().
 void requireCurrentSchema(pg::Connection& connection);
 

@@ -10,6 +10,7 @@ packages=(
   wordnet-dev wordnet-base  # ASK and SIMILAR TO: the WordNet library and its dictionary (read at run time)
   libhnswlib-dev  # SIMILAR TO's index on large scenes
   catch2 libsqlite3-dev postgresql-15-postgis-3 libpq-dev python3
+  postgresql-server-dev-15  # smql_pg.so, the predicates inside PostgreSQL (docs/fleet.md)
   libopencv-dev libpcl-dev colmap
   libexif-dev  # photos' EXIF focal length for an unknown camera (ingest/capture/camera_source.cpp)
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer

@@ -44,6 +44,9 @@ int run(int argc, char** argv) {
                           ? fmt::format("the fleet store is at schema version {}; nothing to do\n", report.after)
                           : fmt::format("created the fleet store's schema: version {} (was {})\n", report.after,
                                         report.before));
+        if (!report.predicates)
+            std::cout << "note: SMQL statements will not run on this store: " << report.predicatesMissing
+                      << " (push and pull work; docs/fleet.md, \"SMQL on the store\")\n";
         return 0;
     }
     if (push->parsed()) {

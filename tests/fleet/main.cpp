@@ -20,8 +20,12 @@ fleet::pg::LocalCluster& cluster() { return *theCluster; }
 int main(int argc, char** argv) {
     std::string whyNot;
     // No fsync: the tests kill clients, not the server, and run on a shared machine.
-    theCluster = smql::fleet::pg::LocalCluster::start(
-        {.settings = "-c fsync=off -c max_connections=200", .prefix = "smql-fleet-test"}, whyNot);
+    std::string settings = "-c fsync=off -c max_connections=200";
+#ifdef SMQL_PG_MODULE_DIR
+    // The predicates' module from the build folder (extensions name their own library folder in full).
+    settings += " -c dynamic_library_path=" SMQL_PG_MODULE_DIR;
+#endif
+    theCluster = smql::fleet::pg::LocalCluster::start({.settings = settings, .prefix = "smql-fleet-test"}, whyNot);
     if (!theCluster) {
         std::cout << "fleet tests skipped: " << whyNot << "\n";
         return 77;

@@ -1,0 +1,134 @@
+// smql_pg.so: the predicates of relations/ inside PostgreSQL, so that the fleet store decides a
+// pair with the very code the engine runs (the same formulas and default thresholds, compiled from
+// relations/predicates.cpp, not a copy in SQL that could drift). The SQL functions that call it,
+// one per predicate, are generated from the predicate table (fleet/predicates_sql.cpp).
+//
+//   smql.predicate_score(code, a, b, c, viewpoint, distance, others) -> float8: relations::evaluate
+//   smql.predicate_region(code, ref, distance) -> float8[6]: where a candidate must lie
+//
+// Nodes arrive as rows of smql.nodes; `others` are the nodes that may stand between (near's walls,
+// visible_from's obstacles). No C++ exception reaches PostgreSQL: errors become ereport after the
+// C++ frames have unwound.
+extern "C" {
+#include "postgres.h"
+// postgres.h first; then:
+#include "catalog/pg_type.h"
+#include "executor/executor.h"
+#include "fmgr.h"
+#include "utils/array.h"
+#include "utils/builtins.h"
+#include "utils/lsyscache.h"
+
+PG_MODULE_MAGIC;
+PG_FUNCTION_INFO_V1(smql_predicate_score);
+PG_FUNCTION_INFO_V1(smql_predicate_region);
+}
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "relations/predicates.hpp"
+
+namespace {
+
+// PostgreSQL has a Node of its own.
+using SmqlNode = smql::model::Node;
+
+double realField(HeapTupleHeader row, const char* name) {
+    bool isNull = false;
+    Datum d = GetAttributeByName(row, name, &isNull);
+    return isNull ? 0.0 : DatumGetFloat8(d);
+}
+
+int smallField(HeapTupleHeader row, const char* name) {
+    bool isNull = false;
+    Datum d = GetAttributeByName(row, name, &isNull);
+    return isNull ? 0 : DatumGetInt16(d);
+}
+
+// A row of smql.nodes as the engine's node: what the formulas read (id, kind, category, geometry,
+// box). The id is the scene-local one, which is all `a.id == b.id` needs.
+SmqlNode nodeOf(HeapTupleHeader row) {
+    SmqlNode n;
+    bool isNull = false;
+    n.id = static_cast<smql::model::NodeId>(DatumGetInt32(GetAttributeByName(row, "id", &isNull)));
+    n.kind = static_cast<smql::model::NodeKind>(smallField(row, "kind"));
+    n.geometry = static_cast<smql::model::GeometryKind>(smallField(row, "geometry"));
+    Datum category = GetAttributeByName(row, "category", &isNull);
+    if (!isNull) n.category = text_to_cstring(DatumGetTextPP(category));
+    n.box = {{realField(row, "cx"), realField(row, "cy"), realField(row, "cz")},
+             {realField(row, "sx"), realField(row, "sy"), realField(row, "sz")},
+             realField(row, "yaw")};
+    Datum hidden = GetAttributeByName(row, "hidden", &isNull);
+    n.hidden = !isNull && DatumGetBool(hidden);
+    return n;
+}
+
+std::vector<SmqlNode> nodesOf(ArrayType* array) {
+    int16 length = 0;
+    bool byValue = false;
+    char align = 0;
+    get_typlenbyvalalign(ARR_ELEMTYPE(array), &length, &byValue, &align);
+    Datum* values = nullptr;
+    bool* nulls = nullptr;
+    int count = 0;
+    deconstruct_array(array, ARR_ELEMTYPE(array), length, byValue, align, &values, &nulls, &count);
+    std::vector<SmqlNode> out;
+    out.reserve(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i)
+        if (!nulls[i]) out.push_back(nodeOf(DatumGetHeapTupleHeader(values[i])));
+    return out;
+}
+
+bool validCode(int32 code) { return code >= 0 && code < static_cast<int32>(smql::model::kRelationTypeCount); }
+
+}  // namespace
+
+extern "C" Datum smql_predicate_score(PG_FUNCTION_ARGS) {
+    if (PG_ARGISNULL(0) || PG_ARGISNULL(1) || PG_ARGISNULL(2)) PG_RETURN_NULL();
+    const int32 code = PG_GETARG_INT32(0);
+    if (!validCode(code)) ereport(ERROR, (errmsg("smql: no predicate has the code %d", code)));
+    double score = 0;
+    std::string failure;
+    try {
+        const SmqlNode a = nodeOf(PG_GETARG_HEAPTUPLEHEADER(1));
+        const SmqlNode b = nodeOf(PG_GETARG_HEAPTUPLEHEADER(2));
+        std::optional<SmqlNode> c;
+        if (!PG_ARGISNULL(3)) c = nodeOf(PG_GETARG_HEAPTUPLEHEADER(3));
+        smql::relations::Frame frame;
+        if (!PG_ARGISNULL(4)) {
+            ArrayType* viewpoint = PG_GETARG_ARRAYTYPE_P(4);
+            const auto* data = reinterpret_cast<const double*>(ARR_DATA_PTR(viewpoint));
+            if (ARR_ELEMTYPE(viewpoint) == FLOAT8OID && ArrayGetNItems(ARR_NDIM(viewpoint), ARR_DIMS(viewpoint)) == 4)
+                frame = smql::relations::viewFrame({{data[0], data[1], data[2]}, data[3]});
+        }
+        std::optional<double> distance;
+        if (!PG_ARGISNULL(5)) distance = PG_GETARG_FLOAT8(5);
+        std::vector<SmqlNode> others;
+        if (!PG_ARGISNULL(6)) others = nodesOf(PG_GETARG_ARRAYTYPE_P(6));
+        const smql::relations::Thresholds thresholds;
+        const smql::relations::NodeObstacles obstacles(others);
+        score = smql::relations::evaluate(static_cast<smql::relations::Predicate>(code), a, b, thresholds, frame,
+                                          obstacles, c ? &*c : nullptr, distance);
+    } catch (const std::exception& e) {
+        failure = e.what();
+    }
+    if (!failure.empty()) ereport(ERROR, (errmsg("smql: %s", failure.c_str())));
+    PG_RETURN_FLOAT8(score);
+}
+
+extern "C" Datum smql_predicate_region(PG_FUNCTION_ARGS) {
+    if (PG_ARGISNULL(0) || PG_ARGISNULL(1)) PG_RETURN_NULL();
+    const int32 code = PG_GETARG_INT32(0);
+    if (!validCode(code)) ereport(ERROR, (errmsg("smql: no predicate has the code %d", code)));
+    const auto& spec = smql::relations::spec(static_cast<smql::relations::Predicate>(code));
+    if (!spec.candidateRegion) PG_RETURN_NULL();  // it can hold far away: no region to probe
+    const smql::relations::Thresholds thresholds;
+    const SmqlNode ref = nodeOf(PG_GETARG_HEAPTUPLEHEADER(1));
+    const double distance = PG_ARGISNULL(2) ? thresholds.nearDistance : PG_GETARG_FLOAT8(2);
+    const smql::model::Aabb region = spec.candidateRegion(smql::model::worldAabb(ref.box), distance, thresholds);
+    Datum bounds[6] = {Float8GetDatum(region.min.x), Float8GetDatum(region.min.y), Float8GetDatum(region.min.z),
+                       Float8GetDatum(region.max.x), Float8GetDatum(region.max.y), Float8GetDatum(region.max.z)};
+    PG_RETURN_ARRAYTYPE_P(construct_array(bounds, 6, FLOAT8OID, sizeof(float8), FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
+}
