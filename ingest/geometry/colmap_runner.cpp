@@ -29,6 +29,22 @@ namespace {
 
 constexpr const char* kInstallHint =
     "install Debian's colmap (apt-get install colmap), or give a capture with camera poses";
+// The mapper's settings, tried in turn (docs/ingest.md, "Geometry from COLMAP"). COLMAP drops
+// models under min(10, 0.8 x the images) by default, which loses a model of 6 of 8 photos: both
+// keep models from 3 images, and the largest is judged here. Frames a short step apart (a video)
+// see their points under small angles, which COLMAP's defaults will not start a model from.
+struct MapperSettings {
+    const char* name;
+    const char* folder;
+    const char* arguments;
+};
+constexpr MapperSettings kMapperSettings[] = {
+    {"its default settings", "default", "--Mapper.min_model_size 3"},
+    {"a relaxed start (4 degrees between views, 50 inliers to start, 15 to add a frame)", "relaxed",
+     "--Mapper.min_model_size 3 --Mapper.init_min_tri_angle 4 --Mapper.init_min_num_inliers 50 "
+     "--Mapper.abs_pose_min_num_inliers 15 --Mapper.abs_pose_min_inlier_ratio 0.15"},
+};
+
 constexpr const char* kRetryHint =
     "COLMAP needs overlapping, textured views: try more frames (a higher --fps for videos), slower camera motion "
     "with more overlap between neighbouring frames, or a capture with camera poses";
@@ -144,9 +160,9 @@ std::string describeRun(const Capture& capture, const std::vector<WorkFrame>& wo
                         const std::vector<CameraGroup>& groups, const ColmapOptions& options) {
     std::string out = fmt::format(
         "smql COLMAP run: max size {}, exhaustive up to {}, overlap {}, loop frames {}, min matches {}, "
-        "vocabulary tree '{}', layout {}\n",
+        "vocabulary tree '{}', layout {}, mapper settings {}\n",
         options.maxImageSize, options.exhaustiveUpTo, options.sequentialOverlap, options.loopFrames, options.minMatches,
-        options.vocabularyTree, capture.layout);
+        options.vocabularyTree, capture.layout, std::size(kMapperSettings));
     for (const CameraGroup& g : groups) {
         out += fmt::format("camera {} {}x{}", g.folder, g.work.width, g.work.height);
         if (g.known)
@@ -187,8 +203,9 @@ const char* originWords(IntrinsicsOrigin origin) {
     return "";
 }
 
-// "only 2 of 8 photos overlap enough ...": what the database says, for an error.
-std::string diagnosis(const fs::path& database, std::size_t frames, int minMatches) {
+// "only 2 of 8 photos overlap enough ...": what the database says, for an error. `started`: the
+// mapper grew a model, too small, rather than none.
+std::string diagnosis(const fs::path& database, std::size_t frames, int minMatches, bool started = false) {
     std::error_code ec;
     if (!fs::exists(database, ec)) return {};
     try {
@@ -213,6 +230,12 @@ std::string diagnosis(const fs::path& database, std::size_t frames, int minMatch
             return fmt::format(
                 "every photo overlaps with another, but they fall apart into separate groups: the largest holds only "
                 "{} of {} photos ({}): take views that link the groups, with overlap",
+                s.largestOverlapGroup, frames, overlap);
+        if (started)
+            return fmt::format(
+                "{} of {} photos are linked by overlap ({}), but most would not join the model: the camera may have "
+                "turned more than it moved (views from one spot give no depth), or neighbouring views overlap too "
+                "little",
                 s.largestOverlapGroup, frames, overlap);
         return fmt::format(
             "{} of {} photos are linked by overlap ({}), but COLMAP found no pair to start a model from (two views "
@@ -367,8 +390,10 @@ private:
     }
 
     // One COLMAP command, its output appended to the log and its time to the step's.
-    void runStep(const std::string& step, const std::string& arguments) {
-        if (run_.reused) return;
+    // With `failureIsAnswer` a failure is returned (false) rather than thrown: the mapper exits with
+    // a failure when it grows no model, which the next settings may.
+    bool runStep(const std::string& step, const std::string& arguments, bool failureIsAnswer = false) {
+        if (run_.reused) return true;
         std::string line =
             fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
                         shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run_.logPath),
@@ -381,7 +406,8 @@ private:
         else
             run_.steps.emplace_back(step, seconds);
         int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        if (code == 0) return;
+        if (code == 0) return true;
+        if (failureIsAnswer) return false;
         std::string facts =
             step == "feature_extractor" ? std::string() : diagnosis(database_, workFrames_.size(), options_.minMatches);
         throw Error(ErrorKind::Input,
@@ -498,25 +524,67 @@ private:
                         std::nullopt, kRetryHint);
     }
 
-    // The mapper writes one folder per model (sparse/0, sparse/1...): the one with the most images.
+    // The mapper, with each of kMapperSettings in turn (video frames relaxed first) until a model
+    // holds most of the frames; the largest model of all is kept when it holds at least half of them.
+    // Each run writes its models (sparse/<settings>/0, 1...) and says what it made in the notes.
     // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
     Capture mapLargestModel() {
-        bool fixed =
+        const bool fixed =
             capture_.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
             std::all_of(groups_.begin(), groups_.end(), [](const CameraGroup& g) { return g.known.has_value(); });
-        runStep("mapper",
+        std::vector<const MapperSettings*> order;
+        for (const auto& settings : kMapperSettings) order.push_back(&settings);
+        if (capture_.layout == "video") std::reverse(order.begin(), order.end());
+        const std::size_t frames = workFrames_.size();
+        std::optional<Capture> best;
+        for (const MapperSettings* settings : order) {
+            const fs::path output = sparse_ / settings->folder;
+            if (!run_.reused) fs::create_directories(output);
+            const bool finished = runStep(
+                "mapper",
                 fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {} "
-                            "--Mapper.min_num_matches {}{}",
+                            "--Mapper.min_num_matches {} {}{}",
                             shellQuoted(database_.string()), shellQuoted(images_.string()),
-                            shellQuoted(sparse_.string()), threads_, options_.minMatches,
-                            fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""));
+                            shellQuoted(output.string()), threads_, options_.minMatches, settings->arguments,
+                            fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""),
+                true);
+            auto [largest, models] = readLargestModel(output);
+            run_.models += models;
+            run_.notes.push_back(largest
+                                     ? fmt::format("COLMAP's mapper with {}: {} {}, the largest with {} of {} frames",
+                                                   settings->name, models, models == 1 ? "model" : "models",
+                                                   largest->frames.size(), frames)
+                                     : fmt::format("COLMAP's mapper with {}: no model{}", settings->name,
+                                                   finished ? "" : " (it stopped with a failure; see the log)"));
+            if (largest && (!best || largest->frames.size() > best->frames.size())) best = std::move(largest);
+            if (best && 5 * best->frames.size() >= 4 * frames) break;
+        }
+        if (!best)
+            throw Error(ErrorKind::Input,
+                        fmt::format("colmap mapper made no model: {}; its output is in {}",
+                                    diagnosis(database_, frames, options_.minMatches), run_.logPath),
+                        std::nullopt, kRetryHint);
+        if (2 * best->frames.size() < frames)
+            throw Error(
+                ErrorKind::Input,
+                fmt::format("colmap mapper placed only {} of {} frames together (its largest model): {}; its output "
+                            "is in {}",
+                            best->frames.size(), frames, diagnosis(database_, frames, options_.minMatches, true),
+                            run_.logPath),
+                std::nullopt, kRetryHint);
+        return std::move(*best);
+    }
+
+    // The model in `folder` (one sub-folder per model) with the most images, and how many there were.
+    std::pair<std::optional<Capture>, std::size_t> readLargestModel(const fs::path& folder) {
         CaptureOptions readOptions;
         readOptions.imageDirectory = images_.string();
         std::optional<Capture> best;
+        std::size_t models = 0;
         std::error_code ec;
-        for (const auto& entry : fs::directory_iterator(sparse_, ec)) {
+        for (const auto& entry : fs::directory_iterator(folder, ec)) {
             if (!entry.is_directory() || !capture_detail::colmapModelFormat(entry.path())) continue;
-            ++run_.models;
+            ++models;
             try {
                 Capture model = capture_detail::readColmap(entry.path(), readOptions);
                 if (!best || model.frames.size() > best->frames.size()) best = std::move(model);
@@ -524,12 +592,7 @@ private:
                 run_.notes.push_back(fmt::format("COLMAP model {} skipped: {}", entry.path().string(), e.what()));
             }
         }
-        if (!best)
-            throw Error(ErrorKind::Input,
-                        fmt::format("colmap mapper made no model: {}; its output is in {}",
-                                    diagnosis(database_, workFrames_.size(), options_.minMatches), run_.logPath),
-                        std::nullopt, kRetryHint);
-        return std::move(*best);
+        return {std::move(best), models};
     }
 
     // The model's poses onto the capture's frames (poses are the same at any image size) and its
@@ -565,12 +628,16 @@ private:
         capture_.points = best.points;
         capture_.metric = false;
         run_.points = capture_.points.size();
-        if (run_.models > 1)
-            run_.notes.push_back(fmt::format("COLMAP made {} separate models; the largest ({} frames) is used",
-                                             run_.models, best.frames.size()));
-        if (run_.registered < capture_.frames.size())
-            run_.notes.push_back(fmt::format("COLMAP registered {} of {} frames; the others are skipped",
-                                             run_.registered, capture_.frames.size()));
+        if (run_.registered < capture_.frames.size()) {
+            std::vector<std::string> left;
+            for (const WorkFrame& w : workFrames_)
+                if (!capture_.frames[w.frame].pose) left.push_back(w.source.filename().string());
+            const std::size_t named = std::min<std::size_t>(left.size(), 12);
+            run_.notes.push_back(fmt::format(
+                "COLMAP registered {} of {} frames; left out: {}{}", run_.registered, capture_.frames.size(),
+                fmt::join(left.begin(), left.begin() + static_cast<std::ptrdiff_t>(named), ", "),
+                left.size() > named ? fmt::format(" and {} more", left.size() - named) : std::string()));
+        }
     }
 
     // A successful run says where its time went and records its inputs; its work folder goes unless

@@ -13,6 +13,8 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/colmap_runner.hpp"
@@ -135,4 +137,39 @@ TEST_CASE("a missing colmap command gives a clear error") {
         CHECK(e.kind() == ErrorKind::Input);
         CHECK_THAT(std::string(e.what()), Catch::Contains("apt-get install colmap"));
     }
+}
+
+TEST_CASE("a small real photo set with a group of photos of elsewhere: the largest group kept, the others named") {
+    // The five real photos of ../shared/data/rgbd-dining without their depth and poses, and three of
+    // them mirrored left to right: photos of a room that is not there (SIFT does not match mirror
+    // images), which overlap with each other but not with the five. COLMAP's own rule, a model of at
+    // least min(10, 0.8 x 8) images, would drop the five; the ingest keeps them and names the three.
+    ScratchDir dir;
+    const auto photos = dir.path / "photos";
+    std::filesystem::create_directories(photos);
+    const std::string dining = std::string(SMQL_SHARED_DATA) + "/rgbd-dining/color/";
+    for (int n = 1; n <= 5; ++n) {
+        cv::Mat image = cv::imread(dining + std::to_string(n) + ".png");
+        REQUIRE_FALSE(image.empty());
+        cv::imwrite((photos / fmt::format("room-{}.png", n)).string(), image);
+        if (n % 2 == 1) {
+            cv::Mat mirrored;
+            cv::flip(image, mirrored, 1);
+            cv::imwrite((photos / fmt::format("mirrored-{}.png", n)).string(), mirrored);
+        }
+    }
+    std::ofstream(photos / "camera.json") << R"({"width": 640, "height": 480, "fx": 518.0, "fy": 519.0,
+                                                 "cx": 325.5, "cy": 253.5})";
+    Capture capture = readCapture(photos.string());
+    REQUIRE(capture.frames.size() == 8);
+    ColmapRun run = runColmap(capture);
+    std::string notes;
+    for (const auto& n : run.notes) notes += n + "\n";
+    INFO(notes);
+    CHECK(run.registered == 5);
+    for (const auto& frame : capture.frames)
+        CHECK(frame.pose.has_value() == (frame.colorPath.find("room-") != std::string::npos));
+    CHECK_THAT(notes, Catch::Contains("COLMAP registered 5 of 8 frames; left out: mirrored-1.png, mirrored-3.png, "
+                                      "mirrored-5.png"));
+    CHECK_THAT(notes, Catch::Contains("COLMAP's mapper with its default settings"));
 }
