@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <queue>
 
 #include <fmt/format.h>
 
@@ -229,24 +230,36 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
         double dz = std::max({0.0, b.min.z - around.max.z, around.min.z - b.max.z});
         return std::sqrt(dx * dx + dy * dy + dz * dz);
     };
+    if (want == 0) return {};
     const auto& index = snap.spatialIndex();
     for (std::size_t k = std::max<std::size_t>(4 * want, 32);; k *= 4) {
         std::vector<catalog::Slot> near;
         index.nearest(around, k, near);
         std::vector<Hit> hits;
+        std::priority_queue<double> best;  // the `want` smallest exact distances so far, the largest on top
+        bool settled = false;
         for (catalog::Slot s : near) {
+            // The candidates come nearest bounds first, and a box is never nearer than its bounds: once
+            // `want` answers are strictly nearer than this one's bounds, no later one can beat them.
+            if (best.size() == want && best.top() < boundsGap(snap.bounds(s))) {
+                settled = true;
+                break;
+            }
             poll();
             if ((f.nearest && s == ref) || !inTarget(f.target, s, frame) || (f.where && !matches(*f.where, s, frame)))
                 continue;
-            hits.push_back({s, model::distance(snap.node(s).box, snap.node(ref).box)});
+            const double distance = model::distance(snap.node(s).box, snap.node(ref).box);
+            hits.push_back({s, distance});
+            best.push(distance);
+            if (best.size() > want) best.pop();
         }
         std::sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
             return a.distance != b.distance ? a.distance < b.distance : snap.node(a.slot).id < snap.node(b.slot).id;
         });
-        // A box is never nearer than its bounds, so boxes beyond the last returned bounds cannot beat
-        // an answer strictly nearer than those bounds.
+        // Likewise, boxes beyond the last returned bounds cannot beat an answer strictly nearer than those bounds.
         bool wholeIndex = near.size() < k || k >= index.size();
-        if (wholeIndex || (hits.size() >= want && hits[want - 1].distance < boundsGap(snap.bounds(near.back())))) {
+        if (settled || wholeIndex ||
+            (hits.size() >= want && hits[want - 1].distance < boundsGap(snap.bounds(near.back())))) {
             if (hits.size() > want) hits.resize(want);
             return hits;
         }

@@ -143,6 +143,31 @@ TEST_CASE("NEAREST TO through the R-tree gives the scan's answer") {
     CHECK(nearestFirst == 4);  // all but the one ordered by distance to several windows
 }
 
+// The nearest-first search stops at the first candidate whose bounds are farther than the k-th
+// answer found: around many references and for several k, it must still give the scan's answer,
+// ties ordered by id included.
+TEST_CASE("NEAREST TO stops early with the scan's answer around any node and for any LIMIT") {
+    PlannedScene scene;
+    const auto& objects = scene.snapshot->shownOfKind(model::NodeKind::Object);
+    std::vector<model::NodeId> references;
+    for (std::size_t i = 0; i < objects.size(); i += 25) references.push_back(scene.snapshot->node(objects[i]).id);
+    for (const char* anchor : {"door", "window", "floor"})
+        for (catalog::Slot s : scene.snapshot->withCategory(anchor)) references.push_back(scene.snapshot->node(s).id);
+    REQUIRE(references.size() > 15);
+    for (model::NodeId reference : references) {
+        for (int limit : {1, 2, 5, 17}) {
+            for (const char* target : {"object", "node"}) {
+                const std::string q = fmt::format("FIND {} NEAREST TO #{} LIMIT {}", target, reference, limit);
+                INFO(q);
+                auto plan = scene.plan(q);
+                REQUIRE(plan.find->access == planner::Access::NearestFirst);
+                CHECK(scene.run(plan, false) ==
+                      scene.run(PlannedScene::withAccess(plan, planner::Access::Scan), false));
+            }
+        }
+    }
+}
+
 TEST_CASE("sub-queries are planned, and run by the executor once") {
     PlannedScene scene;
     auto plan = scene.plan("FIND object WHERE near((FIND table LIMIT 1)) AND on((FIND desk))");
