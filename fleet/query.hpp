@@ -7,11 +7,17 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "fleet/store.hpp"
+#include "model/result.hpp"
+
+namespace smql::ast {
+struct Statement;
+}
 
 namespace smql::fleet {
 
@@ -24,6 +30,7 @@ struct CompiledQuery {
 // Throws smql::Error: the parser's for a statement that does not parse, Usage for one the store
 // does not run yet.
 CompiledQuery compileQuery(const std::string& statement);
+CompiledQuery compileQuery(const ast::Statement& statement);
 
 struct QueryAnswer {
     std::optional<std::int64_t> count;  // COUNT
@@ -32,5 +39,22 @@ struct QueryAnswer {
 
 // Runs a statement in one stored scene version.
 QueryAnswer runQuery(Store& store, const StoredVersion& scene, const std::string& statement);
+
+// Statements on the store as the shell runs them (`smql URL -c "USE SCENE 'den'; COUNT chair"`):
+// USE SCENE picks the newest version of a scene (of the device whose id starts with `device`),
+// then COUNT and FIND run in it. FIND answers with the engine's columns, its ids the scene's local
+// ids (1..n, as `smql export json` numbers the nodes).
+class StoreSession {
+public:
+    StoreSession(const std::string& url, std::string device);
+    // Hands each statement's result over as it is ready; throws on the first that fails.
+    void execute(const std::string& text, const std::function<void(ResultSet&&)>& onResult);
+
+private:
+    ResultSet use(const std::string& scene);
+    Store store_;
+    std::string device_;
+    std::optional<StoredVersion> scene_;
+};
 
 }  // namespace smql::fleet

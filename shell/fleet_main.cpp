@@ -1,13 +1,16 @@
 // `smql-fleet`: the commands of `smql` that talk to a fleet store in PostgreSQL (fleet init, push,
-// pull; docs/fleet.md). libpq and the TLS and Kerberos libraries it loads would add milliseconds
-// to every query's start-up, so `smql` executes this program, installed next to it, for them.
+// pull, and statements on the store, `smql URL -c '...'`; docs/fleet.md). libpq and the TLS and
+// Kerberos libraries it loads would add milliseconds to every query's start-up, so `smql` executes
+// this program, installed next to it, for them.
 #include <iostream>
 
 #include <fmt/format.h>
 
 #include "fleet/fleet.hpp"
+#include "fleet/query.hpp"
 #include "model/error.hpp"
 #include "shell/cli.hpp"
+#include "shell/output.hpp"
 #include "storage/database.hpp"
 
 namespace {
@@ -61,8 +64,43 @@ int run(int argc, char** argv) {
     return 0;
 }
 
+// `smql URL [-c] 'STATEMENTS'`: statements run by the store's server (docs/fleet.md, "SMQL on the store").
+int runStatements(int argc, char** argv) {
+    CLI::App app{"smql URL: statements on a fleet store (COUNT and FIND in one scene so far; docs/fleet.md)"};
+    app.name("smql");
+    std::string url, command, device, mode = "table";
+    std::vector<std::string> statements;
+    app.add_option("url", url, "the fleet store: postgresql://USER@HOST:PORT/DATABASE")->required();
+    app.add_option("statements", statements, "statements to run (as -c)");
+    app.add_option("-c,--command", command, "run these statements: USE SCENE 'name' first");
+    app.add_option("--device", device, "whose scenes USE SCENE picks: the device's id, or its start");
+    const std::vector<std::string> modes = {"table", "box", "markdown", "csv", "tsv", "list", "line"};
+    app.add_option("--format,--mode", mode, "output mode (default table)")->check(CLI::IsMember(modes));
+    for (const std::string& name : modes)
+        app.add_flag_callback(
+            "--" + name, [&mode, name] { mode = name; }, "same as --format " + name);
+    if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
+    if (!command.empty()) statements.insert(statements.begin(), command);
+    if (statements.empty())
+        throw smql::Error(smql::ErrorKind::Usage, "no statement for the fleet store", std::nullopt,
+                          "smql URL -c \"USE SCENE 'kitchen'; COUNT chair\"");
+    smql::shell::OutputOptions output;
+    output.mode = smql::shell::parseOutputMode(mode);
+    smql::fleet::StoreSession session(url, device);
+    for (const std::string& text : statements)
+        session.execute(text,
+                        [&](smql::ResultSet&& result) { std::cout << smql::shell::renderResult(result, output); });
+    return 0;
+}
+
+bool isUrl(const char* argument) {
+    std::string_view a = argument;
+    return a.rfind("postgresql://", 0) == 0 || a.rfind("postgres://", 0) == 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    return smql::shell::runReportingErrors([&] { return run(argc, argv); });
+    return smql::shell::runReportingErrors(
+        [&] { return argc > 1 && isUrl(argv[1]) ? runStatements(argc, argv) : run(argc, argv); });
 }

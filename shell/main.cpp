@@ -2,7 +2,7 @@
 //   smql DIR                       interactive shell
 //   smql DIR 'STATEMENTS'          run statements, print, exit (also -c; -f FILE for a script)
 //   smql import|export|check|test  here; ingest|check-ingest|synth|demo in smql-ingest;
-//   smql fleet|push|pull           in smql-fleet
+//   smql fleet|push|pull, smql URL in smql-fleet
 // Options follow sqlite3's where they mean the same (-json, -csv, -header, -cmd, -bail, -echo).
 #include <unistd.h>
 #include <cerrno>
@@ -257,7 +257,9 @@ int main(int argc, char** argv) {
         if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo" || first == "map" ||
             first == "guide" || first == "view")
             return runTool("smql-ingest", argv);
-        if (first == "fleet" || first == "push" || first == "pull") return runTool("smql-fleet", argv);
+        if (first == "fleet" || first == "push" || first == "pull" || first.rfind("postgresql://", 0) == 0 ||
+            first.rfind("postgres://", 0) == 0)
+            return runTool("smql-fleet", argv);
         if (first == "import" || first == "export" || first == "test" || first == "check" || first == "eval")
             return runSubcommand(argc, argv);
         return runShell(argc, argv);

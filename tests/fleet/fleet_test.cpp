@@ -254,7 +254,7 @@ TEST_CASE("a read-only role can pull but not push") {
     CHECK(pulled.version.data.nodes.size() > 50);
 }
 
-TEST_CASE("the smql command: fleet init, push, pull, with exit statuses and messages") {
+TEST_CASE("the smql command: fleet init, push, pull, statements on the store, exit statuses, messages") {
     const char* smqlProgram = std::getenv("SMQL_PROGRAM");
     REQUIRE(smqlProgram != nullptr);
     const std::string url = freshStore("fleet_shell");
@@ -288,6 +288,21 @@ TEST_CASE("the smql command: fleet init, push, pull, with exit statuses and mess
     auto pulled = shell(fmt::format("export json --db {} --scene replica-room0", dir.sub("copy")));
     CHECK(original.second.size() > 1000);
     CHECK(pulled.second == original.second);
+
+    // Statements on the store, as the shell runs them, answer as the local database does.
+    const std::string count = "USE SCENE 'replica-room0'; COUNT chair";
+    auto onStore = shell(fmt::format("'{}' -c \"{}\" --csv", url, count));
+    CHECK(onStore.first == 0);
+    CHECK(onStore.second == shell(fmt::format("{} -c \"{}\" --csv", dir.sub("device"), count)).second);
+    auto found = shell(fmt::format("'{}' \"USE SCENE 'replica-room0'; FIND chair WHERE near(table)\" --csv", url));
+    CHECK(found.first == 0);
+    CHECK_THAT(found.second, Catch::StartsWith("id,category,source_id,box\n") && Catch::Contains(",chair,"));
+    auto unsupported = shell(fmt::format("'{}' -c \"USE SCENE 'replica-room0'; RELATE #1 TO #2\"", url));
+    CHECK(unsupported.first == 1);
+    CHECK_THAT(unsupported.second, Catch::Contains("does not run") && Catch::Contains("yet"));
+    auto noScene = shell(fmt::format("'{}' -c 'COUNT chair'", url));
+    CHECK(noScene.first == 1);
+    CHECK_THAT(noScene.second, Catch::Contains("USE SCENE"));
 
     auto down =
         shell(fmt::format("push {} 'postgresql://postgres@/fleet?host={}'", dir.sub("device"), dir.path.string()));
