@@ -32,6 +32,12 @@ using catalog::Slot;
 namespace {
 
 constexpr std::size_t kStatementCacheSize = 512;
+
+// Texts hashed and compared as views, so that looking one up copies nothing.
+struct TextHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view text) const { return std::hash<std::string_view>{}(text); }
+};
 // Decoded scenes kept in memory; the least recently used one goes first.
 constexpr std::size_t kSnapshotCacheSize = 32;
 
@@ -46,7 +52,8 @@ struct Engine::State {
     };
     std::unordered_map<model::NodeId, CachedSnapshot> snapshots;
     std::uint64_t useCounter = 0;
-    std::unordered_map<std::string, std::shared_ptr<const std::vector<ast::Statement>>> statements;
+    std::unordered_map<std::string, std::shared_ptr<const std::vector<ast::Statement>>, TextHash, std::equal_to<>>
+        statements;
     // Texts that differ from one seen before only in their literals (binder/shape_cache.hpp).
     binder::ShapeCache shapes{static_cast<std::size_t>(session.limits.shapeCache)};
     std::mutex mutex;
@@ -61,8 +68,7 @@ struct Engine::State {
     // The statements of `text`: the parse of the same text before, else (with `shaped`) a cached
     // shape's statement with this text's literals, else the parser's, whose shape is then learned.
     Parsed parse(std::string_view text, bool shaped) {
-        std::string key(text);
-        if (auto it = statements.find(key); it != statements.end()) return {it->second};
+        if (auto it = statements.find(text); it != statements.end()) return {it->second};
         std::optional<parser::StatementShape> shape;
         if (shaped && shapes.capacity() > 0) shape = parser::statementShape(text);
         if (shape)
@@ -74,7 +80,7 @@ struct Engine::State {
         auto parsed = std::make_shared<const std::vector<ast::Statement>>(parser::parse(text));
         if (shape && parsed->size() == 1) shapes.learn(*shape, parsed->front());
         if (statements.size() >= kStatementCacheSize) statements.clear();
-        statements.emplace(std::move(key), parsed);
+        statements.emplace(std::string(text), parsed);
         return {parsed};
     }
 

@@ -32,6 +32,7 @@ public:
 
     std::optional<StatementShape> scan() {
         if (text_.size() > kMaxStatementLength || model::invalidUtf8At(text_)) return std::nullopt;
+        shape_.key.reserve(text_.size() + 16);
         for (skipBlanks(); at_ < text_.size(); skipBlanks()) {
             if (closed_) return std::nullopt;  // a second statement after the `;`
             if (!token()) return std::nullopt;
@@ -100,7 +101,9 @@ private:
     }
 
     void literal(ShapeLiteral value) {
-        append("$" + std::to_string(shape_.literals.size() + 1));
+        char number[24] = {'$'};
+        const auto written = std::to_chars(number + 1, number + sizeof number, shape_.literals.size() + 1).ptr;
+        append(std::string_view(number, static_cast<std::size_t>(written - number)));
         kinds_ += static_cast<char>(value.kind);
         shape_.literals.push_back(std::move(value));
     }
@@ -121,14 +124,16 @@ private:
 
     // An identifier or keyword; `sofa#12` and `src#93` (LABELLED_ID, SOURCE_ID) are kept as written.
     bool word() {
-        std::string lower = lowerCase(wordAt(at_));
+        const std::string_view word = wordAt(at_);
+        append({});
+        const std::size_t begin = shape_.key.size();
+        for (char c : word) shape_.key += static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
         if (peek() == '#' && isDigit(peek(1))) {
             ++at_;
-            lower += '#';
-            while (isDigit(peek())) lower += text_[at_++];
+            shape_.key += '#';
+            while (isDigit(peek())) shape_.key += text_[at_++];
         }
-        if (words_.size() < 2) words_.push_back(lower);
-        append(lower);
+        if (words_.size() < 2) words_.push_back(shape_.key.substr(begin));
         return true;
     }
 
