@@ -31,6 +31,21 @@ std::string trimmed(std::string text) {
     return text;
 }
 
+// The URL as messages may show it: a password in it (user:secret@, password=secret) replaced.
+std::string withoutPassword(std::string url) {
+    if (auto scheme = url.find("://"); scheme != std::string::npos) {
+        auto at = url.find('@', scheme + 3);
+        auto colon = url.find(':', scheme + 3);
+        if (at != std::string::npos && colon < at) url.replace(colon + 1, at - colon - 1, "***");
+    }
+    for (auto key = url.find("password="); key != std::string::npos; key = url.find("password=", key + 1)) {
+        auto value = key + 9;
+        auto end = url.find_first_of("& ", value);
+        url.replace(value, (end == std::string::npos ? url.size() : end) - value, "***");
+    }
+    return url;
+}
+
 }  // namespace
 
 Result::~Result() { PQclear(result_); }
@@ -125,7 +140,8 @@ std::string describeUrl(const std::string& url) {
         std::string reason = why ? trimmed(why) : "it is neither a postgresql:// URL nor key=value pairs";
         PQfreemem(why);
         PQconninfoFree(options);
-        throw Error(ErrorKind::Usage, fmt::format("'{}' is not a fleet store URL: {}", url, reason), std::nullopt,
+        throw Error(ErrorKind::Usage, fmt::format("'{}' is not a fleet store URL: {}", withoutPassword(url), reason),
+                    std::nullopt,
                     "write it as postgresql://USER@HOST:PORT/DATABASE (a password, when one is needed, from "
                     "~/.pgpass or PGPASSWORD)");
     }

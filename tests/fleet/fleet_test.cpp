@@ -87,6 +87,10 @@ TEST_CASE("a bad URL, a server that is down, a store without a schema or of a ne
     CHECK_THAT(messageOf([&] { fleet::init("mysql://somewhere/fleet"); }), Catch::Contains("is not a fleet store URL"));
     CHECK_THAT(messageOf([&] { fleet::init("postgresql://host/db?colour=blue"); }),
                Catch::Contains("is not a fleet store URL") && Catch::Contains("colour"));
+    // A password in a URL never reaches a message.
+    const std::string secret = messageOf([&] { fleet::init("postgresql://robot:hunter2@host/db?colour=blue"); }) +
+                               messageOf([&] { fleet::init("postgresql://robot@host/db?password=hunter2&colour=1"); });
+    CHECK_THAT(secret, !Catch::Contains("hunter2") && Catch::Contains("robot:***@host"));
     CHECK_THAT(messageOf([&] { fleet::init("postgresql://postgres@/fleet?host=" + dir.path.string()); }),
                Catch::Contains("cannot connect to the fleet store database fleet") &&
                    Catch::Contains("check that the server runs"));
