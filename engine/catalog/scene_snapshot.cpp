@@ -33,7 +33,6 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
     snap->nodes_ = std::move(nodes);
 
     const auto count = static_cast<Slot>(snap->nodes_.size());
-    snap->children_.resize(count);
     snap->slotsByKind_.resize(6);
     snap->shownByKind_.resize(6);
     snap->bounds_.resize(count);
@@ -44,11 +43,9 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
     for (Slot s = 0; s < count; ++s)
         snap->idsInOneBlock_ = snap->idsInOneBlock_ && snap->nodes_[s].id == snap->firstId_ + s;
     if (!snap->idsInOneBlock_) snap->slotById_.reserve(count);
-    snap->slotBySource_.reserve(count);
     for (Slot s = 0; s < count; ++s) {
         const auto& n = snap->nodes_[s];
         if (!snap->idsInOneBlock_) snap->slotById_.emplace(n.id, s);
-        if (n.sourceId) snap->slotBySource_.emplace(*n.sourceId, s);
         snap->slotsByCategory_[n.category].push_back(s);
         snap->slotsByKind_[static_cast<std::size_t>(n.kind)].push_back(s);
         if (!n.hidden && n.kind != model::NodeKind::Scene) {
@@ -66,8 +63,6 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
                 snap->attributeNames_.push_back(a.name);
     }
     std::sort(snap->attributeNames_.begin(), snap->attributeNames_.end());
-    for (Slot s = 0; s < count; ++s)
-        if (std::optional<Slot> parent = snap->slotOf(snap->nodes_[s].parent)) snap->children_[*parent].push_back(s);
     snap->rtree_ = storage::SpatialIndex(entries);
     snap->relations_ = std::move(relations);
     return snap;
@@ -139,7 +134,20 @@ std::optional<Slot> SceneSnapshot::slotOf(model::NodeId id) const {
     return it->second;
 }
 
+void SceneSnapshot::buildLinks() const {
+    std::call_once(linksBuilt_, [&] {
+        const auto count = static_cast<Slot>(nodes_.size());
+        children_.resize(count);
+        slotBySource_.reserve(count);
+        for (Slot s = 0; s < count; ++s) {
+            if (nodes_[s].sourceId) slotBySource_.emplace(*nodes_[s].sourceId, s);
+            if (std::optional<Slot> parent = slotOf(nodes_[s].parent)) children_[*parent].push_back(s);
+        }
+    });
+}
+
 std::optional<Slot> SceneSnapshot::slotOfSource(std::int64_t sourceId) const {
+    buildLinks();
     auto it = slotBySource_.find(sourceId);
     if (it == slotBySource_.end()) return std::nullopt;
     return it->second;
@@ -151,7 +159,10 @@ const std::vector<Slot>& SceneSnapshot::withCategory(std::string_view category) 
     return it == slotsByCategory_.end() ? none : it->second;
 }
 
-const std::vector<Slot>& SceneSnapshot::children(Slot slot) const { return children_[slot]; }
+const std::vector<Slot>& SceneSnapshot::children(Slot slot) const {
+    buildLinks();
+    return children_[slot];
+}
 
 const std::vector<Slot>& SceneSnapshot::slotsOfKind(model::NodeKind kind) const {
     return slotsByKind_[static_cast<std::size_t>(kind)];

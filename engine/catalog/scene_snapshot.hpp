@@ -78,6 +78,7 @@ public:
     static std::string label(const model::Node& node);  // "sofa#12"
 
 private:
+    void buildLinks() const;
     static std::shared_ptr<const SceneSnapshot> build(model::SceneInfo info, std::vector<model::Node> nodes,
                                                       std::vector<model::Relation> relations, bool historical);
 
@@ -90,9 +91,12 @@ private:
     bool idsInOneBlock_ = false;
     model::NodeId firstId_ = 0;
     std::unordered_map<model::NodeId, Slot> slotById_;
-    std::unordered_map<std::int64_t, Slot> slotBySource_;
+    // The tree's links and the source ids, made the first time a statement asks (PATH, SHOW TREE,
+    // DESCRIBE, src#id): most statements need neither, and a scene's first statement pays the load.
+    mutable std::once_flag linksBuilt_;
+    mutable std::unordered_map<std::int64_t, Slot> slotBySource_;
     std::unordered_map<std::string, std::vector<Slot>> slotsByCategory_;
-    std::vector<std::vector<Slot>> children_;
+    mutable std::vector<std::vector<Slot>> children_;
     std::vector<std::vector<Slot>> slotsByKind_;
     std::vector<std::vector<Slot>> shownByKind_;
     std::vector<Slot> shownNodes_;
