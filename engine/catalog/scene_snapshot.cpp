@@ -55,14 +55,7 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info,
         snap->bounds_[s] = model::worldAabb(n.box);
         if (n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene)
             entries.push_back({snap->bounds_[s], s});
-        // A scene has a handful of attribute names over thousands of nodes: each is looked for
-        // among those found so far, rather than every node's names sorted (a third of a load).
-        for (const auto& a : n.attributes)
-            if (std::find(snap->attributeNames_.begin(), snap->attributeNames_.end(), a.name) ==
-                snap->attributeNames_.end())
-                snap->attributeNames_.push_back(a.name);
     }
-    std::sort(snap->attributeNames_.begin(), snap->attributeNames_.end());
     snap->rtree_ = storage::SpatialIndex(entries);
     snap->relations_ = std::move(relations);
     return snap;
@@ -144,6 +137,19 @@ void SceneSnapshot::buildLinks() const {
             if (std::optional<Slot> parent = slotOf(nodes_[s].parent)) children_[*parent].push_back(s);
         }
     });
+}
+
+const std::vector<std::string>& SceneSnapshot::attributeNames() const {
+    std::call_once(attributeNamesFound_, [&] {
+        // A scene has a handful of attribute names over thousands of nodes: each is looked for
+        // among those found so far, rather than every node's names sorted.
+        for (const auto& n : nodes_)
+            for (const auto& a : n.attributes)
+                if (std::find(attributeNames_.begin(), attributeNames_.end(), a.name) == attributeNames_.end())
+                    attributeNames_.push_back(a.name);
+        std::sort(attributeNames_.begin(), attributeNames_.end());
+    });
+    return attributeNames_;
 }
 
 std::optional<Slot> SceneSnapshot::slotOfSource(std::int64_t sourceId) const {

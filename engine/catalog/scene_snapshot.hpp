@@ -52,7 +52,7 @@ public:
     const std::vector<Slot>& shownNodes() const { return shownNodes_; }
     std::vector<std::string> categories() const;
     // Names of the attributes any node of the scene carries (color, material ...), sorted.
-    const std::vector<std::string>& attributeNames() const { return attributeNames_; }
+    const std::vector<std::string>& attributeNames() const;
     const storage::SpatialIndex& spatialIndex() const { return rtree_; }
     const std::vector<model::Relation>& storedRelations() const { return relations_; }
 
@@ -100,7 +100,8 @@ private:
     std::vector<std::vector<Slot>> slotsByKind_;
     std::vector<std::vector<Slot>> shownByKind_;
     std::vector<Slot> shownNodes_;
-    std::vector<std::string> attributeNames_;
+    mutable std::once_flag attributeNamesFound_;  // the names are gathered when a statement first asks
+    mutable std::vector<std::string> attributeNames_;
     storage::SpatialIndex rtree_;
     std::vector<model::Relation> relations_;
     mutable std::once_flag guidanceBuilt_;
