@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/progress.hpp"
@@ -54,9 +57,10 @@ bool has(const PlausibilityReport& report, const std::string& check, bool refuse
                        [&](const auto& f) { return f.check == check && f.refuse == refuse; });
 }
 
-IngestRun ingestDining(const std::string& options) {
+IngestRun ingestDining(const std::string& options,
+                       const std::string& capture = std::string(SMQL_SHARED_DATA) + "/rgbd-dining") {
     IngestRequest request;
-    request.capture = std::string(SMQL_SHARED_DATA) + "/rgbd-dining";
+    request.capture = capture;
     const nlohmann::json parsed = nlohmann::json::parse(options);
     for (const auto& [name, value] : parsed.items())
         setIngestOption(request, name, value.is_string() ? value.get<std::string>() : value.dump());
@@ -182,4 +186,34 @@ TEST_CASE("plausibility: views whose depths disagree are warned about, then refu
     CHECK_THAT(mirrored->what, Catch::Contains("58% are at the depth the other frame reads"));
     CHECK_THAT(mirrored->fix, Catch::Contains("x right and y down"));
     CHECK_THAT(mirrored->fix, Catch::Contains("--depth-scale"));
+}
+
+TEST_CASE("plausibility: real RGB-D frames upside down for their poses are refused; in a unit 1.4x off, warned",
+          "[ingest][plausibility]") {
+    // What a negative focal length "fixed" to a positive one does: every image upside down for its
+    // pose. The sizes of things stay right; only the views against each other show it.
+    ScratchDir dir;
+    const fs::path dining = fs::path(SMQL_SHARED_DATA) / "rgbd-dining", mirrored = dir.path / "dining";
+    fs::create_directories(mirrored / "color");
+    fs::create_directories(mirrored / "depth");
+    fs::copy_file(dining / "pose.txt", mirrored / "pose.txt");
+    for (int n = 1; n <= 5; ++n)
+        for (const char* image : {"color/{}.png", "depth/{}.pgm"}) {
+            const std::string name = fmt::format(fmt::runtime(image), n);
+            cv::Mat read = cv::imread((dining / name).string(), cv::IMREAD_UNCHANGED), flipped;
+            REQUIRE_FALSE(read.empty());
+            cv::flip(read, flipped, 0);
+            REQUIRE(cv::imwrite((mirrored / name).string(), flipped));
+        }
+    try {
+        ingestDining("{}", mirrored.string());
+        FAIL("mirrored views were stored");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Input);
+        CHECK_THAT(e.message(), Catch::Contains("the frames' depth images disagree through their poses"));
+        CHECK_THAT(e.hint(), Catch::Contains("x right and y down"));
+    }
+    const auto unit = ingestDining(R"({"depth_scale": 700})");
+    CHECK(std::any_of(unit.result.notes.begin(), unit.result.notes.end(),
+                      [](const std::string& n) { return n.find("warning: views:") != std::string::npos; }));
 }
