@@ -79,6 +79,8 @@ void rollbackQuietly(pg::Connection& c) {
     }
 }
 
+}  // namespace
+
 // PostGIS and btree_gist (the GiST index on (scene, footprint) leads with a bigint): created when
 // missing, which needs a role allowed to; said plainly when the server has no PostGIS at all.
 void requireExtensions(pg::Connection& c) {
@@ -111,9 +113,11 @@ void requireExtensions(pg::Connection& c) {
     }
 }
 
-}  // namespace
+void createVersionTable(pg::Connection& c) { c.exec(kVersionTable, "creating the schema version table"); }
 
 void takeMigrationLock(pg::Connection& c) { c.exec(kMigrationLock, "waiting for other migrations"); }
+
+std::string_view migrationSql(int version) { return kMigrations.at(static_cast<std::size_t>(version - 1)); }
 
 int latestSchemaVersion() { return static_cast<int>(kMigrations.size()); }
 
@@ -134,7 +138,7 @@ int migrate(pg::Connection& c) {
         c.exec("BEGIN", "beginning a migration");
         try {
             takeMigrationLock(c);
-            c.exec(kVersionTable, "creating the schema version table");
+            createVersionTable(c);
             if (schemaVersion(c) >= target) {
                 c.exec("COMMIT", "ending a migration");
                 continue;

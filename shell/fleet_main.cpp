@@ -8,6 +8,7 @@
 
 #include "fleet/fleet.hpp"
 #include "fleet/query.hpp"
+#include "fleet/shards.hpp"
 #include "model/error.hpp"
 #include "shell/cli.hpp"
 #include "shell/output.hpp"
@@ -25,6 +26,10 @@ int run(int argc, char** argv) {
     auto* init = fleetCmd->add_subcommand("init", "create the store's schema in a database, or bring it up to date");
     std::string initUrl;
     init->add_option("url", initUrl, "the database: postgresql://USER@HOST:PORT/DATABASE")->required();
+    std::vector<std::string> initShards;
+    init->add_option("--shard", initShards,
+                     "a shard's database (repeatable): URL becomes the coordinator of a store sharded by scene "
+                     "over them (docs/fleet.md, \"Shards\")");
 
     auto* push = app.add_subcommand("push", "send every scene version the fleet store lacks, each in one transaction");
     std::string pushDb, pushUrl;
@@ -42,7 +47,7 @@ int run(int argc, char** argv) {
 
     if (auto status = smql::shell::parseArguments(app, argc, argv)) return *status;
     if (init->parsed()) {
-        auto report = smql::fleet::init(initUrl);
+        auto report = initShards.empty() ? smql::fleet::init(initUrl) : smql::fleet::initSharded(initUrl, initShards);
         std::cout << (report.before == report.after
                           ? fmt::format("the fleet store is at schema version {}; nothing to do\n", report.after)
                           : fmt::format("created the fleet store's schema: version {} (was {})\n", report.after,

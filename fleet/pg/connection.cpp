@@ -132,7 +132,7 @@ void Connection::copyIn(std::string_view copySql, std::string_view rows, std::st
     check(r, what);
 }
 
-std::string describeUrl(const std::string& url) {
+UrlParts urlParts(const std::string& url) {
     bool isUrl = url.rfind("postgresql://", 0) == 0 || url.rfind("postgres://", 0) == 0;
     char* why = nullptr;
     PQconninfoOption* options = PQconninfoParse(url.c_str(), &why);
@@ -145,20 +145,25 @@ std::string describeUrl(const std::string& url) {
                     "write it as postgresql://USER@HOST:PORT/DATABASE (a password, when one is needed, from "
                     "~/.pgpass or PGPASSWORD)");
     }
-    std::string host, port, database, user;
+    UrlParts out;
     for (PQconninfoOption* o = options; o->keyword; ++o) {
         std::string_view key = o->keyword;
         std::string value = o->val ? o->val : "";
-        if (key == "host") host = value;
-        if (key == "port") port = value;
-        if (key == "dbname") database = value;
-        if (key == "user") user = value;
+        if (key == "host") out.host = value;
+        if (key == "port") out.port = value;
+        if (key == "dbname") out.database = value;
+        if (key == "user") out.user = value;
     }
     PQconninfoFree(options);
-    std::string out = fmt::format("database {} on {}", database.empty() ? "(the user's)" : database,
-                                  host.empty() ? "the local socket" : "host " + host);
-    if (!port.empty()) out += ":" + port;
-    if (!user.empty()) out += " as user " + user;
+    return out;
+}
+
+std::string describeUrl(const std::string& url) {
+    UrlParts parts = urlParts(url);
+    std::string out = fmt::format("database {} on {}", parts.database.empty() ? "(the user's)" : parts.database,
+                                  parts.host.empty() ? "the local socket" : "host " + parts.host);
+    if (!parts.port.empty()) out += ":" + parts.port;
+    if (!parts.user.empty()) out += " as user " + parts.user;
     return out;
 }
 

@@ -71,6 +71,13 @@ private:
     std::string lastState_;
 };
 
+// What a URL names (empty: libpq's default), for a sharded store's foreign servers.
+struct UrlParts {
+    std::string host, port, database, user;
+};
+// Throws smql::Error(Usage) when libpq cannot read the URL (the message never shows a password).
+UrlParts urlParts(const std::string& url);
+
 // A fleet store's URL (postgresql://user@host:port/database?options, or libpq's key=value form)
 // checked and named for messages without its password: "database fleet on host db1:5432 as
 // user robot". Throws smql::Error(Usage) when libpq cannot read it.

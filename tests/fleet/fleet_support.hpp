@@ -2,11 +2,13 @@
 // it per test, local databases of real rooms, and the store's own consistency checks.
 #pragma once
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
 #include "engine/engine.hpp"
 #include "fleet/pg/local_cluster.hpp"
+#include "storage/database.hpp"
 
 namespace smql::testing {
 
@@ -33,6 +35,20 @@ inline constexpr std::size_t kRoomVersions = 6;
 // Every VSI-Bench room of real-layouts/ (238 ScanNet and ARKitScenes rooms), for the kill test's
 // longer pushes.
 void buildRealLayouts(Engine& engine);
+
+// SMQL_FLEET_KILLS, else `otherwise`: how many pushes a kill test kills.
+inline int killCount(int otherwise) {
+    const char* set = std::getenv("SMQL_FLEET_KILLS");
+    return set ? std::atoi(set) : otherwise;
+}
+struct KilledPushes {
+    int cutShort = 0;  // kills that fell after the first scene version's commit and before the last's
+    double wholeMilliseconds = 0;
+};
+// Pushes `database` to `url` with `smql-fleet push` (as a new device each time), SIGKILLed at a
+// moment drawn uniformly over a whole push's time, `kills` times; after each the store must hold no
+// partial and no duplicated version, and a last push must complete (kill_test.cpp).
+KilledPushes killPushes(storage::Database& database, const std::string& url, int kills);
 
 // The scene as `smql export json` writes it.
 std::string exportedJson(Engine& engine, const std::string& scene);

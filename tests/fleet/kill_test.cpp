@@ -1,6 +1,6 @@
 // A push killed at random moments (SIGKILL: no clean-up of any kind) leaves the store consistent:
 // every scene version whole or absent, none twice; the next push completes the device's scenes.
-// SMQL_FLEET_KILLS sets how many kills (20 here; `make stress` runs 100).
+// SMQL_FLEET_KILLS sets how many kills (20 here, 10 into a sharded store; `make stress` runs 100).
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
@@ -57,47 +57,54 @@ void becomeAnotherDevice(storage::Database& database) {
 
 }  // namespace
 
-TEST_CASE("pushes killed at random moments leave no partial or duplicated scene") {
-    const int kills = std::getenv("SMQL_FLEET_KILLS") ? std::atoi(std::getenv("SMQL_FLEET_KILLS")) : 20;
-    const std::string url = freshStore("fleet_kills");
-    fleet::init(url);
-    TempDir dir;
-    const std::string path = dir.sub("device");
-    {
-        auto engine = Engine::open(path);
-        buildRealLayouts(*engine);
-    }
-    auto database = storage::Database::open(path);
-    const auto versions = static_cast<long long>(fleet::localSource(*database).scenes.size());
+namespace smql::testing {
 
-    // A whole push first: how long one takes sets the range the kills fall in.
+KilledPushes killPushes(storage::Database& database, const std::string& url, int kills) {
+    const std::string path = database.directory();
+    const auto versions = static_cast<long long>(fleet::localSource(database).scenes.size());
+    // A whole push first, as a device of its own: how long one takes sets the range the kills fall in.
+    becomeAnotherDevice(database);
     auto started = Clock::now();
     REQUIRE(waitFor(startPush(path, url)) == 0);
-    const auto whole = std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - started);
-    REQUIRE(storedVersions(url) == versions);
+    KilledPushes out;
+    out.wholeMilliseconds = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
+    REQUIRE(storedVersions(url, *database.beginRead().setting(fleet::kDeviceSetting)) == versions);
 
     std::mt19937 random(20261125);
-    std::uniform_int_distribution<long long> moment(0, whole.count());
-    int cutShort = 0;
+    std::uniform_real_distribution<double> moment(0, out.wholeMilliseconds * 1000);
     std::string device;
     for (int i = 0; i < kills; ++i) {
-        becomeAnotherDevice(*database);
-        device = *database->beginRead().setting(fleet::kDeviceSetting);
+        becomeAnotherDevice(database);
+        device = *database.beginRead().setting(fleet::kDeviceSetting);
         pid_t pid = startPush(path, url);
-        std::this_thread::sleep_for(std::chrono::microseconds(moment(random)));
+        std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long long>(moment(random))));
         kill(pid, SIGKILL);
         waitFor(pid);
         const long long stored = storedVersions(url, device);
-        cutShort += stored > 0 && stored < versions;
+        out.cutShort += stored > 0 && stored < versions;
         INFO("kill " << i);
         REQUIRE(inconsistencies(url) == 0);
     }
-    std::cout << kills << " pushes of " << versions << " scenes (" << whole.count() / 1000
-              << " ms for a whole one) killed, " << cutShort << " of them between two scenes' transactions\n";
-    CHECK(cutShort > 0);  // the kills did land in the middle of pushes
-
     // The last device's push, run again, completes it.
     REQUIRE(waitFor(startPush(path, url)) == 0);
     CHECK(storedVersions(url, device) == versions);
     CHECK(inconsistencies(url) == 0);
+    std::cout << kills << " pushes of " << versions << " scenes (" << static_cast<int>(out.wholeMilliseconds)
+              << " ms for a whole one) killed, " << out.cutShort << " of them between two scenes' transactions\n";
+    return out;
+}
+
+}  // namespace smql::testing
+
+TEST_CASE("pushes killed at random moments leave no partial or duplicated scene") {
+    const std::string url = freshStore("fleet_kills");
+    fleet::init(url);
+    TempDir dir;
+    {
+        auto engine = Engine::open(dir.sub("device"));
+        buildRealLayouts(*engine);
+    }
+    auto database = storage::Database::open(dir.sub("device"));
+    const KilledPushes killed = killPushes(*database, url, killCount(20));
+    CHECK(killed.cutShort > 0);  // the kills did land in the middle of pushes
 }
