@@ -1,7 +1,8 @@
 // smql_bench_fleet: push throughput into a fleet store (docs/fleet.md, "Measured"). It starts a
 // private PostgreSQL + PostGIS cluster (fleet/pg/local_cluster.hpp, default server settings: commits
 // synchronous), builds local databases of generated rooms, and measures one device's push, four
-// devices pushing at once (one thread and one connection each), and a push with nothing to send.
+// devices pushing at once (one thread and one connection each), and a push with nothing to send;
+// with --shards N, through a coordinator over N clusters on this machine.
 // `make bench-fleet` prints the Markdown table docs/fleet.md keeps.
 #include <chrono>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "engine/engine.hpp"
 #include "fleet/fleet.hpp"
 #include "fleet/pg/local_cluster.hpp"
+#include "fleet/shards.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "storage/database.hpp"
 
@@ -26,6 +28,7 @@ using Clock = std::chrono::steady_clock;
 struct Options {
     int scenes = 100;   // per device
     int objects = 200;  // per scene
+    int shards = 0;     // 0: one server; else a coordinator over this many clusters (docs/fleet.md, "Shards")
 };
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -63,9 +66,23 @@ int run(const Options& options) {
 
     cluster->createDatabase("fleet");
     const std::string url = cluster->url("fleet");
-    smql::fleet::init(url);
-    fmt::print("{}; {} scenes x {} objects per device; {} hardware threads\n\n", cluster->version(), options.scenes,
-               options.objects, std::thread::hardware_concurrency());
+    // Shards: the first on this cluster beside the coordinator, the others on clusters of their own.
+    std::vector<std::unique_ptr<smql::fleet::pg::LocalCluster>> others;
+    std::vector<std::string> shards;
+    for (int i = 0; i < options.shards; ++i) {
+        if (i > 0) others.push_back(smql::fleet::pg::LocalCluster::start({.prefix = "smql-bench-fleet"}, whyNot));
+        smql::fleet::pg::LocalCluster& at = i == 0 ? *cluster : *others.back();
+        at.createDatabase("fleet_shard");
+        shards.push_back(at.url("fleet_shard"));
+    }
+    if (shards.empty())
+        smql::fleet::init(url);
+    else
+        smql::fleet::initSharded(url, shards);
+    fmt::print("{}; {} scenes x {} objects per device; {}; {} hardware threads\n\n", cluster->version(), options.scenes,
+               options.objects,
+               shards.empty() ? std::string("one server") : fmt::format("a coordinator over {} shards", shards.size()),
+               std::thread::hardware_concurrency());
     fmt::print("| push | scene versions sent | nodes sent | time | scenes/s | nodes/s |\n|---|---|---|---|---|---|\n");
 
     auto started = Clock::now();
@@ -96,6 +113,8 @@ int main(int argc, char** argv) {
     Options options;
     app.add_option("--scenes", options.scenes, "scenes per device (default 100)")->check(CLI::PositiveNumber);
     app.add_option("--objects", options.objects, "objects per scene (default 200)")->check(CLI::PositiveNumber);
+    app.add_option("--shards", options.shards, "push through a coordinator over this many shards (default: one server)")
+        ->check(CLI::Range(1, 8));
     CLI11_PARSE(app, argc, argv);
     try {
         return run(options);

@@ -40,7 +40,8 @@ std::vector<Table> partitionedTables() {
 }
 
 std::string serverOptions(const pg::UrlParts& shard) {
-    std::string options = "extensions 'postgis'";
+    // Rows inserted into a shard go in batches of 1,000 (one remote statement each).
+    std::string options = "extensions 'postgis', batch_size '1000'";
     if (!shard.host.empty()) options += ", host " + pg::quoted(shard.host);
     if (!shard.port.empty()) options += ", port " + pg::quoted(shard.port);
     if (!shard.database.empty()) options += ", dbname " + pg::quoted(shard.database);

@@ -229,8 +229,31 @@ void Store::requireWriteAccess() {
                     "read-only role can query and pull");
 }
 
+// The stage tables of a coordinator (fleet/shards.hpp): PostgreSQL 15 sends the rows of a COPY into
+// a foreign partition one remote INSERT at a time, an INSERT ... SELECT in batches (the servers'
+// batch_size), so rows are copied into a temporary table of the session and inserted from there.
+void Store::prepareStaging() {
+    if (staging_) return;
+    pg::Result sharded = connection_.exec("SELECT to_regclass('smql.shards') IS NOT NULL", "looking for shards");
+    staging_ = sharded.text(0, 0) == "t" ? Staging::Staged : Staging::Direct;
+    if (*staging_ == Staging::Direct) return;
+    for (const char* table : {"nodes", "attributes", "relations", "blobs", "embeddings", "changes"})
+        connection_.exec(fmt::format("CREATE TEMPORARY TABLE stage_{0} (LIKE smql.{0}) ON COMMIT DELETE ROWS", table),
+                         "preparing the stage tables");
+}
+
+void Store::copyRows(const char* table, const char* columns, const std::string& rows, const std::string& what) {
+    if (*staging_ == Staging::Direct) {
+        connection_.copyIn(fmt::format("COPY smql.{}({}) FROM STDIN", table, columns), rows, what);
+        return;
+    }
+    connection_.copyIn(fmt::format("COPY stage_{}({}) FROM STDIN", table, columns), rows, what);
+    connection_.exec(fmt::format("INSERT INTO smql.{0}({1}) SELECT {1} FROM stage_{0}", table, columns), what);
+}
+
 bool Store::put(const std::string& device, const SceneVersionData& version) {
     const std::int64_t key = sceneKey(device, version.data.info.name, version.version);
+    prepareStaging();
     Transaction txn(connection_, "BEGIN");
     pg::Parameters scene;
     const std::string name = sceneParameters(scene, key, device, version);
@@ -246,21 +269,20 @@ bool Store::put(const std::string& device, const SceneVersionData& version) {
                                                         what, key, held.text(0, 2), held.text(0, 1), held.text(0, 0)));
         return false;
     }
-    connection_.copyIn(
-        "COPY smql.nodes(scene, id, parent, kind, category, geometry, cx, cy, cz, sx, sy, sz, yaw, hidden, confidence, "
-        "source_id, text, min_z, max_z, footprint) FROM STDIN",
-        nodeRows(key, version.data), what);
-    connection_.copyIn("COPY smql.attributes(scene, node, position, name, value) FROM STDIN",
-                       attributeRows(key, version.data), what);
-    connection_.copyIn("COPY smql.relations(scene, position, subject, object, type, frame, score, support) FROM STDIN",
-                       relationRows(key, version.data), what);
+    copyRows("nodes",
+             "scene, id, parent, kind, category, geometry, cx, cy, cz, sx, sy, sz, yaw, hidden, confidence, source_id, "
+             "text, min_z, max_z, footprint",
+             nodeRows(key, version.data), what);
+    copyRows("attributes", "scene, node, position, name, value", attributeRows(key, version.data), what);
+    copyRows("relations", "scene, position, subject, object, type, frame, score, support",
+             relationRows(key, version.data), what);
     auto [blobs, embeddings] = blobRows(key, version.data);
-    connection_.copyIn("COPY smql.blobs(scene, node, name, media_type, bytes) FROM STDIN", blobs, what);
-    connection_.copyIn("COPY smql.embeddings(scene, node, vector) FROM STDIN", embeddings, what);
-    connection_.copyIn(
-        "COPY smql.changes(scene, position, kind, category, before, after, from_cx, from_cy, from_cz, from_sx, "
-        "from_sy, from_sz, from_yaw, to_cx, to_cy, to_cz, to_sx, to_sy, to_sz, to_yaw) FROM STDIN",
-        changeRows(key, version), what);
+    copyRows("blobs", "scene, node, name, media_type, bytes", blobs, what);
+    copyRows("embeddings", "scene, node, vector", embeddings, what);
+    copyRows("changes",
+             "scene, position, kind, category, before, after, from_cx, from_cy, from_cz, from_sx, from_sy, from_sz, "
+             "from_yaw, to_cx, to_cy, to_cz, to_sx, to_sy, to_sz, to_yaw",
+             changeRows(key, version), what);
     txn.commit(what);
     return true;
 }

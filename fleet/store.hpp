@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -46,7 +47,11 @@ public:
     SceneVersionData get(const StoredVersion& stored);
 
 private:
+    enum class Staging { Direct, Staged };
+    void prepareStaging();
+    void copyRows(const char* table, const char* columns, const std::string& rows, const std::string& what);
     pg::Connection connection_;
+    std::optional<Staging> staging_;  // known at the first put
 };
 
 }  // namespace smql::fleet
