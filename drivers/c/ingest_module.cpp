@@ -1,13 +1,12 @@
 // libsmql_ingest.so (ingest_module.hpp): smql_ingest's work, run in the ingest library.
 #include "ingest_module.hpp"
 
-#include <new>
-
 #include <nlohmann/json.hpp>
 
 #include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/pipeline/request.hpp"
+#include "module_call.hpp"
 
 namespace smql::capi {
 
@@ -66,27 +65,12 @@ private:
     bool stopped_ = false;
 };
 
-template <class Call, class Step>
-void guarded(Call& call, Step&& step) noexcept {
-    try {
-        step();
-    } catch (const Error& e) {
-        call.error = e;
-    } catch (const std::bad_alloc&) {
-        call.error = Error(ErrorKind::Storage, "out of memory during the ingest");
-    } catch (const std::exception& e) {
-        call.error = Error(ErrorKind::Input, std::string("the ingest failed: ") + e.what());
-    } catch (...) {
-        call.error = Error(ErrorKind::Input, "the ingest failed with an unknown exception");
-    }
-}
-
 }  // namespace
 
 }  // namespace smql::capi
 
 extern "C" SMQL_API void smql_ingest_module_read(smql::capi::IngestCall& call) noexcept {
-    smql::capi::guarded(call, [&] {
+    smql::capi::guarded(call, "the ingest", smql::ErrorKind::Input, [&] {
         auto request = smql::capi::requestOf(call);
         call.sceneName = smql::ingest::sceneNameOf(request);
         call.update = request.update;
@@ -94,7 +78,7 @@ extern "C" SMQL_API void smql_ingest_module_read(smql::capi::IngestCall& call) n
 }
 
 extern "C" SMQL_API void smql_ingest_module_run(smql::capi::IngestCall& call) noexcept {
-    smql::capi::guarded(call, [&] {
+    smql::capi::guarded(call, "the ingest", smql::ErrorKind::Input, [&] {
         smql::capi::CallbackProgress progress(call);
         try {
             auto run = smql::ingest::runIngest(smql::capi::requestOf(call), progress,
@@ -109,7 +93,7 @@ extern "C" SMQL_API void smql_ingest_module_run(smql::capi::IngestCall& call) no
 }
 
 extern "C" SMQL_API void smql_ingest_module_check(smql::capi::CheckCall& call) noexcept {
-    smql::capi::guarded(call, [&] {
+    smql::capi::guarded(call, "the ingest", smql::ErrorKind::Input, [&] {
         if (!call.truth.empty()) {
             call.figures = smql::ingest::truthCheckFigures(smql::ingest::checkAgainstTruth(call.stored, call.truth));
             return;
