@@ -108,7 +108,7 @@ void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
             for (const Node* anchor : anchors) {
                 double d = model::distance(a.box, anchor->box);
                 if (d < bestDistance) bestDistance = d, best = anchor;
-                if (anchor->category == "wall" && d < wallDistance) wallDistance = d, wall = anchor;
+                if (anchor->category == kWall && d < wallDistance) wallDistance = d, wall = anchor;
             }
             if (wall && wallDistance <= bestDistance + kWallPreference) best = wall;
         }

@@ -152,7 +152,7 @@ model::Vec3 centre(const Node& n) { return n.box.center; }
 // An opening (a window, a door) in a wall or against it: the wall does not stand between it and
 // the room, whichever side of the wall's middle its box ends up.
 bool openingIn(const Node& opening, const Node& wall, const Thresholds& t) {
-    return isVerticalPlane(opening) && !sameCategory(opening.category, "wall") &&
+    return isVerticalPlane(opening) && !sameCategory(opening.category, kWall) &&
            model::distance(opening.box, wall.box) <= t.attachedMaxGap;
 }
 
@@ -166,9 +166,9 @@ bool wallBetween(const Node& a, const Node& b, const Thresholds& t, const Obstac
     span.max = {std::max(span.max.x, other.max.x), std::max(span.max.y, other.max.y),
                 std::max(span.max.z, other.max.z)};
     std::vector<const Node*> around;
-    obstacles.within(span, around);
+    obstacles.wallsWithin(span, around);
     return std::any_of(around.begin(), around.end(), [&](const Node* w) {
-        if (w->id == a.id || w->id == b.id || !isVerticalPlane(*w) || !sameCategory(w->category, "wall")) return false;
+        if (w->id == a.id || w->id == b.id || !isVerticalPlane(*w)) return false;
         if (pointInBox(centre(a), w->box) || pointInBox(centre(b), w->box)) return false;
         if (openingIn(a, *w, t) || openingIn(b, *w, t)) return false;
         return segmentCrosses(centre(a), centre(b), w->box);
@@ -428,6 +428,14 @@ std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& 
         if (score > 0) hits.push_back({row->predicate, score});
     }
     return hits;
+}
+
+void Obstacles::wallsWithin(const model::Aabb& region, std::vector<const Node*>& out) const {
+    const std::size_t first = out.size();
+    within(region, out);
+    out.erase(std::remove_if(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                             [](const Node* n) { return !sameCategory(n->category, kWall); }),
+              out.end());
 }
 
 void NodeObstacles::within(const model::Aabb& region, std::vector<const Node*>& out) const {

@@ -31,6 +31,9 @@ struct Frame {
 };
 Frame viewFrame(const model::Viewpoint& viewpoint);
 
+// The category of the anchors that stand between rooms' parts: near's wall check, the tree's walls.
+inline constexpr std::string_view kWall = "wall";
+
 // The boxes that may stand between two nodes, for visible_from and near: every caller says what they
 // are, so that one pair gets one answer wherever it is asked. The executor answers from the scene's
 // R-tree; a caller that holds a scene's nodes without an index uses NodeObstacles.
@@ -39,6 +42,9 @@ public:
     virtual ~Obstacles() = default;
     // Appends every node with geometry whose world bounds intersect `region`.
     virtual void within(const model::Aabb& region, std::vector<const model::Node*>& out) const = 0;
+    // The same, walls only (what near asks): by default `within`, filtered; a scene that lists its
+    // walls answers from the list, a few nodes, rather than every node the region holds.
+    virtual void wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const;
 };
 
 // The nodes of a list, scanned (a scene being built, a truth file, a benchmark peer's rows).

@@ -221,4 +221,12 @@ void SceneObstacles::within(const model::Aabb& region, std::vector<const model::
     }
 }
 
+void SceneObstacles::wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const {
+    for (Slot s : scene_.withCategory(relations::kWall)) {
+        const model::Node& n = scene_.node(s);
+        if (!n.hidden && n.geometry != model::GeometryKind::None && relations::intersects(scene_.bounds(s), region))
+            out.push_back(&n);
+    }
+}
+
 }  // namespace smql::catalog

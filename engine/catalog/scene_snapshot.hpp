@@ -119,6 +119,7 @@ class SceneObstacles final : public relations::Obstacles {
 public:
     explicit SceneObstacles(const SceneSnapshot& scene) : scene_(scene) {}
     void within(const model::Aabb& region, std::vector<const model::Node*>& out) const override;
+    void wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const override;
 
 private:
     const SceneSnapshot& scene_;
