@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 #include <libpq-fe.h>
 
+#include "fleet/pg/connection.hpp"
+
 namespace smql::bench {
 
 using model::Node;
@@ -129,27 +131,7 @@ void readNode(const Result& r, int row, int first, Node& node) {
     node.hidden = r.text(row, first + 11) == "t";
 }
 
-// COPY's text format: backslash, tab and line ends escaped; \N is NULL.
-void appendCopyText(std::string& out, std::string_view text) {
-    for (char c : text) {
-        switch (c) {
-            case '\\':
-                out += "\\\\";
-                break;
-            case '\t':
-                out += "\\t";
-                break;
-            case '\n':
-                out += "\\n";
-                break;
-            case '\r':
-                out += "\\r";
-                break;
-            default:
-                out += c;
-        }
-    }
-}
+using fleet::pg::appendCopyText;
 
 // Parameters as text: doubles in their shortest exact form, so the server reads the same value.
 class Parameters {
