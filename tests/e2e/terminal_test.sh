@@ -36,6 +36,15 @@ wait_for() {
   done
   return 1
 }
+# Until a line of the screen matches (an answer, not the prompt that was there before it).
+wait_until() {
+  local deadline=$((SECONDS + ${2:-10}))
+  while ((SECONDS < deadline)); do
+    screen | grep -Eq "$1" && return 0
+    sleep 0.1
+  done
+  return 1
+}
 alive() { tmux -L "$socket" list-panes -t shell -F '#{pane_dead}' 2>/dev/null | grep -qx 0; }
 
 # 400 objects on a circle 9 km across: no object lies between two others, so
@@ -70,7 +79,7 @@ press C-c
 wait_for '^smql>$' 5
 type_keys 'COUNT lamp;'; press Enter
 # Had the first line been kept, `FIND sofa COUNT lamp;` would be a syntax error.
-if wait_for '^smql>$' 5 && screen | grep -q '^(1 row)$' && ! screen | grep -q error && alive; then pass
+if wait_until '^\(1 row\)$|error' 5 && wait_for '^smql>$' 5 && ! screen | grep -q error && alive; then pass
 else fail "Ctrl-C on a continuation line drops the whole statement"; fi
 
 # Twenty slow statements: Ctrl-C stops the one running (or drops its result) and the rest.
@@ -81,7 +90,7 @@ if wait_for '^smql>$' 5 && screen | grep -q '^interrupted: the statement was int
 else fail "Ctrl-C while statements run cancels them, not the shell"; fi
 
 type_keys 'COUNT sofa;'; press Enter
-if wait_for '^smql>$' 10 && [ "$(screen | grep -v '^$' | tail -3 | head -1)" = 133 ] && alive; then pass
+if wait_until '^133$' 10 && wait_for '^smql>$' 10 && [ "$(screen | grep -v '^$' | tail -3 | head -1)" = 133 ] && alive; then pass
 else fail "the shell answers after an interrupt"; fi
 
 # SHOW SETTINGS' meaning column alone is about 90 characters: rows are cut to the 100 columns.
