@@ -298,6 +298,18 @@ std::vector<StoredVersion> Store::versionsNamed(const std::string& scene, const 
     return out;
 }
 
+std::vector<StoredVersion> Store::newestVersions(const std::string& devicePrefix) {
+    pg::Result r = connection_.exec(
+        "SELECT DISTINCT ON (device, name) id, device, name, version FROM smql.scenes WHERE starts_with(device, $1) "
+        "ORDER BY device, name, version DESC",
+        pg::Parameters().add(devicePrefix), "listing the scenes");
+    std::vector<StoredVersion> out;
+    for (int i = 0; i < r.rows(); ++i)
+        out.push_back({r.integer(i, 0), std::string(r.text(i, 1)), std::string(r.text(i, 2)),
+                       static_cast<std::uint64_t>(r.integer(i, 3))});
+    return out;
+}
+
 namespace {
 
 template <typename Enum>

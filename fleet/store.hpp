@@ -43,6 +43,8 @@ public:
     // The versions of a scene named `scene` (of devices whose id starts with `devicePrefix`), by
     // device, then version.
     std::vector<StoredVersion> versionsNamed(const std::string& scene, const std::string& devicePrefix);
+    // The newest version of every scene of the devices whose id starts with `devicePrefix`.
+    std::vector<StoredVersion> newestVersions(const std::string& devicePrefix);
     // One stored version, whole, in local ids.
     SceneVersionData get(const StoredVersion& stored);
 

@@ -1,5 +1,9 @@
 #include "relations/thresholds.hpp"
 
+#include <cmath>
+
+#include <fmt/format.h>
+
 namespace smql::relations {
 
 const std::vector<SettingInfo>& settingsCatalogue() {
@@ -39,6 +43,22 @@ const SettingInfo* findSetting(std::string_view name) {
     for (const auto& s : settingsCatalogue())
         if (s.name == name) return &s;
     return nullptr;
+}
+
+double settingValue(const SettingInfo& setting, std::optional<double> metres, std::optional<double> number,
+                    const std::optional<SourceLocation>& where) {
+    const bool ratio = setting.unit == SettingUnit::Ratio;
+    if (metres && ratio)
+        throw Error(ErrorKind::Binding, fmt::format("{} is a ratio, not a distance", setting.name), where,
+                    fmt::format("SET {} = 0.5", setting.name));
+    if (!metres && !number)
+        throw Error(ErrorKind::Binding, fmt::format("{} takes a number", setting.name), where,
+                    ratio ? fmt::format("SET {} = 0.5", setting.name) : fmt::format("SET {} = 0.8 m", setting.name));
+    const double value = metres ? *metres : *number;  // a bare number for a distance setting is metres
+    if (!std::isfinite(value) || value < 0 || (ratio && value > 1) || (!ratio && value > 100))
+        throw Error(ErrorKind::Binding, fmt::format("{} out of range for {}", value, setting.name), where,
+                    ratio ? "ratios lie in [0, 1]" : "distances lie in [0, 100] m");
+    return value;
 }
 
 }  // namespace smql::relations

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "model/error.hpp"
+
 namespace smql::relations {
 
 struct Thresholds {
@@ -38,5 +40,11 @@ struct SettingInfo {
 const std::vector<SettingInfo>& settingsCatalogue();
 // Finds a setting by name or short alias (`near` = `near.distance`).
 const SettingInfo* findSetting(std::string_view name);
+
+// The value `SET setting = ...` gives, checked for its unit and range: `metres` when written with
+// a unit, else `number` (metres for a distance setting); neither for text. Throws Error(Binding)
+// at `where`.
+double settingValue(const SettingInfo& setting, std::optional<double> metres, std::optional<double> number,
+                    const std::optional<SourceLocation>& where);
 
 }  // namespace smql::relations

@@ -35,6 +35,21 @@ std::vector<std::string> singulars(const std::string& word) {
     return out;
 }
 
+// Whether some sense of a noun is a physical object in WordNet (a piano, a path; not a unicorn or
+// an idea): the things a scene could hold.
+bool physicalThing(const std::string& noun) {
+    static const std::optional<long> physicalObject = []() -> std::optional<long> {
+        for (const auto& sense : wordnet::nounSenses("object"))
+            if (std::find(sense.words.begin(), sense.words.end(), "physical-object") != sense.words.end())
+                return sense.offset;
+        return std::nullopt;
+    }();
+    if (!physicalObject) return false;
+    for (const auto& sense : wordnet::nounSenses(noun))
+        if (wordnet::hypernymClosure(sense.offset).count(*physicalObject)) return true;
+    return false;
+}
+
 }  // namespace
 
 Lexicon::Lexicon(std::vector<std::string> sceneCategories) : categories_(std::move(sceneCategories)) {
@@ -131,6 +146,13 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
     // A plural of a word that is no noun in WordNet stays the word as written.
     match.how = WordMatch::How::Unknown;
     return match;
+}
+
+std::optional<std::string> absentThing(const std::string& name, const WordMatch& match) {
+    if (match.how != WordMatch::How::Absent) return std::nullopt;
+    std::string noun = match.lemma.empty() ? name : match.lemma;  // "pianos" -> piano
+    if (!physicalThing(noun)) return std::nullopt;
+    return noun;
 }
 
 std::string pluralOf(const std::string& noun) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -37,6 +38,12 @@ private:
     std::vector<std::string> categories_;
     mutable std::map<std::string, std::set<long>> ancestors_;
 };
+
+// A noun for a physical thing (some sense of it is a physical object in WordNet: a piano, not an
+// idea) that none of the scene's categories stands for, not as a synonym, a broader or a narrower
+// word either: its base form ("pianos" -> piano). `match` is `name` looked up in the scene's Lexicon.
+// Naming such a thing is an empty answer; any other unknown name is an error with hints.
+std::optional<std::string> absentThing(const std::string& name, const WordMatch& match);
 
 // The English plural of a singular noun, for answers: "couch" -> couches, "switch" -> switches.
 std::string pluralOf(const std::string& noun);

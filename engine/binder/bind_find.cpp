@@ -109,7 +109,7 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
     if (count == 0) {
         std::vector<std::string> names;
         for (const auto& [name, count] : ctx_.txn.categories()) names.push_back(name);
-        if (auto noun = absentThing(target.name, ask::Lexicon(names).lookUp(target.name))) {
+        if (auto noun = ask::absentThing(target.name, ask::Lexicon(names).lookUp(target.name))) {
             notes_.push_back(fmt::format("no {} in any scene", *noun));
             return BoundCatalogFind{*noun, limit, countOnly, ctx_.txn.countWithCategory(*noun)};
         }

@@ -41,22 +41,10 @@ void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
             ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,
             close.empty() ? "SHOW SETTINGS lists them" : "did you mean " + model::joinAlternatives(close) + "?");
     }
-    bool ratio = setting->unit == relations::SettingUnit::Ratio;
-    double value = 0;
-    if (const auto* d = std::get_if<ast::Distance>(&set.value)) {
-        if (ratio)
-            throw Error(ErrorKind::Binding, fmt::format("{} is a ratio, not a distance", setting->name), set.where,
-                        fmt::format("SET {} = 0.5", setting->name));
-        value = d->metres;
-    } else if (const auto* number = std::get_if<double>(&set.value)) {
-        value = *number;  // a bare number for a distance setting is taken as metres
-    } else {
-        throw Error(ErrorKind::Binding, fmt::format("{} takes a number", setting->name), set.where,
-                    ratio ? fmt::format("SET {} = 0.5", setting->name) : fmt::format("SET {} = 0.8 m", setting->name));
-    }
-    if (!std::isfinite(value) || value < 0 || (ratio && value > 1) || (!ratio && value > 100))
-        throw Error(ErrorKind::Binding, fmt::format("{} out of range for {}", value, setting->name), set.where,
-                    ratio ? "ratios lie in [0, 1]" : "distances lie in [0, 100] m");
+    const auto* distance = std::get_if<ast::Distance>(&set.value);
+    const auto* number = std::get_if<double>(&set.value);
+    const double value = relations::settingValue(*setting, distance ? std::optional(distance->metres) : std::nullopt,
+                                                 number ? std::optional(*number) : std::nullopt, set.where);
     BoundSet bound;
     bound.threshold = setting;
     bound.value = value;

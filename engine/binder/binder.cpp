@@ -39,21 +39,6 @@ bool anyNodeWord(const std::string& name) {
     return name == "node" || name == "nodes" || name == "thing" || name == "things";
 }
 
-// Whether some sense of a noun is a physical object in WordNet (a piano, a path; not a unicorn or
-// an idea): the things a scene could hold.
-bool physicalThing(const std::string& noun) {
-    static const std::optional<long> physicalObject = []() -> std::optional<long> {
-        for (const auto& sense : ask::wordnet::nounSenses("object"))
-            if (std::find(sense.words.begin(), sense.words.end(), "physical-object") != sense.words.end())
-                return sense.offset;
-        return std::nullopt;
-    }();
-    if (!physicalObject) return false;
-    for (const auto& sense : ask::wordnet::nounSenses(noun))
-        if (ask::wordnet::hypernymClosure(sense.offset).count(*physicalObject)) return true;
-    return false;
-}
-
 std::string describeSet(const std::string& name, std::size_t count) {
     return fmt::format("{} ({} node{})", name, count, count == 1 ? "" : "s");
 }
@@ -97,6 +82,11 @@ const catalog::SceneSnapshot& Binder::scene() {
     return *scene_;
 }
 
+catalog::LiteralForm literalForm(const ast::Expr& comparison) {
+    return {std::holds_alternative<std::string>(comparison.literal), comparison.literalHasUnit,
+            comparison.literalBound};
+}
+
 NodeSet Binder::numbered(NodeSet set) {
     set.id = nextSetId_++;
     return set;
@@ -118,22 +108,13 @@ std::string Binder::resolveCategory(const ast::Ref& ref) {
     // match is an answer, not a typo.
     if (!ctx_.txn.nodesWithCategory(name, model::kNoNode, 1).empty()) return noted(name);
     const ask::WordMatch match = ask::Lexicon(known).lookUp(name);
-    if (auto noun = absentThing(name, match)) return noted(*noun);
+    if (auto noun = ask::absentThing(name, match)) return noted(*noun);
     auto close = model::nearestNames(name, known);
     if (close.empty()) close = match.categories;  // a synonym or a broader word: couch -> sofa
     std::string hint = close.empty() ? fmt::format("this scene has: {}", model::joinAlternatives(known))
                                      : fmt::format("did you mean {}?", model::joinAlternatives(close));
     throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in scene '{}'", name, snap.info().name),
                 ref.where, hint);
-}
-
-// A word WordNet knows as a noun, which names none of the scene's categories (not as a synonym,
-// a broader or a narrower word either: those are hints, given by the error).
-std::optional<std::string> Binder::absentThing(const std::string& name, const ask::WordMatch& match) {
-    if (match.how != ask::WordMatch::How::Absent) return std::nullopt;
-    std::string noun = match.lemma.empty() ? name : match.lemma;  // "pianos" -> piano
-    if (!physicalThing(noun)) return std::nullopt;
-    return noun;
 }
 
 std::string Binder::noted(std::string category) {
@@ -312,9 +293,10 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
                 out.literalFolded = parser::lowerCase(*text);
             if (expr.distanceTo) {
                 out.distanceTo = bindRef(*expr.distanceTo);
-                checkLiteral(expr, catalog::AttributeMeasure::Length, "distance()");
+                catalog::checkLiteral(catalog::AttributeMeasure::Length, literalForm(expr), "distance()", expr.where);
             } else {
-                checkLiteral(expr, comparable(expr.attribute, expr.where).measure, expr.attribute);
+                catalog::checkLiteral(comparable(expr.attribute, expr.where).measure, literalForm(expr), expr.attribute,
+                                      expr.where);
                 out.builtIn = catalog::builtInAttribute(expr.attribute);
             }
             return out;
@@ -346,30 +328,6 @@ catalog::AttributeInfo Binder::comparable(const std::string& name, SourceLocatio
         ErrorKind::Binding, fmt::format("unknown attribute '{}' in scene '{}'", name, scene().info().name), where,
         close.empty() ? "SHOW ATTRIBUTES lists them"
                       : fmt::format("did you mean {}? SHOW ATTRIBUTES lists them", model::joinAlternatives(close)));
-}
-
-// Lengths are written with their unit (`height > 80 cm`), so a bare `2` never silently means
-// metres; text attributes take a quoted string, numbers a number.
-void Binder::checkLiteral(const ast::Expr& expr, catalog::AttributeMeasure measure, std::string_view what) {
-    const bool text = std::holds_alternative<std::string>(expr.literal);
-    switch (measure) {
-        case catalog::AttributeMeasure::Length:
-            if (text || !(expr.literalHasUnit || expr.literalBound))
-                throw Error(ErrorKind::Binding, fmt::format("{} is a length: write the unit", what), expr.where,
-                            fmt::format("as in {} > 1.5 m, or 80 cm, or 300 mm", what));
-            return;
-        case catalog::AttributeMeasure::Volume:
-        case catalog::AttributeMeasure::Number:
-            if (text || (expr.literalHasUnit && !expr.literalBound))
-                throw Error(ErrorKind::Binding,
-                            fmt::format("{} is a number{}", what,
-                                        measure == catalog::AttributeMeasure::Volume ? " of cubic metres" : ""),
-                            expr.where, fmt::format("write a bare number, as in {} > 0.5", what));
-            return;
-        case catalog::AttributeMeasure::Text:
-        case catalog::AttributeMeasure::None:
-            return;  // stored attributes are text that may hold numbers (captures >= 2)
-    }
 }
 
 }  // namespace smql::binder

@@ -73,10 +73,6 @@ private:
     BoundExpr bindExpr(const ast::Expr& expr);
     NodeSet bindName(const ast::Ref& ref);
     std::string resolveCategory(const ast::Ref& ref);
-    // A noun for a physical thing (WordNet) that none of `known` stands for: its base form
-    // ("pianos" -> piano).
-    // `match` is the name looked up among the known categories (engine/ask/lexicon.hpp).
-    static std::optional<std::string> absentThing(const std::string& name, const ask::WordMatch& match);
     // A category with no node here, remembered for the answer's note.
     std::string noted(std::string category);
     // The predicate called `name` (WHERE's calls, CHECK), or an error with the closest names.
@@ -85,7 +81,6 @@ private:
     static double predicateDistance(const relations::PredicateSpec& spec, const ast::Distance& distance);
     // An attribute a comparison or ORDER BY can use, or an error with the closest names.
     catalog::AttributeInfo comparable(const std::string& name, SourceLocation where);
-    static void checkLiteral(const ast::Expr& expr, catalog::AttributeMeasure measure, std::string_view what);
     NodeSet numbered(NodeSet set);
 
     BindContext ctx_;

@@ -74,6 +74,9 @@ struct BoundExpr {
     std::string literalFolded;  // a text literal in lower case, folded once here rather than per row
 };
 
+// How a comparison's literal was written, for catalog::checkLiteral.
+catalog::LiteralForm literalForm(const ast::Expr& comparison);
+
 // Where the viewer stands for the lateral predicates and sides: the scene's default viewpoint, or
 // `VIEW FROM x [FACING y]` (resolved in the default viewpoint's frame).
 struct BoundView {

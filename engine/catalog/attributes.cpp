@@ -55,6 +55,27 @@ std::optional<AttributeInfo> attributeIn(const SceneSnapshot& scene, std::string
     return std::nullopt;
 }
 
+void checkLiteral(AttributeMeasure measure, LiteralForm literal, std::string_view what,
+                  const std::optional<SourceLocation>& where) {
+    switch (measure) {
+        case M::Length:
+            if (literal.text || !(literal.withUnit || literal.bound))
+                throw Error(ErrorKind::Binding, fmt::format("{} is a length: write the unit", what), where,
+                            fmt::format("as in {} > 1.5 m, or 80 cm, or 300 mm", what));
+            return;
+        case M::Volume:
+        case M::Number:
+            if (literal.text || (literal.withUnit && !literal.bound))
+                throw Error(ErrorKind::Binding,
+                            fmt::format("{} is a number{}", what, measure == M::Volume ? " of cubic metres" : ""),
+                            where, fmt::format("write a bare number, as in {} > 0.5", what));
+            return;
+        case M::Text:
+        case M::None:
+            return;  // stored attributes are text that may hold numbers (captures >= 2)
+    }
+}
+
 Value attributeValue(const SceneSnapshot& scene, Slot slot, const AttributeInfo& attribute) {
     const model::Node& n = scene.node(slot);
     const std::string_view name = attribute.name;

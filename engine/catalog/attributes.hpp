@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/catalog/scene_snapshot.hpp"
+#include "model/error.hpp"
 #include "model/result.hpp"
 
 namespace smql::catalog {
@@ -37,6 +38,18 @@ const AttributeInfo* builtInAttribute(std::string_view name);
 AttributeInfo storedAttribute(std::string_view name);
 // The attribute `name` in `scene`: built-in, or stored on some node of the scene; nothing if neither.
 std::optional<AttributeInfo> attributeIn(const SceneSnapshot& scene, std::string_view name);
+
+// How a comparison's literal was written: quoted text, a number with a unit (`80 cm`), or a
+// value bound to a placeholder (a number there is metres where a length goes).
+struct LiteralForm {
+    bool text = false;
+    bool withUnit = false;
+    bool bound = false;
+};
+// Lengths are written with their unit (`height > 80 cm`), so a bare `2` never silently means
+// metres; text attributes take a quoted string, numbers a number. Throws Error(Binding) at `where`.
+void checkLiteral(AttributeMeasure measure, LiteralForm literal, std::string_view what,
+                  const std::optional<SourceLocation>& where);
 
 // The value of an attribute of one node, typed as its column; null where the node has none.
 Value attributeValue(const SceneSnapshot& scene, Slot slot, const AttributeInfo& attribute);

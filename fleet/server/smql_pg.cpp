@@ -3,12 +3,14 @@
 // relations/predicates.cpp, not a copy in SQL that could drift). The SQL functions that call it,
 // one per predicate, are generated from the predicate table (fleet/predicates_sql.cpp).
 //
-//   smql.predicate_score(code, a, b, c, viewpoint, distance, others) -> float8: relations::evaluate
-//   smql.predicate_region(code, ref, distance) -> float8[6]: where a candidate must lie
+//   smql.predicate_score(code, a, b, c, viewpoint, distance, others, thresholds) -> float8: relations::evaluate
+//   smql.predicate_region(code, ref, distance, thresholds) -> float8[6]: where a candidate must lie
+//   smql.box_distance(a, b) -> float8: model::distance, the gap between two boxes
 //
 // Nodes arrive as rows of smql.nodes; `others` are the nodes that may stand between (near's walls,
-// visible_from's obstacles). No C++ exception reaches PostgreSQL: errors become ereport after the
-// C++ frames have unwound.
+// visible_from's obstacles); `thresholds` are a session's settings in the order of
+// relations::settingsCatalogue (NULL: the defaults). No C++ exception reaches PostgreSQL: errors become ereport after
+// the C++ frames have unwound.
 extern "C" {
 #include "postgres.h"
 // postgres.h first; then:
@@ -22,13 +24,16 @@ extern "C" {
 PG_MODULE_MAGIC;
 PG_FUNCTION_INFO_V1(smql_predicate_score);
 PG_FUNCTION_INFO_V1(smql_predicate_region);
+PG_FUNCTION_INFO_V1(smql_box_distance);
 }
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "model/geometry.hpp"
 #include "relations/predicates.hpp"
+#include "relations/thresholds.hpp"
 
 namespace {
 
@@ -81,6 +86,21 @@ std::vector<SmqlNode> nodesOf(ArrayType* array) {
     return out;
 }
 
+// A session's thresholds, in the settings catalogue's order (the one table of them).
+smql::relations::Thresholds thresholdsOf(FunctionCallInfo fcinfo, int argument) {
+    smql::relations::Thresholds thresholds;
+    if (PG_ARGISNULL(argument)) return thresholds;
+    ArrayType* values = PG_GETARG_ARRAYTYPE_P(argument);
+    const auto& catalogue = smql::relations::settingsCatalogue();
+    if (ARR_ELEMTYPE(values) != FLOAT8OID || ARR_HASNULL(values) ||
+        ArrayGetNItems(ARR_NDIM(values), ARR_DIMS(values)) != static_cast<int>(catalogue.size()))
+        ereport(ERROR, (errmsg("smql: thresholds are %d numbers, in the order of SHOW SETTINGS",
+                               static_cast<int>(catalogue.size()))));
+    const auto* data = reinterpret_cast<const double*>(ARR_DATA_PTR(values));
+    for (std::size_t i = 0; i < catalogue.size(); ++i) thresholds.*(catalogue[i].field) = data[i];
+    return thresholds;
+}
+
 bool validCode(int32 code) { return code >= 0 && code < static_cast<int32>(smql::model::kRelationTypeCount); }
 
 }  // namespace
@@ -107,7 +127,7 @@ extern "C" Datum smql_predicate_score(PG_FUNCTION_ARGS) {
         if (!PG_ARGISNULL(5)) distance = PG_GETARG_FLOAT8(5);
         std::vector<SmqlNode> others;
         if (!PG_ARGISNULL(6)) others = nodesOf(PG_GETARG_ARRAYTYPE_P(6));
-        const smql::relations::Thresholds thresholds;
+        const smql::relations::Thresholds thresholds = thresholdsOf(fcinfo, 7);
         const smql::relations::NodeObstacles obstacles(others);
         score = smql::relations::evaluate(static_cast<smql::relations::Predicate>(code), a, b, thresholds, frame,
                                           obstacles, c ? &*c : nullptr, distance);
@@ -124,11 +144,18 @@ extern "C" Datum smql_predicate_region(PG_FUNCTION_ARGS) {
     if (!validCode(code)) ereport(ERROR, (errmsg("smql: no predicate has the code %d", code)));
     const auto& spec = smql::relations::spec(static_cast<smql::relations::Predicate>(code));
     if (!spec.candidateRegion) PG_RETURN_NULL();  // it can hold far away: no region to probe
-    const smql::relations::Thresholds thresholds;
+    const smql::relations::Thresholds thresholds = thresholdsOf(fcinfo, 3);
     const SmqlNode ref = nodeOf(PG_GETARG_HEAPTUPLEHEADER(1));
     const double distance = PG_ARGISNULL(2) ? thresholds.nearDistance : PG_GETARG_FLOAT8(2);
     const smql::model::Aabb region = spec.candidateRegion(smql::model::worldAabb(ref.box), distance, thresholds);
     Datum bounds[6] = {Float8GetDatum(region.min.x), Float8GetDatum(region.min.y), Float8GetDatum(region.min.z),
                        Float8GetDatum(region.max.x), Float8GetDatum(region.max.y), Float8GetDatum(region.max.z)};
     PG_RETURN_ARRAYTYPE_P(construct_array(bounds, 6, FLOAT8OID, sizeof(float8), FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
+}
+
+extern "C" Datum smql_box_distance(PG_FUNCTION_ARGS) {
+    if (PG_ARGISNULL(0) || PG_ARGISNULL(1)) PG_RETURN_NULL();
+    const SmqlNode a = nodeOf(PG_GETARG_HEAPTUPLEHEADER(0));
+    const SmqlNode b = nodeOf(PG_GETARG_HEAPTUPLEHEADER(1));
+    PG_RETURN_FLOAT8(smql::model::distance(a.box, b.box));
 }

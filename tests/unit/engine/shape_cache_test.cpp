@@ -1,7 +1,6 @@
 // The cache of statement shapes (binder/shape_cache.hpp): a text that differs from one run before
 // only in its literals skips the parser, and the answer, or the error, is never another.
 #include <algorithm>
-#include <fstream>
 #include <functional>
 #include <sstream>
 
@@ -12,8 +11,8 @@
 #include "engine/parser/normalise.hpp"
 #include "engine/parser/parser.hpp"
 #include "engine_support.hpp"
-#include "ingest/generate/room_generator.hpp"
 #include "ingest/import/registry.hpp"
+#include "query_suites.hpp"
 
 using namespace smql;
 using namespace smql::testing;
@@ -81,53 +80,6 @@ std::string siblingOf(const parser::StatementShape& shape) {
         out += token + " ";
     }
     return out;
-}
-
-// The blocks of a query suite (docs/testing.md): `load` lines, and the SMQL of each statement
-// and query block, in order.
-struct SuiteBlock {
-    std::vector<std::string> load;  // the words after `load`, or empty for SMQL
-    std::string text;
-};
-
-std::vector<SuiteBlock> readSuite(const fs::path& file) {
-    std::ifstream in(file);
-    std::vector<SuiteBlock> blocks;
-    bool inBlock = false, inExpected = false;
-    for (std::string line; std::getline(in, line);) {
-        const bool blank = line.find_first_not_of(" \t\r") == std::string::npos;
-        if (inBlock && blank) inBlock = inExpected = false;
-        if (blank) continue;
-        if (!inBlock) {
-            if (line[0] == '#') continue;
-            std::istringstream words(line);
-            std::vector<std::string> all;
-            for (std::string w; words >> w;) all.push_back(w);
-            if (all[0] == "load") blocks.push_back({{all.begin() + 1, all.end()}, {}});
-            if (all[0] == "load") continue;
-            blocks.push_back({});
-            inBlock = true;
-        } else if (line == "----") {
-            inExpected = true;
-        } else if (!inExpected) {
-            blocks.back().text += (blocks.back().text.empty() ? "" : "\n") + line;
-        }
-    }
-    return blocks;
-}
-
-void load(Engine& engine, const std::vector<std::string>& words, const fs::path& suiteDir) {
-    auto option = [&](const std::string& key, const std::string& fallback) {
-        auto it = std::find(words.begin(), words.end(), key);
-        return it != words.end() && it + 1 != words.end() ? *(it + 1) : fallback;
-    };
-    model::SceneData scene = words.at(0) == "demo"
-                                 ? generate::generateRoom({.seed = std::stoull(option("seed", "7")),
-                                                           .objectCount = std::stoi(option("objects", "36")),
-                                                           .name = option("scene", "demo-room")})
-                                 : import::read(words.at(0), (suiteDir / words.at(1)).string(), option("scene", ""));
-    scene.info.captureTime = "2026-01-01T00:00:00Z";  // both engines' scenes record the same times
-    engine.importScene(std::move(scene));
 }
 
 }  // namespace
@@ -209,10 +161,7 @@ TEST_CASE("the cache holds at most shape_cache shapes, the least recently used l
 // shape was learned first from another text of that shape (every literal changed). The answers
 // and errors must be the same, text for text.
 TEST_CASE("every query suite answers the same with the shape cache on and off", "[shapes][suites]") {
-    std::vector<fs::path> suites;
-    for (const auto& entry : fs::directory_iterator(fs::path(SMQL_SOURCE_DIR) / "tests" / "suites"))
-        if (entry.path().extension() == ".smqlt") suites.push_back(entry.path());
-    std::sort(suites.begin(), suites.end());
+    const std::vector<fs::path> suites = querySuites();
     REQUIRE(suites.size() >= 6);
     std::uint64_t hits = 0;
     std::size_t compared = 0;
@@ -220,7 +169,7 @@ TEST_CASE("every query suite answers the same with the shape cache on and off", 
         Database cached(true), plain(false);
         for (const SuiteBlock& block : readSuite(suite)) {
             if (!block.load.empty()) {
-                for (Database* db : {&cached, &plain}) load(*db->engine, block.load, suite.parent_path());
+                for (Database* db : {&cached, &plain}) loadSuiteData(*db->engine, block.load, suite.parent_path());
                 continue;
             }
             if (std::optional<parser::StatementShape> shape = parser::statementShape(block.text)) {

@@ -1,0 +1,439 @@
+#include "fleet/query_sql.hpp"
+
+#include <fmt/format.h>
+
+#include "engine/ask/lexicon.hpp"
+#include "engine/catalog/attributes.hpp"
+#include "engine/parser/ast.hpp"
+#include "engine/parser/parser.hpp"
+#include "model/error.hpp"
+#include "model/names.hpp"
+#include "relations/predicates.hpp"
+
+namespace smql::fleet {
+
+Error notYet(const std::string& what) {
+    return Error(ErrorKind::Usage, fmt::format("the fleet store does not run {} yet", what), std::nullopt,
+                 "it runs COUNT and FIND with WHERE, NEAREST TO, ORDER BY and LIMIT, and SET of thresholds "
+                 "(docs/fleet.md, \"SMQL on the store\"); pull the scene to ask anything else");
+}
+
+namespace {
+
+// Kind words name every shown node of a kind, as the engine's binder reads them; plurals too.
+std::optional<model::NodeKind> kindWord(const std::string& name) {
+    for (const model::NodeKind kind : {model::NodeKind::Object, model::NodeKind::Anchor, model::NodeKind::Room,
+                                       model::NodeKind::Frame, model::NodeKind::Description}) {
+        const std::string word(model::toString(kind));
+        if (name == word || name == word + "s") return kind;
+    }
+    return std::nullopt;
+}
+
+bool anyNodeWord(const std::string& name) {
+    return name == "node" || name == "nodes" || name == "thing" || name == "things";
+}
+
+const char* sqlOperator(ast::CompareOp op) {
+    switch (op) {
+        case ast::CompareOp::Eq:
+            return "=";
+        case ast::CompareOp::Ne:
+            return "<>";
+        case ast::CompareOp::Lt:
+            return "<";
+        case ast::CompareOp::Le:
+            return "<=";
+        case ast::CompareOp::Gt:
+            return ">";
+        case ast::CompareOp::Ge:
+            return ">=";
+        case ast::CompareOp::Like:
+            break;
+    }
+    return "LIKE";
+}
+
+// Text as a number where all of it is one ("2" captures), as the engine reads stored attributes.
+std::string numberIn(const std::string& text) {
+    return fmt::format(
+        "CASE WHEN {0} ~ '^\\s*[-+]?([0-9]+[.]?[0-9]*|[.][0-9]+)([eE][-+]?[0-9]+)?$' THEN "
+        "{0}::float8 END",
+        text);
+}
+
+// An attribute of the row `a` as SQL: its value (NULL where the node has none) and whether it is
+// a number. The built-in ones follow engine/catalog/attributes.cpp; stored ones are text.
+struct AttributeSql {
+    std::string value;
+    bool number = false;
+};
+
+std::optional<AttributeSql> builtInSql(std::string_view name, const std::string& a) {
+    // The measures of a box need a box.
+    const auto placed = [&](const std::string& v) {
+        return AttributeSql{fmt::format("CASE WHEN {}.geometry <> 0 THEN {} END", a, v), true};
+    };
+    if (name == "category") return AttributeSql{a + ".category"};
+    if (name == "text") return AttributeSql{a + ".text"};
+    if (name == "source_id") return AttributeSql{a + ".source_id::float8", true};
+    if (name == "confidence") return AttributeSql{a + ".confidence::float8", true};
+    if (name == "kind") {
+        std::string cases;
+        for (int k = 0; k <= static_cast<int>(model::NodeKind::Frame); ++k)
+            cases += fmt::format(" WHEN {} THEN '{}'", k, model::toString(static_cast<model::NodeKind>(k)));
+        return AttributeSql{fmt::format("(CASE {}.kind{} END)", a, cases)};
+    }
+    if (name == "height") return placed(a + ".sz");
+    if (name == "width") return placed(fmt::format("greatest({0}.sx, {0}.sy)", a));
+    if (name == "depth") return placed(fmt::format("least({0}.sx, {0}.sy)", a));
+    if (name == "volume") return placed(fmt::format("{0}.sx * {0}.sy * {0}.sz", a));
+    if (name == "x") return placed(a + ".cx");
+    if (name == "y") return placed(a + ".cy");
+    if (name == "z") return placed(a + ".cz");
+    return std::nullopt;  // id (the device's, which the store does not keep), path, parent
+}
+
+// One statement compiled to one SQL query. Candidates are `n<k>` aliases of smql.nodes, references
+// `r<k>` and `s<k>`; every alias of a statement has its own number. $1 is the scene versions'
+// keys; literals follow as parameters, so no text of the statement is spliced into the SQL.
+class Compiler {
+public:
+    Compiler(const QueryScope& scope, const relations::Thresholds& thresholds)
+        : scope_(scope), thresholds_(thresholds) {}
+
+    CompiledQuery statement(const ast::Statement& statement) {
+        CompiledQuery out;
+        std::string select;
+        if (const auto* find = std::get_if<ast::FindStmt>(&statement.body)) {
+            out.distance = find->nearestTo || (find->orderBy && find->orderBy->distanceTo);
+            select = this->find(*find, scope_.allScenes ? kFleetColumns : kSceneColumns, true);
+        } else if (const auto* c = std::get_if<ast::CountStmt>(&statement.body)) {
+            if (c->asOf || c->view) throw notYet("COUNT with AS OF or VIEW FROM");
+            select = fmt::format("SELECT count(*) FROM ({}) counted", nodesOf(c->target, c->where, {}, "{0}.id"));
+            out.count = true;
+        } else {
+            throw notYet(fmt::format("'{}'", statement.text));
+        }
+        // The frame of the view-relative predicates (the scene's viewpoint) and the nodes that may
+        // stand between (near's walls, visible_from's obstacles: the visible nodes with geometry,
+        // as the engine's R-tree holds them), once per scene version.
+        const std::string context =
+            usesContext_ ? "WITH context AS (SELECT s.id AS scene, ARRAY[s.viewpoint_x, s.viewpoint_y, "
+                           "s.viewpoint_z, s.viewpoint_yaw] AS viewpoint, (SELECT coalesce(array_agg(o ORDER BY o.id), "
+                           "'{}') FROM smql.nodes o WHERE o.scene = s.id AND o.geometry <> 0 AND NOT o.hidden) AS "
+                           "others FROM smql.scenes s WHERE s.id = ANY($1::int8[])) "
+                         : "";
+        out.sql = context + select;
+        out.parameters = std::move(parameters_);
+        return out;
+    }
+
+private:
+    // FIND's columns, as the engine answers: id (here the scene's local id), category, the scene
+    // when all scenes are asked, source id, whether the node has a box, and the box.
+    static constexpr const char* kSceneColumns =
+        "{0}.id, {0}.category, {0}.source_id, {0}.geometry <> 0, {0}.cx, {0}.cy, {0}.cz, {0}.sx, {0}.sy, {0}.sz, "
+        "{0}.yaw";
+    static constexpr const char* kFleetColumns =
+        "{0}.id, {0}.category, (SELECT name FROM smql.scenes WHERE id = {0}.scene), {0}.source_id, "
+        "{0}.geometry <> 0, {0}.cx, {0}.cy, {0}.cz, {0}.sx, {0}.sy, {0}.sz, {0}.yaw";
+
+    // `distanceColumn`: the answer shows NEAREST TO's or ORDER BY distance()'s distances (a
+    // sub-query's does not).
+    std::string find(const ast::FindStmt& find, const char* columns, bool distanceColumn) {
+        if (find.asOf || find.view || find.similarTo || find.limitParam || find.path || !find.columns.empty())
+            throw notYet("FIND with AS OF, VIEW FROM, SIMILAR TO, PATH or RETURN");
+        std::string limit = find.limit ? fmt::format(" LIMIT {}", *find.limit) : "";
+        return nodesOf(find.target, find.where, Order{&find, distanceColumn}, columns) + limit;
+    }
+
+    struct Order {
+        const ast::FindStmt* find = nullptr;
+        bool distanceColumn = false;
+    };
+
+    // The target's nodes that meet `where`, as SELECT `columns` (`{0}` is the candidates' alias),
+    // in the order FIND gives them.
+    std::string nodesOf(const ast::Ref& target, const std::optional<ast::Expr>& where, Order order,
+                        const std::string& columns) {
+        const std::string n = alias('n');
+        std::string conditions = fmt::format("{0}.scene = ANY($1::int8[]) AND {1}", n, refers(target, n));
+        if (where) conditions += " AND " + condition(*where, n);
+        std::string from;
+        std::string sorted = fmt::format("{0}.scene, {0}.id", n);
+        std::string selected = fmt::format(fmt::runtime(columns), n);
+        if (order.find) orderBy(*order.find, n, from, conditions, sorted, order.distanceColumn ? &selected : nullptr);
+        if (usesContext_) from = fmt::format(" JOIN context ON context.scene = {}.scene", n) + from;
+        return fmt::format("SELECT {} FROM smql.nodes {}{} WHERE {} ORDER BY {}", selected, n, from, conditions,
+                           sorted);
+    }
+
+    // NEAREST TO x, ORDER BY distance(x), ORDER BY an attribute: the engine's orders, ties in id order.
+    void orderBy(const ast::FindStmt& find, const std::string& n, std::string& from, std::string& conditions,
+                 std::string& sorted, std::string* selected) {
+        if (find.nearestTo && find.orderBy)
+            throw Error(ErrorKind::Binding, "NEAREST TO and ORDER BY both set an order", find.orderBy->where,
+                        "keep one: NEAREST TO x is ORDER BY distance(x) without x itself");
+        const ast::Ref* to = find.nearestTo                             ? &*find.nearestTo
+                             : find.orderBy && find.orderBy->distanceTo ? &*find.orderBy->distanceTo
+                                                                        : nullptr;
+        const bool descending = find.orderBy && find.orderBy->descending;
+        if (to) {
+            const std::string d = alias('d'), x = alias('x');
+            from += fmt::format(
+                " CROSS JOIN LATERAL (SELECT min(smql.box_distance({0}, {1})) AS distance FROM smql.nodes {1} "
+                "WHERE {1}.scene = {0}.scene AND {2}) {3}",
+                n, x, refers(*to, x), d);
+            // Nodes without a place have no distance; NEAREST TO x leaves x itself out.
+            conditions += fmt::format(" AND {}.geometry <> 0", n);
+            if (find.nearestTo) conditions += fmt::format(" AND NOT ({})", refers(*to, n));
+            sorted = fmt::format("{}.distance{}, {}", d, descending ? " DESC" : "", sorted);
+            if (selected) *selected += fmt::format(", {}.distance", d);
+            return;
+        }
+        if (!find.orderBy) return;
+        const std::string& name = find.orderBy->attribute;
+        const AttributeSql value = attribute(name, n, find.orderBy->where);
+        // Numbers, then text (case-insensitively), then nodes without the attribute, in either direction.
+        const std::string number = value.number ? value.value : numberIn(value.value);
+        const std::string text = value.number ? "NULL::text" : fmt::format("lower({} COLLATE \"C\")", value.value);
+        const char* direction = descending ? " DESC" : "";
+        sorted = fmt::format(
+            "CASE WHEN {0} IS NOT NULL THEN 0 WHEN {1} IS NOT NULL THEN 1 ELSE 2 END, {0}{3}, {2} "
+            "COLLATE \"C\"{3}, {4}",
+            number, value.value, text, direction, sorted);
+    }
+
+    std::string condition(const ast::Expr& expr, const std::string& candidate) {
+        switch (expr.kind) {
+            case ast::Expr::Kind::And:
+            case ast::Expr::Kind::Or: {
+                std::string out;
+                for (const ast::Expr& child : expr.children)
+                    out += (out.empty()                         ? ""
+                            : expr.kind == ast::Expr::Kind::And ? " AND "
+                                                                : " OR ") +
+                           condition(child, candidate);
+                return "(" + out + ")";
+            }
+            case ast::Expr::Kind::Not:
+                return "NOT " + condition(expr.children.front(), candidate);
+            case ast::Expr::Kind::Predicate:
+                return predicate(expr, candidate);
+            case ast::Expr::Kind::Compare:
+                return comparison(expr, candidate);
+        }
+        return "false";
+    }
+
+    // Whether some reference (some pair, for the predicates of two) other than the candidate makes
+    // the predicate hold. The references of a predicate that holds only near them are probed with
+    // the region the predicate's table row gives (smql.predicate_region), as the engine's planner does.
+    std::string predicate(const ast::Expr& expr, const std::string& n) {
+        const relations::PredicateSpec* spec = relations::predicateNamed(expr.predicate);
+        if (!spec) throw Error(ErrorKind::Binding, fmt::format("no predicate named '{}'", expr.predicate), expr.where);
+        if (expr.args.size() != static_cast<std::size_t>(spec->arity))
+            throw Error(ErrorKind::Binding,
+                        fmt::format("{} takes {} reference{}", spec->name(), spec->arity, spec->arity == 1 ? "" : "s"),
+                        expr.where);
+        if (expr.threshold && !spec->takesDistance)
+            throw Error(ErrorKind::Binding, fmt::format("{} takes no distance", spec->name()), expr.where);
+        usesContext_ = true;
+        const std::string distance =
+            expr.threshold ? fmt::format("{}::float8", parameter(fmt::format("{}", expr.threshold->metres))) : "NULL";
+        const std::string r = alias('r');
+        std::string from = fmt::format("smql.nodes {}", r);
+        std::string where =
+            fmt::format("{0}.scene = {1}.scene AND {0}.id <> {1}.id AND {2}", r, n, refers(expr.args[0], r));
+        std::string arguments = fmt::format("{}, {}", n, r);
+        if (spec->arity == 2) {
+            const std::string s = alias('s');
+            from += fmt::format(" JOIN smql.nodes {0} ON {0}.scene = {1}.scene", s, r);
+            where +=
+                fmt::format(" AND {0}.id <> {1}.id AND {0}.id <> {2}.id AND {3}", s, n, r, refers(expr.args[1], s));
+            arguments += ", " + s;
+        } else if (spec->local()) {
+            const std::string g = alias('g');
+            from += fmt::format(", LATERAL smql.predicate_region({}, {}, {}, {}) AS {}(g)",
+                                static_cast<int>(spec->predicate), r, distance, thresholds(), g);
+            where += fmt::format(
+                " AND {0}.footprint && ST_MakeEnvelope({1}.g[1], {1}.g[2], {1}.g[4], {1}.g[5]) AND "
+                "{0}.max_z >= {1}.g[3] AND {0}.min_z <= {1}.g[6]",
+                n, g);
+        }
+        return fmt::format(
+            "EXISTS (SELECT 1 FROM {} WHERE {} AND smql.\"{}\"({}, context.viewpoint, context.others{}, {}) > 0)", from,
+            where, spec->name(), arguments, spec->takesDistance ? ", " + distance : "", thresholds());
+    }
+
+    // `color = 'red'`, `height > 80 cm`, `distance(sofa) < 2 m`: false where the node has no such
+    // value, as in the engine (and never NULL, so NOT reads it as the engine does).
+    std::string comparison(const ast::Expr& expr, const std::string& n) {
+        if (expr.literalParam) throw notYet("placeholders");
+        const catalog::LiteralForm form{std::holds_alternative<std::string>(expr.literal), expr.literalHasUnit,
+                                        expr.literalBound};
+        AttributeSql value;
+        std::string placed;
+        if (expr.distanceTo) {
+            catalog::checkLiteral(catalog::AttributeMeasure::Length, form, "distance()", expr.where);
+            const std::string r = alias('r');
+            value = {fmt::format("(SELECT min(smql.box_distance({0}, {1})) FROM smql.nodes {1} WHERE {1}.scene = "
+                                 "{0}.scene AND {1}.id <> {0}.id AND {2})",
+                                 n, r, refers(*expr.distanceTo, r)),
+                     true};
+            placed = fmt::format("{}.geometry <> 0 AND ", n);
+        } else {
+            value = attribute(expr.attribute, n, expr.where);
+            const catalog::AttributeInfo* builtIn = catalog::builtInAttribute(expr.attribute);
+            catalog::checkLiteral(builtIn ? builtIn->measure : catalog::AttributeMeasure::Text, form, expr.attribute,
+                                  expr.where);
+        }
+        if (const auto* text = std::get_if<std::string>(&expr.literal)) {
+            const std::string have = value.number ? value.value + "::text" : value.value;
+            if (expr.op == ast::CompareOp::Like)
+                return fmt::format("coalesce({}{} ILIKE {} ESCAPE '', false)", placed, have, parameter(*text));
+            return fmt::format("coalesce({}lower({} COLLATE \"C\") {} {} COLLATE \"C\", false)", placed, have,
+                               sqlOperator(expr.op), parameter(parser::lowerCase(*text)));
+        }
+        if (expr.op == ast::CompareOp::Like) return "false";
+        const std::string literal = std::holds_alternative<double>(expr.literal)
+                                        ? fmt::format("{}", std::get<double>(expr.literal))
+                                        : fmt::format("{}", std::get<std::int64_t>(expr.literal));
+        return fmt::format("coalesce({}{} {} {}::float8, false)", placed,
+                           value.number ? value.value : numberIn(value.value), sqlOperator(expr.op),
+                           parameter(literal));
+    }
+
+    // An attribute a comparison or ORDER BY can use, as the engine's binder allows it.
+    AttributeSql attribute(const std::string& name, const std::string& a, SourceLocation where) {
+        if (const catalog::AttributeInfo* builtIn = catalog::builtInAttribute(name)) {
+            if (builtIn->measure == catalog::AttributeMeasure::None)
+                throw Error(ErrorKind::Binding, fmt::format("{} cannot be compared or ordered", name), where,
+                            "compare its parts: x, y, z, height, width, depth, volume; RETURN shows it");
+            if (auto sql = builtInSql(name, a)) return *sql;
+            throw notYet(fmt::format("comparisons and orders of {}", name));
+        }
+        if (!scope_.attributes.count(name)) {
+            std::vector<std::string> names;
+            for (const auto& attribute : catalog::builtInAttributes())
+                if (attribute.measure != catalog::AttributeMeasure::None) names.emplace_back(attribute.name);
+            names.insert(names.end(), scope_.attributes.begin(), scope_.attributes.end());
+            const auto close = model::nearestNames(name, names);
+            throw Error(
+                ErrorKind::Binding, fmt::format("unknown attribute '{}' in scene '{}'", name, scope_.name), where,
+                close.empty()
+                    ? "SHOW ATTRIBUTES lists them"
+                    : fmt::format("did you mean {}? SHOW ATTRIBUTES lists them", model::joinAlternatives(close)));
+        }
+        return {
+            fmt::format("(SELECT t.value FROM smql.attributes t WHERE t.scene = {0}.scene AND t.node = {0}.id "
+                        "AND t.name = {1} ORDER BY t.position LIMIT 1)",
+                        a, parameter(name))};
+    }
+
+    // The condition that the node `a` is one of those `ref` names.
+    std::string refers(const ast::Ref& ref, const std::string& a) {
+        switch (ref.kind) {
+            case ast::Ref::Kind::Name:
+                if (auto kind = kindWord(ref.name))
+                    return fmt::format("{0}.kind = {1} AND NOT {0}.hidden", a, static_cast<int>(*kind));
+                if (anyNodeWord(ref.name))
+                    return fmt::format("{0}.kind <> {1} AND NOT {0}.hidden", a,
+                                       static_cast<int>(model::NodeKind::Scene));
+                // Naming a category asks for its nodes, hidden ones included, as in the engine.
+                return fmt::format("{}.category = {}", a, parameter(category(ref)));
+            case ast::Ref::Kind::NodeId:
+            case ast::Ref::Kind::SourceId:
+                return fmt::format("{}.{} = {}", a, numbered(ref), parameter(std::to_string(ref.number)));
+            case ast::Ref::Kind::SubQuery:
+                if (ref.subquery->asOf)
+                    throw Error(ErrorKind::Binding, "AS OF belongs to the whole statement, not to a sub-query",
+                                ref.subquery->asOf->where, "write AS OF once, after the outer statement's target");
+                return fmt::format("({0}.scene, {0}.id) IN ({1})", a, find(*ref.subquery, "{0}.scene, {0}.id", false));
+            case ast::Ref::Kind::Side:
+            case ast::Ref::Kind::Param:
+                break;
+        }
+        throw notYet("sides of the room and placeholders");
+    }
+
+    // `#12` (the scene's local id on the store) or `src#93`: the column to match, once the node is
+    // known to be there (and of the category written with it: `chair#12`).
+    const char* numbered(const ast::Ref& ref) {
+        if (scope_.allScenes) throw notYet("ids across all scenes");
+        const bool source = ref.kind == ast::Ref::Kind::SourceId;
+        const char* column = source ? "source_id" : "id";
+        const std::optional<std::string> category = scope_.nodeCategory(column, ref.number);
+        if (!category)
+            throw Error(ErrorKind::Binding,
+                        fmt::format("no node {}#{} in scene '{}'", source ? "src" : "", ref.number, scope_.name),
+                        ref.where);
+        if (!ref.name.empty() && ref.name != *category)
+            throw Error(ErrorKind::Binding, fmt::format("#{} is a {}, not a {}", ref.number, *category, ref.name),
+                        ref.where);
+        return column;
+    }
+
+    // A category as the engine's binder resolves it: as written, or in one scene the singular of
+    // a plural it holds; a category other scenes hold, or an English noun for a physical thing no
+    // category stands for ("piano"), is an empty answer; anything else an error with hints.
+    std::string category(const ast::Ref& ref) {
+        const std::string& name = ref.name;
+        if (scope_.categories.count(name)) return name;
+        if (!scope_.allScenes)
+            for (std::string_view suffix : {"es", "s"})
+                if (name.size() > suffix.size() + 1 && name.ends_with(suffix)) {
+                    std::string singular = name.substr(0, name.size() - suffix.size());
+                    if (scope_.categories.count(singular)) return singular;
+                }
+        if (!scope_.allScenes && scope_.knownElsewhere && scope_.knownElsewhere(name)) return name;
+        const std::vector<std::string> known(scope_.categories.begin(), scope_.categories.end());
+        const ask::WordMatch match = ask::Lexicon(known).lookUp(name);
+        if (auto noun = ask::absentThing(name, match)) return *noun;
+        std::vector<std::string> close = model::nearestNames(name, known);
+        if (close.empty() && !scope_.allScenes) close = match.categories;  // a synonym or a broader word
+        if (scope_.allScenes)
+            throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in any scene", name), ref.where,
+                        close.empty() ? "" : fmt::format("did you mean {}?", model::joinAlternatives(close)));
+        throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in scene '{}'", name, scope_.name),
+                    ref.where,
+                    close.empty() ? fmt::format("this scene has: {}", model::joinAlternatives(known))
+                                  : fmt::format("did you mean {}?", model::joinAlternatives(close)));
+    }
+
+    // The session's thresholds, one parameter for the whole statement.
+    std::string thresholds() {
+        if (thresholdsParameter_.empty()) thresholdsParameter_ = parameter(thresholdsArray(thresholds_)) + "::float8[]";
+        return thresholdsParameter_;
+    }
+
+    std::string parameter(std::string value) {
+        parameters_.push_back(std::move(value));
+        return fmt::format("${}", parameters_.size() + 1);
+    }
+    std::string alias(char letter) { return fmt::format("{}{}", letter, ++aliases_); }
+
+    const QueryScope& scope_;
+    const relations::Thresholds& thresholds_;
+    std::vector<std::string> parameters_;
+    std::string thresholdsParameter_;
+    int aliases_ = 0;
+    bool usesContext_ = false;
+};
+
+}  // namespace
+
+CompiledQuery compileQuery(const ast::Statement& statement, const QueryScope& scope,
+                           const relations::Thresholds& thresholds) {
+    return Compiler(scope, thresholds).statement(statement);
+}
+
+std::string thresholdsArray(const relations::Thresholds& thresholds) {
+    std::string out = "{";
+    for (const auto& setting : relations::settingsCatalogue())
+        out += fmt::format("{}{}", out.size() > 1 ? "," : "", thresholds.*(setting.field));
+    return out + "}";
+}
+
+}  // namespace smql::fleet

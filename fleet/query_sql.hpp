@@ -1,0 +1,58 @@
+// SMQL statements compiled to SQL for the fleet store's server: COUNT and FIND of a category, a kind
+// of node (`object`, `anchor`, `node`), nodes by id or source id, or a sub-query's answer, in one
+// scene or in every scene's newest version (`USE SCENE '*'`); WHERE with predicates, comparisons of
+// attributes and distances, joined by AND, OR and NOT; NEAREST TO, ORDER BY and LIMIT. Each
+// predicate is the SQL function generated from the predicate table (fleet/predicates_sql.hpp), with
+// the session's thresholds; its references are probed with the region the table gives when it
+// holds only near them. Names resolve as the engine's binder resolves them. Anything else is
+// refused with Error(Usage) saying it does not run on the store yet.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "model/error.hpp"
+#include "relations/thresholds.hpp"
+
+namespace smql::ast {
+struct Statement;
+}
+
+namespace smql::fleet {
+
+// What a statement's names resolve against: the scene versions chosen, and what they hold.
+struct QueryScope {
+    std::string name;        // the scene's name, or "*", for messages
+    bool allScenes = false;  // USE SCENE '*': FIND answers say each node's scene
+    std::string keys;        // the versions' keys as a PostgreSQL int8[] literal: the queries' $1
+    std::set<std::string> categories;
+    std::set<std::string> attributes;  // the names of the attributes stored on their nodes
+    // Whether some other stored scene holds a category: naming it is an empty answer, not an error.
+    std::function<bool(const std::string&)> knownElsewhere;
+    // The category of the node whose `column` (id or source_id) is `value`, if there is one.
+    std::function<std::optional<std::string>(const char* column, std::int64_t value)> nodeCategory;
+};
+
+struct CompiledQuery {
+    bool count = false;     // COUNT: one row, the count
+    bool distance = false;  // FIND ... NEAREST TO / ORDER BY distance(): a distance column
+    std::string sql;        // $1: the scene versions' keys (int8[]); $2...: `parameters`
+    std::vector<std::string> parameters;
+};
+
+// The error for a statement the store does not run yet (Usage), naming `what`.
+Error notYet(const std::string& what);
+
+// Throws smql::Error: Binding for an unknown name, Usage for a statement the store does not run yet.
+CompiledQuery compileQuery(const ast::Statement& statement, const QueryScope& scope,
+                           const relations::Thresholds& thresholds);
+
+// The thresholds as the store's functions take them: a float8[] literal in the order of
+// relations::settingsCatalogue.
+std::string thresholdsArray(const relations::Thresholds& thresholds);
+
+}  // namespace smql::fleet
