@@ -27,6 +27,8 @@ CREATE FUNCTION smql.predicate_score(code integer, a smql.nodes, b smql.nodes, c
   RETURNS float8 AS 'smql_pg', 'smql_predicate_score' LANGUAGE C IMMUTABLE PARALLEL SAFE;
 CREATE FUNCTION smql.predicate_region(code integer, ref smql.nodes, distance float8, thresholds float8[])
   RETURNS float8[] AS 'smql_pg', 'smql_predicate_region' LANGUAGE C IMMUTABLE PARALLEL SAFE;
+CREATE FUNCTION smql.relate(a smql.nodes, b smql.nodes, viewpoint float8[], others smql.nodes[], thresholds float8[])
+  RETURNS float8[] AS 'smql_pg', 'smql_relate' LANGUAGE C IMMUTABLE PARALLEL SAFE;
 CREATE FUNCTION smql.box_distance(a smql.nodes, b smql.nodes)
   RETURNS float8 AS 'smql_pg', 'smql_box_distance' LANGUAGE C IMMUTABLE STRICT PARALLEL SAFE;
 )sql";

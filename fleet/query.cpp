@@ -1,10 +1,14 @@
 #include "fleet/query.hpp"
 
+#include <cstdlib>
+
 #include <fmt/format.h>
 
+#include "engine/catalog/scene_snapshot.hpp"
 #include "engine/parser/parser.hpp"
 #include "fleet/schema.hpp"
 #include "model/error.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::fleet {
 
@@ -43,32 +47,21 @@ QueryScope scopeOf(Store& store, const std::vector<StoredVersion>& scenes, bool 
     return scope;
 }
 
-ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds& thresholds,
-              const ast::Statement& statement) {
-    CompiledQuery query = compileQuery(statement, scope, thresholds);
-    pg::Parameters parameters;
-    parameters.add(scope.keys);
-    for (const auto& p : query.parameters) parameters.add(p);
-    pg::Result r = store.connection().exec(query.sql, parameters, fmt::format("running `{}`", statement.text));
+// FIND's rows, as the engine answers: id (here the scene's local id), category, the scene when all
+// scenes are asked, source id, box (none for a node without one), and NEAREST TO's distance.
+ResultSet foundNodes(const pg::Result& r, bool allScenes, bool distance) {
     ResultSet out;
-    if (query.count) {
-        out.columns = {{"count", ValueType::Integer}};
-        out.rows.push_back({r.integer(0, 0)});
-        return out;
-    }
-    // FIND's columns, as the engine answers: id (here the scene's local id), category, the scene
-    // when all scenes are asked, source id, box (none for a node without one), and NEAREST TO's distance.
     out.columns = {{"id", ValueType::Integer}, {"category", ValueType::Text}};
-    if (scope.allScenes) out.columns.push_back({"scene", ValueType::Text});
+    if (allScenes) out.columns.push_back({"scene", ValueType::Text});
     out.columns.push_back({"source_id", ValueType::Integer});
     out.columns.push_back({"box", ValueType::Box});
-    if (query.distance) out.columns.push_back({"distance", ValueType::Real});
-    const int shift = scope.allScenes ? 1 : 0;
+    if (distance) out.columns.push_back({"distance", ValueType::Real});
+    const int shift = allScenes ? 1 : 0;
     for (int i = 0; i < r.rows(); ++i) {
         std::vector<Value>& row = out.rows.emplace_back();
         row.emplace_back(r.integer(i, 0));
         row.emplace_back(std::string(r.text(i, 1)));
-        if (scope.allScenes) row.emplace_back(std::string(r.text(i, 2)));
+        if (allScenes) row.emplace_back(std::string(r.text(i, 2)));
         if (r.null(i, 2 + shift))
             row.emplace_back();
         else
@@ -78,9 +71,96 @@ ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds
             row.emplace_back(model::Box{{at(4), at(5), at(6)}, {at(7), at(8), at(9)}, at(10)});
         else
             row.emplace_back();
-        if (query.distance) row.emplace_back(at(11));
+        if (distance) row.emplace_back(at(11));
     }
     return out;
+}
+
+// A node as RELATE and CHECK name it ("sofa#12", with the scene's local id), from its id, category
+// and kind at `column`.
+std::string labelAt(const pg::Result& r, int row, int column) {
+    model::Node node;
+    node.id = static_cast<model::NodeId>(r.integer(row, column));
+    node.category = r.text(row, column + 1);
+    node.kind = static_cast<model::NodeKind>(r.integer(row, column + 2));
+    return catalog::SceneSnapshot::label(node);
+}
+
+// RELATE's rows: a row per relation that holds, as the engine answers.
+ResultSet relationRows(const pg::Result& r) {
+    ResultSet out;
+    out.columns = {{"subject", ValueType::Text},
+                   {"relation", ValueType::Text},
+                   {"object", ValueType::Text},
+                   {"score", ValueType::Real},
+                   {"distance", ValueType::Real}};
+    for (int i = 0; i < r.rows(); ++i) {
+        const std::string subject = labelAt(r, i, 0), object = labelAt(r, i, 3);
+        // The pairs come as a float8[] literal: {code,score,code,score}.
+        const std::string pairs(r.text(i, 6));
+        std::vector<double> values;
+        for (const char* p = pairs.c_str() + 1; *p && *p != '}';) {
+            char* end = nullptr;
+            values.push_back(std::strtod(p, &end));
+            p = *end == ',' ? end + 1 : end;
+        }
+        for (std::size_t k = 0; k + 1 < values.size(); k += 2)
+            out.rows.push_back({subject, std::string(relations::toString(static_cast<relations::Predicate>(values[k]))),
+                                object, values[k + 1], r.real(i, 7)});
+    }
+    return out;
+}
+
+// CHECK's one row: yes or no, the subject, the relation, the objects, the score and the distance.
+ResultSet checked(const pg::Result& r, const CompiledQuery& query) {
+    ResultSet out;
+    out.columns = {{"answer", ValueType::Text}, {"subject", ValueType::Text}, {"relation", ValueType::Text},
+                   {"object", ValueType::Text}, {"score", ValueType::Real},   {"distance", ValueType::Real}};
+    const int score = query.third ? 9 : 6;
+    const std::string subject = labelAt(r, 0, 0);
+    std::string objects = labelAt(r, 0, 3);
+    if (query.third) objects += " and " + labelAt(r, 0, 6);
+    const bool holds = r.real(0, score) > 0;
+    out.rows.push_back(
+        {std::string(holds ? "yes" : "no"), subject, query.relation, objects, r.real(0, score), r.real(0, score + 1)});
+    out.message =
+        fmt::format("{}: {} is {}{} {}", holds ? "yes" : "no", subject, holds ? "" : "not ", query.relation, objects);
+    return out;
+}
+
+ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds& thresholds,
+              const ast::Statement& statement) {
+    CompiledQuery query = compileQuery(statement, scope, thresholds);
+    pg::Parameters parameters;
+    parameters.add(scope.keys);
+    for (const auto& p : query.parameters) parameters.add(p);
+    pg::Connection& c = store.connection();
+    for (const auto& single : query.singles) {
+        pg::Parameters own;
+        own.add(scope.keys);
+        for (const auto& p : single.parameters) own.add(p);
+        const int count = c.exec(single.sql, own, fmt::format("running `{}`", statement.text)).rows();
+        if (count != 1)
+            throw Error(ErrorKind::Binding, fmt::format("{} must be one node; it names {}", single.role, count),
+                        std::nullopt,
+                        "name one, as in chair#12, or pick one by place, as in (FIND chair NEAREST TO door LIMIT 1)");
+    }
+    pg::Result r = c.exec(query.sql, parameters, fmt::format("running `{}`", statement.text));
+    switch (query.shape) {
+        case CompiledQuery::Shape::Count: {
+            ResultSet out;
+            out.columns = {{"count", ValueType::Integer}};
+            out.rows.push_back({r.integer(0, 0)});
+            return out;
+        }
+        case CompiledQuery::Shape::Find:
+            return foundNodes(r, scope.allScenes, query.distance);
+        case CompiledQuery::Shape::Relate:
+            return relationRows(r);
+        case CompiledQuery::Shape::Check:
+            return checked(r, query);
+    }
+    return {};
 }
 
 const ast::Statement& oneStatement(const std::vector<ast::Statement>& statements) {

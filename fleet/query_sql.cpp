@@ -111,25 +111,42 @@ public:
         } else if (const auto* c = std::get_if<ast::CountStmt>(&statement.body)) {
             if (c->asOf || c->view) throw notYet("COUNT with AS OF or VIEW FROM");
             select = fmt::format("SELECT count(*) FROM ({}) counted", nodesOf(c->target, c->where, {}, "{0}.id"));
-            out.count = true;
+            out.shape = CompiledQuery::Shape::Count;
+        } else if (const auto* r = std::get_if<ast::RelateStmt>(&statement.body)) {
+            select = relate(*r, out);
+            out.shape = CompiledQuery::Shape::Relate;
+        } else if (const auto* c = std::get_if<ast::CheckStmt>(&statement.body)) {
+            select = check(*c, out);
+            out.shape = CompiledQuery::Shape::Check;
         } else {
             throw notYet(fmt::format("'{}'", statement.text));
         }
-        // The frame of the view-relative predicates (the scene's viewpoint) and the nodes that may
-        // stand between (near's walls, visible_from's obstacles: the visible nodes with geometry,
-        // as the engine's R-tree holds them), once per scene version.
-        const std::string context =
-            usesContext_ ? "WITH context AS (SELECT s.id AS scene, ARRAY[s.viewpoint_x, s.viewpoint_y, "
-                           "s.viewpoint_z, s.viewpoint_yaw] AS viewpoint, (SELECT coalesce(array_agg(o ORDER BY o.id), "
-                           "'{}') FROM smql.nodes o WHERE o.scene = s.id AND o.geometry <> 0 AND NOT o.hidden) AS "
-                           "others FROM smql.scenes s WHERE s.id = ANY($1::int8[])) "
-                         : "";
-        out.sql = context + select;
+        out.sql = withContext(select);
         out.parameters = std::move(parameters_);
         return out;
     }
 
 private:
+    // A query with the CTE its predicates read, if they do: the frame of the view-relative
+    // predicates (the scene's viewpoint) and the nodes that may stand between (near's walls,
+    // visible_from's obstacles: the visible nodes with geometry, as the engine's R-tree holds
+    // them), once per scene version.
+    std::string withContext(const std::string& select) const {
+        if (!usesContext_) return select;
+        return "WITH context AS (SELECT s.id AS scene, ARRAY[s.viewpoint_x, s.viewpoint_y, s.viewpoint_z, "
+               "s.viewpoint_yaw] AS viewpoint, (SELECT coalesce(array_agg(o ORDER BY o.id), '{}') FROM smql.nodes o "
+               "WHERE o.scene = s.id AND o.geometry <> 0 AND NOT o.hidden) AS others FROM smql.scenes s WHERE s.id = "
+               "ANY($1::int8[])) " +
+               select;
+    }
+
+    // A query of the nodes `ref` names, with parameters of its own, for a side that must be one node.
+    CompiledQuery::Single single(std::string role, const ast::Ref& ref) const {
+        Compiler nodes(scope_, thresholds_);
+        const std::string select = nodes.nodesOf(ref, std::nullopt, {}, "{0}.id");
+        return {std::move(role), nodes.withContext(select), std::move(nodes.parameters_)};
+    }
+
     // FIND's columns, as the engine answers: id (here the scene's local id), category, the scene
     // when all scenes are asked, source id, whether the node has a box, and the box.
     static constexpr const char* kSceneColumns =
@@ -138,6 +155,72 @@ private:
     static constexpr const char* kFleetColumns =
         "{0}.id, {0}.category, (SELECT name FROM smql.scenes WHERE id = {0}.scene), {0}.source_id, "
         "{0}.geometry <> 0, {0}.cx, {0}.cy, {0}.cz, {0}.sx, {0}.sy, {0}.sz, {0}.yaw";
+
+    // The relations that hold from one node to another.
+    std::string relate(const ast::RelateStmt& relate, CompiledQuery& out) {
+        if (relate.view) throw notYet("RELATE with VIEW FROM");
+        if (scope_.allScenes) throw notYet("RELATE across all scenes");
+        usesContext_ = true;
+        out.singles.push_back(single("RELATE's subject", relate.subject));
+        out.singles.push_back(single("RELATE's object", relate.object));
+        const std::string a = alias('a'), b = alias('b');
+        return fmt::format(
+            "SELECT {0}.id, {0}.category, {0}.kind, {1}.id, {1}.category, {1}.kind, smql.relate({0}, {1}, "
+            "context.viewpoint, context.others, {2}), smql.box_distance({0}, {1}) FROM smql.nodes {0} JOIN context ON "
+            "context.scene = {0}.scene JOIN smql.nodes {1} ON {1}.scene = {0}.scene AND {1}.id <> {0}.id WHERE "
+            "{0}.scene = ANY($1::int8[]) AND {3} AND {4} ORDER BY {0}.id, {1}.id",
+            a, b, thresholds(), refers(relate.subject, a), refers(relate.object, b));
+    }
+
+    // Whether one predicate holds over single nodes (0 for a node paired with itself).
+    std::string check(const ast::CheckStmt& check, CompiledQuery& out) {
+        if (check.view) throw notYet("CHECK with VIEW FROM");
+        if (scope_.allScenes) throw notYet("CHECK across all scenes");
+        const relations::PredicateSpec& spec =
+            predicateSpec(check.predicate, check.args.size(), check.threshold.has_value(), check.predicateWhere);
+        usesContext_ = true;
+        out.relation = spec.name();
+        out.third = spec.arity == 2;
+        const std::string a = alias('a'), b = alias('b'), c = alias('c');
+        out.singles.push_back(single("CHECK's subject", check.subject));
+        for (const ast::Ref& arg : check.args) out.singles.push_back(single("CHECK's object", arg));
+        std::string columns = fmt::format("{0}.id, {0}.category, {0}.kind, {1}.id, {1}.category, {1}.kind", a, b);
+        std::string from = fmt::format(
+            "smql.nodes {0} JOIN context ON context.scene = {0}.scene JOIN smql.nodes {1} "
+            "ON {1}.scene = {0}.scene",
+            a, b);
+        std::string where = fmt::format("{} AND {}", refers(check.subject, a), refers(check.args[0], b));
+        std::string same = fmt::format("{0}.id = {1}.id", a, b);
+        std::string arguments = fmt::format("{}, {}", a, b);
+        if (out.third) {
+            columns += fmt::format(", {0}.id, {0}.category, {0}.kind", c);
+            from += fmt::format(" JOIN smql.nodes {0} ON {0}.scene = {1}.scene", c, a);
+            where += " AND " + refers(check.args[1], c);
+            same += fmt::format(" OR {0}.id = {1}.id OR {2}.id = {1}.id", a, c, b);
+            arguments += ", " + c;
+        }
+        const std::string distance =
+            check.threshold ? fmt::format(", {}::float8", parameter(fmt::format("{}", check.threshold->metres))) : "";
+        return fmt::format(
+            "SELECT {0}, CASE WHEN {1} THEN 0 ELSE smql.\"{2}\"({3}, context.viewpoint, context.others{4}, {5}) END, "
+            "smql.box_distance({6}, {7}) FROM {8} WHERE {6}.scene = ANY($1::int8[]) AND {9}",
+            columns, same, spec.name(), arguments, spec.takesDistance ? distance.empty() ? ", NULL" : distance : "",
+            thresholds(), a, b, from, where);
+    }
+
+    // The predicate a WHERE or CHECK names, checked for its references and distance as the binder does.
+    static const relations::PredicateSpec& predicateSpec(const std::string& name, std::size_t references, bool distance,
+                                                         SourceLocation where) {
+        const relations::PredicateSpec* spec = relations::predicateNamed(name);
+        if (!spec) throw Error(ErrorKind::Binding, fmt::format("no predicate named '{}'", name), where);
+        if (references != static_cast<std::size_t>(spec->arity))
+            throw Error(ErrorKind::Binding,
+                        fmt::format("{} takes {} reference{}", spec->name(), spec->arity, spec->arity == 1 ? "" : "s"),
+                        where);
+        if (distance && !spec->takesDistance)
+            throw Error(ErrorKind::Binding, fmt::format("{} takes no distance", spec->name()), where);
+        return *spec;
+    }
 
     // `distanceColumn`: the answer shows NEAREST TO's or ORDER BY distance()'s distances (a
     // sub-query's does not).
@@ -231,14 +314,8 @@ private:
     // the predicate hold. The references of a predicate that holds only near them are probed with
     // the region the predicate's table row gives (smql.predicate_region), as the engine's planner does.
     std::string predicate(const ast::Expr& expr, const std::string& n) {
-        const relations::PredicateSpec* spec = relations::predicateNamed(expr.predicate);
-        if (!spec) throw Error(ErrorKind::Binding, fmt::format("no predicate named '{}'", expr.predicate), expr.where);
-        if (expr.args.size() != static_cast<std::size_t>(spec->arity))
-            throw Error(ErrorKind::Binding,
-                        fmt::format("{} takes {} reference{}", spec->name(), spec->arity, spec->arity == 1 ? "" : "s"),
-                        expr.where);
-        if (expr.threshold && !spec->takesDistance)
-            throw Error(ErrorKind::Binding, fmt::format("{} takes no distance", spec->name()), expr.where);
+        const relations::PredicateSpec* spec =
+            &predicateSpec(expr.predicate, expr.args.size(), expr.threshold.has_value(), expr.where);
         usesContext_ = true;
         const std::string distance =
             expr.threshold ? fmt::format("{}::float8", parameter(fmt::format("{}", expr.threshold->metres))) : "NULL";

@@ -38,10 +38,24 @@ struct QueryScope {
 };
 
 struct CompiledQuery {
-    bool count = false;     // COUNT: one row, the count
+    // What the query's rows are: COUNT's one count; FIND's nodes (id, category, [scene name],
+    // source id, whether placed, box, [distance]); RELATE's pairs (each side's id, category and
+    // kind, the relations as (code, score) pairs, the distance); CHECK's one pair (the sides as
+    // RELATE's, a third for between, the score, the distance).
+    enum class Shape { Count, Find, Relate, Check };
+    Shape shape = Shape::Find;
     bool distance = false;  // FIND ... NEAREST TO / ORDER BY distance(): a distance column
+    bool third = false;     // CHECK of a predicate of two references
+    std::string relation;   // CHECK: the predicate's name
     std::string sql;        // $1: the scene versions' keys (int8[]); $2...: `parameters`
     std::vector<std::string> parameters;
+    // RELATE and CHECK: what must be one node, each a query of its nodes' ids; run before `sql`.
+    struct Single {
+        std::string role;  // "CHECK's subject"
+        std::string sql;
+        std::vector<std::string> parameters;
+    };
+    std::vector<Single> singles;
 };
 
 // The error for a statement the store does not run yet (Usage), naming `what`.

@@ -5,6 +5,7 @@
 //
 //   smql.predicate_score(code, a, b, c, viewpoint, distance, others, thresholds) -> float8: relations::evaluate
 //   smql.predicate_region(code, ref, distance, thresholds) -> float8[6]: where a candidate must lie
+//   smql.relate(a, b, viewpoint, others, thresholds) -> float8[]: relations::relate, as (code, score) pairs
 //   smql.box_distance(a, b) -> float8: model::distance, the gap between two boxes
 //
 // Nodes arrive as rows of smql.nodes; `others` are the nodes that may stand between (near's walls,
@@ -24,6 +25,7 @@ extern "C" {
 PG_MODULE_MAGIC;
 PG_FUNCTION_INFO_V1(smql_predicate_score);
 PG_FUNCTION_INFO_V1(smql_predicate_region);
+PG_FUNCTION_INFO_V1(smql_relate);
 PG_FUNCTION_INFO_V1(smql_box_distance);
 }
 
@@ -86,6 +88,16 @@ std::vector<SmqlNode> nodesOf(ArrayType* array) {
     return out;
 }
 
+// The view frame of a scene's viewpoint (x, y, z, facing yaw); the default frame without one.
+smql::relations::Frame frameOf(FunctionCallInfo fcinfo, int argument) {
+    if (PG_ARGISNULL(argument)) return {};
+    ArrayType* viewpoint = PG_GETARG_ARRAYTYPE_P(argument);
+    const auto* data = reinterpret_cast<const double*>(ARR_DATA_PTR(viewpoint));
+    if (ARR_ELEMTYPE(viewpoint) != FLOAT8OID || ArrayGetNItems(ARR_NDIM(viewpoint), ARR_DIMS(viewpoint)) != 4)
+        return {};
+    return smql::relations::viewFrame({{data[0], data[1], data[2]}, data[3]});
+}
+
 // A session's thresholds, in the settings catalogue's order (the one table of them).
 smql::relations::Thresholds thresholdsOf(FunctionCallInfo fcinfo, int argument) {
     smql::relations::Thresholds thresholds;
@@ -116,13 +128,7 @@ extern "C" Datum smql_predicate_score(PG_FUNCTION_ARGS) {
         const SmqlNode b = nodeOf(PG_GETARG_HEAPTUPLEHEADER(2));
         std::optional<SmqlNode> c;
         if (!PG_ARGISNULL(3)) c = nodeOf(PG_GETARG_HEAPTUPLEHEADER(3));
-        smql::relations::Frame frame;
-        if (!PG_ARGISNULL(4)) {
-            ArrayType* viewpoint = PG_GETARG_ARRAYTYPE_P(4);
-            const auto* data = reinterpret_cast<const double*>(ARR_DATA_PTR(viewpoint));
-            if (ARR_ELEMTYPE(viewpoint) == FLOAT8OID && ArrayGetNItems(ARR_NDIM(viewpoint), ARR_DIMS(viewpoint)) == 4)
-                frame = smql::relations::viewFrame({{data[0], data[1], data[2]}, data[3]});
-        }
+        const smql::relations::Frame frame = frameOf(fcinfo, 4);
         std::optional<double> distance;
         if (!PG_ARGISNULL(5)) distance = PG_GETARG_FLOAT8(5);
         std::vector<SmqlNode> others;
@@ -151,6 +157,29 @@ extern "C" Datum smql_predicate_region(PG_FUNCTION_ARGS) {
     Datum bounds[6] = {Float8GetDatum(region.min.x), Float8GetDatum(region.min.y), Float8GetDatum(region.min.z),
                        Float8GetDatum(region.max.x), Float8GetDatum(region.max.y), Float8GetDatum(region.max.z)};
     PG_RETURN_ARRAYTYPE_P(construct_array(bounds, 6, FLOAT8OID, sizeof(float8), FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
+}
+
+extern "C" Datum smql_relate(PG_FUNCTION_ARGS) {
+    if (PG_ARGISNULL(0) || PG_ARGISNULL(1)) PG_RETURN_NULL();
+    std::vector<Datum> pairs;
+    std::string failure;
+    try {
+        const SmqlNode a = nodeOf(PG_GETARG_HEAPTUPLEHEADER(0));
+        const SmqlNode b = nodeOf(PG_GETARG_HEAPTUPLEHEADER(1));
+        const smql::relations::Frame frame = frameOf(fcinfo, 2);
+        std::vector<SmqlNode> others;
+        if (!PG_ARGISNULL(3)) others = nodesOf(PG_GETARG_ARRAYTYPE_P(3));
+        const smql::relations::NodeObstacles obstacles(others);
+        for (const auto& hit : smql::relations::relate(a, b, thresholdsOf(fcinfo, 4), frame, obstacles)) {
+            pairs.push_back(Float8GetDatum(static_cast<double>(hit.predicate)));
+            pairs.push_back(Float8GetDatum(hit.score));
+        }
+    } catch (const std::exception& e) {
+        failure = e.what();
+    }
+    if (!failure.empty()) ereport(ERROR, (errmsg("smql: %s", failure.c_str())));
+    PG_RETURN_ARRAYTYPE_P(construct_array(pairs.data(), static_cast<int>(pairs.size()), FLOAT8OID, sizeof(float8),
+                                          FLOAT8PASSBYVAL, TYPALIGN_DOUBLE));
 }
 
 extern "C" Datum smql_box_distance(PG_FUNCTION_ARGS) {

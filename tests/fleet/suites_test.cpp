@@ -65,7 +65,11 @@ public:
     void setCurrent(std::string scene) { current_ = std::move(scene); }
 
     // A statement as the store reads it: `#12` names the current scene's node by its local id.
-    std::string statementText(const std::string& text) const {
+    std::string statementText(const std::string& text) const { return withLocalIds(text, current_); }
+
+private:
+    // `#12` as the store names that node of `scene`: by its local id.
+    std::string withLocalIds(const std::string& text, const std::string& scene) const {
         std::string out;
         for (std::size_t i = 0; i < text.size(); ++i) {
             const bool source = i >= 3 && text.compare(i - 3, 3, "src") == 0;
@@ -76,7 +80,7 @@ public:
             std::size_t end = i + 1;
             while (end < text.size() && std::isdigit(text[end])) ++end;
             const std::int64_t id = std::stoll(text.substr(i + 1, end - i - 1));
-            const auto& local = localOf_.at(current_);
+            const auto& local = localOf_.at(scene);
             const auto found = local.find(id);
             // An id the scene does not hold stays one it does not hold.
             out += "#" + std::to_string(found == local.end() ? id + 1000000 : found->second);
@@ -85,6 +89,7 @@ public:
         return out;
     }
 
+public:
     ResultSet translate(ResultSet rs) const {
         const auto column = [&](const std::string& name) {
             for (std::size_t i = 0; i < rs.columns.size(); ++i)
@@ -99,6 +104,9 @@ public:
                 row[scene] = name;
             }
             if (id >= 0) row[id] = localOf_.at(name).at(std::get<std::int64_t>(row[id]));
+            // Labels (RELATE's "sofa#12") name nodes by id too.
+            for (auto& value : row)
+                if (auto* text = std::get_if<std::string>(&value)) *text = withLocalIds(*text, name);
         }
         if (scene >= 0) rs.columns[scene].type = ValueType::Text;
         return rs;
@@ -118,8 +126,11 @@ Outcome onEngine(Engine& engine, EngineTranslation& translation, const std::stri
         const std::vector<ast::Statement> statements = parser::parse(text);
         for (const ast::Statement& s : statements)
             if (const auto* use = std::get_if<ast::UseStmt>(&s.body)) translation.setCurrent(use->scene);
-        // FIND's ids are nodes'; other statements' (SHOW SCENES) are not.
-        const bool found = std::holds_alternative<ast::FindStmt>(statements.back().body);
+        // FIND's ids and RELATE's and CHECK's labels are nodes'; SHOW SCENES's ids are not.
+        const auto& last = statements.back().body;
+        const bool found = std::holds_alternative<ast::FindStmt>(last) ||
+                           std::holds_alternative<ast::RelateStmt>(last) ||
+                           std::holds_alternative<ast::CheckStmt>(last);
         out.answer = sortedCsv(found ? translation.translate(results.back()) : results.back());
     } catch (const Error& e) {
         out.failed = true;
