@@ -4,10 +4,13 @@
 
 #include <fmt/format.h>
 
+#include "engine/catalog/attributes.hpp"
 #include "engine/catalog/scene_snapshot.hpp"
+#include "engine/catalog/session.hpp"
 #include "engine/parser/parser.hpp"
 #include "fleet/schema.hpp"
 #include "model/error.hpp"
+#include "model/names.hpp"
 #include "relations/predicates.hpp"
 
 namespace smql::fleet {
@@ -49,13 +52,14 @@ QueryScope scopeOf(Store& store, const std::vector<StoredVersion>& scenes, bool 
 
 // FIND's rows, as the engine answers: id (here the scene's local id), category, the scene when all
 // scenes are asked, source id, box (none for a node without one), and NEAREST TO's distance.
-ResultSet foundNodes(const pg::Result& r, bool allScenes, bool distance) {
+ResultSet foundNodes(const pg::Result& r, bool allScenes, bool distance, bool path) {
     ResultSet out;
     out.columns = {{"id", ValueType::Integer}, {"category", ValueType::Text}};
     if (allScenes) out.columns.push_back({"scene", ValueType::Text});
     out.columns.push_back({"source_id", ValueType::Integer});
     out.columns.push_back({"box", ValueType::Box});
     if (distance) out.columns.push_back({"distance", ValueType::Real});
+    if (path) out.columns.push_back({"path", ValueType::Text});
     const int shift = allScenes ? 1 : 0;
     for (int i = 0; i < r.rows(); ++i) {
         std::vector<Value>& row = out.rows.emplace_back();
@@ -72,6 +76,51 @@ ResultSet foundNodes(const pg::Result& r, bool allScenes, bool distance) {
         else
             row.emplace_back();
         if (distance) row.emplace_back(at(11));
+        if (path) row.emplace_back(std::string(r.text(i, 11 + shift + (distance ? 1 : 0))));
+    }
+    return out;
+}
+
+// The numbers of a float8[] literal, {1,0.5,...}.
+std::vector<double> numbersOf(std::string_view array) {
+    const std::string text(array);
+    std::vector<double> out;
+    for (const char* p = text.c_str() + 1; *p && *p != '}';) {
+        char* end = nullptr;
+        out.push_back(std::strtod(p, &end));
+        p = *end == ',' ? end + 1 : end;
+    }
+    return out;
+}
+
+// FIND ... RETURN's rows: each column as its attribute's type, then the path.
+ResultSet returnedColumns(const pg::Result& r, const CompiledQuery& query) {
+    ResultSet out;
+    for (const auto& [name, type] : query.returned) out.columns.push_back({name, type});
+    if (query.path) out.columns.push_back({"path", ValueType::Text});
+    for (int i = 0; i < r.rows(); ++i) {
+        std::vector<Value>& row = out.rows.emplace_back();
+        for (int c = 0; c < static_cast<int>(out.columns.size()); ++c) {
+            if (r.null(i, c)) {
+                row.emplace_back();
+                continue;
+            }
+            switch (out.columns[c].type) {
+                case ValueType::Integer:
+                    row.emplace_back(r.integer(i, c));
+                    break;
+                case ValueType::Real:
+                    row.emplace_back(r.real(i, c));
+                    break;
+                case ValueType::Box: {
+                    const std::vector<double> b = numbersOf(r.text(i, c));
+                    row.emplace_back(model::Box{{b.at(0), b.at(1), b.at(2)}, {b.at(3), b.at(4), b.at(5)}, b.at(6)});
+                    break;
+                }
+                default:
+                    row.emplace_back(std::string(r.text(i, c)));
+            }
+        }
     }
     return out;
 }
@@ -96,14 +145,8 @@ ResultSet relationRows(const pg::Result& r) {
                    {"distance", ValueType::Real}};
     for (int i = 0; i < r.rows(); ++i) {
         const std::string subject = labelAt(r, i, 0), object = labelAt(r, i, 3);
-        // The pairs come as a float8[] literal: {code,score,code,score}.
-        const std::string pairs(r.text(i, 6));
-        std::vector<double> values;
-        for (const char* p = pairs.c_str() + 1; *p && *p != '}';) {
-            char* end = nullptr;
-            values.push_back(std::strtod(p, &end));
-            p = *end == ',' ? end + 1 : end;
-        }
+        // The relations come as (code, score) pairs.
+        const std::vector<double> values = numbersOf(r.text(i, 6));
         for (std::size_t k = 0; k + 1 < values.size(); k += 2)
             out.rows.push_back({subject, std::string(relations::toString(static_cast<relations::Predicate>(values[k]))),
                                 object, values[k + 1], r.real(i, 7)});
@@ -128,8 +171,40 @@ ResultSet checked(const pg::Result& r, const CompiledQuery& query) {
     return out;
 }
 
+// SHOW CATEGORIES and SHOW ATTRIBUTES of the chosen scene versions, as the engine lists them.
+ResultSet shown(Store& store, const QueryScope& scope, const ast::ShowStmt& show) {
+    if (show.what == ast::ShowStmt::What::Attributes)
+        return catalog::attributeTable(
+            scope.allScenes ? std::vector<std::string>()
+                            : std::vector<std::string>(scope.attributes.begin(), scope.attributes.end()));
+    if (show.what != ast::ShowStmt::What::Categories) throw notYet("SHOW SCENES, TREE, SETTINGS, CHANGES and GRAPH");
+    ResultSet out;
+    if (scope.allScenes) {
+        out.columns = {{"scene", ValueType::Text}, {"category", ValueType::Text}, {"count", ValueType::Integer}};
+        pg::Result r = store.connection().exec(
+            "SELECT s.name, n.category, count(*) FROM smql.nodes n JOIN smql.scenes s ON s.id = n.scene WHERE n.scene "
+            "= ANY($1::int8[]) GROUP BY s.name, n.category ORDER BY s.name COLLATE \"C\", n.category COLLATE \"C\"",
+            pg::Parameters().add(scope.keys), "listing the categories");
+        for (int i = 0; i < r.rows(); ++i)
+            out.rows.push_back({std::string(r.text(i, 0)), std::string(r.text(i, 1)), r.integer(i, 2)});
+        return out;
+    }
+    // Descriptions and frames are about places, not places: a category only they (or hidden
+    // nodes) have is not one to ask for; its count is every node of it.
+    out.columns = {{"category", ValueType::Text}, {"count", ValueType::Integer}};
+    pg::Result r = store.connection().exec(
+        fmt::format("SELECT category, count(*) FROM smql.nodes WHERE scene = ANY($1::int8[]) GROUP BY category HAVING "
+                    "bool_or(NOT hidden AND kind NOT IN ({}, {}, {})) ORDER BY category COLLATE \"C\"",
+                    static_cast<int>(model::NodeKind::Scene), static_cast<int>(model::NodeKind::Description),
+                    static_cast<int>(model::NodeKind::Frame)),
+        pg::Parameters().add(scope.keys), "listing the categories");
+    for (int i = 0; i < r.rows(); ++i) out.rows.push_back({std::string(r.text(i, 0)), r.integer(i, 1)});
+    return out;
+}
+
 ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds& thresholds,
               const ast::Statement& statement) {
+    if (const auto* show = std::get_if<ast::ShowStmt>(&statement.body)) return shown(store, scope, *show);
     CompiledQuery query = compileQuery(statement, scope, thresholds);
     pg::Parameters parameters;
     parameters.add(scope.keys);
@@ -154,7 +229,9 @@ ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds
             return out;
         }
         case CompiledQuery::Shape::Find:
-            return foundNodes(r, scope.allScenes, query.distance);
+            return foundNodes(r, scope.allScenes, query.distance, query.path);
+        case CompiledQuery::Shape::Return:
+            return returnedColumns(r, query);
         case CompiledQuery::Shape::Relate:
             return relationRows(r);
         case CompiledQuery::Shape::Check:
@@ -205,8 +282,16 @@ void StoreSession::execute(const std::string& text, const std::function<void(Res
 
 // SET of a threshold, checked as the engine checks it; the session's other settings are the shell's.
 ResultSet StoreSession::set(const ast::SetStmt& set) {
+    if (catalog::findLimit(set.name))
+        throw notYet(fmt::format("SET {} (the store's sessions have no limits)", set.name));
     const relations::SettingInfo* setting = relations::findSetting(set.name);
-    if (!setting) throw notYet(fmt::format("SET {}", set.name));
+    if (!setting) {
+        std::vector<std::string> names;
+        for (const auto& s : relations::settingsCatalogue()) names.push_back(s.name);
+        const auto close = model::nearestNames(set.name, names);
+        throw Error(ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,
+                    close.empty() ? "" : "did you mean " + model::joinAlternatives(close) + "?");
+    }
     const auto* distance = std::get_if<ast::Distance>(&set.value);
     const auto* number = std::get_if<double>(&set.value);
     thresholds_.*(setting->field) =

@@ -62,22 +62,51 @@ std::string numberIn(const std::string& text) {
         text);
 }
 
-// An attribute of the row `a` as SQL: its value (NULL where the node has none) and whether it is
-// a number. The built-in ones follow engine/catalog/attributes.cpp; stored ones are text.
+// A node's label as RELATE and PATH write it ("sofa#12"; a scene's root by its name), in SQL.
+std::string labelSql(const std::string& a) { return fmt::format("{0}.category || '#' || {0}.id", a); }
+
+// An attribute of the row `a` as SQL: its value (NULL where the node has none) as the engine's
+// catalog::attributeValue gives it, typed as its RETURN column. Stored attributes are text.
 struct AttributeSql {
     std::string value;
-    bool number = false;
+    ValueType type = ValueType::Text;
+    bool number() const { return type == ValueType::Integer || type == ValueType::Real; }
+    // As WHERE and ORDER BY compare it: numbers as float8.
+    std::string comparable() const { return number() ? fmt::format("({})::float8", value) : value; }
 };
 
+std::string rootName(const std::string& a) {
+    return fmt::format("(SELECT name FROM smql.scenes WHERE id = {}.scene)", a);
+}
+
+// The way from the scene down to the node: "room0 / wall#3 / sofa#12".
+std::string pathSql(const std::string& a) {
+    return fmt::format(
+        "(WITH RECURSIVE up(id, parent, label, depth) AS (SELECT {0}.id, {0}.parent, {1}, 0 UNION ALL SELECT p.id, "
+        "p.parent, {2}, up.depth + 1 FROM up JOIN smql.nodes p ON p.scene = {0}.scene AND p.id = up.parent) SELECT "
+        "{3} || ' / ' || string_agg(label, ' / ' ORDER BY depth DESC) FROM up)",
+        a, labelSql(a), labelSql("p"), rootName(a));
+}
+
+// A stored attribute of the row `a`, its name the parameter `name`.
+std::string storedSql(const std::string& a, const std::string& name) {
+    return fmt::format(
+        "(SELECT t.value FROM smql.attributes t WHERE t.scene = {0}.scene AND t.node = {0}.id AND "
+        "t.name = {1} ORDER BY t.position LIMIT 1)",
+        a, name);
+}
+
 std::optional<AttributeSql> builtInSql(std::string_view name, const std::string& a) {
+    using T = ValueType;
     // The measures of a box need a box.
-    const auto placed = [&](const std::string& v) {
-        return AttributeSql{fmt::format("CASE WHEN {}.geometry <> 0 THEN {} END", a, v), true};
+    const auto placed = [&](const std::string& v, T type = T::Real) {
+        return AttributeSql{fmt::format("CASE WHEN {}.geometry <> 0 THEN {} END", a, v), type};
     };
+    if (name == "id") return AttributeSql{a + ".id", T::Integer};
     if (name == "category") return AttributeSql{a + ".category"};
     if (name == "text") return AttributeSql{a + ".text"};
-    if (name == "source_id") return AttributeSql{a + ".source_id::float8", true};
-    if (name == "confidence") return AttributeSql{a + ".confidence::float8", true};
+    if (name == "source_id") return AttributeSql{a + ".source_id", T::Integer};
+    if (name == "confidence") return AttributeSql{a + ".confidence::float8", T::Real};
     if (name == "kind") {
         std::string cases;
         for (int k = 0; k <= static_cast<int>(model::NodeKind::Frame); ++k)
@@ -91,7 +120,20 @@ std::optional<AttributeSql> builtInSql(std::string_view name, const std::string&
     if (name == "x") return placed(a + ".cx");
     if (name == "y") return placed(a + ".cy");
     if (name == "z") return placed(a + ".cz");
-    return std::nullopt;  // id (the device's, which the store does not keep), path, parent
+    if (name == "center")
+        return placed(fmt::format("'(' || round({0}.cx::numeric, 3) || ', ' || round({0}.cy::numeric, 3) || ', ' || "
+                                  "round({0}.cz::numeric, 3) || ')'",
+                                  a),
+                      T::Text);
+    if (name == "box")
+        return placed(fmt::format("ARRAY[{0}.cx, {0}.cy, {0}.cz, {0}.sx, {0}.sy, {0}.sz, {0}.yaw]", a), T::Box);
+    if (name == "parent")
+        return AttributeSql{
+            fmt::format("CASE WHEN {0}.parent = 0 THEN {1} ELSE (SELECT {2} FROM smql.nodes p WHERE "
+                        "p.scene = {0}.scene AND p.id = {0}.parent) END",
+                        a, rootName(a), labelSql("p"))};
+    if (name == "path") return AttributeSql{pathSql(a)};
+    return std::nullopt;
 }
 
 // One statement compiled to one SQL query. Candidates are `n<k>` aliases of smql.nodes, references
@@ -106,11 +148,10 @@ public:
         CompiledQuery out;
         std::string select;
         if (const auto* find = std::get_if<ast::FindStmt>(&statement.body)) {
-            out.distance = find->nearestTo || (find->orderBy && find->orderBy->distanceTo);
-            select = this->find(*find, scope_.allScenes ? kFleetColumns : kSceneColumns, true);
+            select = this->find(*find, &out);
         } else if (const auto* c = std::get_if<ast::CountStmt>(&statement.body)) {
             if (c->asOf || c->view) throw notYet("COUNT with AS OF or VIEW FROM");
-            select = fmt::format("SELECT count(*) FROM ({}) counted", nodesOf(c->target, c->where, {}, "{0}.id"));
+            select = fmt::format("SELECT count(*) FROM ({}) counted", nodesOf(c->target, c->where, nullptr, ids));
             out.shape = CompiledQuery::Shape::Count;
         } else if (const auto* r = std::get_if<ast::RelateStmt>(&statement.body)) {
             select = relate(*r, out);
@@ -143,18 +184,11 @@ private:
     // A query of the nodes `ref` names, with parameters of its own, for a side that must be one node.
     CompiledQuery::Single single(std::string role, const ast::Ref& ref) const {
         Compiler nodes(scope_, thresholds_);
-        const std::string select = nodes.nodesOf(ref, std::nullopt, {}, "{0}.id");
+        const std::string select = nodes.nodesOf(ref, std::nullopt, nullptr, ids);
         return {std::move(role), nodes.withContext(select), std::move(nodes.parameters_)};
     }
 
-    // FIND's columns, as the engine answers: id (here the scene's local id), category, the scene
-    // when all scenes are asked, source id, whether the node has a box, and the box.
-    static constexpr const char* kSceneColumns =
-        "{0}.id, {0}.category, {0}.source_id, {0}.geometry <> 0, {0}.cx, {0}.cy, {0}.cz, {0}.sx, {0}.sy, {0}.sz, "
-        "{0}.yaw";
-    static constexpr const char* kFleetColumns =
-        "{0}.id, {0}.category, (SELECT name FROM smql.scenes WHERE id = {0}.scene), {0}.source_id, "
-        "{0}.geometry <> 0, {0}.cx, {0}.cy, {0}.cz, {0}.sx, {0}.sy, {0}.sz, {0}.yaw";
+    static std::string ids(const std::string& n, const std::string&) { return n + ".id"; }
 
     // The relations that hold from one node to another.
     std::string relate(const ast::RelateStmt& relate, CompiledQuery& out) {
@@ -222,42 +256,99 @@ private:
         return *spec;
     }
 
-    // `distanceColumn`: the answer shows NEAREST TO's or ORDER BY distance()'s distances (a
-    // sub-query's does not).
-    std::string find(const ast::FindStmt& find, const char* columns, bool distanceColumn) {
-        if (find.asOf || find.view || find.similarTo || find.limitParam || find.path || !find.columns.empty())
-            throw notYet("FIND with AS OF, VIEW FROM, SIMILAR TO, PATH or RETURN");
+    // A FIND, with its columns when `out` is the statement's (a sub-query's answer is its nodes).
+    std::string find(const ast::FindStmt& find, CompiledQuery* out) {
+        if (find.asOf || find.view || find.similarTo || find.limitParam)
+            throw notYet("FIND with AS OF, VIEW FROM or SIMILAR TO");
+        if (find.nearestTo && find.orderBy)
+            throw Error(ErrorKind::Binding, "NEAREST TO and ORDER BY both set an order", find.orderBy->where,
+                        "keep one: NEAREST TO x is ORDER BY distance(x) without x itself");
+        const bool distance = find.nearestTo || (find.orderBy && find.orderBy->distanceTo);
+        Columns columns = [](const std::string& n, const std::string&) { return fmt::format("{0}.scene, {0}.id", n); };
+        if (out) {
+            out->distance = distance;
+            out->path = find.path;
+            columns = find.columns.empty() ? defaultColumns(*out) : returnedColumns(find, *out);
+        }
         std::string limit = find.limit ? fmt::format(" LIMIT {}", *find.limit) : "";
-        return nodesOf(find.target, find.where, Order{&find, distanceColumn}, columns) + limit;
+        return nodesOf(find.target, find.where, &find, columns) + limit;
     }
 
-    struct Order {
-        const ast::FindStmt* find = nullptr;
-        bool distanceColumn = false;
-    };
+    // The SELECT list of a FIND's candidates `n`, given the distance's SQL (empty without one).
+    using Columns = std::function<std::string(const std::string& n, const std::string& distance)>;
 
-    // The target's nodes that meet `where`, as SELECT `columns` (`{0}` is the candidates' alias),
-    // in the order FIND gives them.
-    std::string nodesOf(const ast::Ref& target, const std::optional<ast::Expr>& where, Order order,
-                        const std::string& columns) {
+    // FIND's own columns: id (the scene's local id), category, the scene when all scenes are
+    // asked, source id, whether placed and the box; then the distance and the path when asked.
+    Columns defaultColumns(const CompiledQuery& out) const {
+        return [this, &out](const std::string& n, const std::string& distance) {
+            std::string list = fmt::format("{0}.id, {0}.category, ", n);
+            if (scope_.allScenes) list += rootName(n) + ", ";
+            list += fmt::format(
+                "{0}.source_id, {0}.geometry <> 0, {0}.cx, {0}.cy, {0}.cz, {0}.sx, {0}.sy, {0}.sz, "
+                "{0}.yaw",
+                n);
+            if (out.distance) list += ", " + distance;
+            if (out.path) list += ", " + pathSql(n);
+            return list;
+        };
+    }
+
+    // RETURN a, b: each an attribute (typed as SHOW ATTRIBUTES says) or the distance; then the path.
+    Columns returnedColumns(const ast::FindStmt& find, CompiledQuery& out) {
+        out.shape = CompiledQuery::Shape::Return;
+        std::vector<std::function<std::string(const std::string&, const std::string&)>> values;
+        for (const std::string& column : find.columns) {
+            const bool builtIn = catalog::builtInAttribute(column) != nullptr;
+            if (column == "distance" && out.distance && !builtIn) {
+                out.returned.emplace_back(column, ValueType::Real);
+                values.emplace_back([](const std::string&, const std::string& distance) { return distance; });
+                continue;
+            }
+            if (!builtIn && !scope_.attributes.count(column)) {
+                std::vector<std::string> names;
+                for (const auto& attribute : catalog::builtInAttributes()) names.emplace_back(attribute.name);
+                names.insert(names.end(), scope_.attributes.begin(), scope_.attributes.end());
+                if (out.distance) names.emplace_back("distance");
+                const auto close = model::nearestNames(column, names);
+                throw Error(ErrorKind::Binding, fmt::format("unknown column '{}' in RETURN", column), find.returnWhere,
+                            close.empty() ? "SHOW ATTRIBUTES lists the columns"
+                                          : fmt::format("did you mean {}? SHOW ATTRIBUTES lists the columns",
+                                                        model::joinAlternatives(close)));
+            }
+            // Stored attributes are text; the name is a parameter, fixed now.
+            const std::string stored = builtIn ? "" : parameter(column);
+            out.returned.emplace_back(column, builtIn ? builtInSql(column, "n")->type : ValueType::Text);
+            values.emplace_back([column, stored](const std::string& n, const std::string&) {
+                return stored.empty() ? builtInSql(column, n)->value : storedSql(n, stored);
+            });
+        }
+        return [values, &out](const std::string& n, const std::string& distance) {
+            std::string list;
+            for (const auto& value : values) list += (list.empty() ? "" : ", ") + value(n, distance);
+            if (out.path) list += (list.empty() ? "" : ", ") + pathSql(n);
+            return list;
+        };
+    }
+
+    // The target's nodes that meet `where`, in the order FIND gives them.
+    std::string nodesOf(const ast::Ref& target, const std::optional<ast::Expr>& where, const ast::FindStmt* order,
+                        const Columns& columns) {
         const std::string n = alias('n');
         std::string conditions = fmt::format("{0}.scene = ANY($1::int8[]) AND {1}", n, refers(target, n));
         if (where) conditions += " AND " + condition(*where, n);
         std::string from;
         std::string sorted = fmt::format("{0}.scene, {0}.id", n);
-        std::string selected = fmt::format(fmt::runtime(columns), n);
-        if (order.find) orderBy(*order.find, n, from, conditions, sorted, order.distanceColumn ? &selected : nullptr);
+        std::string distance;
+        if (order) distance = orderBy(*order, n, from, conditions, sorted);
         if (usesContext_) from = fmt::format(" JOIN context ON context.scene = {}.scene", n) + from;
-        return fmt::format("SELECT {} FROM smql.nodes {}{} WHERE {} ORDER BY {}", selected, n, from, conditions,
-                           sorted);
+        return fmt::format("SELECT {} FROM smql.nodes {}{} WHERE {} ORDER BY {}", columns(n, distance), n, from,
+                           conditions, sorted);
     }
 
-    // NEAREST TO x, ORDER BY distance(x), ORDER BY an attribute: the engine's orders, ties in id order.
-    void orderBy(const ast::FindStmt& find, const std::string& n, std::string& from, std::string& conditions,
-                 std::string& sorted, std::string* selected) {
-        if (find.nearestTo && find.orderBy)
-            throw Error(ErrorKind::Binding, "NEAREST TO and ORDER BY both set an order", find.orderBy->where,
-                        "keep one: NEAREST TO x is ORDER BY distance(x) without x itself");
+    // NEAREST TO x, ORDER BY distance(x), ORDER BY an attribute: the engine's orders, ties in id
+    // order. Returns the distance's SQL, when there is one.
+    std::string orderBy(const ast::FindStmt& find, const std::string& n, std::string& from, std::string& conditions,
+                        std::string& sorted) {
         const ast::Ref* to = find.nearestTo                             ? &*find.nearestTo
                              : find.orderBy && find.orderBy->distanceTo ? &*find.orderBy->distanceTo
                                                                         : nullptr;
@@ -272,20 +363,23 @@ private:
             conditions += fmt::format(" AND {}.geometry <> 0", n);
             if (find.nearestTo) conditions += fmt::format(" AND NOT ({})", refers(*to, n));
             sorted = fmt::format("{}.distance{}, {}", d, descending ? " DESC" : "", sorted);
-            if (selected) *selected += fmt::format(", {}.distance", d);
-            return;
+            return d + ".distance";
         }
-        if (!find.orderBy) return;
+        if (!find.orderBy) return "";
         const std::string& name = find.orderBy->attribute;
+        if (name == "distance" && !catalog::builtInAttribute(name))
+            throw Error(ErrorKind::Binding, "ORDER BY distance needs what to measure from", find.orderBy->where,
+                        "as in ORDER BY distance(door)");
         const AttributeSql value = attribute(name, n, find.orderBy->where);
         // Numbers, then text (case-insensitively), then nodes without the attribute, in either direction.
-        const std::string number = value.number ? value.value : numberIn(value.value);
-        const std::string text = value.number ? "NULL::text" : fmt::format("lower({} COLLATE \"C\")", value.value);
+        const std::string number = value.number() ? value.comparable() : numberIn(value.value);
+        const std::string text = value.number() ? "NULL::text" : fmt::format("lower({} COLLATE \"C\")", value.value);
         const char* direction = descending ? " DESC" : "";
         sorted = fmt::format(
             "CASE WHEN {0} IS NOT NULL THEN 0 WHEN {1} IS NOT NULL THEN 1 ELSE 2 END, {0}{3}, {2} "
             "COLLATE \"C\"{3}, {4}",
             number, value.value, text, direction, sorted);
+        return "";
     }
 
     std::string condition(const ast::Expr& expr, const std::string& candidate) {
@@ -358,16 +452,18 @@ private:
             value = {fmt::format("(SELECT min(smql.box_distance({0}, {1})) FROM smql.nodes {1} WHERE {1}.scene = "
                                  "{0}.scene AND {1}.id <> {0}.id AND {2})",
                                  n, r, refers(*expr.distanceTo, r)),
-                     true};
+                     ValueType::Real};
             placed = fmt::format("{}.geometry <> 0 AND ", n);
         } else {
+            // The store's ids are the scene's local ids, not the device's a statement would compare with.
+            if (expr.attribute == "id") throw notYet("comparisons of id");
             value = attribute(expr.attribute, n, expr.where);
             const catalog::AttributeInfo* builtIn = catalog::builtInAttribute(expr.attribute);
             catalog::checkLiteral(builtIn ? builtIn->measure : catalog::AttributeMeasure::Text, form, expr.attribute,
                                   expr.where);
         }
         if (const auto* text = std::get_if<std::string>(&expr.literal)) {
-            const std::string have = value.number ? value.value + "::text" : value.value;
+            const std::string have = value.number() ? value.comparable() + "::text" : value.value;
             if (expr.op == ast::CompareOp::Like)
                 return fmt::format("coalesce({}{} ILIKE {} ESCAPE '', false)", placed, have, parameter(*text));
             return fmt::format("coalesce({}lower({} COLLATE \"C\") {} {} COLLATE \"C\", false)", placed, have,
@@ -378,7 +474,7 @@ private:
                                         ? fmt::format("{}", std::get<double>(expr.literal))
                                         : fmt::format("{}", std::get<std::int64_t>(expr.literal));
         return fmt::format("coalesce({}{} {} {}::float8, false)", placed,
-                           value.number ? value.value : numberIn(value.value), sqlOperator(expr.op),
+                           value.number() ? value.comparable() : numberIn(value.value), sqlOperator(expr.op),
                            parameter(literal));
     }
 
@@ -388,8 +484,7 @@ private:
             if (builtIn->measure == catalog::AttributeMeasure::None)
                 throw Error(ErrorKind::Binding, fmt::format("{} cannot be compared or ordered", name), where,
                             "compare its parts: x, y, z, height, width, depth, volume; RETURN shows it");
-            if (auto sql = builtInSql(name, a)) return *sql;
-            throw notYet(fmt::format("comparisons and orders of {}", name));
+            return *builtInSql(name, a);
         }
         if (!scope_.attributes.count(name)) {
             std::vector<std::string> names;
@@ -403,10 +498,7 @@ private:
                     ? "SHOW ATTRIBUTES lists them"
                     : fmt::format("did you mean {}? SHOW ATTRIBUTES lists them", model::joinAlternatives(close)));
         }
-        return {
-            fmt::format("(SELECT t.value FROM smql.attributes t WHERE t.scene = {0}.scene AND t.node = {0}.id "
-                        "AND t.name = {1} ORDER BY t.position LIMIT 1)",
-                        a, parameter(name))};
+        return {storedSql(a, parameter(name))};
     }
 
     // The condition that the node `a` is one of those `ref` names.
@@ -427,7 +519,7 @@ private:
                 if (ref.subquery->asOf)
                     throw Error(ErrorKind::Binding, "AS OF belongs to the whole statement, not to a sub-query",
                                 ref.subquery->asOf->where, "write AS OF once, after the outer statement's target");
-                return fmt::format("({0}.scene, {0}.id) IN ({1})", a, find(*ref.subquery, "{0}.scene, {0}.id", false));
+                return fmt::format("({0}.scene, {0}.id) IN ({1})", a, find(*ref.subquery, nullptr));
             case ast::Ref::Kind::Side:
             case ast::Ref::Kind::Param:
                 break;

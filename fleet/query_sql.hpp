@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "model/error.hpp"
+#include "model/result.hpp"
 #include "relations/thresholds.hpp"
 
 namespace smql::ast {
@@ -42,9 +43,12 @@ struct CompiledQuery {
     // source id, whether placed, box, [distance]); RELATE's pairs (each side's id, category and
     // kind, the relations as (code, score) pairs, the distance); CHECK's one pair (the sides as
     // RELATE's, a third for between, the score, the distance).
-    enum class Shape { Count, Find, Relate, Check };
+    enum class Shape { Count, Find, Return, Relate, Check };
     Shape shape = Shape::Find;
     bool distance = false;  // FIND ... NEAREST TO / ORDER BY distance(): a distance column
+    bool path = false;      // FIND ... PATH: a last column, the way from the scene down to the node
+    // FIND ... RETURN: the columns, each value as its type reads from SQL (a box as a float8[7]).
+    std::vector<std::pair<std::string, ValueType>> returned;
     bool third = false;     // CHECK of a predicate of two references
     std::string relation;   // CHECK: the predicate's name
     std::string sql;        // $1: the scene versions' keys (int8[]); $2...: `parameters`

@@ -55,6 +55,30 @@ std::optional<AttributeInfo> attributeIn(const SceneSnapshot& scene, std::string
     return std::nullopt;
 }
 
+ResultSet attributeTable(const std::vector<std::string>& storedNames) {
+    ResultSet rs;
+    rs.columns = {{"attribute", ValueType::Text},
+                  {"type", ValueType::Text},
+                  {"unit", ValueType::Text},
+                  {"use", ValueType::Text},
+                  {"meaning", ValueType::Text}};
+    auto add = [&](const AttributeInfo& a) {
+        std::string_view type = a.type == ValueType::Integer ? "integer"
+                                : a.type == ValueType::Real  ? "real"
+                                : a.type == ValueType::Box   ? "box"
+                                                             : "text";
+        std::string use = a.measure == M::None ? "RETURN" : "WHERE, ORDER BY, RETURN";
+        rs.rows.push_back({std::string(a.name), std::string(type), std::string(a.unit), use, std::string(a.meaning)});
+    };
+    for (const auto& a : kBuiltIn) add(a);
+    // Not an attribute of the node alone: it measures from a reference.
+    rs.rows.push_back({std::string("distance(x)"), std::string("real"), std::string("m"),
+                       std::string("WHERE, ORDER BY; RETURN distance after ORDER BY distance(x) or NEAREST TO x"),
+                       std::string("the gap between the node's box and the nearest box x names")});
+    for (const auto& name : storedNames) add(storedAttribute(name));
+    return rs;
+}
+
 void checkLiteral(AttributeMeasure measure, LiteralForm literal, std::string_view what,
                   const std::optional<SourceLocation>& where) {
     switch (measure) {

@@ -39,6 +39,10 @@ AttributeInfo storedAttribute(std::string_view name);
 // The attribute `name` in `scene`: built-in, or stored on some node of the scene; nothing if neither.
 std::optional<AttributeInfo> attributeIn(const SceneSnapshot& scene, std::string_view name);
 
+// SHOW ATTRIBUTES: the built-in attributes, distance(x), then the stored ones named, each with its
+// type, unit, use and meaning.
+ResultSet attributeTable(const std::vector<std::string>& storedNames);
+
 // How a comparison's literal was written: quoted text, a number with a unit (`80 cm`), or a
 // value bound to a placeholder (a number there is metres where a length goes).
 struct LiteralForm {

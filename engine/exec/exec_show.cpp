@@ -65,28 +65,7 @@ ResultSet Executor::run(const binder::BoundShowCategories& show) {
 }
 
 ResultSet Executor::run(const binder::BoundShowAttributes&) {
-    ResultSet rs;
-    rs.columns = {{"attribute", ValueType::Text},
-                  {"type", ValueType::Text},
-                  {"unit", ValueType::Text},
-                  {"use", ValueType::Text},
-                  {"meaning", ValueType::Text}};
-    auto add = [&](const catalog::AttributeInfo& a) {
-        std::string_view type = a.type == ValueType::Integer ? "integer"
-                                : a.type == ValueType::Real  ? "real"
-                                : a.type == ValueType::Box   ? "box"
-                                                             : "text";
-        std::string use = a.measure == catalog::AttributeMeasure::None ? "RETURN" : "WHERE, ORDER BY, RETURN";
-        rs.rows.push_back({std::string(a.name), std::string(type), std::string(a.unit), use, std::string(a.meaning)});
-    };
-    for (const auto& a : catalog::builtInAttributes()) add(a);
-    // Not an attribute of the node alone: it measures from a reference.
-    rs.rows.push_back({std::string("distance(x)"), std::string("real"), std::string("m"),
-                       std::string("WHERE, ORDER BY; RETURN distance after ORDER BY distance(x) or NEAREST TO x"),
-                       std::string("the gap between the node's box and the nearest box x names")});
-    if (plan_.statement->scene)
-        for (const auto& name : scene().attributeNames()) add(catalog::storedAttribute(name));
-    return rs;
+    return catalog::attributeTable(plan_.statement->scene ? scene().attributeNames() : std::vector<std::string>());
 }
 
 ResultSet Executor::run(const binder::BoundShowTree& show) {
