@@ -52,6 +52,19 @@ struct Engine::State {
     };
     std::unordered_map<model::NodeId, CachedSnapshot> snapshots;
     std::uint64_t useCounter = 0;
+    // The snapshots handed out in the running call, which read the nodes they have not decoded yet
+    // through its transaction; when the call ends they read through none.
+    std::vector<std::shared_ptr<const SceneSnapshot>> reading;
+    struct ReadsEnd {
+        explicit ReadsEnd(State& running) : state(running) {}
+        ReadsEnd(const ReadsEnd&) = delete;
+        ReadsEnd& operator=(const ReadsEnd&) = delete;
+        ~ReadsEnd() {
+            for (const auto& snapshot : state.reading) snapshot->readThrough(nullptr);
+            state.reading.clear();
+        }
+        State& state;
+    };
     std::unordered_map<std::string, std::shared_ptr<const std::vector<ast::Statement>>, TextHash, std::equal_to<>>
         statements;
     // Texts that differ from one seen before only in their literals (binder/shape_cache.hpp).
@@ -120,6 +133,7 @@ struct Engine::State {
     ResultSet run(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values) {
         auto start = std::chrono::steady_clock::now();
         auto txn = db->beginRead();
+        ReadsEnd readsEnd{*this};
         binder::Binder binder({txn, session, [&] { return snapshot(txn, currentScene(txn)); },
                                [&](const std::string& instant) { return snapshotAsOf(txn, instant); }});
         auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement, values)));
@@ -143,6 +157,8 @@ struct Engine::State {
             it = snapshots.insert_or_assign(info.id, CachedSnapshot{SceneSnapshot::load(txn, info), 0}).first;
         }
         it->second.lastUse = ++useCounter;
+        it->second.snapshot->readThrough(&txn);
+        reading.push_back(it->second.snapshot);
         return it->second.snapshot;
     }
 
@@ -294,6 +310,7 @@ model::SceneData Engine::readScene(const std::string& name) {
     if (info.id == model::kNoNode)
         throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
                     "SHOW SCENES lists the scenes");
+    State::ReadsEnd readsEnd{*state_};
     auto snap = state_->snapshot(txn, info);
     model::SceneData out;
     out.info = info;
@@ -377,6 +394,7 @@ Engine::SceneMap Engine::sceneMap(const std::string& name) {
     if (!info)
         throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
                     "SHOW SCENES lists the scenes");
+    State::ReadsEnd readsEnd{*state_};
     auto snapshot = state_->snapshot(txn, *info);
     const auto& guidance = snapshot->guidance();
     SceneMap map{

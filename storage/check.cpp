@@ -202,8 +202,25 @@ bool checkPages(const std::string& directory, CheckReport& report) {
 
 // Everything about one scene: its records, its tree and its index entries.
 struct SceneCounts {
-    std::uint64_t nodes = 0, children = 0, labels = 0, sourceIds = 0, relationEntries = 0, blobs = 0;
+    std::uint64_t nodes = 0, children = 0, labels = 0, sourceIds = 0, relationEntries = 0, blobs = 0, indexes = 0;
 };
+
+// The scene's stored table of contents, when it has one, against what its records give: a scene
+// loads from it, so a difference would be answered.
+template <class Problem>
+std::uint64_t checkSceneIndex(const ReadTransaction& txn, const model::SceneInfo& info, const std::vector<Node>& nodes,
+                              Problem&& problem) {
+    std::optional<SceneIndex> stored;
+    try {
+        stored = txn.sceneIndex(info);
+    } catch (const Error& e) {
+        problem(e.message());
+        return 1;
+    }
+    if (stored && *stored != SceneIndex::of(nodes, info.version))
+        problem("its scene index does not match its node records");
+    return stored ? 1 : 0;
+}
 
 SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info, CheckReport& report) {
     SceneCounts counts;
@@ -282,6 +299,7 @@ SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info,
     } catch (const Error& e) {
         problem(e.message());
     }
+    counts.indexes = checkSceneIndex(txn, info, nodes, problem);
     if (found > kShownPerScene)
         report.problems.push_back(fmt::format("{}: and {} more problems", scene, found - kShownPerScene));
     return counts;
@@ -323,6 +341,7 @@ CheckReport checkDatabase(const std::string& directory) {
         total.sourceIds += counts.sourceIds;
         total.relationEntries += counts.relationEntries;
         total.blobs += counts.blobs;
+        total.indexes += counts.indexes;
     }
     report.scenes = scenes.size();
     report.nodes = total.nodes;
@@ -338,7 +357,8 @@ CheckReport checkDatabase(const std::string& directory) {
                                                      {"source_ids", total.sourceIds},
                                                      {"relations", 2 * total.relationEntries},
                                                      {"blobs", total.blobs},
-                                                     {"history", versions}};
+                                                     {"history", versions},
+                                                     {"scene_index", total.indexes}};
     for (const auto& stats : txn.tableStats())
         if (auto it = expected.find(stats.name); it != expected.end() && stats.entries != it->second)
             report.problems.push_back(fmt::format("table {} holds {} entries, the scenes account for {}", stats.name,

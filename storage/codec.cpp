@@ -124,6 +124,8 @@ public:
         p_ += n;
         return s;
     }
+    // `n` bytes to copy out as they are.
+    const std::uint8_t* bytes(std::size_t n) { return take(n); }
     std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
     void expectEnd() {
         if (p_ != end_) corrupt(fmt::format("{} unexpected bytes at the end", remaining()));
@@ -521,6 +523,89 @@ model::SceneVersion decodeVersion(std::string_view key, std::string_view bytes) 
     }
     r.expectEnd();
     return version;
+}
+
+// The entries are the host's bytes of SceneIndexEntry: little-endian, as every stored number.
+static_assert(std::endian::native == std::endian::little, "the scene index stores its arrays as memory holds them");
+
+namespace {
+
+template <class T>
+void appendArray(std::string& out, const std::vector<T>& values) {
+    out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+template <class T>
+void readArray(Reader& r, std::uint64_t count, std::vector<T>& into) {
+    into.resize(count);
+    std::memcpy(into.data(), r.bytes(count * sizeof(T)), count * sizeof(T));
+}
+
+// What a damaged index would answer wrongly from: unknown codes, an order that is not the
+// nodes with geometry once each, blocks that do not cover it.
+void checkSceneIndex(const SceneIndex& index, Reader& r) {
+    std::size_t spatial = 0;
+    for (const SceneIndexEntry& e : index.entries) {
+        if (e.category >= index.categories.size() || static_cast<std::uint8_t>(e.kind) > kLastNodeKind ||
+            static_cast<std::uint8_t>(e.geometry) > kLastGeometry || e.hidden > 1 || e.reserved != 0)
+            r.corrupt("an entry holds an unknown category, kind, geometry or flag");
+        spatial += e.kind != model::NodeKind::Scene && e.geometry != model::GeometryKind::None;
+    }
+    std::vector<std::uint8_t> seen(index.entries.size());
+    for (std::uint32_t s : index.spatialOrder) {
+        if (s >= index.entries.size() || seen[s] || index.entries[s].kind == model::NodeKind::Scene ||
+            index.entries[s].geometry == model::GeometryKind::None)
+            r.corrupt(fmt::format("the spatial order holds slot {} wrongly", s));
+        seen[s] = 1;
+    }
+    if (index.spatialOrder.size() != spatial ||
+        index.blockBounds.size() != (spatial + SceneIndex::kBlock - 1) / SceneIndex::kBlock)
+        r.corrupt("the spatial order or its blocks miss nodes");
+}
+
+}  // namespace
+
+void encodeSceneIndex(model::NodeId sceneId, const SceneIndex& index, std::string& out) {
+    out.clear();
+    out.reserve(64 + index.entries.size() * sizeof(SceneIndexEntry) + index.spatialOrder.size() * 4 +
+                index.blockBounds.size() * sizeof(model::Aabb) + index.categories.size() * 16 + kChecksumSize);
+    Writer w(out);
+    w.u8(kSceneIndexFormat);
+    w.u64(index.version);
+    w.varint(index.categories.size());
+    for (const auto& category : index.categories) w.str(category);
+    w.varint(index.entries.size());
+    w.varint(index.spatialOrder.size());
+    w.varint(index.blockBounds.size());
+    appendArray(out, index.entries);
+    appendArray(out, index.spatialOrder);
+    appendArray(out, index.blockBounds);
+    seal(keyView(idKey(sceneId)), out);
+}
+
+SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes) {
+    Reader r(bytes, "scene index", sceneId);
+    r.checkSealed(keyView(idKey(sceneId)));
+    r.expectFormat(kSceneIndexFormat);
+    SceneIndex index;
+    index.version = r.u64();
+    std::uint64_t categories = r.varint();
+    if (categories > r.remaining()) r.corrupt(fmt::format("category count {} exceeds the record", categories));
+    index.categories.reserve(categories);
+    for (std::uint64_t i = 0; i < categories; ++i) index.categories.emplace_back(r.str());
+    const std::uint64_t entries = r.varint(), ordered = r.varint(), blocks = r.varint();
+    // Each count is checked against what is left before the arrays are sized by it.
+    const std::uint64_t left = r.remaining();
+    if (entries > left / sizeof(SceneIndexEntry) || ordered > left / 4 || blocks > left / sizeof(model::Aabb) ||
+        entries * sizeof(SceneIndexEntry) + ordered * 4 + blocks * sizeof(model::Aabb) != left)
+        r.corrupt(fmt::format("{} entries, {} in spatial order and {} blocks do not fill the {} bytes left", entries,
+                              ordered, blocks, left));
+    readArray(r, entries, index.entries);
+    readArray(r, ordered, index.spatialOrder);
+    readArray(r, blocks, index.blockBounds);
+    r.expectEnd();
+    checkSceneIndex(index, r);
+    return index;
 }
 
 }  // namespace smql::storage::codec

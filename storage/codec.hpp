@@ -16,6 +16,7 @@
 
 #include "model/error.hpp"
 #include "model/types.hpp"
+#include "storage/scene_index.hpp"
 
 namespace smql::storage::codec {
 
@@ -25,6 +26,7 @@ inline constexpr std::uint8_t kBlobFormat = 2;
 inline constexpr std::uint8_t kSceneFormat = 2;
 inline constexpr std::uint8_t kRelationFormat = 2;
 inline constexpr std::uint8_t kVersionFormat = 1;
+inline constexpr std::uint8_t kSceneIndexFormat = 1;
 // The CRC32C at the end of every record and relation entry.
 inline constexpr std::size_t kChecksumSize = 4;
 
@@ -96,6 +98,11 @@ std::string historyPrefix(std::string_view sceneName);
 // as they were) and the changes of the update that replaced it.
 void encodeVersion(std::string_view key, const model::SceneVersion& version, std::string& out);
 model::SceneVersion decodeVersion(std::string_view key, std::string_view bytes);
+
+// Scene index record (key: idKey(scene id)): format byte, the scene version, the categories, then
+// the entries as one array of SceneIndexEntry's bytes (little-endian, as every record), sealed.
+void encodeSceneIndex(model::NodeId sceneId, const SceneIndex& index, std::string& out);
+SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes);
 
 // Little-endian fixed-width values for meta entries.
 std::string encodeU64(std::uint64_t value);

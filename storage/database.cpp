@@ -364,6 +364,18 @@ void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<voi
     endOfScan(env, rc, "reading the nodes of a scene");
 }
 
+std::optional<SceneIndex> ReadTransaction::sceneIndex(const SceneInfo& scene) const {
+    const Impl& state = live();
+    if (!state.env->has(Table::SceneIndex)) return std::nullopt;
+    auto key = codec::idKey(scene.id);
+    auto bytes = lookup(*state.env, state.txn, Table::SceneIndex, toVal(key), "reading a scene index");
+    if (!bytes) return std::nullopt;
+    SceneIndex index =
+        decodeInScene(*state.env, state.txn, scene.id, [&] { return codec::decodeSceneIndex(scene.id, *bytes); });
+    if (index.version != scene.version || index.entries.size() != scene.nodeCount + 1) return std::nullopt;
+    return index;
+}
+
 std::vector<model::Relation> ReadTransaction::relationsOf(NodeId id) const {
     const Impl& state = live();
     return readDuplicates<model::Relation>(
@@ -518,6 +530,7 @@ std::vector<TableStats> ReadTransaction::tableStats() const {
     const Impl& state = live();
     std::vector<TableStats> out;
     for (std::size_t i = 0; i < kTableCount; ++i) {
+        if (!state.env->has(static_cast<Table>(i))) continue;
         MDB_stat stat{};
         state.env->check(mdb_stat(state.txn, state.env->dbi(static_cast<Table>(i)), &stat), "reading table stats");
         out.push_back(

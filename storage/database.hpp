@@ -16,12 +16,14 @@
 #include <vector>
 
 #include "model/types.hpp"
+#include "storage/scene_index.hpp"
 
 namespace smql::storage {
 
 // 2: every record and relation entry ends in a CRC32C (docs/storage.md).
 // 3: the history table keeps the versions of a scene that updates replaced.
-inline constexpr std::uint32_t kSchemaVersion = 3;
+// 4: the scene_index table keeps each scene's table of contents (storage/scene_index.hpp).
+inline constexpr std::uint32_t kSchemaVersion = 4;
 
 struct OpenOptions {
     bool readOnly = false;
@@ -99,6 +101,10 @@ public:
     std::vector<model::NodeId> children(model::NodeId parent) const;
     // Every node of a scene (the scene node itself included), in id order.
     void forEachNodeInScene(model::NodeId sceneId, const std::function<void(const model::Node&)>& visit) const;
+    // The scene's table of contents as stored with it (storage/scene_index.hpp), when there is one
+    // for the scene as `scene` describes it (its version and node count); nothing for a scene stored
+    // before schema version 4 and not written since.
+    std::optional<SceneIndex> sceneIndex(const model::SceneInfo& scene) const;
     // Relations whose subject or object is `id`: those with `id` as subject
     // first, then those with `id` as object.
     std::vector<model::Relation> relationsOf(model::NodeId id) const;

@@ -83,6 +83,10 @@ std::optional<model::SceneInfo> readScene(const Environment& env, MDB_txn* txn, 
 // The id the name index holds for a scene name.
 std::optional<model::NodeId> readSceneId(const Environment& env, MDB_txn* txn, std::string_view name);
 
+// Writes the scene index of a stored scene from its records as they are in `txn` (after an import,
+// a rename, an update of its nodes), under the version its scene record now has.
+void storeSceneIndex(const Environment& env, MDB_txn* txn, model::NodeId sceneId, std::string& record);
+
 // Ends a cursor scan: running off the end (MDB_NOTFOUND) is how scans stop, anything else is a failure.
 inline void endOfScan(const Environment& env, int rc, std::string_view operation) {
     if (rc != MDB_SUCCESS && rc != MDB_NOTFOUND) env.fail(rc, operation);

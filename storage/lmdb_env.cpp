@@ -69,10 +69,13 @@ std::map<RegistryKey, std::weak_ptr<Environment>>& registry() {
     return *environments;
 }
 
-// Schema 2 lacks only the history table (added empty by an upgrade in place).
-constexpr std::uint64_t kUpgradableSchemaVersion = 2;
+// Schema 2 lacks the history and scene index tables, schema 3 the scene index: a writable open
+// adds them (empty) in place. A read-only open reads a version-3 database without scene indexes,
+// as every scene of it lacks one anyway; a version-2 one it cannot, for want of the history table.
+constexpr std::uint64_t kOldestUpgradableSchemaVersion = 2;
+constexpr std::uint64_t kReadableWithoutSceneIndex = 3;
 
-// Returns the stored version: kSchemaVersion, or kUpgradableSchemaVersion when `upgradable`.
+// Returns the stored version: kSchemaVersion, or an older one this open can read or upgrade.
 std::uint64_t checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta, bool upgradable) {
     MDB_val key = toVal(kSchemaVersionKey), value;
     int rc = mdb_get(txn, meta, &key, &value);
@@ -81,12 +84,12 @@ std::uint64_t checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB
         openError(fmt::format("cannot read the schema version of {}: {}", directory, mdb_strerror(rc)), {});
     std::uint64_t version = codec::decodeU64(fromVal(value), "schema version");
     if (version == kSchemaVersion) return version;
-    if (version == kUpgradableSchemaVersion) {
-        if (upgradable) return version;
+    if (version >= kOldestUpgradableSchemaVersion && version < kSchemaVersion) {
+        if (upgradable || version == kReadableWithoutSceneIndex) return version;
         openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
                               kSchemaVersion),
                   "open it once for writing (without --read-only): that upgrades it in place, adding the empty "
-                  "history table of version 3");
+                  "tables of the versions since (the history, the scene indexes)");
     }
     openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
                           kSchemaVersion),
@@ -409,14 +412,17 @@ void Environment::openTables(bool create) {
         mdb_txn_abort(txn);
         throw;
     }
-    if (version != kSchemaVersion) {
+    if (version != kSchemaVersion && readOnly_) {
+        hasSceneIndex_ = false;
+    } else if (version != kSchemaVersion) {
         mdb_txn_abort(txn);
-        upgradeSchema();
+        upgradeSchema(version);
         check(mdb_txn_begin(env_, nullptr, MDB_RDONLY, &txn), "beginning a read transaction");
         check(mdb_dbi_open(txn, kTables[0].name, kTables[0].flags, &meta), "opening the meta table");
     }
     dbis_[0] = meta;
     for (std::size_t i = 1; i < kTableCount; ++i) {
+        if (!has(static_cast<Table>(i))) continue;
         rc = mdb_dbi_open(txn, kTables[i].name, kTables[i].flags, &dbis_[i]);
         if (rc != MDB_SUCCESS) {
             mdb_txn_abort(txn);
@@ -431,23 +437,27 @@ void Environment::openTables(bool create) {
     check(mdb_txn_commit(txn), "opening the tables");
 }
 
-// Schema 2 -> 3 in one write transaction: the history table, then the version. Another process
-// may have upgraded it between our read and this write; then there is nothing left to do.
-void Environment::upgradeSchema() {
+// An older schema -> kSchemaVersion in one write transaction: the tables it lacks, then the version.
+// Another process may have upgraded it between our read and this write; then there is nothing left to do.
+void Environment::upgradeSchema(std::uint64_t from) {
+    const std::string operation =
+        fmt::format("upgrading the database from schema version {} to {}", from, kSchemaVersion);
     MDB_txn* txn = nullptr;
     check(mdb_txn_begin(env_, nullptr, 0, &txn), "beginning a write transaction");
-    MDB_dbi meta = 0, history = 0;
+    MDB_dbi meta = 0, table = 0;
     int rc = mdb_dbi_open(txn, kTables[0].name, kTables[0].flags, &meta);
-    const auto& spec = kTables[static_cast<std::size_t>(Table::History)];
-    if (rc == MDB_SUCCESS) rc = mdb_dbi_open(txn, spec.name, spec.flags | MDB_CREATE, &history);
+    for (Table added : {Table::History, Table::SceneIndex}) {
+        const auto& spec = kTables[static_cast<std::size_t>(added)];
+        if (rc == MDB_SUCCESS) rc = mdb_dbi_open(txn, spec.name, spec.flags | MDB_CREATE, &table);
+    }
     std::string version = codec::encodeU64(kSchemaVersion);
     MDB_val key = toVal(kSchemaVersionKey), value = toVal(version);
     if (rc == MDB_SUCCESS) rc = mdb_put(txn, meta, &key, &value, 0);
     if (rc != MDB_SUCCESS) {
         mdb_txn_abort(txn);
-        fail(rc, "upgrading the database to schema version 3");
+        fail(rc, operation);
     }
-    check(mdb_txn_commit(txn), "upgrading the database to schema version 3");
+    check(mdb_txn_commit(txn), operation);
 }
 
 void Environment::checkLockFile(std::string_view operation) const {

@@ -30,9 +30,10 @@ enum class Table : std::size_t {
     SourceIds,
     Relations,
     Blobs,
-    History
+    History,
+    SceneIndex
 };
-inline constexpr std::size_t kTableCount = 10;
+inline constexpr std::size_t kTableCount = 11;
 
 struct TableSpec {
     const char* name;
@@ -51,6 +52,7 @@ inline constexpr std::array<TableSpec, kTableCount> kTables = {{
     {"relations", MDB_DUPSORT | MDB_DUPFIXED},
     {"blobs", 0},
     {"history", 0},
+    {"scene_index", 0},
 }};
 
 // Room for the tables still to come (vectors, blobs, spatial index) without
@@ -76,6 +78,9 @@ public:
 
     MDB_env* env() const { return env_; }
     MDB_dbi dbi(Table table) const { return dbis_[static_cast<std::size_t>(table)]; }
+    // False only for the scene index of a version-3 database opened read-only (it predates the
+    // table, and a read-only open cannot add it): its scenes are read without one.
+    bool has(Table table) const { return !(table == Table::SceneIndex && !hasSceneIndex_); }
     const std::string& directory() const { return directory_; }
     bool readOnly() const { return readOnly_; }
     // LMDB's key size limit (511 bytes in Debian's build); names used as keys are checked against it.
@@ -108,7 +113,7 @@ private:
     // open() once the directory is known to be fit: the environment itself.
     static std::shared_ptr<Environment> openChecked(const std::string& directory, const OpenOptions& options);
     void openTables(bool create);
-    void upgradeSchema();
+    void upgradeSchema(std::uint64_t from);
     void checkFileSize() const;
 
     // Where LMDB mapped data.mdb in this process (from /proc/self/maps: LMDB does not say), for
@@ -121,6 +126,7 @@ private:
     const char* map_ = nullptr;
     std::size_t mapSize_ = 0;
     std::array<MDB_dbi, kTableCount> dbis_{};
+    bool hasSceneIndex_ = true;
     // Device and inode of lock.mdb when this environment opened it; unset
     // when LMDB runs without one (a read-only file system).
     std::optional<std::pair<dev_t, ino_t>> lockFile_;

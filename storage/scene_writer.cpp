@@ -176,6 +176,32 @@ private:
 
 }  // namespace
 
+void storeSceneIndex(const Environment& env, MDB_txn* txn, NodeId sceneId, std::string& record) {
+    auto info = readScene(env, txn, sceneId);
+    if (!info) throw Error(ErrorKind::Storage, fmt::format("no scene with id {} to index", sceneId));
+    // The records as a reader decodes them, so the index says what a scene loaded whole would.
+    std::vector<Node> nodes;
+    nodes.reserve(info->nodeCount + 1);
+    {
+        Cursor cursor(env, txn, Table::Nodes);
+        auto from = codec::idKey(sceneId);
+        MDB_val key = toVal(from), value;
+        Node node;
+        int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
+        for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
+            NodeId id = codec::idFromKey(env.bytes(key), "node");
+            decodeInScene(env, txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
+            if (node.scene != sceneId) break;
+            nodes.push_back(node);
+        }
+        endOfScan(env, rc, "reading the nodes of a scene");
+    }
+    codec::encodeSceneIndex(sceneId, SceneIndex::of(nodes, info->version), record);
+    auto key = codec::idKey(sceneId);
+    MDB_val k = toVal(key), v = toVal(record);
+    env.check(mdb_put(txn, env.dbi(Table::SceneIndex), &k, &v, 0), "storing a scene index");
+}
+
 NodeId WriteTransaction::importScene(const model::SceneData& data) {
     Impl& state = live();
     const Environment& env = *state.env;
@@ -197,6 +223,7 @@ NodeId WriteTransaction::importScene(const model::SceneData& data) {
     write.relations();
     write.blobs();
     write.scene();
+    storeSceneIndex(env, txn, sceneId, state.record);
     return sceneId;
 }
 

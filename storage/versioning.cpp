@@ -97,6 +97,7 @@ void eraseScene(const Environment& env, MDB_txn* txn, const SceneInfo& scene) {
     auto key = codec::idKey(sceneId);
     erase(Table::Scenes, toVal(key), nullptr);
     erase(Table::SceneNames, toVal(scene.name), nullptr);
+    erase(Table::SceneIndex, toVal(key), nullptr);
 }
 
 // A scene's superseded versions: the history keys with its name as prefix, oldest first.
@@ -260,6 +261,7 @@ void WriteTransaction::renameScene(NodeId sceneId, const std::string& newName) {
         MDB_val hkv = toVal(hk), hvv = toVal(state.record);
         env.check(mdb_put(txn, env.dbi(Table::History), &hkv, &hvv, MDB_NOOVERWRITE), "renaming a scene");
     }
+    storeSceneIndex(env, txn, sceneId, state.record);
 }
 
 void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
@@ -297,6 +299,7 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
         auto key = codec::idKey(sceneId);
         MDB_val k = toVal(key), v = toVal(state.record);
         env.check(mdb_put(txn, env.dbi(Table::Scenes), &k, &v, 0), "updating a scene's version");
+        storeSceneIndex(env, txn, sceneId, state.record);
     }
 }
 

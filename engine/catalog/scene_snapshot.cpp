@@ -1,6 +1,8 @@
 #include "engine/catalog/scene_snapshot.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <limits>
 
 #include <fmt/format.h>
@@ -11,61 +13,185 @@
 
 namespace smql::catalog {
 
+namespace {
+
+// A scan of the boxes costs a few nanoseconds a box; packing the R-tree costs about as much as
+// fifty scans. The first spatial queries of a scene (most scenes are asked a few questions and
+// left) scan, and the tree is packed once they have cost a good part of what packing does.
+constexpr std::size_t kScansBeforePacking = 32;
+
+// Squared gap between two boxes (0 when they meet): Boost.Geometry's comparable distance.
+double squaredGap(const model::Aabb& a, const model::Aabb& b) {
+    double dx = std::max({0.0, a.min.x - b.max.x, b.min.x - a.max.x});
+    double dy = std::max({0.0, a.min.y - b.max.y, b.min.y - a.max.y});
+    double dz = std::max({0.0, a.min.z - b.max.z, b.min.z - a.max.z});
+    return dx * dx + dy * dy + dz * dz;
+}
+
+}  // namespace
+
 std::shared_ptr<const SceneSnapshot> SceneSnapshot::load(const storage::ReadTransaction& txn,
                                                          const model::SceneInfo& info) {
+    if (std::optional<storage::SceneIndex> index = txn.sceneIndex(info)) {
+        std::shared_ptr<SceneSnapshot> snap(new SceneSnapshot(info, std::move(*index), /*historical=*/false));
+        snap->readThrough(&txn);
+        return snap;
+    }
     std::vector<model::Node> nodes;
     nodes.reserve(info.nodeCount + 1);
     txn.forEachNodeInScene(info.id, [&](const model::Node& n) { nodes.push_back(n); });
-    std::vector<model::Relation> relations;
-    txn.forEachRelationInScene(info.id, [&](const model::Relation& r) { relations.push_back(r); });
-    return build(info, std::move(nodes), std::move(relations), /*historical=*/false);
+    std::shared_ptr<SceneSnapshot> snap(
+        new SceneSnapshot(info, storage::SceneIndex::of(nodes, info.version), /*historical=*/false));
+    snap->holdAll(std::move(nodes));
+    snap->readThrough(&txn);
+    return snap;
 }
 
 std::shared_ptr<const SceneSnapshot> SceneSnapshot::fromVersion(const model::SceneVersion& version) {
-    return build(version.info, version.nodes, version.relations, /*historical=*/true);
+    std::shared_ptr<SceneSnapshot> snap(
+        new SceneSnapshot(version.info, storage::SceneIndex::of(version.nodes, version.info.version), true));
+    snap->holdAll(version.nodes);
+    snap->relations_ = version.relations;
+    return snap;
 }
 
-std::shared_ptr<const SceneSnapshot> SceneSnapshot::build(model::SceneInfo info, std::vector<model::Node> nodes,
-                                                          std::vector<model::Relation> relations, bool historical) {
-    auto snap = std::make_shared<SceneSnapshot>();
-    snap->info_ = std::move(info);
-    snap->historical_ = historical;
-    snap->nodes_ = std::move(nodes);
-
-    const auto count = static_cast<Slot>(snap->nodes_.size());
-    snap->slotsByKind_.resize(6);
-    snap->shownByKind_.resize(6);
-    snap->bounds_.resize(count);
-    std::vector<storage::SpatialIndex::Entry> entries;
-    entries.reserve(count);
-    snap->firstId_ = count > 0 ? snap->nodes_.front().id : model::kNoNode;
-    snap->idsInOneBlock_ = true;
-    for (Slot s = 0; s < count; ++s)
-        snap->idsInOneBlock_ = snap->idsInOneBlock_ && snap->nodes_[s].id == snap->firstId_ + s;
-    if (!snap->idsInOneBlock_) snap->slotById_.reserve(count);
-    for (Slot s = 0; s < count; ++s) {
-        const auto& n = snap->nodes_[s];
-        if (!snap->idsInOneBlock_) snap->slotById_.emplace(n.id, s);
-        snap->slotsByCategory_[n.category].push_back(s);
-        snap->slotsByKind_[static_cast<std::size_t>(n.kind)].push_back(s);
-        if (!n.hidden && n.kind != model::NodeKind::Scene) {
-            snap->shownByKind_[static_cast<std::size_t>(n.kind)].push_back(s);
-            snap->shownNodes_.push_back(s);
-        }
-        snap->bounds_[s] = model::worldAabb(n.box);
-        if (n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene)
-            entries.push_back({snap->bounds_[s], s});
+SceneSnapshot::SceneSnapshot(model::SceneInfo info, storage::SceneIndex index, bool historical)
+    : info_(std::move(info)), index_(std::move(index)), historical_(historical) {
+    const auto count = static_cast<Slot>(index_.entries.size());
+    decoded_ = std::make_unique<std::atomic<const model::Node*>[]>(count);
+    // A stored scene's slot 0 is its scene node, whose id is the scene's; holdAll checks the ids
+    // of a scene decoded whole, which may not be one block.
+    firstId_ = info_.id;
+    idsInOneBlock_ = true;
+    // Counted first, so each list is allocated once at its size.
+    constexpr std::size_t kKinds = 6;
+    std::vector<std::uint32_t> perCategory(index_.categories.size());
+    std::array<std::uint32_t, kKinds> shownPerKind{};
+    for (const auto& e : index_.entries) {
+        ++perCategory[e.category];
+        shownPerKind[static_cast<std::size_t>(e.kind)] += e.kind != model::NodeKind::Scene && !e.hidden;
     }
-    snap->rtree_ = storage::SpatialIndex(entries);
-    snap->relations_ = std::move(relations);
-    return snap;
+    std::vector<std::vector<Slot>*> lists(index_.categories.size());
+    for (std::size_t c = 0; c < lists.size(); ++c) {
+        lists[c] = &slotsByCategory_[index_.categories[c]];
+        lists[c]->reserve(perCategory[c]);
+    }
+    shownByKind_.resize(kKinds);
+    for (std::size_t k = 0; k < kKinds; ++k) shownByKind_[k].reserve(shownPerKind[k]);
+    shownNodes_.reserve(count);
+    for (Slot s = 0; s < count; ++s) {
+        const auto& e = index_.entries[s];
+        lists[e.category]->push_back(s);
+        if (e.kind != model::NodeKind::Scene && !e.hidden) {
+            shownByKind_[static_cast<std::size_t>(e.kind)].push_back(s);
+            shownNodes_.push_back(s);
+        }
+    }
+}
+
+void SceneSnapshot::holdAll(std::vector<model::Node> nodes) {
+    allNodes_ = std::move(nodes);
+    const auto count = static_cast<Slot>(allNodes_.size());
+    firstId_ = count > 0 ? allNodes_.front().id : model::kNoNode;
+    for (Slot s = 0; s < count; ++s) idsInOneBlock_ = idsInOneBlock_ && allNodes_[s].id == firstId_ + s;
+    if (!idsInOneBlock_) slotById_.reserve(count);
+    for (Slot s = 0; s < count; ++s) {
+        if (!idsInOneBlock_) slotById_.emplace(allNodes_[s].id, s);
+        decoded_[s].store(&allNodes_[s], std::memory_order_release);
+    }
+    std::call_once(allDecoded_, [] {});  // nodes() has them already
+}
+
+void SceneSnapshot::readThrough(const storage::ReadTransaction* txn) const {
+    std::lock_guard lock(readMutex_);
+    reader_ = txn;
+}
+
+const model::Node& SceneSnapshot::decode(Slot slot) const {
+    std::lock_guard lock(readMutex_);
+    if (const model::Node* decoded = decoded_[slot].load(std::memory_order_relaxed)) return *decoded;
+    assert(reader_ && "a snapshot's nodes are read while a statement names its transaction (readThrough)");
+    const model::NodeId id = firstId_ + slot;
+    model::Node& node = decodedNodes_.emplace_back();
+    const auto& entry = index_.entries[slot];
+    // The index and the record must agree on what the index answered from.
+    if (!reader_->readNode(id, node) || node.scene != info_.id || node.kind != entry.kind ||
+        node.geometry != entry.geometry || node.hidden != (entry.hidden != 0) || node.category != category(slot)) {
+        decodedNodes_.pop_back();
+        throw Error(ErrorKind::Storage,
+                    fmt::format("the scene index of scene '{}' does not match the record of node #{}", info_.name, id),
+                    std::nullopt, "smql check DB verifies the database");
+    }
+    decoded_[slot].store(&node, std::memory_order_release);
+    return node;
+}
+
+const std::vector<model::Node>& SceneSnapshot::nodes() const {
+    std::call_once(allDecoded_, [&] {
+        std::vector<model::Node> all;
+        all.reserve(size());
+        for (Slot s = 0; s < size(); ++s) all.push_back(node(s));
+        allNodes_ = std::move(all);
+    });
+    return allNodes_;
+}
+
+const std::vector<model::Relation>& SceneSnapshot::storedRelations() const {
+    std::lock_guard lock(readMutex_);
+    if (!relations_) {
+        assert(reader_ && "a snapshot's relations are read while a statement names its transaction (readThrough)");
+        std::vector<model::Relation> relations;
+        reader_->forEachRelationInScene(info_.id, [&](const model::Relation& r) { relations.push_back(r); });
+        relations_ = std::move(relations);
+    }
+    return *relations_;
+}
+
+const storage::SpatialIndex* SceneSnapshot::packedTree() const {
+    if (treePacked_.load(std::memory_order_acquire)) return &rtree_;
+    if (scans_.fetch_add(1, std::memory_order_relaxed) < kScansBeforePacking) return nullptr;
+    std::call_once(treePacking_, [&] {
+        std::vector<storage::SpatialIndex::Entry> entries;
+        entries.reserve(spatialSize());
+        for (Slot s : index_.spatialOrder) entries.push_back({bounds(s), s});
+        rtree_ = storage::SpatialIndex(entries);
+        treePacked_.store(true, std::memory_order_release);
+    });
+    return &rtree_;
+}
+
+void SceneSnapshot::intersecting(const model::Aabb& region, std::vector<Slot>& out) const {
+    if (const storage::SpatialIndex* tree = packedTree()) {
+        tree->intersecting(region, out);
+        return;
+    }
+    const auto& order = index_.spatialOrder;
+    for (std::size_t b = 0; b < index_.blockBounds.size(); ++b) {
+        if (!relations::intersects(index_.blockBounds[b], region)) continue;
+        const std::size_t end = std::min(order.size(), (b + 1) * storage::SceneIndex::kBlock);
+        for (std::size_t i = b * storage::SceneIndex::kBlock; i < end; ++i)
+            if (relations::intersects(bounds(order[i]), region)) out.push_back(order[i]);
+    }
+}
+
+void SceneSnapshot::nearest(const model::Aabb& region, std::size_t k, std::vector<Slot>& out) const {
+    if (const storage::SpatialIndex* tree = packedTree()) {
+        tree->nearest(region, k, out);
+        return;
+    }
+    std::vector<std::pair<double, Slot>> byGap;
+    byGap.reserve(spatialSize());
+    for (Slot s : index_.spatialOrder) byGap.emplace_back(squaredGap(bounds(s), region), s);
+    const auto kept = byGap.begin() + static_cast<std::ptrdiff_t>(std::min(k, byGap.size()));
+    std::partial_sort(byGap.begin(), kept, byGap.end());
+    for (auto it = byGap.begin(); it != kept; ++it) out.push_back(it->second);
 }
 
 const SceneSnapshot::Guidance& SceneSnapshot::guidance() const {
     std::call_once(guidanceBuilt_, [&] {
         guide::GraphOptions options;
-        guide::FreeSpace space(nodes_, options);
-        guide::RouteGraph graph = guide::buildGraph(nodes_, space, options);
+        guide::FreeSpace space(nodes(), options);
+        guide::RouteGraph graph = guide::buildGraph(nodes(), space, options);
         guidance_ = std::make_unique<const Guidance>(Guidance{std::move(space), std::move(graph), options});
     });
     return *guidance_;
@@ -74,8 +200,8 @@ const SceneSnapshot::Guidance& SceneSnapshot::guidance() const {
 const similar::EmbeddingIndex& SceneSnapshot::embeddings() const {
     std::call_once(embeddingsBuilt_, [&] {
         std::vector<similar::Vector> vectors;
-        vectors.reserve(nodes_.size());
-        for (const auto& node : nodes_) vectors.push_back(similar::embedNode(node));
+        vectors.reserve(size());
+        for (const auto& node : nodes()) vectors.push_back(similar::embedNode(node));
         embeddings_ = std::make_unique<const similar::EmbeddingIndex>(std::move(vectors));
     });
     return *embeddings_;
@@ -84,27 +210,28 @@ const similar::EmbeddingIndex& SceneSnapshot::embeddings() const {
 const similar::EmbeddingIndex* SceneSnapshot::storedEmbeddings(const storage::ReadTransaction& txn) const {
     std::call_once(storedEmbeddingsRead_, [&] {
         if (historical_) return;
+        const std::vector<model::Node>& all = nodes();
         std::vector<float> vectors;
         std::size_t dimensions = 0;
-        for (std::size_t s = 0; s < nodes_.size(); ++s) {
-            auto blob = txn.blob(nodes_[s].id, model::kEmbeddingBlob);
+        for (std::size_t s = 0; s < all.size(); ++s) {
+            auto blob = txn.blob(all[s].id, model::kEmbeddingBlob);
             if (!blob) continue;
             std::vector<float> vector;
             try {
                 vector = model::readEmbedding(*blob);
             } catch (const Error& e) {
-                throw Error(ErrorKind::Storage, fmt::format("the embedding of {}: {}", label(nodes_[s]), e.message()),
+                throw Error(ErrorKind::Storage, fmt::format("the embedding of {}: {}", label(all[s]), e.message()),
                             std::nullopt, "smql check DB verifies the database");
             }
             if (dimensions == 0) {
                 dimensions = vector.size();
-                vectors.resize(nodes_.size() * dimensions);
+                vectors.resize(all.size() * dimensions);
             }
             // Storage refuses a scene whose embeddings differ in length.
             if (vector.size() != dimensions)
                 throw Error(ErrorKind::Storage,
                             fmt::format("the embedding of {} has {} dimensions, others in scene '{}' have {}",
-                                        label(nodes_[s]), vector.size(), info_.name, dimensions),
+                                        label(all[s]), vector.size(), info_.name, dimensions),
                             std::nullopt, "smql check DB verifies the database");
             const std::vector<float> unit = similar::unitVector(vector);
             std::copy(unit.begin(), unit.end(), vectors.begin() + static_cast<std::ptrdiff_t>(s * dimensions));
@@ -119,7 +246,7 @@ const similar::EmbeddingIndex* SceneSnapshot::storedEmbeddings(const storage::Re
 
 std::optional<Slot> SceneSnapshot::slotOf(model::NodeId id) const {
     if (idsInOneBlock_) {
-        if (id < firstId_ || id - firstId_ >= nodes_.size()) return std::nullopt;
+        if (id < firstId_ || id - firstId_ >= size()) return std::nullopt;
         return static_cast<Slot>(id - firstId_);
     }
     auto it = slotById_.find(id);
@@ -129,12 +256,13 @@ std::optional<Slot> SceneSnapshot::slotOf(model::NodeId id) const {
 
 void SceneSnapshot::buildLinks() const {
     std::call_once(linksBuilt_, [&] {
-        const auto count = static_cast<Slot>(nodes_.size());
+        const std::vector<model::Node>& all = nodes();
+        const auto count = static_cast<Slot>(all.size());
         children_.resize(count);
         slotBySource_.reserve(count);
         for (Slot s = 0; s < count; ++s) {
-            if (nodes_[s].sourceId) slotBySource_.emplace(*nodes_[s].sourceId, s);
-            if (std::optional<Slot> parent = slotOf(nodes_[s].parent)) children_[*parent].push_back(s);
+            if (all[s].sourceId) slotBySource_.emplace(*all[s].sourceId, s);
+            if (std::optional<Slot> parent = slotOf(all[s].parent)) children_[*parent].push_back(s);
         }
     });
 }
@@ -143,7 +271,7 @@ const std::vector<std::string>& SceneSnapshot::attributeNames() const {
     std::call_once(attributeNamesFound_, [&] {
         // A scene has a handful of attribute names over thousands of nodes: each is looked for
         // among those found so far, rather than every node's names sorted.
-        for (const auto& n : nodes_)
+        for (const auto& n : nodes())
             for (const auto& a : n.attributes)
                 if (std::find(attributeNames_.begin(), attributeNames_.end(), a.name) == attributeNames_.end())
                     attributeNames_.push_back(a.name);
@@ -170,10 +298,6 @@ const std::vector<Slot>& SceneSnapshot::children(Slot slot) const {
     return children_[slot];
 }
 
-const std::vector<Slot>& SceneSnapshot::slotsOfKind(model::NodeKind kind) const {
-    return slotsByKind_[static_cast<std::size_t>(kind)];
-}
-
 const std::vector<Slot>& SceneSnapshot::shownOfKind(model::NodeKind kind) const {
     return shownByKind_[static_cast<std::size_t>(kind)];
 }
@@ -183,9 +307,9 @@ std::vector<std::string> SceneSnapshot::categories() const {
     for (const auto& [name, slots] : slotsByCategory_) {
         // Descriptions and frames are about places, not places: they are not categories to ask for.
         bool queryable = std::any_of(slots.begin(), slots.end(), [&](Slot s) {
-            auto kind = nodes_[s].kind;
-            return !nodes_[s].hidden && kind != model::NodeKind::Scene && kind != model::NodeKind::Description &&
-                   kind != model::NodeKind::Frame;
+            auto k = kind(s);
+            return !hidden(s) && k != model::NodeKind::Scene && k != model::NodeKind::Description &&
+                   k != model::NodeKind::Frame;
         });
         if (queryable) out.push_back(name);
     }
@@ -200,33 +324,30 @@ std::string SceneSnapshot::label(const model::Node& node) {
 
 std::string SceneSnapshot::path(Slot slot) const {
     std::vector<Slot> chain;
-    for (std::optional<Slot> s = slot; s; s = slotOf(nodes_[*s].parent)) {
+    for (std::optional<Slot> s = slot; s; s = slotOf(node(*s).parent)) {
         chain.push_back(*s);
-        if (chain.size() > nodes_.size()) break;  // a corrupt parent cycle must not hang a query
+        if (chain.size() > size()) break;  // a corrupt parent cycle must not hang a query
     }
     std::string out;
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
         if (!out.empty()) out += " / ";
-        out += label(nodes_[*it]);
+        out += label(node(*it));
     }
     return out;
 }
 
 void SceneObstacles::within(const model::Aabb& region, std::vector<const model::Node*>& out) const {
     std::vector<Slot> slots;
-    scene_.spatialIndex().intersecting(region, slots);
-    for (Slot s : slots) {
-        const model::Node& n = scene_.node(s);
-        if (!n.hidden && n.geometry != model::GeometryKind::None && n.kind != model::NodeKind::Scene) out.push_back(&n);
-    }
+    scene_.intersecting(region, slots);
+    for (Slot s : slots)
+        if (!scene_.hidden(s)) out.push_back(&scene_.node(s));
 }
 
 void SceneObstacles::wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const {
-    for (Slot s : scene_.withCategory(relations::kWall)) {
-        const model::Node& n = scene_.node(s);
-        if (!n.hidden && n.geometry != model::GeometryKind::None && relations::intersects(scene_.bounds(s), region))
-            out.push_back(&n);
-    }
+    for (Slot s : scene_.withCategory(relations::kWall))
+        if (!scene_.hidden(s) && scene_.geometry(s) != model::GeometryKind::None &&
+            relations::intersects(scene_.bounds(s), region))
+            out.push_back(&scene_.node(s));
 }
 
 }  // namespace smql::catalog

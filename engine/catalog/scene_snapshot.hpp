@@ -1,10 +1,14 @@
-// One scene as the executor sees it: every node decoded once, with the
-// category, source-id and children lookups and the R-tree. Built from a read
-// transaction the first time a scene is queried and reused until the scene's
-// version changes, so a query touches LMDB only to check that version.
+// One scene as the executor sees it: what its first statement needs to find its way (each node's
+// kind, category and bounds, the category and kind lists) from the scene's stored index, the nodes
+// themselves decoded the first time a statement asks for them, and the spatial queries answered by
+// scanning the bounds until enough of them have run to pay for packing an R-tree. Built the first
+// time a scene is queried and reused until the scene's version changes, so a query touches LMDB
+// only to check that version and to read the nodes it visits for the first time.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -17,6 +21,7 @@
 #include "engine/similar/embedding_index.hpp"
 #include "model/types.hpp"
 #include "relations/predicates.hpp"
+#include "storage/scene_index.hpp"
 #include "storage/spatial_index.hpp"
 
 namespace smql::storage {
@@ -29,23 +34,39 @@ using Slot = std::uint32_t;  // a node's position in SceneSnapshot::nodes
 
 class SceneSnapshot {
 public:
+    // The scene as `txn` holds it: from its stored index when it has one (nodes decoded when first
+    // asked for, through the transaction readThrough names), else every node decoded now.
     static std::shared_ptr<const SceneSnapshot> load(const storage::ReadTransaction& txn, const model::SceneInfo& info);
     // A superseded version from the scene's history (AS OF), with the ids it had then.
     static std::shared_ptr<const SceneSnapshot> fromVersion(const model::SceneVersion& version);
 
+    // The transaction the nodes and relations not read yet are read through: any that sees the
+    // scene at this snapshot's version holds the same records, but a snapshot outlives each one, so
+    // whoever hands the snapshot to a statement names the statement's transaction, and null after.
+    void readThrough(const storage::ReadTransaction* txn) const;
+
     const model::SceneInfo& info() const { return info_; }
     // Made from a superseded version (AS OF) rather than the stored scene.
     bool historical() const { return historical_; }
-    const std::vector<model::Node>& nodes() const { return nodes_; }
-    const model::Node& node(Slot slot) const { return nodes_[slot]; }
+    std::size_t size() const { return index_.entries.size(); }
+    // Every node, decoded (the export, guidance, ASK's vocabulary, the embeddings need them all).
+    const std::vector<model::Node>& nodes() const;
+    const model::Node& node(Slot slot) const {
+        const model::Node* decoded = decoded_[slot].load(std::memory_order_acquire);
+        return decoded ? *decoded : decode(slot);
+    }
+    // What the index knows of a node without decoding it.
+    model::NodeKind kind(Slot slot) const { return index_.entries[slot].kind; }
+    bool hidden(Slot slot) const { return index_.entries[slot].hidden != 0; }
+    model::GeometryKind geometry(Slot slot) const { return index_.entries[slot].geometry; }
+    const std::string& category(Slot slot) const { return index_.categories[index_.entries[slot].category]; }
     // World-aligned bounds of a node's box (empty-looking for nodes without geometry).
-    const model::Aabb& bounds(Slot slot) const { return bounds_[slot]; }
+    const model::Aabb& bounds(Slot slot) const { return index_.entries[slot].bounds; }
     std::optional<Slot> slotOf(model::NodeId id) const;
     std::optional<Slot> slotOfSource(std::int64_t sourceId) const;
     // Slots of a category (visible and hidden), in id order; empty when the scene has none.
     const std::vector<Slot>& withCategory(std::string_view category) const;
     const std::vector<Slot>& children(Slot slot) const;
-    const std::vector<Slot>& slotsOfKind(model::NodeKind kind) const;
     // What a kind word (`object`) or `node` names, in id order: the nodes that are not hidden,
     // the scene's root left out. Made once with the snapshot, since most statements name one.
     const std::vector<Slot>& shownOfKind(model::NodeKind kind) const;
@@ -53,8 +74,13 @@ public:
     std::vector<std::string> categories() const;
     // Names of the attributes any node of the scene carries (color, material ...), sorted.
     const std::vector<std::string>& attributeNames() const;
-    const storage::SpatialIndex& spatialIndex() const { return rtree_; }
-    const std::vector<model::Relation>& storedRelations() const { return relations_; }
+    // The spatial index over the boxes of the nodes with geometry (the scene node left out):
+    // slots whose bounds intersect `region` (unordered), and the `k` slots whose bounds are
+    // nearest `region` (nearest first).
+    void intersecting(const model::Aabb& region, std::vector<Slot>& out) const;
+    void nearest(const model::Aabb& region, std::size_t k, std::vector<Slot>& out) const;
+    std::size_t spatialSize() const { return index_.spatialOrder.size(); }
+    const std::vector<model::Relation>& storedRelations() const;
 
     // Where a person can walk and the decision points of guidance: built the first time GUIDE or
     // SHOW GRAPH asks, then kept as long as the snapshot (a new version of the scene is a new one).
@@ -78,36 +104,51 @@ public:
     static std::string label(const model::Node& node);  // "sofa#12"
 
 private:
+    SceneSnapshot(model::SceneInfo info, storage::SceneIndex index, bool historical);
+    // Decoded nodes of a scene loaded whole (no stored index, or a version from the history).
+    void holdAll(std::vector<model::Node> nodes);
+    const model::Node& decode(Slot slot) const;
     void buildLinks() const;
-    static std::shared_ptr<const SceneSnapshot> build(model::SceneInfo info, std::vector<model::Node> nodes,
-                                                      std::vector<model::Relation> relations, bool historical);
+    // The packed R-tree once the scans have cost about what packing it does, else null.
+    const storage::SpatialIndex* packedTree() const;
 
     model::SceneInfo info_;
-    std::vector<model::Node> nodes_;
-    std::vector<model::Aabb> bounds_;
+    storage::SceneIndex index_;
+    bool historical_ = false;
     // A stored scene's ids are one block in slot order (storage gives a scene's nodes consecutive
     // ids), so a slot is its id less the first; a scene rebuilt from its history may not be, and
     // maps its ids.
     bool idsInOneBlock_ = false;
     model::NodeId firstId_ = 0;
     std::unordered_map<model::NodeId, Slot> slotById_;
-    // The tree's links and the source ids, made the first time a statement asks (PATH, SHOW TREE,
-    // DESCRIBE, src#id): most statements need neither, and a scene's first statement pays the load.
-    mutable std::once_flag linksBuilt_;
-    mutable std::unordered_map<std::int64_t, Slot> slotBySource_;
+
+    // The nodes by slot, null until decoded; the decoded ones live in decodedNodes_ (a deque, so
+    // they never move), or in allNodes_ once every node was asked for.
+    std::unique_ptr<std::atomic<const model::Node*>[]> decoded_;
+    mutable std::mutex readMutex_;  // guards what the reads below fill in
+    mutable const storage::ReadTransaction* reader_ = nullptr;
+    mutable std::deque<model::Node> decodedNodes_;
+    mutable std::once_flag allDecoded_;
+    mutable std::vector<model::Node> allNodes_;
+    mutable std::optional<std::vector<model::Relation>> relations_;
+
     std::unordered_map<std::string, std::vector<Slot>> slotsByCategory_;
-    mutable std::vector<std::vector<Slot>> children_;
-    std::vector<std::vector<Slot>> slotsByKind_;
     std::vector<std::vector<Slot>> shownByKind_;
     std::vector<Slot> shownNodes_;
+    // The tree's links and the source ids, made the first time a statement asks (PATH, SHOW TREE,
+    // DESCRIBE, src#id): most statements need neither.
+    mutable std::once_flag linksBuilt_;
+    mutable std::unordered_map<std::int64_t, Slot> slotBySource_;
+    mutable std::vector<std::vector<Slot>> children_;
     mutable std::once_flag attributeNamesFound_;  // the names are gathered when a statement first asks
     mutable std::vector<std::string> attributeNames_;
-    storage::SpatialIndex rtree_;
-    std::vector<model::Relation> relations_;
+    mutable std::atomic<std::size_t> scans_{0};
+    mutable std::atomic<bool> treePacked_{false};
+    mutable std::once_flag treePacking_;
+    mutable storage::SpatialIndex rtree_;
     mutable std::once_flag guidanceBuilt_;
     mutable std::once_flag embeddingsBuilt_;
     mutable std::unique_ptr<const similar::EmbeddingIndex> embeddings_;
-    bool historical_ = false;
     mutable std::once_flag storedEmbeddingsRead_;
     mutable std::unique_ptr<const similar::EmbeddingIndex> storedEmbeddings_;
     mutable std::unique_ptr<const Guidance> guidance_;

@@ -161,9 +161,9 @@ std::vector<relations::RelationHit> Executor::relate(const Node& a, const Node& 
 
 bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
     const auto& snap = scene();
-    const Node& a = snap.node(slot);
     const auto& spec = relations::spec(expr.predicate);
     if (expr.args.size() == 2) {
+        const Node& a = snap.node(slot);
         const auto& second = slots(expr.args[1], frame);
         for (catalog::Slot b : slots(expr.args[0], frame))
             for (catalog::Slot c : second) {
@@ -178,10 +178,11 @@ bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const rel
     // Where a reference must be for the predicate to hold: a cheap bounds test before the exact one.
     std::optional<model::Aabb> region;
     if (spec.referenceRegion) region = spec.referenceRegion(snap.bounds(slot), nearDistance, thresholds_);
+    // The candidate is decoded only once a reference passes the bounds test.
     auto holds = [&](catalog::Slot b) {
         poll();
         if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
-        return score(expr.predicate, a, snap.node(b), frame, nullptr, expr.nearDistance) > 0;
+        return score(expr.predicate, snap.node(slot), snap.node(b), frame, nullptr, expr.nearDistance) > 0;
     };
     const auto& refs = slots(expr.args[0], frame);
     if (!region) return std::any_of(refs.begin(), refs.end(), holds);
@@ -192,7 +193,7 @@ bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const rel
     if (refs.size() > kScannedReferences) {
         const auto& member = membership(expr.args[0], frame);
         std::vector<catalog::Slot> close;
-        snap.spatialIndex().intersecting(*region, close);
+        snap.intersecting(*region, close);
         return std::any_of(close.begin(), close.end(), [&](catalog::Slot b) { return member[b] && holds(b); });
     }
     const auto& bounds = boundsOf(expr.args[0], frame);
@@ -202,14 +203,15 @@ bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const rel
 }
 
 bool Executor::inTarget(const binder::Target& target, catalog::Slot slot, const relations::Frame& frame) {
-    const Node& n = scene().node(slot);
+    // From the scene's index: a candidate the target rules out is never decoded.
+    const auto& snap = scene();
     switch (target.kind) {
         case binder::Target::Kind::Category:
-            return n.category == target.category;
+            return snap.category(slot) == target.category;
         case binder::Target::Kind::NodeKind:
-            return n.kind == target.nodeKind && !n.hidden;
+            return snap.kind(slot) == target.nodeKind && !snap.hidden(slot);
         case binder::Target::Kind::AnyNode:
-            return n.kind != model::NodeKind::Scene && !n.hidden;
+            return snap.kind(slot) != model::NodeKind::Scene && !snap.hidden(slot);
         case binder::Target::Kind::Nodes: {
             const auto& nodes = slots(target.nodes, frame);
             return std::binary_search(nodes.begin(), nodes.end(), slot);
@@ -231,10 +233,9 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
         return std::sqrt(dx * dx + dy * dy + dz * dz);
     };
     if (want == 0) return {};
-    const auto& index = snap.spatialIndex();
     for (std::size_t k = std::max<std::size_t>(4 * want, 32);; k *= 4) {
         std::vector<catalog::Slot> near;
-        index.nearest(around, k, near);
+        snap.nearest(around, k, near);
         std::vector<Hit> hits;
         std::priority_queue<double> best;  // the `want` smallest exact distances so far, the largest on top
         bool settled = false;
@@ -257,7 +258,7 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
             return a.distance != b.distance ? a.distance < b.distance : snap.node(a.slot).id < snap.node(b.slot).id;
         });
         // Likewise, boxes beyond the last returned bounds cannot beat an answer strictly nearer than those bounds.
-        bool wholeIndex = near.size() < k || k >= index.size();
+        bool wholeIndex = near.size() < k || k >= snap.spatialSize();
         if (settled || wholeIndex ||
             (hits.size() >= want && hits[want - 1].distance < boundsGap(snap.bounds(near.back())))) {
             if (hits.size() > want) hits.resize(want);
@@ -331,7 +332,7 @@ std::vector<Hit> Executor::filtered(const planner::FindPlan& plan, const relatio
     if (plan.access == Access::RTreeProbe) {
         const BoundExpr& term = plan.probeTerm();
         for (catalog::Slot ref : slots(*planner::probeReferences(term), frame))
-            snap.spatialIndex().intersecting(probeRegion(term, snap.bounds(ref)), candidates);
+            snap.intersecting(probeRegion(term, snap.bounds(ref)), candidates);
         std::sort(candidates.begin(), candidates.end());
         candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
         std::erase_if(candidates, [&](catalog::Slot s) { return !inTarget(f.target, s, frame); });

@@ -99,7 +99,7 @@ const std::vector<catalog::Slot>& Executor::resolveSide(const NodeSet& set, cons
 const std::vector<char>& Executor::membership(const NodeSet& set, const relations::Frame& frame) {
     auto& member = membership_[set.id];
     if (member.empty()) {
-        member.assign(scene().nodes().size(), 0);
+        member.assign(scene().size(), 0);
         for (catalog::Slot s : slots(set, frame)) member[s] = 1;
     }
     return member;

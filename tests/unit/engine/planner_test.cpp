@@ -3,6 +3,8 @@
 // full scan returns.
 #include <catch2/catch.hpp>
 
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "engine/binder/binder.hpp"
@@ -22,6 +24,9 @@ namespace {
 struct PlannedScene {
     TempDir dir;
     std::unique_ptr<storage::Database> db = storage::Database::open(dir.path.string());
+    // What the snapshot reads the nodes it has not decoded yet through (the engine names each
+    // statement's transaction): one that sees the scene as it was loaded, for the test's life.
+    std::optional<storage::ReadTransaction> reader;
     std::shared_ptr<const catalog::SceneSnapshot> snapshot;
     relations::Thresholds thresholds;
 
@@ -31,8 +36,8 @@ struct PlannedScene {
         auto write = db->beginWrite();
         write.importScene(scene);
         write.commit();
-        auto read = db->beginRead();
-        snapshot = catalog::SceneSnapshot::load(read, *read.sceneByName("big"));
+        reader.emplace(db->beginRead());
+        snapshot = catalog::SceneSnapshot::load(*reader, *reader->sceneByName("big"));
     }
 
     catalog::Session session;

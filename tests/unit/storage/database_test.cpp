@@ -368,7 +368,8 @@ TEST_CASE("a database of schema version 2 is upgraded in place by a writable ope
     }
     setSchemaVersion(tmp.path(), 2, /*dropHistory=*/true);
     auto error = openError(tmp.path(), {.readOnly = true});
-    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 2; this smql reads version 3");
+    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 2; this smql reads version " +
+                                   std::to_string(kSchemaVersion));
     REQUIRE_THAT(error.hint(), Catch::Contains("open it once for writing"));
 
     auto db = Database::open(tmp.path());
@@ -384,7 +385,8 @@ TEST_CASE("a database of schema version 1 (records without checksums) is refused
     Database::open(tmp.path());
     setSchemaVersion(tmp.path(), 1);
     auto error = openError(tmp.path());
-    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 1; this smql reads version 3");
+    REQUIRE(error.message() == "database " + tmp.path() + " has schema version 1; this smql reads version " +
+                                   std::to_string(kSchemaVersion));
     REQUIRE_THAT(error.hint(), Catch::Contains("older smql"));
     REQUIRE_THAT(error.hint(), Catch::Contains("smql export json"));
 }

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include "model/types.hpp"
+#include "storage/codec.hpp"
 #include "storage/database.hpp"
 #include "storage/lmdb_env.hpp"
 
@@ -30,6 +31,19 @@ void editTable(const std::string& path, const char* table, Edit&& edit) {
     edit(txn, dbi);
     REQUIRE(mdb_txn_commit(txn) == 0);
     mdb_env_close(env);
+}
+
+// Makes the database at `path` what an smql of schema version 3 wrote: no scene index table, and
+// that version in the meta table.
+inline void asSchemaVersion3(const std::string& path) {
+    editTable(path, "meta", [](MDB_txn* txn, MDB_dbi meta) {
+        std::string three = codec::encodeU64(3);
+        MDB_val key = toVal(kSchemaVersionKey), value = toVal(three);
+        REQUIRE(mdb_put(txn, meta, &key, &value, 0) == 0);
+        MDB_dbi index;
+        REQUIRE(mdb_dbi_open(txn, "scene_index", 0, &index) == 0);
+        REQUIRE(mdb_drop(txn, index, 1) == 0);
+    });
 }
 
 // A fresh directory under the system temp dir, removed with everything in it.

@@ -1,0 +1,85 @@
+#include "storage/scene_index.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <unordered_map>
+
+namespace smql::storage {
+
+namespace {
+
+// A box's centre along one axis (times two), with NaN last, so the sorts below stay well defined.
+double centreKey(const model::Aabb& b, bool alongY) {
+    double twice = alongY ? b.min.y + b.max.y : b.min.x + b.max.x;
+    return std::isnan(twice) ? std::numeric_limits<double>::infinity() : twice;
+}
+
+// Sort-tile-recursive order in the floor plane (rooms are flat): sorted by x into vertical slices
+// of whole blocks, each slice sorted by y, so a block's boxes lie close together.
+void packSpatialOrder(SceneIndex& index) {
+    auto& order = index.spatialOrder;
+    for (std::uint32_t s = 0; s < index.entries.size(); ++s) {
+        const auto& e = index.entries[s];
+        if (e.kind != model::NodeKind::Scene && e.geometry != model::GeometryKind::None) order.push_back(s);
+    }
+    auto byAxis = [&](bool alongY) {
+        return [&index, alongY](std::uint32_t a, std::uint32_t b) {
+            double ka = centreKey(index.entries[a].bounds, alongY), kb = centreKey(index.entries[b].bounds, alongY);
+            return ka != kb ? ka < kb : a < b;
+        };
+    };
+    std::sort(order.begin(), order.end(), byAxis(false));
+    const std::size_t blocks = (order.size() + SceneIndex::kBlock - 1) / SceneIndex::kBlock;
+    const auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(blocks))));
+    const std::size_t perSlice = slices == 0 ? 0 : SceneIndex::kBlock * ((blocks + slices - 1) / slices);
+    for (std::size_t from = 0; from < order.size(); from += perSlice) {
+        auto end = order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), from + perSlice));
+        std::sort(order.begin() + static_cast<std::ptrdiff_t>(from), end, byAxis(true));
+    }
+    for (std::size_t from = 0; from < order.size(); from += SceneIndex::kBlock) {
+        model::Aabb block = index.entries[order[from]].bounds;
+        for (std::size_t i = from + 1; i < std::min(order.size(), from + SceneIndex::kBlock); ++i) {
+            const model::Aabb& b = index.entries[order[i]].bounds;
+            block.min = {std::min(block.min.x, b.min.x), std::min(block.min.y, b.min.y),
+                         std::min(block.min.z, b.min.z)};
+            block.max = {std::max(block.max.x, b.max.x), std::max(block.max.y, b.max.y),
+                         std::max(block.max.z, b.max.z)};
+        }
+        index.blockBounds.push_back(block);
+    }
+}
+
+}  // namespace
+
+SceneIndex SceneIndex::of(const std::vector<model::Node>& nodes, std::uint64_t version) {
+    SceneIndex index;
+    index.version = version;
+    index.entries.reserve(nodes.size());
+    std::unordered_map<std::string_view, std::uint32_t> positions;
+    for (const model::Node& n : nodes) {
+        auto [at, added] = positions.try_emplace(n.category, static_cast<std::uint32_t>(index.categories.size()));
+        if (added) index.categories.push_back(n.category);
+        SceneIndexEntry entry{};  // zeroed (there is no padding, but reserved): entries are stored as bytes
+        entry.bounds = model::worldAabb(n.box);
+        entry.category = at->second;
+        entry.kind = n.kind;
+        entry.geometry = n.geometry;
+        entry.hidden = n.hidden ? 1 : 0;
+        index.entries.push_back(entry);
+    }
+    packSpatialOrder(index);
+    return index;
+}
+
+bool operator==(const SceneIndex& a, const SceneIndex& b) {
+    auto sameBytes = [](const auto& x, const auto& y) {
+        return x.size() == y.size() &&
+               (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(*x.data())) == 0);
+    };
+    return a.version == b.version && a.categories == b.categories && sameBytes(a.entries, b.entries) &&
+           a.spatialOrder == b.spatialOrder && sameBytes(a.blockBounds, b.blockBounds);
+}
+
+}  // namespace smql::storage

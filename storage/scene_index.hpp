@@ -1,0 +1,48 @@
+// A scene's table of contents, stored with the scene (table scene_index, docs/storage.md): for
+// every node in id order its kind, geometry kind, hidden flag, category and world-aligned bounds.
+// It is what a scene's first query needs to find its way (the category lists, the spatial
+// index's boxes) without decoding every node record; the nodes it then visits are read one by one.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "model/geometry.hpp"
+#include "model/types.hpp"
+
+namespace smql::storage {
+
+// One node's line, fixed size so the stored array is copied out of the memory map in one piece.
+struct SceneIndexEntry {
+    model::Aabb bounds;      // model::worldAabb(node.box), exactly as computed from the record
+    std::uint32_t category;  // a position in SceneIndex::categories
+    model::NodeKind kind;
+    model::GeometryKind geometry;
+    std::uint8_t hidden;  // 0 or 1
+    std::uint8_t reserved;
+};
+static_assert(std::is_trivially_copyable_v<SceneIndexEntry> && sizeof(SceneIndexEntry) == 56,
+              "the stored array is these bytes");
+
+struct SceneIndex {
+    // The scene version it describes (model::SceneInfo::version): one made before a write that
+    // changed the scene is not believed.
+    std::uint64_t version = 0;
+    std::vector<std::string> categories;   // distinct, in order of first use
+    std::vector<SceneIndexEntry> entries;  // by slot: the scene node first, then its nodes in id order
+    // The slots of the nodes with geometry (the scene node left out) in an order that keeps near
+    // boxes together (sort-tile-recursive, as an R-tree is packed), and the bounds of each run of
+    // kBlock of them: a spatial query tests the blocks, then the boxes of the blocks it meets.
+    static constexpr std::size_t kBlock = 16;
+    std::vector<std::uint32_t> spatialOrder;
+    std::vector<model::Aabb> blockBounds;
+
+    // The index of a scene's nodes (the scene node first, then the rest in id order).
+    static SceneIndex of(const std::vector<model::Node>& nodes, std::uint64_t version);
+    // Byte for byte, so a stored index equals the one its records give (NaN bounds included).
+    friend bool operator==(const SceneIndex& a, const SceneIndex& b);
+};
+
+}  // namespace smql::storage

@@ -1,0 +1,158 @@
+// Scenes loaded from their stored index (engine/catalog/scene_snapshot.hpp): nodes decoded when a
+// statement first asks, spatial queries answered from the stored blocks until the R-tree is packed.
+// Nothing of it may change an answer.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "../storage/storage_test_support.hpp"
+#include "engine/catalog/scene_snapshot.hpp"
+#include "engine/format.hpp"
+#include "engine_support.hpp"
+#include "ingest/generate/room_generator.hpp"
+#include "query_suites.hpp"
+#include "relations/hierarchy.hpp"
+#include "relations/predicates.hpp"
+#include "storage/database.hpp"
+
+using namespace smql;
+using namespace smql::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Everything a statement answers, or the error as the shell shows it, as one text.
+std::string outcome(Engine& engine, const std::string& text) {
+    try {
+        std::string out;
+        for (const ResultSet& rs : engine.execute(text)) out += formatCsv(rs) + "|" + rs.message + "\n";
+        return out;
+    } catch (const Error& e) {
+        return "error: " + e.render(text);
+    }
+}
+
+// A generated room of `objects` things, stored, with a read transaction that sees it.
+struct StoredRoom {
+    TempDir dir;
+    std::unique_ptr<storage::Database> db = storage::Database::open(dir.path.string());
+    std::optional<storage::ReadTransaction> read;
+    model::SceneInfo info;
+
+    explicit StoredRoom(int objects) {
+        auto scene = generate::generateRoom({.seed = 5, .objectCount = objects, .name = "room"});
+        relations::assignParents(scene);
+        auto write = db->beginWrite();
+        write.importScene(scene);
+        write.commit();
+        read.emplace(db->beginRead());
+        info = *read->sceneByName("room");
+    }
+};
+
+std::vector<catalog::Slot> sorted(std::vector<catalog::Slot> slots) {
+    std::sort(slots.begin(), slots.end());
+    return slots;
+}
+
+double squaredGap(const model::Aabb& a, const model::Aabb& b) {
+    double dx = std::max({0.0, a.min.x - b.max.x, b.min.x - a.max.x});
+    double dy = std::max({0.0, a.min.y - b.max.y, b.min.y - a.max.y});
+    double dz = std::max({0.0, a.min.z - b.max.z, b.min.z - a.max.z});
+    return dx * dx + dy * dy + dz * dz;
+}
+
+}  // namespace
+
+// The query suites on two databases holding the same scenes: one that stores their indexes, and
+// one made as an smql of schema version 3 left it (no scene index), whose scenes load whole.
+TEST_CASE("every query suite answers the same from scenes loaded whole as from their stored indexes",
+          "[lazy][suites]") {
+    std::size_t compared = 0;
+    for (const fs::path& suite : querySuites()) {
+        TempDir indexedDir, wholeDir;
+        const std::vector<SuiteBlock> blocks = readSuite(suite);
+        {
+            auto indexed = Engine::open(indexedDir.path.string());
+            auto whole = Engine::open(wholeDir.path.string());
+            for (const SuiteBlock& block : blocks)
+                for (Engine* engine : {indexed.get(), whole.get()})
+                    if (!block.load.empty()) loadSuiteData(*engine, block.load, suite.parent_path());
+        }
+        storage::testing::asSchemaVersion3(wholeDir.path.string());
+        auto indexed = Engine::open(indexedDir.path.string());
+        auto whole = Engine::open(wholeDir.path.string());  // upgraded, its scenes still without an index
+        bool statementsBegan = false;
+        for (const SuiteBlock& block : blocks) {
+            if (!block.load.empty()) {
+                REQUIRE_FALSE(statementsBegan);  // the scenes were all loaded above
+                continue;
+            }
+            statementsBegan = true;
+            INFO(suite.filename().string() << ": " << block.text);
+            CHECK(outcome(*indexed, block.text) == outcome(*whole, block.text));
+            ++compared;
+        }
+    }
+    CHECK(compared > 150);
+}
+
+TEST_CASE("a scene's nodes and relations decoded one by one are its records", "[lazy]") {
+    StoredRoom room(300);
+    auto snapshot = catalog::SceneSnapshot::load(*room.read, room.info);
+    std::vector<model::Node> records;
+    room.read->forEachNodeInScene(room.info.id, [&](const model::Node& n) { records.push_back(n); });
+    REQUIRE(snapshot->size() == records.size());
+    // A few first, out of order, then all of them.
+    for (catalog::Slot s : {7u, 3u, 250u, 0u}) REQUIRE(snapshot->node(s) == records[s]);
+    for (catalog::Slot s = 0; s < records.size(); ++s) {
+        REQUIRE(snapshot->kind(s) == records[s].kind);
+        REQUIRE(snapshot->category(s) == records[s].category);
+        REQUIRE(snapshot->hidden(s) == records[s].hidden);
+    }
+    REQUIRE(snapshot->nodes() == records);
+    REQUIRE(snapshot->storedRelations() == room.read->relationsInScene(room.info.id));
+}
+
+// A fresh snapshot scans its stored blocks for its first spatial queries and packs the R-tree
+// after some: both must answer what a look at every box answers.
+TEST_CASE("spatial queries answer the same from the stored blocks and from the packed R-tree", "[lazy][spatial]") {
+    StoredRoom room(600);
+    auto snapshot = catalog::SceneSnapshot::load(*room.read, room.info);
+    std::vector<catalog::Slot> spatial;
+    for (catalog::Slot s = 0; s < snapshot->size(); ++s)
+        if (snapshot->kind(s) != model::NodeKind::Scene && snapshot->geometry(s) != model::GeometryKind::None)
+            spatial.push_back(s);
+    REQUIRE(snapshot->spatialSize() == spatial.size());
+    std::vector<model::Aabb> regions;
+    for (std::size_t i = 0; i < spatial.size(); i += 9) {
+        model::Aabb r = snapshot->bounds(spatial[i]);
+        const double pad = 0.1 * static_cast<double>(i % 20);
+        r.min = {r.min.x - pad, r.min.y - pad, r.min.z - pad};
+        r.max = {r.max.x + pad, r.max.y + pad, r.max.z + pad};
+        regions.push_back(r);
+    }
+    REQUIRE(regions.size() > 60);
+    for (const model::Aabb& region : regions) {
+        std::vector<catalog::Slot> expected;
+        for (catalog::Slot s : spatial)
+            if (relations::intersects(snapshot->bounds(s), region)) expected.push_back(s);
+        std::vector<catalog::Slot> found;
+        snapshot->intersecting(region, found);
+        REQUIRE(sorted(found) == expected);
+
+        // The nearest k: the same gaps as the k smallest of every box (which of equal gaps is free).
+        std::vector<double> gaps;
+        for (catalog::Slot s : spatial) gaps.push_back(squaredGap(snapshot->bounds(s), region));
+        std::sort(gaps.begin(), gaps.end());
+        for (std::size_t k : {1u, 5u, 40u}) {
+            std::vector<catalog::Slot> nearest;
+            snapshot->nearest(region, k, nearest);
+            REQUIRE(nearest.size() == k);
+            for (std::size_t i = 0; i < k; ++i)
+                REQUIRE(squaredGap(snapshot->bounds(nearest[i]), region) == Approx(gaps[i]).margin(1e-12));
+        }
+    }
+}

@@ -1,0 +1,230 @@
+// The scene index (storage/scene_index.hpp): stored with every write of a scene, always what the
+// scene's records give, refused when damaged, absent from databases written before schema 4.
+#include <catch2/catch.hpp>
+
+#include <lmdb.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/error.hpp"
+#include "model/geometry.hpp"
+#include "storage/check.hpp"
+#include "storage/codec.hpp"
+#include "storage/database.hpp"
+#include "storage/lmdb_env.hpp"
+#include "storage_test_support.hpp"
+
+using namespace smql;
+using namespace smql::storage;
+using namespace smql::storage::testing;
+using model::NodeId;
+using model::NodeKind;
+
+namespace {
+
+// A hall of `count` boxes on a grid, turned by various angles, with walls, a hidden part, a node
+// without geometry and one without a category: every field the index keeps, in several values.
+model::SceneData hall(std::string name, std::size_t count) {
+    model::SceneData data;
+    data.info.name = std::move(name);
+    data.info.source = "test:hall";
+    data.nodes.push_back(localNode(1, NodeKind::Room, model::kNoNode, "hall"));
+    for (NodeId id = 2; id <= 5; ++id) {
+        model::Node wall = localNode(id, NodeKind::Anchor, 1, "wall");
+        wall.geometry = model::GeometryKind::Plane;
+        wall.box = {{id % 2 ? 0.0 : 20.0, 10.0, 1.5}, {0.1, 20.0, 3.0}, id >= 4 ? M_PI / 2 : 0.0};
+        data.nodes.push_back(wall);
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+        const auto id = static_cast<NodeId>(6 + i);
+        const std::size_t row = i / 50;  // the grid's rows of 50
+        model::Node thing = localNode(id, NodeKind::Object, 1, i % 3 == 0 ? "chair" : i % 3 == 1 ? "table" : "mug");
+        thing.geometry = model::GeometryKind::Box;
+        thing.box = {{0.37 * static_cast<double>(i % 50), 0.41 * static_cast<double>(row), 0.5},
+                     {0.4, 0.3 + 0.01 * static_cast<double>(i % 7), 0.9},
+                     0.1 * static_cast<double>(i % 13)};
+        thing.hidden = i % 17 == 0;
+        if (i % 29 == 0) thing.category.clear();
+        data.nodes.push_back(thing);
+    }
+    data.nodes.push_back(localNode(static_cast<NodeId>(6 + count), NodeKind::Description, 1, "note"));
+    return data;
+}
+
+std::vector<model::Node> nodesOf(const ReadTransaction& txn, NodeId scene) {
+    std::vector<model::Node> nodes;
+    txn.forEachNodeInScene(scene, [&](const model::Node& n) { nodes.push_back(n); });
+    return nodes;
+}
+
+// The index stored for a scene equals the one its records give, and its spatial order holds every
+// node with geometry once, in blocks whose bounds hold their boxes.
+void requireIndexOfRecords(const ReadTransaction& txn, NodeId scene) {
+    const model::SceneInfo info = *txn.scene(scene);
+    std::optional<SceneIndex> stored = txn.sceneIndex(info);
+    REQUIRE(stored);
+    const std::vector<model::Node> nodes = nodesOf(txn, scene);
+    REQUIRE(*stored == SceneIndex::of(nodes, info.version));
+    std::vector<std::uint32_t> spatial;
+    for (std::uint32_t s = 0; s < nodes.size(); ++s)
+        if (nodes[s].kind != NodeKind::Scene && nodes[s].geometry != model::GeometryKind::None) spatial.push_back(s);
+    std::vector<std::uint32_t> order = stored->spatialOrder;
+    std::sort(order.begin(), order.end());
+    REQUIRE(order == spatial);
+    for (std::size_t i = 0; i < stored->spatialOrder.size(); ++i) {
+        const model::Aabb& block = stored->blockBounds.at(i / SceneIndex::kBlock);
+        const model::Aabb box = model::worldAabb(nodes[stored->spatialOrder[i]].box);
+        REQUIRE(block.min.x <= box.min.x);
+        REQUIRE(block.min.y <= box.min.y);
+        REQUIRE(block.min.z <= box.min.z);
+        REQUIRE(box.max.x <= block.max.x);
+        REQUIRE(box.max.y <= block.max.y);
+        REQUIRE(box.max.z <= block.max.z);
+    }
+}
+
+std::uint64_t sceneIndexEntries(const ReadTransaction& txn) {
+    for (const auto& table : txn.tableStats())
+        if (table.name == "scene_index") return table.entries;
+    FAIL("no scene_index table");
+    return 0;
+}
+
+}  // namespace
+
+TEST_CASE("a scene's stored index is what its records give, through every write", "[storage][scene_index]") {
+    TempDir tmp;
+    auto db = Database::open(tmp.path());
+    const NodeId first = importCommitted(*db, hall("first", 300));
+    const NodeId second = importCommitted(*db, hall("second", 5));
+    requireIndexOfRecords(db->beginRead(), first);
+    requireIndexOfRecords(db->beginRead(), second);
+
+    SECTION("nodes updated in place: boxes moved, a node hidden") {
+        std::vector<model::Node> changed;
+        {
+            auto read = db->beginRead();
+            for (NodeId id : {first + 7, first + 40}) {
+                model::Node n = *read.node(id);
+                n.box.center.x += 30;
+                n.box.yaw += 0.5;
+                n.hidden = !n.hidden;
+                changed.push_back(n);
+            }
+        }
+        auto write = db->beginWrite();
+        write.updateNodes(changed);
+        write.commit();
+        auto read = db->beginRead();
+        REQUIRE(read.scene(first)->version == 2);
+        requireIndexOfRecords(read, first);
+    }
+    SECTION("renamed") {
+        auto write = db->beginWrite();
+        write.renameScene(first, "renamed");
+        write.commit();
+        auto read = db->beginRead();
+        requireIndexOfRecords(read, first);
+        REQUIRE(read.sceneIndex(*read.scene(first))->categories.front() == "renamed");
+    }
+    SECTION("replaced by its next version, then dropped") {
+        NodeId next = 0;
+        {
+            auto write = db->beginWrite();
+            next = write.replaceScene(first, hall("first", 120), "2026-11-25T09:00:00Z", {}).scene;
+            write.commit();
+        }
+        requireIndexOfRecords(db->beginRead(), next);
+        REQUIRE(sceneIndexEntries(db->beginRead()) == 2);
+        {
+            auto write = db->beginWrite();
+            write.dropScene(next);
+            write.commit();
+        }
+        REQUIRE(sceneIndexEntries(db->beginRead()) == 1);
+    }
+    SECTION("an index of another version than the scene's is not believed") {
+        auto read = db->beginRead();
+        model::SceneInfo info = *read.scene(first);
+        ++info.version;
+        REQUIRE_FALSE(read.sceneIndex(info));
+    }
+    REQUIRE(checkDatabase(tmp.path()).problems.empty());
+}
+
+TEST_CASE("a scene index record round-trips, and damage to it is refused", "[storage][scene_index][codec]") {
+    std::vector<model::Node> nodes;
+    nodes.push_back(localNode(7, NodeKind::Scene, model::kNoNode, "s"));
+    for (NodeId id = 8; id < 30; ++id) {
+        model::Node n = localNode(id, NodeKind::Object, 7, id % 2 ? "cup" : "plate");
+        n.geometry = model::GeometryKind::Box;
+        n.box = {{static_cast<double>(id), 1, 0.5}, {0.2, 0.2, 0.2}, 0.3};
+        nodes.push_back(n);
+    }
+    const SceneIndex index = SceneIndex::of(nodes, 3);
+    std::string record;
+    codec::encodeSceneIndex(7, index, record);
+    REQUIRE(codec::decodeSceneIndex(7, record) == index);
+    // Stored under another scene's key: the checksum covers the key.
+    REQUIRE_THROWS_AS(codec::decodeSceneIndex(8, record), codec::CorruptRecord);
+    for (std::size_t byte = 0; byte < record.size(); byte += 7) {
+        std::string flipped = record;
+        flipped[byte] = static_cast<char>(flipped[byte] ^ 0x10);
+        REQUIRE_THROWS_AS(codec::decodeSceneIndex(7, flipped), codec::CorruptRecord);
+    }
+    for (std::size_t length = 0; length < record.size(); length += 5)
+        REQUIRE_THROWS_AS(codec::decodeSceneIndex(7, record.substr(0, length)), codec::CorruptRecord);
+}
+
+TEST_CASE("a database of schema version 3 is read without scene indexes, and a writable open upgrades it",
+          "[storage][scene_index][database]") {
+    TempDir tmp;
+    NodeId old = 0;
+    {
+        auto db = Database::open(tmp.path());
+        old = importCommitted(*db, hall("old", 40));
+    }
+    asSchemaVersion3(tmp.path());
+    const std::vector<model::Node> before = [&] {
+        auto db = Database::open(tmp.path(), {.readOnly = true});
+        auto read = db->beginRead();
+        REQUIRE_FALSE(read.sceneIndex(*read.scene(old)));
+        for (const auto& table : read.tableStats()) REQUIRE(table.name != "scene_index");
+        return nodesOf(read, old);
+    }();
+    REQUIRE(before.size() == 47);  // the scene node, the hall, 4 walls, 40 things, a note
+    REQUIRE(checkDatabase(tmp.path()).problems.empty());
+
+    auto db = Database::open(tmp.path());
+    const NodeId added = importCommitted(*db, hall("new", 40));
+    auto read = db->beginRead();
+    REQUIRE(nodesOf(read, old) == before);
+    REQUIRE_FALSE(read.sceneIndex(*read.scene(old)));  // until a write of that scene
+    requireIndexOfRecords(read, added);
+    REQUIRE(checkDatabase(tmp.path()).problems.empty());
+    REQUIRE_NOTHROW(Database::open(tmp.path(), {.readOnly = true}));  // now version 4
+}
+
+TEST_CASE("smql check reports a scene index that does not match the records", "[storage][scene_index][check]") {
+    TempDir tmp;
+    NodeId scene = 0;
+    SceneIndex wrong;
+    {
+        auto db = Database::open(tmp.path());
+        scene = importCommitted(*db, hall("hall", 30));
+        auto read = db->beginRead();
+        wrong = *read.sceneIndex(*read.scene(scene));
+    }
+    wrong.entries[3].hidden = 1 - wrong.entries[3].hidden;  // sealed again: only the check can tell
+    editTable(tmp.path(), "scene_index", [&](MDB_txn* txn, MDB_dbi table) {
+        std::string record;
+        codec::encodeSceneIndex(scene, wrong, record);
+        auto key = codec::idKey(scene);
+        MDB_val k = toVal(key), v = toVal(record);
+        REQUIRE(mdb_put(txn, table, &k, &v, 0) == 0);
+    });
+    auto problems = checkDatabase(tmp.path()).problems;
+    REQUIRE(problems.size() == 1);
+    REQUIRE_THAT(problems.front(), Catch::Contains("its scene index does not match its node records"));
+}
