@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "engine/catalog/attributes.hpp"
+#include "engine/catalog/description.hpp"
 #include "engine/catalog/scene_snapshot.hpp"
 #include "engine/catalog/session.hpp"
 #include "engine/parser/parser.hpp"
@@ -171,13 +172,63 @@ ResultSet checked(const pg::Result& r, const CompiledQuery& query) {
     return out;
 }
 
+// DESCRIBE's rows for each node found: its fields from the query's row, its attributes, children
+// and evidence from the store's tables.
+ResultSet described(pg::Connection& c, const pg::Result& r) {
+    ResultSet out;
+    out.columns = {{"id", ValueType::Integer}, {"field", ValueType::Text}, {"value", ValueType::Text}};
+    for (int i = 0; i < r.rows(); ++i) {
+        model::Node n;
+        n.id = static_cast<model::NodeId>(r.integer(i, 0));
+        n.kind = static_cast<model::NodeKind>(r.integer(i, 1));
+        n.category = r.text(i, 2);
+        n.geometry = static_cast<model::GeometryKind>(r.integer(i, 3));
+        n.box = {{r.real(i, 4), r.real(i, 5), r.real(i, 6)}, {r.real(i, 7), r.real(i, 8), r.real(i, 9)}, r.real(i, 10)};
+        n.hidden = r.text(i, 11) == "t";
+        n.confidence = r.real4(i, 12);
+        if (!r.null(i, 13)) n.sourceId = r.integer(i, 13);
+        n.text = r.text(i, 14);
+        pg::Parameters node;
+        node.add(r.integer(i, 15)).add(r.integer(i, 0));
+        pg::Result attributes =
+            c.exec("SELECT name, value FROM smql.attributes WHERE scene = $1 AND node = $2 ORDER BY position", node,
+                   "reading a node's attributes");
+        for (int a = 0; a < attributes.rows(); ++a)
+            n.attributes.push_back({std::string(attributes.text(a, 0)), std::string(attributes.text(a, 1))});
+        pg::Result kids = c.exec(
+            "SELECT id, kind, category, text FROM smql.nodes WHERE scene = $1 AND parent = $2 "
+            "ORDER BY id",
+            node, "reading a node's children");
+        std::vector<model::Node> children(static_cast<std::size_t>(kids.rows()));
+        std::vector<const model::Node*> childList;
+        for (int k = 0; k < kids.rows(); ++k) {
+            model::Node& child = children[static_cast<std::size_t>(k)];
+            child.id = static_cast<model::NodeId>(kids.integer(k, 0));
+            child.kind = static_cast<model::NodeKind>(kids.integer(k, 1));
+            child.category = kids.text(k, 2);
+            child.text = kids.text(k, 3);
+            childList.push_back(&child);
+        }
+        pg::Result blobs = c.exec(
+            "SELECT name, media_type, octet_length(bytes) FROM smql.blobs WHERE scene = $1 AND "
+            "node = $2 ORDER BY name",
+            node, "reading a node's evidence");
+        std::vector<catalog::EvidenceInfo> evidence;
+        for (int b = 0; b < blobs.rows(); ++b)
+            evidence.push_back({std::string(blobs.text(b, 0)), std::string(blobs.text(b, 1)),
+                                static_cast<std::uint64_t>(blobs.integer(b, 2))});
+        catalog::describeNode(out, n, r.text(i, 16), childList, evidence);
+    }
+    return out;
+}
+
 // SHOW CATEGORIES and SHOW ATTRIBUTES of the chosen scene versions, as the engine lists them.
 ResultSet shown(Store& store, const QueryScope& scope, const ast::ShowStmt& show) {
     if (show.what == ast::ShowStmt::What::Attributes)
         return catalog::attributeTable(
             scope.allScenes ? std::vector<std::string>()
                             : std::vector<std::string>(scope.attributes.begin(), scope.attributes.end()));
-    if (show.what != ast::ShowStmt::What::Categories) throw notYet("SHOW SCENES, TREE, SETTINGS, CHANGES and GRAPH");
+    if (show.what != ast::ShowStmt::What::Categories) throw notYet("SHOW SCENES, SETTINGS, CHANGES and GRAPH");
     ResultSet out;
     if (scope.allScenes) {
         out.columns = {{"scene", ValueType::Text}, {"category", ValueType::Text}, {"count", ValueType::Integer}};
@@ -204,7 +255,8 @@ ResultSet shown(Store& store, const QueryScope& scope, const ast::ShowStmt& show
 
 ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds& thresholds,
               const ast::Statement& statement) {
-    if (const auto* show = std::get_if<ast::ShowStmt>(&statement.body)) return shown(store, scope, *show);
+    if (const auto* show = std::get_if<ast::ShowStmt>(&statement.body); show && show->what != ast::ShowStmt::What::Tree)
+        return shown(store, scope, *show);
     CompiledQuery query = compileQuery(statement, scope, thresholds);
     pg::Parameters parameters;
     parameters.add(scope.keys);
@@ -236,6 +288,15 @@ ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds
             return relationRows(r);
         case CompiledQuery::Shape::Check:
             return checked(r, query);
+        case CompiledQuery::Shape::Describe:
+            return described(c, r);
+        case CompiledQuery::Shape::Tree: {
+            ResultSet out;
+            out.columns = {{"id", ValueType::Integer}, {"depth", ValueType::Integer}, {"node", ValueType::Text}};
+            for (int i = 0; i < r.rows(); ++i)
+                out.rows.push_back({r.integer(i, 0), r.integer(i, 1), std::string(r.text(i, 2))});
+            return out;
+        }
     }
     return {};
 }

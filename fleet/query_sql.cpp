@@ -159,6 +159,19 @@ public:
         } else if (const auto* c = std::get_if<ast::CheckStmt>(&statement.body)) {
             select = check(*c, out);
             out.shape = CompiledQuery::Shape::Check;
+        } else if (const auto* d = std::get_if<ast::DescribeStmt>(&statement.body)) {
+            if (scope_.allScenes) throw notYet("DESCRIBE across all scenes");
+            select = nodesOf(d->target, std::nullopt, nullptr, [](const std::string& n, const std::string&) {
+                return fmt::format(
+                    "{0}.id, {0}.kind, {0}.category, {0}.geometry, {0}.cx, {0}.cy, {0}.cz, {0}.sx, "
+                    "{0}.sy, {0}.sz, {0}.yaw, {0}.hidden, {0}.confidence, {0}.source_id, {0}.text, {0}.scene, {1}",
+                    n, pathSql(n));
+            });
+            out.shape = CompiledQuery::Shape::Describe;
+        } else if (const auto* show = std::get_if<ast::ShowStmt>(&statement.body);
+                   show && show->what == ast::ShowStmt::What::Tree) {
+            select = tree(*show, out);
+            out.shape = CompiledQuery::Shape::Tree;
         } else {
             throw notYet(fmt::format("'{}'", statement.text));
         }
@@ -240,6 +253,30 @@ private:
             "smql.box_distance({6}, {7}) FROM {8} WHERE {6}.scene = ANY($1::int8[]) AND {9}",
             columns, same, spec.name(), arguments, spec.takesDistance ? distance.empty() ? ", NULL" : distance : "",
             thresholds(), a, b, from, where);
+    }
+
+    // SHOW TREE [x]: the scene's tree (its root is 0 on the store) or the subtree under one node,
+    // depth-first with children in id order; hidden nodes, descriptions and frames left out, with
+    // what hangs below them.
+    std::string tree(const ast::ShowStmt& show, CompiledQuery& out) {
+        if (scope_.allScenes) throw notYet("SHOW TREE across all scenes");
+        const std::string shown =
+            fmt::format("NOT {{0}}.hidden AND {{0}}.kind NOT IN ({}, {})",
+                        static_cast<int>(model::NodeKind::Description), static_cast<int>(model::NodeKind::Frame));
+        std::string start = fmt::format("SELECT 0, 0, ARRAY[0], {}", rootName("s"));
+        std::string startFrom = " FROM (SELECT min(id) AS scene FROM unnest($1::int8[]) AS id) s";
+        if (show.root) {
+            out.singles.push_back(single("SHOW TREE's node", *show.root));
+            const std::string r = alias('r');
+            start = fmt::format("SELECT {0}.id, 0, ARRAY[{0}.id], {1}", r, labelSql(r));
+            startFrom = fmt::format(" FROM smql.nodes {0} WHERE {0}.scene = ANY($1::int8[]) AND {1} AND {2}", r,
+                                    refers(*show.root, r), fmt::format(fmt::runtime(shown), r));
+        }
+        return fmt::format(
+            "WITH RECURSIVE tree(id, depth, trail, label) AS ({0}{1} UNION ALL SELECT c.id, t.depth + 1, t.trail || "
+            "c.id, {2} FROM tree t JOIN smql.nodes c ON c.scene = ANY($1::int8[]) AND c.parent = t.id WHERE {3}) "
+            "SELECT id, depth, repeat('  ', depth) || label FROM tree ORDER BY trail",
+            start, startFrom, labelSql("c"), fmt::format(fmt::runtime(shown), "c"));
     }
 
     // The predicate a WHERE or CHECK names, checked for its references and distance as the binder does.

@@ -42,8 +42,10 @@ struct CompiledQuery {
     // What the query's rows are: COUNT's one count; FIND's nodes (id, category, [scene name],
     // source id, whether placed, box, [distance]); RELATE's pairs (each side's id, category and
     // kind, the relations as (code, score) pairs, the distance); CHECK's one pair (the sides as
-    // RELATE's, a third for between, the score, the distance).
-    enum class Shape { Count, Find, Return, Relate, Check };
+    // RELATE's, a third for between, the score, the distance); SHOW TREE's nodes (id, depth, label);
+    // DESCRIBE's nodes (id, kind, category, geometry, box, hidden, confidence, source id, text,
+    // scene version, path).
+    enum class Shape { Count, Find, Return, Relate, Check, Tree, Describe };
     Shape shape = Shape::Find;
     bool distance = false;  // FIND ... NEAREST TO / ORDER BY distance(): a distance column
     bool path = false;      // FIND ... PATH: a last column, the way from the scene down to the node

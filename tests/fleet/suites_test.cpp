@@ -57,7 +57,9 @@ public:
         for (const auto& row : scenes.rows) {
             const std::string name = std::get<std::string>(row.at(0));
             const model::SceneData data = engine.readScene(name);
-            sceneName_.emplace(std::get<std::int64_t>(row.at(1)), name);
+            const auto id = std::get<std::int64_t>(row.at(1));
+            sceneName_.emplace(id, name);
+            localOf_[name].emplace(id, 0);  // the scene's root, which the store does not keep as a node
             for (std::size_t i = 0; i < data.nodes.size(); ++i)
                 localOf_[name].emplace(static_cast<std::int64_t>(data.nodes[i].id), static_cast<std::int64_t>(i) + 1);
         }
@@ -126,11 +128,13 @@ Outcome onEngine(Engine& engine, EngineTranslation& translation, const std::stri
         const std::vector<ast::Statement> statements = parser::parse(text);
         for (const ast::Statement& s : statements)
             if (const auto* use = std::get_if<ast::UseStmt>(&s.body)) translation.setCurrent(use->scene);
-        // FIND's ids and RELATE's and CHECK's labels are nodes'; SHOW SCENES's ids are not.
+        // FIND's, DESCRIBE's and SHOW TREE's ids and RELATE's and CHECK's labels are nodes'; SHOW SCENES's are not.
         const auto& last = statements.back().body;
-        const bool found = std::holds_alternative<ast::FindStmt>(last) ||
-                           std::holds_alternative<ast::RelateStmt>(last) ||
-                           std::holds_alternative<ast::CheckStmt>(last);
+        const auto* show = std::get_if<ast::ShowStmt>(&last);
+        const bool found =
+            std::holds_alternative<ast::FindStmt>(last) || std::holds_alternative<ast::RelateStmt>(last) ||
+            std::holds_alternative<ast::CheckStmt>(last) || std::holds_alternative<ast::DescribeStmt>(last) ||
+            (show && show->what == ast::ShowStmt::What::Tree);
         out.answer = sortedCsv(found ? translation.translate(results.back()) : results.back());
     } catch (const Error& e) {
         out.failed = true;
