@@ -289,7 +289,7 @@ std::optional<Slot> SceneSnapshot::slotOfSource(std::int64_t sourceId) const {
 
 const std::vector<Slot>& SceneSnapshot::withCategory(std::string_view category) const {
     static const std::vector<Slot> none;
-    auto it = slotsByCategory_.find(std::string(category));
+    auto it = slotsByCategory_.find(category);
     return it == slotsByCategory_.end() ? none : it->second;
 }
 
@@ -311,7 +311,7 @@ std::vector<std::string> SceneSnapshot::categories() const {
             return !hidden(s) && k != model::NodeKind::Scene && k != model::NodeKind::Description &&
                    k != model::NodeKind::Frame;
         });
-        if (queryable) out.push_back(name);
+        if (queryable) out.emplace_back(name);
     }
     std::sort(out.begin(), out.end());
     return out;

@@ -132,7 +132,8 @@ private:
     mutable std::vector<model::Node> allNodes_;
     mutable std::optional<std::vector<model::Relation>> relations_;
 
-    std::unordered_map<std::string, std::vector<Slot>> slotsByCategory_;
+    // Keyed by views of index_'s category names, which live as long as the snapshot.
+    std::unordered_map<std::string_view, std::vector<Slot>> slotsByCategory_;
     std::vector<std::vector<Slot>> shownByKind_;
     std::vector<Slot> shownNodes_;
     // The tree's links and the source ids, made the first time a statement asks (PATH, SHOW TREE,
