@@ -2,10 +2,13 @@
 // private PostgreSQL + PostGIS cluster (fleet/pg/local_cluster.hpp, default server settings: commits
 // synchronous), builds local databases of generated rooms, and measures one device's push, four
 // devices pushing at once (one thread and one connection each), and a push with nothing to send;
-// with --shards N, through a coordinator over N clusters on this machine.
+// with --shards N, through a coordinator over N clusters on this machine. Then the latency of SMQL
+// statements on the store against the same statements in a device's own database.
 // `make bench-fleet` prints the Markdown table docs/fleet.md keeps.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <thread>
 #include <vector>
@@ -16,6 +19,7 @@
 #include "engine/engine.hpp"
 #include "fleet/fleet.hpp"
 #include "fleet/pg/local_cluster.hpp"
+#include "fleet/query.hpp"
 #include "fleet/shards.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "storage/database.hpp"
@@ -50,6 +54,48 @@ void row(const std::string& what, const std::vector<smql::fleet::PushReport>& re
     for (const auto& r : reports) sent += r.sent, nodes += r.nodes;
     fmt::print("| {} | {} | {} | {:.2f} s | {:.0f} | {:.0f} |\n", what, sent, nodes, seconds, sent / seconds,
                nodes / seconds);
+}
+
+// The median of `rounds` runs, in microseconds.
+double medianMicros(const std::function<void()>& run, int rounds = 31) {
+    std::vector<double> times;
+    for (int i = 0; i < rounds; ++i) {
+        const auto started = Clock::now();
+        run();
+        times.push_back(secondsSince(started) * 1e6);
+    }
+    std::sort(times.begin(), times.end());
+    return times[times.size() / 2];
+}
+
+// Statements on the store (one scene of the first device; every scene of every device) against the
+// same statements in the first device's own database.
+void queryLatency(const std::string& url, const std::string& device, const fs::path& local) {
+    struct Query {
+        std::string what, scene, statement;
+    };
+    const std::vector<Query> queries = {
+        {"one scene: FIND chair", "room_0", "FIND chair"},
+        {"one scene: FIND chair WHERE near(table)", "room_0", "FIND chair WHERE near(table)"},
+        {"one scene: FIND object NEAREST TO door LIMIT 5", "room_0", "FIND object NEAREST TO door LIMIT 5"},
+        {"all scenes: COUNT chair", "*", "COUNT chair"},
+        {"all scenes: FIND chair LIMIT 100", "*", "FIND chair LIMIT 100"},
+    };
+    smql::fleet::StoreSession mine(url, device), everyone(url, "");
+    auto engine = smql::Engine::open(local.string());
+    const auto ignore = [](smql::ResultSet&&) {};
+    fmt::print("\n| statement | store p50 | local smql p50 | store / local |\n|---|---|---|---|\n");
+    for (const auto& q : queries) {
+        smql::fleet::StoreSession& session = q.scene == "*" ? everyone : mine;
+        session.execute(fmt::format("USE SCENE '{}'", q.scene), ignore);
+        engine->execute(fmt::format("USE SCENE '{}'", q.scene));
+        const double store = medianMicros([&] { session.execute(q.statement, ignore); });
+        const double mineLocal = medianMicros([&] { engine->execute(q.statement); });
+        fmt::print("| {} | {:.0f} us | {:.0f} us | {:.1f}x |\n", q.what, store, mineLocal, store / mineLocal);
+    }
+    fmt::print(
+        "\nThe store's all-scenes statements range over every device's scenes, the local ones over the "
+        "first device's.\n");
 }
 
 int run(const Options& options) {
@@ -101,6 +147,7 @@ int run(const Options& options) {
     auto nothing = smql::fleet::push(*devices[0], url);
     fmt::print("| again, nothing to send ({} present) | {} | {} | {:.1f} ms | - | - |\n", nothing.present, nothing.sent,
                nothing.nodes, secondsSince(started) * 1000);
+    queryLatency(url, one.device, work / "device0");
     devices.clear();
     fs::remove_all(work);
     return 0;

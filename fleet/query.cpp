@@ -228,7 +228,7 @@ ResultSet shown(Store& store, const QueryScope& scope, const ast::ShowStmt& show
         return catalog::attributeTable(
             scope.allScenes ? std::vector<std::string>()
                             : std::vector<std::string>(scope.attributes.begin(), scope.attributes.end()));
-    if (show.what != ast::ShowStmt::What::Categories) throw notYet("SHOW SCENES, SETTINGS, CHANGES and GRAPH");
+    if (show.what != ast::ShowStmt::What::Categories) throw notYet("SHOW SETTINGS, CHANGES and GRAPH");
     ResultSet out;
     if (scope.allScenes) {
         out.columns = {{"scene", ValueType::Text}, {"category", ValueType::Text}, {"count", ValueType::Integer}};
@@ -253,10 +253,29 @@ ResultSet shown(Store& store, const QueryScope& scope, const ast::ShowStmt& show
     return out;
 }
 
+// EXPLAIN on the store: the SQL a statement compiles to and PostgreSQL's plan for it.
+ResultSet explained(Store& store, const QueryScope& scope, const relations::Thresholds& thresholds,
+                    const ast::Statement& statement) {
+    const CompiledQuery query = compileQuery(statement, scope, thresholds);
+    pg::Parameters parameters;
+    parameters.add(scope.keys);
+    for (const auto& p : query.parameters) parameters.add(p);
+    pg::Result r =
+        store.connection().exec("EXPLAIN " + query.sql, parameters, fmt::format("explaining `{}`", statement.text));
+    ResultSet out;
+    out.columns = {{"plan", ValueType::Text}};
+    out.rows.push_back({"SQL: " + query.sql});
+    for (int i = 0; i < r.rows(); ++i) out.rows.push_back({std::string(r.text(i, 0))});
+    out.message = "the fleet store's plan: PostgreSQL's, for the SQL the statement compiles to";
+    return out;
+}
+
 ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds& thresholds,
               const ast::Statement& statement) {
     if (const auto* show = std::get_if<ast::ShowStmt>(&statement.body); show && show->what != ast::ShowStmt::What::Tree)
         return shown(store, scope, *show);
+    if (const auto* explain = std::get_if<ast::ExplainStmt>(&statement.body))
+        return explained(store, scope, thresholds, *explain->inner);
     CompiledQuery query = compileQuery(statement, scope, thresholds);
     pg::Parameters parameters;
     parameters.add(scope.keys);
@@ -334,11 +353,35 @@ void StoreSession::execute(const std::string& text, const std::function<void(Res
             onResult(this->set(*set));
             continue;
         }
+        if (const auto* show = std::get_if<ast::ShowStmt>(&statement.body);
+            show && show->what == ast::ShowStmt::What::Scenes) {
+            onResult(scenes());
+            continue;
+        }
         if (!scope_)
             throw Error(ErrorKind::Usage, "no scene chosen on the fleet store", std::nullopt,
                         "begin with USE SCENE 'name' (and --device ID when several devices hold that name)");
         onResult(run(store_, *scope_, thresholds_, statement));
     }
+}
+
+// SHOW SCENES on the store: the newest version of every scene (of the devices chosen), whose
+// device, how many versions and nodes, when captured and pushed; `*` marks the scene in use.
+ResultSet StoreSession::scenes() {
+    pg::Result r = store_.connection().exec(
+        "SELECT DISTINCT ON (device, name) name, device, version, node_count, capture_time, pushed_at, id FROM "
+        "smql.scenes WHERE starts_with(device, $1) ORDER BY device, name, version DESC",
+        pg::Parameters().add(device_), "listing the scenes");
+    ResultSet out;
+    out.columns = {{"name", ValueType::Text},     {"device", ValueType::Text},   {"version", ValueType::Integer},
+                   {"nodes", ValueType::Integer}, {"captured", ValueType::Text}, {"pushed", ValueType::Text},
+                   {"current", ValueType::Text}};
+    for (int i = 0; i < r.rows(); ++i) {
+        const bool current = scope_ && !scope_->allScenes && scope_->keys == fmt::format("{{{}}}", r.integer(i, 6));
+        out.rows.push_back({std::string(r.text(i, 0)), std::string(r.text(i, 1)), r.integer(i, 2), r.integer(i, 3),
+                            std::string(r.text(i, 4)), std::string(r.text(i, 5)), std::string(current ? "*" : "")});
+    }
+    return out;
 }
 
 // SET of a threshold, checked as the engine checks it; the session's other settings are the shell's.

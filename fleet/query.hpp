@@ -41,6 +41,7 @@ public:
 private:
     ResultSet use(const std::string& scene);
     ResultSet set(const ast::SetStmt& set);
+    ResultSet scenes();
     Store store_;
     std::string device_;
     std::optional<QueryScope> scope_;

@@ -187,10 +187,14 @@ private:
     // them), once per scene version.
     std::string withContext(const std::string& select) const {
         if (!usesContext_) return select;
-        return "WITH context AS (SELECT s.id AS scene, ARRAY[s.viewpoint_x, s.viewpoint_y, s.viewpoint_z, "
-               "s.viewpoint_yaw] AS viewpoint, (SELECT coalesce(array_agg(o ORDER BY o.id), '{}') FROM smql.nodes o "
-               "WHERE o.scene = s.id AND o.geometry <> 0 AND NOT o.hidden) AS others FROM smql.scenes s WHERE s.id = "
-               "ANY($1::int8[])) " +
+        return fmt::format(
+                   "WITH context AS (SELECT s.id AS scene, ARRAY[s.viewpoint_x, s.viewpoint_y, s.viewpoint_z, "
+                   "s.viewpoint_yaw] AS viewpoint, (SELECT coalesce(array_agg(o ORDER BY o.id), '{{}}') FROM "
+                   "smql.nodes o WHERE o.scene = s.id AND o.geometry <> 0 AND NOT o.hidden) AS others, (SELECT "
+                   "coalesce(array_agg(o ORDER BY o.id), '{{}}') FROM smql.nodes o WHERE o.scene = s.id AND o.geometry "
+                   "<> 0 AND NOT o.hidden AND o.category = '{}') AS walls FROM smql.scenes s WHERE s.id = "
+                   "ANY($1::int8[])) ",
+                   relations::kWall) +
                select;
     }
 
@@ -249,10 +253,24 @@ private:
         const std::string distance =
             check.threshold ? fmt::format(", {}::float8", parameter(fmt::format("{}", check.threshold->metres))) : "";
         return fmt::format(
-            "SELECT {0}, CASE WHEN {1} THEN 0 ELSE smql.\"{2}\"({3}, context.viewpoint, context.others{4}, {5}) END, "
+            "SELECT {0}, CASE WHEN {1} THEN 0 ELSE smql.\"{2}\"({3}, context.viewpoint, {10}{4}, {5}) END, "
             "smql.box_distance({6}, {7}) FROM {8} WHERE {6}.scene = ANY($1::int8[]) AND {9}",
             columns, same, spec.name(), arguments, spec.takesDistance ? distance.empty() ? ", NULL" : distance : "",
-            thresholds(), a, b, from, where);
+            thresholds(), a, b, from, where, occluders(spec));
+    }
+
+    // The nodes that may stand between, as far as the predicate's formula asks (the table's
+    // occluders): every call gets them whole, so a predicate that asks nothing gets nothing.
+    static const char* occluders(const relations::PredicateSpec& spec) {
+        switch (spec.occluders) {
+            case relations::Occluders::Walls:
+                return "context.walls";
+            case relations::Occluders::All:
+                return "context.others";
+            case relations::Occluders::None:
+                break;
+        }
+        return "NULL::smql.nodes[]";
     }
 
     // SHOW TREE [x]: the scene's tree (its root is 0 on the store) or the subtree under one node,
@@ -470,9 +488,9 @@ private:
                 "{0}.max_z >= {1}.g[3] AND {0}.min_z <= {1}.g[6]",
                 n, g);
         }
-        return fmt::format(
-            "EXISTS (SELECT 1 FROM {} WHERE {} AND smql.\"{}\"({}, context.viewpoint, context.others{}, {}) > 0)", from,
-            where, spec->name(), arguments, spec->takesDistance ? ", " + distance : "", thresholds());
+        return fmt::format("EXISTS (SELECT 1 FROM {} WHERE {} AND smql.\"{}\"({}, context.viewpoint, {}{}, {}) > 0)",
+                           from, where, spec->name(), arguments, occluders(*spec),
+                           spec->takesDistance ? ", " + distance : "", thresholds());
     }
 
     // `color = 'red'`, `height > 80 cm`, `distance(sofa) < 2 m`: false where the node has no such

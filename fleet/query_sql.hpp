@@ -51,9 +51,9 @@ struct CompiledQuery {
     bool path = false;      // FIND ... PATH: a last column, the way from the scene down to the node
     // FIND ... RETURN: the columns, each value as its type reads from SQL (a box as a float8[7]).
     std::vector<std::pair<std::string, ValueType>> returned;
-    bool third = false;     // CHECK of a predicate of two references
-    std::string relation;   // CHECK: the predicate's name
-    std::string sql;        // $1: the scene versions' keys (int8[]); $2...: `parameters`
+    bool third = false;    // CHECK of a predicate of two references
+    std::string relation;  // CHECK: the predicate's name
+    std::string sql;       // $1: the scene versions' keys (int8[]); $2...: `parameters`
     std::vector<std::string> parameters;
     // RELATE and CHECK: what must be one node, each a query of its nodes' ids; run before `sql`.
     struct Single {

@@ -336,7 +336,8 @@ constexpr PredicateSpec kPredicates[] = {
     {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)",
      "below|under|underneath|beneath|lower than"},
     {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 14, "near(sofa) or near(sofa, 1.5 m)",
-     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|close by|against|at"},
+     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|close by|against|at",
+     Occluders::Walls},
     {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)",
      "attached to|fixed to|mounted on|hanging on|hanging from|hanging off|hung on|hangs on|hang on"},
     {P::LeftOf, "", 1, true, false, leftOfScore, nullptr, nullptr, 6, "left_of(window)",
@@ -349,13 +350,13 @@ constexpr PredicateSpec kPredicates[] = {
      "between(lamp, sofa): the target lies between the two", "between|in between"},
     {P::VisibleFrom, "", 1, false, false, visibleFromScore, nullptr, nullptr, 0,
      "visible_from(door): in sight of an eye standing at the door",
-     "visible from|seen from|in sight of|in view of|in sight from|seeable from"},
+     "visible from|seen from|in sight of|in view of|in sight from|seeable from", Occluders::All},
     {P::Facing, "", 1, false, false, facingScore, nullptr, nullptr, 11, "facing(table): its front faces the table",
      "facing|face|faces|facing toward|facing towards|turned toward|turned towards|pointing at|pointed at|looking at"},
     {P::AtFrontOf, "", 1, false, false, atFrontOfScore, withinNear, withinNear, 12,
-     "at_front_of(sofa): by the sofa's own front", "at the front of|at the foot of|at the end of"},
+     "at_front_of(sofa): by the sofa's own front", "at the front of|at the foot of|at the end of", Occluders::Walls},
     {P::AtBackOf, "", 1, false, false, atBackOfScore, withinNear, withinNear, 13,
-     "at_back_of(sofa): by the sofa's own back", "at the back of|at the head of|behind the back of"},
+     "at_back_of(sofa): by the sofa's own back", "at the back of|at the head of|behind the back of", Occluders::Walls},
 };
 
 constexpr bool rowsInCodeOrder() {

@@ -68,6 +68,10 @@ struct PredicateInputs {
     const Obstacles& obstacles;             // what may stand between
 };
 
+// What a predicate's formula asks of the nodes that may stand between (Obstacles): nothing, the
+// walls (near: a wall between two things breaks it), or everything (visible_from's line of sight).
+enum class Occluders { None, Walls, All };
+
 struct PredicateSpec {
     Predicate predicate;
     std::string_view alias;  // a second accepted word (`inside`, `under`), or empty
@@ -85,6 +89,7 @@ struct PredicateSpec {
     // English phrases that ask for it, '|' between them ("on|on top of|onto"): the one list ASK
     // reads (engine/ask), so every predicate is reachable from English.
     std::string_view phrases;
+    Occluders occluders = Occluders::None;
 
     std::string_view name() const { return model::toString(predicate); }
     // Holds only close to its reference, so an R-tree probe around the reference finds every candidate.
