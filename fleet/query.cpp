@@ -33,6 +33,22 @@ QueryScope scopeOf(Store& store, const std::vector<StoredVersion>& scenes, bool 
         store.connection().exec("SELECT DISTINCT name FROM smql.attributes WHERE scene = ANY($1::int8[])",
                                 pg::Parameters().add(scope.keys), "reading the scene's attributes");
     for (int i = 0; i < names.rows(); ++i) scope.attributes.emplace(names.text(i, 0));
+    scope.locate = [&store, keys = scope.keys](const std::string& sql, const std::vector<std::string>& parameters) {
+        pg::Parameters all;
+        all.add(keys);
+        for (const auto& p : parameters) all.add(p);
+        pg::Result r = store.connection().exec(sql, all, "locating nodes");
+        std::vector<QueryScope::Located> out;
+        for (int i = 0; i < r.rows(); ++i)
+            out.push_back({r.integer(i, 0), {r.real(i, 1), r.real(i, 2), r.real(i, 3)}, r.text(i, 4) == "t"});
+        return out;
+    };
+    if (!allScenes) {
+        pg::Result v = store.connection().exec(
+            "SELECT viewpoint_x, viewpoint_y, viewpoint_z, viewpoint_yaw FROM smql.scenes WHERE id = $1",
+            pg::Parameters().add(scenes.front().key), "reading the scene's viewpoint");
+        scope.viewpoint = {{v.real(0, 0), v.real(0, 1), v.real(0, 2)}, v.real(0, 3)};
+    }
     scope.nodeCategory = [&store, keys = scope.keys](const char* column,
                                                      std::int64_t value) -> std::optional<std::string> {
         pg::Result node = store.connection().exec(

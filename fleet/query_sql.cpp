@@ -9,6 +9,7 @@
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "relations/predicates.hpp"
+#include "relations/viewer.hpp"
 
 namespace smql::fleet {
 
@@ -142,16 +143,19 @@ std::optional<AttributeSql> builtInSql(std::string_view name, const std::string&
 class Compiler {
 public:
     Compiler(const QueryScope& scope, const relations::Thresholds& thresholds)
-        : scope_(scope), thresholds_(thresholds) {}
+        : scope_(scope), thresholds_(thresholds), frame_(relations::viewFrame(scope.viewpoint)) {}
 
     CompiledQuery statement(const ast::Statement& statement) {
         CompiledQuery out;
         std::string select;
         if (const auto* find = std::get_if<ast::FindStmt>(&statement.body)) {
+            resolveView(find->view);
             select = this->find(*find, &out);
         } else if (const auto* c = std::get_if<ast::CountStmt>(&statement.body)) {
-            if (c->asOf || c->view) throw notYet("COUNT with AS OF or VIEW FROM");
-            select = fmt::format("SELECT count(*) FROM ({}) counted", nodesOf(c->target, c->where, nullptr, ids));
+            if (c->asOf) throw notYet("COUNT with AS OF");
+            resolveView(c->view);
+            select =
+                fmt::format("SELECT count(*) FROM ({}) counted", nodesOf(c->target, c->where, nullptr, ids, false));
             out.shape = CompiledQuery::Shape::Count;
         } else if (const auto* r = std::get_if<ast::RelateStmt>(&statement.body)) {
             select = relate(*r, out);
@@ -185,32 +189,111 @@ private:
     // predicates (the scene's viewpoint) and the nodes that may stand between (near's walls,
     // visible_from's obstacles: the visible nodes with geometry, as the engine's R-tree holds
     // them), once per scene version.
-    std::string withContext(const std::string& select) const {
+    std::string withContext(const std::string& select) {
         if (!usesContext_) return select;
+        // VIEW FROM's viewer, resolved here, or each scene's own viewpoint.
+        const std::string viewpoint =
+            view_ ? parameter(fmt::format("{{{},{},{},{},{}}}", view_->position.x, view_->position.y, view_->position.z,
+                                          view_->facingYaw, frame_.headingGiven ? 1 : 0)) +
+                        "::float8[]"
+                  : "ARRAY[s.viewpoint_x, s.viewpoint_y, s.viewpoint_z, s.viewpoint_yaw]";
         return fmt::format(
-                   "WITH context AS (SELECT s.id AS scene, ARRAY[s.viewpoint_x, s.viewpoint_y, s.viewpoint_z, "
-                   "s.viewpoint_yaw] AS viewpoint, (SELECT coalesce(array_agg(o ORDER BY o.id), '{{}}') FROM "
-                   "smql.nodes o WHERE o.scene = s.id AND o.geometry <> 0 AND NOT o.hidden) AS others, (SELECT "
-                   "coalesce(array_agg(o ORDER BY o.id), '{{}}') FROM smql.nodes o WHERE o.scene = s.id AND o.geometry "
-                   "<> 0 AND NOT o.hidden AND o.category = '{}') AS walls FROM smql.scenes s WHERE s.id = "
-                   "ANY($1::int8[])) ",
-                   relations::kWall) +
+                   "WITH context AS (SELECT s.id AS scene, {} AS viewpoint, (SELECT coalesce(array_agg(o ORDER BY "
+                   "o.id), '{{}}') FROM smql.nodes o WHERE o.scene = s.id AND o.geometry <> 0 AND NOT o.hidden) AS "
+                   "others, (SELECT coalesce(array_agg(o ORDER BY o.id), '{{}}') FROM smql.nodes o WHERE o.scene = "
+                   "s.id AND o.geometry <> 0 AND NOT o.hidden AND o.category = '{}') AS walls FROM smql.scenes s "
+                   "WHERE s.id = ANY($1::int8[])) ",
+                   viewpoint, relations::kWall) +
                select;
+    }
+
+    // A compiler for a part of this statement that runs on its own (its own parameters), with
+    // this statement's viewer.
+    Compiler part() const {
+        Compiler part(scope_, thresholds_);
+        part.view_ = view_;
+        part.frame_ = frame_;
+        return part;
     }
 
     // A query of the nodes `ref` names, with parameters of its own, for a side that must be one node.
     CompiledQuery::Single single(std::string role, const ast::Ref& ref) const {
-        Compiler nodes(scope_, thresholds_);
+        Compiler nodes = part();
         const std::string select = nodes.nodesOf(ref, std::nullopt, nullptr, ids);
         return {std::move(role), nodes.withContext(select), std::move(nodes.parameters_)};
+    }
+
+    // The nodes `ref` names, located, in id order.
+    std::vector<QueryScope::Located> located(const ast::Ref& ref) const {
+        Compiler nodes = part();
+        const std::string select =
+            nodes.nodesOf(ref, std::nullopt, nullptr, [](const std::string& n, const std::string&) {
+                return fmt::format("{0}.id, {0}.cx, {0}.cy, {0}.cz, {0}.geometry <> 0 AND NOT {0}.hidden", n);
+            });
+        return scope_.locate(nodes.withContext(select), nodes.parameters_);
+    }
+
+    // One node `ref` names, for `role` (VIEW FROM, FACING).
+    QueryScope::Located oneLocated(const ast::Ref& ref, std::string_view role) const {
+        const std::vector<QueryScope::Located> nodes = located(ref);
+        if (nodes.size() != 1)
+            throw Error(ErrorKind::Binding, fmt::format("{} must be one node; it names {}", role, nodes.size()),
+                        ref.where, "name one, as in door#12, or pick one by place with a sub-query");
+        return nodes.front();
+    }
+
+    // VIEW FROM x [FACING y]: the viewer at x's centre, looking at y or into the room (the middle of
+    // the visible boxes), as the engine's executor places it (relations/viewer.hpp).
+    void resolveView(const std::optional<ast::View>& view) {
+        if (!view) return;
+        if (scope_.allScenes)
+            throw Error(ErrorKind::Binding, "a viewpoint belongs to one scene", view->where, "USE SCENE 'name'");
+        const model::Vec3 origin = oneLocated(view->from, "VIEW FROM").centre;
+        model::Vec2 towards;
+        if (view->facing) {
+            const model::Vec3 facing = oneLocated(*view->facing, "FACING").centre;
+            towards = {facing.x, facing.y};
+        } else {
+            std::vector<model::Vec2> centres;
+            ast::Ref everything{ast::Ref::Kind::Name, "node", {}, 0, nullptr, {}, view->where};
+            for (const auto& node : located(everything))
+                if (node.shown) centres.push_back({node.centre.x, node.centre.y});
+            towards = relations::middleOf(centres, origin);
+        }
+        view_ = relations::lookingAt(origin, towards);
+        if (!view_)
+            throw Error(ErrorKind::Binding, "VIEW: the viewer and what it faces are at the same place", view->where);
+        frame_ = relations::viewFrame(*view_);
+        frame_.headingGiven = view->facing.has_value();
+    }
+
+    // `wall.left`: of the nodes the name names, the one farthest out on that side of the viewer.
+    std::string side(const ast::Ref& ref, const std::string& a) {
+        if (scope_.allScenes)
+            throw Error(ErrorKind::Binding, "a side of the room belongs to one scene's viewpoint", ref.where,
+                        "USE SCENE 'name'");
+        ast::Ref named = ref;
+        named.kind = ast::Ref::Kind::Name;
+        named.side.clear();
+        std::vector<QueryScope::Located> candidates;
+        std::vector<model::Vec2> centres;
+        for (const auto& node : located(named))
+            if (node.shown) candidates.push_back(node), centres.push_back({node.centre.x, node.centre.y});
+        const std::optional<std::size_t> chosen = relations::farthestOnSide(frame_, ref.side, centres);
+        if (!chosen)
+            throw Error(
+                ErrorKind::Binding,
+                fmt::format("no {} on the {} side of the viewpoint in scene '{}'", ref.name, ref.side, scope_.name),
+                ref.where, "SHOW SCENES gives the default viewpoint; VIEW FROM x FACING y sets another");
+        return fmt::format("{}.id = {}", a, parameter(std::to_string(candidates[*chosen].id)));
     }
 
     static std::string ids(const std::string& n, const std::string&) { return n + ".id"; }
 
     // The relations that hold from one node to another.
     std::string relate(const ast::RelateStmt& relate, CompiledQuery& out) {
-        if (relate.view) throw notYet("RELATE with VIEW FROM");
         if (scope_.allScenes) throw notYet("RELATE across all scenes");
+        resolveView(relate.view);
         usesContext_ = true;
         out.singles.push_back(single("RELATE's subject", relate.subject));
         out.singles.push_back(single("RELATE's object", relate.object));
@@ -225,8 +308,8 @@ private:
 
     // Whether one predicate holds over single nodes (0 for a node paired with itself).
     std::string check(const ast::CheckStmt& check, CompiledQuery& out) {
-        if (check.view) throw notYet("CHECK with VIEW FROM");
         if (scope_.allScenes) throw notYet("CHECK across all scenes");
+        resolveView(check.view);
         const relations::PredicateSpec& spec =
             predicateSpec(check.predicate, check.args.size(), check.threshold.has_value(), check.predicateWhere);
         usesContext_ = true;
@@ -313,8 +396,7 @@ private:
 
     // A FIND, with its columns when `out` is the statement's (a sub-query's answer is its nodes).
     std::string find(const ast::FindStmt& find, CompiledQuery* out) {
-        if (find.asOf || find.view || find.similarTo || find.limitParam)
-            throw notYet("FIND with AS OF, VIEW FROM or SIMILAR TO");
+        if (find.asOf || find.similarTo || find.limitParam) throw notYet("FIND with AS OF or SIMILAR TO");
         if (find.nearestTo && find.orderBy)
             throw Error(ErrorKind::Binding, "NEAREST TO and ORDER BY both set an order", find.orderBy->where,
                         "keep one: NEAREST TO x is ORDER BY distance(x) without x itself");
@@ -385,9 +467,10 @@ private:
         };
     }
 
-    // The target's nodes that meet `where`, in the order FIND gives them.
+    // The target's nodes that meet `where`, in the order FIND gives them (in no order, for COUNT,
+    // when neither `order` nor `sortedById`).
     std::string nodesOf(const ast::Ref& target, const std::optional<ast::Expr>& where, const ast::FindStmt* order,
-                        const Columns& columns) {
+                        const Columns& columns, bool sortedById = true) {
         const std::string n = alias('n');
         std::string conditions = fmt::format("{0}.scene = ANY($1::int8[]) AND {1}", n, refers(target, n));
         if (where) conditions += " AND " + condition(*where, n);
@@ -396,8 +479,8 @@ private:
         std::string distance;
         if (order) distance = orderBy(*order, n, from, conditions, sorted);
         if (usesContext_) from = fmt::format(" JOIN context ON context.scene = {}.scene", n) + from;
-        return fmt::format("SELECT {} FROM smql.nodes {}{} WHERE {} ORDER BY {}", columns(n, distance), n, from,
-                           conditions, sorted);
+        return fmt::format("SELECT {} FROM smql.nodes {}{} WHERE {}{}", columns(n, distance), n, from, conditions,
+                           sortedById || order ? " ORDER BY " + sorted : "");
     }
 
     // NEAREST TO x, ORDER BY distance(x), ORDER BY an attribute: the engine's orders, ties in id
@@ -576,10 +659,11 @@ private:
                                 ref.subquery->asOf->where, "write AS OF once, after the outer statement's target");
                 return fmt::format("({0}.scene, {0}.id) IN ({1})", a, find(*ref.subquery, nullptr));
             case ast::Ref::Kind::Side:
+                return side(ref, a);
             case ast::Ref::Kind::Param:
                 break;
         }
-        throw notYet("sides of the room and placeholders");
+        throw notYet("placeholders");
     }
 
     // `#12` (the scene's local id on the store) or `src#93`: the column to match, once the node is
@@ -644,6 +728,8 @@ private:
     std::string thresholdsParameter_;
     int aliases_ = 0;
     bool usesContext_ = false;
+    std::optional<model::Viewpoint> view_;  // VIEW FROM's viewer, when the statement has one
+    relations::Frame frame_;                // the viewer's frame: VIEW FROM's or the scene's
 };
 
 }  // namespace

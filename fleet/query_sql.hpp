@@ -17,6 +17,7 @@
 
 #include "model/error.hpp"
 #include "model/result.hpp"
+#include "model/types.hpp"
 #include "relations/thresholds.hpp"
 
 namespace smql::ast {
@@ -36,6 +37,15 @@ struct QueryScope {
     std::function<bool(const std::string&)> knownElsewhere;
     // The category of the node whose `column` (id or source_id) is `value`, if there is one.
     std::function<std::optional<std::string>(const char* column, std::int64_t value)> nodeCategory;
+    // A node's id, its box's centre, and whether it is shown (not hidden) with a box.
+    struct Located {
+        std::int64_t id = 0;
+        model::Vec3 centre;
+        bool shown = false;
+    };
+    // Runs a query of located nodes (its columns: id, cx, cy, cz, shown) with its parameters after $1.
+    std::function<std::vector<Located>(const std::string& sql, const std::vector<std::string>& parameters)> locate;
+    model::Viewpoint viewpoint;  // the scene's (one scene): the default viewer of the sides and lateral predicates
 };
 
 struct CompiledQuery {

@@ -88,14 +88,17 @@ std::vector<SmqlNode> nodesOf(ArrayType* array) {
     return out;
 }
 
-// The view frame of a scene's viewpoint (x, y, z, facing yaw); the default frame without one.
+// The view frame of a viewpoint (x, y, z, facing yaw), and a fifth number 1 when FACING gave the
+// heading (VIEW FROM x FACING y); the default frame without one.
 smql::relations::Frame frameOf(FunctionCallInfo fcinfo, int argument) {
     if (PG_ARGISNULL(argument)) return {};
     ArrayType* viewpoint = PG_GETARG_ARRAYTYPE_P(argument);
     const auto* data = reinterpret_cast<const double*>(ARR_DATA_PTR(viewpoint));
-    if (ARR_ELEMTYPE(viewpoint) != FLOAT8OID || ArrayGetNItems(ARR_NDIM(viewpoint), ARR_DIMS(viewpoint)) != 4)
-        return {};
-    return smql::relations::viewFrame({{data[0], data[1], data[2]}, data[3]});
+    const int items = ArrayGetNItems(ARR_NDIM(viewpoint), ARR_DIMS(viewpoint));
+    if (ARR_ELEMTYPE(viewpoint) != FLOAT8OID || (items != 4 && items != 5)) return {};
+    smql::relations::Frame frame = smql::relations::viewFrame({{data[0], data[1], data[2]}, data[3]});
+    frame.headingGiven = items == 5 && data[4] != 0;
+    return frame;
 }
 
 // A session's thresholds, in the settings catalogue's order (the one table of them).

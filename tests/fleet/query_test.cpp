@@ -119,6 +119,6 @@ TEST_CASE("COUNT and FIND with one predicate answer on the store as in the engin
     CHECK(nonEmpty > 50);  // the comparison is not between empty answers only
 
     CHECK_THROWS_WITH(
-        fleet::runQuery(store, store.versionsNamed("replica-room0", "").back(), "FIND chair WHERE near(wall.left)"),
-        Catch::Contains("does not run sides of the room"));
+        fleet::runQuery(store, store.versionsNamed("replica-room0", "").back(), "FIND chair AS OF '2026-01-01'"),
+        Catch::Contains("does not run FIND with AS OF"));
 }
