@@ -112,18 +112,17 @@ const model::Node& SceneSnapshot::decode(Slot slot) const {
     if (const model::Node* decoded = decoded_[slot].load(std::memory_order_relaxed)) return *decoded;
     assert(reader_ && "a snapshot's nodes are read while a statement names its transaction (readThrough)");
     const model::NodeId id = firstId_ + slot;
-    model::Node& node = decodedNodes_.emplace_back();
+    model::Node node;
     const auto& entry = index_.entries[slot];
     // The index and the record must agree on what the index answered from.
     if (!reader_->readNode(id, node) || node.scene != info_.id || node.kind != entry.kind ||
-        node.geometry != entry.geometry || node.hidden != (entry.hidden != 0) || node.category != category(slot)) {
-        decodedNodes_.pop_back();
+        node.geometry != entry.geometry || node.hidden != (entry.hidden != 0) || node.category != category(slot))
         throw Error(ErrorKind::Storage,
                     fmt::format("the scene index of scene '{}' does not match the record of node #{}", info_.name, id),
                     std::nullopt, "smql check DB verifies the database");
-    }
-    decoded_[slot].store(&node, std::memory_order_release);
-    return node;
+    const model::Node& kept = decodedNodes_.emplace_back(std::move(node));
+    decoded_[slot].store(&kept, std::memory_order_release);
+    return kept;
 }
 
 const std::vector<model::Node>& SceneSnapshot::nodes() const {

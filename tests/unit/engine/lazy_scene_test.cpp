@@ -156,3 +156,40 @@ TEST_CASE("spatial queries answer the same from the stored blocks and from the p
         }
     }
 }
+
+// An index that says otherwise than a record it leads to is an error when that node is read, not
+// an answer (smql check finds it without a query: tests/unit/storage/scene_index_test.cpp).
+TEST_CASE("a node whose record contradicts the scene index is refused when a statement reads it", "[lazy]") {
+    StoredRoom room(100);
+    const model::NodeId scene = room.info.id;
+    storage::SceneIndex index = *room.read->sceneIndex(room.info);
+    room.read.reset();
+    room.db.reset();  // closed, so the index can be changed behind it
+    const std::string path = room.dir.path.string();
+    model::NodeId moved = 0;
+    const auto position = [&](const std::string& name) {
+        return static_cast<std::uint32_t>(std::find(index.categories.begin(), index.categories.end(), name) -
+                                          index.categories.begin());
+    };
+    for (std::size_t s = 0; s < index.entries.size() && !moved; ++s)
+        if (index.categories[index.entries[s].category] == "chair") {
+            index.entries[s].category = position("table");  // a chair listed as a table
+            moved = scene + s;
+        }
+    REQUIRE(moved != 0);
+    storage::testing::editTable(path, "scene_index", [&](MDB_txn* txn, MDB_dbi table) {
+        std::string record;
+        storage::codec::encodeSceneIndex(scene, index, record);
+        auto key = storage::codec::idKey(scene);
+        MDB_val k = storage::toVal(key), v = storage::toVal(record);
+        REQUIRE(mdb_put(txn, table, &k, &v, 0) == 0);
+    });
+    auto engine = Engine::open(path);
+    try {
+        run(*engine, "FIND table");
+        FAIL("the query answered from an index its records contradict");
+    } catch (const Error& e) {
+        REQUIRE(e.kind() == ErrorKind::Storage);
+        REQUIRE_THAT(e.message(), Catch::Contains("does not match the record of node #" + std::to_string(moved)));
+    }
+}
