@@ -1,13 +1,12 @@
 #include "engine/exec/executor.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 #include <fmt/format.h>
 
 #include "engine/binder/singular.hpp"
 #include "model/error.hpp"
+#include "relations/viewer.hpp"
 
 namespace smql::exec {
 
@@ -66,33 +65,21 @@ const std::vector<catalog::Slot>& Executor::slots(const NodeSet& set, const rela
 }
 
 const std::vector<catalog::Slot>& Executor::resolveSide(const NodeSet& set, const relations::Frame& frame) {
-    // Each candidate's centre in the viewer's frame: `lateral` to the right, `depth` ahead.
-    std::optional<catalog::Slot> best;
-    double bestScore = -std::numeric_limits<double>::infinity();
-    bool bestInSector = false;
+    std::vector<catalog::Slot> candidates;
+    std::vector<model::Vec2> centres;
     for (catalog::Slot s : set.slots) {
         const Node& n = scene().node(s);
         if (n.geometry == model::GeometryKind::None || n.hidden) continue;
-        model::Vec2 c = centre2(n);
-        double dx = c.x - frame.position.x, dy = c.y - frame.position.y;
-        double lateral = dx * frame.right.x + dy * frame.right.y;
-        double depth = dx * frame.forward.x + dy * frame.forward.y;
-        double along = set.side == "left"    ? -lateral
-                       : set.side == "right" ? lateral
-                       : set.side == "front" ? depth
-                                             : -depth;
-        double across = set.side == "left" || set.side == "right" ? depth : lateral;
-        // Prefer candidates inside the 90-degree sector around that side, then the farthest out.
-        bool inSector = along > 0 && along >= std::abs(across);
-        if (!best || (inSector && !bestInSector) || (inSector == bestInSector && along > bestScore))
-            best = s, bestScore = along, bestInSector = inSector;
+        candidates.push_back(s);
+        centres.push_back(centre2(n));
     }
-    if (!best || bestScore <= 0)
+    const std::optional<std::size_t> chosen = relations::farthestOnSide(frame, set.side, centres);
+    if (!chosen)
         throw Error(ErrorKind::Binding,
                     fmt::format("no {} on the {} side of the viewpoint in scene '{}'",
                                 set.description.substr(0, set.description.find('.')), set.side, scene().info().name),
                     std::nullopt, "SHOW SCENES gives the default viewpoint; VIEW FROM x FACING y sets another");
-    resolved_[set.id] = std::vector<catalog::Slot>{*best};
+    resolved_[set.id] = std::vector<catalog::Slot>{candidates[*chosen]};
     return *resolved_[set.id];
 }
 
@@ -125,7 +112,6 @@ relations::Frame Executor::frame(const binder::BoundView& view) {
     if (from.empty())
         throw Error(ErrorKind::Binding, fmt::format("VIEW FROM {} names no node", view.from->description));
     const Node& origin = scene().node(from.front());
-    model::Vec2 position = centre2(origin);
     model::Vec2 towards;
     if (view.facing) {
         const auto& facing = slots(*view.facing, standard);
@@ -133,19 +119,17 @@ relations::Frame Executor::frame(const binder::BoundView& view) {
             throw Error(ErrorKind::Binding, fmt::format("FACING {} names no node", view.facing->description));
         towards = centre2(scene().node(facing.front()));
     } else {
-        // Without FACING the viewer looks into the room: towards the centre of all visible boxes.
-        double sx = 0, sy = 0;
-        std::size_t n = 0;
+        // Without FACING the viewer looks into the room: towards the middle of the visible boxes.
+        std::vector<model::Vec2> centres;
         for (const auto& node : scene().nodes())
-            if (queryable(node) && node.geometry != model::GeometryKind::None)
-                sx += node.box.center.x, sy += node.box.center.y, ++n;
-        towards = n ? model::Vec2{sx / n, sy / n} : model::Vec2{position.x, position.y + 1};
+            if (queryable(node) && node.geometry != model::GeometryKind::None) centres.push_back(centre2(node));
+        towards = relations::middleOf(centres, origin.box.center);
     }
-    double dx = towards.x - position.x, dy = towards.y - position.y;
-    if (std::hypot(dx, dy) < 1e-6)
+    const std::optional<model::Viewpoint> viewpoint = relations::lookingAt(origin.box.center, towards);
+    if (!viewpoint)
         throw Error(ErrorKind::Binding,
                     fmt::format("VIEW {}: the viewer and what it faces are at the same place", view.description));
-    relations::Frame viewer = relations::viewFrame({{position.x, position.y, origin.box.center.z}, std::atan2(dy, dx)});
+    relations::Frame viewer = relations::viewFrame(*viewpoint);
     viewer.headingGiven = view.facing.has_value();
     return viewer;
 }
