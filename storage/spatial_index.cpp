@@ -53,6 +53,4 @@ void SpatialIndex::nearest(const model::Aabb& region, std::size_t k, std::vector
     for (const auto& v : found) out.push_back(v.second);
 }
 
-std::size_t SpatialIndex::size() const { return tree_->rtree.size(); }
-
 }  // namespace smql::storage

@@ -1,5 +1,6 @@
 // A packed R-tree over the world-aligned bounds of a scene's boxes
-// (Boost.Geometry, bulk-loaded), built in memory when a scene is first queried.
+// (Boost.Geometry, bulk-loaded), built in memory once a scene's spatial queries
+// have run often enough to pay for it (engine/catalog/scene_snapshot.hpp).
 #pragma once
 
 #include <cstdint>
@@ -27,7 +28,6 @@ public:
     void intersecting(const model::Aabb& region, std::vector<std::uint32_t>& out) const;
     // The `k` slots whose bounds are closest to `region` (by bounds distance, nearest first).
     void nearest(const model::Aabb& region, std::size_t k, std::vector<std::uint32_t>& out) const;
-    std::size_t size() const;
 
 private:
     struct Tree;
