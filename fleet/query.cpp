@@ -19,7 +19,7 @@ namespace smql::fleet {
 namespace {
 
 // The categories the chosen scene versions hold, and whether any other stored scene holds a name.
-QueryScope scopeOf(Store& store, const std::vector<StoredVersion>& scenes, bool allScenes) {
+QueryScope scopeOf(Store& store, const std::vector<StoredVersion>& scenes, bool allScenes, Store* whole = nullptr) {
     QueryScope scope;
     scope.allScenes = allScenes;
     scope.name = allScenes ? "*" : scenes.front().scene;
@@ -58,8 +58,8 @@ QueryScope scopeOf(Store& store, const std::vector<StoredVersion>& scenes, bool 
         if (node.rows() == 0) return std::nullopt;
         return std::string(node.text(0, 0));
     };
-    scope.knownElsewhere = [&store](const std::string& category) {
-        return store.connection()
+    scope.knownElsewhere = [&lookIn = whole ? *whole : store](const std::string& category) {
+        return lookIn.connection()
                    .exec("SELECT 1 FROM smql.nodes WHERE category = $1 LIMIT 1", pg::Parameters().add(category),
                          "looking a category up in the store")
                    .rows() > 0;
@@ -336,6 +336,32 @@ ResultSet run(Store& store, const QueryScope& scope, const relations::Thresholds
     return {};
 }
 
+// A conninfo value, quoted as libpq reads it.
+std::string conninfoValue(std::string_view value) {
+    std::string out = "'";
+    for (char c : value) {
+        if (c == '\'' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "'";
+}
+
+// On a coordinator (docs/fleet.md, "Shards"), where the shard that holds a scene version is: its
+// foreign server's host, port and database, as the coordinator's user (a password from ~/.pgpass,
+// as for any client). Nothing on a store that is not sharded.
+std::optional<std::string> shardHolding(Store& store, const std::string& url, std::int64_t key) {
+    pg::Result r = store.connection().exec(
+        "SELECT o.option_name, o.option_value FROM smql.scenes t JOIN pg_foreign_table f ON f.ftrelid = t.tableoid "
+        "JOIN pg_foreign_server s ON s.oid = f.ftserver CROSS JOIN LATERAL pg_options_to_table(s.srvoptions) o "
+        "WHERE t.id = $1 AND o.option_name IN ('host', 'port', 'dbname')",
+        pg::Parameters().add(key), "finding the scene's shard");
+    if (r.rows() == 0) return std::nullopt;
+    std::string conninfo;
+    for (int i = 0; i < r.rows(); ++i) conninfo += fmt::format("{}={} ", r.text(i, 0), conninfoValue(r.text(i, 1)));
+    if (const std::string user = pg::urlParts(url).user; !user.empty()) conninfo += "user=" + conninfoValue(user);
+    return conninfo;
+}
+
 const ast::Statement& oneStatement(const std::vector<ast::Statement>& statements) {
     if (statements.size() != 1) throw Error(ErrorKind::Usage, "the fleet store runs one statement at a time");
     return statements.front();
@@ -355,7 +381,8 @@ QueryAnswer runQuery(Store& store, const StoredVersion& scene, const std::string
     return answer;
 }
 
-StoreSession::StoreSession(const std::string& url, std::string device) : store_(url), device_(std::move(device)) {
+StoreSession::StoreSession(const std::string& url, std::string device)
+    : url_(url), store_(url), device_(std::move(device)) {
     requireCurrentSchema(store_.connection());
 }
 
@@ -377,7 +404,7 @@ void StoreSession::execute(const std::string& text, const std::function<void(Res
         if (!scope_)
             throw Error(ErrorKind::Usage, "no scene chosen on the fleet store", std::nullopt,
                         "begin with USE SCENE 'name' (and --device ID when several devices hold that name)");
-        onResult(run(store_, *scope_, thresholds_, statement));
+        onResult(run(shard_ ? *shard_ : store_, *scope_, thresholds_, statement));
     }
 }
 
@@ -427,6 +454,8 @@ ResultSet StoreSession::use(const std::string& scene) {
     if (scene == "*" || scene == "all") {
         std::vector<StoredVersion> newest = store_.newestVersions(device_);
         if (newest.empty()) throw Error(ErrorKind::Binding, "the fleet store holds no scene");
+        scope_.reset();
+        shard_.reset();
         scope_ = scopeOf(store_, newest, true);
         out.message = fmt::format("using all {} scenes of the fleet store, each its newest version", newest.size());
         return out;
@@ -439,7 +468,10 @@ ResultSet StoreSession::use(const std::string& scene) {
             throw Error(ErrorKind::Binding, fmt::format("several devices hold a scene named '{}'", scene), std::nullopt,
                         "say whose with --device ID (the start of the id is enough)");
     const StoredVersion& chosen = versions.back();
-    scope_ = scopeOf(store_, {chosen}, false);
+    scope_.reset();
+    shard_.reset();
+    if (std::optional<std::string> shard = shardHolding(store_, url_, chosen.key)) shard_.emplace(*shard);
+    scope_ = scopeOf(shard_ ? *shard_ : store_, {chosen}, false, &store_);
     out.message = fmt::format("using scene '{}', version {} of device {}", scene, chosen.version, chosen.device);
     return out;
 }

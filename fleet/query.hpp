@@ -42,7 +42,11 @@ private:
     ResultSet use(const std::string& scene);
     ResultSet set(const ast::SetStmt& set);
     ResultSet scenes();
+    std::string url_;
     Store store_;
+    // On a sharded store, the shard that holds the scene chosen: one-scene statements run there,
+    // where its rows and indexes are, not through the coordinator's foreign tables row by row.
+    std::optional<Store> shard_;
     std::string device_;
     std::optional<QueryScope> scope_;
     relations::Thresholds thresholds_;

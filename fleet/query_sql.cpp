@@ -21,40 +21,6 @@ Error notYet(const std::string& what) {
 
 namespace {
 
-// Kind words name every shown node of a kind, as the engine's binder reads them; plurals too.
-std::optional<model::NodeKind> kindWord(const std::string& name) {
-    for (const model::NodeKind kind : {model::NodeKind::Object, model::NodeKind::Anchor, model::NodeKind::Room,
-                                       model::NodeKind::Frame, model::NodeKind::Description}) {
-        const std::string word(model::toString(kind));
-        if (name == word || name == word + "s") return kind;
-    }
-    return std::nullopt;
-}
-
-bool anyNodeWord(const std::string& name) {
-    return name == "node" || name == "nodes" || name == "thing" || name == "things";
-}
-
-const char* sqlOperator(ast::CompareOp op) {
-    switch (op) {
-        case ast::CompareOp::Eq:
-            return "=";
-        case ast::CompareOp::Ne:
-            return "<>";
-        case ast::CompareOp::Lt:
-            return "<";
-        case ast::CompareOp::Le:
-            return "<=";
-        case ast::CompareOp::Gt:
-            return ">";
-        case ast::CompareOp::Ge:
-            return ">=";
-        case ast::CompareOp::Like:
-            break;
-    }
-    return "LIKE";
-}
-
 // Text as a number where all of it is one ("2" captures), as the engine reads stored attributes.
 std::string numberIn(const std::string& text) {
     return fmt::format(
@@ -609,14 +575,14 @@ private:
             if (expr.op == ast::CompareOp::Like)
                 return fmt::format("coalesce({}{} ILIKE {} ESCAPE '', false)", placed, have, parameter(*text));
             return fmt::format("coalesce({}lower({} COLLATE \"C\") {} {} COLLATE \"C\", false)", placed, have,
-                               sqlOperator(expr.op), parameter(parser::lowerCase(*text)));
+                               ast::toString(expr.op), parameter(parser::lowerCase(*text)));
         }
         if (expr.op == ast::CompareOp::Like) return "false";
         const std::string literal = std::holds_alternative<double>(expr.literal)
                                         ? fmt::format("{}", std::get<double>(expr.literal))
                                         : fmt::format("{}", std::get<std::int64_t>(expr.literal));
         return fmt::format("coalesce({}{} {} {}::float8, false)", placed,
-                           value.number() ? value.comparable() : numberIn(value.value), sqlOperator(expr.op),
+                           value.number() ? value.comparable() : numberIn(value.value), ast::toString(expr.op),
                            parameter(literal));
     }
 
@@ -647,9 +613,9 @@ private:
     std::string refers(const ast::Ref& ref, const std::string& a) {
         switch (ref.kind) {
             case ast::Ref::Kind::Name:
-                if (auto kind = kindWord(ref.name))
+                if (auto kind = ast::kindWord(ref.name))
                     return fmt::format("{0}.kind = {1} AND NOT {0}.hidden", a, static_cast<int>(*kind));
-                if (anyNodeWord(ref.name))
+                if (ast::anyNodeWord(ref.name))
                     return fmt::format("{0}.kind <> {1} AND NOT {0}.hidden", a,
                                        static_cast<int>(model::NodeKind::Scene));
                 // Naming a category asks for its nodes, hidden ones included, as in the engine.

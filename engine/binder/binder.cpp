@@ -18,27 +18,6 @@ using model::NodeKind;
 
 namespace {
 
-// Kind words name every node of a kind; plurals are accepted.
-std::optional<NodeKind> kindWord(const std::string& name) {
-    static const std::pair<std::string_view, NodeKind> words[] = {{"object", NodeKind::Object},
-                                                                  {"objects", NodeKind::Object},
-                                                                  {"anchor", NodeKind::Anchor},
-                                                                  {"anchors", NodeKind::Anchor},
-                                                                  {"room", NodeKind::Room},
-                                                                  {"rooms", NodeKind::Room},
-                                                                  {"frame", NodeKind::Frame},
-                                                                  {"frames", NodeKind::Frame},
-                                                                  {"description", NodeKind::Description},
-                                                                  {"descriptions", NodeKind::Description}};
-    for (const auto& [word, kind] : words)
-        if (name == word) return kind;
-    return std::nullopt;
-}
-
-bool anyNodeWord(const std::string& name) {
-    return name == "node" || name == "nodes" || name == "thing" || name == "things";
-}
-
 std::string describeSet(const std::string& name, std::size_t count) {
     return fmt::format("{} ({} node{})", name, count, count == 1 ? "" : "s");
 }
@@ -135,12 +114,12 @@ NodeSet Binder::bindSingle(const ast::Ref& ref, std::string_view role) {
 NodeSet Binder::bindName(const ast::Ref& ref) {
     NodeSet set;
     const auto& snap = scene();
-    if (auto kind = kindWord(ref.name)) {
+    if (auto kind = ast::kindWord(ref.name)) {
         set.slots = snap.shownOfKind(*kind);
         set.description = describeSet(ref.name, set.slots.size());
         return set;
     }
-    if (anyNodeWord(ref.name)) {
+    if (ast::anyNodeWord(ref.name)) {
         set.slots = snap.shownNodes();
         set.description = describeSet(ref.name, set.slots.size());
         return set;
@@ -210,9 +189,9 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
 Target Binder::bindTarget(const ast::Ref& ref) {
     Target t;
     if (ref.kind == ast::Ref::Kind::Name) {
-        if (auto kind = kindWord(ref.name)) {
+        if (auto kind = ast::kindWord(ref.name)) {
             t.kind = Target::Kind::NodeKind, t.nodeKind = *kind;
-        } else if (anyNodeWord(ref.name)) {
+        } else if (ast::anyNodeWord(ref.name)) {
             t.kind = Target::Kind::AnyNode;
         } else {
             t.kind = Target::Kind::Category;

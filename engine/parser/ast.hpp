@@ -6,10 +6,13 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "model/error.hpp"
+#include "model/types.hpp"
 
 namespace smql::ast {
 
@@ -47,6 +50,29 @@ struct Ref {
     SourceLocation where;
 };
 
+// Kind words: a Name that is one stands for every shown node of that kind (`object`, `anchors`,
+// `rooms`, `frame`, `descriptions`); plurals are accepted.
+inline std::optional<model::NodeKind> kindWord(std::string_view name) {
+    constexpr std::pair<std::string_view, model::NodeKind> words[] = {{"object", model::NodeKind::Object},
+                                                                      {"objects", model::NodeKind::Object},
+                                                                      {"anchor", model::NodeKind::Anchor},
+                                                                      {"anchors", model::NodeKind::Anchor},
+                                                                      {"room", model::NodeKind::Room},
+                                                                      {"rooms", model::NodeKind::Room},
+                                                                      {"frame", model::NodeKind::Frame},
+                                                                      {"frames", model::NodeKind::Frame},
+                                                                      {"description", model::NodeKind::Description},
+                                                                      {"descriptions", model::NodeKind::Description}};
+    for (const auto& [word, kind] : words)
+        if (name == word) return kind;
+    return std::nullopt;
+}
+
+// Words for every shown node of any kind but the scene itself.
+inline bool anyNodeWord(std::string_view name) {
+    return name == "node" || name == "nodes" || name == "thing" || name == "things";
+}
+
 // A length as written (`1.5 m`, `30 cm`, `2`): converted to metres by the parser.
 struct Distance {
     double metres = 0;
@@ -56,6 +82,27 @@ struct Distance {
 using Literal = std::variant<std::int64_t, double, std::string>;
 
 enum class CompareOp { Eq, Ne, Lt, Le, Gt, Ge, Like };
+
+// As SMQL writes it (and SQL reads it): =, !=, <, <=, >, >=, LIKE.
+constexpr std::string_view toString(CompareOp op) {
+    switch (op) {
+        case CompareOp::Eq:
+            return "=";
+        case CompareOp::Ne:
+            return "!=";
+        case CompareOp::Lt:
+            return "<";
+        case CompareOp::Le:
+            return "<=";
+        case CompareOp::Gt:
+            return ">";
+        case CompareOp::Ge:
+            return ">=";
+        case CompareOp::Like:
+            return "LIKE";
+    }
+    return "?";
+}
 
 struct Expr {
     enum class Kind { And, Or, Not, Predicate, Compare };

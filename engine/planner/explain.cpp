@@ -21,26 +21,6 @@ std::string literalText(const ast::Literal& literal) {
         literal);
 }
 
-std::string_view opText(ast::CompareOp op) {
-    switch (op) {
-        case ast::CompareOp::Eq:
-            return "=";
-        case ast::CompareOp::Ne:
-            return "!=";
-        case ast::CompareOp::Lt:
-            return "<";
-        case ast::CompareOp::Le:
-            return "<=";
-        case ast::CompareOp::Gt:
-            return ">";
-        case ast::CompareOp::Ge:
-            return ">=";
-        case ast::CompareOp::Like:
-            return "LIKE";
-    }
-    return "?";
-}
-
 // What SIMILAR TO compares with: "'couch'" or "the bound vector (384 dimensions)".
 std::string similarQuery(const binder::BoundSimilarTo& similarTo) {
     return similarTo.stored() ? fmt::format("the bound vector ({} dimensions)", similarTo.vector.size())
@@ -228,9 +208,9 @@ std::string describe(const BoundExpr& expr) {
         }
         case BoundExpr::Kind::Compare:
             if (expr.distanceTo)
-                return fmt::format("distance({}) {} {} m", expr.distanceTo->description, opText(expr.op),
+                return fmt::format("distance({}) {} {} m", expr.distanceTo->description, ast::toString(expr.op),
                                    literalText(expr.literal));
-            return fmt::format("{} {} {}", expr.attribute, opText(expr.op), literalText(expr.literal));
+            return fmt::format("{} {} {}", expr.attribute, ast::toString(expr.op), literalText(expr.literal));
     }
     return {};
 }

@@ -106,6 +106,21 @@ TEST_CASE("three shards: a push spreads the scenes over them, fleet queries see 
         const auto local = original->execute("COUNT chair WHERE near(table)").back();
         CHECK(fleet::runQuery(store, replica, "COUNT chair WHERE near(table)").count ==
               std::get<std::int64_t>(local.rows.at(0).at(0)));
+        // A session's one-scene statements run on the shard that holds the scene, as on one server;
+        // across every scene, through the coordinator.
+        fleet::StoreSession session(url, "");
+        std::vector<ResultSet> answers;
+        const auto keep = [&](ResultSet&& rs) { answers.push_back(std::move(rs)); };
+        session.execute("USE SCENE 'replica-room0'; COUNT chair WHERE near(table); USE SCENE '*'; COUNT chair", keep);
+        CHECK(answers.at(1).rows.at(0).at(0) == local.rows.at(0).at(0));
+        CHECK(std::get<std::int64_t>(answers.at(3).rows.at(0).at(0)) ==
+              fleet::Store(url)
+                  .connection()
+                  .exec("SELECT count(*) FROM smql.nodes n JOIN (SELECT DISTINCT ON (device, "
+                        "name) id FROM smql.scenes ORDER BY device, name, version DESC) s "
+                        "ON s.id = n.scene WHERE n.category = 'chair'",
+                        "counting chairs")
+                  .integer(0, 0));
 #endif
     }
 
