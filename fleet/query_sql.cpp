@@ -438,11 +438,7 @@ private:
     std::string nodesOf(const ast::Ref& target, const std::optional<ast::Expr>& where, const ast::FindStmt* order,
                         const Columns& columns, bool sortedById = true) {
         const std::string n = alias('n');
-        // Across every scene a semi-join over the keys lets the server read a category's rows once
-        // (nodes(category, scene)) rather than probe the index once per scene.
-        std::string conditions =
-            fmt::format("{0}.scene {1} AND {2}", n,
-                        scope_.allScenes ? "IN (SELECT unnest($1::int8[]))" : "= ANY($1::int8[])", refers(target, n));
+        std::string conditions = fmt::format("{0}.scene = ANY($1::int8[]) AND {1}", n, refers(target, n));
         if (where) conditions += " AND " + condition(*where, n);
         std::string from;
         std::string sorted = fmt::format("{0}.scene, {0}.id", n);
