@@ -1,7 +1,9 @@
-// libsmql_fleet.so (fleet_module.hpp): smql_push's and smql_pull's talk with the fleet store.
+// libsmql_fleet.so (fleet_module.hpp): smql_push's and smql_pull's talk with the fleet store, and
+// the statements of a handle on a store.
 #include "fleet_module.hpp"
 
 #include "fleet/fleet.hpp"
+#include "fleet/query.hpp"
 
 #include "module_call.hpp"
 #include "smql.h"
@@ -14,4 +16,19 @@ extern "C" SMQL_API void smql_fleet_module_push(smql::capi::PushCall& call) noex
 extern "C" SMQL_API void smql_fleet_module_fetch(smql::capi::FetchCall& call) noexcept {
     smql::capi::guarded(call, "the fleet store's work", smql::ErrorKind::Storage,
                         [&] { call.pulled = smql::fleet::fetch(call.url, call.request); });
+}
+
+extern "C" SMQL_API void smql_fleet_module_session(smql::capi::SessionCall& call) noexcept {
+    smql::capi::guarded(call, "the fleet store's work", smql::ErrorKind::Storage, [&] {
+        if (call.close) {
+            delete call.session;
+            call.session = nullptr;
+            return;
+        }
+        if (!call.session) call.session = new smql::fleet::StoreSession(call.url, "");
+        call.results.clear();
+        if (!call.statements.empty())
+            call.session->execute(call.statements,
+                                  [&](smql::ResultSet&& rs) { call.results.push_back(std::move(rs)); });
+    });
 }

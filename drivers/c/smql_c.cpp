@@ -44,7 +44,10 @@ struct LastError {
 
 struct smql_db {
     std::unique_ptr<smql::Engine> engine;  // null when smql_open failed: the handle only reports why
-    std::string directory;                 // smql_push and smql_pull read and write it through storage
+    // A handle smql_open made of a postgresql:// URL: statements run in the fleet store's server
+    // (docs/fleet.md), through the fleet module, which owns the session.
+    smql::fleet::StoreSession* store = nullptr;
+    std::string directory;  // smql_push and smql_pull read and write it through storage
     bool readOnly = false;
     // Errors are kept per calling thread so that threads sharing a handle
     // read their own error; an entry exists only while its last call failed.
@@ -176,6 +179,7 @@ smql_status misuse(smql_db* db, const char* what) noexcept {
 smql_status checkOpen(smql_db* db) noexcept {
     if (!db) return SMQL_ERROR_MISUSE;
     if (db->engine) return SMQL_OK;
+    if (db->store) return misuse(db, "a handle on a fleet store runs statements only (smql_execute)");
     return misuse(db, "this handle failed to open: read smql_errmsg right after smql_open, then smql_close it");
 }
 
@@ -188,6 +192,47 @@ std::string dumpJson(const nlohmann::ordered_json& json) {
     // Text read from user files may hold invalid UTF-8: replace it, never throw.
     return json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
+
+// The fleet module's calls, loaded once per process from the folder libsmql.so was loaded from.
+struct FleetModule {
+    smql::capi::PushStep push = nullptr;
+    smql::capi::FetchStep fetch = nullptr;
+    smql::capi::SessionStep session = nullptr;
+    std::string failure;  // why it could not be loaded
+};
+
+const FleetModule& loadedFleetModule() {
+    static const FleetModule module = [] {
+        FleetModule out;
+        Dl_info self{};
+        std::filesystem::path path = smql::capi::kFleetModuleFile;
+        if (dladdr(reinterpret_cast<void*>(&smql_version), &self) && self.dli_fname)
+            path = std::filesystem::path(self.dli_fname).parent_path() / smql::capi::kFleetModuleFile;
+        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            const char* why = dlerror();
+            out.failure = "cannot load the fleet module " + path.string() + ": " + (why ? why : "unknown reason");
+            return out;
+        }
+        out.push = reinterpret_cast<smql::capi::PushStep>(dlsym(handle, smql::capi::kPushEntry));
+        out.fetch = reinterpret_cast<smql::capi::FetchStep>(dlsym(handle, smql::capi::kFetchEntry));
+        out.session = reinterpret_cast<smql::capi::SessionStep>(dlsym(handle, smql::capi::kSessionEntry));
+        if (!out.push || !out.fetch || !out.session) out.failure = path.string() + " is not smql's fleet module";
+        return out;
+    }();
+    if (!module.failure.empty())
+        throw smql::Error(smql::ErrorKind::Usage, module.failure, std::nullopt,
+                          "make install puts libsmql_fleet.so beside libsmql.so");
+    return module;
+}
+
+// One step of a handle's session on a fleet store; its error thrown as ours.
+void sessionStep(smql::capi::SessionCall& call) {
+    loadedFleetModule().session(call);
+    if (call.error) throw *call.error;
+}
+
+bool isStoreUrl(std::string_view dir) { return dir.starts_with("postgresql://") || dir.starts_with("postgres://"); }
 
 }  // namespace
 
@@ -234,10 +279,25 @@ smql_status smql_open(const char* dir, int flags, smql_db** out) {
     if (flags & ~SMQL_OPEN_READONLY) return misuse(db, "smql_open: unknown flag bits (only SMQL_OPEN_READONLY exists)");
     db->directory = dir;
     db->readOnly = (flags & SMQL_OPEN_READONLY) != 0;
+    if (isStoreUrl(dir))
+        return guarded(db, {}, [&] {
+            smql::capi::SessionCall call;
+            call.url = dir;
+            sessionStep(call);
+            db->store = call.session;
+        });
     return guarded(db, {}, [&] { db->engine = smql::Engine::open(dir, db->readOnly); });
 }
 
-void smql_close(smql_db* db) { delete db; }
+void smql_close(smql_db* db) {
+    if (db && db->store) {
+        smql::capi::SessionCall call;
+        call.session = db->store;
+        call.close = true;
+        loadedFleetModule().session(call);  // the module was loaded when the handle opened
+    }
+    delete db;
+}
 
 const char* smql_errmsg(const smql_db* db) {
     if (!db) return kNullHandleMessage;
@@ -263,6 +323,19 @@ int smql_error_column(const smql_db* db) {
 
 smql_status smql_execute(smql_db* db, const char* statements, smql_result** out) {
     if (out) *out = nullptr;
+    if (db && db->store && statements) {
+        return guarded(db, statements, [&] {
+            smql::capi::SessionCall call;
+            call.session = db->store;
+            call.statements = statements;
+            sessionStep(call);
+            if (!out) return;
+            auto result = std::make_unique<smql_result>();
+            for (const auto& set : call.results) result->messages.push_back(set.message);
+            if (!call.results.empty()) result->set = std::move(call.results.back());
+            *out = result.release();
+        });
+    }
     if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
     if (!statements) return misuse(db, "smql_execute: statements is NULL");
     return guarded(db, statements, [&] {
@@ -395,37 +468,6 @@ smql_status smql_check_ingest(smql_db* db, const char* truth, const char* scene,
 }
 
 namespace {
-
-// The fleet module's two calls, loaded once per process from the folder libsmql.so was loaded from.
-struct FleetModule {
-    smql::capi::PushStep push = nullptr;
-    smql::capi::FetchStep fetch = nullptr;
-    std::string failure;  // why it could not be loaded
-};
-
-const FleetModule& loadedFleetModule() {
-    static const FleetModule module = [] {
-        FleetModule out;
-        Dl_info self{};
-        std::filesystem::path path = smql::capi::kFleetModuleFile;
-        if (dladdr(reinterpret_cast<void*>(&smql_version), &self) && self.dli_fname)
-            path = std::filesystem::path(self.dli_fname).parent_path() / smql::capi::kFleetModuleFile;
-        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            const char* why = dlerror();
-            out.failure = "cannot load the fleet module " + path.string() + ": " + (why ? why : "unknown reason");
-            return out;
-        }
-        out.push = reinterpret_cast<smql::capi::PushStep>(dlsym(handle, smql::capi::kPushEntry));
-        out.fetch = reinterpret_cast<smql::capi::FetchStep>(dlsym(handle, smql::capi::kFetchEntry));
-        if (!out.push || !out.fetch) out.failure = path.string() + " is not smql's fleet module";
-        return out;
-    }();
-    if (!module.failure.empty())
-        throw smql::Error(smql::ErrorKind::Usage, module.failure, std::nullopt,
-                          "make install puts libsmql_fleet.so beside libsmql.so; smql push needs no module");
-    return module;
-}
 
 // The handle's database as storage sees it: within a process it shares the engine's environment.
 std::unique_ptr<smql::storage::Database> storageOf(const smql_db* db) {

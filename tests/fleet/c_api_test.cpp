@@ -1,10 +1,12 @@
 // smql_push and smql_pull through libsmql.so, as a C program calls them: the fleet module loaded on
-// the first call, the scene back byte for byte, errors as statuses with their text.
+// the first call, the scene back byte for byte, errors as statuses with their text; and a handle
+// smql_open makes of the store's URL, whose statements the store's server runs.
 #include <catch2/catch.hpp>
 
 #include <fstream>
 #include <sstream>
 
+#include "fleet/fleet.hpp"
 #include "fleet/schema.hpp"
 #include "fleet_support.hpp"
 #include "smql.h"
@@ -64,4 +66,43 @@ TEST_CASE("smql_push and smql_pull carry a scene to the fleet store and back") {
     Handle readOnly(dir.sub("copy"), SMQL_OPEN_READONLY);
     CHECK(smql_pull(readOnly.db, url.c_str(), "replica-room0", nullptr, 0) == SMQL_ERROR_STORAGE);
     CHECK_THAT(smql_errmsg(readOnly.db), Catch::Contains("read-only"));
+}
+
+TEST_CASE("smql_open of a postgresql:// URL runs statements in the fleet store") {
+#ifndef SMQL_PG_MODULE_DIR
+    WARN("skipped: smql_pg.so was not built (no PostgreSQL server headers: postgresql-server-dev-15)");
+    return;
+#endif
+    const std::string url = freshStore("fleet_c_api_open");
+    smql::fleet::init(url);
+    TempDir dir;
+    const std::string replica = std::string(SMQL_SHARED_DATA) + "/replica-room0/info_semantic.json";
+    Handle device(dir.sub("device"));
+    REQUIRE(smql_import_file(device.db, "replica", replica.c_str(), "replica-room0") == SMQL_OK);
+    REQUIRE(smql_push(device.db, url.c_str(), nullptr) == SMQL_OK);
+
+    const char* statements = "USE SCENE 'replica-room0'; COUNT cushion WHERE on(sofa)";
+    smql_result* local = nullptr;
+    REQUIRE(smql_execute(device.db, statements, &local) == SMQL_OK);
+    Handle store(url);
+    smql_result* remote = nullptr;
+    REQUIRE(smql_execute(store.db, statements, &remote) == SMQL_OK);
+    int64_t here = 0, there = -1;
+    REQUIRE(smql_value_int64(local, 0, 0, &here) == SMQL_OK);
+    REQUIRE(smql_value_int64(remote, 0, 0, &there) == SMQL_OK);
+    CHECK(here > 0);
+    CHECK(there == here);
+    CHECK_THAT(smql_statement_message(remote, 0), Catch::Contains("using scene 'replica-room0'"));
+    smql_result_free(local);
+    smql_result_free(remote);
+
+    CHECK(smql_execute(store.db, "FIND chiar", nullptr) == SMQL_ERROR_BINDING);
+    CHECK_THAT(smql_errmsg(store.db), Catch::Contains("unknown category 'chiar'"));
+    CHECK(smql_import_file(store.db, "replica", replica.c_str(), "again") == SMQL_ERROR_MISUSE);
+    CHECK_THAT(smql_errmsg(store.db), Catch::Contains("runs statements only"));
+
+    smql_db* down = nullptr;
+    CHECK(smql_open("postgresql://nobody@/nowhere?host=/nonexistent", 0, &down) == SMQL_ERROR_STORAGE);
+    CHECK(std::string(smql_errmsg(down)).size() > 0);
+    smql_close(down);
 }
