@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "engine/engine.hpp"
 #include "engine/eval/evaluation.hpp"
 #include "engine/format.hpp"
@@ -193,7 +195,42 @@ std::string dumpJson(const nlohmann::ordered_json& json) {
     return json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-// The fleet module's calls, loaded once per process from the folder libsmql.so was loaded from.
+// A module libsmql.so loads (dlopen) once per process from the folder it was itself loaded from
+// (its installed place, or the build tree's): the library, or why it could not be loaded.
+struct ModuleLibrary {
+    void* handle = nullptr;
+    std::string path;
+    std::string failure;
+};
+
+ModuleLibrary openModule(const char* file, const char* what) {
+    ModuleLibrary out;
+    Dl_info self{};
+    std::filesystem::path path = file;
+    if (dladdr(reinterpret_cast<void*>(&smql_version), &self) && self.dli_fname)
+        path = std::filesystem::path(self.dli_fname).parent_path() / file;
+    out.path = path.string();
+    out.handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!out.handle) {
+        const char* why = dlerror();
+        out.failure = fmt::format("cannot load the {} module {}: {}", what, out.path, why ? why : "unknown reason");
+    }
+    return out;
+}
+
+template <class Step>
+Step entry(const ModuleLibrary& library, const char* name) {
+    return library.handle ? reinterpret_cast<Step>(dlsym(library.handle, name)) : nullptr;
+}
+
+// Runs a module's step; its error thrown as ours.
+template <class Step, class Call>
+void runStep(Step step, Call& call) {
+    step(call);
+    if (call.error) throw *call.error;
+}
+
+// The fleet module's calls.
 struct FleetModule {
     smql::capi::PushStep push = nullptr;
     smql::capi::FetchStep fetch = nullptr;
@@ -203,33 +240,18 @@ struct FleetModule {
 
 const FleetModule& loadedFleetModule() {
     static const FleetModule module = [] {
-        FleetModule out;
-        Dl_info self{};
-        std::filesystem::path path = smql::capi::kFleetModuleFile;
-        if (dladdr(reinterpret_cast<void*>(&smql_version), &self) && self.dli_fname)
-            path = std::filesystem::path(self.dli_fname).parent_path() / smql::capi::kFleetModuleFile;
-        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            const char* why = dlerror();
-            out.failure = "cannot load the fleet module " + path.string() + ": " + (why ? why : "unknown reason");
-            return out;
-        }
-        out.push = reinterpret_cast<smql::capi::PushStep>(dlsym(handle, smql::capi::kPushEntry));
-        out.fetch = reinterpret_cast<smql::capi::FetchStep>(dlsym(handle, smql::capi::kFetchEntry));
-        out.session = reinterpret_cast<smql::capi::SessionStep>(dlsym(handle, smql::capi::kSessionEntry));
-        if (!out.push || !out.fetch || !out.session) out.failure = path.string() + " is not smql's fleet module";
+        const ModuleLibrary library = openModule(smql::capi::kFleetModuleFile, "fleet");
+        FleetModule out{entry<smql::capi::PushStep>(library, smql::capi::kPushEntry),
+                        entry<smql::capi::FetchStep>(library, smql::capi::kFetchEntry),
+                        entry<smql::capi::SessionStep>(library, smql::capi::kSessionEntry), library.failure};
+        if (out.failure.empty() && (!out.push || !out.fetch || !out.session))
+            out.failure = library.path + " is not smql's fleet module";
         return out;
     }();
     if (!module.failure.empty())
         throw smql::Error(smql::ErrorKind::Usage, module.failure, std::nullopt,
                           "make install puts libsmql_fleet.so beside libsmql.so");
     return module;
-}
-
-// One step of a handle's session on a fleet store; its error thrown as ours.
-void sessionStep(smql::capi::SessionCall& call) {
-    loadedFleetModule().session(call);
-    if (call.error) throw *call.error;
 }
 
 bool isStoreUrl(std::string_view dir) { return dir.starts_with("postgresql://") || dir.starts_with("postgres://"); }
@@ -283,7 +305,7 @@ smql_status smql_open(const char* dir, int flags, smql_db** out) {
         return guarded(db, {}, [&] {
             smql::capi::SessionCall call;
             call.url = dir;
-            sessionStep(call);
+            runStep(loadedFleetModule().session, call);
             db->store = call.session;
         });
     return guarded(db, {}, [&] { db->engine = smql::Engine::open(dir, db->readOnly); });
@@ -328,7 +350,7 @@ smql_status smql_execute(smql_db* db, const char* statements, smql_result** out)
             smql::capi::SessionCall call;
             call.session = db->store;
             call.statements = statements;
-            sessionStep(call);
+            runStep(loadedFleetModule().session, call);
             if (!out) return;
             auto result = std::make_unique<smql_result>();
             for (const auto& set : call.results) result->messages.push_back(set.message);
@@ -372,8 +394,7 @@ smql_status smql_update_file(smql_db* db, const char* format, const char* path, 
 
 namespace {
 
-// The ingest module's two steps, loaded once per process from the folder libsmql.so was loaded
-// from (its installed place, or the build tree's).
+// The ingest module's steps.
 struct IngestModule {
     smql::capi::IngestStep read = nullptr;
     smql::capi::IngestStep run = nullptr;
@@ -383,21 +404,12 @@ struct IngestModule {
 
 const IngestModule& ingestModule() {
     static const IngestModule module = [] {
-        IngestModule out;
-        Dl_info self{};
-        std::filesystem::path path = smql::capi::kIngestModuleFile;
-        if (dladdr(reinterpret_cast<void*>(&smql_version), &self) && self.dli_fname)
-            path = std::filesystem::path(self.dli_fname).parent_path() / smql::capi::kIngestModuleFile;
-        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            const char* why = dlerror();
-            out.failure = "cannot load the ingest module " + path.string() + ": " + (why ? why : "unknown reason");
-            return out;
-        }
-        out.read = reinterpret_cast<smql::capi::IngestStep>(dlsym(handle, smql::capi::kReadEntry));
-        out.run = reinterpret_cast<smql::capi::IngestStep>(dlsym(handle, smql::capi::kRunEntry));
-        out.check = reinterpret_cast<smql::capi::CheckStep>(dlsym(handle, smql::capi::kCheckEntry));
-        if (!out.read || !out.run || !out.check) out.failure = path.string() + " is not smql's ingest module";
+        const ModuleLibrary library = openModule(smql::capi::kIngestModuleFile, "ingest");
+        IngestModule out{entry<smql::capi::IngestStep>(library, smql::capi::kReadEntry),
+                         entry<smql::capi::IngestStep>(library, smql::capi::kRunEntry),
+                         entry<smql::capi::CheckStep>(library, smql::capi::kCheckEntry), library.failure};
+        if (out.failure.empty() && (!out.read || !out.run || !out.check))
+            out.failure = library.path + " is not smql's ingest module";
         return out;
     }();
     return module;
@@ -409,12 +421,6 @@ const IngestModule& loadedIngestModule() {
         throw smql::Error(smql::ErrorKind::Usage, module.failure, std::nullopt,
                           "make install puts libsmql_ingest.so beside libsmql.so; smql ingest needs no module");
     return module;
-}
-
-template <class Step, class Call>
-void runStep(Step step, Call& call) {
-    step(call);
-    if (call.error) throw *call.error;
 }
 
 }  // namespace
