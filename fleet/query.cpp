@@ -11,6 +11,7 @@
 #include "engine/parser/parser.hpp"
 #include "fleet/schema.hpp"
 #include "model/error.hpp"
+#include "model/instant.hpp"
 #include "model/names.hpp"
 #include "relations/predicates.hpp"
 
@@ -23,6 +24,7 @@ QueryScope scopeOf(Store& store, const std::vector<StoredVersion>& scenes, bool 
     QueryScope scope;
     scope.allScenes = allScenes;
     scope.name = allScenes ? "*" : scenes.front().scene;
+    scope.device = allScenes ? "" : scenes.front().device;
     scope.keys = "{";
     for (const auto& s : scenes) scope.keys += fmt::format("{}{}", scope.keys.size() > 1 ? "," : "", s.key);
     scope.keys += "}";
@@ -362,6 +364,13 @@ std::optional<std::string> shardHolding(Store& store, const std::string& url, st
     return conninfo;
 }
 
+// The AS OF a FIND or COUNT is written with, if any.
+const ast::AsOf* asOfOf(const ast::Statement& statement) {
+    if (const auto* find = std::get_if<ast::FindStmt>(&statement.body); find && find->asOf) return &*find->asOf;
+    if (const auto* count = std::get_if<ast::CountStmt>(&statement.body); count && count->asOf) return &*count->asOf;
+    return nullptr;
+}
+
 const ast::Statement& oneStatement(const std::vector<ast::Statement>& statements) {
     if (statements.size() != 1) throw Error(ErrorKind::Usage, "the fleet store runs one statement at a time");
     return statements.front();
@@ -371,6 +380,9 @@ const ast::Statement& oneStatement(const std::vector<ast::Statement>& statements
 
 QueryAnswer runQuery(Store& store, const StoredVersion& scene, const std::string& statement) {
     const std::vector<ast::Statement> statements = parser::parse(statement);
+    if (asOfOf(oneStatement(statements)))
+        throw Error(ErrorKind::Usage, "AS OF chooses among a scene's versions: runQuery is given one", std::nullopt,
+                    "run it in a StoreSession (smql URL) after USE SCENE");
     ResultSet result = run(store, scopeOf(store, {scene}, false), relations::Thresholds(), oneStatement(statements));
     QueryAnswer answer;
     if (result.columns.front().name == "count") {
@@ -404,8 +416,32 @@ void StoreSession::execute(const std::string& text, const std::function<void(Res
         if (!scope_)
             throw Error(ErrorKind::Usage, "no scene chosen on the fleet store", std::nullopt,
                         "begin with USE SCENE 'name' (and --device ID when several devices hold that name)");
+        if (const ast::AsOf* asOf = asOfOf(statement)) {
+            const QueryScope past = scopeAsOf(*asOf);
+            onResult(run(store_, past, thresholds_, statement));
+            continue;
+        }
         onResult(run(shard_ ? *shard_ : store_, *scope_, thresholds_, statement));
     }
+}
+
+// AS OF: the scene as the store held it at an instant, as the engine reads its history: the newest
+// version captured at or before it.
+QueryScope StoreSession::scopeAsOf(const ast::AsOf& asOf) {
+    if (scope_->allScenes)
+        throw Error(ErrorKind::Binding, "AS OF reads one scene's past", asOf.where, "USE SCENE 'name' first");
+    pg::Result r = store_.connection().exec(
+        "SELECT id, version, capture_time FROM smql.scenes WHERE device = $1 AND name = $2 ORDER BY version DESC",
+        pg::Parameters().add(scope_->device).add(scope_->name), "reading the scene's versions");
+    for (int i = 0; i < r.rows(); ++i)
+        if (model::comparableInstant(r.text(i, 2)) <= asOf.instant)
+            return scopeOf(
+                store_, {{r.integer(i, 0), scope_->device, scope_->name, static_cast<std::uint64_t>(r.integer(i, 1))}},
+                false);
+    throw Error(ErrorKind::Binding,
+                fmt::format("scene '{}' was first captured at {}: the store holds nothing of it at {}", scope_->name,
+                            r.rows() ? r.text(r.rows() - 1, 2) : "", asOf.instant),
+                asOf.where, "SHOW SCENES lists the scenes and when they were captured");
 }
 
 // SHOW SCENES on the store: the newest version of every scene (of the devices chosen), whose

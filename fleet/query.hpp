@@ -15,7 +15,8 @@
 
 namespace smql::ast {
 struct SetStmt;
-}
+struct AsOf;
+}  // namespace smql::ast
 
 namespace smql::fleet {
 
@@ -42,6 +43,7 @@ private:
     ResultSet use(const std::string& scene);
     ResultSet set(const ast::SetStmt& set);
     ResultSet scenes();
+    QueryScope scopeAsOf(const ast::AsOf& asOf);
     std::string url_;
     Store store_;
     // On a sharded store, the shard that holds the scene chosen: one-scene statements run there,

@@ -118,7 +118,6 @@ public:
             resolveView(find->view);
             select = this->find(*find, &out);
         } else if (const auto* c = std::get_if<ast::CountStmt>(&statement.body)) {
-            if (c->asOf) throw notYet("COUNT with AS OF");
             resolveView(c->view);
             select =
                 fmt::format("SELECT count(*) FROM ({}) counted", nodesOf(c->target, c->where, nullptr, ids, false));
@@ -362,7 +361,9 @@ private:
 
     // A FIND, with its columns when `out` is the statement's (a sub-query's answer is its nodes).
     std::string find(const ast::FindStmt& find, CompiledQuery* out) {
-        if (find.asOf || find.similarTo || find.limitParam) throw notYet("FIND with AS OF or SIMILAR TO");
+        // AS OF chose the scene version the scope holds (fleet/query.cpp); a sub-query's is refused
+        // where it is written.
+        if (find.similarTo || find.limitParam) throw notYet("FIND with SIMILAR TO");
         if (find.nearestTo && find.orderBy)
             throw Error(ErrorKind::Binding, "NEAREST TO and ORDER BY both set an order", find.orderBy->where,
                         "keep one: NEAREST TO x is ORDER BY distance(x) without x itself");

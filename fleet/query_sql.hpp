@@ -29,6 +29,7 @@ namespace smql::fleet {
 // What a statement's names resolve against: the scene versions chosen, and what they hold.
 struct QueryScope {
     std::string name;        // the scene's name, or "*", for messages
+    std::string device;      // the device whose scene it is (one scene)
     bool allScenes = false;  // USE SCENE '*': FIND answers say each node's scene
     std::string keys;        // the versions' keys as a PostgreSQL int8[] literal: the queries' $1
     std::set<std::string> categories;

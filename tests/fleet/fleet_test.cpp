@@ -301,7 +301,7 @@ TEST_CASE("the smql command: fleet init, push, pull, statements on the store, ex
     auto found = shell(fmt::format("'{}' \"USE SCENE 'replica-room0'; FIND chair WHERE near(table)\" --csv", url));
     CHECK(found.first == 0);
     CHECK_THAT(found.second, Catch::StartsWith("id,category,source_id,box\n") && Catch::Contains(",chair,"));
-    auto unsupported = shell(fmt::format("'{}' -c \"USE SCENE 'replica-room0'; FIND chair AS OF '2026-01-01'\"", url));
+    auto unsupported = shell(fmt::format("'{}' -c \"USE SCENE 'replica-room0'; FIND chair SIMILAR TO 'a seat'\"", url));
     CHECK(unsupported.first == 1);
     CHECK_THAT(unsupported.second, Catch::Contains("does not run") && Catch::Contains("yet"));
     auto noScene = shell(fmt::format("'{}' -c 'COUNT chair'", url));

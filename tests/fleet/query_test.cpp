@@ -119,6 +119,21 @@ TEST_CASE("COUNT and FIND with one predicate answer on the store as in the engin
     CHECK(nonEmpty > 50);  // the comparison is not between empty answers only
 
     CHECK_THROWS_WITH(
-        fleet::runQuery(store, store.versionsNamed("replica-room0", "").back(), "FIND chair AS OF '2026-01-01'"),
-        Catch::Contains("does not run FIND with AS OF"));
+        fleet::runQuery(store, store.versionsNamed("replica-room0", "").back(), "FIND chair SIMILAR TO 'a seat'"),
+        Catch::Contains("does not run FIND with SIMILAR TO"));
+
+    // AS OF in a session: the version the store held then, as the engine reads its history.
+    fleet::StoreSession session(url, "");
+    engine->execute("USE SCENE 'den'");
+    session.execute("USE SCENE 'den'", [](ResultSet&&) {});
+    for (const char* when : {"2026-11-20T12:00:00Z", "2026-11-22T00:00:00Z"}) {
+        const std::string statement = fmt::format("FIND object AS OF '{}'", when);
+        std::vector<ResultSet> onStore;
+        session.execute(statement, [&](ResultSet&& rs) { onStore.push_back(std::move(rs)); });
+        const ResultSet inEngine = engine->execute(statement).back();
+        INFO(statement);
+        CHECK(onStore.back().rows.size() == inEngine.rows.size());
+    }
+    CHECK_THROWS_WITH(session.execute("COUNT object AS OF '2020-01-01'", [](ResultSet&&) {}),
+                      Catch::Contains("the store holds nothing of it"));
 }
