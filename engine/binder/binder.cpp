@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include "engine/ask/lexicon.hpp"
-#include "engine/ask/wordnet.hpp"
 #include "engine/binder/singular.hpp"
 #include "engine/catalog/attributes.hpp"
 #include "model/error.hpp"

@@ -341,7 +341,7 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
     if (const HorizontalPlane* top = choice.tableTop) {
         const Eigen::Vector3d up = toEigen(top->plane.normal);
         const double tableHeight = *typicalHeight("table");  // the size table has a table's height
-        double below = tableHeight;  // metres, then capture units
+        double below = tableHeight;                          // metres, then capture units
         if (options.scale) {
             below /= *options.scale;
         } else if (!options.metric) {

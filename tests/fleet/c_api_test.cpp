@@ -103,6 +103,6 @@ TEST_CASE("smql_open of a postgresql:// URL runs statements in the fleet store")
 
     smql_db* down = nullptr;
     CHECK(smql_open("postgresql://nobody@/nowhere?host=/nonexistent", 0, &down) == SMQL_ERROR_STORAGE);
-    CHECK(std::string(smql_errmsg(down)).size() > 0);
+    CHECK_FALSE(std::string(smql_errmsg(down)).empty());
     smql_close(down);
 }
