@@ -189,7 +189,10 @@ int checkPlausibilityCommand(Engine& engine, const std::string& sceneName, const
     for (const auto& f : report.findings)
         std::cout << fmt::format("{} {}: {}\n  fix: {}\n", f.refuse ? "IMPLAUSIBLE" : "warning", f.check, f.what,
                                  f.fix);
-    if (report.findings.empty()) std::cout << "looks like a room: every check passed\n";
+    if (report.findings.empty())
+        std::cout << (report.measured() ? "looks like a room: every check passed\n"
+                                        : "nothing could be checked: no floor, no ceiling and too few named things of "
+                                          "known size\n");
     return report.refused() ? 1 : 0;
 }
 

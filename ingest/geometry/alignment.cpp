@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 
 #include "ingest/geometry/floor_evidence.hpp"
@@ -267,6 +268,7 @@ std::vector<double> cameraHeights(const std::vector<Pose>& cameras, const Eigen:
 
 struct FloorChoice {
     const HorizontalPlane* floor = nullptr;
+    SurfaceEvidence floorEvidence;
     const HorizontalPlane* tableTop = nullptr;  // the lowest plane passed over as a table top
     SurfaceEvidence tableEvidence;
 };
@@ -279,26 +281,28 @@ FloorChoice findFloor(const std::vector<HorizontalPlane>& planes, const std::vec
                       const AlignOptions& options) {
     const double clearance = options.cameraClearance * unit;
     FloorChoice out;
-    std::vector<const HorizontalPlane*> candidates;
+    std::vector<std::pair<const HorizontalPlane*, SurfaceEvidence>> candidates;
     for (const auto& p : planes) {
         auto heights = cameraHeights(cameras, toEigen(p.plane.normal));
         if (!heights.empty() && p.height >= *std::min_element(heights.begin(), heights.end()) - clearance) continue;
         SurfaceEvidence evidence = weighSurface({p.plane.normal, p.height}, things, world.points, unit);
         if (!evidence.tableTop()) {
-            candidates.push_back(&p);
+            candidates.emplace_back(&p, std::move(evidence));
         } else if (!out.tableTop || p.level < out.tableTop->level) {
             out.tableTop = &p;
             out.tableEvidence = std::move(evidence);
         }
     }
     // Floors lie below tables.
-    if (out.tableTop)
-        std::erase_if(candidates, [&](const HorizontalPlane* p) { return p->level >= out.tableTop->level; });
+    if (out.tableTop) std::erase_if(candidates, [&](const auto& c) { return c.first->level >= out.tableTop->level; });
     std::size_t biggest = 0;
-    for (const auto* p : candidates) biggest = std::max(biggest, p->plane.inliers);
-    for (const auto* p : candidates) {
+    for (const auto& [p, evidence] : candidates) biggest = std::max(biggest, p->plane.inliers);
+    for (auto& [p, evidence] : candidates) {
         if (static_cast<double>(p->plane.inliers) < options.largePlaneShare * static_cast<double>(biggest)) continue;
-        if (!out.floor || p->level < out.floor->level) out.floor = p;
+        if (!out.floor || p->level < out.floor->level) {
+            out.floor = p;
+            out.floorEvidence = evidence;
+        }
     }
     return out;
 }
@@ -333,7 +337,7 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
         notes.push_back("floor: plane with " + std::to_string(floor->plane.inliers) + " of " +
                         std::to_string(world.size()) + " points, " +
                         fixed(std::acos(std::clamp(up.dot(prior), -1.0, 1.0)) / kDegree, 1) +
-                        " deg from the cameras' up");
+                        " deg from the cameras' up; " + choice.floorEvidence.describe());
         if (choice.tableTop && choice.tableTop->level > floor->level)
             notes.push_back("floor: a table top above it passed over: " + choice.tableEvidence.describe());
         return up;
@@ -352,15 +356,17 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
         out.floorHeight = top->height - below;
         out.floorNotSeen =
             "the lowest horizontal surface below the cameras is a table top: " + choice.tableEvidence.describe();
-        notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + fixed(tableHeight) +
-                        " m below it, a table's usual height");
+        out.floorPlaced = "a table's usual height (" + fixed(tableHeight) + " m) below the table top";
+        notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
         return up;
     }
     std::vector<double> heights;
     for (const auto& p : world.points) heights.push_back(prior.dot(toEigen(p)));
     out.floorHeight = detail::quantile(heights, 0.02);
-    notes.push_back(
-        "floor: no horizontal plane below the cameras; up from the cameras, floor at the lowest 2% of points");
+    out.floorNotSeen =
+        fmt::format("no horizontal surface was found below the cameras among the {} points", world.size());
+    out.floorPlaced = "under the lowest 2% of the points, level with the cameras' up direction";
+    notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
     return prior;
 }
 
@@ -400,6 +406,7 @@ void chooseScale(Alignment& out, const AlignOptions& options, double ceilingAbov
     ScaleChoice choice = combineScales(estimates);
     out.scale = choice.scale;
     out.scaleSpread = choice.spread;
+    out.scaleSplit = choice.split;
     notes.push_back(choice.note);
 }
 

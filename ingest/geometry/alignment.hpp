@@ -58,12 +58,14 @@ struct Alignment {
     double floorHeight = 0;                         // floor's height along `up`, capture frame and units
     double heading = 0;                             // radians turned about +z after levelling
     bool floorFound = false;
-    // Why no floor was found when a table top was (what stands on it); the floor is then placed a
-    // table's height below it. Empty otherwise.
+    // Why no floor was found (a table top, and what stands on it; or no horizontal surface below the
+    // cameras), and where the floor was placed instead. Both empty when the floor was found.
     std::string floorNotSeen;
+    std::string floorPlaced;
     std::size_t floorInliers = 0;
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)
+    double scaleSplit = 0;                // the factor between two priors that leave no majority (ScaleChoice)
     std::vector<std::string> notes;       // how each choice was made, for SHOW SCENES and logs
 
     model::Vec3 apply(const model::Vec3& p) const;

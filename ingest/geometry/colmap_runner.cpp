@@ -45,6 +45,14 @@ constexpr MapperSettings kMapperSettings[] = {
      "--Mapper.abs_pose_min_num_inliers 15 --Mapper.abs_pose_min_inlier_ratio 0.15"},
 };
 
+// Bundle adjustment shorter and, over the whole model, less often than COLMAP's defaults (after
+// the model doubled rather than grew by 10 %; 15 and 10 iterations rather than 50 and 25): 300
+// frames' mapper 174 -> 146 s with every frame placed and the same reprojection error (docs/ingest.md,
+// "Real captures").
+constexpr const char* kMapperAdjustment =
+    "--Mapper.ba_global_images_ratio 2 --Mapper.ba_global_points_ratio 2 "
+    "--Mapper.ba_global_max_num_iterations 15 --Mapper.ba_local_max_num_iterations 10";
+
 constexpr const char* kRetryHint =
     "COLMAP needs overlapping, textured views: try more frames (a higher --fps for videos), slower camera motion "
     "with more overlap between neighbouring frames, or a capture with camera poses";
@@ -159,10 +167,11 @@ std::string readText(const fs::path& file) {
 std::string describeRun(const Capture& capture, const std::vector<WorkFrame>& workFrames,
                         const std::vector<CameraGroup>& groups, const ColmapOptions& options) {
     std::string out = fmt::format(
-        "smql COLMAP run: max size {}, exhaustive up to {}, overlap {}, loop frames {}, min matches {}, "
-        "vocabulary tree '{}', layout {}, mapper settings {}\n",
-        options.maxImageSize, options.exhaustiveUpTo, options.sequentialOverlap, options.loopFrames, options.minMatches,
-        options.vocabularyTree, capture.layout, std::size(kMapperSettings));
+        "smql COLMAP run: max size {}, exhaustive up to {} ({} in order), overlap {}, loop frames {}, min matches {}, "
+        "vocabulary tree '{}', layout {}, mapper settings {} ({})\n",
+        options.maxImageSize, options.exhaustiveUpTo, options.exhaustiveOrderedUpTo, options.sequentialOverlap,
+        options.loopFrames, options.minMatches, options.vocabularyTree, capture.layout, std::size(kMapperSettings),
+        kMapperAdjustment);
     for (const CameraGroup& g : groups) {
         out += fmt::format("camera {} {}x{}", g.folder, g.work.width, g.work.height);
         if (g.known)
@@ -289,7 +298,7 @@ void writePosedModel(const fs::path& folder, const fs::path& database, const Cap
 // is the run's.
 class ColmapSession {
 public:
-    ColmapSession(Capture& capture, const ColmapOptions& options, std::string colmap)
+    ColmapSession(Capture& capture, const ColmapOptions& options, std::string colmap, ColmapNotes notes)
         : capture_(capture),
           options_(options),
           colmap_(std::move(colmap)),
@@ -298,7 +307,8 @@ public:
           database_(work_ / "database.db"),
           sparse_(work_ / "sparse"),
           record_(work_ / "smql-run.txt"),
-          threads_(fmt::format("{}", options.threads)) {
+          threads_(fmt::format("{}", options.threads)),
+          notes_(std::move(notes)) {
         run_.workDirectory = work_.string();
         run_.logPath = (work_ / "colmap.log").string();
     }
@@ -306,22 +316,42 @@ public:
     ColmapRun run() {
         gatherFrames();
         prepareWorkFolder();
-        extractFeatures();
-        matchFeatures();
-        if (!exhaustive_ && !loops_) closeLoops();
-        // Frames that all have a pose (transforms.json without depth, RGB-D frames with the depth left
-        // out) keep it: COLMAP only triangulates the matched features with the given poses and cameras.
-        const bool posed = std::all_of(workFrames_.begin(), workFrames_.end(),
-                                       [&](const WorkFrame& w) { return capture_.frames[w.frame].pose.has_value(); });
-        if (posed)
-            triangulateWithPoses();
-        else
-            adoptModel(mapLargestModel());
+        try {
+            extractFeatures();
+            matchFeatures();
+            if (!exhaustive_ && !loops_) closeLoops();
+            // Frames that all have a pose (transforms.json without depth, RGB-D frames with the depth left
+            // out) keep it: COLMAP only triangulates the matched features with the given poses and cameras.
+            const bool posed = std::all_of(workFrames_.begin(), workFrames_.end(), [&](const WorkFrame& w) {
+                return capture_.frames[w.frame].pose.has_value();
+            });
+            if (posed)
+                triangulateWithPoses();
+            else
+                adoptModel(mapLargestModel());
+        } catch (const Error&) {
+            noteSteps();  // a failed run says where its time went too
+            throw;
+        }
         leaveWorkFolder();
         return std::move(run_);
     }
 
 private:
+    // Each note is kept in the run and passed on as it comes, so that a run that fails has said
+    // what COLMAP did up to there.
+    void note(std::string text) {
+        if (notes_) notes_(text);
+        run_.notes.push_back(std::move(text));
+    }
+
+    void noteSteps() {
+        if (run_.reused || run_.steps.empty()) return;
+        std::vector<std::string> times;
+        for (const auto& [step, seconds] : run_.steps) times.push_back(fmt::format("{} {:.1f} s", step, seconds));
+        note(fmt::format("COLMAP's steps: {}", fmt::join(times, ", ")));
+    }
+
     // Frames into groups of one image size and one known camera: linked when COLMAP can read them
     // as they are, else written scaled down (and turned upright, as OpenCV reads them).
     void gatherFrames() {
@@ -331,9 +361,8 @@ private:
             cv::Mat image;
             if (fs::is_regular_file(frame.colorPath, ec)) image = cv::imread(frame.colorPath, cv::IMREAD_COLOR);
             if (image.empty()) {
-                run_.notes.push_back(
-                    fmt::format("frame {} ({}) is listed but its image is missing or unreadable: skipped", frame.index,
-                                frame.colorPath));
+                note(fmt::format("frame {} ({}) is listed but its image is missing or unreadable: skipped", frame.index,
+                                 frame.colorPath));
                 continue;
             }
             WorkFrame w{
@@ -372,7 +401,7 @@ private:
         inputs_ = describeRun(capture_, workFrames_, groups_, options_);
         run_.reused = !options_.workDirectory.empty() && readText(record_) == inputs_;
         if (run_.reused) {
-            run_.notes.push_back(
+            note(
                 fmt::format("COLMAP's model of these {} frames read from {}, run there before (empty the "
                             "folder to run COLMAP again)",
                             workFrames_.size(), run_.workDirectory));
@@ -383,7 +412,7 @@ private:
             for (const WorkFrame& w : workFrames_) writeWorkImage(w, images_ / w.name);
         }
         if (scaled_ > 0)
-            run_.notes.push_back(
+            note(
                 fmt::format("COLMAP sees {} of {} frames scaled down to {} pixels on the long side "
                             "(--max-size); poses and intrinsics are mapped back to the frames' own pixels",
                             scaled_, workFrames_.size(), options_.maxImageSize));
@@ -448,10 +477,12 @@ private:
     }
 
     // Frames in capture order (videos, RGB-D sequences) are matched with their neighbours; a photo
-    // folder's order says little, so small ones are matched all against all.
+    // folder's order says little, so small ones are matched all against all, as are a few frames of
+    // a video, which every pair may help to place.
     void matchFeatures() {
         ordered_ = capture_.layout != "images";
-        exhaustive_ = !ordered_ && static_cast<int>(workFrames_.size()) <= options_.exhaustiveUpTo;
+        exhaustive_ = static_cast<int>(workFrames_.size()) <=
+                      (ordered_ ? options_.exhaustiveOrderedUpTo : options_.exhaustiveUpTo);
         std::error_code treeError;
         loops_ =
             !exhaustive_ && !options_.vocabularyTree.empty() && fs::is_regular_file(options_.vocabularyTree, treeError);
@@ -488,7 +519,7 @@ private:
                                 "--SiftMatching.num_threads {} --SiftMatching.min_num_inliers {}",
                                 shellQuoted(database_.string()), shellQuoted(pairsFile.string()), threads_,
                                 options_.minMatches));
-        run_.notes.push_back(fmt::format(
+        note(fmt::format(
             "COLMAP matched each frame with its {} neighbours in {} order; loop detection {}, so loops are closed by "
             "matching {} frames spread through the capture all against all",
             options_.sequentialOverlap, ordered_ ? "capture" : "name",
@@ -515,8 +546,7 @@ private:
         run_.points = capture_.points.size();
         run_.registered = std::count_if(capture_.frames.begin(), capture_.frames.end(),
                                         [](const CaptureFrame& f) { return f.pose.has_value(); });
-        run_.notes.push_back(
-            fmt::format("COLMAP triangulated {} points with the capture's own poses and cameras", run_.points));
+        note(fmt::format("COLMAP triangulated {} points with the capture's own poses and cameras", run_.points));
         if (run_.points == 0)
             throw Error(ErrorKind::Input,
                         fmt::format("colmap point_triangulator found no 3D point: {}; its output is in {}",
@@ -543,19 +573,19 @@ private:
             const bool finished = runStep(
                 "mapper",
                 fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {} "
-                            "--Mapper.min_num_matches {} {}{}",
+                            "--Mapper.min_num_matches {} {} {}{}",
                             shellQuoted(database_.string()), shellQuoted(images_.string()),
-                            shellQuoted(output.string()), threads_, options_.minMatches, settings->arguments,
+                            shellQuoted(output.string()), threads_, options_.minMatches, kMapperAdjustment,
+                            settings->arguments,
                             fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""),
                 true);
             auto [largest, models] = readLargestModel(output);
             run_.models += models;
-            run_.notes.push_back(largest
-                                     ? fmt::format("COLMAP's mapper with {}: {} {}, the largest with {} of {} frames",
-                                                   settings->name, models, models == 1 ? "model" : "models",
-                                                   largest->frames.size(), frames)
-                                     : fmt::format("COLMAP's mapper with {}: no model{}", settings->name,
-                                                   finished ? "" : " (it stopped with a failure; see the log)"));
+            note(largest
+                     ? fmt::format("COLMAP's mapper with {}: {} {}, the largest with {} of {} frames", settings->name,
+                                   models, models == 1 ? "model" : "models", largest->frames.size(), frames)
+                     : fmt::format("COLMAP's mapper with {}: no model{}", settings->name,
+                                   finished ? "" : " (it stopped with a failure; see the log)"));
             if (largest && (!best || largest->frames.size() > best->frames.size())) best = std::move(largest);
             if (best && 5 * best->frames.size() >= 4 * frames) break;
         }
@@ -589,7 +619,7 @@ private:
                 Capture model = capture_detail::readColmap(entry.path(), readOptions);
                 if (!best || model.frames.size() > best->frames.size()) best = std::move(model);
             } catch (const Error& e) {
-                run_.notes.push_back(fmt::format("COLMAP model {} skipped: {}", entry.path().string(), e.what()));
+                note(fmt::format("COLMAP model {} skipped: {}", entry.path().string(), e.what()));
             }
         }
         return {std::move(best), models};
@@ -623,8 +653,8 @@ private:
                                            k.fy, k.cx, k.cy);
             if (std::find(described.begin(), described.end(), text) == described.end()) described.push_back(text);
         }
-        run_.notes.push_back(fmt::format("COLMAP's cameras in the frames' own pixels, {}: {}",
-                                         originWords(capture_.intrinsicsOrigin), fmt::join(described, "; ")));
+        note(fmt::format("COLMAP's cameras in the frames' own pixels, {}: {}", originWords(capture_.intrinsicsOrigin),
+                         fmt::join(described, "; ")));
         capture_.points = best.points;
         capture_.metric = false;
         run_.points = capture_.points.size();
@@ -633,10 +663,10 @@ private:
             for (const WorkFrame& w : workFrames_)
                 if (!capture_.frames[w.frame].pose) left.push_back(w.source.filename().string());
             const std::size_t named = std::min<std::size_t>(left.size(), 12);
-            run_.notes.push_back(fmt::format(
-                "COLMAP registered {} of {} frames; left out: {}{}", run_.registered, capture_.frames.size(),
-                fmt::join(left.begin(), left.begin() + static_cast<std::ptrdiff_t>(named), ", "),
-                left.size() > named ? fmt::format(" and {} more", left.size() - named) : std::string()));
+            note(fmt::format("COLMAP registered {} of {} frames; left out: {}{}", run_.registered,
+                             capture_.frames.size(),
+                             fmt::join(left.begin(), left.begin() + static_cast<std::ptrdiff_t>(named), ", "),
+                             left.size() > named ? fmt::format(" and {} more", left.size() - named) : std::string()));
         }
     }
 
@@ -644,14 +674,11 @@ private:
     // asked to stay. A failed one stays for its log.
     void leaveWorkFolder() {
         if (run_.reused) return;
-        std::vector<std::string> times;
-        for (const auto& [step, seconds] : run_.steps) times.push_back(fmt::format("{} {:.1f} s", step, seconds));
-        run_.notes.push_back(fmt::format("COLMAP's steps: {}", fmt::join(times, ", ")));
+        noteSteps();
         std::ofstream(record_) << inputs_;
         std::error_code removeError;
         if (options_.keepWorkDirectory || !options_.workDirectory.empty())
-            run_.notes.push_back(
-                fmt::format("COLMAP work folder (images, database, models, log): {}", run_.workDirectory));
+            note(fmt::format("COLMAP work folder (images, database, models, log): {}", run_.workDirectory));
         else
             fs::remove_all(work_, removeError);
     }
@@ -667,11 +694,12 @@ private:
     std::size_t scaled_ = 0;
     std::string inputs_;
     bool ordered_ = false, exhaustive_ = false, loops_ = false;
+    ColmapNotes notes_;
 };
 
 }  // namespace
 
-ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
+ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes notes) {
     auto colmap = findExecutable(options.command);
     if (!colmap)
         throw Error(ErrorKind::Input,
@@ -684,7 +712,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options) {
             ErrorKind::Input,
             fmt::format("{}: COLMAP needs at least 2 frames, the capture has {}", capture.path, capture.frames.size()),
             std::nullopt, kRetryHint);
-    return ColmapSession(capture, options, *colmap).run();
+    return ColmapSession(capture, options, *colmap, std::move(notes)).run();
 }
 
 }  // namespace smql::ingest

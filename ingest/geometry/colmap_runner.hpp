@@ -4,6 +4,7 @@
 // capture (docs/ingest.md, "--geometry colmap").
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,9 +17,10 @@ struct ColmapOptions {
     std::string command = "colmap";  // looked up on PATH
     int maxImageSize = 1024;         // frames with a longer side are scaled down to it for COLMAP (0: as stored)
     int exhaustiveUpTo = 60;         // unordered photo sets up to this many frames: exhaustive_matcher
-    int sequentialOverlap = 8;       // sequential_matcher: the neighbours each frame is matched with
+    int exhaustiveOrderedUpTo = 40;  // frames in capture order (a short video) up to this many: the same
+    int sequentialOverlap = 5;       // sequential_matcher: the neighbours each frame is matched with
     std::string vocabularyTree;      // COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection; empty: none
-    int loopFrames = 30;             // without a tree: frames spread through the capture, matched all against all
+    int loopFrames = 20;             // without a tree: frames spread through the capture, matched all against all
     int minMatches = 15;             // verified matches that make two frames overlap (COLMAP's mapper default)
     int threads = -1;                // COLMAP's num_threads (-1: all cores)
     bool keepWorkDirectory = false;  // keep the work folder (images, database, models, colmap.log) after a success too
@@ -41,13 +43,17 @@ struct ColmapRun {
     std::vector<std::string> notes;
 };
 
+// Receives each of the run's notes as it is made (they are also in ColmapRun::notes).
+using ColmapNotes = std::function<void(const std::string&)>;
+
 // Fills every registered frame's pose and intrinsics (in the frame's own
 // pixels: COLMAP sees the frames scaled down to maxImageSize) and the
 // capture's points (replacing any it had); frames COLMAP did not register, and
 // frames whose image is missing, keep no pose. Sets metric = false. Throws
 // smql::Error(Input) when `colmap` is missing (naming how to install it) or a
 // step fails or no model comes out (naming the step, what the database shows:
-// photos with features, photos that overlap, and what to do).
-ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {});
+// photos with features, photos that overlap, and what to do); the notes made
+// until then have reached `notes`.
+ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {}, ColmapNotes notes = {});
 
 }  // namespace smql::ingest

@@ -18,6 +18,8 @@ constexpr double kBelow = 0.2;
 // A thing that stands on floors counts for the surface only when it rises this far from it: a
 // table whose top alone was seen rests on the plane of its own top.
 constexpr double kRises = 0.3;
+// The share of the cloud's points under a surface below which something was seen at all.
+constexpr double kSeenBelow = 0.01;
 // Fewer points than this say nothing of where a thing ends.
 constexpr std::size_t kMinPoints = 20;
 
@@ -32,25 +34,33 @@ std::string listed(const std::vector<std::string>& names) {
 }  // namespace
 
 bool SurfaceEvidence::tableTop() const {
-    const std::size_t against = onTop.size() + below.size();
-    return against >= 2 && against > standing.size();
+    const std::size_t against = onTop.size() + below.size() + topOf.size();
+    return (against >= 2 || !topOf.empty()) && against > standing.size();
 }
 
 std::string SurfaceEvidence::describe() const {
     std::vector<std::string> parts;
     if (!onTop.empty())
-        parts.push_back(fmt::format("{} that stand on tables rest on it ({})",
-                                    onTop.size() == 1 ? "1 thing" : fmt::format("{} things", onTop.size()),
+        parts.push_back(fmt::format("{} on it ({})",
+                                    onTop.size() == 1
+                                        ? "1 thing that stands on tables rests"
+                                        : fmt::format("{} things that stand on tables rest", onTop.size()),
                                     listed(onTop)));
     if (!below.empty())
         parts.push_back(fmt::format("{} below it ({})",
                                     below.size() == 1 ? "1 reaches" : fmt::format("{} reach", below.size()),
                                     listed(below)));
+    if (!topOf.empty())
+        parts.push_back(fmt::format(
+            "it is the top of {} ({})",
+            topOf.size() == 1 ? "1 thing that holds others" : fmt::format("{} things that hold others", topOf.size()),
+            listed(topOf)));
     if (!standing.empty())
-        parts.push_back(
-            fmt::format("{} on floors rise from it ({})",
-                        standing.size() == 1 ? "1 thing that stands" : fmt::format("{} that stand", standing.size()),
-                        listed(standing)));
+        parts.push_back(fmt::format("{} from it ({})",
+                                    standing.size() == 1
+                                        ? "1 thing that stands on floors rises"
+                                        : fmt::format("{} things that stand on floors rise", standing.size()),
+                                    listed(standing)));
     parts.push_back(fmt::format("{:.0f}% of the points lie below it", 100 * pointsBelow));
     return listed(parts);
 }
@@ -58,6 +68,14 @@ std::string SurfaceEvidence::describe() const {
 SurfaceEvidence weighSurface(const Surface& surface, const std::vector<NamedThing>& things,
                              const std::vector<model::Vec3>& cloud, double unit) {
     SurfaceEvidence out;
+    std::size_t under = 0, counted = 0;
+    const std::size_t step = std::max<std::size_t>(1, cloud.size() / 20000);
+    for (std::size_t i = 0; i < cloud.size(); i += step, ++counted)
+        if (along(surface.up, cloud[i]) - surface.height < -kBelow * unit) ++under;
+    out.pointsBelow = counted ? static_cast<double>(under) / static_cast<double>(counted) : 0;
+    // Nothing reaches below a surface under which next to nothing was seen: a few of a thing's points
+    // there are the reconstruction's noise (a table's under a kitchen floor, in 100 photos).
+    const bool seenBelow = out.pointsBelow >= kSeenBelow;
     for (const auto& thing : things) {
         if (thing.points.size() < kMinPoints) continue;
         std::vector<double> heights;
@@ -67,19 +85,23 @@ SurfaceEvidence weighSurface(const Surface& surface, const std::vector<NamedThin
         // are its legs' ends, a few of its points).
         const double low = detail::quantile(heights, 0.02), high = detail::quantile(heights, 0.9);
         const bool rests = std::abs(low) <= kRests * unit;
+        // A table whose points lie on the surface, none rising from it: the surface is its top (a
+        // kitchen table that ten photos look down at: its median and 90th percentile within 1 cm).
+        const bool top = holdsThings(thing.category) && std::abs(detail::quantile(heights, 0.5)) <= kRests * unit &&
+                         std::abs(high) <= kRests * unit;
         const Support support = usualSupport(thing.category);
-        if (detail::quantile(heights, 0.1) < -kBelow * unit)
+        const bool reachesBelow = detail::quantile(heights, 0.1) < -kBelow * unit;
+        if (reachesBelow && seenBelow)
             out.below.push_back(thing.category);
+        else if (reachesBelow)
+            continue;
+        else if (top)
+            out.topOf.push_back(thing.category);
         else if (rests && support == Support::Surface)
             out.onTop.push_back(thing.category);
         else if (rests && support == Support::Floor && high - low >= kRises * unit)
             out.standing.push_back(thing.category);
     }
-    std::size_t under = 0, counted = 0;
-    const std::size_t step = std::max<std::size_t>(1, cloud.size() / 20000);
-    for (std::size_t i = 0; i < cloud.size(); i += step, ++counted)
-        if (along(surface.up, cloud[i]) - surface.height < -kBelow * unit) ++under;
-    out.pointsBelow = counted ? static_cast<double>(under) / static_cast<double>(counted) : 0;
     return out;
 }
 

@@ -23,9 +23,11 @@ struct SurfaceEvidence {
     std::vector<std::string> standing;  // things that stand on floors, rising from it (a chair's legs and seat)
     std::vector<std::string> onTop;     // things that stand on tables, resting on it (a mug, a keyboard)
     std::vector<std::string> below;     // named things reaching well below it
+    std::vector<std::string> topOf;     // things that hold others whose points all lie on it: it is their top
     double pointsBelow = 0;             // share of the cloud's points well below it
 
-    // More says "table top" than says "floor": the surface holds table things or has things under it.
+    // More says "table top" than says "floor": the surface holds table things, has things under it, or
+    // is a table's top.
     bool tableTop() const;
     std::string describe() const;  // "2 things that stand on tables rest on it (mug, keyboard), ..."
 };

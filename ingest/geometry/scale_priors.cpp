@@ -43,6 +43,7 @@ ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {
     const bool split = values.size() == 2 && *high > kDisagreement * *low;
     out.scale = split ? values.front() : detail::median(values);
     out.spread = (*high - *low) / out.scale;
+    if (split) out.split = *high / *low;
     std::string each;
     for (const auto& e : estimates) each += fmt::format("; {}: {:.4g}", e.prior, e.scale);
     if (estimates.size() == 1)

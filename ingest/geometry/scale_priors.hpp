@@ -41,6 +41,9 @@ struct ScaleChoice {
     double scale = 1;
     // (largest - smallest) / chosen, over the estimates: 0 with one estimate.
     double spread = 0;
+    // The factor between two estimates that leave no majority (more than kDisagreement apart): one of
+    // them measured something wrong. 0 when they agree.
+    double split = 0;
     std::string note;  // the choice, each prior's answer and their agreement, for the ingest's notes
 };
 

@@ -10,7 +10,8 @@ namespace {
 // Extents: the largest side, height included, things of the kind commonly have (a floor lamp's
 // 1.9 m, a bookcase's 2.2 m): what a box named so may reach before its name is doubted. Support:
 // what things of the kind usually stand on (the floor, or a table, desk or counter), which tells a
-// floor from a table top (floor_evidence.hpp). The rows cover the memory's names for the detector's COCO classes
+// floor from a table top (floor_evidence.hpp), as does whether things are put on the kind's top
+// (a table's, a bed's). The rows cover the memory's names for the detector's COCO classes
 // (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
@@ -18,20 +19,21 @@ struct Typical {
     Footprint largest;
     double extent;
     Support support;
+    bool holdsThings = false;
 };
 constexpr Typical kTypical[] = {
-    {"table", 0.75, {2.2, 1.2}, 2.4, Support::Floor},
-    {"desk", 0.75, {1.8, 0.9}, 1.9, Support::Floor},
+    {"table", 0.75, {2.2, 1.2}, 2.4, Support::Floor, true},
+    {"desk", 0.75, {1.8, 0.9}, 1.9, Support::Floor, true},
     {"chair", 0.9, {0.7, 0.7}, 1.2, Support::Floor},
     {"sofa", 0.85, {2.5, 1.1}, 2.8, Support::Floor},
-    {"bed", 0.55, {2.2, 2.0}, 2.3, Support::Floor},
+    {"bed", 0.55, {2.2, 2.0}, 2.3, Support::Floor, true},
     {"fridge", 1.75, {0.95, 0.85}, 2.0, Support::Floor},
     {"toilet", 0.75, {0.75, 0.5}, 0.9, Support::Floor},
     {"door", 2.03, {1.2, 0.3}, 2.4, Support::Floor},
-    {"nightstand", 0.6, {0.65, 0.55}, 0.8, Support::Floor},
+    {"nightstand", 0.6, {0.65, 0.55}, 0.8, Support::Floor, true},
     {"shelf", 0, {1.5, 0.5}, 2.4, Support::Floor},
     {"cabinet", 0, {1.8, 0.7}, 2.4, Support::Floor},
-    {"counter", 0, {3.5, 0.8}, 4.0, Support::Floor},
+    {"counter", 0, {3.5, 0.8}, 4.0, Support::Floor, true},
     {"wardrobe", 0, {2.4, 0.7}, 2.6, Support::Floor},
     {"dresser", 0, {1.8, 0.6}, 1.9, Support::Floor},
     {"armchair", 0, {1.1, 1.0}, 1.2, Support::Floor},
@@ -102,6 +104,11 @@ std::optional<double> typicalExtent(std::string_view category) {
     const Typical* t = find(category);
     if (!t) return std::nullopt;
     return t->extent;
+}
+
+bool holdsThings(std::string_view category) {
+    const Typical* t = find(category);
+    return t && t->holdsThings;
 }
 
 Support usualSupport(std::string_view category) {

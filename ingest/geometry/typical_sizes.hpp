@@ -30,4 +30,8 @@ std::optional<double> typicalExtent(std::string_view category);
 enum class Support { Floor, Surface, Either };
 Support usualSupport(std::string_view category);
 
+// Whether things are put on the top of things of a kind (a table, a desk, a bed): a horizontal
+// surface that is such a thing's top is not the floor.
+bool holdsThings(std::string_view category);
+
 }  // namespace smql::ingest

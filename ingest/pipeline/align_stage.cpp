@@ -25,8 +25,6 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     AlignedCapture out;
     out.alignment = alignCapture(frames.structure, poses, align, things);
     for (const auto& n : out.alignment.notes) progress.note(n);
-    if (!out.alignment.floorFound && out.alignment.floorNotSeen.empty())
-        progress.note("no floor plane found: the frame is levelled by the cameras' up direction");
     out.cloud = transformed(frames.structure, out.alignment);
     for (const auto& c : frames.cameras) out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));
     return out;

@@ -42,16 +42,18 @@ model::SceneInfo sceneInfo(const Capture& capture, const IngestOptions& options,
 // --force, so that no wrong memory is stored with exit status 0.
 void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
                const FramePass& frames, const Alignment& alignment, StageRunner& runner) {
-    const ScaleSource source{.depth = framesHaveDepth(capture) && !options.scale,
+    const bool depth = framesHaveDepth(capture) && !options.scale;
+    const ScaleSource source{.depth = depth,
                              .depthScale = capture.depthScale,
-                             .given = options.scale.has_value()};
+                             .given = options.scale.has_value(),
+                             .metric = capture.metric && !depth && !options.scale};
     std::vector<double> cameraHeights;
     for (const auto& [frame, centre] : result.cameraCentres) cameraHeights.push_back(centre.z);
     PlausibilityReport report = checkPlausibility(result.scene, source, std::move(cameraHeights));
     if (auto views = viewAgreementFinding(frames.viewAgreement))
         report.findings.insert(report.findings.begin(), std::move(*views));
-    if (!alignment.floorNotSeen.empty())
-        report.findings.insert(report.findings.begin(), floorNotSeenFinding(alignment.floorNotSeen, source));
+    auto aligned = alignmentFindings(alignment, source);
+    report.findings.insert(report.findings.begin(), aligned.begin(), aligned.end());
     const PlausibilityFinding* refusal = nullptr;
     for (const auto& f : report.findings) {
         runner.note(fmt::format("{} {}: {}; {}", f.refuse ? "implausible" : "warning:", f.check, f.what, f.fix));

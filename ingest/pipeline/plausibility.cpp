@@ -33,6 +33,10 @@ constexpr double kAgreedRefuse[2] = {0.55, 1.8};
 // 0.99; mirrored images 0.58, depth in a unit 1.4x off 0.72 (docs/ingest.md, "Plausibility").
 constexpr double kAgreementWarn = 0.85;
 constexpr double kAgreementRefuse = 0.7;
+// The scale's two priors further apart than this: one measured from a wrong floor (a table top: a
+// kitchen's 10 photos gave 98x), or the cameras are far from a person's height. Warned from
+// kDisagreement (1.5x) on: a crouching photographer or a short robot may part them that far.
+constexpr double kSplitRefuse = 2.0;
 // A box this many times its kind's largest side is not that kind.
 constexpr double kNameMismatch = 2.5;
 
@@ -42,6 +46,14 @@ double median(std::vector<double> v) {
 }
 
 double largestSide(const model::Box& box) { return std::max({box.size.x, box.size.y, box.size.z}); }
+
+// The name a thing's size is judged by: a detector's name kept only as `detected_as` for a box far
+// too large for it still counts, since a wrong scale makes every box too large for its name.
+const std::string& sizedName(const model::Node& node) {
+    for (const auto& a : node.attributes)
+        if (a.name == "detected_as") return a.value;
+    return node.category;
+}
 
 // The fix for a scale off by `factor` (measured / usual): the depth unit, --scale, or the floor.
 std::string scaleFix(double factor, const ScaleSource& source) {
@@ -55,6 +67,11 @@ std::string scaleFix(double factor, const ScaleSource& source) {
             "the depth images may be in another unit: give --depth-scale (depth units per metre: 1000 for "
             "millimetres, 5000 for TUM); its measures suggest about --depth-scale {:.0f}",
             source.depthScale * factor);
+    if (source.metric)
+        return fmt::format(
+            "the capture's poses may not be in metres: give --scale (metres per pose unit); its "
+            "measures suggest about --scale {:.3g}",
+            1 / factor);
     if (source.given)
         return fmt::format("--scale may be wrong: the capture's measures suggest about {:.3g} times it", 1 / factor);
     return fmt::format(
@@ -86,8 +103,14 @@ PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleS
         if (n.kind == model::NodeKind::Anchor && n.category == "ceiling") report.ceilingHeight = n.box.center.z;
         if (n.kind == model::NodeKind::Frame) frames.push_back(n.box.center.z);
         if (n.kind != model::NodeKind::Object || n.geometry == model::GeometryKind::None) continue;
-        if (auto usual = typicalExtent(n.category)) ratios.push_back(largestSide(n.box) / *usual);
+        if (auto usual = typicalExtent(sizedName(n))) ratios.push_back(largestSide(n.box) / *usual);
     }
+    // The ingest says why the floor was not seen (alignmentFindings); a stored memory only shows that
+    // it has none, which leaves its heights and its scale unchecked.
+    if (source.stored && !floor && !frames.empty())
+        report.findings.push_back({"floor", false, "the memory holds no floor: its capture did not show one",
+                                   "the cameras' height and the scale could not be checked against it; ingest the "
+                                   "capture again with views of the floor, or with --scale"});
     std::vector<double>& cameras = !cameraHeights.empty() ? cameraHeights : frames;
     if (cameras.empty() && scene.info.viewpoint.position != model::Vec3{}) cameras = {scene.info.viewpoint.position.z};
     if (floor && !cameras.empty()) {
@@ -142,13 +165,25 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
         "(--depth-scale: depth units per metre)"};
 }
 
-PlausibilityFinding floorNotSeenFinding(const std::string& why, const ScaleSource& source) {
-    const bool scaled = source.depth || source.given;
-    return {"floor", !scaled, "the floor is not seen: " + why,
-            scaled ? std::string("the floor is placed a table's usual height below the table top; views that also show "
-                                 "the floor place it where it is")
-                   : std::string("photos without depth take their scale from the floor: give --scale (metres per "
-                                 "capture unit), or add photos that show the floor")};
+std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, const ScaleSource& source) {
+    std::vector<PlausibilityFinding> out;
+    const bool scaled = source.depth || source.given || source.metric;
+    if (!alignment.floorNotSeen.empty())
+        out.push_back({"floor", !scaled, "the floor is not seen: " + alignment.floorNotSeen,
+                       scaled
+                           ? fmt::format("the floor is placed {}; views that also show the floor place it where it is",
+                                         alignment.floorPlaced)
+                           : std::string("photos without depth take their scale from the floor: give --scale "
+                                         "(metres per capture unit), or add photos that show the floor")});
+    if (alignment.scaleSplit > 0)
+        out.push_back({"scale priors", alignment.scaleSplit > kSplitRefuse,
+                       fmt::format("the scale's two priors disagree by a factor of {:.2g} (the cameras' height above "
+                                   "the floor and the heights of things standing on it): the floor found may be a "
+                                   "table top, or the cameras are far from a person's height",
+                                   alignment.scaleSplit),
+                       "give --scale (metres per capture unit), or add photos that show the floor and the things "
+                       "standing on it"});
+    return out;
 }
 
 bool nameFitsBox(const std::string& category, const model::Box& box) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/view_consistency.hpp"
 #include "model/types.hpp"
 
@@ -29,6 +30,7 @@ struct PlausibilityReport {
     std::optional<double> sizeRatio;            // median of (largest side / the kind's usual largest side)
     std::size_t namedThings = 0;                // things of a kind whose size is known
     bool refused() const;
+    bool measured() const { return cameraHeight || ceilingHeight || sizeRatio; }  // some check had a figure
 };
 
 // How the scene's scale came about, for the fix the findings name.
@@ -36,7 +38,8 @@ struct ScaleSource {
     bool stored = false;  // a stored scene, whose capture is not at hand: the fix names every option
     bool depth = false;   // metric from depth images (depthScale units per metre)
     double depthScale = 0;
-    bool given = false;  // --scale
+    bool given = false;   // --scale
+    bool metric = false;  // poses in metres without depth (a sensor's, COLMAP triangulating with them)
 };
 
 // The checks on a scene in the upright floor frame (the floor at z = 0 when it was found).
@@ -45,10 +48,12 @@ struct ScaleSource {
 PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleSource& source,
                                      std::vector<double> cameraHeights = {});
 
-// The floor not seen, a table top instead (Alignment::floorNotSeen, `why`): the floor is then placed a
-// table's height below the top. With depth or --scale that is a warning; photos without either take
-// their scale from the floor, so the memory is refused.
-PlausibilityFinding floorNotSeenFinding(const std::string& why, const ScaleSource& source);
+// What the alignment itself found wrong: the floor not seen (a table top, or no horizontal surface at
+// all: Alignment::floorNotSeen), and a scale whose two priors disagree (Alignment::scaleSplit: one of
+// them measured from a wrong floor, or cameras far from a person's height). With depth, poses in
+// metres or --scale a floor not seen is a warning; photos without either take their scale from the floor, so the memory
+// is refused, as it is when the priors are more than a factor 2 apart.
+std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, const ScaleSource& source);
 
 // The depth images against each other through the poses (view_consistency.hpp): correct captures
 // agree at 90% or more of the points two frames see; mirrored images or poses, or a wrong depth unit,

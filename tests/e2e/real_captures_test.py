@@ -7,6 +7,7 @@ the test exits 77 (skipped).
 
     real_captures_test.py SMQL CAPTURES
 """
+import json
 import os
 import pathlib
 import re
@@ -63,11 +64,52 @@ def desk_photos_subset(smql, folder, work):
         assert "left out:" in log, log
 
 
+def largest_model(log):
+    """The most frames any of COLMAP's mapper runs placed together, from the ingest's notes."""
+    return max((int(n) for n in re.findall(r"the largest with (\d+) of \d+ frames", log)), default=0)
+
+
+def refused_for_floor(status, log, db):
+    assert status == 1, log
+    assert "the memory would be wrong" in log, log
+    assert "the floor is not seen" in log or "scale's two priors disagree" in log, log
+    assert "--scale" in log and "--force" in log, log
+    assert not db.exists(), "a refused ingest left a database"
+
+
+def desk_frames_photos(smql, folder, work):
+    """10 frames of the desk sequence as photos, without depth: COLMAP places most, and the desk
+    that fills them is not taken for the floor: refused, saying why (the floor barely shows)."""
+    photos = work / "photos"
+    photos.mkdir()
+    for image in sorted((folder / "rgb").glob("*.png"))[::12][:10]:
+        shutil.copy(image, photos)
+    camera = json.loads((folder / "camera.json").read_text())
+    camera.pop("depth_scale", None)
+    (photos / "camera.json").write_text(json.dumps(camera))
+    status, log = ingest(smql, photos, work / "db")
+    assert largest_model(log) >= 5, log
+    refused_for_floor(status, log, work / "db")
+
+
+def table_photos(smql, folder, work):
+    """10 photos of a toy on a kitchen table, all looking down at the table: the table top is not
+    the floor (the floor never shows): refused, saying why."""
+    photos = work / "photos"
+    photos.mkdir()
+    for image in sorted(folder.glob("*.png"))[:10]:
+        shutil.copy(image, photos)
+    status, log = ingest(smql, photos, work / "db")
+    assert largest_model(log) >= 5, log
+    refused_for_floor(status, log, work / "db")
+
+
 CHECKS = {
     "tum-fr1-rpy": desk_rgbd,
     "tum-fr3-office-photos": desk_photos,
+    "mipnerf360-kitchen": table_photos,
 }
-SUBSETS = {"tum-fr3-office-photos": desk_photos_subset}
+SUBSETS = {"tum-fr3-office-photos": desk_photos_subset, "tum-fr1-rpy": desk_frames_photos}
 
 
 def main():

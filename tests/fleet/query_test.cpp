@@ -34,10 +34,14 @@ struct LocalAnswers {
         engine.execute(fmt::format("USE SCENE '{}'", scene));
     }
     std::vector<std::int64_t> find(const std::string& statement) {
+        std::vector<std::int64_t> out = ordered(statement);
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+    std::vector<std::int64_t> ordered(const std::string& statement) {
         std::vector<std::int64_t> out;
         const std::vector<ResultSet> results = engine.execute(statement);
         for (const auto& row : results.back().rows) out.push_back(localOf.at(std::get<std::int64_t>(row[0])));
-        std::sort(out.begin(), out.end());
         return out;
     }
     std::int64_t count(const std::string& statement) {
@@ -106,6 +110,18 @@ TEST_CASE("COUNT and FIND with one predicate answer on the store as in the engin
                     ++statements;
                 }
         }
+        // The nearest first, in order, ties in id order as the engine breaks them.
+        for (std::size_t i = 0; i < few; ++i)
+            for (const int k : {1, 3, 12}) {
+                for (const std::string& statement :
+                     {fmt::format("FIND object NEAREST TO '{}' LIMIT {}", categories[i], k),
+                      fmt::format("FIND '{}' ORDER BY distance('{}') LIMIT {}", categories[(i + 1) % few],
+                                  categories[i], k)}) {
+                    INFO(scene << ": " << statement);
+                    CHECK(fleet::runQuery(store, stored, statement).ids == local.ordered(statement));
+                    ++statements;
+                }
+            }
         // A distance written in the statement reaches the server's near.
         const std::string written = fmt::format("FIND '{}' WHERE near('{}', 2.5 m)", categories[0], categories[1]);
         INFO(written);

@@ -585,6 +585,26 @@ TEST_CASE("a table top is not taken for the floor: what stands on it says so", "
         CHECK(floor.pointsBelow == 0);
         CHECK_FALSE(floor.tableTop());
     }
+    SECTION("a table alone, all its points on the surface: the surface is its top, not the floor") {
+        // Ten photos looking down at a kitchen table: the detector names the table, nothing on it,
+        // and nothing is seen below it.
+        NamedThing table{"table", {}};
+        for (double x = 0; x <= 2 + 1e-9; x += 0.05)
+            for (double y = 0; y <= 1 + 1e-9; y += 0.05) table.points.push_back({x, y, 0.75});
+        SurfaceEvidence top = weighSurface({{0, 0, 1}, 0.75}, {table}, table.points, 1.0);
+        CHECK(top.topOf == std::vector<std::string>{"table"});
+        CHECK(top.tableTop());
+        CHECK_THAT(top.describe(), Catch::Contains("it is the top of 1 thing that holds others (table)"));
+        // The same table standing on the floor, its legs seen: it rises from the floor.
+        for (double z = 0; z < 0.75; z += 0.02)
+            for (double x : {0.0, 2.0}) table.points.push_back({x, 0, z}), table.points.push_back({x, 1, z});
+        SurfaceEvidence floor = weighSurface({{0, 0, 1}, 0.0}, {table}, table.points, 1.0);
+        CHECK(floor.topOf.empty());
+        CHECK_FALSE(floor.tableTop());
+        // A chair is no table: its points on a surface are not its top.
+        NamedThing chair{"chair", table.points};
+        CHECK(weighSurface({{0, 0, 1}, 0.75}, {chair}, chair.points, 1.0).topOf.empty());
+    }
     SECTION("a patch of floor seen below a desk that fills the views is the floor, though far smaller") {
         const Desk desk = deskScene(true);
         Alignment a = alignCapture(desk.cloud, desk.cameras, AlignOptions{}, desk.things);
@@ -603,6 +623,21 @@ TEST_CASE("a table top is not taken for the floor: what stands on it says so", "
                                                    "keyboard, laptop), 1 reaches below it (chair)"));
         CHECK(a.floorHeight == Approx(0).margin(0.01));
         CHECK(angleDeg(a.up, {0, 0, 1}) < 1.0);  // levelled by the table top, not the cameras' pitch
+    }
+    SECTION("no horizontal surface at all: said so, and where the floor was put instead") {
+        // Two walls seen from the desk's cameras, and nothing level (a sparse cloud of a few photos).
+        Desk desk = deskScene(false);
+        desk.cloud = PointCloud{};
+        for (double s = -1; s <= 2 + 1e-9; s += 0.03)
+            for (double z = 0.3; z <= 2.4 + 1e-9; z += 0.03) {
+                desk.cloud.push({s, 1.6, z}, {200, 200, 200}, 0);
+                desk.cloud.push({2.4, s, z}, {200, 200, 200}, 0);
+            }
+        Alignment a = alignCapture(desk.cloud, desk.cameras, AlignOptions{}, {});
+        INFO(notesOf(a));
+        CHECK_FALSE(a.floorFound);
+        CHECK_THAT(a.floorNotSeen, Catch::Contains("no horizontal surface was found below the cameras"));
+        CHECK_THAT(a.floorPlaced, Catch::Contains("lowest 2% of the points"));
     }
     SECTION("photos without depth: as far below the top as the cameras are above it") {
         // The same desk in units of 0.5 m: the cameras 0.7 m (1.4 units) above the top read as a

@@ -103,6 +103,62 @@ TEST_CASE("plausibility: a room made to measure passes, the same room at the wro
     CHECK_FALSE(low.refused());
 }
 
+TEST_CASE("plausibility: names kept only as detected_as still count for the scale", "[ingest][plausibility]") {
+    // A desk's photos at twice their scale: every box too large for its detector's name, so each
+    // name was kept only as a guess. Those guesses are the evidence that the scale is off.
+    model::SceneData desk = room(1.0);
+    std::erase_if(desk.nodes, [](const model::Node& n) { return n.kind == model::NodeKind::Object; });
+    for (const auto& [name, side] : {std::pair{"book", 0.9}, {"laptop", 1.1}, {"mug", 0.4}, {"keyboard", 1.3}}) {
+        model::Node guess = node(model::NodeKind::Object, "object", {1, 1, 1}, {side, side / 2, 0.1});
+        guess.attributes.push_back({"detected_as", name});
+        desk.nodes.push_back(guess);
+    }
+    const auto report = checkPlausibility(desk, {});
+    CHECK(report.namedThings == 4);
+    REQUIRE(report.sizeRatio);
+    CHECK(*report.sizeRatio > 2);
+    CHECK(has(report, "sizes of named things", false));
+}
+
+TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[ingest][plausibility]") {
+    Alignment noPlane;
+    noPlane.floorNotSeen = "no horizontal surface was found below the cameras among the 747 points";
+    noPlane.floorPlaced = "under the lowest 2% of the points";
+    // Photos without depth take their scale from the floor: refused, naming --scale.
+    auto photos = alignmentFindings(noPlane, {});
+    REQUIRE(photos.size() == 1);
+    CHECK(photos.front().refuse);
+    CHECK_THAT(photos.front().what, Catch::Contains("no horizontal surface"));
+    CHECK_THAT(photos.front().fix, Catch::Contains("--scale"));
+    // With depth the scale does not depend on it: warned, saying where the floor went.
+    auto depth = alignmentFindings(noPlane, {.depth = true, .depthScale = 1000});
+    REQUIRE(depth.size() == 1);
+    CHECK_FALSE(depth.front().refuse);
+    CHECK_THAT(depth.front().fix, Catch::Contains("under the lowest 2% of the points"));
+
+    // A kitchen table taken for the floor: the chair and table tops at its level say 77x the
+    // cameras' answer. Refused; 1.6x (a crouching photographer) is a warning.
+    Alignment split;
+    split.scaleSplit = 77;
+    auto refused = alignmentFindings(split, {});
+    REQUIRE(refused.size() == 1);
+    CHECK(refused.front().check == "scale priors");
+    CHECK(refused.front().refuse);
+    CHECK_THAT(refused.front().what, Catch::Contains("a factor of 77"));
+    split.scaleSplit = 1.6;
+    CHECK_FALSE(alignmentFindings(split, {}).front().refuse);
+    CHECK(alignmentFindings(Alignment{}, {}).empty());
+}
+
+TEST_CASE("plausibility: a stored memory without a floor says what could not be checked", "[ingest][plausibility]") {
+    model::SceneData scene = room(1.0);
+    std::erase_if(scene.nodes, [](const model::Node& n) { return n.category == "floor"; });
+    const auto stored = checkPlausibility(scene, {.stored = true});
+    CHECK(has(stored, "floor", false));
+    CHECK_FALSE(stored.cameraHeight);
+    CHECK(stored.measured());  // the sizes still are
+}
+
 TEST_CASE("plausibility: a name far smaller than its box is not kept", "[ingest][plausibility]") {
     CHECK_FALSE(nameFitsBox("cake", {{0, 0, 0.9}, {0.6, 0.5, 1.78}, 0}));
     CHECK(nameFitsBox("cake", {{0, 0, 0.1}, {0.3, 0.3, 0.12}, 0}));
