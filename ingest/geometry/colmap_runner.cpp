@@ -167,11 +167,11 @@ std::string readText(const fs::path& file) {
 std::string describeRun(const Capture& capture, const std::vector<WorkFrame>& workFrames,
                         const std::vector<CameraGroup>& groups, const ColmapOptions& options) {
     std::string out = fmt::format(
-        "smql COLMAP run: max size {}, exhaustive up to {} ({} in order), overlap {}, loop frames {}, min matches {}, "
-        "vocabulary tree '{}', layout {}, mapper settings {} ({})\n",
+        "smql COLMAP run: max size {}, exhaustive up to {} ({} in order), overlap {}, fine features up to {}, loop "
+        "frames {}, min matches {}, vocabulary tree '{}', layout {}, mapper settings {} ({})\n",
         options.maxImageSize, options.exhaustiveUpTo, options.exhaustiveOrderedUpTo, options.sequentialOverlap,
-        options.loopFrames, options.minMatches, options.vocabularyTree, capture.layout, std::size(kMapperSettings),
-        kMapperAdjustment);
+        options.fineFeaturesUpTo, options.loopFrames, options.minMatches, options.vocabularyTree, capture.layout,
+        std::size(kMapperSettings), kMapperAdjustment);
     for (const CameraGroup& g : groups) {
         out += fmt::format("camera {} {}x{}", g.folder, g.work.width, g.work.height);
         if (g.known)
@@ -317,9 +317,8 @@ public:
         gatherFrames();
         prepareWorkFolder();
         try {
-            extractFeatures();
-            matchFeatures();
-            if (!exhaustive_ && !loops_) closeLoops();
+            fine_ = static_cast<int>(workFrames_.size()) <= options_.fineFeaturesUpTo;
+            findAndMatchFeatures();
             // Frames that all have a pose (transforms.json without depth, RGB-D frames with the depth left
             // out) keep it: COLMAP only triangulates the matched features with the given poses and cameras.
             const bool posed = std::all_of(workFrames_.begin(), workFrames_.end(), [&](const WorkFrame& w) {
@@ -328,7 +327,7 @@ public:
             if (posed)
                 triangulateWithPoses();
             else
-                adoptModel(mapLargestModel());
+                adoptModel(placeFrames());
         } catch (const Error&) {
             noteSteps();  // a failed run says where its time went too
             throw;
@@ -445,9 +444,47 @@ private:
                     std::nullopt, kRetryHint);
     }
 
+    void findAndMatchFeatures() {
+        extractFeatures();
+        matchFeatures();
+        if (!exhaustive_ && !loops_) closeLoops();
+    }
+
+    // A long capture's features at the frames' own size place its frames in half the time; when they
+    // leave more than a fifth of the frames out (too few features shared across a wide step), the
+    // frames doubled give the finer features, found and matched again in a new database: 20 frames of
+    // a generated walk, 11 placed, then all 20 (tests/unit/ingest/colmap_test.cpp).
+    Capture placeFrames() {
+        const std::size_t frames = workFrames_.size();
+        if (fine_ || run_.reused) return mapLargestModel();
+        std::size_t placed = 0;
+        try {
+            Capture model = mapLargestModel();
+            if (5 * model.frames.size() >= 4 * frames) return model;
+            placed = model.frames.size();
+        } catch (const Error&) {  // no model of half the frames: the finer features may make one
+        }
+        note(
+            fmt::format("COLMAP placed {} of {} frames with features at their own size; it runs again with the "
+                        "finer features of the frames doubled",
+                        placed, frames));
+        fine_ = true;
+        fs::remove(database_);
+        fs::remove_all(sparse_);
+        fs::create_directories(sparse_);
+        run_.models = 0;
+        findAndMatchFeatures();
+        return mapLargestModel();
+    }
+
     // One feature_extractor run per group, so that each image size gets a camera of its own even
     // when the sizes share a folder of photos (COLMAP's single_camera would force one size on all).
     void extractFeatures() {
+        if (!fine_)
+            note(
+                fmt::format("COLMAP looks for features at the frames' own size, not doubled as for captures of up to "
+                            "{} frames: half the time, and each frame has neighbours enough",
+                            options_.fineFeaturesUpTo));
         for (const CameraGroup& group : groups_) {
             fs::path list = work_ / fmt::format("images-{}.txt", group.folder);
             std::ofstream out(list);
@@ -461,9 +498,10 @@ private:
                             : std::string("--ImageReader.camera_model SIMPLE_RADIAL");
             runStep("feature_extractor",
                     fmt::format("--database_path {} --image_path {} --image_list_path {} --ImageReader.single_camera 1 "
-                                "{} --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads {}",
+                                "{} --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads {} "
+                                "--SiftExtraction.first_octave {}",
                                 shellQuoted(database_.string()), shellQuoted(images_.string()),
-                                shellQuoted(list.string()), camera, threads_));
+                                shellQuoted(list.string()), camera, threads_, fine_ ? -1 : 0));
         }
         ColmapDatabaseSummary extracted = readColmapDatabase(database_.string(), options_.minMatches);
         if (extracted.imagesWithFeatures < 2)
@@ -694,6 +732,7 @@ private:
     std::size_t scaled_ = 0;
     std::string inputs_;
     bool ordered_ = false, exhaustive_ = false, loops_ = false;
+    bool fine_ = true;  // SIFT from the frames doubled (COLMAP's first_octave -1), else at their own size
     ColmapNotes notes_;
 };
 

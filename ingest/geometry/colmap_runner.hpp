@@ -19,6 +19,10 @@ struct ColmapOptions {
     int exhaustiveUpTo = 60;         // unordered photo sets up to this many frames: exhaustive_matcher
     int exhaustiveOrderedUpTo = 40;  // frames in capture order (a short video) up to this many: the same
     int sequentialOverlap = 5;       // sequential_matcher: the neighbours each frame is matched with
+    // Captures up to this many frames: SIFT starts an octave below the image (COLMAP's default, the frame
+    // doubled for its finest features); longer ones start at the frame's own size, which halves the
+    // extraction and leaves each frame's many neighbours enough features to be placed.
+    int fineFeaturesUpTo = 100;
     std::string vocabularyTree;      // COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection; empty: none
     int loopFrames = 20;             // without a tree: frames spread through the capture, matched all against all
     int minMatches = 15;             // verified matches that make two frames overlap (COLMAP's mapper default)

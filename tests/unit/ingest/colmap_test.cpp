@@ -121,6 +121,30 @@ TEST_CASE("an RGB-only synthetic capture through COLMAP meets the quality thresh
     CHECK(boxes.report.objects.f1() >= 0.6);
 }
 
+// 20 frames of a generated walk are a wide step apart: features at the frames' own size place 11 of
+// them, the finer ones of the frames doubled all 20 (with the relaxed start).
+TEST_CASE(
+    "a long capture's features found at the frames' own size, and the finer ones when too few frames are "
+    "placed") {
+    ScratchDir dir;
+    auto capturePath = (dir.path / "capture").string();
+    synth::writeSynth(capturePath, {.seed = 3, .frames = 20, .objects = 24});
+    Capture capture = readCapture(capturePath);
+    for (auto& f : capture.frames) {
+        f.depthPath.clear();
+        f.pose.reset();
+    }
+    ColmapOptions options;
+    options.fineFeaturesUpTo = 10;
+    ColmapRun run = runColmap(capture, options);
+    std::string notes;
+    for (const auto& n : run.notes) notes += n + "\n";
+    INFO(notes);
+    CHECK_THAT(notes, Catch::Contains("COLMAP looks for features at the frames' own size"));
+    CHECK_THAT(notes, Catch::Contains("frames with features at their own size; it runs again with the finer features"));
+    CHECK(run.registered >= 0.9 * capture.frames.size());
+}
+
 TEST_CASE("a missing colmap command gives a clear error") {
     ScratchDir dir;
     std::filesystem::create_directories(dir.path / "empty");
