@@ -15,7 +15,7 @@
 
 #include "fuzz/fuzz_support.hpp"
 #include "ingest/capture/capture.hpp"
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 #include "model/error.hpp"
 
 using namespace smql;

@@ -14,7 +14,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 
 namespace smql::ingest {
 

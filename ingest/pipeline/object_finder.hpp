@@ -15,8 +15,8 @@
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/frame_loader.hpp"
+#include "ingest/capture/observations.hpp"
 #include "ingest/geometry/walls.hpp"
-#include "ingest/pipeline/observations.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_data.hpp"
 #include "ingest/pipeline/stage_runner.hpp"

@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"

@@ -1,5 +1,5 @@
 #include "ingest/pipeline/openings_stage.hpp"
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include "ingest/pipeline/quality.hpp"
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 
 #include <algorithm>
 #include <cmath>

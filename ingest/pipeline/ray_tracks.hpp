@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "ingest/pipeline/observations.hpp"
+#include "ingest/capture/observations.hpp"
 
 namespace smql::ingest {
 

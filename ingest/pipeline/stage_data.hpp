@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "ingest/capture/capture.hpp"
+#include "ingest/capture/observations.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/view_consistency.hpp"
-#include "ingest/pipeline/observations.hpp"
 #include "model/types.hpp"
 
 namespace smql::ingest {

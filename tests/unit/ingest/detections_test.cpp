@@ -12,7 +12,7 @@
 
 #include "engine/engine.hpp"
 #include "ingest/capture/capture.hpp"
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/quality.hpp"

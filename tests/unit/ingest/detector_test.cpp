@@ -15,7 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "ingest/capture/capture.hpp"
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"

@@ -18,8 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "ingest/capture/capture.hpp"
+#include "ingest/capture/detections.hpp"
 #include "ingest/import/importers.hpp"
-#include "ingest/pipeline/detections.hpp"
 #include "ingest/synth/palette.hpp"
 #include "ingest/synth/render.hpp"
 #include "ingest/synth/synth.hpp"

@@ -17,7 +17,7 @@
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/frame_loader.hpp"
-#include "ingest/pipeline/observations.hpp"
+#include "ingest/capture/observations.hpp"
 
 namespace smql::ingest {
 

@@ -1,4 +1,4 @@
-#include "ingest/pipeline/observations.hpp"
+#include "ingest/capture/observations.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "ingest/pipeline/detections.hpp"
+#include "ingest/capture/detections.hpp"
 
 #include <algorithm>
 #include <cmath>
