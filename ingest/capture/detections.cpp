@@ -318,61 +318,103 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
     const auto& R = pose.rotation;
     const auto& t = pose.translation;
     // Detections are in stored-image pixels; frames are loaded at the working resolution.
-    double scale = workingScale(K, storedWidth);
+    const double scale = workingScale(K, storedWidth);
 
-    cv::Mat1b mask(images.depth.size());
+    // Each detection's mask, its area, and the median depth inside it: most of a good mask is on
+    // the thing.
+    struct Candidate {
+        std::size_t detection = 0;
+        cv::Mat1b mask;
+        int area = 0;
+        double median = 0;
+        int regionStride = 1;
+    };
+    std::vector<Candidate> candidates;
     for (std::size_t d = 0; d < detections.size() && d + 1 < 65536; ++d) {
-        const Detection& det = detections[d];
-        if (det.score < kMinDetectionScore) continue;
-        mask.setTo(0);
-        drawDetection(det, scale, mask, 255);
-        int area = cv::countNonZero(mask);
-        if (area < minPixels) continue;
-
-        // The median depth inside the mask is the object's: most of a good mask is on it.
+        if (detections[d].score < kMinDetectionScore) continue;
+        Candidate c{d, cv::Mat1b::zeros(images.depth.size())};
+        drawDetection(detections[d], scale, c.mask, 255);
+        c.area = cv::countNonZero(c.mask);
+        if (c.area < minPixels) continue;
         std::vector<float> depths;
-        for (int y = 0; y < mask.rows; ++y) {
-            const auto* m = mask.ptr<std::uint8_t>(y);
+        for (int y = 0; y < c.mask.rows; ++y) {
+            const auto* m = c.mask.ptr<std::uint8_t>(y);
             const float* z = images.depth.ptr<float>(y);
-            for (int x = 0; x < mask.cols; ++x)
+            for (int x = 0; x < c.mask.cols; ++x)
                 if (m[x] && z[x] > 0) depths.push_back(z[x]);
         }
         if (depths.empty()) continue;
-        auto mid = depths.begin() + depths.size() / 2;
+        auto mid = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
         std::nth_element(depths.begin(), mid, depths.end());
-        double median = *mid;
+        c.median = *mid;
+        c.regionStride = std::max(stride, static_cast<int>(std::ceil(std::sqrt(double(c.area) / kRegionPoints))));
+        candidates.push_back(std::move(c));
+    }
+    // The smaller first: a pixel in several masks belongs to the smallest that it is not behind.
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.area < b.area; });
 
-        Observation o;
-        o.frame = frame;
-        o.instance = static_cast<std::uint16_t>(d + 1);
+    struct Gathered {
         int kept = 0, x0 = INT32_MAX, y0 = INT32_MAX, x1 = -1, y1 = -1;
         double sumX = 0;
         std::vector<cv::Vec3b> samples;
-        for (int y = 0; y < mask.rows; ++y) {
-            const auto* m = mask.ptr<std::uint8_t>(y);
-            const float* z = images.depth.ptr<float>(y);
-            const auto* bgr = images.color.ptr<cv::Vec3b>(y);
-            for (int x = 0; x < mask.cols; ++x) {
-                if (!m[x] || !(z[x] > 0) || std::abs(z[x] - median) > kDetectionDepthBand) continue;
-                ++kept;
-                sumX += x;
-                x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
-                if (y % stride || x % stride) continue;
-                samples.push_back(bgr[x]);
-                double zz = z[x];
-                double cx = (x - K.cx) / K.fx * zz, cy = (y - K.cy) / K.fy * zz;
-                o.points.push_back({R[0] * cx + R[1] * cy + R[2] * zz + t.x, R[3] * cx + R[4] * cy + R[5] * zz + t.y,
-                                    R[6] * cx + R[7] * cy + R[8] * zz + t.z});
+    };
+    std::vector<Gathered> gathered(candidates.size());
+    out.resize(candidates.size());
+    for (int y = 0; y < images.depth.rows; ++y) {
+        const float* z = images.depth.ptr<float>(y);
+        const auto* bgr = images.color.ptr<cv::Vec3b>(y);
+        for (int x = 0; x < images.depth.cols; ++x) {
+            if (!(z[x] > 0)) continue;
+            std::size_t owner = candidates.size();
+            for (std::size_t c = 0; c < candidates.size(); ++c) {
+                if (!candidates[c].mask(y, x)) continue;
+                owner = c;
+                if (z[x] <= candidates[c].median + kOwnedBehind) break;
             }
+            if (owner == candidates.size()) continue;
+            const Candidate& c = candidates[owner];
+            Observation& o = out[owner];
+            const double zz = z[x];
+            const double cx = (x - K.cx) / K.fx * zz, cy = (y - K.cy) / K.fy * zz;
+            const model::Vec3 world{R[0] * cx + R[1] * cy + R[2] * zz + t.x, R[3] * cx + R[4] * cy + R[5] * zz + t.y,
+                                    R[6] * cx + R[7] * cy + R[8] * zz + t.z};
+            if (y % c.regionStride == 0 && x % c.regionStride == 0)
+                o.region.push_back({static_cast<float>(world.x), static_cast<float>(world.y),
+                                    static_cast<float>(world.z), bgr[x],
+                                    static_cast<std::uint16_t>(x / c.regionStride),
+                                    static_cast<std::uint16_t>(y / c.regionStride)});
+            if (std::abs(zz - c.median) > kDetectionDepthBand) continue;
+            Gathered& g = gathered[owner];
+            ++g.kept;
+            g.sumX += x;
+            g.x0 = std::min(g.x0, x), g.y0 = std::min(g.y0, y), g.x1 = std::max(g.x1, x), g.y1 = std::max(g.y1, y);
+            if (y % stride || x % stride) continue;
+            g.samples.push_back(bgr[x]);
+            o.points.push_back(world);
         }
-        if (kept < minPixels || o.points.empty()) continue;
-        o.pixels = kept;
-        o.bounds = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
-        o.centreX = sumX / kept / mask.cols;
-        cv::Mat(samples, true).copyTo(o.colors);
-        out.push_back(std::move(o));
     }
-    return out;
+    std::vector<Observation> kept;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+        Observation& o = out[c];
+        const Gathered& g = gathered[c];
+        if (g.kept < minPixels || o.points.empty()) continue;
+        const Detection& detection = detections[candidates[c].detection];
+        o.frame = frame;
+        o.instance = static_cast<std::uint16_t>(candidates[c].detection + 1);
+        o.pixels = g.kept;
+        o.bounds = cv::Rect(g.x0, g.y0, g.x1 - g.x0 + 1, g.y1 - g.y0 + 1);
+        o.centreX = g.sumX / g.kept / images.depth.cols;
+        o.label = detection.category;
+        o.score = detection.score;
+        o.alsoSeenAs = detection.alsoSeenAs;
+        o.regionPitch = candidates[c].regionStride * candidates[c].median / K.fx;
+        cv::Mat(g.samples, true).copyTo(o.colors);
+        kept.push_back(std::move(o));
+    }
+    // In the detections' order, as before ownership sorted them.
+    std::sort(kept.begin(), kept.end(), [](const Observation& a, const Observation& b) { return a.instance < b.instance; });
+    return kept;
 }
 
 namespace {

@@ -25,8 +25,16 @@ namespace smql::ingest {
 // low-confidence guesses that would become phantom objects.
 inline constexpr double kMinDetectionScore = 0.3;
 // Pixels whose depth is farther than this from the median depth inside the
-// mask are dropped: a box (or a loose polygon) also covers the background.
+// mask are left out of a view's points (Observation::points, what views are
+// associated by before the floor is known): a box also covers the background.
 inline constexpr double kDetectionDepthBand = 0.25;  // m
+// A pixel inside several detections' masks belongs to the smallest whose
+// median depth it lies at most this far behind (a mug on a table, a chair in
+// front of a sofa), else to the next larger: a smaller thing stands in front.
+inline constexpr double kOwnedBehind = 0.3;  // m
+// A view's region (Observation::region) keeps about this many of its pixels,
+// on a regular grid.
+inline constexpr int kRegionPoints = 3000;
 
 struct Detection {
     std::string category;
@@ -36,6 +44,8 @@ struct Detection {
     cv::Mat1b rle;                                   // a COCO RLE mask decoded (stored image size)
     // Neither polygons nor an RLE mask: the box is the mask.
     std::vector<float> embedding;  // the detector's vector for what it saw; empty when it gave none
+    // What other models called the same box (the detectors' ensemble, detector.hpp): name and score.
+    std::vector<std::pair<std::string, double>> alsoSeenAs;
 };
 
 // Reads capture.detectionsPath; the result has one list per capture frame (by
@@ -48,7 +58,9 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture);
 // Lifts the frame's detections (score >= kMinDetectionScore) into observations
 // with the frame's depth; Observation::instance is 1 + the detection's position
 // in `detections` (0 is no instance, as in masks). `storedWidth` is the width
-// of the image the detections were made on.
+// of the image the detections were made on. Each pixel goes to one detection
+// (kOwnedBehind); its points within kDetectionDepthBand of the median depth
+// are the view's points, all of them (sub-sampled) its region.
 std::vector<Observation> observeDetections(const FrameImages& images, const Pose& pose, std::uint32_t frame,
                                            const std::vector<Detection>& detections, int storedWidth, int stride,
                                            int minPixels);

@@ -16,6 +16,15 @@
 
 namespace smql::ingest {
 
+// A pixel of a view's region lifted into the capture frame, with its colour: single precision, as a
+// capture holds thousands of them for each detection until the objects stage fuses them.
+struct RegionPoint {
+    float x = 0, y = 0, z = 0;
+    cv::Vec3b bgr;
+    std::uint16_t column = 0, row = 0;  // its place on the region's grid (pixel / stride)
+    model::Vec3 position() const { return {x, y, z}; }
+};
+
 struct Observation {
     std::uint32_t frame = 0;
     std::uint16_t instance = 0;
@@ -27,6 +36,14 @@ struct Observation {
     double centreX = 0;                 // mask centroid, as a share of the image width (0 left, 1 right)
     std::vector<std::uint32_t> sparse;  // indices of Capture::points on the mask (frames without depth)
     std::vector<float> embedding;       // an external model's vector for this view (detections.json); may be empty
+    // Detections with depth: every pixel the detection owns in its frame (its mask, else its box, less
+    // what a smaller detection in front owns), sub-sampled to about kRegionPoints; the objects stage
+    // finds the thing among them once the floor and the walls are known (view_segment.hpp).
+    std::vector<RegionPoint> region;
+    double regionPitch = 0;  // m: the region's grid step at the detection's median depth
+    std::string label;  // detections: what this view was detected as, and how sure the detector was
+    double score = 1;
+    std::vector<std::pair<std::string, double>> alsoSeenAs;  // ... and what other models called it
 };
 
 struct EvidenceCrop {
@@ -51,6 +68,11 @@ struct ObjectTrack {
     // The points are a visual hull carved without depth (carveVisualHulls, placeByRays): seen from a
     // narrow range of directions it stays long along the view.
     bool carved = false;
+    // Fused from its views once the room is aligned (detections with depth, instance_map.hpp): the
+    // thing's points in the aligned frame, and their colours (N x 1 CV_8UC3 BGR). The objects stage
+    // fits the box to these instead of the views' points.
+    std::vector<model::Vec3> fused;
+    cv::Mat fusedColors;
 };
 
 // Lifts every instance of one frame with enough pixels. `stride` samples the

@@ -24,6 +24,8 @@ constexpr double kRises = 0.3;
 // keeps it from being enough alone).
 constexpr double kSeenBelow = 0.01;
 constexpr double kUnderFloor = 0.02;
+// This many things that stand on floors rising from a surface that nothing lies below make it a floor.
+constexpr std::size_t kStandingOnFloor = 3;
 // Fewer points than this say nothing of where a thing ends.
 constexpr std::size_t kMinPoints = 20;
 
@@ -38,6 +40,10 @@ std::string listed(const std::vector<std::string>& names) {
 }  // namespace
 
 bool SurfaceEvidence::tableTop() const {
+    // Things that stand on floors rising from a surface that nothing was seen below, and that nothing
+    // reaches below: the floor, whatever small things a detector names on it (a carpet's pattern
+    // seen as cakes and phones).
+    if (pointsBelow < kSeenBelow && below.empty() && standing.size() >= kStandingOnFloor) return false;
     const std::size_t against = onTop.size() + below.size() + topOf.size();
     const bool much = against >= 2 || !topOf.empty() || (against >= 1 && pointsBelow >= kUnderFloor);
     return much && against > standing.size();

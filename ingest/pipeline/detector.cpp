@@ -1,8 +1,10 @@
-// NanoDet through OpenCV's DNN module (docs/ingest.md "Detector"). The graph
-// (scripts/detector/tfjs_to_onnx.py) takes a 1x3x416x416 BGR image
-// normalised by NanoDet's mean and deviation, and gives per level (strides 8,
-// 16, 32) class scores (sigmoid, N x 80) and box sides as distributions over 11
-// bins (N x 44, GFL: left, top, right, bottom, in strides).
+// The detectors through OpenCV's DNN module (docs/ingest.md "Detector").
+// NanoDet's graph (scripts/detector/tfjs_to_onnx.py) takes a 1x3x416x416 BGR
+// image normalised by NanoDet's mean and deviation, and gives per level
+// (strides 8, 16, 32) class scores (sigmoid, N x 80) and box sides as
+// distributions over 11 bins (N x 44, GFL: left, top, right, bottom, in
+// strides). The Open Images SSD's (scripts/detector/oid_tflite_to_onnx.py)
+// decodes its anchors in the graph.
 #include "ingest/pipeline/detector.hpp"
 
 #include <algorithm>
@@ -35,13 +37,21 @@ constexpr double kNmsIou = 0.5;
 const cv::Scalar kMean{103.53, 116.28, 123.675};
 const cv::Scalar kStd{57.375, 57.12, 58.395};
 
-constexpr const char* kModelFile = "nanodet.onnx";
-constexpr const char* kClassFile = "coco.names";
+constexpr int kSsdInputSize = 300;
 
-// COCO classes whose name is not the memory's: renamed, or "" for what a room's memory does not keep
-// (people and animals move, vehicles and street furniture are not indoors). Others keep their name with
-// spaces as underscores ("wine glass" -> "wine_glass").
-constexpr std::pair<std::string_view, std::string_view> kCocoToMemory[] = {
+const std::vector<PackagedModel> kPackagedModels{
+    {"nanodet", "nanodet.onnx", "coco.names", ModelRole::Detector, "NanoDet, trained on COCO (80 classes)"},
+    {"oid", "oid_ssd.onnx", "oid.names", ModelRole::Detector,
+     "MediaPipe Objectron's SSD, trained on Open Images (23 classes: desk, table, computer monitor, book, box ...)"},
+    {"deeplab", "deeplab_voc.onnx", "voc.names", ModelRole::Segmenter,
+     "DeepLab v3 (MobileNetV2), trained on PASCAL VOC (20 classes: chair, sofa, dining table, tv, plant, bottle ...)"},
+};
+
+// The models' classes whose name is not the memory's, in lower case: renamed, or "" for what a room's
+// memory does not keep (people and animals move, vehicles and street furniture are not indoors, shoes
+// are not furniture). Others keep their name in lower case with spaces as underscores ("wine glass" ->
+// "wine_glass").
+constexpr std::pair<std::string_view, std::string_view> kClassToMemory[] = {
     {"couch", "sofa"},
     {"sofa", "sofa"},
     {"dining table", "table"},
@@ -80,6 +90,16 @@ constexpr std::pair<std::string_view, std::string_view> kCocoToMemory[] = {
     {"bear", ""},
     {"zebra", ""},
     {"giraffe", ""},
+    // Open Images (the SSD's), lower-cased.
+    {"computer monitor", "monitor"},
+    {"computer mouse", "mouse"},
+    {"coffee cup", "mug"},
+    {"stationary bicycle", ""},
+    {"cattle", ""},
+    {"vehicle", ""},
+    {"footwear", ""},
+    {"boot", ""},
+    {"high heels", ""},
 };
 
 std::vector<std::string> readClassNames(const fs::path& path) {
@@ -93,18 +113,48 @@ std::vector<std::string> readClassNames(const fs::path& path) {
     return names;
 }
 
+cv::dnn::Net loadModel(const fs::path& model) {
+    cv::dnn::Net net;
+    try {
+        net = cv::dnn::readNetFromONNX(model.string());
+    } catch (const cv::Exception& e) {
+        throw Error(ErrorKind::Input, fmt::format("{}: not a model OpenCV can load: {}", model.string(), e.msg),
+                    std::nullopt, "prepare it with scripts/detector/setup.sh");
+    }
+    net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+    net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+    return net;
+}
+
+// Non-maximum suppression per class: the cells (anchors) of one object all vote for it. Best first.
+std::vector<Detection> suppressPerClass(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
+                                        const std::vector<int>& labels, const std::vector<std::string>& categories,
+                                        double minScore) {
+    std::map<int, std::vector<int>> byClass;
+    for (std::size_t i = 0; i < boxes.size(); ++i) byClass[labels[i]].push_back(int(i));
+    std::vector<Detection> out;
+    for (const auto& [label, members] : byClass) {
+        std::vector<cv::Rect2d> classBoxes;
+        std::vector<float> classScores;
+        for (int i : members) classBoxes.push_back(boxes[i]), classScores.push_back(scores[i]);
+        std::vector<int> kept;
+        cv::dnn::NMSBoxes(classBoxes, classScores, float(minScore), float(kNmsIou), kept);
+        for (int k : kept) {
+            Detection d;
+            d.category = categories[label];
+            d.score = classScores[k];
+            d.box = classBoxes[k];
+            out.push_back(std::move(d));
+        }
+    }
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
+    return out;
+}
+
 class NanoDetDetector : public ObjectDetector {
 public:
-    NanoDetDetector(const DetectorFiles& files, double minScore) : minScore_(minScore) {
-        try {
-            net_ = cv::dnn::readNetFromONNX(files.model.string());
-        } catch (const cv::Exception& e) {
-            throw Error(ErrorKind::Input,
-                        fmt::format("{}: not a model OpenCV can load: {}", files.model.string(), e.msg), std::nullopt,
-                        "prepare it with scripts/detector/setup.sh");
-        }
-        net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-        net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+    NanoDetDetector(const DetectorFiles& files, double minScore)
+        : minScore_(minScore), file_(files.model.filename().string()), net_(loadModel(files.model)) {
         classes_ = readClassNames(files.classes);
         for (const auto& name : classes_) categories_.push_back(memoryCategory(name));
         outputNames_ = net_.getUnconnectedOutLayersNames();
@@ -143,8 +193,10 @@ public:
                                         side, side, classes_.size(), 4 * kBins, stride));
             decodeLevel(*classScores, *distances, stride, sx, sy, boxes, scores, labels);
         }
-        return suppress(boxes, scores, labels);
+        return suppressPerClass(boxes, scores, labels, categories_, minScore_);
     }
+
+    std::string describe() const override { return file_; }
 
 private:
     // Cells whose best class scores at least minScore_ become boxes: each side
@@ -180,44 +232,123 @@ private:
         }
     }
 
-    // Non-maximum suppression per class: the cells of one object all vote for it.
-    std::vector<Detection> suppress(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
-                                    const std::vector<int>& labels) const {
-        std::map<int, std::vector<int>> byClass;
-        for (std::size_t i = 0; i < boxes.size(); ++i) byClass[labels[i]].push_back(int(i));
-        std::vector<Detection> out;
-        for (const auto& [label, members] : byClass) {
-            std::vector<cv::Rect2d> classBoxes;
-            std::vector<float> classScores;
-            for (int i : members) classBoxes.push_back(boxes[i]), classScores.push_back(scores[i]);
-            std::vector<int> kept;
-            cv::dnn::NMSBoxes(classBoxes, classScores, float(minScore_), float(kNmsIou), kept);
-            for (int k : kept) {
-                Detection d;
-                d.category = categories_[label];
-                d.score = classScores[k];
-                d.box = classBoxes[k];
-                out.push_back(std::move(d));
-            }
-        }
-        std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
-        return out;
-    }
-
     double minScore_;
+    std::string file_;
     cv::dnn::Net net_;
     std::vector<std::string> classes_, categories_;
     std::vector<std::string> outputNames_;
 };
 
+// The Open Images SSD: its graph decodes the anchors; what is left is the best class of each anchor
+// and the suppression.
+class SsdDetector : public ObjectDetector {
+public:
+    SsdDetector(const DetectorFiles& files, double minScore)
+        : minScore_(minScore), file_(files.model.filename().string()), net_(loadModel(files.model)) {
+        for (const auto& name : readClassNames(files.classes)) categories_.push_back(memoryCategory(name));
+    }
+
+    std::vector<Detection> detect(const cv::Mat& bgr) override {
+        net_.setInput(cv::dnn::blobFromImage(bgr, 1 / 127.5, cv::Size(kSsdInputSize, kSsdInputSize),
+                                             cv::Scalar(127.5, 127.5, 127.5), /*swapRB=*/true, /*crop=*/false));
+        std::vector<cv::Mat> outputs;
+        net_.forward(outputs, std::vector<cv::String>{"boxes", "scores"});
+        const cv::Mat& boxes = outputs[0];
+        const cv::Mat& scores = outputs[1];
+        if (boxes.dims != 3 || scores.dims != 3 || boxes.size[2] != 4 || scores.size[1] != boxes.size[1] ||
+            scores.size[2] != static_cast<int>(categories_.size()))
+            throw Error(ErrorKind::Input, fmt::format("{}: its outputs are not an SSD's boxes and {} class scores",
+                                                      file_, categories_.size()));
+        std::vector<cv::Rect2d> found;
+        std::vector<float> foundScores;
+        std::vector<int> labels;
+        const int anchors = boxes.size[1], classes = scores.size[2];
+        for (int a = 0; a < anchors; ++a) {
+            const float* s = scores.ptr<float>(0) + std::size_t(a) * classes;
+            const int best = static_cast<int>(std::max_element(s, s + classes) - s);
+            if (s[best] < minScore_ || categories_[best].empty()) continue;
+            const float* b = boxes.ptr<float>(0) + std::size_t(a) * 4;  // top, left, bottom, right
+            const double x0 = std::clamp<double>(b[1], 0, 1) * bgr.cols, y0 = std::clamp<double>(b[0], 0, 1) * bgr.rows;
+            const double x1 = std::clamp<double>(b[3], 0, 1) * bgr.cols, y1 = std::clamp<double>(b[2], 0, 1) * bgr.rows;
+            if (x1 <= x0 || y1 <= y0) continue;
+            found.emplace_back(x0, y0, x1 - x0, y1 - y0);
+            foundScores.push_back(s[best]);
+            labels.push_back(best);
+        }
+        return suppressPerClass(found, foundScores, labels, categories_, minScore_);
+    }
+
+    std::string describe() const override { return file_; }
+
+private:
+    double minScore_;
+    std::string file_;
+    cv::dnn::Net net_;
+    std::vector<std::string> categories_;
+};
+
+double iou(const cv::Rect2d& a, const cv::Rect2d& b) {
+    const double inter = (a & b).area();
+    return inter > 0 ? inter / (a.area() + b.area() - inter) : 0;
+}
+
+class DetectorEnsemble : public ObjectDetector {
+public:
+    explicit DetectorEnsemble(std::vector<std::unique_ptr<ObjectDetector>> members) : members_(std::move(members)) {}
+
+    std::vector<Detection> detect(const cv::Mat& bgr) override {
+        std::vector<std::pair<std::size_t, Detection>> all;  // (member, detection)
+        for (std::size_t m = 0; m < members_.size(); ++m)
+            for (auto& d : members_[m]->detect(bgr)) all.emplace_back(m, std::move(d));
+        std::stable_sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.second.score > b.second.score; });
+        std::vector<std::pair<std::size_t, Detection>> kept;
+        for (auto& [member, d] : all) {
+            auto same = std::find_if(kept.begin(), kept.end(), [&](const auto& k) {
+                return k.first != member && iou(k.second.box, d.box) >= kSameThingIou &&
+                       std::none_of(k.second.alsoSeenAs.begin(), k.second.alsoSeenAs.end(),
+                                    [&](const auto& other) { return other.first == d.category; });
+            });
+            if (same == kept.end())
+                kept.emplace_back(member, std::move(d));
+            else
+                same->second.alsoSeenAs.emplace_back(d.category, d.score);
+        }
+        std::vector<Detection> out;
+        for (auto& [member, d] : kept) out.push_back(std::move(d));
+        return out;
+    }
+
+    std::string describe() const override {
+        std::string out;
+        for (const auto& m : members_) out += (out.empty() ? "" : " + ") + m->describe();
+        return out;
+    }
+
+private:
+    std::vector<std::unique_ptr<ObjectDetector>> members_;
+};
+
 }  // namespace
+
+const std::vector<PackagedModel>& packagedModels() { return kPackagedModels; }
 
 fs::path defaultModelDir() { return SMQL_MODEL_DIR; }
 
+std::optional<DetectorFiles> installedModel(std::string_view name) {
+    for (const auto& m : kPackagedModels) {
+        if (m.name != name) continue;
+        DetectorFiles files{defaultModelDir() / m.file, defaultModelDir() / m.classes};
+        std::error_code ec;
+        if (fs::is_regular_file(files.model, ec) && fs::is_regular_file(files.classes, ec)) return files;
+    }
+    return std::nullopt;
+}
+
 std::optional<DetectorFiles> findDetectorFiles(const std::string& model, const std::string& classes) {
+    if (model.empty() && classes.empty()) return installedModel("nanodet");
     DetectorFiles files;
-    files.model = model.empty() ? defaultModelDir() / kModelFile : fs::path(model);
-    files.classes = !classes.empty() ? fs::path(classes) : files.model.parent_path() / kClassFile;
+    files.model = model.empty() ? defaultModelDir() / kPackagedModels.front().file : fs::path(model);
+    files.classes = !classes.empty() ? fs::path(classes) : files.model.parent_path() / kPackagedModels.front().classes;
     std::error_code ec;
     if (!fs::is_regular_file(files.model, ec) || !fs::is_regular_file(files.classes, ec)) return std::nullopt;
     return files;
@@ -227,10 +358,28 @@ std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, 
     return std::make_unique<NanoDetDetector>(files, minScore);
 }
 
-std::string memoryCategory(std::string_view cocoName) {
-    for (const auto& [coco, memory] : kCocoToMemory)
-        if (coco == cocoName) return std::string(memory);
-    std::string name(cocoName);
+std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore) {
+    return std::make_unique<SsdDetector>(files, minScore);
+}
+
+std::unique_ptr<ObjectDetector> makeDetectorEnsemble(std::vector<std::unique_ptr<ObjectDetector>> members) {
+    return std::make_unique<DetectorEnsemble>(std::move(members));
+}
+
+std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged) {
+    std::vector<std::unique_ptr<ObjectDetector>> members;
+    members.push_back(makeNanoDetDetector(files));
+    if (packaged)
+        if (auto oid = installedModel("oid")) members.push_back(makeSsdDetector(*oid));
+    if (members.size() == 1) return std::move(members.front());
+    return makeDetectorEnsemble(std::move(members));
+}
+
+std::string memoryCategory(std::string_view className) {
+    std::string name(className);
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (const auto& [model, memory] : kClassToMemory)
+        if (model == name) return std::string(memory);
     std::replace(name.begin(), name.end(), ' ', '_');
     return name;
 }

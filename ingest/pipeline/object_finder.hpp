@@ -42,6 +42,13 @@ public:
     // After the last frame: a line for the user on the source's own work (the detector's time per
     // frame), or empty.
     virtual std::string frameNote() const { return {}; }
+    // Once the room is aligned: the tracks again, their views fused anew now that the floor and the
+    // walls are known (ObjectTrack::fused); by default as they are.
+    virtual std::vector<ObjectTrack> fuse(std::vector<ObjectTrack> tracks, const AlignedCapture& aligned,
+                                          const std::vector<WallSegment>& walls, StageProgress& progress) {
+        (void)aligned, (void)walls, (void)progress;
+        return tracks;
+    }
     // After the tracks became nodes: objects found in the aligned structure
     // cloud rather than in the frames, added to `scene`.
     virtual void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,

@@ -13,6 +13,7 @@
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
+#include "ingest/pipeline/object_fusion.hpp"
 #include "ingest/pipeline/ray_tracks.hpp"
 #include "model/error.hpp"
 
@@ -26,7 +27,11 @@ namespace {
 class DetectionLifter : public ObjectFinder {
 public:
     DetectionLifter(const Capture& capture, const IngestOptions& options, bool voteLabels)
-        : capture_(capture), options_(options), hasDepth_(framesHaveDepth(capture)), tracker_(voteLabels) {}
+        : capture_(capture),
+          options_(options),
+          hasDepth_(framesHaveDepth(capture)),
+          voteLabels_(voteLabels),
+          tracker_(voteLabels) {}
 
     void observe(const PosedFrame& frame) override {
         const FrameDetections found = detectionsOf(frame);
@@ -63,6 +68,20 @@ public:
             "{} detections had too few sparse points on them; {} of them were placed by their boxes' "
             "rays across views",
             unplacedCount_, placedByRays_);
+    }
+
+    std::vector<ObjectTrack> fuse(std::vector<ObjectTrack> tracks, const AlignedCapture& aligned,
+                                  const std::vector<WallSegment>& walls, StageProgress& progress) override {
+        if (!hasDepth_) return tracks;
+        const RoomSurfaces room{aligned.alignment.floorFound, aligned.alignment.ceilingHeight, &walls};
+        std::vector<FusionCamera> cameras;
+        for (const auto& frame : capture_.frames)
+            if (frame.pose)
+                cameras.push_back({transformed(*frame.pose, aligned.alignment),
+                                   frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
+        FusionOptions fusion;
+        fusion.voteLabels = voteLabels_;
+        return fuseTracks(std::move(tracks), aligned.alignment, room, cameras, fusion, progress);
     }
 
     void addStructureObjects(const AlignedCapture&, const std::vector<WallSegment>&, model::SceneData&,
@@ -139,6 +158,7 @@ private:
     const Capture& capture_;
     const IngestOptions& options_;
     bool hasDepth_;
+    bool voteLabels_;
     DetectionTracker tracker_;
     std::vector<std::uint32_t> inView_;   // without depth: frames each sparse point projects into
     std::vector<MaskView> maskViews_;     // without depth: each frame's detections, for carving
@@ -166,8 +186,9 @@ class DetectorFinder : public DetectionLifter {
 public:
     DetectorFinder(const Capture& capture, const DetectorFiles& files, const IngestOptions& options)
         : DetectionLifter(capture, options, /*voteLabels=*/true),
-          files_(files),
-          detector_(makeNanoDetDetector(files)) {}
+          // Without depth a box is a silhouette that carves a hull (observations.hpp): the SSD's looser boxes
+          // carved the dining photos' chairs 1.6 m tall, so those captures take NanoDet's alone.
+          detector_(makeDetector(files, options.detectorModel.empty() && framesHaveDepth(capture))) {}
 
     std::string frameNote() const override {
         std::string note = DetectionLifter::frameNote();
@@ -175,7 +196,7 @@ public:
         auto sorted = milliseconds_;
         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
         return fmt::format("detector: {} on {} frames, {} detections, median {:.0f} ms per frame{}{}",
-                           files_.model.filename().string(), milliseconds_.size(), detections_,
+                           detector_->describe(), milliseconds_.size(), detections_,
                            sorted[sorted.size() / 2], note.empty() ? "" : "; ", note);
     }
 
@@ -189,7 +210,6 @@ private:
         return {std::move(detections), frame.images.color.cols};
     }
 
-    DetectorFiles files_;
     std::unique_ptr<ObjectDetector> detector_;
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;

@@ -84,26 +84,35 @@ std::vector<float> meanEmbedding(const std::vector<Observation>& views) {
 
 std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
     std::vector<TrackedNode> made;
+    const std::size_t steps = this->steps();
+    tracks = finder.fuse(std::move(tracks), aligned, walls, progress);
     for (std::size_t t = 0; t < tracks.size(); ++t) {
         auto& track = tracks[t];
-        progress.advanced(t + 1);
+        progress.advanced((t + 1) * steps / tracks.size());
         const auto& category = track.category;
         bool opening = isOpening(category);
         if (track.kind == NodeKind::Anchor && !opening) continue;  // walls, floor, ceiling: geometry's job
         if (static_cast<int>(track.views.size()) < options.minObjectViews) continue;
 
         PointCloud cloud;
-        for (const auto& v : track.views)
-            for (const auto& p : v.points)
-                if (auto q = aligned.alignment.apply(p); withinRoom(q, aligned.alignment))
-                    cloud.push(q, {0, 0, 0}, v.frame);
-        if (cloud.size() < 10) continue;
-        cloud = voxelDownsample(cloud, options.objectVoxel);
+        cv::Mat colors;
+        if (!track.fused.empty()) {
+            // Already in the aligned frame, and already thinned to the map's cells.
+            for (const auto& p : track.fused) cloud.push(p, {0, 0, 0}, 0);
+            colors = track.fusedColors;
+        } else {
+            for (const auto& v : track.views)
+                for (const auto& p : v.points)
+                    if (auto q = aligned.alignment.apply(p); withinRoom(q, aligned.alignment))
+                        cloud.push(q, {0, 0, 0}, v.frame);
+            if (cloud.size() < 10) continue;
+            cloud = voxelDownsample(cloud, options.objectVoxel);
+            for (const auto& v : track.views) colors.push_back(v.colors);
+        }
+        if (cloud.empty()) continue;
         model::Box box = uprightBox(cloud.points);
         if (track.carved) holdToFootprint(box, category);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
-        cv::Mat colors;
-        for (const auto& v : track.views) colors.push_back(v.colors);
         // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess.
         const bool misnamed = !opening && !nameFitsBox(category, box);
         if (misnamed)

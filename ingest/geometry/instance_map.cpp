@@ -1,0 +1,224 @@
+#include "ingest/geometry/instance_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace smql::ingest {
+
+namespace {
+
+// Cell coordinates packed 21 bits each (a room of +-52 km at 5 cm cells).
+constexpr std::int64_t kOffset = 1 << 20;
+
+std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x + kOffset) << 42) | (static_cast<std::uint64_t>(y + kOffset) << 21) |
+           static_cast<std::uint64_t>(z + kOffset);
+}
+
+std::array<std::int64_t, 3> unpack(std::uint64_t key) {
+    constexpr std::uint64_t mask = (1ULL << 21) - 1;
+    return {static_cast<std::int64_t>(key >> 42 & mask) - kOffset, static_cast<std::int64_t>(key >> 21 & mask) - kOffset,
+            static_cast<std::int64_t>(key & mask) - kOffset};
+}
+
+bool boundsApart(const Instance& a, const model::Vec3& lo, const model::Vec3& hi, double margin) {
+    return a.lo.x > hi.x + margin || a.hi.x < lo.x - margin || a.lo.y > hi.y + margin || a.hi.y < lo.y - margin ||
+           a.lo.z > hi.z + margin || a.hi.z < lo.z - margin;
+}
+
+}  // namespace
+
+std::map<std::string, double> Instance::tally() const {
+    std::map<std::string, double> out;
+    const double whole = std::max<double>(1, 0.5 * static_cast<double>(cells.size()));
+    for (const auto& vote : votes) out[vote.label] += vote.score * std::min(1.0, static_cast<double>(vote.cells) / whole);
+    return out;
+}
+
+std::string Instance::category() const {
+    const auto votes = tally();
+    auto best = std::max_element(votes.begin(), votes.end(),
+                                 [](const auto& a, const auto& b) { return a.second < b.second; });
+    return best == votes.end() ? std::string() : best->first;
+}
+
+bool Instance::named(const std::string& label) const {
+    return std::any_of(votes.begin(), votes.end(), [&](const InstanceVote& v) { return v.label == label; });
+}
+
+PointCloud Instance::points(std::uint32_t minViews) const {
+    PointCloud out;
+    for (const auto& [key, cell] : cells) {
+        if (cell.views < minViews || cell.points == 0) continue;
+        const double n = cell.points;
+        out.push({cell.sum.x / n, cell.sum.y / n, cell.sum.z / n},
+                 {static_cast<std::uint8_t>(cell.colourSum[0] / cell.points),
+                  static_cast<std::uint8_t>(cell.colourSum[1] / cell.points),
+                  static_cast<std::uint8_t>(cell.colourSum[2] / cell.points)},
+                 0);
+    }
+    return out;
+}
+
+std::uint64_t InstanceMap::keyOf(const model::Vec3& p) const {
+    return pack(static_cast<std::int64_t>(std::floor(p.x / options_.cell)),
+                static_cast<std::int64_t>(std::floor(p.y / options_.cell)),
+                static_cast<std::int64_t>(std::floor(p.z / options_.cell)));
+}
+
+double InstanceMap::shareNear(const std::unordered_map<std::uint64_t, InstanceCell>& a,
+                              const std::unordered_map<std::uint64_t, InstanceCell>& b) const {
+    if (a.empty()) return 0;
+    std::size_t near = 0;
+    for (const auto& [key, cell] : a) {
+        auto [x, y, z] = unpack(key);
+        bool found = false;
+        for (int dx = -1; dx <= 1 && !found; ++dx)
+            for (int dy = -1; dy <= 1 && !found; ++dy)
+                for (int dz = -1; dz <= 1 && !found; ++dz) found = b.contains(pack(x + dx, y + dy, z + dz));
+        near += found;
+    }
+    return static_cast<double>(near) / static_cast<double>(a.size());
+}
+
+// `upper` rests on `lower` when, under upper's footprint, most of lower's cells lie below upper's
+// lowest cells: a mug on a table, a monitor on a desk. A piece of a thing (a sofa's seat, seen as a
+// chair) has the thing's other cells beside and above it.
+bool InstanceMap::restsOn(const Instance& upper, const Instance& lower) const {
+    std::vector<std::int64_t> heights;
+    std::unordered_map<std::uint64_t, std::int64_t> lowest;  // column (x, y) -> lowest z cell of upper
+    for (const auto& [key, cell] : upper.cells) {
+        auto [x, y, z] = unpack(key);
+        auto column = pack(x, y, 0);
+        auto it = lowest.find(column);
+        if (it == lowest.end())
+            lowest.emplace(column, z);
+        else
+            it->second = std::min(it->second, z);
+    }
+    std::size_t under = 0, below = 0;
+    const auto gap = static_cast<std::int64_t>(std::ceil(options_.restingGap / options_.cell));
+    for (const auto& [key, cell] : lower.cells) {
+        auto [x, y, z] = unpack(key);
+        auto it = lowest.find(pack(x, y, 0));
+        if (it == lowest.end()) continue;
+        ++under;
+        below += z <= it->second + gap;
+    }
+    return under > 0 && static_cast<double>(below) >= options_.restingShare * static_cast<double>(under);
+}
+
+void InstanceMap::add(Instance& instance, const InstanceView& view) const {
+    const std::uint32_t id = viewsAdded_;
+    std::size_t filled = 0;
+    for (std::size_t i = 0; i < view.points.size(); ++i) {
+        const auto& p = view.points.points[i];
+        auto& cell = instance.cells[keyOf(p)];
+        cell.sum = {cell.sum.x + p.x, cell.sum.y + p.y, cell.sum.z + p.z};
+        for (int c = 0; c < 3; ++c) cell.colourSum[c] += view.points.colors[i][c];
+        ++cell.points;
+        if (cell.lastView != id) {
+            cell.lastView = id;
+            ++cell.views;
+            ++filled;
+        }
+        instance.lo = {std::min(instance.lo.x, p.x), std::min(instance.lo.y, p.y), std::min(instance.lo.z, p.z)};
+        instance.hi = {std::max(instance.hi.x, p.x), std::max(instance.hi.y, p.y), std::max(instance.hi.z, p.z)};
+    }
+    instance.votes.push_back({view.label, view.score, filled});
+    for (const auto& [label, score] : view.alsoSeenAs) instance.votes.push_back({label, score, filled});
+    instance.sources.push_back(view.source);
+    auto at = std::lower_bound(instance.frames.begin(), instance.frames.end(), view.frame);
+    if (at == instance.frames.end() || *at != view.frame) instance.frames.insert(at, view.frame);
+}
+
+void InstanceMap::absorb(Instance& into, Instance&& from) {
+    for (auto& [key, cell] : from.cells) {
+        auto& mine = into.cells[key];
+        mine.sum = {mine.sum.x + cell.sum.x, mine.sum.y + cell.sum.y, mine.sum.z + cell.sum.z};
+        for (int c = 0; c < 3; ++c) mine.colourSum[c] += cell.colourSum[c];
+        mine.points += cell.points;
+        mine.views += cell.views;
+    }
+    into.votes.insert(into.votes.end(), from.votes.begin(), from.votes.end());
+    into.sources.insert(into.sources.end(), from.sources.begin(), from.sources.end());
+    std::vector<std::uint32_t> frames;
+    std::set_union(into.frames.begin(), into.frames.end(), from.frames.begin(), from.frames.end(),
+                   std::back_inserter(frames));
+    into.frames = std::move(frames);
+    into.lo = {std::min(into.lo.x, from.lo.x), std::min(into.lo.y, from.lo.y), std::min(into.lo.z, from.lo.z)};
+    into.hi = {std::max(into.hi.x, from.hi.x), std::max(into.hi.y, from.hi.y), std::max(into.hi.z, from.hi.z)};
+}
+
+void InstanceMap::integrate(std::vector<InstanceView> frameViews) {
+    // The larger views first: they find their instances before a fragment of the same thing can.
+    std::stable_sort(frameViews.begin(), frameViews.end(),
+                     [](const InstanceView& a, const InstanceView& b) { return a.points.size() > b.points.size(); });
+    std::vector<bool> taken(instances_.size(), false);
+    for (auto& view : frameViews) {
+        if (view.points.empty()) continue;
+        Instance mine;
+        add(mine, view);
+        std::optional<std::size_t> best;
+        double bestScore = 0;
+        std::vector<std::size_t> covered;  // instances of the view's name that lie mostly within the view
+        for (std::size_t k = 0; k < instances_.size(); ++k) {
+            const Instance& instance = instances_[k];
+            if (taken[k] || boundsApart(instance, mine.lo, mine.hi, options_.cell)) continue;
+            if (std::binary_search(instance.frames.begin(), instance.frames.end(), view.frame)) continue;
+            const double viewIn = shareNear(mine.cells, instance.cells);
+            const double instanceIn = shareNear(instance.cells, mine.cells);
+            const std::string category = instance.category();
+            const bool sameName = category == view.label || instance.named(view.label) ||
+                                  std::any_of(view.alsoSeenAs.begin(), view.alsoSeenAs.end(),
+                                              [&](const auto& other) { return instance.named(other.first); });
+            if (category == view.label && instanceIn >= options_.fragmentShare) covered.push_back(k);
+            const double needed = sameName ? options_.joinShare : options_.relabelShare;
+            if (!sameName && !options_.voteLabels) continue;
+            if (std::max(viewIn, instanceIn) < needed) continue;
+            if (viewIn + instanceIn > bestScore) bestScore = viewIn + instanceIn, best = k;
+        }
+        ++viewsAdded_;
+        if (!best) {
+            instances_.push_back(std::move(mine));
+            taken.push_back(true);
+            continue;
+        }
+        add(instances_[*best], view);
+        taken[*best] = true;
+        // A view that holds most of several instances of its name shows them as one thing (a sofa
+        // first seen in pieces, then whole): they are merged. Descending, so the indices hold.
+        std::sort(covered.rbegin(), covered.rend());
+        for (auto k : covered) {
+            if (k == *best) continue;
+            absorb(instances_[*best], std::move(instances_[k]));
+            instances_.erase(instances_.begin() + static_cast<std::ptrdiff_t>(k));
+            taken.erase(taken.begin() + static_cast<std::ptrdiff_t>(k));
+            if (k < *best) --*best;
+        }
+    }
+}
+
+void InstanceMap::consolidate() {
+    for (bool changed = true; changed;) {
+        changed = false;
+        // The larger first: pieces are merged into the thing, not the thing into a piece.
+        std::stable_sort(instances_.begin(), instances_.end(),
+                         [](const Instance& a, const Instance& b) { return a.cells.size() > b.cells.size(); });
+        for (std::size_t large = 0; large < instances_.size() && !changed; ++large)
+            for (std::size_t small = large + 1; small < instances_.size(); ++small) {
+                Instance& a = instances_[small];
+                Instance& b = instances_[large];
+                if (boundsApart(b, a.lo, a.hi, options_.cell)) continue;
+                if (!options_.voteLabels && a.category() != b.category()) continue;
+                if (shareNear(a.cells, b.cells) < options_.fragmentShare || restsOn(a, b)) continue;
+                absorb(b, std::move(a));
+                instances_.erase(instances_.begin() + static_cast<std::ptrdiff_t>(small));
+                changed = true;
+                break;
+            }
+    }
+}
+
+}  // namespace smql::ingest

@@ -1,0 +1,39 @@
+// Detections with depth, fused anew once the room is aligned: every view's
+// region gives the thing it shows (view_segment.hpp), frame by frame into the
+// instance map (instance_map.hpp), and each instance becomes one track whose
+// points are the fused ones (ObjectTrack::fused). The tracks the frame pass
+// made before the floor was known are only where the views come from
+// (docs/ingest.md, "Objects from detections").
+#pragma once
+
+#include <vector>
+
+#include "ingest/capture/observations.hpp"
+#include "ingest/geometry/alignment.hpp"
+#include "ingest/geometry/view_segment.hpp"
+#include "ingest/pipeline/stage_runner.hpp"
+
+namespace smql::ingest {
+
+// What a fused instance needs to become a thing.
+struct FusionOptions {
+    double minHeight = 0.04;     // m: flatter instances are slivers of a surface (a table top seen as a "chair")
+    double minLargest = 0.06;    // m: smaller instances are specks
+    double thinShare = 0.06;     // ... and so are those whose thinnest side is under this share of the largest
+                                 // side things of their kind have (a 6 cm thin "table" is a table's edge)
+    double minViewShare = 0.1;    // of the frames whose view holds an instance, this share must have seen it ...
+    int viewsEnough = 3;          // ... up to this many views (a detector's one-off guess is no thing)
+    bool voteLabels = true;       // a closed-set detector (InstanceMapOptions::voteLabels)
+};
+
+// A camera of the capture in the aligned frame, to tell which frames held a thing in view.
+struct FusionCamera {
+    Pose pose;
+    Intrinsics intrinsics;
+};
+
+std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
+                                    const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
+                                    const FusionOptions& options, StageProgress& progress);
+
+}  // namespace smql::ingest

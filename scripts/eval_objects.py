@@ -1,0 +1,355 @@
+#!/usr/bin/python3
+"""Objects of real captures against their true 3D boxes, end to end (docs/ingest.md, "Objects
+against the truth"): each capture is ingested as a user would, its stored things matched to the
+truth's, and questions whose answers follow from the truth boxes asked in English.
+
+    scripts/eval_objects.py SMQL CAPTURE... [--options "--objects detect"] [--json OUT]
+                            [--keep DIR] [--reuse]
+
+A CAPTURE is a folder smql ingests (rgbd, tum ...) holding truth.json:
+    {"up": [0, 0, 1], "source": "ScanNet ...", "unlabelled": ["chair"],
+     "objects": [{"category": "bed", "center": [x, y, z], "size": [sx, sy, sz],
+                  "rotation": [9 numbers, row after row, box axes -> world] or "yaw": radians}]}
+in the frame of the capture's poses (pose.txt). "unlabelled" names classes of the truth's label set
+that its annotators left out in this room (their stored things are not counted either way).
+
+Matching (one to one, nearest first): a truth thing is matched by a stored thing of a fitting name
+(FITS) whose centre is within 0.5 m of its centre and whose sides are each within 50 % of its sides
+(the height against the height, the longer and the shorter horizontal side against theirs). Only
+truth things a packaged model can name are scored (FITS' keys), and of the stored things only those
+whose name fits a class the truth labels. A stored thing that is not the match but fits a truth
+thing's name and lies on it (its centre within 0.5 m, or its centre inside the truth box) is a
+duplicate. Implausible: a stored thing with a side under 3 cm, a side over 4 m, or a name its box
+does not fit (detected_as).
+
+Questions (ASK, in English) about the truth's classes that a model can name and the truth labels:
+how many X (the count), is there a X (also for classes that are absent), how long is the X (one
+thing of its kind: the answer's one number within 25 % of the longest side), how far is X from Y
+(both one of a kind: within 25 % or 0.15 m of the gap between the boxes), what is on the X (where
+the truth has labelled things resting on it: the named kinds agree).
+"""
+import argparse
+import itertools
+import json
+import math
+import pathlib
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+# Truth class -> the stored categories that name it. Only these classes are scored: the ones some
+# packaged model (COCO's NanoDet, Open Images' SSD, PASCAL's DeepLab) can name.
+FITS = {
+    "bed": {"bed"},
+    "sofa": {"sofa"},
+    "couch": {"sofa"},
+    "chair": {"chair"},
+    "table": {"table", "desk"},
+    "desk": {"desk", "table"},
+    "refrigerator": {"fridge"},
+    "fridge": {"fridge"},
+    "toilet": {"toilet"},
+    "sink": {"sink"},
+    "tv": {"tv", "monitor"},
+    "monitor": {"tv", "monitor"},
+    "plant": {"plant"},
+    "microwave": {"microwave"},
+    "oven": {"oven"},
+    "laptop": {"laptop"},
+    "bottle": {"bottle"},
+    "book": {"book"},
+}
+# The word a person uses for a truth class in a question.
+WORD = {"refrigerator": "fridge", "couch": "sofa"}
+# Label sets of the truth's sources: a stored thing whose name fits none of these is not counted.
+LABEL_SETS = {
+    "ScanNet": {"cabinet", "bed", "chair", "sofa", "table", "door", "window", "bookshelf", "picture", "counter",
+                "desk", "curtain", "refrigerator", "showercurtrain", "toilet", "sink", "bathtub", "garbagebin"},
+    "SUN RGB-D": {"bed", "table", "sofa", "chair", "toilet", "desk", "dresser", "night_stand", "bookshelf",
+                  "bathtub", "dresser_mirror", "lamp", "ottoman"},
+}
+
+
+def run(cmd):
+    return subprocess.run(cmd, capture_output=True, text=True)
+
+
+def query(smql, db, statement):
+    out = run([smql, str(db), "-json", statement]).stdout
+    return json.loads(out)[-1] if out.strip() else {}
+
+
+def rotation_of(obj):
+    if "rotation" in obj:
+        return np.array(obj["rotation"], dtype=float).reshape(3, 3)
+    c, s = math.cos(obj.get("yaw", 0.0)), math.sin(obj.get("yaw", 0.0))
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], dtype=float)
+
+
+def umeyama(src, dst):
+    """Similarity (s, R, t) with dst ~ s R src + t (Umeyama 1991)."""
+    mu_s, mu_d = src.mean(0), dst.mean(0)
+    a, b = src - mu_s, dst - mu_d
+    u, d, vt = np.linalg.svd(b.T @ a / len(src))
+    sign = np.eye(3)
+    if np.linalg.det(u) * np.linalg.det(vt) < 0:
+        sign[2, 2] = -1
+    r = u @ sign @ vt
+    s = np.trace(np.diag(d) @ sign) / (a ** 2).sum(1).mean()
+    return s, r, mu_d - s * r @ mu_s
+
+
+def true_cameras(capture):
+    """Frame number -> camera centre from pose.txt (line i: the i-th frame by number)."""
+    numbers = sorted(int(p.stem) for p in (capture / "color").iterdir() if p.stem.isdigit())
+    lines = [l.split() for l in (capture / "pose.txt").read_text().splitlines()
+             if l.strip() and not l.startswith("#")]
+    return {n: np.array([float(v) for v in line[:3]]) for n, line in zip(numbers, lines)}
+
+
+def to_memory(smql, db, capture):
+    """The similarity from the truth's frame to the memory's: from the stored cameras against the
+    true ones where three or more spread apart are stored (COLMAP's frame is its own), else the
+    scene's stored alignment (poses given: the capture's frame is the truth's)."""
+    truth = true_cameras(capture) if (capture / "pose.txt").exists() else {}
+    rows = query(smql, db, "FIND frame RETURN text, x, y, z").get("rows", [])
+    pairs = [(truth[int(pathlib.PurePath(r["text"]).stem)], np.array([r["x"], r["y"], r["z"]])) for r in rows
+             if pathlib.PurePath(r["text"]).stem.isdigit() and int(pathlib.PurePath(r["text"]).stem) in truth]
+    if len(pairs) >= 3:
+        src, dst = np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs])
+        if np.linalg.norm(src - src.mean(0), axis=1).max() > 0.3:
+            return umeyama(src, dst)
+    with tempfile.TemporaryDirectory() as work:
+        out = pathlib.Path(work) / "scene.json"
+        run([smql, "export", "json", "--db", str(db), "-o", str(out)])
+        m = np.array(json.loads(out.read_text())["scene"]["alignment"], dtype=float).reshape(4, 4)
+    s = np.cbrt(np.linalg.det(m[:3, :3]))
+    return s, m[:3, :3] / s, m[:3, 3]
+
+
+def truth_in_memory(capture, similarity):
+    s, r, t = similarity
+    truth = json.loads((capture / "truth.json").read_text())
+    things = []
+    for obj in truth["objects"]:
+        rot = r @ rotation_of(obj)
+        size = np.array(obj["size"], dtype=float) * s
+        # Which of the box's axes stands up in the memory's frame (z up there).
+        up = int(np.argmax(np.abs(rot[2, :])))
+        flat = sorted((size[k] for k in range(3) if k != up), reverse=True)
+        corners = [np.array(obj["center"]) + rotation_of(obj) @ (np.array(c) * np.array(obj["size"]) / 2)
+                   for c in itertools.product((-1, 1), repeat=3)]
+        corners = np.array([s * r @ c + t for c in corners])
+        things.append({"category": obj["category"], "center": s * r @ np.array(obj["center"]) + t,
+                       "sides": (flat[0], flat[1], size[up]), "lo": corners.min(0), "hi": corners.max(0),
+                       "structural": obj.get("structural", False)})
+    source = truth.get("source", "")
+    labels = next((v for k, v in LABEL_SETS.items() if source.startswith(k) or k in source), None)
+    if labels is None:
+        labels = {t["category"] for t in things}
+    labels = labels - set(truth.get("unlabelled", []))
+    return things, labels
+
+
+def stored_things(smql, db):
+    result = query(smql, db, "FIND object RETURN id, category, box, detected_as, parent")
+    if "rows" not in result:  # no thing was kept as detected_as: the column is unknown
+        result = query(smql, db, "FIND object RETURN id, category, box, parent")
+    rows = result.get("rows", [])
+    out = []
+    for r in rows:
+        b = r["box"]
+        x, y, h = b["size"]
+        c, s = math.cos(b["yaw"]), math.sin(b["yaw"])
+        hx, hy = abs(c) * x / 2 + abs(s) * y / 2, abs(s) * x / 2 + abs(c) * y / 2
+        centre = np.array(b["center"])
+        out.append({"id": r["id"], "category": r["category"], "center": centre,
+                    "sides": (max(x, y), min(x, y), h), "detected_as": r.get("detected_as"),
+                    "lo": centre - [hx, hy, h / 2], "hi": centre + [hx, hy, h / 2]})
+    return out
+
+
+def fits(truth, stored):
+    if stored["category"] not in FITS.get(truth["category"], ()):
+        return False
+    if np.linalg.norm(truth["center"] - stored["center"]) > 0.5:
+        return False
+    return all(abs(a - b) <= 0.5 * b for a, b in zip(stored["sides"], truth["sides"]))
+
+
+def inside(point, box):
+    return bool(np.all(point >= box["lo"]) and np.all(point <= box["hi"]))
+
+
+def score_objects(truth, labels, stored):
+    scored = [t for t in truth if t["category"] in FITS and t["category"] in labels and not t["structural"]]
+    counted_names = set().union(*(FITS[c] for c in labels if c in FITS)) if labels else set()
+    counted = [s for s in stored if s["category"] in counted_names]
+    candidates = sorted(((np.linalg.norm(t["center"] - s["center"]), ti, si) for ti, t in enumerate(scored)
+                         for si, s in enumerate(counted) if fits(t, s)), key=lambda c: c[0])
+    match_t, match_s = {}, {}
+    for _, ti, si in candidates:
+        if ti not in match_t and si not in match_s:
+            match_t[ti], match_s[si] = si, ti
+    duplicates = [si for si, s in enumerate(counted) if si not in match_s and any(
+        s["category"] in FITS[t["category"]] and ti in match_t and
+        (np.linalg.norm(t["center"] - s["center"]) <= 0.5 or inside(s["center"], t))
+        for ti, t in enumerate(scored))]
+    implausible = [s for s in stored if min(s["sides"]) < 0.03 or max(s["sides"]) > 4.0 or s["detected_as"]]
+    matched = len(match_t)
+    precision = matched / len(counted) if counted else (1.0 if not scored else 0.0)
+    recall = matched / len(scored) if scored else 1.0
+    f1 = 2 * precision * recall / (precision + recall) if precision + recall else 0.0
+    return {
+        "truth": len(scored), "stored": len(counted), "matched": matched, "missed": len(scored) - matched,
+        "duplicated": len(duplicates), "implausible": len(implausible), "all_stored": len(stored),
+        "precision": round(precision, 3), "recall": round(recall, 3), "f1": round(f1, 3),
+        "missed_things": [f"{t['category']} at ({t['center'][0]:.2f}, {t['center'][1]:.2f}) sides "
+                          f"{'x'.join(f'{v:.2f}' for v in t['sides'])}" for ti, t in enumerate(scored)
+                          if ti not in match_t],
+        "depth_ratio": {f"{t['category']}#{ti}": round(min(1.0, max(
+            (min(s['sides'][:2]) / min(t['sides'][:2]) for s in counted
+             if s['category'] in FITS[t['category']] and inside(s['center'], t)), default=0.0)), 2)
+            for ti, t in enumerate(scored) if t["category"] in ("bed", "sofa", "table", "couch")},
+    }
+
+
+def gap(a, b):
+    """The distance between two axis-aligned boxes' closest points."""
+    d = np.maximum(0, np.maximum(a["lo"] - b["hi"], b["lo"] - a["hi"]))
+    return float(np.linalg.norm(d))
+
+
+def ask(smql, db, question):
+    result = query(smql, db, f"ASK '{question}'")
+    return result.get("rows", []), result.get("message", "")
+
+
+def numbers_in(message):
+    return [float(v) for v in re.findall(r"(\d+(?:\.\d+)?) m\b", message.split("\n")[-1])]
+
+
+def questions(smql, db, truth, labels):
+    asked = []
+    kinds = sorted({t["category"] for t in truth if t["category"] in FITS and t["category"] in labels
+                    and not t["structural"]})
+    absent = sorted(c for c in labels if c in FITS and c not in kinds and c not in ("couch", "fridge"))
+    by_kind = {k: [t for t in truth if t["category"] == k] for k in kinds}
+
+    def record(kind, question, right, answer):
+        asked.append({"kind": kind, "question": question, "right": bool(right), "answer": answer.split("\n")[-1]})
+
+    for k in kinds:
+        word = WORD.get(k, k)
+        rows, message = ask(smql, db, f"how many {word}s are there?")
+        got = rows[0].get("count") if rows else None
+        record("count", f"how many {word}s are there?", got == len(by_kind[k]), message)
+        rows, message = ask(smql, db, f"is there a {word}?")
+        record("exists", f"is there a {word}?", len(rows) > 0, message)
+        if len(by_kind[k]) == 1:
+            longest = max(by_kind[k][0]["sides"])
+            rows, message = ask(smql, db, f"how long is the {word}?")
+            values = numbers_in(message)
+            record("length", f"how long is the {word}? (truth {longest:.2f} m)",
+                   len(values) == 1 and abs(values[0] - longest) <= 0.25 * longest, message)
+    for k in absent:
+        word = WORD.get(k, k)
+        rows, message = ask(smql, db, f"is there a {word}?")
+        record("exists", f"is there a {word}? (none)", len(rows) == 0, message)
+    singles = [k for k in kinds if len(by_kind[k]) == 1]
+    for a, b in itertools.combinations(singles, 2):
+        truth_gap = gap(by_kind[a][0], by_kind[b][0])
+        question = f"how far is the {WORD.get(a, a)} from the {WORD.get(b, b)}?"
+        rows, message = ask(smql, db, question)
+        values = numbers_in(message)
+        record("distance", f"{question} (truth {truth_gap:.2f} m)",
+               len(values) == 1 and abs(values[0] - truth_gap) <= max(0.15, 0.25 * truth_gap), message)
+    for k in singles:
+        carrier = by_kind[k][0]
+        on = sorted({t["category"] for t in truth if t is not carrier and t["category"] in FITS and
+                     abs(t["lo"][2] - carrier["hi"][2]) < 0.1 and inside(np.array([*t["center"][:2],
+                                                                                  carrier["hi"][2] - 0.01]), carrier)})
+        if not on:
+            continue
+        rows, message = ask(smql, db, f"what is on the {WORD.get(k, k)}?")
+        named = {r.get("category") for r in rows}
+        wanted = {next(iter(FITS[c])) for c in on}
+        record("on", f"what is on the {WORD.get(k, k)}? (truth: {', '.join(on)})",
+               wanted <= named, message)
+    return asked
+
+
+def evaluate(smql, capture, db, options, reuse):
+    row = {"capture": capture.name}
+    if not (reuse and db.exists()):
+        if db.exists():
+            shutil.rmtree(db)
+        start = time.monotonic()
+        proc = run([smql, "ingest", str(capture), "--db", str(db), *options])
+        row["seconds"] = round(time.monotonic() - start, 1)
+        row["exit"] = proc.returncode
+        if proc.returncode != 0:
+            row["error"] = (proc.stdout + proc.stderr).strip().splitlines()[-3:]
+            return row
+    similarity = to_memory(smql, db, capture)
+    row["scale_to_truth"] = round(float(similarity[0]), 3)
+    truth, labels = truth_in_memory(capture, similarity)
+    stored = stored_things(smql, db)
+    row.update(score_objects(truth, labels, stored))
+    row["questions"] = questions(smql, db, truth, labels)
+    row["questions_right"] = sum(q["right"] for q in row["questions"])
+    return row
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("smql")
+    parser.add_argument("captures", nargs="+", type=pathlib.Path)
+    parser.add_argument("--options", default="", help="ingest options, one string")
+    parser.add_argument("--keep", type=pathlib.Path, help="keep the databases in this folder")
+    parser.add_argument("--reuse", action="store_true", help="with --keep: score databases already there")
+    parser.add_argument("--json")
+    parser.add_argument("--verbose", action="store_true")
+    args = parser.parse_args()
+    work = args.keep or pathlib.Path(tempfile.mkdtemp(prefix="smql-eval-objects-"))
+    work.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for capture in args.captures:
+        if not (capture / "truth.json").exists():
+            continue
+        row = evaluate(args.smql, capture, work / capture.name, shlex.split(args.options), args.reuse)
+        rows.append(row)
+        brief = {k: v for k, v in row.items() if args.verbose or k not in ("questions", "missed_things")}
+        print(json.dumps(brief), flush=True)
+    scored = [r for r in rows if "f1" in r]
+    matched = sum(r["matched"] for r in scored)
+    stored = sum(r["stored"] for r in scored)
+    truth = sum(r["truth"] for r in scored)
+    precision, recall = (matched / stored if stored else 0), (matched / truth if truth else 0)
+    asked = [q for r in scored for q in r["questions"]]
+    kinds = sorted({q["kind"] for q in asked})
+    total = {
+        "captures": len(rows), "scored": len(scored), "truth": truth, "stored": stored, "matched": matched,
+        "duplicated": sum(r["duplicated"] for r in scored), "implausible": sum(r["implausible"] for r in scored),
+        "precision": round(precision, 3), "recall": round(recall, 3),
+        "f1": round(2 * precision * recall / (precision + recall), 3) if precision + recall else 0.0,
+        "questions": f"{sum(q['right'] for q in asked)}/{len(asked)}",
+        "by_kind": {k: f"{sum(q['right'] for q in asked if q['kind'] == k)}/"
+                       f"{sum(1 for q in asked if q['kind'] == k)}" for k in kinds},
+    }
+    print(json.dumps({"total": total}))
+    if args.json:
+        pathlib.Path(args.json).write_text(json.dumps({"rows": rows, "total": total}, indent=1, default=str) + "\n")
+    if not args.keep:
+        shutil.rmtree(work, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
