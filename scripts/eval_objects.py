@@ -148,7 +148,7 @@ def truth_in_memory(capture, similarity):
         corners = np.array([s * r @ c + t for c in corners])
         things.append({"category": obj["category"], "center": s * r @ np.array(obj["center"]) + t,
                        "sides": (flat[0], flat[1], size[up]), "lo": corners.min(0), "hi": corners.max(0),
-                       "structural": obj.get("structural", False)})
+                       "rotation": rot, "size": size, "structural": obj.get("structural", False)})
     source = truth.get("source", "")
     labels = next((v for k, v in LABEL_SETS.items() if source.startswith(k) or k in source), None)
     if labels is None:
@@ -220,10 +220,34 @@ def score_objects(truth, labels, stored):
     }
 
 
+def surface_points(box, n=12):
+    """Points on the faces of an oriented box, n x n on each."""
+    grid = np.linspace(-0.5, 0.5, n)
+    faces = []
+    for axis in range(3):
+        for side in (-0.5, 0.5):
+            u, v = np.meshgrid(grid, grid)
+            p = np.zeros((n * n, 3))
+            others = [k for k in range(3) if k != axis]
+            p[:, axis] = side
+            p[:, others[0]], p[:, others[1]] = u.ravel(), v.ravel()
+            faces.append(p)
+    local = np.concatenate(faces) * box["size"]
+    return local @ box["rotation"].T + box["center"]
+
+
 def gap(a, b):
-    """The distance between two axis-aligned boxes' closest points."""
-    d = np.maximum(0, np.maximum(a["lo"] - b["hi"], b["lo"] - a["hi"]))
-    return float(np.linalg.norm(d))
+    """The distance between two oriented boxes' closest points (0 when they overlap), as smql measures it."""
+    pa, pb = surface_points(a), surface_points(b)
+    if inside_oriented(pa, b).any() or inside_oriented(pb, a).any():
+        return 0.0
+    d = np.sqrt(((pa[:, None, :] - pb[None, :, :]) ** 2).sum(-1))
+    return float(d.min())
+
+
+def inside_oriented(points, box):
+    local = (points - box["center"]) @ box["rotation"]
+    return np.all(np.abs(local) <= box["size"] / 2 + 1e-9, axis=1)
 
 
 def ask(smql, db, question):
@@ -232,7 +256,8 @@ def ask(smql, db, question):
 
 
 def numbers_in(message):
-    return [float(v) for v in re.findall(r"(\d+(?:\.\d+)?) m\b", message.split("\n")[-1])]
+    """The distinct lengths the answer's last line names, in metres."""
+    return sorted({float(v) for v in re.findall(r"(\d+(?:\.\d+)?) m\b", message.split("\n")[-1])})
 
 
 def questions(smql, db, truth, labels):

@@ -191,7 +191,7 @@ std::string targetOf(const Phrase& p) {
     if (p.kind) return *p.kind;
     if (!p.side.empty()) return smqlName(p.categories.front()) + "." + p.side;
     if (p.categories.size() == 1) return smqlName(p.categories.front());
-    return "node";
+    return "thing";
 }
 
 std::vector<std::string> conditionsOf(const Phrase& p) {

@@ -234,7 +234,7 @@ private:
         }
         std::string any;
         for (const auto& n : all) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(n));
-        out.smql = fmt::format("FIND node WHERE {} RETURN id, category, box", all.size() > 1 ? "(" + any + ")" : any);
+        out.smql = fmt::format("FIND thing WHERE {} RETURN id, category, box", all.size() > 1 ? "(" + any + ")" : any);
         out.subject = asked.words;
         out.object = fmt::format("standing by the {} facing the {}", at.words, facing.words);
         return true;
@@ -447,13 +447,13 @@ private:
         out.kind = QuestionKind::Affordance;
         out.predicate = std::string(row->how);
         if (categories.empty()) {
-            out.smql = fmt::format("FIND node WHERE category = {}",
+            out.smql = fmt::format("FIND thing WHERE category = {}",
                                    smqlString(std::string(row->things.substr(0, row->things.find(' ')))));
         } else {
             std::string any;
             for (const auto& cat : categories)
                 any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(cat));
-            out.smql = fmt::format("FIND node WHERE {}", categories.size() > 1 ? "(" + any + ")" : any);
+            out.smql = fmt::format("FIND thing WHERE {}", categories.size() > 1 ? "(" + any + ")" : any);
         }
         out.subject = "thing";
         out.subjectPlural = "things";
@@ -704,7 +704,7 @@ private:
         }
         if (!pred || !subject) return false;
         // What the subject is on or by may be an anchor too (a wall, the floor).
-        Phrase other = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "node"};
+        Phrase other = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
         std::string predicate = pred->first;
         // "what wall is the tv on": on a wall is hanging there.
         if (predicate == "on" && answerKind &&

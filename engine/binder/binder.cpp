@@ -123,6 +123,12 @@ NodeSet Binder::bindName(const ast::Ref& ref) {
         set.description = describeSet(ref.name, set.slots.size());
         return set;
     }
+    if (ast::thingWord(ref.name)) {
+        for (auto slot : snap.shownNodes())
+            if (ast::isThing(snap.kind(slot))) set.slots.push_back(slot);
+        set.description = describeSet(ref.name, set.slots.size());
+        return set;
+    }
     std::string category = resolveCategory(ref);
     // Naming a category asks for its nodes, hidden ones included (`undefined`).
     set.slots = snap.withCategory(category);
@@ -192,6 +198,8 @@ Target Binder::bindTarget(const ast::Ref& ref) {
             t.kind = Target::Kind::NodeKind, t.nodeKind = *kind;
         } else if (ast::anyNodeWord(ref.name)) {
             t.kind = Target::Kind::AnyNode;
+        } else if (ast::thingWord(ref.name)) {
+            t.kind = Target::Kind::Thing;
         } else {
             t.kind = Target::Kind::Category;
             t.category = resolveCategory(ref);

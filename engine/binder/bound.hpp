@@ -46,7 +46,7 @@ struct NodeSet {
 
 // What FIND / COUNT range over: a category, a kind of node, or given nodes.
 struct Target {
-    enum class Kind { Category, NodeKind, AnyNode, Nodes };
+    enum class Kind { Category, NodeKind, AnyNode, Thing, Nodes };
     Kind kind = Kind::AnyNode;
     std::string category;
     model::NodeKind nodeKind = model::NodeKind::Object;

@@ -212,6 +212,8 @@ bool Executor::inTarget(const binder::Target& target, catalog::Slot slot, const 
             return snap.kind(slot) == target.nodeKind && !snap.hidden(slot);
         case binder::Target::Kind::AnyNode:
             return snap.kind(slot) != model::NodeKind::Scene && !snap.hidden(slot);
+        case binder::Target::Kind::Thing:
+            return ast::isThing(snap.kind(slot)) && !snap.hidden(slot);
         case binder::Target::Kind::Nodes: {
             const auto& nodes = slots(target.nodes, frame);
             return std::binary_search(nodes.begin(), nodes.end(), slot);

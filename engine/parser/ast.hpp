@@ -69,8 +69,13 @@ inline std::optional<model::NodeKind> kindWord(std::string_view name) {
 }
 
 // Words for every shown node of any kind but the scene itself.
-inline bool anyNodeWord(std::string_view name) {
-    return name == "node" || name == "nodes" || name == "thing" || name == "things";
+inline bool anyNodeWord(std::string_view name) { return name == "node" || name == "nodes"; }
+
+// Words for what a person calls a thing in a place: its objects, anchors and rooms, not the camera
+// frames or the descriptions an ingest stores beside them.
+inline bool thingWord(std::string_view name) { return name == "thing" || name == "things"; }
+constexpr bool isThing(model::NodeKind kind) {
+    return kind == model::NodeKind::Object || kind == model::NodeKind::Anchor || kind == model::NodeKind::Room;
 }
 
 // A length as written (`1.5 m`, `30 cm`, `2`): converted to metres by the parser.

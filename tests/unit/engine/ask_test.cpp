@@ -182,3 +182,49 @@ TEST_CASE("ASK from several threads: WordNet's look-ups take turns and every ans
     REQUIRE(fromA.size() == questions.size() * 5);
     CHECK(fromA[0].find("seats -> chair, sofa, stool (kinds of it)") != std::string::npos);
 }
+
+// An ingested scene keeps its cameras as frame nodes beside the things: `thing` and the answers of
+// ASK leave them out (a camera above a table is no thing on it), `node` and `frame` still name them.
+TEST_CASE("camera frames are no things: FIND thing and ASK's answers leave them out", "[ask]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    auto scene = generate::generateRoom({.seed = 7, .objectCount = 36, .name = "with-frames"});
+    const std::size_t things = std::count_if(scene.nodes.begin(), scene.nodes.end(), [](const model::Node& n) {
+        return n.kind == model::NodeKind::Object || n.kind == model::NodeKind::Anchor || n.kind == model::NodeKind::Room;
+    });
+    const model::Node* lamp = nullptr;
+    for (const auto& n : scene.nodes)
+        if (n.category == "lamp") lamp = &n;
+    REQUIRE(lamp);
+    const model::Vec3 over = lamp->box.center;
+    model::NodeId next = 0;
+    for (const auto& n : scene.nodes) next = std::max(next, n.id + 1);
+    for (int k = 0; k < 3; ++k) {
+        model::Node frame;
+        frame.id = next + k;
+        frame.kind = model::NodeKind::Frame;
+        frame.scene = scene.nodes.front().scene;
+        frame.parent = scene.nodes.front().id;
+        frame.category = "frame";
+        frame.geometry = model::GeometryKind::Box;
+        // Cameras right over the lamp and beside it.
+        frame.box.center = {over.x + 0.3 * k, over.y, over.z + 0.4};
+        frame.box.size = {0.05, 0.05, 0.05};
+        scene.nodes.push_back(frame);
+    }
+    engine->importScene(scene);
+    run(*engine, "USE SCENE 'with-frames'");
+    CHECK(std::get<std::int64_t>(run(*engine, "COUNT thing").rows.at(0).at(0)) == static_cast<std::int64_t>(things));
+    CHECK(std::get<std::int64_t>(run(*engine, "COUNT frame").rows.at(0).at(0)) == 3);
+    auto nodes = std::get<std::int64_t>(run(*engine, "COUNT node").rows.at(0).at(0));
+    CHECK(nodes == static_cast<std::int64_t>(things) + 3);
+
+    for (const char* question : {"what is the lamp on?", "what is above the lamp?", "what is near the lamp?"}) {
+        auto answer = run(*engine, fmt::format("ASK '{}'", question));
+        INFO(question << "\n" << answer.message);
+        for (const auto& row : answer.rows)
+            for (const auto& cell : row)
+                if (const auto* text = std::get_if<std::string>(&cell)) CHECK(text->find("frame#") == std::string::npos);
+        CHECK(answer.message.find("frame#") == std::string::npos);
+    }
+}
