@@ -213,6 +213,9 @@ def score_objects(truth, labels, stored):
         "missed_things": [f"{t['category']} at ({t['center'][0]:.2f}, {t['center'][1]:.2f}) sides "
                           f"{'x'.join(f'{v:.2f}' for v in t['sides'])}" for ti, t in enumerate(scored)
                           if ti not in match_t],
+        "extra_things": [f"{s['category']}#{s['id']} at ({s['center'][0]:.2f}, {s['center'][1]:.2f}) sides "
+                         f"{'x'.join(f'{v:.2f}' for v in s['sides'])}" for si, s in enumerate(counted)
+                         if si not in match_s],
         "depth_ratio": {f"{t['category']}#{ti}": round(min(1.0, max(
             (min(s['sides'][:2]) / min(t['sides'][:2]) for s in counted
              if s['category'] in FITS[t['category']] and inside(s['center'], t)), default=0.0)), 2)
@@ -350,7 +353,7 @@ def main():
             continue
         row = evaluate(args.smql, capture, work / capture.name, shlex.split(args.options), args.reuse)
         rows.append(row)
-        brief = {k: v for k, v in row.items() if args.verbose or k not in ("questions", "missed_things")}
+        brief = {k: v for k, v in row.items() if args.verbose or k not in ("questions", "missed_things", "extra_things")}
         print(json.dumps(brief), flush=True)
     scored = [r for r in rows if "f1" in r]
     matched = sum(r["matched"] for r in scored)

@@ -168,12 +168,15 @@ int checkPlausibilityCommand(Engine& engine, const std::string& sceneName, const
         nlohmann::json findings = nlohmann::json::array();
         for (const auto& f : report.findings)
             findings.push_back({{"check", f.check}, {"refuse", f.refuse}, {"what", f.what}, {"fix", f.fix}});
+        nlohmann::json objects = nlohmann::json::array();
+        for (const auto& o : report.objects) objects.push_back({{"node", o.node}, {"problem", o.problem}, {"what", o.what}});
         std::cout << nlohmann::json{{"scene", scene.info.name},
                                     {"camera_height_m", figure(report.cameraHeight)},
                                     {"ceiling_height_m", figure(report.ceilingHeight)},
                                     {"size_ratio", figure(report.sizeRatio)},
                                     {"named_things", report.namedThings},
-                                    {"findings", findings}}
+                                    {"findings", findings},
+                                    {"objects", objects}}
                          .dump(2)
                   << "\n";
         return report.refused() ? 1 : 0;
@@ -189,6 +192,7 @@ int checkPlausibilityCommand(Engine& engine, const std::string& sceneName, const
     for (const auto& f : report.findings)
         std::cout << fmt::format("{} {}: {}\n  fix: {}\n", f.refuse ? "IMPLAUSIBLE" : "warning", f.check, f.what,
                                  f.fix);
+    for (const auto& o : report.objects) std::cout << fmt::format("  {}: {}\n", o.problem, o.what);
     if (report.findings.empty())
         std::cout << (report.measured() ? "looks like a room: every check passed\n"
                                         : "nothing could be checked: no floor, no ceiling and too few named things of "

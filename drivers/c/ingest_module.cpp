@@ -108,6 +108,7 @@ extern "C" SMQL_API void smql_ingest_module_check(smql::capi::CheckCall& call) n
         add("size_ratio", report.sizeRatio);
         call.figures.emplace_back("named_things", static_cast<double>(report.namedThings));
         call.figures.emplace_back("warnings", static_cast<double>(report.findings.size()));
+        call.figures.emplace_back("objects_flagged", static_cast<double>(report.objects.size()));
         call.figures.emplace_back("refused", report.refused() ? 1.0 : 0.0);
     });
 }

@@ -232,7 +232,7 @@ std::vector<std::vector<Detection>> readDetections(const Capture& capture) {
         if (e.contains("segmentation") && !e["segmentation"].is_null()) {
             const auto& s = e["segmentation"];
             if (s.is_object())
-                d.rle = decodeRle(s, K, [&](const std::string& what) { bad("segmentation", what); });
+                d.mask = decodeRle(s, K, [&](const std::string& what) { bad("segmentation", what); });
             else
                 d.polygons = readPolygons(s, K, bad);
         }
@@ -255,9 +255,9 @@ void drawDetection(const Detection& det, double scale, cv::Mat& mask, int value)
         return cv::Point(static_cast<int>(std::lround(p.x * (1 << kShift))),
                          static_cast<int>(std::lround(p.y * (1 << kShift))));
     };
-    if (!det.rle.empty()) {
+    if (!det.mask.empty()) {
         cv::Mat1b resized;
-        cv::resize(det.rle, resized, mask.size(), 0, 0, cv::INTER_NEAREST);
+        cv::resize(det.mask, resized, mask.size(), 0, 0, cv::INTER_NEAREST);
         mask.setTo(value, resized);
         return;
     }
@@ -290,7 +290,7 @@ cv::Rect detectionBounds(const Detection& detection, const Intrinsics& K, int st
 }
 
 cv::Mat1b detectionOutline(const Detection& detection, const Intrinsics& K, int storedWidth) {
-    if (detection.polygons.empty() && detection.rle.empty()) return {};
+    if (detection.polygons.empty() && detection.mask.empty()) return {};
     cv::Mat1b whole = cv::Mat1b::zeros(K.height, K.width);
     drawDetection(detection, workingScale(K, storedWidth), whole, 255);
     return whole(detectionBounds(detection, K, storedWidth)).clone();

@@ -41,8 +41,8 @@ struct Detection {
     double score = 0;
     cv::Rect2d box;                                  // pixels of the stored image
     std::vector<std::vector<cv::Point2d>> polygons;  // COCO polygons, pixels of the stored image
-    cv::Mat1b rle;                                   // a COCO RLE mask decoded (stored image size)
-    // Neither polygons nor an RLE mask: the box is the mask.
+    cv::Mat1b mask;  // its own mask (stored image size): a COCO RLE mask decoded, or the segmenter's (segmenter.hpp)
+    // Neither polygons nor a mask: the box is the mask.
     std::vector<float> embedding;  // the detector's vector for what it saw; empty when it gave none
     // What other models called the same box (the detectors' ensemble, detector.hpp): name and score.
     std::vector<std::pair<std::string, double>> alsoSeenAs;

@@ -69,10 +69,11 @@ struct ObjectTrack {
     // narrow range of directions it stays long along the view.
     bool carved = false;
     // Fused from its views once the room is aligned (detections with depth, instance_map.hpp): the
-    // thing's points in the aligned frame, and their colours (N x 1 CV_8UC3 BGR). The objects stage
-    // fits the box to these instead of the views' points.
+    // thing's points in the aligned frame, their colours (N x 1 CV_8UC3 BGR), and the box fitted to
+    // them, which the objects stage takes instead of fitting one to the views' points.
     std::vector<model::Vec3> fused;
     cv::Mat fusedColors;
+    std::optional<model::Box> fusedBox;
 };
 
 // Lifts every instance of one frame with enough pixels. `stride` samples the

@@ -200,6 +200,16 @@ void InstanceMap::integrate(std::vector<InstanceView> frameViews) {
     }
 }
 
+std::unordered_map<std::uint64_t, InstanceCell> InstanceMap::core(const Instance& instance) const {
+    const auto needed = std::max<std::uint32_t>(
+        2, static_cast<std::uint32_t>(std::ceil(options_.coreShare * static_cast<double>(instance.sources.size()))));
+    if (instance.sources.size() < 3) return instance.cells;
+    std::unordered_map<std::uint64_t, InstanceCell> out;
+    for (const auto& [key, cell] : instance.cells)
+        if (cell.views >= needed) out.emplace(key, cell);
+    return out;
+}
+
 void InstanceMap::consolidate() {
     for (bool changed = true; changed;) {
         changed = false;
@@ -212,7 +222,7 @@ void InstanceMap::consolidate() {
                 Instance& b = instances_[large];
                 if (boundsApart(b, a.lo, a.hi, options_.cell)) continue;
                 if (!options_.voteLabels && a.category() != b.category()) continue;
-                if (shareNear(a.cells, b.cells) < options_.fragmentShare || restsOn(a, b)) continue;
+                if (shareNear(a.cells, core(b)) < options_.fragmentShare || restsOn(a, b)) continue;
                 absorb(b, std::move(a));
                 instances_.erase(instances_.begin() + static_cast<std::ptrdiff_t>(small));
                 changed = true;

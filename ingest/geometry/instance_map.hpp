@@ -28,8 +28,10 @@ struct InstanceMapOptions {
                                   // instance's) lie next to the other's cells
     double relabelShare = 0.6;    // ... of another name (voteLabels), when this share of the view's cells or of the
                                   // instance's lie next to the other's
-    double fragmentShare = 0.5;   // an instance with this share of its cells next to a larger one's is a piece of
-                                  // it (consolidate), unless it rests on it
+    double fragmentShare = 0.5;   // an instance with this share of its cells next to a larger one's core is a
+                                  // piece of it (consolidate), unless it rests on it ...
+    double coreShare = 0.15;      // ... the core: its cells seen by this share of its views (and two), not those a
+                                  // few views took in from a neighbour
     double restingShare = 0.7;    // "rests on": this share of the larger's cells under its footprint lie below its
                                   // lowest cells (plus restingGap)
     double restingGap = 0.05;     // m
@@ -98,6 +100,7 @@ private:
     double shareNear(const std::unordered_map<std::uint64_t, InstanceCell>& a,
                      const std::unordered_map<std::uint64_t, InstanceCell>& b) const;
     bool restsOn(const Instance& upper, const Instance& lower) const;
+    std::unordered_map<std::uint64_t, InstanceCell> core(const Instance& instance) const;
     void add(Instance& instance, const InstanceView& view) const;
     static void absorb(Instance& into, Instance&& from);
 

@@ -100,6 +100,8 @@ constexpr std::pair<std::string_view, std::string_view> kClassToMemory[] = {
     {"footwear", ""},
     {"boot", ""},
     {"high heels", ""},
+    // PASCAL VOC (the segmenter's): what is no thing.
+    {"background", ""},
 };
 
 std::vector<std::string> readClassNames(const fs::path& path) {

@@ -10,10 +10,27 @@
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/geometry/instance_map.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
 namespace {
+
+// Every view of the frame pass's tracks, with the track it came from (for its evidence crop).
+struct Views {
+    std::vector<Observation> all;
+    std::vector<std::size_t> trackOf;
+};
+
+// A thing the instance map found: one or more of its instances (several when two were one thing
+// stored twice), their points, the box fitted to them, their names' tally and the name chosen.
+struct Thing {
+    std::vector<const Instance*> instances;
+    PointCloud points;
+    model::Box box;
+    std::map<std::string, double> tally;
+    std::string category;
+};
 
 // A view's region in the aligned frame, colours as RGB.
 ViewRegion alignedRegion(const Observation& view, const Alignment& alignment) {
@@ -27,11 +44,39 @@ ViewRegion alignedRegion(const Observation& view, const Alignment& alignment) {
     return region;
 }
 
-// The instance's points that its views agree on: cells seen by two views, when it has three or more.
-PointCloud instancePoints(const Instance& instance) { return instance.points(instance.sources.size() >= 3 ? 2 : 1); }
+// Frame by frame, each view's thing into the map; then pieces merged. Counts what it did.
+struct Fused {
+    std::size_t segmented = 0, merged = 0;
+};
+Fused fuseViews(const Views& views, const Alignment& alignment, const RoomSurfaces& room, InstanceMap& map,
+                StageProgress& progress) {
+    std::vector<std::size_t> order(views.all.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](auto a, auto b) { return views.all[a].frame < views.all[b].frame; });
+    Fused out;
+    for (std::size_t i = 0; i < order.size();) {
+        progress.stopIfCancelled();
+        std::vector<InstanceView> frame;
+        const std::uint32_t at = views.all[order[i]].frame;
+        for (; i < order.size() && views.all[order[i]].frame == at; ++i) {
+            const Observation& view = views.all[order[i]];
+            const bool onSurface = usualSupport(view.label) == Support::Surface;
+            PointCloud thing = thingInView(alignedRegion(view, alignment), room, onSurface);
+            if (thing.empty()) continue;
+            ++out.segmented;
+            frame.push_back({view.frame, view.label, view.score, view.alsoSeenAs, std::move(thing), order[i]});
+        }
+        map.integrate(std::move(frame));
+    }
+    const std::size_t instances = map.instances().size();
+    map.consolidate();
+    out.merged = instances - map.instances().size();
+    return out;
+}
 
-// How many of the cameras held the instance in view: at least half of up to 16 of its points project
-// into the image, between 0.2 m and kMaxDepthReading in front (occlusion aside: an upper bound).
+// How many of the cameras held the points in view: at least half of up to 16 of them project into
+// the image, between 0.2 m and kMaxDepthReading in front (occlusion aside: an upper bound).
 std::size_t framesInView(const PointCloud& points, const std::vector<FusionCamera>& cameras) {
     std::vector<model::Vec3> sample;
     const std::size_t step = std::max<std::size_t>(1, points.size() / 16);
@@ -58,15 +103,138 @@ bool nameSuits(const std::string& category, const model::Box& box) {
     return !usual || (largest >= kNameFitLow * *usual && largest <= kNameFitHigh * *usual);
 }
 
-// The instance's name: of the names its views gave that suit its box, the one with the largest sum
-// of scores (a bed a detector called "suitcase" in more views is still a bed); when none suits, the
-// best voted, which the objects stage keeps only as detected_as.
-std::string nameOf(const Instance& instance, const model::Box& box) {
-    std::string best;
-    double bestVotes = -1;
-    for (const auto& [label, votes] : instance.tally())
+// A thing's name: of the names its views gave that suit its box, the one with the largest tally (a
+// bed a detector called "suitcase" in more views is still a bed); when none suits, the largest
+// tally, which the objects stage keeps only as detected_as.
+std::string nameOf(const std::map<std::string, double>& tally, const model::Box& box) {
+    std::string best, anyBest;
+    double bestVotes = -1, anyVotes = -1;
+    for (const auto& [label, votes] : tally) {
         if (nameSuits(label, box) && votes > bestVotes) best = label, bestVotes = votes;
-    return best.empty() ? instance.category() : best;
+        if (votes > anyVotes) anyBest = label, anyVotes = votes;
+    }
+    return best.empty() ? anyBest : best;
+}
+
+void fit(Thing& thing) {
+    thing.box = uprightBox(thing.points.points);
+    thing.category = nameOf(thing.tally, thing.box);
+}
+
+// The instances that are things: enough of their points agree (cells seen by two views, when it has
+// three or more), and enough of the frames that held them in view saw them (a detector's one-off
+// guess is no thing). Counts the guesses dropped.
+std::vector<Thing> thingsOf(const InstanceMap& map, const std::vector<FusionCamera>& cameras,
+                            const FusionOptions& options, std::size_t& guesses) {
+    std::vector<Thing> out;
+    for (const Instance& instance : map.instances()) {
+        PointCloud points = instance.points(instance.sources.size() >= 3 ? 2 : 1);
+        if (points.size() < 3) continue;
+        const auto inView = static_cast<double>(framesInView(points, cameras));
+        const int needed =
+            std::clamp(static_cast<int>(std::ceil(options.minViewShare * inView)), 1, options.viewsEnough);
+        if (static_cast<int>(instance.frames.size()) < needed) {
+            ++guesses;
+            continue;
+        }
+        Thing thing{{&instance}, std::move(points), {}, instance.tally(), {}};
+        fit(thing);
+        out.push_back(std::move(thing));
+    }
+    return out;
+}
+
+// Two things of one name, most of the smaller's box inside the larger's: one thing the map kept twice
+// (a sofa seen whole from afar and in parts close up, their cells never close enough). Merged, the
+// smaller into the larger. Returns how many were merged.
+std::size_t mergeStoredTwice(std::vector<Thing>& things, const FusionOptions& options) {
+    std::size_t merged = 0;
+    for (bool changed = true; changed;) {
+        changed = false;
+        std::stable_sort(things.begin(), things.end(),
+                         [](const Thing& a, const Thing& b) { return model::volume(a.box) > model::volume(b.box); });
+        for (std::size_t large = 0; large < things.size() && !changed; ++large)
+            for (std::size_t small = large + 1; small < things.size(); ++small) {
+                Thing& a = things[small];
+                Thing& b = things[large];
+                if (a.category != b.category || model::fractionInside(a.box, b.box) < options.storedTwiceShare)
+                    continue;
+                b.instances.insert(b.instances.end(), a.instances.begin(), a.instances.end());
+                for (std::size_t p = 0; p < a.points.size(); ++p)
+                    b.points.push(a.points.points[p], a.points.colors[p], a.points.frames[p]);
+                for (const auto& [label, votes] : a.tally) b.tally[label] += votes;
+                fit(b);
+                things.erase(things.begin() + static_cast<std::ptrdiff_t>(small));
+                ++merged;
+                changed = true;
+                break;
+            }
+    }
+    return merged;
+}
+
+// A thing of a kind that stands on floors (a table, a chair, a bed) whose legs or base the views did
+// not see (chairs in front, the table's own top): its bottom hangs in the air, below
+// FusionOptions::groundReach or with its top no higher than such things' usual top
+// (FusionOptions::topReach of it), and no other thing's top lies under its middle to carry it. It
+// stands on the floor: its box reaches down to it. Returns whether the box was extended.
+bool standOnFloor(Thing& thing, const std::vector<Thing>& all, const FusionOptions& options) {
+    model::Box& box = thing.box;
+    const double bottom = box.center.z - box.size.z / 2, top = box.center.z + box.size.z / 2;
+    if (usualSupport(thing.category) != Support::Floor || bottom <= 0) return false;
+    const auto usualTop = typicalHeight(thing.category);
+    if (bottom > options.groundReach && !(usualTop && top <= options.topReach * *usualTop)) return false;
+    for (const auto& other : all) {
+        const model::Box& b = other.box;
+        if (&other == &thing) continue;
+        const double otherTop = b.center.z + b.size.z / 2;
+        const double c = std::cos(b.yaw), s = std::sin(b.yaw);
+        const double dx = box.center.x - b.center.x, dy = box.center.y - b.center.y;
+        const bool under = std::abs(c * dx + s * dy) <= b.size.x / 2 && std::abs(-s * dx + c * dy) <= b.size.y / 2;
+        if (under && otherTop <= bottom + options.restingGap && otherTop > 0) return false;
+    }
+    box.center.z = top / 2;
+    box.size.z = top;
+    return true;
+}
+
+// Slivers: flatter than minHeight, smaller than minLargest, or thinner than thinShare of the largest
+// side things of their kind have (a 6 cm thin "table" is a table's edge).
+bool sliver(const Thing& thing, const FusionOptions& options) {
+    const model::Box& box = thing.box;
+    const double thinnest = std::min({box.size.x, box.size.y, box.size.z});
+    const auto usual = typicalExtent(thing.category);
+    return box.size.z < options.minHeight || std::max({box.size.x, box.size.y, box.size.z}) < options.minLargest ||
+           (usual && thinnest < options.thinShare * *usual);
+}
+
+// The thing as a track: its views in frame order, the evidence crop of the frame-pass track most of
+// them came from, its fused points and box.
+ObjectTrack trackOf(const Thing& thing, Views& views, const std::vector<ObjectTrack>& tracks) {
+    ObjectTrack track;
+    track.category = thing.category;
+    track.kind = detectionKind(track.category);
+    std::vector<std::size_t> sources;
+    for (const Instance* instance : thing.instances)
+        sources.insert(sources.end(), instance->sources.begin(), instance->sources.end());
+    std::sort(sources.begin(), sources.end(),
+              [&](auto a, auto b) { return views.all[a].frame < views.all[b].frame; });
+    std::map<std::size_t, std::size_t> fromTrack;
+    for (auto s : sources) {
+        ++fromTrack[views.trackOf[s]];
+        track.views.push_back(std::move(views.all[s]));
+    }
+    auto most = std::max_element(fromTrack.begin(), fromTrack.end(),
+                                 [](const auto& a, const auto& b) { return a.second < b.second; });
+    track.evidence = tracks[most->first].evidence;
+    track.material = tracks[most->first].material;
+    for (std::size_t p = 0; p < thing.points.size(); ++p) {
+        track.fused.push_back(thing.points.points[p]);
+        const auto& c = thing.points.colors[p];
+        track.fusedColors.push_back(cv::Vec3b(c[2], c[1], c[0]));
+    }
+    track.fusedBox = thing.box;
+    return track;
 }
 
 }  // namespace
@@ -74,85 +242,33 @@ std::string nameOf(const Instance& instance, const model::Box& box) {
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
                                     const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
                                     const FusionOptions& options, StageProgress& progress) {
-    // Every view, in frame order, with the track it came from (for its evidence crop).
-    std::vector<Observation> views;
-    std::vector<std::size_t> trackOf;
+    Views views;
     for (std::size_t t = 0; t < tracks.size(); ++t)
         for (auto& v : tracks[t].views) {
-            views.push_back(std::move(v));
-            trackOf.push_back(t);
+            views.all.push_back(std::move(v));
+            views.trackOf.push_back(t);
         }
-    std::vector<std::size_t> order(views.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return views[a].frame < views[b].frame; });
-
     InstanceMapOptions mapOptions;
     mapOptions.voteLabels = options.voteLabels;
     InstanceMap map(mapOptions);
-    std::size_t segmented = 0;
-    for (std::size_t i = 0; i < order.size();) {
-        progress.stopIfCancelled();
-        std::vector<InstanceView> frame;
-        const std::uint32_t at = views[order[i]].frame;
-        for (; i < order.size() && views[order[i]].frame == at; ++i) {
-            const Observation& view = views[order[i]];
-            const bool onSurface = usualSupport(view.label) == Support::Surface;
-            PointCloud thing = thingInView(alignedRegion(view, alignment), room, onSurface);
-            if (thing.empty()) continue;
-            ++segmented;
-            frame.push_back({view.frame, view.label, view.score, view.alsoSeenAs, std::move(thing), order[i]});
-        }
-        map.integrate(std::move(frame));
-    }
-    const std::size_t before = map.instances().size();
-    map.consolidate();
-    const std::size_t merged = before - map.instances().size();
+    const Fused fused = fuseViews(views, alignment, room, map, progress);
+
+    std::size_t guesses = 0;
+    std::vector<Thing> things = thingsOf(map, cameras, options, guesses);
+    const std::size_t twice = mergeStoredTwice(things, options);
+    std::size_t grounded = 0;
+    if (room.floorFound)
+        for (auto& thing : things) grounded += standOnFloor(thing, things, options);
+    // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
+    const std::size_t slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options); });
 
     std::vector<ObjectTrack> out;
-    std::size_t slivers = 0, guesses = 0;
-    for (const Instance& instance : map.instances()) {
-        PointCloud points = instancePoints(instance);
-        if (points.size() < 3) continue;
-        const model::Box box = uprightBox(points.points);
-        const std::string category = nameOf(instance, box);
-        const double thinnest = std::min({box.size.x, box.size.y, box.size.z});
-        const auto usual = typicalExtent(category);
-        if (box.size.z < options.minHeight || std::max({box.size.x, box.size.y, box.size.z}) < options.minLargest ||
-            (usual && thinnest < options.thinShare * *usual)) {
-            ++slivers;
-            continue;
-        }
-        const auto inView = static_cast<double>(framesInView(points, cameras));
-        const auto needed = std::clamp(static_cast<int>(std::ceil(options.minViewShare * inView)), 1, options.viewsEnough);
-        if (static_cast<int>(instance.frames.size()) < needed) {
-            ++guesses;
-            continue;
-        }
-        ObjectTrack track;
-        track.category = category;
-        track.kind = detectionKind(track.category);
-        std::map<std::size_t, std::size_t> fromTrack;  // views each frame-pass track gave
-        std::vector<std::size_t> sources = instance.sources;
-        std::sort(sources.begin(), sources.end(), [&](auto a, auto b) { return views[a].frame < views[b].frame; });
-        for (auto s : sources) {
-            ++fromTrack[trackOf[s]];
-            track.views.push_back(std::move(views[s]));
-        }
-        auto most = std::max_element(fromTrack.begin(), fromTrack.end(),
-                                     [](const auto& a, const auto& b) { return a.second < b.second; });
-        track.evidence = tracks[most->first].evidence;
-        track.material = tracks[most->first].material;
-        for (std::size_t p = 0; p < points.size(); ++p) {
-            track.fused.push_back(points.points[p]);
-            const auto& c = points.colors[p];
-            track.fusedColors.push_back(cv::Vec3b(c[2], c[1], c[0]));
-        }
-        out.push_back(std::move(track));
-    }
-    progress.note(fmt::format("objects: {} of {} views showed a thing apart from the floor and walls; fused into {} "
-                              "instances ({} pieces merged into the things they belong to, {} slivers and {} things "
-                              "seen in too few of the frames that held them dropped)",
-                              segmented, views.size(), out.size(), merged, slivers, guesses));
+    for (const auto& thing : things) out.push_back(trackOf(thing, views, tracks));
+    progress.note(fmt::format(
+        "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} things ({} pieces "
+        "merged into the things they belong to, {} stored twice merged; {} slivers and {} things seen in too few of "
+        "the frames that held them dropped; {} reaching down to the floor)",
+        fused.segmented, views.all.size(), out.size(), fused.merged, twice, slivers, guesses, grounded));
     return out;
 }
 

@@ -23,6 +23,13 @@ struct FusionOptions {
                                  // side things of their kind have (a 6 cm thin "table" is a table's edge)
     double minViewShare = 0.1;    // of the frames whose view holds an instance, this share must have seen it ...
     int viewsEnough = 3;          // ... up to this many views (a detector's one-off guess is no thing)
+    double groundReach = 0.5;     // m: a thing that stands on floors, its bottom up to this high with nothing
+                                  // under it, reaches down to the floor (its legs were hidden) ...
+    double topReach = 1.3;        // ... and so does one whose top is no higher than this share of its kind's
+                                  // usual top (a table whose top alone was seen)
+    double restingGap = 0.1;      // m: ... unless another thing's top is this close under it
+    double storedTwiceShare = 0.5;  // two things of one name, this share of the smaller's box inside the larger's,
+                                    // are one thing stored twice
     bool voteLabels = true;       // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 

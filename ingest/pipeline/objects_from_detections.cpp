@@ -14,6 +14,7 @@
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/object_fusion.hpp"
+#include "ingest/pipeline/segmenter.hpp"
 #include "ingest/pipeline/ray_tracks.hpp"
 #include "model/error.hpp"
 
@@ -188,22 +189,39 @@ public:
         : DetectionLifter(capture, options, /*voteLabels=*/true),
           // Without depth a box is a silhouette that carves a hull (observations.hpp): the SSD's looser boxes
           // carved the dining photos' chairs 1.6 m tall, so those captures take NanoDet's alone.
-          detector_(makeDetector(files, options.detectorModel.empty() && framesHaveDepth(capture))) {}
+          detector_(makeDetector(files, packagedWithDepth(capture, options))),
+          segmenter_(packagedWithDepth(capture, options) ? installedSegmenter() : nullptr) {}
 
     std::string frameNote() const override {
         std::string note = DetectionLifter::frameNote();
         if (milliseconds_.empty()) return note;
         auto sorted = milliseconds_;
         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-        return fmt::format("detector: {} on {} frames, {} detections, median {:.0f} ms per frame{}{}",
-                           detector_->describe(), milliseconds_.size(), detections_,
-                           sorted[sorted.size() / 2], note.empty() ? "" : "; ", note);
+        return fmt::format("detector: {}{} on {} frames, {} detections, median {:.0f} ms per frame{}{}",
+                           detector_->describe(), segmenter_ ? " + " + segmenter_->describe() : std::string(),
+                           milliseconds_.size(), detections_, sorted[sorted.size() / 2], note.empty() ? "" : "; ",
+                           note);
     }
 
 private:
+    // The packaged models beside NanoDet (the SSD, the segmenter) run when no --detector is given and
+    // the frames have depth. Without depth a box is a silhouette that carves a hull (observations.hpp):
+    // the SSD's looser boxes carved the dining photos' chairs 1.6 m tall.
+    static bool packagedWithDepth(const Capture& capture, const IngestOptions& options) {
+        return options.detectorModel.empty() && framesHaveDepth(capture);
+    }
+    static std::unique_ptr<SemanticSegmenter> installedSegmenter() {
+        auto files = installedModel("deeplab");
+        return files ? makeDeepLabSegmenter(*files) : nullptr;
+    }
+
     FrameDetections detectionsOf(const PosedFrame& frame) override {
         auto start = std::chrono::steady_clock::now();
         auto detections = detector_->detect(frame.images.color);
+        if (segmenter_) {
+            const cv::Mat1b labels = segmenter_->segment(frame.images.color);
+            for (auto& d : detections) maskBySegments(d, labels, segmenter_->categories());
+        }
         milliseconds_.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         detections_ += detections.size();
@@ -211,6 +229,7 @@ private:
     }
 
     std::unique_ptr<ObjectDetector> detector_;
+    std::unique_ptr<SemanticSegmenter> segmenter_;
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;
 };

@@ -110,7 +110,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             for (const auto& v : track.views) colors.push_back(v.colors);
         }
         if (cloud.empty()) continue;
-        model::Box box = uprightBox(cloud.points);
+        model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (track.carved) holdToFootprint(box, category);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess.

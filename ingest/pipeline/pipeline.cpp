@@ -59,6 +59,7 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
         runner.note(fmt::format("{} {}: {}; {}", f.refuse ? "implausible" : "warning:", f.check, f.what, f.fix));
         if (f.refuse && !refusal) refusal = &f;
     }
+    for (const auto& o : report.objects) runner.note(fmt::format("warning: {}: {}", o.problem, o.what));
     if (refusal && !options.force)
         throw Error(ErrorKind::Input, fmt::format("the memory would be wrong: {}", refusal->what), std::nullopt,
                     refusal->fix + "; --force stores the memory anyway");

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "ingest/geometry/typical_sizes.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
@@ -39,6 +40,23 @@ constexpr double kAgreementRefuse = 0.7;
 constexpr double kSplitRefuse = 2.0;
 // A box this many times its kind's largest side is not that kind.
 constexpr double kNameMismatch = 2.5;
+// The object checks (objectFindings), metres but where said. A sliver: its thinnest side under this
+// share of the largest side things of its kind have (the share object fusion drops at ingest).
+constexpr double kSliverShare = 0.06;
+// Floating: a thing that stands on floors with its bottom this high, nothing under it within kRests.
+constexpr double kFloating = 0.3;
+constexpr double kRests = 0.1;
+// Behind a wall: its centre this far beyond the wall's plane, within the wall's extent.
+constexpr double kBehindWall = 0.15;
+// A duplicate: this share of the smaller box inside the larger, same category.
+constexpr double kDuplicateShare = 0.5;
+// In pieces: two of a kind this close, together no larger than the largest of their kind, each
+// under this share of it.
+constexpr double kPiecesGap = 0.05;
+constexpr double kPieceShare = 0.6;
+// The camera's height says the scale is right when within this factor of a person's (kUsualCamera):
+// the sizes of named things then speak of wrong boxes, not of a wrong depth unit.
+constexpr double kCameraAgrees = 1.35;
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -129,12 +147,28 @@ PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleS
     report.namedThings = ratios.size();
     if (ratios.size() >= kMinNamedThings) {
         report.sizeRatio = median(ratios);
+        // Cameras at a person's height say the scale is right: sizes far off are the boxes' fault.
+        const bool camerasAgree = report.cameraHeight && *report.cameraHeight >= kUsualCamera / kCameraAgrees &&
+                                  *report.cameraHeight <= kUsualCamera * kCameraAgrees;
         judge(report, "sizes of named things", *report.sizeRatio, kRatioWarn, kRatioRefuse,
               fmt::format("the named things are {:.2f} times the largest of their kinds, at the median of {} "
                           "(real rooms: about {:g})",
                           *report.sizeRatio, ratios.size(), kUsualRatio),
-              scaleFix(*report.sizeRatio / kUsualRatio, source));
+              camerasAgree ? fmt::format("the cameras' height ({:.2f} m) says the scale is right: the things' boxes "
+                                         "are wrong, not the depth unit (see the objects flagged below)",
+                                         *report.cameraHeight)
+                           : scaleFix(*report.sizeRatio / kUsualRatio, source));
+        // A refusal needs the scale to be wrong; the cameras say it is not.
+        if (camerasAgree && !report.findings.empty() && report.findings.back().check == "sizes of named things")
+            report.findings.back().refuse = false;
     }
+    report.objects = objectFindings(scene);
+    if (!report.objects.empty())
+        report.findings.push_back(
+            {"objects", false,
+             fmt::format("{} of the things do not look like what they are named (listed below)", report.objects.size()),
+             "check them with DESCRIBE and their evidence crops; slivers, pieces and duplicates come from "
+             "detections of parts of things"});
     if (report.cameraHeight && report.sizeRatio && *report.cameraHeight > 0) {
         const double byCameras = *report.cameraHeight / kUsualCamera, bySizes = *report.sizeRatio / kUsualRatio;
         const bool agree = (byCameras < 1) == (bySizes < 1);
@@ -183,6 +217,117 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                                    alignment.scaleSplit),
                        "give --scale (metres per capture unit), or add photos that show the floor and the things "
                        "standing on it"});
+    return out;
+}
+
+namespace {
+
+std::string named(const model::Node& n) { return fmt::format("{}#{}", n.category, n.id); }
+std::string measures(const model::Box& b) { return fmt::format("{:.2f} x {:.2f} x {:.2f} m", b.size.x, b.size.y, b.size.z); }
+
+// The share of a's volume inside b (axis-aligned bounds of the upright boxes).
+double insideShare(const model::Box& a, const model::Box& b) {
+    const auto ba = model::worldAabb(a), bb = model::worldAabb(b);
+    const double x = std::max(0.0, std::min(ba.max.x, bb.max.x) - std::max(ba.min.x, bb.min.x));
+    const double y = std::max(0.0, std::min(ba.max.y, bb.max.y) - std::max(ba.min.y, bb.min.y));
+    const double z = std::max(0.0, std::min(ba.max.z, bb.max.z) - std::max(ba.min.z, bb.min.z));
+    const double volume = (ba.max.x - ba.min.x) * (ba.max.y - ba.min.y) * (ba.max.z - ba.min.z);
+    return volume > 0 ? x * y * z / volume : 0;
+}
+
+// What `n` rests on: a box whose top is within kRests of its bottom under its footprint's centre.
+const model::Node* restingOn(const model::Node& n, const std::vector<const model::Node*>& things) {
+    const double bottom = n.box.center.z - n.box.size.z / 2;
+    for (const auto* other : things) {
+        if (other == &n) continue;
+        const auto b = model::worldAabb(other->box);
+        if (n.box.center.x >= b.min.x && n.box.center.x <= b.max.x && n.box.center.y >= b.min.y &&
+            n.box.center.y <= b.max.y && std::abs(b.max.z - bottom) <= kRests)
+            return other;
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
+    std::vector<const model::Node*> things, walls;
+    std::vector<model::Vec3> cameras;
+    bool floor = false;
+    for (const auto& n : scene.nodes) {
+        if (n.geometry == model::GeometryKind::None) continue;
+        if (n.kind == model::NodeKind::Object) things.push_back(&n);
+        if (n.kind == model::NodeKind::Anchor && n.category == "wall") walls.push_back(&n);
+        if (n.kind == model::NodeKind::Anchor && n.category == "floor") floor = true;
+        if (n.kind == model::NodeKind::Frame) cameras.push_back(n.box.center);
+    }
+    std::vector<ObjectFinding> out;
+    std::vector<bool> flagged(things.size(), false);
+    auto flag = [&](std::size_t i, const char* problem, std::string what) {
+        if (flagged[i]) return;
+        flagged[i] = true;
+        out.push_back({things[i]->id, problem, std::move(what)});
+    };
+    for (std::size_t i = 0; i < things.size(); ++i) {
+        const model::Node& n = *things[i];
+        const auto usual = typicalExtent(sizedName(n));
+        const double thinnest = std::min({n.box.size.x, n.box.size.y, n.box.size.z});
+        if (usual && thinnest < kSliverShare * *usual) {
+            const model::Node* under = restingOn(n, things);
+            flag(i, "sliver",
+                 fmt::format("{} ({}) is {:.0f} cm thin, no {} is{}", named(n), measures(n.box), 100 * thinnest,
+                             sizedName(n), under ? fmt::format(": a piece of {}'s top it lies on", named(*under)) : ""));
+        }
+        const double bottom = n.box.center.z - n.box.size.z / 2;
+        if (floor && usualSupport(sizedName(n)) == Support::Floor && bottom > kFloating && !restingOn(n, things))
+            flag(i, "floating",
+                 fmt::format("{} ({}) stands on floors, but its bottom is {:.2f} m up with nothing under it", named(n),
+                             measures(n.box), bottom));
+    }
+    // Behind a wall: the side of its plane away from the cameras (or from the things' middle).
+    model::Vec3 inside{0, 0, 0};
+    const auto& around = cameras.empty() ? std::vector<model::Vec3>{} : cameras;
+    for (const auto& c : around) inside = {inside.x + c.x / around.size(), inside.y + c.y / around.size(), 0};
+    if (around.empty())
+        for (const auto* t : things)
+            inside = {inside.x + t->box.center.x / things.size(), inside.y + t->box.center.y / things.size(), 0};
+    for (const auto* wall : walls) {
+        const double c = std::cos(wall->box.yaw), s = std::sin(wall->box.yaw);
+        auto across = [&](const model::Vec3& p) { return -s * (p.x - wall->box.center.x) + c * (p.y - wall->box.center.y); };
+        auto along = [&](const model::Vec3& p) { return c * (p.x - wall->box.center.x) + s * (p.y - wall->box.center.y); };
+        const double roomSide = across(inside) >= 0 ? 1 : -1;
+        for (std::size_t i = 0; i < things.size(); ++i) {
+            const auto& p = things[i]->box.center;
+            if (std::abs(along(p)) <= wall->box.size.x / 2 && roomSide * across(p) < -(wall->box.size.y / 2 + kBehindWall))
+                flag(i, "behind a wall",
+                     fmt::format("{} stands {:.2f} m behind {}: seen through it, or in a mirror", named(*things[i]),
+                                 -roomSide * across(p) - wall->box.size.y / 2, named(*wall)));
+        }
+    }
+    // Two of a kind: one inside the other (a duplicate), or touching and together the size of one.
+    for (std::size_t i = 0; i < things.size(); ++i)
+        for (std::size_t j = 0; j < things.size(); ++j) {
+            if (i == j || things[i]->category != things[j]->category || things[i]->category == "object") continue;
+            const model::Node& a = *things[i];
+            const model::Node& b = *things[j];
+            const bool smaller = model::volume(a.box) < model::volume(b.box) ||
+                                 (model::volume(a.box) == model::volume(b.box) && i > j);
+            if (!smaller) continue;
+            if (insideShare(a.box, b.box) >= kDuplicateShare) {
+                flag(i, "duplicate", fmt::format("{} lies mostly inside {}: one {} stored twice", named(a), named(b), a.category));
+                continue;
+            }
+            const auto usual = typicalExtent(a.category);
+            if (!usual || model::distance(a.box, b.box) > kPiecesGap) continue;
+            const auto ua = model::worldAabb(a.box), ub = model::worldAabb(b.box);
+            const double together = std::max({std::max(ua.max.x, ub.max.x) - std::min(ua.min.x, ub.min.x),
+                                               std::max(ua.max.y, ub.max.y) - std::min(ua.min.y, ub.min.y),
+                                               std::max(ua.max.z, ub.max.z) - std::min(ua.min.z, ub.min.z)});
+            if (together <= *usual && largestSide(a.box) < kPieceShare * *usual && largestSide(b.box) < kPieceShare * *usual)
+                flag(i, "in pieces",
+                     fmt::format("{} and {} touch and together measure {:.2f} m: one {} in pieces?", named(a), named(b),
+                                 together, a.category));
+        }
     return out;
 }
 

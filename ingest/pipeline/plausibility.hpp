@@ -23,8 +23,16 @@ struct PlausibilityFinding {
     std::string fix;   // what to do about it
 };
 
+// A thing that does not look like one (objectFindings).
+struct ObjectFinding {
+    model::NodeId node = model::kNoNode;
+    std::string problem;  // "sliver", "floating", "behind a wall", "duplicate", "in pieces"
+    std::string what;     // "chair#9 (0.42 x 0.33 x 0.18 m) lies flat on table#5: a piece of its top"
+};
+
 struct PlausibilityReport {
     std::vector<PlausibilityFinding> findings;  // every check that failed, warnings and refusals
+    std::vector<ObjectFinding> objects;         // things that do not look like things (warned, never refused)
     std::optional<double> cameraHeight;         // median height of the cameras above the floor (m)
     std::optional<double> ceilingHeight;        // m above the floor
     std::optional<double> sizeRatio;            // median of (largest side / the kind's usual largest side)
@@ -59,6 +67,14 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
 // agree at 90% or more of the points two frames see; mirrored images or poses, or a wrong depth unit,
 // far less. Warned, and refused past a limit; nullopt when they agree or were not tested.
 std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agreement);
+
+// The things of a scene that do not look like what they are named (docs/ingest.md, "Plausibility"):
+// slivers (a side far thinner than things of the kind ever are: the edge or the top of something
+// else, lying on it or not), floating things (a kind that stands on the floor, its bottom in the air
+// with nothing under it), things behind a wall (seen through it, or a reflection), two of a kind
+// where one is (most of the smaller inside the larger), and one thing in pieces (two of a kind that
+// touch and together are the size of one).
+std::vector<ObjectFinding> objectFindings(const model::SceneData& scene);
 
 // A thing named by a detector whose box is far larger than things of that name ever are (a 1.8 m
 // cake): not that thing. The name is kept only as the guess `detected_as`.

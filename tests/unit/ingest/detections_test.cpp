@@ -257,7 +257,7 @@ TEST_CASE("COCO RLE masks decode, as counts and as the compressed string") {
         auto detections = readDetections(capture);
         INFO(form);
         REQUIRE(detections[0].size() == 1);
-        const cv::Mat1b& mask = detections[0][0].rle;
+        const cv::Mat1b& mask = detections[0][0].mask;
         REQUIRE(mask.rows == 480);
         REQUIRE(mask.cols == 640);
         CHECK(cv::countNonZero(mask) == 100);

@@ -1,0 +1,102 @@
+#include "ingest/pipeline/segmenter.hpp"
+
+#include <algorithm>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <opencv2/dnn.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "model/error.hpp"
+
+namespace smql::ingest {
+
+namespace {
+
+// The input the graph was converted at (scripts/detector/setup.sh, segmenter_size): a 640 x 480
+// frame keeps its aspect.
+const cv::Size kInput{513, 385};
+constexpr const char* kLowResolution = "logits_lowres";
+
+// Kinds one model names as another's: a detector's desk is the segmenter's (dining) table, its
+// monitor the segmenter's tv.
+std::string segmentKind(const std::string& category) {
+    if (category == "desk") return "table";
+    if (category == "monitor") return "tv";
+    return category;
+}
+
+class DeepLabSegmenter : public SemanticSegmenter {
+public:
+    explicit DeepLabSegmenter(const DetectorFiles& files) : file_(files.model.filename().string()) {
+        try {
+            net_ = cv::dnn::readNetFromONNX(files.model.string());
+        } catch (const cv::Exception& e) {
+            throw Error(ErrorKind::Input, fmt::format("{}: not a model OpenCV can load: {}", files.model.string(), e.msg),
+                        std::nullopt, "prepare it with scripts/detector/setup.sh");
+        }
+        net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+        net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+        std::ifstream in(files.classes);
+        if (!in) throw Error(ErrorKind::Input, fmt::format("{}: cannot read the class names", files.classes.string()));
+        for (std::string line; std::getline(in, line);) {
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            if (!line.empty()) categories_.push_back(memoryCategory(line));
+        }
+    }
+
+    cv::Mat1b segment(const cv::Mat& bgr) override {
+        net_.setInput(cv::dnn::blobFromImage(bgr, 1 / 127.5, kInput, cv::Scalar(127.5, 127.5, 127.5), /*swapRB=*/true,
+                                             /*crop=*/false));
+        cv::Mat logits = net_.forward(kLowResolution);
+        const int classes = logits.size[1], rows = logits.size[2], columns = logits.size[3];
+        if (logits.dims != 4 || classes != static_cast<int>(categories_.size()))
+            throw Error(ErrorKind::Input, fmt::format("{}: its output is not {} class scores a pixel", file_,
+                                                      categories_.size()));
+        // Each class's scores brought up to the frame's size, and the best class of every pixel.
+        cv::Mat best(bgr.size(), CV_32F, cv::Scalar(-1e30f));
+        cv::Mat1b labels(bgr.size(), 0);
+        cv::Mat scaled;
+        for (int c = 0; c < classes; ++c) {
+            cv::Mat plane(rows, columns, CV_32F, logits.ptr<float>(0, c));
+            cv::resize(plane, scaled, bgr.size(), 0, 0, cv::INTER_LINEAR);
+            cv::Mat better = scaled > best;
+            scaled.copyTo(best, better);
+            labels.setTo(c, better);
+        }
+        return labels;
+    }
+
+    const std::vector<std::string>& categories() const override { return categories_; }
+    std::string describe() const override { return file_; }
+
+private:
+    std::string file_;
+    cv::dnn::Net net_;
+    std::vector<std::string> categories_;
+};
+
+}  // namespace
+
+std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files) {
+    return std::make_unique<DeepLabSegmenter>(files);
+}
+
+void maskBySegments(Detection& detection, const cv::Mat1b& labels, const std::vector<std::string>& categories) {
+    const std::string kind = segmentKind(detection.category);
+    auto known = std::find(categories.begin(), categories.end(), kind);
+    if (kind.empty() || known == categories.end()) return;
+    const auto label = static_cast<std::uint8_t>(known - categories.begin());
+    const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(detection.box.x)),
+                                            static_cast<int>(std::floor(detection.box.y))),
+                                  cv::Point(static_cast<int>(std::ceil(detection.box.x + detection.box.width)),
+                                            static_cast<int>(std::ceil(detection.box.y + detection.box.height)))) &
+                         cv::Rect(0, 0, labels.cols, labels.rows);
+    if (box.empty()) return;
+    cv::Mat1b mask = cv::Mat1b::zeros(labels.size());
+    mask(box) = labels(box) == label;
+    if (cv::countNonZero(mask(box)) < kMinMaskShare * box.area()) return;
+    detection.mask = std::move(mask);
+}
+
+}  // namespace smql::ingest
