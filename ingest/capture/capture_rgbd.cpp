@@ -392,6 +392,9 @@ Capture readTum(const fs::path& dir, const CaptureOptions& options) {
         if (!frame.pose) ++withoutPose;
         capture.frames.push_back(std::move(frame));
     }
+    if (capture.frames.size() < pairs.size())
+        capture.notes.push_back(fmt::format("{} of {} frames kept, {:g} a second (--fps; --fps 0 keeps every frame)",
+                                            capture.frames.size(), pairs.size(), options.fps));
     if (withoutPose > 0 && !groundTruth.empty())
         capture.notes.push_back(fmt::format("{} of {} frames have no ground-truth pose within {} s in {}", withoutPose,
                                             capture.frames.size(), kTumMaxDt, gtFile.string()));

@@ -456,14 +456,10 @@ private:
     // a generated walk, 11 placed, then all 20 (tests/unit/ingest/colmap_test.cpp).
     Capture placeFrames() {
         const std::size_t frames = workFrames_.size();
-        if (fine_ || run_.reused) return mapLargestModel();
-        std::size_t placed = 0;
-        try {
-            Capture model = mapLargestModel();
-            if (5 * model.frames.size() >= 4 * frames) return model;
-            placed = model.frames.size();
-        } catch (const Error&) {  // no model of half the frames: the finer features may make one
-        }
+        if (fine_ || run_.reused) return accepted(mapLargestModel());
+        std::optional<Capture> model = mapLargestModel();
+        if (model && 5 * model->frames.size() >= 4 * frames) return std::move(*model);
+        const std::size_t placed = model ? model->frames.size() : 0;
         note(
             fmt::format("COLMAP placed {} of {} frames with features at their own size; it runs again with the "
                         "finer features of the frames doubled",
@@ -474,7 +470,7 @@ private:
         fs::create_directories(sparse_);
         run_.models = 0;
         findAndMatchFeatures();
-        return mapLargestModel();
+        return accepted(mapLargestModel());
     }
 
     // One feature_extractor run per group, so that each image size gets a camera of its own even
@@ -596,7 +592,8 @@ private:
     // holds most of the frames; the largest model of all is kept when it holds at least half of them.
     // Each run writes its models (sparse/<settings>/0, 1...) and says what it made in the notes.
     // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
-    Capture mapLargestModel() {
+    // Nothing when no run made a model.
+    std::optional<Capture> mapLargestModel() {
         const bool fixed =
             capture_.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
             std::all_of(groups_.begin(), groups_.end(), [](const CameraGroup& g) { return g.known.has_value(); });
@@ -627,6 +624,12 @@ private:
             if (largest && (!best || largest->frames.size() > best->frames.size())) best = std::move(largest);
             if (best && 5 * best->frames.size() >= 4 * frames) break;
         }
+        return best;
+    }
+
+    // The largest model, when it holds at least half of the frames: else an error that says why.
+    Capture accepted(std::optional<Capture> best) {
+        const std::size_t frames = workFrames_.size();
         if (!best)
             throw Error(ErrorKind::Input,
                         fmt::format("colmap mapper made no model: {}; its output is in {}",

@@ -76,8 +76,12 @@ const std::vector<IngestOption> kIngestOptions = {
              "a note)");
      },
      [](IngestRequest& r, const std::string& v) { r.videoFrames = v; }},
-    {"fps", "NUMBER", [] { return std::string("frames per second sampled from videos (default 1)"); },
-     [](IngestRequest& r, const std::string& v) { r.fps = number("fps", v, false); }},
+    {"fps", "NUMBER",
+     [] {
+         return std::string(
+             "frames per second kept from videos and TUM sequences (default 1; 0 keeps every frame)");
+     },
+     [](IngestRequest& r, const std::string& v) { r.fps = number("fps", v, true); }},
     {"camera", "FX,FY,CX,CY",
      [] {
          return std::string(

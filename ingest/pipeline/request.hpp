@@ -21,7 +21,7 @@ struct IngestRequest {
     std::string objects = "auto";      // a source of SMQL_OBJECT_SOURCES, or auto
     std::string detector;              // --objects detect: the ONNX model (default: the installed one)
     std::string classes;               // ... and its class names (default: coco.names beside the model)
-    double fps = 1.0;                  // frames per second sampled from videos
+    double fps = 1.0;                  // frames per second kept from videos and TUM sequences (0: every frame)
     std::string videoFrames;           // where a video's decoded frames go (default: a new temporary folder)
     std::optional<double> scale;       // metres per capture unit, overriding the estimate
     std::optional<double> depthScale;  // depth image units per metre, overriding the capture's

@@ -253,6 +253,8 @@ TEST_CASE("tum: association, ground truth and sampling", "[capture][tum]") {
     checkRotation(*capture.frames[1].pose, {1, 0, 0, 0, 1, 0, 0, 0, 1});
     CHECK_FALSE(capture.frames[2].pose);  // ground truth ends at 101.5
     CHECK(hasNote(capture, "1 of 3 frames have no ground-truth pose"));
+    // The frames the sampling leaves out are said, with the option that keeps them.
+    CHECK(hasNote(capture, "3 of 69 frames kept, 1 a second (--fps; --fps 0 keeps every frame)"));
 
     FrameImages images = loadFrame(capture, capture.frames[1], 640);
     CHECK(images.depth.at<float>(5, 0) == Approx(1.0));
@@ -261,7 +263,9 @@ TEST_CASE("tum: association, ground truth and sampling", "[capture][tum]") {
     SECTION("fps 0 keeps every associated frame") {
         CaptureOptions options;
         options.fps = 0;
-        CHECK(readCapture(dir.path(), options).frames.size() == 69);
+        Capture all = readCapture(dir.path(), options);
+        CHECK(all.frames.size() == 69);
+        CHECK_FALSE(hasNote(all, "frames kept"));
     }
     SECTION("fps 10") {
         CaptureOptions options;

@@ -273,3 +273,55 @@ TEST_CASE("plausibility: real RGB-D frames upside down for their poses are refus
     CHECK(std::any_of(unit.result.notes.begin(), unit.result.notes.end(),
                       [](const std::string& n) { return n.find("warning: views:") != std::string::npos; }));
 }
+
+// The objects a capture's detections made of parts of things (docs/ingest.md, "Plausibility"): a
+// chair that is a 2 cm sliver of the table's top it lies on, a table stored twice, a sofa hanging in
+// the air, a chair seen through a wall, a sofa in two pieces. The cameras stand at a person's height,
+// so the things' small sizes speak of wrong boxes, not of a wrong depth unit: no --depth-scale advice.
+TEST_CASE("plausibility: slivers, duplicates and pieces are flagged; right cameras give no depth-scale advice",
+          "[ingest][plausibility]") {
+    model::SceneData scene = room(1);
+    auto add = [&](model::NodeKind kind, const std::string& category, model::Vec3 c, model::Vec3 s) {
+        scene.nodes.push_back(node(kind, category, c, s));
+        scene.nodes.back().id = static_cast<model::NodeId>(scene.nodes.size());
+    };
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) scene.nodes[i].id = static_cast<model::NodeId>(i + 1);
+    add(model::NodeKind::Object, "chair", {2.2, 2.1, 0.76}, {0.5, 0.4, 0.02});    // on the table's top
+    add(model::NodeKind::Object, "table", {2.05, 2, 0.37}, {1.2, 0.7, 0.7});      // inside the table
+    add(model::NodeKind::Object, "bed", {0.8, 3.2, 1.4}, {1.9, 1.5, 0.5});        // in the air
+    add(model::NodeKind::Object, "stool", {3.5, 1, 0.3}, {0.35, 0.35, 0.6});      // beside the wall, in the room
+    add(model::NodeKind::Anchor, "wall", {2, 4.3, 1.3}, {4, 0.05, 2.6});          // the far wall
+    add(model::NodeKind::Object, "chair", {2, 4.9, 0.45}, {0.5, 0.5, 0.9});       // behind it
+    add(model::NodeKind::Object, "plant", {0.3, 0.5, 0.3}, {0.3, 0.3, 0.6});
+    add(model::NodeKind::Object, "plant", {0.3, 0.81, 0.3}, {0.3, 0.3, 0.6});     // its other piece
+    auto report = checkPlausibility(scene, {.stored = true});
+    std::map<std::string, std::vector<std::string>> problems;
+    for (const auto& o : report.objects) problems[o.problem].push_back(o.what);
+    INFO(nlohmann::json(problems).dump(1));
+    REQUIRE(problems["sliver"].size() == 1);
+    CHECK(problems["sliver"][0].starts_with("chair#11 "));
+    CHECK(problems["sliver"][0].find("table#6's top") != std::string::npos);
+    REQUIRE(problems["duplicate"].size() == 1);
+    CHECK(problems["duplicate"][0].starts_with("table#12 lies mostly inside table#6"));
+    REQUIRE(problems["floating"].size() == 1);
+    CHECK(problems["floating"][0].starts_with("bed#13 "));
+    REQUIRE(problems["behind a wall"].size() == 1);
+    CHECK(problems["behind a wall"][0].starts_with("chair#16 "));
+    REQUIRE(problems["in pieces"].size() == 1);
+    CHECK(problems["in pieces"][0].find("plant#") != std::string::npos);
+    CHECK(report.objects.size() == 5);  // the stool, the room's own things: nothing
+    CHECK(has(report, "objects", false));
+    CHECK_FALSE(report.refused());
+
+    // Every named thing at a quarter of its size (slabs of the things): the sizes check fails, and
+    // with the cameras 1.45 m up it blames the boxes, never the depth unit.
+    for (auto& n : scene.nodes)
+        if (n.kind == model::NodeKind::Object) n.box.size = {n.box.size.x / 4, n.box.size.y / 4, n.box.size.z / 4};
+    auto small = checkPlausibility(scene, {.depth = true, .depthScale = 1000});
+    REQUIRE(has(small, "sizes of named things", false));
+    for (const auto& f : small.findings) {
+        INFO(f.check << ": " << f.fix);
+        CHECK(f.fix.find("--depth-scale") == std::string::npos);
+    }
+    CHECK_FALSE(small.refused());
+}

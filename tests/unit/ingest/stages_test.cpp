@@ -11,6 +11,7 @@
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/anchors_stage.hpp"
 #include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/request.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
 #include "ingest/synth/synth.hpp"
 #include "model/error.hpp"
@@ -146,4 +147,21 @@ TEST_CASE("the floor spans the room, not the stray points far outside it") {
     CHECK(floor->box.size.x == Approx(4).margin(0.1));
     CHECK(floor->box.size.y == Approx(5).margin(0.1));
     CHECK(floor->box.center.x == Approx(2).margin(0.1));
+}
+
+// --fps keeps that many frames a second of a video or a TUM sequence; 0 keeps every frame, as
+// docs/formats.md says, and a negative rate is refused naming the option.
+TEST_CASE("ingest options: --fps 0 keeps every frame, a negative rate is refused") {
+    IngestRequest request;
+    setIngestOption(request, "fps", "0");
+    CHECK(request.fps == 0);
+    setIngestOption(request, "fps", "2.5");
+    CHECK(request.fps == 2.5);
+    try {
+        setIngestOption(request, "fps", "-1");
+        FAIL("a negative --fps was taken");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Usage);
+        CHECK(std::string(e.what()).find("--fps") != std::string::npos);
+    }
 }
