@@ -12,7 +12,9 @@
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
+#include "model/utf8.hpp"
 #include "shell/output_file.hpp"
+#include "storage/output_guard.hpp"
 #include "view/view.hpp"
 
 namespace smql::shell {
@@ -76,7 +78,7 @@ int exportCommand(const std::string& format, const std::string& dbDir, const std
         checkWritten(std::cout, "standard output");
         return 0;
     }
-    refuseDatabaseFile(outFile, dbDir);
+    storage::refuseDatabaseFile(outFile, dbDir);
     std::ofstream out(outFile, std::ios::binary);
     out << bytes;
     checkWritten(out, outFile);
@@ -99,9 +101,16 @@ int exportEvidenceCommand(const std::string& dbDir, const std::string& node, con
         throw Error(ErrorKind::Binding, fmt::format("node #{} has no evidence", id), std::nullopt,
                     "evidence comes from ingested captures; DESCRIBE #id lists it");
     fs::create_directories(outDir);
-    for (const auto& blob : blobs) {
-        fs::path path = fs::path(outDir) / blob.name;
-        refuseDatabaseFile(path.string(), dbDir);
+    // A blob's name comes from data (an imported scene, a pulled one): it names a file in outDir and
+    // nothing else, whatever separators or `..` it holds.
+    for (std::size_t k = 0; k < blobs.size(); ++k) {
+        const auto& blob = blobs[k];
+        const std::string name = storage::safeFileName(blob.name, fmt::format("evidence-{}", k + 1));
+        if (name != blob.name)
+            std::cerr << fmt::format("note: the blob name '{}' is no file name in {}: written as '{}'\n",
+                                     model::escapeInvalidUtf8(blob.name), outDir, name);
+        const fs::path path = fs::path(outDir) / name;
+        storage::refuseDatabaseFile(path, dbDir);
         std::ofstream out(path, std::ios::binary);
         out << blob.bytes;
         checkWritten(out, path.string());

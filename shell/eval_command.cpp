@@ -11,6 +11,8 @@
 #include "engine/eval/evaluation.hpp"
 #include "ingest/import/importers.hpp"
 #include "shell/output_file.hpp"
+#include "storage/output_guard.hpp"
+#include "storage/output_guard.hpp"
 
 namespace smql::shell {
 
@@ -19,7 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 void writeFile(const fs::path& path, const std::string& text, const std::string& database) {
-    refuseDatabaseFile(path.string(), database);
+    storage::refuseDatabaseFile(path.string(), database);
     std::ofstream out(path);
     out << text;
     checkWritten(out, path.string());

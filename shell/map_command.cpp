@@ -16,6 +16,7 @@
 #include "model/error.hpp"
 #include "model/geometry.hpp"
 #include "model/names.hpp"
+#include "storage/output_guard.hpp"
 #include "view/map.hpp"
 
 namespace smql::shell {
@@ -107,7 +108,8 @@ cv::Mat renderPng(const view::MapPlan& plan) {
 }
 
 // PNG or SVG, as the file's name says.
-void writeMap(const view::MapPlan& plan, const fs::path& path) {
+void writeMap(const view::MapPlan& plan, const fs::path& path, const std::string& database) {
+    storage::refuseDatabaseFile(path, database);
     if (path.extension() == ".svg") {
         std::ofstream out(path);
         out << view::renderSvg(plan);
@@ -119,7 +121,8 @@ void writeMap(const view::MapPlan& plan, const fs::path& path) {
                 "check that the folder exists and is writable; the map is a .png or an .svg");
 }
 
-void writeText(const fs::path& path, const std::string& text) {
+void writeText(const fs::path& path, const std::string& text, const std::string& database) {
+    storage::refuseDatabaseFile(path, database);
     std::ofstream out(path);
     out << text;
     if (!out)
@@ -157,7 +160,7 @@ int mapCommand(const std::string& dbDir, const std::string& scene, const std::st
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
     auto map = engine->sceneMap(scene);
     const view::MapPlan plan = view::planMap(map, {}, options);
-    writeMap(plan, outFile);
+    writeMap(plan, outFile, dbDir);
     std::cout << fmt::format("wrote the map of scene '{}' ({} nodes, {} decision points{}) to {}\n",
                              map.scene.info.name, map.scene.nodes.size(), map.graph.points.size(),
                              plan.fixturesLeftOut ? fmt::format("; {} ceiling and wall fixtures left out (--fixtures "
@@ -187,7 +190,7 @@ int guideCommand(const std::string& dbDir, const std::string& scene, const std::
         plan["steps"].push_back(step);
     }
     const fs::path dir(outDir);
-    writeText(dir / "guide.json", plan.dump(2) + "\n");
+    writeText(dir / "guide.json", plan.dump(2) + "\n", dbDir);
 
     std::string markdown = fmt::format(
         "# {}\n\nScene `{}`: {}.\n\n![map](guide.png)\n\n| step | instruction | "
@@ -196,11 +199,11 @@ int guideCommand(const std::string& dbDir, const std::string& scene, const std::
     for (const auto& s : steps)
         markdown += fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.1f} |\n", s.step, s.instruction, s.landmark, s.x,
                                 s.y, s.distance);
-    writeText(dir / "guide.md", markdown);
+    writeText(dir / "guide.md", markdown, dbDir);
 
     std::vector<view::RouteMark> route;
     for (const auto& s : steps) route.push_back({s.step, s.x, s.y});
-    writeMap(view::planMap(map, route, {}), dir / "guide.png");
+    writeMap(view::planMap(map, route, {}), dir / "guide.png", dbDir);
     std::cout << fmt::format("{}\nwrote guide.json, guide.md and guide.png to {}\n", rs.message, outDir);
     return 0;
 }

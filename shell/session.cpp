@@ -17,6 +17,7 @@
 #include "model/names.hpp"
 #include "shell/interrupt.hpp"
 #include "shell/output_file.hpp"
+#include "storage/output_guard.hpp"
 
 namespace smql::shell {
 
@@ -131,7 +132,7 @@ void Session::redirect(const std::string& path, bool once) {
     if (file_.is_open()) file_.close();
     once_ = false;
     if (path.empty()) return;
-    refuseDatabaseFile(path, options_.database);
+    storage::refuseDatabaseFile(path, options_.database);
     errno = 0;
     file_.open(path, std::ios::trunc);
     if (!file_)

@@ -31,6 +31,7 @@
 #include "model/error.hpp"
 #include "model/result.hpp"
 #include "storage/database.hpp"
+#include "storage/output_guard.hpp"
 #include "view/view.hpp"
 
 namespace {
@@ -573,6 +574,7 @@ smql_status smql_export(smql_db* db, const char* format, const char* scene_name,
                 ? smql::view::standalonePage(*db->engine, scene)
                 : smql::import::write(format, smql::import::writesFileIds(format) ? db->engine->exportScene(scene)
                                                                                   : db->engine->readScene(scene));
+        smql::storage::refuseDatabaseFile(path, db->directory);
         std::ofstream out(path, std::ios::binary);
         out << bytes;
         out.close();

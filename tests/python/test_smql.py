@@ -247,3 +247,19 @@ def test_export_and_import_back(db, tmp_path):
     assert (tmp_path / "room.html").read_text().startswith("<!doctype html>")
     with pytest.raises(smql.ProgrammingError, match="unknown export format"):
         db.export(tmp_path / "x", format="jsn")
+
+
+def test_export_never_writes_the_database_s_own_files(tmp_path):
+    """The library's one guard: an export onto data.mdb or lock.mdb, a hard link of them, or into the
+    database's folder is refused, and the database still answers."""
+    path = tmp_path / "db"
+    smql.import_scene(REPLICA, path, format="replica")
+    os.link(path / "data.mdb", tmp_path / "hardlink.mdb")
+    with smql.connect(path) as db:
+        sofas = db.execute("COUNT sofa").fetchone()[0]
+        for target in (path / "data.mdb", path / "lock.mdb", tmp_path / "hardlink.mdb", path / "room.json"):
+            with pytest.raises(smql.Error, match="would destroy the database"):
+                db.export(target)
+        assert db.execute("COUNT sofa").fetchone()[0] == sofas
+    with smql.connect(path, read_only=True) as again:
+        assert again.execute("COUNT sofa").fetchone()[0] == sofas
