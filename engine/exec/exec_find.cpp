@@ -10,6 +10,7 @@
 
 #include "engine/catalog/attributes.hpp"
 #include "engine/exec/executor.hpp"
+#include "engine/exec/like.hpp"
 #include "engine/similar/text_embedder.hpp"
 #include "model/geometry.hpp"
 #include "storage/database.hpp"
@@ -28,19 +29,49 @@ std::string lower(std::string_view text) {
     return out;
 }
 
-// SQL LIKE: % any run, _ any one character; case-insensitive.
-bool like(std::string_view text, std::string_view pattern) {
-    if (pattern.empty()) return text.empty();
-    if (pattern[0] == '%') {
-        for (std::size_t i = 0; i <= text.size(); ++i)
-            if (like(text.substr(i), pattern.substr(1))) return true;
-        return false;
-    }
-    if (text.empty()) return false;
-    bool same = pattern[0] == '_' || std::tolower(static_cast<unsigned char>(pattern[0])) ==
-                                         std::tolower(static_cast<unsigned char>(text[0]));
-    return same && like(text.substr(1), pattern.substr(1));
+bool sameChar(char text, char pattern) {
+    return pattern == '_' ||
+           std::tolower(static_cast<unsigned char>(text)) == std::tolower(static_cast<unsigned char>(pattern));
 }
+
+// Whether `piece` (no %) matches `text` at `at`.
+bool pieceAt(std::string_view text, std::size_t at, std::string_view piece) {
+    if (at + piece.size() > text.size()) return false;
+    for (std::size_t k = 0; k < piece.size(); ++k)
+        if (!sameChar(text[at + k], piece[k])) return false;
+    return true;
+}
+
+}  // namespace
+
+// Without backtracking: the pattern is cut at its %s into pieces; the first must match at the start,
+// the last at the end, and each one between at its leftmost place after the one before (leftmost is
+// never worse for what follows), so '%%%...x' is as quick as 'x'.
+bool like(std::string_view text, std::string_view pattern) {
+    std::vector<std::string_view> pieces;
+    for (std::size_t from = 0;;) {
+        const std::size_t percent = pattern.find('%', from);
+        pieces.push_back(pattern.substr(from, percent == std::string_view::npos ? std::string_view::npos : percent - from));
+        if (percent == std::string_view::npos) break;
+        from = percent + 1;
+    }
+    if (pieces.size() == 1) return text.size() == pattern.size() && pieceAt(text, 0, pattern);
+    const std::string_view first = pieces.front(), last = pieces.back();
+    if (first.size() + last.size() > text.size() || !pieceAt(text, 0, first) ||
+        !pieceAt(text, text.size() - last.size(), last))
+        return false;
+    std::size_t at = first.size();
+    const std::size_t end = text.size() - last.size();  // the middle pieces lie in [at, end)
+    for (std::size_t p = 1; p + 1 < pieces.size(); ++p) {
+        const std::string_view piece = pieces[p];
+        while (at + piece.size() <= end && !pieceAt(text, at, piece)) ++at;
+        if (at + piece.size() > end) return false;
+        at += piece.size();
+    }
+    return true;
+}
+
+namespace {
 
 // An attribute's value as a comparison or ORDER BY sees it: a number or text; nothing for null.
 std::optional<std::variant<double, std::string>> comparable(const Value& value) {
