@@ -1,10 +1,17 @@
-// Class-agnostic objects (--objects cluster, the fallback): Euclidean clusters
-// of the aligned structure cloud's points that are not floor, ceiling or wall
-// become objects of category `object`, named by the colour of their points.
+// Class-agnostic objects: Euclidean clusters of the aligned structure cloud's points that are not
+// floor, ceiling or wall become objects of category `object`, named by the colour of their points.
+// The fallback source (--objects cluster) keeps every cluster but specks; beside detections, only the
+// large things no detector named (a bed, a cabinet: PASCAL's and COCO's classes lack them) are kept.
+#include "ingest/pipeline/objects_from_clusters.hpp"
+
+#include <cmath>
+#include <set>
+
 #include <fmt/format.h>
 #include <opencv2/core.hpp>
 
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/view_segment.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
@@ -12,6 +19,20 @@
 namespace smql::ingest {
 
 namespace {
+
+// Whether a point lies in (or within `margin` of) the box of an object the scene already holds.
+bool inKnownThing(const model::Vec3& p, const model::SceneData& scene, double margin) {
+    for (const auto& n : scene.nodes) {
+        if (n.kind != model::NodeKind::Object || n.geometry != model::GeometryKind::Box) continue;
+        const double c = std::cos(n.box.yaw), s = std::sin(n.box.yaw);
+        const double dx = p.x - n.box.center.x, dy = p.y - n.box.center.y;
+        if (std::abs(c * dx + s * dy) <= n.box.size.x / 2 + margin &&
+            std::abs(-s * dx + c * dy) <= n.box.size.y / 2 + margin &&
+            std::abs(p.z - n.box.center.z) <= n.box.size.z / 2 + margin)
+            return true;
+    }
+    return false;
+}
 
 class ClusterFinder : public ObjectFinder {
 public:
@@ -21,33 +42,49 @@ public:
 
     void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                              model::SceneData& scene, StageProgress& progress) override {
-        StructureOptions structureOptions;
-        structureOptions.ceilingHeight = aligned.alignment.ceilingHeight;
-        const PointCloud& cloud = aligned.cloud;
-        auto rest = nonStructuralPoints(cloud, walls, structureOptions);
-        auto clusters = euclideanClusters(cloud, rest, 0.08, 30, 200000);
-        for (const auto& cluster : clusters) {
-            std::vector<model::Vec3> points;
-            cv::Mat colors;
-            for (auto i : cluster) {
-                points.push_back(cloud.points[i]);
-                const auto& c = cloud.colors[i];
-                colors.push_back(cv::Vec3b(c[2], c[1], c[0]));
-            }
-            model::Box box = uprightBox(points);
-            if (box.size.x < 0.05 || box.size.y < 0.03 || box.size.z < 0.03) continue;  // specks
-            model::Node& node = addNode(scene, model::NodeKind::Object, "object", model::GeometryKind::Box, box);
-            node.attributes.push_back({"color", nameColor(colors).name});
-            node.attributes.push_back({"size", sizeWord(box)});
-            node.attributes.push_back({"points", std::to_string(cluster.size())});
-            node.confidence = 0.5f;
-        }
-        progress.note(
-            fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'", clusters.size()));
+        const std::size_t clusters = addClusterObjects(aligned, walls, scene, {});
+        progress.note(fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'", clusters));
     }
 };
 
 }  // namespace
+
+std::size_t addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
+                              model::SceneData& scene, const ClusterObjects& options) {
+    StructureOptions structureOptions;
+    structureOptions.ceilingHeight = aligned.alignment.ceilingHeight;
+    const PointCloud& cloud = aligned.cloud;
+    const RoomSurfaces room{aligned.alignment.floorFound, aligned.alignment.ceilingHeight, &walls};
+    std::vector<std::size_t> rest;
+    for (auto i : nonStructuralPoints(cloud, walls, structureOptions))
+        if (!onRoomSurface(cloud.points[i], room) &&
+            !(options.outsideKnown && inKnownThing(cloud.points[i], scene, options.knownMargin)))
+            rest.push_back(i);
+    auto clusters = euclideanClusters(cloud, rest, options.gap, options.minPoints, 200000);
+    std::size_t added = 0;
+    for (const auto& cluster : clusters) {
+        std::vector<model::Vec3> points;
+        cv::Mat colors;
+        std::set<std::uint32_t> frames;
+        for (auto i : cluster) {
+            points.push_back(cloud.points[i]);
+            const auto& c = cloud.colors[i];
+            colors.push_back(cv::Vec3b(c[2], c[1], c[0]));
+            frames.insert(cloud.frames[i]);
+        }
+        model::Box box = uprightBox(points);
+        if (box.size.x < options.minLonger || box.size.y < options.minShorter || box.size.z < options.minHeight ||
+            box.size.x > options.maxLonger || frames.size() < options.minFrames)
+            continue;
+        model::Node& node = addNode(scene, model::NodeKind::Object, "object", model::GeometryKind::Box, box);
+        node.attributes.push_back({"color", nameColor(colors).name});
+        node.attributes.push_back({"size", sizeWord(box)});
+        node.attributes.push_back({"points", std::to_string(cluster.size())});
+        node.confidence = 0.5f;
+        ++added;
+    }
+    return added;
+}
 
 bool clustersUsable(const Capture&, const IngestOptions&) { return true; }
 

@@ -14,6 +14,7 @@
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/object_fusion.hpp"
+#include "ingest/pipeline/objects_from_clusters.hpp"
 #include "ingest/pipeline/segmenter.hpp"
 #include "ingest/pipeline/ray_tracks.hpp"
 #include "model/error.hpp"
@@ -85,8 +86,17 @@ public:
         return fuseTracks(std::move(tracks), aligned.alignment, room, cameras, fusion, progress);
     }
 
-    void addStructureObjects(const AlignedCapture&, const std::vector<WallSegment>&, model::SceneData&,
-                             StageProgress&) override {}
+    // With depth, the large things no model named (a bed, a cabinet, a counter: COCO's, Open Images'
+    // and PASCAL's classes lack them) are clusters of the structure left outside every named thing.
+    void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
+                             model::SceneData& scene, StageProgress& progress) override {
+        if (!hasDepth_) return;
+        const std::size_t added = addClusterObjects(aligned, walls, scene, kUnnamedThings);
+        if (added > 0)
+            progress.note(fmt::format("objects: {} large {} no model named, stored as 'object' with their size and "
+                                      "colour",
+                                      added, added == 1 ? "thing" : "things"));
+    }
 
 protected:
     struct FrameDetections {
@@ -97,6 +107,11 @@ protected:
     const Capture& capture() const { return capture_; }
 
 private:
+    // What a thing no model named must be to be kept: at least 0.5 x 0.3 x 0.3 m, seen from 3 frames
+    // (a cabinet, a counter, a bed's base; smaller clusters are clutter and the parts detections left),
+    // at most 3 m long (longer, a stretch of wall the walls stage did not take).
+    static constexpr ClusterObjects kUnnamedThings{.minLonger = 0.5, .minShorter = 0.3, .minHeight = 0.3,
+                                                   .maxLonger = 3.0, .minFrames = 3, .outsideKnown = true};
     // A detection's view needs this many sparse points to be placed and associated by them; with
     // fewer, its box's ray places it (placeByRays).
     static constexpr std::size_t kMinSparsePoints = 3;
