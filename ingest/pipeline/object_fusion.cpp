@@ -265,7 +265,7 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     std::vector<ObjectTrack> out;
     for (const auto& thing : things) out.push_back(trackOf(thing, views, tracks));
     progress.note(fmt::format(
-        "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} things ({} pieces "
+        "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} stored twice merged; {} slivers and {} things seen in too few of "
         "the frames that held them dropped; {} reaching down to the floor)",
         fused.segmented, views.all.size(), out.size(), fused.merged, twice, slivers, guesses, grounded));

@@ -93,9 +93,8 @@ public:
         if (!hasDepth_) return;
         const std::size_t added = addClusterObjects(aligned, walls, scene, kUnnamedThings);
         if (added > 0)
-            progress.note(fmt::format("objects: {} large {} no model named, stored as 'object' with their size and "
-                                      "colour",
-                                      added, added == 1 ? "thing" : "things"));
+            progress.note(fmt::format("objects: {} large {} no model named, stored as 'object' with {} size and colour",
+                                      added, added == 1 ? "thing" : "things", added == 1 ? "its" : "their"));
     }
 
 protected:
