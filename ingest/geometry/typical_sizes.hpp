@@ -1,7 +1,7 @@
 // What things of a kind usually measure, in metres: the one table of sizes the
-// ingest knows. The scale priors take the heights of the kinds whose height
-// varies little; a hull carved without depth is held to the largest footprint
-// of its kind; the plausibility checks hold boxes to their kind's extent.
+// ingest knows. They check, never answer: the scale priors take the heights of
+// the kinds whose height varies little; the plausibility checks and the names
+// of fused things hold boxes to their kind's extent.
 #pragma once
 
 #include <optional>
@@ -12,13 +12,6 @@ namespace smql::ingest {
 // A standing thing's usual height above the floor in metres (its top), for the
 // kinds whose height varies little: nullopt for the others.
 std::optional<double> typicalHeight(std::string_view category);
-
-// The largest footprint things of a kind commonly have (metres): its longer and
-// its shorter side seen from above. nullopt for kinds the table lacks.
-struct Footprint {
-    double longer = 0, shorter = 0;
-};
-std::optional<Footprint> largestFootprint(std::string_view category);
 
 // The largest side (height included) things of a kind commonly have, in metres; nullopt for kinds
 // the table lacks. A box named so that is several times longer is not that thing, or the

@@ -8,7 +8,6 @@
 #include <opencv2/core.hpp>
 
 #include "ingest/geometry/clusters.hpp"
-#include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
@@ -46,16 +45,24 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
     return !alignment.ceilingHeight || p.z <= *alignment.ceilingHeight + kSlack;
 }
 
-// A hull carved without depth from a narrow range of directions stays long along the view, with
-// the thing near its middle: its box is cut about its centre to the largest footprint things of its
-// kind commonly have.
-void holdToFootprint(model::Box& box, const std::string& category) {
-    auto largest = largestFootprint(category);
-    if (!largest) return;
-    double& longer = box.size.x >= box.size.y ? box.size.x : box.size.y;
-    double& shorter = box.size.x >= box.size.y ? box.size.y : box.size.x;
-    longer = std::min(longer, largest->longer);
-    shorter = std::min(shorter, largest->shorter);
+// A hull carved without depth from a narrow range of directions stays long along the view. Along
+// its longer side it is held to where the thing's own surfaces were seen (its sparse points,
+// aligned), widened by its shorter side at each end: a thing reaches past what showed of it, not
+// without bound. Its kind's usual size is never the answer (a 2.97 m table stays 2.97 m).
+void holdToSurface(model::Box& box, const std::vector<model::Vec3>& surface, const Alignment& alignment) {
+    if (surface.empty() || box.size.x <= box.size.y) return;
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    double lo = 1e18, hi = -1e18;
+    for (const auto& raw : surface) {
+        const model::Vec3 p = alignment.apply(raw);
+        const double along = c * (p.x - box.center.x) + s * (p.y - box.center.y);
+        lo = std::min(lo, along), hi = std::max(hi, along);
+    }
+    const double from = std::max(-box.size.x / 2, lo - box.size.y), to = std::min(box.size.x / 2, hi + box.size.y);
+    if (!(to > from)) return;
+    const double middle = (from + to) / 2;
+    box.center = {box.center.x + c * middle, box.center.y + s * middle, box.center.z};
+    box.size.x = to - from;
 }
 
 // What the views' embeddings agree on: the mean of their unit vectors, at unit length. Empty when
@@ -111,7 +118,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         if (cloud.empty()) continue;
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
-        if (track.carved) holdToFootprint(box, category);
+        if (track.carved) holdToSurface(box, track.surface, aligned.alignment);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess.
         const bool misnamed = !opening && !nameFitsBox(category, box);
