@@ -12,6 +12,8 @@
 #include <iostream>
 #include <optional>
 #include <set>
+#include <string_view>
+#include <utility>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -48,6 +50,47 @@ std::vector<std::string> longOptionsWithOneDash(const CLI::App& app, int argc, c
     return args;
 }
 
+// The sub-commands and the program that runs each: one table, from which the dispatch in main() and
+// the check for a mistyped one come.
+enum class Runs { Ingest, Fleet, Here };
+constexpr std::pair<std::string_view, Runs> kSubcommands[] = {
+    {"ingest", Runs::Ingest}, {"check-ingest", Runs::Ingest}, {"synth", Runs::Ingest}, {"demo", Runs::Ingest},
+    {"map", Runs::Ingest},    {"guide", Runs::Ingest},        {"view", Runs::Ingest},  {"fleet", Runs::Fleet},
+    {"push", Runs::Fleet},    {"pull", Runs::Fleet},          {"import", Runs::Here},  {"export", Runs::Here},
+    {"test", Runs::Here},     {"check", Runs::Here},          {"eval", Runs::Here}};
+
+std::optional<Runs> subcommand(std::string_view name) {
+    for (const auto& [word, runs] : kSubcommands)
+        if (word == name) return runs;
+    return std::nullopt;
+}
+
+// Two words one typing slip apart: one letter changed, added or dropped, or two neighbours swapped.
+bool oneSlipApart(std::string_view a, std::string_view b) {
+    if (a.size() > b.size()) std::swap(a, b);
+    if (b.size() - a.size() > 1) return false;
+    std::size_t i = 0;
+    while (i < a.size() && a[i] == b[i]) ++i;
+    if (a.size() == b.size())
+        return i == a.size() || a.substr(i + 1) == b.substr(i + 1) ||
+               (i + 1 < a.size() && a[i] == b[i + 1] && a[i + 1] == b[i] && a.substr(i + 2) == b.substr(i + 2));
+    return a.substr(i) == b.substr(i + 1);
+}
+
+// A database name that does not exist and is a sub-command mistyped (`smql exprot json`) would make
+// a database of the typo: refused, naming the sub-command.
+void refuseMistypedSubcommand(const std::string& dir) {
+    std::error_code ec;
+    if (dir.size() < 4 || dir.find('/') != std::string::npos || fs::exists(dir, ec)) return;
+    for (const auto& [word, runs] : kSubcommands)
+        if (oneSlipApart(dir, word))
+            throw smql::Error(smql::ErrorKind::Usage,
+                              fmt::format("'{}' is no sub-command, and no database of that name exists", dir),
+                              std::nullopt,
+                              fmt::format("did you mean smql {}? To make a new database of that name, write ./{}",
+                                          word, dir));
+}
+
 // A database in a fresh temporary folder, removed with everything in it when the shell ends.
 struct TransientDatabase {
     fs::path path;
@@ -67,13 +110,20 @@ struct TransientDatabase {
     }
 };
 
+std::string subcommandList() {
+    std::string out;
+    for (const auto& [word, runs] : kSubcommands) out += (out.empty() ? "" : ", ") + std::string(word);
+    return out;
+}
+
 int runShell(int argc, char** argv) {
-    CLI::App app{
+    CLI::App app{fmt::format(
         "smql: an embedded spatial memory engine.\n"
-        "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits.\n"
-        "Sub-commands: import, export, check, test, eval, ingest, check-ingest, synth, demo, map, guide, fleet, "
-        "push, pull (smql COMMAND --help).\n"
-        "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd)."};
+        "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits; "
+        "`smql` or `smql :memory:`, a transient database.\n"
+        "Sub-commands: {} (smql COMMAND --help).\n"
+        "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd).",
+        subcommandList())};
     app.name("smql");
     std::string dir, command, script, mode = "table";
     std::vector<std::string> statements, startup;
@@ -121,8 +171,10 @@ int runShell(int argc, char** argv) {
     options.fitTerminal = isatty(STDOUT_FILENO);
     // No database named: as sqlite3 opens one in memory, smql opens one in a temporary folder that
     // is removed when the shell ends.
+    // `:memory:`, as sqlite3 names it, is that transient database too.
     std::optional<TransientDatabase> transient;
-    if (dir.empty()) dir = transient.emplace().path.string();
+    if (dir.empty() || dir == ":memory:") dir = transient.emplace().path.string();
+    refuseMistypedSubcommand(dir);
     options.database = dir;
     bool noScript = command.empty() && statements.empty() && script.empty();
     bool interactive = noScript && isatty(STDIN_FILENO);
@@ -254,14 +306,11 @@ int runSubcommand(int argc, char** argv) {
 int main(int argc, char** argv) {
     return smql::shell::runReportingErrors([&] {
         std::string first = argc > 1 ? argv[1] : "";
-        if (first == "ingest" || first == "check-ingest" || first == "synth" || first == "demo" || first == "map" ||
-            first == "guide" || first == "view")
-            return runTool("smql-ingest", argv);
-        if (first == "fleet" || first == "push" || first == "pull" || first.rfind("postgresql://", 0) == 0 ||
-            first.rfind("postgres://", 0) == 0)
+        const auto runs = subcommand(first);
+        if (runs == Runs::Ingest) return runTool("smql-ingest", argv);
+        if (runs == Runs::Fleet || first.rfind("postgresql://", 0) == 0 || first.rfind("postgres://", 0) == 0)
             return runTool("smql-fleet", argv);
-        if (first == "import" || first == "export" || first == "test" || first == "check" || first == "eval")
-            return runSubcommand(argc, argv);
+        if (runs == Runs::Here) return runSubcommand(argc, argv);
         return runShell(argc, argv);
     });
 }

@@ -173,6 +173,22 @@ public:
 
 // Every path below that the directory cannot be an smql database ends in an
 // Error before LMDB is asked to create anything in it.
+// A new database's name that is a URL or a libpq connection string (a fleet store's, mistyped: it
+// would become a folder, a password in its name): refused, the text not repeated (it may hold one).
+void refuseConnectionString(const std::string& directory) {
+    const bool url = directory.find("://") != std::string::npos;
+    bool conninfo = false;
+    for (const char* key : {"host=", "hostaddr=", "dbname=", "user=", "password=", "port=", "sslmode="})
+        conninfo = conninfo || directory.rfind(key, 0) == 0 || directory.find(std::string(" ") + key) != std::string::npos;
+    if (url || conninfo)
+        throw Error(ErrorKind::Usage,
+                    url ? "the database given is a URL, not a folder: no database was created"
+                        : "the database given is a connection string (key=value pairs), not a folder: no database "
+                          "was created",
+                    std::nullopt,
+                    "a fleet store's URL begins postgresql:// (docs/fleet.md); a database here is a folder's path");
+}
+
 Creation checkDirectory(const std::string& directory, const OpenOptions& options) {
     Creation creation;
     std::error_code ec;
@@ -184,6 +200,7 @@ Creation checkDirectory(const std::string& directory, const OpenOptions& options
         if (!options.create || options.readOnly)
             openError(fmt::format("no database at {}", directory),
                       "check the path; smql creates a database only when it opens it for writing");
+        refuseConnectionString(directory);
         for (fs::path missing = fs::absolute(directory, ec).lexically_normal();
              !missing.empty() && !fs::exists(missing, ec) && missing != missing.parent_path();
              missing = missing.parent_path())

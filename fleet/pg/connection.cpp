@@ -81,7 +81,7 @@ Connection::Connection(const std::string& conninfo, std::string where)
             pg_, [](void*, const char*) {}, nullptr);
         return;
     }
-    std::string why = trimmed(PQerrorMessage(pg_));
+    std::string why = withoutPassword(trimmed(PQerrorMessage(pg_)));
     PQfinish(pg_);
     throw Error(ErrorKind::Storage, fmt::format("cannot connect to the fleet store {}: {}", where_, why), std::nullopt,
                 "check that the server runs and the URL's host, port, database and user are right; a password "
@@ -137,7 +137,9 @@ UrlParts urlParts(const std::string& url) {
     char* why = nullptr;
     PQconninfoOption* options = PQconninfoParse(url.c_str(), &why);
     if (!options || (!isUrl && url.find('=') == std::string::npos)) {
-        std::string reason = why ? trimmed(why) : "it is neither a postgresql:// URL nor key=value pairs";
+        // libpq's reason may quote the URL whole: its password masked too.
+        std::string reason =
+            why ? withoutPassword(trimmed(why)) : "it is neither a postgresql:// URL nor key=value pairs";
         PQfreemem(why);
         PQconninfoFree(options);
         throw Error(ErrorKind::Usage, fmt::format("'{}' is not a fleet store URL: {}", withoutPassword(url), reason),

@@ -14,7 +14,9 @@ GIL released. docs/python.md is the guide.
 """
 
 import collections
+import contextlib
 import json
+import os
 import threading
 
 from . import _smql
@@ -58,8 +60,25 @@ _PROGRESS_KINDS = ("stage_started", "advanced", "stage_finished", "note")
 
 
 def connect(path, read_only=False, cached_statements=128):
-    """Opens the database in the directory `path` (created when missing, unless read_only)."""
+    """Opens the database in the directory `path` (a str, bytes or os.PathLike; created when missing,
+    unless read_only)."""
     return Connection(path, read_only=read_only, cached_statements=cached_statements)
+
+
+def _path(path):
+    """A database path as the C API takes it: str, bytes or os.PathLike, without NUL."""
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise TypeError(f"a database path is a str, bytes or os.PathLike, not {type(path).__name__}")
+    text = os.fsdecode(path)
+    if "\0" in text:
+        raise ValueError("embedded null character in the database path")
+    return text
+
+
+def _no_nul(text, what):
+    if "\0" in text:
+        raise ProgrammingError(f"the {what} contains a NUL character")
+    return text
 
 
 def ingest(capture, database, progress=None, **options):
@@ -67,14 +86,14 @@ def ingest(capture, database, progress=None, **options):
     options are those of `smql ingest --help` with '_' for '-': scene="kitchen", objects="cluster",
     max_size=0, update="kitchen" ... `progress(event)` gets each Progress event and returns a
     true value to stop the ingest. Returns the name of the scene written."""
-    with connect(database) as connection:
+    with contextlib.closing(connect(database)) as connection:
         return connection.ingest(capture, progress=progress, **options)
 
 
 def import_scene(path, database, format="json", scene=None, update=False):
     """Imports a scene file (formats of `smql import`: json, replica, spatiallm, vsibench) into
     `database`; with update=True the file becomes the next version of `scene`."""
-    with connect(database) as connection:
+    with contextlib.closing(connect(database)) as connection:
         connection.import_scene(path, format=format, scene=scene, update=update)
 
 
@@ -91,7 +110,7 @@ class Connection:
     NotSupportedError = NotSupportedError
 
     def __init__(self, path, read_only=False, cached_statements=128):
-        self._db = _smql.Database(str(path), read_only)
+        self._db = _smql.Database(_path(path), read_only)
         self.read_only = read_only
         # Parsed statements by text, least recently used first, as sqlite3's statement cache.
         self._statements = collections.OrderedDict()
@@ -115,11 +134,13 @@ class Connection:
             self._db.close()
             self._db = None
 
+    # As sqlite3's: the block's statements are committed (each already is) and the connection stays
+    # open; contextlib.closing(smql.connect(...)) closes it.
     def __enter__(self):
+        self._check_open()
         return self
 
     def __exit__(self, *exc):
-        self.close()
         return False
 
     def cursor(self):
@@ -184,6 +205,10 @@ class Connection:
             raise ProgrammingError("Cannot operate on a closed database.")
 
     def _run(self, sql, parameters):
+        _no_nul(sql, "statement")
+        for value in parameters:
+            if isinstance(value, str):
+                _no_nul(value, "bound text")
         with self._lock:
             self._check_open()
             statements = self._statements
@@ -236,7 +261,7 @@ class Cursor:
         self._check_open()
         with self.connection._lock:
             self.connection._check_open()
-            messages = self.connection._db.execute_script(script)
+            messages = self.connection._db.execute_script(_no_nul(script, "script"))
         self.description, self._rows, self._next = None, [], 0
         self.message = messages[-1] if messages else ""
         return self

@@ -321,6 +321,19 @@ check "a capture that is not one is refused naming it" bash -c "mkdir -p '$work/
 check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"
 check "smql demo --db DIR builds the database at DIR" bash -c "'$smql' '$work/demo' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
 check "smql demo refuses a folder that is not empty, and leaves it alone" bash -c "! '$smql' demo --db '$db' 2>'$work/e' && grep -q 'not an empty folder' '$work/e' && ! '$smql' '$db' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
+# Names that are not databases: a mistyped sub-command, sqlite3's :memory:, a fleet store's URL or
+# connection string mistyped (with a password in it): none becomes a folder, none is echoed.
+check "a mistyped sub-command is refused, naming the right one, and makes no database" bash -c "
+  cd '$work' && ! '$smql' exprot json 2>'$work/e' && grep -q 'did you mean smql export' '$work/e' && [ ! -e exprot ]"
+check ":memory: is a transient database, not a folder" bash -c "
+  cd '$work' && '$smql' :memory: -c 'SHOW SCENES' >/dev/null 2>&1; [ ! -e ':memory:' ]"
+check "a mistyped fleet URL makes no folder and shows no password" bash -c "
+  cd '$work' && ! '$smql' 'postgresq://robot:SECRET@host/fleet' -c 'COUNT chair' 2>'$work/e' &&
+  grep -q 'is a URL, not a folder' '$work/e' && ! grep -q SECRET '$work/e' && [ ! -e postgresq: ]"
+check "a connection string makes no folder and shows no password" bash -c "
+  cd '$work' && ! '$smql' 'host=db password=SECRET' -c 'COUNT chair' 2>'$work/e' &&
+  grep -q 'connection string' '$work/e' && ! grep -q SECRET '$work/e' && [ ! -e 'host=db password=SECRET' ]"
+check "smql --help names every sub-command, view among them" bash -c "'$smql' --help | grep -q 'guide, view, fleet'"
 check "an empty suite fails, with a closing line" bash -c "! '$smql' test /dev/null >'$work/t.out' && tail -1 '$work/t.out' | grep -qx '0 passed, 1 failed'"
 
 echo "$passed passed, $failed failed"

@@ -1,5 +1,6 @@
 """The Python package against the real Replica room and the real RGB-D frames of ../shared/data."""
 import base64
+import contextlib
 import json
 import os
 import pathlib
@@ -98,7 +99,7 @@ def test_errors_carry_message_position_and_hint(db):
 def test_bad_input_and_closed_connections(tmp_path, replica):
     bad = tmp_path / "bad.json"
     bad.write_text("{not json")
-    with smql.connect(tmp_path / "db") as connection:
+    with contextlib.closing(smql.connect(tmp_path / "db")) as connection:
         with pytest.raises(smql.DataError):
             connection.import_scene(bad)
         with pytest.raises(smql.InterfaceError):
@@ -150,7 +151,7 @@ def test_ingest_with_progress(tmp_path):
     assert {"stage_started", "stage_finished"} <= kinds
     assert events[-1].kind == "stage_finished" and events[-1].stage == "write"
     assert any(e.stage == "frames" for e in events)
-    with smql.connect(tmp_path / "db", read_only=True) as connection:
+    with contextlib.closing(smql.connect(tmp_path / "db", read_only=True)) as connection:
         objects = connection.execute("COUNT object").fetchone()[0]
         assert objects > 0
         # Stamped as an imported scene is.
@@ -263,3 +264,28 @@ def test_export_never_writes_the_database_s_own_files(tmp_path):
         assert db.execute("COUNT sofa").fetchone()[0] == sofas
     with smql.connect(path, read_only=True) as again:
         assert again.execute("COUNT sofa").fetchone()[0] == sofas
+
+
+def test_paths_and_texts_are_what_they_say(tmp_path):
+    """connect takes a path, never an object's repr; a NUL never cuts a path, a statement or a bound
+    text short; a with block keeps the connection open, as sqlite3's does."""
+    os.chdir(tmp_path)
+    for wrong in (None, 5, 2.5, ["db"]):
+        with pytest.raises(TypeError):
+            smql.connect(wrong)
+    with pytest.raises(ValueError):
+        smql.connect(str(tmp_path / "a\x00b"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == []  # no folder 'None', '5' or 'a'
+    smql.import_scene(REPLICA, tmp_path / "db", format="replica")
+    with smql.connect(os.fsencode(tmp_path / "db")) as db:
+        sofas = db.execute("COUNT sofa").fetchone()[0]
+        with pytest.raises(smql.ProgrammingError, match="NUL"):
+            db.execute("COUNT sofa\x00 WHERE on(floor)")
+        with pytest.raises(smql.ProgrammingError, match="NUL"):
+            db.execute("COUNT ?", ("sofa\x00junk",))
+        with pytest.raises(smql.ProgrammingError, match="NUL"):
+            db.executescript("COUNT sofa;\x00 DROP SCENE 'replica-room0'")
+    assert db.execute("COUNT sofa").fetchone()[0] == sofas  # still open after the block
+    db.close()
+    with pytest.raises(smql.ProgrammingError):
+        db.execute("COUNT sofa")
