@@ -616,10 +616,9 @@ private:
                     return fmt::format("{0}.kind <> {1} AND NOT {0}.hidden", a,
                                        static_cast<int>(model::NodeKind::Scene));
                 if (ast::thingWord(ref.name))
-                    return fmt::format("{0}.kind IN ({1}, {2}, {3}) AND NOT {0}.hidden", a,
-                                       static_cast<int>(model::NodeKind::Object),
-                                       static_cast<int>(model::NodeKind::Anchor),
-                                       static_cast<int>(model::NodeKind::Room));
+                    return fmt::format(
+                        "{0}.kind IN ({1}, {2}, {3}) AND NOT {0}.hidden", a, static_cast<int>(model::NodeKind::Object),
+                        static_cast<int>(model::NodeKind::Anchor), static_cast<int>(model::NodeKind::Room));
                 // Naming a category asks for its nodes, hidden ones included, as in the engine.
                 return fmt::format("{}.category = {}", a, parameter(category(ref)));
             case ast::Ref::Kind::NodeId:

@@ -12,7 +12,6 @@
 #include "ingest/import/importers.hpp"
 #include "shell/output_file.hpp"
 #include "storage/output_guard.hpp"
-#include "storage/output_guard.hpp"
 
 namespace smql::shell {
 

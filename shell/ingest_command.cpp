@@ -169,7 +169,8 @@ int checkPlausibilityCommand(Engine& engine, const std::string& sceneName, const
         for (const auto& f : report.findings)
             findings.push_back({{"check", f.check}, {"refuse", f.refuse}, {"what", f.what}, {"fix", f.fix}});
         nlohmann::json objects = nlohmann::json::array();
-        for (const auto& o : report.objects) objects.push_back({{"node", o.node}, {"problem", o.problem}, {"what", o.what}});
+        for (const auto& o : report.objects)
+            objects.push_back({{"node", o.node}, {"problem", o.problem}, {"what", o.what}});
         std::cout << nlohmann::json{{"scene", scene.info.name},
                                     {"camera_height_m", figure(report.cameraHeight)},
                                     {"ceiling_height_m", figure(report.ceilingHeight)},

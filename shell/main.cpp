@@ -12,9 +12,9 @@
 #include <iostream>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string_view>
 #include <utility>
-#include <sstream>
 
 #include <fmt/format.h>
 
@@ -84,11 +84,10 @@ void refuseMistypedSubcommand(const std::string& dir) {
     if (dir.size() < 4 || dir.find('/') != std::string::npos || fs::exists(dir, ec)) return;
     for (const auto& [word, runs] : kSubcommands)
         if (oneSlipApart(dir, word))
-            throw smql::Error(smql::ErrorKind::Usage,
-                              fmt::format("'{}' is no sub-command, and no database of that name exists", dir),
-                              std::nullopt,
-                              fmt::format("did you mean smql {}? To make a new database of that name, write ./{}",
-                                          word, dir));
+            throw smql::Error(
+                smql::ErrorKind::Usage, fmt::format("'{}' is no sub-command, and no database of that name exists", dir),
+                std::nullopt,
+                fmt::format("did you mean smql {}? To make a new database of that name, write ./{}", word, dir));
 }
 
 // A database in a fresh temporary folder, removed with everything in it when the shell ends.
@@ -117,13 +116,13 @@ std::string subcommandList() {
 }
 
 int runShell(int argc, char** argv) {
-    CLI::App app{fmt::format(
-        "smql: an embedded spatial memory engine.\n"
-        "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits; "
-        "`smql` or `smql :memory:`, a transient database.\n"
-        "Sub-commands: {} (smql COMMAND --help).\n"
-        "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd).",
-        subcommandList())};
+    CLI::App app{
+        fmt::format("smql: an embedded spatial memory engine.\n"
+                    "`smql DIR` opens the shell on the database in DIR; `smql DIR 'STATEMENTS'` runs them and exits; "
+                    "`smql` or `smql :memory:`, a transient database.\n"
+                    "Sub-commands: {} (smql COMMAND --help).\n"
+                    "Long options may be written with one dash, as in sqlite3 (-csv, -header, -cmd).",
+                    subcommandList())};
     app.name("smql");
     std::string dir, command, script, mode = "table";
     std::vector<std::string> statements, startup;

@@ -179,7 +179,8 @@ void refuseConnectionString(const std::string& directory) {
     const bool url = directory.find("://") != std::string::npos;
     bool conninfo = false;
     for (const char* key : {"host=", "hostaddr=", "dbname=", "user=", "password=", "port=", "sslmode="})
-        conninfo = conninfo || directory.rfind(key, 0) == 0 || directory.find(std::string(" ") + key) != std::string::npos;
+        conninfo =
+            conninfo || directory.rfind(key, 0) == 0 || directory.find(std::string(" ") + key) != std::string::npos;
     if (url || conninfo)
         throw Error(ErrorKind::Usage,
                     url ? "the database given is a URL, not a folder: no database was created"

@@ -51,7 +51,8 @@ bool like(std::string_view text, std::string_view pattern) {
     std::vector<std::string_view> pieces;
     for (std::size_t from = 0;;) {
         const std::size_t percent = pattern.find('%', from);
-        pieces.push_back(pattern.substr(from, percent == std::string_view::npos ? std::string_view::npos : percent - from));
+        pieces.push_back(
+            pattern.substr(from, percent == std::string_view::npos ? std::string_view::npos : percent - from));
         if (percent == std::string_view::npos) break;
         from = percent + 1;
     }

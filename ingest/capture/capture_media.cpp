@@ -199,9 +199,10 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
     }
     if (capture.frames.empty()) fail(path, "no frame could be decoded from the video", kVideoHint);
     if (capture.frames.size() < static_cast<std::size_t>(number))
-        capture.notes.push_back(fmt::format("{} of the video's {} frames kept, {:g} a second (--fps; --fps 0 keeps "
-                                            "every frame)",
-                                            capture.frames.size(), number, options.fps));
+        capture.notes.push_back(
+            fmt::format("{} of the video's {} frames kept, {:g} a second (--fps; --fps 0 keeps "
+                        "every frame)",
+                        capture.frames.size(), number, options.fps));
 
     cv::Mat first = readColorImage(capture.frames.front().colorPath);
     const fs::path cameraFile = file.has_parent_path() ? file.parent_path() / "camera.json" : fs::path("camera.json");

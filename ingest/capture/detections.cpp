@@ -381,8 +381,7 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
                                     R[6] * cx + R[7] * cy + R[8] * zz + t.z};
             if (y % c.regionStride == 0 && x % c.regionStride == 0)
                 o.region.push_back({static_cast<float>(world.x), static_cast<float>(world.y),
-                                    static_cast<float>(world.z), bgr[x],
-                                    static_cast<std::uint16_t>(x / c.regionStride),
+                                    static_cast<float>(world.z), bgr[x], static_cast<std::uint16_t>(x / c.regionStride),
                                     static_cast<std::uint16_t>(y / c.regionStride)});
             if (std::abs(zz - c.median) > kDetectionDepthBand) continue;
             Gathered& g = gathered[owner];
@@ -413,7 +412,8 @@ std::vector<Observation> observeDetections(const FrameImages& images, const Pose
         kept.push_back(std::move(o));
     }
     // In the detections' order, as before ownership sorted them.
-    std::sort(kept.begin(), kept.end(), [](const Observation& a, const Observation& b) { return a.instance < b.instance; });
+    std::sort(kept.begin(), kept.end(),
+              [](const Observation& a, const Observation& b) { return a.instance < b.instance; });
     return kept;
 }
 

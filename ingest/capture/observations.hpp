@@ -41,7 +41,7 @@ struct Observation {
     // finds the thing among them once the floor and the walls are known (view_segment.hpp).
     std::vector<RegionPoint> region;
     double regionPitch = 0;  // m: the region's grid step at the detection's median depth
-    std::string label;  // detections: what this view was detected as, and how sure the detector was
+    std::string label;       // detections: what this view was detected as, and how sure the detector was
     double score = 1;
     std::vector<std::pair<std::string, double>> alsoSeenAs;  // ... and what other models called it
 };

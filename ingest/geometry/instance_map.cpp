@@ -18,8 +18,8 @@ std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
 
 std::array<std::int64_t, 3> unpack(std::uint64_t key) {
     constexpr std::uint64_t mask = (1ULL << 21) - 1;
-    return {static_cast<std::int64_t>(key >> 42 & mask) - kOffset, static_cast<std::int64_t>(key >> 21 & mask) - kOffset,
-            static_cast<std::int64_t>(key & mask) - kOffset};
+    return {static_cast<std::int64_t>(key >> 42 & mask) - kOffset,
+            static_cast<std::int64_t>(key >> 21 & mask) - kOffset, static_cast<std::int64_t>(key & mask) - kOffset};
 }
 
 bool boundsApart(const Instance& a, const model::Vec3& lo, const model::Vec3& hi, double margin) {
@@ -32,14 +32,15 @@ bool boundsApart(const Instance& a, const model::Vec3& lo, const model::Vec3& hi
 std::map<std::string, double> Instance::tally() const {
     std::map<std::string, double> out;
     const double whole = std::max<double>(1, 0.5 * static_cast<double>(cells.size()));
-    for (const auto& vote : votes) out[vote.label] += vote.score * std::min(1.0, static_cast<double>(vote.cells) / whole);
+    for (const auto& vote : votes)
+        out[vote.label] += vote.score * std::min(1.0, static_cast<double>(vote.cells) / whole);
     return out;
 }
 
 std::string Instance::category() const {
     const auto votes = tally();
-    auto best = std::max_element(votes.begin(), votes.end(),
-                                 [](const auto& a, const auto& b) { return a.second < b.second; });
+    auto best =
+        std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
     return best == votes.end() ? std::string() : best->first;
 }
 

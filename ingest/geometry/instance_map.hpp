@@ -23,19 +23,19 @@
 namespace smql::ingest {
 
 struct InstanceMapOptions {
-    double cell = 0.05;           // edge of the map's cells (m)
-    double joinShare = 0.25;      // a view joins an instance of its name when this share of its cells (or of the
-                                  // instance's) lie next to the other's cells
-    double relabelShare = 0.6;    // ... of another name (voteLabels), when this share of the view's cells or of the
-                                  // instance's lie next to the other's
-    double fragmentShare = 0.5;   // an instance with this share of its cells next to a larger one's core is a
-                                  // piece of it (consolidate), unless it rests on it ...
-    double coreShare = 0.15;      // ... the core: its cells seen by this share of its views (and two), not those a
-                                  // few views took in from a neighbour
-    double restingShare = 0.7;    // "rests on": this share of the larger's cells under its footprint lie below its
-                                  // lowest cells (plus restingGap)
-    double restingGap = 0.05;     // m
-    bool voteLabels = true;       // a closed-set detector: names differ from view to view, the votes decide
+    double cell = 0.05;          // edge of the map's cells (m)
+    double joinShare = 0.25;     // a view joins an instance of its name when this share of its cells (or of the
+                                 // instance's) lie next to the other's cells
+    double relabelShare = 0.6;   // ... of another name (voteLabels), when this share of the view's cells or of the
+                                 // instance's lie next to the other's
+    double fragmentShare = 0.5;  // an instance with this share of its cells next to a larger one's core is a
+                                 // piece of it (consolidate), unless it rests on it ...
+    double coreShare = 0.15;     // ... the core: its cells seen by this share of its views (and two), not those a
+                                 // few views took in from a neighbour
+    double restingShare = 0.7;   // "rests on": this share of the larger's cells under its footprint lie below its
+                                 // lowest cells (plus restingGap)
+    double restingGap = 0.05;    // m
+    bool voteLabels = true;      // a closed-set detector: names differ from view to view, the votes decide
 };
 
 // One view of one thing: its points in the aligned frame, and what it was detected as.
@@ -68,8 +68,8 @@ struct InstanceVote {
 struct Instance {
     std::vector<InstanceVote> votes;
     std::unordered_map<std::uint64_t, InstanceCell> cells;
-    std::vector<std::size_t> sources;  // InstanceView::source of every view fused in
-    std::vector<std::uint32_t> frames;  // sorted, unique
+    std::vector<std::size_t> sources;                           // InstanceView::source of every view fused in
+    std::vector<std::uint32_t> frames;                          // sorted, unique
     model::Vec3 lo{1e18, 1e18, 1e18}, hi{-1e18, -1e18, -1e18};  // bounds of its cells' centres
 
     // label -> the sum of its views' scores, each weighed by the share of the instance its view

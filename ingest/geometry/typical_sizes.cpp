@@ -5,12 +5,11 @@ namespace smql::ingest {
 namespace {
 
 // Heights: the common standard sizes (a dining table's top at 28-30 in, a door 80 in), only where
-// the kind varies by a tenth or so (0: it varies more). Extents: the largest side, height included, things of the kind commonly have (a floor lamp's
-// 1.9 m, a bookcase's 2.2 m): what a box named so may reach before its name is doubted. Support:
-// what things of the kind usually stand on (the floor, or a table, desk or counter), which tells a
-// floor from a table top (floor_evidence.hpp), as does whether things are put on the kind's top
-// (a table's, a bed's). The rows cover the memory's names for the detector's COCO classes
-// (detector.cpp) and the kinds of labelled captures.
+// the kind varies by a tenth or so (0: it varies more). Extents: the largest side, height included, things of the kind
+// commonly have (a floor lamp's 1.9 m, a bookcase's 2.2 m): what a box named so may reach before its name is doubted.
+// Support: what things of the kind usually stand on (the floor, or a table, desk or counter), which tells a floor from
+// a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). The rows
+// cover the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;

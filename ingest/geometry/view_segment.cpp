@@ -34,13 +34,14 @@ namespace {
 std::optional<double> supportTop(const PointCloud& cloud, const ViewSegmentOptions& options) {
     std::map<long, std::size_t> bins;
     for (const auto& p : cloud.points) ++bins[static_cast<long>(std::floor(p.z / options.surfaceBin))];
-    auto fullest = std::max_element(bins.begin(), bins.end(),
-                                    [](const auto& a, const auto& b) { return a.second < b.second; });
+    auto fullest =
+        std::max_element(bins.begin(), bins.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
     if (fullest == bins.end() ||
         static_cast<double>(fullest->second) < options.surfaceShare * static_cast<double>(cloud.size()))
         return std::nullopt;
     const double top = static_cast<double>(fullest->first + 1) * options.surfaceBin;
-    const auto above = std::count_if(cloud.points.begin(), cloud.points.end(), [&](const auto& p) { return p.z > top; });
+    const auto above =
+        std::count_if(cloud.points.begin(), cloud.points.end(), [&](const auto& p) { return p.z > top; });
     if (static_cast<std::size_t>(above) < options.minPoints) return std::nullopt;
     return top;
 }
@@ -90,7 +91,9 @@ PointCloud thingInView(const ViewRegion& region, const RoomSurfaces& room, bool 
     for (const auto& cluster : euclideanClusters(inside, options.tolerance, 1, inside.size()))
         for (std::size_t k = 1; k < cluster.size(); ++k) chains.unite(cluster[0], cluster[k]);
     std::unordered_map<std::int64_t, std::size_t> at;
-    auto key = [](int column, int row) { return (static_cast<std::int64_t>(row) << 32) | static_cast<std::uint32_t>(column); };
+    auto key = [](int column, int row) {
+        return (static_cast<std::int64_t>(row) << 32) | static_cast<std::uint32_t>(column);
+    };
     for (std::size_t i = 0; i < inside.size(); ++i) at.emplace(key(grid[i][0], grid[i][1]), i);
     const double reach = std::max(options.tolerance, options.pitchGaps * region.pitch);
     for (std::size_t i = 0; i < inside.size(); ++i)

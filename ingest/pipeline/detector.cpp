@@ -302,9 +302,12 @@ public:
         std::vector<std::pair<std::size_t, Detection>> all;  // (member, detection)
         for (std::size_t m = 0; m < members_.size(); ++m)
             for (auto& d : members_[m]->detect(bgr)) all.emplace_back(m, std::move(d));
-        std::stable_sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.second.score > b.second.score; });
+        std::stable_sort(all.begin(), all.end(),
+                         [](const auto& a, const auto& b) { return a.second.score > b.second.score; });
         std::vector<std::pair<std::size_t, Detection>> kept;
-        for (auto& [member, d] : all) {
+        for (auto& entry : all) {
+            const std::size_t member = entry.first;
+            Detection& d = entry.second;
             auto same = std::find_if(kept.begin(), kept.end(), [&](const auto& k) {
                 return k.first != member && iou(k.second.box, d.box) >= kSameThingIou &&
                        std::none_of(k.second.alsoSeenAs.begin(), k.second.alsoSeenAs.end(),

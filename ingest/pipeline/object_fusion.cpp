@@ -217,8 +217,7 @@ ObjectTrack trackOf(const Thing& thing, Views& views, const std::vector<ObjectTr
     std::vector<std::size_t> sources;
     for (const Instance* instance : thing.instances)
         sources.insert(sources.end(), instance->sources.begin(), instance->sources.end());
-    std::sort(sources.begin(), sources.end(),
-              [&](auto a, auto b) { return views.all[a].frame < views.all[b].frame; });
+    std::sort(sources.begin(), sources.end(), [&](auto a, auto b) { return views.all[a].frame < views.all[b].frame; });
     std::map<std::size_t, std::size_t> fromTrack;
     for (auto s : sources) {
         ++fromTrack[views.trackOf[s]];

@@ -12,15 +12,15 @@
 namespace smql::ingest {
 
 struct ClusterObjects {
-    double gap = 0.08;            // m: points this close chain into one cluster
-    std::size_t minPoints = 30;   // of the structure cloud's 5 cm voxels
-    double minLonger = 0.05;      // m: the box's longer footprint side at least ...
-    double minShorter = 0.03;     // ... its shorter ...
-    double minHeight = 0.03;      // ... and its height
-    double maxLonger = 1e9;       // m: longer than this, a cluster is part of the room (a wall not found as one)
-    std::size_t minFrames = 1;    // frames whose points it holds
-    bool outsideKnown = false;    // leave out the points in (or next to) the scene's objects' boxes
-    double knownMargin = 0.1;     // m
+    double gap = 0.08;           // m: points this close chain into one cluster
+    std::size_t minPoints = 30;  // of the structure cloud's 5 cm voxels
+    double minLonger = 0.05;     // m: the box's longer footprint side at least ...
+    double minShorter = 0.03;    // ... its shorter ...
+    double minHeight = 0.03;     // ... and its height
+    double maxLonger = 1e9;      // m: longer than this, a cluster is part of the room (a wall not found as one)
+    std::size_t minFrames = 1;   // frames whose points it holds
+    bool outsideKnown = false;   // leave out the points in (or next to) the scene's objects' boxes
+    double knownMargin = 0.1;    // m
 };
 
 // Adds a node for each cluster of the aligned structure's points that are not floor, ceiling or

@@ -15,8 +15,8 @@
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/object_fusion.hpp"
 #include "ingest/pipeline/objects_from_clusters.hpp"
-#include "ingest/pipeline/segmenter.hpp"
 #include "ingest/pipeline/ray_tracks.hpp"
+#include "ingest/pipeline/segmenter.hpp"
 #include "model/error.hpp"
 
 namespace smql::ingest {
@@ -109,8 +109,8 @@ private:
     // What a thing no model named must be to be kept: at least 0.5 x 0.3 x 0.3 m, seen from 3 frames
     // (a cabinet, a counter, a bed's base; smaller clusters are clutter and the parts detections left),
     // at most 3 m long (longer, a stretch of wall the walls stage did not take).
-    static constexpr ClusterObjects kUnnamedThings{.minLonger = 0.5, .minShorter = 0.3, .minHeight = 0.3,
-                                                   .maxLonger = 3.0, .minFrames = 3, .outsideKnown = true};
+    static constexpr ClusterObjects kUnnamedThings{
+        .minLonger = 0.5, .minShorter = 0.3, .minHeight = 0.3, .maxLonger = 3.0, .minFrames = 3, .outsideKnown = true};
     // A detection's view needs this many sparse points to be placed and associated by them; with
     // fewer, its box's ray places it (placeByRays).
     static constexpr std::size_t kMinSparsePoints = 3;

@@ -82,8 +82,8 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     FramePass frames = runner.run(FramesStage{capture, options, *finder});
     // A memory without one placed camera holds nothing the capture saw: never stored, --force or not.
     if (frames.cameras.empty())
-        throw Error(ErrorKind::Input, fmt::format("{}: no frame was placed, so there is nothing to store", capture.path),
-                    std::nullopt,
+        throw Error(ErrorKind::Input,
+                    fmt::format("{}: no frame was placed, so there is nothing to store", capture.path), std::nullopt,
                     "the frames need camera poses (pose.txt, groundtruth.txt, transforms.json) or enough overlap "
                     "for COLMAP to place them");
     AlignedCapture aligned = runner.run(AlignStage{capture, options, frames});

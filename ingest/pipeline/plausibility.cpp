@@ -223,7 +223,9 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
 namespace {
 
 std::string named(const model::Node& n) { return fmt::format("{}#{}", n.category, n.id); }
-std::string measures(const model::Box& b) { return fmt::format("{:.2f} x {:.2f} x {:.2f} m", b.size.x, b.size.y, b.size.z); }
+std::string measures(const model::Box& b) {
+    return fmt::format("{:.2f} x {:.2f} x {:.2f} m", b.size.x, b.size.y, b.size.z);
+}
 
 // The share of a's volume inside b (axis-aligned bounds of the upright boxes).
 double insideShare(const model::Box& a, const model::Box& b) {
@@ -274,9 +276,10 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
         const double thinnest = std::min({n.box.size.x, n.box.size.y, n.box.size.z});
         if (usual && thinnest < kSliverShare * *usual) {
             const model::Node* under = restingOn(n, things);
-            flag(i, "sliver",
-                 fmt::format("{} ({}) is {:.0f} cm thin, no {} is{}", named(n), measures(n.box), 100 * thinnest,
-                             sizedName(n), under ? fmt::format(": a piece of {}'s top it lies on", named(*under)) : ""));
+            flag(
+                i, "sliver",
+                fmt::format("{} ({}) is {:.0f} cm thin, no {} is{}", named(n), measures(n.box), 100 * thinnest,
+                            sizedName(n), under ? fmt::format(": a piece of {}'s top it lies on", named(*under)) : ""));
         }
         const double bottom = n.box.center.z - n.box.size.z / 2;
         if (floor && usualSupport(sizedName(n)) == Support::Floor && bottom > kFloating && !restingOn(n, things))
@@ -293,12 +296,17 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
             inside = {inside.x + t->box.center.x / things.size(), inside.y + t->box.center.y / things.size(), 0};
     for (const auto* wall : walls) {
         const double c = std::cos(wall->box.yaw), s = std::sin(wall->box.yaw);
-        auto across = [&](const model::Vec3& p) { return -s * (p.x - wall->box.center.x) + c * (p.y - wall->box.center.y); };
-        auto along = [&](const model::Vec3& p) { return c * (p.x - wall->box.center.x) + s * (p.y - wall->box.center.y); };
+        auto across = [&](const model::Vec3& p) {
+            return -s * (p.x - wall->box.center.x) + c * (p.y - wall->box.center.y);
+        };
+        auto along = [&](const model::Vec3& p) {
+            return c * (p.x - wall->box.center.x) + s * (p.y - wall->box.center.y);
+        };
         const double roomSide = across(inside) >= 0 ? 1 : -1;
         for (std::size_t i = 0; i < things.size(); ++i) {
             const auto& p = things[i]->box.center;
-            if (std::abs(along(p)) <= wall->box.size.x / 2 && roomSide * across(p) < -(wall->box.size.y / 2 + kBehindWall))
+            if (std::abs(along(p)) <= wall->box.size.x / 2 &&
+                roomSide * across(p) < -(wall->box.size.y / 2 + kBehindWall))
                 flag(i, "behind a wall",
                      fmt::format("{} stands {:.2f} m behind {}: seen through it, or in a mirror", named(*things[i]),
                                  -roomSide * across(p) - wall->box.size.y / 2, named(*wall)));
@@ -310,20 +318,22 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
             if (i == j || things[i]->category != things[j]->category || things[i]->category == "object") continue;
             const model::Node& a = *things[i];
             const model::Node& b = *things[j];
-            const bool smaller = model::volume(a.box) < model::volume(b.box) ||
-                                 (model::volume(a.box) == model::volume(b.box) && i > j);
+            const bool smaller =
+                model::volume(a.box) < model::volume(b.box) || (model::volume(a.box) == model::volume(b.box) && i > j);
             if (!smaller) continue;
             if (insideShare(a.box, b.box) >= kDuplicateShare) {
-                flag(i, "duplicate", fmt::format("{} lies mostly inside {}: one {} stored twice", named(a), named(b), a.category));
+                flag(i, "duplicate",
+                     fmt::format("{} lies mostly inside {}: one {} stored twice", named(a), named(b), a.category));
                 continue;
             }
             const auto usual = typicalExtent(a.category);
             if (!usual || model::distance(a.box, b.box) > kPiecesGap) continue;
             const auto ua = model::worldAabb(a.box), ub = model::worldAabb(b.box);
             const double together = std::max({std::max(ua.max.x, ub.max.x) - std::min(ua.min.x, ub.min.x),
-                                               std::max(ua.max.y, ub.max.y) - std::min(ua.min.y, ub.min.y),
-                                               std::max(ua.max.z, ub.max.z) - std::min(ua.min.z, ub.min.z)});
-            if (together <= *usual && largestSide(a.box) < kPieceShare * *usual && largestSide(b.box) < kPieceShare * *usual)
+                                              std::max(ua.max.y, ub.max.y) - std::min(ua.min.y, ub.min.y),
+                                              std::max(ua.max.z, ub.max.z) - std::min(ua.min.z, ub.min.z)});
+            if (together <= *usual && largestSide(a.box) < kPieceShare * *usual &&
+                largestSide(b.box) < kPieceShare * *usual)
                 flag(i, "in pieces",
                      fmt::format("{} and {} touch and together measure {:.2f} m: one {} in pieces?", named(a), named(b),
                                  together, a.category));

@@ -78,8 +78,7 @@ const std::vector<IngestOption> kIngestOptions = {
      [](IngestRequest& r, const std::string& v) { r.videoFrames = v; }},
     {"fps", "NUMBER",
      [] {
-         return std::string(
-             "frames per second kept from videos and TUM sequences (default 1; 0 keeps every frame)");
+         return std::string("frames per second kept from videos and TUM sequences (default 1; 0 keeps every frame)");
      },
      [](IngestRequest& r, const std::string& v) { r.fps = number("fps", v, true); }},
     {"camera", "FX,FY,CX,CY",

@@ -32,8 +32,9 @@ public:
         try {
             net_ = cv::dnn::readNetFromONNX(files.model.string());
         } catch (const cv::Exception& e) {
-            throw Error(ErrorKind::Input, fmt::format("{}: not a model OpenCV can load: {}", files.model.string(), e.msg),
-                        std::nullopt, "prepare it with scripts/detector/setup.sh");
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: not a model OpenCV can load: {}", files.model.string(), e.msg), std::nullopt,
+                        "prepare it with scripts/detector/setup.sh");
         }
         net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
         net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
@@ -51,8 +52,8 @@ public:
         cv::Mat logits = net_.forward(kLowResolution);
         const int classes = logits.size[1], rows = logits.size[2], columns = logits.size[3];
         if (logits.dims != 4 || classes != static_cast<int>(categories_.size()))
-            throw Error(ErrorKind::Input, fmt::format("{}: its output is not {} class scores a pixel", file_,
-                                                      categories_.size()));
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: its output is not {} class scores a pixel", file_, categories_.size()));
         // Each class's scores brought up to the frame's size, and the best class of every pixel.
         cv::Mat best(bgr.size(), CV_32F, cv::Scalar(-1e30f));
         cv::Mat1b labels(bgr.size(), 0);

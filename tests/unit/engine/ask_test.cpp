@@ -190,7 +190,8 @@ TEST_CASE("camera frames are no things: FIND thing and ASK's answers leave them 
     auto engine = Engine::open(dir.path.string());
     auto scene = generate::generateRoom({.seed = 7, .objectCount = 36, .name = "with-frames"});
     const std::size_t things = std::count_if(scene.nodes.begin(), scene.nodes.end(), [](const model::Node& n) {
-        return n.kind == model::NodeKind::Object || n.kind == model::NodeKind::Anchor || n.kind == model::NodeKind::Room;
+        return n.kind == model::NodeKind::Object || n.kind == model::NodeKind::Anchor ||
+               n.kind == model::NodeKind::Room;
     });
     const model::Node* lamp = nullptr;
     for (const auto& n : scene.nodes)
@@ -224,7 +225,8 @@ TEST_CASE("camera frames are no things: FIND thing and ASK's answers leave them 
         INFO(question << "\n" << answer.message);
         for (const auto& row : answer.rows)
             for (const auto& cell : row)
-                if (const auto* text = std::get_if<std::string>(&cell)) CHECK(text->find("frame#") == std::string::npos);
+                if (const auto* text = std::get_if<std::string>(&cell))
+                    CHECK(text->find("frame#") == std::string::npos);
         CHECK(answer.message.find("frame#") == std::string::npos);
     }
 }

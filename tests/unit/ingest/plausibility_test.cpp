@@ -286,14 +286,14 @@ TEST_CASE("plausibility: slivers, duplicates and pieces are flagged; right camer
         scene.nodes.back().id = static_cast<model::NodeId>(scene.nodes.size());
     };
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) scene.nodes[i].id = static_cast<model::NodeId>(i + 1);
-    add(model::NodeKind::Object, "chair", {2.2, 2.1, 0.76}, {0.5, 0.4, 0.02});    // on the table's top
-    add(model::NodeKind::Object, "table", {2.05, 2, 0.37}, {1.2, 0.7, 0.7});      // inside the table
-    add(model::NodeKind::Object, "bed", {0.8, 3.2, 1.4}, {1.9, 1.5, 0.5});        // in the air
-    add(model::NodeKind::Object, "stool", {3.5, 1, 0.3}, {0.35, 0.35, 0.6});      // beside the wall, in the room
-    add(model::NodeKind::Anchor, "wall", {2, 4.3, 1.3}, {4, 0.05, 2.6});          // the far wall
-    add(model::NodeKind::Object, "chair", {2, 4.9, 0.45}, {0.5, 0.5, 0.9});       // behind it
+    add(model::NodeKind::Object, "chair", {2.2, 2.1, 0.76}, {0.5, 0.4, 0.02});  // on the table's top
+    add(model::NodeKind::Object, "table", {2.05, 2, 0.37}, {1.2, 0.7, 0.7});    // inside the table
+    add(model::NodeKind::Object, "bed", {0.8, 3.2, 1.4}, {1.9, 1.5, 0.5});      // in the air
+    add(model::NodeKind::Object, "stool", {3.5, 1, 0.3}, {0.35, 0.35, 0.6});    // beside the wall, in the room
+    add(model::NodeKind::Anchor, "wall", {2, 4.3, 1.3}, {4, 0.05, 2.6});        // the far wall
+    add(model::NodeKind::Object, "chair", {2, 4.9, 0.45}, {0.5, 0.5, 0.9});     // behind it
     add(model::NodeKind::Object, "plant", {0.3, 0.5, 0.3}, {0.3, 0.3, 0.6});
-    add(model::NodeKind::Object, "plant", {0.3, 0.81, 0.3}, {0.3, 0.3, 0.6});     // its other piece
+    add(model::NodeKind::Object, "plant", {0.3, 0.81, 0.3}, {0.3, 0.3, 0.6});  // its other piece
     auto report = checkPlausibility(scene, {.stored = true});
     std::map<std::string, std::vector<std::string>> problems;
     for (const auto& o : report.objects) problems[o.problem].push_back(o.what);
