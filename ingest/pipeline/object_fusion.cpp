@@ -144,9 +144,10 @@ std::vector<Thing> thingsOf(const InstanceMap& map, const std::vector<FusionCame
     return out;
 }
 
-// Two things of one name, most of the smaller's box inside the larger's: one thing the map kept twice
-// (a sofa seen whole from afar and in parts close up, their cells never close enough). Merged, the
-// smaller into the larger. Returns how many were merged.
+// Two things of one name, a good share of the smaller's box inside the larger's, that together still
+// suit the name: one thing the map kept twice (a corner sofa's two arms, a sofa seen whole from afar
+// and in parts close up, their cells never close enough). Merged, the smaller into the larger.
+// Returns how many were merged.
 std::size_t mergeStoredTwice(std::vector<Thing>& things, const FusionOptions& options) {
     std::size_t merged = 0;
     for (bool changed = true; changed;) {
@@ -159,11 +160,14 @@ std::size_t mergeStoredTwice(std::vector<Thing>& things, const FusionOptions& op
                 Thing& b = things[large];
                 if (a.category != b.category || model::fractionInside(a.box, b.box) < options.storedTwiceShare)
                     continue;
-                b.instances.insert(b.instances.end(), a.instances.begin(), a.instances.end());
+                Thing both = b;
+                both.instances.insert(both.instances.end(), a.instances.begin(), a.instances.end());
                 for (std::size_t p = 0; p < a.points.size(); ++p)
-                    b.points.push(a.points.points[p], a.points.colors[p], a.points.frames[p]);
-                for (const auto& [label, votes] : a.tally) b.tally[label] += votes;
-                fit(b);
+                    both.points.push(a.points.points[p], a.points.colors[p], a.points.frames[p]);
+                for (const auto& [label, votes] : a.tally) both.tally[label] += votes;
+                fit(both);
+                if (!nameSuits(b.category, both.box)) continue;
+                b = std::move(both);
                 things.erase(things.begin() + static_cast<std::ptrdiff_t>(small));
                 ++merged;
                 changed = true;

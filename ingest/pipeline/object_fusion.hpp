@@ -28,8 +28,8 @@ struct FusionOptions {
     double topReach = 1.3;          // ... and so does one whose top is no higher than this share of its kind's
                                     // usual top (a table whose top alone was seen)
     double restingGap = 0.1;        // m: ... unless another thing's top is this close under it
-    double storedTwiceShare = 0.5;  // two things of one name, this share of the smaller's box inside the larger's,
-                                    // are one thing stored twice
+    double storedTwiceShare = 0.25;  // two things of one name, this share of the smaller's box inside the
+                                     // larger's, together still of a size that suits it, are one thing stored twice
     bool voteLabels = true;         // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 

@@ -12,6 +12,7 @@
 #include "ingest/capture/detections.hpp"
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
+#include "ingest/pipeline/keyframes.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/object_fusion.hpp"
 #include "ingest/pipeline/objects_from_clusters.hpp"
@@ -36,6 +37,8 @@ public:
           tracker_(voteLabels) {}
 
     void observe(const PosedFrame& frame) override {
+        if (!looksAt(frame)) return;
+        looked_.push_back(frame.position);
         const FrameDetections found = detectionsOf(frame);
         const std::vector<Detection>& detections = found.detections;
         auto seen = hasDepth_ ? observeDetections(frame.images, frame.pose, frame.position, detections,
@@ -76,11 +79,13 @@ public:
                                   const std::vector<WallSegment>& walls, StageProgress& progress) override {
         if (!hasDepth_) return tracks;
         const RoomSurfaces room{aligned.alignment.floorFound, aligned.alignment.ceilingHeight, &walls};
+        // The frames the detections were made on: what "held in view but not seen" is counted over.
         std::vector<FusionCamera> cameras;
-        for (const auto& frame : capture_.frames)
-            if (frame.pose)
-                cameras.push_back({transformed(*frame.pose, aligned.alignment),
-                                   frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
+        for (auto position : looked_) {
+            const auto& frame = capture_.frames[position];
+            cameras.push_back({transformed(*frame.pose, aligned.alignment),
+                               frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
+        }
         FusionOptions fusion;
         fusion.voteLabels = voteLabels_;
         return fuseTracks(std::move(tracks), aligned.alignment, room, cameras, fusion, progress);
@@ -103,7 +108,10 @@ protected:
         int storedWidth = 0;  // the width of the image the boxes are in
     };
     virtual FrameDetections detectionsOf(const PosedFrame& frame) = 0;
+    // Whether the frame's detections are looked at (keyframes); every frame by default.
+    virtual bool looksAt(const PosedFrame&) { return true; }
     const Capture& capture() const { return capture_; }
+    bool hasDepth() const { return hasDepth_; }
 
 private:
     // What a thing no model named must be to be kept: at least 0.5 x 0.3 x 0.3 m, seen from 3 frames
@@ -175,6 +183,7 @@ private:
     bool hasDepth_;
     bool voteLabels_;
     DetectionTracker tracker_;
+    std::vector<std::uint32_t> looked_;   // the frames whose detections were looked at
     std::vector<std::uint32_t> inView_;   // without depth: frames each sparse point projects into
     std::vector<MaskView> maskViews_;     // without depth: each frame's detections, for carving
     std::vector<UnplacedView> unplaced_;  // without depth: views too few sparse points placed
@@ -211,10 +220,10 @@ public:
         if (milliseconds_.empty()) return note;
         auto sorted = milliseconds_;
         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-        return fmt::format("detector: {}{} on {} frames, {} detections, median {:.0f} ms per frame{}{}",
+        return fmt::format("detector: {}{} on {} keyframes of {}, {} detections, median {:.0f} ms a keyframe{}{}",
                            detector_->describe(), segmenter_ ? " + " + segmenter_->describe() : std::string(),
-                           milliseconds_.size(), detections_, sorted[sorted.size() / 2], note.empty() ? "" : "; ",
-                           note);
+                           milliseconds_.size(), frames_, detections_, sorted[sorted.size() / 2],
+                           note.empty() ? "" : "; ", note);
     }
 
 private:
@@ -227,6 +236,13 @@ private:
     static std::unique_ptr<SemanticSegmenter> installedSegmenter() {
         auto files = installedModel("deeplab");
         return files ? makeDeepLabSegmenter(*files) : nullptr;
+    }
+
+    // With depth, the models run on keyframes (keyframes.hpp); without depth, on every frame: COLMAP's
+    // captures are few frames far apart, and their poses are in no known unit.
+    bool looksAt(const PosedFrame& frame) override {
+        ++frames_;
+        return !hasDepth() || keyframes_.take(frame.pose);
     }
 
     FrameDetections detectionsOf(const PosedFrame& frame) override {
@@ -244,6 +260,8 @@ private:
 
     std::unique_ptr<ObjectDetector> detector_;
     std::unique_ptr<SemanticSegmenter> segmenter_;
+    Keyframes keyframes_;
+    std::size_t frames_ = 0;  // every frame shown, keyframe or not
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;
 };

@@ -45,24 +45,35 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
     return !alignment.ceilingHeight || p.z <= *alignment.ceilingHeight + kSlack;
 }
 
-// A hull carved without depth from a narrow range of directions stays long along the view. Along
-// its longer side it is held to where the thing's own surfaces were seen (its sparse points,
-// aligned), widened by its shorter side at each end: a thing reaches past what showed of it, not
-// without bound. Its kind's usual size is never the answer (a 2.97 m table stays 2.97 m).
-void holdToSurface(model::Box& box, const std::vector<model::Vec3>& surface, const Alignment& alignment) {
-    if (surface.empty() || box.size.x <= box.size.y) return;
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double lo = 1e18, hi = -1e18;
-    for (const auto& raw : surface) {
-        const model::Vec3 p = alignment.apply(raw);
-        const double along = c * (p.x - box.center.x) + s * (p.y - box.center.y);
-        lo = std::min(lo, along), hi = std::max(hi, along);
+// A hull carved without depth from a narrow range of directions stays long along the view. Along the
+// views' mean direction it is held to where the thing's own surfaces were seen (its sparse points),
+// widened at each end by half its width across the view: a thing reaches past what showed of it, not
+// without bound. Its kind's usual size is never the answer (a 2.97 m table stays 2.97 m). Returns the
+// hull's points within that slab (all of them when nothing says where to cut).
+std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
+                                       const std::vector<model::Vec3>& cameras) {
+    if (hull.empty() || surface.empty() || cameras.empty()) return hull;
+    model::Vec3 centre{0, 0, 0};
+    for (const auto& p : hull) centre = {centre.x + p.x, centre.y + p.y, 0};
+    centre = {centre.x / hull.size(), centre.y / hull.size(), 0};
+    double dx = 0, dy = 0;
+    for (const auto& c : cameras) {
+        const double ex = centre.x - c.x, ey = centre.y - c.y, length = std::hypot(ex, ey);
+        if (length > 1e-6) dx += ex / length, dy += ey / length;
     }
-    const double from = std::max(-box.size.x / 2, lo - box.size.y), to = std::min(box.size.x / 2, hi + box.size.y);
-    if (!(to > from)) return;
-    const double middle = (from + to) / 2;
-    box.center = {box.center.x + c * middle, box.center.y + s * middle, box.center.z};
-    box.size.x = to - from;
+    const double length = std::hypot(dx, dy);
+    if (length < 1e-6) return hull;
+    dx /= length, dy /= length;
+    auto along = [&](const model::Vec3& p) { return dx * p.x + dy * p.y; };
+    auto across = [&](const model::Vec3& p) { return -dy * p.x + dx * p.y; };
+    double a0 = 1e18, a1 = -1e18, w0 = 1e18, w1 = -1e18;
+    for (const auto& p : surface) a0 = std::min(a0, along(p)), a1 = std::max(a1, along(p));
+    for (const auto& p : hull) w0 = std::min(w0, across(p)), w1 = std::max(w1, across(p));
+    const double reach = (w1 - w0) / 2;
+    std::vector<model::Vec3> kept;
+    for (const auto& p : hull)
+        if (along(p) >= a0 - reach && along(p) <= a1 + reach) kept.push_back(p);
+    return kept.size() >= 3 ? kept : hull;
 }
 
 // What the views' embeddings agree on: the mean of their unit vectors, at unit length. Empty when
@@ -117,8 +128,16 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             for (const auto& v : track.views) colors.push_back(v.colors);
         }
         if (cloud.empty()) continue;
+        if (track.carved) {
+            std::vector<model::Vec3> surface, cameras;
+            for (const auto& p : track.surface) surface.push_back(aligned.alignment.apply(p));
+            for (const auto& v : track.views)
+                if (const auto& pose = capture.frames[v.frame].pose) cameras.push_back(aligned.alignment.apply(pose->translation));
+            PointCloud held;
+            for (const auto& p : holdToSurface(cloud.points, surface, cameras)) held.push(p, {0, 0, 0}, 0);
+            cloud = std::move(held);
+        }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
-        if (track.carved) holdToSurface(box, track.surface, aligned.alignment);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess.
         const bool misnamed = !opening && !nameFitsBox(category, box);

@@ -199,8 +199,8 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
         }
     // The user is told the detectors' time per frame.
     CHECK(std::any_of(result.notes.begin(), result.notes.end(), [](const std::string& note) {
-        return note.starts_with("detector: nanodet.onnx") && note.find(" on 5 frames") != std::string::npos &&
-               note.ends_with("ms per frame");
+        return note.starts_with("detector: nanodet.onnx") && note.find(" keyframes of 5,") != std::string::npos &&
+               note.ends_with("ms a keyframe");
     }));
 }
 
