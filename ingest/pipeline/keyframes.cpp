@@ -10,7 +10,8 @@ bool Keyframes::take(const Pose& pose) {
     if (last_) {
         const auto& a = last_->translation;
         const auto& b = pose.translation;
-        const double moved = std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+        const double moved =
+            std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
         // The cameras' view directions: the third column of each rotation (the camera looks along +z).
         const auto& r = last_->rotation;
         const auto& s = pose.rotation;

@@ -17,20 +17,20 @@ namespace smql::ingest {
 
 // What a fused instance needs to become a thing.
 struct FusionOptions {
-    double minHeight = 0.04;        // m: flatter instances are slivers of a surface (a table top seen as a "chair")
-    double minLargest = 0.06;       // m: smaller instances are specks
-    double thinShare = 0.06;        // ... and so are those whose thinnest side is under this share of the largest
-                                    // side things of their kind have (a 6 cm thin "table" is a table's edge)
-    double minViewShare = 0.1;      // of the frames whose view holds an instance, this share must have seen it ...
-    int viewsEnough = 3;            // ... up to this many views (a detector's one-off guess is no thing)
-    double groundReach = 0.5;       // m: a thing that stands on floors, its bottom up to this high with nothing
-                                    // under it, reaches down to the floor (its legs were hidden) ...
-    double topReach = 1.3;          // ... and so does one whose top is no higher than this share of its kind's
-                                    // usual top (a table whose top alone was seen)
-    double restingGap = 0.1;        // m: ... unless another thing's top is this close under it
+    double minHeight = 0.04;         // m: flatter instances are slivers of a surface (a table top seen as a "chair")
+    double minLargest = 0.06;        // m: smaller instances are specks
+    double thinShare = 0.06;         // ... and so are those whose thinnest side is under this share of the largest
+                                     // side things of their kind have (a 6 cm thin "table" is a table's edge)
+    double minViewShare = 0.1;       // of the frames whose view holds an instance, this share must have seen it ...
+    int viewsEnough = 3;             // ... up to this many views (a detector's one-off guess is no thing)
+    double groundReach = 0.5;        // m: a thing that stands on floors, its bottom up to this high with nothing
+                                     // under it, reaches down to the floor (its legs were hidden) ...
+    double topReach = 1.3;           // ... and so does one whose top is no higher than this share of its kind's
+                                     // usual top (a table whose top alone was seen)
+    double restingGap = 0.1;         // m: ... unless another thing's top is this close under it
     double storedTwiceShare = 0.25;  // two things of one name, this share of the smaller's box inside the
                                      // larger's, together still of a size that suits it, are one thing stored twice
-    bool voteLabels = true;         // a closed-set detector (InstanceMapOptions::voteLabels)
+    bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
 // A camera of the capture in the aligned frame, to tell which frames held a thing in view.

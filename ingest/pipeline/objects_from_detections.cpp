@@ -261,7 +261,7 @@ private:
     std::unique_ptr<ObjectDetector> detector_;
     std::unique_ptr<SemanticSegmenter> segmenter_;
     Keyframes keyframes_;
-    std::size_t frames_ = 0;  // every frame shown, keyframe or not
+    std::size_t frames_ = 0;            // every frame shown, keyframe or not
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;
 };

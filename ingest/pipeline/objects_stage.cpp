@@ -132,7 +132,8 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             std::vector<model::Vec3> surface, cameras;
             for (const auto& p : track.surface) surface.push_back(aligned.alignment.apply(p));
             for (const auto& v : track.views)
-                if (const auto& pose = capture.frames[v.frame].pose) cameras.push_back(aligned.alignment.apply(pose->translation));
+                if (const auto& pose = capture.frames[v.frame].pose)
+                    cameras.push_back(aligned.alignment.apply(pose->translation));
             PointCloud held;
             for (const auto& p : holdToSurface(cloud.points, surface, cameras)) held.push(p, {0, 0, 0}, 0);
             cloud = std::move(held);

@@ -4,12 +4,14 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/anchors_stage.hpp"
+#include "ingest/pipeline/keyframes.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/request.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
@@ -164,4 +166,27 @@ TEST_CASE("ingest options: --fps 0 keeps every frame, a negative rate is refused
         CHECK(e.kind() == ErrorKind::Usage);
         CHECK(std::string(e.what()).find("--fps") != std::string::npos);
     }
+}
+
+// The detectors look at a frame when the camera has moved 0.25 m or turned 15 degrees since the last
+// one they looked at: a camera standing still, or turning a little, shows nothing new.
+TEST_CASE("keyframes: the first frame, then one for every 0.25 m moved or 15 degrees turned") {
+    auto pose = [](double x, double yawDegrees) {
+        const double a = yawDegrees * M_PI / 180;
+        Pose p;
+        // The camera looks along +z, turned about the y axis (image down) by `yaw`.
+        p.rotation = {std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a)};
+        p.translation = {x, 0, 0};
+        return p;
+    };
+    Keyframes keyframes;
+    CHECK(keyframes.take(pose(0, 0)));
+    CHECK_FALSE(keyframes.take(pose(0.1, 5)));
+    CHECK_FALSE(keyframes.take(pose(0.2, 10)));
+    CHECK(keyframes.take(pose(0.3, 10)));  // 0.3 m from the first
+    CHECK_FALSE(keyframes.take(pose(0.3, 20)));
+    CHECK(keyframes.take(pose(0.3, 26)));  // 16 degrees from the last keyframe
+    int taken = 0;
+    for (int i = 0; i < 100; ++i) taken += keyframes.take(pose(0.3, 26));  // standing still
+    CHECK(taken == 0);
 }
