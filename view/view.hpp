@@ -20,10 +20,13 @@ struct ViewOptions {
     int port = 8080;                   // 0: any free port
     int statementMilliseconds = 5000;  // a statement running longer is interrupted
     std::string scene;                 // the scene the page opens on (default: the current one)
+    std::string token;                 // the API's token (default: a new random one); in the address printed
 };
 
-// Serves until the process is stopped. `listening` is called with the port once the server is
-// bound (the shell prints the address). Throws smql::Error(Usage) when the address cannot be bound.
+// Serves until the process is stopped. `listening` is called with the page's address once the server
+// is bound (the shell prints it): http://127.0.0.1:PORT/?token=TOKEN. The API answers only requests
+// whose Host is this machine's and that carry the token (docs/view.md, "Who can use it"). Throws smql::Error(Usage)
+// when the address cannot be bound.
 void serve(const ViewOptions& options, const std::function<void(const std::string& url)>& listening);
 
 // The page as one self-contained HTML file showing `scene` (the current one when empty): the

@@ -22,12 +22,73 @@ expected=$("$smql" "$work/db" -json "FIND cushion WHERE on(sofa)" | /usr/bin/pyt
 server=$!
 trap 'kill $server 2>/dev/null; wait $server 2>/dev/null' EXIT
 for _ in $(seq 50); do
-  url=$(grep -o 'http://127.0.0.1:[0-9]*/' "$work/server.log" | head -1)
+  url=$(grep -o 'http://127.0.0.1:[0-9]*/?token=[0-9a-f]*' "$work/server.log" | head -1)
   [[ -n $url ]] && break
   sleep 0.2
 done
 [[ -n ${url:-} ]] || { echo "FAIL the server did not start:"; cat "$work/server.log"; exit 1; }
 echo "server at $url"
+
+# Who may use it (docs/view.md, "Who can use it"): the API answers this machine's names and the token
+# of the printed address only; a request's SET stays in that request; slow and idle connections
+# starve no one; a LIKE that backtracked for hours answers at once.
+/usr/bin/python3 - "$url" <<'PY' || exit 1
+import socket, sys, threading, time, urllib.error, urllib.parse, urllib.request
+url = sys.argv[1]
+parts = urllib.parse.urlsplit(url)
+base, token = f"{parts.scheme}://{parts.netloc}", urllib.parse.parse_qs(parts.query)["token"][0]
+def get(path, headers=None, timeout=10):
+    request = urllib.request.Request(base + path, headers=headers or {})
+    try:
+        with urllib.request.urlopen(request, timeout=timeout) as r:
+            return r.status, r.read().decode()
+    except urllib.error.HTTPError as e:
+        return e.code, e.read().decode()
+failures = []
+def check(what, ok):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+def q(statement):
+    return "/api/query?q=" + urllib.parse.quote(statement)
+check("the API without the token is refused", get("/api/scenes")[0] == 403)
+check("... with a wrong token too", get("/api/scenes", {"X-Smql-Token": "0" * 32})[0] == 403)
+check("... with the token it answers", get("/api/scenes", {"X-Smql-Token": token})[0] == 200)
+check("... the token as a parameter too", get(f"/api/scenes?token={token}")[0] == 200)
+check("another site's Host is refused, token or not",
+      get("/api/scenes", {"X-Smql-Token": token, "Host": "attacker.example"})[0] == 403)
+near = lambda: get(q("COUNT cushion WHERE near(sofa)"), {"X-Smql-Token": token})
+before = near()
+get(q("SET near = 0 m"), {"X-Smql-Token": token})
+check("a request's SET does not reach the next request", near() == before and before[0] == 200)
+# Slow clients: 12 that trickle a byte a second, 300 that connect and say nothing.
+stop = threading.Event()
+def trickle():
+    s = socket.create_connection((parts.hostname, parts.port))
+    for b in b"GET /api/scenes HTTP/1.1\r\nHost: x\r\n":
+        if stop.is_set():
+            break
+        s.send(bytes([b]))
+        time.sleep(1)
+    s.close()
+tricklers = [threading.Thread(target=trickle, daemon=True) for _ in range(12)]
+for t in tricklers:
+    t.start()
+idle = [socket.create_connection((parts.hostname, parts.port)) for _ in range(300)]
+time.sleep(1)
+start = time.monotonic()
+status, _ = get(q("COUNT sofa"), {"X-Smql-Token": token}, timeout=10)
+check(f"a real request beside 12 slow and 300 idle connections is answered ({time.monotonic() - start:.1f} s)",
+      status == 200 and time.monotonic() - start < 5)
+stop.set()
+for s in idle:
+    s.close()
+start = time.monotonic()
+status, body = get(q("COUNT node WHERE category LIKE '" + "%" * 40 + "x'"), {"X-Smql-Token": token}, timeout=30)
+check(f"forty %s before a letter never seen answer at once ({time.monotonic() - start:.1f} s)",
+      status == 200 and time.monotonic() - start < 5)
+sys.exit(1 if failures else 0)
+PY
 
 node "$here/view_test.mjs" "$url" "$expected" "$work/room.html" "$work/shots" || exit 1
 

@@ -11,6 +11,9 @@ const state = (window.smqlView = {
 
 const embedded = document.getElementById('smql-scene');
 const $ = (id) => document.getElementById(id);
+// The API answers only with the token of the address smql view printed (docs/view.md).
+const token = new URLSearchParams(window.location.search).get('token') || '';
+const api = (path) => fetch(path, { headers: { 'X-Smql-Token': token } });
 const container = $('canvas');
 
 // ---- The three.js scene ----------------------------------------------------------------------
@@ -258,7 +261,7 @@ async function run(statement) {
   state.statement = statement;
   state.error = null;
   const url = `/api/query?scene=${encodeURIComponent(state.scene)}&q=${encodeURIComponent(statement)}`;
-  const answer = await (await fetch(url)).json();
+  const answer = await (await api(url)).json();
   state.error = answer.error || null;
   state.hits = answer.hits || [];
   showAnswer(answer);
@@ -285,7 +288,7 @@ $('query').addEventListener('submit', (event) => {
 // ---- Start ----------------------------------------------------------------------------------
 async function open(name) {
   const data = embedded ? JSON.parse(embedded.textContent)
-    : await (await fetch(`/api/scene?name=${encodeURIComponent(name)}`)).json();
+    : await (await api(`/api/scene?name=${encodeURIComponent(name)}`)).json();
   if (data.error) throw new Error(data.error.message);
   state.scene = data.name;
   state.nodes = data.nodes.length;
@@ -303,7 +306,7 @@ async function start() {
       $('scene').hidden = true;
       await open(null);
     } else {
-      const { scenes, current } = await (await fetch('/api/scenes')).json();
+      const { scenes, current } = await (await api('/api/scenes')).json();
       const select = $('scene');
       for (const name of scenes) select.add(new Option(name, name, false, name === current));
       select.addEventListener('change', () => open(select.value));
