@@ -220,6 +220,10 @@ std::uint64_t Field::unsignedInteger() const {
 
 std::string Field::string() const {
     if (!value_->is_string()) fail("expected a string, got " + describe(*value_));
+    // A NUL in a name or a text is no character of it: it cuts the text short in C strings and is
+    // refused by PostgreSQL (a fleet push would stop there for good).
+    if (value_->get_ref<const std::string&>().find('\0') != std::string::npos)
+        fail("a NUL character (\\u0000) in a text: names and texts hold none");
     return value_->get<std::string>();
 }
 

@@ -1,6 +1,7 @@
 // The smql JSON scene format (docs/formats.md, "smql JSON scene"): a whole
 // SceneData, written in a fixed key order and read back with full validation.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -15,6 +16,7 @@
 #include "ingest/import/importers.hpp"
 #include "ingest/import/json_field.hpp"
 #include "model/base64.hpp"
+#include "model/instant.hpp"
 
 namespace smql::import {
 
@@ -148,20 +150,47 @@ model::Box readBox(const Field& field, bool needsExtent) {
     return box;
 }
 
+// Metres per capture unit: a capture in kilometres or in microns is no room.
+constexpr double kMinScale = 1e-6, kMaxScale = 1e6;
+
+// The capture -> scene transform: a rotation times a scale (each column as long as the others, at
+// right angles), a finite translation, and 0 0 0 1 below.
+void checkAlignment(const Field& field, const std::array<double, 16>& m) {
+    auto column = [&](int c) { return std::sqrt(m[c] * m[c] + m[4 + c] * m[4 + c] + m[8 + c] * m[8 + c]); };
+    const double s = column(0);
+    bool ok = m[12] == 0 && m[13] == 0 && m[14] == 0 && m[15] == 1 && s > kMinScale && s < kMaxScale;
+    for (int c = 0; c < 3 && ok; ++c)
+        ok = std::abs(column(c) - s) <= 1e-6 * s && std::isfinite(m[4 * c + 3]) && std::abs(m[4 * c + 3]) < 1e9;
+    for (int a = 0; a < 3 && ok; ++a)
+        for (int b = a + 1; b < 3 && ok; ++b)
+            ok = std::abs(m[a] * m[b] + m[4 + a] * m[4 + b] + m[8 + a] * m[8 + b]) <= 1e-6 * s * s;
+    if (!ok) field.fail("not a rotation and a scale with a translation (4 x 4, row after row, the last row 0 0 0 1)");
+}
+
 void readInfo(const Field& field, model::SceneInfo& info) {
     field.allowOnly({"name", "source", "capture_time", "alignment", "scale", "viewpoint", "viewpoint_note"});
     Field name = field.at("name");
     info.name = name.string();
     if (info.name.empty()) name.fail("the scene name is empty");
     if (auto f = field.find("source")) info.source = f->string();
-    if (auto f = field.find("capture_time")) info.captureTime = f->string();
+    if (auto f = field.find("capture_time"); f && !f->string().empty()) {
+        // An instant, written in UTC: AS OF and the history compare times, which "yesterday-ish" is not.
+        auto instant = model::utcInstant(f->string());
+        if (!instant)
+            f->fail(fmt::format("'{}' is no date and time (2026-11-21T10:00:00Z, 2026-11-21 10:00 or a date)",
+                                f->string()));
+        info.captureTime = *instant;
+    }
     if (auto f = field.find("alignment")) {
         std::vector<double> values = f->numbers(16);
         std::copy(values.begin(), values.end(), info.alignment.begin());
+        checkAlignment(*f, info.alignment);
     }
     if (auto f = field.find("scale")) {
         info.scale = f->number();
-        if (!(info.scale > 0)) f->fail(fmt::format("scale {} must be positive", info.scale));
+        if (!(info.scale > kMinScale && info.scale < kMaxScale))
+            f->fail(fmt::format("scale {} is not a plausible number of metres per capture unit ({:g} to {:g})",
+                                info.scale, kMinScale, kMaxScale));
     }
     if (auto f = field.find("viewpoint")) {
         f->allowOnly({"position", "facing_yaw"});

@@ -336,6 +336,10 @@ private:
             smql = metadata->find("smql");
         std::string kind = smql ? smql->at("kind").string() : "";
         if (kind == "scene") {
+            // smql writes the scene as Hydra's room (or, with rooms, building) node, once.
+            if (layer != kRoomLayer && layer != kBuildingLayer)
+                smql->at("kind").fail(fmt::format("the scene is a room or building node, not one of layer {}", layer));
+            if (sceneId_) smql->at("kind").fail("a second node says it is the scene");
             sceneId_ = id;
             return;
         }

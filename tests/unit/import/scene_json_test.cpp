@@ -134,6 +134,33 @@ TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON p
         });
         requireInputError(read(path), {path, "blobs[0].node", "not the id of a node"});
     }
+    SECTION("a capture time that is no time, an alignment that is no rotation, a scale of no room") {
+        std::string path = mutated([](Json& f) { f["scene"]["capture_time"] = "yesterday-ish"; });
+        requireInputError(read(path), {path, "scene.capture_time", "'yesterday-ish' is no date and time"});
+        path = mutated([](Json& f) {
+            f["scene"]["alignment"] = Json::array({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+        });
+        requireInputError(read(path), {path, "scene.alignment", "not a rotation and a scale"});
+        path = mutated([](Json& f) {
+            f["scene"]["alignment"] = Json::array({1e300, 0, 0, 0, 0, 1e300, 0, 0, 0, 0, 1e300, 0, 0, 0, 0, 1});
+        });
+        requireInputError(read(path), {path, "scene.alignment", "not a rotation and a scale"});
+        path = mutated([](Json& f) {
+            f["scene"]["alignment"] = Json::array({1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1});
+        });
+        requireInputError(read(path), {path, "scene.alignment", "not a rotation and a scale"});
+        path = mutated([](Json& f) { f["scene"]["scale"] = 1e300; });
+        requireInputError(read(path), {path, "scene.scale", "not a plausible number of metres per capture unit"});
+        // A time in another written form is kept in UTC's one form, so that AS OF compares it.
+        path = mutated([](Json& f) { f["scene"]["capture_time"] = "2026-11-21 12:00+02:00"; });
+        CHECK(readSceneJson(path).info.captureTime == "2026-11-21T10:00:00Z");
+    }
+    SECTION("a NUL in a name or a text, which would cut it short and stop every later fleet push") {
+        std::string path = mutated([](Json& f) { f["nodes"][0]["text"] = std::string("a\0b", 3); });
+        requireInputError(read(path), {path, "nodes[0].text", "NUL"});
+        path = mutated([](Json& f) { f["nodes"][0]["category"] = std::string("so\0fa", 5); });
+        requireInputError(read(path), {path, "nodes[0].category", "NUL"});
+    }
     SECTION("a yaw that is not a plausible number of radians") {
         std::string path = mutated([](Json& f) { f["nodes"][0]["box"]["yaw"] = 1e300; });
         requireInputError(read(path), {path, "nodes[0].box.yaw: 1e+300 is not an angle in radians"});

@@ -247,4 +247,10 @@ TEST_CASE("spark-dsg: malformed graphs are input errors naming the field", "[imp
     Json lostParent = object;
     lostParent["attributes"]["metadata"] = {{"smql", {{"kind", "object"}, {"parent", kObject | 4}}}};
     requireInputError(read(withNodes({lostParent})), {"metadata.smql.parent", "no node of the file smql reads"});
+    // An object of the object layer that says it is the scene would take the scene's place.
+    Json sceneObject = object;
+    sceneObject["attributes"]["metadata"] = {{"smql", {{"kind", "scene"}}}};
+    requireInputError(
+        read(withNodes({sceneObject, object})),
+        {"nodes[0].attributes.metadata.smql.kind", "the scene is a room or building node, not one of layer 2"});
 }
