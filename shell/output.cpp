@@ -27,9 +27,24 @@ constexpr std::array<std::pair<std::string_view, OutputMode>, 9> kModes{{
     {"jsonl", OutputMode::Jsonl},
 }};
 
-// A cell as text: boxes as their JSON in csv and tsv, where a program reads them back.
+// Text for a person's screen: a control byte other than a line break or a tab (an escape sequence in
+// a name an imported file gave) is shown as \xNN, never sent raw to the terminal, as errors do.
+std::string printable(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f)
+            out += fmt::format("\\x{:02X}", byte);
+        else
+            out += c;
+    }
+    return out;
+}
+
+// A cell as text: boxes as their JSON in csv and tsv, where a program reads them back; control bytes
+// shown as \xNN (json and jsonl keep every byte, escaped as JSON escapes them).
 std::string cellText(const Value& value, bool boxAsJson) {
-    return boxAsJson && typeOf(value) == ValueType::Box ? valueJson(value).dump() : valueText(value);
+    return boxAsJson && typeOf(value) == ValueType::Box ? valueJson(value).dump() : printable(valueText(value));
 }
 
 bool isContinuationByte(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
@@ -92,7 +107,7 @@ Grid gridOf(const ResultSet& result) {
 }
 
 std::string footer(const ResultSet& result) {
-    if (!result.message.empty()) return result.message + "\n";
+    if (!result.message.empty()) return printable(result.message) + "\n";
     if (result.columns.empty()) return {};
     return fmt::format("({} row{})\n", result.rows.size(), result.rows.size() == 1 ? "" : "s");
 }
@@ -175,7 +190,7 @@ std::string markdown(const ResultSet& result, const OutputOptions& options) {
     out += "\n";
     for (const auto& row : grid.rows) out += line(row);
     // No row count: what is pasted is the table.
-    return out + (result.message.empty() ? "" : result.message + "\n");
+    return out + (result.message.empty() ? "" : printable(result.message) + "\n");
 }
 
 std::string delimited(const ResultSet& result, const OutputOptions& options, char separator) {
@@ -204,7 +219,7 @@ std::string delimited(const ResultSet& result, const OutputOptions& options, cha
                     out += "\\\\";
                     break;
                 default:
-                    out += ch;
+                    out += printable(std::string_view(&ch, 1));
             }
         }
         return out;
@@ -222,7 +237,7 @@ std::string delimited(const ResultSet& result, const OutputOptions& options, cha
 
 // sqlite3's list mode: the values as they are, the separator between them.
 std::string list(const ResultSet& result, const OutputOptions& options) {
-    if (result.columns.empty()) return result.message.empty() ? "" : result.message + "\n";
+    if (result.columns.empty()) return result.message.empty() ? "" : printable(result.message) + "\n";
     std::string out;
     auto line = [&](auto&& cellOf) {
         for (std::size_t c = 0; c < result.columns.size(); ++c) out += (c ? options.separator : "") + cellOf(c);
@@ -230,7 +245,7 @@ std::string list(const ResultSet& result, const OutputOptions& options) {
     };
     if (options.headers) line([&](std::size_t c) { return result.columns[c].name; });
     for (const auto& row : result.rows) line([&](std::size_t c) { return cellText(row[c], false); });
-    return out + (result.message.empty() ? "" : result.message + "\n");
+    return out + (result.message.empty() ? "" : printable(result.message) + "\n");
 }
 
 // sqlite3's line mode: one "name = value" line per column, the names right-aligned, a blank line
@@ -244,7 +259,7 @@ std::string lines(const ResultSet& result) {
         for (std::size_t c = 0; c < result.columns.size(); ++c)
             out += fmt::format("{:>{}} = {}\n", result.columns[c].name, width, cellText(result.rows[r][c], false));
     }
-    return out + (result.message.empty() ? "" : (out.empty() ? "" : "\n") + result.message + "\n");
+    return out + (result.message.empty() ? "" : (out.empty() ? "" : "\n") + printable(result.message) + "\n");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -287,6 +288,14 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
          "the current scene's tree (SHOW TREE)",
          Arg::None,
          [](Session& s, const std::string& arg) {
+             // One reference (#12, sofa#50, src#93, lamp), never more text: `.tree #1; DROP SCENE 'x'`
+             // is no tree.
+             const bool oneReference = std::all_of(arg.begin(), arg.end(), [](unsigned char c) {
+                 return std::isalnum(c) || c == '#' || c == '_' || c == '-' || c == '.';
+             });
+             if (!oneReference)
+                 throw Error(ErrorKind::Usage, fmt::format(".tree takes one node, not '{}'", arg), std::nullopt,
+                             ".tree #12, .tree sofa#50 or .tree with no argument");
              std::string statement = arg.empty() ? "SHOW TREE" : "SHOW TREE " + arg;
              return s.runStatements(statement, 1, statement);
          }},

@@ -333,6 +333,23 @@ check "a mistyped fleet URL makes no folder and shows no password" bash -c "
 check "a connection string makes no folder and shows no password" bash -c "
   cd '$work' && ! '$smql' 'host=db password=SECRET' -c 'COUNT chair' 2>'$work/e' &&
   grep -q 'connection string' '$work/e' && ! grep -q SECRET '$work/e' && [ ! -e 'host=db password=SECRET' ]"
+# A name with a terminal's escape sequence in it, from an imported file: shown as \x1B, never sent raw.
+python3 - "$work/esc.json" <<'PY'
+import json, sys
+json.dump({"smql_scene": 1, "scene": {"name": "esc"},
+           "nodes": [{"id": 1, "kind": "anchor", "parent": 0, "category": "floor", "geometry": "plane",
+                      "box": {"center": [2, 2, -0.01], "size": [4, 4, 0.02], "yaw": 0}},
+                     {"id": 2, "kind": "object", "parent": 1, "category": "chair", "geometry": "box", "text": "\u001b]0;pwned\u0007red chair",
+                      "box": {"center": [1, 1, 0.45], "size": [0.5, 0.5, 0.9], "yaw": 0}}]}, open(sys.argv[1], "w"))
+PY
+"$smql" import json "$work/esc.json" --db "$work/esc" >/dev/null 2>&1
+for mode in table box markdown list line csv tsv; do
+  check "$mode mode shows an escape sequence in a text as \\x1B" bash -c "
+    '$smql' '$work/esc' -$mode -c 'FIND chair RETURN text' >'$work/o' && ! grep -q \$'\\x1b' '$work/o' && grep -q 'x1B' '$work/o'"
+done
+check ".tree takes one node and runs nothing else" bash -c "
+  ! '$smql' '$db' -cmd \".tree #1; DROP SCENE 'room0'\" -c 'SHOW SCENES' 2>'$work/e' && grep -q 'tree takes one node' '$work/e' &&
+  '$smql' '$db' -csv -c 'SHOW SCENES' | grep -q '^room0,'"
 check "smql --help names every sub-command, view among them" bash -c "'$smql' --help | grep -q 'guide, view, fleet'"
 check "an empty suite fails, with a closing line" bash -c "! '$smql' test /dev/null >'$work/t.out' && tail -1 '$work/t.out' | grep -qx '0 passed, 1 failed'"
 
