@@ -25,12 +25,13 @@ inline std::optional<int> parseArguments(CLI::App& app, int argc, char** argv) {
 }
 
 // Runs a program's body; an error that escapes it is printed (with its hint) and is exit status 1,
-// and so is standard output that could not be written (a full disk, /dev/full).
+// and so is standard output that could not be written (a full disk, /dev/full), unless the body
+// failed already (and said why: a write error is then said once).
 template <typename Body>
 int runReportingErrors(Body&& body) {
     try {
         const int status = body();
-        checkWritten(std::cout, "standard output");
+        if (status == 0) checkWritten(std::cout, "standard output");
         return status;
     } catch (const Error& e) {
         std::cerr << e.render() << "\n";

@@ -1,6 +1,8 @@
 #include "shell/commands.hpp"
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -54,14 +56,24 @@ int importCommand(const std::string& format, const std::string& file, const std:
         scenes.push_back(import::read(format, file, sceneName));
     }
     auto engine = Engine::open(dbDir);
+    std::string report;
     if (!update.empty()) {
-        std::cout << engine->updateScene(update, scenes.front()).summary() << "\n";
-        return 0;
+        report = engine->updateScene(update, scenes.front()).summary() + "\n";
+    } else {
+        for (const model::SceneData& scene : scenes) {
+            engine->importScene(scene);
+            report += fmt::format("imported scene '{}' ({}) into {} in {:.1f} ms\n", scene.info.name, summary(scene),
+                                  dbDir, millisecondsSince(start));
+        }
     }
-    for (const model::SceneData& scene : scenes) {
-        engine->importScene(scene);
-        std::cout << fmt::format("imported scene '{}' ({}) into {} in {:.1f} ms\n", scene.info.name, summary(scene),
-                                 dbDir, millisecondsSince(start));
+    // The work is done and stored: a report that cannot be written (a full disk, /dev/full) is said,
+    // not an exit status that would tell a script the import failed.
+    std::cout << report << std::flush;
+    if (!std::cout) {
+        std::cerr << fmt::format("note: stored; the report could not be written to standard output: {}",
+                                 std::strerror(errno))
+                  << std::endl;
+        std::cout.clear();
     }
     return 0;
 }

@@ -203,7 +203,13 @@ int runShell(int argc, char** argv) {
     if (!command.empty() && fails(command)) return 1;
     for (const auto& text : statements)
         if (fails(text)) return 1;
-    if (!script.empty() && fails(smql::shell::readScriptFile(script))) return 1;
+    if (!script.empty()) {
+        const std::string text = smql::shell::readScriptFile(script);
+        if (!smql::shell::holdsStatement(text))
+            throw smql::Error(smql::ErrorKind::Usage, fmt::format("{} holds no statement", script), std::nullopt,
+                              "a script holds statements separated by ';' (blank lines and -- comments aside)");
+        if (fails(text)) return 1;
+    }
     if (noScript && fails(piped)) return 1;
     return failed ? 1 : 0;
 }

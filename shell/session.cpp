@@ -98,9 +98,12 @@ std::string readScriptFile(const std::string& path) {
     if (!in)
         throw Error(ErrorKind::Usage, fmt::format("cannot read {}: {}", path, std::strerror(errno)), std::nullopt,
                     "check the path");
-    std::string text(kMaxScriptBytes + 1, '\0');
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
+    // Read in pieces, as far as the bound: what a script is costs memory, not what it might be
+    // (a .read within .read, 16 deep, held 16 MiB a level before).
+    std::string text;
+    std::array<char, 1 << 16> piece{};
+    while (text.size() <= kMaxScriptBytes && in.read(piece.data(), piece.size()).gcount() > 0)
+        text.append(piece.data(), static_cast<std::size_t>(in.gcount()));
     if (text.size() > kMaxScriptBytes)
         throw Error(
             ErrorKind::Limit,

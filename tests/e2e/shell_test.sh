@@ -347,6 +347,16 @@ for mode in table box markdown list line csv tsv; do
   check "$mode mode shows an escape sequence in a text as \\x1B" bash -c "
     '$smql' '$work/esc' -$mode -c 'FIND chair RETURN text' >'$work/o' && ! grep -q \$'\\x1b' '$work/o' && grep -q 'x1B' '$work/o'"
 done
+check "an empty -f script is an error" bash -c "
+  : >'$work/empty.smql' && ! '$smql' '$db' -f '$work/empty.smql' 2>'$work/e' && grep -q 'holds no statement' '$work/e'"
+check "a result that cannot be written is said once, exit 1" bash -c "
+  ! '$smql' '$db' -c 'COUNT sofa' >/dev/full 2>'$work/e' && [ \$(grep -c 'cannot write standard output' '$work/e') -eq 1 ]"
+check "an import whose report cannot be written is stored, exit 0, and says so" bash -c "
+  '$smql' import replica '$replica' --db '$work/full' >/dev/full 2>'$work/e' && grep -q 'stored; the report could not' '$work/e' &&
+  '$smql' '$work/full' -csv -c 'SHOW SCENES' | grep -q info_semantic"
+check "a script that reads itself, 16 deep, stays small (no 16 MiB buffer a level)" bash -c "
+  echo '.read $work/self.smql' >'$work/self.smql' && /usr/bin/time -f %M -o '$work/peak' '$smql' '$db' -f '$work/self.smql' >/dev/null 2>&1;
+  [ \$(tail -1 '$work/peak') -lt 100000 ]"
 check ".tree takes one node and runs nothing else" bash -c "
   ! '$smql' '$db' -cmd \".tree #1; DROP SCENE 'room0'\" -c 'SHOW SCENES' 2>'$work/e' && grep -q 'tree takes one node' '$work/e' &&
   '$smql' '$db' -csv -c 'SHOW SCENES' | grep -q '^room0,'"
