@@ -61,7 +61,7 @@ fuzz: setup
 # STRESS_FLEET_KILLS pushes to a fleet store killed at random moments (docs/fleet.md).
 STRESS_RUNS ?= 200
 STRESS_SECONDS ?= 300
-STRESS_FLIPS ?= 300
+STRESS_FLIPS ?= 1000
 STRESS_FLEET_KILLS ?= 100
 stress: build
 	@scripts/stress.py $(BUILD)/shell/smql kill --runs $(STRESS_RUNS)

@@ -22,6 +22,12 @@ int salvage(const std::string& dbDir, const storage::CheckReport& report, const 
     if (std::filesystem::exists(out, ec) && !std::filesystem::is_empty(out, ec))
         throw Error(ErrorKind::Usage, fmt::format("--salvage {}: the folder is not empty", out), std::nullopt,
                     "salvage into a new folder");
+    // Damage to LMDB's own pages names no scene: each scene is then copied as LMDB's searches still
+    // read it, and a record they no longer reach (a flipped branch key) is not copied. Said, so a
+    // salvage of such a file is never taken for a whole copy.
+    if (report.pagesDamaged)
+        std::cout << "note: LMDB's own pages are damaged (above): scenes are copied as LMDB still finds their "
+                     "records, and a record its searches no longer reach is not copied\n";
     auto from = Engine::open(dbDir, /*readOnly=*/true);
     const auto shown = from->execute("SHOW SCENES");
     auto into = Engine::open(out);

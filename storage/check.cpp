@@ -9,8 +9,11 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -92,7 +95,9 @@ void checkLockFile(const std::string& directory, CheckReport& report) {
 // header or a node pointer sends it outside the page, and the process stops inside LMDB. Before
 // LMDB is given the file, its B-trees are walked here with plain reads from the newer meta page,
 // and every page they reach is checked: its number, its kind and bounds, each node within it, each
-// child and overflow page within the file. Damage found here is reported instead of opening it.
+// child and overflow page within the file, and every key in order and within the range its parent
+// gives it (a branch key flipped sends searches past what they look for: a blob no longer found,
+// silently, while a walk in order still finds it).
 class PageWalk {
 public:
     PageWalk(std::ifstream& file, std::uint64_t pages, std::size_t pageSize)
@@ -106,13 +111,29 @@ public:
         const std::string first = page(0), second = page(1);
         const std::string& meta = u64(second, kTxnId) > u64(first, kTxnId) ? second : first;
         if (u64(meta, kLastPage) >= pages_) return;
-        tree(u64(meta, kFreeRoot), 0);
-        tree(u64(meta, kMainRoot), 0);
+        tree(u64(meta, kFreeRoot), 0, Range{std::nullopt, std::nullopt, true});
+        tree(u64(meta, kMainRoot), 0, {});
     }
     std::vector<std::string> problems;
 
 private:
-    static std::uint64_t u64(const std::string& b, std::size_t at) {
+    // The keys a subtree may hold: from `lower` (inclusive) to `upper` (exclusive), either open.
+    // The free list's keys are transaction ids (MDB_INTEGERKEY); every table of smql's, and the
+    // duplicates of its DUPSORT tables, compare their bytes as LMDB's default does.
+    struct Range {
+        std::optional<std::string> lower, upper;
+        bool integerKeys = false;
+    };
+    static bool less(std::string_view a, std::string_view b, bool integerKeys) {
+        if (integerKeys && a.size() == 8 && b.size() == 8) return u64(a, 0) < u64(b, 0);
+        return a < b;  // memcmp over the shorter, then the shorter first: mdb_cmp_memn
+    }
+    static bool within(std::string_view key, const Range& range) {
+        return (!range.lower || !less(key, *range.lower, range.integerKeys)) &&
+               (!range.upper || less(key, *range.upper, range.integerKeys));
+    }
+
+    static std::uint64_t u64(std::string_view b, std::size_t at) {
         std::uint64_t v = 0;
         for (int i = 7; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + i]);
         return v;
@@ -132,7 +153,23 @@ private:
             problems.push_back(fmt::format("data.mdb: page {} (LMDB's own structure) is damaged: {}", page, what));
     }
 
-    void tree(std::uint64_t root, int depth) {
+    // Each key of a page in order and within its range; false (and said) when one is not.
+    bool ordered(std::uint64_t number, const std::vector<std::string_view>& keys, std::size_t first,
+                 const Range& range) {
+        for (std::size_t i = first; i < keys.size(); ++i) {
+            std::string fault;
+            if (!within(keys[i], range))
+                fault = fmt::format("key {} lies outside the range its parent page gives it", i);
+            else if (i > first && !less(keys[i - 1], keys[i], range.integerKeys))
+                fault = fmt::format("key {} is out of order", i);
+            if (fault.empty()) continue;
+            damaged(number, fault);
+            return false;
+        }
+        return true;
+    }
+
+    void tree(std::uint64_t root, int depth, const Range& range) {
         constexpr std::uint64_t kNoPage = ~std::uint64_t{0};
         constexpr unsigned kBranch = 0x01, kLeaf = 0x02, kLeaf2 = 0x20, kBig = 0x01, kSub = 0x02, kDup = 0x04;
         if (root == kNoPage || problems.size() >= kShown) return;
@@ -144,18 +181,28 @@ private:
         if (!(flags & (kBranch | kLeaf)) || lower < 16 || lower > upper || upper > pageSize_)
             return damaged(root, fmt::format("flags {:#x}, lower {}, upper {}", flags, lower, upper));
         const unsigned count = (lower - 16) / 2;
+        std::vector<std::string_view> keys;
         if (flags & kLeaf2) {
-            if (16 + std::size_t{count} * u16(p, 8) > pageSize_) damaged(root, "its fixed-size keys overrun it");
+            const std::size_t size = u16(p, 8);
+            if (16 + std::size_t{count} * size > pageSize_) return damaged(root, "its fixed-size keys overrun it");
+            for (unsigned i = 0; i < count; ++i) keys.push_back(std::string_view(p).substr(16 + i * size, size));
+            ordered(root, keys, 0, range);
             return;
         }
+        struct Child {
+            std::uint64_t page;
+            Range range;
+        };
+        std::vector<Child> children;
         for (unsigned i = 0; i < count; ++i) {
             const std::size_t node = u16(p, 16 + 2 * i);
             if (node < upper || node + 8 > pageSize_) return damaged(root, fmt::format("node {} lies outside it", i));
             const unsigned lo = u16(p, node), hi = u16(p, node + 2), nodeFlags = u16(p, node + 4);
             const std::size_t value = node + 8 + u16(p, node + 6);
             if (value > pageSize_) return damaged(root, fmt::format("node {}'s key overruns it", i));
+            keys.push_back(std::string_view(p).substr(node + 8, value - node - 8));
             if (flags & kBranch) {
-                tree(lo | std::uint64_t{hi} << 16 | std::uint64_t{nodeFlags} << 32, depth + 1);
+                children.push_back({lo | std::uint64_t{hi} << 16 | std::uint64_t{nodeFlags} << 32, {}});
                 continue;
             }
             const std::size_t size = lo | std::size_t{hi} << 16;
@@ -169,13 +216,22 @@ private:
             if (value + size > pageSize_) return damaged(root, fmt::format("node {}'s value overruns it", i));
             if (nodeFlags & kSub) {
                 if (size < 48) return damaged(root, fmt::format("node {} holds no table", i));
-                tree(u64(p, value + 40), depth + 1);  // the table's MDB_db: its md_root
+                children.push_back({u64(p, value + 40), {}});  // the table's MDB_db: its md_root
             } else if (nodeFlags & kDup) {
                 const unsigned subLower = u16(p, value + 12), subUpper = u16(p, value + 14);
                 if (size < 16 || subLower < 16 || subLower > subUpper || subUpper > size)
                     damaged(root, fmt::format("node {}'s duplicates are damaged", i));
             }
         }
+        // A branch's first key is not compared (LMDB keeps it empty): its child starts where the
+        // branch's own range does, and each child ends where the next one's key begins.
+        if (!ordered(root, keys, flags & kBranch ? 1 : 0, range)) return;
+        if (flags & kBranch)
+            for (std::size_t i = 0; i < children.size(); ++i) {
+                children[i].range = {i == 0 ? range.lower : std::string(keys[i]),
+                                     i + 1 < keys.size() ? std::string(keys[i + 1]) : range.upper, range.integerKeys};
+            }
+        for (const Child& child : children) tree(child.page, depth + 1, child.range);
     }
 
     static constexpr std::size_t kShown = 10;
@@ -196,8 +252,9 @@ bool checkPages(const std::string& directory, CheckReport& report) {
     if (ec || !file || bytes < 2 * pageSize) return true;  // the open reports it
     PageWalk walk(file, bytes / pageSize, pageSize);
     walk.fromMeta();
+    report.pagesDamaged = !walk.problems.empty();
     for (auto& problem : walk.problems) report.problems.push_back(std::move(problem));
-    return walk.problems.empty();
+    return !report.pagesDamaged;
 }
 
 // Everything about one scene: its records, its tree and its index entries.

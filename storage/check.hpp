@@ -14,6 +14,8 @@ struct CheckReport {
     std::uint64_t nodes = 0;
     std::uint64_t relations = 0;
     std::uint64_t blobs = 0;
+    // LMDB's own pages (not smql's records) are damaged: such a problem names no scene.
+    bool pagesDamaged = false;
     bool ok() const { return problems.empty(); }
 };
 

@@ -230,3 +230,54 @@ TEST_CASE("the check names a process that has the database open under a removed 
     // With that process gone, the new lock file is the only one: nothing to report.
     REQUIRE(checkDatabase(path).ok());
 }
+
+TEST_CASE("a branch key flipped is reported from the pages, not met as a blob that is silently not found",
+          "[storage][check]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    // Blobs enough for the blobs table to need branch pages: 320 of 300 bytes, two dozen leaves.
+    const std::string name = "evidence-00.jpg";
+    {
+        auto data = largeScene("crops", 41);
+        for (model::NodeId node = 2; node <= 41; ++node)
+            for (char i = '0'; i < '8'; ++i) {
+                std::string blobName = name;
+                blobName[10] = i;
+                data.blobs.push_back({node, blobName, "image/jpeg", std::string(300, 'j')});
+            }
+        auto db = Database::open(path);
+        importCommitted(*db, data);
+    }
+    REQUIRE(checkDatabase(path).ok());
+
+    // The second key of each branch page of the blobs table (keys of a node id and a blob name),
+    // raised past the first key of the child it starts: searches for the keys between the two now
+    // end in the child before, where they are not.
+    const fs::path file = fs::path(path) / "data.mdb";
+    std::string bytes;
+    {
+        std::ifstream in(file, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    auto u16 = [&](std::size_t at) {
+        return static_cast<std::size_t>(static_cast<unsigned char>(bytes[at]) |
+                                        static_cast<unsigned char>(bytes[at + 1]) << 8);
+    };
+    std::size_t branches = 0;
+    for (std::size_t p = 2; (p + 1) * page <= bytes.size(); ++p) {
+        const std::size_t base = p * page;
+        if ((u16(base + 10) & 0x01) == 0 || u16(base + 12) < 16 + 2 * 2) continue;
+        const std::size_t node = base + u16(base + 16 + 2);
+        if (u16(node + 6) != 8 + name.size()) continue;
+        bytes[node + 8 + 8 + name.size() - 1] |= static_cast<char>(0x80);
+        ++branches;
+    }
+    REQUIRE(branches > 0);
+    std::ofstream(file, std::ios::binary) << bytes;
+    auto report = checkDatabase(path);
+    REQUIRE_FALSE(report.ok());
+    REQUIRE(report.pagesDamaged);  // a salvage says its copy is as LMDB's searches read it
+    REQUIRE(
+        reported(report, "(LMDB's own structure) is damaged: key 0 lies outside the range its parent page gives it"));
+}
