@@ -98,4 +98,11 @@ double checkFieldOfView(double degrees);
 // focal length, is refused naming the frame.
 Capture readCapture(const std::string& path, const CaptureOptions& options = {});
 
+// The camera of each frame of a folder of images named by frame number (`colorDir`, with
+// `depthDir` beside it when there is one) from `poseFile`, in frame order: pose.txt's lines
+// matched to frame numbers as the rgbd layout matches them, gaps included. `smql check-ingest`
+// pairs stored frames with their true cameras by it.
+std::vector<Pose> posesInFrameOrder(const std::string& poseFile, const std::string& colorDir,
+                                    const std::string& depthDir);
+
 }  // namespace smql::ingest

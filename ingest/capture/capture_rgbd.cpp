@@ -426,3 +426,22 @@ extern const CaptureLayout kTumLayout{"tum", "a TUM RGB-D folder (rgb.txt depth.
                                       readTum};
 
 }  // namespace smql::ingest::capture_detail
+
+namespace smql::ingest {
+
+std::vector<Pose> posesInFrameOrder(const std::string& poseFile, const std::string& colorDir,
+                                    const std::string& depthDir) {
+    using namespace capture_detail;
+    std::vector<std::string> notes;
+    const auto colors = numberedImages(colorDir, "colour image", notes);
+    std::map<long long, fs::path> depths;
+    if (isDirectory(depthDir))
+        for (auto& [number, path] : numberedImages(depthDir, "depth image", notes)) depths.emplace(number, path);
+    std::vector<Pose> out;
+    if (colors.empty()) return out;
+    const std::map<long long, Pose> poseOf = posesByFrame(readPoseFile(poseFile), colors, depths, poseFile, notes);
+    for (const auto& [number, path] : colors) out.push_back(poseOf.at(number));
+    return out;
+}
+
+}  // namespace smql::ingest

@@ -2,6 +2,7 @@
 #include "ingest/capture/detections.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "ingest/capture/capture.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/synth/walk.hpp"
 #include "model/error.hpp"
@@ -212,20 +214,32 @@ model::SceneData inCaptureFrame(const model::SceneData& ingested) {
 
 namespace {
 
-// The true camera centres of pose.txt paired with the scene's frame nodes (numbered from 0 in the
-// order of pose.txt's lines).
+// The true camera centres of pose.txt paired with the scene's frame nodes. A stored frame is the
+// capture's n-th (its "frame" attribute, from 0); which pose line is the n-th frame's is decided as
+// the rgbd layout decides it, from the frames' numbered images beside pose.txt (color/ and depth/,
+// or the images/ of a colour-only copy), so a capture missing a frame is paired right. Without
+// images there, line n is frame n. A frame node whose attribute is no position is not paired.
 std::vector<std::pair<model::Vec3, model::Vec3>> cameraPairs(const model::SceneData& stored,
-                                                             const std::filesystem::path& poseFile) {
+                                                             const std::filesystem::path& folder) {
+    namespace fs = std::filesystem;
     std::vector<std::pair<model::Vec3, model::Vec3>> cameras;
-    if (!std::filesystem::exists(poseFile)) return cameras;
+    const fs::path poseFile = folder / "pose.txt";
+    if (!fs::exists(poseFile)) return cameras;
+    const fs::path colour = fs::is_directory(folder / "color") ? folder / "color" : folder / "images";
     std::vector<Pose> poses;
-    std::ifstream in(poseFile);
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty()) poses.push_back(synth::parsePoseLine(line));
+    if (fs::is_directory(colour)) {
+        poses = posesInFrameOrder(poseFile.string(), colour.string(), (folder / "depth").string());
+    } else {
+        std::ifstream in(poseFile);
+        for (std::string line; std::getline(in, line);)
+            if (!line.empty()) poses.push_back(synth::parsePoseLine(line));
+    }
     for (const auto& n : stored.nodes) {
         const std::string* frame = n.attribute("frame");
+        std::size_t position = 0;
         if (n.kind != model::NodeKind::Frame || !frame) continue;
-        std::size_t position = std::stoul(*frame);
+        const auto [end, error] = std::from_chars(frame->data(), frame->data() + frame->size(), position);
+        if (error != std::errc() || end != frame->data() + frame->size()) continue;
         if (position < poses.size()) cameras.push_back({n.box.center, poses[position].translation});
     }
     return cameras;
@@ -252,7 +266,7 @@ TruthCheck checkAgainstTruth(const model::SceneData& stored, const std::string& 
     const model::SceneData truth = import::readSceneJson(truthPath);
     const std::filesystem::path folder = std::filesystem::path(truthPath).parent_path();
     TruthCheck check;
-    auto cameras = cameraPairs(stored, folder / "pose.txt");
+    auto cameras = cameraPairs(stored, folder);
     check.cameras = cameras.size();
     if (cameras.size() >= 3) check.registration = registerByCameras(stored, cameras);
     model::SceneData ingested = check.registration ? check.registration->mapped : inCaptureFrame(stored);

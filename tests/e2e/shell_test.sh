@@ -163,6 +163,21 @@ r = json.load(sys.stdin)
 assert r[\"objects\"][\"f1\"] > 0.5 and 0 <= r[\"color_accuracy\"] <= 1, r
 assert r[\"scale_error\"] is not None and r[\"scale_error\"] < 0.01, r
 '"
+# A capture missing a frame: check-ingest pairs each stored frame with its own pose line, as the
+# ingest does; a frame attribute that is no position is passed over, never a bare stoul.
+cp -r "$work/capture" "$work/gap" && rm "$work/gap/color/4.png" "$work/gap/depth/4.png"
+check "check-ingest pairs the cameras of a capture missing a frame by frame number" bash -c "'$smql' ingest '$work/gap' --db '$work/gapmem' --quiet >/dev/null 2>&1 && '$smql' check-ingest '$work/gapmem' --truth '$work/gap/truth.json' --format json | python3 -c '
+import json, sys
+r = json.load(sys.stdin)
+assert r[\"scale_error\"] is not None and r[\"scale_error\"] < 0.01 and r[\"anchors\"][\"f1\"] > 0.5, r
+'"
+check "check-ingest passes over a frame whose number is no number" bash -c "'$smql' export json --db '$work/memory' -o '$work/frames.json' 2>/dev/null && python3 -c '
+import json, sys
+scene = json.load(open(sys.argv[1]))
+frames = [n for n in scene[\"nodes\"] if n.get(\"attributes\", {}).get(\"frame\") is not None and n[\"kind\"] == \"frame\"]
+frames[0][\"attributes\"][\"frame\"] = \"four\"
+json.dump(scene, open(sys.argv[1], \"w\"))
+' '$work/frames.json' && '$smql' import json '$work/frames.json' --db '$work/framesdb' >/dev/null && '$smql' check-ingest '$work/framesdb' --truth '$work/capture/truth.json' 2>&1 | grep -q 'objects'"
 check "ingested objects have scene-level text" bash -c "'$smql' '$work/memory' --format json -c \"FIND object WHERE text LIKE '% on the %' LIMIT 1\" | grep -q '\"id\"'"
 check "DESCRIBE lists evidence" bash -c "'$smql' '$work/memory' -c 'DESCRIBE (FIND object LIMIT 1)' | grep -q 'evidence.*image/jpeg'"
 node=$("$smql" "$work/memory" --format csv -c 'FIND object LIMIT 1' | sed -n 2p | cut -d, -f1)
