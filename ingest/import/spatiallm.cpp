@@ -82,7 +82,7 @@ public:
 
     void parseLine(int lineNumber, std::string_view line) {
         line_ = lineNumber;
-        checkUtf8(line);
+        checkText(line);
         Token whole = trimmed(line, 0, line.size());
         if (whole.text.empty() || whole.text.front() == '#') return;
 
@@ -141,8 +141,11 @@ private:
 
     // Text that is not UTF-8 (a Latin-1 class name) would be stored and then
     // break every JSON answer about it: reject it, naming the field.
-    void checkUtf8(std::string_view line) const {
+    // A layout is UTF-8 text without NUL: a NUL would cut a category short in every C string that
+    // later holds it, and the smql JSON the memory exports refuses it.
+    void checkText(std::string_view line) const {
         std::optional<std::size_t> bad = model::invalidUtf8At(line);
+        if (std::size_t nul = line.find('\0'); nul != std::string_view::npos && (!bad || nul < *bad)) bad = nul;
         if (!bad) return;
         std::size_t equals = line.find('=');
         std::size_t open = line.find('(', equals == std::string_view::npos ? 0 : equals);
@@ -158,6 +161,9 @@ private:
         } else if (equals != std::string_view::npos) {
             field = "type";
         }
+        if (line[*bad] == '\0')
+            fail(Token{line.substr(*bad, 1), static_cast<int>(*bad) + 1},
+                 fmt::format("{}: a NUL byte at column {} (names and values hold none)", field, *bad + 1));
         fail(Token{line.substr(*bad, 1), static_cast<int>(*bad) + 1},
              fmt::format("{}: byte 0x{:02X} at column {} is not UTF-8 (the file must be UTF-8 text; convert a Latin-1 "
                          "file with iconv -f latin1 -t utf-8)",

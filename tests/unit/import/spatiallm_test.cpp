@@ -210,6 +210,12 @@ TEST_CASE("SpatialLM: malformed layouts are rejected with file:line", "[import][
         path = withLine(9, "bbox_0=Bbox(caf\xC3\xA9,2,1.5,0.4,0.5,1.6,0.9,0.8)");  // é in UTF-8 is fine
         CHECK(readSpatialLm(path, "r").nodes[6].category == "caf\xC3\xA9");
     }
+    SECTION("a NUL in a class name") {
+        // Stored, it cut the category short in C strings and made the memory's own JSON export unreadable.
+        using namespace std::string_literals;
+        std::string path = withLine(9, "bbox_0=Bbox(cha\0r,2,1.5,0.4,0.5,1.6,0.9,0.8)"s);
+        requireInputError(read(path), {path + ":9:", "class: a NUL byte at column 16"}, 9);
+    }
     SECTION("two names for one number clash in their source id") {
         std::string path = withLine(5, "wall_01=Wall(0,3,0,0,0,0,2.5,0)");
         requireInputError(read(path),
