@@ -241,11 +241,24 @@ public:
         if (value.is_none()) {
             status = smql_bind_null(stmt_, index);
         } else if (py::isinstance<py::bool_>(value) || py::isinstance<py::int_>(value)) {
-            status = smql_bind_int(stmt_, index, value.cast<int64_t>());
+            int overflow = 0;
+            const long long integer = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+            if (overflow != 0)
+                raise(SMQL_ERROR_INPUT,
+                      "input error: parameter " + std::to_string(index) + " is outside 64-bit integers", 0, 0);
+            status = smql_bind_int(stmt_, index, integer);
         } else if (py::isinstance<py::float_>(value)) {
             status = smql_bind_double(stmt_, index, value.cast<double>());
         } else if (py::isinstance<py::str>(value)) {
-            status = smql_bind_text(stmt_, index, value.cast<std::string>().c_str());
+            // A lone surrogate has no UTF-8 form: a DataError, as an out-of-range integer is.
+            Py_ssize_t size = 0;
+            const char* text = PyUnicode_AsUTF8AndSize(value.ptr(), &size);
+            if (!text) {
+                PyErr_Clear();
+                raise(SMQL_ERROR_INPUT,
+                      "input error: parameter " + std::to_string(index) + " is text that has no UTF-8 form", 0, 0);
+            }
+            status = smql_bind_text(stmt_, index, text);
         } else {
             auto vector = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
             if (!vector || vector.ndim() != 1)

@@ -14,6 +14,7 @@ GIL released. docs/python.md is the guide.
 """
 
 import collections
+import collections.abc
 import contextlib
 import json
 import os
@@ -244,7 +245,7 @@ class Cursor:
     def execute(self, sql, parameters=()):
         if self._closed:
             raise ProgrammingError("Cannot operate on a closed cursor.")
-        if isinstance(parameters, (str, bytes)) or not hasattr(parameters, "__len__"):
+        if isinstance(parameters, (str, bytes, collections.abc.Mapping)) or not hasattr(parameters, "__len__"):
             raise ProgrammingError("parameters are a sequence, one value per ? in the statement")
         self.description, self._rows, self.message = self.connection._run(sql, parameters)
         self._next = 0

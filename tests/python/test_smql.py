@@ -285,6 +285,14 @@ def test_paths_and_texts_are_what_they_say(tmp_path):
             db.execute("COUNT ?", ("sofa\x00junk",))
         with pytest.raises(smql.ProgrammingError, match="NUL"):
             db.executescript("COUNT sofa;\x00 DROP SCENE 'replica-room0'")
+        # What cannot be bound is a PEP 249 error, never pybind's RuntimeError or TypeError.
+        with pytest.raises(smql.DataError, match="parameter 1 is outside 64-bit integers"):
+            db.execute("FIND object LIMIT ?", (2**70,))
+        with pytest.raises(smql.DataError, match="parameter 1 is text that has no UTF-8 form"):
+            db.execute("COUNT ?", ("\ud800",))
+        with pytest.raises(smql.ProgrammingError, match="sequence"):
+            db.execute("COUNT ?", {"category": "sofa"})
+        assert db.execute("FIND object LIMIT ?", (2**63 - 1,)).fetchall()
     assert db.execute("COUNT sofa").fetchone()[0] == sofas  # still open after the block
     db.close()
     with pytest.raises(smql.ProgrammingError):
