@@ -7,7 +7,7 @@ PREFIX ?= /usr/local
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build debug test demo bench bench-startup bench-similar bench-python bench-fleet fuzz stress format lint install clean
+.PHONY: all setup configure build debug test demo bench bench-startup bench-similar bench-python bench-fleet bench-import fuzz stress format lint install clean
 
 all: build
 
@@ -46,6 +46,10 @@ bench-python: build
 # SIMILAR TO's search against a scan of every node's vector (docs/benchmarks.md, "SIMILAR TO").
 bench-similar: build
 	@$(BUILD)/bench/smql_bench_similar
+
+# Imports at n, 2n and 4n: a cost that grows with the square shows as a 4x step (docs/benchmarks.md).
+bench-import: build
+	@/usr/bin/python3 bench/import_scaling.py $(BUILD)/shell/smql ../shared/data --out docs/benchmarks.md
 
 # Push throughput into a fleet store in a private PostgreSQL cluster (docs/fleet.md, "Measured").
 bench-fleet: build

@@ -48,10 +48,10 @@ int importCommand(const std::string& format, const std::string& file, const std:
     std::vector<model::SceneData> scenes;
     if (all) {
         const import::SceneFormat* f = import::findFormat(format);
-        if (!f->scenes)
+        if (!f->readAll)
             throw Error(ErrorKind::Usage, fmt::format("--all: a {} file holds one scene", format), std::nullopt,
                         "import it without --all");
-        for (const std::string& name : f->scenes(file)) scenes.push_back(import::read(format, file, name));
+        scenes = f->readAll(file);
     } else {
         scenes.push_back(import::read(format, file, sceneName));
     }

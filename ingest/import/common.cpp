@@ -23,17 +23,27 @@ std::string readTextFile(const std::string& path, const std::string& hint) {
     if (!std::filesystem::exists(status)) fail("no such file");
     // ifstream happily "opens" a directory and then reads nothing.
     if (std::filesystem::is_directory(status)) fail("it is a directory");
+    // A device never ends (/dev/zero) or is no file at all; a pipe is read, up to the bound.
+    if (std::filesystem::is_character_file(status) || std::filesystem::is_block_file(status) ||
+        std::filesystem::is_socket(status))
+        fail("it is a device, not a file");
+    auto tooLarge = [&] {
+        return Error(ErrorKind::Input,
+                     fmt::format("{}: more than {} MiB: a layout file is at most that", path, kMaxFileBytes >> 20),
+                     std::nullopt, hint);
+    };
+    // A regular file's size is known: one too large is refused before a byte of it is read.
+    std::uintmax_t size = std::filesystem::is_regular_file(status) ? std::filesystem::file_size(path, ec) : 0;
+    if (!ec && size > kMaxFileBytes) throw tooLarge();
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(std::strerror(errno));
-    // Read in pieces up to the bound: a device (/dev/zero) or a huge file ends here, not in memory.
+    // Read in pieces up to the bound: a pipe, or a file that grows while it is read, ends here.
     std::string text;
+    if (!ec) text.reserve(static_cast<std::size_t>(size));
     char piece[1 << 16];
     while (in.read(piece, sizeof piece) || in.gcount() > 0) {
         text.append(piece, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > kMaxFileBytes)
-            throw Error(ErrorKind::Input,
-                        fmt::format("{}: more than {} MiB: a layout file is at most that", path, kMaxFileBytes >> 20),
-                        std::nullopt, hint);
+        if (text.size() > kMaxFileBytes) throw tooLarge();
     }
     if (in.bad()) fail("read error");
     return text;

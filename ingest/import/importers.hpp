@@ -26,8 +26,8 @@ model::SceneData readSpatialLm(const std::string& path, const std::string& scene
 // VSI-Bench's meta-info JSON: many rooms (ScanNet, ARKitScenes) of oriented boxes, keyed by name;
 // `sceneName` picks the room (it may be empty only when the file holds one).
 model::SceneData readVsiBench(const std::string& path, const std::string& sceneName);
-// The rooms such a file holds, in its order.
-std::vector<std::string> vsiBenchRooms(const std::string& path);
+// Every room such a file holds, in its order, each named by its key: one read of the file.
+std::vector<model::SceneData> readVsiBenchAll(const std::string& path);
 
 // The smql JSON scene format ({"smql_scene": 1, ...}); by default the name the file gives.
 model::SceneData readSceneJson(const std::string& path, const std::string& sceneName = {});

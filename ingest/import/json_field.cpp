@@ -60,43 +60,54 @@ std::string describe(const Json& value) {
     }
 }
 
-// Tracks where the parser is, so that a repeated key can be reported by path.
-class DuplicateKeyCheck {
+// Builds the document as nlohmann's own DOM parser does, and checks each object's keys on the way:
+// a repeated key or an object of too many members is an error that names its path. (nlohmann's
+// public way to see the keys, its callback parser, looks along the enclosing array at every
+// object's end: quadratic in an array's length, minutes for a file of a million relations.)
+class CheckedDomParser {
 public:
-    explicit DuplicateKeyCheck(const JsonSource& source) : source_(&source) {}
+    CheckedDomParser(Json& result, const JsonSource& source) : dom_(result), source_(&source) {}
 
-    bool operator()(int, Json::parse_event_t event, Json& parsed) {
-        switch (event) {
-            case Json::parse_event_t::object_start:
-            case Json::parse_event_t::array_start:
-                countElement();
-                frames_.push_back(Frame{event == Json::parse_event_t::object_start, {}, 0, {}});
-                break;
-            case Json::parse_event_t::key: {
-                Frame& top = frames_.back();
-                top.key = parsed.get<std::string>();
-                if (!top.keys.insert(top.key).second)
-                    throw Error(ErrorKind::Input,
-                                fmt::format("{}: {}: key appears twice in the same object", source_->file, path()),
-                                std::nullopt, source_->hint);
-                // The members keep the file's order, which costs a look along the object's members
-                // per member: an object of a few thousand is read in milliseconds, and more are refused.
-                if (top.keys.size() > kMaxObjectMembers)
-                    throw Error(ErrorKind::Input,
-                                fmt::format("{}: {}: an object of more than {} members", source_->file, path(),
-                                            kMaxObjectMembers),
-                                std::nullopt, source_->hint);
-                break;
-            }
-            case Json::parse_event_t::value:
-                countElement();
-                break;
-            case Json::parse_event_t::object_end:
-            case Json::parse_event_t::array_end:
-                frames_.pop_back();
-                break;
-        }
-        return true;
+    bool null() { return countElement(), dom_.null(); }
+    bool boolean(bool value) { return countElement(), dom_.boolean(value); }
+    bool number_integer(Json::number_integer_t value) { return countElement(), dom_.number_integer(value); }
+    bool number_unsigned(Json::number_unsigned_t value) { return countElement(), dom_.number_unsigned(value); }
+    bool number_float(Json::number_float_t value, const Json::string_t& text) {
+        return countElement(), dom_.number_float(value, text);
+    }
+    bool string(Json::string_t& value) { return countElement(), dom_.string(value); }
+    bool binary(Json::binary_t& value) { return countElement(), dom_.binary(value); }
+    bool start_object(std::size_t elements) {
+        countElement();
+        frames_.push_back(Frame{true, {}, 0, {}});
+        return dom_.start_object(elements);
+    }
+    bool start_array(std::size_t elements) {
+        countElement();
+        frames_.push_back(Frame{false, {}, 0, {}});
+        return dom_.start_array(elements);
+    }
+    bool end_object() { return frames_.pop_back(), dom_.end_object(); }
+    bool end_array() { return frames_.pop_back(), dom_.end_array(); }
+    bool key(Json::string_t& key) {
+        Frame& top = frames_.back();
+        top.key = key;
+        if (!top.keys.insert(top.key).second)
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: {}: key appears twice in the same object", source_->file, path()),
+                        std::nullopt, source_->hint);
+        // The members keep the file's order, which costs a look along the object's members
+        // per member: an object of a few thousand is read in milliseconds, and more are refused.
+        if (top.keys.size() > kMaxObjectMembers)
+            throw Error(
+                ErrorKind::Input,
+                fmt::format("{}: {}: an object of more than {} members", source_->file, path(), kMaxObjectMembers),
+                std::nullopt, source_->hint);
+        return dom_.key(key);
+    }
+    template <class Exception>
+    bool parse_error(std::size_t position, const std::string& token, const Exception& error) {
+        return dom_.parse_error(position, token, error);  // throws it
     }
 
 private:
@@ -122,6 +133,7 @@ private:
         return out;
     }
 
+    nlohmann::detail::json_sax_dom_parser<Json> dom_;
     const JsonSource* source_;
     std::vector<Frame> frames_;
 };
@@ -133,7 +145,10 @@ Json parseJsonFile(const JsonSource& source) {
     if (text.find_first_not_of(" \t\r\n") == std::string::npos)
         throw Error(ErrorKind::Input, source.file + ": the file is empty", std::nullopt, source.hint);
     try {
-        return Json::parse(text, DuplicateKeyCheck(source));
+        Json document;
+        CheckedDomParser parser(document, source);
+        Json::sax_parse(text, &parser);
+        return document;
     } catch (const Json::parse_error& e) {
         SourceLocation where = locationOfByte(text, e.byte);
         throw Error(

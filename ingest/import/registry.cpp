@@ -16,7 +16,7 @@ constexpr SceneFormat kFormats[] = {
     {"spatiallm", "a SpatialLM layout text", readSpatialLm, nullptr},
     {"json", "the smql JSON scene format", readSceneJson,
      [](const model::SceneData& scene) { return writeSceneJson(scene) + "\n"; }, nullptr, true},
-    {"vsibench", "VSI-Bench's meta-info JSON of ScanNet or ARKitScenes rooms", readVsiBench, nullptr, vsiBenchRooms},
+    {"vsibench", "VSI-Bench's meta-info JSON of ScanNet or ARKitScenes rooms", readVsiBench, nullptr, readVsiBenchAll},
     {"spark-dsg", "Hydra's Spark-DSG scene graph JSON", readSparkDsg, writeSparkDsg},
     {"glb", "glTF 2.0 binary: the boxes as meshes coloured by category", nullptr, writeGlb},
     {"gltf", "glTF 2.0 JSON with the buffer embedded", nullptr, writeGltf},

@@ -21,9 +21,9 @@ struct SceneFormat {
     model::SceneData (*read)(const std::string& path, const std::string& sceneName);
     // The scene as the file's bytes; null for formats smql only reads.
     std::string (*write)(const model::SceneData& scene);
-    // The scenes a file holds, for formats whose files hold several (`read` then takes one by its
-    // name); null for formats of one scene a file.
-    std::vector<std::string> (*scenes)(const std::string& path) = nullptr;
+    // Every scene a file holds, each under its name, in one read of the file, for formats whose
+    // files hold several (`read` then takes one by its name); null for formats of one scene a file.
+    std::vector<model::SceneData> (*readAll)(const std::string& path) = nullptr;
     // The writer is given the scene in its file form, ids renumbered 1..n (Engine::exportScene), as
     // the smql JSON format keeps them for reading back; others get the database's ids
     // (Engine::readScene), so that names and paths in the file are the ones queries print.

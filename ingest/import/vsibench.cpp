@@ -105,12 +105,31 @@ model::Node readBox(const Field& field, const std::string& category, model::Node
 
 }  // namespace
 
-std::vector<std::string> vsiBenchRooms(const std::string& path) {
+namespace {
+
+model::SceneData readRoom(const Field& room, const std::string& name, const std::string& path) {
+    model::SceneData scene;
+    for (const auto& [written, boxes] : room.at("object_bbox").members()) {
+        std::string category = categoryName(written);
+        if (category.empty()) boxes.fail("empty category name");
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            scene.nodes.push_back(readBox(boxes[i], category, scene.nodes.size() + 1));
+    }
+    if (scene.nodes.empty()) room.at("object_bbox").fail("no boxes: expected at least one");
+    detail::finishScene(scene, name, "vsibench:" + path);
+    return scene;
+}
+
+}  // namespace
+
+std::vector<model::SceneData> readVsiBenchAll(const std::string& path) {
     detail::JsonSource source{path, kHint};
     detail::Json root = detail::parseJsonFile(source);
-    std::vector<std::string> names;
-    for (const auto& [name, room] : Field(root, source).members()) names.push_back(name);
-    return names;
+    Field rooms(root, source);
+    std::vector<model::SceneData> scenes;
+    for (const auto& [name, room] : rooms.members()) scenes.push_back(readRoom(room, name, path));
+    if (scenes.empty()) rooms.fail("no rooms: expected at least one");
+    return scenes;
 }
 
 model::SceneData readVsiBench(const std::string& path, const std::string& sceneName) {
@@ -119,33 +138,17 @@ model::SceneData readVsiBench(const std::string& path, const std::string& sceneN
     Field rooms(root, source);
     auto members = rooms.members();
     if (members.empty()) rooms.fail("no rooms: expected at least one");
-    std::optional<Field> room;
-    std::string name = sceneName;
-    if (name.empty() && members.size() == 1) {
-        name = members.front().first;
-        room = members.front().second;
-    } else if (name.empty()) {
+    if (sceneName.empty() && members.size() == 1) return readRoom(members.front().second, members.front().first, path);
+    if (sceneName.empty())
         throw Error(ErrorKind::Usage,
                     fmt::format("{} holds {} rooms: name one (the first are {}, {}, {})", path, members.size(),
                                 members[0].first, members[1].first, members.size() > 2 ? members[2].first : "..."),
                     std::nullopt, "smql import vsibench FILE --scene ROOM, or --all for every room");
-    } else {
-        room = rooms.find(name);
-        if (!room)
-            throw Error(ErrorKind::Input, fmt::format("{}: no room named '{}'", path, name), std::nullopt,
-                        fmt::format("the file holds {} rooms, {} the first", members.size(), members.front().first));
-    }
-
-    model::SceneData scene;
-    for (const auto& [written, boxes] : room->at("object_bbox").members()) {
-        std::string category = categoryName(written);
-        if (category.empty()) boxes.fail("empty category name");
-        for (std::size_t i = 0; i < boxes.size(); ++i)
-            scene.nodes.push_back(readBox(boxes[i], category, scene.nodes.size() + 1));
-    }
-    if (scene.nodes.empty()) room->at("object_bbox").fail("no boxes: expected at least one");
-    detail::finishScene(scene, name, "vsibench:" + path);
-    return scene;
+    std::optional<Field> room = rooms.find(sceneName);
+    if (!room)
+        throw Error(ErrorKind::Input, fmt::format("{}: no room named '{}'", path, sceneName), std::nullopt,
+                    fmt::format("the file holds {} rooms, {} the first", members.size(), members.front().first));
+    return readRoom(*room, sceneName, path);
 }
 
 }  // namespace smql::import

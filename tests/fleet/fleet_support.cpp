@@ -74,8 +74,7 @@ void buildRooms(Engine& engine) {
 
 void buildRealLayouts(Engine& engine) {
     for (const char* file : {"scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"})
-        for (const std::string& room : import::vsiBenchRooms(kLayouts + file))
-            engine.importScene(import::readVsiBench(kLayouts + file, room));
+        for (const model::SceneData& room : import::readVsiBenchAll(kLayouts + file)) engine.importScene(room);
 }
 
 std::string exportedJson(Engine& engine, const std::string& scene) {

@@ -216,11 +216,11 @@ TEST_CASE("two places the free floor joins are joined by a route, on real rooms"
     // ScanNet's rooms (VSI-Bench's boxes): winding ways between chairs that the decision points,
     // 1 m apart, do not see through are walked on the free cells themselves.
     const std::string file = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
-    auto rooms = import::vsiBenchRooms(file);
+    auto rooms = import::readVsiBenchAll(file);
     guide::GraphOptions options;
     std::size_t pairs = 0;
     for (std::size_t r = 0; r < rooms.size(); r += 4) {
-        auto nodes = import::readVsiBench(file, rooms[r]).nodes;
+        const auto& nodes = rooms[r].nodes;
         guide::FreeSpace space(nodes, options);
         auto graph = guide::buildGraph(nodes, space, options);
         std::vector<guide::Point> ends;
@@ -231,8 +231,8 @@ TEST_CASE("two places the free floor joins are joined by a route, on real rooms"
                 if (!space.connected(ends[i], ends[j])) continue;
                 ++pairs;
                 auto route = guide::shortestRoute(graph, space, ends[i], ends[j], options);
-                INFO(rooms[r] << ": (" << ends[i].x << ", " << ends[i].y << ") to (" << ends[j].x << ", " << ends[j].y
-                              << ")");
+                INFO(rooms[r].info.name << ": (" << ends[i].x << ", " << ends[i].y << ") to (" << ends[j].x << ", "
+                                        << ends[j].y << ")");
                 REQUIRE(route);
                 for (std::size_t k = 1; k < route->waypoints.size(); ++k)
                     CHECK(space.clear(route->waypoints[k - 1], route->waypoints[k]));

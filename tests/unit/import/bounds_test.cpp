@@ -3,7 +3,12 @@
 // members is refused, and both are errors that say so.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <thread>
+
+#include <sys/stat.h>
 
 #include "import_support.hpp"
 #include "ingest/import/common.hpp"
@@ -15,9 +20,24 @@ using smql::import::readSpatialLm;
 using smql::import::test::requireInputError;
 using smql::import::test::TempDir;
 
-TEST_CASE("an import reads at most kMaxFileBytes, and a device is no exception", "[import][bounds]") {
-    requireInputError([] { readReplica("/dev/zero", "z"); }, {"/dev/zero", "more than 256 MiB"});
-    requireInputError([] { readSpatialLm("/dev/zero", "z"); }, {"/dev/zero", "more than 256 MiB"});
+TEST_CASE("an import reads at most kMaxFileBytes, and a device is no file", "[import][bounds]") {
+    requireInputError([] { readReplica("/dev/zero", "z"); }, {"/dev/zero", "it is a device, not a file"});
+    requireInputError([] { readSpatialLm("/dev/null", "z"); }, {"/dev/null", "it is a device, not a file"});
+    // A sparse file one byte over the bound: refused from its size, so no byte of it is read
+    // (reading it would take 256 MiB of memory first).
+    TempDir dir;
+    const std::string huge = dir.write("huge.json", "");
+    std::filesystem::resize_file(huge, smql::import::detail::kMaxFileBytes + 1);
+    requireInputError([&] { readReplica(huge, "z"); }, {huge, "more than 256 MiB"});
+    // A pipe has no size: it is read, and stopped at the bound.
+    const std::string fifo = dir.path("layout.fifo");
+    REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+    std::thread writer([&] {
+        std::ofstream out(fifo, std::ios::binary);
+        out << "wall_0=Wall(0,0,0,4,0,0,2.5,0)\n";
+    });
+    CHECK(readSpatialLm(fifo, "piped").nodes.size() == 1);
+    writer.join();
 }
 
 TEST_CASE("a JSON object of more than kMaxObjectMembers members is refused, one at the bound is read",

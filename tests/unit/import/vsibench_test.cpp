@@ -10,7 +10,7 @@
 #include "model/geometry.hpp"
 
 using smql::import::readVsiBench;
-using smql::import::vsiBenchRooms;
+using smql::import::readVsiBenchAll;
 using smql::import::test::requireInputError;
 using smql::import::test::TempDir;
 using namespace smql::model;
@@ -47,7 +47,11 @@ const Node& byCategory(const SceneData& scene, const std::string& category) {
 TEST_CASE("VSI-Bench: a room by name, its boxes upright on its floor", "[import][vsibench]") {
     TempDir dir;
     const std::string path = dir.write("rooms.json", kTwoRooms);
-    CHECK(vsiBenchRooms(path) == std::vector<std::string>{"leaning", "other"});
+    std::vector<SceneData> all = readVsiBenchAll(path);
+    REQUIRE(all.size() == 2);
+    CHECK(all[0].info.name == "leaning");
+    CHECK(all[1].info.name == "other");
+    CHECK(all[0].nodes.size() == readVsiBench(path, "leaning").nodes.size());
 
     SceneData scene = readVsiBench(path, "leaning");
     CHECK(scene.info.name == "leaning");
@@ -109,8 +113,7 @@ TEST_CASE("VSI-Bench: every real room reads, stands on its floor, and keeps the 
           "[import][vsibench]") {
     std::size_t rooms = 0, leaning = 0, boxes = 0;
     for (const char* file : {"scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"}) {
-        for (const std::string& name : vsiBenchRooms(layouts(file))) {
-            SceneData scene = readVsiBench(layouts(file), name);
+        for (const SceneData& scene : readVsiBenchAll(layouts(file))) {
             ++rooms;
             // The floor found is where things stand: some thing's bottom is within 0.25 m of it,
             // and none is more than 1 m below it.
@@ -119,10 +122,10 @@ TEST_CASE("VSI-Bench: every real room reads, stands on its floor, and keeps the 
                 ++boxes;
                 leaning += n.attribute("tilt") != nullptr;
                 standing |= std::abs(bottom(n.box)) <= 0.25;
-                INFO(name << ": " << n.category);
+                INFO(scene.info.name << ": " << n.category);
                 CHECK(bottom(n.box) > -1.0);
             }
-            INFO(name);
+            INFO(scene.info.name);
             CHECK(standing);
         }
     }

@@ -300,6 +300,50 @@ TEST_CASE("parents: support first, else the nearest upright anchor") {
     CHECK(scene.nodes[0].parent == model::kNoNode);  // anchors stay under the root
 }
 
+TEST_CASE("parents: in a layout of many rooms each thing has the parent it has in its room alone") {
+    // Walls, floors and doors are found through an R-tree as the supporters are: 400 rooms side by
+    // side (2,800 anchors) give every node of each the parent of the same node in one room alone,
+    // a door's wall preferred to the door and of two walls at one distance the first.
+    auto room = [](double dx, double dy, model::NodeId first) {
+        std::vector<Node> nodes = {
+            node(0, "wall", 0, 2, 1.3, 4, 0.1, 2.6, model::NodeKind::Anchor, model::GeometryKind::Plane),
+            node(0, "wall", 2, 0, 1.3, 0.1, 4, 2.6, model::NodeKind::Anchor, model::GeometryKind::Plane),
+            node(0, "door", 2, 1, 1.0, 0.12, 0.9, 2.0, model::NodeKind::Anchor, model::GeometryKind::Plane),
+            node(0, "wall", -2, 0, 1.3, 0.1, 4, 2.6, model::NodeKind::Anchor, model::GeometryKind::Plane),
+            node(0, "floor", 0, 0, 0, 4, 4, 0.02, model::NodeKind::Anchor, model::GeometryKind::Plane),
+            node(0, "table", 0, 1.3, 0.4, 1, 1, 0.8),
+            node(0, "plate", 0, 1.3, 0.81, 0.3, 0.3, 0.02),
+            node(0, "chair", 1.5, 1, 0.4, 0.5, 0.5, 0.8),   // by the door: its wall is the parent
+            node(0, "stool", 0, -0.5, 0.3, 0.3, 0.3, 0.6),  // as far from the two side walls
+        };
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            nodes[i].id = first + i;
+            nodes[i].box.center.x += dx;
+            nodes[i].box.center.y += dy;
+        }
+        return nodes;
+    };
+    model::SceneData one;
+    one.nodes = room(0, 0, 1);
+    assignParents(one);
+    CHECK(one.nodes[7].parent == 2);  // the chair: the wall, not its door 0.15 m nearer
+    CHECK(one.nodes[8].parent == 2);  // the stool: of the two walls at one distance, the first
+
+    model::SceneData many;
+    const std::size_t perRoom = one.nodes.size();
+    for (int r = 0; r < 400; ++r) {
+        auto nodes = room(10.0 * (r % 20), 10.0 * (r / 20), many.nodes.size() + 1);
+        many.nodes.insert(many.nodes.end(), nodes.begin(), nodes.end());
+    }
+    assignParents(many);
+    for (std::size_t i = 0; i < many.nodes.size(); ++i) {
+        const model::NodeId offset = i / perRoom * perRoom;
+        const model::NodeId alone = one.nodes[i % perRoom].parent;
+        INFO("room " << i / perRoom << ", " << many.nodes[i].category);
+        CHECK(many.nodes[i].parent == (alone == model::kNoNode ? model::kNoNode : alone + offset));
+    }
+}
+
 TEST_CASE("parents: a picture over a sofa hangs on the wall behind it") {
     // Replica room 0's picture#80: a 5 cm slab on the wall whose lower edge touches the sofa's back.
     model::SceneData scene;
