@@ -205,7 +205,15 @@ std::vector<ResultSet> Engine::execute(std::string_view text) {
 void Engine::execute(std::string_view text, const std::function<void(ResultSet&&)>& onResult) {
     std::lock_guard lock(state_->mutex);
     state_->interrupt = false;  // an interrupt stops the statements running when it comes, not later ones
-    State::Parsed parsed = state_->parse(text, true);
+    State::Parsed parsed;
+    try {
+        parsed = state_->parse(text, true);
+    } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Syntax) throw;
+        // As sqlite3_exec: the statements before the one that does not parse run, then its error.
+        for (const auto& statement : parser::parseBeforeError(text)) onResult(state_->run(statement, {}));
+        throw;
+    }
     if (parsed.fromShape) {
         // A statement from a shape reads and changes nothing (parser/normalise.hpp), so when it
         // fails it runs again from the parser's own reading, whose error names this text's

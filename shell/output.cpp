@@ -15,8 +15,11 @@ namespace smql::shell {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, OutputMode>, 9> kModes{{
+// A mode's first name is the one it is shown by; `column` is sqlite3's name for the aligned columns
+// smql calls table.
+constexpr std::array<std::pair<std::string_view, OutputMode>, 11> kModes{{
     {"table", OutputMode::Table},
+    {"column", OutputMode::Table},
     {"box", OutputMode::Box},
     {"markdown", OutputMode::Markdown},
     {"csv", OutputMode::Csv},
@@ -25,6 +28,7 @@ constexpr std::array<std::pair<std::string_view, OutputMode>, 9> kModes{{
     {"line", OutputMode::Line},
     {"json", OutputMode::Json},
     {"jsonl", OutputMode::Jsonl},
+    {"html", OutputMode::Html},
 }};
 
 // Text for a person's screen: a control byte other than a line break or a tab (an escape sequence in
@@ -41,9 +45,11 @@ std::string printable(std::string_view text) {
     return out;
 }
 
-// A cell as text: boxes as their JSON in csv and tsv, where a program reads them back; control bytes
-// shown as \xNN (json and jsonl keep every byte, escaped as JSON escapes them).
-std::string cellText(const Value& value, bool boxAsJson) {
+// A cell as text: boxes as their JSON in csv and tsv, where a program reads them back; a null as
+// .nullvalue says; control bytes shown as \xNN (json and jsonl keep every byte, escaped as JSON
+// escapes them).
+std::string cellText(const Value& value, bool boxAsJson, const OutputOptions& options) {
+    if (typeOf(value) == ValueType::Null) return printable(options.nullValue);
     return boxAsJson && typeOf(value) == ValueType::Box ? valueJson(value).dump() : printable(valueText(value));
 }
 
@@ -93,13 +99,13 @@ struct Grid {
     std::vector<std::size_t> widths;
 };
 
-Grid gridOf(const ResultSet& result) {
+Grid gridOf(const ResultSet& result, const OutputOptions& options) {
     Grid grid;
     for (const auto& c : result.columns) grid.header.push_back(c.name), grid.widths.push_back(displayWidth(c.name));
     for (const auto& row : result.rows) {
         auto& line = grid.rows.emplace_back();
         for (std::size_t c = 0; c < row.size(); ++c) {
-            line.push_back(cellText(row[c], false));
+            line.push_back(cellText(row[c], false, options));
             grid.widths[c] = std::max(grid.widths[c], displayWidth(line.back()));
         }
     }
@@ -114,7 +120,7 @@ std::string footer(const ResultSet& result) {
 
 std::string table(const ResultSet& result, const OutputOptions& options) {
     if (result.columns.empty()) return footer(result);
-    Grid grid = gridOf(result);
+    Grid grid = gridOf(result, options);
     const std::size_t gaps = 2 * (grid.widths.size() - 1);
     if (options.maxWidth > gaps) grid.widths = fitWidths(grid.widths, options.maxWidth - 1 - gaps);
     auto line = [&](const std::vector<std::string>& cells) {
@@ -138,7 +144,7 @@ std::string table(const ResultSet& result, const OutputOptions& options) {
 
 std::string box(const ResultSet& result, const OutputOptions& options) {
     if (result.columns.empty()) return footer(result);
-    Grid grid = gridOf(result);
+    Grid grid = gridOf(result, options);
     const std::size_t frame = 3 * grid.widths.size() + 1;
     if (options.maxWidth > frame) grid.widths = fitWidths(grid.widths, options.maxWidth - 1 - frame);
     auto rule = [&](std::string_view left, std::string_view middle, std::string_view right) {
@@ -164,7 +170,7 @@ std::string box(const ResultSet& result, const OutputOptions& options) {
 // Markdown keeps every character, for pasting into documents: no cell is cut to the terminal.
 std::string markdown(const ResultSet& result, const OutputOptions& options) {
     if (result.columns.empty()) return footer(result);
-    Grid grid = gridOf(result);
+    Grid grid = gridOf(result, options);
     auto escape = [](std::string& cell) {
         std::string out;
         for (char ch : cell)
@@ -231,7 +237,7 @@ std::string delimited(const ResultSet& result, const OutputOptions& options, cha
         out += "\n";
     };
     if (options.headers) line([&](std::size_t c) { return result.columns[c].name; });
-    for (const auto& row : result.rows) line([&](std::size_t c) { return cellText(row[c], true); });
+    for (const auto& row : result.rows) line([&](std::size_t c) { return cellText(row[c], true, options); });
     return out;
 }
 
@@ -244,22 +250,62 @@ std::string list(const ResultSet& result, const OutputOptions& options) {
         out += "\n";
     };
     if (options.headers) line([&](std::size_t c) { return result.columns[c].name; });
-    for (const auto& row : result.rows) line([&](std::size_t c) { return cellText(row[c], false); });
+    for (const auto& row : result.rows) line([&](std::size_t c) { return cellText(row[c], false, options); });
     return out + (result.message.empty() ? "" : printable(result.message) + "\n");
 }
 
 // sqlite3's line mode: one "name = value" line per column, the names right-aligned, a blank line
 // between rows.
-std::string lines(const ResultSet& result) {
+std::string lines(const ResultSet& result, const OutputOptions& options) {
     std::size_t width = 0;
     for (const auto& c : result.columns) width = std::max(width, displayWidth(c.name));
     std::string out;
     for (std::size_t r = 0; r < result.rows.size(); ++r) {
         if (r) out += "\n";
         for (std::size_t c = 0; c < result.columns.size(); ++c)
-            out += fmt::format("{:>{}} = {}\n", result.columns[c].name, width, cellText(result.rows[r][c], false));
+            out += fmt::format("{:>{}} = {}\n", result.columns[c].name, width,
+                               cellText(result.rows[r][c], false, options));
     }
     return out + (result.message.empty() ? "" : (out.empty() ? "" : "\n") + printable(result.message) + "\n");
+}
+
+// sqlite3's html mode: the rows of an HTML table, for pasting into a page's <table>.
+std::string html(const ResultSet& result, const OutputOptions& options) {
+    auto escape = [](const std::string& cell) {
+        std::string out;
+        for (char ch : cell) {
+            switch (ch) {
+                case '<':
+                    out += "&lt;";
+                    break;
+                case '>':
+                    out += "&gt;";
+                    break;
+                case '&':
+                    out += "&amp;";
+                    break;
+                case '"':
+                    out += "&quot;";
+                    break;
+                case '\'':
+                    out += "&#39;";
+                    break;
+                default:
+                    out += ch;
+            }
+        }
+        return out;
+    };
+    std::string out;
+    auto row = [&](std::string_view tag, auto&& cellOf) {
+        out += "<TR>";
+        for (std::size_t c = 0; c < result.columns.size(); ++c)
+            out += fmt::format("<{0}>{1}</{0}>\n", tag, escape(cellOf(c)));
+        out += "</TR>\n";
+    };
+    if (!result.columns.empty() && options.headers) row("TH", [&](std::size_t c) { return result.columns[c].name; });
+    for (const auto& r : result.rows) row("TD", [&](std::size_t c) { return cellText(r[c], false, options); });
+    return out + (result.message.empty() ? "" : printable(result.message) + "\n");
 }
 
 }  // namespace
@@ -303,7 +349,9 @@ std::string renderResult(const ResultSet& result, const OutputOptions& options) 
         case OutputMode::List:
             return list(result, options);
         case OutputMode::Line:
-            return lines(result);
+            return lines(result, options);
+        case OutputMode::Html:
+            return html(result, options);
         case OutputMode::Json:
         case OutputMode::Jsonl:
             return jsonText(resultJson(result)) + "\n";

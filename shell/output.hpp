@@ -10,9 +10,10 @@
 
 namespace smql::shell {
 
-enum class OutputMode { Table, Box, Markdown, Csv, Tsv, List, Line, Json, Jsonl };
+enum class OutputMode { Table, Box, Markdown, Csv, Tsv, List, Line, Json, Jsonl, Html };
 
-// table, box, markdown, csv, tsv, list, line, json, jsonl; throws Error(Usage) for another name.
+// table (or column), box, markdown, csv, tsv, list, line, json, jsonl, html; throws Error(Usage)
+// for another name.
 OutputMode parseOutputMode(std::string_view name);
 std::string_view toString(OutputMode mode);
 // Every mode's name, for options, hints and completion.
@@ -23,6 +24,7 @@ struct OutputOptions {
     bool headers = true;          // column names in table, box, markdown, csv, tsv and list
     std::size_t maxWidth = 0;     // table and box lines fit in this many columns (0: no limit)
     std::string separator = "|";  // between the values of list mode (sqlite3's -separator)
+    std::string nullValue;        // what a null prints as (sqlite3's .nullvalue; json keeps null)
 };
 
 // One result in a text mode (not json, whose framing is the session's): the rows, then for table,

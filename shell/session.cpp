@@ -1,12 +1,14 @@
 #include "shell/session.hpp"
 
 #include <sys/ioctl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -304,7 +306,8 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
          }},
         {{".mode", ".format"},
          "MODE",
-         "output mode: table, box, markdown, csv, tsv, list, line, json, jsonl; ask: lines are questions",
+         "output mode: table (column), box, markdown, csv, tsv, list, line, json, jsonl, html; ask: lines are "
+         "questions",
          Arg::Mode,
          [](Session& s, const std::string& arg) {
              if (arg.empty()) {
@@ -335,6 +338,57 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
              if (arg.empty())
                  throw Error(ErrorKind::Usage, ".separator needs a separator", std::nullopt, "as in .separator ,");
              s.options_.output.separator = unquoted(arg);
+             return true;
+         }},
+        {{".nullvalue"},
+         "TEXT",
+         "what a missing value prints as (default nothing; json keeps null)",
+         Arg::None,
+         [](Session& s, const std::string& arg) { return s.options_.output.nullValue = unquoted(arg), true; }},
+        {{".show"},
+         "",
+         "the output settings and the database",
+         Arg::None,
+         [](Session& s, const std::string&) {
+             auto onOffText = [](bool on) { return on ? "on" : "off"; };
+             const std::pair<std::string_view, std::string> settings[] = {
+                 {"mode", std::string(s.askMode_ ? kAskMode : toString(s.options_.output.mode))},
+                 {"headers", onOffText(s.options_.output.headers)},
+                 {"separator", model::quoted(s.options_.output.separator)},
+                 {"nullvalue", model::quoted(s.options_.output.nullValue)},
+                 {"output", s.file_.is_open() ? s.filePath_ + (s.once_ ? " (once)" : "") : "stdout"},
+                 {"echo", onOffText(s.options_.echo)},
+                 {"timer", onOffText(s.options_.timer)},
+                 {"bail", onOffText(s.options_.bail)},
+                 {"safe", onOffText(s.options_.safe)},
+                 {"database", s.options_.database.empty() ? "(transient)" : s.options_.database},
+             };
+             for (const auto& [name, value] : settings) s.out() << fmt::format("{:>9}: {}\n", name, value);
+             s.out().flush();
+             return true;
+         }},
+        {{".print"},
+         "TEXT",
+         "print TEXT (quotes removed), as a script's heading",
+         Arg::None,
+         [](Session& s, const std::string& arg) {
+             s.out() << unquoted(arg) << "\n";
+             checkWritten(s.out(), s.file_.is_open() ? s.filePath_ : std::string("standard output"));
+             return true;
+         }},
+        {{".system", ".shell"},
+         "COMMAND",
+         "run COMMAND in /bin/sh (not in safe mode)",
+         Arg::Command,
+         [](Session& s, const std::string& arg) {
+             if (arg.empty()) throw Error(ErrorKind::Usage, ".system needs a command", std::nullopt, ".system ls -l");
+             s.out().flush();
+             const int status = std::system(arg.c_str());
+             if (status != 0)
+                 throw Error(
+                     ErrorKind::Usage,
+                     fmt::format("the command exited with status {}", WIFEXITED(status) ? WEXITSTATUS(status) : status),
+                     std::nullopt, {});
              return true;
          }},
         {{".output"},
@@ -427,7 +481,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 8> kSqliteCo
     {".dump", "smql export json DB --scene NAME writes a scene out"},
     {".import", "smql import FORMAT FILE --db DB reads a scene in"},
     {".databases", "the shell has one database open: .open DIR opens another"},
-    {".show", ".mode and .headers show the output settings"},
+    {".width", "table mode sizes each column to its values and the terminal's width"},
 }};
 
 }  // namespace
@@ -453,6 +507,9 @@ bool Session::runMeta(std::string_view line) {
             // Safe mode: .output with no file (back to standard output) is the one file command left.
             if (options_.safe && meta.argument == MetaArgument::Path && !(name == ".output" && arg.empty()))
                 throw Error(ErrorKind::Usage, fmt::format("{} is not allowed in safe mode: it reaches files", name),
+                            std::nullopt, "safe mode (-safe, .safe on) runs statements only");
+            if (options_.safe && meta.argument == MetaArgument::Command)
+                throw Error(ErrorKind::Usage, fmt::format("{} is not allowed in safe mode: it runs a program", name),
                             std::nullopt, "safe mode (-safe, .safe on) runs statements only");
             return meta.run(*this, arg);
         }

@@ -62,7 +62,8 @@ public:
 
     // The meta commands (.mode, .read ...): names (the first is the main one), how the argument is
     // written, what the command does, what may complete the argument, and the command itself.
-    enum class MetaArgument { None, Mode, OnOff, Path };
+    // Path and Command reach outside the database: safe mode refuses both.
+    enum class MetaArgument { None, Mode, OnOff, Path, Command };
     // `.mode ask`: each line is a question in English, run as ASK '<line>'; `.mode MODE` returns
     // to SMQL. The output mode stays what it was.
     static constexpr std::string_view kAskMode = "ask";

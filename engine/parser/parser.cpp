@@ -73,8 +73,10 @@ void checkLimits(const Source& source, const StatementSlice& slice) {
     }
 }
 
-// parse(), with placeholders marked as node ids as buildStatement says.
-std::vector<ast::Statement> parseStatements(std::string_view text, const std::vector<bool>& nodeIdPlaceholders) {
+// parse(), with placeholders marked as node ids as buildStatement says; with `stopAtError`, the
+// statements before the first error instead of the error.
+std::vector<ast::Statement> parseStatements(std::string_view text, const std::vector<bool>& nodeIdPlaceholders,
+                                            bool stopAtError = false) {
     std::lock_guard lock(antlrMutex());
     Source source(text);
     std::vector<StatementSlice> slices = source.statements();
@@ -85,9 +87,14 @@ std::vector<ast::Statement> parseStatements(std::string_view text, const std::ve
     // Statement by statement, so the error reported is the first one in the text.
     std::vector<ast::Statement> statements;
     for (const StatementSlice& slice : slices) {
-        checkLimits(source, slice);
-        StatementParser parser(source, slice);
-        statements.push_back(buildStatement(parser.parse(), source, nodeIdPlaceholders));
+        try {
+            checkLimits(source, slice);
+            StatementParser parser(source, slice);
+            statements.push_back(buildStatement(parser.parse(), source, nodeIdPlaceholders));
+        } catch (const Error& e) {
+            if (stopAtError && e.kind() == ErrorKind::Syntax) break;
+            throw;
+        }
         ++parsedCount;
     }
     return statements;
@@ -96,6 +103,15 @@ std::vector<ast::Statement> parseStatements(std::string_view text, const std::ve
 }  // namespace
 
 std::vector<ast::Statement> parse(std::string_view text) { return parseStatements(text, {}); }
+
+std::vector<ast::Statement> parseBeforeError(std::string_view text) {
+    try {
+        return parseStatements(text, {}, true);
+    } catch (const Error& e) {
+        if (e.kind() == ErrorKind::Syntax) return {};  // no statement: an empty text, or not UTF-8
+        throw;
+    }
+}
 
 ast::Statement parseShape(const StatementShape& shape) {
     std::vector<bool> nodeIds;

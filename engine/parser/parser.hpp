@@ -28,6 +28,10 @@ inline constexpr std::size_t kMaxTextValue = 4096;
 // never returns a partial list.
 std::vector<ast::Statement> parse(std::string_view text);
 
+// The statements of `text` before its first syntax error (all of them when there is none): a
+// script runs those, then reports the error, as sqlite3_exec does.
+std::vector<ast::Statement> parseBeforeError(std::string_view text);
+
 // How many statements this process has parsed: a prepared statement's executions add none
 // (the engine's unit tests read it to prove so).
 std::uint64_t statementsParsed();

@@ -18,9 +18,9 @@ constexpr SceneFormat kFormats[] = {
      [](const model::SceneData& scene) { return writeSceneJson(scene) + "\n"; }, nullptr, true},
     {"vsibench", "VSI-Bench's meta-info JSON of ScanNet or ARKitScenes rooms", readVsiBench, nullptr, readVsiBenchAll},
     {"spark-dsg", "Hydra's Spark-DSG scene graph JSON", readSparkDsg, writeSparkDsg},
-    {"glb", "glTF 2.0 binary: the boxes as meshes coloured by category", nullptr, writeGlb},
+    {"glb", "glTF 2.0 binary: the boxes as meshes coloured by category", nullptr, writeGlb, nullptr, false, true},
     {"gltf", "glTF 2.0 JSON with the buffer embedded", nullptr, writeGltf},
-    {"ply", "PLY (binary): the boxes as a triangle mesh with colours", nullptr, writePly},
+    {"ply", "PLY (binary): the boxes as a triangle mesh with colours", nullptr, writePly, nullptr, false, true},
     {"geojson", "GeoJSON floor plan: the boxes' footprints in metres", nullptr, writeGeoJson},
 };
 
@@ -67,6 +67,11 @@ model::SceneData read(std::string_view format, const std::string& path, const st
 bool writesFileIds(std::string_view format) {
     const SceneFormat* f = findFormat(format);
     return f && f->fileIds;
+}
+
+bool writesBinary(std::string_view format) {
+    const SceneFormat* f = findFormat(format);
+    return f && f->binary;
 }
 
 std::string write(std::string_view format, const model::SceneData& scene) {

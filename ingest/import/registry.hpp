@@ -28,6 +28,8 @@ struct SceneFormat {
     // the smql JSON format keeps them for reading back; others get the database's ids
     // (Engine::readScene), so that names and paths in the file are the ones queries print.
     bool fileIds = false;
+    // The file is bytes, not text: written to a terminal only when asked for.
+    bool binary = false;
 };
 
 std::span<const SceneFormat> formats();
@@ -44,5 +46,7 @@ model::SceneData read(std::string_view format, const std::string& path, const st
 std::string write(std::string_view format, const model::SceneData& scene);
 // Whether `format`'s writer takes the scene in its file form (SceneFormat::fileIds).
 bool writesFileIds(std::string_view format);
+// Whether `format`'s files are bytes rather than text (SceneFormat::binary).
+bool writesBinary(std::string_view format);
 
 }  // namespace smql::import

@@ -63,6 +63,22 @@ check "-separator sets list mode's separator" test "$("$smql" "$db" -list -separ
 check ".separator in a script" test "$("$smql" "$db" -list -noheader -c '.separator "\t"
 FIND sofa RETURN category, kind LIMIT 1')" = $'sofa\tobject'
 check "-line prints name = value per column" test "$("$smql" "$db" -line 'FIND sofa RETURN category, kind LIMIT 1')" = $'category = sofa\n    kind = object'
+check "statements before a syntax error run and print, as sqlite3 runs them" bash -c "
+  ! '$smql' '$db' -c 'COUNT sofa; FND lamp' >'$work/before' 2>'$work/e' && grep -qx 2 '$work/before' && grep -q 'did you mean FIND' '$work/e'"
+check "sqlite3's .mode column and html, .print, .show, .system" bash -c "
+  out=\$('$smql' '$db' -c '.mode column
+.print \"a heading\"
+COUNT sofa;
+.mode html
+FIND sofa RETURN category LIMIT 1;
+.show
+.system echo from-sh') &&
+  echo \"\$out\" | grep -qx 'a heading' && echo \"\$out\" | grep -qx '<TR><TD>sofa</TD>' &&
+  echo \"\$out\" | grep -qx '     mode: html' && echo \"\$out\" | grep -qx 'from-sh' &&
+  ! '$smql' '$db' -safe -c '.system touch $work/ran' 2>'$work/e' && grep -q 'not allowed in safe mode' '$work/e' && test ! -e '$work/ran'"
+check "export glb refuses a terminal and writes to a pipe" bash -c "
+  ! script -qec \"'$smql' export glb --db '$db'\" /dev/null >'$work/tty' && grep -q 'binary' '$work/tty' &&
+  '$smql' export glb --db '$db' | head -c 4 | grep -q glTF"
 check "sqlite3's .tables points to .scenes" bash -c "'$smql' '$db' -c '.tables' 2>&1 | grep -q 'hint: .scenes lists the scenes'"
 check "a misspelt command gets a did-you-mean" bash -c "'$smql' '$db' -c '.scens' 2>&1 | grep -q 'did you mean .scenes?'"
 check "no database: a transient one, removed at exit" bash -c "
@@ -187,6 +203,9 @@ crops = glob.glob(sys.argv[1] + \"/*.jpg\")
 assert crops and all(open(c, \"rb\").read(2) == bytes([0xff, 0xd8]) for c in crops), crops
 ' '$work/crops'"
 check "evidence survives a JSON export and import" bash -c "'$smql' export json --db '$work/memory' -o '$work/memory.json' 2>/dev/null && '$smql' import json '$work/memory.json' --db '$work/copied' --scene copied >/dev/null && '$smql' '$work/copied' -c 'DESCRIBE (FIND object LIMIT 1)' | grep -q 'evidence.*image/jpeg'"
+check ".nullvalue is what a missing value prints as (an ingested anchor has no source id)" bash -c "
+  '$smql' '$work/memory' -csv -c '.nullvalue NULL
+FIND anchor RETURN kind, source_id LIMIT 1' | tail -1 | grep -qx 'anchor,NULL'"
 check "--update refreshes the objects seen again" bash -c "'$smql' ingest '$work/capture' --db '$work/memory' --update capture 2>/dev/null | grep -q 'objects seen again' && '$smql' '$work/memory' -c 'USE SCENE capture; COUNT object WHERE captures = 2' | tail -1 | grep -qv '^0$'"
 check "an update by the same capture changes nothing" bash -c "'$smql' '$work/memory' -c 'USE SCENE capture; SHOW CHANGES' | grep -q '0 changes in 1 update'"
 check "import --update: the changed room's layout becomes the next version" bash -c "

@@ -197,6 +197,24 @@ TEST_CASE_METHOD(Fixture, "SET and SHOW SETTINGS change the thresholds") {
     CHECK_THROWS_AS(q("SET nearr = 1 m"), Error);
 }
 
+TEST_CASE_METHOD(Fixture, "a script runs the statements before one that does not parse, then reports it") {
+    // As sqlite3_exec: the SET before the misspelt statement has run, the one after it has not.
+    std::vector<ResultSet> printed;
+    try {
+        engine->execute("SET near = 0.5 m; COUNT mug;\nFND lamp; SET near = 2.5 m",
+                        [&](ResultSet&& result) { printed.push_back(std::move(result)); });
+        FAIL("the misspelt statement was run");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Syntax);
+        REQUIRE(e.where());
+        CHECK(e.where()->line == 2);
+        CHECK(e.where()->column == 1);
+    }
+    REQUIRE(printed.size() == 2);
+    CHECK(std::get<std::int64_t>(printed[1].rows.at(0).at(0)) == 1);
+    CHECK(sources(q("FIND object WHERE near(plant)")).empty());  // near is still 0.5 m
+}
+
 TEST_CASE_METHOD(Fixture, "binding errors carry a location and a hint") {
     try {
         q("FIND mug WHERE on(dsk)");
