@@ -65,9 +65,9 @@ int checkCommand(const std::string& dbDir, const std::string& salvageInto) {
     }
     if (!salvageInto.empty()) return salvage(dbDir, report, salvageInto);
     std::cout << fmt::format(
-        "{}: ok ({} scenes, {} nodes, {} relations, {} blobs; every record's checksum, the "
+        "{}: ok ({} scene{}, {} nodes, {} relations, {} blobs; every record's checksum, the "
         "trees, the indexes and the lock file checked)\n",
-        dbDir, report.scenes, report.nodes, report.relations, report.blobs);
+        dbDir, report.scenes, report.scenes == 1 ? "" : "s", report.nodes, report.relations, report.blobs);
     return 0;
 }
 

@@ -51,6 +51,10 @@ int demoCommand(const std::string& dbDirOption) {
     ingest.request.scene = "demo-room";
     ingest.db = memory;
     ingestCommand(ingest);
+    // The frames have done their work: what stays is the memory (a few MB, for exploring), never
+    // the capture's images, run after run.
+    std::error_code ignored;
+    fs::remove_all(dbDirOption.empty() ? fs::path(capture) : fs::path(workDir), ignored);
 
     std::cout << "\n3. queries\n\n";
     SessionOptions options;

@@ -1,5 +1,6 @@
 #include "shell/map_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -161,8 +162,11 @@ int mapCommand(const std::string& dbDir, const std::string& scene, const std::st
     auto map = engine->sceneMap(scene);
     const view::MapPlan plan = view::planMap(map, {}, options);
     writeMap(plan, outFile, dbDir);
+    // The scene's own node is not counted, as SHOW SCENES and imports count.
+    const auto nodes = std::count_if(map.scene.nodes.begin(), map.scene.nodes.end(),
+                                     [](const model::Node& n) { return n.kind != model::NodeKind::Scene; });
     std::cout << fmt::format("wrote the map of scene '{}' ({} nodes, {} decision points{}) to {}\n",
-                             map.scene.info.name, map.scene.nodes.size(), map.graph.points.size(),
+                             map.scene.info.name, nodes, map.graph.points.size(),
                              plan.fixturesLeftOut ? fmt::format("; {} ceiling and wall fixtures left out (--fixtures "
                                                                 "draws them)",
                                                                 plan.fixturesLeftOut)

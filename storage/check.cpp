@@ -401,7 +401,8 @@ CheckReport checkDatabase(const std::string& directory) {
         total.indexes += counts.indexes;
     }
     report.scenes = scenes.size();
-    report.nodes = total.nodes;
+    // Each scene's own node is not counted, as SHOW SCENES and imports count.
+    report.nodes = total.nodes - std::min<std::uint64_t>(total.nodes, report.scenes);
     report.relations = total.relationEntries;
     report.blobs = total.blobs;
 

@@ -11,7 +11,7 @@ struct CheckReport {
     // One sentence per problem found, naming the scene, node or file; empty when the database is sound.
     std::vector<std::string> problems;
     std::uint64_t scenes = 0;
-    std::uint64_t nodes = 0;
+    std::uint64_t nodes = 0;  // the scenes' nodes, not counting each scene's own
     std::uint64_t relations = 0;
     std::uint64_t blobs = 0;
     // LMDB's own pages (not smql's records) are damaged: such a problem names no scene.

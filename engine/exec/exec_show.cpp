@@ -22,9 +22,10 @@ ResultSet Executor::run(const binder::BoundShowScenes&) {
                                  return a.id < b.id;
                              })->name;
     for (const auto& s : scenes) {
-        std::string vp =
-            fmt::format("({:.2f}, {:.2f}, {:.2f}) facing {:.0f} deg", s.viewpoint.position.x, s.viewpoint.position.y,
-                        s.viewpoint.position.z, s.viewpoint.facingYaw * 180.0 / M_PI);
+        // Whole degrees; + 0.0 turns a -0 (a yaw a hair below zero) into 0.
+        const double facing = std::round(s.viewpoint.facingYaw * 180.0 / M_PI) + 0.0;
+        std::string vp = fmt::format("({:.2f}, {:.2f}, {:.2f}) facing {:.0f} deg", s.viewpoint.position.x,
+                                     s.viewpoint.position.y, s.viewpoint.position.z, facing);
         bool current = !session_.allScenes && s.name == session_.sceneName;
         rs.rows.push_back({s.name, static_cast<std::int64_t>(s.id), static_cast<std::int64_t>(s.nodeCount), s.source,
                            vp, std::string(current ? "*" : "")});

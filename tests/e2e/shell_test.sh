@@ -352,7 +352,9 @@ check "--objects detect with a model but no class names is refused with a hint" 
     --detector '$work/lone.onnx' 2>'$work/e' && grep -q 'coco.names' '$work/e' && grep -q 'scripts/detector/setup.sh' '$work/e'"
 check "a capture that is not one is refused naming it" bash -c "mkdir -p '$work/empty' && ! '$smql' ingest '$work/empty' --db '$work/x' 2>'$work/e' && grep -q empty '$work/e'"
 
-check "smql demo runs every example" bash -c "'$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out'"
+check "smql demo runs every example and leaves no capture behind" bash -c "mkdir -p '$work/demotmp' &&
+  TMPDIR='$work/demotmp' '$smql' demo --db '$work/demo' >'$work/demo.out' && grep -q 'Explore it yourself' '$work/demo.out' &&
+  [ -z \"\$(ls -A '$work/demotmp')\" ]"
 check "smql demo --db DIR builds the database at DIR" bash -c "'$smql' '$work/demo' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
 check "smql demo refuses a folder that is not empty, and leaves it alone" bash -c "! '$smql' demo --db '$db' 2>'$work/e' && grep -q 'not an empty folder' '$work/e' && ! '$smql' '$db' -csv -c 'SHOW SCENES' | grep -q '^demo-room,'"
 # Names that are not databases: a mistyped sub-command, sqlite3's :memory:, a fleet store's URL or

@@ -1,7 +1,8 @@
 // The view in a real browser (Debian's Chromium through playwright-core): the page loads the
 // scene, a statement typed in its query box highlights exactly the engine's hits (in the page's
 // state and in the drawn frame), hovering a hit shows its path, GUIDE draws a numbered route, the
-// floor plan toggles, and the standalone page of `smql export html` opens from a file.
+// floor plan toggles, the standalone page of `smql export html` opens from a file without a query box,
+// and a browser without WebGL is told so where the scene would be.
 //   node view_test.mjs URL EXPECTED_IDS_JSON STANDALONE_HTML SHOT_DIR
 import { chromium } from '../../web/node_modules/playwright-core/index.mjs';
 
@@ -79,6 +80,21 @@ try {
   check(offline.ready && offline.nodes === (await page.evaluate(() => window.smqlView.nodes)),
     `smql export html opens from a file with the same ${offline.nodes} nodes`);
   await file.screenshot({ path: `${shots}/standalone.png` });
+  check(await file.evaluate(() => getComputedStyle(document.getElementById('query')).display === 'none'),
+    'the standalone page shows no query box (it has no server to ask)');
+
+  // A browser without WebGL: the page says so, where the scene would be.
+  const blind = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+  await blind.addInitScript(() => {
+    const getContext = HTMLCanvasElement.prototype.getContext;
+    HTMLCanvasElement.prototype.getContext = function (type, ...rest) {
+      return /webgl/i.test(type) ? null : getContext.call(this, type, ...rest);
+    };
+  });
+  await blind.goto(`file://${standalone}`);
+  await blind.waitForFunction(() => window.smqlView && window.smqlView.error, null, { timeout: 60000 });
+  const said = await blind.evaluate(() => document.getElementById('canvas').innerText);
+  check(/no WebGL/.test(said) && /smql map/.test(said), `without WebGL the page says so ("${said.slice(0, 40)}...")`);
 } finally {
   await browser.close();
 }

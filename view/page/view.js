@@ -17,7 +17,18 @@ const api = (path) => fetch(path, { headers: { 'X-Smql-Token': token } });
 const container = $('canvas');
 
 // ---- The three.js scene ----------------------------------------------------------------------
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+// Without WebGL (turned off, or a headless browser without a GPU) three.js cannot draw: the page
+// says so where the scene would be, rather than stay blank.
+let renderer;
+try {
+  renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+} catch (e) {
+  state.error = 'WebGL is not available in this browser';
+  container.innerHTML = '<p class="no-webgl"><b>This browser offers no WebGL, which the view draws the memory ' +
+    'with.</b> Turn it on, or in a headless Chromium add --use-angle=swiftshader. Without it, ' +
+    '<code>smql map DB</code> draws the floor plan as an image and the shell answers every statement.</p>';
+  throw new Error(`${state.error}: ${e.message}`);
+}
 renderer.setPixelRatio(window.devicePixelRatio);
 container.appendChild(renderer.domElement);
 const world = new THREE.Scene();
