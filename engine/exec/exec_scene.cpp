@@ -14,7 +14,7 @@ namespace {
 
 storage::Database& writable(storage::Database* db, std::string_view statement) {
     if (!db)
-        throw Error(ErrorKind::Usage, fmt::format("{} needs a database open for writing", statement), std::nullopt,
+        throw Error(ErrorKind::Storage, fmt::format("{} needs a database open for writing", statement), std::nullopt,
                     "open the database without --read-only");
     return *db;
 }

@@ -16,9 +16,11 @@ GIL released. docs/python.md is the guide.
 import collections
 import collections.abc
 import contextlib
+import datetime
 import json
 import os
 import threading
+import time
 
 from . import _smql
 from .errors import (
@@ -39,6 +41,8 @@ __all__ = [
     "Warning", "Error", "InterfaceError", "DatabaseError", "DataError", "OperationalError",
     "IntegrityError", "InternalError", "ProgrammingError", "NotSupportedError",
     "NULL", "INTEGER", "REAL", "TEXT", "BOX",
+    "STRING", "BINARY", "NUMBER", "DATETIME", "ROWID",
+    "Date", "Time", "Timestamp", "DateFromTicks", "TimeFromTicks", "TimestampFromTicks", "Binary",
 ]
 
 apilevel = "2.0"
@@ -54,6 +58,50 @@ INTEGER = _smql.TYPE_INTEGER
 REAL = _smql.TYPE_REAL
 TEXT = _smql.TYPE_TEXT
 BOX = _smql.TYPE_BOX
+
+
+class _TypeObject:
+    """A PEP 249 type object: equal to each type code of Cursor.description it stands for."""
+
+    def __init__(self, name, *codes):
+        self.name, self.codes = name, frozenset(codes)
+
+    def __eq__(self, other):
+        return other in self.codes if isinstance(other, int) else other is self
+
+    def __hash__(self):
+        return hash(self.name)
+
+    def __repr__(self):
+        return f"smql.{self.name}"
+
+
+# PEP 249's type objects over smql's type codes. No column holds bytes, and times are ISO 8601 text
+# (a scene's capture_time): BINARY and DATETIME match no column, as the PEP allows.
+STRING = _TypeObject("STRING", TEXT)
+BINARY = _TypeObject("BINARY")
+NUMBER = _TypeObject("NUMBER", INTEGER, REAL)
+DATETIME = _TypeObject("DATETIME")
+ROWID = _TypeObject("ROWID", INTEGER)
+
+# PEP 249's constructors. A date, time or timestamp is bound as its ISO 8601 text, as sqlite3's
+# adapters bind it; bytes have no SMQL value and are refused when bound.
+Date = datetime.date
+Time = datetime.time
+Timestamp = datetime.datetime
+Binary = bytes
+
+
+def DateFromTicks(ticks):
+    return Date(*time.localtime(ticks)[:3])
+
+
+def TimeFromTicks(ticks):
+    return Time(*time.localtime(ticks)[3:6])
+
+
+def TimestampFromTicks(ticks):
+    return Timestamp(*time.localtime(ticks)[:6])
 
 # One event of an ingest's progress; `kind` is "stage_started", "advanced", "stage_finished" or "note".
 Progress = collections.namedtuple("Progress", "kind stage done total seconds text")
@@ -207,6 +255,8 @@ class Connection:
 
     def _run(self, sql, parameters):
         _no_nul(sql, "statement")
+        parameters = [value.isoformat() if isinstance(value, (datetime.date, datetime.time)) else value
+                      for value in parameters]
         for value in parameters:
             if isinstance(value, str):
                 _no_nul(value, "bound text")
@@ -238,7 +288,7 @@ class Cursor:
         self.rowcount = -1
         self.lastrowid = None
         self.message = ""  # the statement's sentence (RELATE, USE, SET ...), "" for none
-        self._rows = []
+        self._rows = None  # None until a statement with a result set has run
         self._next = 0
         self._closed = False
 
@@ -247,7 +297,8 @@ class Cursor:
             raise ProgrammingError("Cannot operate on a closed cursor.")
         if isinstance(parameters, (str, bytes, collections.abc.Mapping)) or not hasattr(parameters, "__len__"):
             raise ProgrammingError("parameters are a sequence, one value per ? in the statement")
-        self.description, self._rows, self.message = self.connection._run(sql, parameters)
+        self.description, rows, self.message = self.connection._run(sql, parameters)
+        self._rows = rows if self.description is not None else None
         self._next = 0
         self.rowcount = -1
         return self
@@ -263,26 +314,26 @@ class Cursor:
         with self.connection._lock:
             self.connection._check_open()
             messages = self.connection._db.execute_script(_no_nul(script, "script"))
-        self.description, self._rows, self._next = None, [], 0
+        self.description, self._rows, self._next = None, None, 0
         self.message = messages[-1] if messages else ""
         return self
 
     def fetchone(self):
-        self._check_open()
+        self._check_result()
         if self._next >= len(self._rows):
             return None
         self._next += 1
         return self._rows[self._next - 1]
 
     def fetchmany(self, size=None):
-        self._check_open()
+        self._check_result()
         size = self.arraysize if size is None else size
         rows = self._rows[self._next:self._next + size]
         self._next += len(rows)
         return rows
 
     def fetchall(self):
-        self._check_open()
+        self._check_result()
         rows = self._rows[self._next:]
         self._next = len(self._rows)
         return rows
@@ -338,3 +389,9 @@ class Cursor:
         if self._closed:
             raise ProgrammingError("Cannot operate on a closed cursor.")
         self.connection._check_open()
+
+    def _check_result(self):
+        """PEP 249: fetching is an error before any statement, and after one without a result set."""
+        self._check_open()
+        if self._rows is None:
+            raise ProgrammingError("no result set to fetch from: execute a statement that returns rows first")

@@ -38,6 +38,48 @@ def test_module_follows_pep_249():
     assert issubclass(smql.ProgrammingError, smql.DatabaseError) and issubclass(smql.DatabaseError, smql.Error)
 
 
+def test_dbapi20_api_level_checks(db, replica):
+    """The API-level checks of the classic DB-API 2.0 compliance suite (dbapi20.py), adapted: SMQL
+    has no tables to create, so the checks that need DDL run on the Replica room instead; those that
+    need transactions (commit, rollback) are not applicable (each statement is atomic on its own)."""
+    # Type objects compare equal to the type codes of description; constructors exist.
+    cur = db.execute("FIND sofa RETURN id, category, height LIMIT 1")
+    codes = [d[1] for d in cur.description]
+    assert codes[0] == smql.NUMBER and codes[0] == smql.ROWID and codes[1] == smql.STRING
+    assert codes[2] == smql.NUMBER and codes[1] != smql.NUMBER and codes[0] != smql.STRING
+    assert smql.BINARY != smql.TEXT and smql.DATETIME != smql.TEXT
+    assert smql.Date(2026, 11, 28) == smql.DateFromTicks(smql.time.mktime((2026, 11, 28, 12, 0, 0, 0, 0, -1)))
+    assert smql.Timestamp(2026, 11, 28, 12, 30, 5) == smql.TimestampFromTicks(
+        smql.time.mktime((2026, 11, 28, 12, 30, 5, 0, 0, -1)))
+    assert smql.TimeFromTicks(0).__class__ is smql.Time and smql.Binary(b"x") == b"x"
+    # A timestamp binds as its ISO 8601 text.
+    stamp = smql.Timestamp(2026, 11, 28, 9, 0, 0)
+    assert db.execute("FIND sofa WHERE category = ? LIMIT 1", (stamp,)).fetchall() == []
+    # Fetching before any statement, or after one without a result set, is an Error.
+    fresh = db.cursor()
+    for fetch in (fresh.fetchone, fresh.fetchall, lambda: fresh.fetchmany(2)):
+        with pytest.raises(smql.Error):
+            fetch()
+    fresh.execute("SET near = 1 m")
+    assert fresh.description is None
+    with pytest.raises(smql.Error):
+        fresh.fetchall()
+    fresh.execute("COUNT sofa")
+    assert fresh.fetchall() == [(2,)] and fresh.fetchone() is None
+    # arraysize drives fetchmany; setinputsizes and setoutputsize are accepted.
+    fresh.arraysize = 3
+    fresh.execute("FIND cushion")
+    assert len(fresh.fetchmany()) == 3
+    fresh.setinputsizes((25,))
+    fresh.setoutputsize(1000)
+    fresh.close()
+    with pytest.raises(smql.Error):
+        fresh.execute("COUNT sofa")
+    # A write on a read-only connection is an OperationalError, as docs/python.md says.
+    with pytest.raises(smql.OperationalError, match="open for writing"):
+        db.execute("DROP SCENE 'replica-room0'")
+
+
 def test_bound_parameters_answer_as_literals(db):
     bound = db.execute("FIND ? WHERE on(?) PATH", ("cushion", "sofa")).fetchall()
     literal = db.execute("FIND cushion WHERE on(sofa) PATH").fetchall()
