@@ -100,7 +100,7 @@ void queryLatency(const std::string& url, const std::string& device, const fs::p
 
 int run(const Options& options) {
     std::string whyNot;
-    auto cluster = smql::fleet::pg::LocalCluster::start({.prefix = "smql-bench-fleet"}, whyNot);
+    auto cluster = smql::fleet::pg::LocalCluster::start({.settings = {}, .prefix = "smql-bench-fleet"}, whyNot);
     if (!cluster) {
         fmt::print("smql_bench_fleet: skipped: {}\n", whyNot);
         return 0;
@@ -116,7 +116,9 @@ int run(const Options& options) {
     std::vector<std::unique_ptr<smql::fleet::pg::LocalCluster>> others;
     std::vector<std::string> shards;
     for (int i = 0; i < options.shards; ++i) {
-        if (i > 0) others.push_back(smql::fleet::pg::LocalCluster::start({.prefix = "smql-bench-fleet"}, whyNot));
+        if (i > 0)
+            others.push_back(
+                smql::fleet::pg::LocalCluster::start({.settings = {}, .prefix = "smql-bench-fleet"}, whyNot));
         smql::fleet::pg::LocalCluster& at = i == 0 ? *cluster : *others.back();
         at.createDatabase("fleet_shard");
         shards.push_back(at.url("fleet_shard"));

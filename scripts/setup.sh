@@ -18,7 +18,7 @@ packages=(
   tmux  # the shell's terminal test (Ctrl-C, widths)
   python3-onnx python3-protobuf python3-numpy  # the detector's set-up (scripts/detector/setup.sh)
   python3-opencv  # its verification against TF.js (scripts/detector/verify.sh)
-  python3-dev pybind11-dev python3-pytest  # the Python package (python/) and its tests
+  python3-dev pybind11-dev python3-pytest python3-venv  # the Python package (python/), its tests, pip install
   python3-open3d  # the Python package's Open3D interop, and the reader of exported PLY and GLB in the tests
   libtinygltf-dev gdal-bin  # smql export glb; GDAL's ogrinfo reads the GeoJSON export in the tests
   libcpp-httplib-dev chromium  # smql view's HTTP server; the headless browser of its test

@@ -43,10 +43,16 @@ std::vector<WallOpening> OpeningsStage::run(StageProgress& progress) {
     return added;
 }
 
+// Every door and window the scene holds, those the objects' detections gave included, so that the
+// stage lines add up to the anchors the ingest reports.
 std::string OpeningsStage::summary(const std::vector<WallOpening>& added) const {
-    if (!depth) return "none looked for: openings need depth";
-    auto doors = std::count_if(added.begin(), added.end(), [](const WallOpening& o) { return o.category == "door"; });
-    return fmt::format("{} doors, {} windows", doors, added.size() - static_cast<std::size_t>(doors));
+    auto count = [&](std::string_view category) {
+        return std::count_if(scene.nodes.begin(), scene.nodes.end(), [&](const model::Node& n) {
+            return n.kind == NodeKind::Anchor && n.category == category;
+        });
+    };
+    return fmt::format("{} doors, {} windows ({} from gaps in the walls{})", count("door"), count("window"),
+                       added.size(), depth ? "" : ": none looked for, openings need depth");
 }
 
 }  // namespace smql::ingest

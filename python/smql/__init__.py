@@ -361,7 +361,11 @@ class Cursor:
         """The boxes of every row of the last statement as a numpy array (N, 7): centre x, y, z,
         size x, y, z (full extents along the box's axes, metres), yaw (radians, about +z). The
         column is the first box column unless named."""
-        import numpy
+        try:
+            import numpy
+        except ImportError:
+            raise ImportError("Cursor.boxes needs numpy: pip install numpy, or make the environment with "
+                              "`python3 -m venv --system-site-packages` to use Debian's python3-numpy") from None
 
         index = self._column_index(column, BOX)
         return numpy.array([row[index] if row[index] is not None else (numpy.nan,) * 7 for row in self._rows],

@@ -47,7 +47,6 @@ ConvTranspose with a bilinear kernel (opset 10's Resize cannot align corners).
 Usage: tfjs_segmenter_to_onnx.py MODEL.json OUT.onnx [SIZE [OUTPUT_STRIDE]]
        (SIZE: S or HxW, default 513; OUTPUT_STRIDE: 8 or 16, default 8)
 """
-import base64
 import json
 import os
 import sys
@@ -59,7 +58,7 @@ from onnx import TensorProto, helper, numpy_helper
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tfjs_to_onnx import load_weights  # noqa: E402  (the shared weights reader)
+from tfjs_to_onnx import load_weights, node_attr  # noqa: E402  (the shared TF.js graph readers)
 
 NATIVE_SIZE = 513  # the crop size the TF graph was exported at; its constant sizes are for it
 NATIVE_STRIDE = 8  # and its output stride
@@ -113,18 +112,7 @@ class Converter:
     def inputs(self, node):
         return [self.source(r) for r in node.get("input", [])]
 
-    def attr(self, node, key, default=None):
-        a = node.get("attr", {}).get(key)
-        if a is None:
-            return default
-        if "list" in a:
-            return [int(i) for i in a["list"].get("i", [])]
-        if "s" in a:
-            return base64.b64decode(a["s"]).decode()
-        for kind in ("b", "f", "i"):
-            if kind in a:
-                return a[kind]
-        return default
+    attr = staticmethod(node_attr)
 
     def const(self, name):
         node = self.nodes[name]

@@ -28,6 +28,21 @@ TO_NCHW = [0, 3, 1, 2]
 NHWC_AXIS_IN_NCHW = {0: 0, 1: 2, 2: 3, 3: 1, -1: 1}
 
 
+def node_attr(node, key, default=None):
+    """A TF graph node's attribute as Python: a list of ints, a string, a bool, float or int."""
+    a = node.get("attr", {}).get(key)
+    if a is None:
+        return default
+    if "list" in a:
+        return [int(i) for i in a["list"].get("i", [])]
+    if "s" in a:
+        return base64.b64decode(a["s"]).decode()
+    for kind in ("b", "f", "i"):
+        if kind in a:
+            return a[kind]
+    return default
+
+
 def load_weights(model_path, model):
     """name -> numpy array for every weight in the manifest (dequantized)."""
     weights = {}
@@ -76,18 +91,7 @@ class Converter:
         self.folded_biases = set()  # the Add nodes a convolution took as its bias
 
     # -- helpers --------------------------------------------------------
-    def attr(self, node, key, default=None):
-        a = node.get("attr", {}).get(key)
-        if a is None:
-            return default
-        if "list" in a:
-            return [int(i) for i in a["list"].get("i", [])]
-        if "s" in a:
-            return base64.b64decode(a["s"]).decode()
-        for kind in ("b", "f", "i"):
-            if kind in a:
-                return a[kind]
-        return default
+    attr = staticmethod(node_attr)
 
     def source(self, ref):
         return ref.split(":")[0] if ref.endswith(":0") else ref

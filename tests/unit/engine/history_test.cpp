@@ -287,6 +287,6 @@ TEST_CASE("RENAME SCENE and DROP SCENE carry and remove the history, one transac
     CHECK(run(*engine, "USE SCENE den; SHOW CHANGES").rows.empty());
 
     auto readOnly = Engine::open(dir.path.string(), /*readOnly=*/true);
-    CHECK(errorOf(*readOnly, "DROP SCENE den").kind() == ErrorKind::Usage);
+    CHECK(errorOf(*readOnly, "DROP SCENE den").kind() == ErrorKind::Storage);
     CHECK(run(*readOnly, "SHOW SCENES").rows.size() == 1);
 }

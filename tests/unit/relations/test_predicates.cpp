@@ -332,7 +332,8 @@ TEST_CASE("parents: in a layout of many rooms each thing has the parent it has i
     model::SceneData many;
     const std::size_t perRoom = one.nodes.size();
     for (int r = 0; r < 400; ++r) {
-        auto nodes = room(10.0 * (r % 20), 10.0 * (r / 20), many.nodes.size() + 1);
+        const int column = r % 20, row = r / 20;
+        auto nodes = room(10.0 * column, 10.0 * row, many.nodes.size() + 1);
         many.nodes.insert(many.nodes.end(), nodes.begin(), nodes.end());
     }
     assignParents(many);
