@@ -391,7 +391,17 @@ std::vector<std::string> Engine::knownCategories() const {
     std::lock_guard lock(state_->mutex);
     auto txn = state_->db->beginRead();
     std::vector<std::string> out;
-    for (const auto& [name, count] : txn.categories()) out.push_back(name);
+    // Camera frames and descriptions carry their kind as their category ("frame", "description"):
+    // no kind of thing a person names, unless some thing is called so too (a picture frame).
+    auto namesAThing = [&](const std::string& category) {
+        for (model::NodeId id : txn.nodesWithCategory(category)) {
+            auto node = txn.node(id);
+            if (node && node->kind != model::NodeKind::Frame && node->kind != model::NodeKind::Description) return true;
+        }
+        return false;
+    };
+    for (const auto& [name, count] : txn.categories())
+        if (namesAThing(name)) out.push_back(name);
     return out;
 }
 

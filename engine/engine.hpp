@@ -143,6 +143,7 @@ public:
 
     // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
     std::string currentScene() const;
+    // The categories of things in every scene: camera frames and descriptions left out.
     std::vector<std::string> knownCategories() const;
 
     storage::Database& database();

@@ -203,6 +203,9 @@ crops = glob.glob(sys.argv[1] + \"/*.jpg\")
 assert crops and all(open(c, \"rb\").read(2) == bytes([0xff, 0xd8]) for c in crops), crops
 ' '$work/crops'"
 check "evidence survives a JSON export and import" bash -c "'$smql' export json --db '$work/memory' -o '$work/memory.json' 2>/dev/null && '$smql' import json '$work/memory.json' --db '$work/copied' --scene copied >/dev/null && '$smql' '$work/copied' -c 'DESCRIBE (FIND object LIMIT 1)' | grep -q 'evidence.*image/jpeg'"
+check ".categories names things, not camera frames or descriptions" bash -c "
+  '$smql' '$work/memory' -csv -c '.categories' >'$work/cats' && grep -qx wall '$work/cats' &&
+  ! grep -qx frame '$work/cats' && ! grep -qx description '$work/cats'"
 check ".nullvalue is what a missing value prints as (an ingested anchor has no source id)" bash -c "
   '$smql' '$work/memory' -csv -c '.nullvalue NULL
 FIND anchor RETURN kind, source_id LIMIT 1' | tail -1 | grep -qx 'anchor,NULL'"
