@@ -386,7 +386,7 @@ class Cursor:
         for index, described in enumerate(self.description or ()):
             if (name is None and described[1] == code) or described[0] == name:
                 return index
-        wanted = f"a column named {name!r}" if name else "a box column"
+        wanted = f"column named {name!r}" if name else "box column"
         raise ProgrammingError(f"the last statement has no {wanted}")
 
     def _check_open(self):

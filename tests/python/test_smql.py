@@ -75,6 +75,11 @@ def test_dbapi20_api_level_checks(db, replica):
     fresh.close()
     with pytest.raises(smql.Error):
         fresh.execute("COUNT sofa")
+    # A column the last statement does not have is named in plain words.
+    with pytest.raises(smql.ProgrammingError, match="the last statement has no column named 'current'"):
+        db.execute("COUNT sofa").current_scene()
+    with pytest.raises(smql.ProgrammingError, match="the last statement has no box column"):
+        db.execute("COUNT sofa").boxes()
     # A write on a read-only connection is an OperationalError, as docs/python.md says.
     with pytest.raises(smql.OperationalError, match="open for writing"):
         db.execute("DROP SCENE 'replica-room0'")
