@@ -82,7 +82,8 @@ int importCommand(const std::string& format, const std::string& file, const std:
 int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
                   const std::string& outFile) {
     // Bytes on a terminal are noise and can leave it in a strange state (sqlite3 refuses likewise).
-    if (outFile.empty() && import::writesBinary(format) && isatty(STDOUT_FILENO))
+    const import::SceneFormat* written = import::findFormat(format);
+    if (outFile.empty() && written && written->binary && isatty(STDOUT_FILENO))
         throw Error(ErrorKind::Usage, fmt::format("a {} file is binary: it is not written to a terminal", format),
                     std::nullopt,
                     fmt::format("give -o FILE, or redirect: smql export {} --db DB > scene.{}", format, format));

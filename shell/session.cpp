@@ -126,6 +126,8 @@ Session::~Session() {
 
 std::ostream& Session::out() { return file_.is_open() ? file_ : stdout_; }
 
+std::string Session::outName() const { return file_.is_open() ? filePath_ : std::string("standard output"); }
+
 void Session::finishOutput() {
     if (documentOpen_) out() << "]\n";
     documentOpen_ = false;
@@ -161,7 +163,7 @@ void Session::print(const ResultSet& result) {
         out() << renderResult(result, output);
     }
     // A result that cannot be written is an error, not a silent empty file.
-    checkWritten(out(), file_.is_open() ? filePath_ : std::string("standard output"));
+    checkWritten(out(), outName());
     // The time goes to standard error, so that standard output stays one parseable document.
     if (options_.timer) err_ << fmt::format("time: {:.1f} us\n", result.elapsedMicroseconds) << std::flush;
 }
@@ -373,7 +375,7 @@ const std::vector<Session::MetaCommand>& Session::metaCommands() {
          Arg::None,
          [](Session& s, const std::string& arg) {
              s.out() << unquoted(arg) << "\n";
-             checkWritten(s.out(), s.file_.is_open() ? s.filePath_ : std::string("standard output"));
+             checkWritten(s.out(), s.outName());
              return true;
          }},
         {{".system", ".shell"},

@@ -95,6 +95,8 @@ private:
     void print(const ResultSet& result);
     void printError(const Error& e, std::string_view source);
     std::ostream& out();
+    // What out() writes to, for messages: the .output file or "standard output".
+    std::string outName() const;
     void redirect(const std::string& path, bool once);
 
     std::unique_ptr<Engine> engine_;

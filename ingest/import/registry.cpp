@@ -69,11 +69,6 @@ bool writesFileIds(std::string_view format) {
     return f && f->fileIds;
 }
 
-bool writesBinary(std::string_view format) {
-    const SceneFormat* f = findFormat(format);
-    return f && f->binary;
-}
-
 std::string write(std::string_view format, const model::SceneData& scene) {
     return known(format, writableFormats(), "export").write(scene);
 }

@@ -46,7 +46,5 @@ model::SceneData read(std::string_view format, const std::string& path, const st
 std::string write(std::string_view format, const model::SceneData& scene);
 // Whether `format`'s writer takes the scene in its file form (SceneFormat::fileIds).
 bool writesFileIds(std::string_view format);
-// Whether `format`'s files are bytes rather than text (SceneFormat::binary).
-bool writesBinary(std::string_view format);
 
 }  // namespace smql::import
