@@ -13,6 +13,7 @@
 #include "model/error.hpp"
 #include "model/instant.hpp"
 #include "model/names.hpp"
+#include "model/presentation.hpp"
 #include "relations/predicates.hpp"
 
 namespace smql::fleet {
@@ -260,14 +261,18 @@ ResultSet shown(Store& store, const QueryScope& scope, const ast::ShowStmt& show
     }
     // Descriptions and frames are about places, not places: a category only they (or hidden
     // nodes) have is not one to ask for; its count is every node of it.
-    out.columns = {{"category", ValueType::Text}, {"count", ValueType::Integer}};
+    out.columns = {{"category", ValueType::Text}, {"count", ValueType::Integer}, {"colour", ValueType::Text}};
     pg::Result r = store.connection().exec(
         fmt::format("SELECT category, count(*) FROM smql.nodes WHERE scene = ANY($1::int8[]) GROUP BY category HAVING "
                     "bool_or(NOT hidden AND kind NOT IN ({}, {}, {})) ORDER BY category COLLATE \"C\"",
                     static_cast<int>(model::NodeKind::Scene), static_cast<int>(model::NodeKind::Description),
                     static_cast<int>(model::NodeKind::Frame)),
         pg::Parameters().add(scope.keys), "listing the categories");
-    for (int i = 0; i < r.rows(); ++i) out.rows.push_back({std::string(r.text(i, 0)), r.integer(i, 1)});
+    std::vector<std::string> categories;
+    for (int i = 0; i < r.rows(); ++i) categories.emplace_back(r.text(i, 0));
+    const model::Palette palette(categories);
+    for (int i = 0; i < r.rows(); ++i)
+        out.rows.push_back({categories[i], r.integer(i, 1), model::hexColour(palette(categories[i]))});
     return out;
 }
 

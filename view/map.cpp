@@ -26,8 +26,8 @@ const Rgb kWall{90, 90, 90}, kDoor{60, 160, 60}, kWindow{40, 140, 200}, kFloor{2
     kPocket{250, 230, 170}, kGraph{170, 205, 225}, kRoute{220, 40, 40}, kText{40, 40, 40};
 
 // The category's colour, as the exports and the view's page give it.
-Rgb categoryColour(const std::string& category) {
-    const model::Rgb c = model::categoryColour(category);
+Rgb categoryColour(const model::Palette& palette, const std::string& category) {
+    const model::Rgb c = palette(category);
     return {c.r, c.g, c.b};
 }
 
@@ -205,9 +205,10 @@ MapPlan planMap(const Engine::SceneMap& map, const std::vector<RouteMark>& route
     std::sort(objects.begin(), objects.end(), [](const model::Node* a, const model::Node* b) {
         return model::footprintArea(a->box) > model::footprintArea(b->box);
     });
+    const model::Palette palette(map.scene.nodes);
     std::vector<std::string> categories;
     for (const auto* n : objects) {
-        const Rgb colour = categoryColour(n->category);
+        const Rgb colour = categoryColour(palette, n->category);
         plan.shapes.push_back({frame.footprint(n->box), lighter(colour, 0.7), colour, true});
         if (std::find(categories.begin(), categories.end(), n->category) == categories.end())
             categories.push_back(n->category);
@@ -231,7 +232,7 @@ MapPlan planMap(const Engine::SceneMap& map, const std::vector<RouteMark>& route
 
     std::sort(categories.begin(), categories.end());
     plan.legend = {{"wall", kWall}, {"door", kDoor}, {"window", kWindow}};
-    for (const auto& c : categories) plan.legend.push_back({c, categoryColour(c)});
+    for (const auto& c : categories) plan.legend.push_back({c, categoryColour(palette, c)});
     plan.legend.push_back({"floor blocked for walking", kBlocked});
     plan.legend.push_back({"floor cut off from the room", kPocket});
     if (options.graph) plan.legend.push_back({"guidance graph", kGraph});

@@ -12,13 +12,13 @@ namespace smql::view {
 
 nlohmann::ordered_json sceneJson(const model::SceneData& scene) {
     const std::vector<std::string> paths = model::nodePaths(scene);
+    const model::Palette palette(scene.nodes);
     auto nodes = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         const model::Node& n = scene.nodes[i];
         if (n.hidden || n.kind == model::NodeKind::Scene || n.kind == model::NodeKind::Frame ||
             n.geometry == model::GeometryKind::None)
             continue;
-        const model::Rgb colour = model::categoryColour(n.category);
         auto attributes = nlohmann::ordered_json::object();
         for (const auto& a : n.attributes) attributes[a.name] = a.value;
         nodes.push_back({{"id", n.id},
@@ -28,7 +28,7 @@ nlohmann::ordered_json sceneJson(const model::SceneData& scene) {
                          {"geometry", model::toString(n.geometry)},
                          {"box", valueJson(n.box)},
                          {"path", paths[i]},
-                         {"colour", fmt::format("#{:02x}{:02x}{:02x}", colour.r, colour.g, colour.b)},
+                         {"colour", model::hexColour(palette(n.category))},
                          {"text", n.text},
                          {"attributes", attributes}});
     }

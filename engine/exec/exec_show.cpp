@@ -7,6 +7,7 @@
 #include "engine/catalog/attributes.hpp"
 #include "engine/exec/executor.hpp"
 #include "model/error.hpp"
+#include "model/presentation.hpp"
 #include "storage/database.hpp"
 
 namespace smql::exec {
@@ -59,9 +60,12 @@ ResultSet Executor::run(const binder::BoundShowCategories& show) {
             }
         return rs;
     }
-    rs.columns = {{"category", ValueType::Text}, {"count", ValueType::Integer}};
-    for (const auto& category : scene().categories())
-        rs.rows.push_back({category, static_cast<std::int64_t>(scene().withCategory(category).size())});
+    rs.columns = {{"category", ValueType::Text}, {"count", ValueType::Integer}, {"colour", ValueType::Text}};
+    const std::vector<std::string> categories = scene().categories();
+    const model::Palette palette(categories);
+    for (const auto& category : categories)
+        rs.rows.push_back({category, static_cast<std::int64_t>(scene().withCategory(category).size()),
+                           model::hexColour(palette(category))});
     return rs;
 }
 

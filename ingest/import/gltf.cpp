@@ -38,7 +38,7 @@ tinygltf::Value text(const std::string& value) { return tinygltf::Value(value); 
 
 class GltfBuilder {
 public:
-    explicit GltfBuilder(const model::SceneData& scene) : scene_(scene) {}
+    explicit GltfBuilder(const model::SceneData& scene) : scene_(scene), palette_(scene.nodes) {}
 
     tinygltf::Model build() {
         model_.asset.generator = "smql";
@@ -134,7 +134,7 @@ private:
     int material(const std::string& category) {
         auto [it, fresh] = materialOf_.emplace(category, static_cast<int>(model_.materials.size()));
         if (!fresh) return it->second;
-        model::Rgb colour = model::categoryColour(category);
+        model::Rgb colour = palette_(category);
         tinygltf::Material m;
         m.name = category;
         m.pbrMetallicRoughness.baseColorFactor = {linearChannel(colour.r), linearChannel(colour.g),
@@ -180,6 +180,7 @@ private:
     }
 
     const model::SceneData& scene_;
+    const model::Palette palette_;
     tinygltf::Model model_;
     std::vector<unsigned char> positions_;
     std::map<std::string, int> materialOf_;

@@ -46,8 +46,9 @@ std::string writePly(const model::SceneData& scene) {
         if (detail::isDrawn(node)) boxes.push_back(&node);
 
     std::string out = header(scene, boxes);
+    const model::Palette palette(scene.nodes);
     for (const model::Node* node : boxes) {
-        model::Rgb colour = model::categoryColour(node->category);
+        model::Rgb colour = palette(node->category);
         for (const model::Vec3& corner : detail::boxCorners(node->box)) {
             for (double coordinate : {corner.x, corner.y, corner.z})
                 appendLittleEndian(out, std::bit_cast<std::uint32_t>(static_cast<float>(coordinate)));

@@ -80,7 +80,7 @@ std::optional<model::Box> sceneExtent(const model::SceneData& scene) {
 
 class SparkDsgWriter {
 public:
-    explicit SparkDsgWriter(const model::SceneData& scene) : scene_(scene) {
+    explicit SparkDsgWriter(const model::SceneData& scene) : scene_(scene), palette_(scene.nodes) {
         for (const model::Node& n : scene.nodes) hasRooms_ = hasRooms_ || n.kind == model::NodeKind::Room;
         // Hydra's building holds its rooms: a scene with rooms is a building, one without is a room.
         sceneLayer_ = hasRooms_ ? kBuildingLayer : kRoomLayer;
@@ -133,9 +133,9 @@ private:
     }
 
     // SemanticNodeAttributes' fields, which the object and room attributes extend.
-    static Json semanticAttributes(const char* type, const std::string& name, const std::string& category,
-                                   const Json& box, const model::Vec3& position, std::uint32_t label) {
-        model::Rgb colour = model::categoryColour(category);
+    Json semanticAttributes(const char* type, const std::string& name, const std::string& category, const Json& box,
+                            const model::Vec3& position, std::uint32_t label) const {
+        model::Rgb colour = palette_(category);
         return {{"type", type},
                 {"metadata", Json::object()},
                 {"position", vec3(position)},
@@ -217,6 +217,7 @@ private:
     }
 
     const model::SceneData& scene_;
+    const model::Palette palette_;
     bool hasRooms_ = false;
     std::int64_t sceneLayer_ = kRoomLayer;
     std::uint64_t sceneId_ = 0;

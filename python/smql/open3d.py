@@ -5,10 +5,10 @@
     boxes = smql.open3d.oriented_boxes(db.execute("FIND chair").boxes())
     lines = smql.open3d.scene_lines(db)          # every box of the scene, coloured by category
     open3d.visualization.draw_geometries([lines, *boxes])
-"""
-import colorsys
-import zlib
 
+Colours are the engine's: each category in the colour SHOW CATEGORIES gives it, as the view, the
+map and the exports draw it.
+"""
 import numpy
 import open3d
 
@@ -18,10 +18,10 @@ def _rotation(yaw):
     return numpy.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def category_colour(category):
-    """A stable RGB colour (0..1) per category name."""
-    hue = (zlib.crc32(category.encode()) % 360) / 360
-    return colorsys.hls_to_rgb(hue, 0.55, 0.55)
+def category_colours(connection):
+    """{category: (r, g, b) in 0..1} for the current scene, from SHOW CATEGORIES."""
+    return {category: tuple(int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
+            for category, _, colour in connection.execute("SHOW CATEGORIES").fetchall()}
 
 
 def oriented_boxes(boxes, colours=None):
@@ -41,12 +41,13 @@ def scene_lines(connection, scene=None, statement="FIND node"):
     current one), each coloured by its category."""
     if scene is not None:
         connection.executescript("USE SCENE '" + scene.replace("'", "''") + "'")
+    colours = category_colours(connection)
     cursor = connection.execute(statement)
     boxes, categories = cursor.boxes(), cursor.column("category")
     drawn = ~numpy.isnan(boxes).any(axis=1)  # nodes without a box (the scene's own node)
     lines = open3d.geometry.LineSet()
     for box, category in zip(oriented_boxes(boxes[drawn]), numpy.array(categories, dtype=object)[drawn]):
         edges = open3d.geometry.LineSet.create_from_oriented_bounding_box(box)
-        edges.paint_uniform_color(category_colour(category))
+        edges.paint_uniform_color(numpy.asarray(colours.get(category, (0.5, 0.5, 0.5)), dtype=float))
         lines += edges
     return lines

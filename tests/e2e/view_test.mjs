@@ -2,8 +2,10 @@
 // scene, a statement typed in its query box highlights exactly the engine's hits (in the page's
 // state and in the drawn frame), hovering a hit shows its path, GUIDE draws a numbered route, the
 // floor plan toggles, the standalone page of `smql export html` opens from a file without a query box,
+// every thing labelled or in the key, labels apart and legible, categories' colours apart,
 // and a browser without WebGL is told so where the scene would be.
 //   node view_test.mjs URL EXPECTED_IDS_JSON STANDALONE_HTML SHOT_DIR
+import { writeFile } from 'node:fs/promises';
 import { chromium } from '../../web/node_modules/playwright-core/index.mjs';
 
 const [url, expectedText, standalone, shots] = process.argv.slice(2);
@@ -28,6 +30,71 @@ try {
   check(state.ready && !state.error, `the page loaded scene ${state.scene} (${state.nodes} nodes)`);
   check(state.nodes > 50, 'the Replica room has more than 50 nodes to draw');
   await page.screenshot({ path: `${shots}/before.png` });
+
+  // Labels: every thing of the room named on screen or in the key under the legend; labels never
+  // overlap, stay inside the drawing and keep their size when the view zooms in.
+  const readLabels = () => page.evaluate(() => {
+    const v = window.smqlView;
+    const drawn = [...document.querySelectorAll('#labels .label')].map((e) => {
+      const r = e.getBoundingClientRect();
+      return { id: Number(e.dataset.id), text: e.textContent, left: r.left, top: r.top, width: r.width,
+        height: r.height, font: parseFloat(getComputedStyle(e).fontSize), clipped: e.scrollWidth > e.clientWidth };
+    });
+    const canvas = document.getElementById('canvas').getBoundingClientRect();
+    return { drawn, unlabelled: v.unlabelled, key: document.querySelector('#key div').textContent,
+      things: v.things, canvas: { left: canvas.left, top: canvas.top, right: canvas.right, bottom: canvas.bottom } };
+  });
+  const checkLabels = (labels, when) => {
+    const named = new Set([...labels.drawn.map((l) => l.id), ...labels.unlabelled]);
+    const missing = labels.things.filter((t) => !named.has(t.id));
+    check(missing.length === 0, `${when}: all ${labels.things.length} things are labelled (${labels.drawn.length}) or in the key (${labels.unlabelled.length})`);
+    check(labels.drawn.length >= 15, `${when}: at least 15 labels on screen (${labels.drawn.length})`);
+    const byId = new Map(labels.things.map((t) => [t.id, t.category]));
+    check(labels.drawn.every((l) => l.text === byId.get(l.id)), `${when}: each label names its thing's category`);
+    check(labels.unlabelled.every((id) => labels.key.includes(`${byId.get(id)}#${id}`)), `${when}: the key names each thing not labelled`);
+    let overlapping = 0;
+    for (let i = 0; i < labels.drawn.length; i += 1)
+      for (let j = i + 1; j < labels.drawn.length; j += 1) {
+        const [a, b] = [labels.drawn[i], labels.drawn[j]];
+        if (a.left < b.left + b.width && b.left < a.left + a.width && a.top < b.top + b.height && b.top < a.top + a.height) overlapping += 1;
+      }
+    check(overlapping === 0, `${when}: no two labels overlap (${overlapping})`);
+    const c = labels.canvas;
+    check(labels.drawn.every((l) => l.left >= c.left - 0.5 && l.top >= c.top - 0.5 && l.left + l.width <= c.right + 0.5 && l.top + l.height <= c.bottom + 0.5),
+      `${when}: every label lies inside the drawing`);
+    check(labels.drawn.every((l) => l.font >= 12 && !l.clipped), `${when}: labels are 12 px text, none cut off`);
+  };
+  const labels = await readLabels();
+  checkLabels(labels, 'the whole room');
+  await writeFile(`${shots}/labels.json`, JSON.stringify(labels.drawn));
+  // The categories' colours: no two of the room alike (CIE delta E 1976 of at least 20).
+  const colours = await page.evaluate(() => window.smqlView.colours);
+  const lab = (hex) => {
+    const [r, g, b] = [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16) / 255)
+      .map((v) => (v <= 0.04045 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4));
+    const xyz = [(0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047, 0.2126 * r + 0.7152 * g + 0.0722 * b,
+      (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883].map((t) => (t > 216 / 24389 ? Math.cbrt(t) : (24389 / 27 * t + 16) / 116));
+    return [116 * xyz[1] - 16, 500 * (xyz[0] - xyz[1]), 200 * (xyz[1] - xyz[2])];
+  };
+  const names = Object.keys(colours);
+  let closest = { d: Infinity };
+  for (let i = 0; i < names.length; i += 1)
+    for (let j = i + 1; j < names.length; j += 1) {
+      const [p, q] = [lab(colours[names[i]]), lab(colours[names[j]])];
+      const d = Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+      if (d < closest.d) closest = { d, pair: `${names[i]} and ${names[j]}` };
+    }
+  check(names.length >= 20 && closest.d >= 20,
+    `the ${names.length} categories' colours stay apart: the closest, ${closest.pair}, are ${closest.d.toFixed(1)} delta E apart`);
+  // Zoomed in: fewer things in the picture, the rest in the key, labels the same size.
+  const middle = await page.evaluate(() => { const r = document.getElementById('canvas').getBoundingClientRect(); return { x: r.left + r.width / 2, y: r.top + r.height / 2 }; });
+  await page.mouse.move(middle.x, middle.y);
+  for (let i = 0; i < 6; i += 1) await page.mouse.wheel(0, -400);
+  await page.waitForTimeout(400);
+  checkLabels(await readLabels(), 'zoomed in');
+  await page.screenshot({ path: `${shots}/zoomed.png` });
+  for (let i = 0; i < 6; i += 1) await page.mouse.wheel(0, 400);
+  await page.waitForTimeout(400);
 
   const statement = 'FIND cushion WHERE on(sofa)';
   await page.fill('#statement', statement);
@@ -59,6 +126,14 @@ try {
   state = await page.evaluate(() => ({ route: window.smqlView.route, highlighted: window.smqlView.highlighted }));
   check(state.route.length >= 3 && state.route[0].step === 0, `GUIDE draws a route of ${state.route.length} steps`);
   check(JSON.stringify(state.highlighted) === '[50]', 'and highlights its goal, sofa#50');
+  const panel = await page.evaluate(() => {
+    const answer = document.getElementById('answer');
+    const cells = [...answer.querySelectorAll('td')].map((td) => td.textContent);
+    return { cells, fits: answer.querySelector('table').scrollWidth <= answer.clientWidth };
+  });
+  const long = panel.cells.filter((c) => /^-?\d+\.\d{3,}$/.test(c));
+  check(long.length === 0, `GUIDE's figures are rounded (${long.slice(0, 3).join(', ') || 'none longer than 2 decimals'})`);
+  check(panel.fits, 'and its table fits the panel, no column cut off');
 
   // A mistake shows the engine's error, caret and hint.
   await page.fill('#statement', 'FIND cushon');

@@ -92,7 +92,8 @@ PY
 
 node "$here/view_test.mjs" "$url" "$expected" "$work/room.html" "$work/shots" || exit 1
 
-# The highlight colour (#ff2d55, lit) in the frames: the hits are drawn highlighted.
+# The highlight colour (#ff2d55, lit) in the frames: the hits are drawn highlighted, and the labels
+# can be read.
 /usr/bin/python3 - "$work/shots" <<'PY' || exit 1
 import sys
 import cv2
@@ -107,5 +108,25 @@ before, after = highlighted(f"{sys.argv[1]}/before.png"), highlighted(f"{sys.arg
 print(f"highlight-coloured pixels: {before} before the query, {after} after it")
 ok = after > 300 and after > 10 * (before + 1)
 print(("ok  " if ok else "FAIL") + " the screenshot shows the hits highlighted")
-sys.exit(0 if ok else 1)
+
+# Each label as drawn: its text against its ground, WCAG's contrast of the darkest and the lightest
+# pixels inside it (its colour bar left out) at least 4.5, what small text needs to be read.
+import json
+def luminance(bgr):
+    c = bgr[::-1] / 255.0
+    c = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+image = cv2.imread(f"{sys.argv[1]}/before.png").astype(float)
+labels = json.load(open(f"{sys.argv[1]}/labels.json"))
+ratios = []
+for label in labels:
+    x0, y0 = int(label["left"]) + 4, int(label["top"]) + 2
+    x1, y1 = int(label["left"] + label["width"]) - 1, int(label["top"] + label["height"]) - 2
+    pixels = sorted(luminance(p) for p in image[y0:y1, x0:x1].reshape(-1, 3))
+    dark, light = pixels[len(pixels) // 50], pixels[-len(pixels) // 50 - 1]
+    ratios.append((light + 0.05) / (dark + 0.05))
+legible = len(ratios) >= 15 and min(ratios) >= 4.5
+print(("ok  " if legible else "FAIL") + f" the {len(ratios)} labels on the screenshot read: text-to-ground contrast "
+      f"{min(ratios, default=0):.1f} at the least")
+sys.exit(0 if ok and legible else 1)
 PY

@@ -284,6 +284,12 @@ def test_open3d_interop(db):
     lines = smql.open3d.scene_lines(db, scene="replica-room0", statement="FIND object")
     objects = db.execute("COUNT object").fetchone()[0]
     assert len(lines.lines) == 12 * objects and len(lines.colors) == len(lines.lines)
+    # Each box in its category's colour as SHOW CATEGORIES gives it (the view's and the exports').
+    shown = {c: colour for c, _, colour in db.execute("SHOW CATEGORIES").fetchall()}
+    sofa = db.execute("FIND sofa").fetchone()
+    first = db.execute("FIND object").column("category").index(sofa[1])
+    drawn = "#" + "".join(f"{round(c * 255):02x}" for c in numpy.asarray(lines.colors)[12 * first])
+    assert drawn == shown["sofa"]
 
 
 def test_export_and_import_back(db, tmp_path):

@@ -6,7 +6,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 const state = (window.smqlView = {
   ready: false, scene: null, nodes: 0, hits: [], highlighted: [], route: [], error: null, statement: null,
-  mode: '3d', run: null,
+  mode: '3d', run: null, labels: [], unlabelled: [], colours: {}, things: [],
 });
 
 const embedded = document.getElementById('smql-scene');
@@ -31,6 +31,9 @@ try {
 }
 renderer.setPixelRatio(window.devicePixelRatio);
 container.appendChild(renderer.domElement);
+const labelLayer = document.createElement('div');
+labelLayer.id = 'labels';
+container.appendChild(labelLayer);
 const world = new THREE.Scene();
 world.background = new THREE.Color(0xf4f5f7);
 world.add(new THREE.HemisphereLight(0xffffff, 0x8a8f96, 2.2));
@@ -65,6 +68,7 @@ function build(data) {
   meshes.clear();
   bounds = new THREE.Box3();
   const legend = new Map();
+  state.colours = {};
   for (const node of data.nodes) {
     const { center, size, yaw } = node.box;
     const look = style(node);
@@ -83,9 +87,13 @@ function build(data) {
     world.add(mesh);
     meshes.set(node.id, mesh);
     bounds.expandByObject(mesh);
-    if (!(node.category in SHELL_OPACITY) || node.category === 'door' || node.category === 'window')
+    if (!(node.category in SHELL_OPACITY) || node.category === 'door' || node.category === 'window') {
       legend.set(node.category, look.colour.getStyle());
+      state.colours[node.category] = node.colour;
+    }
   }
+  state.things = [...meshes.values()].filter(labelled).map((m) => ({ id: m.userData.node.id, category: m.userData.node.category }));
+  labelsDirty = true;
   $('legend').replaceChildren(...[...legend.entries()].sort().map(([category, colour]) => {
     const item = document.createElement('span');
     item.textContent = category;
@@ -135,12 +143,79 @@ function setMode(mode) {
     const bottom = box.center[2] - box.size[2] / 2;
     mesh.visible = mode !== 'plan' || kind === 'anchor' || bottom < bounds.max.z - 0.4;
   }
+  labelsDirty = true;
   fit();
 }
 $('plan').addEventListener('click', () => setMode(state.mode === 'plan' ? '3d' : 'plan'));
 
+// ---- Labels: every thing named where it stands, decluttered as the map's are -----------------
+// A label is page text over the drawing, so it reads the same at any zoom. Labels are placed
+// highlighted hits first, then larger things before smaller ones, each above, below, right or left
+// of the top of its box, wherever it overlaps no label placed before; a thing whose label finds no
+// room, or that is out of the picture, is listed in the key under the legend.
+let labelsDirty = true;
+let lastView = '';
+const measure = document.createElement('canvas').getContext('2d');
+measure.font = '12px system-ui, sans-serif';
+const LABEL_HEIGHT = 18, LABEL_PADDING = 16, LABEL_GAP = 2;  // padding: the CSS's, its bar and a pixel
+
+function labelled(mesh) {
+  const { kind, category } = mesh.userData.node;
+  return mesh.visible && (kind === 'object' || category === 'door' || category === 'window');
+}
+
+function layoutLabels() {
+  const width = container.clientWidth, height = container.clientHeight;
+  const hit = new Set(state.highlighted);
+  const candidates = [...meshes.values()].filter(labelled).sort((a, b) => {
+    const ha = hit.has(a.userData.node.id), hb = hit.has(b.userData.node.id);
+    if (ha !== hb) return ha ? -1 : 1;
+    const [sa, sb] = [a.userData.node.box.size, b.userData.node.box.size];
+    return sb[0] * sb[1] * sb[2] - sa[0] * sa[1] * sa[2] || a.userData.node.id - b.userData.node.id;
+  });
+  const placed = [];
+  const unlabelled = [];
+  const overlaps = (r) => placed.some((p) => r.left < p.left + p.width + LABEL_GAP && p.left < r.left + r.width + LABEL_GAP &&
+    r.top < p.top + p.height + LABEL_GAP && p.top < r.top + r.height + LABEL_GAP);
+  for (const mesh of candidates) {
+    const { node } = mesh.userData;
+    const top = new THREE.Vector3(node.box.center[0], node.box.center[1], node.box.center[2] + node.box.size[2] / 2);
+    const p = top.project(camera);
+    const x = ((p.x + 1) / 2) * width, y = ((1 - p.y) / 2) * height;
+    const w = Math.ceil(measure.measureText(node.category).width) + LABEL_PADDING, h = LABEL_HEIGHT;
+    const spots = [[x - w / 2, y - h - 4], [x - w / 2, y + 4], [x + 6, y - h / 2], [x - w - 6, y - h / 2]];
+    const spot = p.z < 1 && p.z > -1 && spots.map(([left, top]) => ({ left, top, width: w, height: h }))
+      .find((r) => r.left >= 0 && r.top >= 0 && r.left + r.width <= width && r.top + r.height <= height && !overlaps(r));
+    if (spot) placed.push({ id: node.id, text: node.category, colour: mesh.userData.colour.getStyle(), ...spot });
+    else unlabelled.push(node);
+  }
+  labelLayer.replaceChildren(...placed.map((l) => {
+    const label = document.createElement('span');
+    label.className = 'label' + (hit.has(l.id) ? ' hit' : '');
+    label.dataset.id = l.id;
+    label.textContent = l.text;
+    label.style.cssText = `left:${l.left}px;top:${l.top}px;width:${l.width}px;--swatch:${l.colour}`;
+    return label;
+  }));
+  const key = $('key');
+  key.hidden = unlabelled.length === 0;
+  key.querySelector('summary').textContent =
+    `${unlabelled.length} thing${unlabelled.length === 1 ? '' : 's'} not labelled in this view`;
+  key.querySelector('div').textContent = unlabelled.map((n) => `${n.category}#${n.id}`)
+    .sort((a, b) => a.localeCompare(b, 'en', { numeric: true })).join(', ');
+  state.labels = placed;
+  state.unlabelled = unlabelled.map((n) => n.id);
+}
+
 (function loop() {
   renderer.render(world, camera);
+  // Labels follow the camera: laid out again when the view moved or the scene changed.
+  const view = camera.matrixWorld.elements.concat(camera.projectionMatrix.elements).join(',');
+  if (labelsDirty || view !== lastView) {
+    labelsDirty = false;
+    lastView = view;
+    layoutLabels();
+  }
   requestAnimationFrame(loop);
 })();
 
@@ -198,6 +273,7 @@ function highlight(ids) {
       extras.add(new THREE.BoxHelper(mesh, HIGHLIGHT));
     }
   }
+  labelsDirty = true;
 }
 
 function stepLabel(text) {
@@ -232,6 +308,15 @@ function drawRoute(route) {
   });
 }
 
+// A value as the panel prints it: metres and degrees to the centimetre or the hundredth, a box by
+// its centre.
+function shown(value) {
+  if (value === null) return '';
+  if (typeof value === 'number') return Number.isInteger(value) ? String(value) : value.toFixed(2);
+  if (typeof value === 'object') return `(${value.center.map((x) => x.toFixed(2)).join(', ')})`;
+  return String(value);
+}
+
 function showAnswer(answer) {
   const panel = $('answer');
   panel.replaceChildren();
@@ -256,7 +341,7 @@ function showAnswer(answer) {
       const tr = table.insertRow();
       for (const c of answer.columns) {
         const v = row[c];
-        tr.insertCell().textContent = v === null ? '' : typeof v === 'object' ? `(${v.center.map((x) => x.toFixed(2)).join(', ')})` : String(v);
+        tr.insertCell().textContent = shown(v);
       }
       if (typeof row.id === 'number') tr.addEventListener('click', () => highlight([row.id]));
     }

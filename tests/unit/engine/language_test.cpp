@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -125,7 +126,11 @@ TEST_CASE("a category that is not in the scene counts 0; a word that is no categ
 TEST_CASE("SHOW CATEGORIES counts each category; SHOW ATTRIBUTES lists what a query can use") {
     Room room;
     auto categories = room.q("SHOW CATEGORIES");
-    REQUIRE(categories.columns.size() == 2);
+    REQUIRE(categories.columns.size() == 3);
+    // The colour each is drawn in: one per category, none two alike.
+    std::set<std::string> colours;
+    for (const auto& row : categories.rows) colours.insert(std::get<std::string>(row[2]));
+    CHECK(colours.size() == categories.rows.size());
     std::int64_t objects = 0;
     for (const auto& row : categories.rows) {
         const auto& category = std::get<std::string>(row[0]);

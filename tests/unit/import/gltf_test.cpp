@@ -99,7 +99,7 @@ TEST_CASE("glb: the Replica room as smql's tree of nodes with box meshes", "[imp
     for (const tinygltf::Material& m : model.materials) {
         INFO(m.name);
         CHECK(categories.count(m.name) == 1);
-        double red = model::categoryColour(m.name).r / 255.0;
+        double red = model::Palette(scene.nodes)(m.name).r / 255.0;
         double linear = red <= 0.04045 ? red / 12.92 : std::pow((red + 0.055) / 1.055, 2.4);
         CHECK(m.pbrMetallicRoughness.baseColorFactor.at(0) == Approx(linear));
     }

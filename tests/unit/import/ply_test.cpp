@@ -110,7 +110,7 @@ TEST_CASE("ply: the Replica room's boxes as one coloured triangle mesh", "[impor
             CHECK(v.position.x == Approx(corners[c].x).margin(1e-5));
             CHECK(v.position.y == Approx(corners[c].y).margin(1e-5));
             CHECK(v.position.z == Approx(corners[c].z).margin(1e-5));
-            CHECK(v.colour == model::categoryColour(n.category));
+            CHECK(v.colour == model::Palette(scene.nodes)(n.category));
         }
         for (std::size_t f = 12 * k; f < 12 * (k + 1); ++f)
             for (std::uint32_t index : mesh.faces[f]) CHECK((index >= 8 * k && index < 8 * (k + 1)));
