@@ -328,6 +328,12 @@ model::SceneData Engine::readScene(const std::string& name) {
         for (const auto& blob : txn.blobsOf(n.id))
             if (auto stored = txn.blob(n.id, blob.name)) out.blobs.push_back(std::move(*stored));
     }
+    // The scene's own blobs (its points), under kNoNode as SceneData has them.
+    for (const auto& blob : txn.blobsOf(info.id))
+        if (auto stored = txn.blob(info.id, blob.name)) {
+            stored->node = model::kNoNode;
+            out.blobs.push_back(std::move(*stored));
+        }
     out.relations = snap->storedRelations();
     return out;
 }

@@ -10,9 +10,9 @@ namespace smql::shell {
 // scene of a file that holds several, all read and checked before the first is stored.
 int importCommand(const std::string& format, const std::string& file, const std::string& dbDir,
                   const std::string& sceneName, const std::string& update, bool all);
-// `smql export json --db DIR [--scene NAME] [-o FILE]`
+// `smql export FORMAT --db DIR [--scene NAME] [-o FILE] [--points]`
 int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
-                  const std::string& outFile);
+                  const std::string& outFile, bool points = false);
 // `smql export evidence '#id' DIR --db DB`: writes a node's evidence crops into DIR.
 int exportEvidenceCommand(const std::string& dbDir, const std::string& node, const std::string& outDir);
 // `smql test FILE...`: runs declarative query suites (*.smqlt); see docs/testing.md.

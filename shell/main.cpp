@@ -262,6 +262,9 @@ int runSubcommand(int argc, char** argv) {
     exportCmd->add_option("--db", exportDb, "database directory")->required()->check(CLI::ExistingDirectory);
     exportCmd->add_option("--scene", exportScene, "scene name (default: the most recent)");
     exportCmd->add_option("-o,--output", exportOut, "output file (default: standard output)");
+    bool exportPoints = false;
+    exportCmd->add_flag("--points", exportPoints,
+                        "with ply: the capture's coloured points instead of the boxes (docs/formats.md)");
 
     auto* test = app.add_subcommand("test", "run declarative query suites (*.smqlt)");
     std::vector<std::string> testFiles;
@@ -302,7 +305,8 @@ int runSubcommand(int argc, char** argv) {
                               "smql export evidence '#42' evidence/ --db DB");
         return smql::shell::exportEvidenceCommand(exportDb, exportEvidence[0], exportEvidence[1]);
     }
-    if (exportCmd->parsed()) return smql::shell::exportCommand(exportFormat, exportDb, exportScene, exportOut);
+    if (exportCmd->parsed())
+        return smql::shell::exportCommand(exportFormat, exportDb, exportScene, exportOut, exportPoints);
     return smql::shell::testCommand(testFiles);
 }
 

@@ -91,7 +91,7 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
     std::set<std::pair<NodeId, std::string_view>> blobNames;
     std::optional<std::pair<NodeId, std::size_t>> embeddings;  // the first node with one, and its length
     for (const model::Blob& blob : data.blobs) {
-        if (!position.contains(blob.node))
+        if (blob.node != model::kNoNode && !position.contains(blob.node))  // kNoNode: the scene's own
             importError(fmt::format("scene '{}': blob '{}' belongs to node {}, which is not a node of the scene", name,
                                     blob.name, blob.node));
         if (blob.name.empty() || blob.name.size() + sizeof(NodeId) > env.maxKeySize() || blob.mediaType.size() > 255)

@@ -1,14 +1,38 @@
 #include "view/scene_json.hpp"
 
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "engine/format.hpp"
+#include "model/base64.hpp"
+#include "model/points.hpp"
 #include "model/presentation.hpp"
 
 namespace smql::view {
+
+namespace {
+
+// The capture's points as the page draws them: positions as little-endian float32 x, y, z and
+// colours as bytes r, g, b, each base64, so that the page makes typed arrays of them at once.
+nlohmann::ordered_json pointsJson(const model::ScenePoints& points) {
+    std::string positions(points.positions.size() * 3 * sizeof(float), '\0'), colours;
+    colours.reserve(points.colours.size() * 3);
+    for (std::size_t i = 0; i < points.positions.size(); ++i) {
+        const model::Vec3& p = points.positions[i];
+        const float xyz[3] = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+        std::memcpy(positions.data() + i * sizeof xyz, xyz, sizeof xyz);
+        for (std::uint8_t channel : {points.colours[i].r, points.colours[i].g, points.colours[i].b})
+            colours += static_cast<char>(channel);
+    }
+    return {{"count", points.positions.size()},
+            {"positions", model::toBase64(positions)},
+            {"colours", model::toBase64(colours)}};
+}
+
+}  // namespace
 
 nlohmann::ordered_json sceneJson(const model::SceneData& scene) {
     const std::vector<std::string> paths = model::nodePaths(scene);
@@ -33,10 +57,14 @@ nlohmann::ordered_json sceneJson(const model::SceneData& scene) {
                          {"attributes", attributes}});
     }
     const auto& view = scene.info.viewpoint;
-    return {{"name", scene.info.name},
-            {"source", scene.info.source},
-            {"viewpoint", {{"position", {view.position.x, view.position.y, view.position.z}}, {"yaw", view.facingYaw}}},
-            {"nodes", nodes}};
+    nlohmann::ordered_json out = {
+        {"name", scene.info.name},
+        {"source", scene.info.source},
+        {"viewpoint", {{"position", {view.position.x, view.position.y, view.position.z}}, {"yaw", view.facingYaw}}},
+        {"nodes", nodes}};
+    if (const model::Blob* blob = model::pointsBlob(scene))
+        out["points"] = pointsJson(model::readPointsPly(blob->bytes));
+    return out;
 }
 
 nlohmann::ordered_json answerJson(const ResultSet& result) {

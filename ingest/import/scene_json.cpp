@@ -360,7 +360,9 @@ model::Blob readBlob(const Field& field, const std::vector<model::Node>& nodes) 
     model::Blob blob;
     Field node = field.at("node");
     blob.node = node.unsignedInteger();
-    if (std::none_of(nodes.begin(), nodes.end(), [&](const model::Node& n) { return n.id == blob.node; }))
+    // 0 is the scene itself (its points).
+    if (blob.node != model::kNoNode &&
+        std::none_of(nodes.begin(), nodes.end(), [&](const model::Node& n) { return n.id == blob.node; }))
         node.fail(fmt::format("{} is not the id of a node", blob.node));
     Field name = field.at("name");
     blob.name = name.string();

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "model/error.hpp"
+#include "model/points.hpp"
 
 #include "ingest/pipeline/align_stage.hpp"
 #include "ingest/pipeline/anchors_stage.hpp"
@@ -36,6 +37,19 @@ model::SceneInfo sceneInfo(const Capture& capture, const IngestOptions& options,
     info.viewpoint = {first.translation, std::atan2(R[5], R[2])};  // the camera's +z axis in the floor plane
     info.viewpointNote = "the first camera of the capture, facing where it looked";
     return info;
+}
+
+// The structure cloud as the memory keeps it, on the scene's node: the points viewers draw under
+// the boxes (`smql export ply --points`, the view).
+model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& options) {
+    model::ScenePoints points;
+    points.positions = aligned.cloud.points;
+    points.colours.reserve(aligned.cloud.size());
+    for (const auto& [r, g, b] : aligned.cloud.colors) points.colours.push_back({r, g, b});
+    return {
+        model::kNoNode, std::string(model::kPointsBlobName), std::string(model::kPointsMediaType),
+        model::pointsPly(points, fmt::format("smql points of scene {}: one a {:g} m voxel, metres, z up, floor at 0",
+                                             options.sceneName, options.structureVoxel))};
 }
 
 // The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
@@ -92,6 +106,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
 
     model::SceneData& scene = result.scene;
     scene.info = sceneInfo(capture, options, frames, aligned);
+    scene.blobs.push_back(pointsBlob(aligned, options));
     auto walls = runner.run(AnchorsStage{aligned, scene});
     auto tracked = runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});

@@ -331,6 +331,22 @@ check "a second ingest of the same place is a new scene" bash -c "'$smql' ingest
 check "an ingest into a taken scene name is refused" bash -c "! '$smql' ingest '$work/capture' --db '$work/memory' --scene again --quiet"
 check "rgbd-dining ingests without labels" bash -c "'$smql' ingest '$data/rgbd-dining' --db '$work/dining' --quiet && '$smql' '$work/dining' -c 'COUNT object' | sed -n 3p | grep -qv '^0$'"
 check "rgbd-dining's archway is found as a door, an opening in the left wall" bash -c "'$smql' '$work/dining' -csv -c 'FIND door' | tail -n +2 | grep -q '^[0-9]*,door,'"
+# The capture's points (docs/formats.md, "PLY"): a coloured cloud Open3D reads, its floor at z = 0, the
+# boxes standing in it; a layout imported without points says so.
+check "export ply --points writes rgbd-dining's coloured points, which Open3D reads" bash -c "
+  '$smql' export ply --points --db '$work/dining' -o '$work/points.ply' &&
+  /usr/bin/python3 - '$work/points.ply' <<'PY'
+import sys
+import numpy, open3d
+cloud = open3d.io.read_point_cloud(sys.argv[1])
+points, colours = numpy.asarray(cloud.points), numpy.asarray(cloud.colors)
+floor = numpy.percentile(points[:, 2], 2)
+print(len(points), cloud.has_colors(), floor, colours.std(axis=0))
+assert len(points) > 5000 and cloud.has_colors() and colours.std(axis=0).min() > 0.05
+assert -0.15 < floor < 0.05, floor
+PY"
+check "export ply --points of an imported layout says it has none" bash -c "
+  ! '$smql' export ply --points --db '$db' --scene room0 -o '$work/none.ply' 2>'$work/e' && grep -q 'holds no points' '$work/e' && [ ! -e '$work/none.ply' ]"
 if command -v colmap >/dev/null; then
   check "--colmap-dir keeps COLMAP's run, and the same frames read it back without COLMAP" bash -c "
     '$smql' ingest '$data/rgbd-dining' --db '$work/sfm1' --geometry colmap --colmap-dir '$work/sfm' --quiet &&

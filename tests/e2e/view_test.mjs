@@ -4,11 +4,12 @@
 // floor plan toggles, the standalone page of `smql export html` opens from a file without a query box,
 // every thing labelled or in the key, labels apart and legible, categories' colours apart,
 // and a browser without WebGL is told so where the scene would be.
-//   node view_test.mjs URL EXPECTED_IDS_JSON STANDALONE_HTML SHOT_DIR
+// A captured scene's page draws the capture's points, and its Points button hides them.
+//   node view_test.mjs URL EXPECTED_IDS_JSON STANDALONE_HTML SHOT_DIR CAPTURED_HTML
 import { writeFile } from 'node:fs/promises';
 import { chromium } from '../../web/node_modules/playwright-core/index.mjs';
 
-const [url, expectedText, standalone, shots] = process.argv.slice(2);
+const [url, expectedText, standalone, shots, captured] = process.argv.slice(2);
 const expected = JSON.parse(expectedText).sort((a, b) => a - b);
 let failures = 0;
 const check = (ok, what) => {
@@ -157,6 +158,19 @@ try {
   await file.screenshot({ path: `${shots}/standalone.png` });
   check(await file.evaluate(() => getComputedStyle(document.getElementById('query')).display === 'none'),
     'the standalone page shows no query box (it has no server to ask)');
+
+  // A captured scene: its points drawn under the boxes, the Points button shows and hides them.
+  const room = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+  await room.goto(`file://${captured}`);
+  await room.waitForFunction(() => window.smqlView && (window.smqlView.ready || window.smqlView.error), null, { timeout: 60000 });
+  const points = await room.evaluate(() => window.smqlView.points);
+  check(points > 1000 && await room.locator('#points').isVisible(), `a captured scene's page has its ${points} points and a Points button`);
+  check(!(await file.locator('#points').isVisible()), 'an imported layout, which has no points, has no Points button');
+  await room.waitForTimeout(300);
+  await room.screenshot({ path: `${shots}/points-on.png` });
+  await room.click('#points');
+  await room.waitForTimeout(300);
+  await room.screenshot({ path: `${shots}/points-off.png` });
 
   // A browser without WebGL: the page says so, where the scene would be.
   const blind = await browser.newPage({ viewport: { width: 1000, height: 700 } });

@@ -15,6 +15,8 @@ done
 rm -rf "$work" && mkdir -p "$work/shots"
 "$smql" import replica "$data/replica-room0/info_semantic.json" --db "$work/db" >/dev/null || exit 1
 "$smql" export html --db "$work/db" -o "$work/room.html" 2>/dev/null || exit 1
+"$smql" ingest "$data/rgbd-dining" --db "$work/dining" --quiet || exit 1
+"$smql" export html --db "$work/dining" -o "$work/dining.html" 2>/dev/null || exit 1
 expected=$("$smql" "$work/db" -json "FIND cushion WHERE on(sofa)" | /usr/bin/python3 -c \
   'import json, sys; print(json.dumps([r["id"] for r in json.load(sys.stdin)[-1]["rows"]]))') || exit 1
 
@@ -90,7 +92,7 @@ check(f"forty %s before a letter never seen answer at once ({time.monotonic() - 
 sys.exit(1 if failures else 0)
 PY
 
-node "$here/view_test.mjs" "$url" "$expected" "$work/room.html" "$work/shots" || exit 1
+node "$here/view_test.mjs" "$url" "$expected" "$work/room.html" "$work/shots" "$work/dining.html" || exit 1
 
 # The highlight colour (#ff2d55, lit) in the frames: the hits are drawn highlighted, and the labels
 # can be read.
@@ -128,5 +130,11 @@ for label in labels:
 legible = len(ratios) >= 15 and min(ratios) >= 4.5
 print(("ok  " if legible else "FAIL") + f" the {len(ratios)} labels on the screenshot read: text-to-ground contrast "
       f"{min(ratios, default=0):.1f} at the least")
-sys.exit(0 if ok and legible else 1)
+
+# The captured scene with its points and without: the points cover a good part of the picture.
+on, off = (cv2.imread(f"{sys.argv[1]}/points-{state}.png").astype(int) for state in ("on", "off"))
+changed = int((np.abs(on - off).max(axis=2) > 30).sum())
+drawn = changed > 5000
+print(("ok  " if drawn else "FAIL") + f" the points are drawn: {changed} pixels change when they are hidden")
+sys.exit(0 if ok and legible and drawn else 1)
 PY

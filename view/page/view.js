@@ -6,7 +6,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 const state = (window.smqlView = {
   ready: false, scene: null, nodes: 0, hits: [], highlighted: [], route: [], error: null, statement: null,
-  mode: '3d', run: null, labels: [], unlabelled: [], colours: {}, things: [],
+  mode: '3d', run: null, labels: [], unlabelled: [], colours: {}, things: [], points: 0,
 });
 
 const embedded = document.getElementById('smql-scene');
@@ -63,9 +63,37 @@ function style(node) {
   return { colour: new THREE.Color(node.colour), opacity };
 }
 
+// The capture's points (smql export ply --points): bytes of sRGB made linear, as three.js lights in.
+let cloud = null;
+const linear = Array.from({ length: 256 }, (_, v) => new THREE.Color().setRGB(v / 255, 0, 0, THREE.SRGBColorSpace).r);
+const bytesOf = (base64) => Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+
+function buildPoints(points) {
+  if (cloud) {
+    world.remove(cloud);
+    cloud.geometry.dispose();
+    cloud = null;
+  }
+  state.points = points ? points.count : 0;
+  $('points').hidden = !points;
+  if (!points) return;
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(bytesOf(points.positions).buffer), 3));
+  geometry.setAttribute('color', new THREE.BufferAttribute(Float32Array.from(bytesOf(points.colours), (v) => linear[v]), 3));
+  cloud = new THREE.Points(geometry, new THREE.PointsMaterial({ size: 0.04, vertexColors: true }));
+  cloud.visible = $('points').getAttribute('aria-pressed') === 'true';
+  world.add(cloud);
+}
+$('points').addEventListener('click', () => {
+  const shown = $('points').getAttribute('aria-pressed') !== 'true';
+  $('points').setAttribute('aria-pressed', String(shown));
+  if (cloud) cloud.visible = shown;
+});
+
 function build(data) {
   for (const mesh of meshes.values()) world.remove(mesh);
   meshes.clear();
+  buildPoints(data.points);
   bounds = new THREE.Box3();
   const legend = new Map();
   state.colours = {};

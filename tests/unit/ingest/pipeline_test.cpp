@@ -1,9 +1,11 @@
 // The ingest pipeline end to end: a synthetic capture against its ground
 // truth (the issue's quality thresholds), and the real rgbd-dining frames.
 #include <catch2/catch.hpp>
+#include <fstream>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <set>
 
@@ -11,6 +13,7 @@
 
 #include <Eigen/Eigenvalues>
 #include "model/geometry.hpp"
+#include "model/points.hpp"
 
 #include "engine/engine.hpp"
 #include "ingest/capture/capture.hpp"
@@ -162,6 +165,29 @@ TEST_CASE("rgbd-dining (real, 5 frames, no labels): floor, walls and table-top o
             CHECK(value("last_seen_at") == stored.info.captureTime);
         }
     }
+
+    // The capture's points are kept with the scene, in its frame: the floor's points at z = 0 and
+    // coloured as the frames saw them; a copy through the JSON format keeps them byte for byte.
+    const model::SceneData stored = engine->readScene("dining");
+    const model::Blob* blob = model::pointsBlob(stored);
+    REQUIRE(blob != nullptr);
+    const model::ScenePoints points = model::readPointsPly(blob->bytes);
+    std::size_t onFloor = 0, grey = 0;
+    for (std::size_t i = 0; i < points.positions.size(); ++i) {
+        if (std::abs(points.positions[i].z) < 0.04) ++onFloor;
+        const auto& c = points.colours[i];
+        if (c.r == c.g && c.g == c.b) ++grey;
+    }
+    CHECK(points.positions.size() > 5000);
+    CHECK(double(onFloor) / points.positions.size() > 0.05);
+    CHECK(grey < points.positions.size() / 10);
+    CHECK(engine->readScene("replica").blobs.empty());  // a layout has no points
+    const auto file = (database.path / "dining.json").string();
+    std::ofstream(file) << import::writeSceneJson(engine->exportScene("dining"));
+    engine->importScene(import::readSceneJson(file, "copy"));
+    const model::Blob* copied = model::pointsBlob(engine->readScene("copy"));
+    REQUIRE(copied != nullptr);
+    CHECK(copied->bytes == blob->bytes);
 }
 
 TEST_CASE("object sources: --objects takes the table's names; a misspelt one is an error with the nearest") {
