@@ -21,6 +21,7 @@
 #include "model/error.hpp"
 #include "model/instant.hpp"
 #include "model/names.hpp"
+#include "model/points.hpp"
 #include "relations/hierarchy.hpp"
 #include "storage/database.hpp"
 
@@ -336,6 +337,16 @@ model::SceneData Engine::readScene(const std::string& name) {
         }
     out.relations = snap->storedRelations();
     return out;
+}
+
+std::string Engine::scenePoints(const std::string& name) {
+    model::SceneData scene = readScene(name);
+    const model::Blob* points = model::pointsBlob(scene);
+    if (!points)
+        throw Error(ErrorKind::Input, fmt::format("scene '{}' holds no points", scene.info.name), std::nullopt,
+                    "points come from smql ingest of a capture; a scene imported from a layout has boxes only");
+    model::readPointsPly(points->bytes);  // a damaged blob is refused, not handed on
+    return points->bytes;
 }
 
 std::vector<model::Blob> Engine::evidence(model::NodeId node) {

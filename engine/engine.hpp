@@ -98,6 +98,10 @@ public:
     // Rewrites stored nodes' attributes, text, confidence or box in one transaction
     // (storage::WriteTransaction::updateNodes says what may change).
     void updateNodes(const std::vector<model::Node>& nodes);
+    // The capture's points of a stored scene (the most recent when `name` is empty) as the PLY file
+    // `smql export ply --points` writes (model/points.hpp). Throws Error(Input) when the scene has
+    // none (imported layouts) or they are damaged.
+    std::string scenePoints(const std::string& name);
     // The evidence a node carries (the crops an ingest kept), by database id, in name order.
     // Throws Error(Binding) when the database has no such node.
     std::vector<model::Blob> evidence(model::NodeId node);

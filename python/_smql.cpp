@@ -115,6 +115,15 @@ public:
         check(db_, status);
     }
 
+    void exportPoints(std::optional<std::string> scene, const std::string& path) {
+        smql_status status;
+        {
+            py::gil_scoped_release release;
+            status = smql_export_points(handle(), scene ? scene->c_str() : nullptr, path.c_str());
+        }
+        check(db_, status);
+    }
+
     void interrupt() {
         if (db_) smql_interrupt(db_);
     }
@@ -367,6 +376,7 @@ PYBIND11_MODULE(_smql, m) {
         .def("interrupt", &Database::interrupt)
         .def("import_file", &Database::importFile)
         .def("export", &Database::exportScene)
+        .def("export_points", &Database::exportPoints)
         .def("ingest", &Database::ingest)
         .def("evaluate", &Database::evaluate)
         .def("check_ingest", &Database::checkIngest);

@@ -15,7 +15,6 @@
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
 #include "model/error.hpp"
-#include "model/points.hpp"
 #include "model/utf8.hpp"
 #include "shell/output_file.hpp"
 #include "storage/output_guard.hpp"
@@ -80,22 +79,6 @@ int importCommand(const std::string& format, const std::string& file, const std:
     return 0;
 }
 
-namespace {
-
-// The capture's points as the database keeps them: the PLY file itself (model/points.hpp).
-std::string scenePoints(Engine& engine, const std::string& sceneName) {
-    model::SceneData scene = engine.readScene(sceneName);
-    const model::Blob* points = model::pointsBlob(scene);
-    if (!points)
-        throw Error(ErrorKind::Input, fmt::format("scene '{}' holds no points", scene.info.name), std::nullopt,
-                    "points come from smql ingest of a capture; a scene imported from a layout has boxes only "
-                    "(smql export ply without --points)");
-    model::readPointsPly(points->bytes);  // a damaged blob is refused, not written out
-    return std::move(scene.blobs[static_cast<std::size_t>(points - scene.blobs.data())].bytes);
-}
-
-}  // namespace
-
 int exportCommand(const std::string& format, const std::string& dbDir, const std::string& sceneName,
                   const std::string& outFile, bool points) {
     if (points && format != "ply")
@@ -108,7 +91,7 @@ int exportCommand(const std::string& format, const std::string& dbDir, const std
                     std::nullopt,
                     fmt::format("give -o FILE, or redirect: smql export {} --db DB > scene.{}", format, format));
     auto engine = Engine::open(dbDir, /*readOnly=*/true);
-    std::string bytes = points ? scenePoints(*engine, sceneName)
+    std::string bytes = points ? engine->scenePoints(sceneName)
                         : format == "html"
                             ? view::standalonePage(*engine, sceneName)
                             : import::write(format, import::writesFileIds(format) ? engine->exportScene(sceneName)

@@ -170,6 +170,12 @@ SMQL_API smql_status smql_update_file(smql_db* db, const char* format, const cha
  * as one file, docs/view.md). An unknown format is SMQL_ERROR_USAGE naming the known ones. */
 SMQL_API smql_status smql_export(smql_db* db, const char* format, const char* scene_name, const char* path);
 
+/* Writes the capture's points of the stored scene `scene_name` (NULL: the current scene) to `path`:
+ * the coloured point cloud ingest fused from every frame, as a binary PLY (what `smql export ply
+ * --points` writes, docs/formats.md). A scene without points (imported from a layout) is
+ * SMQL_ERROR_INPUT. */
+SMQL_API smql_status smql_export_points(smql_db* db, const char* scene_name, const char* path);
+
 /* ---- Ingest ---------------------------------------------------------- */
 
 /* What an ingest reports as it goes (smql_ingest's progress callback). */

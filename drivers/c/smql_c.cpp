@@ -564,24 +564,40 @@ smql_status smql_evaluate(smql_db* db, const char* suite, const char* scene, smq
     });
 }
 
+namespace {
+
+// An export's bytes into `path`, never over the open database's own files.
+void writeExport(smql_db* db, const std::string& bytes, const char* path) {
+    smql::storage::refuseDatabaseFile(path, db->directory);
+    std::ofstream out(path, std::ios::binary);
+    out << bytes;
+    out.close();
+    if (!out)
+        throw smql::Error(smql::ErrorKind::Storage, std::string("cannot write ") + path, std::nullopt,
+                          "check that the folder exists and is writable");
+}
+
+}  // namespace
+
 smql_status smql_export(smql_db* db, const char* format, const char* scene_name, const char* path) {
     if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
     if (!format || !path) return misuse(db, "smql_export: format and path must not be NULL");
     return guarded(db, {}, [&] {
         const std::string scene = scene_name ? scene_name : "";
-        const std::string bytes =
+        writeExport(
+            db,
             std::string_view(format) == "html"
                 ? smql::view::standalonePage(*db->engine, scene)
                 : smql::import::write(format, smql::import::writesFileIds(format) ? db->engine->exportScene(scene)
-                                                                                  : db->engine->readScene(scene));
-        smql::storage::refuseDatabaseFile(path, db->directory);
-        std::ofstream out(path, std::ios::binary);
-        out << bytes;
-        out.close();
-        if (!out)
-            throw smql::Error(smql::ErrorKind::Storage, std::string("cannot write ") + path, std::nullopt,
-                              "check that the folder exists and is writable");
+                                                                                  : db->engine->readScene(scene)),
+            path);
     });
+}
+
+smql_status smql_export_points(smql_db* db, const char* scene_name, const char* path) {
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    if (!path) return misuse(db, "smql_export_points: path must not be NULL");
+    return guarded(db, {}, [&] { writeExport(db, db->engine->scenePoints(scene_name ? scene_name : ""), path); });
 }
 
 void smql_result_free(smql_result* res) { delete res; }

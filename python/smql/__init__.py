@@ -226,12 +226,18 @@ class Connection:
             self._check_open()
             self._db.import_file(format, str(path), scene, update)
 
-    def export(self, path, format="json", scene=None):
+    def export(self, path, format="json", scene=None, points=False):
         """Writes a stored scene (default: the current one) to `path` in a format of `smql export`
-        (json, glb, ply, geojson, spark-dsg ..., or html: the view's page as one file)."""
+        (json, glb, ply, geojson, spark-dsg ..., or html: the view's page as one file). With
+        points=True (format ply), the capture's coloured points instead of the boxes."""
         with self._lock:
             self._check_open()
-            self._db.export(format, scene, str(path))
+            if points and format != "ply":
+                raise ProgrammingError(f"points are exported as ply, not as {format}")
+            if points:
+                self._db.export_points(scene, str(path))
+            else:
+                self._db.export(format, scene, str(path))
 
     def evaluate(self, suite=None, scene=None):
         """The research system's metrics (docs/eval.md) as a list of dicts: task, metric, value,

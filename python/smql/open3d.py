@@ -4,7 +4,8 @@
     db = smql.connect("room.smql")
     boxes = smql.open3d.oriented_boxes(db.execute("FIND chair").boxes())
     lines = smql.open3d.scene_lines(db)          # every box of the scene, coloured by category
-    open3d.visualization.draw_geometries([lines, *boxes])
+    points = smql.open3d.scene_points(db)        # the capture's coloured points (ingested scenes)
+    open3d.visualization.draw_geometries([points, lines, *boxes])
 
 Colours are the engine's: each category in the colour SHOW CATEGORIES gives it, as the view, the
 map and the exports draw it.
@@ -34,6 +35,17 @@ def oriented_boxes(boxes, colours=None):
             box.color = numpy.asarray(colours[i], dtype=float)
         out.append(box)
     return out
+
+
+def scene_points(connection, scene=None):
+    """The capture's coloured points of `scene` (default: the current one) as an
+    open3d.geometry.PointCloud, in the frame of the boxes: what `smql export ply --points` writes."""
+    import os
+    import tempfile
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "points.ply")
+        connection.export(path, format="ply", scene=scene, points=True)
+        return open3d.io.read_point_cloud(path)
 
 
 def scene_lines(connection, scene=None, statement="FIND node"):

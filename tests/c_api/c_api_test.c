@@ -194,6 +194,17 @@ static void test_ingest(const char* base) {
     CHECK(count_of(db, "COUNT object WHERE added SINCE '2000-01-01'") == imported);
     CHECK(count_of(db, "COUNT object WHERE seen SINCE '2000-01-01'") == imported);
 
+    /* The capture's points (docs/formats.md, "PLY"); the imported layout, now the current scene, has none. */
+    char points[4096];
+    snprintf(points, sizeof points, "%s/points.ply", base);
+    CHECK(smql_export_points(db, "dining", points) == SMQL_OK);
+    FILE* ply = fopen(points, "rb");
+    char head[40] = {0};
+    CHECK(ply && fread(head, 1, 36, ply) == 36 && strncmp(head, "ply\nformat binary_little_endian 1.0\n", 36) == 0);
+    if (ply) fclose(ply);
+    CHECK(smql_export_points(db, NULL, points) == SMQL_ERROR_INPUT && contains(smql_errmsg(db), "holds no points"));
+    CHECK(smql_export_points(db, NULL, NULL) == SMQL_ERROR_MISUSE);
+
     /* A stored name is refused before the work: no progress at all. */
     struct progress_log again = {0, 0, 0, 0, 0, 0, 0};
     CHECK(smql_ingest(db, capture, "{\"scene\": \"dining\"}", on_progress, &again) == SMQL_ERROR_INPUT);

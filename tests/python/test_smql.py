@@ -206,6 +206,19 @@ def test_ingest_with_progress(tmp_path):
         # It looks like a room: the cameras at a person's height, nothing refused.
         room = connection.check_ingest()
         assert 1.0 < room["camera_height_m"] < 2.0 and room["refused"] == 0
+        # The capture's points, as a PLY and, with Open3D, as a PointCloud under the boxes.
+        connection.export(tmp_path / "points.ply", format="ply", points=True)
+        assert (tmp_path / "points.ply").read_bytes().startswith(b"ply\nformat binary_little_endian 1.0\n")
+        with pytest.raises(smql.ProgrammingError, match="exported as ply"):
+            connection.export(tmp_path / "points.json", points=True)
+        try:
+            import smql.open3d as interop
+        except ImportError:
+            return
+        cloud = interop.scene_points(connection)
+        assert len(cloud.points) > 5000 and cloud.has_colors()
+        floor = numpy.percentile(numpy.asarray(cloud.points)[:, 2], 2)
+        assert -0.15 < floor < 0.05
     # Options are checked before the work.
     with pytest.raises(smql.ProgrammingError) as error:
         smql.ingest(DINING, tmp_path / "db", objcts="cluster")
@@ -297,6 +310,8 @@ def test_export_and_import_back(db, tmp_path):
     with smql.connect(tmp_path / "copy") as copy:
         copy.import_scene(tmp_path / "room.json", scene="again")
         assert copy.execute("FIND cushion WHERE on(sofa)").fetchall() == db.execute("FIND cushion WHERE on(sofa)").fetchall()
+    with pytest.raises(smql.DatabaseError, match="holds no points"):
+        db.export(tmp_path / "points.ply", format="ply", points=True)
     db.export(tmp_path / "room.html", format="html")
     assert (tmp_path / "room.html").read_text().startswith("<!doctype html>")
     with pytest.raises(smql.ProgrammingError, match="unknown export format"):
