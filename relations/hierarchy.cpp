@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -18,8 +19,6 @@ namespace smql::relations {
 using model::Node;
 
 namespace {
-// A parent's footprint is at least half its child's.
-constexpr double kMinSupporterArea = 0.5;
 // Metres by which a wall may be farther than a door or window and still be the parent.
 constexpr double kWallPreference = 0.15;
 
@@ -30,11 +29,6 @@ using Bounds = bg::model::box<Corner>;
 using Indexed = std::pair<Bounds, std::size_t>;
 
 Bounds toBounds(const model::Aabb& b) { return {{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}}; }
-
-// A thin upright slab (a picture, a mirror, a board: at most this thick, and three times as tall
-// as thick) that is attached to a wall hangs on that wall, whatever its lower edge touches: a picture
-// over a sofa is not on the sofa.
-constexpr double kHungThickness = 0.1;
 
 using Index = bgi::rtree<Indexed, bgi::rstar<16>>;
 
@@ -55,23 +49,19 @@ std::vector<Indexed> meeting(const Index& index, const model::Aabb& region) {
     return found;
 }
 
-const Node* hangingWall(const Node& a, const std::vector<const Node*>& anchors, const Index& anchorIndex,
-                        const Thresholds& t) {
-    double thickness = std::min(a.box.size.x, a.box.size.y);
-    if (thickness > kHungThickness || a.box.size.z < 3 * thickness) return nullptr;
-    static const Frame frame{};
-    static const NodeObstacles nothing{std::span<const Node>{}};
-    const Node* best = nullptr;
-    double bestScore = 0;
-    const auto within = spec(Predicate::Attached).referenceRegion(model::worldAabb(a.box), 0, t);
-    for (const auto& [bounds, k] : meeting(anchorIndex, within)) {
-        const Node* anchor = anchors[k];
-        if (!isVerticalPlane(*anchor)) continue;
-        double score = evaluate(Predicate::Attached, a, *anchor, t, frame, nothing);
-        if (score > bestScore) bestScore = score, best = anchor;
+// The anchors through their R-tree, as the predicates ask for walls (on and in: a picture a wall
+// holds is on nothing).
+class AnchorObstacles final : public Obstacles {
+public:
+    AnchorObstacles(const std::vector<const Node*>& anchors, const Index& index) : anchors_(anchors), index_(index) {}
+    void within(const model::Aabb& region, std::vector<const Node*>& out) const override {
+        for (const auto& [bounds, k] : meeting(index_, region)) out.push_back(anchors_[k]);
     }
-    return best;
-}
+
+private:
+    const std::vector<const Node*>& anchors_;
+    const Index& index_;
+};
 
 // The nearest anchor; but a door or window set in a wall is no nearer, for this purpose, than the
 // wall itself: a wall within kWallPreference of the nearest anchor wins, so the tree does not flip
@@ -106,50 +96,114 @@ const Node* nearestAnchor(const Node& a, const std::vector<const Node*>& anchors
         if (seen < k) return chosen();  // every anchor seen
     }
 }
-}  // namespace
 
-void assignParents(model::SceneData& scene, const Thresholds& thresholds) {
-    std::vector<const Node*> objects, uprightAnchors, otherAnchors;
-    for (const Node& n : scene.nodes) {
-        if (n.geometry == model::GeometryKind::None) continue;
-        if (n.kind == model::NodeKind::Object) objects.push_back(&n);
-        if (n.kind != model::NodeKind::Anchor) continue;
-        // Floors and ceilings are a last resort: every standing object touches the floor.
-        bool upright = isVerticalPlane(n) || n.geometry == model::GeometryKind::Box;
-        (upright ? uprightAnchors : otherAnchors).push_back(&n);
+// Each object's parent: the wall that holds it, else one of the things it is on or in, else the
+// nearest upright anchor. Of several things it is on or in, the one the others are ancestors of (a
+// cushion on a tray on a sofa hangs under the tray, whose path holds the sofa), then the highest
+// (a cushion sunk into a sofa beside a blanket draped over its arm is on the sofa): so `on(x)`,
+// `in(x)` and the path agree (docs/relations.md, "The tree").
+class ParentChooser {
+public:
+    ParentChooser(model::SceneData& scene, const Thresholds& thresholds) : scene_(scene), thresholds_(thresholds) {
+        for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+            const Node& n = scene.nodes[i];
+            position_.emplace(n.id, i);
+            if (n.geometry == model::GeometryKind::None) continue;
+            if (n.kind == model::NodeKind::Object) objects_.push_back(&n);
+            if (n.kind != model::NodeKind::Anchor) continue;
+            // Floors and ceilings are a last resort: every standing object touches the floor.
+            bool upright = isVerticalPlane(n) || n.geometry == model::GeometryKind::Box;
+            (upright ? uprightAnchors_ : otherAnchors_).push_back(&n);
+        }
+        anchors_ = uprightAnchors_.empty() ? &otherAnchors_ : &uprightAnchors_;
+        objectIndex_ = indexOf(objects_);
+        anchorIndex_ = indexOf(*anchors_);
+        parents_.assign(scene.nodes.size(), model::kNoNode);
+        state_.assign(scene.nodes.size(), State::Open);
     }
-    const auto& anchors = uprightAnchors.empty() ? otherAnchors : uprightAnchors;
-    const Index objectIndex = indexOf(objects), anchorIndex = indexOf(anchors);
 
-    std::vector<model::NodeId> parents(scene.nodes.size(), model::kNoNode);
-    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
-        const Node& a = scene.nodes[i];
-        if (a.kind != model::NodeKind::Object || a.parent != model::kNoNode || a.geometry == model::GeometryKind::None)
-            continue;
-        // The supporter right under `a`: of all that support it and are not much smaller than it
-        // (a sofa does not rest on the blanket lying on it), the one whose top is closest to a's
-        // bottom (a book on a plate on a table hangs below the plate). Support requires the
-        // supporter's centre to be strictly lower, so the tree has no cycles.
-        if (const Node* wall = hangingWall(a, anchors, anchorIndex, thresholds)) {
-            parents[i] = wall->id;
-            continue;
+    void assign() {
+        for (std::size_t i = 0; i < scene_.nodes.size(); ++i) choose(i);
+        for (std::size_t i = 0; i < scene_.nodes.size(); ++i)
+            if (parents_[i] != model::kNoNode) scene_.nodes[i].parent = parents_[i];
+    }
+
+private:
+    enum class State { Open, Choosing, Chosen };
+
+    // The parent in force: chosen here, else the one the node came with.
+    model::NodeId parentOf(std::size_t i) const {
+        return parents_[i] != model::kNoNode ? parents_[i] : scene_.nodes[i].parent;
+    }
+
+    bool isAncestor(model::NodeId ancestor, std::size_t of) const {
+        for (std::size_t steps = 0, at = of; steps <= scene_.nodes.size(); ++steps) {
+            auto it = position_.find(parentOf(at));
+            if (it == position_.end()) return false;
+            if (scene_.nodes[it->second].id == ancestor) return true;
+            at = it->second;
+        }
+        return false;
+    }
+
+    void choose(std::size_t i) {
+        if (state_[i] != State::Open) return;
+        state_[i] = State::Choosing;
+        const Node& a = scene_.nodes[i];
+        if (a.kind == model::NodeKind::Object && a.parent == model::kNoNode &&
+            a.geometry != model::GeometryKind::None) {
+            const AnchorObstacles walls(*anchors_, anchorIndex_);
+            if (const Node* wall = wallHolding(a, walls, thresholds_)) {
+                parents_[i] = wall->id;
+            } else if (const Node* carrier = carrierOf(a, walls)) {
+                parents_[i] = carrier->id;
+            } else if (const Node* anchor = relations::nearestAnchor(a, *anchors_, anchorIndex_)) {
+                parents_[i] = anchor->id;
+            }
+        }
+        state_[i] = State::Chosen;
+    }
+
+    const Node* carrierOf(const Node& a, const Obstacles& walls) {
+        static const Frame frame{};
+        std::vector<std::pair<const Node*, std::size_t>> carriers;
+        const auto within = spec(Predicate::On).referenceRegion(model::worldAabb(a.box), 0, thresholds_);
+        for (const auto& [bounds, k] : meeting(objectIndex_, within)) {
+            const Node* b = objects_[k];
+            if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
+            if (evaluate(Predicate::On, a, *b, thresholds_, frame, walls) <= 0 &&
+                evaluate(Predicate::In, a, *b, thresholds_, frame, walls) <= 0)
+                continue;
+            const std::size_t at = position_.at(b->id);
+            choose(at);  // its own parent first; one still being chosen (a cycle of containment) is passed over
+            if (state_[at] == State::Choosing) continue;
+            carriers.emplace_back(b, at);
         }
         const Node* best = nullptr;
-        auto contact = [&](const Node* b) { return std::abs(model::bottom(a.box) - model::top(b->box)); };
-        auto within = spec(Predicate::On).referenceRegion(model::worldAabb(a.box), 0, thresholds);
-        for (const auto& [bounds, k] : meeting(objectIndex, within)) {
-            const Node* b = objects[k];
-            if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
-            if (b->box.center.z >= a.box.center.z) continue;
-            if (model::footprintArea(b->box) < kMinSupporterArea * model::footprintArea(a.box)) continue;
-            if (supportScore(a, *b, thresholds) <= 0) continue;
-            if (!best || contact(b) < contact(best)) best = b;
+        std::size_t bestAncestors = 0;
+        for (const auto& [b, at] : carriers) {
+            std::size_t ancestors = 0;
+            for (const auto& [other, unused] : carriers)
+                if (other != b && isAncestor(other->id, at)) ++ancestors;
+            if (!best || ancestors > bestAncestors ||
+                (ancestors == bestAncestors && model::top(b->box) > model::top(best->box)))
+                best = b, bestAncestors = ancestors;
         }
-        if (!best) best = nearestAnchor(a, anchors, anchorIndex);
-        if (best) parents[i] = best->id;
+        return best;
     }
-    for (std::size_t i = 0; i < scene.nodes.size(); ++i)
-        if (parents[i] != model::kNoNode) scene.nodes[i].parent = parents[i];
-}
+
+    model::SceneData& scene_;
+    const Thresholds& thresholds_;
+    std::unordered_map<model::NodeId, std::size_t> position_;
+    std::vector<const Node*> objects_, uprightAnchors_, otherAnchors_;
+    const std::vector<const Node*>* anchors_ = nullptr;
+    Index objectIndex_, anchorIndex_;
+    std::vector<model::NodeId> parents_;
+    std::vector<State> state_;
+};
+
+}  // namespace
+
+void assignParents(model::SceneData& scene, const Thresholds& thresholds) { ParentChooser(scene, thresholds).assign(); }
 
 }  // namespace smql::relations

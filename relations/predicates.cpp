@@ -95,6 +95,16 @@ Frame viewFrame(const model::Viewpoint& viewpoint) {
     return f;
 }
 
+namespace {
+
+// A slab at most this thick, and three times as tall as thick, that a wall holds hangs on it.
+constexpr double kHungThickness = 0.1;
+// A supporter's footprint is at least half that of what it carries: a sofa does not rest on the
+// blanket lying on it.
+constexpr double kMinSupporterArea = 0.5;
+
+}  // namespace
+
 double supportScore(const Node& a, const Node& b, const Thresholds& t) {
     if (&a == &b || (a.id == b.id && a.id != model::kNoNode)) return 0.0;
     if (!hasGeometry(a) || !hasGeometry(b) || isVerticalPlane(b)) return 0.0;
@@ -120,6 +130,14 @@ model::Aabb grown(model::Aabb b, double d) {
 
 // The formulas, one per predicate; docs/relations.md states each.
 
+// b carries a: the support geometry, b lower (its centre below a's, so that no two things carry each
+// other), and a not hanging on a wall. The tree's parents are chosen among the things that carry.
+double carried(const PredicateInputs& in) {
+    if (in.b.box.center.z >= in.a.box.center.z) return 0.0;
+    const double score = supportScore(in.a, in.b, in.t);
+    return score > 0 && !wallHolding(in.a, in.obstacles, in.t) ? score : 0.0;
+}
+
 // Real support, as Sr3D's "supported-by": most of a's own footprint lies over b (a box that only
 // grazes b's edge, or a large thing over a small one, is not on it), on top of the support rule.
 double onScore(const PredicateInputs& in) {
@@ -128,15 +146,18 @@ double onScore(const PredicateInputs& in) {
     if (kind == Affordance::Enclosure && contained(in.a, in.b, in.t)) return 0.0;
     double own = model::footprintArea(in.a.box);
     if (own <= 0 || model::footprintOverlap(in.a.box, in.b.box) / own < in.t.onMinOverlap) return 0.0;
-    return supportScore(in.a, in.b, in.t);
+    if (model::footprintArea(in.b.box) < kMinSupporterArea * own) return 0.0;
+    return carried(in);
 }
 
+// Inside a holder or an enclosure: mostly within its box (the holder the larger of the two, so that
+// two boxes of one thing are not each in the other), or carried by a holder (a plant in its pot).
 double inScore(const PredicateInputs& in) {
     Affordance kind = affordanceOf(in.b.category);
     if (kind == Affordance::Surface) return 0.0;
     double inside = model::fractionInside(in.a.box, in.b.box);
-    if (inside >= in.t.inMinInside) return inside;
-    return kind == Affordance::Holder ? supportScore(in.a, in.b, in.t) : 0.0;
+    if (inside >= in.t.inMinInside && model::volume(in.b.box) > model::volume(in.a.box)) return inside;
+    return kind == Affordance::Holder ? carried(in) : 0.0;
 }
 
 double aboveScore(const Node& a, const Node& b, const Thresholds& t) {
@@ -329,9 +350,10 @@ using P = Predicate;
 // and the English phrases that ask for it (ASK's only list of them, '|' between phrases).
 constexpr PredicateSpec kPredicates[] = {
     {P::On, "", 1, false, false, onScore, restingOnRegion, supportRegion, 2, "on(desk)",
-     "on|on top of|onto|upon|atop|sitting on|lying on|resting on|standing on|placed on|kept on|piled on"},
+     "on|on top of|onto|upon|atop|sitting on|lying on|resting on|standing on|placed on|kept on|piled on",
+     Occluders::Walls},
     {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)",
-     "in|inside|inside of|within|stored in|kept in|contained in"},
+     "in|inside|inside of|within|stored in|kept in|contained in", Occluders::Walls},
     {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)", "above|over|higher than"},
     {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)",
      "below|under|underneath|beneath|lower than"},
@@ -418,6 +440,22 @@ double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, 
                 const Obstacles& obstacles, const Node* c, std::optional<double> writtenDistance) {
     if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
     return spec(p).evaluate({a, b, c, t, frame, writtenDistance, obstacles});
+}
+
+const Node* wallHolding(const Node& a, const Obstacles& obstacles, const Thresholds& t) {
+    const double thickness = std::min(a.box.size.x, a.box.size.y);
+    if (thickness > kHungThickness || a.box.size.z < 3 * thickness) return nullptr;
+    std::vector<const Node*> walls;
+    obstacles.wallsWithin(spec(Predicate::Attached).referenceRegion(model::worldAabb(a.box), 0, t), walls);
+    static const Frame frame{};
+    const Node* best = nullptr;
+    double bestScore = 0;
+    for (const Node* wall : walls) {
+        if (!isVerticalPlane(*wall)) continue;
+        const double score = evaluate(Predicate::Attached, a, *wall, t, frame, obstacles);
+        if (score > bestScore) bestScore = score, best = wall;
+    }
+    return best;
 }
 
 std::vector<RelationHit> relate(const Node& a, const Node& b, const Thresholds& t, const Frame& frame,

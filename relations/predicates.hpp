@@ -152,7 +152,13 @@ inline bool intersects(const model::Aabb& a, const model::Aabb& b) {
            b.min.z <= a.max.z;
 }
 
-// The support relation that makes `b` the parent of `a` in the tree, if any.
+// The support geometry under on and in: most of the smaller footprint shared, a's centre in b's
+// upper half or above, a's bottom no more than on.max_gap over b's top (docs/relations.md).
 double supportScore(const model::Node& a, const model::Node& b, const Thresholds& t);
+
+// A thin upright slab (a picture, a mirror, a board) held by a wall hangs on it, whatever its lower
+// edge touches: the wall that holds `a`, of those `obstacles` has near it, or null. on and in are
+// false for such a thing, and the tree hangs it under that wall: one rule.
+const model::Node* wallHolding(const model::Node& a, const Obstacles& obstacles, const Thresholds& t);
 
 }  // namespace smql::relations

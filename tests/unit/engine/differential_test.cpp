@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <set>
 
 #include <fmt/format.h>
@@ -167,4 +168,94 @@ TEST_CASE("FIND, COUNT and CHECK answer every predicate alike, in every plan sha
     for (std::size_t i = 0; i < differential.disagreements.size() && i < 20; ++i)
         std::cout << "  " << differential.disagreements[i] << "\n";
     CHECK(differential.disagreements.empty());
+}
+
+namespace {
+
+// on and in, the tree and ASK: one rule (docs/relations.md, "The tree"). For every object a of a
+// scene: its parent, when a thing, carries it (on or in holds); every thing a is on or in is on a's
+// path, unless a rests on it and on its parent side by side (a board over two trestles: neither
+// carries the other, and the tree holds one); and ASK's "what is on the X?" names what on(X) finds.
+struct TreeAgreement {
+    std::size_t objects = 0, sideBySide = 0, asked = 0;
+    std::vector<std::string> disagreements;
+
+    void scene(Engine& engine, const std::string& name) {
+        engine.execute(fmt::format("USE SCENE '{}'", name));
+        std::map<std::int64_t, std::int64_t> parent;  // object -> parent id (0: none)
+        std::map<std::int64_t, std::string> category;
+        const ResultSet found = engine.execute("FIND object RETURN id, category, parent").back();
+        for (const auto& row : found.rows) {
+            const auto id = std::get<std::int64_t>(row[0]);
+            category[id] = std::get<std::string>(row[1]);
+            const auto* text = std::get_if<std::string>(&row[2]);
+            const auto hash = text ? text->rfind('#') : std::string::npos;
+            parent[id] = hash == std::string::npos ? 0 : std::stoll(text->substr(hash + 1));
+        }
+        auto ancestors = [&](std::int64_t a) {
+            std::set<std::int64_t> out;
+            for (auto it = parent.find(a); it != parent.end() && it->second != 0 && out.insert(it->second).second;)
+                it = parent.find(it->second);
+            return out;
+        };
+        std::map<std::int64_t, Ids> carries;  // b -> the things on or in it
+        for (const auto& [b, unused] : parent)
+            carries[b] = ids(engine.execute(fmt::format("FIND object WHERE on(#{}) OR in(#{})", b, b)).back());
+        for (const auto& [a, p] : parent) {
+            ++objects;
+            const std::string what = fmt::format("{}: {}#{}", name, category[a], a);
+            if (parent.count(p) && !carries[p].count(a))
+                disagreements.push_back(
+                    fmt::format("{} hangs under {}#{}, which it is not on or in", what, category[p], p));
+            const auto path = ancestors(a);
+            for (const auto& [b, on] : carries) {
+                if (!on.count(a) || path.count(b)) continue;
+                const bool besideParent = parent.count(p) && carries[p].count(a) && !ancestors(b).count(p);
+                if (besideParent) {
+                    ++sideBySide;
+                    continue;
+                }
+                disagreements.push_back(
+                    fmt::format("{} is on or in {}#{}, which is not on its path", what, category[b], b));
+            }
+        }
+        // ASK, for the categories one thing of the scene has.
+        std::map<std::string, int> seen;
+        for (const auto& [id, c] : category) ++seen[c];
+        for (const auto& [b, c] : category) {
+            if (seen[c] != 1) continue;
+            ++asked;
+            const Ids on = ids(engine.execute(fmt::format("FIND object WHERE on(#{})", b)).back());
+            const auto answer = engine.execute(fmt::format("ASK 'what is on the {}?'", c)).back();
+            if (answer.columnIndex("id") >= 0 && ids(answer) != on)
+                disagreements.push_back(fmt::format("{}: ASK 'what is on the {}?' names {}, on(#{}) finds {}", name, c,
+                                                    listed(ids(answer)), b, listed(on)));
+        }
+    }
+};
+
+}  // namespace
+
+TEST_CASE("on, in, the tree and ASK agree on every object", "[differential][tree]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    std::vector<std::string> scenes;
+    auto add = [&](const model::SceneData& scene) {
+        engine->importScene(scene);
+        scenes.push_back(scene.info.name);
+    };
+    add(import::readReplica(replicaRoom0(), "replica-room0"));
+    for (const char* file : {"scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"}) {
+        auto rooms = import::readVsiBenchAll(layouts(file));
+        for (std::size_t i = 0; i < rooms.size(); i += 10) add(rooms[i]);
+    }
+    TreeAgreement agreement;
+    for (const auto& name : scenes) agreement.scene(*engine, name);
+    std::cout << fmt::format(
+        "tree: {} objects over {} scenes, {} resting on two things side by side, {} ASKs, {} disagreements\n",
+        agreement.objects, scenes.size(), agreement.sideBySide, agreement.asked, agreement.disagreements.size());
+    for (std::size_t i = 0; i < agreement.disagreements.size() && i < 20; ++i)
+        std::cout << "  " << agreement.disagreements[i] << "\n";
+    CHECK(agreement.disagreements.empty());
+    CHECK(agreement.objects > 250);
 }
