@@ -5,6 +5,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include <fmt/format.h>
+
 namespace smql::model {
 
 namespace {
@@ -148,15 +150,7 @@ Rgb Palette::operator()(std::string_view category) const {
 
 double perceivedDistance(const Rgb& a, const Rgb& b) { return distance(toLab(a), toLab(b)); }
 
-std::string hexColour(const Rgb& colour) {
-    static constexpr char kDigits[] = "0123456789abcdef";
-    std::string out = "#";
-    for (std::uint8_t channel : {colour.r, colour.g, colour.b}) {
-        out += kDigits[channel >> 4];
-        out += kDigits[channel & 15];
-    }
-    return out;
-}
+std::string hexColour(const Rgb& colour) { return fmt::format("#{:02x}{:02x}{:02x}", colour.r, colour.g, colour.b); }
 
 std::string nodeLabel(const model::Node& node) { return node.category + "#" + std::to_string(node.id); }
 

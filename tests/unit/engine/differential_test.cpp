@@ -2,7 +2,8 @@
 // `FIND node WHERE p(y)` are exactly the nodes x for which `CHECK x p y` answers yes, and
 // `WHERE p` and `WHERE NOT p` partition the scene's nodes (query partitioning, as SQLancer's
 // tests do). Run on the Replica room, a generated room and a slice of the real layouts in
-// ../shared/data/real-layouts (every tenth room; SMQL_DIFFERENTIAL_ROOMS=all for all 238).
+// ../shared/data/real-layouts (every tenth room; SMQL_DIFFERENTIAL_ROOMS=all for all 238). On the
+// same rooms, on and in, the tree and ASK must agree (TreeAgreement).
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
@@ -142,25 +143,31 @@ private:
 
 std::string layouts(const char* file) { return std::string(SMQL_SHARED_DATA) + "/real-layouts/" + file; }
 
-}  // namespace
-
-TEST_CASE("FIND, COUNT and CHECK answer every predicate alike, in every plan shape", "[differential]") {
-    TempDir dir;
-    auto engine = Engine::open(dir.path.string());
+// The Replica room and every tenth real layout (every one when SMQL_DIFFERENTIAL_ROOMS=all), and
+// `more`, stored in `engine`: their names.
+std::vector<std::string> realScenes(Engine& engine, const std::vector<model::SceneData>& more = {}) {
     std::vector<std::string> scenes;
     auto add = [&](const model::SceneData& scene) {
-        engine->importScene(scene);
+        engine.importScene(scene);
         scenes.push_back(scene.info.name);
     };
     add(import::readReplica(replicaRoom0(), "replica-room0"));
-    add(generate::generateRoom({.seed = 7, .name = "generated-7"}));
+    for (const auto& scene : more) add(scene);
     const bool all =
         std::getenv("SMQL_DIFFERENTIAL_ROOMS") && std::string(std::getenv("SMQL_DIFFERENTIAL_ROOMS")) == "all";
     for (const char* file : {"scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"}) {
         auto rooms = import::readVsiBenchAll(layouts(file));
         for (std::size_t i = 0; i < rooms.size(); i += all ? 1 : 10) add(rooms[i]);
     }
+    return scenes;
+}
 
+}  // namespace
+
+TEST_CASE("FIND, COUNT and CHECK answer every predicate alike, in every plan shape", "[differential]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    const auto scenes = realScenes(*engine, {generate::generateRoom({.seed = 7, .name = "generated-7"})});
     Differential differential(*engine);
     for (const auto& name : scenes) differential.scene(name);
     std::cout << fmt::format("differential: {} statements over {} scenes, {} disagreements\n", differential.statements,
@@ -239,16 +246,7 @@ struct TreeAgreement {
 TEST_CASE("on, in, the tree and ASK agree on every object", "[differential][tree]") {
     TempDir dir;
     auto engine = Engine::open(dir.path.string());
-    std::vector<std::string> scenes;
-    auto add = [&](const model::SceneData& scene) {
-        engine->importScene(scene);
-        scenes.push_back(scene.info.name);
-    };
-    add(import::readReplica(replicaRoom0(), "replica-room0"));
-    for (const char* file : {"scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"}) {
-        auto rooms = import::readVsiBenchAll(layouts(file));
-        for (std::size_t i = 0; i < rooms.size(); i += 10) add(rooms[i]);
-    }
+    const auto scenes = realScenes(*engine);
     TreeAgreement agreement;
     for (const auto& name : scenes) agreement.scene(*engine, name);
     std::cout << fmt::format(
