@@ -1,4 +1,5 @@
 // GUIDE and SHOW GRAPH: routes on the scene's decision-point graph, told as steps (docs/guidance.md).
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -31,28 +32,38 @@ std::optional<guide::Point> approachTo(const catalog::SceneSnapshot::Guidance& g
 Error noRoute(const catalog::SceneSnapshot& snap, const std::string& origin, const model::Node& goal,
               guide::Point start, guide::Point end) {
     const auto& g = snap.guidance();
-    constexpr std::size_t kBlockersNamed = 3;
+    // Named: the three with the longest border; tried as the one thing that closes the way: twelve.
+    constexpr std::size_t kBlockersNamed = 3, kBlockersTried = 12;
     double startArea = 0, endArea = 0;
-    auto aroundStart = g.space.enclosedBy(start, kBlockersNamed, startArea);
-    auto aroundEnd = g.space.enclosedBy(end, kBlockersNamed, endArea);
+    auto aroundStart = g.space.enclosedBy(start, kBlockersTried, startArea);
+    auto aroundEnd = g.space.enclosedBy(end, kBlockersTried, endArea);
     const bool goalSide = endArea <= startArea;
     const auto& blockers = goalSide ? aroundEnd : aroundStart;
+    auto label = [&](model::NodeId id) {
+        auto slot = snap.slotOf(id);
+        return slot ? catalog::SceneSnapshot::label(snap.node(*slot)) : fmt::format("#{}", id);
+    };
     std::string named;
-    for (std::size_t i = 0; i < blockers.size(); ++i) {
-        auto slot = snap.slotOf(blockers[i]);
-        named += fmt::format("{}{}",
-                             i == 0                     ? ""
-                             : i + 1 == blockers.size() ? " and "
-                                                        : ", ",
-                             slot ? catalog::SceneSnapshot::label(snap.node(*slot)) : fmt::format("#{}", blockers[i]));
-    }
+    const std::size_t shown = std::min(blockers.size(), kBlockersNamed);
+    for (std::size_t i = 0; i < shown; ++i)
+        named += fmt::format("{}{}", i == 0 ? "" : i + 1 == shown ? " and " : ", ", label(blockers[i]));
+    // Things before walls: a cabinet in a doorway is what a person moves; a wall only when no thing
+    // alone closes the way (a wall box that spans its door).
+    std::vector<model::NodeId> tried = blockers;
+    std::stable_partition(tried.begin(), tried.end(), [&](model::NodeId id) {
+        auto slot = snap.slotOf(id);
+        return slot && snap.node(*slot).kind == model::NodeKind::Object;
+    });
+    const std::optional<model::NodeId> alone = g.space.closing(start, end, tried);
     return Error(
         ErrorKind::Binding,
-        fmt::format("no route from {} to {}: the free floor {} ({:.1f} m^2) is closed off{} (a way must be "
-                    "{} m wide)",
-                    origin, catalog::SceneSnapshot::label(goal),
-                    goalSide ? "beside " + catalog::SceneSnapshot::label(goal) : "at the start",
-                    goalSide ? endArea : startArea, named.empty() ? "" : " by " + named, 2 * g.options.bodyRadius),
+        fmt::format(
+            "no route from {} to {}: the free floor {} ({:.1f} m^2) is closed off{} (a way must be "
+            "{} m wide){}",
+            origin, catalog::SceneSnapshot::label(goal),
+            goalSide ? "beside " + catalog::SceneSnapshot::label(goal) : "at the start", goalSide ? endArea : startArea,
+            named.empty() ? "" : " by " + named, 2 * g.options.bodyRadius,
+            alone ? fmt::format("; {} alone closes the way: without it a route would pass", label(*alone)) : ""),
         std::nullopt, "smql map draws the free floor and what blocks it; SHOW GRAPH lists the decision points");
 }
 

@@ -255,6 +255,40 @@ std::vector<model::NodeId> FreeSpace::enclosedBy(Point p, std::size_t most, doub
     return out;
 }
 
+std::optional<model::NodeId> FreeSpace::closing(Point p, Point q, const std::vector<model::NodeId>& candidates) const {
+    auto cellOf = [&](Point at) -> std::optional<std::size_t> {
+        int i = static_cast<int>(std::floor((at.x - minX_) / cell_)),
+            j = static_cast<int>(std::floor((at.y - minY_) / cell_));
+        if (i < 0 || j < 0 || i >= width_ || j >= height_) return std::nullopt;
+        return static_cast<std::size_t>(j) * width_ + i;
+    };
+    const auto from = cellOf(p), to = cellOf(q);
+    if (!from || !to) return std::nullopt;
+    // A flood over the free cells and those `without` blocks, from p's cell: does it reach q's?
+    std::vector<std::uint8_t> seen(cells_.size());
+    std::vector<std::size_t> frontier;
+    for (model::NodeId without : candidates) {
+        std::fill(seen.begin(), seen.end(), 0);
+        frontier.assign(1, *from);
+        seen[*from] = 1;
+        while (!frontier.empty()) {
+            const std::size_t at = frontier.back();
+            frontier.pop_back();
+            if (at == *to) return without;
+            const int i = static_cast<int>(at % width_), j = static_cast<int>(at / width_);
+            for (auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int ni = i + di, nj = j + dj;
+                if (ni < 0 || nj < 0 || ni >= width_ || nj >= height_) continue;
+                const std::size_t next = static_cast<std::size_t>(nj) * width_ + ni;
+                if (seen[next] || (cells_[next] == 0 && blockers_[next] != without)) continue;
+                seen[next] = 1;
+                frontier.push_back(next);
+            }
+        }
+    }
+    return std::nullopt;
+}
+
 bool FreeSpace::open(Point p) const { return mainComponent_ >= 0 && componentAt(p) == mainComponent_; }
 
 bool FreeSpace::free(Point p) const {

@@ -91,6 +91,9 @@ public:
     // What closes off the free stretch around p from the rest of the floor: the things whose
     // blocked cells border it, the longest border first, at most `most`; the stretch's size (m^2).
     std::vector<model::NodeId> enclosedBy(Point p, std::size_t most, double& area) const;
+    // The one thing of `candidates` whose removal alone would join p's stretch of free floor to
+    // q's (a cabinet in a doorway, a wall box that spans a door), the first such in their order.
+    std::optional<model::NodeId> closing(Point p, Point q, const std::vector<model::NodeId>& candidates) const;
     // The thing (or wall) that blocks a cell; kNoNode for a free cell or one outside the floor.
     model::NodeId blocker(int i, int j) const { return blockers_[static_cast<std::size_t>(j) * width_ + i]; }
     double minX() const { return minX_; }

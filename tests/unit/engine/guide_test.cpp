@@ -152,6 +152,21 @@ TEST_CASE("GUIDE answers in steps; ambiguous ends and closed-off goals are error
         CHECK_THAT(e.message(), Catch::Contains("no route") && Catch::Contains("lamp#") &&
                                     Catch::Contains("closed off by") && Catch::Contains("wall#"));
         CHECK_THAT(e.hint(), Catch::Contains("smql map"));
+        // The one thing that closes the way: the wall between the rooms, which has no door.
+        CHECK_THAT(e.message(), Catch::Matches(".*wall#[0-9]+ alone closes the way.*"));
+    }
+
+    // A cabinet standing in the doorway: it alone closes the way, though walls border the room too.
+    TempDir blockedDir;
+    auto blocked = Engine::open(blockedDir.path.string());
+    model::SceneData withCabinet = twoRooms(true);
+    withCabinet.nodes.push_back(node(20, NodeKind::Object, "cabinet", {4.45, 1, 0.9}, {0.6, 1.4, 1.8}));
+    blocked->importScene(withCabinet);
+    try {
+        blocked->execute("GUIDE FROM table TO lamp");
+        FAIL("a route through the cabinet");
+    } catch (const Error& e) {
+        CHECK_THAT(e.message(), Catch::Matches(".*cabinet#[0-9]+ alone closes the way.*"));
     }
 }
 
