@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/ask/wordnet.hpp"
+#include "model/category.hpp"
 #include "model/names.hpp"
 
 namespace smql::ask {
@@ -70,18 +71,12 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
     const std::string word = hyphenated(words);
     WordMatch match;
     match.lemma = word;
-    if (contains(categories_, word)) {
-        match.how = WordMatch::How::Category;
-        match.categories = {word};
+    // The category's one name (model/category.hpp): "trash cans", "Trash_Can" are trash-can.
+    if (const std::string name = model::categoryName(words); contains(categories_, name)) {
+        match.how = name == word ? WordMatch::How::Category : WordMatch::How::Plural;
+        match.categories = {name};
+        match.lemma = name;
         return match;
-    }
-    for (const auto& singular : singulars(word)) {
-        if (contains(categories_, singular)) {
-            match.how = WordMatch::How::Plural;
-            match.categories = {singular};
-            match.lemma = singular;
-            return match;
-        }
     }
     auto bases = wordnet::nounBaseForms(word);
     for (const auto& base : bases) {
@@ -100,7 +95,8 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
             for (auto& sense : wordnet::nounSenses(base)) senses.push_back(std::move(sense));
         for (const auto& sense : senses)
             for (const auto& w : sense.words)
-                if (contains(categories_, w)) addUnique(match.categories, w);
+                if (const std::string name = model::categoryName(w); contains(categories_, name))
+                    addUnique(match.categories, name);
         if (!match.categories.empty()) {
             match.how = WordMatch::How::Synonym;
             return match;
