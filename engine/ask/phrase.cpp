@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/ask/units.hpp"
 #include "engine/ask/wordnet.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
@@ -294,8 +295,7 @@ std::string joined(const Words& w, std::size_t from, std::size_t to) {
 std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(const Words& w, std::size_t i) {
     // within 1.5 m of x / within 30 cm of x
     if (i + 3 < w.size() && w[i] == "within" && std::regex_match(w[i + 1], std::regex("[0-9]+(\\.[0-9]+)?")) &&
-        isOneOf(w[i + 2], {"m", "metre", "metres", "meter", "meters", "cm", "centimetres", "centimeters"}) &&
-        w[i + 3] == "of")
+        lengthUnitNamed(w[i + 2]) && w[i + 3] == "of")
         return std::pair{std::string("near"), std::size_t{4}};
     for (const auto& row : predicatePhrases()) {
         if (i + row.words.size() > w.size()) continue;
@@ -511,7 +511,7 @@ Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pai
     std::size_t start = i;
     if (w[i] == "within" && pred.second == 4) {
         double value = std::stod(w[i + 1]);
-        c.metres = w[i + 2].starts_with("c") ? value / 100.0 : value;
+        c.metres = value * lengthUnitNamed(w[i + 2])->metres;
     }
     i += pred.second;
     if (c.predicate == "between") {
