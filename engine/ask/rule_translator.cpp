@@ -145,7 +145,7 @@ public:
         for (Form form : forms) {
             Translation out;
             out.unit = unit_;
-            PhraseParser parser(lexicon_, out, question_.planeCategories);
+            PhraseParser parser(lexicon_, out, question_.planeCategories, question_.scene, question_.sceneCount);
             Cursor c{words_};
             try {
                 if (!(this->*form)(c, parser, out) || !c.done()) continue;
@@ -539,7 +539,17 @@ private:
             thing.conditions.push_back(seen);
         }
         p.posts(c.w, c.i, thing);
-        // "how many cushions do the sofas have": the holder comes last.
+        // "how many cushions do the sofas have": the holder comes last; "how many chairs does this
+        // room (the office) have": the scene holds them all.
+        if (std::size_t at = c.i + 1; c.i < c.w.size() && isOneOf(c.w[c.i], {"do", "does"})) {
+            while (at < c.w.size() && isOneOf(c.w[at], {"the", "this", "my", "our", "your"})) ++at;
+            std::size_t place = p.scenePlaceAt(c.w, at);
+            if (place > 0 && at + place < c.w.size() &&
+                isOneOf(c.w[at + place], {"have", "hold", "contain", "has", "contains", "holds"})) {
+                c.i = at + place + 1;
+                c.skip({"in", "it", "altogether", "total"});
+            }
+        }
         if (c.accept({"do|does"})) {
             auto verb =
                 std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
@@ -566,10 +576,18 @@ private:
 
     // Is there a sofa? Are there any mugs on the table? Does the room have a couch?
     bool existence(Cursor& c, PhraseParser& p, Translation& out) {
+        // "does the room have", "does the office have" (when the office is the scene).
+        auto sceneHas = [&] {
+            if (!c.accept({"does|do", "the|this|my|our|your"})) return false;
+            std::size_t place = p.scenePlaceAt(c.w, c.i);
+            if (place == 0 || c.i + place >= c.w.size() ||
+                !isOneOf(c.w[c.i + place], {"have", "contain", "include", "hold"}))
+                return false;
+            c.i += place + 1;
+            return true;
+        };
         bool lead = c.accept({"is|are", "there"}) || c.accept({"do|can|did", "you|i|we", "see|have|own|find|notice"}) ||
-                    c.accept({"does|do", "the|this|my|our", "room|scene|place|house|home|apartment",
-                              "have|contain|include|hold"}) ||
-                    (isOneOf(c.peek(), {"any", "anything", "something"}) && c.i == 0);
+                    sceneHas() || (isOneOf(c.peek(), {"any", "anything", "something"}) && c.i == 0);
         if (!lead) return false;
         Phrase thing = p.phrase(c.w, c.i, true);
         c.skip({"is", "are", "there", "here"});
