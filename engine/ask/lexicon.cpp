@@ -27,6 +27,32 @@ std::string hyphenated(std::string words) {
     return words;
 }
 
+// Names for one kind of thing that WordNet 3.0 does not join (it has no nightstand; a wastebasket
+// and a trash can are different synsets there), in canonical form (model/category.hpp). A word of
+// a row names the categories of the row's other words, either way round, as a synonym does.
+constexpr std::string_view kEquivalents[][9] = {
+    {"nightstand", "night-table", "bedside-table", "bedside-cabinet", "night-stand"},
+    {"wastebasket", "trash-can", "trash-bin", "garbage-can", "waste-bin", "wastebin", "dustbin", "bin",
+     "wastepaper-basket"},
+    {"tv", "television", "television-set", "tv-screen", "tv-monitor"},
+    {"refrigerator", "fridge"},
+    {"sofa", "couch"},
+    {"cabinet", "cupboard"},
+    {"mug", "cup"},
+    {"lamp", "light"},
+    {"trash-bag", "garbage-bag", "bin-bag"},
+};
+
+// The other names of `name`'s rows in kEquivalents.
+std::vector<std::string_view> equivalents(const std::string& name) {
+    std::vector<std::string_view> out;
+    for (const auto& row : kEquivalents)
+        if (std::find(std::begin(row), std::end(row), name) != std::end(row))
+            for (std::string_view other : row)
+                if (!other.empty() && other != name) out.push_back(other);
+    return out;
+}
+
 // English plurals WordNet may not list for a category it does not know ("wall-plugs").
 std::vector<std::string> singulars(const std::string& word) {
     std::vector<std::string> out;
@@ -77,6 +103,22 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
         match.categories = {name};
         match.lemma = name;
         return match;
+    }
+    // Names WordNet does not join (kEquivalents), either way round.
+    for (std::string_view other : equivalents(model::categoryName(words)))
+        if (contains(categories_, std::string(other))) addUnique(match.categories, std::string(other));
+    if (!match.categories.empty()) {
+        match.how = WordMatch::How::Synonym;
+        match.lemma = model::categoryName(words);
+        return match;
+    }
+    for (const auto& singular : singulars(word)) {
+        if (contains(categories_, singular)) {
+            match.how = WordMatch::How::Plural;
+            match.categories = {singular};
+            match.lemma = singular;
+            return match;
+        }
     }
     auto bases = wordnet::nounBaseForms(word);
     for (const auto& base : bases) {

@@ -601,7 +601,9 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
     for (const auto& shaped : kShapedKinds) {
         if (shaped.words != all) continue;
         WordMatch whole = lexicon_.lookUp(all);
-        if (whole.how == WordMatch::How::Category || whole.how == WordMatch::How::Plural) break;
+        if (whole.how == WordMatch::How::Category || whole.how == WordMatch::How::Plural ||
+            whole.how == WordMatch::How::Synonym)
+            break;  // a name of a kind the scene holds ("bedside table": its nightstands) wins over the shape
         const auto& cats = lexicon_.categories();
         if (std::find(cats.begin(), cats.end(), std::string(shaped.category)) == cats.end()) break;
         p.noun = all;
