@@ -73,8 +73,11 @@ const std::vector<std::string> kQuestions = {
     "what is the distance between the computer mouse and the trash bin (in meters)?",
     "What is the length of the longest dimension (length, width, or height) of the trash bin, measured in "
     "centimeters?",
+    "what is the length of the longest dimension of the computer mouse (cm)?",
     "which of these objects (trash bin, computer mouse, sofa, door) is the closest to the monitor?",
     "If I am standing by the sofa and facing the door, is the trash bin to my left or right?",
+    "how many monitors are in here?",
+    "what is the biggest thing in here?",
     "what is near the computer mouse?",
 };
 
