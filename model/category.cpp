@@ -41,7 +41,8 @@ std::string singularWord(std::string_view word) {
     if (std::find(kKeptAsWritten.begin(), kKeptAsWritten.end(), word) != kKeptAsWritten.end()) return w;
     for (const auto& [plural, singular] : kIrregularPlurals)
         if (word == plural) return std::string(singular);
-    if (word.size() < 3 || !word.ends_with('s')) return w;
+    // A possessive or a contraction ("it's", "o'brien's") is no plural.
+    if (word.size() < 3 || !word.ends_with('s') || word.ends_with("'s")) return w;
     auto drop = [&](std::size_t n) { return std::string(word.substr(0, word.size() - n)); };
     if (word.size() > 4 && word.ends_with("ies")) return drop(3) + "y";  // shelves above; batteries
     for (std::string_view ending : {"sses", "shes", "ches", "xes", "zzes"})

@@ -112,8 +112,7 @@ TEST_CASE("a category is found however it is written", "[categories]") {
     for (const char* name : {"trash-bin", "trash_bin", "'trash bin'", "'Trash Bins'", "trash-bins", "TRASH_BIN"})
         CHECK(std::get<std::int64_t>(run(*engine, fmt::format("COUNT {}", name)).rows.at(0).at(0)) == 2);
     CHECK(run(*engine, "FIND thing WHERE category = 'Trash Bin'").rows.size() == 2);
-    CHECK(run(*engine, "FIND object WHERE near('computer mouse', 2 m) AND NOT category = 'trash bins'").rows.size() >
-          0);
+    CHECK(!run(*engine, "FIND object WHERE near('computer mouse', 2 m) AND NOT category = 'trash bins'").rows.empty());
     CHECK(testing::categories(run(*engine, "FIND 'Computer Mice'")) == std::vector<std::string>{"computer-mouse"});
     run(*engine, "USE SCENE '*'");
     CHECK(std::get<std::int64_t>(run(*engine, "COUNT 'trash bin'").rows.at(0).at(0)) == 2);
