@@ -18,6 +18,7 @@
 #include "engine/parser/normalise.hpp"
 #include "engine/parser/parser.hpp"
 #include "engine/planner/planner.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/instant.hpp"
 #include "model/names.hpp"
@@ -286,6 +287,9 @@ const std::string& PreparedStatement::text() const { return statement_->text; }
 
 model::NodeId Engine::importScene(model::SceneData scene) {
     std::lock_guard lock(state_->mutex);
+    // Every write stores canonical category names (model/category.hpp), whoever made the scene:
+    // an importer, ingest, or a program through the C API.
+    model::canonicaliseCategories(scene);
     history::stampSeen(scene, model::utcNow());
     relations::assignParents(scene, state_->session.thresholds);
     auto txn = state_->db->beginWrite();
@@ -417,8 +421,11 @@ std::vector<std::string> Engine::knownCategories() const {
         }
         return false;
     };
+    // Names stored before they were canonical are listed as their canonical name, once.
     for (const auto& [name, count] : txn.categories())
-        if (namesAThing(name)) out.push_back(name);
+        if (namesAThing(name)) out.push_back(model::categoryName(name));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
 
@@ -469,8 +476,13 @@ Engine::SceneUpdateReport Engine::updateScene(const std::string& name, const mod
     stored.info = *info;
     txn.forEachNodeInScene(info->id, [&](const model::Node& n) { stored.nodes.push_back(n); });
     stored.relations = txn.relationsInScene(info->id);
+    // A version stored before names were canonical matches the capture by canonical names, and the
+    // next version is stored with them (the old records are erased by their stored keys).
+    model::canonicaliseCategories(stored);
+    model::SceneData capture = observed;
+    model::canonicaliseCategories(capture);
 
-    history::SceneUpdate update = history::planUpdate(stored, observed, time);
+    history::SceneUpdate update = history::planUpdate(stored, capture, time);
     relations::assignParents(update.next, state_->session.thresholds);
     auto replaced = txn.replaceScene(info->id, update.next, time, update.changes, update.carried);
     txn.commit();

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "storage/codec.hpp"
 #include "storage/database_internal.hpp"
@@ -437,16 +438,41 @@ std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category
     return out;
 }
 
+std::vector<std::string> ReadTransaction::labelKeys(std::string_view category) const {
+    const Impl& state = live();
+    std::vector<std::string> keys{model::categoryName(category)};
+    for (const auto& [stored, canonical] : state.env->legacyLabels(state.txn))
+        if (canonical == keys.front()) keys.push_back(stored);
+    return keys;
+}
+
+std::vector<NodeId> ReadTransaction::nodesNamed(std::string_view category, std::size_t limit) const {
+    auto keys = labelKeys(category);
+    if (keys.size() == 1) return nodesWithCategory(keys.front(), model::kNoNode, limit);
+    std::vector<NodeId> out;
+    for (const auto& key : keys) {
+        auto ids = nodesWithCategory(key, model::kNoNode, limit);
+        out.insert(out.end(), ids.begin(), ids.end());
+    }
+    std::sort(out.begin(), out.end());
+    if (out.size() > limit) out.resize(limit);
+    return out;
+}
+
 std::uint64_t ReadTransaction::countWithCategory(std::string_view category) const {
     const Impl& state = live();
     const Environment& env = *state.env;
-    if (category.empty() || category.size() > env.maxKeySize()) return 0;
-    TableCursor cursor(state, Table::Labels);
-    MDB_val key = toVal(category), value;
-    int rc = cursor.get(key, value, MDB_SET_KEY);
-    if (rc == MDB_NOTFOUND) return 0;
-    env.check(rc, "reading the label index");
-    return duplicateCount(env, cursor.cursor());
+    std::uint64_t count = 0;
+    for (const auto& name : labelKeys(category)) {
+        if (name.empty() || name.size() > env.maxKeySize()) continue;
+        TableCursor cursor(state, Table::Labels);
+        MDB_val key = toVal(name), value;
+        int rc = cursor.get(key, value, MDB_SET_KEY);
+        if (rc == MDB_NOTFOUND) continue;
+        env.check(rc, "reading the label index");
+        count += duplicateCount(env, cursor.cursor());
+    }
+    return count;
 }
 
 std::vector<std::pair<std::string, std::uint64_t>> ReadTransaction::categories() const {

@@ -117,7 +117,13 @@ public:
     // an empty category are not in the index.
     std::vector<model::NodeId> nodesWithCategory(std::string_view category, model::NodeId sceneId = model::kNoNode,
                                                  std::size_t limit = SIZE_MAX) const;
-    // How many nodes of every scene have this category: one index lookup, no scan.
+    // The label keys that name `category` however it is written (model/category.hpp): its
+    // canonical name, and names stored before names were canonical that fold to it.
+    std::vector<std::string> labelKeys(std::string_view category) const;
+    // Nodes of a category in every scene, by any of its spellings (labelKeys), in id order.
+    std::vector<model::NodeId> nodesNamed(std::string_view category, std::size_t limit = SIZE_MAX) const;
+    // How many nodes of every scene have this category, by any of its spellings (labelKeys): one
+    // index lookup a key, no scan.
     std::uint64_t countWithCategory(std::string_view category) const;
     // Every distinct category with its node count, across all scenes, by name (byte order).
     std::vector<std::pair<std::string, std::uint64_t>> categories() const;

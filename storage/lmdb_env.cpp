@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "storage/codec.hpp"
 
@@ -578,6 +579,28 @@ std::string_view Environment::bytes(const MDB_val& v) const {
                         "smql check names what is damaged; smql check --salvage OUT keeps the sound scenes");
     }
     return {at, v.mv_size};
+}
+
+std::vector<std::pair<std::string, std::string>> Environment::legacyLabels(MDB_txn* txn) const {
+    std::lock_guard lock(legacyMutex_);
+    if (!legacyLabels_) {
+        std::vector<std::pair<std::string, std::string>> found;
+        Cursor cursor(*this, txn, Table::Labels);
+        MDB_val key, value;
+        int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_FIRST);
+        for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT_NODUP)) {
+            std::string_view name = bytes(key);
+            if (!model::isCategoryName(name)) found.emplace_back(std::string(name), model::categoryName(name));
+        }
+        if (rc != MDB_NOTFOUND) check(rc, "listing categories");
+        legacyLabels_ = std::move(found);
+    }
+    return *legacyLabels_;
+}
+
+void Environment::forgetLegacyLabels() const {
+    std::lock_guard lock(legacyMutex_);
+    legacyLabels_.reset();
 }
 
 }  // namespace smql::storage

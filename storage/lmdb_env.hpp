@@ -132,6 +132,18 @@ private:
     std::optional<std::pair<dev_t, ino_t>> lockFile_;
     std::mutex readersMutex_;
     std::vector<MDB_txn*> idleReaders_;
+
+public:
+    // Label keys that are not canonical category names (model/category.hpp: written before names
+    // were folded, or by a program that wrote through storage directly), each with its canonical
+    // name: read from `txn` once, kept until a write stores another such key (forgetLegacyLabels).
+    // Every write through the engine stores canonical names, so the list does not otherwise grow.
+    std::vector<std::pair<std::string, std::string>> legacyLabels(MDB_txn* txn) const;
+    void forgetLegacyLabels() const;
+
+private:
+    mutable std::mutex legacyMutex_;
+    mutable std::optional<std::vector<std::pair<std::string, std::string>>> legacyLabels_;
 };
 
 inline MDB_val toVal(std::string_view s) { return {s.size(), const_cast<char*>(s.data())}; }

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "storage/codec.hpp"
 #include "storage/database.hpp"
@@ -91,6 +92,7 @@ public:
             if (category.empty()) continue;
             auto entry = codec::labelEntry(sceneId_, idAt(i));
             put(env_, labels.get(), toVal(category), toVal(entry), 0, "storing a label");
+            if (!model::isCategoryName(category)) env_.forgetLegacyLabels();
         }
     }
 

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "engine/ask/lexicon.hpp"
+#include "engine/ask/units.hpp"
 
 namespace smql::ask {
 
@@ -139,10 +140,7 @@ std::optional<double> number(const Value& v) {
 }
 
 // A length in the question's unit: "1.23 m", "123 cm".
-std::string length(double metres, const std::string& unit) {
-    if (unit == "cm") return fmt::format("{:.0f} cm", metres * 100.0);
-    return fmt::format("{:.2f} m", metres);
-}
+std::string length(double metres, const std::string& unit) { return formatLength(metres, unit); }
 
 std::string distance(const Translation& t, const ResultSet& rs) {
     int d = rs.columnIndex("distance");

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/ask/wordnet.hpp"
+#include "model/category.hpp"
 #include "model/names.hpp"
 
 namespace smql::ask {
@@ -24,6 +25,32 @@ void addUnique(std::vector<std::string>& v, const std::string& s) {
 std::string hyphenated(std::string words) {
     std::replace(words.begin(), words.end(), ' ', '-');
     return words;
+}
+
+// Names for one kind of thing that WordNet 3.0 does not join (it has no nightstand; a wastebasket
+// and a trash can are different synsets there), in canonical form (model/category.hpp). A word of
+// a row names the categories of the row's other words, either way round, as a synonym does.
+constexpr std::string_view kEquivalents[][9] = {
+    {"nightstand", "night-table", "bedside-table", "bedside-cabinet", "night-stand"},
+    {"wastebasket", "trash-can", "trash-bin", "garbage-can", "waste-bin", "wastebin", "dustbin", "bin",
+     "wastepaper-basket"},
+    {"tv", "television", "television-set", "tv-screen", "tv-monitor"},
+    {"refrigerator", "fridge"},
+    {"sofa", "couch"},
+    {"cabinet", "cupboard"},
+    {"mug", "cup"},
+    {"lamp", "light"},
+    {"trash-bag", "garbage-bag", "bin-bag"},
+};
+
+// The other names of `name`'s rows in kEquivalents.
+std::vector<std::string_view> equivalents(const std::string& name) {
+    std::vector<std::string_view> out;
+    for (const auto& row : kEquivalents)
+        if (std::find(std::begin(row), std::end(row), name) != std::end(row))
+            for (std::string_view other : row)
+                if (!other.empty() && other != name) out.push_back(other);
+    return out;
 }
 
 // English plurals WordNet may not list for a category it does not know ("wall-plugs").
@@ -70,9 +97,19 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
     const std::string word = hyphenated(words);
     WordMatch match;
     match.lemma = word;
-    if (contains(categories_, word)) {
-        match.how = WordMatch::How::Category;
-        match.categories = {word};
+    // The category's one name (model/category.hpp): "trash cans", "Trash_Can" are trash-can.
+    if (const std::string name = model::categoryName(words); contains(categories_, name)) {
+        match.how = name == word ? WordMatch::How::Category : WordMatch::How::Plural;
+        match.categories = {name};
+        match.lemma = name;
+        return match;
+    }
+    // Names WordNet does not join (kEquivalents), either way round.
+    for (std::string_view other : equivalents(model::categoryName(words)))
+        if (contains(categories_, std::string(other))) addUnique(match.categories, std::string(other));
+    if (!match.categories.empty()) {
+        match.how = WordMatch::How::Synonym;
+        match.lemma = model::categoryName(words);
         return match;
     }
     for (const auto& singular : singulars(word)) {
@@ -100,7 +137,8 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
             for (auto& sense : wordnet::nounSenses(base)) senses.push_back(std::move(sense));
         for (const auto& sense : senses)
             for (const auto& w : sense.words)
-                if (contains(categories_, w)) addUnique(match.categories, w);
+                if (const std::string name = model::categoryName(w); contains(categories_, name))
+                    addUnique(match.categories, name);
         if (!match.categories.empty()) {
             match.how = WordMatch::How::Synonym;
             return match;

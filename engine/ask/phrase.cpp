@@ -8,7 +8,9 @@
 
 #include <fmt/format.h>
 
+#include "engine/ask/units.hpp"
 #include "engine/ask/wordnet.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "relations/predicates.hpp"
@@ -59,10 +61,19 @@ bool isPartWord(const std::string& w) {
                        "back", "front", "foot", "head", "surface", "rest"});
 }
 
-// "in the room", "in this scene": the whole scene, no condition.
+// "in the room", "in this scene", "in here": the whole scene, no condition.
 bool isWholeScene(const std::string& w) {
-    return isOneOf(w, {"room", "scene", "house", "place", "space", "home", "apartment", "area"});
+    return isOneOf(w, {"room", "scene", "house", "place", "space", "home", "apartment", "area", "here", "flat"});
 }
+
+// Kinds of room: "in the office" is the scene when the scene is one (PhraseParser::scenePlaceAt).
+constexpr std::string_view kRoomKinds[] = {
+    "office",      "bedroom",         "kitchen",      "bathroom",    "living room",  "dining room",  "lounge",
+    "study",       "hallway",         "hall",         "den",         "nursery",      "guest room",   "laundry room",
+    "classroom",   "conference room", "workshop",     "restroom",    "lobby",        "studio",       "playroom",
+    "family room", "kids room",       "meeting room", "toilet room", "utility room", "storage room", "entryway",
+    "corridor",    "basement",        "attic",        "garage",
+};
 
 // Superlatives and the measure they order by: "the largest table" is FIND table ORDER BY volume
 // DESC LIMIT 1.
@@ -294,8 +305,7 @@ std::string joined(const Words& w, std::size_t from, std::size_t to) {
 std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(const Words& w, std::size_t i) {
     // within 1.5 m of x / within 30 cm of x
     if (i + 3 < w.size() && w[i] == "within" && std::regex_match(w[i + 1], std::regex("[0-9]+(\\.[0-9]+)?")) &&
-        isOneOf(w[i + 2], {"m", "metre", "metres", "meter", "meters", "cm", "centimetres", "centimeters"}) &&
-        w[i + 3] == "of")
+        lengthUnitNamed(w[i + 2]) && w[i + 3] == "of")
         return std::pair{std::string("near"), std::size_t{4}};
     for (const auto& row : predicatePhrases()) {
         if (i + row.words.size() > w.size()) continue;
@@ -476,10 +486,13 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             after += 2;
             while (after < w.size() && isDeterminer(w[after])) ++after;
         }
-        if (pred->first == "in" && after < w.size() && isWholeScene(w[after]) &&
-            (after + 1 == w.size() || !predicateAt(w, after + 1))) {
-            i = after + 1;
-            continue;
+        if (pred->first == "in" && after < w.size()) {
+            // "in here", "in the room", "in the office" (when the office is this scene).
+            std::size_t place = scenePlaceAt(w, after);
+            if (place > 0 && (after + place == w.size() || !predicateAt(w, after + place))) {
+                i = after + place;
+                continue;
+            }
         }
         p.conditions.push_back(condition(w, i, *pred));
         // "near the curtain and the door": the same relation to each.
@@ -511,7 +524,7 @@ Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pai
     std::size_t start = i;
     if (w[i] == "within" && pred.second == 4) {
         double value = std::stod(w[i + 1]);
-        c.metres = w[i + 2].starts_with("c") ? value / 100.0 : value;
+        c.metres = value * lengthUnitNamed(w[i + 2])->metres;
     }
     i += pred.second;
     if (c.predicate == "between") {
@@ -551,6 +564,27 @@ Error PhraseParser::notUnderstood(const Words& w, std::size_t at) const {
                  std::nullopt, "name something the scene holds, as in: what is on the sofa?");
 }
 
+std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
+    if (i >= w.size()) return 0;
+    if (isWholeScene(w[i])) return 1;
+    for (std::string_view kind : kRoomKinds) {
+        Words parts = words(std::string(kind));
+        if (i + parts.size() > w.size() || !std::equal(parts.begin(), parts.end(), w.begin() + i)) continue;
+        // A room kind the scene has as a thing ("closet", "study") is that thing.
+        const WordMatch match = lexicon_.lookUp(joined(w, i, i + parts.size()));
+        if (match.how == WordMatch::How::Category || match.how == WordMatch::How::Plural ||
+            match.how == WordMatch::How::Synonym)
+            return 0;
+        const std::string name = model::categoryName(scene_), word = model::categoryName(kind);
+        bool fits = sceneCount_ <= 1 || name.find(word) != std::string::npos ||
+                    name.find(std::string(kind.substr(0, kind.find(' ')))) != std::string::npos;
+        if (!fits) return 0;
+        out_.notes.push_back(fmt::format("'{}' is the scene '{}'", kind, scene_));
+        return parts.size();
+    }
+    return 0;
+}
+
 void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWords) {
     std::string all = joined(nounWords, 0, nounWords.size());
     if (nounWords.size() == 1) {
@@ -567,7 +601,9 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
     for (const auto& shaped : kShapedKinds) {
         if (shaped.words != all) continue;
         WordMatch whole = lexicon_.lookUp(all);
-        if (whole.how == WordMatch::How::Category || whole.how == WordMatch::How::Plural) break;
+        if (whole.how == WordMatch::How::Category || whole.how == WordMatch::How::Plural ||
+            whole.how == WordMatch::How::Synonym)
+            break;  // a name of a kind the scene holds ("bedside table": its nightstands) wins over the shape
         const auto& cats = lexicon_.categories();
         if (std::find(cats.begin(), cats.end(), std::string(shaped.category)) == cats.end()) break;
         p.noun = all;

@@ -67,8 +67,21 @@ struct Phrase {
 
 class PhraseParser {
 public:
-    PhraseParser(const Lexicon& lexicon, Translation& out, std::vector<std::string> planeCategories)
-        : lexicon_(lexicon), out_(out), planes_(std::move(planeCategories)) {}
+    // `scene` and `sceneCount`: the current scene's name and how many the database holds, which say
+    // whether "the office" is the scene (scenePlaceAt).
+    PhraseParser(const Lexicon& lexicon, Translation& out, std::vector<std::string> planeCategories,
+                 std::string scene = {}, std::size_t sceneCount = 1)
+        : lexicon_(lexicon),
+          out_(out),
+          planes_(std::move(planeCategories)),
+          scene_(std::move(scene)),
+          sceneCount_(sceneCount) {}
+
+    // How many words from w[i] name the scene itself as a place, 0 when they do not: "here",
+    // "room", "scene", "house" ...; a kind of room ("office", "living room") that no category of
+    // the scene is called, where the database holds one scene or the scene's name says that kind
+    // ("replica-office0"). Determiners before it are the caller's.
+    std::size_t scenePlaceAt(const Words& w, std::size_t i) const;
 
     // The predicate whose phrase starts at w[i] and how many words it takes.
     static std::optional<std::pair<std::string, std::size_t>> predicateAt(const Words& w, std::size_t i);
@@ -90,6 +103,8 @@ private:
     const Lexicon& lexicon_;
     Translation& out_;
     std::vector<std::string> planes_;
+    std::string scene_;
+    std::size_t sceneCount_ = 1;
     std::vector<std::string> unknownWords_;
     int nested_ = 0;  // inside a condition's phrase: an exclusion belongs to the outer one
 };

@@ -22,6 +22,7 @@
 #include "engine/ask/lexicon.hpp"
 #include "engine/ask/phrase.hpp"
 #include "engine/ask/translator.hpp"
+#include "engine/ask/units.hpp"
 #include "engine/ask/wordnet.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
@@ -144,7 +145,7 @@ public:
         for (Form form : forms) {
             Translation out;
             out.unit = unit_;
-            PhraseParser parser(lexicon_, out, question_.planeCategories);
+            PhraseParser parser(lexicon_, out, question_.planeCategories, question_.scene, question_.sceneCount);
             Cursor c{words_};
             try {
                 if (!(this->*form)(c, parser, out) || !c.done()) continue;
@@ -171,20 +172,37 @@ public:
     void setChoices(std::vector<std::string> choices) { choices_ = std::move(choices); }
 
 private:
-    // "(in meters)", "measured in centimeters", "in square meters" at the end: the answer's unit.
+    // The answer's unit, however the question names it: "(in meters)", "(cm)" (RuleTranslator
+    // moves a unit in parentheses to the end), "measured in centimeters", "in feet", "how far in
+    // metres is ...", "how many centimeters long is ...", "in square meters". The words go; the
+    // unit is the translation's (units.hpp).
     void takeUnit() {
-        auto unitOf = [](const std::string& w) -> std::optional<std::string> {
-            if (isOneOf(w, {"meters", "metres", "meter", "metre", "m"})) return "m";
-            if (isOneOf(w, {"centimeters", "centimetres", "centimeter", "centimetre", "cm"})) return "cm";
-            return std::nullopt;
-        };
-        std::size_t n = words_.size();
-        if (n >= 2 && unitOf(words_[n - 1]) && words_[n - 2] == "in") {
-            unit_ = *unitOf(words_[n - 1]);
-            words_.resize(n - 2);
-        } else if (n >= 3 && unitOf(words_[n - 1]) && words_[n - 2] == "square" && words_[n - 3] == "in") {
-            unit_ = "m^2";
-            words_.resize(n - 3);
+        auto unitAt = [&](std::size_t k) { return k < words_.size() ? lengthUnitNamed(words_[k]) : nullptr; };
+        // "in [square] <unit>" anywhere: "how far in metres is the sofa from the door?"
+        for (std::size_t k = 0; k + 1 < words_.size(); ++k) {
+            if (words_[k] != "in") continue;
+            std::size_t u = k + 1;
+            bool square = words_[u] == "square" || words_[u] == "sq";
+            if (square) ++u;
+            if (!unitAt(u) && u + 2 < words_.size() && isOneOf(words_[u], {"units", "unit"}) && words_[u + 1] == "of")
+                u += 2;  // "in units of meters"
+            if (!unitAt(u)) continue;
+            unit_ = square ? "m^2" : std::string(unitAt(u)->symbol);
+            std::size_t from = k;
+            while (from > 0 && isOneOf(words_[from - 1], {"measured", "given", "expressed", "answered", "answer"}))
+                --from;
+            words_.erase(words_.begin() + static_cast<std::ptrdiff_t>(from),
+                         words_.begin() + static_cast<std::ptrdiff_t>(u + 1));
+            break;
+        }
+        // "how many meters is the sofa from the door?", "how many centimeters tall is the lamp?"
+        if (words_.size() > 3 && words_[0] == "how" && words_[1] == "many" && unitAt(2)) {
+            unit_ = std::string(unitAt(2)->symbol);
+            words_.erase(words_.begin() + 1, words_.begin() + 3);
+            if (isOneOf(words_[1], {"away", "apart"}))
+                words_[1] = "far";
+            else if (!isOneOf(words_[1], {"long", "tall", "wide", "high", "deep", "far", "big", "large"}))
+                words_.insert(words_.begin() + 1, "far");
         }
         if (!words_.empty() && words_.back() == "measured") words_.pop_back();
     }
@@ -521,7 +539,17 @@ private:
             thing.conditions.push_back(seen);
         }
         p.posts(c.w, c.i, thing);
-        // "how many cushions do the sofas have": the holder comes last.
+        // "how many cushions do the sofas have": the holder comes last; "how many chairs does this
+        // room (the office) have": the scene holds them all.
+        if (std::size_t at = c.i + 1; c.i < c.w.size() && isOneOf(c.w[c.i], {"do", "does"})) {
+            while (at < c.w.size() && isOneOf(c.w[at], {"the", "this", "my", "our", "your"})) ++at;
+            std::size_t place = p.scenePlaceAt(c.w, at);
+            if (place > 0 && at + place < c.w.size() &&
+                isOneOf(c.w[at + place], {"have", "hold", "contain", "has", "contains", "holds"})) {
+                c.i = at + place + 1;
+                c.skip({"in", "it", "altogether", "total"});
+            }
+        }
         if (c.accept({"do|does"})) {
             auto verb =
                 std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
@@ -548,10 +576,18 @@ private:
 
     // Is there a sofa? Are there any mugs on the table? Does the room have a couch?
     bool existence(Cursor& c, PhraseParser& p, Translation& out) {
+        // "does the room have", "does the office have" (when the office is the scene).
+        auto sceneHas = [&] {
+            if (!c.accept({"does|do", "the|this|my|our|your"})) return false;
+            std::size_t place = p.scenePlaceAt(c.w, c.i);
+            if (place == 0 || c.i + place >= c.w.size() ||
+                !isOneOf(c.w[c.i + place], {"have", "contain", "include", "hold"}))
+                return false;
+            c.i += place + 1;
+            return true;
+        };
         bool lead = c.accept({"is|are", "there"}) || c.accept({"do|can|did", "you|i|we", "see|have|own|find|notice"}) ||
-                    c.accept({"does|do", "the|this|my|our", "room|scene|place|house|home|apartment",
-                              "have|contain|include|hold"}) ||
-                    (isOneOf(c.peek(), {"any", "anything", "something"}) && c.i == 0);
+                    sceneHas() || (isOneOf(c.peek(), {"any", "anything", "something"}) && c.i == 0);
         if (!lead) return false;
         Phrase thing = p.phrase(c.w, c.i, true);
         c.skip({"is", "are", "there", "here"});
@@ -1087,6 +1123,16 @@ public:
                 at = comma + 1;
             }
             text = m.prefix().str() + " " + m.suffix().str();
+        }
+        // A unit in parentheses ("the door (cm)", "(in meters)", "(square meters)") is the answer's
+        // unit, however placed: said at the end, where QuestionReader::takeUnit reads it.
+        static const std::regex unitGroup(R"(\(\s*((?:in\s+|unit:?\s*)?(?:square\s+)?)([A-Za-z]+)\s*\))");
+        for (std::smatch u; std::regex_search(text, u, unitGroup);) {
+            std::string word = u.str(2);
+            std::transform(word.begin(), word.end(), word.begin(), [](unsigned char ch) { return std::tolower(ch); });
+            if (!lengthUnitNamed(word)) break;
+            bool square = u.str(1).find("square") != std::string::npos;
+            text = u.prefix().str() + " " + u.suffix().str() + (square ? " in square " : " in ") + word;
         }
         // "which is closer to the tv, the sofa or the stove?": the same as choosing among them.
         static const std::regex closer(

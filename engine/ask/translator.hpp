@@ -46,6 +46,9 @@ struct Question {
     // The categories of the scene's anchors (walls, floor, doors): what a thing is "on" only when
     // it rests on nothing else.
     std::vector<std::string> anchorCategories;
+    // How many scenes the database holds: where it holds one, "the office" or "the kitchen" is that
+    // scene, whatever it is called.
+    std::size_t sceneCount = 1;
 };
 
 // One word of the question and the categories it was taken to mean ("couch" -> sofa).

@@ -12,6 +12,7 @@
 #include "engine/parser/parser.hpp"
 #include "model/error.hpp"
 #include "relations/predicates.hpp"
+#include "storage/database.hpp"
 
 namespace smql::binder {
 
@@ -55,7 +56,9 @@ void Binder::bindStatement(const ast::AskStmt& ask, BoundStatement& out) {
         ctx_.session.askTranslator ? *ctx_.session.askTranslator : ask::ruleTranslator();
     BoundAsk bound;
     try {
-        bound.translation = translator.translate(questionAbout(ask.question, snap));
+        ask::Question question = questionAbout(ask.question, snap);
+        question.sceneCount = ctx_.txn.scenes().size();
+        bound.translation = translator.translate(question);
     } catch (const Error& e) {
         throw Error(e.kind(), e.message(), ask.where, e.hint());
     }

@@ -4,6 +4,7 @@
 #include "engine/ask/lexicon.hpp"
 #include "engine/binder/binder.hpp"
 #include "engine/catalog/attributes.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "storage/database.hpp"
@@ -108,7 +109,7 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
     const std::uint64_t count = ctx_.txn.countWithCategory(target.name);
     if (count == 0) {
         std::vector<std::string> names;
-        for (const auto& [name, count] : ctx_.txn.categories()) names.push_back(name);
+        for (const auto& [name, count] : ctx_.txn.categories()) names.push_back(model::categoryName(name));
         if (auto noun = ask::absentThing(target.name, ask::Lexicon(names).lookUp(target.name))) {
             notes_.push_back(fmt::format("no {} in any scene", *noun));
             return BoundCatalogFind{*noun, limit, countOnly, ctx_.txn.countWithCategory(*noun)};
@@ -117,7 +118,7 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
         throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in any scene", target.name), target.where,
                     close.empty() ? "" : "did you mean " + model::joinAlternatives(close) + "?");
     }
-    return BoundCatalogFind{target.name, limit, countOnly, count};
+    return BoundCatalogFind{model::categoryName(target.name), limit, countOnly, count};
 }
 
 void Binder::bindStatement(const ast::FindStmt& find, BoundStatement& out) {

@@ -6,6 +6,7 @@
 #include "engine/ask/lexicon.hpp"
 #include "engine/binder/singular.hpp"
 #include "engine/catalog/attributes.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "storage/database.hpp"
@@ -71,27 +72,29 @@ NodeSet Binder::numbered(NodeSet set) {
 }
 
 std::string Binder::resolveCategory(const ast::Ref& ref) {
-    const auto& name = ref.name;
+    // A name is its canonical category however it is written: "Trash Cans" is trash-can
+    // (model/category.hpp), a plural its singular.
+    const std::string name = model::categoryName(ref.name);
     const auto& snap = scene();
     if (!snap.withCategory(name).empty()) return name;
-    // Plurals of known categories ("cushions", "boxes").
+    // Plurals English endings miss ("boxes" read as boxe).
     for (std::string_view suffix : {"es", "s"}) {
-        if (name.size() > suffix.size() + 1 && name.ends_with(suffix)) {
-            std::string singular = name.substr(0, name.size() - suffix.size());
+        if (ref.name.size() > suffix.size() + 1 && ref.name.ends_with(suffix)) {
+            std::string singular = model::categoryName(ref.name.substr(0, ref.name.size() - suffix.size()));
             if (!snap.withCategory(singular).empty()) return singular;
         }
     }
     auto known = snap.categories();
     // Known in another scene, or a noun for a thing the scene does not hold ("piano"): an empty
     // match is an answer, not a typo.
-    if (!ctx_.txn.nodesWithCategory(name, model::kNoNode, 1).empty()) return noted(name);
-    const ask::WordMatch match = ask::Lexicon(known).lookUp(name);
-    if (auto noun = ask::absentThing(name, match)) return noted(*noun);
-    auto close = model::nearestNames(name, known);
+    if (!ctx_.txn.nodesNamed(name, 1).empty()) return noted(name);
+    const ask::WordMatch match = ask::Lexicon(known).lookUp(ref.name);
+    if (auto noun = ask::absentThing(ref.name, match)) return noted(*noun);
+    auto close = model::nearestNames(ref.name, known);
     if (close.empty()) close = match.categories;  // a synonym or a broader word: couch -> sofa
     std::string hint = close.empty() ? fmt::format("this scene has: {}", model::joinAlternatives(known))
                                      : fmt::format("did you mean {}?", model::joinAlternatives(close));
-    throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in scene '{}'", name, snap.info().name),
+    throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in scene '{}'", ref.name, snap.info().name),
                 ref.where, hint);
 }
 
@@ -154,7 +157,8 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
                 throw Error(ErrorKind::Binding, fmt::format("no node #{} in scene '{}'", ref.number, snap.info().name),
                             ref.where, "ids are global; SHOW TREE lists this scene's nodes, USE SCENE switches scenes");
             // `chair#50` where #50 is a sofa: the name and the id disagree, so neither is trusted.
-            if (const model::Node& node = snap.node(*slot); !ref.name.empty() && ref.name != node.category)
+            if (const model::Node& node = snap.node(*slot);
+                !ref.name.empty() && model::categoryName(ref.name) != node.category)
                 throw Error(
                     ErrorKind::Binding,
                     fmt::format("#{} is {}, not a {}", ref.number, catalog::SceneSnapshot::label(node), ref.name),
@@ -275,8 +279,11 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
             out.attribute = expr.attribute;
             out.op = expr.op;
             out.literal = expr.literal;
+            // A category compares by its canonical name (`category = 'Trash Cans'` is trash-can).
             if (const auto* text = std::get_if<std::string>(&expr.literal))
-                out.literalFolded = parser::lowerCase(*text);
+                out.literalFolded = expr.attribute == "category" && expr.op != ast::CompareOp::Like
+                                        ? model::categoryName(*text)
+                                        : parser::lowerCase(*text);
             if (expr.distanceTo) {
                 out.distanceTo = bindRef(*expr.distanceTo);
                 catalog::checkLiteral(catalog::AttributeMeasure::Length, literalForm(expr), "distance()", expr.where);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "model/category.hpp"
 #include "model/embedding.hpp"
 #include "model/error.hpp"
 #include "storage/database.hpp"
@@ -26,6 +27,12 @@ double squaredGap(const model::Aabb& a, const model::Aabb& b) {
     double dy = std::max({0.0, a.min.y - b.max.y, b.min.y - a.max.y});
     double dz = std::max({0.0, a.min.z - b.max.z, b.min.z - a.max.z});
     return dx * dx + dy * dy + dz * dz;
+}
+
+// A node as the snapshot reads it: its category by the canonical name (the constructor says why).
+void canonicalise(model::Node& node) {
+    if (node.kind != model::NodeKind::Scene && !model::isCategoryName(node.category))
+        node.category = model::categoryName(node.category);
 }
 
 }  // namespace
@@ -65,6 +72,18 @@ SceneSnapshot::SceneSnapshot(model::SceneInfo info, storage::SceneIndex index, b
     idsInOneBlock_ = true;
     // Counted first, so each list is allocated once at its size.
     constexpr std::size_t kKinds = 6;
+    // Categories are read by their canonical name (model/category.hpp): a scene stored before names
+    // were canonical ("trash can", "Chairs") answers as one imported now does. Normalising here, on
+    // read, rather than rewriting the stored records, leaves the database as it was written: it
+    // opens read-only, older programs still read it, `smql check` still finds its records and keys
+    // in agreement, and the fold costs one pass over the scene's few distinct names. The scene
+    // node's category is the scene's name and stays as written.
+    std::vector<bool> sceneName(index_.categories.size());
+    for (const auto& e : index_.entries)
+        if (e.kind == model::NodeKind::Scene) sceneName[e.category] = true;
+    for (std::size_t c = 0; c < index_.categories.size(); ++c)
+        if (!sceneName[c] && !model::isCategoryName(index_.categories[c]))
+            index_.categories[c] = model::categoryName(index_.categories[c]);
     std::vector<std::uint32_t> perCategory(index_.categories.size());
     std::array<std::uint32_t, kKinds> shownPerKind{};
     for (const auto& e : index_.entries) {
@@ -91,6 +110,7 @@ SceneSnapshot::SceneSnapshot(model::SceneInfo info, storage::SceneIndex index, b
 
 void SceneSnapshot::holdAll(std::vector<model::Node> nodes) {
     allNodes_ = std::move(nodes);
+    for (model::Node& node : allNodes_) canonicalise(node);
     const auto count = static_cast<Slot>(allNodes_.size());
     firstId_ = count > 0 ? allNodes_.front().id : model::kNoNode;
     for (Slot s = 0; s < count; ++s) idsInOneBlock_ = idsInOneBlock_ && allNodes_[s].id == firstId_ + s;
@@ -115,8 +135,10 @@ const model::Node& SceneSnapshot::decode(Slot slot) const {
     model::Node node;
     const auto& entry = index_.entries[slot];
     // The index and the record must agree on what the index answered from.
-    if (!reader_->readNode(id, node) || node.scene != info_.id || node.kind != entry.kind ||
-        node.geometry != entry.geometry || node.hidden != (entry.hidden != 0) || node.category != category(slot))
+    const bool read = reader_->readNode(id, node);
+    if (read) canonicalise(node);
+    if (!read || node.scene != info_.id || node.kind != entry.kind || node.geometry != entry.geometry ||
+        node.hidden != (entry.hidden != 0) || node.category != category(slot))
         throw Error(ErrorKind::Storage,
                     fmt::format("the scene index of scene '{}' does not match the record of node #{}", info_.name, id),
                     std::nullopt, "smql check DB verifies the database");
@@ -289,6 +311,9 @@ std::optional<Slot> SceneSnapshot::slotOfSource(std::int64_t sourceId) const {
 const std::vector<Slot>& SceneSnapshot::withCategory(std::string_view category) const {
     static const std::vector<Slot> none;
     auto it = slotsByCategory_.find(category);
+    // However the name is written ("Trash Cans"), it names its canonical category.
+    if (it == slotsByCategory_.end() && !model::isCategoryName(category))
+        it = slotsByCategory_.find(model::categoryName(category));
     return it == slotsByCategory_.end() ? none : it->second;
 }
 

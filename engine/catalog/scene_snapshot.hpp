@@ -64,7 +64,8 @@ public:
     const model::Aabb& bounds(Slot slot) const { return index_.entries[slot].bounds; }
     std::optional<Slot> slotOf(model::NodeId id) const;
     std::optional<Slot> slotOfSource(std::int64_t sourceId) const;
-    // Slots of a category (visible and hidden), in id order; empty when the scene has none.
+    // Slots of a category (visible and hidden), in id order; empty when the scene has none. The name
+    // may be written any way model::categoryName folds ("Trash Cans" is trash-can).
     const std::vector<Slot>& withCategory(std::string_view category) const;
     const std::vector<Slot>& children(Slot slot) const;
     // What a kind word (`object`) or `node` names, in id order: the nodes that are not hidden,

@@ -521,7 +521,7 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
     std::size_t limit = f.limit ? static_cast<std::size_t>(std::max<std::int64_t>(*f.limit, 0)) : SIZE_MAX;
     // One row past the session's limit is enough to know it is exceeded.
     limit = std::min(limit, static_cast<std::size_t>(session_.limits.maxRows) + 1);
-    auto ids = limit == 0 ? std::vector<model::NodeId>{} : txn_.nodesWithCategory(f.category, model::kNoNode, limit);
+    auto ids = limit == 0 ? std::vector<model::NodeId>{} : txn_.nodesNamed(f.category, limit);
     checkRows(ids.size());
     rs.columns = {{"id", ValueType::Integer},
                   {"category", ValueType::Text},
@@ -532,7 +532,7 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
     model::Node node;
     for (auto id : ids) {
         if (!txn_.readNode(id, node)) continue;
-        rs.rows.push_back({static_cast<std::int64_t>(node.id), node.category, static_cast<std::int64_t>(node.scene),
+        rs.rows.push_back({static_cast<std::int64_t>(node.id), f.category, static_cast<std::int64_t>(node.scene),
                            sourceValue(node), boxValue(node)});
     }
     return rs;

@@ -1,11 +1,13 @@
 // SHOW SCENES, SHOW SETTINGS, SHOW TREE.
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
 #include "engine/catalog/attributes.hpp"
 #include "engine/exec/executor.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/presentation.hpp"
 #include "storage/database.hpp"
@@ -51,11 +53,15 @@ ResultSet Executor::run(const binder::BoundShowCategories& show) {
     ResultSet rs;
     if (show.allScenes) {
         rs.columns = {{"scene", ValueType::Text}, {"category", ValueType::Text}, {"count", ValueType::Integer}};
-        auto categories = txn_.categories();
+        // Each category once, by its canonical name, whatever spellings were stored for it.
+        std::map<std::string, std::vector<std::string>> keysByName;
+        for (const auto& [key, total] : txn_.categories()) keysByName[model::categoryName(key)].push_back(key);
         for (const auto& s : txn_.scenes())
-            for (const auto& [category, total] : categories) {
+            for (const auto& [category, keys] : keysByName) {
                 poll();
-                auto count = static_cast<std::int64_t>(txn_.nodesWithCategory(category, s.id).size());
+                std::int64_t count = 0;
+                for (const auto& key : keys)
+                    count += static_cast<std::int64_t>(txn_.nodesWithCategory(key, s.id).size());
                 if (count > 0) rs.rows.push_back({s.name, category, count});
             }
         return rs;

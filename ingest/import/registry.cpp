@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "ingest/import/importers.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 
@@ -61,7 +62,11 @@ const SceneFormat* findFormat(std::string_view name) {
 }
 
 model::SceneData read(std::string_view format, const std::string& path, const std::string& sceneName) {
-    return known(format, readableFormats(), "import").read(path, sceneName);
+    model::SceneData scene = known(format, readableFormats(), "import").read(path, sceneName);
+    // Whatever a format writes ("Trash_Can", "trash cans"), its categories are stored by their one
+    // canonical name (model/category.hpp), so a room answers the same however it was imported.
+    model::canonicaliseCategories(scene);
+    return scene;
 }
 
 bool writesFileIds(std::string_view format) {

@@ -12,6 +12,7 @@
 #include "ingest/import/json_field.hpp"
 #include "ingest/import/oriented_box.hpp"
 #include "ingest/import/viewpoint.hpp"
+#include "model/category.hpp"
 
 namespace smql::import {
 
@@ -67,7 +68,7 @@ model::Node readObject(const Field& object, model::NodeId localId) {
     node.sourceId = object.at("id").integer();
 
     Field className = object.at("class_name");
-    node.category = detail::lowerCase(className.string());
+    node.category = model::categoryName(className.string());
     if (node.category.empty()) className.fail("empty class name");
     ClassMapping mapping = mapClass(node.category);
     node.kind = mapping.kind;

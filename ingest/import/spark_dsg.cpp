@@ -383,7 +383,7 @@ private:
         return node;
     }
 
-    // The label space's name for the node's label, else `label_<n>` (an object layer without one,
+    // The label space's name for the node's label, else `label-<n>` (an object layer without one,
     // as Hydra's older files have), else what the layer holds.
     std::string categoryOf(const Field& attributes, std::int64_t layer) const {
         std::optional<std::uint64_t> label;
@@ -391,7 +391,7 @@ private:
         if (label && *label != kNoSemanticLabel) {
             if (auto space = labelNames_.find(layer); space != labelNames_.end())
                 if (auto name = space->second.find(*label); name != space->second.end()) return name->second;
-            if (layer == kObjectLayer) return fmt::format("label_{}", *label);
+            if (layer == kObjectLayer) return fmt::format("label-{}", *label);
         }
         return layer == kRoomLayer ? "room" : "object";
     }

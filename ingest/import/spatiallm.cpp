@@ -14,6 +14,7 @@
 #include "ingest/import/common.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/viewpoint.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/utf8.hpp"
 
@@ -270,7 +271,7 @@ private:
     void readBbox(model::Node& node, const std::vector<Token>& args) {
         if (args[0].text.empty()) fail(args[0], "class: empty class name");
         node.kind = model::NodeKind::Object;
-        node.category = detail::lowerCase(args[0].text);
+        node.category = model::categoryName(args[0].text);
         node.geometry = model::GeometryKind::Box;
         node.box.center = {coordinate(args[1], "position_x"), coordinate(args[2], "position_y"),
                            coordinate(args[3], "position_z")};

@@ -11,6 +11,7 @@
 #include "ingest/import/importers.hpp"
 #include "ingest/import/json_field.hpp"
 #include "ingest/import/viewpoint.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 
 namespace smql::import {
@@ -73,14 +74,6 @@ double uprightAround(const Axes& axes, const model::Vec3& lengths, model::Box& b
 // Doors and windows are the room's anchors, as in Replica; everything else is an object.
 bool isOpening(const std::string& category) { return category == "door" || category == "window"; }
 
-// "trash bin" -> "trash-bin", the way Replica spells two-word categories.
-std::string categoryName(const std::string& written) {
-    std::string out = detail::lowerCase(written);
-    std::replace(out.begin(), out.end(), ' ', '-');
-    std::replace(out.begin(), out.end(), '_', '-');
-    return out;
-}
-
 model::Node readBox(const Field& field, const std::string& category, model::NodeId localId) {
     model::Node node;
     node.id = localId;
@@ -110,7 +103,7 @@ namespace {
 model::SceneData readRoom(const Field& room, const std::string& name, const std::string& path) {
     model::SceneData scene;
     for (const auto& [written, boxes] : room.at("object_bbox").members()) {
-        std::string category = categoryName(written);
+        std::string category = model::categoryName(written);  // "trash bin" -> trash-bin
         if (category.empty()) boxes.fail("empty category name");
         for (std::size_t i = 0; i < boxes.size(); ++i)
             scene.nodes.push_back(readBox(boxes[i], category, scene.nodes.size() + 1));

@@ -77,7 +77,7 @@ TEST_CASE("SpatialLM: walls, doors, windows and bboxes", "[import][spatiallm]") 
     const Node& table = scene.nodes[6];
     CHECK(table.kind == NodeKind::Object);
     CHECK(table.geometry == GeometryKind::Box);
-    CHECK(table.category == "dining_table");
+    CHECK(table.category == "dining-table");  // the canonical name of `dining_table`
     CHECK(table.sourceId == 3000);
     checkBox(table.box, {2, 1.5, 0.4}, {1.6, 0.9, 0.8}, 0.5);
     CHECK(scene.nodes[7].category == "sofa");

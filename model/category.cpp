@@ -1,0 +1,82 @@
+#include "model/category.hpp"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+#include "model/types.hpp"
+
+namespace smql::model {
+
+namespace {
+
+// Words that end in s but are singular, or that have no singular a person would write for the
+// thing ("blinds", "scissors", "glasses" the eyewear): they stay as they are.
+constexpr std::array<std::string_view, 30> kKeptAsWritten{
+    "alias",   "atlas",   "bias",    "binoculars", "blinds",  "bus",      "canvas", "chassis",  "clothes",  "corps",
+    "gas",     "glasses", "goggles", "iris",       "jeans",   "lens",     "means",  "news",     "pajamas",  "pants",
+    "physics", "pliers",  "series",  "shorts",     "species", "scissors", "tongs",  "trousers", "tweezers", "yes"};
+
+// Plurals that English endings get wrong: irregular ones, -f and -fe nouns, and -ies / -oes / -ses
+// plurals whose singular ends otherwise than the rule says.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 39> kIrregularPlurals{{
+    {"atlases", "atlas"},   {"buses", "bus"},       {"cacti", "cactus"},    {"calves", "calf"},
+    {"canvases", "canvas"}, {"children", "child"},  {"cookies", "cookie"},  {"echoes", "echo"},
+    {"feet", "foot"},       {"fungi", "fungus"},    {"gases", "gas"},       {"geese", "goose"},
+    {"halves", "half"},     {"heroes", "hero"},     {"hoodies", "hoodie"},  {"indices", "index"},
+    {"knives", "knife"},    {"leaves", "leaf"},     {"lenses", "lens"},     {"lives", "life"},
+    {"loaves", "loaf"},     {"mangoes", "mango"},   {"matrices", "matrix"}, {"men", "man"},
+    {"mice", "mouse"},      {"movies", "movie"},    {"people", "person"},   {"potatoes", "potato"},
+    {"scarves", "scarf"},   {"selves", "self"},     {"shelves", "shelf"},   {"teeth", "tooth"},
+    {"thieves", "thief"},   {"tomatoes", "tomato"}, {"vertices", "vertex"}, {"wives", "wife"},
+    {"wolves", "wolf"},     {"women", "woman"},     {"zombies", "zombie"},
+}};
+
+bool separator(char c) { return c == ' ' || c == '-' || c == '_' || c == '\t' || c == '\n' || c == '\r'; }
+
+}  // namespace
+
+std::string singularWord(std::string_view word) {
+    std::string w(word);
+    if (std::find(kKeptAsWritten.begin(), kKeptAsWritten.end(), word) != kKeptAsWritten.end()) return w;
+    for (const auto& [plural, singular] : kIrregularPlurals)
+        if (word == plural) return std::string(singular);
+    // A possessive or a contraction ("it's", "o'brien's") is no plural.
+    if (word.size() < 3 || !word.ends_with('s') || word.ends_with("'s")) return w;
+    auto drop = [&](std::size_t n) { return std::string(word.substr(0, word.size() - n)); };
+    if (word.size() > 4 && word.ends_with("ies")) return drop(3) + "y";  // shelves above; batteries
+    for (std::string_view ending : {"sses", "shes", "ches", "xes", "zzes"})
+        if (word.ends_with(ending)) return drop(2);  // glasses -> glass, switches -> switch, boxes -> box
+    for (std::string_view ending : {"ss", "us", "is"})
+        if (word.ends_with(ending)) return w;  // mattress, cactus, tennis: no plurals
+    return drop(1);                            // chairs, vases, stoves, tvs
+}
+
+std::string categoryName(std::string_view written) {
+    std::string out;
+    out.reserve(written.size());
+    bool pendingSeparator = false;
+    for (char c : written) {
+        if (separator(c)) {
+            pendingSeparator = !out.empty();
+            continue;
+        }
+        if (pendingSeparator) out.push_back('-');
+        pendingSeparator = false;
+        out.push_back(c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c);
+    }
+    const std::size_t lastWord = out.rfind('-') == std::string::npos ? 0 : out.rfind('-') + 1;
+    std::string singular = singularWord(std::string_view(out).substr(lastWord));
+    out.replace(lastWord, std::string::npos, singular);
+    return out;
+}
+
+bool isCategoryName(std::string_view written) { return categoryName(written) == written; }
+
+void canonicaliseCategories(SceneData& scene) {
+    for (Node& node : scene.nodes)
+        if (node.kind != NodeKind::Scene && !node.category.empty() && !isCategoryName(node.category))
+            node.category = categoryName(node.category);
+}
+
+}  // namespace smql::model
