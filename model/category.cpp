@@ -46,7 +46,7 @@ std::string singularWord(std::string_view word) {
     auto drop = [&](std::size_t n) { return std::string(word.substr(0, word.size() - n)); };
     if (word.size() > 4 && word.ends_with("ies")) return drop(3) + "y";  // shelves above; batteries
     for (std::string_view ending : {"sses", "shes", "ches", "xes", "zzes"})
-        if (word.ends_with(ending)) return drop(2);  // glasses -> glass, switches -> switch, boxes -> box
+        if (word.ends_with(ending)) return drop(2);  // dresses -> dress, switches -> switch, boxes -> box
     for (std::string_view ending : {"ss", "us", "is"})
         if (word.ends_with(ending)) return w;  // mattress, cactus, tennis: no plurals
     return drop(1);                            // chairs, vases, stoves, tvs
