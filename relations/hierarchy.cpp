@@ -176,7 +176,8 @@ private:
                 continue;
             const std::size_t at = position_.at(b->id);
             choose(at);  // its own parent first; one still being chosen (a cycle of containment) is passed over
-            if (state_[at] == State::Choosing) continue;
+            // Nor a carrier that hangs below a already (a parent the scene came with): no cycle.
+            if (state_[at] == State::Choosing || isAncestor(a.id, at)) continue;
             carriers.emplace_back(b, at);
         }
         const Node* best = nullptr;

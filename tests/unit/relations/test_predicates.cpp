@@ -357,3 +357,19 @@ TEST_CASE("parents: a picture over a sofa hangs on the wall behind it") {
     CHECK(scene.nodes[2].parent == 1);
     CHECK(scene.nodes[3].parent == 2);
 }
+
+TEST_CASE("parents: never a cycle with a parent the scene came with") {
+    // A small box inside a larger crate; the scene already hangs the crate below the box (an
+    // importer's or an earlier stage's parent). The box is in the crate by containment, but taking
+    // the crate as its parent would close a cycle: it is passed over.
+    model::SceneData scene;
+    scene.nodes.push_back(
+        node(1, "wall", 0, 0, 1.3, 6, 0.04, 2.7, model::NodeKind::Anchor, model::GeometryKind::Plane));
+    scene.nodes.push_back(node(2, "crate", 0, 1, 0.5, 1, 1, 1));
+    scene.nodes.push_back(node(3, "box", 0, 1, 0.3, 0.3, 0.3, 0.3));
+    scene.nodes[1].parent = 3;
+    assignParents(scene);
+    CHECK(scene.nodes[1].parent == 3);
+    CHECK(scene.nodes[2].parent != 2);
+    CHECK(scene.nodes[2].parent == 1);  // the nearest wall instead
+}
