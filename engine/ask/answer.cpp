@@ -290,10 +290,12 @@ std::string attribute(const Translation& t, const ResultSet& rs) {
 }
 
 // "what is the lamp on?": the things the subject stands in that relation to.
-std::string reverse(const Translation& t, const ResultSet& rs) {
+// The rows of RELATE subject TO thing that answer "what is the subject on?": those of the
+// question's relation, and "attached" for "on" where the subject rests on nothing.
+std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) {
     int relation = rs.columnIndex("relation"), subject = rs.columnIndex("subject"), object = rs.columnIndex("object");
-    std::map<std::string, std::vector<std::string>> held;  // subject -> objects
-    std::vector<std::string> order;
+    std::vector<std::size_t> out;
+    if (relation < 0 || subject < 0 || object < 0) return out;
     // Resting on a thing or hanging on it are both "on" in English; a subject that rests on
     // something is said to be on that, not on the wall it touches.
     auto isBackground = [&](const std::string& label) {
@@ -306,13 +308,24 @@ std::string reverse(const Translation& t, const ResultSet& rs) {
             resting.insert(text(row[subject]));
             if (!isBackground(text(row[object]))) onThings.insert(text(row[subject]));
         }
-    for (const auto& row : rs.rows) {
+    for (std::size_t i = 0; i < rs.rows.size(); ++i) {
+        const auto& row = rs.rows[i];
         std::string r = text(row[relation]), s = text(row[subject]);
         bool match = r == t.predicate || (t.predicate == "on" && r == "attached" && !resting.count(s));
         // On the rug, not on the floor and the rug.
-        if (!match || (onThings.count(s) && isBackground(text(row[object])))) continue;
+        if (match && !(onThings.count(s) && isBackground(text(row[object])))) out.push_back(i);
+    }
+    return out;
+}
+
+std::string reverse(const Translation& t, const ResultSet& rs) {
+    const int subject = rs.columnIndex("subject"), object = rs.columnIndex("object");
+    std::map<std::string, std::vector<std::string>> held;  // subject -> objects
+    std::vector<std::string> order;
+    for (std::size_t i : reverseRows(t, rs)) {
+        std::string s = text(rs.rows[i][subject]);
         if (!held.count(s)) order.push_back(s);
-        held[s].push_back(text(row[object]));
+        held[s].push_back(text(rs.rows[i][object]));
     }
     if (order.empty()) {
         if (rs.rows.empty()) return fmt::format("There is no {} here.", t.subject);
@@ -333,6 +346,14 @@ std::string changes(const ResultSet& rs) {
 }
 
 }  // namespace
+
+ResultSet answeredRows(const Translation& translation, ResultSet rows) {
+    if (translation.kind != QuestionKind::Reverse) return rows;
+    std::vector<std::vector<Value>> kept;
+    for (std::size_t i : reverseRows(translation, rows)) kept.push_back(std::move(rows.rows[i]));
+    rows.rows = std::move(kept);
+    return rows;
+}
 
 std::string answer(const Translation& t, const ResultSet& rs, const std::string& scene) {
     switch (t.kind) {

@@ -13,6 +13,11 @@ namespace smql::ask {
 // `rows` is the result of running translation.smql (empty when it did not run).
 std::string answer(const Translation& translation, const ResultSet& rows, const std::string& scene);
 
+// The rows the answer speaks of: for "what is the picture on?", which runs RELATE against every
+// thing, only the relations it names (the picture attached to wall#19), not every relation of the
+// picture; the rows of every other kind of question as they are.
+ResultSet answeredRows(const Translation& translation, ResultSet rows);
+
 // The whole message ASK shows: the SMQL, the words it mapped, then the answer.
 std::string message(const Translation& translation, const std::string& answerText);
 

@@ -16,7 +16,7 @@ ResultSet Executor::run(const binder::BoundAsk& ask) {
         }
     }
     rs.message = ask::message(ask.translation, ask::answer(ask.translation, rs, scene().info().name));
-    return rs;
+    return ask::answeredRows(ask.translation, std::move(rs));
 }
 
 }  // namespace smql::exec

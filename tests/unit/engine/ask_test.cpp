@@ -142,6 +142,14 @@ TEST_CASE("ASK on Replica room 0: the acceptance questions", "[ask]") {
     CHECK(count.message.find(fmt::format("\n{} cushions are on the sofa", n)) != std::string::npos);
     CHECK(n == std::get<std::int64_t>(run(*engine, "COUNT cushion WHERE on(sofa)").rows.at(0).at(0)));
     CHECK(n > 0);
+
+    // "What is X on?" runs RELATE against every thing; its rows are the relations the answer names,
+    // not the picture's 170 relations to everything in the room.
+    auto picture = run(*engine, "ASK 'what is the picture on?'");
+    REQUIRE(picture.rows.size() == 1);
+    const std::string wall = std::get<std::string>(picture.rows[0][picture.columnIndex("object")]);
+    CHECK(wall.starts_with("wall#"));
+    CHECK(picture.message.ends_with(" is on " + wall + "."));
 }
 
 TEST_CASE("ASK reports what it cannot translate, and runs a plugged-in translator's SMQL", "[ask]") {
