@@ -344,13 +344,19 @@ model::SceneData Engine::readScene(const std::string& name) {
 }
 
 std::string Engine::scenePoints(const std::string& name) {
-    model::SceneData scene = readScene(name);
-    const model::Blob* points = model::pointsBlob(scene);
+    std::lock_guard lock(state_->mutex);
+    auto txn = state_->db->beginRead();
+    auto info = name.empty() ? state_->currentScene(txn) : txn.sceneByName(name).value_or(model::SceneInfo{});
+    if (info.id == model::kNoNode)
+        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
+                    "SHOW SCENES lists the scenes");
+    // The one blob, not the scene with every evidence crop.
+    auto points = txn.blob(info.id, model::kPointsBlobName);
     if (!points)
-        throw Error(ErrorKind::Input, fmt::format("scene '{}' holds no points", scene.info.name), std::nullopt,
+        throw Error(ErrorKind::Input, fmt::format("scene '{}' holds no points", info.name), std::nullopt,
                     "points come from smql ingest of a capture; a scene imported from a layout has boxes only");
     model::readPointsPly(points->bytes);  // a damaged blob is refused, not handed on
-    return points->bytes;
+    return std::move(points->bytes);
 }
 
 std::vector<model::Blob> Engine::evidence(model::NodeId node) {
