@@ -371,19 +371,20 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
 }
 
 // Scale: as given, 1 for a metric capture, else the priors that apply (floor to ceiling, the
-// cameras' height, the heights of named things) combined.
-void chooseScale(Alignment& out, const AlignOptions& options, double ceilingAbove, bool floorFound,
-                 const std::vector<Pose>& cameras, const Eigen::Vector3d& up, const std::vector<NamedThing>& things) {
+// cameras' height, the heights of named things) combined. Returns how many priors were measured.
+std::size_t chooseScale(Alignment& out, const AlignOptions& options, double ceilingAbove, bool floorFound,
+                        const std::vector<Pose>& cameras, const Eigen::Vector3d& up,
+                        const std::vector<NamedThing>& things) {
     auto& notes = out.notes;
     if (options.scale) {
         out.scale = *options.scale;
         notes.push_back("scale: " + fixed(out.scale, 4) + " as given");
-        return;
+        return 0;
     }
     if (options.metric) {
         out.scale = 1;
         notes.push_back("scale: 1 (metric capture)");
-        return;
+        return 0;
     }
     std::vector<ScaleEstimate> estimates;
     if (ceilingAbove > 0)
@@ -401,13 +402,14 @@ void chooseScale(Alignment& out, const AlignOptions& options, double ceilingAbov
         if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight)) estimates.push_back(*heights);
     if (estimates.empty()) {
         notes.push_back("scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");
-        return;
+        return 0;
     }
     ScaleChoice choice = combineScales(estimates);
     out.scale = choice.scale;
     out.scaleSpread = choice.spread;
     out.scaleSplit = choice.split;
     notes.push_back(choice.note);
+    return estimates.size();
 }
 
 }  // namespace
@@ -451,7 +453,19 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     turn << std::cos(out.heading), -std::sin(out.heading), 0, std::sin(out.heading), std::cos(out.heading), 0, 0, 0, 1;
     Eigen::Matrix3d rotation = turn * level;
 
-    chooseScale(out, options, ceiling ? ceilingAbove : 0, floor != nullptr, cameras, up, things);
+    const std::size_t priors =
+        chooseScale(out, options, ceiling ? ceilingAbove : 0, floor != nullptr, cameras, up, things);
+    // A desk that fills the photos, its floor unseen and nothing named under it, is a plane below the
+    // cameras like a floor: only what stands on it, or a second prior, tells them apart (TUM's desk
+    // video was stored 2.17x too large in one run of several). Without either, the scale would rest on
+    // the cameras' height above a plane that may be a table top.
+    if (floor && priors == 1 && choice.floorEvidence.standing.empty()) {
+        out.floorUnconfirmed =
+            "nothing that stands on floors rises from the lowest horizontal surface and no ceiling shows, so it "
+            "may be a table top: " +
+            choice.floorEvidence.describe();
+        notes.push_back("floor: not confirmed; " + out.floorUnconfirmed);
+    }
     if (ceiling) {
         out.ceilingHeight = out.scale * ceilingAbove;
         notes.push_back("ceiling: plane with " + std::to_string(ceiling->plane.inliers) + " points, " +

@@ -62,6 +62,10 @@ struct Alignment {
     // cameras), and where the floor was placed instead. Both empty when the floor was found.
     std::string floorNotSeen;
     std::string floorPlaced;
+    // Photos without depth: why the plane taken for the floor cannot be told from a table top (nothing
+    // that stands on floors rises from it, and no ceiling or thing's height checks the scale the
+    // cameras' height gives). Empty when something confirms it, or when the scale is known.
+    std::string floorUnconfirmed;
     std::size_t floorInliers = 0;
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)

@@ -209,6 +209,10 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                                          alignment.floorPlaced)
                            : std::string("photos without depth take their scale from the floor: give --scale "
                                          "(metres per capture unit), or add photos that show the floor")});
+    if (!alignment.floorUnconfirmed.empty() && !scaled)
+        out.push_back({"floor", true, "the floor is not confirmed: " + alignment.floorUnconfirmed,
+                       "photos without depth take their scale from the floor: give --scale (metres per capture "
+                       "unit), or add photos that show the floor and the chairs, tables or beds standing on it"});
     if (alignment.scaleSplit > 0)
         out.push_back({"scale priors", alignment.scaleSplit > kSplitRefuse,
                        fmt::format("the scale's two priors disagree by a factor of {:.2g} (the cameras' height above "

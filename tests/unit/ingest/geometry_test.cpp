@@ -674,6 +674,28 @@ TEST_CASE("a table top is not taken for the floor: what stands on it says so", "
         CHECK(a.scale == Approx(0.75 / 1.4).epsilon(0.03));
         CHECK(a.floorHeight == Approx(1.5 - 1.4).margin(0.05));
     }
+    SECTION("photos without depth: a plane nothing stands on, the cameras' height its one prior, is not confirmed") {
+        // The desk's frames with nothing named and nothing seen under the top (what one run of TUM's
+        // desk video gave): the top is the lowest plane below the cameras, like a floor.
+        Desk desk = deskScene(false);
+        PointCloud top;
+        for (const auto& p : desk.cloud.points)
+            if (p.z > 0.7) top.push(p, {180, 150, 120}, 0);
+        AlignOptions options;
+        options.metric = false;
+        Alignment a = alignCapture(top, desk.cameras, options, {});
+        INFO(notesOf(a));
+        CHECK(a.floorFound);
+        CHECK_THAT(a.floorUnconfirmed, Catch::Contains("nothing that stands on floors rises from"));
+        // The floor seen under the desk, a chair rising from it: confirmed; so is any plane under a known scale.
+        const Desk seen = deskScene(true);
+        Alignment withChair = alignCapture(seen.cloud, seen.cameras, options, {seen.things.back()});
+        INFO(notesOf(withChair));
+        CHECK(withChair.floorHeight == Approx(0).margin(0.01));
+        CHECK(withChair.floorUnconfirmed.empty());
+        options.scale = 0.5;
+        CHECK(alignCapture(top, desk.cameras, options, {}).floorUnconfirmed.empty());
+    }
 }
 
 TEST_CASE("rgbd-dining: the views' depths agree through the poses; mirrored or in another unit they do not",

@@ -147,6 +147,18 @@ TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[in
     CHECK_THAT(refused.front().what, Catch::Contains("a factor of 77"));
     split.scaleSplit = 1.6;
     CHECK_FALSE(alignmentFindings(split, {}).front().refuse);
+
+    // A plane below the cameras that nothing stands on, the scale from the cameras' height alone
+    // (geometry_test: a desk top in photos that name nothing): refused without a scale, not with one.
+    Alignment unconfirmed;
+    unconfirmed.floorFound = true;
+    unconfirmed.floorUnconfirmed = "nothing that stands on floors rises from the lowest horizontal surface";
+    auto alone = alignmentFindings(unconfirmed, {});
+    REQUIRE(alone.size() == 1);
+    CHECK(alone.front().refuse);
+    CHECK_THAT(alone.front().what, Catch::Contains("the floor is not confirmed"));
+    CHECK_THAT(alone.front().fix, Catch::Contains("--scale"));
+    CHECK(alignmentFindings(unconfirmed, {.given = true}).empty());
     CHECK(alignmentFindings(Alignment{}, {}).empty());
 }
 
