@@ -8,21 +8,24 @@ namespace {
 // the kind varies by a tenth or so (0: it varies more). Extents: the largest side, height included, things of the kind
 // commonly have (a floor lamp's 1.9 m, a bookcase's 2.2 m): what a box named so may reach before its name is doubted.
 // Support: what things of the kind usually stand on (the floor, or a table, desk or counter), which tells a floor from
-// a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). The rows
-// cover the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
+// a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). Upright
+// ends: the kind has a thin upright part at an end or side (a bed's headboard, a sofa's back) that a detector may name
+// apart (object_fusion.cpp joins it back). The rows cover the memory's names for the detector's COCO classes
+// (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;
     double extent;
     Support support;
     bool holdsThings = false;
+    bool uprightEnds = false;
 };
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true},
     {"desk", 0.75, 1.9, Support::Floor, true},
     {"chair", 0.9, 1.2, Support::Floor},
-    {"sofa", 0.85, 2.8, Support::Floor},
-    {"bed", 0.55, 2.3, Support::Floor, true},
+    {"sofa", 0.85, 2.8, Support::Floor, false, true},
+    {"bed", 0.55, 2.3, Support::Floor, true, true},
     {"fridge", 1.75, 2.0, Support::Floor},
     {"toilet", 0.75, 0.9, Support::Floor},
     {"door", 2.03, 2.4, Support::Floor},
@@ -34,7 +37,7 @@ constexpr Typical kTypical[] = {
     {"dresser", 0, 1.9, Support::Floor},
     {"armchair", 0, 1.2, Support::Floor},
     {"stool", 0, 0.9, Support::Floor},
-    {"bench", 0, 2.2, Support::Floor},
+    {"bench", 0, 2.2, Support::Floor, false, true},
     {"tv", 0, 2.0, Support::Either},
     {"monitor", 0, 0.9, Support::Surface},
     {"box", 0, 1.0, Support::Either},
@@ -107,6 +110,11 @@ std::optional<double> typicalExtent(std::string_view category) {
 bool holdsThings(std::string_view category) {
     const Typical* t = find(category);
     return t && t->holdsThings;
+}
+
+bool hasUprightEnds(std::string_view category) {
+    const Typical* t = find(category);
+    return t && t->uprightEnds;
 }
 
 Support usualSupport(std::string_view category) {

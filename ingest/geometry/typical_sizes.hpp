@@ -27,4 +27,8 @@ Support usualSupport(std::string_view category);
 // surface that is such a thing's top is not the floor.
 bool holdsThings(std::string_view category);
 
+// Whether things of a kind have a thin upright part at an end or side (a bed's headboard or footboard, a
+// sofa's back) that a detector may see as a thing of its own (a "tv", a "suitcase").
+bool hasUprightEnds(std::string_view category);
+
 }  // namespace smql::ingest

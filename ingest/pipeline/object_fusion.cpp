@@ -177,6 +177,34 @@ std::size_t mergeStoredTwice(std::vector<Thing>& things, const FusionOptions& op
     return merged;
 }
 
+// Upright ends stored as things of their own joined to their bed or sofa: its box then reaches the
+// headboard's top and the wall. The whole keeps its name and its votes. Returns how many were joined.
+std::size_t joinUprightEnds(std::vector<Thing>& things, const FusionOptions& options) {
+    std::size_t joined = 0;
+    for (std::size_t w = 0; w < things.size(); ++w) {
+        if (!hasUprightEnds(things[w].category)) continue;
+        for (std::size_t p = 0; p < things.size(); ++p) {
+            // A thing named as one that holds others (a table, a counter) is a surface, not an upright end: the
+            // counter behind a sofa.
+            if (p == w || hasUprightEnds(things[p].category) || holdsThings(things[p].category) ||
+                !uprightEndOf(things[p].box, things[w].box, options))
+                continue;
+            Thing both = things[w];
+            both.instances.insert(both.instances.end(), things[p].instances.begin(), things[p].instances.end());
+            for (std::size_t i = 0; i < things[p].points.size(); ++i)
+                both.points.push(things[p].points.points[i], things[p].points.colors[i], things[p].points.frames[i]);
+            both.box = uprightBox(both.points.points);
+            if (!nameSuits(both.category, both.box)) continue;
+            things[w] = std::move(both);
+            things.erase(things.begin() + static_cast<std::ptrdiff_t>(p));
+            if (p < w) --w;
+            p = static_cast<std::size_t>(-1);  // the grown whole may reach another end: look again
+            ++joined;
+        }
+    }
+    return joined;
+}
+
 // A thing of a kind that stands on floors (a table, a chair, a bed) whose legs or base the views did
 // not see (chairs in front, the table's own top): its bottom hangs in the air, below
 // FusionOptions::groundReach or with its top no higher than such things' usual top
@@ -242,6 +270,35 @@ ObjectTrack trackOf(const Thing& thing, Views& views, const std::vector<ObjectTr
 
 }  // namespace
 
+// Whether `part` is the upright end of `whole` (a bed's headboard, a sofa's back, named "tv" or "suitcase" by a
+// detector that has no name for it): no deeper than FusionOptions::partDepth, standing at one of the whole's
+// ends (its centre within partReach outside the footprint, or partDepth inside it, along one axis, and inside
+// it along the other), as wide as partWidth of that end or more and at most a reach wider, parallel to it, its
+// bottom no higher than the whole's top and its top above it.
+bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions& options) {
+    const double partBottom = p.center.z - p.size.z / 2, partTop = p.center.z + p.size.z / 2;
+    const double wholeTop = w.center.z + w.size.z / 2;
+    if (partBottom > wholeTop || partTop <= wholeTop) return false;
+    const double c = std::cos(w.yaw), s = std::sin(w.yaw);
+    const double dx = p.center.x - w.center.x, dy = p.center.y - w.center.y;
+    const double local[2] = {c * dx + s * dy, -s * dx + c * dy};
+    const double half[2] = {w.size.x / 2, w.size.y / 2};
+    // The part's sides along the whole's axes (its yaw within 20 degrees of them, either way round).
+    const double turn = std::remainder(p.yaw - w.yaw, M_PI);
+    if (std::abs(std::remainder(turn, M_PI / 2)) > 20 * M_PI / 180) return false;
+    const bool swapped = std::abs(turn) > M_PI / 4;
+    const double side[2] = {swapped ? p.size.y : p.size.x, swapped ? p.size.x : p.size.y};
+    for (int along = 0; along < 2; ++along) {
+        const int across = 1 - along;
+        const double beyond = std::abs(local[along]) - half[along];
+        if (side[along] > options.partDepth || beyond > options.partReach || beyond < -options.partDepth) continue;
+        if (std::abs(local[across]) > half[across]) continue;
+        const double end = 2 * half[across];
+        if (side[across] >= options.partWidth * end && side[across] <= end + 2 * options.partReach) return true;
+    }
+    return false;
+}
+
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
                                     const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
                                     const FusionOptions& options, StageProgress& progress) {
@@ -259,6 +316,7 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     std::size_t guesses = 0;
     std::vector<Thing> things = thingsOf(map, cameras, options, guesses);
     const std::size_t twice = mergeStoredTwice(things, options);
+    const std::size_t ends = joinUprightEnds(things, options);
     std::size_t grounded = 0;
     if (room.floorFound)
         for (auto& thing : things) grounded += standOnFloor(thing, things, options);
@@ -269,9 +327,10 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     for (const auto& thing : things) out.push_back(trackOf(thing, views, tracks));
     progress.note(fmt::format(
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
-        "merged into the things they belong to, {} stored twice merged; {} slivers and {} things seen in too few of "
+        "merged into the things they belong to, {} stored twice merged, {} upright ends joined to their beds or sofas; "
+        "{} slivers and {} things seen in too few of "
         "the frames that held them dropped; {} reaching down to the floor)",
-        fused.segmented, views.all.size(), out.size(), fused.merged, twice, slivers, guesses, grounded));
+        fused.segmented, views.all.size(), out.size(), fused.merged, twice, ends, slivers, guesses, grounded));
     return out;
 }
 

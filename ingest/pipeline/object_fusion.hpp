@@ -30,6 +30,10 @@ struct FusionOptions {
     double restingGap = 0.1;         // m: ... unless another thing's top is this close under it
     double storedTwiceShare = 0.25;  // two things of one name, this share of the smaller's box inside the
                                      // larger's, together still of a size that suits it, are one thing stored twice
+    double partDepth = 0.6;          // m: a thing no deeper than this standing upright at the end of a bed or
+    double partReach = 0.3;          // sofa (its centre within this of the larger's footprint), as wide as
+    double partWidth = 0.6;          // this share of that end or more, rising above its top, is its headboard
+                                     // or back (typical_sizes.hpp: hasUprightEnds), whatever it was named
     bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
@@ -38,6 +42,10 @@ struct FusionCamera {
     Pose pose;
     Intrinsics intrinsics;
 };
+
+// Whether the box `part` is an upright end of the box `whole` (a bed's headboard, a sofa's back): no deeper than
+// FusionOptions::partDepth, at one of the whole's ends, as wide as a good share of that end, rising above its top.
+bool uprightEndOf(const model::Box& part, const model::Box& whole, const FusionOptions& options = {});
 
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
                                     const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
