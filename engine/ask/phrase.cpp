@@ -161,6 +161,31 @@ constexpr std::array<ShapedKind, 7> kShapedKinds{{
     {"kitchen table", "table", "height >= 0.6 m AND width >= 0.9 m", "a table to eat at"},
 }};
 
+// A node named by its id as SMQL writes one: `#50`, `sofa#50` (a category and an id), `src#93` (the
+// id it had in its file). The category part is folded as a stored category is.
+std::optional<std::string> idReference(const std::string& word) {
+    static const std::regex id(R"(^(src#|([a-z_][a-z0-9_-]*)?#)([0-9]+)$)");
+    std::smatch m;
+    if (!std::regex_match(word, m, id)) return std::nullopt;
+    if (m.str(1) == "src#" || m.str(2).empty()) return word;
+    return model::categoryName(m.str(2)) + "#" + m.str(3);
+}
+
+// "the wall on the left", "the window on the right side", "the lamp on the left hand side": the
+// side, with `i` past its words; empty (and `i` as it was) when none follows.
+std::string sideAfter(const Words& w, std::size_t& i) {
+    if (i + 2 >= w.size() || w[i] != "on" || w[i + 1] != "the" || !isSideWord(w[i + 2])) return {};
+    std::size_t k = i + 3;
+    if (k + 1 < w.size() && w[k] == "hand" && w[k + 1] == "side")
+        k += 2;
+    else if (k < w.size() && w[k] == "side")
+        k += 1;
+    if (k < w.size() && w[k] == "of") return {};
+    std::string side = w[i + 2];
+    i = k;
+    return side;
+}
+
 std::string hyphenated(std::string s) {
     std::replace(s.begin(), s.end(), ' ', '-');
     return s;
@@ -199,6 +224,7 @@ std::string conditionText(const Condition& c) {
 }
 
 std::string targetOf(const Phrase& p) {
+    if (!p.id.empty()) return p.id;
     if (p.kind) return *p.kind;
     if (!p.side.empty()) return smqlName(p.categories.front()) + "." + p.side;
     if (p.categories.size() == 1) return smqlName(p.categories.front());
@@ -207,7 +233,7 @@ std::string targetOf(const Phrase& p) {
 
 std::vector<std::string> conditionsOf(const Phrase& p) {
     std::vector<std::string> where;
-    if (!p.kind && p.side.empty() && p.categories.size() != 1) {
+    if (p.id.empty() && !p.kind && p.side.empty() && p.categories.size() != 1) {
         // Several categories, or none (an English noun the scene lacks: the answer is "none").
         const std::vector<std::string> names =
             p.categories.empty() ? std::vector<std::string>{hyphenated(p.noun)} : p.categories;
@@ -263,6 +289,8 @@ Words words(const std::string& text) {
             s += static_cast<char>(std::tolower(c));
         else if (c == '\'' || c == '-')
             s += static_cast<char>(c);
+        else if (c == '#' && i + 1 < plain.size() && std::isdigit(static_cast<unsigned char>(plain[i + 1])))
+            s += '#';  // a node's id: "sofa#50", "#50", "src#93"
         else if (c == '.' && i + 1 < plain.size() && std::isdigit(static_cast<unsigned char>(plain[i + 1])) &&
                  !s.empty() && std::isdigit(static_cast<unsigned char>(s.back())))
             s += '.';
@@ -316,6 +344,19 @@ std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(con
     return std::nullopt;
 }
 
+bool PhraseParser::idPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p) {
+    if (i >= w.size()) return false;
+    auto id = idReference(w[i]);
+    if (!id) return false;
+    // "sofa#50", "#50", "src#93": the node of that id (the binder checks its category).
+    p.id = *id;
+    p.noun = id->substr(0, id->find('#'));
+    if (p.noun.empty() || p.noun == "src") p.noun = "thing";
+    ++i;
+    if (withPosts) posts(w, i, p);
+    return true;
+}
+
 Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     Phrase p;
     std::size_t start = i;
@@ -326,6 +367,10 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     std::vector<std::string> nounWords;
     std::optional<bool> pendingDistance;  // "the nearest lamp to the sofa": the reference follows
     std::string pendingWord;
+    if (idPhrase(w, i, withPosts, p)) {
+        p.words = joined(w, wordsStart, i);
+        return p;
+    }
     for (; i < w.size(); ++i) {
         const std::string& word = w[i];
         if (nounWords.empty()) {
@@ -393,18 +438,7 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         }
         nounWords.push_back(word);
     }
-    // "the wall on the left", "the window on the right side", "the lamp on the left hand side"
-    if (side.empty() && i + 2 < w.size() && w[i] == "on" && w[i + 1] == "the" && isSideWord(w[i + 2])) {
-        std::size_t k = i + 3;
-        if (k + 1 < w.size() && w[k] == "hand" && w[k + 1] == "side")
-            k += 2;
-        else if (k < w.size() && w[k] == "side")
-            k += 1;
-        if (k >= w.size() || w[k] != "of") {
-            side = w[i + 2];
-            i = k;
-        }
-    }
+    if (side.empty()) side = sideAfter(w, i);
     if (nounWords.empty()) {
         // "the red one", "the largest" are any such thing; a side alone ("the left") names nothing.
         if (!(p.colour || p.order || pendingDistance) || !side.empty()) throw notUnderstood(w, start);

@@ -55,6 +55,7 @@ struct Phrase {
     std::string noun;                 // singular: "mug"
     std::optional<std::string> kind;  // object / anchor: every node of that kind
     std::string side;                 // wall.left: the side
+    std::string id;                   // a node named by its id: "sofa#50", "#50", "src#93"
     std::vector<std::string> categories;
     std::optional<std::string> colour;
     std::vector<Condition> conditions;
@@ -97,6 +98,8 @@ public:
 
 private:
     Condition condition(const Words& w, std::size_t& i, const std::pair<std::string, std::size_t>& pred);
+    // A node named by its id at w[i] ("sofa#50"), with its posts: true, and `i` past it.
+    bool idPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p);
     void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords);
     bool isPlane(const Phrase& p) const;
 
