@@ -29,6 +29,9 @@ enum class QuestionKind {
     Attribute,         // what colour is the sofa?                  FIND sofa RETURN id, category, color
     Changes,           // what changed?                             SHOW CHANGES
     Reverse,           // what is the lamp on?                      RELATE lamp TO object (the "on" rows)
+    RoomSize,          // what is the size of this room?            FIND node WHERE kind = 'room' OR ...
+    Route,             // VSI-Bench's route plan: "you are a robot beginning at the bed ... [please fill in]"
+    Comparison,        // is the sofa longer than the bed?          FIND thing WHERE ... ORDER BY width DESC
     UnknownWord,       // a word neither the scene nor WordNet knows: nothing runs, the answer names it
 };
 
@@ -84,6 +87,14 @@ struct Translation {
     // the floor and the rug").
     std::vector<std::string> background;
     std::size_t top = 1;  // Superlative: how many rows answer ("the two largest": 2)
+    // Comparison: whether the comparative asks for more ("longer") or less ("shorter", "closer");
+    // `measure` is the attribute compared (or "distance"), `predicate` the comparative, `roles` the
+    // two sides (categories, or "#id" for a node named by id), `condition` how a value is said
+    // ("long", "from the door").
+    bool greater = true;
+    // Route: the steps in order, "forward" (to the next of `roles` after the start and the thing
+    // faced) or "turn" (a turn to fill in).
+    std::vector<std::string> steps;
 };
 
 class Translator {

@@ -32,8 +32,9 @@ bool reads(const ast::Statement& statement) {
 ask::Question questionAbout(const std::string& text, const catalog::SceneSnapshot& snap) {
     ask::Question q{text, snap.info().name, snap.categories(), {}, {}, snap.attributeNames()};
     std::map<std::string, std::pair<int, bool>> seen;  // category -> count, all vertical planes
-    std::set<std::string> anchors;
+    std::set<std::string> anchors, rooms;
     for (const auto& node : snap.nodes()) {
+        if (node.kind == model::NodeKind::Room) rooms.insert(node.category);
         if (node.kind != model::NodeKind::Object && node.kind != model::NodeKind::Anchor) continue;
         if (node.kind == model::NodeKind::Anchor) anchors.insert(node.category);
         auto [it, fresh] = seen.try_emplace(node.category, 0, true);
@@ -45,6 +46,9 @@ ask::Question questionAbout(const std::string& text, const catalog::SceneSnapsho
         if (stats.first > 1) q.repeatedCategories.push_back(category);
     }
     q.anchorCategories.assign(anchors.begin(), anchors.end());
+    // A room node (a layout's room, with its area) is the scene as a place, not a thing in it: "the
+    // kitchen" is not read as a kind of room node.
+    std::erase_if(q.categories, [&](const std::string& c) { return rooms.count(c) && !seen.count(c); });
     return q;
 }
 
