@@ -512,6 +512,22 @@ std::string route(const Translation& t, const ResultSet& rs) {
     return fmt::format("{} ({}).", listed(turns, ", ", turns.size()), listed(why, "; ", why.size()));
 }
 
+// A plugged-in translator's statement: its rows said as they are.
+std::string statement(const ResultSet& rs) {
+    if (rs.columnIndex("instruction") >= 0) {
+        std::string out;
+        for (const auto& row : rs.rows) out += (out.empty() ? "" : " ") + text(row[rs.columnIndex("instruction")]);
+        return out.empty() ? rs.message : out;
+    }
+    if (rs.columns.size() == 1 && rs.columns.front().name == "count" && rs.rows.size() == 1)
+        return fmt::format("{}.", text(rs.rows.front().front()));
+    if (!rs.message.empty()) return rs.message;
+    auto names = labels(rs);
+    if (rs.rows.empty()) return "Nothing.";
+    if (names.empty()) return fmt::format("{} row{}.", rs.rows.size(), rs.rows.size() == 1 ? "" : "s");
+    return fmt::format("{} found: {}", rs.rows.size(), listed(names));
+}
+
 std::string changes(const ResultSet& rs) {
     if (rs.rows.empty()) return "Nothing has changed since the scene was first captured.";
     int change = rs.columnIndex("change"), category = rs.columnIndex("category"), id = rs.columnIndex("id");
@@ -578,6 +594,8 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
             return comparison(t, rs);
         case QuestionKind::RoomSize:
             return roomSize(t, rs);
+        case QuestionKind::Statement:
+            return statement(rs);
         case QuestionKind::Route:
             return route(t, rs);
         case QuestionKind::UnknownWord: {

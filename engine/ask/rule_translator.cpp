@@ -1232,6 +1232,8 @@ std::optional<Translation> routePlan(const Question& question, const Lexicon& le
 
 class RuleTranslator final : public Translator {
 public:
+    std::string name() const override { return "the built-in reader"; }
+
     Translation translate(const Question& question) const override {
         if (question.text.find("[please fill in]") != std::string::npos) {
             Lexicon lexicon(question.categories);
@@ -1369,6 +1371,8 @@ std::string_view toString(QuestionKind kind) {
             return "comparison";
         case QuestionKind::RoomSize:
             return "room size";
+        case QuestionKind::Statement:
+            return "statement";
         case QuestionKind::Route:
             return "route plan";
         case QuestionKind::UnknownWord:
