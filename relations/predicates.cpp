@@ -225,6 +225,10 @@ double behindScore(const PredicateInputs& in) {
 
 double betweenScore(const PredicateInputs& in) {
     if (!in.c || !hasGeometry(*in.c)) return 0.0;
+    // What stands on, in or under one of the two (the lamp on a nightstand: its centre over the
+    // nightstand's footprint) is at it, not between them.
+    const model::Vec2 centre{in.a.box.center.x, in.a.box.center.y};
+    if (model::footprintContains(in.b.box, centre) || model::footprintContains(in.c->box, centre)) return 0.0;
     model::Vec2 seg = centreOffset(in.b, *in.c);
     double len2 = dot(seg, seg);
     if (len2 <= 1e-9) return 0.0;
@@ -234,7 +238,16 @@ double betweenScore(const PredicateInputs& in) {
     double px = rel.x - along * seg.x, py = rel.y - along * seg.y;
     double off = std::sqrt(px * px + py * py);
     double limit = in.t.betweenMaxOffset;
-    return off <= limit ? std::max(0.01, 1.0 - off / std::max(limit, 1e-3)) : 0.0;
+    if (off <= limit) return std::max(0.01, 1.0 - off / std::max(limit, 1e-3));
+    // A large thing whose centre is off the line still lies between when the line between the two
+    // crosses its footprint (the bed between the nightstands at its head).
+    constexpr int kSamples = 32;
+    for (int k = 1; k < kSamples; ++k) {
+        double f = static_cast<double>(k) / kSamples;
+        model::Vec2 point{in.b.box.center.x + f * seg.x, in.b.box.center.y + f * seg.y};
+        if (model::footprintContains(in.a.box, point)) return 0.01;
+    }
+    return 0.0;
 }
 
 // visible_from(a, x): from an eye at x, enough of a's sample points are in sight. With a heading

@@ -85,6 +85,16 @@ def predicted(qtype, answer, options):
             if text.strip().lower() == word:
                 return letter
         return None
+    if qtype == "room_size_estimation":
+        m = re.search(r"is about ([0-9.]+) m", message)
+        return float(m.group(1)) if m else None
+    if qtype == "route_planning":
+        turns = message.splitlines()[-1].split(" (")[0].strip().rstrip(".").lower()
+        for option in options or []:
+            letter, _, text = option.partition(". ")
+            if text.strip().lower() == turns:
+                return letter
+        return None
     if qtype == "object_rel_distance":
         if not rows:
             return None
@@ -97,12 +107,82 @@ def predicted(qtype, answer, options):
     return None
 
 
+ROOM_SIZE_TEMPLATE = ("What is the size of this room (in square meters)? If multiple rooms are shown, estimate the size "
+                      "of the combined space.")
+ROUTE_TEMPLATE = ("You are a robot beginning at the {start} facing the {facing}. You want to navigate to the {goal}. "
+                  "You will perform the following actions (Note: for each [please fill in], choose either 'turn "
+                  "back,' 'turn left,' or 'turn right.'): {actions} You have reached the final destination.")
+
+
+def turn(heading, frm, to):
+    """VSI-Bench's turn toward `to` from `frm` while facing along `heading`: back from 135 degrees."""
+    import math
+    vx, vy = to[0] - frm[0], to[1] - frm[1]
+    angle = math.degrees(math.atan2(heading[0] * vy - heading[1] * vx, heading[0] * vx + heading[1] * vy))
+    return "Turn Back" if abs(angle) >= 135 else ("Turn Left" if angle > 0 else "Turn Right")
+
+
+def layout_questions():
+    """VSI-Bench's room size and route plan questions, in its templates, over the 238 layouts.
+
+    Room size asks for the layout's own figure (VSI-Bench's ground truth). A route plan walks between
+    things a room holds one of (centroids from the file itself, not from smql): from the start, facing
+    a thing, forward to each thing in turn; its ground truth is each turn toward the next thing, and
+    its options are the truth and three other sequences, in VSI-Bench's form ("Turn Left, Turn Right").
+    """
+    import itertools
+    out = []
+    for file in ("scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"):
+        for name, room in json.load(open(os.path.join(LAYOUTS, file))).items():
+            out.append({"scene_name": name, "question_type": "room_size_estimation", "question": ROOM_SIZE_TEMPLATE,
+                        "ground_truth": room["room_size"]})
+            single = sorted(c for c, boxes in room["object_bbox"].items() if len(boxes) == 1)
+            if len(single) < 4:
+                continue
+            rng = random.Random(name)
+            start, facing, via, goal = rng.sample(single, 4)
+            at = {c: room["object_bbox"][c][0]["centroid"] for c in (start, facing, via, goal)}
+            first_turn = rng.random() < 0.5  # "1. [please fill in]" before the first forward, or after it
+            if first_turn:
+                path = [start, via, goal]
+                steps = ["[please fill in]", f"Go forward until the {via}", "[please fill in]",
+                         f"Go forward until the {goal}."]
+                heading = (at[facing][0] - at[start][0], at[facing][1] - at[start][1])
+            else:
+                path = [facing, via, goal]
+                steps = [f"Go forward until the {facing}", "[please fill in]", f"Go forward until the {via}",
+                         "[please fill in]", f"Go forward until the {goal}."]
+                heading = (at[facing][0] - at[start][0], at[facing][1] - at[start][1])
+            truth, pos = [], at[start]
+            if not first_turn:
+                pos = at[facing]
+            for k, target in enumerate(path[1:] if not first_turn else path[1:]):
+                truth.append(turn(heading, pos, at[target]))
+                heading = (at[target][0] - pos[0], at[target][1] - pos[1])
+                pos = at[target]
+            truth = ", ".join(truth)
+            others = [", ".join(c) for c in itertools.product(["Turn Left", "Turn Right", "Turn Back"], repeat=2)]
+            options = [truth] + rng.sample([o for o in others if o != truth], 3)
+            rng.shuffle(options)
+            letters = "ABCD"
+            actions = " ".join(f"{i + 1}. {s}" for i, s in enumerate(steps))
+            out.append({"scene_name": name, "question_type": "route_planning",
+                        "question": ROUTE_TEMPLATE.format(start=start, facing=facing, goal=goal, actions=actions),
+                        "options": [f"{letters[i]}. {o}" for i, o in enumerate(options)],
+                        "ground_truth": letters[options.index(truth)]})
+    return out
+
+
 def vsibench(args, db, scenes):
-    path = os.path.join(args.fixtures, "vsibench_test.jsonl")
-    if not os.path.exists(path):
+    path = os.path.join(args.fixtures or "", "vsibench_test.jsonl")
+    if args.layout_tasks:
+        questions = layout_questions()
+        print("VSI-Bench's room size and route plan tasks in its templates, generated from the layouts")
+    elif not os.path.exists(path):
         print(f"note: {path} absent; VSI-Bench skipped")
         return
-    questions = [json.loads(l) for l in open(path)]
+    else:
+        questions = [json.loads(l) for l in open(path)]
     questions = [q for q in questions if q["scene_name"] in scenes]
     if args.limit:
         random.Random(7).shuffle(questions)
@@ -177,7 +257,10 @@ def free_text(args, db, scenes, name, file, read):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--smql", default="build/shell/smql")
-    parser.add_argument("--fixtures", required=True, help="folder with the public question files")
+    parser.add_argument("--fixtures", help="folder with the public question files")
+    parser.add_argument("--layout-tasks", action="store_true",
+                        help="ask VSI-Bench's room size and route plan questions in its templates, made from the "
+                             "layouts (layout_questions), instead of the question files")
     parser.add_argument("--db", help="a database of the real layouts (made in a temporary folder if absent)")
     parser.add_argument("--limit", type=int, default=0, help="ask at most this many questions of each set")
     parser.add_argument("--sample", type=int, default=0, help="print this many answers to check by hand")
@@ -192,6 +275,8 @@ def main():
                                  text=True).stdout
         scenes = {r["name"] for r in json.loads(listing)[0]["rows"]}
         vsibench(args, db, scenes)
+        if args.layout_tasks or not args.fixtures:
+            return
         free_text(args, db, scenes, "ScanQA (val)", "ScanQA_v1.0_val.json",
                   lambda data: [(q["scene_id"], q["question"]) for q in data])
         free_text(args, db, scenes, "SQA3D (test)", "sqa3d_v1_balanced_questions_test_scannetv2.json",

@@ -1,6 +1,7 @@
 #include "engine/ask/answer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -11,6 +12,7 @@
 
 #include "engine/ask/lexicon.hpp"
 #include "engine/ask/units.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ask {
 
@@ -93,6 +95,11 @@ std::string relational(const Translation& t, const ResultSet& rs) {
         return fmt::format("No {} is {}.", t.subject, t.condition);
     }
     std::string noun = t.subject == "thing" && shared ? *shared : t.subject;
+    // "what is there besides the cushions?": no verb before the exclusion.
+    if (t.condition.starts_with("besides ")) {
+        std::string nouns = t.subject == "thing" && shared ? pluralOf(*shared) : t.subjectPlural;
+        return fmt::format("{} {} {}: {}", n, n == 1 ? noun : nouns, t.condition, listed(labels(rs)));
+    }
     if (n == 1) return fmt::format("1 {} is {}: {}", noun, t.condition, listed(labels(rs)));
     std::string nouns = t.subject == "thing" && shared ? pluralOf(*shared) : t.subjectPlural;
     return fmt::format("{} {} are {}: {}", n, nouns, t.condition, listed(labels(rs)));
@@ -102,7 +109,8 @@ std::string count(const Translation& t, const ResultSet& rs) {
     std::int64_t n = 0;
     if (!rs.rows.empty() && !rs.rows.front().empty())
         if (const auto* v = std::get_if<std::int64_t>(&rs.rows.front().front())) n = *v;
-    if (t.condition.empty()) return fmt::format("{} {}.", n, n == 1 ? t.subject : t.subjectPlural);
+    if (t.condition.empty() || t.condition.starts_with("besides "))
+        return fmt::format("{} {}{}.", n, n == 1 ? t.subject : t.subjectPlural, withCondition(t));
     return fmt::format("{} {} {} {}.", n, n == 1 ? t.subject : t.subjectPlural, n == 1 ? "is" : "are", t.condition);
 }
 
@@ -193,6 +201,33 @@ std::string size(const Translation& t, const ResultSet& rs) {
     std::string out = listed(parts, "; ");
     out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
     return out + ".";
+}
+
+// The area of the convex hull of points in the floor plane (Andrew's monotone chain).
+double hullArea(std::vector<model::Vec2> p) {
+    if (p.size() < 3) return 0;
+    std::sort(p.begin(), p.end(), [](const auto& a, const auto& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    auto cross = [](const model::Vec2& o, const model::Vec2& a, const model::Vec2& b) {
+        return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    std::vector<model::Vec2> hull(2 * p.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+        hull[k++] = p[i];
+    }
+    for (std::size_t i = p.size() - 1, lower = k + 1; i > 0; --i) {
+        while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i - 1]) <= 0) --k;
+        hull[k++] = p[i - 1];
+    }
+    hull.resize(k > 0 ? k - 1 : 0);
+    double area = 0;
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+        const auto& a = hull[i];
+        const auto& b = hull[(i + 1) % hull.size()];
+        area += a.x * b.y - b.x * a.y;
+    }
+    return std::abs(area) / 2;
 }
 
 std::string boxSize(const model::Box& b) {
@@ -336,6 +371,163 @@ std::string reverse(const Translation& t, const ResultSet& rs) {
     return listed(parts, "; ") + ".";
 }
 
+// "Is the sofa longer than the bed?": every node of one side against every node of the other, by
+// the measure the comparative names; yes when every pair holds, no when none does.
+std::string comparison(const Translation& t, const ResultSet& rs) {
+    const int id = rs.columnIndex("id"), category = rs.columnIndex("category"), value = rs.columnIndex(t.measure);
+    if (t.roles.size() != 2 || id < 0 || category < 0 || value < 0) return "There is nothing to compare.";
+    struct Side {
+        std::vector<std::pair<std::string, double>> nodes;  // label, value
+    };
+    std::array<Side, 2> sides;
+    for (const auto& row : rs.rows) {
+        auto v = number(row[value]);
+        if (!v || !std::isfinite(*v)) continue;
+        const std::string cat = text(row[category]), node = "#" + text(row[id]);
+        for (std::size_t s = 0; s < 2; ++s) {
+            const auto& role = t.roles[s];
+            if (std::find(role.begin(), role.end(), cat) != role.end() ||
+                std::find(role.begin(), role.end(), node) != role.end())
+                sides[s].nodes.emplace_back(cat + node, *v);
+        }
+    }
+    if (sides[0].nodes.empty()) return fmt::format("There is no {} here to compare.", t.subject);
+    if (sides[1].nodes.empty()) return fmt::format("There is no {} here to compare.", t.object);
+    std::size_t holds = 0, pairs = 0;
+    for (const auto& [a, va] : sides[0].nodes)
+        for (const auto& [b, vb] : sides[1].nodes) {
+            if (a == b) continue;
+            ++pairs;
+            holds += t.greater ? va > vb : va < vb;
+        }
+    auto said = [&](double v) {
+        if (t.measure == "volume") return fmt::format("{:.3f} m³ in volume", v);
+        if (t.measure == "z") return fmt::format("{} high (its centre)", formatLength(v, t.unit));
+        return fmt::format("{} {}", formatLength(v, t.unit), t.condition);
+    };
+    std::vector<std::string> values;
+    for (const auto& side : sides)
+        for (const auto& [label, v] : side.nodes) values.push_back(fmt::format("{} is {}", label, said(v)));
+    const std::string than = fmt::format("{} than the {}", t.predicate, t.object);
+    std::string verdict;
+    if (pairs == 0)
+        verdict = fmt::format("There is nothing but the {} itself to compare", t.subject);
+    else if (holds == pairs)
+        verdict = fmt::format("Yes, the {} is {}", t.subject, than);
+    else if (holds == 0)
+        verdict = fmt::format("No, the {} is not {}", t.subject, than);
+    else
+        verdict = fmt::format("Partly: {} of {} pairs of {} and {} hold", holds, pairs, t.subject, t.object);
+    return fmt::format("{}: {}.", verdict, listed(values, "; ", 6));
+}
+
+// The room's floor area: inside its walls (the convex hull of their footprints), else its floor's
+// footprint, else the area the layout came with (a room node's `area`, else its box).
+std::string roomSize(const Translation& t, const ResultSet& rs) {
+    const int category = rs.columnIndex("category"), kind = rs.columnIndex("kind"), box = rs.columnIndex("box"),
+              area = rs.columnIndex("area");
+    std::vector<model::Vec2> wallCorners;
+    std::size_t walls = 0;
+    double floor = 0, room = 0;
+    for (const auto& row : rs.rows) {
+        const auto* b = box >= 0 ? std::get_if<model::Box>(&row[box]) : nullptr;
+        const std::string cat = category >= 0 ? text(row[category]) : "", k = kind >= 0 ? text(row[kind]) : "";
+        if (k == "room") {
+            if (auto a = area >= 0 ? number(row[area]) : std::nullopt)
+                room += *a;
+            else if (const auto* s = area >= 0 ? std::get_if<std::string>(&row[area]) : nullptr; s && !s->empty())
+                room += std::strtod(s->c_str(), nullptr);
+            else if (b)
+                room += model::footprintArea(*b);
+        } else if (cat == "wall" && b) {
+            ++walls;
+            for (const auto& c : model::footprint(*b)) wallCorners.push_back(c);
+        } else if (cat == "floor" && b) {
+            floor += model::footprintArea(*b);
+        }
+    }
+    double metres2 = 0;
+    std::string how;
+    if (walls >= 3) {
+        metres2 = hullArea(wallCorners);
+        how = fmt::format("inside its {} walls", walls);
+    }
+    if (metres2 <= 0 && floor > 0) metres2 = floor, how = "its floor's extent";
+    if (metres2 <= 0 && room > 0) metres2 = room, how = "the figure its layout came with";
+    if (metres2 <= 0) return "The memory holds no walls, floor or room figure to measure the room by.";
+    (void)t;
+    return fmt::format("The room is about {:.1f} m² ({}).", metres2, how);
+}
+
+// VSI-Bench's route plan: from the start, facing the thing faced, each "go forward" walks to the
+// nearest thing of the next kind named, and each turn to fill in is the one toward the thing walked
+// to next: back from 135 degrees, else left or right, as the direction questions measure.
+std::string route(const Translation& t, const ResultSet& rs) {
+    const int id = rs.columnIndex("id"), category = rs.columnIndex("category"), box = rs.columnIndex("box");
+    if (t.roles.size() < 3 || id < 0 || category < 0 || box < 0) return "There is no route to fill in.";
+    struct Thing {
+        std::string label;
+        model::Vec3 at;
+    };
+    auto nearest = [&](const std::vector<std::string>& role, std::optional<model::Vec3> from) -> std::optional<Thing> {
+        std::optional<Thing> best;
+        double bestD = 0;
+        for (const auto& row : rs.rows) {
+            const auto* b = std::get_if<model::Box>(&row[box]);
+            if (!b || std::find(role.begin(), role.end(), text(row[category])) == role.end()) continue;
+            double d = from ? std::hypot(b->center.x - from->x, b->center.y - from->y) : 0;
+            if (from && d < 1e-6) d = 1e9;  // the thing stood at is not the one walked to
+            if (!best || d < bestD) best = Thing{text(row[category]) + "#" + text(row[id]), b->center}, bestD = d;
+        }
+        return best;
+    };
+    auto start = nearest(t.roles[0], std::nullopt);
+    if (!start) return fmt::format("There is no {} to begin at.", t.roles[0].front());
+    auto facing = nearest(t.roles[1], start->at);
+    if (!facing) return fmt::format("There is no {} to face.", t.roles[1].front());
+    model::Vec3 at = start->at;
+    double hx = facing->at.x - at.x, hy = facing->at.y - at.y;
+    std::size_t next = 2;
+    std::vector<std::string> turns, why;
+    std::string where = start->label;
+    for (const auto& step : t.steps) {
+        if (next >= t.roles.size()) break;
+        auto target = nearest(t.roles[next], at);
+        if (!target) return fmt::format("There is no {} on the way.", t.roles[next].front());
+        double vx = target->at.x - at.x, vy = target->at.y - at.y;
+        if (step == "turn") {
+            double angle = std::atan2(hx * vy - hy * vx, hx * vx + hy * vy) * 180.0 / std::numbers::pi;
+            std::string turn = std::abs(angle) >= 135 ? "Turn Back" : angle > 0 ? "Turn Left" : "Turn Right";
+            turns.push_back(turn);
+            why.push_back(fmt::format("at {}, {} is {:.0f} degrees to the {}", where, target->label, std::abs(angle),
+                                      angle > 0 ? "left" : "right"));
+            continue;
+        }
+        if (std::hypot(vx, vy) > 1e-6) hx = vx, hy = vy;
+        at = target->at;
+        where = target->label;
+        ++next;
+    }
+    if (turns.empty()) return "The route has no turn to fill in.";
+    return fmt::format("{} ({}).", listed(turns, ", ", turns.size()), listed(why, "; ", why.size()));
+}
+
+// A plugged-in translator's statement: its rows said as they are.
+std::string statement(const ResultSet& rs) {
+    if (rs.columnIndex("instruction") >= 0) {
+        std::string out;
+        for (const auto& row : rs.rows) out += (out.empty() ? "" : " ") + text(row[rs.columnIndex("instruction")]);
+        return out.empty() ? rs.message : out;
+    }
+    if (rs.columns.size() == 1 && rs.columns.front().name == "count" && rs.rows.size() == 1)
+        return fmt::format("{}.", text(rs.rows.front().front()));
+    if (!rs.message.empty()) return rs.message;
+    auto names = labels(rs);
+    if (rs.rows.empty()) return "Nothing.";
+    if (names.empty()) return fmt::format("{} row{}.", rs.rows.size(), rs.rows.size() == 1 ? "" : "s");
+    return fmt::format("{} found: {}", rs.rows.size(), listed(names));
+}
+
 std::string changes(const ResultSet& rs) {
     if (rs.rows.empty()) return "Nothing has changed since the scene was first captured.";
     int change = rs.columnIndex("change"), category = rs.columnIndex("category"), id = rs.columnIndex("id");
@@ -398,6 +590,14 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
             return changes(rs);
         case QuestionKind::Reverse:
             return reverse(t, rs);
+        case QuestionKind::Comparison:
+            return comparison(t, rs);
+        case QuestionKind::RoomSize:
+            return roomSize(t, rs);
+        case QuestionKind::Statement:
+            return statement(rs);
+        case QuestionKind::Route:
+            return route(t, rs);
         case QuestionKind::UnknownWord: {
             std::string out;
             for (const auto& note : t.notes) out += (out.empty() ? "" : "; ") + note;

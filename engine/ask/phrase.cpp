@@ -75,40 +75,47 @@ constexpr std::string_view kRoomKinds[] = {
     "corridor",    "basement",        "attic",        "garage",
 };
 
-// Superlatives and the measure they order by: "the largest table" is FIND table ORDER BY volume
-// DESC LIMIT 1.
+// Superlatives and comparatives and the measure they order by: "the largest table" is FIND table
+// ORDER BY volume DESC LIMIT 1; "is the sofa larger than the bed?" compares their volumes. A measure
+// "distance" orders by the distance to a thing that follows ("closest to the door").
 struct Superlative {
     std::string_view word;
+    std::string_view comparative;  // empty: none ("topmost")
     std::string_view measure;
     bool descending;
+    std::string_view adjective;  // how the answer says the measure: "2.1 m long"
 };
-constexpr std::array<Superlative, 14> kSuperlatives{{
-    {"largest", "volume", true},
-    {"biggest", "volume", true},
-    {"smallest", "volume", false},
-    {"tiniest", "volume", false},
-    {"littlest", "volume", false},
-    {"tallest", "height", true},
-    {"shortest", "height", false},
-    {"highest", "z", true},
-    {"topmost", "z", true},
-    {"lowest", "z", false},
-    {"longest", "width", true},
-    {"widest", "width", true},
-    {"narrowest", "width", false},
-    {"thinnest", "width", false},
+constexpr std::array<Superlative, 18> kSuperlatives{{
+    {"largest", "larger", "volume", true, "in volume"},
+    {"biggest", "bigger", "volume", true, "in volume"},
+    {"smallest", "smaller", "volume", false, "in volume"},
+    {"tiniest", "tinier", "volume", false, "in volume"},
+    {"littlest", "littler", "volume", false, "in volume"},
+    {"tallest", "taller", "height", true, "tall"},
+    {"shortest", "shorter", "height", false, "tall"},
+    {"highest", "higher", "z", true, "high"},
+    {"topmost", "", "z", true, "high"},
+    {"lowest", "lower", "z", false, "high"},
+    {"longest", "longer", "width", true, "long"},
+    {"widest", "wider", "width", true, "wide"},
+    {"narrowest", "narrower", "width", false, "wide"},
+    {"thinnest", "thinner", "width", false, "wide"},
+    {"closest", "closer", "distance", false, "away"},
+    {"nearest", "nearer", "distance", false, "away"},
+    {"farthest", "farther", "distance", true, "away"},
+    {"furthest", "further", "distance", true, "away"},
 }};
 
 const Superlative* superlativeOf(const std::string& w) {
     for (const auto& s : kSuperlatives)
-        if (s.word == w) return &s;
+        if (s.word == w && s.measure != "distance") return &s;
     return nullptr;
 }
 
 // "closest to", "nearest", "farthest from": an order by distance to a phrase that follows.
 std::optional<bool> distanceOrderWord(const std::string& w) {
-    if (isOneOf(w, {"closest", "nearest"})) return false;
-    if (isOneOf(w, {"farthest", "furthest"})) return true;
+    for (const auto& s : kSuperlatives)
+        if (s.word == w && s.measure == "distance") return s.descending;
     return std::nullopt;
 }
 
@@ -138,8 +145,10 @@ std::size_t exclusionAt(const Words& w, std::size_t i) {
     if (i >= w.size()) return 0;
     if (isOneOf(w[i], {"besides", "excluding"})) return 1;
     if (i + 1 < w.size() && ((w[i] == "other" && w[i + 1] == "than") || (w[i] == "apart" && w[i + 1] == "from") ||
-                             (w[i] == "except" && w[i + 1] == "for") || (w[i] == "but" && w[i + 1] == "not")))
+                             (w[i] == "aside" && w[i + 1] == "from") || (w[i] == "except" && w[i + 1] == "for") ||
+                             (w[i] == "but" && w[i + 1] == "not") || (w[i] == "save" && w[i + 1] == "for")))
         return 2;
+    if (i + 1 < w.size() && w[i] == "not" && isOneOf(w[i + 1], {"counting", "including"})) return 2;
     return w[i] == "except" ? 1 : 0;
 }
 
@@ -160,6 +169,31 @@ constexpr std::array<ShapedKind, 7> kShapedKinds{{
     {"dining table", "table", "height >= 0.6 m AND width >= 0.9 m", "a table to eat at"},
     {"kitchen table", "table", "height >= 0.6 m AND width >= 0.9 m", "a table to eat at"},
 }};
+
+// A node named by its id as SMQL writes one: `#50`, `sofa#50` (a category and an id), `src#93` (the
+// id it had in its file). The category part is folded as a stored category is.
+std::optional<std::string> idReference(const std::string& word) {
+    static const std::regex id(R"(^(src#|([a-z_][a-z0-9_-]*)?#)([0-9]+)$)");
+    std::smatch m;
+    if (!std::regex_match(word, m, id)) return std::nullopt;
+    if (m.str(1) == "src#" || m.str(2).empty()) return word;
+    return model::categoryName(m.str(2)) + "#" + m.str(3);
+}
+
+// "the wall on the left", "the window on the right side", "the lamp on the left hand side": the
+// side, with `i` past its words; empty (and `i` as it was) when none follows.
+std::string sideAfter(const Words& w, std::size_t& i) {
+    if (i + 2 >= w.size() || w[i] != "on" || w[i + 1] != "the" || !isSideWord(w[i + 2])) return {};
+    std::size_t k = i + 3;
+    if (k + 1 < w.size() && w[k] == "hand" && w[k + 1] == "side")
+        k += 2;
+    else if (k < w.size() && w[k] == "side")
+        k += 1;
+    if (k < w.size() && w[k] == "of") return {};
+    std::string side = w[i + 2];
+    i = k;
+    return side;
+}
 
 std::string hyphenated(std::string s) {
     std::replace(s.begin(), s.end(), ' ', '-');
@@ -195,10 +229,11 @@ std::string conditionText(const Condition& c) {
     std::string args;
     for (const auto& a : c.args) args += (args.empty() ? "" : ", ") + reference(a);
     if (c.metres) args += ", " + smqlMetres(*c.metres) + " m";
-    return fmt::format("{}({})", c.predicate, args);
+    return fmt::format("{}{}({})", c.negated ? "NOT " : "", c.predicate, args);
 }
 
 std::string targetOf(const Phrase& p) {
+    if (!p.id.empty()) return p.id;
     if (p.kind) return *p.kind;
     if (!p.side.empty()) return smqlName(p.categories.front()) + "." + p.side;
     if (p.categories.size() == 1) return smqlName(p.categories.front());
@@ -207,7 +242,7 @@ std::string targetOf(const Phrase& p) {
 
 std::vector<std::string> conditionsOf(const Phrase& p) {
     std::vector<std::string> where;
-    if (!p.kind && p.side.empty() && p.categories.size() != 1) {
+    if (p.id.empty() && !p.kind && p.side.empty() && p.categories.size() != 1) {
         // Several categories, or none (an English noun the scene lacks: the answer is "none").
         const std::vector<std::string> names =
             p.categories.empty() ? std::vector<std::string>{hyphenated(p.noun)} : p.categories;
@@ -240,6 +275,13 @@ std::string orderText(const Phrase& p) {
 
 }  // namespace
 
+std::optional<Comparative> comparativeOf(const std::string& word) {
+    for (const auto& s : kSuperlatives)
+        if (!s.comparative.empty() && s.comparative == word)
+            return Comparative{std::string(s.measure), s.descending, std::string(s.word), std::string(s.adjective)};
+    return std::nullopt;
+}
+
 bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words) {
     return std::find(words.begin(), words.end(), word) != words.end();
 }
@@ -263,6 +305,8 @@ Words words(const std::string& text) {
             s += static_cast<char>(std::tolower(c));
         else if (c == '\'' || c == '-')
             s += static_cast<char>(c);
+        else if (c == '#' && i + 1 < plain.size() && std::isdigit(static_cast<unsigned char>(plain[i + 1])))
+            s += '#';  // a node's id: "sofa#50", "#50", "src#93"
         else if (c == '.' && i + 1 < plain.size() && std::isdigit(static_cast<unsigned char>(plain[i + 1])) &&
                  !s.empty() && std::isdigit(static_cast<unsigned char>(s.back())))
             s += '.';
@@ -316,6 +360,19 @@ std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(con
     return std::nullopt;
 }
 
+bool PhraseParser::idPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p) {
+    if (i >= w.size()) return false;
+    auto id = idReference(w[i]);
+    if (!id) return false;
+    // "sofa#50", "#50", "src#93": the node of that id (the binder checks its category).
+    p.id = *id;
+    p.noun = id->substr(0, id->find('#'));
+    if (p.noun.empty() || p.noun == "src") p.noun = "thing";
+    ++i;
+    if (withPosts) posts(w, i, p);
+    return true;
+}
+
 Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     Phrase p;
     std::size_t start = i;
@@ -326,6 +383,10 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     std::vector<std::string> nounWords;
     std::optional<bool> pendingDistance;  // "the nearest lamp to the sofa": the reference follows
     std::string pendingWord;
+    if (idPhrase(w, i, withPosts, p)) {
+        p.words = joined(w, wordsStart, i);
+        return p;
+    }
     for (; i < w.size(); ++i) {
         const std::string& word = w[i];
         if (nounWords.empty()) {
@@ -352,6 +413,8 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         if (predicateAt(w, i) && !(isSideWord(word) && nounWords.empty() && i + 1 < w.size() && w[i + 1] != "of"))
             break;
         if (exclusionAt(w, i) || (distanceOrderWord(word) && !nounWords.empty())) break;
+        // "the chairs not near the window", "the sofa longer than the bed": the noun ends there.
+        if (!nounWords.empty() && (word == "not" || comparativeOf(word))) break;
         // "can" ends a phrase as a verb ("what can I see"), but a trash can is a thing.
         if (word == "can" && !nounWords.empty() &&
             (i + 1 == w.size() || !isOneOf(w[i + 1], {"i", "you", "we", "one", "be", "see", "find"}))) {
@@ -393,18 +456,7 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         }
         nounWords.push_back(word);
     }
-    // "the wall on the left", "the window on the right side", "the lamp on the left hand side"
-    if (side.empty() && i + 2 < w.size() && w[i] == "on" && w[i + 1] == "the" && isSideWord(w[i + 2])) {
-        std::size_t k = i + 3;
-        if (k + 1 < w.size() && w[k] == "hand" && w[k + 1] == "side")
-            k += 2;
-        else if (k < w.size() && w[k] == "side")
-            k += 1;
-        if (k >= w.size() || w[k] != "of") {
-            side = w[i + 2];
-            i = k;
-        }
-    }
+    if (side.empty()) side = sideAfter(w, i);
     if (nounWords.empty()) {
         // "the red one", "the largest" are any such thing; a side alone ("the left") names nothing.
         if (!(p.colour || p.order || pendingDistance) || !side.empty()) throw notUnderstood(w, start);
@@ -475,6 +527,19 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
                 continue;
             }
         }
+        // not on the table / not near the window: the condition negated.
+        bool negated = false;
+        if (at + 1 < w.size() && (w[at] == "not" || (w[at] == "nowhere" && w[at + 1] == "near"))) {
+            std::size_t k = at + 1;
+            while (k < w.size() &&
+                   isOneOf(w[k], {"located", "placed", "sitting", "lying", "standing", "resting", "kept", "hanging",
+                                  "hung", "found", "situated", "directly"}) &&
+                   !predicateAt(w, k))
+                ++k;
+            if (!predicateAt(w, k) || exclusionAt(w, k)) return;
+            negated = true;
+            at = k;
+        }
         auto pred = predicateAt(w, at);
         if (!pred) return;
         i = at;
@@ -495,6 +560,10 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             }
         }
         p.conditions.push_back(condition(w, i, *pred));
+        if (negated) {
+            p.conditions.back().negated = true;
+            p.conditions.back().words = "not " + p.conditions.back().words;
+        }
         // "near the curtain and the door": the same relation to each.
         while (i + 1 < w.size() && w[i] == "and" && !predicateAt(w, i + 1) && !exclusionAt(w, i + 1) &&
                !isOneOf(w[i + 1], {"is", "are", "that", "which"})) {
@@ -674,6 +743,24 @@ std::string smqlMetres(double metres) {
     out.erase(out.find_last_not_of('0') + 1);
     if (out.back() == '.') out.pop_back();
     return out;
+}
+
+std::string matchText(const Phrase& p) {
+    std::vector<std::string> all;
+    if (!p.id.empty()) {
+        const auto hash = p.id.find('#');
+        all.push_back(p.id.starts_with("src#") ? "source_id = " + p.id.substr(hash + 1)
+                                               : "id = " + p.id.substr(hash + 1));
+    } else if (!p.kind && p.side.empty() && p.categories.size() == 1) {
+        all.push_back(fmt::format("category = {}", smqlString(p.categories.front())));
+    } else if (p.kind && *p.kind == "anchor") {
+        all.push_back("kind = 'anchor'");
+    }
+    for (auto& c : conditionsOf(p)) all.push_back(std::move(c));
+    if (all.empty()) return "kind = 'object'";
+    std::string out;
+    for (const auto& w : all) out += (out.empty() ? "" : " AND ") + w;
+    return all.size() > 1 ? "(" + out + ")" : out;
 }
 
 std::string whereText(const Phrase& p) {

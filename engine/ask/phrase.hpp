@@ -30,6 +30,17 @@ Words words(const std::string& text);
 std::string joined(const Words& w, std::size_t from, std::size_t to);
 
 bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words);
+// A comparative ("longer", "closer") and what it compares: the measure (an attribute, or "distance"
+// to a thing that follows), whether more wins, its superlative ("longest") and how the answer says
+// the measure ("long"). kSuperlatives in phrase.cpp is the one table of both.
+struct Comparative {
+    std::string measure;
+    bool descending = false;
+    std::string superlative;
+    std::string adjective;
+};
+std::optional<Comparative> comparativeOf(const std::string& word);
+
 // A colour word as the memory names it ("grey" is gray), or nothing.
 std::optional<std::string> colourOf(const std::string& word);
 
@@ -40,6 +51,7 @@ struct Condition {
     std::vector<Phrase> args;
     std::optional<double> metres;  // "within 1 m of the door"
     std::string words;             // "on the desk near the left wall"
+    bool negated = false;          // "not on the table": NOT on(table)
 };
 
 // ORDER BY: "the largest table" (volume, descending), "the cushion closest to the window".
@@ -55,6 +67,7 @@ struct Phrase {
     std::string noun;                 // singular: "mug"
     std::optional<std::string> kind;  // object / anchor: every node of that kind
     std::string side;                 // wall.left: the side
+    std::string id;                   // a node named by its id: "sofa#50", "#50", "src#93"
     std::vector<std::string> categories;
     std::optional<std::string> colour;
     std::vector<Condition> conditions;
@@ -97,6 +110,8 @@ public:
 
 private:
     Condition condition(const Words& w, std::size_t& i, const std::pair<std::string, std::size_t>& pred);
+    // A node named by its id at w[i] ("sofa#50"), with its posts: true, and `i` past it.
+    bool idPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p);
     void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords);
     bool isPlane(const Phrase& p) const;
 
@@ -119,6 +134,9 @@ std::string smqlMetres(double metres);
 
 // The phrase as a reference: `sofa`, `wall.left`, `(FIND desk WHERE near(window))`.
 std::string reference(const Phrase& p);
+// The phrase as one condition on a node: its category (or id), then its own conditions, as in
+// `(category = 'lamp' AND on(table))`; for an OR of several phrases.
+std::string matchText(const Phrase& p);
 // The phrase's WHERE conditions, " WHERE a AND b" or empty.
 std::string whereText(const Phrase& p);
 // FIND <phrase> [ORDER BY ..] [LIMIT ..] [PATH]; `view` is a VIEW FROM clause or empty.

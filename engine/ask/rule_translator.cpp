@@ -24,6 +24,7 @@
 #include "engine/ask/translator.hpp"
 #include "engine/ask/units.hpp"
 #include "engine/ask/wordnet.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "relations/predicates.hpp"
@@ -73,7 +74,7 @@ constexpr SizeWord kSizeWords[] = {
     {"wide", "width"},      {"long", "longest"},    {"deep", "depth"},     {"size", "size"},
     {"height", "height"},   {"width", "width"},     {"length", "longest"}, {"depth", "depth"},
     {"volume", "volume"},   {"dimensions", "size"}, {"dimension", "size"}, {"measurements", "size"},
-    {"thickness", "depth"},
+    {"thickness", "depth"}, {"area", "size"},
 };
 
 std::optional<std::string_view> sizeMeasure(const std::string& w) {
@@ -132,12 +133,12 @@ public:
         takeUnit();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::direction,   &QuestionReader::guidance,  &QuestionReader::distance,
-            &QuestionReader::size,        &QuestionReader::attribute, &QuestionReader::affordance,
-            &QuestionReader::visibility,  &QuestionReader::changes,   &QuestionReader::count,
-            &QuestionReader::existence,   &QuestionReader::side,      &QuestionReader::relative,
-            &QuestionReader::superlative, &QuestionReader::reverse,   &QuestionReader::locate,
-            &QuestionReader::relational,  &QuestionReader::yesNo,
+            &QuestionReader::direction,   &QuestionReader::guidance,   &QuestionReader::distance,
+            &QuestionReader::size,        &QuestionReader::attribute,  &QuestionReader::affordance,
+            &QuestionReader::visibility,  &QuestionReader::changes,    &QuestionReader::count,
+            &QuestionReader::existence,   &QuestionReader::side,       &QuestionReader::relative,
+            &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
+            &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -194,6 +195,16 @@ private:
             words_.erase(words_.begin() + static_cast<std::ptrdiff_t>(from),
                          words_.begin() + static_cast<std::ptrdiff_t>(u + 1));
             break;
+        }
+        // "how many square meters is the room?": its size.
+        if (words_.size() > 4 && words_[0] == "how" && words_[1] == "many" && isOneOf(words_[2], {"square", "sq"}) &&
+            unitAt(3)) {
+            unit_ = "m^2";
+            words_.erase(words_.begin() + 1, words_.begin() + 4);
+            words_.insert(words_.begin() + 1, "big");
+            if (isOneOf(words_[2], {"does", "do"})) words_.erase(words_.begin() + 2);  // "does the room have"
+            if (words_.back() == "have" || words_.back() == "cover") words_.pop_back();
+            if (!isOneOf(words_[2], {"is", "are"})) words_.insert(words_.begin() + 2, "is");
         }
         // "how many meters is the sofa from the door?", "how many centimeters tall is the lamp?"
         if (words_.size() > 3 && words_[0] == "how" && words_[1] == "many" && unitAt(2)) {
@@ -357,6 +368,7 @@ private:
             } else {
                 c.accept({"is|are"});
                 c.accept({"the"});
+                c.accept({"floor|total|overall"});  // "the floor area of the room"
                 if (c.accept({"length", "of", "the", "longest|largest", "dimension|side"})) {
                     measure = "longest";
                     // "(length, width, or height)"
@@ -372,9 +384,24 @@ private:
         }
         std::size_t save = c.i;
         c.skip({"the", "this", "my"});
-        if (isOneOf(c.peek(), {"room", "scene", "space", "house", "apartment"}) && c.i + 1 == c.w.size())
-            throw Error(ErrorKind::Binding, "the memory keeps no size of the room as a whole", std::nullopt,
-                        "ask about the things in it, as in: how big is the table?");
+        const std::size_t place = p.scenePlaceAt(c.w, c.i);
+        if ((place > 0 && c.i + place == c.w.size()) ||
+            (c.peek() == "combined" && c.peek(1) == "space" && c.i + 2 == c.w.size())) {
+            // The room as a whole: its floor area, from its walls, else its floor, else the figure
+            // its layout came with (answer.cpp).
+            out.kind = QuestionKind::RoomSize;
+            out.measure = "area";
+            // The room's own figure where the scene has one (a layout's room node).
+            const auto& stored = question_.attributes;
+            bool area = std::find(stored.begin(), stored.end(), "area") != stored.end();
+            out.smql = fmt::format(
+                "FIND node WHERE kind = 'room' OR category = 'wall' OR category = 'floor' RETURN id, category, kind, "
+                "box{}",
+                area ? ", area" : "");
+            out.subject = "room";
+            c.i = c.w.size();
+            return true;
+        }
         c.i = save;
         Phrase thing = p.phrase(c.w, c.i, true);
         out.kind = QuestionKind::Size;
@@ -888,6 +915,7 @@ private:
     bool relational(Cursor& c, PhraseParser& p, Translation& out) {
         Phrase thing;
         if (c.accept({"what|which"})) {
+            c.accept({"else"});  // "what else is on the bed besides the pillows?"
             std::size_t at = c.i;
             static const std::initializer_list<std::string_view> verbs{"is",    "are",    "sits",   "sit",   "lies",
                                                                        "lie",   "stands", "stand",  "rests", "rest",
@@ -940,6 +968,52 @@ private:
         return true;
     }
 
+    // Is the sofa longer than the bed? Is the chair closer to the door than the bed? Are the
+    // cushions smaller than the lamp?
+    bool comparison(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"is|are|was|were"})) return false;
+        Phrase a = p.phrase(c.w, c.i, true);
+        c.accept({"any|much|a|lot|bit|little|even|still"});
+        c.accept({"lot|bit|little"});
+        std::optional<Comparative> cmp = comparativeOf(c.peek());
+        if (!cmp) return false;
+        std::string word = c.peek();
+        ++c.i;
+        // "longer or shorter than": the first is asked, the answer says which.
+        if (c.peek() == "or" && comparativeOf(c.peek(1))) c.i += 2;
+        std::optional<Phrase> to;
+        std::string toWords;
+        if (cmp->measure == "distance") {
+            std::size_t at = c.i;
+            c.accept({"away"});
+            if (!c.accept({"to|from"})) return false;
+            to = p.phrase(c.w, c.i, false);
+            toWords = joined(c.w, at, c.i);
+        }
+        if (!c.accept({"than"})) return false;
+        Phrase b = p.phrase(c.w, c.i, true);
+        c.accept({"is|are|does|do"});
+        c.accept({"to|from", "it|them"});
+        auto side = [](const Phrase& ph) {
+            if (!ph.id.empty()) return std::vector<std::string>{ph.id.substr(ph.id.find('#'))};
+            return ph.categories.empty() ? std::vector<std::string>{ph.noun} : ph.categories;
+        };
+        out.kind = QuestionKind::Comparison;
+        out.roles = {side(a), side(b)};
+        out.measure = cmp->measure;
+        out.greater = cmp->descending;
+        out.predicate = toWords.empty() ? word : word + " " + toWords;
+        std::string order = cmp->measure == "distance" ? "distance(" + reference(*to) + ")" : cmp->measure;
+        std::string columns = cmp->measure == "distance" ? "id, category, distance" : "id, category, " + cmp->measure;
+        out.smql = fmt::format("FIND thing WHERE {} OR {} ORDER BY {}{} RETURN {}", matchText(a), matchText(b), order,
+                               cmp->descending ? " DESC" : "", columns);
+        describeSubject(a, out);
+        out.object = b.words;
+        out.condition =
+            cmp->measure == "distance" ? (to->words.empty() ? "away" : "from the " + to->words) : cmp->adjective;
+        return true;
+    }
+
     // Is the lamp left of the window? Does the lamp stand on the desk? Is the mug red?
     bool yesNo(Cursor& c, PhraseParser& p, Translation& out) {
         bool does = false;
@@ -981,7 +1055,7 @@ private:
         out.predicate = cond.predicate;
         out.condition = cond.words;
         const auto* spec = relations::predicateNamed(cond.predicate);
-        if (cond.predicate == "between" || cond.metres || (spec && spec->relateRank == 0)) {
+        if (cond.predicate == "between" || cond.metres || cond.negated || (spec && spec->relateRank == 0)) {
             // RELATE compares two things: "between" takes three, a distance is a question of its own,
             // and what RELATE leaves out (visible_from) is asked as a FIND.
             subject.conditions.push_back(cond);
@@ -1005,6 +1079,9 @@ private:
         std::string condition;
         for (const auto& c : p.conditions)
             if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
+        // "on the bed besides the pillows"
+        for (const auto& e : p.excluded)
+            condition += std::string(condition.empty() ? "" : " ") + "besides the " + e.words;
         if (out.condition.empty()) out.condition = condition;
     }
 
@@ -1102,9 +1179,66 @@ Error QuestionReader::unreadable() const {
     return cannotTranslate(question_.text, detail, suggestion);
 }
 
+// VSI-Bench's route plan: "You are a robot beginning at the bed facing the tv. You want to navigate
+// to the toilet. You will perform the following actions (...): 1. Go forward until the tv 2. [please
+// fill in] 3. Go forward until the toilet. You have reached the final destination." The things it
+// names become the rows (their boxes); the answer fills in each turn (answer.cpp).
+std::optional<Translation> routePlan(const Question& question, const Lexicon& lexicon) {
+    static const std::regex opening(
+        R"(beginning at (?:the )?(.+?),? (?:and )?facing (?:the )?(.+?)\.\s*you want to navigate to (?:the )?(.+?)\.)",
+        std::regex::icase);
+    std::smatch m;
+    if (!std::regex_search(question.text, m, opening)) return std::nullopt;
+    const std::string start = m.str(1), facing = m.str(2), goal = m.str(3);
+    std::string actions = m.suffix().str();
+    if (auto colon = actions.find("):"); colon != std::string::npos) actions.erase(0, colon + 2);
+    static const std::regex reached(R"(you have reached.*$)", std::regex::icase);
+    actions = std::regex_replace(actions, reached, "");
+    static const std::regex item(R"((?:^|\s)\d+\.\s*([\s\S]*?)(?=\s\d+\.\s|$))");
+    static const std::regex forward(R"(^\s*go forward until (?:the )?(.+?)[.\s]*$)", std::regex::icase);
+    Translation out;
+    out.kind = QuestionKind::Route;
+    std::vector<std::string> names{start, facing};
+    for (auto it = std::sregex_iterator(actions.begin(), actions.end(), item); it != std::sregex_iterator(); ++it) {
+        std::string step = (*it)[1].str();
+        std::smatch f;
+        if (step.find("please fill in") != std::string::npos) {
+            out.steps.push_back("turn");
+        } else if (std::regex_match(step, f, forward)) {
+            out.steps.push_back("forward");
+            names.push_back(f.str(1));
+        }
+    }
+    if (out.steps.empty()) return std::nullopt;
+    if (names.size() == 2) names.push_back(goal);
+    PhraseParser parser(lexicon, out, question.planeCategories, question.scene, question.sceneCount);
+    std::vector<std::string> all;
+    for (const auto& name : names) {
+        Words w = words(name);
+        std::size_t i = 0;
+        Phrase ph = parser.phrase(w, i, false);
+        auto cats = ph.categories.empty() ? std::vector<std::string>{model::categoryName(ph.noun)} : ph.categories;
+        out.roles.push_back(cats);
+        for (const auto& c : cats)
+            if (std::find(all.begin(), all.end(), c) == all.end()) all.push_back(c);
+    }
+    std::string any;
+    for (const auto& n : all) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(n));
+    out.smql = fmt::format("FIND thing WHERE {} RETURN id, category, box", all.size() > 1 ? "(" + any + ")" : any);
+    out.subject = goal;
+    out.object = fmt::format("from the {} facing the {}", start, facing);
+    return out;
+}
+
 class RuleTranslator final : public Translator {
 public:
+    std::string name() const override { return "the built-in reader"; }
+
     Translation translate(const Question& question) const override {
+        if (question.text.find("[please fill in]") != std::string::npos) {
+            Lexicon lexicon(question.categories);
+            if (auto route = routePlan(question, lexicon)) return *route;
+        }
         // One question: a second sentence explains the first ("The directions refer to ...").
         std::string text = question.text;
         if (auto mark = text.find('?'); mark != std::string::npos) text.erase(mark + 1);
@@ -1134,19 +1268,43 @@ public:
             bool square = u.str(1).find("square") != std::string::npos;
             text = u.prefix().str() + " " + u.suffix().str() + (square ? " in square " : " in ") + word;
         }
-        // "which is closer to the tv, the sofa or the stove?": the same as choosing among them.
-        static const std::regex closer(
-            R"(^\s*(?:which|what)(?: one)? is (closer|nearer|farther|further) (?:to|from) ([^,]+),(.+)\bor\b([^?]+)\??\s*$)",
+        // "which is closer to the tv, the sofa or the stove?", "which is bigger: the table or the bed?",
+        // "which of the table and the bed is longer?": the same as choosing among them by the
+        // comparative's superlative (kSuperlatives in phrase.cpp).
+        static const std::regex chooseAfter(
+            R"(^\s*(?:which|what)(?: one| thing| object)? is ([A-Za-z]+)((?: (?:to|from) [^,:]+)?)\s*[,:](.+)\bor\b([^?]+)\??\s*$)",
             std::regex::icase);
-        if (choices.empty() && std::regex_search(text, m, closer)) {
-            for (std::string item : {m.str(3), m.str(4)}) {
+        static const std::regex chooseBefore(
+            R"(^\s*(?:which|what)(?: one)? of (.+?)\band\b(.+?)\bis (?:the )?([A-Za-z]+)((?: (?:to|from) [^?]+)?)\??\s*$)",
+            std::regex::icase);
+        auto lower = [](std::string w) {
+            std::transform(w.begin(), w.end(), w.begin(), [](unsigned char ch) { return std::tolower(ch); });
+            return w;
+        };
+        std::optional<Comparative> chosen;
+        std::string chosenTo, chosenA, chosenB;
+        if (choices.empty() && std::regex_search(text, m, chooseAfter) && comparativeOf(lower(m.str(1)))) {
+            chosen = comparativeOf(lower(m.str(1)));
+            chosenTo = m.str(2), chosenA = m.str(3), chosenB = m.str(4);
+        } else if (choices.empty() && std::regex_search(text, m, chooseBefore) && comparativeOf(lower(m.str(3)))) {
+            chosen = comparativeOf(lower(m.str(3)));
+            chosenTo = m.str(4), chosenA = m.str(1), chosenB = m.str(2);
+        }
+        if (chosen && (chosen->measure == "distance") == !chosenTo.empty()) {
+            for (std::string item : {chosenA, chosenB}) {
                 item = std::regex_replace(item, std::regex(R"(^[\s,]+|[\s,]+$)"), "");
                 if (!item.empty()) choices.push_back(item);
             }
-            bool far = m.str(1) == "farther" || m.str(1) == "further";
-            text = fmt::format("which of these is the {} to {}?", far ? "farthest from" : "closest", m.str(2));
-            if (far) text = fmt::format("which of these is the farthest from {}?", m.str(2));
+            std::string to = std::regex_replace(chosenTo, std::regex(R"(^\s*(?:to|from)\s+)"), "");
+            text = chosen->measure == "distance" ? fmt::format("which of these is the {} {} {}?", chosen->superlative,
+                                                               chosen->descending ? "from" : "to", to)
+                                                 : fmt::format("which of these is the {}?", chosen->superlative);
         }
+        // "besides the pillows, what is on the bed?": the exclusion said first is the same as last.
+        static const std::regex leading(
+            R"(^\s*(besides|apart from|aside from|other than|except for|excluding)\s+([^,]+),\s*(.+?)\??\s*$)",
+            std::regex::icase);
+        if (std::regex_search(text, m, leading)) text = m.str(3) + " " + m.str(1) + " " + m.str(2) + "?";
         Words all = words(text);
         if (all.size() > kMaxQuestionWords)
             throw Error(ErrorKind::Binding,
@@ -1209,6 +1367,14 @@ std::string_view toString(QuestionKind kind) {
             return "changes";
         case QuestionKind::Reverse:
             return "reverse";
+        case QuestionKind::Comparison:
+            return "comparison";
+        case QuestionKind::RoomSize:
+            return "room size";
+        case QuestionKind::Statement:
+            return "statement";
+        case QuestionKind::Route:
+            return "route plan";
         case QuestionKind::UnknownWord:
             return "unknown word";
     }

@@ -8,6 +8,8 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,10 @@ enum class QuestionKind {
     Attribute,         // what colour is the sofa?                  FIND sofa RETURN id, category, color
     Changes,           // what changed?                             SHOW CHANGES
     Reverse,           // what is the lamp on?                      RELATE lamp TO object (the "on" rows)
+    RoomSize,          // what is the size of this room?            FIND node WHERE kind = 'room' OR ...
+    Route,             // VSI-Bench's route plan: "you are a robot beginning at the bed ... [please fill in]"
+    Statement,         // a plugged-in translator's SMQL: the answer says what its rows hold
+    Comparison,        // is the sofa longer than the bed?          FIND thing WHERE ... ORDER BY width DESC
     UnknownWord,       // a word neither the scene nor WordNet knows: nothing runs, the answer names it
 };
 
@@ -49,6 +55,9 @@ struct Question {
     // How many scenes the database holds: where it holds one, "the office" or "the kitchen" is that
     // scene, whatever it is called.
     std::size_t sceneCount = 1;
+    // SMQL in brief, for a translator that is a language model: its statements, the predicates (the
+    // predicate table's usage lines) and the attributes (the attribute table's); bind_ask.cpp.
+    std::string grammar;
 };
 
 // One word of the question and the categories it was taken to mean ("couch" -> sofa).
@@ -84,13 +93,36 @@ struct Translation {
     // the floor and the rug").
     std::vector<std::string> background;
     std::size_t top = 1;  // Superlative: how many rows answer ("the two largest": 2)
+    // Comparison: whether the comparative asks for more ("longer") or less ("shorter", "closer");
+    // `measure` is the attribute compared (or "distance"), `predicate` the comparative, `roles` the
+    // two sides (categories, or "#id" for a node named by id), `condition` how a value is said
+    // ("long", "from the door").
+    bool greater = true;
+    // Route: the steps in order, "forward" (to the next of `roles` after the start and the thing
+    // faced) or "turn" (a turn to fill in).
+    std::vector<std::string> steps;
+};
+
+// A translator that cannot answer now (an endpoint absent, failing, or replying with no
+// statement): the built-in reader answers instead, with a note.
+struct Unavailable : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 class Translator {
 public:
     virtual ~Translator() = default;
-    // Throws smql::Error (kind Binding) for a question it cannot translate, with a hint.
+    // Throws smql::Error (kind Binding) for a question it cannot translate, with a hint, or
+    // Unavailable when it cannot answer at all.
     virtual Translation translate(const Question& question) const = 0;
+    // Another translation after `failed` could not be bound or run (`error` says why); nothing
+    // when the translator does not repair. Asked once per question.
+    virtual std::optional<Translation> repair(const Question&, const Translation& /*failed*/,
+                                              const std::string& /*error*/) const {
+        return std::nullopt;
+    }
+    // How notes name it: "the built-in reader", the endpoint's URL.
+    virtual std::string name() const { return "a plugged-in translator"; }
 };
 
 // The built-in rule-based translator (shared, stateless).

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/ask/model_translator.hpp"
 #include "engine/binder/binder.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
@@ -27,6 +28,25 @@ BoundSet bindLimit(const catalog::LimitSetting& limit, const ast::SetStmt& set) 
 }  // namespace
 
 void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
+    if (set.name == "translator") {
+        // ASK's translator: a language model's OpenAI-compatible endpoint, or the built-in reader.
+        const auto* url = std::get_if<std::string>(&set.value);
+        if (!url)
+            throw Error(ErrorKind::Binding, "translator takes a URL in quotes, or 'built-in'", set.where,
+                        "SET translator = 'http://127.0.0.1:8080/v1'");
+        BoundSet bound;
+        bound.setsTranslator = true;
+        bound.translatorUrl = *url;
+        if (*url != "built-in" && *url != "builtin" && !url->empty()) {
+            try {
+                bound.translator = ask::modelTranslator(*url);
+            } catch (const Error& e) {
+                throw Error(e.kind(), e.message(), set.where, e.hint());
+            }
+        }
+        out.body = std::move(bound);
+        return;
+    }
     if (const auto* limit = catalog::findLimit(set.name)) {
         out.body = bindLimit(*limit, set);
         return;
@@ -36,6 +56,7 @@ void Binder::bindStatement(const ast::SetStmt& set, BoundStatement& out) {
         std::vector<std::string> names;
         for (const auto& s : relations::settingsCatalogue()) names.push_back(s.name);
         for (const auto& s : catalog::limitSettings()) names.emplace_back(s.name);
+        names.emplace_back("translator");
         auto close = model::nearestNames(set.name, names);
         throw Error(
             ErrorKind::Binding, fmt::format("unknown setting '{}'", set.name), set.where,

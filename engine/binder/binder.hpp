@@ -49,6 +49,8 @@ private:
     void bindStatement(const ast::SetStmt& set, BoundStatement& out);
     void bindStatement(const ast::ExplainStmt& explain, BoundStatement& out);
     void bindStatement(const ast::AskStmt& ask, BoundStatement& out);
+    // A translation's SMQL parsed and bound as the statement a question runs.
+    std::shared_ptr<const BoundStatement> bindTranslation(const ask::Translation& translation);
     void bindStatement(const ast::DropSceneStmt& drop, BoundStatement& out);
     void bindStatement(const ast::RenameSceneStmt& rename, BoundStatement& out);
     void bindStatement(const ast::GuideStmt& guide, BoundStatement& out);

@@ -184,8 +184,15 @@ struct BoundSet {
     const relations::SettingInfo* threshold = nullptr;
     const catalog::LimitSetting* limit = nullptr;
     double value = 0;
+    // SET translator = 'http://...' (or 'built-in', null): ASK's translator for the session.
+    bool setsTranslator = false;
+    std::shared_ptr<const ask::Translator> translator;
+    std::string translatorUrl;
 
-    std::string_view name() const { return threshold ? std::string_view(threshold->name) : limit->name; }
+    std::string_view name() const {
+        if (setsTranslator) return "translator";
+        return threshold ? std::string_view(threshold->name) : limit->name;
+    }
 };
 
 struct BoundStatement;

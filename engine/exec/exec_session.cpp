@@ -19,6 +19,15 @@ ResultSet Executor::run(const binder::BoundUse& use) {
 
 ResultSet Executor::run(const binder::BoundSet& set) {
     ResultSet rs;
+    if (set.setsTranslator) {
+        session_.askTranslator = set.translator;
+        rs.message = set.translator ? fmt::format(
+                                          "translator = '{}' (ASK falls back to the built-in reader when it "
+                                          "fails)",
+                                          set.translatorUrl)
+                                    : "translator = the built-in reader";
+        return rs;
+    }
     if (set.limit) {
         session_.limits.*(set.limit->field) = static_cast<std::int64_t>(set.value);
         rs.message = fmt::format("{} = {}", set.limit->name, session_.limits.*(set.limit->field));

@@ -172,7 +172,10 @@ struct StatementLines {
                               : fmt::format("Switch the session to scene '{}'", u.scene));
     }
     void operator()(const binder::BoundSet& s) const {
-        lines.add(fmt::format("Set {} = {} for this session", s.name(), s.value));
+        if (s.setsTranslator)
+            lines.add(fmt::format("Set translator = '{}' for this session", s.translatorUrl));
+        else
+            lines.add(fmt::format("Set {} = {} for this session", s.name(), s.value));
     }
     void operator()(const binder::BoundExplain&) const {
         for (auto& line : plan.explained->explain()) lines.out.push_back(std::move(line));

@@ -109,6 +109,20 @@ model::SceneData readRoom(const Field& room, const std::string& name, const std:
             scene.nodes.push_back(readBox(boxes[i], category, scene.nodes.size() + 1));
     }
     if (scene.nodes.empty()) room.at("object_bbox").fail("no boxes: expected at least one");
+    // The room's floor area as VSI-Bench measured it (its room size task), on a room node without a
+    // box: the layouts have no walls or floor to measure it by (docs/ask.md, "Room size").
+    if (auto size = room.find("room_size")) {
+        double area = size->number();
+        if (!(area > 0) || area > kMaxSize * kMaxSize)
+            size->fail(fmt::format("room size {} m^2 is out of range", area));
+        model::Node node;
+        node.id = scene.nodes.size() + 1;
+        node.kind = model::NodeKind::Room;
+        node.category = "room";
+        node.geometry = model::GeometryKind::None;
+        node.attributes.push_back({"area", fmt::format("{:.2f}", area)});
+        scene.nodes.push_back(std::move(node));
+    }
     detail::finishScene(scene, name, "vsibench:" + path);
     return scene;
 }

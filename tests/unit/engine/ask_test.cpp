@@ -48,6 +48,10 @@ std::unique_ptr<Engine> openWithTheRooms(const TempDir& dir) {
     model::SceneData bedroom = import::readVsiBench(layouts + "scannet_meta_info_val.json", "scene0580_01");
     bedroom.info.name = "bedroom-0580";
     engine->importScene(std::move(bedroom));
+    // A bedroom with a nightstand each side of the bed, for "between the nightstands".
+    model::SceneData twin = import::readVsiBench(layouts + "scannet_meta_info_val.json", "scene0697_01");
+    twin.info.name = "bedroom-0697";
+    engine->importScene(std::move(twin));
     std::string office =
         import::write("json", import::readVsiBench(layouts + "scannet_meta_info_val.json", "scene0591_01"));
     office = std::regex_replace(office, std::regex(R"("category": "trash-bin")"), R"("category": "Trash Bin")");
