@@ -5,7 +5,9 @@ Each room is imported, scored with the suite `smql eval` generates from it (docs
 real layouts"), and the metrics are pooled per data set (every episode of every room counts once).
 Prints the Markdown table of docs/eval.md, "Real layouts".
 
-    scripts/eval_layouts.py build/shell/smql ../shared/data [--rooms N]
+    scripts/eval_layouts.py build/shell/smql ../shared/data [--rooms N] [--replica info_semantic.json ...]
+
+--replica adds other Replica rooms, one column each (docs/guidance.md, "On real rooms").
 """
 import argparse
 import collections
@@ -28,12 +30,14 @@ def main():
     parser.add_argument("smql", help="the smql binary")
     parser.add_argument("data", help="the shared data folder (replica-room0/, real-layouts/)")
     parser.add_argument("--rooms", type=int, default=0, help="at most this many rooms of each data set (0: all)")
+    parser.add_argument("--replica", nargs="*", default=[], help="more Replica info_semantic.json files, a column each")
     options = parser.parse_args()
 
     sets = [("Replica room0", "replica", os.path.join(options.data, "replica-room0/info_semantic.json")),
             ("ScanNet (VSI-Bench)", "vsibench", os.path.join(options.data, "real-layouts/scannet_meta_info_val.json")),
             ("ARKitScenes (VSI-Bench)", "vsibench",
              os.path.join(options.data, "real-layouts/arkitscenes_meta_info_val.json"))]
+    sets += [(f"Replica {os.path.basename(path)}", "replica", path) for path in options.replica]
     columns = []
     pooled = {}
     with tempfile.TemporaryDirectory() as work:

@@ -218,6 +218,17 @@ const SceneSnapshot::Guidance& SceneSnapshot::guidance() const {
     return *guidance_;
 }
 
+const SceneSnapshot::Guidance& SceneSnapshot::crowdedGuidance() const {
+    std::call_once(crowdedBuilt_, [&] {
+        guide::GraphOptions options;
+        options.pushAside = true;
+        guide::FreeSpace space(nodes(), options);
+        guide::RouteGraph graph = guide::buildGraph(nodes(), space, options);
+        crowded_ = std::make_unique<const Guidance>(Guidance{std::move(space), std::move(graph), options});
+    });
+    return *crowded_;
+}
+
 const similar::EmbeddingIndex& SceneSnapshot::embeddings() const {
     std::call_once(embeddingsBuilt_, [&] {
         std::vector<similar::Vector> vectors;

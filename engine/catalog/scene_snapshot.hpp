@@ -91,6 +91,9 @@ public:
         guide::GraphOptions options;
     };
     const Guidance& guidance() const;
+    // The same for a crowded room, where a person pushes chairs aside and squeezes past a table's
+    // edge (GraphOptions::pushAside): GUIDE's second try when the free floor has no way.
+    const Guidance& crowdedGuidance() const;
     // The nodes' vectors for SIMILAR TO, by slot (docs/similarity.md): embedded the first time a
     // query asks, then kept as long as the snapshot.
     const similar::EmbeddingIndex& embeddings() const;
@@ -148,12 +151,12 @@ private:
     mutable std::atomic<bool> treePacked_{false};
     mutable std::once_flag treePacking_;
     mutable storage::SpatialIndex rtree_;
-    mutable std::once_flag guidanceBuilt_;
+    mutable std::once_flag guidanceBuilt_, crowdedBuilt_;
     mutable std::once_flag embeddingsBuilt_;
     mutable std::unique_ptr<const similar::EmbeddingIndex> embeddings_;
     mutable std::once_flag storedEmbeddingsRead_;
     mutable std::unique_ptr<const similar::EmbeddingIndex> storedEmbeddings_;
-    mutable std::unique_ptr<const Guidance> guidance_;
+    mutable std::unique_ptr<const Guidance> guidance_, crowded_;
 };
 
 // The snapshot's boxes as what may stand between two nodes (visible_from, near): the R-tree names

@@ -335,10 +335,10 @@ Json generateSuite(const model::SceneData& truth) {
         } else if (n.kind == model::NodeKind::Object && !footing.walkedOver(n) &&
                    model::bottom(n.box) - footing.floor() < kReachHeight) {
             things.push_back(&n);
-            if (footing.blocks(n)) standing.push_back(&n);
+            if (footing.stands(n)) standing.push_back(&n);
             // Guidance goes to what stands on the floor or rests on something that does, not to
             // what hangs on a wall (a picture, a wall plug).
-            if (footing.blocks(footing.support(n))) goals.push_back(&n);
+            if (footing.stands(footing.support(n))) goals.push_back(&n);
         }
     }
     Json suite{{"smql_eval", 1}, {"scene", truth.info.name}, {"truth", "truth.json"}};

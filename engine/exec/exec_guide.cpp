@@ -118,84 +118,152 @@ ResultSet Executor::run(const binder::BoundShowGraph&) {
     return rs;
 }
 
+namespace {
+
+// A route planned on one of the scene's free floors, or the error that says why there is none.
+struct Planned {
+    guide::Point start;
+    std::optional<double> heading;
+    guide::Route route;
+};
+
+// What the route crosses of the room's free floor that only the crowded room frees: the chairs and
+// bags pushed aside, the tables squeezed past, in the order walked.
+std::vector<model::NodeId> pushedAside(const catalog::SceneSnapshot::Guidance& strict, const guide::Route& route) {
+    std::vector<model::NodeId> out;
+    const auto& space = strict.space;
+    for (std::size_t k = 1; k < route.waypoints.size(); ++k) {
+        const guide::Point a = route.waypoints[k - 1], b = route.waypoints[k];
+        const double length = std::hypot(b.x - a.x, b.y - a.y);
+        const int steps = std::max(1, static_cast<int>(std::ceil(length / (space.cell() / 2))));
+        for (int t = 0; t <= steps; ++t) {
+            const double x = a.x + (b.x - a.x) * t / steps, y = a.y + (b.y - a.y) * t / steps;
+            const int i = static_cast<int>(std::floor((x - space.minX()) / space.cell())),
+                      j = static_cast<int>(std::floor((y - space.minY()) / space.cell()));
+            if (i < 0 || j < 0 || i >= space.width() || j >= space.height()) continue;
+            const model::NodeId by = space.blocker(i, j);
+            if (by != model::kNoNode && std::find(out.begin(), out.end(), by) == out.end()) out.push_back(by);
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
 ResultSet Executor::run(const binder::BoundGuide& guide) {
     const catalog::SceneSnapshot& snap = scene();
-    const auto& g = snap.guidance();
     const model::Node& goal = snap.node(single(guide.to, "goal"));
 
     // The start and the walker's heading there, when the origin gives one.
-    guide::Point start;
     std::optional<double> heading;
     std::string origin, startWords;
     model::NodeId startNode = model::kNoNode;
+    const model::Node* from = nullptr;
+    guide::Point origin0;
     if (guide.point) {
-        start = {guide.point->first, guide.point->second};
+        origin0 = {guide.point->first, guide.point->second};
         origin = fmt::format("({}, {})", guide.point->first, guide.point->second);
         startWords = fmt::format("Start at {}.", origin);
     } else if (!guide.from) {
         const auto& view = snap.info().viewpoint;
-        start = {view.position.x, view.position.y};
+        origin0 = {view.position.x, view.position.y};
         heading = view.facingYaw;
         origin = "here (the scene's viewpoint)";
         startWords = "Start here, at the scene's viewpoint.";
     } else {
-        const model::Node& from = snap.node(single(*guide.from, "start"));
-        origin = catalog::SceneSnapshot::label(from);
-        startNode = from.id;
-        startWords = fmt::format("Start {} the {}.", from.category == "door" ? "at" : "beside", from.category);
-        start = {from.box.center.x, from.box.center.y};
-        // From a door: its side from which the goal's floor is reached, else nearest the goal, facing
-        // away from the door. From anything else: the point beside it, as for a goal.
-        const guide::Point goalAt{goal.box.center.x, goal.box.center.y};
-        const auto goalEnd = approachTo(g, goal);
-        auto better = [&](guide::Point p, guide::Point than) {
-            const bool reaches = goalEnd && g.space.connected(p, *goalEnd);
-            const bool thanReaches = goalEnd && g.space.connected(than, *goalEnd);
-            if (reaches != thanReaches) return reaches;
-            return std::hypot(p.x - goalAt.x, p.y - goalAt.y) < std::hypot(than.x - goalAt.x, than.y - goalAt.y);
-        };
-        std::optional<guide::Point> best;
-        for (const auto& p : g.graph.points)
-            if (p.node == from.id && (!best || better(p.at, *best))) best = p.at;
-        if (best) {
-            if (from.category == "door") heading = std::atan2(best->y - start.y, best->x - start.x);
-            start = *best;
-        }
+        from = &snap.node(single(*guide.from, "start"));
+        origin = catalog::SceneSnapshot::label(*from);
+        startNode = from->id;
+        startWords = fmt::format("Start {} the {}.", from->category == "door" ? "at" : "beside", from->category);
+        origin0 = {from->box.center.x, from->box.center.y};
     }
-    auto onFloor = g.space.nearestFree(start, 1.0);
-    if (!onFloor)
-        throw Error(ErrorKind::Binding,
-                    fmt::format("the start {} is not on free floor: nothing in the scene is walkable within 1 m of "
-                                "({:.1f}, {:.1f})",
-                                origin, start.x, start.y),
-                    std::nullopt, "SHOW GRAPH lists the decision points; start from one of them, a door or HERE");
 
-    const auto end = approachTo(g, goal);
-    if (!end)
-        throw Error(ErrorKind::Binding,
-                    fmt::format("no route to {}: no free floor within 1.5 m of it is connected to the rest of "
-                                "the room",
-                                catalog::SceneSnapshot::label(goal)),
-                    std::nullopt, "SHOW GRAPH lists where the graph reaches");
+    // The route on one free floor; `fail` says why there is none (else nullopt is returned quietly).
+    auto plan = [&](const catalog::SceneSnapshot::Guidance& g, bool fail) -> std::optional<Planned> {
+        guide::Point start = origin0;
+        std::optional<double> facing = heading;
+        if (from) {
+            // From a door: its side from which the goal's floor is reached, else nearest the goal,
+            // facing away from the door. From anything else: the point beside it, as for a goal.
+            const guide::Point goalAt{goal.box.center.x, goal.box.center.y};
+            const auto goalEnd = approachTo(g, goal);
+            auto better = [&](guide::Point p, guide::Point than) {
+                const bool reaches = goalEnd && g.space.connected(p, *goalEnd);
+                const bool thanReaches = goalEnd && g.space.connected(than, *goalEnd);
+                if (reaches != thanReaches) return reaches;
+                return std::hypot(p.x - goalAt.x, p.y - goalAt.y) < std::hypot(than.x - goalAt.x, than.y - goalAt.y);
+            };
+            std::optional<guide::Point> best;
+            for (const auto& p : g.graph.points)
+                if (p.node == from->id && (!best || better(p.at, *best))) best = p.at;
+            if (best) {
+                if (from->category == "door") facing = std::atan2(best->y - start.y, best->x - start.x);
+                start = *best;
+            }
+        }
+        auto onFloor = g.space.nearestFree(start, 1.0);
+        if (!onFloor) {
+            if (!fail) return std::nullopt;
+            throw Error(ErrorKind::Binding,
+                        fmt::format("the start {} is not on free floor: nothing in the scene is walkable within 1 m "
+                                    "of ({:.1f}, {:.1f})",
+                                    origin, start.x, start.y),
+                        std::nullopt, "SHOW GRAPH lists the decision points; start from one of them, a door or HERE");
+        }
+        const auto end = approachTo(g, goal);
+        if (!end) {
+            if (!fail) return std::nullopt;
+            throw Error(ErrorKind::Binding,
+                        fmt::format("no route to {}: no free floor within 1.5 m of it is connected to the rest of "
+                                    "the room",
+                                    catalog::SceneSnapshot::label(goal)),
+                        std::nullopt, "SHOW GRAPH lists where the graph reaches");
+        }
+        auto route = guide::shortestRoute(g.graph, g.space, *onFloor, *end, g.options);
+        if (!route) {
+            if (!fail) return std::nullopt;
+            throw noRoute(snap, origin, goal, *onFloor, *end);
+        }
+        return Planned{*onFloor, facing, std::move(*route)};
+    };
 
-    auto route = guide::shortestRoute(g.graph, g.space, *onFloor, *end, g.options);
-    if (!route) throw noRoute(snap, origin, goal, *onFloor, *end);
+    // The room's free floor first; else the crowded room's, where chairs are pushed aside and
+    // tables squeezed past; else the error says what closes the room's free floor.
+    const auto& strict = snap.guidance();
+    std::optional<Planned> planned = plan(strict, false);
+    std::vector<model::NodeId> moved;
+    if (!planned) {
+        planned = plan(snap.crowdedGuidance(), false);
+        if (planned) moved = pushedAside(strict, planned->route);
+    }
+    if (!planned) planned = plan(strict, true);
+    const guide::Point onFloor = planned->start;
+    const guide::Route& route = planned->route;
+
+    std::string crowd;
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+        auto slot = snap.slotOf(moved[i]);
+        if (!slot) continue;
+        crowd += fmt::format("{}{}", crowd.empty() ? "" : ", ", catalog::SceneSnapshot::label(snap.node(*slot)));
+    }
 
     ResultSet rs;
     rs.columns = {{"step", ValueType::Integer},        {"instruction", ValueType::Text}, {"landmark", ValueType::Text},
                   {"landmark_id", ValueType::Integer}, {"x", ValueType::Real},           {"y", ValueType::Real},
                   {"distance", ValueType::Real}};
     // Step 0 is where the walk begins, so the rows hold the whole route.
+    if (!crowd.empty()) startWords += fmt::format(" The way is crowded: push aside or squeeze past {}.", crowd);
     rs.rows.push_back(
-        {std::int64_t{0}, startWords, nodeLabel(snap, startNode), nodeId(startNode), onFloor->x, onFloor->y, 0.0});
-    auto steps = guide::describeRoute(*route, snap.nodes(), goal, heading);
+        {std::int64_t{0}, startWords, nodeLabel(snap, startNode), nodeId(startNode), onFloor.x, onFloor.y, 0.0});
+    auto steps = guide::describeRoute(route, snap.nodes(), goal, planned->heading);
     for (std::size_t i = 0; i < steps.size(); ++i) {
         const auto& step = steps[i];
         rs.rows.push_back({static_cast<std::int64_t>(i + 1), step.instruction, nodeLabel(snap, step.landmark),
                            nodeId(step.landmark), step.at.x, step.at.y, step.distance});
     }
-    rs.message = fmt::format("{:.1f} m from {} to {} in {} steps", route->length, origin,
-                             catalog::SceneSnapshot::label(goal), steps.size());
+    rs.message =
+        fmt::format("{:.1f} m from {} to {} in {} steps{}", route.length, origin, catalog::SceneSnapshot::label(goal),
+                    steps.size(), crowd.empty() ? "" : fmt::format(" (crowded: past {})", crowd));
     return rs;
 }
 

@@ -122,11 +122,31 @@ const Node* Footing::parentThing(const Node& n) const {
     return it->second;
 }
 
-bool Footing::blocks(const Node& n) const {
+bool Footing::stands(const Node& n) const {
     if (!solid(n)) return false;
     const bool standing = model::bottom(n.box) - floor_ < options_.standingHeight;
     if (n.kind == NodeKind::Anchor) return n.category == "wall" || (standing && n.geometry == model::GeometryKind::Box);
     return n.kind == NodeKind::Object && standing && !walkedOver(n) && !parentThing(n);
+}
+
+bool Footing::blocks(const Node& n) const { return stands(n) && !(options_.pushAside && movable(n)); }
+
+namespace {
+
+bool named(const Node& n, std::initializer_list<std::string_view> categories) {
+    return n.kind == NodeKind::Object &&
+           std::any_of(categories.begin(), categories.end(), [&](std::string_view c) { return n.category == c; });
+}
+
+}  // namespace
+
+bool movable(const Node& n) {
+    return named(n, {"chair", "office-chair", "folding-chair", "stool", "bar-stool", "ottoman", "backpack", "bag",
+                     "trash-bin", "trash-can", "wastebasket", "bin", "basket"});
+}
+
+bool onLegs(const Node& n) {
+    return named(n, {"table", "desk", "coffee-table", "dining-table", "side-table", "end-table", "kitchen-table"});
 }
 
 const Node& Footing::support(const Node& n) const {
@@ -174,7 +194,7 @@ FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options
                 }
     };
     for (const Node& n : nodes)
-        if (footing.blocks(n)) mark(n.box, options.bodyRadius, n.id);
+        if (footing.blocks(n)) mark(n.box, options.pushAside && onLegs(n) ? 0.0 : options.bodyRadius, n.id);
     // Doors open the walls they stand in: through the wall and a body's radius beyond, as wide as a
     // body's centre can pass (the door's width less a body's radius at each jamb).
     for (const Node& n : nodes) {

@@ -30,7 +30,16 @@ struct GraphOptions {
     double standingHeight = 0.3;
     // Things whose top is at most this above the floor (rugs, mats, carpets) are walked over.
     double walkOverHeight = 0.05;
+    // The crowded room's free floor (docs/guidance.md, "What guidance assumes"): what a person moves
+    // with a hand or a foot (chairs, stools, bags, bins) is pushed aside, and a table's or a desk's box,
+    // a bound of its top and not a solid, blocks the floor it covers but not a body's radius around it.
+    bool pushAside = false;
 };
+
+// What a person pushes aside to pass: a chair, a stool, a bag, a bin.
+bool movable(const model::Node& n);
+// Furniture on legs whose box bounds its top (a table, a desk): the floor under its edge is free.
+bool onLegs(const model::Node& n);
 
 // The floor's height: the top of the largest floor box, else 0 (scenes are stored in the upright
 // floor frame: docs/formats.md).
@@ -44,8 +53,10 @@ public:
     double floor() const { return floor_; }
     // Flat on the floor: walked over.
     bool walkedOver(const model::Node& n) const;
-    // Its floor footprint closes the floor: a wall, a pillar, a thing standing on the floor that
-    // does not rest on furniture (a blanket over a bed's side leaves that floor to the bed).
+    // It stands on the floor: a wall, a pillar, a thing standing on the floor that does not rest on
+    // furniture (a blanket over a bed's side leaves that floor to the bed).
+    bool stands(const model::Node& n) const;
+    // Its floor footprint closes the floor: it stands there and is not pushed aside (pushAside).
     bool blocks(const model::Node& n) const;
     // The floor-standing thing under n, following the tree through the furniture it rests on (the
     // bed under the pillow, the table under the plant in its pot); n itself when it rests on none.

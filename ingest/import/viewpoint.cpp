@@ -10,6 +10,7 @@
 
 #include "ingest/import/common.hpp"
 #include "ingest/import/floor.hpp"
+#include "ingest/import/wall_faces.hpp"
 #include "model/floor.hpp"
 #include "model/geometry.hpp"
 
@@ -131,6 +132,7 @@ void finishScene(model::SceneData& scene, const std::string& name, std::string s
     scene.info.name = name;
     scene.info.source = std::move(source);
     standOnFloor(scene);
+    splitWallOutlines(scene);
     scene.info.nodeCount = scene.nodes.size();
     ViewpointChoice view = defaultViewpoint(scene.nodes);
     scene.info.viewpoint = view.viewpoint;

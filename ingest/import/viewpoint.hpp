@@ -21,8 +21,9 @@ struct ViewpointChoice {
 // `nodes` must hold at least one node with geometry.
 ViewpointChoice defaultViewpoint(const std::vector<model::Node>& nodes);
 
-// The last step of every importer: stands the scene on its floor (floor.hpp), names it, records its
-// source and node count, and sets the default viewpoint.
+// The last step of every importer: stands the scene on its floor (floor.hpp), makes wall boxes of several
+// faces the faces they are (wall_faces.hpp), names it, records its source and node count, and sets the
+// default viewpoint.
 void finishScene(model::SceneData& scene, const std::string& name, std::string source);
 
 }  // namespace smql::import::detail
