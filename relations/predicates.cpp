@@ -196,10 +196,36 @@ bool wallBetween(const Node& a, const Node& b, const Thresholds& t, const Obstac
     });
 }
 
+// What stands around x for near's crowding: another object, visible, that x does not rest on or in and
+// that does not rest on or in x (the sofa under a cushion, the cushion on a chair are x's own).
+bool neighbourOf(const Node& x, const Node& c, const Thresholds& t) {
+    if (c.id == x.id || c.hidden || c.kind != model::NodeKind::Object || !hasGeometry(c)) return false;
+    if (supportScore(x, c, t) > 0 || supportScore(c, x, t) > 0) return false;
+    return model::fractionInside(x.box, c.box) < t.inMinInside && model::fractionInside(c.box, x.box) < t.inMinInside;
+}
+
+// In a crowded spot a person calls near what is nearest: b is crowded out of a's nearness when other
+// things stand closer to a than b does by more than near.min_distance, and closer to b than a does.
+bool crowdedOut(const Node& a, const Node& b, double gap, const Thresholds& t, const Obstacles& obstacles) {
+    const double closer = gap - t.nearMinDistance;
+    if (closer <= 0) return false;
+    auto surrounded = [&](const Node& x, const Node& other) {
+        std::vector<const Node*> around;
+        obstacles.within(grown(model::worldAabb(x.box), closer), around);
+        return std::any_of(around.begin(), around.end(), [&](const Node* c) {
+            return c->id != other.id && neighbourOf(x, *c, t) && model::distance(x.box, c->box) < closer;
+        });
+    };
+    return surrounded(a, b) && surrounded(b, a);
+}
+
+// near with a written distance (near(window, 1.5 m)) is that distance and the walls; near without one is
+// at the two things' scale and gives way to nearer things in a crowd.
 double nearScore(const PredicateInputs& in) {
     double limit = nearLimit(in.a, in.b, in.t, in.writtenDistance);
     double d = model::distance(in.a.box, in.b.box);
     if (d > limit || wallBetween(in.a, in.b, in.t, in.obstacles)) return 0.0;
+    if (!in.writtenDistance && crowdedOut(in.a, in.b, d, in.t, in.obstacles)) return 0.0;
     return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
 }
 
@@ -358,8 +384,7 @@ constexpr PredicateSpec kPredicates[] = {
     {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)",
      "below|under|underneath|beneath|lower than"},
     {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 14, "near(sofa) or near(sofa, 1.5 m)",
-     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|close by|against|at",
-     Occluders::Walls},
+     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|close by|against|at", Occluders::All},
     {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)",
      "attached to|fixed to|mounted on|hanging on|hanging from|hanging off|hung on|hangs on|hang on"},
     {P::LeftOf, "", 1, true, false, leftOfScore, nullptr, nullptr, 6, "left_of(window)",
@@ -376,9 +401,9 @@ constexpr PredicateSpec kPredicates[] = {
     {P::Facing, "", 1, false, false, facingScore, nullptr, nullptr, 11, "facing(table): its front faces the table",
      "facing|face|faces|facing toward|facing towards|turned toward|turned towards|pointing at|pointed at|looking at"},
     {P::AtFrontOf, "", 1, false, false, atFrontOfScore, withinNear, withinNear, 12,
-     "at_front_of(sofa): by the sofa's own front", "at the front of|at the foot of|at the end of", Occluders::Walls},
+     "at_front_of(sofa): by the sofa's own front", "at the front of|at the foot of|at the end of", Occluders::All},
     {P::AtBackOf, "", 1, false, false, atBackOfScore, withinNear, withinNear, 13,
-     "at_back_of(sofa): by the sofa's own back", "at the back of|at the head of|behind the back of", Occluders::Walls},
+     "at_back_of(sofa): by the sofa's own back", "at the back of|at the head of|behind the back of", Occluders::All},
 };
 
 constexpr bool rowsInCodeOrder() {
