@@ -71,8 +71,22 @@ bool TwoTermFind::meetsCheck(const model::Node& candidate) const {
     });
 }
 
+model::Aabb aroundPair(const std::vector<model::Node>& rows, const relations::Thresholds& thresholds) {
+    model::Aabb out{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+    for (const model::Node& n : rows) {
+        const model::Aabb b = model::worldAabb(n.box);
+        out.min = {std::min(out.min.x, b.min.x), std::min(out.min.y, b.min.y), std::min(out.min.z, b.min.z)};
+        out.max = {std::max(out.max.x, b.max.x), std::max(out.max.y, b.max.y), std::max(out.max.z, b.max.z)};
+    }
+    const double d = thresholds.nearDistance;
+    out.min = {out.min.x - d, out.min.y - d, out.min.z - d};
+    out.max = {out.max.x + d, out.max.y + d, out.max.z + d};
+    return out;
+}
+
 Answer relateRows(const std::string& system, model::NodeId a, model::NodeId b, const std::vector<model::Node>& rows,
-                  const relations::Thresholds& thresholds, const relations::Frame& frame) {
+                  const std::vector<model::Node>& around, const relations::Thresholds& thresholds,
+                  const relations::Frame& frame) {
     auto find = [&](model::NodeId id) {
         return std::find_if(rows.begin(), rows.end(), [&](auto& n) { return n.id == id; });
     };
@@ -80,7 +94,8 @@ Answer relateRows(const std::string& system, model::NodeId a, model::NodeId b, c
     if (subject == rows.end() || object == rows.end())
         throw std::runtime_error(fmt::format("{}: #{} or #{} is not in the current scene", system, a, b));
     Answer out;
-    for (const auto& hit : relations::relate(*subject, *object, thresholds, frame, kNoWallsRead))
+    const relations::NodeObstacles crowd{std::span<const model::Node>(around)};
+    for (const auto& hit : relations::relate(*subject, *object, thresholds, frame, crowd))
         out.push_back(static_cast<std::int64_t>(hit.predicate));
     return out;
 }

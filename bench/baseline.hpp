@@ -91,10 +91,14 @@ private:
     const relations::Frame& frame_;
 };
 
-// RELATE #a TO #b from the rows a baseline read for the two nodes, in any order: the relations
+// RELATE #a TO #b from the rows a baseline read for the two nodes, in any order, and the objects it
+// read around them (aroundPair's region: near gives way to nearer things in a crowd): the relations
 // that hold, best first, by the engine's formulas. Throws naming `system` when either is missing.
 Answer relateRows(const std::string& system, model::NodeId a, model::NodeId b, const std::vector<model::Node>& rows,
-                  const relations::Thresholds& thresholds, const relations::Frame& frame);
+                  const std::vector<model::Node>& around, const relations::Thresholds& thresholds,
+                  const relations::Frame& frame);
+// Where the objects that may crowd a pair out of near stand: both boxes grown by near.distance.
+model::Aabb aroundPair(const std::vector<model::Node>& rows, const relations::Thresholds& thresholds);
 
 // The k nearest of `distances` (exact box distance, id), nearest first and ties by id, as smql orders them.
 Answer nearestFirst(std::vector<std::pair<double, model::NodeId>> distances, int limit);

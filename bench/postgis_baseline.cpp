@@ -183,6 +183,12 @@ struct PostgisBaseline::Impl {
                 fmt::format("SELECT {} FROM nodes n WHERE n.scene = $1 AND n.category = $2", kNodeColumns));
         prepare("two_nodes",
                 fmt::format("SELECT {} FROM nodes n WHERE n.id IN ($1, $2) AND n.scene = $3", kNodeColumns));
+        // The visible objects whose bounds meet a region: what may crowd a pair out of near.
+        prepare("objects_in_region",
+                fmt::format("SELECT {} FROM nodes n WHERE n.scene = $1 AND n.footprint && ST_MakeEnvelope($2::float8, "
+                            "$3::float8, $4::float8, $5::float8) AND n.max_z >= $6::float8 AND n.min_z <= $7::float8 "
+                            "AND n.kind = {} AND NOT n.hidden",
+                            kNodeColumns, static_cast<int>(model::NodeKind::Object)));
         // Each visible object whose bounds meet the probe region of a reference
         // of category $2, with that reference's id: one round trip for the term.
         // LATERAL keeps the generic plan a GiST probe per reference (a plain
@@ -376,7 +382,18 @@ Answer PostgisBaseline::relate(model::NodeId a, model::NodeId b) {
         "two_nodes", Parameters().add(static_cast<std::int64_t>(a)).add(static_cast<std::int64_t>(b)).add(m.sceneId));
     std::vector<Node> rows(static_cast<std::size_t>(r.rows()));
     for (int i = 0; i < r.rows(); ++i) readNode(r, i, 0, rows[static_cast<std::size_t>(i)]);
-    return relateRows("postgres", a, b, rows, m.thresholds, m.frame);
+    const model::Aabb region = aroundPair(rows, m.thresholds);
+    Result nearby = m.execute("objects_in_region", Parameters()
+                                                       .add(m.sceneId)
+                                                       .add(region.min.x)
+                                                       .add(region.min.y)
+                                                       .add(region.max.x)
+                                                       .add(region.max.y)
+                                                       .add(region.min.z)
+                                                       .add(region.max.z));
+    std::vector<Node> around(static_cast<std::size_t>(nearby.rows()));
+    for (int i = 0; i < nearby.rows(); ++i) readNode(nearby, i, 0, around[static_cast<std::size_t>(i)]);
+    return relateRows("postgres", a, b, rows, around, m.thresholds, m.frame);
 }
 
 Answer PostgisBaseline::nearestObjects(const std::string& category, int limit) {

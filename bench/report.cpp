@@ -356,11 +356,12 @@ std::string renderMarkdown(const Report& report) {
         "of that term, then of the other term against the references whose region the candidate's bounds meet. "
         "PostGIS: the same, with the probe as one join per FIND (`n.footprint && ST_Expand(r.footprint, margin)` and "
         "the z range, over the references of the smaller set), so it costs three round trips.");
-    line(
-        fmt::format("- RELATE: `RELATE #a TO #b` for {} pairs per scene (half of them a small thing and what it rests "
-                    "on, half random), from the scene's default viewpoint. SQLite: both rows by primary key in one "
-                    "statement (both baselines), then `relations::relate`.",
-                    kRelatePairsPerScene));
+    line(fmt::format(
+        "- RELATE: `RELATE #a TO #b` for {} pairs per scene (half of them a small thing and what it rests "
+        "on, half random), from the scene's default viewpoint. SQLite: both rows by primary key in one "
+        "statement (both baselines), the objects around the pair (an R*Tree probe; PostGIS: a GiST one), which "
+        "may crowd it out of near, then `relations::relate`.",
+        kRelatePairsPerScene));
     line(
         fmt::format("- NEAREST TO: `FIND object NEAREST TO door LIMIT {}`. SQLite: R*Tree probes around the door "
                     "with a radius growing 1 m, 4 m, 16 m ... until {} objects lie within it (box distance is never "

@@ -344,7 +344,10 @@ Answer SqliteBaseline::relate(model::NodeId a, model::NodeId b) {
     s.bind(1, static_cast<std::int64_t>(a)).bind(2, static_cast<std::int64_t>(b)).bind(3, m.sceneId);
     std::vector<Node> rows;
     while (s.step()) readNode(s, 0, rows.emplace_back());
-    return relateRows("sqlite", a, b, rows, m.thresholds, m.frame);
+    std::vector<Node> around;
+    Node scratch;
+    m.forEachObjectIn(aroundPair(rows, m.thresholds), scratch, [&](const Node& n) { around.push_back(n); });
+    return relateRows("sqlite", a, b, rows, around, m.thresholds, m.frame);
 }
 
 Answer SqliteBaseline::nearestObjects(const std::string& category, int limit) {
