@@ -6,6 +6,7 @@
 #include "engine/catalog/attributes.hpp"
 #include "engine/parser/ast.hpp"
 #include "engine/parser/parser.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "model/names.hpp"
 #include "relations/predicates.hpp"
@@ -569,10 +570,15 @@ private:
         }
         if (const auto* text = std::get_if<std::string>(&expr.literal)) {
             const std::string have = value.number() ? value.comparable() + "::text" : value.value;
+            // A category compares by its canonical name, as in the engine's binder ('Trash Bins' is
+            // trash-bin; a LIKE pattern 'Trash Bin%' is trash-bin%).
+            const bool category = expr.attribute == "category";
             if (expr.op == ast::CompareOp::Like)
-                return fmt::format("coalesce({}{} ILIKE {} ESCAPE '', false)", placed, have, parameter(*text));
+                return fmt::format("coalesce({}{} ILIKE {} ESCAPE '', false)", placed, have,
+                                   parameter(category ? model::categoryPattern(*text) : *text));
             return fmt::format("coalesce({}lower({} COLLATE \"C\") {} {} COLLATE \"C\", false)", placed, have,
-                               ast::toString(expr.op), parameter(parser::lowerCase(*text)));
+                               ast::toString(expr.op),
+                               parameter(category ? model::categoryName(*text) : parser::lowerCase(*text)));
         }
         if (expr.op == ast::CompareOp::Like) return "false";
         const std::string literal = std::holds_alternative<double>(expr.literal)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <utility>
 
 #include "model/types.hpp"
@@ -77,6 +78,20 @@ void canonicaliseCategories(SceneData& scene) {
     for (Node& node : scene.nodes)
         if (node.kind != NodeKind::Scene && !node.category.empty() && !isCategoryName(node.category))
             node.category = categoryName(node.category);
+}
+
+std::string categoryPattern(std::string_view pattern) {
+    std::string out;
+    out.reserve(pattern.size());
+    for (char c : pattern) {
+        if (c == ' ' || c == '\t' || c == '-') {
+            if (!out.empty() && out.back() == '-') continue;
+            out += '-';
+        } else {
+            out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        }
+    }
+    return out;
 }
 
 }  // namespace smql::model

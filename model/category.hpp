@@ -18,6 +18,11 @@ struct SceneData;
 // or have no singular: "glass", "blinds"). Empty stays empty.
 std::string categoryName(std::string_view written);
 
+// A LIKE pattern over category names, folded as categoryName folds a name where a pattern can be:
+// lower case, every run of spaces and hyphens one hyphen ('Trash Bin%' -> 'trash-bin%'); the
+// wildcards (% and _, which matches a hyphen too) and plurals stay as written.
+std::string categoryPattern(std::string_view pattern);
+
 // Whether `written` is already in canonical form (categoryName(written) == written), without
 // building a string in the common case.
 bool isCategoryName(std::string_view written);

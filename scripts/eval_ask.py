@@ -88,6 +88,13 @@ def predicted(qtype, answer, options):
     if qtype == "room_size_estimation":
         m = re.search(r"is about ([0-9.]+) m", message)
         return float(m.group(1)) if m else None
+    if qtype == "obj_appearance_order":
+        order = message.splitlines()[-1].split(" (")[0].strip().rstrip(".").lower()
+        for option in options or []:
+            letter, _, text = option.partition(". ")
+            if ", ".join(t.strip() for t in text.lower().split(",")) == order:
+                return letter
+        return None
     if qtype == "route_planning":
         turns = message.splitlines()[-1].split(" (")[0].strip().rstrip(".").lower()
         for option in options or []:

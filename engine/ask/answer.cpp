@@ -528,6 +528,40 @@ std::string statement(const ResultSet& rs) {
     return fmt::format("{} found: {}", rs.rows.size(), listed(names));
 }
 
+// VSI-Bench's appearance order: the categories asked, by the first frame that saw a thing of each.
+std::string appearance(const Translation& t, const ResultSet& rs) {
+    const int category = rs.columnIndex("category"), seen = rs.columnIndex("first_seen");
+    std::vector<std::pair<double, std::size_t>> firsts;  // frame, choice
+    std::vector<std::string> unseen;
+    for (std::size_t k = 0; k < t.roles.size() && k < t.choices.size(); ++k) {
+        std::optional<double> first;
+        for (const auto& row : rs.rows) {
+            if (category < 0 || seen < 0) break;
+            if (std::find(t.roles[k].begin(), t.roles[k].end(), text(row[category])) == t.roles[k].end()) continue;
+            std::optional<double> frame = number(row[seen]);
+            if (!frame)
+                if (const auto* s = std::get_if<std::string>(&row[seen]); s && !s->empty())
+                    frame = std::strtod(s->c_str(), nullptr);
+            if (frame && (!first || *frame < *first)) first = frame;
+        }
+        if (first)
+            firsts.emplace_back(*first, k);
+        else
+            unseen.push_back(t.choices[k]);
+    }
+    if (firsts.empty()) return "None of them was seen.";
+    std::stable_sort(firsts.begin(), firsts.end());
+    std::vector<std::string> order, frames;
+    for (const auto& [frame, k] : firsts) {
+        order.push_back(t.choices[k]);
+        frames.push_back(fmt::format("{} in frame {:.0f}", t.choices[k], frame));
+    }
+    std::string out =
+        fmt::format("{} (first seen: {})", listed(order, ", ", order.size()), listed(frames, ", ", frames.size()));
+    if (!unseen.empty()) out += fmt::format("; never seen: {}", listed(unseen, ", ", unseen.size()));
+    return out + ".";
+}
+
 std::string changes(const ResultSet& rs) {
     if (rs.rows.empty()) return "Nothing has changed since the scene was first captured.";
     int change = rs.columnIndex("change"), category = rs.columnIndex("category"), id = rs.columnIndex("id");
@@ -598,6 +632,8 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
             return statement(rs);
         case QuestionKind::Route:
             return route(t, rs);
+        case QuestionKind::Appearance:
+            return appearance(t, rs);
         case QuestionKind::UnknownWord: {
             std::string out;
             for (const auto& note : t.notes) out += (out.empty() ? "" : "; ") + note;

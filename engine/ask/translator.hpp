@@ -33,6 +33,7 @@ enum class QuestionKind {
     Reverse,           // what is the lamp on?                      RELATE lamp TO object (the "on" rows)
     RoomSize,          // what is the size of this room?            FIND node WHERE kind = 'room' OR ...
     Route,             // VSI-Bench's route plan: "you are a robot beginning at the bed ... [please fill in]"
+    Appearance,        // in what order were the chair, the sofa and the tv first seen? ORDER BY first_seen
     Statement,         // a plugged-in translator's SMQL: the answer says what its rows hold
     Comparison,        // is the sofa longer than the bed?          FIND thing WHERE ... ORDER BY width DESC
     UnknownWord,       // a word neither the scene nor WordNet knows: nothing runs, the answer names it

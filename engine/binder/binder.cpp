@@ -281,9 +281,9 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
             out.literal = expr.literal;
             // A category compares by its canonical name (`category = 'Trash Cans'` is trash-can).
             if (const auto* text = std::get_if<std::string>(&expr.literal))
-                out.literalFolded = expr.attribute == "category" && expr.op != ast::CompareOp::Like
-                                        ? model::categoryName(*text)
-                                        : parser::lowerCase(*text);
+                out.literalFolded = expr.attribute != "category"      ? parser::lowerCase(*text)
+                                    : expr.op == ast::CompareOp::Like ? model::categoryPattern(*text)
+                                                                      : model::categoryName(*text);
             if (expr.distanceTo) {
                 out.distanceTo = bindRef(*expr.distanceTo);
                 catalog::checkLiteral(catalog::AttributeMeasure::Length, literalForm(expr), "distance()", expr.where);

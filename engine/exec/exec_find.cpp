@@ -152,7 +152,7 @@ bool Executor::compare(const BoundExpr& expr, catalog::Slot slot, const relation
     if (auto* text = std::get_if<std::string>(&expr.literal)) {
         std::string have = std::holds_alternative<std::string>(*value) ? std::get<std::string>(*value)
                                                                        : fmt::format("{}", std::get<double>(*value));
-        if (expr.op == ast::CompareOp::Like) return like(have, *text);
+        if (expr.op == ast::CompareOp::Like) return like(have, expr.literalFolded);
         return ordered(expr.op, lower(have), expr.literalFolded);
     }
     double want = std::holds_alternative<double>(expr.literal)

@@ -5,9 +5,11 @@
 // share answered correctly and requires the floor docs/ask.md reports.
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <regex>
 #include <thread>
 
@@ -261,4 +263,42 @@ TEST_CASE("camera frames are no things: FIND thing and ASK's answers leave them 
                     CHECK(text->find("frame#") == std::string::npos);
         CHECK(answer.message.find("frame#") == std::string::npos);
     }
+}
+
+TEST_CASE("ASK reads VSI-Bench's appearance order from the frame that first saw each thing", "[ask]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    // A capture's objects carry the frame that first saw them (ingest's `first_seen`): here later
+    // objects of the generated room are seen first.
+    auto room = generate::generateRoom({.seed = 7, .objectCount = 36, .name = "walk"});
+    std::map<std::string, int> first;
+    int frame = 200;
+    for (auto& node : room.nodes) {
+        if (node.kind != model::NodeKind::Object) continue;
+        node.attributes.push_back({"first_seen", std::to_string(frame)});
+        first.try_emplace(node.category, frame);
+        first[node.category] = std::min(first[node.category], frame);
+        frame -= 5;
+    }
+    engine->importScene(std::move(room));
+    const std::vector<std::string> asked{"mug", "sofa", "lamp", "chair"};
+    for (const auto& c : asked) REQUIRE(first.count(c));
+    std::vector<std::string> expected = asked;
+    std::sort(expected.begin(), expected.end(), [&](const auto& a, const auto& b) { return first[a] < first[b]; });
+    std::string order = fmt::format("{}, {}, {}, {} (first seen: {} in frame {}", expected[0], expected[1], expected[2],
+                                    expected[3], expected[0], first[expected[0]]);
+    auto rs = run(*engine,
+                  "ASK 'What will be the first-time appearance order of the following categories in the video: mug, "
+                  "sofa, lamp, chair?'");
+    CHECK(rs.message.find("ORDER BY first_seen") != std::string::npos);
+    CHECK(rs.message.find("\n" + order) != std::string::npos);
+
+    // A layout has no frames: the question says so rather than guessing.
+    engine->importScene(import::readVsiBench(std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json",
+                                             "scene0251_00"));
+    run(*engine, "USE SCENE 'scene0251_00'");
+    CHECK_THROWS_WITH(run(*engine,
+                          "ASK 'What will be the first-time appearance order of the following categories in the "
+                          "video: chair, table, door, window?'"),
+                      Catch::Contains("keeps no frame that first saw each thing"));
 }

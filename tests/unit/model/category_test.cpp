@@ -49,3 +49,10 @@ TEST_CASE("a scene's nodes get canonical names, the scene node keeps its name", 
     CHECK(scene.nodes[1].category == "trash-can");
     CHECK(scene.nodes[2].category == "indoor-plant");
 }
+
+TEST_CASE("a LIKE pattern over categories folds case and spaces, not its wildcards or plurals", "[category]") {
+    CHECK(smql::model::categoryPattern("Trash Bin%") == "trash-bin%");
+    CHECK(smql::model::categoryPattern("wall  plug") == "wall-plug");
+    CHECK(smql::model::categoryPattern("%Plant_Stand") == "%plant_stand");
+    CHECK(smql::model::categoryPattern("Chairs") == "chairs");
+}
