@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -63,16 +64,16 @@ struct Piece {
 };
 
 // The stretches of [0, length] along a piece that no door standing in it covers.
-std::vector<std::pair<double, double>> uncut(const Piece& piece, const std::vector<const model::Node*>& doors) {
+std::vector<std::pair<double, double>> uncut(const Piece& piece, const std::vector<model::Node>& doors) {
     const double dx = piece.to.x() - piece.from.x(), dy = piece.to.y() - piece.from.y();
     const double length = std::hypot(dx, dy);
     const double ux = dx / length, uy = dy / length;
     std::vector<std::pair<double, double>> open{{0.0, length}};
-    for (const model::Node* door : doors) {
-        const double rx = door->box.center.x - piece.from.x(), ry = door->box.center.y - piece.from.y();
+    for (const model::Node& door : doors) {
+        const double rx = door.box.center.x - piece.from.x(), ry = door.box.center.y - piece.from.y();
         if (std::abs(rx * uy - ry * ux) > kDoorReach) continue;  // away from the face's line
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (model::Vec2 c : model::footprint(door->box)) {
+        for (model::Vec2 c : model::footprint(door.box)) {
             const double t = (c.x - piece.from.x()) * ux + (c.y - piece.from.y()) * uy;
             lo = std::min(lo, t), hi = std::max(hi, t);
         }
@@ -95,14 +96,9 @@ std::vector<std::pair<double, double>> uncut(const Piece& piece, const std::vect
 std::size_t splitWallOutlines(model::SceneData& scene) {
     const std::vector<Point> ring = roomOutline(scene.nodes);
     if (ring.size() < 4) return 0;
-    std::vector<const model::Node*> doorNodes;
-    for (const model::Node& n : scene.nodes)
-        if (isDoor(n)) doorNodes.push_back(&n);
     // Doors by value: scene.nodes grows below.
     std::vector<model::Node> doors;
-    for (const model::Node* d : doorNodes) doors.push_back(*d);
-    std::vector<const model::Node*> doorRefs;
-    for (const model::Node& d : doors) doorRefs.push_back(&d);
+    std::copy_if(scene.nodes.begin(), scene.nodes.end(), std::back_inserter(doors), isDoor);
 
     model::NodeId nextId = 0;
     for (const model::Node& n : scene.nodes) nextId = std::max(nextId, n.id);
@@ -121,7 +117,7 @@ std::size_t splitWallOutlines(model::SceneData& scene) {
             bg::intersection(edge, box, inside);
             for (const Line& part : inside) {
                 if (part.size() < 2 || bg::length(part) < kMinFaceLength) continue;
-                for (auto [a, b] : uncut({part.front(), part.back()}, doorRefs)) {
+                for (auto [a, b] : uncut({part.front(), part.back()}, doors)) {
                     if (b - a < kMinFaceLength) continue;
                     const double length = bg::length(part);
                     const double tx = (part.back().x() - part.front().x()) / length,
