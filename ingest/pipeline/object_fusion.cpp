@@ -144,29 +144,43 @@ std::vector<Thing> thingsOf(const InstanceMap& map, const std::vector<FusionCame
     return out;
 }
 
-// Two things of one name, a good share of the smaller's box inside the larger's, that together still
-// suit the name: one thing the map kept twice (a corner sofa's two arms, a sofa seen whole from afar
-// and in parts close up, their cells never close enough). Merged, the smaller into the larger.
-// Returns how many were merged.
-std::size_t mergeStoredTwice(std::vector<Thing>& things, const FusionOptions& options) {
+// How many frames saw a thing: its instances' frames, each counted once.
+std::size_t framesSeen(const Thing& thing) {
+    std::vector<std::uint32_t> frames;
+    for (const Instance* instance : thing.instances)
+        frames.insert(frames.end(), instance->frames.begin(), instance->frames.end());
+    std::sort(frames.begin(), frames.end());
+    return static_cast<std::size_t>(std::unique(frames.begin(), frames.end()) - frames.begin());
+}
+
+// The whole with the part's instances and points added (its box and name are the caller's to fit).
+Thing withPart(const Thing& whole, const Thing& part) {
+    Thing both = whole;
+    both.instances.insert(both.instances.end(), part.instances.begin(), part.instances.end());
+    for (std::size_t p = 0; p < part.points.size(); ++p)
+        both.points.push(part.points.points[p], part.points.colors[p], part.points.frames[p]);
+    return both;
+}
+
+// Pieces the map kept apart (pieceOf) merged, the smaller into the larger, when together they still suit the
+// name their votes give (a glimpse's few votes barely count against the larger's). Returns how many were merged.
+std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options) {
     std::size_t merged = 0;
     for (bool changed = true; changed;) {
         changed = false;
         std::stable_sort(things.begin(), things.end(),
                          [](const Thing& a, const Thing& b) { return model::volume(a.box) > model::volume(b.box); });
+        std::vector<std::size_t> frames;
+        for (const auto& thing : things) frames.push_back(framesSeen(thing));
         for (std::size_t large = 0; large < things.size() && !changed; ++large)
             for (std::size_t small = large + 1; small < things.size(); ++small) {
                 Thing& a = things[small];
                 Thing& b = things[large];
-                if (a.category != b.category || model::fractionInside(a.box, b.box) < options.storedTwiceShare)
-                    continue;
-                Thing both = b;
-                both.instances.insert(both.instances.end(), a.instances.begin(), a.instances.end());
-                for (std::size_t p = 0; p < a.points.size(); ++p)
-                    both.points.push(a.points.points[p], a.points.colors[p], a.points.frames[p]);
+                if (!pieceOf({a.box, a.category, frames[small]}, {b.box, b.category, frames[large]}, options)) continue;
+                Thing both = withPart(b, a);
                 for (const auto& [label, votes] : a.tally) both.tally[label] += votes;
                 fit(both);
-                if (!nameSuits(b.category, both.box)) continue;
+                if (!nameSuits(both.category, both.box)) continue;
                 b = std::move(both);
                 things.erase(things.begin() + static_cast<std::ptrdiff_t>(small));
                 ++merged;
@@ -189,10 +203,7 @@ std::size_t joinUprightEnds(std::vector<Thing>& things, const FusionOptions& opt
             if (p == w || hasUprightEnds(things[p].category) || holdsThings(things[p].category) ||
                 !uprightEndOf(things[p].box, things[w].box, options))
                 continue;
-            Thing both = things[w];
-            both.instances.insert(both.instances.end(), things[p].instances.begin(), things[p].instances.end());
-            for (std::size_t i = 0; i < things[p].points.size(); ++i)
-                both.points.push(things[p].points.points[i], things[p].points.colors[i], things[p].points.frames[i]);
+            Thing both = withPart(things[w], things[p]);
             both.box = uprightBox(both.points.points);
             if (!nameSuits(both.category, both.box)) continue;
             things[w] = std::move(both);
@@ -203,31 +214,6 @@ std::size_t joinUprightEnds(std::vector<Thing>& things, const FusionOptions& opt
         }
     }
     return joined;
-}
-
-// A thing of a kind that stands on floors (a table, a chair, a bed) whose legs or base the views did
-// not see (chairs in front, the table's own top): its bottom hangs in the air, below
-// FusionOptions::groundReach or with its top no higher than such things' usual top
-// (FusionOptions::topReach of it), and no other thing's top lies under its middle to carry it. It
-// stands on the floor: its box reaches down to it. Returns whether the box was extended.
-bool standOnFloor(Thing& thing, const std::vector<Thing>& all, const FusionOptions& options) {
-    model::Box& box = thing.box;
-    const double bottom = box.center.z - box.size.z / 2, top = box.center.z + box.size.z / 2;
-    if (usualSupport(thing.category) != Support::Floor || bottom <= 0) return false;
-    const auto usualTop = typicalHeight(thing.category);
-    if (bottom > options.groundReach && !(usualTop && top <= options.topReach * *usualTop)) return false;
-    for (const auto& other : all) {
-        const model::Box& b = other.box;
-        if (&other == &thing) continue;
-        const double otherTop = b.center.z + b.size.z / 2;
-        const double c = std::cos(b.yaw), s = std::sin(b.yaw);
-        const double dx = box.center.x - b.center.x, dy = box.center.y - b.center.y;
-        const bool under = std::abs(c * dx + s * dy) <= b.size.x / 2 && std::abs(-s * dx + c * dy) <= b.size.y / 2;
-        if (under && otherTop <= bottom + options.restingGap && otherTop > 0) return false;
-    }
-    box.center.z = top / 2;
-    box.size.z = top;
-    return true;
 }
 
 // Slivers: flatter than minHeight, smaller than minLargest, or thinner than thinShare of the largest
@@ -268,6 +254,41 @@ ObjectTrack trackOf(const Thing& thing, Views& views, const std::vector<ObjectTr
     return track;
 }
 
+// A thing of a kind that stands on floors (a table, a chair, a bed) whose legs or base the views did
+// not see (chairs in front, the table's own top): its bottom hangs in the air, below
+// FusionOptions::groundReach or with its top no higher than such things' usual top
+// (FusionOptions::topReach of it), and no other thing's top lies under its middle to carry it. It
+// stands on the floor: its box reaches down to it. Returns whether the box was extended.
+bool standOnFloor(SeenBox& thing, const std::vector<SeenBox>& all, const FusionOptions& options) {
+    model::Box& box = thing.box;
+    const double bottom = box.center.z - box.size.z / 2, top = box.center.z + box.size.z / 2;
+    if (usualSupport(thing.category) != Support::Floor || bottom <= 0) return false;
+    const auto usualTop = typicalHeight(thing.category);
+    if (bottom > options.groundReach && !(usualTop && top <= options.topReach * *usualTop)) return false;
+    for (const auto& other : all) {
+        const model::Box& b = other.box;
+        if (&other == &thing) continue;
+        const double otherTop = b.center.z + b.size.z / 2;
+        const double c = std::cos(b.yaw), s = std::sin(b.yaw);
+        const double dx = box.center.x - b.center.x, dy = box.center.y - b.center.y;
+        const bool under = std::abs(c * dx + s * dy) <= b.size.x / 2 && std::abs(-s * dx + c * dy) <= b.size.y / 2;
+        if (under && otherTop <= bottom + options.restingGap && otherTop > 0) return false;
+    }
+    box.center.z = top / 2;
+    box.size.z = top;
+    return true;
+}
+
+// Whether the lowest thing's bottom lies within FusionOptions::restingGap of z = 0: a floor the views did not show
+// (placed a table's height below the lowest top, alignment.hpp: floorPlaced) that what stands lowest reaches down to
+// is where things stand, and those whose legs were hidden reach down to it as to a floor seen.
+bool lowestReachesFloor(const std::vector<SeenBox>& things, const FusionOptions& options) {
+    if (things.empty()) return false;
+    double lowest = 1e18;
+    for (const auto& thing : things) lowest = std::min(lowest, thing.box.center.z - thing.box.size.z / 2);
+    return std::abs(lowest) <= options.restingGap;
+}
+
 }  // namespace
 
 // Whether `part` is the upright end of `whole` (a bed's headboard, a sofa's back, named "tv" or "suitcase" by a
@@ -299,6 +320,37 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
     return false;
 }
 
+// Whether `small` is a piece of `large` the map kept apart, judged by their boxes:
+// - stored twice: one name, a good share of the smaller's box inside the larger's (a corner sofa's two arms, a
+//   sofa seen whole from afar and in parts close up, their cells never close enough);
+// - one place named twice: each box mostly inside the other (a side table seen as a "bed" in three frames and
+//   as a "table" in two);
+// - a glimpse: the smaller mostly inside the larger and seen in a small share of the frames that saw the larger
+//   (a sofa's corner called "bed" in two frames of the forty that saw the sofa); things that stand on tops are
+//   never glimpses, they are what the larger carries;
+// - its top: a thin thing of the same name lying on the larger's top, over its footprint (a table's top seen
+//   a little high in one frame).
+bool pieceOf(const SeenBox& small, const SeenBox& large, const FusionOptions& options) {
+    const model::Box &a = small.box, &b = large.box;
+    const bool sameName = small.category == large.category;
+    const double inside = model::fractionInside(a, b);
+    if (sameName && inside >= options.storedTwiceShare) return true;
+    if (inside >= options.namedTwiceShare && model::fractionInside(b, a) >= options.namedTwiceShare) return true;
+    if (inside >= options.namedTwiceShare && usualSupport(small.category) != Support::Surface &&
+        static_cast<double>(small.frames) <= options.glimpseShare * static_cast<double>(large.frames))
+        return true;
+    const double bottom = a.center.z - a.size.z / 2, top = b.center.z + b.size.z / 2;
+    return sameName && a.size.z <= options.topSlab && std::abs(bottom - top) <= options.restingGap &&
+           model::footprintContains(b, {a.center.x, a.center.y}, 0);
+}
+
+std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, const FusionOptions& options) {
+    if (!floorFound && !lowestReachesFloor(things, options)) return 0;
+    std::size_t grounded = 0;
+    for (auto& thing : things) grounded += standOnFloor(thing, things, options);
+    return grounded;
+}
+
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
                                     const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
                                     const FusionOptions& options, StageProgress& progress) {
@@ -315,11 +367,12 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
 
     std::size_t guesses = 0;
     std::vector<Thing> things = thingsOf(map, cameras, options, guesses);
-    const std::size_t twice = mergeStoredTwice(things, options);
+    const std::size_t pieces = mergePieces(things, options);
     const std::size_t ends = joinUprightEnds(things, options);
-    std::size_t grounded = 0;
-    if (room.floorFound)
-        for (auto& thing : things) grounded += standOnFloor(thing, things, options);
+    std::vector<SeenBox> boxes;
+    for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0});
+    const std::size_t grounded = reachDownToFloor(boxes, room.floorFound, options);
+    for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
     const std::size_t slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options); });
 
@@ -327,10 +380,11 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     for (const auto& thing : things) out.push_back(trackOf(thing, views, tracks));
     progress.note(fmt::format(
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
-        "merged into the things they belong to, {} stored twice merged, {} upright ends joined to their beds or sofas; "
+        "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds or "
+        "sofas; "
         "{} slivers and {} things seen in too few of "
         "the frames that held them dropped; {} reaching down to the floor)",
-        fused.segmented, views.all.size(), out.size(), fused.merged, twice, ends, slivers, guesses, grounded));
+        fused.segmented, views.all.size(), out.size(), fused.merged, pieces, ends, slivers, guesses, grounded));
     return out;
 }
 

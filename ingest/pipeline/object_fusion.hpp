@@ -30,6 +30,11 @@ struct FusionOptions {
     double restingGap = 0.1;         // m: ... unless another thing's top is this close under it
     double storedTwiceShare = 0.25;  // two things of one name, this share of the smaller's box inside the
                                      // larger's, together still of a size that suits it, are one thing stored twice
+    double namedTwiceShare = 0.6;    // two things each with this share of its box inside the other's are one
+                                     // place named twice; ...
+    double glimpseShare = 0.25;      // ... and one with this share inside a larger one's, seen in at most this
+                                     // share of the frames that saw the larger, is a glimpse of it
+    double topSlab = 0.25;           // m: a thing this thin lying on the top of one of its name is that top
     double partDepth = 0.6;          // m: a thing no deeper than this standing upright at the end of a bed or
     double partReach = 0.3;          // sofa (its centre within this of the larger's footprint), as wide as
     double partWidth = 0.6;          // this share of that end or more, rising above its top, is its headboard
@@ -46,6 +51,22 @@ struct FusionCamera {
 // Whether the box `part` is an upright end of the box `whole` (a bed's headboard, a sofa's back): no deeper than
 // FusionOptions::partDepth, at one of the whole's ends, as wide as a good share of that end, rising above its top.
 bool uprightEndOf(const model::Box& part, const model::Box& whole, const FusionOptions& options = {});
+
+// A thing as fusion judges it by its box: the box, its name, and how many frames saw it.
+struct SeenBox {
+    model::Box box;
+    std::string category;
+    std::size_t frames = 0;
+};
+
+// Whether `small` is a piece of the larger `large` that the instance map kept apart: stored twice, one place
+// named twice, a glimpse of it, or its top (object_fusion.cpp says how; docs/ingest.md, "Things").
+bool pieceOf(const SeenBox& small, const SeenBox& large, const FusionOptions& options = {});
+
+// Things of kinds that stand on floors whose legs or base the views did not see reach down to the floor: the
+// one found, or one placed that the lowest thing reaches down to (object_fusion.cpp, standOnFloor). Returns how
+// many were extended.
+std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, const FusionOptions& options = {});
 
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
                                     const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
