@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -153,6 +154,29 @@ std::size_t framesSeen(const Thing& thing) {
     return static_cast<std::size_t>(std::unique(frames.begin(), frames.end()) - frames.begin());
 }
 
+// The share of `a`'s points with one of `b`'s within `reach` (in every axis): how much of a box-level piece
+// touches the thing it would join, not merely lies inside its box.
+double shareTouching(const PointCloud& a, const PointCloud& b, double reach) {
+    if (a.empty()) return 0;
+    auto key = [&](double x, double y, double z) {
+        return (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x / reach)) & 0x1FFFFF) << 42) |
+               (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(y / reach)) & 0x1FFFFF) << 21) |
+               (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(z / reach)) & 0x1FFFFF));
+    };
+    std::unordered_set<std::uint64_t> cells;
+    for (const auto& p : b.points) cells.insert(key(p.x, p.y, p.z));
+    std::size_t near = 0;
+    for (const auto& p : a.points) {
+        bool found = false;
+        for (int dx = -1; dx <= 1 && !found; ++dx)
+            for (int dy = -1; dy <= 1 && !found; ++dy)
+                for (int dz = -1; dz <= 1 && !found; ++dz)
+                    found = cells.contains(key(p.x + dx * reach, p.y + dy * reach, p.z + dz * reach));
+        near += found;
+    }
+    return static_cast<double>(near) / static_cast<double>(a.size());
+}
+
 // The whole with the part's instances and points added (its box and name are the caller's to fit).
 Thing withPart(const Thing& whole, const Thing& part) {
     Thing both = whole;
@@ -176,7 +200,9 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
             for (std::size_t small = large + 1; small < things.size(); ++small) {
                 Thing& a = things[small];
                 Thing& b = things[large];
-                if (!pieceOf({a.box, a.category, frames[small]}, {b.box, b.category, frames[large]}, options)) continue;
+                const double touching = shareTouching(a.points, b.points, options.touchReach);
+                if (!pieceOf({a.box, a.category, frames[small]}, {b.box, b.category, frames[large]}, touching, options))
+                    continue;
                 Thing both = withPart(b, a);
                 for (const auto& [label, votes] : a.tally) both.tally[label] += votes;
                 fit(both);
@@ -325,18 +351,20 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
 //   sofa seen whole from afar and in parts close up, their cells never close enough);
 // - one place named twice: each box mostly inside the other (a side table seen as a "bed" in three frames and
 //   as a "table" in two);
-// - a glimpse: the smaller mostly inside the larger and seen in a small share of the frames that saw the larger
-//   (a sofa's corner called "bed" in two frames of the forty that saw the sofa); things that stand on tops are
-//   never glimpses, they are what the larger carries;
+// - a glimpse: the smaller mostly inside the larger, most of its points touching the larger's, and seen in a
+//   small share of the frames that saw the larger (a sofa's corner called "bed" in two frames of the forty that
+//   saw the sofa); an ottoman standing free inside an L-shaped sofa's box touches none of it, and things that
+//   stand on tops are never glimpses, they are what the larger carries;
 // - its top: a thin thing of the same name lying on the larger's top, over its footprint (a table's top seen
 //   a little high in one frame).
-bool pieceOf(const SeenBox& small, const SeenBox& large, const FusionOptions& options) {
+bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const FusionOptions& options) {
     const model::Box &a = small.box, &b = large.box;
     const bool sameName = small.category == large.category;
     const double inside = model::fractionInside(a, b);
     if (sameName && inside >= options.storedTwiceShare) return true;
     if (inside >= options.namedTwiceShare && model::fractionInside(b, a) >= options.namedTwiceShare) return true;
-    if (inside >= options.namedTwiceShare && usualSupport(small.category) != Support::Surface &&
+    if (inside >= options.namedTwiceShare && touching >= options.glimpseTouching &&
+        usualSupport(small.category) != Support::Surface &&
         static_cast<double>(small.frames) <= options.glimpseShare * static_cast<double>(large.frames))
         return true;
     const double bottom = a.center.z - a.size.z / 2, top = b.center.z + b.size.z / 2;

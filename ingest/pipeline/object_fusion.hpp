@@ -33,7 +33,9 @@ struct FusionOptions {
     double namedTwiceShare = 0.6;    // two things each with this share of its box inside the other's are one
                                      // place named twice; ...
     double glimpseShare = 0.25;      // ... and one with this share inside a larger one's, seen in at most this
-                                     // share of the frames that saw the larger, is a glimpse of it
+                                     // share of the frames that saw the larger, is a glimpse of it ...
+    double glimpseTouching = 0.5;    // ... when this share of its points lie within touchReach of the larger's
+    double touchReach = 0.1;         // m
     double topSlab = 0.25;           // m: a thing this thin lying on the top of one of its name is that top
     double partDepth = 0.6;          // m: a thing no deeper than this standing upright at the end of a bed or
     double partReach = 0.3;          // sofa (its centre within this of the larger's footprint), as wide as
@@ -60,8 +62,9 @@ struct SeenBox {
 };
 
 // Whether `small` is a piece of the larger `large` that the instance map kept apart: stored twice, one place
-// named twice, a glimpse of it, or its top (object_fusion.cpp says how; docs/ingest.md, "Things").
-bool pieceOf(const SeenBox& small, const SeenBox& large, const FusionOptions& options = {});
+// named twice, a glimpse of it, or its top (object_fusion.cpp says how; docs/ingest.md, "Things"). `touching`:
+// the share of the smaller's points within FusionOptions::touchReach of the larger's.
+bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const FusionOptions& options = {});
 
 // Things of kinds that stand on floors whose legs or base the views did not see reach down to the floor: the
 // one found, or one placed that the lowest thing reaches down to (object_fusion.cpp, standOnFloor). Returns how
