@@ -166,31 +166,40 @@ private:
 
     const Node* carrierOf(const Node& a, const Obstacles& walls) {
         static const Frame frame{};
-        std::vector<std::pair<const Node*, std::size_t>> carriers;
+        struct Carrier {
+            const Node* node;
+            std::size_t at;
+            double score;  // how much of it carries a: on's overlap, in's share inside
+        };
+        std::vector<Carrier> carriers;
         const auto within = spec(Predicate::On).referenceRegion(model::worldAabb(a.box), 0, thresholds_);
         for (const auto& [bounds, k] : meeting(objectIndex_, within)) {
             const Node* b = objects_[k];
             if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
-            if (evaluate(Predicate::On, a, *b, thresholds_, frame, walls) <= 0 &&
-                evaluate(Predicate::In, a, *b, thresholds_, frame, walls) <= 0)
-                continue;
+            const double score = std::max(evaluate(Predicate::On, a, *b, thresholds_, frame, walls),
+                                          evaluate(Predicate::In, a, *b, thresholds_, frame, walls));
+            if (score <= 0) continue;
             const std::size_t at = position_.at(b->id);
             choose(at);  // its own parent first; one still being chosen (a cycle of containment) is passed over
             // Nor a carrier that hangs below a already (a parent the scene came with): no cycle.
             if (state_[at] == State::Choosing || isAncestor(a.id, at)) continue;
-            carriers.emplace_back(b, at);
+            carriers.push_back({b, at, score});
         }
-        const Node* best = nullptr;
+        const Carrier* best = nullptr;
         std::size_t bestAncestors = 0;
-        for (const auto& [b, at] : carriers) {
+        // How far b's top is from where a rests: a lamp on a nightstand inside a bed's loose box rests
+        // on the nightstand's top, a cushion on a sofa's seat nearer its top than an arc lamp's over it.
+        auto contact = [&](const Carrier& c) { return std::abs(model::top(c.node->box) - model::bottom(a.box)); };
+        for (const Carrier& c : carriers) {
             std::size_t ancestors = 0;
-            for (const auto& [other, unused] : carriers)
-                if (other != b && isAncestor(other->id, at)) ++ancestors;
-            if (!best || ancestors > bestAncestors ||
-                (ancestors == bestAncestors && model::top(b->box) > model::top(best->box)))
-                best = b, bestAncestors = ancestors;
+            for (const Carrier& other : carriers)
+                if (other.node != c.node && isAncestor(other.node->id, c.at)) ++ancestors;
+            const bool better = !best || ancestors > bestAncestors ||
+                                (ancestors == bestAncestors &&
+                                 (c.score > best->score || (c.score == best->score && contact(c) < contact(*best))));
+            if (better) best = &c, bestAncestors = ancestors;
         }
-        return best;
+        return best ? best->node : nullptr;
     }
 
     model::SceneData& scene_;

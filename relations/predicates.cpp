@@ -111,9 +111,17 @@ double supportScore(const Node& a, const Node& b, const Thresholds& t) {
     double share = overlapShare(a.box, b.box);
     if (share < t.onMinOverlap) return 0.0;
     double height = b.box.size.z;
-    double rise = height > 1e-3 ? (a.box.center.z - model::bottom(b.box)) / height
-                                : (a.box.center.z > b.box.center.z ? 1.0 : 0.0);
-    if (rise < t.onMinRise) return 0.0;
+    auto rise = [&](double z) {
+        return height > 1e-3 ? (z - model::bottom(b.box)) / height : (z > b.box.center.z ? 1.0 : 0.0);
+    };
+    // a's centre in b's upper part; or, for a cover spread over b (at least half b's footprint,
+    // mostly within b's box, hanging clear of what b stands on: a comforter over a bed whose box
+    // holds its headboard, a cloth hanging from a table), its top.
+    if (rise(a.box.center.z) < t.onMinRise &&
+        (rise(model::top(a.box)) < t.onMinRise || model::bottom(a.box) - model::bottom(b.box) < t.aboveTolerance ||
+         model::footprintArea(a.box) < kMinSupporterArea * model::footprintArea(b.box) ||
+         model::fractionInside(a.box, b.box) < t.inMinInside))
+        return 0.0;
     if (model::bottom(a.box) - model::top(b.box) > t.onMaxGap) return 0.0;
     return std::min(1.0, share);
 }
@@ -130,10 +138,11 @@ model::Aabb grown(model::Aabb b, double d) {
 
 // The formulas, one per predicate; docs/relations.md states each.
 
-// b carries a: the support geometry, b lower (its centre below a's, so that no two things carry each
-// other), and a not hanging on a wall. The tree's parents are chosen among the things that carry.
+// b carries a: the support geometry, b lower (its bottom below a's: a thing resting on b's top
+// reaches no lower than b does, and no two things carry each other), and a not hanging on a wall.
+// The tree's parents are chosen among the things that carry.
 double carried(const PredicateInputs& in) {
-    if (in.b.box.center.z >= in.a.box.center.z) return 0.0;
+    if (model::bottom(in.b.box) >= model::bottom(in.a.box)) return 0.0;
     const double score = supportScore(in.a, in.b, in.t);
     return score > 0 && !wallHolding(in.a, in.obstacles, in.t) ? score : 0.0;
 }

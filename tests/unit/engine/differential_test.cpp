@@ -185,7 +185,7 @@ namespace {
 // carries the other, and the tree holds one); and ASK's "what is on the X?" names what on(X) finds.
 struct TreeAgreement {
     std::size_t objects = 0, sideBySide = 0, asked = 0;
-    std::vector<std::string> disagreements;
+    std::vector<std::string> disagreements, besideEachOther;
 
     void scene(Engine& engine, const std::string& name) {
         engine.execute(fmt::format("USE SCENE '{}'", name));
@@ -220,6 +220,8 @@ struct TreeAgreement {
                 const bool besideParent = parent.count(p) && carries[p].count(a) && !ancestors(b).count(p);
                 if (besideParent) {
                     ++sideBySide;
+                    besideEachOther.push_back(
+                        fmt::format("{} on {}#{} and {}#{}", what, category[p], p, category[b], b));
                     continue;
                 }
                 disagreements.push_back(
@@ -252,6 +254,7 @@ TEST_CASE("on, in, the tree and ASK agree on every object", "[differential][tree
     std::cout << fmt::format(
         "tree: {} objects over {} scenes, {} resting on two things side by side, {} ASKs, {} disagreements\n",
         agreement.objects, scenes.size(), agreement.sideBySide, agreement.asked, agreement.disagreements.size());
+    for (const auto& pair : agreement.besideEachOther) std::cout << "  side by side: " << pair << "\n";
     for (std::size_t i = 0; i < agreement.disagreements.size() && i < 20; ++i)
         std::cout << "  " << agreement.disagreements[i] << "\n";
     CHECK(agreement.disagreements.empty());

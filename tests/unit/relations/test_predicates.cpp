@@ -109,6 +109,22 @@ TEST_CASE("on: a graze or a large thing over a small one is not on it") {
     CHECK(eval(Predicate::Above, top, stool) > 0);
 }
 
+TEST_CASE("on: a cover spread over a bed rests on it; the bed does not rest on the cover") {
+    // Replica room_1's bed (its box holds the headboard: 1.27 m tall, from 6.5 cm below the floor's top)
+    // and the comforter over it (its edges hang to 5 cm above the floor: its centre is low in the bed's box).
+    Node bed = node(1, "bed", 0, 0, 0.57, 3.0, 3.0, 1.27);
+    Node comforter = node(2, "comforter", 0.2, -0.3, 0.34, 2.0, 2.5, 0.58);
+    CHECK(eval(Predicate::On, comforter, bed) > 0);
+    CHECK(eval(Predicate::On, bed, comforter) == 0);  // the bed reaches lower than the comforter does
+    // A cover whose edges reach what the bed stands on (within above.tolerance of its bottom) is not on it.
+    Node toTheFloor = node(2, "comforter", 0.2, -0.3, -0.065 + 0.04 + 0.29, 2.0, 2.5, 0.58);
+    CHECK(eval(Predicate::On, toTheFloor, bed) == 0);
+    // Nor is a thing under the bed that covers less than half of its footprint (a box stored beneath it).
+    CHECK(eval(Predicate::On, node(3, "box", 0, 0, 0.34, 1.0, 1.0, 0.58), bed) == 0);
+    // A chair pushed under a table stands on the floor beside it: same bottom, not on the table.
+    CHECK(eval(Predicate::On, node(4, "chair", 0.2, 0, 0.45, 0.5, 0.5, 0.9), kTable) == 0);
+}
+
 TEST_CASE("near: scale-aware limit between a floor and a ceiling") {
     // A 0.5 m chair by the 1 m table: sizes sum to 1.5 m, kept at near.distance (1 m).
     auto at = [](double gap) { return node(2, "chair", 0.5 + gap + 0.25, 0, 0.4, 0.5, 0.5, 0.8); };
@@ -356,6 +372,25 @@ TEST_CASE("parents: a picture over a sofa hangs on the wall behind it") {
     assignParents(scene);
     CHECK(scene.nodes[2].parent == 1);
     CHECK(scene.nodes[3].parent == 2);
+}
+
+TEST_CASE("parents: of two carriers, the one a thing rests on") {
+    // A lamp on a nightstand that a bed's loose box reaches over (ScanNet's scene0246_00, Replica room_1):
+    // both carry it fully; it rests on the nightstand's top, not inside the bed's headboard.
+    model::SceneData scene;
+    scene.nodes.push_back(node(1, "wall", 0, 2, 1.3, 6, 0.1, 2.6, model::NodeKind::Anchor, model::GeometryKind::Plane));
+    scene.nodes.push_back(node(2, "bed", 0, 0, 0.57, 3.0, 3.0, 1.27));
+    scene.nodes.push_back(node(3, "nightstand", 1.1, 1.1, 0.36, 0.8, 0.8, 0.72));
+    scene.nodes.push_back(node(4, "lamp", 1.1, 1.1, 0.72 + 0.325, 0.5, 0.5, 0.65));
+    // And a cushion on a sofa under an arc lamp's box that stands on the floor over it (Replica room 0).
+    scene.nodes.push_back(node(5, "sofa", 0, -4, 0.42, 2.4, 1.36, 0.91));
+    scene.nodes.push_back(node(6, "lamp", 0, -4, 0.65, 2.55, 0.9, 1.39));  // from the floor, as low as the sofa
+    scene.nodes.push_back(node(7, "cushion", 0, -4, 0.6, 0.4, 0.4, 0.3));
+    assignParents(scene);
+    CHECK(eval(Predicate::On, scene.nodes[3], scene.nodes[1]) > 0);  // on both
+    CHECK(scene.nodes[3].parent == 3);                               // the nightstand
+    CHECK(scene.nodes[5].parent != 5);                               // the arc lamp is not on the sofa
+    CHECK(scene.nodes[6].parent == 5);                               // the cushion on the sofa
 }
 
 TEST_CASE("parents: never a cycle with a parent the scene came with") {
