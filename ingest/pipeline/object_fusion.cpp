@@ -353,8 +353,10 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
 //   as a "table" in two);
 // - a glimpse: the smaller mostly inside the larger, most of its points touching the larger's, and seen in a
 //   small share of the frames that saw the larger (a sofa's corner called "bed" in two frames of the forty that
-//   saw the sofa); an ottoman standing free inside an L-shaped sofa's box touches none of it, and things that
-//   stand on tops are never glimpses, they are what the larger carries;
+//   saw the sofa); an ottoman standing free inside an L-shaped sofa's box touches none of it. Nothing is a
+//   glimpse of a kind that holds things (a table, a bed: the chair tucked under a table, its back's top seen
+//   over the table's edge, is a chair), and things that stand on tops are never glimpses, they are what the
+//   larger carries;
 // - its top: a thin thing of the same name lying on the larger's top, over its footprint (a table's top seen
 //   a little high in one frame).
 bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const FusionOptions& options) {
@@ -363,7 +365,7 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
     const double inside = model::fractionInside(a, b);
     if (sameName && inside >= options.storedTwiceShare) return true;
     if (inside >= options.namedTwiceShare && model::fractionInside(b, a) >= options.namedTwiceShare) return true;
-    if (inside >= options.namedTwiceShare && touching >= options.glimpseTouching &&
+    if (inside >= options.namedTwiceShare && touching >= options.glimpseTouching && !holdsThings(large.category) &&
         usualSupport(small.category) != Support::Surface &&
         static_cast<double>(small.frames) <= options.glimpseShare * static_cast<double>(large.frames))
         return true;
