@@ -33,6 +33,7 @@ constexpr int kInputSize = 416;
 constexpr int kBins = 11;  // reg_max + 1: each box side is a distribution over 0..10 strides
 constexpr std::array<int, 3> kStrides = {8, 16, 32};
 constexpr double kNmsIou = 0.5;
+constexpr double kNestedShare = 0.85;  // suppressPerClass
 // NanoDet's training normalisation, BGR order.
 const cv::Scalar kMean{103.53, 116.28, 123.675};
 const cv::Scalar kStd{57.375, 57.12, 58.395};
@@ -126,31 +127,6 @@ cv::dnn::Net loadModel(const fs::path& model) {
     net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
     net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
     return net;
-}
-
-// Non-maximum suppression per class: the cells (anchors) of one object all vote for it. Best first.
-std::vector<Detection> suppressPerClass(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
-                                        const std::vector<int>& labels, const std::vector<std::string>& categories,
-                                        double minScore) {
-    std::map<int, std::vector<int>> byClass;
-    for (std::size_t i = 0; i < boxes.size(); ++i) byClass[labels[i]].push_back(int(i));
-    std::vector<Detection> out;
-    for (const auto& [label, members] : byClass) {
-        std::vector<cv::Rect2d> classBoxes;
-        std::vector<float> classScores;
-        for (int i : members) classBoxes.push_back(boxes[i]), classScores.push_back(scores[i]);
-        std::vector<int> kept;
-        cv::dnn::NMSBoxes(classBoxes, classScores, float(minScore), float(kNmsIou), kept);
-        for (int k : kept) {
-            Detection d;
-            d.category = categories[label];
-            d.score = classScores[k];
-            d.box = classBoxes[k];
-            out.push_back(std::move(d));
-        }
-    }
-    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
-    return out;
 }
 
 class NanoDetDetector : public ObjectDetector {
@@ -334,6 +310,44 @@ private:
 };
 
 }  // namespace
+
+// Non-maximum suppression per class: the cells (anchors) of one object all vote for it. Then a box of a class
+// lying mostly inside a larger one of that class (kNestedShare of its area) is a part of the same thing seen
+// whole (a toilet's bowl inside the box of the toilet with its tank): IoU leaves such pairs apart, and the part's
+// box would own the thing's pixels and leave the whole's box what stands behind it. The whole is kept with the
+// better score of the two. Best first.
+std::vector<Detection> suppressPerClass(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
+                                        const std::vector<int>& labels, const std::vector<std::string>& categories,
+                                        double minScore) {
+    std::map<int, std::vector<int>> byClass;
+    for (std::size_t i = 0; i < boxes.size(); ++i) byClass[labels[i]].push_back(int(i));
+    std::vector<Detection> out;
+    for (const auto& [label, members] : byClass) {
+        std::vector<cv::Rect2d> classBoxes;
+        std::vector<float> classScores;
+        for (int i : members) classBoxes.push_back(boxes[i]), classScores.push_back(scores[i]);
+        std::vector<int> kept;
+        cv::dnn::NMSBoxes(classBoxes, classScores, float(minScore), float(kNmsIou), kept);
+        // Best first (NMSBoxes' order): a box nested in a better one, or holding a better one, is dropped.
+        std::vector<Detection> wholes;
+        for (int k : kept) {
+            const cv::Rect2d& box = classBoxes[k];
+            const bool nested = std::any_of(wholes.begin(), wholes.end(), [&](const Detection& w) {
+                const double inter = (w.box & box).area();
+                return inter >= kNestedShare * std::min(box.area(), w.box.area()) && inter > 0;
+            });
+            if (nested) continue;
+            Detection d;
+            d.category = categories[label];
+            d.score = classScores[k];
+            d.box = box;
+            wholes.push_back(std::move(d));
+        }
+        for (auto& d : wholes) out.push_back(std::move(d));
+    }
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
+    return out;
+}
 
 const std::vector<PackagedModel>& packagedModels() { return kPackagedModels; }
 

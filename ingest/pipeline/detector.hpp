@@ -67,6 +67,13 @@ std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, 
 // and class scores (N x classes, sigmoid).
 std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore = 0.4);
 
+// One model's raw boxes (image pixels), scores and class indices (into `categories`) to its detections: those
+// scored at least minScore, one per thing per class (non-maximum suppression, and a box nested in a larger one
+// of its class is that thing's part), best first.
+std::vector<Detection> suppressPerClass(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
+                                        const std::vector<int>& labels, const std::vector<std::string>& categories,
+                                        double minScore);
+
 // Every member runs on each image; boxes of different members that overlap by kSameThingIou are one
 // detection, the best scored one's box and name, the others' names in Detection::alsoSeenAs.
 inline constexpr double kSameThingIou = 0.5;
