@@ -18,6 +18,10 @@ std::optional<double> typicalHeight(std::string_view category);
 // capture's scale is wrong (plausibility.hpp).
 std::optional<double> typicalExtent(std::string_view category);
 
+// A box whose largest side is more than this many times its kind's typicalExtent is not that kind: the name is
+// kept only as a guess (detected_as), and fused things are named by the votes that suit their box.
+constexpr double kBeyondTypicalExtent = 1.5;
+
 // What things of a kind usually stand on: the floor (chairs, beds, doors), a table, desk or counter
 // (mugs, laptops, keyboards), or either or unknown.
 enum class Support { Floor, Surface, Either };

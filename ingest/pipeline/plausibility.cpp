@@ -38,8 +38,6 @@ constexpr double kAgreementRefuse = 0.7;
 // kitchen's 10 photos gave 98x), or the cameras are far from a person's height. Warned from
 // kDisagreement (1.5x) on: a crouching photographer or a short robot may part them that far.
 constexpr double kSplitRefuse = 2.0;
-// A box this many times its kind's largest side is not that kind.
-constexpr double kNameMismatch = 2.5;
 // The object checks (objectFindings), metres but where said. A sliver: its thinnest side under this
 // share of the largest side things of its kind have (the share object fusion drops at ingest).
 constexpr double kSliverShare = 0.06;
@@ -347,7 +345,7 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
 
 bool nameFitsBox(const std::string& category, const model::Box& box) {
     auto usual = typicalExtent(category);
-    return !usual || largestSide(box) <= kNameMismatch * *usual;
+    return !usual || largestSide(box) <= kBeyondTypicalExtent * *usual;
 }
 
 }  // namespace smql::ingest
