@@ -19,8 +19,11 @@ std::optional<double> typicalHeight(std::string_view category);
 std::optional<double> typicalExtent(std::string_view category);
 
 // A box whose largest side is more than this many times its kind's typicalExtent is not that kind: the name is
-// kept only as a guess (detected_as), and fused things are named by the votes that suit their box.
+// kept only as a guess (detected_as), and fused things are named by the votes that suit their box. A hull
+// carved without depth reaches past the thing along the views it was seen from, and is held to the looser
+// bound (the dining photos' chairs carve 2.2 m long).
 constexpr double kBeyondTypicalExtent = 1.5;
+constexpr double kBeyondTypicalHull = 2.5;
 
 // What things of a kind usually stand on: the floor (chairs, beds, doors), a table, desk or counter
 // (mugs, laptops, keyboards), or either or unknown.

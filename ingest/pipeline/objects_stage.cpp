@@ -141,7 +141,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess.
-        const bool misnamed = !opening && !nameFitsBox(category, box);
+        const bool misnamed = !opening && !nameFitsBox(category, box, track.carved);
         if (misnamed)
             progress.note(
                 fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "

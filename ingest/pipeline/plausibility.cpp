@@ -343,9 +343,9 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
     return out;
 }
 
-bool nameFitsBox(const std::string& category, const model::Box& box) {
+bool nameFitsBox(const std::string& category, const model::Box& box, bool carved) {
     auto usual = typicalExtent(category);
-    return !usual || largestSide(box) <= kBeyondTypicalExtent * *usual;
+    return !usual || largestSide(box) <= (carved ? kBeyondTypicalHull : kBeyondTypicalExtent) * *usual;
 }
 
 }  // namespace smql::ingest

@@ -177,6 +177,13 @@ TEST_CASE("plausibility: a name far smaller than its box is not kept", "[ingest]
     CHECK(nameFitsBox("table", {{0, 0, 0.4}, {1.8, 0.9, 0.75}, 0}));
     CHECK_FALSE(nameFitsBox("table", {{0, 0, 0.4}, {6.5, 0.9, 0.75}, 0}));
     CHECK(nameFitsBox("spaceship", {{0, 0, 0}, {40, 40, 40}, 0}));  // a kind of unknown size keeps its name
+    // SUN RGB-D 000001's sleigh bed: its headboard, measured from depth 1.82 m wide, called "suitcase".
+    CHECK_FALSE(nameFitsBox("suitcase", {{0.56, 4.93, 1.29}, {1.82, 0.99, 1.10}, 0}));
+    // A chair of the dining photos, its hull carved without depth 2.2 m long along the views: still a chair;
+    // measured so from depth it would not be.
+    const model::Box hull{{0, 0, 0.45}, {2.24, 0.89, 0.79}, 0};
+    CHECK(nameFitsBox("chair", hull, true));
+    CHECK_FALSE(nameFitsBox("chair", hull));
 }
 
 TEST_CASE("plausibility: real RGB-D frames in their unit pass, in another unit are refused with the fix",
