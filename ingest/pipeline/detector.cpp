@@ -311,11 +311,11 @@ private:
 
 }  // namespace
 
-// Non-maximum suppression per class: the cells (anchors) of one object all vote for it. Then a box of a class
-// lying mostly inside a larger one of that class (kNestedShare of its area) is a part of the same thing seen
-// whole (a toilet's bowl inside the box of the toilet with its tank): IoU leaves such pairs apart, and the part's
-// box would own the thing's pixels and leave the whole's box what stands behind it. The whole is kept with the
-// better score of the two. Best first.
+// Non-maximum suppression per class: the cells (anchors) of one object all vote for it. Then of two boxes of a
+// class that overlap by kNestedShare of the smaller one, one nested in the other, only the better scored is kept:
+// one thing seen whole and in part (a toilet's bowl inside the box of the toilet with its tank). IoU leaves such
+// pairs apart, and the part's box would own the thing's pixels and leave the whole's box what stands behind it.
+// Best first.
 std::vector<Detection> suppressPerClass(const std::vector<cv::Rect2d>& boxes, const std::vector<float>& scores,
                                         const std::vector<int>& labels, const std::vector<std::string>& categories,
                                         double minScore) {
@@ -329,10 +329,10 @@ std::vector<Detection> suppressPerClass(const std::vector<cv::Rect2d>& boxes, co
         std::vector<int> kept;
         cv::dnn::NMSBoxes(classBoxes, classScores, float(minScore), float(kNmsIou), kept);
         // Best first (NMSBoxes' order): a box nested in a better one, or holding a better one, is dropped.
-        std::vector<Detection> wholes;
+        std::vector<Detection> things;
         for (int k : kept) {
             const cv::Rect2d& box = classBoxes[k];
-            const bool nested = std::any_of(wholes.begin(), wholes.end(), [&](const Detection& w) {
+            const bool nested = std::any_of(things.begin(), things.end(), [&](const Detection& w) {
                 const double inter = (w.box & box).area();
                 return inter >= kNestedShare * std::min(box.area(), w.box.area()) && inter > 0;
             });
@@ -341,9 +341,9 @@ std::vector<Detection> suppressPerClass(const std::vector<cv::Rect2d>& boxes, co
             d.category = categories[label];
             d.score = classScores[k];
             d.box = box;
-            wholes.push_back(std::move(d));
+            things.push_back(std::move(d));
         }
-        for (auto& d : wholes) out.push_back(std::move(d));
+        for (auto& d : things) out.push_back(std::move(d));
     }
     std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.score > b.score; });
     return out;

@@ -200,7 +200,10 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
             for (std::size_t small = large + 1; small < things.size(); ++small) {
                 Thing& a = things[small];
                 Thing& b = things[large];
-                const double touching = shareTouching(a.points, b.points, options.touchReach);
+                // Only a piece inside the larger's box can be a glimpse: the points are compared for those alone.
+                const double touching = model::fractionInside(a.box, b.box) >= options.namedTwiceShare
+                                            ? shareTouching(a.points, b.points, options.touchReach)
+                                            : 0.0;
                 if (!pieceOf({a.box, a.category, frames[small]}, {b.box, b.category, frames[large]}, touching, options))
                     continue;
                 Thing both = withPart(b, a);
@@ -411,9 +414,8 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     progress.note(fmt::format(
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds or "
-        "sofas; "
-        "{} slivers and {} things seen in too few of "
-        "the frames that held them dropped; {} reaching down to the floor)",
+        "sofas; {} slivers and {} things seen in too few of the frames that held them dropped; {} reaching down to the "
+        "floor)",
         fused.segmented, views.all.size(), out.size(), fused.merged, pieces, ends, slivers, guesses, grounded));
     return out;
 }
