@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <tuple>
 
 #include <opencv2/imgproc.hpp>
 
@@ -47,36 +48,53 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud,
     return euclideanClusters(cloud, all, tolerance, minPoints, maxPoints);
 }
 
-model::Box uprightBox(const std::vector<model::Vec3>& points) {
-    model::Box box;
-    if (points.size() < 3) {
-        for (const auto& p : points) {
-            box.center.x += p.x / static_cast<double>(points.size());
-            box.center.y += p.y / static_cast<double>(points.size());
-            box.center.z += p.z / static_cast<double>(points.size());
-        }
-        return box;
-    }
+namespace {
+
+// The points an upright box is fitted to: the robust range of their heights, the xy of the points
+// within it, and the yaw (1 degree steps over 90) whose quantile rectangle is the smallest.
+struct Bulk {
+    double z0 = 0, z1 = 0;
+    std::vector<cv::Point2d> xy;
+    double yaw = 0, area = std::numeric_limits<double>::max();
+};
+
+Bulk bulkOf(const std::vector<model::Vec3>& points) {
+    Bulk bulk;
     std::vector<double> z;
     z.reserve(points.size());
     for (const auto& p : points) z.push_back(p.z);
-    auto [z0, z1] = detail::robustRange(z);
-
-    std::vector<cv::Point2d> xy;
-    xy.reserve(points.size());
+    std::tie(bulk.z0, bulk.z1) = detail::robustRange(z);
+    bulk.xy.reserve(points.size());
     for (const auto& p : points)
-        if (p.z >= z0 && p.z <= z1) xy.emplace_back(p.x, p.y);
-
-    // Coarse yaw of the bulk (1 degree steps over 90), then trim outliers in that frame.
+        if (p.z >= bulk.z0 && p.z <= bulk.z1) bulk.xy.emplace_back(p.x, p.y);
     std::vector<cv::Point2d> sample;
-    const std::size_t stride = std::max<std::size_t>(1, xy.size() / 2000);
-    for (std::size_t i = 0; i < xy.size(); i += stride) sample.push_back(xy[i]);
-    double coarse = 0, bestArea = std::numeric_limits<double>::max();
+    const std::size_t stride = std::max<std::size_t>(1, bulk.xy.size() / 2000);
+    for (std::size_t i = 0; i < bulk.xy.size(); i += stride) sample.push_back(bulk.xy[i]);
     for (int step = 0; step < 90; ++step) {
         double area = bulkArea(sample, step * kDegree);
-        if (area < bestArea) bestArea = area, coarse = step * kDegree;
+        if (area < bulk.area) bulk.area = area, bulk.yaw = step * kDegree;
     }
-    double c = std::cos(coarse), s = std::sin(coarse);
+    return bulk;
+}
+
+model::Box centroidBox(const std::vector<model::Vec3>& points) {
+    model::Box box;
+    for (const auto& p : points) {
+        box.center.x += p.x / static_cast<double>(points.size());
+        box.center.y += p.y / static_cast<double>(points.size());
+        box.center.z += p.z / static_cast<double>(points.size());
+    }
+    return box;
+}
+
+}  // namespace
+
+model::Box uprightBox(const std::vector<model::Vec3>& points) {
+    if (points.size() < 3) return centroidBox(points);
+    const Bulk bulk = bulkOf(points);
+    const auto& xy = bulk.xy;
+    model::Box box;
+    double c = std::cos(bulk.yaw), s = std::sin(bulk.yaw);
     std::vector<double> u, v;
     for (const auto& p : xy) {
         u.push_back(c * p.x + s * p.y);
@@ -102,9 +120,25 @@ model::Box uprightBox(const std::vector<model::Vec3>& points) {
     }
     while (yaw > std::numbers::pi / 2) yaw -= std::numbers::pi;
     while (yaw <= -std::numbers::pi / 2) yaw += std::numbers::pi;
-    box.center = {rect.center.x + origin.x, rect.center.y + origin.y, (z0 + z1) / 2};
-    box.size = {width, height, z1 - z0};
+    box.center = {rect.center.x + origin.x, rect.center.y + origin.y, (bulk.z0 + bulk.z1) / 2};
+    box.size = {width, height, bulk.z1 - bulk.z0};
     box.yaw = yaw;
+    return box;
+}
+
+model::Box wallAlignedBox(const std::vector<model::Vec3>& points, double slack) {
+    if (points.size() < 3) return centroidBox(points);
+    const Bulk bulk = bulkOf(points);
+    if (bulkArea(bulk.xy, 0) > slack * bulk.area) return uprightBox(points);
+    std::vector<double> x, y;
+    for (const auto& p : bulk.xy) x.push_back(p.x), y.push_back(p.y);
+    auto [x0, x1] = detail::robustRange(x);
+    auto [y0, y1] = detail::robustRange(y);
+    model::Box box;
+    box.center = {(x0 + x1) / 2, (y0 + y1) / 2, (bulk.z0 + bulk.z1) / 2};
+    const bool alongX = x1 - x0 >= y1 - y0;
+    box.size = {alongX ? x1 - x0 : y1 - y0, alongX ? y1 - y0 : x1 - x0, bulk.z1 - bulk.z0};
+    box.yaw = alongX ? 0 : std::numbers::pi / 2;
     return box;
 }
 

@@ -29,4 +29,10 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud,
 model::Box uprightBox(const std::vector<model::Vec3>& points);
 model::Box uprightBox(const PointCloud& cloud, const std::vector<std::size_t>& indices);
 
+// The upright box along the walls (the aligned frame's axes, which the walls were turned to) when
+// its quantile footprint is at most `slack` times the smallest one's, else uprightBox: furniture
+// stands square to the walls, and a few points of a neighbour or of noise turn the minimum-area
+// rectangle of a fridge between cabinets 22 degrees off them.
+model::Box wallAlignedBox(const std::vector<model::Vec3>& points, double slack);
+
 }  // namespace smql::ingest

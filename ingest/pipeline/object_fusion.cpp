@@ -117,8 +117,13 @@ std::string nameOf(const std::map<std::string, double>& tally, const model::Box&
     return best.empty() ? anyBest : best;
 }
 
+// A thing's box: square to the walls when that costs at most kWallSlack more footprint (clusters.hpp:
+// wallAlignedBox), else the minimum-area upright box.
+constexpr double kWallSlack = 1.15;
+model::Box boxOf(const PointCloud& points) { return wallAlignedBox(points.points, kWallSlack); }
+
 void fit(Thing& thing) {
-    thing.box = uprightBox(thing.points.points);
+    thing.box = boxOf(thing.points);
     thing.category = nameOf(thing.tally, thing.box);
 }
 
@@ -233,7 +238,7 @@ std::size_t joinUprightEnds(std::vector<Thing>& things, const FusionOptions& opt
                 !uprightEndOf(things[p].box, things[w].box, options))
                 continue;
             Thing both = withPart(things[w], things[p]);
-            both.box = uprightBox(both.points.points);
+            both.box = boxOf(both.points);
             if (!nameSuits(both.category, both.box)) continue;
             things[w] = std::move(both);
             things.erase(things.begin() + static_cast<std::ptrdiff_t>(p));
