@@ -312,13 +312,17 @@ SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info,
     for (const Node& n : nodes) ids.insert(n.id);
     std::map<NodeId, std::vector<NodeId>> childrenOf;
     std::map<std::string, std::vector<NodeId>> byCategory;
+    std::map<std::string, std::vector<storage::CategoryRow>> rowsOf;
     for (const Node& n : nodes) {
         if (n.kind == model::NodeKind::Scene) continue;
         if (n.parent == model::kNoNode || !ids.contains(n.parent))
             problem(fmt::format("node #{} has parent #{}, which is not a node of the scene", n.id, n.parent));
         childrenOf[n.parent].push_back(n.id);
         ++counts.children;
-        if (!n.category.empty()) byCategory[n.category].push_back(n.id), ++counts.labels;
+        if (!n.category.empty()) {
+            byCategory[n.category].push_back(n.id), ++counts.labels;
+            rowsOf[n.category].push_back({n.id, info.id, n.sourceId, n.geometry, n.box});
+        }
         if (n.sourceId) {
             ++counts.sourceIds;
             if (txn.nodeBySourceId(info.id, *n.sourceId) != n.id)
@@ -337,10 +341,20 @@ SceneCounts checkScene(const ReadTransaction& txn, const model::SceneInfo& info,
                 ++counts.blobs;
             }
         }
-        for (const auto& [category, expected] : byCategory)
-            if (txn.nodesWithCategory(category, info.id) != expected)
+        for (const auto& [category, expected] : byCategory) {
+            if (txn.nodesWithCategory(category, info.id) != expected) {
                 problem(fmt::format("the label index for '{}' does not match the {} nodes of that category", category,
                                     expected.size()));
+                continue;
+            }
+            // What the entries carry of each node (schema version 5; none before) is what its record holds.
+            auto rows = txn.categoryRowsInScene(category, info.id);
+            if (!rows.empty() && rows != rowsOf[category])
+                problem(
+                    fmt::format("the label index entries for '{}' do not match the records of those {} nodes "
+                                "(source id, geometry or box)",
+                                category, expected.size()));
+        }
         txn.forEachRelationInScene(info.id, [&](const model::Relation& r) {
             ++counts.relationEntries;
             if (!ids.contains(r.subject) || !ids.contains(r.object)) {

@@ -340,11 +340,88 @@ model::Relation decodeRelationEntry(model::NodeId keyId, std::string_view entry)
     return relation;
 }
 
-LabelEntry labelEntry(model::NodeId sceneId, model::NodeId nodeId) {
-    LabelEntry e;
+LabelPrefix labelPrefix(model::NodeId sceneId, model::NodeId nodeId) {
+    LabelPrefix e;
     putBigEndian64(e.data(), sceneId);
     putBigEndian64(e.data() + 8, nodeId);
     return e;
+}
+
+namespace {
+
+constexpr std::uint8_t kLabelHasSourceId = 1;
+constexpr std::size_t kLabelSourceAt = 19, kLabelBoxAt = 27, kLabelChecksumAt = kLabelEntrySize - kChecksumSize;
+
+}  // namespace
+
+// Layout: scene (BE), node (BE), format, flags, geometry kind, source id (i64 LE), box (7 f64 LE),
+// CRC32C of the category and the 83 bytes before it.
+LabelEntry labelEntry(std::string_view category, model::NodeId sceneId, model::NodeId nodeId, const model::Node& node) {
+    LabelEntry e{};
+    putBigEndian64(&e[0], sceneId);
+    putBigEndian64(&e[8], nodeId);
+    e[16] = kLabelFormat;
+    e[17] = node.sourceId ? kLabelHasSourceId : 0;
+    e[18] = static_cast<std::uint8_t>(node.geometry);
+    putLittleEndian(&e[kLabelSourceAt], static_cast<std::uint64_t>(node.sourceId.value_or(0)), 8);
+    const double box[7] = {node.box.center.x, node.box.center.y, node.box.center.z, node.box.size.x,
+                           node.box.size.y,   node.box.size.z,   node.box.yaw};
+    for (int i = 0; i < 7; ++i) putLittleEndian(&e[kLabelBoxAt + 8 * i], std::bit_cast<std::uint64_t>(box[i]), 8);
+    std::string_view body(reinterpret_cast<const char*>(e.data()), kLabelChecksumAt);
+    putLittleEndian(&e[kLabelChecksumAt], crc32c(body, crc32c(category)), kChecksumSize);
+    return e;
+}
+
+CategoryRow decodeLabelEntry(std::string_view category, std::string_view entry) {
+    return decodeLabelEntry(category, crc32c(category), entry);
+}
+
+namespace {
+
+// A little-endian field of a label entry, read as the machine holds it when it is little-endian.
+template <class T>
+T littleEndianAt(const std::uint8_t* p) {
+    static_assert(sizeof(T) == 8);
+    if constexpr (std::endian::native == std::endian::little) {
+        T v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    } else {
+        return std::bit_cast<T>(getLittleEndian(p, 8));
+    }
+}
+
+[[noreturn]] void corruptLabel(std::string_view category, std::string_view entry, std::string_view why) {
+    throw CorruptRecord(fmt::format("label index entry under '{}': {} ({} bytes)", category, why, entry.size()));
+}
+
+}  // namespace
+
+CategoryRow decodeLabelEntry(std::string_view category, std::uint32_t categoryCrc, std::string_view entry) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(entry.data());
+    if (entry.size() != kLabelEntrySize)
+        corruptLabel(category, entry, fmt::format("{} bytes instead of {}", entry.size(), kLabelEntrySize));
+    const auto stored = static_cast<std::uint32_t>(getLittleEndian(p + kLabelChecksumAt, kChecksumSize));
+    const std::uint32_t actual = crc32c(entry.substr(0, kLabelChecksumAt), categoryCrc);
+    if (stored != actual)
+        corruptLabel(category, entry,
+                     fmt::format("checksum mismatch (stored {:08x}, computed {:08x})", stored, actual));
+    if (p[16] != kLabelFormat)
+        corruptLabel(category, entry,
+                     fmt::format("format version {} (this smql reads version {})", p[16], kLabelFormat));
+    const std::uint8_t flags = p[17];
+    if (flags & ~kLabelHasSourceId) corruptLabel(category, entry, fmt::format("unknown flags {:#x}", flags));
+    if (p[18] > kLastGeometry) corruptLabel(category, entry, fmt::format("unknown geometry kind {}", p[18]));
+    CategoryRow out;
+    out.scene = readBigEndian64(p);
+    out.id = readBigEndian64(p + 8);
+    if (flags & kLabelHasSourceId) out.sourceId = littleEndianAt<std::int64_t>(p + kLabelSourceAt);
+    out.geometry = static_cast<model::GeometryKind>(p[18]);
+    const std::uint8_t* box = p + kLabelBoxAt;
+    out.box = {{littleEndianAt<double>(box), littleEndianAt<double>(box + 8), littleEndianAt<double>(box + 16)},
+               {littleEndianAt<double>(box + 24), littleEndianAt<double>(box + 32), littleEndianAt<double>(box + 40)},
+               littleEndianAt<double>(box + 48)};
+    return out;
 }
 
 SourceKey sourceKey(model::NodeId sceneId, std::int64_t sourceId) {

@@ -16,6 +16,7 @@
 
 #include "model/error.hpp"
 #include "model/types.hpp"
+#include "storage/database.hpp"
 #include "storage/scene_index.hpp"
 
 namespace smql::storage::codec {
@@ -67,11 +68,29 @@ RelationEntry encodeRelationEntry(const model::Relation& relation, RelationSide 
 RelationSide relationEntrySide(std::string_view entry);
 model::Relation decodeRelationEntry(model::NodeId keyId, std::string_view entry);
 
-// Label index entry (duplicate value under the category key): scene id then
-// node id, so one scene's nodes of a category are one contiguous range.
-inline constexpr std::size_t kLabelEntrySize = 16;
+// Label index entry (duplicate value under the category key): scene id then node id (big-endian,
+// so one scene's nodes of a category are one contiguous range, in id order), then what a search of
+// the category across scenes shows of the node, so that it answers without reading the node
+// records: format byte, flags (1 has source id), geometry kind, source id (i64 LE), box (7 f64
+// LE), and a CRC32C of the category (the key) and the bytes before it. Schema version 5; before it
+// an entry was the two ids alone (kIdsOnlyLabelEntrySize), which a read-only open still reads.
+inline constexpr std::uint8_t kLabelFormat = 1;
+inline constexpr std::size_t kIdsOnlyLabelEntrySize = 16;
+inline constexpr std::size_t kLabelEntrySize = 83 + kChecksumSize;
 using LabelEntry = std::array<std::uint8_t, kLabelEntrySize>;
-LabelEntry labelEntry(model::NodeId sceneId, model::NodeId nodeId);
+using LabelPrefix = std::array<std::uint8_t, kIdsOnlyLabelEntrySize>;
+// The entry of node `nodeId` of scene `sceneId` under `category`, with `node`'s source id, geometry
+// and box (as its record holds them).
+LabelEntry labelEntry(std::string_view category, model::NodeId sceneId, model::NodeId nodeId, const model::Node& node);
+// The two ids alone: the start of a scene's range (node 0), and a version-4 entry.
+LabelPrefix labelPrefix(model::NodeId sceneId, model::NodeId nodeId);
+// The ids of an entry of either size (the first 16 bytes).
+inline model::NodeId labelEntryScene(std::string_view entry);
+inline model::NodeId labelEntryNode(std::string_view entry);
+// Checks the entry's size, checksum and codes and returns its row; throws CorruptRecord.
+CategoryRow decodeLabelEntry(std::string_view category, std::string_view entry);
+// The same, with the CRC32C of the category computed once for the many entries of a key.
+CategoryRow decodeLabelEntry(std::string_view category, std::uint32_t categoryCrc, std::string_view entry);
 
 // Source-id index key: scene id then the source id, sign-flipped big-endian so
 // negative ids sort before positive ones.
@@ -112,6 +131,13 @@ inline std::uint64_t readBigEndian64(const std::uint8_t* p) {
     std::uint64_t v = 0;
     for (int i = 0; i < 8; ++i) v = (v << 8) | p[i];
     return v;
+}
+
+inline model::NodeId labelEntryScene(std::string_view entry) {
+    return readBigEndian64(reinterpret_cast<const std::uint8_t*>(entry.data()));
+}
+inline model::NodeId labelEntryNode(std::string_view entry) {
+    return readBigEndian64(reinterpret_cast<const std::uint8_t*>(entry.data()) + 8);
 }
 
 }  // namespace smql::storage::codec

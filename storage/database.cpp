@@ -14,6 +14,7 @@
 #include "model/category.hpp"
 #include "model/error.hpp"
 #include "storage/codec.hpp"
+#include "storage/crc32c.hpp"
 #include "storage/database_internal.hpp"
 #include "storage/lmdb_env.hpp"
 
@@ -100,6 +101,15 @@ std::string settingKey(std::string_view key) {
 
 bool validSettingKey(const Environment& env, std::string_view key) {
     return !key.empty() && kSettingPrefix.size() + key.size() <= env.maxKeySize();
+}
+
+// The size of a label entry: the ids alone (schema version 4) or the covering entry (5); any other is damage.
+std::size_t labelEntrySize(std::string_view category, const MDB_val& value) {
+    if (value.mv_size == codec::kLabelEntrySize || value.mv_size == codec::kIdsOnlyLabelEntrySize) return value.mv_size;
+    throw Error(ErrorKind::Storage,
+                fmt::format("corrupt label index entry for '{}': {} bytes instead of {}", category, value.mv_size,
+                            codec::kLabelEntrySize),
+                std::nullopt, "the database file is damaged; restore it from a backup");
 }
 
 std::size_t duplicateCount(const Environment& env, MDB_cursor* cursor) {
@@ -415,24 +425,87 @@ std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category
         std::size_t count = duplicateCount(env, cursor.cursor());
         out.reserve(std::min(count, limit));
         // Entries sort by (scene, node); scenes are contiguous id blocks, so that is id order.
-        forEachDuplicate(env, cursor.cursor(), value, count, codec::kLabelEntrySize, [&](std::string_view entry) {
-            if (out.size() == limit) return false;
-            out.push_back(idAt(entry.data() + 8));
-            return out.size() < limit;
-        });
+        forEachDuplicate(env, cursor.cursor(), value, count, labelEntrySize(category, value),
+                         [&](std::string_view entry) {
+                             if (out.size() == limit) return false;
+                             out.push_back(idAt(entry.data() + 8));
+                             return out.size() < limit;
+                         });
         return out;
     }
 
-    auto from = codec::labelEntry(sceneId, 0);
+    auto from = codec::labelPrefix(sceneId, 0);
     value = toVal(from);
     int rc = cursor.get(key, value, MDB_GET_BOTH_RANGE);
     for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT_DUP)) {
-        if (value.mv_size != codec::kLabelEntrySize)
-            throw Error(ErrorKind::Storage, fmt::format("corrupt label index entry for '{}'", category), std::nullopt,
-                        "the database file is damaged; restore it from a backup");
+        labelEntrySize(category, value);
         const char* entry = static_cast<const char*>(value.mv_data);
         if (idAt(entry) != sceneId || out.size() == limit) return out;
         out.push_back(idAt(entry + 8));
+    }
+    endOfScan(env, rc, "reading the label index");
+    return out;
+}
+
+std::vector<CategoryRow> ReadTransaction::categoryRows(std::string_view category, std::size_t limit) const {
+    const Impl& state = live();
+    const Environment& env = *state.env;
+    std::vector<CategoryRow> out;
+    auto keys = labelKeys(category);
+    for (const auto& name : keys) {
+        if (name.empty() || name.size() > env.maxKeySize() || limit == 0) continue;
+        TableCursor cursor(state, Table::Labels);
+        MDB_val key = toVal(name), value;
+        int rc = cursor.get(key, value, MDB_SET_KEY);
+        if (rc == MDB_NOTFOUND) continue;
+        env.check(rc, "reading the label index");
+        const std::size_t count = duplicateCount(env, cursor.cursor()), size = labelEntrySize(name, value);
+        const std::size_t before = out.size(), wanted = std::min(count, limit);
+        const std::uint32_t keyCrc = crc32c(name);
+        out.reserve(before + wanted);
+        // Entries sort by (scene, node); scenes are contiguous id blocks, so that is id order.
+        forEachDuplicate(env, cursor.cursor(), value, count, size, [&](std::string_view entry) {
+            if (size == codec::kLabelEntrySize) {
+                out.push_back(decodeInScene(env, state.txn, codec::labelEntryScene(entry),
+                                            [&] { return codec::decodeLabelEntry(name, keyCrc, entry); }));
+            } else {
+                out.emplace_back().id = codec::labelEntryNode(entry);
+            }
+            return out.size() - before < wanted;
+        });
+    }
+    if (keys.size() > 1) {
+        std::sort(out.begin(), out.end(), [](const CategoryRow& a, const CategoryRow& b) { return a.id < b.id; });
+        if (out.size() > limit) out.resize(limit);
+    }
+    // Entries of schema version 4 hold the ids alone: the rest comes from the records.
+    Node node;
+    for (CategoryRow& row : out) {
+        if (row.scene != model::kNoNode) continue;
+        if (!readNode(row.id, node))
+            throw Error(ErrorKind::Storage, fmt::format("the label index names node #{}, which is not stored", row.id),
+                        std::nullopt, "the database file is damaged; smql check names what is damaged");
+        row = {node.id, node.scene, node.sourceId, node.geometry, node.box};
+    }
+    return out;
+}
+
+std::vector<CategoryRow> ReadTransaction::categoryRowsInScene(std::string_view categoryKey, NodeId sceneId) const {
+    std::vector<CategoryRow> out;
+    const Impl& state = live();
+    const Environment& env = *state.env;
+    if (categoryKey.empty() || categoryKey.size() > env.maxKeySize()) return out;
+    TableCursor cursor(state, Table::Labels);
+    MDB_val key = toVal(categoryKey), value;
+    auto from = codec::labelPrefix(sceneId, 0);
+    value = toVal(from);
+    int rc = cursor.get(key, value, MDB_GET_BOTH_RANGE);
+    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT_DUP)) {
+        const std::string_view entry = env.bytes(value);
+        if (labelEntrySize(categoryKey, value) != codec::kLabelEntrySize || codec::labelEntryScene(entry) != sceneId)
+            return out;
+        out.push_back(
+            decodeInScene(env, state.txn, sceneId, [&] { return codec::decodeLabelEntry(categoryKey, entry); }));
     }
     endOfScan(env, rc, "reading the label index");
     return out;

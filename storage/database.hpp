@@ -23,7 +23,9 @@ namespace smql::storage {
 // 2: every record and relation entry ends in a CRC32C (docs/storage.md).
 // 3: the history table keeps the versions of a scene that updates replaced.
 // 4: the scene_index table keeps each scene's table of contents (storage/scene_index.hpp).
-inline constexpr std::uint32_t kSchemaVersion = 4;
+// 5: a label entry carries the node's source id, geometry and box (codec::labelEntry), so a search of
+//    a category across scenes reads no node record.
+inline constexpr std::uint32_t kSchemaVersion = 5;
 
 struct OpenOptions {
     bool readOnly = false;
@@ -40,6 +42,17 @@ struct TableStats {
     // them: for the DUPSORT tables (children, labels, relations) that is the
     // key tree only, without the pages of long duplicate lists.
     std::uint64_t bytes = 0;
+};
+
+// A node as a search of its category across scenes shows it (FIND c LIMIT n under USE SCENE '*'):
+// read from the label index alone, whose entries carry these fields (docs/storage.md).
+struct CategoryRow {
+    model::NodeId id = model::kNoNode;
+    model::NodeId scene = model::kNoNode;
+    std::optional<std::int64_t> sourceId;
+    model::GeometryKind geometry = model::GeometryKind::None;
+    model::Box box;
+    friend bool operator==(const CategoryRow&, const CategoryRow&) = default;
 };
 
 class ReadTransaction;
@@ -122,6 +135,12 @@ public:
     std::vector<std::string> labelKeys(std::string_view category) const;
     // Nodes of a category in every scene, by any of its spellings (labelKeys), in id order.
     std::vector<model::NodeId> nodesNamed(std::string_view category, std::size_t limit = SIZE_MAX) const;
+    // nodesNamed's first `limit` nodes as rows, from the label index's entries without reading a node
+    // record (one look-up and a page of entries at a time); a database of schema version 4 opened
+    // read-only, whose entries hold the ids alone, is answered from the records. With `sceneId`, the
+    // rows of that scene under this exact category key.
+    std::vector<CategoryRow> categoryRows(std::string_view category, std::size_t limit = SIZE_MAX) const;
+    std::vector<CategoryRow> categoryRowsInScene(std::string_view categoryKey, model::NodeId sceneId) const;
     // How many nodes of every scene have this category, by any of its spellings (labelKeys): one
     // index lookup a key, no scan.
     std::uint64_t countWithCategory(std::string_view category) const;

@@ -70,11 +70,15 @@ std::map<RegistryKey, std::weak_ptr<Environment>>& registry() {
     return *environments;
 }
 
-// Schema 2 lacks the history and scene index tables, schema 3 the scene index: a writable open
-// adds them (empty) in place. A read-only open reads a version-3 database without scene indexes,
-// as every scene of it lacks one anyway; a version-2 one it cannot, for want of the history table.
+// Schema 2 lacks the history and scene index tables, schema 3 the scene index, and schemas 2 to 4
+// have label entries of the two ids alone: a writable open adds the tables (empty) and rewrites the
+// label entries in place. A read-only open reads a version-3 database without scene indexes, as
+// every scene of it lacks one anyway, and the label entries of versions 3 and 4 as they are (the
+// rows of a category search then come from the node records); a version-2 one it cannot, for want
+// of the history table.
 constexpr std::uint64_t kOldestUpgradableSchemaVersion = 2;
 constexpr std::uint64_t kReadableWithoutSceneIndex = 3;
+constexpr std::uint64_t kReadableWithIdsOnlyLabels = 4;
 
 // Returns the stored version: kSchemaVersion, or an older one this open can read or upgrade.
 std::uint64_t checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta, bool upgradable) {
@@ -86,11 +90,12 @@ std::uint64_t checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB
     std::uint64_t version = codec::decodeU64(fromVal(value), "schema version");
     if (version == kSchemaVersion) return version;
     if (version >= kOldestUpgradableSchemaVersion && version < kSchemaVersion) {
-        if (upgradable || version == kReadableWithoutSceneIndex) return version;
+        if (upgradable || version == kReadableWithoutSceneIndex || version == kReadableWithIdsOnlyLabels)
+            return version;
         openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
                               kSchemaVersion),
                   "open it once for writing (without --read-only): that upgrades it in place, adding the empty "
-                  "tables of the versions since (the history, the scene indexes)");
+                  "tables of the versions since (the history, the scene indexes) and widening the label entries");
     }
     openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
                           kSchemaVersion),
@@ -432,7 +437,7 @@ void Environment::openTables(bool create) {
         throw;
     }
     if (version != kSchemaVersion && readOnly_) {
-        hasSceneIndex_ = false;
+        hasSceneIndex_ = version >= 4;
     } else if (version != kSchemaVersion) {
         mdb_txn_abort(txn);
         upgradeSchema(version);
@@ -472,11 +477,61 @@ void Environment::upgradeSchema(std::uint64_t from) {
     std::string version = codec::encodeU64(kSchemaVersion);
     MDB_val key = toVal(kSchemaVersionKey), value = toVal(version);
     if (rc == MDB_SUCCESS) rc = mdb_put(txn, meta, &key, &value, 0);
+    if (rc == MDB_SUCCESS) {
+        try {
+            rc = widenLabels(txn);
+        } catch (...) {  // a damaged node record
+            mdb_txn_abort(txn);
+            throw;
+        }
+    }
     if (rc != MDB_SUCCESS) {
         mdb_txn_abort(txn);
         fail(rc, operation);
     }
     check(mdb_txn_commit(txn), operation);
+}
+
+// Schema 5: every label entry of the two ids alone becomes the covering entry made from its node's
+// record (codec::labelEntry), in the upgrade's transaction. The entries of one key have one size
+// (DUPFIXED), so a key's entries are replaced together; keys already widened are left as they are.
+int Environment::widenLabels(MDB_txn* txn) {
+    MDB_dbi labels = 0, nodes = 0;
+    const auto& labelSpec = kTables[static_cast<std::size_t>(Table::Labels)];
+    const auto& nodeSpec = kTables[static_cast<std::size_t>(Table::Nodes)];
+    int rc = mdb_dbi_open(txn, labelSpec.name, labelSpec.flags | MDB_CREATE, &labels);
+    if (rc == MDB_SUCCESS) rc = mdb_dbi_open(txn, nodeSpec.name, nodeSpec.flags | MDB_CREATE, &nodes);
+    if (rc != MDB_SUCCESS) return rc;
+    // The narrow entries by key, copied out of the map before any write moves the pages they lie in.
+    std::vector<std::pair<std::string, std::vector<codec::LabelPrefix>>> narrow;
+    MDB_cursor* cursor = nullptr;
+    if ((rc = mdb_cursor_open(txn, labels, &cursor)) != MDB_SUCCESS) return rc;
+    MDB_val key, value;
+    for (rc = mdb_cursor_get(cursor, &key, &value, MDB_FIRST); rc == MDB_SUCCESS;
+         rc = mdb_cursor_get(cursor, &key, &value, MDB_NEXT)) {
+        if (value.mv_size != codec::kIdsOnlyLabelEntrySize) continue;
+        if (narrow.empty() || narrow.back().first != fromVal(key)) narrow.emplace_back(std::string(fromVal(key)), 0);
+        std::memcpy(narrow.back().second.emplace_back().data(), value.mv_data, codec::kIdsOnlyLabelEntrySize);
+    }
+    mdb_cursor_close(cursor);
+    if (rc != MDB_NOTFOUND) return rc;
+    model::Node node;
+    for (const auto& [category, entries] : narrow) {
+        MDB_val labelKey = toVal(category);
+        if ((rc = mdb_del(txn, labels, &labelKey, nullptr)) != MDB_SUCCESS) return rc;
+        for (const auto& ids : entries) {
+            const model::NodeId sceneId = codec::readBigEndian64(ids.data());
+            const model::NodeId id = codec::readBigEndian64(ids.data() + 8);
+            auto idKey = codec::idKey(id);
+            MDB_val k = toVal(idKey), record;
+            if ((rc = mdb_get(txn, nodes, &k, &record)) != MDB_SUCCESS) return rc == MDB_NOTFOUND ? MDB_CORRUPTED : rc;
+            codec::decodeNode(id, fromVal(record), node);
+            auto entry = codec::labelEntry(category, sceneId, id, node);
+            MDB_val wide = toVal(entry);
+            if ((rc = mdb_put(txn, labels, &labelKey, &wide, MDB_APPENDDUP)) != MDB_SUCCESS) return rc;
+        }
+    }
+    return MDB_SUCCESS;
 }
 
 void Environment::checkLockFile(std::string_view operation) const {

@@ -114,6 +114,7 @@ private:
     static std::shared_ptr<Environment> openChecked(const std::string& directory, const OpenOptions& options);
     void openTables(bool create);
     void upgradeSchema(std::uint64_t from);
+    int widenLabels(MDB_txn* txn);
     void checkFileSize() const;
 
     // Where LMDB mapped data.mdb in this process (from /proc/self/maps: LMDB does not say), for

@@ -90,7 +90,7 @@ public:
         for (std::size_t i = 0; i < data_.nodes.size(); ++i) {
             const std::string& category = data_.nodes[i].category;
             if (category.empty()) continue;
-            auto entry = codec::labelEntry(sceneId_, idAt(i));
+            auto entry = codec::labelEntry(category, sceneId_, idAt(i), data_.nodes[i]);
             put(env_, labels.get(), toVal(category), toVal(entry), 0, "storing a label");
             if (!model::isCategoryName(category)) env_.forgetLegacyLabels();
         }

@@ -1,5 +1,6 @@
 // Versions of a scene: replacing it by its next version (the stored one goes to the history table),
 // dropping and renaming it, updating nodes in place, and reading its history.
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <set>
@@ -44,6 +45,18 @@ void eraseBlobs(const Environment& env, MDB_txn* txn, NodeId node) {
     }
 }
 
+// Deletes a node's label entry, found by its ids (the entry's first 16 bytes, of either size).
+void eraseLabel(const Environment& env, MDB_txn* txn, std::string_view category, NodeId sceneId, NodeId nodeId) {
+    Cursor cursor(env, txn, Table::Labels);
+    auto ids = codec::labelPrefix(sceneId, nodeId);
+    MDB_val key = toVal(category), value = toVal(ids);
+    int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_GET_BOTH_RANGE);
+    if (rc == MDB_NOTFOUND) return;
+    env.check(rc, "dropping a label");
+    if (value.mv_size < ids.size() || std::memcmp(value.mv_data, ids.data(), ids.size()) != 0) return;
+    env.check(mdb_cursor_del(cursor.get(), 0), "dropping a label");
+}
+
 // Deletes a scene's nodes, relations, index entries and records; its history stays.
 void eraseScene(const Environment& env, MDB_txn* txn, const SceneInfo& scene) {
     const NodeId sceneId = scene.id;
@@ -84,11 +97,7 @@ void eraseScene(const Environment& env, MDB_txn* txn, const SceneInfo& scene) {
         erase(Table::Children, toVal(key), nullptr);
         erase(Table::Relations, toVal(key), nullptr);
         eraseBlobs(env, txn, node.id);
-        if (node.labelled) {
-            auto entry = codec::labelEntry(sceneId, node.id);
-            MDB_val value = toVal(entry);
-            erase(Table::Labels, toVal(node.category), &value);
-        }
+        if (node.labelled) eraseLabel(env, txn, node.category, sceneId, node.id);
         if (node.sourceId) {
             auto source = codec::sourceKey(sceneId, *node.sourceId);
             erase(Table::SourceIds, toVal(source), nullptr);
@@ -269,6 +278,12 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
     const Environment& env = *state.env;
     MDB_txn* txn = state.txn;
     std::set<NodeId> scenes;
+    // The label entries the update changes (they carry the box): old and new, per node.
+    struct Relabel {
+        const Node* node;
+        codec::LabelEntry before, after;
+    };
+    std::vector<Relabel> labels;
     // Check every node before the first write, so a refused update writes nothing.
     for (const Node& node : nodes) {
         auto key = codec::idKey(node.id);
@@ -283,6 +298,16 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
                             "kind, scene, parent, category or source id",
                             node.id));
         scenes.insert(node.scene);
+        if (!node.category.empty()) {
+            auto before = codec::labelEntry(node.category, node.scene, node.id, stored);
+            auto after = codec::labelEntry(node.category, node.scene, node.id, node);
+            if (before != after) labels.push_back({&node, before, after});
+        }
+    }
+    for (const Relabel& label : labels) {
+        eraseLabel(env, txn, label.node->category, label.node->scene, label.node->id);
+        MDB_val k = toVal(label.node->category), v = toVal(label.after);
+        env.check(mdb_put(txn, env.dbi(Table::Labels), &k, &v, 0), "updating a label");
     }
     for (const Node& node : nodes) {
         codec::encodeNode(node, state.record);

@@ -521,19 +521,29 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
     std::size_t limit = f.limit ? static_cast<std::size_t>(std::max<std::int64_t>(*f.limit, 0)) : SIZE_MAX;
     // One row past the session's limit is enough to know it is exceeded.
     limit = std::min(limit, static_cast<std::size_t>(session_.limits.maxRows) + 1);
-    auto ids = limit == 0 ? std::vector<model::NodeId>{} : txn_.nodesNamed(f.category, limit);
-    checkRows(ids.size());
+    // The label index's entries carry every column: no node record is read.
+    const auto found = limit == 0 ? std::vector<storage::CategoryRow>{} : txn_.categoryRows(f.category, limit);
+    checkRows(found.size());
     rs.columns = {{"id", ValueType::Integer},
                   {"category", ValueType::Text},
                   {"scene", ValueType::Integer},
                   {"source_id", ValueType::Integer},
                   {"box", ValueType::Box}};
-    rs.rows.reserve(ids.size());
-    model::Node node;
-    for (auto id : ids) {
-        if (!txn_.readNode(id, node)) continue;
-        rs.rows.push_back({static_cast<std::int64_t>(node.id), f.category, static_cast<std::int64_t>(node.scene),
-                           sourceValue(node), boxValue(node)});
+    rs.rows.reserve(found.size());
+    for (const storage::CategoryRow& node : found) {
+        auto& row = rs.rows.emplace_back();
+        row.reserve(5);
+        row.emplace_back(static_cast<std::int64_t>(node.id));
+        row.emplace_back(f.category);
+        row.emplace_back(static_cast<std::int64_t>(node.scene));
+        if (node.sourceId)
+            row.emplace_back(*node.sourceId);
+        else
+            row.emplace_back(std::monostate{});
+        if (node.geometry == model::GeometryKind::None)
+            row.emplace_back(std::monostate{});
+        else
+            row.emplace_back(node.box);
     }
     return rs;
 }

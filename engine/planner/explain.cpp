@@ -114,7 +114,9 @@ struct StatementLines {
         }
         lines.add("Project id, category, scene, source_id, box");
         if (f.limit) lines.add(fmt::format("Limit {}", *f.limit));
-        lines.add(fmt::format("Label index scan of '{}' across all scenes, reading each node", f.category));
+        lines.add(fmt::format(
+            "Label index scan of '{}' across all scenes, its entries holding the columns (no node record read)",
+            f.category));
     }
     void operator()(const binder::BoundRelate& r) const {
         lines.add(

@@ -117,11 +117,13 @@ TEST_CASE("the check reports each kind of damage", "[storage][check]") {
         REQUIRE(reported(report, "node record for id " + std::to_string(node.id)));
     }
     SECTION("a missing label entry") {
-        auto entry = codec::labelEntry(big, big + 7);
         std::string category;
+        codec::LabelEntry entry;
         {
             auto db = Database::open(path);
-            category = db->beginRead().node(big + 7)->category;
+            auto node = *db->beginRead().node(big + 7);
+            category = node.category;
+            entry = codec::labelEntry(category, big, big + 7, node);
         }
         deleteEntry(path, "labels", category,
                     std::string_view(reinterpret_cast<const char*>(entry.data()), entry.size()));

@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <cstring>
+
 #include <cmath>
 #include <limits>
 
@@ -199,7 +201,13 @@ TEST_CASE("keys sort numerically under memcmp", "[storage][codec]") {
             0x0102030405060708ULL);
     REQUIRE(codec::sourceKey(3, -1) < codec::sourceKey(3, 0));
     REQUIRE(codec::sourceKey(3, std::numeric_limits<std::int64_t>::max()) < codec::sourceKey(4, -100));
-    REQUIRE(codec::labelEntry(1, 900) < codec::labelEntry(2, 3));
+    REQUIRE(codec::labelPrefix(1, 900) < codec::labelPrefix(2, 3));
+    model::Node node;
+    REQUIRE(codec::labelEntry("mug", 1, 900, node) < codec::labelEntry("mug", 2, 3, node));
+    // The prefix sorts before every entry of its ids, so a scene's range starts at (scene, 0).
+    auto prefix = codec::labelPrefix(2, 0);
+    auto entry = codec::labelEntry("mug", 2, 0, node);
+    REQUIRE(std::memcmp(prefix.data(), entry.data(), prefix.size()) == 0);
     REQUIRE_THROWS_AS(codec::idFromKey("short", "test"), Error);
 }
 

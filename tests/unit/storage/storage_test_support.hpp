@@ -33,9 +33,47 @@ void editTable(const std::string& path, const char* table, Edit&& edit) {
     mdb_env_close(env);
 }
 
-// Makes the database at `path` what an smql of schema version 3 wrote: no scene index table, and
-// that version in the meta table.
+// Makes the label entries of the database at `path` what an smql before schema version 5 wrote:
+// the two ids alone.
+inline void narrowLabels(const std::string& path) {
+    editTable(path, "labels", [](MDB_txn* txn, MDB_dbi) {
+        MDB_dbi labels;
+        REQUIRE(mdb_dbi_open(txn, "labels", MDB_DUPSORT | MDB_DUPFIXED, &labels) == 0);
+        std::vector<std::pair<std::string, std::string>> entries;
+        MDB_cursor* cursor = nullptr;
+        REQUIRE(mdb_cursor_open(txn, labels, &cursor) == 0);
+        MDB_val key, value;
+        for (int rc = mdb_cursor_get(cursor, &key, &value, MDB_FIRST); rc == 0;
+             rc = mdb_cursor_get(cursor, &key, &value, MDB_NEXT))
+            entries.emplace_back(std::string(static_cast<const char*>(key.mv_data), key.mv_size),
+                                 std::string(static_cast<const char*>(value.mv_data), codec::kIdsOnlyLabelEntrySize));
+        mdb_cursor_close(cursor);
+        REQUIRE(mdb_drop(txn, labels, 0) == 0);
+        for (const auto& [category, ids] : entries) {
+            MDB_val k = toVal(category), v = toVal(ids);
+            REQUIRE(mdb_put(txn, labels, &k, &v, 0) == 0);
+        }
+    });
+}
+
+inline void setStoredSchemaVersion(const std::string& path, std::uint64_t version) {
+    editTable(path, "meta", [&](MDB_txn* txn, MDB_dbi meta) {
+        std::string bytes = codec::encodeU64(version);
+        MDB_val key = toVal(kSchemaVersionKey), value = toVal(bytes);
+        REQUIRE(mdb_put(txn, meta, &key, &value, 0) == 0);
+    });
+}
+
+// Makes the database at `path` what an smql of schema version 4 wrote: label entries of the ids alone.
+inline void asSchemaVersion4(const std::string& path) {
+    narrowLabels(path);
+    setStoredSchemaVersion(path, 4);
+}
+
+// Makes the database at `path` what an smql of schema version 3 wrote: no scene index table, label
+// entries of the ids alone, and that version in the meta table.
 inline void asSchemaVersion3(const std::string& path) {
+    narrowLabels(path);
     editTable(path, "meta", [](MDB_txn* txn, MDB_dbi meta) {
         std::string three = codec::encodeU64(3);
         MDB_val key = toVal(kSchemaVersionKey), value = toVal(three);
