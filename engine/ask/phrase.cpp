@@ -360,6 +360,17 @@ std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(con
     return std::nullopt;
 }
 
+void PhraseParser::shortenNoun(std::vector<std::string>& nounWords, const Words& w, std::size_t start) {
+    // A name of a thing is a few words ("kitchen cabinet door"); more is a sentence read wrongly,
+    // unless a few more describe it ("the large larder style stainless steel fridge freezer": its
+    // last words name it).
+    if (nounWords.size() > 2 * kMaxNounWords) throw notUnderstood(w, start);
+    if (nounWords.size() <= kMaxNounWords) return;
+    const auto cut = nounWords.begin() + static_cast<std::ptrdiff_t>(nounWords.size() - kMaxNounWords);
+    out_.notes.push_back(fmt::format("'{}' is left out", joined(Words(nounWords.begin(), cut), 0, nounWords.size())));
+    nounWords.erase(nounWords.begin(), cut);
+}
+
 bool PhraseParser::selfPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p) {
     if (i >= w.size() || !isOneOf(w[i], {"me", "myself", "us"})) return false;
     if (!self_) {
@@ -480,7 +491,7 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         nounWords.push_back("object");
     }
     // A name of a thing is a few words ("kitchen cabinet door"); more is a sentence read wrongly.
-    if (nounWords.size() > kMaxNounWords) throw notUnderstood(w, start);
+    shortenNoun(nounWords, w, start);
     resolveNoun(p, nounWords);
     if (!side.empty()) {
         // A side names one node of one category (wall.left); of anything else it is left out.

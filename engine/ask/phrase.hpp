@@ -126,6 +126,8 @@ private:
     bool idPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p);
     // "me" after a situation, with its posts: true, and `i` past it; without one, an error.
     bool selfPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p);
+    // A noun of more words than a name takes loses its first ones, with a note; far more is an error.
+    void shortenNoun(std::vector<std::string>& nounWords, const Words& w, std::size_t start);
     void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords);
     bool isPlane(const Phrase& p) const;
 

@@ -1324,6 +1324,25 @@ private:
     // out), "is the table small or large?" (its size), "what can I use in front of me to ...?"
     // (what is there), "is the shape of the table round or square?" (its shape).
     static std::string readAsAsked(std::string plain, std::optional<std::string>& stateWords) {
+        // ScanQA's ways of asking: "what surrounds the sink?" (what is around it), "what does the
+        // cabinet have?" (what is on it), "a copier sits on the floor to the left of what?" (the
+        // copier is to the left of what), "where does the trash can set?".
+        static const std::pair<std::regex, std::string> scanQa[] = {
+            {std::regex(R"(^what (?:surrounds|borders|flanks|encircles|lines)\b)"), "what is around"},
+            {std::regex(R"(^what does (.+?) (?:have|hold|contain|carry|support)(?: on (?:it|top))?$)"),
+             "what is on $1"},
+            {std::regex(
+                 R"(^(?:a|an|the) (.+?) (?:sits|stands|lies|hangs|rests|is placed|is located|is sitting|is standing|is hanging|is positioned)( .+ what(?: \w+)?)$)"),
+             "the $1 is$2"},
+            {std::regex(R"(^where does (.+?) (?:set|sit|stand|lie|rest)$)"), "where is $1"},
+            {std::regex(R"(^where (?:is|are) (.+?) set$)"), "where is $1"},
+            {std::regex(R"(^how many (.+?) (?:surround|border|flank|encircle)s? (.+)$)"), "how many $1 are around $2"},
+        };
+        for (const auto& [from, to] : scanQa)
+            if (std::regex_search(plain, from)) {
+                plain = std::regex_replace(plain, from, to);
+                break;
+            }
         // "is the number of chairs odd or even?", "can the number of chairs be divided by three?":
         // the count answers it.
         static const std::pair<std::regex, std::string> counts[] = {
@@ -1453,6 +1472,43 @@ private:
         return pose;
     }
 
+    // The question as read; where it cannot be, the question without a few words that describe a
+    // part or a look the memory keeps nothing of ("the table with black legs", "the sink that
+    // appears to be ..."), the fewest words from the first such word that make it readable, with
+    // a note of what is left out.
+    static Translation readLeavingOut(QuestionReader& reader, const std::string& plain) {
+        try {
+            return reader.read(plain);
+        } catch (const Error& first) {
+            Words w = words(plain);
+            for (std::size_t at = 1; at < w.size(); ++at) {
+                if (!isOneOf(w[at], {"with", "that", "which", "who", "having", "made", "appear", "appears", "looks",
+                                     "look", "shaped"}))
+                    continue;
+                for (std::size_t n = 2; n <= 6 && at + n <= w.size(); ++n) {
+                    // The words left out end where the question goes on: at its end, a verb of
+                    // place or a predicate ("the bed with a blue mattress located": not "bed blue
+                    // mattress").
+                    const std::size_t next = at + n;
+                    if (next < w.size() && !PhraseParser::predicateAt(w, next) &&
+                        !isOneOf(w[next], {"located", "placed", "sitting", "standing", "hanging", "kept", "is", "are",
+                                           "found", "positioned", "have", "has"}))
+                        continue;
+                    Words kept(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(at));
+                    kept.insert(kept.end(), w.begin() + static_cast<std::ptrdiff_t>(at + n), w.end());
+                    try {
+                        Translation out = reader.read(joined(kept, 0, kept.size()));
+                        out.notes.push_back(
+                            fmt::format("'{}' is left out: the memory keeps nothing of it", joined(w, at, at + n)));
+                        return out;
+                    } catch (const Error&) {
+                    }
+                }
+            }
+            throw first;
+        }
+    }
+
 public:
     Translation translate(const Question& question) const override {
         if (question.text.find("[please fill in]") != std::string::npos) {
@@ -1561,7 +1617,7 @@ public:
         if (stateWords)
             situationNotes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", *stateWords));
         if (!pose) {
-            Translation out = reader.read(plain);
+            Translation out = readLeavingOut(reader, plain);
             for (const auto& note : situationNotes) out.notes.push_back(note);
             return out;
         }
