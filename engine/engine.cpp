@@ -405,6 +405,11 @@ void Engine::setAskTranslator(std::shared_ptr<const ask::Translator> translator)
     state_->session.askTranslator = std::move(translator);
 }
 
+std::string Engine::askTranslatorName() const {
+    std::lock_guard lock(state_->mutex);
+    return state_->session.askTranslator ? state_->session.askTranslator->name() : "built-in";
+}
+
 std::string Engine::currentScene() const {
     std::lock_guard lock(state_->mutex);
     if (state_->session.allScenes) return "*";

@@ -144,6 +144,9 @@ public:
     // client of a language model's endpoint here (docs/ask.md); the SMQL it returns is parsed,
     // bound, planned and run like any statement.
     void setAskTranslator(std::shared_ptr<const ask::Translator> translator);
+    // What ASK translates with: the endpoint's URL of a plugged-in model translator (SET translator,
+    // smql_set_translator), or "built-in".
+    std::string askTranslatorName() const;
 
     // The scene that queries run against (SHOW SCENES lists them; USE SCENE sets it).
     std::string currentScene() const;

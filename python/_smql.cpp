@@ -128,6 +128,15 @@ public:
         if (db_) smql_interrupt(db_);
     }
 
+    // ASK's translator: an endpoint's URL, or "built-in" (smql_translator, smql_set_translator).
+    std::string translator() const {
+        const char* name = smql_translator(handle());
+        return name ? name : "";
+    }
+    void setTranslator(std::optional<std::string> url) {
+        check(db_, smql_set_translator(handle(), url ? url->c_str() : nullptr));
+    }
+
     void importFile(const std::string& format, const std::string& path, std::optional<std::string> scene, bool update) {
         smql_status status;
         {
@@ -374,6 +383,8 @@ PYBIND11_MODULE(_smql, m) {
         .def("close", &Database::close)
         .def("execute_script", &Database::executeScript)
         .def("interrupt", &Database::interrupt)
+        .def("translator", &Database::translator)
+        .def("set_translator", &Database::setTranslator, py::arg("url"))
         .def("import_file", &Database::importFile)
         .def("export", &Database::exportScene)
         .def("export_points", &Database::exportPoints)

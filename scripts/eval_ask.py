@@ -6,9 +6,11 @@ validation rooms, imported with `smql import vsibench --all`) and scored against
 truth: exact choice for multiple-choice questions, mean relative accuracy (MRA, VSI-Bench's measure)
 for numbers. ScanQA's and SQA3D's questions, human-written about ScanNet rooms, are asked about the
 same rooms where they are among them, and counted as translated or not (their free-text answers are
-checked by hand on a sample, printed with --sample).
+checked by hand on a sample, printed with --sample). SQA3D's question is asked after its situation, as
+one text ("I am sitting on the bed facing the window. What is to my left?"); --no-situation asks the
+question alone.
 
-    scripts/eval_ask.py --smql build/shell/smql --fixtures /path/to/question/files [--sample 40]
+    scripts/eval_ask.py --smql build/shell/smql --fixtures /path/to/question/files [--sample 40] [--only sqa3d]
 
 The fixture folder holds vsibench_test.jsonl (VSI-Bench's test split as JSON lines),
 ScanQA_v1.0_val.json and sqa3d_v1_balanced_questions_test_scannetv2.json; each set that is absent is
@@ -235,6 +237,13 @@ def vsibench(args, db, scenes):
                   f"{q.get('options') or ''}; got {pred}: {answer['message'].splitlines()[-1][:200]}")
 
 
+def kind_of(answer):
+    """The question's kind as the answer's first line shows it: its statement and VIEW FROM (a pose)."""
+    smql = smql_of(answer)
+    head = smql.split(": ", 1)[-1].split(" ")[0] if smql else "?"
+    return head + (" VIEW" if " VIEW FROM " in smql else "")
+
+
 def free_text(args, db, scenes, name, file, read):
     path = os.path.join(args.fixtures, file)
     if not os.path.exists(path):
@@ -244,20 +253,25 @@ def free_text(args, db, scenes, name, file, read):
     if args.limit:
         random.Random(7).shuffle(questions)
         questions = questions[: args.limit]
-    translated, samples, failures = 0, [], collections.Counter()
+    translated, samples, failures, kinds = 0, [], collections.Counter(), collections.Counter()
     for scene, text in questions:
         answer, error, _ = run_ask(args.smql, db, scene, text)
         if error:
             failures[error[:80]] += 1
+            if args.failures:
+                print(f"  x [{scene}] {text}\n      {error[:160]}")
         else:
             translated += 1
+            kinds[kind_of(answer)] += 1
             samples.append((scene, text, answer))
     print(f"\n{name}: {len(questions)} questions on rooms of real-layouts; translated {translated} "
           f"({translated / max(len(questions), 1):.2f})")
+    print("  translated, by statement: " + ", ".join(f"{k} {n}" for k, n in kinds.most_common()))
     for error, n in failures.most_common(8):
         print(f"  {n:5d}  {error}")
     if args.sample:
-        for scene, text, answer in random.Random(11).sample(samples, min(args.sample // 2, len(samples))):
+        rng = random.Random(args.seed)
+        for scene, text, answer in rng.sample(samples, min(args.sample, len(samples))):
             print(f"- [{scene}] {text}\n    {smql_of(answer)} -> {answer['message'].splitlines()[-1][:160]}")
 
 
@@ -270,7 +284,11 @@ def main():
                              "layouts (layout_questions), instead of the question files")
     parser.add_argument("--db", help="a database of the real layouts (made in a temporary folder if absent)")
     parser.add_argument("--limit", type=int, default=0, help="ask at most this many questions of each set")
-    parser.add_argument("--sample", type=int, default=0, help="print this many answers to check by hand")
+    parser.add_argument("--sample", type=int, default=0, help="print this many answers of each set to check by hand")
+    parser.add_argument("--seed", type=int, default=11, help="the seed of the sample")
+    parser.add_argument("--only", choices=["vsibench", "scanqa", "sqa3d"], help="ask one set only")
+    parser.add_argument("--no-situation", action="store_true", help="ask SQA3D's questions without their situation")
+    parser.add_argument("--failures", action="store_true", help="print each question that does not translate")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         db = args.db or os.path.join(tmp, "layouts")
@@ -281,13 +299,19 @@ def main():
         listing = subprocess.run([args.smql, db, "-json", "-c", "SHOW SCENES"], check=True, capture_output=True,
                                  text=True).stdout
         scenes = {r["name"] for r in json.loads(listing)[0]["rows"]}
-        vsibench(args, db, scenes)
+        if args.only in (None, "vsibench"):
+            vsibench(args, db, scenes)
         if args.layout_tasks or not args.fixtures:
             return
-        free_text(args, db, scenes, "ScanQA (val)", "ScanQA_v1.0_val.json",
-                  lambda data: [(q["scene_id"], q["question"]) for q in data])
-        free_text(args, db, scenes, "SQA3D (test)", "sqa3d_v1_balanced_questions_test_scannetv2.json",
-                  lambda data: [(q["scene_id"], q["question"]) for q in data["questions"]])
+        if args.only in (None, "scanqa"):
+            free_text(args, db, scenes, "ScanQA (val)", "ScanQA_v1.0_val.json",
+                      lambda data: [(q["scene_id"], q["question"]) for q in data])
+        if args.only in (None, "sqa3d"):
+            situated = not args.no_situation
+            free_text(args, db, scenes, "SQA3D (test)" + (", with the situation" if situated else ""),
+                      "sqa3d_v1_balanced_questions_test_scannetv2.json",
+                      lambda data: [(q["scene_id"], (q["situation"].strip() + " " if situated else "") + q["question"])
+                                    for q in data["questions"]])
 
 
 if __name__ == "__main__":

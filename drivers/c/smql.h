@@ -145,6 +145,18 @@ SMQL_API int smql_error_column(const smql_db* db);
  * one have run, and smql_errmsg tells what failed and where. */
 SMQL_API smql_status smql_execute(smql_db* db, const char* statements, smql_result** out);
 
+/* ASK's translator for this handle, as SET translator = '...' sets it (docs/ask.md): `url` is a
+ * language model's OpenAI-compatible endpoint ("http://127.0.0.1:8080/v1"), asked with the
+ * question, the scene's vocabulary and SMQL in brief, whose statement is parsed and bound before it
+ * runs; the built-in reader answers when it is absent or fails. NULL, "" or "built-in" restores the
+ * built-in reader. A URL that is not http:// is SMQL_ERROR_BINDING, as for SET, and changes nothing. */
+SMQL_API smql_status smql_set_translator(smql_db* db, const char* url);
+
+/* The translator ASK uses on this handle: the endpoint's URL, or "built-in". The text belongs to
+ * the handle and stays valid until the next smql_translator or smql_close on it; NULL for a NULL
+ * handle or one that failed to open. */
+SMQL_API const char* smql_translator(smql_db* db);
+
 /* Stops the statement smql_execute or smql_step is running on `db` in another thread: that call returns
  * SMQL_ERROR_INTERRUPTED and changes nothing. Safe from any thread and from a signal handler; with
  * no statement running it does nothing. NULL is ignored. */

@@ -21,6 +21,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/ask/model_translator.hpp"
 #include "engine/engine.hpp"
 #include "engine/eval/evaluation.hpp"
 #include "engine/format.hpp"
@@ -50,7 +51,8 @@ struct smql_db {
     // A handle smql_open made of a postgresql:// URL: statements run in the fleet store's server
     // (docs/fleet.md), through the fleet module, which owns the session.
     smql::fleet::StoreSession* store = nullptr;
-    std::string directory;  // smql_push and smql_pull read and write it through storage
+    std::string directory;   // smql_push and smql_pull read and write it through storage
+    std::string translator;  // smql_translator's text, until its next call
     bool readOnly = false;
     // Errors are kept per calling thread so that threads sharing a handle
     // read their own error; an entry exists only while its last call failed.
@@ -369,6 +371,26 @@ smql_status smql_execute(smql_db* db, const char* statements, smql_result** out)
         if (!sets.empty()) result->set = std::move(sets.back());
         *out = result.release();
     });
+}
+
+smql_status smql_set_translator(smql_db* db, const char* url) {
+    if (smql_status status = checkOpen(db); status != SMQL_OK) return status;
+    return guarded(db, {}, [&] {
+        const std::string to = url ? url : "";
+        // The engine's own reading of SET translator: the same URL check and fallback.
+        db->engine->setAskTranslator(
+            to.empty() || to == "built-in" || to == "builtin" ? nullptr : smql::ask::modelTranslator(to));
+    });
+}
+
+const char* smql_translator(smql_db* db) {
+    if (!db || !db->engine) return nullptr;
+    try {
+        db->translator = db->engine->askTranslatorName();
+    } catch (...) {
+        return nullptr;
+    }
+    return db->translator.c_str();
 }
 
 void smql_interrupt(smql_db* db) {

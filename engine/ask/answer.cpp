@@ -272,6 +272,7 @@ std::string direction(const Translation& t, const ResultSet& rs) {
     std::array<const std::vector<Value>*, 3> pickedRows{};
     std::string notes;
     for (std::size_t role = 0; role < 3 && role < t.roles.size(); ++role) {
+        if (role == 1 && t.roles[1].empty()) continue;  // facing the middle of the scene
         std::vector<const std::vector<Value>*> found;
         // Only things with a box have a place to stand by or face.
         for (const auto& row : rs.rows)
@@ -279,27 +280,52 @@ std::string direction(const Translation& t, const ResultSet& rs) {
                 std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
                 found.push_back(&row);
         if (found.empty()) return fmt::format("There is no {} here.", roleNames[role]);
+        // The thing asked about is another than the one stood by or faced ("the other chair").
+        if (role == 2)
+            std::stable_partition(found.begin(), found.end(), [&](const std::vector<Value>* row) {
+                return row != pickedRows[0] && row != pickedRows[1];
+            });
         pickedRows[role] = found.front();
         if (found.size() > 1)
             notes += fmt::format(" There are {} of the {}; this takes {}#{}.", found.size(), roleNames[role],
                                  text((*found.front())[category]), text((*found.front())[id]));
     }
     auto centre = [&](const std::vector<Value>* row) { return std::get<model::Box>((*row)[box]).center; };
-    model::Vec3 at = centre(pickedRows[0]), facing = centre(pickedRows[1]), asked = centre(pickedRows[2]);
+    model::Vec3 at = centre(pickedRows[0]), asked = centre(pickedRows[2]), facing{};
+    if (pickedRows[1]) {
+        facing = centre(pickedRows[1]);
+    } else {
+        // The middle of the scene: the mean centre of the things.
+        double n = 0;
+        for (const auto& row : rs.rows)
+            if (std::holds_alternative<model::Box>(row[box])) {
+                const auto c = std::get<model::Box>(row[box]).center;
+                facing.x += c.x, facing.y += c.y, n += 1;
+            }
+        facing.x /= n, facing.y /= n;
+    }
     double fx = facing.x - at.x, fy = facing.y - at.y, vx = asked.x - at.x, vy = asked.y - at.y;
-    // Counter-clockwise from the facing direction is to the left (z up).
-    double angle = std::atan2(fx * vy - fy * vx, fx * vx + fy * vy) * 180.0 / std::numbers::pi;
+    // Counter-clockwise from the facing direction is to the left (z up); a situation's person faces
+    // `turn` quarter turns counter-clockwise of that.
+    double angle = std::atan2(fx * vy - fy * vx, fx * vx + fy * vy) * 180.0 / std::numbers::pi - 90.0 * t.turn;
+    angle = std::remainder(angle, 360.0);
     bool quadrants = std::find(t.choices.begin(), t.choices.end(), "front-left") != t.choices.end();
     bool back = std::find(t.choices.begin(), t.choices.end(), "back") != t.choices.end();
+    bool front = std::find(t.choices.begin(), t.choices.end(), "front") != t.choices.end();
     std::string side = angle > 0 ? "left" : "right";
     std::string word;
     if (quadrants)
         word = std::string(std::abs(angle) <= 90 ? "front-" : "back-") + side;
     else if (back && std::abs(angle) >= 135)
         word = "back";
+    else if (front && std::abs(angle) <= 45)
+        word = "front";
     else
         word = side;
     auto label = [&](const std::vector<Value>* row) { return text((*row)[category]) + "#" + text((*row)[id]); };
+    if (t.turn != 0 || !pickedRows[1])
+        return fmt::format("The {} is to your {} ({} is {:.0f} degrees to the {} of your heading, {}).{}", t.subject,
+                           word, label(pickedRows[2]), std::abs(angle), side, t.object, notes);
     return fmt::format("The {} is to your {} ({} is {:.0f} degrees to the {} of the way from {} to {}).{}", t.subject,
                        word, label(pickedRows[2]), std::abs(angle), side, label(pickedRows[0]), label(pickedRows[1]),
                        notes);

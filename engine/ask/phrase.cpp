@@ -360,6 +360,33 @@ std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(con
     return std::nullopt;
 }
 
+void PhraseParser::shortenNoun(std::vector<std::string>& nounWords, const Words& w, std::size_t start) {
+    // A name of a thing is a few words ("kitchen cabinet door"); more is a sentence read wrongly,
+    // unless a few more describe it ("the large larder style stainless steel fridge freezer": its
+    // last words name it).
+    if (nounWords.size() > 2 * kMaxNounWords) throw notUnderstood(w, start);
+    if (nounWords.size() <= kMaxNounWords) return;
+    const auto cut = nounWords.begin() + static_cast<std::ptrdiff_t>(nounWords.size() - kMaxNounWords);
+    out_.notes.push_back(fmt::format("'{}' is left out", joined(Words(nounWords.begin(), cut), 0, nounWords.size())));
+    nounWords.erase(nounWords.begin(), cut);
+}
+
+bool PhraseParser::selfPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p) {
+    if (i >= w.size() || !isOneOf(w[i], {"me", "myself", "us"})) return false;
+    if (!self_) {
+        if (w[i] == "us") return false;
+        throw Error(ErrorKind::Binding, fmt::format("'{}' needs where you are", w[i]), std::nullopt,
+                    "say it first, as in: I am sitting on the bed facing the window. What is on my left?");
+    }
+    // "near me", "left of me": the thing the person stands at.
+    p = self_->at;
+    p.self = true;
+    ++i;
+    if (withPosts) posts(w, i, p);
+    p.words = "you";
+    return true;
+}
+
 bool PhraseParser::idPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p) {
     if (i >= w.size()) return false;
     auto id = idReference(w[i]);
@@ -387,6 +414,7 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         p.words = joined(w, wordsStart, i);
         return p;
     }
+    if (selfPhrase(w, i, withPosts, p)) return p;
     for (; i < w.size(); ++i) {
         const std::string& word = w[i];
         if (nounWords.empty()) {
@@ -463,7 +491,7 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         nounWords.push_back("object");
     }
     // A name of a thing is a few words ("kitchen cabinet door"); more is a sentence read wrongly.
-    if (nounWords.size() > kMaxNounWords) throw notUnderstood(w, start);
+    shortenNoun(nounWords, w, start);
     resolveNoun(p, nounWords);
     if (!side.empty()) {
         // A side names one node of one category (wall.left); of anything else it is left out.
@@ -618,7 +646,31 @@ Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pai
     // Things are on a wall by hanging there: "the picture on the wall" is attached to it.
     if (c.predicate == "on" && isPlane(c.args.front())) c.predicate = "attached";
     c.words = joined(w, start, i);
+    if (self_) {
+        // After a situation the sides are the person's, whose heading is the view's turned back by
+        // `turn`: "left of me", "behind me" (ahead of me is farther ahead, `behind` in SMQL's
+        // terms); "right of the sofa" (the person's right). Of another thing, in front of it is
+        // nearer the person (SMQL's in_front_of).
+        static constexpr std::array<std::string_view, 4> sides{"behind", "right_of", "in_front_of", "left_of"};
+        const bool self = c.args.front().self;
+        const std::string asked = !self                          ? c.predicate
+                                  : c.predicate == "in_front_of" ? "behind"
+                                  : c.predicate == "behind"      ? "in_front_of"
+                                                                 : c.predicate;
+        for (int side = 0; side < 4; ++side)
+            if (sides[static_cast<std::size_t>(side)] == asked) {
+                c.predicate = selfSidePredicate(side, self_->turn);
+                break;
+            }
+        c.words = std::regex_replace(std::regex_replace(c.words, std::regex("\\bme\\b"), "you"), std::regex("\\bmy\\b"),
+                                     "your");
+    }
     return c;
+}
+
+std::string selfSidePredicate(int side, int turn) {
+    static constexpr std::array<std::string_view, 4> viewSides{"behind", "right_of", "in_front_of", "left_of"};
+    return std::string(viewSides[static_cast<std::size_t>(((side - turn) % 4 + 4) % 4)]);
 }
 
 bool PhraseParser::isPlane(const Phrase& p) const {

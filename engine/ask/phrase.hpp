@@ -76,6 +76,15 @@ struct Phrase {
     std::optional<Order> order;
     std::size_t pick = 0;  // an ordinal or a superlative: the pick-th in `order` (1 = first)
     std::size_t top = 1;   // "the two largest": how many of `order` answer
+    bool self = false;     // "me": the thing the person stands at (PhraseParser::setSelf)
+};
+
+// The person who asks, where a situation placed them (situation.hpp): "me" is the thing they stand
+// at (the view's place), and "on my left" is a side of the view turned by `turn` quarter turns
+// (clockwise, from the person's heading to the view's).
+struct Self {
+    Phrase at;
+    int turn = 0;
 };
 
 class PhraseParser {
@@ -104,6 +113,9 @@ public:
     // condition | order | exclusion, joined by "and", from w[i], onto `p`.
     void posts(const Words& w, std::size_t& i, Phrase& p);
 
+    // "me", "my left": the person a situation placed (none: "me" names nothing).
+    void setSelf(std::optional<Self> self) { self_ = std::move(self); }
+
     Error notUnderstood(const Words& w, std::size_t at) const;
     // Words neither the scene nor WordNet knows: the answer names them and nothing runs.
     const std::vector<std::string>& unknownWords() const { return unknownWords_; }
@@ -112,6 +124,10 @@ private:
     Condition condition(const Words& w, std::size_t& i, const std::pair<std::string, std::size_t>& pred);
     // A node named by its id at w[i] ("sofa#50"), with its posts: true, and `i` past it.
     bool idPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p);
+    // "me" after a situation, with its posts: true, and `i` past it; without one, an error.
+    bool selfPhrase(const Words& w, std::size_t& i, bool withPosts, Phrase& p);
+    // A noun of more words than a name takes loses its first ones, with a note; far more is an error.
+    void shortenNoun(std::vector<std::string>& nounWords, const Words& w, std::size_t start);
     void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords);
     bool isPlane(const Phrase& p) const;
 
@@ -121,6 +137,7 @@ private:
     std::string scene_;
     std::size_t sceneCount_ = 1;
     std::vector<std::string> unknownWords_;
+    std::optional<Self> self_;
     int nested_ = 0;  // inside a condition's phrase: an exclusion belongs to the outer one
 };
 
@@ -142,5 +159,11 @@ std::string whereText(const Phrase& p);
 // FIND <phrase> [ORDER BY ..] [LIMIT ..] [PATH]; `view` is a VIEW FROM clause or empty.
 std::string findText(const Phrase& p, bool path, const std::string& view = {});
 std::string countText(const Phrase& p, const std::string& view = {});
+
+// The view-relative predicate that holds for a thing on `side` of a person whose view is turned by
+// `turn` quarter turns clockwise from their heading, with the view's place as the reference: side
+// 0 ahead, 1 right, 2 behind, 3 left. Ahead of the view's place is `behind` in SMQL's terms
+// (farther from the viewer), behind it `in_front_of`.
+std::string selfSidePredicate(int side, int turn);
 
 }  // namespace smql::ask

@@ -21,6 +21,8 @@
 
 #include "engine/ask/lexicon.hpp"
 #include "engine/ask/phrase.hpp"
+#include "engine/ask/readers.hpp"
+#include "engine/ask/situation.hpp"
 #include "engine/ask/translator.hpp"
 #include "engine/ask/units.hpp"
 #include "engine/ask/wordnet.hpp"
@@ -147,6 +149,7 @@ public:
             Translation out;
             out.unit = unit_;
             PhraseParser parser(lexicon_, out, question_.planeCategories, question_.scene, question_.sceneCount);
+            parser.setSelf(self_);
             Cursor c{words_};
             try {
                 if (!(this->*form)(c, parser, out) || !c.done()) continue;
@@ -171,6 +174,8 @@ public:
 
     // "which of these objects (sofa, tv, bed) ...": the choices, cut from the text before the words are.
     void setChoices(std::vector<std::string> choices) { choices_ = std::move(choices); }
+    // After a situation: "me" and "my left" (situation.hpp).
+    void setSelf(std::optional<Self> self) { self_ = std::move(self); }
 
 private:
     // The answer's unit, however the question names it: "(in meters)", "(cm)" (RuleTranslator
@@ -420,6 +425,7 @@ private:
             if (c.accept({"is|are|does|do"})) {
                 thing = p.phrase(c.w, c.i, true);
                 c.accept({"have|has"});
+                c.accept({"made", "of|from"});
             } else {
                 // "what color recycling bin sits in the corner?"
                 thing = p.phrase(c.w, c.i, false);
@@ -514,8 +520,16 @@ private:
             !c.accept({"is|are", "visible"}))
             return false;
         if (!what) thing = p.phrase(c.w, c.i, true);
-        if (!c.accept({"from"})) return false;
-        Phrase from = p.phrase(c.w, c.i, true);
+        Phrase from;
+        if (self_ && (c.done() || c.accept({"from|at", "where", "i", "am"}) || c.accept({"where", "i", "am"}))) {
+            // After a situation: from where the person is.
+            c.skip({"standing", "sitting", "now", "right", "lying"});
+            from = self_->at;
+            from.words = "where you are";
+        } else {
+            if (!c.accept({"from"})) return false;
+            from = p.phrase(c.w, c.i, true);
+        }
         Phrase target = thing ? *thing : Phrase{};
         if (!thing) {
             target.kind = "object";
@@ -524,7 +538,7 @@ private:
         Condition seen;
         seen.predicate = "visible_from";
         seen.args.push_back(from);
-        seen.words = "visible from the " + from.words;
+        seen.words = from.words == "where you are" ? "visible from where you are" : "visible from the " + from.words;
         target.conditions.push_back(seen);
         out.kind = what ? QuestionKind::Relational : QuestionKind::Existence;
         out.smql = findText(target, false);
@@ -938,6 +952,14 @@ private:
             std::size_t verbAt = c.i;
             c.skip({"present", "seen", "found", "hanged", "hung", "directly", "just", "located", "placed", "sitting",
                     "lying", "standing", "kept", "hanging", "positioned", "situated"});
+            // "what is stacked up on ...", "what is leaning against ...": a verb of place before
+            // the predicate says no more than the predicate.
+            if (c.i == verbAt && !c.done() && (c.peek().ends_with("ing") || c.peek().ends_with("ed")) &&
+                !PhraseParser::predicateAt(c.w, c.i)) {
+                std::size_t k = c.i + 1;
+                if (k < c.w.size() && isOneOf(c.w[k], {"up", "down", "out", "around"})) ++k;
+                if (PhraseParser::predicateAt(c.w, k)) c.i = k;
+            }
             std::size_t before = thing.conditions.size();
             p.posts(c.w, c.i, thing);
             if (thing.conditions.size() == before && thing.excluded.empty()) return false;
@@ -1036,6 +1058,25 @@ private:
         } else {
             subject = p.phrase(c.w, c.i, false);
         }
+        // "is the table on my left black?": whether there is such a thing where it is said to be.
+        if (!does && c.i + 1 < c.w.size() && !subject.colour && colourOf(c.w.back())) {
+            Words head(c.w.begin(), c.w.end() - 1);
+            std::size_t k = c.i;
+            Phrase placed = subject;
+            try {
+                p.posts(head, k, placed);
+            } catch (const Error&) {
+                k = c.i;
+            }
+            if (k == head.size() && !placed.conditions.empty()) {
+                placed.colour = colourOf(c.w.back());
+                c.i = c.w.size();
+                out.kind = QuestionKind::Existence;
+                out.smql = findText(placed, false);
+                describeSubject(placed, out);
+                return true;
+            }
+        }
         // "is the mug red?": whether there is such a thing.
         if (c.i + 1 == c.w.size() && !subject.colour && colourOf(c.peek())) {
             subject.colour = colourOf(c.peek());
@@ -1100,6 +1141,7 @@ private:
     Words words_;
     std::string unit_ = "m";
     std::vector<std::string> choices_;
+    std::optional<Self> self_;
 };
 
 std::vector<std::string> QuestionReader::wordsFor(const std::string& verb) {
@@ -1179,104 +1221,202 @@ Error QuestionReader::unreadable() const {
     return cannotTranslate(question_.text, detail, suggestion);
 }
 
-// VSI-Bench's route plan: "You are a robot beginning at the bed facing the tv. You want to navigate
-// to the toilet. You will perform the following actions (...): 1. Go forward until the tv 2. [please
-// fill in] 3. Go forward until the toilet. You have reached the final destination." The things it
-// names become the rows (their boxes); the answer fills in each turn (answer.cpp).
-std::optional<Translation> routePlan(const Question& question, const Lexicon& lexicon) {
-    static const std::regex opening(
-        R"(beginning at (?:the )?(.+?),? (?:and )?facing (?:the )?(.+?)\.\s*you want to navigate to (?:the )?(.+?)\.)",
-        std::regex::icase);
-    std::smatch m;
-    if (!std::regex_search(question.text, m, opening)) return std::nullopt;
-    const std::string start = m.str(1), facing = m.str(2), goal = m.str(3);
-    std::string actions = m.suffix().str();
-    if (auto colon = actions.find("):"); colon != std::string::npos) actions.erase(0, colon + 2);
-    static const std::regex reached(R"(you have reached.*$)", std::regex::icase);
-    actions = std::regex_replace(actions, reached, "");
-    static const std::regex item(R"((?:^|\s)\d+\.\s*([\s\S]*?)(?=\s\d+\.\s|$))");
-    static const std::regex forward(R"(^\s*go forward until (?:the )?(.+?)[.\s]*$)", std::regex::icase);
-    Translation out;
-    out.kind = QuestionKind::Route;
-    std::vector<std::string> names{start, facing};
-    for (auto it = std::sregex_iterator(actions.begin(), actions.end(), item); it != std::sregex_iterator(); ++it) {
-        std::string step = (*it)[1].str();
-        std::smatch f;
-        if (step.find("please fill in") != std::string::npos) {
-            out.steps.push_back("turn");
-        } else if (std::regex_match(step, f, forward)) {
-            out.steps.push_back("forward");
-            names.push_back(f.str(1));
-        }
-    }
-    if (out.steps.empty()) return std::nullopt;
-    if (names.size() == 2) names.push_back(goal);
-    PhraseParser parser(lexicon, out, question.planeCategories, question.scene, question.sceneCount);
-    std::vector<std::string> all;
-    for (const auto& name : names) {
-        Words w = words(name);
-        std::size_t i = 0;
-        Phrase ph = parser.phrase(w, i, false);
-        auto cats = ph.categories.empty() ? std::vector<std::string>{model::categoryName(ph.noun)} : ph.categories;
-        out.roles.push_back(cats);
-        for (const auto& c : cats)
-            if (std::find(all.begin(), all.end(), c) == all.end()) all.push_back(c);
-    }
-    std::string any;
-    for (const auto& n : all) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(n));
-    out.smql = fmt::format("FIND thing WHERE {} RETURN id, category, box", all.size() > 1 ? "(" + any + ")" : any);
-    out.subject = goal;
-    out.object = fmt::format("from the {} facing the {}", start, facing);
-    return out;
-}
-
-// VSI-Bench's appearance order: "What will be the first-time appearance order of the following
-// categories in the video: chair, sofa, tv, table?" The nodes of those categories ordered by the
-// frame that first saw each (ingest's `first_seen`); the answer lists the categories in that order.
-std::optional<Translation> appearanceOrder(const Question& question, const Lexicon& lexicon) {
-    static const std::regex asked(
-        R"((?:appearance order|order of (?:first )?appearance|order (?:were|are|did) .*?(?:first )?(?:seen|appear))[^:]*:\s*([^?]+))",
-        std::regex::icase);
-    std::smatch m;
-    if (!std::regex_search(question.text, m, asked)) return std::nullopt;
-    std::string list = std::regex_replace(m.str(1), std::regex(R"(\s+and\s+)"), ", ");
-    Translation out;
-    out.kind = QuestionKind::Appearance;
-    PhraseParser parser(lexicon, out, question.planeCategories, question.scene, question.sceneCount);
-    std::vector<std::string> all;
-    for (std::size_t at = 0; at <= list.size();) {
-        std::size_t comma = list.find(',', at);
-        Words w = words(list.substr(at, comma == std::string::npos ? std::string::npos : comma - at));
-        at = comma == std::string::npos ? list.size() + 1 : comma + 1;
-        if (w.empty()) continue;
-        std::size_t i = 0;
-        Phrase ph = parser.phrase(w, i, false);
-        auto cats = ph.categories.empty() ? std::vector<std::string>{model::categoryName(ph.noun)} : ph.categories;
-        out.roles.push_back(cats);
-        out.choices.push_back(joined(w, 0, w.size()));
-        for (const auto& c : cats)
-            if (std::find(all.begin(), all.end(), c) == all.end()) all.push_back(c);
-    }
-    if (all.empty()) return std::nullopt;
-    const auto& stored = question.attributes;
-    if (std::find(stored.begin(), stored.end(), "first_seen") == stored.end())
-        throw Error(ErrorKind::Binding,
-                    fmt::format("scene '{}' keeps no frame that first saw each thing (a layout, not a capture)",
-                                question.scene),
-                    std::nullopt, "ask it of a scene made by smql ingest from a capture's frames");
-    std::string any;
-    for (const auto& n : all) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(n));
-    out.smql = fmt::format("FIND thing WHERE {} ORDER BY first_seen RETURN id, category, first_seen",
-                           all.size() > 1 ? "(" + any + ")" : any);
-    out.subject = "thing";
-    out.subjectPlural = "things";
-    return out;
-}
-
 class RuleTranslator final : public Translator {
 public:
     std::string name() const override { return "the built-in reader"; }
 
+private:
+    // SQA3D's ways of asking what the memory answers another way: "is the number of chairs odd or
+    // even?" (a count), "is the door open or closed?" (the door; `stateWords` say what is left
+    // out), "is the table small or large?" (its size), "what can I use in front of me to ...?"
+    // (what is there), "is the shape of the table round or square?" (its shape).
+    static std::string readAsAsked(std::string plain, std::optional<std::string>& stateWords) {
+        // ScanQA's ways of asking: "what surrounds the sink?" (what is around it), "what does the
+        // cabinet have?" (what is on it), "a copier sits on the floor to the left of what?" (the
+        // copier is to the left of what), "where does the trash can set?".
+        static const std::pair<std::regex, std::string> scanQa[] = {
+            {std::regex(R"(^what (?:surrounds|borders|flanks|encircles|lines)\b)"), "what is around"},
+            {std::regex(R"(^what does (.+?) (?:have|hold|contain|carry|support)(?: on (?:it|top))?$)"),
+             "what is on $1"},
+            {std::regex(
+                 R"(^(?:a|an|the) (.+?) (?:sits|stands|lies|hangs|rests|is placed|is located|is sitting|is standing|is hanging|is positioned)( .+ what(?: \w+)?)$)"),
+             "the $1 is$2"},
+            {std::regex(R"(^where does (.+?) (?:set|sit|stand|lie|rest)$)"), "where is $1"},
+            {std::regex(R"(^where (?:is|are) (.+?) set$)"), "where is $1"},
+            {std::regex(R"(^how many (.+?) (?:surround|border|flank|encircle)s? (.+)$)"), "how many $1 are around $2"},
+        };
+        for (const auto& [from, to] : scanQa)
+            if (std::regex_search(plain, from)) {
+                plain = std::regex_replace(plain, from, to);
+                break;
+            }
+        // "is the number of chairs odd or even?", "can the number of chairs be divided by three?":
+        // the count answers it.
+        static const std::pair<std::regex, std::string> counts[] = {
+            {std::regex(
+                 R"(^(?:is|are) (?:the )?(?:total )?(?:number|amount|count|quantity) of (.+?) (?:an? )?(?:odd|even)(?: or (?:odd|even))?(?: number)?$)"),
+             "how many $1"},
+            {std::regex(R"(^(?:is|are) there an? (?:odd|even)(?: or (?:odd|even))? (?:number|amount) of (.+)$)"),
+             "how many $1"},
+            {std::regex(
+                 R"(^(?:can|could|is) (?:the )?(?:total )?(?:number|amount|count) of (.+?) (?:be )?(?:divided|divisible|dividable) by \w+$)"),
+             "how many $1"},
+            {std::regex(R"(^(?:are )?(?:the )?(.+?) (?:are )?(?:odd|even) or (?:odd|even)(?: in number)?$)"),
+             "how many $1"},
+        };
+        static const std::pair<std::regex, std::string> more[] = {
+            {std::regex(R"(^(?:are|is) there (?:more|less|fewer) than (?:one|two|three|four|five|\d+) (.+)$)"),
+             "how many $1"},
+            {std::regex(R"(^is (?:that|this|it) the only (.+)$)"), "how many $1"},
+            {std::regex(
+                 R"(^(?:are|is) (?:all )?(?:the )?(.+?) (?:all )?(?:of )?(?:the )?same (color|colour|shape|material)$)"),
+             "what $2 are the $1"},
+        };
+        for (const auto& [from, to] : more)
+            if (std::regex_match(plain, from)) {
+                plain = std::regex_replace(plain, from, to);
+                break;
+            }
+        for (const auto& [from, to] : counts)
+            if (std::regex_match(plain, from)) {
+                plain = std::regex_replace(plain, from, to);
+                break;
+            }
+        // "is the door open or closed?", "is the bed messy or tidy?": the memory keeps no such state;
+        // the thing is looked for, and the answer says so.
+        static const std::string states =
+            "open|opened|closed|shut|on|off|messy|tidy|clean|dirty|neat|empty|full|made|unmade|lit|locked|unlocked|"
+            "occupied|vacant|parted|drawn|up|down|folded|unfolded|plugged in|unplugged|covered|uncovered|well made";
+        static const std::regex state("^(?:is|are) (.+?) (?:(?:switched|turned|fully|completely|all) )?(" + states +
+                                      ") or (?:(?:switched|turned|fully|completely) )?(?:" + states + "|not)( .+)?$");
+        static const std::regex stateAfter("^(?:the )?(.+?) (?:is|are) (?:(?:switched|turned|fully) )?(" + states +
+                                           ") or (?:" + states + ")$");
+        static const std::regex sizeChoice(
+            "^(?:is|are) (.+?) (small|large|big|tall|short|little|long|wide|narrow|high|low) or "
+            "(?:small|large|big|tall|short|little|long|wide|narrow|high|low)( .+)?$");
+        if (std::smatch sm; std::regex_match(plain, sm, state)) {
+            stateWords = sm.str(2) + " or ...";
+            plain = "is there " + sm.str(1) + sm.str(3);
+        } else if (std::regex_match(plain, sm, stateAfter)) {
+            stateWords = sm.str(2) + " or ...";
+            plain = "is there " + sm.str(1);
+        } else if (std::regex_match(plain, sm, sizeChoice)) {
+            // "is the table small or large?": its size answers it.
+            const std::string measure =
+                sm.str(2) == "tall" || sm.str(2) == "short" || sm.str(2) == "high" || sm.str(2) == "low" ? "tall"
+                : sm.str(2) == "long"                                                                    ? "long"
+                : sm.str(2) == "wide" || sm.str(2) == "narrow"                                           ? "wide"
+                                                                                                         : "big";
+            plain = "how " + measure + " is " + sm.str(1) + sm.str(3);
+        }
+        // "what can I use in front of me to make copies?", "what is the name of the thing on my left?":
+        // what is there.
+        plain = std::regex_replace(
+            plain,
+            std::regex(
+                R"(^(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)"),
+            "what$1 is $2");
+        plain = std::regex_replace(plain, std::regex(R"(^what is the name of (.+)$)"), "which is $1");
+
+        // "is the shape of the table round or square?": what shape it is.
+        plain = std::regex_replace(
+            plain,
+            std::regex(
+                R"(^is the (shape|color|colour|material) of (.+?)(?: (?:round|square|rectangular|circular|oval|triangular|rectangle|circle|cylindrical|wood|wooden|metal|plastic|glass|fabric|leather|white|black|brown|gray|grey|red|blue|green|yellow|or))+$)"),
+            "what $1 is $2");
+        return plain;
+    }
+
+    // "which is bigger between A and B?", "is A or B closer to me?", "which is closer to me, A or
+    // B?", "which one is bigger the door or the bed?": the forms the choosing below reads.
+    static std::string eitherAsChoice(std::string text) {
+        text = std::regex_replace(
+            text,
+            std::regex(
+                R"(^\s*(?:which|what)(?: one)? is (taller|shorter|bigger|larger|smaller|longer|wider|closer|nearer|farther|higher|lower) between (?:the )?(.+?) and (?:the )?([^?]+)\??\s*$)",
+                std::regex::icase),
+            "which of $2 and $3 is $1?");
+        {
+            static const std::regex eitherCloser(
+                R"(^\s*(?:is|are) (?:the )?(.+?) or (?:the )?(.+?) ([A-Za-z]+)( (?:to|from) (?:me|my position|where i am))\??\s*$)",
+                std::regex::icase);
+            static const std::regex toMe(
+                R"(^\s*(?:which|what)(?: one)? is ([A-Za-z]+)( (?:to|from) (?:me|my position|where i am)),? *(?:between )?(?:the )?(.+?) (?:or|and) (?:the )?([^?]+?)\??\s*$)",
+                std::regex::icase);
+            static const std::regex noComma(
+                R"(^\s*(?:which|what)(?: one)? is ([A-Za-z]+) (?:between )?(?:the )?([^,]+?) or (?:the )?([^?,]+?)\??\s*$)",
+                std::regex::icase);
+            std::smatch e;
+            if (std::regex_match(text, e, eitherCloser))
+                text = fmt::format("which is {}{}, {} or {}?", e.str(3), e.str(4), e.str(1), e.str(2));
+            else if (std::regex_match(text, e, toMe))
+                text = fmt::format("which is {}{}, {} or {}?", e.str(1) == "close" ? "closer" : e.str(1), e.str(2),
+                                   e.str(3), e.str(4));
+            else if (std::regex_match(text, e, noComma))
+                // "which is closer, the tv or the trash can?": to the person who asks.
+                text = fmt::format("which is {}{}, {} or {}?", e.str(1),
+                                   isOneOf(e.str(1), {"closer", "nearer", "farther", "further"}) ? " to me" : "",
+                                   e.str(2), e.str(3));
+        }
+        return text;
+    }
+
+    // The pose a situation before the question says; `text` becomes the question alone.
+    static std::optional<Pose> situationOf(const Question& question, const Lexicon& lexicon, std::string& text,
+                                           std::vector<std::string>& notes) {
+        auto situated = splitSituation(text);
+        if (!situated) return std::nullopt;
+        Translation scratch;
+        PhraseParser parser(lexicon, scratch, question.planeCategories, question.scene, question.sceneCount);
+        std::optional<Pose> pose = readPose(situated->situation, lexicon, parser);
+        text = situated->question;
+        if (pose) {
+            text = takeTurn(text, *pose);
+            notes.push_back(fmt::format("the situation places you {}: {}", pose->words, viewClause(*pose)));
+        } else {
+            notes.push_back("the situation names none of the scene's things; it is left out");
+        }
+        return pose;
+    }
+
+    // The question as read; where it cannot be, the question without a few words that describe a
+    // part or a look the memory keeps nothing of ("the table with black legs", "the sink that
+    // appears to be ..."), the fewest words from the first such word that make it readable, with
+    // a note of what is left out.
+    static Translation readLeavingOut(QuestionReader& reader, const std::string& plain) {
+        try {
+            return reader.read(plain);
+        } catch (const Error& first) {
+            Words w = words(plain);
+            for (std::size_t at = 1; at < w.size(); ++at) {
+                if (!isOneOf(w[at], {"with", "that", "which", "who", "having", "made", "appear", "appears", "looks",
+                                     "look", "shaped"}))
+                    continue;
+                for (std::size_t n = 2; n <= 6 && at + n <= w.size(); ++n) {
+                    // The words left out end where the question goes on: at its end, a verb of
+                    // place or a predicate ("the bed with a blue mattress located": not "bed blue
+                    // mattress").
+                    const std::size_t next = at + n;
+                    if (next < w.size() && !PhraseParser::predicateAt(w, next) &&
+                        !isOneOf(w[next], {"located", "placed", "sitting", "standing", "hanging", "kept", "is", "are",
+                                           "found", "positioned", "have", "has"}))
+                        continue;
+                    Words kept(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(at));
+                    kept.insert(kept.end(), w.begin() + static_cast<std::ptrdiff_t>(at + n), w.end());
+                    try {
+                        Translation out = reader.read(joined(kept, 0, kept.size()));
+                        out.notes.push_back(
+                            fmt::format("'{}' is left out: the memory keeps nothing of it", joined(w, at, at + n)));
+                        return out;
+                    } catch (const Error&) {
+                    }
+                }
+            }
+            throw first;
+        }
+    }
+
+public:
     Translation translate(const Question& question) const override {
         if (question.text.find("[please fill in]") != std::string::npos) {
             Lexicon lexicon(question.categories);
@@ -1286,8 +1426,13 @@ public:
             Lexicon lexicon(question.categories);
             if (auto order = appearanceOrder(question, lexicon)) return *order;
         }
-        // One question: a second sentence explains the first ("The directions refer to ...").
+        // A situation before the question ("I am sitting on the bed facing the window. What is to my
+        // left?"): the pose it says, against which "my left" and "which way" are read.
         std::string text = question.text;
+        Lexicon lexicon(question.categories);
+        std::vector<std::string> situationNotes;
+        std::optional<Pose> pose = situationOf(question, lexicon, text, situationNotes);
+        // One question: a second sentence explains the first ("The directions refer to ...").
         if (auto mark = text.find('?'); mark != std::string::npos) text.erase(mark + 1);
         // "which of these objects (sofa, tv, bed) is ...": the choices keep their commas.
         std::vector<std::string> choices;
@@ -1328,6 +1473,7 @@ public:
             std::transform(w.begin(), w.end(), w.begin(), [](unsigned char ch) { return std::tolower(ch); });
             return w;
         };
+        text = eitherAsChoice(std::move(text));
         std::optional<Comparative> chosen;
         std::string chosenTo, chosenA, chosenB;
         if (choices.empty() && std::regex_search(text, m, chooseAfter) && comparativeOf(lower(m.str(1)))) {
@@ -1364,14 +1510,124 @@ public:
             "|show me (?=where|what|which|how))?|tell me |i want to know |i wonder |i would like to know |measuring "
             "from the closest point of each object |these are frames of a video )+");
         std::string plain = std::regex_replace(joined(all, 0, all.size()), lead, "");
+        std::optional<std::string> stateWords;
+        plain = readAsAsked(plain, stateWords);
         // "what type of chair ..." asks which chair.
         plain = std::regex_replace(plain, std::regex("^what (?:type|kind|sort|types|kinds) of "), "which ");
         plain = std::regex_replace(plain, std::regex(" please$"), "");
         if (plain.empty()) throw cannotTranslate(question.text, "", "");
-        Lexicon lexicon(question.categories);
+        if (!pose && std::regex_search(plain, std::regex(R"(\bmy (?:\w+ )?o clock\b)")))
+            throw Error(ErrorKind::Binding, "'o'clock' needs where you are and which way you face", std::nullopt,
+                        "say it first, as in: I am sitting on the bed facing the window. What is at my 3 o'clock?");
         QuestionReader reader(question, lexicon);
         reader.setChoices(std::move(choices));
-        return reader.read(plain);
+        if (stateWords)
+            situationNotes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", *stateWords));
+        if (!pose) {
+            Translation out = readLeavingOut(reader, plain);
+            for (const auto& note : situationNotes) out.notes.push_back(note);
+            return out;
+        }
+        return situated(question, lexicon, *pose, plain, reader, situationNotes);
+    }
+
+private:
+    // A question read against a situation's pose: which way a thing is, or any question whose "me"
+    // and "my left" are the pose's, with the pose's VIEW FROM.
+    static Translation situated(const Question& question, const Lexicon& lexicon, const Pose& pose, std::string plain,
+                                QuestionReader& reader, const std::vector<std::string>& notes) {
+        Translation out;
+        PhraseParser parser(lexicon, out, question.planeCategories, question.scene, question.sceneCount);
+        // "what am I sitting on?": the thing the situation places the person at.
+        static const std::regex self(
+            R"(^(?:what|which) (?:object |thing |furniture |item )?am i (?:sitting|standing|lying|leaning|resting|laying|using|holding|touching) ?(?:on|at|in|by|against|next to|near|beside)?$)");
+        static const std::regex faced(
+            R"(^(?:what|which) (?:object |thing |furniture |item )?am i (?:facing|looking at|standing in front of|sitting in front of|in front of|watching)$)");
+        if (std::regex_match(plain, self)) plain = "where is the " + pose.at.words;
+        if (std::regex_match(plain, faced))
+            plain = "where is the " + (pose.facing && pose.turn == 0 ? pose.facing->words : pose.at.words);
+        // "where is the rug relative to me?": which way it is.
+        static const std::regex whereToMe(
+            R"(^where (?:is|are) (.+?) (?:located |positioned |placed )?(?:according to|relative to|with respect to|compared to|in relation to|from|to) me$)");
+        plain = std::regex_replace(plain, whereToMe, "is $1 on my left or right or behind me");
+        if (!situatedDirection(plain, pose, lexicon, parser, out)) {
+            // The person's sides said as the phrase grammar reads them: "to the left of me".
+            static const std::pair<std::regex, std::string> sides[] = {
+                {std::regex(
+                     R"(\b(?:to|on|at|by) (?:my|your) (?:immediate |direct |very |own |far )?(left|right)(?: hand| foot| feet)?(?: side)?(?: of me)?\b)"),
+                 "to the $1 of me"},
+                {std::regex(
+                     R"(\b(?:to|on|at) the (left|right)(?: hand)?(?: side)?\b(?! of\b)(?! side\b)(?! hand\b)(?! end\b)(?! corner\b))"),
+                 "to the $1 of me"},
+                {std::regex(
+                     R"(\bmy (?:current |present |own )?(?:position|location|spot|place|seat)(?: on the \w+)?\b|\bwhere i (?:am(?: (?:standing|sitting|now|lying|seated))?|stand|sit)\b)"),
+                 "me"},
+                {std::regex(R"(\b(?:across from|opposite|facing) me\b)"), "in front of me"},
+                {std::regex(R"(\b(?:that |which )?i am (?:facing|looking at|in front of)\b)"), "in front of me"},
+                {std::regex(R"(\b(?:that |which )?i am (?:sitting|standing|lying|leaning) (?:on|at|in|by|against)\b)"),
+                 "near me"},
+                {std::regex(
+                     R"(^can i (?:reach|touch|grab|get to) (.+?)(?: from where i am(?: standing| sitting| now)?| without moving| from here)?$)"),
+                 "is $1 near me"},
+
+                {std::regex(R"(\b(?:right |directly |just |immediately )?(?:behind|in back of) (?:me|myself|us)\b)"),
+                 "behind me"},
+                {std::regex(R"(\bat my back\b)"), "behind me"},
+                {std::regex(R"(\bbehind$)"), "behind me"},
+                {std::regex(
+                     R"(\b(?:right |directly |just |straight )?(?:in front of|ahead of|before) (?:me|myself|us)\b)"),
+                 "in front of me"},
+                {std::regex(R"(\b(?:straight |directly |right )?ahead\b(?! of))"), "in front of me"},
+                {std::regex(R"(\b(?:directly |right )?in front\b(?! of))"), "in front of me"},
+                {std::regex(R"(^how (?:may|many) (?:total |in total )?)"), "how many "},
+            };
+            // "on the 3 o'clock of the sofa": a side of the sofa, as the person sees it.
+            static const std::pair<std::regex, std::string> clockOf[] = {
+                {std::regex(R"(\b(?:on|at|to|in) the (?:12|twelve|11|eleven|1|one) o clock (?:direction |side )?of\b)"),
+                 "behind"},
+                {std::regex(R"(\b(?:on|at|to|in) the (?:2|two|3|three|4|four) o clock (?:direction |side )?of\b)"),
+                 "to the right of"},
+                {std::regex(R"(\b(?:on|at|to|in) the (?:5|five|6|six|7|seven) o clock (?:direction |side )?of\b)"),
+                 "in front of"},
+                {std::regex(R"(\b(?:on|at|to|in) the (?:8|eight|9|nine|10|ten) o clock (?:direction |side )?of\b)"),
+                 "to the left of"},
+            };
+            for (const auto& [from, to] : clockOf) plain = std::regex_replace(plain, from, to);
+            // "on my 5 o'clock": the nearest side.
+            Words pw = words(plain);
+            for (std::size_t k = 0; k + 1 < pw.size(); ++k)
+                if (isOneOf(pw[k], {"on", "to", "at", "in", "by"}))
+                    if (auto clock = clockAt(pw, k + 1)) {
+                        static constexpr std::string_view said[] = {"in front of me", "to the right of me", "behind me",
+                                                                    "to the left of me"};
+                        pw.erase(pw.begin() + static_cast<std::ptrdiff_t>(k),
+                                 pw.begin() + static_cast<std::ptrdiff_t>(k + 1 + clock->second));
+                        Words side = words(std::string(said[static_cast<std::size_t>(clock->first)]));
+                        pw.insert(pw.begin() + static_cast<std::ptrdiff_t>(k), side.begin(), side.end());
+                    }
+            plain = joined(pw, 0, pw.size());
+            for (const auto& [from, to] : sides) plain = std::regex_replace(plain, from, to);
+            reader.setSelf(Self{pose.at, pose.turn});
+            try {
+                out = reader.read(plain);
+            } catch (const Error&) {
+                // "what is to my left that keeps food cold?": what the clause says of the thing is
+                // beyond the memory; the thing and its place are read.
+                static const std::regex clause(
+                    R"(\s(?:that|which|who)\s(?!is\s|are\s).*$|\s(?:that|which)\s(?:is|are)\s(?:used|made|shaped|meant|for)\b.*$|\s(?:while|when|as|if|without|so|because)\s.*$|\s(?:has|have|with)\s(?:a|an|the|some|its|their|any)\s.*$|\s(?:could|can|should|do|does|would|will|must)\s(?:i|you|we|be)\b.*$)");
+                std::string shorter = std::regex_replace(plain, clause, "");
+                if (shorter == plain) throw;
+                out = reader.read(shorter);
+                out.notes.push_back(fmt::format("'{}' is left out", plain.substr(shorter.size() + 1)));
+            }
+            // The view matters to the sides (and to what is in sight, facing the way the person does).
+            static const std::regex viewed(R"(\b(left_of|right_of|in_front_of|behind)\(|\.(left|right|front|back)\b)");
+            bool sight = out.smql.find("visible_from(") != std::string::npos && pose.turn == 0;
+            if (out.runnable && (std::regex_search(out.smql, viewed) || sight))
+                out.smql = withView(out.smql, viewClause(pose));
+        }
+        for (const auto& note : notes) out.notes.push_back(note);
+        return out;
     }
 };
 

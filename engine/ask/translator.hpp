@@ -90,6 +90,10 @@ struct Translation {
     // and the answer's choices ("left", "right", "back"; or the four quadrants).
     std::vector<std::vector<std::string>> roles;
     std::vector<std::string> choices;
+    // Direction after a situation (situation.hpp): quarter turns clockwise from the person's heading
+    // to the way from the thing stood by to the thing faced; no thing faced (empty roles[1]): to
+    // the middle of the scene, the mean centre of the rows.
+    int turn = 0;
     // Reverse: the anchor categories, named only when nothing else holds ("on the rug", not "on
     // the floor and the rug").
     std::vector<std::string> background;

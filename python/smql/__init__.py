@@ -210,6 +210,20 @@ class Connection:
         if self._db is not None:
             self._db.interrupt()
 
+    @property
+    def translator(self):
+        """What ASK translates with on this connection: a language model's endpoint URL, or
+        "built-in". Setting it is SET translator = '...': a URL (http://127.0.0.1:8080/v1), or
+        None or "built-in" for the built-in reader (docs/ask.md)."""
+        self._check_open()
+        return self._db.translator()
+
+    @translator.setter
+    def translator(self, url):
+        with self._lock:
+            self._check_open()
+            self._db.set_translator(url)
+
     def ingest(self, capture, progress=None, **options):
         """As smql.ingest, into this connection's database; the scene becomes the current one."""
         callback = None

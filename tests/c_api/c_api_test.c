@@ -921,6 +921,40 @@ static int close_at_exit_child(const char* dir, const char* fresh, const char* m
     return 0;
 }
 
+/* ASK's translator set and read through the API, as SET translator does: a URL that is not http
+ * is refused and changes nothing; an endpoint that is not there leaves the question to the
+ * built-in reader, with a note; NULL restores the built-in reader. */
+static void test_translator(const char* dir) {
+    smql_db* db = NULL;
+    CHECK(smql_open(dir, 0, &db) == SMQL_OK);
+    CHECK(smql_translator(db) != NULL && strcmp(smql_translator(db), "built-in") == 0);
+    CHECK(smql_set_translator(db, "ftp://127.0.0.1/v1") == SMQL_ERROR_BINDING);
+    CHECK(contains(smql_errmsg(db), "translator"));
+    CHECK(strcmp(smql_translator(db), "built-in") == 0);
+
+    /* Port 9 (discard) on the loopback: nothing listens there, so the model cannot answer. */
+    CHECK(smql_set_translator(db, "http://127.0.0.1:9/v1") == SMQL_OK);
+    CHECK(strcmp(smql_translator(db), "http://127.0.0.1:9/v1") == 0);
+    smql_result* res = NULL;
+    CHECK(smql_execute(db, "ASK 'how many cushions are on the couch?'", &res) == SMQL_OK);
+    const char* message = res ? smql_result_message(res) : NULL;
+    CHECK(contains(message, "COUNT cushion WHERE on(sofa)"));
+    CHECK(contains(message, "built-in reader"));
+    CHECK(contains(message, "7 cushions"));
+    smql_result_free(res);
+
+    /* SET translator and the call are one setting. */
+    CHECK(smql_execute(db, "SET translator = 'built-in'", NULL) == SMQL_OK);
+    CHECK(strcmp(smql_translator(db), "built-in") == 0);
+    CHECK(smql_set_translator(db, "http://127.0.0.1:9/v1") == SMQL_OK);
+    CHECK(smql_set_translator(db, NULL) == SMQL_OK);
+    CHECK(strcmp(smql_translator(db), "built-in") == 0);
+
+    CHECK(smql_set_translator(NULL, "built-in") == SMQL_ERROR_MISUSE);
+    CHECK(smql_translator(NULL) == NULL);
+    smql_close(db);
+}
+
 static void test_close_at_exit(const char* dir, const char* base) {
     char marker[4096], fresh[4096];
     snprintf(marker, sizeof marker, "%s/closed-at-exit", base);
@@ -970,6 +1004,7 @@ int main(int argc, char** argv) {
     test_prepared_quotes(base);
     test_bind_vector(base);
     test_prepared_interrupt(base);
+    test_translator(dir);
     test_close_at_exit(dir, base);
 
     nftw(base, remove_entry, 8, FTW_DEPTH | FTW_PHYS);

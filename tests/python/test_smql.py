@@ -157,6 +157,20 @@ def test_bad_input_and_closed_connections(tmp_path, replica):
         smql.connect(tmp_path / "missing", read_only=True)
 
 
+def test_translator_is_set_and_read(db):
+    assert db.translator == "built-in"
+    with pytest.raises(smql.ProgrammingError):
+        db.translator = "ftp://127.0.0.1/v1"
+    assert db.translator == "built-in"
+    # Nothing listens on the loopback's discard port: the built-in reader answers, with a note.
+    db.translator = "http://127.0.0.1:9/v1"
+    assert db.translator == "http://127.0.0.1:9/v1"
+    message = db.execute("ASK 'how many cushions are on the couch?'").message
+    assert "COUNT cushion WHERE on(sofa)" in message and "built-in reader" in message and "7 cushions" in message
+    db.translator = None
+    assert db.translator == "built-in"
+
+
 def test_messages_and_scripts(db):
     cur = db.execute("RELATE #20 TO #21")
     assert "wall-plug#20" in cur.message and cur.description

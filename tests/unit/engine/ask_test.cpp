@@ -1,6 +1,6 @@
 // ASK end to end: the English questions of tests/ask/questions.json over the generated room of
-// seed 7 (36 objects, the room of tests/suites/language.smqlt), Replica room 0 and four real rooms of
-// VSI-Bench (../shared/data/real-layouts). Each question
+// seed 7 (36 objects, the room of tests/suites/language.smqlt), Replica room 0 and five real rooms of
+// VSI-Bench (../shared/data/real-layouts; one of them with SQA3D's situated questions). Each question
 // names the SMQL it must translate to and/or words its answer must contain; the test prints the
 // share answered correctly and requires the floor docs/ask.md reports.
 #include <unistd.h>
@@ -54,6 +54,8 @@ std::unique_ptr<Engine> openWithTheRooms(const TempDir& dir) {
     model::SceneData twin = import::readVsiBench(layouts + "scannet_meta_info_val.json", "scene0697_01");
     twin.info.name = "bedroom-0697";
     engine->importScene(std::move(twin));
+    // A room SQA3D asks situated questions about ("I am facing a desk and there is a TV behind me. ...").
+    engine->importScene(import::readVsiBench(layouts + "scannet_meta_info_val.json", "scene0645_00"));
     std::string office =
         import::write("json", import::readVsiBench(layouts + "scannet_meta_info_val.json", "scene0591_01"));
     office = std::regex_replace(office, std::regex(R"("category": "trash-bin")"), R"("category": "Trash Bin")");
