@@ -282,6 +282,12 @@ std::uint64_t Database::fileSizeBytes() const {
     return size;
 }
 
+std::uint64_t Database::lastCommittedTransaction() const {
+    MDB_envinfo info{};
+    impl_->env->check(mdb_env_info(impl_->env->env(), &info), "reading the last committed transaction");
+    return info.me_last_txnid;
+}
+
 // --------------------------------------------------------- ReadTransaction
 
 ReadTransaction::ReadTransaction(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

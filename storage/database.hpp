@@ -78,6 +78,11 @@ public:
     bool readOnly() const;
     // Size of data.mdb on disk (the file grows with the data, not with mapSize).
     std::uint64_t fileSizeBytes() const;
+    // The id of the last transaction committed to the database by any process (LMDB's
+    // me_last_txnid, read from the meta pages without a transaction): a read transaction begun now
+    // sees this commit, so an answer read in a transaction of this id (ReadTransaction::
+    // transactionId) is still the answer while this returns the same id.
+    std::uint64_t lastCommittedTransaction() const;
 
     struct Impl;
 

@@ -1,4 +1,7 @@
 // Prepared statements: parsed once, run with bound values, which are data and never SMQL.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include "engine/parser/parser.hpp"
@@ -150,4 +153,72 @@ TEST_CASE("binding errors name the placeholder", "[prepared]") {
     CHECK_THAT(errorOf([&] { room.engine->execute("FIND lamp LIMIT $1"); }).message(),
                Catch::Contains("placeholder $1 has no value"));
     CHECK(errorOf([&] { room.engine->prepare("FIND ?; FIND ?"); }).kind() == ErrorKind::Usage);
+}
+
+TEST_CASE("a COUNT across all scenes prepared before another connection or process writes sees the new count",
+          "[prepared]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(generate::generateRoom({.seed = 1, .objectCount = 60, .name = "first"}));
+    run(*engine, "USE SCENE '*'");
+    PreparedStatement count = engine->prepare("COUNT ?");
+    PreparedStatement written = engine->prepare("COUNT book");
+
+    // The truth, from an engine that has answered nothing before (it shares the database).
+    auto counted = [&](const std::string& category) {
+        auto fresh = Engine::open(dir.path.string());
+        run(*fresh, "USE SCENE '*'");
+        return std::get<std::int64_t>(run(*fresh, "COUNT " + category).rows.at(0).at(0));
+    };
+    auto answer = [](PreparedStatement& statement) {
+        ResultSet rs = statement.execute();
+        REQUIRE(rs.columns.size() == 1);
+        CHECK(rs.columns[0].name == "count");
+        CHECK(rs.message.empty());
+        return std::get<std::int64_t>(rs.rows.at(0).at(0));
+    };
+
+    count.bind(1, std::string("Book"));
+    const std::int64_t before = answer(count);
+    REQUIRE(before > 0);
+    CHECK(answer(count) == before);  // the second run answers as the first
+    CHECK(answer(written) == before);
+    CHECK(std::get<std::int64_t>(run(*engine, "COUNT book").rows.at(0).at(0)) == before);
+
+    SECTION("another connection in this process") {
+        auto other = Engine::open(dir.path.string());
+        other->importScene(generate::generateRoom({.seed = 2, .objectCount = 60, .name = "second"}));
+    }
+    SECTION("another process") {
+        const pid_t child = ::fork();
+        REQUIRE(child >= 0);
+        if (child == 0) {
+            // No Catch2 and no destructors here: the child opens the database anew, writes and ends.
+            try {
+                auto other = Engine::open(dir.path.string());
+                other->importScene(generate::generateRoom({.seed = 2, .objectCount = 60, .name = "second"}));
+            } catch (...) {
+                ::_exit(3);
+            }
+            ::_exit(0);
+        }
+        int status = 0;
+        REQUIRE(::waitpid(child, &status, 0) == child);
+        REQUIRE(WIFEXITED(status));
+        REQUIRE(WEXITSTATUS(status) == 0);
+    }
+    const std::int64_t after = counted("book");
+    CHECK(after > before);
+    CHECK(answer(count) == after);
+    CHECK(answer(written) == after);
+    CHECK(std::get<std::int64_t>(run(*engine, "COUNT book").rows.at(0).at(0)) == after);
+
+    // Dropped, the scenes' books go with them: the count falls, and with no book left the answer
+    // is the note of a thing no scene holds, as before any COUNT ran.
+    run(*engine, "DROP SCENE 'second'");
+    CHECK(answer(count) == before);
+    run(*engine, "DROP SCENE 'first'");
+    ResultSet none = count.execute();
+    CHECK(none.rows.at(0).at(0) == Value(std::int64_t{0}));
+    CHECK_THAT(none.message, Catch::Contains("no book in any scene"));
 }
