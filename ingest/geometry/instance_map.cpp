@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <unordered_set>
 
 namespace smql::ingest {
 
@@ -209,6 +210,30 @@ std::unordered_map<std::uint64_t, InstanceCell> InstanceMap::core(const Instance
     for (const auto& [key, cell] : instance.cells)
         if (cell.views >= needed) out.emplace(key, cell);
     return out;
+}
+
+double shareOfPointsNear(const PointCloud& a, const PointCloud& b, double cell) {
+    if (a.empty()) return 0;
+    auto cellOf = [cell](const model::Vec3& p) {
+        return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(p.x / cell)),
+                                           static_cast<std::int64_t>(std::floor(p.y / cell)),
+                                           static_cast<std::int64_t>(std::floor(p.z / cell))};
+    };
+    std::unordered_set<std::uint64_t> cells;
+    for (const auto& p : b.points) {
+        auto [x, y, z] = cellOf(p);
+        cells.insert(pack(x, y, z));
+    }
+    std::size_t near = 0;
+    for (const auto& p : a.points) {
+        auto [x, y, z] = cellOf(p);
+        bool found = false;
+        for (int dx = -1; dx <= 1 && !found; ++dx)
+            for (int dy = -1; dy <= 1 && !found; ++dy)
+                for (int dz = -1; dz <= 1 && !found; ++dz) found = cells.contains(pack(x + dx, y + dy, z + dz));
+        near += found;
+    }
+    return static_cast<double>(near) / static_cast<double>(a.size());
 }
 
 void InstanceMap::consolidate() {

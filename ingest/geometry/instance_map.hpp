@@ -83,6 +83,10 @@ struct Instance {
     PointCloud points(std::uint32_t minViews = 1) const;
 };
 
+// The share of `a`'s points that have one of `b`'s in their cell of edge `cell` or a neighbouring one (the
+// map's own test of pieces, InstanceMap::consolidate, on points): how much of a piece touches a thing.
+double shareOfPointsNear(const PointCloud& a, const PointCloud& b, double cell);
+
 class InstanceMap {
 public:
     explicit InstanceMap(InstanceMapOptions options = {}) : options_(options) {}

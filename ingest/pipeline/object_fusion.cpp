@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -159,29 +158,6 @@ std::size_t framesSeen(const Thing& thing) {
     return static_cast<std::size_t>(std::unique(frames.begin(), frames.end()) - frames.begin());
 }
 
-// The share of `a`'s points with one of `b`'s within `reach` (in every axis): how much of a box-level piece
-// touches the thing it would join, not merely lies inside its box.
-double shareTouching(const PointCloud& a, const PointCloud& b, double reach) {
-    if (a.empty()) return 0;
-    auto key = [&](double x, double y, double z) {
-        return (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x / reach)) & 0x1FFFFF) << 42) |
-               (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(y / reach)) & 0x1FFFFF) << 21) |
-               (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(z / reach)) & 0x1FFFFF));
-    };
-    std::unordered_set<std::uint64_t> cells;
-    for (const auto& p : b.points) cells.insert(key(p.x, p.y, p.z));
-    std::size_t near = 0;
-    for (const auto& p : a.points) {
-        bool found = false;
-        for (int dx = -1; dx <= 1 && !found; ++dx)
-            for (int dy = -1; dy <= 1 && !found; ++dy)
-                for (int dz = -1; dz <= 1 && !found; ++dz)
-                    found = cells.contains(key(p.x + dx * reach, p.y + dy * reach, p.z + dz * reach));
-        near += found;
-    }
-    return static_cast<double>(near) / static_cast<double>(a.size());
-}
-
 // The whole with the part's instances and points added (its box and name are the caller's to fit).
 Thing withPart(const Thing& whole, const Thing& part) {
     Thing both = whole;
@@ -207,7 +183,7 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
                 Thing& b = things[large];
                 // Only a piece inside the larger's box can be a glimpse: the points are compared for those alone.
                 const double touching = model::fractionInside(a.box, b.box) >= options.namedTwiceShare
-                                            ? shareTouching(a.points, b.points, options.touchReach)
+                                            ? shareOfPointsNear(a.points, b.points, options.touchReach)
                                             : 0.0;
                 if (!pieceOf({a.box, a.category, frames[small]}, {b.box, b.category, frames[large]}, touching, options))
                     continue;
