@@ -74,6 +74,9 @@ struct ObjectTrack {
     std::vector<model::Vec3> fused;
     cv::Mat fusedColors;
     std::optional<model::Box> fusedBox;
+    // Why the name is doubted though it suits the box (object_fusion.hpp: outOfPlace), or "": the objects
+    // stage keeps such a name only as detected_as.
+    std::string nameDoubt;
 };
 
 // Lifts every instance of one frame with enough pixels. `stride` samples the

@@ -10,8 +10,9 @@ namespace {
 // Support: what things of the kind usually stand on (the floor, or a table, desk or counter), which tells a floor from
 // a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). Upright
 // ends: the kind has a thin upright part at an end or side (a bed's headboard, a sofa's back) that a detector may name
-// apart (object_fusion.cpp joins it back). The rows cover the memory's names for the detector's COCO classes
-// (detector.cpp) and the kinds of labelled captures.
+// apart (object_fusion.cpp joins it back). Room: the one kind of room the kind stands in (a toilet in a bathroom, a
+// fridge or an oven in a kitchen; object_fusion.cpp doubts a name among another room's things). The rows cover the
+// memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;
@@ -19,6 +20,7 @@ struct Typical {
     Support support;
     bool holdsThings = false;
     bool uprightEnds = false;
+    RoomKind room = RoomKind::Any;
 };
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true},
@@ -26,8 +28,8 @@ constexpr Typical kTypical[] = {
     {"chair", 0.9, 1.2, Support::Floor},
     {"sofa", 0.85, 2.8, Support::Floor, false, true},
     {"bed", 0.55, 2.3, Support::Floor, true, true},
-    {"fridge", 1.75, 2.0, Support::Floor},
-    {"toilet", 0.75, 0.9, Support::Floor},
+    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen},
+    {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom},
     {"door", 2.03, 2.4, Support::Floor},
     {"nightstand", 0.6, 0.8, Support::Floor, true},
     {"shelf", 0, 2.4, Support::Floor},
@@ -52,9 +54,9 @@ constexpr Typical kTypical[] = {
     {"bowl", 0, 0.45, Support::Surface},
     {"bottle", 0, 0.45, Support::Surface},
     {"mug", 0, 0.2, Support::Surface},
-    {"microwave", 0, 0.7, Support::Surface},
+    {"microwave", 0, 0.7, Support::Surface, false, false, RoomKind::Kitchen},
     {"sink", 0, 1.2, Support::Either},
-    {"oven", 0, 1.0, Support::Floor},
+    {"oven", 0, 1.0, Support::Floor, false, false, RoomKind::Kitchen},
     {"keyboard", 0, 0.55, Support::Surface},
     {"backpack", 0, 0.65, Support::Either},
     {"umbrella", 0, 1.2, Support::Either},
@@ -79,7 +81,7 @@ constexpr Typical kTypical[] = {
     {"mouse", 0, 0.2, Support::Surface},
     {"remote", 0, 0.3, Support::Surface},
     {"phone", 0, 0.25, Support::Surface},
-    {"toaster", 0, 0.5, Support::Surface},
+    {"toaster", 0, 0.5, Support::Surface, false, false, RoomKind::Kitchen},
     {"scissors", 0, 0.35, Support::Surface},
     {"toy", 0, 1.0, Support::Either},
     {"hair_dryer", 0, 0.4, Support::Surface},
@@ -115,6 +117,11 @@ bool holdsThings(std::string_view category) {
 bool hasUprightEnds(std::string_view category) {
     const Typical* t = find(category);
     return t && t->uprightEnds;
+}
+
+RoomKind roomKind(std::string_view category) {
+    const Typical* t = find(category);
+    return t ? t->room : RoomKind::Any;
 }
 
 Support usualSupport(std::string_view category) {

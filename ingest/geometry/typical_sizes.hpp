@@ -1,7 +1,7 @@
 // What things of a kind usually measure, in metres: the one table of sizes the
 // ingest knows. They check, never answer: the scale priors take the heights of
 // the kinds whose height varies little; the plausibility checks and the names
-// of fused things hold boxes to their kind's extent.
+// of fused things hold boxes to their kind's extent, and doubt a name in another kind's room.
 #pragma once
 
 #include <optional>
@@ -37,5 +37,10 @@ bool holdsThings(std::string_view category);
 // Whether things of a kind have a thin upright part at an end or side (a bed's headboard or footboard, a
 // sofa's back) that a detector may see as a thing of its own (a "tv", a "suitcase").
 bool hasUprightEnds(std::string_view category);
+
+// The one kind of room things of a kind stand in, where there is one: a toilet in a bathroom, a fridge, an oven,
+// a microwave or a toaster in a kitchen; Any for the others (a sink, a chair).
+enum class RoomKind { Any, Kitchen, Bathroom };
+RoomKind roomKind(std::string_view category);
 
 }  // namespace smql::ingest

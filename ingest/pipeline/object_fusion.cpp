@@ -182,7 +182,7 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
                 Thing& a = things[small];
                 Thing& b = things[large];
                 // Only a piece inside the larger's box can be a glimpse: the points are compared for those alone.
-                const double touching = model::fractionInside(a.box, b.box) >= options.namedTwiceShare
+                const double touching = model::fractionInside(a.box, b.box) >= options.glimpseInside
                                             ? shareOfPointsNear(a.points, b.points, options.touchReach)
                                             : 0.0;
                 if (!pieceOf({a.box, a.category, frames[small]}, {b.box, b.category, frames[large]}, touching, options))
@@ -349,7 +349,7 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
     const double inside = model::fractionInside(a, b);
     if (sameName && inside >= options.storedTwiceShare) return true;
     if (inside >= options.namedTwiceShare && model::fractionInside(b, a) >= options.namedTwiceShare) return true;
-    if (inside >= options.namedTwiceShare && touching >= options.glimpseTouching && !holdsThings(large.category) &&
+    if (inside >= options.glimpseInside && touching >= options.glimpseTouching && !holdsThings(large.category) &&
         usualSupport(small.category) != Support::Surface &&
         static_cast<double>(small.frames) <= options.glimpseShare * static_cast<double>(large.frames))
         return true;
@@ -363,6 +363,50 @@ std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, cons
     std::size_t grounded = 0;
     for (auto& thing : things) grounded += standOnFloor(thing, things, options);
     return grounded;
+}
+
+namespace {
+
+// Whether a wall stands between two points of the floor plane: the segment joining them crosses the wall's.
+bool wallBetween(const model::Vec3& a, const model::Vec3& b, const std::vector<WallSegment>& walls) {
+    return std::any_of(walls.begin(), walls.end(), [&](const WallSegment& wall) {
+        const double sa = wall.signedDistance(a), sb = wall.signedDistance(b);
+        if ((sa > 0) == (sb > 0) || sa == sb) return false;
+        const double k = sa / (sa - sb);
+        const model::Vec3 along = wall.direction();
+        const double t = along.x * (a.x + (b.x - a.x) * k) + along.y * (a.y + (b.y - a.y) * k);
+        return t >= wall.along0 && t <= wall.along1;
+    });
+}
+
+std::string_view roomName(RoomKind room) { return room == RoomKind::Kitchen ? "kitchen" : "bathroom"; }
+
+}  // namespace
+
+std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
+                                    const FusionOptions& options) {
+    std::vector<std::string> doubts(things.size());
+    for (std::size_t t = 0; t < things.size(); ++t) {
+        const RoomKind own = roomKind(things[t].category);
+        if (own == RoomKind::Any) continue;
+        std::size_t ownCount = 0;
+        std::map<RoomKind, std::vector<std::string_view>> others;
+        for (const auto& other : things) {
+            const RoomKind room = roomKind(other.category);
+            if (room == RoomKind::Any || model::distance(things[t].box, other.box) > options.roomReach ||
+                wallBetween(things[t].box.center, other.box.center, walls))
+                continue;
+            if (room == own)
+                ++ownCount;
+            else
+                others[room].push_back(other.category);
+        }
+        for (const auto& [room, names] : others)
+            if (names.size() > ownCount)
+                doubts[t] = fmt::format("in a {} (beside {} within {:.1f} m)", roomName(room), fmt::join(names, ", "),
+                                        options.roomReach);
+    }
+    return doubts;
 }
 
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
@@ -390,8 +434,16 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
     const std::size_t slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options); });
 
+    std::vector<SeenBox> named;
+    for (const auto& thing : things) named.push_back({thing.box, thing.category, 0});
+    const std::vector<std::string> doubts =
+        outOfPlace(named, room.walls ? *room.walls : std::vector<WallSegment>{}, options);
+
     std::vector<ObjectTrack> out;
-    for (const auto& thing : things) out.push_back(trackOf(thing, views, tracks));
+    for (std::size_t t = 0; t < things.size(); ++t) {
+        out.push_back(trackOf(things[t], views, tracks));
+        out.back().nameDoubt = doubts[t];
+    }
     progress.note(fmt::format(
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds or "

@@ -30,10 +30,10 @@ struct FusionOptions {
     double restingGap = 0.1;         // m: ... unless another thing's top is this close under it
     double storedTwiceShare = 0.25;  // two things of one name, this share of the smaller's box inside the
                                      // larger's, together still of a size that suits it, are one thing stored twice
-    double namedTwiceShare = 0.6;    // two things each with this share of its box inside the other's are one
-                                     // place named twice; ...
-    double glimpseShare = 0.25;      // ... and one with this share inside a larger one's, seen in at most this
-                                     // share of the frames that saw the larger, is a glimpse of it ...
+    double namedTwiceShare = 0.45;   // two things each with this share of its box inside the other's are one
+                                     // place named twice (a side table seen as a "bed" and as a "table"); ...
+    double glimpseInside = 0.6;      // ... and one with this share inside a larger one's, seen in at most
+    double glimpseShare = 0.25;      // this share of the frames that saw the larger, is a glimpse of it ...
     double glimpseTouching = 0.5;    // ... when this share of its points lie within touchReach of the larger's
     double touchReach = 0.1;         // m
     double topSlab = 0.25;           // m: a thing this thin lying on the top of one of its name is that top
@@ -41,6 +41,7 @@ struct FusionOptions {
     double partReach = 0.3;          // sofa (its centre within this of the larger's footprint), as wide as
     double partWidth = 0.6;          // this share of that end or more, rising above its top, is its headboard
                                      // or back (typical_sizes.hpp: hasUprightEnds), whatever it was named
+    double roomReach = 1.0;          // m: things this close, no wall between them, stand in one room (outOfPlace)
     bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
@@ -70,6 +71,13 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
 // one found, or one placed that the lowest thing reaches down to (object_fusion.cpp, standOnFloor). Returns how
 // many were extended.
 std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, const FusionOptions& options = {});
+
+// Things of a kind that stands in one kind of room (typical_sizes.hpp: roomKind; a toilet) with more things of
+// another room's kinds (a fridge, an oven, a microwave) than of their own, themselves counted, within
+// FusionOptions::roomReach and no wall between: not of that kind (two white bins beside a fridge that a
+// detector calls a toilet in every view). Returns, per thing, why its name is doubted, or "".
+std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
+                                    const FusionOptions& options = {});
 
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
                                     const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,

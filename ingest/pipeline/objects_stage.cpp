@@ -140,13 +140,18 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
-        // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess.
-        const bool misnamed = !opening && !nameFitsBox(category, box, track.carved);
-        if (misnamed)
+        // A name far too small for its box (a detector's 1.8 m "cake"), or out of place (a toilet in a kitchen), is
+        // kept only as a guess.
+        const bool tooLarge = !opening && !nameFitsBox(category, box, track.carved);
+        const bool misnamed = tooLarge || (!opening && !track.nameDoubt.empty());
+        if (tooLarge)
             progress.note(
                 fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
                             "'object' with detected_as = {}",
                             std::max({box.size.x, box.size.y, box.size.z}), category, category));
+        else if (misnamed)
+            progress.note(fmt::format("a thing detected as '{}' stands {}: stored as 'object' with detected_as = {}",
+                                      category, track.nameDoubt, category));
         model::Node& node =
             addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, misnamed ? std::string("object") : category,
                     opening ? GeometryKind::Plane : GeometryKind::Box, box);

@@ -1,9 +1,9 @@
 // What object fusion decides from the things' boxes (object_fusion.hpp): pieces of one thing that the instance
 // map kept apart, against things that merely stand close (pieceOf), and things whose legs were hidden reaching
-// down to the floor (reachDownToFloor). The boxes and frame counts are those real captures gave (ScanNet
-// scene0000_00, an apartment: its corner sofa, the kitchen's bar table with its stools; scene0113_00, a lounge:
-// a side table named twice; SUN RGB-D 000002, a bedroom display whose floor a Kinect frame barely showed), and
-// their neighbours as rooms place them.
+// down to the floor (reachDownToFloor), and names out of place (outOfPlace). The boxes and frame counts are those real
+// captures gave (ScanNet scene0000_00, an apartment: its corner sofa, the kitchen's bar table with its stools;
+// scene0113_00, a lounge: a side table named twice; SUN RGB-D 000002, a bedroom display whose floor a Kinect frame
+// barely showed), and their neighbours as rooms place them.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -47,6 +47,8 @@ TEST_CASE("pieces: a glimpse, a place named twice and a table's top are pieces; 
     const SeenBox asBed = seen("bed", {0.89, 0.65, 0.31}, {1.11, 0.75, 0.63}, -58, 3);
     const SeenBox asTable = seen("table", {0.74, 0.79, 0.34}, {1.12, 0.61, 0.68}, -68, 2);
     CHECK(pieceOf(asTable, asBed, 0.17));
+    // The same two boxes fitted square to the walls: each half inside the other.
+    CHECK(pieceOf(asTable, seen("bed", {1.05, 0.77, 0.31}, {1.05, 0.84, 0.63}, 90, 3), 0.0));
 
     // The kitchen's bar table, 1.10 m high, seen in 9 frames; its top seen 0.17 m thick a little above it in one.
     const SeenBox bar = seen("table", {6.60, 4.83, 0.55}, {2.41, 0.45, 1.10}, -90, 9);
@@ -92,4 +94,39 @@ TEST_CASE("floor reach: a bed seen from above stands on a floor the lowest thing
     // did not show): left as seen.
     things = {seen("bed", {0, 0, 1.5}, {2.0, 1.4, 0.5}, 0, 5)};
     CHECK(reachDownToFloor(things, true) == 0);
+}
+
+TEST_CASE("out of place: a toilet among a kitchen's things is not a toilet; one behind a wall is", "[ingest][fusion]") {
+    // ScanNet scene0000_00: two white bins beside the fridge, under the oven and microwaves, that NanoDet called a
+    // toilet in 13 frames; the bathroom's toilet and sink, four metres away.
+    const std::vector<SeenBox> apartment{
+        seen("toilet", {8.28, 3.40, 0.36}, {0.67, 0.44, 0.72}, 0, 13),
+        seen("fridge", {8.15, 4.21, 0.78}, {1.35, 0.92, 1.57}, 90, 6),
+        seen("oven", {8.28, 4.84, 0.51}, {0.97, 0.49, 1.03}, 90, 3),
+        seen("microwave", {8.44, 4.65, 1.05}, {0.44, 0.33, 0.24}, 90, 4),
+        seen("microwave", {8.32, 4.88, 1.56}, {0.49, 0.16, 0.37}, 90, 2),
+        seen("toilet", {8.29, -0.18, 0.36}, {0.62, 0.40, 0.73}, 0, 8),
+        seen("sink", {8.39, 0.51, 0.78}, {0.76, 0.42, 0.19}, 90, 9),
+    };
+    const auto doubts = outOfPlace(apartment, {});
+    REQUIRE(doubts.size() == apartment.size());
+    CHECK(doubts[0].find("kitchen") != std::string::npos);
+    for (std::size_t t = 1; t < apartment.size(); ++t) CHECK(doubts[t].empty());
+
+    // A toilet against the wall a kitchen shares with its bathroom, a fridge and an oven on the other side: each in
+    // its room. Without the wall between them, the toilet is outnumbered.
+    const SeenBox toilet = seen("toilet", {1.0, 0.40, 0.38}, {0.45, 0.70, 0.76}, 0, 10);
+    const SeenBox fridge = seen("fridge", {1.0, 1.25, 0.90}, {0.70, 0.70, 1.80}, 0, 10);
+    const std::vector<SeenBox> backToBack{toilet, fridge, seen("oven", {1.75, 1.15, 0.45}, {0.60, 0.60, 0.90}, 0, 5)};
+    WallSegment shared;
+    shared.normal = {0, 1, 0};
+    shared.offset = -0.80;  // y = 0.8
+    shared.along0 = -3.0;   // along its direction (-x): x from 0 to 3
+    shared.along1 = 0.0;
+    CHECK(outOfPlace(backToBack, {shared})[0].empty());
+    CHECK_FALSE(outOfPlace(backToBack, {})[0].empty());
+    // One toilet and one fridge side by side, neither outnumbered: both names stand.
+    const auto pair = outOfPlace({toilet, fridge}, {});
+    CHECK(pair[0].empty());
+    CHECK(pair[1].empty());
 }
