@@ -49,34 +49,52 @@ double offsetScore(double offset, double threshold) {
 
 }  // namespace
 
+namespace {
+
+// Whether `category`, folded as sameCategory folds it, is one of `names` (written folded, sorted):
+// on runs for every candidate and reference a query tests, so a binary search, not a pass over
+// every name.
+template <std::size_t N>
+bool listed(const std::array<std::string_view, N>& names, std::string_view category) {
+    constexpr std::size_t kLongest = 32;  // longer than any listed name
+    if (category.size() > kLongest) return false;
+    std::array<char, kLongest> folded{};
+    for (std::size_t i = 0; i < category.size(); ++i)
+        folded[i] = category[i] == ' ' || category[i] == '_' ? '-' : category[i];
+    return std::binary_search(names.begin(), names.end(), std::string_view(folded.data(), category.size()));
+}
+
+// The lists below, sorted as listed() requires.
+template <std::size_t N>
+constexpr bool sortedNames(const std::array<std::string_view, N>& names) {
+    for (std::size_t i = 1; i < N; ++i)
+        if (!(names[i - 1] < names[i])) return false;
+    return true;
+}
+
+constexpr std::array<std::string_view, 26> kHolders = {
+    "backpack",    "bag",       "basin", "basket", "bathtub",   "bin",   "bowl", "box",        "bucket",
+    "case",        "container", "crate", "cup",    "flowerpot", "glass", "jar",  "mug",        "pan",
+    "plant-stand", "planter",   "pot",   "sink",   "trash-can", "tub",   "vase", "wastebasket"};
+constexpr std::array<std::string_view, 20> kEnclosures = {
+    "base-cabinet", "bookcase",     "bookshelf",  "cabinet",      "chest-of-drawers", "closet",         "cupboard",
+    "dishwasher",   "drawer",       "dresser",    "fridge",       "kitchen-cabinet",  "microwave",      "nightstand",
+    "oven",         "refrigerator", "shelf-unit", "wall-cabinet", "wardrobe",         "washing-machine"};
+constexpr std::array<std::string_view, 24> kFronted = {
+    "armchair",     "bed",  "bookcase",     "bookshelf", "cabinet",    "chair",  "chest-of-drawers", "couch",
+    "cupboard",     "desk", "dishwasher",   "dresser",   "fireplace",  "fridge", "monitor",          "nightstand",
+    "office-chair", "oven", "refrigerator", "sofa",      "television", "tv",     "tv-screen",        "wardrobe"};
+static_assert(sortedNames(kHolders) && sortedNames(kEnclosures) && sortedNames(kFronted));
+
+}  // namespace
+
 Affordance affordanceOf(std::string_view category) {
-    static const std::array<std::string_view, 26> holders = {
-        "plant-stand", "basket",    "bowl",  "box",   "bin", "trash-can", "wastebasket", "vase",    "pot",
-        "planter",     "cup",       "mug",   "glass", "jar", "bag",       "bucket",      "sink",    "bathtub",
-        "crate",       "container", "basin", "pan",   "tub", "flowerpot", "case",        "backpack"};
-    static const std::array<std::string_view, 20> enclosures = {
-        "cabinet",  "base-cabinet", "wall-cabinet",     "cupboard",        "wardrobe",
-        "closet",   "drawer",       "chest-of-drawers", "dresser",         "shelf-unit",
-        "bookcase", "bookshelf",    "fridge",           "refrigerator",    "microwave",
-        "oven",     "dishwasher",   "washing-machine",  "kitchen-cabinet", "nightstand"};
-    auto listed = [&](const auto& names) {
-        return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return sameCategory(n, category); });
-    };
-    if (listed(holders)) return Affordance::Holder;
-    if (listed(enclosures)) return Affordance::Enclosure;
+    if (listed(kHolders, category)) return Affordance::Holder;
+    if (listed(kEnclosures, category)) return Affordance::Enclosure;
     return Affordance::Surface;
 }
 
-bool hasFront(std::string_view category) {
-    static const std::array<std::string_view, 24> fronted = {
-        "sofa",         "couch",    "armchair",   "chair",
-        "office-chair", "bed",      "tv",         "television",
-        "tv-screen",    "monitor",  "desk",       "cabinet",
-        "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
-        "nightstand",   "bookcase", "bookshelf",  "refrigerator",
-        "fridge",       "oven",     "dishwasher", "fireplace"};
-    return std::any_of(fronted.begin(), fronted.end(), [&](std::string_view n) { return sameCategory(n, category); });
-}
+bool hasFront(std::string_view category) { return listed(kFronted, category); }
 
 model::Vec2 frontDirection(const Box& box) { return {std::cos(box.yaw), std::sin(box.yaw)}; }
 
@@ -105,10 +123,15 @@ constexpr double kMinSupporterArea = 0.5;
 
 }  // namespace
 
-double supportScore(const Node& a, const Node& b, const Thresholds& t) {
+namespace {
+
+// supportScore with the overlap of a's footprint and b's measured by the caller: on measures it
+// first, and the clipping is the dearest part of the test.
+double supportGivenOverlap(const Node& a, const Node& b, const Thresholds& t, double overlap) {
     if (&a == &b || (a.id == b.id && a.id != model::kNoNode)) return 0.0;
     if (!hasGeometry(a) || !hasGeometry(b) || isVerticalPlane(b)) return 0.0;
-    double share = overlapShare(a.box, b.box);
+    const double smaller = std::min(model::footprintArea(a.box), model::footprintArea(b.box));
+    double share = smaller > 0 ? overlap / smaller : 0.0;  // overlapShare
     if (share < t.onMinOverlap) return 0.0;
     double height = b.box.size.z;
     auto rise = [&](double z) {
@@ -126,6 +149,14 @@ double supportScore(const Node& a, const Node& b, const Thresholds& t) {
     return std::min(1.0, share);
 }
 
+}  // namespace
+
+double supportScore(const Node& a, const Node& b, const Thresholds& t) {
+    if (&a == &b || (a.id == b.id && a.id != model::kNoNode)) return 0.0;
+    if (!hasGeometry(a) || !hasGeometry(b) || isVerticalPlane(b)) return 0.0;
+    return supportGivenOverlap(a, b, t, model::footprintOverlap(a.box, b.box));
+}
+
 namespace {
 
 constexpr double kUnbounded = 1e9;
@@ -141,9 +172,10 @@ model::Aabb grown(model::Aabb b, double d) {
 // b carries a: the support geometry, b lower (its bottom below a's: a thing resting on b's top
 // reaches no lower than b does, and no two things carry each other), and a not hanging on a wall.
 // The tree's parents are chosen among the things that carry.
-double carried(const PredicateInputs& in) {
+// `overlap`: a's footprint over b's, when the caller has measured it.
+double carried(const PredicateInputs& in, std::optional<double> overlap = std::nullopt) {
     if (model::bottom(in.b.box) >= model::bottom(in.a.box)) return 0.0;
-    const double score = supportScore(in.a, in.b, in.t);
+    const double score = overlap ? supportGivenOverlap(in.a, in.b, in.t, *overlap) : supportScore(in.a, in.b, in.t);
     return score > 0 && !wallHolding(in.a, in.obstacles, in.t) ? score : 0.0;
 }
 
@@ -154,9 +186,11 @@ double onScore(const PredicateInputs& in) {
     if (kind == Affordance::Holder) return 0.0;
     if (kind == Affordance::Enclosure && contained(in.a, in.b, in.t)) return 0.0;
     double own = model::footprintArea(in.a.box);
-    if (own <= 0 || model::footprintOverlap(in.a.box, in.b.box) / own < in.t.onMinOverlap) return 0.0;
+    if (own <= 0) return 0.0;
+    const double overlap = model::footprintOverlap(in.a.box, in.b.box);
+    if (overlap / own < in.t.onMinOverlap) return 0.0;
     if (model::footprintArea(in.b.box) < kMinSupporterArea * own) return 0.0;
-    return carried(in);
+    return carried(in, overlap);
 }
 
 // Inside a holder or an enclosure: mostly within its box (the holder the larger of the two, so that

@@ -34,7 +34,7 @@ NodeSet oneNode(Slot slot, std::string description) {
 std::size_t NodeSet::estimate() const {
     switch (source) {
         case Source::Nodes:
-            return slots.size();
+            return nodes().size();
         case Source::Side:
             return 1;
         case Source::SubQuery:
@@ -42,7 +42,7 @@ std::size_t NodeSet::estimate() const {
                        ? std::min(subquery->target.nodes.estimate(), static_cast<std::size_t>(*subquery->limit))
                        : subquery->target.nodes.estimate();
     }
-    return slots.size();
+    return nodes().size();
 }
 
 BoundStatement Binder::bind(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values) {
@@ -109,7 +109,7 @@ NodeSet Binder::bindSingle(const ast::Ref& ref, std::string_view role) {
     if (inQuestion_) return set;
     set.singleFor = role;
     set.where = ref.where;
-    if (set.source == NodeSet::Source::Nodes) binder::requireOne(scene(), set, set.slots);
+    if (set.source == NodeSet::Source::Nodes) binder::requireOne(scene(), set, set.nodes());
     return set;
 }
 
@@ -117,13 +117,13 @@ NodeSet Binder::bindName(const ast::Ref& ref) {
     NodeSet set;
     const auto& snap = scene();
     if (auto kind = ast::kindWord(ref.name)) {
-        set.slots = snap.shownOfKind(*kind);
-        set.description = describeSet(ref.name, set.slots.size());
+        set.shared = &snap.shownOfKind(*kind);
+        set.description = describeSet(ref.name, set.nodes().size());
         return set;
     }
     if (ast::anyNodeWord(ref.name)) {
-        set.slots = snap.shownNodes();
-        set.description = describeSet(ref.name, set.slots.size());
+        set.shared = &snap.shownNodes();
+        set.description = describeSet(ref.name, set.nodes().size());
         return set;
     }
     if (ast::thingWord(ref.name)) {
@@ -134,8 +134,8 @@ NodeSet Binder::bindName(const ast::Ref& ref) {
     }
     std::string category = resolveCategory(ref);
     // Naming a category asks for its nodes, hidden ones included (`undefined`).
-    set.slots = snap.withCategory(category);
-    set.description = describeSet(category, set.slots.size());
+    set.shared = &snap.withCategory(category);
+    set.description = describeSet(category, set.nodes().size());
     return set;
 }
 
