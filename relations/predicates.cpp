@@ -181,16 +181,21 @@ double carried(const PredicateInputs& in, std::optional<double> overlap = std::n
 
 // Real support, as Sr3D's "supported-by": most of a's own footprint lies over b (a box that only
 // grazes b's edge, or a large thing over a small one, is not on it), on top of the support rule.
-double onScore(const PredicateInputs& in) {
+// `overlapOf` gives the overlap of a's footprint and b's (holds() may know it without clipping).
+template <typename Overlap>
+double onScoreWith(const PredicateInputs& in, Overlap overlapOf) {
     Affordance kind = affordanceOf(in.b.category);
     if (kind == Affordance::Holder) return 0.0;
     if (kind == Affordance::Enclosure && contained(in.a, in.b, in.t)) return 0.0;
     double own = model::footprintArea(in.a.box);
     if (own <= 0) return 0.0;
-    const double overlap = model::footprintOverlap(in.a.box, in.b.box);
+    const double overlap = overlapOf();
     if (overlap / own < in.t.onMinOverlap) return 0.0;
     if (model::footprintArea(in.b.box) < kMinSupporterArea * own) return 0.0;
     return carried(in, overlap);
+}
+double onScore(const PredicateInputs& in) {
+    return onScoreWith(in, [&] { return model::footprintOverlap(in.a.box, in.b.box); });
 }
 
 // Inside a holder or an enclosure: mostly within its box (the holder the larger of the two, so that
@@ -521,6 +526,59 @@ double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, 
                 const Obstacles& obstacles, const Node* c, std::optional<double> writtenDistance) {
     if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
     return spec(p).evaluate({a, b, c, t, frame, writtenDistance, obstacles});
+}
+
+namespace {
+
+// The radius of the largest ball about a box's centre that lies in it (its smallest half side),
+// or nothing for a box whose sides are not all finite and positive.
+std::optional<double> inscribedRadius(const Box& box) {
+    const model::Vec3& s = box.size;
+    if (!(std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z)) || s.x <= 0 || s.y <= 0 || s.z <= 0)
+        return std::nullopt;
+    return std::min({s.x, s.y, s.z}) / 2;
+}
+
+// Whether the two boxes are surely within `limit` of each other: the points on the line between
+// the centres where it leaves each inscribed ball lie in the boxes, so their gap is at least the
+// boxes' distance. A nanometre of slack covers the rounding of both this and model::distance, so
+// what this accepts model::distance puts within the limit too.
+bool surelyWithin(const Box& a, const Box& b, double limit) {
+    const std::optional<double> ra = inscribedRadius(a), rb = inscribedRadius(b);
+    if (!ra || !rb) return false;
+    const double apart = model::centerDistance(a, b) - *ra - *rb;
+    return apart <= limit - 1e-9;  // false for a NaN centre: the exact test decides
+}
+
+// Whether a's footprint lies within b's: then their overlap is a's own area, and the clipping of
+// the one by the other (model::footprintOverlap) gives that area up to its rounding.
+bool footprintWithin(const Box& a, const Box& b) {
+    const double c = std::cos(b.yaw), s = std::sin(b.yaw);
+    for (const model::Vec2& p : model::footprint(a)) {
+        const double dx = p.x - b.center.x, dy = p.y - b.center.y;
+        if (!(std::abs(c * dx + s * dy) <= b.size.x / 2 && std::abs(-s * dx + c * dy) <= b.size.y / 2)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool holds(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame,
+           const Obstacles& obstacles, const Node* c, std::optional<double> writtenDistance) {
+    // on(x) over a footprint within x's: the overlap is a's area, so on's overlap shares are 1 or
+    // more, and a threshold at least a millionth under 1 decides the same with it as with the
+    // clipped area, whose rounding is far smaller; the rest of on's formula runs as written.
+    if (p == Predicate::On && t.onMinOverlap <= 1 - 1e-6 && hasGeometry(a) && hasGeometry(b) && a.id != b.id &&
+        footprintWithin(a.box, b.box)) {
+        const PredicateInputs in{a, b, c, t, frame, writtenDistance, obstacles};
+        return onScoreWith(in, [&] { return model::footprintArea(a.box); }) > 0;
+    }
+    // near(x, d): within d and no wall between (nearScore, which is then positive). Without a
+    // written distance near also gives way in a crowd, which the exact score decides.
+    if (p == Predicate::Near && writtenDistance && *writtenDistance >= 0 && hasGeometry(a) && hasGeometry(b) &&
+        a.id != b.id && surelyWithin(a.box, b.box, *writtenDistance))
+        return !wallBetween(a, b, t, obstacles);
+    return evaluate(p, a, b, t, frame, obstacles, c, writtenDistance) > 0;
 }
 
 const Node* wallHolding(const Node& a, const Obstacles& obstacles, const Thresholds& t) {

@@ -214,7 +214,8 @@ bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const rel
     auto holds = [&](catalog::Slot b) {
         poll();
         if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
-        return score(expr.predicate, snap.node(slot), snap.node(b), frame, nullptr, expr.nearDistance) > 0;
+        return relations::holds(expr.predicate, snap.node(slot), snap.node(b), thresholds_, frame,
+                                catalog::SceneObstacles(snap), nullptr, expr.nearDistance);
     };
     const auto& refs = slots(expr.args[0], frame);
     if (!region) return std::any_of(refs.begin(), refs.end(), holds);
