@@ -28,12 +28,14 @@ double polygonArea(const SmallPolygon& poly) {
     return std::abs(twice) / 2;
 }
 
-double pointSegmentDistance(Vec2 p, Vec2 a, Vec2 b) {
+// Squared: a caller after the least of several distances takes one root of the least square
+// (the root is monotonic and correctly rounded, so that is the least of the roots).
+double pointSegmentSquaredDistance(Vec2 p, Vec2 a, Vec2 b) {
     double dx = b.x - a.x, dy = b.y - a.y;
     double len2 = dx * dx + dy * dy;
     double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
     double ex = a.x + t * dx - p.x, ey = a.y + t * dy - p.y;
-    return std::sqrt(ex * ex + ey * ey);
+    return ex * ex + ey * ey;
 }
 
 // Separating-axis test for two rectangles: the edge normals of both are the only candidate axes.
@@ -113,11 +115,11 @@ double horizontalGap(const Box& a, const Box& b) {
     double best = std::numeric_limits<double>::max();
     for (int i = 0; i < 4; ++i) {
         for (int j = 0; j < 4; ++j) {
-            best = std::min(best, pointSegmentDistance(fa[i], fb[j], fb[(j + 1) % 4]));
-            best = std::min(best, pointSegmentDistance(fb[i], fa[j], fa[(j + 1) % 4]));
+            best = std::min(best, pointSegmentSquaredDistance(fa[i], fb[j], fb[(j + 1) % 4]));
+            best = std::min(best, pointSegmentSquaredDistance(fb[i], fa[j], fa[(j + 1) % 4]));
         }
     }
-    return best;
+    return std::sqrt(best);
 }
 
 double verticalGap(const Box& a, const Box& b) {

@@ -49,34 +49,55 @@ double offsetScore(double offset, double threshold) {
 
 }  // namespace
 
+namespace {
+
+// Shorter names first, then by their bytes: most steps of a search then compare two lengths,
+// not two strings (on looks its carrier's category up for every candidate and reference it tests).
+constexpr bool shortFirst(std::string_view a, std::string_view b) {
+    return a.size() != b.size() ? a.size() < b.size() : a < b;
+}
+
+template <std::size_t N>
+constexpr std::array<std::string_view, N> inShortFirstOrder(std::array<std::string_view, N> names) {
+    std::sort(names.begin(), names.end(), shortFirst);
+    return names;
+}
+
+// Whether `category`, folded as sameCategory folds it, is one of `names` (written folded, in
+// shortFirst order).
+template <std::size_t N>
+bool listed(const std::array<std::string_view, N>& names, std::string_view category) {
+    constexpr std::size_t kLongest = 32;  // longer than any listed name
+    if (category.size() > kLongest) return false;
+    std::array<char, kLongest> folded{};
+    for (std::size_t i = 0; i < category.size(); ++i)
+        folded[i] = category[i] == ' ' || category[i] == '_' ? '-' : category[i];
+    return std::binary_search(names.begin(), names.end(), std::string_view(folded.data(), category.size()), shortFirst);
+}
+
+constexpr auto kHolders = inShortFirstOrder(std::array<std::string_view, 26>{
+    "plant-stand", "basket",    "bowl",  "box",   "bin", "trash-can", "wastebasket", "vase",    "pot",
+    "planter",     "cup",       "mug",   "glass", "jar", "bag",       "bucket",      "sink",    "bathtub",
+    "crate",       "container", "basin", "pan",   "tub", "flowerpot", "case",        "backpack"});
+constexpr auto kEnclosures = inShortFirstOrder(
+    std::array<std::string_view, 20>{"cabinet",  "base-cabinet", "wall-cabinet",     "cupboard",        "wardrobe",
+                                     "closet",   "drawer",       "chest-of-drawers", "dresser",         "shelf-unit",
+                                     "bookcase", "bookshelf",    "fridge",           "refrigerator",    "microwave",
+                                     "oven",     "dishwasher",   "washing-machine",  "kitchen-cabinet", "nightstand"});
+constexpr auto kFronted = inShortFirstOrder(std::array<std::string_view, 24>{
+    "sofa",       "couch",    "armchair",  "chair",        "office-chair", "bed",      "tv",         "television",
+    "tv-screen",  "monitor",  "desk",      "cabinet",      "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
+    "nightstand", "bookcase", "bookshelf", "refrigerator", "fridge",       "oven",     "dishwasher", "fireplace"});
+
+}  // namespace
+
 Affordance affordanceOf(std::string_view category) {
-    static const std::array<std::string_view, 26> holders = {
-        "plant-stand", "basket",    "bowl",  "box",   "bin", "trash-can", "wastebasket", "vase",    "pot",
-        "planter",     "cup",       "mug",   "glass", "jar", "bag",       "bucket",      "sink",    "bathtub",
-        "crate",       "container", "basin", "pan",   "tub", "flowerpot", "case",        "backpack"};
-    static const std::array<std::string_view, 20> enclosures = {
-        "cabinet",  "base-cabinet", "wall-cabinet",     "cupboard",        "wardrobe",
-        "closet",   "drawer",       "chest-of-drawers", "dresser",         "shelf-unit",
-        "bookcase", "bookshelf",    "fridge",           "refrigerator",    "microwave",
-        "oven",     "dishwasher",   "washing-machine",  "kitchen-cabinet", "nightstand"};
-    auto listed = [&](const auto& names) {
-        return std::any_of(names.begin(), names.end(), [&](std::string_view n) { return sameCategory(n, category); });
-    };
-    if (listed(holders)) return Affordance::Holder;
-    if (listed(enclosures)) return Affordance::Enclosure;
+    if (listed(kHolders, category)) return Affordance::Holder;
+    if (listed(kEnclosures, category)) return Affordance::Enclosure;
     return Affordance::Surface;
 }
 
-bool hasFront(std::string_view category) {
-    static const std::array<std::string_view, 24> fronted = {
-        "sofa",         "couch",    "armchair",   "chair",
-        "office-chair", "bed",      "tv",         "television",
-        "tv-screen",    "monitor",  "desk",       "cabinet",
-        "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
-        "nightstand",   "bookcase", "bookshelf",  "refrigerator",
-        "fridge",       "oven",     "dishwasher", "fireplace"};
-    return std::any_of(fronted.begin(), fronted.end(), [&](std::string_view n) { return sameCategory(n, category); });
-}
+bool hasFront(std::string_view category) { return listed(kFronted, category); }
 
 model::Vec2 frontDirection(const Box& box) { return {std::cos(box.yaw), std::sin(box.yaw)}; }
 
@@ -105,10 +126,15 @@ constexpr double kMinSupporterArea = 0.5;
 
 }  // namespace
 
-double supportScore(const Node& a, const Node& b, const Thresholds& t) {
+namespace {
+
+// supportScore with the overlap of a's footprint and b's measured by the caller: on measures it
+// first, and the clipping is the dearest part of the test.
+double supportGivenOverlap(const Node& a, const Node& b, const Thresholds& t, double overlap) {
     if (&a == &b || (a.id == b.id && a.id != model::kNoNode)) return 0.0;
     if (!hasGeometry(a) || !hasGeometry(b) || isVerticalPlane(b)) return 0.0;
-    double share = overlapShare(a.box, b.box);
+    const double smaller = std::min(model::footprintArea(a.box), model::footprintArea(b.box));
+    double share = smaller > 0 ? overlap / smaller : 0.0;  // overlapShare
     if (share < t.onMinOverlap) return 0.0;
     double height = b.box.size.z;
     auto rise = [&](double z) {
@@ -126,6 +152,14 @@ double supportScore(const Node& a, const Node& b, const Thresholds& t) {
     return std::min(1.0, share);
 }
 
+}  // namespace
+
+double supportScore(const Node& a, const Node& b, const Thresholds& t) {
+    if (&a == &b || (a.id == b.id && a.id != model::kNoNode)) return 0.0;
+    if (!hasGeometry(a) || !hasGeometry(b) || isVerticalPlane(b)) return 0.0;
+    return supportGivenOverlap(a, b, t, model::footprintOverlap(a.box, b.box));
+}
+
 namespace {
 
 constexpr double kUnbounded = 1e9;
@@ -141,22 +175,30 @@ model::Aabb grown(model::Aabb b, double d) {
 // b carries a: the support geometry, b lower (its bottom below a's: a thing resting on b's top
 // reaches no lower than b does, and no two things carry each other), and a not hanging on a wall.
 // The tree's parents are chosen among the things that carry.
-double carried(const PredicateInputs& in) {
+// `overlap`: a's footprint over b's, when the caller has measured it.
+double carried(const PredicateInputs& in, std::optional<double> overlap = std::nullopt) {
     if (model::bottom(in.b.box) >= model::bottom(in.a.box)) return 0.0;
-    const double score = supportScore(in.a, in.b, in.t);
+    const double score = overlap ? supportGivenOverlap(in.a, in.b, in.t, *overlap) : supportScore(in.a, in.b, in.t);
     return score > 0 && !wallHolding(in.a, in.obstacles, in.t) ? score : 0.0;
 }
 
 // Real support, as Sr3D's "supported-by": most of a's own footprint lies over b (a box that only
 // grazes b's edge, or a large thing over a small one, is not on it), on top of the support rule.
-double onScore(const PredicateInputs& in) {
+// `overlapOf` gives the overlap of a's footprint and b's (holds() may know it without clipping).
+template <typename Overlap>
+double onScoreWith(const PredicateInputs& in, Overlap overlapOf) {
     Affordance kind = affordanceOf(in.b.category);
     if (kind == Affordance::Holder) return 0.0;
     if (kind == Affordance::Enclosure && contained(in.a, in.b, in.t)) return 0.0;
     double own = model::footprintArea(in.a.box);
-    if (own <= 0 || model::footprintOverlap(in.a.box, in.b.box) / own < in.t.onMinOverlap) return 0.0;
+    if (own <= 0) return 0.0;
+    const double overlap = overlapOf();
+    if (overlap / own < in.t.onMinOverlap) return 0.0;
     if (model::footprintArea(in.b.box) < kMinSupporterArea * own) return 0.0;
-    return carried(in);
+    return carried(in, overlap);
+}
+double onScore(const PredicateInputs& in) {
+    return onScoreWith(in, [&] { return model::footprintOverlap(in.a.box, in.b.box); });
 }
 
 // Inside a holder or an enclosure: mostly within its box (the holder the larger of the two, so that
@@ -487,6 +529,59 @@ double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, 
                 const Obstacles& obstacles, const Node* c, std::optional<double> writtenDistance) {
     if (!hasGeometry(a) || !hasGeometry(b) || a.id == b.id) return 0.0;
     return spec(p).evaluate({a, b, c, t, frame, writtenDistance, obstacles});
+}
+
+namespace {
+
+// The radius of the largest ball about a box's centre that lies in it (its smallest half side),
+// or nothing for a box whose sides are not all finite and positive.
+std::optional<double> inscribedRadius(const Box& box) {
+    const model::Vec3& s = box.size;
+    if (!(std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z)) || s.x <= 0 || s.y <= 0 || s.z <= 0)
+        return std::nullopt;
+    return std::min({s.x, s.y, s.z}) / 2;
+}
+
+// Whether the two boxes are surely within `limit` of each other: the points on the line between
+// the centres where it leaves each inscribed ball lie in the boxes, so their gap is at least the
+// boxes' distance. A nanometre of slack covers the rounding of both this and model::distance, so
+// what this accepts model::distance puts within the limit too.
+bool surelyWithin(const Box& a, const Box& b, double limit) {
+    const std::optional<double> ra = inscribedRadius(a), rb = inscribedRadius(b);
+    if (!ra || !rb) return false;
+    const double apart = model::centerDistance(a, b) - *ra - *rb;
+    return apart <= limit - 1e-9;  // false for a NaN centre: the exact test decides
+}
+
+// Whether a's footprint lies within b's: then their overlap is a's own area, and the clipping of
+// the one by the other (model::footprintOverlap) gives that area up to its rounding.
+bool footprintWithin(const Box& a, const Box& b) {
+    const double c = std::cos(b.yaw), s = std::sin(b.yaw);
+    for (const model::Vec2& p : model::footprint(a)) {
+        const double dx = p.x - b.center.x, dy = p.y - b.center.y;
+        if (!(std::abs(c * dx + s * dy) <= b.size.x / 2 && std::abs(-s * dx + c * dy) <= b.size.y / 2)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool holds(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame,
+           const Obstacles& obstacles, const Node* c, std::optional<double> writtenDistance) {
+    // on(x) over a footprint within x's: the overlap is a's area, so on's overlap shares are 1 or
+    // more, and a threshold at least a millionth under 1 decides the same with it as with the
+    // clipped area, whose rounding is far smaller; the rest of on's formula runs as written.
+    if (p == Predicate::On && t.onMinOverlap <= 1 - 1e-6 && hasGeometry(a) && hasGeometry(b) && a.id != b.id &&
+        footprintWithin(a.box, b.box)) {
+        const PredicateInputs in{a, b, c, t, frame, writtenDistance, obstacles};
+        return onScoreWith(in, [&] { return model::footprintArea(a.box); }) > 0;
+    }
+    // near(x, d): within d and no wall between (nearScore, which is then positive). Without a
+    // written distance near also gives way in a crowd, which the exact score decides.
+    if (p == Predicate::Near && writtenDistance && *writtenDistance >= 0 && hasGeometry(a) && hasGeometry(b) &&
+        a.id != b.id && surelyWithin(a.box, b.box, *writtenDistance))
+        return !wallBetween(a, b, t, obstacles);
+    return evaluate(p, a, b, t, frame, obstacles, c, writtenDistance) > 0;
 }
 
 const Node* wallHolding(const Node& a, const Obstacles& obstacles, const Thresholds& t) {

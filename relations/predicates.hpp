@@ -131,6 +131,13 @@ double evaluate(Predicate p, const model::Node& a, const model::Node& b, const T
                 const Obstacles& obstacles, const model::Node* c = nullptr,
                 std::optional<double> writtenDistance = std::nullopt);
 
+// Whether `p(a, b)` holds (evaluate(...) > 0), for a filter that needs no score: the same answer,
+// with near(x, d) settled without the exact box distance when the centres alone show it is within
+// d (FIND's WHERE tests a pair per candidate and reference).
+bool holds(Predicate p, const model::Node& a, const model::Node& b, const Thresholds& t, const Frame& frame,
+           const Obstacles& obstacles, const model::Node* c = nullptr,
+           std::optional<double> writtenDistance = std::nullopt);
+
 // near's limit for the two boxes: the written distance, else the sum of their sizes (the longer
 // side of each footprint) kept between near.min_distance and near.distance.
 double nearLimit(const model::Node& a, const model::Node& b, const Thresholds& t,

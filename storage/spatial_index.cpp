@@ -42,15 +42,4 @@ void SpatialIndex::intersecting(const model::Aabb& region, std::vector<std::uint
                        boost::make_function_output_iterator([&](const Value& v) { out.push_back(v.second); }));
 }
 
-void SpatialIndex::nearest(const model::Aabb& region, std::size_t k, std::vector<std::uint32_t>& out) const {
-    std::vector<Value> found;
-    tree_->rtree.query(bgi::nearest(toBounds(region), static_cast<unsigned>(k)), std::back_inserter(found));
-    // The rtree returns the k nearest in no particular order.
-    Bounds target = toBounds(region);
-    std::sort(found.begin(), found.end(), [&](const Value& a, const Value& b) {
-        return bg::comparable_distance(a.first, target) < bg::comparable_distance(b.first, target);
-    });
-    for (const auto& v : found) out.push_back(v.second);
-}
-
 }  // namespace smql::storage

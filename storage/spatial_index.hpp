@@ -26,8 +26,6 @@ public:
 
     // Slots whose bounds intersect `region` (unordered).
     void intersecting(const model::Aabb& region, std::vector<std::uint32_t>& out) const;
-    // The `k` slots whose bounds are closest to `region` (by bounds distance, nearest first).
-    void nearest(const model::Aabb& region, std::size_t k, std::vector<std::uint32_t>& out) const;
 
 private:
     struct Tree;

@@ -29,7 +29,12 @@ struct BoundFind;
 struct NodeSet {
     enum class Source { Nodes, Side, SubQuery };
     Source source = Source::Nodes;
-    std::vector<Slot> slots;                    // Nodes: the nodes; Side: the candidates, in id order
+    std::vector<Slot> slots;  // Nodes: the nodes; Side: the candidates, in id order
+    // A set that is one of the snapshot's own lists (a category, a kind word) refers to it rather
+    // than copying it into `slots` for every statement (a hall's 2,000 objects): the bound
+    // statement holds the snapshot, so the list outlives the set. Read the nodes through nodes().
+    const std::vector<Slot>* shared = nullptr;
+    const std::vector<Slot>& nodes() const { return shared ? *shared : slots; }
     std::string side;                           // Side: left | right | front | back
     std::shared_ptr<const BoundFind> subquery;  // SubQuery: planned and run by the executor
     std::size_t id = 0;                         // numbered per statement; the executor's caches use it

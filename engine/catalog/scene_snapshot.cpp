@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <functional>
 #include <limits>
 
 #include <fmt/format.h>
@@ -195,17 +196,32 @@ void SceneSnapshot::intersecting(const model::Aabb& region, std::vector<Slot>& o
     }
 }
 
-void SceneSnapshot::nearest(const model::Aabb& region, std::size_t k, std::vector<Slot>& out) const {
-    if (const storage::SpatialIndex* tree = packedTree()) {
-        tree->nearest(region, k, out);
-        return;
+SceneSnapshot::NearestWalk::NearestWalk(const SceneSnapshot& scene, const model::Aabb& region)
+    : scene_(scene), region_(region) {
+    const auto& blocks = scene.index_.blockBounds;
+    blocks_.reserve(blocks.size());
+    for (std::uint32_t b = 0; b < blocks.size(); ++b) blocks_.emplace_back(squaredGap(blocks[b], region), b);
+    std::make_heap(blocks_.begin(), blocks_.end(), std::greater<>());
+}
+
+std::optional<Slot> SceneSnapshot::NearestWalk::next() {
+    const auto& order = scene_.index_.spatialOrder;
+    // Take in blocks while the nearest block left is nearer than the nearest box taken in.
+    while (!blocks_.empty() && (boxes_.empty() || blocks_.front().first < boxes_.front().first)) {
+        std::pop_heap(blocks_.begin(), blocks_.end(), std::greater<>());
+        const std::size_t b = blocks_.back().second;
+        blocks_.pop_back();
+        const std::size_t end = std::min(order.size(), (b + 1) * storage::SceneIndex::kBlock);
+        for (std::size_t i = b * storage::SceneIndex::kBlock; i < end; ++i) {
+            boxes_.emplace_back(squaredGap(scene_.bounds(order[i]), region_), order[i]);
+            std::push_heap(boxes_.begin(), boxes_.end(), std::greater<>());
+        }
     }
-    std::vector<std::pair<double, Slot>> byGap;
-    byGap.reserve(spatialSize());
-    for (Slot s : index_.spatialOrder) byGap.emplace_back(squaredGap(bounds(s), region), s);
-    const auto kept = byGap.begin() + static_cast<std::ptrdiff_t>(std::min(k, byGap.size()));
-    std::partial_sort(byGap.begin(), kept, byGap.end());
-    for (auto it = byGap.begin(); it != kept; ++it) out.push_back(it->second);
+    if (boxes_.empty()) return std::nullopt;
+    std::pop_heap(boxes_.begin(), boxes_.end(), std::greater<>());
+    const Slot slot = boxes_.back().second;
+    boxes_.pop_back();
+    return slot;
 }
 
 const SceneSnapshot::Guidance& SceneSnapshot::guidance() const {

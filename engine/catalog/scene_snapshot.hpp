@@ -76,10 +76,25 @@ public:
     // Names of the attributes any node of the scene carries (color, material ...), sorted.
     const std::vector<std::string>& attributeNames() const;
     // The spatial index over the boxes of the nodes with geometry (the scene node left out):
-    // slots whose bounds intersect `region` (unordered), and the `k` slots whose bounds are
-    // nearest `region` (nearest first).
+    // slots whose bounds intersect `region` (unordered; the stored blocks, then the packed R-tree).
     void intersecting(const model::Aabb& region, std::vector<Slot>& out) const;
-    void nearest(const model::Aabb& region, std::size_t k, std::vector<Slot>& out) const;
+    // The same boxes by the (squared) gap between their bounds and a region, nearest first, one at
+    // a time (which of equal gaps comes first is free): the stored blocks best first, a block's boxes
+    // taken in once it is the nearest left. A box is never nearer than its block, so what a caller
+    // stops at has not cost the rest; NEAREST's few answers cost a gap per block and a few blocks.
+    class NearestWalk {
+    public:
+        std::optional<Slot> next();
+
+    private:
+        friend class SceneSnapshot;
+        NearestWalk(const SceneSnapshot& scene, const model::Aabb& region);
+        const SceneSnapshot& scene_;
+        model::Aabb region_;
+        std::vector<std::pair<double, std::uint32_t>> blocks_;  // by gap, a heap with the nearest on top
+        std::vector<std::pair<double, Slot>> boxes_;            // taken in, a heap with the nearest on top
+    };
+    NearestWalk walkNearest(const model::Aabb& region) const { return NearestWalk(*this, region); }
     std::size_t spatialSize() const { return index_.spatialOrder.size(); }
     const std::vector<model::Relation>& storedRelations() const;
 

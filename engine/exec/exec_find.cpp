@@ -214,12 +214,13 @@ bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const rel
     auto holds = [&](catalog::Slot b) {
         poll();
         if (b == slot || (region && !relations::intersects(snap.bounds(b), *region))) return false;
-        return score(expr.predicate, snap.node(slot), snap.node(b), frame, nullptr, expr.nearDistance) > 0;
+        return relations::holds(expr.predicate, snap.node(slot), snap.node(b), thresholds_, frame,
+                                catalog::SceneObstacles(snap), nullptr, expr.nearDistance);
     };
     const auto& refs = slots(expr.args[0], frame);
     if (!region) return std::any_of(refs.begin(), refs.end(), holds);
-    // Up to a few thousand references, a scan of their bounds in one flat array (48 bytes each,
-    // in order) finds those that meet the region faster than the R-tree, which visits the boxes of
+    // Up to a few thousand references, a sweep of their bounds sorted along x (48 bytes each, in
+    // order) finds those that meet the region faster than the R-tree, which visits the boxes of
     // every category there and returns them in a new list; beyond, the R-tree names the few close.
     constexpr std::size_t kScannedReferences = 4096;
     if (refs.size() > kScannedReferences) {
@@ -228,9 +229,16 @@ bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const rel
         snap.intersecting(*region, close);
         return std::any_of(close.begin(), close.end(), [&](catalog::Slot b) { return member[b] && holds(b); });
     }
-    const auto& bounds = boundsOf(expr.args[0], frame);
-    for (std::size_t i = 0; i < refs.size(); ++i)
-        if (relations::intersects(bounds[i], *region) && holds(refs[i])) return true;
+    const ReferenceSweep& sweep = sweepOf(expr.args[0], frame);
+    // With slack for the rounding of the subtraction: a reference is never skipped for it. A NaN
+    // bound starts the sweep at the first reference, which is slower, never wrong.
+    const double from = region->min.x - sweep.widest - 1e-9 * (1 + std::abs(region->min.x) + sweep.widest);
+    auto first = std::lower_bound(sweep.bounds.begin(), sweep.bounds.end(), from,
+                                  [](const model::Aabb& b, double x) { return b.min.x < x; });
+    for (auto it = first; it != sweep.bounds.end() && it->min.x <= region->max.x; ++it)
+        if (relations::intersects(*it, *region) &&
+            holds(sweep.slots[static_cast<std::size_t>(it - sweep.bounds.begin())]))
+            return true;
     return false;
 }
 
@@ -267,38 +275,26 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
         return std::sqrt(dx * dx + dy * dy + dz * dz);
     };
     if (want == 0) return {};
-    for (std::size_t k = std::max<std::size_t>(4 * want, 32);; k *= 4) {
-        std::vector<catalog::Slot> near;
-        snap.nearest(around, k, near);
-        std::vector<Hit> hits;
-        std::priority_queue<double> best;  // the `want` smallest exact distances so far, the largest on top
-        bool settled = false;
-        for (catalog::Slot s : near) {
-            // The candidates come nearest bounds first, and a box is never nearer than its bounds: once
-            // `want` answers are strictly nearer than this one's bounds, no later one can beat them.
-            if (best.size() == want && best.top() < boundsGap(snap.bounds(s))) {
-                settled = true;
-                break;
-            }
-            poll();
-            if ((f.nearest && s == ref) || !inTarget(f.target, s, frame) || (f.where && !matches(*f.where, s, frame)))
-                continue;
-            const double distance = model::distance(snap.node(s).box, snap.node(ref).box);
-            hits.push_back({s, distance});
-            best.push(distance);
-            if (best.size() > want) best.pop();
-        }
-        std::sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
-            return a.distance != b.distance ? a.distance < b.distance : snap.node(a.slot).id < snap.node(b.slot).id;
-        });
-        // Likewise, boxes beyond the last returned bounds cannot beat an answer strictly nearer than those bounds.
-        bool wholeIndex = near.size() < k || k >= snap.spatialSize();
-        if (settled || wholeIndex ||
-            (hits.size() >= want && hits[want - 1].distance < boundsGap(snap.bounds(near.back())))) {
-            if (hits.size() > want) hits.resize(want);
-            return hits;
-        }
+    std::vector<Hit> hits;
+    std::priority_queue<double> best;  // the `want` smallest exact distances so far, the largest on top
+    auto walk = snap.walkNearest(around);
+    while (const std::optional<catalog::Slot> s = walk.next()) {
+        // The candidates come nearest bounds first, and a box is never nearer than its bounds: once
+        // `want` answers are strictly nearer than this one's bounds, no later one can beat them.
+        if (best.size() == want && best.top() < boundsGap(snap.bounds(*s))) break;
+        poll();
+        if ((f.nearest && *s == ref) || !inTarget(f.target, *s, frame) || (f.where && !matches(*f.where, *s, frame)))
+            continue;
+        const double distance = model::distance(snap.node(*s).box, snap.node(ref).box);
+        hits.push_back({*s, distance});
+        best.push(distance);
+        if (best.size() > want) best.pop();
     }
+    std::sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
+        return a.distance != b.distance ? a.distance < b.distance : snap.node(a.slot).id < snap.node(b.slot).id;
+    });
+    if (hits.size() > want) hits.resize(want);
+    return hits;
 }
 
 // The space SIMILAR TO searches: the built-in text embedder's, with the text embedded once per

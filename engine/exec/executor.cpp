@@ -1,6 +1,7 @@
 #include "engine/exec/executor.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -31,7 +32,7 @@ Executor::Executor(const storage::ReadTransaction& txn, catalog::Session& sessio
       thresholds_(session.thresholds),
       resolved_(plan.statement->setCount),
       membership_(plan.statement->setCount),
-      bounds_(plan.statement->setCount) {}
+      sweeps_(plan.statement->setCount) {}
 
 void Executor::interrupted() {
     throw Error(ErrorKind::Interrupted, "the statement was interrupted", std::nullopt, "nothing was changed");
@@ -51,7 +52,7 @@ ResultSet Executor::run() {
 }
 
 const std::vector<catalog::Slot>& Executor::slots(const NodeSet& set, const relations::Frame& frame) {
-    if (set.source == NodeSet::Source::Nodes) return set.slots;
+    if (set.source == NodeSet::Source::Nodes) return set.nodes();
     auto& resolved = resolved_[set.id];
     if (resolved) return *resolved;
     if (set.source == NodeSet::Source::Side) return resolveSide(set, frame);
@@ -67,7 +68,7 @@ const std::vector<catalog::Slot>& Executor::slots(const NodeSet& set, const rela
 const std::vector<catalog::Slot>& Executor::resolveSide(const NodeSet& set, const relations::Frame& frame) {
     std::vector<catalog::Slot> candidates;
     std::vector<model::Vec2> centres;
-    for (catalog::Slot s : set.slots) {
+    for (catalog::Slot s : set.nodes()) {
         const Node& n = scene().node(s);
         if (n.geometry == model::GeometryKind::None || n.hidden) continue;
         candidates.push_back(s);
@@ -92,15 +93,27 @@ const std::vector<char>& Executor::membership(const NodeSet& set, const relation
     return member;
 }
 
-const std::vector<model::Aabb>& Executor::boundsOf(const NodeSet& set, const relations::Frame& frame) {
-    auto& bounds = bounds_[set.id];
-    if (!bounds) {
+const Executor::ReferenceSweep& Executor::sweepOf(const NodeSet& set, const relations::Frame& frame) {
+    auto& sweep = sweeps_[set.id];
+    if (!sweep) {
         const auto& nodes = slots(set, frame);
-        bounds.emplace();
-        bounds->reserve(nodes.size());
-        for (catalog::Slot s : nodes) bounds->push_back(scene().bounds(s));
+        std::vector<catalog::Slot> order;
+        order.reserve(nodes.size());
+        for (catalog::Slot s : nodes) {
+            const model::Aabb& b = scene().bounds(s);
+            if (!std::isnan(b.min.x) && !std::isnan(b.max.x)) order.push_back(s);
+        }
+        std::sort(order.begin(), order.end(),
+                  [&](catalog::Slot a, catalog::Slot b) { return scene().bounds(a).min.x < scene().bounds(b).min.x; });
+        sweep.emplace();
+        sweep->slots = std::move(order);
+        sweep->bounds.reserve(sweep->slots.size());
+        for (catalog::Slot s : sweep->slots) {
+            sweep->bounds.push_back(scene().bounds(s));
+            sweep->widest = std::max(sweep->widest, sweep->bounds.back().max.x - sweep->bounds.back().min.x);
+        }
     }
-    return *bounds;
+    return *sweep;
 }
 
 relations::Frame Executor::defaultFrame() const { return relations::viewFrame(scene().info().viewpoint); }

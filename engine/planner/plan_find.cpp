@@ -49,7 +49,7 @@ constexpr std::size_t kSimilarFirstFrom = 256;
 
 // Exactly one reference node, known before the statement runs: a name, id or side.
 bool oneReference(const NodeSet& set) {
-    return (set.source == NodeSet::Source::Nodes && set.slots.size() == 1) || set.source == NodeSet::Source::Side;
+    return (set.source == NodeSet::Source::Nodes && set.nodes().size() == 1) || set.source == NodeSet::Source::Side;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 
 #include "relations/hierarchy.hpp"
 #include "relations/predicates.hpp"
@@ -153,6 +154,45 @@ TEST_CASE("near: a wall between two things keeps them apart") {
     // A wall beside them, not between, changes nothing; nor does one a chair stands in.
     CHECK(evalAmong(Predicate::Near, here, there, Boxes({wallAt(10, 1.0)})) > 0);
     CHECK(evalAmong(Predicate::Near, here, there, Boxes({wallAt(10, 0.4)})) > 0);
+}
+
+// holds() settles on over a footprint within the carrier's, and near within a written distance,
+// without the exact overlap or distance: it must answer what the score does, on either side of
+// each line (things across the table's edge, at every distance, turned, behind a wall).
+TEST_CASE("holds answers as the score does") {
+    std::mt19937_64 rng(36);
+    std::uniform_real_distribution<double> across(-1.2, 1.2), size(0.02, 0.6), turn(-0.4, 0.4), lift(0.7, 1.1);
+    const Boxes walled({wallAt(10, 0.7)});
+    Thresholds exact = kT;
+    exact.onMinOverlap = 1.0;  // a footprint within its carrier sits on the line: the overlap is clipped
+    std::size_t held = 0, refused = 0;
+    for (int i = 0; i < 4000; ++i) {
+        Node thing = node(2, "mug", across(rng), across(rng), lift(rng), size(rng), size(rng), size(rng));
+        thing.box.yaw = turn(rng);
+        Node table = kTable;
+        table.box.yaw = i % 3 == 0 ? 0.0 : turn(rng);
+        for (const Obstacles* around :
+             {static_cast<const Obstacles*>(&kNothing), static_cast<const Obstacles*>(&walled)})
+            for (const Thresholds* t : {&kT, static_cast<const Thresholds*>(&exact)}) {
+                const bool on = evaluate(Predicate::On, thing, table, *t, kFrame, *around) > 0;
+                REQUIRE(holds(Predicate::On, thing, table, *t, kFrame, *around) == on);
+                (on ? held : refused) += 1;
+                for (double d : {0.0, 0.05, 0.3, 1.0, 1.5}) {
+                    const bool near = evaluate(Predicate::Near, thing, table, *t, kFrame, *around, nullptr, d) > 0;
+                    REQUIRE(holds(Predicate::Near, thing, table, *t, kFrame, *around, nullptr, d) == near);
+                    (near ? held : refused) += 1;
+                }
+            }
+    }
+    // Both answers, many times over.
+    CHECK(held > 1000);
+    CHECK(refused > 1000);
+    // The same box twice: on at a share of exactly 1, where the clipping's rounding decides.
+    Node same = kTable;
+    same.id = 2;
+    same.box.center.z = 0.9;
+    CHECK(holds(Predicate::On, same, kTable, exact, kFrame, kNothing) ==
+          (evaluate(Predicate::On, same, kTable, exact, kFrame, kNothing) > 0));
 }
 
 TEST_CASE("visible_from: sight lines blocked by boxes, the sample share and the field of view") {
