@@ -16,12 +16,6 @@ namespace smql::ingest {
 
 namespace {
 
-// Every view of the frame pass's tracks, with the track it came from (for its evidence crop).
-struct Views {
-    std::vector<Observation> all;
-    std::vector<std::size_t> trackOf;
-};
-
 // A thing the instance map found: one or more of its instances (several when two were one thing
 // stored twice), their points, the box fitted to them, their names' tally and the name chosen.
 struct Thing {
@@ -42,37 +36,6 @@ ViewRegion alignedRegion(const Observation& view, const Alignment& alignment) {
     }
     region.pitch = view.regionPitch * alignment.scale;
     return region;
-}
-
-// Frame by frame, each view's thing into the map; then pieces merged. Counts what it did.
-struct Fused {
-    std::size_t segmented = 0, merged = 0;
-};
-Fused fuseViews(const Views& views, const Alignment& alignment, const RoomSurfaces& room, InstanceMap& map,
-                StageProgress& progress) {
-    std::vector<std::size_t> order(views.all.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](auto a, auto b) { return views.all[a].frame < views.all[b].frame; });
-    Fused out;
-    for (std::size_t i = 0; i < order.size();) {
-        progress.stopIfCancelled();
-        std::vector<InstanceView> frame;
-        const std::uint32_t at = views.all[order[i]].frame;
-        for (; i < order.size() && views.all[order[i]].frame == at; ++i) {
-            const Observation& view = views.all[order[i]];
-            const bool onSurface = usualSupport(view.label) == Support::Surface;
-            PointCloud thing = thingInView(alignedRegion(view, alignment), room, onSurface);
-            if (thing.empty()) continue;
-            ++out.segmented;
-            frame.push_back({view.frame, view.label, view.score, view.alsoSeenAs, std::move(thing), order[i]});
-        }
-        map.integrate(std::move(frame));
-    }
-    const std::size_t instances = map.instances().size();
-    map.consolidate();
-    out.merged = instances - map.instances().size();
-    return out;
 }
 
 // How many of the cameras held the points in view: at least half of up to 16 of them project into
@@ -236,34 +199,6 @@ bool sliver(const Thing& thing, const FusionOptions& options) {
            (usual && thinnest < options.thinShare * *usual);
 }
 
-// The thing as a track: its views in frame order, the evidence crop of the frame-pass track most of
-// them came from, its fused points and box.
-ObjectTrack trackOf(const Thing& thing, Views& views, const std::vector<ObjectTrack>& tracks) {
-    ObjectTrack track;
-    track.category = thing.category;
-    track.kind = detectionKind(track.category);
-    std::vector<std::size_t> sources;
-    for (const Instance* instance : thing.instances)
-        sources.insert(sources.end(), instance->sources.begin(), instance->sources.end());
-    std::sort(sources.begin(), sources.end(), [&](auto a, auto b) { return views.all[a].frame < views.all[b].frame; });
-    std::map<std::size_t, std::size_t> fromTrack;
-    for (auto s : sources) {
-        ++fromTrack[views.trackOf[s]];
-        track.views.push_back(std::move(views.all[s]));
-    }
-    auto most = std::max_element(fromTrack.begin(), fromTrack.end(),
-                                 [](const auto& a, const auto& b) { return a.second < b.second; });
-    track.evidence = tracks[most->first].evidence;
-    track.material = tracks[most->first].material;
-    for (std::size_t p = 0; p < thing.points.size(); ++p) {
-        track.fused.push_back(thing.points.points[p]);
-        const auto& c = thing.points.colors[p];
-        track.fusedColors.push_back(cv::Vec3b(c[2], c[1], c[0]));
-    }
-    track.fusedBox = thing.box;
-    return track;
-}
-
 // A thing of a kind that stands on floors (a table, a chair, a bed) whose legs or base the views did
 // not see (chairs in front, the table's own top): its bottom hangs in the air, below
 // FusionOptions::groundReach or with its top no higher than such things' usual top
@@ -409,47 +344,131 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
     return doubts;
 }
 
-std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
-                                    const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
-                                    const FusionOptions& options, StageProgress& progress) {
-    Views views;
-    for (std::size_t t = 0; t < tracks.size(); ++t)
-        for (auto& v : tracks[t].views) {
-            views.all.push_back(std::move(v));
-            views.trackOf.push_back(t);
-        }
-    InstanceMapOptions mapOptions;
-    mapOptions.voteLabels = options.voteLabels;
-    InstanceMap map(mapOptions);
-    const Fused fused = fuseViews(views, alignment, room, map, progress);
+ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options)
+    : alignment_(alignment),
+      floorFound_(room.floorFound),
+      ceilingHeight_(room.ceilingHeight),
+      walls_(room.walls ? *room.walls : std::vector<WallSegment>{}),
+      options_(options),
+      map_([&] {
+          InstanceMapOptions mapOptions;
+          mapOptions.voteLabels = options.voteLabels;
+          return mapOptions;
+      }()) {}
 
-    std::size_t guesses = 0;
-    std::vector<Thing> things = thingsOf(map, cameras, options, guesses);
-    const std::size_t pieces = mergePieces(things, options);
-    const std::size_t ends = joinUprightEnds(things, options);
+void ObjectFusion::addCamera(const FusionCamera& camera) { cameras_.push_back(camera); }
+
+void ObjectFusion::addFrame(std::vector<Observation> frameViews) {
+    const RoomSurfaces room{floorFound_, ceilingHeight_, &walls_};
+    std::vector<InstanceView> frame;
+    for (auto& view : frameViews) {
+        const std::size_t source = views_.size();
+        views_.push_back(std::move(view));
+        const Observation& added = views_.back();
+        const bool onSurface = usualSupport(added.label) == Support::Surface;
+        PointCloud thing = thingInView(alignedRegion(added, alignment_), room, onSurface);
+        if (thing.empty()) continue;
+        ++segmented_;
+        frame.push_back({added.frame, added.label, added.score, added.alsoSeenAs, std::move(thing), source});
+    }
+    map_.integrate(std::move(frame));
+}
+
+std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
+    // The map keeps taking frames: its pieces are merged in a copy.
+    InstanceMap map = map_;
+    const std::size_t instances = map.instances().size();
+    map.consolidate();
+    FusionCounts made;
+    made.segmented = segmented_;
+    made.views = views_.size();
+    made.mapMerged = instances - map.instances().size();
+
+    std::vector<Thing> things = thingsOf(map, cameras_, options_, made.guesses);
+    made.pieces = mergePieces(things, options_);
+    made.ends = joinUprightEnds(things, options_);
     std::vector<SeenBox> boxes;
     for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0});
-    const std::size_t grounded = reachDownToFloor(boxes, room.floorFound, options);
+    made.grounded = reachDownToFloor(boxes, floorFound_, options_);
     for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
-    const std::size_t slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options); });
+    made.slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options_); });
 
     std::vector<SeenBox> named;
     for (const auto& thing : things) named.push_back({thing.box, thing.category, 0});
-    const std::vector<std::string> doubts =
-        outOfPlace(named, room.walls ? *room.walls : std::vector<WallSegment>{}, options);
+    const std::vector<std::string> doubts = outOfPlace(named, walls_, options_);
 
-    std::vector<ObjectTrack> out;
+    std::vector<FusedThing> out;
     for (std::size_t t = 0; t < things.size(); ++t) {
-        out.push_back(trackOf(things[t], views, tracks));
-        out.back().nameDoubt = doubts[t];
+        FusedThing fused{things[t].box, things[t].category, doubts[t], std::move(things[t].points), {}};
+        for (const Instance* instance : things[t].instances)
+            fused.views.insert(fused.views.end(), instance->sources.begin(), instance->sources.end());
+        std::sort(fused.views.begin(), fused.views.end(),
+                  [&](auto a, auto b) { return views_[a].frame < views_[b].frame; });
+        out.push_back(std::move(fused));
+    }
+    if (counts) *counts = made;
+    return out;
+}
+
+std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
+                                    const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,
+                                    const FusionOptions& options, StageProgress& progress) {
+    ObjectFusion fusion(alignment, room, options);
+    for (const auto& camera : cameras) fusion.addCamera(camera);
+    // The frame pass's views, frame by frame in the order they were taken, each with the track it came from
+    // (for its evidence crop).
+    std::vector<std::pair<Observation, std::size_t>> all;
+    for (std::size_t t = 0; t < tracks.size(); ++t)
+        for (auto& v : tracks[t].views) all.emplace_back(std::move(v), t);
+    std::stable_sort(all.begin(), all.end(),
+                     [](const auto& a, const auto& b) { return a.first.frame < b.first.frame; });
+    std::vector<std::size_t> trackOf;
+    for (std::size_t i = 0; i < all.size();) {
+        progress.stopIfCancelled();
+        std::vector<Observation> frame;
+        for (const std::uint32_t at = all[i].first.frame; i < all.size() && all[i].first.frame == at; ++i) {
+            frame.push_back(std::move(all[i].first));
+            trackOf.push_back(all[i].second);
+        }
+        fusion.addFrame(std::move(frame));
+    }
+
+    FusionCounts counts;
+    std::vector<FusedThing> things = fusion.things(&counts);
+    std::vector<Observation> views = fusion.takeViews();
+    std::vector<ObjectTrack> out;
+    for (auto& thing : things) {
+        // The thing as a track: its views in frame order, the evidence crop of the frame-pass track most of them
+        // came from, its fused points and box.
+        ObjectTrack track;
+        track.category = thing.category;
+        track.kind = detectionKind(track.category);
+        track.nameDoubt = thing.nameDoubt;
+        std::map<std::size_t, std::size_t> fromTrack;
+        for (auto v : thing.views) {
+            ++fromTrack[trackOf[v]];
+            track.views.push_back(std::move(views[v]));
+        }
+        auto most = std::max_element(fromTrack.begin(), fromTrack.end(),
+                                     [](const auto& a, const auto& b) { return a.second < b.second; });
+        track.evidence = tracks[most->first].evidence;
+        track.material = tracks[most->first].material;
+        for (std::size_t p = 0; p < thing.points.size(); ++p) {
+            track.fused.push_back(thing.points.points[p]);
+            const auto& c = thing.points.colors[p];
+            track.fusedColors.push_back(cv::Vec3b(c[2], c[1], c[0]));
+        }
+        track.fusedBox = thing.box;
+        out.push_back(std::move(track));
     }
     progress.note(fmt::format(
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds or "
         "sofas; {} slivers and {} things seen in too few of the frames that held them dropped; {} reaching down to the "
         "floor)",
-        fused.segmented, views.all.size(), out.size(), fused.merged, pieces, ends, slivers, guesses, grounded));
+        counts.segmented, counts.views, out.size(), counts.mapMerged, counts.pieces, counts.ends, counts.slivers,
+        counts.guesses, counts.grounded));
     return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include "ingest/capture/observations.hpp"
 #include "ingest/geometry/alignment.hpp"
+#include "ingest/geometry/instance_map.hpp"
 #include "ingest/geometry/view_segment.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
 
@@ -78,6 +79,51 @@ std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, cons
 // detector calls a toilet in every view). Returns, per thing, why its name is doubted, or "".
 std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
                                     const FusionOptions& options = {});
+
+// A thing fusion made: its box and name, why the name is doubted (outOfPlace) or "", its fused points (aligned
+// frame, colours RGB) and the views it was made of (indices into ObjectFusion's views, in frame order).
+struct FusedThing {
+    model::Box box;
+    std::string category;
+    std::string nameDoubt;
+    PointCloud points;
+    std::vector<std::size_t> views;
+};
+
+// What making the things did, for the ingest's note.
+struct FusionCounts {
+    std::size_t segmented = 0;  // views that showed a thing apart from the floor and walls
+    std::size_t views = 0;      // views added
+    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, grounded = 0;
+};
+
+// Object fusion frame by frame: each frame's views go into the instance map as the frame comes (addFrame), and
+// the things are made from the map whenever they are asked for (things), so the objects of a capture can be read
+// while its frames stream in, and a recorded capture's once its last frame is in (fuseTracks).
+class ObjectFusion {
+public:
+    ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options = {});
+    // A camera whose frame the detectors looked at: what "held in view but not seen" is counted over.
+    void addCamera(const FusionCamera& camera);
+    // One frame's views of things (all of that frame's, in the capture's frame), frames in the order taken.
+    void addFrame(std::vector<Observation> frameViews);
+    // The things the frames so far show: instances merged, pieces joined, grounded, slivers dropped, names
+    // doubted out of place. The map itself is left to take more frames.
+    std::vector<FusedThing> things(FusionCounts* counts = nullptr) const;
+    const std::vector<Observation>& views() const { return views_; }
+    std::vector<Observation> takeViews() { return std::move(views_); }
+
+private:
+    Alignment alignment_;
+    bool floorFound_;
+    std::optional<double> ceilingHeight_;
+    std::vector<WallSegment> walls_;
+    FusionOptions options_;
+    InstanceMap map_;
+    std::vector<FusionCamera> cameras_;
+    std::vector<Observation> views_;
+    std::size_t segmented_ = 0;
+};
 
 std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Alignment& alignment,
                                     const RoomSurfaces& room, const std::vector<FusionCamera>& cameras,

@@ -130,3 +130,57 @@ TEST_CASE("out of place: a toilet among a kitchen's things is not a toilet; one 
     CHECK(pair[0].empty());
     CHECK(pair[1].empty());
 }
+
+namespace {
+
+// A detection's view of an upright box as a depth camera looking along `from` sees it: the faces turned to the
+// camera and the top, a point every 2 cm, each on a grid place of its own.
+Observation boxSeen(std::uint32_t frame, const char* label, model::Vec3 centre, model::Vec3 size, model::Vec3 from) {
+    Observation view;
+    view.frame = frame;
+    view.label = label;
+    view.score = 0.8;
+    view.regionPitch = 0.02;
+    auto add = [&](double x, double y, double z) {
+        const auto i = static_cast<std::uint16_t>(view.region.size());
+        view.region.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z),
+                               cv::Vec3b(90, 90, 90), static_cast<std::uint16_t>(i % 500),
+                               static_cast<std::uint16_t>(i / 500)});
+    };
+    const double hx = size.x / 2, hy = size.y / 2, hz = size.z / 2;
+    for (double a = -hx; a <= hx; a += 0.02)
+        for (double b = -hy; b <= hy; b += 0.02) add(centre.x + a, centre.y + b, centre.z + hz);
+    const double side = from.x > 0 ? -1 : 1;
+    for (double b = -hy; b <= hy; b += 0.02)
+        for (double c = -hz; c <= hz; c += 0.02) add(centre.x + side * hx, centre.y + b, centre.z + c);
+    return view;
+}
+
+}  // namespace
+
+TEST_CASE("fusion frame by frame: the things so far after each frame, the map left to take more", "[ingest][fusion]") {
+    ObjectFusion fusion(Alignment{}, RoomSurfaces{true, std::nullopt, nullptr});
+    const model::Vec3 chair{1.0, 1.0, 0.45}, chairSize{0.5, 0.5, 0.9};
+    fusion.addFrame({boxSeen(0, "chair", chair, chairSize, {1, 0, -0.5})});
+    auto things = fusion.things();
+    REQUIRE(things.size() == 1);
+    CHECK(things[0].category == "chair");
+    CHECK(things[0].views == std::vector<std::size_t>{0});
+
+    // The chair from its other side: still one chair, now of two views; asking twice changes nothing.
+    fusion.addFrame({boxSeen(1, "chair", chair, chairSize, {-1, 0, -0.5})});
+    things = fusion.things();
+    REQUIRE(things.size() == 1);
+    CHECK(things[0].views == std::vector<std::size_t>{0, 1});
+    CHECK(things[0].box.size.x == Approx(0.5).margin(0.03));
+    CHECK(fusion.things().size() == 1);
+
+    // A table two metres away comes in a later frame; the counts say what was made.
+    fusion.addFrame({boxSeen(2, "table", {3.0, 1.0, 0.375}, {1.2, 0.8, 0.75}, {1, 0, -0.5})});
+    FusionCounts counts;
+    things = fusion.things(&counts);
+    REQUIRE(things.size() == 2);
+    CHECK(counts.views == 3);
+    CHECK(counts.segmented == 3);
+    CHECK(fusion.views().size() == 3);
+}
