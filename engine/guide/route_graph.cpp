@@ -351,7 +351,9 @@ namespace {
 // Where a walker stands to reach `goal`: on open floor beside its floor-standing support, a body's
 // radius and a little more from the support's footprint, at points every 0.2 m around it. Beside a
 // thing on the floor, the point nearest the middle of the room (its most open side); beside the
-// furniture a thing rests on, the point nearest the thing. Else the nearest free cell.
+// furniture a thing rests on, the point nearest the thing, or the open cell nearer to it where what
+// stands beside the support (a nightstand at a bed's head, the chairs at a desk) takes the outline
+// there. Else the nearest free cell.
 std::optional<Point> approach(const Node& goal, const Node& support, const FreeSpace& space, Point centre,
                               const GraphOptions& options) {
     constexpr double kSpacing = 0.2;
@@ -374,8 +376,12 @@ std::optional<Point> approach(const Node& goal, const Node& support, const FreeS
             if (space.open(p) && (!best || distance(p, target) < distance(*best, target))) best = p;
         }
     }
-    if (best) return best;
     const double reach = std::max(1.5, std::hypot(hx, hy));
+    if (best && &goal == &support) return best;
+    if (auto nearest = space.nearestFree(goalAt, reach);
+        nearest && space.open(*nearest) && (!best || distance(*nearest, goalAt) < distance(*best, goalAt)))
+        return nearest;
+    if (best) return best;
     return space.nearestFree(goalAt, reach);
 }
 

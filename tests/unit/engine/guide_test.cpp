@@ -2,8 +2,10 @@
 // GUIDE and SHOW GRAPH statements over them.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <set>
 
 #include <fmt/format.h>
@@ -13,6 +15,7 @@
 #include "engine/guide/route_steps.hpp"
 #include "engine_support.hpp"
 #include "ingest/import/importers.hpp"
+#include "relations/hierarchy.hpp"
 
 using namespace smql;
 using namespace smql::testing;
@@ -414,4 +417,40 @@ TEST_CASE("a crowded room: chairs are pushed aside and tables squeezed past when
         CHECK(goals >= 40);
         CHECK(crowded > 0);
     }
+}
+
+TEST_CASE("a thing on furniture is approached from the open floor nearest it, on real rooms", "[guide]") {
+    // ScanNet's rooms: a pillow at a bed's head between two nightstands, a monitor on a desk among
+    // its chairs. The outline around the support beside the thing is taken by its neighbours; the
+    // walk ends on the open floor nearest the thing instead, wherever that is.
+    const std::string file = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
+    auto rooms = import::readVsiBenchAll(file);
+    guide::GraphOptions options;
+    std::size_t onFurniture = 0, within = 0;
+    for (auto& room : rooms) {
+        relations::assignParents(room);
+        const auto& nodes = room.nodes;
+        const guide::Footing footing(nodes, options);
+        guide::FreeSpace space(nodes, options);
+        auto graph = guide::buildGraph(nodes, space, options);
+        for (const auto& p : graph.points) {
+            if (p.kind != guide::PointKind::Approach) continue;
+            const auto& goal = *std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.id == p.node; });
+            if (&footing.support(goal) == &goal) continue;
+            ++onFurniture;
+            const guide::Point at{goal.box.center.x, goal.box.center.y};
+            INFO(room.info.name << ": " << goal.category << "#" << goal.id);
+            if (auto nearest = space.nearestFree(at, 1.0); nearest && space.open(*nearest))
+                CHECK(std::hypot(p.at.x - at.x, p.at.y - at.y) <=
+                      std::hypot(nearest->x - at.x, nearest->y - at.y) + 1e-9);
+            const double c = std::cos(goal.box.yaw), s = std::sin(goal.box.yaw), dx = p.at.x - at.x, dy = p.at.y - at.y;
+            within += std::hypot(std::max(0.0, std::abs(c * dx + s * dy) - goal.box.size.x / 2),
+                                 std::max(0.0, std::abs(-s * dx + c * dy) - goal.box.size.y / 2)) <= 1.0;
+        }
+    }
+    std::cout << fmt::format("ScanNet: {} of {} things on furniture approached within 1 m of their footprint\n", within,
+                             onFurniture);
+    // 191 of 232 when this was written; 165 while the walk ended on the support's outline only.
+    CHECK(onFurniture > 200);
+    CHECK(within * 100 >= onFurniture * 80);
 }
