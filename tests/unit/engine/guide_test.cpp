@@ -15,6 +15,7 @@
 #include "engine/guide/route_steps.hpp"
 #include "engine_support.hpp"
 #include "ingest/import/importers.hpp"
+#include "model/geometry.hpp"
 #include "relations/hierarchy.hpp"
 
 using namespace smql;
@@ -453,4 +454,54 @@ TEST_CASE("a thing on furniture is approached from the open floor nearest it, on
     // 191 of 232 when this was written; 165 while the walk ended on the support's outline only.
     CHECK(onFurniture > 200);
     CHECK(within * 100 >= onFurniture * 80);
+}
+
+TEST_CASE("a box turned from the walls over what stands beside it bounds a thing square to the walls",
+          "[guide][walls]") {
+    // Replica room_1 (tests/data/replica-room1, named in its SOURCES.md): the bed's box is 3.1 x 3.0 m,
+    // turned 55 degrees from the room's walls, over both nightstands; the two wall plugs behind it
+    // were closed off by it and three pillows in its middle reached more than 1 m away.
+    const std::string file = std::string(SMQL_SOURCE_DIR) + "/tests/data/replica-room1/info_semantic.json";
+    model::SceneData room = import::readReplica(file, "room1");
+    relations::assignParents(room);
+    guide::GraphOptions options;
+    const guide::Footing footing(room.nodes, options);
+    auto bySource = [&](std::int64_t source) -> const model::Node& {
+        return *std::find_if(room.nodes.begin(), room.nodes.end(),
+                             [&](const auto& n) { return n.sourceId && *n.sourceId == source; });
+    };
+    // The bed is the rectangle square to the walls whose bounds its box is: 2.4 x 1.9 m, its head
+    // against wall 25 between the nightstands. The nightstands' smaller boxes are their own.
+    const model::Node& bed = bySource(32);
+    const model::Box& fitted = footing.footprint(bed);
+    REQUIRE(&fitted != &bed.box);
+    CHECK(std::max(fitted.size.x, fitted.size.y) == Approx(2.44).margin(0.05));
+    CHECK(std::min(fitted.size.x, fitted.size.y) == Approx(1.95).margin(0.05));
+    const double walls = std::atan2(std::sin(4 * bySource(25).box.yaw), std::cos(4 * bySource(25).box.yaw)) / 4;
+    CHECK(std::abs(std::remainder(fitted.yaw - walls, M_PI / 2)) < 2 * M_PI / 180);
+    CHECK(model::footprintArea(fitted) < 0.55 * model::footprintArea(bed.box));
+    for (std::int64_t nightstand : {8, 28})
+        CHECK(&footing.footprint(bySource(nightstand)) == &bySource(nightstand).box);
+
+    // From the door to the plugs behind the bed, and to the pillows in its middle within 1 m.
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(room);
+    for (std::int64_t plug : {49, 16}) CHECK_NOTHROW(run(*engine, fmt::format("GUIDE FROM door TO src#{}", plug)));
+    for (std::int64_t pillow : {39, 3, 13}) {
+        auto rs = run(*engine, fmt::format("GUIDE FROM door TO src#{}", pillow));
+        const int x = rs.columnIndex("x"), y = rs.columnIndex("y");
+        const auto& end = rs.rows[rs.rows.size() - 2];
+        const model::Box& box = bySource(pillow).box;
+        INFO("pillow #" << pillow << ": " << rs.message);
+        CHECK(model::horizontalGap(
+                  box, {{std::get<double>(end[x]), std::get<double>(end[y]), box.center.z}, {0, 0, 0}, 0}) <= 1.0);
+    }
+
+    // A layout without walls (ScanNet's boxes) has no walls to be square to: every box is its own.
+    const std::string scans = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
+    for (auto& scan : import::readVsiBenchAll(scans)) {
+        const guide::Footing scanFooting(scan.nodes, options);
+        for (const auto& n : scan.nodes) CHECK(&scanFooting.footprint(n) == &n.box);
+    }
 }
