@@ -152,17 +152,25 @@ Footing::Footing(const std::vector<Node>& nodes, const GraphOptions& options)
     // pushed under its top by right (a chair, a nested table); what a person moves stands turned
     // any way and is left its box.
     constexpr double kShared = 0.25;
-    std::vector<const Node*> standing;
+    auto loose = [&](const Node& a, const Node& b) {
+        const double other = model::footprintArea(b.box);
+        return model::footprintArea(a.box) > other && !movable(a) && !(onLegs(a) && (onLegs(b) || movable(b))) &&
+               model::footprintOverlap(a.box, b.box) >= kShared * other;
+    };
+    // Only boxes whose bounds meet can share floor: swept along x.
+    std::vector<std::pair<model::Aabb, const Node*>> standing;
     for (const Node& n : nodes)
-        if (n.kind == NodeKind::Object && stands(n)) standing.push_back(&n);
-    for (const Node* a : standing)
-        for (const Node* b : standing) {
-            const double area = model::footprintArea(a->box), other = model::footprintArea(b->box);
-            if (a == b || area <= other || movable(*a) || (onLegs(*a) && (onLegs(*b) || movable(*b))) ||
-                model::footprintOverlap(a->box, b->box) < kShared * other)
-                continue;
-            if (auto squared = squareTo(a->box, *walls)) squared_.emplace(a->id, *squared);
-            break;
+        if (n.kind == NodeKind::Object && stands(n)) standing.push_back({model::worldAabb(n.box), &n});
+    std::sort(standing.begin(), standing.end(),
+              [](const auto& p, const auto& q) { return p.first.min.x < q.first.min.x; });
+    for (std::size_t i = 0; i < standing.size(); ++i)
+        for (std::size_t j = i + 1; j < standing.size() && standing[j].first.min.x <= standing[i].first.max.x; ++j) {
+            const auto& [ai, a] = standing[i];
+            const auto& [bj, b] = standing[j];
+            if (bj.min.y > ai.max.y || ai.min.y > bj.max.y) continue;
+            for (auto [bound, held] : {std::pair{a, b}, std::pair{b, a}})
+                if (!squared_.count(bound->id) && loose(*bound, *held))
+                    if (auto squared = squareTo(bound->box, *walls)) squared_.emplace(bound->id, *squared);
         }
 }
 
