@@ -505,3 +505,46 @@ TEST_CASE("a box turned from the walls over what stands beside it bounds a thing
         for (const auto& n : scan.nodes) CHECK(&scanFooting.footprint(n) == &n.box);
     }
 }
+
+TEST_CASE("steps merge only where their one line stays on the free floor, on real rooms", "[guide]") {
+    // ScanNet's rooms: a walk that ends against the blocked floor beside a bed or a desk, its last
+    // short leg merged into the one before, cut the corner through the bed's or the desk's floor.
+    const std::string file = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
+    auto rooms = import::readVsiBenchAll(file);
+    guide::GraphOptions options;
+    std::size_t steps = 0, cutting = 0;
+    for (std::size_t r = 0; r < rooms.size(); r += 2) {
+        relations::assignParents(rooms[r]);
+        const auto& nodes = rooms[r].nodes;
+        guide::FreeSpace space(nodes, options);
+        auto graph = guide::buildGraph(nodes, space, options);
+        std::vector<guide::DecisionPoint> ends;
+        for (const auto& p : graph.points)
+            if (p.kind == guide::PointKind::Approach) ends.push_back(p);
+        for (std::size_t i = 0; i + 1 < ends.size(); i += 3) {
+            const auto& goal =
+                *std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.id == ends[i + 1].node; });
+            auto route = guide::shortestRoute(graph, space, ends[i].at, ends[i + 1].at, options);
+            if (!route) continue;
+            guide::Point from = route->waypoints.front();
+            auto described = guide::describeRoute(*route, nodes, goal, std::nullopt, &space);
+            for (std::size_t k = 0; k + 1 < described.size(); ++k) {
+                ++steps;
+                INFO(rooms[r].info.name << " to " << goal.category << "#" << goal.id << ", step " << k + 1);
+                CHECK(space.clear(from, described[k].at));
+                from = described[k].at;
+            }
+            // Without the free floor, the merged legs may cut it.
+            guide::Point before = route->waypoints.front();
+            const auto merged = guide::describeRoute(*route, nodes, goal, std::nullopt);
+            for (std::size_t k = 0; k + 1 < merged.size(); ++k) {
+                cutting += !space.clear(before, merged[k].at);
+                before = merged[k].at;
+            }
+        }
+    }
+    std::cout << fmt::format("ScanNet: {} steps on the free floor; merged regardless of it, {} would cut it\n", steps,
+                             cutting);
+    CHECK(steps > 300);
+    CHECK(cutting > 0);  // the rooms hold such corners: the test sees them
+}
