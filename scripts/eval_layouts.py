@@ -5,7 +5,7 @@ Each room is imported, scored with the suite `smql eval` generates from it (docs
 real layouts"), and the metrics are pooled per data set (every episode of every room counts once).
 Prints the Markdown table of docs/eval.md, "Real layouts".
 
-    scripts/eval_layouts.py build/shell/smql ../shared/data [--rooms N] [--replica info_semantic.json ...]
+    scripts/eval_layouts.py build/shell/smql ../shared/data [--rooms N] [--replica info_semantic.json ...] [--digits D]
 
 --replica adds other Replica rooms, one column each (docs/guidance.md, "On real rooms").
 """
@@ -31,13 +31,17 @@ def main():
     parser.add_argument("data", help="the shared data folder (replica-room0/, real-layouts/)")
     parser.add_argument("--rooms", type=int, default=0, help="at most this many rooms of each data set (0: all)")
     parser.add_argument("--replica", nargs="*", default=[], help="more Replica info_semantic.json files, a column each")
+    parser.add_argument("--digits", type=int, default=2, help="decimals of each figure")
     options = parser.parse_args()
 
     sets = [("Replica room0", "replica", os.path.join(options.data, "replica-room0/info_semantic.json")),
             ("ScanNet (VSI-Bench)", "vsibench", os.path.join(options.data, "real-layouts/scannet_meta_info_val.json")),
             ("ARKitScenes (VSI-Bench)", "vsibench",
              os.path.join(options.data, "real-layouts/arkitscenes_meta_info_val.json"))]
-    sets += [(f"Replica {os.path.basename(path)}", "replica", path) for path in options.replica]
+    # A column is named by its file, or by its folder when the file has Replica's own name.
+    sets += [(f"Replica {os.path.basename(os.path.dirname(os.path.abspath(path)))}"
+              if os.path.basename(path) == "info_semantic.json" else f"Replica {os.path.basename(path)}", "replica", path)
+             for path in options.replica]
     columns = []
     pooled = {}
     with tempfile.TemporaryDirectory() as work:
@@ -67,7 +71,7 @@ def main():
         cells = []
         for column in columns:
             value, episodes = pooled[column].get((task, metric), (0.0, 0))
-            cells.append(f"{value / episodes:.2f} ({episodes})" if episodes else "-")
+            cells.append(f"{value / episodes:.{options.digits}f} ({episodes})" if episodes else "-")
         print(f"| {task} | {metric} | " + " | ".join(cells) + " |")
 
 

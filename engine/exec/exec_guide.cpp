@@ -125,6 +125,7 @@ struct Planned {
     guide::Point start;
     std::optional<double> heading;
     guide::Route route;
+    const guide::FreeSpace* space = nullptr;  // the free floor it was found on
 };
 
 // What the route crosses of the room's free floor that only the crowded room frees: the chairs and
@@ -224,7 +225,7 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
             if (!fail) return std::nullopt;
             throw noRoute(snap, origin, goal, *onFloor, *end);
         }
-        return Planned{*onFloor, facing, std::move(*route)};
+        return Planned{*onFloor, facing, std::move(*route), &g.space};
     };
 
     // The room's free floor first; else the crowded room's, where chairs are pushed aside and
@@ -255,7 +256,7 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
     if (!crowd.empty()) startWords += fmt::format(" The way is crowded: push aside or squeeze past {}.", crowd);
     rs.rows.push_back(
         {std::int64_t{0}, startWords, nodeLabel(snap, startNode), nodeId(startNode), onFloor.x, onFloor.y, 0.0});
-    auto steps = guide::describeRoute(route, snap.nodes(), goal, planned->heading);
+    auto steps = guide::describeRoute(route, snap.nodes(), goal, planned->heading, planned->space);
     for (std::size_t i = 0; i < steps.size(); ++i) {
         const auto& step = steps[i];
         rs.rows.push_back({static_cast<std::int64_t>(i + 1), step.instruction, nodeLabel(snap, step.landmark),

@@ -76,6 +76,41 @@ std::optional<Outline> thingsOutline(const std::vector<Node>& nodes) {
     return hull;
 }
 
+// The direction of the room's walls, modulo a right angle (radians): the mean of their long
+// sides' directions weighted by length, taken on a circle of a quarter turn. None without walls.
+std::optional<double> wallDirection(const std::vector<Node>& nodes) {
+    double x = 0, y = 0;
+    for (const Node& n : nodes) {
+        if (n.kind != NodeKind::Anchor || n.category != "wall" || !solid(n)) continue;
+        const double length = std::max(n.box.size.x, n.box.size.y);
+        const double along = n.box.yaw + (n.box.size.x < n.box.size.y ? M_PI / 2 : 0.0);
+        x += length * std::cos(4 * along);
+        y += length * std::sin(4 * along);
+    }
+    if (std::hypot(x, y) < 1e-9) return std::nullopt;
+    return std::atan2(y, x) / 4;
+}
+
+// The rectangle square to the walls (at `walls`, modulo a right angle) whose bounds in the box's own
+// axes are the box: sides a and b turned by t from those axes span a|cos t| + b|sin t| along the
+// first and a|sin t| + b|cos t| along the second. None for a box within 10 degrees of the walls
+// (its own fit), near 45 degrees (where the bounds hardly tell the sides apart), or whose sizes no
+// rectangle at that turn has as bounds.
+std::optional<model::Box> squareTo(const model::Box& box, double walls) {
+    constexpr double kOwnFit = 10 * M_PI / 180, kLeastConditioning = 0.15;
+    const double turn = std::remainder(walls - box.yaw, M_PI / 2);
+    const double c = std::cos(turn), s = std::abs(std::sin(turn)), conditioning = c * c - s * s;
+    if (std::abs(turn) < kOwnFit || conditioning < kLeastConditioning) return std::nullopt;
+    const double a = (box.size.x * c - box.size.y * s) / conditioning;
+    const double b = (box.size.y * c - box.size.x * s) / conditioning;
+    if (a <= 0 || b <= 0) return std::nullopt;
+    model::Box squared = box;
+    squared.yaw = box.yaw + turn;
+    squared.size.x = a;
+    squared.size.y = b;
+    return squared;
+}
+
 bool isDoor(const Node& n) { return n.kind == NodeKind::Anchor && n.category == "door" && solid(n); }
 
 // A door's two sides: unit normal of its face (its thinner horizontal axis).
@@ -109,6 +144,39 @@ double floorHeight(const std::vector<Node>& nodes) {
 Footing::Footing(const std::vector<Node>& nodes, const GraphOptions& options)
     : nodes_(nodes), options_(options), floor_(floorHeight(nodes)) {
     for (const Node& n : nodes) byId_.emplace(n.id, &n);
+    const auto walls = wallDirection(nodes);
+    if (!walls) return;
+    // Two things standing where the other stands: the larger box is the loose bound (the bed's over
+    // its nightstands; a nightstand's small box does not hold a bed). A quarter of the smaller
+    // footprint, so that boxes that touch or graze do not count. Furniture on legs holds what is
+    // pushed under its top by right (a chair, a nested table); what a person moves stands turned
+    // any way and is left its box.
+    constexpr double kShared = 0.25;
+    auto loose = [&](const Node& a, const Node& b) {
+        const double other = model::footprintArea(b.box);
+        return model::footprintArea(a.box) > other && !movable(a) && !(onLegs(a) && (onLegs(b) || movable(b))) &&
+               model::footprintOverlap(a.box, b.box) >= kShared * other;
+    };
+    // Only boxes whose bounds meet can share floor: swept along x.
+    std::vector<std::pair<model::Aabb, const Node*>> standing;
+    for (const Node& n : nodes)
+        if (n.kind == NodeKind::Object && stands(n)) standing.push_back({model::worldAabb(n.box), &n});
+    std::sort(standing.begin(), standing.end(),
+              [](const auto& p, const auto& q) { return p.first.min.x < q.first.min.x; });
+    for (std::size_t i = 0; i < standing.size(); ++i)
+        for (std::size_t j = i + 1; j < standing.size() && standing[j].first.min.x <= standing[i].first.max.x; ++j) {
+            const auto& [ai, a] = standing[i];
+            const auto& [bj, b] = standing[j];
+            if (bj.min.y > ai.max.y || ai.min.y > bj.max.y) continue;
+            for (auto [bound, held] : {std::pair{a, b}, std::pair{b, a}})
+                if (!squared_.count(bound->id) && loose(*bound, *held))
+                    if (auto squared = squareTo(bound->box, *walls)) squared_.emplace(bound->id, *squared);
+        }
+}
+
+const model::Box& Footing::footprint(const Node& n) const {
+    auto it = squared_.find(n.id);
+    return it == squared_.end() ? n.box : it->second;
 }
 
 bool Footing::walkedOver(const Node& n) const {
@@ -194,7 +262,8 @@ FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options
                 }
     };
     for (const Node& n : nodes)
-        if (footing.blocks(n)) mark(n.box, options.pushAside && onLegs(n) ? 0.0 : options.bodyRadius, n.id);
+        if (footing.blocks(n))
+            mark(footing.footprint(n), options.pushAside && onLegs(n) ? 0.0 : options.bodyRadius, n.id);
     // Doors open the walls they stand in: through the wall and a body's radius beyond, as wide as a
     // body's centre can pass (the door's width less a body's radius at each jamb).
     for (const Node& n : nodes) {
@@ -351,12 +420,14 @@ namespace {
 // Where a walker stands to reach `goal`: on open floor beside its floor-standing support, a body's
 // radius and a little more from the support's footprint, at points every 0.2 m around it. Beside a
 // thing on the floor, the point nearest the middle of the room (its most open side); beside the
-// furniture a thing rests on, the point nearest the thing. Else the nearest free cell.
-std::optional<Point> approach(const Node& goal, const Node& support, const FreeSpace& space, Point centre,
-                              const GraphOptions& options) {
+// furniture a thing rests on, the point nearest the thing, or the open cell nearer to it where what
+// stands beside the support (a nightstand at a bed's head, the chairs at a desk) takes the outline
+// there. Else the nearest free cell.
+std::optional<Point> approach(const Node& goal, const Node& support, const Footing& footing, const FreeSpace& space,
+                              Point centre, const GraphOptions& options) {
     constexpr double kSpacing = 0.2;
     const double away = options.bodyRadius + 0.1;
-    const model::Box& box = support.box;
+    const model::Box& box = footing.footprint(support);
     const double hx = box.size.x / 2 + away, hy = box.size.y / 2 + away;
     const double c = std::cos(box.yaw), s = std::sin(box.yaw);
     const Point goalAt{goal.box.center.x, goal.box.center.y};
@@ -374,8 +445,12 @@ std::optional<Point> approach(const Node& goal, const Node& support, const FreeS
             if (space.open(p) && (!best || distance(p, target) < distance(*best, target))) best = p;
         }
     }
-    if (best) return best;
     const double reach = std::max(1.5, std::hypot(hx, hy));
+    if (best && &goal == &support) return best;
+    if (auto nearest = space.nearestFree(goalAt, reach);
+        nearest && space.open(*nearest) && (!best || distance(*nearest, goalAt) < distance(*best, goalAt)))
+        return nearest;
+    if (best) return best;
     return space.nearestFree(goalAt, reach);
 }
 
@@ -396,7 +471,7 @@ RouteGraph buildGraph(const std::vector<Node>& nodes, const FreeSpace& space, co
                 if (auto snapped = space.nearestFree(p, 1.0)) graph.points.push_back({*snapped, PointKind::Door, n.id});
             }
         } else if (n.kind == NodeKind::Object && !footing.walkedOver(n)) {
-            if (auto p = approach(n, footing.support(n), space, centre, options))
+            if (auto p = approach(n, footing.support(n), footing, space, centre, options))
                 graph.points.push_back({*p, PointKind::Approach, n.id});
         } else if (n.kind == NodeKind::Frame && space.free({n.box.center.x, n.box.center.y})) {
             graph.points.push_back({{n.box.center.x, n.box.center.y}, PointKind::Camera, n.id});

@@ -61,6 +61,11 @@ public:
     // The floor-standing thing under n, following the tree through the furniture it rests on (the
     // bed under the pillow, the table under the plant in its pot); n itself when it rests on none.
     const model::Node& support(const model::Node& n) const;
+    // The floor a thing takes: its box, or, for a box that is a loose bound (it overlaps another
+    // thing standing on the floor, which the thing itself cannot) turned against the room's walls,
+    // the rectangle square to the walls whose bounds the box is: a semantic mesh's box fitted in a
+    // frame that is not the thing's (docs/guidance.md, "What guidance assumes").
+    const model::Box& footprint(const model::Node& n) const;
 
 private:
     const model::Node* parentThing(const model::Node& n) const;
@@ -68,6 +73,7 @@ private:
     GraphOptions options_;
     double floor_ = 0;
     std::unordered_map<model::NodeId, const model::Node*> byId_;
+    std::unordered_map<model::NodeId, model::Box> squared_;
 };
 
 enum class PointKind : std::uint8_t { Door, Approach, Junction, Camera };

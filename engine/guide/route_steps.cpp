@@ -89,7 +89,7 @@ std::string thingWithSupport(const std::vector<Node>& nodes, const Node& goal) {
 }  // namespace
 
 std::vector<Step> describeRoute(const Route& route, const std::vector<Node>& nodes, const Node& goal,
-                                std::optional<double> startHeading) {
+                                std::optional<double> startHeading, const FreeSpace* space) {
     // Legs, with nearly straight runs merged: a decision is a turn, not every graph node.
     struct Leg {
         Point from, to;
@@ -101,10 +101,12 @@ std::vector<Step> describeRoute(const Route& route, const std::vector<Node>& nod
         double length = std::hypot(b.x - a.x, b.y - a.y);
         if (length < 1e-6) continue;
         double heading = std::atan2(b.y - a.y, b.x - a.x);
-        // A step of less than a stride, or nearly straight on, continues the leg before it.
+        // A step of less than a stride, or nearly straight on, continues the leg before it, unless
+        // the one line of both would cut a corner through blocked floor (a walk that ends against it).
         bool shortStep = length < kShortestStep;
         if (!legs.empty() &&
-            (shortStep || std::abs(degrees(wrap(heading - legs.back().heading))) <= kStraightDegrees / 2)) {
+            (shortStep || std::abs(degrees(wrap(heading - legs.back().heading))) <= kStraightDegrees / 2) &&
+            (!space || space->clear(legs.back().from, b))) {
             Leg& last = legs.back();
             last.to = b;
             last.length += length;

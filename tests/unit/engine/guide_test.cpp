@@ -2,8 +2,10 @@
 // GUIDE and SHOW GRAPH statements over them.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <set>
 
 #include <fmt/format.h>
@@ -13,6 +15,8 @@
 #include "engine/guide/route_steps.hpp"
 #include "engine_support.hpp"
 #include "ingest/import/importers.hpp"
+#include "model/geometry.hpp"
+#include "relations/hierarchy.hpp"
 
 using namespace smql;
 using namespace smql::testing;
@@ -414,4 +418,133 @@ TEST_CASE("a crowded room: chairs are pushed aside and tables squeezed past when
         CHECK(goals >= 40);
         CHECK(crowded > 0);
     }
+}
+
+TEST_CASE("a thing on furniture is approached from the open floor nearest it, on real rooms", "[guide]") {
+    // ScanNet's rooms: a pillow at a bed's head between two nightstands, a monitor on a desk among
+    // its chairs. The outline around the support beside the thing is taken by its neighbours; the
+    // walk ends on the open floor nearest the thing instead, wherever that is.
+    const std::string file = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
+    auto rooms = import::readVsiBenchAll(file);
+    guide::GraphOptions options;
+    std::size_t onFurniture = 0, within = 0;
+    for (auto& room : rooms) {
+        relations::assignParents(room);
+        const auto& nodes = room.nodes;
+        const guide::Footing footing(nodes, options);
+        guide::FreeSpace space(nodes, options);
+        auto graph = guide::buildGraph(nodes, space, options);
+        for (const auto& p : graph.points) {
+            if (p.kind != guide::PointKind::Approach) continue;
+            const auto& goal = *std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.id == p.node; });
+            if (&footing.support(goal) == &goal) continue;
+            ++onFurniture;
+            const guide::Point at{goal.box.center.x, goal.box.center.y};
+            INFO(room.info.name << ": " << goal.category << "#" << goal.id);
+            if (auto nearest = space.nearestFree(at, 1.0); nearest && space.open(*nearest))
+                CHECK(std::hypot(p.at.x - at.x, p.at.y - at.y) <=
+                      std::hypot(nearest->x - at.x, nearest->y - at.y) + 1e-9);
+            const double c = std::cos(goal.box.yaw), s = std::sin(goal.box.yaw), dx = p.at.x - at.x, dy = p.at.y - at.y;
+            within += std::hypot(std::max(0.0, std::abs(c * dx + s * dy) - goal.box.size.x / 2),
+                                 std::max(0.0, std::abs(-s * dx + c * dy) - goal.box.size.y / 2)) <= 1.0;
+        }
+    }
+    std::cout << fmt::format("ScanNet: {} of {} things on furniture approached within 1 m of their footprint\n", within,
+                             onFurniture);
+    // 191 of 232 when this was written; 165 while the walk ended on the support's outline only.
+    CHECK(onFurniture > 200);
+    CHECK(within * 100 >= onFurniture * 80);
+}
+
+TEST_CASE("a box turned from the walls over what stands beside it bounds a thing square to the walls",
+          "[guide][walls]") {
+    // Replica room_1 (tests/data/replica-room1, named in its SOURCES.md): the bed's box is 3.1 x 3.0 m,
+    // turned 55 degrees from the room's walls, over both nightstands; the two wall plugs behind it
+    // were closed off by it and three pillows in its middle reached more than 1 m away.
+    const std::string file = std::string(SMQL_SOURCE_DIR) + "/tests/data/replica-room1/info_semantic.json";
+    model::SceneData room = import::readReplica(file, "room1");
+    relations::assignParents(room);
+    guide::GraphOptions options;
+    const guide::Footing footing(room.nodes, options);
+    auto bySource = [&](std::int64_t source) -> const model::Node& {
+        return *std::find_if(room.nodes.begin(), room.nodes.end(),
+                             [&](const auto& n) { return n.sourceId && *n.sourceId == source; });
+    };
+    // The bed is the rectangle square to the walls whose bounds its box is: 2.4 x 1.9 m, its head
+    // against wall 25 between the nightstands. The nightstands' smaller boxes are their own.
+    const model::Node& bed = bySource(32);
+    const model::Box& fitted = footing.footprint(bed);
+    REQUIRE(&fitted != &bed.box);
+    CHECK(std::max(fitted.size.x, fitted.size.y) == Approx(2.44).margin(0.05));
+    CHECK(std::min(fitted.size.x, fitted.size.y) == Approx(1.95).margin(0.05));
+    const double walls = std::atan2(std::sin(4 * bySource(25).box.yaw), std::cos(4 * bySource(25).box.yaw)) / 4;
+    CHECK(std::abs(std::remainder(fitted.yaw - walls, M_PI / 2)) < 2 * M_PI / 180);
+    CHECK(model::footprintArea(fitted) < 0.55 * model::footprintArea(bed.box));
+    for (std::int64_t nightstand : {8, 28})
+        CHECK(&footing.footprint(bySource(nightstand)) == &bySource(nightstand).box);
+
+    // From the door to the plugs behind the bed, and to the pillows in its middle within 1 m.
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(room);
+    for (std::int64_t plug : {49, 16}) CHECK_NOTHROW(run(*engine, fmt::format("GUIDE FROM door TO src#{}", plug)));
+    for (std::int64_t pillow : {39, 3, 13}) {
+        auto rs = run(*engine, fmt::format("GUIDE FROM door TO src#{}", pillow));
+        const int x = rs.columnIndex("x"), y = rs.columnIndex("y");
+        const auto& end = rs.rows[rs.rows.size() - 2];
+        const model::Box& box = bySource(pillow).box;
+        INFO("pillow #" << pillow << ": " << rs.message);
+        CHECK(model::horizontalGap(
+                  box, {{std::get<double>(end[x]), std::get<double>(end[y]), box.center.z}, {0, 0, 0}, 0}) <= 1.0);
+    }
+
+    // A layout without walls (ScanNet's boxes) has no walls to be square to: every box is its own.
+    const std::string scans = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
+    for (auto& scan : import::readVsiBenchAll(scans)) {
+        const guide::Footing scanFooting(scan.nodes, options);
+        for (const auto& n : scan.nodes) CHECK(&scanFooting.footprint(n) == &n.box);
+    }
+}
+
+TEST_CASE("steps merge only where their one line stays on the free floor, on real rooms", "[guide]") {
+    // ScanNet's rooms: a walk that ends against the blocked floor beside a bed or a desk, its last
+    // short leg merged into the one before, cut the corner through the bed's or the desk's floor.
+    const std::string file = std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json";
+    auto rooms = import::readVsiBenchAll(file);
+    guide::GraphOptions options;
+    std::size_t steps = 0, cutting = 0;
+    for (std::size_t r = 0; r < rooms.size(); r += 2) {
+        relations::assignParents(rooms[r]);
+        const auto& nodes = rooms[r].nodes;
+        guide::FreeSpace space(nodes, options);
+        auto graph = guide::buildGraph(nodes, space, options);
+        std::vector<guide::DecisionPoint> ends;
+        for (const auto& p : graph.points)
+            if (p.kind == guide::PointKind::Approach) ends.push_back(p);
+        for (std::size_t i = 0; i + 1 < ends.size(); i += 3) {
+            const auto& goal =
+                *std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.id == ends[i + 1].node; });
+            auto route = guide::shortestRoute(graph, space, ends[i].at, ends[i + 1].at, options);
+            if (!route) continue;
+            guide::Point from = route->waypoints.front();
+            auto described = guide::describeRoute(*route, nodes, goal, std::nullopt, &space);
+            for (std::size_t k = 0; k + 1 < described.size(); ++k) {
+                ++steps;
+                INFO(rooms[r].info.name << " to " << goal.category << "#" << goal.id << ", step " << k + 1);
+                CHECK(space.clear(from, described[k].at));
+                from = described[k].at;
+            }
+            // Without the free floor, the merged legs may cut it.
+            guide::Point before = route->waypoints.front();
+            const auto merged = guide::describeRoute(*route, nodes, goal, std::nullopt);
+            for (std::size_t k = 0; k + 1 < merged.size(); ++k) {
+                cutting += !space.clear(before, merged[k].at);
+                before = merged[k].at;
+            }
+        }
+    }
+    std::cout << fmt::format("ScanNet: {} steps on the free floor; merged regardless of it, {} would cut it\n", steps,
+                             cutting);
+    CHECK(steps > 300);
+    CHECK(cutting > 0);  // the rooms hold such corners: the test sees them
 }
