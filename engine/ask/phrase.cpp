@@ -55,10 +55,20 @@ std::optional<std::string> kindTarget(const std::string& w) {
     return std::nullopt;
 }
 
-// Parts of a thing: "the corner of the room", "the top of the stove", "the foot of the bed".
+// Parts of a thing: "the corner of the room", "the top of the stove", "the foot of the bed", "the lid
+// of the bin". The memory keeps boxes, not parts: "what is on the back of the chair?" is about the chair.
 bool isPartWord(const std::string& w) {
-    return isOneOf(w, {"corner", "top", "bottom", "side", "end", "middle", "center", "centre", "edge", "part", "area",
-                       "back", "front", "foot", "head", "surface", "rest"});
+    return isOneOf(w, {"corner",   "top",      "bottom", "side",    "end",     "middle",  "center",   "centre",
+                       "edge",     "part",     "area",   "back",    "front",   "foot",    "head",     "surface",
+                       "rest",     "lid",      "seat",   "portion", "half",    "outside", "inside",   "exterior",
+                       "interior", "backside", "frame",  "handle",  "handles", "legs",    "leg",      "base",
+                       "opening",  "backrest", "sides",  "corners", "ends",    "edges",   "surfaces", "section"});
+}
+
+// Words that place a part on a thing: "the upper portion of", "the bottom left corner of", "the far end of".
+bool isPartPlaceWord(const std::string& w) {
+    return isSideWord(w) || isOneOf(w, {"upper", "lower", "top", "bottom", "far", "near", "outer", "inner", "middle",
+                                        "center", "immediate", "very", "hand", "rear"});
 }
 
 // "in the room", "in this scene", "in here": the whole scene, no condition.
@@ -449,11 +459,33 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
             nounWords.push_back(word);
             continue;
         }
+        // "the hanging towel", "the standing lamp": before the noun, a verb of place describes it
+        // (the memory keeps no such state); after it, it ends the phrase ("the towel hanging on ...").
+        if (nounWords.empty() && word.ends_with("ing") && endsPhrase(word) && i + 1 < w.size() &&
+            !predicateAt(w, i + 1) && !endsPhrase(w[i + 1])) {
+            out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", word));
+            continue;
+        }
+        // "the left wall of the room", "the wall of the house": of the scene, which it is in anyway.
+        if (word == "of" && !nounWords.empty() && !isPartWord(nounWords.back()) && i + 1 < w.size()) {
+            std::size_t k = i + 1;
+            while (k < w.size() && isDeterminer(w[k])) ++k;
+            if (std::size_t place = scenePlaceAt(w, k); place > 0) {
+                i = k + place - 1;
+                continue;
+            }
+        }
         if (endsPhrase(word) && !(word == "right" && nounWords.empty())) break;
-        // "the corner of the room", "the top of the stove": the part is read as the thing itself.
-        if (word == "of" && nounWords.size() == 1 && isPartWord(nounWords.front())) {
-            out_.notes.push_back(fmt::format("'{} of' is read as the thing itself", nounWords.front()));
+        // "the corner of the room", "the top of the stove", "the back of the chair", "the upper
+        // portion of the bed": the part is read as the thing itself.
+        if (word == "of" && (!nounWords.empty() || !side.empty()) &&
+            (nounWords.empty() || isPartWord(nounWords.back())) &&
+            std::all_of(nounWords.begin(), nounWords.end(),
+                        [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n); })) {
+            out_.notes.push_back(fmt::format("'{}' is read as the thing itself", joined(w, wordsStart, i + 1)));
             nounWords.clear();
+            side.clear();
+            while (i + 1 < w.size() && isDeterminer(w[i + 1])) ++i;
             continue;
         }
         // "pieces of furniture", "a pair of shoes": the thing is what follows "of".
@@ -466,6 +498,10 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         // An article inside the nouns starts another phrase ("the lamp the sofa" is two).
         if (!nounWords.empty() && isDeterminer(word)) break;
         if (isOneOf(word, {"will", "would", "should", "shall", "must", "might", "be", "been", "being", "had"})) break;
+        // "dark green", "light brown": the memory keeps the colour, not its shade.
+        if (nounWords.empty() && isOneOf(word, {"dark", "light", "bright", "pale", "deep", "olive"}) &&
+            i + 1 < w.size() && colourOf(w[i + 1]))
+            continue;
         if (auto colour = colourOf(word)) {
             if (!nounWords.empty() && i + 1 == w.size()) break;  // "is the mug red?"
             if (nounWords.empty()) {
@@ -568,26 +604,57 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             negated = true;
             at = k;
         }
+        // "the armchair located on the left": the one on that side, as "the armchair on the left".
+        if (std::size_t k = at; p.side.empty() && !p.kind && p.categories.size() == 1 && p.id.empty()) {
+            if (std::string side = sideAfter(w, k); !side.empty()) {
+                p.side = side;
+                i = k;
+                continue;
+            }
+        }
         auto pred = predicateAt(w, at);
         if (!pred) return;
+        // "beyond and to the right of the lamp", "above and between the stove and the fridge": two
+        // predicates of the same things.
+        std::optional<std::pair<std::string, std::size_t>> also;
+        const std::size_t bothAt = at;
+        if (const std::size_t andAt = at + pred->second; pred->first != "between" && andAt + 1 < w.size() &&
+                                                         w[andAt] == "and" && predicateAt(w, andAt + 1) &&
+                                                         predicateAt(w, andAt + 1)->first != "between") {
+            also = pred;
+            at = andAt + 1;
+            pred = predicateAt(w, at);
+        }
         i = at;
         // "in the room": the whole scene.
         std::size_t after = i + pred->second;
         while (after < w.size() && isDeterminer(w[after])) ++after;
-        // "in the corner of the room" is in the room.
-        if (after + 2 < w.size() && isPartWord(w[after]) && w[after + 1] == "of") {
-            after += 2;
+        // "in the corner of the room" is in the room; "on the far end of the room", "at the back of
+        // the room" too: the memory keeps no parts of a room.
+        std::size_t part = after;
+        while (part < w.size() && (isPartPlaceWord(w[part]) || isPartWord(w[part]))) ++part;
+        const bool ofPart = part > after && part + 1 < w.size() && isPartWord(w[part - 1]) && w[part] == "of";
+        if (ofPart) {
+            after = part + 1;
             while (after < w.size() && isDeterminer(w[after])) ++after;
         }
-        if (pred->first == "in" && after < w.size()) {
+        if ((pred->first == "in" || (ofPart && isOneOf(pred->first, {"on", "near"}))) && after < w.size()) {
             // "in here", "in the room", "in the office" (when the office is this scene).
             std::size_t place = scenePlaceAt(w, after);
-            if (place > 0 && (after + place == w.size() || !predicateAt(w, after + place))) {
+            if (place > 0 && (ofPart || after + place == w.size() || !predicateAt(w, after + place))) {
                 i = after + place;
                 continue;
             }
         }
         p.conditions.push_back(condition(w, i, *pred));
+        if (also) {
+            // The answer says "beyond and to the right of the lamp" once.
+            p.conditions.back().words = joined(w, bothAt, i);
+            Condition first = p.conditions.back();
+            first.predicate = also->first;
+            first.words.clear();
+            p.conditions.push_back(std::move(first));
+        }
         if (negated) {
             p.conditions.back().negated = true;
             p.conditions.back().words = "not " + p.conditions.back().words;
