@@ -325,7 +325,7 @@ Words words(const std::string& text) {
         else
             s += ' ';
     }
-    static const std::array<std::pair<std::string_view, std::string_view>, 10> contractions{{
+    static const std::array<std::pair<std::string_view, std::string_view>, 11> contractions{{
         {"can't", "can not"},
         {"'s", " is"},
         {"'re", " are"},
@@ -336,6 +336,7 @@ Words words(const std::string& text) {
         {"'d", " would"},
         {"'", " "},
         {"--", " "},
+        {"infront", "in front"},  // a common way to write it
     }};
     for (const auto& [from, to] : contractions)
         for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))

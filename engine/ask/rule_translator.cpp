@@ -1058,7 +1058,7 @@ private:
             static const std::initializer_list<std::string_view> verbs{"is",    "are",    "sits",   "sit",   "lies",
                                                                        "lie",   "stands", "stand",  "rests", "rest",
                                                                        "hangs", "hang",   "hanged", "hung"};
-            if (isOneOf(c.peek(), verbs) || isOneOf(c.peek(), {"do", "can", "could"})) {
+            if (isOneOf(c.peek(), verbs) || isOneOf(c.peek(), {"do", "can", "could", "will", "would"})) {
                 thing.kind = "object";
                 thing.noun = "thing";
             } else {
@@ -1069,10 +1069,15 @@ private:
             bool verbIsPredicate = PhraseParser::predicateAt(c.w, c.i).has_value() && c.i > at;
             if (!verbIsPredicate &&
                 !c.accept({"is|are|sits|sit|lies|lie|stands|stand|rests|rest|hangs|hang|hanged|hung"}) &&
-                !c.accept({"do|can", "you|i", "see|find|have"}) && !c.accept({"is|are", "there"}) &&
+                !c.accept({"do|can|will|would", "you|i", "see|find|have"}) && !c.accept({"is|are", "there"}) &&
                 !c.accept({"can|could", "be", "seen|found"}))
                 return false;
             c.accept({"there"});
+            // "what is orange behind me on the floor?": a thing of that colour.
+            if (auto colour = colourOf(c.peek()); colour && !thing.colour && PhraseParser::predicateAt(c.w, c.i + 1)) {
+                thing.colour = colour;
+                ++c.i;
+            }
             // "what doors are open to the right of the bunk beds?": the memory keeps no such state.
             if (isOneOf(c.peek(), {"open", "opened", "closed", "shut", "empty", "full", "lit"}) &&
                 PhraseParser::predicateAt(c.w, c.i + 1)) {
@@ -1429,6 +1434,9 @@ private:
              "the $1 is$2"},
             {std::regex(R"(^where does (.+?) (?:set|sit|stand|lie|rest)$)"), "where is $1"},
             {std::regex(R"(^where (?:is|are) (.+?) set$)"), "where is $1"},
+            // "where is the tv hanging from?": what it hangs from.
+            {std::regex(R"(^where (?:is|are) (.+?) (hanging|hung|attached|mounted) (from|on|to)$)"),
+             "what is $1 $2 $3"},
             {std::regex(R"(^how many (.+?) (?:surround|border|flank|encircle)s? (.+)$)"), "how many $1 are around $2"},
             // "how many chairs is the tv above?": the chairs below the tv (the predicate turned round).
             {std::regex(R"(^how many (.+?) (?:is|are) (.+?) (?:located |placed |hanging |sitting |standing )?above$)"),
