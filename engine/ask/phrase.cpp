@@ -907,4 +907,36 @@ std::string countText(const Phrase& p, const std::string& view) {
     return "COUNT " + targetOf(p) + (view.empty() ? "" : " " + view) + whereText(p);
 }
 
+bool phraseUpTo(const Words& w, std::size_t& i, std::size_t end, PhraseParser& p, Phrase& out) {
+    Words head(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(end));
+    std::size_t k = i;
+    out = p.phrase(head, k, true);
+    if (k != end) return false;
+    i = end;
+    return true;
+}
+
+void describeSubject(const Phrase& p, Translation& out) {
+    std::string adjectives = p.colour ? *p.colour + " " : "";
+    std::string noun = !p.side.empty() ? p.side + " " + p.noun : p.noun;
+    std::replace(noun.begin(), noun.end(), '-', ' ');  // "trash-bin" is a trash bin in words
+    out.subject = adjectives + noun;
+    out.subjectPlural = adjectives + pluralOf(noun);
+    std::string condition;
+    for (const auto& c : p.conditions)
+        if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
+    // "on the bed besides the pillows"
+    for (const auto& e : p.excluded) condition += std::string(condition.empty() ? "" : " ") + "besides the " + e.words;
+    if (out.condition.empty()) out.condition = condition;
+}
+
+bool locateAnswer(const Phrase& thing, Translation& out) {
+    out.kind = thing.order ? QuestionKind::Superlative : QuestionKind::Locate;
+    out.pick = std::max<std::size_t>(thing.pick, 1);
+    if (thing.order) out.measure = thing.order->words;
+    out.smql = findText(thing, true);
+    describeSubject(thing, out);
+    return true;
+}
+
 }  // namespace smql::ask

@@ -160,6 +160,17 @@ std::string whereText(const Phrase& p);
 std::string findText(const Phrase& p, bool path, const std::string& view = {});
 std::string countText(const Phrase& p, const std::string& view = {});
 
+// A phrase that takes exactly the words w[i..end) (a verb or a link word follows): true, with `i` at
+// `end`; false when the phrase ends elsewhere.
+bool phraseUpTo(const Words& w, std::size_t& i, std::size_t end, PhraseParser& p, Phrase& out);
+
+// The words the answer says the thing asked about in: "red mug", "red mugs", and its conditions
+// ("on the desk besides the cushions").
+void describeSubject(const Phrase& p, Translation& out);
+
+// Where the thing is: FIND ... PATH (the nearest, largest ... of an order).
+bool locateAnswer(const Phrase& thing, Translation& out);
+
 // The view-relative predicate that holds for a thing on `side` of a person whose view is turned by
 // `turn` quarter turns clockwise from their heading, with the view's place as the reference: side
 // 0 ahead, 1 right, 2 behind, 3 left. Ahead of the view's place is `behind` in SMQL's terms

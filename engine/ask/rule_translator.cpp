@@ -722,45 +722,12 @@ private:
         return true;
     }
 
-    // How is the sink located? How is the towel placed on the wall? How is the guitar case positioned
-    // behind the other one? How a thing stands is where it is, or how it stands to the thing named.
-    bool placement(Cursor& c, PhraseParser& p, Translation& out) {
-        if (c.w.front() != "how") return false;
-        auto verb = std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
-            return isOneOf(w, {"located",   "placed",   "positioned", "situated", "set",  "laid",    "mounted",
-                               "installed", "arranged", "oriented",   "attached", "hung", "hanging", "sitting",
-                               "standing",  "lying",    "sit",        "stand",    "lie",  "hang",    "rest",
-                               "resting",   "kept",     "put",        "stored"});
-        });
-        if (verb == c.w.end()) return false;
-        const std::size_t verbAt = static_cast<std::size_t>(verb - c.w.begin());
-        Phrase a;
-        if (!phraseWithin(c, p, verbAt, a)) return false;
-        // The verb may begin the predicate's phrase ("attached to", "mounted on", "hanging on").
-        auto pred = PhraseParser::predicateAt(c.w, verbAt);
-        std::size_t predAt = verbAt;
-        if (!pred && verbAt + 1 < c.w.size()) pred = PhraseParser::predicateAt(c.w, predAt = verbAt + 1);
-        if (!pred) {
-            c.i = verbAt + 1;
-            return c.done() && locateAnswer(a, out);
-        }
-        c.i = predAt + pred->second;
-        Phrase b = p.phrase(c.w, c.i, true);
-        out.kind = QuestionKind::RelativePosition;
-        out.smql = fmt::format("RELATE {} TO {}", reference(a), reference(b));
-        describeSubject(a, out);
-        out.object = b.words;
-        return true;
-    }
+    // How is the sink located? How is the towel placed on the wall? (read_placement.cpp)
+    bool placement(Cursor& c, PhraseParser& p, Translation& out) { return readPlacement(c.w, c.i, p, out); }
 
     // A phrase that must take exactly the words up to `end` (where a verb or link word follows).
     static bool phraseWithin(Cursor& c, PhraseParser& p, std::size_t end, Phrase& out) {
-        Words head(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end));
-        std::size_t i = c.i;
-        out = p.phrase(head, i, true);
-        if (i != end) return false;
-        c.i = end;
-        return true;
+        return phraseUpTo(c.w, c.i, end, p, out);
     }
 
     // On what side of the bed is the lamp? What side of the desk are the chairs on?
@@ -1039,15 +1006,6 @@ private:
         return locateAnswer(thing, out);
     }
 
-    bool locateAnswer(const Phrase& thing, Translation& out) {
-        out.kind = thing.order ? QuestionKind::Superlative : QuestionKind::Locate;
-        out.pick = std::max<std::size_t>(thing.pick, 1);
-        if (thing.order) out.measure = thing.order->words;
-        out.smql = findText(thing, true);
-        describeSubject(thing, out);
-        return true;
-    }
-
     // What is on the desk near the left wall? Which chairs are near the table? Show me everything
     // on the counter.
     bool relational(Cursor& c, PhraseParser& p, Translation& out) {
@@ -1250,50 +1208,10 @@ private:
         return true;
     }
 
-    // What does the urinal look like? What does the cabinet near the copier say? What does the sink
-    // appear to be? What a thing looks like or says is what the memory holds of it: DESCRIBE (its
-    // category, box, attributes and text).
-    bool description(Cursor& c, PhraseParser& p, Translation& out) {
-        if (!c.accept({"what|how", "does|do"})) return false;
-        auto verb = std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
-            return isOneOf(w, {"look", "appear", "say", "read", "resemble", "show", "display"});
-        });
-        if (verb == c.w.end()) return false;
-        const std::size_t verbAt = static_cast<std::size_t>(verb - c.w.begin());
-        Phrase thing;
-        if (!phraseWithin(c, p, verbAt, thing)) return false;
-        c.i = verbAt + 1;
-        if (*verb == "look") {
-            if (!c.accept({"like"})) return false;
-        } else if (*verb == "appear") {
-            if (!c.accept({"to", "be"})) return false;
-            // "what does the trash can appear to be full of?": how full is beyond the memory.
-            if (!c.done()) out.notes.push_back(fmt::format("'{}' is left out", joined(c.w, c.i, c.w.size())));
-            c.i = c.w.size();
-        }
-        if (!c.done()) return false;
-        out.kind = QuestionKind::Statement;
-        out.smql = "DESCRIBE " + reference(thing);
-        describeSubject(thing, out);
-        return true;
-    }
+    // What does the urinal look like? What does the cabinet near the copier say? (read_description.cpp)
+    bool description(Cursor& c, PhraseParser& p, Translation& out) { return readDescription(c.w, c.i, p, out); }
 
     // ------------------------------------------------------------ helpers
-
-    static void describeSubject(const Phrase& p, Translation& out) {
-        std::string adjectives = p.colour ? *p.colour + " " : "";
-        std::string noun = !p.side.empty() ? p.side + " " + p.noun : p.noun;
-        std::replace(noun.begin(), noun.end(), '-', ' ');  // "trash-bin" is a trash bin in words
-        out.subject = adjectives + noun;
-        out.subjectPlural = adjectives + pluralOf(noun);
-        std::string condition;
-        for (const auto& c : p.conditions)
-            if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
-        // "on the bed besides the pillows"
-        for (const auto& e : p.excluded)
-            condition += std::string(condition.empty() ? "" : " ") + "besides the " + e.words;
-        if (out.condition.empty()) out.condition = condition;
-    }
 
     bool repeated(const std::string& category) const {
         return std::find(question_.repeatedCategories.begin(), question_.repeatedCategories.end(), category) !=
