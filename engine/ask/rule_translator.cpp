@@ -1055,7 +1055,8 @@ private:
             };
             if (c.i == verbAt && !c.done() && verbForm(c.peek()) && !PhraseParser::predicateAt(c.w, c.i)) {
                 std::size_t k = c.i + 1;
-                if (k < c.w.size() && isOneOf(c.w[k], {"up", "down", "out", "around", "sideways", "over", "together"}))
+                if (k < c.w.size() && isOneOf(c.w[k], {"up", "down", "out", "around", "sideways", "together"}) &&
+                    !PhraseParser::predicateAt(c.w, k))
                     ++k;
                 if (PhraseParser::predicateAt(c.w, k)) c.i = k;
             }
