@@ -852,6 +852,8 @@ private:
                 Words head(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end));
                 const std::size_t before = s.conditions.size();
                 p.posts(head, k, s);
+                // "the brown chair is in front of a door and beside what?": the conditions say which one.
+                if (k + 1 == end && c.w[k] == "and") ++k;
                 if (k != end || s.conditions.size() == before) return false;
             }
             subject = s;
