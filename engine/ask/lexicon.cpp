@@ -174,8 +174,9 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
     // One word for a name WordNet writes as two ("trashcan", "trashcans": trash can).
     if (word.find('-') == std::string::npos)
         for (std::size_t cut = 3; cut + 3 <= word.size(); ++cut) {
-            const std::string first = word.substr(0, cut), second = word.substr(cut);
-            if (!wordnet::nounBaseForms(first + "-" + second).empty()) return lookUp(first + " " + second);
+            std::string spaced = word;
+            spaced.insert(cut, 1, ' ');
+            if (!wordnet::nounBaseForms(hyphenated(spaced)).empty()) return lookUp(spaced);
         }
     // Not an English noun: a misspelt category, or the plural of one ("chiars")?
     auto close = model::nearestNames(word, categories_, 1);

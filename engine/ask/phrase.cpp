@@ -411,6 +411,44 @@ bool PhraseParser::idPhrase(const Words& w, std::size_t& i, bool withPosts, Phra
     return true;
 }
 
+bool PhraseParser::describing(const Words& w, std::size_t& i, std::vector<std::string>& nounWords, std::string& side,
+                              std::size_t wordsStart) {
+    const std::string& word = w[i];
+    // "the hanging towel", "the standing lamp": before the noun, a verb of place describes it
+    // (the memory keeps no such state); after it, it ends the phrase ("the towel hanging on ...").
+    if (nounWords.empty() && word.ends_with("ing") && endsPhrase(word) && i + 1 < w.size() && !predicateAt(w, i + 1) &&
+        !endsPhrase(w[i + 1])) {
+        out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", word));
+        return true;
+    }
+    // "dark green", "light brown": the memory keeps the colour, not its shade.
+    if (nounWords.empty() && isOneOf(word, {"dark", "light", "bright", "pale", "deep", "olive"}) && i + 1 < w.size() &&
+        colourOf(w[i + 1]))
+        return true;
+    if (word != "of") return false;
+    // "the left wall of the room", "the wall of the house": of the scene, which it is in anyway.
+    if (!nounWords.empty() && !isPartWord(nounWords.back()) && i + 1 < w.size()) {
+        std::size_t k = i + 1;
+        while (k < w.size() && isDeterminer(w[k])) ++k;
+        if (std::size_t place = scenePlaceAt(w, k); place > 0) {
+            i = k + place - 1;
+            return true;
+        }
+    }
+    // "the corner of the room", "the top of the stove", "the back of the chair", "the upper
+    // portion of the bed": the part is read as the thing itself.
+    if ((!nounWords.empty() || !side.empty()) && (nounWords.empty() || isPartWord(nounWords.back())) &&
+        std::all_of(nounWords.begin(), nounWords.end(),
+                    [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n); })) {
+        out_.notes.push_back(fmt::format("'{}' is read as the thing itself", joined(w, wordsStart, i + 1)));
+        nounWords.clear();
+        side.clear();
+        while (i + 1 < w.size() && isDeterminer(w[i + 1])) ++i;
+        return true;
+    }
+    return false;
+}
+
 Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     Phrase p;
     std::size_t start = i;
@@ -460,35 +498,8 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
             nounWords.push_back(word);
             continue;
         }
-        // "the hanging towel", "the standing lamp": before the noun, a verb of place describes it
-        // (the memory keeps no such state); after it, it ends the phrase ("the towel hanging on ...").
-        if (nounWords.empty() && word.ends_with("ing") && endsPhrase(word) && i + 1 < w.size() &&
-            !predicateAt(w, i + 1) && !endsPhrase(w[i + 1])) {
-            out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", word));
-            continue;
-        }
-        // "the left wall of the room", "the wall of the house": of the scene, which it is in anyway.
-        if (word == "of" && !nounWords.empty() && !isPartWord(nounWords.back()) && i + 1 < w.size()) {
-            std::size_t k = i + 1;
-            while (k < w.size() && isDeterminer(w[k])) ++k;
-            if (std::size_t place = scenePlaceAt(w, k); place > 0) {
-                i = k + place - 1;
-                continue;
-            }
-        }
+        if (describing(w, i, nounWords, side, wordsStart)) continue;
         if (endsPhrase(word) && !(word == "right" && nounWords.empty())) break;
-        // "the corner of the room", "the top of the stove", "the back of the chair", "the upper
-        // portion of the bed": the part is read as the thing itself.
-        if (word == "of" && (!nounWords.empty() || !side.empty()) &&
-            (nounWords.empty() || isPartWord(nounWords.back())) &&
-            std::all_of(nounWords.begin(), nounWords.end(),
-                        [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n); })) {
-            out_.notes.push_back(fmt::format("'{}' is read as the thing itself", joined(w, wordsStart, i + 1)));
-            nounWords.clear();
-            side.clear();
-            while (i + 1 < w.size() && isDeterminer(w[i + 1])) ++i;
-            continue;
-        }
         // "pieces of furniture", "a pair of shoes": the thing is what follows "of".
         if (word == "of" && nounWords.size() == 1 &&
             isOneOf(nounWords.front(), {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type",
@@ -499,10 +510,6 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         // An article inside the nouns starts another phrase ("the lamp the sofa" is two).
         if (!nounWords.empty() && isDeterminer(word)) break;
         if (isOneOf(word, {"will", "would", "should", "shall", "must", "might", "be", "been", "being", "had"})) break;
-        // "dark green", "light brown": the memory keeps the colour, not its shade.
-        if (nounWords.empty() && isOneOf(word, {"dark", "light", "bright", "pale", "deep", "olive"}) &&
-            i + 1 < w.size() && colourOf(w[i + 1]))
-            continue;
         if (auto colour = colourOf(word)) {
             if (!nounWords.empty() && i + 1 == w.size()) break;  // "is the mug red?"
             if (nounWords.empty()) {
@@ -551,6 +558,34 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     if (withPosts) posts(w, i, p);
     p.words = joined(w, wordsStart, i);
     return p;
+}
+
+namespace {
+
+// "beyond and to the right of the lamp": two predicates of the same things. The first one, with `at`
+// and `pred` moved to the second; nothing when w[at] begins one predicate only (or "between").
+std::optional<std::pair<std::string, std::size_t>> firstOfTwo(
+    const Words& w, std::size_t& at, std::optional<std::pair<std::string, std::size_t>>& pred) {
+    const std::size_t andAt = at + pred->second;
+    if (pred->first == "between" || andAt + 1 >= w.size() || w[andAt] != "and") return std::nullopt;
+    auto second = PhraseParser::predicateAt(w, andAt + 1);
+    if (!second || second->first == "between") return std::nullopt;
+    auto first = pred;
+    at = andAt + 1;
+    pred = second;
+    return first;
+}
+
+}  // namespace
+
+bool PhraseParser::sideAfterVerb(const Words& w, std::size_t at, std::size_t& i, Phrase& p) const {
+    // "the armchair located on the left": the one on that side, as "the armchair on the left".
+    if (!p.side.empty() || p.kind || p.categories.size() != 1 || !p.id.empty()) return false;
+    std::string side = sideAfter(w, at);
+    if (side.empty()) return false;
+    p.side = side;
+    i = at;
+    return true;
 }
 
 void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
@@ -605,27 +640,11 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             negated = true;
             at = k;
         }
-        // "the armchair located on the left": the one on that side, as "the armchair on the left".
-        if (std::size_t k = at; p.side.empty() && !p.kind && p.categories.size() == 1 && p.id.empty()) {
-            if (std::string side = sideAfter(w, k); !side.empty()) {
-                p.side = side;
-                i = k;
-                continue;
-            }
-        }
+        if (sideAfterVerb(w, at, i, p)) continue;
         auto pred = predicateAt(w, at);
         if (!pred) return;
-        // "beyond and to the right of the lamp", "above and between the stove and the fridge": two
-        // predicates of the same things.
-        std::optional<std::pair<std::string, std::size_t>> also;
         const std::size_t bothAt = at;
-        if (const std::size_t andAt = at + pred->second; pred->first != "between" && andAt + 1 < w.size() &&
-                                                         w[andAt] == "and" && predicateAt(w, andAt + 1) &&
-                                                         predicateAt(w, andAt + 1)->first != "between") {
-            also = pred;
-            at = andAt + 1;
-            pred = predicateAt(w, at);
-        }
+        auto also = firstOfTwo(w, at, pred);
         i = at;
         // "in the room": the whole scene.
         std::size_t after = i + pred->second;

@@ -129,6 +129,12 @@ private:
     // A noun of more words than a name takes loses its first ones, with a note; far more is an error.
     void shortenNoun(std::vector<std::string>& nounWords, const Words& w, std::size_t start);
     void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords);
+    // A word at w[i] that describes the noun rather than naming it, or a part of it ("the back of"):
+    // true, with `i` past what it took (notes say what is left out).
+    bool describing(const Words& w, std::size_t& i, std::vector<std::string>& nounWords, std::string& side,
+                    std::size_t wordsStart);
+    // "located on the left" after a noun of one category: its side; true, with `i` past it.
+    bool sideAfterVerb(const Words& w, std::size_t at, std::size_t& i, Phrase& p) const;
     bool isPlane(const Phrase& p) const;
 
     const Lexicon& lexicon_;

@@ -1316,11 +1316,8 @@ public:
     std::string name() const override { return "the built-in reader"; }
 
 private:
-    // SQA3D's ways of asking what the memory answers another way: "is the number of chairs odd or
-    // even?" (a count), "is the door open or closed?" (the door; `stateWords` say what is left
-    // out), "is the table small or large?" (its size), "what can I use in front of me to ...?"
-    // (what is there), "is the shape of the table round or square?" (its shape).
-    static std::string readAsAsked(std::string plain, std::optional<std::string>& stateWords) {
+    // ScanQA's ways of asking, each as a form the reader reads (the first that fits).
+    static std::string readScanQaForm(std::string plain) {
         // ScanQA's ways of asking: "what surrounds the sink?" (what is around it), "what does the
         // cabinet have?" (what is on it), "a copier sits on the floor to the left of what?" (the
         // copier is to the left of what), "where does the trash can set?".
@@ -1379,6 +1376,16 @@ private:
                 plain = std::regex_replace(plain, from, to);
                 break;
             }
+        return plain;
+    }
+
+    // SQA3D's ways of asking what the memory answers another way: "is the number of chairs odd or
+    // even?" (a count), "is the door open or closed?" (the door; `stateWords` say what is left
+    // out), "is the table small or large?" (its size), "what can I use in front of me to ...?"
+    // (what is there), "is the shape of the table round or square?" (its shape).
+    // ScanQA's too (readScanQaForm).
+    static std::string readAsAsked(std::string plain, std::optional<std::string>& stateWords) {
+        plain = readScanQaForm(std::move(plain));
         // "is the number of chairs odd or even?", "can the number of chairs be divided by three?":
         // the count answers it.
         static const std::pair<std::regex, std::string> counts[] = {
