@@ -440,15 +440,18 @@ using P = Predicate;
 // and the English phrases that ask for it (ASK's only list of them, '|' between phrases).
 constexpr PredicateSpec kPredicates[] = {
     {P::On, "", 1, false, false, onScore, restingOnRegion, supportRegion, 2, "on(desk)",
-     "on|on top of|onto|upon|atop|sitting on|lying on|resting on|standing on|placed on|kept on|piled on",
+     "on|on top of|onto|upon|atop|sitting on|lying on|resting on|standing on|placed on|kept on|piled on|supported "
+     "by",
      Occluders::Walls},
     {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)",
-     "in|inside|inside of|within|stored in|kept in|contained in", Occluders::Walls},
+     "in|inside|inside of|within|stored in|kept in|contained in|into|built into|built in to", Occluders::Walls},
     {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)", "above|over|higher than"},
     {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)",
      "below|under|underneath|beneath|lower than"},
     {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 14, "near(sofa) or near(sofa, 1.5 m)",
-     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|close by|against|at", Occluders::All},
+     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|close by|against|at|surrounding|"
+     "surround|surrounds|touching|touches|on either side of|on both sides of|on each side of|either side of|flanking",
+     Occluders::All},
     {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)",
      "attached to|fixed to|mounted on|hanging on|hanging from|hanging off|hung on|hangs on|hang on"},
     {P::LeftOf, "", 1, true, false, leftOfScore, nullptr, nullptr, 6, "left_of(window)",
@@ -463,7 +466,8 @@ constexpr PredicateSpec kPredicates[] = {
      "visible_from(door): in sight of an eye standing at the door",
      "visible from|seen from|in sight of|in view of|in sight from|seeable from", Occluders::All},
     {P::Facing, "", 1, false, false, facingScore, nullptr, nullptr, 11, "facing(table): its front faces the table",
-     "facing|face|faces|facing toward|facing towards|turned toward|turned towards|pointing at|pointed at|looking at"},
+     "facing|face|faces|facing toward|facing towards|turned toward|turned towards|pointing at|pointed at|looking at|"
+     "across from|across the room from|opposite|opposite to|opposite of"},
     {P::AtFrontOf, "", 1, false, false, atFrontOfScore, withinNear, withinNear, 12,
      "at_front_of(sofa): by the sofa's own front", "at the front of|at the foot of|at the end of", Occluders::All},
     {P::AtBackOf, "", 1, false, false, atBackOfScore, withinNear, withinNear, 13,

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "engine/ask/lexicon.hpp"
+#include "engine/ask/phrase.hpp"
 #include "engine/ask/units.hpp"
 #include "model/geometry.hpp"
 
@@ -540,6 +541,30 @@ std::string route(const Translation& t, const ResultSet& rs) {
 
 // A plugged-in translator's statement: its rows said as they are.
 std::string statement(const ResultSet& rs) {
+    // DESCRIBE's rows (id, field, value): each node by what it looks like, its size and any text.
+    if (const int id = rs.columnIndex("id"), field = rs.columnIndex("field"), value = rs.columnIndex("value");
+        id >= 0 && field >= 0 && value >= 0 && rs.columns.size() == 3) {
+        std::vector<std::string> nodes;
+        std::string node, category, looks;
+        auto flush = [&] {
+            if (!node.empty()) nodes.push_back(fmt::format("{}#{}{}", category, node, looks));
+            looks.clear();
+        };
+        for (const auto& row : rs.rows) {
+            if (text(row[id]) != node) {
+                flush();
+                node = text(row[id]);
+            }
+            const std::string f = text(row[field]);
+            if (f == "category")
+                category = text(row[value]);
+            else if (isOneOf(f, {"dimensions", "color", "material", "shape", "text", "label", "state"}))
+                looks += fmt::format("{} {} {}", looks.empty() ? ":" : ",", f, text(row[value]));
+        }
+        flush();
+        if (nodes.empty()) return "Nothing of the kind is here.";
+        return listed(nodes, "; ") + ".";
+    }
     if (rs.columnIndex("instruction") >= 0) {
         std::string out;
         for (const auto& row : rs.rows) out += (out.empty() ? "" : " ") + text(row[rs.columnIndex("instruction")]);

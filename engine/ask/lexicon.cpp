@@ -171,6 +171,13 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
         match.how = match.categories.empty() ? WordMatch::How::Absent : WordMatch::How::Broader;
         return match;
     }
+    // One word for a name WordNet writes as two ("trashcan", "trashcans": trash can).
+    if (word.find('-') == std::string::npos)
+        for (std::size_t cut = 3; cut + 3 <= word.size(); ++cut) {
+            std::string spaced = word;
+            spaced.insert(cut, 1, ' ');
+            if (!wordnet::nounBaseForms(hyphenated(spaced)).empty()) return lookUp(spaced);
+        }
     // Not an English noun: a misspelt category, or the plural of one ("chiars")?
     auto close = model::nearestNames(word, categories_, 1);
     for (const auto& singular : singulars(word))

@@ -55,10 +55,20 @@ std::optional<std::string> kindTarget(const std::string& w) {
     return std::nullopt;
 }
 
-// Parts of a thing: "the corner of the room", "the top of the stove", "the foot of the bed".
+// Parts of a thing: "the corner of the room", "the top of the stove", "the foot of the bed", "the lid
+// of the bin". The memory keeps boxes, not parts: "what is on the back of the chair?" is about the chair.
 bool isPartWord(const std::string& w) {
-    return isOneOf(w, {"corner", "top", "bottom", "side", "end", "middle", "center", "centre", "edge", "part", "area",
-                       "back", "front", "foot", "head", "surface", "rest"});
+    return isOneOf(w, {"corner",   "top",      "bottom", "side",    "end",     "middle",  "center",   "centre",
+                       "edge",     "part",     "area",   "back",    "front",   "foot",    "head",     "surface",
+                       "rest",     "lid",      "seat",   "portion", "half",    "outside", "inside",   "exterior",
+                       "interior", "backside", "frame",  "handle",  "handles", "legs",    "leg",      "base",
+                       "opening",  "backrest", "sides",  "corners", "ends",    "edges",   "surfaces", "section"});
+}
+
+// Words that place a part on a thing: "the upper portion of", "the bottom left corner of", "the far end of".
+bool isPartPlaceWord(const std::string& w) {
+    return isSideWord(w) || isOneOf(w, {"upper", "lower", "top", "bottom", "far", "near", "outer", "inner", "middle",
+                                        "center", "immediate", "very", "hand", "rear"});
 }
 
 // "in the room", "in this scene", "in here": the whole scene, no condition.
@@ -315,7 +325,7 @@ Words words(const std::string& text) {
         else
             s += ' ';
     }
-    static const std::array<std::pair<std::string_view, std::string_view>, 10> contractions{{
+    static const std::array<std::pair<std::string_view, std::string_view>, 11> contractions{{
         {"can't", "can not"},
         {"'s", " is"},
         {"'re", " are"},
@@ -326,6 +336,7 @@ Words words(const std::string& text) {
         {"'d", " would"},
         {"'", " "},
         {"--", " "},
+        {"infront", "in front"},  // a common way to write it
     }};
     for (const auto& [from, to] : contractions)
         for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
@@ -400,6 +411,44 @@ bool PhraseParser::idPhrase(const Words& w, std::size_t& i, bool withPosts, Phra
     return true;
 }
 
+bool PhraseParser::describing(const Words& w, std::size_t& i, std::vector<std::string>& nounWords, std::string& side,
+                              std::size_t wordsStart) {
+    const std::string& word = w[i];
+    // "the hanging towel", "the standing lamp": before the noun, a verb of place describes it
+    // (the memory keeps no such state); after it, it ends the phrase ("the towel hanging on ...").
+    if (nounWords.empty() && word.ends_with("ing") && endsPhrase(word) && i + 1 < w.size() && !predicateAt(w, i + 1) &&
+        !endsPhrase(w[i + 1])) {
+        out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", word));
+        return true;
+    }
+    // "dark green", "light brown": the memory keeps the colour, not its shade.
+    if (nounWords.empty() && isOneOf(word, {"dark", "light", "bright", "pale", "deep", "olive"}) && i + 1 < w.size() &&
+        colourOf(w[i + 1]))
+        return true;
+    if (word != "of") return false;
+    // "the left wall of the room", "the wall of the house": of the scene, which it is in anyway.
+    if (!nounWords.empty() && !isPartWord(nounWords.back()) && i + 1 < w.size()) {
+        std::size_t k = i + 1;
+        while (k < w.size() && isDeterminer(w[k])) ++k;
+        if (std::size_t place = scenePlaceAt(w, k); place > 0) {
+            i = k + place - 1;
+            return true;
+        }
+    }
+    // "the corner of the room", "the top of the stove", "the back of the chair", "the upper
+    // portion of the bed": the part is read as the thing itself.
+    if ((!nounWords.empty() || !side.empty()) && (nounWords.empty() || isPartWord(nounWords.back())) &&
+        std::all_of(nounWords.begin(), nounWords.end(),
+                    [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n); })) {
+        out_.notes.push_back(fmt::format("'{}' is read as the thing itself", joined(w, wordsStart, i + 1)));
+        nounWords.clear();
+        side.clear();
+        while (i + 1 < w.size() && isDeterminer(w[i + 1])) ++i;
+        return true;
+    }
+    return false;
+}
+
 Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     Phrase p;
     std::size_t start = i;
@@ -449,13 +498,8 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
             nounWords.push_back(word);
             continue;
         }
+        if (describing(w, i, nounWords, side, wordsStart)) continue;
         if (endsPhrase(word) && !(word == "right" && nounWords.empty())) break;
-        // "the corner of the room", "the top of the stove": the part is read as the thing itself.
-        if (word == "of" && nounWords.size() == 1 && isPartWord(nounWords.front())) {
-            out_.notes.push_back(fmt::format("'{} of' is read as the thing itself", nounWords.front()));
-            nounWords.clear();
-            continue;
-        }
         // "pieces of furniture", "a pair of shoes": the thing is what follows "of".
         if (word == "of" && nounWords.size() == 1 &&
             isOneOf(nounWords.front(), {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type",
@@ -516,6 +560,34 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     return p;
 }
 
+namespace {
+
+// "beyond and to the right of the lamp": two predicates of the same things. The first one, with `at`
+// and `pred` moved to the second; nothing when w[at] begins one predicate only (or "between").
+std::optional<std::pair<std::string, std::size_t>> firstOfTwo(
+    const Words& w, std::size_t& at, std::optional<std::pair<std::string, std::size_t>>& pred) {
+    const std::size_t andAt = at + pred->second;
+    if (pred->first == "between" || andAt + 1 >= w.size() || w[andAt] != "and") return std::nullopt;
+    auto second = PhraseParser::predicateAt(w, andAt + 1);
+    if (!second || second->first == "between") return std::nullopt;
+    auto first = pred;
+    at = andAt + 1;
+    pred = second;
+    return first;
+}
+
+}  // namespace
+
+bool PhraseParser::sideAfterVerb(const Words& w, std::size_t at, std::size_t& i, Phrase& p) const {
+    // "the armchair located on the left": the one on that side, as "the armchair on the left".
+    if (!p.side.empty() || p.kind || p.categories.size() != 1 || !p.id.empty()) return false;
+    std::string side = sideAfter(w, at);
+    if (side.empty()) return false;
+    p.side = side;
+    i = at;
+    return true;
+}
+
 void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
     while (i < w.size()) {
         std::size_t at = i;
@@ -568,26 +640,41 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             negated = true;
             at = k;
         }
+        if (sideAfterVerb(w, at, i, p)) continue;
         auto pred = predicateAt(w, at);
         if (!pred) return;
+        const std::size_t bothAt = at;
+        auto also = firstOfTwo(w, at, pred);
         i = at;
         // "in the room": the whole scene.
         std::size_t after = i + pred->second;
         while (after < w.size() && isDeterminer(w[after])) ++after;
-        // "in the corner of the room" is in the room.
-        if (after + 2 < w.size() && isPartWord(w[after]) && w[after + 1] == "of") {
-            after += 2;
+        // "in the corner of the room" is in the room; "on the far end of the room", "at the back of
+        // the room" too: the memory keeps no parts of a room.
+        std::size_t part = after;
+        while (part < w.size() && (isPartPlaceWord(w[part]) || isPartWord(w[part]))) ++part;
+        const bool ofPart = part > after && part + 1 < w.size() && isPartWord(w[part - 1]) && w[part] == "of";
+        if (ofPart) {
+            after = part + 1;
             while (after < w.size() && isDeterminer(w[after])) ++after;
         }
-        if (pred->first == "in" && after < w.size()) {
+        if ((pred->first == "in" || (ofPart && isOneOf(pred->first, {"on", "near"}))) && after < w.size()) {
             // "in here", "in the room", "in the office" (when the office is this scene).
             std::size_t place = scenePlaceAt(w, after);
-            if (place > 0 && (after + place == w.size() || !predicateAt(w, after + place))) {
+            if (place > 0 && (ofPart || after + place == w.size() || !predicateAt(w, after + place))) {
                 i = after + place;
                 continue;
             }
         }
         p.conditions.push_back(condition(w, i, *pred));
+        if (also) {
+            // The answer says "beyond and to the right of the lamp" once.
+            p.conditions.back().words = joined(w, bothAt, i);
+            Condition first = p.conditions.back();
+            first.predicate = also->first;
+            first.words.clear();
+            p.conditions.push_back(std::move(first));
+        }
         if (negated) {
             p.conditions.back().negated = true;
             p.conditions.back().words = "not " + p.conditions.back().words;
@@ -837,6 +924,38 @@ std::string findText(const Phrase& p, bool path, const std::string& view) {
 
 std::string countText(const Phrase& p, const std::string& view) {
     return "COUNT " + targetOf(p) + (view.empty() ? "" : " " + view) + whereText(p);
+}
+
+bool phraseUpTo(const Words& w, std::size_t& i, std::size_t end, PhraseParser& p, Phrase& out) {
+    Words head(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(end));
+    std::size_t k = i;
+    out = p.phrase(head, k, true);
+    if (k != end) return false;
+    i = end;
+    return true;
+}
+
+void describeSubject(const Phrase& p, Translation& out) {
+    std::string adjectives = p.colour ? *p.colour + " " : "";
+    std::string noun = !p.side.empty() ? p.side + " " + p.noun : p.noun;
+    std::replace(noun.begin(), noun.end(), '-', ' ');  // "trash-bin" is a trash bin in words
+    out.subject = adjectives + noun;
+    out.subjectPlural = adjectives + pluralOf(noun);
+    std::string condition;
+    for (const auto& c : p.conditions)
+        if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
+    // "on the bed besides the pillows"
+    for (const auto& e : p.excluded) condition += std::string(condition.empty() ? "" : " ") + "besides the " + e.words;
+    if (out.condition.empty()) out.condition = condition;
+}
+
+bool locateAnswer(const Phrase& thing, Translation& out) {
+    out.kind = thing.order ? QuestionKind::Superlative : QuestionKind::Locate;
+    out.pick = std::max<std::size_t>(thing.pick, 1);
+    if (thing.order) out.measure = thing.order->words;
+    out.smql = findText(thing, true);
+    describeSubject(thing, out);
+    return true;
 }
 
 }  // namespace smql::ask

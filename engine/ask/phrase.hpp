@@ -129,6 +129,12 @@ private:
     // A noun of more words than a name takes loses its first ones, with a note; far more is an error.
     void shortenNoun(std::vector<std::string>& nounWords, const Words& w, std::size_t start);
     void resolveNoun(Phrase& p, const std::vector<std::string>& nounWords);
+    // A word at w[i] that describes the noun rather than naming it, or a part of it ("the back of"):
+    // true, with `i` past what it took (notes say what is left out).
+    bool describing(const Words& w, std::size_t& i, std::vector<std::string>& nounWords, std::string& side,
+                    std::size_t wordsStart);
+    // "located on the left" after a noun of one category: its side; true, with `i` past it.
+    bool sideAfterVerb(const Words& w, std::size_t at, std::size_t& i, Phrase& p) const;
     bool isPlane(const Phrase& p) const;
 
     const Lexicon& lexicon_;
@@ -159,6 +165,17 @@ std::string whereText(const Phrase& p);
 // FIND <phrase> [ORDER BY ..] [LIMIT ..] [PATH]; `view` is a VIEW FROM clause or empty.
 std::string findText(const Phrase& p, bool path, const std::string& view = {});
 std::string countText(const Phrase& p, const std::string& view = {});
+
+// A phrase that takes exactly the words w[i..end) (a verb or a link word follows): true, with `i` at
+// `end`; false when the phrase ends elsewhere.
+bool phraseUpTo(const Words& w, std::size_t& i, std::size_t end, PhraseParser& p, Phrase& out);
+
+// The words the answer says the thing asked about in: "red mug", "red mugs", and its conditions
+// ("on the desk besides the cushions").
+void describeSubject(const Phrase& p, Translation& out);
+
+// Where the thing is: FIND ... PATH (the nearest, largest ... of an order).
+bool locateAnswer(const Phrase& thing, Translation& out);
 
 // The view-relative predicate that holds for a thing on `side` of a person whose view is turned by
 // `turn` quarter turns clockwise from their heading, with the view's place as the reference: side

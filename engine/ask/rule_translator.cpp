@@ -64,7 +64,27 @@ constexpr AffordanceRow kAffordances[] = {
     {"wash", "sink bathtub shower", "wash at"},
     {"watch", "television monitor", "watch"},
     {"read", "book lamp", "read with"},
+    {"throw", "wastebasket", "throw things in"},
+    {"dispose", "wastebasket", "throw things in"},
 };
+
+// "the object used for disposing of waste", "a container used to throw away trash": the thing the
+// use names (kAffordances), as a noun the phrase grammar reads; the text as it was when the verb
+// affords nothing.
+std::string thingByUse(const std::string& plain) {
+    static const std::regex used(
+        R"(\b(?:object|thing|item|container|one|device)s? (?:that (?:is|are) |which (?:is|are) |(is|are) )?used (?:to|for) (\w+)(?: (?:of|away|out|up))?(?: (?:the |some |a |my |your )?(?:waste|trash|garbage|rubbish|litter|paper|things|stuff))?)");
+    std::smatch m;
+    if (!std::regex_search(plain, m, used)) return plain;
+    for (const auto& base : wordnet::baseForms(m.str(2)))
+        for (const auto& row : kAffordances)
+            if (row.verb == base) {
+                const std::string thing(row.things.substr(0, row.things.find(' ')));
+                // "what color container is used for ...": what color is that thing.
+                return m.prefix().str() + thing + (m[1].matched ? " " + m.str(1) : "") + m.suffix().str();
+            }
+    return plain;
+}
 
 // The measure a size question asks for: "how tall" -> height.
 struct SizeWord {
@@ -141,6 +161,7 @@ public:
             &QuestionReader::existence,   &QuestionReader::side,       &QuestionReader::relative,
             &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
             &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
+            &QuestionReader::description,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -416,6 +437,12 @@ private:
         return true;
     }
 
+    // A part of a thing or what covers it, which the memory keeps no colour or shape of apart from the thing.
+    static bool isPartOrCover(const std::string& w) {
+        return isOneOf(w, {"frame", "fabric", "upholstery", "cover", "lid", "handle", "handles", "legs", "seat", "top",
+                           "base", "surface", "trim", "border", "shade", "finish"});
+    }
+
     // What colour is the sofa?
     bool attribute(Cursor& c, PhraseParser& p, Translation& out) {
         std::string measure;
@@ -426,6 +453,16 @@ private:
                 thing = p.phrase(c.w, c.i, true);
                 c.accept({"have|has"});
                 c.accept({"made", "of|from"});
+            } else if (auto does = std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(),
+                                                [](const std::string& w) { return w == "does" || w == "do"; });
+                       does != c.w.end() && c.w.back() == "have" && does - c.w.begin() == static_cast<long>(c.i) + 1 &&
+                       isPartOrCover(c.peek())) {
+                // "what color frame does the white board have?": the memory keeps the colour of the
+                // whole thing, not of its parts.
+                out.notes.push_back(fmt::format("'{}' is read as the thing itself", c.peek()));
+                c.i += 2;
+                if (!phraseWithin(c, p, c.w.size() - 1, thing)) return false;
+                c.i = c.w.size();
             } else {
                 // "what color recycling bin sits in the corner?"
                 thing = p.phrase(c.w, c.i, false);
@@ -660,7 +697,7 @@ private:
                         linkWords = l.size();
                         break;
                     }
-            if (!link) return false;
+            if (!link) return placement(c, p, out);
             std::size_t end = *link;
             while (end > c.i && isOneOf(c.w[end - 1], {"placed", "positioned", "located", "oriented", "situated"}))
                 --end;
@@ -685,18 +722,33 @@ private:
         return true;
     }
 
+    // How is the sink located? How is the towel placed on the wall? (read_placement.cpp)
+    bool placement(Cursor& c, PhraseParser& p, Translation& out) { return readPlacement(c.w, c.i, p, out); }
+
     // A phrase that must take exactly the words up to `end` (where a verb or link word follows).
     static bool phraseWithin(Cursor& c, PhraseParser& p, std::size_t end, Phrase& out) {
-        Words head(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end));
-        std::size_t i = c.i;
-        out = p.phrase(head, i, true);
-        if (i != end) return false;
-        c.i = end;
-        return true;
+        return phraseUpTo(c.w, c.i, end, p, out);
     }
 
     // On what side of the bed is the lamp? What side of the desk are the chairs on?
     bool side(Cursor& c, PhraseParser& p, Translation& out) {
+        // "the table is to what side of the bed?": the same question, its subject first.
+        if (auto what = std::find(c.w.begin(), c.w.end(), "what"); what != c.w.end() && what - c.w.begin() >= 3 &&
+                                                                   isOneOf(*(what - 1), {"on", "to", "at"}) &&
+                                                                   isOneOf(*(what - 2), {"is", "are"})) {
+            const std::size_t whatAt = static_cast<std::size_t>(what - c.w.begin());
+            Phrase a;
+            if (!phraseWithin(c, p, whatAt - 2, a)) return false;
+            c.i = whatAt + 1;
+            if (!c.accept({"side|part|end"})) return false;
+            if (!c.accept({"of"})) return false;
+            Phrase b = p.phrase(c.w, c.i, true);
+            out.kind = QuestionKind::RelativePosition;
+            out.smql = fmt::format("RELATE {} TO {}", reference(a), reference(b));
+            describeSubject(a, out);
+            out.object = b.words;
+            return true;
+        }
         c.accept({"on|to|at|in"});
         if (!c.accept({"what|which", "side|part|corner|end|area"})) return false;
         c.accept({"of"});
@@ -733,9 +785,12 @@ private:
                 }
             return false;
         };
+        // Verbs of place and adverbs between the subject and the predicate say no more than it does:
+        // "the cabinet is directly next to what?", "a kitchen cabinet is installed to the right of what?".
         static const std::initializer_list<std::string_view> verbs{
-            "located", "placed", "sitting", "standing", "hanging", "lying", "resting",
-            "kept",    "sit",    "stand",   "hang",     "lie",     "rest",  "attach"};
+            "located", "placed",   "sitting",    "standing", "hanging", "lying",     "resting",    "kept", "sit",
+            "stand",   "hang",     "lie",        "rest",     "attach",  "installed", "mounted",    "set",  "put",
+            "found",   "situated", "positioned", "directly", "right",   "just",      "immediately"};
         if (c.accept({"what|which"})) {
             // what is the lamp on? / what bed are the pillows on?
             if (!isOneOf(c.peek(), {"is", "are", "does", "do"})) answerKind = p.phrase(c.w, c.i, false);
@@ -750,9 +805,12 @@ private:
         } else if (auto found = PhraseParser::predicateAt(c.w, 0)) {
             std::size_t k = found->second;
             if (k < c.w.size() && c.w[k] == "what") {
-                // to the right of what is the black cabinet?
+                // to the right of what is the black cabinet? on what wall is the tv located?
                 pred = found;
                 c.i = k + 1;
+                // "in what part of the room": where it is (locate); "on what side of": side.
+                if (isOneOf(c.peek(), {"part", "side", "corner", "end", "area"})) return false;
+                if (!isOneOf(c.peek(), {"is", "are"})) answerKind = p.phrase(c.w, c.i, false);
                 if (!c.accept({"is|are"})) return false;
                 subject = p.phrase(c.w, c.i, true);
                 c.skip({"located", "placed"});
@@ -766,14 +824,38 @@ private:
                 describeSubject(thing, out);
                 return true;
             }
-        } else if (c.w.size() >= 2 && c.w.back() == "what") {
-            // the desk is to the right of what?
-            if (!predicateEnding(0, c.w.size() - 1)) return false;
+        } else if (auto what = std::find_if(c.w.begin(), c.w.end(),
+                                            [](const std::string& w) { return w == "what" || w == "which"; });
+                   c.w.size() >= 2 && what != c.w.end() && what != c.w.begin()) {
+            // the desk is to the right of what? the trash can is sitting against what wall? the guitar
+            // case is to the right of which door?
+            const std::size_t whatAt = static_cast<std::size_t>(what - c.w.begin());
+            if (whatAt + 1 < c.w.size()) {
+                std::size_t k = whatAt + 1;
+                answerKind = p.phrase(c.w, k, false);
+                if (k != c.w.size()) return false;
+            }
+            if (!predicateEnding(0, whatAt)) return false;
             std::size_t end = predAt;
             while (end > 0 && isOneOf(c.w[end - 1], verbs)) --end;
-            if (end == 0 || !isOneOf(c.w[end - 1], {"is", "are"})) return false;
             Phrase s;
-            if (!phraseWithin(c, p, end - 1, s)) return false;
+            if (end > 0 && isOneOf(c.w[end - 1], {"is", "are"})) {
+                if (!phraseWithin(c, p, end - 1, s)) return false;
+            } else {
+                // "the picture is hanging on the wall above what?": where the subject is says which one.
+                auto verb = std::find_if(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end),
+                                         [](const std::string& w) { return w == "is" || w == "are"; });
+                std::size_t k = static_cast<std::size_t>(verb - c.w.begin());
+                if (k == 0 || k >= end || !phraseWithin(c, p, k, s)) return false;
+                ++k;
+                while (k < end && isOneOf(c.w[k], verbs) && !PhraseParser::predicateAt(c.w, k)) ++k;
+                Words head(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end));
+                const std::size_t before = s.conditions.size();
+                p.posts(head, k, s);
+                // "the brown chair is in front of a door and beside what?": the conditions say which one.
+                if (k + 1 == end && c.w[k] == "and") ++k;
+                if (k != end || s.conditions.size() == before) return false;
+            }
             subject = s;
             c.i = c.w.size();
         } else {
@@ -909,19 +991,21 @@ private:
             c.accept({"to"});
         }
         Phrase thing = p.phrase(c.w, c.i, true);
+        if (where && c.accept({"and"})) {
+            // "where are the black magazine rack and the silver magazine rack located?": each of them.
+            Phrase other = p.phrase(c.w, c.i, true);
+            c.skip({"located", "kept", "placed", "positioned", "situated"});
+            if (!c.done()) return false;
+            out.kind = QuestionKind::Locate;
+            out.smql = fmt::format("FIND thing WHERE {} OR {} PATH", matchText(thing), matchText(other));
+            out.subject = thing.words + " or " + other.words;
+            out.subjectPlural = "things";
+            return true;
+        }
         c.skip({"located", "kept", "placed", "be", "attached", "mounted", "positioned", "situated", "installed",
-                "stored", "hung", "hanging"});
+                "stored", "hung", "hanging", "lying", "sitting", "standing", "resting", "set"});
         if (!where && !thing.order && !thing.conditions.empty()) return false;  // "show me everything on ..."
         return locateAnswer(thing, out);
-    }
-
-    bool locateAnswer(const Phrase& thing, Translation& out) {
-        out.kind = thing.order ? QuestionKind::Superlative : QuestionKind::Locate;
-        out.pick = std::max<std::size_t>(thing.pick, 1);
-        if (thing.order) out.measure = thing.order->words;
-        out.smql = findText(thing, true);
-        describeSubject(thing, out);
-        return true;
     }
 
     // What is on the desk near the left wall? Which chairs are near the table? Show me everything
@@ -934,7 +1018,7 @@ private:
             static const std::initializer_list<std::string_view> verbs{"is",    "are",    "sits",   "sit",   "lies",
                                                                        "lie",   "stands", "stand",  "rests", "rest",
                                                                        "hangs", "hang",   "hanged", "hung"};
-            if (isOneOf(c.peek(), verbs) || isOneOf(c.peek(), {"do", "can", "could"})) {
+            if (isOneOf(c.peek(), verbs) || isOneOf(c.peek(), {"do", "can", "could", "will", "would"})) {
                 thing.kind = "object";
                 thing.noun = "thing";
             } else {
@@ -945,19 +1029,37 @@ private:
             bool verbIsPredicate = PhraseParser::predicateAt(c.w, c.i).has_value() && c.i > at;
             if (!verbIsPredicate &&
                 !c.accept({"is|are|sits|sit|lies|lie|stands|stand|rests|rest|hangs|hang|hanged|hung"}) &&
-                !c.accept({"do|can", "you|i", "see|find|have"}) && !c.accept({"is|are", "there"}) &&
+                !c.accept({"do|can|will|would", "you|i", "see|find|have"}) && !c.accept({"is|are", "there"}) &&
                 !c.accept({"can|could", "be", "seen|found"}))
                 return false;
             c.accept({"there"});
+            // "what is orange behind me on the floor?": a thing of that colour.
+            if (auto colour = colourOf(c.peek()); colour && !thing.colour && PhraseParser::predicateAt(c.w, c.i + 1)) {
+                thing.colour = colour;
+                ++c.i;
+            }
+            // "what doors are open to the right of the bunk beds?": the memory keeps no such state.
+            if (isOneOf(c.peek(), {"open", "opened", "closed", "shut", "empty", "full", "lit"}) &&
+                PhraseParser::predicateAt(c.w, c.i + 1)) {
+                out.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", c.peek()));
+                ++c.i;
+            }
             std::size_t verbAt = c.i;
             c.skip({"present", "seen", "found", "hanged", "hung", "directly", "just", "located", "placed", "sitting",
                     "lying", "standing", "kept", "hanging", "positioned", "situated"});
-            // "what is stacked up on ...", "what is leaning against ...": a verb of place before
-            // the predicate says no more than the predicate.
-            if (c.i == verbAt && !c.done() && (c.peek().ends_with("ing") || c.peek().ends_with("ed")) &&
-                !PhraseParser::predicateAt(c.w, c.i)) {
+            // "what is stacked up on ...", "what is leaning against ...", "what is set above ...",
+            // "what is thrown over ...": a verb of place before the predicate says no more than the
+            // predicate (an irregular form is one WordNet takes back to another base: thrown, built).
+            auto verbForm = [](const std::string& w) {
+                if (w.ends_with("ing") || w.ends_with("ed") || isOneOf(w, {"set", "put"})) return true;
+                const auto bases = wordnet::baseForms(w);
+                return std::any_of(bases.begin(), bases.end(), [&](const std::string& b) { return b != w; });
+            };
+            if (c.i == verbAt && !c.done() && verbForm(c.peek()) && !PhraseParser::predicateAt(c.w, c.i)) {
                 std::size_t k = c.i + 1;
-                if (k < c.w.size() && isOneOf(c.w[k], {"up", "down", "out", "around"})) ++k;
+                if (k < c.w.size() && isOneOf(c.w[k], {"up", "down", "out", "around", "sideways", "together"}) &&
+                    !PhraseParser::predicateAt(c.w, k))
+                    ++k;
                 if (PhraseParser::predicateAt(c.w, k)) c.i = k;
             }
             std::size_t before = thing.conditions.size();
@@ -1109,22 +1211,10 @@ private:
         return true;
     }
 
-    // ------------------------------------------------------------ helpers
+    // What does the urinal look like? What does the cabinet near the copier say? (read_description.cpp)
+    bool description(Cursor& c, PhraseParser& p, Translation& out) { return readDescription(c.w, c.i, p, out); }
 
-    static void describeSubject(const Phrase& p, Translation& out) {
-        std::string adjectives = p.colour ? *p.colour + " " : "";
-        std::string noun = !p.side.empty() ? p.side + " " + p.noun : p.noun;
-        std::replace(noun.begin(), noun.end(), '-', ' ');  // "trash-bin" is a trash bin in words
-        out.subject = adjectives + noun;
-        out.subjectPlural = adjectives + pluralOf(noun);
-        std::string condition;
-        for (const auto& c : p.conditions)
-            if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
-        // "on the bed besides the pillows"
-        for (const auto& e : p.excluded)
-            condition += std::string(condition.empty() ? "" : " ") + "besides the " + e.words;
-        if (out.condition.empty()) out.condition = condition;
-    }
+    // ------------------------------------------------------------ helpers
 
     bool repeated(const std::string& category) const {
         return std::find(question_.repeatedCategories.begin(), question_.repeatedCategories.end(), category) !=
@@ -1226,30 +1316,76 @@ public:
     std::string name() const override { return "the built-in reader"; }
 
 private:
-    // SQA3D's ways of asking what the memory answers another way: "is the number of chairs odd or
-    // even?" (a count), "is the door open or closed?" (the door; `stateWords` say what is left
-    // out), "is the table small or large?" (its size), "what can I use in front of me to ...?"
-    // (what is there), "is the shape of the table round or square?" (its shape).
-    static std::string readAsAsked(std::string plain, std::optional<std::string>& stateWords) {
+    // ScanQA's ways of asking, each as a form the reader reads (the first that fits).
+    static std::string readScanQaForm(std::string plain) {
         // ScanQA's ways of asking: "what surrounds the sink?" (what is around it), "what does the
         // cabinet have?" (what is on it), "a copier sits on the floor to the left of what?" (the
         // copier is to the left of what), "where does the trash can set?".
         static const std::pair<std::regex, std::string> scanQa[] = {
             {std::regex(R"(^what (?:surrounds|borders|flanks|encircles|lines)\b)"), "what is around"},
-            {std::regex(R"(^what does (.+?) (?:have|hold|contain|carry|support)(?: on (?:it|top))?$)"),
+            {std::regex(R"(^what (?:does|do) (.+?) (?:have|hold|contain|carry|support)(?: on (?:it|top))?$)"),
              "what is on $1"},
+            // "what does the chair have at the foot of the bed?": what is on the chair there.
+            {std::regex(
+                 R"(^what (?:does|do) (.+?) (?:have|hold|carry|support) ((?:at|by|near|next to|beside|in|on|under|above|behind|in front of|to the (?:left|right) of) .+)$)"),
+             "what is on $1 $2"},
+            // "the table is surrounded by what?", "what is the sink surrounded by?": what is around it.
+            {std::regex(R"(^(?:the |a |an )?(.+?) (?:is|are) (?:surrounded|encircled|flanked|bordered) by what$)"),
+             "what is around the $1"},
+            {std::regex(R"(^what (?:is|are) (.+?) (?:surrounded|encircled|flanked|bordered) by$)"),
+             "what is around $1"},
+            // "what is the water fountain closest to?": as "the water fountain is closest to what?".
+            {std::regex(R"(^what (?:is|are) (?:the |a |an )?(.+?) (closest|nearest) to$)"),
+             "what is $2 to the $1 besides the $1"},
+            // "what type of toilet is it?", "what type of door is there?" (read as "which ..."): the
+            // thing itself, where it is.
+            {std::regex(
+                 R"(^what (?:type|kind|sort|types|kinds) of (.+?) (?:is|are) (?:it|this|that|there|they|these|those)$)"),
+             "where is the $1"},
+            // "what is the location of the piano in relation to the desk?": where it is relative to it.
+            {std::regex(
+                 R"(^what (?:is|are) the (?:location|position|placement|orientation) of (.+?) (relative to|in relation to|with respect to|compared to) (.+)$)"),
+             "where is $1 $2 $3"},
+            {std::regex(R"(^what (?:is|are) the (?:location|position|placement) of (.+)$)"), "where is $1"},
             {std::regex(
                  R"(^(?:a|an|the) (.+?) (?:sits|stands|lies|hangs|rests|is placed|is located|is sitting|is standing|is hanging|is positioned)( .+ what(?: \w+)?)$)"),
              "the $1 is$2"},
             {std::regex(R"(^where does (.+?) (?:set|sit|stand|lie|rest)$)"), "where is $1"},
             {std::regex(R"(^where (?:is|are) (.+?) set$)"), "where is $1"},
+            // "where is the tv hanging from?": what it hangs from.
+            {std::regex(R"(^where (?:is|are) (.+?) (hanging|hung|attached|mounted) (from|on|to)$)"),
+             "what is $1 $2 $3"},
             {std::regex(R"(^how many (.+?) (?:surround|border|flank|encircle)s? (.+)$)"), "how many $1 are around $2"},
+            // "how many chairs is the tv above?": the chairs below the tv (the predicate turned round).
+            {std::regex(R"(^how many (.+?) (?:is|are) (.+?) (?:located |placed |hanging |sitting |standing )?above$)"),
+             "how many $1 are below $2"},
+            {std::regex(
+                 R"(^how many (.+?) (?:is|are) (.+?) (?:located |placed |hanging |sitting |standing )?(?:below|under|underneath|beneath)$)"),
+             "how many $1 are above $2"},
+            {std::regex(
+                 R"(^how many (.+?) (?:is|are) (.+?) (?:located |placed |sitting |standing )?(?:near|next to|beside|close to)$)"),
+             "how many $1 are near $2"},
+            // "the armchair is closest to what?": distance is the same both ways, so it is what else
+            // is closest to the armchair (the armchair is at no distance from itself).
+            {std::regex(
+                 R"(^(?:the |a |an )?(.+?) (?:is|are) (?:the )?(closest|nearest)(?: object| thing| one| item)? to what(?: in the room)?$)"),
+             "what is $2 to the $1 besides the $1"},
         };
         for (const auto& [from, to] : scanQa)
             if (std::regex_search(plain, from)) {
                 plain = std::regex_replace(plain, from, to);
                 break;
             }
+        return plain;
+    }
+
+    // SQA3D's ways of asking what the memory answers another way: "is the number of chairs odd or
+    // even?" (a count), "is the door open or closed?" (the door; `stateWords` say what is left
+    // out), "is the table small or large?" (its size), "what can I use in front of me to ...?"
+    // (what is there), "is the shape of the table round or square?" (its shape).
+    // ScanQA's too (readScanQaForm).
+    static std::string readAsAsked(std::string plain, std::optional<std::string>& stateWords) {
+        plain = readScanQaForm(std::move(plain));
         // "is the number of chairs odd or even?", "can the number of chairs be divided by three?":
         // the count answers it.
         static const std::pair<std::regex, std::string> counts[] = {
@@ -1361,6 +1497,35 @@ private:
         return text;
     }
 
+    // "wher is the cabinet?", "wha is on the dresser?": a first word nobody knows, one letter from a
+    // question word, is that word (the nouns have the lexicon's did-you-mean; this is the grammar's).
+    static std::string questionWordRespelt(const std::string& plain, const Lexicon& lexicon) {
+        const std::size_t space = plain.find(' ');
+        if (space == std::string::npos) return plain;
+        const std::string first = plain.substr(0, space);
+        if (first.size() < 3 || lexicon.lookUp(first).how != WordMatch::How::Unknown) return plain;
+        for (std::string_view asks : {"what", "where", "which", "how", "who", "when", "is", "are"})
+            if (model::editDistance(first, asks) == 1) return std::string(asks) + plain.substr(space);
+        return plain;
+    }
+
+    // "When entering the kitchen, what is the first cabinet on the right?", "where is the office chair
+    // when you walk in the door?": the person stands where one comes in, as SQA3D's "I am entering
+    // the room." says (situation.cpp reads it: by the door).
+    static std::string enteringAsSituation(const std::string& text) {
+        static const std::string entering =
+            R"((?:when|as|once|upon|after) (?:you |i |one |we )?(?:first )?(?:enter|enters|entering|walk|walks|walking|come|comes|coming|step|steps|stepping)(?: in| into| through)?(?: (?:the|a|this) (?:\w+ )?(?:room|door|doorway|entrance|entry|kitchen|bathroom|bedroom|office|area|space))?)";
+        static const std::regex before("^\s*" + entering + R"(\s*,?\s*(.+)$)", std::regex::icase);
+        static const std::regex after(R"(^\s*(.+?),?\s+)" + entering + R"(\s*\??\s*$)", std::regex::icase);
+        std::smatch m;
+        if (std::regex_match(text, m, before) || std::regex_match(text, m, after)) {
+            std::string question = m.str(1);
+            if (question.find('?') == std::string::npos) question += "?";
+            return "I am entering the room. " + question;
+        }
+        return text;
+    }
+
     // The pose a situation before the question says; `text` becomes the question alone.
     static std::optional<Pose> situationOf(const Question& question, const Lexicon& lexicon, std::string& text,
                                            std::vector<std::string>& notes) {
@@ -1427,8 +1592,9 @@ public:
             if (auto order = appearanceOrder(question, lexicon)) return *order;
         }
         // A situation before the question ("I am sitting on the bed facing the window. What is to my
-        // left?"): the pose it says, against which "my left" and "which way" are read.
-        std::string text = question.text;
+        // left?"): the pose it says, against which "my left" and "which way" are read. "When you
+        // enter the room, what is on the right?" says one too, as "I am entering the room" does.
+        std::string text = enteringAsSituation(question.text);
         Lexicon lexicon(question.categories);
         std::vector<std::string> situationNotes;
         std::optional<Pose> pose = situationOf(question, lexicon, text, situationNotes);
@@ -1464,7 +1630,7 @@ public:
         // "which of the table and the bed is longer?": the same as choosing among them by the
         // comparative's superlative (kSuperlatives in phrase.cpp).
         static const std::regex chooseAfter(
-            R"(^\s*(?:which|what)(?: one| thing| object)? is ([A-Za-z]+)((?: (?:to|from) [^,:]+)?)\s*[,:](.+)\bor\b([^?]+)\??\s*$)",
+            R"(^\s*(?:which|what)(?: one| thing| object)? is ([A-Za-z]+)(?: away)?((?: (?:to|from) [^,:]+)?)\s*[,:](.+)\bor\b([^?]+)\??\s*$)",
             std::regex::icase);
         static const std::regex chooseBefore(
             R"(^\s*(?:which|what)(?: one)? of (.+?)\band\b(.+?)\bis (?:the )?([A-Za-z]+)((?: (?:to|from) [^?]+)?)\??\s*$)",
@@ -1510,6 +1676,8 @@ public:
             "|show me (?=where|what|which|how))?|tell me |i want to know |i wonder |i would like to know |measuring "
             "from the closest point of each object |these are frames of a video )+");
         std::string plain = std::regex_replace(joined(all, 0, all.size()), lead, "");
+        plain = questionWordRespelt(plain, lexicon);
+        plain = thingByUse(plain);
         std::optional<std::string> stateWords;
         plain = readAsAsked(plain, stateWords);
         // "what type of chair ..." asks which chair.
@@ -1560,14 +1728,14 @@ private:
                      R"(\b(?:to|on|at) the (left|right)(?: hand)?(?: side)?\b(?! of\b)(?! side\b)(?! hand\b)(?! end\b)(?! corner\b))"),
                  "to the $1 of me"},
                 {std::regex(
-                     R"(\bmy (?:current |present |own )?(?:position|location|spot|place|seat)(?: on the \w+)?\b|\bwhere i (?:am(?: (?:standing|sitting|now|lying|seated))?|stand|sit)\b)"),
+                     R"(\bmy (?:current |present |own )?(?:position|location|spot|place|seat)(?: on the \w+)?\b|\bwhere i (?:am(?: (?:standing|sitting|now|lying|seated|sat))?|stand|sit)\b)"),
                  "me"},
                 {std::regex(R"(\b(?:across from|opposite|facing) me\b)"), "in front of me"},
                 {std::regex(R"(\b(?:that |which )?i am (?:facing|looking at|in front of)\b)"), "in front of me"},
                 {std::regex(R"(\b(?:that |which )?i am (?:sitting|standing|lying|leaning) (?:on|at|in|by|against)\b)"),
                  "near me"},
                 {std::regex(
-                     R"(^can i (?:reach|touch|grab|get to) (.+?)(?: from where i am(?: standing| sitting| now)?| without moving| from here)?$)"),
+                     R"(^can i (?:reach|touch|grab|get to) (.+?)(?: from where i am(?: standing| sitting| now)?| from me| without moving| from here)?$)"),
                  "is $1 near me"},
 
                 {std::regex(R"(\b(?:right |directly |just |immediately )?(?:behind|in back of) (?:me|myself|us)\b)"),
