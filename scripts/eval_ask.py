@@ -256,6 +256,9 @@ def free_text(args, db, scenes, name, file, read):
     translated, samples, failures, kinds = 0, [], collections.Counter(), collections.Counter()
     for scene, text in questions:
         answer, error, _ = run_ask(args.smql, db, scene, text)
+        # A reading that is not run (an unknown word, the room taken as a thing) is no translation.
+        if not error and smql_of(answer).startswith("SMQL (not run)"):
+            error = answer["message"].splitlines()[-1]
         if error:
             failures[error[:80]] += 1
             if args.failures:

@@ -79,6 +79,12 @@ bool physicalThing(const std::string& noun) {
 
 }  // namespace
 
+bool namesWholeScene(const std::string& word) {
+    static const std::set<std::string> kWholeScene{"room", "scene",     "house", "place", "space",
+                                                   "home", "apartment", "area",  "here",  "flat"};
+    return kWholeScene.count(word) > 0;
+}
+
 Lexicon::Lexicon(std::vector<std::string> sceneCategories) : categories_(std::move(sceneCategories)) {
     std::sort(categories_.begin(), categories_.end());
 }
@@ -110,6 +116,10 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
     if (!match.categories.empty()) {
         match.how = WordMatch::How::Synonym;
         match.lemma = model::categoryName(words);
+        return match;
+    }
+    if (namesWholeScene(word)) {
+        match.how = WordMatch::How::Absent;
         return match;
     }
     for (const auto& singular : singulars(word)) {
@@ -196,7 +206,7 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
 std::optional<std::string> absentThing(const std::string& name, const WordMatch& match) {
     if (match.how != WordMatch::How::Absent) return std::nullopt;
     std::string noun = match.lemma.empty() ? name : match.lemma;  // "pianos" -> piano
-    if (!physicalThing(noun)) return std::nullopt;
+    if (namesWholeScene(noun) || !physicalThing(noun)) return std::nullopt;
     return noun;
 }
 

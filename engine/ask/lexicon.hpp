@@ -20,13 +20,17 @@ struct WordMatch {
     std::string lemma;                    // the base form ("pianos" -> piano), for answers
 };
 
+// Words for the whole scene as a place: "in the room", "in this scene", "in here". They name no category of
+// things ("the left side of the room" is no side of a closet, which WordNet has as a kind of room).
+bool namesWholeScene(const std::string& word);
+
 class Lexicon {
 public:
     explicit Lexicon(std::vector<std::string> sceneCategories);
 
     // `words` is one or more words of a noun phrase ("couch", "coffee table"). Absent: an English
-    // noun the scene has no category for ("piano"); Unknown: a word neither the scene nor WordNet
-    // knows, and that spells no category.
+    // noun the scene has no category for ("piano", or a word for the whole scene: namesWholeScene); Unknown: a
+    // word neither the scene nor WordNet knows, and that spells no category.
     WordMatch lookUp(const std::string& words) const;
 
     const std::vector<std::string>& categories() const { return categories_; }

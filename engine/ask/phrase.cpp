@@ -71,11 +71,6 @@ bool isPartPlaceWord(const std::string& w) {
                                         "center", "immediate", "very", "hand", "rear"});
 }
 
-// "in the room", "in this scene", "in here": the whole scene, no condition.
-bool isWholeScene(const std::string& w) {
-    return isOneOf(w, {"room", "scene", "house", "place", "space", "home", "apartment", "area", "here", "flat"});
-}
-
 // Kinds of room: "in the office" is the scene when the scene is one (PhraseParser::scenePlaceAt).
 constexpr std::string_view kRoomKinds[] = {
     "office",      "bedroom",         "kitchen",      "bathroom",    "living room",  "dining room",  "lounge",
@@ -774,7 +769,7 @@ Error PhraseParser::notUnderstood(const Words& w, std::size_t at) const {
 
 std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
     if (i >= w.size()) return 0;
-    if (isWholeScene(w[i])) return 1;
+    if (namesWholeScene(w[i])) return 1;  // "in the room", "in here": the whole scene, no condition
     for (std::string_view kind : kRoomKinds) {
         Words parts = words(std::string(kind));
         if (i + parts.size() > w.size() || !std::equal(parts.begin(), parts.end(), w.begin() + i)) continue;
@@ -857,7 +852,8 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
         word = nounWords.back();
     }
     p.noun = match.lemma;
-    if (match.how == WordMatch::How::Unknown) {
+    // The room itself is no thing to place others by: its sides, corners and middle are not stored.
+    if (match.how == WordMatch::How::Unknown || namesWholeScene(match.lemma)) {
         unknownWords_.push_back(word);
         return;
     }

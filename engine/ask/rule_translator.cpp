@@ -185,7 +185,13 @@ public:
                 out.kind = QuestionKind::UnknownWord;
                 out.runnable = false;
                 for (const auto& w : parser.unknownWords())
-                    out.notes.push_back(fmt::format("I do not know the word '{}'", w));
+                    out.notes.push_back(
+                        namesWholeScene(w)
+                            ? fmt::format(
+                                  "the {} itself is not a thing the memory holds: its sides, corners and middle "
+                                  "are not stored (ask by a thing or a wall the room holds)",
+                                  w)
+                            : fmt::format("I do not know the word '{}'", w));
             }
             return out;
         }
