@@ -23,6 +23,16 @@ std::array<std::int64_t, 3> unpack(std::uint64_t key) {
             static_cast<std::int64_t>(key >> 21 & mask) - kOffset, static_cast<std::int64_t>(key & mask) - kOffset};
 }
 
+// Whether a set of packed cells holds the cell (x, y, z) or one of its 26 neighbours.
+template <class Cells>
+bool nearCell(const Cells& cells, std::int64_t x, std::int64_t y, std::int64_t z) {
+    for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dz = -1; dz <= 1; ++dz)
+                if (cells.contains(pack(x + dx, y + dy, z + dz))) return true;
+    return false;
+}
+
 bool boundsApart(const Instance& a, const model::Vec3& lo, const model::Vec3& hi, double margin) {
     return a.lo.x > hi.x + margin || a.hi.x < lo.x - margin || a.lo.y > hi.y + margin || a.hi.y < lo.y - margin ||
            a.lo.z > hi.z + margin || a.hi.z < lo.z - margin;
@@ -75,11 +85,7 @@ double InstanceMap::shareNear(const std::unordered_map<std::uint64_t, InstanceCe
     std::size_t near = 0;
     for (const auto& [key, cell] : a) {
         auto [x, y, z] = unpack(key);
-        bool found = false;
-        for (int dx = -1; dx <= 1 && !found; ++dx)
-            for (int dy = -1; dy <= 1 && !found; ++dy)
-                for (int dz = -1; dz <= 1 && !found; ++dz) found = b.contains(pack(x + dx, y + dy, z + dz));
-        near += found;
+        near += nearCell(b, x, y, z);
     }
     return static_cast<double>(near) / static_cast<double>(a.size());
 }
@@ -227,11 +233,7 @@ double shareOfPointsNear(const PointCloud& a, const PointCloud& b, double cell) 
     std::size_t near = 0;
     for (const auto& p : a.points) {
         auto [x, y, z] = cellOf(p);
-        bool found = false;
-        for (int dx = -1; dx <= 1 && !found; ++dx)
-            for (int dy = -1; dy <= 1 && !found; ++dy)
-                for (int dz = -1; dz <= 1 && !found; ++dz) found = cells.contains(pack(x + dx, y + dy, z + dz));
-        near += found;
+        near += nearCell(cells, x, y, z);
     }
     return static_cast<double>(near) / static_cast<double>(a.size());
 }
