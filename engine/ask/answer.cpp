@@ -106,10 +106,32 @@ std::string relational(const Translation& t, const ResultSet& rs) {
     return fmt::format("{} {} are {}: {}", n, nouns, t.condition, listed(labels(rs)));
 }
 
+// The word asked for when the scene holds none of it but holds the kind it is ("desk" -> table, WordNet's hypernym):
+// the rows are of that kind, and a count or an existence question is of the word asked, so the answer says that none
+// is stored and names what is. Null when the subject was not widened so.
+const WordMapping* widenedSubject(const Translation& t) {
+    for (const auto& m : t.mappings)
+        if (m.how == describe(WordMatch::How::Broader) && !m.categories.empty() &&
+            (t.subject == m.word || t.subject.ends_with(" " + m.word) || t.subjectPlural == m.word ||
+             t.subjectPlural.ends_with(" " + m.word)))
+            return &m;
+    return nullptr;
+}
+
+// "there are 3 tables, the kind a desk is, which may be desks"
+std::string broaderKind(const Translation& t, const WordMapping& widened, std::size_t n) {
+    const std::string& kind = widened.categories.front();
+    return fmt::format("there {} {} {}, the kind a {} is, which may be {}", n == 1 ? "is" : "are", n,
+                       n == 1 ? kind : pluralOf(kind), t.subject, n == 1 ? "one" : t.subjectPlural);
+}
+
 std::string count(const Translation& t, const ResultSet& rs) {
     std::int64_t n = 0;
     if (!rs.rows.empty() && !rs.rows.front().empty())
         if (const auto* v = std::get_if<std::int64_t>(&rs.rows.front().front())) n = *v;
+    if (const WordMapping* widened = widenedSubject(t); widened && n > 0)
+        return fmt::format("0 stored as {}{}; {}.", t.subjectPlural, withCondition(t),
+                           broaderKind(t, *widened, static_cast<std::size_t>(n)));
     if (t.condition.empty() || t.condition.starts_with("besides "))
         return fmt::format("{} {}{}.", n, n == 1 ? t.subject : t.subjectPlural, withCondition(t));
     return fmt::format("{} {} {} {}.", n, n == 1 ? t.subject : t.subjectPlural, n == 1 ? "is" : "are", t.condition);
@@ -118,6 +140,9 @@ std::string count(const Translation& t, const ResultSet& rs) {
 std::string existence(const Translation& t, const ResultSet& rs) {
     std::size_t n = rs.rows.size();
     if (n == 0) return fmt::format("No, there is no {}{}.", t.subject, withCondition(t));
+    if (const WordMapping* widened = widenedSubject(t))
+        return fmt::format("None is stored as a {}{}; {}: {}", t.subject, withCondition(t), broaderKind(t, *widened, n),
+                           listed(labels(rs)));
     if (n == 1) return fmt::format("Yes, there is 1 {}{}: {}", t.subject, withCondition(t), listed(labels(rs)));
     return fmt::format("Yes, there are {} {}{}: {}", n, t.subjectPlural, withCondition(t), listed(labels(rs)));
 }
@@ -625,6 +650,12 @@ std::string changes(const ResultSet& rs) {
 }  // namespace
 
 ResultSet answeredRows(const Translation& translation, ResultSet rows) {
+    // None of the word asked is stored (widenedSubject): no row answers, and the count is 0.
+    if (translation.kind == QuestionKind::Existence && widenedSubject(translation)) rows.rows.clear();
+    if (translation.kind == QuestionKind::Count && widenedSubject(translation))
+        for (auto& row : rows.rows)
+            for (auto& value : row)
+                if (std::holds_alternative<std::int64_t>(value)) value = std::int64_t{0};
     if (translation.kind != QuestionKind::Reverse) return rows;
     std::vector<std::vector<Value>> kept;
     for (std::size_t i : reverseRows(translation, rows)) kept.push_back(std::move(rows.rows[i]));

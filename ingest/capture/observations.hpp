@@ -74,9 +74,10 @@ struct ObjectTrack {
     std::vector<model::Vec3> fused;
     cv::Mat fusedColors;
     std::optional<model::Box> fusedBox;
-    // Why the name is doubted though it suits the box (object_fusion.hpp: outOfPlace), or "": the objects
-    // stage keeps such a name only as detected_as.
-    std::string nameDoubt;
+    // Where fusion did not keep the detectors' name though it suits the box (object_fusion.hpp: FusedThing), that
+    // name and why, else "": `category` is then what the thing is stored as, and the name is kept as detected_as.
+    std::string detectedAs;
+    std::string renamedWhy;
 };
 
 // Lifts every instance of one frame with enough pixels. `stride` samples the

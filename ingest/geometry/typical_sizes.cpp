@@ -11,8 +11,9 @@ namespace {
 // a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). Upright
 // ends: the kind has a thin upright part at an end or side (a bed's headboard, a sofa's back) that a detector may name
 // apart (object_fusion.cpp joins it back). Room: the one kind of room the kind stands in (a toilet in a bathroom, a
-// fridge or an oven in a kitchen; object_fusion.cpp doubts a name among another room's things). The rows cover the
-// memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
+// fridge or an oven in a kitchen; object_fusion.cpp doubts a name among another room's things). Role: what the kind is
+// for where fusion judges a thing by it (typical_sizes.hpp: Role). The rows cover the memory's names for the
+// detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;
@@ -21,12 +22,13 @@ struct Typical {
     bool holdsThings = false;
     bool uprightEnds = false;
     RoomKind room = RoomKind::Any;
+    Role role = Role::Other;
 };
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true},
     {"desk", 0.75, 1.9, Support::Floor, true},
-    {"chair", 0.9, 1.2, Support::Floor},
-    {"sofa", 0.85, 2.8, Support::Floor, false, true},
+    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat},
+    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat},
     {"bed", 0.55, 2.3, Support::Floor, true, true},
     {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen},
     {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom},
@@ -37,12 +39,12 @@ constexpr Typical kTypical[] = {
     {"counter", 0, 4.0, Support::Floor, true},
     {"wardrobe", 0, 2.6, Support::Floor},
     {"dresser", 0, 1.9, Support::Floor},
-    {"armchair", 0, 1.2, Support::Floor},
-    {"stool", 0, 0.9, Support::Floor},
-    {"bench", 0, 2.2, Support::Floor, false, true},
+    {"armchair", 0, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat},
+    {"stool", 0, 0.9, Support::Floor, false, false, RoomKind::Any, Role::Seat},
+    {"bench", 0, 2.2, Support::Floor, false, true, RoomKind::Any, Role::Seat},
     {"tv", 0, 2.0, Support::Either},
     {"monitor", 0, 0.9, Support::Surface},
-    {"box", 0, 1.0, Support::Either},
+    {"box", 0, 1.0, Support::Either, false, false, RoomKind::Any, Role::Luggage},
     {"camera", 0, 0.3, Support::Surface},
     {"lamp", 0, 2.0, Support::Either},
     {"plant", 0, 2.2, Support::Either},
@@ -55,13 +57,13 @@ constexpr Typical kTypical[] = {
     {"bottle", 0, 0.45, Support::Surface},
     {"mug", 0, 0.2, Support::Surface},
     {"microwave", 0, 0.7, Support::Surface, false, false, RoomKind::Kitchen},
-    {"sink", 0, 1.2, Support::Either},
+    {"sink", 0, 1.2, Support::Either, false, false, RoomKind::Any, Role::Basin},
     {"oven", 0, 1.0, Support::Floor, false, false, RoomKind::Kitchen},
     {"keyboard", 0, 0.55, Support::Surface},
     {"backpack", 0, 0.65, Support::Either},
     {"umbrella", 0, 1.2, Support::Either},
     {"handbag", 0, 0.55, Support::Either},
-    {"suitcase", 0, 0.9, Support::Floor},
+    {"suitcase", 0, 0.9, Support::Floor, false, false, RoomKind::Any, Role::Luggage},
     {"sports_ball", 0, 0.35, Support::Either},
     {"tennis_racket", 0, 0.75, Support::Either},
     {"wine_glass", 0, 0.3, Support::Surface},
@@ -117,6 +119,11 @@ bool holdsThings(std::string_view category) {
 bool hasUprightEnds(std::string_view category) {
     const Typical* t = find(category);
     return t && t->uprightEnds;
+}
+
+Role role(std::string_view category) {
+    const Typical* t = find(category);
+    return t ? t->role : Role::Other;
 }
 
 RoomKind roomKind(std::string_view category) {

@@ -43,4 +43,10 @@ bool hasUprightEnds(std::string_view category);
 enum class RoomKind { Any, Kitchen, Bathroom };
 RoomKind roomKind(std::string_view category);
 
+// What things of a kind are for, where fusion judges a thing by it (object_fusion.hpp): a seat (a chair, a sofa, a
+// bench), luggage (a suitcase or a box, which as large as a low table and standing among seats is used as one:
+// lowTablesAmongSeats), a basin (a sink, set into the cabinet under it: objects_from_clusters.hpp), or other.
+enum class Role { Other, Seat, Luggage, Basin };
+Role role(std::string_view category);
+
 }  // namespace smql::ingest

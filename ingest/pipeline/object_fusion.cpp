@@ -344,6 +344,37 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
     return doubts;
 }
 
+namespace {
+
+// The seats within FusionOptions::seatReach of a low table's box, if they give places for two or more, else "".
+std::string seatsAround(const model::Box& box, const std::vector<SeenBox>& things, const FusionOptions& options) {
+    std::size_t places = 0;
+    std::vector<std::string_view> names;
+    for (const auto& other : things) {
+        if (role(other.category) != Role::Seat || model::horizontalGap(box, other.box) > options.seatReach) continue;
+        const double longest = std::max(other.box.size.x, other.box.size.y);
+        places += std::max<std::size_t>(1, static_cast<std::size_t>(longest / options.seatWidth));
+        names.push_back(other.category);
+    }
+    return places >= 2 ? fmt::format("beside {} within {:.1f} m", fmt::join(names, ", "), options.seatReach) : "";
+}
+
+}  // namespace
+
+std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const FusionOptions& options) {
+    std::vector<UseName> names(things.size());
+    for (std::size_t t = 0; t < things.size(); ++t) {
+        const model::Box& box = things[t].box;
+        if (role(things[t].category) != Role::Luggage || model::bottom(box) > options.restingGap ||
+            std::min(box.size.x, box.size.y) < options.lowTableSide || model::top(box) < options.lowTableTopMin ||
+            model::top(box) > options.lowTableTopMax)
+            continue;
+        if (std::string seats = seatsAround(box, things, options); !seats.empty())
+            names[t] = {"table", "is a low table among seats (" + seats + ")"};
+    }
+    return names;
+}
+
 ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options)
     : alignment_(alignment),
       floorFound_(room.floorFound),
@@ -397,10 +428,16 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     std::vector<SeenBox> named;
     for (const auto& thing : things) named.push_back({thing.box, thing.category, 0});
     const std::vector<std::string> doubts = outOfPlace(named, walls_, options_);
+    const std::vector<UseName> uses = namedByUse(named, options_);
 
     std::vector<FusedThing> out;
     for (std::size_t t = 0; t < things.size(); ++t) {
-        FusedThing fused{things[t].box, things[t].category, doubts[t], std::move(things[t].points), {}};
+        FusedThing fused{things[t].box, things[t].category, "", "", std::move(things[t].points), {}};
+        if (!doubts[t].empty() || !uses[t].category.empty()) {
+            fused.detectedAs = fused.category;
+            fused.category = doubts[t].empty() ? uses[t].category : "object";
+            fused.renamedWhy = doubts[t].empty() ? uses[t].why : "stands " + doubts[t];
+        }
         for (const Instance* instance : things[t].instances)
             fused.views.insert(fused.views.end(), instance->sources.begin(), instance->sources.end());
         std::sort(fused.views.begin(), fused.views.end(),
@@ -444,7 +481,8 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
         ObjectTrack track;
         track.category = thing.category;
         track.kind = detectionKind(track.category);
-        track.nameDoubt = thing.nameDoubt;
+        track.detectedAs = thing.detectedAs;
+        track.renamedWhy = thing.renamedWhy;
         std::map<std::size_t, std::size_t> fromTrack;
         for (auto v : thing.views) {
             ++fromTrack[trackOf[v]];

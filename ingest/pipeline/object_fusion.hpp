@@ -43,6 +43,11 @@ struct FusionOptions {
     double partWidth = 0.6;          // this share of that end or more, rising above its top, is its headboard
                                      // or back (typical_sizes.hpp: hasUprightEnds), whatever it was named
     double roomReach = 1.0;          // m: things this close, no wall between them, stand in one room (outOfPlace)
+    double lowTableSide = 0.5;       // m: luggage whose footprint sides are all this long or more, ...
+    double lowTableTopMin = 0.35;    // m: its top between these heights above the floor, ...
+    double lowTableTopMax = 0.6;     //
+    double seatReach = 0.6;          // m: ... with places for two to sit this close, is a low table
+    double seatWidth = 0.6;          // m: a seat's places: its longest side over this, one at least
     bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
@@ -80,12 +85,25 @@ std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, cons
 std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
                                     const FusionOptions& options = {});
 
-// A thing fusion made: its box and name, why the name is doubted (outOfPlace) or "", its fused points (aligned
+// Things named by what they are used as, where the detectors' classes have no name for them (COCO and Open Images
+// have no ottoman): a low table is luggage (typical_sizes.hpp: Role::Luggage; a suitcase, a box) standing on the
+// floor, as large as a low table (FusionOptions::lowTableSide, lowTableTopMin..Max), with places for two or more to
+// sit within seatReach (a seat's places: its longest side over seatWidth, one at least): an ottoman or a trunk before
+// a sofa or among chairs. Returns, per thing, the name it is used under and why ("" and "" for the others).
+struct UseName {
+    std::string category;
+    std::string why;
+};
+std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const FusionOptions& options = {});
+
+// A thing fusion made: its box and the name it is stored under; where fusion did not keep the detectors' name, that
+// name (detectedAs) and why (outOfPlace: "object"; namedByUse: "table"), else ""; its fused points (aligned
 // frame, colours RGB) and the views it was made of (indices into ObjectFusion's views, in frame order).
 struct FusedThing {
     model::Box box;
     std::string category;
-    std::string nameDoubt;
+    std::string detectedAs;
+    std::string renamedWhy;
     PointCloud points;
     std::vector<std::size_t> views;
 };
@@ -108,7 +126,7 @@ public:
     // One frame's views of things (all of that frame's, in the capture's frame), frames in the order taken.
     void addFrame(std::vector<Observation> frameViews);
     // The things the frames so far show: instances merged, pieces joined, grounded, slivers dropped, names
-    // doubted out of place. The map itself is left to take more frames.
+    // doubted out of place, low tables named by their use. The map itself is left to take more frames.
     std::vector<FusedThing> things(FusionCounts* counts = nullptr) const;
     const std::vector<Observation>& views() const { return views_; }
     std::vector<Observation> takeViews() { return std::move(views_); }

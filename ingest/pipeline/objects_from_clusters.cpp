@@ -11,10 +11,12 @@
 #include <opencv2/core.hpp>
 
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/geometry/view_segment.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
@@ -34,6 +36,21 @@ bool inKnownThing(const model::Vec3& p, const model::SceneData& scene, double ma
     return false;
 }
 
+// The box grown to hold the points, its yaw kept.
+void growToHold(model::Box& box, const std::vector<model::Vec3>& points) {
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    double lo[3] = {-box.size.x / 2, -box.size.y / 2, -box.size.z / 2}, hi[3] = {-lo[0], -lo[1], -lo[2]};
+    for (const auto& p : points) {
+        const double dx = p.x - box.center.x, dy = p.y - box.center.y;
+        const double local[3] = {c * dx + s * dy, -s * dx + c * dy, p.z - box.center.z};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], local[k]), hi[k] = std::max(hi[k], local[k]);
+    }
+    const double mid[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+    box.center = {box.center.x + c * mid[0] - s * mid[1], box.center.y + s * mid[0] + c * mid[1],
+                  box.center.z + mid[2]};
+    box.size = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+}
+
 class ClusterFinder : public ObjectFinder {
 public:
     // Clusters come from the aligned structure, which the frame pass builds anyway.
@@ -42,15 +59,31 @@ public:
 
     void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                              model::SceneData& scene, StageProgress& progress) override {
-        const std::size_t clusters = addClusterObjects(aligned, walls, scene, {});
+        const std::size_t clusters = addClusterObjects(aligned, walls, scene, {}).added;
         progress.note(fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'", clusters));
     }
 };
 
 }  // namespace
 
-std::size_t addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
-                              model::SceneData& scene, const ClusterObjects& options) {
+bool takenIntoBasin(const model::Box& cluster, const std::vector<model::Vec3>& points, model::SceneData& scene,
+                    const ClusterObjects& options) {
+    for (auto& n : scene.nodes) {
+        if (n.kind != model::NodeKind::Object || n.geometry != model::GeometryKind::Box ||
+            role(n.category) != Role::Basin)
+            continue;
+        const double below = model::bottom(n.box) - model::top(cluster);
+        if (below < -options.knownMargin || below > options.knownMargin + options.cabinetGap ||
+            model::footprintOverlap(cluster, n.box) < options.cabinetShare * model::footprintArea(cluster))
+            continue;
+        growToHold(n.box, points);
+        return true;
+    }
+    return false;
+}
+
+ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
+                                model::SceneData& scene, const ClusterObjects& options) {
     StructureOptions structureOptions;
     structureOptions.ceilingHeight = aligned.alignment.ceilingHeight;
     const PointCloud& cloud = aligned.cloud;
@@ -61,7 +94,7 @@ std::size_t addClusterObjects(const AlignedCapture& aligned, const std::vector<W
             !(options.outsideKnown && inKnownThing(cloud.points[i], scene, options.knownMargin)))
             rest.push_back(i);
     auto clusters = euclideanClusters(cloud, rest, options.gap, options.minPoints, 200000);
-    std::size_t added = 0;
+    ClusterCounts counts;
     for (const auto& cluster : clusters) {
         std::vector<model::Vec3> points;
         cv::Mat colors;
@@ -76,14 +109,18 @@ std::size_t addClusterObjects(const AlignedCapture& aligned, const std::vector<W
         if (box.size.x < options.minLonger || box.size.y < options.minShorter || box.size.z < options.minHeight ||
             box.size.x > options.maxLonger || frames.size() < options.minFrames)
             continue;
+        if (takenIntoBasin(box, points, scene, options)) {
+            ++counts.cabinets;
+            continue;
+        }
         model::Node& node = addNode(scene, model::NodeKind::Object, "object", model::GeometryKind::Box, box);
         node.attributes.push_back({"color", nameColor(colors).name});
         node.attributes.push_back({"size", sizeWord(box)});
         node.attributes.push_back({"points", std::to_string(cluster.size())});
         node.confidence = 0.5f;
-        ++added;
+        ++counts.added;
     }
-    return added;
+    return counts;
 }
 
 bool clustersUsable(const Capture&, const IngestOptions&) { return true; }

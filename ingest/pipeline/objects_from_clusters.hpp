@@ -21,12 +21,27 @@ struct ClusterObjects {
     std::size_t minFrames = 1;   // frames whose points it holds
     bool outsideKnown = false;   // leave out the points in (or next to) the scene's objects' boxes
     double knownMargin = 0.1;    // m
+    double cabinetGap = 0.1;     // m: a cluster whose top is within knownMargin and this under a basin's bottom ...
+    double cabinetShare = 0.6;   // ... and this share of whose footprint lies under it is the basin's cabinet
+};
+
+struct ClusterCounts {
+    std::size_t added = 0;     // nodes added
+    std::size_t cabinets = 0;  // clusters taken into the basin set in them
 };
 
 // Adds a node for each cluster of the aligned structure's points that are not floor, ceiling or
 // wall (nor, with outsideKnown, in an object the scene holds) and whose box and views pass the
-// options. Returns how many it added.
-std::size_t addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
-                              model::SceneData& scene, const ClusterObjects& options);
+// options. A cluster right under a basin (typical_sizes.hpp: Role::Basin; a sink), most of it under
+// the basin's footprint, is the cabinet the basin is set in (a vanity): people count the two as one
+// sink, so the basin's box grows down to hold it instead.
+ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
+                                model::SceneData& scene, const ClusterObjects& options);
+
+// Whether the cluster (its box and points) lies right under a basin of the scene, its top within
+// ClusterObjects::knownMargin + cabinetGap of the basin's bottom and cabinetShare of its footprint under the
+// basin's: then the basin's box has grown down to hold the points (its yaw kept).
+bool takenIntoBasin(const model::Box& cluster, const std::vector<model::Vec3>& points, model::SceneData& scene,
+                    const ClusterObjects& options = {});
 
 }  // namespace smql::ingest

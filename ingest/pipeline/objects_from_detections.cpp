@@ -96,10 +96,15 @@ public:
     void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                              model::SceneData& scene, StageProgress& progress) override {
         if (!hasDepth_) return;
-        const std::size_t added = addClusterObjects(aligned, walls, scene, kUnnamedThings);
+        const ClusterCounts counts = addClusterObjects(aligned, walls, scene, kUnnamedThings);
+        const std::size_t added = counts.added;
         if (added > 0)
             progress.note(fmt::format("objects: {} large {} no model named, stored as 'object' with {} size and colour",
                                       added, added == 1 ? "thing" : "things", added == 1 ? "its" : "their"));
+        if (counts.cabinets > 0)
+            progress.note(
+                fmt::format("objects: {} {} under a sink taken into the sink (a vanity, one sink to a person)",
+                            counts.cabinets, counts.cabinets == 1 ? "cabinet" : "cabinets"));
     }
 
 protected:

@@ -140,22 +140,22 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
-        // A name far too small for its box (a detector's 1.8 m "cake"), or out of place (a toilet in a kitchen), is
-        // kept only as a guess.
+        // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess, as is one fusion
+        // did not keep (a toilet in a kitchen; a suitcase among seats, a low table).
         const bool tooLarge = !opening && !nameFitsBox(category, box, track.carved);
-        const bool misnamed = tooLarge || (!opening && !track.nameDoubt.empty());
+        const std::string detectedAs = tooLarge ? category : track.detectedAs;
+        const std::string stored = tooLarge ? std::string("object") : category;
         if (tooLarge)
             progress.note(
                 fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
                             "'object' with detected_as = {}",
                             std::max({box.size.x, box.size.y, box.size.z}), category, category));
-        else if (misnamed)
-            progress.note(fmt::format("a thing detected as '{}' stands {}: stored as 'object' with detected_as = {}",
-                                      category, track.nameDoubt, category));
-        model::Node& node =
-            addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, misnamed ? std::string("object") : category,
-                    opening ? GeometryKind::Plane : GeometryKind::Box, box);
-        if (misnamed) node.attributes.push_back({"detected_as", category});
+        else if (!detectedAs.empty())
+            progress.note(fmt::format("a thing detected as '{}' {}: stored as '{}' with detected_as = {}", detectedAs,
+                                      track.renamedWhy, stored, detectedAs));
+        model::Node& node = addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, stored,
+                                    opening ? GeometryKind::Plane : GeometryKind::Box, box);
+        if (!detectedAs.empty()) node.attributes.push_back({"detected_as", detectedAs});
         if (!opening) {
             if (auto color = nameColor(colors).name; !color.empty()) node.attributes.push_back({"color", color});
             node.attributes.push_back({"size", sizeWord(box)});
@@ -166,7 +166,8 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         node.attributes.push_back({"first_seen", std::to_string(capture.frames[first->frame].index)});
         node.attributes.push_back({"last_seen", std::to_string(capture.frames[last->frame].index)});
         node.attributes.push_back({"views", std::to_string(track.views.size())});
-        node.confidence = static_cast<float>(std::min(1.0, 0.5 + 0.1 * track.views.size()) * (misnamed ? 0.5 : 1.0));
+        node.confidence =
+            static_cast<float>(std::min(1.0, 0.5 + 0.1 * track.views.size()) * (detectedAs.empty() ? 1.0 : 0.5));
         std::sort(node.attributes.begin(), node.attributes.end(),
                   [](const auto& a, const auto& b) { return a.name < b.name; });
         if (!track.evidence.jpeg.empty())

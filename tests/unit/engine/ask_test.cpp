@@ -308,3 +308,31 @@ TEST_CASE("ASK reads VSI-Bench's appearance order from the frame that first saw 
                           "video: chair, table, door, window?'"),
                       Catch::Contains("keeps no frame that first saw each thing"));
 }
+
+// A word the scene has none of, widened to the kind it is ("desk" -> table): the rows are of that kind, but a desk is
+// not every table, so an existence or a count is of the word asked: none stored as one, and the kind named.
+TEST_CASE("ASK: none stored as the word asked when it was widened to the kind it is", "[ask]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(import::readReplica(testing::replicaRoom0(), "replica-room0"));
+    run(*engine, "USE SCENE 'replica-room0'");
+    const std::size_t tables = run(*engine, "FIND table").rows.size();
+    REQUIRE(tables > 1);
+
+    auto exists = run(*engine, "ASK 'is there a desk?'");
+    INFO(exists.message);
+    CHECK(exists.message.find("desk -> table (the kind it is)") != std::string::npos);
+    CHECK(exists.rows.empty());
+    CHECK(exists.message.find(fmt::format("None is stored as a desk; there are {} tables, the kind a desk is",
+                                          tables)) != std::string::npos);
+
+    auto count = run(*engine, "ASK 'how many desks are there?'");
+    INFO(count.message);
+    REQUIRE(count.rows.size() == 1);
+    CHECK(std::get<std::int64_t>(count.rows[0][0]) == 0);
+    CHECK(count.message.find(fmt::format("0 stored as desks; there are {} tables", tables)) != std::string::npos);
+
+    // A word the scene holds is answered as before.
+    auto held = run(*engine, "ASK 'how many tables are there?'");
+    CHECK(std::get<std::int64_t>(held.rows[0][0]) == static_cast<std::int64_t>(tables));
+}

@@ -1,6 +1,7 @@
 // What object fusion decides from the things' boxes (object_fusion.hpp): pieces of one thing that the instance
 // map kept apart, against things that merely stand close (pieceOf), and things whose legs were hidden reaching
-// down to the floor (reachDownToFloor), and names out of place (outOfPlace). The boxes and frame counts are those real
+// down to the floor (reachDownToFloor), names out of place (outOfPlace), low tables named by their use (namedByUse)
+// and a sink's cabinet taken into the sink (takenIntoBasin). The boxes and frame counts are those real
 // captures gave (ScanNet scene0000_00, an apartment: its corner sofa, the kitchen's bar table with its stools;
 // scene0113_00, a lounge: a side table named twice; SUN RGB-D 000002, a bedroom display whose floor a Kinect frame
 // barely showed), and their neighbours as rooms place them.
@@ -9,6 +10,9 @@
 #include <cmath>
 
 #include "ingest/pipeline/object_fusion.hpp"
+#include "ingest/pipeline/objects_from_clusters.hpp"
+#include "ingest/pipeline/scene_nodes.hpp"
+#include "model/geometry.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
@@ -183,4 +187,72 @@ TEST_CASE("fusion frame by frame: the things so far after each frame, the map le
     CHECK(counts.views == 3);
     CHECK(counts.segmented == 3);
     CHECK(fusion.views().size() == 3);
+}
+
+TEST_CASE("named by use: a suitcase or a box as large as a low table among seats is a table", "[ingest][fusion]") {
+    // ScanNet scene0000_00: the ottoman in the L of the corner sofa, which NanoDet called a suitcase (ScanNet: table).
+    const SeenBox sofa = seen("sofa", {4.96, 4.26, 0.44}, {3.17, 2.35, 0.89}, 0, 39);
+    const SeenBox ottoman = seen("suitcase", {4.57, 4.93, 0.22}, {0.91, 0.60, 0.44}, 0, 6);
+    auto uses = namedByUse({ottoman, sofa});
+    REQUIRE(uses.size() == 2);
+    CHECK(uses[0].category == "table");
+    CHECK(uses[0].why.find("sofa") != std::string::npos);
+    CHECK(uses[1].category.empty());
+    // ScanNet scene0113_00: the lounge's quilted ottoman among three chairs, called a box (ScanNet: table).
+    const SeenBox box = seen("box", {2.36, 2.07, 0.23}, {0.91, 0.90, 0.40}, 0, 9);
+    const std::vector<SeenBox> chairs{seen("chair", {3.66, 2.24, 0.38}, {0.83, 0.75, 0.76}, 0, 20),
+                                      seen("chair", {1.18, 2.00, 0.39}, {0.80, 0.65, 0.79}, 0, 20),
+                                      seen("chair", {2.29, 3.34, 0.36}, {0.76, 0.69, 0.72}, 90, 20)};
+    CHECK(namedByUse({box, chairs[0], chairs[1], chairs[2]})[0].category == "table");
+    // One chair is a place for one: a box beside it stays a box.
+    CHECK(namedByUse({box, chairs[0]})[0].category.empty());
+    // A suitcase by a bed, or one lying flat as suitcases do (its top 0.3 m up), or standing on its end (0.25 m
+    // thin), stays a suitcase though a sofa is beside it.
+    CHECK(namedByUse({ottoman, seen("bed", {4.96, 4.26, 0.30}, {2.0, 1.6, 0.6}, 0, 20)})[0].category.empty());
+    CHECK(namedByUse({seen("suitcase", {4.57, 4.93, 0.15}, {0.78, 0.52, 0.30}, 0, 6), sofa})[0].category.empty());
+    CHECK(namedByUse({seen("suitcase", {4.57, 4.93, 0.35}, {0.50, 0.25, 0.70}, 0, 6), sofa})[0].category.empty());
+    // A table or a chair is never renamed so.
+    CHECK(namedByUse({seen("chair", {4.57, 4.93, 0.22}, {0.91, 0.60, 0.44}, 0, 6), sofa})[0].category.empty());
+}
+
+TEST_CASE("a sink's cabinet: the cluster right under a sink is taken into it; a counter's run is not",
+          "[ingest][fusion]") {
+    // ScanNet scene0000_00: the bathroom's basin as detected (0.19 m tall) and the vanity cabinet under it that no
+    // model named, as the clusters gave them; ScanNet's box of that sink is the whole vanity, 0.90 m tall.
+    model::SceneData scene;
+    model::Box basin;
+    basin.center = {8.394, 0.510, 0.782};
+    basin.size = {0.759, 0.420, 0.191};
+    basin.yaw = M_PI / 2;
+    addNode(scene, model::NodeKind::Object, "sink", model::GeometryKind::Box, basin);
+    model::Box cabinet;
+    cabinet.center = {8.404, 0.595, 0.319};
+    cabinet.size = {0.676, 0.312, 0.527};
+    cabinet.yaw = 89.6 * M_PI / 180;
+    std::vector<model::Vec3> points;
+    for (double dx : {-0.15, 0.15})
+        for (double dy : {-0.33, 0.33})
+            for (double z : {0.06, 0.58}) points.push_back({8.404 + dx, 0.595 + dy, z});
+    CHECK(takenIntoBasin(cabinet, points, scene));
+    const model::Box& sink = scene.nodes.back().box;
+    CHECK(model::bottom(sink) == Approx(0.06).margin(0.005));
+    CHECK(model::top(sink) == Approx(0.8775).margin(0.005));
+    CHECK(sink.yaw == Approx(M_PI / 2));
+    CHECK(sink.size.z == Approx(0.8175).margin(0.01));
+
+    // A kitchen counter's 2.4 m run under a 0.8 m sink: most of it is not under the sink, and it stays apart.
+    model::SceneData kitchen;
+    addNode(kitchen, model::NodeKind::Object, "sink", model::GeometryKind::Box, basin);
+    model::Box counter = cabinet;
+    counter.size = {2.4, 0.6, 0.55};
+    counter.center = {8.394, 0.510, 0.30};
+    counter.yaw = M_PI / 2;
+    CHECK_FALSE(takenIntoBasin(counter, points, kitchen));
+    // Nor is a cluster beside the sink, or one a metre under it.
+    model::Box beside = cabinet;
+    beside.center.y += 0.8;
+    CHECK_FALSE(takenIntoBasin(beside, points, kitchen));
+    model::Box far = cabinet;
+    far.center.z -= 0.4;
+    CHECK_FALSE(takenIntoBasin(far, points, kitchen));
 }
