@@ -359,20 +359,77 @@ std::string seatsAround(const model::Box& box, const std::vector<SeenBox>& thing
     return places >= 2 ? fmt::format("beside {} within {:.1f} m", fmt::join(names, ", "), options.seatReach) : "";
 }
 
+// Whether a long side of the box lies against a wall: the wall parallel to it (within 15 degrees), the side within
+// FusionOptions::againstWall of the wall's plane, the box's centre in front of the wall's extent.
+bool longSideAgainstWall(const model::Box& box, const std::vector<WallSegment>& walls, const FusionOptions& options) {
+    const bool xLonger = box.size.x >= box.size.y;
+    const double depth = xLonger ? box.size.y : box.size.x;
+    const double alongYaw = box.yaw + (xLonger ? 0.0 : M_PI / 2);
+    return std::any_of(walls.begin(), walls.end(), [&](const WallSegment& wall) {
+        const model::Vec3 along = wall.direction();
+        const double turn = std::remainder(alongYaw - std::atan2(along.y, along.x), M_PI);
+        const double t = along.x * box.center.x + along.y * box.center.y;
+        return std::abs(turn) <= 15 * M_PI / 180 && t >= wall.along0 && t <= wall.along1 &&
+               std::abs(std::abs(wall.signedDistance(box.center)) - depth / 2) <= options.againstWall;
+    });
+}
+
 }  // namespace
 
-std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const FusionOptions& options) {
+std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
+                                const FusionOptions& options) {
     std::vector<UseName> names(things.size());
     for (std::size_t t = 0; t < things.size(); ++t) {
         const model::Box& box = things[t].box;
-        if (role(things[t].category) != Role::Luggage || model::bottom(box) > options.restingGap ||
-            std::min(box.size.x, box.size.y) < options.lowTableSide || model::top(box) < options.lowTableTopMin ||
-            model::top(box) > options.lowTableTopMax)
-            continue;
-        if (std::string seats = seatsAround(box, things, options); !seats.empty())
-            names[t] = {"table", "is a low table among seats (" + seats + ")"};
+        const double shorter = std::min(box.size.x, box.size.y);
+        if (role(things[t].category) == Role::Luggage) {
+            if (model::bottom(box) > options.restingGap || shorter < options.lowTableSide ||
+                model::top(box) < options.lowTableTopMin || model::top(box) > options.lowTableTopMax)
+                continue;
+            if (std::string seats = seatsAround(box, things, options); !seats.empty())
+                names[t] = {"table", "is a low table among seats (" + seats + ")"};
+        } else if (things[t].category == "table") {
+            if (shorter > options.deskDepth || model::top(box) < options.deskTopMin ||
+                !longSideAgainstWall(box, walls, options))
+                continue;
+            const auto chairs = std::count_if(things.begin(), things.end(), [&](const SeenBox& other) {
+                return other.category == "chair" && model::horizontalGap(box, other.box) <= options.chairAtDesk;
+            });
+            if (chairs == 1)
+                names[t] = {"desk", fmt::format("stands against a wall with one chair at it (within {:.1f} m), as a "
+                                                "desk does",
+                                                options.chairAtDesk)};
+        }
     }
     return names;
+}
+
+double topCoverage(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options) {
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const int nx = std::max(1, static_cast<int>(std::ceil(box.size.x / options.topCell)));
+    const int ny = std::max(1, static_cast<int>(std::ceil(box.size.y / options.topCell)));
+    // Each point's cell and height step; then every band of topBand in the box's upper half, where a top is.
+    const double bottom = model::bottom(box);
+    const int steps = std::max(1, static_cast<int>(std::ceil(box.size.z / options.topCell)));
+    const int band = std::max(1, static_cast<int>(std::lround(options.topBand / options.topCell)));
+    std::vector<std::vector<int>> cellsAt(static_cast<std::size_t>(steps));
+    for (const auto& p : points) {
+        const double dx = p.x - box.center.x, dy = p.y - box.center.y;
+        const int ix = std::clamp(static_cast<int>((c * dx + s * dy + box.size.x / 2) / options.topCell), 0, nx - 1);
+        const int iy = std::clamp(static_cast<int>((-s * dx + c * dy + box.size.y / 2) / options.topCell), 0, ny - 1);
+        const int iz = std::clamp(static_cast<int>((p.z - bottom) / options.topCell), 0, steps - 1);
+        cellsAt[static_cast<std::size_t>(iz)].push_back(ix * ny + iy);
+    }
+    double best = 0;
+    std::vector<char> held(static_cast<std::size_t>(nx * ny));
+    for (int from = steps / 2; from < steps; ++from) {
+        std::fill(held.begin(), held.end(), 0);
+        std::size_t count = 0;
+        for (int z = from; z < std::min(steps, from + band); ++z)
+            for (int cell : cellsAt[static_cast<std::size_t>(z)]) count += !std::exchange(held[cell], 1);
+        best = std::max(best, static_cast<double>(count) / (nx * ny));
+    }
+    return best;
 }
 
 ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options)
@@ -427,8 +484,21 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
 
     std::vector<SeenBox> named;
     for (const auto& thing : things) named.push_back({thing.box, thing.category, 0});
-    const std::vector<std::string> doubts = outOfPlace(named, walls_, options_);
-    const std::vector<UseName> uses = namedByUse(named, options_);
+    // Names doubted: a thing that holds things on its top (a table, not a bed, whose headboard rises over its top)
+    // showing no top, then a name out of place; the doubted are no seats,
+    // tables or luggage to the names by use.
+    std::vector<std::string> doubts(things.size());
+    const std::vector<std::string> misplaced = outOfPlace(named, walls_, options_);
+    for (std::size_t t = 0; t < things.size(); ++t) {
+        if (holdsThings(things[t].category) && !hasUprightEnds(things[t].category))
+            if (const double cover = topCoverage(things[t].points.points, things[t].box, options_);
+                cover < options_.topCover)
+                doubts[t] = fmt::format(
+                    "shows no top (its points cover at most {:.0f} % of its footprint at one height)", 100 * cover);
+        if (doubts[t].empty() && !misplaced[t].empty()) doubts[t] = "stands " + misplaced[t];
+        if (!doubts[t].empty()) named[t].category = "object";
+    }
+    const std::vector<UseName> uses = namedByUse(named, walls_, options_);
 
     std::vector<FusedThing> out;
     for (std::size_t t = 0; t < things.size(); ++t) {
@@ -436,7 +506,7 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
         if (!doubts[t].empty() || !uses[t].category.empty()) {
             fused.detectedAs = fused.category;
             fused.category = doubts[t].empty() ? uses[t].category : "object";
-            fused.renamedWhy = doubts[t].empty() ? uses[t].why : "stands " + doubts[t];
+            fused.renamedWhy = doubts[t].empty() ? uses[t].why : doubts[t];
         }
         for (const Instance* instance : things[t].instances)
             fused.views.insert(fused.views.end(), instance->sources.begin(), instance->sources.end());

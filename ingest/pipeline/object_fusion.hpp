@@ -48,7 +48,14 @@ struct FusionOptions {
     double lowTableTopMax = 0.6;     //
     double seatReach = 0.6;          // m: ... with places for two to sit this close, is a low table
     double seatWidth = 0.6;          // m: a seat's places: its longest side over this, one at least
-    bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
+    double deskDepth = 0.9;          // m: a table no deeper than this, ...
+    double deskTopMin = 0.65;        // m: its top this high or higher, ...
+    double againstWall = 0.2;        // m: a long side this close to a wall's plane, ...
+    double chairAtDesk = 0.3;        // m: and one chair, no more, this close is a desk
+    double topCell = 0.05;           // m: a thing that holds things (a table, a bed) shows its top: the points of
+    double topBand = 0.1;            // m: one band of heights this thick cover ...
+    double topCover = 0.1;   // ... this share of its footprint's cells or more (a "desk" framing bar stools: 3 %)
+    bool voteLabels = true;  // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
 // A camera of the capture in the aligned frame, to tell which frames held a thing in view.
@@ -85,20 +92,32 @@ std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, cons
 std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
                                     const FusionOptions& options = {});
 
-// Things named by what they are used as, where the detectors' classes have no name for them (COCO and Open Images
-// have no ottoman): a low table is luggage (typical_sizes.hpp: Role::Luggage; a suitcase, a box) standing on the
-// floor, as large as a low table (FusionOptions::lowTableSide, lowTableTopMin..Max), with places for two or more to
-// sit within seatReach (a seat's places: its longest side over seatWidth, one at least): an ottoman or a trunk before
-// a sofa or among chairs. Returns, per thing, the name it is used under and why ("" and "" for the others).
+// Things named by what they are used as, where the detectors' classes have no name for them (COCO has no desk;
+// COCO and Open Images have no ottoman):
+// - a low table: luggage (typical_sizes.hpp: Role::Luggage; a suitcase, a box) standing on the floor, as large as a
+//   low table (FusionOptions::lowTableSide, lowTableTopMin..Max), with places for two or more to sit within
+//   seatReach (a seat's places: its longest side over seatWidth, one at least): an ottoman or a trunk before a sofa
+//   or among chairs;
+// - a desk: a table no deeper than deskDepth, its top deskTopMin high or higher, a long side against a wall (within
+//   againstWall of its plane, parallel to it) and one chair, no more, within chairAtDesk: where one person works.
+// Returns, per thing, the name it is used under and why ("" and "" for the others).
 struct UseName {
     std::string category;
     std::string why;
 };
-std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const FusionOptions& options = {});
+std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
+                                const FusionOptions& options = {});
+
+// The largest share of a box's footprint (cells of FusionOptions::topCell) that the points of one band of heights,
+// topBand thick, in the box's upper half cover: a table's top covers much of it; the seats of bar stools an Open
+// Images "desk" framed, or a window ledge seen in two frames, little. A thing whose top holds things (a table, a
+// desk, a counter; not a bed, whose headboard rises over its top) covering less than topCover shows no top: its name
+// is doubted.
+double topCoverage(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options = {});
 
 // A thing fusion made: its box and the name it is stored under; where fusion did not keep the detectors' name, that
-// name (detectedAs) and why (outOfPlace: "object"; namedByUse: "table"), else ""; its fused points (aligned
-// frame, colours RGB) and the views it was made of (indices into ObjectFusion's views, in frame order).
+// name (detectedAs) and why (no top, outOfPlace: "object"; namedByUse: "table", "desk"), else ""; its fused points
+// (aligned frame, colours RGB) and the views it was made of (indices into ObjectFusion's views, in frame order).
 struct FusedThing {
     model::Box box;
     std::string category;
@@ -126,7 +145,8 @@ public:
     // One frame's views of things (all of that frame's, in the capture's frame), frames in the order taken.
     void addFrame(std::vector<Observation> frameViews);
     // The things the frames so far show: instances merged, pieces joined, grounded, slivers dropped, names
-    // doubted out of place, low tables named by their use. The map itself is left to take more frames.
+    // doubted where they show no top or stand out of place, low tables and desks named by their use. The map itself is
+    // left to take more frames.
     std::vector<FusedThing> things(FusionCounts* counts = nullptr) const;
     const std::vector<Observation>& views() const { return views_; }
     std::vector<Observation> takeViews() { return std::move(views_); }
