@@ -65,6 +65,12 @@ bool isPartWord(const std::string& w) {
                        "opening",  "backrest", "sides",  "corners", "ends",    "edges",   "surfaces", "section"});
 }
 
+// Parts that are things of their own elsewhere: "the door of the refrigerator", "a drawer of the
+// dresser" (but "the door of the room" is a door).
+bool isPartOfThing(const std::string& w) {
+    return isOneOf(w, {"door", "doors", "drawer", "drawers", "shelf", "shelves", "panel", "panels", "knob", "knobs"});
+}
+
 // Words that place a part on a thing: "the upper portion of", "the bottom left corner of", "the far end of".
 bool isPartPlaceWord(const std::string& w) {
     return isSideWord(w) || isOneOf(w, {"upper", "lower", "top", "bottom", "far", "near", "outer", "inner", "middle",
@@ -291,6 +297,11 @@ bool isOneOf(const std::string& word, std::initializer_list<std::string_view> wo
     return std::find(words.begin(), words.end(), word) != words.end();
 }
 
+bool isVerbOfPlace(const std::string& w) {
+    return !isOneOf(w, {"is", "are", "was", "were", "be", "been", "being", "not", "do", "does", "have", "has"}) &&
+           wordnet::isVerbNotNoun(w);
+}
+
 std::optional<std::string> colourOf(const std::string& word) {
     if (word == "grey") return "gray";
     if (isOneOf(word, {"red", "green", "blue", "white", "black", "gray", "brown", "yellow", "orange", "pink", "purple",
@@ -432,9 +443,10 @@ bool PhraseParser::describing(const Words& w, std::size_t& i, std::vector<std::s
     }
     // "the corner of the room", "the top of the stove", "the back of the chair", "the upper
     // portion of the bed": the part is read as the thing itself.
-    if ((!nounWords.empty() || !side.empty()) && (nounWords.empty() || isPartWord(nounWords.back())) &&
+    if ((!nounWords.empty() || !side.empty()) &&
+        (nounWords.empty() || isPartWord(nounWords.back()) || isPartOfThing(nounWords.back())) &&
         std::all_of(nounWords.begin(), nounWords.end(),
-                    [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n); })) {
+                    [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n) || isPartOfThing(n); })) {
         out_.notes.push_back(fmt::format("'{}' is read as the thing itself", joined(w, wordsStart, i + 1)));
         nounWords.clear();
         side.clear();
@@ -466,6 +478,10 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
                 p.top = *n;
                 continue;
             }
+            // "one door of the wardrobe": "one" before a noun is an article.
+            if (word == "one" && i + 1 < w.size() && !endsPhrase(w[i + 1]) && !predicateAt(w, i + 1) &&
+                !isDeterminer(w[i + 1]) && !exclusionAt(w, i + 1) && w[i + 1] != "not")
+                continue;
             if (auto k = ordinalOf(word)) {
                 p.pick = *k;
                 continue;
@@ -520,6 +536,16 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         if (nounWords.empty() && (isIgnoredAdjective(word) || wordnet::isAdjectiveOnly(word))) {
             out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such attribute", word));
             continue;
+        }
+        // "the towel hanged on the door", "the monitor sits on the desk", "the radiator affixed": a
+        // word WordNet knows as a verb and not as a noun says what the thing does, and ends its name,
+        // where no noun follows it ("an open fronted cabinet" is a cabinet).
+        if (!nounWords.empty() && isVerbOfPlace(word)) {
+            const std::size_t next = i + 1;
+            if (next == w.size() || predicateAt(w, next) || endsPhrase(w[next]) || isDeterminer(w[next]) ||
+                distanceOrderWord(w[next]) || isVerbOfPlace(w[next]) ||
+                isOneOf(w[next], {"up", "down", "out", "around", "together", "by", "directly"}))
+                break;
         }
         nounWords.push_back(word);
     }
@@ -599,6 +625,14 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
                                "hung", "found", "situated", "the", "right", "directly", "just", "immediately"}) &&
                !predicateAt(w, at))
             ++at;
+        // A verb of place before a predicate says no more than it: "sits on the desk", "hanged on
+        // the door", "pushed up against the wall", "pushed closest to the wall".
+        if (std::size_t k = at + 1; at < w.size() && isVerbOfPlace(w[at]) && !predicateAt(w, at)) {
+            while (k < w.size() && isOneOf(w[k], {"up", "down", "out", "around", "together", "directly", "right"}) &&
+                   !predicateAt(w, k))
+                ++k;
+            if (k < w.size() && (predicateAt(w, k) || distanceOrderWord(w[k]))) at = k;
+        }
         // besides the cushions / other than the lamps
         if (std::size_t n = exclusionAt(w, at); n && nested_ == 0) {
             i = at + n;
@@ -653,11 +687,29 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             after = part + 1;
             while (after < w.size() && isDeterminer(w[after])) ++after;
         }
+        // "the rug in the corner", "the door in the right corner", "the counter in the middle": a corner
+        // or the middle of the room, which the memory keeps none of (as "in the corner of the room").
+        if (part > after && isOneOf(w[part - 1], {"corner", "corners", "middle", "center", "centre"}) &&
+            (part == w.size() || w[part] != "of") && isOneOf(pred->first, {"in", "at", "on", "near"}) &&
+            !std::any_of(lexicon_.categories().begin(), lexicon_.categories().end(),
+                         [&](const std::string& c) { return c == w[part - 1]; })) {
+            out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no corners or middle of the room",
+                                             joined(w, at, part)));
+            i = part;
+            continue;
+        }
         if ((pred->first == "in" || (ofPart && isOneOf(pred->first, {"on", "near"}))) && after < w.size()) {
-            // "in here", "in the room", "in the office" (when the office is this scene).
-            std::size_t place = scenePlaceAt(w, after);
-            if (place > 0 && (ofPart || after + place == w.size() || !predicateAt(w, after + place))) {
-                i = after + place;
+            // "in here", "in the room", "in the office" (when the office is this scene), "in a
+            // cluttered room" (a look the memory keeps nothing of).
+            std::size_t placeAt = after;
+            while (placeAt < w.size() && (isIgnoredAdjective(w[placeAt]) || wordnet::isAdjectiveOnly(w[placeAt])))
+                ++placeAt;
+            std::size_t place = scenePlaceAt(w, placeAt);
+            if (place > 0 && (ofPart || placeAt + place == w.size() || !predicateAt(w, placeAt + place))) {
+                if (placeAt > after)
+                    out_.notes.push_back(
+                        fmt::format("'{}' is left out: the memory keeps no such attribute", joined(w, after, placeAt)));
+                i = placeAt + place;
                 continue;
             }
         }
@@ -857,6 +909,7 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
         unknownWords_.push_back(word);
         return;
     }
+
     p.categories = match.categories;
     if (match.how != WordMatch::How::Category && !said(word))
         out_.mappings.push_back(WordMapping{word, match.categories, describe(match.how)});

@@ -696,9 +696,16 @@ private:
                                                   {"relates", "to"},
                                                   {"from"}};
             std::optional<std::size_t> link, linkWords;
+            // "the bin on a desk across from a bed": a predicate's phrase that ends in "from" is no link.
+            auto inPredicate = [&](std::size_t k) {
+                for (std::size_t b = k > 3 ? k - 3 : 0; b < k; ++b)
+                    if (auto pr = PhraseParser::predicateAt(c.w, b); pr && b + pr->second > k) return true;
+                return false;
+            };
             for (std::size_t k = c.i; k < c.w.size() && !link; ++k)
                 for (const auto& l : links)
-                    if (k + l.size() <= c.w.size() && std::equal(l.begin(), l.end(), c.w.begin() + k)) {
+                    if (k + l.size() <= c.w.size() && std::equal(l.begin(), l.end(), c.w.begin() + k) &&
+                        !inPredicate(k)) {
                         link = k;
                         linkWords = l.size();
                         break;
@@ -797,13 +804,32 @@ private:
             "located", "placed",   "sitting",    "standing", "hanging", "lying",     "resting",    "kept", "sit",
             "stand",   "hang",     "lie",        "rest",     "attach",  "installed", "mounted",    "set",  "put",
             "found",   "situated", "positioned", "directly", "right",   "just",      "immediately"};
+        // "what is the piano on next to the bed?", "the armchair is next to what to the left of the
+        // bed?": the thing asked for, placed by the conditions after it (from `from`, to the end).
+        std::optional<Phrase> placed;
+        auto placedFrom = [&](std::size_t from) {
+            Phrase thing = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
+            std::size_t k = from;
+            try {
+                p.posts(c.w, k, thing);
+            } catch (const Error&) {
+                return false;
+            }
+            if (k != c.w.size() || thing.conditions.empty()) return false;
+            thing.words = (answerKind ? answerKind->words + " " : std::string()) + joined(c.w, from, k);
+            placed = std::move(thing);
+            return true;
+        };
         if (c.accept({"what|which"})) {
             // what is the lamp on? / what bed are the pillows on?
             if (!isOneOf(c.peek(), {"is", "are", "does", "do"})) answerKind = p.phrase(c.w, c.i, false);
             if (!c.accept({"is|are|does|do"})) return false;
-            if (!predicateEnding(c.i, c.w.size())) return false;
+            bool ends = predicateEnding(c.i, c.w.size());
+            for (std::size_t k = c.w.size() - 1; !ends && k > c.i + 1; --k)
+                ends = PhraseParser::predicateAt(c.w, k) && predicateEnding(c.i, k) && placedFrom(k);
+            if (!ends) return false;
             std::size_t end = predAt;
-            while (end > c.i && isOneOf(c.w[end - 1], verbs)) --end;
+            while (end > c.i && (isOneOf(c.w[end - 1], verbs) || isVerbOfPlace(c.w[end - 1]))) --end;
             Phrase s;
             if (!phraseWithin(c, p, end, s)) return false;
             subject = s;
@@ -836,14 +862,16 @@ private:
             // the desk is to the right of what? the trash can is sitting against what wall? the guitar
             // case is to the right of which door?
             const std::size_t whatAt = static_cast<std::size_t>(what - c.w.begin());
-            if (whatAt + 1 < c.w.size()) {
+            if (whatAt + 1 < c.w.size() && PhraseParser::predicateAt(c.w, whatAt + 1)) {
+                if (!placedFrom(whatAt + 1)) return false;
+            } else if (whatAt + 1 < c.w.size()) {
                 std::size_t k = whatAt + 1;
                 answerKind = p.phrase(c.w, k, false);
                 if (k != c.w.size()) return false;
             }
             if (!predicateEnding(0, whatAt)) return false;
             std::size_t end = predAt;
-            while (end > 0 && isOneOf(c.w[end - 1], verbs)) --end;
+            while (end > 0 && (isOneOf(c.w[end - 1], verbs) || isVerbOfPlace(c.w[end - 1]))) --end;
             Phrase s;
             if (end > 0 && isOneOf(c.w[end - 1], {"is", "are"})) {
                 if (!phraseWithin(c, p, end - 1, s)) return false;
@@ -854,7 +882,9 @@ private:
                 std::size_t k = static_cast<std::size_t>(verb - c.w.begin());
                 if (k == 0 || k >= end || !phraseWithin(c, p, k, s)) return false;
                 ++k;
-                while (k < end && isOneOf(c.w[k], verbs) && !PhraseParser::predicateAt(c.w, k)) ++k;
+                while (k < end && (isOneOf(c.w[k], verbs) || isVerbOfPlace(c.w[k])) &&
+                       !PhraseParser::predicateAt(c.w, k))
+                    ++k;
                 Words head(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end));
                 const std::size_t before = s.conditions.size();
                 p.posts(head, k, s);
@@ -869,7 +899,7 @@ private:
         }
         if (!pred || !subject) return false;
         // What the subject is on or by may be an anchor too (a wall, the floor).
-        Phrase other = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
+        Phrase other = placed ? *placed : answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
         std::string predicate = pred->first;
         // "what wall is the tv on": on a wall is hanging there.
         if (predicate == "on" && answerKind &&
@@ -1010,6 +1040,8 @@ private:
         }
         c.skip({"located", "kept", "placed", "be", "attached", "mounted", "positioned", "situated", "installed",
                 "stored", "hung", "hanging", "lying", "sitting", "standing", "resting", "set"});
+        // "where is the radiator affixed?", "where is the curtain hanged?": how it is placed is where.
+        if (where && c.i + 1 == c.w.size() && isVerbOfPlace(c.peek())) ++c.i;
         if (!where && !thing.order && !thing.conditions.empty()) return false;  // "show me everything on ..."
         return locateAnswer(thing, out);
     }
@@ -1340,6 +1372,16 @@ private:
              "what is around the $1"},
             {std::regex(R"(^what (?:is|are) (.+?) (?:surrounded|encircled|flanked|bordered) by$)"),
              "what is around $1"},
+            // "what is the table covered in?", "the desk is cluttered with what?": what is on it.
+            {std::regex(R"(^what (?:is|are) (.+?) (?:covered|topped|cluttered|piled|strewn) (?:in|with|by)$)"),
+             "what is on $1"},
+            {std::regex(
+                 R"(^(?:the |a |an )?(.+?) (?:is|are) (?:covered|topped|cluttered|piled|strewn) (?:in|with|by) what$)"),
+             "what is on the $1"},
+            // "what type of wood is the door?": what it is made of.
+            {std::regex(
+                 R"(^what (?:type|kind|sort) of (?:wood|metal|material|fabric|stone) (?:is|are) (.+?)(?: made of)?$)"),
+             "what material is $1"},
             // "what is the water fountain closest to?": as "the water fountain is closest to what?".
             {std::regex(R"(^what (?:is|are) (?:the |a |an )?(.+?) (closest|nearest) to$)"),
              "what is $2 to the $1 besides the $1"},
