@@ -80,12 +80,12 @@ bool physicalThing(const std::string& noun) {
     return false;
 }
 
-// The one noun WordNet knows one edit away from `word` (a letter left out, added, changed, or two
+// The nouns WordNet knows one edit away from `word` (a letter left out, added, changed, or two
 // swapped), for a word of five letters or more that WordNet does not know at all.
-std::optional<std::string> misspeltNoun(const std::string& word) {
+std::set<std::string> misspeltNouns(const std::string& word) {
     if (word.size() < 5 || word.find_first_not_of("abcdefghijklmnopqrstuvwxyz") != std::string::npos ||
         wordnet::isKnown(word))
-        return std::nullopt;
+        return {};
     std::set<std::string> candidates;
     for (std::size_t k = 0; k < word.size(); ++k) {
         candidates.insert(word.substr(0, k) + word.substr(k + 1));
@@ -110,8 +110,7 @@ std::optional<std::string> misspeltNoun(const std::string& word) {
             auto bases = wordnet::nounBaseForms(c);
             if (!bases.empty()) nouns.insert(bases.front());
         }
-    if (nouns.size() != 1) return std::nullopt;
-    return *nouns.begin();
+    return nouns;
 }
 
 }  // namespace
@@ -243,10 +242,33 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
     }
     // A misspelt English noun ("wordrobe", "courch", "fointain"): the one noun WordNet knows a letter
     // away, where WordNet knows the word as written in no part of speech ("hanged" is a verb).
-    if (auto respelt = misspeltNoun(word)) {
-        WordMatch m = lookUp(*respelt);
-        m.how = m.categories.empty() ? WordMatch::How::Absent : WordMatch::How::Spelling;
-        return m;
+    // Of several ("courch": couch, church), the one that names a category here.
+    {
+        const std::set<std::string> respelt = misspeltNouns(word);
+        std::vector<WordMatch> naming;
+        for (const auto& noun : respelt)
+            if (WordMatch m = lookUp(noun); m.how == WordMatch::How::Category || m.how == WordMatch::How::Plural ||
+                                            m.how == WordMatch::How::Synonym)
+                naming.push_back(std::move(m));
+        if (naming.size() == 1 || (naming.empty() && respelt.size() == 1)) {
+            WordMatch m = naming.empty() ? lookUp(*respelt.begin()) : naming.front();
+            m.how = m.categories.empty() ? WordMatch::How::Absent : WordMatch::How::Spelling;
+            return m;
+        }
+    }
+    // Two nouns written as one that WordNet does not know together ("rackstand": a rack stand), for
+    // a thing the scene does not hold.
+    if (word.find('-') == std::string::npos && word.size() >= 7 && !wordnet::isKnown(word)) {
+        std::vector<std::string> splits;
+        for (std::size_t cut = 3; cut + 3 <= word.size(); ++cut)
+            if (!wordnet::nounBaseForms(word.substr(0, cut)).empty() &&
+                !wordnet::nounBaseForms(word.substr(cut)).empty())
+                splits.push_back(word.substr(0, cut) + "-" + word.substr(cut));
+        if (splits.size() == 1) {
+            match.how = WordMatch::How::Absent;
+            match.lemma = splits.front();
+            return match;
+        }
     }
     // A plural of a word that is no noun in WordNet stays the word as written.
     match.how = WordMatch::How::Unknown;

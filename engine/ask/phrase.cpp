@@ -68,7 +68,8 @@ bool isPartWord(const std::string& w) {
 // Parts that are things of their own elsewhere: "the door of the refrigerator", "a drawer of the
 // dresser" (but "the door of the room" is a door).
 bool isPartOfThing(const std::string& w) {
-    return isOneOf(w, {"door", "doors", "drawer", "drawers", "shelf", "shelves", "panel", "panels", "knob", "knobs"});
+    return isOneOf(
+        w, {"door", "doors", "drawer", "drawers", "shelf", "shelves", "panel", "panels", "knob", "knobs", "floor"});
 }
 
 // Words that place a part on a thing: "the upper portion of", "the bottom left corner of", "the far end of".
@@ -497,10 +498,21 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
                 p.pick = std::max<std::size_t>(p.pick, 1);
                 continue;
             }
+            // "the second closest to the door": a thing, by its distance to the door.
+            if (auto far = distanceOrderWord(word); far && p.pick > 0 && i + 2 < w.size()) {
+                std::size_t k = i + 2;
+                Phrase to = phrase(w, k, false);
+                p.order = Order{"distance", *far, {std::move(to)}, joined(w, i, k)};
+                i = k;
+                break;
+            }
         }
         if (predicateAt(w, i) && !(isSideWord(word) && nounWords.empty() && i + 1 < w.size() && w[i + 1] != "of"))
             break;
         if (exclusionAt(w, i) || (distanceOrderWord(word) && !nounWords.empty())) break;
+        // "the black chair out of the three chairs", "the chairs present in the room": the noun ends there.
+        if (!nounWords.empty() && word == "out" && i + 1 < w.size() && w[i + 1] == "of") break;
+        if (!nounWords.empty() && word == "present" && (i + 1 == w.size() || predicateAt(w, i + 1))) break;
         // "the chairs not near the window", "the sofa longer than the bed": the noun ends there.
         if (!nounWords.empty() && (word == "not" || comparativeOf(word))) break;
         // "can" ends a phrase as a verb ("what can I see"), but a trash can is a thing.
@@ -514,7 +526,7 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         // "pieces of furniture", "a pair of shoes": the thing is what follows "of".
         if (word == "of" && nounWords.size() == 1 &&
             isOneOf(nounWords.front(), {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type",
-                                        "types", "bunch", "stack", "pile"})) {
+                                        "types", "bunch", "stack", "pile", "group", "groups", "cluster"})) {
             nounWords.clear();
             continue;
         }
@@ -531,6 +543,13 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         if (isSideWord(word) && nounWords.empty()) {
             side = word;
             if (i + 1 < w.size() && w[i + 1] == "side") ++i;  // "the right side"
+            continue;
+        }
+        // "what color wall is the board on?": the wall, whose colour is asked, not a "color wall".
+        if (nounWords.empty() && isOneOf(word, {"color", "colour", "shape", "material"}) && i + 1 < w.size() &&
+            !endsPhrase(w[i + 1]) && !predicateAt(w, i + 1) && w[i + 1] != "of" && !isDeterminer(w[i + 1])) {
+            out_.notes.push_back(
+                fmt::format("'{}' asks of the {}: the memory keeps it where recorded", word, w[i + 1]));
             continue;
         }
         if (nounWords.empty() && (isIgnoredAdjective(word) || wordnet::isAdjectiveOnly(word))) {
@@ -577,6 +596,20 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         }
     }
     if (withPosts) posts(w, i, p);
+    if (p.pick > 0 && !p.order) {
+        // "the first cabinet from the door": the nearest to it; "the first cabinet on the right" after
+        // a situation: the nearest to the person.
+        if (i + 1 < w.size() && w[i] == "from") {
+            std::size_t k = i + 1;
+            Phrase to = phrase(w, k, false);
+            p.order = Order{"distance", false, {std::move(to)}, joined(w, i, k)};
+            i = k;
+        } else if (self_) {
+            Phrase to = self_->at;
+            to.self = true;
+            p.order = Order{"distance", false, {std::move(to)}, "from you"};
+        }
+    }
     p.words = joined(w, wordsStart, i);
     return p;
 }
@@ -670,6 +703,59 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             at = k;
         }
         if (sideAfterVerb(w, at, i, p)) continue;
+        // "the black chair out of the three chairs": one of them, which the phrase names already.
+        if (at + 2 < w.size() && w[at] == "out" && w[at + 1] == "of" && (!p.categories.empty() || p.kind)) {
+            std::size_t k = at + 2;
+            ++nested_;
+            Phrase among = phrase(w, k, false);
+            --nested_;
+            if (p.kind == std::optional<std::string>("object") && p.categories.empty() && !among.kind) {
+                // "the second closest to the door out of the trash cans": one of them.
+                p.kind.reset();
+                p.categories = among.categories;
+                p.noun = among.noun;
+                i = k;
+                continue;
+            }
+            if (!p.categories.empty() && among.categories == p.categories) {
+                k = std::min(k + (k < w.size() && w[k] == "present" ? 1 : 0), w.size());
+                out_.notes.push_back(
+                    fmt::format("'{}' says no more than '{}'", joined(w, at, k), p.words.empty() ? p.noun : p.words));
+                i = k;
+                continue;
+            }
+        }
+        // "on the same wall as the bed": by the wall nearest the bed, the bed left out.
+        if (at + 5 < w.size() && isOneOf(w[at], {"on", "against", "along", "by"}) && w[at + 1] == "the" &&
+            w[at + 2] == "same" && w[at + 3] == "wall" && w[at + 4] == "as") {
+            std::size_t k = at + 5;
+            ++nested_;
+            Phrase as = phrase(w, k, false);
+            --nested_;
+            Phrase wall;
+            resolveNoun(wall, {"wall"});
+            wall.order = Order{"distance", false, {as}, "closest to the " + as.words};
+            wall.pick = 1;
+            Condition c;
+            c.predicate = "near";
+            c.args.push_back(std::move(wall));
+            c.words = joined(w, at, k);
+            p.conditions.push_back(std::move(c));
+            if (!p.categories.empty() || p.kind) p.excluded.push_back(std::move(as));
+            i = k;
+            continue;
+        }
+        // "what is on the right under the table?": a side of no one category, before a predicate, is
+        // left out (a side names one node of one category: the left wall).
+        if (std::size_t k = at; (p.kind || p.categories.size() != 1) && p.id.empty()) {
+            const std::string side = sideAfter(w, k);
+            if (!side.empty() && k < w.size() && predicateAt(w, k)) {
+                out_.notes.push_back(
+                    fmt::format("'{}' is left out: sides are of one category (the left wall)", joined(w, at, k)));
+                i = k;
+                continue;
+            }
+        }
         auto pred = predicateAt(w, at);
         if (!pred) return;
         const std::size_t bothAt = at;
@@ -878,7 +964,9 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
     // A phrase that names nothing here as a whole ("coffee mug") is read by its last word, unless
     // WordNet knows the whole or maps it to kinds the scene has.
     // A whole that WordNet knows ("trash can": a kind of bin) is not read by its head ("can").
-    bool wholeKnown = match.how == WordMatch::How::Absent || match.how == WordMatch::How::Broader;
+    // A whole WordNet knows as no physical thing ("open door": a policy) is read by its head too.
+    bool wholeKnown =
+        (match.how == WordMatch::How::Absent && absentThing(all, match)) || match.how == WordMatch::How::Broader;
     if (nounWords.size() > 1 && !isNamed(match) && match.how != WordMatch::How::Kind && !wholeKnown) {
         WordMatch head = lexicon_.lookUp(nounWords.back());
         // A compound category of another kind is not the thing asked for: a "tv stand" is no
@@ -894,7 +982,11 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
             if (head.categories.empty() && head.how != WordMatch::How::Unknown) head.how = WordMatch::How::Absent;
         }
         if (head.how == WordMatch::How::Absent && nounModifier) {
-            // Neither the whole nor its head is here: the answer speaks of the whole ("no tv stand").
+            // Neither the whole nor its head is here: the answer speaks of the whole ("no tv stand"),
+            // its head as WordNet spells it ("water fointain": no water fountain).
+            if (head.lemma != nounWords.back() && wordnet::nounBaseForms(nounWords.back()).empty())
+                all = joined(std::vector<std::string>(nounWords.begin(), nounWords.end() - 1), 0, nounWords.size()) +
+                      " " + head.lemma;
             p.noun = all;
             if (!said(all)) out_.mappings.push_back(WordMapping{all, {}, describe(WordMatch::How::Absent)});
             return;

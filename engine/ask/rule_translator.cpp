@@ -991,9 +991,11 @@ private:
         }
         if (c.accept({"what|which", "is|are", "the|a|an"})) {
             c.i -= 1;
+            // "what is the only window in the room?": which one it is, and where.
+            const bool only = c.peek(1) == "only";
             Phrase thing = p.phrase(c.w, c.i, true);
             c.skip({"located", "placed"});
-            if (thing.conditions.empty() || !c.done()) return false;
+            if ((thing.conditions.empty() && !(only && !thing.kind)) || !c.done()) return false;
             return locateAnswer(thing, out);
         }
         bool where = c.accept({"where"});
@@ -1062,6 +1064,11 @@ private:
             } else {
                 thing = p.phrase(c.w, c.i, false);
                 if (c.i == at) return false;
+                // "what type of table in the room is ...": the room is the scene.
+                if (std::size_t k = c.i + 1; c.peek() == "in") {
+                    while (k < c.w.size() && isOneOf(c.w[k], {"the", "this", "a"})) ++k;
+                    if (std::size_t place = p.scenePlaceAt(c.w, k); place > 0) c.i = k + place;
+                }
             }
             // "which chairs face the table?": the predicate is the verb.
             bool verbIsPredicate = PhraseParser::predicateAt(c.w, c.i).has_value() && c.i > at;
@@ -1378,6 +1385,21 @@ private:
             {std::regex(
                  R"(^(?:the |a |an )?(.+?) (?:is|are) (?:covered|topped|cluttered|piled|strewn) (?:in|with|by) what$)"),
              "what is on the $1"},
+            // "to the left of the open door is what color armchair?": what color the armchair there is.
+            {std::regex(
+                 R"(^((?:to the (?:left|right) of|in front of|behind|next to|beside|across from|above|below|under|near|on top of) .+?) (?:is|are) what (colou?r|shape|material) (.+)$)"),
+             "what $2 is the $3 $1"},
+            // "the towel is olive green and what shape?": the shape of the olive green towel.
+            {std::regex(
+                 R"(^(?:the |a |an )?(.+?) (?:is|are) ((?:dark |light |olive |bright |pale )?(?:red|green|blue|white|black|gray|grey|brown|yellow|orange|pink|purple|beige|silver|gold)) and what (colou?r|shape|material)$)"),
+             "what $3 is the $2 $1"},
+            // "the door is left of a row of what?": what the door is left of.
+            {std::regex(R"(^(.+ )(?:a|an|the) (?:row|group|line|pile|stack|set|collection|cluster) of what$)"),
+             "$1what"},
+            // "the tv is on the same wall as what?": what else is by that wall.
+            {std::regex(
+                 R"(^(?:the |a |an )?(.+?) (?:is|are) (?:located |placed |hanging |mounted )?(on|against) the same wall as what$)"),
+             "what is $2 the same wall as the $1"},
             // "what type of wood is the door?": what it is made of.
             {std::regex(
                  R"(^what (?:type|kind|sort) of (?:wood|metal|material|fabric|stone) (?:is|are) (.+?)(?: made of)?$)"),
@@ -1562,7 +1584,7 @@ private:
     // the room." says (situation.cpp reads it: by the door).
     static std::string enteringAsSituation(const std::string& text) {
         static const std::string entering =
-            R"((?:when|as|once|upon|after) (?:you |i |one |we )?(?:first )?(?:enter|enters|entering|walk|walks|walking|come|comes|coming|step|steps|stepping)(?: in| into| through)?(?: (?:the|a|this) (?:\w+ )?(?:room|door|doorway|entrance|entry|kitchen|bathroom|bedroom|office|area|space))?)";
+            R"((?:when|as|once|upon|after) (?:you |i |one |we )?(?:first )?(?:entering|enters|enter|walking|walks|walk|coming|comes|come|stepping|steps|step)\b(?: in| into| through)?(?: (?:the|a|this) (?:\w+ )?(?:room|door|doorway|entrance|entry|kitchen|bathroom|bedroom|office|area|space))?)";
         static const std::regex before("^\s*" + entering + R"(\s*,?\s*(.+)$)", std::regex::icase);
         static const std::regex after(R"(^\s*(.+?),?\s+)" + entering + R"(\s*\??\s*$)", std::regex::icase);
         std::smatch m;
@@ -1605,7 +1627,11 @@ private:
                 if (!isOneOf(w[at], {"with", "that", "which", "who", "having", "made", "appear", "appears", "looks",
                                      "look", "shaped"}))
                     continue;
-                for (std::size_t n = 2; n <= 6 && at + n <= w.size(); ++n) {
+                // "the object that covers an opening": the words say which thing; without them it is any.
+                if (isOneOf(w[at - 1], {"object", "objects", "thing", "things", "item", "items", "one", "ones",
+                                        "something", "anything", "stuff"}))
+                    continue;
+                for (std::size_t n = 2; n <= 7 && at + n <= w.size(); ++n) {
                     // The words left out end where the question goes on: at its end, a verb of
                     // place or a predicate ("the bed with a blue mattress located": not "bed blue
                     // mattress").
