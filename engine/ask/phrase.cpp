@@ -965,8 +965,9 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
     // WordNet knows the whole or maps it to kinds the scene has.
     // A whole that WordNet knows ("trash can": a kind of bin) is not read by its head ("can").
     // A whole WordNet knows as no physical thing ("open door": a policy) is read by its head too.
-    bool wholeKnown =
-        (match.how == WordMatch::How::Absent && absentThing(all, match)) || match.how == WordMatch::How::Broader;
+    bool wholeKnown = (match.how == WordMatch::How::Absent &&
+                       (absentThing(all, match) || wordnet::nounSenses(match.lemma).empty())) ||
+                      match.how == WordMatch::How::Broader;
     if (nounWords.size() > 1 && !isNamed(match) && match.how != WordMatch::How::Kind && !wholeKnown) {
         WordMatch head = lexicon_.lookUp(nounWords.back());
         // A compound category of another kind is not the thing asked for: a "tv stand" is no
@@ -983,8 +984,9 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
         }
         if (head.how == WordMatch::How::Absent && nounModifier) {
             // Neither the whole nor its head is here: the answer speaks of the whole ("no tv stand"),
-            // its head as WordNet spells it ("water fointain": no water fountain).
-            if (head.lemma != nounWords.back() && wordnet::nounBaseForms(nounWords.back()).empty())
+            // its head in its base form as WordNet spells it ("kitchen cabinets": no kitchen cabinet;
+            // "water fointain": no water fountain).
+            if (!head.lemma.empty() && head.lemma != nounWords.back())
                 all = joined(std::vector<std::string>(nounWords.begin(), nounWords.end() - 1), 0, nounWords.size()) +
                       " " + head.lemma;
             p.noun = all;
