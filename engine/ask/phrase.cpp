@@ -332,7 +332,7 @@ Words words(const std::string& text) {
         else
             s += ' ';
     }
-    static const std::array<std::pair<std::string_view, std::string_view>, 11> contractions{{
+    static const std::array<std::pair<std::string_view, std::string_view>, 12> contractions{{
         {"can't", "can not"},
         {"'s", " is"},
         {"'re", " are"},
@@ -344,6 +344,7 @@ Words words(const std::string& text) {
         {"'", " "},
         {"--", " "},
         {"infront", "in front"},  // a common way to write it
+        {"oclock", "o clock"},    // "my 8 oclock", as "my 8 o'clock"
     }};
     for (const auto& [from, to] : contractions)
         for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))

@@ -823,6 +823,10 @@ private:
         if (c.accept({"what|which"})) {
             // what is the lamp on? / what bed are the pillows on?
             if (!isOneOf(c.peek(), {"is", "are", "does", "do"})) answerKind = p.phrase(c.w, c.i, false);
+            // "what position is the door in?": a position is no thing the door is in.
+            if (answerKind && answerKind->categories.empty() && !answerKind->kind && answerKind->id.empty() &&
+                !absentThing(answerKind->noun, lexicon_.lookUp(answerKind->noun)))
+                return false;
             if (!c.accept({"is|are|does|do"})) return false;
             bool ends = predicateEnding(c.i, c.w.size());
             for (std::size_t k = c.w.size() - 1; !ends && k > c.i + 1; --k)
