@@ -603,12 +603,13 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         if (i + 1 < w.size() && w[i] == "from") {
             std::size_t k = i + 1;
             Phrase to = phrase(w, k, false);
-            p.order = Order{"distance", false, {std::move(to)}, joined(w, i, k)};
+            const std::string said = "closest to the " + to.words;
+            p.order = Order{"distance", false, {std::move(to)}, said};
             i = k;
         } else if (self_) {
             Phrase to = self_->at;
             to.self = true;
-            p.order = Order{"distance", false, {std::move(to)}, "from you"};
+            p.order = Order{"distance", false, {std::move(to)}, "closest to you"};
         }
     }
     p.words = joined(w, wordsStart, i);
