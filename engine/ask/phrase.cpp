@@ -531,6 +531,13 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
             nounWords.clear();
             continue;
         }
+        // "a long row of cabinets", "a line of chairs": the things in it (but "how many rows of
+        // drawers" counts rows, which the memory keeps none of).
+        if (word == "of" && nounWords.size() == 1 && isOneOf(nounWords.front(), {"row", "line"}) && wordsStart > 0 &&
+            isOneOf(w[wordsStart - 1], {"a", "an"})) {
+            nounWords.clear();
+            continue;
+        }
         // An article inside the nouns starts another phrase ("the lamp the sofa" is two).
         if (!nounWords.empty() && isDeterminer(word)) break;
         if (isOneOf(word, {"will", "would", "should", "shall", "must", "might", "be", "been", "being", "had"})) break;

@@ -815,7 +815,7 @@ private:
             } catch (const Error&) {
                 return false;
             }
-            if (k != c.w.size() || thing.conditions.empty()) return false;
+            if (k != c.w.size() || (thing.conditions.empty() && thing.excluded.empty())) return false;
             thing.words = (answerKind ? answerKind->words + " " : std::string()) + joined(c.w, from, k);
             placed = std::move(thing);
             return true;
@@ -866,7 +866,8 @@ private:
             // the desk is to the right of what? the trash can is sitting against what wall? the guitar
             // case is to the right of which door?
             const std::size_t whatAt = static_cast<std::size_t>(what - c.w.begin());
-            if (whatAt + 1 < c.w.size() && PhraseParser::predicateAt(c.w, whatAt + 1)) {
+            if (whatAt + 1 < c.w.size() &&
+                (PhraseParser::predicateAt(c.w, whatAt + 1) || c.w[whatAt + 1] == "besides")) {
                 if (!placedFrom(whatAt + 1)) return false;
             } else if (whatAt + 1 < c.w.size()) {
                 std::size_t k = whatAt + 1;
@@ -1009,7 +1010,7 @@ private:
                 // "where does the shower curtain hang?"
                 auto verb =
                     std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
-                        return isOneOf(w, {"hang", "sit", "stand", "lie", "go", "belong", "rest", "stay"});
+                        return isOneOf(w, {"hang", "sit", "stand", "lie", "go", "belong", "rest", "stay", "run"});
                     });
                 if (verb == c.w.end()) return false;
                 Phrase thing;
@@ -1400,6 +1401,10 @@ private:
             // "the door is left of a row of what?": what the door is left of.
             {std::regex(R"(^(.+ )(?:a|an|the) (?:row|group|line|pile|stack|set|collection|cluster) of what$)"),
              "$1what"},
+            // "the door is to the left of the dresser and what other object?": what else it is left of.
+            {std::regex(
+                 R"(^(.+ (?:of|to|from|by|near|beside|behind|above|below|under|against)) (?:the |a |an )?(.+?) and what (?:other|else)(?: object| thing| item| furniture)?s?$)"),
+             "$1 what besides the $2"},
             // "the tv is on the same wall as what?": what else is by that wall.
             {std::regex(
                  R"(^(?:the |a |an )?(.+?) (?:is|are) (?:located |placed |hanging |mounted )?(on|against) the same wall as what$)"),
