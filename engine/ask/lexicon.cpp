@@ -1,6 +1,8 @@
 #include "engine/ask/lexicon.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <set>
 
 #include "engine/ask/wordnet.hpp"
 #include "model/category.hpp"
@@ -41,6 +43,7 @@ constexpr std::string_view kEquivalents[][9] = {
     {"mug", "cup"},
     {"lamp", "light"},
     {"trash-bag", "garbage-bag", "bin-bag"},
+    {"whiteboard", "white-board", "dry-erase-board", "marker-board"},
 };
 
 // The other names of `name`'s rows in kEquivalents.
@@ -75,6 +78,39 @@ bool physicalThing(const std::string& noun) {
     for (const auto& sense : wordnet::nounSenses(noun))
         if (wordnet::hypernymClosure(sense.offset).count(*physicalObject)) return true;
     return false;
+}
+
+// The nouns WordNet knows one edit away from `word` (a letter left out, added, changed, or two
+// swapped), for a word of five letters or more that WordNet does not know at all.
+std::set<std::string> misspeltNouns(const std::string& word) {
+    if (word.size() < 5 || word.find_first_not_of("abcdefghijklmnopqrstuvwxyz") != std::string::npos ||
+        wordnet::isKnown(word))
+        return {};
+    std::set<std::string> candidates;
+    for (std::size_t k = 0; k < word.size(); ++k) {
+        candidates.insert(word.substr(0, k) + word.substr(k + 1));
+        if (k + 1 < word.size()) {
+            std::string swapped = word;
+            std::swap(swapped[k], swapped[k + 1]);
+            candidates.insert(swapped);
+        }
+    }
+    for (std::size_t k = 0; k <= word.size(); ++k)
+        for (char ch = 'a'; ch <= 'z'; ++ch) {
+            candidates.insert(word.substr(0, k) + ch + word.substr(k));
+            if (k < word.size() && word[k] != ch) {
+                std::string changed = word;
+                changed[k] = ch;
+                candidates.insert(changed);
+            }
+        }
+    std::set<std::string> nouns;
+    for (const auto& c : candidates)
+        if (c != word) {
+            auto bases = wordnet::nounBaseForms(c);
+            if (!bases.empty()) nouns.insert(bases.front());
+        }
+    return nouns;
 }
 
 }  // namespace
@@ -115,6 +151,12 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
         if (contains(categories_, std::string(other))) addUnique(match.categories, std::string(other));
     if (!match.categories.empty()) {
         match.how = WordMatch::How::Synonym;
+        match.lemma = model::categoryName(words);
+        return match;
+    }
+    // A name of the table WordNet lacks ("whiteboard"), for a thing the scene does not hold.
+    if (!equivalents(model::categoryName(words)).empty() && wordnet::nounBaseForms(word).empty()) {
+        match.how = WordMatch::How::Absent;
         match.lemma = model::categoryName(words);
         return match;
     }
@@ -198,6 +240,36 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
         match.lemma = close.front();
         return match;
     }
+    // A misspelt English noun ("wordrobe", "courch", "fointain"): the one noun WordNet knows a letter
+    // away, where WordNet knows the word as written in no part of speech ("hanged" is a verb).
+    // Of several ("courch": couch, church), the one that names a category here.
+    {
+        const std::set<std::string> respelt = misspeltNouns(word);
+        std::vector<WordMatch> naming;
+        for (const auto& noun : respelt)
+            if (WordMatch m = lookUp(noun); m.how == WordMatch::How::Category || m.how == WordMatch::How::Plural ||
+                                            m.how == WordMatch::How::Synonym)
+                naming.push_back(std::move(m));
+        if (naming.size() == 1 || (naming.empty() && respelt.size() == 1)) {
+            WordMatch m = naming.empty() ? lookUp(*respelt.begin()) : naming.front();
+            m.how = m.categories.empty() ? WordMatch::How::Absent : WordMatch::How::Spelling;
+            return m;
+        }
+    }
+    // Two nouns written as one that WordNet does not know together ("rackstand": a rack stand), for
+    // a thing the scene does not hold.
+    if (word.find('-') == std::string::npos && word.size() >= 7 && !wordnet::isKnown(word)) {
+        std::vector<std::string> splits;
+        for (std::size_t cut = 3; cut + 3 <= word.size(); ++cut)
+            if (!wordnet::nounBaseForms(word.substr(0, cut)).empty() &&
+                !wordnet::nounBaseForms(word.substr(cut)).empty())
+                splits.push_back(word.substr(0, cut) + "-" + word.substr(cut));
+        if (splits.size() == 1) {
+            match.how = WordMatch::How::Absent;
+            match.lemma = splits.front();
+            return match;
+        }
+    }
     // A plural of a word that is no noun in WordNet stays the word as written.
     match.how = WordMatch::How::Unknown;
     return match;
@@ -206,7 +278,7 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
 std::optional<std::string> absentThing(const std::string& name, const WordMatch& match) {
     if (match.how != WordMatch::How::Absent) return std::nullopt;
     std::string noun = match.lemma.empty() ? name : match.lemma;  // "pianos" -> piano
-    if (namesWholeScene(noun) || !physicalThing(noun)) return std::nullopt;
+    if (namesWholeScene(noun) || (!physicalThing(noun) && equivalents(noun).empty())) return std::nullopt;
     return noun;
 }
 

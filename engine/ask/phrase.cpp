@@ -65,6 +65,13 @@ bool isPartWord(const std::string& w) {
                        "opening",  "backrest", "sides",  "corners", "ends",    "edges",   "surfaces", "section"});
 }
 
+// Parts that are things of their own elsewhere: "the door of the refrigerator", "a drawer of the
+// dresser" (but "the door of the room" is a door).
+bool isPartOfThing(const std::string& w) {
+    return isOneOf(
+        w, {"door", "doors", "drawer", "drawers", "shelf", "shelves", "panel", "panels", "knob", "knobs", "floor"});
+}
+
 // Words that place a part on a thing: "the upper portion of", "the bottom left corner of", "the far end of".
 bool isPartPlaceWord(const std::string& w) {
     return isSideWord(w) || isOneOf(w, {"upper", "lower", "top", "bottom", "far", "near", "outer", "inner", "middle",
@@ -291,6 +298,11 @@ bool isOneOf(const std::string& word, std::initializer_list<std::string_view> wo
     return std::find(words.begin(), words.end(), word) != words.end();
 }
 
+bool isVerbOfPlace(const std::string& w) {
+    return !isOneOf(w, {"is", "are", "was", "were", "be", "been", "being", "not", "do", "does", "have", "has"}) &&
+           wordnet::isVerbNotNoun(w);
+}
+
 std::optional<std::string> colourOf(const std::string& word) {
     if (word == "grey") return "gray";
     if (isOneOf(word, {"red", "green", "blue", "white", "black", "gray", "brown", "yellow", "orange", "pink", "purple",
@@ -320,7 +332,7 @@ Words words(const std::string& text) {
         else
             s += ' ';
     }
-    static const std::array<std::pair<std::string_view, std::string_view>, 11> contractions{{
+    static const std::array<std::pair<std::string_view, std::string_view>, 12> contractions{{
         {"can't", "can not"},
         {"'s", " is"},
         {"'re", " are"},
@@ -332,6 +344,7 @@ Words words(const std::string& text) {
         {"'", " "},
         {"--", " "},
         {"infront", "in front"},  // a common way to write it
+        {"oclock", "o clock"},    // "my 8 oclock", as "my 8 o'clock"
     }};
     for (const auto& [from, to] : contractions)
         for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
@@ -432,9 +445,10 @@ bool PhraseParser::describing(const Words& w, std::size_t& i, std::vector<std::s
     }
     // "the corner of the room", "the top of the stove", "the back of the chair", "the upper
     // portion of the bed": the part is read as the thing itself.
-    if ((!nounWords.empty() || !side.empty()) && (nounWords.empty() || isPartWord(nounWords.back())) &&
+    if ((!nounWords.empty() || !side.empty()) &&
+        (nounWords.empty() || isPartWord(nounWords.back()) || isPartOfThing(nounWords.back())) &&
         std::all_of(nounWords.begin(), nounWords.end(),
-                    [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n); })) {
+                    [](const std::string& n) { return isPartWord(n) || isPartPlaceWord(n) || isPartOfThing(n); })) {
         out_.notes.push_back(fmt::format("'{}' is read as the thing itself", joined(w, wordsStart, i + 1)));
         nounWords.clear();
         side.clear();
@@ -466,6 +480,10 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
                 p.top = *n;
                 continue;
             }
+            // "one door of the wardrobe": "one" before a noun is an article.
+            if (word == "one" && i + 1 < w.size() && !endsPhrase(w[i + 1]) && !predicateAt(w, i + 1) &&
+                !isDeterminer(w[i + 1]) && !exclusionAt(w, i + 1) && w[i + 1] != "not")
+                continue;
             if (auto k = ordinalOf(word)) {
                 p.pick = *k;
                 continue;
@@ -481,10 +499,21 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
                 p.pick = std::max<std::size_t>(p.pick, 1);
                 continue;
             }
+            // "the second closest to the door": a thing, by its distance to the door.
+            if (auto far = distanceOrderWord(word); far && p.pick > 0 && i + 2 < w.size()) {
+                std::size_t k = i + 2;
+                Phrase to = phrase(w, k, false);
+                p.order = Order{"distance", *far, {std::move(to)}, joined(w, i, k)};
+                i = k;
+                break;
+            }
         }
         if (predicateAt(w, i) && !(isSideWord(word) && nounWords.empty() && i + 1 < w.size() && w[i + 1] != "of"))
             break;
         if (exclusionAt(w, i) || (distanceOrderWord(word) && !nounWords.empty())) break;
+        // "the black chair out of the three chairs", "the chairs present in the room": the noun ends there.
+        if (!nounWords.empty() && word == "out" && i + 1 < w.size() && w[i + 1] == "of") break;
+        if (!nounWords.empty() && word == "present" && (i + 1 == w.size() || predicateAt(w, i + 1))) break;
         // "the chairs not near the window", "the sofa longer than the bed": the noun ends there.
         if (!nounWords.empty() && (word == "not" || comparativeOf(word))) break;
         // "can" ends a phrase as a verb ("what can I see"), but a trash can is a thing.
@@ -498,7 +527,14 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         // "pieces of furniture", "a pair of shoes": the thing is what follows "of".
         if (word == "of" && nounWords.size() == 1 &&
             isOneOf(nounWords.front(), {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type",
-                                        "types", "bunch", "stack", "pile"})) {
+                                        "types", "bunch", "stack", "pile", "group", "groups", "cluster"})) {
+            nounWords.clear();
+            continue;
+        }
+        // "a long row of cabinets", "a line of chairs": the things in it (but "how many rows of
+        // drawers" counts rows, which the memory keeps none of).
+        if (word == "of" && nounWords.size() == 1 && isOneOf(nounWords.front(), {"row", "line"}) && wordsStart > 0 &&
+            isOneOf(w[wordsStart - 1], {"a", "an"})) {
             nounWords.clear();
             continue;
         }
@@ -517,9 +553,26 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
             if (i + 1 < w.size() && w[i + 1] == "side") ++i;  // "the right side"
             continue;
         }
+        // "what color wall is the board on?": the wall, whose colour is asked, not a "color wall".
+        if (nounWords.empty() && isOneOf(word, {"color", "colour", "shape", "material"}) && i + 1 < w.size() &&
+            !endsPhrase(w[i + 1]) && !predicateAt(w, i + 1) && w[i + 1] != "of" && !isDeterminer(w[i + 1])) {
+            out_.notes.push_back(
+                fmt::format("'{}' asks of the {}: the memory keeps it where recorded", word, w[i + 1]));
+            continue;
+        }
         if (nounWords.empty() && (isIgnoredAdjective(word) || wordnet::isAdjectiveOnly(word))) {
             out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such attribute", word));
             continue;
+        }
+        // "the towel hanged on the door", "the monitor sits on the desk", "the radiator affixed": a
+        // word WordNet knows as a verb and not as a noun says what the thing does, and ends its name,
+        // where no noun follows it ("an open fronted cabinet" is a cabinet).
+        if (!nounWords.empty() && isVerbOfPlace(word)) {
+            const std::size_t next = i + 1;
+            if (next == w.size() || predicateAt(w, next) || endsPhrase(w[next]) || isDeterminer(w[next]) ||
+                distanceOrderWord(w[next]) || isVerbOfPlace(w[next]) ||
+                isOneOf(w[next], {"up", "down", "out", "around", "together", "by", "directly"}))
+                break;
         }
         nounWords.push_back(word);
     }
@@ -551,6 +604,21 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         }
     }
     if (withPosts) posts(w, i, p);
+    if (p.pick > 0 && !p.order) {
+        // "the first cabinet from the door": the nearest to it; "the first cabinet on the right" after
+        // a situation: the nearest to the person.
+        if (i + 1 < w.size() && w[i] == "from") {
+            std::size_t k = i + 1;
+            Phrase to = phrase(w, k, false);
+            const std::string said = "closest to the " + to.words;
+            p.order = Order{"distance", false, {std::move(to)}, said};
+            i = k;
+        } else if (self_) {
+            Phrase to = self_->at;
+            to.self = true;
+            p.order = Order{"distance", false, {std::move(to)}, "closest to you"};
+        }
+    }
     p.words = joined(w, wordsStart, i);
     return p;
 }
@@ -599,6 +667,14 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
                                "hung", "found", "situated", "the", "right", "directly", "just", "immediately"}) &&
                !predicateAt(w, at))
             ++at;
+        // A verb of place before a predicate says no more than it: "sits on the desk", "hanged on
+        // the door", "pushed up against the wall", "pushed closest to the wall".
+        if (std::size_t k = at + 1; at < w.size() && isVerbOfPlace(w[at]) && !predicateAt(w, at)) {
+            while (k < w.size() && isOneOf(w[k], {"up", "down", "out", "around", "together", "directly", "right"}) &&
+                   !predicateAt(w, k))
+                ++k;
+            if (k < w.size() && (predicateAt(w, k) || distanceOrderWord(w[k]))) at = k;
+        }
         // besides the cushions / other than the lamps
         if (std::size_t n = exclusionAt(w, at); n && nested_ == 0) {
             i = at + n;
@@ -636,6 +712,59 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             at = k;
         }
         if (sideAfterVerb(w, at, i, p)) continue;
+        // "the black chair out of the three chairs": one of them, which the phrase names already.
+        if (at + 2 < w.size() && w[at] == "out" && w[at + 1] == "of" && (!p.categories.empty() || p.kind)) {
+            std::size_t k = at + 2;
+            ++nested_;
+            Phrase among = phrase(w, k, false);
+            --nested_;
+            if (p.kind == std::optional<std::string>("object") && p.categories.empty() && !among.kind) {
+                // "the second closest to the door out of the trash cans": one of them.
+                p.kind.reset();
+                p.categories = among.categories;
+                p.noun = among.noun;
+                i = k;
+                continue;
+            }
+            if (!p.categories.empty() && among.categories == p.categories) {
+                k = std::min(k + (k < w.size() && w[k] == "present" ? 1 : 0), w.size());
+                out_.notes.push_back(
+                    fmt::format("'{}' says no more than '{}'", joined(w, at, k), p.words.empty() ? p.noun : p.words));
+                i = k;
+                continue;
+            }
+        }
+        // "on the same wall as the bed": by the wall nearest the bed, the bed left out.
+        if (at + 5 < w.size() && isOneOf(w[at], {"on", "against", "along", "by"}) && w[at + 1] == "the" &&
+            w[at + 2] == "same" && w[at + 3] == "wall" && w[at + 4] == "as") {
+            std::size_t k = at + 5;
+            ++nested_;
+            Phrase as = phrase(w, k, false);
+            --nested_;
+            Phrase wall;
+            resolveNoun(wall, {"wall"});
+            wall.order = Order{"distance", false, {as}, "closest to the " + as.words};
+            wall.pick = 1;
+            Condition c;
+            c.predicate = "near";
+            c.args.push_back(std::move(wall));
+            c.words = joined(w, at, k);
+            p.conditions.push_back(std::move(c));
+            if (!p.categories.empty() || p.kind) p.excluded.push_back(std::move(as));
+            i = k;
+            continue;
+        }
+        // "what is on the right under the table?": a side of no one category, before a predicate, is
+        // left out (a side names one node of one category: the left wall).
+        if (std::size_t k = at; (p.kind || p.categories.size() != 1) && p.id.empty()) {
+            const std::string side = sideAfter(w, k);
+            if (!side.empty() && k < w.size() && predicateAt(w, k)) {
+                out_.notes.push_back(
+                    fmt::format("'{}' is left out: sides are of one category (the left wall)", joined(w, at, k)));
+                i = k;
+                continue;
+            }
+        }
         auto pred = predicateAt(w, at);
         if (!pred) return;
         const std::size_t bothAt = at;
@@ -653,11 +782,29 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             after = part + 1;
             while (after < w.size() && isDeterminer(w[after])) ++after;
         }
+        // "the rug in the corner", "the door in the right corner", "the counter in the middle": a corner
+        // or the middle of the room, which the memory keeps none of (as "in the corner of the room").
+        if (part > after && isOneOf(w[part - 1], {"corner", "corners", "middle", "center", "centre"}) &&
+            (part == w.size() || w[part] != "of") && isOneOf(pred->first, {"in", "at", "on", "near"}) &&
+            !std::any_of(lexicon_.categories().begin(), lexicon_.categories().end(),
+                         [&](const std::string& c) { return c == w[part - 1]; })) {
+            out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no corners or middle of the room",
+                                             joined(w, at, part)));
+            i = part;
+            continue;
+        }
         if ((pred->first == "in" || (ofPart && isOneOf(pred->first, {"on", "near"}))) && after < w.size()) {
-            // "in here", "in the room", "in the office" (when the office is this scene).
-            std::size_t place = scenePlaceAt(w, after);
-            if (place > 0 && (ofPart || after + place == w.size() || !predicateAt(w, after + place))) {
-                i = after + place;
+            // "in here", "in the room", "in the office" (when the office is this scene), "in a
+            // cluttered room" (a look the memory keeps nothing of).
+            std::size_t placeAt = after;
+            while (placeAt < w.size() && (isIgnoredAdjective(w[placeAt]) || wordnet::isAdjectiveOnly(w[placeAt])))
+                ++placeAt;
+            std::size_t place = scenePlaceAt(w, placeAt);
+            if (place > 0 && (ofPart || placeAt + place == w.size() || !predicateAt(w, placeAt + place))) {
+                if (placeAt > after)
+                    out_.notes.push_back(
+                        fmt::format("'{}' is left out: the memory keeps no such attribute", joined(w, after, placeAt)));
+                i = placeAt + place;
                 continue;
             }
         }
@@ -826,7 +973,10 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
     // A phrase that names nothing here as a whole ("coffee mug") is read by its last word, unless
     // WordNet knows the whole or maps it to kinds the scene has.
     // A whole that WordNet knows ("trash can": a kind of bin) is not read by its head ("can").
-    bool wholeKnown = match.how == WordMatch::How::Absent || match.how == WordMatch::How::Broader;
+    // A whole WordNet knows as no physical thing ("open door": a policy) is read by its head too.
+    bool wholeKnown = (match.how == WordMatch::How::Absent &&
+                       (absentThing(all, match) || wordnet::nounSenses(match.lemma).empty())) ||
+                      match.how == WordMatch::How::Broader;
     if (nounWords.size() > 1 && !isNamed(match) && match.how != WordMatch::How::Kind && !wholeKnown) {
         WordMatch head = lexicon_.lookUp(nounWords.back());
         // A compound category of another kind is not the thing asked for: a "tv stand" is no
@@ -842,7 +992,12 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
             if (head.categories.empty() && head.how != WordMatch::How::Unknown) head.how = WordMatch::How::Absent;
         }
         if (head.how == WordMatch::How::Absent && nounModifier) {
-            // Neither the whole nor its head is here: the answer speaks of the whole ("no tv stand").
+            // Neither the whole nor its head is here: the answer speaks of the whole ("no tv stand"),
+            // its head in its base form as WordNet spells it ("kitchen cabinets": no kitchen cabinet;
+            // "water fointain": no water fountain).
+            if (!head.lemma.empty() && head.lemma != nounWords.back())
+                all = joined(std::vector<std::string>(nounWords.begin(), nounWords.end() - 1), 0, nounWords.size()) +
+                      " " + head.lemma;
             p.noun = all;
             if (!said(all)) out_.mappings.push_back(WordMapping{all, {}, describe(WordMatch::How::Absent)});
             return;
@@ -857,6 +1012,7 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
         unknownWords_.push_back(word);
         return;
     }
+
     p.categories = match.categories;
     if (match.how != WordMatch::How::Category && !said(word))
         out_.mappings.push_back(WordMapping{word, match.categories, describe(match.how)});

@@ -30,6 +30,9 @@ Words words(const std::string& text);
 std::string joined(const Words& w, std::size_t from, std::size_t to);
 
 bool isOneOf(const std::string& word, std::initializer_list<std::string_view> words);
+// A verb that says how a thing is placed or what it does there, not what it is: one WordNet knows as
+// a verb and not as a noun ("sits", "hanged", "affixed", "pushed", "up" as in "up against").
+bool isVerbOfPlace(const std::string& w);
 // A comparative ("longer", "closer") and what it compares: the measure (an attribute, or "distance"
 // to a thing that follows), whether more wins, its superlative ("longest") and how the answer says
 // the measure ("long"). kSuperlatives in phrase.cpp is the one table of both.

@@ -696,9 +696,16 @@ private:
                                                   {"relates", "to"},
                                                   {"from"}};
             std::optional<std::size_t> link, linkWords;
+            // "the bin on a desk across from a bed": a predicate's phrase that ends in "from" is no link.
+            auto inPredicate = [&](std::size_t k) {
+                for (std::size_t b = k > 3 ? k - 3 : 0; b < k; ++b)
+                    if (auto pr = PhraseParser::predicateAt(c.w, b); pr && b + pr->second > k) return true;
+                return false;
+            };
             for (std::size_t k = c.i; k < c.w.size() && !link; ++k)
                 for (const auto& l : links)
-                    if (k + l.size() <= c.w.size() && std::equal(l.begin(), l.end(), c.w.begin() + k)) {
+                    if (k + l.size() <= c.w.size() && std::equal(l.begin(), l.end(), c.w.begin() + k) &&
+                        !inPredicate(k)) {
                         link = k;
                         linkWords = l.size();
                         break;
@@ -797,13 +804,36 @@ private:
             "located", "placed",   "sitting",    "standing", "hanging", "lying",     "resting",    "kept", "sit",
             "stand",   "hang",     "lie",        "rest",     "attach",  "installed", "mounted",    "set",  "put",
             "found",   "situated", "positioned", "directly", "right",   "just",      "immediately"};
+        // "what is the piano on next to the bed?", "the armchair is next to what to the left of the
+        // bed?": the thing asked for, placed by the conditions after it (from `from`, to the end).
+        std::optional<Phrase> placed;
+        auto placedFrom = [&](std::size_t from) {
+            Phrase thing = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
+            std::size_t k = from;
+            try {
+                p.posts(c.w, k, thing);
+            } catch (const Error&) {
+                return false;
+            }
+            if (k != c.w.size() || (thing.conditions.empty() && thing.excluded.empty())) return false;
+            thing.words = (answerKind ? answerKind->words + " " : std::string()) + joined(c.w, from, k);
+            placed = std::move(thing);
+            return true;
+        };
         if (c.accept({"what|which"})) {
             // what is the lamp on? / what bed are the pillows on?
             if (!isOneOf(c.peek(), {"is", "are", "does", "do"})) answerKind = p.phrase(c.w, c.i, false);
+            // "what position is the door in?": a position is no thing the door is in.
+            if (answerKind && answerKind->categories.empty() && !answerKind->kind && answerKind->id.empty() &&
+                !absentThing(answerKind->noun, lexicon_.lookUp(answerKind->noun)))
+                return false;
             if (!c.accept({"is|are|does|do"})) return false;
-            if (!predicateEnding(c.i, c.w.size())) return false;
+            bool ends = predicateEnding(c.i, c.w.size());
+            for (std::size_t k = c.w.size() - 1; !ends && k > c.i + 1; --k)
+                ends = PhraseParser::predicateAt(c.w, k) && predicateEnding(c.i, k) && placedFrom(k);
+            if (!ends) return false;
             std::size_t end = predAt;
-            while (end > c.i && isOneOf(c.w[end - 1], verbs)) --end;
+            while (end > c.i && (isOneOf(c.w[end - 1], verbs) || isVerbOfPlace(c.w[end - 1]))) --end;
             Phrase s;
             if (!phraseWithin(c, p, end, s)) return false;
             subject = s;
@@ -836,14 +866,17 @@ private:
             // the desk is to the right of what? the trash can is sitting against what wall? the guitar
             // case is to the right of which door?
             const std::size_t whatAt = static_cast<std::size_t>(what - c.w.begin());
-            if (whatAt + 1 < c.w.size()) {
+            if (whatAt + 1 < c.w.size() &&
+                (PhraseParser::predicateAt(c.w, whatAt + 1) || c.w[whatAt + 1] == "besides")) {
+                if (!placedFrom(whatAt + 1)) return false;
+            } else if (whatAt + 1 < c.w.size()) {
                 std::size_t k = whatAt + 1;
                 answerKind = p.phrase(c.w, k, false);
                 if (k != c.w.size()) return false;
             }
             if (!predicateEnding(0, whatAt)) return false;
             std::size_t end = predAt;
-            while (end > 0 && isOneOf(c.w[end - 1], verbs)) --end;
+            while (end > 0 && (isOneOf(c.w[end - 1], verbs) || isVerbOfPlace(c.w[end - 1]))) --end;
             Phrase s;
             if (end > 0 && isOneOf(c.w[end - 1], {"is", "are"})) {
                 if (!phraseWithin(c, p, end - 1, s)) return false;
@@ -854,7 +887,9 @@ private:
                 std::size_t k = static_cast<std::size_t>(verb - c.w.begin());
                 if (k == 0 || k >= end || !phraseWithin(c, p, k, s)) return false;
                 ++k;
-                while (k < end && isOneOf(c.w[k], verbs) && !PhraseParser::predicateAt(c.w, k)) ++k;
+                while (k < end && (isOneOf(c.w[k], verbs) || isVerbOfPlace(c.w[k])) &&
+                       !PhraseParser::predicateAt(c.w, k))
+                    ++k;
                 Words head(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(end));
                 const std::size_t before = s.conditions.size();
                 p.posts(head, k, s);
@@ -869,7 +904,7 @@ private:
         }
         if (!pred || !subject) return false;
         // What the subject is on or by may be an anchor too (a wall, the floor).
-        Phrase other = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
+        Phrase other = placed ? *placed : answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
         std::string predicate = pred->first;
         // "what wall is the tv on": on a wall is hanging there.
         if (predicate == "on" && answerKind &&
@@ -961,9 +996,11 @@ private:
         }
         if (c.accept({"what|which", "is|are", "the|a|an"})) {
             c.i -= 1;
+            // "what is the only window in the room?": which one it is, and where.
+            const bool only = c.peek(1) == "only";
             Phrase thing = p.phrase(c.w, c.i, true);
             c.skip({"located", "placed"});
-            if (thing.conditions.empty() || !c.done()) return false;
+            if ((thing.conditions.empty() && !(only && !thing.kind)) || !c.done()) return false;
             return locateAnswer(thing, out);
         }
         bool where = c.accept({"where"});
@@ -973,7 +1010,7 @@ private:
                 // "where does the shower curtain hang?"
                 auto verb =
                     std::find_if(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), [](const std::string& w) {
-                        return isOneOf(w, {"hang", "sit", "stand", "lie", "go", "belong", "rest", "stay"});
+                        return isOneOf(w, {"hang", "sit", "stand", "lie", "go", "belong", "rest", "stay", "run"});
                     });
                 if (verb == c.w.end()) return false;
                 Phrase thing;
@@ -1010,6 +1047,8 @@ private:
         }
         c.skip({"located", "kept", "placed", "be", "attached", "mounted", "positioned", "situated", "installed",
                 "stored", "hung", "hanging", "lying", "sitting", "standing", "resting", "set"});
+        // "where is the radiator affixed?", "where is the curtain hanged?": how it is placed is where.
+        if (where && c.i + 1 == c.w.size() && isVerbOfPlace(c.peek())) ++c.i;
         if (!where && !thing.order && !thing.conditions.empty()) return false;  // "show me everything on ..."
         return locateAnswer(thing, out);
     }
@@ -1030,6 +1069,11 @@ private:
             } else {
                 thing = p.phrase(c.w, c.i, false);
                 if (c.i == at) return false;
+                // "what type of table in the room is ...": the room is the scene.
+                if (std::size_t k = c.i + 1; c.peek() == "in") {
+                    while (k < c.w.size() && isOneOf(c.w[k], {"the", "this", "a"})) ++k;
+                    if (std::size_t place = p.scenePlaceAt(c.w, k); place > 0) c.i = k + place;
+                }
             }
             // "which chairs face the table?": the predicate is the verb.
             bool verbIsPredicate = PhraseParser::predicateAt(c.w, c.i).has_value() && c.i > at;
@@ -1340,6 +1384,35 @@ private:
              "what is around the $1"},
             {std::regex(R"(^what (?:is|are) (.+?) (?:surrounded|encircled|flanked|bordered) by$)"),
              "what is around $1"},
+            // "what is the table covered in?", "the desk is cluttered with what?": what is on it.
+            {std::regex(R"(^what (?:is|are) (.+?) (?:covered|topped|cluttered|piled|strewn) (?:in|with|by)$)"),
+             "what is on $1"},
+            {std::regex(
+                 R"(^(?:the |a |an )?(.+?) (?:is|are) (?:covered|topped|cluttered|piled|strewn) (?:in|with|by) what$)"),
+             "what is on the $1"},
+            // "to the left of the open door is what color armchair?": what color the armchair there is.
+            {std::regex(
+                 R"(^((?:to the (?:left|right) of|in front of|behind|next to|beside|across from|above|below|under|near|on top of) .+?) (?:is|are) what (colou?r|shape|material) (.+)$)"),
+             "what $2 is the $3 $1"},
+            // "the towel is olive green and what shape?": the shape of the olive green towel.
+            {std::regex(
+                 R"(^(?:the |a |an )?(.+?) (?:is|are) ((?:dark |light |olive |bright |pale )?(?:red|green|blue|white|black|gray|grey|brown|yellow|orange|pink|purple|beige|silver|gold)) and what (colou?r|shape|material)$)"),
+             "what $3 is the $2 $1"},
+            // "the door is left of a row of what?": what the door is left of.
+            {std::regex(R"(^(.+ )(?:a|an|the) (?:row|group|line|pile|stack|set|collection|cluster) of what$)"),
+             "$1what"},
+            // "the door is to the left of the dresser and what other object?": what else it is left of.
+            {std::regex(
+                 R"(^(.+ (?:of|to|from|by|near|beside|behind|above|below|under|against)) (?:the |a |an )?(.+?) and what (?:other|else)(?: object| thing| item| furniture)?s?$)"),
+             "$1 what besides the $2"},
+            // "the tv is on the same wall as what?": what else is by that wall.
+            {std::regex(
+                 R"(^(?:the |a |an )?(.+?) (?:is|are) (?:located |placed |hanging |mounted )?(on|against) the same wall as what$)"),
+             "what is $2 the same wall as the $1"},
+            // "what type of wood is the door?": what it is made of.
+            {std::regex(
+                 R"(^what (?:type|kind|sort) of (?:wood|metal|material|fabric|stone) (?:is|are) (.+?)(?: made of)?$)"),
+             "what material is $1"},
             // "what is the water fountain closest to?": as "the water fountain is closest to what?".
             {std::regex(R"(^what (?:is|are) (?:the |a |an )?(.+?) (closest|nearest) to$)"),
              "what is $2 to the $1 besides the $1"},
@@ -1520,7 +1593,7 @@ private:
     // the room." says (situation.cpp reads it: by the door).
     static std::string enteringAsSituation(const std::string& text) {
         static const std::string entering =
-            R"((?:when|as|once|upon|after) (?:you |i |one |we )?(?:first )?(?:enter|enters|entering|walk|walks|walking|come|comes|coming|step|steps|stepping)(?: in| into| through)?(?: (?:the|a|this) (?:\w+ )?(?:room|door|doorway|entrance|entry|kitchen|bathroom|bedroom|office|area|space))?)";
+            R"((?:when|as|once|upon|after) (?:you |i |one |we )?(?:first )?(?:entering|enters|enter|walking|walks|walk|coming|comes|come|stepping|steps|step)\b(?: in| into| through)?(?: (?:the|a|this) (?:\w+ )?(?:room|door|doorway|entrance|entry|kitchen|bathroom|bedroom|office|area|space))?)";
         static const std::regex before("^\s*" + entering + R"(\s*,?\s*(.+)$)", std::regex::icase);
         static const std::regex after(R"(^\s*(.+?),?\s+)" + entering + R"(\s*\??\s*$)", std::regex::icase);
         std::smatch m;
@@ -1563,7 +1636,11 @@ private:
                 if (!isOneOf(w[at], {"with", "that", "which", "who", "having", "made", "appear", "appears", "looks",
                                      "look", "shaped"}))
                     continue;
-                for (std::size_t n = 2; n <= 6 && at + n <= w.size(); ++n) {
+                // "the object that covers an opening": the words say which thing; without them it is any.
+                if (isOneOf(w[at - 1], {"object", "objects", "thing", "things", "item", "items", "one", "ones",
+                                        "something", "anything", "stuff"}))
+                    continue;
+                for (std::size_t n = 2; n <= 7 && at + n <= w.size(); ++n) {
                     // The words left out end where the question goes on: at its end, a verb of
                     // place or a predicate ("the bed with a blue mattress located": not "bed blue
                     // mattress").

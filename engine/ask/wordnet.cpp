@@ -176,6 +176,19 @@ std::vector<std::string> baseForms(const std::string& word) {
     return out;
 }
 
+namespace {
+
+// Whether WordNet knows the word, or a base form of it, in a part of speech (the caller holds the lock).
+bool inIndex(std::string key, int pos) {
+    if (IndexPtr index = index_lookup(key.data(), pos)) {
+        free_index(index);
+        return true;
+    }
+    return morphstr(key.data(), pos) != nullptr;
+}
+
+}  // namespace
+
 bool isAdjectiveOnly(const std::string& word) {
     std::lock_guard guard(lock());
     static std::map<std::string, bool> known;
@@ -183,18 +196,38 @@ bool isAdjectiveOnly(const std::string& word) {
     bool adjective = false, noun = false;
     if (open() && !word.empty()) {
         std::string key = wordNetSpelling(word);
-        auto inIndex = [&](int pos) {
-            if (IndexPtr index = index_lookup(key.data(), pos)) {
-                free_index(index);
-                return true;
-            }
-            return morphstr(key.data(), pos) != nullptr;
-        };
-        adjective = inIndex(ADJ);
-        noun = inIndex(NOUN);
+        adjective = inIndex(key, ADJ);
+        noun = inIndex(key, NOUN);
     }
     known.emplace(word, adjective && !noun);
     return adjective && !noun;
+}
+
+bool isVerbNotNoun(const std::string& word) {
+    std::lock_guard guard(lock());
+    static std::map<std::string, bool> known;
+    if (auto it = known.find(word); it != known.end()) return it->second;
+    bool verb = false, noun = false;
+    if (open() && !word.empty()) {
+        std::string key = wordNetSpelling(word);
+        verb = inIndex(key, VERB);
+        noun = inIndex(key, NOUN);
+    }
+    known.emplace(word, verb && !noun);
+    return verb && !noun;
+}
+
+bool isKnown(const std::string& word) {
+    std::lock_guard guard(lock());
+    static std::map<std::string, bool> known;
+    if (auto it = known.find(word); it != known.end()) return it->second;
+    bool any = false;
+    if (open() && !word.empty()) {
+        std::string key = wordNetSpelling(word);
+        for (int pos : {NOUN, VERB, ADJ, ADV}) any = any || inIndex(key, pos);
+    }
+    known.emplace(word, any);
+    return any;
 }
 
 }  // namespace smql::ask::wordnet

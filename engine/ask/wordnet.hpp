@@ -46,4 +46,11 @@ std::vector<std::string> baseForms(const std::string& word);
 // also a noun): a modifier the memory keeps no attribute for.
 bool isAdjectiveOnly(const std::string& word);
 
+// Whether WordNet knows the word as a verb and not as a noun ("sits", "hanged", "affixed", "pushed"):
+// after a noun it says what the thing does or how it is placed, and names no part of it.
+bool isVerbNotNoun(const std::string& word);
+
+// Whether WordNet knows the word, or a base form of it, in any part of speech.
+bool isKnown(const std::string& word);
+
 }  // namespace smql::ask::wordnet

@@ -17,7 +17,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "engine/ask/lexicon.hpp"
 #include "engine/ask/translator.hpp"
+#include "engine/ask/wordnet.hpp"
 #include "engine_support.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"
@@ -335,4 +337,26 @@ TEST_CASE("ASK: none stored as the word asked when it was widened to the kind it
     // A word the scene holds is answered as before.
     auto held = run(*engine, "ASK 'how many tables are there?'");
     CHECK(std::get<std::int64_t>(held.rows[0][0]) == static_cast<std::int64_t>(tables));
+}
+
+TEST_CASE("the lexicon reads a misspelt English noun, two nouns written as one and names WordNet lacks", "[ask]") {
+    REQUIRE(ask::wordnet::available());  // Debian's wordnet-base, as the question set needs
+    ask::Lexicon lexicon({"sofa", "chair", "table"});
+    // One letter from two nouns (couch, church): the one that names a category here.
+    auto courch = lexicon.lookUp("courch");
+    CHECK(courch.how == ask::WordMatch::How::Spelling);
+    CHECK(courch.categories == std::vector<std::string>{"sofa"});
+    // One letter from one noun the scene lacks: that noun, absent.
+    auto wordrobe = lexicon.lookUp("wordrobe");
+    CHECK(wordrobe.how == ask::WordMatch::How::Absent);
+    CHECK(wordrobe.lemma == "wardrobe");
+    // A verb is no misspelt noun ("hanged" is not a hanger).
+    CHECK(lexicon.lookUp("hanged").how == ask::WordMatch::How::Unknown);
+    CHECK(lexicon.lookUp("rackstand").lemma == "rack-stand");
+    CHECK(lexicon.lookUp("rackstand").how == ask::WordMatch::How::Absent);
+    CHECK(lexicon.lookUp("whiteboard").how == ask::WordMatch::How::Absent);
+    CHECK(ask::wordnet::isVerbNotNoun("hanged"));
+    CHECK(ask::wordnet::isVerbNotNoun("sits"));
+    CHECK_FALSE(ask::wordnet::isVerbNotNoun("sofa"));
+    CHECK_FALSE(ask::wordnet::isVerbNotNoun("sink"));
 }
