@@ -189,33 +189,28 @@ bool inIndex(std::string key, int pos) {
 
 }  // namespace
 
-bool isAdjectiveOnly(const std::string& word) {
+namespace {
+
+// Whether WordNet's index holds the word as `pos` (ADJ, VERB) and not as a noun; each part of speech keeps its answers.
+bool onlyAs(const std::string& word, int pos) {
     std::lock_guard guard(lock());
-    static std::map<std::string, bool> known;
-    if (auto it = known.find(word); it != known.end()) return it->second;
-    bool adjective = false, noun = false;
+    static std::map<std::pair<int, std::string>, bool> known;
+    if (auto it = known.find({pos, word}); it != known.end()) return it->second;
+    bool other = false, noun = false;
     if (open() && !word.empty()) {
         std::string key = wordNetSpelling(word);
-        adjective = inIndex(key, ADJ);
+        other = inIndex(key, pos);
         noun = inIndex(key, NOUN);
     }
-    known.emplace(word, adjective && !noun);
-    return adjective && !noun;
+    known.emplace(std::pair{pos, word}, other && !noun);
+    return other && !noun;
 }
 
-bool isVerbNotNoun(const std::string& word) {
-    std::lock_guard guard(lock());
-    static std::map<std::string, bool> known;
-    if (auto it = known.find(word); it != known.end()) return it->second;
-    bool verb = false, noun = false;
-    if (open() && !word.empty()) {
-        std::string key = wordNetSpelling(word);
-        verb = inIndex(key, VERB);
-        noun = inIndex(key, NOUN);
-    }
-    known.emplace(word, verb && !noun);
-    return verb && !noun;
-}
+}  // namespace
+
+bool isAdjectiveOnly(const std::string& word) { return onlyAs(word, ADJ); }
+
+bool isVerbNotNoun(const std::string& word) { return onlyAs(word, VERB); }
 
 bool isKnown(const std::string& word) {
     std::lock_guard guard(lock());
