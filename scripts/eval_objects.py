@@ -28,6 +28,14 @@ how many X (the count), is there a X (also for classes that are absent), how lon
 thing of its kind: the answer's one number within 25 % of the longest side), how far is X from Y
 (both one of a kind: within 25 % or 0.15 m of the gap between the boxes), what is on the X (where
 the truth has labelled things resting on it: the named kinds agree).
+
+Appearance order (VSI-Bench's question, in its words, counted apart from the questions above): for
+captures of several frames with depth, a true thing is first seen in the first frame where 15 or
+more of the points on its box's faces project into the image and lie within 0.1 m of the depth
+there (seen, not hidden); a kind is first seen when its first thing is. Of the kinds scored above,
+each set of four (else three, else two) whose first sights lie 10 or more frames apart is asked
+"What will be the first-time appearance order of the following categories in the video: a, b, c,
+d?", and is right when the answer orders them as the truth does.
 """
 import argparse
 import itertools
@@ -315,6 +323,68 @@ def questions(smql, db, truth, labels):
     return asked
 
 
+def first_sights(capture):
+    """Truth category -> the first frame number in which a thing of it is seen (module docstring), for a
+    capture of several frames with depth and poses; {} otherwise."""
+    from PIL import Image
+    frames = sorted(int(p.stem) for p in (capture / "color").iterdir() if p.stem.isdigit())
+    if len(frames) < 2 or not (capture / "depth").is_dir() or not (capture / "pose.txt").exists():
+        return {}
+    camera = json.loads((capture / "camera.json").read_text())
+    lines = [l.split() for l in (capture / "pose.txt").read_text().splitlines()
+             if l.strip() and not l.startswith("#")]
+    truth = json.loads((capture / "truth.json").read_text())["objects"]
+    boxes = [{"center": np.array(o["center"], dtype=float), "size": np.array(o["size"], dtype=float),
+              "rotation": rotation_of(o)} for o in truth]
+    points = [surface_points(b) for b in boxes]
+    first = {}
+    for number, line in zip(frames, lines):
+        depth_file = next((capture / "depth").glob(f"{number}.*"), None)
+        if depth_file is None:
+            continue
+        depth = np.array(Image.open(depth_file), dtype=float) / camera.get("depth_scale", 1000)
+        t = np.array([float(v) for v in line[:3]])
+        qx, qy, qz, qw = (float(v) for v in line[3:7])
+        r = np.array([[1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)],
+                      [2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)],
+                      [2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)]])
+        for obj, pts in zip(truth, points):
+            if obj["category"] in first:
+                continue
+            local = (pts - t) @ r  # camera frame: x right, y down, z ahead
+            ahead = local[:, 2] > 0.1
+            u = np.round(camera["fx"] * local[ahead, 0] / local[ahead, 2] + camera["cx"]).astype(int)
+            v = np.round(camera["fy"] * local[ahead, 1] / local[ahead, 2] + camera["cy"]).astype(int)
+            inside = (u >= 0) & (u < depth.shape[1]) & (v >= 0) & (v < depth.shape[0])
+            d = depth[v[inside], u[inside]]
+            seen = (d > 0) & (np.abs(d - local[ahead][inside, 2]) <= 0.1)
+            if seen.sum() >= 15:
+                first[obj["category"]] = number
+    return first
+
+
+def appearance_order(smql, db, capture, truth, labels):
+    sights = first_sights(capture)
+    kinds = sorted(c for c in {t["category"] for t in truth} if c in sights and c in FITS and c in labels)
+    asked = []
+    for size in (4, 3, 2):
+        for group in itertools.combinations(kinds, size):
+            frames = sorted(sights[k] for k in group)
+            if any(b - a < 10 for a, b in zip(frames, frames[1:])):
+                continue
+            words = [WORD.get(k, k) for k in group]
+            question = ("What will be the first-time appearance order of the following categories in the video: "
+                        f"{', '.join(words)}?")
+            _, message = ask(smql, db, question)
+            answer = message.split("\n")[-1].split(" (first seen")[0].rstrip(".")
+            truth_order = [WORD.get(k, k) for k in sorted(group, key=lambda k: sights[k])]
+            asked.append({"question": question, "truth": ", ".join(truth_order), "answer": answer,
+                          "right": [w.strip() for w in answer.split(",")] == truth_order})
+        if asked:
+            break
+    return asked
+
+
 def evaluate(smql, capture, db, options, reuse):
     row = {"capture": capture.name}
     if not (reuse and db.exists()):
@@ -334,6 +404,7 @@ def evaluate(smql, capture, db, options, reuse):
     row.update(score_objects(truth, labels, stored))
     row["questions"] = questions(smql, db, truth, labels)
     row["questions_right"] = sum(q["right"] for q in row["questions"])
+    row["order"] = appearance_order(smql, db, capture, truth, labels)
     return row
 
 
@@ -355,7 +426,8 @@ def main():
             continue
         row = evaluate(args.smql, capture, work / capture.name, shlex.split(args.options), args.reuse)
         rows.append(row)
-        brief = {k: v for k, v in row.items() if args.verbose or k not in ("questions", "missed_things", "extra_things")}
+        brief = {k: v for k, v in row.items()
+                 if args.verbose or k not in ("questions", "missed_things", "extra_things", "order")}
         print(json.dumps(brief), flush=True)
     scored = [r for r in rows if "f1" in r]
     matched = sum(r["matched"] for r in scored)
@@ -363,6 +435,7 @@ def main():
     truth = sum(r["truth"] for r in scored)
     precision, recall = (matched / stored if stored else 0), (matched / truth if truth else 0)
     asked = [q for r in scored for q in r["questions"]]
+    ordered = [q for r in scored for q in r.get("order", [])]
     kinds = sorted({q["kind"] for q in asked})
     total = {
         "captures": len(rows), "scored": len(scored), "truth": truth, "stored": stored, "matched": matched,
@@ -372,6 +445,7 @@ def main():
         "questions": f"{sum(q['right'] for q in asked)}/{len(asked)}",
         "by_kind": {k: f"{sum(q['right'] for q in asked if q['kind'] == k)}/"
                        f"{sum(1 for q in asked if q['kind'] == k)}" for k in kinds},
+        "appearance_order": f"{sum(q['right'] for q in ordered)}/{len(ordered)}",
     }
     print(json.dumps({"total": total}))
     if args.json:
