@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -484,9 +485,8 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
 
     std::vector<SeenBox> named;
     for (const auto& thing : things) named.push_back({thing.box, thing.category, 0});
-    // Names doubted: a thing that holds things on its top (a table, not a bed, whose headboard rises over its top)
-    // showing no top, then a name out of place; the doubted are no seats,
-    // tables or luggage to the names by use.
+    // Names doubted: a thing that holds things on its top (a table; not a bed, whose headboard rises over its top)
+    // that shows no top, then a name out of place. A doubted thing is no seat, table or luggage to namedByUse.
     std::vector<std::string> doubts(things.size());
     const std::vector<std::string> misplaced = outOfPlace(named, walls_, options_);
     for (std::size_t t = 0; t < things.size(); ++t) {

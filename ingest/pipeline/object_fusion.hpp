@@ -52,10 +52,10 @@ struct FusionOptions {
     double deskTopMin = 0.65;        // m: its top this high or higher, ...
     double againstWall = 0.2;        // m: a long side this close to a wall's plane, ...
     double chairAtDesk = 0.3;        // m: and one chair, no more, this close is a desk
-    double topCell = 0.05;           // m: a thing that holds things (a table, a bed) shows its top: the points of
-    double topBand = 0.1;            // m: one band of heights this thick cover ...
-    double topCover = 0.1;   // ... this share of its footprint's cells or more (a "desk" framing bar stools: 3 %)
-    bool voteLabels = true;  // a closed-set detector (InstanceMapOptions::voteLabels)
+    double topCell = 0.05;           // m: a thing whose top holds things (a table) shows its top: the points of
+    double topBand = 0.1;            // m: one band of heights this thick, in its box's upper half, cover ...
+    double topCover = 0.1;           // ... this share of its footprint's cells or more (topCoverage)
+    bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
 // A camera of the capture in the aligned frame, to tell which frames held a thing in view.
@@ -145,8 +145,8 @@ public:
     // One frame's views of things (all of that frame's, in the capture's frame), frames in the order taken.
     void addFrame(std::vector<Observation> frameViews);
     // The things the frames so far show: instances merged, pieces joined, grounded, slivers dropped, names
-    // doubted where they show no top or stand out of place, low tables and desks named by their use. The map itself is
-    // left to take more frames.
+    // doubted where they show no top or stand out of place, low tables and desks named by their use. The map
+    // itself is left to take more frames.
     std::vector<FusedThing> things(FusionCounts* counts = nullptr) const;
     const std::vector<Observation>& views() const { return views_; }
     std::vector<Observation> takeViews() { return std::move(views_); }
