@@ -466,11 +466,16 @@ ResultSet Executor::run(const binder::BoundFind& f) {
     rs.rows.reserve(hits.size());
     for (const auto& h : hits) {
         const Node& n = scene().node(h.slot);
-        Row row{static_cast<std::int64_t>(n.id), n.category, sourceValue(n), boxValue(n)};
+        // Made where it stays: a row's values are held in it, so a row moved is a row copied.
+        Row& row = rs.rows.emplace_back();
+        row.reserve(4 + (f.distanceTo ? 1 : 0) + (f.similarTo ? 1 : 0) + (f.path ? 1 : 0));
+        row.emplace_back(static_cast<std::int64_t>(n.id));
+        row.emplace_back(n.category);
+        row.emplace_back(sourceValue(n));
+        row.emplace_back(boxValue(n));
         if (f.distanceTo) row.emplace_back(h.distance);
         if (f.similarTo) row.emplace_back(roundedSimilarity(h.similarity));
         if (f.path) row.emplace_back(scene().path(h.slot));
-        rs.rows.push_back(std::move(row));
     }
     return rs;
 }
@@ -493,7 +498,8 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
     if (f.path) rs.columns.push_back({"path", ValueType::Text});
     rs.rows.reserve(hits.size());
     for (const auto& h : hits) {
-        Row row;
+        Row& row = rs.rows.emplace_back();
+        row.reserve(attributes.size() + (f.path ? 1 : 0));
         for (std::size_t i = 0; i < attributes.size(); ++i) {
             if (attributes[i])
                 row.push_back(catalog::attributeValue(scene(), h.slot, *attributes[i]));
@@ -501,7 +507,6 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
                 row.emplace_back(f.columns[i] == "similarity" ? roundedSimilarity(h.similarity) : h.distance);
         }
         if (f.path) row.emplace_back(scene().path(h.slot));
-        rs.rows.push_back(std::move(row));
     }
     return rs;
 }
