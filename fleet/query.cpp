@@ -82,7 +82,7 @@ ResultSet foundNodes(const pg::Result& r, bool allScenes, bool distance, bool pa
     if (path) out.columns.push_back({"path", ValueType::Text});
     const int shift = allScenes ? 1 : 0;
     for (int i = 0; i < r.rows(); ++i) {
-        std::vector<Value>& row = out.rows.emplace_back();
+        Row& row = out.rows.emplace_back();
         row.emplace_back(r.integer(i, 0));
         row.emplace_back(std::string(r.text(i, 1)));
         if (allScenes) row.emplace_back(std::string(r.text(i, 2)));
@@ -119,7 +119,7 @@ ResultSet returnedColumns(const pg::Result& r, const CompiledQuery& query) {
     for (const auto& [name, type] : query.returned) out.columns.push_back({name, type});
     if (query.path) out.columns.push_back({"path", ValueType::Text});
     for (int i = 0; i < r.rows(); ++i) {
-        std::vector<Value>& row = out.rows.emplace_back();
+        Row& row = out.rows.emplace_back();
         for (int c = 0; c < static_cast<int>(out.columns.size()); ++c) {
             if (r.null(i, c)) {
                 row.emplace_back();

@@ -6,6 +6,8 @@
 #include <variant>
 #include <vector>
 
+#include <boost/container/small_vector.hpp>
+
 #include "model/types.hpp"
 
 namespace smql {
@@ -16,6 +18,10 @@ using Value = std::variant<std::monostate, std::int64_t, double, std::string, mo
 
 ValueType typeOf(const Value& value);
 
+// One row's values. Most rows have five values or fewer, which a small_vector holds in itself: a
+// statement's rows are one block of memory, with no allocation per row.
+using Row = boost::container::small_vector<Value, 5>;
+
 struct Column {
     std::string name;
     ValueType type = ValueType::Text;
@@ -23,7 +29,7 @@ struct Column {
 
 struct ResultSet {
     std::vector<Column> columns;
-    std::vector<std::vector<Value>> rows;
+    std::vector<Row> rows;
     // A sentence for statements that answer in words (RELATE, SET, USE),
     // shown by the shell under the table.
     std::string message;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -92,9 +93,27 @@ constexpr auto kFronted = inShortFirstOrder(std::array<std::string_view, 24>{
 }  // namespace
 
 Affordance affordanceOf(std::string_view category) {
-    if (listed(kHolders, category)) return Affordance::Holder;
-    if (listed(kEnclosures, category)) return Affordance::Enclosure;
-    return Affordance::Surface;
+    // A statement asks again and again of the same few categories (on(table) of every candidate):
+    // the last answer of this thread is kept with its name, which is compared instead of searched.
+    struct Last {
+        std::array<char, 32> name;
+        std::size_t size = SIZE_MAX;  // nothing kept
+        Affordance kind = Affordance::Surface;
+    };
+    thread_local Last last;
+    if (category.size() == last.size && std::equal(category.begin(), category.end(), last.name.begin()))
+        return last.kind;
+    Affordance kind = Affordance::Surface;
+    if (listed(kHolders, category))
+        kind = Affordance::Holder;
+    else if (listed(kEnclosures, category))
+        kind = Affordance::Enclosure;
+    if (category.size() <= last.name.size()) {
+        std::copy(category.begin(), category.end(), last.name.begin());
+        last.size = category.size();
+        last.kind = kind;
+    }
+    return kind;
 }
 
 bool hasFront(std::string_view category) { return listed(kFronted, category); }

@@ -132,13 +132,11 @@ void writeText(const fs::path& path, const std::string& text, const std::string&
 }
 
 std::vector<RouteStep> stepsOf(const ResultSet& rs) {
-    auto text = [&](const std::vector<Value>& row, const char* column) {
+    auto text = [&](const Row& row, const char* column) {
         const auto* s = std::get_if<std::string>(&row[rs.columnIndex(column)]);
         return s ? *s : std::string();
     };
-    auto real = [&](const std::vector<Value>& row, const char* column) {
-        return std::get<double>(row[rs.columnIndex(column)]);
-    };
+    auto real = [&](const Row& row, const char* column) { return std::get<double>(row[rs.columnIndex(column)]); };
     std::vector<RouteStep> steps;
     for (const auto& row : rs.rows) {
         RouteStep s;

@@ -453,11 +453,52 @@ std::vector<NodeId> ReadTransaction::nodesWithCategory(std::string_view category
     return out;
 }
 
+namespace {
+
+std::vector<CategoryRow> categoryRowsOf(const ReadTransaction& read, const ReadTransaction::Impl& state,
+                                        const std::vector<std::string>& keys, std::size_t limit);
+
+}  // namespace
+
 std::vector<CategoryRow> ReadTransaction::categoryRows(std::string_view category, std::size_t limit) const {
+    return categoryRowsOf(*this, live(), labelKeys(category), limit);
+}
+
+void ReadTransaction::forEachCategoryRow(const std::vector<std::string>& keys, std::size_t limit,
+                                         const std::function<void(const CategoryRow&)>& visit) const {
     const Impl& state = live();
     const Environment& env = *state.env;
+    if (limit == 0) return;
+    if (keys.size() == 1 && !keys.front().empty() && keys.front().size() <= env.maxKeySize()) {
+        // One key (no name stored before names were canonical): its entries in order, as read.
+        const std::string& name = keys.front();
+        TableCursor cursor(state, Table::Labels);
+        MDB_val key = toVal(name), value;
+        int rc = cursor.get(key, value, MDB_SET_KEY);
+        if (rc == MDB_NOTFOUND) return;
+        env.check(rc, "reading the label index");
+        const std::size_t size = labelEntrySize(name, value);
+        if (size == codec::kLabelEntrySize) {
+            const std::size_t count = duplicateCount(env, cursor.cursor());
+            const std::uint32_t keyCrc = crc32c(name);
+            std::size_t seen = 0;
+            forEachDuplicate(env, cursor.cursor(), value, count, size, [&](std::string_view entry) {
+                visit(decodeInScene(env, state.txn, codec::labelEntryScene(entry),
+                                    [&] { return codec::decodeLabelEntry(name, keyCrc, entry); }));
+                return ++seen < limit;
+            });
+            return;
+        }
+    }
+    for (const CategoryRow& row : categoryRowsOf(*this, state, keys, limit)) visit(row);
+}
+
+namespace {
+
+std::vector<CategoryRow> categoryRowsOf(const ReadTransaction& read, const ReadTransaction::Impl& state,
+                                        const std::vector<std::string>& keys, std::size_t limit) {
+    const Environment& env = *state.env;
     std::vector<CategoryRow> out;
-    auto keys = labelKeys(category);
     for (const auto& name : keys) {
         if (name.empty() || name.size() > env.maxKeySize() || limit == 0) continue;
         TableCursor cursor(state, Table::Labels);
@@ -488,13 +529,15 @@ std::vector<CategoryRow> ReadTransaction::categoryRows(std::string_view category
     Node node;
     for (CategoryRow& row : out) {
         if (row.scene != model::kNoNode) continue;
-        if (!readNode(row.id, node))
+        if (!read.readNode(row.id, node))
             throw Error(ErrorKind::Storage, fmt::format("the label index names node #{}, which is not stored", row.id),
                         std::nullopt, "the database file is damaged; smql check names what is damaged");
         row = {node.id, node.scene, node.sourceId, node.geometry, node.box};
     }
     return out;
 }
+
+}  // namespace
 
 std::vector<CategoryRow> ReadTransaction::categoryRowsInScene(std::string_view categoryKey, NodeId sceneId) const {
     std::vector<CategoryRow> out;
@@ -539,10 +582,14 @@ std::vector<NodeId> ReadTransaction::nodesNamed(std::string_view category, std::
 }
 
 std::uint64_t ReadTransaction::countWithCategory(std::string_view category) const {
+    return countWithKeys(labelKeys(category));
+}
+
+std::uint64_t ReadTransaction::countWithKeys(const std::vector<std::string>& keys) const {
     const Impl& state = live();
     const Environment& env = *state.env;
     std::uint64_t count = 0;
-    for (const auto& name : labelKeys(category)) {
+    for (const auto& name : keys) {
         if (name.empty() || name.size() > env.maxKeySize()) continue;
         TableCursor cursor(state, Table::Labels);
         MDB_val key = toVal(name), value;

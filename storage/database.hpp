@@ -145,10 +145,16 @@ public:
     // read-only, whose entries hold the ids alone, is answered from the records. With `sceneId`, the
     // rows of that scene under this exact category key.
     std::vector<CategoryRow> categoryRows(std::string_view category, std::size_t limit = SIZE_MAX) const;
+    // categoryRows by label keys already worked out (labelKeys: the name is folded once per
+    // statement), each row handed to `visit` as it is read, in id order, with no list in between.
+    void forEachCategoryRow(const std::vector<std::string>& keys, std::size_t limit,
+                            const std::function<void(const CategoryRow&)>& visit) const;
     std::vector<CategoryRow> categoryRowsInScene(std::string_view categoryKey, model::NodeId sceneId) const;
     // How many nodes of every scene have this category, by any of its spellings (labelKeys): one
     // index lookup a key, no scan.
     std::uint64_t countWithCategory(std::string_view category) const;
+    // The same by label keys already worked out (labelKeys).
+    std::uint64_t countWithKeys(const std::vector<std::string>& keys) const;
     // Every distinct category with its node count, across all scenes, by name (byte order).
     std::vector<std::pair<std::string, std::uint64_t>> categories() const;
     std::optional<model::NodeId> nodeBySourceId(model::NodeId sceneId, std::int64_t sourceId) const;

@@ -295,11 +295,11 @@ std::string superlative(const Translation& t, const ResultSet& rs) {
 std::string direction(const Translation& t, const ResultSet& rs) {
     int id = rs.columnIndex("id"), category = rs.columnIndex("category"), box = rs.columnIndex("box");
     const std::array<std::string_view, 3> roleNames{"thing you stand by", "thing you face", "thing asked about"};
-    std::array<const std::vector<Value>*, 3> pickedRows{};
+    std::array<const Row*, 3> pickedRows{};
     std::string notes;
     for (std::size_t role = 0; role < 3 && role < t.roles.size(); ++role) {
         if (role == 1 && t.roles[1].empty()) continue;  // facing the middle of the scene
-        std::vector<const std::vector<Value>*> found;
+        std::vector<const Row*> found;
         // Only things with a box have a place to stand by or face.
         for (const auto& row : rs.rows)
             if (std::holds_alternative<model::Box>(row[box]) &&
@@ -308,15 +308,14 @@ std::string direction(const Translation& t, const ResultSet& rs) {
         if (found.empty()) return fmt::format("There is no {} here.", roleNames[role]);
         // The thing asked about is another than the one stood by or faced ("the other chair").
         if (role == 2)
-            std::stable_partition(found.begin(), found.end(), [&](const std::vector<Value>* row) {
-                return row != pickedRows[0] && row != pickedRows[1];
-            });
+            std::stable_partition(found.begin(), found.end(),
+                                  [&](const Row* row) { return row != pickedRows[0] && row != pickedRows[1]; });
         pickedRows[role] = found.front();
         if (found.size() > 1)
             notes += fmt::format(" There are {} of the {}; this takes {}#{}.", found.size(), roleNames[role],
                                  text((*found.front())[category]), text((*found.front())[id]));
     }
-    auto centre = [&](const std::vector<Value>* row) { return std::get<model::Box>((*row)[box]).center; };
+    auto centre = [&](const Row* row) { return std::get<model::Box>((*row)[box]).center; };
     model::Vec3 at = centre(pickedRows[0]), asked = centre(pickedRows[2]), facing{};
     if (pickedRows[1]) {
         facing = centre(pickedRows[1]);
@@ -348,7 +347,7 @@ std::string direction(const Translation& t, const ResultSet& rs) {
         word = "front";
     else
         word = side;
-    auto label = [&](const std::vector<Value>* row) { return text((*row)[category]) + "#" + text((*row)[id]); };
+    auto label = [&](const Row* row) { return text((*row)[category]) + "#" + text((*row)[id]); };
     if (t.turn != 0 || !pickedRows[1])
         return fmt::format("The {} is to your {} ({} is {:.0f} degrees to the {} of your heading, {}).{}", t.subject,
                            word, label(pickedRows[2]), std::abs(angle), side, t.object, notes);
@@ -657,7 +656,7 @@ ResultSet answeredRows(const Translation& translation, ResultSet rows) {
             for (auto& value : row)
                 if (std::holds_alternative<std::int64_t>(value)) value = std::int64_t{0};
     if (translation.kind != QuestionKind::Reverse) return rows;
-    std::vector<std::vector<Value>> kept;
+    std::vector<Row> kept;
     for (std::size_t i : reverseRows(translation, rows)) kept.push_back(std::move(rows.rows[i]));
     rows.rows = std::move(kept);
     return rows;

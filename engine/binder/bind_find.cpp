@@ -106,19 +106,24 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
     if (view)
         throw Error(ErrorKind::Binding, "across all scenes, FIND and COUNT take no VIEW", view->where,
                     "a viewpoint belongs to one scene: USE SCENE 'name'");
-    const std::uint64_t count = ctx_.txn.countWithCategory(target.name);
+    std::vector<std::string> keys = ctx_.txn.labelKeys(target.name);
+    const std::uint64_t count = ctx_.txn.countWithKeys(keys);
     if (count == 0) {
         std::vector<std::string> names;
         for (const auto& [name, count] : ctx_.txn.categories()) names.push_back(model::categoryName(name));
         if (auto noun = ask::absentThing(target.name, ask::Lexicon(names).lookUp(target.name))) {
             notes_.push_back(fmt::format("no {} in any scene", *noun));
-            return BoundCatalogFind{*noun, limit, countOnly, ctx_.txn.countWithCategory(*noun)};
+            keys = ctx_.txn.labelKeys(*noun);
+            const std::uint64_t nounCount = ctx_.txn.countWithKeys(keys);
+            return BoundCatalogFind{*noun, std::move(keys), limit, countOnly, nounCount};
         }
         auto close = model::nearestNames(target.name, names);
         throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in any scene", target.name), target.where,
                     close.empty() ? "" : "did you mean " + model::joinAlternatives(close) + "?");
     }
-    return BoundCatalogFind{model::categoryName(target.name), limit, countOnly, count};
+    // labelKeys' first key is the canonical name (model::categoryName).
+    std::string category = keys.front();
+    return BoundCatalogFind{std::move(category), std::move(keys), limit, countOnly, count};
 }
 
 void Binder::bindStatement(const ast::FindStmt& find, BoundStatement& out) {

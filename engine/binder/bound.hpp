@@ -116,6 +116,8 @@ struct BoundFind {
 // FIND / COUNT of a category under USE SCENE '*': every scene, through the label index.
 struct BoundCatalogFind {
     std::string category;
+    // The label keys that name it (storage's labelKeys), worked out once for binder and executor.
+    std::vector<std::string> keys;
     std::optional<std::int64_t> limit;
     bool countOnly = false;
     // The label index's count of the category, read by the binder in the statement's read

@@ -466,11 +466,16 @@ ResultSet Executor::run(const binder::BoundFind& f) {
     rs.rows.reserve(hits.size());
     for (const auto& h : hits) {
         const Node& n = scene().node(h.slot);
-        std::vector<Value> row{static_cast<std::int64_t>(n.id), n.category, sourceValue(n), boxValue(n)};
+        // Made where it stays: a row's values are held in it, so a row moved is a row copied.
+        Row& row = rs.rows.emplace_back();
+        row.reserve(4 + (f.distanceTo ? 1 : 0) + (f.similarTo ? 1 : 0) + (f.path ? 1 : 0));
+        row.emplace_back(static_cast<std::int64_t>(n.id));
+        row.emplace_back(n.category);
+        row.emplace_back(sourceValue(n));
+        row.emplace_back(boxValue(n));
         if (f.distanceTo) row.emplace_back(h.distance);
         if (f.similarTo) row.emplace_back(roundedSimilarity(h.similarity));
         if (f.path) row.emplace_back(scene().path(h.slot));
-        rs.rows.push_back(std::move(row));
     }
     return rs;
 }
@@ -493,7 +498,8 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
     if (f.path) rs.columns.push_back({"path", ValueType::Text});
     rs.rows.reserve(hits.size());
     for (const auto& h : hits) {
-        std::vector<Value> row;
+        Row& row = rs.rows.emplace_back();
+        row.reserve(attributes.size() + (f.path ? 1 : 0));
         for (std::size_t i = 0; i < attributes.size(); ++i) {
             if (attributes[i])
                 row.push_back(catalog::attributeValue(scene(), h.slot, *attributes[i]));
@@ -501,7 +507,6 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
                 row.emplace_back(f.columns[i] == "similarity" ? roundedSimilarity(h.similarity) : h.distance);
         }
         if (f.path) row.emplace_back(scene().path(h.slot));
-        rs.rows.push_back(std::move(row));
     }
     return rs;
 }
@@ -517,16 +522,15 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
     std::size_t limit = f.limit ? static_cast<std::size_t>(std::max<std::int64_t>(*f.limit, 0)) : SIZE_MAX;
     // One row past the session's limit is enough to know it is exceeded.
     limit = std::min(limit, static_cast<std::size_t>(session_.limits.maxRows) + 1);
-    // The label index's entries carry every column: no node record is read.
-    const auto found = limit == 0 ? std::vector<storage::CategoryRow>{} : txn_.categoryRows(f.category, limit);
-    checkRows(found.size());
     rs.columns = {{"id", ValueType::Integer},
                   {"category", ValueType::Text},
                   {"scene", ValueType::Integer},
                   {"source_id", ValueType::Integer},
                   {"box", ValueType::Box}};
-    rs.rows.reserve(found.size());
-    for (const storage::CategoryRow& node : found) {
+    rs.rows.reserve(std::min<std::uint64_t>(limit, f.count));
+    // The label index's entries carry every column: no node record is read, and each entry
+    // becomes its row as it is read.
+    txn_.forEachCategoryRow(f.keys, limit, [&](const storage::CategoryRow& node) {
         auto& row = rs.rows.emplace_back();
         row.reserve(5);
         row.emplace_back(static_cast<std::int64_t>(node.id));
@@ -540,7 +544,8 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
             row.emplace_back(std::monostate{});
         else
             row.emplace_back(node.box);
-    }
+    });
+    checkRows(rs.rows.size());
     return rs;
 }
 

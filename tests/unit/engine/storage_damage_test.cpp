@@ -17,7 +17,7 @@ TEST_CASE("a query over a record with a flipped byte reports the corrupt record 
     TempDir dir;
     const std::string path = dir.path.string();
     model::Node victim;
-    std::vector<std::vector<Value>> objectCount;
+    std::vector<Row> objectCount;
     {
         auto engine = Engine::open(path);
         engine->importScene(import::readReplica(replicaRoom0(), "room0"));

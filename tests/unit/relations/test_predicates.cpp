@@ -448,3 +448,29 @@ TEST_CASE("parents: never a cycle with a parent the scene came with") {
     CHECK(scene.nodes[2].parent != 2);
     CHECK(scene.nodes[2].parent == 1);  // the nearest wall instead
 }
+
+TEST_CASE("a category's affordance is the same however often and in whatever order it is asked",
+          "[relations][affordance]") {
+    using smql::relations::Affordance;
+    using smql::relations::affordanceOf;
+    const std::string longName(40, 'x');
+    const std::vector<std::pair<std::string, Affordance>> cases{{"table", Affordance::Surface},
+                                                                {"bowl", Affordance::Holder},
+                                                                {"bowl", Affordance::Holder},
+                                                                {"cabinet", Affordance::Enclosure},
+                                                                {"table", Affordance::Surface},
+                                                                {"trash can", Affordance::Holder},
+                                                                {"trash_can", Affordance::Holder},
+                                                                {longName, Affordance::Surface},
+                                                                {"bowl", Affordance::Holder},
+                                                                {"bowls", Affordance::Surface},
+                                                                {"bow", Affordance::Surface},
+                                                                {"", Affordance::Surface},
+                                                                {"kitchen-cabinet", Affordance::Enclosure},
+                                                                {"table", Affordance::Surface}};
+    for (int round = 0; round < 2; ++round)
+        for (const auto& [category, kind] : cases) {
+            CAPTURE(category);
+            CHECK(affordanceOf(category) == kind);
+        }
+}

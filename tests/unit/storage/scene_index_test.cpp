@@ -251,6 +251,14 @@ void requireRowsOfRecords(const ReadTransaction& txn) {
         REQUIRE(first == std::vector<CategoryRow>(expected.begin(),
                                                   expected.begin() + static_cast<std::ptrdiff_t>(
                                                                          std::min<std::size_t>(7, expected.size()))));
+        // Row by row as read, by the keys worked out once: the same rows, in the same order.
+        for (const std::size_t limit : {std::size_t{0}, std::size_t{1}, std::size_t{7}, SIZE_MAX}) {
+            std::vector<CategoryRow> visited;
+            txn.forEachCategoryRow(txn.labelKeys(category), limit,
+                                   [&](const CategoryRow& row) { visited.push_back(row); });
+            REQUIRE(visited == txn.categoryRows(category, limit));
+        }
+        REQUIRE(txn.countWithKeys(txn.labelKeys(category)) == expected.size());
     }
 }
 
