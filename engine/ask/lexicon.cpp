@@ -135,6 +135,52 @@ const std::set<long>& Lexicon::ancestors(const std::string& category) const {
     return ancestors_.emplace(category, std::move(all)).first->second;
 }
 
+// A noun WordNet knows whose base forms name no category here: a category in one of its synsets, every category
+// below one of its senses, a compound category ending in it, or the category its first sense is a kind of (docs/ask.md,
+// "Words", 3-5).
+WordMatch Lexicon::fromNounSenses(const std::vector<std::string>& bases, WordMatch match) const {
+    match.lemma = bases.front();
+    // Synonyms: a category in one of the word's synsets ("couch" and sofa share one).
+    std::vector<wordnet::Sense> senses;
+    for (const auto& base : bases)
+        for (auto& sense : wordnet::nounSenses(base)) senses.push_back(std::move(sense));
+    for (const auto& sense : senses)
+        for (const auto& w : sense.words)
+            if (const std::string name = model::categoryName(w); contains(categories_, name))
+                addUnique(match.categories, name);
+    if (!match.categories.empty()) {
+        match.how = WordMatch::How::Synonym;
+        return match;
+    }
+    // A more general word: every category with one of the word's senses above it.
+    for (const auto& category : categories_) {
+        const auto& above = ancestors(category);
+        for (const auto& sense : senses)
+            if (sense.common && above.count(sense.offset)) {
+                addUnique(match.categories, category);
+                break;
+            }
+    }
+    // A compound category whose last part is the word ("plant" -> indoor-plant): WordNet knows
+    // few of the hyphenated names imports use.
+    if (match.categories.empty())
+        for (const auto& category : categories_)
+            for (const auto& base : bases)
+                if (category.ends_with("-" + base)) addUnique(match.categories, category);
+    if (!match.categories.empty()) {
+        match.how = WordMatch::How::Kind;
+        return match;
+    }
+    // A narrower word for a category ("pillow" -> cushion): the category is the word's first
+    // sense's direct hypernym.
+    if (!senses.empty())
+        for (const auto& parent : wordnet::hypernyms(senses.front().offset))
+            for (const auto& w : parent.words)
+                if (contains(categories_, w)) addUnique(match.categories, w);
+    match.how = match.categories.empty() ? WordMatch::How::Absent : WordMatch::How::Broader;
+    return match;
+}
+
 WordMatch Lexicon::lookUp(const std::string& words) const {
     const std::string word = hyphenated(words);
     WordMatch match;
@@ -181,48 +227,7 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
             return match;
         }
     }
-    if (!bases.empty()) {
-        match.lemma = bases.front();
-        // Synonyms: a category in one of the word's synsets ("couch" and sofa share one).
-        std::vector<wordnet::Sense> senses;
-        for (const auto& base : bases)
-            for (auto& sense : wordnet::nounSenses(base)) senses.push_back(std::move(sense));
-        for (const auto& sense : senses)
-            for (const auto& w : sense.words)
-                if (const std::string name = model::categoryName(w); contains(categories_, name))
-                    addUnique(match.categories, name);
-        if (!match.categories.empty()) {
-            match.how = WordMatch::How::Synonym;
-            return match;
-        }
-        // A more general word: every category with one of the word's senses above it.
-        for (const auto& category : categories_) {
-            const auto& above = ancestors(category);
-            for (const auto& sense : senses)
-                if (sense.common && above.count(sense.offset)) {
-                    addUnique(match.categories, category);
-                    break;
-                }
-        }
-        // A compound category whose last part is the word ("plant" -> indoor-plant): WordNet knows
-        // few of the hyphenated names imports use.
-        if (match.categories.empty())
-            for (const auto& category : categories_)
-                for (const auto& base : bases)
-                    if (category.ends_with("-" + base)) addUnique(match.categories, category);
-        if (!match.categories.empty()) {
-            match.how = WordMatch::How::Kind;
-            return match;
-        }
-        // A narrower word for a category ("pillow" -> cushion): the category is the word's first
-        // sense's direct hypernym.
-        if (!senses.empty())
-            for (const auto& parent : wordnet::hypernyms(senses.front().offset))
-                for (const auto& w : parent.words)
-                    if (contains(categories_, w)) addUnique(match.categories, w);
-        match.how = match.categories.empty() ? WordMatch::How::Absent : WordMatch::How::Broader;
-        return match;
-    }
+    if (!bases.empty()) return fromNounSenses(bases, std::move(match));
     // One word for a name WordNet writes as two ("trashcan", "trashcans": trash can).
     if (word.find('-') == std::string::npos)
         for (std::size_t cut = 3; cut + 3 <= word.size(); ++cut) {

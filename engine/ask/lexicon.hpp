@@ -38,6 +38,7 @@ public:
 private:
     // The synsets above each sense of a category (its first senses: the ones people mean).
     const std::set<long>& ancestors(const std::string& category) const;
+    WordMatch fromNounSenses(const std::vector<std::string>& bases, WordMatch match) const;
 
     std::vector<std::string> categories_;
     mutable std::map<std::string, std::set<long>> ancestors_;

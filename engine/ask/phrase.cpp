@@ -458,6 +458,43 @@ bool PhraseParser::describing(const Words& w, std::size_t& i, std::vector<std::s
     return false;
 }
 
+PhraseParser::Quantifier PhraseParser::quantifierAt(const Words& w, std::size_t& i, Phrase& p,
+                                                    std::optional<bool>& pendingDistance, std::string& pendingWord) {
+    const std::string& word = w[i];
+    if (auto n = cardinalOf(word); n && *n > 1) {
+        p.top = *n;
+        return Quantifier::Read;
+    }
+    // "one door of the wardrobe": "one" before a noun is an article.
+    if (word == "one" && i + 1 < w.size() && !endsPhrase(w[i + 1]) && !predicateAt(w, i + 1) &&
+        !isDeterminer(w[i + 1]) && !exclusionAt(w, i + 1) && w[i + 1] != "not")
+        return Quantifier::Read;
+    if (auto k = ordinalOf(word)) {
+        p.pick = *k;
+        return Quantifier::Read;
+    }
+    if (const auto* s = superlativeOf(word)) {
+        p.order = Order{std::string(s->measure), s->descending, {}, std::string(s->word)};
+        p.pick = std::max<std::size_t>(p.pick, 1);
+        return Quantifier::Read;
+    }
+    if (auto far = distanceOrderWord(word); far && i + 1 < w.size() && !isOneOf(w[i + 1], {"to", "from"})) {
+        pendingDistance = *far;
+        pendingWord = word;
+        p.pick = std::max<std::size_t>(p.pick, 1);
+        return Quantifier::Read;
+    }
+    // "the second closest to the door": a thing, by its distance to the door.
+    if (auto far = distanceOrderWord(word); far && p.pick > 0 && i + 2 < w.size()) {
+        std::size_t k = i + 2;
+        Phrase to = phrase(w, k, false);
+        p.order = Order{"distance", *far, {std::move(to)}, joined(w, i, k)};
+        i = k;
+        return Quantifier::EndsPhrase;
+    }
+    return Quantifier::None;
+}
+
 Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     Phrase p;
     std::size_t start = i;
@@ -476,37 +513,9 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
     for (; i < w.size(); ++i) {
         const std::string& word = w[i];
         if (nounWords.empty()) {
-            if (auto n = cardinalOf(word); n && *n > 1) {
-                p.top = *n;
-                continue;
-            }
-            // "one door of the wardrobe": "one" before a noun is an article.
-            if (word == "one" && i + 1 < w.size() && !endsPhrase(w[i + 1]) && !predicateAt(w, i + 1) &&
-                !isDeterminer(w[i + 1]) && !exclusionAt(w, i + 1) && w[i + 1] != "not")
-                continue;
-            if (auto k = ordinalOf(word)) {
-                p.pick = *k;
-                continue;
-            }
-            if (const auto* s = superlativeOf(word)) {
-                p.order = Order{std::string(s->measure), s->descending, {}, std::string(s->word)};
-                p.pick = std::max<std::size_t>(p.pick, 1);
-                continue;
-            }
-            if (auto far = distanceOrderWord(word); far && i + 1 < w.size() && !isOneOf(w[i + 1], {"to", "from"})) {
-                pendingDistance = *far;
-                pendingWord = word;
-                p.pick = std::max<std::size_t>(p.pick, 1);
-                continue;
-            }
-            // "the second closest to the door": a thing, by its distance to the door.
-            if (auto far = distanceOrderWord(word); far && p.pick > 0 && i + 2 < w.size()) {
-                std::size_t k = i + 2;
-                Phrase to = phrase(w, k, false);
-                p.order = Order{"distance", *far, {std::move(to)}, joined(w, i, k)};
-                i = k;
-                break;
-            }
+            const Quantifier q = quantifierAt(w, i, p, pendingDistance, pendingWord);
+            if (q == Quantifier::Read) continue;
+            if (q == Quantifier::EndsPhrase) break;
         }
         if (predicateAt(w, i) && !(isSideWord(word) && nounWords.empty() && i + 1 < w.size() && w[i + 1] != "of"))
             break;
@@ -592,35 +601,37 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         else
             p.side = side;
     }
-    if (pendingDistance) {
-        // "the nearest lamp to the sofa", "the farthest chair from the door"
-        if (i < w.size() && isOneOf(w[i], {"to", "from"})) {
-            std::size_t toAt = i++;
-            Phrase to = phrase(w, i, false);
-            p.order = Order{"distance", *pendingDistance, {std::move(to)}, pendingWord + " " + joined(w, toAt, i)};
-        } else {
-            throw Error(ErrorKind::Binding, fmt::format("'{}' needs a thing to measure from", joined(w, wordsStart, i)),
-                        std::nullopt, "ask as in: which lamp is nearest to the sofa?");
-        }
-    }
+    if (pendingDistance) orderByDistanceFrom(w, i, p, *pendingDistance, pendingWord, wordsStart);
     if (withPosts) posts(w, i, p);
-    if (p.pick > 0 && !p.order) {
-        // "the first cabinet from the door": the nearest to it; "the first cabinet on the right" after
-        // a situation: the nearest to the person.
-        if (i + 1 < w.size() && w[i] == "from") {
-            std::size_t k = i + 1;
-            Phrase to = phrase(w, k, false);
-            const std::string said = "closest to the " + to.words;
-            p.order = Order{"distance", false, {std::move(to)}, said};
-            i = k;
-        } else if (self_) {
-            Phrase to = self_->at;
-            to.self = true;
-            p.order = Order{"distance", false, {std::move(to)}, "closest to you"};
-        }
-    }
+    if (p.pick > 0 && !p.order) orderByNearness(w, i, p);
     p.words = joined(w, wordsStart, i);
     return p;
+}
+
+void PhraseParser::orderByDistanceFrom(const Words& w, std::size_t& i, Phrase& p, bool farthest,
+                                       const std::string& word, std::size_t wordsStart) {
+    if (i < w.size() && isOneOf(w[i], {"to", "from"})) {
+        std::size_t toAt = i++;
+        Phrase to = phrase(w, i, false);
+        p.order = Order{"distance", farthest, {std::move(to)}, word + " " + joined(w, toAt, i)};
+        return;
+    }
+    throw Error(ErrorKind::Binding, fmt::format("'{}' needs a thing to measure from", joined(w, wordsStart, i)),
+                std::nullopt, "ask as in: which lamp is nearest to the sofa?");
+}
+
+void PhraseParser::orderByNearness(const Words& w, std::size_t& i, Phrase& p) {
+    if (i + 1 < w.size() && w[i] == "from") {
+        std::size_t k = i + 1;
+        Phrase to = phrase(w, k, false);
+        const std::string said = "closest to the " + to.words;
+        p.order = Order{"distance", false, {std::move(to)}, said};
+        i = k;
+    } else if (self_) {
+        Phrase to = self_->at;
+        to.self = true;
+        p.order = Order{"distance", false, {std::move(to)}, "closest to you"};
+    }
 }
 
 namespace {
@@ -651,6 +662,119 @@ bool PhraseParser::sideAfterVerb(const Words& w, std::size_t at, std::size_t& i,
     return true;
 }
 
+// A verb of place before a predicate says no more than it: "sits on the desk", "hanged on the door", "pushed up
+// against the wall", "pushed closest to the wall". Where the predicate begins, else `at`.
+std::size_t PhraseParser::pastVerbOfPlace(const Words& w, std::size_t at) {
+    if (at >= w.size() || !isVerbOfPlace(w[at]) || predicateAt(w, at)) return at;
+    std::size_t k = at + 1;
+    while (k < w.size() && isOneOf(w[k], {"up", "down", "out", "around", "together", "directly", "right"}) &&
+           !predicateAt(w, k))
+        ++k;
+    return k < w.size() && (predicateAt(w, k) || distanceOrderWord(w[k])) ? k : at;
+}
+
+bool PhraseParser::amongThem(const Words& w, std::size_t at, std::size_t& i, Phrase& p) {
+    if (!(at + 2 < w.size() && w[at] == "out" && w[at + 1] == "of" && (!p.categories.empty() || p.kind))) return false;
+    std::size_t k = at + 2;
+    ++nested_;
+    Phrase among = phrase(w, k, false);
+    --nested_;
+    if (p.kind == std::optional<std::string>("object") && p.categories.empty() && !among.kind) {
+        // "the second closest to the door out of the trash cans": one of them.
+        p.kind.reset();
+        p.categories = among.categories;
+        p.noun = among.noun;
+        i = k;
+        return true;
+    }
+    if (!p.categories.empty() && among.categories == p.categories) {
+        k = std::min(k + (k < w.size() && w[k] == "present" ? 1 : 0), w.size());
+        out_.notes.push_back(
+            fmt::format("'{}' says no more than '{}'", joined(w, at, k), p.words.empty() ? p.noun : p.words));
+        i = k;
+        return true;
+    }
+    return false;
+}
+
+bool PhraseParser::onSameWallAs(const Words& w, std::size_t at, std::size_t& i, Phrase& p) {
+    if (!(at + 5 < w.size() && isOneOf(w[at], {"on", "against", "along", "by"}) && w[at + 1] == "the" &&
+          w[at + 2] == "same" && w[at + 3] == "wall" && w[at + 4] == "as"))
+        return false;
+    std::size_t k = at + 5;
+    ++nested_;
+    Phrase as = phrase(w, k, false);
+    --nested_;
+    Phrase wall;
+    resolveNoun(wall, {"wall"});
+    wall.order = Order{"distance", false, {as}, "closest to the " + as.words};
+    wall.pick = 1;
+    Condition c;
+    c.predicate = "near";
+    c.args.push_back(std::move(wall));
+    c.words = joined(w, at, k);
+    p.conditions.push_back(std::move(c));
+    if (!p.categories.empty() || p.kind) p.excluded.push_back(std::move(as));
+    i = k;
+    return true;
+}
+
+bool PhraseParser::sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p) {
+    if (!((p.kind || p.categories.size() != 1) && p.id.empty())) return false;
+    std::size_t k = at;
+    const std::string side = sideAfter(w, k);
+    if (side.empty() || k >= w.size() || !predicateAt(w, k)) return false;
+    out_.notes.push_back(fmt::format("'{}' is left out: sides are of one category (the left wall)", joined(w, at, k)));
+    i = k;
+    return true;
+}
+
+// The room or a place in it after a predicate at w[at]: "in the room", "in here", "in the office" (when the office is
+// this scene) are the whole scene; a corner, the middle or a part of the room, which the memory keeps none of, is
+// left out with a note. True when it read them (i past them).
+bool PhraseParser::roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t& i,
+                                    const std::pair<std::string, std::size_t>& pred) {
+    // "in the room": the whole scene.
+    std::size_t after = at + pred.second;
+    while (after < w.size() && isDeterminer(w[after])) ++after;
+    // "in the corner of the room" is in the room; "on the far end of the room", "at the back of
+    // the room" too: the memory keeps no parts of a room.
+    std::size_t part = after;
+    while (part < w.size() && (isPartPlaceWord(w[part]) || isPartWord(w[part]))) ++part;
+    const bool ofPart = part > after && part + 1 < w.size() && isPartWord(w[part - 1]) && w[part] == "of";
+    if (ofPart) {
+        after = part + 1;
+        while (after < w.size() && isDeterminer(w[after])) ++after;
+    }
+    // "the rug in the corner", "the door in the right corner", "the counter in the middle": a corner
+    // or the middle of the room, which the memory keeps none of (as "in the corner of the room").
+    if (part > after && isOneOf(w[part - 1], {"corner", "corners", "middle", "center", "centre"}) &&
+        (part == w.size() || w[part] != "of") && isOneOf(pred.first, {"in", "at", "on", "near"}) &&
+        !std::any_of(lexicon_.categories().begin(), lexicon_.categories().end(),
+                     [&](const std::string& c) { return c == w[part - 1]; })) {
+        out_.notes.push_back(
+            fmt::format("'{}' is left out: the memory keeps no corners or middle of the room", joined(w, at, part)));
+        i = part;
+        return true;
+    }
+    if ((pred.first == "in" || (ofPart && isOneOf(pred.first, {"on", "near"}))) && after < w.size()) {
+        // "in here", "in the room", "in the office" (when the office is this scene), "in a
+        // cluttered room" (a look the memory keeps nothing of).
+        std::size_t placeAt = after;
+        while (placeAt < w.size() && (isIgnoredAdjective(w[placeAt]) || wordnet::isAdjectiveOnly(w[placeAt])))
+            ++placeAt;
+        std::size_t place = scenePlaceAt(w, placeAt);
+        if (place > 0 && (ofPart || placeAt + place == w.size() || !predicateAt(w, placeAt + place))) {
+            if (placeAt > after)
+                out_.notes.push_back(
+                    fmt::format("'{}' is left out: the memory keeps no such attribute", joined(w, after, placeAt)));
+            i = placeAt + place;
+            return true;
+        }
+    }
+    return false;
+}
+
 void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
     while (i < w.size()) {
         std::size_t at = i;
@@ -667,14 +791,7 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
                                "hung", "found", "situated", "the", "right", "directly", "just", "immediately"}) &&
                !predicateAt(w, at))
             ++at;
-        // A verb of place before a predicate says no more than it: "sits on the desk", "hanged on
-        // the door", "pushed up against the wall", "pushed closest to the wall".
-        if (std::size_t k = at + 1; at < w.size() && isVerbOfPlace(w[at]) && !predicateAt(w, at)) {
-            while (k < w.size() && isOneOf(w[k], {"up", "down", "out", "around", "together", "directly", "right"}) &&
-                   !predicateAt(w, k))
-                ++k;
-            if (k < w.size() && (predicateAt(w, k) || distanceOrderWord(w[k]))) at = k;
-        }
+        at = pastVerbOfPlace(w, at);
         // besides the cushions / other than the lamps
         if (std::size_t n = exclusionAt(w, at); n && nested_ == 0) {
             i = at + n;
@@ -712,102 +829,15 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             at = k;
         }
         if (sideAfterVerb(w, at, i, p)) continue;
-        // "the black chair out of the three chairs": one of them, which the phrase names already.
-        if (at + 2 < w.size() && w[at] == "out" && w[at + 1] == "of" && (!p.categories.empty() || p.kind)) {
-            std::size_t k = at + 2;
-            ++nested_;
-            Phrase among = phrase(w, k, false);
-            --nested_;
-            if (p.kind == std::optional<std::string>("object") && p.categories.empty() && !among.kind) {
-                // "the second closest to the door out of the trash cans": one of them.
-                p.kind.reset();
-                p.categories = among.categories;
-                p.noun = among.noun;
-                i = k;
-                continue;
-            }
-            if (!p.categories.empty() && among.categories == p.categories) {
-                k = std::min(k + (k < w.size() && w[k] == "present" ? 1 : 0), w.size());
-                out_.notes.push_back(
-                    fmt::format("'{}' says no more than '{}'", joined(w, at, k), p.words.empty() ? p.noun : p.words));
-                i = k;
-                continue;
-            }
-        }
-        // "on the same wall as the bed": by the wall nearest the bed, the bed left out.
-        if (at + 5 < w.size() && isOneOf(w[at], {"on", "against", "along", "by"}) && w[at + 1] == "the" &&
-            w[at + 2] == "same" && w[at + 3] == "wall" && w[at + 4] == "as") {
-            std::size_t k = at + 5;
-            ++nested_;
-            Phrase as = phrase(w, k, false);
-            --nested_;
-            Phrase wall;
-            resolveNoun(wall, {"wall"});
-            wall.order = Order{"distance", false, {as}, "closest to the " + as.words};
-            wall.pick = 1;
-            Condition c;
-            c.predicate = "near";
-            c.args.push_back(std::move(wall));
-            c.words = joined(w, at, k);
-            p.conditions.push_back(std::move(c));
-            if (!p.categories.empty() || p.kind) p.excluded.push_back(std::move(as));
-            i = k;
-            continue;
-        }
-        // "what is on the right under the table?": a side of no one category, before a predicate, is
-        // left out (a side names one node of one category: the left wall).
-        if (std::size_t k = at; (p.kind || p.categories.size() != 1) && p.id.empty()) {
-            const std::string side = sideAfter(w, k);
-            if (!side.empty() && k < w.size() && predicateAt(w, k)) {
-                out_.notes.push_back(
-                    fmt::format("'{}' is left out: sides are of one category (the left wall)", joined(w, at, k)));
-                i = k;
-                continue;
-            }
-        }
+        if (amongThem(w, at, i, p)) continue;
+        if (onSameWallAs(w, at, i, p)) continue;
+        if (sideLeftOut(w, at, i, p)) continue;
         auto pred = predicateAt(w, at);
         if (!pred) return;
         const std::size_t bothAt = at;
         auto also = firstOfTwo(w, at, pred);
         i = at;
-        // "in the room": the whole scene.
-        std::size_t after = i + pred->second;
-        while (after < w.size() && isDeterminer(w[after])) ++after;
-        // "in the corner of the room" is in the room; "on the far end of the room", "at the back of
-        // the room" too: the memory keeps no parts of a room.
-        std::size_t part = after;
-        while (part < w.size() && (isPartPlaceWord(w[part]) || isPartWord(w[part]))) ++part;
-        const bool ofPart = part > after && part + 1 < w.size() && isPartWord(w[part - 1]) && w[part] == "of";
-        if (ofPart) {
-            after = part + 1;
-            while (after < w.size() && isDeterminer(w[after])) ++after;
-        }
-        // "the rug in the corner", "the door in the right corner", "the counter in the middle": a corner
-        // or the middle of the room, which the memory keeps none of (as "in the corner of the room").
-        if (part > after && isOneOf(w[part - 1], {"corner", "corners", "middle", "center", "centre"}) &&
-            (part == w.size() || w[part] != "of") && isOneOf(pred->first, {"in", "at", "on", "near"}) &&
-            !std::any_of(lexicon_.categories().begin(), lexicon_.categories().end(),
-                         [&](const std::string& c) { return c == w[part - 1]; })) {
-            out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no corners or middle of the room",
-                                             joined(w, at, part)));
-            i = part;
-            continue;
-        }
-        if ((pred->first == "in" || (ofPart && isOneOf(pred->first, {"on", "near"}))) && after < w.size()) {
-            // "in here", "in the room", "in the office" (when the office is this scene), "in a
-            // cluttered room" (a look the memory keeps nothing of).
-            std::size_t placeAt = after;
-            while (placeAt < w.size() && (isIgnoredAdjective(w[placeAt]) || wordnet::isAdjectiveOnly(w[placeAt])))
-                ++placeAt;
-            std::size_t place = scenePlaceAt(w, placeAt);
-            if (place > 0 && (ofPart || placeAt + place == w.size() || !predicateAt(w, placeAt + place))) {
-                if (placeAt > after)
-                    out_.notes.push_back(
-                        fmt::format("'{}' is left out: the memory keeps no such attribute", joined(w, after, placeAt)));
-                i = placeAt + place;
-                continue;
-            }
-        }
+        if (roomPlaceLeftOut(w, at, i, *pred)) continue;
         p.conditions.push_back(condition(w, i, *pred));
         if (also) {
             // The answer says "beyond and to the right of the lamp" once.

@@ -115,6 +115,29 @@ public:
     Phrase phrase(const Words& w, std::size_t& i, bool withPosts);
     // condition | order | exclusion, joined by "and", from w[i], onto `p`.
     void posts(const Words& w, std::size_t& i, Phrase& p);
+    // "the nearest lamp to the sofa", "the farthest chair from the door": `p` ordered by its distance from the
+    // thing after "to" or "from" at w[i] (an error without one); `word` is the superlative said.
+    void orderByDistanceFrom(const Words& w, std::size_t& i, Phrase& p, bool farthest, const std::string& word,
+                             std::size_t wordsStart);
+    // A word before a phrase's noun that counts, picks or orders it ("three", "the second", "the largest", "the
+    // nearest ... to"): read onto `p` (Read), read and the phrase ended ("the second closest to the door":
+    // EndsPhrase), or no such word (None).
+    enum class Quantifier { None, Read, EndsPhrase };
+    Quantifier quantifierAt(const Words& w, std::size_t& i, Phrase& p, std::optional<bool>& pendingDistance,
+                            std::string& pendingWord);
+    // Parts of posts, each true when it read w[at...] (i moved past it): "out of the three chairs" (one of
+    // them, which the phrase names already); "on the same wall as the bed" (by the wall nearest the bed, the bed
+    // left out); "on the right under the table" (a side of no one category before a predicate, left out: a side
+    // names one node of one category, the left wall).
+    bool amongThem(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
+    bool onSameWallAs(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
+    bool sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p);
+    static std::size_t pastVerbOfPlace(const Words& w, std::size_t at);
+    bool roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t& i,
+                          const std::pair<std::string, std::size_t>& pred);
+    // An ordinal with no measure: "the first cabinet from the door" is the nearest to it; "the first cabinet on
+    // the right" after a situation, the nearest to the person.
+    void orderByNearness(const Words& w, std::size_t& i, Phrase& p);
 
     // "me", "my left": the person a situation placed (none: "me" names nothing).
     void setSelf(std::optional<Self> self) { self_ = std::move(self); }

@@ -146,6 +146,13 @@ Error cannotTranslate(const std::string& question, const std::string& detail, co
                                     : "did you mean: " + suggestion + " (docs/ask.md lists the questions ASK reads)");
 }
 
+// Verbs of place and adverbs between a subject and its predicate say no more than it does: "the cabinet is directly
+// next to what?", "a kitchen cabinet is installed to the right of what?".
+const std::initializer_list<std::string_view> kPlacedBy{
+    "located", "placed",   "sitting",    "standing", "hanging", "lying",     "resting",    "kept", "sit",
+    "stand",   "hang",     "lie",        "rest",     "attach",  "installed", "mounted",    "set",  "put",
+    "found",   "situated", "positioned", "directly", "right",   "just",      "immediately"};
+
 class QuestionReader {
 public:
     QuestionReader(const Question& q, const Lexicon& lexicon) : question_(q), lexicon_(lexicon) {}
@@ -798,12 +805,7 @@ private:
                 }
             return false;
         };
-        // Verbs of place and adverbs between the subject and the predicate say no more than it does:
-        // "the cabinet is directly next to what?", "a kitchen cabinet is installed to the right of what?".
-        static const std::initializer_list<std::string_view> verbs{
-            "located", "placed",   "sitting",    "standing", "hanging", "lying",     "resting",    "kept", "sit",
-            "stand",   "hang",     "lie",        "rest",     "attach",  "installed", "mounted",    "set",  "put",
-            "found",   "situated", "positioned", "directly", "right",   "just",      "immediately"};
+        const auto& verbs = kPlacedBy;
         // "what is the piano on next to the bed?", "the armchair is next to what to the left of the
         // bed?": the thing asked for, placed by the conditions after it (from `from`, to the end).
         std::optional<Phrase> placed;
@@ -905,7 +907,14 @@ private:
         if (!pred || !subject) return false;
         // What the subject is on or by may be an anchor too (a wall, the floor).
         Phrase other = placed ? *placed : answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
-        std::string predicate = pred->first;
+        relateBack(*subject, other, answerKind, pred->first, out);
+        out.condition = joined(c.w, predAt, predAt + pred->second);
+        return true;
+    }
+
+    // The RELATE a reverse question asks: the subject to what it is asked of (`other`), by the predicate said.
+    void relateBack(const Phrase& subject, const Phrase& other, const std::optional<Phrase>& answerKind,
+                    std::string predicate, Translation& out) {
         // "what wall is the tv on": on a wall is hanging there.
         if (predicate == "on" && answerKind &&
             std::all_of(answerKind->categories.begin(), answerKind->categories.end(),
@@ -918,11 +927,9 @@ private:
         out.kind = QuestionKind::Reverse;
         out.predicate = predicate;
         out.background = question_.anchorCategories;
-        out.smql = fmt::format("RELATE {} TO {}", reference(*subject), reference(other));
-        describeSubject(*subject, out);
+        out.smql = fmt::format("RELATE {} TO {}", reference(subject), reference(other));
+        describeSubject(subject, out);
         out.object = other.kind ? "thing" : other.words;
-        out.condition = joined(c.w, predAt, predAt + pred->second);
-        return true;
     }
 
     // Which is the largest object? Which cushion is closest to the window? Which of these objects

@@ -149,7 +149,7 @@ bool Executor::compare(const BoundExpr& expr, catalog::Slot slot, const relation
             scene(), slot, expr.builtIn ? *expr.builtIn : catalog::storedAttribute(expr.attribute)));
     }
     if (!value) return false;  // a node without the field never matches, as NULL in SQL
-    if (auto* text = std::get_if<std::string>(&expr.literal)) {
+    if (std::holds_alternative<std::string>(expr.literal)) {
         std::string have = std::holds_alternative<std::string>(*value) ? std::get<std::string>(*value)
                                                                        : fmt::format("{}", std::get<double>(*value));
         if (expr.op == ast::CompareOp::Like) return like(have, expr.literalFolded);
