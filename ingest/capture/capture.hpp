@@ -66,8 +66,12 @@ struct Capture {
     bool metric = true;        // poses and points in metres (sensors) or up to scale (SfM)
     std::vector<CaptureFrame> frames;
     std::vector<SparsePoint> points;  // reconstructed 3D points, when the layout has them
-    std::string labelsPath;           // instance id -> category (+ attributes), JSON, with masks
-    std::string detectionsPath;       // COCO-results style detections, JSON
+    // Points of the dense stage (dense_stereo.hpp) for photos without depth: structure only (floor,
+    // walls, the scale's priors). Things are placed on `points`, each matched by its features in
+    // several frames, on which the objects' measures were made.
+    std::vector<SparsePoint> densePoints;
+    std::string labelsPath;      // instance id -> category (+ attributes), JSON, with masks
+    std::string detectionsPath;  // COCO-results style detections, JSON
     // What the reader assumed or ignored (default intrinsics, ignored lens
     // distortion, where decoded video frames went...), one sentence each, for
     // the user: the pipeline prints them.

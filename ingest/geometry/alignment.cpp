@@ -280,12 +280,14 @@ FloorChoice findFloor(const std::vector<HorizontalPlane>& planes, const std::vec
                       const PointCloud& world, const std::vector<NamedThing>& things, double unit,
                       const AlignOptions& options) {
     const double clearance = options.cameraClearance * unit;
+    const std::vector<model::Vec3> measured(
+        world.points.begin(), world.points.begin() + static_cast<long>(std::min(options.evidencePoints, world.size())));
     FloorChoice out;
     std::vector<std::pair<const HorizontalPlane*, SurfaceEvidence>> candidates;
     for (const auto& p : planes) {
         auto heights = cameraHeights(cameras, toEigen(p.plane.normal));
         if (!heights.empty() && p.height >= *std::min_element(heights.begin(), heights.end()) - clearance) continue;
-        SurfaceEvidence evidence = weighSurface({p.plane.normal, p.height}, things, world.points, unit);
+        SurfaceEvidence evidence = weighSurface({p.plane.normal, p.height}, things, measured, unit);
         if (!evidence.tableTop()) {
             candidates.emplace_back(&p, std::move(evidence));
         } else if (!out.tableTop || p.level < out.tableTop->level) {

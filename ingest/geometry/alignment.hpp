@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,10 @@ struct AlignOptions {
     double cameraHeight = 1.5;           // assumed median camera height above the floor (scale-free captures)
     double ceilingHeight = 2.6;          // assumed floor-to-ceiling height (scale-free, ceiling found)
     std::optional<model::Vec3> upPrior;  // used only when there are no cameras (default +z)
+    // The cloud's leading points that weigh a surface (floor_evidence.hpp): the capture's own (depth
+    // readings, COLMAP's features); the dense points after them find planes only, since a glossy
+    // floor's reflection matches between photos as points below it.
+    std::size_t evidencePoints = std::numeric_limits<std::size_t>::max();
 
     double planeDistance = 0.03;       // RANSAC inlier distance for floor and ceiling
     double horizontalTolerance = 30;   // degrees a floor candidate may tilt from the up prior ...

@@ -44,6 +44,9 @@ bool SurfaceEvidence::tableTop() const {
     // reaches below: the floor, whatever small things a detector names on it (a carpet's pattern
     // seen as cakes and phones).
     if (pointsBelow < kSeenBelow && below.empty() && standing.size() >= kStandingOnFloor) return false;
+    // A named thing reaching well below a surface with more under it than any floor has: whatever
+    // seems to rise from it (a desk's monitor taken for a table) stands on it as on a table top.
+    if (pointsBelow >= kUnderFloor && !below.empty()) return true;
     const std::size_t against = onTop.size() + below.size() + topOf.size();
     const bool much = against >= 2 || !topOf.empty() || (against >= 1 && pointsBelow >= kUnderFloor);
     return much && against > standing.size();

@@ -27,7 +27,8 @@ struct SurfaceEvidence {
     double pointsBelow = 0;             // share of the cloud's points well below it
 
     // More says "table top" than says "floor": the surface holds table things, has things under it, or
-    // is a table's top; one such thing is enough when much of the cloud lies under the surface.
+    // is a table's top; one such thing is enough when much of the cloud lies under the surface, and a
+    // thing reaching below it then outweighs whatever rises from it.
     bool tableTop() const;
     std::string describe() const;  // "2 things that stand on tables rest on it (mug, keyboard), ..."
 };

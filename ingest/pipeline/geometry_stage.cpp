@@ -21,7 +21,8 @@ bool usesColmap(const Capture& capture, GeometrySource geometry) {
 }
 
 Reconstruction ColmapStage::run(StageProgress& progress) {
-    Reconstruction out{input};
+    Reconstruction out;
+    out.capture = input;
     bool hadDepth = false;
     for (auto& f : out.capture.frames) {
         hadDepth = hadDepth || !f.depthPath.empty();
@@ -41,6 +42,34 @@ Reconstruction ColmapStage::run(StageProgress& progress) {
 std::string ColmapStage::summary(const Reconstruction& reconstruction) const {
     return fmt::format("{} of {} frames registered, {} points", reconstruction.registered,
                        reconstruction.capture.frames.size(), reconstruction.points);
+}
+
+bool needsDensePoints(const Capture& capture, const IngestOptions& options) {
+    return options.dense && !framesHaveDepth(capture) && !capture.points.empty() &&
+           std::count_if(capture.frames.begin(), capture.frames.end(),
+                         [](const auto& f) { return f.pose.has_value(); }) >= 2;
+}
+
+Reconstruction DenseStage::run(StageProgress& progress) {
+    Reconstruction out;
+    out.capture = input;
+    out.registered = static_cast<std::size_t>(
+        std::count_if(input.frames.begin(), input.frames.end(), [](const auto& f) { return f.pose.has_value(); }));
+    out.dense = densePoints(input, options, [&](std::size_t done) {
+        progress.stopIfCancelled();
+        progress.advanced(done);
+    });
+    out.capture.densePoints = out.dense.points;
+    out.points = input.points.size();
+    progress.note(
+        fmt::format("dense: {} pairs of frames matched, {} points, {} of them where two or more pairs agree "
+                    "(a {:.3g}-unit voxel); {} sparse points beside them",
+                    out.dense.pairs, out.dense.matched, out.dense.points.size(), out.dense.voxel, input.points.size()));
+    return out;
+}
+
+std::string DenseStage::summary(const Reconstruction& reconstruction) const {
+    return fmt::format("{} pairs, {} dense points", reconstruction.dense.pairs, reconstruction.dense.points.size());
 }
 
 void requirePosesAndStructure(const Capture& capture) {

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "ingest/capture/capture.hpp"
+#include "ingest/geometry/dense_stereo.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_data.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
@@ -25,6 +26,21 @@ struct ColmapStage {
     const ColmapOptions& options;
 
     std::size_t steps() const { return 1; }
+    Reconstruction run(StageProgress& progress);
+    std::string summary(const Reconstruction& reconstruction) const;
+};
+
+// Whether the capture gets dense points (dense_stereo.hpp): photos without depth, some placed, with
+// sparse points to give each frame its depth range; not when --dense off.
+bool needsDensePoints(const Capture& capture, const IngestOptions& options);
+
+// Dense points from pairs of placed frames: the capture's densePoints, beside its sparse points.
+struct DenseStage {
+    static constexpr std::string_view kName = "dense";
+    const Capture& input;
+    const DenseOptions& options;
+
+    std::size_t steps() const { return input.frames.size(); }
     Reconstruction run(StageProgress& progress);
     std::string summary(const Reconstruction& reconstruction) const;
 };

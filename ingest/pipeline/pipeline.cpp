@@ -89,6 +89,8 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
 
     std::optional<Reconstruction> reconstruction;
     if (usesColmap(input, options.geometry)) reconstruction = runner.run(ColmapStage{input, options.colmap});
+    if (needsDensePoints(reconstruction ? reconstruction->capture : input, options))
+        reconstruction = runner.run(DenseStage{reconstruction ? reconstruction->capture : input, options.denseOptions});
     const Capture& capture = reconstruction ? reconstruction->capture : input;
     requirePosesAndStructure(capture);
     auto finder = makeObjectFinder(capture, options);

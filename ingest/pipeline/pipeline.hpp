@@ -11,6 +11,7 @@
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/colmap_runner.hpp"
+#include "ingest/geometry/dense_stereo.hpp"
 #include "model/types.hpp"
 
 namespace smql::ingest {
@@ -28,16 +29,18 @@ struct IngestOptions {
     std::optional<double> scale;  // metres per capture unit, overriding the alignment's estimate
     bool force = false;           // keep a memory the plausibility checks refuse (plausibility.hpp)
     int workingWidth = 640;
-    int structureStride = 4;        // every n-th pixel of each frame feeds the structure cloud
-    double structureVoxel = 0.05;   // m
-    int objectStride = 2;           // every n-th pixel of an instance mask is lifted
-    double objectVoxel = 0.01;      // m
-    int minInstancePixels = 150;    // smaller mask fragments in a frame are ignored
-    int minObjectViews = 1;         // an instance needs this many views to become an object
-    int descriptionAgreement = 2;   // views that must agree before a scene-level phrase is promoted
-    double agreementShare = 0.6;    // ... and the share of its views they must be
-    int evidenceSize = 160;         // longest side of an evidence crop (pixels)
-    ColmapOptions colmap;           // --geometry colmap (and auto for captures without poses)
+    int structureStride = 4;       // every n-th pixel of each frame feeds the structure cloud
+    double structureVoxel = 0.05;  // m
+    int objectStride = 2;          // every n-th pixel of an instance mask is lifted
+    double objectVoxel = 0.01;     // m
+    int minInstancePixels = 150;   // smaller mask fragments in a frame are ignored
+    int minObjectViews = 1;        // an instance needs this many views to become an object
+    int descriptionAgreement = 2;  // views that must agree before a scene-level phrase is promoted
+    double agreementShare = 0.6;   // ... and the share of its views they must be
+    int evidenceSize = 160;        // longest side of an evidence crop (pixels)
+    ColmapOptions colmap;          // --geometry colmap (and auto for captures without poses)
+    bool dense = true;             // photos without depth get dense points from pairs of placed frames
+    DenseOptions denseOptions;
     double sparseDepthBand = 0.25;  // sparse points lifted onto a mask: within this share of the median depth
 };
 

@@ -123,6 +123,15 @@ const std::vector<IngestOption> kIngestOptions = {
              "again");
      },
      [](IngestRequest& r, const std::string& v) { r.colmapDir = v; }},
+    {"dense", "on|off",
+     [] {
+         return std::string(
+             "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones (default "
+             "on; docs/ingest.md, \"Dense points from placed photos\")");
+     },
+     [](IngestRequest& r, const std::string& v) {
+         r.dense = oneOf("dense", v, {"on", "off"}) == "on";
+     }},
     {"scale", "NUMBER", [] { return std::string("metres per capture unit, overriding the estimate"); },
      [](IngestRequest& r, const std::string& v) { r.scale = number("scale", v, false); }},
     {"depth_scale", "NUMBER",
@@ -212,6 +221,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     options.colmap.maxImageSize = request.maxSize;
     options.colmap.vocabularyTree = request.vocabularyTree;
     options.colmap.workDirectory = request.colmapDir;
+    options.dense = request.dense;
     run.result = ingestCapture(capture, options, progress, cancelled);
     return run;
 }

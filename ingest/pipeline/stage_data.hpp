@@ -2,6 +2,7 @@
 // runs them in this order; docs/ingest.md, "Stages"):
 //
 //   Capture --colmap--> Reconstruction (only without poses)
+//           --dense--> Reconstruction (only without depth)
 //           --frames--> FramePass --align--> AlignedCapture
 //           --anchors--> walls --objects--> TrackedNodes --relations--> the scene
 //
@@ -16,6 +17,7 @@
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/observations.hpp"
 #include "ingest/geometry/alignment.hpp"
+#include "ingest/geometry/dense_stereo.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/view_consistency.hpp"
 #include "model/types.hpp"
@@ -28,6 +30,7 @@ struct Reconstruction {
     Capture capture;
     std::size_t registered = 0;  // frames that got a pose
     std::size_t points = 0;
+    DensePoints dense;  // the dense stage's points (also capture.densePoints), when it ran
 };
 
 struct Camera {

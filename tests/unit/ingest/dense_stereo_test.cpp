@@ -1,0 +1,121 @@
+// Dense points from placed photos (dense_stereo.hpp): the colour frames of RGB-D captures as photos,
+// their dense points judged by the depth the stereo never saw. Where the frames are placed up to
+// scale (COLMAP's), each point's depth is compared with the depth image's as a ratio: a right point
+// has the capture's one scale.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ingest/capture/capture.hpp"
+#include "ingest/capture/frame_loader.hpp"
+#include "ingest/geometry/dense_stereo.hpp"
+#include "ingest/synth/synth.hpp"
+#include "scratch_dir.hpp"
+
+using namespace smql;
+using namespace smql::ingest;
+using smql::ingest::test::ScratchDir;
+
+namespace {
+
+model::Vec3 pixelRay(const Intrinsics& k, int x, int y, double z) {
+    return {(x - k.cx) * z / k.fx, (y - k.cy) * z / k.fy, z};
+}
+
+model::Vec3 toWorld(const Pose& pose, const model::Vec3& p) {
+    const auto& r = pose.rotation;
+    return {r[0] * p.x + r[1] * p.y + r[2] * p.z + pose.translation.x,
+            r[3] * p.x + r[4] * p.y + r[5] * p.z + pose.translation.y,
+            r[6] * p.x + r[7] * p.y + r[8] * p.z + pose.translation.z};
+}
+
+model::Vec3 toCamera(const Pose& pose, const model::Vec3& world) {
+    const auto& r = pose.rotation;
+    const model::Vec3 d{world.x - pose.translation.x, world.y - pose.translation.y, world.z - pose.translation.z};
+    return {r[0] * d.x + r[3] * d.y + r[6] * d.z, r[1] * d.x + r[4] * d.y + r[7] * d.z,
+            r[2] * d.x + r[5] * d.y + r[8] * d.z};
+}
+
+struct Agreement {
+    std::size_t judged = 0, within5 = 0, within10 = 0;
+};
+
+// Each dense point's depth in the first photo whose depth camera saw something where it lies, as a
+// ratio to that reading; judged against `scale`, else the median ratio (COLMAP's scale).
+Agreement againstDepth(const Capture& capture, const std::vector<SparsePoint>& points,
+                       const std::vector<cv::Mat>& depth, std::optional<double> knownScale = std::nullopt) {
+    std::vector<double> ratios;
+    for (const auto& point : points) {
+        for (std::size_t f = 0; f < capture.frames.size(); ++f) {
+            const auto& frame = capture.frames[f];
+            if (!frame.pose) continue;
+            const Intrinsics& k = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
+            const model::Vec3 p = toCamera(*frame.pose, point.position);
+            if (p.z <= 0) continue;
+            const int x = static_cast<int>(std::lround(k.fx * p.x / p.z + k.cx));
+            const int y = static_cast<int>(std::lround(k.fy * p.y / p.z + k.cy));
+            if (x < 0 || y < 0 || x >= depth[f].cols || y >= depth[f].rows) continue;
+            const float reading = depth[f].at<float>(y, x);
+            if (reading <= 0) continue;
+            ratios.push_back(p.z / reading);
+            break;
+        }
+    }
+    Agreement out;
+    if (ratios.empty()) return out;
+    std::vector<double> sorted = ratios;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+    const double scale = knownScale.value_or(sorted[sorted.size() / 2]);
+    for (double r : ratios) {
+        const double error = std::abs(r / scale - 1);
+        ++out.judged;
+        out.within5 += error <= 0.05 ? 1 : 0;
+        out.within10 += error <= 0.10 ? 1 : 0;
+    }
+    return out;
+}
+
+}  // namespace
+
+// A rendered walk through a generated room, its poses exact: the dense points' depth against the
+// rendered depth, whose scale is the points' own (a ratio of 1).
+TEST_CASE("dense points of a rendered walk lie where the rendered depth says", "[dense]") {
+    ScratchDir dir;
+    synth::SynthOptions walk;
+    walk.seed = 3;
+    walk.frames = 30;
+    synth::writeSynth((dir.path / "walk").string(), walk);
+    const Capture rgbd = readCapture((dir.path / "walk").string());
+    Capture photos = rgbd;
+    std::vector<cv::Mat> depth;
+    for (auto& frame : photos.frames) {
+        depth.push_back(loadFrame(rgbd, frame, rgbd.intrinsics.width).depth);
+        const cv::Mat& d = depth.back();
+        for (int y = 40; y < d.rows; y += 80)
+            for (int x = 40; x < d.cols; x += 80)
+                if (d.at<float>(y, x) > 0)
+                    photos.points.push_back(
+                        {toWorld(*frame.pose, pixelRay(rgbd.intrinsics, x, y, d.at<float>(y, x))), {}});
+        frame.depthPath.clear();
+    }
+    const std::size_t sparse = photos.points.size();
+    // Rectified pairs where the neighbour is to the side (the default), and every pair swept with planes.
+    const bool swept = GENERATE(false, true);
+    DenseOptions options;
+    if (swept) options.maxForwardShare = 0;
+    DensePoints dense = densePoints(photos, options);
+    Agreement agreement = againstDepth(photos, dense.points, depth, 1.0);
+    INFO((swept ? "swept" : "rectified") << ": " << dense.pairs << " pairs (" << dense.swept << " swept), "
+                                         << dense.points.size() << " dense points beside " << sparse << " sparse; "
+                                         << agreement.judged << " judged, " << agreement.within5 << " within 5%, "
+                                         << agreement.within10 << " within 10%");
+    CHECK(dense.pairs >= 10);
+    if (swept) CHECK(dense.swept == dense.pairs);
+    CHECK(dense.points.size() >= 2 * sparse);
+    CHECK(agreement.judged >= dense.points.size() * 9 / 10);
+    CHECK(agreement.within5 >= agreement.judged * (swept ? 75 : 85) / 100);
+    CHECK(agreement.within10 >= agreement.judged * 8 / 10);
+}
