@@ -38,6 +38,11 @@ constexpr double kAgreementRefuse = 0.7;
 // kitchen's 10 photos gave 98x), or the cameras are far from a person's height. Warned from
 // kDisagreement (1.5x) on: a crouching photographer or a short robot may part them that far.
 constexpr double kSplitRefuse = 2.0;
+// Priors that agree, but only roughly: the memory's lengths are as uncertain. Warned past this spread
+// ((largest - smallest) / the scale): a ScanNet bathroom's photos were stored 1.36x too large from the
+// cameras' height and two toilets' height 28 % apart, while priors of right memories measured 2-17 %
+// (docs/ingest.md, "Photos without depth against the truth").
+constexpr double kSpreadWarn = 0.25;
 // The object checks (objectFindings), metres but where said. A sliver: its thinnest side under this
 // share of the largest side things of its kind have (the share object fusion drops at ingest).
 constexpr double kSliverShare = 0.06;
@@ -219,6 +224,12 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                                    alignment.scaleSplit),
                        "give --scale (metres per capture unit), or add photos that show the floor and the things "
                        "standing on it"});
+    else if (alignment.scaleSpread > kSpreadWarn)
+        out.push_back({"scale priors", false,
+                       fmt::format("the scale's priors are {:.0f}% apart (the cameras' height above the floor, the "
+                                   "heights of things standing on it, the ceiling's): lengths may be off by as much",
+                                   100 * alignment.scaleSpread),
+                       "give --scale (metres per capture unit) to be sure of lengths"});
     return out;
 }
 

@@ -148,6 +148,18 @@ TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[in
     split.scaleSplit = 1.6;
     CHECK_FALSE(alignmentFindings(split, {}).front().refuse);
 
+    // Priors that agree only roughly (a ScanNet bathroom's photos, stored 1.36x too large from priors
+    // 28 % apart): a warning; those of right memories (2-17 % apart) say nothing.
+    Alignment rough;
+    rough.scaleSpread = 0.28;
+    auto warned = alignmentFindings(rough, {});
+    REQUIRE(warned.size() == 1);
+    CHECK(warned.front().check == "scale priors");
+    CHECK_FALSE(warned.front().refuse);
+    CHECK_THAT(warned.front().what, Catch::Contains("28% apart"));
+    rough.scaleSpread = 0.17;
+    CHECK(alignmentFindings(rough, {}).empty());
+
     // A plane below the cameras that nothing stands on, the scale from the cameras' height alone
     // (geometry_test: a desk top in photos that name nothing): refused without a scale, not with one.
     Alignment unconfirmed;
