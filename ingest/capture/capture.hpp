@@ -66,9 +66,9 @@ struct Capture {
     bool metric = true;        // poses and points in metres (sensors) or up to scale (SfM)
     std::vector<CaptureFrame> frames;
     std::vector<SparsePoint> points;  // reconstructed 3D points, when the layout has them
-    // Points of the dense stage (dense_stereo.hpp) for photos without depth: with `points`, the
-    // structure and what things are placed on; a surface's evidence (floor_evidence.hpp) counts
-    // `points` alone.
+    // Points of the dense stage (dense_stereo.hpp) for photos without depth: structure only (floor,
+    // walls, the scale's priors). Things are placed on `points`, each matched by its features in
+    // several frames, on which the objects' measures were made.
     std::vector<SparsePoint> densePoints;
     std::string labelsPath;      // instance id -> category (+ attributes), JSON, with masks
     std::string detectionsPath;  // COCO-results style detections, JSON

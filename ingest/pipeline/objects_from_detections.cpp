@@ -31,7 +31,6 @@ class DetectionLifter : public ObjectFinder {
 public:
     DetectionLifter(const Capture& capture, const IngestOptions& options, bool voteLabels)
         : capture_(capture),
-          placingPoints_(placingPointsOf(capture)),
           options_(options),
           hasDepth_(framesHaveDepth(capture)),
           voteLabels_(voteLabels),
@@ -142,7 +141,7 @@ private:
         images.instances = detectionInstances(images.intrinsics, detections, storedWidth);
         auto seen =
             observeInstances(images, frame.pose, frame.position, options_.objectStride, options_.minInstancePixels);
-        liftSparsePoints(seen, images, frame.pose, placingPoints_, inView_, options_.sparseDepthBand);
+        liftSparsePoints(seen, images, frame.pose, capture_.points, inView_, options_.sparseDepthBand);
         // A detection's own outline (or its box) is its silhouette for carving, whole: where a smaller
         // one was painted over it, the thing still stands behind.
         for (auto& o : seen) {
@@ -152,7 +151,7 @@ private:
         maskViews_.push_back({frame.position, cv::Mat(), images.intrinsics, frame.pose});
         for (auto& o : seen)
             if (o.sparse.size() >= kMinSparsePoints)
-                for (auto p : o.sparse) o.points.push_back(placingPoints_[p].position);
+                for (auto p : o.sparse) o.points.push_back(capture_.points[p].position);
         return seen;
     }
 
@@ -166,7 +165,7 @@ private:
             for (auto& v : track.views) v.points.clear();
             all.push_back(&track);
         }
-        keepConsistentSparsePoints(all, placingPoints_, inView_);
+        keepConsistentSparsePoints(all, capture_.points, inView_);
         carveVisualHulls(all, maskViews_, kBoxHullShare);
         std::vector<ObjectTrack> carved;
         for (auto& track : tracks) {
@@ -184,16 +183,7 @@ private:
         tracks = std::move(carved);
     }
 
-    // Without depth, things are placed on COLMAP's points and the dense ones together: the dense
-    // points reach a thing's top and sides, where features are few (the office photos' scale from
-    // the things' heights 1.02x the truth with them, 1.07x without, on one COLMAP model).
-    static std::vector<SparsePoint> placingPointsOf(const Capture& capture) {
-        std::vector<SparsePoint> out = capture.points;
-        out.insert(out.end(), capture.densePoints.begin(), capture.densePoints.end());
-        return out;
-    }
     const Capture& capture_;
-    const std::vector<SparsePoint> placingPoints_;
     const IngestOptions& options_;
     bool hasDepth_;
     bool voteLabels_;
