@@ -39,7 +39,7 @@ struct IngestOptions {
     double agreementShare = 0.6;   // ... and the share of its views they must be
     int evidenceSize = 160;        // longest side of an evidence crop (pixels)
     ColmapOptions colmap;          // --geometry colmap (and auto for captures without poses)
-    bool dense = true;             // photos without depth get dense points from pairs of placed frames
+    bool dense = false;            // photos without depth get dense points from pairs of placed frames (--dense on)
     DenseOptions denseOptions;
     double sparseDepthBand = 0.25;  // sparse points lifted onto a mask: within this share of the median depth
 };

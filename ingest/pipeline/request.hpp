@@ -30,7 +30,7 @@ struct IngestRequest {
     int maxSize = 1024;                // the long side of the frames COLMAP sees (0: as stored)
     std::string vocabularyTree;        // COLMAP's vocabulary tree, for loop detection
     std::string colmapDir;             // COLMAP's kept work folder; a finished run there is read back
-    bool dense = true;                 // dense points from pairs of placed photos (photos without depth)
+    bool dense = false;                // dense points from pairs of placed photos (photos without depth)
     std::string update;                // a stored scene of the same place to make the next version of
     bool force = false;                // store a memory the plausibility checks refuse
 };

@@ -104,13 +104,10 @@ def refused_or_right(smql, status, log, db, groundtruth, **judge):
 
 
 def desk_photos(smql, folder, work):
-    """TUM fr3 office, 17 photos mostly of a desk, the floor at their edges: COLMAP's sparse points
-    hold no floor, the dense points between pairs of photos do: stored, with the scale and the
-    cameras' height of TUM's true poses."""
+    """TUM fr3 office, 17 photos mostly of a desk: the floor barely shows: refused, saying why and
+    what to do, or stored with the scale and the cameras' height of TUM's true poses."""
     status, log = ingest(smql, folder, work / "db")
-    assert status == 0, log
-    assert re.search(r"dense: \d+ pairs of frames matched", log), log
-    print(f"  tum-fr3-office-photos: {judge_by_truth(smql, work / 'db', folder / 'groundtruth.txt')}")
+    refused_or_right(smql, status, log, work / "db", folder / "groundtruth.txt")
 
 
 def desk_photos_subset(smql, folder, work):
