@@ -28,7 +28,6 @@ photo folders made from RGB-D captures are then DIR/NAME/photos, so that any --w
 (smql's record of a COLMAP run names each frame's path).
 """
 import argparse
-import bisect
 import itertools
 import json
 import math
@@ -45,7 +44,7 @@ import numpy as np
 
 # TUM's groundtruth.txt as the real_captures test reads it.
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "tests" / "e2e"))
-from real_captures_test import true_positions  # noqa: E402
+from real_captures_test import true_position_at, true_positions  # noqa: E402
 
 IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg")
 VIDEO_EXTENSIONS = (".mp4", ".mov", ".avi", ".mkv")
@@ -256,13 +255,8 @@ def capture_positions(folder, kind):
     else:
         times, centres = true_positions(folder / "groundtruth.txt")
         for frame in frames:
-            t = float(frame.stem)
-            at = bisect.bisect_left(times, t)
-            near = [k for k in (at - 1, at) if 0 <= k < len(times)]
-            if near:
-                k = min(near, key=lambda k: abs(times[k] - t))
-                if abs(times[k] - t) <= 0.02:
-                    positions[os.path.normpath(frame)] = centres[k]
+            if (truth := true_position_at(times, centres, float(frame.stem))) is not None:
+                positions[os.path.normpath(frame)] = truth
     return positions
 
 
@@ -302,7 +296,8 @@ def compare_memories(smql, rgb_db, rgbd_db, origin, folder, kind):
 
 
 def compare_with_truth(smql, db, groundtruth):
-    """As tests/e2e/real_captures_test.py judge_by_truth: stored cameras against TUM's motion capture."""
+    """Stored cameras against TUM's motion capture, as tests/e2e/real_captures_test.py against_truth, with the
+    cameras' spread."""
     times, centres = true_positions(groundtruth)
     pairs = []
     for name, stored in stored_cameras(smql, db).items():
@@ -310,10 +305,8 @@ def compare_with_truth(smql, db, groundtruth):
             t = float(pathlib.PurePath(name).stem)
         except ValueError:
             continue
-        at = bisect.bisect_left(times, t)
-        nearest = min((k for k in (at - 1, at) if 0 <= k < len(times)), key=lambda k: abs(times[k] - t))
-        if abs(times[nearest] - t) <= 0.02:
-            pairs.append((stored, centres[nearest]))
+        if (truth := true_position_at(times, centres, t)) is not None:
+            pairs.append((stored, truth))
     result = {"matched": len(pairs)}
     if len(pairs) >= 3:
         scale, npairs = pair_scale(pairs)

@@ -16,6 +16,7 @@
 namespace smql::ingest {
 
 using detail::fromEigen;
+using detail::rotationOf;
 using detail::toEigen;
 
 namespace {
@@ -31,10 +32,6 @@ std::string fixed(double value, int digits = 2) {
     out.precision(digits);
     out << value;
     return out.str();
-}
-
-Eigen::Matrix3d rotationOf(const Pose& pose) {
-    return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(pose.rotation.data());
 }
 
 // The smallest rotation taking unit vector `from` to unit vector `to` (Rodrigues). Written out because

@@ -21,6 +21,9 @@ namespace smql::ingest {
 
 namespace {
 
+using detail::rotationOf;
+using detail::toEigen;
+
 constexpr double kDegree = std::numbers::pi / 180;
 
 // A placed frame: its camera in the capture's frame and the depths at which it sees the capture's
@@ -31,12 +34,6 @@ struct View {
     Eigen::Vector3d centre;
     double nearDepth = 0, medianDepth = 0, farDepth = 0;
 };
-
-Eigen::Matrix3d rotationOf(const Pose& pose) {
-    return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(pose.rotation.data());
-}
-
-Eigen::Vector3d toEigen(const model::Vec3& v) { return {v.x, v.y, v.z}; }
 
 std::optional<View> viewOf(const Capture& capture, std::size_t index, const DenseOptions& options) {
     const CaptureFrame& frame = capture.frames[index];
@@ -99,16 +96,24 @@ struct Rectified {
     cv::Mat r1, r2, p1, p2, q;
 };
 
-// Rectifies b against a from their poses: x_b = R x_a + T in OpenCV's terms.
+// b's camera from a's: x_b = r x_a + t (OpenCV's R and T of a pair).
+struct RelativePose {
+    Eigen::Matrix3d r;
+    Eigen::Vector3d t;
+};
+
+RelativePose relativePose(const View& a, const View& b) {
+    return {b.rotation.transpose() * a.rotation, b.rotation.transpose() * (a.centre - b.centre)};
+}
+
 Rectified rectify(const View& a, const Intrinsics& ka, const View& b, const Intrinsics& kb) {
-    const Eigen::Matrix3d r = b.rotation.transpose() * a.rotation;
-    const Eigen::Vector3d t = b.rotation.transpose() * (a.centre - b.centre);
+    const RelativePose pose = relativePose(a, b);
     cv::Matx33d rotation;
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) rotation(i, j) = r(i, j);
+        for (int j = 0; j < 3; ++j) rotation(i, j) = pose.r(i, j);
     Rectified out;
     cv::stereoRectify(cameraMatrix(ka), cv::noArray(), cameraMatrix(kb), cv::noArray(), cv::Size(ka.width, ka.height),
-                      rotation, cv::Vec3d(t.x(), t.y(), t.z()), out.r1, out.r2, out.p1, out.p2, out.q,
+                      rotation, cv::Vec3d(pose.t.x(), pose.t.y(), pose.t.z()), out.r1, out.r2, out.p1, out.p2, out.q,
                       cv::CALIB_ZERO_DISPARITY, -1);
     return out;
 }
@@ -118,13 +123,12 @@ struct PairPoints {
     std::vector<std::array<std::uint8_t, 3>> colours;  // RGB
 };
 
-// Semi-global matching of the rectified pair, a on the left; each matched pixel (every
+// Semi-global matching of the pair rectified with a on the left; each matched pixel (every
 // pixelStride-th) within a's depth range, in the capture's frame.
-PairPoints matchPair(const View& a, const FrameImages& ia, const View& b, const FrameImages& ib,
-                     const DenseOptions& options) {
+PairPoints matchRectified(const View& a, const FrameImages& ia, const FrameImages& ib, const Rectified& rect,
+                          const DenseOptions& options) {
     PairPoints out;
     const cv::Size size(ia.color.cols, ia.color.rows);
-    Rectified rect = rectify(a, ia.intrinsics, b, ib.intrinsics);
     const double focal = rect.p1.at<double>(0, 0);
     const double baseline = std::abs(rect.p2.at<double>(0, 3) / rect.p2.at<double>(0, 0));
     const int minDisparity = static_cast<int>(std::floor(focal * baseline / (2 * a.farDepth)));
@@ -154,7 +158,6 @@ PairPoints matchPair(const View& a, const FrameImages& ia, const View& b, const 
     Eigen::Matrix3d unrectify;  // rectified camera -> a's camera
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) unrectify(i, j) = rect.r1.at<double>(j, i);
-    const Eigen::Matrix3d toWorld = a.rotation * unrectify;
     for (int y = 0; y < disparity.rows; y += options.pixelStride) {
         const auto* d = disparity.ptr<float>(y);
         const auto* p = xyz.ptr<cv::Vec3f>(y);
@@ -163,11 +166,21 @@ PairPoints matchPair(const View& a, const FrameImages& ia, const View& b, const 
             if (!(d[x] > static_cast<float>(minDisparity))) continue;
             const Eigen::Vector3d camera = unrectify * Eigen::Vector3d(p[x][0], p[x][1], p[x][2]);
             if (camera.z() < 0.5 * a.nearDepth || camera.z() > 2 * a.farDepth) continue;
-            out.positions.push_back(toWorld * Eigen::Vector3d(p[x][0], p[x][1], p[x][2]) + a.centre);
+            out.positions.push_back(a.rotation * camera + a.centre);
             out.colours.push_back({c[x][2], c[x][1], c[x][0]});
         }
     }
     return out;
+}
+
+// The pair rectified and matched: OpenCV rectifies it with the first camera on the left, where
+// disparities are positive, so b goes first when it lies to a's left.
+PairPoints matchPair(const View& a, const FrameImages& ia, const View& b, const FrameImages& ib,
+                     const DenseOptions& options) {
+    const Rectified rect = rectify(a, ia.intrinsics, b, ib.intrinsics);
+    if (rect.p2.at<double>(0, 3) > 0)
+        return matchRectified(b, ib, ia, rectify(b, ib.intrinsics, a, ia.intrinsics), options);
+    return matchRectified(a, ia, ib, rect, options);
 }
 
 cv::Mat grayFloat(const cv::Mat& colour) {
@@ -194,13 +207,12 @@ PairPoints sweepPair(const View& a, const FrameImages& ia, const View& b, const 
                      const DenseOptions& options) {
     PairPoints out;
     const cv::Size size(ia.color.cols, ia.color.rows);
-    const Eigen::Matrix3d r = b.rotation.transpose() * a.rotation;
-    const Eigen::Vector3d t = b.rotation.transpose() * (a.centre - b.centre);
+    const RelativePose pose = relativePose(a, b);
     const cv::Matx33d ka = cameraMatrix(ia.intrinsics), kb = cameraMatrix(ib.intrinsics), kaInverse = ka.inv();
     auto homography = [&](double depth) {  // a's pixel -> b's pixel through the plane z = depth of a
         cv::Matx33d m;
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) m(i, j) = r(i, j) + (j == 2 ? t(i) / depth : 0);
+            for (int j = 0; j < 3; ++j) m(i, j) = pose.r(i, j) + (j == 2 ? pose.t(i) / depth : 0);
         return kb * m * kaInverse;
     };
     const int window = options.sweepWindow, planes = options.sweepPlanes;
@@ -304,9 +316,6 @@ DensePoints densePoints(const Capture& capture, const DenseOptions& options, con
         if (!b->sideways) {
             points = sweepPair(views[a], ia, views[b->view], ib, options);
             ++out.swept;
-        } else if (rectify(views[a], ia.intrinsics, views[b->view], ib.intrinsics).p2.at<double>(0, 3) > 0) {
-            // OpenCV rectifies a pair with the first camera on the left: disparities are positive then.
-            points = matchPair(views[b->view], ib, views[a], ia, options);
         } else {
             points = matchPair(views[a], ia, views[b->view], ib, options);
         }

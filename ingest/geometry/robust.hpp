@@ -10,12 +10,17 @@
 
 #include <Eigen/Core>
 
+#include "ingest/capture/capture.hpp"
 #include "model/types.hpp"
 
 namespace smql::ingest::detail {
 
 inline Eigen::Vector3d toEigen(const model::Vec3& v) { return {v.x, v.y, v.z}; }
 inline model::Vec3 fromEigen(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+// A pose's camera-to-world rotation.
+inline Eigen::Matrix3d rotationOf(const Pose& pose) {
+    return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(pose.rotation.data());
+}
 
 // The `fraction`-quantile (0..1) of the values, by linear interpolation; 0 when empty.
 inline double quantile(std::vector<double> values, double fraction) {

@@ -10,8 +10,7 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     AlignOptions align;
     align.metric = capture.metric;
     align.scale = options.scale;
-    // The structure ends with the dense points (frames_stage.cpp).
-    align.evidencePoints = frames.structure.size() - capture.densePoints.size();
+    align.evidencePoints = frames.measuredPoints;
     std::vector<Pose> poses;
     for (const auto& c : frames.cameras) poses.push_back(c.pose);
     // Named things tell the floor from a table top (what stands on it), and those of a typical height

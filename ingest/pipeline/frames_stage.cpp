@@ -69,11 +69,12 @@ FramePass FramesStage::run(StageProgress& progress) {
                     "check the depth images and the depth scale (depth units per metre: 1000 for millimetres, "
                     "5000 for TUM)");
     if (!hasDepth) {
-        // The capture's sparse points (COLMAP) and dense points are the structure: already sparse, in the
-        // capture's units.
+        // The capture's sparse points (COLMAP) are the structure: already sparse, in the capture's units.
         for (const auto& p : capture.points) pass.structure.push(p.position, p.color, 0);
-        for (const auto& p : capture.densePoints) pass.structure.push(p.position, p.color, 0);
     }
+    // Then the dense points, which only photos without depth have (the dense stage).
+    pass.measuredPoints = pass.structure.size();
+    for (const auto& p : capture.densePoints) pass.structure.push(p.position, p.color, 0);
     pass.viewAgreement = compareViews(sketches);
     if (pass.viewAgreement.tested())
         progress.note(fmt::format("depth: the views agree at {:.0f}% of {} points seen from two frames ({} pairs)",

@@ -41,7 +41,10 @@ struct Camera {
 // The one pass over the frames: everything later stages need, so the frames
 // are read once and memory stays flat.
 struct FramePass {
-    PointCloud structure;             // down-sampled, capture frame
+    PointCloud structure;  // down-sampled, capture frame
+    // The structure's leading points that the capture measured (depth readings, COLMAP's features);
+    // the dense points follow them.
+    std::size_t measuredPoints = 0;
     std::vector<Camera> cameras;      // the frames that had a pose, in capture order
     std::vector<ObjectTrack> tracks;  // from the object source
     ViewAgreement viewAgreement;      // the depth images against each other (frames with depth)

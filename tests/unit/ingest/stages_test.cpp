@@ -168,6 +168,24 @@ TEST_CASE("ingest options: --fps 0 keeps every frame, a negative rate is refused
     }
 }
 
+// --dense on|off: photos without depth get dense points only when asked (docs/ingest.md, "Dense points
+// from placed photos"); another value is refused naming the ones it takes.
+TEST_CASE("ingest options: --dense is off unless asked for, and takes on or off") {
+    IngestRequest request;
+    CHECK_FALSE(request.dense);
+    setIngestOption(request, "dense", "on");
+    CHECK(request.dense);
+    setIngestOption(request, "dense", "off");
+    CHECK_FALSE(request.dense);
+    try {
+        setIngestOption(request, "dense", "yes");
+        FAIL("--dense yes was taken");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Usage);
+        CHECK_THAT(std::string(e.hint()), Catch::Contains("on or off"));
+    }
+}
+
 // The detectors look at a frame when the camera has moved 0.25 m or turned 15 degrees since the last
 // one they looked at: a camera standing still, or turning a little, shows nothing new.
 TEST_CASE("keyframes: the first frame, then one for every 0.25 m moved or 15 degrees turned") {
