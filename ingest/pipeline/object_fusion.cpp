@@ -405,32 +405,51 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
     return names;
 }
 
-double topCoverage(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options) {
+SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options) {
     const double c = std::cos(box.yaw), s = std::sin(box.yaw);
     const int nx = std::max(1, static_cast<int>(std::ceil(box.size.x / options.topCell)));
     const int ny = std::max(1, static_cast<int>(std::ceil(box.size.y / options.topCell)));
-    // Each point's cell and height step; then every band of topBand in the box's upper half, where a top is.
+    // Each point's cell and height step; then every band of topBand above the box's lowest quarter, where a top is
+    // (legs and the floor around them lie below it).
     const double bottom = model::bottom(box);
     const int steps = std::max(1, static_cast<int>(std::ceil(box.size.z / options.topCell)));
     const int band = std::max(1, static_cast<int>(std::lround(options.topBand / options.topCell)));
-    std::vector<std::vector<int>> cellsAt(static_cast<std::size_t>(steps));
+    struct Seen {
+        int cell;
+        double z;
+    };
+    std::vector<std::vector<Seen>> seenAt(static_cast<std::size_t>(steps));
     for (const auto& p : points) {
         const double dx = p.x - box.center.x, dy = p.y - box.center.y;
         const int ix = std::clamp(static_cast<int>((c * dx + s * dy + box.size.x / 2) / options.topCell), 0, nx - 1);
         const int iy = std::clamp(static_cast<int>((-s * dx + c * dy + box.size.y / 2) / options.topCell), 0, ny - 1);
         const int iz = std::clamp(static_cast<int>((p.z - bottom) / options.topCell), 0, steps - 1);
-        cellsAt[static_cast<std::size_t>(iz)].push_back(ix * ny + iy);
+        seenAt[static_cast<std::size_t>(iz)].push_back({ix * ny + iy, p.z});
     }
-    double best = 0;
+    SeenTop best{0, bottom};
     std::vector<char> held(static_cast<std::size_t>(nx * ny));
-    for (int from = steps / 2; from < steps; ++from) {
+    for (int from = steps / 4; from < steps; ++from) {
         std::fill(held.begin(), held.end(), 0);
         std::size_t count = 0;
+        double highest = bottom;
         for (int z = from; z < std::min(steps, from + band); ++z)
-            for (int cell : cellsAt[static_cast<std::size_t>(z)]) count += !std::exchange(held[cell], 1);
-        best = std::max(best, static_cast<double>(count) / (nx * ny));
+            for (const Seen& seen : seenAt[static_cast<std::size_t>(z)]) {
+                count += !std::exchange(held[seen.cell], 1);
+                highest = std::max(highest, seen.z);
+            }
+        const double cover = static_cast<double>(count) / (nx * ny);
+        if (cover > best.cover) best = {cover, highest};
     }
     return best;
+}
+
+bool lowerToTop(model::Box& box, const SeenTop& top, const FusionOptions& options) {
+    const double bottom = model::bottom(box);
+    if (top.cover < options.topCover || model::top(box) <= top.height + options.overTop || top.height <= bottom)
+        return false;
+    box.center.z = (bottom + top.height) / 2;
+    box.size.z = top.height - bottom;
+    return true;
 }
 
 ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options)
@@ -476,6 +495,13 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     std::vector<Thing> things = thingsOf(map, cameras_, options_, made.guesses);
     made.pieces = mergePieces(things, options_);
     made.ends = joinUprightEnds(things, options_);
+    // The tops of things that hold things, before their boxes reach down to the floor from them.
+    std::vector<std::optional<SeenTop>> tops(things.size());
+    for (std::size_t t = 0; t < things.size(); ++t)
+        if (holdsThings(things[t].category) && !hasUprightEnds(things[t].category)) {
+            tops[t] = seenTop(things[t].points.points, things[t].box, options_);
+            made.lowered += lowerToTop(things[t].box, *tops[t], options_);
+        }
     std::vector<SeenBox> boxes;
     for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0});
     made.grounded = reachDownToFloor(boxes, floorFound_, options_);
@@ -490,11 +516,9 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     std::vector<std::string> doubts(things.size());
     const std::vector<std::string> misplaced = outOfPlace(named, walls_, options_);
     for (std::size_t t = 0; t < things.size(); ++t) {
-        if (holdsThings(things[t].category) && !hasUprightEnds(things[t].category))
-            if (const double cover = topCoverage(things[t].points.points, things[t].box, options_);
-                cover < options_.topCover)
-                doubts[t] = fmt::format(
-                    "shows no top (its points cover at most {:.0f} % of its footprint at one height)", 100 * cover);
+        if (tops[t] && tops[t]->cover < options_.topCover)
+            doubts[t] = fmt::format("shows no top (its points cover at most {:.0f} % of its footprint at one height)",
+                                    100 * tops[t]->cover);
         if (doubts[t].empty() && !misplaced[t].empty()) doubts[t] = "stands " + misplaced[t];
         if (!doubts[t].empty()) named[t].category = "object";
     }
@@ -573,10 +597,10 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     progress.note(fmt::format(
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds or "
-        "sofas; {} slivers and {} things seen in too few of the frames that held them dropped; {} reaching down to the "
-        "floor)",
+        "sofas; {} slivers and {} things seen in too few of the frames that held them dropped; {} lowered to the top "
+        "they show; {} reaching down to the floor)",
         counts.segmented, counts.views, out.size(), counts.mapMerged, counts.pieces, counts.ends, counts.slivers,
-        counts.guesses, counts.grounded));
+        counts.guesses, counts.lowered, counts.grounded));
     return out;
 }
 

@@ -54,7 +54,8 @@ struct FusionOptions {
     double chairAtDesk = 0.3;        // m: and one chair, no more, this close is a desk
     double topCell = 0.05;           // m: a thing whose top holds things (a table) shows its top: the points of
     double topBand = 0.1;            // m: one band of heights this thick, in its box's upper half, cover ...
-    double topCover = 0.1;           // ... this share of its footprint's cells or more (topCoverage)
+    double topCover = 0.1;           // ... this share of its footprint's cells or more (seenTop)
+    double overTop = 0.1;            // m: a box this much higher than the top it shows holds what stands on it
     bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
@@ -108,12 +109,22 @@ struct UseName {
 std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
                                 const FusionOptions& options = {});
 
-// The largest share of a box's footprint (cells of FusionOptions::topCell) that the points of one band of heights,
-// topBand thick, in the box's upper half cover: a table's top covers much of it; the seats of bar stools an Open
-// Images "desk" framed, or a window ledge seen in two frames, little. A thing whose top holds things (a table, a
-// desk, a counter; not a bed, whose headboard rises over its top) covering less than topCover shows no top: its name
-// is doubted.
-double topCoverage(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options = {});
+// A thing's top as its points show it: the largest share of its box's footprint (cells of FusionOptions::topCell)
+// that the points of one band of heights, topBand thick, above the box's lowest quarter cover, and the highest of
+// those points. A table's top covers much of its footprint; the seats of bar stools an Open Images "desk" framed, or
+// a window ledge seen in two frames, little. A thing whose top holds things (a table, a desk, a counter; not a bed,
+// whose headboard rises over its top) covering less than topCover shows no top: its name is doubted. The band may lie
+// low in the box: the views merge a desk with the monitors on it.
+struct SeenTop {
+    double cover = 0;   // share of the footprint's cells
+    double height = 0;  // m: the band's highest point (the box's bottom when no point is in it)
+};
+SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options = {});
+
+// A thing whose top holds things, with a top seen (SeenTop::cover at least topCover) and its box reaching more than
+// FusionOptions::overTop above that top: the box is lowered to its top, since what rises above it stands on it (the
+// views merged a desk and its monitors into one box 0.3 m taller than the desk). Returns whether it was lowered.
+bool lowerToTop(model::Box& box, const SeenTop& top, const FusionOptions& options = {});
 
 // A thing fusion made: its box and the name it is stored under; where fusion did not keep the detectors' name, that
 // name (detectedAs) and why (no top, outOfPlace: "object"; namedByUse: "table", "desk"), else ""; its fused points
@@ -131,7 +142,7 @@ struct FusedThing {
 struct FusionCounts {
     std::size_t segmented = 0;  // views that showed a thing apart from the floor and walls
     std::size_t views = 0;      // views added
-    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, grounded = 0;
+    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, lowered = 0, grounded = 0;
 };
 
 // Object fusion frame by frame: each frame's views go into the instance map as the frame comes (addFrame), and
@@ -144,9 +155,9 @@ public:
     void addCamera(const FusionCamera& camera);
     // One frame's views of things (all of that frame's, in the capture's frame), frames in the order taken.
     void addFrame(std::vector<Observation> frameViews);
-    // The things the frames so far show: instances merged, pieces joined, grounded, slivers dropped, names
-    // doubted where they show no top or stand out of place, low tables and desks named by their use. The map
-    // itself is left to take more frames.
+    // The things the frames so far show: instances merged, pieces joined, tables lowered to their tops, grounded,
+    // slivers dropped, names doubted where they show no top or stand out of place, low tables and desks named by
+    // their use. The map itself is left to take more frames.
     std::vector<FusedThing> things(FusionCounts* counts = nullptr) const;
     const std::vector<Observation>& views() const { return views_; }
     std::vector<Observation> takeViews() { return std::move(views_); }

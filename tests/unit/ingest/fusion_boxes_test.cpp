@@ -1,7 +1,7 @@
 // What object fusion decides from the things' boxes (object_fusion.hpp): pieces of one thing that the instance
 // map kept apart, against things that merely stand close (pieceOf), and things whose legs were hidden reaching
 // down to the floor (reachDownToFloor), names out of place (outOfPlace), low tables and desks named by their use
-// (namedByUse), tops shown or not (topCoverage), and a sink's cabinet taken into the sink (takenIntoBasin). The boxes
+// (namedByUse), tops shown or not (seenTop), and a sink's cabinet taken into the sink (takenIntoBasin). The boxes
 // and frame counts are those real
 // captures gave (ScanNet scene0000_00, an apartment: its corner sofa, the kitchen's bar table with its stools;
 // scene0113_00, a lounge: a side table named twice; SUN RGB-D 000002, a bedroom display whose floor a Kinect frame
@@ -304,7 +304,7 @@ TEST_CASE("a top: a table's points cover its top; an Open Images desk framing ba
     desk.size = {1.023, 0.502, 0.732};
     desk.yaw = -1.3072;
     REQUIRE(stools.size() == 105);
-    CHECK(topCoverage(stools, desk) < FusionOptions{}.topCover);
+    CHECK(seenTop(stools, desk).cover < FusionOptions{}.topCover);
     // A table's top seen from above, points every 4 cm over its footprint at 0.72-0.75 m, and its legs: covered.
     model::Box table;
     table.center = {0, 0, 0.375};
@@ -315,10 +315,45 @@ TEST_CASE("a top: a table's points cover its top; an Open Images desk framing ba
     for (double z = 0; z < 0.7; z += 0.02)
         for (double x : {-0.55, 0.55})
             for (double y : {-0.3, 0.3}) seen.push_back({x, y, z});
-    CHECK(topCoverage(seen, table) > 0.9);
+    CHECK(seenTop(seen, table).cover > 0.9);
     // Its legs alone (the top hidden) cover no top.
     seen.erase(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(seen.size() - 4 * 35));
-    CHECK(topCoverage(seen, table) < FusionOptions{}.topCover);
+    CHECK(seenTop(seen, table).cover < FusionOptions{}.topCover);
+}
+
+TEST_CASE("a top low in its box: a desk merged with its monitors is lowered to its top, then reaches the floor",
+          "[ingest][fusion]") {
+    // TUM fr1/rpy: the desk's points, its top at 0.70-0.78 m over a 1.9 x 1.75 m footprint, merged with two monitors
+    // rising to 1.06 m; its front edge seen down to 0.59 m. The box ran from 0.59 to 1.06 m: the top lay in its lower
+    // half, so it showed "no top" and floated 0.59 m up.
+    std::vector<model::Vec3> topPoints, others;
+    for (double x = -0.9; x <= 0.9; x += 0.04)
+        for (double y = -0.85; y <= 0.85; y += 0.04) topPoints.push_back({x, y, 0.74 + 0.04 * std::sin(7 * x + 3 * y)});
+    for (double z = 0.59; z < 0.7; z += 0.02) others.push_back({0.0, -0.87, z});  // the front edge
+    for (double monitor : {-0.4, 0.4})
+        for (double x = monitor - 0.25; x <= monitor + 0.25; x += 0.03)
+            for (double z = 0.8; z <= 1.061; z += 0.03) others.push_back({x, 0.6, z});
+    std::vector<model::Vec3> points = topPoints;
+    points.insert(points.end(), others.begin(), others.end());
+    SeenBox desk = seen("desk", {0, 0, 0.825}, {1.8, 1.74, 0.47}, 0, 40);
+    const SeenTop top = seenTop(points, desk.box);
+    CHECK(top.cover > 0.9);
+    CHECK(top.height == Approx(0.78).margin(0.01));
+    REQUIRE(lowerToTop(desk.box, top));
+    CHECK(model::top(desk.box) == Approx(0.78).margin(0.01));
+    CHECK(model::bottom(desk.box) == Approx(0.59).margin(1e-9));
+    // Lowered, its top is a desk's: it reaches down to the floor its legs stand on.
+    std::vector<SeenBox> things{desk};
+    CHECK(reachDownToFloor(things, true) == 1);
+    CHECK(model::bottom(things[0].box) == Approx(0).margin(1e-9));
+    CHECK(model::top(things[0].box) == Approx(0.78).margin(0.01));
+
+    // A table whose box ends at its top is left as it is, and so is a box whose top the points do not show.
+    SeenBox table = seen("table", {0, 0, 0.39}, {1.8, 1.74, 0.78}, 0, 40);
+    CHECK_FALSE(lowerToTop(table.box, seenTop(topPoints, table.box)));
+    SeenBox shelf = seen("desk", {0, 0, 0.825}, {1.8, 1.74, 0.47}, 0, 40);
+    CHECK_FALSE(lowerToTop(shelf.box, seenTop(others, shelf.box)));
+    CHECK(model::top(shelf.box) == Approx(1.06).margin(1e-9));
 }
 
 TEST_CASE("named by use: a table against a wall with one chair at it is a desk", "[ingest][fusion]") {
