@@ -158,10 +158,19 @@ def umeyama(src, dst):
     return s, r, mu_d - s * r @ mu_s
 
 
+# The cameras' spread along their thinnest axis (RMS, metres) below which the similarity's rotation, and so
+# the tilt, is not measured: TUM fr1/rpy's camera turns on the spot (2 cm there), and centres a centimetre
+# off turn the fit by degrees.
+MIN_SPREAD_FOR_TILT = 0.1
+
+
 def tilt_and_spread(rgb, rgbd):
-    """Floor tilt (degrees between R z and z) and the singular value ratios of the true cameras."""
+    """Floor tilt (degrees between R z and z; None when the true cameras' thinnest spread is under
+    MIN_SPREAD_FOR_TILT) and the singular value ratios of the true cameras."""
     sv = np.linalg.svd(np.asarray(rgbd, float) - np.mean(rgbd, 0), compute_uv=False)
     s2, s3 = (float(sv[1] / sv[0]), float(sv[2] / sv[0])) if sv[0] > 0 else (0.0, 0.0)
+    if sv[2] / math.sqrt(len(rgbd)) < MIN_SPREAD_FOR_TILT:
+        return None, round(s2, 3), round(s3, 3)
     _, r, _ = umeyama(rgb, rgbd)
     up = r @ np.array([0.0, 0.0, 1.0])
     tilt = math.degrees(math.acos(max(-1.0, min(1.0, float(up[2])))))
@@ -224,7 +233,8 @@ def make_photo_folder(folder, kind, photos, max_frames):
     note = None
     if (folder / "camera.json").is_file():
         given = json.loads((folder / "camera.json").read_text())
-        camera = {k: given[k] for k in ("width", "height", "fx", "fy", "cx", "cy") if k in given}
+        camera = {k: given[k] for k in ("width", "height", "fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "k3")
+                  if k in given}
     else:
         import cv2
         height, width = cv2.imread(str(chosen[0])).shape[:2]

@@ -2,6 +2,7 @@
 // it. The detection order is documented in docs/formats.md.
 #include "ingest/capture/capture.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -69,6 +70,10 @@ std::optional<Capture> readLayout(const fs::path& target, const CaptureOptions& 
 }
 
 }  // namespace
+
+bool Intrinsics::distorted() const {
+    return std::any_of(distortion.begin(), distortion.end(), [](double k) { return k != 0; });
+}
 
 Capture readCapture(const std::string& path, const CaptureOptions& options) {
     if (path.empty()) throw Error(ErrorKind::Usage, "no capture given", std::nullopt, layoutsHint());

@@ -15,13 +15,19 @@
 
 namespace smql::ingest {
 
-// Pinhole camera, no distortion, in pixels. Pixel centres sit at integer
-// coordinates (the OpenCV convention: the top-left pixel's centre is (0, 0)).
-// Capture::intrinsics describe the images as stored (width x height);
-// loadFrame returns them scaled to the working resolution.
+// A camera in pixels: a pinhole, and the lens's distortion when it has one. Pixel centres sit at
+// integer coordinates (the OpenCV convention: the top-left pixel's centre is (0, 0)).
+// Capture::intrinsics describe the images as stored (width x height); loadFrame returns the images
+// undistorted and scaled to the working resolution, with a pinhole's intrinsics.
 struct Intrinsics {
     int width = 0, height = 0;
     double fx = 0, fy = 0, cx = 0, cy = 0;
+    // OpenCV's coefficients in OpenCV's order (k1, k2, p1, p2, k3, k4, k5, k6: radial, tangential, then the
+    // rational model's denominator), of normalised image coordinates, so the same at any image size. All zero:
+    // no distortion. camera.json, COLMAP's cameras (SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV) and
+    // transforms.json fill them.
+    std::array<double, 8> distortion{};
+    bool distorted() const;
     friend bool operator==(const Intrinsics&, const Intrinsics&) = default;
 };
 

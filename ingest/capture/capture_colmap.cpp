@@ -319,7 +319,7 @@ std::vector<SparsePoint> readPointsBinary(const fs::path& path) {
 bool isSupported(const CameraModel& model) {
     std::string_view name = model.name;
     return name == "SIMPLE_PINHOLE" || name == "PINHOLE" || name == "SIMPLE_RADIAL" || name == "RADIAL" ||
-           name == "OPENCV";
+           name == "OPENCV" || name == "FULL_OPENCV";
 }
 
 // COLMAP puts pixel centres at +0.5 (the image corner is 0); ours are at integers.
@@ -330,7 +330,7 @@ Intrinsics intrinsicsOf(const Camera& camera, bool& distorted) {
     out.width = static_cast<int>(camera.width);
     out.height = static_cast<int>(camera.height);
     std::size_t first = 3;  // first distortion parameter
-    if (name == "PINHOLE" || name == "OPENCV") {
+    if (name == "PINHOLE" || name == "OPENCV" || name == "FULL_OPENCV") {
         out.fx = p[0];
         out.fy = p[1];
         out.cx = p[2] - 0.5;
@@ -341,8 +341,11 @@ Intrinsics intrinsicsOf(const Camera& camera, bool& distorted) {
         out.cx = p[1] - 0.5;
         out.cy = p[2] - 0.5;
     }
-    for (std::size_t i = first; i < p.size(); ++i)
-        if (p[i] != 0) distorted = true;
+    // COLMAP's radial terms (k, then k1 k2) and OpenCV's (k1 k2 p1 p2, then k3 k4 k5 k6) are OpenCV's first
+    // coefficients in OpenCV's order.
+    for (std::size_t i = first; i < p.size() && i - first < out.distortion.size(); ++i)
+        out.distortion[i - first] = p[i];
+    distorted = distorted || out.distorted();
     if (out.fx < 0 || out.fy < 0)
         fail(
             camera.where,
@@ -422,8 +425,8 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
             fail(image.where, fmt::format("camera {} is not in {}", image.camera, camerasFile.string()), kColmapHint);
         if (!isSupported(*camera->second.model))
             fail(camera->second.where,
-                 fmt::format("camera model {} is not supported: use PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL or "
-                             "OPENCV (or undistort the images with `colmap image_undistorter`)",
+                 fmt::format("camera model {} is not supported: use PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, "
+                             "OPENCV or FULL_OPENCV (or undistort the images with `colmap image_undistorter`)",
                              camera->second.model->name),
                  kColmapHint);
         Intrinsics intrinsics = intrinsicsOf(camera->second, distorted);
@@ -454,9 +457,7 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
                   hasOptionIntrinsics(options) ? optionName(options) : camerasFile.string());
     if (distorted && !hasOptionIntrinsics(options))
         capture.notes.push_back(
-            fmt::format("{}: lens distortion is ignored: the images are taken as pinhole images "
-                        "(undistort them with `colmap image_undistorter` for exact geometry)",
-                        camerasFile.string()));
+            fmt::format("{}: the cameras' lens distortion is undone as each frame is read", camerasFile.string()));
     if (perFrame) capture.notes.push_back(fmt::format("{}: the images use several cameras", camerasFile.string()));
     if (options.depthScale) capture.depthScale = *options.depthScale;
     return capture;

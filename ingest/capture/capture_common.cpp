@@ -208,8 +208,10 @@ Intrinsics guessedIntrinsics(int width, int height) {
 Intrinsics scaleIntrinsics(const Intrinsics& in, int width, int height) {
     if (in.width == width && in.height == height) return in;
     double sx = static_cast<double>(width) / in.width, sy = static_cast<double>(height) / in.height;
-    // Pixel centres at integer coordinates: the image edge is at -0.5.
-    return Intrinsics{width, height, in.fx * sx, in.fy * sy, (in.cx + 0.5) * sx - 0.5, (in.cy + 0.5) * sy - 0.5};
+    // Pixel centres at integer coordinates: the image edge is at -0.5. The distortion is of normalised
+    // coordinates, which resizing leaves as they are.
+    return Intrinsics{width,        height, in.fx * sx, in.fy * sy, (in.cx + 0.5) * sx - 0.5, (in.cy + 0.5) * sy - 0.5,
+                      in.distortion};
 }
 
 Intrinsics userIntrinsics(const Intrinsics& given, int width, int height) {

@@ -21,7 +21,7 @@ using import::detail::JsonSource;
 // Camera fields, at the top level or per frame (per frame wins).
 struct CameraFields {
     std::optional<double> flX, flY, cx, cy, w, h, angleX, angleY;
-    bool distorted = false;
+    std::array<double, 5> distortion{};  // k1 k2 p1 p2 k3: OpenCV's order
     std::string model;
 };
 
@@ -37,9 +37,9 @@ void readCameraFields(const Field& object, CameraFields& out) {
     number("h", out.h);
     number("camera_angle_x", out.angleX);
     number("camera_angle_y", out.angleY);
-    for (std::string_view key : {"k1", "k2", "k3", "k4", "p1", "p2"})
-        if (std::optional<Field> f = object.find(key))
-            if (f->number() != 0) out.distorted = true;
+    const std::array<std::string_view, 5> coefficients{"k1", "k2", "p1", "p2", "k3"};
+    for (std::size_t i = 0; i < coefficients.size(); ++i)
+        if (std::optional<Field> f = object.find(coefficients[i])) out.distortion[i] = f->number();
     if (std::optional<Field> f = object.find("camera_model")) out.model = f->string();
 }
 
@@ -143,7 +143,11 @@ Intrinsics frameIntrinsics(Field& f, CameraFields cam, const fs::path& color, st
                         fx, fy));
     // nerfstudio puts pixel centres at +0.5 (the image corner is 0); ours are at integers.
     double cx = cam.cx ? *cam.cx : *cam.w / 2, cy = cam.cy ? *cam.cy : *cam.h / 2;
-    return Intrinsics{static_cast<int>(*cam.w), static_cast<int>(*cam.h), fx, fy, cx - 0.5, cy - 0.5};
+    Intrinsics out{static_cast<int>(*cam.w), static_cast<int>(*cam.h), fx, fy, cx - 0.5, cy - 0.5};
+    // A fisheye's k1-k4 are another model's: it is read as a pinhole (the note in readNerfstudio).
+    if (lowerCase(cam.model).find("fisheye") == std::string::npos)
+        std::copy(cam.distortion.begin(), cam.distortion.end(), out.distortion.begin());
+    return out;
 }
 
 }  // namespace
@@ -196,11 +200,11 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
 
         CameraFields cam = top;
         readCameraFields(f, cam);
-        distorted = distorted || cam.distorted;
         std::string model = lowerCase(cam.model);
         if (model == "equirectangular") f.fail("equirectangular cameras are not supported (pinhole only)");
         if (model.find("fisheye") != std::string::npos) fisheye = true;
         entry.intrinsics = frameIntrinsics(f, cam, color, firstImageSize);
+        distorted = distorted || entry.intrinsics.distorted();
         entries.push_back(std::move(entry));
     }
 
@@ -236,11 +240,9 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
                   hasOptionIntrinsics(options) ? optionName(options) : file);
 
     if (perFrame) capture.notes.push_back(fmt::format("{}: the frames have different intrinsics", file));
-    if (distorted)
+    if (distorted && !hasOptionIntrinsics(options))
         capture.notes.push_back(
-            fmt::format("{}: lens distortion (k1, k2, p1, p2...) is ignored: frames are taken as "
-                        "pinhole images",
-                        file));
+            fmt::format("{}: the cameras' lens distortion (k1, k2, p1, p2, k3) is undone as each frame is read", file));
     if (fisheye)
         capture.notes.push_back(
             fmt::format("{}: fisheye camera read as a pinhole camera: geometry near the image "

@@ -142,7 +142,7 @@ CameraJson readCameraJson(const fs::path& file, std::string_view hint) {
     JsonSource source{file.string(), std::string(hint)};
     import::detail::Json json = import::detail::parseJsonFile(source);
     Field root(json, source);
-    root.allowOnly({"width", "height", "fx", "fy", "cx", "cy", "depth_scale"});
+    root.allowOnly({"width", "height", "fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "k3", "depth_scale"});
     CameraJson out;
     auto positiveInt = [&](std::string_view key) {
         Field f = root.at(key);
@@ -170,6 +170,10 @@ CameraJson readCameraJson(const fs::path& file, std::string_view hint) {
     out.intrinsics.fy = focal(root.at("fy"));
     out.intrinsics.cx = root.at("cx").number();
     out.intrinsics.cy = root.at("cy").number();
+    // The lens's distortion, OpenCV's coefficients by OpenCV's names (TUM's Freiburg 1 and 2 calibrations).
+    const std::array<std::string_view, 5> coefficients{"k1", "k2", "p1", "p2", "k3"};
+    for (std::size_t i = 0; i < coefficients.size(); ++i)
+        if (std::optional<Field> k = root.find(coefficients[i])) out.intrinsics.distortion[i] = k->number();
     if (std::optional<Field> scale = root.find("depth_scale")) out.depthScale = positive(*scale);
     return out;
 }

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <fmt/format.h>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
@@ -47,6 +48,24 @@ Intrinsics fitIntrinsics(const Intrinsics& in, int width, int height, const std:
 
 }  // namespace capture_detail
 
+cv::Mat undistorted(const cv::Mat& image, const Intrinsics& camera, int interpolation) {
+    // A capture has one camera or few: the maps of the last one are kept for its next frame.
+    struct Maps {
+        Intrinsics camera;
+        cv::Mat x, y;
+    };
+    thread_local Maps maps;
+    if (!(maps.camera == camera)) {
+        const cv::Matx33d matrix(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+        cv::initUndistortRectifyMap(matrix, camera.distortion, cv::noArray(), matrix,
+                                    cv::Size(camera.width, camera.height), CV_32FC1, maps.x, maps.y);
+        maps.camera = camera;
+    }
+    cv::Mat out;
+    cv::remap(image, out, maps.x, maps.y, interpolation, cv::BORDER_CONSTANT, cv::Scalar::all(0));
+    return out;
+}
+
 FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int workingWidth) {
     RawFrame raw = readRawFrame(frame);
     FrameImages out;
@@ -72,11 +91,20 @@ FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int wor
         }
     }
     out.instances = raw.instances;
+    out.color = raw.color;
+    if (out.intrinsics.distorted()) {
+        out.color = undistorted(out.color, out.intrinsics, cv::INTER_LINEAR);
+        if (!out.depth.empty()) out.depth = undistorted(out.depth, out.intrinsics, cv::INTER_NEAREST);
+        if (!out.instances.empty()) out.instances = undistorted(out.instances, out.intrinsics, cv::INTER_NEAREST);
+        out.intrinsics.distortion = {};
+    }
 
     if (workingWidth > 0 && width > workingWidth) {
         int newHeight = std::max(1, static_cast<int>(std::lround(static_cast<double>(height) * workingWidth / width)));
         cv::Size size(workingWidth, newHeight);
-        cv::resize(raw.color, out.color, size, 0, 0, cv::INTER_AREA);
+        cv::Mat small;
+        cv::resize(out.color, small, size, 0, 0, cv::INTER_AREA);
+        out.color = small;
         if (!out.depth.empty()) {
             cv::Mat small;
             cv::resize(out.depth, small, size, 0, 0, cv::INTER_NEAREST);
@@ -88,8 +116,6 @@ FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int wor
             out.instances = small;
         }
         out.intrinsics = scaleIntrinsics(out.intrinsics, workingWidth, newHeight);
-    } else {
-        out.color = raw.color;
     }
     return out;
 }

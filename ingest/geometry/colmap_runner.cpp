@@ -18,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/colmap_database.hpp"
 #include "model/error.hpp"
 
@@ -94,6 +95,10 @@ struct WorkFrame {
     cv::Size work;          // as COLMAP sees it
     fs::path source;        // the frame's file
     bool upright = true;    // stored upright (no EXIF turn)
+    // The frame's known camera at its stored size when its lens distorts: the work image is undistorted
+    // (frame_loader.hpp), as every stage sees the frame, and COLMAP's camera is its pinhole. COLMAP's own
+    // OPENCV models registered none of TUM fr1/rpy's frames with Freiburg 1's calibration fixed.
+    std::optional<Intrinsics> lens;
 };
 
 // Frames of one image size with one known camera (or an unknown one): one COLMAP camera.
@@ -145,14 +150,15 @@ void clearWorkFolder(const fs::path& work) {
 // Links a frame into COLMAP's image folder when COLMAP can read it as it is, else writes it scaled
 // down and upright (as OpenCV reads it).
 void writeWorkImage(const WorkFrame& w, const fs::path& target) {
-    if (w.work == w.original && w.upright) {
+    if (w.work == w.original && w.upright && !w.lens) {
         std::error_code ec;
         fs::create_symlink(w.source, target, ec);
         if (ec) fs::copy_file(w.source, target);
         return;
     }
-    cv::Mat small;
-    cv::resize(cv::imread(w.source.string(), cv::IMREAD_COLOR), small, w.work, 0, 0, cv::INTER_AREA);
+    cv::Mat image = cv::imread(w.source.string(), cv::IMREAD_COLOR), small;
+    if (w.lens) image = undistorted(image, *w.lens, cv::INTER_LINEAR);
+    cv::resize(image, small, w.work, 0, 0, cv::INTER_AREA);
     if (!cv::imwrite(target.string(), small, {cv::IMWRITE_JPEG_QUALITY, 95}))
         throw Error(ErrorKind::Input, fmt::format("cannot write {}", target.string()));
 }
@@ -183,6 +189,7 @@ std::string describeRun(const Capture& capture, const std::vector<WorkFrame>& wo
         out += fmt::format("{} {} {} bytes, written {}, {}x{}", w.name, w.source.string(), fs::file_size(w.source, ec),
                            fs::last_write_time(w.source, ec).time_since_epoch().count(), w.original.width,
                            w.original.height);
+        if (w.lens) out += fmt::format(" undistorted {:.17g}", fmt::join(w.lens->distortion, " "));
         if (const auto& pose = capture.frames[w.frame].pose)
             out += fmt::format(" pose {:.17g} {:.17g} {:.17g} {:.17g}", fmt::join(pose->rotation, " "),
                                pose->translation.x, pose->translation.y, pose->translation.z);
@@ -259,7 +266,7 @@ std::string diagnosis(const fs::path& database, std::size_t frames, int minMatch
 
 // The capture's poses as a COLMAP text model without points, its images and cameras numbered as the
 // database numbers them: what point_triangulator starts from. Each camera is a PINHOLE at the size
-// COLMAP sees its frames.
+// COLMAP sees its frames (a lens's distortion is undone in the work images).
 void writePosedModel(const fs::path& folder, const fs::path& database, const Capture& capture,
                      const std::vector<WorkFrame>& workFrames) {
     fs::create_directories(folder);
@@ -367,6 +374,10 @@ private:
             WorkFrame w{
                 i, {}, image.size(), scaledDown(image.size(), options_.maxImageSize), fs::absolute(frame.colorPath)};
             std::optional<Intrinsics> known = knownCamera(capture_, frame, image.size());
+            if (known && known->distorted()) {
+                w.lens = known;
+                known->distortion = {};
+            }
             if (known) known = capture_detail::scaleIntrinsics(*known, w.work.width, w.work.height);
             auto group = std::find_if(groups_.begin(), groups_.end(), [&](const CameraGroup& g) {
                 return g.original == w.original && g.known == known;
@@ -678,8 +689,10 @@ private:
             if (it == byName.end()) continue;
             const WorkFrame& w = *it->second;
             capture_.frames[w.frame].pose = frame.pose;
-            Intrinsics k = frame.intrinsics ? *frame.intrinsics : best.intrinsics;
-            cameras.emplace_back(w.frame, capture_detail::scaleIntrinsics(k, w.original.width, w.original.height));
+            Intrinsics k = capture_detail::scaleIntrinsics(frame.intrinsics ? *frame.intrinsics : best.intrinsics,
+                                                           w.original.width, w.original.height);
+            if (w.lens) k.distortion = w.lens->distortion;  // COLMAP saw the frame undistorted
+            cameras.emplace_back(w.frame, k);
             ++run_.registered;
         }
         std::sort(cameras.begin(), cameras.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -692,6 +705,7 @@ private:
         for (const auto& [index, k] : cameras) {
             std::string text = fmt::format("{}x{}: fx {:.1f}, fy {:.1f}, cx {:.1f}, cy {:.1f}", k.width, k.height, k.fx,
                                            k.fy, k.cx, k.cy);
+            if (k.distorted()) text += fmt::format(", distortion {:.3g}", fmt::join(k.distortion, " "));
             if (std::find(described.begin(), described.end(), text) == described.end()) described.push_back(text);
         }
         note(fmt::format("COLMAP's cameras in the frames' own pixels, {}: {}", originWords(capture_.intrinsicsOrigin),

@@ -183,6 +183,60 @@ TEST_CASE("rgbd: camera.json, options, instance masks, labels and detections", "
     }
 }
 
+TEST_CASE("rgbd: camera.json's lens distortion is undone as frames are read", "[capture][rgbd][load]") {
+    // TUM's Freiburg 1 colour calibration, distortion and all, on 640 x 480 frames. A point of the scene at
+    // normalised coordinates (0.42, 0.3) lands where the lens bends it: the frame on disk shows a bright
+    // 3 x 3 spot there, and a depth reading of 2 m under it.
+    constexpr double fx = 517.3, fy = 516.5, cx = 318.6, cy = 255.3;
+    constexpr std::array<double, 5> k{0.2624, -0.9531, -0.0054, 0.0026, 1.1633};
+    const double x = 0.42, y = 0.3, r2 = x * x + y * y;
+    const double radial = 1 + k[0] * r2 + k[1] * r2 * r2 + k[4] * r2 * r2 * r2;
+    const double xd = x * radial + 2 * k[2] * x * y + k[3] * (r2 + 2 * x * x);
+    const double yd = y * radial + k[2] * (r2 + 2 * y * y) + 2 * k[3] * x * y;
+    const cv::Point bent(static_cast<int>(std::lround(fx * xd + cx)), static_cast<int>(std::lround(fy * yd + cy)));
+    const cv::Point2d pinhole(fx * x + cx, fy * y + cy);
+    REQUIRE(cv::norm(cv::Point2d(bent) - pinhole) > 5);  // the lens moves it by several pixels
+
+    TempDir dir;
+    dir.mkdir("color");
+    dir.mkdir("depth");
+    cv::Mat color(480, 640, CV_8UC3, cv::Scalar::all(0)), depth(480, 640, CV_16U, cv::Scalar(0));
+    color(cv::Rect(bent.x - 1, bent.y - 1, 3, 3)).setTo(cv::Scalar::all(255));
+    depth(cv::Rect(bent.x - 1, bent.y - 1, 3, 3)).setTo(10000);
+    REQUIRE(cv::imwrite(dir.path("color/1.png"), color));
+    REQUIRE(cv::imwrite(dir.path("depth/1.png"), depth));
+    dir.write("pose.txt", "0 0 0 0 0 0 1\n");
+    dir.write("camera.json", R"({"width": 640, "height": 480, "fx": 517.3, "fy": 516.5, "cx": 318.6, "cy": 255.3,
+                                 "k1": 0.2624, "k2": -0.9531, "p1": -0.0054, "p2": 0.0026, "k3": 1.1633,
+                                 "depth_scale": 5000})");
+    Capture capture = readCapture(dir.path());
+    CHECK(capture.intrinsics.distorted());
+    CHECK(capture.intrinsics.distortion[4] == 1.1633);
+
+    // Read, the frame is the pinhole image of the same intrinsics: the spot where the point projects without
+    // the lens, within a pixel, and its depth under it.
+    FrameImages images = loadFrame(capture, capture.frames[0], 640);
+    CHECK_FALSE(images.intrinsics.distorted());
+    CHECK(images.intrinsics.fx == fx);
+    cv::Mat gray;
+    cv::cvtColor(images.color, gray, cv::COLOR_BGR2GRAY);
+    const cv::Moments spot = cv::moments(gray, false);
+    REQUIRE(spot.m00 > 0);
+    CHECK(cv::norm(cv::Point2d(spot.m10 / spot.m00, spot.m01 / spot.m00) - pinhole) < 1.0);
+    CHECK(images.depth.at<float>(static_cast<int>(std::lround(pinhole.y)), static_cast<int>(std::lround(pinhole.x))) ==
+          Approx(2.0));
+    CHECK(cv::countNonZero(images.depth) <= 16);  // nearest pixels: no reading smeared between them
+
+    // Scaled down to the working width, the same spot: the distortion is of normalised coordinates.
+    FrameImages half = loadFrame(capture, capture.frames[0], 320);
+    cv::cvtColor(half.color, gray, cv::COLOR_BGR2GRAY);
+    const cv::Moments small = cv::moments(gray, false);
+    REQUIRE(small.m00 > 0);
+    CHECK(cv::norm(cv::Point2d(small.m10 / small.m00, small.m01 / small.m00) -
+                   cv::Point2d(half.intrinsics.fx * x + half.intrinsics.cx,
+                               half.intrinsics.fy * y + half.intrinsics.cy)) < 1.0);
+}
+
 TEST_CASE("rgbd: frames in numeric order, leading zeros and other extensions", "[capture][rgbd]") {
     TempDir dir;
     for (int i : {1, 2, 10}) {
@@ -295,8 +349,9 @@ TEST_CASE("nerfstudio: OpenGL poses become OpenCV poses", "[capture][nerfstudio]
     Capture capture = readCapture(dir.path());
     CHECK(capture.layout == "nerfstudio");
     CHECK_FALSE(capture.metric);
-    CHECK(capture.intrinsics == Intrinsics{40, 30, 50, 52, 19.5, 14.5});
-    CHECK(hasNote(capture, "distortion"));
+    // OPENCV's k1 k2 p1 p2 are the first of OpenCV's coefficients, undone as frames are read.
+    CHECK(capture.intrinsics == Intrinsics{40, 30, 50, 52, 19.5, 14.5, {0.01, 0, 0, 0, 0, 0, 0, 0}});
+    CHECK(hasNote(capture, "distortion (k1, k2, p1, p2, k3) is undone"));
     REQUIRE(capture.frames.size() == 2);
     CHECK(fs::path(capture.frames[0].colorPath).filename() == "frame_2.png");  // natural order
     CHECK(fs::path(capture.frames[1].colorPath).filename() == "frame_10.png");
@@ -462,11 +517,12 @@ void checkColmapCapture(const Capture& capture) {
     CHECK(capture.frames[0].depthPath.empty());
 
     // Intrinsics: camera 2 for the capture, camera 1 on frame b; principal point moved by -0.5.
-    CHECK(capture.intrinsics == Intrinsics{40, 30, 45, 45, 19.5, 14.5});
+    // SIMPLE_RADIAL's k is OpenCV's k1.
+    CHECK(capture.intrinsics == Intrinsics{40, 30, 45, 45, 19.5, 14.5, {0.1, 0, 0, 0, 0, 0, 0, 0}});
     CHECK_FALSE(capture.frames[0].intrinsics);
     REQUIRE(capture.frames[1].intrinsics);
     CHECK(*capture.frames[1].intrinsics == Intrinsics{40, 30, 50, 52, 19.5, 14.5});
-    CHECK(hasNote(capture, "distortion"));
+    CHECK(hasNote(capture, "lens distortion is undone as each frame is read"));
 
     // a.png: world-to-camera identity, t = (0, 0, -5) -> camera at (0, 0, 5).
     checkRotation(*capture.frames[0].pose, {1, 0, 0, 0, 1, 0, 0, 0, 1});
