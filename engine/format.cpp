@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "model/geometry.hpp"
+
 namespace smql {
 
 std::string valueText(const Value& value) {
@@ -19,7 +21,7 @@ std::string valueText(const Value& value) {
         case ValueType::Box: {
             const auto& b = std::get<model::Box>(value);
             return fmt::format("({:.2f}, {:.2f}, {:.2f}) {:.2f}x{:.2f}x{:.2f} yaw {:.0f}", b.center.x, b.center.y,
-                               b.center.z, b.size.x, b.size.y, b.size.z, b.yaw * 180.0 / M_PI);
+                               b.center.z, b.size.x, b.size.y, b.size.z, b.yaw / model::kDegree);
         }
     }
     return "";

@@ -4,10 +4,14 @@
 #pragma once
 
 #include <array>
+#include <numbers>
 
 #include "model/types.hpp"
 
 namespace smql::model {
+
+// Radians in a degree: angles are written in degrees (yaw, thresholds), computed in radians.
+inline constexpr double kDegree = std::numbers::pi / 180;
 
 struct Vec2 {
     double x = 0, y = 0;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "model/geometry.hpp"
 #include "relations/visibility.hpp"
 
 namespace smql::relations {
@@ -369,7 +370,7 @@ double visibleFromScore(const PredicateInputs& in) {
 }
 
 // Sr3D's sections of a thing with a front widen by 10 degrees on each side beyond its sides.
-const double kSectionFlare = std::tan(10.0 * M_PI / 180.0);
+const double kSectionFlare = std::tan(10.0 * model::kDegree);
 
 // Where `point` lies in box's own frame: `ahead` beyond its front face (negative: behind its back
 // face), `aside` beyond the section's flared side (<= 0: within the section).

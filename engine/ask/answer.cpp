@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <set>
 
@@ -332,7 +331,7 @@ std::string direction(const Translation& t, const ResultSet& rs) {
     double fx = facing.x - at.x, fy = facing.y - at.y, vx = asked.x - at.x, vy = asked.y - at.y;
     // Counter-clockwise from the facing direction is to the left (z up); a situation's person faces
     // `turn` quarter turns counter-clockwise of that.
-    double angle = std::atan2(fx * vy - fy * vx, fx * vx + fy * vy) * 180.0 / std::numbers::pi - 90.0 * t.turn;
+    double angle = std::atan2(fx * vy - fy * vx, fx * vx + fy * vy) / model::kDegree - 90.0 * t.turn;
     angle = std::remainder(angle, 360.0);
     bool quadrants = std::find(t.choices.begin(), t.choices.end(), "front-left") != t.choices.end();
     bool back = std::find(t.choices.begin(), t.choices.end(), "back") != t.choices.end();
@@ -547,7 +546,7 @@ std::string route(const Translation& t, const ResultSet& rs) {
         if (!target) return fmt::format("There is no {} on the way.", t.roles[next].front());
         double vx = target->at.x - at.x, vy = target->at.y - at.y;
         if (step == "turn") {
-            double angle = std::atan2(hx * vy - hy * vx, hx * vx + hy * vy) * 180.0 / std::numbers::pi;
+            double angle = std::atan2(hx * vy - hy * vx, hx * vx + hy * vy) / model::kDegree;
             std::string turn = std::abs(angle) >= 135 ? "Turn Back" : angle > 0 ? "Turn Left" : "Turn Right";
             turns.push_back(turn);
             why.push_back(fmt::format("at {}, {} is {:.0f} degrees to the {}", where, target->label, std::abs(angle),

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "engine/catalog/scene_snapshot.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::catalog {
 
@@ -22,7 +23,7 @@ void describeNode(ResultSet& rows, const model::Node& n, std::string_view path,
         const auto& b = n.box;
         add("center", fmt::format("({:.3f}, {:.3f}, {:.3f}) m", b.center.x, b.center.y, b.center.z));
         add("dimensions", fmt::format("{:.3f} x {:.3f} x {:.3f} m", b.size.x, b.size.y, b.size.z));
-        add("yaw", fmt::format("{:.1f} deg", b.yaw * 180.0 / M_PI));
+        add("yaw", fmt::format("{:.1f} deg", b.yaw / model::kDegree));
         add("geometry", n.geometry == model::GeometryKind::Plane ? "plane segment" : "box");
     }
     add("confidence", fmt::format("{:.2f}", n.confidence));

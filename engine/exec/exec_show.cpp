@@ -9,6 +9,7 @@
 #include "engine/exec/executor.hpp"
 #include "model/category.hpp"
 #include "model/error.hpp"
+#include "model/geometry.hpp"
 #include "model/presentation.hpp"
 #include "storage/database.hpp"
 
@@ -26,7 +27,7 @@ ResultSet Executor::run(const binder::BoundShowScenes&) {
                              })->name;
     for (const auto& s : scenes) {
         // Whole degrees; + 0.0 turns a -0 (a yaw a hair below zero) into 0.
-        const double facing = std::round(s.viewpoint.facingYaw * 180.0 / M_PI) + 0.0;
+        const double facing = std::round(s.viewpoint.facingYaw / model::kDegree) + 0.0;
         std::string vp = fmt::format("({:.2f}, {:.2f}, {:.2f}) facing {:.0f} deg", s.viewpoint.position.x,
                                      s.viewpoint.position.y, s.viewpoint.position.z, facing);
         bool current = !session_.allScenes && s.name == session_.sceneName;

@@ -97,7 +97,7 @@ std::optional<double> wallDirection(const std::vector<Node>& nodes) {
 // (its own fit), near 45 degrees (where the bounds hardly tell the sides apart), or whose sizes no
 // rectangle at that turn has as bounds.
 std::optional<model::Box> squareTo(const model::Box& box, double walls) {
-    constexpr double kOwnFit = 10 * M_PI / 180, kLeastConditioning = 0.15;
+    constexpr double kOwnFit = 10 * model::kDegree, kLeastConditioning = 0.15;
     const double turn = std::remainder(walls - box.yaw, M_PI / 2);
     const double c = std::cos(turn), s = std::abs(std::sin(turn)), conditioning = c * c - s * s;
     if (std::abs(turn) < kOwnFit || conditioning < kLeastConditioning) return std::nullopt;

@@ -19,7 +19,7 @@ double wrap(double a) {
     return a;
 }
 
-double degrees(double radians) { return radians * 180 / M_PI; }
+double degrees(double radians) { return radians / model::kDegree; }
 
 // Legs shorter than this (metres) are not steps of their own.
 constexpr double kShortestStep = 0.4;

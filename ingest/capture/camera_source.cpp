@@ -3,13 +3,13 @@
 // refuses mirrored cameras in whatever a reader produced.
 #include <cmath>
 #include <memory>
-#include <numbers>
 
 #include <fmt/format.h>
 #include <libexif/exif-data.h>
 
 #include "ingest/capture/capture_detail.hpp"
 #include "model/error.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
@@ -67,7 +67,7 @@ namespace capture_detail {
 std::optional<Intrinsics> optionIntrinsics(const CaptureOptions& options, int width, int height) {
     if (options.intrinsics) return userIntrinsics(*options.intrinsics, width, height);
     if (!options.horizontalFov) return std::nullopt;
-    double fov = checkFieldOfView(*options.horizontalFov) * std::numbers::pi / 180;
+    double fov = checkFieldOfView(*options.horizontalFov) * model::kDegree;
     double f = 0.5 * width / std::tan(0.5 * fov);
     return Intrinsics{width, height, f, f, (width - 1) / 2.0, (height - 1) / 2.0};
 }

@@ -12,6 +12,7 @@
 #include "ingest/geometry/floor_evidence.hpp"
 #include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/geometry/robust.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
@@ -21,7 +22,7 @@ using detail::toEigen;
 
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;
+using model::kDegree;
 // Typical distance from a hand-held camera to the surfaces it sees indoors:
 // turns metre thresholds into the units of a scale-free cloud before its scale is known.
 constexpr double kTypicalViewingDistance = 2.5;

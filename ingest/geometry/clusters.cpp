@@ -10,12 +10,13 @@
 
 #include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/geometry/robust.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;
+using model::kDegree;
 
 // Area of the 2-98% quantile rectangle of the points in a frame turned by `yaw`:
 // an outlier-proof stand-in for the minimum-area rectangle, used to find the

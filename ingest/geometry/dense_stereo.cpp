@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <set>
 #include <unordered_map>
@@ -16,6 +15,7 @@
 
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/robust.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
@@ -24,7 +24,7 @@ namespace {
 using detail::rotationOf;
 using detail::toEigen;
 
-constexpr double kDegree = std::numbers::pi / 180;
+using model::kDegree;
 
 // A placed frame: its camera in the capture's frame and the depths at which it sees the capture's
 // sparse points (5th, 50th and 95th percentiles), which bound the disparities searched.

@@ -3,19 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <set>
 
 #include <Eigen/Core>
 
 #include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/geometry/robust.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;
+using model::kDegree;
 
 struct Candidate {
     Eigen::Vector2d normal;

@@ -1,14 +1,14 @@
 #include "ingest/import/oriented_box.hpp"
 
 #include <cmath>
-#include <numbers>
 
+#include "model/geometry.hpp"
 namespace smql::import::detail {
 
 model::Box uprightBox(const model::Vec3& center, const model::Vec3& sizes, const Eigen::Matrix3d& rotation) {
     model::Box box;
     box.center = center;
-    if (rotation(2, 2) >= std::cos(kMaxTiltDegrees * std::numbers::pi / 180)) {
+    if (rotation(2, 2) >= std::cos(kMaxTiltDegrees * model::kDegree)) {
         box.size = sizes;
         box.yaw = std::atan2(rotation(1, 0), rotation(0, 0));
     } else {

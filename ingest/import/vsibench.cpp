@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 
 #include <fmt/format.h>
 
@@ -13,6 +12,7 @@
 #include "ingest/import/viewpoint.hpp"
 #include "model/category.hpp"
 #include "model/error.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::import {
 
@@ -68,7 +68,7 @@ double uprightAround(const Axes& axes, const model::Vec3& lengths, model::Box& b
         return sum;
     };
     box.size = {extent(u), extent(v), extent(z)};
-    return std::acos(std::min(1.0, std::abs(axes[up].z))) * 180 / std::numbers::pi;
+    return std::acos(std::min(1.0, std::abs(axes[up].z))) / model::kDegree;
 }
 
 // Doors and windows are the room's anchors, as in Replica; everything else is an object.

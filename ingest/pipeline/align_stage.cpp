@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "model/geometry.hpp"
+
 namespace smql::ingest {
 
 AlignedCapture AlignStage::run(StageProgress& progress) {
@@ -34,7 +36,7 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
 std::string AlignStage::summary(const AlignedCapture& aligned) const {
     const Alignment& a = aligned.alignment;
     return fmt::format("floor {}, heading {:.1f} deg, scale {:.3f}", a.floorFound ? "found" : "not found",
-                       a.heading * 180 / M_PI, a.scale);
+                       a.heading / model::kDegree, a.scale);
 }
 
 }  // namespace smql::ingest

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
+#include "model/geometry.hpp"
 namespace smql::ingest {
 
 bool Keyframes::take(const Pose& pose) {
@@ -16,7 +16,7 @@ bool Keyframes::take(const Pose& pose) {
         const auto& r = last_->rotation;
         const auto& s = pose.rotation;
         const double cosine = std::clamp(r[2] * s[2] + r[5] * s[5] + r[8] * s[8], -1.0, 1.0);
-        const double turned = std::acos(cosine) * 180 / std::numbers::pi;
+        const double turned = std::acos(cosine) / model::kDegree;
         if (moved < rule_.move && turned < rule_.turn) return false;
     }
     last_ = pose;

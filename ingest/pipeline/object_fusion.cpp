@@ -252,7 +252,7 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
     const double half[2] = {w.size.x / 2, w.size.y / 2};
     // The part's sides along the whole's axes (its yaw within 20 degrees of them, either way round).
     const double turn = std::remainder(p.yaw - w.yaw, M_PI);
-    if (std::abs(std::remainder(turn, M_PI / 2)) > 20 * M_PI / 180) return false;
+    if (std::abs(std::remainder(turn, M_PI / 2)) > 20 * model::kDegree) return false;
     const bool swapped = std::abs(turn) > M_PI / 4;
     const double side[2] = {swapped ? p.size.y : p.size.x, swapped ? p.size.x : p.size.y};
     for (int along = 0; along < 2; ++along) {
@@ -370,7 +370,7 @@ bool longSideAgainstWall(const model::Box& box, const std::vector<WallSegment>& 
         const model::Vec3 along = wall.direction();
         const double turn = std::remainder(alongYaw - std::atan2(along.y, along.x), M_PI);
         const double t = along.x * box.center.x + along.y * box.center.y;
-        return std::abs(turn) <= 15 * M_PI / 180 && t >= wall.along0 && t <= wall.along1 &&
+        return std::abs(turn) <= 15 * model::kDegree && t >= wall.along0 && t <= wall.along1 &&
                std::abs(std::abs(wall.signedDistance(box.center)) - depth / 2) <= options.againstWall;
     });
 }

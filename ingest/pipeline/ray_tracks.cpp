@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <queue>
 #include <unordered_map>
@@ -11,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "ingest/capture/detections.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
@@ -66,7 +66,7 @@ std::optional<double> offCentre(const Vec& x, const BoxView& box) {
 // (nearer to parallel, depth is ill-posed) and it lies in front of both.
 std::optional<Vec> closestApproach(const Ray& a, const Ray& b) {
     double cosine = a.direction.dot(b.direction);
-    if (cosine > std::cos(kMinRayAngle * std::numbers::pi / 180)) return std::nullopt;
+    if (cosine > std::cos(kMinRayAngle * model::kDegree)) return std::nullopt;
     Vec w = a.origin - b.origin;
     double d = a.direction.dot(w), e = b.direction.dot(w), denominator = 1 - cosine * cosine;
     double s = (cosine * e - d) / denominator, t = (e - cosine * d) / denominator;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -16,8 +17,8 @@ namespace smql::synth {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegree = kPi / 180;
+constexpr double kPi = std::numbers::pi;
+using model::kDegree;
 
 // Deterministic numbers in [0, 1) from the seed (no std distributions: their output is not portable).
 double unitFromSeed(std::uint64_t seed, std::uint64_t salt) {
