@@ -158,18 +158,19 @@ def umeyama(src, dst):
     return s, r, mu_d - s * r @ mu_s
 
 
-# The cameras' spread along their thinnest axis (RMS, metres) below which the similarity's rotation, and so
-# the tilt, is not measured: TUM fr1/rpy's camera turns on the spot (2 cm there), and centres a centimetre
-# off turn the fit by degrees.
+# The cameras' spread along the second of their axes (RMS, metres) below which the similarity's rotation, and
+# so the tilt, is not measured: cameras along a line leave the turn about it open, and TUM fr1/rpy's camera,
+# which turns on the spot, spreads 5 and 3 cm, where centres a centimetre off turn the fit by degrees. A walk
+# at one height spreads over a plane, which fixes the rotation.
 MIN_SPREAD_FOR_TILT = 0.1
 
 
 def tilt_and_spread(rgb, rgbd):
-    """Floor tilt (degrees between R z and z; None when the true cameras' thinnest spread is under
-    MIN_SPREAD_FOR_TILT) and the singular value ratios of the true cameras."""
+    """Floor tilt (degrees between R z and z; None when the true cameras' spread along their second axis is
+    under MIN_SPREAD_FOR_TILT) and the singular value ratios of the true cameras."""
     sv = np.linalg.svd(np.asarray(rgbd, float) - np.mean(rgbd, 0), compute_uv=False)
     s2, s3 = (float(sv[1] / sv[0]), float(sv[2] / sv[0])) if sv[0] > 0 else (0.0, 0.0)
-    if sv[2] / math.sqrt(len(rgbd)) < MIN_SPREAD_FOR_TILT:
+    if sv[1] / math.sqrt(len(rgbd)) < MIN_SPREAD_FOR_TILT:
         return None, round(s2, 3), round(s3, 3)
     _, r, _ = umeyama(rgb, rgbd)
     up = r @ np.array([0.0, 0.0, 1.0])
