@@ -18,8 +18,9 @@ using namespace capture_detail;
 namespace {
 
 constexpr const char* kCameraOptionHint =
-    "--camera fx,fy,cx,cy: four numbers in pixels of the images as stored, focal lengths > 0 (e.g. "
-    "--camera 1450,1450,959.5,539.5)";
+    "--camera fx,fy,cx,cy[,k1,k2,p1,p2,k3]: four numbers in pixels of the images as stored, focal lengths > 0, "
+    "then the lens's distortion in OpenCV's order when known (e.g. --camera 1450,1450,959.5,539.5 or "
+    "--camera 517.3,516.5,318.6,255.3,0.2624,-0.9531,-0.0054,0.0026,1.1633)";
 constexpr const char* kFovHint =
     "--fov DEG: the horizontal field of view in degrees, between 0 and 180 (e.g. --fov 66)";
 
@@ -41,8 +42,11 @@ Intrinsics parseCameraOption(std::string_view text) {
         values.push_back(*value);
         start = end + 1;
     }
-    if (values.size() != 4)
-        throw Error(ErrorKind::Usage, fmt::format("--camera takes 4 numbers (fx,fy,cx,cy), got {}", values.size()),
+    if (values.size() < 4 || values.size() > 9)
+        throw Error(ErrorKind::Usage,
+                    fmt::format("--camera takes 4 numbers (fx,fy,cx,cy), then up to 5 of the lens's distortion "
+                                "(k1,k2,p1,p2,k3), got {}",
+                                values.size()),
                     std::nullopt, kCameraOptionHint);
     if (values[0] <= 0 || values[1] <= 0)
         throw Error(ErrorKind::Usage,
@@ -50,7 +54,9 @@ Intrinsics parseCameraOption(std::string_view text) {
                                 "length is a mirrored camera, which smql refuses)",
                                 values[0], values[1]),
                     std::nullopt, kCameraOptionHint);
-    return Intrinsics{0, 0, values[0], values[1], values[2], values[3]};
+    Intrinsics out{0, 0, values[0], values[1], values[2], values[3]};
+    std::copy(values.begin() + 4, values.end(), out.distortion.begin());
+    return out;
 }
 
 double checkFieldOfView(double degrees) {

@@ -81,11 +81,12 @@ const std::vector<IngestOption> kIngestOptions = {
          return std::string("frames per second kept from videos and TUM sequences (default 1; 0 keeps every frame)");
      },
      [](IngestRequest& r, const std::string& v) { r.fps = number("fps", v, true); }},
-    {"camera", "FX,FY,CX,CY",
+    {"camera", "FX,FY,CX,CY[,K1,K2,P1,P2,K3]",
      [] {
          return std::string(
-             "the camera in pixels of the images as stored (default: the capture's camera.json or calibration, "
-             "else the photos' EXIF focal length, else a stated guess); COLMAP keeps it fixed");
+             "the camera in pixels of the images as stored, and its lens's distortion in OpenCV's order when known "
+             "(default: the capture's camera.json or calibration, else the photos' EXIF focal length, else a stated "
+             "guess); COLMAP keeps it fixed");
      },
      [](IngestRequest& r, const std::string& v) {
          parseCameraOption(v);  // checked now, not after the capture is read

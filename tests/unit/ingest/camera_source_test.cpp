@@ -1,5 +1,6 @@
 // Where a capture's camera comes from (--camera, --fov, camera.json, EXIF, the
 // stated guess) and the refusal of mirrored cameras and poses.
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -7,6 +8,7 @@
 #include "exif_jpeg.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/capture/frame_loader.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
@@ -29,9 +31,16 @@ TEST_CASE("--camera and --fov are parsed and checked", "[capture][camera]") {
     CHECK(k.cx == 959.5);
     CHECK(k.cy == 539.5);
     CHECK(k.width == 0);  // the images' size
+    CHECK_FALSE(k.distorted());
+    // The lens's distortion after the pinhole, in OpenCV's order (TUM's Freiburg 1), as many terms as known.
+    k = parseCameraOption("517.3,516.5,318.6,255.3,0.2624,-0.9531,-0.0054,0.0026,1.1633");
+    CHECK(k.distortion == std::array<double, 8>{0.2624, -0.9531, -0.0054, 0.0026, 1.1633, 0, 0, 0});
+    CHECK(parseCameraOption("517.3,516.5,318.6,255.3,0.2624").distortion[0] == 0.2624);
 
     requireError([] { parseCameraOption("1450,1450,959.5"); }, {"--camera takes 4 numbers", "got 3"}, std::nullopt,
                  ErrorKind::Usage);
+    requireError([] { parseCameraOption("1,1,1,1,0,0,0,0,0,0"); }, {"--camera", "up to 5", "k1,k2,p1,p2,k3", "got 10"},
+                 std::nullopt, ErrorKind::Usage);
     requireError([] { parseCameraOption("1450,wide,959.5,539.5"); }, {"--camera", "value 2 'wide' is not a number"},
                  std::nullopt, ErrorKind::Usage);
     requireError([] { parseCameraOption("-1450,1450,959.5,539.5"); }, {"--camera", "mirrored", "-1450"}, std::nullopt,
@@ -63,6 +72,13 @@ TEST_CASE("a photo folder's camera: options, camera.json, EXIF, else a stated gu
         CHECK(capture.intrinsicsOrigin == IntrinsicsOrigin::Measured);
         CHECK(capture.intrinsics == Intrinsics{80, 60, 70, 71, 39.5, 29.5});
         CHECK(hasNote(capture, "camera from --camera"));
+    }
+    SECTION("--camera with the lens's distortion: kept with the camera, the frames read undistorted") {
+        CaptureOptions options;
+        options.intrinsics = parseCameraOption("70,71,39.5,29.5,0.1,-0.05");
+        Capture capture = readCapture(photos, options);
+        CHECK(capture.intrinsics == Intrinsics{80, 60, 70, 71, 39.5, 29.5, {0.1, -0.05, 0, 0, 0, 0, 0, 0}});
+        CHECK_FALSE(loadFrame(capture, capture.frames[0], 80).intrinsics.distorted());
     }
     SECTION("--fov: the focal length from the width") {
         CaptureOptions options;
