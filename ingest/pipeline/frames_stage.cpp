@@ -1,6 +1,9 @@
 #include "ingest/pipeline/frames_stage.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/point_cloud.hpp"
@@ -27,18 +30,31 @@ DepthSketch sketchOf(const FrameImages& images, const Pose& pose) {
     return sketchDepth(view, pose);
 }
 
+// One note for the frames without a pose, however many (COLMAP leaves out tens of a long walk's), naming the
+// first of them.
+std::string unposedNote(const std::vector<int>& frames) {
+    constexpr std::size_t kNamed = 12;
+    std::vector<int> named(frames.begin(), frames.begin() + static_cast<long>(std::min(kNamed, frames.size())));
+    std::string list = fmt::format("{}", fmt::join(named, ", "));
+    if (frames.size() > kNamed) list += fmt::format(" and {} more", frames.size() - kNamed);
+    return frames.size() == 1
+               ? fmt::format("frame {} has no camera pose (not registered): skipped", list)
+               : fmt::format("{} frames have no camera pose (not registered): skipped: {}", frames.size(), list);
+}
+
 }  // namespace
 
 FramePass FramesStage::run(StageProgress& progress) {
     FramePass pass;
     PointCloud pending;
     std::vector<DepthSketch> sketches;
+    std::vector<int> unposed;  // frames COLMAP did not register
     const std::size_t sketchEvery = capture.frames.size() / kSketchedFrames + 1;
     for (std::size_t i = 0; i < capture.frames.size(); ++i) {
         progress.stopIfCancelled();
         const auto& frame = capture.frames[i];
         if (!frame.pose) {
-            progress.note(fmt::format("frame {} has no camera pose (not registered): skipped", frame.index));
+            unposed.push_back(frame.index);
             progress.advanced(i + 1);
             continue;
         }
@@ -55,6 +71,7 @@ FramePass FramesStage::run(StageProgress& progress) {
         finder.observe({position, frame, images, pose});
         progress.advanced(i + 1);
     }
+    if (!unposed.empty()) progress.note(unposedNote(unposed));
     append(pass.structure, pending);
     pass.structure = voxelDownsample(pass.structure, options.structureVoxel);
     bool hasDepth = framesHaveDepth(capture);

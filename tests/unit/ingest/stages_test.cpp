@@ -11,7 +11,9 @@
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/pipeline/anchors_stage.hpp"
+#include "ingest/pipeline/frames_stage.hpp"
 #include "ingest/pipeline/keyframes.hpp"
+#include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/request.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
@@ -207,4 +209,30 @@ TEST_CASE("keyframes: the first frame, then one for every 0.25 m moved or 15 deg
     int taken = 0;
     for (int i = 0; i < 100; ++i) taken += keyframes.take(pose(0.3, 26));  // standing still
     CHECK(taken == 0);
+}
+
+// Frames COLMAP did not place (tens in a long walk) are one note naming the first of them, not a note each.
+TEST_CASE("the frames stage names the frames without a pose in one note") {
+    Capture capture = readCapture(std::string(SMQL_SHARED_DATA) + "/rgbd-dining");
+    REQUIRE(capture.frames.size() == 5);
+    IngestOptions options;
+    options.objects = "cluster";
+    auto finder = makeObjectFinder(capture, options);
+    RecordingSink sink;
+    std::vector<std::string> notes;
+    StageProgress progress(sink, notes, [] { return false; });
+
+    capture.frames[3].pose.reset();
+    FramePass one = FramesStage{capture, options, *finder}.run(progress);
+    CHECK(one.cameras.size() == 4);
+    CHECK(std::count(notes.begin(), notes.end(), "frame 3 has no camera pose (not registered): skipped") == 1);
+
+    notes.clear();
+    capture.frames[0].pose.reset();
+    capture.frames[1].pose.reset();
+    FramePass two = FramesStage{capture, options, *finder}.run(progress);
+    CHECK(two.cameras.size() == 2);
+    const auto said = [&](std::string_view text) { return std::find(notes.begin(), notes.end(), text) != notes.end(); };
+    CHECK(said("3 frames have no camera pose (not registered): skipped: 0, 1, 3"));
+    CHECK(std::none_of(notes.begin(), notes.end(), [](const std::string& n) { return n.rfind("frame ", 0) == 0; }));
 }
