@@ -68,11 +68,11 @@ public:
     }
 
     std::string frameNote() const override {
-        if (hasDepth_ || unplacedCount_ == 0) return {};
+        if (hasDepth_ || fewPoints_ + uncarved_ == 0) return {};
         return fmt::format(
-            "{} detections had too few sparse points on them; {} of them were placed by their boxes' "
-            "rays across views",
-            unplacedCount_, placedByRays_);
+            "{} detections had too few sparse points on them and {} more were of things whose points did not agree "
+            "across views enough to carve a hull; {} of these were placed by their boxes' rays across views",
+            fewPoints_, uncarved_, placedByRays_);
     }
 
     std::vector<ObjectTrack> fuse(std::vector<ObjectTrack> tracks, const AlignedCapture& aligned,
@@ -167,6 +167,7 @@ private:
         }
         keepConsistentSparsePoints(all, capture_.points, inView_);
         carveVisualHulls(all, maskViews_, kBoxHullShare);
+        fewPoints_ = unplaced_.size();
         std::vector<ObjectTrack> carved;
         for (auto& track : tracks) {
             if (!track.surface.empty()) {
@@ -178,7 +179,7 @@ private:
                 unplaced_.push_back({std::move(v), track.category, std::move(crop)});
             }
         }
-        unplacedCount_ = unplaced_.size();
+        uncarved_ = unplaced_.size() - fewPoints_;
         placedByRays_ = placeByRays(std::move(unplaced_), maskViews_, carved, options_.minObjectViews);
         tracks = std::move(carved);
     }
@@ -192,8 +193,9 @@ private:
     std::vector<std::uint32_t> inView_;   // without depth: frames each sparse point projects into
     std::vector<MaskView> maskViews_;     // without depth: each frame's detections, for carving
     std::vector<UnplacedView> unplaced_;  // without depth: views too few sparse points placed
-    std::size_t unplacedCount_ = 0;       // without depth: how many views were not placed by sparse points
-    std::size_t placedByRays_ = 0;        // ... and how many of those their boxes' rays placed
+    std::size_t fewPoints_ = 0;           // without depth: views with too few sparse points on them,
+    std::size_t uncarved_ = 0;            // ... views of tracks whose points carved no hull,
+    std::size_t placedByRays_ = 0;        // ... and how many of both their boxes' rays placed
 };
 
 class DetectionFinder : public DetectionLifter {
