@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace smql::model {
 
@@ -149,6 +150,13 @@ Rgb Palette::operator()(std::string_view category) const {
 }
 
 double perceivedDistance(const Rgb& a, const Rgb& b) { return distance(toLab(a), toLab(b)); }
+
+std::string listFirst(const std::vector<std::string>& items, std::size_t shown) {
+    const auto end = items.begin() + static_cast<std::ptrdiff_t>(std::min(shown, items.size()));
+    std::string out = fmt::format("{}", fmt::join(items.begin(), end, ", "));
+    if (items.size() > shown) out += fmt::format(" and {} more", items.size() - shown);
+    return out;
+}
 
 std::string hexColour(const Rgb& colour) { return fmt::format("#{:02x}{:02x}{:02x}", colour.r, colour.g, colour.b); }
 

@@ -42,6 +42,10 @@ bool drawnKind(NodeKind kind);
 // The distance between two colours as a person sees it: CIE 1976 delta E, in CIELAB of sRGB.
 double perceivedDistance(const Rgb& a, const Rgb& b);
 
+// The first `shown` of the items, joined by ", ", then " and N more" for the rest: how an error or a note names
+// many things ("258.jpg, 259.jpg and 30 more").
+std::string listFirst(const std::vector<std::string>& items, std::size_t shown);
+
 // `#rrggbb`, as CSS, SVG and SHOW CATEGORIES write a colour.
 std::string hexColour(const Rgb& colour);
 

@@ -102,7 +102,8 @@ def rotation_of(obj):
 
 
 def umeyama(src, dst):
-    """Similarity (s, R, t) with dst ~ s R src + t (Umeyama 1991)."""
+    """Similarity (s, R, t) with dst ~ s R src + t (Umeyama 1991); s is nan when the source points coincide."""
+    src, dst = np.asarray(src, float), np.asarray(dst, float)
     mu_s, mu_d = src.mean(0), dst.mean(0)
     a, b = src - mu_s, dst - mu_d
     u, d, vt = np.linalg.svd(b.T @ a / len(src))
@@ -110,7 +111,8 @@ def umeyama(src, dst):
     if np.linalg.det(u) * np.linalg.det(vt) < 0:
         sign[2, 2] = -1
     r = u @ sign @ vt
-    s = np.trace(np.diag(d) @ sign) / (a ** 2).sum(1).mean()
+    var = (a ** 2).sum(1).mean()
+    s = float(np.trace(np.diag(d) @ sign) / var) if var > 0 else float("nan")
     return s, r, mu_d - s * r @ mu_s
 
 

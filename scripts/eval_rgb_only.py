@@ -45,6 +45,7 @@ import numpy as np
 # TUM's groundtruth.txt as the real_captures test reads it.
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "tests" / "e2e"))
 from real_captures_test import true_position_at, true_positions  # noqa: E402
+from eval_objects import umeyama  # noqa: E402  (scripts/, this file's folder)
 
 IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg")
 VIDEO_EXTENSIONS = (".mp4", ".mov", ".avi", ".mkv")
@@ -140,22 +141,6 @@ def pair_scale(pairs):
     ratios = [math.dist(a, b) / math.dist(ta, tb)
               for (a, ta), (b, tb) in itertools.combinations(pairs, 2) if math.dist(ta, tb) > 0.1]
     return median(ratios), len(ratios)
-
-
-def umeyama(src, dst):
-    """Similarity dst ~ s R src + t (Umeyama 1991): (s, R, t)."""
-    src, dst = np.asarray(src, float), np.asarray(dst, float)
-    mu_s, mu_d = src.mean(0), dst.mean(0)
-    a, b = src - mu_s, dst - mu_d
-    cov = b.T @ a / len(src)
-    u, d, vt = np.linalg.svd(cov)
-    e = np.eye(3)
-    if np.linalg.det(u) * np.linalg.det(vt) < 0:
-        e[2, 2] = -1
-    r = u @ e @ vt
-    var = (a ** 2).sum() / len(src)
-    s = float(np.trace(np.diag(d) @ e) / var) if var > 0 else float("nan")
-    return s, r, mu_d - s * r @ mu_s
 
 
 # The cameras' spread along the second of their axes (RMS, metres) below which the similarity's rotation, and

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "model/error.hpp"
+#include "model/presentation.hpp"
 
 namespace smql::binder {
 
@@ -34,10 +35,9 @@ void requireOne(const catalog::SceneSnapshot& scene, const binder::NodeSet& set,
         throw Error(ErrorKind::Binding, fmt::format("{} names no node; {} needs one", named, set.singleFor), set.where,
                     "SHOW CATEGORIES lists what this scene holds");
     std::string category = scene.node(slots.front()).category;
-    std::string listed;
-    for (std::size_t i = 0; i < slots.size() && i < kListed; ++i)
-        listed += (i ? ", " : "") + candidate(scene, slots[i]);
-    if (slots.size() > kListed) listed += fmt::format(" and {} more", slots.size() - kListed);
+    std::vector<std::string> candidates;
+    for (auto slot : slots) candidates.push_back(candidate(scene, slot));
+    const std::string listed = model::listFirst(candidates, kListed);
     const std::string example = catalog::SceneSnapshot::label(scene.node(slots.front()));
     const std::string landmark = category == "door" ? "window" : "door";
     throw Error(ErrorKind::Binding,

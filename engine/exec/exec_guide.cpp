@@ -7,6 +7,7 @@
 #include "engine/exec/executor.hpp"
 #include "engine/guide/route_steps.hpp"
 #include "model/error.hpp"
+#include "model/presentation.hpp"
 
 namespace smql::exec {
 
@@ -81,14 +82,13 @@ catalog::Slot Executor::single(const binder::NodeSet& set, std::string_view role
         throw Error(ErrorKind::Binding,
                     fmt::format("the {} names no node with a place in the scene ({})", role, set.description),
                     std::nullopt, "FIND shows what a reference names");
-    std::string listed;
-    for (std::size_t i = 0; i < candidates.size() && i < kCandidatesShown; ++i) {
-        const model::Node& n = scene().node(candidates[i]);
-        listed += fmt::format("{}{} at ({:.1f}, {:.1f})", i ? ", " : "", catalog::SceneSnapshot::label(n),
-                              n.box.center.x, n.box.center.y);
+    std::vector<std::string> placed;
+    for (auto id : candidates) {
+        const model::Node& n = scene().node(id);
+        placed.push_back(
+            fmt::format("{} at ({:.1f}, {:.1f})", catalog::SceneSnapshot::label(n), n.box.center.x, n.box.center.y));
     }
-    if (candidates.size() > kCandidatesShown)
-        listed += fmt::format(" and {} more", candidates.size() - kCandidatesShown);
+    const std::string listed = model::listFirst(placed, kCandidatesShown);
     const model::Node& first = scene().node(candidates.front());
     throw Error(
         ErrorKind::Binding,

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <libexif/exif-data.h>
 
 #include "ingest/capture/capture_detail.hpp"
@@ -42,11 +43,11 @@ Intrinsics parseCameraOption(std::string_view text) {
         values.push_back(*value);
         start = end + 1;
     }
-    if (values.size() < 4 || values.size() > 9)
+    if (values.size() < 4 || values.size() > 4 + kDistortionNames.size())
         throw Error(ErrorKind::Usage,
-                    fmt::format("--camera takes 4 numbers (fx,fy,cx,cy), then up to 5 of the lens's distortion "
-                                "(k1,k2,p1,p2,k3), got {}",
-                                values.size()),
+                    fmt::format("--camera takes 4 numbers (fx,fy,cx,cy), then up to {} of the lens's distortion "
+                                "({}), got {}",
+                                kDistortionNames.size(), fmt::join(kDistortionNames, ","), values.size()),
                     std::nullopt, kCameraOptionHint);
     if (values[0] <= 0 || values[1] <= 0)
         throw Error(ErrorKind::Usage,

@@ -31,6 +31,9 @@ struct Intrinsics {
     friend bool operator==(const Intrinsics&, const Intrinsics&) = default;
 };
 
+// The names camera.json, transforms.json and --camera give the distortion's first coefficients, in OpenCV's order.
+inline constexpr std::array<std::string_view, 5> kDistortionNames{"k1", "k2", "p1", "p2", "k3"};
+
 // Camera-to-world: a world point is rotation * p_camera + translation. The
 // camera looks along +z with x to the right and y down (the OpenCV convention).
 struct Pose {

@@ -21,7 +21,7 @@ using import::detail::JsonSource;
 // Camera fields, at the top level or per frame (per frame wins).
 struct CameraFields {
     std::optional<double> flX, flY, cx, cy, w, h, angleX, angleY;
-    std::array<double, 5> distortion{};  // k1 k2 p1 p2 k3: OpenCV's order
+    std::array<double, kDistortionNames.size()> distortion{};
     std::string model;
 };
 
@@ -37,9 +37,8 @@ void readCameraFields(const Field& object, CameraFields& out) {
     number("h", out.h);
     number("camera_angle_x", out.angleX);
     number("camera_angle_y", out.angleY);
-    const std::array<std::string_view, 5> coefficients{"k1", "k2", "p1", "p2", "k3"};
-    for (std::size_t i = 0; i < coefficients.size(); ++i)
-        if (std::optional<Field> f = object.find(coefficients[i])) out.distortion[i] = f->number();
+    for (std::size_t i = 0; i < kDistortionNames.size(); ++i)
+        if (std::optional<Field> f = object.find(kDistortionNames[i])) out.distortion[i] = f->number();
     if (std::optional<Field> f = object.find("camera_model")) out.model = f->string();
 }
 

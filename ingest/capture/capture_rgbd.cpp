@@ -171,9 +171,8 @@ CameraJson readCameraJson(const fs::path& file, std::string_view hint) {
     out.intrinsics.cx = root.at("cx").number();
     out.intrinsics.cy = root.at("cy").number();
     // The lens's distortion, OpenCV's coefficients by OpenCV's names (TUM's Freiburg 1 and 2 calibrations).
-    const std::array<std::string_view, 5> coefficients{"k1", "k2", "p1", "p2", "k3"};
-    for (std::size_t i = 0; i < coefficients.size(); ++i)
-        if (std::optional<Field> k = root.find(coefficients[i])) out.intrinsics.distortion[i] = k->number();
+    for (std::size_t i = 0; i < kDistortionNames.size(); ++i)
+        if (std::optional<Field> k = root.find(kDistortionNames[i])) out.intrinsics.distortion[i] = k->number();
     if (std::optional<Field> scale = root.find("depth_scale")) out.depthScale = positive(*scale);
     return out;
 }

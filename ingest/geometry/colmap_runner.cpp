@@ -21,6 +21,7 @@
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/colmap_database.hpp"
 #include "model/error.hpp"
+#include "model/presentation.hpp"
 
 namespace smql::ingest {
 
@@ -717,11 +718,8 @@ private:
             std::vector<std::string> left;
             for (const WorkFrame& w : workFrames_)
                 if (!capture_.frames[w.frame].pose) left.push_back(w.source.filename().string());
-            const std::size_t named = std::min<std::size_t>(left.size(), 12);
-            note(fmt::format("COLMAP registered {} of {} frames; left out: {}{}", run_.registered,
-                             capture_.frames.size(),
-                             fmt::join(left.begin(), left.begin() + static_cast<std::ptrdiff_t>(named), ", "),
-                             left.size() > named ? fmt::format(" and {} more", left.size() - named) : std::string()));
+            note(fmt::format("COLMAP registered {} of {} frames; left out: {}", run_.registered, capture_.frames.size(),
+                             model::listFirst(left, 12)));
         }
     }
 

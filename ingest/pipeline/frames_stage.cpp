@@ -1,14 +1,14 @@
 #include "ingest/pipeline/frames_stage.hpp"
 
-#include <algorithm>
+#include <string>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "model/error.hpp"
+#include "model/presentation.hpp"
 
 namespace smql::ingest {
 
@@ -32,14 +32,10 @@ DepthSketch sketchOf(const FrameImages& images, const Pose& pose) {
 
 // One note for the frames without a pose, however many (COLMAP leaves out tens of a long walk's), naming the
 // first of them.
-std::string unposedNote(const std::vector<int>& frames) {
-    constexpr std::size_t kNamed = 12;
-    std::vector<int> named(frames.begin(), frames.begin() + static_cast<long>(std::min(kNamed, frames.size())));
-    std::string list = fmt::format("{}", fmt::join(named, ", "));
-    if (frames.size() > kNamed) list += fmt::format(" and {} more", frames.size() - kNamed);
-    return frames.size() == 1
-               ? fmt::format("frame {} has no camera pose (not registered): skipped", list)
-               : fmt::format("{} frames have no camera pose (not registered): skipped: {}", frames.size(), list);
+std::string unposedNote(const std::vector<std::string>& frames) {
+    return frames.size() == 1 ? fmt::format("frame {} has no camera pose (not registered): skipped", frames.front())
+                              : fmt::format("{} frames have no camera pose (not registered): skipped: {}",
+                                            frames.size(), model::listFirst(frames, 12));
 }
 
 }  // namespace
@@ -48,13 +44,13 @@ FramePass FramesStage::run(StageProgress& progress) {
     FramePass pass;
     PointCloud pending;
     std::vector<DepthSketch> sketches;
-    std::vector<int> unposed;  // frames COLMAP did not register
+    std::vector<std::string> unposed;  // the numbers of the frames COLMAP did not register
     const std::size_t sketchEvery = capture.frames.size() / kSketchedFrames + 1;
     for (std::size_t i = 0; i < capture.frames.size(); ++i) {
         progress.stopIfCancelled();
         const auto& frame = capture.frames[i];
         if (!frame.pose) {
-            unposed.push_back(frame.index);
+            unposed.push_back(std::to_string(frame.index));
             progress.advanced(i + 1);
             continue;
         }
