@@ -282,7 +282,7 @@ TEST_CASE("a real capture with lens distortion: COLMAP places its frames undisto
         "deg, off the motion capture's by {:.2f} deg (median)\n",
         run.registered, medianTurn, medianError);
     CHECK(medianTurn > 10);  // the frames turn: the check below means something
-    // Measured 1.9 deg; 2.6 with the lens taken for a pinhole. The rest is the motion capture's and its timing: the
+    // Measured 1.9-2.1 deg; 2.6 with the lens taken for a pinhole. The rest is the motion capture's and its timing: the
     // camera turns fast (about 1 rad/s in the rolls).
     CHECK(medianError < 2.3);
 }
