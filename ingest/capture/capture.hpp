@@ -75,10 +75,11 @@ struct Capture {
     bool metric = true;        // poses and points in metres (sensors) or up to scale (SfM)
     std::vector<CaptureFrame> frames;
     std::vector<SparsePoint> points;  // reconstructed 3D points, when the layout has them
-    // Points of the dense stage (dense_stereo.hpp) for photos without depth: structure only (floor,
-    // walls, the scale's priors). Things are placed on `points`, each matched by its features in
-    // several frames, on which the objects' measures were made.
+    // Points of the dense stage (dense_stereo.hpp) for photos without depth, one a voxel `denseSpacing`
+    // wide: the structure (floor, walls, the scale's priors) and, once the room is aligned, each frame's
+    // depth for its detections (objects_from_detections.cpp).
     std::vector<SparsePoint> densePoints;
+    double denseSpacing = 0;     // capture units
     std::string labelsPath;      // instance id -> category (+ attributes), JSON, with masks
     std::string detectionsPath;  // COCO-results style detections, JSON
     // What the reader assumed or ignored (default intrinsics, ignored lens

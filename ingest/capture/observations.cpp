@@ -244,7 +244,9 @@ std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size) {
     padded &= cv::Rect(0, 0, color.cols, color.rows);
     cv::Mat crop = color(padded);
     double scale = double(size) / std::max(crop.cols, crop.rows);
-    if (scale < 1) cv::resize(crop, crop, cv::Size(), scale, scale, cv::INTER_AREA);
+    // At least a pixel a side: a view one pixel wide and tall would scale to nothing.
+    auto scaled = [&](int side) { return std::max(1, static_cast<int>(std::lround(side * scale))); };
+    if (scale < 1) cv::resize(crop, crop, cv::Size(scaled(crop.cols), scaled(crop.rows)), 0, 0, cv::INTER_AREA);
     std::vector<std::uint8_t> bytes;
     cv::imencode(".jpg", crop, bytes, {cv::IMWRITE_JPEG_QUALITY, 85});
     return std::string(bytes.begin(), bytes.end());

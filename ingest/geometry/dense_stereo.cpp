@@ -345,4 +345,28 @@ DensePoints densePoints(const Capture& capture, const DenseOptions& options, con
     return out;
 }
 
+cv::Mat depthFromPoints(const std::vector<model::Vec3>& points, const Pose& pose, const Intrinsics& k, double spacing) {
+    // A point nearer than this many voxels to the camera covers no more than this square: a speck
+    // before the lens does not hide the frame.
+    constexpr int kMaxHalfSide = 8;
+    cv::Mat1f depth = cv::Mat1f::zeros(k.height, k.width);
+    const Eigen::Matrix3d toCamera = rotationOf(pose).transpose();
+    const Eigen::Vector3d centre = toEigen(pose.translation);
+    for (const auto& point : points) {
+        const Eigen::Vector3d p = toCamera * (toEigen(point) - centre);
+        if (p.z() <= 0) continue;
+        const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
+        const int half = std::min(kMaxHalfSide, static_cast<int>(std::ceil(0.5 * k.fx * spacing / p.z() - 0.5)));
+        const long column = std::lround(u), row = std::lround(v);
+        if (column + half < 0 || row + half < 0 || column - half >= k.width || row - half >= k.height) continue;
+        const auto z = static_cast<float>(p.z());
+        for (long y = std::max(0L, row - half); y <= std::min<long>(k.height - 1, row + half); ++y) {
+            auto* line = depth.ptr<float>(static_cast<int>(y));
+            for (long x = std::max(0L, column - half); x <= std::min<long>(k.width - 1, column + half); ++x)
+                if (line[x] == 0 || z < line[x]) line[x] = z;
+        }
+    }
+    return depth;
+}
+
 }  // namespace smql::ingest

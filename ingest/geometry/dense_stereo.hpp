@@ -12,6 +12,8 @@
 #include <functional>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "ingest/capture/capture.hpp"
 
 namespace smql::ingest {
@@ -53,5 +55,11 @@ using DenseProgress = std::function<void(std::size_t)>;
 // sparse points (capture.points) for each frame's depth range. Frames' images
 // are read with loadFrame. Empty when fewer than two frames are placed.
 DensePoints densePoints(const Capture& capture, const DenseOptions& options = {}, const DenseProgress& progress = {});
+
+// The depth image the camera at `pose` would take of `points` (CV_32F, the points' units, 0 where none
+// lies): each point a square `spacing` wide (the dense points' voxel), the nearest in front. Photos
+// without depth get their frames' depth this way once the room is aligned, so that their detections
+// are lifted, segmented and fused as a depth camera's are (objects_from_detections.cpp).
+cv::Mat depthFromPoints(const std::vector<model::Vec3>& points, const Pose& pose, const Intrinsics& k, double spacing);
 
 }  // namespace smql::ingest

@@ -60,6 +60,7 @@ Reconstruction DenseStage::run(StageProgress& progress) {
         progress.advanced(done);
     });
     out.capture.densePoints = out.dense.points;
+    out.capture.denseSpacing = out.dense.voxel;
     out.points = input.points.size();
     progress.note(
         fmt::format("dense: {} pairs of frames matched, {} points, {} of them where two or more pairs agree "

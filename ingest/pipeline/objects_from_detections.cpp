@@ -2,14 +2,17 @@
 // (--objects detections, detections.json) or the detector run here on the
 // frames (--objects detect, detector.hpp). Each frame's detections are lifted
 // with its depth, or with the capture's sparse points when it has none, and
-// associated into tracks across views (docs/ingest.md, "Objects from
-// detections", "Detections without depth" and "Detector").
+// associated into tracks across views; photos with dense points are lifted
+// again with the depth those give once the room is aligned (docs/ingest.md,
+// "Objects from detections", "Detections without depth" and "Detector").
 #include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
 
 #include "ingest/capture/detections.hpp"
+#include "ingest/capture/frame_loader.hpp"
+#include "ingest/geometry/dense_stereo.hpp"
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/keyframes.hpp"
@@ -39,26 +42,30 @@ public:
     void observe(const PosedFrame& frame) override {
         if (!looksAt(frame)) return;
         looked_.push_back(frame.position);
-        const FrameDetections found = detectionsOf(frame);
+        FrameDetections found = detectionsOf(frame);
         const std::vector<Detection>& detections = found.detections;
-        auto seen = hasDepth_ ? observeDetections(frame.images, frame.pose, frame.position, detections,
-                                                  found.storedWidth, options_.objectStride, options_.minInstancePixels)
-                              : observeSparse(frame, detections, found.storedWidth);
-        // The most confident detections found tracks first.
-        std::stable_sort(seen.begin(), seen.end(), [&](const Observation& a, const Observation& b) {
-            return detections[a.instance - 1].score > detections[b.instance - 1].score;
-        });
+        if (hasDepth_) {
+            track(tracker_,
+                  observeDetections(frame.images, frame.pose, frame.position, detections, found.storedWidth,
+                                    options_.objectStride, options_.minInstancePixels),
+                  detections, frame.images.color);
+            return;
+        }
+        auto seen = observeSparse(frame, detections, found.storedWidth);
+        mostConfidentFirst(seen, detections);
+        std::vector<Observation> placed;
         for (auto& o : seen) {
-            const Detection& detection = detections[o.instance - 1];
-            o.embedding = detection.embedding;
-            if (!hasDepth_ && o.sparse.size() < kMinSparsePoints) {
-                EvidenceCrop crop{o.pixels, o.frame, encodeCrop(frame.images.color, o.bounds, options_.evidenceSize)};
-                unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
+            if (o.sparse.size() >= kMinSparsePoints) {
+                placed.push_back(std::move(o));
                 continue;
             }
-            ObjectTrack& track = tracker_.add(std::move(o), detection.category, detection.score);
-            keepLargestEvidence(track.evidence, track.views.back(), frame.images.color, options_.evidenceSize);
+            const Detection& detection = detections[o.instance - 1];
+            o.embedding = detection.embedding;
+            EvidenceCrop crop{o.pixels, o.frame, encodeCrop(frame.images.color, o.bounds, options_.evidenceSize)};
+            unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
         }
+        track(tracker_, std::move(placed), detections, frame.images.color);
+        if (!capture_.densePoints.empty()) kept_.push_back({frame.position, std::move(found)});
     }
 
     std::vector<ObjectTrack> takeTracks() override {
@@ -77,6 +84,7 @@ public:
 
     std::vector<ObjectTrack> fuse(std::vector<ObjectTrack> tracks, const AlignedCapture& aligned,
                                   const std::vector<WallSegment>& walls, StageProgress& progress) override {
+        if (!kept_.empty()) return fuseOnDenseDepth(aligned, walls, progress);
         if (!hasDepth_) return tracks;
         const RoomSurfaces room{aligned.alignment.floorFound, aligned.alignment.ceilingHeight, &walls};
         // The frames the detections were made on: what "held in view but not seen" is counted over.
@@ -131,6 +139,72 @@ private:
     // hull keeps only voxels inside all of them (F1 0.59 at 0.8, the masks' share, against 0.76 at 1
     // on synth seed 3, docs/ingest.md).
     static constexpr double kBoxHullShare = 1.0;
+    // m: dense points this close above the floor, or below it, are the floor's (fuseOnDenseDepth).
+    static constexpr double kFloorBand = 0.06;
+
+    // The most confident detections found tracks first.
+    static void mostConfidentFirst(std::vector<Observation>& seen, const std::vector<Detection>& detections) {
+        std::stable_sort(seen.begin(), seen.end(), [&](const Observation& a, const Observation& b) {
+            return detections[a.instance - 1].score > detections[b.instance - 1].score;
+        });
+    }
+
+    // The frame's views into `tracker`, each with its detection's embedding; the largest view of each
+    // track keeps its evidence crop.
+    void track(DetectionTracker& tracker, std::vector<Observation> seen, const std::vector<Detection>& detections,
+               const cv::Mat& color) const {
+        mostConfidentFirst(seen, detections);
+        for (auto& o : seen) {
+            const Detection& detection = detections[o.instance - 1];
+            o.embedding = detection.embedding;
+            ObjectTrack& made = tracker.add(std::move(o), detection.category, detection.score);
+            keepLargestEvidence(made.evidence, made.views.back(), color, options_.evidenceSize);
+        }
+    }
+
+    // Photos with dense points, once the room is aligned: each frame's depth is what its camera would
+    // see of the dense and sparse points (in metres, the aligned frame), so its detections are lifted,
+    // segmented from the floor and walls and fused across views as a depth camera's are, with every
+    // check of the fusion (duplicates, pieces, tops, names out of place). The tracks the sparse points
+    // placed have done their part: they told the floor from a table top.
+    std::vector<ObjectTrack> fuseOnDenseDepth(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
+                                              StageProgress& progress) {
+        const Alignment& alignment = aligned.alignment;
+        std::vector<model::Vec3> points;
+        points.reserve(capture_.densePoints.size() + capture_.points.size());
+        const double spacing = capture_.denseSpacing * alignment.scale;
+        // The floor is left out of the frames' depth: its points, a few centimetres off its plane where
+        // the pairs' matches err, would chain the things standing on it into one.
+        const double floorBand = alignment.floorFound ? std::max(kFloorBand, 2 * spacing) : -1e9;
+        auto add = [&](const SparsePoint& p) {
+            if (const model::Vec3 q = alignment.apply(p.position); q.z > floorBand) points.push_back(q);
+        };
+        std::for_each(capture_.densePoints.begin(), capture_.densePoints.end(), add);
+        std::for_each(capture_.points.begin(), capture_.points.end(), add);
+        DetectionTracker tracker(voteLabels_);
+        std::vector<FusionCamera> cameras;
+        // In metres now, the frames' moves pick the keyframes, as for a depth camera: each view a
+        // frame's own errors of depth, the things are fused from views that differ.
+        Keyframes keyframes;
+        for (const auto& [position, found] : kept_) {
+            progress.stopIfCancelled();
+            const CaptureFrame& frame = capture_.frames[position];
+            const Pose pose = transformed(*frame.pose, alignment);
+            if (!keyframes.take(pose)) continue;
+            FrameImages images = loadFrame(capture_, frame, options_.workingWidth);
+            images.depth = depthFromPoints(points, pose, images.intrinsics, spacing);
+            track(tracker,
+                  observeDetections(images, pose, position, found.detections, found.storedWidth, options_.objectStride,
+                                    options_.minInstancePixels),
+                  found.detections, images.color);
+            cameras.push_back({pose, frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
+        }
+        const RoomSurfaces room{alignment.floorFound, alignment.ceilingHeight, &walls};
+        FusionOptions fusion;
+        fusion.voteLabels = voteLabels_;
+        // The views are in the aligned frame already.
+        return fuseTracks(tracker.take(), Alignment{}, room, cameras, fusion, progress);
+    }
 
     // Frames without depth: the sparse points that fall on each detection, nearest first (as for
     // masks, liftSparsePoints); they stand in for its points until all views are in. Views with too
@@ -193,9 +267,14 @@ private:
     std::vector<std::uint32_t> inView_;   // without depth: frames each sparse point projects into
     std::vector<MaskView> maskViews_;     // without depth: each frame's detections, for carving
     std::vector<UnplacedView> unplaced_;  // without depth: views too few sparse points placed
-    std::size_t fewPoints_ = 0;           // without depth: views with too few sparse points on them,
-    std::size_t uncarved_ = 0;            // ... views of tracks whose points carved no hull,
-    std::size_t placedByRays_ = 0;        // ... and how many of both their boxes' rays placed
+    struct KeptDetections {
+        std::uint32_t position = 0;
+        FrameDetections found;
+    };
+    std::vector<KeptDetections> kept_;  // with dense points: each frame's detections, for fuseOnDenseDepth
+    std::size_t fewPoints_ = 0;         // without depth: views with too few sparse points on them,
+    std::size_t uncarved_ = 0;          // ... views of tracks whose points carved no hull,
+    std::size_t placedByRays_ = 0;      // ... and how many of both their boxes' rays placed
 };
 
 class DetectionFinder : public DetectionLifter {
@@ -217,8 +296,6 @@ class DetectorFinder : public DetectionLifter {
 public:
     DetectorFinder(const Capture& capture, const DetectorFiles& files, const IngestOptions& options)
         : DetectionLifter(capture, options, /*voteLabels=*/true),
-          // Without depth a box is a silhouette that carves a hull (observations.hpp): the SSD's looser boxes
-          // carved the dining photos' chairs 1.6 m tall, so those captures take NanoDet's alone.
           detector_(makeDetector(files, packagedWithDepth(capture, options))),
           segmenter_(packagedWithDepth(capture, options) ? installedSegmenter() : nullptr) {}
 
@@ -235,10 +312,11 @@ public:
 
 private:
     // The packaged models beside NanoDet (the SSD, the segmenter) run when no --detector is given and
-    // the frames have depth. Without depth a box is a silhouette that carves a hull (observations.hpp):
-    // the SSD's looser boxes carved the dining photos' chairs 1.6 m tall.
+    // the frames have depth, their own or the dense points' (fuseOnDenseDepth). Without either, a box
+    // is a silhouette that carves a hull (observations.hpp): the SSD's looser boxes carved the dining
+    // photos' chairs 1.6 m tall, so those captures take NanoDet's alone.
     static bool packagedWithDepth(const Capture& capture, const IngestOptions& options) {
-        return options.detectorModel.empty() && framesHaveDepth(capture);
+        return options.detectorModel.empty() && (framesHaveDepth(capture) || !capture.densePoints.empty());
     }
     static std::unique_ptr<SemanticSegmenter> installedSegmenter() {
         auto files = installedModel("deeplab");

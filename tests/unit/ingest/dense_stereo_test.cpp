@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "capture_support.hpp"
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/dense_stereo.hpp"
@@ -109,4 +111,58 @@ TEST_CASE("dense points of a rendered walk lie where the rendered depth says", "
     CHECK(agreement.judged >= dense.points.size() * 9 / 10);
     CHECK(agreement.within5 >= agreement.judged * (swept ? 75 : 85) / 100);
     CHECK(agreement.within10 >= agreement.judged * 8 / 10);
+}
+
+// Photos' frames get their depth from the dense points (objects_from_detections.cpp): a real depth frame
+// thinned to the dense stage's voxels and drawn again from its own camera gives back its readings, the
+// nearest point in front where several fall on a pixel.
+TEST_CASE("depthFromPoints draws a real frame's points back as its depth", "[dense]") {
+    const Capture capture = readCapture(smql::ingest::test::diningPath());
+    const CaptureFrame& frame = capture.frames[2];
+    const FrameImages images = loadFrame(capture, frame, 320);
+    const double voxel = 0.02;  // m, the dense stage's 2 % of a 1 m median depth
+    std::map<std::array<long, 3>, std::pair<model::Vec3, int>> cells;
+    for (int y = 0; y < images.depth.rows; ++y)
+        for (int x = 0; x < images.depth.cols; ++x)
+            if (const float z = images.depth.at<float>(y, x); z > 0) {
+                const model::Vec3 p = toWorld(*frame.pose, pixelRay(images.intrinsics, x, y, z));
+                auto& [sum, count] = cells[{std::lround(std::floor(p.x / voxel)), std::lround(std::floor(p.y / voxel)),
+                                            std::lround(std::floor(p.z / voxel))}];
+                sum = {sum.x + p.x, sum.y + p.y, sum.z + p.z};
+                ++count;
+            }
+    std::vector<model::Vec3> points;
+    for (const auto& [key, cell] : cells)
+        points.push_back({cell.first.x / cell.second, cell.first.y / cell.second, cell.first.z / cell.second});
+
+    const cv::Mat drawn = depthFromPoints(points, *frame.pose, images.intrinsics, voxel);
+    REQUIRE(drawn.size() == images.depth.size());
+    REQUIRE(drawn.type() == CV_32F);
+    int readings = 0, covered = 0, agree = 0;
+    for (int y = 0; y < drawn.rows; ++y)
+        for (int x = 0; x < drawn.cols; ++x) {
+            const float truth = images.depth.at<float>(y, x), z = drawn.at<float>(y, x);
+            if (truth <= 0) continue;
+            ++readings;
+            if (z <= 0) continue;
+            ++covered;
+            if (std::abs(z - truth) <= 0.03 * truth) ++agree;
+        }
+    INFO(readings << " readings, " << covered << " drawn, " << agree << " within 3%");
+    REQUIRE(readings > 10000);
+    CHECK(covered >= readings * 95 / 100);
+    CHECK(agree >= covered * 90 / 100);
+
+    // A point in front of another on the same ray wins; a point behind the camera draws nothing.
+    const model::Vec3 far = toWorld(*frame.pose, pixelRay(images.intrinsics, 100, 100, 3.0));
+    const model::Vec3 near = toWorld(*frame.pose, pixelRay(images.intrinsics, 100, 100, 1.0));
+    const model::Vec3 behind = toWorld(*frame.pose, {0, 0, -1});
+    const cv::Mat two = depthFromPoints({far, near, behind}, *frame.pose, images.intrinsics, voxel);
+    CHECK(two.at<float>(100, 100) == Approx(1.0).epsilon(1e-4));
+    // Each point a square its voxel's width at its depth: the near one's covers the far one's.
+    const int nearSide = cv::countNonZero(depthFromPoints({near}, *frame.pose, images.intrinsics, voxel));
+    const int farSide = cv::countNonZero(depthFromPoints({far}, *frame.pose, images.intrinsics, voxel));
+    CHECK(farSide < nearSide);
+    CHECK(cv::countNonZero(two) == nearSide);
+    CHECK(std::sqrt(nearSide) == Approx(images.intrinsics.fx * voxel / 1.0).margin(2));
 }
