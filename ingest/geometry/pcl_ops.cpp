@@ -110,6 +110,22 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const std::vector<model:
     return clusters;
 }
 
+std::vector<std::size_t> withNeighbours(const std::vector<model::Vec3>& points, double radius, int minNeighbours) {
+    std::vector<std::size_t> kept;
+    if (points.empty()) return kept;
+    auto cloud = toPcl(points);
+    pcl::search::KdTree<pcl::PointXYZ> tree;
+    tree.setInputCloud(cloud);
+    pcl::Indices found;
+    std::vector<float> distances;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        // The point itself is among those found.
+        if (tree.radiusSearch(cloud->points[i], radius, found, distances, static_cast<unsigned>(minNeighbours + 1)) >
+            minNeighbours)
+            kept.push_back(i);
+    return kept;
+}
+
 std::vector<SurfaceNormal> estimateNormals(const std::vector<model::Vec3>& points, double radius, int minNeighbours) {
     std::vector<SurfaceNormal> normals(points.size(), SurfaceNormal{{0, 0, 0}, 1});
     if (points.empty()) return normals;

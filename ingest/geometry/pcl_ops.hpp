@@ -45,6 +45,10 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const std::vector<model:
                                                         const std::vector<std::size_t>& indices, double tolerance,
                                                         std::size_t minPoints, std::size_t maxPoints);
 
+// The points with at least `minNeighbours` others within `radius` (kd-tree radius search), as
+// indices into `points` in their order: a surface's points, without the specks floating apart from it.
+std::vector<std::size_t> withNeighbours(const std::vector<model::Vec3>& points, double radius, int minNeighbours);
+
 struct SurfaceNormal {
     model::Vec3 normal;    // unit, sign arbitrary; zero when undefined
     double curvature = 1;  // smallest eigenvalue / sum of eigenvalues (0 = perfectly flat)

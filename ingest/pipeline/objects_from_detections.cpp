@@ -13,6 +13,7 @@
 #include "ingest/capture/detections.hpp"
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/dense_stereo.hpp"
+#include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/keyframes.hpp"
@@ -141,6 +142,10 @@ private:
     static constexpr double kBoxHullShare = 1.0;
     // m: dense points this close above the floor, or below it, are the floor's (fuseOnDenseDepth).
     static constexpr double kFloorBand = 0.06;
+    // A dense point with fewer than this many others within this many voxels is a speck (a surface's
+    // voxel has about 12 within 2).
+    static constexpr double kSpeckReach = 2;
+    static constexpr int kSpeckNeighbours = 4;
 
     // The most confident detections found tracks first.
     static void mostConfidentFirst(std::vector<Observation>& seen, const std::vector<Detection>& detections) {
@@ -170,17 +175,21 @@ private:
     std::vector<ObjectTrack> fuseOnDenseDepth(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                                               StageProgress& progress) {
         const Alignment& alignment = aligned.alignment;
-        std::vector<model::Vec3> points;
-        points.reserve(capture_.densePoints.size() + capture_.points.size());
+        std::vector<model::Vec3> all;
+        all.reserve(capture_.densePoints.size() + capture_.points.size());
         const double spacing = capture_.denseSpacing * alignment.scale;
         // The floor is left out of the frames' depth: its points, a few centimetres off its plane where
         // the pairs' matches err, would chain the things standing on it into one.
         const double floorBand = alignment.floorFound ? std::max(kFloorBand, 2 * spacing) : -1e9;
         auto add = [&](const SparsePoint& p) {
-            if (const model::Vec3 q = alignment.apply(p.position); q.z > floorBand) points.push_back(q);
+            if (const model::Vec3 q = alignment.apply(p.position); q.z > floorBand) all.push_back(q);
         };
         std::for_each(capture_.densePoints.begin(), capture_.densePoints.end(), add);
         std::for_each(capture_.points.begin(), capture_.points.end(), add);
+        // So are the specks: a wrong match that two pairs agreed on floats alone, and drawn before the
+        // camera it hides a square of what stands behind it.
+        std::vector<model::Vec3> points;
+        for (auto i : pcl_ops::withNeighbours(all, kSpeckReach * spacing, kSpeckNeighbours)) points.push_back(all[i]);
         DetectionTracker tracker(voteLabels_);
         std::vector<FusionCamera> cameras;
         // In metres now, the frames' moves pick the keyframes, as for a depth camera: each view a

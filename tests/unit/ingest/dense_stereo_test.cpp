@@ -13,6 +13,7 @@
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/dense_stereo.hpp"
+#include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/synth/synth.hpp"
 #include "scratch_dir.hpp"
 
@@ -116,11 +117,11 @@ TEST_CASE("dense points of a rendered walk lie where the rendered depth says", "
 // Photos' frames get their depth from the dense points (objects_from_detections.cpp): a real depth frame
 // thinned to the dense stage's voxels and drawn again from its own camera gives back its readings, the
 // nearest point in front where several fall on a pixel.
-TEST_CASE("depthFromPoints draws a real frame's points back as its depth", "[dense]") {
-    const Capture capture = readCapture(smql::ingest::test::diningPath());
-    const CaptureFrame& frame = capture.frames[2];
-    const FrameImages images = loadFrame(capture, frame, 320);
-    const double voxel = 0.02;  // m, the dense stage's 2 % of a 1 m median depth
+namespace {
+
+// A real depth frame's points (rgbd-dining, frame 2, 320 pixels wide), one a voxel `voxel` wide: the
+// mean of the points in it, as the dense stage keeps them.
+std::vector<model::Vec3> voxelPoints(const CaptureFrame& frame, const FrameImages& images, double voxel) {
     std::map<std::array<long, 3>, std::pair<model::Vec3, int>> cells;
     for (int y = 0; y < images.depth.rows; ++y)
         for (int x = 0; x < images.depth.cols; ++x)
@@ -134,6 +135,17 @@ TEST_CASE("depthFromPoints draws a real frame's points back as its depth", "[den
     std::vector<model::Vec3> points;
     for (const auto& [key, cell] : cells)
         points.push_back({cell.first.x / cell.second, cell.first.y / cell.second, cell.first.z / cell.second});
+    return points;
+}
+
+}  // namespace
+
+TEST_CASE("depthFromPoints draws a real frame's points back as its depth", "[dense]") {
+    const Capture capture = readCapture(smql::ingest::test::diningPath());
+    const CaptureFrame& frame = capture.frames[2];
+    const FrameImages images = loadFrame(capture, frame, 320);
+    const double voxel = 0.02;  // m, the dense stage's 2 % of a 1 m median depth
+    const std::vector<model::Vec3> points = voxelPoints(frame, images, voxel);
 
     const cv::Mat drawn = depthFromPoints(points, *frame.pose, images.intrinsics, voxel);
     REQUIRE(drawn.size() == images.depth.size());
@@ -165,4 +177,27 @@ TEST_CASE("depthFromPoints draws a real frame's points back as its depth", "[den
     CHECK(farSide < nearSide);
     CHECK(cv::countNonZero(two) == nearSide);
     CHECK(std::sqrt(nearSide) == Approx(images.intrinsics.fx * voxel / 1.0).margin(2));
+}
+
+// The specks a frame's depth is drawn without (objects_from_detections.cpp): points with too few others
+// near them. A real surface's voxels keep their neighbours; points floating 10 cm apart do not.
+TEST_CASE("withNeighbours keeps a real surface's points and drops specks", "[dense]") {
+    const Capture capture = readCapture(smql::ingest::test::diningPath());
+    const CaptureFrame& frame = capture.frames[2];
+    const FrameImages images = loadFrame(capture, frame, 320);
+    std::vector<float> depths;
+    for (auto it = images.depth.begin<float>(); it != images.depth.end<float>(); ++it)
+        if (*it > 0) depths.push_back(*it);
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    const double voxel = 0.02 * depths[depths.size() / 2];  // the dense stage's voxel: 2 % of the median depth
+    std::vector<model::Vec3> points = voxelPoints(frame, images, voxel);
+    const std::size_t surface = points.size();
+    for (int i = 1; i <= 20; ++i)  // a line of specks behind the camera, where it saw nothing, 10 cm apart
+        points.push_back(toWorld(*frame.pose, {0, 0, -0.1 * i}));
+    const auto kept = pcl_ops::withNeighbours(points, 2 * voxel, 4);
+    const auto specks = std::count_if(kept.begin(), kept.end(), [&](std::size_t i) { return i >= surface; });
+    INFO(kept.size() << " of " << surface << " surface points and 20 specks kept");
+    CHECK(specks == 0);
+    CHECK(kept.size() >= surface * 90 / 100);  // 95 %: the frame's edges and the depth's steps keep fewer
+    CHECK(std::is_sorted(kept.begin(), kept.end()));
 }
