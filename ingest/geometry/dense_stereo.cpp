@@ -123,6 +123,46 @@ struct PairPoints {
     std::vector<std::array<std::uint8_t, 3>> colours;  // RGB
 };
 
+// The left image's disparities, at every pixel: SGBM leaves the left border as wide as the search
+// range without any, so both images are widened there (black) and the border cut off again.
+cv::Mat disparityOf(cv::StereoSGBM& matcher, const cv::Mat& left, const cv::Mat& right) {
+    const int border = matcher.getMinDisparity() + matcher.getNumDisparities();
+    cv::Mat wideLeft, wideRight, fixedPoint, disparity;
+    cv::copyMakeBorder(left, wideLeft, 0, 0, border, 0, cv::BORDER_CONSTANT, 0);
+    cv::copyMakeBorder(right, wideRight, 0, 0, border, 0, cv::BORDER_CONSTANT, 0);
+    matcher.compute(wideLeft, wideRight, fixedPoint);
+    fixedPoint(cv::Rect(border, 0, left.cols, left.rows))
+        .convertTo(disparity, CV_32F, 1.0 / static_cast<double>(cv::StereoMatcher::DISP_SCALE));
+    return disparity;
+}
+
+// The right image's disparities (a pixel x of the right image matches x + d of the left): the pair
+// mirrored, the right image on the left, matched alike and mirrored back.
+cv::Mat rightDisparity(cv::StereoSGBM& matcher, const cv::Mat& left, const cv::Mat& right) {
+    cv::Mat mirroredLeft, mirroredRight, out;
+    cv::flip(right, mirroredLeft, 1);
+    cv::flip(left, mirroredRight, 1);
+    cv::flip(disparityOf(matcher, mirroredLeft, mirroredRight), out, 1);
+    return out;
+}
+
+// The left-right check: a left pixel keeps its disparity d only where the right pixel it matches, x - d,
+// lies in the image and matches it back within `tolerance`. Semi-global matching gives the background
+// beside a near thing, which the right image does not see, the thing's disparity (it carries the
+// smoothest), and the right image, which sees other background there, disagrees: without the check a
+// lounge chair's depth spread over the floor beside it, alike in every pair looking that way.
+void keepConsistent(cv::Mat& left, const cv::Mat& right, int minDisparity, double tolerance) {
+    for (int y = 0; y < left.rows; ++y) {
+        auto* d = left.ptr<float>(y);
+        const auto* back = right.ptr<float>(y);
+        for (int x = 0; x < left.cols; ++x) {
+            const long match = std::lround(x - d[x]);
+            if (match < 0 || match >= left.cols || !(std::abs(back[match] - d[x]) <= tolerance))
+                d[x] = static_cast<float>(minDisparity - 1);  // below the range searched: no point
+        }
+    }
+}
+
 // Semi-global matching of the pair rectified with a on the left; each matched pixel (every
 // pixelStride-th) within a's depth range, in the capture's frame.
 PairPoints matchRectified(const View& a, const FrameImages& ia, const FrameImages& ib, const Rectified& rect,
@@ -150,9 +190,8 @@ PairPoints matchRectified(const View& a, const FrameImages& ia, const FrameImage
     constexpr int kBlock = 5;
     auto matcher = cv::StereoSGBM::create(minDisparity, disparities, kBlock, 8 * kBlock * kBlock, 32 * kBlock * kBlock,
                                           1, 0, 10, 100, 2, cv::StereoSGBM::MODE_SGBM_3WAY);
-    cv::Mat disparity, fixedPoint, xyz;
-    matcher->compute(leftGray, rightGray, fixedPoint);
-    fixedPoint.convertTo(disparity, CV_32F, 1.0 / static_cast<double>(cv::StereoMatcher::DISP_SCALE));
+    cv::Mat disparity = disparityOf(*matcher, leftGray, rightGray), xyz;
+    keepConsistent(disparity, rightDisparity(*matcher, leftGray, rightGray), minDisparity, options.leftRightTolerance);
     cv::reprojectImageTo3D(disparity, xyz, rect.q);
 
     Eigen::Matrix3d unrectify;  // rectified camera -> a's camera

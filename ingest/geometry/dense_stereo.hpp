@@ -34,6 +34,7 @@ struct DenseOptions {
     double sweepTexture = 3;           // grey levels of standard deviation a window needs
     double sweepParallax = 3;          // pixels the depth range moves a pixel in the other frame, at least
     int maxDisparities = 192;          // the disparity range searched, at stereoWidth
+    double leftRightTolerance = 1;     // pixels: each image's disparities agree with the other's this well
     int pixelStride = 2;               // every n-th pixel of a pair's disparity map becomes a point
     double voxelShare = 0.02;          // points agree within a voxel this share of the capture's median depth
     std::size_t minPairs = 2;          // ... when this many pairs put a point in it
