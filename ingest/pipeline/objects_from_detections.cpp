@@ -43,7 +43,7 @@ public:
     void observe(const PosedFrame& frame) override {
         if (!looksAt(frame)) return;
         looked_.push_back(frame.position);
-        FrameDetections found = detectionsOf(frame);
+        const FrameDetections found = detectionsOf(frame);
         const std::vector<Detection>& detections = found.detections;
         if (hasDepth_) {
             track(tracker_,
@@ -66,7 +66,7 @@ public:
             unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
         }
         track(tracker_, std::move(placed), detections, frame.images.color);
-        if (!capture_.densePoints.empty()) kept_.push_back({frame.position, std::move(found)});
+        if (!capture_.densePoints.empty()) denseFrames_.push_back(frame.position);
     }
 
     std::vector<ObjectTrack> takeTracks() override {
@@ -85,7 +85,7 @@ public:
 
     std::vector<ObjectTrack> fuse(std::vector<ObjectTrack> tracks, const AlignedCapture& aligned,
                                   const std::vector<WallSegment>& walls, StageProgress& progress) override {
-        if (!kept_.empty()) return fuseOnDenseDepth(aligned, walls, progress);
+        if (!denseFrames_.empty()) return fuseOnDenseDepth(aligned, walls, progress);
         if (!hasDepth_) return tracks;
         const RoomSurfaces room{aligned.alignment.floorFound, aligned.alignment.ceilingHeight, &walls};
         // The frames the detections were made on: what "held in view but not seen" is counted over.
@@ -122,6 +122,9 @@ protected:
         int storedWidth = 0;  // the width of the image the boxes are in
     };
     virtual FrameDetections detectionsOf(const PosedFrame& frame) = 0;
+    // The detections of a keyframe lifted on the dense points' depth (fuseOnDenseDepth); the frame's own
+    // by default.
+    virtual FrameDetections keyframeDetectionsOf(const PosedFrame& frame) { return detectionsOf(frame); }
     // Whether the frame's detections are looked at (keyframes); every frame by default.
     virtual bool looksAt(const PosedFrame&) { return true; }
     const Capture& capture() const { return capture_; }
@@ -190,24 +193,31 @@ private:
         // camera it hides a square of what stands behind it.
         std::vector<model::Vec3> points;
         for (auto i : pcl_ops::withNeighbours(all, kSpeckReach * spacing, kSpeckNeighbours)) points.push_back(all[i]);
+        std::size_t keyframeCount = 0;
         DetectionTracker tracker(voteLabels_);
         std::vector<FusionCamera> cameras;
         // In metres now, the frames' moves pick the keyframes, as for a depth camera: each view a
         // frame's own errors of depth, the things are fused from views that differ.
         Keyframes keyframes;
-        for (const auto& [position, found] : kept_) {
+        for (const auto position : denseFrames_) {
             progress.stopIfCancelled();
             const CaptureFrame& frame = capture_.frames[position];
             const Pose pose = transformed(*frame.pose, alignment);
             if (!keyframes.take(pose)) continue;
+            ++keyframeCount;
             FrameImages images = loadFrame(capture_, frame, options_.workingWidth);
             images.depth = depthFromPoints(points, pose, images.intrinsics, spacing);
+            const FrameDetections found = keyframeDetectionsOf({position, frame, images, pose});
             track(tracker,
                   observeDetections(images, pose, position, found.detections, found.storedWidth, options_.objectStride,
                                     options_.minInstancePixels),
                   found.detections, images.color);
             cameras.push_back({pose, frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
         }
+        progress.note(fmt::format(
+            "objects: {} keyframes of {} photos lifted again on the depth the dense points give them ({} of "
+            "{} points drawn: the floor's and the specks' left out)",
+            keyframeCount, denseFrames_.size(), points.size(), capture_.densePoints.size() + capture_.points.size()));
         const RoomSurfaces room{alignment.floorFound, alignment.ceilingHeight, &walls};
         FusionOptions fusion;
         fusion.voteLabels = voteLabels_;
@@ -272,18 +282,14 @@ private:
     bool hasDepth_;
     bool voteLabels_;
     DetectionTracker tracker_;
-    std::vector<std::uint32_t> looked_;   // the frames whose detections were looked at
-    std::vector<std::uint32_t> inView_;   // without depth: frames each sparse point projects into
-    std::vector<MaskView> maskViews_;     // without depth: each frame's detections, for carving
-    std::vector<UnplacedView> unplaced_;  // without depth: views too few sparse points placed
-    struct KeptDetections {
-        std::uint32_t position = 0;
-        FrameDetections found;
-    };
-    std::vector<KeptDetections> kept_;  // with dense points: each frame's detections, for fuseOnDenseDepth
-    std::size_t fewPoints_ = 0;         // without depth: views with too few sparse points on them,
-    std::size_t uncarved_ = 0;          // ... views of tracks whose points carved no hull,
-    std::size_t placedByRays_ = 0;      // ... and how many of both their boxes' rays placed
+    std::vector<std::uint32_t> looked_;       // the frames whose detections were looked at
+    std::vector<std::uint32_t> inView_;       // without depth: frames each sparse point projects into
+    std::vector<MaskView> maskViews_;         // without depth: each frame's detections, for carving
+    std::vector<UnplacedView> unplaced_;      // without depth: views too few sparse points placed
+    std::vector<std::uint32_t> denseFrames_;  // with dense points: the frames looked at, for fuseOnDenseDepth
+    std::size_t fewPoints_ = 0;               // without depth: views with too few sparse points on them,
+    std::size_t uncarved_ = 0;                // ... views of tracks whose points carved no hull,
+    std::size_t placedByRays_ = 0;            // ... and how many of both their boxes' rays placed
 };
 
 class DetectionFinder : public DetectionLifter {
@@ -341,15 +347,26 @@ private:
 
     FrameDetections detectionsOf(const PosedFrame& frame) override {
         auto start = std::chrono::steady_clock::now();
-        auto detections = detector_->detect(frame.images.color);
-        if (segmenter_) {
-            const cv::Mat1b labels = segmenter_->segment(frame.images.color);
-            for (auto& d : detections) maskBySegments(d, labels, segmenter_->categories());
-        }
+        auto detections = detect(frame.images.color);
         milliseconds_.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         detections_ += detections.size();
         return {std::move(detections), frame.images.color.cols};
+    }
+
+    // Run again rather than kept from the frames pass: a frame's masks are images, and a long walk's
+    // would fill the memory.
+    FrameDetections keyframeDetectionsOf(const PosedFrame& frame) override {
+        return {detect(frame.images.color), frame.images.color.cols};
+    }
+
+    std::vector<Detection> detect(const cv::Mat& color) {
+        auto detections = detector_->detect(color);
+        if (segmenter_) {
+            const cv::Mat1b labels = segmenter_->segment(color);
+            for (auto& d : detections) maskBySegments(d, labels, segmenter_->categories());
+        }
+        return detections;
     }
 
     std::unique_ptr<ObjectDetector> detector_;
