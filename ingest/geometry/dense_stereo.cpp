@@ -396,8 +396,10 @@ cv::Mat depthFromPoints(const std::vector<model::Vec3>& points, const Pose& pose
         if (p.z() <= 0) continue;
         const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
         const int half = std::min(kMaxHalfSide, static_cast<int>(std::ceil(0.5 * k.fx * spacing / p.z() - 0.5)));
+        // Off the image by more than its square (tested before rounding: a point grazing the camera's
+        // plane lands arbitrarily far out).
+        if (!(u > -half - 1 && v > -half - 1 && u < k.width + half && v < k.height + half)) continue;
         const long column = std::lround(u), row = std::lround(v);
-        if (column + half < 0 || row + half < 0 || column - half >= k.width || row - half >= k.height) continue;
         const auto z = static_cast<float>(p.z());
         for (long y = std::max(0L, row - half); y <= std::min<long>(k.height - 1, row + half); ++y) {
             auto* line = depth.ptr<float>(static_cast<int>(y));

@@ -75,11 +75,14 @@ public:
         return tracks;
     }
 
+    // Photos without dense points: how their things were placed, and what places them better. With dense
+    // points the things are lifted again (fuseOnDenseDepth), which notes what it did.
     std::string frameNote() const override {
-        if (hasDepth_ || fewPoints_ + uncarved_ == 0) return {};
+        if (hasDepth_ || !capture_.densePoints.empty() || fewPoints_ + uncarved_ == 0) return {};
         return fmt::format(
             "{} detections had too few sparse points on them and {} more were of things whose points did not agree "
-            "across views enough to carve a hull; {} of these were placed by their boxes' rays across views",
+            "across views enough to carve a hull; {} of these were placed by their boxes' rays across views "
+            "(--dense on lifts the things on the dense points' depth instead)",
             fewPoints_, uncarved_, placedByRays_);
     }
 
