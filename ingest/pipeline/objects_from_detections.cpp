@@ -90,7 +90,6 @@ public:
                                   const std::vector<WallSegment>& walls, StageProgress& progress) override {
         if (!denseFrames_.empty()) return fuseOnDenseDepth(aligned, walls, progress);
         if (!hasDepth_) return tracks;
-        const RoomSurfaces room{aligned.alignment.floorFound, aligned.alignment.ceilingHeight, &walls};
         // The frames the detections were made on: what "held in view but not seen" is counted over.
         std::vector<FusionCamera> cameras;
         for (auto position : looked_) {
@@ -98,9 +97,7 @@ public:
             cameras.push_back({transformed(*frame.pose, aligned.alignment),
                                frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
         }
-        FusionOptions fusion;
-        fusion.voteLabels = voteLabels_;
-        return fuseTracks(std::move(tracks), aligned.alignment, room, cameras, fusion, progress);
+        return fuseViews(std::move(tracks), aligned.alignment, aligned.alignment, walls, cameras, progress);
     }
 
     // With depth, the large things no model named (a bed, a cabinet, a counter: COCO's, Open Images'
@@ -196,7 +193,6 @@ private:
         // camera it hides a square of what stands behind it.
         std::vector<model::Vec3> points;
         for (auto i : pcl_ops::withNeighbours(all, kSpeckReach * spacing, kSpeckNeighbours)) points.push_back(all[i]);
-        std::size_t keyframeCount = 0;
         DetectionTracker tracker(voteLabels_);
         std::vector<FusionCamera> cameras;
         // In metres now, the frames' moves pick the keyframes, as for a depth camera: each view a
@@ -207,7 +203,6 @@ private:
             const CaptureFrame& frame = capture_.frames[position];
             const Pose pose = transformed(*frame.pose, alignment);
             if (!keyframes.take(pose)) continue;
-            ++keyframeCount;
             FrameImages images = loadFrame(capture_, frame, options_.workingWidth);
             images.depth = depthFromPoints(points, pose, images.intrinsics, spacing);
             const FrameDetections found = keyframeDetectionsOf({position, frame, images, pose});
@@ -220,12 +215,20 @@ private:
         progress.note(fmt::format(
             "objects: {} keyframes of {} photos lifted again on the depth the dense points give them ({} of "
             "{} points drawn: the floor's and the specks' left out)",
-            keyframeCount, denseFrames_.size(), points.size(), capture_.densePoints.size() + capture_.points.size()));
-        const RoomSurfaces room{alignment.floorFound, alignment.ceilingHeight, &walls};
+            cameras.size(), denseFrames_.size(), points.size(), capture_.densePoints.size() + capture_.points.size()));
+        // The views are in the aligned frame already.
+        return fuseViews(tracker.take(), Alignment{}, alignment, walls, cameras, progress);
+    }
+
+    // The views fused as a depth camera's (fuseTracks); `viewFrame` takes their points into the room's
+    // aligned frame, whose floor, ceiling and walls `room` gives.
+    std::vector<ObjectTrack> fuseViews(std::vector<ObjectTrack> tracks, const Alignment& viewFrame,
+                                       const Alignment& room, const std::vector<WallSegment>& walls,
+                                       const std::vector<FusionCamera>& cameras, StageProgress& progress) const {
         FusionOptions fusion;
         fusion.voteLabels = voteLabels_;
-        // The views are in the aligned frame already.
-        return fuseTracks(tracker.take(), Alignment{}, room, cameras, fusion, progress);
+        return fuseTracks(std::move(tracks), viewFrame, {room.floorFound, room.ceilingHeight, &walls}, cameras, fusion,
+                          progress);
     }
 
     // Frames without depth: the sparse points that fall on each detection, nearest first (as for
