@@ -13,10 +13,11 @@ Each CAPTURE_DIR is
 1. an RGB-D capture (rgbd: color/ depth/ pose.txt [camera.json]; tum: rgb/ depth/ rgb.txt depth.txt
    groundtruth.txt camera.json): ingested as is (the metric reference, --fps 0 --force), then its
    colour frames alone (evenly subsampled to --max-frames, with camera.json's intrinsics and no
-   depth) as a photo folder; the two memories are compared by their cameras (matched by colour
-   image): scale = median ratio of the distances between pairs of cameras (true distance > 0.1 m),
-   median camera height in both, the floor's tilt (the rotation of a similarity fitted from the RGB
-   memory's cameras to the RGB-D memory's, applied to z), the objects and the tables' sizes;
+   depth; colour_camera.json's instead when the capture has one, {} for none) as a photo folder; the
+   two memories are compared by their cameras (matched by colour image): scale = median ratio of the
+   distances between pairs of cameras (true distance > 0.1 m), median camera height in both, the
+   floor's tilt (the rotation of a similarity fitted from the RGB memory's cameras to the RGB-D
+   memory's, applied to z), the objects and the tables' sizes;
 2. a folder of photos named by TUM timestamp with groundtruth.txt: ingested as is, the cameras
    compared with the motion capture (nearest pose within 0.02 s) for the scale;
 3. any other capture (photos, video, nerfstudio): ingested as is, with options from OPTIONS.json in
@@ -217,6 +218,14 @@ def make_photo_folder(folder, kind, photos, max_frames):
         shutil.copy2(frame, photos / name)
         origin[name] = os.path.normpath(frame)
     note = None
+    if (folder / "colour_camera.json").is_file():
+        # The colour camera's own calibration where the capture's camera.json is its depth camera's (7-Scenes
+        # gives only the depth camera's 585 px; its colour camera's is about 526): {} when it is unknown, and
+        # COLMAP estimates it.
+        camera = json.loads((folder / "colour_camera.json").read_text())
+        if camera:
+            (photos / "camera.json").write_text(json.dumps(camera) + "\n")
+        return origin, len(frames), None if camera else "colour camera unknown: COLMAP estimates it"
     if (folder / "camera.json").is_file():
         given = json.loads((folder / "camera.json").read_text())
         camera = {k: given[k] for k in ("width", "height", "fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "k3")

@@ -12,6 +12,7 @@
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/scale_priors.hpp"
+#include "ingest/geometry/vertical_lines.hpp"
 #include "model/types.hpp"
 
 namespace smql::ingest {
@@ -54,6 +55,7 @@ struct AlignOptions {
     double verticalSurfaceTolerance = 15;  // degrees a normal may tilt from horizontal and still vote
     double maxCurvature = 0.05;            // flatness a neighbourhood needs to vote
     std::size_t minHeadingVotes = 50;      // fewer voting normals: heading 0
+    LineOptions lines;                     // photos' vertical edges: up where the floor is seen little
 };
 
 struct Alignment {
@@ -72,6 +74,9 @@ struct Alignment {
     // cameras' height gives). Empty when something confirms it, or when the scale is known.
     std::string floorUnconfirmed;
     std::size_t floorInliers = 0;
+    // Degrees between the photos' vertical edges and the floor's normal when they are farther apart than
+    // LineOptions::bent (the reconstruction bent); 0 when they agree or were not measured.
+    double edgesApart = 0;
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)
     double scaleSplit = 0;                // the factor between two priors that leave no majority (ScaleChoice)
@@ -84,9 +89,11 @@ struct Alignment {
 // Floor, heading and scale of a capture's world-frame cloud; `cameras` are
 // the capture's camera-to-world poses (may be empty); `things`, named objects
 // the capture shows, give the typical-heights prior of the scale
-// (scale_priors.hpp).
+// (scale_priors.hpp); `lines`, the straight edges of photos without depth,
+// level a scale-free capture whose floor is seen little, else check its floor
+// (vertical_lines.hpp).
 Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options = {},
-                       const std::vector<NamedThing>& things = {});
+                       const std::vector<NamedThing>& things = {}, const LinePlanes& lines = {});
 
 PointCloud transformed(const PointCloud& cloud, const Alignment& alignment);
 Pose transformed(const Pose& pose, const Alignment& alignment);

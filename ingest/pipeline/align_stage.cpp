@@ -26,7 +26,7 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
         things.push_back(std::move(thing));
     }
     AlignedCapture out;
-    out.alignment = alignCapture(frames.structure, poses, align, things);
+    out.alignment = alignCapture(frames.structure, poses, align, things, frames.lines);
     for (const auto& n : out.alignment.notes) progress.note(n);
     out.cloud = transformed(frames.structure, out.alignment);
     for (const auto& c : frames.cameras) out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));

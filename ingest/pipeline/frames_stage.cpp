@@ -19,6 +19,9 @@ constexpr std::size_t kPendingStructurePoints = 400000;
 // Frames whose depth is kept small for the check of the views against each other, spread over
 // the capture.
 constexpr std::size_t kSketchedFrames = 60;
+// Photos without depth whose straight edges are found, spread over the capture: the vertical ones level
+// the room or check its floor (vertical_lines.hpp); more photos see no new edges of the room.
+constexpr std::size_t kLinedPhotos = 60;
 
 DepthSketch sketchOf(const FrameImages& images, const Pose& pose) {
     const cv::Mat depth = images.depth.isContinuous() ? images.depth : images.depth.clone();
@@ -46,6 +49,7 @@ FramePass FramesStage::run(StageProgress& progress) {
     std::vector<DepthSketch> sketches;
     std::vector<std::string> unposed;  // the numbers of the frames COLMAP did not register
     const std::size_t sketchEvery = capture.frames.size() / kSketchedFrames + 1;
+    const std::size_t lineEvery = capture.frames.size() / kLinedPhotos + 1;
     for (std::size_t i = 0; i < capture.frames.size(); ++i) {
         progress.stopIfCancelled();
         const auto& frame = capture.frames[i];
@@ -60,6 +64,7 @@ FramePass FramesStage::run(StageProgress& progress) {
         pass.cameras.push_back({position, pose});
         append(pending, backProject(images, pose, position, options.structureStride));
         if (!images.depth.empty() && i % sketchEvery == 0) sketches.push_back(sketchOf(images, pose));
+        if (!capture.metric && images.depth.empty() && i % lineEvery == 0) addLinePlanes(pass.lines, images, pose);
         if (pending.size() > kPendingStructurePoints) {
             append(pass.structure, voxelDownsample(pending, options.structureVoxel));
             pending = PointCloud{};

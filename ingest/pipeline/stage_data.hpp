@@ -19,6 +19,7 @@
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/dense_stereo.hpp"
 #include "ingest/geometry/point_cloud.hpp"
+#include "ingest/geometry/vertical_lines.hpp"
 #include "ingest/geometry/view_consistency.hpp"
 #include "model/types.hpp"
 
@@ -48,6 +49,7 @@ struct FramePass {
     std::vector<Camera> cameras;      // the frames that had a pose, in capture order
     std::vector<ObjectTrack> tracks;  // from the object source
     ViewAgreement viewAgreement;      // the depth images against each other (frames with depth)
+    LinePlanes lines;                 // the straight edges of photos without depth: up where their floor is seen little
 };
 
 struct AlignedCapture {
