@@ -55,7 +55,7 @@ struct AlignOptions {
     double verticalSurfaceTolerance = 15;  // degrees a normal may tilt from horizontal and still vote
     double maxCurvature = 0.05;            // flatness a neighbourhood needs to vote
     std::size_t minHeadingVotes = 50;      // fewer voting normals: heading 0
-    LineOptions lines;                     // photos' vertical edges: up where the floor is seen little
+    LineOptions lines;                     // photos' vertical edges, measured against the floor
 };
 
 struct Alignment {
@@ -74,9 +74,8 @@ struct Alignment {
     // cameras' height gives). Empty when something confirms it, or when the scale is known.
     std::string floorUnconfirmed;
     std::size_t floorInliers = 0;
-    // Degrees between the photos' vertical edges and the floor's normal when they are farther apart than
-    // LineOptions::bent (the reconstruction bent); 0 when they agree or were not measured.
-    double edgesApart = 0;
+    // Degrees between the photos' vertical edges and the floor's (or table top's) normal, when measured.
+    std::optional<double> edgesFromFloor;
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)
     double scaleSplit = 0;                // the factor between two priors that leave no majority (ScaleChoice)
@@ -90,8 +89,7 @@ struct Alignment {
 // the capture's camera-to-world poses (may be empty); `things`, named objects
 // the capture shows, give the typical-heights prior of the scale
 // (scale_priors.hpp); `lines`, the straight edges of photos without depth,
-// level a scale-free capture whose floor is seen little, else check its floor
-// (vertical_lines.hpp).
+// are measured against a scale-free capture's floor (vertical_lines.hpp).
 Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options = {},
                        const std::vector<NamedThing>& things = {}, const LinePlanes& lines = {});
 

@@ -19,8 +19,8 @@ constexpr std::size_t kPendingStructurePoints = 400000;
 // Frames whose depth is kept small for the check of the views against each other, spread over
 // the capture.
 constexpr std::size_t kSketchedFrames = 60;
-// Photos without depth whose straight edges are found, spread over the capture: the vertical ones level
-// the room or check its floor (vertical_lines.hpp); more photos see no new edges of the room.
+// Photos without depth whose straight edges are found, spread over the capture: the vertical ones are
+// measured against the floor (vertical_lines.hpp); more photos see no new edges of the room.
 constexpr std::size_t kLinedPhotos = 60;
 
 DepthSketch sketchOf(const FrameImages& images, const Pose& pose) {

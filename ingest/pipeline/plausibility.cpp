@@ -216,15 +216,6 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
         out.push_back({"floor", true, "the floor is not confirmed: " + alignment.floorUnconfirmed,
                        "photos without depth take their scale from the floor: give --scale (metres per capture "
                        "unit), or add photos that show the floor and the chairs, tables or beds standing on it"});
-    if (alignment.edgesApart > 0)
-        out.push_back(
-            {"vertical edges", false,
-             fmt::format("the photos' vertical edges stand {:.1f} deg from the floor's normal, where a room's "
-                         "walls and legs stand upright on it: the reconstruction is bent, so heights and "
-                         "sizes lean; a focal length off (a camera.json of another camera, such as a depth "
-                         "camera's) or a lens's distortion does this",
-                         alignment.edgesApart),
-             "give the photos' own camera (camera.json, --camera), or none for COLMAP to estimate it"});
     if (alignment.scaleSplit > 0)
         out.push_back({"scale priors", alignment.scaleSplit > kSplitRefuse,
                        fmt::format("the scale's two priors disagree by a factor of {:.2g} (the cameras' height above "

@@ -49,7 +49,7 @@ struct FramePass {
     std::vector<Camera> cameras;      // the frames that had a pose, in capture order
     std::vector<ObjectTrack> tracks;  // from the object source
     ViewAgreement viewAgreement;      // the depth images against each other (frames with depth)
-    LinePlanes lines;                 // the straight edges of photos without depth: up where their floor is seen little
+    LinePlanes lines;                 // the straight edges of photos without depth, against their floor
 };
 
 struct AlignedCapture {
