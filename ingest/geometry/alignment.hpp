@@ -55,7 +55,7 @@ struct AlignOptions {
     double verticalSurfaceTolerance = 15;  // degrees a normal may tilt from horizontal and still vote
     double maxCurvature = 0.05;            // flatness a neighbourhood needs to vote
     std::size_t minHeadingVotes = 50;      // fewer voting normals: heading 0
-    LineOptions lines;                     // photos' vertical edges, measured against the floor
+    LineOptions lines;                     // photos' vertical edges: up where the floor is seen little
 };
 
 struct Alignment {
@@ -89,7 +89,8 @@ struct Alignment {
 // the capture's camera-to-world poses (may be empty); `things`, named objects
 // the capture shows, give the typical-heights prior of the scale
 // (scale_priors.hpp); `lines`, the straight edges of photos without depth,
-// are measured against a scale-free capture's floor (vertical_lines.hpp).
+// are measured against a scale-free capture's floor and level the room where
+// the floor is seen little (vertical_lines.hpp).
 Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options = {},
                        const std::vector<NamedThing>& things = {}, const LinePlanes& lines = {});
 

@@ -104,10 +104,10 @@ SurfaceEvidence weighSurface(const Surface& surface, const std::vector<NamedThin
         const bool top = holdsThings(thing.category) && std::abs(detail::quantile(heights, 0.5)) <= kRests * unit &&
                          std::abs(high) <= kRests * unit;
         const Support support = usualSupport(thing.category);
-        const bool reachesBelow = detail::quantile(heights, 0.1) < -kBelow * unit;
-        if (reachesBelow && seenBelow)
+        const bool below = reachesBelow(heights, unit);
+        if (below && seenBelow)
             out.below.push_back(thing.category);
-        else if (reachesBelow)
+        else if (below)
             continue;
         else if (top)
             out.topOf.push_back(thing.category);
@@ -117,6 +117,10 @@ SurfaceEvidence weighSurface(const Surface& surface, const std::vector<NamedThin
             out.standing.push_back(thing.category);
     }
     return out;
+}
+
+bool reachesBelow(std::vector<double> heights, double unit) {
+    return detail::quantile(std::move(heights), 0.1) < -kBelow * unit;
 }
 
 }  // namespace smql::ingest

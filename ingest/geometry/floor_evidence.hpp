@@ -38,4 +38,9 @@ struct SurfaceEvidence {
 SurfaceEvidence weighSurface(const Surface& surface, const std::vector<NamedThing>& things,
                              const std::vector<model::Vec3>& cloud, double unit);
 
+// Whether a tenth of a named thing's points lie well under a surface (0.2 m or more): `heights` above it,
+// in the cloud's units, `unit` units per metre. Nothing a capture names reaches below a floor: such a
+// thing's points hold more than the thing (what a detection's outline takes in behind and under it).
+bool reachesBelow(std::vector<double> heights, double unit);
+
 }  // namespace smql::ingest

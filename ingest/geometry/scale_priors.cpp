@@ -6,20 +6,22 @@
 
 #include <fmt/format.h>
 
+#include "ingest/geometry/floor_evidence.hpp"
 #include "ingest/geometry/robust.hpp"
 
 namespace smql::ingest {
 
 std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
-                                              double floorHeight, std::size_t minThings) {
+                                              double floorHeight, double unit, std::size_t minThings) {
     std::vector<double> estimates;
     std::map<std::string, int> counted;
     for (const auto& thing : things) {
         auto height = typicalHeight(thing.category);
         if (!height || thing.points.empty()) continue;
-        std::vector<double> along;
-        for (const auto& p : thing.points) along.push_back(up.x * p.x + up.y * p.y + up.z * p.z);
-        double top = detail::robustRange(std::move(along)).second - floorHeight;
+        std::vector<double> above;
+        for (const auto& p : thing.points) above.push_back(up.x * p.x + up.y * p.y + up.z * p.z - floorHeight);
+        if (reachesBelow(above, unit)) continue;
+        double top = detail::robustRange(std::move(above)).second;
         if (!(top > 0)) continue;
         estimates.push_back(*height / top);
         ++counted[thing.category];

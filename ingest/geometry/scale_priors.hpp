@@ -31,11 +31,12 @@ struct ScaleEstimate {
 
 // The heights prior: each named thing of a typical height, its top (the
 // highest of its points along `up`, outliers aside: detail::robustRange) above
-// `floorHeight`, gives one estimate;
-// their median is the prior's answer. nullopt with fewer than `minThings` such
-// things.
+// `floorHeight`, gives one estimate; their median is the prior's answer. A thing
+// whose points reach well below the floor (floor_evidence.hpp: reachesBelow,
+// `unit` cloud units per metre) is left out: its points hold more than the
+// thing, and its highest ones too. nullopt with fewer than `minThings` things.
 std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
-                                              double floorHeight, std::size_t minThings = 2);
+                                              double floorHeight, double unit, std::size_t minThings = 2);
 
 struct ScaleChoice {
     double scale = 1;

@@ -2,8 +2,8 @@
 // edges: the corners of walls, door frames, cupboards, the legs of tables and chairs. A straight edge lies in
 // the plane through the camera's centre and its segment in the photo, so the room's up is perpendicular to
 // the normals of the planes of all its vertical edges, whichever photo saw them. With TUM's own poses, the
-// office photos' edges stand 0.14 degrees from TUM's up; photos without depth measure their floor against
-// them (alignment.hpp: Alignment::edgesFromFloor).
+// office photos' edges stand 0.14 degrees from TUM's up. Photos without depth measure their floor against
+// them, and level the room by them where the floor is seen little.
 #pragma once
 
 #include <cstddef>
@@ -25,6 +25,9 @@ struct LineOptions {
     double tolerance = 1.5;         // degrees: a segment within this of vertical supports a direction
     std::size_t minSegments = 40;   // a vertical needs this many supporting segments ...
     std::size_t minPhotos = 3;      // ... from this many photos
+    // A floor that holds less than this share of the points is seen little, at the photos' edges, and
+    // leans: the edges level the room instead (alignment.cpp, upByLines).
+    double levellingShare = 0.2;
 };
 
 // The segments' planes, in the capture's world frame: unit normals and the photo each came from.

@@ -20,7 +20,8 @@ constexpr std::size_t kPendingStructurePoints = 400000;
 // the capture.
 constexpr std::size_t kSketchedFrames = 60;
 // Photos without depth whose straight edges are found, spread over the capture: the vertical ones are
-// measured against the floor (vertical_lines.hpp); more photos see no new edges of the room.
+// measured against the floor and level a room whose floor is seen little (vertical_lines.hpp); more photos
+// see no new edges of the room.
 constexpr std::size_t kLinedPhotos = 60;
 
 DepthSketch sketchOf(const FrameImages& images, const Pose& pose) {

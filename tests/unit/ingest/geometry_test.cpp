@@ -567,6 +567,40 @@ TEST_CASE("scale priors: the median of three, and the more trusted of two that d
     CHECK_FALSE(typicalHeight("mug"));
 }
 
+TEST_CASE("the heights prior leaves out a thing whose points reach under the floor", "[ingest][geometry]") {
+    // Units of 0.5 m (2 units a metre). Two chairs whose tops stand 1.8 units up say 0.5 m a unit. A "table"
+    // whose points hold the floor seen under and behind it (a fifth of them 0.5 m down, its highest the
+    // monitor on it, 2.6 units up) would say 0.29 and pull the median down: TUM's office photos' desks and
+    // tables did, half of their points under the floor and their tops 1.5-1.7x a table's height.
+    auto column = [](const char* category, double low, double high) {
+        NamedThing thing{category, {}};
+        for (double z = low; z <= high + 1e-9; z += 0.05) thing.points.push_back({0, 0, z});
+        return thing;
+    };
+    std::vector<NamedThing> things{column("chair", 0, 1.8), column("chair", 0, 1.8)};
+    const auto chairs = scaleFromHeights(things, {0, 0, 1}, 0, 2.0);
+    REQUIRE(chairs);
+    CHECK(chairs->scale == Approx(0.5));
+    NamedThing table = column("table", -1.0, 2.6);
+    CHECK(reachesBelow(
+        [&] {
+            std::vector<double> heights;
+            for (const auto& p : table.points) heights.push_back(p.z);
+            return heights;
+        }(),
+        2.0));
+    things.push_back(table);
+    const auto all = scaleFromHeights(things, {0, 0, 1}, 0, 2.0);
+    REQUIRE(all);
+    CHECK(all->scale == Approx(0.5));
+    CHECK_THAT(all->prior, Catch::Contains("2 chairs") && !Catch::Contains("table"));
+    // Its points on and above the floor, the same table counts.
+    things.back() = column("table", 0, 1.5);
+    const auto standing = scaleFromHeights(things, {0, 0, 1}, 0, 2.0);
+    REQUIRE(standing);
+    CHECK_THAT(standing->prior, Catch::Contains("1 table"));
+}
+
 namespace {
 
 // A desk seen from close above, metres, z up: its top (2 x 1 m at 0.75 m) fills the views; on it a
@@ -823,32 +857,37 @@ TEST_CASE("rgbd-dining: the colour frames' vertical edges give the up the depth'
     CHECK(!verticalFromLines(lines, tilted(depth.up, 20), narrow));
 }
 
-TEST_CASE("rgbd-dining as photos without depth: the vertical edges are measured against the floor",
-          "[ingest][geometry][real]") {
+TEST_CASE(
+    "rgbd-dining as photos without depth: the vertical edges are measured against the floor, and level a "
+    "floor seen little",
+    "[ingest][geometry][real]") {
     // The depth cloud taken as a scale-free capture's, with the five colour photos' edges. As they are, they
     // stand within 2 degrees of the floor (a note says how far); turned 6 degrees, as a floor that leans
-    // stands against them (TUM's office photos: 3.9-7.6), they stand 5-7 degrees from it. The floor's normal
-    // stays up either way.
+    // stands against them (TUM's office photos: 3.9-7.6), they stand 5-7 degrees from it. A floor seen well
+    // keeps up; a floor seen little is levelled by the edges, its height measured again along them.
     const Dining dining = loadDining(4, 0.05);
     const LinePlanes lines = diningLines(dining);
-    AlignOptions photos;
-    photos.metric = false;
-    const Alignment floorOnly = alignCapture(dining.cloud, dining.cameras, photos);
+    AlignOptions seenWell;
+    seenWell.metric = false;
+    seenWell.lines.levellingShare = 0;  // every floor levels the room
+    AlignOptions seenLittle = seenWell;
+    seenLittle.lines.levellingShare = 1;  // no floor does
+    const Alignment floorOnly = alignCapture(dining.cloud, dining.cameras, seenWell);
     REQUIRE(floorOnly.floorFound);
+    CHECK(!floorOnly.edgesFromFloor);
 
-    const Alignment checked = alignCapture(dining.cloud, dining.cameras, photos, {}, lines);
+    const Alignment checked = alignCapture(dining.cloud, dining.cameras, seenWell, {}, lines);
     INFO(notesOf(checked));
     REQUIRE(checked.edgesFromFloor);
     CHECK(*checked.edgesFromFloor < 2.0);
     CHECK(angleDeg(checked.up, floorOnly.up) < 0.01);
-    CHECK(notesOf(checked).find("vertical edges in 5 of 5 photos stand") != std::string::npos);
-    CHECK(!floorOnly.edgesFromFloor);
+    CHECK(notesOf(checked).find("up: the floor's normal") != std::string::npos);
 
     // Every edge's plane turned 6 degrees about an axis across the floor's normal.
     const model::Vec3 up = floorOnly.up;
     model::Vec3 axis{up.y, -up.x, 0};
     if (dot(axis, axis) < 0.01) axis = {0, up.z, -up.y};
-    const double n = std::sqrt(dot(axis, axis));
+    const double n = norm(axis);
     axis = {axis.x / n, axis.y / n, axis.z / n};
     const double c = std::cos(6 * kDeg), s = std::sin(6 * kDeg);
     LinePlanes turned = lines;
@@ -859,10 +898,21 @@ TEST_CASE("rgbd-dining as photos without depth: the vertical edges are measured 
         v = {v.x * c + kxv.x * s + k.x * kv * (1 - c), v.y * c + kxv.y * s + k.y * kv * (1 - c),
              v.z * c + kxv.z * s + k.z * kv * (1 - c)};
     }
-    const Alignment leaning = alignCapture(dining.cloud, dining.cameras, photos, {}, turned);
+    const Alignment leaning = alignCapture(dining.cloud, dining.cameras, seenWell, {}, turned);
     INFO(notesOf(leaning));
     REQUIRE(leaning.edgesFromFloor);
     CHECK(*leaning.edgesFromFloor > 5.0);
     CHECK(*leaning.edgesFromFloor < 7.0);
     CHECK(angleDeg(leaning.up, floorOnly.up) < 0.01);
+
+    // Seen little: the edges level the room. As they are, within 2 degrees of the floor and its height;
+    // turned, up follows them.
+    const Alignment levelled = alignCapture(dining.cloud, dining.cameras, seenLittle, {}, lines);
+    INFO(notesOf(levelled));
+    CHECK(notesOf(levelled).find("up: levelled by the photos' edges") != std::string::npos);
+    CHECK(angleDeg(levelled.up, floorOnly.up) < 2.0);
+    CHECK(std::abs(levelled.floorHeight - floorOnly.floorHeight) < 0.05);
+    const Alignment followed = alignCapture(dining.cloud, dining.cameras, seenLittle, {}, turned);
+    CHECK(angleDeg(followed.up, floorOnly.up) > 5.0);
+    CHECK(angleDeg(followed.up, floorOnly.up) < 7.0);
 }
