@@ -395,7 +395,7 @@ Eigen::Vector3d upByLines(Alignment& out, const FloorChoice& choice, const Point
         fmt::format("{} vertical edges in {} of {} photos stand {:.1f} deg from the {}'s normal", vertical->segments,
                     vertical->photos, lines.photos, vertical->degreesFromNear, what);
     const double share = static_cast<double>(surface->inliers.size()) / static_cast<double>(world.size());
-    if (share >= options.lines.levellingShare) {
+    if (share >= options.levellingShare) {
         out.notes.push_back(
             fmt::format("up: the {}'s normal, which holds {:.0f}% of the points; {}", what, 100 * share, edges));
         return up;

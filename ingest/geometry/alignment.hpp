@@ -55,7 +55,10 @@ struct AlignOptions {
     double verticalSurfaceTolerance = 15;  // degrees a normal may tilt from horizontal and still vote
     double maxCurvature = 0.05;            // flatness a neighbourhood needs to vote
     std::size_t minHeadingVotes = 50;      // fewer voting normals: heading 0
-    LineOptions lines;                     // photos' vertical edges: up where the floor is seen little
+    LineOptions lines;                     // finding up among the photos' vertical edges
+    // A floor (or table top) of photos without depth that holds less than this share of the points is
+    // seen little, at the photos' edges, and leans: their vertical edges level the room instead.
+    double levellingShare = 0.2;
 };
 
 struct Alignment {

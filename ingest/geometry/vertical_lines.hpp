@@ -25,9 +25,6 @@ struct LineOptions {
     double tolerance = 1.5;         // degrees: a segment within this of vertical supports a direction
     std::size_t minSegments = 40;   // a vertical needs this many supporting segments ...
     std::size_t minPhotos = 3;      // ... from this many photos
-    // A floor that holds less than this share of the points is seen little, at the photos' edges, and
-    // leans: the edges level the room instead (alignment.cpp, upByLines).
-    double levellingShare = 0.2;
 };
 
 // The segments' planes, in the capture's world frame: unit normals and the photo each came from.

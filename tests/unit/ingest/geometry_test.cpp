@@ -869,9 +869,9 @@ TEST_CASE(
     const LinePlanes lines = diningLines(dining);
     AlignOptions seenWell;
     seenWell.metric = false;
-    seenWell.lines.levellingShare = 0;  // every floor levels the room
+    seenWell.levellingShare = 0;  // every floor levels the room
     AlignOptions seenLittle = seenWell;
-    seenLittle.lines.levellingShare = 1;  // no floor does
+    seenLittle.levellingShare = 1;  // no floor does
     const Alignment floorOnly = alignCapture(dining.cloud, dining.cameras, seenWell);
     REQUIRE(floorOnly.floorFound);
     CHECK(!floorOnly.edgesFromFloor);
