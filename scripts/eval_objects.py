@@ -328,7 +328,7 @@ def questions(smql, db, truth, labels):
 def first_sights(capture):
     """Truth category -> the first frame number in which a thing of it is seen (module docstring), for a
     capture of several frames with depth and poses; {} otherwise."""
-    from PIL import Image
+    import cv2  # python3-opencv, which the set-up installs
     frames = sorted(int(p.stem) for p in (capture / "color").iterdir() if p.stem.isdigit())
     if len(frames) < 2 or not (capture / "depth").is_dir() or not (capture / "pose.txt").exists():
         return {}
@@ -344,7 +344,7 @@ def first_sights(capture):
         depth_file = next((capture / "depth").glob(f"{number}.*"), None)
         if depth_file is None:
             continue
-        depth = np.array(Image.open(depth_file), dtype=float) / camera.get("depth_scale", 1000)
+        depth = cv2.imread(str(depth_file), cv2.IMREAD_UNCHANGED).astype(float) / camera.get("depth_scale", 1000)
         t = np.array([float(v) for v in line[:3]])
         qx, qy, qz, qw = (float(v) for v in line[3:7])
         r = np.array([[1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)],

@@ -28,6 +28,12 @@ namespace {
 
 std::atomic<bool> interrupted{false};
 
+// A stage's rate: the capture's frames over its time, "85 frames/s"; empty before the capture is read,
+// and for a stage of under 10 ms, whose rate says nothing.
+std::string rate(std::size_t frames, double seconds) {
+    return frames > 0 && seconds >= 0.01 ? fmt::format("{:.0f} frames/s", static_cast<double>(frames) / seconds) : "";
+}
+
 // A bar with the stage's name on a terminal; one line per stage otherwise. The bar is redrawn in
 // place with \r, so it must stay shorter than the terminal: a line that wraps scrolls at every step.
 class TerminalProgress : public ingest::ProgressSink {
@@ -46,9 +52,10 @@ public:
                                       : (name + counts).substr(0, std::max<std::size_t>(terminalColumns(), 2) - 1);
         std::cerr << "\r" << line << "\033[K" << std::flush;
     }
+    void captureRead(std::size_t frames) override { frames_ = frames; }
     void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
         if (tty_) std::cerr << "\r\033[K";
-        std::cerr << fmt::format("{:<10} {:7.2f} s  {}\n", stage, seconds, summary);
+        std::cerr << fmt::format("{:<10} {:7.2f} s {:>15}  {}\n", stage, seconds, rate(frames_, seconds), summary);
     }
     void note(const std::string& text) override {
         if (tty_) std::cerr << "\r\033[K";
@@ -64,6 +71,7 @@ private:
     bool tty_;
     std::string stage_;
     std::size_t steps_ = 0;
+    std::size_t frames_ = 0;
 };
 
 // One JSON object per line on standard error, for scripts.
@@ -73,13 +81,17 @@ public:
         emit({{"event", "stage_started"}, {"stage", stage}, {"steps", steps}});
     }
     void advanced(std::size_t) override {}
+    void captureRead(std::size_t frames) override { frames_ = frames; }
     void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
-        emit({{"event", "stage_finished"}, {"stage", stage}, {"seconds", seconds}, {"summary", summary}});
+        nlohmann::json event{{"event", "stage_finished"}, {"stage", stage}, {"seconds", seconds}, {"summary", summary}};
+        if (frames_ > 0 && seconds > 0) event["frames_per_second"] = static_cast<double>(frames_) / seconds;
+        emit(event);
     }
     void note(const std::string& text) override { emit({{"event", "note"}, {"text", text}}); }
 
 private:
     static void emit(const nlohmann::json& j) { std::cerr << j.dump() << "\n"; }
+    std::size_t frames_ = 0;
 };
 
 int ingestInto(const IngestArguments& args) {

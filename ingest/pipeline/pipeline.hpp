@@ -49,6 +49,8 @@ struct IngestOptions {
 class ProgressSink {
 public:
     virtual ~ProgressSink() = default;
+    // The capture's frames, once it is read: what a stage's rate (frames a second) is counted in.
+    virtual void captureRead(std::size_t frames) { (void)frames; }
     virtual void stageStarted(const std::string& stage, std::size_t steps) = 0;
     virtual void advanced(std::size_t done) = 0;
     virtual void stageFinished(const std::string& stage, double seconds, const std::string& summary) = 0;

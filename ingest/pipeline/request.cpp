@@ -211,6 +211,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     IngestRun run;
     Capture capture = readCapture(request.capture, captureOptions);
     run.frames = capture.frames.size();
+    progress.captureRead(run.frames);
 
     IngestOptions options;
     options.sceneName = sceneNameOf(request);

@@ -172,7 +172,10 @@ import json, sys
 stages = [json.loads(l) for l in open(sys.argv[1])]
 names = [e[\"stage\"] for e in stages if e[\"event\"] == \"stage_finished\"]
 assert names == [\"frames\", \"align\", \"anchors\", \"objects\", \"openings\", \"relations\", \"write\"], names
+frames = next(e for e in stages if e[\"event\"] == \"stage_finished\" and e[\"stage\"] == \"frames\")
+assert abs(frames[\"frames_per_second\"] * frames[\"seconds\"] - 12) < 1e-6, frames
 ' '$work/log'"
+check "ingest prints each stage's rate in frames a second" bash -c "'$smql' ingest '$work/capture' --db '$work/rated' 2>&1 >/dev/null | grep -Eq '^frames +[0-9.]+ s +[0-9]+ frames/s  12 frames'"
 check "check-ingest reports F1 as JSON" bash -c "'$smql' check-ingest '$work/memory' --truth '$work/capture/truth.json' --format json | python3 -c '
 import json, sys
 r = json.load(sys.stdin)
