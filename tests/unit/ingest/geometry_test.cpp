@@ -19,6 +19,7 @@
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/geometry/floor_evidence.hpp"
+#include "ingest/geometry/pcl_ops.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/vertical_lines.hpp"
 #include "ingest/geometry/view_consistency.hpp"
@@ -822,6 +823,58 @@ LinePlanes diningLines(const Dining& dining) {
 }
 
 }  // namespace
+
+TEST_CASE("RANSAC's hypotheses counted in halves count both halves", "[ingest][geometry]") {
+    // Two level planes, one in each half of the points' order, the second with more points: counting
+    // either half alone would keep the other plane. In both orders, the plane with more points wins.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> across(0, 4);
+    for (bool largerFirst : {false, true}) {
+        std::vector<model::Vec3> points;
+        const auto plane = [&](double z, int count) {
+            for (int i = 0; i < count; ++i) points.push_back({across(random), across(random), z});
+        };
+        if (largerFirst) plane(1.0, 18000);
+        plane(0.0, 12000);
+        if (!largerFirst) plane(1.0, 18000);
+        std::vector<std::size_t> all(points.size());
+        for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+        const auto found = pcl_ops::segmentPlane(points, all, pcl_ops::PlaneSearch{});
+        REQUIRE(found);
+        CHECK(found->inliers.size() == 18000);
+        CHECK(std::abs(found->offset + found->normal.z) < 1e-3);  // z = 1
+    }
+}
+
+TEST_CASE("rgbd-dining: RANSAC's inliers counted in two halves keep the plane one thread keeps",
+          "[ingest][geometry][real]") {
+    // The real dining cloud, dense enough that each hypothesis is counted on two threads: the floor
+    // (perpendicular to up) and the strongest wall (parallel to it) come out the same, point for point.
+    const Dining dining = loadDining(1, 0.02);
+    REQUIRE(dining.cloud.size() >= 40000);
+    const Alignment depth = alignCapture(dining.cloud, dining.cameras, AlignOptions{});
+    REQUIRE(depth.floorFound);
+    std::vector<std::size_t> all(dining.cloud.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    for (auto constraint : {pcl_ops::PlaneConstraint::NormalAlongAxis, pcl_ops::PlaneConstraint::NormalAcrossAxis}) {
+        pcl_ops::PlaneSearch search;
+        search.axis = depth.up;
+        search.constraint = constraint;
+        search.epsAngle = 10 * kDeg;
+        search.countInHalves = false;
+        const auto one = pcl_ops::segmentPlane(dining.cloud.points, all, search);
+        search.countInHalves = true;
+        const auto halves = pcl_ops::segmentPlane(dining.cloud.points, all, search);
+        REQUIRE(one);
+        REQUIRE(halves);
+        CHECK(one->inliers.size() > 2000);
+        CHECK(halves->inliers == one->inliers);
+        CHECK(halves->normal.x == one->normal.x);
+        CHECK(halves->normal.y == one->normal.y);
+        CHECK(halves->normal.z == one->normal.z);
+        CHECK(halves->offset == one->offset);
+    }
+}
 
 TEST_CASE("rgbd-dining: the colour frames' vertical edges give the up the depth's floor gives",
           "[ingest][geometry][real]") {
