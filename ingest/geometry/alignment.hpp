@@ -77,7 +77,8 @@ struct Alignment {
     // cameras' height gives). Empty when something confirms it, or when the scale is known.
     std::string floorUnconfirmed;
     std::size_t floorInliers = 0;
-    // Degrees between the photos' vertical edges and the floor's (or table top's) normal, when measured.
+    // Degrees between the photos' vertical edges and the normal of the floor (or table top) that levels the
+    // room, when measured; the plausibility checks call a reconstruction bent when they stand far apart.
     std::optional<double> edgesFromFloor;
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)

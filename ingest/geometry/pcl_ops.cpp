@@ -89,7 +89,7 @@ std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points, c
     auto cloud = toPcl(points);
     const Eigen::Vector3f axis(static_cast<float>(search.axis.x), static_cast<float>(search.axis.y),
                                static_cast<float>(search.axis.z));
-    const pcl::Indices all = *toPclIndices(indices);
+    const pcl::Indices all(indices.begin(), indices.end());
     // What SACSegmentation does with the model, which it cannot be given: RANSAC (PCL's generator has a fixed
     // seed, 12345, so runs repeat), then a least-squares refit and its inliers.
     pcl::SampleConsensusModelPlane<pcl::PointXYZ>::Ptr model;

@@ -43,6 +43,10 @@ constexpr double kSplitRefuse = 2.0;
 // cameras' height and two toilets' height 28 % apart, while priors of right memories measured 2-17 %
 // (docs/ingest.md, "Photos without depth against the truth").
 constexpr double kSpreadWarn = 0.25;
+// Degrees between the photos' vertical edges and a floor seen well beyond which the reconstruction is bent.
+// Real captures with their camera right: 0.4-1.6 (the dining photos, ScanNet's lounge and bathroom); 7-Scenes'
+// red kitchen's colour photos given its depth camera's 585 px for their 526: 5.3.
+constexpr double kBentEdges = 4;
 // The object checks (objectFindings), metres but where said. A sliver: its thinnest side under this
 // share of the largest side things of its kind have (the share object fusion drops at ingest).
 constexpr double kSliverShare = 0.06;
@@ -216,6 +220,15 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
         out.push_back({"floor", true, "the floor is not confirmed: " + alignment.floorUnconfirmed,
                        "photos without depth take their scale from the floor: give --scale (metres per capture "
                        "unit), or add photos that show the floor and the chairs, tables or beds standing on it"});
+    if (alignment.edgesFromFloor && *alignment.edgesFromFloor > kBentEdges)
+        out.push_back(
+            {"vertical edges", false,
+             fmt::format("the photos' vertical edges stand {:.1f} deg from the floor's normal, where a room's "
+                         "walls and legs stand upright on it: the reconstruction is bent, so heights and "
+                         "sizes lean; a focal length off (a camera.json of another camera, such as a depth "
+                         "camera's) or a lens's distortion does this",
+                         *alignment.edgesFromFloor),
+             "give the photos' own camera (camera.json, --camera), or none for COLMAP to estimate it"});
     if (alignment.scaleSplit > 0)
         out.push_back({"scale priors", alignment.scaleSplit > kSplitRefuse,
                        fmt::format("the scale's two priors disagree by a factor of {:.2g} (the cameras' height above "
