@@ -14,7 +14,7 @@ packages=(
   libopencv-dev libpcl-dev colmap
   libexif-dev  # photos' EXIF focal length for an unknown camera (ingest/capture/camera_source.cpp)
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer
-  clang-format clang-tidy  # make format, make lint (scripts/lint.sh)
+  clang-format clang-tidy-22  # make format, make lint (scripts/lint.sh); Debian 12's newest clang-tidy, the fastest
   tmux  # the shell's terminal test (Ctrl-C, widths)
   python3-onnx python3-protobuf python3-numpy  # the detector's set-up (scripts/detector/setup.sh)
   python3-opencv  # its verification against TF.js (scripts/detector/verify.sh)

@@ -1601,7 +1601,7 @@ private:
     static std::string enteringAsSituation(const std::string& text) {
         static const std::string entering =
             R"((?:when|as|once|upon|after) (?:you |i |one |we )?(?:first )?(?:entering|enters|enter|walking|walks|walk|coming|comes|come|stepping|steps|step)\b(?: in| into| through)?(?: (?:the|a|this) (?:\w+ )?(?:room|door|doorway|entrance|entry|kitchen|bathroom|bedroom|office|area|space))?)";
-        static const std::regex before("^\s*" + entering + R"(\s*,?\s*(.+)$)", std::regex::icase);
+        static const std::regex before(R"(^\s*)" + entering + R"(\s*,?\s*(.+)$)", std::regex::icase);
         static const std::regex after(R"(^\s*(.+?),?\s+)" + entering + R"(\s*\??\s*$)", std::regex::icase);
         std::smatch m;
         if (std::regex_match(text, m, before) || std::regex_match(text, m, after)) {

@@ -63,6 +63,13 @@ struct Piece {
     Point from, to;
 };
 
+// The part of one straight edge that a box holds is straight, so its length is its ends' distance.
+// (Boost's length() would instantiate Boost 1.74's numeric conversion, whose MPL enums clang 16
+// and later reject, so that lint's clang-tidy could not read this file.)
+double straightLength(const Line& part) {
+    return std::hypot(part.back().x() - part.front().x(), part.back().y() - part.front().y());
+}
+
 // The stretches of [0, length] along a piece that no door standing in it covers.
 std::vector<std::pair<double, double>> uncut(const Piece& piece, const std::vector<model::Node>& doors) {
     const double dx = piece.to.x() - piece.from.x(), dy = piece.to.y() - piece.from.y();
@@ -116,10 +123,10 @@ std::size_t splitWallOutlines(model::SceneData& scene) {
             bg::model::multi_linestring<Line> inside;
             bg::intersection(edge, box, inside);
             for (const Line& part : inside) {
-                if (part.size() < 2 || bg::length(part) < kMinFaceLength) continue;
+                if (part.size() < 2 || straightLength(part) < kMinFaceLength) continue;
                 for (auto [a, b] : uncut({part.front(), part.back()}, doors)) {
                     if (b - a < kMinFaceLength) continue;
-                    const double length = bg::length(part);
+                    const double length = straightLength(part);
                     const double tx = (part.back().x() - part.front().x()) / length,
                                  ty = (part.back().y() - part.front().y()) / length;
                     pieces.push_back({Point(part.front().x() + tx * a, part.front().y() + ty * a),

@@ -79,7 +79,7 @@ FramePass FramesStage::run(StageProgress& progress) {
     bool hasDepth = framesHaveDepth(capture);
     // Depth images that hold no reading (all zero, or every pixel out of range) would give an empty
     // scene that looks like a success.
-    if (hasDepth && pass.structure.size() == 0)
+    if (hasDepth && pass.structure.empty())
         throw Error(ErrorKind::Input,
                     fmt::format("{}: no depth reading in any frame: every depth image is empty (0 = no reading) "
                                 "or farther than {:g} m",
