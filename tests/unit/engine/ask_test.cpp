@@ -166,6 +166,18 @@ TEST_CASE("ASK on Replica room 0: the acceptance questions", "[ask]") {
     CHECK(picture.message.ends_with(" is on " + wall + "."));
 }
 
+// "When entering ..." places the person at the door with spaces typed before the question too: the
+// regex once wrote its `\s` in a plain string literal, which reads it as a letter s.
+TEST_CASE("ASK: a situation of entering is read with spaces in front of the question", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'scene0231_00'");
+    const std::string question = "When entering the kitchen, what is the first chair on the right?";
+    const std::string smql = "FIND chair VIEW FROM door WHERE right_of(door) ORDER BY distance(door) LIMIT 1";
+    CHECK(smqlOf(run(*engine, askStatement(question)).message) == smql);
+    CHECK(smqlOf(run(*engine, askStatement("   " + question)).message) == smql);
+}
+
 TEST_CASE("ASK reports what it cannot translate, and runs a plugged-in translator's SMQL", "[ask]") {
     TempDir dir;
     auto engine = openWithTheRooms(dir);
