@@ -512,6 +512,7 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
             choice.floorEvidence.describe();
         notes.push_back("floor: not confirmed; " + out.floorUnconfirmed);
     }
+    if (!floor && choice.tableTop) out.tableTopHeight = out.scale * (choice.tableTop->height - out.floorHeight);
     if (ceiling) {
         out.ceilingHeight = out.scale * ceilingAbove;
         notes.push_back("ceiling: plane with " + std::to_string(ceiling->plane.inliers) + " points, " +

@@ -72,6 +72,10 @@ struct Alignment {
     // cameras), and where the floor was placed instead. Both empty when the floor was found.
     std::string floorNotSeen;
     std::string floorPlaced;
+    // When the floor was placed under a table top: that top's height above it (aligned frame, metres). The
+    // table whose top it is stands on that floor by the placement's own reading (object_fusion.hpp:
+    // reachDownToFloor).
+    std::optional<double> tableTopHeight;
     // Photos without depth: why the plane taken for the floor cannot be told from a table top (nothing
     // that stands on floors rises from it, and no ceiling or thing's height checks the scale the
     // cameras' height gives). Empty when something confirms it, or when the scale is known.

@@ -21,6 +21,8 @@ struct RoomSurfaces {
     bool floorFound = true;
     std::optional<double> ceilingHeight;
     const std::vector<WallSegment>* walls = nullptr;
+    // A floor not found but placed a table's height under a table top: that top's height (Alignment::tableTopHeight).
+    std::optional<double> tableTopHeight;
 };
 
 struct ViewSegmentOptions {

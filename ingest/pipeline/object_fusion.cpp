@@ -235,6 +235,19 @@ bool lowestReachesFloor(const std::vector<SeenBox>& things, const FusionOptions&
     return std::abs(lowest) <= options.restingGap;
 }
 
+// Whether a table's box (a kind that holds things on a top, not a bed or sofa) holds the height of the table top
+// a floor the views did not show was placed under (alignment.hpp: tableTopHeight): that floor was placed
+// on the reading that this table stands on it, so what stands on floors stands there, as on a floor seen.
+bool tableStandsOnPlacedFloor(const std::vector<SeenBox>& things, std::optional<double> tableTopHeight,
+                              const FusionOptions& options) {
+    if (!tableTopHeight) return false;
+    return std::any_of(things.begin(), things.end(), [&](const SeenBox& thing) {
+        return holdsThings(thing.category) && !hasUprightEnds(thing.category) &&
+               model::bottom(thing.box) <= *tableTopHeight &&
+               model::top(thing.box) >= *tableTopHeight - options.restingGap;
+    });
+}
+
 }  // namespace
 
 // Whether `part` is the upright end of `whole` (a bed's headboard, a sofa's back, named "tv" or "suitcase" by a
@@ -294,8 +307,11 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
            model::footprintContains(b, {a.center.x, a.center.y}, 0);
 }
 
-std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, const FusionOptions& options) {
-    if (!floorFound && !lowestReachesFloor(things, options)) return 0;
+std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, std::optional<double> tableTopHeight,
+                             const FusionOptions& options) {
+    if (!floorFound && !lowestReachesFloor(things, options) &&
+        !tableStandsOnPlacedFloor(things, tableTopHeight, options))
+        return 0;
     std::size_t grounded = 0;
     for (auto& thing : things) grounded += standOnFloor(thing, things, options);
     return grounded;
@@ -456,6 +472,7 @@ ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room,
     : alignment_(alignment),
       floorFound_(room.floorFound),
       ceilingHeight_(room.ceilingHeight),
+      tableTopHeight_(room.tableTopHeight),
       walls_(room.walls ? *room.walls : std::vector<WallSegment>{}),
       options_(options),
       map_([&] {
@@ -467,7 +484,7 @@ ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room,
 void ObjectFusion::addCamera(const FusionCamera& camera) { cameras_.push_back(camera); }
 
 void ObjectFusion::addFrame(std::vector<Observation> frameViews) {
-    const RoomSurfaces room{floorFound_, ceilingHeight_, &walls_};
+    const RoomSurfaces room{floorFound_, ceilingHeight_, &walls_, tableTopHeight_};
     std::vector<InstanceView> frame;
     for (auto& view : frameViews) {
         const std::size_t source = views_.size();
@@ -504,7 +521,7 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
         }
     std::vector<SeenBox> boxes;
     for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0});
-    made.grounded = reachDownToFloor(boxes, floorFound_, options_);
+    made.grounded = reachDownToFloor(boxes, floorFound_, tableTopHeight_, options_);
     for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
     made.slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options_); });

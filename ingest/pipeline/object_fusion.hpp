@@ -6,6 +6,7 @@
 // (docs/ingest.md, "Objects from detections").
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "ingest/capture/observations.hpp"
@@ -82,9 +83,11 @@ struct SeenBox {
 bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const FusionOptions& options = {});
 
 // Things of kinds that stand on floors whose legs or base the views did not see reach down to the floor: the
-// one found, or one placed that the lowest thing reaches down to (object_fusion.cpp, standOnFloor). Returns how
-// many were extended.
-std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, const FusionOptions& options = {});
+// one found; or one placed that the lowest thing reaches down to, or placed a table's height under a table top
+// (`tableTopHeight`, Alignment::tableTopHeight) that a table's box holds (object_fusion.cpp, standOnFloor).
+// Returns how many were extended.
+std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, std::optional<double> tableTopHeight = {},
+                             const FusionOptions& options = {});
 
 // Things of a kind that stands in one kind of room (typical_sizes.hpp: roomKind; a toilet) with more things of
 // another room's kinds (a fridge, an oven, a microwave) than of their own, themselves counted, within
@@ -166,6 +169,7 @@ private:
     Alignment alignment_;
     bool floorFound_;
     std::optional<double> ceilingHeight_;
+    std::optional<double> tableTopHeight_;
     std::vector<WallSegment> walls_;
     FusionOptions options_;
     InstanceMap map_;

@@ -227,7 +227,8 @@ private:
                                        const std::vector<FusionCamera>& cameras, StageProgress& progress) const {
         FusionOptions fusion;
         fusion.voteLabels = voteLabels_;
-        return fuseTracks(std::move(tracks), viewFrame, {room.floorFound, room.ceilingHeight, &walls}, cameras, fusion,
+        return fuseTracks(std::move(tracks), viewFrame,
+                          {room.floorFound, room.ceilingHeight, &walls, room.tableTopHeight}, cameras, fusion,
                           progress);
     }
 

@@ -95,11 +95,34 @@ TEST_CASE("floor reach: a bed seen from above stands on a floor the lowest thing
     CHECK(things[0].box.size.z == Approx(0.75));
     // A floor found is where things stand.
     CHECK(reachDownToFloor(things, true) == 1);
+    // Placed a table's height under the mattress taken for a table top: a bed is no table, and the guess stays one.
+    things = {bed, seen("tv", {0.84, 2.94, 0.71}, {1.51, 0.55, 0.86}, 26, 1)};
+    CHECK(reachDownToFloor(things, false, 1.1) == 0);
 
     // A bed whose bottom is 1.25 m up and whose top is far above beds' usual top (a loft bed on posts the views
     // did not show): left as seen.
     things = {seen("bed", {0, 0, 1.5}, {2.0, 1.4, 0.5}, 0, 5)};
     CHECK(reachDownToFloor(things, true) == 0);
+}
+
+TEST_CASE("floor reach: a desk whose top the floor was placed under stands on that floor", "[ingest][fusion]") {
+    // TUM fr1/rpy's 100 colour frames as photos (COLMAP, dense points): the desk fills the photos and the floor
+    // does not show, so the floor was placed a table's height (0.75 m) under the desk's top. The desk's legs are
+    // not seen: its box hangs from its top, 0.55 m deep, and the chair's back alone shows over the desk's edge.
+    const SeenBox desk = seen("desk", {0.15, 0.95, 0.59}, {1.63, 1.43, 0.55}, 90, 27);
+    const SeenBox chair = seen("chair", {-0.14, 2.04, 0.62}, {0.24, 0.16, 0.22}, 90, 4);
+    std::vector<SeenBox> things{desk, chair};
+    // Without the table top it was placed under, that floor is a guess nothing reaches.
+    CHECK(reachDownToFloor(things, false) == 0);
+    // With it, the desk that holds that top stands on the floor placed under it (its RGB-D memory: 0.79 m high),
+    // and so does the chair.
+    CHECK(reachDownToFloor(things, false, 0.75) == 2);
+    CHECK(model::bottom(things[0].box) == Approx(0));
+    CHECK(things[0].box.size.z == Approx(0.865));
+    CHECK(model::bottom(things[1].box) == Approx(0));
+    // A top the desk's box does not reach (the floor placed under another surface): no desk stands there.
+    things = {desk, chair};
+    CHECK(reachDownToFloor(things, false, 1.2) == 0);
 }
 
 TEST_CASE("out of place: a toilet among a kitchen's things is not a toilet; one behind a wall is", "[ingest][fusion]") {
@@ -165,7 +188,7 @@ Observation boxSeen(std::uint32_t frame, const char* label, model::Vec3 centre, 
 }  // namespace
 
 TEST_CASE("fusion frame by frame: the things so far after each frame, the map left to take more", "[ingest][fusion]") {
-    ObjectFusion fusion(Alignment{}, RoomSurfaces{true, std::nullopt, nullptr});
+    ObjectFusion fusion(Alignment{}, RoomSurfaces{true, std::nullopt, nullptr, std::nullopt});
     const model::Vec3 chair{1.0, 1.0, 0.45}, chairSize{0.5, 0.5, 0.9};
     fusion.addFrame({boxSeen(0, "chair", chair, chairSize, {1, 0, -0.5})});
     auto things = fusion.things();
