@@ -687,12 +687,16 @@ private:
                 chosen = merged->folder;
             }
         }
-        try {
-            return {capture_detail::readColmap(chosen, readOptions), models.size()};
-        } catch (const Error& e) {
-            note(fmt::format("COLMAP model {} skipped: {}", chosen.string(), e.what()));
-            return {std::nullopt, models.size()};
+        // The merged model, else (when it cannot be read) the largest of the mapper's own.
+        for (const fs::path& folder : {chosen, models.front().folder}) {
+            try {
+                return {capture_detail::readColmap(folder, readOptions), models.size()};
+            } catch (const Error& e) {
+                note(fmt::format("COLMAP model {} skipped: {}", folder.string(), e.what()));
+            }
+            if (folder == models.front().folder) break;
         }
+        return {std::nullopt, models.size()};
     }
 
     // The model's poses onto the capture's frames (poses are the same at any image size) and its
