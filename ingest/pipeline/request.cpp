@@ -128,8 +128,7 @@ const std::vector<IngestOption> kIngestOptions = {
      [] {
          return std::string(
              "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones (default "
-             "off while its scale is 1.05-1.11x on TUM's office photos; docs/ingest.md, \"Dense points from placed "
-             "photos\")");
+             "off: it still spoils a few small sets; docs/ingest.md, \"Dense points from placed photos\")");
      },
      [](IngestRequest& r, const std::string& v) {
          r.dense = oneOf("dense", v, {"on", "off"}) == "on";
