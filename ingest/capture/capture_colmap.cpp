@@ -390,16 +390,6 @@ std::optional<std::string> colmapModelFormat(const fs::path& dir) {
     return std::nullopt;
 }
 
-std::vector<std::string> colmapImageNames(const fs::path& modelDir) {
-    const std::optional<std::string> format = colmapModelFormat(modelDir);
-    if (!format) return {};
-    const fs::path imagesFile = modelDir / ("images." + *format);
-    std::vector<std::string> names;
-    for (const Image& image : *format == "bin" ? readImagesBinary(imagesFile) : readImagesText(imagesFile))
-        names.push_back(image.name);
-    return names;
-}
-
 Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
     Capture capture;
     capture.layout = "colmap";

@@ -203,7 +203,5 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options);
 
 // The COLMAP model files in `dir` ("bin" or "txt"), or std::nullopt.
 std::optional<std::string> colmapModelFormat(const fs::path& dir);
-// The names of the images the COLMAP model in `modelDir` placed (empty when it is no model).
-std::vector<std::string> colmapImageNames(const fs::path& modelDir);
 
 }  // namespace smql::ingest::capture_detail

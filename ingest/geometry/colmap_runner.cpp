@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <set>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -659,44 +658,24 @@ private:
         return std::move(*best);
     }
 
-    // The models in `folder` (one sub-folder per model), those that share frames merged (mergeSharingModels): the
-    // one with the most frames, and how many models the mapper made.
+    // The model in `folder` (one sub-folder per model) with the most images, and how many there were.
     std::pair<std::optional<Capture>, std::size_t> readLargestModel(const fs::path& folder) {
         CaptureOptions readOptions;
         readOptions.imageDirectory = images_.string();
-        std::vector<ColmapModel> models;
+        std::optional<Capture> best;
+        std::size_t models = 0;
         std::error_code ec;
-        for (const auto& entry : fs::directory_iterator(folder, ec))
-            if (entry.is_directory() && capture_detail::colmapModelFormat(entry.path()))
-                models.push_back({entry.path(), capture_detail::colmapImageNames(entry.path())});
-        if (models.empty()) return {std::nullopt, 0};
-        // Largest first; the folders' names break ties, so that a run read again merges alike.
-        std::sort(models.begin(), models.end(), [](const ColmapModel& a, const ColmapModel& b) {
-            return a.images.size() != b.images.size() ? a.images.size() > b.images.size() : a.folder < b.folder;
-        });
-        fs::path chosen = models.front().folder;
-        if (models.size() > 1) {
-            const auto merged = mergeSharingModels(
-                models, folder.string() + "-merged",
-                [&](const std::string& step, const std::string& arguments) { return runStep(step, arguments, true); });
-            if (merged) {
-                note(
-                    fmt::format("COLMAP's models that share frames merged: {} of {} joined the largest ({} frames), "
-                                "{} frames together",
-                                merged->joined, models.size() - 1, models.front().images.size(), merged->images));
-                chosen = merged->folder;
-            }
-        }
-        // The merged model, else (when it cannot be read) the largest of the mapper's own.
-        for (const fs::path& folder : {chosen, models.front().folder}) {
+        for (const auto& entry : fs::directory_iterator(folder, ec)) {
+            if (!entry.is_directory() || !capture_detail::colmapModelFormat(entry.path())) continue;
+            ++models;
             try {
-                return {capture_detail::readColmap(folder, readOptions), models.size()};
+                Capture model = capture_detail::readColmap(entry.path(), readOptions);
+                if (!best || model.frames.size() > best->frames.size()) best = std::move(model);
             } catch (const Error& e) {
-                note(fmt::format("COLMAP model {} skipped: {}", folder.string(), e.what()));
+                note(fmt::format("COLMAP model {} skipped: {}", entry.path().string(), e.what()));
             }
-            if (folder == models.front().folder) break;
         }
-        return {std::nullopt, models.size()};
+        return {std::move(best), models};
     }
 
     // The model's poses onto the capture's frames (poses are the same at any image size) and its
@@ -788,51 +767,6 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes 
             fmt::format("{}: COLMAP needs at least 2 frames, the capture has {}", capture.path, capture.frames.size()),
             std::nullopt, kRetryHint);
     return ColmapSession(capture, options, *colmap, std::move(notes)).run();
-}
-
-std::optional<ColmapMerge> mergeSharingModels(const std::vector<ColmapModel>& models, const fs::path& output,
-                                              const ColmapStep& run) {
-    if (models.empty()) return std::nullopt;
-    std::set<std::string> joined(models.front().images.begin(), models.front().images.end());
-    std::vector<bool> taken(models.size(), false);
-    taken[0] = true;
-    fs::path current = models.front().folder;
-    std::size_t merges = 0;
-    for (bool grew = true; grew;) {
-        grew = false;
-        for (std::size_t m = 1; m < models.size(); ++m) {
-            const auto& images = models[m].images;
-            const auto shared = static_cast<std::size_t>(std::count_if(
-                images.begin(), images.end(), [&](const std::string& name) { return joined.count(name) > 0; }));
-            if (taken[m] || shared < kMergeShared) continue;
-            taken[m] = true;
-            const fs::path step = output / std::to_string(merges + 1);
-            std::error_code ec;
-            fs::create_directories(step, ec);
-            run("model_merger",
-                fmt::format("--input_path1 {} --input_path2 {} --output_path {}", shellQuoted(current.string()),
-                            shellQuoted(models[m].folder.string()), shellQuoted(step.string())));
-            // A merge that finds no alignment on the shared frames ("Merge failed") writes the first model again.
-            const std::size_t before = joined.size();
-            for (const auto& name : capture_detail::colmapImageNames(step)) joined.insert(name);
-            if (joined.size() <= before) continue;
-            current = step;
-            ++merges;
-            grew = true;
-        }
-    }
-    if (merges == 0) return std::nullopt;
-    const fs::path adjusted = output / "adjusted";
-    std::error_code ec;
-    fs::create_directories(adjusted, ec);
-    if (!run("bundle_adjuster", fmt::format("--input_path {} --output_path {} --BundleAdjustment.max_num_iterations 15 "
-                                            "--BundleAdjustment.refine_focal_length 0 "
-                                            "--BundleAdjustment.refine_principal_point 0 "
-                                            "--BundleAdjustment.refine_extra_params 0",
-                                            shellQuoted(current.string()), shellQuoted(adjusted.string()))) ||
-        !capture_detail::colmapModelFormat(adjusted))
-        return ColmapMerge{current, merges, joined.size()};
-    return ColmapMerge{adjusted, merges, joined.size()};
 }
 
 }  // namespace smql::ingest

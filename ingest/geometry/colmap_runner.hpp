@@ -4,10 +4,7 @@
 // capture (docs/ingest.md, "--geometry colmap").
 #pragma once
 
-#include <cstddef>
-#include <filesystem>
 #include <functional>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,32 +59,5 @@ using ColmapNotes = std::function<void(const std::string&)>;
 // photos with features, photos that overlap, and what to do); the notes made
 // until then have reached `notes`.
 ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {}, ColmapNotes notes = {});
-
-// One model COLMAP's mapper wrote: its folder and the names of the images it placed.
-struct ColmapModel {
-    std::filesystem::path folder;
-    std::vector<std::string> images;
-};
-// Runs `colmap STEP ARGUMENTS`; false when the command failed.
-using ColmapStep = std::function<bool(const std::string& step, const std::string& arguments)>;
-// Models of one mapper run that share this many images or more are merged: COLMAP aligns two models on the
-// images they share, and three fix a similarity's seven degrees of freedom with room to spare.
-inline constexpr std::size_t kMergeShared = 3;
-struct ColmapMerge {
-    std::filesystem::path folder;  // the merged model
-    std::size_t joined = 0;        // models joined to the largest
-    std::size_t images = 0;        // images the merged model holds
-};
-// COLMAP's mapper may place an image in several of its models: each model grows from a start of its own over
-// every image, and the frames matched all against all to close loops join several. Models that share
-// kMergeShared images or more hold one walk: `model_merger` joins each into the largest (models.front()),
-// aligned on the images they share, in turn while any shares images with what is joined (a merge that finds no
-// alignment joins nothing), and `bundle_adjuster` then adjusts the whole (a merge fits the models to each other,
-// it does not refine them). Each step is written to a folder of `output` (1, 2 ... and adjusted/), so that a run
-// whose steps `run` does not repeat (a work folder read again) reads the same join. Nothing when no model joined.
-// ScanNet 0000's 300 colour frames (docs/ingest.md, "Geometry from COLMAP"): ten models, the largest of 86
-// frames, five more joined it: 125.
-std::optional<ColmapMerge> mergeSharingModels(const std::vector<ColmapModel>& models,
-                                              const std::filesystem::path& output, const ColmapStep& run);
 
 }  // namespace smql::ingest
