@@ -11,6 +11,10 @@
 
 namespace smql::ingest {
 
+RoomSurfaces roomSurfaces(const Alignment& alignment, const std::vector<WallSegment>* walls) {
+    return {alignment.floorFound, alignment.ceilingHeight, walls, alignment.tableTopHeight};
+}
+
 bool onRoomSurface(const model::Vec3& p, const RoomSurfaces& room, const ViewSegmentOptions& options) {
     if (room.floorFound && p.z < options.floorMargin) return true;
     if (room.ceilingHeight && p.z > *room.ceilingHeight - options.ceilingMargin) return true;

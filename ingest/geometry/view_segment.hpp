@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/walls.hpp"
 
@@ -24,6 +25,9 @@ struct RoomSurfaces {
     // A floor not found but placed a table's height under a table top: that top's height (Alignment::tableTopHeight).
     std::optional<double> tableTopHeight;
 };
+
+// What an aligned capture knows of its room's surfaces, with its walls.
+RoomSurfaces roomSurfaces(const Alignment& alignment, const std::vector<WallSegment>* walls);
 
 struct ViewSegmentOptions {
     double floorMargin = 0.03;    // points this close above the floor, or below it, are floor

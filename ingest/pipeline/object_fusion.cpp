@@ -470,21 +470,22 @@ bool lowerToTop(model::Box& box, const SeenTop& top, const FusionOptions& option
 
 ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options)
     : alignment_(alignment),
-      floorFound_(room.floorFound),
-      ceilingHeight_(room.ceilingHeight),
-      tableTopHeight_(room.tableTopHeight),
+      room_(room),
       walls_(room.walls ? *room.walls : std::vector<WallSegment>{}),
       options_(options),
       map_([&] {
           InstanceMapOptions mapOptions;
           mapOptions.voteLabels = options.voteLabels;
           return mapOptions;
-      }()) {}
+      }()) {
+    room_.walls = nullptr;  // the caller's walls may be gone by the next frame: walls_ holds them
+}
 
 void ObjectFusion::addCamera(const FusionCamera& camera) { cameras_.push_back(camera); }
 
 void ObjectFusion::addFrame(std::vector<Observation> frameViews) {
-    const RoomSurfaces room{floorFound_, ceilingHeight_, &walls_, tableTopHeight_};
+    RoomSurfaces room = room_;
+    room.walls = &walls_;
     std::vector<InstanceView> frame;
     for (auto& view : frameViews) {
         const std::size_t source = views_.size();
@@ -521,7 +522,7 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
         }
     std::vector<SeenBox> boxes;
     for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0});
-    made.grounded = reachDownToFloor(boxes, floorFound_, tableTopHeight_, options_);
+    made.grounded = reachDownToFloor(boxes, room_.floorFound, room_.tableTopHeight, options_);
     for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
     made.slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options_); });

@@ -167,9 +167,7 @@ public:
 
 private:
     Alignment alignment_;
-    bool floorFound_;
-    std::optional<double> ceilingHeight_;
-    std::optional<double> tableTopHeight_;
+    RoomSurfaces room_;  // without walls: walls_ is the fusion's own copy of them
     std::vector<WallSegment> walls_;
     FusionOptions options_;
     InstanceMap map_;

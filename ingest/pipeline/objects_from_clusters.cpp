@@ -87,8 +87,7 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
     StructureOptions structureOptions;
     structureOptions.ceilingHeight = aligned.alignment.ceilingHeight;
     const PointCloud& cloud = aligned.cloud;
-    const RoomSurfaces room{aligned.alignment.floorFound, aligned.alignment.ceilingHeight, &walls,
-                            aligned.alignment.tableTopHeight};
+    const RoomSurfaces room = roomSurfaces(aligned.alignment, &walls);
     std::vector<std::size_t> rest;
     for (auto i : nonStructuralPoints(cloud, walls, structureOptions))
         if (!onRoomSurface(cloud.points[i], room) &&

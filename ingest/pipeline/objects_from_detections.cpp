@@ -227,9 +227,7 @@ private:
                                        const std::vector<FusionCamera>& cameras, StageProgress& progress) const {
         FusionOptions fusion;
         fusion.voteLabels = voteLabels_;
-        return fuseTracks(std::move(tracks), viewFrame,
-                          {room.floorFound, room.ceilingHeight, &walls, room.tableTopHeight}, cameras, fusion,
-                          progress);
+        return fuseTracks(std::move(tracks), viewFrame, roomSurfaces(room, &walls), cameras, fusion, progress);
     }
 
     // Frames without depth: the sparse points that fall on each detection, nearest first (as for

@@ -128,7 +128,7 @@ const std::vector<IngestOption> kIngestOptions = {
      [] {
          return std::string(
              "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones (default "
-             "off: it still spoils a few small sets; docs/ingest.md, \"Dense points from placed photos\")");
+             "off: a few photos give it too few points to trust; docs/ingest.md, \"Dense points from placed photos\")");
      },
      [](IngestRequest& r, const std::string& v) {
          r.dense = oneOf("dense", v, {"on", "off"}) == "on";
