@@ -34,8 +34,6 @@ using catalog::Slot;
 namespace {
 
 constexpr std::size_t kStatementCacheSize = 512;
-// Categories whose count across all scenes is kept between statements (State::counts).
-constexpr std::size_t kCountCacheSize = 1024;
 
 // Texts hashed and compared as views, so that looking one up copies nothing.
 struct TextHash {
@@ -146,27 +144,25 @@ struct Engine::State {
         auto txn = db->beginRead();
         ReadsEnd readsEnd{*this};
         binder::Binder binder({txn, session, [&] { return snapshot(txn, currentScene(txn)); },
-                               [&](const std::string& instant) { return snapshotAsOf(txn, instant); }});
+                               [&](const std::string& instant) { return snapshotAsOf(txn, instant); },
+                               &categoryCounts});
         auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement, values)));
         storage::Database* writer = db->readOnly() ? nullptr : db.get();
         auto rs = exec::Executor(txn, session, plan, &interrupt, writer).run();
         shapes.setCapacity(static_cast<std::size_t>(session.limits.shapeCache));  // SET shape_cache, at once
-        if (counted) rememberCount(*counted, txn.transactionId(), rs);
         rs.elapsedMicroseconds =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
         return rs;
     }
 
-    // COUNT <category> across all scenes: the counts answered in the transaction `countsInTransaction`,
-    // by the name as written or bound. While no process has committed since (the database's last
-    // committed transaction is still that one), the same COUNT has the same answer, and it is
-    // given without a read transaction, binder or plan. Only counts above zero are kept: a
-    // category in no scene answers with a note or an error, which the statement works out anew.
-    std::unordered_map<std::string, std::int64_t, TextHash, std::equal_to<>> counts;
-    std::uint64_t countsInTransaction = 0;
+    // The categories named across all scenes, with their label keys and counts as read in the last
+    // committed transaction a statement saw (binder/category_counts.hpp). While no process has
+    // committed since (the database's last committed transaction is still that one), the same
+    // COUNT has the same answer, and it is given without a read transaction, binder or plan.
+    binder::CategoryCounts categoryCounts;
 
     // The category a COUNT across all scenes names (its text or its bound value), or null for any
-    // other statement: one with AS OF, WHERE or VIEW, or run in one scene, is not kept.
+    // other statement: one with AS OF, WHERE or VIEW, or run in one scene, is not answered early.
     const std::string* catalogCountName(const ast::Statement& statement,
                                         const std::vector<std::optional<ParameterValue>>& values) const {
         const auto* count = std::get_if<ast::CountStmt>(&statement.body);
@@ -181,22 +177,12 @@ struct Engine::State {
     }
 
     std::optional<ResultSet> rememberedCount(std::string_view name) const {
-        if (counts.empty() || db->lastCommittedTransaction() != countsInTransaction) return std::nullopt;
-        auto it = counts.find(name);
-        if (it == counts.end()) return std::nullopt;
+        const binder::CategoryCount* kept = categoryCounts.find(name, db->lastCommittedTransaction());
+        if (!kept) return std::nullopt;
         ResultSet rs;
         rs.columns = {{"count", ValueType::Integer}};
-        rs.rows.push_back({it->second});
+        rs.rows.push_back({static_cast<std::int64_t>(kept->count)});
         return rs;
-    }
-
-    void rememberCount(const std::string& name, std::uint64_t transaction, const ResultSet& rs) {
-        if (!rs.message.empty() || rs.rows.size() != 1 || rs.rows.front().size() != 1) return;
-        const auto* count = std::get_if<std::int64_t>(&rs.rows.front().front());
-        if (!count || *count <= 0) return;
-        if (transaction != countsInTransaction || counts.size() >= kCountCacheSize) counts.clear();
-        countsInTransaction = transaction;
-        counts.insert_or_assign(name, *count);
     }
 
     std::shared_ptr<const SceneSnapshot> snapshot(const storage::ReadTransaction& txn, const model::SceneInfo& info) {

@@ -35,6 +35,19 @@ void putLittleEndian(std::uint8_t* p, std::uint64_t v, int bytes) {
 }
 
 std::uint64_t getLittleEndian(const std::uint8_t* p, int bytes) {
+    // The record's fields of 4 and 8 bytes as one load when the machine is little-endian.
+    if constexpr (std::endian::native == std::endian::little) {
+        if (bytes == 8) {
+            std::uint64_t v;
+            std::memcpy(&v, p, sizeof v);
+            return v;
+        }
+        if (bytes == 4) {
+            std::uint32_t v;
+            std::memcpy(&v, p, sizeof v);
+            return v;
+        }
+    }
     std::uint64_t v = 0;
     for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
     return v;
@@ -398,11 +411,20 @@ T littleEndianAt(const std::uint8_t* p) {
 }  // namespace
 
 CategoryRow decodeLabelEntry(std::string_view category, std::uint32_t categoryCrc, std::string_view entry) {
+    if (entry.size() != kLabelEntrySize)
+        corruptLabel(category, entry, fmt::format("{} bytes instead of {}", entry.size(), kLabelEntrySize));
+    return decodeLabelEntryWithChecksum(category, entry, crc32c(entry.substr(0, kLabelChecksumAt), categoryCrc));
+}
+
+void labelEntryChecksums(std::uint32_t categoryCrc, const char* entries, std::size_t count, std::uint32_t* out) {
+    crc32cOfRuns(entries, kLabelEntrySize, kLabelChecksumAt, count, categoryCrc, out);
+}
+
+CategoryRow decodeLabelEntryWithChecksum(std::string_view category, std::string_view entry, std::uint32_t actual) {
     const auto* p = reinterpret_cast<const std::uint8_t*>(entry.data());
     if (entry.size() != kLabelEntrySize)
         corruptLabel(category, entry, fmt::format("{} bytes instead of {}", entry.size(), kLabelEntrySize));
     const auto stored = static_cast<std::uint32_t>(getLittleEndian(p + kLabelChecksumAt, kChecksumSize));
-    const std::uint32_t actual = crc32c(entry.substr(0, kLabelChecksumAt), categoryCrc);
     if (stored != actual)
         corruptLabel(category, entry,
                      fmt::format("checksum mismatch (stored {:08x}, computed {:08x})", stored, actual));

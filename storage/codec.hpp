@@ -10,7 +10,9 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -91,6 +93,11 @@ inline model::NodeId labelEntryNode(std::string_view entry);
 CategoryRow decodeLabelEntry(std::string_view category, std::string_view entry);
 // The same, with the CRC32C of the category computed once for the many entries of a key.
 CategoryRow decodeLabelEntry(std::string_view category, std::uint32_t categoryCrc, std::string_view entry);
+// The checksums decodeLabelEntry compares, of `count` entries one after another from `entries` (a
+// block of the label index's page), computed side by side into out[i].
+void labelEntryChecksums(std::uint32_t categoryCrc, const char* entries, std::size_t count, std::uint32_t* out);
+// decodeLabelEntry with the entry's checksum computed already (labelEntryChecksums).
+CategoryRow decodeLabelEntryWithChecksum(std::string_view category, std::string_view entry, std::uint32_t checksum);
 
 // Source-id index key: scene id then the source id, sign-flipped big-endian so
 // negative ids sort before positive ones.
@@ -127,9 +134,11 @@ SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes);
 std::string encodeU64(std::uint64_t value);
 std::uint64_t decodeU64(std::string_view bytes, std::string_view what);
 
+// One load (and a byte swap on a little-endian machine), where GCC does not turn a loop of shifts into one.
 inline std::uint64_t readBigEndian64(const std::uint8_t* p) {
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i) v = (v << 8) | p[i];
+    std::uint64_t v;
+    std::memcpy(&v, p, sizeof v);
+    if constexpr (std::endian::native == std::endian::little) v = __builtin_bswap64(v);
     return v;
 }
 

@@ -114,6 +114,31 @@ __attribute__((target("sse4.2"))) std::uint32_t hardwareCrc(const unsigned char*
     return c;
 }
 
+// Four runs of one length at once: four independent chains of crc32 instructions, where one run
+// alone waits three cycles for each.
+__attribute__((target("sse4.2"))) void hardwareCrcOfFourRuns(const unsigned char* p, std::size_t stride,
+                                                             std::size_t length, std::uint32_t c, std::uint32_t* out) {
+    std::uint64_t c0 = c, c1 = c, c2 = c, c3 = c;
+    std::size_t i = 0;
+    for (; i + 8 <= length; i += 8) {
+        std::uint64_t w0, w1, w2, w3;
+        std::memcpy(&w0, p + i, 8);
+        std::memcpy(&w1, p + stride + i, 8);
+        std::memcpy(&w2, p + 2 * stride + i, 8);
+        std::memcpy(&w3, p + 3 * stride + i, 8);
+        c0 = _mm_crc32_u64(c0, w0);
+        c1 = _mm_crc32_u64(c1, w1);
+        c2 = _mm_crc32_u64(c2, w2);
+        c3 = _mm_crc32_u64(c3, w3);
+    }
+    std::array<std::uint32_t, 4> tail{static_cast<std::uint32_t>(c0), static_cast<std::uint32_t>(c1),
+                                      static_cast<std::uint32_t>(c2), static_cast<std::uint32_t>(c3)};
+    for (std::size_t run = 0; run < 4; ++run) {
+        for (std::size_t at = i; at < length; ++at) tail[run] = _mm_crc32_u8(tail[run], p[run * stride + at]);
+        out[run] = tail[run];
+    }
+}
+
 const bool kHaveSse42 = __builtin_cpu_supports("sse4.2");
 #endif
 
@@ -126,6 +151,20 @@ std::uint32_t crc32c(std::string_view bytes, std::uint32_t crc) {
     if (kHaveSse42) return ~hardwareCrc(p, bytes.size(), c);
 #endif
     return ~tableCrc(p, bytes.size(), c);
+}
+
+void crc32cOfRuns(const char* first, std::size_t stride, std::size_t length, std::size_t count, std::uint32_t crc,
+                  std::uint32_t* out) {
+    const auto* p = reinterpret_cast<const unsigned char*>(first);
+    std::size_t i = 0;
+#if defined(__x86_64__)
+    if (kHaveSse42)
+        for (; i + 4 <= count; i += 4) {
+            hardwareCrcOfFourRuns(p + i * stride, stride, length, ~crc, out + i);
+            for (std::size_t run = i; run < i + 4; ++run) out[run] = ~out[run];
+        }
+#endif
+    for (; i < count; ++i) out[i] = crc32c(std::string_view(first + i * stride, length), crc);
 }
 
 }  // namespace smql::storage

@@ -5,6 +5,7 @@
 #include "storage/database.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <filesystem>
 #include <utility>
@@ -118,31 +119,40 @@ std::size_t duplicateCount(const Environment& env, MDB_cursor* cursor) {
     return count;
 }
 
-// Calls visit(entry) for each duplicate of the key `cursor` was just
-// positioned on, reading the fixed-size entries a page at a time straight from
-// the map; visit returns false to stop. `first` is the value the positioning
-// call returned and `count` the key's duplicate count.
+// Calls visit(entries, n) for the duplicates of the key `cursor` was just positioned on, a page's
+// block at a time straight from the map: n fixed-size entries one after another; visit returns
+// false to stop. `first` is the value the positioning call returned and `count` the key's
+// duplicate count.
 template <class Visit>
-void forEachDuplicate(const Environment& env, MDB_cursor* cursor, const MDB_val& first, std::size_t count,
-                      std::size_t entrySize, Visit&& visit) {
+void forEachDuplicateBlock(const Environment& env, MDB_cursor* cursor, const MDB_val& first, std::size_t count,
+                           std::size_t entrySize, Visit&& visit) {
     if (first.mv_size != entrySize)
         throw Error(ErrorKind::Storage,
                     fmt::format("corrupt index entry: {} bytes instead of {}", first.mv_size, entrySize), std::nullopt,
                     "the database file is damaged; restore it from a backup");
     // A key with a single value has no duplicate page for MDB_GET_MULTIPLE to return.
     if (count == 1) {
-        visit(env.bytes(first));
+        visit(static_cast<const char*>(first.mv_data), std::size_t{1});
         return;
     }
     MDB_val key, block;
     int rc = mdb_cursor_get(cursor, &key, &block, MDB_GET_MULTIPLE);
     while (rc == MDB_SUCCESS) {
-        const char* entries = static_cast<const char*>(block.mv_data);
-        for (std::size_t at = 0; at + entrySize <= block.mv_size; at += entrySize)
-            if (!visit(std::string_view(entries + at, entrySize))) return;
+        if (!visit(static_cast<const char*>(block.mv_data), block.mv_size / entrySize)) return;
         rc = mdb_cursor_get(cursor, &key, &block, MDB_NEXT_MULTIPLE);
     }
     if (rc != MDB_NOTFOUND) env.fail(rc, "reading index entries");
+}
+
+// forEachDuplicateBlock one entry at a time: visit(entry) returns false to stop.
+template <class Visit>
+void forEachDuplicate(const Environment& env, MDB_cursor* cursor, const MDB_val& first, std::size_t count,
+                      std::size_t entrySize, Visit&& visit) {
+    forEachDuplicateBlock(env, cursor, first, count, entrySize, [&](const char* entries, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i)
+            if (!visit(std::string_view(entries + i * entrySize, entrySize))) return false;
+        return true;
+    });
 }
 
 // Borrows a read transaction's cached cursor for a table, or opens a private one
@@ -482,10 +492,22 @@ void ReadTransaction::forEachCategoryRow(const std::vector<std::string>& keys, s
             const std::size_t count = duplicateCount(env, cursor.cursor());
             const std::uint32_t keyCrc = crc32c(name);
             std::size_t seen = 0;
-            forEachDuplicate(env, cursor.cursor(), value, count, size, [&](std::string_view entry) {
-                visit(decodeInScene(env, state.txn, codec::labelEntryScene(entry),
-                                    [&] { return codec::decodeLabelEntry(name, keyCrc, entry); }));
-                return ++seen < limit;
+            // The entries' checksums a chunk at a time, side by side, then each entry decoded.
+            std::array<std::uint32_t, 16> checksums;
+            forEachDuplicateBlock(env, cursor.cursor(), value, count, size, [&](const char* entries, std::size_t n) {
+                for (std::size_t start = 0; start < n && seen < limit; start += checksums.size()) {
+                    const std::size_t chunk = std::min({n - start, checksums.size(), limit - seen});
+                    const char* first = entries + start * size;
+                    codec::labelEntryChecksums(keyCrc, first, chunk, checksums.data());
+                    for (std::size_t i = 0; i < chunk; ++i) {
+                        const std::string_view entry(first + i * size, size);
+                        visit(decodeInScene(env, state.txn, codec::labelEntryScene(entry), [&] {
+                            return codec::decodeLabelEntryWithChecksum(name, entry, checksums[i]);
+                        }));
+                    }
+                    seen += chunk;
+                }
+                return seen < limit;
             });
             return;
         }

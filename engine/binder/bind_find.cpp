@@ -106,6 +106,10 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
     if (view)
         throw Error(ErrorKind::Binding, "across all scenes, FIND and COUNT take no VIEW", view->where,
                     "a viewpoint belongs to one scene: USE SCENE 'name'");
+    const std::uint64_t transaction = ctx_.txn.transactionId();
+    if (ctx_.categoryCounts)
+        if (const CategoryCount* kept = ctx_.categoryCounts->find(target.name, transaction))
+            return BoundCatalogFind{kept->keys.front(), kept->keys, limit, countOnly, kept->count};
     std::vector<std::string> keys = ctx_.txn.labelKeys(target.name);
     const std::uint64_t count = ctx_.txn.countWithKeys(keys);
     if (count == 0) {
@@ -121,6 +125,7 @@ BoundCatalogFind Binder::bindCatalogFind(const ast::Ref& target, const std::opti
         throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in any scene", target.name), target.where,
                     close.empty() ? "" : "did you mean " + model::joinAlternatives(close) + "?");
     }
+    if (ctx_.categoryCounts) ctx_.categoryCounts->keep(target.name, transaction, {keys, count});
     // labelKeys' first key is the canonical name (model::categoryName).
     std::string category = keys.front();
     return BoundCatalogFind{std::move(category), std::move(keys), limit, countOnly, count};

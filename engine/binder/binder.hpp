@@ -11,6 +11,7 @@
 
 #include "engine/ask/lexicon.hpp"
 #include "engine/binder/bound.hpp"
+#include "engine/binder/category_counts.hpp"
 #include "engine/binder/parameters.hpp"
 #include "engine/catalog/attributes.hpp"
 #include "engine/catalog/session.hpp"
@@ -28,6 +29,9 @@ struct BindContext {
     std::function<std::shared_ptr<const catalog::SceneSnapshot>()> currentScene;
     // The current scene as it was at an instant (model::utcInstant's form): its version then.
     std::function<std::shared_ptr<const catalog::SceneSnapshot>(const std::string& instant)> sceneAsOf;
+    // The categories named across all scenes in earlier statements (null: none kept); the binder
+    // reads and adds to them.
+    CategoryCounts* categoryCounts = nullptr;
 };
 
 class Binder {

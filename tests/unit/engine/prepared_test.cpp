@@ -184,6 +184,9 @@ TEST_CASE("a COUNT across all scenes prepared before another connection or proce
     CHECK(answer(count) == before);  // the second run answers as the first
     CHECK(answer(written) == before);
     CHECK(std::get<std::int64_t>(run(*engine, "COUNT book").rows.at(0).at(0)) == before);
+    PreparedStatement find = engine->prepare("FIND ? LIMIT 1000");
+    find.bind(1, std::string("Book"));
+    CHECK(static_cast<std::int64_t>(find.execute().rows.size()) == before);
 
     SECTION("another connection in this process") {
         auto other = Engine::open(dir.path.string());
@@ -209,6 +212,9 @@ TEST_CASE("a COUNT across all scenes prepared before another connection or proce
     }
     const std::int64_t after = counted("book");
     CHECK(after > before);
+    // FIND of a category across all scenes keeps its label keys and count with COUNT's: the other
+    // connection's books are found too.
+    CHECK(static_cast<std::int64_t>(find.execute().rows.size()) == after);
     CHECK(answer(count) == after);
     CHECK(answer(written) == after);
     CHECK(std::get<std::int64_t>(run(*engine, "COUNT book").rows.at(0).at(0)) == after);
@@ -217,6 +223,7 @@ TEST_CASE("a COUNT across all scenes prepared before another connection or proce
     // is the note of a thing no scene holds, as before any COUNT ran.
     run(*engine, "DROP SCENE 'second'");
     CHECK(answer(count) == before);
+    CHECK(static_cast<std::int64_t>(find.execute().rows.size()) == before);
     run(*engine, "DROP SCENE 'first'");
     ResultSet none = count.execute();
     CHECK(none.rows.at(0).at(0) == Value(std::int64_t{0}));

@@ -230,6 +230,24 @@ TEST_CASE("crc32c matches the Castagnoli check values", "[storage][codec]") {
         REQUIRE(crc32c(all.substr(cut), crc32c(all.substr(0, cut))) == crc32c(all));
 }
 
+TEST_CASE("crc32cOfRuns gives each run's crc32c, four runs side by side", "[storage][codec]") {
+    std::string bytes(40 * 90, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>((i * 31 + (i >> 5)) & 0xff);
+    // Counts on both sides of the groups of four, lengths with and without a tail of single bytes
+    // (a label entry's checked bytes are 83), a seed of 0 and a category's checksum.
+    for (std::uint32_t seed : {0u, crc32c("coffee table")})
+        for (std::size_t length : {0u, 1u, 8u, 13u, 83u})
+            for (std::size_t count : {0u, 1u, 3u, 4u, 5u, 9u, 40u}) {
+                const std::size_t stride = 87;
+                if (count > 0 && (count - 1) * stride + length > bytes.size()) continue;
+                std::vector<std::uint32_t> out(count + 1, 0xdeadbeef);
+                crc32cOfRuns(bytes.data(), stride, length, count, seed, out.data());
+                for (std::size_t i = 0; i < count; ++i)
+                    REQUIRE(out[i] == crc32c(std::string_view(bytes).substr(i * stride, length), seed));
+                REQUIRE(out[count] == 0xdeadbeef);  // nothing written past the last run
+            }
+}
+
 TEST_CASE("every byte flip in a record is caught by its checksum", "[storage][codec]") {
     SECTION("node records") {
         const std::string bytes = encoded(fullNode());

@@ -184,6 +184,36 @@ TEST_CASE("a byte flipped in a stored record is reported with its scene, never a
     REQUIRE(txn.node(victim.id + 1)->text == "object number 58");
 }
 
+TEST_CASE("a byte flipped in a label entry is reported when a search across scenes reaches it", "[storage][damage]") {
+    TempDir tmp;
+    const std::string path = tmp.sub("db");
+    makeDatabase(path, 100);
+    model::NodeId sceneId = 0;
+    model::Node victim;
+    {
+        auto db = Database::open(path);
+        auto txn = db->beginRead();
+        sceneId = txn.sceneByName("big")->id;
+        victim = *txn.node(sceneId + 57);
+    }
+    // The 20 lamps' entries share one page, their checksums computed four at a time: the victim is
+    // the 12th.
+    REQUIRE(victim.category == "lamp");
+    const codec::LabelEntry entry = codec::labelEntry("lamp", sceneId, victim.id, victim);
+    REQUIRE(flipInFile(path, std::string(reinterpret_cast<const char*>(entry.data()), entry.size()), 27 + 3));
+
+    auto db = Database::open(path);
+    auto txn = db->beginRead();
+    REQUIRE_THAT(errorOf([&] { txn.forEachCategoryRow({"lamp"}, 1000, [](const CategoryRow&) {}); }),
+                 Catch::StartsWith("corrupt record in scene 'big' of database " + path +
+                                   ": label index entry under 'lamp': checksum mismatch"));
+    // A search that stops before it answers, and the node's own record is intact.
+    std::vector<model::NodeId> ids;
+    txn.forEachCategoryRow({"lamp"}, 8, [&](const CategoryRow& row) { ids.push_back(row.id); });
+    CHECK(ids.size() == 8);
+    CHECK(txn.node(victim.id)->text == victim.text);
+}
+
 TEST_CASE("a damaged scene record is named through its scene node", "[storage][damage]") {
     TempDir tmp;
     const std::string path = tmp.sub("db");
