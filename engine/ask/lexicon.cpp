@@ -24,11 +24,6 @@ void addUnique(std::vector<std::string>& v, const std::string& s) {
     if (!contains(v, s)) v.push_back(s);
 }
 
-std::string hyphenated(std::string words) {
-    std::replace(words.begin(), words.end(), ' ', '-');
-    return words;
-}
-
 // Names for one kind of thing that WordNet 3.0 does not join (it has no nightstand; a wastebasket
 // and a trash can are different synsets there), in canonical form (model/category.hpp). A word of
 // a row names the categories of the row's other words, either way round, as a synonym does.
@@ -285,6 +280,11 @@ std::optional<std::string> absentThing(const std::string& name, const WordMatch&
     std::string noun = match.lemma.empty() ? name : match.lemma;  // "pianos" -> piano
     if (namesWholeScene(noun) || (!physicalThing(noun) && equivalents(noun).empty())) return std::nullopt;
     return noun;
+}
+
+std::string hyphenated(std::string words) {
+    std::replace(words.begin(), words.end(), ' ', '-');
+    return words;
 }
 
 std::string pluralOf(const std::string& noun) {

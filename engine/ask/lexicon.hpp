@@ -53,6 +53,9 @@ std::optional<std::string> absentThing(const std::string& name, const WordMatch&
 // The English plural of a singular noun, for answers: "couch" -> couches, "switch" -> switches.
 std::string pluralOf(const std::string& noun);
 
+// Words joined by hyphens, as WordNet and the categories of imports spell compounds: "coffee-table".
+std::string hyphenated(std::string words);
+
 // "How" as the answer shows it: "couch -> sofa (synonym)".
 std::string describe(WordMatch::How how);
 

@@ -207,11 +207,6 @@ std::string sideAfter(const Words& w, std::size_t& i) {
     return side;
 }
 
-std::string hyphenated(std::string s) {
-    std::replace(s.begin(), s.end(), ' ', '-');
-    return s;
-}
-
 struct PredicatePhrase {
     Words words;
     std::string predicate;

@@ -1,6 +1,7 @@
 #include "ingest/import/json_field.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <set>
 
@@ -258,6 +259,14 @@ std::vector<double> Field::numbers(std::size_t count) const {
 model::Vec3 Field::vec3() const {
     std::vector<double> v = numbers(3);
     return {v[0], v[1], v[2]};
+}
+
+model::Vec3 Field::coordinates() const {
+    model::Vec3 v = vec3();
+    for (double c : {v.x, v.y, v.z})
+        if (std::abs(c) > kMaxCoordinate)
+            fail(fmt::format("coordinate {} is more than {} m from the origin", c, kMaxCoordinate));
+    return v;
 }
 
 }  // namespace smql::import::detail

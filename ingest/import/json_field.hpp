@@ -29,6 +29,9 @@ struct JsonSource {
     std::string hint;
 };
 
+// A vector as the JSON array [x, y, z] the importers read with Field::vec3().
+inline Json vec3Json(const model::Vec3& v) { return Json::array({v.x, v.y, v.z}); }
+
 // Parses the file. Syntax errors carry line and column; a key repeated in one
 // object is an error too, since the parser would silently keep only one.
 Json parseJsonFile(const JsonSource& source);
@@ -63,6 +66,8 @@ public:
     bool boolean() const;
     std::vector<double> numbers(std::size_t count) const;  // an array of exactly `count` numbers
     model::Vec3 vec3() const;
+    // vec3() of a point: each coordinate within kMaxCoordinate of the origin (common.hpp).
+    model::Vec3 coordinates() const;
 
 private:
     void expectObject() const;

@@ -24,12 +24,10 @@ namespace {
 
 using detail::Field;
 using detail::Json;
-using detail::kMaxCoordinate;
 using detail::kMaxSize;
+using detail::vec3Json;
 
 constexpr std::int64_t kFormatVersion = 1;
-
-Json vec3(const model::Vec3& v) { return Json::array({v.x, v.y, v.z}); }
 
 // A float written as its shortest decimal ("0.7", not 0.699999988...); read
 // back as a double and narrowed, it gives the same float.
@@ -44,7 +42,7 @@ Json nodeJson(const model::Node& node) {
     out["geometry"] = model::toString(node.geometry);
     // A box without geometry carries nothing, but is kept when set so that nothing is lost.
     if (node.geometry != model::GeometryKind::None || node.box != model::Box{})
-        out["box"] = {{"center", vec3(node.box.center)}, {"size", vec3(node.box.size)}, {"yaw", node.box.yaw}};
+        out["box"] = {{"center", vec3Json(node.box.center)}, {"size", vec3Json(node.box.size)}, {"yaw", node.box.yaw}};
     out["attributes"] = Json::object();
     for (const model::Attribute& a : node.attributes) out["attributes"][a.name] = a.value;
     out["confidence"] = shortestFloat(node.confidence);
@@ -122,14 +120,6 @@ double numberIn(const Field& field, double min, double max) {
     return value;
 }
 
-model::Vec3 coordinates(const Field& field) {
-    model::Vec3 v = field.vec3();
-    for (double c : {v.x, v.y, v.z})
-        if (std::abs(c) > kMaxCoordinate)
-            field.fail(fmt::format("coordinate {} is more than {} m from the origin", c, kMaxCoordinate));
-    return v;
-}
-
 double angle(const Field& field) {
     double value = field.number();
     if (std::string problem = detail::angleProblem(value); !problem.empty()) field.fail(problem);
@@ -139,7 +129,7 @@ double angle(const Field& field) {
 model::Box readBox(const Field& field, bool needsExtent) {
     field.allowOnly({"center", "size", "yaw"});
     model::Box box;
-    box.center = coordinates(field.at("center"));
+    box.center = field.at("center").coordinates();
     Field sizeField = field.at("size");
     box.size = sizeField.vec3();
     for (double s : {box.size.x, box.size.y, box.size.z})
@@ -194,7 +184,7 @@ void readInfo(const Field& field, model::SceneInfo& info) {
     }
     if (auto f = field.find("viewpoint")) {
         f->allowOnly({"position", "facing_yaw"});
-        info.viewpoint.position = coordinates(f->at("position"));
+        info.viewpoint.position = f->at("position").coordinates();
         info.viewpoint.facingYaw = angle(f->at("facing_yaw"));
     }
     if (auto f = field.find("viewpoint_note")) info.viewpointNote = f->string();
@@ -384,7 +374,8 @@ std::string writeSceneJson(const model::SceneData& scene) {
     sceneJson["capture_time"] = info.captureTime;
     sceneJson["alignment"] = info.alignment;
     sceneJson["scale"] = info.scale;
-    sceneJson["viewpoint"] = {{"position", vec3(info.viewpoint.position)}, {"facing_yaw", info.viewpoint.facingYaw}};
+    sceneJson["viewpoint"] = {{"position", vec3Json(info.viewpoint.position)},
+                              {"facing_yaw", info.viewpoint.facingYaw}};
     sceneJson["viewpoint_note"] = info.viewpointNote;
     root["nodes"] = Json::array();
     for (const model::Node& node : scene.nodes) root["nodes"].push_back(nodeJson(node));

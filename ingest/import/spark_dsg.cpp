@@ -27,6 +27,7 @@ namespace {
 
 using detail::Field;
 using detail::Json;
+using detail::vec3Json;
 
 // Spark-DSG's layers (DsgLayers::OBJECTS, ROOMS, BUILDINGS).
 constexpr std::int64_t kObjectLayer = 2;
@@ -48,16 +49,14 @@ std::string labelspaceKey(std::int64_t layer) { return fmt::format("_l{}p0", lay
 
 // ---- writing ----------------------------------------------------------------------------------
 
-Json vec3(const model::Vec3& v) { return Json::array({v.x, v.y, v.z}); }
-
 Json yawQuaternion(double yaw) { return {{"w", std::cos(yaw / 2)}, {"x", 0.0}, {"y", 0.0}, {"z", std::sin(yaw / 2)}}; }
 
 // Spark-DSG's BoundingBox: OBB for smql's upright boxes, AABB for a room's extent, INVALID for none.
 Json boundingBox(const std::optional<model::Box>& box, const char* type) {
     model::Box b = box.value_or(model::Box{});
     return {{"type", box ? type : "INVALID"},
-            {"dimensions", vec3(b.size)},
-            {"world_P_center", vec3(b.center)},
+            {"dimensions", vec3Json(b.size)},
+            {"world_P_center", vec3Json(b.center)},
             {"world_R_center", yawQuaternion(b.yaw)}};
 }
 
@@ -138,7 +137,7 @@ private:
         model::Rgb colour = palette_(category);
         return {{"type", type},
                 {"metadata", Json::object()},
-                {"position", vec3(position)},
+                {"position", vec3Json(position)},
                 {"last_update_time_ns", 0},
                 {"is_active", false},
                 {"is_predicted", false},
@@ -228,14 +227,6 @@ private:
 
 // ---- reading ----------------------------------------------------------------------------------
 
-model::Vec3 coordinates(const Field& field) {
-    model::Vec3 v = field.vec3();
-    for (double c : {v.x, v.y, v.z})
-        if (std::abs(c) > detail::kMaxCoordinate)
-            field.fail(fmt::format("coordinate {} is more than {} m from the origin", c, detail::kMaxCoordinate));
-    return v;
-}
-
 Eigen::Matrix3d rotation(const Field& field) {
     Eigen::Quaterniond q(field.at("w").number(), field.at("x").number(), field.at("y").number(),
                          field.at("z").number());
@@ -256,14 +247,14 @@ std::optional<model::Box> readBoundingBox(const Field& field) {
     if (sizeField) {
         size = sizeField->vec3();
     } else {
-        model::Vec3 low = coordinates(field.at("min")), high = coordinates(field.at("max"));
+        model::Vec3 low = field.at("min").coordinates(), high = field.at("max").coordinates();
         size = {high.x - low.x, high.y - low.y, high.z - low.z};
     }
     for (double extent : {size.x, size.y, size.z})
         if (!(extent > 0) || extent > detail::kMaxSize)
             (sizeField ? *sizeField : field)
                 .fail(fmt::format("size {} is out of range: sizes must be in (0, {}] m", extent, detail::kMaxSize));
-    model::Vec3 center = coordinates(field.at("world_P_center"));
+    model::Vec3 center = field.at("world_P_center").coordinates();
     std::optional<Field> turn = field.find("world_R_center");
     return detail::uprightBox(center, size, turn ? rotation(*turn) : Eigen::Matrix3d::Identity());
 }
