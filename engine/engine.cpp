@@ -112,6 +112,14 @@ struct Engine::State {
         return *resolved;
     }
 
+    // The scene called `name`, or the current one when `name` is empty.
+    model::SceneInfo sceneNamed(const storage::ReadTransaction& txn, const std::string& name) {
+        if (name.empty()) return currentScene(txn);
+        if (auto info = txn.sceneByName(name)) return *info;
+        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
+                    "SHOW SCENES lists the scenes");
+    }
+
     model::SceneInfo lookUpCurrentScene(const storage::ReadTransaction& txn) {
         if (!session.sceneName.empty()) {
             if (auto info = txn.sceneByName(session.sceneName)) return *info;
@@ -357,10 +365,7 @@ void Engine::checkIngestTarget(const std::string& name, const std::string& updat
 model::SceneData Engine::readScene(const std::string& name) {
     std::lock_guard lock(state_->mutex);
     auto txn = state_->db->beginRead();
-    auto info = name.empty() ? state_->currentScene(txn) : txn.sceneByName(name).value_or(model::SceneInfo{});
-    if (info.id == model::kNoNode)
-        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
-                    "SHOW SCENES lists the scenes");
+    const model::SceneInfo info = state_->sceneNamed(txn, name);
     State::ReadsEnd readsEnd{*state_};
     auto snap = state_->snapshot(txn, info);
     model::SceneData out;
@@ -384,10 +389,7 @@ model::SceneData Engine::readScene(const std::string& name) {
 std::string Engine::scenePoints(const std::string& name) {
     std::lock_guard lock(state_->mutex);
     auto txn = state_->db->beginRead();
-    auto info = name.empty() ? state_->currentScene(txn) : txn.sceneByName(name).value_or(model::SceneInfo{});
-    if (info.id == model::kNoNode)
-        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
-                    "SHOW SCENES lists the scenes");
+    const model::SceneInfo info = state_->sceneNamed(txn, name);
     // The one blob, not the scene with every evidence crop.
     auto points = txn.blob(info.id, model::kPointsBlobName);
     if (!points)

@@ -85,6 +85,16 @@ IntrinsicsOrigin optionOrigin(const CaptureOptions& options) {
     return options.intrinsics ? IntrinsicsOrigin::Measured : IntrinsicsOrigin::Approximate;
 }
 
+void takeOptionIntrinsics(Capture& capture, const CaptureOptions& options, const std::string& file) {
+    const RawFrame first = readRawFrame(capture.frames.front());
+    if (std::optional<Intrinsics> given = optionIntrinsics(options, first.color.cols, first.color.rows)) {
+        capture.intrinsics = *given;
+        capture.intrinsicsOrigin = optionOrigin(options);
+    }
+    fitIntrinsics(capture.intrinsics, first.color.cols, first.color.rows, capture.frames.front().colorPath,
+                  hasOptionIntrinsics(options) ? optionName(options) : file);
+}
+
 ExifCamera readExif(const fs::path& file) {
     ExifCamera out;
     std::unique_ptr<ExifData, void (*)(ExifData*)> data(exif_data_new_from_file(file.c_str()), exif_data_unref);

@@ -448,13 +448,7 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
         capture.frames.push_back(std::move(frame));
     }
 
-    RawFrame first = readRawFrame(capture.frames.front());
-    if (std::optional<Intrinsics> given = optionIntrinsics(options, first.color.cols, first.color.rows)) {
-        capture.intrinsics = *given;
-        capture.intrinsicsOrigin = optionOrigin(options);
-    }
-    fitIntrinsics(capture.intrinsics, first.color.cols, first.color.rows, capture.frames.front().colorPath,
-                  hasOptionIntrinsics(options) ? optionName(options) : camerasFile.string());
+    takeOptionIntrinsics(capture, options, camerasFile.string());
     if (distorted && !hasOptionIntrinsics(options))
         capture.notes.push_back(
             fmt::format("{}: the cameras' lens distortion is undone as each frame is read", camerasFile.string()));

@@ -106,6 +106,9 @@ IntrinsicsOrigin optionOrigin(const CaptureOptions& options);
 inline bool hasOptionIntrinsics(const CaptureOptions& options) {
     return options.intrinsics.has_value() || options.horizontalFov.has_value();
 }
+// The options' camera in place of the one the capture's `file` gave, for its first frame's size;
+// either must fit that size (fitIntrinsics below), to which each frame's is scaled as it is read.
+void takeOptionIntrinsics(Capture& capture, const CaptureOptions& options, const std::string& file);
 
 // What a photo's EXIF says about its camera (libexif; nothing for files without EXIF).
 struct ExifCamera {

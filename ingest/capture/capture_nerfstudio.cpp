@@ -230,13 +230,7 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
         capture.frames.push_back(std::move(frame));
     }
 
-    RawFrame first = readRawFrame(capture.frames.front());
-    if (std::optional<Intrinsics> given = optionIntrinsics(options, first.color.cols, first.color.rows)) {
-        capture.intrinsics = *given;
-        capture.intrinsicsOrigin = optionOrigin(options);
-    }
-    fitIntrinsics(capture.intrinsics, first.color.cols, first.color.rows, capture.frames.front().colorPath,
-                  hasOptionIntrinsics(options) ? optionName(options) : file);
+    takeOptionIntrinsics(capture, options, file);
 
     if (perFrame) capture.notes.push_back(fmt::format("{}: the frames have different intrinsics", file));
     if (distorted && !hasOptionIntrinsics(options))

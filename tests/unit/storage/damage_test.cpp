@@ -146,20 +146,23 @@ std::string errorOf(const std::function<void()>& read) {
     return "no error";
 }
 
+// The id of makeDatabase's scene "big", and the node `offset` ids after it.
+std::pair<model::NodeId, model::Node> nodeOfBig(const std::string& path, model::NodeId offset) {
+    auto db = Database::open(path);
+    auto txn = db->beginRead();
+    const model::NodeId sceneId = txn.sceneByName("big")->id;
+    return {sceneId, *txn.node(sceneId + offset)};
+}
+
 }  // namespace
 
 TEST_CASE("a byte flipped in a stored record is reported with its scene, never answered", "[storage][damage]") {
     TempDir tmp;
     const std::string path = tmp.sub("db");
     makeDatabase(path, 100);
-    model::NodeId sceneId = 0;
-    model::Node victim;
-    {
-        auto db = Database::open(path);
-        auto txn = db->beginRead();
-        sceneId = txn.sceneByName("big")->id;
-        victim = *txn.node(sceneId + 57);
-    }
+    const std::pair<model::NodeId, model::Node> big = nodeOfBig(path, 57);
+    const model::NodeId sceneId = big.first;
+    const model::Node& victim = big.second;
     REQUIRE(victim.text == "object number 57");
     std::string record;
     codec::encodeNode(victim, record);
@@ -188,14 +191,9 @@ TEST_CASE("a byte flipped in a label entry is reported when a search across scen
     TempDir tmp;
     const std::string path = tmp.sub("db");
     makeDatabase(path, 100);
-    model::NodeId sceneId = 0;
-    model::Node victim;
-    {
-        auto db = Database::open(path);
-        auto txn = db->beginRead();
-        sceneId = txn.sceneByName("big")->id;
-        victim = *txn.node(sceneId + 57);
-    }
+    const std::pair<model::NodeId, model::Node> big = nodeOfBig(path, 57);
+    const model::NodeId sceneId = big.first;
+    const model::Node& victim = big.second;
     // The 20 lamps' entries share one page, their checksums computed four at a time: the victim is
     // the 12th.
     REQUIRE(victim.category == "lamp");
