@@ -372,23 +372,25 @@ std::vector<NodeId> ReadTransaction::children(NodeId parent) const {
         });
 }
 
-// Scene ids are contiguous blocks (the scene node first), so a scene's nodes are the run of node
-// records from its id on that carry its id as their scene.
-void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<void(const Node&)>& visit) const {
-    const Impl& state = live();
-    const Environment& env = *state.env;
-    TableCursor cursor(state, Table::Nodes);
+void forEachStoredNode(const Environment& env, MDB_txn* txn, MDB_cursor* cursor, NodeId sceneId,
+                       const std::function<void(const Node&)>& visit) {
     auto from = codec::idKey(sceneId);
     MDB_val key = toVal(from), value;
     Node node;
-    int rc = cursor.get(key, value, MDB_SET_RANGE);
-    for (; rc == MDB_SUCCESS; rc = cursor.get(key, value, MDB_NEXT)) {
+    int rc = mdb_cursor_get(cursor, &key, &value, MDB_SET_RANGE);
+    for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor, &key, &value, MDB_NEXT)) {
         NodeId id = codec::idFromKey(env.bytes(key), "node");
-        decodeInScene(env, state.txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
+        decodeInScene(env, txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
         if (node.scene != sceneId) return;
         visit(node);
     }
     endOfScan(env, rc, "reading the nodes of a scene");
+}
+
+void ReadTransaction::forEachNodeInScene(NodeId sceneId, const std::function<void(const Node&)>& visit) const {
+    const Impl& state = live();
+    TableCursor cursor(state, Table::Nodes);
+    forEachStoredNode(*state.env, state.txn, cursor.cursor(), sceneId, visit);
 }
 
 std::optional<SceneIndex> ReadTransaction::sceneIndex(const SceneInfo& scene) const {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -80,6 +81,11 @@ auto decodeInScene(const Environment& env, MDB_txn* txn, model::NodeId id, Decod
 }
 
 std::optional<model::SceneInfo> readScene(const Environment& env, MDB_txn* txn, model::NodeId sceneId);
+// Calls visit(node) for each stored node of scene `sceneId` in `txn` (read or write), read through
+// `cursor`, a cursor on the nodes table. Scene ids are contiguous blocks, the scene node first, so a
+// scene's nodes are the run of node records from its id on that carry its id as their scene.
+void forEachStoredNode(const Environment& env, MDB_txn* txn, MDB_cursor* cursor, model::NodeId sceneId,
+                       const std::function<void(const model::Node&)>& visit);
 // The id the name index holds for a scene name.
 std::optional<model::NodeId> readSceneId(const Environment& env, MDB_txn* txn, std::string_view name);
 

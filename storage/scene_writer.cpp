@@ -186,17 +186,7 @@ void storeSceneIndex(const Environment& env, MDB_txn* txn, NodeId sceneId, std::
     nodes.reserve(info->nodeCount + 1);
     {
         Cursor cursor(env, txn, Table::Nodes);
-        auto from = codec::idKey(sceneId);
-        MDB_val key = toVal(from), value;
-        Node node;
-        int rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_SET_RANGE);
-        for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(cursor.get(), &key, &value, MDB_NEXT)) {
-            NodeId id = codec::idFromKey(env.bytes(key), "node");
-            decodeInScene(env, txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
-            if (node.scene != sceneId) break;
-            nodes.push_back(node);
-        }
-        endOfScan(env, rc, "reading the nodes of a scene");
+        forEachStoredNode(env, txn, cursor.get(), sceneId, [&](const Node& node) { nodes.push_back(node); });
     }
     codec::encodeSceneIndex(sceneId, SceneIndex::of(nodes, info->version), record);
     auto key = codec::idKey(sceneId);

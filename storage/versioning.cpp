@@ -73,18 +73,10 @@ void eraseScene(const Environment& env, MDB_txn* txn, const SceneInfo& scene) {
     doomed.reserve(scene.nodeCount + 1);
     {
         Cursor nodes(env, txn, Table::Nodes);
-        auto from = codec::idKey(sceneId);
-        MDB_val key = toVal(from), value;
-        Node node;
-        int rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_SET_RANGE);
-        for (; rc == MDB_SUCCESS; rc = mdb_cursor_get(nodes.get(), &key, &value, MDB_NEXT)) {
-            NodeId id = codec::idFromKey(env.bytes(key), "node");
-            decodeInScene(env, txn, id, [&] { codec::decodeNode(id, env.bytes(value), node); });
-            if (node.scene != sceneId) break;
+        forEachStoredNode(env, txn, nodes.get(), sceneId, [&](const Node& node) {
             bool labelled = node.kind != model::NodeKind::Scene && !node.category.empty();
             doomed.push_back({node.id, labelled ? node.category : std::string(), node.sourceId, labelled});
-        }
-        endOfScan(env, rc, "reading the nodes of a scene");
+        });
     }
 
     auto erase = [&](Table table, MDB_val key, MDB_val* value) {
