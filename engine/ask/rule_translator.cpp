@@ -35,6 +35,14 @@ namespace smql::ask {
 
 namespace {
 
+// What a question asks for where it names no thing ("what is on the desk?"): any thing of `kind`.
+Phrase anyThing(const char* kind) {
+    Phrase thing;
+    thing.noun = "thing";
+    thing.kind = kind;
+    return thing;
+}
+
 // Longer questions are refused before the recursive descent: each condition nests a phrase, and a
 // question is a sentence, not a document.
 constexpr std::size_t kMaxQuestionWords = 60;
@@ -810,7 +818,7 @@ private:
         // bed?": the thing asked for, placed by the conditions after it (from `from`, to the end).
         std::optional<Phrase> placed;
         auto placedFrom = [&](std::size_t from) {
-            Phrase thing = answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
+            Phrase thing = answerKind ? *answerKind : anyThing("thing");
             std::size_t k = from;
             try {
                 p.posts(c.w, k, thing);
@@ -854,7 +862,7 @@ private:
                 c.skip({"located", "placed"});
             } else {
                 // to the left of the sink is what?
-                Phrase thing{.noun = "thing", .kind = "object"};
+                Phrase thing = anyThing("object");
                 p.posts(c.w, c.i, thing);
                 if (!c.accept({"is|are", "what"}) && !c.accept({"what", "is|are"})) return false;
                 out.kind = QuestionKind::Relational;
@@ -906,7 +914,7 @@ private:
         }
         if (!pred || !subject) return false;
         // What the subject is on or by may be an anchor too (a wall, the floor).
-        Phrase other = placed ? *placed : answerKind ? *answerKind : Phrase{.noun = "thing", .kind = "thing"};
+        Phrase other = placed ? *placed : answerKind ? *answerKind : anyThing("thing");
         relateBack(*subject, other, answerKind, pred->first, out);
         out.condition = joined(c.w, predAt, predAt + pred->second);
         return true;
@@ -956,7 +964,7 @@ private:
         }
         if (c.accept({"is|are"})) {
             c.accept({"the"});
-            if (!subject) subject = Phrase{.noun = "thing", .kind = "object"};
+            if (!subject) subject = anyThing("object");
             if (c.done()) return false;
             // "closest to the window" orders the subject; "the largest (one)" may name it again.
             std::string first = c.peek();

@@ -52,13 +52,13 @@ struct Question {
     std::vector<std::string> attributes;
     // The categories of the scene's anchors (walls, floor, doors): what a thing is "on" only when
     // it rests on nothing else.
-    std::vector<std::string> anchorCategories;
+    std::vector<std::string> anchorCategories{};
     // How many scenes the database holds: where it holds one, "the office" or "the kitchen" is that
     // scene, whatever it is called.
     std::size_t sceneCount = 1;
     // SMQL in brief, for a translator that is a language model: its statements, the predicates (the
     // predicate table's usage lines) and the attributes (the attribute table's); bind_ask.cpp.
-    std::string grammar;
+    std::string grammar{};
 };
 
 // One word of the question and the categories it was taken to mean ("couch" -> sofa).

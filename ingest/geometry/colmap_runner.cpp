@@ -99,7 +99,7 @@ struct WorkFrame {
     // The frame's known camera at its stored size when its lens distorts: the work image is undistorted
     // (frame_loader.hpp), as every stage sees the frame, and COLMAP's camera is its pinhole. COLMAP's own
     // OPENCV models registered none of TUM fr1/rpy's frames with Freiburg 1's calibration fixed.
-    std::optional<Intrinsics> lens;
+    std::optional<Intrinsics> lens{};
 };
 
 // Frames of one image size with one known camera (or an unknown one): one COLMAP camera.
