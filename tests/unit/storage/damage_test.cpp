@@ -146,70 +146,68 @@ std::string errorOf(const std::function<void()>& read) {
     return "no error";
 }
 
-// The id of makeDatabase's scene "big", and the node `offset` ids after it.
-std::pair<model::NodeId, model::Node> nodeOfBig(const std::string& path, model::NodeId offset) {
-    auto db = Database::open(path);
-    auto txn = db->beginRead();
-    const model::NodeId sceneId = txn.sceneByName("big")->id;
-    return {sceneId, *txn.node(sceneId + offset)};
-}
+// makeDatabase's scene "big" of 100 nodes in a new folder, with its id and its node 57 (a lamp),
+// read before anything is damaged.
+struct BigScene {
+    TempDir tmp;
+    std::string path = tmp.sub("db");
+    model::NodeId sceneId = 0;
+    model::Node victim;
+    BigScene() {
+        makeDatabase(path, 100);
+        auto db = Database::open(path);
+        auto txn = db->beginRead();
+        sceneId = txn.sceneByName("big")->id;
+        victim = *txn.node(sceneId + 57);
+    }
+};
 
 }  // namespace
 
 TEST_CASE("a byte flipped in a stored record is reported with its scene, never answered", "[storage][damage]") {
-    TempDir tmp;
-    const std::string path = tmp.sub("db");
-    makeDatabase(path, 100);
-    const std::pair<model::NodeId, model::Node> big = nodeOfBig(path, 57);
-    const model::NodeId sceneId = big.first;
-    const model::Node& victim = big.second;
-    REQUIRE(victim.text == "object number 57");
+    const BigScene big;
+    REQUIRE(big.victim.text == "object number 57");
     std::string record;
-    codec::encodeNode(victim, record);
+    codec::encodeNode(big.victim, record);
 
     SECTION("in a node's text") {
         // "object number 57" would read as "object number 37" without the checksum.
-        REQUIRE(flipInFile(path, record, record.find("57")));
+        REQUIRE(flipInFile(big.path, record, record.find("57")));
     }
     SECTION("in a node's box") {
-        REQUIRE(flipInFile(path, record, 24 + 8 + 3));  // after the header and source id: the centre's x
+        REQUIRE(flipInFile(big.path, record, 24 + 8 + 3));  // after the header and source id: the centre's x
     }
 
-    auto db = Database::open(path);
+    auto db = Database::open(big.path);
     auto txn = db->beginRead();
-    const std::string expected = "corrupt record in scene 'big' of database " + path + ": node record for id " +
-                                 std::to_string(victim.id) + ": checksum mismatch";
-    REQUIRE_THAT(errorOf([&] { txn.node(victim.id); }), Catch::StartsWith(expected));
-    REQUIRE_THAT(errorOf([&] { txn.forEachNodeInScene(sceneId, [](const model::Node&) {}); }),
+    const std::string expected = "corrupt record in scene 'big' of database " + big.path + ": node record for id " +
+                                 std::to_string(big.victim.id) + ": checksum mismatch";
+    REQUIRE_THAT(errorOf([&] { txn.node(big.victim.id); }), Catch::StartsWith(expected));
+    REQUIRE_THAT(errorOf([&] { txn.forEachNodeInScene(big.sceneId, [](const model::Node&) {}); }),
                  Catch::StartsWith(expected));
     // The records around it are intact and still read.
-    REQUIRE(txn.node(victim.id - 1)->text == "object number 56");
-    REQUIRE(txn.node(victim.id + 1)->text == "object number 58");
+    REQUIRE(txn.node(big.victim.id - 1)->text == "object number 56");
+    REQUIRE(txn.node(big.victim.id + 1)->text == "object number 58");
 }
 
 TEST_CASE("a byte flipped in a label entry is reported when a search across scenes reaches it", "[storage][damage]") {
-    TempDir tmp;
-    const std::string path = tmp.sub("db");
-    makeDatabase(path, 100);
-    const std::pair<model::NodeId, model::Node> big = nodeOfBig(path, 57);
-    const model::NodeId sceneId = big.first;
-    const model::Node& victim = big.second;
+    const BigScene big;
     // The 20 lamps' entries share one page, their checksums computed four at a time: the victim is
     // the 12th.
-    REQUIRE(victim.category == "lamp");
-    const codec::LabelEntry entry = codec::labelEntry("lamp", sceneId, victim.id, victim);
-    REQUIRE(flipInFile(path, std::string(reinterpret_cast<const char*>(entry.data()), entry.size()), 27 + 3));
+    REQUIRE(big.victim.category == "lamp");
+    const codec::LabelEntry entry = codec::labelEntry("lamp", big.sceneId, big.victim.id, big.victim);
+    REQUIRE(flipInFile(big.path, std::string(reinterpret_cast<const char*>(entry.data()), entry.size()), 27 + 3));
 
-    auto db = Database::open(path);
+    auto db = Database::open(big.path);
     auto txn = db->beginRead();
     REQUIRE_THAT(errorOf([&] { txn.forEachCategoryRow({"lamp"}, 1000, [](const CategoryRow&) {}); }),
-                 Catch::StartsWith("corrupt record in scene 'big' of database " + path +
+                 Catch::StartsWith("corrupt record in scene 'big' of database " + big.path +
                                    ": label index entry under 'lamp': checksum mismatch"));
     // A search that stops before it answers, and the node's own record is intact.
     std::vector<model::NodeId> ids;
     txn.forEachCategoryRow({"lamp"}, 8, [&](const CategoryRow& row) { ids.push_back(row.id); });
     CHECK(ids.size() == 8);
-    CHECK(txn.node(victim.id)->text == victim.text);
+    CHECK(txn.node(big.victim.id)->text == big.victim.text);
 }
 
 TEST_CASE("a damaged scene record is named through its scene node", "[storage][damage]") {
