@@ -483,12 +483,9 @@ std::vector<std::string> Engine::knownCategories() const {
 Engine::SceneMap Engine::sceneMap(const std::string& name) {
     std::lock_guard lock(state_->mutex);
     auto txn = state_->db->beginRead();
-    auto info = name.empty() ? std::optional(state_->currentScene(txn)) : txn.sceneByName(name);
-    if (!info)
-        throw Error(ErrorKind::Binding, fmt::format("no scene named '{}'", name), std::nullopt,
-                    "SHOW SCENES lists the scenes");
+    const model::SceneInfo info = state_->sceneNamed(txn, name);
     State::ReadsEnd readsEnd{*state_};
-    auto snapshot = state_->snapshot(txn, *info);
+    auto snapshot = state_->snapshot(txn, info);
     const auto& guidance = snapshot->guidance();
     SceneMap map{
         {snapshot->info(), snapshot->nodes(), snapshot->storedRelations(), {}}, guidance.graph, guidance.space};

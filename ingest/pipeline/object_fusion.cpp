@@ -470,29 +470,27 @@ bool lowerToTop(model::Box& box, const SeenTop& top, const FusionOptions& option
 
 ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options)
     : alignment_(alignment),
-      room_(room),
       walls_(room.walls ? *room.walls : std::vector<WallSegment>{}),
+      room_(room),
       options_(options),
       map_([&] {
           InstanceMapOptions mapOptions;
           mapOptions.voteLabels = options.voteLabels;
           return mapOptions;
       }()) {
-    room_.walls = nullptr;  // the caller's walls may be gone by the next frame: walls_ holds them
+    room_.walls = &walls_;
 }
 
 void ObjectFusion::addCamera(const FusionCamera& camera) { cameras_.push_back(camera); }
 
 void ObjectFusion::addFrame(std::vector<Observation> frameViews) {
-    RoomSurfaces room = room_;
-    room.walls = &walls_;
     std::vector<InstanceView> frame;
     for (auto& view : frameViews) {
         const std::size_t source = views_.size();
         views_.push_back(std::move(view));
         const Observation& added = views_.back();
         const bool onSurface = usualSupport(added.label) == Support::Surface;
-        PointCloud thing = thingInView(alignedRegion(added, alignment_), room, onSurface);
+        PointCloud thing = thingInView(alignedRegion(added, alignment_), room_, onSurface);
         if (thing.empty()) continue;
         ++segmented_;
         frame.push_back({added.frame, added.label, added.score, added.alsoSeenAs, std::move(thing), source});

@@ -154,6 +154,9 @@ struct FusionCounts {
 class ObjectFusion {
 public:
     ObjectFusion(const Alignment& alignment, const RoomSurfaces& room, FusionOptions options = {});
+    // Not copied or moved: its room's surfaces point at its own walls.
+    ObjectFusion(const ObjectFusion&) = delete;
+    ObjectFusion& operator=(const ObjectFusion&) = delete;
     // A camera whose frame the detectors looked at: what "held in view but not seen" is counted over.
     void addCamera(const FusionCamera& camera);
     // One frame's views of things (all of that frame's, in the capture's frame), frames in the order taken.
@@ -167,8 +170,8 @@ public:
 
 private:
     Alignment alignment_;
-    RoomSurfaces room_;  // without walls: walls_ is the fusion's own copy of them
-    std::vector<WallSegment> walls_;
+    std::vector<WallSegment> walls_;  // the fusion's own copy: the caller's may be gone by the next frame
+    RoomSurfaces room_;               // with walls_ as its walls
     FusionOptions options_;
     InstanceMap map_;
     std::vector<FusionCamera> cameras_;
