@@ -251,8 +251,8 @@ bool openingIn(const Node& opening, const Node& wall, const Thresholds& t) {
 // A wall stands between a and b when the line joining their centres passes through it, neither
 // centre lies in it and neither is an opening in it.
 bool wallBetween(const Node& a, const Node& b, const Thresholds& t, const Obstacles& obstacles) {
-    model::Aabb span = model::worldAabb(a.box);
-    const model::Aabb other = model::worldAabb(b.box);
+    model::Aabb span = obstacles.bounds(a);
+    const model::Aabb other = obstacles.bounds(b);
     span.min = {std::min(span.min.x, other.min.x), std::min(span.min.y, other.min.y),
                 std::min(span.min.z, other.min.z)};
     span.max = {std::max(span.max.x, other.max.x), std::max(span.max.y, other.max.y),
@@ -282,7 +282,7 @@ bool crowdedOut(const Node& a, const Node& b, double gap, const Thresholds& t, c
     if (closer <= 0) return false;
     auto surrounded = [&](const Node& x, const Node& other) {
         std::vector<const Node*> around;
-        obstacles.within(grown(model::worldAabb(x.box), closer), around);
+        obstacles.within(grown(obstacles.bounds(x), closer), around);
         return std::any_of(around.begin(), around.end(), [&](const Node* c) {
             return c->id != other.id && neighbourOf(x, *c, t) && model::distance(x.box, c->box) < closer;
         });
@@ -354,7 +354,7 @@ constexpr double kHalfFieldOfView = M_PI / 3;  // a person's 120 degrees of bino
 double visibleFromScore(const PredicateInputs& in) {
     model::Vec3 eye = eyeAt(in.b.box);
     std::vector<const Node*> obstacles;
-    model::Aabb span = model::worldAabb(in.a.box);
+    model::Aabb span = in.obstacles.bounds(in.a);
     span.min = {std::min(span.min.x, eye.x), std::min(span.min.y, eye.y), std::min(span.min.z, eye.z)};
     span.max = {std::max(span.max.x, eye.x), std::max(span.max.y, eye.y), std::max(span.max.z, eye.z)};
     in.obstacles.within(span, obstacles);
@@ -577,6 +577,18 @@ bool surelyWithin(const Box& a, const Box& b, double limit) {
     return apart <= limit - 1e-9;  // false for a NaN centre: the exact test decides
 }
 
+// The area two bounds share on the floor plane.
+double flatOverlap(const model::Aabb& a, const model::Aabb& b) {
+    const double dx = std::min(a.max.x, b.max.x) - std::max(a.min.x, b.min.x);
+    const double dy = std::min(a.max.y, b.max.y) - std::max(a.min.y, b.min.y);
+    return std::max(0.0, dx) * std::max(0.0, dy);
+}
+
+// Whether bounds a lie within b on the floor plane.
+bool flatWithin(const model::Aabb& a, const model::Aabb& b) {
+    return a.min.x >= b.min.x && a.max.x <= b.max.x && a.min.y >= b.min.y && a.max.y <= b.max.y;
+}
+
 // Whether a's footprint lies within b's: then their overlap is a's own area, and the clipping of
 // the one by the other (model::footprintOverlap) gives that area up to its rounding.
 bool footprintWithin(const Box& a, const Box& b) {
@@ -595,10 +607,17 @@ bool holds(Predicate p, const Node& a, const Node& b, const Thresholds& t, const
     // on(x) over a footprint within x's: the overlap is a's area, so on's overlap shares are 1 or
     // more, and a threshold at least a millionth under 1 decides the same with it as with the
     // clipped area, whose rounding is far smaller; the rest of on's formula runs as written.
-    if (p == Predicate::On && t.onMinOverlap <= 1 - 1e-6 && hasGeometry(a) && hasGeometry(b) && a.id != b.id &&
-        footprintWithin(a.box, b.box)) {
-        const PredicateInputs in{a, b, c, t, frame, writtenDistance, obstacles};
-        return onScoreWith(in, [&] { return model::footprintArea(a.box); }) > 0;
+    if (p == Predicate::On && hasGeometry(a) && hasGeometry(b) && a.id != b.id) {
+        const model::Aabb boundsA = obstacles.bounds(a), boundsB = obstacles.bounds(b);
+        // The footprints lie within their bounds, so a's overlaps b's no more than the bounds do:
+        // short of on's share by more than any rounding, on fails without clipping the two.
+        const double own = model::footprintArea(a.box);
+        if (own > 0 && flatOverlap(boundsA, boundsB) / own < t.onMinOverlap - 1e-6) return false;
+        // A footprint within b's has bounds within b's: only then is the corner test worth its cost.
+        if (t.onMinOverlap <= 1 - 1e-6 && flatWithin(boundsA, boundsB) && footprintWithin(a.box, b.box)) {
+            const PredicateInputs in{a, b, c, t, frame, writtenDistance, obstacles};
+            return onScoreWith(in, [&] { return model::footprintArea(a.box); }) > 0;
+        }
     }
     // near(x, d): within d and no wall between (nearScore, which is then positive). Without a
     // written distance near also gives way in a crowd, which the exact score decides.
@@ -612,7 +631,7 @@ const Node* wallHolding(const Node& a, const Obstacles& obstacles, const Thresho
     const double thickness = std::min(a.box.size.x, a.box.size.y);
     if (thickness > kHungThickness || a.box.size.z < 3 * thickness) return nullptr;
     std::vector<const Node*> walls;
-    obstacles.wallsWithin(spec(Predicate::Attached).referenceRegion(model::worldAabb(a.box), 0, t), walls);
+    obstacles.wallsWithin(spec(Predicate::Attached).referenceRegion(obstacles.bounds(a), 0, t), walls);
     static const Frame frame{};
     const Node* best = nullptr;
     double bestScore = 0;

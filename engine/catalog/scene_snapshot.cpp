@@ -401,4 +401,10 @@ void SceneObstacles::wallsWithin(const model::Aabb& region, std::vector<const mo
             out.push_back(&scene_.node(s));
 }
 
+model::Aabb SceneObstacles::bounds(const model::Node& node) const {
+    // The index's bounds are worldAabb of the stored record: they stand for the record itself only.
+    if (const model::Aabb* stored = scene_.storedBounds(node)) return *stored;
+    return model::worldAabb(node.box);
+}
+
 }  // namespace smql::catalog

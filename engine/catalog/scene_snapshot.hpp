@@ -62,6 +62,13 @@ public:
     const std::string& category(Slot slot) const { return index_.categories[index_.entries[slot].category]; }
     // World-aligned bounds of a node's box (empty-looking for nodes without geometry).
     const model::Aabb& bounds(Slot slot) const { return index_.entries[slot].bounds; }
+    // The bounds of `node` when it is this scene's record as node() gave it (not a copy that kept
+    // its id), else null: the predicates' pair tests ask for a node's bounds per pair.
+    const model::Aabb* storedBounds(const model::Node& node) const {
+        if (!idsInOneBlock_ || node.id < firstId_ || node.id - firstId_ >= size()) return nullptr;
+        const auto slot = static_cast<Slot>(node.id - firstId_);
+        return decoded_[slot].load(std::memory_order_acquire) == &node ? &index_.entries[slot].bounds : nullptr;
+    }
     std::optional<Slot> slotOf(model::NodeId id) const;
     std::optional<Slot> slotOfSource(std::int64_t sourceId) const;
     // Slots of a category (visible and hidden), in id order; empty when the scene has none. The name
@@ -181,6 +188,7 @@ public:
     explicit SceneObstacles(const SceneSnapshot& scene) : scene_(scene) {}
     void within(const model::Aabb& region, std::vector<const model::Node*>& out) const override;
     void wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const override;
+    model::Aabb bounds(const model::Node& node) const override;
 
 private:
     const SceneSnapshot& scene_;

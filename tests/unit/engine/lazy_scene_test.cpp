@@ -57,6 +57,8 @@ std::vector<catalog::Slot> sorted(std::vector<catalog::Slot> slots) {
     return slots;
 }
 
+bool sameBounds(const model::Aabb& a, const model::Aabb& b) { return a.min == b.min && a.max == b.max; }
+
 double squaredGap(const model::Aabb& a, const model::Aabb& b) {
     double dx = std::max({0.0, a.min.x - b.max.x, b.min.x - a.max.x});
     double dy = std::max({0.0, a.min.y - b.max.y, b.min.y - a.max.y});
@@ -114,6 +116,25 @@ TEST_CASE("a scene's nodes and relations decoded one by one are its records", "[
     }
     REQUIRE(snapshot->nodes() == records);
     REQUIRE(snapshot->storedRelations() == room.read->relationsInScene(room.info.id));
+}
+
+// The predicates ask the obstacles for a node's world bounds per pair: a scene answers from its index
+// for its own nodes, and computes them for anything else, a copy of one of its nodes moved included.
+TEST_CASE("a scene's obstacles give each node's world bounds, its own from the index", "[lazy]") {
+    StoredRoom room(100);
+    auto snapshot = catalog::SceneSnapshot::load(*room.read, room.info);
+    snapshot->readThrough(&*room.read);
+    const catalog::SceneObstacles obstacles(*snapshot);
+    for (catalog::Slot s = 0; s < snapshot->size(); ++s) {
+        const model::Node& n = snapshot->node(s);
+        if (n.geometry == model::GeometryKind::None) continue;
+        REQUIRE(sameBounds(obstacles.bounds(n), model::worldAabb(n.box)));
+        model::Node moved = n;
+        moved.box.center.x += 1.5;
+        moved.box.yaw += 0.3;
+        REQUIRE(sameBounds(obstacles.bounds(moved), model::worldAabb(moved.box)));
+    }
+    snapshot->readThrough(nullptr);
 }
 
 // A fresh snapshot scans its stored blocks for its first spatial queries and packs the R-tree
