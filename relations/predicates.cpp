@@ -558,12 +558,12 @@ double evaluate(Predicate p, const Node& a, const Node& b, const Thresholds& t, 
 namespace {
 
 // The radius of the largest ball about a box's centre that lies in it (its smallest half side),
-// or nothing for a box whose sides are not all finite and positive.
-std::optional<double> inscribedRadius(const Box& box) {
+// or NaN for a box whose sides are not all finite and positive, so that no test passes on it.
+double inscribedRadius(const Box& box) {
     const model::Vec3& s = box.size;
     if (!(std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z)) || s.x <= 0 || s.y <= 0 || s.z <= 0)
-        return std::nullopt;
-    return std::min({s.x, s.y, s.z}) / 2;
+        return std::numeric_limits<double>::quiet_NaN();
+    return std::min(s.x, std::min(s.y, s.z)) / 2;
 }
 
 // Whether the two boxes are surely within `limit` of each other: the points on the line between
@@ -571,10 +571,8 @@ std::optional<double> inscribedRadius(const Box& box) {
 // boxes' distance. A nanometre of slack covers the rounding of both this and model::distance, so
 // what this accepts model::distance puts within the limit too.
 bool surelyWithin(const Box& a, const Box& b, double limit) {
-    const std::optional<double> ra = inscribedRadius(a), rb = inscribedRadius(b);
-    if (!ra || !rb) return false;
-    const double apart = model::centerDistance(a, b) - *ra - *rb;
-    return apart <= limit - 1e-9;  // false for a NaN centre: the exact test decides
+    const double apart = model::centerDistance(a, b) - inscribedRadius(a) - inscribedRadius(b);
+    return apart <= limit - 1e-9;  // false for a NaN centre or size: the exact test decides
 }
 
 // The area two bounds share on the floor plane.
