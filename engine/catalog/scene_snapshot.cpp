@@ -107,6 +107,7 @@ SceneSnapshot::SceneSnapshot(model::SceneInfo info, storage::SceneIndex index, b
             shownNodes_.push_back(s);
         }
     }
+    walls_ = &withCategory(relations::kWall);
 }
 
 void SceneSnapshot::holdAll(std::vector<model::Node> nodes) {
@@ -395,7 +396,7 @@ void SceneObstacles::within(const model::Aabb& region, std::vector<const model::
 }
 
 void SceneObstacles::wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const {
-    for (Slot s : scene_.withCategory(relations::kWall))
+    for (Slot s : scene_.walls())
         if (!scene_.hidden(s) && scene_.geometry(s) != model::GeometryKind::None &&
             relations::intersects(scene_.bounds(s), region))
             out.push_back(&scene_.node(s));

@@ -74,6 +74,8 @@ public:
     // Slots of a category (visible and hidden), in id order; empty when the scene has none. The name
     // may be written any way model::categoryName folds ("Trash Cans" is trash-can).
     const std::vector<Slot>& withCategory(std::string_view category) const;
+    // withCategory(relations::kWall), looked up once: near asks for the walls of every pair it tests.
+    const std::vector<Slot>& walls() const { return *walls_; }
     const std::vector<Slot>& children(Slot slot) const;
     // What a kind word (`object`) or `node` names, in id order: the nodes that are not hidden,
     // the scene's root left out. Made once with the snapshot, since most statements name one.
@@ -160,6 +162,7 @@ private:
 
     // Keyed by views of index_'s category names, which live as long as the snapshot.
     std::unordered_map<std::string_view, std::vector<Slot>> slotsByCategory_;
+    const std::vector<Slot>* walls_ = nullptr;
     std::vector<std::vector<Slot>> shownByKind_;
     std::vector<Slot> shownNodes_;
     // The tree's links and the source ids, made the first time a statement asks (PATH, SHOW TREE,
