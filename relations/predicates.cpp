@@ -602,16 +602,16 @@ bool footprintWithin(const Box& a, const Box& b) {
 
 bool holds(Predicate p, const Node& a, const Node& b, const Thresholds& t, const Frame& frame,
            const Obstacles& obstacles, const Node* c, std::optional<double> writtenDistance) {
-    // on(x) over a footprint within x's: the overlap is a's area, so on's overlap shares are 1 or
-    // more, and a threshold at least a millionth under 1 decides the same with it as with the
-    // clipped area, whose rounding is far smaller; the rest of on's formula runs as written.
     if (p == Predicate::On && hasGeometry(a) && hasGeometry(b) && a.id != b.id) {
         const model::Aabb boundsA = obstacles.bounds(a), boundsB = obstacles.bounds(b);
         // The footprints lie within their bounds, so a's overlaps b's no more than the bounds do:
         // short of on's share by more than any rounding, on fails without clipping the two.
         const double own = model::footprintArea(a.box);
         if (own > 0 && flatOverlap(boundsA, boundsB) / own < t.onMinOverlap - 1e-6) return false;
-        // A footprint within b's has bounds within b's: only then is the corner test worth its cost.
+        // A footprint within x's: the overlap is a's area, so on's overlap shares are 1 or more, and
+        // a threshold at least a millionth under 1 decides the same with it as with the clipped
+        // area, whose rounding is far smaller; the rest of on's formula runs as written. Such a
+        // footprint has bounds within x's, so the corners are compared only when those are.
         if (t.onMinOverlap <= 1 - 1e-6 && flatWithin(boundsA, boundsB) && footprintWithin(a.box, b.box)) {
             const PredicateInputs in{a, b, c, t, frame, writtenDistance, obstacles};
             return onScoreWith(in, [&] { return model::footprintArea(a.box); }) > 0;
