@@ -9,7 +9,8 @@
 //   distance   := "how far is" phrase ("from" | "to") phrase | "what is the distance between" phrase "and" phrase
 //   size       := "how" size-word "is" phrase | "what is the" measure "of" phrase
 //   choice     := "which of these" (A, B, ...) "is" order | "which is" order "," A "or" B
-//   affordance := ("where" | "what") "can i" verb preposition?
+//   affordance := (("where" | "what") "can i" | "is there" "anything"? ("i can")? | "anything to") verb
+//                 phrase? preposition?
 //   count      := "how many" phrase posts ("do" phrase "have")?
 //   ...
 // A form is tried when its opening words match; the first form that reads the whole question wins.
@@ -517,12 +518,15 @@ private:
         return true;
     }
 
-    // Where can I sit? What can I put things on? Is there a place to sleep?
+    // Where can I sit? What can I sit on? What can I put my cup on? Is there a place to sleep?
+    // Is there anything I can sit on? Anything to sit on?
     bool affordance(Cursor& c, PhraseParser& p, Translation& out) {
         bool lead = c.accept({"where|what", "can|could|should|do|may", "i|we|one|you"}) ||
                     c.accept({"is|are", "there", "somewhere|anywhere|anything|something|a|any"}) ||
-                    c.accept({"what", "is", "there", "to"});
+                    c.accept({"what", "is", "there", "to"}) ||
+                    c.accept({"anything|something|somewhere|anywhere", "to"});
         if (!lead) return false;
+        c.accept({"i|we|one|you", "can|could"});
         c.accept({"place|spot|seat|thing", "to"});
         c.accept({"to"});
         if (c.done()) return false;
@@ -535,12 +539,18 @@ private:
         static const std::initializer_list<std::string_view> particles{
             "down", "on", "in",   "at", "with", "things", "stuff",  "something", "my",
             "the",  "it", "them", "up", "into", "onto",   "inside", "away"};
-        c.skip(particles);
-        if (!c.done()) {
+        // A preposition the question ends on belongs to the verb ("what can I sit on?"), not to a
+        // place still to come: what stands before it is read without it.
+        const bool stranded = isOneOf(c.w.back(), {"on", "in", "at", "with", "into", "onto", "inside", "upon"});
+        const Words rest(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end() - (stranded ? 1 : 0));
+        Cursor r{rest};
+        r.skip(particles);
+        if (!r.done()) {
             // "where can I put my cup?": what is put does not change where.
-            p.phrase(c.w, c.i, false);
-            c.skip(particles);
+            p.phrase(r.w, r.i, false);
+            r.skip(particles);
         }
+        c.i += r.i + (r.done() && stranded ? 1 : 0);
         std::vector<std::string> categories;
         std::string things{row->things};
         for (std::size_t at = 0; at < things.size();) {
@@ -1540,11 +1550,12 @@ private:
             plain = "how " + measure + " is " + sm.str(1) + sm.str(3);
         }
         // "what can I use in front of me to make copies?", "what is the name of the thing on my left?":
-        // what is there.
+        // what is there. A question that ends on its preposition ("what can I put my cup on?") asks
+        // what affords it, and is read as it is.
         plain = std::regex_replace(
             plain,
             std::regex(
-                R"(^(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)"),
+                R"(^(?!.* (?:on|in|at|into|onto|upon|with)$)(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)"),
             "what$1 is $2");
         plain = std::regex_replace(plain, std::regex(R"(^what is the name of (.+)$)"), "which is $1");
 
