@@ -90,6 +90,15 @@ std::string locate(const Translation& t, const ResultSet& rs, const std::string&
 std::string relational(const Translation& t, const ResultSet& rs) {
     auto shared = sharedCategory(rs);
     std::size_t n = rs.rows.size();
+    // "what is in the room?": the whole scene, no condition to say.
+    if (t.condition.empty()) {
+        if (n == 0)
+            return t.subject == "thing" ? "There is nothing here." : fmt::format("There is no {} here.", t.subject);
+        std::string nouns = t.subject == "thing" && shared ? pluralOf(*shared) : t.subjectPlural;
+        std::string noun = t.subject == "thing" && shared ? *shared : t.subject;
+        return n == 1 ? fmt::format("There is 1 {}: {}", noun, listed(labels(rs)))
+                      : fmt::format("There are {} {}: {}", n, nouns, listed(labels(rs)));
+    }
     if (n == 0) {
         if (t.subject == "thing") return fmt::format("Nothing is {}.", t.condition);
         return fmt::format("No {} is {}.", t.subject, t.condition);

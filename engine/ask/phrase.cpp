@@ -518,6 +518,11 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         // "the black chair out of the three chairs", "the chairs present in the room": the noun ends there.
         if (!nounWords.empty() && word == "out" && i + 1 < w.size() && w[i + 1] == "of") break;
         if (!nounWords.empty() && word == "present" && (i + 1 == w.size() || predicateAt(w, i + 1))) break;
+        // "the biggest thing here": here is the scene, which the thing is in anyway.
+        if (!nounWords.empty() && word == "here") {
+            ++i;
+            break;
+        }
         // "the chairs not near the window", "the sofa longer than the bed": the noun ends there.
         if (!nounWords.empty() && (word == "not" || comparativeOf(word))) break;
         // "can" ends a phrase as a verb ("what can I see"), but a trash can is a thing.

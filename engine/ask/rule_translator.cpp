@@ -635,10 +635,12 @@ private:
         c.accept({"all|the"});
         c.accept({"the"});
         Phrase thing = p.phrase(c.w, c.i, true);
-        c.skip({"is", "are", "there", "altogether", "total", "exactly", "currently", "right", "now"});
+        static const std::initializer_list<std::string_view> filler{
+            "is", "are", "there", "here", "altogether", "total", "exactly", "currently", "right", "now"};
+        c.skip(filler);
         bool see = c.accept({"do|can|could", "you|i|we", "see"});
         if (!see) c.accept({"do|can|could", "you|i|we", "have|find|count"});
-        c.skip({"is", "are", "there", "altogether", "total", "exactly", "currently", "right", "now"});
+        c.skip(filler);
         if (see && c.accept({"from"})) {
             // "how many windows can I see from the door?"
             Condition seen;
@@ -1107,7 +1109,10 @@ private:
                 !c.accept({"do|can|will|would", "you|i", "see|find|have"}) && !c.accept({"is|are", "there"}) &&
                 !c.accept({"can|could", "be", "seen|found"}))
                 return false;
-            c.accept({"there"});
+            c.accept({"there|here"});
+            // "what is there?", "what objects are there?", "what is here?": where nothing follows, the
+            // scene's things, all of them.
+            const bool thereAlone = c.done() && isOneOf(c.w[c.i - 1], {"there", "here"});
             // "what is orange behind me on the floor?": a thing of that colour.
             if (auto colour = colourOf(c.peek()); colour && !thing.colour && PhraseParser::predicateAt(c.w, c.i + 1)) {
                 thing.colour = colour;
@@ -1138,8 +1143,18 @@ private:
                 if (PhraseParser::predicateAt(c.w, k)) c.i = k;
             }
             std::size_t before = thing.conditions.size();
+            const std::size_t postsAt = c.i;
             p.posts(c.w, c.i, thing);
-            if (thing.conditions.size() == before && thing.excluded.empty()) return false;
+            // "what is in the room?", "what objects are in here?": the whole scene, read without a
+            // condition (not "in the corner", a part of the room the memory keeps nothing of).
+            auto namesScene = [&](std::size_t from) {
+                if (from >= c.w.size() || c.w[from] != "in") return false;
+                std::size_t k = from + 1;
+                while (k < c.w.size() && isOneOf(c.w[k], {"the", "this", "our", "my"})) ++k;
+                return k + 1 == c.w.size() && namesWholeScene(c.w[k]);
+            };
+            const bool wholeScene = thereAlone || (c.done() && namesScene(postsAt));
+            if (thing.conditions.size() == before && thing.excluded.empty() && !wholeScene) return false;
             if (verbIsPredicate && thing.conditions.size() > before) {
                 // "face the table" reads in the answer as "facing the table": the table's first phrase.
                 auto& cond = thing.conditions[before];
@@ -1157,7 +1172,9 @@ private:
             c.accept({"of"});
             thing = p.phrase(c.w, c.i, true);
             if (!thing.kind && thing.conditions.empty()) return locateAnswer(thing, out);
-            if (thing.conditions.empty() && thing.excluded.empty()) return false;
+            // "list all objects", "name the things in the room": a kind word alone lists them all.
+            if (thing.conditions.empty() && thing.excluded.empty() && thing.kind != "object" && thing.kind != "thing")
+                return false;
         } else {
             return false;
         }
