@@ -344,12 +344,38 @@ Words words(const std::string& text) {
     for (const auto& [from, to] : contractions)
         for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
             s.replace(at, from.size(), to);
+    // Contractions typed without their apostrophe, as chat writes them ("whats on the table",
+    // "wheres the lamp"); not "its", "ill" or "were", which are words of their own.
+    static const std::array<std::pair<std::string_view, std::string_view>, 15> bare{{
+        {"whats", "what is"},
+        {"wheres", "where is"},
+        {"hows", "how is"},
+        {"whos", "who is"},
+        {"thats", "that is"},
+        {"theres", "there is"},
+        {"heres", "here is"},
+        {"isnt", "is not"},
+        {"arent", "are not"},
+        {"dont", "do not"},
+        {"doesnt", "does not"},
+        {"cant", "can not"},
+        {"wont", "will not"},
+        {"im", "i am"},
+        {"ive", "i have"},
+    }};
     Words out;
     std::istringstream in(s);
     for (std::string w; in >> w;) {
         while (!w.empty() && w.front() == '-') w.erase(w.begin());
         while (!w.empty() && w.back() == '-') w.pop_back();
-        if (!w.empty()) out.push_back(w);
+        if (w.empty()) continue;
+        const auto* expansion = std::find_if(bare.begin(), bare.end(), [&](const auto& row) { return row.first == w; });
+        if (expansion == bare.end()) {
+            out.push_back(w);
+            continue;
+        }
+        std::istringstream parts{std::string(expansion->second)};
+        for (std::string part; parts >> part;) out.push_back(part);
     }
     return out;
 }

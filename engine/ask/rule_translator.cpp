@@ -1054,11 +1054,16 @@ private:
                 c.skip({"located", "kept"});
                 return locateAnswer(thing, out);
             }
-        } else if (!c.accept({"find|locate|show|point"})) {
-            return false;
-        } else {
+        } else if (c.accept({"find|locate|show|point"}) ||
+                   // "I am looking for the basket", "I need a chair", "help me find the remote",
+                   // "could you find the lamp?": a request to find it.
+                   c.accept({"i", "am|was", "looking|searching", "for"}) || c.accept({"looking|searching", "for"}) ||
+                   c.accept({"i", "need|want"}) || c.accept({"help", "me", "find|locate"}) ||
+                   c.accept({"can|could|would", "you", "find|locate|show"})) {
             c.accept({"me"});
             c.accept({"to"});
+        } else {
+            return false;
         }
         Phrase thing = p.phrase(c.w, c.i, true);
         if (where && c.accept({"and"})) {
