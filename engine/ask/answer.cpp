@@ -12,6 +12,7 @@
 #include "engine/ask/lexicon.hpp"
 #include "engine/ask/phrase.hpp"
 #include "engine/ask/units.hpp"
+#include "model/category.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::ask {
@@ -59,7 +60,11 @@ std::string withCondition(const Translation& t) { return t.condition.empty() ? "
 std::string absentWords(const Translation& t) {
     std::vector<std::string> words;
     for (const auto& m : t.mappings)
-        if (m.categories.empty()) words.push_back(m.word);
+        if (m.categories.empty()) {
+            // One of it: "there is no lamp here", asked of "lamps".
+            const std::size_t last = m.word.rfind(' ') + 1;  // 0 for one word
+            words.push_back(m.word.substr(0, last) + model::singularWord(m.word.substr(last)));
+        }
     std::string out;
     for (std::size_t i = 0; i < words.size(); ++i) out += (i ? " or " : "") + words[i];
     return out;
@@ -100,6 +105,8 @@ std::string relational(const Translation& t, const ResultSet& rs) {
                       : fmt::format("There are {} {}: {}", n, nouns, listed(labels(rs)));
     }
     if (n == 0) {
+        // "what is on the bed?" where the scene holds no bed: say so, not that nothing is on it.
+        if (std::string absent = absentWords(t); !absent.empty()) return fmt::format("There is no {} here.", absent);
         if (t.subject == "thing") return fmt::format("Nothing is {}.", t.condition);
         return fmt::format("No {} is {}.", t.subject, t.condition);
     }
