@@ -177,7 +177,7 @@ public:
             &QuestionReader::existence,   &QuestionReader::side,       &QuestionReader::relative,
             &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
             &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
-            &QuestionReader::description,
+            &QuestionReader::description, &QuestionReader::state,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -521,7 +521,10 @@ private:
     // Where can I sit? What can I sit on? What can I put my cup on? Is there a place to sleep?
     // Is there anything I can sit on? Anything to sit on?
     bool affordance(Cursor& c, PhraseParser& p, Translation& out) {
-        bool lead = c.accept({"where|what", "can|could|should|do|may", "i|we|one|you"}) ||
+        // "can I sleep here?", "could we sit somewhere?": where it can be done.
+        const bool here = c.w.size() >= 4 && isOneOf(c.w.back(), {"here", "somewhere", "anywhere"}) &&
+                          c.accept({"can|could|may", "i|we|one"});
+        bool lead = here || c.accept({"where|what", "can|could|should|do|may", "i|we|one|you"}) ||
                     c.accept({"is|are", "there", "somewhere|anywhere|anything|something|a|any"}) ||
                     c.accept({"what", "is", "there", "to"}) ||
                     c.accept({"anything|something|somewhere|anywhere", "to"});
@@ -540,9 +543,12 @@ private:
             "down", "on", "in",   "at", "with", "things", "stuff",  "something", "my",
             "the",  "it", "them", "up", "into", "onto",   "inside", "away"};
         // A preposition the question ends on belongs to the verb ("what can I sit on?"), not to a
-        // place still to come: what stands before it is read without it.
+        // place still to come, and "here" ends "can I sleep here?": what stands before them is read
+        // without them.
         const bool stranded = isOneOf(c.w.back(), {"on", "in", "at", "with", "into", "onto", "inside", "upon"});
-        const Words rest(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end() - (stranded ? 1 : 0));
+        const std::size_t end = c.w.size() - (stranded || here ? 1 : 0);
+        const Words rest(c.w.begin() + static_cast<std::ptrdiff_t>(c.i),
+                         c.w.begin() + static_cast<std::ptrdiff_t>(end));
         Cursor r{rest};
         r.skip(particles);
         if (!r.done()) {
@@ -550,7 +556,7 @@ private:
             p.phrase(r.w, r.i, false);
             r.skip(particles);
         }
-        c.i += r.i + (r.done() && stranded ? 1 : 0);
+        c.i = r.done() ? c.w.size() : c.i + r.i;
         std::vector<std::string> categories;
         std::string things{row->things};
         for (std::size_t at = 0; at < things.size();) {
@@ -1236,6 +1242,26 @@ private:
     }
 
     // Is the lamp left of the window? Does the lamp stand on the desk? Is the mug red?
+    // Is the door open? Is the lamp on? Are the windows closed? The memory keeps no state of a
+    // thing: the question is refused saying so, not answered by a guess.
+    bool state(Cursor& c, PhraseParser& p, Translation&) {
+        if (!c.accept({"is|are"}) || c.w.size() < c.i + 2) return false;
+        const std::string& word = c.w.back();
+        if (!isOneOf(word, {"open", "opened", "closed", "shut", "on", "off", "lit", "empty", "full", "locked",
+                            "unlocked", "broken", "clean", "dirty", "running", "working"}))
+            return false;
+        Phrase thing;
+        if (!phraseWithin(c, p, c.w.size() - 1, thing)) return false;
+        const std::string& verb = c.w.front();  // is | are, as the question has it
+        throw Error(ErrorKind::Binding,
+                    fmt::format("the memory keeps no state of the {}: not whether {} {} {}", thing.words,
+                                verb == "are" ? "they" : "it", verb, word),
+                    std::nullopt,
+                    fmt::format("it keeps where things are, their size, colour and kind: ask as in: where {} the {}? "
+                                "what is near the {}?",
+                                verb, thing.words, thing.words));
+    }
+
     bool yesNo(Cursor& c, PhraseParser& p, Translation& out) {
         bool does = false;
         if (!c.accept({"is|are"})) {
