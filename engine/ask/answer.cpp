@@ -579,7 +579,7 @@ std::string route(const Translation& t, const ResultSet& rs) {
 }
 
 // A plugged-in translator's statement: its rows said as they are.
-std::string statement(const ResultSet& rs) {
+std::string statement(const Translation& t, const ResultSet& rs) {
     // DESCRIBE's rows (id, field, value): each node by what it looks like, its size and any text.
     if (const int id = rs.columnIndex("id"), field = rs.columnIndex("field"), value = rs.columnIndex("value");
         id >= 0 && field >= 0 && value >= 0 && rs.columns.size() == 3) {
@@ -601,7 +601,10 @@ std::string statement(const ResultSet& rs) {
                 looks += fmt::format("{} {} {}", looks.empty() ? ":" : ",", f, text(row[value]));
         }
         flush();
-        if (nodes.empty()) return "Nothing of the kind is here.";
+        if (nodes.empty()) {
+            const std::string absent = absentWords(t);
+            return absent.empty() ? "Nothing of the kind is here." : fmt::format("There is no {} here.", absent);
+        }
         return listed(nodes, "; ") + ".";
     }
     if (rs.columnIndex("instruction") >= 0) {
@@ -725,7 +728,7 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
         case QuestionKind::RoomSize:
             return roomSize(t, rs);
         case QuestionKind::Statement:
-            return statement(rs);
+            return statement(t, rs);
         case QuestionKind::Route:
             return route(t, rs);
         case QuestionKind::Appearance:

@@ -9,6 +9,26 @@ namespace smql::ask {
 // What a thing looks like or says is what the memory holds of it: DESCRIBE gives its category, box,
 // attributes and text.
 bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, Translation& out) {
+    // "describe the desk", "tell me about the monitor", "what do you know about the chair?": all the
+    // memory holds of it.
+    static const std::vector<Words> asks{words("describe"),
+                                         words("tell me about"),
+                                         words("tell me more about"),
+                                         words("what do you know about"),
+                                         words("what can you tell me about"),
+                                         words("give me a description of")};
+    for (const Words& lead : asks) {
+        if (i + lead.size() >= w.size() ||
+            !std::equal(lead.begin(), lead.end(), w.begin() + static_cast<std::ptrdiff_t>(i)))
+            continue;
+        i += lead.size();
+        Phrase thing = parser.phrase(w, i, true);
+        if (i < w.size()) return false;
+        out.kind = QuestionKind::Statement;
+        out.smql = "DESCRIBE " + reference(thing);
+        describeSubject(thing, out);
+        return true;
+    }
     if (i + 2 > w.size() || !isOneOf(w[i], {"what", "how"}) || !isOneOf(w[i + 1], {"does", "do"})) return false;
     i += 2;
     auto verb = std::find_if(w.begin() + static_cast<std::ptrdiff_t>(i), w.end(), [](const std::string& word) {

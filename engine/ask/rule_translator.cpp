@@ -1178,7 +1178,8 @@ private:
             }
         } else if (c.accept({"show|list|give|tell|name"})) {
             c.accept({"me|us"});
-            c.accept({"about"});
+            // "tell me about the desk" asks for all the memory holds of it (readDescription).
+            if (c.peek() == "about" || c.accept({"more", "about"})) return false;
             c.accept({"all|every"});
             c.accept({"of"});
             thing = p.phrase(c.w, c.i, true);
@@ -1827,10 +1828,12 @@ public:
                         fmt::format("the question has {} words; ASK reads at most {}", all.size(), kMaxQuestionWords),
                         std::nullopt, "ask one short question at a time");
         // Politeness and framing at the start: "please", "can you tell me", "measuring from the
-        // closest point of each object" (how smql measures distances anyway).
+        // closest point of each object" (how smql measures distances anyway); not "tell me about",
+        // which asks for a description.
         static const std::regex lead(
-            "^(?:please |hey |ok |okay |so |now |and |excuse me |(?:can|could|would) you (?:please )?(?:tell me |say "
-            "|show me (?=where|what|which|how))?|tell me |i want to know |i wonder |i would like to know |measuring "
+            "^(?:please |hey |ok |okay |so |now |and |excuse me |(?:can|could|would) you (?:please )?(?:tell me "
+            "(?!(?:more )?about )|say |show me (?=where|what|which|how))?|tell me (?!(?:more )?about )|i want to know "
+            "|i wonder |i would like to know |measuring "
             "from the closest point of each object |these are frames of a video )+");
         std::string plain = std::regex_replace(joined(all, 0, all.size()), lead, "");
         plain = questionWordRespelt(plain, lexicon);
