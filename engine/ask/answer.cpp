@@ -154,6 +154,7 @@ std::string count(const Translation& t, const ResultSet& rs) {
 
 std::string existence(const Translation& t, const ResultSet& rs) {
     std::size_t n = rs.rows.size();
+    if (n == 0 && t.subject == "thing" && !t.condition.empty()) return fmt::format("No, nothing is {}.", t.condition);
     if (n == 0) return fmt::format("No, there is no {}{}.", t.subject, withCondition(t));
     if (const WordMapping* widened = widenedSubject(t))
         return fmt::format("None is stored as a {}{}; {}: {}", t.subject, withCondition(t), broaderKind(t, *widened, n),

@@ -704,9 +704,18 @@ private:
             return true;
         };
         bool lead = c.accept({"is|are", "there"}) || c.accept({"do|can|did", "you|i|we", "see|have|own|find|notice"}) ||
-                    sceneHas() || (isOneOf(c.peek(), {"any", "anything", "something"}) && c.i == 0);
+                    sceneHas() || (isOneOf(c.peek(), {"any", "anything", "something"}) && c.i == 0) ||
+                    // "is anything on the chair?": whether there is.
+                    (c.i == 0 && isOneOf(c.peek(1), {"anything", "something"}) && c.accept({"is"}));
         if (!lead) return false;
         Phrase thing = p.phrase(c.w, c.i, true);
+        // "is there something red?": a thing of that colour.
+        if (thing.kind && !thing.colour && c.i + 1 == c.w.size())
+            if (auto colour = colourOf(c.peek())) {
+                thing.colour = colour;
+                thing.words = c.peek() + " " + thing.words;
+                ++c.i;
+            }
         c.skip({"is", "are", "there", "here"});
         p.posts(c.w, c.i, thing);
         c.skip({"is", "are", "there", "here"});
@@ -1607,6 +1616,16 @@ private:
                 R"(^(?!.* (?:on|in|at|into|onto|upon|with)$)(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)"),
             "what$1 is $2");
         plain = std::regex_replace(plain, std::regex(R"(^what is the name of (.+)$)"), "which is $1");
+        // "which chair is bigger?", "which lamp is closer to the door?": of them, the one that is most so.
+        static const std::pair<std::string_view, std::string_view> most[] = {
+            {"bigger", "biggest"},   {"larger", "largest"},  {"smaller", "smallest"}, {"taller", "tallest"},
+            {"shorter", "shortest"}, {"longer", "longest"},  {"wider", "widest"},     {"closer", "closest"},
+            {"nearer", "nearest"},   {"farther", "farthest"}};
+        static const std::regex compared(R"(^(which|what) ([a-z][a-z ]*?) (is|are) ([a-z]+er)( (?:to|from) .+)?$)");
+        if (std::smatch m; std::regex_match(plain, m, compared) && plain.find(" than ") == std::string::npos)
+            for (const auto& [er, est] : most)
+                if (m.str(4) == er)
+                    plain = m.str(1) + " " + m.str(2) + " " + m.str(3) + " the " + std::string(est) + m.str(5);
 
         // "is the shape of the table round or square?": what shape it is.
         plain = std::regex_replace(
