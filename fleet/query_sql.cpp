@@ -463,10 +463,11 @@ private:
             const std::string d = alias('d'), x = alias('x');
             from += fmt::format(
                 " CROSS JOIN LATERAL (SELECT min(smql.box_distance({0}, {1})) AS distance FROM smql.nodes {1} "
-                "WHERE {1}.scene = {0}.scene AND {2}) {3}",
+                "WHERE {1}.scene = {0}.scene AND {1}.id <> {0}.id AND {2}) {3}",
                 n, x, refers(*to, x), d);
-            // Nodes without a place have no distance; NEAREST TO x leaves x itself out.
-            conditions += fmt::format(" AND {}.geometry <> 0", n);
+            // A node's distance is to the others of x, as in the engine: nodes without a place, or
+            // with nothing else to measure to, have none; NEAREST TO x leaves x itself out.
+            conditions += fmt::format(" AND {}.geometry <> 0 AND {}.distance IS NOT NULL", n, d);
             if (find.nearestTo) conditions += fmt::format(" AND NOT ({})", refers(*to, n));
             sorted = fmt::format("{}.distance{}, {}", d, descending ? " DESC" : "", sorted);
             return d + ".distance";

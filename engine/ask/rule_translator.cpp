@@ -1616,6 +1616,12 @@ private:
                 R"(^(?!.* (?:on|in|at|into|onto|upon|with)$)(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)"),
             "what$1 is $2");
         plain = std::regex_replace(plain, std::regex(R"(^what is the name of (.+)$)"), "which is $1");
+        // "the distance between the two chairs", "how far apart are both lamps?": between one of
+        // them and the other.
+        plain = std::regex_replace(
+            plain,
+            std::regex(R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+?)s?$)"),
+            "$1 the $2 and the $2");
         // "which chair is bigger?", "which lamp is closer to the door?": of them, the one that is most so.
         static const std::pair<std::string_view, std::string_view> most[] = {
             {"bigger", "biggest"},   {"larger", "largest"},  {"smaller", "smallest"}, {"taller", "tallest"},

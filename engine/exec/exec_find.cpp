@@ -283,8 +283,8 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
         // `want` answers are strictly nearer than this one's bounds, no later one can beat them.
         if (best.size() == want && best.top() < boundsGap(snap.bounds(*s))) break;
         poll();
-        if ((f.nearest && *s == ref) || !inTarget(f.target, *s, frame) || (f.where && !matches(*f.where, *s, frame)))
-            continue;
+        // The one reference itself has nothing else to measure to (as in find()).
+        if (*s == ref || !inTarget(f.target, *s, frame) || (f.where && !matches(*f.where, *s, frame))) continue;
         const double distance = model::distance(snap.node(*s).box, snap.node(ref).box);
         hits.push_back({*s, distance});
         best.push(distance);
@@ -389,7 +389,10 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
     std::vector<Hit> hits = filtered(plan, viewer);
     if (f.distanceTo) {
         const auto& refs = slots(*f.distanceTo, viewer);
-        // Nodes without a place have no distance to order by; NEAREST TO x leaves x itself out.
+        // A node's distance to x is to the nodes of x other than itself, as `distance(x) < d` measures
+        // it ("FIND chair ORDER BY distance(chair)": each chair to the nearest other chair). Nodes
+        // without a place, or with nothing else to measure to, have no distance and are left out;
+        // NEAREST TO x leaves x itself out.
         std::erase_if(hits, [&](const Hit& h) {
             return snap.node(h.slot).geometry == model::GeometryKind::None ||
                    (f.nearest && std::find(refs.begin(), refs.end(), h.slot) != refs.end());
@@ -397,8 +400,10 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
         for (auto& h : hits) {
             h.distance = std::numeric_limits<double>::infinity();
             for (catalog::Slot r : refs)
-                h.distance = std::min(h.distance, model::distance(snap.node(h.slot).box, snap.node(r).box));
+                if (r != h.slot)
+                    h.distance = std::min(h.distance, model::distance(snap.node(h.slot).box, snap.node(r).box));
         }
+        std::erase_if(hits, [](const Hit& h) { return std::isinf(h.distance); });
         std::stable_sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
             if (a.distance != b.distance) return f.descending ? a.distance > b.distance : a.distance < b.distance;
             return snap.node(a.slot).id < snap.node(b.slot).id;
