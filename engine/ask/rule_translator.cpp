@@ -1251,7 +1251,6 @@ private:
         return true;
     }
 
-    // Is the lamp left of the window? Does the lamp stand on the desk? Is the mug red?
     // Is the door open? Is the lamp on? Are the windows closed? The memory keeps no state of a
     // thing: the question is refused saying so, not answered by a guess.
     bool state(Cursor& c, PhraseParser& p, Translation&) {
@@ -1272,6 +1271,7 @@ private:
                                 verb, thing.words, thing.words));
     }
 
+    // Is the lamp left of the window? Does the lamp stand on the desk? Is the mug red?
     bool yesNo(Cursor& c, PhraseParser& p, Translation& out) {
         bool does = false;
         if (!c.accept({"is|are"})) {
@@ -1620,7 +1620,8 @@ private:
         // them and the other.
         plain = std::regex_replace(
             plain,
-            std::regex(R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+?)s?$)"),
+            std::regex(
+                R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+)$)"),
             "$1 the $2 and the $2");
         // "which chair is bigger?", "which lamp is closer to the door?": of them, the one that is most so.
         static const std::pair<std::string_view, std::string_view> most[] = {
