@@ -133,15 +133,21 @@ Value sourceValue(const Node& n) {
 
 }  // namespace
 
+double Executor::distanceToOthers(catalog::Slot slot, const std::vector<catalog::Slot>& refs) const {
+    const Node& node = scene().node(slot);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (catalog::Slot r : refs)
+        if (r != slot) nearest = std::min(nearest, model::distance(node.box, scene().node(r).box));
+    return nearest;
+}
+
 bool Executor::compare(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
     std::optional<std::variant<double, std::string>> value;
     if (expr.distanceTo) {
         const auto& refs = slots(*expr.distanceTo, frame);
         const Node& node = scene().node(slot);
         if (node.geometry == model::GeometryKind::None || refs.empty()) return false;
-        double nearest = std::numeric_limits<double>::infinity();
-        for (catalog::Slot r : refs)
-            if (r != slot) nearest = std::min(nearest, model::distance(node.box, scene().node(r).box));
+        const double nearest = distanceToOthers(slot, refs);
         if (std::isinf(nearest)) return false;  // only itself to measure from
         value = nearest;
     } else {
@@ -397,12 +403,7 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
             return snap.node(h.slot).geometry == model::GeometryKind::None ||
                    (f.nearest && std::find(refs.begin(), refs.end(), h.slot) != refs.end());
         });
-        for (auto& h : hits) {
-            h.distance = std::numeric_limits<double>::infinity();
-            for (catalog::Slot r : refs)
-                if (r != h.slot)
-                    h.distance = std::min(h.distance, model::distance(snap.node(h.slot).box, snap.node(r).box));
-        }
+        for (auto& h : hits) h.distance = distanceToOthers(h.slot, refs);
         std::erase_if(hits, [](const Hit& h) { return std::isinf(h.distance); });
         std::stable_sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
             if (a.distance != b.distance) return f.descending ? a.distance > b.distance : a.distance < b.distance;

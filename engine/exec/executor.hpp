@@ -108,6 +108,8 @@ private:
     bool matches(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
     bool holdsForSome(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
     bool compare(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
+    // distance(x) of a node: to the nearest node of `refs` other than itself; infinite when there is none.
+    double distanceToOthers(catalog::Slot slot, const std::vector<catalog::Slot>& refs) const;
     bool inTarget(const binder::Target& target, catalog::Slot slot, const relations::Frame& frame);
     std::vector<Hit> nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame);
     struct SimilaritySpace {
