@@ -29,7 +29,7 @@ constexpr const char* kServerSettings =
     "-c max_wal_size=8GB -c maintenance_work_mem=512MB -c work_mem=64MB -c autovacuum=off";
 
 // Statement triggers with transition tables count a whole COPY at once.
-constexpr const char* kSchema = R"sql(
+constexpr const char* kPostgisSchema = R"sql(
 CREATE TABLE scenes(id bigint PRIMARY KEY, name text NOT NULL UNIQUE, source text,
                     vx float8, vy float8, vz float8, vyaw float8);
 CREATE TABLE nodes(id bigint PRIMARY KEY, scene bigint NOT NULL, parent bigint, kind int NOT NULL,
@@ -64,7 +64,7 @@ CREATE INDEX nodes_by_category ON nodes(category, id) INCLUDE (scene, source_id,
 CREATE INDEX nodes_by_parent ON nodes(parent);
 )sql";
 
-constexpr const char* kNodeColumns =
+constexpr const char* kPostgisNodeColumns =
     "n.id, n.kind, n.category, n.geometry, n.cx, n.cy, n.cz, n.sx, n.sy, n.sz, n.yaw, n.hidden";
 
 struct Connection {
@@ -119,7 +119,7 @@ void exec(PGconn* pg, const char* sql) {
     check(pg, r, sql);
 }
 
-// Reads the kNodeColumns of a row (from column `first` on) into `node`.
+// Reads the kPostgisNodeColumns of a row (from column `first` on) into `node`.
 void readNode(const Result& r, int row, int first, Node& node) {
     node.id = static_cast<model::NodeId>(r.integer(row, first));
     node.kind = static_cast<model::NodeKind>(r.integer(row, first + 1));
@@ -180,15 +180,15 @@ struct PostgisBaseline::Impl {
     void prepareAll() {
         prepare("scene_by_name", "SELECT id, vx, vy, vz, vyaw FROM scenes WHERE name = $1");
         prepare("nodes_of_category",
-                fmt::format("SELECT {} FROM nodes n WHERE n.scene = $1 AND n.category = $2", kNodeColumns));
+                fmt::format("SELECT {} FROM nodes n WHERE n.scene = $1 AND n.category = $2", kPostgisNodeColumns));
         prepare("two_nodes",
-                fmt::format("SELECT {} FROM nodes n WHERE n.id IN ($1, $2) AND n.scene = $3", kNodeColumns));
+                fmt::format("SELECT {} FROM nodes n WHERE n.id IN ($1, $2) AND n.scene = $3", kPostgisNodeColumns));
         // The visible objects whose bounds meet a region: what may crowd a pair out of near.
         prepare("objects_in_region",
                 fmt::format("SELECT {} FROM nodes n WHERE n.scene = $1 AND n.footprint && ST_MakeEnvelope($2::float8, "
                             "$3::float8, $4::float8, $5::float8) AND n.max_z >= $6::float8 AND n.min_z <= $7::float8 "
                             "AND n.kind = {} AND NOT n.hidden",
-                            kNodeColumns, static_cast<int>(model::NodeKind::Object)));
+                            kPostgisNodeColumns, static_cast<int>(model::NodeKind::Object)));
         // Each visible object whose bounds meet the probe region of a reference
         // of category $2, with that reference's id: one round trip for the term.
         // LATERAL keeps the generic plan a GiST probe per reference (a plain
@@ -199,7 +199,7 @@ struct PostgisBaseline::Impl {
                             "AND max_z >= r.min_z - $4::float8 AND min_z <= r.max_z + $5::float8 "
                             "AND kind = {} AND NOT hidden) n "
                             "WHERE r.scene = $1 AND r.category = $2 AND r.footprint IS NOT NULL",
-                            kNodeColumns, static_cast<int>(model::NodeKind::Object)));
+                            kPostgisNodeColumns, static_cast<int>(model::NodeKind::Object)));
         // Objects nearest-first by the footprints' distance to the references
         // (a GiST k-nearest-neighbour scan: the references' footprints are one
         // value computed first, so the index can order by distance to it);
@@ -210,7 +210,7 @@ struct PostgisBaseline::Impl {
                             "SELECT {0}, n.footprint <-> (SELECT g FROM refs) FROM nodes n "
                             "WHERE n.scene = $1 AND n.kind = {1} AND NOT n.hidden AND n.category <> $2 "
                             "AND n.footprint IS NOT NULL ORDER BY n.footprint <-> (SELECT g FROM refs) LIMIT $3",
-                            kNodeColumns, static_cast<int>(model::NodeKind::Object)));
+                            kPostgisNodeColumns, static_cast<int>(model::NodeKind::Object)));
         prepare("category_all",
                 "SELECT id, category, scene, source_id, cx, cy, cz, sx, sy, sz, yaw FROM nodes "
                 "WHERE category = $1 ORDER BY id LIMIT $2");
@@ -255,7 +255,7 @@ constexpr const char* kCopyNodes =
 
 PostgisBaseline::PostgisBaseline(const std::string& connection, bool create)
     : impl_(std::make_unique<Impl>(connection)) {
-    if (create) exec(impl_->pg(), kSchema);
+    if (create) exec(impl_->pg(), kPostgisSchema);
     impl_->prepareAll();
 }
 

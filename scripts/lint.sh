@@ -37,12 +37,29 @@ if [[ -n $unformatted ]]; then
   failed=1
 fi
 
-# clang-tidy on every translation unit of ours (headers are checked through them), in parallel.
-mapfile -t units < <(printf '%s\n' "${sources[@]}" | grep -E '\.(cpp|c)$' |
-  while read -r f; do grep -q "\"file\": \"$root/$f\"" "$build/compile_commands.json" && echo "$f"; done)
+# clang-tidy on every translation unit the build compiles from our files, in parallel (headers are
+# checked through them). The unity build (CMakeLists.txt) compiles most files in chunks that include
+# several of them (<target>.dir/Unity/unity_N_cxx.cxx), and clang-tidy parses such a chunk once for all
+# it includes: the standard library's and the other common headers' 100,000 lines once a chunk, not
+# once a file. Every file of ours that the build compiles is checked, alone or in its chunk.
+ours=$(printf '%s\n' "${sources[@]}" | grep -E '\.(cpp|c)$' | sed "s#^#$root/#")
+units=()
+checked=0
+while read -r file; do
+  if [[ $file == */Unity/unity_*_c*.c* ]]; then
+    included=$(sed -n 's/^#include "\(.*\)"$/\1/p' "$file" | grep -Fxc -f <(printf '%s\n' "$ours"))
+    ((included > 0)) && units+=("$file") && checked=$((checked + included))
+  elif grep -Fxq "$file" <<<"$ours"; then
+    units+=("$file")
+    checked=$((checked + 1))
+  fi
+done < <(sed -n 's/^ *"file": "\(.*\)",\{0,1\}$/\1/p' "$build/compile_commands.json" | sort -u)
 out=$(mktemp -d)
+# The configuration is named: a chunk lies in the build folder, which may be outside the repository. A
+# run that fails without a finding (a unit that does not parse, a bad option) is a finding too.
 printf '%s\n' "${units[@]}" |
-  xargs -P "$jobs" -I{} sh -c '"$1" -p "$2" --quiet "$3" >"$4/$(echo "$3" | tr / _).log" 2>&1' _ "$tidy" "$build" {} "$out"
+  xargs -P "$jobs" -I{} sh -c '"$1" --config-file="$5/.clang-tidy" -p "$2" --quiet "$3" >"$4/$(echo "$3" | tr / _).log" 2>&1 ||
+    echo "$3: error: clang-tidy exited with status $?" >>"$4/$(echo "$3" | tr / _).log"' _ "$tidy" "$build" {} "$out" "$root"
 findings=$(cat "$out"/*.log 2>/dev/null | grep -E '(warning|error): ' | sed "s#^$root/##; s#^$build/include-roots/[^/]*/##" | sort -u)
 rm -rf "$out"
 if [[ -n $findings ]]; then
@@ -50,5 +67,5 @@ if [[ -n $findings ]]; then
   sed 's/^/    /' <<<"$findings"
   failed=1
 fi
-echo "lint: ${#sources[@]} files in the house format check, ${#units[@]} translation units through clang-tidy: $( ((failed)) && echo findings || echo clean)"
+echo "lint: ${#sources[@]} files in the house format check, $checked through clang-tidy in ${#units[@]} translation units: $( ((failed)) && echo findings || echo clean)"
 exit $failed

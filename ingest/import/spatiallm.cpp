@@ -35,7 +35,7 @@ constexpr std::int64_t kIdBlock = 1000;
 // that use doubles).
 constexpr std::int64_t kMaxBboxNumber = 999'999'999'999;
 
-constexpr std::string_view kHint =
+constexpr std::string_view kSpatialLmHint =
     "SpatialLM layout lines: wall_0=Wall(ax,ay,az,bx,by,bz,height,thickness), "
     "door_0=Door(wall_0,x,y,z,width,height), window_0=Window(wall_0,x,y,z,width,height), "
     "bbox_0=Bbox(class,x,y,z,angle_z,scale_x,scale_y,scale_z)";
@@ -137,7 +137,7 @@ private:
     [[noreturn]] void fail(const Token& where, std::string_view what) const {
         throw Error(ErrorKind::Input, fmt::format("{}:{}: {}", path_, line_, what),
                     SourceLocation{line_, where.column, std::max(1, static_cast<int>(where.text.size()))},
-                    std::string(kHint));
+                    std::string(kSpatialLmHint));
     }
 
     // Text that is not UTF-8 (a Latin-1 class name) would be stored and then
@@ -292,7 +292,7 @@ private:
 }  // namespace
 
 model::SceneData readSpatialLm(const std::string& path, const std::string& sceneName) {
-    std::string text = detail::readTextFile(path, std::string(kHint));
+    std::string text = detail::readTextFile(path, std::string(kSpatialLmHint));
     LayoutParser parser(path);
     int lineNumber = 0;
     // Editors on some systems start UTF-8 files with a byte order mark.
@@ -310,7 +310,7 @@ model::SceneData readSpatialLm(const std::string& path, const std::string& scene
     scene.nodes = parser.takeNodes();
     if (scene.nodes.empty())
         throw Error(ErrorKind::Input, path + ": no walls, doors, windows or bboxes in the file", std::nullopt,
-                    std::string(kHint));
+                    std::string(kSpatialLmHint));
     std::string name = sceneName.empty() ? std::filesystem::path(path).stem().string() : sceneName;
     detail::finishScene(scene, name, "spatiallm:" + path);
     return scene;

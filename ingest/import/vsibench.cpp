@@ -22,7 +22,7 @@ using detail::Field;
 using detail::kMaxCoordinate;
 using detail::kMaxSize;
 
-const char* const kHint =
+const char* const kVsiBenchHint =
     "expected VSI-Bench's meta-info JSON: {\"<room>\": {\"object_bbox\": {\"<category>\": [{\"centroid\": [x, y, z], "
     "\"axesLengths\": [a, b, c], \"normalizedAxes\": [9 numbers, one axis a row]}]}}}";
 
@@ -130,7 +130,7 @@ model::SceneData readRoom(const Field& room, const std::string& name, const std:
 }  // namespace
 
 std::vector<model::SceneData> readVsiBenchAll(const std::string& path) {
-    detail::JsonSource source{path, kHint};
+    detail::JsonSource source{path, kVsiBenchHint};
     detail::Json root = detail::parseJsonFile(source);
     Field rooms(root, source);
     std::vector<model::SceneData> scenes;
@@ -140,7 +140,7 @@ std::vector<model::SceneData> readVsiBenchAll(const std::string& path) {
 }
 
 model::SceneData readVsiBench(const std::string& path, const std::string& sceneName) {
-    detail::JsonSource source{path, kHint};
+    detail::JsonSource source{path, kVsiBenchHint};
     detail::Json root = detail::parseJsonFile(source);
     Field rooms(root, source);
     auto members = rooms.members();

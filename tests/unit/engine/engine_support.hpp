@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/engine.hpp"
+#include "engine/format.hpp"
 #include "model/error.hpp"
 
 namespace smql::testing {
@@ -26,6 +27,17 @@ inline std::string replicaRelations() { return std::string(SMQL_SHARED_DATA) + "
 inline ResultSet run(Engine& engine, const std::string& statement) {
     auto results = engine.execute(statement);
     return results.back();
+}
+
+// Everything a statement answers, or the error as the shell shows it, as one text.
+inline std::string outcome(Engine& engine, const std::string& text) {
+    try {
+        std::string out;
+        for (const ResultSet& rs : engine.execute(text)) out += formatCsv(rs) + "|" + rs.message + "\n";
+        return out;
+    } catch (const Error& e) {
+        return "error: " + e.render(text);
+    }
 }
 
 // The category column (the second) of a FIND's rows.

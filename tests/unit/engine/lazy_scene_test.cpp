@@ -23,17 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Everything a statement answers, or the error as the shell shows it, as one text.
-std::string outcome(Engine& engine, const std::string& text) {
-    try {
-        std::string out;
-        for (const ResultSet& rs : engine.execute(text)) out += formatCsv(rs) + "|" + rs.message + "\n";
-        return out;
-    } catch (const Error& e) {
-        return "error: " + e.render(text);
-    }
-}
-
 // A generated room of `objects` things, stored, with a read transaction that sees it.
 struct StoredRoom {
     TempDir dir;

@@ -29,17 +29,6 @@ struct Database {
     }
 };
 
-// Everything a statement answers, or the error as the shell shows it, as one text.
-std::string outcome(Engine& engine, const std::string& text) {
-    try {
-        std::string out;
-        for (const ResultSet& rs : engine.execute(text)) out += formatCsv(rs) + "|" + rs.message + "\n";
-        return out;
-    } catch (const Error& e) {
-        return "error: " + e.render(text);
-    }
-}
-
 // An outcome less the two lines where the engines differ by design: EXPLAIN's word that the
 // statement came from a shape, and SHOW SETTINGS' row of the cache's size.
 std::string withoutCacheLines(const std::string& outcome) {

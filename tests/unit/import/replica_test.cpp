@@ -14,7 +14,7 @@ using smql::import::test::replicaPath;
 using smql::import::test::requireInputError;
 using smql::import::test::TempDir;
 using namespace smql::model;
-using Json = nlohmann::ordered_json;
+using OrderedJson = nlohmann::ordered_json;
 using Catch::Detail::Approx;
 
 namespace {
@@ -26,16 +26,17 @@ const Node& bySourceId(const SceneData& scene, std::int64_t id) {
     throw;
 }
 
-Json replicaJson() { return Json::parse(std::ifstream(replicaPath())); }
+OrderedJson replicaJson() { return OrderedJson::parse(std::ifstream(replicaPath())); }
 
 // One object with the given rotation (x, y, z, w), box-frame centre and translation.
-std::string singleObject(const TempDir& dir, Json rotation, Json center, Json translation) {
-    Json file = {
-        {"objects", Json::array({{{"id", 7},
-                                  {"class_name", "box"},
-                                  {"oriented_bbox",
-                                   {{"abb", {{"center", center}, {"sizes", {1.0, 2.0, 3.0}}}},
-                                    {"orientation", {{"rotation", rotation}, {"translation", translation}}}}}}})}};
+std::string singleObject(const TempDir& dir, OrderedJson rotation, OrderedJson center, OrderedJson translation) {
+    OrderedJson file = {
+        {"objects",
+         OrderedJson::array({{{"id", 7},
+                              {"class_name", "box"},
+                              {"oriented_bbox",
+                               {{"abb", {{"center", center}, {"sizes", {1.0, 2.0, 3.0}}}},
+                                {"orientation", {{"rotation", rotation}, {"translation", translation}}}}}}})}};
     return dir.write("single.json", file.dump());
 }
 
@@ -163,12 +164,12 @@ TEST_CASE("Replica: translation is added, tilted boxes fold to their world AABB"
 
 TEST_CASE("Replica: malformed files are rejected with the file and the field", "[import][replica][malformed]") {
     TempDir dir;
-    auto mutated = [&](const std::function<void(Json&)>& change) {
-        Json file = replicaJson();
+    auto mutated = [&](const std::function<void(OrderedJson&)>& change) {
+        OrderedJson file = replicaJson();
         change(file);
         return dir.write("info_semantic.json", file.dump(1));
     };
-    auto box = [](Json& file, int index) -> Json& { return file["objects"][index]["oriented_bbox"]; };
+    auto box = [](OrderedJson& file, int index) -> OrderedJson& { return file["objects"][index]["oriented_bbox"]; };
 
     SECTION("missing file") {
         std::string path = dir.path("absent.json");
@@ -206,58 +207,62 @@ TEST_CASE("Replica: malformed files are rejected with the file and the field", "
         requireInputError([&] { readReplica(path, "r"); }, {path, "1e999"});
     }
     SECTION("no objects array") {
-        std::string path = mutated([](Json& f) { f.erase("objects"); });
+        std::string path = mutated([](OrderedJson& f) { f.erase("objects"); });
         requireInputError([&] { readReplica(path, "r"); }, {path, "missing field 'objects'"});
     }
     SECTION("objects is not an array") {
-        std::string path = mutated([](Json& f) { f["objects"] = "none"; });
+        std::string path = mutated([](OrderedJson& f) { f["objects"] = "none"; });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects: expected an array, got a string"});
     }
     SECTION("empty objects array") {
-        std::string path = mutated([](Json& f) { f["objects"] = Json::array(); });
+        std::string path = mutated([](OrderedJson& f) { f["objects"] = OrderedJson::array(); });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects: empty"});
     }
     SECTION("sizes with two numbers") {
-        std::string path = mutated([&](Json& f) { box(f, 12)["abb"]["sizes"] = {1.0, 2.0}; });
+        std::string path = mutated([&](OrderedJson& f) { box(f, 12)["abb"]["sizes"] = {1.0, 2.0}; });
         requireInputError([&] { readReplica(path, "r"); },
                           {path + ": objects[12].oriented_bbox.abb.sizes: expected 3 numbers, got 2"});
     }
     SECTION("class_name of the wrong type") {
-        std::string path = mutated([](Json& f) { f["objects"][3]["class_name"] = 4; });
+        std::string path = mutated([](OrderedJson& f) { f["objects"][3]["class_name"] = 4; });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[3].class_name: expected a string"});
     }
     SECTION("missing abb") {
-        std::string path = mutated([&](Json& f) { box(f, 0).erase("abb"); });
+        std::string path = mutated([&](OrderedJson& f) { box(f, 0).erase("abb"); });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[0].oriented_bbox: missing field 'abb'"});
     }
     SECTION("a string among the centre's numbers") {
-        std::string path = mutated([&](Json& f) { box(f, 4)["abb"]["center"][1] = "2.0"; });
+        std::string path = mutated([&](OrderedJson& f) { box(f, 4)["abb"]["center"][1] = "2.0"; });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[4].oriented_bbox.abb.center[1]"});
     }
     SECTION("a coordinate far outside any room") {
-        std::string path = mutated([&](Json& f) { box(f, 5)["orientation"]["translation"] = {0.0, 2e4, 0.0}; });
+        std::string path = mutated([&](OrderedJson& f) { box(f, 5)["orientation"]["translation"] = {0.0, 2e4, 0.0}; });
         requireInputError([&] { readReplica(path, "r"); },
                           {path, "objects[5].oriented_bbox.orientation.translation", "from the origin"});
     }
     SECTION("negative size") {
-        std::string path = mutated([&](Json& f) { box(f, 7)["abb"]["sizes"][2] = -0.5; });
+        std::string path = mutated([&](OrderedJson& f) { box(f, 7)["abb"]["sizes"][2] = -0.5; });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[7].oriented_bbox.abb.sizes", "-0.5"});
     }
     SECTION("huge size") {
-        std::string path = mutated([&](Json& f) { box(f, 7)["abb"]["sizes"][0] = 5000.0; });
+        std::string path = mutated([&](OrderedJson& f) { box(f, 7)["abb"]["sizes"][0] = 5000.0; });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[7].oriented_bbox.abb.sizes"});
     }
     SECTION("zero quaternion") {
-        std::string path = mutated([&](Json& f) { box(f, 8)["orientation"]["rotation"] = {0.0, 0.0, 0.0, 0.0}; });
+        std::string path = mutated([&](OrderedJson& f) {
+            box(f, 8)["orientation"]["rotation"] = {0.0, 0.0, 0.0, 0.0};
+        });
         requireInputError([&] { readReplica(path, "r"); },
                           {path, "objects[8].oriented_bbox.orientation.rotation", "unit quaternion"});
     }
     SECTION("quaternion far from unit norm") {
-        std::string path = mutated([&](Json& f) { box(f, 8)["orientation"]["rotation"] = {0.0, 0.0, 0.0, 1.1}; });
+        std::string path = mutated([&](OrderedJson& f) {
+            box(f, 8)["orientation"]["rotation"] = {0.0, 0.0, 0.0, 1.1};
+        });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[8].oriented_bbox.orientation.rotation"});
     }
     SECTION("duplicate ids") {
-        std::string path = mutated([](Json& f) { f["objects"][9]["id"] = f["objects"][2]["id"]; });
+        std::string path = mutated([](OrderedJson& f) { f["objects"][9]["id"] = f["objects"][2]["id"]; });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[9].id: duplicate id", "objects[2].id"});
     }
     SECTION("a key given twice in one object") {
@@ -265,7 +270,7 @@ TEST_CASE("Replica: malformed files are rejected with the file and the field", "
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[1].id", "twice"});
     }
     SECTION("an id that is not an integer") {
-        std::string path = mutated([](Json& f) { f["objects"][1]["id"] = 1.5; });
+        std::string path = mutated([](OrderedJson& f) { f["objects"][1]["id"] = 1.5; });
         requireInputError([&] { readReplica(path, "r"); }, {path, "objects[1].id: expected an integer"});
     }
 }

@@ -15,7 +15,7 @@ using smql::import::test::replicaPath;
 using smql::import::test::requireInputError;
 using smql::import::test::TempDir;
 using namespace smql::model;
-using Json = nlohmann::ordered_json;
+using OrderedJson = nlohmann::ordered_json;
 
 namespace {
 
@@ -106,9 +106,9 @@ TEST_CASE("smql JSON: optional fields take their defaults", "[import][json]") {
 
 TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON path", "[import][json][malformed]") {
     TempDir dir;
-    Json base = Json::parse(writeSceneJson(richScene()));
-    auto mutated = [&](const std::function<void(Json&)>& change) {
-        Json file = base;
+    OrderedJson base = OrderedJson::parse(writeSceneJson(richScene()));
+    auto mutated = [&](const std::function<void(OrderedJson&)>& change) {
+        OrderedJson file = base;
         change(file);
         return dir.write("scene.json", file.dump(2));
     };
@@ -123,48 +123,48 @@ TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON p
         requireInputError(read(path), {path + ":", "not valid JSON"});
     }
     SECTION("a blob that is not base64, or of no node") {
-        std::string path = mutated([](Json& f) {
-            f["blobs"] =
-                Json::array({{{"node", 1}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", "ab!d"}}});
+        std::string path = mutated([](OrderedJson& f) {
+            f["blobs"] = OrderedJson::array(
+                {{{"node", 1}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", "ab!d"}}});
         });
         requireInputError(read(path), {path, "blobs[0].base64", "not base64"});
-        path = mutated([](Json& f) {
-            f["blobs"] =
-                Json::array({{{"node", 99999}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", ""}}});
+        path = mutated([](OrderedJson& f) {
+            f["blobs"] = OrderedJson::array(
+                {{{"node", 99999}, {"name", "x.jpg"}, {"media_type", "image/jpeg"}, {"base64", ""}}});
         });
         requireInputError(read(path), {path, "blobs[0].node", "not the id of a node"});
     }
     SECTION("a capture time that is no time, an alignment that is no rotation, a scale of no room") {
-        std::string path = mutated([](Json& f) { f["scene"]["capture_time"] = "yesterday-ish"; });
+        std::string path = mutated([](OrderedJson& f) { f["scene"]["capture_time"] = "yesterday-ish"; });
         requireInputError(read(path), {path, "scene.capture_time", "'yesterday-ish' is no date and time"});
-        path = mutated([](Json& f) {
-            f["scene"]["alignment"] = Json::array({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+        path = mutated([](OrderedJson& f) {
+            f["scene"]["alignment"] = OrderedJson::array({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
         });
         requireInputError(read(path), {path, "scene.alignment", "not a rotation and a scale"});
-        path = mutated([](Json& f) {
-            f["scene"]["alignment"] = Json::array({1e300, 0, 0, 0, 0, 1e300, 0, 0, 0, 0, 1e300, 0, 0, 0, 0, 1});
+        path = mutated([](OrderedJson& f) {
+            f["scene"]["alignment"] = OrderedJson::array({1e300, 0, 0, 0, 0, 1e300, 0, 0, 0, 0, 1e300, 0, 0, 0, 0, 1});
         });
         requireInputError(read(path), {path, "scene.alignment", "not a rotation and a scale"});
-        path = mutated([](Json& f) {
-            f["scene"]["alignment"] = Json::array({1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1});
+        path = mutated([](OrderedJson& f) {
+            f["scene"]["alignment"] = OrderedJson::array({1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1});
         });
         requireInputError(read(path), {path, "scene.alignment", "not a rotation and a scale"});
-        path = mutated([](Json& f) { f["scene"]["scale"] = 1e300; });
+        path = mutated([](OrderedJson& f) { f["scene"]["scale"] = 1e300; });
         requireInputError(read(path), {path, "scene.scale", "not a plausible number of metres per capture unit"});
         // A time in another written form is kept in UTC's one form, so that AS OF compares it.
-        path = mutated([](Json& f) { f["scene"]["capture_time"] = "2026-11-21 12:00+02:00"; });
+        path = mutated([](OrderedJson& f) { f["scene"]["capture_time"] = "2026-11-21 12:00+02:00"; });
         CHECK(readSceneJson(path).info.captureTime == "2026-11-21T10:00:00Z");
     }
     SECTION("a NUL in a name or a text, which would cut it short and stop every later fleet push") {
-        std::string path = mutated([](Json& f) { f["nodes"][0]["text"] = std::string("a\0b", 3); });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][0]["text"] = std::string("a\0b", 3); });
         requireInputError(read(path), {path, "nodes[0].text", "NUL"});
-        path = mutated([](Json& f) { f["nodes"][0]["category"] = std::string("so\0fa", 5); });
+        path = mutated([](OrderedJson& f) { f["nodes"][0]["category"] = std::string("so\0fa", 5); });
         requireInputError(read(path), {path, "nodes[0].category", "NUL"});
     }
     SECTION("a yaw that is not a plausible number of radians") {
-        std::string path = mutated([](Json& f) { f["nodes"][0]["box"]["yaw"] = 1e300; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][0]["box"]["yaw"] = 1e300; });
         requireInputError(read(path), {path, "nodes[0].box.yaw: 1e+300 is not an angle in radians"});
-        path = mutated([](Json& f) { f["scene"]["viewpoint"]["facing_yaw"] = -180; });
+        path = mutated([](OrderedJson& f) { f["scene"]["viewpoint"]["facing_yaw"] = -180; });
         requireInputError(read(path), {path, "scene.viewpoint.facing_yaw: -180 is not an angle", "degrees"});
     }
     SECTION("text that is not UTF-8 is named by line and column, and the message stays UTF-8") {
@@ -180,78 +180,78 @@ TEST_CASE("smql JSON: malformed scenes are rejected with the file and the JSON p
         }
     }
     SECTION("unsupported version") {
-        std::string path = mutated([](Json& f) { f["smql_scene"] = 2; });
+        std::string path = mutated([](OrderedJson& f) { f["smql_scene"] = 2; });
         requireInputError(read(path), {path, "smql_scene: unsupported version 2"});
     }
     SECTION("missing scene name") {
-        std::string path = mutated([](Json& f) { f["scene"].erase("name"); });
+        std::string path = mutated([](OrderedJson& f) { f["scene"].erase("name"); });
         requireInputError(read(path), {path, "scene: missing field 'name'"});
     }
     SECTION("alignment with 15 numbers") {
-        std::string path = mutated([](Json& f) { f["scene"]["alignment"].erase(15); });
+        std::string path = mutated([](OrderedJson& f) { f["scene"]["alignment"].erase(15); });
         requireInputError(read(path), {path, "scene.alignment: expected 16 numbers, got 15"});
     }
     SECTION("a misspelt field") {
-        std::string path = mutated([](Json& f) { f["nodes"][4]["hiden"] = true; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][4]["hiden"] = true; });
         requireInputError(read(path), {path, "nodes[4].hiden: unknown field"});
     }
     SECTION("unknown kind") {
-        std::string path = mutated([](Json& f) { f["nodes"][3]["kind"] = "furniture"; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][3]["kind"] = "furniture"; });
         requireInputError(read(path), {path, "nodes[3].kind: unknown kind 'furniture'"});
     }
     SECTION("unknown geometry") {
-        std::string path = mutated([](Json& f) { f["nodes"][3]["geometry"] = "sphere"; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][3]["geometry"] = "sphere"; });
         requireInputError(read(path), {path, "nodes[3].geometry: unknown geometry 'sphere'"});
     }
     SECTION("geometry without a box") {
-        std::string path = mutated([](Json& f) { f["nodes"][5].erase("box"); });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][5].erase("box"); });
         requireInputError(read(path), {path, "nodes[5]: missing field 'box'"});
     }
     SECTION("negative size") {
-        std::string path = mutated([](Json& f) { f["nodes"][6]["box"]["size"][0] = -1.0; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][6]["box"]["size"][0] = -1.0; });
         requireInputError(read(path), {path, "nodes[6].box.size", "-1"});
     }
     SECTION("parent that is not a node") {
-        std::string path = mutated([](Json& f) { f["nodes"][2]["parent"] = 500; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][2]["parent"] = 500; });
         requireInputError(read(path), {path, "nodes[2].parent: parent 500 is not the id of a node"});
     }
     SECTION("cycle in parents") {
-        std::string path = mutated([](Json& f) {
+        std::string path = mutated([](OrderedJson& f) {
             f["nodes"][1]["parent"] = 3;
             f["nodes"][2]["parent"] = 2;
         });
         requireInputError(read(path), {path, "parents form a cycle: 2 -> 3 -> 2"});
     }
     SECTION("duplicate node ids") {
-        std::string path = mutated([](Json& f) { f["nodes"][7]["id"] = 3; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][7]["id"] = 3; });
         requireInputError(read(path), {path, "nodes[7].id: duplicate id 3"});
     }
     SECTION("an id out of range") {
-        std::string path = mutated([](Json& f) { f["nodes"][7]["id"] = 0; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][7]["id"] = 0; });
         requireInputError(read(path), {path, "nodes[7].id: id 0 is out of range"});
     }
     SECTION("an attribute that is not a string") {
-        std::string path = mutated([](Json& f) { f["nodes"][0]["attributes"]["size"] = 3; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][0]["attributes"]["size"] = 3; });
         requireInputError(read(path), {path, "nodes[0].attributes.size: expected a string"});
     }
     SECTION("confidence above 1") {
-        std::string path = mutated([](Json& f) { f["nodes"][0]["confidence"] = 1.5; });
+        std::string path = mutated([](OrderedJson& f) { f["nodes"][0]["confidence"] = 1.5; });
         requireInputError(read(path), {path, "nodes[0].confidence", "out of range"});
     }
     SECTION("unknown relation type") {
-        std::string path = mutated([](Json& f) { f["relations"][0]["type"] = "under"; });
+        std::string path = mutated([](OrderedJson& f) { f["relations"][0]["type"] = "under"; });
         requireInputError(read(path), {path, "relations[0].type: unknown relation type 'under'"});
     }
     SECTION("relation to a missing node") {
-        std::string path = mutated([](Json& f) { f["relations"][1]["object"] = 1000; });
+        std::string path = mutated([](OrderedJson& f) { f["relations"][1]["object"] = 1000; });
         requireInputError(read(path), {path, "relations[1].object: 1000 is not the id of a node"});
     }
     SECTION("relation frame that is not a frame") {
-        std::string path = mutated([](Json& f) { f["relations"][1]["frame"] = 5; });
+        std::string path = mutated([](OrderedJson& f) { f["relations"][1]["frame"] = 5; });
         requireInputError(read(path), {path, "relations[1].frame: node 5 has kind anchor, not frame"});
     }
     SECTION("support of zero") {
-        std::string path = mutated([](Json& f) { f["relations"][0]["support"] = 0; });
+        std::string path = mutated([](OrderedJson& f) { f["relations"][0]["support"] = 0; });
         requireInputError(read(path), {path, "relations[0].support"});
     }
 }

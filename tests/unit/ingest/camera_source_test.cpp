@@ -14,16 +14,6 @@ using namespace smql;
 using namespace smql::ingest;
 using namespace smql::ingest::test;
 
-namespace {
-
-bool hasNote(const Capture& capture, const std::string& fragment) {
-    for (const std::string& note : capture.notes)
-        if (note.find(fragment) != std::string::npos) return true;
-    return false;
-}
-
-}  // namespace
-
 TEST_CASE("--camera and --fov are parsed and checked", "[capture][camera]") {
     Intrinsics k = parseCameraOption("1450, 1440.5,959.5,539.5");
     CHECK(k.fx == 1450);

@@ -2,6 +2,7 @@
 // images and error assertions.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -16,6 +17,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "ingest/capture/capture.hpp"
 #include "model/error.hpp"
 
 namespace smql::ingest::test {
@@ -23,6 +25,12 @@ namespace smql::ingest::test {
 namespace fs = std::filesystem;
 
 inline std::string diningPath() { return std::string(SMQL_SHARED_DATA) + "/rgbd-dining"; }
+
+// Whether one of the capture's notes holds `fragment`.
+inline bool hasNote(const Capture& capture, const std::string& fragment) {
+    return std::any_of(capture.notes.begin(), capture.notes.end(),
+                       [&](const std::string& note) { return note.find(fragment) != std::string::npos; });
+}
 
 // A fresh folder under the system temp folder, removed with everything in it.
 class TempDir {

@@ -43,11 +43,6 @@ void checkRotation(const Pose& pose, const std::array<double, 9>& expected, doub
     for (int i = 0; i < 9; ++i) CHECK(pose.rotation[i] == Approx(expected[i]).margin(margin));
 }
 
-bool hasNote(const Capture& capture, const std::string& fragment) {
-    return std::any_of(capture.notes.begin(), capture.notes.end(),
-                       [&](const std::string& note) { return note.find(fragment) != std::string::npos; });
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------

@@ -58,11 +58,11 @@ void expectError(const std::string& json, const std::string& field) {
     }
 }
 
-struct Measured {
+struct DetectionScores {
     double objectsF1 = 0, color = 0;
 };
 
-Measured ingestDetections(const std::string& capturePath, const synth::SynthResult& synth) {
+DetectionScores ingestDetections(const std::string& capturePath, const synth::SynthResult& synth) {
     SilentProgress silent;
     IngestOptions options;
     options.sceneName = "synth-3";

@@ -79,12 +79,6 @@ model::SceneData office() {
     return data;
 }
 
-std::vector<model::Node> nodesOf(const ReadTransaction& txn, NodeId sceneId) {
-    std::vector<model::Node> nodes;
-    txn.forEachNodeInScene(sceneId, [&](const model::Node& n) { nodes.push_back(n); });
-    return nodes;
-}
-
 std::vector<model::Relation> relationsIn(const ReadTransaction& txn, NodeId sceneId) {
     std::vector<model::Relation> relations;
     txn.forEachRelationInScene(sceneId, [&](const model::Relation& r) { relations.push_back(r); });

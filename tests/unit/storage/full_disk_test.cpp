@@ -55,7 +55,7 @@ private:
     bool mounted_ = false;
 };
 
-std::string errorOf(const std::function<void()>& step) {
+std::string messageAndHintOf(const std::function<void()>& step) {
     try {
         step();
     } catch (const Error& e) {
@@ -83,7 +83,7 @@ TEST_CASE("creating a database on a full file system is refused and leaves nothi
     REQUIRE(child >= 0);
     if (child == 0) {
         try {
-            std::string message = errorOf([&] { Database::open(path); });
+            std::string message = messageAndHintOf([&] { Database::open(path); });
             ::_exit(message.find("no space left on device") != std::string::npos &&
                             message.find("free some space") != std::string::npos
                         ? 0
@@ -123,7 +123,7 @@ TEST_CASE("an import that fills the file system says so and changes nothing", "[
     disk.fillLeaving(keep);
     {
         auto db = Database::open(path);
-        std::string message = errorOf([&] {
+        std::string message = messageAndHintOf([&] {
             auto txn = db->beginWrite();
             txn.importScene(largeScene("too-big", 5000));
             txn.commit();

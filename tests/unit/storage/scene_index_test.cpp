@@ -52,12 +52,6 @@ model::SceneData hall(std::string name, std::size_t count) {
     return data;
 }
 
-std::vector<model::Node> nodesOf(const ReadTransaction& txn, NodeId scene) {
-    std::vector<model::Node> nodes;
-    txn.forEachNodeInScene(scene, [&](const model::Node& n) { nodes.push_back(n); });
-    return nodes;
-}
-
 // The index stored for a scene equals the one its records give, and its spatial order holds every
 // node with geometry once, in blocks whose bounds hold their boxes.
 void requireIndexOfRecords(const ReadTransaction& txn, NodeId scene) {

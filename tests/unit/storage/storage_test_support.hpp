@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -31,6 +32,13 @@ void editTable(const std::string& path, const char* table, Edit&& edit) {
     edit(txn, dbi);
     REQUIRE(mdb_txn_commit(txn) == 0);
     mdb_env_close(env);
+}
+
+// Every node record of a scene, in id order, as the store reads them.
+inline std::vector<model::Node> nodesOf(const ReadTransaction& txn, model::NodeId sceneId) {
+    std::vector<model::Node> nodes;
+    txn.forEachNodeInScene(sceneId, [&](const model::Node& n) { nodes.push_back(n); });
+    return nodes;
 }
 
 // Makes the label entries of the database at `path` what an smql before schema version 5 wrote:
