@@ -43,23 +43,48 @@ fi
 # it includes: the standard library's and the other common headers' 100,000 lines once a chunk, not
 # once a file. Every file of ours that the build compiles is checked, alone or in its chunk.
 ours=$(printf '%s\n' "${sources[@]}" | grep -E '\.(cpp|c)$' | sed "s#^#$root/#")
+out=$(mktemp -d)
+# A unit is checked with the configuration of its files' folder, as `clang-tidy FILE` there reads it
+# (the libraries' .clang-tidy adds the function-size limit to the root's list): a chunk lies in the
+# build folder, where clang-tidy would find no configuration or the root's. A target's files, and so
+# a chunk's, share one folder's configuration.
+declare -A configs=()
+config=
+configure_for() {
+  local dir=${1%/*}
+  config=${configs[$dir]:-}
+  if [[ -z $config ]]; then
+    config=$out/config-${#configs[@]}.yaml
+    "$tidy" --dump-config "$1" >"$config" 2>/dev/null
+    configs[$dir]=$config
+  fi
+}
 units=()
 checked=0
 while read -r file; do
   if [[ $file == */Unity/unity_*_c*.c* ]]; then
-    included=$(sed -n 's/^#include "\(.*\)"$/\1/p' "$file" | grep -Fxc -f <(printf '%s\n' "$ours"))
-    ((included > 0)) && units+=("$file") && checked=$((checked + included))
+    mapfile -t included < <(sed -n 's/^#include "\(.*\)"$/\1/p' "$file" | grep -Fx -f <(printf '%s\n' "$ours"))
+    ((${#included[@]} > 0)) || continue
+    configure_for "${included[0]}"
+    checked=$((checked + ${#included[@]}))
   elif grep -Fxq "$file" <<<"$ours"; then
-    units+=("$file")
+    configure_for "$file"
     checked=$((checked + 1))
+  else
+    continue
   fi
+  units+=("$config" "$file")
 done < <(sed -n 's/^ *"file": "\(.*\)",\{0,1\}$/\1/p' "$build/compile_commands.json" | sort -u)
-out=$(mktemp -d)
-# The configuration is named: a chunk lies in the build folder, which may be outside the repository. A
-# run that fails without a finding (a unit that does not parse, a bad option) is a finding too.
+if ((${#units[@]} == 0)); then
+  echo "lint: no file of ours among the units of $build/compile_commands.json: configure and build first (make build)"
+  exit 1
+fi
+# A run that fails without a finding (a unit that does not parse, a bad option) is a finding too.
 printf '%s\n' "${units[@]}" |
-  xargs -P "$jobs" -I{} sh -c '"$1" --config-file="$5/.clang-tidy" -p "$2" --quiet "$3" >"$4/$(echo "$3" | tr / _).log" 2>&1 ||
-    echo "$3: error: clang-tidy exited with status $?" >>"$4/$(echo "$3" | tr / _).log"' _ "$tidy" "$build" {} "$out" "$root"
+  xargs -d '\n' -n 2 -P "$jobs" sh -c 'log="$2/$(echo "$5" | tr / _).log"
+    "$1" --config-file="$4" -p "$3" --quiet "$5" >"$log" 2>&1 ||
+      grep -Eq "(warning|error): " "$log" || echo "$5: error: clang-tidy failed without a finding" >>"$log"' \
+    _ "$tidy" "$out" "$build"
 findings=$(cat "$out"/*.log 2>/dev/null | grep -E '(warning|error): ' | sed "s#^$root/##; s#^$build/include-roots/[^/]*/##" | sort -u)
 rm -rf "$out"
 if [[ -n $findings ]]; then
@@ -67,5 +92,5 @@ if [[ -n $findings ]]; then
   sed 's/^/    /' <<<"$findings"
   failed=1
 fi
-echo "lint: ${#sources[@]} files in the house format check, $checked through clang-tidy in ${#units[@]} translation units: $( ((failed)) && echo findings || echo clean)"
+echo "lint: ${#sources[@]} files in the house format check, $checked through clang-tidy in $((${#units[@]} / 2)) translation units: $( ((failed)) && echo findings || echo clean)"
 exit $failed
