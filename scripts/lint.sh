@@ -60,16 +60,16 @@ configure_for() {
   fi
 }
 units=()
-checked=0
+checked=()
 while read -r file; do
   if [[ $file == */Unity/unity_*_c*.c* ]]; then
     mapfile -t included < <(sed -n 's/^#include "\(.*\)"$/\1/p' "$file" | grep -Fx -f <(printf '%s\n' "$ours"))
     ((${#included[@]} > 0)) || continue
     configure_for "${included[0]}"
-    checked=$((checked + ${#included[@]}))
+    checked+=("${included[@]}")
   elif grep -Fxq "$file" <<<"$ours"; then
     configure_for "$file"
-    checked=$((checked + 1))
+    checked+=("$file")
   else
     continue
   fi
@@ -92,5 +92,5 @@ if [[ -n $findings ]]; then
   sed 's/^/    /' <<<"$findings"
   failed=1
 fi
-echo "lint: ${#sources[@]} files in the house format check, $checked through clang-tidy in $((${#units[@]} / 2)) translation units: $( ((failed)) && echo findings || echo clean)"
+echo "lint: ${#sources[@]} files in the house format check, $(printf '%s\n' "${checked[@]}" | sort -u | wc -l) through clang-tidy in $((${#units[@]} / 2)) translation units: $( ((failed)) && echo findings || echo clean)"
 exit $failed
