@@ -308,8 +308,9 @@ std::optional<std::string> colourOf(const std::string& word) {
 
 Words words(const std::string& text) {
     // "chair(s)", "tv(s)", "box(es)": the benchmark's way of asking for a plural.
-    std::string plain = std::regex_replace(text, std::regex(R"(\((e?s)\))"), "$1");
-    plain = std::regex_replace(plain, std::regex("\xE2\x80\x99"), "'");  // the typographic apostrophe
+    static const std::regex pluralAsked(R"(\((e?s)\))"), apostrophe("\xE2\x80\x99");  // the typographic one
+    std::string plain = std::regex_replace(text, pluralAsked, "$1");
+    plain = std::regex_replace(plain, apostrophe, "'");
     std::string s;
     for (std::size_t i = 0; i < plain.size(); ++i) {
         unsigned char c = static_cast<unsigned char>(plain[i]);
@@ -388,8 +389,9 @@ std::string joined(const Words& w, std::size_t from, std::size_t to) {
 
 std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(const Words& w, std::size_t i) {
     // within 1.5 m of x / within 30 cm of x
-    if (i + 3 < w.size() && w[i] == "within" && std::regex_match(w[i + 1], std::regex("[0-9]+(\\.[0-9]+)?")) &&
-        lengthUnitNamed(w[i + 2]) && w[i + 3] == "of")
+    static const std::regex number("[0-9]+(\\.[0-9]+)?");
+    if (i + 3 < w.size() && w[i] == "within" && std::regex_match(w[i + 1], number) && lengthUnitNamed(w[i + 2]) &&
+        w[i + 3] == "of")
         return std::pair{std::string("near"), std::size_t{4}};
     for (const auto& row : predicatePhrases()) {
         if (i + row.words.size() > w.size()) continue;
@@ -947,8 +949,8 @@ Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pai
                 c.predicate = selfSidePredicate(side, self_->turn);
                 break;
             }
-        c.words = std::regex_replace(std::regex_replace(c.words, std::regex("\\bme\\b"), "you"), std::regex("\\bmy\\b"),
-                                     "your");
+        static const std::regex me("\\bme\\b"), my("\\bmy\\b");
+        c.words = std::regex_replace(std::regex_replace(c.words, me, "you"), my, "your");
     }
     return c;
 }

@@ -15,6 +15,7 @@
 //   ...
 // A form is tried when its opening words match; the first form that reads the whole question wins.
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <regex>
 
@@ -1610,48 +1611,42 @@ private:
         // "what can I use in front of me to make copies?", "what is the name of the thing on my left?":
         // what is there. A question that ends on its preposition ("what can I put my cup on?") asks
         // what affords it, and is read as it is.
-        plain = std::regex_replace(
-            plain,
-            std::regex(
-                R"(^(?!.* (?:on|in|at|into|onto|upon|with)$)(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)"),
-            "what$1 is $2");
-        plain = std::regex_replace(plain, std::regex(R"(^what is the name of (.+)$)"), "which is $1");
+        static const std::regex useFor(
+            R"(^(?!.* (?:on|in|at|into|onto|upon|with)$)(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)");
+        static const std::regex nameOf(R"(^what is the name of (.+)$)");
+        plain = std::regex_replace(plain, useFor, "what$1 is $2");
+        plain = std::regex_replace(plain, nameOf, "which is $1");
         // "the distance between the two chairs", "how far apart are both lamps?": between one of
         // them and the other.
-        plain = std::regex_replace(
-            plain,
-            std::regex(
-                R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+)$)"),
-            "$1 the $2 and the $2");
+        static const std::regex bothOf(
+            R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+)$)");
+        plain = std::regex_replace(plain, bothOf, "$1 the $2 and the $2");
         // "which chair is bigger?", "which lamp is closer to the door?": of them, the one that is most so.
-        static const std::pair<std::string_view, std::string_view> most[] = {
-            {"bigger", "biggest"},   {"larger", "largest"},  {"smaller", "smallest"}, {"taller", "tallest"},
-            {"shorter", "shortest"}, {"longer", "longest"},  {"wider", "widest"},     {"closer", "closest"},
-            {"nearer", "nearest"},   {"farther", "farthest"}};
         static const std::regex compared(R"(^(which|what) ([a-z][a-z ]*?) (is|are) ([a-z]+er)( (?:to|from) .+)?$)");
         if (std::smatch m; std::regex_match(plain, m, compared) && plain.find(" than ") == std::string::npos)
-            for (const auto& [er, est] : most)
-                if (m.str(4) == er)
-                    plain = m.str(1) + " " + m.str(2) + " " + m.str(3) + " the " + std::string(est) + m.str(5);
+            if (const auto most = comparativeOf(m.str(4)))
+                plain = m.str(1) + " " + m.str(2) + " " + m.str(3) + " the " + most->superlative + m.str(5);
 
         // "is the shape of the table round or square?": what shape it is.
-        plain = std::regex_replace(
-            plain,
-            std::regex(
-                R"(^is the (shape|color|colour|material) of (.+?)(?: (?:round|square|rectangular|circular|oval|triangular|rectangle|circle|cylindrical|wood|wooden|metal|plastic|glass|fabric|leather|white|black|brown|gray|grey|red|blue|green|yellow|or))+$)"),
-            "what $1 is $2");
+        static const std::regex shapeChoice(
+            R"(^is the (shape|color|colour|material) of (.+?)(?: (?:round|square|rectangular|circular|oval|triangular|rectangle|circle|cylindrical|wood|wooden|metal|plastic|glass|fabric|leather|white|black|brown|gray|grey|red|blue|green|yellow|or))+$)");
+        plain = std::regex_replace(plain, shapeChoice, "what $1 is $2");
         return plain;
+    }
+
+    static std::string lowered(std::string w) {
+        std::transform(w.begin(), w.end(), w.begin(), [](unsigned char ch) { return std::tolower(ch); });
+        return w;
     }
 
     // "which is bigger between A and B?", "is A or B closer to me?", "which is closer to me, A or
     // B?", "which one is bigger the door or the bed?": the forms the choosing below reads.
     static std::string eitherAsChoice(std::string text) {
-        text = std::regex_replace(
-            text,
-            std::regex(
-                R"(^\s*(?:which|what)(?: one)? is (taller|shorter|bigger|larger|smaller|longer|wider|closer|nearer|farther|higher|lower) between (?:the )?(.+?) and (?:the )?([^?]+)\??\s*$)",
-                std::regex::icase),
-            "which of $2 and $3 is $1?");
+        static const std::regex between(
+            R"(^\s*(?:which|what)(?: one)? is ([A-Za-z]+) between (?:the )?(.+?) and (?:the )?([^?]+)\??\s*$)",
+            std::regex::icase);
+        if (std::smatch b; std::regex_match(text, b, between) && comparativeOf(lowered(b.str(1))))
+            text = "which of " + b.str(2) + " and " + b.str(3) + " is " + b.str(1) + "?";
         {
             static const std::regex eitherCloser(
                 R"(^\s*(?:is|are) (?:the )?(.+?) or (?:the )?(.+?) ([A-Za-z]+)( (?:to|from) (?:me|my position|where i am))\??\s*$)",
@@ -1682,9 +1677,15 @@ private:
     static std::string questionWordRespelt(const std::string& plain, const Lexicon& lexicon) {
         const std::size_t space = plain.find(' ');
         if (space == std::string::npos) return plain;
+        static constexpr std::array<std::string_view, 8> kAsks{"what", "where", "which", "how",
+                                                               "who",  "when",  "is",    "are"};
         const std::string first = plain.substr(0, space);
-        if (first.size() < 3 || lexicon.lookUp(first).how != WordMatch::How::Unknown) return plain;
-        for (std::string_view asks : {"what", "where", "which", "how", "who", "when", "is", "are"})
+        // A question word as written is looked up no further: "which" is no noun in WordNet, and the
+        // look-up would try each word one letter away from it (40 ms).
+        if (first.size() < 3 || std::find(kAsks.begin(), kAsks.end(), first) != kAsks.end() ||
+            lexicon.lookUp(first).how != WordMatch::How::Unknown)
+            return plain;
+        for (std::string_view asks : kAsks)
             if (model::editDistance(first, asks) == 1) return std::string(asks) + plain.substr(space);
         return plain;
     }
@@ -1793,7 +1794,8 @@ public:
             for (std::size_t at = 0; at <= inner.size();) {
                 std::size_t comma = inner.find(',', at);
                 std::string item = inner.substr(at, comma - at);
-                item = std::regex_replace(item, std::regex(R"(^\s*(or|and)\s+|^\s+|\s+$)"), "");
+                static const std::regex joiner(R"(^\s*(or|and)\s+|^\s+|\s+$)");
+                item = std::regex_replace(item, joiner, "");
                 if (!item.empty()) choices.push_back(item);
                 if (comma == std::string::npos) break;
                 at = comma + 1;
@@ -1804,8 +1806,7 @@ public:
         // unit, however placed: said at the end, where QuestionReader::takeUnit reads it.
         static const std::regex unitGroup(R"(\(\s*((?:in\s+|unit:?\s*)?(?:square\s+)?)([A-Za-z]+)\s*\))");
         for (std::smatch u; std::regex_search(text, u, unitGroup);) {
-            std::string word = u.str(2);
-            std::transform(word.begin(), word.end(), word.begin(), [](unsigned char ch) { return std::tolower(ch); });
+            const std::string word = lowered(u.str(2));
             if (!lengthUnitNamed(word)) break;
             bool square = u.str(1).find("square") != std::string::npos;
             text = u.prefix().str() + " " + u.suffix().str() + (square ? " in square " : " in ") + word;
@@ -1819,26 +1820,24 @@ public:
         static const std::regex chooseBefore(
             R"(^\s*(?:which|what)(?: one)? of (.+?)\band\b(.+?)\bis (?:the )?([A-Za-z]+)((?: (?:to|from) [^?]+)?)\??\s*$)",
             std::regex::icase);
-        auto lower = [](std::string w) {
-            std::transform(w.begin(), w.end(), w.begin(), [](unsigned char ch) { return std::tolower(ch); });
-            return w;
-        };
         text = eitherAsChoice(std::move(text));
         std::optional<Comparative> chosen;
         std::string chosenTo, chosenA, chosenB;
-        if (choices.empty() && std::regex_search(text, m, chooseAfter) && comparativeOf(lower(m.str(1)))) {
-            chosen = comparativeOf(lower(m.str(1)));
+        if (choices.empty() && std::regex_search(text, m, chooseAfter) && comparativeOf(lowered(m.str(1)))) {
+            chosen = comparativeOf(lowered(m.str(1)));
             chosenTo = m.str(2), chosenA = m.str(3), chosenB = m.str(4);
-        } else if (choices.empty() && std::regex_search(text, m, chooseBefore) && comparativeOf(lower(m.str(3)))) {
-            chosen = comparativeOf(lower(m.str(3)));
+        } else if (choices.empty() && std::regex_search(text, m, chooseBefore) && comparativeOf(lowered(m.str(3)))) {
+            chosen = comparativeOf(lowered(m.str(3)));
             chosenTo = m.str(4), chosenA = m.str(1), chosenB = m.str(2);
         }
         if (chosen && (chosen->measure == "distance") == !chosenTo.empty()) {
             for (std::string item : {chosenA, chosenB}) {
-                item = std::regex_replace(item, std::regex(R"(^[\s,]+|[\s,]+$)"), "");
+                static const std::regex edges(R"(^[\s,]+|[\s,]+$)");
+                item = std::regex_replace(item, edges, "");
                 if (!item.empty()) choices.push_back(item);
             }
-            std::string to = std::regex_replace(chosenTo, std::regex(R"(^\s*(?:to|from)\s+)"), "");
+            static const std::regex toFrom(R"(^\s*(?:to|from)\s+)");
+            std::string to = std::regex_replace(chosenTo, toFrom, "");
             text = chosen->measure == "distance" ? fmt::format("which of these is the {} {} {}?", chosen->superlative,
                                                                chosen->descending ? "from" : "to", to)
                                                  : fmt::format("which of these is the {}?", chosen->superlative);
@@ -1867,10 +1866,12 @@ public:
         std::optional<std::string> stateWords;
         plain = readAsAsked(plain, stateWords);
         // "what type of chair ..." asks which chair.
-        plain = std::regex_replace(plain, std::regex("^what (?:type|kind|sort|types|kinds) of "), "which ");
-        plain = std::regex_replace(plain, std::regex(" please$"), "");
+        static const std::regex kindOf("^what (?:type|kind|sort|types|kinds) of "), please(" please$"),
+            myClock(R"(\bmy (?:\w+ )?o clock\b)");
+        plain = std::regex_replace(plain, kindOf, "which ");
+        plain = std::regex_replace(plain, please, "");
         if (plain.empty()) throw cannotTranslate(question.text, "", "");
-        if (!pose && std::regex_search(plain, std::regex(R"(\bmy (?:\w+ )?o clock\b)")))
+        if (!pose && std::regex_search(plain, myClock))
             throw Error(ErrorKind::Binding, "'o'clock' needs where you are and which way you face", std::nullopt,
                         "say it first, as in: I am sitting on the bed facing the window. What is at my 3 o'clock?");
         QuestionReader reader(question, lexicon);
