@@ -1,8 +1,13 @@
 #include "engine/ask/wordnet.hpp"
 
 #include <algorithm>
+#include <array>
+#include <fstream>
 #include <map>
 #include <mutex>
+#include <string_view>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include <wn.h>
@@ -44,6 +49,9 @@ bool available() {
 
 std::vector<std::string> nounBaseForms(const std::string& word) {
     std::lock_guard guard(lock());
+    // Each word of a question is looked up with every question (at most the vocabulary asked).
+    static std::map<std::string, std::vector<std::string>> known;
+    if (auto it = known.find(word); it != known.end()) return it->second;
     std::vector<std::string> out;
     if (!open() || word.empty()) return out;
     std::string key = wordNetSpelling(word);
@@ -58,7 +66,58 @@ std::vector<std::string> nounBaseForms(const std::string& word) {
         if (std::find(out.begin(), out.end(), self) == out.end()) out.push_back(self);
         free_index(index);
     }
+    known.emplace(word, out);
     return out;
+}
+
+namespace {
+
+// The first word of each line of a WordNet file: the lemmas of an index, the inflected forms of an
+// exception list. The index's licence lines start with a space.
+void readFirstWords(const std::string& path, std::unordered_set<std::string>& into) {
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty() && line.front() != ' ') into.insert(line.substr(0, line.find(' ')));
+}
+
+// What the noun index and exceptions hold, read when first asked (the caller holds the lock). Empty
+// when the files cannot be read: mayBeNoun then leaves every word to the library.
+const std::unordered_set<std::string>& nounForms() {
+    static const std::unordered_set<std::string> forms = [] {
+        std::unordered_set<std::string> out;
+        const std::string dir = SetSearchdir();
+        readFirstWords(dir + "/index.noun", out);
+        readFirstWords(dir + "/noun.exc", out);
+        return out;
+    }();
+    return forms;
+}
+
+}  // namespace
+
+bool mayBeNoun(const std::string& word) {
+    std::lock_guard guard(lock());
+    if (!open() || word.empty()) return false;
+    const auto& forms = nounForms();
+    const std::string key = wordNetSpelling(word);
+    if (forms.empty() || forms.count(key) > 0) return true;
+    // WordNet's endings for nouns (morph.c: "boxes" -> box, "women" -> woman, "flies" -> fly), and
+    // "-ful" measures ("cupsful"), which it reads by the word before.
+    static constexpr std::array<std::pair<std::string_view, std::string_view>, 8> kEndings{{{"s", ""},
+                                                                                            {"ses", "s"},
+                                                                                            {"xes", "x"},
+                                                                                            {"zes", "z"},
+                                                                                            {"ches", "ch"},
+                                                                                            {"shes", "sh"},
+                                                                                            {"men", "man"},
+                                                                                            {"ies", "y"}}};
+    const std::string_view k = key;
+    if (k.ends_with("ful")) return true;
+    for (const auto& [ending, base] : kEndings)
+        if (k.size() > ending.size() && k.ends_with(ending) &&
+            forms.count(std::string(k.substr(0, k.size() - ending.size())) + std::string(base)) > 0)
+            return true;
+    return false;
 }
 
 std::vector<Sense> nounSenses(const std::string& word) {

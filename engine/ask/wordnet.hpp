@@ -27,6 +27,11 @@ bool available();
 // The noun base forms WordNet knows for `word` ("mice" -> mouse, "benches" -> bench), the word
 // itself first when it is a noun.
 std::vector<std::string> nounBaseForms(const std::string& word);
+// False when WordNet surely knows no noun of which `word` is a form: it is in neither the noun
+// index nor the noun exceptions, and no ending a plural drops gives a word of the index. Read from
+// the files once a process and answered in memory, so a search over many candidates (the words
+// one letter away from a misspelling) asks the library's file searches only of the few that pass.
+bool mayBeNoun(const std::string& word);
 // The noun senses of a base form, most frequent first; empty for a word WordNet does not know as
 // a noun.
 std::vector<Sense> nounSenses(const std::string& word);
