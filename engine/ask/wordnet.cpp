@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <array>
-#include <fstream>
+#include <cstdio>
 #include <map>
 #include <mutex>
 #include <string_view>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <wn.h>
 
 namespace smql::ask::wordnet {
@@ -22,10 +25,136 @@ std::mutex& lock() {
     return m;
 }
 
+// What WordNet's files hold, mapped when the library opens: each part of speech's index (which
+// the library then searches in memory) and its exception list. Both are sorted by their lines'
+// first words, byte by byte, as the library's own binary search reads them.
+struct Dictionary {
+    std::array<std::string_view, NUMPARTS + 1> index;  // by part of speech (NOUN ... ADV)
+    std::array<std::string_view, NUMPARTS + 1> exceptions;
+};
+
+// A file mapped for the process's life (its pages read as a search touches them): empty when it
+// cannot be.
+std::string_view mappedFile(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return {};
+    struct stat info {};
+    void* at = MAP_FAILED;
+    if (::fstat(fd, &info) == 0 && info.st_size > 0)
+        at = ::mmap(nullptr, static_cast<std::size_t>(info.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+    ::close(fd);
+    if (at == MAP_FAILED) return {};
+    return {static_cast<const char*>(at), static_cast<std::size_t>(info.st_size)};
+}
+
+// Whether a line of the sorted `text` starts with the word `key` (then a space): a binary search
+// over the text's bytes, each step on the line that starts after the middle. The index's licence
+// lines start with a space and sort first.
+bool holdsWord(std::string_view text, std::string_view key) {
+    // Lines that start before `low` have a smaller first word, those that start at `high` or after
+    // a larger one.
+    std::size_t low = 0, high = text.size();
+    while (low < high) {
+        const std::size_t middle = low + (high - low) / 2;
+        // The first line that starts at `middle` or after it.
+        std::size_t start = 0;
+        if (middle > 0) {
+            start = text.find('\n', middle - 1);
+            start = start == std::string_view::npos ? text.size() : start + 1;
+        }
+        if (start >= high) {  // none starts in [middle, high)
+            high = middle;
+            continue;
+        }
+        const std::string_view line = text.substr(start, text.find('\n', start) - start);
+        const std::string_view word = line.substr(0, line.find(' '));
+        if (word == key) return true;
+        if (word < key)
+            low = start + line.size() + 1;
+        else
+            high = start;
+    }
+    return false;
+}
+
+Dictionary& dictionary() {
+    static Dictionary d;
+    return d;
+}
+
+// The library binary-searches its index files through stdio, and glibc's fseek drops the buffer, so
+// each step of a search read the file again: a word's look-up cost 20-odd system calls. The index
+// files are mapped instead, and the library searches them in memory (fmemopen reads the mapping,
+// and a mode "r" stream never writes to it). Its exception lists stay its own streams (morph.c
+// keeps them), so a look-up is first tested here, in memory. Where a file cannot be mapped, the
+// library keeps its stream and listed() and inflects() pass every word.
+void mapDictionary() {
+    Dictionary& d = dictionary();
+    const std::string dir = SetSearchdir();
+    for (int pos = 1; pos <= NUMPARTS; ++pos) {
+        const auto at = static_cast<std::size_t>(pos);
+        d.exceptions[at] = mappedFile(dir + "/" + partnames[pos] + ".exc");
+        if (d.exceptions[at].empty()) continue;
+        d.index[at] = mappedFile(dir + "/index." + partnames[pos]);
+        if (d.index[at].empty() || !indexfps[pos]) continue;
+        if (FILE* memory = fmemopen(const_cast<char*>(d.index[at].data()), d.index[at].size(), "r")) {
+            std::fclose(indexfps[pos]);
+            indexfps[pos] = memory;
+        }
+    }
+}
+
 // Called with the lock held.
 bool open() {
-    static const bool opened = wninit() == 0;
+    static const bool opened = [] {
+        if (wninit() != 0) return false;
+        mapDictionary();
+        return true;
+    }();
     return opened;
+}
+
+// `key` as the library's searches read it: in lower case, a space as '_'.
+std::string looked(std::string key) {
+    for (char& c : key) c = c == ' ' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return key;
+}
+
+// Whether index_lookup may find `key` in the part of speech's index: false only when the mapped
+// index surely lacks it. Called with the lock held, after open(), as the two below.
+bool listed(const std::string& key, int pos) {
+    const std::string_view index = dictionary().index[static_cast<std::size_t>(pos)];
+    return index.empty() || holdsWord(index, looked(key));
+}
+
+// Whether morphstr may find a base form of `key` in the part of speech: false only when the word is
+// in no exception list and no ending the library's morphology drops (morph.c: "boxes" -> box,
+// "women" -> woman, "flies" -> fly, "sitting" -> sit, "softer" -> soft) leaves a word of the index.
+// Phrases and words with hyphens or periods, which the library also reads in other spellings, and
+// "-ful" measures, which it reads by the word before, pass.
+bool inflects(const std::string& word, int pos) {
+    const Dictionary& d = dictionary();
+    const std::string_view index = d.index[static_cast<std::size_t>(pos)];
+    const std::string key = looked(word);
+    if (index.empty() || holdsWord(d.exceptions[static_cast<std::size_t>(pos)], key) ||
+        key.find_first_of("_-.") != std::string::npos || (pos == NOUN && key.ends_with("ful")))
+        return true;
+    struct Ending {
+        int pos;
+        std::string_view suffix, base;
+    };
+    static constexpr std::array<Ending, 20> kEndings{{
+        {NOUN, "s", ""},      {NOUN, "ses", "s"},   {NOUN, "xes", "x"}, {NOUN, "zes", "z"}, {NOUN, "ches", "ch"},
+        {NOUN, "shes", "sh"}, {NOUN, "men", "man"}, {NOUN, "ies", "y"}, {VERB, "s", ""},    {VERB, "ies", "y"},
+        {VERB, "es", "e"},    {VERB, "es", ""},     {VERB, "ed", "e"},  {VERB, "ed", ""},   {VERB, "ing", "e"},
+        {VERB, "ing", ""},    {ADJ, "er", ""},      {ADJ, "est", ""},   {ADJ, "er", "e"},   {ADJ, "est", "e"},
+    }};
+    const std::string_view k = key;
+    for (const auto& e : kEndings)
+        if (e.pos == pos && k.size() > e.suffix.size() && k.ends_with(e.suffix) &&
+            holdsWord(index, std::string(k.substr(0, k.size() - e.suffix.size())) + std::string(e.base)))
+            return true;
+    return false;
 }
 
 std::string categorySpelling(const char* word) {
@@ -57,11 +186,12 @@ std::vector<std::string> nounBaseForms(const std::string& word) {
     std::string key = wordNetSpelling(word);
     // morphstr returns the first base form, then the next ones for a null argument. Its forms
     // come first: "seats" is also a noun of its own in WordNet, but people mean seat.
-    for (char* form = morphstr(key.data(), NOUN); form; form = morphstr(nullptr, NOUN)) {
-        std::string base = categorySpelling(form);
-        if (std::find(out.begin(), out.end(), base) == out.end()) out.push_back(base);
-    }
-    if (IndexPtr index = index_lookup(key.data(), NOUN)) {
+    if (inflects(key, NOUN))
+        for (char* form = morphstr(key.data(), NOUN); form; form = morphstr(nullptr, NOUN)) {
+            std::string base = categorySpelling(form);
+            if (std::find(out.begin(), out.end(), base) == out.end()) out.push_back(base);
+        }
+    if (IndexPtr index = listed(key, NOUN) ? index_lookup(key.data(), NOUN) : nullptr) {
         std::string self = categorySpelling(index->wd);
         if (std::find(out.begin(), out.end(), self) == out.end()) out.push_back(self);
         free_index(index);
@@ -70,54 +200,11 @@ std::vector<std::string> nounBaseForms(const std::string& word) {
     return out;
 }
 
-namespace {
-
-// The first word of each line of a WordNet file: the lemmas of an index, the inflected forms of an
-// exception list. The index's licence lines start with a space.
-void readFirstWords(const std::string& path, std::unordered_set<std::string>& into) {
-    std::ifstream in(path);
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty() && line.front() != ' ') into.insert(line.substr(0, line.find(' ')));
-}
-
-// What the noun index and exceptions hold, read when first asked (the caller holds the lock). Empty
-// when the files cannot be read: mayBeNoun then leaves every word to the library.
-const std::unordered_set<std::string>& nounForms() {
-    static const std::unordered_set<std::string> forms = [] {
-        std::unordered_set<std::string> out;
-        const std::string dir = SetSearchdir();
-        readFirstWords(dir + "/index.noun", out);
-        readFirstWords(dir + "/noun.exc", out);
-        return out;
-    }();
-    return forms;
-}
-
-}  // namespace
-
 bool mayBeNoun(const std::string& word) {
     std::lock_guard guard(lock());
     if (!open() || word.empty()) return false;
-    const auto& forms = nounForms();
     const std::string key = wordNetSpelling(word);
-    if (forms.empty() || forms.count(key) > 0) return true;
-    // WordNet's endings for nouns (morph.c: "boxes" -> box, "women" -> woman, "flies" -> fly), and
-    // "-ful" measures ("cupsful"), which it reads by the word before.
-    static constexpr std::array<std::pair<std::string_view, std::string_view>, 8> kEndings{{{"s", ""},
-                                                                                            {"ses", "s"},
-                                                                                            {"xes", "x"},
-                                                                                            {"zes", "z"},
-                                                                                            {"ches", "ch"},
-                                                                                            {"shes", "sh"},
-                                                                                            {"men", "man"},
-                                                                                            {"ies", "y"}}};
-    const std::string_view k = key;
-    if (k.ends_with("ful")) return true;
-    for (const auto& [ending, base] : kEndings)
-        if (k.size() > ending.size() && k.ends_with(ending) &&
-            forms.count(std::string(k.substr(0, k.size() - ending.size())) + std::string(base)) > 0)
-            return true;
-    return false;
+    return listed(key, NOUN) || inflects(key, NOUN);
 }
 
 std::vector<Sense> nounSenses(const std::string& word) {
@@ -222,12 +309,13 @@ std::vector<std::string> baseForms(const std::string& word) {
     if (open() && !word.empty()) {
         std::string key = wordNetSpelling(word);
         for (int pos : {NOUN, VERB, ADJ, ADV}) {
-            if (IndexPtr index = index_lookup(key.data(), pos)) {
+            if (IndexPtr index = listed(key, pos) ? index_lookup(key.data(), pos) : nullptr) {
                 add(categorySpelling(index->wd));
                 free_index(index);
             }
-            for (char* form = morphstr(key.data(), pos); form; form = morphstr(nullptr, pos))
-                add(categorySpelling(form));
+            if (inflects(key, pos))
+                for (char* form = morphstr(key.data(), pos); form; form = morphstr(nullptr, pos))
+                    add(categorySpelling(form));
         }
     }
     if (out.empty()) out.push_back(word);
@@ -239,11 +327,11 @@ namespace {
 
 // Whether WordNet knows the word, or a base form of it, in a part of speech (the caller holds the lock).
 bool inIndex(std::string key, int pos) {
-    if (IndexPtr index = index_lookup(key.data(), pos)) {
+    if (IndexPtr index = listed(key, pos) ? index_lookup(key.data(), pos) : nullptr) {
         free_index(index);
         return true;
     }
-    return morphstr(key.data(), pos) != nullptr;
+    return inflects(key, pos) && morphstr(key.data(), pos) != nullptr;
 }
 
 }  // namespace

@@ -403,4 +403,21 @@ TEST_CASE("WordNet's nouns tested in memory pass every word the library reads as
     CHECK(nouns >= 14);                 // the plurals, exceptions and measure above, and the right spellings
     CHECK(passed < words.size() / 10);  // and most of the search's words never reach the library's files
     CHECK_FALSE(ask::wordnet::mayBeNoun("refridgerator"));
+    // The other parts of speech, tested the same way before the library's searches: each ending and
+    // exception of theirs still reaches its base form.
+    auto hasBase = [](const std::string& word, const std::string& base) {
+        const auto forms = ask::wordnet::baseForms(word);
+        return std::find(forms.begin(), forms.end(), base) != forms.end();
+    };
+    CHECK(hasBase("sitting", "sit"));
+    CHECK(hasBase("hanged", "hang"));
+    CHECK(hasBase("carries", "carry"));
+    CHECK(hasBase("placed", "place"));
+    CHECK(hasBase("ran", "run"));
+    CHECK(hasBase("softer", "soft"));
+    CHECK(hasBase("larger", "large"));
+    CHECK(hasBase("better", "good"));
+    CHECK(hasBase("coffee-table", "coffee-table"));
+    CHECK(ask::wordnet::isKnown("leaning"));
+    CHECK_FALSE(ask::wordnet::isKnown("refridgerator"));
 }
