@@ -1,6 +1,7 @@
 #include "storage/lmdb_env.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <sys/sysmacros.h>
@@ -634,6 +635,20 @@ std::string_view Environment::bytes(const MDB_val& v) const {
                         "smql check names what is damaged; smql check --salvage OUT keeps the sound scenes");
     }
     return {at, v.mv_size};
+}
+
+void Environment::mapIn(std::string_view bytes) const {
+#ifdef MADV_POPULATE_READ
+    const char* at = bytes.data();
+    if (!map_ || at < map_ || at >= map_ + mapSize_) return;
+    const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+    const auto begin = reinterpret_cast<std::uintptr_t>(at) & ~(page - 1);
+    const auto end = reinterpret_cast<std::uintptr_t>(at) + bytes.size();
+    // Advice: where it fails, the reads fault the pages in as before.
+    (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_READ);
+#else
+    (void)bytes;
+#endif
 }
 
 std::vector<std::pair<std::string, std::string>> Environment::legacyLabels(MDB_txn* txn) const {
