@@ -15,6 +15,7 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <wn.h>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -374,12 +375,42 @@ TEST_CASE("the lexicon reads a misspelt English noun, two nouns written as one a
     CHECK_FALSE(ask::wordnet::isVerbNotNoun("sink"));
 }
 
-TEST_CASE("WordNet's nouns tested in memory pass every word the library reads as a noun", "[ask]") {
-    REQUIRE(ask::wordnet::available());
-    // Plurals by each of WordNet's endings, its exceptions ("mice", "feet"), a "-ful" measure, and
+namespace {
+
+// What WordNet's C library itself gives for `word` in a part of speech, as wordnet.cpp's look-ups
+// ask it (its index entry's spelling, then morphstr's base forms), without the test in memory
+// wordnet.cpp puts before them: the truth that test must never hide a word from.
+std::set<std::string> libraryForms(const std::string& word, int pos) {
+    std::set<std::string> out;
+    std::string key = word;
+    std::replace(key.begin(), key.end(), '-', '_');
+    if (IndexPtr index = index_lookup(key.data(), pos)) {
+        out.insert(index->wd);
+        free_index(index);
+    }
+    for (char* form = morphstr(key.data(), pos); form; form = morphstr(nullptr, pos)) out.insert(form);
+    return out;
+}
+
+std::set<std::string> spelt(const std::vector<std::string>& forms) {
+    std::set<std::string> out;
+    for (std::string f : forms) {
+        std::replace(f.begin(), f.end(), '-', '_');
+        out.insert(f);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("WordNet looked up in memory first finds every form the library finds", "[ask]") {
+    REQUIRE(ask::wordnet::available());  // opens the library, its index files mapped
+    // Each of the library's endings and exceptions in every part of speech, phrases and measures, and
     // every word one letter from three misspellings, as the search for a misspelt noun makes them.
-    std::set<std::string> words{"chairs", "glasses", "boxes", "benches", "dishes", "women",
-                                "flies",  "mice",    "feet",  "cupsful", "sofa",   "whiteboard"};
+    std::set<std::string> words{
+        "chairs",  "glasses", "boxes",      "benches",      "dishes",       "women",   "flies",  "mice",      "feet",
+        "cupsful", "sofa",    "whiteboard", "sitting",      "hanged",       "carries", "placed", "ran",       "softer",
+        "larger",  "better",  "leaning",    "coffee-table", "coffee table", "Chairs",  "st.",    "well-being"};
     for (const std::string misspelt : {"refridgerator", "wordrobe", "courch"})
         for (std::size_t k = 0; k <= misspelt.size(); ++k)
             for (char ch = 'a'; ch <= 'z'; ++ch) {
@@ -393,31 +424,22 @@ TEST_CASE("WordNet's nouns tested in memory pass every word the library reads as
             }
     std::size_t nouns = 0, passed = 0;
     for (const auto& w : words) {
-        const bool noun = !ask::wordnet::nounBaseForms(w).empty();
-        const bool may = ask::wordnet::mayBeNoun(w);
         INFO(w);
+        std::set<std::string> everyForm;
+        for (int pos : {NOUN, VERB, ADJ, ADV}) {
+            const auto forms = libraryForms(w, pos);
+            everyForm.insert(forms.begin(), forms.end());
+        }
+        const bool noun = !libraryForms(w, NOUN).empty();
+        const bool may = ask::wordnet::mayBeNoun(w);
         if (noun) CHECK(may);  // never a noun left out
+        CHECK(spelt(ask::wordnet::nounBaseForms(w)) == libraryForms(w, NOUN));
+        if (!everyForm.empty()) CHECK(spelt(ask::wordnet::baseForms(w)) == everyForm);
+        CHECK(ask::wordnet::isKnown(w) == !everyForm.empty());
         nouns += noun;
         passed += may;
     }
     CHECK(nouns >= 14);                 // the plurals, exceptions and measure above, and the right spellings
     CHECK(passed < words.size() / 10);  // and most of the search's words never reach the library's files
     CHECK_FALSE(ask::wordnet::mayBeNoun("refridgerator"));
-    // The other parts of speech, tested the same way before the library's searches: each ending and
-    // exception of theirs still reaches its base form.
-    auto hasBase = [](const std::string& word, const std::string& base) {
-        const auto forms = ask::wordnet::baseForms(word);
-        return std::find(forms.begin(), forms.end(), base) != forms.end();
-    };
-    CHECK(hasBase("sitting", "sit"));
-    CHECK(hasBase("hanged", "hang"));
-    CHECK(hasBase("carries", "carry"));
-    CHECK(hasBase("placed", "place"));
-    CHECK(hasBase("ran", "run"));
-    CHECK(hasBase("softer", "soft"));
-    CHECK(hasBase("larger", "large"));
-    CHECK(hasBase("better", "good"));
-    CHECK(hasBase("coffee-table", "coffee-table"));
-    CHECK(ask::wordnet::isKnown("leaning"));
-    CHECK_FALSE(ask::wordnet::isKnown("refridgerator"));
 }
