@@ -20,8 +20,8 @@ bool onRoomSurface(const model::Vec3& p, const RoomSurfaces& room, const ViewSeg
     if (room.ceilingHeight && p.z > *room.ceilingHeight - options.ceilingMargin) return true;
     if (!room.walls) return false;
     for (const auto& wall : *room.walls) {
-        // In front of the wall's plane by more than the margin (and half its thickness): the room.
-        if (wall.signedDistance(p) > std::max(options.wallMargin, wall.thickness / 2)) continue;
+        // In front of the wall's plane by more than the margin (and its surface band): the room.
+        if (wall.signedDistance(p) > std::max(options.wallMargin, wall.surfaceBand())) continue;
         const model::Vec3 d = wall.direction();
         const double along = d.x * p.x + d.y * p.y;
         if (along >= wall.along0 - options.wallReach && along <= wall.along1 + options.wallReach &&

@@ -292,7 +292,7 @@ std::vector<std::size_t> nonStructuralPoints(const PointCloud& aligned, const st
         bool onWall = false;
         for (const auto& wall : walls) {
             double a = wall.direction().x * p.x + wall.direction().y * p.y;
-            const double margin = std::max(options.wallMargin, wall.thickness / 2);
+            const double margin = std::max(options.wallMargin, wall.surfaceBand());
             if (std::abs(wall.signedDistance(p)) <= margin && a >= wall.along0 - margin && a <= wall.along1 + margin) {
                 onWall = true;
                 break;

@@ -1,6 +1,7 @@
 // Wall planes of an aligned cloud (z up, floor at z = 0, metres).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -24,6 +25,13 @@ struct WallSegment {
     model::Vec3 direction() const { return {-normal.y, normal.x, 0}; }
     double signedDistance(const model::Vec3& p) const { return normal.x * p.x + normal.y * p.y + offset; }
     double length() const { return along1 - along0; }
+    // How far from the plane, either side, a point is on the wall's surface: half the thickness, but
+    // at most kSurfaceBand. A thick segment is parallel planes merged (walls of rooms in a row, set a
+    // few centimetres apart), and what stands against it, a vanity or a cabinet, begins within
+    // centimetres of it: its front and top farther out are the thing's (ScanNet's apartment: a wall
+    // 0.34 m thick took a vanity's points, and its sink was stored as the basin alone).
+    static constexpr double kSurfaceBand = 0.1;
+    double surfaceBand() const { return std::min(thickness / 2, kSurfaceBand); }
     // A thin upright box (GeometryKind::Plane in the model): x along the wall, y its thickness, z its height.
     model::Box box() const;
 };

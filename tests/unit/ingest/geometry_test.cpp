@@ -23,6 +23,7 @@
 #include "ingest/geometry/point_cloud.hpp"
 #include "ingest/geometry/vertical_lines.hpp"
 #include "ingest/geometry/view_consistency.hpp"
+#include "ingest/geometry/view_segment.hpp"
 #include "ingest/geometry/walls.hpp"
 #include "ingest/pipeline/plausibility.hpp"
 #include "model/geometry.hpp"
@@ -279,6 +280,29 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         CHECK(a.scale == 2.0);
         CHECK(transformed(room.cameras[0], a).translation.z == Approx(2.8).margin(0.03));
     }
+}
+
+TEST_CASE("a thick wall's surface band stops 10 cm in front of its plane: what stands against it is the thing's",
+          "[ingest][geometry]") {
+    // ScanNet's apartment: a wall segment 0.34 m thick (parallel planes merged) behind a vanity took the
+    // vanity's top, 15 cm out, as its own surface, and the sink was stored as the basin alone.
+    WallSegment wall;
+    wall.normal = {1, 0, 0};  // the room lies towards +x of the plane x = 0
+    wall.along0 = -3;
+    wall.along1 = 3;
+    wall.z0 = 0;
+    wall.z1 = 2.5;
+    wall.thickness = 0.34;
+    std::vector<WallSegment> walls{wall};
+    RoomSurfaces room;
+    room.walls = &walls;
+    CHECK(wall.surfaceBand() == Approx(0.1));
+    CHECK(onRoomSurface({0.05, 0, 1.0}, room));        // on the wall's surface
+    CHECK(onRoomSurface({-0.3, 0, 1.0}, room));        // behind it
+    CHECK_FALSE(onRoomSurface({0.15, 0, 0.8}, room));  // the vanity's top: the thing's
+    walls.front().thickness = 0.06;                    // one plane: its 5 cm margin
+    CHECK(onRoomSurface({0.04, 0, 1.0}, room));
+    CHECK_FALSE(onRoomSurface({0.08, 0, 1.0}, room));
 }
 
 TEST_CASE("findWalls finds exactly the two walls, not the cabinet, with their offsets and extents",
