@@ -1,8 +1,6 @@
 #include "engine/ask/lexicon.hpp"
 
 #include <algorithm>
-#include <map>
-#include <mutex>
 #include <optional>
 #include <set>
 
@@ -83,14 +81,6 @@ std::set<std::string> misspeltNouns(const std::string& word) {
     if (word.size() < 5 || word.find_first_not_of("abcdefghijklmnopqrstuvwxyz") != std::string::npos ||
         wordnet::isKnown(word))
         return {};
-    // A question looks a word up several times, and a session asks again: kept for the process (a
-    // few words a question at most, misspelt ones only).
-    static std::mutex knownLock;
-    static std::map<std::string, std::set<std::string>> known;
-    {
-        std::lock_guard guard(knownLock);
-        if (auto it = known.find(word); it != known.end()) return it->second;
-    }
     std::set<std::string> candidates;
     for (std::size_t k = 0; k < word.size(); ++k) {
         candidates.insert(word.substr(0, k) + word.substr(k + 1));
@@ -111,13 +101,10 @@ std::set<std::string> misspeltNouns(const std::string& word) {
         }
     std::set<std::string> nouns;
     for (const auto& c : candidates)
-        if (c != word && wordnet::mayBeNoun(c)) {
+        if (c != word) {
             auto bases = wordnet::nounBaseForms(c);
             if (!bases.empty()) nouns.insert(bases.front());
         }
-    std::lock_guard guard(knownLock);
-    if (known.size() >= 4096) known.clear();  // a bound for a long session of free text
-    known.emplace(word, nouns);
     return nouns;
 }
 
@@ -274,8 +261,7 @@ WordMatch Lexicon::lookUp(const std::string& words) const {
     if (word.find('-') == std::string::npos && word.size() >= 7 && !wordnet::isKnown(word)) {
         std::vector<std::string> splits;
         for (std::size_t cut = 3; cut + 3 <= word.size(); ++cut)
-            if (wordnet::mayBeNoun(word.substr(0, cut)) && wordnet::mayBeNoun(word.substr(cut)) &&
-                !wordnet::nounBaseForms(word.substr(0, cut)).empty() &&
+            if (!wordnet::nounBaseForms(word.substr(0, cut)).empty() &&
                 !wordnet::nounBaseForms(word.substr(cut)).empty())
                 splits.push_back(word.substr(0, cut) + "-" + word.substr(cut));
         if (splits.size() == 1) {

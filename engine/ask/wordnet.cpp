@@ -178,33 +178,29 @@ bool available() {
 
 std::vector<std::string> nounBaseForms(const std::string& word) {
     std::lock_guard guard(lock());
-    // Each word of a question is looked up with every question (at most the vocabulary asked).
+    // Each word of a question is looked up with every question (at most the nouns and near-nouns asked).
     static std::map<std::string, std::vector<std::string>> known;
     if (auto it = known.find(word); it != known.end()) return it->second;
     std::vector<std::string> out;
     if (!open() || word.empty()) return out;
     std::string key = wordNetSpelling(word);
+    const bool inIndex = listed(key, NOUN), inflected = inflects(key, NOUN);
+    // Surely no noun: answered in memory, and not kept (a misspelling's search asks of 700 such words).
+    if (!inIndex && !inflected) return out;
     // morphstr returns the first base form, then the next ones for a null argument. Its forms
     // come first: "seats" is also a noun of its own in WordNet, but people mean seat.
-    if (inflects(key, NOUN))
+    if (inflected)
         for (char* form = morphstr(key.data(), NOUN); form; form = morphstr(nullptr, NOUN)) {
             std::string base = categorySpelling(form);
             if (std::find(out.begin(), out.end(), base) == out.end()) out.push_back(base);
         }
-    if (IndexPtr index = listed(key, NOUN) ? index_lookup(key.data(), NOUN) : nullptr) {
+    if (IndexPtr index = inIndex ? index_lookup(key.data(), NOUN) : nullptr) {
         std::string self = categorySpelling(index->wd);
         if (std::find(out.begin(), out.end(), self) == out.end()) out.push_back(self);
         free_index(index);
     }
     known.emplace(word, out);
     return out;
-}
-
-bool mayBeNoun(const std::string& word) {
-    std::lock_guard guard(lock());
-    if (!open() || word.empty()) return false;
-    const std::string key = wordNetSpelling(word);
-    return listed(key, NOUN) || inflects(key, NOUN);
 }
 
 std::vector<Sense> nounSenses(const std::string& word) {

@@ -25,13 +25,10 @@ struct Sense {
 // plurals and spelling only.
 bool available();
 // The noun base forms WordNet knows for `word` ("mice" -> mouse, "benches" -> bench), the word
-// itself first when it is a noun.
+// itself first when it is a noun. A word in no index, no exception list and with no ending the
+// library drops is answered from the files mapped in memory, without the library's searches, so a
+// search over many candidates (the words a letter from a misspelling) costs little.
 std::vector<std::string> nounBaseForms(const std::string& word);
-// False when WordNet surely knows no noun of which `word` is a form: it is in neither the noun
-// index nor the noun exceptions, and no ending a plural drops gives a word of the index. Read from
-// the files once a process and answered in memory, so a search over many candidates (the words
-// one letter away from a misspelling) asks the library's file searches only of the few that pass.
-bool mayBeNoun(const std::string& word);
 // The noun senses of a base form, most frequent first; empty for a word WordNet does not know as
 // a noun.
 std::vector<Sense> nounSenses(const std::string& word);

@@ -422,7 +422,7 @@ TEST_CASE("WordNet looked up in memory first finds every form the library finds"
                     words.insert(misspelt.substr(0, k) + misspelt.substr(k + 1));
                 }
             }
-    std::size_t nouns = 0, passed = 0;
+    std::size_t nouns = 0;
     for (const auto& w : words) {
         INFO(w);
         std::set<std::string> everyForm;
@@ -430,16 +430,10 @@ TEST_CASE("WordNet looked up in memory first finds every form the library finds"
             const auto forms = libraryForms(w, pos);
             everyForm.insert(forms.begin(), forms.end());
         }
-        const bool noun = !libraryForms(w, NOUN).empty();
-        const bool may = ask::wordnet::mayBeNoun(w);
-        if (noun) CHECK(may);  // never a noun left out
         CHECK(spelt(ask::wordnet::nounBaseForms(w)) == libraryForms(w, NOUN));
         if (!everyForm.empty()) CHECK(spelt(ask::wordnet::baseForms(w)) == everyForm);
         CHECK(ask::wordnet::isKnown(w) == !everyForm.empty());
-        nouns += noun;
-        passed += may;
+        nouns += !libraryForms(w, NOUN).empty();
     }
-    CHECK(nouns >= 14);                 // the plurals, exceptions and measure above, and the right spellings
-    CHECK(passed < words.size() / 10);  // and most of the search's words never reach the library's files
-    CHECK_FALSE(ask::wordnet::mayBeNoun("refridgerator"));
+    CHECK(nouns >= 14);  // the plurals, exceptions and measure above, and the right spellings
 }
