@@ -45,7 +45,7 @@ std::string ColmapStage::summary(const Reconstruction& reconstruction) const {
 }
 
 bool needsDensePoints(const Capture& capture, const IngestOptions& options) {
-    return options.dense && !framesHaveDepth(capture) && !capture.points.empty() &&
+    return options.dense != DenseUse::Off && !framesHaveDepth(capture) && !capture.points.empty() &&
            std::count_if(capture.frames.begin(), capture.frames.end(),
                          [](const auto& f) { return f.pose.has_value(); }) >= 2;
 }

@@ -28,6 +28,11 @@ namespace smql::ingest {
 
 namespace {
 
+// Whether photos without depth have their things lifted on the dense points' depth (--dense on).
+bool liftsOnDenseDepth(const Capture& capture, const IngestOptions& options) {
+    return options.dense == DenseUse::All && !capture.densePoints.empty();
+}
+
 // Tracks of detections from the frames they are made on: lifted with each frame's depth, or, for
 // frames without depth (COLMAP), with the capture's sparse points; the two sources (a detections
 // file, the detector) differ only in where a frame's detections come from.
@@ -37,6 +42,7 @@ public:
         : capture_(capture),
           options_(options),
           hasDepth_(framesHaveDepth(capture)),
+          liftOnDense_(liftsOnDenseDepth(capture, options)),
           voteLabels_(voteLabels),
           tracker_(voteLabels) {}
 
@@ -66,7 +72,7 @@ public:
             unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
         }
         track(tracker_, std::move(placed), detections, frame.images.color);
-        if (!capture_.densePoints.empty()) denseFrames_.push_back(frame.position);
+        if (liftOnDense_) denseFrames_.push_back(frame.position);
     }
 
     std::vector<ObjectTrack> takeTracks() override {
@@ -75,10 +81,10 @@ public:
         return tracks;
     }
 
-    // Photos without dense points: how their things were placed, and what places them better. With dense
-    // points the things are lifted again (fuseOnDenseDepth), which notes what it did.
+    // Photos whose things are not lifted on dense points: how their things were placed, and what places them
+    // better. Lifted (--dense on), they are placed again (fuseOnDenseDepth), which notes what it did.
     std::string frameNote() const override {
-        if (hasDepth_ || !capture_.densePoints.empty() || fewPoints_ + uncarved_ == 0) return {};
+        if (hasDepth_ || liftOnDense_ || fewPoints_ + uncarved_ == 0) return {};
         return fmt::format(
             "{} detections had too few sparse points on them and {} more were of things whose points did not agree "
             "across views enough to carve a hull; {} of these were placed by their boxes' rays across views "
@@ -285,6 +291,7 @@ private:
     const Capture& capture_;
     const IngestOptions& options_;
     bool hasDepth_;
+    bool liftOnDense_;  // the things are lifted on the dense points' depth (--dense on)
     bool voteLabels_;
     DetectionTracker tracker_;
     std::vector<std::uint32_t> looked_;       // the frames whose detections were looked at
@@ -336,7 +343,7 @@ private:
     // is a silhouette that carves a hull (observations.hpp): the SSD's looser boxes carved the dining
     // photos' chairs 1.6 m tall, so those captures take NanoDet's alone.
     static bool packagedWithDepth(const Capture& capture, const IngestOptions& options) {
-        return options.detectorModel.empty() && (framesHaveDepth(capture) || !capture.densePoints.empty());
+        return options.detectorModel.empty() && (framesHaveDepth(capture) || liftsOnDenseDepth(capture, options));
     }
     static std::unique_ptr<SemanticSegmenter> installedSegmenter() {
         auto files = installedModel("deeplab");

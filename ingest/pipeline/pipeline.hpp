@@ -18,6 +18,11 @@ namespace smql::ingest {
 
 enum class GeometrySource { Given, Colmap, Auto };
 
+// What the dense points of photos without depth (dense_stereo.hpp) are used for: none made (Off); the
+// room's surfaces, so the floor, its up and the scale, the walls and openings (Room); those and the
+// things, each photo's detections lifted on the depth the points give it (All).
+enum class DenseUse { Off, Room, All };
+
 struct IngestOptions {
     std::string sceneName;
     GeometrySource geometry = GeometrySource::Auto;
@@ -29,17 +34,17 @@ struct IngestOptions {
     std::optional<double> scale;  // metres per capture unit, overriding the alignment's estimate
     bool force = false;           // keep a memory the plausibility checks refuse (plausibility.hpp)
     int workingWidth = 640;
-    int structureStride = 4;       // every n-th pixel of each frame feeds the structure cloud
-    double structureVoxel = 0.05;  // m
-    int objectStride = 2;          // every n-th pixel of an instance mask is lifted
-    double objectVoxel = 0.01;     // m
-    int minInstancePixels = 150;   // smaller mask fragments in a frame are ignored
-    int minObjectViews = 1;        // an instance needs this many views to become an object
-    int descriptionAgreement = 2;  // views that must agree before a scene-level phrase is promoted
-    double agreementShare = 0.6;   // ... and the share of its views they must be
-    int evidenceSize = 160;        // longest side of an evidence crop (pixels)
-    ColmapOptions colmap;          // --geometry colmap (and auto for captures without poses)
-    bool dense = false;            // photos without depth get dense points from pairs of placed frames (--dense on)
+    int structureStride = 4;          // every n-th pixel of each frame feeds the structure cloud
+    double structureVoxel = 0.05;     // m
+    int objectStride = 2;             // every n-th pixel of an instance mask is lifted
+    double objectVoxel = 0.01;        // m
+    int minInstancePixels = 150;      // smaller mask fragments in a frame are ignored
+    int minObjectViews = 1;           // an instance needs this many views to become an object
+    int descriptionAgreement = 2;     // views that must agree before a scene-level phrase is promoted
+    double agreementShare = 0.6;      // ... and the share of its views they must be
+    int evidenceSize = 160;           // longest side of an evidence crop (pixels)
+    ColmapOptions colmap;             // --geometry colmap (and auto for captures without poses)
+    DenseUse dense = DenseUse::Room;  // photos without depth: what dense points from pairs of placed frames place
     DenseOptions denseOptions;
     double sparseDepthBand = 0.25;  // sparse points lifted onto a mask: within this share of the median depth
 };

@@ -124,14 +124,15 @@ const std::vector<IngestOption> kIngestOptions = {
              "again");
      },
      [](IngestRequest& r, const std::string& v) { r.colmapDir = v; }},
-    {"dense", "on|off",
+    {"dense", "room|on|off",
      [] {
          return std::string(
-             "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones (default "
-             "off: a few photos give it too few points to trust; docs/ingest.md, \"Dense points from placed photos\")");
+             "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones; room "
+             "(the default): the floor, walls and scale are found among them; on: the things are lifted on their "
+             "depth too; off: COLMAP's points alone (docs/ingest.md, \"Dense points from placed photos\")");
      },
      [](IngestRequest& r, const std::string& v) {
-         r.dense = oneOf("dense", v, {"on", "off"}) == "on";
+         r.dense = oneOf("dense", v, {"room", "on", "off"});
      }},
     {"scale", "NUMBER", [] { return std::string("metres per capture unit, overriding the estimate"); },
      [](IngestRequest& r, const std::string& v) { r.scale = number("scale", v, false); }},
@@ -223,7 +224,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     options.colmap.maxImageSize = request.maxSize;
     options.colmap.vocabularyTree = request.vocabularyTree;
     options.colmap.workDirectory = request.colmapDir;
-    options.dense = request.dense;
+    options.dense = request.dense == "off" ? DenseUse::Off : request.dense == "on" ? DenseUse::All : DenseUse::Room;
     run.result = ingestCapture(capture, options, progress, cancelled);
     return run;
 }

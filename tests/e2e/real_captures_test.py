@@ -138,17 +138,20 @@ def refused_for_floor(status, log, db):
 def refused_or_right(smql, status, log, db, groundtruth, **judge):
     """Photos without depth whose floor or scale cannot be told are refused, saying why and what to
     do; when they are stored (COLMAP differs from run to run, and so may what it shows of the floor),
-    the memory is judged by the true poses (judge_by_truth)."""
+    the memory is judged by the true poses (judge_by_truth). Prints which."""
     if status == 1:
         refused_for_floor(status, log, db)
+        print("  refused: " + next(line for line in log.splitlines() if "the memory would be wrong" in line))
     else:
         assert status == 0, log
-        judge_by_truth(smql, db, groundtruth, **judge)
+        print("  stored: " + judge_by_truth(smql, db, groundtruth, **judge))
 
 
 def desk_photos(smql, folder, work):
-    """TUM fr3 office, 17 photos mostly of a desk: the floor barely shows: refused, saying why and
-    what to do, or stored with the scale and the cameras' height of TUM's true poses."""
+    """TUM fr3 office, 17 photos mostly of a desk, as a user gives them: the floor barely shows among
+    COLMAP's points, and is found among the dense points under the desk (--dense room, the default):
+    stored with the scale and the cameras' height of TUM's true poses, or refused, saying why and what
+    to do."""
     status, log = ingest(smql, folder, work / "db")
     refused_or_right(smql, status, log, work / "db", folder / "groundtruth.txt")
 

@@ -170,21 +170,21 @@ TEST_CASE("ingest options: --fps 0 keeps every frame, a negative rate is refused
     }
 }
 
-// --dense on|off: photos without depth get dense points only when asked (docs/ingest.md, "Dense points
-// from placed photos"); another value is refused naming the ones it takes.
-TEST_CASE("ingest options: --dense is off unless asked for, and takes on or off") {
+// --dense room|on|off: photos without depth place their room on dense points unless told otherwise
+// (docs/ingest.md, "Dense points from placed photos"); another value is refused naming the ones it takes.
+TEST_CASE("ingest options: --dense is room unless asked otherwise, and takes room, on or off") {
     IngestRequest request;
-    CHECK_FALSE(request.dense);
-    setIngestOption(request, "dense", "on");
-    CHECK(request.dense);
-    setIngestOption(request, "dense", "off");
-    CHECK_FALSE(request.dense);
+    CHECK(request.dense == "room");
+    for (const char* value : {"on", "off", "room"}) {
+        setIngestOption(request, "dense", value);
+        CHECK(request.dense == value);
+    }
     try {
         setIngestOption(request, "dense", "yes");
         FAIL("--dense yes was taken");
     } catch (const Error& e) {
         CHECK(e.kind() == ErrorKind::Usage);
-        CHECK_THAT(std::string(e.hint()), Catch::Contains("on or off"));
+        CHECK_THAT(std::string(e.hint()), Catch::Contains("room, on or off"));
     }
 }
 
