@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -601,7 +602,8 @@ private:
     }
 
     // The mapper, with each of kMapperSettings in turn (video frames relaxed first) until a model
-    // holds most of the frames; the largest model of all is kept when it holds at least half of them.
+    // holds most of the frames; the largest model of all, joined with the models that share its frames,
+    // is kept when it holds at least half of them.
     // Each run writes its models (sparse/<settings>/0, 1...) and says what it made in the notes.
     // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
     // Nothing when no run made a model.
@@ -626,14 +628,18 @@ private:
                             settings->arguments,
                             fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""),
                 true);
-            auto [largest, models] = readLargestModel(output);
-            run_.models += models;
-            note(largest
+            std::vector<ColmapModel> models = readModels(output);
+            run_.models += models.size();
+            std::size_t largest = 0;
+            for (const ColmapModel& model : models) largest = std::max(largest, model.capture.frames.size());
+            note(!models.empty()
                      ? fmt::format("COLMAP's mapper with {}: {} {}, the largest with {} of {} frames", settings->name,
-                                   models, models == 1 ? "model" : "models", largest->frames.size(), frames)
+                                   models.size(), models.size() == 1 ? "model" : "models", largest, frames)
                      : fmt::format("COLMAP's mapper with {}: no model{}", settings->name,
                                    finished ? "" : " (it stopped with a failure; see the log)"));
-            if (largest && (!best || largest->frames.size() > best->frames.size())) best = std::move(largest);
+            std::optional<Capture> joined =
+                joinModels(std::move(models), sparse_ / fmt::format("{}-joined", settings->folder));
+            if (joined && (!best || joined->frames.size() > best->frames.size())) best = std::move(joined);
             if (best && 5 * best->frames.size() >= 4 * frames) break;
         }
         return best;
@@ -658,24 +664,48 @@ private:
         return std::move(*best);
     }
 
-    // The model in `folder` (one sub-folder per model) with the most images, and how many there were.
-    std::pair<std::optional<Capture>, std::size_t> readLargestModel(const fs::path& folder) {
+    // The models in `folder` (one sub-folder per model).
+    std::vector<ColmapModel> readModels(const fs::path& folder) {
+        std::vector<ColmapModel> models;
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(folder, ec))
+            if (entry.is_directory())
+                if (std::optional<Capture> model = readModel(entry.path()))
+                    models.push_back({entry.path(), std::move(*model)});
+        return models;
+    }
+
+    // The model in `folder`, when it holds one that reads.
+    std::optional<Capture> readModel(const fs::path& folder) {
+        if (!capture_detail::colmapModelFormat(folder)) return std::nullopt;
         CaptureOptions readOptions;
         readOptions.imageDirectory = images_.string();
-        std::optional<Capture> best;
-        std::size_t models = 0;
-        std::error_code ec;
-        for (const auto& entry : fs::directory_iterator(folder, ec)) {
-            if (!entry.is_directory() || !capture_detail::colmapModelFormat(entry.path())) continue;
-            ++models;
-            try {
-                Capture model = capture_detail::readColmap(entry.path(), readOptions);
-                if (!best || model.frames.size() > best->frames.size()) best = std::move(model);
-            } catch (const Error& e) {
-                note(fmt::format("COLMAP model {} skipped: {}", entry.path().string(), e.what()));
-            }
+        try {
+            return capture_detail::readColmap(folder, readOptions);
+        } catch (const Error& e) {
+            note(fmt::format("COLMAP model {} skipped: {}", folder.string(), e.what()));
+            return std::nullopt;
         }
-        return {std::move(best), models};
+    }
+
+    // The largest model with those that share its frames (joinColmapModels), its joins noted.
+    std::optional<Capture> joinModels(std::vector<ColmapModel> models, const fs::path& output) {
+        std::vector<std::string> joins;
+        std::optional<ColmapModel> joined = joinColmapModels(
+            std::move(models), output,
+            [&](const fs::path& model1, const fs::path& model2, const fs::path& merged) {
+                if (!run_.reused) fs::create_directories(merged);
+                runStep("model_merger",
+                        fmt::format("--input_path1 {} --input_path2 {} --output_path {}", shellQuoted(model1.string()),
+                                    shellQuoted(model2.string()), shellQuoted(merged.string())),
+                        true);
+            },
+            [&](const fs::path& folder) { return readModel(folder); }, joins);
+        if (!joined) return std::nullopt;
+        if (!joins.empty())
+            note(fmt::format("COLMAP's models joined where they share frames ({}): {} frames in one model",
+                             fmt::join(joins, "; "), joined->capture.frames.size()));
+        return std::move(joined->capture);
     }
 
     // The model's poses onto the capture's frames (poses are the same at any image size) and its
@@ -752,6 +782,44 @@ private:
 };
 
 }  // namespace
+
+std::optional<ColmapModel> joinColmapModels(std::vector<ColmapModel> models, const fs::path& output,
+                                            const ColmapMerger& merge, const ColmapModelReader& read,
+                                            std::vector<std::string>& joins) {
+    constexpr std::size_t kMinSharedFrames = 3;
+    if (models.empty()) return std::nullopt;
+    std::stable_sort(models.begin(), models.end(), [](const ColmapModel& a, const ColmapModel& b) {
+        return a.capture.frames.size() > b.capture.frames.size();
+    });
+    ColmapModel joined = std::move(models.front());
+    models.erase(models.begin());
+    std::map<fs::path, std::size_t> refused;  // the frames shared when COLMAP would not join them
+    int attempts = 0;
+    for (bool grew = true; grew && !models.empty();) {
+        grew = false;
+        std::set<std::string> held;
+        for (const CaptureFrame& f : joined.capture.frames) held.insert(f.colorPath);
+        for (auto other = models.begin(); other != models.end(); ++other) {
+            const std::size_t shared = std::count_if(other->capture.frames.begin(), other->capture.frames.end(),
+                                                     [&](const CaptureFrame& f) { return held.count(f.colorPath); });
+            if (shared < kMinSharedFrames || refused[other->folder] >= shared) continue;
+            const fs::path merged = output / std::to_string(++attempts);
+            merge(joined.folder, other->folder, merged);
+            std::optional<Capture> result = read(merged);
+            if (!result || result->frames.size() <= joined.capture.frames.size()) {
+                refused[other->folder] = shared;  // tried again only once it shares more
+                continue;
+            }
+            joins.push_back(fmt::format("{} and {} frames sharing {}", joined.capture.frames.size(),
+                                        other->capture.frames.size(), shared));
+            joined = {merged, std::move(*result)};
+            models.erase(other);
+            grew = true;
+            break;
+        }
+    }
+    return joined;
+}
 
 ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes notes) {
     auto colmap = findExecutable(options.command);

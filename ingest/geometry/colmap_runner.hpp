@@ -4,7 +4,9 @@
 // capture (docs/ingest.md, "--geometry colmap").
 #pragma once
 
+#include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +51,31 @@ struct ColmapRun {
 
 // Receives each of the run's notes as it is made (they are also in ColmapRun::notes).
 using ColmapNotes = std::function<void(const std::string&)>;
+
+// A COLMAP model read back, and the folder it was read from.
+struct ColmapModel {
+    std::filesystem::path folder;
+    Capture capture;
+};
+
+// Runs COLMAP's model_merger on two model folders, writing the result to the third.
+using ColmapMerger =
+    std::function<void(const std::filesystem::path&, const std::filesystem::path&, const std::filesystem::path&)>;
+// The model in a folder, when it holds one that reads.
+using ColmapModelReader = std::function<std::optional<Capture>(const std::filesystem::path&)>;
+
+// COLMAP's mapper starts a new model where it can add no frame to the one it grows, and a later model
+// may place again frames an earlier one holds: two models that share frames are one place seen twice,
+// in two frames of reference. The largest of `models` takes in, one at a time, every other that shares
+// at least three frames (by image path) with it: `merge` aligns the two by the frames they share (COLMAP
+// fits a similarity to three frames at a time and keeps it when the other's points reproject into the
+// shared frames) and writes the joined model to `output`/1, 2 ... (one folder per attempt), kept when
+// `read` finds more frames in it than before; a model refused is tried again only once it shares more
+// frames. `joins` receives one line per join ("97 and 50 frames sharing 20"). Nothing when `models` is
+// empty.
+std::optional<ColmapModel> joinColmapModels(std::vector<ColmapModel> models, const std::filesystem::path& output,
+                                            const ColmapMerger& merge, const ColmapModelReader& read,
+                                            std::vector<std::string>& joins);
 
 // Fills every registered frame's pose and intrinsics (in the frame's own
 // pixels: COLMAP sees the frames scaled down to maxImageSize) and the

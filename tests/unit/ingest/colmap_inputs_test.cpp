@@ -4,15 +4,21 @@
 // Photo sets are cut from `smql synth` frames (neighbouring frames overlap).
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <Eigen/Geometry>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "ingest/capture/capture.hpp"
+#include "ingest/capture/capture_detail.hpp"
 #include "ingest/geometry/colmap_database.hpp"
 #include "ingest/geometry/colmap_runner.hpp"
 #include "ingest/synth/synth.hpp"
@@ -193,4 +199,122 @@ TEST_CASE("a work folder of one's own keeps COLMAP's run for the same frames to 
     options.workDirectory = (dir.path / "mine").string();
     CHECK_THROWS_WITH(runColmap(changed, options), Catch::Contains("holds files of no COLMAP run"));
     CHECK(fs::exists(dir.path / "mine" / "notes.txt"));
+}
+
+namespace {
+
+// One COLMAP command on model folders, as the runner runs it; true when it exits with 0.
+bool colmapCommand(const std::string& step, const std::string& arguments) {
+    return std::system(
+               fmt::format("QT_QPA_PLATFORM=offscreen colmap {} {} > /dev/null 2>&1", step, arguments).c_str()) == 0;
+}
+
+// The model in `folder` with its images in `images`, if it reads.
+std::optional<Capture> readModelIn(const fs::path& folder, const fs::path& images) {
+    if (!capture_detail::colmapModelFormat(folder)) return std::nullopt;
+    CaptureOptions options;
+    options.imageDirectory = images.string();
+    return capture_detail::readColmap(folder, options);
+}
+
+// The camera centres of `model`, by image path.
+std::map<std::string, Eigen::Vector3d> centresOf(const Capture& model) {
+    std::map<std::string, Eigen::Vector3d> centres;
+    for (const CaptureFrame& f : model.frames)
+        centres[f.colorPath] = {f.pose->translation.x, f.pose->translation.y, f.pose->translation.z};
+    return centres;
+}
+
+}  // namespace
+
+// A model cut in two that overlap in three frames, the second moved, turned and scaled: COLMAP's
+// model_merger, driven by joinColmapModels, puts it back together, every camera where it was (up to
+// one similarity); a model sharing two frames is not taken in.
+TEST_CASE("two COLMAP models that share frames are joined into one", "[colmap]") {
+    ScratchDir dir;
+    std::string walk = writeWalk(dir);
+    fs::path photos = dir.path / "photos";
+    for (int i = 1; i <= 8; ++i) copyFrame(walk, i, photos, fmt::format("p{}.png", i));
+    ColmapOptions options;
+    options.workDirectory = (dir.path / "work").string();
+    Capture capture = readCapture(photos.string());
+    REQUIRE(runColmap(capture, options).registered >= 7);
+
+    // The mapper's largest model, and the names of its frames in capture order.
+    const fs::path images = dir.path / "work" / "images";
+    std::optional<ColmapModel> whole;
+    for (const auto& settings : fs::directory_iterator(dir.path / "work" / "sparse"))
+        for (const auto& folder : fs::directory_iterator(settings.path()))
+            if (std::optional<Capture> model = readModelIn(folder.path(), images))
+                if (!whole || model->frames.size() > whole->capture.frames.size()) whole = {folder.path(), *model};
+    REQUIRE(whole);
+    std::vector<std::string> names;
+    for (const CaptureFrame& f : whole->capture.frames)
+        names.push_back(fs::path(f.colorPath).lexically_relative(images).string());
+    const std::size_t n = names.size();
+    REQUIRE(n >= 7);
+
+    // Without `keep` of the frames (by position), the model written to `name`.
+    auto cut = [&](const std::string& name, std::size_t from, std::size_t to) {
+        fs::path list = dir.path / (name + ".txt"), output = dir.path / name;
+        std::ofstream out(list);
+        for (std::size_t i = 0; i < n; ++i)
+            if (i < from || i >= to) out << names[i] << "\n";
+        out.close();
+        fs::create_directories(output);
+        REQUIRE(colmapCommand("image_deleter", fmt::format("--input_path {} --output_path {} --image_names_path {}",
+                                                           whole->folder.string(), output.string(), list.string())));
+        return output;
+    };
+    const fs::path first = cut("first", 0, n - 2), second = cut("second", n - 5, n), pair = cut("pair", 0, 2);
+    // The second in a frame of reference of its own: 2.5 times as large, turned 40 degrees, moved.
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    std::ofstream transform(dir.path / "transform.txt");
+    for (int r = 0; r < 3; ++r)
+        transform << 2.5 * turn(r, 0) << " " << 2.5 * turn(r, 1) << " " << 2.5 * turn(r, 2) << " "
+                  << Eigen::Vector3d(3, -1, 2)(r) << "\n";
+    transform << "0 0 0 1\n";
+    transform.close();
+    const fs::path moved = dir.path / "moved";
+    fs::create_directories(moved);
+    REQUIRE(colmapCommand("model_transformer",
+                          fmt::format("--input_path {} --output_path {} --transform_path {}", second.string(),
+                                      moved.string(), (dir.path / "transform.txt").string())));
+
+    std::vector<ColmapModel> models;
+    for (const fs::path& folder : {first, moved, pair}) models.push_back({folder, *readModelIn(folder, images)});
+    CHECK(models[1].capture.frames.size() == 5);
+    std::vector<std::string> joins;
+    std::optional<ColmapModel> joined = joinColmapModels(
+        models, dir.path / "joined",
+        [&](const fs::path& model1, const fs::path& model2, const fs::path& output) {
+            fs::create_directories(output);
+            colmapCommand("model_merger", fmt::format("--input_path1 {} --input_path2 {} --output_path {}",
+                                                      model1.string(), model2.string(), output.string()));
+        },
+        [&](const fs::path& folder) { return readModelIn(folder, images); }, joins);
+    REQUIRE(joined);
+    INFO(fmt::format("joins: {}", fmt::join(joins, "; ")));
+    REQUIRE(joins.size() == 1);
+    CHECK(joins[0] == fmt::format("{} and 5 frames sharing 3", n - 2));
+    REQUIRE(joined->capture.frames.size() == n);
+
+    // Every camera where the whole model has it, up to one similarity.
+    std::map<std::string, Eigen::Vector3d> truth = centresOf(whole->capture), found = centresOf(joined->capture);
+    Eigen::Matrix3Xd from(3, n), to(3, n);
+    std::size_t column = 0;
+    for (const auto& [name, centre] : truth) {
+        REQUIRE(found.count(name));
+        from.col(column) = found[name];
+        to.col(column++) = centre;
+    }
+    const Eigen::Matrix4d similarity = Eigen::umeyama(from, to, true);
+    double spread = 0, worst = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        spread = std::max(spread, (to.col(i) - to.col(0)).norm());
+        const Eigen::Vector3d mapped = (similarity * from.col(i).homogeneous()).head<3>();
+        worst = std::max(worst, (mapped - to.col(i)).norm());
+    }
+    INFO(fmt::format("cameras spread {:.3f}, worst {:.4f} after the similarity", spread, worst));
+    CHECK(worst < 0.01 * spread);
 }
