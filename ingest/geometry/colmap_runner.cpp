@@ -616,6 +616,7 @@ private:
         if (capture_.layout == "video") std::reverse(order.begin(), order.end());
         const std::size_t frames = workFrames_.size();
         std::optional<Capture> best;
+        std::set<std::string> placed;  // by any model of any run
         for (const MapperSettings* settings : order) {
             const fs::path output = sparse_ / settings->folder;
             if (!run_.reused) fs::create_directories(output);
@@ -637,11 +638,16 @@ private:
                                    models.size(), models.size() == 1 ? "model" : "models", largest, frames)
                      : fmt::format("COLMAP's mapper with {}: no model{}", settings->name,
                                    finished ? "" : " (it stopped with a failure; see the log)"));
+            for (const ColmapModel& model : models)
+                for (const CaptureFrame& f : model.capture.frames) placed.insert(f.colorPath);
             std::optional<Capture> joined =
                 joinModels(std::move(models), sparse_ / fmt::format("{}-joined", settings->folder));
             if (joined && (!best || joined->frames.size() > best->frames.size())) best = std::move(joined);
             if (best && 5 * best->frames.size() >= 4 * frames) break;
         }
+        if (best)
+            for (const CaptureFrame& f : best->frames) placed.erase(f.colorPath);
+        placedApart_ = placed.size();
         return best;
     }
 
@@ -656,10 +662,14 @@ private:
         if (2 * best->frames.size() < frames)
             throw Error(
                 ErrorKind::Input,
-                fmt::format("colmap mapper placed only {} of {} frames together (its largest model): {}; its output "
+                fmt::format("colmap mapper placed only {} of {} frames together (its largest model){}: {}; its output "
                             "is in {}",
-                            best->frames.size(), frames, diagnosis(database_, frames, options_.minMatches, true),
-                            run_.logPath),
+                            best->frames.size(), frames,
+                            placedApart_ == 0 ? std::string()
+                                              : fmt::format("; {} more are placed in other models that share too "
+                                                            "few frames with it to be joined",
+                                                            placedApart_),
+                            diagnosis(database_, frames, options_.minMatches, true), run_.logPath),
                 std::nullopt, kRetryHint);
         return std::move(*best);
     }
@@ -777,7 +787,8 @@ private:
     std::size_t scaled_ = 0;
     std::string inputs_;
     bool ordered_ = false, exhaustive_ = false, loops_ = false;
-    bool fine_ = true;  // SIFT from the frames doubled (COLMAP's first_octave -1), else at their own size
+    bool fine_ = true;             // SIFT from the frames doubled (COLMAP's first_octave -1), else at their own size
+    std::size_t placedApart_ = 0;  // frames the mapper placed only in models apart from the one kept
     ColmapNotes notes_;
 };
 

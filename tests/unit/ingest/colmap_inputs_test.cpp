@@ -4,12 +4,14 @@
 // Photo sets are cut from `smql synth` frames (neighbouring frames overlap).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -317,4 +319,44 @@ TEST_CASE("two COLMAP models that share frames are joined into one", "[colmap]")
     }
     INFO(fmt::format("cameras spread {:.3f}, worst {:.4f} after the similarity", spread, worst));
     CHECK(worst < 0.01 * spread);
+}
+
+// Three places, five neighbouring photos of each: a walk through a generated room, the real dining
+// room of ../shared/data/rgbd-dining and TUM's real office (../shared/data/captures). COLMAP places each
+// five in a model of its own, which share no frame, so no model holds half of the 15; the refusal says
+// that the rest are placed apart, in models that could not be joined.
+TEST_CASE("frames placed in models that share no frame are refused, saying where the rest are", "[colmap]") {
+    const fs::path office = fs::path(SMQL_SHARED_DATA) / "captures" / "tum-fr3-office-photos";
+    if (!fs::is_directory(office)) {
+        WARN("skipped: " << office.string() << " is absent");
+        return;
+    }
+    ScratchDir dir;
+    fs::path photos = dir.path / "photos";
+    const std::string walk = writeWalk(dir);
+    for (int i = 1; i <= 5; ++i) copyFrame(walk, i, photos, fmt::format("walk-{}.png", i));
+    for (int i = 1; i <= 5; ++i)
+        fs::copy_file(fs::path(SMQL_SHARED_DATA) / "rgbd-dining" / "color" / fmt::format("{}.png", i),
+                      photos / fmt::format("dining-{}.png", i));
+    std::vector<fs::path> shots;
+    for (const auto& entry : fs::directory_iterator(office))
+        if (entry.path().extension() == ".png") shots.push_back(entry.path());
+    std::sort(shots.begin(), shots.end());
+    REQUIRE(shots.size() >= 5);
+    for (int i = 0; i < 5; ++i) fs::copy_file(shots[i], photos / fmt::format("office-{}.png", i + 1));
+    Capture capture = readCapture(photos.string());
+    KeptWork work;
+    try {
+        runColmap(capture);
+        FAIL("expected COLMAP's largest model to hold under half of the frames");
+    } catch (const Error& e) {
+        const std::string& message = e.message();
+        INFO(message);
+        if (std::size_t at = message.find("/tmp/smql-colmap-"); at != std::string::npos)
+            work.path = message.substr(at, std::string("/tmp/smql-colmap-XXXXXX").size());
+        CHECK(e.kind() == ErrorKind::Input);
+        CHECK_THAT(message, Catch::Matches(".*placed only [1-7] of 15 frames together \\(its largest model\\); "
+                                           "[0-9]+ more are placed in other models that share too few "
+                                           "frames with it to be joined: .*"));
+    }
 }
