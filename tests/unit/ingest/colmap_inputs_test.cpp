@@ -52,6 +52,13 @@ void copyFrame(const std::string& walk, int number, const fs::path& photos, cons
     REQUIRE(cv::imwrite((photos / name).string(), image));
 }
 
+// The walk's first `count` frames as photos/p1.png, p2.png ... under `dir`.
+fs::path walkPhotos(const ScratchDir& dir, const std::string& walk, int count) {
+    fs::path photos = dir.path / "photos";
+    for (int i = 1; i <= count; ++i) copyFrame(walk, i, photos, fmt::format("p{}.png", i));
+    return photos;
+}
+
 }  // namespace
 
 TEST_CASE("a photo set of mixed sizes gets one COLMAP camera per size", "[colmap]") {
@@ -165,8 +172,7 @@ TEST_CASE("1920-pixel frames reach COLMAP at 1024 and come back in their own pix
 TEST_CASE("a work folder of one's own keeps COLMAP's run for the same frames to read back", "[colmap]") {
     ScratchDir dir;
     std::string walk = writeWalk(dir);
-    fs::path photos = dir.path / "photos";
-    for (int i = 1; i <= 6; ++i) copyFrame(walk, i, photos, fmt::format("p{}.png", i));
+    fs::path photos = walkPhotos(dir, walk, 6);
     ColmapOptions options;
     options.workDirectory = (dir.path / "work").string();
 
@@ -234,9 +240,7 @@ std::map<std::string, Eigen::Vector3d> centresOf(const Capture& model) {
 // one similarity); a model sharing two frames is not taken in.
 TEST_CASE("two COLMAP models that share frames are joined into one", "[colmap]") {
     ScratchDir dir;
-    std::string walk = writeWalk(dir);
-    fs::path photos = dir.path / "photos";
-    for (int i = 1; i <= 8; ++i) copyFrame(walk, i, photos, fmt::format("p{}.png", i));
+    fs::path photos = walkPhotos(dir, writeWalk(dir), 8);
     ColmapOptions options;
     options.workDirectory = (dir.path / "work").string();
     Capture capture = readCapture(photos.string());
