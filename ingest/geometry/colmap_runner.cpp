@@ -470,9 +470,9 @@ private:
     Capture placeFrames() {
         const std::size_t frames = workFrames_.size();
         if (fine_ || run_.reused) return accepted(mapLargestModel());
-        std::optional<Capture> model = mapLargestModel();
-        if (model && 5 * model->frames.size() >= 4 * frames) return std::move(*model);
-        const std::size_t placed = model ? model->frames.size() : 0;
+        MapperOutcome outcome = mapLargestModel();
+        if (outcome.largest && 5 * outcome.largest->frames.size() >= 4 * frames) return std::move(*outcome.largest);
+        const std::size_t placed = outcome.largest ? outcome.largest->frames.size() : 0;
         note(
             fmt::format("COLMAP placed {} of {} frames with features at their own size; it runs again with the "
                         "finer features of the frames doubled",
@@ -601,13 +601,19 @@ private:
                         std::nullopt, kRetryHint);
     }
 
+    // What the mapper's runs made: the largest model (none when no run made one), and how many frames
+    // the other models placed apart from it.
+    struct MapperOutcome {
+        std::optional<Capture> largest;
+        std::size_t placedApart = 0;
+    };
+
     // The mapper, with each of kMapperSettings in turn (video frames relaxed first) until a model
     // holds most of the frames; the largest model of all, joined with the models that share its frames,
     // is kept when it holds at least half of them.
     // Each run writes its models (sparse/<settings>/0, 1...) and says what it made in the notes.
     // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
-    // Nothing when no run made a model.
-    std::optional<Capture> mapLargestModel() {
+    MapperOutcome mapLargestModel() {
         const bool fixed =
             capture_.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
             std::all_of(groups_.begin(), groups_.end(), [](const CameraGroup& g) { return g.known.has_value(); });
@@ -647,12 +653,12 @@ private:
         }
         if (best)
             for (const CaptureFrame& f : best->frames) placed.erase(f.colorPath);
-        placedApart_ = placed.size();
-        return best;
+        return {std::move(best), placed.size()};
     }
 
     // The largest model, when it holds at least half of the frames: else an error that says why.
-    Capture accepted(std::optional<Capture> best) {
+    Capture accepted(MapperOutcome outcome) {
+        std::optional<Capture>& best = outcome.largest;
         const std::size_t frames = workFrames_.size();
         if (!best)
             throw Error(ErrorKind::Input,
@@ -665,10 +671,11 @@ private:
                 fmt::format("colmap mapper placed only {} of {} frames together (its largest model){}: {}; its output "
                             "is in {}",
                             best->frames.size(), frames,
-                            placedApart_ == 0 ? std::string()
-                                              : fmt::format("; {} more are placed in other models that share too "
-                                                            "few frames with it to be joined",
-                                                            placedApart_),
+                            outcome.placedApart == 0
+                                ? std::string()
+                                : fmt::format("; {} more are placed in other models that share too "
+                                              "few frames with it to be joined",
+                                              outcome.placedApart),
                             diagnosis(database_, frames, options_.minMatches, true), run_.logPath),
                 std::nullopt, kRetryHint);
         return std::move(*best);
@@ -787,8 +794,7 @@ private:
     std::size_t scaled_ = 0;
     std::string inputs_;
     bool ordered_ = false, exhaustive_ = false, loops_ = false;
-    bool fine_ = true;             // SIFT from the frames doubled (COLMAP's first_octave -1), else at their own size
-    std::size_t placedApart_ = 0;  // frames the mapper placed only in models apart from the one kept
+    bool fine_ = true;  // SIFT from the frames doubled (COLMAP's first_octave -1), else at their own size
     ColmapNotes notes_;
 };
 

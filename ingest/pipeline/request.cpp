@@ -2,8 +2,11 @@
 
 #include <charconv>
 #include <filesystem>
+#include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "ingest/pipeline/object_finder.hpp"
 #include "model/error.hpp"
@@ -44,20 +47,44 @@ std::string oneOf(std::string_view name, const std::string& value, const std::ve
     throw Error(ErrorKind::Usage, fmt::format("{} {}: not a known value", optionFlag(name), value), std::nullopt, hint);
 }
 
+// The words of the options that choose among a few ways, each with the way it names: the option's
+// check, its help and the request's mapping to IngestOptions all read them here.
+template <class Way>
+using Words = std::vector<std::pair<std::string, Way>>;
+const Words<GeometrySource> kGeometryWords = {
+    {"given", GeometrySource::Given}, {"colmap", GeometrySource::Colmap}, {"auto", GeometrySource::Auto}};
+const Words<DenseUse> kDenseWords = {{"room", DenseUse::Room}, {"on", DenseUse::All}, {"off", DenseUse::Off}};
+
+template <class Way>
+std::vector<std::string> wordsOf(const Words<Way>& words) {
+    std::vector<std::string> out;
+    for (const auto& word : words) out.push_back(word.first);
+    return out;
+}
+
+// An option's value as --help shows it: given|colmap|auto.
+std::string wordList(const std::vector<std::string>& words) { return fmt::format("{}", fmt::join(words, "|")); }
+
+// The way a word that oneOf accepted names.
+template <class Way>
+Way wayOf(const Words<Way>& words, const std::string& word) {
+    for (const auto& [w, way] : words)
+        if (w == word) return way;
+    throw std::logic_error("an option's word not among its words: " + word);
+}
+
 // The table's rows. Help texts are functions because some are made from other tables (objects).
 const std::vector<IngestOption> kIngestOptions = {
     {"scene", "TEXT", [] { return std::string("scene name (default: the capture's folder name)"); },
      [](IngestRequest& r, const std::string& v) { r.scene = v; }},
-    {"geometry", "TEXT",
+    {"geometry", wordList(wordsOf(kGeometryWords)),
      [] {
          return std::string(
              "given (the capture's poses), colmap (structure from motion on the colour frames) or auto (default: "
              "colmap when some frame has no pose, or without depth: then with the given poses)");
      },
-     [](IngestRequest& r, const std::string& v) {
-         r.geometry = oneOf("geometry", v, {"given", "colmap", "auto"});
-     }},
-    {"objects", "TEXT", objectSourcesHelp,
+     [](IngestRequest& r, const std::string& v) { r.geometry = oneOf("geometry", v, wordsOf(kGeometryWords)); }},
+    {"objects", wordList(objectSourceNames()), objectSourcesHelp,
      [](IngestRequest& r, const std::string& v) { r.objects = oneOf("objects", v, objectSourceNames()); }},
     {"detector", "FILE",
      [] {
@@ -124,16 +151,14 @@ const std::vector<IngestOption> kIngestOptions = {
              "again");
      },
      [](IngestRequest& r, const std::string& v) { r.colmapDir = v; }},
-    {"dense", "room|on|off",
+    {"dense", wordList(wordsOf(kDenseWords)),
      [] {
          return std::string(
              "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones; room "
              "(the default): the floor, walls and scale are found among them; on: the things are lifted on their "
              "depth too; off: COLMAP's points alone (docs/ingest.md, \"Dense points from placed photos\")");
      },
-     [](IngestRequest& r, const std::string& v) {
-         r.dense = oneOf("dense", v, {"room", "on", "off"});
-     }},
+     [](IngestRequest& r, const std::string& v) { r.dense = oneOf("dense", v, wordsOf(kDenseWords)); }},
     {"scale", "NUMBER", [] { return std::string("metres per capture unit, overriding the estimate"); },
      [](IngestRequest& r, const std::string& v) { r.scale = number("scale", v, false); }},
     {"depth_scale", "NUMBER",
@@ -161,12 +186,6 @@ const std::vector<IngestOption> kIngestOptions = {
          r.force = v == "true" || v == "1";
      }},
 };
-
-GeometrySource geometrySource(const std::string& name) {
-    if (name == "given") return GeometrySource::Given;
-    if (name == "colmap") return GeometrySource::Colmap;
-    return GeometrySource::Auto;
-}
 
 }  // namespace
 
@@ -215,7 +234,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
 
     IngestOptions options;
     options.sceneName = sceneNameOf(request);
-    options.geometry = geometrySource(request.geometry);
+    options.geometry = wayOf(kGeometryWords, request.geometry);
     options.objects = request.objects;
     options.detectorModel = request.detector;
     options.detectorClasses = request.classes;
@@ -224,7 +243,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     options.colmap.maxImageSize = request.maxSize;
     options.colmap.vocabularyTree = request.vocabularyTree;
     options.colmap.workDirectory = request.colmapDir;
-    options.dense = request.dense == "off" ? DenseUse::Off : request.dense == "on" ? DenseUse::All : DenseUse::Room;
+    options.dense = wayOf(kDenseWords, request.dense);
     run.result = ingestCapture(capture, options, progress, cancelled);
     return run;
 }

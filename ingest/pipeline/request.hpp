@@ -39,7 +39,7 @@ struct IngestRequest {
 // `--max-size`. `set` checks the value and throws smql::Error(Usage) saying what it takes.
 struct IngestOption {
     std::string_view name;
-    std::string_view valueName;  // for --help: TEXT, FILE, NUMBER ...; "" for a flag (true or false)
+    std::string valueName;  // for --help: TEXT, FILE, NUMBER ...; "" for a flag (true or false)
     std::string (*help)();
     void (*set)(IngestRequest& request, const std::string& value);
 };
