@@ -45,37 +45,6 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
     return !alignment.ceilingHeight || p.z <= *alignment.ceilingHeight + kSlack;
 }
 
-// A hull carved without depth from a narrow range of directions stays long along the view. Along the
-// views' mean direction it is held to where the thing's own surfaces were seen (its sparse points),
-// widened at each end by half its width across the view: a thing reaches past what showed of it, not
-// without bound. Its kind's usual size is never the answer (a 2.97 m table stays 2.97 m). Returns the
-// hull's points within that slab (all of them when nothing says where to cut).
-std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
-                                       const std::vector<model::Vec3>& cameras) {
-    if (hull.empty() || surface.empty() || cameras.empty()) return hull;
-    model::Vec3 centre{0, 0, 0};
-    for (const auto& p : hull) centre = {centre.x + p.x, centre.y + p.y, 0};
-    centre = {centre.x / hull.size(), centre.y / hull.size(), 0};
-    double dx = 0, dy = 0;
-    for (const auto& c : cameras) {
-        const double ex = centre.x - c.x, ey = centre.y - c.y, length = std::hypot(ex, ey);
-        if (length > 1e-6) dx += ex / length, dy += ey / length;
-    }
-    const double length = std::hypot(dx, dy);
-    if (length < 1e-6) return hull;
-    dx /= length, dy /= length;
-    auto along = [&](const model::Vec3& p) { return dx * p.x + dy * p.y; };
-    auto across = [&](const model::Vec3& p) { return -dy * p.x + dx * p.y; };
-    double a0 = 1e18, a1 = -1e18, w0 = 1e18, w1 = -1e18;
-    for (const auto& p : surface) a0 = std::min(a0, along(p)), a1 = std::max(a1, along(p));
-    for (const auto& p : hull) w0 = std::min(w0, across(p)), w1 = std::max(w1, across(p));
-    const double reach = (w1 - w0) / 2;
-    std::vector<model::Vec3> kept;
-    for (const auto& p : hull)
-        if (along(p) >= a0 - reach && along(p) <= a1 + reach) kept.push_back(p);
-    return kept.size() >= 3 ? kept : hull;
-}
-
 // What the views' embeddings agree on: the mean of their unit vectors, at unit length. Empty when
 // no view has one, or when they cancel out (views pointing opposite ways say nothing).
 std::vector<float> meanEmbedding(const std::vector<Observation>& views) {
@@ -99,6 +68,48 @@ std::vector<float> meanEmbedding(const std::vector<Observation>& views) {
 }
 
 }  // namespace
+
+// A hull carved without depth from a narrow range of directions stays long along the view. Along the
+// views' mean direction it is held to where the thing's own surfaces were seen (its sparse points),
+// widened at each end by half its width across the view: a thing reaches past what showed of it, not
+// without bound. Its kind's usual size is never the answer (a 2.97 m table stays 2.97 m). Its top is
+// held to its surfaces too (below). Returns the hull's points within those bounds (all of them when
+// nothing says where to cut).
+std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
+                                       const std::vector<model::Vec3>& cameras) {
+    if (hull.empty() || surface.empty() || cameras.empty()) return hull;
+    model::Vec3 centre{0, 0, 0};
+    for (const auto& p : hull) centre = {centre.x + p.x, centre.y + p.y, 0};
+    centre = {centre.x / hull.size(), centre.y / hull.size(), 0};
+    double dx = 0, dy = 0;
+    for (const auto& c : cameras) {
+        const double ex = centre.x - c.x, ey = centre.y - c.y, length = std::hypot(ex, ey);
+        if (length > 1e-6) dx += ex / length, dy += ey / length;
+    }
+    const double length = std::hypot(dx, dy);
+    if (length < 1e-6) return hull;
+    dx /= length, dy /= length;
+    auto along = [&](const model::Vec3& p) { return dx * p.x + dy * p.y; };
+    auto across = [&](const model::Vec3& p) { return -dy * p.x + dx * p.y; };
+    double a0 = 1e18, a1 = -1e18, w0 = 1e18, w1 = -1e18;
+    for (const auto& p : surface) a0 = std::min(a0, along(p)), a1 = std::max(a1, along(p));
+    for (const auto& p : hull) w0 = std::min(w0, across(p)), w1 = std::max(w1, across(p));
+    const double reach = (w1 - w0) / 2;
+    // Views that all look down carve nothing above a thing's top: the space over a table projects into
+    // the table's outline in every one of them. Its top is held to where its surfaces were seen (the
+    // highest twentieth of them may be what stands on it), raised by a tenth of its height.
+    std::vector<double> heights;
+    for (const auto& p : surface) heights.push_back(p.z);
+    const auto high = heights.begin() + static_cast<std::ptrdiff_t>(0.95 * (heights.size() - 1));
+    std::nth_element(heights.begin(), high, heights.end());
+    double bottom = 1e18;
+    for (const auto& p : hull) bottom = std::min(bottom, p.z);
+    const double top = *high + 0.1 * std::max(0.0, *high - bottom);
+    std::vector<model::Vec3> kept;
+    for (const auto& p : hull)
+        if (along(p) >= a0 - reach && along(p) <= a1 + reach && p.z <= top) kept.push_back(p);
+    return kept.size() >= 3 ? kept : hull;
+}
 
 std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
     std::vector<TrackedNode> made;

@@ -22,6 +22,12 @@
 
 namespace smql::ingest {
 
+// A hull carved without depth (ObjectTrack::carved), in the aligned frame, held to where its thing's
+// surfaces were seen (`surface`, the sparse points it was carved around): along the mean direction the
+// `cameras` that saw it looked in, and at its top.
+std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
+                                       const std::vector<model::Vec3>& cameras);
+
 struct ObjectsStage {
     static constexpr std::string_view kName = "objects";
     const Capture& capture;
