@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <utility>
 
 #include <fmt/format.h>
 #include <opencv2/core.hpp>
 
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
@@ -67,6 +70,16 @@ std::vector<float> meanEmbedding(const std::vector<Observation>& views) {
     return mean;
 }
 
+// The height under which 95 % of a thing's surface points lie: its top, less the highest twentieth,
+// which may be what stands on it.
+double surfaceTop(const std::vector<model::Vec3>& surface) {
+    std::vector<double> heights;
+    for (const auto& p : surface) heights.push_back(p.z);
+    const auto high = heights.begin() + static_cast<std::ptrdiff_t>(0.95 * (heights.size() - 1));
+    std::nth_element(heights.begin(), high, heights.end());
+    return *high;
+}
+
 }  // namespace
 
 // A hull carved without depth from a narrow range of directions stays long along the view. Along the
@@ -96,18 +109,49 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
     for (const auto& p : hull) w0 = std::min(w0, across(p)), w1 = std::max(w1, across(p));
     const double reach = (w1 - w0) / 2;
     // Views that all look down carve nothing above a thing's top: the space over a table projects into
-    // the table's outline in every one of them. Its top is held to where its surfaces were seen (the
-    // highest twentieth of them may be what stands on it), raised by a tenth of its height.
-    std::vector<double> heights;
-    for (const auto& p : surface) heights.push_back(p.z);
-    const auto high = heights.begin() + static_cast<std::ptrdiff_t>(0.95 * (heights.size() - 1));
-    std::nth_element(heights.begin(), high, heights.end());
+    // the table's outline in every one of them. Its top is held to where its surfaces were seen
+    // (surfaceTop), raised by a tenth of its height.
+    const double high = surfaceTop(surface);
     double bottom = 1e18;
     for (const auto& p : hull) bottom = std::min(bottom, p.z);
-    const double top = *high + 0.1 * std::max(0.0, *high - bottom);
+    const double top = high + 0.1 * std::max(0.0, high - bottom);
     std::vector<model::Vec3> kept;
     for (const auto& p : hull)
         if (along(p) >= a0 - reach && along(p) <= a1 + reach && p.z <= top) kept.push_back(p);
+    return kept.size() >= 3 ? kept : hull;
+}
+
+// A thing that holds things (a table, a desk, a counter) is widest at its top, and its top is where
+// its own surfaces were seen most (the cloth, the fruit bowl, the papers): its carved hull, which
+// takes in the chairs around it where views along it cannot carve them away, is held to the cells
+// its surface points fill in the band under its top, and a cell around them. Returns the hull's
+// points within those bounds, in the frame of the hull's own box (all of them when the band holds
+// too few cells to say).
+std::vector<model::Vec3> holdToTop(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface) {
+    constexpr double kBand = 0.15;  // m under the top
+    constexpr double kCell = 0.05;  // m
+    constexpr std::size_t kMinCells = 20;
+    if (hull.size() < 3 || surface.empty()) return hull;
+    const double high = surfaceTop(surface);
+    std::set<std::pair<long, long>> cells;
+    for (const auto& p : surface)
+        if (p.z <= high && p.z >= high - kBand)
+            cells.insert({std::lround(std::floor(p.x / kCell)), std::lround(std::floor(p.y / kCell))});
+    if (cells.size() < kMinCells) return hull;
+    const model::Box box = uprightBox(hull);
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    auto u = [&](double x, double y) { return c * (x - box.center.x) + s * (y - box.center.y); };
+    auto v = [&](double x, double y) { return -s * (x - box.center.x) + c * (y - box.center.y); };
+    double u0 = 1e18, u1 = -1e18, v0 = 1e18, v1 = -1e18;
+    for (const auto& [i, j] : cells) {
+        const double x = (i + 0.5) * kCell, y = (j + 0.5) * kCell;
+        u0 = std::min(u0, u(x, y)), u1 = std::max(u1, u(x, y)), v0 = std::min(v0, v(x, y)), v1 = std::max(v1, v(x, y));
+    }
+    std::vector<model::Vec3> kept;
+    for (const auto& p : hull)
+        if (u(p.x, p.y) >= u0 - kCell && u(p.x, p.y) <= u1 + kCell && v(p.x, p.y) >= v0 - kCell &&
+            v(p.x, p.y) <= v1 + kCell)
+            kept.push_back(p);
     return kept.size() >= 3 ? kept : hull;
 }
 
@@ -146,7 +190,9 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                 if (const auto& pose = capture.frames[v.frame].pose)
                     cameras.push_back(aligned.alignment.apply(pose->translation));
             PointCloud held;
-            for (const auto& p : holdToSurface(cloud.points, surface, cameras)) held.push(p, {0, 0, 0}, 0);
+            std::vector<model::Vec3> points = holdToSurface(cloud.points, surface, cameras);
+            if (holdsThings(category) && !hasUprightEnds(category)) points = holdToTop(points, surface);
+            for (const auto& p : points) held.push(p, {0, 0, 0}, 0);
             cloud = std::move(held);
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);

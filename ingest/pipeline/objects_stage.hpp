@@ -27,6 +27,9 @@ namespace smql::ingest {
 // `cameras` that saw it looked in, and at its top.
 std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
                                        const std::vector<model::Vec3>& cameras);
+// The same hull of a thing that holds things (typical_sizes.hpp: a table, a desk), held to the
+// footprint its surface points show under its top.
+std::vector<model::Vec3> holdToTop(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface);
 
 struct ObjectsStage {
     static constexpr std::string_view kName = "objects";
