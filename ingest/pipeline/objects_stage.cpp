@@ -80,16 +80,47 @@ double surfaceTop(const std::vector<model::Vec3>& surface) {
     return *high;
 }
 
+// A thing widest at its top (a table, a desk, a counter) has its top where its own surfaces were seen
+// most (the cloth, the fruit bowl, the papers): the cells its surface points fill in the band under
+// `top`, and a cell around them, bound its footprint, in the frame of the hull's own box. Views along
+// a table cannot carve away the chairs at its sides; this does. Returns the hull's points within
+// those bounds (all of them when the band holds too few cells to say).
+std::vector<model::Vec3> underTop(std::vector<model::Vec3> hull, const std::vector<model::Vec3>& surface, double top) {
+    constexpr double kBand = 0.15;  // m under the top
+    constexpr double kCell = 0.05;  // m
+    constexpr std::size_t kMinCells = 20;
+    std::set<std::pair<long, long>> cells;
+    for (const auto& p : surface)
+        if (p.z <= top && p.z >= top - kBand)
+            cells.insert({static_cast<long>(std::floor(p.x / kCell)), static_cast<long>(std::floor(p.y / kCell))});
+    if (cells.size() < kMinCells) return hull;
+    const model::Box box = uprightBox(hull);
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    auto u = [&](double x, double y) { return c * (x - box.center.x) + s * (y - box.center.y); };
+    auto v = [&](double x, double y) { return -s * (x - box.center.x) + c * (y - box.center.y); };
+    double u0 = 1e18, u1 = -1e18, v0 = 1e18, v1 = -1e18;
+    for (const auto& [i, j] : cells) {
+        const double x = (i + 0.5) * kCell, y = (j + 0.5) * kCell;
+        u0 = std::min(u0, u(x, y)), u1 = std::max(u1, u(x, y)), v0 = std::min(v0, v(x, y)), v1 = std::max(v1, v(x, y));
+    }
+    std::vector<model::Vec3> kept;
+    for (const auto& p : hull)
+        if (u(p.x, p.y) >= u0 - kCell && u(p.x, p.y) <= u1 + kCell && v(p.x, p.y) >= v0 - kCell &&
+            v(p.x, p.y) <= v1 + kCell)
+            kept.push_back(p);
+    return kept.size() >= 3 ? kept : hull;
+}
+
 }  // namespace
 
 // A hull carved without depth from a narrow range of directions stays long along the view. Along the
 // views' mean direction it is held to where the thing's own surfaces were seen (its sparse points),
 // widened at each end by half its width across the view: a thing reaches past what showed of it, not
 // without bound. Its kind's usual size is never the answer (a 2.97 m table stays 2.97 m). Its top is
-// held to its surfaces too (below). Returns the hull's points within those bounds (all of them when
-// nothing says where to cut).
+// held to its surfaces too (below), and so is the footprint of a thing `widestAtTop` (underTop).
+// Returns the hull's points within those bounds (all of them when nothing says where to cut).
 std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
-                                       const std::vector<model::Vec3>& cameras) {
+                                       const std::vector<model::Vec3>& cameras, bool widestAtTop) {
     if (hull.empty() || surface.empty() || cameras.empty()) return hull;
     model::Vec3 centre{0, 0, 0};
     for (const auto& p : hull) centre = {centre.x + p.x, centre.y + p.y, 0};
@@ -118,41 +149,8 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
     std::vector<model::Vec3> kept;
     for (const auto& p : hull)
         if (along(p) >= a0 - reach && along(p) <= a1 + reach && p.z <= top) kept.push_back(p);
-    return kept.size() >= 3 ? kept : hull;
-}
-
-// A thing that holds things (a table, a desk, a counter) is widest at its top, and its top is where
-// its own surfaces were seen most (the cloth, the fruit bowl, the papers): its carved hull, which
-// takes in the chairs around it where views along it cannot carve them away, is held to the cells
-// its surface points fill in the band under its top, and a cell around them. Returns the hull's
-// points within those bounds, in the frame of the hull's own box (all of them when the band holds
-// too few cells to say).
-std::vector<model::Vec3> holdToTop(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface) {
-    constexpr double kBand = 0.15;  // m under the top
-    constexpr double kCell = 0.05;  // m
-    constexpr std::size_t kMinCells = 20;
-    if (hull.size() < 3 || surface.empty()) return hull;
-    const double high = surfaceTop(surface);
-    std::set<std::pair<long, long>> cells;
-    for (const auto& p : surface)
-        if (p.z <= high && p.z >= high - kBand)
-            cells.insert({std::lround(std::floor(p.x / kCell)), std::lround(std::floor(p.y / kCell))});
-    if (cells.size() < kMinCells) return hull;
-    const model::Box box = uprightBox(hull);
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    auto u = [&](double x, double y) { return c * (x - box.center.x) + s * (y - box.center.y); };
-    auto v = [&](double x, double y) { return -s * (x - box.center.x) + c * (y - box.center.y); };
-    double u0 = 1e18, u1 = -1e18, v0 = 1e18, v1 = -1e18;
-    for (const auto& [i, j] : cells) {
-        const double x = (i + 0.5) * kCell, y = (j + 0.5) * kCell;
-        u0 = std::min(u0, u(x, y)), u1 = std::max(u1, u(x, y)), v0 = std::min(v0, v(x, y)), v1 = std::max(v1, v(x, y));
-    }
-    std::vector<model::Vec3> kept;
-    for (const auto& p : hull)
-        if (u(p.x, p.y) >= u0 - kCell && u(p.x, p.y) <= u1 + kCell && v(p.x, p.y) >= v0 - kCell &&
-            v(p.x, p.y) <= v1 + kCell)
-            kept.push_back(p);
-    return kept.size() >= 3 ? kept : hull;
+    if (kept.size() < 3) return hull;
+    return widestAtTop ? underTop(std::move(kept), surface, high) : kept;
 }
 
 std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
@@ -190,9 +188,8 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                 if (const auto& pose = capture.frames[v.frame].pose)
                     cameras.push_back(aligned.alignment.apply(pose->translation));
             PointCloud held;
-            std::vector<model::Vec3> points = holdToSurface(cloud.points, surface, cameras);
-            if (holdsThings(category) && !hasUprightEnds(category)) points = holdToTop(points, surface);
-            for (const auto& p : points) held.push(p, {0, 0, 0}, 0);
+            const bool widestAtTop = holdsThings(category) && !hasUprightEnds(category);
+            for (const auto& p : holdToSurface(cloud.points, surface, cameras, widestAtTop)) held.push(p, {0, 0, 0}, 0);
             cloud = std::move(held);
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);

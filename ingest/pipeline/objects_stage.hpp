@@ -24,12 +24,10 @@ namespace smql::ingest {
 
 // A hull carved without depth (ObjectTrack::carved), in the aligned frame, held to where its thing's
 // surfaces were seen (`surface`, the sparse points it was carved around): along the mean direction the
-// `cameras` that saw it looked in, and at its top.
+// `cameras` that saw it looked in, at its top, and, for a thing `widestAtTop` (one that holds things
+// and has no upright end, typical_sizes.hpp: a table, a desk), to the footprint its top shows.
 std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
-                                       const std::vector<model::Vec3>& cameras);
-// The same hull of a thing that holds things (typical_sizes.hpp: a table, a desk), held to the
-// footprint its surface points show under its top.
-std::vector<model::Vec3> holdToTop(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface);
+                                       const std::vector<model::Vec3>& cameras, bool widestAtTop);
 
 struct ObjectsStage {
     static constexpr std::string_view kName = "objects";

@@ -262,7 +262,7 @@ TEST_CASE("the objects stage holds a carved hull's top, and a table's footprint,
     std::vector<model::Vec3> top;
     for (int i = 0; i < 950; ++i) top.push_back({0.1 + 0.002 * i, 0.1 + 0.0008 * i, 0.73 + 0.04 * (i % 11) / 10.0});
     for (int i = 0; i < 50; ++i) top.push_back({0.5 + 0.01 * i, 0.5, 0.80 + 0.23 * i / 49.0});  // a bowl, a bottle
-    const auto held = holdToSurface(table, top, cameras);
+    const auto held = holdToSurface(table, top, cameras, false);
     CHECK(heightOf(held) >= 0.75);
     CHECK(heightOf(held) <= 0.90);  // was 1.55
     CHECK(std::any_of(held.begin(), held.end(), [](const auto& p) { return p.x > 1.95 && p.y > 0.95; }));
@@ -272,7 +272,7 @@ TEST_CASE("the objects stage holds a carved hull's top, and a table's footprint,
     std::vector<model::Vec3> seatAndBack;
     for (int i = 0; i < 200; ++i) seatAndBack.push_back({0.05 + 0.002 * i, 0.1, 0.45});
     for (int i = 0; i < 200; ++i) seatAndBack.push_back({0.05 + 0.002 * i, 0.45, 0.45 + 0.45 * i / 199.0});
-    CHECK(heightOf(holdToSurface(chair, seatAndBack, cameras)) == heightOf(chair));
+    CHECK(heightOf(holdToSurface(chair, seatAndBack, cameras, false)) == heightOf(chair));
 
     // The views along the table could not carve away the chairs on both its sides: its hull is 1.8 m wide
     // where its top, which its points show, is 0.8 m. A table is widest at its top.
@@ -280,7 +280,7 @@ TEST_CASE("the objects stage holds a carved hull's top, and a table's footprint,
     std::vector<model::Vec3> onTop;
     for (const auto& p : top) onTop.push_back({p.x, p.y + 0.5, p.z});
     for (int i = 0; i < 100; ++i) onTop.push_back({0.2 + 0.016 * i, 0.25, 0.45});  // the seats, under its top band
-    const auto footprint = holdToTop(withChairs, onTop);
+    const auto footprint = holdToSurface(withChairs, onTop, cameras, true);
     auto [west, east] =
         std::minmax_element(footprint.begin(), footprint.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
     auto [south, north] =
