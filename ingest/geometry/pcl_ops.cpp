@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <memory>
 
 #include <pcl/PointIndices.h>
@@ -52,33 +51,36 @@ pcl::IndicesPtr toPclIndices(const std::vector<std::size_t>& indices) {
 }
 
 // A plane model constrained about an axis (PCL's perpendicular or parallel plane) whose RANSAC hypotheses
-// count their inliers on two threads, each half of the points counted by PCL's own plane model: the
-// counts, and so the plane RANSAC keeps, are those of one thread. Counting every point for each of 1,000
-// hypotheses was most of an RGB-D ingest's alignment (3 s of TUM fr1/rpy's 3.3 s).
+// count their inliers on a copy of the points laid out coordinate by coordinate, in a loop the compiler
+// vectorises: the test PCL's plane model makes (|n . p + d| < threshold, in floats), so the same counts and
+// the same plane, without PCL's gather of each point through its index. Counting every point for each of
+// 1,000 hypotheses was most of an RGB-D ingest's alignment (docs/benchmarks.md "Ingest").
 template <typename Constrained>
-class CountedInHalves : public Constrained {
+class CountedContiguously : public Constrained {
 public:
     using Cloud = typename Constrained::PointCloudConstPtr;
-    CountedInHalves(const Cloud& cloud, const pcl::Indices& indices, bool halved) : Constrained(cloud, indices) {
-        if (!halved || indices.size() < kHalvedCount) return;
-        const auto middle = indices.begin() + static_cast<std::ptrdiff_t>(indices.size() / 2);
-        lower_ = std::make_unique<Plane>(cloud, pcl::Indices(indices.begin(), middle));
-        upper_ = std::make_unique<Plane>(cloud, pcl::Indices(middle, indices.end()));
+    CountedContiguously(const Cloud& cloud, const pcl::Indices& indices) : Constrained(cloud, indices) {
+        for (auto* axis : {&x_, &y_, &z_}) axis->reserve(indices.size());
+        for (auto i : indices) {
+            const auto& p = (*cloud)[static_cast<std::size_t>(i)];
+            x_.push_back(p.x);
+            y_.push_back(p.y);
+            z_.push_back(p.z);
+        }
     }
 
     std::size_t countWithinDistance(const Eigen::VectorXf& coefficients, double threshold) const override {
-        if (!lower_) return Constrained::countWithinDistance(coefficients, threshold);
         if (!this->isModelValid(coefficients)) return 0;  // as the constrained model counts: none
-        auto upper =
-            std::async(std::launch::async, [&] { return upper_->countWithinDistance(coefficients, threshold); });
-        return lower_->countWithinDistance(coefficients, threshold) + upper.get();
+        const float a = coefficients[0], b = coefficients[1], c = coefficients[2], d = coefficients[3];
+        const auto limit = static_cast<float>(threshold);
+        const float *x = x_.data(), *y = y_.data(), *z = z_.data();
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < x_.size(); ++i) count += std::abs(a * x[i] + b * y[i] + c * z[i] + d) < limit;
+        return count;
     }
 
 private:
-    using Plane = pcl::SampleConsensusModelPlane<pcl::PointXYZ>;
-    // Fewer points are counted in less time than a thread takes to start.
-    static constexpr std::size_t kHalvedCount = 20000;
-    std::unique_ptr<Plane> lower_, upper_;
+    std::vector<float> x_, y_, z_;
 };
 
 }  // namespace
@@ -95,14 +97,14 @@ std::optional<PlaneFound> segmentPlane(const std::vector<model::Vec3>& points, c
     pcl::SampleConsensusModelPlane<pcl::PointXYZ>::Ptr model;
     if (search.constraint == PlaneConstraint::NormalAlongAxis) {
         auto perpendicular =
-            std::make_shared<CountedInHalves<pcl::SampleConsensusModelPerpendicularPlane<pcl::PointXYZ>>>(
-                cloud, all, search.countInHalves);
+            std::make_shared<CountedContiguously<pcl::SampleConsensusModelPerpendicularPlane<pcl::PointXYZ>>>(cloud,
+                                                                                                              all);
         perpendicular->setAxis(axis);
         perpendicular->setEpsAngle(search.epsAngle);
         model = perpendicular;
     } else {
-        auto parallel = std::make_shared<CountedInHalves<pcl::SampleConsensusModelParallelPlane<pcl::PointXYZ>>>(
-            cloud, all, search.countInHalves);
+        auto parallel =
+            std::make_shared<CountedContiguously<pcl::SampleConsensusModelParallelPlane<pcl::PointXYZ>>>(cloud, all);
         parallel->setAxis(axis);
         parallel->setEpsAngle(search.epsAngle);
         model = parallel;

@@ -25,9 +25,6 @@ struct PlaneSearch {
     double distance = 0.03;  // inlier distance, in the cloud's units
     int maxIterations = 1000;
     bool optimise = true;  // least-squares refit on the inliers
-    // Each hypothesis's inliers counted on two threads, half of the points each (20,000 points or more):
-    // the same counts, so the same plane, in about half the time.
-    bool countInHalves = true;
 };
 
 struct PlaneFound {

@@ -7,6 +7,9 @@
 // "Objects from detections", "Detections without depth" and "Detector").
 #include <algorithm>
 #include <chrono>
+#include <future>
+#include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -46,36 +49,24 @@ public:
           voteLabels_(voteLabels),
           tracker_(voteLabels) {}
 
+    // A frame's detections are made on a thread of their own while the frames up to the next one looked at are
+    // loaded and this one's views lifted: the models are most of a depth camera's ingest (docs/benchmarks.md
+    // "Ingest"). One frame at a time, in capture order: a model is not run from two threads, and the tracks
+    // grow in the order the frames came.
     void observe(const PosedFrame& frame) override {
         if (!looksAt(frame)) return;
         looked_.push_back(frame.position);
-        const FrameDetections found = detectionsOf(frame);
-        const std::vector<Detection>& detections = found.detections;
-        if (hasDepth_) {
-            track(tracker_,
-                  observeDetections(frame.images, frame.pose, frame.position, detections, found.storedWidth,
-                                    options_.objectStride, options_.minInstancePixels),
-                  detections, frame.images.color);
-            return;
-        }
-        auto seen = observeSparse(frame, detections, found.storedWidth);
-        mostConfidentFirst(seen, detections);
-        std::vector<Observation> placed;
-        for (auto& o : seen) {
-            if (o.sparse.size() >= kMinSparsePoints) {
-                placed.push_back(std::move(o));
-                continue;
-            }
-            const Detection& detection = detections[o.instance - 1];
-            o.embedding = detection.embedding;
-            EvidenceCrop crop{o.pixels, o.frame, encodeCrop(frame.images.color, o.bounds, options_.evidenceSize)};
-            unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
-        }
-        track(tracker_, std::move(placed), detections, frame.images.color);
-        if (liftOnDense_) denseFrames_.push_back(frame.position);
+        if (detecting_) detecting_->detections.wait();
+        std::optional<Detecting> previous = std::exchange(detecting_, std::nullopt);
+        detecting_.emplace(frame);
+        detecting_->detections =
+            std::async(std::launch::async, [this, posed = detecting_->posed()] { return detectionsOf(posed); });
+        if (previous) lift(previous->posed(), previous->detections.get());
     }
 
     std::vector<ObjectTrack> takeTracks() override {
+        if (detecting_) lift(detecting_->posed(), detecting_->detections.get());
+        detecting_.reset();
         auto tracks = tracker_.take();
         if (!hasDepth_) placeOnSparsePoints(tracks);
         return tracks;
@@ -133,6 +124,11 @@ protected:
     virtual FrameDetections keyframeDetectionsOf(const PosedFrame& frame) { return detectionsOf(frame); }
     // Whether the frame's detections are looked at (keyframes); every frame by default.
     virtual bool looksAt(const PosedFrame&) { return true; }
+    // Waits for the detections still being made: a source whose detectionsOf uses its own members calls it from
+    // its destructor, before they go (the thread may still run when a stage stops on an error).
+    void finishDetecting() {
+        if (detecting_) detecting_->detections.wait();
+    }
     const Capture& capture() const { return capture_; }
     bool hasDepth() const { return hasDepth_; }
 
@@ -155,6 +151,33 @@ private:
     // voxel has about 12 within 2).
     static constexpr double kSpeckReach = 2;
     static constexpr int kSpeckNeighbours = 4;
+
+    // A frame's detections lifted into tracks.
+    void lift(const PosedFrame& frame, const FrameDetections& found) {
+        const std::vector<Detection>& detections = found.detections;
+        if (hasDepth_) {
+            track(tracker_,
+                  observeDetections(frame.images, frame.pose, frame.position, detections, found.storedWidth,
+                                    options_.objectStride, options_.minInstancePixels),
+                  detections, frame.images.color);
+            return;
+        }
+        auto seen = observeSparse(frame, detections, found.storedWidth);
+        mostConfidentFirst(seen, detections);
+        std::vector<Observation> placed;
+        for (auto& o : seen) {
+            if (o.sparse.size() >= kMinSparsePoints) {
+                placed.push_back(std::move(o));
+                continue;
+            }
+            const Detection& detection = detections[o.instance - 1];
+            o.embedding = detection.embedding;
+            EvidenceCrop crop{o.pixels, o.frame, encodeCrop(frame.images.color, o.bounds, options_.evidenceSize)};
+            unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
+        }
+        track(tracker_, std::move(placed), detections, frame.images.color);
+        if (liftOnDense_) denseFrames_.push_back(frame.position);
+    }
 
     // The most confident detections found tracks first.
     static void mostConfidentFirst(std::vector<Observation>& seen, const std::vector<Detection>& detections) {
@@ -288,6 +311,18 @@ private:
         tracks = std::move(carved);
     }
 
+    // A frame looked at whose detections are being made: its own images, as the frames stage loads the next.
+    struct Detecting {
+        std::uint32_t position;
+        const CaptureFrame* frame;
+        FrameImages images;
+        Pose pose;
+        std::future<FrameDetections> detections;
+        explicit Detecting(const PosedFrame& posed)
+            : position(posed.position), frame(&posed.frame), images(posed.images), pose(posed.pose) {}
+        PosedFrame posed() const { return {position, *frame, images, pose}; }
+    };
+
     const Capture& capture_;
     const IngestOptions& options_;
     bool hasDepth_;
@@ -302,12 +337,14 @@ private:
     std::size_t fewPoints_ = 0;               // without depth: views with too few sparse points on them,
     std::size_t uncarved_ = 0;                // ... views of tracks whose points carved no hull,
     std::size_t placedByRays_ = 0;            // ... and how many of both their boxes' rays placed
+    std::optional<Detecting> detecting_;
 };
 
 class DetectionFinder : public DetectionLifter {
 public:
     DetectionFinder(const Capture& capture, const IngestOptions& options)
         : DetectionLifter(capture, options, /*voteLabels=*/false), detections_(readDetections(capture)) {}
+    ~DetectionFinder() override { finishDetecting(); }
 
 private:
     FrameDetections detectionsOf(const PosedFrame& frame) override {
@@ -325,6 +362,7 @@ public:
         : DetectionLifter(capture, options, /*voteLabels=*/true),
           detector_(makeDetector(files, packagedWithDepth(capture, options))),
           segmenter_(packagedWithDepth(capture, options) ? installedSegmenter() : nullptr) {}
+    ~DetectorFinder() override { finishDetecting(); }
 
     std::string frameNote() const override {
         std::string note = DetectionLifter::frameNote();

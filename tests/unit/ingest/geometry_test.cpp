@@ -15,6 +15,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "dining_cloud.hpp"
 #include "ingest/capture/frame_loader.hpp"
 #include "ingest/geometry/alignment.hpp"
 #include "ingest/geometry/clusters.hpp"
@@ -30,6 +31,7 @@
 
 using namespace smql;
 using namespace smql::ingest;
+using namespace smql::ingest::test;
 
 namespace {
 
@@ -444,62 +446,6 @@ TEST_CASE("wallAlignedBox keeps things square to the walls unless they are turne
     CHECK(wallAlignedBox(chairPoints, 1.15).yaw / kDeg == Approx(30).margin(2));
 }
 
-namespace {
-
-// A binary 16-bit PGM (P5, maxval > 255, big-endian samples) as metres.
-std::vector<float> readDepthPgm(const std::string& path, int& width, int& height, double unitsPerMetre) {
-    std::ifstream in(path, std::ios::binary);
-    REQUIRE(in);
-    std::string magic;
-    int maxval = 0;
-    in >> magic >> width >> height >> maxval;
-    REQUIRE(magic == "P5");
-    REQUIRE(maxval > 255);
-    in.get();  // the single whitespace before the samples
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(width) * height * 2);
-    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    REQUIRE(in.gcount() == static_cast<std::streamsize>(bytes.size()));
-    std::vector<float> metres(static_cast<std::size_t>(width) * height);
-    for (std::size_t i = 0; i < metres.size(); ++i)
-        metres[i] = static_cast<float>(((bytes[2 * i] << 8) | bytes[2 * i + 1]) / unitsPerMetre);
-    return metres;
-}
-
-// rgbd-dining: 5 frames, poses `tx ty tz qx qy qz qw` camera-to-world, depth in millimetres.
-struct Dining {
-    PointCloud cloud;
-    std::vector<Pose> cameras;
-};
-
-Dining loadDining(int stride, double voxel) {
-    const std::string root = std::string(SMQL_SHARED_DATA) + "/rgbd-dining";
-    Dining dining;
-    std::ifstream poses(root + "/pose.txt");
-    REQUIRE(poses);
-    Intrinsics k;
-    k.width = 640, k.height = 480, k.fx = 518.0, k.fy = 519.0, k.cx = 325.5, k.cy = 253.5;
-    PointCloud all;
-    for (int n = 1; n <= 5; ++n) {
-        double tx, ty, tz, qx, qy, qz, qw;
-        REQUIRE(poses >> tx >> ty >> tz >> qx >> qy >> qz >> qw);
-        Pose pose;
-        pose.rotation = {1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw),     2 * (qx * qz + qy * qw),
-                         2 * (qx * qy + qz * qw),     1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw),
-                         2 * (qx * qz - qy * qw),     2 * (qy * qz + qx * qw),     1 - 2 * (qx * qx + qy * qy)};
-        pose.translation = {tx, ty, tz};
-        dining.cameras.push_back(pose);
-        DepthView view;
-        auto metres = readDepthPgm(root + "/depth/" + std::to_string(n) + ".pgm", view.width, view.height, 1000.0);
-        view.metres = metres.data();
-        view.intrinsics = k;
-        append(all, backProject(view, pose, static_cast<std::uint32_t>(n - 1), stride));
-    }
-    dining.cloud = voxelDownsample(all, voxel);
-    return dining;
-}
-
-}  // namespace
-
 TEST_CASE("rgbd-dining: the floor becomes z = 0, walls and a table-top cluster are found", "[ingest][geometry][real]") {
     // Real Kinect frames (5 views, every 4th pixel, 5 cm voxels). What it checks:
     //  - after alignCapture the floor (carpet pixels at the bottom left of frame 1, picked independently
@@ -868,36 +814,6 @@ TEST_CASE("RANSAC's hypotheses counted in halves count both halves", "[ingest][g
         REQUIRE(found);
         CHECK(found->inliers.size() == 18000);
         CHECK(std::abs(found->offset + found->normal.z) < 1e-3);  // z = 1
-    }
-}
-
-TEST_CASE("rgbd-dining: RANSAC's inliers counted in two halves keep the plane one thread keeps",
-          "[ingest][geometry][real]") {
-    // The real dining cloud, dense enough that each hypothesis is counted on two threads: the floor
-    // (perpendicular to up) and the strongest wall (parallel to it) come out the same, point for point.
-    const Dining dining = loadDining(1, 0.02);
-    REQUIRE(dining.cloud.size() >= 40000);
-    const Alignment depth = alignCapture(dining.cloud, dining.cameras, AlignOptions{});
-    REQUIRE(depth.floorFound);
-    std::vector<std::size_t> all(dining.cloud.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-    for (auto constraint : {pcl_ops::PlaneConstraint::NormalAlongAxis, pcl_ops::PlaneConstraint::NormalAcrossAxis}) {
-        pcl_ops::PlaneSearch search;
-        search.axis = depth.up;
-        search.constraint = constraint;
-        search.epsAngle = 10 * kDeg;
-        search.countInHalves = false;
-        const auto one = pcl_ops::segmentPlane(dining.cloud.points, all, search);
-        search.countInHalves = true;
-        const auto halves = pcl_ops::segmentPlane(dining.cloud.points, all, search);
-        REQUIRE(one);
-        REQUIRE(halves);
-        CHECK(one->inliers.size() > 2000);
-        CHECK(halves->inliers == one->inliers);
-        CHECK(halves->normal.x == one->normal.x);
-        CHECK(halves->normal.y == one->normal.y);
-        CHECK(halves->normal.z == one->normal.z);
-        CHECK(halves->offset == one->offset);
     }
 }
 
