@@ -191,8 +191,9 @@ HullRegion hullBounds(const ObjectTrack& track) {
 }
 
 // One thing split into two carved tracks (its views associated apart): two tracks of a category
-// that never share a frame, each one's centre inside the other's hull bounds, become one, carved
-// from all their views in both regions.
+// that never share a frame, one's centre inside the other's hull bounds, become one, carved from all
+// their views in both regions: a track whose views carved little reaches far past the thing, so its
+// centre may lie outside the other's bounds while the other's lies inside its own.
 void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskView>& cameras) {
     for (std::size_t a = 0; a < tracks.size(); ++a) {
         ObjectTrack& one = tracks[a];
@@ -205,7 +206,7 @@ void mergeSplitTracks(std::vector<ObjectTrack>& tracks, const std::vector<MaskVi
             if (!other.carved || other.category != one.category || other.views.empty()) continue;
             HullRegion second = hullBounds(other);
             auto c2 = trackCentre(other);
-            if (!c2 || !second.holds(point(*c1)) || !first.holds(point(*c2))) continue;
+            if (!c2 || (!second.holds(point(*c1)) && !first.holds(point(*c2)))) continue;
             bool shareFrame = std::any_of(one.views.begin(), one.views.end(), [&](const Observation& v) {
                 return std::any_of(other.views.begin(), other.views.end(),
                                    [&](const Observation& w) { return w.frame == v.frame; });

@@ -29,8 +29,8 @@ struct UnplacedView {
 // outlines or boxes (carveRegion: each must hold a voxel); views whose box the
 // hull does not fill (hullFillsBox) leave the group, which is carved again
 // without them, and the group becomes a new track in `placed`. Last, two
-// carved tracks of one category that never share a frame, each one's centre
-// inside the other's hull bounds, become one. `cameras` has every frame's
+// carved tracks of one category that never share a frame, one's centre inside
+// the other's hull bounds, become one. `cameras` has every frame's
 // camera (MaskView). Returns how many views joined a track or became one.
 inline constexpr double kMinRayAngle = 3;    // degrees
 inline constexpr double kCentreShare = 0.3;  // of the box's width and height, from its centre
