@@ -71,6 +71,9 @@ std::vector<float> meanEmbedding(const std::vector<Observation>& views) {
     return mean;
 }
 
+// m a table's box may reach over the table top a floor was placed under: the top's own thickness and noise.
+constexpr double kOverTableTop = 0.03;
+
 // The height under which 95 % of a thing's surface points lie: its top, less the highest twentieth,
 // which may be what stands on it.
 double surfaceTop(const std::vector<model::Vec3>& surface) {
@@ -121,7 +124,8 @@ std::vector<model::Vec3> underTop(std::vector<model::Vec3> hull, const std::vect
 // held to its surfaces too (below), and so is the footprint of a thing `widestAtTop` (underTop).
 // Returns the hull's points within those bounds (all of them when nothing says where to cut).
 std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
-                                       const std::vector<model::Vec3>& cameras, bool widestAtTop) {
+                                       const std::vector<model::Vec3>& cameras, bool widestAtTop,
+                                       std::optional<double> tableTop) {
     if (hull.empty() || surface.empty() || cameras.empty()) return hull;
     model::Vec3 centre{0, 0, 0};
     for (const auto& p : hull) centre = {centre.x + p.x, centre.y + p.y, 0};
@@ -143,10 +147,16 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
     // Views that all look down carve nothing above a thing's top: the space over a table projects into
     // the table's outline in every one of them. Its top is held to where its surfaces were seen
     // (surfaceTop), raised by a tenth of its height.
-    const double high = surfaceTop(surface);
+    double high = surfaceTop(surface);
     double bottom = 1e18;
     for (const auto& p : hull) bottom = std::min(bottom, p.z);
-    const double top = high + 0.1 * std::max(0.0, high - bottom);
+    double top = high + 0.1 * std::max(0.0, high - bottom);
+    // Where the floor was placed under a table top, a table whose hull reaches past that top has it for its
+    // own: what its surfaces show above it (a monitor, a laptop) stands on it.
+    if (widestAtTop && tableTop && bottom < *tableTop && *tableTop < high) {
+        high = *tableTop;
+        top = *tableTop + kOverTableTop;
+    }
     std::vector<model::Vec3> kept;
     for (const auto& p : hull)
         if (along(p) >= a0 - reach && along(p) <= a1 + reach && p.z <= top) kept.push_back(p);
@@ -190,7 +200,9 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                     cameras.push_back(aligned.alignment.apply(pose->translation));
             PointCloud held;
             const bool widestAtTop = holdsThings(category) && !hasUprightEnds(category);
-            for (const auto& p : holdToSurface(cloud.points, surface, cameras, widestAtTop)) held.push(p, {0, 0, 0}, 0);
+            for (const auto& p :
+                 holdToSurface(cloud.points, surface, cameras, widestAtTop, aligned.alignment.tableTopHeight))
+                held.push(p, {0, 0, 0}, 0);
             cloud = std::move(held);
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,9 +26,12 @@ namespace smql::ingest {
 // A hull carved without depth (ObjectTrack::carved), in the aligned frame, held to where its thing's
 // surfaces were seen (`surface`, the sparse points it was carved around): along the mean direction the
 // `cameras` that saw it looked in, at its top, and, for a thing `widestAtTop` (one that holds things
-// and has no upright end, typical_sizes.hpp: a table, a desk), to the footprint its top shows.
+// and has no upright end, typical_sizes.hpp: a table, a desk), to the footprint its top shows. Where the
+// floor was placed a table's height under a table top (`tableTop`, Alignment::tableTopHeight), such a thing
+// whose hull and surfaces reach past that height has it for its top.
 std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, const std::vector<model::Vec3>& surface,
-                                       const std::vector<model::Vec3>& cameras, bool widestAtTop);
+                                       const std::vector<model::Vec3>& cameras, bool widestAtTop,
+                                       std::optional<double> tableTop = std::nullopt);
 
 struct ObjectsStage {
     static constexpr std::string_view kName = "objects";
