@@ -24,6 +24,10 @@ std::optional<double> typicalExtent(std::string_view category);
 // bound (the dining photos' chairs carve 2.2 m long).
 constexpr double kBeyondTypicalExtent = 1.5;
 constexpr double kBeyondTypicalHull = 2.5;
+// A hull carved without depth whose kind has a standard height (typicalHeight) and no upright end is not that
+// kind when it stands more than this many times that height: its top is held to where its surfaces were seen,
+// so its height is what such a hull measures best (a kitchen counter's, named "table", 1.06-1.27 m).
+constexpr double kTallerThanTypicalHull = 1.4;
 
 // What things of a kind usually stand on: the floor (chairs, beds, doors), a table, desk or counter
 // (mugs, laptops, keyboards), or either or unknown.

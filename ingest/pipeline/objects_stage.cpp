@@ -207,16 +207,23 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
-        // A name far too small for its box (a detector's 1.8 m "cake") is kept only as a guess, as is one fusion
-        // did not keep (a toilet in a kitchen; a suitcase among seats, a low table).
-        const bool tooLarge = !opening && !nameFitsBox(category, box, track.carved);
-        const std::string detectedAs = tooLarge ? category : track.detectedAs;
-        const std::string stored = tooLarge ? std::string("object") : category;
-        if (tooLarge)
+        // A name far too small for its box (a detector's 1.8 m "cake"), or, for a hull carved without depth, far
+        // shorter than it stands (a counter's hull named "table"), is kept only as a guess, as is one fusion did
+        // not keep (a toilet in a kitchen; a suitcase among seats, a low table).
+        const NameFit fit = opening ? NameFit::Fits : nameFit(category, box, track.carved);
+        const bool misnamed = fit != NameFit::Fits;
+        const std::string detectedAs = misnamed ? category : track.detectedAs;
+        const std::string stored = misnamed ? std::string("object") : category;
+        if (fit == NameFit::TooLarge)
             progress.note(
                 fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
                             "'object' with detected_as = {}",
                             std::max({box.size.x, box.size.y, box.size.z}), category, category));
+        else if (fit == NameFit::TooTall)
+            progress.note(
+                fmt::format("a {:.2f} m tall thing was detected as '{}', which stands about {:.2f} m: "
+                            "stored as 'object' with detected_as = {}",
+                            box.size.z, category, typicalHeight(category).value_or(0), category));
         else if (!detectedAs.empty())
             progress.note(fmt::format("a thing detected as '{}' {}: stored as '{}' with detected_as = {}", detectedAs,
                                       track.renamedWhy, stored, detectedAs));

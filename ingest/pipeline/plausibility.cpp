@@ -367,9 +367,14 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
     return out;
 }
 
-bool nameFitsBox(const std::string& category, const model::Box& box, bool carved) {
-    auto usual = typicalExtent(category);
-    return !usual || largestSide(box) <= (carved ? kBeyondTypicalHull : kBeyondTypicalExtent) * *usual;
+NameFit nameFit(const std::string& category, const model::Box& box, bool carved) {
+    if (auto usual = typicalExtent(category);
+        usual && largestSide(box) > (carved ? kBeyondTypicalHull : kBeyondTypicalExtent) * *usual)
+        return NameFit::TooLarge;
+    if (auto height = typicalHeight(category);
+        carved && height && !hasUprightEnds(category) && box.size.z > kTallerThanTypicalHull * *height)
+        return NameFit::TooTall;
+    return NameFit::Fits;
 }
 
 }  // namespace smql::ingest

@@ -79,7 +79,12 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene);
 // A thing named by a detector whose box is far larger than things of that name ever are (a 1.8 m
 // cake): not that thing. The name is kept only as the guess `detected_as`. A box measured from depth
 // is held to kBeyondTypicalExtent of its kind's extent; a hull carved without depth, which reaches past
-// the thing along the views (`carved`), to kBeyondTypicalHull.
-bool nameFitsBox(const std::string& category, const model::Box& box, bool carved = false);
+// the thing along the views (`carved`), to kBeyondTypicalHull, and, for a kind of a standard height, to
+// kTallerThanTypicalHull of that height.
+enum class NameFit { Fits, TooLarge, TooTall };
+NameFit nameFit(const std::string& category, const model::Box& box, bool carved = false);
+inline bool nameFitsBox(const std::string& category, const model::Box& box, bool carved = false) {
+    return nameFit(category, box, carved) == NameFit::Fits;
+}
 
 }  // namespace smql::ingest
