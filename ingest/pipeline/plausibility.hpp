@@ -83,8 +83,5 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene);
 // kTallerThanTypicalHull of that height.
 enum class NameFit { Fits, TooLarge, TooTall };
 NameFit nameFit(const std::string& category, const model::Box& box, bool carved = false);
-inline bool nameFitsBox(const std::string& category, const model::Box& box, bool carved = false) {
-    return nameFit(category, box, carved) == NameFit::Fits;
-}
 
 }  // namespace smql::ingest

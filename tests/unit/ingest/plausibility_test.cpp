@@ -185,18 +185,19 @@ TEST_CASE("plausibility: a stored memory without a floor says what could not be 
 
 TEST_CASE("plausibility: a name far smaller than its box, or a hull far taller than its kind, is not kept",
           "[ingest][plausibility]") {
-    CHECK_FALSE(nameFitsBox("cake", {{0, 0, 0.9}, {0.6, 0.5, 1.78}, 0}));
-    CHECK(nameFitsBox("cake", {{0, 0, 0.1}, {0.3, 0.3, 0.12}, 0}));
-    CHECK(nameFitsBox("table", {{0, 0, 0.4}, {1.8, 0.9, 0.75}, 0}));
-    CHECK_FALSE(nameFitsBox("table", {{0, 0, 0.4}, {6.5, 0.9, 0.75}, 0}));
-    CHECK(nameFitsBox("spaceship", {{0, 0, 0}, {40, 40, 40}, 0}));  // a kind of unknown size keeps its name
+    CHECK(nameFit("cake", {{0, 0, 0.9}, {0.6, 0.5, 1.78}, 0}) == NameFit::TooLarge);
+    CHECK(nameFit("cake", {{0, 0, 0.1}, {0.3, 0.3, 0.12}, 0}) == NameFit::Fits);
+    CHECK(nameFit("table", {{0, 0, 0.4}, {1.8, 0.9, 0.75}, 0}) == NameFit::Fits);
+    CHECK(nameFit("table", {{0, 0, 0.4}, {6.5, 0.9, 0.75}, 0}) == NameFit::TooLarge);
+    // A kind of unknown size keeps its name.
+    CHECK(nameFit("spaceship", {{0, 0, 0}, {40, 40, 40}, 0}) == NameFit::Fits);
     // SUN RGB-D 000001's sleigh bed: its headboard, measured from depth 1.82 m wide, called "suitcase".
-    CHECK_FALSE(nameFitsBox("suitcase", {{0.56, 4.93, 1.29}, {1.82, 0.99, 1.10}, 0}));
+    CHECK(nameFit("suitcase", {{0.56, 4.93, 1.29}, {1.82, 0.99, 1.10}, 0}) == NameFit::TooLarge);
     // A chair of the dining photos, its hull carved without depth 2.2 m long along the views: still a chair;
     // measured so from depth it would not be.
     const model::Box hull{{0, 0, 0.45}, {2.24, 0.89, 0.79}, 0};
-    CHECK(nameFitsBox("chair", hull, true));
-    CHECK_FALSE(nameFitsBox("chair", hull));
+    CHECK(nameFit("chair", hull, true) == NameFit::Fits);
+    CHECK(nameFit("chair", hull) == NameFit::TooLarge);
     // The red kitchen's counter as photos without depth, its hull named "table" (two COLMAP runs): 1.27 and
     // 1.16 m tall where a table stands 0.75 m. The table beside it, 0.88 m, and a bed with its headboard
     // (an upright end) keep their names; measured from depth a box is not judged by its height.
