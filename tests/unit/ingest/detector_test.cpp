@@ -206,6 +206,29 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
 
 // The same frames without their depth: COLMAP triangulates points with the frames' own poses, and
 // the detector's boxes are placed on those points.
+TEST_CASE("an ingest cancelled while the detector looks at a keyframe stops, and nothing is left running") {
+    // The real dining frames: a keyframe's models run on a thread of their own while the next frames load.
+    // Cancelled before the third frame, the second frame's detections are still being made; the ingest stops
+    // with the cancellation and the finder waits for them before its models go.
+    if (!installedDetector()) return;
+    auto capture = readCapture(diningPath());
+    IngestOptions options;
+    options.objects = "detect";
+    SilentProgress silent;
+    int asked = 0;
+    try {
+        ingestCapture(capture, options, silent, [&] { return ++asked > 3; });
+        FAIL("the ingest was not cancelled");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Usage);
+        CHECK(e.message() == "cancelled; nothing was written");
+    }
+    // A whole ingest runs afterwards in the same process, its detections made on their thread as before.
+    const auto result = ingestCapture(capture, options, silent);
+    CHECK(std::count_if(result.scene.nodes.begin(), result.scene.nodes.end(),
+                        [](const model::Node& n) { return n.category == "chair"; }) >= 2);
+}
+
 TEST_CASE("--objects detect on the real dining room without depth names chairs at metric scale") {
     if (!installedDetector()) return;
     auto capture = readCapture(diningPath());
