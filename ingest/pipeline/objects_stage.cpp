@@ -41,8 +41,9 @@ void setInWall(model::Box& box, const PointCloud& cloud, const std::vector<WallS
 
 // Nothing stands below the floor or above the ceiling: a hull carved from views that all look
 // down at a thing reaches under the floor, and the floor and ceiling bound it (a little slack for
-// the planes' own noise). So does a floor placed a table's height under a table top: the memory
-// stores it as the floor, and the desk whose top placed it reached 0.13 m under it in TUM's desk photos.
+// the planes' own noise). So does a floor placed a table's height under a table top: no floor node is
+// stored then, but the memory's heights are measured from it, and the desk whose top placed it reached
+// 0.13 m under it in TUM's desk photos.
 bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
     constexpr double kSlack = 0.02;  // m
     if ((alignment.floorFound || alignment.tableTopHeight) && p.z < -kSlack) return false;
@@ -106,9 +107,9 @@ std::vector<model::Vec3> underTop(std::vector<model::Vec3> hull, const std::vect
     auto u = [&](double x, double y) { return c * (x - box.center.x) + s * (y - box.center.y); };
     auto v = [&](double x, double y) { return -s * (x - box.center.x) + c * (y - box.center.y); };
     double u0 = 1e18, u1 = -1e18, v0 = 1e18, v1 = -1e18;
-    for (const auto& [i, j] : cells) {
-        const double x = (i + 0.5) * kCell, y = (j + 0.5) * kCell;
-        u0 = std::min(u0, u(x, y)), u1 = std::max(u1, u(x, y)), v0 = std::min(v0, v(x, y)), v1 = std::max(v1, v(x, y));
+    for (const auto& p : centres) {
+        u0 = std::min(u0, u(p.x, p.y)), u1 = std::max(u1, u(p.x, p.y));
+        v0 = std::min(v0, v(p.x, p.y)), v1 = std::max(v1, v(p.x, p.y));
     }
     std::vector<model::Vec3> kept;
     for (const auto& p : hull)
