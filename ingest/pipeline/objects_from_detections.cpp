@@ -7,11 +7,15 @@
 // "Objects from detections", "Detections without depth" and "Detector").
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <future>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <utility>
 
 #include <fmt/format.h>
+#include <opencv2/core/utility.hpp>
 
 #include "ingest/capture/detections.hpp"
 #include "ingest/capture/frame_loader.hpp"
@@ -50,23 +54,30 @@ public:
           tracker_(voteLabels) {}
 
     // A frame's detections are made on a thread of their own while the frames up to the next one looked at are
-    // loaded and this one's views lifted: the models are most of a depth camera's ingest (docs/benchmarks.md
-    // "Ingest"). One frame at a time, in capture order: a model is not run from two threads, and the tracks
-    // grow in the order the frames came.
+    // loaded and the earlier ones' views lifted: the models are most of a depth camera's ingest (docs/benchmarks.md
+    // "Ingest"). Up to streams() frames at once, the n-th frame looked at on stream n mod streams(), each stream
+    // with models of its own (a model is not run from two threads); the frames are lifted in capture order, so
+    // the tracks grow in the order the frames came.
     void observe(const PosedFrame& frame) override {
         if (!looksAt(frame)) return;
         looked_.push_back(frame.position);
-        if (detecting_) detecting_->detections.wait();
-        std::optional<Detecting> previous = std::exchange(detecting_, std::nullopt);
-        detecting_.emplace(frame);
-        detecting_->detections =
-            std::async(std::launch::async, [this, posed = detecting_->posed()] { return detectionsOf(posed); });
+        std::optional<Detecting> previous;
+        if (detecting_.size() >= streams()) {      // the oldest in flight holds this frame's stream
+            detecting_.front().detections.wait();  // done with the images it views before they move
+            previous.emplace(std::move(detecting_.front()));
+            detecting_.pop_front();
+        }
+        Detecting& next = detecting_.emplace_back(frame);
+        next.detections = std::async(std::launch::async, [this, posed = next.posed(), stream = next_++ % streams()] {
+            return detectionsOf(posed, stream);
+        });
         if (previous) lift(previous->posed(), previous->detections.get());
     }
 
     std::vector<ObjectTrack> takeTracks() override {
-        if (detecting_) lift(detecting_->posed(), detecting_->detections.get());
-        detecting_.reset();
+        for (Detecting& d : detecting_) lift(d.posed(), d.detections.get());
+        detecting_.clear();
+        detectionsDone();
         auto tracks = tracker_.take();
         if (!hasDepth_) placeOnSparsePoints(tracks);
         return tracks;
@@ -118,16 +129,21 @@ protected:
         std::vector<Detection> detections;
         int storedWidth = 0;  // the width of the image the boxes are in
     };
-    virtual FrameDetections detectionsOf(const PosedFrame& frame) = 0;
-    // The detections of a keyframe lifted on the dense points' depth (fuseOnDenseDepth); the frame's own
-    // by default.
-    virtual FrameDetections keyframeDetectionsOf(const PosedFrame& frame) { return detectionsOf(frame); }
+    // A frame's detections, made with stream `stream`'s models (below streams()); streams never share models.
+    virtual FrameDetections detectionsOf(const PosedFrame& frame, std::size_t stream) = 0;
+    // How many frames' detections are made at once (each stream on a thread of its own); one by default.
+    virtual std::size_t streams() const { return 1; }
+    // Every frame looked at has been lifted (takeTracks): the streams' threads are done.
+    virtual void detectionsDone() {}
+    // The detections of a keyframe lifted on the dense points' depth (fuseOnDenseDepth), once the streams are
+    // done; the frame's own by default.
+    virtual FrameDetections keyframeDetectionsOf(const PosedFrame& frame) { return detectionsOf(frame, 0); }
     // Whether the frame's detections are looked at (keyframes); every frame by default.
     virtual bool looksAt(const PosedFrame&) { return true; }
     // Waits for the detections still being made: a source whose detectionsOf uses its own members calls it from
     // its destructor, before they go (the thread may still run when a stage stops on an error).
     void finishDetecting() {
-        if (detecting_) detecting_->detections.wait();
+        for (Detecting& d : detecting_) d.detections.wait();
     }
     const Capture& capture() const { return capture_; }
     bool hasDepth() const { return hasDepth_; }
@@ -337,7 +353,8 @@ private:
     std::size_t fewPoints_ = 0;               // without depth: views with too few sparse points on them,
     std::size_t uncarved_ = 0;                // ... views of tracks whose points carved no hull,
     std::size_t placedByRays_ = 0;            // ... and how many of both their boxes' rays placed
-    std::optional<Detecting> detecting_;
+    std::deque<Detecting> detecting_;         // in flight, oldest first (a deque: its elements never move)
+    std::size_t next_ = 0;                    // frames sent to the streams
 };
 
 class DetectionFinder : public DetectionLifter {
@@ -347,7 +364,7 @@ public:
     ~DetectionFinder() override { finishDetecting(); }
 
 private:
-    FrameDetections detectionsOf(const PosedFrame& frame) override {
+    FrameDetections detectionsOf(const PosedFrame& frame, std::size_t) override {
         const Intrinsics& stored = frame.frame.intrinsics ? *frame.frame.intrinsics : capture().intrinsics;
         return {detections_[frame.position], stored.width};
     }
@@ -360,22 +377,45 @@ class DetectorFinder : public DetectionLifter {
 public:
     DetectorFinder(const Capture& capture, const DetectorFiles& files, const IngestOptions& options)
         : DetectionLifter(capture, options, /*voteLabels=*/true),
-          detector_(makeDetector(files, packagedWithDepth(capture, options))),
-          segmenter_(packagedWithDepth(capture, options) ? installedSegmenter() : nullptr) {}
-    ~DetectorFinder() override { finishDetecting(); }
+          files_(files),
+          packaged_(packagedWithDepth(capture, options)),
+          models_(kStreams) {
+        models_[0] = loadModels();
+        // OpenCV's own threads (a process-wide setting) give a model about 1.5 times its speed on two cores;
+        // a model a stream, each on one core, gives 1.7 (NanoDet, the SSD and DeepLab on a TUM frame: 116 ->
+        // 99 ms a frame); the rest of the cores go to each stream. Set back once the streams are done.
+        const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        if (cores >= 2) {
+            threadsBefore_ = cv::getNumThreads();
+            cv::setNumThreads(std::max(1, cores / static_cast<int>(kStreams)));
+        }
+    }
+    ~DetectorFinder() override {
+        finishDetecting();
+        detectionsDone();
+    }
 
     std::string frameNote() const override {
         std::string note = DetectionLifter::frameNote();
         if (milliseconds_.empty()) return note;
         auto sorted = milliseconds_;
         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-        return fmt::format("detector: {}{} on {} keyframes of {}, {} detections, median {:.0f} ms a keyframe{}{}",
-                           detector_->describe(), segmenter_ ? " + " + segmenter_->describe() : std::string(),
-                           milliseconds_.size(), frames_, detections_, sorted[sorted.size() / 2],
-                           note.empty() ? "" : "; ", note);
+        const Models& models = models_[0];
+        return fmt::format(
+            "detector: {}{} on {} keyframes of {}, {} detections, median {:.0f} ms a keyframe{}{}",
+            models.detector->describe(), models.segmenter ? " + " + models.segmenter->describe() : std::string(),
+            milliseconds_.size(), frames_, detections_, sorted[sorted.size() / 2], note.empty() ? "" : "; ", note);
     }
 
 private:
+    // Two streams keep two cores busy (each stream's models loaded the first time it runs); more would hold
+    // more models in memory for a machine this size.
+    static constexpr std::size_t kStreams = 2;
+    struct Models {
+        std::unique_ptr<ObjectDetector> detector;
+        std::unique_ptr<SemanticSegmenter> segmenter;
+    };
+
     // The packaged models beside NanoDet (the SSD, the segmenter) run when no --detector is given and
     // the frames have depth, their own or the dense points' (fuseOnDenseDepth). Without either, a box
     // is a silhouette that carves a hull (observations.hpp): the SSD's looser boxes carved the dining
@@ -383,9 +423,12 @@ private:
     static bool packagedWithDepth(const Capture& capture, const IngestOptions& options) {
         return options.detectorModel.empty() && (framesHaveDepth(capture) || liftsOnDenseDepth(capture, options));
     }
-    static std::unique_ptr<SemanticSegmenter> installedSegmenter() {
-        auto files = installedModel("deeplab");
-        return files ? makeDeepLabSegmenter(*files) : nullptr;
+    Models loadModels() const {
+        Models models{makeDetector(files_, packaged_), nullptr};
+        if (packaged_)
+            if (auto segmenterFiles = installedModel("deeplab"))
+                models.segmenter = makeDeepLabSegmenter(*segmenterFiles);
+        return models;
     }
 
     // With depth, the models run on keyframes (keyframes.hpp); without depth, on every frame: COLMAP's
@@ -395,11 +438,21 @@ private:
         return !hasDepth() || keyframes_.take(frame.pose);
     }
 
-    FrameDetections detectionsOf(const PosedFrame& frame) override {
+    std::size_t streams() const override { return kStreams; }
+
+    void detectionsDone() override {
+        if (threadsBefore_) cv::setNumThreads(*std::exchange(threadsBefore_, std::nullopt));
+    }
+
+    FrameDetections detectionsOf(const PosedFrame& frame, std::size_t stream) override {
         auto start = std::chrono::steady_clock::now();
-        auto detections = detect(frame.images.color);
-        milliseconds_.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        Models& models = models_[stream];
+        if (!models.detector) models = loadModels();
+        auto detections = detect(models, frame.images.color);
+        const double milliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        std::lock_guard lock(countMutex_);
+        milliseconds_.push_back(milliseconds);
         detections_ += detections.size();
         return {std::move(detections), frame.images.color.cols};
     }
@@ -407,22 +460,25 @@ private:
     // Run again rather than kept from the frames pass: a frame's masks are images, and a long walk's
     // would fill the memory.
     FrameDetections keyframeDetectionsOf(const PosedFrame& frame) override {
-        return {detect(frame.images.color), frame.images.color.cols};
+        return {detect(models_[0], frame.images.color), frame.images.color.cols};
     }
 
-    std::vector<Detection> detect(const cv::Mat& color) {
-        auto detections = detector_->detect(color);
-        if (segmenter_) {
-            const cv::Mat1b labels = segmenter_->segment(color);
-            for (auto& d : detections) maskBySegments(d, labels, segmenter_->categories());
+    static std::vector<Detection> detect(Models& models, const cv::Mat& color) {
+        auto detections = models.detector->detect(color);
+        if (models.segmenter) {
+            const cv::Mat1b labels = models.segmenter->segment(color);
+            for (auto& d : detections) maskBySegments(d, labels, models.segmenter->categories());
         }
         return detections;
     }
 
-    std::unique_ptr<ObjectDetector> detector_;
-    std::unique_ptr<SemanticSegmenter> segmenter_;
+    DetectorFiles files_;
+    bool packaged_;
+    std::vector<Models> models_;  // by stream; each touched only by its stream's frames, one at a time
+    std::optional<int> threadsBefore_;
     Keyframes keyframes_;
     std::size_t frames_ = 0;            // every frame shown, keyframe or not
+    std::mutex countMutex_;             // the streams' threads count below
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;
 };
