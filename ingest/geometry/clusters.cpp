@@ -1,10 +1,14 @@
 #include "ingest/geometry/clusters.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <tuple>
+#include <unordered_map>
 
 #include <opencv2/imgproc.hpp>
 
@@ -47,6 +51,65 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud,
     std::vector<std::size_t> all(cloud.size());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
     return euclideanClusters(cloud, all, tolerance, minPoints, maxPoints);
+}
+
+std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>& points, double tolerance) {
+    const float limit = static_cast<float>(tolerance * tolerance);
+    // A shade wider than the tolerance, so the single-precision test never reaches past the next cell.
+    const double cell = tolerance * (1 + 1e-6);
+    auto cellOf = [&](const model::Vec3& p) {
+        return std::array<std::int64_t, 3>{static_cast<std::int64_t>(std::floor(static_cast<float>(p.x) / cell)),
+                                           static_cast<std::int64_t>(std::floor(static_cast<float>(p.y) / cell)),
+                                           static_cast<std::int64_t>(std::floor(static_cast<float>(p.z) / cell))};
+    };
+    // 21 bits a coordinate: cells of a few centimetres over tens of kilometres.
+    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+        constexpr std::int64_t kMask = (std::int64_t{1} << 21) - 1;
+        return static_cast<std::uint64_t>(((x & kMask) << 42) | ((y & kMask) << 21) | (z & kMask));
+    };
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+    cells.reserve(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const auto c = cellOf(points[i]);
+        cells[key(c[0], c[1], c[2])].push_back(static_cast<std::uint32_t>(i));
+    }
+    std::vector<std::size_t> parent(points.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find = [&](std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const auto c = cellOf(points[i]);
+        const float x = static_cast<float>(points[i].x), y = static_cast<float>(points[i].y),
+                    z = static_cast<float>(points[i].z);
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    auto found = cells.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
+                    if (found == cells.end()) continue;
+                    for (std::uint32_t j : found->second) {
+                        if (j <= i) continue;
+                        const float ex = x - static_cast<float>(points[j].x), ey = y - static_cast<float>(points[j].y),
+                                    ez = z - static_cast<float>(points[j].z);
+                        float squared = ex * ex;
+                        squared += ey * ey;
+                        squared += ez * ez;
+                        if (squared < limit) parent[find(i)] = find(j);
+                    }
+                }
+    }
+    std::vector<std::vector<std::size_t>> chains;
+    std::vector<std::size_t> chainOf(points.size(), points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        std::size_t& chain = chainOf[find(i)];
+        if (chain == points.size()) {
+            chain = chains.size();
+            chains.emplace_back();
+        }
+        chains[chain].push_back(i);
+    }
+    return chains;
 }
 
 namespace {

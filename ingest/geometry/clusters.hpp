@@ -21,6 +21,13 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud,
 std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud, double tolerance,
                                                         std::size_t minPoints, std::size_t maxPoints);
 
+// The chains of points nearer than `tolerance` to one another: the clusters PCL's Euclidean clustering makes
+// without size bounds (its k-d tree's test: the squared distance in single precision, summed x, y, z, below the
+// squared tolerance in single precision), each in index order, ordered by their first point. Found through a
+// grid of cells a tolerance wide, where a point's neighbours lie in the 27 cells around its own: for the few
+// thousand points of a view about five times faster than building and searching the tree.
+std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>& points, double tolerance);
+
 // An upright box around points (docs/ingest.md): height from the robust range
 // of z, yaw and footprint from the minimum-area rectangle of the xy points
 // after outliers are trimmed. The box's x axis runs along the longer side of

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <memory>
 
 #include <pcl/PointIndices.h>
@@ -182,25 +183,33 @@ std::vector<SurfaceNormal> estimateNormals(const std::vector<model::Vec3>& point
     auto cloud = toPcl(points);
     pcl::search::KdTree<pcl::PointXYZ> tree;
     tree.setInputCloud(cloud);
-    pcl::Indices neighbours;
-    std::vector<float> distances;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        int found = tree.radiusSearch(cloud->points[i], radius, neighbours, distances);
-        if (found < std::max(minNeighbours, 3)) continue;
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        for (auto j : neighbours) mean += Eigen::Vector3d(points[j].x, points[j].y, points[j].z);
-        mean /= found;
-        Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-        for (auto j : neighbours) {
-            Eigen::Vector3d d = Eigen::Vector3d(points[j].x, points[j].y, points[j].z) - mean;
-            covariance += d * d.transpose();
+    auto estimate = [&](std::size_t begin, std::size_t end) {
+        pcl::Indices neighbours;
+        std::vector<float> distances;
+        for (std::size_t i = begin; i < end; ++i) {
+            int found = tree.radiusSearch(cloud->points[i], radius, neighbours, distances);
+            if (found < std::max(minNeighbours, 3)) continue;
+            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+            for (auto j : neighbours) mean += Eigen::Vector3d(points[j].x, points[j].y, points[j].z);
+            mean /= found;
+            Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+            for (auto j : neighbours) {
+                Eigen::Vector3d d = Eigen::Vector3d(points[j].x, points[j].y, points[j].z) - mean;
+                covariance += d * d.transpose();
+            }
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+            double total = solver.eigenvalues().sum();
+            if (!(total > 0)) continue;
+            Eigen::Vector3d n = solver.eigenvectors().col(0);  // smallest eigenvalue first
+            normals[i] = {{n.x(), n.y(), n.z()}, solver.eigenvalues()(0) / total};
         }
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-        double total = solver.eigenvalues().sum();
-        if (!(total > 0)) continue;
-        Eigen::Vector3d n = solver.eigenvectors().col(0);  // smallest eigenvalue first
-        normals[i] = {{n.x(), n.y(), n.z()}, solver.eigenvalues()(0) / total};
-    }
+    };
+    // Each point's normal is its own and the tree is only read: the second half on a thread of its own (the
+    // alignment's normals, 0.15 s of TUM fr1/rpy's 0.34, while the other core idled).
+    const std::size_t half = points.size() / 2;
+    auto second = std::async(std::launch::async, estimate, half, points.size());
+    estimate(0, half);
+    second.get();
     return normals;
 }
 

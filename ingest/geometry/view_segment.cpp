@@ -1,7 +1,9 @@
 #include "ingest/geometry/view_segment.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -92,8 +94,8 @@ PointCloud thingInView(const ViewRegion& region, const RoomSurfaces& room, bool 
 
     // Chains of near points, and of grid neighbours whose gap a surface seen at a grazing angle explains.
     UnionFind chains(inside.size());
-    for (const auto& cluster : euclideanClusters(inside, options.tolerance, 1, inside.size()))
-        for (std::size_t k = 1; k < cluster.size(); ++k) chains.unite(cluster[0], cluster[k]);
+    for (const auto& chain : nearChains(inside.points, options.tolerance))
+        for (std::size_t k = 1; k < chain.size(); ++k) chains.unite(chain[0], chain[k]);
     std::unordered_map<std::int64_t, std::size_t> at;
     auto key = [](int column, int row) {
         return (static_cast<std::int64_t>(row) << 32) | static_cast<std::uint32_t>(column);

@@ -925,3 +925,30 @@ TEST_CASE(
     CHECK(angleDeg(followed.up, floorOnly.up) > 5.0);
     CHECK(angleDeg(followed.up, floorOnly.up) < 7.0);
 }
+
+TEST_CASE("rgbd-dining: nearChains makes the chains PCL's Euclidean clustering makes", "[ingest][geometry][real]") {
+    // The real dining cloud, whole (the floor, the walls and the chairs chained into few large clusters) and its
+    // points above the floor (the things, many small ones), at a view's tolerance and at others: the grid's
+    // chains are PCL's clusters without size bounds, member for member.
+    const Dining dining = loadDining(1, 0.02);
+    REQUIRE(dining.cloud.size() >= 40000);
+    const Alignment depth = alignCapture(dining.cloud, dining.cameras, AlignOptions{});
+    REQUIRE(depth.floorFound);
+    const PointCloud aligned = transformed(dining.cloud, depth);
+    std::vector<model::Vec3> aboveFloor;
+    for (const auto& p : aligned.points)
+        if (p.z > 0.05) aboveFloor.push_back(p);
+    const std::vector<const std::vector<model::Vec3>*> clouds{&aligned.points, &aboveFloor};
+    for (const std::vector<model::Vec3>* points : clouds)
+        for (double tolerance : {0.03, ViewSegmentOptions{}.tolerance, 0.08}) {
+            CAPTURE(points->size(), tolerance);
+            std::vector<std::size_t> all(points->size());
+            for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+            auto pcl = pcl_ops::euclideanClusters(*points, all, tolerance, 1, points->size());
+            std::sort(pcl.begin(), pcl.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
+            const auto chains = nearChains(*points, tolerance);
+            CHECK(chains.size() == pcl.size());
+            CHECK(chains.size() > 1);
+            CHECK(chains == pcl);
+        }
+}
