@@ -8,7 +8,7 @@
 #include <numbers>
 #include <numeric>
 #include <tuple>
-#include <unordered_map>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -62,42 +62,46 @@ std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>&
                                            static_cast<std::int64_t>(std::floor(static_cast<float>(p.y) / cell)),
                                            static_cast<std::int64_t>(std::floor(static_cast<float>(p.z) / cell))};
     };
-    // 21 bits a coordinate: cells of a few centimetres over tens of kilometres.
+    // 21 bits a coordinate, offset to be positive (cells of a few centimetres over tens of kilometres), z lowest:
+    // a cell and the cells above and below it are one run of keys.
     auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-        constexpr std::int64_t kMask = (std::int64_t{1} << 21) - 1;
-        return static_cast<std::uint64_t>(((x & kMask) << 42) | ((y & kMask) << 21) | (z & kMask));
+        constexpr std::int64_t kBias = std::int64_t{1} << 20, kMask = (std::int64_t{1} << 21) - 1;
+        return static_cast<std::uint64_t>((((x + kBias) & kMask) << 42) | (((y + kBias) & kMask) << 21) |
+                                          ((z + kBias) & kMask));
     };
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-    cells.reserve(points.size());
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> byCell(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         const auto c = cellOf(points[i]);
-        cells[key(c[0], c[1], c[2])].push_back(static_cast<std::uint32_t>(i));
+        byCell[i] = {key(c[0], c[1], c[2]), static_cast<std::uint32_t>(i)};
     }
+    std::sort(byCell.begin(), byCell.end());
     std::vector<std::size_t> parent(points.size());
     std::iota(parent.begin(), parent.end(), 0);
     auto find = [&](std::size_t i) {
         while (parent[i] != i) i = parent[i] = parent[parent[i]];
         return i;
     };
-    for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t at = 0; at < byCell.size(); ++at) {
+        const std::size_t i = byCell[at].second;
         const auto c = cellOf(points[i]);
         const float x = static_cast<float>(points[i].x), y = static_cast<float>(points[i].y),
                     z = static_cast<float>(points[i].z);
         for (std::int64_t dx = -1; dx <= 1; ++dx)
-            for (std::int64_t dy = -1; dy <= 1; ++dy)
-                for (std::int64_t dz = -1; dz <= 1; ++dz) {
-                    auto found = cells.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
-                    if (found == cells.end()) continue;
-                    for (std::uint32_t j : found->second) {
-                        if (j <= i) continue;
-                        const float ex = x - static_cast<float>(points[j].x), ey = y - static_cast<float>(points[j].y),
-                                    ez = z - static_cast<float>(points[j].z);
-                        float squared = ex * ex;
-                        squared += ey * ey;
-                        squared += ez * ez;
-                        if (squared < limit) parent[find(i)] = find(j);
-                    }
+            for (std::int64_t dy = -1; dy <= 1; ++dy) {
+                const std::uint64_t last = key(c[0] + dx, c[1] + dy, c[2] + 1);
+                // Each pair once: from the earlier of the two in key order.
+                auto from = std::lower_bound(byCell.begin() + static_cast<std::ptrdiff_t>(at) + 1, byCell.end(),
+                                             std::pair{key(c[0] + dx, c[1] + dy, c[2] - 1), std::uint32_t{0}});
+                for (auto other = from; other != byCell.end() && other->first <= last; ++other) {
+                    const std::size_t j = other->second;
+                    const float ex = x - static_cast<float>(points[j].x), ey = y - static_cast<float>(points[j].y),
+                                ez = z - static_cast<float>(points[j].z);
+                    float squared = ex * ex;
+                    squared += ey * ey;
+                    squared += ez * ez;
+                    if (squared < limit) parent[find(i)] = find(j);
                 }
+            }
     }
     std::vector<std::vector<std::size_t>> chains;
     std::vector<std::size_t> chainOf(points.size(), points.size());

@@ -1,6 +1,7 @@
 #include "ingest/pipeline/segmenter.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -54,16 +55,24 @@ public:
         if (logits.dims != 4 || classes != static_cast<int>(categories_.size()))
             throw Error(ErrorKind::Input,
                         fmt::format("{}: its output is not {} class scores a pixel", file_, categories_.size()));
-        // Each class's scores brought up to the frame's size, and the best class of every pixel.
-        cv::Mat best(bgr.size(), CV_32F, cv::Scalar(-1e30f));
+        // Each class's scores brought up to the frame's size, and the best class of every pixel (the first of
+        // equal scores), in one pass a class: masks copied through would cost more than the model's last layers.
+        cv::Mat1f best(bgr.size(), -1e30f);
         cv::Mat1b labels(bgr.size(), 0);
-        cv::Mat scaled;
+        cv::Mat1f scaled;
         for (int c = 0; c < classes; ++c) {
             cv::Mat plane(rows, columns, CV_32F, logits.ptr<float>(0, c));
             cv::resize(plane, scaled, bgr.size(), 0, 0, cv::INTER_LINEAR);
-            cv::Mat better = scaled > best;
-            scaled.copyTo(best, better);
-            labels.setTo(c, better);
+            for (int y = 0; y < labels.rows; ++y) {
+                const float* score = scaled[y];
+                float* top = best[y];
+                std::uint8_t* label = labels[y];
+                for (int x = 0; x < labels.cols; ++x)
+                    if (score[x] > top[x]) {
+                        top[x] = score[x];
+                        label[x] = static_cast<std::uint8_t>(c);
+                    }
+            }
         }
         return labels;
     }
