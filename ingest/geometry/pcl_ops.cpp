@@ -2,9 +2,14 @@
 #include "ingest/geometry/pcl_ops.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <future>
 #include <memory>
+#include <thread>
+#include <utility>
 
 #include <pcl/PointIndices.h>
 #include <pcl/console/print.h>
@@ -51,11 +56,77 @@ pcl::IndicesPtr toPclIndices(const std::vector<std::size_t>& indices) {
     return out;
 }
 
+// A second thread that counts one part of each RANSAC hypothesis's points while the caller counts the other: a
+// hypothesis's count takes about 10 us, so the two meet by spinning (a futex's wake-up costs as much as the
+// count), and the helper sleeps only once no hypothesis has come for a while (between plane searches). Started
+// for one plane search and stopped with it; the counts are integers, so the total is the one-thread count.
+class SplitCount {
+public:
+    using Count = std::function<std::size_t(const Eigen::Vector4f&, std::size_t begin, std::size_t end)>;
+    SplitCount(std::size_t size, Count count) : size_(size), count_(std::move(count)), helper_([this] { help(); }) {}
+    ~SplitCount() {
+        stop_.store(true);
+        post();
+        helper_.join();
+    }
+    SplitCount(const SplitCount&) = delete;
+    SplitCount& operator=(const SplitCount&) = delete;
+
+    std::size_t operator()(const Eigen::Vector4f& plane) {
+        plane_ = plane;
+        const std::uint64_t ticket = post();
+        const std::size_t mine = count_(plane, 0, size_ / 2);
+        while (done_.load(std::memory_order_acquire) != ticket) spin();
+        return mine + helperCount_;
+    }
+
+private:
+    static void spin() {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#endif
+    }
+    std::uint64_t post() {
+        const std::uint64_t ticket = posted_.fetch_add(1) + 1;
+        if (sleeping_.load()) posted_.notify_one();
+        return ticket;
+    }
+    void help() {
+        constexpr int kSpinsBeforeSleep = 20000;  // about 0.1-0.5 ms
+        std::uint64_t seen = 0;
+        while (true) {
+            for (int spins = 0; posted_.load(std::memory_order_acquire) == seen; ++spins) {
+                if (spins < kSpinsBeforeSleep) {
+                    spin();
+                    continue;
+                }
+                sleeping_.store(true);
+                posted_.wait(seen);
+                sleeping_.store(false);
+                spins = 0;
+            }
+            ++seen;
+            if (stop_.load()) return;
+            helperCount_ = count_(plane_, size_ / 2, size_);
+            done_.store(seen, std::memory_order_release);
+        }
+    }
+
+    std::size_t size_;
+    Count count_;
+    Eigen::Vector4f plane_;        // the hypothesis posted: written before posted_, read after it
+    std::size_t helperCount_ = 0;  // the helper's part: written before done_, read after it
+    std::atomic<std::uint64_t> posted_{0}, done_{0};
+    std::atomic<bool> sleeping_{false}, stop_{false};
+    std::thread helper_;  // last: started once the members above are made
+};
+
 // A plane model constrained about an axis (PCL's perpendicular or parallel plane) whose RANSAC hypotheses
 // count their inliers on a copy of the points laid out coordinate by coordinate, in a loop the compiler
 // vectorises: the test PCL's plane model makes (|n . p + d| < threshold, in floats), so the same counts and
 // the same plane, without PCL's gather of each point through its index. Counting every point for each of
-// 1,000 hypotheses was most of an RGB-D ingest's alignment (docs/benchmarks.md "Ingest").
+// 1,000 hypotheses was most of an RGB-D ingest's alignment (docs/benchmarks.md "Ingest"); on a machine with
+// two cores or more, each count is split between the caller and a helper thread (SplitCount).
 template <typename Constrained>
 class CountedContiguously : public Constrained {
 public:
@@ -68,20 +139,35 @@ public:
             y_.push_back(p.y);
             z_.push_back(p.z);
         }
+        // Below a few thousand points a count is shorter than the two threads' meeting.
+        constexpr std::size_t kSplitFrom = 4096;
+        if (x_.size() >= kSplitFrom && std::thread::hardware_concurrency() >= 2)
+            split_ = std::make_unique<SplitCount>(
+                x_.size(), [this](const Eigen::Vector4f& plane, std::size_t begin, std::size_t end) {
+                    return countPart(plane, begin, end);
+                });
     }
 
     std::size_t countWithinDistance(const Eigen::VectorXf& coefficients, double threshold) const override {
         if (!this->isModelValid(coefficients)) return 0;  // as the constrained model counts: none
-        const float a = coefficients[0], b = coefficients[1], c = coefficients[2], d = coefficients[3];
-        const auto limit = static_cast<float>(threshold);
-        const float *x = x_.data(), *y = y_.data(), *z = z_.data();
-        std::size_t count = 0;
-        for (std::size_t i = 0; i < x_.size(); ++i) count += std::abs(a * x[i] + b * y[i] + c * z[i] + d) < limit;
-        return count;
+        const Eigen::Vector4f plane(coefficients[0], coefficients[1], coefficients[2], coefficients[3]);
+        limit_ = static_cast<float>(threshold);
+        return split_ ? (*split_)(plane) : countPart(plane, 0, x_.size());
     }
 
 private:
+    std::size_t countPart(const Eigen::Vector4f& plane, std::size_t begin, std::size_t end) const {
+        const float a = plane[0], b = plane[1], c = plane[2], d = plane[3];
+        const float limit = limit_;
+        const float *x = x_.data(), *y = y_.data(), *z = z_.data();
+        std::size_t count = 0;
+        for (std::size_t i = begin; i < end; ++i) count += std::abs(a * x[i] + b * y[i] + c * z[i] + d) < limit;
+        return count;
+    }
+
     std::vector<float> x_, y_, z_;
+    mutable float limit_ = 0;  // the threshold of the count under way (set before its parts start)
+    std::unique_ptr<SplitCount> split_;
 };
 
 }  // namespace
