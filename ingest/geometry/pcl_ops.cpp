@@ -58,8 +58,10 @@ pcl::IndicesPtr toPclIndices(const std::vector<std::size_t>& indices) {
 
 // A second thread that counts one part of each RANSAC hypothesis's points while the caller counts the other: a
 // hypothesis's count takes about 10 us, so the two meet by spinning (a futex's wake-up costs as much as the
-// count), and the helper sleeps only once no hypothesis has come for a while (between plane searches). Started
-// for one plane search and stopped with it; the counts are integers, so the total is the one-thread count.
+// count), and the helper sleeps only once no hypothesis has come for a while (between plane searches). The
+// second part goes to whichever of the two claims it first: a helper the system has not run yet (a loaded
+// machine, more threads than cores) never holds the caller up, who then counts both parts. Started for one
+// plane search and stopped with it; the counts are integers, so the total is the one-thread count.
 class SplitCount {
 public:
     using Count = std::function<std::size_t(const Eigen::Vector4f&, std::size_t begin, std::size_t end)>;
@@ -76,11 +78,18 @@ public:
         plane_ = plane;
         const std::uint64_t ticket = post();
         const std::size_t mine = count_(plane, 0, size_ / 2);
-        while (done_.load(std::memory_order_acquire) != ticket) spin();
+        if (claim(ticket)) return mine + count_(plane, size_ / 2, size_);
+        // The helper is counting its part: as long as a count takes, unless the system stops it meanwhile.
+        for (int spins = 0; done_.load(std::memory_order_acquire) != ticket; ++spins)
+            if (spins < kSpins)
+                spin();
+            else
+                std::this_thread::yield();
         return mine + helperCount_;
     }
 
 private:
+    static constexpr int kSpins = 20000;  // about 0.1-0.5 ms
     static void spin() {
 #if defined(__x86_64__) || defined(__i386__)
         __builtin_ia32_pause();
@@ -91,12 +100,16 @@ private:
         if (sleeping_.load()) posted_.notify_one();
         return ticket;
     }
+    // Whether the second part of hypothesis `ticket` is the claimant's to count (the parts before it are claimed).
+    bool claim(std::uint64_t ticket) {
+        std::uint64_t before = ticket - 1;
+        return claimed_.compare_exchange_strong(before, ticket, std::memory_order_acq_rel);
+    }
     void help() {
-        constexpr int kSpinsBeforeSleep = 20000;  // about 0.1-0.5 ms
         std::uint64_t seen = 0;
         while (true) {
             for (int spins = 0; posted_.load(std::memory_order_acquire) == seen; ++spins) {
-                if (spins < kSpinsBeforeSleep) {
+                if (spins < kSpins) {
                     spin();
                     continue;
                 }
@@ -105,8 +118,9 @@ private:
                 sleeping_.store(false);
                 spins = 0;
             }
-            ++seen;
+            seen = posted_.load(std::memory_order_acquire);
             if (stop_.load()) return;
+            if (!claim(seen)) continue;  // the caller counted it
             helperCount_ = count_(plane_, size_ / 2, size_);
             done_.store(seen, std::memory_order_release);
         }
@@ -116,7 +130,7 @@ private:
     Count count_;
     Eigen::Vector4f plane_;        // the hypothesis posted: written before posted_, read after it
     std::size_t helperCount_ = 0;  // the helper's part: written before done_, read after it
-    std::atomic<std::uint64_t> posted_{0}, done_{0};
+    std::atomic<std::uint64_t> posted_{0}, claimed_{0}, done_{0};
     std::atomic<bool> sleeping_{false}, stop_{false};
     std::thread helper_;  // last: started once the members above are made
 };

@@ -372,6 +372,30 @@ private:
     std::vector<std::vector<Detection>> detections_;  // per capture frame
 };
 
+// OpenCV's thread count is the process's: while any ingest's model streams run (ingests may run side by side in
+// one process, through the C API), the count they asked for; the count from before once the last is done.
+class OpenCvThreads {
+public:
+    explicit OpenCvThreads(int threads) {
+        std::lock_guard lock(mutex_);
+        if (users_++ == 0) {
+            before_ = cv::getNumThreads();
+            cv::setNumThreads(threads);
+        }
+    }
+    ~OpenCvThreads() {
+        std::lock_guard lock(mutex_);
+        if (--users_ == 0) cv::setNumThreads(before_);
+    }
+    OpenCvThreads(const OpenCvThreads&) = delete;
+    OpenCvThreads& operator=(const OpenCvThreads&) = delete;
+
+private:
+    static inline std::mutex mutex_;
+    static inline int users_ = 0;
+    static inline int before_ = 0;
+};
+
 // The detector sees each frame at the working resolution; its labels are voted across views.
 class DetectorFinder : public DetectionLifter {
 public:
@@ -381,14 +405,11 @@ public:
           packaged_(packagedWithDepth(capture, options)),
           models_(kStreams) {
         models_[0] = loadModels();
-        // OpenCV's own threads (a process-wide setting) give a model about 1.5 times its speed on two cores;
-        // a model a stream, each on one core, gives 1.7 (NanoDet, the SSD and DeepLab on a TUM frame: 116 ->
-        // 99 ms a frame); the rest of the cores go to each stream. Set back once the streams are done.
+        // OpenCV's own threads give a model about 1.5 times its speed on two cores; a model a stream, each on one
+        // core, gives 1.7 (NanoDet, the SSD and DeepLab on a TUM frame: 116 -> 99 ms a frame); the rest of the
+        // cores go to each stream.
         const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-        if (cores >= 2) {
-            threadsBefore_ = cv::getNumThreads();
-            cv::setNumThreads(std::max(1, cores / static_cast<int>(kStreams)));
-        }
+        if (cores >= 2) threadsPerStream_.emplace(std::max(1, cores / static_cast<int>(kStreams)));
     }
     ~DetectorFinder() override {
         finishDetecting();
@@ -440,9 +461,7 @@ private:
 
     std::size_t streams() const override { return kStreams; }
 
-    void detectionsDone() override {
-        if (threadsBefore_) cv::setNumThreads(*std::exchange(threadsBefore_, std::nullopt));
-    }
+    void detectionsDone() override { threadsPerStream_.reset(); }
 
     FrameDetections detectionsOf(const PosedFrame& frame, std::size_t stream) override {
         auto start = std::chrono::steady_clock::now();
@@ -475,7 +494,7 @@ private:
     DetectorFiles files_;
     bool packaged_;
     std::vector<Models> models_;  // by stream; each touched only by its stream's frames, one at a time
-    std::optional<int> threadsBefore_;
+    std::optional<OpenCvThreads> threadsPerStream_;  // while the streams run
     Keyframes keyframes_;
     std::size_t frames_ = 0;            // every frame shown, keyframe or not
     std::mutex countMutex_;             // the streams' threads count below
