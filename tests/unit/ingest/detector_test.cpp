@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <iostream>
 #include <map>
 #include <set>
 
 #include <fmt/format.h>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "ingest/capture/capture.hpp"
@@ -227,6 +229,34 @@ TEST_CASE("an ingest cancelled while the detector looks at a keyframe stops, and
     const auto result = ingestCapture(capture, options, silent);
     CHECK(std::count_if(result.scene.nodes.begin(), result.scene.nodes.end(),
                         [](const model::Node& n) { return n.category == "chair"; }) >= 2);
+}
+
+TEST_CASE("two ingests side by side in one process make the same memory and leave OpenCV's threads as they were") {
+    // The real dining frames, ingested on two threads at once: each ingest's model streams set OpenCV's thread
+    // count (the process's) while they run, and the count goes back once the last of them is done; the keyframes
+    // are lifted in frame order whichever stream made their detections, so both memories are one ingest's.
+    if (!installedDetector()) return;
+    const auto capture = readCapture(diningPath());
+    IngestOptions options;
+    options.objects = "detect";
+    const int threadsBefore = cv::getNumThreads();
+    auto ingest = [&] {
+        SilentProgress silent;
+        return ingestCapture(capture, options, silent);
+    };
+    auto other = std::async(std::launch::async, ingest);
+    const auto first = ingest();
+    const auto second = other.get();
+    CHECK(cv::getNumThreads() == threadsBefore);
+    auto things = [](const IngestResult& result) {
+        std::vector<std::pair<std::string, model::Box>> out;
+        for (const auto& n : result.scene.nodes)
+            if (n.kind == model::NodeKind::Object) out.emplace_back(n.category, n.box);
+        return out;
+    };
+    const auto made = things(first);
+    CHECK(std::count_if(made.begin(), made.end(), [](const auto& t) { return t.first == "chair"; }) >= 2);
+    CHECK(things(second) == made);
 }
 
 TEST_CASE("--objects detect on the real dining room without depth names chairs at metric scale") {
