@@ -6,6 +6,7 @@
 // again with the depth those give once the room is aligned (docs/ingest.md,
 // "Objects from detections", "Detections without depth" and "Detector").
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <deque>
 #include <future>
@@ -423,9 +424,12 @@ public:
         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
         const Models& models = models_[0];
         return fmt::format(
-            "detector: {}{} on {} keyframes of {}, {} detections, median {:.0f} ms a keyframe{}{}",
+            "detector: {}{} on {} keyframes of {}, {} detections, {}median {:.0f} ms a keyframe{}{}",
             models.detector->describe(), models.segmenter ? " + " + models.segmenter->describe() : std::string(),
-            milliseconds_.size(), frames_, detections_, sorted[sorted.size() / 2], note.empty() ? "" : "; ", note);
+            milliseconds_.size(), frames_, detections_,
+            models.segmenter ? fmt::format("the segmenter on {} (those with a kind it knows), ", segmented_.load())
+                             : std::string(),
+            sorted[sorted.size() / 2], note.empty() ? "" : "; ", note);
     }
 
 private:
@@ -482,9 +486,14 @@ private:
         return {detect(models_[0], frame.images.color), frame.images.color.cols};
     }
 
-    static std::vector<Detection> detect(Models& models, const cv::Mat& color) {
+    // The segmenter runs on a frame only when it knows the kind of one of its detections (else its labels would
+    // cut nothing): the keyframes of beds, toilets, laptops or nothing skip it.
+    std::vector<Detection> detect(Models& models, const cv::Mat& color) {
         auto detections = models.detector->detect(color);
-        if (models.segmenter) {
+        if (models.segmenter && std::any_of(detections.begin(), detections.end(), [&](const Detection& d) {
+                return segmentable(d, models.segmenter->categories());
+            })) {
+            ++segmented_;
             const cv::Mat1b labels = models.segmenter->segment(color);
             for (auto& d : detections) maskBySegments(d, labels, models.segmenter->categories());
         }
@@ -500,6 +509,7 @@ private:
     std::mutex countMutex_;             // the streams' threads count below
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;
+    std::atomic<std::size_t> segmented_ = 0;  // frames the segmenter ran on
 };
 
 }  // namespace

@@ -92,10 +92,15 @@ std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& fil
     return std::make_unique<DeepLabSegmenter>(files);
 }
 
+bool segmentable(const Detection& detection, const std::vector<std::string>& categories) {
+    const std::string kind = segmentKind(detection.category);
+    return !kind.empty() && std::find(categories.begin(), categories.end(), kind) != categories.end();
+}
+
 void maskBySegments(Detection& detection, const cv::Mat1b& labels, const std::vector<std::string>& categories) {
+    if (!segmentable(detection, categories)) return;
     const std::string kind = segmentKind(detection.category);
     auto known = std::find(categories.begin(), categories.end(), kind);
-    if (kind.empty() || known == categories.end()) return;
     const auto label = static_cast<std::uint8_t>(known - categories.begin());
     const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(detection.box.x)),
                                             static_cast<int>(std::floor(detection.box.y))),

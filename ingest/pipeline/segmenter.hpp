@@ -35,5 +35,8 @@ std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& fil
 // on fewer than kMinMaskShare of the box's pixels (it missed the thing).
 inline constexpr double kMinMaskShare = 0.15;
 void maskBySegments(Detection& detection, const cv::Mat1b& labels, const std::vector<std::string>& categories);
+// Whether the segmenter knows the detection's kind, so that maskBySegments may cut it: a frame none of whose
+// detections it knows is left as its boxes with or without the segmenter's labels.
+bool segmentable(const Detection& detection, const std::vector<std::string>& categories);
 
 }  // namespace smql::ingest
