@@ -404,13 +404,15 @@ public:
         : DetectionLifter(capture, options, /*voteLabels=*/true),
           files_(files),
           packaged_(packagedWithDepth(capture, options)),
-          models_(kStreams) {
+          streams_(std::thread::hardware_concurrency() >= 2 ? kStreams : 1),
+          models_(streams_) {
         models_[0] = loadModels();
         // OpenCV's own threads give a model about 1.5 times its speed on two cores; a model a stream, each on one
         // core, gives 1.7 (NanoDet, the SSD and DeepLab on a TUM frame: 116 -> 99 ms a frame); the rest of the
-        // cores go to each stream.
-        const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-        if (cores >= 2) threadsPerStream_.emplace(std::max(1, cores / static_cast<int>(kStreams)));
+        // cores go to each stream. One core keeps one stream, with OpenCV's threads as they are.
+        if (streams_ > 1)
+            threadsPerStream_.emplace(
+                std::max(1, static_cast<int>(std::thread::hardware_concurrency() / static_cast<unsigned>(streams_))));
     }
     ~DetectorFinder() override {
         finishDetecting();
@@ -463,7 +465,7 @@ private:
         return !hasDepth() || keyframes_.take(frame.pose);
     }
 
-    std::size_t streams() const override { return kStreams; }
+    std::size_t streams() const override { return streams_; }
 
     void detectionsDone() override { threadsPerStream_.reset(); }
 
@@ -502,6 +504,7 @@ private:
 
     DetectorFiles files_;
     bool packaged_;
+    std::size_t streams_;         // kStreams, or one on a machine with one core
     std::vector<Models> models_;  // by stream; each touched only by its stream's frames, one at a time
     std::optional<OpenCvThreads> threadsPerStream_;  // while the streams run
     Keyframes keyframes_;
