@@ -53,7 +53,9 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud,
     return euclideanClusters(cloud, all, tolerance, minPoints, maxPoints);
 }
 
-std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>& points, double tolerance) {
+UnionFind::UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+
+void uniteNear(const std::vector<model::Vec3>& points, double tolerance, UnionFind& chains) {
     const float limit = static_cast<float>(tolerance * tolerance);
     // A shade wider than the tolerance, so the single-precision test never reaches past the next cell.
     const double cell = tolerance * (1 + 1e-6);
@@ -75,12 +77,6 @@ std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>&
         byCell[i] = {key(c[0], c[1], c[2]), static_cast<std::uint32_t>(i)};
     }
     std::sort(byCell.begin(), byCell.end());
-    std::vector<std::size_t> parent(points.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](std::size_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    };
     for (std::size_t at = 0; at < byCell.size(); ++at) {
         const std::size_t i = byCell[at].second;
         const auto c = cellOf(points[i]);
@@ -99,14 +95,19 @@ std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>&
                     float squared = ex * ex;
                     squared += ey * ey;
                     squared += ez * ez;
-                    if (squared < limit) parent[find(i)] = find(j);
+                    if (squared < limit) chains.unite(i, j);
                 }
             }
     }
+}
+
+std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>& points, double tolerance) {
+    UnionFind united(points.size());
+    uniteNear(points, tolerance, united);
     std::vector<std::vector<std::size_t>> chains;
     std::vector<std::size_t> chainOf(points.size(), points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-        std::size_t& chain = chainOf[find(i)];
+        std::size_t& chain = chainOf[united.find(i)];
         if (chain == points.size()) {
             chain = chains.size();
             chains.emplace_back();

@@ -21,11 +21,26 @@ std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud,
 std::vector<std::vector<std::size_t>> euclideanClusters(const PointCloud& cloud, double tolerance,
                                                         std::size_t minPoints, std::size_t maxPoints);
 
-// The chains of points nearer than `tolerance` to one another: the clusters PCL's Euclidean clustering makes
-// without size bounds (its k-d tree's test: the squared distance in single precision, summed x, y, z, below the
-// squared tolerance in single precision), each in index order, ordered by their first point. Found through a
-// grid of cells a tolerance wide, where a point's neighbours lie in the 27 cells around its own: for the few
-// thousand points of a view about five times faster than building and searching the tree.
+// Points joined into chains (union-find with path halving): a view's points that lie near one another, or
+// near on the view's grid, are one thing (view_segment.hpp).
+struct UnionFind {
+    std::vector<std::size_t> parent;
+    explicit UnionFind(std::size_t n);
+    std::size_t find(std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    }
+    void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+// Unites every two points nearer than `tolerance`, as PCL's Euclidean clustering chains them (its k-d tree's
+// test: the squared distance in single precision, summed x, y, z, below the squared tolerance in single
+// precision). Found through a grid of cells a tolerance wide, where a point's neighbours lie in the 27 cells
+// around its own: for the few thousand points of a view about five times faster than building and searching
+// the tree.
+void uniteNear(const std::vector<model::Vec3>& points, double tolerance, UnionFind& chains);
+// The chains uniteNear makes: PCL's clusters without size bounds, each in index order, ordered by their first
+// point.
 std::vector<std::vector<std::size_t>> nearChains(const std::vector<model::Vec3>& points, double tolerance);
 
 // An upright box around points (docs/ingest.md): height from the robust range

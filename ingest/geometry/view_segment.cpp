@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <numeric>
 #include <optional>
 #include <unordered_map>
 
@@ -52,16 +51,6 @@ std::optional<double> supportTop(const PointCloud& cloud, const ViewSegmentOptio
     return top;
 }
 
-struct UnionFind {
-    std::vector<std::size_t> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    std::size_t find(std::size_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    }
-    void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
-
 double distance(const model::Vec3& a, const model::Vec3& b) {
     return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
 }
@@ -94,8 +83,7 @@ PointCloud thingInView(const ViewRegion& region, const RoomSurfaces& room, bool 
 
     // Chains of near points, and of grid neighbours whose gap a surface seen at a grazing angle explains.
     UnionFind chains(inside.size());
-    for (const auto& chain : nearChains(inside.points, options.tolerance))
-        for (std::size_t k = 1; k < chain.size(); ++k) chains.unite(chain[0], chain[k]);
+    uniteNear(inside.points, options.tolerance, chains);
     std::unordered_map<std::int64_t, std::size_t> at;
     auto key = [](int column, int row) {
         return (static_cast<std::int64_t>(row) << 32) | static_cast<std::uint32_t>(column);

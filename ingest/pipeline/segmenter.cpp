@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
+#include <optional>
 
 #include <fmt/format.h>
 #include <opencv2/dnn.hpp>
@@ -92,16 +93,26 @@ std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& fil
     return std::make_unique<DeepLabSegmenter>(files);
 }
 
-bool segmentable(const Detection& detection, const std::vector<std::string>& categories) {
+namespace {
+
+// The segmenter's label for the detection's kind, when it knows the kind.
+std::optional<std::uint8_t> labelOf(const Detection& detection, const std::vector<std::string>& categories) {
     const std::string kind = segmentKind(detection.category);
-    return !kind.empty() && std::find(categories.begin(), categories.end(), kind) != categories.end();
+    auto known = std::find(categories.begin(), categories.end(), kind);
+    if (kind.empty() || known == categories.end()) return std::nullopt;
+    return static_cast<std::uint8_t>(known - categories.begin());
+}
+
+}  // namespace
+
+bool segmentable(const Detection& detection, const std::vector<std::string>& categories) {
+    return labelOf(detection, categories).has_value();
 }
 
 void maskBySegments(Detection& detection, const cv::Mat1b& labels, const std::vector<std::string>& categories) {
-    if (!segmentable(detection, categories)) return;
-    const std::string kind = segmentKind(detection.category);
-    auto known = std::find(categories.begin(), categories.end(), kind);
-    const auto label = static_cast<std::uint8_t>(known - categories.begin());
+    const std::optional<std::uint8_t> known = labelOf(detection, categories);
+    if (!known) return;
+    const std::uint8_t label = *known;
     const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(detection.box.x)),
                                             static_cast<int>(std::floor(detection.box.y))),
                                   cv::Point(static_cast<int>(std::ceil(detection.box.x + detection.box.width)),

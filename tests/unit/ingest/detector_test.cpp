@@ -206,8 +206,6 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
     }));
 }
 
-// The same frames without their depth: COLMAP triangulates points with the frames' own poses, and
-// the detector's boxes are placed on those points.
 TEST_CASE("an ingest cancelled while the detector looks at a keyframe stops, and nothing is left running") {
     // The real dining frames: a keyframe's models run on a thread of their own while the next frames load.
     // Cancelled before the third frame, the second frame's detections are still being made; the ingest stops
@@ -259,6 +257,8 @@ TEST_CASE("two ingests side by side in one process make the same memory and leav
     CHECK(things(second) == made);
 }
 
+// The same frames without their depth: COLMAP triangulates points with the frames' own poses, and
+// the detector's boxes are placed on those points.
 TEST_CASE("--objects detect on the real dining room without depth names chairs at metric scale") {
     if (!installedDetector()) return;
     auto capture = readCapture(diningPath());
