@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <opencv2/core/utility.hpp>
 
 #include "ingest/capture/detections.hpp"
 #include "ingest/geometry/clusters.hpp"
@@ -483,17 +484,26 @@ ObjectFusion::ObjectFusion(const Alignment& alignment, const RoomSurfaces& room,
 
 void ObjectFusion::addCamera(const FusionCamera& camera) { cameras_.push_back(camera); }
 
+PointCloud ObjectFusion::segment(const Observation& view) const {
+    const bool onSurface = usualSupport(view.label) == Support::Surface;
+    return thingInView(alignedRegion(view, alignment_), room_, onSurface);
+}
+
 void ObjectFusion::addFrame(std::vector<Observation> frameViews) {
+    std::vector<PointCloud> things;
+    for (const auto& view : frameViews) things.push_back(segment(view));
+    addSegmentedFrame(std::move(frameViews), std::move(things));
+}
+
+void ObjectFusion::addSegmentedFrame(std::vector<Observation> frameViews, std::vector<PointCloud> things) {
     std::vector<InstanceView> frame;
-    for (auto& view : frameViews) {
+    for (std::size_t v = 0; v < frameViews.size(); ++v) {
         const std::size_t source = views_.size();
-        views_.push_back(std::move(view));
-        const Observation& added = views_.back();
-        const bool onSurface = usualSupport(added.label) == Support::Surface;
-        PointCloud thing = thingInView(alignedRegion(added, alignment_), room_, onSurface);
-        if (thing.empty()) continue;
+        views_.push_back(std::move(frameViews[v]));
+        if (things[v].empty()) continue;
         ++segmented_;
-        frame.push_back({added.frame, added.label, added.score, added.alsoSeenAs, std::move(thing), source});
+        const Observation& added = views_.back();
+        frame.push_back({added.frame, added.label, added.score, added.alsoSeenAs, std::move(things[v]), source});
     }
     map_.integrate(std::move(frame));
 }
@@ -570,15 +580,22 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
         for (auto& v : tracks[t].views) all.emplace_back(std::move(v), t);
     std::stable_sort(all.begin(), all.end(),
                      [](const auto& a, const auto& b) { return a.first.frame < b.first.frame; });
+    // Each view cut apart on its own, on OpenCV's threads; the instance map then takes them frame by frame.
+    std::vector<PointCloud> cut(all.size());
+    cv::parallel_for_(cv::Range(0, static_cast<int>(all.size())), [&](const cv::Range& range) {
+        for (int v = range.start; v < range.end; ++v) cut[v] = fusion.segment(all[v].first);
+    });
     std::vector<std::size_t> trackOf;
     for (std::size_t i = 0; i < all.size();) {
         progress.stopIfCancelled();
         std::vector<Observation> frame;
+        std::vector<PointCloud> frameThings;
         for (const std::uint32_t at = all[i].first.frame; i < all.size() && all[i].first.frame == at; ++i) {
             frame.push_back(std::move(all[i].first));
+            frameThings.push_back(std::move(cut[i]));
             trackOf.push_back(all[i].second);
         }
-        fusion.addFrame(std::move(frame));
+        fusion.addSegmentedFrame(std::move(frame), std::move(frameThings));
     }
 
     FusionCounts counts;

@@ -161,6 +161,11 @@ public:
     void addCamera(const FusionCamera& camera);
     // One frame's views of things (all of that frame's, in the capture's frame), frames in the order taken.
     void addFrame(std::vector<Observation> frameViews);
+    // The points of a view that lie on its thing (empty when too few): a view's alone, so views can be cut apart
+    // on several threads before their frames are added in order (addSegmentedFrame).
+    PointCloud segment(const Observation& view) const;
+    // addFrame with each view's points already cut by segment(), one cloud a view.
+    void addSegmentedFrame(std::vector<Observation> frameViews, std::vector<PointCloud> things);
     // The things the frames so far show: instances merged, pieces joined, tables lowered to their tops, grounded,
     // slivers dropped, names doubted where they show no top or stand out of place, low tables and desks named by
     // their use. The map itself is left to take more frames.

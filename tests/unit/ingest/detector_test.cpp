@@ -14,13 +14,16 @@
 
 #include <fmt/format.h>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/dnn.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/capture/detections.hpp"
 #include "ingest/pipeline/detector.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/progress.hpp"
+#include "ingest/pipeline/segmenter.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
 
@@ -153,6 +156,43 @@ TEST_CASE("NanoDet finds the chairs and the table of the real dining room") {
     CHECK(framesWithChair >= 3);  // chairs stand in every frame
     CHECK(best["chair"] >= 0.5);
     CHECK(best["table"] >= 0.4);
+}
+
+TEST_CASE("DeepLab's labels on a real frame are those of the graph's named output, run in full") {
+    auto files = installedModel("deeplab");
+    if (!files) {
+        WARN("skipped: no segmenter model (run scripts/detector/setup.sh)");
+        return;
+    }
+    const cv::Mat image = cv::imread(fmt::format("{}/color/1.png", diningPath()));
+    REQUIRE(!image.empty());
+    const cv::Mat1b labels = makeDeepLabSegmenter(*files)->segment(image);
+    REQUIRE(labels.size() == image.size());
+
+    // The graph run to its named output "logits_lowres" (every layer, the unused full-size upsampling too),
+    // each class's scores brought up to the frame and the best class a pixel, the first of equal scores.
+    cv::dnn::Net net = cv::dnn::readNetFromONNX(files->model.string());
+    net.setInput(cv::dnn::blobFromImage(image, 1 / 127.5, cv::Size(513, 385), cv::Scalar(127.5, 127.5, 127.5),
+                                        /*swapRB=*/true, /*crop=*/false));
+    const cv::Mat logits = net.forward("logits_lowres");
+    std::vector<cv::Mat1f> scores;
+    for (int c = 0; c < logits.size[1]; ++c) {
+        cv::Mat1f up;
+        cv::resize(cv::Mat(logits.size[2], logits.size[3], CV_32F, const_cast<float*>(logits.ptr<float>(0, c))), up,
+                   image.size(), 0, 0, cv::INTER_LINEAR);
+        scores.push_back(up);
+    }
+    std::size_t differ = 0, named = 0;
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = 0; x < image.cols; ++x) {
+            int best = 0;
+            for (int c = 1; c < static_cast<int>(scores.size()); ++c)
+                if (scores[c](y, x) > scores[best](y, x)) best = c;
+            differ += labels(y, x) != best;
+            named += best != 0;
+        }
+    CHECK(differ == 0);
+    CHECK(named > 0);  // the frame's chairs and table are named, not all background
 }
 
 TEST_CASE("--objects detect ingests the real dining room with named objects") {
