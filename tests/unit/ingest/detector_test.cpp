@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <opencv2/core/utility.hpp>
@@ -295,6 +296,30 @@ TEST_CASE("two ingests side by side in one process make the same memory and leav
     const auto made = things(first);
     CHECK(std::count_if(made.begin(), made.end(), [](const auto& t) { return t.first == "chair"; }) >= 2);
     CHECK(things(second) == made);
+}
+
+TEST_CASE("the real dining room's memory is the same on one of OpenCV's threads as on four") {
+    // The stages that split their work over OpenCV's threads (each view cut apart before the instance map takes
+    // the views in frame order, the views' colours) give each piece to one thread and gather in a fixed order, so
+    // the memory does not depend on how many threads there are.
+    if (!installedDetector()) return;
+    const auto capture = readCapture(diningPath());
+    IngestOptions options;
+    options.objects = "detect";
+    const int threadsBefore = cv::getNumThreads();
+    auto ingestOn = [&](int threads) {
+        cv::setNumThreads(threads);
+        SilentProgress silent;
+        auto result = ingestCapture(capture, options, silent);
+        cv::setNumThreads(threadsBefore);
+        std::vector<std::tuple<std::string, model::Box, std::string>> things;
+        for (const auto& n : result.scene.nodes)
+            if (n.kind == model::NodeKind::Object) things.emplace_back(n.category, n.box, n.text);
+        return things;
+    };
+    const auto one = ingestOn(1);
+    CHECK(std::count_if(one.begin(), one.end(), [](const auto& t) { return std::get<0>(t) == "chair"; }) >= 2);
+    CHECK(ingestOn(4) == one);
 }
 
 // The same frames without their depth: COLMAP triangulates points with the frames' own poses, and
