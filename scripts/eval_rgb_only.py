@@ -46,7 +46,7 @@ import numpy as np
 # TUM's groundtruth.txt as the real_captures test reads it.
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "tests" / "e2e"))
 from real_captures_test import true_position_at, true_positions  # noqa: E402
-from eval_objects import umeyama  # noqa: E402  (scripts/, this file's folder)
+from eval_objects import FITS, score_objects, stored_things, umeyama  # noqa: E402  (scripts/, this file's folder)
 
 IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg")
 VIDEO_EXTENSIONS = (".mp4", ".mov", ".avi", ".mkv")
@@ -297,7 +297,26 @@ def compare_memories(smql, rgb_db, rgbd_db, origin, folder, kind):
                   height_rgb=round(h_rgb, 3), height_rgbd=round(h_rgbd, 3),
                   height_diff_cm=round(100 * (h_rgb - h_rgbd), 1),
                   tilt_deg=tilt, sv2_over_sv1=s2, sv3_over_sv1=s3)
+    result["objects_vs_rgbd"] = objects_against(smql, rgb_db, rgbd_db, pairs)
     return result
+
+
+def objects_against(smql, rgb_db, rgbd_db, pairs):
+    """The RGB memory's things against the RGB-D memory's, as eval_objects.py scores things against true boxes:
+    the RGB memory carried into the RGB-D memory's frame by the similarity its cameras fit, the RGB-D memory's
+    things of the kinds FITS scores taken as the truth (its `object`s, which no model named, are not scored)."""
+    s, r, t = umeyama([p for p, _ in pairs], [q for _, q in pairs])
+    truth = [dict(thing, structural=False) for thing in stored_things(smql, rgbd_db)]
+    moved = []
+    for thing in stored_things(smql, rgb_db):
+        centre = s * r @ thing["center"] + t
+        half = s * (thing["hi"] - thing["lo"]) / 2
+        moved.append(dict(thing, center=centre, sides=tuple(s * v for v in thing["sides"]),
+                          lo=centre - half, hi=centre + half))
+    labels = {thing["category"] for thing in truth if thing["category"] in FITS}
+    score = score_objects(truth, labels, moved)
+    return {k: score[k] for k in ("truth", "stored", "matched", "duplicated", "precision", "recall", "f1",
+                                  "missed_things", "extra_things")}
 
 
 def compare_with_truth(smql, db, groundtruth):
@@ -416,6 +435,9 @@ def row_text(record, run):
             result += "; tables " + " ".join("x".join(f"{v:.2f}" for v in size) for _, size in run["tables"])
         if run.get("dense"):
             result += f"; {run['dense']}"
+        if against := run.get("objects_vs_rgbd"):
+            result += (f"; against the RGB-D memory's {against['truth']} things: {against['matched']} matched of "
+                       f"{against['stored']} stored, F1 {against['f1']:.2f}")
     else:
         result = f"refused: {run.get('reason')}"
     return (f"{record['name'][-32:]:32} {record['kind']:12} {run['run']:>3} {fmt(record.get('frames_given'), 'd'):>5} "

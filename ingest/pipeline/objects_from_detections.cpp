@@ -36,9 +36,22 @@ namespace smql::ingest {
 
 namespace {
 
-// Whether photos without depth have their things lifted on the dense points' depth (--dense on).
+// Whether photos without depth may have their things lifted on the dense points' depth: always (--dense on),
+// or where the points cover what the detectors saw (--dense auto).
 bool liftsOnDenseDepth(const Capture& capture, const IngestOptions& options) {
-    return options.dense == DenseUse::All && !capture.densePoints.empty();
+    return (options.dense == DenseUse::All || options.dense == DenseUse::Auto) && !capture.densePoints.empty();
+}
+
+// The pixels of a detection's box (in the stored image, `scale` stored pixels to the depth image's) that
+// have depth, and all of them.
+std::pair<double, double> coveredPixels(const cv::Mat& depth, const Detection& detection, double scale) {
+    const cv::Rect box =
+        cv::Rect(cv::Point(static_cast<int>(detection.box.x * scale), static_cast<int>(detection.box.y * scale)),
+                 cv::Point(static_cast<int>((detection.box.x + detection.box.width) * scale),
+                           static_cast<int>((detection.box.y + detection.box.height) * scale))) &
+        cv::Rect(0, 0, depth.cols, depth.rows);
+    if (box.area() == 0) return {0, 0};
+    return {static_cast<double>(cv::countNonZero(depth(box) > 0)), static_cast<double>(box.area())};
 }
 
 // Tracks of detections from the frames they are made on: lifted with each frame's depth, or, for
@@ -51,6 +64,7 @@ public:
           options_(options),
           hasDepth_(framesHaveDepth(capture)),
           liftOnDense_(liftsOnDenseDepth(capture, options)),
+          liftAlways_(options.dense == DenseUse::All),
           voteLabels_(voteLabels),
           tracker_(voteLabels) {}
 
@@ -85,9 +99,10 @@ public:
     }
 
     // Photos whose things are not lifted on dense points: how their things were placed, and what places them
-    // better. Lifted (--dense on), they are placed again (fuseOnDenseDepth), which notes what it did.
+    // better. Lifted (--dense on, or auto where the points cover them), they are placed again
+    // (fuseOnDenseDepth), which notes what it did.
     std::string frameNote() const override {
-        if (hasDepth_ || liftOnDense_ || fewPoints_ + uncarved_ == 0) return {};
+        if (hasDepth_ || (liftOnDense_ && liftAlways_) || fewPoints_ + uncarved_ == 0) return {};
         return fmt::format(
             "{} detections had too few sparse points on them and {} more were of things whose points did not agree "
             "across views enough to carve a hull; {} of these were placed by their boxes' rays across views "
@@ -97,7 +112,8 @@ public:
 
     std::vector<ObjectTrack> fuse(std::vector<ObjectTrack> tracks, const AlignedCapture& aligned,
                                   const std::vector<WallSegment>& walls, StageProgress& progress) override {
-        if (!denseFrames_.empty()) return fuseOnDenseDepth(aligned, walls, progress);
+        if (!denseFrames_.empty())
+            if (auto lifted = fuseOnDenseDepth(aligned, walls, progress)) return std::move(*lifted);
         if (!hasDepth_) return tracks;
         // The frames the detections were made on: what "held in view but not seen" is counted over.
         std::vector<FusionCamera> cameras;
@@ -221,8 +237,11 @@ private:
     // segmented from the floor and walls and fused across views as a depth camera's are, with every
     // check of the fusion (duplicates, pieces, tops, names out of place). The tracks the sparse points
     // placed have done their part: they told the floor from a table top.
-    std::vector<ObjectTrack> fuseOnDenseDepth(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
-                                              StageProgress& progress) {
+    // nullopt when the lift is not always asked for (--dense auto) and the points cover less than
+    // kDenseCoverToLift of the detections' boxes: then the things stay as the sparse points placed them.
+    std::optional<std::vector<ObjectTrack>> fuseOnDenseDepth(const AlignedCapture& aligned,
+                                                             const std::vector<WallSegment>& walls,
+                                                             StageProgress& progress) {
         const Alignment& alignment = aligned.alignment;
         std::vector<model::Vec3> all;
         all.reserve(capture_.densePoints.size() + capture_.points.size());
@@ -244,6 +263,7 @@ private:
         // In metres now, the frames' moves pick the keyframes, as for a depth camera: each view a
         // frame's own errors of depth, the things are fused from views that differ.
         Keyframes keyframes;
+        double covered = 0, boxed = 0;  // the detections' box pixels with depth, and all of them
         for (const auto position : denseFrames_) {
             progress.stopIfCancelled();
             const CaptureFrame& frame = capture_.frames[position];
@@ -252,16 +272,30 @@ private:
             FrameImages images = loadFrame(capture_, frame, options_.workingWidth);
             images.depth = depthFromPoints(points, pose, images.intrinsics, spacing);
             const FrameDetections found = keyframeDetectionsOf({position, frame, images, pose});
+            for (const auto& detection : found.detections) {
+                const auto [with, all] = coveredPixels(
+                    images.depth, detection, static_cast<double>(images.depth.cols) / std::max(1, found.storedWidth));
+                covered += with, boxed += all;
+            }
             track(tracker,
                   observeDetections(images, pose, position, found.detections, found.storedWidth, options_.objectStride,
                                     options_.minInstancePixels),
                   found.detections, images.color);
             cameras.push_back({pose, frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
         }
+        const double cover = boxed > 0 ? covered / boxed : 0;
+        if (!liftAlways_ && cover < kDenseCoverToLift) {
+            progress.note(fmt::format(
+                "objects: the dense points cover {:.0f}% of the detections' boxes, under the {:.0f}% that lifts the "
+                "things on them (--dense auto): the things stay placed by the sparse points (--dense on lifts them)",
+                100 * cover, 100 * kDenseCoverToLift));
+            return std::nullopt;
+        }
         progress.note(fmt::format(
-            "objects: {} keyframes of {} photos lifted again on the depth the dense points give them ({} of "
-            "{} points drawn: the floor's and the specks' left out)",
-            cameras.size(), denseFrames_.size(), points.size(), capture_.densePoints.size() + capture_.points.size()));
+            "objects: {} keyframes of {} photos lifted again on the depth the dense points give them, which covers "
+            "{:.0f}% of the detections' boxes ({} of {} points drawn: the floor's and the specks' left out)",
+            cameras.size(), denseFrames_.size(), 100 * cover, points.size(),
+            capture_.densePoints.size() + capture_.points.size()));
         // The views are in the aligned frame already.
         return fuseViews(tracker.take(), Alignment{}, alignment, walls, cameras, progress);
     }
@@ -343,7 +377,8 @@ private:
     const Capture& capture_;
     const IngestOptions& options_;
     bool hasDepth_;
-    bool liftOnDense_;  // the things are lifted on the dense points' depth (--dense on)
+    bool liftOnDense_;  // the things may be lifted on the dense points' depth (--dense on or auto)
+    bool liftAlways_;   // ... whatever the points cover (--dense on)
     bool voteLabels_;
     DetectionTracker tracker_;
     std::vector<std::uint32_t> looked_;       // the frames whose detections were looked at
@@ -403,7 +438,8 @@ public:
     DetectorFinder(const Capture& capture, const DetectorFiles& files, const IngestOptions& options)
         : DetectionLifter(capture, options, /*voteLabels=*/true),
           files_(files),
-          packaged_(packagedWithDepth(capture, options)),
+          packaged_(packagedOnFrames(capture, options)),
+          packagedOnDense_(options.detectorModel.empty()),
           streams_(std::thread::hardware_concurrency() >= 2 ? kStreams : 1),
           models_(streams_) {
         models_[0] = loadModels();
@@ -443,20 +479,25 @@ private:
         std::unique_ptr<SemanticSegmenter> segmenter;
     };
 
-    // The packaged models beside NanoDet (the SSD, the segmenter) run when no --detector is given and
-    // the frames have depth, their own or the dense points' (fuseOnDenseDepth). Without either, a box
-    // is a silhouette that carves a hull (observations.hpp): the SSD's looser boxes carved the dining
-    // photos' chairs 1.6 m tall, so those captures take NanoDet's alone.
-    static bool packagedWithDepth(const Capture& capture, const IngestOptions& options) {
-        return options.detectorModel.empty() && (framesHaveDepth(capture) || liftsOnDenseDepth(capture, options));
+    // The packaged models beside NanoDet (the SSD, the segmenter) run when no --detector is given on
+    // frames with depth, their own or the dense points' (fuseOnDenseDepth). Without depth, a box is a
+    // silhouette that carves a hull (observations.hpp): the SSD's looser boxes carved the dining photos'
+    // chairs 1.6 m tall, so the frame pass over photos takes NanoDet's alone, unless their things are
+    // always lifted on the dense points (--dense on: the frame pass's things then only tell the floor from
+    // a table top, which the ensemble's chairs confirmed in ScanNet's lounge). With --dense auto the frame
+    // pass is --dense room's, so a capture the dense points do not cover is placed as room places it.
+    static bool packagedOnFrames(const Capture& capture, const IngestOptions& options) {
+        return options.detectorModel.empty() &&
+               (framesHaveDepth(capture) || (options.dense == DenseUse::All && !capture.densePoints.empty()));
     }
-    Models loadModels() const {
-        Models models{makeDetector(files_, packaged_), nullptr};
-        if (packaged_)
+    static Models loadModels(const DetectorFiles& files, bool packaged) {
+        Models models{makeDetector(files, packaged), nullptr};
+        if (packaged)
             if (auto segmenterFiles = installedModel("deeplab"))
                 models.segmenter = makeDeepLabSegmenter(*segmenterFiles);
         return models;
     }
+    Models loadModels() const { return loadModels(files_, packaged_); }
 
     // With depth, the models run on keyframes (keyframes.hpp); without depth, on every frame: COLMAP's
     // captures are few frames far apart, and their poses are in no known unit.
@@ -483,9 +524,11 @@ private:
     }
 
     // Run again rather than kept from the frames pass: a frame's masks are images, and a long walk's
-    // would fill the memory.
+    // would fill the memory; with the packaged models beside NanoDet, loaded the first time.
     FrameDetections keyframeDetectionsOf(const PosedFrame& frame) override {
-        return {detect(models_[0], frame.images.color), frame.images.color.cols};
+        if (packaged_ == packagedOnDense_) return {detect(models_[0], frame.images.color), frame.images.color.cols};
+        if (!denseModels_.detector) denseModels_ = loadModels(files_, packagedOnDense_);
+        return {detect(denseModels_, frame.images.color), frame.images.color.cols};
     }
 
     // The segmenter runs on a frame only when it knows the kind of one of its detections (else its labels would
@@ -503,7 +546,9 @@ private:
     }
 
     DetectorFiles files_;
-    bool packaged_;
+    bool packaged_;               // the packaged models beside NanoDet on the frame pass (frames with depth)
+    bool packagedOnDense_;        // ... on the photos lifted on the dense points' depth (no --detector given)
+    Models denseModels_;          // the models of that lift when the frame pass's differ, loaded when it first runs
     std::size_t streams_;         // kStreams, or one on a machine with one core
     std::vector<Models> models_;  // by stream; each touched only by its stream's frames, one at a time
     std::optional<OpenCvThreads> threadsPerStream_;  // while the streams run

@@ -20,8 +20,14 @@ enum class GeometrySource { Given, Colmap, Auto };
 
 // What the dense points of photos without depth (dense_stereo.hpp) are used for: none made (Off); the
 // room's surfaces, so the floor, its up and the scale, the walls and openings (Room); those and the
-// things, each photo's detections lifted on the depth the points give it (All).
-enum class DenseUse { Off, Room, All };
+// things, each photo's detections lifted on the depth the points give it (All); those and the things
+// where the points cover what the detectors saw, else the room's alone (Auto: kDenseCoverToLift).
+enum class DenseUse { Off, Room, All, Auto };
+// Auto lifts the things on the dense points when those cover at least this share of the detections'
+// boxes, pixel by pixel, in the photos the things are lifted from: 0.73-0.87 in real rooms' photos (TUM's
+// office and desk, 7-Scenes' kitchen), 0.03 in five dining photos a wide step apart and 0.44-0.59 in
+// generated walks, whose flat colours stereo cannot match (docs/ingest.md, "Dense points from placed photos").
+inline constexpr double kDenseCoverToLift = 0.65;
 
 struct IngestOptions {
     std::string sceneName;
@@ -44,7 +50,7 @@ struct IngestOptions {
     double agreementShare = 0.6;      // ... and the share of its views they must be
     int evidenceSize = 160;           // longest side of an evidence crop (pixels)
     ColmapOptions colmap;             // --geometry colmap (and auto for captures without poses)
-    DenseUse dense = DenseUse::Room;  // photos without depth: what dense points from pairs of placed frames place
+    DenseUse dense = DenseUse::Auto;  // photos without depth: what dense points from pairs of placed frames place
     DenseOptions denseOptions;
     double sparseDepthBand = 0.25;  // sparse points lifted onto a mask: within this share of the median depth
 };

@@ -53,7 +53,8 @@ template <class Way>
 using Words = std::vector<std::pair<std::string, Way>>;
 const Words<GeometrySource> kGeometryWords = {
     {"given", GeometrySource::Given}, {"colmap", GeometrySource::Colmap}, {"auto", GeometrySource::Auto}};
-const Words<DenseUse> kDenseWords = {{"room", DenseUse::Room}, {"on", DenseUse::All}, {"off", DenseUse::Off}};
+const Words<DenseUse> kDenseWords = {
+    {"auto", DenseUse::Auto}, {"room", DenseUse::Room}, {"on", DenseUse::All}, {"off", DenseUse::Off}};
 
 template <class Way>
 std::vector<std::string> wordsOf(const Words<Way>& words) {
@@ -154,9 +155,11 @@ const std::vector<IngestOption> kIngestOptions = {
     {"dense", wordList(wordsOf(kDenseWords)),
      [] {
          return std::string(
-             "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones; room "
-             "(the default): the floor, walls and scale are found among them; on: the things are lifted on their "
-             "depth too; off: COLMAP's points alone (docs/ingest.md, \"Dense points from placed photos\")");
+             "photos without depth: dense points from pairs of placed frames, beside COLMAP's sparse ones; auto "
+             "(the default): the floor, walls and scale are found among them, and the things are lifted on their "
+             "depth where the points cover most of what the detectors saw; room: the floor, walls and scale only; "
+             "on: the things always; off: COLMAP's points alone (docs/ingest.md, \"Dense points from placed "
+             "photos\")");
      },
      [](IngestRequest& r, const std::string& v) { r.dense = oneOf("dense", v, wordsOf(kDenseWords)); }},
     {"scale", "NUMBER", [] { return std::string("metres per capture unit, overriding the estimate"); },

@@ -182,12 +182,14 @@ TEST_CASE("ingest options: --fps 0 keeps every frame, a negative rate is refused
     }
 }
 
-// --dense room|on|off: photos without depth place their room on dense points unless told otherwise
-// (docs/ingest.md, "Dense points from placed photos"); another value is refused naming the ones it takes.
-TEST_CASE("ingest options: --dense is room unless asked otherwise, and takes room, on or off") {
+// --dense auto|room|on|off: photos without depth place their room on dense points, and their things where the
+// points cover them, unless told otherwise (docs/ingest.md, "Dense points from placed photos"); another value is
+// refused naming the ones it takes.
+TEST_CASE("ingest options: --dense is auto unless asked otherwise, and takes auto, room, on or off") {
     IngestRequest request;
-    CHECK(request.dense == "room");
-    for (const char* value : {"on", "off", "room"}) {
+    CHECK(request.dense == "auto");
+    CHECK(IngestOptions{}.dense == DenseUse::Auto);
+    for (const char* value : {"on", "off", "room", "auto"}) {
         setIngestOption(request, "dense", value);
         CHECK(request.dense == value);
     }
@@ -196,7 +198,7 @@ TEST_CASE("ingest options: --dense is room unless asked otherwise, and takes roo
         FAIL("--dense yes was taken");
     } catch (const Error& e) {
         CHECK(e.kind() == ErrorKind::Usage);
-        CHECK_THAT(std::string(e.hint()), Catch::Contains("room, on or off"));
+        CHECK_THAT(std::string(e.hint()), Catch::Contains("auto, room, on or off"));
     }
 }
 
