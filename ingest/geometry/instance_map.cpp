@@ -33,7 +33,7 @@ bool nearCell(const Cells& cells, std::int64_t x, std::int64_t y, std::int64_t z
     for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
             for (int dz = -1; dz <= 1; ++dz)
-                if (cells.contains(pack(x + dx, y + dy, z + dz))) return true;
+                if ((dx != 0 || dy != 0 || dz != 0) && cells.contains(pack(x + dx, y + dy, z + dz))) return true;
     return false;
 }
 
