@@ -24,9 +24,10 @@ enum class GeometrySource { Given, Colmap, Auto };
 // where the points cover what the detectors saw, else the room's alone (Auto: kDenseCoverToLift).
 enum class DenseUse { Off, Room, All, Auto };
 // Auto lifts the things on the dense points when those cover at least this share of the detections'
-// boxes, pixel by pixel, in the photos the things are lifted from: 0.73-0.87 in real rooms' photos (TUM's
-// office and desk, 7-Scenes' kitchen), 0.03 in five dining photos a wide step apart and 0.44-0.59 in
-// generated walks, whose flat colours stereo cannot match (docs/ingest.md, "Dense points from placed photos").
+// boxes, pixel by pixel, in the photos the things are lifted from: 0.73-0.87 in cluttered real rooms' photos
+// (TUM's office and desk, 7-Scenes' kitchen; ScanNet's lounge 0.65), 0.42 in a bathroom's, 0.03 in five dining
+// photos a wide step apart and 0.44-0.59 in generated walks, whose flat colours stereo cannot match
+// (docs/ingest.md, "Dense points from placed photos").
 inline constexpr double kDenseCoverToLift = 0.65;
 
 struct IngestOptions {
