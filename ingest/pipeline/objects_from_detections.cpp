@@ -546,10 +546,10 @@ private:
     }
 
     DetectorFiles files_;
-    bool packaged_;               // the packaged models beside NanoDet on the frame pass (frames with depth)
-    bool packagedOnDense_;        // ... on the photos lifted on the dense points' depth (no --detector given)
-    Models denseModels_;          // the models of that lift when the frame pass's differ, loaded when it first runs
-    std::size_t streams_;         // kStreams, or one on a machine with one core
+    bool packaged_;         // the packaged models beside NanoDet on the frame pass (depth, or photos always lifted)
+    bool packagedOnDense_;  // ... on the photos lifted on the dense points' depth (no --detector given)
+    Models denseModels_;    // the models of that lift when the frame pass's differ, loaded when it first runs
+    std::size_t streams_;   // kStreams, or one on a machine with one core
     std::vector<Models> models_;  // by stream; each touched only by its stream's frames, one at a time
     std::optional<OpenCvThreads> threadsPerStream_;  // while the streams run
     Keyframes keyframes_;

@@ -30,10 +30,9 @@ struct IngestRequest {
     int maxSize = 1024;                // the long side of the frames COLMAP sees (0: as stored)
     std::string vocabularyTree;        // COLMAP's vocabulary tree, for loop detection
     std::string colmapDir;             // COLMAP's kept work folder; a finished run there is read back
-    std::string dense =
-        "auto";          // dense points from pairs of placed photos (photos without depth): auto | room | on | off
-    std::string update;  // a stored scene of the same place to make the next version of
-    bool force = false;  // store a memory the plausibility checks refuse
+    std::string dense = "auto";        // dense points of pairs of placed photos (no depth): auto | room | on | off
+    std::string update;                // a stored scene of the same place to make the next version of
+    bool force = false;                // store a memory the plausibility checks refuse
 };
 
 // One option by name: `name` as the C API and Python spell it (`max_size`); the shell's flag is
