@@ -64,13 +64,8 @@ void uniteNear(const std::vector<model::Vec3>& points, double tolerance, UnionFi
                                            static_cast<std::int64_t>(std::floor(static_cast<float>(p.y) / cell)),
                                            static_cast<std::int64_t>(std::floor(static_cast<float>(p.z) / cell))};
     };
-    // 21 bits a coordinate, offset to be positive (cells of a few centimetres over tens of kilometres), z lowest:
-    // a cell and the cells above and below it are one run of keys.
-    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-        constexpr std::int64_t kBias = std::int64_t{1} << 20, kMask = (std::int64_t{1} << 21) - 1;
-        return static_cast<std::uint64_t>((((x + kBias) & kMask) << 42) | (((y + kBias) & kMask) << 21) |
-                                          ((z + kBias) & kMask));
-    };
+    // packCell keeps a cell and the cells above and below it one run of keys.
+    const auto key = packCell;
     std::vector<std::pair<std::uint64_t, std::uint32_t>> byCell(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         const auto c = cellOf(points[i]);

@@ -11,29 +11,15 @@ namespace smql::ingest {
 
 namespace {
 
-// Cell coordinates packed 21 bits each (a room of +-52 km at 5 cm cells).
-constexpr std::int64_t kOffset = 1 << 20;
-
-std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
-    return (static_cast<std::uint64_t>(x + kOffset) << 42) | (static_cast<std::uint64_t>(y + kOffset) << 21) |
-           static_cast<std::uint64_t>(z + kOffset);
-}
-
-std::array<std::int64_t, 3> unpack(std::uint64_t key) {
-    constexpr std::uint64_t mask = (1ULL << 21) - 1;
-    return {static_cast<std::int64_t>(key >> 42 & mask) - kOffset,
-            static_cast<std::int64_t>(key >> 21 & mask) - kOffset, static_cast<std::int64_t>(key & mask) - kOffset};
-}
-
 // Whether a set of packed cells holds the cell (x, y, z) or one of its 26 neighbours. The cell itself first:
 // where two things overlap, most cells are in both.
 template <class Cells>
 bool nearCell(const Cells& cells, std::int64_t x, std::int64_t y, std::int64_t z) {
-    if (cells.contains(pack(x, y, z))) return true;
+    if (cells.contains(packCell(x, y, z))) return true;
     for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
             for (int dz = -1; dz <= 1; ++dz)
-                if ((dx != 0 || dy != 0 || dz != 0) && cells.contains(pack(x + dx, y + dy, z + dz))) return true;
+                if ((dx != 0 || dy != 0 || dz != 0) && cells.contains(packCell(x + dx, y + dy, z + dz))) return true;
     return false;
 }
 
@@ -78,25 +64,27 @@ PointCloud Instance::points(std::uint32_t minViews) const {
 }
 
 std::uint64_t InstanceMap::keyOf(const model::Vec3& p) const {
-    return pack(static_cast<std::int64_t>(std::floor(p.x / options_.cell)),
-                static_cast<std::int64_t>(std::floor(p.y / options_.cell)),
-                static_cast<std::int64_t>(std::floor(p.z / options_.cell)));
+    return packCell(static_cast<std::int64_t>(std::floor(p.x / options_.cell)),
+                    static_cast<std::int64_t>(std::floor(p.y / options_.cell)),
+                    static_cast<std::int64_t>(std::floor(p.z / options_.cell)));
 }
 
 double InstanceMap::shareNear(const std::unordered_map<std::uint64_t, InstanceCell>& a,
                               const std::unordered_map<std::uint64_t, InstanceCell>& b) const {
     if (a.empty()) return 0;
     // The cells of b's bounds, a cell wider: a cell of a outside them has no neighbour in b, and is passed over
-    // without its 27 look-ups (most of a large thing's cells, against a view of a small one beside it).
+    // without its 27 look-ups (most of a large thing's cells, against a view of a small one beside it). The pass
+    // over b pays even when b has the more cells (the apartment's objects stage 0.44 s; 0.49 s bounding only
+    // when a has more).
     constexpr auto kMax = std::numeric_limits<std::int64_t>::max(), kMin = std::numeric_limits<std::int64_t>::min();
     std::array<std::int64_t, 3> lo{kMax, kMax, kMax}, hi{kMin, kMin, kMin};
     for (const auto& [key, cell] : b) {
-        const auto at = unpack(key);
+        const auto at = unpackCell(key);
         for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], at[i] - 1), hi[i] = std::max(hi[i], at[i] + 1);
     }
     std::size_t near = 0;
     for (const auto& [key, cell] : a) {
-        auto [x, y, z] = unpack(key);
+        auto [x, y, z] = unpackCell(key);
         if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]) continue;
         near += nearCell(b, x, y, z);
     }
@@ -110,8 +98,8 @@ bool InstanceMap::restsOn(const Instance& upper, const Instance& lower) const {
     std::vector<std::int64_t> heights;
     std::unordered_map<std::uint64_t, std::int64_t> lowest;  // column (x, y) -> lowest z cell of upper
     for (const auto& [key, cell] : upper.cells) {
-        auto [x, y, z] = unpack(key);
-        auto column = pack(x, y, 0);
+        auto [x, y, z] = unpackCell(key);
+        auto column = packCell(x, y, 0);
         auto it = lowest.find(column);
         if (it == lowest.end())
             lowest.emplace(column, z);
@@ -121,8 +109,8 @@ bool InstanceMap::restsOn(const Instance& upper, const Instance& lower) const {
     std::size_t under = 0, below = 0;
     const auto gap = static_cast<std::int64_t>(std::ceil(options_.restingGap / options_.cell));
     for (const auto& [key, cell] : lower.cells) {
-        auto [x, y, z] = unpack(key);
-        auto it = lowest.find(pack(x, y, 0));
+        auto [x, y, z] = unpackCell(key);
+        auto it = lowest.find(packCell(x, y, 0));
         if (it == lowest.end()) continue;
         ++under;
         below += z <= it->second + gap;
@@ -241,7 +229,7 @@ double shareOfPointsNear(const PointCloud& a, const PointCloud& b, double cell) 
     std::unordered_set<std::uint64_t> cells;
     for (const auto& p : b.points) {
         auto [x, y, z] = cellOf(p);
-        cells.insert(pack(x, y, z));
+        cells.insert(packCell(x, y, z));
     }
     std::size_t near = 0;
     for (const auto& p : a.points) {

@@ -79,12 +79,8 @@ PointCloud voxelDownsample(const PointCloud& cloud, double voxel) {
         double nearestDistance = std::numeric_limits<double>::max();
     };
     auto key = [voxel](const model::Vec3& p) {
-        // 21 bits per axis: +-1M voxels, i.e. +-10 km at 1 cm.
-        auto cell = [voxel](double c) {
-            auto i = static_cast<std::int64_t>(std::floor(c / voxel)) + (1 << 20);
-            return static_cast<std::uint64_t>(i) & 0x1FFFFF;
-        };
-        return cell(p.x) | (cell(p.y) << 21) | (cell(p.z) << 42);
+        auto cell = [voxel](double c) { return static_cast<std::int64_t>(std::floor(c / voxel)); };
+        return packCell(cell(p.x), cell(p.y), cell(p.z));
     };
     std::unordered_map<std::uint64_t, std::size_t> slot;
     std::vector<Cell> cells;

@@ -12,6 +12,20 @@
 
 namespace smql::ingest {
 
+// A grid cell's three integer coordinates as one key, 21 bits each, offset to be positive (+-2^20 cells:
+// +-10 km at 1 cm cells), z lowest: a cell and the cells above and below it are consecutive keys.
+inline std::uint64_t packCell(std::int64_t x, std::int64_t y, std::int64_t z) {
+    constexpr std::int64_t kOffset = std::int64_t{1} << 20, kMask = (std::int64_t{1} << 21) - 1;
+    return static_cast<std::uint64_t>((((x + kOffset) & kMask) << 42) | (((y + kOffset) & kMask) << 21) |
+                                      ((z + kOffset) & kMask));
+}
+inline std::array<std::int64_t, 3> unpackCell(std::uint64_t key) {
+    constexpr std::int64_t kOffset = std::int64_t{1} << 20;
+    constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+    return {static_cast<std::int64_t>(key >> 42 & kMask) - kOffset,
+            static_cast<std::int64_t>(key >> 21 & kMask) - kOffset, static_cast<std::int64_t>(key & kMask) - kOffset};
+}
+
 struct FrameImages;
 
 struct PointCloud {

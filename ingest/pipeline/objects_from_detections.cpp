@@ -36,22 +36,13 @@ namespace smql::ingest {
 
 namespace {
 
-// Whether photos without depth may have their things lifted on the dense points' depth: always (--dense on),
-// or where the points cover what the detectors saw (--dense auto).
-bool liftsOnDenseDepth(const Capture& capture, const IngestOptions& options) {
-    return (options.dense == DenseUse::All || options.dense == DenseUse::Auto) && !capture.densePoints.empty();
-}
-
-// The pixels of a detection's box (in the stored image, `scale` stored pixels to the depth image's) that
-// have depth, and all of them.
-std::pair<double, double> coveredPixels(const cv::Mat& depth, const Detection& detection, double scale) {
-    const cv::Rect box =
-        cv::Rect(cv::Point(static_cast<int>(detection.box.x * scale), static_cast<int>(detection.box.y * scale)),
-                 cv::Point(static_cast<int>((detection.box.x + detection.box.width) * scale),
-                           static_cast<int>((detection.box.y + detection.box.height) * scale))) &
-        cv::Rect(0, 0, depth.cols, depth.rows);
-    if (box.area() == 0) return {0, 0};
-    return {static_cast<double>(cv::countNonZero(depth(box) > 0)), static_cast<double>(box.area())};
+// Whether photos without depth have their things lifted on the dense points' depth: never (no dense points,
+// --dense room or off), where the points cover what the detectors saw (--dense auto), or always (--dense on).
+enum class DenseLift { Never, WhereCovered, Always };
+DenseLift denseLift(const Capture& capture, const IngestOptions& options) {
+    if (capture.densePoints.empty()) return DenseLift::Never;
+    if (options.dense == DenseUse::All) return DenseLift::Always;
+    return options.dense == DenseUse::Auto ? DenseLift::WhereCovered : DenseLift::Never;
 }
 
 // Tracks of detections from the frames they are made on: lifted with each frame's depth, or, for
@@ -63,8 +54,7 @@ public:
         : capture_(capture),
           options_(options),
           hasDepth_(framesHaveDepth(capture)),
-          liftOnDense_(liftsOnDenseDepth(capture, options)),
-          liftAlways_(options.dense == DenseUse::All),
+          lift_(denseLift(capture, options)),
           voteLabels_(voteLabels),
           tracker_(voteLabels) {}
 
@@ -102,7 +92,7 @@ public:
     // better. Lifted (--dense on, or auto where the points cover them), they are placed again
     // (fuseOnDenseDepth), which notes what it did.
     std::string frameNote() const override {
-        if (hasDepth_ || (liftOnDense_ && liftAlways_) || fewPoints_ + uncarved_ == 0) return {};
+        if (hasDepth_ || lift_ == DenseLift::Always || fewPoints_ + uncarved_ == 0) return {};
         return fmt::format(
             "{} detections had too few sparse points on them and {} more were of things whose points did not agree "
             "across views enough to carve a hull; {} of these were placed by their boxes' rays across views "
@@ -209,7 +199,7 @@ private:
             unplaced_.push_back({std::move(o), detection.category, std::move(crop)});
         }
         track(tracker_, std::move(placed), detections, frame.images.color);
-        if (liftOnDense_) denseFrames_.push_back(frame.position);
+        if (lift_ != DenseLift::Never) denseFrames_.push_back(frame.position);
     }
 
     // The most confident detections found tracks first.
@@ -273,9 +263,9 @@ private:
             images.depth = depthFromPoints(points, pose, images.intrinsics, spacing);
             const FrameDetections found = keyframeDetectionsOf({position, frame, images, pose});
             for (const auto& detection : found.detections) {
-                const auto [with, all] = coveredPixels(
-                    images.depth, detection, static_cast<double>(images.depth.cols) / std::max(1, found.storedWidth));
-                covered += with, boxed += all;
+                const cv::Rect box = detectionBounds(detection, images.intrinsics, found.storedWidth);
+                covered += box.area() > 0 ? cv::countNonZero(images.depth(box) > 0) : 0;
+                boxed += box.area();
             }
             track(tracker,
                   observeDetections(images, pose, position, found.detections, found.storedWidth, options_.objectStride,
@@ -284,7 +274,7 @@ private:
             cameras.push_back({pose, frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
         }
         const double cover = boxed > 0 ? covered / boxed : 0;
-        if (!liftAlways_ && cover < kDenseCoverToLift) {
+        if (lift_ == DenseLift::WhereCovered && cover < kDenseCoverToLift) {
             progress.note(fmt::format(
                 "objects: the dense points cover {:.0f}% of the detections' boxes, under the {:.0f}% that lifts the "
                 "things on them (--dense auto): the things stay placed by the sparse points (--dense on lifts them)",
@@ -377,8 +367,7 @@ private:
     const Capture& capture_;
     const IngestOptions& options_;
     bool hasDepth_;
-    bool liftOnDense_;  // the things may be lifted on the dense points' depth (--dense on or auto)
-    bool liftAlways_;   // ... whatever the points cover (--dense on)
+    DenseLift lift_;
     bool voteLabels_;
     DetectionTracker tracker_;
     std::vector<std::uint32_t> looked_;       // the frames whose detections were looked at
@@ -488,7 +477,7 @@ private:
     // pass is --dense room's, so a capture the dense points do not cover is placed as room places it.
     static bool packagedOnFrames(const Capture& capture, const IngestOptions& options) {
         return options.detectorModel.empty() &&
-               (framesHaveDepth(capture) || (options.dense == DenseUse::All && !capture.densePoints.empty()));
+               (framesHaveDepth(capture) || denseLift(capture, options) == DenseLift::Always);
     }
     static Models loadModels(const DetectorFiles& files, bool packaged) {
         Models models{makeDetector(files, packaged), nullptr};

@@ -45,6 +45,26 @@ std::optional<DetectorFiles> installedDetector() {
     return files;
 }
 
+// The things a memory holds: name, box and text, in the order stored.
+std::vector<std::tuple<std::string, model::Box, std::string>> thingsOf(const IngestResult& result) {
+    std::vector<std::tuple<std::string, model::Box, std::string>> things;
+    for (const auto& n : result.scene.nodes)
+        if (n.kind == model::NodeKind::Object) things.emplace_back(n.category, n.box, n.text);
+    return things;
+}
+
+// The real dining room through `--objects detect`.
+IngestResult ingestDining() {
+    IngestOptions options;
+    options.objects = "detect";
+    SilentProgress silent;
+    return ingestCapture(readCapture(diningPath()), options, silent);
+}
+
+std::size_t chairsIn(const std::vector<std::tuple<std::string, model::Box, std::string>>& things) {
+    return std::count_if(things.begin(), things.end(), [](const auto& t) { return std::get<0>(t) == "chair"; });
+}
+
 // An observation of the points of a box [lo, hi] (a grid, 5 cm apart) in one frame.
 Observation boxObservation(std::uint32_t frame, model::Vec3 lo, model::Vec3 hi) {
     Observation o;
@@ -276,27 +296,14 @@ TEST_CASE("two ingests side by side in one process make the same memory and leav
     // count (the process's) while they run, and the count goes back once the last of them is done; the keyframes
     // are lifted in frame order whichever stream made their detections, so both memories are one ingest's.
     if (!installedDetector()) return;
-    const auto capture = readCapture(diningPath());
-    IngestOptions options;
-    options.objects = "detect";
     const int threadsBefore = cv::getNumThreads();
-    auto ingest = [&] {
-        SilentProgress silent;
-        return ingestCapture(capture, options, silent);
-    };
-    auto other = std::async(std::launch::async, ingest);
-    const auto first = ingest();
+    auto other = std::async(std::launch::async, ingestDining);
+    const auto first = ingestDining();
     const auto second = other.get();
     CHECK(cv::getNumThreads() == threadsBefore);
-    auto things = [](const IngestResult& result) {
-        std::vector<std::pair<std::string, model::Box>> out;
-        for (const auto& n : result.scene.nodes)
-            if (n.kind == model::NodeKind::Object) out.emplace_back(n.category, n.box);
-        return out;
-    };
-    const auto made = things(first);
-    CHECK(std::count_if(made.begin(), made.end(), [](const auto& t) { return t.first == "chair"; }) >= 2);
-    CHECK(things(second) == made);
+    const auto made = thingsOf(first);
+    CHECK(chairsIn(made) >= 2);
+    CHECK(thingsOf(second) == made);
 }
 
 TEST_CASE("the real dining room's memory is the same on one of OpenCV's threads as on four") {
@@ -304,22 +311,15 @@ TEST_CASE("the real dining room's memory is the same on one of OpenCV's threads 
     // the views in frame order, the views' colours) give each piece to one thread and gather in a fixed order, so
     // the memory does not depend on how many threads there are.
     if (!installedDetector()) return;
-    const auto capture = readCapture(diningPath());
-    IngestOptions options;
-    options.objects = "detect";
     const int threadsBefore = cv::getNumThreads();
     auto ingestOn = [&](int threads) {
         cv::setNumThreads(threads);
-        SilentProgress silent;
-        auto result = ingestCapture(capture, options, silent);
+        auto things = thingsOf(ingestDining());
         cv::setNumThreads(threadsBefore);
-        std::vector<std::tuple<std::string, model::Box, std::string>> things;
-        for (const auto& n : result.scene.nodes)
-            if (n.kind == model::NodeKind::Object) things.emplace_back(n.category, n.box, n.text);
         return things;
     };
     const auto one = ingestOn(1);
-    CHECK(std::count_if(one.begin(), one.end(), [](const auto& t) { return std::get<0>(t) == "chair"; }) >= 2);
+    CHECK(chairsIn(one) >= 2);
     CHECK(ingestOn(4) == one);
 }
 
