@@ -3,12 +3,15 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <optional>
+#include <span>
 
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 #include <opencv2/imgcodecs.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/capture/depth_png.hpp"
 #include "ingest/import/common.hpp"
 #include "model/error.hpp"
 
@@ -302,12 +305,28 @@ void checkImageFile(const fs::path& file, std::string_view what, std::string_vie
 
 namespace {
 
-cv::Mat readImage(const std::string& file, int flags, std::string_view what) {
+// The file's bytes, or none when it cannot be read whole (OpenCV's reading then words the error).
+std::optional<std::vector<std::uint8_t>> fileBytes(const std::string& file) {
+    std::error_code ec;
+    const auto size = fs::file_size(file, ec);
+    std::ifstream in(file, std::ios::binary);
+    if (ec || !in) return std::nullopt;
+    std::vector<std::uint8_t> bytes(size);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) return std::nullopt;
+    return bytes;
+}
+
+// `decode`, when given, reads the file first; what it leaves (std::nullopt), OpenCV reads.
+cv::Mat readImage(const std::string& file, int flags, std::string_view what,
+                  std::optional<cv::Mat> (*decode)(std::span<const std::uint8_t>, long long) = nullptr) {
     std::error_code ec;
     auto status = fs::status(file, ec);
     if (!fs::exists(status)) fail(file, fmt::format("{} is missing", what));
     if (!fs::is_regular_file(status)) fail(file, fmt::format("{} is not a regular file", what));
     refuseHugeImage(file, what);
+    if (decode)
+        if (auto bytes = fileBytes(file))
+            if (auto image = decode(*bytes, kMaxImagePixels)) return std::move(*image);
     cv::Mat image;
     try {
         image = cv::imread(file, flags);
@@ -345,7 +364,7 @@ const char* depthName(int depth) {
 cv::Mat readColorImage(const std::string& file) { return readImage(file, cv::IMREAD_COLOR, "colour image"); }
 
 cv::Mat readDepthImage(const std::string& file) {
-    cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image");
+    cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image", decodeDepthPng);
     if (depth.channels() != 1)
         fail(file, fmt::format("a depth image has one channel, this one has {}", depth.channels()));
     if (depth.depth() != CV_16U && depth.depth() != CV_32F)

@@ -34,8 +34,7 @@ double bulkArea(const std::vector<cv::Point2d>& xy, double yaw) {
         u.push_back(c * p.x + s * p.y);
         v.push_back(-s * p.x + c * p.y);
     }
-    return (detail::quantile(u, 0.98) - detail::quantile(u, 0.02)) *
-           (detail::quantile(v, 0.98) - detail::quantile(v, 0.02));
+    return detail::quantileSpread(std::move(u), 0.02, 0.98) * detail::quantileSpread(std::move(v), 0.02, 0.98);
 }
 
 }  // namespace

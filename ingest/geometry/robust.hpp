@@ -36,6 +36,27 @@ inline double quantile(std::vector<double> values, double fraction) {
 
 inline double median(std::vector<double> values) { return quantile(std::move(values), 0.5); }
 
+// quantile(values, high) - quantile(values, low), the same number, partitioning one copy of the values:
+// the high quantile's partition leaves the low quantile's values in front of it.
+inline double quantileSpread(std::vector<double> values, double low, double high) {
+    const auto n = values.size();
+    if (n == 0) return 0;
+    const double atLow = std::clamp(low, 0.0, 1.0) * static_cast<double>(n - 1);
+    const double atHigh = std::clamp(high, 0.0, 1.0) * static_cast<double>(n - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(atLow)), hi = static_cast<std::size_t>(std::floor(atHigh));
+    if (lo + 1 >= hi || hi + 1 >= n) return quantile(values, high) - quantile(values, low);
+    const auto begin = values.begin();
+    std::nth_element(begin, begin + static_cast<std::ptrdiff_t>(hi), values.end());
+    const double hiValue = values[hi];
+    const double hiNext = *std::min_element(begin + static_cast<std::ptrdiff_t>(hi) + 1, values.end());
+    std::nth_element(begin, begin + static_cast<std::ptrdiff_t>(lo), begin + static_cast<std::ptrdiff_t>(hi));
+    const double loValue = values[lo];
+    const double loNext =
+        *std::min_element(begin + static_cast<std::ptrdiff_t>(lo) + 1, begin + static_cast<std::ptrdiff_t>(hi));
+    return (hiValue + (atHigh - static_cast<double>(hi)) * (hiNext - hiValue)) -
+           (loValue + (atLow - static_cast<double>(lo)) * (loNext - loValue));
+}
+
 // The range of the values without outliers. The 2% and 98% quantiles mark the
 // bulk; values farther than `slack` x (bulk span) beyond either mark are
 // outliers; the range spans the remaining values. Unlike plain percentiles

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <deque>
 #include <future>
 #include <mutex>
@@ -60,21 +61,24 @@ public:
 
     // A frame's detections are made on a thread of their own while the frames up to the next one looked at are
     // loaded and the earlier ones' views lifted: the models are most of a depth camera's ingest (docs/benchmarks.md
-    // "Ingest"). Up to streams() frames at once, the n-th frame looked at on stream n mod streams(), each stream
-    // with models of its own (a model is not run from two threads); the frames are lifted in capture order, so
-    // the tracks grow in the order the frames came.
+    // "Ingest"). Up to kInFlightPerStream x streams() frames at once, each stream with models of its own (a model
+    // is not run from two threads); a frame's thread takes the first stream free, in the order the frames came,
+    // so a stream done early (a frame the segmenter skipped) goes on with the next frame instead of waiting for
+    // the other stream's turn. The frames are lifted in capture order, so the tracks grow in the order the
+    // frames came.
     void observe(const PosedFrame& frame) override {
         if (!looksAt(frame)) return;
         looked_.push_back(frame.position);
         std::optional<Detecting> previous;
-        if (detecting_.size() >= streams()) {      // the oldest in flight holds this frame's stream
+        if (detecting_.size() >= kInFlightPerStream * streams()) {
             detecting_.front().detections.wait();  // done with the images it views before they move
             previous.emplace(std::move(detecting_.front()));
             detecting_.pop_front();
         }
         Detecting& next = detecting_.emplace_back(frame);
-        next.detections = std::async(std::launch::async, [this, posed = next.posed(), stream = next_++ % streams()] {
-            return detectionsOf(posed, stream);
+        next.detections = std::async(std::launch::async, [this, posed = next.posed(), turn = next_++] {
+            const FreeStreams::Lease stream = freeStreams_.take(turn, streams());
+            return detectionsOf(posed, stream.stream);
         });
         if (previous) lift(previous->posed(), previous->detections.get());
     }
@@ -352,6 +356,47 @@ private:
         tracks = std::move(carved);
     }
 
+    // Frames in flight for each stream: one running, one waiting to take the first stream that is done.
+    static constexpr std::size_t kInFlightPerStream = 2;
+
+    // The streams not running a frame's models, handed out to the frames' threads in the frames' order.
+    class FreeStreams {
+    public:
+        struct Lease {
+            FreeStreams* owner;
+            std::size_t stream;
+            Lease(FreeStreams* o, std::size_t s) : owner(o), stream(s) {}
+            Lease(const Lease&) = delete;
+            Lease& operator=(const Lease&) = delete;
+            ~Lease() { owner->give(stream); }
+        };
+        // Waits for turn `turn` (0, 1, 2 ... as the frames came) and a free stream of `streams`.
+        Lease take(std::size_t turn, std::size_t streams) {
+            std::unique_lock lock(mutex_);
+            if (busy_.empty()) busy_.assign(streams, false);
+            auto freeStream = [&] { return std::find(busy_.begin(), busy_.end(), false); };
+            changed_.wait(lock, [&] { return turn == serving_ && freeStream() != busy_.end(); });
+            const auto stream = static_cast<std::size_t>(freeStream() - busy_.begin());
+            busy_[stream] = true;
+            ++serving_;
+            changed_.notify_all();  // the next turn may find another stream free
+            return {this, stream};
+        }
+
+    private:
+        void give(std::size_t stream) {
+            {
+                std::lock_guard lock(mutex_);
+                busy_[stream] = false;
+            }
+            changed_.notify_all();
+        }
+        std::mutex mutex_;
+        std::condition_variable changed_;
+        std::vector<bool> busy_;   // by stream
+        std::size_t serving_ = 0;  // the turn that takes the next free stream
+    };
+
     // A frame looked at whose detections are being made: its own images, as the frames stage loads the next.
     struct Detecting {
         std::uint32_t position;
@@ -378,8 +423,9 @@ private:
     std::size_t fewPoints_ = 0;               // without depth: views with too few sparse points on them,
     std::size_t uncarved_ = 0;                // ... views of tracks whose points carved no hull,
     std::size_t placedByRays_ = 0;            // ... and how many of both their boxes' rays placed
-    std::deque<Detecting> detecting_;         // in flight, oldest first (a deque: its elements never move)
-    std::size_t next_ = 0;                    // frames sent to the streams
+    FreeStreams freeStreams_;
+    std::deque<Detecting> detecting_;  // in flight, oldest first (a deque: its elements never move)
+    std::size_t next_ = 0;             // frames sent to the streams
 };
 
 class DetectionFinder : public DetectionLifter {

@@ -1,0 +1,217 @@
+// Depth PNGs decoded with libdeflate (ingest/capture/depth_png.hpp) against OpenCV's reading of the same
+// files: real depth cameras' images, PNGs written here with each of PNG's row filters (OpenCV's writer only
+// uses one), and the files the decoder leaves to OpenCV.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <libdeflate.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "capture_support.hpp"
+#include "ingest/capture/capture_detail.hpp"
+#include "ingest/capture/depth_png.hpp"
+
+using namespace smql;
+using namespace smql::ingest;
+
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+constexpr long long kAnySize = 100'000'000;
+
+void appendBigEndian(Bytes& out, std::uint32_t value) {
+    for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<std::uint8_t>(value >> shift));
+}
+
+void appendChunk(Bytes& png, const char* type, const Bytes& data) {
+    appendBigEndian(png, static_cast<std::uint32_t>(data.size()));
+    Bytes typed(type, type + 4);
+    typed.insert(typed.end(), data.begin(), data.end());
+    png.insert(png.end(), typed.begin(), typed.end());
+    appendBigEndian(png, libdeflate_crc32(0, typed.data(), typed.size()));
+}
+
+// The predictor as the PNG specification words it.
+int paethPredictor(int a, int b, int c) {
+    const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+    if (pa <= pb && pa <= pc) return a;
+    if (pb <= pc) return b;
+    return c;
+}
+
+struct PngOptions {
+    std::uint8_t bitDepth = 16, colourType = 0, interlace = 0;
+    std::vector<std::string> extraChunks;  // ancillary chunks (empty data) before the image data
+};
+
+// A 16-bit greyscale PNG of `samples`, row y filtered with filters[y % filters.size()].
+Bytes pngOf(const cv::Mat1w& samples, const std::vector<int>& filters, const PngOptions& options = {}) {
+    const std::size_t rowBytes = static_cast<std::size_t>(samples.cols) * 2;
+    Bytes raw, previous(rowBytes, 0);
+    for (int y = 0; y < samples.rows; ++y) {
+        Bytes row;
+        for (int x = 0; x < samples.cols; ++x) {
+            row.push_back(static_cast<std::uint8_t>(samples(y, x) >> 8));
+            row.push_back(static_cast<std::uint8_t>(samples(y, x) & 0xff));
+        }
+        const int filter = filters[static_cast<std::size_t>(y) % filters.size()];
+        raw.push_back(static_cast<std::uint8_t>(filter));
+        for (std::size_t x = 0; x < rowBytes; ++x) {
+            const int a = x >= 2 ? row[x - 2] : 0, b = previous[x], c = x >= 2 ? previous[x - 2] : 0;
+            const int predicted = filter == 1   ? a
+                                  : filter == 2 ? b
+                                  : filter == 3 ? (a + b) / 2
+                                  : filter == 4 ? paethPredictor(a, b, c)
+                                                : 0;
+            raw.push_back(static_cast<std::uint8_t>(row[x] - predicted));
+        }
+        previous = row;
+    }
+    libdeflate_compressor* compressor = libdeflate_alloc_compressor(6);
+    Bytes compressed(libdeflate_zlib_compress_bound(compressor, raw.size()));
+    compressed.resize(
+        libdeflate_zlib_compress(compressor, raw.data(), raw.size(), compressed.data(), compressed.size()));
+    libdeflate_free_compressor(compressor);
+    REQUIRE(!compressed.empty());
+
+    Bytes png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'}, header;
+    appendBigEndian(header, static_cast<std::uint32_t>(samples.cols));
+    appendBigEndian(header, static_cast<std::uint32_t>(samples.rows));
+    header.insert(header.end(), {options.bitDepth, options.colourType, 0, 0, options.interlace});
+    appendChunk(png, "IHDR", header);
+    for (const auto& type : options.extraChunks) appendChunk(png, type.c_str(), Bytes(type == "tRNS" ? 2 : 0, 0));
+    // The data in two chunks, as encoders split it.
+    const std::size_t half = compressed.size() / 2;
+    appendChunk(png, "IDAT", Bytes(compressed.begin(), compressed.begin() + static_cast<std::ptrdiff_t>(half)));
+    appendChunk(png, "IDAT", Bytes(compressed.begin() + static_cast<std::ptrdiff_t>(half), compressed.end()));
+    appendChunk(png, "IEND", {});
+    return png;
+}
+
+// Depth-like samples: smooth surfaces, edges, holes (0) and the full 16-bit range.
+cv::Mat1w depthLike(int width, int height) {
+    std::mt19937 random(7);
+    std::uniform_int_distribution<int> noise(0, 40), any(0, 65535);
+    cv::Mat1w samples(height, width);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            int value = 1500 + 9 * x + 4 * y + noise(random);
+            if ((x / 7 + y / 5) % 6 == 0) value = 0;
+            if (x > width * 3 / 4) value = any(random);
+            samples(y, x) = static_cast<std::uint16_t>(value);
+        }
+    return samples;
+}
+
+// After the header's width (bytes 16-19) or height (20-23) changed: its chunk's checksum (29-32) again.
+void setHeaderChecksum(Bytes& png) {
+    const std::uint32_t crc = libdeflate_crc32(0, &png[12], 17);
+    for (int i = 0; i < 4; ++i) png[29 + i] = static_cast<std::uint8_t>(crc >> (24 - 8 * i));
+}
+
+bool sameAsOpenCv(const Bytes& png) {
+    const auto ours = decodeDepthPng(png, kAnySize);
+    const cv::Mat theirs = cv::imdecode(png, cv::IMREAD_UNCHANGED);
+    REQUIRE(ours);
+    REQUIRE(theirs.type() == CV_16UC1);
+    return ours->size() == theirs.size() && cv::norm(*ours, theirs, cv::NORM_INF) == 0;
+}
+
+Bytes readBytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST_CASE("depth PNGs: each row filter decodes to OpenCV's pixels", "[capture][depth_png]") {
+    const cv::Mat1w samples = depthLike(97, 41);  // an odd width: rows end mid-way through a filter's reach
+    for (int filter = 0; filter <= 4; ++filter) {
+        INFO("every row filtered with " << filter);
+        CHECK(sameAsOpenCv(pngOf(samples, {filter})));
+    }
+    CHECK(sameAsOpenCv(pngOf(samples, {4, 3, 2, 1, 0, 3, 4})));  // mixed, as encoders choose row by row
+    CHECK(sameAsOpenCv(pngOf(samples, {1}, {.extraChunks = {"tEXt", "pHYs"}})));
+    CHECK(sameAsOpenCv(pngOf(depthLike(1, 1), {4})));
+}
+
+TEST_CASE("depth PNGs: a real depth camera's images decode to OpenCV's pixels", "[capture][depth_png]") {
+    // TUM fr1/rpy's 121 Kinect depth images.
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::filesystem::path(SMQL_SHARED_DATA) / "captures/tum-fr1-rpy/depth"))
+        files.push_back(entry.path());
+    REQUIRE(files.size() == 121);
+    for (const auto& file : files) {
+        INFO(file.string());
+        const Bytes png = readBytes(file);
+        REQUIRE(sameAsOpenCv(png));
+        CHECK(cv::countNonZero(*decodeDepthPng(png, kAnySize)) > 0);
+    }
+}
+
+TEST_CASE("depth PNGs: what the decoder does not take is left to OpenCV", "[capture][depth_png]") {
+    const cv::Mat1w samples = depthLike(32, 24);
+    const Bytes good = pngOf(samples, {4});
+    REQUIRE(decodeDepthPng(good, kAnySize));
+
+    SECTION("other kinds of PNG") {
+        Bytes eightBit;
+        cv::imencode(".png", cv::Mat1b(24, 32, std::uint8_t{90}), eightBit);
+        CHECK_FALSE(decodeDepthPng(eightBit, kAnySize));
+        Bytes colour;
+        cv::imencode(".png", cv::Mat(24, 32, CV_16UC3, cv::Scalar(1, 2, 3)), colour);
+        CHECK_FALSE(decodeDepthPng(colour, kAnySize));
+        CHECK_FALSE(decodeDepthPng(pngOf(samples, {4}, {.interlace = 1, .extraChunks = {}}), kAnySize));
+        CHECK_FALSE(decodeDepthPng(pngOf(samples, {4}, {.extraChunks = {"tRNS"}}), kAnySize));  // alpha to OpenCV
+        CHECK_FALSE(decodeDepthPng(pngOf(samples, {4}, {.extraChunks = {"sBIT"}}), kAnySize));
+        Bytes jpeg;
+        cv::imencode(".jpg", cv::Mat3b(24, 32, cv::Vec3b(1, 2, 3)), jpeg);
+        CHECK_FALSE(decodeDepthPng(jpeg, kAnySize));
+    }
+    SECTION("damaged files") {
+        Bytes flipped = good;
+        flipped[flipped.size() - 30] ^= 0x40;  // inside the image data: its chunk's checksum no longer holds
+        CHECK_FALSE(decodeDepthPng(flipped, kAnySize));
+        for (std::size_t cut : {good.size() - 1, good.size() / 2, std::size_t{20}, std::size_t{0}})
+            CHECK_FALSE(decodeDepthPng(Bytes(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(cut)), kAnySize));
+        CHECK_FALSE(decodeDepthPng(pngOf(samples, {5}), kAnySize));  // no such filter
+        // Rows that are not the header's: a 32 x 24 header over 32 x 23 rows.
+        Bytes shortRows = pngOf(samples.rowRange(0, 23), {1});
+        shortRows[23] = 24;  // the height's low byte
+        setHeaderChecksum(shortRows);
+        CHECK_FALSE(decodeDepthPng(shortRows, kAnySize));
+    }
+    SECTION("more pixels than allowed") {
+        CHECK_FALSE(decodeDepthPng(good, 32 * 24 - 1));
+        CHECK(decodeDepthPng(good, 32 * 24));
+        // Sides whose product overflows 64-bit signed arithmetic (found by fuzz_depth_png).
+        Bytes huge = good;
+        for (int at : {16, 20}) huge[at] = 0xe2;
+        setHeaderChecksum(huge);
+        CHECK_FALSE(decodeDepthPng(huge, kAnySize));
+    }
+    SECTION("read through OpenCV: the errors are its reading's") {
+        test::TempDir dir;
+        Bytes damaged = good;
+        damaged.resize(good.size() / 2);
+        std::ofstream(dir.path("damaged.png"), std::ios::binary)
+            .write(reinterpret_cast<const char*>(damaged.data()), static_cast<std::streamsize>(damaged.size()));
+        CHECK_THROWS_WITH(capture_detail::readDepthImage(dir.path("damaged.png")),
+                          Catch::Contains("cannot decode the depth image"));
+        std::ofstream(dir.path("good.png"), std::ios::binary)
+            .write(reinterpret_cast<const char*>(good.data()), static_cast<std::streamsize>(good.size()));
+        CHECK(cv::norm(capture_detail::readDepthImage(dir.path("good.png")), samples, cv::NORM_INF) == 0);
+    }
+}
