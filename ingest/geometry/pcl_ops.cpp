@@ -57,7 +57,7 @@ pcl::IndicesPtr toPclIndices(const std::vector<std::size_t>& indices) {
 }
 
 // A second thread that counts one part of each RANSAC hypothesis's points while the caller counts the other: a
-// hypothesis's count takes about 10 us, so the two meet by spinning (a futex's wake-up costs as much as the
+// hypothesis's count takes a few microseconds, so the two meet by spinning (a futex's wake-up costs as much as the
 // count), and the helper sleeps only once no hypothesis has come for a while (between plane searches). The
 // second part goes to whichever of the two claims it first: a helper the system has not run yet (a loaded
 // machine, more threads than cores) never holds the caller up, who then counts both parts. Started for one
@@ -135,6 +135,23 @@ private:
     std::thread helper_;  // last: started once the members above are made
 };
 
+// How many of the n points (fewer than 2^32) lie within `limit` of the plane a x + b y + c z + d = 0.
+// Vectorised: GCC's -O2 leaves this loop scalar (its cheapest cost model refuses the reduction), so the
+// function asks GCC for its full cost model (clang's -O2 vectorises it as it is), and a 32-bit count keeps
+// the lanes as wide as the floats; also compiled for AVX2, chosen when the processor has it. The same
+// products and sums in the same order a point (no fused multiply-add), so the same count: 67,000 points in
+// 6 us instead of 37.
+#if !defined(__clang__)
+__attribute__((optimize("vect-cost-model=dynamic")))
+#endif
+__attribute__((target_clones("avx2", "default"))) std::size_t
+countNearPlane(float a, float b, float c, float d, float limit, const float* x, const float* y, const float* z,
+               std::size_t n) {
+    std::uint32_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) count += std::abs(a * x[i] + b * y[i] + c * z[i] + d) < limit;
+    return count;
+}
+
 // A plane model constrained about an axis (PCL's perpendicular or parallel plane) whose RANSAC hypotheses
 // count their inliers on a copy of the points laid out coordinate by coordinate, in a loop the compiler
 // vectorises: the test PCL's plane model makes (|n . p + d| < threshold, in floats), so the same counts and
@@ -153,8 +170,9 @@ public:
             y_.push_back(p.y);
             z_.push_back(p.z);
         }
-        // Below a few thousand points a count is shorter than the two threads' meeting.
-        constexpr std::size_t kSplitFrom = 4096;
+        // Below some 30,000 points (3 us a count) the two threads' meeting costs what the split saves (the
+        // apartment's alignment, measured: the same time counting on one thread as split from 4,096).
+        constexpr std::size_t kSplitFrom = 32768;
         if (x_.size() >= kSplitFrom && std::thread::hardware_concurrency() >= 2)
             split_ = std::make_unique<SplitCount>(
                 x_.size(), [this](const Eigen::Vector4f& plane, std::size_t begin, std::size_t end) {
@@ -171,12 +189,8 @@ public:
 
 private:
     std::size_t countPart(const Eigen::Vector4f& plane, std::size_t begin, std::size_t end) const {
-        const float a = plane[0], b = plane[1], c = plane[2], d = plane[3];
-        const float limit = limit_;
-        const float *x = x_.data(), *y = y_.data(), *z = z_.data();
-        std::size_t count = 0;
-        for (std::size_t i = begin; i < end; ++i) count += std::abs(a * x[i] + b * y[i] + c * z[i] + d) < limit;
-        return count;
+        return countNearPlane(plane[0], plane[1], plane[2], plane[3], limit_, x_.data() + begin, y_.data() + begin,
+                              z_.data() + begin, end - begin);
     }
 
     std::vector<float> x_, y_, z_;
