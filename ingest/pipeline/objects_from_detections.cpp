@@ -76,10 +76,18 @@ public:
             detecting_.pop_front();
         }
         Detecting& next = detecting_.emplace_back(frame);
-        next.detections = std::async(std::launch::async, [this, posed = next.posed(), turn = next_++] {
-            const FreeStreams::Lease stream = freeStreams_.take(turn, streams());
-            return detectionsOf(posed, stream.stream);
-        });
+        try {
+            next.detections = std::async(std::launch::async, [this, posed = next.posed(), turn = next_] {
+                const FreeStreams::Lease stream = freeStreams_.take(turn, streams());
+                return detectionsOf(posed, stream.stream);
+            });
+        } catch (...) {
+            // No thread for it (the system's limit): no frame waits on a turn that never comes, and no
+            // future without a thread is waited on.
+            detecting_.pop_back();
+            throw;
+        }
+        ++next_;
         if (previous) lift(previous->posed(), previous->detections.get());
     }
 
