@@ -316,7 +316,8 @@ std::optional<std::vector<std::uint8_t>> fileBytes(const std::string& file) {
     return bytes;
 }
 
-// `decode`, when given, reads the file first; what it leaves (std::nullopt), OpenCV reads.
+// `decode`, when given, reads the file's bytes first; what it leaves (std::nullopt), OpenCV decodes from
+// those bytes, not from the file again.
 cv::Mat readImage(const std::string& file, int flags, std::string_view what,
                   std::optional<cv::Mat> (*decode)(std::span<const std::uint8_t>, long long) = nullptr) {
     std::error_code ec;
@@ -324,12 +325,13 @@ cv::Mat readImage(const std::string& file, int flags, std::string_view what,
     if (!fs::exists(status)) fail(file, fmt::format("{} is missing", what));
     if (!fs::is_regular_file(status)) fail(file, fmt::format("{} is not a regular file", what));
     refuseHugeImage(file, what);
-    if (decode)
-        if (auto bytes = fileBytes(file))
-            if (auto image = decode(*bytes, kMaxImagePixels)) return std::move(*image);
+    std::optional<std::vector<std::uint8_t>> bytes;
+    if (decode) bytes = fileBytes(file);
+    if (bytes && !bytes->empty())
+        if (auto image = decode(*bytes, kMaxImagePixels)) return std::move(*image);
     cv::Mat image;
     try {
-        image = cv::imread(file, flags);
+        image = bytes && !bytes->empty() ? cv::imdecode(*bytes, flags) : cv::imread(file, flags);
     } catch (const cv::Exception& e) {
         fail(file, fmt::format("cannot decode the {}: {}", what, e.err));
     }

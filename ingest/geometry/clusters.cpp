@@ -64,11 +64,10 @@ void uniteNear(const std::vector<model::Vec3>& points, double tolerance, UnionFi
                                            static_cast<std::int64_t>(std::floor(static_cast<float>(p.z) / cell))};
     };
     // packCell keeps a cell and the cells above and below it one run of keys.
-    const auto key = packCell;
     std::vector<std::pair<std::uint64_t, std::uint32_t>> byCell(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         const auto c = cellOf(points[i]);
-        byCell[i] = {key(c[0], c[1], c[2]), static_cast<std::uint32_t>(i)};
+        byCell[i] = {packCell(c[0], c[1], c[2]), static_cast<std::uint32_t>(i)};
     }
     std::sort(byCell.begin(), byCell.end());
     for (std::size_t at = 0; at < byCell.size(); ++at) {
@@ -78,10 +77,10 @@ void uniteNear(const std::vector<model::Vec3>& points, double tolerance, UnionFi
                     z = static_cast<float>(points[i].z);
         for (std::int64_t dx = -1; dx <= 1; ++dx)
             for (std::int64_t dy = -1; dy <= 1; ++dy) {
-                const std::uint64_t last = key(c[0] + dx, c[1] + dy, c[2] + 1);
+                const std::uint64_t last = packCell(c[0] + dx, c[1] + dy, c[2] + 1);
                 // Each pair once: from the earlier of the two in key order.
                 auto from = std::lower_bound(byCell.begin() + static_cast<std::ptrdiff_t>(at) + 1, byCell.end(),
-                                             std::pair{key(c[0] + dx, c[1] + dy, c[2] - 1), std::uint32_t{0}});
+                                             std::pair{packCell(c[0] + dx, c[1] + dy, c[2] - 1), std::uint32_t{0}});
                 for (auto other = from; other != byCell.end() && other->first <= last; ++other) {
                     const std::size_t j = other->second;
                     const float ex = x - static_cast<float>(points[j].x), ey = y - static_cast<float>(points[j].y),
