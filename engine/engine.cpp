@@ -142,14 +142,17 @@ struct Engine::State {
     // its placeholders (binder/parameters.hpp). The caller holds the mutex.
     ResultSet run(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values) {
         auto start = std::chrono::steady_clock::now();
-        const std::string* counted = catalogCountName(statement, values);
-        if (counted)
-            if (auto rs = rememberedCount(*counted)) {
-                rs->elapsedMicroseconds =
-                    std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-                return std::move(*rs);
-            }
+        auto finished = [&](ResultSet rs) {
+            rs.elapsedMicroseconds =
+                std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+            return rs;
+        };
+        const std::optional<CatalogQuery> catalog = catalogQuery(statement, values);
+        if (catalog && catalog->countOnly)
+            if (auto rs = rememberedCount(catalog->name)) return finished(std::move(*rs));
         auto txn = db->beginRead();
+        if (catalog && !catalog->countOnly)
+            if (auto rs = rememberedFind(txn, *catalog)) return finished(std::move(*rs));
         ReadsEnd readsEnd{*this};
         binder::Binder binder({txn, session, [&] { return snapshot(txn, currentScene(txn)); },
                                [&](const std::string& instant) { return snapshotAsOf(txn, instant); },
@@ -158,30 +161,69 @@ struct Engine::State {
         storage::Database* writer = db->readOnly() ? nullptr : db.get();
         auto rs = exec::Executor(txn, session, plan, &interrupt, writer).run();
         shapes.setCapacity(static_cast<std::size_t>(session.limits.shapeCache));  // SET shape_cache, at once
-        rs.elapsedMicroseconds =
-            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-        return rs;
+        return finished(std::move(rs));
     }
 
     // The categories named across all scenes, with their label keys and counts as read in the last
     // committed transaction a statement saw (binder/category_counts.hpp). While no process has
     // committed since (the database's last committed transaction is still that one), the same
-    // COUNT has the same answer, and it is given without a read transaction, binder or plan.
+    // COUNT has the same answer, and it is given without a read transaction, binder or plan; a FIND
+    // of the same category reads the label index at once, without the binder or a plan.
     binder::CategoryCounts categoryCounts;
 
-    // The category a COUNT across all scenes names (its text or its bound value), or null for any
-    // other statement: one with AS OF, WHERE or VIEW, or run in one scene, is not answered early.
-    const std::string* catalogCountName(const ast::Statement& statement,
-                                        const std::vector<std::optional<ParameterValue>>& values) const {
-        const auto* count = std::get_if<ast::CountStmt>(&statement.body);
-        if (!count || !session.allScenes || count->asOf || count->view || count->where) return nullptr;
-        const ast::Ref& target = count->target;
-        if (target.kind == ast::Ref::Kind::Name && statement.parameterCount == 0) return &target.name;
-        if (target.kind != ast::Ref::Kind::Param || statement.parameterCount != 1 || !target.side.empty() ||
-            target.placeholder.nodeId || target.placeholder.index != 1 || values.size() != 1 || !values[0])
-            return nullptr;
-        const auto* text = std::get_if<std::string>(&*values[0]);
-        return text && !text->empty() && text->size() <= parser::kMaxTextValue ? text : nullptr;
+    // A FIND or COUNT of one category across all scenes with nothing but a LIMIT: its category (its
+    // text, or its bound value lower-cased as the binder does) and limit. Any other statement (AS OF,
+    // WHERE, VIEW, NEAREST TO, ORDER BY, SIMILAR TO, PATH, RETURN, one scene, a value missing or of
+    // another type) is not answered early, and the binder words whatever is wrong with it.
+    struct CatalogQuery {
+        std::string name;
+        std::optional<std::int64_t> limit;
+        bool countOnly = false;
+    };
+
+    std::optional<CatalogQuery> catalogQuery(const ast::Statement& statement,
+                                             const std::vector<std::optional<ParameterValue>>& values) const {
+        if (!session.allScenes || values.size() != statement.parameterCount) return std::nullopt;
+        std::size_t placeholders = 0;
+        auto bound = [&]<class T>(const ast::Placeholder& placeholder, const T*) -> const T* {
+            if (placeholder.nodeId || placeholder.index == 0 || placeholder.index > values.size() ||
+                !values[placeholder.index - 1])
+                return nullptr;
+            ++placeholders;
+            return std::get_if<T>(&*values[placeholder.index - 1]);
+        };
+        const ast::Ref* target = nullptr;
+        CatalogQuery query;
+        if (const auto* count = std::get_if<ast::CountStmt>(&statement.body)) {
+            if (count->asOf || count->view || count->where) return std::nullopt;
+            target = &count->target;
+            query.countOnly = true;
+        } else if (const auto* find = std::get_if<ast::FindStmt>(&statement.body)) {
+            if (find->asOf || find->view || find->where || find->nearestTo || find->orderBy || find->similarTo ||
+                find->path || !find->columns.empty())
+                return std::nullopt;
+            target = &find->target;
+            query.limit = find->limit;
+            if (find->limitParam) {
+                const auto* limit = bound(*find->limitParam, static_cast<const std::int64_t*>(nullptr));
+                if (!limit || *limit < 0) return std::nullopt;
+                query.limit = *limit;
+            }
+        } else {
+            return std::nullopt;
+        }
+        if (target->kind == ast::Ref::Kind::Name) {
+            query.name = target->name;
+        } else if (target->kind == ast::Ref::Kind::Param && target->side.empty()) {
+            const auto* text = bound(target->placeholder, static_cast<const std::string*>(nullptr));
+            if (!text || text->empty() || text->size() > parser::kMaxTextValue) return std::nullopt;
+            query.name = parser::lowerCase(*text);
+        } else {
+            return std::nullopt;
+        }
+        // Every placeholder is one of these two (the others were ruled out above), each used once.
+        if (placeholders != statement.parameterCount) return std::nullopt;
+        return query;
     }
 
     std::optional<ResultSet> rememberedCount(std::string_view name) const {
@@ -191,6 +233,15 @@ struct Engine::State {
         rs.columns = {{"count", ValueType::Integer}};
         rs.rows.push_back({static_cast<std::int64_t>(kept->count)});
         return rs;
+    }
+
+    // The rows of a FIND across all scenes whose category was bound in `txn`'s own committed transaction
+    // (so its label keys and count are the ones the binder would work out again), read from the label
+    // index as the executor reads them; none when it was not.
+    std::optional<ResultSet> rememberedFind(const storage::ReadTransaction& txn, const CatalogQuery& query) const {
+        const binder::CategoryCount* kept = categoryCounts.find(query.name, txn.transactionId());
+        if (!kept) return std::nullopt;
+        return exec::catalogFind(txn, session, kept->keys.front(), kept->keys, query.limit, kept->count);
     }
 
     std::shared_ptr<const SceneSnapshot> snapshot(const storage::ReadTransaction& txn, const model::SceneInfo& info) {

@@ -263,8 +263,7 @@ std::unique_ptr<Database> Database::open(const std::string& directory, const Ope
 }
 
 ReadTransaction Database::beginRead() const {
-    return ReadTransaction(
-        std::make_unique<ReadTransaction::Impl>(impl_->env, impl_->env->beginReader(), /*readOnlyTransaction=*/true));
+    return ReadTransaction(std::make_unique<ReadTransaction::Impl>(impl_->env, impl_->env->beginReader()));
 }
 
 WriteTransaction Database::beginWrite() {
@@ -274,7 +273,7 @@ WriteTransaction Database::beginWrite() {
     MDB_txn* txn = nullptr;
     impl_->env->check(mdb_txn_begin(impl_->env->env(), nullptr, 0, &txn), "beginning a write transaction");
     // Owned from here on, so a refusal below aborts the transaction.
-    WriteTransaction write(std::make_unique<ReadTransaction::Impl>(impl_->env, txn, /*readOnlyTransaction=*/false));
+    WriteTransaction write(std::make_unique<ReadTransaction::Impl>(impl_->env, txn));
     // Checked once the writer lock is held: the lock file may have gone while this waited for it.
     impl_->env->checkLockFile("beginning a write transaction");
     return write;

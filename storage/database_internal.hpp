@@ -29,15 +29,18 @@ struct Database::Impl {
 // One LMDB transaction, read-only (a ReadTransaction from beginRead) or not (a WriteTransaction from
 // beginWrite): LMDB has one transaction type with a read-only flag, and so do these.
 struct ReadTransaction::Impl {
-    Impl(std::shared_ptr<Environment> environment, MDB_txn* transaction, bool readOnlyTransaction)
-        : env(std::move(environment)), txn(transaction), readOnly(readOnlyTransaction) {}
+    // A read transaction, with the cursors it kept from its last use (Environment::beginReader).
+    Impl(std::shared_ptr<Environment> environment, Environment::Reader reader)
+        : env(std::move(environment)), txn(reader.txn), readOnly(true), cursors(reader.cursors) {}
+    // A write transaction.
+    Impl(std::shared_ptr<Environment> environment, MDB_txn* transaction)
+        : env(std::move(environment)), txn(transaction), readOnly(false) {}
     ~Impl() {
-        for (MDB_cursor* cursor : cursors)
-            if (cursor) mdb_cursor_close(cursor);
-        if (readOnly)
-            env->endReader(txn);
-        else if (txn)
-            mdb_txn_abort(txn);  // destroyed without commit()
+        if (readOnly) {
+            env->endReader({txn, cursors});  // the cursors go back to the pool with their transaction
+            return;
+        }
+        if (txn) mdb_txn_abort(txn);  // destroyed without commit()
     }
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
@@ -45,9 +48,9 @@ struct ReadTransaction::Impl {
     std::shared_ptr<Environment> env;  // keeps the environment open while the transaction lives
     MDB_txn* txn;                      // a write transaction's is null once committed
     const bool readOnly;
-    // A read transaction keeps one cursor per table for its life: opening a cursor allocates, and
-    // lookups such as children() run many times per query. A write transaction keeps none (see
-    // TableCursor), so these stay null for it.
+    // A read transaction keeps one cursor per table for its life and hands them on to the next
+    // one: opening a cursor allocates, and lookups such as children() run many times per query. A
+    // write transaction keeps none (see TableCursor), so these stay null for it.
     mutable std::array<MDB_cursor*, kTableCount> cursors{};
     mutable std::array<bool, kTableCount> cursorBusy{};
     std::string record;  // a write transaction's encode buffer, reused across records

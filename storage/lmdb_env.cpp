@@ -319,36 +319,53 @@ namespace {
 constexpr std::size_t kMaxIdleReaders = 16;
 }  // namespace
 
-MDB_txn* Environment::beginReader() {
-    MDB_txn* txn = nullptr;
+namespace {
+void closeReader(const Environment::Reader& reader) {
+    for (MDB_cursor* cursor : reader.cursors)
+        if (cursor) mdb_cursor_close(cursor);
+    mdb_txn_abort(reader.txn);
+}
+}  // namespace
+
+Environment::Reader Environment::beginReader() {
+    Reader reader;
     {
         std::lock_guard lock(readersMutex_);
         if (!idleReaders_.empty()) {
-            txn = idleReaders_.back();
+            reader = idleReaders_.back();
             idleReaders_.pop_back();
         }
     }
-    if (txn) {
-        int rc = mdb_txn_renew(txn);
-        if (rc == MDB_SUCCESS) return txn;
-        mdb_txn_abort(txn);
+    if (reader.txn) {
+        if (mdb_txn_renew(reader.txn) == MDB_SUCCESS) {
+            for (MDB_cursor*& cursor : reader.cursors)
+                if (cursor && mdb_cursor_renew(reader.txn, cursor) != MDB_SUCCESS) {
+                    mdb_cursor_close(cursor);
+                    cursor = nullptr;  // opened again when a lookup needs it
+                }
+            return reader;
+        }
+        closeReader(reader);
+        reader = {};
     }
-    check(mdb_txn_begin(env_, nullptr, MDB_RDONLY, &txn), "beginning a read transaction");
-    return txn;
+    check(mdb_txn_begin(env_, nullptr, MDB_RDONLY, &reader.txn), "beginning a read transaction");
+    return reader;
 }
 
-void Environment::endReader(MDB_txn* txn) {
-    mdb_txn_reset(txn);
-    std::lock_guard lock(readersMutex_);
-    if (idleReaders_.size() < kMaxIdleReaders) {
-        idleReaders_.push_back(txn);
-        return;
+void Environment::endReader(Reader reader) {
+    mdb_txn_reset(reader.txn);
+    {
+        std::lock_guard lock(readersMutex_);
+        if (idleReaders_.size() < kMaxIdleReaders) {
+            idleReaders_.push_back(reader);
+            return;
+        }
     }
-    mdb_txn_abort(txn);
+    closeReader(reader);
 }
 
 Environment::~Environment() {
-    for (MDB_txn* txn : idleReaders_) mdb_txn_abort(txn);
+    for (const Reader& reader : idleReaders_) closeReader(reader);
     // Closing under the registry lock: a concurrent open() of the same
     // directory must not create a second environment while this one still
     // holds the directory's locks.

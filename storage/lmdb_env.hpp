@@ -96,10 +96,16 @@ public:
     // kernels before 5.14.
     void mapIn(std::string_view bytes) const;
 
-    // Read transactions come from a pool of reset ones: renewing a transaction
-    // reuses its reader slot, where beginning one takes LMDB's reader lock.
-    MDB_txn* beginReader();
-    void endReader(MDB_txn* txn);
+    // A read transaction with the cursors it opened (null where it opened none), one per table.
+    struct Reader {
+        MDB_txn* txn = nullptr;
+        std::array<MDB_cursor*, kTableCount> cursors{};
+    };
+    // Read transactions come from a pool of reset ones: renewing a transaction reuses its reader
+    // slot, where beginning one takes LMDB's reader lock, and renewing its cursors reuses their
+    // memory, where opening one allocates (a query opens one to three).
+    Reader beginReader();
+    void endReader(Reader reader);
 
     // Throws smql::Error(Storage) when lock.mdb is no longer the file this
     // environment opened (removed, or replaced by a new one). LMDB's writer
@@ -138,7 +144,7 @@ private:
     // when LMDB runs without one (a read-only file system).
     std::optional<std::pair<dev_t, ino_t>> lockFile_;
     std::mutex readersMutex_;
-    std::vector<MDB_txn*> idleReaders_;
+    std::vector<Reader> idleReaders_;
 
 public:
     // Label keys that are not canonical category names (model/category.hpp: written before names

@@ -517,30 +517,35 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
     return rs;
 }
 
-// Category search over every scene through the label index: no snapshot is loaded.
 ResultSet Executor::run(const binder::BoundCatalogFind& f) {
+    if (!f.countOnly) return catalogFind(txn_, session_, f.category, f.keys, f.limit, f.count);
     ResultSet rs;
-    if (f.countOnly) {
-        rs.columns = {{"count", ValueType::Integer}};
-        rs.rows.push_back({static_cast<std::int64_t>(f.count)});
-        return rs;
-    }
-    std::size_t limit = f.limit ? static_cast<std::size_t>(std::max<std::int64_t>(*f.limit, 0)) : SIZE_MAX;
+    rs.columns = {{"count", ValueType::Integer}};
+    rs.rows.push_back({static_cast<std::int64_t>(f.count)});
+    return rs;
+}
+
+// Category search over every scene through the label index: no snapshot is loaded.
+ResultSet catalogFind(const storage::ReadTransaction& txn, const catalog::Session& session, std::string_view category,
+                      const std::vector<std::string>& keys, std::optional<std::int64_t> limit, std::uint64_t count) {
+    static const std::vector<Column> kColumns = {{"id", ValueType::Integer},
+                                                 {"category", ValueType::Text},
+                                                 {"scene", ValueType::Integer},
+                                                 {"source_id", ValueType::Integer},
+                                                 {"box", ValueType::Box}};
+    ResultSet rs;
+    std::size_t rows = limit ? static_cast<std::size_t>(std::max<std::int64_t>(*limit, 0)) : SIZE_MAX;
     // One row past the session's limit is enough to know it is exceeded.
-    limit = std::min(limit, static_cast<std::size_t>(session_.limits.maxRows) + 1);
-    rs.columns = {{"id", ValueType::Integer},
-                  {"category", ValueType::Text},
-                  {"scene", ValueType::Integer},
-                  {"source_id", ValueType::Integer},
-                  {"box", ValueType::Box}};
-    rs.rows.reserve(std::min<std::uint64_t>(limit, f.count));
+    rows = std::min(rows, static_cast<std::size_t>(session.limits.maxRows) + 1);
+    rs.columns = kColumns;
+    rs.rows.reserve(std::min<std::uint64_t>(rows, count));
     // The label index's entries carry every column: no node record is read, and each entry
     // becomes its row as it is read.
-    txn_.forEachCategoryRow(f.keys, limit, [&](const storage::CategoryRow& node) {
+    txn.forEachCategoryRow(keys, rows, [&](const storage::CategoryRow& node) {
         auto& row = rs.rows.emplace_back();
         row.reserve(5);
         row.emplace_back(static_cast<std::int64_t>(node.id));
-        row.emplace_back(f.category);
+        row.emplace_back(std::in_place_type<std::string>, category);
         row.emplace_back(static_cast<std::int64_t>(node.scene));
         if (node.sourceId)
             row.emplace_back(*node.sourceId);
@@ -551,7 +556,7 @@ ResultSet Executor::run(const binder::BoundCatalogFind& f) {
         else
             row.emplace_back(node.box);
     });
-    checkRows(rs.rows.size());
+    checkRowLimit(session, rs.rows.size());
     return rs;
 }
 

@@ -38,11 +38,13 @@ void Executor::interrupted() {
     throw Error(ErrorKind::Interrupted, "the statement was interrupted", std::nullopt, "nothing was changed");
 }
 
-void Executor::checkRows(std::size_t rows) const {
-    if (static_cast<std::int64_t>(rows) <= session_.limits.maxRows) return;
-    throw Error(ErrorKind::Limit, fmt::format("the answer has {} rows; the limit is {}", rows, session_.limits.maxRows),
+void checkRowLimit(const catalog::Session& session, std::size_t rows) {
+    if (static_cast<std::int64_t>(rows) <= session.limits.maxRows) return;
+    throw Error(ErrorKind::Limit, fmt::format("the answer has {} rows; the limit is {}", rows, session.limits.maxRows),
                 std::nullopt, "add a LIMIT or a WHERE, or raise it: SET max_rows = N");
 }
+
+void Executor::checkRows(std::size_t rows) const { checkRowLimit(session_, rows); }
 
 ResultSet Executor::run() {
     ResultSet rs = std::visit([&](const auto& body) { return run(body); }, plan_.statement->body);

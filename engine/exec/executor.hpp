@@ -31,6 +31,16 @@ std::string relationSentence(std::string_view subjectLabel, std::string_view obj
 std::string relationSentence(const model::Node& a, const model::Node& b,
                              const std::vector<relations::RelationHit>& hits);
 
+// FIND of a category across all scenes, answered from the label index alone (no snapshot, no plan):
+// the rows of the nodes that `keys` (a BoundCatalogFind's) name, `count` of them in all, up to
+// `limit`. What the executor runs for a BoundCatalogFind, and what the engine runs for a FIND whose
+// category was bound in the same committed transaction (engine.cpp, rememberedFind).
+ResultSet catalogFind(const storage::ReadTransaction& txn, const catalog::Session& session, std::string_view category,
+                      const std::vector<std::string>& keys, std::optional<std::int64_t> limit, std::uint64_t count);
+
+// Throws Error(Limit) when an answer of `rows` rows is over the session's max_rows.
+void checkRowLimit(const catalog::Session& session, std::size_t rows);
+
 struct Hit {
     catalog::Slot slot;
     double distance = 0;    // to the ORDER BY / NEAREST TO reference, when there is one

@@ -229,3 +229,63 @@ TEST_CASE("a COUNT across all scenes prepared before another connection or proce
     CHECK(none.rows.at(0).at(0) == Value(std::int64_t{0}));
     CHECK_THAT(none.message, Catch::Contains("no book in any scene"));
 }
+
+TEST_CASE("a FIND across all scenes answers from the label index as the binder's path does, and sees every write",
+          "[prepared]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(generate::generateRoom({.seed = 1, .objectCount = 60, .name = "first"}));
+    run(*engine, "USE SCENE '*'");
+    // The truth, from an engine that has bound nothing before (it shares the database).
+    auto truth = [&](const std::string& text) {
+        auto fresh = Engine::open(dir.path.string());
+        run(*fresh, "USE SCENE '*'");
+        return run(*fresh, text);
+    };
+    auto requireSame = [](const ResultSet& got, const ResultSet& want) {
+        REQUIRE(got.columns.size() == want.columns.size());
+        for (std::size_t i = 0; i < want.columns.size(); ++i) {
+            CHECK(got.columns[i].name == want.columns[i].name);
+            CHECK(got.columns[i].type == want.columns[i].type);
+        }
+        REQUIRE(got.rows.size() == want.rows.size());
+        for (std::size_t i = 0; i < want.rows.size(); ++i) CHECK(got.rows[i] == want.rows[i]);
+        CHECK(got.message == want.message);
+    };
+
+    PreparedStatement find = engine->prepare("FIND ? LIMIT ?");
+    find.bind(1, std::string("Book"));  // bound names are folded as the statement's text is
+    find.bind(2, std::int64_t{1000});
+    const ResultSet books = truth("FIND book LIMIT 1000");
+    REQUIRE(books.rows.size() > 2);
+    requireSame(find.execute(), books);  // bound: the label keys and count kept
+    requireSame(find.execute(), books);  // answered from what was kept
+    requireSame(run(*engine, "FIND book LIMIT 1000"), books);
+    find.bind(2, std::int64_t{2});
+    requireSame(find.execute(), truth("FIND book LIMIT 2"));
+    find.bind(2, std::int64_t{0});
+    CHECK(find.execute().rows.empty());
+
+    // What the binder refuses is refused the same way once the category is kept.
+    find.bind(2, std::int64_t{-1});
+    CHECK_THAT(errorOf([&] { find.execute(); }).message(), Catch::Contains("cannot be negative"));
+    find.bind(2, std::int64_t{1000});
+    run(*engine, "SET max_rows = 2");
+    const Error tooMany = errorOf([&] { find.execute(); });
+    CHECK(tooMany.kind() == ErrorKind::Limit);
+    CHECK_THAT(tooMany.message(), Catch::Contains("the answer has 3 rows; the limit is 2"));
+    run(*engine, "SET max_rows = 100000");
+    CHECK_THAT(errorOf([&] { run(*engine, "FIND book LIMIT 5 PATH"); }).message(),
+               Catch::Contains("across all scenes, FIND takes no"));
+
+    // Another connection's write commits a new transaction: the next FIND binds again and finds the
+    // new books.
+    Engine::open(dir.path.string())
+        ->importScene(generate::generateRoom({.seed = 2, .objectCount = 60, .name = "second"}));
+    const ResultSet more = truth("FIND book LIMIT 1000");
+    REQUIRE(more.rows.size() > books.rows.size());
+    requireSame(find.execute(), more);
+    requireSame(find.execute(), more);
+    run(*engine, "DROP SCENE 'second'");
+    requireSame(find.execute(), books);
+}

@@ -683,6 +683,49 @@ TEST_CASE("read transactions are snapshots", "[storage][database][mvcc]") {
     REQUIRE(moved.sceneByName("kitchen"));
 }
 
+TEST_CASE("a read transaction's cursors, handed on to the next one, read that one's snapshot",
+          "[storage][database][mvcc]") {
+    TempDir tmp;
+    auto db = Database::open(tmp.path());
+    const NodeId kitchenId = importCommitted(*db, kitchen());
+    auto categoryRows = [](const ReadTransaction& read, const std::string& category) {
+        std::vector<NodeId> ids;
+        read.forEachCategoryRow({category}, 100, [&](const CategoryRow& row) { ids.push_back(row.id); });
+        return ids;
+    };
+    {
+        // Opens the label index's and the nodes' cursors; they go back to the pool with the transaction.
+        auto read = db->beginRead();
+        REQUIRE(read.nodesWithCategory("mug") == std::vector<NodeId>{kitchenId + 4, kitchenId + 5});
+        REQUIRE(read.node(kitchenId + 3)->category == "table");
+    }
+    {
+        auto txn = db->beginWrite();
+        txn.dropScene(kitchenId);
+        txn.commit();
+    }
+    const NodeId officeId = importCommitted(*db, office());
+    {
+        // The pooled transaction and its cursors, renewed: the kitchen is gone, the office is there.
+        auto renewed = db->beginRead();
+        REQUIRE(renewed.nodesWithCategory("mug") == std::vector<NodeId>{officeId + 3});
+        REQUIRE_FALSE(renewed.node(kitchenId + 3));
+        REQUIRE(categoryRows(renewed, "chair") == std::vector<NodeId>{officeId + 2});
+        // A second reader while the first is open: a transaction of its own, not the pooled one.
+        auto second = db->beginRead();
+        REQUIRE(second.nodesWithCategory("mug") == renewed.nodesWithCategory("mug"));
+        REQUIRE(categoryRows(second, "table").empty());
+    }
+    // Both pooled now, each with its cursors: two readers at once, after another write.
+    importCommitted(*db, kitchen());
+    auto first = db->beginRead();
+    auto second = db->beginRead();
+    REQUIRE(first.nodesWithCategory("mug").size() == 3);
+    REQUIRE(second.nodesWithCategory("mug") == first.nodesWithCategory("mug"));
+    REQUIRE(categoryRows(first, "table") == categoryRows(second, "table"));
+    REQUIRE(categoryRows(first, "table").size() == 1);
+}
+
 TEST_CASE("blobs are stored with their scene, listed per node and dropped with it") {
     TempDir dir;
     auto db = Database::open(dir.path());
