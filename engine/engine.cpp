@@ -140,7 +140,8 @@ struct Engine::State {
 
     // One statement through bind, plan and execute in its own read transaction; `values` fill
     // its placeholders (binder/parameters.hpp). The caller holds the mutex.
-    ResultSet run(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values) {
+    ResultSet run(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values,
+                  const std::shared_ptr<const ast::Statement>& kept = nullptr) {
         auto start = std::chrono::steady_clock::now();
         auto finished = [&](ResultSet rs) {
             rs.elapsedMicroseconds =
@@ -154,14 +155,82 @@ struct Engine::State {
         if (catalog && !catalog->countOnly)
             if (auto rs = rememberedFind(txn, *catalog)) return finished(std::move(*rs));
         ReadsEnd readsEnd{*this};
-        binder::Binder binder({txn, session, [&] { return snapshot(txn, currentScene(txn)); },
-                               [&](const std::string& instant) { return snapshotAsOf(txn, instant); },
-                               &categoryCounts});
-        auto plan = planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement, values)));
+        std::shared_ptr<const planner::Plan> plan = kept ? keptPlan(*kept, values, txn) : nullptr;
+        if (!plan) {
+            binder::Binder binder({txn, session, [&] { return snapshot(txn, currentScene(txn)); },
+                                   [&](const std::string& instant) { return snapshotAsOf(txn, instant); },
+                                   &categoryCounts});
+            plan = std::make_shared<const planner::Plan>(
+                planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement, values))));
+            if (kept) keepPlan(kept, values, txn, plan);
+        }
         storage::Database* writer = db->readOnly() ? nullptr : db.get();
-        auto rs = exec::Executor(txn, session, plan, &interrupt, writer).run();
+        auto rs = exec::Executor(txn, session, *plan, &interrupt, writer).run();
         shapes.setCapacity(static_cast<std::size_t>(session.limits.shapeCache));  // SET shape_cache, at once
         return finished(std::move(rs));
+    }
+
+    // Plans of statements a connection runs again (prepared, or a text it has parsed before), each as
+    // bound for its values, in its scene (or across all scenes) and in one committed transaction: the
+    // binder reads nothing else (the settings and limits are read when the plan runs), so a run that
+    // matches one goes from its read transaction to the executor. A commit (of any process) drops them
+    // all; a plan goes with its scene's snapshot when the snapshot cache lets that go, so kept plans
+    // hold no scene the cache does not. Statements with AS OF, and those that change the session or
+    // the data, are bound each time.
+    struct KeptPlan {
+        std::shared_ptr<const ast::Statement> statement;  // kept alive, so its address names it alone
+        std::vector<std::optional<ParameterValue>> values;
+        std::string sceneName;
+        bool allScenes = false;
+        std::shared_ptr<const planner::Plan> plan;
+    };
+    static constexpr std::size_t kKeptPlans = 256;
+    std::vector<KeptPlan> keptPlans;  // the most recently kept last
+    std::uint64_t keptPlansTransaction = 0;
+
+    static bool keepsPlan(const ast::Statement& statement) {
+        if (const auto* find = std::get_if<ast::FindStmt>(&statement.body)) return !find->asOf;
+        if (const auto* count = std::get_if<ast::CountStmt>(&statement.body)) return !count->asOf;
+        return std::holds_alternative<ast::RelateStmt>(statement.body) ||
+               std::holds_alternative<ast::CheckStmt>(statement.body);
+    }
+
+    std::shared_ptr<const planner::Plan> keptPlan(const ast::Statement& statement,
+                                                  const std::vector<std::optional<ParameterValue>>& values,
+                                                  const storage::ReadTransaction& txn) {
+        if (keptPlansTransaction != txn.transactionId()) {
+            keptPlans.clear();
+            keptPlansTransaction = txn.transactionId();
+            return nullptr;
+        }
+        for (auto it = keptPlans.rbegin(); it != keptPlans.rend(); ++it) {
+            if (it->statement.get() != &statement || it->values != values || it->sceneName != session.sceneName ||
+                it->allScenes != session.allScenes)
+                continue;
+            // The scene's snapshot reads the nodes it has not decoded yet through this transaction, as
+            // when the binder is handed it (snapshot()).
+            if (const auto& scene = it->plan->statement->scene) {
+                if (auto cached = snapshots.find(scene->info().id); cached != snapshots.end())
+                    cached->second.lastUse = ++useCounter;
+                scene->readThrough(&txn);
+                reading.push_back(scene);
+            }
+            return it->plan;
+        }
+        return nullptr;
+    }
+
+    void keepPlan(const std::shared_ptr<const ast::Statement>& statement,
+                  const std::vector<std::optional<ParameterValue>>& values, const storage::ReadTransaction& txn,
+                  std::shared_ptr<const planner::Plan> plan) {
+        if (!keepsPlan(*statement)) return;
+        if (keptPlansTransaction != txn.transactionId()) {
+            keptPlans.clear();
+            keptPlansTransaction = txn.transactionId();
+        }
+        if (keptPlans.size() >= kKeptPlans) keptPlans.erase(keptPlans.begin());
+        // The session as binding left it: a first statement names the most recent scene (currentScene).
+        keptPlans.push_back({statement, values, session.sceneName, session.allScenes, std::move(plan)});
     }
 
     // The categories named across all scenes, with their label keys and counts as read in the last
@@ -251,6 +320,9 @@ struct Engine::State {
                 auto oldest = std::min_element(snapshots.begin(), snapshots.end(), [](const auto& a, const auto& b) {
                     return a.second.lastUse < b.second.lastUse;
                 });
+                const SceneSnapshot* evicted = oldest->second.snapshot.get();
+                std::erase_if(keptPlans,
+                              [&](const KeptPlan& kept) { return kept.plan->statement->scene.get() == evicted; });
                 snapshots.erase(oldest);
             }
             it = snapshots.insert_or_assign(info.id, CachedSnapshot{SceneSnapshot::load(txn, info), 0}).first;
@@ -326,7 +398,8 @@ void Engine::execute(std::string_view text, const std::function<void(ResultSet&&
         if (result) return onResult(std::move(*result));
         parsed = state_->parse(text, false);
     }
-    for (const auto& statement : *parsed.statements) onResult(state_->run(statement, {}));
+    for (const auto& statement : *parsed.statements)
+        onResult(state_->run(statement, {}, std::shared_ptr<const ast::Statement>(parsed.statements, &statement)));
 }
 
 binder::ShapeCacheStats Engine::shapeCacheStats() const {
@@ -349,11 +422,11 @@ PreparedStatement Engine::prepare(std::string_view text) {
     return PreparedStatement(*this, std::shared_ptr<const ast::Statement>(statements, &statements->front()));
 }
 
-ResultSet Engine::executePrepared(const ast::Statement& statement,
+ResultSet Engine::executePrepared(const std::shared_ptr<const ast::Statement>& statement,
                                   const std::vector<std::optional<ParameterValue>>& values) {
     std::lock_guard lock(state_->mutex);
     state_->interrupt = false;  // as in execute(): only an interrupt during this run stops it
-    return state_->run(statement, values);
+    return state_->run(*statement, values, statement);
 }
 
 PreparedStatement::PreparedStatement(Engine& engine, std::shared_ptr<const ast::Statement> statement)
@@ -378,7 +451,7 @@ void PreparedStatement::bind(std::size_t index, ParameterValue value) {
 
 void PreparedStatement::clearBindings() { std::fill(values_.begin(), values_.end(), std::nullopt); }
 
-ResultSet PreparedStatement::execute() { return engine_->executePrepared(*statement_, values_); }
+ResultSet PreparedStatement::execute() { return engine_->executePrepared(statement_, values_); }
 
 const std::string& PreparedStatement::text() const { return statement_->text; }
 

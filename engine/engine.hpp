@@ -160,7 +160,7 @@ public:
 private:
     friend class PreparedStatement;
     explicit Engine(std::unique_ptr<State> state);
-    ResultSet executePrepared(const ast::Statement& statement,
+    ResultSet executePrepared(const std::shared_ptr<const ast::Statement>& statement,
                               const std::vector<std::optional<ParameterValue>>& values);
     std::unique_ptr<State> state_;
 };

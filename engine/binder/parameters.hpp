@@ -18,6 +18,7 @@ namespace smql {
 // A length in metres, for a distance (`near(?, ?)`) or a quantity compared with (`height > ?`).
 struct Length {
     double metres = 0;
+    friend bool operator==(const Length&, const Length&) = default;
 };
 
 // One bound value: NULL (std::monostate), an integer, a real number, a length, text, or a vector

@@ -289,3 +289,76 @@ TEST_CASE("a FIND across all scenes answers from the label index as the binder's
     run(*engine, "DROP SCENE 'second'");
     requireSame(find.execute(), books);
 }
+
+TEST_CASE(
+    "a statement run again keeps its plan for its values, scene, settings and commit, and binds again when any "
+    "changes",
+    "[prepared]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    // More scenes than the engine keeps decoded (32), so plans also go with their scenes' snapshots.
+    constexpr int kScenes = 36;
+    for (int i = 0; i < kScenes; ++i)
+        engine->importScene(generate::generateRoom(
+            {.seed = static_cast<std::uint64_t>(i), .objectCount = 40, .name = fmt::format("room_{}", i)}));
+    // The truth: an engine that has bound nothing before, in the same session state.
+    auto truth = [&](const std::string& scene, const std::string& settings, const std::string& text) {
+        auto fresh = Engine::open(dir.path.string());
+        run(*fresh, "USE SCENE '" + scene + "'");
+        if (!settings.empty()) run(*fresh, settings);
+        return outcome(*fresh, text);
+    };
+    // As outcome() gives a text's answer.
+    auto answer = [](PreparedStatement& statement) {
+        try {
+            const ResultSet rs = statement.execute();
+            return formatCsv(rs) + "|" + rs.message + "\n";
+        } catch (const Error& e) {
+            return "error: " + e.message();
+        }
+    };
+    PreparedStatement nearDoor = engine->prepare("FIND object WHERE near(?) RETURN id, category");
+    PreparedStatement nearest = engine->prepare("FIND object NEAREST TO ? LIMIT ?");
+    nearest.bind(2, std::int64_t{3});
+    const std::string nearText = "FIND object WHERE near(door) RETURN id, category";
+
+    for (int round = 0; round < 2; ++round)
+        for (int i = 0; i < kScenes; i += 5) {
+            const std::string scene = fmt::format("room_{}", i);
+            run(*engine, "USE SCENE '" + scene + "'");
+            nearDoor.bind(1, std::string("door"));
+            CHECK(answer(nearDoor) == truth(scene, "", nearText));
+            CHECK(outcome(*engine, nearText) == truth(scene, "", nearText));  // the text, run again
+            nearest.bind(1, std::string("door"));
+            CHECK(answer(nearest) == truth(scene, "", "FIND object NEAREST TO door LIMIT 3"));
+            nearest.bind(1, std::string("window"));
+            CHECK(answer(nearest) == truth(scene, "", "FIND object NEAREST TO window LIMIT 3"));
+        }
+
+    run(*engine, "USE SCENE 'room_5'");
+    nearDoor.bind(1, std::string("door"));
+    const std::string before = answer(nearDoor);
+    // A setting the binder or the executor reads.
+    run(*engine, "SET near = 3 m");
+    const std::string wider = truth("room_5", "SET near = 3 m", nearText);
+    CHECK(wider != before);
+    CHECK(answer(nearDoor) == wider);
+    CHECK(outcome(*engine, nearText) == wider);
+    run(*engine, "SET max_rows = 1");
+    CHECK_THAT(answer(nearDoor), Catch::StartsWith("error: the answer has") && Catch::Contains("the limit is 1"));
+    run(*engine, "SET max_rows = 1000000");
+    run(*engine, "SET near = 1 m");
+    CHECK(answer(nearDoor) == before);
+    run(*engine, "SET near = 3 m");
+
+    // Another connection's commit: the scene is dropped and stored again with other things.
+    {
+        auto other = Engine::open(dir.path.string());
+        run(*other, "DROP SCENE 'room_5'");
+        other->importScene(generate::generateRoom({.seed = 99, .objectCount = 40, .name = "room_5"}));
+    }
+    const std::string after = truth("room_5", "SET near = 3 m", nearText);
+    CHECK(after != wider);
+    CHECK(answer(nearDoor) == after);
+    CHECK(outcome(*engine, nearText) == after);
+}
