@@ -139,7 +139,9 @@ struct Engine::State {
     }
 
     // One statement through bind, plan and execute in its own read transaction; `values` fill
-    // its placeholders (binder/parameters.hpp). The caller holds the mutex.
+    // its placeholders (binder/parameters.hpp). `kept` owns the statement when it may run again (a
+    // prepared statement, a parse the engine keeps): its plan is then kept (keptPlan). The caller
+    // holds the mutex.
     ResultSet run(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values,
                   const std::shared_ptr<const ast::Statement>& kept = nullptr) {
         auto start = std::chrono::steady_clock::now();

@@ -317,9 +317,7 @@ Environment::Environment(MDB_env* env, std::string directory, bool readOnly)
 namespace {
 // Enough for the threads that query one database at once; more are aborted when they end.
 constexpr std::size_t kMaxIdleReaders = 16;
-}  // namespace
 
-namespace {
 void closeReader(const Environment::Reader& reader) {
     for (MDB_cursor* cursor : reader.cursors)
         if (cursor) mdb_cursor_close(cursor);
