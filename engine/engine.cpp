@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <optional>
@@ -144,18 +143,12 @@ struct Engine::State {
     // holds the mutex.
     ResultSet run(const ast::Statement& statement, const std::vector<std::optional<ParameterValue>>& values,
                   const std::shared_ptr<const ast::Statement>& kept = nullptr) {
-        auto start = std::chrono::steady_clock::now();
-        auto finished = [&](ResultSet rs) {
-            rs.elapsedMicroseconds =
-                std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-            return rs;
-        };
         const std::optional<CatalogQuery> catalog = catalogQuery(statement, values);
         if (catalog && catalog->countOnly)
-            if (auto rs = rememberedCount(catalog->name)) return finished(std::move(*rs));
+            if (auto rs = rememberedCount(catalog->name)) return std::move(*rs);
         auto txn = db->beginRead();
         if (catalog && !catalog->countOnly)
-            if (auto rs = rememberedFind(txn, *catalog)) return finished(std::move(*rs));
+            if (auto rs = rememberedFind(txn, *catalog)) return std::move(*rs);
         ReadsEnd readsEnd{*this};
         std::shared_ptr<const planner::Plan> plan = kept ? keptPlan(*kept, values, txn) : nullptr;
         if (!plan) {
@@ -169,7 +162,7 @@ struct Engine::State {
         storage::Database* writer = db->readOnly() ? nullptr : db.get();
         auto rs = exec::Executor(txn, session, *plan, &interrupt, writer).run();
         shapes.setCapacity(static_cast<std::size_t>(session.limits.shapeCache));  // SET shape_cache, at once
-        return finished(std::move(rs));
+        return rs;
     }
 
     // Plans of statements a connection runs again (prepared, or a text it has parsed before), each as

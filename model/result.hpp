@@ -33,7 +33,6 @@ struct ResultSet {
     // A sentence for statements that answer in words (RELATE, SET, USE),
     // shown by the shell under the table.
     std::string message;
-    double elapsedMicroseconds = 0;
 
     int columnIndex(std::string_view name) const;  // -1 when absent
 };

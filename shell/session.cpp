@@ -8,6 +8,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -151,7 +152,7 @@ void Session::redirect(const std::string& path, bool once) {
     once_ = once;
 }
 
-void Session::print(const ResultSet& result) {
+void Session::print(const ResultSet& result, std::optional<double> microseconds) {
     if (options_.output.mode == OutputMode::Json) {
         // One JSON document per script: the results as one array, opened by the first of them.
         out() << (documentOpen_ ? ",\n" : "[") << jsonText(resultJson(result));
@@ -165,7 +166,7 @@ void Session::print(const ResultSet& result) {
     // A result that cannot be written is an error, not a silent empty file.
     checkWritten(out(), outName());
     // The time goes to standard error, so that standard output stays one parseable document.
-    if (options_.timer) err_ << fmt::format("time: {:.1f} us\n", result.elapsedMicroseconds) << std::flush;
+    if (options_.timer && microseconds) err_ << fmt::format("time: {:.1f} us\n", *microseconds) << std::flush;
 }
 
 void Session::printError(const Error& e, std::string_view source) {
@@ -186,9 +187,15 @@ bool Session::runStatements(std::string_view text, int firstLine, std::string_vi
     interrupt::clear();
     bool ok = true;
     try {
+        // As sqlite3's .timer: the shell times each statement, from the end of the one before (its
+        // output written) to its answer.
+        auto started = std::chrono::steady_clock::now();
         engine_->execute(text, [&](ResultSet&& result) {
+            const double microseconds =
+                std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - started).count();
             if (interrupt::requested()) throw interruptedBetweenStatements();
-            print(result);
+            print(result, microseconds);
+            started = std::chrono::steady_clock::now();
         });
     } catch (const Error& e) {
         // On a terminal the ^C was echoed where the cursor was: the message starts a line of its own.

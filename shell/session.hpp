@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -92,7 +93,8 @@ private:
     bool runStatements(std::string_view text, int firstLine, std::string_view source);
     bool runQuestion(std::string_view line, int lineNumber);
     bool runMeta(std::string_view line);
-    void print(const ResultSet& result);
+    // `microseconds`: the statement's time, for .timer (none for what no statement answered).
+    void print(const ResultSet& result, std::optional<double> microseconds = std::nullopt);
     void printError(const Error& e, std::string_view source);
     std::ostream& out();
     // What out() writes to, for messages: the .output file or "standard output".
