@@ -291,8 +291,8 @@ TEST_CASE("a FIND across all scenes answers from the label index as the binder's
 }
 
 TEST_CASE(
-    "a statement run again keeps its plan for its values, scene, settings and commit, and binds again when any "
-    "changes",
+    "a statement run again keeps its plan for its values, scene and commit, binds again when one changes, and "
+    "answers by the settings of its run",
     "[prepared]") {
     TempDir dir;
     auto engine = Engine::open(dir.path.string());
