@@ -183,6 +183,15 @@ struct Engine::State {
     std::vector<KeptPlan> keptPlans;  // the most recently kept last
     std::uint64_t keptPlansTransaction = 0;
 
+    // Whether the kept plans were bound in `txn`'s committed transaction; if not, they are dropped and
+    // what is kept from now on is `txn`'s.
+    bool keepingFor(const storage::ReadTransaction& txn) {
+        if (keptPlansTransaction == txn.transactionId()) return true;
+        keptPlans.clear();
+        keptPlansTransaction = txn.transactionId();
+        return false;
+    }
+
     static bool keepsPlan(const ast::Statement& statement) {
         if (const auto* find = std::get_if<ast::FindStmt>(&statement.body)) return !find->asOf;
         if (const auto* count = std::get_if<ast::CountStmt>(&statement.body)) return !count->asOf;
@@ -193,11 +202,7 @@ struct Engine::State {
     std::shared_ptr<const planner::Plan> keptPlan(const ast::Statement& statement,
                                                   const std::vector<std::optional<ParameterValue>>& values,
                                                   const storage::ReadTransaction& txn) {
-        if (keptPlansTransaction != txn.transactionId()) {
-            keptPlans.clear();
-            keptPlansTransaction = txn.transactionId();
-            return nullptr;
-        }
+        if (!keepingFor(txn)) return nullptr;
         for (auto it = keptPlans.rbegin(); it != keptPlans.rend(); ++it) {
             if (it->statement.get() != &statement || it->values != values || it->sceneName != session.sceneName ||
                 it->allScenes != session.allScenes)
@@ -219,10 +224,7 @@ struct Engine::State {
                   const std::vector<std::optional<ParameterValue>>& values, const storage::ReadTransaction& txn,
                   std::shared_ptr<const planner::Plan> plan) {
         if (!keepsPlan(*statement)) return;
-        if (keptPlansTransaction != txn.transactionId()) {
-            keptPlans.clear();
-            keptPlansTransaction = txn.transactionId();
-        }
+        keepingFor(txn);
         if (keptPlans.size() >= kKeptPlans) keptPlans.erase(keptPlans.begin());
         // The session as binding left it: a first statement names the most recent scene (currentScene).
         keptPlans.push_back({statement, values, session.sceneName, session.allScenes, std::move(plan)});

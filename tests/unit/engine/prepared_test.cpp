@@ -26,6 +26,14 @@ std::vector<std::int64_t> ids(const ResultSet& rs) {
     return out;
 }
 
+// An engine on `dir` that has answered nothing before, in scene `scene` ('*': all scenes): its answers
+// are the truth a connection that kept things between statements is held to.
+std::unique_ptr<Engine> freshEngine(const TempDir& dir, const std::string& scene) {
+    auto fresh = Engine::open(dir.path.string());
+    run(*fresh, "USE SCENE '" + scene + "'");
+    return fresh;
+}
+
 Error errorOf(const std::function<void()>& call) {
     try {
         call();
@@ -166,9 +174,7 @@ TEST_CASE("a COUNT across all scenes prepared before another connection or proce
 
     // The truth, from an engine that has answered nothing before (it shares the database).
     auto counted = [&](const std::string& category) {
-        auto fresh = Engine::open(dir.path.string());
-        run(*fresh, "USE SCENE '*'");
-        return std::get<std::int64_t>(run(*fresh, "COUNT " + category).rows.at(0).at(0));
+        return std::get<std::int64_t>(run(*freshEngine(dir, "*"), "COUNT " + category).rows.at(0).at(0));
     };
     auto answer = [](PreparedStatement& statement) {
         ResultSet rs = statement.execute();
@@ -236,12 +242,8 @@ TEST_CASE("a FIND across all scenes answers from the label index as the binder's
     auto engine = Engine::open(dir.path.string());
     engine->importScene(generate::generateRoom({.seed = 1, .objectCount = 60, .name = "first"}));
     run(*engine, "USE SCENE '*'");
-    // The truth, from an engine that has bound nothing before (it shares the database).
-    auto truth = [&](const std::string& text) {
-        auto fresh = Engine::open(dir.path.string());
-        run(*fresh, "USE SCENE '*'");
-        return run(*fresh, text);
-    };
+    // The truth, from an engine that has bound nothing before.
+    auto truth = [&](const std::string& text) { return run(*freshEngine(dir, "*"), text); };
     auto requireSame = [](const ResultSet& got, const ResultSet& want) {
         REQUIRE(got.columns.size() == want.columns.size());
         for (std::size_t i = 0; i < want.columns.size(); ++i) {
@@ -301,10 +303,9 @@ TEST_CASE(
     for (int i = 0; i < kScenes; ++i)
         engine->importScene(generate::generateRoom(
             {.seed = static_cast<std::uint64_t>(i), .objectCount = 40, .name = fmt::format("room_{}", i)}));
-    // The truth: an engine that has bound nothing before, in the same session state.
+    // The truth, in the same session state.
     auto truth = [&](const std::string& scene, const std::string& settings, const std::string& text) {
-        auto fresh = Engine::open(dir.path.string());
-        run(*fresh, "USE SCENE '" + scene + "'");
+        auto fresh = freshEngine(dir, scene);
         if (!settings.empty()) run(*fresh, settings);
         return outcome(*fresh, text);
     };
