@@ -26,6 +26,10 @@ using model::kDegree;
 // Typical distance from a hand-held camera to the surfaces it sees indoors:
 // turns metre thresholds into the units of a scale-free cloud before its scale is known.
 constexpr double kTypicalViewingDistance = 2.5;
+// The highest a person holds a camera above the floor, in metres (the plausibility check warns past it): with the
+// capture's unit known and the floor not seen, points further below the cameras are stray matches, not the floor
+// (the dining room's five photos, floorless, put a few 3-4 m under the cameras in one COLMAP run of three).
+constexpr double kHighestCamera = 2.3;
 
 std::string fixed(double value, int digits = 2) {
     std::ostringstream out;
@@ -362,10 +366,27 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
     }
     std::vector<double> heights;
     for (const auto& p : world.points) heights.push_back(prior.dot(toEigen(p)));
-    out.floorHeight = detail::quantile(heights, 0.02);
     out.floorNotSeen =
         fmt::format("no horizontal surface was found below the cameras among the {} points", world.size());
     out.floorPlaced = "under the lowest 2% of the points, level with the cameras' up direction";
+    const std::optional<double> metresPerUnit = options.metric ? std::optional(1.0) : options.scale;
+    if (!metresPerUnit || cameras.empty()) {
+        out.floorHeight = detail::quantile(heights, 0.02);
+        notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
+        return prior;
+    }
+    // With the unit known, the floor is at least a person's camera height under the cameras: the lowest points of a
+    // room whose floor was not seen are things on it (the dining room's five photos put their lowest 2 % 0.3-0.9 m
+    // under cameras held 1.4 m up), save stray matches further down than anyone holds a camera.
+    const double camera = detail::median(cameraHeights(cameras, prior));
+    const auto stray = std::erase_if(heights, [&](double h) { return h < camera - kHighestCamera / *metresPerUnit; });
+    const double byCameras = camera - options.cameraHeight / *metresPerUnit;
+    out.floorHeight = heights.empty() ? byCameras : std::min(byCameras, detail::quantile(heights, 0.02));
+    if (out.floorHeight == byCameras)
+        out.floorPlaced = fmt::format("{:.2f} m under the cameras, as a person holds one", options.cameraHeight);
+    if (stray > 0)
+        out.floorPlaced += fmt::format("; {} {} more than {:.1f} m under the cameras passed over as stray", stray,
+                                       stray == 1 ? "point" : "points", kHighestCamera);
     notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
     return prior;
 }

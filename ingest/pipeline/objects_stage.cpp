@@ -211,10 +211,13 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
-        // A name far too small for its box (a detector's 1.8 m "cake"), or, for a hull carved without depth, of a
-        // kind that stands far lower than the hull (a counter's hull named "table"), is kept only as a guess, as
-        // is one fusion did not keep (a toilet in a kitchen; a suitcase among seats, a low table).
-        const NameFit fit = opening ? NameFit::Fits : nameFit(category, box, track.carved);
+        // A name far too small for its box (a detector's 1.8 m "cake"), or, for a hull whose top was held to its
+        // surfaces, of a kind that stands far lower than the hull (a counter's hull named "table"), is kept only as a
+        // guess, as is one fusion did not keep (a toilet in a kitchen; a suitcase among seats, a low table).
+        const BoxMeasure measure = !track.carved           ? BoxMeasure::Depth
+                                   : track.surface.empty() ? BoxMeasure::HullFromBoxes
+                                                           : BoxMeasure::HullHeldToSurface;
+        const NameFit fit = opening ? NameFit::Fits : nameFit(category, box, measure);
         const bool misnamed = fit != NameFit::Fits;
         const std::string detectedAs = misnamed ? category : track.detectedAs;
         const std::string stored = misnamed ? std::string("object") : category;

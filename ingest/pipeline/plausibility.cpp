@@ -367,12 +367,12 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
     return out;
 }
 
-NameFit nameFit(const std::string& category, const model::Box& box, bool carved) {
-    if (auto usual = typicalExtent(category);
-        usual && largestSide(box) > (carved ? kBeyondTypicalHull : kBeyondTypicalExtent) * *usual)
-        return NameFit::TooLarge;
-    if (auto height = typicalHeight(category);
-        carved && height && !hasUprightEnds(category) && box.size.z > kTallerThanTypicalHull * *height)
+NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure measure) {
+    const double beyond = measure == BoxMeasure::Depth ? kBeyondTypicalExtent : kBeyondTypicalHull;
+    if (auto usual = typicalExtent(category); usual && largestSide(box) > beyond * *usual) return NameFit::TooLarge;
+    if (auto height = typicalHeight(category); measure == BoxMeasure::HullHeldToSurface && height &&
+                                               !hasUprightEnds(category) &&
+                                               box.size.z > kTallerThanTypicalHull * *height)
         return NameFit::TooTall;
     return NameFit::Fits;
 }

@@ -76,12 +76,18 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
 // touch and together are the size of one).
 std::vector<ObjectFinding> objectFindings(const model::SceneData& scene);
 
+// How a thing's box was measured: from depth (or a layout), as a hull carved without depth whose top is held
+// to where its surfaces were seen (ObjectTrack::surface), or as a hull carved from boxes alone (placed by rays:
+// no surface point), whose top nothing held.
+enum class BoxMeasure { Depth, HullHeldToSurface, HullFromBoxes };
+
 // A thing named by a detector whose box is far larger than things of that name ever are (a 1.8 m
 // cake): not that thing. The name is kept only as the guess `detected_as`. A box measured from depth
 // is held to kBeyondTypicalExtent of its kind's extent; a hull carved without depth, which reaches past
-// the thing along the views (`carved`), to kBeyondTypicalHull, and, for a kind of a standard height, to
-// kTallerThanTypicalHull of that height.
+// the thing along the views, to kBeyondTypicalHull, and, when its top was held to its surfaces, for a kind
+// of a standard height, to kTallerThanTypicalHull of that height. A hull from boxes alone bounds its thing's
+// height without measuring it: the dining photos' chair placed by its boxes' rays stands 1.35 m.
 enum class NameFit { Fits, TooLarge, TooTall };
-NameFit nameFit(const std::string& category, const model::Box& box, bool carved = false);
+NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure measure = BoxMeasure::Depth);
 
 }  // namespace smql::ingest

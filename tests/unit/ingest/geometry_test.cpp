@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "dining_cloud.hpp"
@@ -698,11 +699,38 @@ TEST_CASE("a table top is not taken for the floor: what stands on it says so", "
                 desk.cloud.push({s, 1.6, z}, {200, 200, 200}, 0);
                 desk.cloud.push({2.4, s, z}, {200, 200, 200}, 0);
             }
+        // Metres: the walls' lowest points are less than a person's camera height (1.5 m) under the cameras,
+        // so the floor is that far under them along the cameras' up (no plane levels the cloud).
         Alignment a = alignCapture(desk.cloud, desk.cameras, AlignOptions{}, {});
         INFO(notesOf(a));
         CHECK_FALSE(a.floorFound);
         CHECK_THAT(a.floorNotSeen, Catch::Contains("no horizontal surface was found below the cameras"));
-        CHECK_THAT(a.floorPlaced, Catch::Contains("lowest 2% of the points"));
+        CHECK_THAT(a.floorPlaced, Catch::Contains("1.50 m under the cameras, as a person holds one"));
+        const model::Vec3 up = a.up;
+        const double cameras = dot(up, desk.cameras[1].translation);  // the median: they stand level
+        CHECK(cameras - a.floorHeight == Approx(1.5).margin(1e-6));
+        // Points further down than anyone holds a camera (COLMAP's stray matches of five floorless photos, 3 %
+        // of the cloud) pass over; points lower than the camera height (3 %) place the floor under them. Each
+        // is a column along the up, which no level plane holds.
+        const std::size_t walls = desk.cloud.size(), share = walls * 3 / 100;
+        auto column = [&](double below) {
+            for (std::size_t i = 0; i < share; ++i)
+                desk.cloud.push(add(desk.cameras[1].translation, mul(-(below + 1e-4 * static_cast<double>(i)), up)),
+                                {200, 200, 200}, 0);
+        };
+        column(2.5);
+        column(1.8);
+        a = alignCapture(desk.cloud, desk.cameras, AlignOptions{}, {});
+        INFO(notesOf(a));
+        CHECK_THAT(a.floorPlaced, Catch::Contains("lowest 2% of the points") &&
+                                      Catch::Contains(fmt::format("{} points more than 2.3 m under", share)));
+        CHECK(cameras - a.floorHeight == Approx(1.8).margin(0.05));
+        // Without a unit (photos without depth or --scale) nothing says how far down a camera is held: the
+        // lowest points, strays and all.
+        AlignOptions unitless;
+        unitless.metric = false;
+        a = alignCapture(desk.cloud, desk.cameras, unitless, {});
+        CHECK(cameras - a.floorHeight == Approx(2.5).margin(0.05));
     }
     SECTION("photos without depth: as far below the top as the cameras are above it") {
         // The same desk in units of 0.5 m: the cameras 0.7 m (1.4 units) above the top read as a

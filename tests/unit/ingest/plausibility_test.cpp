@@ -196,17 +196,23 @@ TEST_CASE("plausibility: a name far smaller than its box, or a hull far taller t
     // A chair of the dining photos, its hull carved without depth 2.2 m long along the views: still a chair;
     // measured so from depth it would not be.
     const model::Box hull{{0, 0, 0.45}, {2.24, 0.89, 0.79}, 0};
-    CHECK(nameFit("chair", hull, true) == NameFit::Fits);
+    CHECK(nameFit("chair", hull, BoxMeasure::HullHeldToSurface) == NameFit::Fits);
     CHECK(nameFit("chair", hull) == NameFit::TooLarge);
     // The red kitchen's counter as photos without depth, its hull named "table" (two COLMAP runs): 1.27 and
     // 1.16 m tall where a table stands 0.75 m. The table beside it, 0.88 m, and a bed with its headboard
     // (an upright end) keep their names; measured from depth a box is not judged by its height.
-    CHECK(nameFit("table", {{0, 0, 0.63}, {1.49, 0.85, 1.27}, 0}, true) == NameFit::TooTall);
-    CHECK(nameFit("table", {{0, 0, 0.58}, {1.83, 0.59, 1.16}, 0}, true) == NameFit::TooTall);
-    CHECK(nameFit("table", {{0, 0, 0.44}, {2.03, 0.99, 0.88}, 0}, true) == NameFit::Fits);
-    CHECK(nameFit("bed", {{0, 0, 0.6}, {2.1, 1.6, 1.2}, 0}, true) == NameFit::Fits);
+    CHECK(nameFit("table", {{0, 0, 0.63}, {1.49, 0.85, 1.27}, 0}, BoxMeasure::HullHeldToSurface) == NameFit::TooTall);
+    CHECK(nameFit("table", {{0, 0, 0.58}, {1.83, 0.59, 1.16}, 0}, BoxMeasure::HullHeldToSurface) == NameFit::TooTall);
+    CHECK(nameFit("table", {{0, 0, 0.44}, {2.03, 0.99, 0.88}, 0}, BoxMeasure::HullHeldToSurface) == NameFit::Fits);
+    CHECK(nameFit("bed", {{0, 0, 0.6}, {2.1, 1.6, 1.2}, 0}, BoxMeasure::HullHeldToSurface) == NameFit::Fits);
     CHECK(nameFit("table", {{0, 0, 0.63}, {1.49, 0.85, 1.27}, 0}) == NameFit::Fits);
-    CHECK(nameFit("table", {{0, 0, 0.4}, {6.5, 0.9, 1.9}, 0}, true) == NameFit::TooLarge);
+    CHECK(nameFit("table", {{0, 0, 0.4}, {6.5, 0.9, 1.9}, 0}, BoxMeasure::HullHeldToSurface) == NameFit::TooLarge);
+    // A chair of the dining photos placed by its four boxes' rays (one COLMAP run in ten): no surface point held
+    // its top, so its 1.35 m hull bounds the chair's height and does not measure it; still too large it would not be.
+    const model::Box fromBoxes{{0, 0, 1.56}, {2.15, 0.80, 1.35}, 0};
+    CHECK(nameFit("chair", fromBoxes, BoxMeasure::HullFromBoxes) == NameFit::Fits);
+    CHECK(nameFit("chair", fromBoxes, BoxMeasure::HullHeldToSurface) == NameFit::TooTall);
+    CHECK(nameFit("chair", {{0, 0, 1}, {3.5, 0.8, 1.35}, 0}, BoxMeasure::HullFromBoxes) == NameFit::TooLarge);
 }
 
 TEST_CASE("plausibility: real RGB-D frames in their unit pass, in another unit are refused with the fix",
