@@ -26,10 +26,10 @@ using model::kDegree;
 // Typical distance from a hand-held camera to the surfaces it sees indoors:
 // turns metre thresholds into the units of a scale-free cloud before its scale is known.
 constexpr double kTypicalViewingDistance = 2.5;
-// The highest a person holds a camera above the floor, in metres (the plausibility check warns past it): with the
-// capture's unit known and the floor not seen, points further below the cameras are stray matches, not the floor
-// (the dining room's five photos, floorless, put a few 3-4 m under the cameras in one COLMAP run of three).
-constexpr double kHighestCamera = 2.3;
+// Where no level surface is seen, the cameras' up is all there is besides the photos' vertical edges, and a
+// person pitches a camera down at what they look at: the edges are looked for this many degrees around it
+// (the dining photos pitch 16 degrees, TUM's desk video 39; the default cone, for a floor's normal, is 10).
+constexpr double kFloorlessSearch = 40;
 
 std::string fixed(double value, int digits = 2) {
     std::ostringstream out;
@@ -327,10 +327,11 @@ const HorizontalPlane* findCeiling(const std::vector<HorizontalPlane>& planes, c
 
 // Where the floor is: the plane chosen; else, under a table top, a table's height below it (with no
 // scale to give that height in the capture's units, as far below it as the cameras are above it,
-// which the camera-height prior then reads as a table's height); else under the lowest points.
+// which the camera-height prior then reads as a table's height); else under the lowest points, along
+// the photos' vertical edges where they agree on one (`lines`), else along the cameras' up.
 // Returns the floor's normal.
 Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const PointCloud& world,
-                           const Eigen::Vector3d& prior, const std::vector<Pose>& cameras,
+                           const Eigen::Vector3d& prior, const std::vector<Pose>& cameras, const LinePlanes& lines,
                            const AlignOptions& options) {
     auto& notes = out.notes;
     if (const HorizontalPlane* floor = choice.floor) {
@@ -364,31 +365,42 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
         notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
         return up;
     }
+    Eigen::Vector3d up = prior;
+    out.floorPlaced = "under the lowest 2% of the points, level with the cameras' up direction";
+    LineOptions floorless = options.lines;
+    floorless.search = kFloorlessSearch;
+    if (const auto vertical = verticalFromLines(lines, fromEigen(prior), floorless)) {
+        up = toEigen(vertical->up);
+        out.floorPlaced = "under the lowest 2% of the points, level with the photos' vertical edges";
+        notes.push_back(
+            fmt::format("up: no level surface; {} vertical edges in {} of {} photos, {:.1f} deg from the "
+                        "cameras' up",
+                        vertical->segments, vertical->photos, lines.photos, vertical->degreesFromNear));
+    }
     std::vector<double> heights;
-    for (const auto& p : world.points) heights.push_back(prior.dot(toEigen(p)));
+    for (const auto& p : world.points) heights.push_back(up.dot(toEigen(p)));
     out.floorNotSeen =
         fmt::format("no horizontal surface was found below the cameras among the {} points", world.size());
-    out.floorPlaced = "under the lowest 2% of the points, level with the cameras' up direction";
     const std::optional<double> metresPerUnit = options.metric ? std::optional(1.0) : options.scale;
     if (!metresPerUnit || cameras.empty()) {
         out.floorHeight = detail::quantile(heights, 0.02);
         notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
-        return prior;
+        return up;
     }
-    // With the unit known, the floor is at least a person's camera height under the cameras: the lowest points of a
-    // room whose floor was not seen are things on it (the dining room's five photos put their lowest 2 % 0.3-0.9 m
-    // under cameras held 1.4 m up), save stray matches further down than anyone holds a camera.
-    const double camera = detail::median(cameraHeights(cameras, prior));
-    const auto stray = std::erase_if(heights, [&](double h) { return h < camera - kHighestCamera / *metresPerUnit; });
-    const double byCameras = camera - options.cameraHeight / *metresPerUnit;
-    out.floorHeight = heights.empty() ? byCameras : std::min(byCameras, detail::quantile(heights, 0.02));
-    if (out.floorHeight == byCameras)
-        out.floorPlaced = fmt::format("{:.2f} m under the cameras, as a person holds one", options.cameraHeight);
-    if (stray > 0)
-        out.floorPlaced += fmt::format("; {} {} more than {:.1f} m under the cameras passed over as stray", stray,
-                                       stray == 1 ? "point" : "points", kHighestCamera);
+    // With the unit known, the floor is a person's camera height under the cameras: the points a capture without
+    // a level surface has under them are not the floor's. The five dining photos without their depth, levelled by
+    // their edges, have a fifth of their points more than 1.47 m under the cameras (stray matches) and a tenth
+    // more than 1.72, where the depth's floor is 1.40 m under them; their lowest 2 % lay 2.8-7.4 m under.
+    const double camera = detail::median(cameraHeights(cameras, up));
+    out.floorHeight = camera - options.cameraHeight / *metresPerUnit;
+    const auto lower = std::count_if(heights.begin(), heights.end(), [&](double h) { return h < out.floorHeight; });
+    out.floorPlaced = fmt::format(
+        "{:.2f} m under the cameras, as a person holds one{} ({:.0f}% of the points lie "
+        "lower)",
+        options.cameraHeight, up == prior ? ", along the cameras' up" : ", along the photos' vertical edges",
+        heights.empty() ? 0.0 : 100.0 * static_cast<double>(lower) / static_cast<double>(heights.size()));
     notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
-    return prior;
+    return up;
 }
 
 // A scale-free capture's up: the floor's (or table top's) normal, or its photos' vertical edges, which stand
@@ -492,7 +504,7 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     const FloorChoice choice = findFloor(planes, cameras, world, things, unit, options);
     const HorizontalPlane* floor = choice.floor;
     const Eigen::Vector3d up =
-        upByLines(out, choice, world, placeFloor(out, choice, world, prior, cameras, options), lines, options);
+        upByLines(out, choice, world, placeFloor(out, choice, world, prior, cameras, lines, options), lines, options);
     out.up = fromEigen(up);
 
     // The ceiling's height above the floor, measured along the floor's normal.

@@ -97,8 +97,9 @@ struct Alignment {
 // the capture's camera-to-world poses (may be empty); `things`, named objects
 // the capture shows, give the typical-heights prior of the scale
 // (scale_priors.hpp); `lines`, the straight edges of photos without depth,
-// are measured against a scale-free capture's floor and level the room where
-// the floor is seen little (vertical_lines.hpp).
+// are measured against a scale-free capture's floor, level the room where
+// the floor is seen little, and give up where no level surface is seen at
+// all (vertical_lines.hpp).
 Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras, const AlignOptions& options = {},
                        const std::vector<NamedThing>& things = {}, const LinePlanes& lines = {});
 

@@ -20,8 +20,8 @@ constexpr std::size_t kPendingStructurePoints = 400000;
 // the capture.
 constexpr std::size_t kSketchedFrames = 60;
 // Photos without depth whose straight edges are found, spread over the capture: the vertical ones are
-// measured against the floor and level a room whose floor is seen little (vertical_lines.hpp); more photos
-// see no new edges of the room.
+// measured against the floor and level a room whose floor is seen little or not at all (vertical_lines.hpp);
+// more photos see no new edges of the room.
 constexpr std::size_t kLinedPhotos = 60;
 
 DepthSketch sketchOf(const FrameImages& images, const Pose& pose) {
@@ -65,7 +65,7 @@ FramePass FramesStage::run(StageProgress& progress) {
         pass.cameras.push_back({position, pose});
         append(pending, backProject(images, pose, position, options.structureStride));
         if (!images.depth.empty() && i % sketchEvery == 0) sketches.push_back(sketchOf(images, pose));
-        if (!capture.metric && images.depth.empty() && i % lineEvery == 0) addLinePlanes(pass.lines, images, pose);
+        if (images.depth.empty() && i % lineEvery == 0) addLinePlanes(pass.lines, images, pose);
         if (pending.size() > kPendingStructurePoints) {
             append(pass.structure, voxelDownsample(pending, options.structureVoxel));
             pending = PointCloud{};
