@@ -366,39 +366,37 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
         return up;
     }
     Eigen::Vector3d up = prior;
-    out.floorPlaced = "under the lowest 2% of the points, level with the cameras' up direction";
     LineOptions floorless = options.lines;
     floorless.search = kFloorlessSearch;
-    if (const auto vertical = verticalFromLines(lines, fromEigen(prior), floorless)) {
+    const auto vertical = verticalFromLines(lines, fromEigen(prior), floorless);
+    if (vertical) {
         up = toEigen(vertical->up);
-        out.floorPlaced = "under the lowest 2% of the points, level with the photos' vertical edges";
         notes.push_back(
-            fmt::format("up: no level surface; {} vertical edges in {} of {} photos, {:.1f} deg from the "
-                        "cameras' up",
+            fmt::format("up: no level surface; {} vertical edges in {} of {} photos, {:.1f} deg from the cameras' up",
                         vertical->segments, vertical->photos, lines.photos, vertical->degreesFromNear));
     }
+    const char* along = vertical ? "the photos' vertical edges" : "the cameras' up";
     std::vector<double> heights;
     for (const auto& p : world.points) heights.push_back(up.dot(toEigen(p)));
     out.floorNotSeen =
         fmt::format("no horizontal surface was found below the cameras among the {} points", world.size());
     const std::optional<double> metresPerUnit = options.metric ? std::optional(1.0) : options.scale;
-    if (!metresPerUnit || cameras.empty()) {
+    if (metresPerUnit && !cameras.empty()) {
+        // With the unit known, the floor is a person's camera height under the cameras: the points a capture
+        // without a level surface has under them are not the floor's. The five dining photos without their depth,
+        // levelled by their edges, have a fifth of their points more than 1.47 m under the cameras (stray matches)
+        // and a tenth more than 1.72, where the depth's floor is 1.40 m under them; their lowest 2 % lay 2.8-7.4 m
+        // under.
+        out.floorHeight = detail::median(cameraHeights(cameras, up)) - options.cameraHeight / *metresPerUnit;
+        const auto lower = std::count_if(heights.begin(), heights.end(), [&](double h) { return h < out.floorHeight; });
+        out.floorPlaced = fmt::format(
+            "{:.2f} m under the cameras, as a person holds one, along {} ({:.0f}% of the points lie lower)",
+            options.cameraHeight, along,
+            heights.empty() ? 0.0 : 100.0 * static_cast<double>(lower) / static_cast<double>(heights.size()));
+    } else {
         out.floorHeight = detail::quantile(heights, 0.02);
-        notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
-        return up;
+        out.floorPlaced = fmt::format("under the lowest 2% of the points, level with {}", along);
     }
-    // With the unit known, the floor is a person's camera height under the cameras: the points a capture without
-    // a level surface has under them are not the floor's. The five dining photos without their depth, levelled by
-    // their edges, have a fifth of their points more than 1.47 m under the cameras (stray matches) and a tenth
-    // more than 1.72, where the depth's floor is 1.40 m under them; their lowest 2 % lay 2.8-7.4 m under.
-    const double camera = detail::median(cameraHeights(cameras, up));
-    out.floorHeight = camera - options.cameraHeight / *metresPerUnit;
-    const auto lower = std::count_if(heights.begin(), heights.end(), [&](double h) { return h < out.floorHeight; });
-    out.floorPlaced = fmt::format(
-        "{:.2f} m under the cameras, as a person holds one{} ({:.0f}% of the points lie "
-        "lower)",
-        options.cameraHeight, up == prior ? ", along the cameras' up" : ", along the photos' vertical edges",
-        heights.empty() ? 0.0 : 100.0 * static_cast<double>(lower) / static_cast<double>(heights.size()));
     notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
     return up;
 }
