@@ -360,8 +360,8 @@ TEST_CASE("--objects detect on the real dining room without depth names chairs a
         CHECK(chair->box.size.z < 1.5);
     }
     // The floor is not seen: the cameras stand as a person holds them (1.40 m by the depth's floor), not 3-4 m
-    // over stray points under them (one COLMAP run in three) nor 0.3-0.9 m over the chairs' seats, and the room
-    // is levelled by the photos' vertical edges, not by the cameras, which pitch 16 degrees down.
+    // over stray points under them (one COLMAP run in three), and the room is levelled by the photos' vertical
+    // edges, not by the cameras, which pitch 16 degrees down.
     std::vector<double> heights;
     for (const auto& [frame, centre] : result.cameraCentres) heights.push_back(centre.z);
     REQUIRE(!heights.empty());

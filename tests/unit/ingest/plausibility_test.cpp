@@ -208,7 +208,7 @@ TEST_CASE("plausibility: a name far smaller than its box, or a hull far taller t
     CHECK(nameFit("table", {{0, 0, 0.63}, {1.49, 0.85, 1.27}, 0}) == NameFit::Fits);
     CHECK(nameFit("table", {{0, 0, 0.4}, {6.5, 0.9, 1.9}, 0}, BoxMeasure::HullHeldToSurface) == NameFit::TooLarge);
     // A chair of the dining photos placed by its four boxes' rays (one COLMAP run in ten): no surface point held
-    // its top, so its 1.35 m hull bounds the chair's height and does not measure it; still too large it would not be.
+    // its top, so its 1.35 m hull bounds the chair's height and does not measure it. A 3.5 m one is still no chair.
     const model::Box fromBoxes{{0, 0, 1.56}, {2.15, 0.80, 1.35}, 0};
     CHECK(nameFit("chair", fromBoxes, BoxMeasure::HullFromBoxes) == NameFit::Fits);
     CHECK(nameFit("chair", fromBoxes, BoxMeasure::HullHeldToSurface) == NameFit::TooTall);
