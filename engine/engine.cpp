@@ -150,14 +150,15 @@ struct Engine::State {
         if (catalog && !catalog->countOnly)
             if (auto rs = rememberedFind(txn, *catalog)) return std::move(*rs);
         ReadsEnd readsEnd{*this};
-        std::shared_ptr<const planner::Plan> plan = kept ? keptPlan(*kept, values, txn) : nullptr;
+        const bool keeps = kept && keepsPlan(statement);
+        std::shared_ptr<const planner::Plan> plan = keeps ? keptPlan(statement, values, txn) : nullptr;
         if (!plan) {
             binder::Binder binder({txn, session, [&] { return snapshot(txn, currentScene(txn)); },
                                    [&](const std::string& instant) { return snapshotAsOf(txn, instant); },
                                    &categoryCounts});
             plan = std::make_shared<const planner::Plan>(
                 planner::plan(std::make_shared<const binder::BoundStatement>(binder.bind(statement, values))));
-            if (kept) keepPlan(kept, values, txn, plan);
+            if (keeps) keepPlan(kept, values, plan);
         }
         storage::Database* writer = db->readOnly() ? nullptr : db.get();
         auto rs = exec::Executor(txn, session, *plan, &interrupt, writer).run();
@@ -220,11 +221,10 @@ struct Engine::State {
         return nullptr;
     }
 
+    // After keptPlan looked for the statement in the same read transaction (so the kept plans are that
+    // transaction's).
     void keepPlan(const std::shared_ptr<const ast::Statement>& statement,
-                  const std::vector<std::optional<ParameterValue>>& values, const storage::ReadTransaction& txn,
-                  std::shared_ptr<const planner::Plan> plan) {
-        if (!keepsPlan(*statement)) return;
-        keepingFor(txn);
+                  const std::vector<std::optional<ParameterValue>>& values, std::shared_ptr<const planner::Plan> plan) {
         if (keptPlans.size() >= kKeptPlans) keptPlans.erase(keptPlans.begin());
         // The session as binding left it: a first statement names the most recent scene (currentScene).
         keptPlans.push_back({statement, values, session.sceneName, session.allScenes, std::move(plan)});

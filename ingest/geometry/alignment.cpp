@@ -327,9 +327,9 @@ const HorizontalPlane* findCeiling(const std::vector<HorizontalPlane>& planes, c
 
 // Where the floor is: the plane chosen; else, under a table top, a table's height below it (with no
 // scale to give that height in the capture's units, as far below it as the cameras are above it,
-// which the camera-height prior then reads as a table's height); else under the lowest points, along
-// the photos' vertical edges where they agree on one (`lines`), else along the cameras' up.
-// Returns the floor's normal.
+// which the camera-height prior then reads as a table's height); else, along the photos' vertical edges
+// where they agree on one (`lines`) or the cameras' up, a person's camera height under the cameras when
+// the unit is known, or under the lowest points when it is not. Returns the floor's normal.
 Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const PointCloud& world,
                            const Eigen::Vector3d& prior, const std::vector<Pose>& cameras, const LinePlanes& lines,
                            const AlignOptions& options) {
