@@ -12,8 +12,9 @@ namespace {
 // ends: the kind has a thin upright part at an end or side (a bed's headboard, a sofa's back) that a detector may name
 // apart (object_fusion.cpp joins it back). Room: the one kind of room the kind stands in (a toilet in a bathroom, a
 // fridge or an oven in a kitchen; object_fusion.cpp doubts a name among another room's things). Role: what the kind is
-// for where fusion judges a thing by it (typical_sizes.hpp: Role). The rows cover the memory's names for the
-// detector's COCO classes (detector.cpp) and the kinds of labelled captures.
+// for where fusion judges a thing by it (typical_sizes.hpp: Role). Least: the largest side and the height no thing of
+// the kind comes under (typical_sizes.hpp: LeastSize), where real rooms' labels show it. The rows cover the memory's
+// names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;
@@ -23,15 +24,16 @@ struct Typical {
     bool uprightEnds = false;
     RoomKind room = RoomKind::Any;
     Role role = Role::Other;
+    LeastSize least{};
 };
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true},
     {"desk", 0.75, 1.9, Support::Floor, true},
     {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat},
-    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat},
-    {"bed", 0.55, 2.3, Support::Floor, true, true},
-    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen},
-    {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom},
+    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat, {0, 0.35}},
+    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Any, Role::Other, {1.2, 0}},
+    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}},
+    {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},
     {"nightstand", 0.6, 0.8, Support::Floor, true},
     {"shelf", 0, 2.4, Support::Floor},
@@ -109,6 +111,17 @@ std::optional<double> typicalExtent(std::string_view category) {
     const Typical* t = find(category);
     if (!t) return std::nullopt;
     return t->extent;
+}
+
+std::optional<LeastSize> leastSize(std::string_view category) {
+    const Typical* t = find(category);
+    if (!t || (t->least.largest <= 0 && t->least.height <= 0)) return std::nullopt;
+    return t->least;
+}
+
+bool smallerThanKind(std::string_view category, double largest, double height, double bottom) {
+    const auto least = leastSize(category);
+    return least && (largest < least->largest || (bottom <= kStandingReach && height < least->height));
 }
 
 bool holdsThings(std::string_view category) {

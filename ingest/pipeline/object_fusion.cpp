@@ -60,12 +60,14 @@ std::size_t framesInView(const PointCloud& points, const std::vector<FusionCamer
 }
 
 // Whether a name suits a box: its largest side within [kNameFitLow, kBeyondTypicalExtent] x the largest
-// side things of that kind commonly have (typical_sizes.hpp); kinds the table lacks suit any box.
+// side things of that kind commonly have, and no smaller than any such thing (typical_sizes.hpp); kinds
+// the table lacks suit any box.
 constexpr double kNameFitLow = 0.25;
 bool nameSuits(const std::string& category, const model::Box& box) {
     auto usual = typicalExtent(category);
     const double largest = std::max({box.size.x, box.size.y, box.size.z});
-    return !usual || (largest >= kNameFitLow * *usual && largest <= kBeyondTypicalExtent * *usual);
+    return !usual || (largest >= kNameFitLow * *usual && largest <= kBeyondTypicalExtent * *usual &&
+                      !smallerThanKind(category, largest, box.size.z, box.center.z - box.size.z / 2));
 }
 
 // A thing's name: of the names its views gave that suit its box, the one with the largest tally (a

@@ -211,9 +211,10 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
-        // A name far too small for its box (a detector's 1.8 m "cake"), or, for a hull whose top was held to its
-        // surfaces, of a kind that stands far lower than the hull (a counter's hull named "table"), is kept only as a
-        // guess, as is one fusion did not keep (a toilet in a kitchen; a suitcase among seats, a low table).
+        // A name far too small for its box (a detector's 1.8 m "cake") or too large for it (a 16 cm slab of a
+        // "bed"), or, for a hull whose top was held to its surfaces, of a kind that stands far lower than the hull
+        // (a counter's hull named "table"), is kept only as a guess, as is one fusion did not keep (a toilet in a
+        // kitchen; a suitcase among seats, a low table).
         const BoxMeasure measure = !track.carved           ? BoxMeasure::Depth
                                    : track.surface.empty() ? BoxMeasure::HullFromBoxes
                                                            : BoxMeasure::HullHeldToSurface;
@@ -226,6 +227,11 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                 fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
                             "'object' with detected_as = {}",
                             std::max({box.size.x, box.size.y, box.size.z}), category, category));
+        else if (fit == NameFit::TooSmall)
+            progress.note(
+                fmt::format("a {:.2f} x {:.2f} x {:.2f} m thing was detected as '{}', which is never that "
+                            "small: stored as 'object' with detected_as = {}",
+                            box.size.x, box.size.y, box.size.z, category, category));
         else if (fit == NameFit::TooTall)
             progress.note(
                 fmt::format("a {:.2f} m tall thing was detected as '{}', which stands about {:.2f} m: "

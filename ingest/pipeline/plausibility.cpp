@@ -370,6 +370,8 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
 NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure measure) {
     const double beyond = measure == BoxMeasure::Depth ? kBeyondTypicalExtent : kBeyondTypicalHull;
     if (auto usual = typicalExtent(category); usual && largestSide(box) > beyond * *usual) return NameFit::TooLarge;
+    if (smallerThanKind(category, largestSide(box), box.size.z, box.center.z - box.size.z / 2))
+        return NameFit::TooSmall;
     if (auto height = typicalHeight(category); measure == BoxMeasure::HullHeldToSurface && height &&
                                                !hasUprightEnds(category) &&
                                                box.size.z > kTallerThanTypicalHull * *height)
