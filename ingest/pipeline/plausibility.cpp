@@ -34,15 +34,14 @@ constexpr double kAgreedRefuse[2] = {0.55, 1.8};
 // 0.99; mirrored images 0.58, depth in a unit 1.4x off 0.72 (docs/ingest.md, "Plausibility").
 constexpr double kAgreementWarn = 0.85;
 constexpr double kAgreementRefuse = 0.7;
-// The scale's two priors further apart than this: one measured from a wrong floor (a table top: a
-// kitchen's 10 photos gave 98x), or the cameras are far from a person's height. Warned from
-// kDisagreement (1.5x) on: a crouching photographer or a short robot may part them that far.
-constexpr double kSplitRefuse = 2.0;
-// Priors that agree, but only roughly: the memory's lengths are as uncertain. Warned past this spread
-// ((largest - smallest) / the scale): a ScanNet bathroom's photos were stored 1.36x too large from the
-// cameras' height and two toilets' height 28 % apart, while priors of right memories measured 2-17 %
-// (docs/ingest.md, "Photos without depth against the truth").
-constexpr double kSpreadWarn = 0.25;
+// Photos without depth take their scale from priors (the cameras' height above the floor, the heights of things
+// standing on it, the ceiling's): further apart than this ((largest - smallest) / the scale), they were measured
+// from a wrong floor or by a camera far from a person's height, and the memory is refused. Right memories' priors
+// measured 1-17 % apart; wrong ones 28 % (a ScanNet bathroom's photos stored 1.36x too large), 31 % and 39 % (TUM's
+// desk, its top taken for the floor: 2.4x and 1.8x) (docs/ingest.md, "Photos without depth against the truth").
+// Two priors a factor apart (scale_priors.hpp: kDisagreement) are further apart still: refused as well, the
+// factor named.
+constexpr double kSpreadRefuse = 0.25;
 // Degrees between the photos' vertical edges and a floor seen well beyond which the reconstruction is bent.
 // Real captures with their camera right: 0.4-1.6 (the dining photos, ScanNet's lounge and bathroom); 7-Scenes'
 // red kitchen's colour photos given its depth camera's 585 px for their 526: 5.3.
@@ -230,19 +229,21 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                          *alignment.edgesFromFloor),
              "give the photos' own camera (camera.json, --camera), or none for COLMAP to estimate it"});
     if (alignment.scaleSplit > 0)
-        out.push_back({"scale priors", alignment.scaleSplit > kSplitRefuse,
+        out.push_back({"scale priors", true,
                        fmt::format("the scale's two priors disagree by a factor of {:.2g} (the cameras' height above "
                                    "the floor and the heights of things standing on it): the floor found may be a "
                                    "table top, or the cameras are far from a person's height",
                                    alignment.scaleSplit),
                        "give --scale (metres per capture unit), or add photos that show the floor and the things "
                        "standing on it"});
-    else if (alignment.scaleSpread > kSpreadWarn)
-        out.push_back({"scale priors", false,
+    else if (alignment.scaleSpread > kSpreadRefuse)
+        out.push_back({"scale priors", true,
                        fmt::format("the scale's priors are {:.0f}% apart (the cameras' height above the floor, the "
-                                   "heights of things standing on it, the ceiling's): lengths may be off by as much",
+                                   "heights of things standing on it, the ceiling's): the floor found may be a table "
+                                   "top, and lengths may be off by as much",
                                    100 * alignment.scaleSpread),
-                       "give --scale (metres per capture unit) to be sure of lengths"});
+                       "give --scale (metres per capture unit), or add photos that show the floor and the things "
+                       "standing on it"});
     return out;
 }
 

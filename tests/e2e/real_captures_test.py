@@ -130,7 +130,7 @@ def refused_for_floor(status, log, db):
     assert status == 1, log
     assert "the memory would be wrong" in log, log
     assert any(reason in log for reason in ("the floor is not seen", "the floor is not confirmed",
-                                            "scale's two priors disagree")), log
+                                            "scale's two priors disagree", "the scale's priors are")), log
     assert "--scale" in log and "--force" in log, log
     assert not db.exists(), "a refused ingest left a database"
 
