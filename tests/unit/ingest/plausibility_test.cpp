@@ -1,7 +1,7 @@
 // Does the memory look like a room (ingest/pipeline/plausibility.hpp): the checks on scenes made to
 // measure, the real RGB-D frames of ../shared/data/rgbd-dining read in their unit and in wrong ones,
 // a detector's name far too small for its box (a synthetic capture whose sofa is called a cake), and the
-// least sizes of kinds held to every labelled thing of real rooms.
+// least sizes and typical heights of kinds held to the labelled things of real rooms.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -239,37 +239,74 @@ TEST_CASE("plausibility: a box smaller than any thing of its name, by real rooms
     CHECK(nameFit("mug", {{0, 0, 0.8}, {0.03, 0.03, 0.03}, 0}) == NameFit::Fits);
 }
 
-// The least sizes hold every labelled thing of VSI-Bench's real rooms (../shared/data/real-layouts: 88 ScanNet
-// rooms, boxes fitted to their scans, and 150 ARKitScenes rooms, boxes drawn by people): a name the table doubts
-// for its size is never a real thing's.
-TEST_CASE("plausibility: no labelled thing of 238 real rooms is smaller than its kind's least size",
-          "[ingest][plausibility]") {
-    std::map<std::string, int> checked;
+namespace {
+
+// A labelled thing of VSI-Bench's real rooms (../shared/data/real-layouts): 88 ScanNet rooms, boxes fitted to
+// their scans, and 150 ARKitScenes rooms, boxes drawn by people.
+struct RealThing {
+    std::string source, room, label, kind;  // kind: the memory's name (memoryCategory)
+    double largest = 0, height = 0;         // height: along the box axis nearest to up (ScanNet's boxes lean)
+};
+
+std::vector<RealThing> realThings() {
+    std::vector<RealThing> out;
     for (const char* file : {"scannet_meta_info_val.json", "arkitscenes_meta_info_val.json"}) {
         std::ifstream in(fs::path(SMQL_SHARED_DATA) / "real-layouts" / file);
         REQUIRE(in);
         const auto rooms = nlohmann::json::parse(in);
         for (const auto& [room, layout] : rooms.items())
-            for (const auto& [label, boxes] : layout.at("object_bbox").items()) {
-                const std::string kind = memoryCategory(label);
-                if (!leastSize(kind)) continue;
+            for (const auto& [label, boxes] : layout.at("object_bbox").items())
                 for (const auto& box : boxes) {
                     const auto lengths = box.at("axesLengths").get<std::vector<double>>();
                     const auto axes = box.at("normalizedAxes").get<std::vector<double>>();
-                    // The height: the length along the box axis nearest to up (ScanNet's boxes lean).
                     std::size_t up = 0;
                     for (std::size_t a = 1; a < 3; ++a)
                         if (std::abs(axes[3 * a + 2]) > std::abs(axes[3 * up + 2])) up = a;
-                    const double largest = *std::max_element(lengths.begin(), lengths.end());
-                    INFO(fmt::format("{} in {}: {:.2f} x {:.2f} x {:.2f} m", label, room, lengths[0], lengths[1],
-                                     lengths[2]));
-                    CHECK_FALSE(smallerThanKind(kind, largest, lengths[up], 0));
-                    ++checked[kind];
+                    out.push_back({file, room, label, memoryCategory(label),
+                                   *std::max_element(lengths.begin(), lengths.end()), lengths[up]});
                 }
-            }
+    }
+    return out;
+}
+
+}  // namespace
+
+// The least sizes hold every labelled thing of the real rooms: a name the table doubts for its size is never a
+// real thing's.
+TEST_CASE("plausibility: no labelled thing of 238 real rooms is smaller than its kind's least size",
+          "[ingest][plausibility]") {
+    std::map<std::string, int> checked;
+    for (const RealThing& thing : realThings()) {
+        if (!leastSize(thing.kind)) continue;
+        INFO(fmt::format("{} in {}: {:.2f} m long, {:.2f} m tall", thing.label, thing.room, thing.largest,
+                         thing.height));
+        CHECK_FALSE(smallerThanKind(thing.kind, thing.largest, thing.height, 0));
+        ++checked[thing.kind];
     }
     // Every kind with a least size is held to real things: 74 beds, 134 sofas, 39 fridges, 32 toilets.
     for (const char* kind : {"bed", "sofa", "fridge", "toilet"}) CHECK(checked[kind] >= 15);
+}
+
+// The heights the scale's priors take for photos without depth (typicalHeight: the cameras' height over the floor
+// against the heights of the things standing on it) are those of real things: within a tenth of the median of
+// ARKitScenes' boxes, which people drew whole (ScanNet's, fitted to what the scans hold, are lower: chairs 0.72 m
+// where ARKitScenes' are 0.91 m). A height a tenth off puts a tenth into every memory it scales.
+TEST_CASE("plausibility: the typical heights of the scale's priors are real rooms' medians", "[ingest][plausibility]") {
+    std::map<std::string, std::vector<double>> heights;
+    for (const RealThing& thing : realThings())
+        if (thing.source.starts_with("arkitscenes") && typicalHeight(thing.kind))
+            heights[thing.kind].push_back(thing.height);
+    // ARKitScenes' labels with a typical height: beds, chairs, fridges, sofas, tables (coffee tables among them),
+    // toilets.
+    REQUIRE(heights.size() >= 6);
+    for (auto& [kind, measured] : heights) {
+        std::nth_element(measured.begin(), measured.begin() + measured.size() / 2, measured.end());
+        const double median = measured[measured.size() / 2];
+        INFO(fmt::format("{}: typical {:.2f} m, the median of {} real ones {:.2f} m", kind, *typicalHeight(kind),
+                         measured.size(), median));
+        CHECK(measured.size() >= 20);
+        CHECK(std::abs(*typicalHeight(kind) - median) <= 0.1 * median);
+    }
 }
 
 TEST_CASE("plausibility: real RGB-D frames in their unit pass, in another unit are refused with the fix",
