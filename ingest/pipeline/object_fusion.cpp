@@ -12,6 +12,7 @@
 #include "ingest/geometry/clusters.hpp"
 #include "ingest/geometry/instance_map.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
+#include "ingest/pipeline/plausibility.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::ingest {
@@ -59,15 +60,14 @@ std::size_t framesInView(const PointCloud& points, const std::vector<FusionCamer
     return seen;
 }
 
-// Whether a name suits a box: its largest side within [kNameFitLow, kBeyondTypicalExtent] x the largest
-// side things of that kind commonly have, and no smaller than any such thing (typical_sizes.hpp); kinds
-// the table lacks suit any box.
+// Whether a name suits a box: its largest side at least kNameFitLow x the largest side things of that kind
+// commonly have, and the name fits the box as the objects stage judges it (plausibility.hpp: nameFit, the box
+// neither far larger than things of the name nor smaller than any of them); kinds the table lacks suit any box.
 constexpr double kNameFitLow = 0.25;
 bool nameSuits(const std::string& category, const model::Box& box) {
     auto usual = typicalExtent(category);
     const double largest = std::max({box.size.x, box.size.y, box.size.z});
-    return !usual || (largest >= kNameFitLow * *usual && largest <= kBeyondTypicalExtent * *usual &&
-                      !smallerThanKind(category, largest, box.size.z, box.center.z - box.size.z / 2));
+    return !usual || (largest >= kNameFitLow * *usual && nameFit(category, box) == NameFit::Fits);
 }
 
 // A thing's name: of the names its views gave that suit its box, the one with the largest tally (a

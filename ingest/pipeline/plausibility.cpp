@@ -228,22 +228,22 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                          "camera's) or a lens's distortion does this",
                          *alignment.edgesFromFloor),
              "give the photos' own camera (camera.json, --camera), or none for COLMAP to estimate it"});
+    const std::string priorsFix =
+        "give --scale (metres per capture unit), or add photos that show the floor and the things standing on it";
     if (alignment.scaleSplit > 0)
         out.push_back({"scale priors", true,
                        fmt::format("the scale's two priors disagree by a factor of {:.2g} (the cameras' height above "
                                    "the floor and the heights of things standing on it): the floor found may be a "
                                    "table top, or the cameras are far from a person's height",
                                    alignment.scaleSplit),
-                       "give --scale (metres per capture unit), or add photos that show the floor and the things "
-                       "standing on it"});
+                       priorsFix});
     else if (alignment.scaleSpread > kSpreadRefuse)
         out.push_back({"scale priors", true,
                        fmt::format("the scale's priors are {:.0f}% apart (the cameras' height above the floor, the "
                                    "heights of things standing on it, the ceiling's): the floor found may be a table "
                                    "top, and lengths may be off by as much",
                                    100 * alignment.scaleSpread),
-                       "give --scale (metres per capture unit), or add photos that show the floor and the things "
-                       "standing on it"});
+                       priorsFix});
     return out;
 }
 
