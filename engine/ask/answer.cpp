@@ -70,6 +70,13 @@ std::string absentWords(const Translation& t) {
     return out;
 }
 
+// Nothing answers: a word that names nothing in the scene is why ("which is closer to the door" where there is no
+// door), else nothing meets the condition.
+std::string noneFound(const Translation& t) {
+    if (std::string absent = absentWords(t); !absent.empty()) return fmt::format("There is no {} here.", absent);
+    return fmt::format("There is no {}{}.", t.subject, withCondition(t));
+}
+
 std::string locate(const Translation& t, const ResultSet& rs, const std::string& scene) {
     if (rs.rows.empty()) return fmt::format("There is no {}{} in scene '{}'.", t.subject, withCondition(t), scene);
     int path = rs.columnIndex("path");
@@ -239,7 +246,7 @@ std::string size(const Translation& t, const ResultSet& rs) {
             parts.push_back(fmt::format("{} is {} wide, {} deep and {} tall", names[r], length(*width, t.unit),
                                         length(*depth, t.unit), length(*height, t.unit)));
     }
-    if (parts.empty()) return fmt::format("There is no {}{}.", t.subject, withCondition(t));
+    if (parts.empty()) return noneFound(t);
     std::string out = listed(parts, "; ");
     out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
     return out + ".";
@@ -278,7 +285,7 @@ std::string boxSize(const model::Box& b) {
 
 std::string superlative(const Translation& t, const ResultSet& rs) {
     if (rs.rows.size() < t.pick) {
-        if (rs.rows.empty()) return fmt::format("There is no {}{}.", t.subject, withCondition(t));
+        if (rs.rows.empty()) return noneFound(t);
         return fmt::format("There are only {} {}{}.", rs.rows.size(), rs.rows.size() == 1 ? t.subject : t.subjectPlural,
                            withCondition(t));
     }
@@ -387,7 +394,7 @@ std::string attribute(const Translation& t, const ResultSet& rs) {
         parts.push_back(value.empty() ? fmt::format("{} has no {} recorded", names[r], t.measure)
                                       : fmt::format("{} is {}", names[r], value));
     }
-    if (parts.empty()) return fmt::format("There is no {}{}.", t.subject, withCondition(t));
+    if (parts.empty()) return noneFound(t);
     return listed(parts, "; ") + ".";
 }
 

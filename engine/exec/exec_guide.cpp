@@ -256,7 +256,7 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
     if (!crowd.empty()) startWords += fmt::format(" The way is crowded: push aside or squeeze past {}.", crowd);
     rs.rows.push_back(
         {std::int64_t{0}, startWords, nodeLabel(snap, startNode), nodeId(startNode), onFloor.x, onFloor.y, 0.0});
-    auto steps = guide::describeRoute(route, snap.nodes(), goal, planned->heading, planned->space);
+    auto steps = guide::describeRoute(route, snap.nodes(), goal, planned->heading, planned->space, startNode);
     for (std::size_t i = 0; i < steps.size(); ++i) {
         const auto& step = steps[i];
         rs.rows.push_back({static_cast<std::int64_t>(i + 1), step.instruction, nodeLabel(snap, step.landmark),

@@ -58,12 +58,13 @@ double footprintGap(const model::Box& box, Point p) {
     return std::hypot(std::max(u, 0.0), std::max(v, 0.0));
 }
 
-// The landmark nearest the end of a leg (within 1.5 m of it), not the goal itself.
-const Node* landmarkAt(const std::vector<Node>& nodes, const Footing& footing, Point p, model::NodeId goal) {
+// The landmark nearest the end of a leg (within 1.5 m of it), not the goal itself nor the one named last.
+const Node* landmarkAt(const std::vector<Node>& nodes, const Footing& footing, Point p, model::NodeId goal,
+                       model::NodeId namedLast) {
     const Node* best = nullptr;
     double bestGap = 1.5;
     for (const Node& n : nodes) {
-        if (n.id == goal || !landmarkLike(n, footing)) continue;
+        if (n.id == goal || n.id == namedLast || !landmarkLike(n, footing)) continue;
         double gap = footprintGap(n.box, p);
         if (gap < bestGap) {
             bestGap = gap;
@@ -89,7 +90,7 @@ std::string thingWithSupport(const std::vector<Node>& nodes, const Node& goal) {
 }  // namespace
 
 std::vector<Step> describeRoute(const Route& route, const std::vector<Node>& nodes, const Node& goal,
-                                std::optional<double> startHeading, const FreeSpace* space) {
+                                std::optional<double> startHeading, const FreeSpace* space, model::NodeId startThing) {
     // Legs, with nearly straight runs merged: a decision is a turn, not every graph node.
     struct Leg {
         Point from, to;
@@ -119,12 +120,14 @@ std::vector<Step> describeRoute(const Route& route, const std::vector<Node>& nod
     std::vector<Step> steps;
     std::optional<double> heading = startHeading;
     const Footing footing(nodes, GraphOptions{});
+    // A landmark the last step named says nothing new, and the walk's start names the thing it begins beside:
+    // a leg along a long sofa is not walked "toward the sofa" the walker stands at.
+    model::NodeId namedLast = startThing;
     for (const Leg& leg : legs) {
         Step step;
         step.instruction = heading ? turn(leg.heading - *heading) : "";
-        const Node* landmark = landmarkAt(nodes, footing, leg.to, goal.id);
-        // A landmark the last step named already says nothing new.
-        if (landmark && !steps.empty() && steps.back().landmark == landmark->id) landmark = nullptr;
+        const Node* landmark = landmarkAt(nodes, footing, leg.to, goal.id, namedLast);
+        namedLast = landmark ? landmark->id : model::kNoNode;
         step.instruction += fmt::format("Walk {}{}.", howFar(leg.length),
                                         landmark ? " toward the " + landmark->category : std::string());
         if (landmark) step.landmark = landmark->id;

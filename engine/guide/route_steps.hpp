@@ -23,8 +23,10 @@ inline constexpr double kStraightDegrees = 30;
 
 // `nodes` are the scene's (for landmarks and the goal's support); `goal` the thing sought;
 // `startHeading` the walker's heading at the start (radians about +z), when known; `space` the free
-// floor the route was found on, when given: two legs merge only where their one line stays on it.
+// floor the route was found on, when given: two legs merge only where their one line stays on it;
+// `startThing` the thing the walk starts beside, when it does (the start step names it already).
 std::vector<Step> describeRoute(const Route& route, const std::vector<model::Node>& nodes, const model::Node& goal,
-                                std::optional<double> startHeading, const FreeSpace* space = nullptr);
+                                std::optional<double> startHeading, const FreeSpace* space = nullptr,
+                                model::NodeId startThing = model::kNoNode);
 
 }  // namespace smql::guide
