@@ -9,7 +9,8 @@
 //   distance   := "how far is" phrase ("from" | "to") phrase | "what is the distance between" phrase "and" phrase
 //   size       := "how" size-word "is" phrase | "what is the" measure "of" phrase
 //   choice     := "which of these" (A, B, ...) "is" order | "which is" order "," A "or" B
-//   affordance := (("where" | "what") "can i" | "is there" "anything"? ("i can")? | "anything to") verb
+//   affordance := (("where" | "what") "can i" | "is there" "anything"? ("i can")? | "anything to"
+//                  | ("find" | "show") "me"? "something to" | "show me where") verb
 //                 phrase? preposition?
 //   count      := "how many" phrase posts ("do" phrase "have")?
 //   ...
@@ -528,7 +529,11 @@ private:
         bool lead = here || c.accept({"where|what", "can|could|should|do|may", "i|we|one|you"}) ||
                     c.accept({"is|are", "there", "somewhere|anywhere|anything|something|a|any"}) ||
                     c.accept({"what", "is", "there", "to"}) ||
-                    c.accept({"anything|something|somewhere|anywhere", "to"});
+                    c.accept({"anything|something|somewhere|anywhere", "to"}) ||
+                    // "find me something to sit on", "show us a place to sleep", "show me where to sit".
+                    c.accept({"find|show|get|give|bring", "me|us", "somewhere|anywhere|anything|something|a|any"}) ||
+                    c.accept({"find|show|get|give|bring", "somewhere|anywhere|anything|something|any"}) ||
+                    c.accept({"show|tell", "me|us", "where"});
         if (!lead) return false;
         c.accept({"i|we|one|you", "can|could"});
         c.accept({"place|spot|seat|thing", "to"});
@@ -692,6 +697,16 @@ private:
         return true;
     }
 
+    // "is there something red?", "find something red": a thing of the colour that ends the question.
+    static void takeTrailingColour(Cursor& c, Phrase& thing) {
+        if (thing.kind && !thing.colour && c.i + 1 == c.w.size())
+            if (auto colour = colourOf(c.peek())) {
+                thing.colour = colour;
+                thing.words = c.peek() + " " + thing.words;
+                ++c.i;
+            }
+    }
+
     // Is there a sofa? Are there any mugs on the table? Does the room have a couch?
     bool existence(Cursor& c, PhraseParser& p, Translation& out) {
         // "does the room have", "does the office have" (when the office is the scene).
@@ -710,13 +725,7 @@ private:
                     (c.i == 0 && isOneOf(c.peek(1), {"anything", "something"}) && c.accept({"is"}));
         if (!lead) return false;
         Phrase thing = p.phrase(c.w, c.i, true);
-        // "is there something red?": a thing of that colour.
-        if (thing.kind && !thing.colour && c.i + 1 == c.w.size())
-            if (auto colour = colourOf(c.peek())) {
-                thing.colour = colour;
-                thing.words = c.peek() + " " + thing.words;
-                ++c.i;
-            }
+        takeTrailingColour(c, thing);
         c.skip({"is", "are", "there", "here"});
         p.posts(c.w, c.i, thing);
         c.skip({"is", "are", "there", "here"});
@@ -1082,6 +1091,7 @@ private:
             return false;
         }
         Phrase thing = p.phrase(c.w, c.i, true);
+        takeTrailingColour(c, thing);
         if (where && c.accept({"and"})) {
             // "where are the black magazine rack and the silver magazine rack located?": each of them.
             Phrase other = p.phrase(c.w, c.i, true);
