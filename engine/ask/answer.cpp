@@ -148,6 +148,21 @@ std::string broaderKind(const Translation& t, const WordMapping& widened, std::s
 }
 
 std::string count(const Translation& t, const ResultSet& rs) {
+    // Several kinds asked at once: the rows found, tallied by the kinds in the order asked.
+    if (const int category = rs.columnIndex("category"); category >= 0 && !t.roles.empty()) {
+        std::vector<std::string> counts;
+        for (std::size_t k = 0; k < t.roles.size() && k < t.choices.size(); ++k) {
+            const auto n = std::count_if(rs.rows.begin(), rs.rows.end(), [&](const auto& row) {
+                const std::string c = text(row[static_cast<std::size_t>(category)]);
+                return std::find(t.roles[k].begin(), t.roles[k].end(), c) != t.roles[k].end();
+            });
+            const std::string said = fmt::format("{} {}", n, n == 1 ? t.choices[k] : pluralOf(t.choices[k]));
+            counts.push_back(k == 0 ? said : (k + 1 == t.roles.size() ? " and " : ", ") + said);
+        }
+        std::string all;
+        for (const auto& part : counts) all += part;
+        return fmt::format("{} ({} in all).", all, rs.rows.size());
+    }
     std::int64_t n = 0;
     if (!rs.rows.empty() && !rs.rows.front().empty())
         if (const auto* v = std::get_if<std::int64_t>(&rs.rows.front().front())) n = *v;

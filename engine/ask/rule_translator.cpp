@@ -5,7 +5,8 @@
 //                       | visibility | changes | count | existence | relative | locate | relational
 //                       | yes-no ) unit?
 //   direction  := "if"? "i am"? "standing" place phrase "and"? "facing" phrase "is" phrase side-choices
-//   guidance   := ("how do i get" | "take me" | "what is the way") ("from" phrase | "to" phrase)+
+//   guidance   := ("how do i get" | "take me" | "what is the way" | "navigate" | "directions")
+//                 ("from" phrase | "to" phrase)+
 //   distance   := "how far is" phrase ("from" | "to") phrase | "what is the distance between" phrase "and" phrase
 //   size       := "how" size-word "is" phrase | "what is the" measure "of" phrase
 //   choice     := "which of these" (A, B, ...) "is" order | "which is" order "," A "or" B
@@ -328,7 +329,15 @@ private:
             c.accept({"take|guide|lead|bring|direct|navigate|walk", "me|us"}) ||
             c.accept({"show", "me|us", "the", "way|route|path"}) ||
             c.accept({"what|which", "is", "the", "way|route|path"}) ||
-            c.accept({"i", "want|need", "to", "go|get|walk"});
+            c.accept({"i", "want|need", "to", "go|get|walk"}) ||
+            // "navigate to the sink", "go to the bed from the door", "directions to the fridge".
+            // Not "go to sleep": the goal is a thing, named with an article or by its kind.
+            (isOneOf(c.peek(), {"navigate", "go", "walk", "head", "move"}) && isOneOf(c.peek(1), {"to", "from"}) &&
+             (isOneOf(c.peek(2), {"the", "a", "an", "my", "our", "that", "this"}) ||
+              !lexicon_.lookUp(c.peek(2)).categories.empty()) &&
+             c.accept({"navigate|go|walk|head|move"})) ||
+            c.accept({"give|show|get", "me|us", "directions"}) ||
+            c.accept({"give|show|get", "me|us", "the", "directions"}) || c.accept({"directions"});
         if (!lead) return false;
         c.accept({"the", "way"});
         std::optional<Phrase> from, to;
@@ -640,6 +649,40 @@ private:
     }
 
     // How many chairs are near the table? How many cushions do the sofas have?
+    // "how many tables and chairs are there?": each kind counted, the rows' categories tallied by the answer.
+    bool countKinds(Cursor& c, PhraseParser& p, Phrase first, std::initializer_list<std::string_view> filler,
+                    Translation& out) {
+        std::vector<Phrase> kinds{std::move(first)};
+        while (c.accept({"and"})) {
+            c.accept({"the|all"});
+            kinds.push_back(p.phrase(c.w, c.i, true));
+        }
+        c.skip(filler);
+        c.accept({"do|can|could", "you|i|we", "see|have|find|count"});
+        c.skip(filler);
+        // "in the room" names the whole scene and adds no condition; a place that does is not read here.
+        p.posts(c.w, c.i, kinds.back());
+        if (!c.done()) return false;
+        std::string where, subject;
+        for (std::size_t k = 0; k < kinds.size(); ++k) {
+            const Phrase& kind = kinds[k];
+            // A kind alone each ("tables and chairs"), not a place or a condition ("chairs near the table").
+            if (kind.kind || !kind.id.empty() || !kind.conditions.empty() || kind.noun.empty()) return false;
+            // A kind the scene has none of is counted as none ("5 chairs and 0 pianos").
+            const std::vector<std::string> categories =
+                kind.categories.empty() ? std::vector<std::string>{kind.noun} : kind.categories;
+            for (const auto& category : categories)
+                where += fmt::format("{}category = {}", where.empty() ? "" : " OR ", smqlString(category));
+            subject += (k == 0 ? "" : k + 1 == kinds.size() ? " and " : ", ") + pluralOf(kind.noun);
+            out.roles.push_back(categories);
+            out.choices.push_back(kind.noun);
+        }
+        out.kind = QuestionKind::Count;
+        out.smql = fmt::format("FIND thing WHERE {} RETURN id, category", where);
+        out.subject = out.subjectPlural = subject;
+        return true;
+    }
+
     bool count(Cursor& c, PhraseParser& p, Translation& out) {
         bool lead = c.accept({"how", "many"}) || c.accept({"count"}) || c.accept({"number", "of"}) ||
                     c.accept({"what", "is", "the", "number", "of"}) || c.accept({"tell", "me", "how", "many"});
@@ -649,6 +692,7 @@ private:
         Phrase thing = p.phrase(c.w, c.i, true);
         static const std::initializer_list<std::string_view> filler{
             "is", "are", "there", "here", "altogether", "total", "exactly", "currently", "right", "now"};
+        if (c.peek() == "and") return countKinds(c, p, std::move(thing), filler, out);
         c.skip(filler);
         bool see = c.accept({"do|can|could", "you|i|we", "see"});
         if (!see) c.accept({"do|can|could", "you|i|we", "have|find|count"});
@@ -1144,9 +1188,12 @@ private:
             // "what is there?", "what objects are there?", "what is here?": where nothing follows, the
             // scene's things, all of them.
             const bool thereAlone = c.done() && isOneOf(c.w[c.i - 1], {"there", "here"});
-            // "what is orange behind me on the floor?": a thing of that colour.
-            if (auto colour = colourOf(c.peek()); colour && !thing.colour && PhraseParser::predicateAt(c.w, c.i + 1)) {
+            // "what is orange behind me on the floor?", "which objects are black?": a thing of that colour.
+            bool colourAlone = false;
+            if (auto colour = colourOf(c.peek());
+                colour && !thing.colour && (PhraseParser::predicateAt(c.w, c.i + 1) || c.i + 1 == c.w.size())) {
                 thing.colour = colour;
+                colourAlone = c.i + 1 == c.w.size();
                 ++c.i;
             }
             // "what doors are open to the right of the bunk beds?": the memory keeps no such state.
@@ -1184,7 +1231,7 @@ private:
                 while (k < c.w.size() && isOneOf(c.w[k], {"the", "this", "our", "my"})) ++k;
                 return k + 1 == c.w.size() && namesWholeScene(c.w[k]);
             };
-            const bool wholeScene = thereAlone || (c.done() && namesScene(postsAt));
+            const bool wholeScene = thereAlone || colourAlone || (c.done() && namesScene(postsAt));
             if (thing.conditions.size() == before && thing.excluded.empty() && !wholeScene) return false;
             if (verbIsPredicate && thing.conditions.size() > before) {
                 // "face the table" reads in the answer as "facing the table": the table's first phrase.
