@@ -289,6 +289,21 @@ std::string hyphenated(std::string words) {
 
 std::string pluralOf(const std::string& noun) {
     if (noun.empty()) return noun;
+    // "a desk lamp" -> "desk lamps": the last word counts.
+    if (const auto space = noun.rfind(' '); space != std::string::npos)
+        return noun.substr(0, space + 1) + pluralOf(noun.substr(space + 1));
+    // Nouns with no plural are counted in pieces: "11 pieces of furniture", not "11 furnitures".
+    static const std::set<std::string, std::less<>> kMass{"furniture", "equipment", "luggage",   "clothing",
+                                                          "cutlery",   "jewelry",   "jewellery", "stuff"};
+    if (kMass.count(noun)) return "pieces of " + noun;
+    // An irregular plural is one WordNet's exception list takes back to the noun ("shelves" -> shelf,
+    // "knives" -> knife); its rules for endings take no "ves" back, so a made-up form never passes.
+    for (const std::size_t drop : {std::size_t{1}, std::size_t{2}})
+        if (noun.size() > drop + 1 && (drop == 1 ? noun.ends_with("f") : noun.ends_with("fe"))) {
+            const std::string ves = noun.substr(0, noun.size() - drop) + "ves";
+            const auto bases = wordnet::nounBaseForms(ves);
+            if (std::find(bases.begin(), bases.end(), noun) != bases.end()) return ves;
+        }
     if (noun.ends_with("s") || noun.ends_with("x") || noun.ends_with("ch") || noun.ends_with("sh")) return noun + "es";
     bool consonantY = noun.size() > 1 && noun.ends_with("y") &&
                       std::string_view("aeiou").find(noun[noun.size() - 2]) == std::string_view::npos;

@@ -50,7 +50,8 @@ private:
 // Naming such a thing is an empty answer; any other unknown name is an error with hints.
 std::optional<std::string> absentThing(const std::string& name, const WordMatch& match);
 
-// The English plural of a singular noun, for answers: "couch" -> couches, "switch" -> switches.
+// The English plural of a singular noun, for answers: "couch" -> couches, "shelf" -> shelves (WordNet's
+// exceptions), "furniture" -> pieces of furniture.
 std::string pluralOf(const std::string& noun);
 
 // Words joined by hyphens, as WordNet and the categories of imports spell compounds: "coffee-table".

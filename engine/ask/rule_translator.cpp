@@ -389,6 +389,10 @@ private:
                 if (!c.accept({"from|to"})) return false;
                 b = p.phrase(c.w, c.i, true);
             }
+        } else if (c.accept({"how", "much", "space|room|distance|gap"})) {
+            // "how much space is there between the bed and the desk?": the gap between them.
+            c.skip({"is", "there"});
+            if (!c.accept({"between"}) || !pair({"and"})) return false;
         } else {
             c.accept({"what|how", "is|far"});
             c.accept({"the"});

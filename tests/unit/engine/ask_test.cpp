@@ -353,6 +353,19 @@ TEST_CASE("ASK: none stored as the word asked when it was widened to the kind it
     CHECK(std::get<std::int64_t>(held.rows[0][0]) == static_cast<std::int64_t>(tables));
 }
 
+TEST_CASE("answers say plurals as English does: irregular ones from WordNet, mass nouns in pieces", "[ask]") {
+    REQUIRE(ask::wordnet::available());
+    CHECK(ask::pluralOf("chair") == "chairs");
+    CHECK(ask::pluralOf("couch") == "couches");
+    CHECK(ask::pluralOf("shelf") == "shelves");
+    CHECK(ask::pluralOf("knife") == "knives");
+    CHECK(ask::pluralOf("roof") == "roofs");  // no "rooves" in WordNet's exceptions
+    CHECK(ask::pluralOf("safe") == "safes");
+    CHECK(ask::pluralOf("furniture") == "pieces of furniture");
+    CHECK(ask::pluralOf("red shelf") == "red shelves");
+    CHECK(ask::pluralOf("coffee-table") == "coffee-tables");
+}
+
 TEST_CASE("the lexicon reads a misspelt English noun, two nouns written as one and names WordNet lacks", "[ask]") {
     REQUIRE(ask::wordnet::available());  // Debian's wordnet-base, as the question set needs
     ask::Lexicon lexicon({"sofa", "chair", "table"});
