@@ -44,6 +44,14 @@ std::string listed(const std::vector<std::string>& items, std::string_view separ
     return out;
 }
 
+// Every item, the last after "and": "5 chairs, 3 tables and a bed".
+std::string listedWithAnd(const std::vector<std::string>& items) {
+    std::string out;
+    for (std::size_t i = 0; i < items.size(); ++i)
+        out += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+    return out;
+}
+
 // When every row has one category, the answer names it ("2 cushions"), else "things".
 std::optional<std::string> sharedCategory(const ResultSet& rs) {
     int category = rs.columnIndex("category");
@@ -156,12 +164,9 @@ std::string count(const Translation& t, const ResultSet& rs) {
                 const std::string c = text(row[static_cast<std::size_t>(category)]);
                 return std::find(t.roles[k].begin(), t.roles[k].end(), c) != t.roles[k].end();
             });
-            const std::string said = fmt::format("{} {}", n, n == 1 ? t.choices[k] : pluralOf(t.choices[k]));
-            counts.push_back(k == 0 ? said : (k + 1 == t.roles.size() ? " and " : ", ") + said);
+            counts.push_back(fmt::format("{} {}", n, n == 1 ? t.choices[k] : pluralOf(t.choices[k])));
         }
-        std::string all;
-        for (const auto& part : counts) all += part;
-        return fmt::format("{} ({} in all).", all, rs.rows.size());
+        return fmt::format("{} ({} in all).", listedWithAnd(counts), rs.rows.size());
     }
     std::int64_t n = 0;
     if (!rs.rows.empty() && !rs.rows.front().empty())
@@ -601,6 +606,54 @@ std::string route(const Translation& t, const ResultSet& rs) {
     return fmt::format("{} ({}).", listed(turns, ", ", turns.size()), listed(why, "; ", why.size()));
 }
 
+// DESCRIBE's summing up of a place (catalog::describePlace's fields): "scene0000_00: a floor of 7.35 x 7.28 m
+// (53.5 m²), 4 walls, no door or window found; 29 things: 6 objects, 5 chairs, ..., a bed, a desk".
+std::string place(const std::string& name, const std::map<std::string, std::string>& fields) {
+    auto field = [&](const char* key) {
+        auto it = fields.find(key);
+        return it == fields.end() ? std::string() : it->second;
+    };
+    std::vector<std::string> parts;
+    if (const std::string floor = field("floor"); !floor.empty()) {
+        const auto comma = floor.find(", ");
+        parts.push_back(comma == std::string::npos
+                            ? "a floor of " + floor
+                            : fmt::format("a floor of {} ({})", floor.substr(0, comma), floor.substr(comma + 2)));
+    }
+    const std::string walls = field("walls");
+    if (!walls.empty()) parts.push_back(walls == "1" ? "1 wall" : walls + " walls");
+    const std::string doors = field("doors"), windows = field("windows");
+    if (doors == "none found" && windows == "none found")
+        parts.push_back("no door or window found");
+    else
+        for (const auto& [what, labels] : {std::pair{"door", doors}, std::pair{"window", windows}})
+            parts.push_back(labels == "none found" ? fmt::format("no {} found", what) : labels);
+    std::string out = name + ": " + listed(parts, ", ", parts.size());
+    // "29: chair 5, table 3, bed 1"; the things no model named ("object") come last, as other things.
+    const std::string things = field("things");
+    const auto colon = things.find(": ");
+    if (colon == std::string::npos) return out + "; nothing in it";
+    std::vector<std::string> kinds;
+    std::string unnamed;
+    for (std::size_t at = colon + 2; at < things.size();) {
+        const std::size_t end = std::min(things.find(", ", at), things.size());
+        const std::string entry = things.substr(at, end - at);
+        const std::size_t space = entry.rfind(' ');
+        const std::string category = entry.substr(0, space), count = entry.substr(space + 1);
+        if (category == "object")
+            unnamed = count == "1" ? "1 other thing" : count + " other things";
+        else if (count != "1")
+            kinds.push_back(count + " " + pluralOf(category));
+        else
+            kinds.push_back(
+                (std::string_view("aeiou").find(category.front()) == std::string_view::npos ? "a " : "an ") + category);
+        at = end + 2;
+    }
+    if (!unnamed.empty()) kinds.push_back(unnamed);
+    const std::string total = things.substr(0, colon);
+    return fmt::format("{}; {} {}: {}", out, total, total == "1" ? "thing" : "things", listedWithAnd(kinds));
+}
+
 // A plugged-in translator's statement: its rows said as they are.
 std::string statement(const Translation& t, const ResultSet& rs) {
     // DESCRIBE's rows (id, field, value): each node by what it looks like, its size and any text.
@@ -608,9 +661,14 @@ std::string statement(const Translation& t, const ResultSet& rs) {
         id >= 0 && field >= 0 && value >= 0 && rs.columns.size() == 3) {
         std::vector<std::string> nodes;
         std::string node, category, looks;
+        std::map<std::string, std::string> placeFields;  // a scene's own node: what sums it up
         auto flush = [&] {
-            if (!node.empty()) nodes.push_back(fmt::format("{}#{}{}", category, node, looks));
+            if (!placeFields.empty())
+                nodes.push_back(place(category, placeFields));
+            else if (!node.empty())
+                nodes.push_back(fmt::format("{}#{}{}", category, node, looks));
             looks.clear();
+            placeFields.clear();
         };
         for (const auto& row : rs.rows) {
             if (text(row[id]) != node) {
@@ -620,6 +678,10 @@ std::string statement(const Translation& t, const ResultSet& rs) {
             const std::string f = text(row[field]);
             if (f == "category")
                 category = text(row[value]);
+            else if (f == "kind" && text(row[value]) == "scene")
+                placeFields[f] = "scene";
+            else if (!placeFields.empty() && isOneOf(f, {"floor", "walls", "doors", "windows", "things"}))
+                placeFields[f] = text(row[value]);
             else if (isOneOf(f, {"dimensions", "color", "material", "shape", "text", "label", "state"}))
                 looks += fmt::format("{} {} {}", looks.empty() ? ":" : ",", f, text(row[value]));
         }

@@ -6,9 +6,26 @@
 
 namespace smql::ask {
 
+namespace {
+
+// Whether w[from..] is the whole scene alone ("the room", "this place", "the office" where the scene is one):
+// DESCRIBE of the scene's node sums it up.
+bool describesScene(const Words& w, std::size_t from, std::size_t to, PhraseParser& parser, model::NodeId sceneRoot,
+                    Translation& out) {
+    while (from < to && isOneOf(w[from], {"the", "this", "my", "our", "your"})) ++from;
+    const std::size_t place = parser.scenePlaceAt(w, from);
+    if (sceneRoot == model::kNoNode || place == 0 || from + place != to) return false;
+    out.kind = QuestionKind::Statement;
+    out.smql = fmt::format("DESCRIBE #{}", sceneRoot);
+    out.subject = out.subjectPlural = "room";
+    return true;
+}
+
+}  // namespace
+
 // What a thing looks like or says is what the memory holds of it: DESCRIBE gives its category, box,
 // attributes and text.
-bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, Translation& out) {
+bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, model::NodeId sceneRoot, Translation& out) {
     // "describe the desk", "tell me about the monitor", "what do you know about the chair?": all the
     // memory holds of it.
     static const std::vector<Words> asks{words("describe"),
@@ -22,11 +39,21 @@ bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, Trans
             !std::equal(lead.begin(), lead.end(), w.begin() + static_cast<std::ptrdiff_t>(i)))
             continue;
         i += lead.size();
+        if (describesScene(w, i, w.size(), parser, sceneRoot, out)) {
+            i = w.size();
+            return true;
+        }
         Phrase thing = parser.phrase(w, i, true);
         if (i < w.size()) return false;
         out.kind = QuestionKind::Statement;
         out.smql = "DESCRIBE " + reference(thing);
         describeSubject(thing, out);
+        return true;
+    }
+    // "what is the room like?", "what's this place like?"
+    if (i + 3 < w.size() && w[i] == "what" && isOneOf(w[i + 1], {"is", "'s"}) && w.back() == "like" &&
+        describesScene(w, i + 2, w.size() - 1, parser, sceneRoot, out)) {
+        i = w.size();
         return true;
     }
     if (i + 2 > w.size() || !isOneOf(w[i], {"what", "how"}) || !isOneOf(w[i + 1], {"does", "do"})) return false;
@@ -36,6 +63,12 @@ bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, Trans
     });
     if (verb == w.end()) return false;
     const std::size_t verbAt = static_cast<std::size_t>(verb - w.begin());
+    // "what does the room look like?"
+    if (*verb == "look" && verbAt + 2 == w.size() && w.back() == "like" &&
+        describesScene(w, i, verbAt, parser, sceneRoot, out)) {
+        i = w.size();
+        return true;
+    }
     Phrase thing;
     if (!phraseUpTo(w, i, verbAt, parser, thing)) return false;
     i = verbAt + 1;

@@ -28,8 +28,9 @@ std::optional<Translation> appearanceOrder(const Question& question, const Lexic
 bool readPlacement(const Words& w, std::size_t& i, PhraseParser& parser, Translation& out);
 
 // "What does the urinal look like?", "what does the cabinet near the copier say?", "what does the
-// sink appear to be?": what the memory holds of the thing (DESCRIBE), from w[0]. False when the words
-// are not such a question.
-bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, Translation& out);
+// sink appear to be?": what the memory holds of the thing (DESCRIBE), from w[0]; "describe the room", "what is
+// the room like?": the scene summed up (DESCRIBE of `sceneRoot`, its node). False when the words are not such a
+// question.
+bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, model::NodeId sceneRoot, Translation& out);
 
 }  // namespace smql::ask

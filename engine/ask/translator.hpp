@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "model/types.hpp"
+
 namespace smql::ask {
 
 enum class QuestionKind {
@@ -56,6 +58,8 @@ struct Question {
     // How many scenes the database holds: where it holds one, "the office" or "the kitchen" is that
     // scene, whatever it is called.
     std::size_t sceneCount = 1;
+    // The current scene's own node, which DESCRIBE sums up ("describe the room"); none across all scenes.
+    model::NodeId sceneRoot = model::kNoNode;
     // SMQL in brief, for a translator that is a language model: its statements, the predicates (the
     // predicate table's usage lines) and the attributes (the attribute table's); bind_ask.cpp.
     std::string grammar{};

@@ -36,7 +36,9 @@ ask::Question questionAbout(const std::string& text, const catalog::SceneSnapsho
     ask::Question q{text, snap.info().name, snap.categories(), {}, {}, snap.attributeNames()};
     std::map<std::string, std::pair<int, bool>> seen;  // category -> count, all vertical planes
     std::set<std::string> anchors, rooms;
+    std::size_t roots = 0;
     for (const auto& node : snap.nodes()) {
+        if (node.kind == model::NodeKind::Scene && ++roots == 1) q.sceneRoot = node.id;
         if (node.kind == model::NodeKind::Room) rooms.insert(node.category);
         if (node.kind != model::NodeKind::Object && node.kind != model::NodeKind::Anchor) continue;
         if (node.kind == model::NodeKind::Anchor) anchors.insert(node.category);
@@ -44,6 +46,7 @@ ask::Question questionAbout(const std::string& text, const catalog::SceneSnapsho
         ++it->second.first;
         it->second.second = it->second.second && relations::isVerticalPlane(node);
     }
+    if (roots != 1) q.sceneRoot = model::kNoNode;
     for (const auto& [category, stats] : seen) {
         if (stats.second) q.planeCategories.push_back(category);
         if (stats.first > 1) q.repeatedCategories.push_back(category);

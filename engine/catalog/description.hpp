@@ -20,8 +20,13 @@ struct EvidenceInfo {
 
 // Appends `node`'s rows (id, field, value): kind, category, path, source id, the box's centre,
 // dimensions, yaw and geometry, confidence, stored attributes, text, hidden, its descriptions (the
-// children of that kind), the other children's labels ("sofa#12") and its evidence.
+// children of that kind), the other children's labels ("sofa#12"), how many camera frames hang below it (not
+// listed: a capture's hundreds say nothing one by one) and its evidence.
 void describeNode(ResultSet& rows, const model::Node& node, std::string_view path,
                   const std::vector<const model::Node*>& children, const std::vector<EvidenceInfo>& evidence);
+
+// Appends the rows that sum up a place (a scene's own node) from the nodes in it: its floor's size, how many
+// walls, its doors and windows, the things in it by kind ("29: chair 5, table 3, bed 1") and the camera frames.
+void describePlace(ResultSet& rows, const model::Node& place, const std::vector<const model::Node*>& within);
 
 }  // namespace smql::catalog

@@ -16,6 +16,13 @@ ResultSet Executor::run(const binder::BoundDescribe& d) {
         std::vector<catalog::EvidenceInfo> evidence;
         for (const auto& blob : txn_.blobsOf(n.id)) evidence.push_back({blob.name, blob.mediaType, blob.size});
         catalog::describeNode(rs, n, scene().path(s), children, evidence);
+        // A scene's own node sums up the place: what "describe the room" asks for.
+        if (n.kind == model::NodeKind::Scene) {
+            std::vector<const model::Node*> within;
+            for (const model::Node& node : scene().nodes())
+                if (node.kind != model::NodeKind::Scene) within.push_back(&node);
+            catalog::describePlace(rs, n, within);
+        }
     }
     return rs;
 }

@@ -39,6 +39,14 @@ def desk_rgbd(smql, folder, work):
     assert status == 0, log
     height = camera_height(smql, work / "db")
     assert height is not None and 1.3 <= height <= 1.7, f"cameras {height} m above the floor\n{log}"
+    # "Describe the room" sums the memory up, its camera frames counted, not listed.
+    summary = subprocess.run([smql, str(work / "db"), "ASK 'describe the room'"], capture_output=True, text=True)
+    assert summary.returncode == 0, summary.stderr
+    fields = dict(re.findall(r"^\d+\s+(\w+)\s+(.*?)\s*$", summary.stdout, re.M))
+    assert re.fullmatch(r"\d+ camera frames", fields.get("frames", "")), summary.stdout
+    assert "frame#" not in fields.get("children", ""), summary.stdout
+    things = len(query_rows(smql, work / "db", "FIND object RETURN id"))
+    assert re.search(rf"\ntum-fr1-rpy: a floor of .* walls, .*; {things} things: ", summary.stdout), summary.stdout
 
 
 def true_positions(groundtruth):

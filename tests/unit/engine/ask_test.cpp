@@ -287,6 +287,39 @@ TEST_CASE("camera frames are no things: FIND thing and ASK's answers leave them 
     }
 }
 
+TEST_CASE("ASK 'describe the room' sums the scene up: floor, walls, openings and the things by kind", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'replica-room0'");
+    for (const char* question :
+         {"describe the room", "what is the room like?", "what does this room look like?", "tell me about the room"}) {
+        auto answer = run(*engine, fmt::format("ASK '{}'", question));
+        INFO(question << "\n" << answer.message);
+        CHECK_THAT(answer.message, Catch::Contains("SMQL: DESCRIBE #"));
+        CHECK_THAT(answer.message, Catch::Contains("\nreplica-room0: "));
+        CHECK_THAT(answer.message, Catch::Contains(" walls, "));
+    }
+    // The summary's counts are COUNT's, kind by kind, on the real room's human-labelled things.
+    auto root = run(*engine, "ASK 'describe the room'");
+    std::string things;
+    for (const auto& row : root.rows)
+        if (std::get<std::string>(row[1]) == "things") things = std::get<std::string>(row[2]);
+    const auto colon = things.find(": ");
+    REQUIRE(colon != std::string::npos);
+    CHECK(std::stoll(things.substr(0, colon)) == std::get<std::int64_t>(run(*engine, "COUNT object").rows[0][0]));
+    std::size_t kinds = 0;
+    for (std::size_t at = colon + 2; at < things.size(); ++kinds) {
+        const std::size_t end = std::min(things.find(", ", at), things.size());
+        const std::string entry = things.substr(at, end - at);
+        const std::size_t space = entry.rfind(' ');
+        INFO(entry);
+        CHECK(std::stoll(entry.substr(space + 1)) ==
+              std::get<std::int64_t>(run(*engine, fmt::format("COUNT '{}'", entry.substr(0, space))).rows[0][0]));
+        at = end + 2;
+    }
+    CHECK(kinds > 10);
+}
+
 TEST_CASE("ASK reads VSI-Bench's appearance order from the frame that first saw each thing", "[ask]") {
     TempDir dir;
     auto engine = Engine::open(dir.path.string());
