@@ -140,6 +140,10 @@ namespace {
 
 // A slab at most this thick, and three times as tall as thick, that a wall holds hangs on it.
 constexpr double kHungThickness = 0.1;
+bool hungShape(const Node& a) {
+    const double thickness = std::min(a.box.size.x, a.box.size.y);
+    return thickness <= kHungThickness && a.box.size.z >= 3 * thickness;
+}
 // A supporter's footprint is at least half that of what it carries: a sofa does not rest on the
 // blanket lying on it.
 constexpr double kMinSupporterArea = 0.5;
@@ -300,8 +304,31 @@ double nearScore(const PredicateInputs& in) {
     return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
 }
 
+// Whether something under `a` carries it: a top within on.max_gap below a's bottom (or a little into it) under
+// a's centre, the floor's included.
+bool carriedFromBelow(const Node& a, const Thresholds& t, const Obstacles& obstacles) {
+    const double bottom = model::bottom(a.box);
+    model::Aabb under{{a.box.center.x, a.box.center.y, bottom - t.onMaxGap},
+                      {a.box.center.x, a.box.center.y, bottom + t.aboveTolerance}};
+    std::vector<const Node*> below;
+    obstacles.within(under, below);
+    return std::any_of(below.begin(), below.end(), [&](const Node* n) {
+        if (n->id == a.id || isVerticalPlane(*n)) return false;
+        const double top = model::top(n->box);
+        return top >= bottom - t.onMaxGap && top <= bottom + t.aboveTolerance &&
+               model::footprintContains(n->box, {a.box.center.x, a.box.center.y}, 0);
+    });
+}
+
 double attachedScore(const PredicateInputs& in) {
     if (!isVerticalPlane(in.a) && !isVerticalPlane(in.b) && !sameCategory(in.b.category, "pillar")) return 0.0;
+    // What a wall holds hangs there: a sofa pushed against the wall stands on the floor beside it (its bottom at
+    // the wall's foot), a microwave on a counter against it rests on the counter.
+    // A flat thing upright against the wall (a picture just over a sofa's back) hangs whatever is under it.
+    if (!isVerticalPlane(in.a) && sameCategory(in.b.category, kWall) &&
+        (model::bottom(in.a.box) < model::bottom(in.b.box) + in.t.attachedMinRise ||
+         (!hungShape(in.a) && carriedFromBelow(in.a, in.t, in.obstacles))))
+        return 0.0;
     double d = model::distance(in.a.box, in.b.box);
     double limit = in.t.attachedMaxGap;
     return d <= limit ? std::max(0.01, 1.0 - d / std::max(limit, 1e-3)) : 0.0;
@@ -626,8 +653,7 @@ bool holds(Predicate p, const Node& a, const Node& b, const Thresholds& t, const
 }
 
 const Node* wallHolding(const Node& a, const Obstacles& obstacles, const Thresholds& t) {
-    const double thickness = std::min(a.box.size.x, a.box.size.y);
-    if (thickness > kHungThickness || a.box.size.z < 3 * thickness) return nullptr;
+    if (!hungShape(a)) return nullptr;
     std::vector<const Node*> walls;
     obstacles.wallsWithin(spec(Predicate::Attached).referenceRegion(obstacles.bounds(a), 0, t), walls);
     static const Frame frame{};

@@ -24,6 +24,8 @@ const std::vector<SettingInfo>& settingsCatalogue() {
          "above/below: how far a's bottom may sink under b's top"},
         {"attached.max_gap", SettingUnit::Metres, &Thresholds::attachedMaxGap,
          "attached: largest gap to a wall, door, window or pillar"},
+        {"attached.min_rise", SettingUnit::Metres, &Thresholds::attachedMinRise,
+         "attached to a wall: how far above the wall's foot a thing's bottom is (lower, it stands by the wall)"},
         {"lateral.min_offset", SettingUnit::Metres, &Thresholds::lateralMinOffset,
          "left_of/right_of/in_front_of/behind: smallest centre offset along the viewer's axis"},
         {"between.max_offset", SettingUnit::Metres, &Thresholds::betweenMaxOffset,

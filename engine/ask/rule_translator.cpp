@@ -1407,7 +1407,9 @@ private:
     }
 
     // What does the urinal look like? What does the cabinet near the copier say? (read_description.cpp)
-    bool description(Cursor& c, PhraseParser& p, Translation& out) { return readDescription(c.w, c.i, p, question_.sceneRoot, out); }
+    bool description(Cursor& c, PhraseParser& p, Translation& out) {
+        return readDescription(c.w, c.i, p, question_.sceneRoot, out);
+    }
 
     // ------------------------------------------------------------ helpers
 

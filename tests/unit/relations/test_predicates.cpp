@@ -305,6 +305,29 @@ TEST_CASE("attached: to upright planes within the gap") {
         isVerticalPlane(node(22, "floor", 0, 0, 0, 4, 4, 0.05, model::NodeKind::Anchor, model::GeometryKind::Plane)));
 }
 
+TEST_CASE("attached to a wall: what it holds hangs there, what stands by it or rests on a top does not") {
+    // The wall from the floor (z 0) to 2.6 m along y = 2; things touch its face at y = 1.95.
+    Node wall = node(20, "wall", 0, 2, 1.3, 4, 0.1, 2.6, model::NodeKind::Anchor, model::GeometryKind::Plane);
+    Node sofa = node(21, "sofa", 0, 1.5, 0.4, 2, 0.9, 0.8);  // pushed against the wall, on the floor
+    Node counter = node(22, "counter", 1.5, 1.65, 0.45, 1, 0.6, 0.9);
+    Node microwave = node(23, "microwave", 1.5, 1.75, 1.05, 0.5, 0.4, 0.3);  // on the counter's top
+    Node picture = node(24, "picture", 0, 1.93, 1.3, 1, 0.04, 0.6);          // 10 cm over the sofa's back
+    Node lowPicture = node(25, "picture", 0, 1.93, 0.9, 1, 0.04, 0.2);       // its edge on the sofa's back
+    Node socket = node(26, "wall-plug", -1.5, 1.94, 0.3, 0.08, 0.02, 0.12);
+    const std::vector<Node> all{wall, sofa, counter, microwave, picture, lowPicture, socket};
+    const NodeObstacles room{all};
+    CHECK(evalAmong(Predicate::Attached, sofa, wall, room) == 0);
+    CHECK(evalAmong(Predicate::Attached, counter, wall, room) == 0);
+    CHECK(evalAmong(Predicate::Attached, microwave, wall, room) == 0);
+    CHECK(evalAmong(Predicate::Attached, picture, wall, room) > 0);
+    CHECK(evalAmong(Predicate::Attached, socket, wall, room) > 0);
+    // A flat thing upright against the wall hangs on it whatever its lower edge touches.
+    CHECK(evalAmong(Predicate::Attached, lowPicture, wall, room) > 0);
+    // The rule is the wall's: by a window or a door, touching is enough, as before.
+    Node window = node(27, "window", 1.5, 2, 1.2, 1, 0.05, 1.2, model::NodeKind::Anchor, model::GeometryKind::Plane);
+    CHECK(evalAmong(Predicate::Attached, microwave, window, room) > 0);
+}
+
 TEST_CASE("lateral predicates follow the viewpoint") {
     // The viewer looks along +y: -x is on the left.
     Node left = node(2, "chair", -1, 0, 0.4, 0.5, 0.5, 0.8);
