@@ -159,12 +159,20 @@ std::string count(const Translation& t, const ResultSet& rs) {
     // Several kinds asked at once: the rows found, tallied by the kinds in the order asked.
     if (const int category = rs.columnIndex("category"); category >= 0 && !t.roles.empty()) {
         std::vector<std::string> counts;
+        std::vector<std::ptrdiff_t> tallies;
         for (std::size_t k = 0; k < t.roles.size() && k < t.choices.size(); ++k) {
             const auto n = std::count_if(rs.rows.begin(), rs.rows.end(), [&](const auto& row) {
                 const std::string c = text(row[static_cast<std::size_t>(category)]);
                 return std::find(t.roles[k].begin(), t.roles[k].end(), c) != t.roles[k].end();
             });
             counts.push_back(fmt::format("{} {}", n, n == 1 ? t.choices[k] : pluralOf(t.choices[k])));
+            tallies.push_back(n);
+        }
+        // "are there more chairs than tables?"
+        if (!t.measure.empty() && tallies.size() == 2) {
+            const bool holds = t.measure == "more" ? tallies[0] > tallies[1] : tallies[0] < tallies[1];
+            return fmt::format("{}, there are {}{} {} than {}: {}.", holds ? "Yes" : "No", holds ? "" : "not ",
+                               t.measure, pluralOf(t.choices[0]), pluralOf(t.choices[1]), listedWithAnd(counts));
         }
         return fmt::format("{} ({} in all).", listedWithAnd(counts), rs.rows.size());
     }

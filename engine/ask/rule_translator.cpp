@@ -654,10 +654,11 @@ private:
 
     // How many chairs are near the table? How many cushions do the sofas have?
     // "how many tables and chairs are there?": each kind counted, the rows' categories tallied by the answer.
+    // `link` joins the kinds: "and", or "than" when two are compared ("more chairs than tables").
     bool countKinds(Cursor& c, PhraseParser& p, Phrase first, std::initializer_list<std::string_view> filler,
-                    Translation& out) {
+                    Translation& out, std::string_view link = "and") {
         std::vector<Phrase> kinds{std::move(first)};
-        while (c.accept({"and"})) {
+        while (c.accept({link}) && (link == "and" || kinds.size() == 1)) {
             c.accept({"the|all"});
             kinds.push_back(p.phrase(c.w, c.i, true));
         }
@@ -688,6 +689,14 @@ private:
     }
 
     bool count(Cursor& c, PhraseParser& p, Translation& out) {
+        // "are there more chairs than tables?": both kinds counted, the answer compares them.
+        if (c.accept({"are|is", "there", "more|fewer|less"})) {
+            out.measure = c.w[c.i - 1] == "more" ? "more" : "fewer";
+            c.skip({"of", "the"});
+            Phrase first = p.phrase(c.w, c.i, true);
+            if (c.peek() != "than") return false;
+            return countKinds(c, p, std::move(first), {"in", "here", "there"}, out, "than");
+        }
         bool lead = c.accept({"how", "many"}) || c.accept({"count"}) || c.accept({"number", "of"}) ||
                     c.accept({"what", "is", "the", "number", "of"}) || c.accept({"tell", "me", "how", "many"});
         if (!lead) return false;
