@@ -1,5 +1,6 @@
 #include "engine/guide/route_steps.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -58,20 +59,36 @@ double footprintGap(const model::Box& box, Point p) {
     return std::hypot(std::max(u, 0.0), std::max(v, 0.0));
 }
 
-// The landmark nearest the end of a leg (within 1.5 m of it), not the goal itself nor the one named last.
-const Node* landmarkAt(const std::vector<Node>& nodes, const Footing& footing, Point p, model::NodeId goal,
-                       model::NodeId namedLast) {
+// What no model named is stored as "object": a landmark only where no named thing is near.
+bool unnamed(const Node& n) { return n.category == "object"; }
+
+// The landmark nearest the end of a leg (within 1.5 m of it), none of `skipped` (the goal, the thing the walk
+// starts beside, the one named last); a thing with a name before one without ("toward the sofa", not "toward
+// the object" beside it).
+const Node* landmarkAt(const std::vector<Node>& nodes, const Footing& footing, Point p,
+                       std::initializer_list<model::NodeId> skipped) {
     const Node* best = nullptr;
     double bestGap = 1.5;
     for (const Node& n : nodes) {
-        if (n.id == goal || n.id == namedLast || !landmarkLike(n, footing)) continue;
+        if (std::find(skipped.begin(), skipped.end(), n.id) != skipped.end() || !landmarkLike(n, footing)) continue;
         double gap = footprintGap(n.box, p);
-        if (gap < bestGap) {
+        const bool better = !best || (unnamed(*best) && !unnamed(n)) || (unnamed(*best) == unnamed(n) && gap < bestGap);
+        if (gap < 1.5 && better) {
             bestGap = gap;
             best = &n;
         }
     }
     return best;
+}
+
+// How a step names its landmark: "the sofa"; a thing no model named by its size and colour, as the
+// memory keeps them ("the large white thing").
+std::string landmarkWords(const Node& n) {
+    if (!unnamed(n)) return "the " + n.category;
+    std::string words = "the ";
+    for (const char* attribute : {"size", "color"})
+        if (const std::string* value = n.attribute(attribute)) words += *value + " ";
+    return words + "thing";
 }
 
 // "the red mug on the desk", "the lamp by the wall"
@@ -120,16 +137,16 @@ std::vector<Step> describeRoute(const Route& route, const std::vector<Node>& nod
     std::vector<Step> steps;
     std::optional<double> heading = startHeading;
     const Footing footing(nodes, GraphOptions{});
-    // A landmark the last step named says nothing new, and the walk's start names the thing it begins beside:
-    // a leg along a long sofa is not walked "toward the sofa" the walker stands at.
-    model::NodeId namedLast = startThing;
+    // A landmark the last step named says nothing new, and the thing the walk starts beside is where the walker
+    // stands: a leg along a long sofa is not walked "toward the sofa".
+    model::NodeId namedLast = model::kNoNode;
     for (const Leg& leg : legs) {
         Step step;
         step.instruction = heading ? turn(leg.heading - *heading) : "";
-        const Node* landmark = landmarkAt(nodes, footing, leg.to, goal.id, namedLast);
+        const Node* landmark = landmarkAt(nodes, footing, leg.to, {goal.id, startThing, namedLast});
         namedLast = landmark ? landmark->id : model::kNoNode;
-        step.instruction += fmt::format("Walk {}{}.", howFar(leg.length),
-                                        landmark ? " toward the " + landmark->category : std::string());
+        step.instruction +=
+            fmt::format("Walk {}{}.", howFar(leg.length), landmark ? " toward " + landmarkWords(*landmark) : "");
         if (landmark) step.landmark = landmark->id;
         step.at = leg.to;
         step.distance = leg.length;
