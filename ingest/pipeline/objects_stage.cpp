@@ -168,6 +168,36 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
     return widestAtTop ? underTop(std::move(kept), surface, high) : kept;
 }
 
+namespace {
+
+// With depth, a thing of a kind that always stands on the floor (those with a typical height: a fridge, a
+// bed, a chair, a table) whose box hangs in the air with nothing under it is something else a detector gave
+// that name: ScanNet's bathroom had a 13 cm deep shelf 0.78 m up on the wall stored as a "fridge". Kinds that
+// also hang or stand on counters (cabinets, shelves, ovens) are left to the plausibility warning.
+void renameFloating(model::SceneData& scene, StageProgress& progress) {
+    std::vector<const model::Node*> things;
+    for (const auto& n : scene.nodes)
+        if (n.kind == NodeKind::Object && n.geometry == GeometryKind::Box) things.push_back(&n);
+    std::vector<model::Node*> floating;
+    for (auto& n : scene.nodes)
+        if (n.kind == NodeKind::Object && typicalHeight(n.category) && floatsOverNothing(n, things))
+            floating.push_back(&n);
+    for (model::Node* n : floating) {
+        progress.note(
+            fmt::format("a {:.2f} x {:.2f} x {:.2f} m thing detected as '{}' hangs {:.2f} m above the floor "
+                        "with nothing under it, where things of the kind stand on the floor: stored as "
+                        "'object' with detected_as = {}",
+                        n->box.size.x, n->box.size.y, n->box.size.z, n->category, model::bottom(n->box), n->category));
+        n->attributes.push_back({"detected_as", n->category});
+        std::sort(n->attributes.begin(), n->attributes.end(),
+                  [](const auto& a, const auto& b) { return a.name < b.name; });
+        n->category = "object";
+        n->confidence *= 0.5f;
+    }
+}
+
+}  // namespace
+
 std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
     std::vector<TrackedNode> made;
     const std::size_t steps = this->steps();
@@ -266,6 +296,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         made.push_back({node.id, std::move(track.views)});
     }
     finder.addStructureObjects(aligned, walls, scene, progress);
+    if (framesHaveDepth(capture) && aligned.alignment.floorFound) renameFloating(scene, progress);
     return made;
 }
 

@@ -279,6 +279,11 @@ const model::Node* restingOn(const model::Node& n, const std::vector<const model
 
 }  // namespace
 
+bool floatsOverNothing(const model::Node& n, const std::vector<const model::Node*>& things) {
+    // By the stored name: a thing stored as 'object' (its detector's name kept as a guess) claims no support.
+    return usualSupport(n.category) == Support::Floor && model::bottom(n.box) > kFloating && !restingOn(n, things);
+}
+
 std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
     std::vector<const model::Node*> things, walls;
     std::vector<model::Vec3> cameras;
@@ -308,11 +313,10 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
                 fmt::format("{} ({}) is {:.0f} cm thin, no {} is{}", named(n), measures(n.box), 100 * thinnest,
                             sizedName(n), under ? fmt::format(": a piece of {}'s top it lies on", named(*under)) : ""));
         }
-        const double bottom = n.box.center.z - n.box.size.z / 2;
-        if (floor && usualSupport(sizedName(n)) == Support::Floor && bottom > kFloating && !restingOn(n, things))
+        if (floor && floatsOverNothing(n, things))
             flag(i, "floating",
                  fmt::format("{} ({}) stands on floors, but its bottom is {:.2f} m up with nothing under it", named(n),
-                             measures(n.box), bottom));
+                             measures(n.box), model::bottom(n.box)));
     }
     // Behind a wall: the side of its plane away from the cameras (or from the things' middle).
     model::Vec3 inside{0, 0, 0};

@@ -76,6 +76,10 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
 // touch and together are the size of one).
 std::vector<ObjectFinding> objectFindings(const model::SceneData& scene);
 
+// Whether `n`, of a kind that stands on floors, has its bottom in the air (more than 0.3 m up) with no box of
+// `things` under it: objectFindings' "floating".
+bool floatsOverNothing(const model::Node& n, const std::vector<const model::Node*>& things);
+
 // How a thing's box was measured: from depth (or a layout), as a hull carved without depth whose top is held
 // to where its surfaces were seen (ObjectTrack::surface), or as a hull carved from boxes alone (placed by rays:
 // no surface point), whose top nothing held.
