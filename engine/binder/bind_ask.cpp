@@ -116,6 +116,8 @@ void Binder::bindStatement(const ast::AskStmt& ask, BoundStatement& out) {
     const ask::Translator& builtIn = ask::ruleTranslator();
     const ask::Translator& translator = ctx_.session.askTranslator ? *ctx_.session.askTranslator : builtIn;
     ask::Question question = questionAbout(ask.question, snap);
+    // Across every scene (USE SCENE '*') there is no one room to sum up.
+    if (ctx_.session.allScenes) question.sceneRoot = model::kNoNode;
     question.sceneCount = ctx_.txn.scenes().size();
     question.grammar = grammarSummary();
     BoundAsk bound;

@@ -318,6 +318,9 @@ TEST_CASE("ASK 'describe the room' sums the scene up: floor, walls, openings and
         at = end + 2;
     }
     CHECK(kinds > 10);
+    // Across every scene there is no one room to sum up: nothing runs.
+    run(*engine, "USE SCENE '*'");
+    CHECK_THAT(run(*engine, "ASK 'describe the room'").message, Catch::Contains("(not run)"));
 }
 
 TEST_CASE("ASK reads VSI-Bench's appearance order from the frame that first saw each thing", "[ask]") {
