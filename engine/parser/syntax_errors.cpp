@@ -1,6 +1,8 @@
 #include "engine/parser/syntax_errors.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -286,6 +288,19 @@ Error syntaxError(const Source& source, const StatementSlice& slice, std::size_t
 
     // The first word of a statement.
     if (offending && std::find(fitting.begin(), fitting.end(), SmqlLexer::FIND) != fitting.end()) {
+        // A question in English typed as it is: ASK takes it ("where is the bed?").
+        static const std::set<std::string, std::less<>> kQuestionWords{
+            "where", "what", "what's", "whats", "how",  "which", "who",  "is",   "are",      "can",
+            "could", "does", "do",     "tell",  "take", "guide", "list", "give", "navigate", "please"};
+        if (kQuestionWords.count(lowerCase(offending->getText()))) {
+            std::string question =
+                source.textBetween(*tokens[slice.begin], *tokens[std::max(slice.begin + 1, slice.end) - 1]);
+            while (!question.empty() && std::isspace(static_cast<unsigned char>(question.back()))) question.pop_back();
+            std::string quotedQuestion;
+            for (char c : question) quotedQuestion += c == '\'' ? std::string("''") : std::string(1, c);
+            return Error(ErrorKind::Syntax, fmt::format("{} does not start a statement", quoted(*offending)), where,
+                         fmt::format("to ask in English, write ASK '{}'", quotedQuestion));
+        }
         return Error(ErrorKind::Syntax, fmt::format("{} does not start a statement", quoted(*offending)), where,
                      suggestion.empty() ? "a statement starts with " + commandList()
                                         : fmt::format("did you mean {}?", suggestion));

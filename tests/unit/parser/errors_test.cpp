@@ -53,6 +53,11 @@ TEST_CASE("a misspelt statement keyword", "[parser][errors]") {
     CHECK(unknown.hint() ==
           "a statement starts with FIND, COUNT, RELATE, DESCRIBE, SHOW, USE, SET, ASK, CHECK, DROP, RENAME, GUIDE or "
           "EXPLAIN");
+
+    // A question typed in English as it is: the hint writes the ASK that takes it, quotes doubled.
+    CHECK(errorOf("where is the bed?").hint() == "to ask in English, write ASK 'where is the bed?'");
+    CHECK(errorOf("how many chairs are there?").hint() == "to ask in English, write ASK 'how many chairs are there?'");
+    CHECK(errorOf("what's on the desk?").hint() == "to ask in English, write ASK 'what''s on the desk?'");
 }
 
 TEST_CASE("an error on line 2 of a script", "[parser][errors][locations]") {
