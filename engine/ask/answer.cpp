@@ -615,7 +615,7 @@ std::string route(const Translation& t, const ResultSet& rs) {
 }
 
 // DESCRIBE's summing up of a place (catalog::describePlace's fields): "scene0000_00: a floor of 7.35 x 7.28 m
-// (53.5 m²), 4 walls, no door or window found; 29 things: 6 objects, 5 chairs, ..., a bed, a desk".
+// (53.5 m²), 4 walls, no door or window found; 29 things: 5 chairs, ..., a bed, a desk and 6 other things".
 std::string place(const std::string& name, const std::map<std::string, std::string>& fields) {
     auto field = [&](const char* key) {
         auto it = fields.find(key);

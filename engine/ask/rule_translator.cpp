@@ -652,7 +652,6 @@ private:
         return true;
     }
 
-    // How many chairs are near the table? How many cushions do the sofas have?
     // "how many tables and chairs are there?": each kind counted, the rows' categories tallied by the answer.
     // `link` joins the kinds: "and", or "than" when two are compared ("more chairs than tables").
     bool countKinds(Cursor& c, PhraseParser& p, Phrase first, std::initializer_list<std::string_view> filler,
@@ -688,6 +687,7 @@ private:
         return true;
     }
 
+    // How many chairs are near the table? How many cushions do the sofas have?
     bool count(Cursor& c, PhraseParser& p, Translation& out) {
         // "are there more chairs than tables?": both kinds counted, the answer compares them.
         if (c.accept({"are|is", "there", "more|fewer|less"})) {

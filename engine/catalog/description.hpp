@@ -26,7 +26,7 @@ void describeNode(ResultSet& rows, const model::Node& node, std::string_view pat
                   const std::vector<const model::Node*>& children, const std::vector<EvidenceInfo>& evidence);
 
 // Appends the rows that sum up a place (a scene's own node) from the nodes in it: its floor's size, how many
-// walls, its doors and windows, the things in it by kind ("29: chair 5, table 3, bed 1") and the camera frames.
+// walls, its doors and windows, and the things in it by kind ("29: chair 5, table 3, bed 1").
 void describePlace(ResultSet& rows, const model::Node& place, const std::vector<const model::Node*>& within);
 
 }  // namespace smql::catalog

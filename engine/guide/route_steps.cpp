@@ -62,18 +62,21 @@ double footprintGap(const model::Box& box, Point p) {
 // What no model named is stored as "object": a landmark only where no named thing is near.
 bool unnamed(const Node& n) { return n.category == "object"; }
 
-// The landmark nearest the end of a leg (within 1.5 m of it), none of `skipped` (the goal, the thing the walk
+// A landmark is within this of the end of the leg it names (metres).
+constexpr double kLandmarkReach = 1.5;
+
+// The landmark nearest the end of a leg (within kLandmarkReach of it), none of `skipped` (the goal, the thing the walk
 // starts beside, the one named last); a thing with a name before one without ("toward the sofa", not "toward
 // the object" beside it).
 const Node* landmarkAt(const std::vector<Node>& nodes, const Footing& footing, Point p,
                        std::initializer_list<model::NodeId> skipped) {
     const Node* best = nullptr;
-    double bestGap = 1.5;
+    double bestGap = kLandmarkReach;
     for (const Node& n : nodes) {
         if (std::find(skipped.begin(), skipped.end(), n.id) != skipped.end() || !landmarkLike(n, footing)) continue;
         double gap = footprintGap(n.box, p);
         const bool better = !best || (unnamed(*best) && !unnamed(n)) || (unnamed(*best) == unnamed(n) && gap < bestGap);
-        if (gap < 1.5 && better) {
+        if (gap < kLandmarkReach && better) {
             bestGap = gap;
             best = &n;
         }
