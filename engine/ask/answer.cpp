@@ -629,13 +629,19 @@ std::string place(const std::string& name, const std::map<std::string, std::stri
                             : fmt::format("a floor of {} ({})", floor.substr(0, comma), floor.substr(comma + 2)));
     }
     const std::string walls = field("walls");
-    if (!walls.empty()) parts.push_back(walls == "1" ? "1 wall" : walls + " walls");
+    if (!walls.empty()) parts.push_back(walls == "0" ? "no wall found" : walls == "1" ? "1 wall" : walls + " walls");
     const std::string doors = field("doors"), windows = field("windows");
+    // "3 doors (door#12, door#13, door#14)"
+    auto openings = [](const std::string& what, const std::string& labels) {
+        if (labels == "none found") return fmt::format("no {} found", what);
+        const auto n = 1 + std::count(labels.begin(), labels.end(), ',');
+        return n == 1 ? fmt::format("a {} ({})", what, labels) : fmt::format("{} {}s ({})", n, what, labels);
+    };
     if (doors == "none found" && windows == "none found")
         parts.push_back("no door or window found");
     else
         for (const auto& [what, labels] : {std::pair{"door", doors}, std::pair{"window", windows}})
-            parts.push_back(labels == "none found" ? fmt::format("no {} found", what) : labels);
+            parts.push_back(openings(what, labels));
     std::string out = name + ": " + listed(parts, ", ", parts.size());
     // "29: chair 5, table 3, bed 1"; the things no model named ("object") come last, as other things.
     const std::string things = field("things");
