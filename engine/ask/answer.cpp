@@ -133,7 +133,9 @@ std::string relational(const Translation& t, const ResultSet& rs) {
     }
     if (n == 1) return fmt::format("1 {} is {}: {}", noun, t.condition, listed(labels(rs)));
     std::string nouns = t.subject == "thing" && shared ? pluralOf(*shared) : t.subjectPlural;
-    return fmt::format("{} {} are {}: {}", n, nouns, t.condition, listed(labels(rs)));
+    // Things on one side of a reference come nearest it first (the translator orders them).
+    const std::string order = t.measure == "distance" ? ", nearest first" : "";
+    return fmt::format("{} {} are {}{}: {}", n, nouns, t.condition, order, listed(labels(rs)));
 }
 
 // The word asked for when the scene holds none of it but holds the kind it is ("desk" -> table, WordNet's hypernym):

@@ -754,6 +754,19 @@ private:
         return true;
     }
 
+    // "what is to the left of the sofa?": everything on that side of the room holds left_of, and a person means
+    // what stands beside it, so the things found come nearest the sofa first.
+    // The answer says so (Translation::measure "distance").
+    static void nearestFirstBeside(Phrase& thing, Translation& out) {
+        if (thing.order || thing.conditions.size() != 1) return;
+        const Condition& side = thing.conditions.front();
+        if (side.negated || side.args.size() != 1 ||
+            !isOneOf(side.predicate, {"left_of", "right_of", "in_front_of", "behind"}))
+            return;
+        thing.order = Order{"distance", false, {side.args.front()}, ""};
+        out.measure = "distance";
+    }
+
     // "is there something red?", "find something red": a thing of the colour that ends the question.
     static void takeTrailingColour(Cursor& c, Phrase& thing) {
         if (thing.kind && !thing.colour && c.i + 1 == c.w.size())
@@ -959,6 +972,7 @@ private:
                 Phrase thing = anyThing("object");
                 p.posts(c.w, c.i, thing);
                 if (!c.accept({"is|are", "what"}) && !c.accept({"what", "is|are"})) return false;
+                nearestFirstBeside(thing, out);
                 out.kind = QuestionKind::Relational;
                 out.smql = findText(thing, false);
                 describeSubject(thing, out);
@@ -1270,6 +1284,7 @@ private:
         } else {
             return false;
         }
+        nearestFirstBeside(thing, out);
         out.kind = QuestionKind::Relational;
         out.smql = findText(thing, false);
         describeSubject(thing, out);
