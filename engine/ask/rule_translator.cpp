@@ -1250,13 +1250,15 @@ private:
             std::size_t before = thing.conditions.size();
             const std::size_t postsAt = c.i;
             p.posts(c.w, c.i, thing);
-            // "what is in the room?", "what objects are in here?": the whole scene, read without a
-            // condition (not "in the corner", a part of the room the memory keeps nothing of).
+            // "what is in the room?", "what objects are in here?", "what is in the kitchen?" (the scene a
+            // kitchen): the whole scene, read without a condition (not "in the corner", a part of the room the
+            // memory keeps nothing of).
             auto namesScene = [&](std::size_t from) {
                 if (from >= c.w.size() || c.w[from] != "in") return false;
                 std::size_t k = from + 1;
                 while (k < c.w.size() && isOneOf(c.w[k], {"the", "this", "our", "my"})) ++k;
-                return k + 1 == c.w.size() && namesWholeScene(c.w[k]);
+                const std::size_t place = p.scenePlaceAt(c.w, k);
+                return place > 0 && k + place == c.w.size();
             };
             const bool wholeScene = thereAlone || colourAlone || (c.done() && namesScene(postsAt));
             if (thing.conditions.size() == before && thing.excluded.empty() && !wholeScene) return false;
