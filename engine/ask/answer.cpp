@@ -630,6 +630,9 @@ std::string place(const std::string& name, const std::map<std::string, std::stri
                             ? "a floor of " + floor
                             : fmt::format("a floor of {} ({})", floor.substr(0, comma), floor.substr(comma + 2)));
     }
+    // "2.69 m, floor to ceiling"
+    if (const std::string height = field("height"); !height.empty())
+        parts.push_back(height.substr(0, height.find(',')) + " high");
     const std::string walls = field("walls");
     if (!walls.empty()) parts.push_back(walls == "0" ? "no wall found" : walls == "1" ? "1 wall" : walls + " walls");
     const std::string doors = field("doors"), windows = field("windows");
@@ -696,7 +699,7 @@ std::string statement(const Translation& t, const ResultSet& rs) {
                 category = text(row[value]);
             else if (f == "kind" && text(row[value]) == "scene")
                 placeFields[f] = "scene";
-            else if (!placeFields.empty() && isOneOf(f, {"floor", "walls", "doors", "windows", "things"}))
+            else if (!placeFields.empty() && isOneOf(f, {"floor", "height", "walls", "doors", "windows", "things"}))
                 placeFields[f] = text(row[value]);
             else if (isOneOf(f, {"dimensions", "color", "material", "shape", "text", "label", "state"}))
                 looks += fmt::format("{} {} {}", looks.empty() ? ":" : ",", f, text(row[value]));

@@ -53,7 +53,7 @@ void describePlace(ResultSet& rows, const model::Node& place, const std::vector<
     auto add = [&](std::string_view name, std::string value) {
         rows.rows.push_back({id, std::string(name), std::move(value)});
     };
-    const model::Node* floor = nullptr;
+    const model::Node *floor = nullptr, *ceiling = nullptr;
     std::size_t walls = 0;
     std::vector<std::string> doors, windows;
     std::map<std::string, std::size_t> kinds;
@@ -63,6 +63,9 @@ void describePlace(ResultSet& rows, const model::Node& place, const std::vector<
         if (n->kind == model::NodeKind::Anchor) {
             if (n->category == "floor" && (!floor || model::footprintArea(n->box) > model::footprintArea(floor->box)))
                 floor = n;
+            if (n->category == "ceiling" &&
+                (!ceiling || model::footprintArea(n->box) > model::footprintArea(ceiling->box)))
+                ceiling = n;
             walls += n->category == relations::kWall;
             if (n->category == "door") doors.push_back(SceneSnapshot::label(*n));
             if (n->category == "window") windows.push_back(SceneSnapshot::label(*n));
@@ -74,6 +77,8 @@ void describePlace(ResultSet& rows, const model::Node& place, const std::vector<
     if (floor)
         add("floor", fmt::format("{:.2f} x {:.2f} m, {:.1f} m²", floor->box.size.x, floor->box.size.y,
                                  model::footprintArea(floor->box)));
+    if (floor && ceiling)
+        add("height", fmt::format("{:.2f} m, floor to ceiling", model::bottom(ceiling->box) - model::top(floor->box)));
     add("walls", std::to_string(walls));
     auto listedOrNone = [](const std::vector<std::string>& labels) {
         std::string out;

@@ -25,8 +25,9 @@ struct EvidenceInfo {
 void describeNode(ResultSet& rows, const model::Node& node, std::string_view path,
                   const std::vector<const model::Node*>& children, const std::vector<EvidenceInfo>& evidence);
 
-// Appends the rows that sum up a place (a scene's own node) from the nodes in it: its floor's size, how many
-// walls, its doors and windows, and the things in it by kind ("29: chair 5, table 3, bed 1").
+// Appends the rows that sum up a place (a scene's own node) from the nodes in it: its floor's size, its height
+// (floor to ceiling, where both are stored), how many walls, its doors and windows, and the things in it by kind
+// ("29: chair 5, table 3, bed 1").
 void describePlace(ResultSet& rows, const model::Node& place, const std::vector<const model::Node*>& within);
 
 }  // namespace smql::catalog

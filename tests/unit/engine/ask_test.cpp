@@ -318,6 +318,17 @@ TEST_CASE("ASK 'describe the room' sums the scene up: floor, walls, openings and
         at = end + 2;
     }
     CHECK(kinds > 10);
+    // The height is the stored ceiling's bottom over the floor's top.
+    std::string height;
+    for (const auto& row : root.rows)
+        if (std::get<std::string>(row[1]) == "height") height = std::get<std::string>(row[2]);
+    auto z = [&](const char* what, const char* measure) {
+        return std::get<double>(run(*engine, fmt::format("FIND {} RETURN {}", what, measure)).rows.at(0).at(0));
+    };
+    const double ceilingBottom = z("ceiling", "z") - z("ceiling", "height") / 2;
+    const double floorTop = z("floor", "z") + z("floor", "height") / 2;
+    CHECK(height == fmt::format("{:.2f} m, floor to ceiling", ceilingBottom - floorTop));
+    CHECK_THAT(root.message, Catch::Contains(fmt::format("{:.2f} m high", ceilingBottom - floorTop)));
     // Across every scene there is no one room to sum up: nothing runs.
     run(*engine, "USE SCENE '*'");
     CHECK_THAT(run(*engine, "ASK 'describe the room'").message, Catch::Contains("(not run)"));
