@@ -304,30 +304,28 @@ double nearScore(const PredicateInputs& in) {
     return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
 }
 
-// Whether something under `a` carries it: a top within on.max_gap below a's bottom (or a little into it) under
-// a's centre, the floor's included.
-bool carriedFromBelow(const Node& a, const Thresholds& t, const Obstacles& obstacles) {
-    const double bottom = model::bottom(a.box);
-    model::Aabb under{{a.box.center.x, a.box.center.y, bottom - t.onMaxGap},
-                      {a.box.center.x, a.box.center.y, bottom + t.aboveTolerance}};
+// Whether `a` is on something (on's own rule, the floor included): the nodes whose boxes reach the band just under
+// a's bottom are the ones on can hold for.
+bool restsOnSomething(const PredicateInputs& in) {
+    model::Aabb under = in.obstacles.bounds(in.a);
+    under.max.z = under.min.z + in.t.aboveTolerance;
+    under.min.z -= in.t.onMaxGap;
     std::vector<const Node*> below;
-    obstacles.within(under, below);
+    in.obstacles.within(under, below);
     return std::any_of(below.begin(), below.end(), [&](const Node* n) {
-        if (n->id == a.id || isVerticalPlane(*n)) return false;
-        const double top = model::top(n->box);
-        return top >= bottom - t.onMaxGap && top <= bottom + t.aboveTolerance &&
-               model::footprintContains(n->box, {a.box.center.x, a.box.center.y}, 0);
+        return n->id != in.a.id && !isVerticalPlane(*n) &&
+               evaluate(Predicate::On, in.a, *n, in.t, in.frame, in.obstacles) > 0;
     });
 }
 
 double attachedScore(const PredicateInputs& in) {
     if (!isVerticalPlane(in.a) && !isVerticalPlane(in.b) && !sameCategory(in.b.category, "pillar")) return 0.0;
     // What a wall holds hangs there: a sofa pushed against the wall stands on the floor beside it (its bottom at
-    // the wall's foot), a microwave on a counter against it rests on the counter.
-    // A flat thing upright against the wall (a picture just over a sofa's back) hangs whatever is under it.
+    // the wall's foot), a microwave on a counter against it is on the counter. A flat thing upright against the
+    // wall (a picture just over a sofa's back) hangs whatever is under it (on asks the wall first: wallHolding).
     if (!isVerticalPlane(in.a) && sameCategory(in.b.category, kWall) &&
         (model::bottom(in.a.box) < model::bottom(in.b.box) + in.t.attachedMinRise ||
-         (!hungShape(in.a) && carriedFromBelow(in.a, in.t, in.obstacles))))
+         (!hungShape(in.a) && restsOnSomething(in))))
         return 0.0;
     double d = model::distance(in.a.box, in.b.box);
     double limit = in.t.attachedMaxGap;

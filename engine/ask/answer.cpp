@@ -133,8 +133,9 @@ std::string relational(const Translation& t, const ResultSet& rs) {
     }
     if (n == 1) return fmt::format("1 {} is {}: {}", noun, t.condition, listed(labels(rs)));
     std::string nouns = t.subject == "thing" && shared ? pluralOf(*shared) : t.subjectPlural;
-    // Things on one side of a reference come nearest it first (the translator orders them).
-    const std::string order = t.measure == "distance" ? ", nearest first" : "";
+    // Things on one side of a reference come nearest it first (the translator orders them: FIND then returns
+    // each row's distance).
+    const std::string order = rs.columnIndex("distance") >= 0 ? ", nearest first" : "";
     return fmt::format("{} {} are {}{}: {}", n, nouns, t.condition, order, listed(labels(rs)));
 }
 

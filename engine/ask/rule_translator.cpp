@@ -756,15 +756,13 @@ private:
 
     // "what is to the left of the sofa?": everything on that side of the room holds left_of, and a person means
     // what stands beside it, so the things found come nearest the sofa first.
-    // The answer says so (Translation::measure "distance").
-    static void nearestFirstBeside(Phrase& thing, Translation& out) {
+    static void nearestFirstBeside(Phrase& thing) {
         if (thing.order || thing.conditions.size() != 1) return;
         const Condition& side = thing.conditions.front();
         if (side.negated || side.args.size() != 1 ||
             !isOneOf(side.predicate, {"left_of", "right_of", "in_front_of", "behind"}))
             return;
         thing.order = Order{"distance", false, {side.args.front()}, ""};
-        out.measure = "distance";
     }
 
     // "is there something red?", "find something red": a thing of the colour that ends the question.
@@ -972,7 +970,7 @@ private:
                 Phrase thing = anyThing("object");
                 p.posts(c.w, c.i, thing);
                 if (!c.accept({"is|are", "what"}) && !c.accept({"what", "is|are"})) return false;
-                nearestFirstBeside(thing, out);
+                nearestFirstBeside(thing);
                 out.kind = QuestionKind::Relational;
                 out.smql = findText(thing, false);
                 describeSubject(thing, out);
@@ -1286,7 +1284,7 @@ private:
         } else {
             return false;
         }
-        nearestFirstBeside(thing, out);
+        nearestFirstBeside(thing);
         out.kind = QuestionKind::Relational;
         out.smql = findText(thing, false);
         describeSubject(thing, out);

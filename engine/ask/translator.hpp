@@ -86,12 +86,14 @@ struct Translation {
     std::string predicate;      // YesNo: the relation the answer checks ("left_of")
     std::string object;         // YesNo: what it is checked against ("the window")
 
-    // Size: the measure asked ("height", "longest", "size"); Attribute: the attribute ("color").
+    // Size: the measure asked ("height", "longest", "size"); Attribute: the attribute ("color"); Count of two
+    // kinds compared: "more" or "fewer".
     std::string measure;
     std::string unit = "m";  // the unit the question asks the answer in: m, cm
     std::size_t pick = 1;    // Superlative: the row that answers ("the second largest": 2)
     // Direction: the categories of the thing stood by, the thing faced and the thing asked about,
-    // and the answer's choices ("left", "right", "back"; or the four quadrants).
+    // and the answer's choices ("left", "right", "back"; or the four quadrants). Count of several kinds
+    // ("tables and chairs"): each kind's categories, and its noun as asked.
     std::vector<std::vector<std::string>> roles;
     std::vector<std::string> choices;
     // Direction after a situation (situation.hpp): quarter turns clockwise from the person's heading
