@@ -134,6 +134,13 @@ Thing withPart(const Thing& whole, const Thing& part) {
     return both;
 }
 
+// The height of the top a thing that holds things shows (seenTop covering topCover of its footprint or more).
+std::optional<double> topShown(const Thing& thing, const FusionOptions& options) {
+    if (!holdsThings(thing.category) || hasUprightEnds(thing.category)) return std::nullopt;
+    const SeenTop top = seenTop(thing.points.points, thing.box, options);
+    return top.cover >= options.topCover ? std::optional(top.height) : std::nullopt;
+}
+
 // Pieces the map kept apart (pieceOf) merged, the smaller into the larger, when together they still suit the
 // name their votes give (a glimpse's few votes barely count against the larger's). Returns how many were merged.
 std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options) {
@@ -142,8 +149,9 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
         changed = false;
         std::stable_sort(things.begin(), things.end(),
                          [](const Thing& a, const Thing& b) { return model::volume(a.box) > model::volume(b.box); });
-        std::vector<std::size_t> frames;
-        for (const auto& thing : things) frames.push_back(framesSeen(thing));
+        std::vector<SeenBox> seen;
+        for (const auto& thing : things)
+            seen.push_back({thing.box, thing.category, framesSeen(thing), topShown(thing, options)});
         for (std::size_t large = 0; large < things.size() && !changed; ++large)
             for (std::size_t small = large + 1; small < things.size(); ++small) {
                 Thing& a = things[small];
@@ -152,8 +160,7 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
                 const double touching = model::fractionInside(a.box, b.box) >= options.glimpseInside
                                             ? shareOfPointsNear(a.points, b.points, options.touchReach)
                                             : 0.0;
-                if (!pieceOf({a.box, a.category, frames[small]}, {b.box, b.category, frames[large]}, touching, options))
-                    continue;
+                if (!pieceOf(seen[small], seen[large], touching, options)) continue;
                 Thing both = withPart(b, a);
                 for (const auto& [label, votes] : a.tally) both.tally[label] += votes;
                 fit(both);
@@ -299,7 +306,8 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
     const model::Box &a = small.box, &b = large.box;
     const bool sameName = small.category == large.category;
     const double inside = model::fractionInside(a, b);
-    if (sameName && inside >= options.storedTwiceShare) return true;
+    const bool twoTops = small.top && large.top && std::abs(*small.top - *large.top) > options.oneTopSpread;
+    if (sameName && inside >= options.storedTwiceShare && !twoTops) return true;
     if (inside >= options.namedTwiceShare && model::fractionInside(b, a) >= options.namedTwiceShare) return true;
     if (inside >= options.glimpseInside && touching >= options.glimpseTouching && !holdsThings(large.category) &&
         usualSupport(small.category) != Support::Surface &&
@@ -409,6 +417,16 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
             if (std::string seats = seatsAround(box, things, options); !seats.empty())
                 names[t] = {"table", "is a low table among seats (" + seats + ")"};
         } else if (things[t].category == "table") {
+            const bool besideBed = std::any_of(things.begin(), things.end(), [&](const SeenBox& other) {
+                return other.category == "bed" && model::horizontalGap(box, other.box) <= options.besideBed;
+            });
+            if (besideBed && std::max(box.size.x, box.size.y) <= options.nightstandSide &&
+                model::top(box) <= options.nightstandTop) {
+                names[t] = {"nightstand", fmt::format("stands beside a bed (within {:.1f} m), small and low, as a "
+                                                      "nightstand does",
+                                                      options.besideBed)};
+                continue;
+            }
             if (shorter > options.deskDepth || model::top(box) < options.deskTopMin ||
                 !longSideAgainstWall(box, walls, options))
                 continue;
@@ -529,6 +547,12 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
         if (holdsThings(things[t].category) && !hasUprightEnds(things[t].category)) {
             tops[t] = seenTop(things[t].points.points, things[t].box, options_);
             made.lowered += lowerToTop(things[t].box, *tops[t], options_);
+        } else if (role(things[t].category) == Role::Basin) {
+            // A sink ends at its rim or counter too: what its views took in above it is what stands on the counter
+            // or the wall behind where the walls stage took none (a short wall beside a vanity, a backsplash). Its
+            // name is not doubted for a top not shown: a basin seen from the side shows its bowl, not its rim.
+            made.lowered +=
+                lowerToTop(things[t].box, seenTop(things[t].points.points, things[t].box, options_), options_);
         }
     std::vector<SeenBox> boxes;
     for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0});

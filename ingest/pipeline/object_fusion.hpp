@@ -32,6 +32,9 @@ struct FusionOptions {
     double restingGap = 0.1;         // m: ... unless another thing's top is this close under it
     double storedTwiceShare = 0.25;  // two things of one name, this share of the smaller's box inside the
                                      // larger's, together still of a size that suits it, are one thing stored twice
+    double oneTopSpread = 0.15;      // m: ... unless they hold things on tops seen further apart than this (a desk
+                                     // and the nightstand beside it): one top read twice lies within a band and
+                                     // a cell (topBand + topCell)
     double namedTwiceShare = 0.45;   // two things each with this share of its box inside the other's are one
                                      // place named twice (a side table seen as a "bed" and as a "table"); ...
     double glimpseInside = 0.6;      // ... and one with this share inside a larger one's, seen in at most
@@ -53,6 +56,9 @@ struct FusionOptions {
     double deskTopMin = 0.65;        // m: its top this high or higher, ...
     double againstWall = 0.2;        // m: a long side this close to a wall's plane, ...
     double chairAtDesk = 0.3;        // m: and one chair, no more, this close is a desk
+    double nightstandSide = 0.9;     // m: a table no longer than this (a bedside table's 0.4-0.6 m and the slack
+    double nightstandTop = 0.8;      // of boxes fused from views), its top no higher than this, ...
+    double besideBed = 0.3;          // m: this close to a bed is a nightstand
     double topCell = 0.05;           // m: a thing whose top holds things (a table) shows its top: the points of
     double topBand = 0.1;            // m: one band of heights this thick, in its box's upper half, cover ...
     double topCover = 0.1;           // ... this share of its footprint's cells or more (seenTop)
@@ -75,6 +81,7 @@ struct SeenBox {
     model::Box box;
     std::string category;
     std::size_t frames = 0;
+    std::optional<double> top;  // m: the height of the top its points show (seenTop), for a thing that holds things
 };
 
 // Whether `small` is a piece of the larger `large` that the instance map kept apart: stored twice, one place
@@ -102,6 +109,8 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
 //   low table (FusionOptions::lowTableSide, lowTableTopMin..Max), with places for two or more to sit within
 //   seatReach (a seat's places: its longest side over seatWidth, one at least): an ottoman or a trunk before a sofa
 //   or among chairs;
+// - a nightstand: a table no longer than nightstandSide, its top no higher than nightstandTop, within besideBed of a
+//   bed;
 // - a desk: a table no deeper than deskDepth, its top deskTopMin high or higher, a long side against a wall (within
 //   againstWall of its plane, parallel to it) and one chair, no more, within chairAtDesk: where one person works.
 // Returns, per thing, the name it is used under and why ("" and "" for the others).

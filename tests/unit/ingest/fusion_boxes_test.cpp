@@ -1,11 +1,11 @@
 // What object fusion decides from the things' boxes (object_fusion.hpp): pieces of one thing that the instance
 // map kept apart, against things that merely stand close (pieceOf), and things whose legs were hidden reaching
-// down to the floor (reachDownToFloor), names out of place (outOfPlace), low tables and desks named by their use
-// (namedByUse), tops shown or not (seenTop), and a sink's cabinet taken into the sink (takenIntoBasin). The boxes
-// and frame counts are those real
-// captures gave (ScanNet scene0000_00, an apartment: its corner sofa, the kitchen's bar table with its stools;
-// scene0113_00, a lounge: a side table named twice; SUN RGB-D 000002, a bedroom display whose floor a Kinect frame
-// barely showed), and their neighbours as rooms place them.
+// down to the floor (reachDownToFloor), names out of place (outOfPlace), low tables, nightstands and desks named by
+// their use (namedByUse), tops shown or not (seenTop), and a sink's cabinet taken into the sink (takenIntoBasin).
+// The boxes and frame counts are those real captures gave (ScanNet scene0000_00, an apartment: its corner sofa, the
+// kitchen's bar table with its stools, the desk and the nightstand beside it; scene0113_00, a lounge: a side table
+// named twice; SUN RGB-D 000002, a bedroom display whose floor a Kinect frame barely showed), and their neighbours
+// as rooms place them.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -74,6 +74,25 @@ TEST_CASE("pieces: a glimpse, a place named twice and a table's top are pieces; 
     const SeenBox chair = seen("chair", {3.27, 0.49, 0.48}, {0.52, 0.50, 0.96}, 0, 20);
     CHECK_FALSE(pieceOf(seen("chair", {3.79, 0.49, 0.48}, {0.52, 0.50, 0.96}, 0, 12), chair, 0.3));
     CHECK_FALSE(pieceOf(chair, seen("table", {3.42, -0.27, 0.51}, {1.89, 0.70, 1.02}, 1, 32), 0.2));
+}
+
+TEST_CASE("pieces: two tables whose tops lie at two heights are two tables, however their boxes overlap",
+          "[ingest][fusion]") {
+    // ScanNet scene0000_00: the desk (1.48 m, its top seen at 0.73 m) and the white nightstand beside it, between it
+    // and the bed, both called "table"; the nightstand's box, turned 60 degrees by the waste bin its views took in,
+    // has 28 % of itself inside the desk's. Merged, the desk was 1.94 m long (ScanNet's truth: 1.48 m).
+    SeenBox desk = seen("table", {3.18, -0.27, 0.48}, {1.48, 0.71, 0.95}, 0, 13);
+    SeenBox nightstand = seen("table", {4.01, -0.25, 0.40}, {0.88, 0.53, 0.79}, -60, 9);
+    REQUIRE(model::fractionInside(nightstand.box, desk.box) >= FusionOptions{}.storedTwiceShare);
+    desk.top = 0.73;
+    nightstand.top = 0.43;
+    CHECK_FALSE(pieceOf(nightstand, desk, 0.39));
+    // One top read twice lies within a band: the same boxes with tops 0.1 m apart are one table stored twice.
+    nightstand.top = 0.83;
+    CHECK(pieceOf(nightstand, desk, 0.39));
+    // TUM fr1/rpy: the far part of the desk, its top not seen (3 % of its footprint at one height), joins the desk.
+    nightstand.top.reset();
+    CHECK(pieceOf(nightstand, desk, 0.39));
 }
 
 TEST_CASE("floor reach: a bed seen from above stands on a floor the lowest thing reaches", "[ingest][fusion]") {
@@ -212,6 +231,37 @@ TEST_CASE("fusion frame by frame: the things so far after each frame, the map le
     CHECK(counts.views == 3);
     CHECK(counts.segmented == 3);
     CHECK(fusion.views().size() == 3);
+}
+
+TEST_CASE("a sink ends at its counter: the wall the walls stage did not take, seen above it, is not the sink",
+          "[ingest][fusion]") {
+    // ScanNet scene0448_01: the bathroom's vanity, its counter 0.78 m up, stands in a nook whose side wall (0.6 m
+    // long, seen only above the counter, so never a wall of its own) every view of the sink took in up to 1.47 m;
+    // the sink was stored 1.44 m tall. Views from two sides, the wall's sheet at the vanity's end in each.
+    const model::Vec3 vanity{1.04, 1.81, 0.39}, size{0.95, 0.51, 0.78};
+    auto withWall = [&](Observation view) {
+        for (double y = vanity.y - size.y / 2; y <= vanity.y + size.y / 2; y += 0.02)
+            for (double z = 0.80; z <= 1.47; z += 0.02) {
+                const auto i = static_cast<std::uint16_t>(view.region.size());
+                view.region.push_back({static_cast<float>(vanity.x - size.x / 2), static_cast<float>(y),
+                                       static_cast<float>(z), cv::Vec3b(200, 200, 190),
+                                       static_cast<std::uint16_t>(i % 500), static_cast<std::uint16_t>(i / 500)});
+            }
+        return view;
+    };
+    for (const char* name : {"sink", "chair"}) {
+        ObjectFusion fusion(Alignment{}, RoomSurfaces{true, std::nullopt, nullptr, std::nullopt});
+        fusion.addFrame({withWall(boxSeen(0, name, vanity, size, {1, 0, -0.5}))});
+        fusion.addFrame({withWall(boxSeen(1, name, vanity, size, {-1, 0, -0.5}))});
+        const auto things = fusion.things();
+        REQUIRE(things.size() == 1);
+        INFO(name);
+        // The sink's box ends at its counter; a thing of another kind keeps what its views hold.
+        if (std::string(name) == "sink")
+            CHECK(model::top(things[0].box) == Approx(0.78).margin(0.03));
+        else
+            CHECK(model::top(things[0].box) == Approx(1.47).margin(0.03));
+    }
 }
 
 TEST_CASE("named by use: a suitcase or a box as large as a low table among seats is a table", "[ingest][fusion]") {
@@ -402,4 +452,22 @@ TEST_CASE("named by use: a table against a wall with one chair at it is a desk",
     CHECK(namedByUse({table}, {wall})[0].category.empty());
     const SeenBox deep = seen("table", {3.40, -0.10, 0.47}, {1.94, 1.10, 0.93}, 0, 33);
     CHECK(namedByUse({deep, chair}, {wall})[0].category.empty());
+}
+
+TEST_CASE("named by use: a small low table beside a bed is a nightstand", "[ingest][fusion]") {
+    // ScanNet scene0000_00: the white nightstand between the desk and the bed, called "table" by every model (its
+    // box 0.88 m long with the waste bin beside it, lowered to the shelf its points show).
+    const SeenBox nightstand = seen("table", {4.01, -0.25, 0.21}, {0.88, 0.53, 0.43}, -60, 9);
+    const SeenBox bed = seen("bed", {5.00, 0.36, 0.56}, {1.95, 1.64, 1.13}, 0, 28);
+    auto uses = namedByUse({nightstand, bed}, {});
+    CHECK(uses[0].category == "nightstand");
+    CHECK(uses[0].why.find("bed") != std::string::npos);
+    CHECK(uses[1].category.empty());
+    // Away from the bed, or with no bed, or as long as a desk, or as high as a dining table, it stays a table.
+    CHECK(namedByUse({seen("table", {3.01, -0.25, 0.21}, {0.88, 0.53, 0.43}, -60, 9), bed}, {})[0].category.empty());
+    CHECK(namedByUse({nightstand}, {})[0].category.empty());
+    CHECK(namedByUse({seen("table", {3.80, -0.25, 0.21}, {1.40, 0.53, 0.43}, 0, 9), bed}, {})[0].category.empty());
+    CHECK(namedByUse({seen("table", {4.01, -0.25, 0.38}, {0.88, 0.53, 0.76}, -60, 9), bed}, {})[0].category ==
+          "nightstand");
+    CHECK(namedByUse({seen("table", {4.01, -0.25, 0.45}, {0.88, 0.53, 0.90}, -60, 9), bed}, {})[0].category.empty());
 }
