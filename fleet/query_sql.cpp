@@ -638,6 +638,8 @@ private:
                 return fmt::format("({0}.scene, {0}.id) IN ({1})", a, find(*ref.subquery, nullptr));
             case ast::Ref::Kind::Side:
                 return side(ref, a);
+            case ast::Ref::Kind::Here:
+                throw notYet("distances to HERE (each scene's viewpoint)");
             case ast::Ref::Kind::Param:
                 break;
         }

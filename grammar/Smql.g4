@@ -50,14 +50,16 @@ floorPoint   : LPAREN MINUS? NUMBER COMMA MINUS? NUMBER RPAREN ;
 
 viewClause    : VIEW FROM ref ( FACING ref )? ;
 whereClause   : WHERE orExpr ;
-nearestClause : NEAREST TO ref ;
+nearestClause : NEAREST TO distanceRef ;
 // `SIMILAR TO 'soft thing to sit on'`: rows ranked by the similarity of their text (docs/similarity.md).
 similarClause : SIMILAR TO ( STRING | PARAM ) ;
 orderClause   : ORDER BY measure ( ASC | DESC )? ;
 // `RETURN id, color, center`: the columns FIND answers with, in that order.
 returnClause  : RETURN name ( COMMA name )* ;
 // What ORDER BY and comparisons measure: the distance to a reference, or an attribute (`height`).
-measure       : DISTANCE LPAREN ref RPAREN | name ;
+measure       : DISTANCE LPAREN distanceRef RPAREN | name ;
+// What a distance is measured to: nodes, or HERE, where the viewer stands (the statement's viewpoint).
+distanceRef   : HERE | ref ;
 limitClause   : LIMIT ( MINUS? NUMBER | PARAM ) ;
 // `AS OF '2026-11-20'`: the scene as the memory held it then (docs/history.md).
 asOfClause    : AS OF STRING ;

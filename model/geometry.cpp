@@ -154,4 +154,13 @@ bool footprintContains(const Box& box, Vec2 point, double margin) {
     return std::abs(lx) <= box.size.x / 2 + margin && std::abs(ly) <= box.size.y / 2 + margin;
 }
 
+double footprintGap(const Box& box, Vec2 point) {
+    if (footprintContains(box, point)) return 0.0;
+    const auto corners = footprint(box);
+    double best = std::numeric_limits<double>::max();
+    for (int i = 0; i < 4; ++i)
+        best = std::min(best, pointSegmentSquaredDistance(point, corners[i], corners[(i + 1) % 4]));
+    return std::sqrt(best);
+}
+
 }  // namespace smql::model

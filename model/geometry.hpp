@@ -43,5 +43,7 @@ double centerDistance(const Box& a, const Box& b);
 double fractionInside(const Box& a, const Box& b);
 // Is the point inside the box's footprint (grown by `margin` metres on each side)?
 bool footprintContains(const Box& box, Vec2 point, double margin = 0);
+// Shortest distance in the floor plane from the point to the box's footprint; 0 inside it.
+double footprintGap(const Box& box, Vec2 point);
 
 }  // namespace smql::model

@@ -233,19 +233,23 @@ std::string length(double metres, const std::string& unit) { return formatLength
 std::string distance(const Translation& t, const ResultSet& rs) {
     int d = rs.columnIndex("distance");
     auto names = labels(rs);
+    // Measured from where the person stands (distance(HERE): the statement's viewpoint), or from a thing.
+    const bool fromYou = t.smql.find("distance(HERE)") != std::string::npos;
+    const std::string from = fromYou ? "you" : "the " + t.object;
     std::vector<std::string> parts;
     for (std::size_t r = 0; r < rs.rows.size() && d >= 0; ++r)
         if (auto metres = number(rs.rows[r][d]); metres && std::isfinite(*metres))
-            parts.push_back(fmt::format("{} is {} from the {}", names[r], length(*metres, t.unit), t.object));
+            parts.push_back(fmt::format("{} is {} from {}", names[r], length(*metres, t.unit), from));
     if (parts.empty()) {
         std::string absent = absentWords(t);
         return absent.empty() ? fmt::format("There is no {} or no {} to measure between.", t.subject, t.object)
                               : fmt::format("There is no {} here.", absent);
     }
-    std::string how = " (measured between the closest points of their boxes)";
+    std::string how = fromYou ? " (along the floor, from where you stand: the scene's viewpoint)"
+                              : " (measured between the closest points of their boxes)";
     if (parts.size() == 1)
-        return fmt::format("The {} is {} from the {}{}: {}.", t.subject, length(*number(rs.rows.front()[d]), t.unit),
-                           t.object, how, parts.front());
+        return fmt::format("The {} is {} from {}{}: {}.", t.subject, length(*number(rs.rows.front()[d]), t.unit), from,
+                           how, parts.front());
     return fmt::format("{} {}, nearest first{}: {}.", parts.size(), t.subjectPlural, how, listed(parts, "; "));
 }
 

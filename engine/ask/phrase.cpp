@@ -629,23 +629,54 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         else
             p.side = side;
     }
-    if (pendingDistance) orderByDistanceFrom(w, i, p, *pendingDistance, pendingWord, wordsStart);
+    if (pendingDistance) orderByDistanceFrom(w, i, p, *pendingDistance, pendingWord);
     if (withPosts) posts(w, i, p);
     if (p.pick > 0 && !p.order) orderByNearness(w, i, p);
     p.words = joined(w, wordsStart, i);
     return p;
 }
 
+namespace {
+
+// "closest to you", "farthest from you": how the answer says an order by the distance from the person.
+std::string youWords(const std::string& superlative, bool farthest) {
+    return superlative + (farthest ? " from you" : " to you");
+}
+
+}  // namespace
+
+Phrase PhraseParser::person() const {
+    Phrase at;
+    if (self_) {
+        at = self_->at;
+        at.self = true;
+    } else {
+        at.here = true;
+    }
+    at.words = "you";
+    return at;
+}
+
+bool PhraseParser::personAt(const Words& w, std::size_t& i, Phrase& out) const {
+    if (i >= w.size() || !isOneOf(w[i], {"me", "myself", "here", "you"})) return false;
+    out = person();
+    ++i;
+    return true;
+}
+
 void PhraseParser::orderByDistanceFrom(const Words& w, std::size_t& i, Phrase& p, bool farthest,
-                                       const std::string& word, std::size_t wordsStart) {
-    if (i < w.size() && isOneOf(w[i], {"to", "from"})) {
-        std::size_t toAt = i++;
-        Phrase to = phrase(w, i, false);
-        p.order = Order{"distance", farthest, {std::move(to)}, word + " " + joined(w, toAt, i)};
+                                       const std::string& word) {
+    const bool linked = i < w.size() && isOneOf(w[i], {"to", "from"});
+    std::size_t k = linked ? i + 1 : i;
+    // "the nearest chair to me", and "the nearest chair" with no "to" after it: from where the person is.
+    if (Phrase to; !linked || personAt(w, k, to)) {
+        p.order = Order{"distance", farthest, {linked ? std::move(to) : person()}, youWords(word, farthest)};
+        i = k;
         return;
     }
-    throw Error(ErrorKind::Binding, fmt::format("'{}' needs a thing to measure from", joined(w, wordsStart, i)),
-                std::nullopt, "ask as in: which lamp is nearest to the sofa?");
+    const std::size_t toAt = i++;
+    Phrase to = phrase(w, i, false);
+    p.order = Order{"distance", farthest, {std::move(to)}, word + " " + joined(w, toAt, i)};
 }
 
 void PhraseParser::orderByNearness(const Words& w, std::size_t& i, Phrase& p) {
@@ -837,8 +868,10 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
                 else if (k + 1 < w.size() && w[k] == "away" && w[k + 1] == "from")
                     k += 2;
                 i = k;
-                Phrase to = phrase(w, i, false);
-                p.order = Order{"distance", *far, {to}, joined(w, at, i)};
+                Phrase to;
+                const bool fromPerson = personAt(w, i, to);
+                if (!fromPerson) to = phrase(w, i, false);
+                p.order = Order{"distance", *far, {to}, fromPerson ? youWords(w[at], *far) : joined(w, at, i)};
                 p.pick = std::max<std::size_t>(p.pick, 1);
                 continue;
             }
@@ -1119,6 +1152,7 @@ std::string whereText(const Phrase& p) {
 }
 
 std::string reference(const Phrase& p) {
+    if (p.here) return "HERE";
     std::string where = whereText(p), order = orderText(p);
     if (where.empty() && order.empty()) return targetOf(p);
     // A reference names the pick-th thing of its order: "the lamp on the largest table".

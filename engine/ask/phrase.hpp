@@ -80,6 +80,7 @@ struct Phrase {
     std::size_t pick = 0;  // an ordinal or a superlative: the pick-th in `order` (1 = first)
     std::size_t top = 1;   // "the two largest": how many of `order` answer
     bool self = false;     // "me": the thing the person stands at (PhraseParser::setSelf)
+    bool here = false;     // "me", "here" with no situation: where the viewer stands, HERE in SMQL (distances only)
 };
 
 // The person who asks, where a situation placed them (situation.hpp): "me" is the thing they stand
@@ -116,9 +117,9 @@ public:
     // condition | order | exclusion, joined by "and", from w[i], onto `p`.
     void posts(const Words& w, std::size_t& i, Phrase& p);
     // "the nearest lamp to the sofa", "the farthest chair from the door": `p` ordered by its distance from the
-    // thing after "to" or "from" at w[i] (an error without one); `word` is the superlative said.
-    void orderByDistanceFrom(const Words& w, std::size_t& i, Phrase& p, bool farthest, const std::string& word,
-                             std::size_t wordsStart);
+    // thing after "to" or "from" at w[i]; from the person (person()) after "to me" or with no "to"; `word` is the
+    // superlative said.
+    void orderByDistanceFrom(const Words& w, std::size_t& i, Phrase& p, bool farthest, const std::string& word);
     // A word before a phrase's noun that counts, picks or orders it ("three", "the second", "the largest", "the
     // nearest ... to"): read onto `p` (Read), read and the phrase ended ("the second closest to the door":
     // EndsPhrase), or no such word (None).
@@ -141,6 +142,11 @@ public:
 
     // "me", "my left": the person a situation placed (none: "me" names nothing).
     void setSelf(std::optional<Self> self) { self_ = std::move(self); }
+    // What a distance is measured from when the person asks from where they are: "me", "myself", "here" or "you"
+    // at w[i] (true, `i` past it, `out` the person). The person: the thing a situation placed them at, else where
+    // the viewer stands (Phrase::here).
+    bool personAt(const Words& w, std::size_t& i, Phrase& out) const;
+    Phrase person() const;
 
     Error notUnderstood(const Words& w, std::size_t at) const;
     // Words neither the scene nor WordNet knows: the answer names them and nothing runs.

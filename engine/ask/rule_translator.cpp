@@ -367,17 +367,33 @@ private:
     // How far is the sofa from the tv? What is the distance between the bed and the door?
     bool distance(Cursor& c, PhraseParser& p, Translation& out) {
         std::optional<Phrase> a, b;
+        // The thing measured from: "me" or "here" is the person (PhraseParser::person).
+        auto from = [&] {
+            Phrase person;
+            return p.personAt(c.w, c.i, person) ? person : p.phrase(c.w, c.i, true);
+        };
         auto pair = [&](std::initializer_list<std::string_view> link) {
             a = p.phrase(c.w, c.i, true);
             c.accept({"away"});
+            // "how far away is the door?": from the person.
+            if (c.done() && !a->kind) {
+                b = p.person();
+                return true;
+            }
             if (!c.accept(link)) return false;
-            b = p.phrase(c.w, c.i, true);
+            b = from();
             c.accept({"apart"});
             return true;
         };
         if (c.accept({"how", "far|close"})) {
             c.skip({"away", "apart"});
-            if (c.accept({"is|are", "it", "from"})) {
+            if (c.accept({"am", "i"})) {
+                // "how far am I from the sofa?": the sofa, from the person.
+                c.skip({"away"});
+                if (!c.accept({"from|to"})) return false;
+                a = p.phrase(c.w, c.i, true);
+                b = p.person();
+            } else if (c.accept({"is|are", "it", "from"})) {
                 if (!pair({"to"})) return false;
             } else if (c.accept({"is|are"})) {
                 if (!pair({"from|to|and"})) return false;

@@ -40,6 +40,7 @@ std::size_t NodeSet::estimate() const {
         case Source::Nodes:
             return nodes().size();
         case Source::Side:
+        case Source::Here:
             return 1;
         case Source::SubQuery:
             return subquery->limit
@@ -98,6 +99,9 @@ std::string Binder::resolveCategory(const ast::Ref& ref) {
     if (close.empty()) close = match.categories;  // a synonym or a broader word: couch -> sofa
     std::string hint = close.empty() ? fmt::format("this scene has: {}", model::joinAlternatives(known))
                                      : fmt::format("did you mean {}?", model::joinAlternatives(close));
+    // HERE is where the viewer stands, a point rather than a node: only distances are measured to it.
+    if (ref.name == "here")
+        hint = "HERE, where the viewer stands, is no node: measure to it with distance(HERE) or NEAREST TO HERE";
     throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in scene '{}'", ref.name, snap.info().name),
                 ref.where, hint);
 }
@@ -178,6 +182,13 @@ NodeSet Binder::bindRef(const ast::Ref& ref) {
                             "source ids are the ids of the imported file; they resolve in the current scene");
             return numbered(oneNode(
                 *slot, fmt::format("src#{} = {}", ref.number, catalog::SceneSnapshot::label(snap.node(*slot)))));
+        }
+        case ast::Ref::Kind::Here: {
+            NodeSet set;
+            set.source = NodeSet::Source::Here;
+            set.description = "HERE";
+            set.where = ref.where;
+            return numbered(std::move(set));
         }
         case ast::Ref::Kind::Param:
             // Binder::bind puts values in first; a placeholder left here had none.

@@ -27,7 +27,9 @@ struct BoundFind;
 // words are resolved by the binder. A side of the room (`wall.left`) depends on the viewpoint and a
 // sub-query on its own answer: both are resolved by the executor when the statement runs.
 struct NodeSet {
-    enum class Source { Nodes, Side, SubQuery };
+    // Here: no node but where the viewer stands (distance(HERE), NEAREST TO HERE); the executor measures to
+    // the statement's viewpoint.
+    enum class Source { Nodes, Side, SubQuery, Here };
     Source source = Source::Nodes;
     std::vector<Slot> slots;  // Nodes: the nodes; Side: the candidates, in id order
     // A set that is one of the snapshot's own lists (a category, a kind word) refers to it rather

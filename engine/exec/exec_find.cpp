@@ -18,6 +18,7 @@
 namespace smql::exec {
 
 using binder::BoundExpr;
+using binder::NodeSet;
 using model::Node;
 using planner::Access;
 
@@ -141,14 +142,22 @@ double Executor::distanceToOthers(catalog::Slot slot, const std::vector<catalog:
     return nearest;
 }
 
+double Executor::distanceTo(catalog::Slot slot, const NodeSet& to, const relations::Frame& frame) {
+    if (to.source == NodeSet::Source::Here) return model::footprintGap(scene().node(slot).box, frame.position);
+    return distanceToOthers(slot, slots(to, frame));
+}
+
+model::Aabb Executor::standingLine(const relations::Frame& frame) {
+    constexpr double kEverywhere = std::numeric_limits<double>::max();
+    return {{frame.position.x, frame.position.y, -kEverywhere}, {frame.position.x, frame.position.y, kEverywhere}};
+}
+
 bool Executor::compare(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
     std::optional<std::variant<double, std::string>> value;
     if (expr.distanceTo) {
-        const auto& refs = slots(*expr.distanceTo, frame);
-        const Node& node = scene().node(slot);
-        if (node.geometry == model::GeometryKind::None || refs.empty()) return false;
-        const double nearest = distanceToOthers(slot, refs);
-        if (std::isinf(nearest)) return false;  // only itself to measure from
+        if (scene().node(slot).geometry == model::GeometryKind::None) return false;
+        const double nearest = distanceTo(slot, *expr.distanceTo, frame);
+        if (std::isinf(nearest)) return false;  // nothing to measure to but itself
         value = nearest;
     } else {
         value = comparable(catalog::attributeValue(
@@ -271,9 +280,10 @@ bool Executor::inTarget(const binder::Target& target, catalog::Slot slot, const 
 std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame) {
     const auto& f = *plan.find;
     const auto& snap = scene();
-    const catalog::Slot ref = slots(*f.distanceTo, frame).front();
+    const bool here = f.distanceTo->source == NodeSet::Source::Here;
+    const std::optional<catalog::Slot> ref = here ? std::nullopt : std::optional(slots(*f.distanceTo, frame).front());
     const auto want = static_cast<std::size_t>(*f.limit);
-    const model::Aabb& around = snap.bounds(ref);
+    const model::Aabb around = ref ? snap.bounds(*ref) : standingLine(frame);
     auto boundsGap = [&](const model::Aabb& b) {
         double dx = std::max({0.0, b.min.x - around.max.x, around.min.x - b.max.x});
         double dy = std::max({0.0, b.min.y - around.max.y, around.min.y - b.max.y});
@@ -291,7 +301,8 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
         poll();
         // The one reference itself has nothing else to measure to (as in find()).
         if (*s == ref || !inTarget(f.target, *s, frame) || (f.where && !matches(*f.where, *s, frame))) continue;
-        const double distance = model::distance(snap.node(*s).box, snap.node(ref).box);
+        const double distance = ref ? model::distance(snap.node(*s).box, snap.node(*ref).box)
+                                    : model::footprintGap(snap.node(*s).box, frame.position);
         hits.push_back({*s, distance});
         best.push(distance);
         if (best.size() > want) best.pop();
@@ -367,8 +378,11 @@ std::vector<Hit> Executor::filtered(const planner::FindPlan& plan, const relatio
     std::vector<catalog::Slot> candidates;
     if (plan.access == Access::RTreeProbe) {
         const BoundExpr& term = plan.probeTerm();
-        for (catalog::Slot ref : slots(*planner::probeReferences(term), frame))
-            snap.intersecting(probeRegion(term, snap.bounds(ref)), candidates);
+        if (const NodeSet& around = *planner::probeReferences(term); around.source == NodeSet::Source::Here)
+            snap.intersecting(probeRegion(term, standingLine(frame)), candidates);
+        else
+            for (catalog::Slot ref : slots(around, frame))
+                snap.intersecting(probeRegion(term, snap.bounds(ref)), candidates);
         std::sort(candidates.begin(), candidates.end());
         candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
         std::erase_if(candidates, [&](catalog::Slot s) { return !inTarget(f.target, s, frame); });
@@ -394,7 +408,8 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
 
     std::vector<Hit> hits = filtered(plan, viewer);
     if (f.distanceTo) {
-        const auto& refs = slots(*f.distanceTo, viewer);
+        static const std::vector<catalog::Slot> none;
+        const auto& refs = f.distanceTo->source == NodeSet::Source::Here ? none : slots(*f.distanceTo, viewer);
         // A node's distance to x is to the nodes of x other than itself, as `distance(x) < d` measures
         // it ("FIND chair ORDER BY distance(chair)": each chair to the nearest other chair). Nodes
         // without a place, or with nothing else to measure to, have no distance and are left out;
@@ -403,7 +418,7 @@ std::vector<Hit> Executor::find(const planner::FindPlan& plan) {
             return snap.node(h.slot).geometry == model::GeometryKind::None ||
                    (f.nearest && std::find(refs.begin(), refs.end(), h.slot) != refs.end());
         });
-        for (auto& h : hits) h.distance = distanceToOthers(h.slot, refs);
+        for (auto& h : hits) h.distance = distanceTo(h.slot, *f.distanceTo, viewer);
         std::erase_if(hits, [](const Hit& h) { return std::isinf(h.distance); });
         std::stable_sort(hits.begin(), hits.end(), [&](const Hit& a, const Hit& b) {
             if (a.distance != b.distance) return f.descending ? a.distance > b.distance : a.distance < b.distance;

@@ -120,6 +120,11 @@ private:
     bool compare(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
     // distance(x) of a node: to the nearest node of `refs` other than itself; infinite when there is none.
     double distanceToOthers(catalog::Slot slot, const std::vector<catalog::Slot>& refs) const;
+    // distance(x) of a node with a box: to x's nodes other than itself, or for HERE along the floor from where the
+    // viewer stands to its footprint (the viewer's height does not count: how far a person must walk).
+    double distanceTo(catalog::Slot slot, const binder::NodeSet& to, const relations::Frame& frame);
+    // The world bounds a distance is measured from: a node's, or for HERE the vertical line where the viewer stands.
+    static model::Aabb standingLine(const relations::Frame& frame);
     bool inTarget(const binder::Target& target, catalog::Slot slot, const relations::Frame& frame);
     std::vector<Hit> nearestFirst(const planner::FindPlan& plan, const relations::Frame& frame);
     struct SimilaritySpace {

@@ -40,6 +40,7 @@ struct Ref {
         SourceId,  // `src#93`
         SubQuery,  // `(FIND mug WHERE on(desk))`
         Param,     // `?`, `$1`, `?.left`: a name bound later (`placeholder`; `side` when written)
+        Here,      // `HERE` in `distance(HERE)` and `NEAREST TO HERE`: where the viewer stands, not a node
     };
     Kind kind = Kind::Name;
     std::string name;  // lower-cased; Name and Side, and NodeId's category when written

@@ -257,7 +257,7 @@ private:
                 find.where = expr(*where->orExpr());
             } else if (auto* nearest = clause->nearestClause()) {
                 checkOrder(2, span(*clause), lastRank);
-                find.nearestTo = ref(*nearest->ref());
+                find.nearestTo = distanceRef(*nearest->distanceRef());
             } else if (auto* order = clause->orderClause()) {
                 checkOrder(3, span(*clause), lastRank);
                 find.orderBy = orderBy(*order);
@@ -288,8 +288,8 @@ private:
     ast::OrderBy orderBy(SmqlParser::OrderClauseContext& clause) {
         ast::OrderBy order;
         SmqlParser::MeasureContext& measure = *clause.measure();
-        if (auto* reference = measure.ref())
-            order.distanceTo = ref(*reference);
+        if (auto* reference = measure.distanceRef())
+            order.distanceTo = distanceRef(*reference);
         else
             order.attribute = nameOf(*measure.name());
         order.descending = clause.DESC() != nullptr;
@@ -416,6 +416,14 @@ private:
     }
 
     // ------------------------------------------------------------ references
+
+    ast::Ref distanceRef(SmqlParser::DistanceRefContext& context) {
+        if (!context.HERE()) return ref(*context.ref());
+        ast::Ref here;
+        here.kind = ast::Ref::Kind::Here;
+        here.where = span(context);
+        return here;
+    }
 
     ast::Ref ref(SmqlParser::RefContext& context) {
         ast::Ref ref;
@@ -547,8 +555,8 @@ private:
         ast::Expr compare;
         compare.kind = ast::Expr::Kind::Compare;
         SmqlParser::MeasureContext& measure = *context.measure();
-        if (auto* reference = measure.ref())
-            compare.distanceTo = ref(*reference);
+        if (auto* reference = measure.distanceRef())
+            compare.distanceTo = distanceRef(*reference);
         else
             compare.attribute = nameOf(*measure.name());
         compare.where = span(context);

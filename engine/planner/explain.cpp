@@ -21,6 +21,11 @@ std::string literalText(const ast::Literal& literal) {
         literal);
 }
 
+// NEAREST TO x leaves x out of its answer; HERE is no node to leave out.
+const char* withoutItself(const binder::BoundFind& f) {
+    return f.nearest && f.distanceTo->source != binder::NodeSet::Source::Here ? ", without itself" : "";
+}
+
 // What SIMILAR TO compares with: "'couch'" or "the bound vector (384 dimensions)".
 std::string similarQuery(const binder::BoundSimilarTo& similarTo) {
     return similarTo.stored() ? fmt::format("the bound vector ({} dimensions)", similarTo.vector.size())
@@ -62,7 +67,7 @@ void explainFind(const FindPlan& plan, Lines& lines) {
             lines.add(
                 fmt::format("Top {} nearest to {}{}: R-tree nearest-first search, widened until no box "
                             "outside can beat the last answer",
-                            *f.limit, f.distanceTo->description, f.nearest ? ", without itself" : ""));
+                            *f.limit, f.distanceTo->description, withoutItself(f)));
             if (f.where) lines.add("Filter " + describe(*f.where));
             lines.add("Keep " + keep);
             break;
@@ -78,7 +83,7 @@ void explainFind(const FindPlan& plan, Lines& lines) {
         case Access::Scan:
             if (f.distanceTo)
                 lines.add(fmt::format("Sort by distance to {}{}{}", f.distanceTo->description,
-                                      f.descending ? " descending" : "", f.nearest ? ", without itself" : ""));
+                                      f.descending ? " descending" : "", withoutItself(f)));
             if (f.similarTo)
                 lines.add(fmt::format("{} by similarity to {} in {}: exact, each candidate's vector, {}",
                                       plan.topK ? fmt::format("Top {}", *f.limit) : std::string("Sort"),

@@ -47,9 +47,10 @@ std::optional<std::size_t> probeConjunct(const binder::BoundFind& find) {
 // a room's few hundred objects share a few dozen vectors.
 constexpr std::size_t kSimilarFirstFrom = 256;
 
-// Exactly one reference node, known before the statement runs: a name, id or side.
+// Exactly one reference, known before the statement runs: a name, id or side, or HERE.
 bool oneReference(const NodeSet& set) {
-    return (set.source == NodeSet::Source::Nodes && set.nodes().size() == 1) || set.source == NodeSet::Source::Side;
+    return (set.source == NodeSet::Source::Nodes && set.nodes().size() == 1) || set.source == NodeSet::Source::Side ||
+           set.source == NodeSet::Source::Here;
 }
 
 }  // namespace

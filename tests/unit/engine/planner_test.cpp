@@ -94,6 +94,9 @@ TEST_CASE("distance(x) < d probes the R-tree and returns what a scan returns") {
         "FIND object WHERE distance(desk) < 0 m",
         "FIND node WHERE distance(mug) < 3 m AND color = 'red'",
         "FIND object WHERE distance(bed) < 50 cm AND on(bed)",
+        // HERE: around the line where the viewer stands, the scene's viewpoint or the one VIEW FROM sets.
+        "FIND object WHERE distance(HERE) < 2 m",
+        "FIND object VIEW FROM #39 WHERE distance(HERE) < 1.5 m AND color = 'red'",
     };
     for (const char* q : queries) {
         INFO(q);
@@ -135,7 +138,8 @@ TEST_CASE("NEAREST TO through the R-tree gives the scan's answer") {
     for (const char* q :
          {"FIND object NEAREST TO door LIMIT 5", "FIND object NEAREST TO ceiling LIMIT 3",
           "FIND chair ORDER BY distance(window) LIMIT 4", "FIND object WHERE color = 'red' NEAREST TO door LIMIT 2",
-          "FIND node NEAREST TO door LIMIT 40"}) {
+          "FIND node NEAREST TO door LIMIT 40", "FIND object NEAREST TO HERE LIMIT 6",
+          "FIND chair VIEW FROM #39 ORDER BY distance(HERE) LIMIT 3"}) {
         INFO(q);
         auto plan = scene.plan(q);
         nearestFirst += plan.find->access == planner::Access::NearestFirst;
@@ -145,7 +149,7 @@ TEST_CASE("NEAREST TO through the R-tree gives the scan's answer") {
         CHECK(fast.size() == std::min<std::size_t>(*plan.find->find->limit, slow.size()));
         CHECK(fast == slow);
     }
-    CHECK(nearestFirst == 4);  // all but the one ordered by distance to several windows
+    CHECK(nearestFirst == 6);  // all but the one ordered by distance to several windows
 }
 
 // The nearest-first search stops at the first candidate whose bounds are farther than the k-th

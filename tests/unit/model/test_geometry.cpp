@@ -40,6 +40,11 @@ TEST_CASE("containment and world bounds") {
     CHECK(a.max.y == Approx(1.0));
     CHECK(footprintContains(box(0, 0, 0, 2, 1, 1, M_PI / 2), {0.0, 0.9}));
     CHECK_FALSE(footprintContains(box(0, 0, 0, 2, 1, 1, M_PI / 2), {0.9, 0.0}));
+    // From a point (where a viewer stands) to a footprint: 0 over it, else to its nearest side or corner.
+    CHECK(footprintGap(box(0, 0, 5, 2, 1, 1), {0.5, 0.2}) == 0.0);
+    CHECK(footprintGap(box(0, 0, 5, 2, 1, 1), {3.0, 0.0}) == Approx(2.0));
+    CHECK(footprintGap(box(0, 0, 5, 2, 1, 1), {4.0, 4.5}) == Approx(5.0));
+    CHECK(footprintGap(box(0, 0, 0, 2, 1, 1, M_PI / 2), {0.0, 3.0}) == Approx(2.0));
 }
 
 TEST_CASE("nearest names for did-you-mean hints") {
