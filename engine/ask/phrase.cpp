@@ -20,6 +20,9 @@ namespace smql::ask {
 namespace {
 
 constexpr std::size_t kMaxNounWords = 4;
+// m: "near me", with no thing a situation put the person at, is within this of where they stand: near.distance's
+// default, the largest gap near allows between two things (docs/relations.md).
+constexpr double kNearYou = 1.0;
 
 bool isDeterminer(const std::string& w) {
     return isOneOf(w, {"the",   "a",     "an",    "any",  "some", "all", "my",    "our", "your", "this",    "that",
@@ -233,6 +236,9 @@ const std::vector<PredicatePhrase>& predicatePhrases() {
 }
 
 std::string conditionText(const Condition& c) {
+    // Near the person: within a distance of where the viewer stands.
+    if (c.args.size() == 1 && c.args.front().here)
+        return fmt::format("{}distance(HERE) < {} m", c.negated ? "NOT " : "", smqlMetres(c.metres.value_or(kNearYou)));
     std::string args;
     for (const auto& a : c.args) args += (args.empty() ? "" : ", ") + reference(a);
     if (c.metres) args += ", " + smqlMetres(*c.metres) + " m";
@@ -900,6 +906,9 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
         i = at;
         if (roomPlaceLeftOut(w, at, i, *pred)) continue;
         p.conditions.push_back(condition(w, i, *pred));
+        // What is near the person comes nearest first.
+        if (const auto& args = p.conditions.back().args; !p.order && args.size() == 1 && args.front().here)
+            p.order = Order{"distance", false, {args.front()}, "nearest to you"};
         if (also) {
             // The answer says "beyond and to the right of the lamp" once.
             p.conditions.back().words = joined(w, bothAt, i);
@@ -959,6 +968,13 @@ Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pai
             return c;
         }
         ++i;
+    }
+    // "near me" with no situation: within a distance of where the viewer stands (distance(HERE)).
+    if (Phrase person; !self_ && c.predicate == "near" && personAt(w, i, person)) {
+        c.args.push_back(std::move(person));
+        c.metres = c.metres.value_or(kNearYou);
+        c.words = fmt::format("within {} m of you", smqlMetres(*c.metres));
+        return c;
     }
     ++nested_;
     c.args.push_back(phrase(w, i, true));
