@@ -14,6 +14,7 @@
 #include "engine/ask/units.hpp"
 #include "model/category.hpp"
 #include "model/geometry.hpp"
+#include "model/seating.hpp"
 
 namespace smql::ask {
 
@@ -418,6 +419,37 @@ std::string affordance(const Translation& t, const ResultSet& rs) {
     if (rs.rows.empty()) return fmt::format("Nothing here to {}.", t.predicate);
     return fmt::format("You can {} {}: {}", t.predicate,
                        rs.rows.size() == 1 ? "1 thing" : fmt::format("{} things", rs.rows.size()), listed(labels(rs)));
+}
+
+// How many people the seats found take: each one place for every kSeatPlaceWidth of its longest side.
+std::string seating(const Translation& t, const ResultSet& rs) {
+    const int width = rs.columnIndex("width");
+    const auto names = labels(rs);
+    std::size_t total = 0;
+    std::vector<std::string> ones, several;
+    for (std::size_t r = 0; r < rs.rows.size(); ++r) {
+        const std::optional<double> longest = width >= 0 ? number(rs.rows[r][width]) : std::nullopt;
+        if (!longest) continue;  // no box: no place to sit
+        const std::size_t places = model::seatPlaces(*longest);
+        total += places;
+        if (places == 1)
+            ones.push_back(names[r]);
+        else
+            several.push_back(fmt::format("{} on {}, {} long", places, names[r], length(*longest, t.unit)));
+    }
+    if (total == 0) {
+        if (const std::string absent = absentWords(t); !absent.empty())
+            return fmt::format("There is no {} here.", absent);
+        return t.object.empty() || t.condition == "on"
+                   ? "There is nothing to sit on here."
+                   : fmt::format("There is nothing to sit on {} the {}.", t.condition, t.object);
+    }
+    if (!ones.empty()) several.push_back(ones.size() == 1 ? "1 on " + ones.front() : "1 on each of " + listed(ones));
+    const std::string how =
+        fmt::format("one place for every {} of a seat's length", length(model::kSeatPlaceWidth, t.unit));
+    const std::string where = t.object.empty() ? "" : fmt::format(" {} the {}", t.condition, t.object);
+    return fmt::format("About {} {} can sit{}: {} ({}).", total, total == 1 ? "person" : "people", where,
+                       listed(several, "; "), how);
 }
 
 std::string attribute(const Translation& t, const ResultSet& rs) {
@@ -826,6 +858,8 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
             return direction(t, rs);
         case QuestionKind::Affordance:
             return affordance(t, rs);
+        case QuestionKind::Seating:
+            return seating(t, rs);
         case QuestionKind::Attribute:
             return attribute(t, rs);
         case QuestionKind::Changes:

@@ -174,13 +174,13 @@ public:
         takeUnit();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::direction,   &QuestionReader::guidance,   &QuestionReader::distance,
-            &QuestionReader::size,        &QuestionReader::attribute,  &QuestionReader::affordance,
-            &QuestionReader::visibility,  &QuestionReader::changes,    &QuestionReader::count,
-            &QuestionReader::existence,   &QuestionReader::side,       &QuestionReader::relative,
-            &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
-            &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
-            &QuestionReader::description, &QuestionReader::state,
+            &QuestionReader::direction, &QuestionReader::guidance,    &QuestionReader::distance,
+            &QuestionReader::size,      &QuestionReader::attribute,   &QuestionReader::affordance,
+            &QuestionReader::seating,   &QuestionReader::visibility,  &QuestionReader::changes,
+            &QuestionReader::count,     &QuestionReader::existence,   &QuestionReader::side,
+            &QuestionReader::relative,  &QuestionReader::superlative, &QuestionReader::reverse,
+            &QuestionReader::locate,    &QuestionReader::relational,  &QuestionReader::comparison,
+            &QuestionReader::yesNo,     &QuestionReader::description, &QuestionReader::state,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -592,32 +592,80 @@ private:
             r.skip(particles);
         }
         c.i = r.done() ? c.w.size() : c.i + r.i;
+        out.kind = QuestionKind::Affordance;
+        out.predicate = std::string(row->how);
+        out.smql = "FIND thing WHERE " + affordedBy(*row);
+        out.subject = "thing";
+        out.subjectPlural = "things";
+        return true;
+    }
+
+    // The condition on the things a use is afforded by, as this scene names them: "(category = 'chair' OR ...)"; the
+    // row's first word when the scene has none of them (the answer is then "nothing").
+    std::string affordedBy(const AffordanceRow& row) const {
         std::vector<std::string> categories;
-        std::string things{row->things};
+        const std::string things{row.things};
         for (std::size_t at = 0; at < things.size();) {
-            std::size_t space = things.find(' ', at);
-            std::string word = things.substr(at, space - at);
-            WordMatch m = lexicon_.lookUp(word);
-            if (m.how != WordMatch::How::Spelling)
+            const std::size_t space = things.find(' ', at);
+            const WordMatch m = lexicon_.lookUp(things.substr(at, space - at));
+            if (m.how != WordMatch::How::Spelling && m.how != WordMatch::How::Synonym)
                 for (const auto& cat : m.categories)
                     if (std::find(categories.begin(), categories.end(), cat) == categories.end())
                         categories.push_back(cat);
             at = space == std::string::npos ? things.size() : space + 1;
         }
-        out.kind = QuestionKind::Affordance;
-        out.predicate = std::string(row->how);
-        if (categories.empty()) {
-            out.smql = fmt::format("FIND thing WHERE category = {}",
-                                   smqlString(std::string(row->things.substr(0, row->things.find(' ')))));
-        } else {
-            std::string any;
-            for (const auto& cat : categories)
-                any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(cat));
-            out.smql = fmt::format("FIND thing WHERE {}", categories.size() > 1 ? "(" + any + ")" : any);
+        if (categories.empty())
+            return fmt::format("category = {}", smqlString(std::string(row.things.substr(0, row.things.find(' ')))));
+        std::string any;
+        for (const auto& cat : categories)
+            any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(cat));
+        return categories.size() > 1 ? "(" + any + ")" : any;
+    }
+
+    // How many people can sit here? How many of us can sit on the sofa? How many people can be seated at the table?
+    // The seats (those "where can I sit?" finds) with their lengths; the answer counts their places
+    // (model/seating.hpp).
+    bool seating(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"how", "many"})) return false;
+        c.skip({"people", "persons", "guests", "adults", "children", "kids", "visitors", "person"});
+        c.accept({"of", "us|you|them"});
+        if (!c.accept({"can|could|will|would|may"})) return false;
+        if (!c.accept({"sit"}) && !c.accept({"be", "seated"})) return false;
+        c.skip({"down", "comfortably", "together"});
+        c.accept({"at", "once"});
+        const AffordanceRow& sit = *std::find_if(std::begin(kAffordances), std::end(kAffordances),
+                                                 [](const AffordanceRow& r) { return r.verb == "sit"; });
+        const std::string seats = affordedBy(sit);
+        const std::string columns = " RETURN id, category, width";
+        out.kind = QuestionKind::Seating;
+        out.subject = "seat";
+        out.subjectPlural = "seats";
+        // "here", "in the room": every seat.
+        std::size_t k = c.i;
+        if (k < c.w.size() && isOneOf(c.w[k], {"in", "inside"})) ++k;
+        while (k < c.w.size() && isOneOf(c.w[k], {"the", "this", "our", "my"})) ++k;
+        if (c.done() || (k < c.w.size() && p.scenePlaceAt(c.w, k) == c.w.size() - k)) {
+            c.i = c.w.size();
+            out.smql = "FIND thing WHERE " + seats + columns;
+            return true;
         }
-        out.subject = "thing";
-        out.subjectPlural = "things";
-        return true;
+        if (c.accept({"on|in"})) {
+            // "on the sofa": that seat's places.
+            const Phrase seat = p.phrase(c.w, c.i, true);
+            out.smql = findText(seat, false) + columns;
+            out.object = seat.words;
+            out.condition = "on";
+            return true;
+        }
+        if (c.accept({"at|around|by"})) {
+            // "at the table": the seats beside it.
+            const Phrase at = p.phrase(c.w, c.i, true);
+            out.smql = fmt::format("FIND thing WHERE {} AND near({}){}", seats, reference(at), columns);
+            out.object = at.words;
+            out.condition = "at";
+            return true;
+        }
+        return false;
     }
 
     // Can I see the plant from the door? What can I see from the sofa?
@@ -2122,6 +2170,8 @@ std::string_view toString(QuestionKind kind) {
             return "direction";
         case QuestionKind::Affordance:
             return "affordance";
+        case QuestionKind::Seating:
+            return "seating";
         case QuestionKind::Attribute:
             return "attribute";
         case QuestionKind::Changes:

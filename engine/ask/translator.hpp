@@ -30,6 +30,7 @@ enum class QuestionKind {
     Superlative,       // which is the largest table?               FIND table ORDER BY volume DESC LIMIT 1
     Direction,         // standing by the bed facing the tv, is the door to my left or right?
     Affordance,        // where can I sit?                          FIND node WHERE category = 'chair' OR ...
+    Seating,           // how many people can sit here?             FIND thing WHERE ... RETURN id, category, width
     Attribute,         // what colour is the sofa?                  FIND sofa RETURN id, category, color
     Changes,           // what changed?                             SHOW CHANGES
     Reverse,           // what is the lamp on?                      RELATE lamp TO object (the "on" rows)

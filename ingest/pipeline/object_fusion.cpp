@@ -381,7 +381,7 @@ std::string seatsAround(const model::Box& box, const std::vector<SeenBox>& thing
     for (const auto& other : things) {
         if (role(other.category) != Role::Seat || model::horizontalGap(box, other.box) > options.seatReach) continue;
         const double longest = std::max(other.box.size.x, other.box.size.y);
-        places += std::max<std::size_t>(1, static_cast<std::size_t>(longest / options.seatWidth));
+        places += model::seatPlaces(longest, options.seatWidth);
         names.push_back(other.category);
     }
     return places >= 2 ? fmt::format("beside {} within {:.1f} m", fmt::join(names, ", "), options.seatReach) : "";

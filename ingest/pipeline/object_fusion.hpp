@@ -14,6 +14,7 @@
 #include "ingest/geometry/instance_map.hpp"
 #include "ingest/geometry/view_segment.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
+#include "model/seating.hpp"
 
 namespace smql::ingest {
 
@@ -51,19 +52,19 @@ struct FusionOptions {
     double lowTableTopMin = 0.35;    // m: its top between these heights above the floor, ...
     double lowTableTopMax = 0.6;     //
     double seatReach = 0.6;          // m: ... with places for two to sit this close, is a low table
-    double seatWidth = 0.6;          // m: a seat's places: its longest side over this, one at least
-    double deskDepth = 0.9;          // m: a table no deeper than this, ...
-    double deskTopMin = 0.65;        // m: its top this high or higher, ...
-    double againstWall = 0.2;        // m: a long side this close to a wall's plane, ...
-    double chairAtDesk = 0.3;        // m: and one chair, no more, this close is a desk
-    double nightstandSide = 0.9;     // m: a table no longer than this (a bedside table's 0.4-0.6 m and the slack
-    double nightstandTop = 0.8;      // of boxes fused from views), its top no higher than this, ...
-    double besideBed = 0.3;          // m: this close to a bed is a nightstand
-    double topCell = 0.05;           // m: a thing whose top holds things (a table) shows its top: the points of
-    double topBand = 0.1;            // m: one band of heights this thick, in its box's upper half, cover ...
-    double topCover = 0.1;           // ... this share of its footprint's cells or more (seenTop)
-    double overTop = 0.1;            // m: a box this much higher than the top it shows holds what stands on it
-    bool voteLabels = true;          // a closed-set detector (InstanceMapOptions::voteLabels)
+    double seatWidth = model::kSeatPlaceWidth;  // m: a seat's places: its longest side over this, one at least
+    double deskDepth = 0.9;                     // m: a table no deeper than this, ...
+    double deskTopMin = 0.65;                   // m: its top this high or higher, ...
+    double againstWall = 0.2;                   // m: a long side this close to a wall's plane, ...
+    double chairAtDesk = 0.3;                   // m: and one chair, no more, this close is a desk
+    double nightstandSide = 0.9;  // m: a table no longer than this (a bedside table's 0.4-0.6 m and the slack
+    double nightstandTop = 0.8;   // of boxes fused from views), its top no higher than this, ...
+    double besideBed = 0.3;       // m: this close to a bed is a nightstand
+    double topCell = 0.05;        // m: a thing whose top holds things (a table) shows its top: the points of
+    double topBand = 0.1;         // m: one band of heights this thick, in its box's upper half, cover ...
+    double topCover = 0.1;        // ... this share of its footprint's cells or more (seenTop)
+    double overTop = 0.1;         // m: a box this much higher than the top it shows holds what stands on it
+    bool voteLabels = true;       // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
 // A camera of the capture in the aligned frame, to tell which frames held a thing in view.
