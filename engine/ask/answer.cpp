@@ -452,6 +452,72 @@ std::string seating(const Translation& t, const ResultSet& rs) {
                        listed(several, "; "), how);
 }
 
+// "a bed", "an oven".
+std::string withArticle(const std::string& noun) {
+    return (std::string_view("aeiou").find(noun.front()) == std::string_view::npos ? "a " : "an ") + noun;
+}
+
+// "a bed", "an oven", "2 microwaves".
+std::string counted(const std::string& category, std::size_t n) {
+    return n == 1 ? withArticle(category) : fmt::format("{} {}", n, pluralOf(category));
+}
+
+// Kinds of room marked in one scene from which it is one space of several rooms rather than one room.
+constexpr std::size_t kSeveralRooms = 3;
+
+// The kinds of room the things mark (Translation::choices, each marked by the categories in the same place of roles),
+// most marked first; "is this a kitchen?" (Translation::predicate) answered yes or no.
+std::string roomKind(const Translation& t, const ResultSet& rs) {
+    const int category = rs.columnIndex("category");
+    std::map<std::string, std::size_t> held;
+    for (const auto& row : rs.rows) ++held[text(row[category])];
+    struct Marked {
+        std::string room;
+        std::vector<std::string> things;  // "a bed", "2 nightstands"
+        std::size_t count = 0;
+    };
+    std::vector<Marked> marked;
+    for (std::size_t k = 0; k < t.choices.size(); ++k) {
+        Marked m{t.choices[k], {}, 0};
+        for (const auto& c : t.roles[k])
+            if (auto it = held.find(c); it != held.end()) {
+                m.things.push_back(counted(c, it->second));
+                m.count += it->second;
+            }
+        if (m.count > 0) marked.push_back(std::move(m));
+    }
+    std::stable_sort(marked.begin(), marked.end(), [](const Marked& a, const Marked& b) {
+        return a.things.size() != b.things.size() ? a.things.size() > b.things.size() : a.count > b.count;
+    });
+    auto looks = [&]() -> std::string {
+        if (marked.empty())
+            return fmt::format(
+                "nothing among its {} {} marks a kind of room (a bed, a sofa, a fridge, a toilet or a desk)",
+                rs.rows.size(), rs.rows.size() == 1 ? "thing" : "things");
+        // Three kinds or more: one space of several rooms (a studio apartment).
+        if (marked.size() >= kSeveralRooms) {
+            std::vector<std::string> each;
+            for (const auto& m : marked)
+                each.push_back(fmt::format("{}'s ({})", withArticle(m.room), listedWithAnd(m.things)));
+            return "it holds the things of several rooms, as a home or a studio does: " + listedWithAnd(each);
+        }
+        std::string out = fmt::format("it looks like {} ({})", withArticle(marked.front().room),
+                                      listedWithAnd(marked.front().things));
+        if (marked.size() == 1) return out;
+        return fmt::format("{}, with {}'s things ({})", out, withArticle(marked[1].room),
+                           listedWithAnd(marked[1].things));
+    };
+    if (!t.predicate.empty()) {
+        const auto it =
+            std::find_if(marked.begin(), marked.end(), [&](const Marked& m) { return m.room == t.predicate; });
+        if (it != marked.end()) return fmt::format("Yes: it holds {}.", listedWithAnd(it->things));
+        return fmt::format("No: nothing here marks {}; {}.", withArticle(t.predicate), looks());
+    }
+    std::string out = looks();
+    out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
+    return out + ".";
+}
+
 std::string attribute(const Translation& t, const ResultSet& rs) {
     int column = rs.columnIndex(t.measure);
     auto names = labels(rs);
@@ -701,8 +767,7 @@ std::string place(const std::string& name, const std::map<std::string, std::stri
         else if (count != "1")
             kinds.push_back(count + " " + pluralOf(category));
         else
-            kinds.push_back(
-                (std::string_view("aeiou").find(category.front()) == std::string_view::npos ? "a " : "an ") + category);
+            kinds.push_back(withArticle(category));
         at = end + 2;
     }
     if (!unnamed.empty()) kinds.push_back(unnamed);
@@ -870,6 +935,8 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
             return comparison(t, rs);
         case QuestionKind::RoomSize:
             return roomSize(t, rs);
+        case QuestionKind::RoomKind:
+            return roomKind(t, rs);
         case QuestionKind::Statement:
             return statement(t, rs);
         case QuestionKind::Route:

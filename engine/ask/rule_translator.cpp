@@ -80,6 +80,20 @@ constexpr AffordanceRow kAffordances[] = {
     {"dispose", "wastebasket", "throw things in"},
 };
 
+// What marks a kind of room: the things a person names it by ("a bed: a bedroom"). Sinks, tables and chairs stand in
+// many kinds of room and mark none.
+struct RoomMarks {
+    std::string_view room;
+    std::string_view things;  // words, ' ' between them
+};
+constexpr RoomMarks kRoomMarks[] = {
+    {"bedroom", "bed nightstand wardrobe dresser"},
+    {"living room", "sofa television armchair fireplace"},
+    {"kitchen", "fridge oven stove microwave dishwasher toaster"},
+    {"bathroom", "toilet bathtub shower"},
+    {"office", "desk monitor keyboard printer"},
+};
+
 // "the object used for disposing of waste", "a container used to throw away trash": the thing the
 // use names (kAffordances), as a noun the phrase grammar reads; the text as it was when the verb
 // affords nothing.
@@ -174,13 +188,14 @@ public:
         takeUnit();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::direction, &QuestionReader::guidance,    &QuestionReader::distance,
-            &QuestionReader::size,      &QuestionReader::attribute,   &QuestionReader::affordance,
-            &QuestionReader::seating,   &QuestionReader::visibility,  &QuestionReader::changes,
-            &QuestionReader::count,     &QuestionReader::existence,   &QuestionReader::side,
-            &QuestionReader::relative,  &QuestionReader::superlative, &QuestionReader::reverse,
-            &QuestionReader::locate,    &QuestionReader::relational,  &QuestionReader::comparison,
-            &QuestionReader::yesNo,     &QuestionReader::description, &QuestionReader::state,
+            &QuestionReader::roomKind,   &QuestionReader::direction, &QuestionReader::guidance,
+            &QuestionReader::distance,   &QuestionReader::size,      &QuestionReader::attribute,
+            &QuestionReader::affordance, &QuestionReader::seating,   &QuestionReader::visibility,
+            &QuestionReader::changes,    &QuestionReader::count,     &QuestionReader::existence,
+            &QuestionReader::side,       &QuestionReader::relative,  &QuestionReader::superlative,
+            &QuestionReader::reverse,    &QuestionReader::locate,    &QuestionReader::relational,
+            &QuestionReader::comparison, &QuestionReader::yesNo,     &QuestionReader::description,
+            &QuestionReader::state,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -600,20 +615,29 @@ private:
         return true;
     }
 
-    // The condition on the things a use is afforded by, as this scene names them: "(category = 'chair' OR ...)"; the
-    // row's first word when the scene has none of them (the answer is then "nothing").
-    std::string affordedBy(const AffordanceRow& row) const {
+    // The scene's categories that a table's words (' ' between them) name, by name, plural or kind, or by a broader
+    // name (`broader`: an "armchair" is a chair): not by a synonym of another sense (a "stool" is also WordNet's
+    // toilet), nor by spelling.
+    std::vector<std::string> categoriesNamed(std::string_view words, bool broader) const {
         std::vector<std::string> categories;
-        const std::string things{row.things};
+        const std::string things{words};
         for (std::size_t at = 0; at < things.size();) {
             const std::size_t space = things.find(' ', at);
             const WordMatch m = lexicon_.lookUp(things.substr(at, space - at));
-            if (m.how != WordMatch::How::Spelling && m.how != WordMatch::How::Synonym)
+            if (m.how != WordMatch::How::Spelling && m.how != WordMatch::How::Synonym &&
+                (broader || m.how != WordMatch::How::Broader))
                 for (const auto& cat : m.categories)
                     if (std::find(categories.begin(), categories.end(), cat) == categories.end())
                         categories.push_back(cat);
             at = space == std::string::npos ? things.size() : space + 1;
         }
+        return categories;
+    }
+
+    // The condition on the things a use is afforded by, as this scene names them: "(category = 'chair' OR ...)"; the
+    // row's first word when the scene has none of them (the answer is then "nothing").
+    std::string affordedBy(const AffordanceRow& row) const {
+        const std::vector<std::string> categories = categoriesNamed(row.things, true);
         if (categories.empty())
             return fmt::format("category = {}", smqlString(std::string(row.things.substr(0, row.things.find(' ')))));
         std::string any;
@@ -1499,6 +1523,47 @@ private:
         return readDescription(c.w, c.i, p, question_.sceneRoot, out);
     }
 
+    // What kind of room is this? What room am I in? Is this a kitchen? The scene's things, and which of them mark a
+    // kind of room (kRoomMarks): the answer names the kinds they mark.
+    bool roomKind(Cursor& c, PhraseParser&, Translation& out) {
+        std::string asked;
+        const bool kind = c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
+                          c.accept({"what|which", "room|place|space"}) ||
+                          c.accept({"what", "is", "this", "room", "used", "for"}) ||
+                          c.accept({"what", "is", "this", "room", "for"});
+        if (kind) {
+            // "... is this?", "... am I in?", "... is it?"
+            if (!c.done() && !c.accept({"is", "this|it|here"}) && !c.accept({"am", "i", "in"}) &&
+                !c.accept({"are", "we", "in"}))
+                return false;
+        } else if (c.accept({"is", "this|it|here"}) || c.accept({"am", "i", "in"}) || c.accept({"are", "we", "in"})) {
+            // "is this a kitchen?", "am I in the bathroom?"
+            c.accept({"a|an|the|my|our"});
+            const auto known = std::find_if(std::begin(kRoomMarks), std::end(kRoomMarks), [&](const RoomMarks& r) {
+                const Words room = words(std::string(r.room));
+                return c.i + room.size() == c.w.size() &&
+                       std::equal(room.begin(), room.end(), c.w.begin() + static_cast<std::ptrdiff_t>(c.i));
+            });
+            if (known == std::end(kRoomMarks)) return false;
+            asked = std::string(known->room);
+            c.i = c.w.size();
+        } else {
+            return false;
+        }
+        if (!c.done()) return false;
+        out.kind = QuestionKind::RoomKind;
+        out.smql = "FIND object RETURN id, category";
+        out.predicate = asked;
+        for (const auto& marks : kRoomMarks) {
+            out.choices.emplace_back(marks.room);
+            // Only what is named so marks a room: a chair is no armchair, a table no desk.
+            out.roles.push_back(categoriesNamed(marks.things, false));
+        }
+        out.subject = "room";
+        out.subjectPlural = "rooms";
+        return true;
+    }
+
     // ------------------------------------------------------------ helpers
 
     bool repeated(const std::string& category) const {
@@ -1652,9 +1717,9 @@ private:
             {std::regex(R"(^what (?:is|are) (?:the |a |an )?(.+?) (closest|nearest) to$)"),
              "what is $2 to the $1 besides the $1"},
             // "what type of toilet is it?", "what type of door is there?" (read as "which ..."): the
-            // thing itself, where it is.
+            // thing itself, where it is. "what kind of room is this?" asks what the things make of it (roomKind).
             {std::regex(
-                 R"(^what (?:type|kind|sort|types|kinds) of (.+?) (?:is|are) (?:it|this|that|there|they|these|those)$)"),
+                 R"(^what (?:type|kind|sort|types|kinds) of (?!(?:room|place|space) )(.+?) (?:is|are) (?:it|this|that|there|they|these|those)$)"),
              "where is the $1"},
             // "what is the location of the piano in relation to the desk?": where it is relative to it.
             {std::regex(
@@ -2182,6 +2247,8 @@ std::string_view toString(QuestionKind kind) {
             return "comparison";
         case QuestionKind::RoomSize:
             return "room size";
+        case QuestionKind::RoomKind:
+            return "room kind";
         case QuestionKind::Statement:
             return "statement";
         case QuestionKind::Route:
