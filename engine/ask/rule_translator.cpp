@@ -100,7 +100,21 @@ constexpr RoomMarks kRoomMarks[] = {
 std::string thingByUse(const std::string& plain) {
     static const std::regex used(
         R"(\b(?:object|thing|item|container|one|device)s? (?:that (?:is|are) |which (?:is|are) |(is|are) )?used (?:to|for) (\w+)(?: (?:of|away|out|up))?(?: (?:the |some |a |my |your )?(?:waste|trash|garbage|rubbish|litter|paper|things|stuff))?)");
+    // "the nearest place to sit", "a spot to sleep near the window": the thing the use names, where more is said of
+    // the place than that there is one ("is there a place to sit?" stays a question of where one can).
+    static const std::regex nearestPlace(
+        R"(\b(closest|nearest|farthest|furthest) (?:place|spot) to (\w+)(?: (?:on|in|at|down))?\b)");
+    static const std::regex placeBy(
+        R"(\b()(?:place|spot) to (\w+)(?: (?:on|in|at|down))?(?= (?:near|next to|by|beside|close to|in front of|behind)\b))");
     std::smatch m;
+    for (const std::regex* place : {&nearestPlace, &placeBy}) {
+        if (!std::regex_search(plain, m, *place)) continue;
+        for (const auto& base : wordnet::baseForms(m.str(2)))
+            for (const auto& row : kAffordances)
+                if (row.verb == base)
+                    return m.prefix().str() + (m.length(1) ? m.str(1) + " " : "") +
+                           std::string(row.things.substr(0, row.things.find(' '))) + m.suffix().str();
+    }
     if (!std::regex_search(plain, m, used)) return plain;
     for (const auto& base : wordnet::baseForms(m.str(2)))
         for (const auto& row : kAffordances)
