@@ -50,16 +50,17 @@ floorPoint   : LPAREN MINUS? NUMBER COMMA MINUS? NUMBER RPAREN ;
 
 viewClause    : VIEW FROM ref ( FACING ref )? ;
 whereClause   : WHERE orExpr ;
-nearestClause : NEAREST TO distanceRef ;
+nearestClause : NEAREST TO placeRef ;
 // `SIMILAR TO 'soft thing to sit on'`: rows ranked by the similarity of their text (docs/similarity.md).
 similarClause : SIMILAR TO ( STRING | PARAM ) ;
 orderClause   : ORDER BY measure ( ASC | DESC )? ;
 // `RETURN id, color, center`: the columns FIND answers with, in that order.
 returnClause  : RETURN name ( COMMA name )* ;
 // What ORDER BY and comparisons measure: the distance to a reference, or an attribute (`height`).
-measure       : DISTANCE LPAREN distanceRef RPAREN | name ;
-// What a distance is measured to: nodes, or HERE, where the viewer stands (the statement's viewpoint).
-distanceRef   : HERE | ref ;
+measure       : DISTANCE LPAREN placeRef RPAREN | name ;
+// What a distance is measured to and a predicate relates to: nodes, or HERE, where the viewer stands
+// (the statement's viewpoint).
+placeRef      : HERE | ref ;
 limitClause   : LIMIT ( MINUS? NUMBER | PARAM ) ;
 // `AS OF '2026-11-20'`: the scene as the memory held it then (docs/history.md).
 asOfClause    : AS OF STRING ;
@@ -79,7 +80,7 @@ orExpr       : andExpr ( OR andExpr )* ;
 andExpr      : notExpr ( AND notExpr )* ;
 notExpr      : NOT notExpr | atom ;
 atom         : LPAREN orExpr RPAREN | predicate | comparison | changedSince ;
-predicate    : name LPAREN ref ( COMMA ref )* ( COMMA distance )? RPAREN ;
+predicate    : name LPAREN placeRef ( COMMA placeRef )* ( COMMA distance )? RPAREN ;
 comparison   : measure ( compareOp quantityOrString | BETWEEN quantity AND quantity ) ;
 // `moved SINCE '2026-11-20'`, `added SINCE ...`, `seen SINCE ...`: the walker checks the word.
 changedSince : name SINCE STRING ;

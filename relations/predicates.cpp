@@ -136,6 +136,18 @@ Frame viewFrame(const model::Viewpoint& viewpoint) {
     return f;
 }
 
+model::Node viewerAt(const Frame& frame) {
+    model::Node viewer;
+    viewer.id = model::kNoNode;
+    viewer.kind = model::NodeKind::Object;
+    viewer.category = "here";
+    viewer.geometry = model::GeometryKind::Box;
+    viewer.box.center = {frame.position.x, frame.position.y, kEyeHeight / 2};
+    viewer.box.size = {kBodyWidth, kBodyWidth, kEyeHeight};
+    viewer.box.yaw = std::atan2(frame.forward.y, frame.forward.x);
+    return viewer;
+}
+
 namespace {
 
 // A slab at most this thick, and three times as tall as thick, that a wall holds hangs on it.

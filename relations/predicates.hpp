@@ -31,6 +31,11 @@ struct Frame {
 };
 Frame viewFrame(const model::Viewpoint& viewpoint);
 
+// HERE in a predicate (`visible_from(HERE)`, `left_of(HERE)`): a person standing where the viewer stands, a
+// kBodyWidth square of floor as tall as the eye (visibility.hpp: kEyeHeight); no node of the scene.
+inline constexpr double kBodyWidth = 0.5;
+model::Node viewerAt(const Frame& frame);
+
 // The category of the anchors that stand between rooms' parts: near's wall check, the tree's walls.
 inline constexpr std::string_view kWall = "wall";
 

@@ -101,7 +101,9 @@ std::string Binder::resolveCategory(const ast::Ref& ref) {
                                      : fmt::format("did you mean {}?", model::joinAlternatives(close));
     // HERE is where the viewer stands, a point rather than a node: only distances are measured to it.
     if (ref.name == "here")
-        hint = "HERE, where the viewer stands, is no node: measure to it with distance(HERE) or NEAREST TO HERE";
+        hint =
+            "HERE, where the viewer stands, is no node: measure to it (distance(HERE), NEAREST TO HERE) or relate "
+            "to it in a predicate (near(HERE), visible_from(HERE))";
     throw Error(ErrorKind::Binding, fmt::format("unknown category '{}' in scene '{}'", ref.name, snap.info().name),
                 ref.where, hint);
 }

@@ -206,9 +206,36 @@ std::vector<relations::RelationHit> Executor::relate(const Node& a, const Node& 
     return relations::relate(a, b, thresholds_, frame, catalog::SceneObstacles(scene()));
 }
 
+bool Executor::holdsForHere(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
+    const auto& snap = scene();
+    const Node viewer = relations::viewerAt(frame);
+    // Each argument's nodes: HERE's one person, or the set's nodes other than the candidate.
+    auto nodesOf = [&](const NodeSet& set) {
+        std::vector<const Node*> out;
+        if (set.source == NodeSet::Source::Here) return std::vector<const Node*>{&viewer};
+        for (catalog::Slot s : slots(set, frame))
+            if (s != slot) out.push_back(&snap.node(s));
+        return out;
+    };
+    const Node& a = snap.node(slot);
+    const auto first = nodesOf(expr.args[0]);
+    const auto second = expr.args.size() == 2 ? nodesOf(expr.args[1]) : std::vector<const Node*>{nullptr};
+    for (const Node* b : first)
+        for (const Node* c : second) {
+            poll();
+            if (b != c && relations::holds(expr.predicate, a, *b, thresholds_, frame, catalog::SceneObstacles(snap), c,
+                                           expr.nearDistance))
+                return true;
+        }
+    return false;
+}
+
 bool Executor::holdsForSome(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
     const auto& snap = scene();
     const auto& spec = relations::spec(expr.predicate);
+    if (std::any_of(expr.args.begin(), expr.args.end(),
+                    [](const NodeSet& set) { return set.source == NodeSet::Source::Here; }))
+        return holdsForHere(expr, slot, frame);
     if (expr.args.size() == 2) {
         const Node& a = snap.node(slot);
         const auto& second = slots(expr.args[1], frame);
@@ -378,8 +405,12 @@ std::vector<Hit> Executor::filtered(const planner::FindPlan& plan, const relatio
     std::vector<catalog::Slot> candidates;
     if (plan.access == Access::RTreeProbe) {
         const BoundExpr& term = plan.probeTerm();
+        // HERE: around the line where the viewer stands for distance(HERE), around the person there for a predicate.
         if (const NodeSet& around = *planner::probeReferences(term); around.source == NodeSet::Source::Here)
-            snap.intersecting(probeRegion(term, standingLine(frame)), candidates);
+            snap.intersecting(probeRegion(term, term.kind == BoundExpr::Kind::Compare
+                                                    ? standingLine(frame)
+                                                    : model::worldAabb(relations::viewerAt(frame).box)),
+                              candidates);
         else
             for (catalog::Slot ref : slots(around, frame))
                 snap.intersecting(probeRegion(term, snap.bounds(ref)), candidates);

@@ -117,6 +117,9 @@ private:
 
     bool matches(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
     bool holdsForSome(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
+    // A predicate one of whose arguments is HERE: related to a person standing where the viewer stands
+    // (relations::viewerAt).
+    bool holdsForHere(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
     bool compare(const binder::BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame);
     // distance(x) of a node: to the nearest node of `refs` other than itself; infinite when there is none.
     double distanceToOthers(catalog::Slot slot, const std::vector<catalog::Slot>& refs) const;

@@ -257,7 +257,7 @@ private:
                 find.where = expr(*where->orExpr());
             } else if (auto* nearest = clause->nearestClause()) {
                 checkOrder(2, span(*clause), lastRank);
-                find.nearestTo = distanceRef(*nearest->distanceRef());
+                find.nearestTo = placeRef(*nearest->placeRef());
             } else if (auto* order = clause->orderClause()) {
                 checkOrder(3, span(*clause), lastRank);
                 find.orderBy = orderBy(*order);
@@ -288,8 +288,8 @@ private:
     ast::OrderBy orderBy(SmqlParser::OrderClauseContext& clause) {
         ast::OrderBy order;
         SmqlParser::MeasureContext& measure = *clause.measure();
-        if (auto* reference = measure.distanceRef())
-            order.distanceTo = distanceRef(*reference);
+        if (auto* reference = measure.placeRef())
+            order.distanceTo = placeRef(*reference);
         else
             order.attribute = nameOf(*measure.name());
         order.descending = clause.DESC() != nullptr;
@@ -417,7 +417,7 @@ private:
 
     // ------------------------------------------------------------ references
 
-    ast::Ref distanceRef(SmqlParser::DistanceRefContext& context) {
+    ast::Ref placeRef(SmqlParser::PlaceRefContext& context) {
         if (!context.HERE()) return ref(*context.ref());
         ast::Ref here;
         here.kind = ast::Ref::Kind::Here;
@@ -532,15 +532,15 @@ private:
         ast::Expr call;
         call.kind = ast::Expr::Kind::Predicate;
         call.predicate = nameOf(*context.name());
-        for (auto* arg : context.ref()) call.args.push_back(ref(*arg));
+        for (auto* arg : context.placeRef()) call.args.push_back(placeRef(*arg));
         if (auto* distance = context.distance()) {
             const antlr4::Token& number = *distance->NUMBER()->getSymbol();
             call.threshold = ast::Distance{realNumber(number) / perMetre(distance->unit), span(*distance)};
         } else if (call.args.size() > 1) {
             // `near(window, cm)`: the unit parsed as a second name.
             const ast::Ref& last = call.args.back();
-            SmqlParser::RefContext& lastArg = *context.ref().back();
-            if (last.kind == ast::Ref::Kind::Name && lastArg.namedRef() && !lastArg.namedRef()->STRING() &&
+            SmqlParser::RefContext* lastArg = context.placeRef().back()->ref();
+            if (last.kind == ast::Ref::Kind::Name && lastArg && lastArg->namedRef() && !lastArg->namedRef()->STRING() &&
                 isUnitWord(last.name))
                 fail(last.where, fmt::format("missing number before '{}'", last.name),
                      fmt::format("write the distance as a number and a unit, as in {}({}, 1.5 m)", call.predicate,
@@ -555,8 +555,8 @@ private:
         ast::Expr compare;
         compare.kind = ast::Expr::Kind::Compare;
         SmqlParser::MeasureContext& measure = *context.measure();
-        if (auto* reference = measure.distanceRef())
-            compare.distanceTo = distanceRef(*reference);
+        if (auto* reference = measure.placeRef())
+            compare.distanceTo = placeRef(*reference);
         else
             compare.attribute = nameOf(*measure.name());
         compare.where = span(context);
