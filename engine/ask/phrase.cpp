@@ -237,7 +237,7 @@ const std::vector<PredicatePhrase>& predicatePhrases() {
 
 std::string conditionText(const Condition& c) {
     // Near the person: within a distance of where the viewer stands.
-    if (c.args.size() == 1 && c.args.front().here)
+    if (c.predicate == "near" && c.args.size() == 1 && c.args.front().here)
         return fmt::format("{}distance(HERE) < {} m", c.negated ? "NOT " : "", smqlMetres(c.metres.value_or(kNearYou)));
     std::string args;
     for (const auto& a : c.args) args += (args.empty() ? "" : ", ") + reference(a);
@@ -969,11 +969,22 @@ Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pai
         }
         ++i;
     }
-    // "near me" with no situation: within a distance of where the viewer stands (distance(HERE)).
-    if (Phrase person; !self_ && c.predicate == "near" && personAt(w, i, person)) {
+    // "me" with no situation: the person standing where the viewer stands (HERE). Near them is within a distance of
+    // that place (distance(HERE)); their sides are the viewpoint's: "in front of me" lies beyond them as the view
+    // sees it (SMQL's behind), "behind me" nearer (in_front_of).
+    if (Phrase person; !self_ && isOneOf(c.predicate, {"near", "left_of", "right_of", "in_front_of", "behind"}) &&
+                       personAt(w, i, person)) {
         c.args.push_back(std::move(person));
-        c.metres = c.metres.value_or(kNearYou);
-        c.words = fmt::format("within {} m of you", smqlMetres(*c.metres));
+        if (c.predicate == "near") {
+            c.metres = c.metres.value_or(kNearYou);
+            c.words = fmt::format("within {} m of you", smqlMetres(*c.metres));
+            return c;
+        }
+        c.words = joined(w, start, i - 1) + " you";
+        if (c.predicate == "in_front_of")
+            c.predicate = "behind";
+        else if (c.predicate == "behind")
+            c.predicate = "in_front_of";
         return c;
     }
     ++nested_;

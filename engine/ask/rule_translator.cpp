@@ -711,15 +711,18 @@ private:
         bool what = c.accept({"what|which"});
         std::optional<Phrase> thing;
         if (what && !isOneOf(c.peek(), {"can", "could", "do", "is", "are"})) thing = p.phrase(c.w, c.i, false);
-        if (!c.accept({"can|could|do|would|will", "i|you|we|one", "see|view|spot|notice"}) &&
+        const bool byPerson = c.accept({"can|could|do|would|will", "i|we|one", "see|view|spot|notice"});
+        if (!byPerson && !c.accept({"can|could|do|would|will", "you", "see|view|spot|notice"}) &&
             !c.accept({"is|are", "visible"}))
             return false;
         if (!what) thing = p.phrase(c.w, c.i, true);
         Phrase from;
-        if (self_ && (c.done() || c.accept({"from|at", "where", "i", "am"}) || c.accept({"where", "i", "am"}))) {
-            // After a situation: from where the person is.
+        // "do you see a laptop?" asks the memory whether there is one; "can I see the tv?" asks from where I am.
+        if ((c.done() && (byPerson || self_)) || c.accept({"from|at", "where", "i", "am"}) ||
+            c.accept({"where", "i", "am"}) || c.accept({"from", "here"})) {
+            // From where the person is: the thing a situation put them at, else where the viewer stands (HERE).
             c.skip({"standing", "sitting", "now", "right", "lying"});
-            from = self_->at;
+            from = p.person();
             from.words = "where you are";
         } else {
             if (!c.accept({"from"})) return false;
@@ -1519,9 +1522,11 @@ private:
         out.predicate = cond.predicate;
         out.condition = cond.words;
         const auto* spec = relations::predicateNamed(cond.predicate);
-        if (cond.predicate == "between" || cond.metres || cond.negated || (spec && spec->relateRank == 0)) {
+        if (cond.predicate == "between" || cond.metres || cond.negated || (spec && spec->relateRank == 0) ||
+            cond.args.front().here) {
             // RELATE compares two things: "between" takes three, a distance is a question of its own,
-            // and what RELATE leaves out (visible_from) is asked as a FIND.
+            // what RELATE leaves out (visible_from) and the person where the viewer stands (HERE, no node) are asked
+            // as a FIND.
             subject.conditions.push_back(cond);
             out.smql = findText(subject, false);
             out.kind = QuestionKind::Existence;
@@ -2109,7 +2114,27 @@ public:
         if (stateWords)
             situationNotes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", *stateWords));
         if (!pose) {
-            Translation out = readLeavingOut(reader, plain);
+            // The person's sides with no situation: the viewpoint's (PhraseParser::person, HERE).
+            static const std::pair<std::regex, std::string> sides[] = {
+                {std::regex(
+                     R"(\b(?:to|on|at|by) (?:my|your) (?:immediate |direct |very |own |far )?(left|right)(?: hand)?(?: side)?(?: of me)?\b)"),
+                 "to the $1 of me"},
+                {std::regex(R"(\b(?:right |directly |just |immediately )?(?:behind|in back of) (?:me|myself|us)\b)"),
+                 "behind me"},
+                {std::regex(
+                     R"(\b(?:right |directly |just |straight )?(?:in front of|ahead of|before) (?:me|myself|us)\b)"),
+                 "in front of me"},
+            };
+            Translation out;
+            try {
+                out = readLeavingOut(reader, plain);
+            } catch (const Error&) {
+                // "what is to my left?": read again with the person's sides as the phrase grammar reads them.
+                std::string sided = plain;
+                for (const auto& [from, to] : sides) sided = std::regex_replace(sided, from, to);
+                if (sided == plain) throw;
+                out = readLeavingOut(reader, sided);
+            }
             for (const auto& note : situationNotes) out.notes.push_back(note);
             return out;
         }
