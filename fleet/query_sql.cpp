@@ -639,7 +639,7 @@ private:
             case ast::Ref::Kind::Side:
                 return side(ref, a);
             case ast::Ref::Kind::Here:
-                throw notYet("distances to HERE (each scene's viewpoint)");
+                throw notYet("HERE (each scene's viewpoint)");
             case ast::Ref::Kind::Param:
                 break;
         }

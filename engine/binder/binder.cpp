@@ -99,7 +99,7 @@ std::string Binder::resolveCategory(const ast::Ref& ref) {
     if (close.empty()) close = match.categories;  // a synonym or a broader word: couch -> sofa
     std::string hint = close.empty() ? fmt::format("this scene has: {}", model::joinAlternatives(known))
                                      : fmt::format("did you mean {}?", model::joinAlternatives(close));
-    // HERE is where the viewer stands, a point rather than a node: only distances are measured to it.
+    // HERE is where the viewer stands, not a node: distances and predicates take it, a target or RELATE does not.
     if (ref.name == "here")
         hint =
             "HERE, where the viewer stands, is no node: measure to it (distance(HERE), NEAREST TO HERE) or relate "

@@ -27,8 +27,8 @@ struct BoundFind;
 // words are resolved by the binder. A side of the room (`wall.left`) depends on the viewpoint and a
 // sub-query on its own answer: both are resolved by the executor when the statement runs.
 struct NodeSet {
-    // Here: no node but where the viewer stands (distance(HERE), NEAREST TO HERE); the executor measures to
-    // the statement's viewpoint.
+    // Here: no node but where the viewer stands (distance(HERE), NEAREST TO HERE, near(HERE)); the executor measures
+    // to the statement's viewpoint, and relates to a person standing there (relations::viewerAt).
     enum class Source { Nodes, Side, SubQuery, Here };
     Source source = Source::Nodes;
     std::vector<Slot> slots;  // Nodes: the nodes; Side: the candidates, in id order
