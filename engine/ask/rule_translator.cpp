@@ -1,18 +1,21 @@
 // The built-in translator: a recursive-descent reader of English questions. A question is cut into
 // words (phrase.hpp), its opening words say which kind of question it is, and each kind reads the
 // rest with the phrase grammar:
-//   question   := lead* ( direction | guidance | distance | size | attribute | choice | affordance
-//                       | visibility | changes | count | existence | relative | locate | relational
-//                       | yes-no ) unit?
+//   question   := lead* ( room-kind | direction | guidance | distance | size | attribute | choice
+//                       | affordance | seating | visibility | changes | count | existence | relative
+//                       | locate | relational | yes-no ) unit?
+//   room-kind  := "what kind of room is this" | "what room am i in" | "is this" "a"? room
 //   direction  := "if"? "i am"? "standing" place phrase "and"? "facing" phrase "is" phrase side-choices
 //   guidance   := ("how do i get" | "take me" | "what is the way" | "navigate" | "directions")
 //                 ("from" phrase | "to" phrase)+
-//   distance   := "how far is" phrase ("from" | "to") phrase | "what is the distance between" phrase "and" phrase
+//   distance   := "how far is" phrase (("from" | "to") phrase)? | "how far am i from" phrase
+//                 | "what is the distance between" phrase "and" phrase      ("me", "here": the person)
 //   size       := "how" size-word "is" phrase | "what is the" measure "of" phrase
 //   choice     := "which of these" (A, B, ...) "is" order | "which is" order "," A "or" B
 //   affordance := (("where" | "what") "can i" | "is there" "anything"? ("i can")? | "anything to"
 //                  | ("find" | "show") "me"? "something to" | "show me where") verb
 //                 phrase? preposition?
+//   seating    := "how many" "people"? "can sit" ("here" | "on" phrase | "at" phrase)?
 //   count      := "how many" phrase posts ("do" phrase "have")?
 //   ...
 // A form is tried when its opening words match; the first form that reads the whole question wins.
