@@ -72,6 +72,10 @@ int demoCommand(const std::string& dbDirOption) {
         "1) LIMIT 1)",
         "DESCRIBE (FIND object WHERE on(object) LIMIT 1)",
         "EXPLAIN FIND object WHERE on(object) AND near(window, 2 m)",
+        // English, from where the viewer stands: the scene's viewpoint.
+        "ASK 'what is the closest thing to me?'",
+        "ASK 'what kind of room is this?'",
+        "ASK 'how many people can sit here?'",
     };
     bool ok = true;
     for (const char* statement : examples) {
