@@ -2117,27 +2117,7 @@ public:
         if (stateWords)
             situationNotes.push_back(fmt::format("'{}' is left out: the memory keeps no such state", *stateWords));
         if (!pose) {
-            // The person's sides with no situation: the viewpoint's (PhraseParser::person, HERE).
-            static const std::pair<std::regex, std::string> sides[] = {
-                {std::regex(
-                     R"(\b(?:to|on|at|by) (?:my|your) (?:immediate |direct |very |own |far )?(left|right)(?: hand)?(?: side)?(?: of me)?\b)"),
-                 "to the $1 of me"},
-                {std::regex(R"(\b(?:right |directly |just |immediately )?(?:behind|in back of) (?:me|myself|us)\b)"),
-                 "behind me"},
-                {std::regex(
-                     R"(\b(?:right |directly |just |straight )?(?:in front of|ahead of|before) (?:me|myself|us)\b)"),
-                 "in front of me"},
-            };
-            Translation out;
-            try {
-                out = readLeavingOut(reader, plain);
-            } catch (const Error&) {
-                // "what is to my left?": read again with the person's sides as the phrase grammar reads them.
-                std::string sided = plain;
-                for (const auto& [from, to] : sides) sided = std::regex_replace(sided, from, to);
-                if (sided == plain) throw;
-                out = readLeavingOut(reader, sided);
-            }
+            Translation out = unsituated(reader, plain);
             for (const auto& note : situationNotes) out.notes.push_back(note);
             return out;
         }
@@ -2145,6 +2125,28 @@ public:
     }
 
 private:
+    // A question with no situation; "me" is the person where the viewer stands (PhraseParser::person, HERE), whose
+    // sides ("what is to my left?") are read again as the phrase grammar reads them when the words as said fail.
+    static Translation unsituated(QuestionReader& reader, const std::string& plain) {
+        static const std::pair<std::regex, std::string> sides[] = {
+            {std::regex(
+                 R"(\b(?:to|on|at|by) (?:my|your) (?:immediate |direct |very |own |far )?(left|right)(?: hand)?(?: side)?(?: of me)?\b)"),
+             "to the $1 of me"},
+            {std::regex(R"(\b(?:right |directly |just |immediately )?(?:behind|in back of) (?:me|myself|us)\b)"),
+             "behind me"},
+            {std::regex(R"(\b(?:right |directly |just |straight )?(?:in front of|ahead of|before) (?:me|myself|us)\b)"),
+             "in front of me"},
+        };
+        try {
+            return readLeavingOut(reader, plain);
+        } catch (const Error&) {
+            std::string sided = plain;
+            for (const auto& [from, to] : sides) sided = std::regex_replace(sided, from, to);
+            if (sided == plain) throw;
+            return readLeavingOut(reader, sided);
+        }
+    }
+
     // A question read against a situation's pose: which way a thing is, or any question whose "me"
     // and "my left" are the pose's, with the pose's VIEW FROM.
     static Translation situated(const Question& question, const Lexicon& lexicon, const Pose& pose, std::string plain,
