@@ -1,10 +1,11 @@
 // The built-in translator: a recursive-descent reader of English questions. A question is cut into
 // words (phrase.hpp), its opening words say which kind of question it is, and each kind reads the
 // rest with the phrase grammar:
-//   question   := lead* ( room-kind | direction | guidance | distance | size | attribute | choice
-//                       | affordance | seating | visibility | changes | count | existence | relative
-//                       | locate | relational | yes-no ) unit?
+//   question   := lead* ( room-kind | where-am-i | direction | guidance | distance | size | attribute
+//                       | choice | affordance | seating | visibility | changes | count | existence
+//                       | relative | locate | relational | yes-no ) unit?
 //   room-kind  := "what kind of room is this" | "what room am i in" | "is this" "a"? room
+//   where-am-i := "where am i"                      (the thing nearest where the person stands)
 //   direction  := "if"? "i am"? "standing" place phrase "and"? "facing" phrase "is" phrase side-choices
 //   guidance   := ("how do i get" | "take me" | "what is the way" | "navigate" | "directions")
 //                 ("from" phrase | "to" phrase)+
@@ -205,14 +206,14 @@ public:
         takeUnit();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,   &QuestionReader::direction, &QuestionReader::guidance,
-            &QuestionReader::distance,   &QuestionReader::size,      &QuestionReader::attribute,
-            &QuestionReader::affordance, &QuestionReader::seating,   &QuestionReader::visibility,
-            &QuestionReader::changes,    &QuestionReader::count,     &QuestionReader::existence,
-            &QuestionReader::side,       &QuestionReader::relative,  &QuestionReader::superlative,
-            &QuestionReader::reverse,    &QuestionReader::locate,    &QuestionReader::relational,
-            &QuestionReader::comparison, &QuestionReader::yesNo,     &QuestionReader::description,
-            &QuestionReader::state,
+            &QuestionReader::roomKind,    &QuestionReader::whereAmI,   &QuestionReader::direction,
+            &QuestionReader::guidance,    &QuestionReader::distance,   &QuestionReader::size,
+            &QuestionReader::attribute,   &QuestionReader::affordance, &QuestionReader::seating,
+            &QuestionReader::visibility,  &QuestionReader::changes,    &QuestionReader::count,
+            &QuestionReader::existence,   &QuestionReader::side,       &QuestionReader::relative,
+            &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
+            &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
+            &QuestionReader::description, &QuestionReader::state,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -815,15 +816,22 @@ private:
             "is", "are", "there", "here", "altogether", "total", "exactly", "currently", "right", "now"};
         if (c.peek() == "and") return countKinds(c, p, std::move(thing), filler, out);
         c.skip(filler);
-        bool see = c.accept({"do|can|could", "you|i|we", "see"});
+        // "how many chairs can I see?" counts from where the person is; "do you see" counts what the memory holds.
+        const bool iSee = c.accept({"do|can|could", "i|we", "see"});
+        const bool see = iSee || c.accept({"do|can|could", "you", "see"});
         if (!see) c.accept({"do|can|could", "you|i|we", "have|find|count"});
         c.skip(filler);
         if (see && c.accept({"from"})) {
             // "how many windows can I see from the door?"
             Condition seen;
             seen.predicate = "visible_from";
-            seen.args.push_back(p.phrase(c.w, c.i, true));
-            seen.words = "visible from the " + seen.args.front().words;
+            Phrase person;
+            seen.args.push_back(p.personAt(c.w, c.i, person) ? person : p.phrase(c.w, c.i, true));
+            seen.words =
+                person.words.empty() ? "visible from the " + seen.args.front().words : "visible from where you are";
+            thing.conditions.push_back(seen);
+        } else if (iSee && c.done()) {
+            Condition seen{"visible_from", {p.person()}, std::nullopt, "visible from where you are", false};
             thing.conditions.push_back(seen);
         }
         p.posts(c.w, c.i, thing);
@@ -1543,6 +1551,25 @@ private:
     // What does the urinal look like? What does the cabinet near the copier say? (read_description.cpp)
     bool description(Cursor& c, PhraseParser& p, Translation& out) {
         return readDescription(c.w, c.i, p, question_.sceneRoot, out);
+    }
+
+    // Where am I? Where the person stands (the scene's viewpoint, or the thing a situation put them at), said by the
+    // thing nearest it.
+    bool whereAmI(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"where", "am|are", "i|we"})) return false;
+        c.skip({"now", "right", "standing", "exactly"});
+        if (!c.done()) return false;
+        Phrase nearest = anyThing("object");
+        nearest.order = Order{"distance", false, {p.person()}, "nearest to you"};
+        nearest.pick = 1;
+        out.kind = QuestionKind::Superlative;
+        out.smql = findText(nearest, true);
+        out.measure = nearest.order->words;
+        describeSubject(nearest, out);
+        out.notes.push_back(self_ ? "you stand where the situation put you; the thing nearest you says where that is"
+                                  : "you stand at the scene's viewpoint (SHOW SCENES shows it); the thing nearest it "
+                                    "says where that is");
+        return true;
     }
 
     // What kind of room is this? What room am I in? Is this a kitchen? The scene's things, and which of them mark a
