@@ -2155,23 +2155,29 @@ private:
     // A question with no situation; "me" is the person where the viewer stands (PhraseParser::person, HERE), whose
     // sides ("what is to my left?") are read again as the phrase grammar reads them when the words as said fail.
     static Translation unsituated(QuestionReader& reader, const std::string& plain) {
+        try {
+            return readLeavingOut(reader, plain);
+        } catch (const Error&) {
+            const std::string sided = withPersonSides(plain);
+            if (sided == plain) throw;
+            return readLeavingOut(reader, sided);
+        }
+    }
+
+    // The person's own sides as the phrase grammar reads them: "to my left" is "to the left of me", "in back of me"
+    // "behind me", "ahead of me" "in front of me". A situation's reading adds more (situated).
+    static std::string withPersonSides(std::string plain) {
         static const std::pair<std::regex, std::string> sides[] = {
             {std::regex(
-                 R"(\b(?:to|on|at|by) (?:my|your) (?:immediate |direct |very |own |far )?(left|right)(?: hand)?(?: side)?(?: of me)?\b)"),
+                 R"(\b(?:to|on|at|by) (?:my|your) (?:immediate |direct |very |own |far )?(left|right)(?: hand| foot| feet)?(?: side)?(?: of me)?\b)"),
              "to the $1 of me"},
             {std::regex(R"(\b(?:right |directly |just |immediately )?(?:behind|in back of) (?:me|myself|us)\b)"),
              "behind me"},
             {std::regex(R"(\b(?:right |directly |just |straight )?(?:in front of|ahead of|before) (?:me|myself|us)\b)"),
              "in front of me"},
         };
-        try {
-            return readLeavingOut(reader, plain);
-        } catch (const Error&) {
-            std::string sided = plain;
-            for (const auto& [from, to] : sides) sided = std::regex_replace(sided, from, to);
-            if (sided == plain) throw;
-            return readLeavingOut(reader, sided);
-        }
+        for (const auto& [from, to] : sides) plain = std::regex_replace(plain, from, to);
+        return plain;
     }
 
     // A question read against a situation's pose: which way a thing is, or any question whose "me"
@@ -2193,11 +2199,9 @@ private:
             R"(^where (?:is|are) (.+?) (?:located |positioned |placed )?(?:according to|relative to|with respect to|compared to|in relation to|from|to) me$)");
         plain = std::regex_replace(plain, whereToMe, "is $1 on my left or right or behind me");
         if (!situatedDirection(plain, pose, lexicon, parser, out)) {
-            // The person's sides said as the phrase grammar reads them: "to the left of me".
+            // The person's sides said as the phrase grammar reads them: "to the left of me", and more of them a
+            // situation gives ("to the left", "where I am").
             static const std::pair<std::regex, std::string> sides[] = {
-                {std::regex(
-                     R"(\b(?:to|on|at|by) (?:my|your) (?:immediate |direct |very |own |far )?(left|right)(?: hand| foot| feet)?(?: side)?(?: of me)?\b)"),
-                 "to the $1 of me"},
                 {std::regex(
                      R"(\b(?:to|on|at) the (left|right)(?: hand)?(?: side)?\b(?! of\b)(?! side\b)(?! hand\b)(?! end\b)(?! corner\b))"),
                  "to the $1 of me"},
@@ -2212,13 +2216,8 @@ private:
                      R"(^can i (?:reach|touch|grab|get to) (.+?)(?: from where i am(?: standing| sitting| now)?| from me| without moving| from here)?$)"),
                  "is $1 near me"},
 
-                {std::regex(R"(\b(?:right |directly |just |immediately )?(?:behind|in back of) (?:me|myself|us)\b)"),
-                 "behind me"},
                 {std::regex(R"(\bat my back\b)"), "behind me"},
                 {std::regex(R"(\bbehind$)"), "behind me"},
-                {std::regex(
-                     R"(\b(?:right |directly |just |straight )?(?:in front of|ahead of|before) (?:me|myself|us)\b)"),
-                 "in front of me"},
                 {std::regex(R"(\b(?:straight |directly |right )?ahead\b(?! of))"), "in front of me"},
                 {std::regex(R"(\b(?:directly |right )?in front\b(?! of))"), "in front of me"},
                 {std::regex(R"(^how (?:may|many) (?:total |in total )?)"), "how many "},
@@ -2247,7 +2246,7 @@ private:
                         Words side = words(std::string(said[static_cast<std::size_t>(clock->first)]));
                         pw.insert(pw.begin() + static_cast<std::ptrdiff_t>(k), side.begin(), side.end());
                     }
-            plain = joined(pw, 0, pw.size());
+            plain = withPersonSides(joined(pw, 0, pw.size()));
             for (const auto& [from, to] : sides) plain = std::regex_replace(plain, from, to);
             reader.setSelf(Self{pose.at, pose.turn});
             try {
