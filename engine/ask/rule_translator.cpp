@@ -10,6 +10,7 @@
 //   guidance   := ("how do i get" | "take me" | "what is the way" | "navigate" | "directions")
 //                 ("from" phrase | "to" phrase)+
 //   distance   := "how far is" phrase (("from" | "to") phrase)? | "how far am i from" phrase
+//                 | "is" phrase "far" ("from" phrase)?
 //                 | "what is the distance between" phrase "and" phrase      ("me", "here": the person)
 //   size       := "how" size-word "is" phrase | "what is the" measure "of" phrase
 //   choice     := "which of these" (A, B, ...) "is" order | "which is" order "," A "or" B
@@ -437,6 +438,20 @@ private:
                 c.accept({"away"});
                 if (!c.accept({"from|to"})) return false;
                 b = p.phrase(c.w, c.i, true);
+            }
+        } else if (const auto far = std::find(c.w.begin(), c.w.end(), "far");
+                   far != c.w.end() && c.accept({"is|are"})) {
+            // "is the fridge far from me?": how far, which says whether it is.
+            Phrase first;
+            if (!phraseWithin(c, p, static_cast<std::size_t>(far - c.w.begin()), first)) return false;
+            a = first;
+            ++c.i;
+            c.accept({"away"});
+            if (c.done()) {
+                b = p.person();
+            } else {
+                if (!c.accept({"from"})) return false;
+                b = from();
             }
         } else if (c.accept({"how", "much", "space|room|distance|gap"})) {
             // "how much space is there between the bed and the desk?": the gap between them.
