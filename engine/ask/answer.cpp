@@ -764,10 +764,8 @@ std::string place(const std::string& name, const std::map<std::string, std::stri
         const std::string category = entry.substr(0, space), count = entry.substr(space + 1);
         if (category == "object")
             unnamed = count == "1" ? "1 other thing" : count + " other things";
-        else if (count != "1")
-            kinds.push_back(count + " " + pluralOf(category));
         else
-            kinds.push_back(withArticle(category));
+            kinds.push_back(counted(category, std::stoul(count)));
         at = end + 2;
     }
     if (!unnamed.empty()) kinds.push_back(unnamed);
