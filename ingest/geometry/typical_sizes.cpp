@@ -134,6 +134,14 @@ bool hasUprightEnds(std::string_view category) {
     return t && t->uprightEnds;
 }
 
+std::string_view kindName(std::string_view category) {
+    static constexpr std::pair<std::string_view, std::string_view> kNamedAlike[] = {{"desk", "table"},
+                                                                                    {"monitor", "tv"}};
+    for (const auto& [name, kind] : kNamedAlike)
+        if (category == name) return kind;
+    return category;
+}
+
 Role role(std::string_view category) {
     const Typical* t = find(category);
     return t ? t->role : Role::Other;

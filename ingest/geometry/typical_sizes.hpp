@@ -71,4 +71,9 @@ RoomKind roomKind(std::string_view category);
 enum class Role { Other, Seat, Luggage, Basin };
 Role role(std::string_view category);
 
+// The name of the kind a category is one of the names of, where models name one kind two ways: a detector's desk
+// is the segmenter's (dining) table, its monitor the segmenter's tv; else the category itself. One thing called a
+// desk in some views and a table in others is stored once (object_fusion.cpp: pieceOf).
+std::string_view kindName(std::string_view category);
+
 }  // namespace smql::ingest

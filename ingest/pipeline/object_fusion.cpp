@@ -27,6 +27,7 @@ struct Thing {
     model::Box box;
     std::map<std::string, double> tally;
     std::string category;
+    std::optional<SeenTop> top;  // what a thing that holds things shows of its top, before it reaches the floor
 };
 
 // A view's region in the aligned frame, colours as RGB.
@@ -109,7 +110,7 @@ std::vector<Thing> thingsOf(const InstanceMap& map, const std::vector<FusionCame
             ++guesses;
             continue;
         }
-        Thing thing{{&instance}, std::move(points), {}, instance.tally(), {}};
+        Thing thing{{&instance}, std::move(points), {}, instance.tally(), {}, {}};
         fit(thing);
         out.push_back(std::move(thing));
     }
@@ -289,8 +290,39 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
     return false;
 }
 
+std::vector<model::Vec3> cornersOf(const model::Box& box) {
+    std::vector<model::Vec3> corners;
+    for (const auto& corner : model::footprint(box))
+        for (const double z : {model::bottom(box), model::top(box)}) corners.push_back({corner.x, corner.y, z});
+    return corners;
+}
+
+// The cabinet a sink is set in, stored as a thing of its own (a vanity a detector called a table), joined to the
+// sink: the sink's box grows down to hold it and keeps its name. Returns how many were joined.
+std::size_t joinCabinets(std::vector<Thing>& things, const FusionOptions& options) {
+    std::size_t joined = 0;
+    for (std::size_t b = 0; b < things.size(); ++b) {
+        if (role(things[b].category) != Role::Basin) continue;
+        for (std::size_t c = 0; c < things.size(); ++c) {
+            if (c == b || role(things[c].category) == Role::Basin || role(things[c].category) == Role::Seat ||
+                !cabinetOf(things[c].box, things[b].box, options))
+                continue;
+            model::Box box = things[b].box;
+            growToHold(box, cornersOf(things[c].box));
+            things[b] = withPart(things[b], things[c]);
+            things[b].box = box;
+            things.erase(things.begin() + static_cast<std::ptrdiff_t>(c));
+            if (c < b) --b;
+            c = static_cast<std::size_t>(-1);  // the grown sink may reach another
+            ++joined;
+        }
+    }
+    return joined;
+}
+
 // Whether `small` is a piece of `large` the map kept apart, judged by their boxes:
-// - stored twice: one name, a good share of the smaller's box inside the larger's (a corner sofa's two arms, a
+// - stored twice: one name (or two of one kind: a desk and a table, typical_sizes.hpp: kindName), a good share of the
+// smaller's box inside the larger's (a corner sofa's two arms, a
 //   sofa seen whole from afar and in parts close up, their cells never close enough);
 // - one place named twice: each box mostly inside the other (a side table seen as a "bed" in three frames and
 //   as a "table" in two);
@@ -304,7 +336,7 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
 //   a little high in one frame).
 bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const FusionOptions& options) {
     const model::Box &a = small.box, &b = large.box;
-    const bool sameName = small.category == large.category;
+    const bool sameName = kindName(small.category) == kindName(large.category);
     const double inside = model::fractionInside(a, b);
     const bool twoTops = small.top && large.top && std::abs(*small.top - *large.top) > options.oneTopSpread;
     if (sameName && inside >= options.storedTwiceShare && !twoTops) return true;
@@ -316,6 +348,26 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
     const double bottom = a.center.z - a.size.z / 2, top = b.center.z + b.size.z / 2;
     return sameName && a.size.z <= options.topSlab && std::abs(bottom - top) <= options.restingGap &&
            model::footprintContains(b, {a.center.x, a.center.y}, 0);
+}
+
+bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
+    const double below = model::bottom(basin) - model::top(under);
+    return below >= -options.cabinetAbove && below <= options.cabinetBelow &&
+           model::footprintOverlap(under, basin) >= options.cabinetShare * model::footprintArea(under);
+}
+
+void growToHold(model::Box& box, const std::vector<model::Vec3>& points) {
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    double lo[3] = {-box.size.x / 2, -box.size.y / 2, -box.size.z / 2}, hi[3] = {-lo[0], -lo[1], -lo[2]};
+    for (const auto& p : points) {
+        const double dx = p.x - box.center.x, dy = p.y - box.center.y;
+        const double local[3] = {c * dx + s * dy, -s * dx + c * dy, p.z - box.center.z};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], local[k]), hi[k] = std::max(hi[k], local[k]);
+    }
+    const double mid[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+    box.center = {box.center.x + c * mid[0] - s * mid[1], box.center.y + s * mid[0] + c * mid[1],
+                  box.center.z + mid[2]};
+    box.size = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
 }
 
 std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, std::optional<double> tableTopHeight,
@@ -542,35 +594,34 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     made.pieces = mergePieces(things, options_);
     made.ends = joinUprightEnds(things, options_);
     // The tops of things that hold things, before their boxes reach down to the floor from them.
-    std::vector<std::optional<SeenTop>> tops(things.size());
-    for (std::size_t t = 0; t < things.size(); ++t)
-        if (holdsThings(things[t].category) && !hasUprightEnds(things[t].category)) {
-            tops[t] = seenTop(things[t].points.points, things[t].box, options_);
-            made.lowered += lowerToTop(things[t].box, *tops[t], options_);
-        } else if (role(things[t].category) == Role::Basin) {
+    for (auto& thing : things)
+        if (holdsThings(thing.category) && !hasUprightEnds(thing.category)) {
+            thing.top = seenTop(thing.points.points, thing.box, options_);
+            made.lowered += lowerToTop(thing.box, *thing.top, options_);
+        } else if (role(thing.category) == Role::Basin) {
             // A sink ends at its rim or counter too: what its views took in above it is what stands on the counter
             // or the wall behind where the walls stage took none (a short wall beside a vanity, a backsplash). Its
             // name is not doubted for a top not shown: a basin seen from the side shows its bowl, not its rim.
-            made.lowered +=
-                lowerToTop(things[t].box, seenTop(things[t].points.points, things[t].box, options_), options_);
+            made.lowered += lowerToTop(thing.box, seenTop(thing.points.points, thing.box, options_), options_);
         }
     std::vector<SeenBox> boxes;
-    for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0});
+    for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0, {}});
     made.grounded = reachDownToFloor(boxes, room_.floorFound, room_.tableTopHeight, options_);
     for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
+    made.cabinets = joinCabinets(things, options_);
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
     made.slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options_); });
 
     std::vector<SeenBox> named;
-    for (const auto& thing : things) named.push_back({thing.box, thing.category, 0});
+    for (const auto& thing : things) named.push_back({thing.box, thing.category, 0, {}});
     // Names doubted: a thing that holds things on its top (a table; not a bed, whose headboard rises over its top)
     // that shows no top, then a name out of place. A doubted thing is no seat, table or luggage to namedByUse.
     std::vector<std::string> doubts(things.size());
     const std::vector<std::string> misplaced = outOfPlace(named, walls_, options_);
     for (std::size_t t = 0; t < things.size(); ++t) {
-        if (tops[t] && tops[t]->cover < options_.topCover)
+        if (things[t].top && things[t].top->cover < options_.topCover)
             doubts[t] = fmt::format("shows no top (its points cover at most {:.0f} % of its footprint at one height)",
-                                    100 * tops[t]->cover);
+                                    100 * things[t].top->cover);
         if (doubts[t].empty() && !misplaced[t].empty()) doubts[t] = "stands " + misplaced[t];
         if (!doubts[t].empty()) named[t].category = "object";
     }
@@ -657,9 +708,9 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds or "
         "sofas; {} slivers and {} things seen in too few of the frames that held them dropped; {} lowered to the top "
-        "they show; {} reaching down to the floor)",
+        "they show; {} reaching down to the floor; {} cabinet(s) taken into the sink(s) set in them)",
         counts.segmented, counts.views, out.size(), counts.mapMerged, counts.pieces, counts.ends, counts.slivers,
-        counts.guesses, counts.lowered, counts.grounded));
+        counts.guesses, counts.lowered, counts.grounded, counts.cabinets));
     return out;
 }
 

@@ -64,6 +64,9 @@ struct FusionOptions {
     double topBand = 0.1;         // m: one band of heights this thick, in its box's upper half, cover ...
     double topCover = 0.1;        // ... this share of its footprint's cells or more (seenTop)
     double overTop = 0.1;         // m: a box this much higher than the top it shows holds what stands on it
+    double cabinetAbove = 0.1;    // m: a thing whose top lies from this above ...
+    double cabinetBelow = 0.2;    // ... to this below a sink's bottom, ...
+    double cabinetShare = 0.6;    // ... this share of its footprint under the sink's, is the cabinet the sink is set in
     bool voteLabels = true;       // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
@@ -89,6 +92,15 @@ struct SeenBox {
 // named twice, a glimpse of it, or its top (object_fusion.cpp says how; docs/ingest.md, "Things"). `touching`:
 // the share of the smaller's points within FusionOptions::touchReach of the larger's.
 bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const FusionOptions& options = {});
+
+// Whether `under` is the cabinet a sink (typical_sizes.hpp: Role::Basin) is set in, a vanity: its top right under
+// the sink's bottom (FusionOptions::cabinetAbove, cabinetBelow) and most of its footprint under the sink's
+// (cabinetShare). People, and ScanNet's boxes, count the two as one sink; a kitchen counter's run under a sink lies
+// mostly beside it. Fusion joins such a thing to its sink, and so does the objects stage a cluster no model named.
+bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options = {});
+
+// The box grown to hold the points, its yaw kept.
+void growToHold(model::Box& box, const std::vector<model::Vec3>& points);
 
 // Things of kinds that stand on floors whose legs or base the views did not see reach down to the floor: the
 // one found; or one placed that the lowest thing reaches down to, or placed a table's height under a table top
@@ -155,7 +167,7 @@ struct FusedThing {
 struct FusionCounts {
     std::size_t segmented = 0;  // views that showed a thing apart from the floor and walls
     std::size_t views = 0;      // views added
-    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, lowered = 0, grounded = 0;
+    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, lowered = 0, grounded = 0, cabinets = 0;
 };
 
 // Object fusion frame by frame: each frame's views go into the instance map as the frame comes (addFrame), and

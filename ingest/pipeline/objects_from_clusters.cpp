@@ -36,21 +36,6 @@ bool inKnownThing(const model::Vec3& p, const model::SceneData& scene, double ma
     return false;
 }
 
-// The box grown to hold the points, its yaw kept.
-void growToHold(model::Box& box, const std::vector<model::Vec3>& points) {
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double lo[3] = {-box.size.x / 2, -box.size.y / 2, -box.size.z / 2}, hi[3] = {-lo[0], -lo[1], -lo[2]};
-    for (const auto& p : points) {
-        const double dx = p.x - box.center.x, dy = p.y - box.center.y;
-        const double local[3] = {c * dx + s * dy, -s * dx + c * dy, p.z - box.center.z};
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], local[k]), hi[k] = std::max(hi[k], local[k]);
-    }
-    const double mid[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-    box.center = {box.center.x + c * mid[0] - s * mid[1], box.center.y + s * mid[0] + c * mid[1],
-                  box.center.z + mid[2]};
-    box.size = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
-}
-
 class ClusterFinder : public ObjectFinder {
 public:
     // Clusters come from the aligned structure, which the frame pass builds anyway.
@@ -67,15 +52,12 @@ public:
 }  // namespace
 
 bool takenIntoBasin(const model::Box& cluster, const std::vector<model::Vec3>& points, model::SceneData& scene,
-                    const ClusterObjects& options) {
+                    const FusionOptions& options) {
     for (auto& n : scene.nodes) {
         if (n.kind != model::NodeKind::Object || n.geometry != model::GeometryKind::Box ||
             role(n.category) != Role::Basin)
             continue;
-        const double below = model::bottom(n.box) - model::top(cluster);
-        if (below < -options.knownMargin || below > options.knownMargin + options.cabinetGap ||
-            model::footprintOverlap(cluster, n.box) < options.cabinetShare * model::footprintArea(cluster))
-            continue;
+        if (!cabinetOf(cluster, n.box, options)) continue;
         growToHold(n.box, points);
         return true;
     }
@@ -109,7 +91,7 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
         if (box.size.x < options.minLonger || box.size.y < options.minShorter || box.size.z < options.minHeight ||
             box.size.x > options.maxLonger || frames.size() < options.minFrames)
             continue;
-        if (takenIntoBasin(box, points, scene, options)) {
+        if (takenIntoBasin(box, points, scene)) {
             ++counts.cabinets;
             continue;
         }

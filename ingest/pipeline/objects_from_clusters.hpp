@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ingest/geometry/walls.hpp"
+#include "ingest/pipeline/object_fusion.hpp"
 #include "ingest/pipeline/stage_data.hpp"
 #include "model/types.hpp"
 
@@ -21,8 +22,6 @@ struct ClusterObjects {
     std::size_t minFrames = 1;   // frames whose points it holds
     bool outsideKnown = false;   // leave out the points in (or next to) the scene's objects' boxes
     double knownMargin = 0.1;    // m
-    double cabinetGap = 0.1;     // m: a cluster whose top is within knownMargin and this under a basin's bottom ...
-    double cabinetShare = 0.6;   // ... and this share of whose footprint lies under it is the basin's cabinet
 };
 
 struct ClusterCounts {
@@ -38,10 +37,9 @@ struct ClusterCounts {
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                                 model::SceneData& scene, const ClusterObjects& options);
 
-// Whether the cluster (its box and points) lies right under a basin of the scene, its top within
-// ClusterObjects::knownMargin + cabinetGap of the basin's bottom and cabinetShare of its footprint under the
-// basin's: then the basin's box has grown down to hold the points (its yaw kept).
+// Whether the cluster (its box and points) is the cabinet a basin of the scene is set in (cabinetOf): then the
+// basin's box has grown down to hold the points (its yaw kept).
 bool takenIntoBasin(const model::Box& cluster, const std::vector<model::Vec3>& points, model::SceneData& scene,
-                    const ClusterObjects& options = {});
+                    const FusionOptions& options = {});
 
 }  // namespace smql::ingest

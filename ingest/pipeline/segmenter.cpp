@@ -9,6 +9,7 @@
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ingest/geometry/typical_sizes.hpp"
 #include "model/error.hpp"
 
 namespace smql::ingest {
@@ -19,14 +20,6 @@ namespace {
 // frame keeps its aspect.
 const cv::Size kInput{513, 385};
 constexpr const char* kLowResolution = "logits_lowres";
-
-// Kinds one model names as another's: a detector's desk is the segmenter's (dining) table, its
-// monitor the segmenter's tv.
-std::string segmentKind(const std::string& category) {
-    if (category == "desk") return "table";
-    if (category == "monitor") return "tv";
-    return category;
-}
 
 class DeepLabSegmenter : public SemanticSegmenter {
 public:
@@ -111,7 +104,7 @@ namespace {
 
 // The segmenter's label for the detection's kind, when it knows the kind.
 std::optional<std::uint8_t> labelOf(const Detection& detection, const std::vector<std::string>& categories) {
-    const std::string kind = segmentKind(detection.category);
+    const std::string kind(kindName(detection.category));
     auto known = std::find(categories.begin(), categories.end(), kind);
     if (kind.empty() || known == categories.end()) return std::nullopt;
     return static_cast<std::uint8_t>(known - categories.begin());
