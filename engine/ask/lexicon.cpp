@@ -39,6 +39,7 @@ constexpr std::string_view kEquivalents[][9] = {
     {"lamp", "light"},
     {"trash-bag", "garbage-bag", "bin-bag"},
     {"whiteboard", "white-board", "dry-erase-board", "marker-board"},
+    {"door", "exit", "entrance", "way-out"},
 };
 
 // The other names of `name`'s rows in kEquivalents.

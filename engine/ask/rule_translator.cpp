@@ -111,7 +111,11 @@ std::string thingByUse(const std::string& plain) {
         R"(\b(closest|nearest|farthest|furthest) (?:place|spot) to (\w+)(?: (?:on|in|at|down))?\b)");
     static const std::regex placeBy(
         R"(\b()(?:place|spot) to (\w+)(?: (?:on|in|at|down))?(?= (?:near|next to|by|beside|close to|in front of|behind)\b))");
+    // "how do I get out?", "how can we leave the room?": the way out is the nearest door.
+    static const std::regex wayOut(
+        R"(^(how (?:do|can|could|should|would|will) (?:i|we|one) )(?:get out|leave|exit|go out)(?: (?:of )?(?:the|this|here) ?(?:room|place|house|apartment|flat|building|office)?)?$)");
     std::smatch m;
+    if (std::regex_match(plain, m, wayOut)) return m.str(1) + "get to the nearest door";
     for (const std::regex* place : {&nearestPlace, &placeBy}) {
         if (!std::regex_search(plain, m, *place)) continue;
         for (const auto& base : wordnet::baseForms(m.str(2)))
@@ -610,7 +614,9 @@ private:
                     // "find me something to sit on", "show us a place to sleep", "show me where to sit".
                     c.accept({"find|show|get|give|bring", "me|us", "somewhere|anywhere|anything|something|a|any"}) ||
                     c.accept({"find|show|get|give|bring", "somewhere|anywhere|anything|something|any"}) ||
-                    c.accept({"show|tell", "me|us", "where"});
+                    c.accept({"show|tell", "me|us", "where"}) ||
+                    // "I need a place to sit", "we want something to sleep on".
+                    c.accept({"i|we", "need|want", "somewhere|anywhere|anything|something|a|some"});
         if (!lead) return false;
         c.accept({"i|we|one|you", "can|could"});
         c.accept({"place|spot|seat|thing", "to"});
@@ -1279,7 +1285,7 @@ private:
                 c.skip({"located", "kept"});
                 return locateAnswer(thing, out);
             }
-        } else if (c.accept({"find|locate|show|point"}) ||
+        } else if (c.accept({"find|locate|show|point|get|fetch|bring|grab"}) ||
                    // "I am looking for the basket", "I need a chair", "help me find the remote",
                    // "could you find the lamp?": a request to find it.
                    c.accept({"i", "am|was", "looking|searching", "for"}) || c.accept({"looking|searching", "for"}) ||
@@ -1401,7 +1407,7 @@ private:
                     cond.words = std::string(relations::englishPhrases(*spec).front()) + " " +
                                  joined(c.w, verbAt + took, verbAt + words);
             }
-        } else if (c.accept({"show|list|give|tell|name"})) {
+        } else if (c.accept({"show|list|give|tell|name|find|locate|get|fetch|bring"})) {
             c.accept({"me|us"});
             // "tell me about the desk" asks for all the memory holds of it (readDescription).
             if (c.peek() == "about" || c.accept({"more", "about"})) return false;
