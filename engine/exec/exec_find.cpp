@@ -308,9 +308,10 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
     const auto& f = *plan.find;
     const auto& snap = scene();
     const bool here = f.distanceTo->source == NodeSet::Source::Here;
-    const std::optional<catalog::Slot> ref = here ? std::nullopt : std::optional(slots(*f.distanceTo, frame).front());
+    // The one reference's slot; from HERE there is none, and every slot is a candidate.
+    const catalog::Slot ref = here ? catalog::Slot{} : slots(*f.distanceTo, frame).front();
     const auto want = static_cast<std::size_t>(*f.limit);
-    const model::Aabb around = ref ? snap.bounds(*ref) : standingLine(frame);
+    const model::Aabb around = here ? standingLine(frame) : snap.bounds(ref);
     auto boundsGap = [&](const model::Aabb& b) {
         double dx = std::max({0.0, b.min.x - around.max.x, around.min.x - b.max.x});
         double dy = std::max({0.0, b.min.y - around.max.y, around.min.y - b.max.y});
@@ -327,9 +328,10 @@ std::vector<Hit> Executor::nearestFirst(const planner::FindPlan& plan, const rel
         if (best.size() == want && best.top() < boundsGap(snap.bounds(*s))) break;
         poll();
         // The one reference itself has nothing else to measure to (as in find()).
-        if (*s == ref || !inTarget(f.target, *s, frame) || (f.where && !matches(*f.where, *s, frame))) continue;
-        const double distance = ref ? model::distance(snap.node(*s).box, snap.node(*ref).box)
-                                    : model::footprintGap(snap.node(*s).box, frame.position);
+        if ((!here && *s == ref) || !inTarget(f.target, *s, frame) || (f.where && !matches(*f.where, *s, frame)))
+            continue;
+        const double distance = here ? model::footprintGap(snap.node(*s).box, frame.position)
+                                     : model::distance(snap.node(*s).box, snap.node(ref).box);
         hits.push_back({*s, distance});
         best.push(distance);
         if (best.size() > want) best.pop();

@@ -25,11 +25,12 @@ double degrees(double radians) { return radians / model::kDegree; }
 // Legs shorter than this (metres) are not steps of their own.
 constexpr double kShortestStep = 0.4;
 
-// "Turn left. " / "Turn right. " / "Turn around. " / "" for a change of heading.
+// "Bear left. " / "Turn left. " / "Turn right. " / "Turn around. " / "" for a change of heading.
 std::string turn(double change) {
     double d = degrees(wrap(change));
     if (std::abs(d) <= kStraightDegrees) return "";
     if (std::abs(d) >= 180 - kStraightDegrees) return "Turn around. ";
+    if (std::abs(d) < kBearDegrees) return d > 0 ? "Bear left. " : "Bear right. ";
     return d > 0 ? "Turn left. " : "Turn right. ";
 }
 

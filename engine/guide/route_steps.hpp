@@ -20,6 +20,9 @@ struct Step {
 
 // Turns within this angle are "go straight"; beyond 180 minus it, "turn around" (degrees).
 inline constexpr double kStraightDegrees = 30;
+// Turns within this angle (and beyond kStraightDegrees) are "bear left" or "bear right": three such turns in a row
+// said as "turn right" sound like a walk in a circle, where the way only swings around a stool (degrees).
+inline constexpr double kBearDegrees = 60;
 
 // `nodes` are the scene's (for landmarks and the goal's support); `goal` the thing sought;
 // `startHeading` the walker's heading at the start (radians about +z), when known; `space` the free

@@ -122,6 +122,12 @@ TEST_CASE("steps turn relative to the walker's heading and end by saying where t
     CHECK(steps[2].landmark == lamp.id);
     auto noHeading = guide::describeRoute(route, nodes, lamp, std::nullopt);
     CHECK(noHeading[0].instruction.rfind("Walk about 3 m", 0) == 0);
+    // A way that swings by 45 degrees, then back: the walker bears right, then left, and never turns.
+    guide::Route swing{{{1, 1}, {3, 1}, {4, 2}, {5, 2}}, 2 + std::sqrt(2.0) + 1};
+    auto swinging = guide::describeRoute(swing, nodes, lamp, /*startHeading=*/0);
+    REQUIRE(swinging.size() == 4);
+    CHECK(swinging[1].instruction.rfind("Bear left. Walk about 1 m", 0) == 0);
+    CHECK(swinging[2].instruction.rfind("Bear right. Walk about 1 m", 0) == 0);
 }
 
 TEST_CASE("a thing no model named is a landmark only where no named one is near, said by its size and colour",
