@@ -40,6 +40,7 @@ constexpr std::string_view kEquivalents[][9] = {
     {"trash-bag", "garbage-bag", "bin-bag"},
     {"whiteboard", "white-board", "dry-erase-board", "marker-board"},
     {"door", "exit", "entrance", "way-out"},
+    {"wall-plug", "power-outlet", "power-socket", "electrical-outlet", "electric-outlet", "wall-socket", "socket"},
 };
 
 // The other names of `name`'s rows in kEquivalents.

@@ -83,6 +83,8 @@ constexpr AffordanceRow kAffordances[] = {
     {"read", "book lamp", "read with"},
     {"throw", "wastebasket", "throw things in"},
     {"dispose", "wastebasket", "throw things in"},
+    {"charge", "wall-plug", "charge things at"},
+    {"plug", "wall-plug", "plug things into"},
 };
 
 // What marks a kind of room: the things a person names it by ("a bed: a bedroom"). Sinks, tables and chairs stand in
@@ -392,10 +394,12 @@ private:
         if (!to) return false;
         out.kind = QuestionKind::Guidance;
         std::string goal = reference(*to);
-        // Several things of the goal's kind: a person means the nearest one.
-        if (from && to->conditions.empty() && to->filters.empty() && !to->order && to->categories.size() == 1 &&
+        // Several things of the goal's kind: a person means the nearest one, to where they start or stand.
+        if (to->conditions.empty() && to->filters.empty() && !to->order && to->categories.size() == 1 &&
             to->side.empty() && repeated(to->categories.front()))
-            goal = fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", smqlName(to->categories.front()), reference(*from));
+            goal = from ? fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", smqlName(to->categories.front()),
+                                      reference(*from))
+                        : fmt::format("(FIND {} ORDER BY distance(HERE) LIMIT 1)", smqlName(to->categories.front()));
         out.smql = fmt::format("GUIDE FROM {} TO {}", from ? reference(*from) : "HERE", goal);
         out.subject = to->words;
         out.object = from ? from->words : "here";
@@ -819,13 +823,16 @@ private:
 
     // How many chairs are near the table? How many cushions do the sofas have?
     bool count(Cursor& c, PhraseParser& p, Translation& out) {
-        // "are there more chairs than tables?": both kinds counted, the answer compares them.
+        // "are there more chairs than tables?", "are there more books or cushions?": both kinds counted, the
+        // answer compares them.
         if (c.accept({"are|is", "there", "more|fewer|less"})) {
             out.measure = c.w[c.i - 1] == "more" ? "more" : "fewer";
             c.skip({"of", "the"});
             Phrase first = p.phrase(c.w, c.i, true);
-            if (c.peek() != "than") return false;
-            return countKinds(c, p, std::move(first), {"in", "here", "there"}, out, "than");
+            const std::string link = c.peek();
+            if (link != "than" && link != "or") return false;
+            if (link == "or") out.predicate = "or";  // which of the two: the answer names it
+            return countKinds(c, p, std::move(first), {"in", "here", "there"}, out, link);
         }
         bool lead = c.accept({"how", "many"}) || c.accept({"count"}) || c.accept({"number", "of"}) ||
                     c.accept({"what", "is", "the", "number", "of"}) || c.accept({"tell", "me", "how", "many"});
@@ -1835,6 +1842,9 @@ private:
     // ScanQA's too (readScanQaForm).
     static std::string readAsAsked(std::string plain, std::optional<std::string>& stateWords) {
         plain = readScanQaForm(std::move(plain));
+        // "the lamp nearest the sofa": nearest as a preposition is nearest to.
+        static const std::regex nearestAsPreposition(R"(\b(nearest|closest)(?= (?:the|a|an|this|that|my|your|our)\b))");
+        plain = std::regex_replace(plain, nearestAsPreposition, "$1 to");
         // "is the number of chairs odd or even?", "can the number of chairs be divided by three?":
         // the count answers it.
         static const std::pair<std::regex, std::string> counts[] = {

@@ -85,7 +85,8 @@ struct Translation {
     std::string subject;        // singular: "red mug", "thing"
     std::string subjectPlural;  // "red mugs", "things"
     std::string condition;      // "on the sofa", empty without one
-    std::string predicate;      // YesNo: the relation the answer checks ("left_of")
+    std::string predicate;      // YesNo: the relation the answer checks ("left_of"); Count of two kinds: "or" when
+                                // the question asks which has more ("are there more books or cushions?")
     std::string object;         // YesNo: what it is checked against ("the window")
 
     // Size: the measure asked ("height", "longest", "size"); Attribute: the attribute ("color"); Count of two

@@ -216,6 +216,18 @@ Error notAUnit(const antlr4::Token& word) {
                                  : fmt::format("the units are m, cm and mm; did you mean {}?", keyword));
 }
 
+// 'what's on the table?': an apostrophe ended the quoted text, and the word after it is what failed. The hint
+// says how to write it; empty for any other mistake.
+std::string apostropheHint(const antlr4::Token* previous, const antlr4::Token* offending, std::size_t type) {
+    if (type != SmqlLexer::IDENT || !previous || !offending || previous->getType() != SmqlLexer::STRING) return {};
+    const std::string quotedText = previous->getText();
+    if (quotedText.front() != '\'' || previous->getStopIndex() + 1 != offending->getStartIndex()) return {};
+    return fmt::format(
+        "a quote inside quoted text is written twice ({}''{} ...'), or the text goes in double quotes (\"{}'{} ...\")",
+        quotedText.substr(0, quotedText.size() - 1), offending->getText(), quotedText.substr(1, quotedText.size() - 2),
+        offending->getText());
+}
+
 Error syntaxError(const Source& source, const StatementSlice& slice, std::size_t failedAt,
                   const std::set<std::size_t>& expected) {
     const auto& tokens = source.tokens();
@@ -314,7 +326,9 @@ Error syntaxError(const Source& source, const StatementSlice& slice, std::size_t
     if (!offending && previous) message += " after " + quoted(*previous);
 
     std::string hint = expectedHint;
-    if (!suggestion.empty()) {
+    if (std::string apostrophe = apostropheHint(previous, offending, type); !apostrophe.empty()) {
+        hint = std::move(apostrophe);
+    } else if (!suggestion.empty()) {
         hint = fmt::format("did you mean {}? ({})", suggestion, expectedHint);
     } else if (type == SmqlLexer::IDENT && expected.count(SmqlLexer::STRING) && !expected.count(SmqlLexer::IDENT)) {
         hint = fmt::format("text goes in quotes: '{}'", offending->getText());

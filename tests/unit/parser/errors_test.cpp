@@ -169,6 +169,17 @@ TEST_CASE("text values need quotes", "[parser][errors]") {
     CHECK(error.hint() == "text goes in quotes: 'red'");
 }
 
+TEST_CASE("an apostrophe that ends quoted text says how to write it", "[parser][errors]") {
+    Error error = errorOf("ASK 'what's on the table?'");
+    CHECK(error.message() == "unexpected 's'");
+    CHECK(whereOf(error).column == 11);
+    CHECK(error.hint() ==
+          "a quote inside quoted text is written twice ('what''s ...'), or the text goes in double quotes "
+          "(\"what's ...\")");
+    // A word after quoted text and a space is another mistake, with its own hint.
+    CHECK_THAT(errorOf("FIND mug WHERE color = 'red' blue").hint(), !Contains("written twice"));
+}
+
 TEST_CASE("clauses out of order or repeated", "[parser][errors]") {
     Error order = errorOf("FIND x LIMIT 3 WHERE on(y)");
     CHECK(order.message() == "WHERE must come before LIMIT");
