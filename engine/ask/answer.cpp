@@ -471,9 +471,6 @@ std::string counted(const std::string& category, std::size_t n) {
     return n == 1 ? withArticle(category) : fmt::format("{} {}", n, pluralOf(category));
 }
 
-// Kinds of room marked in one scene from which it is one space of several rooms rather than one room.
-constexpr std::size_t kSeveralRooms = 3;
-
 // The kinds of room the things mark (Translation::choices, each marked by the categories in the same place of roles),
 // most marked first; "is this a kitchen?" (Translation::predicate) answered yes or no.
 std::string roomKind(const Translation& t, const ResultSet& rs) {

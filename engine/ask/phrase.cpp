@@ -236,6 +236,14 @@ const std::vector<PredicatePhrase>& predicatePhrases() {
 }
 
 std::string conditionText(const Condition& c) {
+    // In a kind of room's area: the things that mark it, and what lies within its reach of them.
+    if (c.predicate == "within" && c.args.size() == 1 && c.metres) {
+        std::string marks;
+        for (const auto& category : c.args.front().categories)
+            marks += fmt::format("category = {} OR ", smqlString(category));
+        return fmt::format("{}({}distance({}) < {} m)", c.negated ? "NOT " : "", marks, reference(c.args.front()),
+                           smqlMetres(*c.metres));
+    }
     // Near the person: within a distance of where the viewer stands.
     if (c.predicate == "near" && c.args.size() == 1 && c.args.front().here)
         return fmt::format("{}distance(HERE) < {} m", c.negated ? "NOT " : "", smqlMetres(c.metres.value_or(kNearYou)));
@@ -840,6 +848,43 @@ bool PhraseParser::roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t&
     return false;
 }
 
+const RoomMarks* PhraseParser::roomAreaAt(const Words& w, std::size_t at, std::vector<std::string>& marks) const {
+    const RoomMarks* asked = nullptr;
+    std::size_t kinds = 0;
+    for (const auto& row : kRoomMarks) {
+        std::vector<std::string> named = categoriesNamed(lexicon_, row.things, WordsAs::Names);
+        kinds += named.empty() ? 0 : 1;
+        const Words parts = words(std::string(row.room));
+        if (at + parts.size() <= w.size() && std::equal(parts.begin(), parts.end(), w.begin() + at)) {
+            asked = &row;
+            marks = std::move(named);
+        }
+    }
+    // A scene of one room (an office with a sofa too) is that room: "in the office" is the whole scene (scenePlaceAt).
+    return asked && !marks.empty() && kinds >= kSeveralRooms ? asked : nullptr;
+}
+
+bool PhraseParser::roomArea(const Words& w, std::size_t at, std::size_t& i,
+                            const std::pair<std::string, std::size_t>& pred, Phrase& p) {
+    if (pred.first != "in") return false;
+    std::size_t after = at + pred.second;
+    while (after < w.size() && isDeterminer(w[after])) ++after;
+    std::vector<std::string> marks;
+    const RoomMarks* asked = roomAreaAt(w, after, marks);
+    if (!asked) return false;
+    out_.notes.push_back(
+        fmt::format("'the {}' is the area within {} m of its things ({}): the scene holds the things "
+                    "of several kinds of room",
+                    asked->room, smqlMetres(kRoomAreaReach), model::joinAlternatives(marks)));
+    Phrase area;
+    area.noun = "thing";
+    area.categories = std::move(marks);
+    area.words = fmt::format("the {}'s things", asked->room);
+    p.conditions.push_back({"within", {std::move(area)}, kRoomAreaReach, fmt::format("in the {}", asked->room)});
+    i = after + words(std::string(asked->room)).size();
+    return true;
+}
+
 void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
     while (i < w.size()) {
         std::size_t at = i;
@@ -904,6 +949,7 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
         const std::size_t bothAt = at;
         auto also = firstOfTwo(w, at, pred);
         i = at;
+        if (roomArea(w, at, i, *pred, p)) continue;
         if (roomPlaceLeftOut(w, at, i, *pred)) continue;
         p.conditions.push_back(condition(w, i, *pred));
         // What is near the person comes nearest first.
@@ -1035,6 +1081,7 @@ Error PhraseParser::notUnderstood(const Words& w, std::size_t at) const {
 std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
     if (i >= w.size()) return 0;
     if (namesWholeScene(w[i])) return 1;  // "in the room", "in here": the whole scene, no condition
+    if (std::vector<std::string> marks; roomAreaAt(w, i, marks)) return 0;  // a part of the scene (roomArea)
     for (std::string_view kind : kRoomKinds) {
         Words parts = words(std::string(kind));
         if (i + parts.size() > w.size() || !std::equal(parts.begin(), parts.end(), w.begin() + i)) continue;
@@ -1176,6 +1223,23 @@ std::string whereText(const Phrase& p) {
     std::string out;
     for (const auto& w : conditionsOf(p)) out += (out.empty() ? " WHERE " : " AND ") + w;
     return out;
+}
+
+std::vector<std::string> categoriesNamed(const Lexicon& lexicon, std::string_view words, WordsAs as) {
+    std::vector<std::string> categories;
+    const std::string things{words};
+    for (std::size_t at = 0; at < things.size();) {
+        const std::size_t space = things.find(' ', at);
+        const WordMatch m = lexicon.lookUp(things.substr(at, space - at));
+        const bool named = m.how == WordMatch::How::Category || m.how == WordMatch::How::Plural ||
+                           (as != WordsAs::Names && m.how == WordMatch::How::Kind) ||
+                           (as == WordsAs::Broader && m.how == WordMatch::How::Broader);
+        if (named)
+            for (const auto& cat : m.categories)
+                if (std::find(categories.begin(), categories.end(), cat) == categories.end()) categories.push_back(cat);
+        at = space == std::string::npos ? things.size() : space + 1;
+    }
+    return categories;
 }
 
 std::string reference(const Phrase& p) {

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/ask/lexicon.hpp"
@@ -91,6 +92,34 @@ struct Self {
     int turn = 0;
 };
 
+// What marks a kind of room: the things a person names it by ("a bed: a bedroom"). Sinks, tables and chairs stand in
+// many kinds of room and mark none.
+struct RoomMarks {
+    std::string_view room;
+    std::string_view things;  // words, ' ' between them
+};
+// Each word names a category as it is or as a plural (categoriesNamed, WordsAs::Names): the names data sets give a
+// kind (a fridge, ScanNet's refrigerator) are listed, as WordNet's senses mark rooms that are not so (a "closet" is
+// also a water closet, a "stool" a toilet).
+inline constexpr RoomMarks kRoomMarks[] = {
+    {"bedroom", "bed bunk-bed nightstand wardrobe dresser"},
+    {"living room", "sofa couch tv television armchair fireplace"},
+    {"kitchen", "fridge refrigerator oven stove microwave dishwasher toaster"},
+    {"bathroom", "toilet bathtub shower"},
+    {"office", "desk monitor keyboard printer"},
+};
+// Kinds of room marked in one scene from which it is one space of several rooms rather than one room (a studio
+// apartment's kitchen, bed and bathroom; an office with a sofa is an office).
+inline constexpr std::size_t kSeveralRooms = 3;
+// In a scene of several rooms, "in the kitchen" is the area within this of the kitchen's marks (metres).
+inline constexpr double kRoomAreaReach = 1.5;
+
+// The scene's categories the words name: each word as a category or a plural (Names), also as a kind of it (Kinds:
+// "bed" names a bunk-bed), also as a broader word (Broader: "seat" names chairs and sofas); never as a synonym of
+// another sense or a spelling.
+enum class WordsAs { Names, Kinds, Broader };
+std::vector<std::string> categoriesNamed(const Lexicon& lexicon, std::string_view words, WordsAs as);
+
 class PhraseParser {
 public:
     // `scene` and `sceneCount`: the current scene's name and how many the database holds, which say
@@ -136,6 +165,12 @@ public:
     static std::size_t pastVerbOfPlace(const Words& w, std::size_t at);
     bool roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t& i,
                           const std::pair<std::string, std::size_t>& pred);
+    // "in the kitchen" where the scene holds the things of several kinds of room: the kitchen's area (kRoomMarks,
+    // kRoomAreaReach), a condition of the phrase. roomAreaAt: the kind of room named at w[at...] whose area it is,
+    // with its marks as the scene names them; none where the scene holds one kind of room's things or none.
+    const RoomMarks* roomAreaAt(const Words& w, std::size_t at, std::vector<std::string>& marks) const;
+    bool roomArea(const Words& w, std::size_t at, std::size_t& i, const std::pair<std::string, std::size_t>& pred,
+                  Phrase& p);
     // An ordinal with no measure: "the first cabinet from the door" is the nearest to it; "the first cabinet on
     // the right" after a situation, the nearest to the person.
     void orderByNearness(const Words& w, std::size_t& i, Phrase& p);

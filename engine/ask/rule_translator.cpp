@@ -83,22 +83,8 @@ constexpr AffordanceRow kAffordances[] = {
     {"read", "book lamp", "read with"},
     {"throw", "wastebasket", "throw things in"},
     {"dispose", "wastebasket", "throw things in"},
-    {"charge", "wall-plug", "charge things at"},
-    {"plug", "wall-plug", "plug things into"},
-};
-
-// What marks a kind of room: the things a person names it by ("a bed: a bedroom"). Sinks, tables and chairs stand in
-// many kinds of room and mark none.
-struct RoomMarks {
-    std::string_view room;
-    std::string_view things;  // words, ' ' between them
-};
-constexpr RoomMarks kRoomMarks[] = {
-    {"bedroom", "bed nightstand wardrobe dresser"},
-    {"living room", "sofa television armchair fireplace"},
-    {"kitchen", "fridge oven stove microwave dishwasher toaster"},
-    {"bathroom", "toilet bathtub shower"},
-    {"office", "desk monitor keyboard printer"},
+    {"charge", "wall-plug socket power-outlet electrical-outlet", "charge things at"},
+    {"plug", "wall-plug socket power-outlet electrical-outlet", "plug things into"},
 };
 
 // "the object used for disposing of waste", "a container used to throw away trash": the thing the
@@ -658,29 +644,15 @@ private:
         return true;
     }
 
-    // The scene's categories that a table's words (' ' between them) name, by name, plural or kind, or by a broader
-    // name (`broader`: an "armchair" is a chair): not by a synonym of another sense (a "stool" is also WordNet's
-    // toilet), nor by spelling.
-    std::vector<std::string> categoriesNamed(std::string_view words, bool broader) const {
-        std::vector<std::string> categories;
-        const std::string things{words};
-        for (std::size_t at = 0; at < things.size();) {
-            const std::size_t space = things.find(' ', at);
-            const WordMatch m = lexicon_.lookUp(things.substr(at, space - at));
-            if (m.how != WordMatch::How::Spelling && m.how != WordMatch::How::Synonym &&
-                (broader || m.how != WordMatch::How::Broader))
-                for (const auto& cat : m.categories)
-                    if (std::find(categories.begin(), categories.end(), cat) == categories.end())
-                        categories.push_back(cat);
-            at = space == std::string::npos ? things.size() : space + 1;
-        }
-        return categories;
+    // The scene's categories that a table's words (' ' between them) name (phrase.hpp: categoriesNamed).
+    std::vector<std::string> categoriesNamed(std::string_view words, WordsAs as) const {
+        return ask::categoriesNamed(lexicon_, words, as);
     }
 
     // The condition on the things a use is afforded by, as this scene names them: "(category = 'chair' OR ...)"; the
     // row's first word when the scene has none of them (the answer is then "nothing").
     std::string affordedBy(const AffordanceRow& row) const {
-        const std::vector<std::string> categories = categoriesNamed(row.things, true);
+        const std::vector<std::string> categories = categoriesNamed(row.things, WordsAs::Broader);
         if (categories.empty())
             return fmt::format("category = {}", smqlString(std::string(row.things.substr(0, row.things.find(' ')))));
         std::string any;
@@ -1634,7 +1606,7 @@ private:
         for (const auto& marks : kRoomMarks) {
             out.choices.emplace_back(marks.room);
             // Only what is named so marks a room: a chair is no armchair, a table no desk.
-            out.roles.push_back(categoriesNamed(marks.things, false));
+            out.roles.push_back(categoriesNamed(marks.things, WordsAs::Names));
         }
         out.subject = "room";
         out.subjectPlural = "rooms";
