@@ -276,7 +276,11 @@ std::string size(const Translation& t, const ResultSet& rs) {
             continue;
         }
         const std::string& m = t.measure;
-        if (m == "height")
+        // A ceiling's height is how far above the floor it is (its box's bottom; the translator asks for z).
+        if (const int z = rs.columnIndex("z"); m == "height" && z >= 0 && number(rs.rows[r][z]))
+            parts.push_back(fmt::format("{} is {} above the floor", names[r],
+                                        length(*number(rs.rows[r][z]) - *height / 2, t.unit)));
+        else if (m == "height")
             parts.push_back(fmt::format("{} is {} tall", names[r], length(*height, t.unit)));
         else if (m == "width")
             parts.push_back(fmt::format("{} is {} wide", names[r], length(*width, t.unit)));

@@ -85,6 +85,7 @@ constexpr AffordanceRow kAffordances[] = {
     {"dispose", "wastebasket", "throw things in"},
     {"charge", "wall-plug socket power-outlet electrical-outlet", "charge things at"},
     {"plug", "wall-plug socket power-outlet electrical-outlet", "plug things into"},
+    {"hang", "hook coat-rack coat-hanger hanger wardrobe closet", "hang things on"},
 };
 
 // "the object used for disposing of waste", "a container used to throw away trash": the thing the
@@ -528,6 +529,8 @@ private:
         out.kind = QuestionKind::Size;
         out.measure = measure;
         out.smql = findText(thing, false) + " RETURN id, category, width, depth, height, volume";
+        // "how high is the ceiling?": how far above the floor it is, not how thick its box.
+        if (measure == "height" && thing.categories == std::vector<std::string>{"ceiling"}) out.smql += ", z";
         describeSubject(thing, out);
         return true;
     }
@@ -1306,7 +1309,10 @@ private:
             static const std::initializer_list<std::string_view> verbs{"is",    "are",    "sits",   "sit",   "lies",
                                                                        "lie",   "stands", "stand",  "rests", "rest",
                                                                        "hangs", "hang",   "hanged", "hung"};
-            if (isOneOf(c.peek(), verbs) || isOneOf(c.peek(), {"do", "can", "could", "will", "would"})) {
+            // "what faces the sofa?", "what surrounds the table?": a verb that is a predicate, of any thing.
+            const bool verbFirst =
+                c.peek().ends_with('s') && !isOneOf(c.peek(), verbs) && PhraseParser::predicateAt(c.w, c.i).has_value();
+            if (verbFirst || isOneOf(c.peek(), verbs) || isOneOf(c.peek(), {"do", "can", "could", "will", "would"})) {
                 thing.kind = "object";
                 thing.noun = "thing";
             } else {
@@ -1319,7 +1325,7 @@ private:
                 }
             }
             // "which chairs face the table?": the predicate is the verb.
-            bool verbIsPredicate = PhraseParser::predicateAt(c.w, c.i).has_value() && c.i > at;
+            bool verbIsPredicate = PhraseParser::predicateAt(c.w, c.i).has_value() && (c.i > at || verbFirst);
             if (!verbIsPredicate &&
                 !c.accept({"is|are|sits|sit|lies|lie|stands|stand|rests|rest|hangs|hang|hanged|hung"}) &&
                 !c.accept({"do|can|will|would", "you|i", "see|find|have"}) && !c.accept({"is|are", "there"}) &&
@@ -1817,6 +1823,9 @@ private:
         // "the lamp nearest the sofa": nearest as a preposition is nearest to.
         static const std::regex nearestAsPreposition(R"(\b(nearest|closest)(?= (?:the|a|an|this|that|my|your|our)\b))");
         plain = std::regex_replace(plain, nearestAsPreposition, "$1 to");
+        // "how many cushions are there in total?": a count is of all of them anyway.
+        static const std::regex inTotal(R"(^(how many .+?) (?:in total|in all|altogether|overall)$)");
+        plain = std::regex_replace(plain, inTotal, "$1");
         // "is the number of chairs odd or even?", "can the number of chairs be divided by three?":
         // the count answers it.
         static const std::pair<std::regex, std::string> counts[] = {
