@@ -220,7 +220,11 @@ ResultSet Executor::run(const binder::BoundGuide& guide) {
                                     catalog::SceneSnapshot::label(goal)),
                         std::nullopt, "SHOW GRAPH lists where the graph reaches");
         }
-        auto route = guide::shortestRoute(g.graph, g.space, *onFloor, *end, g.options);
+        // The walk ends on whichever side of the goal it reaches first; its decision point (the side nearest the
+        // middle of the room) is one of them.
+        std::vector<guide::Point> ends{*end};
+        for (const guide::Point& side : guide::sidesOf(snap.nodes(), goal, g.space, g.options)) ends.push_back(side);
+        auto route = guide::shortestRoute(g.graph, g.space, *onFloor, ends, g.options);
         if (!route) {
             if (!fail) return std::nullopt;
             throw noRoute(snap, origin, goal, *onFloor, *end);

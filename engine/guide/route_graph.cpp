@@ -423,17 +423,14 @@ namespace {
 // furniture a thing rests on, the point nearest the thing, or the open cell nearer to it where what
 // stands beside the support (a nightstand at a bed's head, the chairs at a desk) takes the outline
 // there. Else the nearest free cell.
-std::optional<Point> approach(const Node& goal, const Node& support, const Footing& footing, const FreeSpace& space,
-                              Point centre, const GraphOptions& options) {
+// The open points every 0.2 m around a floor-standing thing's footprint, a body's radius and a little more from it:
+// the rectangle's outline, walked side by side from corner to corner.
+std::vector<Point> outlinePoints(const model::Box& box, const FreeSpace& space, const GraphOptions& options) {
     constexpr double kSpacing = 0.2;
     const double away = options.bodyRadius + 0.1;
-    const model::Box& box = footing.footprint(support);
     const double hx = box.size.x / 2 + away, hy = box.size.y / 2 + away;
     const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    const Point goalAt{goal.box.center.x, goal.box.center.y};
-    const Point target = &goal == &support ? centre : goalAt;
-    std::optional<Point> best;
-    // The rectangle's outline, walked side by side from corner to corner.
+    std::vector<Point> out;
     const std::pair<double, double> corners[] = {{hx, hy}, {-hx, hy}, {-hx, -hy}, {hx, -hy}, {hx, hy}};
     for (std::size_t k = 0; k + 1 < std::size(corners); ++k) {
         auto [u0, v0] = corners[k];
@@ -442,10 +439,22 @@ std::optional<Point> approach(const Node& goal, const Node& support, const Footi
         for (int t = 0; t < steps; ++t) {
             double u = u0 + (u1 - u0) * t / steps, v = v0 + (v1 - v0) * t / steps;
             Point p{box.center.x + c * u - s * v, box.center.y + s * u + c * v};
-            if (space.open(p) && (!best || distance(p, target) < distance(*best, target))) best = p;
+            if (space.open(p)) out.push_back(p);
         }
     }
-    const double reach = std::max(1.5, std::hypot(hx, hy));
+    return out;
+}
+
+std::optional<Point> approach(const Node& goal, const Node& support, const Footing& footing, const FreeSpace& space,
+                              Point centre, const GraphOptions& options) {
+    const model::Box& box = footing.footprint(support);
+    const Point goalAt{goal.box.center.x, goal.box.center.y};
+    const Point target = &goal == &support ? centre : goalAt;
+    std::optional<Point> best;
+    for (const Point& p : outlinePoints(box, space, options))
+        if (!best || distance(p, target) < distance(*best, target)) best = p;
+    const double away = options.bodyRadius + 0.1;
+    const double reach = std::max(1.5, std::hypot(box.size.x / 2 + away, box.size.y / 2 + away));
     if (best && &goal == &support) return best;
     if (auto nearest = space.nearestFree(goalAt, reach);
         nearest && space.open(*nearest) && (!best || distance(*nearest, goalAt) < distance(*best, goalAt)))
@@ -455,6 +464,13 @@ std::optional<Point> approach(const Node& goal, const Node& support, const Footi
 }
 
 }  // namespace
+
+std::vector<Point> sidesOf(const std::vector<Node>& nodes, const Node& goal, const FreeSpace& space,
+                           const GraphOptions& options) {
+    const Footing footing(nodes, options);
+    if (&footing.support(goal) != &goal || footing.walkedOver(goal)) return {};
+    return outlinePoints(footing.footprint(goal), space, options);
+}
 
 RouteGraph buildGraph(const std::vector<Node>& nodes, const FreeSpace& space, const GraphOptions& options) {
     const Footing footing(nodes, options);
@@ -585,23 +601,35 @@ std::optional<Route> cellRoute(const FreeSpace& space, Point from, Point to) {
 
 std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& space, Point from, Point to,
                                    const GraphOptions& options) {
-    const std::size_t n = graph.points.size();
-    const std::size_t start = n, goal = n + 1;
-    WeightedGraph g(n + 2);
+    return shortestRoute(graph, space, from, std::vector<Point>{to}, options);
+}
+
+std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& space, Point from,
+                                   const std::vector<Point>& to, const GraphOptions& options) {
+    // The decision points, the start, each end, and one vertex past every end that Dijkstra goes to.
+    const std::size_t n = graph.points.size(), start = n, firstEnd = n + 1, sink = n + 1 + to.size();
+    WeightedGraph g(sink + 1);
     for (const Edge& e : graph.edges) boost::add_edge(e.a, e.b, e.length, g);
-    // The two ends join every decision point they see, and each other.
+    // The start and the ends join every decision point they see, and the start each end it sees.
     for (std::size_t i = 0; i < n; ++i) {
         Point p = graph.points[i].at;
         if (distance(from, p) <= options.maxEdge && space.clear(from, p))
             boost::add_edge(start, i, distance(from, p), g);
-        if (distance(to, p) <= options.maxEdge && space.clear(to, p)) boost::add_edge(goal, i, distance(to, p), g);
+        for (std::size_t k = 0; k < to.size(); ++k)
+            if (distance(to[k], p) <= options.maxEdge && space.clear(to[k], p))
+                boost::add_edge(firstEnd + k, i, distance(to[k], p), g);
     }
-    if (space.clear(from, to)) boost::add_edge(start, goal, distance(from, to), g);
+    for (std::size_t k = 0; k < to.size(); ++k) {
+        if (space.clear(from, to[k])) boost::add_edge(start, firstEnd + k, distance(from, to[k]), g);
+        boost::add_edge(firstEnd + k, sink, 0.0, g);
+    }
 
-    auto vertices = shortestPath(g, start, goal);
-    if (vertices.empty()) return space.connected(from, to) ? cellRoute(space, from, to) : std::nullopt;
+    auto vertices = shortestPath(g, start, sink);
+    if (vertices.empty()) return space.connected(from, to.front()) ? cellRoute(space, from, to.front()) : std::nullopt;
+    vertices.pop_back();  // the sink
     std::vector<Point> path;
-    for (std::size_t v : vertices) path.push_back(v == start ? from : v == goal ? to : graph.points[v].at);
+    for (std::size_t v : vertices)
+        path.push_back(v == start ? from : v >= firstEnd ? to[v - firstEnd] : graph.points[v].at);
     return straightened(path, space);
 }
 

@@ -155,5 +155,15 @@ struct Route {
 // points it sees); nullopt when none exists. The ends need not be decision points.
 std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& space, Point from, Point to,
                                    const GraphOptions& options);
+// The shortest way from `from` to whichever of `to` (none empty) it reaches first: a walker goes to the side of a
+// thing they come from. Where the graph joins none, the way over the free cells to the first.
+std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& space, Point from,
+                                   const std::vector<Point>& to, const GraphOptions& options);
+
+// Where a walker may stand to reach `goal`, which stands on the floor: on open floor every 0.2 m around its
+// footprint, a body's radius and a little more from it (the decision point beside it, buildGraph's, is the one
+// nearest the middle of the room). Empty for a thing that rests on furniture: its one point is beside the thing.
+std::vector<Point> sidesOf(const std::vector<model::Node>& nodes, const model::Node& goal, const FreeSpace& space,
+                           const GraphOptions& options);
 
 }  // namespace smql::guide

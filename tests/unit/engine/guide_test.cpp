@@ -445,6 +445,26 @@ TEST_CASE("a crowded room: chairs are pushed aside and tables squeezed past when
     }
 }
 
+TEST_CASE("a walk ends on the side of its goal it reaches first, on the Replica room", "[guide]") {
+    // Replica room 0: the scene's viewpoint stands by the door, south-west of stool#58; the stool's decision point
+    // is on its east side, toward the middle of the room. Ending there, the walk went round the other stool and
+    // the coffee table, 5.5 m for a stool 1.3 m away; it ends on the stool's near side now.
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(import::readReplica(replicaRoom0(), "replica-room0"));
+    const auto toStool = run(*engine, "GUIDE FROM HERE TO (FIND stool ORDER BY distance(HERE) LIMIT 1)");
+    REQUIRE(toStool.rows.size() >= 2);
+    CHECK(std::get<std::string>(toStool.rows.back()[2]).rfind("stool#", 0) == 0);
+    double walked = 0;
+    for (const auto& row : toStool.rows) walked += std::get<double>(row[6]);
+    CHECK(walked < 2.0);
+    // The end stands beside the stool, a body's radius and a little more from its footprint.
+    const auto& end = toStool.rows[toStool.rows.size() - 2];
+    const auto stool = run(*engine, "FIND stool ORDER BY distance(HERE) LIMIT 1 RETURN x, y");
+    CHECK(std::hypot(std::get<double>(end[4]) - std::get<double>(stool.rows[0][0]),
+                     std::get<double>(end[5]) - std::get<double>(stool.rows[0][1])) < 1.0);
+}
+
 TEST_CASE("a thing on furniture is approached from the open floor nearest it, on real rooms", "[guide]") {
     // ScanNet's rooms: a pillow at a bed's head between two nightstands, a monitor on a desk among
     // its chairs. The outline around the support beside the thing is taken by its neighbours; the
