@@ -181,27 +181,33 @@ TEST_CASE("out of place: a toilet among a kitchen's things is not a toilet; one 
 
 namespace {
 
-// A detection's view of an upright box as a depth camera looking along `from` sees it: the faces turned to the
-// camera and the top, a point every 2 cm, each on a grid place of its own.
-Observation boxSeen(std::uint32_t frame, const char* label, model::Vec3 centre, model::Vec3 size, model::Vec3 from) {
+// A detection's view of these points (2 cm apart), each on a grid place of its own.
+Observation pointsSeen(std::uint32_t frame, const char* label, const std::vector<model::Vec3>& points) {
     Observation view;
     view.frame = frame;
     view.label = label;
     view.score = 0.8;
     view.regionPitch = 0.02;
-    auto add = [&](double x, double y, double z) {
+    for (const auto& p : points) {
         const auto i = static_cast<std::uint16_t>(view.region.size());
-        view.region.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z),
+        view.region.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z),
                                cv::Vec3b(90, 90, 90), static_cast<std::uint16_t>(i % 500),
                                static_cast<std::uint16_t>(i / 500)});
-    };
+    }
+    return view;
+}
+
+// A detection's view of an upright box as a depth camera looking along `from` sees it: the faces turned to the
+// camera and the top, a point every 2 cm.
+Observation boxSeen(std::uint32_t frame, const char* label, model::Vec3 centre, model::Vec3 size, model::Vec3 from) {
+    std::vector<model::Vec3> points;
     const double hx = size.x / 2, hy = size.y / 2, hz = size.z / 2;
     for (double a = -hx; a <= hx; a += 0.02)
-        for (double b = -hy; b <= hy; b += 0.02) add(centre.x + a, centre.y + b, centre.z + hz);
+        for (double b = -hy; b <= hy; b += 0.02) points.push_back({centre.x + a, centre.y + b, centre.z + hz});
     const double side = from.x > 0 ? -1 : 1;
     for (double b = -hy; b <= hy; b += 0.02)
-        for (double c = -hz; c <= hz; c += 0.02) add(centre.x + side * hx, centre.y + b, centre.z + c);
-    return view;
+        for (double c = -hz; c <= hz; c += 0.02) points.push_back({centre.x + side * hx, centre.y + b, centre.z + c});
+    return pointsSeen(frame, label, points);
 }
 
 }  // namespace
@@ -313,22 +319,12 @@ TEST_CASE("a table that shows no top is doubted, whatever slivers were dropped b
     // top the table shows is its own.
     ObjectFusion fusion(Alignment{}, RoomSurfaces{true, std::nullopt, nullptr, std::nullopt});
     auto corner = [](std::uint32_t frame) {
-        Observation view;
-        view.frame = frame;
-        view.label = "table";
-        view.score = 0.8;
-        view.regionPitch = 0.02;
-        auto add = [&](double x, double y, double z) {
-            const auto i = static_cast<std::uint16_t>(view.region.size());
-            view.region.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(z),
-                                   cv::Vec3b(90, 60, 40), static_cast<std::uint16_t>(i % 500),
-                                   static_cast<std::uint16_t>(i / 500)});
-        };
+        std::vector<model::Vec3> points;
         for (double z = 0.1; z <= 0.75; z += 0.02) {
-            for (double x = 2.0; x <= 3.6; x += 0.02) add(x, 0.0, z);
-            for (double y = 0.02; y <= 1.0; y += 0.02) add(3.6, y, z);
+            for (double x = 2.0; x <= 3.6; x += 0.02) points.push_back({x, 0.0, z});
+            for (double y = 0.02; y <= 1.0; y += 0.02) points.push_back({3.6, y, z});
         }
-        return view;
+        return pointsSeen(frame, "table", points);
     };
     for (std::uint32_t frame = 0; frame < 4; ++frame)
         fusion.addFrame({boxSeen(frame, "sofa", {2.6, 3.0, 1.1}, {3.4, 0.16, 2.2}, {1, 0, -0.5}), corner(frame)});
