@@ -321,9 +321,9 @@ std::size_t joinCabinets(std::vector<Thing>& things, const FusionOptions& option
 }
 
 // Whether `small` is a piece of `large` the map kept apart, judged by their boxes:
-// - stored twice: one name (or two of one kind: a desk and a table, typical_sizes.hpp: kindName), a good share of the
-// smaller's box inside the larger's (a corner sofa's two arms, a
-//   sofa seen whole from afar and in parts close up, their cells never close enough);
+// - stored twice: one name (or two of one kind: a desk and a table, typical_sizes.hpp: kindName), a good share
+//   of the smaller's box inside the larger's (a corner sofa's two arms, a sofa seen whole from afar and in parts
+//   close up, their cells never close enough);
 // - one place named twice: each box mostly inside the other (a side table seen as a "bed" in three frames and
 //   as a "table" in two);
 // - a glimpse: the smaller mostly inside the larger, most of its points touching the larger's, and seen in a
