@@ -172,18 +172,16 @@ std::string count(const Translation& t, const ResultSet& rs) {
             counts.push_back(fmt::format("{} {}", n, n == 1 ? t.choices[k] : pluralOf(t.choices[k])));
             tallies.push_back(n);
         }
-        // "are there more books or cushions?": which of the two.
-        if (!t.measure.empty() && tallies.size() == 2 && t.predicate == "or") {
-            if (tallies[0] == tallies[1])
-                return fmt::format("There are as many {} as {}: {}.", pluralOf(t.choices[0]), pluralOf(t.choices[1]),
-                                   listedWithAnd(counts));
-            const bool first = t.measure == "more" ? tallies[0] > tallies[1] : tallies[0] < tallies[1];
-            return fmt::format("There are {} {} than {}: {}.", t.measure, pluralOf(t.choices[first ? 0 : 1]),
-                               pluralOf(t.choices[first ? 1 : 0]), listedWithAnd(counts));
-        }
-        // "are there more chairs than tables?"
+        // "are there more chairs than tables?"; "are there more books or cushions?" (Translation::predicate "or"):
+        // which of the two.
         if (!t.measure.empty() && tallies.size() == 2) {
             const bool holds = t.measure == "more" ? tallies[0] > tallies[1] : tallies[0] < tallies[1];
+            if (t.predicate == "or" && tallies[0] == tallies[1])
+                return fmt::format("There are as many {} as {}: {}.", pluralOf(t.choices[0]), pluralOf(t.choices[1]),
+                                   listedWithAnd(counts));
+            if (t.predicate == "or")
+                return fmt::format("There are {} {} than {}: {}.", t.measure, pluralOf(t.choices[holds ? 0 : 1]),
+                                   pluralOf(t.choices[holds ? 1 : 0]), listedWithAnd(counts));
             return fmt::format("{}, there are {}{} {} than {}: {}.", holds ? "Yes" : "No", holds ? "" : "not ",
                                t.measure, pluralOf(t.choices[0]), pluralOf(t.choices[1]), listedWithAnd(counts));
         }

@@ -848,20 +848,24 @@ bool PhraseParser::roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t&
     return false;
 }
 
-const RoomMarks* PhraseParser::roomAreaAt(const Words& w, std::size_t at, std::vector<std::string>& marks) const {
-    const RoomMarks* asked = nullptr;
-    std::size_t kinds = 0;
-    for (const auto& row : kRoomMarks) {
-        std::vector<std::string> named = categoriesNamed(lexicon_, row.things, WordsAs::Names);
-        kinds += named.empty() ? 0 : 1;
-        const Words parts = words(std::string(row.room));
-        if (at + parts.size() <= w.size() && std::equal(parts.begin(), parts.end(), w.begin() + at)) {
-            asked = &row;
-            marks = std::move(named);
-        }
+const std::vector<std::vector<std::string>>& PhraseParser::roomMarks() const {
+    if (!roomMarks_) {
+        roomMarks_.emplace();
+        for (const auto& row : kRoomMarks) roomMarks_->push_back(categoriesNamed(lexicon_, row.things, WordsAs::Names));
     }
+    return *roomMarks_;
+}
+
+const RoomMarks* PhraseParser::roomAreaAt(const Words& w, std::size_t at) const {
+    const RoomMarks* asked = roomNamedAt(w, at);
+    if (!asked) return nullptr;
+    const auto& marks = roomMarks();
+    const auto kinds = std::count_if(marks.begin(), marks.end(), [](const auto& m) { return !m.empty(); });
     // A scene of one room (an office with a sofa too) is that room: "in the office" is the whole scene (scenePlaceAt).
-    return asked && !marks.empty() && kinds >= kSeveralRooms ? asked : nullptr;
+    return !marks[static_cast<std::size_t>(asked - kRoomMarks)].empty() &&
+                   static_cast<std::size_t>(kinds) >= kSeveralRooms
+               ? asked
+               : nullptr;
 }
 
 bool PhraseParser::roomArea(const Words& w, std::size_t at, std::size_t& i,
@@ -869,9 +873,9 @@ bool PhraseParser::roomArea(const Words& w, std::size_t at, std::size_t& i,
     if (pred.first != "in") return false;
     std::size_t after = at + pred.second;
     while (after < w.size() && isDeterminer(w[after])) ++after;
-    std::vector<std::string> marks;
-    const RoomMarks* asked = roomAreaAt(w, after, marks);
+    const RoomMarks* asked = roomAreaAt(w, after);
     if (!asked) return false;
+    std::vector<std::string> marks = roomMarks()[static_cast<std::size_t>(asked - kRoomMarks)];
     out_.notes.push_back(
         fmt::format("'the {}' is the area within {} m of its things ({}): the scene holds the things "
                     "of several kinds of room",
@@ -1081,7 +1085,7 @@ Error PhraseParser::notUnderstood(const Words& w, std::size_t at) const {
 std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
     if (i >= w.size()) return 0;
     if (namesWholeScene(w[i])) return 1;  // "in the room", "in here": the whole scene, no condition
-    if (std::vector<std::string> marks; roomAreaAt(w, i, marks)) return 0;  // a part of the scene (roomArea)
+    if (roomAreaAt(w, i)) return 0;       // a part of the scene (roomArea)
     for (std::string_view kind : kRoomKinds) {
         Words parts = words(std::string(kind));
         if (i + parts.size() > w.size() || !std::equal(parts.begin(), parts.end(), w.begin() + i)) continue;
@@ -1240,6 +1244,14 @@ std::vector<std::string> categoriesNamed(const Lexicon& lexicon, std::string_vie
         at = space == std::string::npos ? things.size() : space + 1;
     }
     return categories;
+}
+
+const RoomMarks* roomNamedAt(const Words& w, std::size_t at) {
+    for (const auto& row : kRoomMarks) {
+        const Words room = words(std::string(row.room));
+        if (at + room.size() <= w.size() && std::equal(room.begin(), room.end(), w.begin() + at)) return &row;
+    }
+    return nullptr;
 }
 
 std::string reference(const Phrase& p) {

@@ -120,6 +120,9 @@ inline constexpr double kRoomAreaReach = 1.5;
 enum class WordsAs { Names, Kinds, Broader };
 std::vector<std::string> categoriesNamed(const Lexicon& lexicon, std::string_view words, WordsAs as);
 
+// The kind of room (a row of kRoomMarks) whose words begin at w[at] ("living room"); none.
+const RoomMarks* roomNamedAt(const Words& w, std::size_t at);
+
 class PhraseParser {
 public:
     // `scene` and `sceneCount`: the current scene's name and how many the database holds, which say
@@ -165,10 +168,13 @@ public:
     static std::size_t pastVerbOfPlace(const Words& w, std::size_t at);
     bool roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t& i,
                           const std::pair<std::string, std::size_t>& pred);
+    // The scene's categories that mark each kind of room, row by row of kRoomMarks (categoriesNamed, by name only:
+    // a chair is no armchair), worked out once a parser.
+    const std::vector<std::vector<std::string>>& roomMarks() const;
     // "in the kitchen" where the scene holds the things of several kinds of room: the kitchen's area (kRoomMarks,
-    // kRoomAreaReach), a condition of the phrase. roomAreaAt: the kind of room named at w[at...] whose area it is,
-    // with its marks as the scene names them; none where the scene holds one kind of room's things or none.
-    const RoomMarks* roomAreaAt(const Words& w, std::size_t at, std::vector<std::string>& marks) const;
+    // kRoomAreaReach), a condition of the phrase. roomAreaAt: the kind of room named at w[at...] whose area it is;
+    // none where the scene holds the things of fewer kinds of room than kSeveralRooms, or none of this one's.
+    const RoomMarks* roomAreaAt(const Words& w, std::size_t at) const;
     bool roomArea(const Words& w, std::size_t at, std::size_t& i, const std::pair<std::string, std::size_t>& pred,
                   Phrase& p);
     // An ordinal with no measure: "the first cabinet from the door" is the nearest to it; "the first cabinet on
@@ -212,6 +218,7 @@ private:
     std::vector<std::string> unknownWords_;
     std::optional<Self> self_;
     int nested_ = 0;  // inside a condition's phrase: an exclusion belongs to the outer one
+    mutable std::optional<std::vector<std::vector<std::string>>> roomMarks_;  // roomMarks(), once asked
 };
 
 // ------------------------------------------------------------------ SMQL

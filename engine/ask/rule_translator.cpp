@@ -647,15 +647,10 @@ private:
         return true;
     }
 
-    // The scene's categories that a table's words (' ' between them) name (phrase.hpp: categoriesNamed).
-    std::vector<std::string> categoriesNamed(std::string_view words, WordsAs as) const {
-        return ask::categoriesNamed(lexicon_, words, as);
-    }
-
     // The condition on the things a use is afforded by, as this scene names them: "(category = 'chair' OR ...)"; the
     // row's first word when the scene has none of them (the answer is then "nothing").
     std::string affordedBy(const AffordanceRow& row) const {
-        const std::vector<std::string> categories = categoriesNamed(row.things, WordsAs::Broader);
+        const std::vector<std::string> categories = categoriesNamed(lexicon_, row.things, WordsAs::Broader);
         if (categories.empty())
             return fmt::format("category = {}", smqlString(std::string(row.things.substr(0, row.things.find(' ')))));
         std::string any;
@@ -1580,7 +1575,7 @@ private:
 
     // What kind of room is this? What room am I in? Is this a kitchen? The scene's things, and which of them mark a
     // kind of room (kRoomMarks): the answer names the kinds they mark.
-    bool roomKind(Cursor& c, PhraseParser&, Translation& out) {
+    bool roomKind(Cursor& c, PhraseParser& p, Translation& out) {
         std::string asked;
         const bool kind = c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
                           c.accept({"what|which", "room|place|space"}) ||
@@ -1594,12 +1589,8 @@ private:
         } else if (c.accept({"is", "this|it|here"}) || c.accept({"am", "i", "in"}) || c.accept({"are", "we", "in"})) {
             // "is this a kitchen?", "am I in the bathroom?"
             c.accept({"a|an|the|my|our"});
-            const auto known = std::find_if(std::begin(kRoomMarks), std::end(kRoomMarks), [&](const RoomMarks& r) {
-                const Words room = words(std::string(r.room));
-                return c.i + room.size() == c.w.size() &&
-                       std::equal(room.begin(), room.end(), c.w.begin() + static_cast<std::ptrdiff_t>(c.i));
-            });
-            if (known == std::end(kRoomMarks)) return false;
+            const RoomMarks* known = roomNamedAt(c.w, c.i);
+            if (!known || c.i + words(std::string(known->room)).size() != c.w.size()) return false;
             asked = std::string(known->room);
             c.i = c.w.size();
         } else {
@@ -1609,11 +1600,8 @@ private:
         out.kind = QuestionKind::RoomKind;
         out.smql = "FIND object RETURN id, category";
         out.predicate = asked;
-        for (const auto& marks : kRoomMarks) {
-            out.choices.emplace_back(marks.room);
-            // Only what is named so marks a room: a chair is no armchair, a table no desk.
-            out.roles.push_back(categoriesNamed(marks.things, WordsAs::Names));
-        }
+        for (const auto& marks : kRoomMarks) out.choices.emplace_back(marks.room);
+        out.roles = p.roomMarks();
         out.subject = "room";
         out.subjectPlural = "rooms";
         return true;

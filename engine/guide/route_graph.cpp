@@ -467,6 +467,8 @@ std::optional<Point> approach(const Node& goal, const Node& support, const Footi
 
 std::vector<Point> sidesOf(const std::vector<Node>& nodes, const Node& goal, const FreeSpace& space,
                            const GraphOptions& options) {
+    // A door or a window is walked to at its decision point, not along the wall beside it.
+    if (goal.kind != NodeKind::Object) return {};
     const Footing footing(nodes, options);
     if (&footing.support(goal) != &goal || footing.walkedOver(goal)) return {};
     return outlinePoints(footing.footprint(goal), space, options);

@@ -162,7 +162,8 @@ std::optional<Route> shortestRoute(const RouteGraph& graph, const FreeSpace& spa
 
 // Where a walker may stand to reach `goal`, which stands on the floor: on open floor every 0.2 m around its
 // footprint, a body's radius and a little more from it (the decision point beside it, buildGraph's, is the one
-// nearest the middle of the room). Empty for a thing that rests on furniture: its one point is beside the thing.
+// nearest the middle of the room). Empty for a thing that rests on furniture (its one point is beside the thing)
+// and for an anchor (a door, a window: its decision points).
 std::vector<Point> sidesOf(const std::vector<model::Node>& nodes, const model::Node& goal, const FreeSpace& space,
                            const GraphOptions& options);
 

@@ -463,6 +463,9 @@ TEST_CASE("a walk ends on the side of its goal it reaches first, on the Replica 
     const auto stool = run(*engine, "FIND stool ORDER BY distance(HERE) LIMIT 1 RETURN x, y");
     CHECK(std::hypot(std::get<double>(end[4]) - std::get<double>(stool.rows[0][0]),
                      std::get<double>(end[5]) - std::get<double>(stool.rows[0][1])) < 1.0);
+    // A door is walked to at its own decision point, not along the wall beside it (the door then behind you).
+    const auto toDoor = run(*engine, "GUIDE FROM HERE TO door");
+    CHECK(std::get<std::string>(toDoor.rows.back()[1]) == "The door is right here.");
 }
 
 TEST_CASE("a thing on furniture is approached from the open floor nearest it, on real rooms", "[guide]") {
