@@ -1904,8 +1904,9 @@ private:
         return w;
     }
 
-    // "which is bigger between A and B?", "is A or B closer to me?", "which is closer to me, A or
-    // B?", "which one is bigger the door or the bed?": the forms the choosing below reads.
+    // "which is bigger between A and B?", "is A or B closer to me?", "is A or B closer to C?", "is C closer
+    // to A or to B?", "which is closer to me, A or B?", "which one is bigger the door or the bed?": the forms
+    // the choosing below reads.
     static std::string eitherAsChoice(std::string text) {
         static const std::regex between(
             R"(^\s*(?:which|what)(?: one)? is ([A-Za-z]+) between (?:the )?(.+?) and (?:the )?([^?]+)\??\s*$)",
@@ -1913,18 +1914,31 @@ private:
         if (std::smatch b; std::regex_match(text, b, between) && comparativeOf(lowered(b.str(1))))
             text = "which of " + b.str(2) + " and " + b.str(3) + " is " + b.str(1) + "?";
         {
+            const auto byDistance = [](const std::string& word) {
+                return isOneOf(lowered(word), {"closer", "nearer", "farther", "further"});
+            };
             static const std::regex eitherCloser(
-                R"(^\s*(?:is|are) (?:the )?(.+?) or (?:the )?(.+?) ([A-Za-z]+)( (?:to|from) (?:me|my position|where i am))\??\s*$)",
+                R"(^\s*(?:is|are) (?:the )?(.+?) or (?:the )?(.+?) ([A-Za-z]+)( (?:to|from) [^?]+?)\??\s*$)",
+                std::regex::icase);
+            // "is the lamp closer to the sofa or to the table?": a distance is the same both ways, so this is
+            // which of the two is closer to the lamp.
+            static const std::regex closerToEither(
+                R"(^\s*(?:is|are) (?:the )?(.+?) ([A-Za-z]+) (to|from) (?:the )?(.+?),? or (?:(?:to|from) )?(?:the )?([^?]+?)\??\s*$)",
                 std::regex::icase);
             static const std::regex toMe(
                 R"(^\s*(?:which|what)(?: one)? is ([A-Za-z]+)( (?:to|from) (?:me|my position|where i am)),? *(?:between )?(?:the )?(.+?) (?:or|and) (?:the )?([^?]+?)\??\s*$)",
                 std::regex::icase);
+            // "which is closer, the tv or the trash can?"; not "which is closer to the door: the sofa or the
+            // table?", which the choosing below reads as it is.
             static const std::regex noComma(
-                R"(^\s*(?:which|what)(?: one)? is ([A-Za-z]+) (?:between )?(?:the )?([^,]+?) or (?:the )?([^?,]+?)\??\s*$)",
+                R"(^\s*(?:which|what)(?: one)? is ([A-Za-z]+)[,:]? (?:between )?(?:the )?([^,:]+?) or (?:the )?([^?,:]+?)\??\s*$)",
                 std::regex::icase);
             std::smatch e;
-            if (std::regex_match(text, e, eitherCloser))
+            if (std::regex_match(text, e, eitherCloser) && byDistance(e.str(3)))
                 text = fmt::format("which is {}{}, {} or {}?", e.str(3), e.str(4), e.str(1), e.str(2));
+            else if (std::regex_match(text, e, closerToEither) && byDistance(e.str(2)))
+                text =
+                    fmt::format("which is {} {} the {}, {} or {}?", e.str(2), e.str(3), e.str(1), e.str(4), e.str(5));
             else if (std::regex_match(text, e, toMe))
                 text = fmt::format("which is {}{}, {} or {}?", e.str(1) == "close" ? "closer" : e.str(1), e.str(2),
                                    e.str(3), e.str(4));
