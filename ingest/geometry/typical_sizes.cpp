@@ -13,7 +13,8 @@ namespace {
 // apart (object_fusion.cpp joins it back). Room: the one kind of room the kind stands in (a toilet in a bathroom, a
 // fridge or an oven in a kitchen; object_fusion.cpp doubts a name among another room's things). Role: what the kind is
 // for where fusion judges a thing by it (typical_sizes.hpp: Role). Least: the largest side and the height no thing of
-// the kind comes under (typical_sizes.hpp: LeastSize), where real rooms' labels show it. The rows cover the memory's
+// the kind comes under (typical_sizes.hpp: LeastSize), where real rooms' labels show it; Slender: a footprint too long
+// for its depth for the kind (typical_sizes.hpp). The rows cover the memory's
 // names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
@@ -25,13 +26,14 @@ struct Typical {
     RoomKind room = RoomKind::Any;
     Role role = Role::Other;
     LeastSize least{};
+    Slender slender{};
 };
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true},
     {"desk", 0.75, 1.9, Support::Floor, true},
-    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat},
-    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat, {0, 0.35}},
-    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Any, Role::Other, {1.2, 0}},
+    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat, {}, {0.75, 0.2}},
+    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat, {0, 0.35}, {1.0, 0.3}},
+    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Any, Role::Other, {1.2, 0}, {1.0, 0.25}},
     {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}},
     {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},
@@ -122,6 +124,11 @@ std::optional<LeastSize> leastSize(std::string_view category) {
 bool smallerThanKind(std::string_view category, double largest, double height, double bottom) {
     const auto least = leastSize(category);
     return least && (largest < least->largest || (bottom <= kStandingReach && height < least->height));
+}
+
+bool slenderForKind(std::string_view category, double longer, double shorter) {
+    const Typical* t = find(category);
+    return t && t->slender.length > 0 && longer >= t->slender.length && shorter < t->slender.depth;
 }
 
 bool holdsThings(std::string_view category) {

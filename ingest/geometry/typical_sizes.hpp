@@ -36,6 +36,19 @@ std::optional<LeastSize> leastSize(std::string_view category);
 constexpr double kStandingReach = 0.1;
 bool smallerThanKind(std::string_view category, double largest, double height, double bottom);
 
+// A footprint no thing of a kind has, seen whole or in part: this long (its longer horizontal side, metres) or
+// longer while shallower than `depth` (its shorter). A chair's footprint is never 0.75 m long and under 0.2 m deep:
+// what is that thin is a chair's back seen edge-on, narrower than that (of 235 labelled chairs in ARKitScenes'
+// rooms the thinnest footprint is 1.7 times as long as deep; of ScanNet's 370, scanned in part as many are, one
+// is 1.17 x 0.17 m and the next longest of those under 0.2 m deep 0.70 m). A 1.28 x 0.18 m "chair" stored in
+// ScanNet's lounge, where none stands, is not one, nor a "bed" (the shallowest of 74 labelled beds: 0.29 m, and
+// 0.86 m of those drawn whole) or a "sofa" (of 134: 0.36 m).
+struct Slender {
+    double length = 0;
+    double depth = 0;
+};
+bool slenderForKind(std::string_view category, double longer, double shorter);
+
 // A box whose largest side is more than this many times its kind's typicalExtent is not that kind: the name is
 // kept only as a guess (detected_as), and fused things are named by the votes that suit their box. A hull
 // carved without depth reaches past the thing along the views it was seen from, and is held to the looser

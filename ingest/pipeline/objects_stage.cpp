@@ -257,11 +257,12 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                 fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
                             "'object' with detected_as = {}",
                             std::max({box.size.x, box.size.y, box.size.z}), category, category));
-        else if (fit == NameFit::TooSmall)
+        else if (fit == NameFit::TooSmall || fit == NameFit::TooSlender)
             progress.note(
                 fmt::format("a {:.2f} x {:.2f} x {:.2f} m thing was detected as '{}', which is never that "
-                            "small: stored as 'object' with detected_as = {}",
-                            box.size.x, box.size.y, box.size.z, category, category));
+                            "{}: stored as 'object' with detected_as = {}",
+                            box.size.x, box.size.y, box.size.z, category,
+                            fit == NameFit::TooSmall ? "small" : "long for its depth", category));
         else if (fit == NameFit::TooTall)
             progress.note(
                 fmt::format("a {:.2f} m tall thing was detected as '{}', which stands about {:.2f} m: "
