@@ -561,7 +561,11 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
     for (std::size_t i = 0; i < rs.rows.size(); ++i) {
         const auto& row = rs.rows[i];
         std::string r = text(row[relation]), s = text(row[subject]);
-        bool match = r == t.predicate || (t.predicate == "on" && r == "attached" && !resting.count(s));
+        // A door, a window or a picture is in a wall as much as on it: "which wall is the door in?".
+        const std::string target = text(row[object]);
+        const bool inWall =
+            t.predicate == "in" && (r == "on" || r == "attached") && target.substr(0, target.find('#')) == "wall";
+        bool match = r == t.predicate || (t.predicate == "on" && r == "attached" && !resting.count(s)) || inWall;
         // On the rug, not on the floor and the rug.
         if (match && !(onThings.count(s) && isBackground(text(row[object])))) out.push_back(i);
     }
