@@ -44,6 +44,20 @@ namespace smql::ask {
 
 namespace {
 
+// Why a word the question needs names nothing the memory holds.
+std::string unknownWordNote(const std::string& word) {
+    // "where is the door from here?": the person, whose sides a situation gives.
+    if (word == "here")
+        return "'here', where you stand, is no thing the memory holds: ask how far a thing is from you, or say "
+               "where you are first ('I am sitting on the bed facing the window. Is the door on my left?')";
+    if (namesWholeScene(word))
+        return fmt::format(
+            "the {} itself is not a thing the memory holds: its sides, corners and middle are not stored (ask by a "
+            "thing or a wall the room holds)",
+            word);
+    return fmt::format("I do not know the word '{}'", word);
+}
+
 // What a question asks for where it names no thing ("what is on the desk?"): any thing of `kind`.
 Phrase anyThing(const char* kind) {
     Phrase thing;
@@ -230,14 +244,7 @@ public:
             if (!parser.unknownWords().empty()) {
                 out.kind = QuestionKind::UnknownWord;
                 out.runnable = false;
-                for (const auto& w : parser.unknownWords())
-                    out.notes.push_back(
-                        namesWholeScene(w)
-                            ? fmt::format(
-                                  "the {} itself is not a thing the memory holds: its sides, corners and middle "
-                                  "are not stored (ask by a thing or a wall the room holds)",
-                                  w)
-                            : fmt::format("I do not know the word '{}'", w));
+                for (const auto& w : parser.unknownWords()) out.notes.push_back(unknownWordNote(w));
             }
             return out;
         }
