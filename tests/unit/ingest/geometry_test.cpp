@@ -824,6 +824,20 @@ LinePlanes diningLines(const Dining& dining) {
     return lines;
 }
 
+// The dining frames' depth aligned (its floor the truth of up) and their colour photos' edges.
+struct DiningPhotos {
+    Dining dining;
+    Alignment depth;
+    LinePlanes lines;
+};
+DiningPhotos diningPhotos() {
+    DiningPhotos out{loadDining(4, 0.05), {}, {}};
+    out.depth = alignCapture(out.dining.cloud, out.dining.cameras, AlignOptions{});
+    REQUIRE(out.depth.floorFound);
+    out.lines = diningLines(out.dining);
+    return out;
+}
+
 }  // namespace
 
 TEST_CASE("RANSAC's hypotheses counted in halves count both halves", "[ingest][geometry]") {
@@ -854,10 +868,7 @@ TEST_CASE("rgbd-dining: the colour frames' vertical edges give the up the depth'
     // The five real colour photos with their true poses: the planes of their straight edges (OpenCV's
     // line segment detector) hold one direction near the floor's normal, which the depth measures
     // independently (the dining floor is level within 5 degrees of it, the test above).
-    const Dining dining = loadDining(4, 0.05);
-    const Alignment depth = alignCapture(dining.cloud, dining.cameras, AlignOptions{});
-    REQUIRE(depth.floorFound);
-    const LinePlanes lines = diningLines(dining);
+    const auto [dining, depth, lines] = diningPhotos();
     CHECK(lines.photos == 5);
     CHECK(lines.normals.size() > 150);
     // `up` turned by `degrees` towards a direction across it.
@@ -1032,10 +1043,7 @@ TEST_CASE("rgbd-dining as photos without depth: a plane that leans from the vert
     // the room was stored askew. Here the photos' real edges and poses, and a scale-free cloud of a large plane
     // leaning 20 degrees from the depth's floor and a level floor under it with a sixth of its points (too few
     // to be "large" beside it). The leaning plane is passed over, and the floor is found level with the edges.
-    const Dining dining = loadDining(4, 0.05);
-    const Alignment depth = alignCapture(dining.cloud, dining.cameras, AlignOptions{});
-    REQUIRE(depth.floorFound);
-    const LinePlanes lines = diningLines(dining);
+    const auto [dining, depth, lines] = diningPhotos();
     const model::Vec3 up = depth.up;
     model::Vec3 across{up.y, -up.x, 0};
     across = mul(1 / norm(across), across);
