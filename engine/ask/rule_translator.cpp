@@ -2182,7 +2182,7 @@ private:
             // "is the door on my left or right?": which side needs which way the person faces, which a situation
             // says ("is the door on my left?" alone is read from where the viewer stands).
             static const std::regex eitherSide(
-                R"(\b(?:on|to|at) (?:my|the) (?:left|right|front|back)\b.* or (?:on |to |at )?(?:my |the )?(?:left|right|front|back|behind)\b|\b(?:in front of|behind) me,? or (?:in front of|behind)\b)");
+                R"(\b(?:on|to|at) my (?:left|right|front|back)\b.* or (?:on |to |at )?(?:my |the )?(?:left|right|front|back|behind)\b|\b(?:in front of|behind) me,? or (?:in front of|behind)\b)");
             if (std::regex_search(plain, eitherSide))
                 throw Error(ErrorKind::Binding, "which side a thing is on needs where you are and which way you face",
                             std::nullopt,
