@@ -2188,6 +2188,14 @@ private:
                             std::nullopt,
                             "say it first, as in: I am sitting on the bed facing the window. Is the door on my left or "
                             "right?");
+            // "which side of the room is the door on?": the room's sides are not stored, its walls are.
+            static const std::regex sideOfRoom(
+                R"(^(?:which|what) (?:side|part|end|corner|half) of the (?:room|scene|house|apartment|space) )");
+            if (std::regex_search(plain, sideOfRoom))
+                throw Error(ErrorKind::Binding,
+                            "the room itself is not a thing the memory holds: its sides, corners and middle are not "
+                            "stored",
+                            std::nullopt, "ask by a wall or a thing the room holds, as in: which wall is the door on?");
             const std::string sided = withPersonSides(plain);
             if (sided == plain) throw;
             return readLeavingOut(reader, sided);
