@@ -548,9 +548,9 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
     if (relation < 0 || subject < 0 || object < 0) return out;
     // Resting on a thing or hanging on it are both "on" in English; a subject that rests on
     // something is said to be on that, not on the wall it touches.
+    auto categoryOf = [](const std::string& label) { return label.substr(0, label.find('#')); };
     auto isBackground = [&](const std::string& label) {
-        std::string category = label.substr(0, label.find('#'));
-        return std::find(t.background.begin(), t.background.end(), category) != t.background.end();
+        return std::find(t.background.begin(), t.background.end(), categoryOf(label)) != t.background.end();
     };
     std::set<std::string> resting, onThings;  // subjects resting on something; on a thing, not an anchor
     for (const auto& row : rs.rows)
@@ -562,9 +562,8 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
         const auto& row = rs.rows[i];
         std::string r = text(row[relation]), s = text(row[subject]);
         // A door, a window or a picture is in a wall as much as on it: "which wall is the door in?".
-        const std::string target = text(row[object]);
         const bool inWall =
-            t.predicate == "in" && (r == "on" || r == "attached") && target.substr(0, target.find('#')) == "wall";
+            t.predicate == "in" && (r == "on" || r == "attached") && categoryOf(text(row[object])) == "wall";
         bool match = r == t.predicate || (t.predicate == "on" && r == "attached" && !resting.count(s)) || inWall;
         // On the rug, not on the floor and the rug.
         if (match && !(onThings.count(s) && isBackground(text(row[object])))) out.push_back(i);

@@ -44,17 +44,19 @@ namespace smql::ask {
 
 namespace {
 
+// The room (or the scene, the house ...) named as a thing: the memory holds its things and walls, not it.
+std::string roomNotHeld(const std::string& word) {
+    return fmt::format("the {} itself is not a thing the memory holds: its sides, corners and middle are not stored",
+                       word);
+}
+
 // Why a word the question needs names nothing the memory holds.
 std::string unknownWordNote(const std::string& word) {
     // "where is the door from here?": the person, whose sides a situation gives.
     if (word == "here")
         return "'here', where you stand, is no thing the memory holds: ask how far a thing is from you, or say "
                "where you are first ('I am sitting on the bed facing the window. Is the door on my left?')";
-    if (namesWholeScene(word))
-        return fmt::format(
-            "the {} itself is not a thing the memory holds: its sides, corners and middle are not stored (ask by a "
-            "thing or a wall the room holds)",
-            word);
+    if (namesWholeScene(word)) return roomNotHeld(word) + " (ask by a thing or a wall the room holds)";
     return fmt::format("I do not know the word '{}'", word);
 }
 
@@ -2190,12 +2192,10 @@ private:
                             "right?");
             // "which side of the room is the door on?": the room's sides are not stored, its walls are.
             static const std::regex sideOfRoom(
-                R"(^(?:which|what) (?:side|part|end|corner|half) of the (?:room|scene|house|apartment|space) )");
-            if (std::regex_search(plain, sideOfRoom))
-                throw Error(ErrorKind::Binding,
-                            "the room itself is not a thing the memory holds: its sides, corners and middle are not "
-                            "stored",
-                            std::nullopt, "ask by a wall or a thing the room holds, as in: which wall is the door on?");
+                R"(^(?:which|what) (?:side|part|end|corner|half) of the (room|scene|house|apartment|space) )");
+            if (std::smatch room; std::regex_search(plain, room, sideOfRoom))
+                throw Error(ErrorKind::Binding, roomNotHeld(room.str(1)), std::nullopt,
+                            "ask by a wall or a thing the room holds, as in: which wall is the door on?");
             const std::string sided = withPersonSides(plain);
             if (sided == plain) throw;
             return readLeavingOut(reader, sided);

@@ -311,17 +311,29 @@ FloorChoice findFloor(const std::vector<HorizontalPlane>& planes, const std::vec
     return out;
 }
 
-// The photos' vertical edges against the surface chosen (the floor, or the table top the floor is placed
-// under): a level surface of the room stands within the edges' narrow cone (LineOptions::search) of their
-// vertical. One of photos without depth that leans further from a vertical the edges find in a wider cone is
-// not level: in one COLMAP run of two, the five dining photos' points gave a 107-point "floor" 35 deg from the
-// cameras' up and 20.5 deg from the vertical of 112 edges in all five photos, and the room was stored 23 deg
-// askew at 0.55 times its size. Returns that vertical, for the level surfaces to be looked for around it.
+// The surface chosen (the floor, or the table top the floor is placed under) where the photos' vertical edges are
+// measured against it: photos without depth that have edges. Else nothing.
+const HorizontalPlane* edgedSurface(const FloorChoice& choice, const LinePlanes& lines, const AlignOptions& options) {
+    if (options.metric || lines.normals.empty()) return nullptr;
+    return choice.floor ? choice.floor : choice.tableTop;
+}
+
+// Up among the photos' vertical edges, looked for in their narrow cone (LineOptions::search) around the surface.
+std::optional<Vertical> surfaceVertical(const FloorChoice& choice, const LinePlanes& lines,
+                                        const AlignOptions& options) {
+    const HorizontalPlane* surface = edgedSurface(choice, lines, options);
+    return surface ? verticalFromLines(lines, surface->plane.normal, options.lines) : std::nullopt;
+}
+
+// A level surface of the room stands within the edges' narrow cone of their vertical (surfaceVertical). One of
+// photos without depth that the edges find no up near, but find one in a wider cone of, leans from it and is not
+// level: in one COLMAP run of two, the five dining photos' points gave a 107-point "floor" 35 deg from the cameras'
+// up and 20.5 deg from the vertical of 112 edges in all five photos, and the room was stored 23 deg askew at 0.55
+// times its size. Returns that vertical, for the level surfaces to be looked for around it.
 std::optional<Vertical> leaningFromEdges(const FloorChoice& choice, const LinePlanes& lines,
                                          const AlignOptions& options) {
-    const HorizontalPlane* surface = choice.floor ? choice.floor : choice.tableTop;
-    if (options.metric || !surface || lines.normals.empty()) return std::nullopt;
-    if (verticalFromLines(lines, surface->plane.normal, options.lines)) return std::nullopt;
+    const HorizontalPlane* surface = edgedSurface(choice, lines, options);
+    if (!surface) return std::nullopt;
     LineOptions wide = options.lines;
     wide.search = kFloorlessSearch;
     return verticalFromLines(lines, surface->plane.normal, wide);
@@ -424,13 +436,14 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
 // ScanNet's lounge (58 %) and bathroom (29 %) were level within 0.8 degrees of the truth by their floors, 2.0
 // and 2.2 by the edges. A smaller one is seen at the photos' edges, grazed, and its plane leans: TUM's office
 // photos' (9-15 %) by 3.9-7.6 degrees from TUM's up, 7-Scenes' red kitchen's (7 %) by 2.5; the edges level
-// those, and the floor's height is measured again along them.
+// those, and the floor's height is measured again along them. `vertical`: the edges' up near the surface
+// (surfaceVertical), looked for once.
 Eigen::Vector3d upByLines(Alignment& out, const FloorChoice& choice, const PointCloud& world, const Eigen::Vector3d& up,
-                          const LinePlanes& lines, const AlignOptions& options) {
-    const HorizontalPlane* surface = choice.floor ? choice.floor : choice.tableTop;
-    if (options.metric || !surface || lines.normals.empty()) return up;
+                          const std::optional<Vertical>& vertical, const LinePlanes& lines,
+                          const AlignOptions& options) {
+    const HorizontalPlane* surface = edgedSurface(choice, lines, options);
+    if (!surface) return up;
     const char* what = choice.floor ? "floor" : "table top";
-    const auto vertical = verticalFromLines(lines, fromEigen(up), options.lines);
     if (!vertical) {
         out.notes.push_back(
             fmt::format("up: the {}'s normal; the {} straight edges of {} photos agree on no "
@@ -516,7 +529,8 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     const double clearance = options.cameraClearance * unit;
 
     FloorChoice choice = findFloor(planes, cameras, world, things, unit, options);
-    if (const auto edges = leaningFromEdges(choice, lines, options)) {
+    std::optional<Vertical> vertical = surfaceVertical(choice, lines, options);
+    if (const auto edges = vertical ? std::nullopt : leaningFromEdges(choice, lines, options)) {
         notes.push_back(fmt::format(
             "floor: the {} found leans {:.1f} deg from {} vertical edges in {} of {} photos; level surfaces looked "
             "for again within {:g} deg of their vertical",
@@ -526,10 +540,11 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
         level.horizontalTolerance = level.steepTolerance = options.lines.search;
         planes = horizontalPlanes(world, cameras, toEigen(edges->up), unit, level);
         choice = findFloor(planes, cameras, world, things, unit, options);
+        vertical = surfaceVertical(choice, lines, options);
     }
     const HorizontalPlane* floor = choice.floor;
-    const Eigen::Vector3d up =
-        upByLines(out, choice, world, placeFloor(out, choice, world, prior, cameras, lines, options), lines, options);
+    const Eigen::Vector3d up = upByLines(
+        out, choice, world, placeFloor(out, choice, world, prior, cameras, lines, options), vertical, lines, options);
     out.up = fromEigen(up);
 
     // The ceiling's height above the floor, measured along the floor's normal.

@@ -14,8 +14,8 @@ namespace {
 // fridge or an oven in a kitchen; object_fusion.cpp doubts a name among another room's things). Role: what the kind is
 // for where fusion judges a thing by it (typical_sizes.hpp: Role). Least: the largest side and the height no thing of
 // the kind comes under (typical_sizes.hpp: LeastSize), where real rooms' labels show it; Slender: a footprint too long
-// for its depth for the kind (typical_sizes.hpp). The rows cover the memory's
-// names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
+// for its depth for the kind (typical_sizes.hpp). The rows cover the memory's names for the detector's COCO classes
+// (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;
