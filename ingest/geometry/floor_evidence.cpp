@@ -46,11 +46,13 @@ bool SurfaceEvidence::tableTop() const {
     if (pointsBelow < kSeenBelow && below.empty() && standing.size() >= kStandingOnFloor) return false;
     // A named thing reaching well below a surface with more under it than any floor has: whatever
     // seems to rise from it (a desk's monitor taken for a table) stands on it as on a table top.
-    if (pointsBelow >= kUnderFloor && !below.empty()) return true;
+    if (muchBelow() && !below.empty()) return true;
     const std::size_t against = onTop.size() + below.size() + topOf.size();
-    const bool much = against >= 2 || !topOf.empty() || (against >= 1 && pointsBelow >= kUnderFloor);
+    const bool much = against >= 2 || !topOf.empty() || (against >= 1 && muchBelow());
     return much && against > standing.size();
 }
+
+bool SurfaceEvidence::muchBelow() const { return pointsBelow >= kUnderFloor; }
 
 std::string SurfaceEvidence::describe() const {
     std::vector<std::string> parts;

@@ -30,6 +30,8 @@ struct SurfaceEvidence {
     // is a table's top; one such thing is enough when much of the cloud lies under the surface, and a
     // thing reaching below it then outweighs whatever rises from it.
     bool tableTop() const;
+    // More of the cloud lies under it than under any floor (real floors: under 0.5 %).
+    bool muchBelow() const;
     std::string describe() const;  // "2 things that stand on tables rest on it (mug, keyboard), ..."
 };
 

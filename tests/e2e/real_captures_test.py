@@ -152,7 +152,11 @@ def refused_or_right(smql, status, log, db, groundtruth, **judge):
         print("  refused: " + next(line for line in log.splitlines() if "the memory would be wrong" in line))
     else:
         assert status == 0, log
-        print("  stored: " + judge_by_truth(smql, db, groundtruth, **judge))
+        try:
+            print("  stored: " + judge_by_truth(smql, db, groundtruth, **judge))
+        except AssertionError as wrong:  # what the ingest saw of the floor, the up and the scale
+            seen = [line for line in log.splitlines() if re.match(r"note: (floor|up|scale|objects|detector)", line)]
+            raise AssertionError("\n".join([str(wrong), *seen])) from None
 
 
 def desk_photos(smql, folder, work):

@@ -1075,3 +1075,51 @@ TEST_CASE("rgbd-dining as photos without depth: a plane that leans from the vert
     CHECK(angleDeg(withEdges.up, up) < 2.0);
     CHECK(std::abs(withEdges.floorHeight - depth.floorHeight) < 0.05);
 }
+
+TEST_CASE("rgbd-dining as photos without depth: a plane with the room's points under it is not a confirmed floor",
+          "[ingest][geometry][real]") {
+    // The five dining frames' real points with most of their floor unseen (a tenth of it kept, as photos that
+    // look at a seat or a desk show it), and a large level plane 0.45 m above the floor with a chair rising
+    // from it: the lowest large plane, a thing that stands on floors on it, and the room's own points under
+    // it. Its scale would rest on the cameras' height above a seat; the floor is not confirmed.
+    const auto [dining, depth, lines] = diningPhotos();
+    const model::Vec3 up = depth.up;
+    model::Vec3 across{up.y, -up.x, 0};
+    across = mul(1 / norm(across), across);
+    const model::Vec3 other{up.y * across.z - up.z * across.y, up.z * across.x - up.x * across.z,
+                            up.x * across.y - up.y * across.x};
+    model::Vec3 under{0, 0, 0};
+    for (const auto& c : dining.cameras) under = add(under, mul(1.0 / dining.cameras.size(), c.translation));
+    under = add(under, mul(depth.floorHeight - dot(under, up), up));  // on the floor under the cameras
+    PointCloud cloud;
+    std::size_t floorPoints = 0;
+    for (const auto& p : dining.cloud.points) {
+        const bool onFloor = std::abs(dot(p, up) - depth.floorHeight) < 0.05;
+        if (!onFloor || floorPoints++ % 10 == 0) cloud.push(p, {150, 150, 150}, 0);
+    }
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> side(-1.5, 1.5), rise(0.02, 0.9), leg(-0.2, 0.2);
+    const model::Vec3 seat = add(under, mul(0.45, up));
+    for (std::size_t i = 0; i < cloud.size() / 2; ++i)
+        cloud.push(add(seat, add(mul(side(random), across), mul(side(random), other))), {200, 200, 200}, 0);
+    NamedThing chair{"chair", {}};
+    for (int i = 0; i < 400; ++i)
+        chair.points.push_back(
+            add(add(seat, mul(rise(random), up)), add(mul(leg(random), across), mul(leg(random), other))));
+    AlignOptions photos;
+    photos.metric = false;
+    const Alignment a = alignCapture(cloud, dining.cameras, photos, {chair}, lines);
+    INFO(notesOf(a));
+    REQUIRE(a.floorFound);
+    CHECK(std::abs(a.floorHeight - dot(seat, a.up)) < 0.05);
+    CHECK_THAT(notesOf(a), Catch::Contains("1 thing that stands on floors rises from it (chair)"));
+    CHECK_THAT(a.floorUnconfirmed, Catch::Contains("more of the points lie below the lowest horizontal surface"));
+    // The same with the whole floor seen: the floor, the chair on it, nothing under it: confirmed.
+    PointCloud seen = dining.cloud;
+    NamedThing onFloor{"chair", {}};
+    for (const auto& p : chair.points) onFloor.points.push_back(add(p, mul(-0.45, up)));
+    const Alignment floor = alignCapture(seen, dining.cameras, photos, {onFloor}, lines);
+    INFO(notesOf(floor));
+    REQUIRE(floor.floorFound);
+    CHECK(floor.floorUnconfirmed.empty());
+}
