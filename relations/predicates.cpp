@@ -86,6 +86,11 @@ constexpr auto kEnclosures = inShortFirstOrder(
                                      "closet",   "drawer",       "chest-of-drawers", "dresser",         "shelf-unit",
                                      "bookcase", "bookshelf",    "fridge",           "refrigerator",    "microwave",
                                      "oven",     "dishwasher",   "washing-machine",  "kitchen-cabinet", "nightstand"});
+// Things whose boxes hold others that do not rest on them: an arc lamp's box spread over a sofa and its
+// cushions (Replica room 0), a plant's leaves over a table, a curtain's folds.
+constexpr auto kCarryNothing = inShortFirstOrder(std::array<std::string_view, 15>{
+    "lamp", "floor-lamp", "table-lamp", "desk-lamp", "light", "ceiling-light", "chandelier", "plant", "curtain",
+    "blinds", "door", "window", "picture", "mirror", "clock"});
 constexpr auto kFronted = inShortFirstOrder(std::array<std::string_view, 24>{
     "sofa",       "couch",    "armchair",  "chair",        "office-chair", "bed",      "tv",         "television",
     "tv-screen",  "monitor",  "desk",      "cabinet",      "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
@@ -109,6 +114,8 @@ Affordance affordanceOf(std::string_view category) {
         kind = Affordance::Holder;
     else if (listed(kEnclosures, category))
         kind = Affordance::Enclosure;
+    else if (listed(kCarryNothing, category))
+        kind = Affordance::Nothing;
     if (category.size() <= last.name.size()) {
         std::copy(category.begin(), category.end(), last.name.begin());
         last.size = category.size();
@@ -214,6 +221,7 @@ model::Aabb grown(model::Aabb b, double d) {
 // `overlap`: a's footprint over b's, when the caller has measured it.
 double carried(const PredicateInputs& in, std::optional<double> overlap = std::nullopt) {
     if (model::bottom(in.b.box) >= model::bottom(in.a.box)) return 0.0;
+    if (affordanceOf(in.b.category) == Affordance::Nothing) return 0.0;
     const double score = overlap ? supportGivenOverlap(in.a, in.b, in.t, *overlap) : supportScore(in.a, in.b, in.t);
     return score > 0 && !wallHolding(in.a, in.obstacles, in.t) ? score : 0.0;
 }
@@ -241,7 +249,7 @@ double onScore(const PredicateInputs& in) {
 // two boxes of one thing are not each in the other), or carried by a holder (a plant in its pot).
 double inScore(const PredicateInputs& in) {
     Affordance kind = affordanceOf(in.b.category);
-    if (kind == Affordance::Surface) return 0.0;
+    if (kind == Affordance::Surface || kind == Affordance::Nothing) return 0.0;
     double inside = model::fractionInside(in.a.box, in.b.box);
     if (inside >= in.t.inMinInside && model::volume(in.b.box) > model::volume(in.a.box)) return inside;
     return kind == Affordance::Holder ? carried(in) : 0.0;

@@ -119,8 +119,9 @@ inline std::string_view toString(Predicate p) { return model::toString(p); }
 // What a supporting category affords: things resting on a Holder are *in* it
 // (a plant in a plant stand, fruit in a basket); things inside an Enclosure's
 // box are in it, things on top are on it (a cabinet, a shelf unit); Surfaces
-// only carry things *on* them (a table, a sofa, a chair).
-enum class Affordance { Surface, Holder, Enclosure };
+// only carry things *on* them (a table, a sofa, a chair); Nothing rests on a
+// lamp, a plant or what hangs on a wall, whatever its box holds.
+enum class Affordance { Surface, Holder, Enclosure, Nothing };
 Affordance affordanceOf(std::string_view category);
 
 // Whether things of this category have a front (a sofa, a chair, a tv; docs/relations.md lists
