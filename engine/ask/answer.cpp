@@ -553,18 +553,26 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
         return std::find(t.background.begin(), t.background.end(), categoryOf(label)) != t.background.end();
     };
     std::set<std::string> resting, onThings;  // subjects resting on something; on a thing, not an anchor
-    for (const auto& row : rs.rows)
+    std::set<std::string> onWall;             // subjects attached to a wall
+    for (const auto& row : rs.rows) {
         if (text(row[relation]) == t.predicate) {
             resting.insert(text(row[subject]));
             if (!isBackground(text(row[object]))) onThings.insert(text(row[subject]));
         }
+        if (text(row[relation]) == "attached" && categoryOf(text(row[object])) == "wall")
+            onWall.insert(text(row[subject]));
+    }
     for (std::size_t i = 0; i < rs.rows.size(); ++i) {
         const auto& row = rs.rows[i];
         std::string r = text(row[relation]), s = text(row[subject]);
         // A door, a window or a picture is in a wall as much as on it: "which wall is the door in?".
         const bool inWall =
             t.predicate == "in" && (r == "on" || r == "attached") && categoryOf(text(row[object])) == "wall";
-        bool match = r == t.predicate || (t.predicate == "on" && r == "attached" && !resting.count(s)) || inWall;
+        // A thing on nothing that a wall holds hangs on the wall, not on the window beside it or the floor
+        // its lower edge meets ("what is the door on?").
+        const bool hangs = t.predicate == "on" && r == "attached" && !resting.count(s) &&
+                           (!onWall.count(s) || categoryOf(text(row[object])) == "wall");
+        bool match = r == t.predicate || hangs || inWall;
         // On the rug, not on the floor and the rug.
         if (match && !(onThings.count(s) && isBackground(text(row[object])))) out.push_back(i);
     }
