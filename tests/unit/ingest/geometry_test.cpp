@@ -838,6 +838,26 @@ DiningPhotos diningPhotos() {
     return out;
 }
 
+// The depth's floor under the dining cameras: its up, two directions across it and the point under the
+// cameras' centre.
+struct FloorFrame {
+    model::Vec3 up, across, other, under;
+};
+FloorFrame floorUnderCameras(const Dining& dining, const Alignment& depth) {
+    FloorFrame out;
+    out.up = depth.up;
+    const model::Vec3& up = out.up;
+    out.across = {up.y, -up.x, 0};
+    out.across = mul(1 / norm(out.across), out.across);
+    const model::Vec3& across = out.across;
+    out.other = {up.y * across.z - up.z * across.y, up.z * across.x - up.x * across.z,
+                 up.x * across.y - up.y * across.x};
+    out.under = {0, 0, 0};
+    for (const auto& c : dining.cameras) out.under = add(out.under, mul(1.0 / dining.cameras.size(), c.translation));
+    out.under = add(out.under, mul(depth.floorHeight - dot(out.under, up), up));
+    return out;
+}
+
 }  // namespace
 
 TEST_CASE("RANSAC's hypotheses counted in halves count both halves", "[ingest][geometry]") {
@@ -1044,14 +1064,7 @@ TEST_CASE("rgbd-dining as photos without depth: a plane that leans from the vert
     // leaning 20 degrees from the depth's floor and a level floor under it with a sixth of its points (too few
     // to be "large" beside it). The leaning plane is passed over, and the floor is found level with the edges.
     const auto [dining, depth, lines] = diningPhotos();
-    const model::Vec3 up = depth.up;
-    model::Vec3 across{up.y, -up.x, 0};
-    across = mul(1 / norm(across), across);
-    const model::Vec3 other{up.y * across.z - up.z * across.y, up.z * across.x - up.x * across.z,
-                            up.x * across.y - up.y * across.x};
-    model::Vec3 below{0, 0, 0};
-    for (const auto& c : dining.cameras) below = add(below, mul(1.0 / dining.cameras.size(), c.translation));
-    below = add(below, mul(depth.floorHeight - dot(below, up), up));  // on the floor under the cameras
+    const auto [up, across, other, below] = floorUnderCameras(dining, depth);
     const double tilt = 20 * kDeg;
     const model::Vec3 leaningAcross = add(mul(std::cos(tilt), across), mul(std::sin(tilt), up));
     std::mt19937 random(5);
@@ -1083,14 +1096,7 @@ TEST_CASE("rgbd-dining as photos without depth: a plane with the room's points u
     // from it: the lowest large plane, a thing that stands on floors on it, and the room's own points under
     // it. Its scale would rest on the cameras' height above a seat; the floor is not confirmed.
     const auto [dining, depth, lines] = diningPhotos();
-    const model::Vec3 up = depth.up;
-    model::Vec3 across{up.y, -up.x, 0};
-    across = mul(1 / norm(across), across);
-    const model::Vec3 other{up.y * across.z - up.z * across.y, up.z * across.x - up.x * across.z,
-                            up.x * across.y - up.y * across.x};
-    model::Vec3 under{0, 0, 0};
-    for (const auto& c : dining.cameras) under = add(under, mul(1.0 / dining.cameras.size(), c.translation));
-    under = add(under, mul(depth.floorHeight - dot(under, up), up));  // on the floor under the cameras
+    const auto [up, across, other, under] = floorUnderCameras(dining, depth);
     PointCloud cloud;
     std::size_t floorPoints = 0;
     for (const auto& p : dining.cloud.points) {
