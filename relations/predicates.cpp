@@ -221,7 +221,6 @@ model::Aabb grown(model::Aabb b, double d) {
 // `overlap`: a's footprint over b's, when the caller has measured it.
 double carried(const PredicateInputs& in, std::optional<double> overlap = std::nullopt) {
     if (model::bottom(in.b.box) >= model::bottom(in.a.box)) return 0.0;
-    if (affordanceOf(in.b.category) == Affordance::Nothing) return 0.0;
     const double score = overlap ? supportGivenOverlap(in.a, in.b, in.t, *overlap) : supportScore(in.a, in.b, in.t);
     return score > 0 && !wallHolding(in.a, in.obstacles, in.t) ? score : 0.0;
 }
@@ -232,7 +231,7 @@ double carried(const PredicateInputs& in, std::optional<double> overlap = std::n
 template <typename Overlap>
 double onScoreWith(const PredicateInputs& in, Overlap overlapOf) {
     Affordance kind = affordanceOf(in.b.category);
-    if (kind == Affordance::Holder) return 0.0;
+    if (kind == Affordance::Holder || kind == Affordance::Nothing) return 0.0;
     if (kind == Affordance::Enclosure && contained(in.a, in.b, in.t)) return 0.0;
     double own = model::footprintArea(in.a.box);
     if (own <= 0) return 0.0;

@@ -565,13 +565,12 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
     for (std::size_t i = 0; i < rs.rows.size(); ++i) {
         const auto& row = rs.rows[i];
         std::string r = text(row[relation]), s = text(row[subject]);
+        const bool toWall = categoryOf(text(row[object])) == "wall";
         // A door, a window or a picture is in a wall as much as on it: "which wall is the door in?".
-        const bool inWall =
-            t.predicate == "in" && (r == "on" || r == "attached") && categoryOf(text(row[object])) == "wall";
+        const bool inWall = t.predicate == "in" && (r == "on" || r == "attached") && toWall;
         // A thing on nothing that a wall holds hangs on the wall, not on the window beside it or the floor
         // its lower edge meets ("what is the door on?").
-        const bool hangs = t.predicate == "on" && r == "attached" && !resting.count(s) &&
-                           (!onWall.count(s) || categoryOf(text(row[object])) == "wall");
+        const bool hangs = t.predicate == "on" && r == "attached" && !resting.count(s) && (!onWall.count(s) || toWall);
         bool match = r == t.predicate || hangs || inWall;
         // On the rug, not on the floor and the rug.
         if (match && !(onThings.count(s) && isBackground(text(row[object])))) out.push_back(i);

@@ -1121,10 +1121,9 @@ TEST_CASE("rgbd-dining as photos without depth: a plane with the room's points u
     CHECK_THAT(notesOf(a), Catch::Contains("1 thing that stands on floors rises from it (chair)"));
     CHECK_THAT(a.floorUnconfirmed, Catch::Contains("more of the points lie below the lowest horizontal surface"));
     // The same with the whole floor seen: the floor, the chair on it, nothing under it: confirmed.
-    PointCloud seen = dining.cloud;
     NamedThing onFloor{"chair", {}};
     for (const auto& p : chair.points) onFloor.points.push_back(add(p, mul(-0.45, up)));
-    const Alignment floor = alignCapture(seen, dining.cameras, photos, {onFloor}, lines);
+    const Alignment floor = alignCapture(dining.cloud, dining.cameras, photos, {onFloor}, lines);
     INFO(notesOf(floor));
     REQUIRE(floor.floorFound);
     CHECK(floor.floorUnconfirmed.empty());
