@@ -13,7 +13,7 @@ packages=(
   postgresql-server-dev-15  # smql_pg.so, the predicates inside PostgreSQL (docs/fleet.md)
   libopencv-dev libpcl-dev colmap
   libexif-dev  # photos' EXIF focal length for an unknown camera (ingest/capture/camera_source.cpp)
-  libdeflate-dev  # depth cameras' 16-bit PNGs (ingest/capture/depth_png.cpp)
+  libdeflate-dev  # cameras' PNG frames (ingest/capture/png_decoder.cpp)
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer
   clang-format clang-tidy-22  # make format, make lint (scripts/lint.sh); Debian 12's newest clang-tidy, the fastest
   tmux  # the shell's terminal test (Ctrl-C, widths)

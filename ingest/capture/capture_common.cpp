@@ -11,7 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
-#include "ingest/capture/depth_png.hpp"
+#include "ingest/capture/png_decoder.hpp"
 #include "ingest/import/common.hpp"
 #include "model/error.hpp"
 
@@ -363,7 +363,9 @@ const char* depthName(int depth) {
 
 }  // namespace
 
-cv::Mat readColorImage(const std::string& file) { return readImage(file, cv::IMREAD_COLOR, "colour image"); }
+cv::Mat readColorImage(const std::string& file) {
+    return readImage(file, cv::IMREAD_COLOR, "colour image", decodeColorPng);
+}
 
 cv::Mat readDepthImage(const std::string& file) {
     cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image", decodeDepthPng);

@@ -23,6 +23,7 @@
 #include "ingest/pipeline/request.hpp"
 #include "ingest/synth/synth.hpp"
 #include "model/error.hpp"
+#include "model/geometry.hpp"
 #include "scratch_dir.hpp"
 
 using namespace smql;

@@ -1,5 +1,5 @@
-// The depth PNG decoder (ingest/capture/depth_png.hpp) on arbitrary bytes, against OpenCV: whatever it
-// decodes, OpenCV must read as the same pixels; what it leaves, OpenCV reads (or refuses) as before.
+// The PNG decoders (ingest/capture/png_decoder.hpp) on arbitrary bytes, against OpenCV: whatever one
+// decodes, OpenCV must read as the same pixels; what they leave, OpenCV reads (or refuses) as before.
 // Chunks' checksums would stop nearly every mutation at the first chunk, so the input's chunks are
 // checksummed again before it is decoded, unless its last byte is odd.
 #include <cstdint>
@@ -10,7 +10,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "ingest/capture/depth_png.hpp"
+#include "ingest/capture/png_decoder.hpp"
 
 namespace {
 
@@ -35,10 +35,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     constexpr long long kMaxPixels = 4'000'000;
     std::vector<std::uint8_t> file(data, data + size);
     if (!file.empty() && file.back() % 2 == 0) checksumChunks(file);
-    const auto ours = smql::ingest::decodeDepthPng(file, kMaxPixels);
-    if (!ours) return 0;
-    const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_UNCHANGED);
-    if (theirs.type() != CV_16UC1 || theirs.size() != ours->size() || cv::norm(*ours, theirs, cv::NORM_INF) != 0)
-        std::abort();  // a PNG both read, read differently
+    // A PNG both read, read differently.
+    if (const auto depth = smql::ingest::decodeDepthPng(file, kMaxPixels)) {
+        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_UNCHANGED);
+        if (theirs.type() != CV_16UC1 || theirs.size() != depth->size() || cv::norm(*depth, theirs, cv::NORM_INF) != 0)
+            std::abort();
+    }
+    if (const auto colour = smql::ingest::decodeColorPng(file, kMaxPixels)) {
+        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_COLOR);
+        if (theirs.type() != CV_8UC3 || theirs.size() != colour->size() || cv::norm(*colour, theirs, cv::NORM_INF) != 0)
+            std::abort();
+    }
     return 0;
 }
