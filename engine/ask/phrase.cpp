@@ -792,6 +792,37 @@ bool PhraseParser::onSameWallAs(const Words& w, std::size_t at, std::size_t& i, 
     return true;
 }
 
+// What rests on or in the thing a listing is near is on or in it, not beside it: a person asked what is next
+// to the sofa names the side table and the lamp, not the cushions on it (those are "on the sofa", as RELATE
+// names the most specific relation), so near's condition on a list of things of any kind comes with NOT on
+// and NOT in of the same thing, as far as that kind carries things on or holds them (docs/ask.md, "Near and
+// next to"). A written distance ("within 1 m of the sofa") is a distance and keeps everything within it; a
+// named kind ("the chairs near the table") is left as asked, and nothing rests on the room's walls, floor or
+// ceiling in this sense.
+void PhraseParser::leaveOutResting(Phrase& p) {
+    const Condition& near = p.conditions.back();
+    if (!p.kind || near.predicate != "near" || near.metres || near.args.size() != 1) return;
+    const Phrase& thing = near.args.front();
+    if (thing.here || thing.self || thing.categories.size() != 1 ||
+        isOneOf(thing.categories.front(), {"wall", "floor", "ceiling"}))
+        return;
+    const relations::Affordance affords = relations::affordanceOf(thing.categories.front());
+    std::vector<Condition> notResting;
+    for (const char* predicate : {"on", "in"}) {
+        const bool possible =
+            predicate == std::string_view("on")
+                ? affords != relations::Affordance::Holder && affords != relations::Affordance::Nothing
+                : affords != relations::Affordance::Surface && affords != relations::Affordance::Nothing;
+        if (!possible) continue;
+        Condition c;
+        c.predicate = predicate;
+        c.args = {thing};
+        c.negated = true;
+        notResting.push_back(std::move(c));
+    }
+    p.conditions.insert(p.conditions.end(), notResting.begin(), notResting.end());
+}
+
 bool PhraseParser::sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p) {
     if (!((p.kind || p.categories.size() != 1) && p.id.empty())) return false;
     std::size_t k = at;
@@ -970,6 +1001,8 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
         if (negated) {
             p.conditions.back().negated = true;
             p.conditions.back().words = "not " + p.conditions.back().words;
+        } else if (!also) {
+            leaveOutResting(p);
         }
         // "near the curtain and the door": the same relation to each.
         while (i + 1 < w.size() && w[i] == "and" && !predicateAt(w, i + 1) && !exclusionAt(w, i + 1) &&

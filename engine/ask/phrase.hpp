@@ -165,6 +165,7 @@ public:
     bool amongThem(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool onSameWallAs(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p);
+    static void leaveOutResting(Phrase& p);
     static std::size_t pastVerbOfPlace(const Words& w, std::size_t at);
     bool roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t& i,
                           const std::pair<std::string, std::size_t>& pred);

@@ -171,6 +171,42 @@ TEST_CASE("ASK on Replica room 0: the acceptance questions", "[ask]") {
     CHECK(picture.message.ends_with(" is on " + wall + "."));
 }
 
+// What rests on a thing is on it, not next to it: the Replica room's cushions lie on its two sofas, and a person
+// asked what is beside the sofa names the side tables, the lamps and the basket, not those cushions.
+TEST_CASE("ASK on Replica room 0: what is next to the sofa leaves out what lies on it", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'replica-room0'");
+    auto idsOf = [](const ResultSet& rs) {
+        std::set<std::int64_t> ids;
+        for (const auto& row : rs.rows) ids.insert(std::get<std::int64_t>(row[rs.columnIndex("id")]));
+        return ids;
+    };
+    const auto onSofa = idsOf(run(*engine, "FIND object WHERE on(sofa)"));
+    const auto nearSofa = idsOf(run(*engine, "FIND object WHERE near(sofa)"));
+    REQUIRE(onSofa.size() >= 5);  // the cushions, which near holds for too: they touch the sofa
+    for (const char* question : {"what is next to the sofa?", "what is beside the couch?", "what is near the sofa?"}) {
+        INFO(question);
+        auto beside = run(*engine, askStatement(question));
+        CHECK(smqlOf(beside.message) == "FIND object WHERE near(sofa) AND NOT on(sofa)");
+        const auto ids = idsOf(beside);
+        CHECK(ids.size() == nearSofa.size() - onSofa.size());
+        for (auto id : onSofa) CHECK(ids.count(id) == 0);
+        CHECK(beside.message.find("cushion#") == std::string::npos);
+        // The side table at the end of sofa 9 (Replica's ids), and the basket beside sofa 77.
+        std::set<std::int64_t> sources;
+        for (const auto& row : beside.rows)
+            if (const auto* source = std::get_if<std::int64_t>(&row[beside.columnIndex("source_id")]))
+                sources.insert(*source);
+        CHECK(sources.count(7) == 1);
+        CHECK(sources.count(75) == 1);
+    }
+    // A distance written out is a distance: everything within it, cushions too.
+    auto within = run(*engine, "ASK 'what is within 1 m of the sofa?'");
+    CHECK(smqlOf(within.message) == "FIND object WHERE near(sofa, 1 m)");
+    for (auto id : onSofa) CHECK(idsOf(within).count(id) == 1);
+}
+
 // "When entering ..." places the person at the door with spaces typed before the question too: the
 // regex once wrote its `\s` in a plain string literal, which reads it as a letter s.
 TEST_CASE("ASK: a situation of entering is read with spaces in front of the question", "[ask]") {
