@@ -60,6 +60,8 @@ std::optional<std::string> sharedCategory(const ResultSet& rs) {
     std::string first = text(rs.rows.front()[category]);
     for (const auto& row : rs.rows)
         if (text(row[category]) != first) return std::nullopt;
+    std::replace(first.begin(), first.end(), '-',
+                 ' ');  // in words: "1 trash bin is between ...", as the subject is said
     return first;
 }
 
