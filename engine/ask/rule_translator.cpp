@@ -1602,6 +1602,16 @@ private:
             if (!known || c.i + words(std::string(known->room)).size() != c.w.size()) return false;
             asked = std::string(known->room);
             c.i = c.w.size();
+        } else if (c.accept({"is", "there", "a|an"})) {
+            // "is there a kitchen here?": a kind of room, which things mark, not a thing named so ("is there a
+            // kitchen cabinet?" is a thing).
+            const RoomMarks* known = roomNamedAt(c.w, c.i);
+            if (!known) return false;
+            c.i += words(std::string(known->room)).size();
+            if (!c.done() && !c.accept({"here"}) && !c.accept({"in", "here"}) &&
+                !c.accept({"in", "this|the", "place|space|home|house|flat|apartment|scene"}))
+                return false;
+            asked = std::string(known->room);
         } else {
             return false;
         }
