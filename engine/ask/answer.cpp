@@ -297,7 +297,10 @@ std::string size(const Translation& t, const ResultSet& rs) {
     }
     if (parts.empty()) return noneFound(t);
     std::string out = listed(parts, "; ");
-    out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
+    // A sentence opens with a capital, unless it opens with a node's label, which is written as FIND takes it
+    // ("tv#27 is 0.52 m tall", not "Tv#27").
+    if (out.substr(0, out.find(' ')).find('#') == std::string::npos)
+        out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
     return out + ".";
 }
 

@@ -486,7 +486,12 @@ private:
     // How tall is the lamp? What is the length of the longest dimension of the table?
     bool size(Cursor& c, PhraseParser& p, Translation& out) {
         std::string measure;
-        if (c.accept({"how"}) && sizeMeasure(c.peek()) && isOneOf(c.peek(1), {"is", "are"})) {
+        bool aboveFloor = false;  // "how high off the ground is the tv?"
+        if (c.accept({"how", "high|tall", "above|off|over|from", "the", "floor|ground", "is|are"}) ||
+            c.accept({"how", "high|tall", "above|off|over|from", "floor|ground", "is|are"})) {
+            measure = "height";
+            aboveFloor = true;
+        } else if (c.accept({"how"}) && sizeMeasure(c.peek()) && isOneOf(c.peek(1), {"is", "are"})) {
             measure = std::string(*sizeMeasure(c.peek()));
             c.i += 2;
         } else {
@@ -534,12 +539,23 @@ private:
             return true;
         }
         c.i = save;
-        Phrase thing = p.phrase(c.w, c.i, true);
+        // "how high is the tv above the floor?", "... off the ground": how far its bottom is from the floor, the
+        // thing's place, not its size (the floor is the scene's height 0, with a floor node or without).
+        std::size_t end = c.w.size();
+        if (!aboveFloor && measure == "height" && end >= c.i + 3 && isOneOf(c.w[end - 1], {"floor", "ground"})) {
+            const std::size_t the = c.w[end - 2] == "the" ? 1 : 0;
+            aboveFloor = isOneOf(c.w[end - 2 - the], {"above", "off", "from", "over"});
+            if (aboveFloor) end -= 2 + the;
+        }
+        Phrase thing;
+        if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
+        c.i = c.w.size();
         out.kind = QuestionKind::Size;
         out.measure = measure;
         out.smql = findText(thing, false) + " RETURN id, category, width, depth, height, volume";
         // "how high is the ceiling?": how far above the floor it is, not how thick its box.
-        if (measure == "height" && thing.categories == std::vector<std::string>{"ceiling"}) out.smql += ", z";
+        if (measure == "height" && (aboveFloor || thing.categories == std::vector<std::string>{"ceiling"}))
+            out.smql += ", z";
         describeSubject(thing, out);
         return true;
     }
