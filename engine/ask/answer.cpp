@@ -478,6 +478,98 @@ std::string counted(const std::string& category, std::size_t n) {
     return n == 1 ? withArticle(category) : fmt::format("{} {}", n, pluralOf(category));
 }
 
+// Which room a thing is in (QuestionKind::RoomOf): for each thing asked about (the last of Translation::roles), the
+// kinds of room (choices, marked by the other roles) whose marks stand within a room's area of it (kRoomAreaReach),
+// the nearest first; a thing that marks a room is in that room.
+std::string roomOf(const Translation& t, const ResultSet& rs) {
+    const int category = rs.columnIndex("category"), box = rs.columnIndex("box");
+    if (category < 0 || box < 0 || t.roles.empty()) return noneFound(t);
+    const auto names = labels(rs);
+    const std::vector<std::string>& asked = t.roles.back();
+    auto roomMarkedBy = [&](const std::string& c) -> std::optional<std::string> {
+        for (std::size_t k = 0; k + 1 < t.roles.size() && k < t.choices.size(); ++k)
+            if (std::find(t.roles[k].begin(), t.roles[k].end(), c) != t.roles[k].end()) return t.choices[k];
+        return std::nullopt;
+    };
+    struct Mark {
+        std::size_t row;
+        std::string room;
+    };
+    std::vector<std::size_t> things;
+    std::vector<Mark> marks;
+    for (std::size_t r = 0; r < rs.rows.size(); ++r) {
+        if (!std::holds_alternative<model::Box>(rs.rows[r][box])) continue;
+        const std::string c = text(rs.rows[r][category]);
+        if (std::find(asked.begin(), asked.end(), c) != asked.end()) things.push_back(r);
+        if (auto room = roomMarkedBy(c)) marks.push_back({r, *room});
+    }
+    if (things.empty()) return noneFound(t);
+    if (marks.empty())
+        return fmt::format(
+            "Nothing here marks a kind of room (a bed, a sofa, a fridge, a toilet or a desk): the {} "
+            "{} in no room a thing names.",
+            things.size() == 1 ? t.subject : t.subjectPlural, things.size() == 1 ? "is" : "are");
+    // A scene whose things mark fewer kinds of room than a home's several is one room (an office with a sofa is an
+    // office): everything in it is in it.
+    std::vector<std::pair<std::string, std::size_t>> kinds;  // each kind of room, with how many marks it has
+    for (const auto& m : marks) {
+        auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == m.room; });
+        if (it == kinds.end())
+            kinds.emplace_back(m.room, 1);
+        else
+            ++it->second;
+    }
+    if (kinds.size() < kSeveralRooms) {
+        std::stable_sort(kinds.begin(), kinds.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+        const std::string looks =
+            withArticle(kinds.front().first) +
+            (kinds.size() > 1 ? fmt::format(", with {}'s things", withArticle(kinds[1].first)) : std::string());
+        return things.size() == 1
+                   ? fmt::format("{} is in this room, which looks like {}.", names[things.front()], looks)
+                   : fmt::format("The {} {} are in this room, which looks like {}.", things.size(), t.subjectPlural,
+                                 looks);
+    }
+    // Where one thing is: "in the living room (sofa#7, 0.06 m); by the bedroom (bed#8, 0.27 m) too".
+    auto placeOf = [&](std::size_t thing, bool one) {
+        const auto& own = std::get<model::Box>(rs.rows[thing][box]);
+        if (auto room = roomMarkedBy(text(rs.rows[thing][category])))
+            return fmt::format("in the {}{}", *room,
+                               one ? fmt::format(": {} marks it", names[thing]) : ", which it marks");
+        struct Near {
+            std::string room;
+            std::size_t row;
+            double metres;
+        };
+        std::vector<Near> near;  // each kind of room once, by its nearest mark
+        for (const auto& m : marks) {
+            const double metres = model::distance(own, std::get<model::Box>(rs.rows[m.row][box]));
+            auto same = std::find_if(near.begin(), near.end(), [&](const Near& n) { return n.room == m.room; });
+            if (same == near.end())
+                near.push_back({m.room, m.row, metres});
+            else if (metres < same->metres)
+                *same = {m.room, m.row, metres};
+        }
+        std::sort(near.begin(), near.end(), [](const Near& a, const Near& b) { return a.metres < b.metres; });
+        const Near& first = near.front();
+        if (first.metres > kRoomAreaReach)
+            return fmt::format("in no room's area ({}, {} the nearest mark of one, is {} away)", names[first.row],
+                               withArticle(first.room), length(first.metres, t.unit));
+        std::string out =
+            one ? fmt::format("in the {}: {} is {} from it", first.room, names[first.row], length(first.metres, t.unit))
+                : fmt::format("in the {} ({}, {})", first.room, names[first.row], length(first.metres, t.unit));
+        std::vector<std::string> also;
+        for (std::size_t k = 1; k < near.size() && near[k].metres <= kRoomAreaReach; ++k)
+            also.push_back(
+                fmt::format("the {} ({}, {})", near[k].room, names[near[k].row], length(near[k].metres, t.unit)));
+        if (!also.empty()) out += fmt::format("{} by {} too", one ? ";" : ",", listedWithAnd(also));
+        return out;
+    };
+    if (things.size() == 1) return fmt::format("The {} is {}.", t.subject, placeOf(things.front(), true));
+    std::vector<std::string> each;
+    for (std::size_t thing : things) each.push_back(fmt::format("{} is {}", names[thing], placeOf(thing, false)));
+    return fmt::format("{} {}: {}.", things.size(), t.subjectPlural, listed(each, "; "));
+}
+
 // The kinds of room the things mark (Translation::choices, each marked by the categories in the same place of roles),
 // most marked first; "is this a kitchen?" (Translation::predicate) answered yes or no.
 std::string roomKind(const Translation& t, const ResultSet& rs) {
@@ -958,6 +1050,8 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
             return roomSize(t, rs);
         case QuestionKind::RoomKind:
             return roomKind(t, rs);
+        case QuestionKind::RoomOf:
+            return roomOf(t, rs);
         case QuestionKind::Statement:
             return statement(t, rs);
         case QuestionKind::Route:

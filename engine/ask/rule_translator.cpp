@@ -1598,9 +1598,50 @@ private:
         return true;
     }
 
+    // Which room is the chair in? In what room is the toilet? For each thing of the kind, the kind of room whose marks
+    // (kRoomMarks) stand nearest it within a room's area (kRoomAreaReach): the things and the marks with their boxes,
+    // which the answer measures between.
+    bool roomOf(Cursor& c, PhraseParser& p, Translation& out) {
+        std::size_t end = c.w.size();
+        if (c.accept({"which|what", "room|part", "is|are"}) ||
+            c.accept({"which|what", "part", "of", "the", "house|home|flat|apartment", "is|are"})) {
+            if (end == 0 || c.w[end - 1] != "in") return false;  // "which room is the largest?" is not asked here
+            --end;
+        } else if (!c.accept({"in", "which|what", "room|part", "is|are"})) {
+            return false;
+        }
+        if (isOneOf(c.peek(), {"this", "it", "here", "i", "we"})) return false;
+        Phrase thing;
+        if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
+        // A kind of thing, as it is named: the answer measures each of them.
+        if (!thing.id.empty() || thing.kind || !thing.side.empty() || thing.colour || !thing.conditions.empty() ||
+            !thing.filters.empty() || !thing.excluded.empty() || thing.order)
+            return false;
+        c.i = c.w.size();
+        std::vector<std::string> asked =
+            thing.categories.empty() ? std::vector<std::string>{hyphenated(thing.noun)} : thing.categories;
+        std::vector<std::string> marks;
+        for (const auto& m : p.roomMarks()) marks.insert(marks.end(), m.begin(), m.end());
+        std::string any;
+        for (const auto& category : asked)
+            any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(category));
+        for (const auto& category : marks)
+            if (std::find(asked.begin(), asked.end(), category) == asked.end())
+                any += fmt::format(" OR category = {}", smqlString(category));
+        out.kind = QuestionKind::RoomOf;
+        out.smql = fmt::format("FIND thing WHERE {} RETURN id, category, box", any);
+        for (const auto& row : kRoomMarks) out.choices.emplace_back(row.room);
+        out.roles = p.roomMarks();
+        out.roles.push_back(asked);  // after the rooms' marks: the things asked about
+        describeSubject(thing, out);
+        return true;
+    }
+
     // What kind of room is this? What room am I in? Is this a kitchen? The scene's things, and which of them mark a
     // kind of room (kRoomMarks): the answer names the kinds they mark.
     bool roomKind(Cursor& c, PhraseParser& p, Translation& out) {
+        if (roomOf(c, p, out)) return true;
+        c.i = 0;
         std::string asked;
         const bool kind = c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
                           c.accept({"what|which", "room|place|space"}) ||
@@ -2383,6 +2424,8 @@ std::string_view toString(QuestionKind kind) {
             return "room size";
         case QuestionKind::RoomKind:
             return "room kind";
+        case QuestionKind::RoomOf:
+            return "room of a thing";
         case QuestionKind::Statement:
             return "statement";
         case QuestionKind::Route:

@@ -207,6 +207,41 @@ TEST_CASE("ASK on Replica room 0: what is next to the sofa leaves out what lies 
     for (auto id : onSofa) CHECK(idsOf(within).count(id) == 1);
 }
 
+// Which room a thing is in: in a real space of several rooms (ScanNet's scene0207_02: a bed, a sofa, a fridge and a
+// microwave, a monitor and printers), the kind of room whose things stand within a room's reach of it; in one room
+// (the Replica room, whose things mark a living room alone), that room.
+TEST_CASE("ASK: which room a thing is in", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'scene0207_02'");
+    auto bed = run(*engine, "ASK 'which room is the bed in?'");
+    CHECK(smqlOf(bed.message).starts_with("FIND thing WHERE category = 'bed' OR "));
+    CHECK_THAT(bed.message, Catch::Contains("\nThe bed is in the bedroom: bed#") && Catch::EndsWith(" marks it."));
+    CHECK_THAT(run(*engine, "ASK 'in what room is the microwave?'").message,
+               Catch::Contains("The microwave is in the kitchen: microwave#"));
+    // The towels hang by the kitchen's microwave and fridge (0.4-0.5 m), each said apart.
+    auto towels = run(*engine, "ASK 'which room are the towels in?'").message;
+    CHECK_THAT(towels, Catch::Contains("\n2 towels: towel#"));
+    CHECK(std::count(towels.begin(), towels.end(), ';') == 1);
+    std::size_t inKitchen = 0;
+    for (std::size_t at = towels.find(" is in the kitchen ("); at != std::string::npos;
+         at = towels.find(" is in the kitchen (", at + 1))
+        ++inKitchen;
+    CHECK(inKitchen == 2);
+    // The chair stands at the sofa, with the desk's monitor and the nightstand within reach too.
+    CHECK_THAT(run(*engine, "ASK 'which room is the chair in?'").message,
+               Catch::Contains("The chair is in the living room: sofa#") && Catch::Contains("by the office (monitor#"));
+    CHECK_THAT(run(*engine, "ASK 'which room is the piano in?'").message, Catch::EndsWith("There is no piano here."));
+
+    run(*engine, "USE SCENE 'replica-room0'");
+    CHECK_THAT(run(*engine, "ASK 'what room is the basket in?'").message,
+               Catch::EndsWith(" is in this room, which looks like a living room."));
+    CHECK_THAT(run(*engine, "ASK 'which room are the cushions in?'").message,
+               Catch::EndsWith("are in this room, which looks like a living room."));
+    // Not this question: the room as a whole, and the person's own room.
+    CHECK_THAT(run(*engine, "ASK 'what room am I in?'").message, Catch::Contains("It looks like a living room"));
+}
+
 // "When entering ..." places the person at the door with spaces typed before the question too: the
 // regex once wrote its `\s` in a plain string literal, which reads it as a letter s.
 TEST_CASE("ASK: a situation of entering is read with spaces in front of the question", "[ask]") {
