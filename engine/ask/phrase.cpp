@@ -1139,6 +1139,12 @@ std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
 
 void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWords) {
     std::string all = joined(nounWords, 0, nounWords.size());
+    // A pronoun stands for a thing said before, and ASK reads each question on its own: "where is it?" names
+    // nothing to look for (not a thing called "it", which no scene holds).
+    if (nounWords.size() == 1 && isOneOf(nounWords[0], {"it", "they", "them", "this", "that", "these", "those"}))
+        throw Error(ErrorKind::Binding,
+                    fmt::format("'{}' stands for no thing here: each question is read on its own", nounWords[0]),
+                    std::nullopt, "name the thing, as in: where is the lamp?");
     if (nounWords.size() == 1) {
         if (auto kind = kindTarget(nounWords[0])) {
             p.kind = *kind;
