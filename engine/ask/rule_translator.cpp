@@ -433,6 +433,10 @@ private:
                 b = p.person();
             } else if (c.accept({"is|are", "it", "from"})) {
                 if (!pair({"to"})) return false;
+            } else if (c.accept({"is", "it", "to"})) {
+                // "how far is it to the door?": the door, from the person.
+                a = p.phrase(c.w, c.i, true);
+                b = p.person();
             } else if (c.accept({"is|are"})) {
                 if (!pair({"from|to|and"})) return false;
             } else {
