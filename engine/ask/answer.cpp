@@ -245,7 +245,10 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     auto names = labels(rs);
     // Measured from where the person stands (distance(HERE): the statement's viewpoint), or from a thing.
     const bool fromYou = t.smql.find("distance(HERE)") != std::string::npos;
-    const std::string from = fromYou ? "you" : "the " + t.object;
+    std::string from = fromYou ? "you" : "the " + t.object;
+    // "how far apart are the chairs?": each from the nearest other of its kind.
+    if (!fromYou && (t.object == t.subject || t.object == t.subjectPlural))
+        from = (rs.rows.size() == 2 ? "the other " : "the nearest other ") + t.subject;
     std::vector<std::string> parts;
     for (std::size_t r = 0; r < rs.rows.size() && d >= 0; ++r)
         if (auto metres = number(rs.rows[r][d]); metres && std::isfinite(*metres))

@@ -1966,6 +1966,9 @@ private:
         static const std::regex bothOf(
             R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+)$)");
         plain = std::regex_replace(plain, bothOf, "$1 the $2 and the $2");
+        // "the distance between the sofas", "how far apart are the sofas?": the same, of a kind named in the plural.
+        static const std::regex amongThem(R"(^(.*\b(?:distance between|apart are)) the ([a-z]+s)$)");
+        plain = std::regex_replace(plain, amongThem, "$1 the $2 and the $2");
         // "which chair is bigger?", "which lamp is closer to the door?": of them, the one that is most so.
         static const std::regex compared(R"(^(which|what) ([a-z][a-z ]*?) (is|are) ([a-z]+er)( (?:to|from) .+)?$)");
         if (std::smatch m; std::regex_match(plain, m, compared) && plain.find(" than ") == std::string::npos)
