@@ -266,9 +266,15 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     return fmt::format("{} {}, nearest first{}: {}.", parts.size(), t.subjectPlural, how, listed(parts, "; "));
 }
 
+// Things a person lies in or on, whose width is across their length (a bed 2 m long is 1.6 m wide), where the
+// memory's width is a box's larger horizontal side (a sofa's width is its length).
+bool widthAcrossLength(const std::string& category) {
+    return isOneOf(category, {"bed", "bunk-bed", "crib", "mattress", "bathtub"});
+}
+
 std::string size(const Translation& t, const ResultSet& rs) {
     int w = rs.columnIndex("width"), dp = rs.columnIndex("depth"), h = rs.columnIndex("height"),
-        v = rs.columnIndex("volume");
+        v = rs.columnIndex("volume"), category = rs.columnIndex("category");
     auto names = labels(rs);
     std::vector<std::string> parts;
     for (std::size_t r = 0; r < rs.rows.size(); ++r) {
@@ -286,7 +292,9 @@ std::string size(const Translation& t, const ResultSet& rs) {
         else if (m == "height")
             parts.push_back(fmt::format("{} is {} tall", names[r], length(*height, t.unit)));
         else if (m == "width")
-            parts.push_back(fmt::format("{} is {} wide", names[r], length(*width, t.unit)));
+            parts.push_back(
+                fmt::format("{} is {} wide", names[r],
+                            length(widthAcrossLength(text(rs.rows[r][category])) ? *depth : *width, t.unit)));
         else if (m == "depth")
             parts.push_back(fmt::format("{} is {} deep", names[r], length(*depth, t.unit)));
         else if (m == "longest")
