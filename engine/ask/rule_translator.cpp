@@ -1961,6 +1961,10 @@ private:
         static const std::regex nameOf(R"(^what is the name of (.+)$)");
         plain = std::regex_replace(plain, useFor, "what$1 is $2");
         plain = std::regex_replace(plain, nameOf, "which is $1");
+        // "what did you see?", "what have you found in the video?": what the memory holds, the room's things.
+        static const std::regex seen(
+            R"(^(?:what|which things|what things|what objects) (?:did|do|have|can) you (?:see|seen|find|found|spot|spotted|capture|captured|record|recorded|remember)(?: here| in (?:the|this) (?:room|scene|video|capture|place))?$)");
+        plain = std::regex_replace(plain, seen, "what is in the room");
         // "the distance between the two chairs", "how far apart are both lamps?": between one of
         // them and the other.
         static const std::regex bothOf(
