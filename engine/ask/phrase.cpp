@@ -360,8 +360,11 @@ Words words(const std::string& text) {
         for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
             s.replace(at, from.size(), to);
     // Contractions typed without their apostrophe, as chat writes them ("whats on the table",
-    // "wheres the lamp"); not "its", "ill" or "were", which are words of their own.
-    static const std::array<std::pair<std::string_view, std::string_view>, 15> bare{{
+    // "wheres the lamp"); not "its", "ill" or "were", which are words of their own. And chat's letters for
+    // words ("how many chairs r there", "can u see a lamp"), which name no thing.
+    static const std::array<std::pair<std::string_view, std::string_view>, 17> bare{{
+        {"r", "are"},
+        {"u", "you"},
         {"whats", "what is"},
         {"wheres", "where is"},
         {"hows", "how is"},
