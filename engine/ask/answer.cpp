@@ -88,6 +88,19 @@ std::string noneFound(const Translation& t) {
     return fmt::format("There is no {}{}.", t.subject, withCondition(t));
 }
 
+// How a node stands to its parent in the tree, in words: what it rests on or in is where it is at ("mug#27 is at
+// desk#23"); a wall, a door or a window is the parent of what hangs on it and of what stands on the floor nearest
+// it, which a person tells apart: "picture#80 is on wall#19", "sofa#50 stands by wall#19".
+std::string placeWord(const ResultSet& rs, std::size_t row, const std::string& parent) {
+    const std::string kind = parent.substr(0, parent.find('#'));
+    if (!isOneOf(kind, {"wall", "door", "window"})) return "is at";
+    const int box = rs.columnIndex("box");
+    const auto* b = box >= 0 ? std::get_if<model::Box>(&rs.rows[row][box]) : nullptr;
+    if (!b) return "is at";
+    constexpr double kStandingGap = 0.15;  // m: a bottom this near the floor (height 0) stands on it
+    return model::bottom(*b) <= kStandingGap ? "stands by" : "is on";
+}
+
 std::string locate(const Translation& t, const ResultSet& rs, const std::string& scene) {
     if (rs.rows.empty()) return fmt::format("There is no {}{} in scene '{}'.", t.subject, withCondition(t), scene);
     int path = rs.columnIndex("path");
@@ -104,7 +117,8 @@ std::string locate(const Translation& t, const ResultSet& rs, const std::string&
             places.push_back(fmt::format("{} is in {} ({})", names[r], p.substr(0, last), p));
             continue;
         }
-        places.push_back(parent.empty() ? names[r] : fmt::format("{} is at {} ({})", names[r], parent, p));
+        places.push_back(parent.empty() ? names[r]
+                                        : fmt::format("{} {} {} ({})", names[r], placeWord(rs, r, parent), parent, p));
     }
     std::string head = rs.rows.size() == 1 ? "" : fmt::format("{} {}: ", rs.rows.size(), t.subjectPlural);
     return head + listed(places, "; ");
