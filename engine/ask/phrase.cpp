@@ -795,16 +795,18 @@ bool PhraseParser::onSameWallAs(const Words& w, std::size_t at, std::size_t& i, 
     return true;
 }
 
-// What rests on or in the thing a listing is near is on or in it, not beside it: a person asked what is next
-// to the sofa names the side table and the lamp, not the cushions on it (those are "on the sofa", as RELATE
-// names the most specific relation), so near's condition on a list of things of any kind comes with NOT on
-// and NOT in of the same thing, as far as that kind carries things on or holds them (docs/ask.md, "Near and
-// next to"). A written distance ("within 1 m of the sofa") is a distance and keeps everything within it; a
-// named kind ("the chairs near the table") is left as asked, and nothing rests on the room's walls, floor or
-// ceiling in this sense.
+// What rests on or in the thing a listing is near (or to the left of, right of, in front of or behind) is on or
+// in it, not beside it: a person asked what is next to the sofa names the side table and the lamp, not the
+// cushions on it (those are "on the sofa", as RELATE names the most specific relation), so the condition on a
+// list of things of any kind comes with NOT on and NOT in of the same thing, as far as that kind carries things
+// on or holds them (docs/ask.md, "Near and next to"). A written distance ("within 1 m of the sofa") is a
+// distance and keeps everything within it; a named kind ("the chairs near the table") is left as asked, and
+// nothing rests on the room's walls, floor or ceiling in this sense.
 void PhraseParser::leaveOutResting(Phrase& p) {
     const Condition& near = p.conditions.back();
-    if (!p.kind || near.predicate != "near" || near.metres || near.args.size() != 1) return;
+    if (!p.kind || !isOneOf(near.predicate, {"near", "left_of", "right_of", "in_front_of", "behind"}) || near.metres ||
+        near.args.size() != 1)
+        return;
     const Phrase& thing = near.args.front();
     if (thing.here || thing.self || thing.categories.size() != 1 ||
         isOneOf(thing.categories.front(), {"wall", "floor", "ceiling"}))

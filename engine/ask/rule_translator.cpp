@@ -900,7 +900,12 @@ private:
     // "what is to the left of the sofa?": everything on that side of the room holds left_of, and a person means
     // what stands beside it, so the things found come nearest the sofa first.
     static void nearestFirstBeside(Phrase& thing) {
-        if (thing.order || thing.conditions.size() != 1) return;
+        if (thing.order || thing.conditions.empty()) return;
+        // One side, and what rests on or in the thing left out (PhraseParser::leaveOutResting).
+        if (std::any_of(thing.conditions.begin() + 1, thing.conditions.end(), [](const Condition& c) {
+                return !c.negated || !isOneOf(c.predicate, {"on", "in"});
+            }))
+            return;
         const Condition& side = thing.conditions.front();
         if (side.negated || side.args.size() != 1 ||
             !isOneOf(side.predicate, {"left_of", "right_of", "in_front_of", "behind"}))
