@@ -60,8 +60,8 @@ std::optional<std::string> sharedCategory(const ResultSet& rs) {
     std::string first = text(rs.rows.front()[category]);
     for (const auto& row : rs.rows)
         if (text(row[category]) != first) return std::nullopt;
-    std::replace(first.begin(), first.end(), '-',
-                 ' ');  // in words: "1 trash bin is between ...", as the subject is said
+    // In words, as the subject is said: "1 trash bin is between ...".
+    std::replace(first.begin(), first.end(), '-', ' ');
     return first;
 }
 
@@ -89,8 +89,9 @@ std::string noneFound(const Translation& t) {
 }
 
 // How a node stands to its parent in the tree, in words: what it rests on or in is where it is at ("mug#27 is at
-// desk#23"); a wall, a door or a window is the parent of what hangs on it and of what stands on the floor nearest
-// it, which a person tells apart: "picture#80 is on wall#19", "sofa#50 stands by wall#19".
+// desk#23"); a wall, a door or a window is the parent of what stands on the floor nearest it, which stands by it
+// ("sofa#50 stands by wall#19"), and of what is raised off the floor there: on a wall, it hangs on it ("picture#80
+// is on wall#19"); by a door or a window it may hang on the wall beside, so it is at it.
 std::string placeWord(const ResultSet& rs, std::size_t row, const std::string& parent) {
     const std::string kind = parent.substr(0, parent.find('#'));
     if (!isOneOf(kind, {"wall", "door", "window"})) return "is at";
@@ -98,7 +99,8 @@ std::string placeWord(const ResultSet& rs, std::size_t row, const std::string& p
     const auto* b = box >= 0 ? std::get_if<model::Box>(&rs.rows[row][box]) : nullptr;
     if (!b) return "is at";
     constexpr double kStandingGap = 0.15;  // m: a bottom this near the floor (height 0) stands on it
-    return model::bottom(*b) <= kStandingGap ? "stands by" : "is on";
+    if (model::bottom(*b) <= kStandingGap) return "stands by";
+    return kind == "wall" ? "is on" : "is at";
 }
 
 std::string locate(const Translation& t, const ResultSet& rs, const std::string& scene) {
