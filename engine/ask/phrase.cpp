@@ -693,6 +693,8 @@ void PhraseParser::orderByDistanceFrom(const Words& w, std::size_t& i, Phrase& p
     }
     const std::size_t toAt = i++;
     Phrase to = phrase(w, i, false);
+    // "the closest thing to the bed" is beside it, not a pillow on it.
+    if (!farthest) leaveOutRestingOn(p, to);
     p.order = Order{"distance", farthest, {std::move(to)}, word + " " + joined(w, toAt, i)};
 }
 
@@ -795,24 +797,26 @@ bool PhraseParser::onSameWallAs(const Words& w, std::size_t at, std::size_t& i, 
     return true;
 }
 
-// What rests on or in the thing a listing is near (or to the left of, right of, in front of or behind) is on or
-// in it, not beside it: a person asked what is next to the sofa names the side table and the lamp, not the
-// cushions on it (those are "on the sofa", as RELATE names the most specific relation), so the condition on a
-// list of things of any kind comes with NOT on and NOT in of the same thing, as far as that kind carries things
-// on or holds them (docs/ask.md, "Near and next to"). A written distance ("within 1 m of the sofa") is a
-// distance and keeps everything within it; a named kind ("the chairs near the table") is left as asked, and
-// nothing rests on the room's walls, floor or ceiling in this sense.
+// What rests on or in the thing a listing is near (or to the left of, right of, in front of or behind, or the
+// thing closest to) is on or in it, not beside it: a person asked what is next to the sofa names the side table and the
+// lamp, not the cushions on it (those are "on the sofa", as RELATE names the most specific relation), so the condition
+// on a list of things of any kind comes with NOT on and NOT in of the same thing, as far as that kind carries things on
+// or holds them (docs/ask.md, "Near and next to"). A written distance ("within 1 m of the sofa") is a distance and
+// keeps everything within it; a named kind ("the chairs near the table") is left as asked, and nothing rests on the
+// room's walls, floor or ceiling in this sense.
 void PhraseParser::leaveOutResting(Phrase& p) {
     const Condition& near = p.conditions.back();
-    if (!p.kind || !isOneOf(near.predicate, {"near", "left_of", "right_of", "in_front_of", "behind"}) || near.metres ||
+    if (!isOneOf(near.predicate, {"near", "left_of", "right_of", "in_front_of", "behind"}) || near.metres ||
         near.args.size() != 1)
         return;
-    const Phrase& thing = near.args.front();
-    if (thing.here || thing.self || thing.categories.size() != 1 ||
+    leaveOutRestingOn(p, near.args.front());
+}
+
+void PhraseParser::leaveOutRestingOn(Phrase& p, const Phrase& thing) {
+    if (!p.kind || thing.here || thing.self || thing.categories.size() != 1 ||
         isOneOf(thing.categories.front(), {"wall", "floor", "ceiling"}))
         return;
     const relations::Affordance affords = relations::affordanceOf(thing.categories.front());
-    std::vector<Condition> notResting;
     for (const char* predicate : {"on", "in"}) {
         const bool possible =
             predicate == std::string_view("on")
@@ -823,9 +827,8 @@ void PhraseParser::leaveOutResting(Phrase& p) {
         c.predicate = predicate;
         c.args = {thing};
         c.negated = true;
-        notResting.push_back(std::move(c));
+        p.conditions.push_back(std::move(c));
     }
-    p.conditions.insert(p.conditions.end(), notResting.begin(), notResting.end());
 }
 
 bool PhraseParser::sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p) {
