@@ -639,6 +639,14 @@ std::string roomKind(const Translation& t, const ResultSet& rs) {
         return fmt::format("{}, with {}'s things ({})", out, withArticle(marked[1].room),
                            listedWithAnd(marked[1].things));
     };
+    // "how many rooms are there?": the kinds of room the things mark, as many rooms as a person would count by
+    // them; one space that marks fewer kinds than a home's several is one room.
+    if (t.measure == "count") {
+        const std::string described = looks();
+        if (marked.size() < kSeveralRooms) return fmt::format("One room: {}.", described);
+        // "it holds the things of several rooms, ...: a kitchen's (...), ..." without its opening words.
+        return fmt::format("{} rooms, by their things: {}.", marked.size(), described.substr(described.find(": ") + 2));
+    }
     if (!t.predicate.empty()) {
         const auto it =
             std::find_if(marked.begin(), marked.end(), [&](const Marked& m) { return m.room == t.predicate; });

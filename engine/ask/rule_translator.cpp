@@ -1652,6 +1652,24 @@ private:
         if (roomOf(c, p, out)) return true;
         c.i = 0;
         std::string asked;
+        // "how many rooms are there?", "how many rooms does this place have?": the kinds of room its things mark.
+        if (c.accept({"how", "many", "rooms"})) {
+            if (!c.done() && !c.accept({"are", "there"}) &&
+                !c.accept({"does|do", "it|this|the", "place|space|home|house|flat|apartment|scene", "have"}) &&
+                !c.accept({"does|do", "it", "have"}))
+                return false;
+            if (!c.accept({"here"}) && !c.accept({"in", "here"}))
+                c.accept({"in", "this|the", "place|space|home|house|flat|apartment|scene"});
+            if (!c.done()) return false;
+            out.kind = QuestionKind::RoomKind;
+            out.smql = "FIND object RETURN id, category";
+            out.measure = "count";
+            for (const auto& marks : kRoomMarks) out.choices.emplace_back(marks.room);
+            out.roles = p.roomMarks();
+            out.subject = "room";
+            out.subjectPlural = "rooms";
+            return true;
+        }
         const bool kind = c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
                           c.accept({"what|which", "room|place|space"}) ||
                           c.accept({"what", "is", "this", "room", "used", "for"}) ||
