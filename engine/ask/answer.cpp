@@ -308,9 +308,9 @@ std::string size(const Translation& t, const ResultSet& rs) {
         else if (m == "height")
             parts.push_back(fmt::format("{} is {} tall", names[r], length(*height, t.unit)));
         else if (m == "width")
-            parts.push_back(
-                fmt::format("{} is {} wide", names[r],
-                            length(widthAcrossLength(text(rs.rows[r][category])) ? *depth : *width, t.unit)));
+            parts.push_back(fmt::format(
+                "{} is {} wide", names[r],
+                length(category >= 0 && widthAcrossLength(text(rs.rows[r][category])) ? *depth : *width, t.unit)));
         else if (m == "depth")
             parts.push_back(fmt::format("{} is {} deep", names[r], length(*depth, t.unit)));
         else if (m == "longest")
@@ -505,6 +505,8 @@ std::string counted(const std::string& category, std::size_t n) {
     return n == 1 ? withArticle(category) : fmt::format("{} {}", n, pluralOf(category));
 }
 
+std::string roomKind(const Translation& t, const ResultSet& rs);
+
 // Which room a thing is in (QuestionKind::RoomOf): for each thing asked about (the last of Translation::roles), the
 // kinds of room (choices, marked by the other roles) whose marks stand within a room's area of it (kRoomAreaReach),
 // the nearest first; a thing that marks a room is in that room.
@@ -537,24 +539,15 @@ std::string roomOf(const Translation& t, const ResultSet& rs) {
             "{} in no room a thing names.",
             things.size() == 1 ? t.subject : t.subjectPlural, things.size() == 1 ? "is" : "are");
     // A scene whose things mark fewer kinds of room than a home's several is one room (an office with a sofa is an
-    // office): everything in it is in it.
-    std::vector<std::pair<std::string, std::size_t>> kinds;  // each kind of room, with how many marks it has
-    for (const auto& m : marks) {
-        auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == m.room; });
-        if (it == kinds.end())
-            kinds.emplace_back(m.room, 1);
-        else
-            ++it->second;
-    }
-    if (kinds.size() < kSeveralRooms) {
-        std::stable_sort(kinds.begin(), kinds.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-        const std::string looks =
-            withArticle(kinds.front().first) +
-            (kinds.size() > 1 ? fmt::format(", with {}'s things", withArticle(kinds[1].first)) : std::string());
+    // office): everything in it is in it, and the room is what roomKind says of it.
+    std::set<std::string> rooms;
+    for (const auto& m : marks) rooms.insert(m.room);
+    if (rooms.size() < kSeveralRooms) {
+        std::string looks = roomKind(t, rs);  // "It looks like a living room (2 sofas)."
+        looks.front() = static_cast<char>(std::tolower(static_cast<unsigned char>(looks.front())));
         return things.size() == 1
-                   ? fmt::format("{} is in this room, which looks like {}.", names[things.front()], looks)
-                   : fmt::format("The {} {} are in this room, which looks like {}.", things.size(), t.subjectPlural,
-                                 looks);
+                   ? fmt::format("{} is in this room: {}", names[things.front()], looks)
+                   : fmt::format("The {} {} are in this room: {}", things.size(), t.subjectPlural, looks);
     }
     // Where one thing is: "in the living room (sofa#7, 0.06 m); by the bedroom (bed#8, 0.27 m) too".
     auto placeOf = [&](std::size_t thing, bool one) {
@@ -621,18 +614,21 @@ std::string roomKind(const Translation& t, const ResultSet& rs) {
     std::stable_sort(marked.begin(), marked.end(), [](const Marked& a, const Marked& b) {
         return a.things.size() != b.things.size() ? a.things.size() > b.things.size() : a.count > b.count;
     });
+    // "a kitchen's (a fridge and an oven), a bedroom's (a bed)"
+    auto eachRoom = [&] {
+        std::vector<std::string> each;
+        for (const auto& m : marked)
+            each.push_back(fmt::format("{}'s ({})", withArticle(m.room), listedWithAnd(m.things)));
+        return listedWithAnd(each);
+    };
     auto looks = [&]() -> std::string {
         if (marked.empty())
             return fmt::format(
                 "nothing among its {} {} marks a kind of room (a bed, a sofa, a fridge, a toilet or a desk)",
                 rs.rows.size(), rs.rows.size() == 1 ? "thing" : "things");
         // Three kinds or more: one space of several rooms (a studio apartment).
-        if (marked.size() >= kSeveralRooms) {
-            std::vector<std::string> each;
-            for (const auto& m : marked)
-                each.push_back(fmt::format("{}'s ({})", withArticle(m.room), listedWithAnd(m.things)));
-            return "it holds the things of several rooms, as a home or a studio does: " + listedWithAnd(each);
-        }
+        if (marked.size() >= kSeveralRooms)
+            return "it holds the things of several rooms, as a home or a studio does: " + eachRoom();
         std::string out = fmt::format("it looks like {} ({})", withArticle(marked.front().room),
                                       listedWithAnd(marked.front().things));
         if (marked.size() == 1) return out;
@@ -641,12 +637,9 @@ std::string roomKind(const Translation& t, const ResultSet& rs) {
     };
     // "how many rooms are there?": the kinds of room the things mark, as many rooms as a person would count by
     // them; one space that marks fewer kinds than a home's several is one room.
-    if (t.measure == "count") {
-        const std::string described = looks();
-        if (marked.size() < kSeveralRooms) return fmt::format("One room: {}.", described);
-        // "it holds the things of several rooms, ...: a kitchen's (...), ..." without its opening words.
-        return fmt::format("{} rooms, by their things: {}.", marked.size(), described.substr(described.find(": ") + 2));
-    }
+    if (t.measure == "count")
+        return marked.size() < kSeveralRooms ? fmt::format("One room: {}.", looks())
+                                             : fmt::format("{} rooms, by their things: {}.", marked.size(), eachRoom());
     if (!t.predicate.empty()) {
         const auto it =
             std::find_if(marked.begin(), marked.end(), [&](const Marked& m) { return m.room == t.predicate; });

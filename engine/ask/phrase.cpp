@@ -804,7 +804,7 @@ bool PhraseParser::onSameWallAs(const Words& w, std::size_t at, std::size_t& i, 
 // or holds them (docs/ask.md, "Near and next to"). A written distance ("within 1 m of the sofa") is a distance and
 // keeps everything within it; a named kind ("the chairs near the table") is left as asked, and nothing rests on the
 // room's walls, floor or ceiling in this sense.
-void PhraseParser::leaveOutResting(Phrase& p) {
+void PhraseParser::leaveOutResting(Phrase& p) const {
     const Condition& near = p.conditions.back();
     if (!isOneOf(near.predicate, {"near", "left_of", "right_of", "in_front_of", "behind"}) || near.metres ||
         near.args.size() != 1)
@@ -812,9 +812,9 @@ void PhraseParser::leaveOutResting(Phrase& p) {
     leaveOutRestingOn(p, near.args.front());
 }
 
-void PhraseParser::leaveOutRestingOn(Phrase& p, const Phrase& thing) {
-    if (!p.kind || thing.here || thing.self || thing.categories.size() != 1 ||
-        isOneOf(thing.categories.front(), {"wall", "floor", "ceiling"}))
+void PhraseParser::leaveOutRestingOn(Phrase& p, const Phrase& thing) const {
+    if (!p.kind || thing.here || thing.self || thing.categories.size() != 1 || isPlane(thing) ||
+        isOneOf(thing.categories.front(), {"floor", "ceiling"}))
         return;
     const relations::Affordance affords = relations::affordanceOf(thing.categories.front());
     for (const char* predicate : {"on", "in"}) {

@@ -165,8 +165,8 @@ public:
     bool amongThem(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool onSameWallAs(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p);
-    static void leaveOutResting(Phrase& p);
-    static void leaveOutRestingOn(Phrase& p, const Phrase& thing);
+    void leaveOutResting(Phrase& p) const;
+    void leaveOutRestingOn(Phrase& p, const Phrase& thing) const;
     static std::size_t pastVerbOfPlace(const Words& w, std::size_t at);
     bool roomPlaceLeftOut(const Words& w, std::size_t at, std::size_t& i,
                           const std::pair<std::string, std::size_t>& pred);

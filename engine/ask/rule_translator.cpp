@@ -1629,16 +1629,16 @@ private:
         c.i = c.w.size();
         std::vector<std::string> asked =
             thing.categories.empty() ? std::vector<std::string>{hyphenated(thing.noun)} : thing.categories;
-        std::vector<std::string> marks;
-        for (const auto& m : p.roomMarks()) marks.insert(marks.end(), m.begin(), m.end());
-        std::string any;
-        for (const auto& category : asked)
-            any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(category));
-        for (const auto& category : marks)
-            if (std::find(asked.begin(), asked.end(), category) == asked.end())
-                any += fmt::format(" OR category = {}", smqlString(category));
+        // The things asked about and every mark, one query: FIND's category alternatives (conditionsOf).
+        Phrase both;
+        both.noun = "thing";
+        both.categories = asked;
+        for (const auto& m : p.roomMarks())
+            for (const auto& category : m)
+                if (std::find(both.categories.begin(), both.categories.end(), category) == both.categories.end())
+                    both.categories.push_back(category);
         out.kind = QuestionKind::RoomOf;
-        out.smql = fmt::format("FIND thing WHERE {} RETURN id, category, box", any);
+        out.smql = findText(both, false) + " RETURN id, category, box";
         for (const auto& row : kRoomMarks) out.choices.emplace_back(row.room);
         out.roles = p.roomMarks();
         out.roles.push_back(asked);  // after the rooms' marks: the things asked about
@@ -1652,29 +1652,23 @@ private:
         if (roomOf(c, p, out)) return true;
         c.i = 0;
         std::string asked;
+        // "in here", "in this apartment": the whole scene, said or not.
+        auto here = [&] {
+            return c.done() || c.accept({"here"}) || c.accept({"in", "here"}) ||
+                   c.accept({"in", "this|the", "place|space|home|house|flat|apartment|scene"});
+        };
         // "how many rooms are there?", "how many rooms does this place have?": the kinds of room its things mark.
-        if (c.accept({"how", "many", "rooms"})) {
+        const bool count = c.accept({"how", "many", "rooms"});
+        if (count) {
             if (!c.done() && !c.accept({"are", "there"}) &&
                 !c.accept({"does|do", "it|this|the", "place|space|home|house|flat|apartment|scene", "have"}) &&
                 !c.accept({"does|do", "it", "have"}))
                 return false;
-            if (!c.accept({"here"}) && !c.accept({"in", "here"}))
-                c.accept({"in", "this|the", "place|space|home|house|flat|apartment|scene"});
-            if (!c.done()) return false;
-            out.kind = QuestionKind::RoomKind;
-            out.smql = "FIND object RETURN id, category";
-            out.measure = "count";
-            for (const auto& marks : kRoomMarks) out.choices.emplace_back(marks.room);
-            out.roles = p.roomMarks();
-            out.subject = "room";
-            out.subjectPlural = "rooms";
-            return true;
-        }
-        const bool kind = c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
-                          c.accept({"what|which", "room|place|space"}) ||
-                          c.accept({"what", "is", "this", "room", "used", "for"}) ||
-                          c.accept({"what", "is", "this", "room", "for"});
-        if (kind) {
+            here();
+        } else if (c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
+                   c.accept({"what|which", "room|place|space"}) ||
+                   c.accept({"what", "is", "this", "room", "used", "for"}) ||
+                   c.accept({"what", "is", "this", "room", "for"})) {
             // "... is this?", "... am I in?", "... is it?"
             if (!c.done() && !c.accept({"is", "this|it|here"}) && !c.accept({"am", "i", "in"}) &&
                 !c.accept({"are", "we", "in"}))
@@ -1692,9 +1686,7 @@ private:
             const RoomMarks* known = roomNamedAt(c.w, c.i);
             if (!known) return false;
             c.i += words(std::string(known->room)).size();
-            if (!c.done() && !c.accept({"here"}) && !c.accept({"in", "here"}) &&
-                !c.accept({"in", "this|the", "place|space|home|house|flat|apartment|scene"}))
-                return false;
+            if (!here()) return false;
             asked = std::string(known->room);
         } else {
             return false;
@@ -1703,6 +1695,7 @@ private:
         out.kind = QuestionKind::RoomKind;
         out.smql = "FIND object RETURN id, category";
         out.predicate = asked;
+        if (count) out.measure = "count";
         for (const auto& marks : kRoomMarks) out.choices.emplace_back(marks.room);
         out.roles = p.roomMarks();
         out.subject = "room";
