@@ -344,13 +344,21 @@ TEST_CASE("--objects detect on the real dining room without depth names chairs a
         return note.starts_with("objects: the dense points cover") &&
                note.find("the things stay placed") != std::string::npos;
     }));
+    // Five photos carve hulls that reach along the views' rays (a chair 1.7-2.3 m long), and COLMAP's points
+    // differ from run to run: now and then one carves a chair 1.7 m tall. Such a thing is kept as a
+    // guess, its detector's name beside it and a note saying why; the chairs of chairs' size are named.
     std::vector<const model::Node*> chairs;
     for (const auto& n : result.scene.nodes)
         if (n.kind == model::NodeKind::Object) {
-            // Which thing was not named, and the notes that say why (COLMAP's points differ from run to run).
             INFO(fmt::format("{} {:.2f} x {:.2f} x {:.2f} m: {}", n.text, n.box.size.x, n.box.size.y, n.box.size.z,
                              fmt::join(result.notes, "\n")));
-            CHECK(n.category != "object");
+            if (n.category == "object") {
+                const auto* detectedAs = n.attribute("detected_as");
+                REQUIRE(detectedAs);
+                CHECK(std::any_of(result.notes.begin(), result.notes.end(), [&](const std::string& note) {
+                    return note.ends_with("stored as 'object' with detected_as = " + *detectedAs);
+                }));
+            }
             if (n.category == "chair") chairs.push_back(&n);
         }
     REQUIRE(!chairs.empty());
