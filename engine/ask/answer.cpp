@@ -398,6 +398,7 @@ std::string direction(const Translation& t, const ResultSet& rs) {
     int id = rs.columnIndex("id"), category = rs.columnIndex("category"), box = rs.columnIndex("box");
     const std::array<std::string_view, 3> roleNames{"thing you stand by", "thing you face", "thing asked about"};
     std::array<const Row*, 3> pickedRows{};
+    std::vector<const Row*> asked;  // the things asked about, the one answered for first
     std::string notes;
     for (std::size_t role = 0; role < 3 && role < t.roles.size(); ++role) {
         if (role == 1 && t.roles[1].empty()) continue;  // facing the middle of the scene
@@ -408,19 +409,23 @@ std::string direction(const Translation& t, const ResultSet& rs) {
                 std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
                 found.push_back(&row);
         if (found.empty()) return fmt::format("There is no {} here.", roleNames[role]);
-        // The thing asked about is another than the one stood by or faced ("the other chair").
-        if (role == 2)
-            std::stable_partition(found.begin(), found.end(),
-                                  [&](const Row* row) { return row != pickedRows[0] && row != pickedRows[1]; });
+        if (role == 2) {
+            // The thing asked about is another than the one stood by or faced ("the other chair"); every one asked
+            // about leaves those out.
+            auto other = [&](const Row* row) { return row != pickedRows[0] && row != pickedRows[1]; };
+            const auto others = std::stable_partition(found.begin(), found.end(), other);
+            asked.assign(found.begin(), others == found.begin() ? found.end() : others);
+        }
         pickedRows[role] = found.front();
-        if (found.size() > 1)
+        if (found.size() > 1 && !(role == 2 && t.everyAsked))
             notes += fmt::format(" There are {} of the {}; this takes {}#{}.", found.size(), roleNames[role],
                                  text((*found.front())[category]), text((*found.front())[id]));
     }
-    auto centre = [&](const Row* row) { return std::get<model::Box>((*row)[box]).center; };
-    model::Vec3 at = centre(pickedRows[0]), asked = centre(pickedRows[2]), facing{};
+    auto boxOf = [&](const Row* row) { return std::get<model::Box>((*row)[box]); };
+    const model::Vec3 at = boxOf(pickedRows[0]).center;
+    model::Vec3 facing{};
     if (pickedRows[1]) {
-        facing = centre(pickedRows[1]);
+        facing = boxOf(pickedRows[1]).center;
     } else {
         // The middle of the scene: the mean centre of the things.
         double n = 0;
@@ -431,31 +436,58 @@ std::string direction(const Translation& t, const ResultSet& rs) {
             }
         facing.x /= n, facing.y /= n;
     }
-    double fx = facing.x - at.x, fy = facing.y - at.y, vx = asked.x - at.x, vy = asked.y - at.y;
-    // Counter-clockwise from the facing direction is to the left (z up); a situation's person faces
-    // `turn` quarter turns counter-clockwise of that.
-    double angle = std::atan2(fx * vy - fy * vx, fx * vx + fy * vy) / model::kDegree - 90.0 * t.turn;
-    angle = std::remainder(angle, 360.0);
     bool quadrants = std::find(t.choices.begin(), t.choices.end(), "front-left") != t.choices.end();
     bool back = std::find(t.choices.begin(), t.choices.end(), "back") != t.choices.end();
     bool front = std::find(t.choices.begin(), t.choices.end(), "front") != t.choices.end();
-    std::string side = angle > 0 ? "left" : "right";
-    std::string word;
-    if (quadrants)
-        word = std::string(std::abs(angle) <= 90 ? "front-" : "back-") + side;
-    else if (back && std::abs(angle) >= 135)
-        word = "back";
-    else if (front && std::abs(angle) <= 45)
-        word = "front";
-    else
-        word = side;
     auto label = [&](const Row* row) { return text((*row)[category]) + "#" + text((*row)[id]); };
+    // Which way a thing is: its angle from the person's heading (left positive), the side and the answer's word.
+    struct Way {
+        double angle;
+        std::string side, word;
+    };
+    auto wayTo = [&](const Row* row) {
+        const model::Vec3 to = boxOf(row).center;
+        double fx = facing.x - at.x, fy = facing.y - at.y, vx = to.x - at.x, vy = to.y - at.y;
+        // Counter-clockwise from the facing direction is to the left (z up); a situation's person faces
+        // `turn` quarter turns counter-clockwise of that.
+        double angle = std::atan2(fx * vy - fy * vx, fx * vx + fy * vy) / model::kDegree - 90.0 * t.turn;
+        angle = std::remainder(angle, 360.0);
+        std::string side = angle > 0 ? "left" : "right";
+        std::string word;
+        if (quadrants)
+            word = std::string(std::abs(angle) <= 90 ? "front-" : "back-") + side;
+        else if (back && std::abs(angle) >= 135)
+            word = "back";
+        else if (front && std::abs(angle) <= 45)
+            word = "front";
+        else
+            word = side;
+        return Way{angle, side, word};
+    };
+    // How far: between the closest points of the boxes of the thing stood by and the thing asked about.
+    auto gapTo = [&](const Row* row) { return model::distance(boxOf(row), boxOf(pickedRows[0])); };
+    auto away = [&](const Row* row) {
+        const double gap = gapTo(row);
+        return gap < 0.05 ? fmt::format("beside {}", label(pickedRows[0]))
+                          : fmt::format("{:.1f} m from {}", gap, label(pickedRows[0]));
+    };
+    if (t.everyAsked && asked.size() > 1) {
+        // "where is the lamp?" where there are several: each, nearest first.
+        std::stable_sort(asked.begin(), asked.end(), [&](const Row* a, const Row* b) { return gapTo(a) < gapTo(b); });
+        std::vector<std::string> each;
+        for (const Row* row : asked)
+            each.push_back(fmt::format("{} to your {}, {}", label(row), wayTo(row).word, away(row)));
+        return fmt::format("{} {}, nearest first, {}: {}.{}", asked.size(), t.subjectPlural, t.object,
+                           listed(each, "; "), notes);
+    }
+    const Way way = wayTo(pickedRows[2]);
     if (t.turn != 0 || !pickedRows[1])
-        return fmt::format("The {} is to your {} ({} is {:.0f} degrees to the {} of your heading, {}).{}", t.subject,
-                           word, label(pickedRows[2]), std::abs(angle), side, t.object, notes);
-    return fmt::format("The {} is to your {} ({} is {:.0f} degrees to the {} of the way from {} to {}).{}", t.subject,
-                       word, label(pickedRows[2]), std::abs(angle), side, label(pickedRows[0]), label(pickedRows[1]),
-                       notes);
+        return fmt::format("The {} is to your {} ({}, {}, is {:.0f} degrees to the {} of your heading, {}).{}",
+                           t.subject, way.word, label(pickedRows[2]), away(pickedRows[2]), std::abs(way.angle),
+                           way.side, t.object, notes);
+    return fmt::format("The {} is to your {} ({}, {}, is {:.0f} degrees to the {} of the way from {} to {}).{}",
+                       t.subject, way.word, label(pickedRows[2]), away(pickedRows[2]), std::abs(way.angle), way.side,
+                       label(pickedRows[0]), label(pickedRows[1]), notes);
 }
 
 std::string affordance(const Translation& t, const ResultSet& rs) {

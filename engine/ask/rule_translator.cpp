@@ -2323,6 +2323,7 @@ private:
             R"(^(?:what|which) (?:object |thing |furniture |item )?am i (?:sitting|standing|lying|leaning|resting|laying|using|holding|touching) ?(?:on|at|in|by|against|next to|near|beside)?$)");
         static const std::regex faced(
             R"(^(?:what|which) (?:object |thing |furniture |item )?am i (?:facing|looking at|standing in front of|sitting in front of|in front of|watching)$)");
+        const bool aboutPose = std::regex_match(plain, self) || std::regex_match(plain, faced);
         if (std::regex_match(plain, self)) plain = "where is the " + pose.at.words;
         if (std::regex_match(plain, faced))
             plain = "where is the " + (pose.facing && pose.turn == 0 ? pose.facing->words : pose.at.words);
@@ -2330,7 +2331,14 @@ private:
         static const std::regex whereToMe(
             R"(^where (?:is|are) (.+?) (?:located |positioned |placed )?(?:according to|relative to|with respect to|compared to|in relation to|from|to) me$)");
         plain = std::regex_replace(plain, whereToMe, "is $1 on my left or right or behind me");
-        if (!situatedDirection(plain, pose, lexicon, parser, out)) {
+        // "where is the lamp?" of one placed by a situation: which way each lamp is and how far, nearest first.
+        static const std::regex whereThing(
+            R"(^where (?:is|are) (?:the |a |an |my )?([a-z]+(?: [a-z]+)?)(?: (?:located|placed|positioned|kept))?$)");
+        std::smatch thing;
+        const bool located = !aboutPose && std::regex_match(plain, thing, whereThing) &&
+                             situatedDirection("in which direction is the " + thing.str(1), pose, lexicon, parser, out);
+        out.everyAsked = located;
+        if (!located && !situatedDirection(plain, pose, lexicon, parser, out)) {
             // The person's sides said as the phrase grammar reads them: "to the left of me", and more of them a
             // situation gives ("to the left", "where I am").
             static const std::pair<std::regex, std::string> sides[] = {

@@ -465,7 +465,17 @@ std::optional<Translation> situatedDirection(const std::string& question, const 
     out.roles = {names(pose.at), pose.facing ? names(*pose.facing) : std::vector<std::string>{}, names(*asked)};
     out.turn = pose.turn;
     out.choices = choices;
-    out.subject = asked->words;
+    // The thing as asked ("arm chair"), and its plural for an answer about each ("arm chairs"), also when asked in
+    // the plural ("where are the lamps?": its noun is "lamp").
+    std::string noun = asked->noun;
+    std::replace(noun.begin(), noun.end(), '-', ' ');
+    const std::string& said = asked->words;
+    const std::size_t lastWord = said.rfind(' ');
+    const std::string before = said.ends_with(noun)            ? said.substr(0, said.size() - noun.size())
+                               : lastWord == std::string::npos ? std::string()
+                                                               : said.substr(0, lastWord + 1);
+    out.subject = said.ends_with(noun) ? said : before + noun;
+    out.subjectPlural = before + pluralOf(noun);
     out.object = pose.words;
     if (pose.facing) {
         std::vector<std::string> all;

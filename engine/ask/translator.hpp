@@ -104,6 +104,9 @@ struct Translation {
     // to the way from the thing stood by to the thing faced; no thing faced (empty roles[1]): to
     // the middle of the scene, the mean centre of the rows.
     int turn = 0;
+    // Direction: answer for every thing of the kind asked about, nearest the thing stood by first (a situated
+    // "where is the lamp?"), instead of the first.
+    bool everyAsked = false;
     // Reverse: the anchor categories, named only when nothing else holds ("on the rug", not "on
     // the floor and the rug").
     std::vector<std::string> background;
