@@ -841,6 +841,137 @@ std::string roomSize(const Translation& t, const ResultSet& rs) {
     return fmt::format("The room is about {:.1f} m² ({}).", metres2, how);
 }
 
+// The room's outline seen from above, a rectangle: its floor's footprint where the memory holds a floor, else the
+// rectangle that holds every thing's footprint, turned as the things stand: furniture, doors and windows stand square
+// to the walls, so of the turns of the things' boxes (a quarter of a circle apart are one) the one most of them
+// share within 5 degrees, each counted by its longer side.
+struct RoomOutline {
+    model::Vec2 centre;
+    double yaw = 0;
+    double halfX = 0, halfY = 0;  // along the turned axes
+    std::string how;
+};
+
+std::optional<RoomOutline> roomOutline(const ResultSet& rs) {
+    const int category = rs.columnIndex("category"), box = rs.columnIndex("box");
+    if (box < 0) return std::nullopt;
+    std::vector<model::Vec2> corners;
+    std::vector<std::pair<double, double>> turns;  // a box's turn in [0, 90) degrees, and its longer side
+    for (const auto& row : rs.rows) {
+        const auto* b = std::get_if<model::Box>(&row[box]);
+        if (!b) continue;
+        if (category >= 0 && text(row[category]) == "floor")
+            return RoomOutline{{b->center.x, b->center.y}, b->yaw, b->size.x / 2, b->size.y / 2, "its floor"};
+        if (category >= 0 && text(row[category]) == "ceiling") continue;
+        for (const auto& c : model::footprint(*b)) corners.push_back(c);
+        turns.emplace_back(std::fmod(std::fmod(b->yaw, M_PI / 2) + M_PI / 2, M_PI / 2), std::max(b->size.x, b->size.y));
+    }
+    if (corners.empty()) return std::nullopt;
+    constexpr double kShared = 5 * M_PI / 180;
+    double yaw = 0, most = -1;
+    for (const auto& [turn, side] : turns) {
+        double shared = 0;
+        for (const auto& [other, length] : turns) {
+            const double apart = std::abs(turn - other);
+            if (std::min(apart, M_PI / 2 - apart) <= kShared) shared += length;
+        }
+        if (shared > most) yaw = turn, most = shared;
+    }
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    double x0 = 1e18, x1 = -1e18, y0 = 1e18, y1 = -1e18;
+    for (const auto& p : corners) {
+        const double u = c * p.x + s * p.y, v = -s * p.x + c * p.y;
+        x0 = std::min(x0, u), x1 = std::max(x1, u), y0 = std::min(y0, v), y1 = std::max(y1, v);
+    }
+    const double u = (x0 + x1) / 2, v = (y0 + y1) / 2;
+    return RoomOutline{{c * u - s * v, s * u + c * v}, yaw, (x1 - x0) / 2, (y1 - y0) / 2, "its things"};
+}
+
+// m from a corner of the room's outline within which a thing stands in that corner.
+constexpr double kCornerReach = 1.0;
+// m above the floor: a thing whose bottom is this low stands on the floor; one whose bottom is this high hangs
+// overhead (a ceiling light).
+constexpr double kOnFloor = 0.15;
+constexpr double kOverhead = 1.8;
+
+// What is in the middle of the room, or in its corners (QuestionKind::RoomPlace, `measure` "middle" or "corner").
+// The middle: the things whose footprints come within an eighth of the outline's shorter side of its centre (0.3 m
+// at least), nearest first, said as a person sees them: what stands on the floor there, what rests on those, what
+// hangs overhead. A corner: the things standing on the floor within kCornerReach of it, each in its nearest corner.
+std::string roomPlace(const Translation& t, const ResultSet& rs) {
+    const int id = rs.columnIndex("id"), category = rs.columnIndex("category"), kind = rs.columnIndex("kind"),
+              box = rs.columnIndex("box");
+    const auto outline = roomOutline(rs);
+    if (!outline || id < 0 || category < 0 || kind < 0)
+        return "The memory holds no floor or things to find the room's outline by.";
+    double floor = 0;
+    for (const auto& row : rs.rows)
+        if (const auto* b = std::get_if<model::Box>(&row[box]); b && text(row[category]) == "floor")
+            floor = model::top(*b);
+    struct Thing {
+        std::string label;
+        model::Box box;
+    };
+    std::vector<Thing> things;
+    for (const auto& row : rs.rows)
+        if (const auto* b = std::get_if<model::Box>(&row[box]); b && text(row[kind]) == "object")
+            things.push_back({text(row[category]) + "#" + text(row[id]), *b});
+    auto standing = [&](const Thing& thing) { return model::bottom(thing.box) - floor <= kOnFloor; };
+    const std::string room =
+        fmt::format("{:.1f} x {:.1f} m by {}", 2 * outline->halfX, 2 * outline->halfY, outline->how);
+    if (t.measure == "middle") {
+        const double reach = std::max(0.3, std::min(outline->halfX, outline->halfY) / 4);
+        auto gap = [&](const Thing& thing) { return model::footprintGap(thing.box, outline->centre); };
+        std::stable_sort(things.begin(), things.end(), [&](const Thing& a, const Thing& b) { return gap(a) < gap(b); });
+        std::vector<std::string> onFloor, onThose, overhead;
+        for (const auto& thing : things) {
+            if (gap(thing) > reach) continue;
+            const double bottom = model::bottom(thing.box) - floor;
+            (bottom <= kOnFloor ? onFloor : bottom >= kOverhead ? overhead : onThose).push_back(thing.label);
+        }
+        std::vector<std::string> parts;
+        if (!onFloor.empty()) parts.push_back("on the floor " + listedWithAnd(onFloor));
+        if (!onThose.empty()) parts.push_back((onFloor.empty() ? "raised " : "on those ") + listedWithAnd(onThose));
+        if (!overhead.empty()) parts.push_back("overhead " + listedWithAnd(overhead));
+        if (parts.empty()) {
+            if (things.empty()) return fmt::format("Nothing stands in the middle of the room ({}).", room);
+            return fmt::format(
+                "Nothing stands in the middle of the room ({}): the thing nearest its centre is {}, {:.1f} m from it.",
+                room, things.front().label, gap(things.front()));
+        }
+        return fmt::format("In the middle of the room ({}; within {:.1f} m of its centre, nearest first): {}.", room,
+                           reach, listed(parts, "; "));
+    }
+    // The corners, counter-clockwise from the outline's own first.
+    const double c = std::cos(outline->yaw), s = std::sin(outline->yaw);
+    std::array<model::Vec2, 4> corners;
+    const std::array<std::pair<double, double>, 4> signs{{{1, 1}, {-1, 1}, {-1, -1}, {1, -1}}};
+    for (std::size_t k = 0; k < 4; ++k) {
+        const double u = signs[k].first * outline->halfX, v = signs[k].second * outline->halfY;
+        corners[k] = {outline->centre.x + c * u - s * v, outline->centre.y + s * u + c * v};
+    }
+    std::array<std::vector<std::string>, 4> held;
+    for (const auto& thing : things) {
+        if (!standing(thing)) continue;
+        std::size_t nearest = 0;
+        for (std::size_t k = 1; k < 4; ++k)
+            if (model::footprintGap(thing.box, corners[k]) < model::footprintGap(thing.box, corners[nearest]))
+                nearest = k;
+        if (model::footprintGap(thing.box, corners[nearest]) <= kCornerReach) held[nearest].push_back(thing.label);
+    }
+    std::vector<std::string> each;
+    static constexpr std::array<std::string_view, 4> which{"in one", "in another", "in a third", "in the fourth"};
+    for (const auto& corner : held)
+        if (!corner.empty()) each.push_back(fmt::format("{} {}", listedWithAnd(corner), which[each.size()]));
+    if (each.empty())
+        return fmt::format("Nothing stands on the floor in the room's corners ({}; within {:.1f} m of a corner).", room,
+                           kCornerReach);
+    return fmt::format(
+        "{} of the room's 4 corners hold things standing on the floor ({}; within {:.1f} m of a "
+        "corner): {}.",
+        each.size(), room, kCornerReach, listed(each, "; "));
+}
+
 // VSI-Bench's route plan: from the start, facing the thing faced, each "go forward" walks to the
 // nearest thing of the next kind named, and each turn to fill in is the one toward the thing walked
 // to next: back from 135 degrees, else left or right, as the direction questions measure.
@@ -1112,6 +1243,8 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
             return roomKind(t, rs);
         case QuestionKind::RoomOf:
             return roomOf(t, rs);
+        case QuestionKind::RoomPlace:
+            return roomPlace(t, rs);
         case QuestionKind::Statement:
             return statement(t, rs);
         case QuestionKind::Route:

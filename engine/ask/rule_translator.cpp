@@ -216,14 +216,14 @@ public:
         takeUnit();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,    &QuestionReader::whereAmI,   &QuestionReader::direction,
-            &QuestionReader::guidance,    &QuestionReader::distance,   &QuestionReader::size,
-            &QuestionReader::attribute,   &QuestionReader::affordance, &QuestionReader::seating,
-            &QuestionReader::visibility,  &QuestionReader::changes,    &QuestionReader::count,
-            &QuestionReader::existence,   &QuestionReader::side,       &QuestionReader::relative,
-            &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
-            &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
-            &QuestionReader::description, &QuestionReader::state,
+            &QuestionReader::roomKind,  &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
+            &QuestionReader::direction, &QuestionReader::guidance,    &QuestionReader::distance,
+            &QuestionReader::size,      &QuestionReader::attribute,   &QuestionReader::affordance,
+            &QuestionReader::seating,   &QuestionReader::visibility,  &QuestionReader::changes,
+            &QuestionReader::count,     &QuestionReader::existence,   &QuestionReader::side,
+            &QuestionReader::relative,  &QuestionReader::superlative, &QuestionReader::reverse,
+            &QuestionReader::locate,    &QuestionReader::relational,  &QuestionReader::comparison,
+            &QuestionReader::yesNo,     &QuestionReader::description, &QuestionReader::state,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -1646,6 +1646,38 @@ private:
         return true;
     }
 
+    // What is in the middle of the room? What stands in the corners? The things by where they stand in the room's
+    // outline (answer.cpp: roomPlace measures it from the floor, else from the things' boxes), so every thing's box.
+    bool roomPlace(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"what|which"})) return false;
+        c.accept({"things|objects|furniture|thing|object|item|items"});
+        if (!c.accept({"is|are|stands|stand|sits|sit|lies|lie"})) return false;
+        c.accept({"there"});
+        c.skip(kPlacedBy);
+        if (!c.accept({"in|at|near|around|by"})) return false;
+        c.accept({"the"});
+        if (c.accept({"middle|centre|center|midst"}))
+            out.measure = "middle";
+        else if (c.accept({"corner|corners"}))
+            out.measure = "corner";
+        else
+            return false;
+        // "... of the room", "... of this office", "... here", or nothing.
+        if (c.accept({"of"})) {
+            c.accept({"the|this|my|our"});
+            const std::size_t place = p.scenePlaceAt(c.w, c.i);
+            if (place == 0) return false;
+            c.i += place;
+        }
+        c.accept({"here"});
+        if (!c.done()) return false;
+        out.kind = QuestionKind::RoomPlace;
+        out.smql = "FIND thing RETURN id, category, kind, box";
+        out.subject = "thing";
+        out.subjectPlural = "things";
+        return true;
+    }
+
     // What kind of room is this? What room am I in? Is this a kitchen? The scene's things, and which of them mark a
     // kind of room (kRoomMarks): the answer names the kinds they mark.
     bool roomKind(Cursor& c, PhraseParser& p, Translation& out) {
@@ -2461,6 +2493,8 @@ std::string_view toString(QuestionKind kind) {
             return "room kind";
         case QuestionKind::RoomOf:
             return "room of a thing";
+        case QuestionKind::RoomPlace:
+            return "place in the room";
         case QuestionKind::Statement:
             return "statement";
         case QuestionKind::Route:

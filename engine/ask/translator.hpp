@@ -37,6 +37,7 @@ enum class QuestionKind {
     RoomSize,          // what is the size of this room?            FIND node WHERE kind = 'room' OR ...
     RoomKind,          // what kind of room is this? is this a kitchen? FIND object RETURN id, category
     RoomOf,            // which room is the chair in?               FIND thing WHERE <marks> ORDER BY distance(chair)
+    RoomPlace,         // what is in the middle of the room?         FIND thing RETURN id, category, kind, box
     Route,             // VSI-Bench's route plan: "you are a robot beginning at the bed ... [please fill in]"
     Appearance,        // in what order were the chair, the sofa and the tv first seen? ORDER BY first_seen
     Statement,         // a plugged-in translator's SMQL: the answer says what its rows hold
