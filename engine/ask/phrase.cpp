@@ -1223,7 +1223,8 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
         word = nounWords.back();
     }
     p.noun = match.lemma;
-    // The room itself is no thing to place others by: its sides, corners and middle are not stored.
+    // The room itself is no thing to place others by: its sides and ends are not stored (its middle and corners are
+    // read whole: QuestionReader::roomPlace).
     if (match.how == WordMatch::How::Unknown || namesWholeScene(match.lemma)) {
         unknownWords_.push_back(word);
         return;

@@ -46,8 +46,7 @@ namespace {
 
 // The room (or the scene, the house ...) named as a thing: the memory holds its things and walls, not it.
 std::string roomNotHeld(const std::string& word) {
-    return fmt::format("the {} itself is not a thing the memory holds: its sides, corners and middle are not stored",
-                       word);
+    return fmt::format("the {} itself is not a thing the memory holds: its sides and ends are not stored", word);
 }
 
 // Why a word the question needs names nothing the memory holds.
@@ -56,7 +55,9 @@ std::string unknownWordNote(const std::string& word) {
     if (word == "here")
         return "'here', where you stand, is no thing the memory holds: ask how far a thing is from you, or say "
                "where you are first ('I am sitting on the bed facing the window. Is the door on my left?')";
-    if (namesWholeScene(word)) return roomNotHeld(word) + " (ask by a thing or a wall the room holds)";
+    if (namesWholeScene(word))
+        return roomNotHeld(word) +
+               " (ask by a thing or a wall the room holds, or what is in the middle of the room or in its corners)";
     return fmt::format("I do not know the word '{}'", word);
 }
 
