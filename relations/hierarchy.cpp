@@ -111,6 +111,7 @@ public:
             if (n.geometry == model::GeometryKind::None) continue;
             if (n.kind == model::NodeKind::Object) objects_.push_back(&n);
             if (n.kind != model::NodeKind::Anchor) continue;
+            if (isCeiling(n)) ceilings_.push_back(&n);
             // Floors and ceilings are a last resort: every standing object touches the floor.
             bool upright = isVerticalPlane(n) || n.geometry == model::GeometryKind::Box;
             (upright ? uprightAnchors_ : otherAnchors_).push_back(&n);
@@ -157,11 +158,21 @@ private:
                 parents_[i] = wall->id;
             } else if (const Node* carrier = carrierOf(a, walls)) {
                 parents_[i] = carrier->id;
+            } else if (const Node* ceiling = ceilingHolding(a, walls)) {
+                parents_[i] = ceiling->id;
             } else if (const Node* anchor = relations::nearestAnchor(a, *anchors_, anchorIndex_)) {
                 parents_[i] = anchor->id;
             }
         }
         state_[i] = State::Chosen;
+    }
+
+    // The ceiling a thing hangs from (attached: a light, a vent), of the scene's ceilings; null for none.
+    const Node* ceilingHolding(const Node& a, const Obstacles& walls) const {
+        static const Frame frame{};
+        for (const Node* ceiling : ceilings_)
+            if (evaluate(Predicate::Attached, a, *ceiling, thresholds_, frame, walls) > 0) return ceiling;
+        return nullptr;
     }
 
     const Node* carrierOf(const Node& a, const Obstacles& walls) {
@@ -205,7 +216,7 @@ private:
     model::SceneData& scene_;
     const Thresholds& thresholds_;
     std::unordered_map<model::NodeId, std::size_t> position_;
-    std::vector<const Node*> objects_, uprightAnchors_, otherAnchors_;
+    std::vector<const Node*> objects_, uprightAnchors_, otherAnchors_, ceilings_;
     const std::vector<const Node*>* anchors_ = nullptr;
     Index objectIndex_, anchorIndex_;
     std::vector<model::NodeId> parents_;

@@ -87,10 +87,11 @@ constexpr auto kEnclosures = inShortFirstOrder(
                                      "bookcase", "bookshelf",    "fridge",           "refrigerator",    "microwave",
                                      "oven",     "dishwasher",   "washing-machine",  "kitchen-cabinet", "nightstand"});
 // Things whose boxes hold others that do not rest on them: an arc lamp's box spread over a sofa and its
-// cushions (Replica room 0), a plant's leaves over a table, a curtain's folds.
-constexpr auto kCarryNothing = inShortFirstOrder(std::array<std::string_view, 15>{
+// cushions (Replica room 0), a plant's leaves over a table, a curtain's folds; and the ceiling, whose slab a light
+// sunk into it reaches into (what is at a ceiling hangs from it: attached).
+constexpr auto kCarryNothing = inShortFirstOrder(std::array<std::string_view, 16>{
     "lamp", "floor-lamp", "table-lamp", "desk-lamp", "light", "ceiling-light", "chandelier", "plant", "curtain",
-    "blinds", "door", "window", "picture", "mirror", "clock"});
+    "blinds", "door", "window", "picture", "mirror", "clock", "ceiling"});
 constexpr auto kFronted = inShortFirstOrder(std::array<std::string_view, 24>{
     "sofa",       "couch",    "armchair",  "chair",        "office-chair", "bed",      "tv",         "television",
     "tv-screen",  "monitor",  "desk",      "cabinet",      "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
@@ -133,6 +134,10 @@ bool isVerticalPlane(const Node& node) {
     const auto& s = node.box.size;
     // A plane segment stands upright when its thin axis is horizontal.
     return node.geometry == model::GeometryKind::Plane && s.z > std::min(s.x, s.y);
+}
+
+bool isCeiling(const Node& node) {
+    return node.kind == model::NodeKind::Anchor && sameCategory(node.category, "ceiling");
 }
 
 Frame viewFrame(const model::Viewpoint& viewpoint) {
@@ -338,7 +343,12 @@ bool restsOnSomething(const PredicateInputs& in) {
 }
 
 double attachedScore(const PredicateInputs& in) {
-    if (!isVerticalPlane(in.a) && !isVerticalPlane(in.b) && !sameCategory(in.b.category, "pillar")) return 0.0;
+    const bool fromCeiling = isCeiling(in.b) && !isVerticalPlane(in.a) && in.a.kind == model::NodeKind::Object;
+    if (!isVerticalPlane(in.a) && !isVerticalPlane(in.b) && !sameCategory(in.b.category, "pillar") && !fromCeiling)
+        return 0.0;
+    // What hangs from a ceiling (a light, a vent, a fan) has its bottom in the room's upper half (the floor at z = 0):
+    // a wardrobe whose top meets the ceiling stands on the floor.
+    if (fromCeiling && model::bottom(in.a.box) < model::bottom(in.b.box) / 2) return 0.0;
     // What a wall holds hangs there: a sofa pushed against the wall stands on the floor beside it (its bottom at
     // the wall's foot), a microwave on a counter against it is on the counter. A flat thing upright against the
     // wall (a picture just over a sofa's back) hangs whatever is under it (on asks the wall first: wallHolding).

@@ -132,6 +132,8 @@ model::Vec2 frontDirection(const model::Box& box);
 
 // A vertical plane anchor: a wall, door, window or the like.
 bool isVerticalPlane(const model::Node& node);
+// A ceiling anchor: what a ceiling light or a vent hangs from (attached).
+bool isCeiling(const model::Node& node);
 
 // The score of `p(a, b)`, or of `between(a, b, c)`: the one evaluation of a predicate, which every
 // path that decides one calls. `obstacles` is what may stand between (walls for near, anything for

@@ -23,7 +23,7 @@ const std::vector<SettingInfo>& settingsCatalogue() {
         {"above.tolerance", SettingUnit::Metres, &Thresholds::aboveTolerance,
          "above/below: how far a's bottom may sink under b's top"},
         {"attached.max_gap", SettingUnit::Metres, &Thresholds::attachedMaxGap,
-         "attached: largest gap to a wall, door, window or pillar"},
+         "attached: largest gap to a wall, door, window, pillar or ceiling"},
         {"attached.min_rise", SettingUnit::Metres, &Thresholds::attachedMinRise,
          "attached to a wall: how far above the wall's foot a thing's bottom is (lower, it stands by the wall)"},
         {"lateral.min_offset", SettingUnit::Metres, &Thresholds::lateralMinOffset,

@@ -22,7 +22,7 @@ struct Thresholds {
     double inMinInside = 0.5;       // in: share of a's volume inside b
     double aboveMinOverlap = 0.1;   // above/below: footprint overlap over the smaller footprint
     double aboveTolerance = 0.05;   // above/below: a's bottom may sink this far under b's top (m)
-    double attachedMaxGap = 0.05;   // attached: gap to a wall, door, window or pillar at most this (m)
+    double attachedMaxGap = 0.05;   // attached: gap to a wall, door, window, pillar or ceiling at most this (m)
     double attachedMinRise = 0.1;   // attached to a wall: a's bottom at least this far above the wall's foot (m)
     double lateralMinOffset = 0.1;  // left_of, right_of, in_front_of, behind: centre offset at least this (m)
     double betweenMaxOffset = 0.5;  // between: a's centre at most this far from the segment b-c (m)

@@ -49,8 +49,8 @@ struct Question {
     std::string text;
     std::string scene;                    // the current scene's name
     std::vector<std::string> categories;  // the current scene's categories
-    // The categories whose nodes are all walls, doors or windows (vertical planes): things are on
-    // them by hanging ("the picture on the wall" is attached to it).
+    // The categories whose nodes are all walls, doors or windows (vertical planes) or ceilings: things are on
+    // them by hanging ("the picture on the wall" is attached to it, "the light on the ceiling" hangs from it).
     std::vector<std::string> planeCategories;
     // The categories of which the scene holds more than one node ("take me to the chair": the nearest).
     std::vector<std::string> repeatedCategories;

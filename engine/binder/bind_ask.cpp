@@ -31,7 +31,7 @@ bool reads(const ast::Statement& statement) {
 }
 
 // The question with what the translator needs of the scene: its categories, the ones that are
-// walls, doors or windows, and the ones it holds several of.
+// walls, doors, windows or ceilings (what is on them hangs there), and the ones it holds several of.
 ask::Question questionAbout(const std::string& text, const catalog::SceneSnapshot& snap) {
     ask::Question q{text, snap.info().name, snap.categories(), {}, {}, snap.attributeNames()};
     std::map<std::string, std::pair<int, bool>> seen;  // category -> count, all vertical planes
@@ -44,7 +44,7 @@ ask::Question questionAbout(const std::string& text, const catalog::SceneSnapsho
         if (node.kind == model::NodeKind::Anchor) anchors.insert(node.category);
         auto [it, fresh] = seen.try_emplace(node.category, 0, true);
         ++it->second.first;
-        it->second.second = it->second.second && relations::isVerticalPlane(node);
+        it->second.second = it->second.second && (relations::isVerticalPlane(node) || relations::isCeiling(node));
     }
     if (roots != 1) q.sceneRoot = model::kNoNode;
     for (const auto& [category, stats] : seen) {

@@ -328,6 +328,33 @@ TEST_CASE("attached to a wall: what it holds hangs there, what stands by it or r
     CHECK(evalAmong(Predicate::Attached, microwave, window, room) > 0);
 }
 
+TEST_CASE("attached to a ceiling: a light hangs from it, a wardrobe that meets it stands on the floor") {
+    // The ceiling a 6 cm slab whose bottom is 2.69 m up, as Replica room 0's; its lights sink into it.
+    Node ceiling = node(30, "ceiling", 0, 0, 2.72, 6, 4, 0.06, model::NodeKind::Anchor, model::GeometryKind::Plane);
+    Node floor = node(31, "floor", 0, 0, -0.02, 6, 4, 0.04, model::NodeKind::Anchor, model::GeometryKind::Plane);
+    Node light = node(32, "lamp", 1, 0, 2.70, 0.6, 1.2, 0.02);
+    Node sunk = node(33, "lamp", -1, 0, 2.73, 0.6, 1.2, 0.02);  // its box inside the slab's upper half
+    Node wardrobe = node(34, "wardrobe", 2, 1.5, 1.345, 1, 0.6, 2.69);
+    Node low = node(35, "lamp", 0, 1, 2.5, 0.3, 0.3, 0.2);  // 17 cm under the ceiling: a pendant's shade
+    Node wall = node(36, "wall", 0, 1.9, 1.35, 6, 0.1, 2.7, model::NodeKind::Anchor, model::GeometryKind::Plane);
+    const std::vector<Node> all{ceiling, floor, light, sunk, wardrobe, low, wall};
+    const NodeObstacles room{all};
+    CHECK(isCeiling(ceiling));
+    CHECK_FALSE(isCeiling(floor));
+    CHECK(evalAmong(Predicate::Attached, light, ceiling, room) > 0);
+    CHECK(evalAmong(Predicate::Attached, sunk, ceiling, room) > 0);
+    CHECK(evalAmong(Predicate::On, sunk, ceiling, room) == 0);  // the ceiling carries nothing
+    CHECK(evalAmong(Predicate::Attached, wardrobe, ceiling, room) == 0);
+    CHECK(evalAmong(Predicate::Attached, low, ceiling, room) == 0);
+    // The tree hangs the lights under the ceiling, the wardrobe under the wall it stands by.
+    model::SceneData scene;
+    scene.nodes = all;
+    assignParents(scene);
+    CHECK(scene.nodes[2].parent == 30);
+    CHECK(scene.nodes[3].parent == 30);
+    CHECK(scene.nodes[4].parent == 36);
+}
+
 TEST_CASE("lateral predicates follow the viewpoint") {
     // The viewer looks along +y: -x is on the left.
     Node left = node(2, "chair", -1, 0, 0.4, 0.5, 0.5, 0.8);
