@@ -215,6 +215,7 @@ public:
     Translation read(const std::string& text) {
         words_ = words(text);
         takeUnit();
+        takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
             &QuestionReader::roomKind,  &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
@@ -265,6 +266,29 @@ private:
     // moves a unit in parentheses to the end), "measured in centimeters", "in feet", "how far in
     // metres is ...", "how many centimeters long is ...", "in square meters". The words go; the
     // unit is the translation's (units.hpp).
+    // "on the left side of the room", "at the far end of this room": along that wall. The room's sides are its walls,
+    // named as the viewpoint sees them (wall.left ... in SMQL; the far end is the back wall).
+    void takeRoomSides() {
+        Translation scratch;
+        PhraseParser places(lexicon_, scratch, question_.planeCategories, question_.scene, question_.sceneCount);
+        for (std::size_t k = 0; k + 4 < words_.size(); ++k) {
+            if (words_[k] != "the" || !isOneOf(words_[k + 1], {"left", "right", "back", "front", "far", "rear"}) ||
+                !isOneOf(words_[k + 2], {"side", "end", "part", "half", "wall"}) || words_[k + 3] != "of")
+                continue;
+            std::size_t at = k + 4;
+            if (isOneOf(words_[at], {"the", "this", "my", "our"})) ++at;
+            const std::size_t place = places.scenePlaceAt(words_, at);
+            if (place == 0) continue;
+            const std::string side = isOneOf(words_[k + 1], {"far", "rear"}) ? "back" : words_[k + 1];
+            // "the left wall of the room" is the left wall; "on the left side of the room" is along it.
+            const bool wall = words_[k + 2] == "wall";
+            words_.erase(words_.begin() + static_cast<std::ptrdiff_t>(k + 1),
+                         words_.begin() + static_cast<std::ptrdiff_t>(at + place));
+            words_.insert(words_.begin() + static_cast<std::ptrdiff_t>(k + 1), {side, "wall"});
+            if (!wall && k > 0 && isOneOf(words_[k - 1], {"on", "in", "at"})) words_[k - 1] = "near";
+        }
+    }
+
     void takeUnit() {
         auto unitAt = [&](std::size_t k) { return k < words_.size() ? lengthUnitNamed(words_[k]) : nullptr; };
         // "in [square] <unit>" anywhere: "how far in metres is the sofa from the door?"
