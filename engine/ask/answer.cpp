@@ -491,9 +491,12 @@ std::string direction(const Translation& t, const ResultSet& rs) {
 }
 
 std::string affordance(const Translation& t, const ResultSet& rs) {
-    if (rs.rows.empty()) return fmt::format("Nothing here to {}.", t.predicate);
-    return fmt::format("You can {} {}: {}", t.predicate,
-                       rs.rows.size() == 1 ? "1 thing" : fmt::format("{} things", rs.rows.size()), listed(labels(rs)));
+    if (rs.rows.empty())
+        return t.condition.empty() ? fmt::format("Nothing here to {}.", t.predicate)
+                                   : fmt::format("Nothing to {} {}.", t.predicate, t.condition);
+    return fmt::format("You can {} {}{}: {}", t.predicate,
+                       rs.rows.size() == 1 ? "1 thing" : fmt::format("{} things", rs.rows.size()), withCondition(t),
+                       listed(labels(rs)));
 }
 
 // How many people the seats found take: each one place for every kSeatPlaceWidth of its longest side.

@@ -687,18 +687,48 @@ private:
                          c.w.begin() + static_cast<std::ptrdiff_t>(end));
         Cursor r{rest};
         r.skip(particles);
-        if (!r.done()) {
+        // "what can I sit on in the living room?", "where can I sit near the window?": the things it is afforded by
+        // there.
+        std::optional<Phrase> there = affordedAt(rest, p, *row);
+        if (!r.done() && !there) {
             // "where can I put my cup?": what is put does not change where.
             p.phrase(r.w, r.i, false);
             r.skip(particles);
         }
-        c.i = r.done() ? c.w.size() : c.i + r.i;
+        c.i = r.done() || there ? c.w.size() : c.i + r.i;
         out.kind = QuestionKind::Affordance;
         out.predicate = std::string(row->how);
-        out.smql = "FIND thing WHERE " + affordedBy(*row);
+        out.smql = there ? findText(*there, false) : "FIND thing WHERE " + affordedBy(*row);
+        if (there)
+            for (const auto& condition : there->conditions)
+                out.condition += (out.condition.empty() ? "" : " and ") + condition.words;
         out.subject = "thing";
         out.subjectPlural = "things";
         return true;
+    }
+
+    // The things a use is afforded by in a place the question ends on ("in the living room", "near the window"): those
+    // categories with the place's condition; none when the words after the verb name no such place.
+    std::optional<Phrase> affordedAt(const Words& rest, PhraseParser& p, const AffordanceRow& row) const {
+        const auto at = std::find_if(rest.begin(), rest.end(), [](const std::string& w) {
+            return isOneOf(w, {"in", "at", "near", "by", "around", "beside"});
+        });
+        if (at == rest.end() || at + 1 == rest.end()) return std::nullopt;
+        Words placed{"thing"};
+        placed.insert(placed.end(), at, rest.end());
+        std::size_t k = 0;
+        try {
+            const Phrase where = p.phrase(placed, k, true);
+            if (k != placed.size() || where.conditions.empty()) return std::nullopt;
+            Phrase afforded;
+            afforded.noun = "thing";
+            afforded.categories = categoriesNamed(lexicon_, row.things, WordsAs::Broader);
+            afforded.conditions = where.conditions;
+            if (afforded.categories.empty()) return std::nullopt;
+            return afforded;
+        } catch (const Error&) {
+            return std::nullopt;
+        }
     }
 
     // The condition on the things a use is afforded by, as this scene names them: "(category = 'chair' OR ...)"; the
@@ -2028,9 +2058,10 @@ private:
         }
         // "what can I use in front of me to make copies?", "what is the name of the thing on my left?":
         // what is there. A question that ends on its preposition ("what can I put my cup on?") asks
-        // what affords it, and is read as it is.
+        // what affords it, and is read as it is, as is one whose use is said before a place ("what can I sit on
+        // in the kitchen?": the seats there).
         static const std::regex useFor(
-            R"(^(?!.* (?:on|in|at|into|onto|upon|with)$)(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|write on|be writing on|sit on|put|place|open|take|grab|reach|touch|lean on|lie on) (.+?)(?: to .*| if .*| for .*)?$)");
+            R"(^(?!.* (?:on|in|at|into|onto|upon|with)$)(?:what|which)( object| thing| item)? (?:can|could|should|would|do|will) i (?:use|be using|put|place|open|take|grab|reach|touch|(?:write on|be writing on|sit on|lean on|lie on)(?! (?:in|near|at|by|around|beside|next to|close to) )) (.+?)(?: to .*| if .*| for .*)?$)");
         static const std::regex nameOf(R"(^what is the name of (.+)$)");
         plain = std::regex_replace(plain, useFor, "what$1 is $2");
         plain = std::regex_replace(plain, nameOf, "which is $1");
