@@ -1153,6 +1153,17 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
         throw Error(ErrorKind::Binding,
                     fmt::format("'{}' stands for no thing here: each question is read on its own", nounWords[0]),
                     std::nullopt, "name the thing, as in: where is the lamp?");
+    // A kind of room named as a thing, where the scene holds the things of several ("how far is the bathroom from the
+    // kitchen?", "what is near the kitchen?"): the things that mark it, whose area "in the kitchen" is (roomArea).
+    if (const RoomMarks* room = roomAreaAt(nounWords, 0); room && words(std::string(room->room)) == nounWords) {
+        p.noun = std::string(room->room);
+        p.categories = roomMarks()[static_cast<std::size_t>(room - kRoomMarks)];
+        out_.notes.push_back(
+            fmt::format("'the {}' is its things ({}): the scene holds the things of several kinds of "
+                        "room",
+                        room->room, model::joinAlternatives(p.categories)));
+        return;
+    }
     if (nounWords.size() == 1) {
         if (auto kind = kindTarget(nounWords[0])) {
             p.kind = *kind;
@@ -1336,6 +1347,9 @@ void describeSubject(const Phrase& p, Translation& out) {
     std::replace(noun.begin(), noun.end(), '-', ' ');  // "trash-bin" is a trash bin in words
     out.subject = adjectives + noun;
     out.subjectPlural = adjectives + pluralOf(noun);
+    // A kind of room read as its things (resolveNoun): several of them are the room's things, not several rooms.
+    if (const RoomMarks* room = roomNamedAt(words(noun), 0); room && room->room == noun && !p.categories.empty())
+        out.subjectPlural = "things of the " + noun;
     std::string condition;
     for (const auto& c : p.conditions)
         if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
