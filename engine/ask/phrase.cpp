@@ -813,6 +813,14 @@ void PhraseParser::leaveOutResting(Phrase& p) const {
 }
 
 void PhraseParser::leaveOutRestingOn(Phrase& p, const Phrase& thing) const {
+    // Next to a kind of room read as its things ("what is near the kitchen?"): what stands by them, not they.
+    if (const RoomMarks* room = roomNamedAt(words(thing.noun), 0);
+        p.kind && room && room->room == thing.noun && !thing.categories.empty()) {
+        Phrase own = thing;
+        own.words = fmt::format("{}'s things", thing.noun);
+        p.excluded.push_back(std::move(own));
+        return;
+    }
     if (!p.kind || thing.here || thing.self || thing.categories.size() != 1 || isPlane(thing) ||
         isOneOf(thing.categories.front(), {"floor", "ceiling"}))
         return;
