@@ -523,9 +523,9 @@ constexpr PredicateSpec kPredicates[] = {
     {P::Below, "under", 1, false, false, belowScore, columnBelow, columnAbove, 5, "below(lamp)",
      "below|under|underneath|beneath|lower than"},
     {P::Near, "", 1, false, true, nearScore, withinNear, withinNear, 14, "near(sofa) or near(sofa, 1.5 m)",
-     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|along|close "
-     "by|against|at|surrounding|"
-     "surround|surrounds|touching|touches|on either side of|on both sides of|on each side of|either side of|flanking",
+     "near|near to|nearby|close to|next to|beside|by|around|adjacent to|alongside|along|"
+     "close by|against|at|surrounding|surround|surrounds|touching|touches|"
+     "on either side of|on both sides of|on each side of|either side of|flanking",
      Occluders::All},
     {P::Attached, "", 1, false, false, attachedScore, withinAttached, withinAttached, 3, "attached(wall)",
      "attached to|fixed to|mounted on|hanging on|hanging from|hanging off|hung on|hangs on|hang on"},
