@@ -672,12 +672,18 @@ std::string roomKind(const Translation& t, const ResultSet& rs) {
     };
     // "how many rooms are there?": the kinds of room the things mark, as many rooms as a person would count by
     // them; one space that marks fewer kinds than a home's several is one room.
+    const auto it = std::find_if(marked.begin(), marked.end(), [&](const Marked& m) { return m.room == t.predicate; });
+    // "how many bedrooms are there?": things mark a kind of room, not how many rooms of it there are.
+    if (t.measure == "count" && !t.predicate.empty()) {
+        if (it != marked.end())
+            return fmt::format("At least one {}: it holds {} (the memory does not tell rooms of one kind apart).",
+                               t.predicate, listedWithAnd(it->things));
+        return fmt::format("None: nothing here marks {}; {}.", withArticle(t.predicate), looks());
+    }
     if (t.measure == "count")
         return marked.size() < kSeveralRooms ? fmt::format("One room: {}.", looks())
                                              : fmt::format("{} rooms, by their things: {}.", marked.size(), eachRoom());
     if (!t.predicate.empty()) {
-        const auto it =
-            std::find_if(marked.begin(), marked.end(), [&](const Marked& m) { return m.room == t.predicate; });
         if (it != marked.end()) return fmt::format("Yes: it holds {}.", listedWithAnd(it->things));
         return fmt::format("No: nothing here marks {}; {}.", withArticle(t.predicate), looks());
     }

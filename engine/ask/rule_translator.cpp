@@ -1745,13 +1745,29 @@ private:
                    c.accept({"in", "this|the", "place|space|home|house|flat|apartment|scene"});
         };
         // "how many rooms are there?", "how many rooms does this place have?": the kinds of room its things mark.
-        const bool count = c.accept({"how", "many", "rooms"});
-        if (count) {
+        // "how many bedrooms are there?": a kind of room, which things mark (not a thing called so).
+        auto roomsNamed = [&]() -> const RoomMarks* {
+            for (const auto& marks : kRoomMarks) {
+                const Words plural = words(pluralOf(std::string(marks.room)));
+                if (c.i + plural.size() <= c.w.size() &&
+                    std::equal(plural.begin(), plural.end(), c.w.begin() + static_cast<std::ptrdiff_t>(c.i))) {
+                    c.i += plural.size();
+                    return &marks;
+                }
+            }
+            return nullptr;
+        };
+        bool count = c.accept({"how", "many", "rooms"});
+        const RoomMarks* kindCounted = count || !c.accept({"how", "many"}) ? nullptr : roomsNamed();
+        if (!count && !kindCounted) c.i = 0;
+        if (count || kindCounted) {
             if (!c.done() && !c.accept({"are", "there"}) &&
                 !c.accept({"does|do", "it|this|the", "place|space|home|house|flat|apartment|scene", "have"}) &&
                 !c.accept({"does|do", "it", "have"}))
                 return false;
             here();
+            if (kindCounted) asked = std::string(kindCounted->room);
+            count = true;
         } else if (c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
                    c.accept({"what|which", "room|place|space"}) ||
                    c.accept({"what", "is", "this", "room", "used", "for"}) ||
