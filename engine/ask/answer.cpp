@@ -88,6 +88,9 @@ std::string noneFound(const Translation& t) {
     return fmt::format("There is no {}{}.", t.subject, withCondition(t));
 }
 
+// m above the floor (height 0, or the floor's top): a thing whose bottom is this low stands on it.
+constexpr double kOnFloor = 0.15;
+
 // How a node stands to its parent in the tree, in words: what it rests on or in is where it is at ("mug#27 is at
 // desk#23"); a wall, a door or a window is the parent of what stands on the floor nearest it, which stands by it
 // ("sofa#50 stands by wall#19"), and of what is raised off the floor there: on a wall, it hangs on it ("picture#80
@@ -98,8 +101,7 @@ std::string placeWord(const ResultSet& rs, std::size_t row, const std::string& p
     const int box = rs.columnIndex("box");
     const auto* b = box >= 0 ? std::get_if<model::Box>(&rs.rows[row][box]) : nullptr;
     if (!b) return "is at";
-    constexpr double kStandingGap = 0.15;  // m: a bottom this near the floor (height 0) stands on it
-    if (model::bottom(*b) <= kStandingGap) return "stands by";
+    if (model::bottom(*b) <= kOnFloor) return "stands by";
     return kind == "wall" ? "is on" : "is at";
 }
 
@@ -670,8 +672,7 @@ std::string roomKind(const Translation& t, const ResultSet& rs) {
         return fmt::format("{}, with {}'s things ({})", out, withArticle(marked[1].room),
                            listedWithAnd(marked[1].things));
     };
-    // "how many rooms are there?": the kinds of room the things mark, as many rooms as a person would count by
-    // them; one space that marks fewer kinds than a home's several is one room.
+    // The kind of room asked about ("is this a kitchen?", "how many bedrooms are there?"), among those marked.
     const auto it = std::find_if(marked.begin(), marked.end(), [&](const Marked& m) { return m.room == t.predicate; });
     // "how many bedrooms are there?": things mark a kind of room, not how many rooms of it there are.
     if (t.measure == "count" && !t.predicate.empty()) {
@@ -680,6 +681,8 @@ std::string roomKind(const Translation& t, const ResultSet& rs) {
                                t.predicate, listedWithAnd(it->things));
         return fmt::format("None: nothing here marks {}; {}.", withArticle(t.predicate), looks());
     }
+    // "how many rooms are there?": the kinds of room the things mark, as many rooms as a person would count by
+    // them; one space that marks fewer kinds than a home's several is one room.
     if (t.measure == "count")
         return marked.size() < kSeveralRooms ? fmt::format("One room: {}.", looks())
                                              : fmt::format("{} rooms, by their things: {}.", marked.size(), eachRoom());
@@ -859,6 +862,7 @@ struct RoomOutline {
     double yaw = 0;
     double halfX = 0, halfY = 0;  // along the turned axes
     std::string how;
+    double floor = 0;  // the floor's top, where the memory holds a floor
 };
 
 std::optional<RoomOutline> roomOutline(const ResultSet& rs) {
@@ -870,7 +874,8 @@ std::optional<RoomOutline> roomOutline(const ResultSet& rs) {
         const auto* b = std::get_if<model::Box>(&row[box]);
         if (!b) continue;
         if (category >= 0 && text(row[category]) == "floor")
-            return RoomOutline{{b->center.x, b->center.y}, b->yaw, b->size.x / 2, b->size.y / 2, "its floor"};
+            return RoomOutline{
+                {b->center.x, b->center.y}, b->yaw, b->size.x / 2, b->size.y / 2, "its floor", model::top(*b)};
         if (category >= 0 && text(row[category]) == "ceiling") continue;
         for (const auto& c : model::footprint(*b)) corners.push_back(c);
         turns.emplace_back(std::fmod(std::fmod(b->yaw, M_PI / 2) + M_PI / 2, M_PI / 2), std::max(b->size.x, b->size.y));
@@ -898,9 +903,7 @@ std::optional<RoomOutline> roomOutline(const ResultSet& rs) {
 
 // m from a corner of the room's outline within which a thing stands in that corner.
 constexpr double kCornerReach = 1.0;
-// m above the floor: a thing whose bottom is this low stands on the floor; one whose bottom is this high hangs
-// overhead (a ceiling light).
-constexpr double kOnFloor = 0.15;
+// m above the floor: a thing whose bottom is this high hangs overhead (a ceiling light).
 constexpr double kOverhead = 1.8;
 
 // What is in the middle of the room, or in its corners (QuestionKind::RoomPlace, `measure` "middle" or "corner").
@@ -913,10 +916,7 @@ std::string roomPlace(const Translation& t, const ResultSet& rs) {
     const auto outline = roomOutline(rs);
     if (!outline || id < 0 || category < 0 || kind < 0)
         return "The memory holds no floor or things to find the room's outline by.";
-    double floor = 0;
-    for (const auto& row : rs.rows)
-        if (const auto* b = std::get_if<model::Box>(&row[box]); b && text(row[category]) == "floor")
-            floor = model::top(*b);
+    const double floor = outline->floor;
     struct Thing {
         std::string label;
         model::Box box;

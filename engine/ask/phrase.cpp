@@ -814,8 +814,7 @@ void PhraseParser::leaveOutResting(Phrase& p) const {
 
 void PhraseParser::leaveOutRestingOn(Phrase& p, const Phrase& thing) const {
     // Next to a kind of room read as its things ("what is near the kitchen?"): what stands by them, not they.
-    if (const RoomMarks* room = roomNamedAt(words(thing.noun), 0);
-        p.kind && room && room->room == thing.noun && !thing.categories.empty()) {
+    if (p.kind && thing.room) {
         Phrase own = thing;
         own.words = fmt::format("{}'s things", thing.noun);
         p.excluded.push_back(std::move(own));
@@ -1165,6 +1164,7 @@ void PhraseParser::resolveNoun(Phrase& p, const std::vector<std::string>& nounWo
     // kitchen?", "what is near the kitchen?"): the things that mark it, whose area "in the kitchen" is (roomArea).
     if (const RoomMarks* room = roomAreaAt(nounWords, 0); room && words(std::string(room->room)) == nounWords) {
         p.noun = std::string(room->room);
+        p.room = true;
         p.categories = roomMarks()[static_cast<std::size_t>(room - kRoomMarks)];
         out_.notes.push_back(
             fmt::format("'the {}' is its things ({}): the scene holds the things of several kinds of "
@@ -1356,8 +1356,7 @@ void describeSubject(const Phrase& p, Translation& out) {
     out.subject = adjectives + noun;
     out.subjectPlural = adjectives + pluralOf(noun);
     // A kind of room read as its things (resolveNoun): several of them are the room's things, not several rooms.
-    if (const RoomMarks* room = roomNamedAt(words(noun), 0); room && room->room == noun && !p.categories.empty())
-        out.subjectPlural = "things of the " + noun;
+    if (p.room) out.subjectPlural = "things of the " + noun;
     std::string condition;
     for (const auto& c : p.conditions)
         if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;

@@ -82,6 +82,7 @@ struct Phrase {
     std::size_t top = 1;   // "the two largest": how many of `order` answer
     bool self = false;     // "me": the thing the person stands at (PhraseParser::setSelf)
     bool here = false;     // "me", "here" with no situation: where the viewer stands, HERE in SMQL (distances only)
+    bool room = false;     // a kind of room read as the things that mark it ("the kitchen": its fridge and oven)
 };
 
 // The person who asks, where a situation placed them (situation.hpp): "me" is the thing they stand

@@ -699,9 +699,7 @@ private:
         out.kind = QuestionKind::Affordance;
         out.predicate = std::string(row->how);
         out.smql = there ? findText(*there, false) : "FIND thing WHERE " + affordedBy(*row);
-        if (there)
-            for (const auto& condition : there->conditions)
-                out.condition += (out.condition.empty() ? "" : " and ") + condition.words;
+        if (there) describeSubject(*there, out);  // the place's words: "in the living room"
         out.subject = "thing";
         out.subjectPlural = "things";
         return true;
@@ -1758,16 +1756,19 @@ private:
             return nullptr;
         };
         bool count = c.accept({"how", "many", "rooms"});
-        const RoomMarks* kindCounted = count || !c.accept({"how", "many"}) ? nullptr : roomsNamed();
-        if (!count && !kindCounted) c.i = 0;
-        if (count || kindCounted) {
+        const RoomMarks* kindCounted = nullptr;
+        if (!count && c.accept({"how", "many"})) {
+            kindCounted = roomsNamed();
+            count = kindCounted != nullptr;
+            if (!count) c.i = 0;
+        }
+        if (count) {
             if (!c.done() && !c.accept({"are", "there"}) &&
                 !c.accept({"does|do", "it|this|the", "place|space|home|house|flat|apartment|scene", "have"}) &&
                 !c.accept({"does|do", "it", "have"}))
                 return false;
             here();
             if (kindCounted) asked = std::string(kindCounted->room);
-            count = true;
         } else if (c.accept({"what|which", "kind|type|sort", "of", "room|place|space"}) ||
                    c.accept({"what|which", "room|place|space"}) ||
                    c.accept({"what", "is", "this", "room", "used", "for"}) ||
