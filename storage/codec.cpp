@@ -105,15 +105,21 @@ public:
     // before it, then leaves those bytes to be read: a damaged record is
     // refused before any of its fields is believed.
     void checkSealed(std::string_view key) {
+        const std::uint8_t* seal = openSeal();
+        std::uint32_t stored = static_cast<std::uint32_t>(getLittleEndian(seal, kChecksumSize));
+        checkSeal(stored, crc32c(std::string_view(reinterpret_cast<const char*>(begin_), end_ - begin_), crc32c(key)));
+    }
+    // The record's bytes before its CRC32C are left to be read, and the CRC's bytes returned, for a
+    // reader that checksums the record as it copies it out (then checkSeal).
+    const std::uint8_t* openSeal() {
         if (remaining() < kChecksumSize + 1) corrupt("truncated");
         end_ -= kChecksumSize;
-        std::uint32_t stored = static_cast<std::uint32_t>(getLittleEndian(end_, kChecksumSize));
-        std::uint32_t actual =
-            crc32c(std::string_view(reinterpret_cast<const char*>(begin_), end_ - begin_), crc32c(key));
-        if (stored != actual) {
-            end_ += kChecksumSize;
-            corrupt(fmt::format("checksum mismatch (stored {:08x}, computed {:08x})", stored, actual));
-        }
+        return end_;
+    }
+    void checkSeal(std::uint32_t stored, std::uint32_t actual) {
+        if (stored == actual) return;
+        end_ += kChecksumSize;
+        corrupt(fmt::format("checksum mismatch (stored {:08x}, computed {:08x})", stored, actual));
     }
 
     std::uint8_t u8() { return *take(1); }
@@ -140,6 +146,7 @@ public:
     // `n` bytes to copy out as they are.
     const std::uint8_t* bytes(std::size_t n) { return take(n); }
     std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
+    std::size_t offset() const { return static_cast<std::size_t>(p_ - begin_); }
     void expectEnd() {
         if (p_ != end_) corrupt(fmt::format("{} unexpected bytes at the end", remaining()));
     }
@@ -634,10 +641,12 @@ void appendArray(std::string& out, const std::vector<T>& values) {
     out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
+// Moves `count` values of T from `bytes` (at `at`, which it advances) into `into`.
 template <class T>
-void readArray(Reader& r, std::uint64_t count, std::vector<T>& into) {
+void takeArray(const char* bytes, std::size_t& at, std::uint64_t count, std::vector<T>& into) {
     into.resize(count);
-    std::memcpy(into.data(), r.bytes(count * sizeof(T)), count * sizeof(T));
+    std::memcpy(into.data(), bytes + at, count * sizeof(T));
+    at += count * sizeof(T);
 }
 
 // What a damaged index would answer wrongly from: unknown codes, an order that is not the
@@ -682,27 +691,84 @@ void encodeSceneIndex(model::NodeId sceneId, const SceneIndex& index, std::strin
     seal(keyView(idKey(sceneId)), out);
 }
 
-SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes) {
-    Reader r(bytes, "scene index", sceneId);
-    r.checkSealed(keyView(idKey(sceneId)));
+namespace {
+
+// What comes before a scene index's arrays.
+struct SceneIndexHeader {
+    std::uint64_t version = 0;
+    std::vector<std::string> categories;
+    std::uint64_t entries = 0, ordered = 0, blocks = 0;
+};
+
+SceneIndexHeader readSceneIndexHeader(Reader& r) {
     r.expectFormat(kSceneIndexFormat);
-    SceneIndex index;
-    index.version = r.u64();
+    SceneIndexHeader header;
+    header.version = r.u64();
     std::uint64_t categories = r.varint();
     if (categories > r.remaining()) r.corrupt(fmt::format("category count {} exceeds the record", categories));
-    index.categories.reserve(categories);
-    for (std::uint64_t i = 0; i < categories; ++i) index.categories.emplace_back(r.str());
-    const std::uint64_t entries = r.varint(), ordered = r.varint(), blocks = r.varint();
+    header.categories.reserve(categories);
+    for (std::uint64_t i = 0; i < categories; ++i) header.categories.emplace_back(r.str());
+    header.entries = r.varint();
+    header.ordered = r.varint();
+    header.blocks = r.varint();
+    return header;
+}
+
+// The header is read from a copy of the record's first bytes, which hold it unless the scene has
+// hundreds of categories, so that a record in the memory map has none of its pages touched.
+constexpr std::size_t kHeaderCopy = 2048;
+
+}  // namespace
+
+SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes, const CopyOut& copyOut) {
+    const CopyOut copy =
+        copyOut ? copyOut : [](void* into, std::string_view from) { std::memcpy(into, from.data(), from.size()); };
+    // Read once: the header from a copy, the arrays checksummed as they are copied out, and nothing
+    // of the record believed before its checksum agrees (until then the header's counts are only
+    // bounded by the record's length).
+    Reader r(bytes, "scene index", sceneId);
+    r.openSeal();
+    std::array<char, kHeaderCopy> first;
+    const std::string_view start = bytes.substr(0, std::min(r.remaining(), first.size()));
+    copy(first.data(), start);
+    std::string_view headerBytes(first.data(), start.size());
+    SceneIndexHeader header;
+    try {
+        Reader head(headerBytes, "scene index", sceneId);
+        header = readSceneIndexHeader(head);
+        headerBytes = headerBytes.substr(0, head.offset());
+        r.bytes(head.offset());
+    } catch (const CorruptRecord&) {
+        if (start.size() == r.remaining()) throw;  // the copy was the whole record: its error stands
+        header = readSceneIndexHeader(r);
+        headerBytes = bytes.substr(0, r.offset());
+    }
+    SceneIndex index;
+    index.version = header.version;
+    index.categories = std::move(header.categories);
+    const std::uint64_t entries = header.entries, ordered = header.ordered, blocks = header.blocks;
     // Each count is checked against what is left before the arrays are sized by it.
     const std::uint64_t left = r.remaining();
     if (entries > left / sizeof(SceneIndexEntry) || ordered > left / 4 || blocks > left / sizeof(model::Aabb) ||
         entries * sizeof(SceneIndexEntry) + ordered * 4 + blocks * sizeof(model::Aabb) != left)
         r.corrupt(fmt::format("{} entries, {} in spatial order and {} blocks do not fill the {} bytes left", entries,
                               ordered, blocks, left));
-    readArray(r, entries, index.entries);
-    readArray(r, ordered, index.spatialOrder);
-    readArray(r, blocks, index.blockBounds);
+    // The arrays and the checksum after them are copied in one piece into the entries' memory,
+    // sized to hold them all; the spatial order and the blocks (a tenth of it) then move out.
+    const std::size_t tail = left + kChecksumSize;
+    index.entries.resize(
+        std::max<std::size_t>(entries, (tail + sizeof(SceneIndexEntry) - 1) / sizeof(SceneIndexEntry)));
+    const auto* copied = reinterpret_cast<const char*>(index.entries.data());
+    copy(index.entries.data(), {reinterpret_cast<const char*>(r.bytes(left)), tail});
     r.expectEnd();
+    const std::uint32_t crc = crc32c({copied, left}, crc32c(headerBytes, crc32c(keyView(idKey(sceneId)))));
+    r.checkSeal(static_cast<std::uint32_t>(
+                    getLittleEndian(reinterpret_cast<const std::uint8_t*>(copied + left), kChecksumSize)),
+                crc);
+    std::size_t at = entries * sizeof(SceneIndexEntry);
+    takeArray(copied, at, ordered, index.spatialOrder);
+    takeArray(copied, at, blocks, index.blockBounds);
+    index.entries.resize(entries);
     checkSceneIndex(index, r);
     return index;
 }

@@ -13,6 +13,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -128,7 +129,13 @@ model::SceneVersion decodeVersion(std::string_view key, std::string_view bytes);
 // Scene index record (key: idKey(scene id)): format byte, the scene version, the categories, then
 // the entries as one array of SceneIndexEntry's bytes (little-endian, as every record), sealed.
 void encodeSceneIndex(model::NodeId sceneId, const SceneIndex& index, std::string& out);
-SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes);
+// How the decoder copies a span of `bytes` (the record it was given) into its own memory: the
+// record's first 2 KiB (its header, unless it names hundreds of categories, when the header is read
+// in place), then the arrays and the checksum in one piece, checksummed as copied. Null copies
+// with memcpy; the database reads a record in its memory map through the file instead
+// (Environment::copyOut says why).
+using CopyOut = std::function<void(void* into, std::string_view from)>;
+SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes, const CopyOut& copyOut = nullptr);
 
 // Little-endian fixed-width values for meta entries.
 std::string encodeU64(std::uint64_t value);

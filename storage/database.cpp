@@ -398,9 +398,11 @@ std::optional<SceneIndex> ReadTransaction::sceneIndex(const SceneInfo& scene) co
     auto key = codec::idKey(scene.id);
     auto bytes = lookup(*state.env, state.txn, Table::SceneIndex, toVal(key), "reading a scene index");
     if (!bytes) return std::nullopt;
-    state.env->mapIn(*bytes);  // read whole at once, and a scene's first query waits for it
-    SceneIndex index =
-        decodeInScene(*state.env, state.txn, scene.id, [&] { return codec::decodeSceneIndex(scene.id, *bytes); });
+    const Environment& env = *state.env;
+    SceneIndex index = decodeInScene(env, state.txn, scene.id, [&] {
+        return codec::decodeSceneIndex(scene.id, *bytes,
+                                       [&](void* into, std::string_view from) { env.copyOut(into, from); });
+    });
     if (index.version != scene.version || index.entries.size() != scene.nodeCount + 1) return std::nullopt;
     return index;
 }

@@ -652,18 +652,27 @@ std::string_view Environment::bytes(const MDB_val& v) const {
     return {at, v.mv_size};
 }
 
-void Environment::mapIn(std::string_view bytes) const {
-#ifdef MADV_POPULATE_READ
-    const char* at = bytes.data();
-    if (!map_ || at < map_ || at >= map_ + mapSize_) return;
-    const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
-    const auto begin = reinterpret_cast<std::uintptr_t>(at) & ~(page - 1);
-    const auto end = reinterpret_cast<std::uintptr_t>(at) + bytes.size();
-    // Advice: where it fails, the reads fault the pages in as before.
-    (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_READ);
-#else
-    (void)bytes;
-#endif
+void Environment::copyOut(void* into, std::string_view from) const {
+    const char* at = from.data();
+    mdb_filehandle_t fd = -1;
+    if (map_ && at >= map_ && at < map_ + mapSize_ && mdb_env_get_fd(env_, &fd) == MDB_SUCCESS) {
+        // data.mdb is mapped from its first byte, and a committed page in the map is that page of
+        // the file: both are the page cache's.
+        auto* out = static_cast<char*>(into);
+        auto offset = static_cast<off_t>(at - map_);
+        std::size_t left = from.size();
+        while (left > 0) {
+            const ssize_t n = ::pread(fd, out, left, offset);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) break;  // the map, below, reads what the file would not
+            out += n;
+            offset += n;
+            left -= static_cast<std::size_t>(n);
+        }
+        std::memcpy(out, from.data() + (from.size() - left), left);
+        return;
+    }
+    std::memcpy(into, at, from.size());
 }
 
 std::vector<std::pair<std::string, std::string>> Environment::legacyLabels(MDB_txn* txn) const {

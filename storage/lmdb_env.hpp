@@ -89,12 +89,13 @@ public:
     // bit in a page's node header can give a size that reaches past the end of the file, and
     // reading there is a SIGBUS. Throws a Storage error naming the damage instead.
     std::string_view bytes(const MDB_val& v) const;
-    // Maps in one call the pages of a large record that bytes() returned, before it is read whole
-    // (MADV_POPULATE_READ): a first touch of a page of the map faults in a window of pages around it,
-    // one fault at a time. On the 2-core test VM a scene index of 2,000 nodes (125 KiB) then took 100
-    // us to load where it took 115. A no-op outside the map (a write transaction's own pages) and on
-    // kernels before 5.14.
-    void mapIn(std::string_view bytes) const;
+    // Copies bytes() returned to `into`: from the file by pread when they lie in the map, else
+    // from memory. A large record read once and copied (a scene index of 2,000 nodes is 125 KiB)
+    // is read this way because the first touch of each page of the map costs a page fault, and
+    // each fault a change to the process's page tables: on the 2-core test VM, with the file in
+    // the page cache, reading such an index the first time took 82-86 us through the map (its
+    // pages mapped in one call, MADV_POPULATE_READ) and takes 22-29 us with pread.
+    void copyOut(void* into, std::string_view from) const;
 
     // A read transaction with the cursors it opened (null where it opened none), one per table.
     struct Reader {

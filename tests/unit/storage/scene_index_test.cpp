@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#include <fmt/format.h>
 
 #include "model/error.hpp"
 #include "model/geometry.hpp"
@@ -148,10 +151,13 @@ TEST_CASE("a scene's stored index is what its records give, through every write"
 }
 
 TEST_CASE("a scene index record round-trips, and damage to it is refused", "[storage][scene_index][codec]") {
+    // A few categories (the header is read from a copy of the record's first bytes) and hundreds
+    // (the header is longer than that copy, and is read in place).
+    const std::size_t categories = GENERATE(2, 300);
     std::vector<model::Node> nodes;
     nodes.push_back(localNode(7, NodeKind::Scene, model::kNoNode, "s"));
-    for (NodeId id = 8; id < 30; ++id) {
-        model::Node n = localNode(id, NodeKind::Object, 7, id % 2 ? "cup" : "plate");
+    for (NodeId id = 8; id < static_cast<NodeId>(8 + std::max<std::size_t>(categories, 22)); ++id) {
+        model::Node n = localNode(id, NodeKind::Object, 7, fmt::format("category-{}", id % categories));
         n.geometry = model::GeometryKind::Box;
         n.box = {{static_cast<double>(id), 1, 0.5}, {0.2, 0.2, 0.2}, 0.3};
         nodes.push_back(n);
@@ -160,6 +166,21 @@ TEST_CASE("a scene index record round-trips, and damage to it is refused", "[sto
     std::string record;
     codec::encodeSceneIndex(7, index, record);
     REQUIRE(codec::decodeSceneIndex(7, record) == index);
+    // The arrays and the checksum are read through the copy the caller gives, the header from the
+    // record's first bytes (or in place): here the bytes after the header are garbage, and the copy
+    // reads the record's own.
+    const std::size_t header = record.size() - 4 - index.entries.size() * sizeof(storage::SceneIndexEntry) -
+                               index.spatialOrder.size() * 4 - index.blockBounds.size() * sizeof(model::Aabb);
+    std::string garbled = record;
+    std::fill(garbled.begin() + static_cast<std::ptrdiff_t>(header), garbled.end(), '\x5a');
+    std::size_t copied = 0;
+    const SceneIndex read = codec::decodeSceneIndex(7, garbled, [&](void* into, std::string_view from) {
+        const auto offset = static_cast<std::size_t>(from.data() - garbled.data());
+        std::memcpy(into, record.data() + offset, from.size());
+        copied += from.size();
+    });
+    REQUIRE(read == index);
+    CHECK(copied >= record.size() - header);
     // Stored under another scene's key: the checksum covers the key.
     REQUIRE_THROWS_AS(codec::decodeSceneIndex(8, record), codec::CorruptRecord);
     for (std::size_t byte = 0; byte < record.size(); byte += 7) {
