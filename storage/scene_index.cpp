@@ -16,42 +16,36 @@ double centreKey(const model::Aabb& b, bool alongY) {
     return std::isnan(twice) ? std::numeric_limits<double>::infinity() : twice;
 }
 
-// Sort-tile-recursive order in the floor plane (rooms are flat): sorted by x into vertical slices
-// of whole blocks, each slice sorted by y, so a block's boxes lie close together.
-void packSpatialOrder(SceneIndex& index) {
-    auto& order = index.spatialOrder;
-    for (std::uint32_t s = 0; s < index.entries.size(); ++s) {
-        const auto& e = index.entries[s];
-        if (e.kind != model::NodeKind::Scene && e.geometry != model::GeometryKind::None) order.push_back(s);
-    }
+}  // namespace
+
+std::vector<model::Aabb> packTiles(const std::vector<model::Aabb>& bounds, std::vector<std::uint32_t>& order) {
     auto byAxis = [&](bool alongY) {
-        return [&index, alongY](std::uint32_t a, std::uint32_t b) {
-            double ka = centreKey(index.entries[a].bounds, alongY), kb = centreKey(index.entries[b].bounds, alongY);
+        return [&bounds, alongY](std::uint32_t a, std::uint32_t b) {
+            double ka = centreKey(bounds[a], alongY), kb = centreKey(bounds[b], alongY);
             return ka != kb ? ka < kb : a < b;
         };
     };
     std::sort(order.begin(), order.end(), byAxis(false));
-    const std::size_t blocks = (order.size() + SceneIndex::kBlock - 1) / SceneIndex::kBlock;
-    const auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(blocks))));
-    const std::size_t perSlice = slices == 0 ? 0 : SceneIndex::kBlock * ((blocks + slices - 1) / slices);
+    const std::size_t runs = (order.size() + SceneIndex::kBlock - 1) / SceneIndex::kBlock;
+    const auto slices = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(runs))));
+    const std::size_t perSlice = slices == 0 ? 0 : SceneIndex::kBlock * ((runs + slices - 1) / slices);
     for (std::size_t from = 0; from < order.size(); from += perSlice) {
         auto end = order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), from + perSlice));
         std::sort(order.begin() + static_cast<std::ptrdiff_t>(from), end, byAxis(true));
     }
+    std::vector<model::Aabb> runBounds;
+    runBounds.reserve(runs);
     for (std::size_t from = 0; from < order.size(); from += SceneIndex::kBlock) {
-        model::Aabb block = index.entries[order[from]].bounds;
+        model::Aabb run = bounds[order[from]];
         for (std::size_t i = from + 1; i < std::min(order.size(), from + SceneIndex::kBlock); ++i) {
-            const model::Aabb& b = index.entries[order[i]].bounds;
-            block.min = {std::min(block.min.x, b.min.x), std::min(block.min.y, b.min.y),
-                         std::min(block.min.z, b.min.z)};
-            block.max = {std::max(block.max.x, b.max.x), std::max(block.max.y, b.max.y),
-                         std::max(block.max.z, b.max.z)};
+            const model::Aabb& b = bounds[order[i]];
+            run.min = {std::min(run.min.x, b.min.x), std::min(run.min.y, b.min.y), std::min(run.min.z, b.min.z)};
+            run.max = {std::max(run.max.x, b.max.x), std::max(run.max.y, b.max.y), std::max(run.max.z, b.max.z)};
         }
-        index.blockBounds.push_back(block);
+        runBounds.push_back(run);
     }
+    return runBounds;
 }
-
-}  // namespace
 
 SceneIndex SceneIndex::of(const std::vector<model::Node>& nodes, std::uint64_t version) {
     SceneIndex index;
@@ -69,7 +63,15 @@ SceneIndex SceneIndex::of(const std::vector<model::Node>& nodes, std::uint64_t v
         entry.hidden = n.hidden ? 1 : 0;
         index.entries.push_back(entry);
     }
-    packSpatialOrder(index);
+    std::vector<model::Aabb> bounds;
+    bounds.reserve(index.entries.size());
+    for (std::uint32_t s = 0; s < index.entries.size(); ++s) {
+        const auto& e = index.entries[s];
+        bounds.push_back(e.bounds);
+        if (e.kind != model::NodeKind::Scene && e.geometry != model::GeometryKind::None)
+            index.spatialOrder.push_back(s);
+    }
+    index.blockBounds = packTiles(bounds, index.spatialOrder);
     return index;
 }
 

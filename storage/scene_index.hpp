@@ -45,4 +45,11 @@ struct SceneIndex {
     friend bool operator==(const SceneIndex& a, const SceneIndex& b);
 };
 
+// Sort-tile-recursive packing, as an R-tree is bulk-loaded, in the floor plane (rooms are flat):
+// `order` (positions into `bounds`) sorted by x into vertical slices of whole runs of
+// SceneIndex::kBlock, each slice by y, so that a run's members lie close together. Returns the bounds
+// of each run. The scene index packs its boxes into blocks so; a snapshot packs the blocks into the
+// levels above them (engine/catalog/scene_snapshot.hpp).
+std::vector<model::Aabb> packTiles(const std::vector<model::Aabb>& bounds, std::vector<std::uint32_t>& order);
+
 }  // namespace smql::storage

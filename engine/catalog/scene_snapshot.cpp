@@ -5,6 +5,7 @@
 #include <cassert>
 #include <functional>
 #include <limits>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -16,11 +17,6 @@
 namespace smql::catalog {
 
 namespace {
-
-// A scan of the boxes costs a few nanoseconds a box; packing the R-tree costs about as much as
-// fifty scans. The first spatial queries of a scene (most scenes are asked a few questions and
-// left) scan, and the tree is packed once they have cost a good part of what packing does.
-constexpr std::size_t kScansBeforePacking = 32;
 
 // Squared gap between two boxes (0 when they meet): Boost.Geometry's comparable distance.
 double squaredGap(const model::Aabb& a, const model::Aabb& b) {
@@ -108,6 +104,7 @@ SceneSnapshot::SceneSnapshot(model::SceneInfo info, storage::SceneIndex index, b
         }
     }
     walls_ = &withCategory(relations::kWall);
+    buildLevels();
 }
 
 void SceneSnapshot::holdAll(std::vector<model::Node> nodes) {
@@ -170,31 +167,38 @@ const std::vector<model::Relation>& SceneSnapshot::storedRelations() const {
     return *relations_;
 }
 
-const storage::SpatialIndex* SceneSnapshot::packedTree() const {
-    if (treePacked_.load(std::memory_order_acquire)) return &rtree_;
-    if (scans_.fetch_add(1, std::memory_order_relaxed) < kScansBeforePacking) return nullptr;
-    std::call_once(treePacking_, [&] {
-        std::vector<storage::SpatialIndex::Entry> entries;
-        entries.reserve(spatialSize());
-        for (Slot s : index_.spatialOrder) entries.push_back({bounds(s), s});
-        rtree_ = storage::SpatialIndex(entries);
-        treePacked_.store(true, std::memory_order_release);
-    });
-    return &rtree_;
+void SceneSnapshot::buildLevels() {
+    for (const std::vector<model::Aabb>* below = &index_.blockBounds; below->size() > storage::SceneIndex::kBlock;
+         below = &levels_.back().bounds) {
+        Level level;
+        level.order.resize(below->size());
+        std::iota(level.order.begin(), level.order.end(), 0U);
+        level.bounds = storage::packTiles(*below, level.order);
+        levels_.push_back(std::move(level));
+    }
 }
 
 void SceneSnapshot::intersecting(const model::Aabb& region, std::vector<Slot>& out) const {
-    if (const storage::SpatialIndex* tree = packedTree()) {
-        tree->intersecting(region, out);
+    // Down from the top level's nodes (or the blocks, when they are few) to the blocks that meet the region.
+    const std::size_t top = levels_.size();
+    const auto& topNodes = top == 0 ? index_.blockBounds : levels_.back().bounds;
+    for (std::size_t n = 0; n < topNodes.size(); ++n)
+        if (relations::intersects(topNodes[n], region)) collect(top, n, region, out);
+}
+
+void SceneSnapshot::collect(std::size_t level, std::size_t node, const model::Aabb& region,
+                            std::vector<Slot>& out) const {
+    constexpr std::size_t kRun = storage::SceneIndex::kBlock;
+    const auto& order = level == 0 ? index_.spatialOrder : levels_[level - 1].order;
+    const std::size_t end = std::min(order.size(), (node + 1) * kRun);
+    if (level == 0) {
+        for (std::size_t i = node * kRun; i < end; ++i)
+            if (relations::intersects(bounds(order[i]), region)) out.push_back(order[i]);
         return;
     }
-    const auto& order = index_.spatialOrder;
-    for (std::size_t b = 0; b < index_.blockBounds.size(); ++b) {
-        if (!relations::intersects(index_.blockBounds[b], region)) continue;
-        const std::size_t end = std::min(order.size(), (b + 1) * storage::SceneIndex::kBlock);
-        for (std::size_t i = b * storage::SceneIndex::kBlock; i < end; ++i)
-            if (relations::intersects(bounds(order[i]), region)) out.push_back(order[i]);
-    }
+    const auto& below = level == 1 ? index_.blockBounds : levels_[level - 2].bounds;
+    for (std::size_t i = node * kRun; i < end; ++i)
+        if (relations::intersects(below[order[i]], region)) collect(level - 1, order[i], region, out);
 }
 
 SceneSnapshot::NearestWalk::NearestWalk(const SceneSnapshot& scene, const model::Aabb& region)

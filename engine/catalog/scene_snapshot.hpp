@@ -1,7 +1,7 @@
 // One scene as the executor sees it: what its first statement needs to find its way (each node's
 // kind, category and bounds, the category and kind lists) from the scene's stored index, the nodes
 // themselves decoded the first time a statement asks for them, and the spatial queries answered by
-// scanning the bounds until enough of them have run to pay for packing an R-tree. Built the first
+// an R-tree whose leaves are the index's stored blocks. Built the first
 // time a scene is queried and reused until the scene's version changes, so a query touches LMDB
 // only to check that version and to read the nodes it visits for the first time.
 #pragma once
@@ -22,7 +22,6 @@
 #include "model/types.hpp"
 #include "relations/predicates.hpp"
 #include "storage/scene_index.hpp"
-#include "storage/spatial_index.hpp"
 
 namespace smql::storage {
 class ReadTransaction;
@@ -85,7 +84,9 @@ public:
     // Names of the attributes any node of the scene carries (color, material ...), sorted.
     const std::vector<std::string>& attributeNames() const;
     // The spatial index over the boxes of the nodes with geometry (the scene node left out):
-    // slots whose bounds intersect `region` (unordered; the stored blocks, then the packed R-tree).
+    // slots whose bounds intersect `region` (unordered). It is an R-tree packed when the scene was
+    // stored: the stored blocks are its leaves, and the levels above them are made with the
+    // snapshot from the blocks' bounds, so a scene's first query does not wait for a tree to be packed.
     void intersecting(const model::Aabb& region, std::vector<Slot>& out) const;
     // The same boxes by the (squared) gap between their bounds and a region, nearest first, one at
     // a time (which of equal gaps comes first is free): the stored blocks best first, a block's boxes
@@ -137,8 +138,10 @@ private:
     void holdAll(std::vector<model::Node> nodes);
     const model::Node& decode(Slot slot) const;
     void buildLinks() const;
-    // The packed R-tree once the scans have cost about what packing it does, else null.
-    const storage::SpatialIndex* packedTree() const;
+    // The levels above the stored blocks (intersecting), and the walk down them from a node of
+    // `level` (0: a block; n: a run of levels_[n - 1]).
+    void buildLevels();
+    void collect(std::size_t level, std::size_t node, const model::Aabb& region, std::vector<Slot>& out) const;
 
     model::SceneInfo info_;
     storage::SceneIndex index_;
@@ -172,10 +175,15 @@ private:
     mutable std::vector<std::vector<Slot>> children_;
     mutable std::once_flag attributeNamesFound_;  // the names are gathered when a statement first asks
     mutable std::vector<std::string> attributeNames_;
-    mutable std::atomic<std::size_t> scans_{0};
-    mutable std::atomic<bool> treePacked_{false};
-    mutable std::once_flag treePacking_;
-    mutable storage::SpatialIndex rtree_;
+    // The levels above the stored blocks, bottom first, each packed over the one below as the blocks
+    // are over the boxes (storage::packTiles): `order` the positions of the level below in runs of
+    // SceneIndex::kBlock, `bounds` each run's; up to a level of at most kBlock nodes, none when the
+    // blocks are that few.
+    struct Level {
+        std::vector<std::uint32_t> order;
+        std::vector<model::Aabb> bounds;
+    };
+    std::vector<Level> levels_;
     mutable std::once_flag guidanceBuilt_, crowdedBuilt_;
     mutable std::once_flag embeddingsBuilt_;
     mutable std::unique_ptr<const similar::EmbeddingIndex> embeddings_;
