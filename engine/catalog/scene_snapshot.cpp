@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <numeric>
@@ -24,12 +25,37 @@ namespace {
 // smql_bench paid for it (p50 over 30 scenes 109-125 us against 95-104 at 32).
 constexpr std::size_t kScansBeforeLevels = 32;
 
-// Squared gap between two boxes (0 when they meet): Boost.Geometry's comparable distance.
+// Whether the bounds of a block or of a node above the blocks may hold boxes that meet `region`:
+// a NaN coordinate among them (a box stored with one) rules nothing out, where the boxes' own test
+// (relations::intersects) fails every comparison with it and would hide the node's other boxes.
+bool mayMeet(const model::Aabb& node, const model::Aabb& region) {
+    return !(node.max.x < region.min.x || region.max.x < node.min.x || node.max.y < region.min.y ||
+             region.max.y < node.min.y || node.max.z < region.min.z || region.max.z < node.min.z);
+}
+
+bool hasNaN(const model::Aabb& a) { return std::isnan(a.min.x + a.min.y + a.min.z + a.max.x + a.max.y + a.max.z); }
+
+// Squared gap between a box and a region (0 when they meet): Boost.Geometry's comparable distance.
+// A box with a NaN coordinate (storage keeps one) has no place, and comes last in a walk nearest
+// first.
 double squaredGap(const model::Aabb& a, const model::Aabb& b) {
+    if (hasNaN(a)) return std::numeric_limits<double>::infinity();
     double dx = std::max({0.0, a.min.x - b.max.x, b.min.x - a.max.x});
     double dy = std::max({0.0, a.min.y - b.max.y, b.min.y - a.max.y});
     double dz = std::max({0.0, a.min.z - b.max.z, b.min.z - a.max.z});
     return dx * dx + dy * dy + dz * dz;
+}
+
+// The same for a block's bounds, as a bound below its boxes' gaps: an axis with a NaN coordinate
+// (mayMeet) counts no gap.
+double blockGap(const model::Aabb& block, const model::Aabb& region) {
+    auto axis = [](double low, double high, double from, double to) {
+        const double d = std::max(low - to, from - high);
+        return d > 0 ? d * d : 0.0;
+    };
+    return axis(block.min.x, block.max.x, region.min.x, region.max.x) +
+           axis(block.min.y, block.max.y, region.min.y, region.max.y) +
+           axis(block.min.z, block.max.z, region.min.z, region.max.z);
 }
 
 // A node as the snapshot reads it: its category by the canonical name (the constructor says why).
@@ -195,7 +221,7 @@ void SceneSnapshot::intersecting(const model::Aabb& region, std::vector<Slot>& o
     const std::size_t top = levelsBuilt() ? levels_.size() : 0;
     const auto& topNodes = top == 0 ? index_.blockBounds : levels_.back().bounds;
     for (std::size_t n = 0; n < topNodes.size(); ++n)
-        if (relations::intersects(topNodes[n], region)) collect(top, n, region, out);
+        if (mayMeet(topNodes[n], region)) collect(top, n, region, out);
 }
 
 void SceneSnapshot::collect(std::size_t level, std::size_t node, const model::Aabb& region,
@@ -210,14 +236,14 @@ void SceneSnapshot::collect(std::size_t level, std::size_t node, const model::Aa
     }
     const auto& below = level == 1 ? index_.blockBounds : levels_[level - 2].bounds;
     for (std::size_t i = node * kRun; i < end; ++i)
-        if (relations::intersects(below[order[i]], region)) collect(level - 1, order[i], region, out);
+        if (mayMeet(below[order[i]], region)) collect(level - 1, order[i], region, out);
 }
 
 SceneSnapshot::NearestWalk::NearestWalk(const SceneSnapshot& scene, const model::Aabb& region)
     : scene_(scene), region_(region) {
     const auto& blocks = scene.index_.blockBounds;
     blocks_.reserve(blocks.size());
-    for (std::uint32_t b = 0; b < blocks.size(); ++b) blocks_.emplace_back(squaredGap(blocks[b], region), b);
+    for (std::uint32_t b = 0; b < blocks.size(); ++b) blocks_.emplace_back(blockGap(blocks[b], region), b);
     std::make_heap(blocks_.begin(), blocks_.end(), std::greater<>());
 }
 
