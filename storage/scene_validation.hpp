@@ -16,7 +16,11 @@ namespace smql::storage {
 // too long, or holding a NUL.
 void checkSceneName(const Environment& env, std::string_view name);
 
-// Checks a scene's name and local ids (throwing smql::Error(Input)), and returns the position of each
+// Throws smql::Error(Input) for a node whose box holds a NaN or an infinite number: no spatial
+// query could place it, and every predicate would read it as false. `where` names the node.
+void checkBox(const model::Node& node, std::string_view where);
+
+// Checks a scene's name, local ids and boxes (throwing smql::Error(Input)), and returns the position of each
 // local id in data.nodes (its database id is sceneId + 1 + position).
 std::unordered_map<model::NodeId, std::size_t> validateScene(const Environment& env, const model::SceneData& data);
 

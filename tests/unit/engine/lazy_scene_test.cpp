@@ -30,13 +30,9 @@ struct StoredRoom {
     std::optional<storage::ReadTransaction> read;
     model::SceneInfo info;
 
-    // `nanBoxes`: every so many objects has a box with a NaN coordinate (storage keeps such a box).
-    explicit StoredRoom(int objects, std::size_t nanBoxes = 0) {
+    explicit StoredRoom(int objects) {
         auto scene = generate::generateRoom({.seed = 5, .objectCount = objects, .name = "room"});
         relations::assignParents(scene);
-        for (std::size_t i = 0; nanBoxes > 0 && i < scene.nodes.size(); i += nanBoxes)
-            if (scene.nodes[i].kind == model::NodeKind::Object)
-                (i % 2 ? scene.nodes[i].box.center.z : scene.nodes[i].box.size.x) = std::nan("");
         auto write = db->beginWrite();
         write.importScene(scene);
         write.commit();
@@ -136,12 +132,23 @@ TEST_CASE("a scene's obstacles give each node's world bounds, its own from the i
 
 // A snapshot's first 32 spatial queries scan the stored blocks, the later ones walk down the levels
 // it then packs over them (one level over 600 boxes' 38 blocks, two over 5,000 boxes' 313), and the
-// nearest-first walk takes the blocks: each must answer what a look at every box answers.
+// nearest-first walk takes the blocks: each must answer what a look at every box answers. Also with
+// boxes holding a NaN, which storage now refuses but a database written before may hold (here a
+// version from the history, whose index is made from its nodes): they meet no region and come last.
 TEST_CASE("spatial queries from the stored blocks answer as a look at every box does", "[lazy][spatial]") {
     const int objects = GENERATE(600, 5000);
-    const std::size_t nanBoxes = GENERATE(0, 7);
-    StoredRoom room(objects, nanBoxes);
-    auto snapshot = catalog::SceneSnapshot::load(*room.read, room.info);
+    const std::size_t nanEvery = GENERATE(0, 7);
+    StoredRoom room(objects);
+    std::shared_ptr<const catalog::SceneSnapshot> snapshot;
+    if (nanEvery == 0) {
+        snapshot = catalog::SceneSnapshot::load(*room.read, room.info);
+    } else {
+        model::SceneVersion version{.number = 1, .info = room.info};
+        room.read->forEachNodeInScene(room.info.id, [&](const model::Node& n) { version.nodes.push_back(n); });
+        for (std::size_t i = 1; i < version.nodes.size(); i += nanEvery)
+            (i % 2 ? version.nodes[i].box.center.z : version.nodes[i].box.size.x) = std::nan("");
+        snapshot = catalog::SceneSnapshot::fromVersion(version);
+    }
     std::vector<catalog::Slot> spatial;
     for (catalog::Slot s = 0; s < snapshot->size(); ++s)
         if (snapshot->kind(s) != model::NodeKind::Scene && snapshot->geometry(s) != model::GeometryKind::None)

@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <thread>
 
 #include "model/error.hpp"
@@ -820,4 +822,41 @@ TEST_CASE("updateNodes rewrites attributes in place and bumps the scene version"
         CHECK_THROWS_AS(write.updateNodes({stored, missing}), Error);
     }
     CHECK(*db->beginRead().node(sceneId + 1)->attribute("last_seen_at") == "2026-02-01");
+    // So is a box that no spatial query could place.
+    auto unplaced = stored;
+    unplaced.box.center.y = std::numeric_limits<double>::infinity();
+    {
+        auto write = db->beginWrite();
+        CHECK_THROWS_WITH(write.updateNodes({unplaced}), Catch::Contains("node #") && Catch::Contains("finite"));
+    }
+    CHECK(db->beginRead().node(sceneId + 1)->box == stored.box);
+}
+
+TEST_CASE("a scene whose box holds a NaN or an infinity is refused, and nothing is written", "[storage]") {
+    TempDir dir;
+    auto db = Database::open(dir.path());
+    model::SceneData scene;
+    scene.info.name = "unplaced";
+    model::Node table;
+    table.id = 1;
+    table.category = "table";
+    table.geometry = model::GeometryKind::Box;
+    table.box = {{1, 2, 0.4}, {1.2, 0.8, 0.75}, 0};
+    scene.nodes.push_back(table);
+    model::Node lamp = table;
+    lamp.id = 2;
+    lamp.category = "lamp";
+    for (double* field : {&lamp.box.center.x, &lamp.box.size.z, &lamp.box.yaw})
+        for (double bad : {std::nan(""), -std::numeric_limits<double>::infinity()}) {
+            const double kept = *field;
+            *field = bad;
+            scene.nodes = {table, lamp};
+            {
+                auto write = db->beginWrite();
+                CHECK_THROWS_WITH(write.importScene(scene),
+                                  Catch::Contains("scene 'unplaced': node 2") && Catch::Contains("finite"));
+            }
+            *field = kept;
+        }
+    CHECK(db->beginRead().scenes().empty());
 }
