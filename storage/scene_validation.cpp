@@ -1,5 +1,7 @@
 #include "storage/scene_validation.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -32,14 +34,16 @@ void checkSceneName(const Environment& env, std::string_view name) {
         throw Error(ErrorKind::Input, "a scene name cannot hold a NUL character", std::nullopt, "choose another name");
 }
 
-void checkBox(const Node& node, std::string_view where) {
-    const model::Box& b = node.box;
-    for (const double v : {b.center.x, b.center.y, b.center.z, b.size.x, b.size.y, b.size.z, b.yaw})
-        if (!std::isfinite(v))
-            importError(
-                fmt::format("{}: its box holds {} (centre ({}, {}, {}), size {} x {} x {}, yaw {}); a box's "
-                            "numbers must be finite",
-                            where, v, b.center.x, b.center.y, b.center.z, b.size.x, b.size.y, b.size.z, b.yaw));
+bool finiteBox(const model::Box& b) {
+    const std::array values{b.center.x, b.center.y, b.center.z, b.size.x, b.size.y, b.size.z, b.yaw};
+    return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+void refuseBox(const model::Box& b, std::string_view where) {
+    importError(
+        fmt::format("{}: its box holds a number that is not finite (centre ({}, {}, {}), size {} x {} x {}, "
+                    "yaw {}); a box's numbers must be finite",
+                    where, b.center.x, b.center.y, b.center.z, b.size.x, b.size.y, b.size.z, b.yaw));
 }
 
 std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, const model::SceneData& data) {
@@ -59,7 +63,7 @@ std::unordered_map<NodeId, std::size_t> validateScene(const Environment& env, co
         if (node.kind == model::NodeKind::Scene)
             importError(fmt::format("scene '{}': node {} has kind scene; the import creates the scene node itself",
                                     name, node.id));
-        checkBox(node, fmt::format("scene '{}': node {}", name, node.id));
+        checkBox(node, [&] { return fmt::format("scene '{}': node {}", name, node.id); });
         if (node.category.find('\0') != std::string::npos)
             importError(fmt::format("scene '{}': the category of node {} contains a NUL character", name, node.id));
         if (node.category.size() > env.maxKeySize())

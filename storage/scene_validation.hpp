@@ -17,8 +17,14 @@ namespace smql::storage {
 void checkSceneName(const Environment& env, std::string_view name);
 
 // Throws smql::Error(Input) for a node whose box holds a NaN or an infinite number: no spatial
-// query could place it, and every predicate would read it as false. `where` names the node.
-void checkBox(const model::Node& node, std::string_view where);
+// query could place it, and every predicate would read it as false. `where()` names the node, and
+// is asked only then.
+bool finiteBox(const model::Box& box);
+[[noreturn]] void refuseBox(const model::Box& box, std::string_view where);
+template <class Where>
+void checkBox(const model::Node& node, const Where& where) {
+    if (!finiteBox(node.box)) refuseBox(node.box, where());
+}
 
 // Checks a scene's name, local ids and boxes (throwing smql::Error(Input)), and returns the position of each
 // local id in data.nodes (its database id is sceneId + 1 + position).

@@ -281,7 +281,7 @@ void WriteTransaction::updateNodes(const std::vector<Node>& nodes) {
         auto key = codec::idKey(node.id);
         auto bytes = lookup(env, txn, Table::Nodes, toVal(key), "reading a node");
         if (!bytes) importError(fmt::format("node #{} does not exist", node.id));
-        checkBox(node, fmt::format("node #{}", node.id));
+        checkBox(node, [&] { return fmt::format("node #{}", node.id); });
         Node stored = decodeInScene(env, txn, node.id, [&] { return codec::decodeNode(node.id, *bytes); });
         if (stored.kind != node.kind || stored.scene != node.scene || stored.parent != node.parent ||
             stored.category != node.category || stored.sourceId != node.sourceId ||
