@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <optional>
 #include <regex>
 
 #include <fmt/format.h>
@@ -262,22 +263,20 @@ public:
     void setSelf(std::optional<Self> self) { self_ = std::move(self); }
 
 private:
-    // The answer's unit, however the question names it: "(in meters)", "(cm)" (RuleTranslator
-    // moves a unit in parentheses to the end), "measured in centimeters", "in feet", "how far in
-    // metres is ...", "how many centimeters long is ...", "in square meters". The words go; the
-    // unit is the translation's (units.hpp).
     // "on the left side of the room", "at the far end of this room": along that wall. The room's sides are its walls,
     // named as the viewpoint sees them (wall.left ... in SMQL; the far end is the back wall).
     void takeRoomSides() {
         Translation scratch;
-        PhraseParser places(lexicon_, scratch, question_.planeCategories, question_.scene, question_.sceneCount);
+        std::optional<PhraseParser> places;  // made for the first "the <side> <part> of"
         for (std::size_t k = 0; k + 4 < words_.size(); ++k) {
             if (words_[k] != "the" || !isOneOf(words_[k + 1], {"left", "right", "back", "front", "far", "rear"}) ||
                 !isOneOf(words_[k + 2], {"side", "end", "part", "half", "wall"}) || words_[k + 3] != "of")
                 continue;
             std::size_t at = k + 4;
             if (isOneOf(words_[at], {"the", "this", "my", "our"})) ++at;
-            const std::size_t place = places.scenePlaceAt(words_, at);
+            if (!places)
+                places.emplace(lexicon_, scratch, question_.planeCategories, question_.scene, question_.sceneCount);
+            const std::size_t place = places->scenePlaceAt(words_, at);
             if (place == 0) continue;
             const std::string side = isOneOf(words_[k + 1], {"far", "rear"}) ? "back" : words_[k + 1];
             // "the left wall of the room" is the left wall; "on the left side of the room" is along it.
@@ -289,6 +288,10 @@ private:
         }
     }
 
+    // The answer's unit, however the question names it: "(in meters)", "(cm)" (RuleTranslator
+    // moves a unit in parentheses to the end), "measured in centimeters", "in feet", "how far in
+    // metres is ...", "how many centimeters long is ...", "in square meters". The words go; the
+    // unit is the translation's (units.hpp).
     void takeUnit() {
         auto unitAt = [&](std::size_t k) { return k < words_.size() ? lengthUnitNamed(words_[k]) : nullptr; };
         // "in [square] <unit>" anywhere: "how far in metres is the sofa from the door?"

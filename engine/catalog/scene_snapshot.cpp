@@ -26,7 +26,8 @@ namespace {
 constexpr std::size_t kScansBeforeLevels = 32;
 
 // Whether the bounds of a block or of a node above the blocks may hold boxes that meet `region`:
-// a NaN coordinate among them (a box stored with one) rules nothing out, where the boxes' own test
+// a NaN coordinate among them (a box of a database written before storage refused such boxes) rules
+// nothing out, where the boxes' own test
 // (relations::intersects) fails every comparison with it and would hide the node's other boxes.
 bool mayMeet(const model::Aabb& node, const model::Aabb& region) {
     return !(node.max.x < region.min.x || region.max.x < node.min.x || node.max.y < region.min.y ||
@@ -35,19 +36,8 @@ bool mayMeet(const model::Aabb& node, const model::Aabb& region) {
 
 bool hasNaN(const model::Aabb& a) { return std::isnan(a.min.x + a.min.y + a.min.z + a.max.x + a.max.y + a.max.z); }
 
-// Squared gap between a box and a region (0 when they meet): Boost.Geometry's comparable distance.
-// A box with a NaN coordinate (storage keeps one) has no place, and comes last in a walk nearest
-// first.
-double squaredGap(const model::Aabb& a, const model::Aabb& b) {
-    if (hasNaN(a)) return std::numeric_limits<double>::infinity();
-    double dx = std::max({0.0, a.min.x - b.max.x, b.min.x - a.max.x});
-    double dy = std::max({0.0, a.min.y - b.max.y, b.min.y - a.max.y});
-    double dz = std::max({0.0, a.min.z - b.max.z, b.min.z - a.max.z});
-    return dx * dx + dy * dy + dz * dz;
-}
-
-// The same for a block's bounds, as a bound below its boxes' gaps: an axis with a NaN coordinate
-// (mayMeet) counts no gap.
+// Squared gap between a block's bounds and a region, as a bound below its boxes' gaps: an axis with a
+// NaN coordinate (mayMeet) counts no gap.
 double blockGap(const model::Aabb& block, const model::Aabb& region) {
     auto axis = [](double low, double high, double from, double to) {
         const double d = std::max(low - to, from - high);
@@ -56,6 +46,12 @@ double blockGap(const model::Aabb& block, const model::Aabb& region) {
     return axis(block.min.x, block.max.x, region.min.x, region.max.x) +
            axis(block.min.y, block.max.y, region.min.y, region.max.y) +
            axis(block.min.z, block.max.z, region.min.z, region.max.z);
+}
+
+// Squared gap between a box and a region (0 when they meet): Boost.Geometry's comparable distance.
+// A box with a NaN coordinate (mayMeet) has no place, and comes last in a walk nearest first.
+double squaredGap(const model::Aabb& box, const model::Aabb& region) {
+    return hasNaN(box) ? std::numeric_limits<double>::infinity() : blockGap(box, region);
 }
 
 // A node as the snapshot reads it: its category by the canonical name (the constructor says why).
