@@ -10,10 +10,10 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "engine/engine.hpp"
+#include "ingest/capture/media.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
 #include "model/names.hpp"
@@ -115,7 +115,7 @@ void writeMap(const view::MapPlan& plan, const fs::path& path, const std::string
         std::ofstream out(path);
         out << view::renderSvg(plan);
         if (out) return;
-    } else if (cv::imwrite(path.string(), renderPng(plan))) {
+    } else if (ingest::media::write(path.string(), renderPng(plan))) {
         return;
     }
     throw Error(ErrorKind::Usage, fmt::format("cannot write {}", path.string()), std::nullopt,

@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 #include <Eigen/Geometry>
-#include <opencv2/imgcodecs.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/capture/media.hpp"
 #include "ingest/capture/png_decoder.hpp"
 #include "ingest/import/common.hpp"
 #include "model/error.hpp"
@@ -294,7 +294,7 @@ void checkImageFile(const fs::path& file, std::string_view what, std::string_vie
     refuseHugeImage(file, what);
     bool readable = false;
     try {
-        readable = cv::haveImageReader(file.string());
+        readable = media::readable(file.string());
     } catch (const cv::Exception&) {
         readable = false;
     }
@@ -331,7 +331,7 @@ cv::Mat readImage(const std::string& file, int flags, std::string_view what,
         if (auto image = decode(*bytes, kMaxImagePixels)) return std::move(*image);
     cv::Mat image;
     try {
-        image = bytes && !bytes->empty() ? cv::imdecode(*bytes, flags) : cv::imread(file, flags);
+        image = bytes && !bytes->empty() ? media::decode(*bytes, flags) : media::read(file, flags);
     } catch (const cv::Exception& e) {
         fail(file, fmt::format("cannot decode the {}: {}", what, e.err));
     }

@@ -5,11 +5,10 @@
 #include <cstring>
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/capture/media.hpp"
 #include "model/error.hpp"
 
 namespace smql::ingest::capture_detail {
@@ -137,13 +136,13 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
     capture.metric = false;
     const std::string path = file.string();
 
-    cv::VideoCapture video;
+    std::optional<media::Video> opened;
     try {
-        // FFmpeg first: it reads nearly everything, and the other back-ends are noisy when they fail.
-        if (!video.open(path, cv::CAP_FFMPEG)) video.open(path, cv::CAP_ANY);
+        opened.emplace(path);
     } catch (const cv::Exception& e) {
         fail(path, fmt::format("cannot open the video: {}", e.err), kVideoHint);
     }
+    media::Video& video = *opened;
     if (!video.isOpened())
         fail(path, "not a video OpenCV can open (unknown format, missing decoder or damaged file)", kVideoHint);
 
@@ -190,7 +189,7 @@ Capture readVideo(const fs::path& file, const CaptureOptions& options) {
             frame.index = static_cast<int>(capture.frames.size());
             frame.time = time;
             frame.colorPath = (workDir / fmt::format("frame_{:06d}.png", frame.index)).string();
-            if (!cv::imwrite(frame.colorPath, written))
+            if (!media::write(frame.colorPath, written))
                 throw Error(ErrorKind::Usage, fmt::format("{}: cannot write a decoded video frame", frame.colorPath));
             capture.frames.push_back(std::move(frame));
         }

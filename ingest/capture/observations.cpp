@@ -4,8 +4,9 @@
 #include <cmath>
 #include <unordered_map>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "ingest/capture/media.hpp"
 
 namespace smql::ingest {
 
@@ -247,9 +248,7 @@ std::string encodeCrop(const cv::Mat& color, const cv::Rect& bounds, int size) {
     // At least a pixel a side: a view one pixel wide and tall would scale to nothing.
     auto scaled = [&](int side) { return std::max(1, static_cast<int>(std::lround(side * scale))); };
     if (scale < 1) cv::resize(crop, crop, cv::Size(scaled(crop.cols), scaled(crop.rows)), 0, 0, cv::INTER_AREA);
-    std::vector<std::uint8_t> bytes;
-    cv::imencode(".jpg", crop, bytes, {cv::IMWRITE_JPEG_QUALITY, 85});
-    return std::string(bytes.begin(), bytes.end());
+    return media::encodeJpeg(crop, 85);
 }
 
 void keepLargestEvidence(EvidenceCrop& evidence, const Observation& view, const cv::Mat& color, int size) {

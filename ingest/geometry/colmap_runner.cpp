@@ -15,11 +15,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <Eigen/Geometry>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/capture/frame_loader.hpp"
+#include "ingest/capture/media.hpp"
 #include "ingest/geometry/colmap_database.hpp"
 #include "model/error.hpp"
 #include "model/presentation.hpp"
@@ -158,10 +158,10 @@ void writeWorkImage(const WorkFrame& w, const fs::path& target) {
         if (ec) fs::copy_file(w.source, target);
         return;
     }
-    cv::Mat image = cv::imread(w.source.string(), cv::IMREAD_COLOR), small;
+    cv::Mat image = media::read(w.source.string(), cv::IMREAD_COLOR), small;
     if (w.lens) image = undistorted(image, *w.lens, cv::INTER_LINEAR);
     cv::resize(image, small, w.work, 0, 0, cv::INTER_AREA);
-    if (!cv::imwrite(target.string(), small, {cv::IMWRITE_JPEG_QUALITY, 95}))
+    if (!media::write(target.string(), small, {cv::IMWRITE_JPEG_QUALITY, 95}))
         throw Error(ErrorKind::Input, fmt::format("cannot write {}", target.string()));
 }
 
@@ -367,7 +367,7 @@ private:
             const CaptureFrame& frame = capture_.frames[i];
             std::error_code ec;
             cv::Mat image;
-            if (fs::is_regular_file(frame.colorPath, ec)) image = cv::imread(frame.colorPath, cv::IMREAD_COLOR);
+            if (fs::is_regular_file(frame.colorPath, ec)) image = media::read(frame.colorPath, cv::IMREAD_COLOR);
             if (image.empty()) {
                 note(fmt::format("frame {} ({}) is listed but its image is missing or unreadable: skipped", frame.index,
                                  frame.colorPath));

@@ -14,9 +14,9 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ingest/capture/media.hpp"
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/synth/render.hpp"
@@ -60,7 +60,7 @@ void writePng(const fs::path& path, const cv::Mat& image) {
     static const std::vector<int> kParams = {cv::IMWRITE_PNG_COMPRESSION, 1};
     bool ok = false;
     try {
-        ok = cv::imwrite(path.string(), image, kParams);
+        ok = ingest::media::write(path.string(), image, kParams);
     } catch (const cv::Exception&) {
         ok = false;
     }
@@ -496,7 +496,7 @@ SynthResult writeSynth(const std::string& directory, const SynthOptions& options
 }
 
 Image readImage(const std::string& path) {
-    cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
+    cv::Mat m = ingest::media::read(path, cv::IMREAD_UNCHANGED);
     if (m.empty()) throw Error(ErrorKind::Input, "cannot read image " + path);
     Image image;
     image.width = m.cols;
