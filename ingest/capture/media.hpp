@@ -1,5 +1,5 @@
 // Image files and videos. OpenCV's imgcodecs and videoio, as Debian builds them, bring GDAL, GStreamer,
-// FFmpeg and their kin: some 210 libraries, which took 0.22 s to load at every start of smql-ingest
+// FFmpeg and their kin: some 210 libraries, whose loading took 0.2-0.3 s of every start of smql-ingest
 // (docs/benchmarks.md, "Ingest"). They live in a module of their own, libsmql_media.so, loaded (dlopen)
 // the first time one of the calls below needs it: a frame that is not one of the PNGs decoded here
 // (png_decoder.hpp), an image written, a video read. A depth camera's capture never loads it: its
