@@ -81,6 +81,17 @@ model::SceneData office() {
     return data;
 }
 
+// A scene of one node, local id 1, of the category.
+model::SceneData oneNodeScene(const std::string& name, const std::string& category) {
+    model::SceneData scene;
+    scene.info.name = name;
+    model::Node node;
+    node.id = 1;
+    node.category = category;
+    scene.nodes.push_back(node);
+    return scene;
+}
+
 std::vector<model::Relation> relationsIn(const ReadTransaction& txn, NodeId sceneId) {
     std::vector<model::Relation> relations;
     txn.forEachRelationInScene(sceneId, [&](const model::Relation& r) { relations.push_back(r); });
@@ -731,21 +742,11 @@ TEST_CASE("a read transaction's cursors, handed on to the next one, read that on
 TEST_CASE("blobs are stored with their scene, listed per node and dropped with it") {
     TempDir dir;
     auto db = Database::open(dir.path());
-    model::SceneData scene;
-    scene.info.name = "with-evidence";
-    model::Node mug;
-    mug.id = 1;
-    mug.category = "mug";
-    scene.nodes.push_back(mug);
+    model::SceneData scene = oneNodeScene("with-evidence", "mug");
     std::string jpeg("\xff\xd8\xff\xe0 not really a jpeg \0 with a zero", 32);
     scene.blobs.push_back({1, "evidence-1.jpg", "image/jpeg", jpeg});
     scene.blobs.push_back({1, "evidence-2.jpg", "image/jpeg", "xyz"});
-    model::NodeId sceneId;
-    {
-        auto write = db->beginWrite();
-        sceneId = write.importScene(scene);
-        write.commit();
-    }
+    const model::NodeId sceneId = importCommitted(*db, scene);
     model::NodeId mugId = sceneId + 1;
     {
         auto read = db->beginRead();
@@ -785,19 +786,9 @@ TEST_CASE("blobs are stored with their scene, listed per node and dropped with i
 TEST_CASE("updateNodes rewrites attributes in place and bumps the scene version") {
     TempDir dir;
     auto db = Database::open(dir.path());
-    model::SceneData scene;
-    scene.info.name = "updated";
-    model::Node mug;
-    mug.id = 1;
-    mug.category = "mug";
-    mug.attributes = {{"last_seen_at", "2026-01-01"}};
-    scene.nodes.push_back(mug);
-    model::NodeId sceneId;
-    {
-        auto write = db->beginWrite();
-        sceneId = write.importScene(scene);
-        write.commit();
-    }
+    model::SceneData scene = oneNodeScene("updated", "mug");
+    scene.nodes[0].attributes = {{"last_seen_at", "2026-01-01"}};
+    const model::NodeId sceneId = importCommitted(*db, scene);
     auto before = db->beginRead().scene(sceneId)->version;
     auto stored = *db->beginRead().node(sceneId + 1);
     stored.attributes = {{"last_seen_at", "2026-02-01"}};
@@ -835,14 +826,10 @@ TEST_CASE("updateNodes rewrites attributes in place and bumps the scene version"
 TEST_CASE("a scene whose box holds a NaN or an infinity is refused, and nothing is written", "[storage]") {
     TempDir dir;
     auto db = Database::open(dir.path());
-    model::SceneData scene;
-    scene.info.name = "unplaced";
-    model::Node table;
-    table.id = 1;
-    table.category = "table";
+    model::SceneData scene = oneNodeScene("unplaced", "table");
+    model::Node table = scene.nodes[0];
     table.geometry = model::GeometryKind::Box;
     table.box = {{1, 2, 0.4}, {1.2, 0.8, 0.75}, 0};
-    scene.nodes.push_back(table);
     model::Node lamp = table;
     lamp.id = 2;
     lamp.category = "lamp";
