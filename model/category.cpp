@@ -37,20 +37,37 @@ bool separator(char c) { return c == ' ' || c == '-' || c == '_' || c == '\t' ||
 
 }  // namespace
 
-std::string singularWord(std::string_view word) {
-    std::string w(word);
-    if (std::find(kKeptAsWritten.begin(), kKeptAsWritten.end(), word) != kKeptAsWritten.end()) return w;
+namespace {
+
+// The singular of one lower-case word as what it is made of: `stem` (a view of the word or of the
+// table of irregular plurals) followed by `ending`. A word that is no plural is its own stem.
+struct Singular {
+    std::string_view stem;
+    std::string_view ending;
+};
+
+Singular singularOf(std::string_view word) {
+    if (std::find(kKeptAsWritten.begin(), kKeptAsWritten.end(), word) != kKeptAsWritten.end()) return {word, {}};
     for (const auto& [plural, singular] : kIrregularPlurals)
-        if (word == plural) return std::string(singular);
+        if (word == plural) return {singular, {}};
     // A possessive or a contraction ("it's", "o'brien's") is no plural.
-    if (word.size() < 3 || !word.ends_with('s') || word.ends_with("'s")) return w;
-    auto drop = [&](std::size_t n) { return std::string(word.substr(0, word.size() - n)); };
-    if (word.size() > 4 && word.ends_with("ies")) return drop(3) + "y";  // shelves above; batteries
+    if (word.size() < 3 || !word.ends_with('s') || word.ends_with("'s")) return {word, {}};
+    auto drop = [&](std::size_t n) { return word.substr(0, word.size() - n); };
+    if (word.size() > 4 && word.ends_with("ies")) return {drop(3), "y"};  // shelves above; batteries
     for (std::string_view ending : {"sses", "shes", "ches", "xes", "zzes"})
-        if (word.ends_with(ending)) return drop(2);  // dresses -> dress, switches -> switch, boxes -> box
+        if (word.ends_with(ending)) return {drop(2), {}};  // dresses -> dress, switches -> switch, boxes -> box
     for (std::string_view ending : {"ss", "us", "is"})
-        if (word.ends_with(ending)) return w;  // mattress, cactus, tennis: no plurals
-    return drop(1);                            // chairs, vases, stoves, tvs
+        if (word.ends_with(ending)) return {word, {}};  // mattress, cactus, tennis: no plurals
+    return {drop(1), {}};                               // chairs, vases, stoves, tvs
+}
+
+}  // namespace
+
+std::string singularWord(std::string_view word) {
+    const Singular singular = singularOf(word);
+    std::string out;
+    out.reserve(singular.stem.size() + singular.ending.size());
+    return out.append(singular.stem).append(singular.ending);
 }
 
 std::string categoryName(std::string_view written) {
@@ -67,12 +84,26 @@ std::string categoryName(std::string_view written) {
         out.push_back(c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c);
     }
     const std::size_t lastWord = out.rfind('-') == std::string::npos ? 0 : out.rfind('-') + 1;
-    std::string singular = singularWord(std::string_view(out).substr(lastWord));
-    out.replace(lastWord, std::string::npos, singular);
+    const Singular singular = singularOf(std::string_view(out).substr(lastWord));
+    out = std::string(out, 0, lastWord).append(singular.stem).append(singular.ending);
     return out;
 }
 
-bool isCategoryName(std::string_view written) { return categoryName(written) == written; }
+bool isCategoryName(std::string_view written) {
+    // What categoryName leaves as it is: no upper-case ASCII letter, words joined by single
+    // hyphens (no other separator, none at either end), the last word its own singular. A scene's
+    // first query and every node it decodes ask this of a stored name, so it builds no string.
+    char previous = '-';
+    for (char c : written) {
+        if ((c >= 'A' && c <= 'Z') || (separator(c) && (c != '-' || previous == '-'))) return false;
+        previous = c;
+    }
+    if (!written.empty() && previous == '-') return false;
+    const std::size_t hyphen = written.rfind('-');
+    const std::string_view last = written.substr(hyphen == std::string_view::npos ? 0 : hyphen + 1);
+    const Singular singular = singularOf(last);
+    return singular.ending.empty() && singular.stem == last;
+}
 
 void canonicaliseCategories(SceneData& scene) {
     for (Node& node : scene.nodes)

@@ -50,8 +50,8 @@ public:
     // The same, walls only (what near asks): by default `within`, filtered; a scene that lists its
     // walls answers from the list, a few nodes, rather than every node the region holds.
     virtual void wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const;
-    // model::worldAabb of a node's box: by default computed (a sine and a cosine); a scene whose
-    // index stores each node's bounds answers from it, for the pair tests that ask it per pair.
+    // model::worldAabb of a node's box: by default computed (a sine and a cosine); a scene that
+    // keeps its decoded nodes' bounds answers from them, for the pair tests that ask it per pair.
     virtual model::Aabb bounds(const model::Node& node) const { return model::worldAabb(node.box); }
 };
 

@@ -636,8 +636,8 @@ static_assert(std::endian::native == std::endian::little, "the scene index store
 
 namespace {
 
-template <class T>
-void appendArray(std::string& out, const std::vector<T>& values) {
+template <class T, class Allocator>
+void appendArray(std::string& out, const std::vector<T, Allocator>& values) {
     out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
@@ -676,7 +676,7 @@ void checkSceneIndex(const SceneIndex& index, Reader& r) {
 void encodeSceneIndex(model::NodeId sceneId, const SceneIndex& index, std::string& out) {
     out.clear();
     out.reserve(64 + index.entries.size() * sizeof(SceneIndexEntry) + index.spatialOrder.size() * 4 +
-                index.blockBounds.size() * sizeof(model::Aabb) + index.categories.size() * 16 + kChecksumSize);
+                index.blockBounds.size() * sizeof(IndexBounds) + index.categories.size() * 16 + kChecksumSize);
     Writer w(out);
     w.u8(kSceneIndexFormat);
     w.u64(index.version);
@@ -695,14 +695,23 @@ namespace {
 
 // What comes before a scene index's arrays.
 struct SceneIndexHeader {
+    std::uint8_t format = kSceneIndexFormat;
     std::uint64_t version = 0;
     std::vector<std::string> categories;
     std::uint64_t entries = 0, ordered = 0, blocks = 0;
 };
 
+// Format 1's line: the bounds as model::Aabb (48 bytes), then the category, kind, geometry, hidden
+// and reserved bytes as SceneIndexEntry holds them.
+constexpr std::size_t kFormat1EntrySize = 56;
+static_assert(sizeof(model::Aabb) == 48 && sizeof(model::NodeKind) == 1 && sizeof(model::GeometryKind) == 1);
+
 SceneIndexHeader readSceneIndexHeader(Reader& r) {
-    r.expectFormat(kSceneIndexFormat);
     SceneIndexHeader header;
+    header.format = r.u8();
+    if (header.format != kSceneIndexFormat && header.format != 1)
+        r.corrupt(
+            fmt::format("format version {} (this smql reads versions 1 and {})", header.format, kSceneIndexFormat));
     header.version = r.u64();
     std::uint64_t categories = r.varint();
     if (categories > r.remaining()) r.corrupt(fmt::format("category count {} exceeds the record", categories));
@@ -746,29 +755,58 @@ SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes, const
     SceneIndex index;
     index.version = header.version;
     index.categories = std::move(header.categories);
+    const bool doubles = header.format == 1;
+    const std::size_t entrySize = doubles ? kFormat1EntrySize : sizeof(SceneIndexEntry);
+    const std::size_t blockSize = doubles ? sizeof(model::Aabb) : sizeof(IndexBounds);
     const std::uint64_t entries = header.entries, ordered = header.ordered, blocks = header.blocks;
     // Each count is checked against what is left before the arrays are sized by it.
     const std::uint64_t left = r.remaining();
-    if (entries > left / sizeof(SceneIndexEntry) || ordered > left / 4 || blocks > left / sizeof(model::Aabb) ||
-        entries * sizeof(SceneIndexEntry) + ordered * 4 + blocks * sizeof(model::Aabb) != left)
+    if (entries > left / entrySize || ordered > left / 4 || blocks > left / blockSize ||
+        entries * entrySize + ordered * 4 + blocks * blockSize != left)
         r.corrupt(fmt::format("{} entries, {} in spatial order and {} blocks do not fill the {} bytes left", entries,
                               ordered, blocks, left));
-    // The arrays and the checksum after them are copied in one piece into the entries' memory,
-    // sized to hold them all; the spatial order and the blocks (a tenth of it) then move out.
     const std::size_t tail = left + kChecksumSize;
-    index.entries.resize(
-        std::max<std::size_t>(entries, (tail + sizeof(SceneIndexEntry) - 1) / sizeof(SceneIndexEntry)));
-    const auto* copied = reinterpret_cast<const char*>(index.entries.data());
-    copy(index.entries.data(), {reinterpret_cast<const char*>(r.bytes(left)), tail});
-    r.expectEnd();
-    const std::uint32_t crc = crc32c({copied, left}, crc32c(headerBytes, crc32c(keyView(idKey(sceneId)))));
-    r.checkSeal(static_cast<std::uint32_t>(
-                    getLittleEndian(reinterpret_cast<const std::uint8_t*>(copied + left), kChecksumSize)),
-                crc);
-    std::size_t at = entries * sizeof(SceneIndexEntry);
-    takeArray(copied, at, ordered, index.spatialOrder);
-    takeArray(copied, at, blocks, index.blockBounds);
-    index.entries.resize(entries);
+    auto checkCopy = [&](const char* copied) {
+        const std::uint32_t crc = crc32c({copied, left}, crc32c(headerBytes, crc32c(keyView(idKey(sceneId)))));
+        r.checkSeal(static_cast<std::uint32_t>(
+                        getLittleEndian(reinterpret_cast<const std::uint8_t*>(copied + left), kChecksumSize)),
+                    crc);
+    };
+    if (doubles) {
+        // Read into a buffer of its own and rounded outward line by line; the spatial order and
+        // blocks are packed again from the rounded bounds, as a write of the scene would store them.
+        std::vector<char> copied(tail);
+        copy(copied.data(), {reinterpret_cast<const char*>(r.bytes(left)), tail});
+        r.expectEnd();
+        checkCopy(copied.data());
+        index.entries.resize(entries);
+        for (std::size_t e = 0; e < entries; ++e) {
+            const char* line = copied.data() + e * kFormat1EntrySize;
+            model::Aabb exact;
+            std::memcpy(&exact, line, sizeof exact);
+            SceneIndexEntry& entry = index.entries[e];
+            entry.bounds = IndexBounds::around(exact);
+            std::memcpy(&entry.category, line + 48, 4);
+            std::memcpy(&entry.kind, line + 52, 1);
+            std::memcpy(&entry.geometry, line + 53, 1);
+            entry.hidden = static_cast<std::uint8_t>(line[54]);
+            entry.reserved = static_cast<std::uint8_t>(line[55]);
+        }
+        index.pack();
+    } else {
+        // The arrays and the checksum after them are copied in one piece into the entries' memory,
+        // sized to hold them all; the spatial order and the blocks (a fifth of it) then move out.
+        index.entries.resize(
+            std::max<std::size_t>(entries, (tail + sizeof(SceneIndexEntry) - 1) / sizeof(SceneIndexEntry)));
+        const auto* copied = reinterpret_cast<const char*>(index.entries.data());
+        copy(index.entries.data(), {reinterpret_cast<const char*>(r.bytes(left)), tail});
+        r.expectEnd();
+        checkCopy(copied);
+        std::size_t at = entries * sizeof(SceneIndexEntry);
+        takeArray(copied, at, ordered, index.spatialOrder);
+        takeArray(copied, at, blocks, index.blockBounds);
+        index.entries.resize(entries);
+    }
     checkSceneIndex(index, r);
     return index;
 }

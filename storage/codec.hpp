@@ -30,7 +30,9 @@ inline constexpr std::uint8_t kBlobFormat = 2;
 inline constexpr std::uint8_t kSceneFormat = 2;
 inline constexpr std::uint8_t kRelationFormat = 2;
 inline constexpr std::uint8_t kVersionFormat = 1;
-inline constexpr std::uint8_t kSceneIndexFormat = 1;
+// Scene index format 2 holds the bounds in single precision (IndexBounds, schema version 6); format
+// 1's doubles are still read, rounded outward as they are.
+inline constexpr std::uint8_t kSceneIndexFormat = 2;
 // The CRC32C at the end of every record and relation entry.
 inline constexpr std::size_t kChecksumSize = 4;
 
@@ -128,6 +130,7 @@ model::SceneVersion decodeVersion(std::string_view key, std::string_view bytes);
 
 // Scene index record (key: idKey(scene id)): format byte, the scene version, the categories, then
 // the entries as one array of SceneIndexEntry's bytes (little-endian, as every record), sealed.
+// Format 1 (bounds as doubles) is read too.
 void encodeSceneIndex(model::NodeId sceneId, const SceneIndex& index, std::string& out);
 // How the decoder copies a span of `bytes` (the record it was given) into its own memory: the
 // record's first 2 KiB (its header, unless it names hundreds of categories, when the header is read

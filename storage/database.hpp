@@ -25,7 +25,9 @@ namespace smql::storage {
 // 4: the scene_index table keeps each scene's table of contents (storage/scene_index.hpp).
 // 5: a label entry carries the node's source id, geometry and box (codec::labelEntry), so a search of
 //    a category across scenes reads no node record.
-inline constexpr std::uint32_t kSchemaVersion = 5;
+// 6: scene index records of format 2 (bounds in single precision), which an smql of version 5 would
+//    take for damaged records; this smql reads format 1 too, so a version-5 database is read as it is.
+inline constexpr std::uint32_t kSchemaVersion = 6;
 
 struct OpenOptions {
     bool readOnly = false;

@@ -76,10 +76,12 @@ std::map<RegistryKey, std::weak_ptr<Environment>>& registry() {
 // label entries in place. A read-only open reads a version-3 database without scene indexes, as
 // every scene of it lacks one anyway, and the label entries of versions 3 and 4 as they are (the
 // rows of a category search then come from the node records); a version-2 one it cannot, for want
-// of the history table.
+// of the history table. Schemas 4 and 5 hold scene indexes of format 1, which are read as they are
+// (a writable open only sets the version: a scene's next write stores format 2).
 constexpr std::uint64_t kOldestUpgradableSchemaVersion = 2;
 constexpr std::uint64_t kReadableWithoutSceneIndex = 3;
 constexpr std::uint64_t kReadableWithIdsOnlyLabels = 4;
+constexpr std::uint64_t kReadableWithDoubleBounds = 5;
 
 // Returns the stored version: kSchemaVersion, or an older one this open can read or upgrade.
 std::uint64_t checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB_dbi meta, bool upgradable) {
@@ -91,7 +93,8 @@ std::uint64_t checkSchemaVersion(const std::string& directory, MDB_txn* txn, MDB
     std::uint64_t version = codec::decodeU64(fromVal(value), "schema version");
     if (version == kSchemaVersion) return version;
     if (version >= kOldestUpgradableSchemaVersion && version < kSchemaVersion) {
-        if (upgradable || version == kReadableWithoutSceneIndex || version == kReadableWithIdsOnlyLabels)
+        if (upgradable || version == kReadableWithoutSceneIndex || version == kReadableWithIdsOnlyLabels ||
+            version == kReadableWithDoubleBounds)
             return version;
         openError(fmt::format("database {} has schema version {}; this smql reads version {}", directory, version,
                               kSchemaVersion),

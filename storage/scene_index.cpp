@@ -16,7 +16,25 @@ double centreKey(const model::Aabb& b, bool alongY) {
     return std::isnan(twice) ? std::numeric_limits<double>::infinity() : twice;
 }
 
+// The float nearest below or at `v`, and the one nearest above or at it; beyond float's range, the
+// largest finite float or an infinity on the side that still holds `v`.
+float below(double v) {
+    constexpr double kLargest = std::numeric_limits<float>::max();
+    if (std::isnan(v)) return std::numeric_limits<float>::quiet_NaN();
+    if (v >= kLargest) return std::isinf(v) ? std::numeric_limits<float>::infinity() : static_cast<float>(kLargest);
+    if (v < -kLargest) return -std::numeric_limits<float>::infinity();
+    const auto f = static_cast<float>(v);
+    return static_cast<double>(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+float above(double v) { return -below(-v); }
+
 }  // namespace
+
+IndexBounds IndexBounds::around(const model::Aabb& exact) {
+    return {below(exact.min.x), below(exact.min.y), below(exact.min.z),
+            above(exact.max.x), above(exact.max.y), above(exact.max.z)};
+}
 
 std::vector<model::Aabb> packTiles(const std::vector<model::Aabb>& bounds, std::vector<std::uint32_t>& order) {
     auto byAxis = [&](bool alongY) {
@@ -56,23 +74,29 @@ SceneIndex SceneIndex::of(const std::vector<model::Node>& nodes, std::uint64_t v
         auto [at, added] = positions.try_emplace(n.category, static_cast<std::uint32_t>(index.categories.size()));
         if (added) index.categories.push_back(n.category);
         SceneIndexEntry entry{};  // zeroed (there is no padding, but reserved): entries are stored as bytes
-        entry.bounds = model::worldAabb(n.box);
+        entry.bounds = IndexBounds::around(model::worldAabb(n.box));
         entry.category = at->second;
         entry.kind = n.kind;
         entry.geometry = n.geometry;
         entry.hidden = n.hidden ? 1 : 0;
         index.entries.push_back(entry);
     }
-    std::vector<model::Aabb> bounds;
-    bounds.reserve(index.entries.size());
-    for (std::uint32_t s = 0; s < index.entries.size(); ++s) {
-        const auto& e = index.entries[s];
-        bounds.push_back(e.bounds);
-        if (e.kind != model::NodeKind::Scene && e.geometry != model::GeometryKind::None)
-            index.spatialOrder.push_back(s);
-    }
-    index.blockBounds = packTiles(bounds, index.spatialOrder);
+    index.pack();
     return index;
+}
+
+void SceneIndex::pack() {
+    std::vector<model::Aabb> bounds;
+    bounds.reserve(entries.size());
+    spatialOrder.clear();
+    for (std::uint32_t s = 0; s < entries.size(); ++s) {
+        const auto& e = entries[s];
+        bounds.push_back(e.bounds.aabb());
+        if (e.kind != model::NodeKind::Scene && e.geometry != model::GeometryKind::None) spatialOrder.push_back(s);
+    }
+    // The runs' bounds are unions of floats: floats again, exactly.
+    blockBounds.clear();
+    for (const model::Aabb& run : packTiles(bounds, spatialOrder)) blockBounds.push_back(IndexBounds::around(run));
 }
 
 bool operator==(const SceneIndex& a, const SceneIndex& b) {

@@ -1,12 +1,15 @@
 // A scene's table of contents, stored with the scene (table scene_index, docs/storage.md): for
-// every node in id order its kind, geometry kind, hidden flag, category and world-aligned bounds.
+// every node in id order its kind, geometry kind, hidden flag, category and world-aligned bounds
+// (in single precision, rounded outward).
 // It is what a scene's first query needs to find its way (the category lists, the spatial
 // index's boxes) without decoding every node record; the nodes it then visits are read one by one.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "model/geometry.hpp"
@@ -14,33 +17,69 @@
 
 namespace smql::storage {
 
+// World-aligned bounds in single precision, each minimum rounded down and each maximum up, so that
+// they hold the exact bounds: a search over them rules out only what the exact bounds rule out,
+// and reads 24 bytes a box where doubles take 48 (a scene's first query reads every box's). A NaN
+// coordinate stays NaN.
+struct IndexBounds {
+    float minX, minY, minZ, maxX, maxY, maxZ;
+
+    static IndexBounds around(const model::Aabb& exact);
+    // The same bounds in double precision (each float exactly).
+    model::Aabb aabb() const { return {{minX, minY, minZ}, {maxX, maxY, maxZ}}; }
+};
+
 // One node's line, fixed size so the stored array is copied out of the memory map in one piece.
 struct SceneIndexEntry {
-    model::Aabb bounds;      // model::worldAabb(node.box), exactly as computed from the record
+    IndexBounds bounds;      // IndexBounds::around(model::worldAabb(node.box)) of the record
     std::uint32_t category;  // a position in SceneIndex::categories
     model::NodeKind kind;
     model::GeometryKind geometry;
     std::uint8_t hidden;  // 0 or 1
     std::uint8_t reserved;
 };
-static_assert(std::is_trivially_copyable_v<SceneIndexEntry> && sizeof(SceneIndexEntry) == 56,
+static_assert(std::is_trivially_copyable_v<SceneIndexEntry> && sizeof(SceneIndexEntry) == 32,
               "the stored array is these bytes");
+
+// The allocator of the entries: a resize leaves the new entries unwritten, since the decoder's one
+// copy writes every byte of them (value-initialising would write them all twice).
+template <class T>
+struct UnwrittenOnResize : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UnwrittenOnResize<U>;
+    };
+    UnwrittenOnResize() = default;
+    template <class U>
+    explicit UnwrittenOnResize(const UnwrittenOnResize<U>&) noexcept {}
+    template <class U, class... Args>
+    void construct(U* at, Args&&... args) {
+        ::new (static_cast<void*>(at)) U(std::forward<Args>(args)...);
+    }
+    template <class U>
+    void construct(U* at) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(at)) U;
+    }
+};
 
 struct SceneIndex {
     // The scene version it describes (model::SceneInfo::version): one made before a write that
     // changed the scene is not believed.
     std::uint64_t version = 0;
-    std::vector<std::string> categories;   // distinct, in order of first use
-    std::vector<SceneIndexEntry> entries;  // by slot: the scene node first, then its nodes in id order
+    std::vector<std::string> categories;  // distinct, in order of first use
+    std::vector<SceneIndexEntry, UnwrittenOnResize<SceneIndexEntry>>
+        entries;  // by slot: the scene node first, then its nodes in id order
     // The slots of the nodes with geometry (the scene node left out) in an order that keeps near
     // boxes together (sort-tile-recursive, as an R-tree is packed), and the bounds of each run of
     // kBlock of them: a spatial query tests the blocks, then the boxes of the blocks it meets.
     static constexpr std::size_t kBlock = 16;
     std::vector<std::uint32_t> spatialOrder;
-    std::vector<model::Aabb> blockBounds;
+    std::vector<IndexBounds> blockBounds;
 
     // The index of a scene's nodes (the scene node first, then the rest in id order).
     static SceneIndex of(const std::vector<model::Node>& nodes, std::uint64_t version);
+    // The spatial order and the blocks packed from the entries (of() does this last).
+    void pack();
     // Byte for byte, so a stored index equals the one its records give (NaN bounds included).
     friend bool operator==(const SceneIndex& a, const SceneIndex& b);
 };

@@ -34,6 +34,19 @@ bool mayMeet(const model::Aabb& node, const model::Aabb& region) {
              region.max.y < node.min.y || node.max.z < region.min.z || region.max.z < node.min.z);
 }
 
+// mayMeet on a block's stored bounds and a region rounded outward to floats, and
+// relations::intersects on a box's stored bounds and a region rounded outward to floats (what meets
+// the region meets the rounded one): a box is tested in single precision, as it is stored.
+bool mayMeet(const storage::IndexBounds& node, const storage::IndexBounds& region) {
+    return !(node.maxX < region.minX || region.maxX < node.minX || node.maxY < region.minY || region.maxY < node.minY ||
+             node.maxZ < region.minZ || region.maxZ < node.minZ);
+}
+
+bool meets(const storage::IndexBounds& box, const storage::IndexBounds& region) {
+    return box.minX <= region.maxX && region.minX <= box.maxX && box.minY <= region.maxY && region.minY <= box.maxY &&
+           box.minZ <= region.maxZ && region.minZ <= box.maxZ;
+}
+
 bool hasNaN(const model::Aabb& a) { return std::isnan(a.min.x + a.min.y + a.min.z + a.max.x + a.max.y + a.max.z); }
 
 // Squared gap between a block's bounds and a region, as a bound below its boxes' gaps: an axis with a
@@ -90,48 +103,49 @@ std::shared_ptr<const SceneSnapshot> SceneSnapshot::fromVersion(const model::Sce
 SceneSnapshot::SceneSnapshot(model::SceneInfo info, storage::SceneIndex index, bool historical)
     : info_(std::move(info)), index_(std::move(index)), historical_(historical) {
     const auto count = static_cast<Slot>(index_.entries.size());
-    decoded_ = std::make_unique<std::atomic<const model::Node*>[]>(count);
+    decoded_ = std::make_unique<std::atomic<const Decoded*>[]>(count);
     // A stored scene's slot 0 is its scene node, whose id is the scene's; holdAll checks the ids
     // of a scene decoded whole, which may not be one block.
     firstId_ = info_.id;
     idsInOneBlock_ = true;
-    // Counted first, so each list is allocated once at its size.
+    // One pass counts each list, so each is allocated once at its size, and finds the scene node's
+    // category; a second fills them.
     constexpr std::size_t kKinds = 6;
+    std::vector<std::uint32_t> perCategory(index_.categories.size());
+    std::vector<bool> sceneName(index_.categories.size());
+    std::array<std::uint32_t, kKinds> shownPerKind{};
+    for (const auto& e : index_.entries) {
+        ++perCategory[e.category];
+        if (e.kind == model::NodeKind::Scene)
+            sceneName[e.category] = true;
+        else
+            shownPerKind[static_cast<std::size_t>(e.kind)] += !e.hidden;
+    }
     // Categories are read by their canonical name (model/category.hpp): a scene stored before names
     // were canonical ("trash can", "Chairs") answers as one imported now does. Normalising here, on
     // read, rather than rewriting the stored records, leaves the database as it was written: it
     // opens read-only, older programs still read it, `smql check` still finds its records and keys
     // in agreement, and the fold costs one pass over the scene's few distinct names. The scene
     // node's category is the scene's name and stays as written.
-    std::vector<bool> sceneName(index_.categories.size());
-    for (const auto& e : index_.entries)
-        if (e.kind == model::NodeKind::Scene) sceneName[e.category] = true;
     for (std::size_t c = 0; c < index_.categories.size(); ++c)
         if (!sceneName[c] && !model::isCategoryName(index_.categories[c]))
             index_.categories[c] = model::categoryName(index_.categories[c]);
-    std::vector<std::uint32_t> perCategory(index_.categories.size());
-    std::array<std::uint32_t, kKinds> shownPerKind{};
-    for (const auto& e : index_.entries) {
-        ++perCategory[e.category];
-        shownPerKind[static_cast<std::size_t>(e.kind)] += e.kind != model::NodeKind::Scene && !e.hidden;
-    }
     std::vector<std::vector<Slot>*> lists(index_.categories.size());
+    slotsByCategory_.reserve(lists.size());
     for (std::size_t c = 0; c < lists.size(); ++c) {
         lists[c] = &slotsByCategory_[index_.categories[c]];
-        lists[c]->reserve(perCategory[c]);
+        lists[c]->reserve(lists[c]->capacity() + perCategory[c]);  // two stored spellings may fold to one
     }
     shownByKind_.resize(kKinds);
     for (std::size_t k = 0; k < kKinds; ++k) shownByKind_[k].reserve(shownPerKind[k]);
-    shownNodes_.reserve(count);
     for (Slot s = 0; s < count; ++s) {
         const auto& e = index_.entries[s];
         lists[e.category]->push_back(s);
-        if (e.kind != model::NodeKind::Scene && !e.hidden) {
-            shownByKind_[static_cast<std::size_t>(e.kind)].push_back(s);
-            shownNodes_.push_back(s);
-        }
+        if (e.kind != model::NodeKind::Scene && !e.hidden) shownByKind_[static_cast<std::size_t>(e.kind)].push_back(s);
     }
     walls_ = &withCategory(relations::kWall);
+    blocks_.reserve(index_.blockBounds.size());
+    for (const storage::IndexBounds& block : index_.blockBounds) blocks_.push_back(block.aabb());
 }
 
 void SceneSnapshot::holdAll(std::vector<model::Node> nodes) {
@@ -143,7 +157,8 @@ void SceneSnapshot::holdAll(std::vector<model::Node> nodes) {
     if (!idsInOneBlock_) slotById_.reserve(count);
     for (Slot s = 0; s < count; ++s) {
         if (!idsInOneBlock_) slotById_.emplace(allNodes_[s].id, s);
-        decoded_[s].store(&allNodes_[s], std::memory_order_release);
+        decoded_[s].store(&decodedLines_.emplace_back(Decoded{&allNodes_[s], model::worldAabb(allNodes_[s].box)}),
+                          std::memory_order_release);
     }
     std::call_once(allDecoded_, [] {});  // nodes() has them already
 }
@@ -155,21 +170,29 @@ void SceneSnapshot::readThrough(const storage::ReadTransaction* txn) const {
 
 const model::Node& SceneSnapshot::decode(Slot slot) const {
     std::lock_guard lock(readMutex_);
-    if (const model::Node* decoded = decoded_[slot].load(std::memory_order_relaxed)) return *decoded;
+    if (const Decoded* decoded = decoded_[slot].load(std::memory_order_relaxed)) return *decoded->node;
     assert(reader_ && "a snapshot's nodes are read while a statement names its transaction (readThrough)");
     const model::NodeId id = firstId_ + slot;
     model::Node node;
     const auto& entry = index_.entries[slot];
     // The index and the record must agree on what the index answered from.
     const bool read = reader_->readNode(id, node);
-    if (read) canonicalise(node);
+    model::Aabb exact;
+    if (read) {
+        canonicalise(node);
+        exact = model::worldAabb(node.box);
+    }
+    // The index's bounds must hold the record's: a search over them ruled out what they rule out.
+    const model::Aabb indexed = entry.bounds.aabb();
+    const bool held = !(indexed.min.x > exact.min.x || indexed.min.y > exact.min.y || indexed.min.z > exact.min.z ||
+                        indexed.max.x < exact.max.x || indexed.max.y < exact.max.y || indexed.max.z < exact.max.z);
     if (!read || node.scene != info_.id || node.kind != entry.kind || node.geometry != entry.geometry ||
-        node.hidden != (entry.hidden != 0) || node.category != category(slot))
+        node.hidden != (entry.hidden != 0) || node.category != category(slot) || !held)
         throw Error(ErrorKind::Storage,
                     fmt::format("the scene index of scene '{}' does not match the record of node #{}", info_.name, id),
                     std::nullopt, "smql check DB verifies the database");
     const model::Node& kept = decodedNodes_.emplace_back(std::move(node));
-    decoded_[slot].store(&kept, std::memory_order_release);
+    decoded_[slot].store(&decodedLines_.emplace_back(Decoded{&kept, exact}), std::memory_order_release);
     return kept;
 }
 
@@ -198,7 +221,7 @@ bool SceneSnapshot::levelsBuilt() const {
     if (levelsBuilt_.load(std::memory_order_acquire)) return true;
     if (scans_.fetch_add(1, std::memory_order_relaxed) < kScansBeforeLevels) return false;
     std::call_once(levelsBuilding_, [&] {
-        for (const std::vector<model::Aabb>* below = &index_.blockBounds; below->size() > storage::SceneIndex::kBlock;
+        for (const std::vector<model::Aabb>* below = &blocks_; below->size() > storage::SceneIndex::kBlock;
              below = &levels_.back().bounds) {
             Level level;
             level.order.resize(below->size());
@@ -214,30 +237,37 @@ bool SceneSnapshot::levelsBuilt() const {
 void SceneSnapshot::intersecting(const model::Aabb& region, std::vector<Slot>& out) const {
     // Down from the top level's nodes (or every block, before the levels are made or when the
     // blocks are few) to the blocks that meet the region.
-    const std::size_t top = levelsBuilt() ? levels_.size() : 0;
-    const auto& topNodes = top == 0 ? index_.blockBounds : levels_.back().bounds;
-    for (std::size_t n = 0; n < topNodes.size(); ++n)
-        if (mayMeet(topNodes[n], region)) collect(top, n, region, out);
+    const storage::IndexBounds rounded = storage::IndexBounds::around(region);
+    if (!levelsBuilt() || levels_.empty()) {
+        for (std::size_t b = 0; b < index_.blockBounds.size(); ++b)
+            if (mayMeet(index_.blockBounds[b], rounded)) collect(0, b, region, rounded, out);
+        return;
+    }
+    const auto& top = levels_.back().bounds;
+    for (std::size_t n = 0; n < top.size(); ++n)
+        if (mayMeet(top[n], region)) collect(levels_.size(), n, region, rounded, out);
 }
 
 void SceneSnapshot::collect(std::size_t level, std::size_t node, const model::Aabb& region,
-                            std::vector<Slot>& out) const {
+                            const storage::IndexBounds& rounded, std::vector<Slot>& out) const {
     constexpr std::size_t kRun = storage::SceneIndex::kBlock;
     const auto& order = level == 0 ? index_.spatialOrder : levels_[level - 1].order;
     const std::size_t end = std::min(order.size(), (node + 1) * kRun);
     if (level == 0) {
         for (std::size_t i = node * kRun; i < end; ++i)
-            if (relations::intersects(bounds(order[i]), region)) out.push_back(order[i]);
+            if (meets(index_.entries[order[i]].bounds, rounded)) out.push_back(order[i]);
         return;
     }
-    const auto& below = level == 1 ? index_.blockBounds : levels_[level - 2].bounds;
-    for (std::size_t i = node * kRun; i < end; ++i)
-        if (mayMeet(below[order[i]], region)) collect(level - 1, order[i], region, out);
+    for (std::size_t i = node * kRun; i < end; ++i) {
+        const std::uint32_t child = order[i];
+        if (mayMeet(level == 1 ? blocks_[child] : levels_[level - 2].bounds[child], region))
+            collect(level - 1, child, region, rounded, out);
+    }
 }
 
 SceneSnapshot::NearestWalk::NearestWalk(const SceneSnapshot& scene, const model::Aabb& region)
     : scene_(scene), region_(region) {
-    const auto& blocks = scene.index_.blockBounds;
+    const auto& blocks = scene.blocks_;
     blocks_.reserve(blocks.size());
     for (std::uint32_t b = 0; b < blocks.size(); ++b) blocks_.emplace_back(blockGap(blocks[b], region), b);
     std::make_heap(blocks_.begin(), blocks_.end(), std::greater<>());
@@ -392,6 +422,17 @@ const std::vector<Slot>& SceneSnapshot::shownOfKind(model::NodeKind kind) const 
     return shownByKind_[static_cast<std::size_t>(kind)];
 }
 
+const std::vector<Slot>& SceneSnapshot::shownNodes() const {
+    std::call_once(shownNodesMade_, [&] {
+        std::size_t shown = 0;
+        for (const auto& list : shownByKind_) shown += list.size();
+        shownNodes_.reserve(shown);
+        for (Slot s = 0; s < size(); ++s)
+            if (kind(s) != model::NodeKind::Scene && !hidden(s)) shownNodes_.push_back(s);
+    });
+    return shownNodes_;
+}
+
 std::vector<std::string> SceneSnapshot::categories() const {
     std::vector<std::string> out;
     for (const auto& [name, slots] : slotsByCategory_) {
@@ -429,20 +470,21 @@ std::string SceneSnapshot::path(Slot slot) const {
 void SceneObstacles::within(const model::Aabb& region, std::vector<const model::Node*>& out) const {
     std::vector<Slot> slots;
     scene_.intersecting(region, slots);
+    // The index's bounds hold each box; its exact bounds decide.
     for (Slot s : slots)
-        if (!scene_.hidden(s)) out.push_back(&scene_.node(s));
+        if (!scene_.hidden(s) && relations::intersects(bounds(scene_.node(s)), region)) out.push_back(&scene_.node(s));
 }
 
 void SceneObstacles::wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const {
     for (Slot s : scene_.walls())
         if (!scene_.hidden(s) && scene_.geometry(s) != model::GeometryKind::None &&
-            relations::intersects(scene_.bounds(s), region))
+            relations::intersects(scene_.bounds(s), region) && relations::intersects(bounds(scene_.node(s)), region))
             out.push_back(&scene_.node(s));
 }
 
 model::Aabb SceneObstacles::bounds(const model::Node& node) const {
-    // The index's bounds are worldAabb of the stored record: they stand for the record itself only.
-    if (const model::Aabb* stored = scene_.storedBounds(node)) return *stored;
+    // Worked out when the record was decoded: they stand for the record itself only.
+    if (const model::Aabb* decoded = scene_.decodedBounds(node)) return *decoded;
     return model::worldAabb(node.box);
 }
 

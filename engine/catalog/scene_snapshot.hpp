@@ -51,22 +51,25 @@ public:
     // Every node, decoded (the export, guidance, ASK's vocabulary, the embeddings need them all).
     const std::vector<model::Node>& nodes() const;
     const model::Node& node(Slot slot) const {
-        const model::Node* decoded = decoded_[slot].load(std::memory_order_acquire);
-        return decoded ? *decoded : decode(slot);
+        const Decoded* decoded = decoded_[slot].load(std::memory_order_acquire);
+        return decoded ? *decoded->node : decode(slot);
     }
     // What the index knows of a node without decoding it.
     model::NodeKind kind(Slot slot) const { return index_.entries[slot].kind; }
     bool hidden(Slot slot) const { return index_.entries[slot].hidden != 0; }
     model::GeometryKind geometry(Slot slot) const { return index_.entries[slot].geometry; }
     const std::string& category(Slot slot) const { return index_.categories[index_.entries[slot].category]; }
-    // World-aligned bounds of a node's box (empty-looking for nodes without geometry).
-    const model::Aabb& bounds(Slot slot) const { return index_.entries[slot].bounds; }
-    // The bounds of `node` when it is this scene's record as node() gave it (not a copy that kept
-    // its id), else null: the predicates' pair tests ask for a node's bounds per pair.
-    const model::Aabb* storedBounds(const model::Node& node) const {
+    // World-aligned bounds of a node's box (empty-looking for nodes without geometry), as the index
+    // holds them: rounded outward to floats, so they hold the box. What they rule out, the exact
+    // bounds rule out too; a test that must be exact takes decodedBounds.
+    model::Aabb bounds(Slot slot) const { return index_.entries[slot].bounds.aabb(); }
+    // The exact bounds (model::worldAabb) of `node` when it is this scene's record as node() gave it
+    // (not a copy that kept its id), else null: the predicates' pair tests ask for a node's bounds
+    // per pair, and these are worked out once, when the node is decoded.
+    const model::Aabb* decodedBounds(const model::Node& node) const {
         if (!idsInOneBlock_ || node.id < firstId_ || node.id - firstId_ >= size()) return nullptr;
-        const auto slot = static_cast<Slot>(node.id - firstId_);
-        return decoded_[slot].load(std::memory_order_acquire) == &node ? &index_.entries[slot].bounds : nullptr;
+        const Decoded* decoded = decoded_[node.id - firstId_].load(std::memory_order_acquire);
+        return decoded && decoded->node == &node ? &decoded->bounds : nullptr;
     }
     std::optional<Slot> slotOf(model::NodeId id) const;
     std::optional<Slot> slotOfSource(std::int64_t sourceId) const;
@@ -79,13 +82,15 @@ public:
     // What a kind word (`object`) or `node` names, in id order: the nodes that are not hidden,
     // the scene's root left out. Made once with the snapshot, since most statements name one.
     const std::vector<Slot>& shownOfKind(model::NodeKind kind) const;
-    const std::vector<Slot>& shownNodes() const { return shownNodes_; }
+    // What `node` names, the same way: made the first time a statement asks, as few do.
+    const std::vector<Slot>& shownNodes() const;
     std::vector<std::string> categories() const;
     // Names of the attributes any node of the scene carries (color, material ...), sorted.
     const std::vector<std::string>& attributeNames() const;
     // The spatial index over the boxes of the nodes with geometry (the scene node left out):
-    // slots whose bounds intersect `region` (unordered). It is an R-tree packed when the scene was
-    // stored: the stored blocks are its leaves, and the levels above them are packed from the
+    // slots whose bounds() intersect `region` (unordered): every box that meets it, and perhaps one
+    // that misses it by less than a float's rounding, so callers test what they take exactly. It is an R-tree packed
+    // when the scene was stored: the stored blocks are its leaves, and the levels above them are packed from the
     // blocks' bounds once a scene's first queries have scanned the blocks 32 times (3 us for 2,000
     // boxes: no query waits long for a tree).
     void intersecting(const model::Aabb& region, std::vector<Slot>& out) const;
@@ -143,7 +148,8 @@ private:
     // blocks have run, this makes them. And the walk down them from a node of `level` (0: a block;
     // n: a run of levels_[n - 1]).
     bool levelsBuilt() const;
-    void collect(std::size_t level, std::size_t node, const model::Aabb& region, std::vector<Slot>& out) const;
+    void collect(std::size_t level, std::size_t node, const model::Aabb& region, const storage::IndexBounds& rounded,
+                 std::vector<Slot>& out) const;
 
     model::SceneInfo info_;
     storage::SceneIndex index_;
@@ -155,12 +161,18 @@ private:
     model::NodeId firstId_ = 0;
     std::unordered_map<model::NodeId, Slot> slotById_;
 
-    // The nodes by slot, null until decoded; the decoded ones live in decodedNodes_ (a deque, so
-    // they never move), or in allNodes_ once every node was asked for.
-    std::unique_ptr<std::atomic<const model::Node*>[]> decoded_;
+    // The nodes by slot, null until decoded, each with its exact bounds. The nodes decoded one by
+    // one live in decodedNodes_ (a deque, so they never move), those of a scene loaded whole in
+    // allNodes_; a Decoded lives in decodedLines_.
+    struct Decoded {
+        const model::Node* node;
+        model::Aabb bounds;
+    };
+    std::unique_ptr<std::atomic<const Decoded*>[]> decoded_;
     mutable std::mutex readMutex_;  // guards what the reads below fill in
     mutable const storage::ReadTransaction* reader_ = nullptr;
     mutable std::deque<model::Node> decodedNodes_;
+    mutable std::deque<Decoded> decodedLines_;
     mutable std::once_flag allDecoded_;
     mutable std::vector<model::Node> allNodes_;
     mutable std::optional<std::vector<model::Relation>> relations_;
@@ -169,7 +181,8 @@ private:
     std::unordered_map<std::string_view, std::vector<Slot>> slotsByCategory_;
     const std::vector<Slot>* walls_ = nullptr;
     std::vector<std::vector<Slot>> shownByKind_;
-    std::vector<Slot> shownNodes_;
+    mutable std::once_flag shownNodesMade_;
+    mutable std::vector<Slot> shownNodes_;
     // The tree's links and the source ids, made the first time a statement asks (PATH, SHOW TREE,
     // DESCRIBE, src#id): most statements need neither.
     mutable std::once_flag linksBuilt_;
@@ -177,6 +190,9 @@ private:
     mutable std::vector<std::vector<Slot>> children_;
     mutable std::once_flag attributeNamesFound_;  // the names are gathered when a statement first asks
     mutable std::vector<std::string> attributeNames_;
+    // The stored blocks' bounds in double precision, for the levels packed over them and the gaps a
+    // walk nearest first measures (125 blocks for 2,000 boxes: converted once, with the snapshot).
+    std::vector<model::Aabb> blocks_;
     // The levels above the stored blocks, bottom first, each packed over the one below as the blocks
     // are over the boxes (storage::packTiles): `order` the positions of the level below in runs of
     // SceneIndex::kBlock, `bounds` each run's; up to a level of at most kBlock nodes, none when the

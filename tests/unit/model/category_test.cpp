@@ -37,6 +37,23 @@ TEST_CASE("the last word's plural is its singular, by English endings and a tabl
     CHECK(categoryName("glasses cases") == "glasses-case");
 }
 
+TEST_CASE("a name is canonical exactly when categoryName leaves it as it is", "[category]") {
+    // isCategoryName answers without folding: every way a name can differ from its fold is here,
+    // each word alone and as the last of two.
+    for (const char* word :
+         {"",          "-",         "chair",      "chairs",  "Chair",  "shelves",   "shelf",     "batteries",
+          "battery",   "boxes",     "box",        "glasses", "glass",  "mattress",  "cactus",    "lens",
+          "lenses",    "mice",      "people",     "person",  "it's",   "tvs",       "bus",       "ies",
+          "xies",      "sss",       "as",         "is",      "us",     "es",        "s",         "caf\xc3\xa9s",
+          "trash can", "trash_can", "trash--can", "-chair",  "chair-", "trash-can", "TRASH-CAN", "a\tb",
+          "zombies",   "zombie",    "canvases",   "canvas"}) {
+        for (const std::string& written : {std::string(word), std::string("wall-") + word}) {
+            INFO("'" << written << "'");
+            CHECK(smql::model::isCategoryName(written) == (categoryName(written) == written));
+        }
+    }
+}
+
 TEST_CASE("a scene's nodes get canonical names, the scene node keeps its name", "[category]") {
     smql::model::SceneData scene;
     smql::model::Node root, bin, plant;

@@ -1,5 +1,6 @@
 // The scene index (storage/scene_index.hpp): stored with every write of a scene, always what the
-// scene's records give, refused when damaged, absent from databases written before schema 4.
+// scene's records give, refused when damaged, absent from databases written before schema 4, and
+// read in its first format (bounds in doubles) from those written before schema 6.
 #include <catch2/catch.hpp>
 
 #include <lmdb.h>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -69,8 +71,18 @@ void requireIndexOfRecords(const ReadTransaction& txn, NodeId scene) {
     std::vector<std::uint32_t> order = stored->spatialOrder;
     std::sort(order.begin(), order.end());
     REQUIRE(order == spatial);
+    for (std::uint32_t s = 0; s < nodes.size(); ++s) {
+        // Each box's bounds rounded outward, to the nearest floats that hold them.
+        const model::Aabb exact = model::worldAabb(nodes[s].box), held = stored->entries[s].bounds.aabb();
+        REQUIRE(held.min.x <= exact.min.x);
+        REQUIRE(held.min.y <= exact.min.y);
+        REQUIRE(held.min.z <= exact.min.z);
+        REQUIRE(exact.max.x <= held.max.x);
+        REQUIRE(exact.max.y <= held.max.y);
+        REQUIRE(exact.max.z <= held.max.z);
+    }
     for (std::size_t i = 0; i < stored->spatialOrder.size(); ++i) {
-        const model::Aabb& block = stored->blockBounds.at(i / SceneIndex::kBlock);
+        const model::Aabb block = stored->blockBounds.at(i / SceneIndex::kBlock).aabb();
         const model::Aabb box = model::worldAabb(nodes[stored->spatialOrder[i]].box);
         REQUIRE(block.min.x <= box.min.x);
         REQUIRE(block.min.y <= box.min.y);
@@ -170,7 +182,7 @@ TEST_CASE("a scene index record round-trips, and damage to it is refused", "[sto
     // record's first bytes (or in place): here the bytes after the header are garbage, and the copy
     // reads the record's own.
     const std::size_t header = record.size() - 4 - index.entries.size() * sizeof(storage::SceneIndexEntry) -
-                               index.spatialOrder.size() * 4 - index.blockBounds.size() * sizeof(model::Aabb);
+                               index.spatialOrder.size() * 4 - index.blockBounds.size() * sizeof(storage::IndexBounds);
     std::string garbled = record;
     std::fill(garbled.begin() + static_cast<std::ptrdiff_t>(header), garbled.end(), '\x5a');
     std::size_t copied = 0;
@@ -218,7 +230,79 @@ TEST_CASE("a database of schema version 3 is read without scene indexes, and a w
     REQUIRE_FALSE(read.sceneIndex(*read.scene(old)));  // until a write of that scene
     requireIndexOfRecords(read, added);
     REQUIRE(checkDatabase(tmp.path()).problems.empty());
-    REQUIRE_NOTHROW(Database::open(tmp.path(), {.readOnly = true}));  // now version 4
+    REQUIRE_NOTHROW(Database::open(tmp.path(), {.readOnly = true}));  // now the current version
+}
+
+TEST_CASE("an index's bounds are the nearest floats that hold the box", "[storage][scene_index]") {
+    const double third = 1.0 / 3, big = 1e300, tiny = 1e-50;
+    const model::Aabb exact{{third, -third, -big}, {2 * third, tiny, big}};
+    const storage::IndexBounds held = storage::IndexBounds::around(exact);
+    const model::Aabb widened = held.aabb();
+    REQUIRE(widened.min.x <= exact.min.x);
+    REQUIRE(widened.min.y <= exact.min.y);
+    REQUIRE(exact.max.x <= widened.max.x);
+    REQUIRE(exact.max.y <= widened.max.y);
+    // The nearest: one float further in would no longer hold the box.
+    REQUIRE(std::nextafter(held.minX, 1.0f) > exact.min.x);
+    REQUIRE(std::nextafter(held.maxX, 0.0f) < exact.max.x);
+    REQUIRE(std::nextafter(held.minY, 0.0f) > exact.min.y);
+    REQUIRE(held.maxY > 0);  // 1e-50 is below every float but zero: the smallest float above it
+    // Beyond float's range: the largest float or an infinity on the side that still holds it.
+    REQUIRE(std::isinf(held.minZ));
+    REQUIRE(held.minZ < 0);
+    REQUIRE(std::isinf(held.maxZ));
+    // Exact floats stay as they are; NaN stays NaN.
+    const storage::IndexBounds whole = storage::IndexBounds::around({{0.5, -2, 0}, {1.25, 3, 0.75}});
+    REQUIRE((whole.minX == 0.5f && whole.minY == -2.0f && whole.maxX == 1.25f && whole.maxZ == 0.75f));
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE(std::isnan(storage::IndexBounds::around({{nan, 0, 0}, {1, 1, 1}}).minX));
+}
+
+TEST_CASE("an index record of format 1 (bounds in doubles) is read rounded outward and packed again",
+          "[storage][scene_index][codec]") {
+    model::SceneData data = hall("hall", 120);
+    model::Node scene = localNode(1000, NodeKind::Scene, model::kNoNode, "hall");
+    std::vector<model::Node> nodes{scene};
+    for (model::Node n : data.nodes) {
+        n.id += 1000;
+        nodes.push_back(n);
+    }
+    const std::string record = formatOneSceneIndex(1000, nodes, 4);
+    REQUIRE(codec::decodeSceneIndex(1000, record) == SceneIndex::of(nodes, 4));
+    std::string flipped = record;
+    flipped[record.size() / 2] = static_cast<char>(flipped[record.size() / 2] ^ 0x01);
+    REQUIRE_THROWS_AS(codec::decodeSceneIndex(1000, flipped), codec::CorruptRecord);
+}
+
+TEST_CASE("a database of schema version 5 is read with its scene indexes of format 1, and a writable open upgrades it",
+          "[storage][scene_index][database]") {
+    TempDir tmp;
+    NodeId first = 0, second = 0;
+    {
+        auto db = Database::open(tmp.path());
+        first = importCommitted(*db, hall("first", 300));
+        second = importCommitted(*db, hall("second", 40));
+    }
+    asSchemaVersion5(tmp.path());
+    {
+        auto db = Database::open(tmp.path(), {.readOnly = true});
+        auto read = db->beginRead();
+        requireIndexOfRecords(read, first);  // as this smql would store it
+        requireIndexOfRecords(read, second);
+    }
+    REQUIRE(checkDatabase(tmp.path()).problems.empty());
+
+    auto db = Database::open(tmp.path());
+    {
+        auto write = db->beginWrite();
+        write.renameScene(second, "renamed");
+        write.commit();
+    }
+    auto read = db->beginRead();
+    requireIndexOfRecords(read, first);
+    requireIndexOfRecords(read, second);
+    REQUIRE(checkDatabase(tmp.path()).problems.empty());
+    REQUIRE_NOTHROW(Database::open(tmp.path(), {.readOnly = true}));  // now the current version
 }
 
 TEST_CASE("smql check reports a scene index that does not match the records", "[storage][scene_index][check]") {

@@ -10,10 +10,13 @@
 
 #include <catch2/catch.hpp>
 
+#include "model/geometry.hpp"
 #include "model/types.hpp"
 #include "storage/codec.hpp"
+#include "storage/crc32c.hpp"
 #include "storage/database.hpp"
 #include "storage/lmdb_env.hpp"
+#include "storage/scene_index.hpp"
 
 namespace smql::storage::testing {
 
@@ -72,8 +75,75 @@ inline void setStoredSchemaVersion(const std::string& path, std::uint64_t versio
     });
 }
 
-// Makes the database at `path` what an smql of schema version 4 wrote: label entries of the ids alone.
+// A scene index record as an smql before schema version 6 wrote it (format 1): the bounds as
+// doubles, exactly model::worldAabb of each box, packed by them.
+inline std::string formatOneSceneIndex(model::NodeId sceneId, const std::vector<model::Node>& nodes,
+                                       std::uint64_t version) {
+    const SceneIndex rounded = SceneIndex::of(nodes, version);  // the categories and codes, in order
+    std::vector<model::Aabb> bounds;
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t s = 0; s < nodes.size(); ++s) {
+        bounds.push_back(model::worldAabb(nodes[s].box));
+        if (nodes[s].kind != model::NodeKind::Scene && nodes[s].geometry != model::GeometryKind::None)
+            order.push_back(s);
+    }
+    const std::vector<model::Aabb> blocks = packTiles(bounds, order);
+    std::string out;
+    auto varint = [&](std::uint64_t v) {
+        for (; v >= 0x80; v >>= 7) out.push_back(static_cast<char>((v & 0x7f) | 0x80));
+        out.push_back(static_cast<char>(v));
+    };
+    auto raw = [&](const void* data, std::size_t size) { out.append(static_cast<const char*>(data), size); };
+    out.push_back(1);
+    raw(&version, 8);
+    varint(rounded.categories.size());
+    for (const auto& category : rounded.categories) {
+        varint(category.size());
+        out += category;
+    }
+    varint(nodes.size());
+    varint(order.size());
+    varint(blocks.size());
+    for (std::size_t s = 0; s < nodes.size(); ++s) {
+        const SceneIndexEntry& e = rounded.entries[s];
+        raw(&bounds[s], sizeof(model::Aabb));
+        raw(&e.category, 4);
+        raw(&e.kind, 1);
+        raw(&e.geometry, 1);
+        raw(&e.hidden, 1);
+        raw(&e.reserved, 1);
+    }
+    raw(order.data(), order.size() * 4);
+    raw(blocks.data(), blocks.size() * sizeof(model::Aabb));
+    const codec::IdKey key = codec::idKey(sceneId);
+    const std::uint32_t crc = crc32c(out, crc32c({reinterpret_cast<const char*>(key.data()), key.size()}));
+    raw(&crc, 4);
+    return out;
+}
+
+// Makes the database at `path` what an smql of schema version 5 wrote: scene indexes of format 1.
+inline void asSchemaVersion5(const std::string& path) {
+    std::vector<std::pair<codec::IdKey, std::string>> records;
+    {
+        auto db = Database::open(path, {.readOnly = true});
+        auto read = db->beginRead();
+        for (const model::SceneInfo& info : read.scenes())
+            records.emplace_back(codec::idKey(info.id),
+                                 formatOneSceneIndex(info.id, nodesOf(read, info.id), info.version));
+    }
+    editTable(path, "scene_index", [&](MDB_txn* txn, MDB_dbi index) {
+        for (const auto& [id, record] : records) {
+            MDB_val key{id.size(), const_cast<std::uint8_t*>(id.data())}, value = toVal(record);
+            REQUIRE(mdb_put(txn, index, &key, &value, 0) == 0);
+        }
+    });
+    setStoredSchemaVersion(path, 5);
+}
+
+// Makes the database at `path` what an smql of schema version 4 wrote: scene indexes of format 1,
+// label entries of the ids alone.
 inline void asSchemaVersion4(const std::string& path) {
+    asSchemaVersion5(path);
     narrowLabels(path);
     setStoredSchemaVersion(path, 4);
 }
