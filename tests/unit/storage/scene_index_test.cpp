@@ -71,26 +71,20 @@ void requireIndexOfRecords(const ReadTransaction& txn, NodeId scene) {
     std::vector<std::uint32_t> order = stored->spatialOrder;
     std::sort(order.begin(), order.end());
     REQUIRE(order == spatial);
-    for (std::uint32_t s = 0; s < nodes.size(); ++s) {
-        // Each box's bounds rounded outward, to the nearest floats that hold them.
-        const model::Aabb exact = model::worldAabb(nodes[s].box), held = stored->entries[s].bounds.aabb();
-        REQUIRE(held.min.x <= exact.min.x);
-        REQUIRE(held.min.y <= exact.min.y);
-        REQUIRE(held.min.z <= exact.min.z);
-        REQUIRE(exact.max.x <= held.max.x);
-        REQUIRE(exact.max.y <= held.max.y);
-        REQUIRE(exact.max.z <= held.max.z);
-    }
-    for (std::size_t i = 0; i < stored->spatialOrder.size(); ++i) {
-        const model::Aabb block = stored->blockBounds.at(i / SceneIndex::kBlock).aabb();
-        const model::Aabb box = model::worldAabb(nodes[stored->spatialOrder[i]].box);
-        REQUIRE(block.min.x <= box.min.x);
-        REQUIRE(block.min.y <= box.min.y);
-        REQUIRE(block.min.z <= box.min.z);
-        REQUIRE(box.max.x <= block.max.x);
-        REQUIRE(box.max.y <= block.max.y);
-        REQUIRE(box.max.z <= block.max.z);
-    }
+    auto requireHolds = [](const model::Aabb& outer, const model::Aabb& inner) {
+        REQUIRE(outer.min.x <= inner.min.x);
+        REQUIRE(outer.min.y <= inner.min.y);
+        REQUIRE(outer.min.z <= inner.min.z);
+        REQUIRE(inner.max.x <= outer.max.x);
+        REQUIRE(inner.max.y <= outer.max.y);
+        REQUIRE(inner.max.z <= outer.max.z);
+    };
+    // Each box's bounds rounded outward, to floats that hold them, and each block's holding its boxes.
+    for (std::uint32_t s = 0; s < nodes.size(); ++s)
+        requireHolds(stored->entries[s].bounds.aabb(), model::worldAabb(nodes[s].box));
+    for (std::size_t i = 0; i < stored->spatialOrder.size(); ++i)
+        requireHolds(stored->blockBounds.at(i / SceneIndex::kBlock).aabb(),
+                     model::worldAabb(nodes[stored->spatialOrder[i]].box));
 }
 
 std::uint64_t sceneIndexEntries(const ReadTransaction& txn) {
