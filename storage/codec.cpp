@@ -1,6 +1,7 @@
 #include "storage/codec.hpp"
 
 #include <bit>
+#include <cstddef>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -636,8 +637,8 @@ static_assert(std::endian::native == std::endian::little, "the scene index store
 
 namespace {
 
-template <class T, class Allocator>
-void appendArray(std::string& out, const std::vector<T, Allocator>& values) {
+template <class T>
+void appendArray(std::string& out, const std::vector<T>& values) {
     out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
@@ -701,10 +702,11 @@ struct SceneIndexHeader {
     std::uint64_t entries = 0, ordered = 0, blocks = 0;
 };
 
-// Format 1's line: the bounds as model::Aabb (48 bytes), then the category, kind, geometry, hidden
-// and reserved bytes as SceneIndexEntry holds them.
-constexpr std::size_t kFormat1EntrySize = 56;
-static_assert(sizeof(model::Aabb) == 48 && sizeof(model::NodeKind) == 1 && sizeof(model::GeometryKind) == 1);
+// Format 1's line: the bounds as model::Aabb, then the category, kind, geometry, hidden and
+// reserved bytes as SceneIndexEntry lays them out after its own bounds.
+constexpr std::size_t kFormat1Codes = sizeof(model::Aabb);
+constexpr std::size_t kFormat1EntrySize = kFormat1Codes + sizeof(SceneIndexEntry) - offsetof(SceneIndexEntry, category);
+static_assert(kFormat1EntrySize == 56, "format 1 stored 56 bytes a node");
 
 SceneIndexHeader readSceneIndexHeader(Reader& r) {
     SceneIndexHeader header;
@@ -786,11 +788,14 @@ SceneIndex decodeSceneIndex(model::NodeId sceneId, std::string_view bytes, const
             std::memcpy(&exact, line, sizeof exact);
             SceneIndexEntry& entry = index.entries[e];
             entry.bounds = IndexBounds::around(exact);
-            std::memcpy(&entry.category, line + 48, 4);
-            std::memcpy(&entry.kind, line + 52, 1);
-            std::memcpy(&entry.geometry, line + 53, 1);
-            entry.hidden = static_cast<std::uint8_t>(line[54]);
-            entry.reserved = static_cast<std::uint8_t>(line[55]);
+            auto code = [&](auto& field, std::size_t at) {
+                std::memcpy(&field, line + kFormat1Codes + at - offsetof(SceneIndexEntry, category), sizeof field);
+            };
+            code(entry.category, offsetof(SceneIndexEntry, category));
+            code(entry.kind, offsetof(SceneIndexEntry, kind));
+            code(entry.geometry, offsetof(SceneIndexEntry, geometry));
+            code(entry.hidden, offsetof(SceneIndexEntry, hidden));
+            code(entry.reserved, offsetof(SceneIndexEntry, reserved));
         }
         index.pack();
     } else {

@@ -6,10 +6,8 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
 #include "model/geometry.hpp"
@@ -41,34 +39,12 @@ struct SceneIndexEntry {
 static_assert(std::is_trivially_copyable_v<SceneIndexEntry> && sizeof(SceneIndexEntry) == 32,
               "the stored array is these bytes");
 
-// The allocator of the entries: a resize leaves the new entries unwritten, since the decoder's one
-// copy writes every byte of them (value-initialising would write them all twice).
-template <class T>
-struct UnwrittenOnResize : std::allocator<T> {
-    template <class U>
-    struct rebind {
-        using other = UnwrittenOnResize<U>;
-    };
-    UnwrittenOnResize() = default;
-    template <class U>
-    explicit UnwrittenOnResize(const UnwrittenOnResize<U>&) noexcept {}
-    template <class U, class... Args>
-    void construct(U* at, Args&&... args) {
-        ::new (static_cast<void*>(at)) U(std::forward<Args>(args)...);
-    }
-    template <class U>
-    void construct(U* at) noexcept(std::is_nothrow_default_constructible_v<U>) {
-        ::new (static_cast<void*>(at)) U;
-    }
-};
-
 struct SceneIndex {
     // The scene version it describes (model::SceneInfo::version): one made before a write that
     // changed the scene is not believed.
     std::uint64_t version = 0;
-    std::vector<std::string> categories;  // distinct, in order of first use
-    std::vector<SceneIndexEntry, UnwrittenOnResize<SceneIndexEntry>>
-        entries;  // by slot: the scene node first, then its nodes in id order
+    std::vector<std::string> categories;   // distinct, in order of first use
+    std::vector<SceneIndexEntry> entries;  // by slot: the scene node first, then its nodes in id order
     // The slots of the nodes with geometry (the scene node left out) in an order that keeps near
     // boxes together (sort-tile-recursive, as an R-tree is packed), and the bounds of each run of
     // kBlock of them: a spatial query tests the blocks, then the boxes of the blocks it meets.

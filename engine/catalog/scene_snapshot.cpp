@@ -34,9 +34,8 @@ bool mayMeet(const model::Aabb& node, const model::Aabb& region) {
              region.max.y < node.min.y || node.max.z < region.min.z || region.max.z < node.min.z);
 }
 
-// mayMeet on a block's stored bounds and a region rounded outward to floats, and
-// relations::intersects on a box's stored bounds and a region rounded outward to floats (what meets
-// the region meets the rounded one): a box is tested in single precision, as it is stored.
+// mayMeet and relations::intersects on stored bounds and a region rounded outward to floats (what
+// meets the region meets the rounded one): blocks and boxes are tested in single precision, as stored.
 bool mayMeet(const storage::IndexBounds& node, const storage::IndexBounds& region) {
     return !(node.maxX < region.minX || region.maxX < node.minX || node.maxY < region.minY || region.maxY < node.minY ||
              node.maxZ < region.minZ || region.maxZ < node.minZ);
@@ -471,8 +470,11 @@ void SceneObstacles::within(const model::Aabb& region, std::vector<const model::
     std::vector<Slot> slots;
     scene_.intersecting(region, slots);
     // The index's bounds hold each box; its exact bounds decide.
-    for (Slot s : slots)
-        if (!scene_.hidden(s) && relations::intersects(bounds(scene_.node(s)), region)) out.push_back(&scene_.node(s));
+    for (Slot s : slots) {
+        if (scene_.hidden(s)) continue;
+        const model::Node& node = scene_.node(s);
+        if (relations::intersects(bounds(node), region)) out.push_back(&node);
+    }
 }
 
 void SceneObstacles::wallsWithin(const model::Aabb& region, std::vector<const model::Node*>& out) const {

@@ -79,20 +79,20 @@ public:
     // withCategory(relations::kWall), looked up once: near asks for the walls of every pair it tests.
     const std::vector<Slot>& walls() const { return *walls_; }
     const std::vector<Slot>& children(Slot slot) const;
-    // What a kind word (`object`) or `node` names, in id order: the nodes that are not hidden,
-    // the scene's root left out. Made once with the snapshot, since most statements name one.
+    // What a kind word (`object`) names, in id order: the nodes that are not hidden, the scene's
+    // root left out. Made once with the snapshot, since most statements name one.
     const std::vector<Slot>& shownOfKind(model::NodeKind kind) const;
-    // What `node` names, the same way: made the first time a statement asks, as few do.
+    // What `node` names, the same nodes of every kind: made the first time a statement asks, as few do.
     const std::vector<Slot>& shownNodes() const;
     std::vector<std::string> categories() const;
     // Names of the attributes any node of the scene carries (color, material ...), sorted.
     const std::vector<std::string>& attributeNames() const;
     // The spatial index over the boxes of the nodes with geometry (the scene node left out):
     // slots whose bounds() intersect `region` (unordered): every box that meets it, and perhaps one
-    // that misses it by less than a float's rounding, so callers test what they take exactly. It is an R-tree packed
-    // when the scene was stored: the stored blocks are its leaves, and the levels above them are packed from the
-    // blocks' bounds once a scene's first queries have scanned the blocks 32 times (3 us for 2,000
-    // boxes: no query waits long for a tree).
+    // that misses it by less than a float's rounding, so callers test what they take exactly. It is
+    // an R-tree packed when the scene was stored: the stored blocks are its leaves, and the levels
+    // above them are packed from the blocks' bounds once a scene's first queries have scanned the blocks 32 times (3 us
+    // for 2,000 boxes: no query waits long for a tree).
     void intersecting(const model::Aabb& region, std::vector<Slot>& out) const;
     // The same boxes by the (squared) gap between their bounds and a region, nearest first, one at
     // a time (which of equal gaps comes first is free): the stored blocks best first, a block's boxes
