@@ -15,6 +15,7 @@ packages=(
   libexif-dev  # photos' EXIF focal length for an unknown camera (ingest/capture/camera_source.cpp)
   libdeflate-dev  # cameras' PNG frames (ingest/capture/png_decoder.cpp)
   libturbojpeg0-dev  # the things' crops as JPEG (ingest/capture/media.cpp), without loading OpenCV's imgcodecs
+  libxnnpack-dev libpthreadpool-dev libonnx-dev libprotobuf-dev  # the models' graphs run on XNNPACK (ingest/pipeline/network.cpp)
   clang libclang-rt-14-dev llvm  # the fuzzing build (scripts/fuzz.sh): libFuzzer, ASan, UBSan, symbolizer
   clang-format clang-tidy-22  # make format, make lint (scripts/lint.sh); Debian 12's newest clang-tidy, the fastest
   tmux  # the shell's terminal test (Ctrl-C, widths)

@@ -17,6 +17,7 @@
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ingest/pipeline/network.hpp"
 #include "model/error.hpp"
 
 #ifndef SMQL_MODEL_DIR
@@ -116,29 +117,16 @@ std::vector<std::string> readClassNames(const fs::path& path) {
     return names;
 }
 
-cv::dnn::Net loadModel(const fs::path& model) {
-    cv::dnn::Net net;
-    try {
-        net = cv::dnn::readNetFromONNX(model.string());
-    } catch (const cv::Exception& e) {
-        throw Error(ErrorKind::Input, fmt::format("{}: not a model OpenCV can load: {}", model.string(), e.msg),
-                    std::nullopt, "prepare it with scripts/detector/setup.sh");
-    }
-    net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-    net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
-    return net;
-}
-
 class NanoDetDetector : public ObjectDetector {
 public:
     NanoDetDetector(const DetectorFiles& files, double minScore)
-        : minScore_(minScore), file_(files.model.filename().string()), net_(loadModel(files.model)) {
+        : minScore_(minScore), file_(files.model.filename().string()), net_(loadNetwork(files.model)) {
         classes_ = readClassNames(files.classes);
         for (const auto& name : classes_) categories_.push_back(memoryCategory(name));
-        outputNames_ = net_.getUnconnectedOutLayersNames();
-        if (outputNames_.size() != 2 * kStrides.size())
-            throw Error(ErrorKind::Input, fmt::format("{}: {} outputs, NanoDet has {} (scores and boxes per level)",
-                                                      files.model.string(), outputNames_.size(), 2 * kStrides.size()));
+        if (net_->outputs().size() != 2 * kStrides.size())
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: {} outputs, NanoDet has {} (scores and boxes per level)", files.model.string(),
+                                    net_->outputs().size(), 2 * kStrides.size()));
     }
 
     std::vector<Detection> detect(const cv::Mat& bgr) override {
@@ -147,9 +135,7 @@ public:
         resized.convertTo(input, CV_32FC3);
         cv::subtract(input, kMean, input);
         cv::divide(input, kStd, input);
-        net_.setInput(cv::dnn::blobFromImage(input));
-        std::vector<cv::Mat> outputs;
-        net_.forward(outputs, outputNames_);
+        const std::vector<cv::Mat> outputs = net_->run(cv::dnn::blobFromImage(input));
 
         std::vector<cv::Rect2d> boxes;
         std::vector<float> scores;
@@ -212,9 +198,8 @@ private:
 
     double minScore_;
     std::string file_;
-    cv::dnn::Net net_;
+    std::unique_ptr<Network> net_;
     std::vector<std::string> classes_, categories_;
-    std::vector<std::string> outputNames_;
 };
 
 // The Open Images SSD: its graph decodes the anchors; what is left is the best class of each anchor
@@ -222,15 +207,16 @@ private:
 class SsdDetector : public ObjectDetector {
 public:
     SsdDetector(const DetectorFiles& files, double minScore)
-        : minScore_(minScore), file_(files.model.filename().string()), net_(loadModel(files.model)) {
+        : minScore_(minScore),
+          file_(files.model.filename().string()),
+          net_(loadNetwork(files.model, {"boxes", "scores"})) {
         for (const auto& name : readClassNames(files.classes)) categories_.push_back(memoryCategory(name));
     }
 
     std::vector<Detection> detect(const cv::Mat& bgr) override {
-        net_.setInput(cv::dnn::blobFromImage(bgr, 1 / 127.5, cv::Size(kSsdInputSize, kSsdInputSize),
+        const std::vector<cv::Mat> outputs =
+            net_->run(cv::dnn::blobFromImage(bgr, 1 / 127.5, cv::Size(kSsdInputSize, kSsdInputSize),
                                              cv::Scalar(127.5, 127.5, 127.5), /*swapRB=*/true, /*crop=*/false));
-        std::vector<cv::Mat> outputs;
-        net_.forward(outputs, std::vector<cv::String>{"boxes", "scores"});
         const cv::Mat& boxes = outputs[0];
         const cv::Mat& scores = outputs[1];
         if (boxes.dims != 3 || scores.dims != 3 || boxes.size[2] != 4 || scores.size[1] != boxes.size[1] ||
@@ -261,7 +247,7 @@ public:
 private:
     double minScore_;
     std::string file_;
-    cv::dnn::Net net_;
+    std::unique_ptr<Network> net_;
     std::vector<std::string> categories_;
 };
 

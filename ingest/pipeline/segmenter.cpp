@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "ingest/geometry/typical_sizes.hpp"
+#include "ingest/pipeline/network.hpp"
 #include "model/error.hpp"
 
 namespace smql::ingest {
@@ -23,17 +24,8 @@ constexpr const char* kLowResolution = "logits_lowres";
 
 class DeepLabSegmenter : public SemanticSegmenter {
 public:
-    explicit DeepLabSegmenter(const DetectorFiles& files) : file_(files.model.filename().string()) {
-        try {
-            net_ = cv::dnn::readNetFromONNX(files.model.string());
-        } catch (const cv::Exception& e) {
-            throw Error(ErrorKind::Input,
-                        fmt::format("{}: not a model OpenCV can load: {}", files.model.string(), e.msg), std::nullopt,
-                        "prepare it with scripts/detector/setup.sh");
-        }
-        net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-        net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
-        output_ = lowResolutionProducer();
+    explicit DeepLabSegmenter(const DetectorFiles& files)
+        : file_(files.model.filename().string()), net_(loadNetwork(files.model, {kLowResolution})) {
         std::ifstream in(files.classes);
         if (!in) throw Error(ErrorKind::Input, fmt::format("{}: cannot read the class names", files.classes.string()));
         for (std::string line; std::getline(in, line);) {
@@ -43,9 +35,9 @@ public:
     }
 
     cv::Mat1b segment(const cv::Mat& bgr) override {
-        net_.setInput(cv::dnn::blobFromImage(bgr, 1 / 127.5, kInput, cv::Scalar(127.5, 127.5, 127.5), /*swapRB=*/true,
-                                             /*crop=*/false));
-        cv::Mat logits = net_.forward(output_);
+        cv::Mat logits = net_->run(cv::dnn::blobFromImage(bgr, 1 / 127.5, kInput, cv::Scalar(127.5, 127.5, 127.5),
+                                                          /*swapRB=*/true, /*crop=*/false))
+                             .front();
         const int classes = logits.size[1], rows = logits.size[2], columns = logits.size[3];
         if (logits.dims != 4 || classes != static_cast<int>(categories_.size()))
             throw Error(ErrorKind::Input,
@@ -76,21 +68,8 @@ public:
     std::string describe() const override { return file_; }
 
 private:
-    // OpenCV runs every layer numbered up to the one asked for. The graph's named output is an identity
-    // layer numbered after the full-size upsampling (a 31 x 31 transposed convolution a class, 18 % of the
-    // model's time) that feeds the other output, which is not used: asking for the layer that makes the
-    // low-resolution scores gives the same tensor without it.
-    std::string lowResolutionProducer() {
-        const int id = net_.getLayerId(kLowResolution);
-        if (id < 0) throw Error(ErrorKind::Input, fmt::format("{}: has no output '{}'", file_, kLowResolution));
-        const std::vector<cv::Ptr<cv::dnn::Layer>> inputs = net_.getLayerInputs(id);
-        if (net_.getLayer(id)->type == "Identity" && inputs.size() == 1) return inputs.front()->name;
-        return kLowResolution;
-    }
-
     std::string file_;
-    cv::dnn::Net net_;
-    std::string output_;
+    std::unique_ptr<Network> net_;
     std::vector<std::string> categories_;
 };
 
