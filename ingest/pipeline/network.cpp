@@ -135,91 +135,42 @@ struct Value {
 // overlap, as the steps run in order.
 class XnnpackNetwork : public Network {
 public:
-    XnnpackNetwork(const onnx::ModelProto& model, const std::vector<std::string>& wanted) {
+    XnnpackNetwork(const onnx::ModelProto& model, const std::string& file, const std::vector<std::string>& wanted) {
         const auto& graph = model.graph();
-        opset_ = 1;
         for (const auto& o : model.opset_import())
             if (o.domain().empty() || o.domain() == "ai.onnx") opset_ = o.version();
-        for (const auto& t : graph.initializer()) constants_[t.name()] = constantOf(t);
+        readConstants(graph);
         for (const auto& n : graph.node())
-            if (n.op_type() == "Constant") {
-                const auto* value = attribute(n, "value");
-                if (!value || !value->has_t()) throw Unsupported{"a Constant without a tensor value"};
-                constants_[n.output(0)] = constantOf(value->t());
-            }
-        // Identity names its input again.
-        std::map<std::string, std::string> same;
-        const auto resolve = [&](std::string name) {
-            for (auto it = same.find(name); it != same.end(); it = same.find(name)) name = it->second;
-            return name;
-        };
-        for (const auto& n : graph.node())
-            if (n.op_type() == "Identity" && n.input_size() == 1) same[n.output(0)] = n.input(0);
-
+            if (n.op_type() == "Identity" && n.input_size() == 1) same_[n.output(0)] = n.input(0);
         outputs_ = wanted;
         if (outputs_.empty())
             for (const auto& o : graph.output()) outputs_.push_back(o.name());
-        std::map<std::string, const onnx::NodeProto*> producer;
-        for (const auto& n : graph.node())
-            for (const auto& o : n.output()) producer[o] = &n;
-        // The nodes the outputs need, in the graph's (topological) order.
-        std::set<const onnx::NodeProto*> needed;
-        std::vector<std::string> open;
-        for (const auto& o : outputs_) {
-            if (!producer.count(o) && !constants_.count(o))
-                throw Error(ErrorKind::Input, fmt::format("the graph has no output '{}'", o));
-            open.push_back(resolve(o));
-        }
-        while (!open.empty()) {
-            const std::string name = open.back();
-            open.pop_back();
-            auto p = producer.find(name);
-            if (p == producer.end() || p->second->op_type() == "Constant" || !needed.insert(p->second).second) continue;
-            for (const auto& i : p->second->input())
-                if (!i.empty()) open.push_back(resolve(i));
-        }
-        std::vector<const onnx::NodeProto*> nodes;
-        for (const auto& n : graph.node())
-            if (needed.count(&n) && n.op_type() != "Identity") nodes.push_back(&n);
+        const std::vector<const onnx::NodeProto*> nodes = neededNodes(graph, file);
 
         // The last node that reads each tensor; the outputs live to the end.
-        for (std::size_t k = 0; k < nodes.size(); ++k)
-            for (const auto& i : nodes[k]->input()) lastUse_[resolve(i)] = k;
-        for (const auto& o : outputs_) lastUse_[resolve(o)] = std::numeric_limits<std::size_t>::max();
         std::map<std::string, int> readers;
-        for (const auto* n : nodes)
-            for (const auto& i : n->input()) ++readers[resolve(i)];
-
-        // The input.
-        for (const auto& i : graph.input()) {
-            if (constants_.count(i.name())) continue;
-            if (!input_.empty()) throw Unsupported{"more than one input"};
-            input_ = i.name();
-            for (const auto& d : i.type().tensor_type().shape().dim()) {
-                if (!d.has_dim_value() || d.dim_value() <= 0)
-                    throw Unsupported{fmt::format("the input '{}' has a size not fixed in the graph", i.name())};
-                inputShape_.push_back(d.dim_value());
+        for (std::size_t k = 0; k < nodes.size(); ++k)
+            for (const auto& i : nodes[k]->input()) {
+                lastUse_[resolve(i)] = k;
+                ++readers[resolve(i)];
             }
-        }
-        if (inputShape_.size() != 4) throw Unsupported{"an input that is not an N x C x H x W image"};
-        inputBuffer_ = acquire(elements(inputShape_));
-        values_[input_] = Value{inputShape_, Layout::Image, inputBuffer_};
+        for (const auto& o : outputs_) lastUse_[resolve(o)] = std::numeric_limits<std::size_t>::max();
 
+        planInput(graph);
         std::set<const onnx::NodeProto*> folded;
         for (std::size_t k = 0; k < nodes.size(); ++k) {
             const onnx::NodeProto& node = *nodes[k];
             if (folded.count(&node)) continue;
             std::vector<std::string> inputs;
             for (const auto& i : node.input()) inputs.push_back(i.empty() ? i : resolve(i));
-            // A Clip or Relu that alone reads a convolution's output is its output's bounds.
+            // A Clip or Relu that alone reads a convolution's output (not itself an output) bounds it.
             const onnx::NodeProto* activation = nullptr;
             if (node.op_type() == "Conv" && readers[node.output(0)] == 1 &&
-                lastUse_[node.output(0)] != std::numeric_limits<std::size_t>::max() && k + 1 < nodes.size()) {
-                for (std::size_t j = k + 1; j < nodes.size(); ++j)
+                lastUse_[node.output(0)] != std::numeric_limits<std::size_t>::max())
+                for (std::size_t j = k + 1; j < nodes.size() && !activation; ++j)
                     if ((nodes[j]->op_type() == "Clip" || nodes[j]->op_type() == "Relu") &&
                         resolve(nodes[j]->input(0)) == node.output(0))
                         activation = nodes[j];
-            }
             plan(node, inputs, activation);
             if (activation) folded.insert(activation);
             for (const auto& i : inputs) {
@@ -265,6 +216,66 @@ public:
     std::string_view engine() const override { return "XNNPACK"; }
 
 private:
+    // The graph's initializers and Constant nodes.
+    void readConstants(const onnx::GraphProto& graph) {
+        for (const auto& t : graph.initializer()) constants_[t.name()] = constantOf(t);
+        for (const auto& n : graph.node())
+            if (n.op_type() == "Constant") {
+                const auto* value = attribute(n, "value");
+                if (!value || !value->has_t()) throw Unsupported{"a Constant without a tensor value"};
+                constants_[n.output(0)] = constantOf(value->t());
+            }
+    }
+
+    // The tensor an Identity's output copies (the name itself when none does).
+    std::string resolve(std::string name) const {
+        for (auto it = same_.find(name); it != same_.end(); it = same_.find(name)) name = it->second;
+        return name;
+    }
+
+    // The nodes the outputs need, in the graph's (topological) order, Identity's left out.
+    std::vector<const onnx::NodeProto*> neededNodes(const onnx::GraphProto& graph, const std::string& file) const {
+        std::map<std::string, const onnx::NodeProto*> producer;
+        for (const auto& n : graph.node())
+            for (const auto& o : n.output()) producer[o] = &n;
+        std::set<const onnx::NodeProto*> needed;
+        std::vector<std::string> open;
+        for (const auto& o : outputs_) {
+            if (!producer.count(o) && !constants_.count(o))
+                throw Error(ErrorKind::Input, fmt::format("{}: the graph has no output '{}'", file, o));
+            open.push_back(resolve(o));
+        }
+        while (!open.empty()) {
+            const std::string name = open.back();
+            open.pop_back();
+            auto p = producer.find(name);
+            if (p == producer.end() || p->second->op_type() == "Constant" || !needed.insert(p->second).second) continue;
+            for (const auto& i : p->second->input())
+                if (!i.empty()) open.push_back(resolve(i));
+        }
+        std::vector<const onnx::NodeProto*> nodes;
+        for (const auto& n : graph.node())
+            if (needed.count(&n) && n.op_type() != "Identity") nodes.push_back(&n);
+        return nodes;
+    }
+
+    // The one input, an image of a size the graph fixes.
+    void planInput(const onnx::GraphProto& graph) {
+        for (const auto& i : graph.input()) {
+            if (constants_.count(i.name())) continue;
+            if (!input_.empty()) throw Unsupported{"more than one input"};
+            input_ = i.name();
+            for (const auto& d : i.type().tensor_type().shape().dim()) {
+                if (!d.has_dim_value() || d.dim_value() <= 0)
+                    throw Unsupported{fmt::format("the input '{}' has a size not fixed in the graph", i.name())};
+                inputShape_.push_back(d.dim_value());
+            }
+        }
+        if (inputShape_.size() != 4) throw Unsupported{"an input that is not an N x C x H x W image"};
+        inputBuffer_ = acquire(elements(inputShape_));
+        values_[input_] = Value{inputShape_, Layout::Image, inputBuffer_};
+    }
+
     struct Buffer {
         std::unique_ptr<float[]> data;
         std::size_t size = 0;
@@ -732,6 +743,8 @@ private:
         shape[axis] = 0;
         for (const auto& p : parts) {
             if (p.shape.size() != shape.size()) throw Unsupported{"a concatenation of tensors of different ranks"};
+            for (std::size_t d = 0; d < shape.size(); ++d)
+                if (d != axis && p.shape[d] != shape[d]) throw Unsupported{"a concatenation of tensors of other sizes"};
             shape[axis] += p.shape[axis];
         }
         const Value y = output(out, shape, channels ? Layout::Image : Layout::Plain);
@@ -874,6 +887,7 @@ private:
 
     std::int64_t opset_ = 1;
     std::map<std::string, Constant> constants_;  // while planning
+    std::map<std::string, std::string> same_;    // an Identity's output -> its input
     std::map<std::string, std::size_t> lastUse_;
     std::set<std::string> constantBuffers_;
     std::string input_;
@@ -940,7 +954,7 @@ std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::ve
     std::ifstream in(model, std::ios::binary);
     if (!in || !proto.ParseFromIstream(&in)) return refuse(fmt::format("{}: not an ONNX graph", model.string()));
     try {
-        return std::make_unique<XnnpackNetwork>(proto, outputs);
+        return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs);
     } catch (const Unsupported& u) {
         return refuse(u.why);
     }
