@@ -485,7 +485,14 @@ public:
           packagedOnDense_(options.detectorModel.empty()),
           streams_(std::thread::hardware_concurrency() >= 2 ? kStreams : 1),
           models_(streams_) {
+        // Every stream's models loaded at once, each on a thread of its own: the first keyframe waits for the
+        // first stream's anyway, and the second's, loaded when it first ran, took a core from the first's
+        // models mid-pass (TUM fr1/rpy 3.35-3.39 -> 2.95-3.19 s, docs/benchmarks.md).
+        std::vector<std::future<Models>> loading;
+        for (std::size_t s = 1; s < streams_; ++s)
+            loading.push_back(std::async(std::launch::async, [this] { return loadModels(); }));
         models_[0] = loadModels();
+        for (std::size_t s = 1; s < streams_; ++s) models_[s] = loading[s - 1].get();
         // OpenCV's own threads give a model about 1.5 times its speed on two cores; a model a stream, each on one
         // core, gives 1.7 (NanoDet, the SSD and DeepLab on a TUM frame: 116 -> 99 ms a frame); the rest of the
         // cores go to each stream. One core keeps one stream, with OpenCV's threads as they are.
@@ -514,8 +521,8 @@ public:
     }
 
 private:
-    // Two streams keep two cores busy (each stream's models loaded the first time it runs); more would hold
-    // more models in memory for a machine this size.
+    // Two streams keep two cores busy (each with models of its own, all loaded at the start); more would
+    // hold more models in memory for a machine this size.
     static constexpr std::size_t kStreams = 2;
     struct Models {
         std::unique_ptr<ObjectDetector> detector;
@@ -555,7 +562,6 @@ private:
 
     FrameDetections detectionsOf(const PosedFrame& frame, std::size_t stream) override {
         Models& models = models_[stream];
-        if (!models.detector) models = loadModels();  // not counted in a keyframe's time
         auto start = std::chrono::steady_clock::now();
         auto detections = detect(models, frame.images.color);
         const double milliseconds =
