@@ -1,4 +1,4 @@
-// The detectors through OpenCV's DNN module (docs/ingest.md "Detector").
+// The detectors, their graphs run by a Network (network.hpp; docs/ingest.md "Detector").
 // NanoDet's graph (scripts/detector/tfjs_to_onnx.py) takes a 1x3x416x416 BGR
 // image normalised by NanoDet's mean and deviation, and gives per level
 // (strides 8, 16, 32) class scores (sigmoid, N x 80) and box sides as

@@ -1,6 +1,6 @@
 // Object detectors that run here (offline, CPU): NanoDet, trained on COCO's
 // 80 classes, and the Open Images SSD of MediaPipe's Objectron, converted to
-// ONNX at set-up (scripts/detector/) and run by OpenCV's DNN module.
+// ONNX at set-up (scripts/detector/) and run on XNNPACK (network.hpp).
 // `--objects detect` feeds their boxes to the same lifting and fusion as
 // detections.json (objects_from_detections.cpp); docs/ingest.md "Detector".
 #pragma once

@@ -493,9 +493,10 @@ public:
             loading.push_back(std::async(std::launch::async, [this] { return loadModels(); }));
         models_[0] = loadModels();
         for (std::size_t s = 1; s < streams_; ++s) models_[s] = loading[s - 1].get();
-        // OpenCV's own threads give a model about 1.5 times its speed on two cores; a model a stream, each on one
-        // core, gives 1.7 (NanoDet, the SSD and DeepLab on a TUM frame: 116 -> 99 ms a frame); the rest of the
-        // cores go to each stream. One core keeps one stream, with OpenCV's threads as they are.
+        // A stream's models run on its thread, a model a stream on each core: through OpenCV's DNN that gave 1.7
+        // times one model's speed where OpenCV's own threads gave 1.5 (NanoDet, the SSD and DeepLab on a TUM
+        // frame: 116 -> 99 ms a frame). OpenCV's threads (its image operations, and a graph it runs) are the
+        // rest of the cores a stream meanwhile; one core keeps one stream, with OpenCV's threads as they are.
         if (streams_ > 1)
             threadsPerStream_.emplace(
                 std::max(1, static_cast<int>(std::thread::hardware_concurrency() / static_cast<unsigned>(streams_))));

@@ -1,5 +1,5 @@
 // The semantic segmenter that runs here (offline, CPU): DeepLab v3 (MobileNetV2) trained on PASCAL VOC,
-// converted to ONNX at set-up (scripts/detector/setup.sh) and run by OpenCV's DNN module. It names
+// converted to ONNX at set-up (scripts/detector/setup.sh) and run on XNNPACK (network.hpp). It names
 // every pixel of a frame; `--objects detect` cuts each detection of a kind it knows (chairs, sofas,
 // tables, tvs, plants, bottles) to the pixels it names so, which keeps a table's box apart from the
 // chairs in it (docs/ingest.md, "Detector").

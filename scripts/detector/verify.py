@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Checks the ONNX conversion against the original model: runs the TF.js graph
 (Node, @tensorflow/tfjs on its pure JavaScript CPU backend) and the ONNX graph
-(OpenCV's DNN, as smql runs it) on the same input blobs made from real images,
+(OpenCV's DNN, which smql's XNNPACK runner is held to) on the same input blobs made from real images,
 and prints the largest absolute difference of every raw output.
 
 Usage: verify.py MODEL.json MODEL.onnx TFJS_DIR IMAGE...

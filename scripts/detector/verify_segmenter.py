@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Checks the ONNX conversion of the DeepLab VOC segmenter against the original:
 runs the TF.js graph (Node, @tensorflow/tfjs on its pure JavaScript CPU
-backend) and each ONNX model (OpenCV's DNN, 2 threads, as smql runs it) on real
+backend) and each ONNX model (OpenCV's DNN, 2 threads, which smql's XNNPACK runner is held to) on real
 frames, and prints per frame and model:
   - max |onnx - tfjs| of the logits, where the ONNX model's grid is the TF.js one;
   - agree: the share of the frame's pixels whose arg max agrees (both sets of
