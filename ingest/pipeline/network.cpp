@@ -376,39 +376,50 @@ private:
         });
     }
 
-    void plan(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const onnx::NodeProto* activation) {
-        const std::string& op = node.op_type();
-        const std::string& out = activation ? activation->output(0) : node.output(0);
-        if (op == "Conv")
-            planConv(node, inputs, activation, out);
-        else if (op == "Clip" || op == "Relu")
-            planClamp(node, inputs, out);
-        else if (op == "LeakyRelu" || op == "Sigmoid" || op == "Exp")
-            planUnary(node, inputs, out);
-        else if (op == "MaxPool")
-            planMaxPool(node, inputs, out);
-        else if (op == "GlobalAveragePool")
-            planGlobalAveragePool(inputs, out);
-        else if (op == "Resize" || op == "Upsample")
-            planResize(node, inputs, out);
-        else if (op == "Add" || op == "Sub" || op == "Mul")
-            planBinary(node, inputs, out);
-        else if (op == "Concat")
-            planConcat(node, inputs, out);
-        else if (op == "Split")
-            planSplit(node, inputs);
-        else if (op == "Slice")
-            planSlice(node, inputs, out);
-        else if (op == "Reshape" || op == "Flatten")
-            planReshape(node, inputs, out);
-        else if (op == "Transpose")
-            planTranspose(node, inputs, out);
-        else
-            throw Unsupported{fmt::format("the operator {} ('{}')", op, node.name())};
+    // A node as its planner reads it: its inputs' names (an Identity's resolved), the Clip or Relu folded
+    // into it, and the name its output takes (the activation's, when one is folded).
+    struct NodeToPlan {
+        const onnx::NodeProto& node;
+        const std::vector<std::string>& inputs;
+        const onnx::NodeProto* activation;
+        const std::string& out;
+    };
+    using Planner = void (XnnpackNetwork::*)(const NodeToPlan&);
+    // The operators the plan knows (network.hpp lists them), each with its planner.
+    static const std::map<std::string_view, Planner>& planners() {
+        static const std::map<std::string_view, Planner> table{
+            {"Conv", &XnnpackNetwork::planConv},
+            {"Clip", &XnnpackNetwork::planClamp},
+            {"Relu", &XnnpackNetwork::planClamp},
+            {"LeakyRelu", &XnnpackNetwork::planUnary},
+            {"Sigmoid", &XnnpackNetwork::planUnary},
+            {"Exp", &XnnpackNetwork::planUnary},
+            {"MaxPool", &XnnpackNetwork::planMaxPool},
+            {"GlobalAveragePool", &XnnpackNetwork::planGlobalAveragePool},
+            {"Resize", &XnnpackNetwork::planResize},
+            {"Upsample", &XnnpackNetwork::planResize},
+            {"Add", &XnnpackNetwork::planBinary},
+            {"Sub", &XnnpackNetwork::planBinary},
+            {"Mul", &XnnpackNetwork::planBinary},
+            {"Concat", &XnnpackNetwork::planConcat},
+            {"Split", &XnnpackNetwork::planSplit},
+            {"Slice", &XnnpackNetwork::planSlice},
+            {"Reshape", &XnnpackNetwork::planReshape},
+            {"Flatten", &XnnpackNetwork::planReshape},
+            {"Transpose", &XnnpackNetwork::planTranspose},
+        };
+        return table;
     }
 
-    void planConv(const onnx::NodeProto& node, const std::vector<std::string>& inputs,
-                  const onnx::NodeProto* activation, const std::string& out) {
+    void plan(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const onnx::NodeProto* activation) {
+        auto planner = planners().find(node.op_type());
+        if (planner == planners().end())
+            throw Unsupported{fmt::format("the operator {} ('{}')", node.op_type(), node.name())};
+        (this->*planner->second)({node, inputs, activation, activation ? activation->output(0) : node.output(0)});
+    }
+
+    void planConv(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         const Value x = asImage(inputs.at(0));
         const Constant& w = constant(inputs.at(1));
         if (w.shape.size() != 4) throw Unsupported{"a convolution that is not 2-d"};
@@ -486,7 +497,8 @@ private:
         return {low, high};
     }
 
-    void planClamp(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planClamp(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         const Value x = input(inputs.at(0));
         const auto [low, high] = clampBounds(node);
         xnn_operator_t clamp = nullptr;
@@ -498,7 +510,8 @@ private:
         run(clamp);
     }
 
-    void planUnary(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planUnary(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         const Value x = input(inputs.at(0));
         const Value y = output(out, x.shape, x.layout);
         const auto n = static_cast<std::size_t>(elements(x.shape));
@@ -524,7 +537,8 @@ private:
         run(unary);
     }
 
-    void planMaxPool(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planMaxPool(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         const Value x = asImage(inputs.at(0));
         const auto kernel = intsAttribute(node, "kernel_shape"), strides = intsAttribute(node, "strides", {1, 1});
         const auto pads = intsAttribute(node, "pads", {0, 0, 0, 0}),
@@ -557,7 +571,8 @@ private:
         run(pool);
     }
 
-    void planGlobalAveragePool(const std::vector<std::string>& inputs, const std::string& out) {
+    void planGlobalAveragePool(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         const Value x = asImage(inputs.at(0));
         const auto channels = static_cast<std::size_t>(x.shape[1]);
         xnn_operator_t pool = nullptr;
@@ -575,7 +590,8 @@ private:
     }
 
     // The output's size from `sizes`, else from `scales` (opset 11 on: X, roi, scales, sizes; before: X, scales).
-    void planResize(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planResize(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         const Value x = asImage(inputs.at(0));
         const std::size_t scalesAt = opset_ >= 11 && node.op_type() == "Resize" ? 2 : 1;
         Shape shape;
@@ -666,7 +682,8 @@ private:
         });
     }
 
-    void planBinary(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planBinary(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         Value a = input(inputs.at(0)), b = input(inputs.at(1));
         std::vector<std::size_t> shapeA, shapeB;
         Shape result;
@@ -731,7 +748,8 @@ private:
         return b;
     }
 
-    void planConcat(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planConcat(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         std::vector<Value> parts;
         for (const auto& i : inputs) parts.push_back(input(i));
         const std::size_t axis = axisOf(intAttribute(node, "axis", 0), parts.front().shape.size());
@@ -778,7 +796,8 @@ private:
         });
     }
 
-    void planSplit(const onnx::NodeProto& node, const std::vector<std::string>& inputs) {
+    void planSplit(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         Value x = input(inputs.at(0));
         const std::size_t axis = axisOf(intAttribute(node, "axis", 0), x.shape.size());
         if (x.layout == Layout::Image && axis != 1) x = asPlain(inputs[0]);
@@ -796,7 +815,8 @@ private:
         }
     }
 
-    void planSlice(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planSlice(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         if (opset_ < 10) throw Unsupported{"a Slice of opset 1 (its bounds as attributes)"};
         Value x = input(inputs.at(0));
         const auto starts = constant(inputs.at(1)).integers, ends = constant(inputs.at(2)).integers;
@@ -821,7 +841,8 @@ private:
         planPiece(x, axis, begin, end - begin, out);
     }
 
-    void planReshape(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planReshape(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         const Value x = asPlain(inputs.at(0));
         Shape shape;
         if (node.op_type() == "Flatten") {
@@ -848,7 +869,8 @@ private:
         steps_.push_back([this, x, y, n] { std::memcpy(data(y), data(x), sizeof(float) * n); });
     }
 
-    void planTranspose(const onnx::NodeProto& node, const std::vector<std::string>& inputs, const std::string& out) {
+    void planTranspose(const NodeToPlan& planned) {
+        const auto& [node, inputs, activation, out] = planned;
         Value x = input(inputs.at(0));
         std::vector<std::int64_t> perm = intsAttribute(node, "perm");
         if (perm.empty())
