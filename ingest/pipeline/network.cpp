@@ -36,6 +36,17 @@ struct Unsupported {
     std::string why;
 };
 
+// The extent along one axis of a sliding window's output (a convolution's, a pooling's); a window that
+// makes no output, or whose numbers are not a window's, is refused.
+std::int64_t windowExtent(std::int64_t size, std::int64_t padBefore, std::int64_t padAfter, std::int64_t kernel,
+                          std::int64_t stride, std::int64_t dilation) {
+    if (kernel < 1 || stride < 1 || dilation < 1 || padBefore < 0 || padAfter < 0)
+        throw Unsupported{"a window whose size, stride or dilation is under 1, or a negative pad"};
+    const std::int64_t span = size + padBefore + padAfter - ((kernel - 1) * dilation + 1);
+    if (span < 0) throw Unsupported{"a window larger than its padded input"};
+    return span / stride + 1;
+}
+
 // A tensor the graph holds (initializers, Constant nodes): floats, or integers (shapes, axes, sizes).
 struct Constant {
     Shape shape;
@@ -141,7 +152,8 @@ public:
             if (o.domain().empty() || o.domain() == "ai.onnx") opset_ = o.version();
         readConstants(graph);
         for (const auto& n : graph.node())
-            if (n.op_type() == "Identity" && n.input_size() == 1) same_[n.output(0)] = n.input(0);
+            if (n.op_type() == "Identity" && n.input_size() == 1 && n.output_size() == 1)
+                same_[n.output(0)] = n.input(0);
         outputs_ = wanted;
         if (outputs_.empty())
             for (const auto& o : graph.output()) outputs_.push_back(o.name());
@@ -255,7 +267,11 @@ private:
         }
         std::vector<const onnx::NodeProto*> nodes;
         for (const auto& n : graph.node())
-            if (needed.count(&n) && n.op_type() != "Identity") nodes.push_back(&n);
+            if (needed.count(&n) && n.op_type() != "Identity") {
+                if (n.input_size() < 1 || n.output_size() < 1 || n.input(0).empty())
+                    throw Unsupported{fmt::format("the node '{}' without an input or an output", n.name())};
+                nodes.push_back(&n);
+            }
         return nodes;
     }
 
@@ -422,12 +438,16 @@ private:
         const auto& [node, inputs, activation, out] = planned;
         const Value x = asImage(inputs.at(0));
         const Constant& w = constant(inputs.at(1));
-        if (w.shape.size() != 4) throw Unsupported{"a convolution that is not 2-d"};
+        if (w.shape.size() != 4 || w.floats.empty())
+            throw Unsupported{"a convolution whose weights are not 2-d floats"};
         const std::int64_t groups = intAttribute(node, "group", 1), outC = w.shape[0], groupIn = w.shape[1];
         const std::int64_t kh = w.shape[2], kw = w.shape[3], inC = x.shape[1];
-        if (groupIn * groups != inC || outC % groups) throw Unsupported{"a convolution's groups do not fit"};
+        if (groups < 1 || groupIn * groups != inC || outC % groups)
+            throw Unsupported{"a convolution's groups do not fit"};
         const auto strides = intsAttribute(node, "strides", {1, 1}),
                    dilations = intsAttribute(node, "dilations", {1, 1});
+        if (strides.size() != 2 || dilations.size() != 2 || *std::min_element(strides.begin(), strides.end()) < 1)
+            throw Unsupported{"a convolution's strides or dilations"};
         auto pads = intsAttribute(node, "pads", {0, 0, 0, 0});  // top, left, bottom, right
         const std::string autoPad = stringAttribute(node, "auto_pad", "NOTSET");
         const std::int64_t h = x.shape[2], wd = x.shape[3];
@@ -444,10 +464,9 @@ private:
                     upper ? pw - pw / 2 : pw / 2};
         } else if (autoPad != "NOTSET")
             throw Unsupported{"a convolution's auto_pad " + autoPad};
-        if (strides.size() != 2 || dilations.size() != 2 || pads.size() != 4)
-            throw Unsupported{"a convolution's strides, dilations or pads"};
-        const std::int64_t oh = (h + pads[0] + pads[2] - ((kh - 1) * dilations[0] + 1)) / strides[0] + 1;
-        const std::int64_t ow = (wd + pads[1] + pads[3] - ((kw - 1) * dilations[1] + 1)) / strides[1] + 1;
+        if (pads.size() != 4) throw Unsupported{"a convolution's pads"};
+        const std::int64_t oh = windowExtent(h, pads[0], pads[2], kh, strides[0], dilations[0]);
+        const std::int64_t ow = windowExtent(wd, pads[1], pads[3], kw, strides[1], dilations[1]);
         // ONNX's kernel is out x in x h x w; XNNPACK's out x h x w x in.
         std::vector<float> kernel(w.floats.size());
         for (std::int64_t o = 0; o < outC; ++o)
@@ -547,10 +566,8 @@ private:
             intAttribute(node, "ceil_mode", 0) != 0 || stringAttribute(node, "auto_pad", "NOTSET") != "NOTSET" ||
             node.output_size() > 1)
             throw Unsupported{"a max pooling other than 2-d, explicitly padded, rounding down"};
-        const std::int64_t oh =
-            (x.shape[2] + pads[0] + pads[2] - ((kernel[0] - 1) * dilations[0] + 1)) / strides[0] + 1;
-        const std::int64_t ow =
-            (x.shape[3] + pads[1] + pads[3] - ((kernel[1] - 1) * dilations[1] + 1)) / strides[1] + 1;
+        const std::int64_t oh = windowExtent(x.shape[2], pads[0], pads[2], kernel[0], strides[0], dilations[0]);
+        const std::int64_t ow = windowExtent(x.shape[3], pads[1], pads[3], kernel[1], strides[1], dilations[1]);
         const auto channels = static_cast<std::size_t>(x.shape[1]);
         xnn_operator_t pool = nullptr;
         check(
@@ -607,8 +624,9 @@ private:
                 shape.push_back(static_cast<std::int64_t>(std::floor(double(x.shape[d]) * scales.floats[d])));
             }
         }
-        if (shape.size() != 4 || shape[0] != x.shape[0] || shape[1] != x.shape[1])
-            throw Unsupported{"a resize other than of an image's height and width"};
+        if (shape.size() != 4 || shape[0] != x.shape[0] || shape[1] != x.shape[1] || shape[2] < 1 || shape[3] < 1 ||
+            std::any_of(scale.begin(), scale.end(), [](double f) { return !(f > 0); }))
+            throw Unsupported{"a resize other than of an image's height and width to a size of its own"};
         const std::string mode = stringAttribute(node, "mode", "nearest");
         const std::string transform =
             stringAttribute(node, "coordinate_transformation_mode", opset_ >= 11 ? "half_pixel" : "asymmetric");
@@ -806,6 +824,7 @@ private:
         if (sizes.empty())
             sizes.assign(static_cast<std::size_t>(node.output_size()), x.shape[axis] / node.output_size());
         if (static_cast<int>(sizes.size()) != node.output_size() ||
+            std::any_of(sizes.begin(), sizes.end(), [](std::int64_t size) { return size < 1; }) ||
             std::accumulate(sizes.begin(), sizes.end(), std::int64_t{0}) != x.shape[axis])
             throw Unsupported{"a split whose parts do not add up"};
         std::int64_t begin = 0;
@@ -855,13 +874,15 @@ private:
             shape = constant(inputs.at(1)).integers;
             std::optional<std::size_t> inferred;
             for (std::size_t d = 0; d < shape.size(); ++d) {
-                if (shape[d] == 0 && intAttribute(node, "allowzero", 0) == 0) shape[d] = x.shape.at(d);
-                if (shape[d] == -1) inferred = d;
+                if (shape[d] == 0 && intAttribute(node, "allowzero", 0) == 0 && d < x.shape.size())
+                    shape[d] = x.shape[d];
+                if (shape[d] == -1 && !inferred) {
+                    inferred = d;
+                    shape[d] = 1;
+                } else if (shape[d] < 1)
+                    throw Unsupported{"a reshape to a shape of no size"};
             }
-            if (inferred) {
-                shape[*inferred] = 1;
-                shape[*inferred] = elements(x.shape) / elements(shape);
-            }
+            if (inferred) shape[*inferred] = elements(x.shape) / elements(shape);
         }
         if (elements(shape) != elements(x.shape)) throw Unsupported{"a reshape that changes the count"};
         const Value y = output(out, shape, Layout::Plain);
@@ -875,7 +896,11 @@ private:
         std::vector<std::int64_t> perm = intsAttribute(node, "perm");
         if (perm.empty())
             for (std::size_t d = x.shape.size(); d-- > 0;) perm.push_back(static_cast<std::int64_t>(d));
-        if (perm.size() != x.shape.size()) throw Unsupported{"a transpose's permutation"};
+        std::vector<std::int64_t> sorted = perm;
+        std::sort(sorted.begin(), sorted.end());
+        for (std::size_t d = 0; d < sorted.size(); ++d)
+            if (sorted[d] != static_cast<std::int64_t>(d) || perm.size() != x.shape.size())
+                throw Unsupported{"a transpose whose permutation is not one of its axes"};
         Shape shape;
         for (auto p : perm) shape.push_back(x.shape.at(axisOf(p, x.shape.size())));
         // An image to N x H x W x C is the layout it is kept in.
@@ -979,6 +1004,10 @@ std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::ve
         return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs);
     } catch (const Unsupported& u) {
         return refuse(u.why);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {  // std::out_of_range
+        return refuse(fmt::format("a node without the inputs its operator takes ({})", e.what()));
     }
 }
 

@@ -267,3 +267,58 @@ TEST_CASE("a graph with an operator the runner lacks runs on OpenCV's DNN, which
     CHECK(!loadXnnpackNetwork(dir.path / "junk.onnx"));
     CHECK_THROWS_AS(loadNetwork(dir.path / "junk.onnx"), smql::Error);
 }
+
+TEST_CASE("graphs whose numbers make no tensor are refused by the runner, not run") {
+    ScratchDir dir;
+    struct Broken {
+        std::string what;
+        std::function<void(Graph&)> build;
+    };
+    const std::vector<Broken> broken{
+        {"a convolution of stride 0",
+         [](Graph& g) {
+             g.floats("w", {2, 3, 1, 1}, ramp(6, 1));
+             Graph::ints(g.node("Conv", {"x", "w"}, {"y"}), "strides", {0, 1});
+         }},
+        {"a convolution of no groups",
+         [](Graph& g) {
+             g.floats("w", {2, 3, 1, 1}, ramp(6, 1));
+             Graph::integer(g.node("Conv", {"x", "w"}, {"y"}), "group", 0);
+         }},
+        {"a convolution larger than its input",
+         [](Graph& g) {
+             g.floats("w", {2, 3, 5, 5}, ramp(150, 1));
+             g.node("Conv", {"x", "w"}, {"y"});
+         }},
+        {"a convolution of integer weights",
+         [](Graph& g) {
+             g.integers("w", {1, 2, 3, 4, 5, 6});
+             g.node("Conv", {"x", "w"}, {"y"});
+         }},
+        {"a split into a negative part",
+         [](Graph& g) {
+             auto& split = g.node("Split", {"x"}, {"y", "z"});
+             Graph::integer(split, "axis", 1);
+             Graph::ints(split, "split", {4, -1});
+         }},
+        {"a transpose naming an axis twice",
+         [](Graph& g) {
+             Graph::ints(g.node("Transpose", {"x"}, {"y"}), "perm", {0, 1, 1, 3});
+         }},
+        {"an addition of one operand", [](Graph& g) { g.node("Add", {"x"}, {"y"}); }},
+        {"a reshape to no size",
+         [](Graph& g) {
+             g.integers("shape", {-1, -1, 0, -2});
+             g.node("Reshape", {"x", "shape"}, {"y"});
+         }},
+    };
+    for (const auto& b : broken) {
+        INFO(b.what);
+        Graph g({1, 3, 4, 4});
+        b.build(g);
+        g.output("y");
+        std::string whyNot;
+        CHECK(!loadXnnpackNetwork(g.write(dir.path / "broken.onnx"), {}, &whyNot));
+        CHECK(!whyNot.empty());
+    }
+}
