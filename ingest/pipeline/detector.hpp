@@ -58,14 +58,18 @@ public:
     virtual std::string describe() const = 0;
 };
 
-// The NanoDet detector. Throws smql::Error(Input) when the model does not load
-// or its outputs or class file do not have the shapes NanoDet's have.
-std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, double minScore = 0.35);
+// The NanoDet detector, its graph run on `threads` threads (loadNetwork). Throws smql::Error(Input) when
+// the model does not load or its outputs or class file do not have the shapes NanoDet's have.
+inline constexpr double kNanoDetMinScore = 0.35;
+std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, double minScore = kNanoDetMinScore,
+                                                    int threads = 1);
 
 // An SSD with its boxes decoded in the graph (the Open Images detector, scripts/detector/oid_setup.sh):
 // a 1x3x300x300 RGB image in [-1, 1] gives boxes (N x 4: top, left, bottom, right, in shares of the image)
 // and class scores (N x classes, sigmoid).
-std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore = 0.4);
+inline constexpr double kSsdMinScore = 0.4;
+std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore = kSsdMinScore,
+                                                int threads = 1);
 
 // One model's raw boxes (image pixels), scores and class indices (into `categories`) to its detections: those
 // scored at least minScore, one per thing per class (non-maximum suppression, and a box nested in a larger one
@@ -80,8 +84,9 @@ inline constexpr double kSameThingIou = 0.5;
 std::unique_ptr<ObjectDetector> makeDetectorEnsemble(std::vector<std::unique_ptr<ObjectDetector>> members);
 
 // The detector `--objects detect` runs: the model given by --detector (a NanoDet graph), else every
-// packaged detector that is installed. Throws smql::Error(Input) as makeNanoDetDetector does.
-std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged);
+// packaged detector that is installed, each on `threads` threads. Throws smql::Error(Input) as
+// makeNanoDetDetector does.
+std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged, int threads = 1);
 
 // A model's class name (COCO, Open Images, PASCAL VOC) -> the memory's category ("couch" -> "sofa",
 // "Computer monitor" -> "monitor"); empty for classes that are not part of a room's memory.

@@ -114,6 +114,9 @@ std::vector<std::int64_t> intsAttribute(const onnx::NodeProto& node, std::string
     return a ? std::vector<std::int64_t>(a->ints().begin(), a->ints().end()) : otherwise;
 }
 
+struct PoolDeleter {
+    void operator()(pthreadpool_t pool) const { pthreadpool_destroy(pool); }
+};
 struct OperatorDeleter {
     void operator()(xnn_operator_t op) const { xnn_delete_operator(op); }
 };
@@ -145,7 +148,9 @@ struct Value {
 // overlap, as the steps run in order.
 class XnnpackNetwork : public Network {
 public:
-    XnnpackNetwork(const onnx::ModelProto& model, const std::string& file, const std::vector<std::string>& wanted) {
+    XnnpackNetwork(const onnx::ModelProto& model, const std::string& file, const std::vector<std::string>& wanted,
+                   int threads) {
+        if (threads > 1) pool_.reset(pthreadpool_create(static_cast<std::size_t>(threads)));
         const auto& graph = model.graph();
         for (const auto& o : model.opset_import())
             if (o.domain().empty() || o.domain() == "ai.onnx") opset_ = o.version();
@@ -385,8 +390,8 @@ private:
 
     void add(Operator op) { operators_.push_back(std::move(op)); }
     void run(xnn_operator_t op) {
-        steps_.push_back([op] {
-            if (xnn_run_operator(op, nullptr) != xnn_status_success)
+        steps_.push_back([this, op] {
+            if (xnn_run_operator(op, pool_.get()) != xnn_status_success)
                 throw Error(ErrorKind::Input, "an XNNPACK operator of the model failed to run");
         });
     }
@@ -492,7 +497,7 @@ private:
         add(Operator(conv));
         const Value y = output(out, {x.shape[0], outC, oh, ow}, Layout::Image);
         check(xnn_setup_convolution2d_nhwc_f32(conv, static_cast<std::size_t>(x.shape[0]), static_cast<std::size_t>(h),
-                                               static_cast<std::size_t>(wd), data(x), data(y), nullptr),
+                                               static_cast<std::size_t>(wd), data(x), data(y), pool_.get()),
               "a convolution's tensors");
         run(conv);
     }
@@ -523,7 +528,7 @@ private:
         check(xnn_create_clamp_nc_f32(1, 1, 1, low, high, 0, &clamp), "a clamp");
         add(Operator(clamp));
         const Value y = output(out, x.shape, x.layout);
-        check(xnn_setup_clamp_nc_f32(clamp, static_cast<std::size_t>(elements(x.shape)), data(x), data(y), nullptr),
+        check(xnn_setup_clamp_nc_f32(clamp, static_cast<std::size_t>(elements(x.shape)), data(x), data(y), pool_.get()),
               "a clamp's tensors");
         run(clamp);
     }
@@ -546,11 +551,11 @@ private:
             check(xnn_create_leaky_relu_nc_f32(1, 1, 1, floatAttribute(node, "alpha", 0.01f), 0, &unary),
                   "a leaky ReLU");
             add(Operator(unary));
-            check(xnn_setup_leaky_relu_nc_f32(unary, n, data(x), data(y), nullptr), "a leaky ReLU's tensors");
+            check(xnn_setup_leaky_relu_nc_f32(unary, n, data(x), data(y), pool_.get()), "a leaky ReLU's tensors");
         } else {
             check(xnn_create_sigmoid_nc_f32(1, 1, 1, 0, &unary), "a sigmoid");
             add(Operator(unary));
-            check(xnn_setup_sigmoid_nc_f32(unary, n, data(x), data(y), nullptr), "a sigmoid's tensors");
+            check(xnn_setup_sigmoid_nc_f32(unary, n, data(x), data(y), pool_.get()), "a sigmoid's tensors");
         }
         run(unary);
     }
@@ -582,7 +587,7 @@ private:
         const Value y = output(out, {x.shape[0], x.shape[1], oh, ow}, Layout::Image);
         check(xnn_setup_max_pooling2d_nhwc_f32(pool, static_cast<std::size_t>(x.shape[0]),
                                                static_cast<std::size_t>(x.shape[2]),
-                                               static_cast<std::size_t>(x.shape[3]), data(x), data(y), nullptr),
+                                               static_cast<std::size_t>(x.shape[3]), data(x), data(y), pool_.get()),
               "a max pooling's tensors");
         run(pool);
     }
@@ -600,7 +605,7 @@ private:
         const Value y = output(out, {x.shape[0], x.shape[1], 1, 1}, Layout::Image);
         check(xnn_setup_global_average_pooling_nwc_f32(pool, static_cast<std::size_t>(x.shape[0]),
                                                        static_cast<std::size_t>(x.shape[2] * x.shape[3]), data(x),
-                                                       data(y), nullptr),
+                                                       data(y), pool_.get()),
               "an average pooling's tensors");
         run(pool);
     }
@@ -646,7 +651,7 @@ private:
             check(xnn_setup_resize_bilinear2d_nhwc_f32(
                       resize, static_cast<std::size_t>(x.shape[0]), static_cast<std::size_t>(x.shape[2]),
                       static_cast<std::size_t>(x.shape[3]), static_cast<std::size_t>(shape[2]),
-                      static_cast<std::size_t>(shape[3]), data(x), data(y), nullptr),
+                      static_cast<std::size_t>(shape[3]), data(x), data(y), pool_.get()),
                   "a resize's tensors");
             run(resize);
             return;
@@ -741,7 +746,7 @@ private:
                            : op == "Sub" ? xnn_setup_subtract_nd_f32
                                          : xnn_setup_multiply_nd_f32;
         check(setup(binary, shapeA.size(), shapeA.data(), shapeB.size(), shapeB.data(), data(a), data(b), data(y),
-                    nullptr),
+                    pool_.get()),
               "an element-wise operation's tensors");
         run(binary);
     }
@@ -942,6 +947,7 @@ private:
     std::map<std::string, Value> values_;
     std::vector<Buffer> buffers_;
     std::vector<Operator> operators_;
+    std::unique_ptr<pthreadpool, PoolDeleter> pool_;  // null: the calling thread alone
     std::vector<std::function<void()>> steps_;
     std::size_t inputBuffer_ = 0;
 };
@@ -990,7 +996,7 @@ private:
 }  // namespace
 
 std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::vector<std::string>& outputs,
-                                            std::string* whyNot) {
+                                            std::string* whyNot, int threads) {
     const auto refuse = [&](std::string why) -> std::unique_ptr<Network> {
         if (whyNot) *whyNot = std::move(why);
         return nullptr;
@@ -1000,7 +1006,7 @@ std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::ve
     std::ifstream in(model, std::ios::binary);
     if (!in || !proto.ParseFromIstream(&in)) return refuse(fmt::format("{}: not an ONNX graph", model.string()));
     try {
-        return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs);
+        return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs, threads);
     } catch (const Unsupported& u) {
         return refuse(u.why);
     } catch (const Error&) {
@@ -1014,8 +1020,8 @@ std::unique_ptr<Network> loadOpenCvNetwork(const fs::path& model, const std::vec
     return std::make_unique<OpenCvNetwork>(model, outputs);
 }
 
-std::unique_ptr<Network> loadNetwork(const fs::path& model, const std::vector<std::string>& outputs) {
-    if (auto network = loadXnnpackNetwork(model, outputs)) return network;
+std::unique_ptr<Network> loadNetwork(const fs::path& model, const std::vector<std::string>& outputs, int threads) {
+    if (auto network = loadXnnpackNetwork(model, outputs, nullptr, threads)) return network;
     return loadOpenCvNetwork(model, outputs);
 }
 

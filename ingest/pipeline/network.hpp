@@ -28,9 +28,11 @@ public:
 };
 
 // The graph in `model`, run up to `outputs` (the graph's own outputs when none are named): on XNNPACK
-// when it can, else on OpenCV's DNN. Throws smql::Error(Input) when neither loads the file or an output
-// is not in the graph.
-std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const std::vector<std::string>& outputs = {});
+// when it can, each run on `threads` threads (the caller's and a pool of XNNPACK's; OpenCV's DNN takes
+// the process's count, cv::setNumThreads), else on OpenCV's DNN. Throws smql::Error(Input) when neither
+// loads the file or an output is not in the graph.
+std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const std::vector<std::string>& outputs = {},
+                                     int threads = 1);
 
 // Each engine on its own (the tests hold one to the other). loadXnnpackNetwork gives nullptr, saying
 // why in `whyNot` when given, for a graph it does not run: an operator or attribute outside the ones
@@ -39,8 +41,8 @@ std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const s
 //   LeakyRelu, Sigmoid, Exp, MaxPool, GlobalAveragePool, Resize (linear, nearest), Add, Sub, Mul
 //   (broadcasting), Concat, Split, Slice (step 1), Reshape, Transpose, Identity.
 std::unique_ptr<Network> loadXnnpackNetwork(const std::filesystem::path& model,
-                                            const std::vector<std::string>& outputs = {},
-                                            std::string* whyNot = nullptr);
+                                            const std::vector<std::string>& outputs = {}, std::string* whyNot = nullptr,
+                                            int threads = 1);
 std::unique_ptr<Network> loadOpenCvNetwork(const std::filesystem::path& model,
                                            const std::vector<std::string>& outputs = {});
 

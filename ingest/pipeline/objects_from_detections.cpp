@@ -484,6 +484,7 @@ public:
           packaged_(packagedOnFrames(capture, options)),
           packagedOnDense_(options.detectorModel.empty()),
           streams_(std::thread::hardware_concurrency() >= 2 ? kStreams : 1),
+          coresPerStream_(std::max(1, static_cast<int>(std::thread::hardware_concurrency() / streams_))),
           models_(streams_) {
         // Every stream's models loaded at once, each on a thread of its own: the first keyframe waits for the
         // first stream's anyway, and the second's, loaded when it first ran, took a core from the first's
@@ -493,13 +494,12 @@ public:
             loading.push_back(std::async(std::launch::async, [this] { return loadModels(); }));
         models_[0] = loadModels();
         for (std::size_t s = 1; s < streams_; ++s) models_[s] = loading[s - 1].get();
-        // A stream's models run on its thread, a model a stream on each core: through OpenCV's DNN that gave 1.7
-        // times one model's speed where OpenCV's own threads gave 1.5 (NanoDet, the SSD and DeepLab on a TUM
-        // frame: 116 -> 99 ms a frame). OpenCV's threads (its image operations, and a graph it runs) are the
-        // rest of the cores a stream meanwhile; one core keeps one stream, with OpenCV's threads as they are.
-        if (streams_ > 1)
-            threadsPerStream_.emplace(
-                std::max(1, static_cast<int>(std::thread::hardware_concurrency() / static_cast<unsigned>(streams_))));
+        // A stream's models run on its thread and the stream's share of the other cores, a model a stream on
+        // each core: through OpenCV's DNN that gave 1.7 times one model's speed where OpenCV's own threads gave
+        // 1.5 (NanoDet, the SSD and DeepLab on a TUM frame: 116 -> 99 ms a frame). OpenCV's threads (its image
+        // operations, and a graph it runs) are set to that share meanwhile; one core keeps one stream, with
+        // OpenCV's threads as they are.
+        if (streams_ > 1) threadsPerStream_.emplace(coresPerStream_);
     }
     ~DetectorFinder() override {
         finishDetecting();
@@ -541,14 +541,14 @@ private:
         return options.detectorModel.empty() &&
                (framesHaveDepth(capture) || denseLift(capture, options) == DenseLift::Always);
     }
-    static Models loadModels(const DetectorFiles& files, bool packaged) {
-        Models models{makeDetector(files, packaged), nullptr};
+    static Models loadModels(const DetectorFiles& files, bool packaged, int threads) {
+        Models models{makeDetector(files, packaged, threads), nullptr};
         if (packaged)
             if (auto segmenterFiles = installedModel("deeplab"))
-                models.segmenter = makeDeepLabSegmenter(*segmenterFiles);
+                models.segmenter = makeDeepLabSegmenter(*segmenterFiles, threads);
         return models;
     }
-    Models loadModels() const { return loadModels(files_, packaged_); }
+    Models loadModels() const { return loadModels(files_, packaged_, coresPerStream_); }
 
     // With depth, the models run on keyframes (keyframes.hpp); without depth, on every frame: COLMAP's
     // captures are few frames far apart, and their poses are in no known unit.
@@ -577,7 +577,9 @@ private:
     // would fill the memory; with the packaged models beside NanoDet, loaded the first time.
     FrameDetections keyframeDetectionsOf(const PosedFrame& frame) override {
         if (packaged_ == packagedOnDense_) return {detect(models_[0], frame.images.color), frame.images.color.cols};
-        if (!denseModels_.detector) denseModels_ = loadModels(files_, packagedOnDense_);
+        if (!denseModels_.detector)  // they run alone, after the streams: on every core
+            denseModels_ = loadModels(files_, packagedOnDense_,
+                                      std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
         return {detect(denseModels_, frame.images.color), frame.images.color.cols};
     }
 
@@ -600,6 +602,7 @@ private:
     bool packagedOnDense_;  // ... on the photos lifted on the dense points' depth (no --detector given)
     Models denseModels_;    // the models of that lift when the frame pass's differ, loaded when it first runs
     std::size_t streams_;   // kStreams, or one on a machine with one core
+    int coresPerStream_;    // the threads a stream's models and OpenCV's run on
     std::vector<Models> models_;  // by stream; each touched only by its stream's frames, one at a time
     std::optional<OpenCvThreads> threadsPerStream_;  // while the streams run
     Keyframes keyframes_;

@@ -24,8 +24,8 @@ constexpr const char* kLowResolution = "logits_lowres";
 
 class DeepLabSegmenter : public SemanticSegmenter {
 public:
-    explicit DeepLabSegmenter(const DetectorFiles& files)
-        : file_(files.model.filename().string()), net_(loadNetwork(files.model, {kLowResolution})) {
+    DeepLabSegmenter(const DetectorFiles& files, int threads)
+        : file_(files.model.filename().string()), net_(loadNetwork(files.model, {kLowResolution}, threads)) {
         std::ifstream in(files.classes);
         if (!in) throw Error(ErrorKind::Input, fmt::format("{}: cannot read the class names", files.classes.string()));
         for (std::string line; std::getline(in, line);) {
@@ -75,8 +75,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files) {
-    return std::make_unique<DeepLabSegmenter>(files);
+std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files, int threads) {
+    return std::make_unique<DeepLabSegmenter>(files, threads);
 }
 
 namespace {
