@@ -1,5 +1,5 @@
 // The models' graphs (ONNX) and what runs them. NanoDet, the Open Images SSD and DeepLab are mostly 1x1
-// and depthwise convolutions, which XNNPACK's kernels (Debian's libxnnpack) run two to four times faster
+// and depthwise convolutions, which XNNPACK's kernels (Debian's libxnnpack) run two to three times faster
 // than OpenCV's DNN on a core; a graph is run on XNNPACK's operators when each operator its outputs need
 // is one this runner knows (below), and by OpenCV's DNN otherwise (a --detector graph of other operators).
 // docs/ingest.md, "Detector".
@@ -38,8 +38,8 @@ std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const s
 // why in `whyNot` when given, for a graph it does not run: an operator or attribute outside the ones
 // below, an input of unknown size, a machine XNNPACK does not support.
 //   Conv (any groups, dilations, pads, auto_pad) with a Clip or Relu after it folded in, Clip, Relu,
-//   LeakyRelu, Sigmoid, Exp, MaxPool, GlobalAveragePool, Resize (linear, nearest), Add, Sub, Mul
-//   (broadcasting), Concat, Split, Slice (step 1), Reshape, Transpose, Identity.
+//   LeakyRelu, Sigmoid, Exp, MaxPool, GlobalAveragePool, Resize and Upsample (linear, nearest), Add, Sub,
+//   Mul (broadcasting), Concat, Split, Slice (step 1), Reshape, Flatten, Transpose, Identity.
 std::unique_ptr<Network> loadXnnpackNetwork(const std::filesystem::path& model,
                                             const std::vector<std::string>& outputs = {}, std::string* whyNot = nullptr,
                                             int threads = 1);
