@@ -56,7 +56,7 @@ struct Constant {
 template <typename T>
 std::vector<T> rawValues(const std::string& raw) {
     std::vector<T> values(raw.size() / sizeof(T));
-    std::memcpy(values.data(), raw.data(), values.size() * sizeof(T));
+    if (!values.empty()) std::memcpy(values.data(), raw.data(), values.size() * sizeof(T));  // null when empty
     return values;
 }
 
