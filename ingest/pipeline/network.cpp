@@ -26,14 +26,21 @@ namespace {
 
 using Shape = std::vector<std::int64_t>;
 
-std::int64_t elements(const Shape& shape) {
-    return std::accumulate(shape.begin(), shape.end(), std::int64_t{1}, std::multiplies<>());
-}
-
 // What a graph could not be planned for; the planner's way out to OpenCV's DNN.
 struct Unsupported {
     std::string why;
 };
+
+std::int64_t elements(const Shape& shape) {
+    std::int64_t n = 1;
+    for (const std::int64_t d : shape)
+        if (d < 0 || __builtin_mul_overflow(n, d, &n)) throw Unsupported{"a tensor of a size past counting"};
+    return n;
+}
+
+// The floats a plan's buffers may hold together: the packaged models' take about 30 MiB, and a graph
+// asking for more than 1 GiB is not a detector this machine runs (a resize by thousands, say).
+constexpr std::int64_t kMaxPlannedFloats = std::int64_t{1} << 28;
 
 // The extent along one axis of a sliding window's output (a convolution's, a pooling's); a window that
 // makes no output, or whose numbers are not a window's, is refused.
@@ -305,6 +312,7 @@ private:
     // The smallest free buffer that holds n floats, or a new one (with the bytes XNNPACK may read past
     // a tensor's end). A constant's is always new: the steps before it would overwrite a shared one.
     std::size_t acquire(std::int64_t n, bool shared = true) {
+        if (n < 0 || n > kMaxPlannedFloats - planned_) throw Unsupported{"tensors of more than 1 GiB together"};
         const auto size = static_cast<std::size_t>(n);
         std::optional<std::size_t> best;
         for (std::size_t b = 0; b < buffers_.size() && shared; ++b)
@@ -314,6 +322,7 @@ private:
             buffers_[*best].free = false;
             return *best;
         }
+        planned_ += n;
         Buffer buffer;
         buffer.size = size;
         buffer.data = std::make_unique<float[]>(size + XNN_EXTRA_BYTES / sizeof(float));
@@ -950,6 +959,7 @@ private:
     std::unique_ptr<pthreadpool, PoolDeleter> pool_;  // null: the calling thread alone
     std::vector<std::function<void()>> steps_;
     std::size_t inputBuffer_ = 0;
+    std::int64_t planned_ = 0;  // the floats of every buffer so far
 };
 
 class OpenCvNetwork : public Network {

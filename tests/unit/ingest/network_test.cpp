@@ -312,6 +312,11 @@ TEST_CASE("graphs whose numbers make no tensor are refused by the runner, not ru
              Graph::ints(g.node("Transpose", {"x"}, {"y"}), "perm", {0, 1, 1, 3});
          }},
         {"an addition of one operand", [](Graph& g) { g.node("Add", {"x"}, {"y"}); }},
+        {"a resize by ten thousand",
+         [](Graph& g) {
+             g.floats("scales", {4}, {1, 1, 10000, 10000});
+             Graph::text(g.node("Resize", {"x", "", "scales"}, {"y"}), "mode", "nearest");
+         }},
         {"a reshape to no size",
          [](Graph& g) {
              g.integers("shape", {-1, -1, 0, -2});
