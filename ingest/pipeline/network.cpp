@@ -633,8 +633,11 @@ private:
             const Constant& scales = constant(inputs[scalesAt]);
             if (scales.floats.size() != 4) throw Unsupported{"a resize's scales"};
             for (std::size_t d = 0; d < 4; ++d) {
+                const double size = std::floor(double(x.shape[d]) * scales.floats[d]);
+                if (!(scales.floats[d] > 0) || !(size < double(kMaxPlannedFloats)))  // NaN and infinities too
+                    throw Unsupported{"a resize's scales"};
                 scale.push_back(scales.floats[d]);
-                shape.push_back(static_cast<std::int64_t>(std::floor(double(x.shape[d]) * scales.floats[d])));
+                shape.push_back(static_cast<std::int64_t>(size));
             }
         }
         if (shape.size() != 4 || shape[0] != x.shape[0] || shape[1] != x.shape[1] || shape[2] < 1 || shape[3] < 1 ||
