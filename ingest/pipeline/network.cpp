@@ -377,24 +377,20 @@ private:
 
     // The tensor in the layout an operator takes: converted by a step of its own when it is not, the copy
     // kept as long as the tensor for the other nodes that read it so.
-    Value asImage(const std::string& name) {
-        Value v = input(name);
-        if (v.layout == Layout::Image) return v;
-        if (v.shape.size() != 4) throw Unsupported{fmt::format("'{}' is not 4-d where an image is read", name)};
-        if (auto copy = values_.find(name + kAsImage); copy != values_.end()) return copy->second;
-        Value image = output(name + kAsImage, v.shape, Layout::Image);
-        steps_.push_back([this, v, image] { toNhwc(data(v), data(image), v.shape); });
-        lastUse_[name + kAsImage] = lastUse_[name];
-        return image;
-    }
-    Value asPlain(const std::string& name) {
-        Value v = input(name);
-        if (v.layout == Layout::Plain) return v;
-        if (auto copy = values_.find(name + kAsPlain); copy != values_.end()) return copy->second;
-        Value plain = output(name + kAsPlain, v.shape, Layout::Plain);
-        steps_.push_back([this, v, plain] { toNchw(data(v), data(plain), v.shape); });
-        lastUse_[name + kAsPlain] = lastUse_[name];
-        return plain;
+    Value asImage(const std::string& name) { return inLayout(name, Layout::Image); }
+    Value asPlain(const std::string& name) { return inLayout(name, Layout::Plain); }
+    Value inLayout(const std::string& name, Layout layout) {
+        const Value v = input(name);
+        if (v.layout == layout) return v;
+        if (layout == Layout::Image && v.shape.size() != 4)
+            throw Unsupported{fmt::format("'{}' is not 4-d where an image is read", name)};
+        const std::string copyName = name + (layout == Layout::Image ? kAsImage : kAsPlain);
+        if (auto copy = values_.find(copyName); copy != values_.end()) return copy->second;
+        const Value copy = output(copyName, v.shape, layout);
+        const auto convert = layout == Layout::Image ? toNhwc : toNchw;
+        steps_.push_back([this, v, copy, convert] { convert(data(v), data(copy), v.shape); });
+        lastUse_[copyName] = lastUse_[name];
+        return copy;
     }
 
     void add(Operator op) { operators_.push_back(std::move(op)); }
