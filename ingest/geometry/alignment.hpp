@@ -78,7 +78,8 @@ struct Alignment {
     std::optional<double> tableTopHeight;
     // Photos without depth: why the plane taken for the floor cannot be told from a table top (nothing
     // that stands on floors rises from it, and no ceiling or thing's height checks the scale the
-    // cameras' height gives). Empty when something confirms it, or when the scale is known.
+    // cameras' height gives), or why it is not level (found on a second look and still leaning from the
+    // photos' vertical edges). Empty when something confirms it, or when the scale is known.
     std::string floorUnconfirmed;
     std::size_t floorInliers = 0;
     // Degrees between the photos' vertical edges and the normal of the floor (or table top) that levels the

@@ -1089,6 +1089,48 @@ TEST_CASE("rgbd-dining as photos without depth: a plane that leans from the vert
     CHECK(std::abs(withEdges.floorHeight - depth.floorHeight) < 0.05);
 }
 
+TEST_CASE("rgbd-dining as photos without depth: a floor still leaning from the edges on a second look is unconfirmed",
+          "[ingest][geometry][real]") {
+    // What another COLMAP run of the five dining photos did: the first plane leaned from the vertical edges, and
+    // the plane the second look found along them stood 9.2 degrees from them, the edges agreeing on no up near
+    // it; stored, the room was 1.13 times its size with the cameras 27 cm too high. Here the photos' real edges
+    // and poses, a large plane leaning 20 degrees from the depth's floor, and under it a plane leaning `lean`
+    // degrees from the floor: level, it is the floor found on the second look; leaning 9.8 degrees, at the rim of
+    // the edges' cone around it but within the second look's reach, it is found and not confirmed (the photos
+    // name nothing, so without the lean it would be doubted for that; the lean is the reason given).
+    const auto [dining, depth, lines] = diningPhotos();
+    const auto [up, across, other, below] = floorUnderCameras(dining, depth);
+    const auto tilted = [&](double degrees) {
+        return add(mul(std::cos(degrees * kDeg), across), mul(std::sin(degrees * kDeg), up));
+    };
+    const auto alignedOver = [&](double lean) {
+        std::mt19937 random(5);
+        std::uniform_real_distribution<double> side(-1.5, 1.5);
+        PointCloud cloud;
+        for (int i = 0; i < 6000; ++i)
+            cloud.push(add(add(below, mul(0.4, up)), add(mul(side(random), tilted(20)), mul(side(random), other))),
+                       {200, 200, 200}, 0);
+        for (int i = 0; i < 1000; ++i)
+            cloud.push(add(below, add(mul(side(random), tilted(lean)), mul(side(random), other))), {120, 120, 120}, 0);
+        AlignOptions photos;
+        photos.metric = false;
+        return alignCapture(cloud, dining.cameras, photos, {}, lines);
+    };
+    const Alignment level = alignCapture(dining.cloud, dining.cameras, AlignOptions{});  // the depth's up
+    const Alignment levelFloor = alignedOver(0);
+    INFO(notesOf(levelFloor));
+    REQUIRE(levelFloor.floorFound);
+    CHECK(angleDeg(levelFloor.up, level.up) < 2.0);
+    CHECK_THAT(levelFloor.floorUnconfirmed, !Catch::Contains("second look"));
+    const Alignment leaning = alignedOver(9.8);
+    INFO(notesOf(leaning));
+    CHECK_THAT(notesOf(leaning), Catch::Contains("floor: the plane found leans "));
+    REQUIRE(leaning.floorFound);
+    CHECK(angleDeg(leaning.up, level.up) > 7.0);
+    CHECK_THAT(leaning.floorUnconfirmed, Catch::Contains("the plane found on a second look") &&
+                                             Catch::Contains("where a room's floor is level with its upright edges"));
+}
+
 TEST_CASE("rgbd-dining as photos without depth: a plane with the room's points under it is not a confirmed floor",
           "[ingest][geometry][real]") {
     // The five dining frames' real points with most of their floor unseen (a tenth of it kept, as photos that
