@@ -15,7 +15,7 @@
 #include "model/error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    // A blob of at most a million floats: the runner refuses more than 1 GiB of tensors in all, and a
+    // A blob of at most a million floats: the runner refuses more than 128 MiB of tensors in all, and a
     // run's time should go to the operators, not to filling a large input.
     constexpr std::int64_t kMaxInput = 1'000'000;
     static const smql::fuzz::Scratch scratch;
