@@ -1119,6 +1119,7 @@ TEST_CASE("rgbd-dining as photos without depth: a floor still leaning from the e
     const Alignment level = alignCapture(dining.cloud, dining.cameras, AlignOptions{});  // the depth's up
     const Alignment levelFloor = alignedOver(0);
     INFO(notesOf(levelFloor));
+    CHECK_THAT(notesOf(levelFloor), Catch::Contains("floor: the plane found leans "));  // found on the second look
     REQUIRE(levelFloor.floorFound);
     CHECK(angleDeg(levelFloor.up, level.up) < 2.0);
     CHECK_THAT(levelFloor.floorUnconfirmed, !Catch::Contains("second look"));
