@@ -237,6 +237,7 @@ public:
     }
 
     const std::vector<std::string>& outputs() const override { return outputs_; }
+    std::vector<int> inputShape() const override { return {inputShape_.begin(), inputShape_.end()}; }
     std::string_view engine() const override { return "XNNPACK"; }
 
 private:
@@ -313,7 +314,9 @@ private:
     // The smallest free buffer that holds n floats, or a new one (with the bytes XNNPACK may read past
     // a tensor's end). A constant's is always new: the steps before it would overwrite a shared one.
     std::size_t acquire(std::int64_t n, bool shared = true) {
-        if (n < 0 || n > kMaxPlannedFloats - planned_) throw Unsupported{"tensors of more than 128 MiB together"};
+        if (n < 0 || n > kMaxPlannedFloats - planned_)
+            throw Unsupported{
+                fmt::format("tensors of more than {} MiB together", kMaxPlannedFloats * sizeof(float) >> 20)};
         const auto size = static_cast<std::size_t>(n);
         std::optional<std::size_t> best;
         for (std::size_t b = 0; b < buffers_.size() && shared; ++b)
@@ -995,6 +998,7 @@ public:
         return results;
     }
     const std::vector<std::string>& outputs() const override { return outputs_; }
+    std::vector<int> inputShape() const override { return {}; }
     std::string_view engine() const override { return "OpenCV DNN"; }
 
 private:

@@ -23,6 +23,9 @@ public:
     // are the caller's.
     virtual std::vector<cv::Mat> run(const cv::Mat& blob) = 0;
     virtual const std::vector<std::string>& outputs() const = 0;
+    // The N x C x H x W the graph's input is read as, where the engine plans for one size; empty where it
+    // takes any (OpenCV's DNN).
+    virtual std::vector<int> inputShape() const = 0;
     // "XNNPACK" or "OpenCV DNN".
     virtual std::string_view engine() const = 0;
 };

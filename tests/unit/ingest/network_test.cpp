@@ -177,8 +177,10 @@ TEST_CASE("the packaged models give OpenCV's DNN's outputs on XNNPACK, on real f
         auto pooled = loadXnnpackNetwork(files->model, m.outputs, nullptr, 2);
         REQUIRE(pooled);
         for (const auto& frame : frames) {
-            requireSameOutputs(*xnnpack, *opencv, m.blob(frame, m.input));
-            requireSameOutputs(*pooled, *opencv, m.blob(frame, m.input));
+            const cv::Mat blob = m.blob(frame, m.input);
+            CHECK(xnnpack->inputShape() == std::vector<int>(blob.size.p, blob.size.p + blob.dims));
+            requireSameOutputs(*xnnpack, *opencv, blob);
+            requireSameOutputs(*pooled, *opencv, blob);
         }
         // The loader picks XNNPACK for them.
         CHECK(loadNetwork(files->model, m.outputs)->engine() == "XNNPACK");
@@ -255,6 +257,7 @@ TEST_CASE("a graph with an operator the runner lacks runs on OpenCV's DNN, which
     CHECK_THAT(whyNot, Catch::Contains("Softmax"));
     auto network = loadNetwork(path);
     CHECK(network->engine() == "OpenCV DNN");
+    CHECK(network->inputShape().empty());  // it takes any size
     cv::Mat blob(std::vector<int>{1, 3, 4, 4}, CV_32F, cv::Scalar(1));
     const cv::Mat y = network->run(blob).front();
     REQUIRE(y.dims == 4);
