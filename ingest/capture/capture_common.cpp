@@ -11,6 +11,7 @@
 
 #include "ingest/capture/capture_detail.hpp"
 #include "ingest/capture/media.hpp"
+#include "ingest/capture/pgm_decoder.hpp"
 #include "ingest/capture/png_decoder.hpp"
 #include "ingest/import/common.hpp"
 #include "model/error.hpp"
@@ -256,6 +257,8 @@ std::optional<std::pair<int, int>> storedImageSize(const fs::path& file) {
     if (head.size() >= 24 && head.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 && head.compare(12, 4, "IHDR") == 0)
         return std::pair{static_cast<int>(std::min(big32(16), 1u << 30)),
                          static_cast<int>(std::min(big32(20), 1u << 30))};
+    if (const auto pgm = readPgmHeader({reinterpret_cast<const std::uint8_t*>(head.data()), head.size()}))
+        return std::pair{pgm->width, pgm->height};
     if (head.size() < 4 || byte(0) != 0xFF || byte(1) != 0xD8) return std::nullopt;
     for (std::size_t at = 2; at + 9 < head.size();) {
         if (byte(at) != 0xFF) return std::nullopt;
@@ -368,7 +371,11 @@ cv::Mat readColorImage(const std::string& file) {
 }
 
 cv::Mat readDepthImage(const std::string& file) {
-    cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image", decodeDepthPng);
+    cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image",
+                              [](std::span<const std::uint8_t> bytes, long long maxPixels) {
+                                  auto png = decodeDepthPng(bytes, maxPixels);
+                                  return png ? png : decodeDepthPgm(bytes, maxPixels);
+                              });
     if (depth.channels() != 1)
         fail(file, fmt::format("a depth image has one channel, this one has {}", depth.channels()));
     if (depth.depth() != CV_16U && depth.depth() != CV_32F)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <fstream>
 #include <memory>
 
@@ -49,6 +50,8 @@ bool readable(const std::string& file) {
     const auto got = static_cast<std::size_t>(in.gcount());
     if (got == kPng.size() && std::equal(kPng.begin(), kPng.end(), start.begin())) return true;
     if (got >= kJpeg.size() && std::equal(kJpeg.begin(), kJpeg.end(), start.begin())) return true;
+    // A portable map's, as OpenCV's PxM reader checks it: 'P', its kind 1 to 6, white space.
+    if (got >= 3 && start[0] == 'P' && start[1] >= '1' && start[1] <= '6' && std::isspace(start[2])) return true;
     return calls().readable(file);
 }
 

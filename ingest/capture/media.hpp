@@ -23,8 +23,8 @@ cv::Mat read(const std::string& file, int flags);
 cv::Mat decode(std::span<const std::uint8_t> bytes, int flags);
 bool write(const std::string& file, const cv::Mat& image, const std::vector<int>& params = {});
 
-// Whether the file begins as an image OpenCV reads (cv::haveImageReader): a PNG's or a JPEG's signature
-// is known here; any other is asked of the module.
+// Whether the file begins as an image OpenCV reads (cv::haveImageReader): a PNG's, a JPEG's or a portable
+// map's (PGM, PPM) signature is known here; any other is asked of the module.
 bool readable(const std::string& file);
 
 // An 8-bit BGR image as the baseline JPEG cv::imencode(".jpg") makes of it (4:2:0), by TurboJPEG.

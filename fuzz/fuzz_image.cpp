@@ -1,5 +1,6 @@
-// The PNG decoders (ingest/capture/png_decoder.hpp) on arbitrary bytes, against OpenCV: whatever one
-// decodes, OpenCV must read as the same pixels; what they leave, OpenCV reads (or refuses) as before.
+// The frames' image decoders (ingest/capture/png_decoder.hpp, pgm_decoder.hpp) on arbitrary bytes, against
+// OpenCV: whatever one decodes, OpenCV must read as the same pixels; what they leave, OpenCV reads (or
+// refuses) as before.
 // Chunks' checksums would stop nearly every mutation at the first chunk, so the input's chunks are
 // checksummed again before it is decoded, unless its last byte is odd.
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "ingest/capture/pgm_decoder.hpp"
 #include "ingest/capture/png_decoder.hpp"
 
 namespace {
@@ -37,6 +39,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!file.empty() && file.back() % 2 == 0) checksumChunks(file);
     // A PNG both read, read differently.
     if (const auto depth = smql::ingest::decodeDepthPng(file, kMaxPixels)) {
+        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_UNCHANGED);
+        if (theirs.type() != CV_16UC1 || theirs.size() != depth->size() || cv::norm(*depth, theirs, cv::NORM_INF) != 0)
+            std::abort();
+    }
+    if (const auto depth = smql::ingest::decodeDepthPgm(file, kMaxPixels)) {
         const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_UNCHANGED);
         if (theirs.type() != CV_16UC1 || theirs.size() != depth->size() || cv::norm(*depth, theirs, cv::NORM_INF) != 0)
             std::abort();
