@@ -15,6 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include "ingest/capture/detections.hpp"
+#include "ingest/pipeline/network.hpp"
 
 namespace smql::ingest {
 
@@ -58,18 +59,18 @@ public:
     virtual std::string describe() const = 0;
 };
 
-// The NanoDet detector, its graph run on `threads` threads (loadNetwork). Throws smql::Error(Input) when
-// the model does not load or its outputs or class file do not have the shapes NanoDet's have.
+// The NanoDet detector, its graph run on `threads` threads, its tensors in `tensors` (loadNetwork). Throws
+// smql::Error(Input) when the model does not load or its outputs or class file do not have the shapes NanoDet's have.
 inline constexpr double kNanoDetMinScore = 0.35;
 std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, double minScore = kNanoDetMinScore,
-                                                    int threads = 1);
+                                                    int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
 
 // An SSD with its boxes decoded in the graph (the Open Images detector, scripts/detector/oid_setup.sh):
 // a 1x3x300x300 RGB image in [-1, 1] gives boxes (N x 4: top, left, bottom, right, in shares of the image)
 // and class scores (N x classes, sigmoid).
 inline constexpr double kSsdMinScore = 0.4;
 std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore = kSsdMinScore,
-                                                int threads = 1);
+                                                int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
 
 // One model's raw boxes (image pixels), scores and class indices (into `categories`) to its detections: those
 // scored at least minScore, one per thing per class (non-maximum suppression, and a box nested in a larger one
@@ -84,9 +85,10 @@ inline constexpr double kSameThingIou = 0.5;
 std::unique_ptr<ObjectDetector> makeDetectorEnsemble(std::vector<std::unique_ptr<ObjectDetector>> members);
 
 // The detector `--objects detect` runs: the model given by --detector (a NanoDet graph), else every
-// packaged detector that is installed, each on `threads` threads. Throws smql::Error(Input) as
-// makeNanoDetDetector does.
-std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged, int threads = 1);
+// packaged detector that is installed, each on `threads` threads, their tensors in `tensors`. Throws smql::Error(Input)
+// as makeNanoDetDetector does.
+std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged, int threads = 1,
+                                             const std::shared_ptr<TensorArena>& tensors = {});
 
 // A model's class name (COCO, Open Images, PASCAL VOC) -> the memory's category ("couch" -> "sofa",
 // "Computer monitor" -> "monitor"); empty for classes that are not part of a room's memory.

@@ -157,7 +157,8 @@ struct Value {
 class XnnpackNetwork : public Network {
 public:
     XnnpackNetwork(const onnx::ModelProto& model, const std::string& file, const std::vector<std::string>& wanted,
-                   int threads) {
+                   int threads, std::shared_ptr<TensorArena> tensors)
+        : leases_{tensors ? std::move(tensors) : std::make_shared<TensorArena>()} {
         if (threads > 1) pool_.reset(pthreadpool_create(static_cast<std::size_t>(threads)));
         const auto& graph = model.graph();
         for (const auto& o : model.opset_import())
@@ -209,6 +210,9 @@ public:
             resolvedOutputs_.push_back(name);
         }
         constants_.clear();
+        // The graphs planned after this one into the same arena may use its tensors' buffers: it runs alone.
+        for (const std::size_t b : leases_.tensors) leases_.arena->release(b);
+        leases_.planned = true;
     }
 
     std::vector<cv::Mat> run(const cv::Mat& blob) override {
@@ -217,7 +221,7 @@ public:
                         [](std::int64_t a, int b) { return a == b; }))
             throw Error(ErrorKind::Input, fmt::format("the model takes a {} x {} x {} x {} float blob", inputShape_[0],
                                                       inputShape_[1], inputShape_[2], inputShape_[3]));
-        toNhwc(blob.ptr<float>(), buffers_[inputBuffer_].data.get(), inputShape_);
+        toNhwc(blob.ptr<float>(), leases_.arena->data(inputBuffer_), inputShape_);
         for (auto& step : steps_) step();
         std::vector<cv::Mat> results;
         for (const auto& name : resolvedOutputs_) {
@@ -226,7 +230,7 @@ public:
             if (sizes.empty()) sizes.push_back(1);
             if (sizes.size() == 1) sizes.insert(sizes.begin(), 1);
             cv::Mat out(static_cast<int>(sizes.size()), sizes.data(), CV_32F);
-            const float* data = buffers_[v.buffer].data.get();
+            const float* data = leases_.arena->data(v.buffer);
             if (v.layout == Layout::Image)
                 toNchw(data, out.ptr<float>(), v.shape);
             else
@@ -305,42 +309,27 @@ private:
         values_[input_] = Value{inputShape_, Layout::Image, inputBuffer_};
     }
 
-    struct Buffer {
-        std::unique_ptr<float[]> data;
-        std::size_t size = 0;
-        bool free = false;
-    };
-
-    // The smallest free buffer that holds n floats, or a new one (with the bytes XNNPACK may read past
-    // a tensor's end). A constant's is always new: the steps before it would overwrite a shared one.
+    // The smallest free buffer of the arena that holds n floats, or a new one. A constant's is always new
+    // and kept while the graph lives: the steps before it would overwrite a shared one.
     std::size_t acquire(std::int64_t n, bool shared = true) {
         if (n < 0 || n > kMaxPlannedFloats - planned_)
             throw Unsupported{
                 fmt::format("tensors of more than {} MiB together", kMaxPlannedFloats * sizeof(float) >> 20)};
-        const auto size = static_cast<std::size_t>(n);
-        std::optional<std::size_t> best;
-        for (std::size_t b = 0; b < buffers_.size() && shared; ++b)
-            if (buffers_[b].free && buffers_[b].size >= size && (!best || buffers_[b].size < buffers_[*best].size))
-                best = b;
-        if (best) {
-            buffers_[*best].free = false;
-            return *best;
-        }
-        planned_ += n;
-        Buffer buffer;
-        buffer.size = size;
-        buffer.data = std::make_unique<float[]>(size + XNN_EXTRA_BYTES / sizeof(float));
-        buffers_.push_back(std::move(buffer));
-        return buffers_.size() - 1;
+        TensorArena& arena = *leases_.arena;
+        const std::size_t before = arena.floats();
+        const std::size_t buffer = arena.acquire(static_cast<std::size_t>(n), /*reuse=*/shared);
+        planned_ += static_cast<std::int64_t>(arena.floats() - before);
+        (shared ? leases_.tensors : leases_.constants).push_back(buffer);
+        return buffer;
     }
     void release(const std::string& name, std::size_t node) {
         auto use = lastUse_.find(name);
         auto v = values_.find(name);
         if (use == lastUse_.end() || use->second != node || v == values_.end() || constantBuffers_.count(name)) return;
-        buffers_[v->second.buffer].free = true;
+        leases_.arena->release(v->second.buffer);
         values_.erase(v);
     }
-    float* data(const Value& v) { return buffers_[v.buffer].data.get(); }
+    float* data(const Value& v) { return leases_.arena->data(v.buffer); }
 
     // A constant read as a tensor (a Mul's factor): a buffer of its own, never shared.
     const Value& materializeConstant(const std::string& name) {
@@ -957,12 +946,24 @@ private:
     Shape inputShape_;
     std::vector<std::string> outputs_, resolvedOutputs_;
     std::map<std::string, Value> values_;
-    std::vector<Buffer> buffers_;
+    // The arena's buffers this graph holds: its tensors', left to the graphs planned after it once its own
+    // plan is done, and its constants', its own while it lives. A plan that fails leaves them all.
+    struct Leases {
+        std::shared_ptr<TensorArena> arena;
+        std::vector<std::size_t> tensors, constants;
+        bool planned = false;
+        ~Leases() {
+            if (!planned)
+                for (const std::size_t b : tensors) arena->release(b);
+            for (const std::size_t b : constants) arena->release(b);
+        }
+    };
+    Leases leases_;
     std::vector<Operator> operators_;
     std::unique_ptr<pthreadpool, PoolDeleter> pool_;  // null: the calling thread alone
     std::vector<std::function<void()>> steps_;
     std::size_t inputBuffer_ = 0;
-    std::int64_t planned_ = 0;  // the floats of every buffer so far
+    std::int64_t planned_ = 0;  // the floats of the buffers its plan added to the arena
 };
 
 class OpenCvNetwork : public Network {
@@ -1009,8 +1010,25 @@ private:
 
 }  // namespace
 
+std::size_t TensorArena::acquire(std::size_t n, bool reuse) {
+    std::optional<std::size_t> best;
+    for (std::size_t b = 0; b < buffers_.size() && reuse; ++b)
+        if (buffers_[b].free && buffers_[b].size >= n && (!best || buffers_[b].size < buffers_[*best].size)) best = b;
+    if (best) {
+        buffers_[*best].free = false;
+        return *best;
+    }
+    Buffer buffer;
+    buffer.size = n;
+    buffer.data = std::make_unique<float[]>(n + XNN_EXTRA_BYTES / sizeof(float));
+    buffers_.push_back(std::move(buffer));
+    floats_ += n;
+    return buffers_.size() - 1;
+}
+
 std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::vector<std::string>& outputs,
-                                            std::string* whyNot, int threads) {
+                                            std::string* whyNot, int threads,
+                                            const std::shared_ptr<TensorArena>& tensors) {
     const auto refuse = [&](std::string why) -> std::unique_ptr<Network> {
         if (whyNot) *whyNot = std::move(why);
         return nullptr;
@@ -1020,7 +1038,7 @@ std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::ve
     std::ifstream in(model, std::ios::binary);
     if (!in || !proto.ParseFromIstream(&in)) return refuse(fmt::format("{}: not an ONNX graph", model.string()));
     try {
-        return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs, threads);
+        return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs, threads, tensors);
     } catch (const Unsupported& u) {
         return refuse(u.why);
     } catch (const Error&) {
@@ -1034,8 +1052,9 @@ std::unique_ptr<Network> loadOpenCvNetwork(const fs::path& model, const std::vec
     return std::make_unique<OpenCvNetwork>(model, outputs);
 }
 
-std::unique_ptr<Network> loadNetwork(const fs::path& model, const std::vector<std::string>& outputs, int threads) {
-    if (auto network = loadXnnpackNetwork(model, outputs, nullptr, threads)) return network;
+std::unique_ptr<Network> loadNetwork(const fs::path& model, const std::vector<std::string>& outputs, int threads,
+                                     const std::shared_ptr<TensorArena>& tensors) {
+    if (auto network = loadXnnpackNetwork(model, outputs, nullptr, threads, tensors)) return network;
     return loadOpenCvNetwork(model, outputs);
 }
 

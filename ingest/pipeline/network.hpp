@@ -15,6 +15,30 @@
 
 namespace smql::ingest {
 
+// The memory graphs plan their tensors in. Graphs one thread runs one after another (a stream's two
+// detectors and its segmenter) can share one: each plans into the buffers the graphs before it left, as a
+// graph's later steps reuse the buffers of its earlier steps' tensors, and asks for new memory only for
+// what those do not hold. A constant read as a tensor keeps a buffer of its own while its graph lives.
+class TensorArena {
+public:
+    // The smallest free buffer of at least n floats, taken, or (and always without `reuse`) a new one,
+    // with the bytes XNNPACK may read past a tensor's end.
+    std::size_t acquire(std::size_t n, bool reuse = true);
+    void release(std::size_t buffer) { buffers_[buffer].free = true; }
+    float* data(std::size_t buffer) { return buffers_[buffer].data.get(); }
+    // The floats of all its buffers.
+    std::size_t floats() const { return floats_; }
+
+private:
+    struct Buffer {
+        std::unique_ptr<float[]> data;
+        std::size_t size = 0;
+        bool free = false;
+    };
+    std::vector<Buffer> buffers_;
+    std::size_t floats_ = 0;
+};
+
 class Network {
 public:
     virtual ~Network() = default;
@@ -32,10 +56,11 @@ public:
 
 // The graph in `model`, run up to `outputs` (the graph's own outputs when none are named): on XNNPACK
 // when it can, each run on `threads` threads (the caller's and a pool of XNNPACK's; OpenCV's DNN takes
-// the process's count, cv::setNumThreads), else on OpenCV's DNN. Throws smql::Error(Input) when neither
-// loads the file or an output is not in the graph.
+// the process's count, cv::setNumThreads), its tensors in `tensors` when given (else an arena of its
+// own; a shared one's graphs must never run at the same time), else on OpenCV's DNN. Throws smql::Error(Input) when
+// neither loads the file or an output is not in the graph.
 std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const std::vector<std::string>& outputs = {},
-                                     int threads = 1);
+                                     int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
 
 // Each engine on its own (the tests hold one to the other). loadXnnpackNetwork gives nullptr, saying
 // why in `whyNot` when given, for a graph it does not run: an operator or attribute outside the ones
@@ -45,7 +70,7 @@ std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const s
 //   Mul (broadcasting), Concat, Split, Slice (step 1), Reshape, Flatten, Transpose, Identity.
 std::unique_ptr<Network> loadXnnpackNetwork(const std::filesystem::path& model,
                                             const std::vector<std::string>& outputs = {}, std::string* whyNot = nullptr,
-                                            int threads = 1);
+                                            int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
 std::unique_ptr<Network> loadOpenCvNetwork(const std::filesystem::path& model,
                                            const std::vector<std::string>& outputs = {});
 

@@ -24,8 +24,8 @@ constexpr const char* kLowResolution = "logits_lowres";
 
 class DeepLabSegmenter : public SemanticSegmenter {
 public:
-    DeepLabSegmenter(const DetectorFiles& files, int threads)
-        : file_(files.model.filename().string()), net_(loadNetwork(files.model, {kLowResolution}, threads)) {
+    DeepLabSegmenter(const DetectorFiles& files, int threads, const std::shared_ptr<TensorArena>& tensors)
+        : file_(files.model.filename().string()), net_(loadNetwork(files.model, {kLowResolution}, threads, tensors)) {
         std::ifstream in(files.classes);
         if (!in) throw Error(ErrorKind::Input, fmt::format("{}: cannot read the class names", files.classes.string()));
         for (std::string line; std::getline(in, line);) {
@@ -75,8 +75,9 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files, int threads) {
-    return std::make_unique<DeepLabSegmenter>(files, threads);
+std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files, int threads,
+                                                        const std::shared_ptr<TensorArena>& tensors) {
+    return std::make_unique<DeepLabSegmenter>(files, threads, tensors);
 }
 
 namespace {

@@ -4,9 +4,11 @@
 // to OpenCV's DNN, which says why.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 
 #include <fmt/format.h>
 #include <onnx/onnx_pb.h>
@@ -136,19 +138,18 @@ std::vector<float> ramp(std::size_t n, float step) {
     return values;
 }
 
-}  // namespace
-
-TEST_CASE("the packaged models give OpenCV's DNN's outputs on XNNPACK, on real frames") {
-    struct Model {
-        std::string_view name;
-        cv::Size input;
-        std::vector<std::string> outputs;
-        std::function<cv::Mat(const cv::Mat&, cv::Size)> blob;
-    };
+// The packaged models' graphs, with their inputs' sizes, the outputs the ingest reads and their blobs.
+struct PackagedGraph {
+    std::string_view name;
+    cv::Size input;
+    std::vector<std::string> outputs;
+    std::function<cv::Mat(const cv::Mat&, cv::Size)> blob;
+};
+std::vector<PackagedGraph> packagedGraphs() {
     const auto signedUnit = [](const cv::Mat& bgr, cv::Size size) {
         return cv::dnn::blobFromImage(bgr, 1 / 127.5, size, cv::Scalar(127.5, 127.5, 127.5), true, false);
     };
-    const std::vector<Model> models{
+    return {
         {"nanodet",
          {416, 416},
          {},
@@ -158,6 +159,12 @@ TEST_CASE("the packaged models give OpenCV's DNN's outputs on XNNPACK, on real f
         {"oid", {300, 300}, {"boxes", "scores"}, signedUnit},
         {"deeplab", {513, 385}, {"logits_lowres"}, signedUnit},
     };
+}
+
+}  // namespace
+
+TEST_CASE("the packaged models give OpenCV's DNN's outputs on XNNPACK, on real frames") {
+    const std::vector<PackagedGraph> models = packagedGraphs();
     const std::vector<cv::Mat> frames = realFrames();
     for (const auto& m : models) {
         INFO(m.name);
@@ -185,6 +192,49 @@ TEST_CASE("the packaged models give OpenCV's DNN's outputs on XNNPACK, on real f
         // The loader picks XNNPACK for them.
         CHECK(loadNetwork(files->model, m.outputs)->engine() == "XNNPACK");
     }
+}
+
+TEST_CASE("a stream's packaged models planned into one arena run in turns as each planned alone, in less memory") {
+    // As a stream of the ingest holds them: DeepLab, then NanoDet and the SSD, one arena for their tensors.
+    const auto shared = std::make_shared<TensorArena>();
+    std::size_t alone = 0, largest = 0;
+    struct Pair {
+        PackagedGraph graph;
+        std::unique_ptr<Network> inShared, inOwn;
+    };
+    std::vector<Pair> pairs;
+    std::vector<PackagedGraph> graphs = packagedGraphs();
+    std::rotate(graphs.begin(), graphs.end() - 1, graphs.end());
+    REQUIRE(graphs.front().name == "deeplab");
+    for (const auto& m : graphs) {
+        auto files = installedModel(m.name);
+        if (!files) {
+            WARN(fmt::format("skipped: no {} model (run scripts/detector/setup.sh)", m.name));
+            return;
+        }
+        const auto own = std::make_shared<TensorArena>();
+        pairs.push_back({m, loadXnnpackNetwork(files->model, m.outputs, nullptr, 1, shared),
+                         loadXnnpackNetwork(files->model, m.outputs, nullptr, 1, own)});
+        REQUIRE(pairs.back().inShared);
+        REQUIRE(pairs.back().inOwn);
+        alone += own->floats();
+        largest = std::max(largest, own->floats());
+    }
+    INFO(fmt::format("{} floats shared, {} alone, the largest graph's {}", shared->floats(), alone, largest));
+    // The detectors plan into the buffers DeepLab, the largest, left: the arena holds little more than
+    // DeepLab's tensors and the detectors' constants.
+    CHECK(shared->floats() < largest * 11 / 10);
+    CHECK(shared->floats() < alone * 6 / 10);
+    // Each frame through every graph in turn, each overwriting the buffers of the ones before it: the
+    // same outputs as the graphs with buffers of their own.
+    for (const auto& frame : realFrames())
+        for (auto& [graph, inShared, inOwn] : pairs) {
+            INFO(graph.name);
+            const cv::Mat blob = graph.blob(frame, graph.input);
+            const std::vector<cv::Mat> ours = inShared->run(blob), theirs = inOwn->run(blob);
+            REQUIRE(ours.size() == theirs.size());
+            for (std::size_t o = 0; o < ours.size(); ++o) CHECK(largestDifference(ours[o], theirs[o]) == 0);
+        }
 }
 
 TEST_CASE("operators and layouts the packaged models do not reach agree with OpenCV's DNN") {
