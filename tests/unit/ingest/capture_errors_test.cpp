@@ -110,6 +110,15 @@ TEST_CASE("images past 100 megapixels are refused on their header's word, before
     CHECK(storedImageSize(diningPath() + "/color/1.png") == std::pair{640, 480});
 }
 
+TEST_CASE("a PGM depth image past 100 megapixels is refused on its header's word", "[capture][errors][pgm]") {
+    TempDir dir;
+    writeRgbd(dir, 2);
+    // A 16-bit PGM's header stating 20000 x 20000 pixels (800 MB decoded), a comment in it, and no pixels.
+    fs::remove(dir.path("depth/2.png"));
+    dir.write("depth/2.pgm", "P5\n# a depth camera\n20000 20000\n65535\n");
+    requireError([&] { readCapture(dir.path()); }, {dir.path("depth/2.pgm"), "20000 x 20000 pixels", "100 megapixels"});
+}
+
 TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
     TempDir dir;
     writeRgbd(dir, 2);
