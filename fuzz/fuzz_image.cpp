@@ -1,8 +1,7 @@
-// The frames' image decoders (ingest/capture/png_decoder.hpp, pgm_decoder.hpp) on arbitrary bytes, against
-// OpenCV: whatever one decodes, OpenCV must read as the same pixels; what they leave, OpenCV reads (or
-// refuses) as before.
-// Chunks' checksums would stop nearly every mutation at the first chunk, so the input's chunks are
-// checksummed again before it is decoded, unless its last byte is odd.
+// The frames' image decoders (ingest/capture/png_decoder.hpp, pgm_decoder.hpp, jpeg_decoder.hpp) on
+// arbitrary bytes, against OpenCV: whatever one decodes, OpenCV must read as the same pixels; what they
+// leave, OpenCV reads (or refuses) as before. A PNG's chunks' checksums would stop nearly every mutation at the first
+// chunk, so the input's chunks are checksummed again before it is decoded, unless its last byte is odd.
 #include <cstdint>
 #include <cstdlib>
 #include <vector>
@@ -11,6 +10,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "ingest/capture/jpeg_decoder.hpp"
 #include "ingest/capture/pgm_decoder.hpp"
 #include "ingest/capture/png_decoder.hpp"
 
@@ -46,6 +46,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (const auto depth = smql::ingest::decodeDepthPgm(file, kMaxPixels)) {
         const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_UNCHANGED);
         if (theirs.type() != CV_16UC1 || theirs.size() != depth->size() || cv::norm(*depth, theirs, cv::NORM_INF) != 0)
+            std::abort();
+    }
+    if (const auto colour = smql::ingest::decodeColorJpeg(file, kMaxPixels)) {
+        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_COLOR);
+        if (theirs.type() != CV_8UC3 || theirs.size() != colour->size() || cv::norm(*colour, theirs, cv::NORM_INF) != 0)
             std::abort();
     }
     if (const auto colour = smql::ingest::decodeColorPng(file, kMaxPixels)) {

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "ingest/capture/capture_detail.hpp"
+#include "ingest/capture/jpeg_decoder.hpp"
 #include "ingest/capture/media.hpp"
 #include "ingest/capture/pgm_decoder.hpp"
 #include "ingest/capture/png_decoder.hpp"
@@ -367,7 +368,11 @@ const char* depthName(int depth) {
 }  // namespace
 
 cv::Mat readColorImage(const std::string& file) {
-    return readImage(file, cv::IMREAD_COLOR, "colour image", decodeColorPng);
+    return readImage(file, cv::IMREAD_COLOR, "colour image",
+                     [](std::span<const std::uint8_t> bytes, long long maxPixels) {
+                         auto png = decodeColorPng(bytes, maxPixels);
+                         return png ? png : decodeColorJpeg(bytes, maxPixels);
+                     });
 }
 
 cv::Mat readDepthImage(const std::string& file) {

@@ -130,6 +130,9 @@ void checkImageFile(const fs::path& file, std::string_view what, std::string_vie
 // The most pixels an image may have (docs/ingest.md, "Bounds"): 100 megapixels, 300 MB decoded.
 // Checked on the file's header before anything is decoded.
 inline constexpr long long kMaxImagePixels = 100'000'000;
+// OpenCV's bound on a decoded image's side (CV_IO_MAX_IMAGE_WIDTH and _HEIGHT): past it imdecode throws,
+// so the decoders here leave such an image to it.
+inline constexpr int kMaxDecodedSide = 1 << 20;
 // Width and height as a PNG's, a JPEG's or a binary PGM's header states them; nullopt for other formats (OpenCV
 // then decodes them under its own bound) and for headers it cannot read.
 std::optional<std::pair<int, int>> storedImageSize(const fs::path& file);

@@ -2,12 +2,11 @@
 
 #include <climits>
 
+#include "ingest/capture/capture_detail.hpp"
+
 namespace smql::ingest {
 
 namespace {
-
-// OpenCV's bound on an image's side (CV_IO_MAX_IMAGE_WIDTH and _HEIGHT): past it imdecode throws.
-constexpr int kMaxSide = 1 << 20;
 
 bool space(std::uint8_t c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
 bool digit(std::uint8_t c) { return c >= '0' && c <= '9'; }
@@ -49,7 +48,7 @@ std::optional<PgmHeader> readPgmHeader(std::span<const std::uint8_t> file) {
 std::optional<cv::Mat> decodeDepthPgm(std::span<const std::uint8_t> file, long long maxPixels) {
     const auto header = readPgmHeader(file);
     if (!header || header->maxValue < 256 || header->maxValue > 65535 || header->width <= 0 || header->height <= 0 ||
-        header->width > kMaxSide || header->height > kMaxSide ||
+        header->width > capture_detail::kMaxDecodedSide || header->height > capture_detail::kMaxDecodedSide ||
         static_cast<long long>(header->width) * header->height > maxPixels)
         return std::nullopt;
     const std::size_t pixels = static_cast<std::size_t>(header->width) * static_cast<std::size_t>(header->height);
