@@ -2,8 +2,12 @@
 // arbitrary bytes, against OpenCV: whatever one decodes, OpenCV must read as the same pixels; what they
 // leave, OpenCV reads (or refuses) as before. A PNG's chunks' checksums would stop nearly every mutation at the first
 // chunk, so the input's chunks are checksummed again before it is decoded, unless its last byte is odd.
+#include <array>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include <libdeflate.h>
@@ -37,26 +41,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     constexpr long long kMaxPixels = 4'000'000;
     std::vector<std::uint8_t> file(data, data + size);
     if (!file.empty() && file.back() % 2 == 0) checksumChunks(file);
-    // A PNG both read, read differently.
-    if (const auto depth = smql::ingest::decodeDepthPng(file, kMaxPixels)) {
-        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_UNCHANGED);
-        if (theirs.type() != CV_16UC1 || theirs.size() != depth->size() || cv::norm(*depth, theirs, cv::NORM_INF) != 0)
-            std::abort();
-    }
-    if (const auto depth = smql::ingest::decodeDepthPgm(file, kMaxPixels)) {
-        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_UNCHANGED);
-        if (theirs.type() != CV_16UC1 || theirs.size() != depth->size() || cv::norm(*depth, theirs, cv::NORM_INF) != 0)
-            std::abort();
-    }
-    if (const auto colour = smql::ingest::decodeColorJpeg(file, kMaxPixels)) {
-        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_COLOR);
-        if (theirs.type() != CV_8UC3 || theirs.size() != colour->size() || cv::norm(*colour, theirs, cv::NORM_INF) != 0)
-            std::abort();
-    }
-    if (const auto colour = smql::ingest::decodeColorPng(file, kMaxPixels)) {
-        const cv::Mat theirs = cv::imdecode(file, cv::IMREAD_COLOR);
-        if (theirs.type() != CV_8UC3 || theirs.size() != colour->size() || cv::norm(*colour, theirs, cv::NORM_INF) != 0)
-            std::abort();
-    }
+    // An image both read, read differently.
+    using Decoder = std::optional<cv::Mat> (*)(std::span<const std::uint8_t>, long long);
+    constexpr std::array<std::pair<Decoder, int>, 4> kDecoders{{{smql::ingest::decodeDepthPng, cv::IMREAD_UNCHANGED},
+                                                                {smql::ingest::decodeDepthPgm, cv::IMREAD_UNCHANGED},
+                                                                {smql::ingest::decodeColorPng, cv::IMREAD_COLOR},
+                                                                {smql::ingest::decodeColorJpeg, cv::IMREAD_COLOR}}};
+    for (const auto& [decode, flags] : kDecoders)
+        if (const auto ours = decode(file, kMaxPixels)) {
+            const cv::Mat theirs = cv::imdecode(file, flags);
+            if (theirs.type() != ours->type() || theirs.size() != ours->size() ||
+                cv::norm(*ours, theirs, cv::NORM_INF) != 0)
+                std::abort();
+        }
     return 0;
 }
