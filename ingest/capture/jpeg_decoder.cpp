@@ -22,6 +22,10 @@ std::optional<bool> exifBeforeScan(std::span<const std::uint8_t> file) {
             ++at;
             continue;
         }
+        if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) {  // without a length (libjpeg reads past)
+            at += 2;
+            continue;
+        }
         if (marker == 0xDA || marker == 0xD9) return false;  // the first scan, or the end
         const std::size_t length = std::size_t{file[at + 2]} << 8 | file[at + 3];
         if (length < 2) return std::nullopt;
