@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 #include <opencv2/core.hpp>
@@ -25,6 +26,17 @@ namespace smql::ingest::test {
 namespace fs = std::filesystem;
 
 inline std::string diningPath() { return std::string(SMQL_SHARED_DATA) + "/rgbd-dining"; }
+
+// What one of the frames' decoders made of `file` (png_decoder.hpp, pgm_decoder.hpp, jpeg_decoder.hpp) is
+// what OpenCV reads (cv::imdecode with `flags`): the same type, size and pixels.
+inline void requireAsOpenCvReads(const std::optional<cv::Mat>& ours, const std::vector<std::uint8_t>& file, int flags) {
+    const cv::Mat theirs = cv::imdecode(file, flags);
+    REQUIRE(ours);
+    REQUIRE(!theirs.empty());
+    REQUIRE(ours->type() == theirs.type());
+    REQUIRE(ours->size() == theirs.size());
+    CHECK(cv::norm(*ours, theirs, cv::NORM_INF) == 0);
+}
 
 // Whether one of the capture's notes holds `fragment`.
 inline bool hasNote(const Capture& capture, const std::string& fragment) {
