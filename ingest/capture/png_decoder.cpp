@@ -9,6 +9,8 @@
 
 #include <libdeflate.h>
 
+#include "ingest/capture/capture_detail.hpp"
+
 namespace smql::ingest {
 
 namespace {
@@ -136,8 +138,8 @@ std::optional<cv::Mat> decodePng(std::span<const std::uint8_t> file, long long m
                 data[11] != 0 || data[12] != 0)
                 return std::nullopt;
             const std::uint32_t w = bigEndian32(data), h = bigEndian32(data + 4);
-            // PNG's sides are under 2^31; their product is taken unsigned, where it cannot overflow.
-            if (w == 0 || h == 0 || w > 0x7fffffffu || h > 0x7fffffffu ||
+            // Sides OpenCV reads (it throws past 2^20); their product is taken unsigned.
+            if (w == 0 || h == 0 || w > capture_detail::kMaxDecodedSide || h > capture_detail::kMaxDecodedSide ||
                 std::uint64_t{w} * h > static_cast<std::uint64_t>(std::max(maxPixels, 0LL)))
                 return std::nullopt;
             width = static_cast<int>(w);

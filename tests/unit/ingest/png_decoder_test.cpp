@@ -238,6 +238,16 @@ TEST_CASE("depth PNGs: what the decoder does not take is left to OpenCV", "[capt
         for (int at : {16, 20}) huge[at] = 0xe2;
         setHeaderChecksum(huge);
         CHECK_FALSE(decodeDepthPng(huge, kAnySize));
+        // A side past OpenCV's 2^20, though the pixels are few: OpenCV throws on it, so it is OpenCV's to refuse.
+        const Bytes wide = pngOf(cv::Mat1w(1, capture_detail::kMaxDecodedSide + 1, std::uint16_t{7}), {0});
+        CHECK_FALSE(decodeDepthPng(wide, kAnySize));
+        bool openCvReads = false;
+        try {
+            openCvReads = !cv::imdecode(wide, cv::IMREAD_UNCHANGED).empty();
+        } catch (const cv::Exception&) {
+        }
+        CHECK_FALSE(openCvReads);
+        CHECK(decodeDepthPng(pngOf(cv::Mat1w(1, capture_detail::kMaxDecodedSide, std::uint16_t{7}), {0}), kAnySize));
     }
     SECTION("read through OpenCV: the errors are its reading's") {
         test::TempDir dir;
