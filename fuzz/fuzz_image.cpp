@@ -1,22 +1,16 @@
-// The frames' image decoders (ingest/capture/png_decoder.hpp, pgm_decoder.hpp, jpeg_decoder.hpp) on
-// arbitrary bytes, against OpenCV: whatever one decodes, OpenCV must read as the same pixels; what they
-// leave, OpenCV reads (or refuses) as before. A PNG's chunks' checksums would stop nearly every mutation at the first
-// chunk, so the input's chunks are checksummed again before it is decoded, unless its last byte is odd.
-#include <array>
+// The frames' image decoders (ingest/capture/frame_decoders.hpp) on arbitrary bytes, against OpenCV: whatever one
+// decodes, OpenCV must read as the same pixels; what they leave, OpenCV reads (or refuses) as before. A PNG's chunks'
+// checksums would stop nearly every mutation at the first chunk, so the input's chunks are checksummed again before it
+// is decoded, unless its last byte is odd.
 #include <cstdint>
 #include <cstdlib>
-#include <optional>
-#include <span>
-#include <utility>
 #include <vector>
 
 #include <libdeflate.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "ingest/capture/jpeg_decoder.hpp"
-#include "ingest/capture/pgm_decoder.hpp"
-#include "ingest/capture/png_decoder.hpp"
+#include "ingest/capture/frame_decoders.hpp"
 
 namespace {
 
@@ -42,17 +36,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::vector<std::uint8_t> file(data, data + size);
     if (!file.empty() && file.back() % 2 == 0) checksumChunks(file);
     // An image both read, read differently.
-    using Decoder = std::optional<cv::Mat> (*)(std::span<const std::uint8_t>, long long);
-    constexpr std::array<std::pair<Decoder, int>, 4> kDecoders{{{smql::ingest::decodeDepthPng, cv::IMREAD_UNCHANGED},
-                                                                {smql::ingest::decodeDepthPgm, cv::IMREAD_UNCHANGED},
-                                                                {smql::ingest::decodeColorPng, cv::IMREAD_COLOR},
-                                                                {smql::ingest::decodeColorJpeg, cv::IMREAD_COLOR}}};
-    for (const auto& [decode, flags] : kDecoders)
-        if (const auto ours = decode(file, kMaxPixels)) {
-            const cv::Mat theirs = cv::imdecode(file, flags);
-            if (theirs.type() != ours->type() || theirs.size() != ours->size() ||
-                cv::norm(*ours, theirs, cv::NORM_INF) != 0)
-                std::abort();
-        }
+    for (const auto& kind : {smql::ingest::kColourFrameDecoders, smql::ingest::kDepthFrameDecoders})
+        for (const smql::ingest::FrameDecoder decode : kind.decoders)
+            if (const auto ours = decode(file, kMaxPixels)) {
+                const cv::Mat theirs = cv::imdecode(file, kind.openCvFlags);
+                if (theirs.type() != ours->type() || theirs.size() != ours->size() ||
+                    cv::norm(*ours, theirs, cv::NORM_INF) != 0)
+                    std::abort();
+            }
     return 0;
 }

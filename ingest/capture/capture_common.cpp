@@ -10,10 +10,9 @@
 #include <Eigen/Geometry>
 
 #include "ingest/capture/capture_detail.hpp"
-#include "ingest/capture/jpeg_decoder.hpp"
+#include "ingest/capture/frame_decoders.hpp"
 #include "ingest/capture/media.hpp"
 #include "ingest/capture/pgm_decoder.hpp"
-#include "ingest/capture/png_decoder.hpp"
 #include "ingest/import/common.hpp"
 #include "model/error.hpp"
 
@@ -320,19 +319,19 @@ std::optional<std::vector<std::uint8_t>> fileBytes(const std::string& file) {
     return bytes;
 }
 
-// `decode`, when given, reads the file's bytes first; what it leaves (std::nullopt), OpenCV decodes from
-// those bytes, not from the file again.
-cv::Mat readImage(const std::string& file, int flags, std::string_view what,
-                  std::optional<cv::Mat> (*decode)(std::span<const std::uint8_t>, long long) = nullptr) {
+// With `decoders`, the file's bytes are read first and given to each in turn; what they leave
+// (std::nullopt), OpenCV decodes from those bytes, not from the file again.
+cv::Mat readImage(const std::string& file, int flags, std::string_view what, const FrameDecoders* decoders = nullptr) {
     std::error_code ec;
     auto status = fs::status(file, ec);
     if (!fs::exists(status)) fail(file, fmt::format("{} is missing", what));
     if (!fs::is_regular_file(status)) fail(file, fmt::format("{} is not a regular file", what));
     refuseHugeImage(file, what);
     std::optional<std::vector<std::uint8_t>> bytes;
-    if (decode) bytes = fileBytes(file);
+    if (decoders) bytes = fileBytes(file);
     if (bytes && !bytes->empty())
-        if (auto image = decode(*bytes, kMaxImagePixels)) return std::move(*image);
+        for (const FrameDecoder decode : decoders->decoders)
+            if (auto image = decode(*bytes, kMaxImagePixels)) return std::move(*image);
     cv::Mat image;
     try {
         image = bytes && !bytes->empty() ? media::decode(*bytes, flags) : media::read(file, flags);
@@ -368,19 +367,11 @@ const char* depthName(int depth) {
 }  // namespace
 
 cv::Mat readColorImage(const std::string& file) {
-    return readImage(file, cv::IMREAD_COLOR, "colour image",
-                     [](std::span<const std::uint8_t> bytes, long long maxPixels) {
-                         auto png = decodeColorPng(bytes, maxPixels);
-                         return png ? png : decodeColorJpeg(bytes, maxPixels);
-                     });
+    return readImage(file, kColourFrameDecoders.openCvFlags, "colour image", &kColourFrameDecoders);
 }
 
 cv::Mat readDepthImage(const std::string& file) {
-    cv::Mat depth = readImage(file, cv::IMREAD_UNCHANGED, "depth image",
-                              [](std::span<const std::uint8_t> bytes, long long maxPixels) {
-                                  auto png = decodeDepthPng(bytes, maxPixels);
-                                  return png ? png : decodeDepthPgm(bytes, maxPixels);
-                              });
+    cv::Mat depth = readImage(file, kDepthFrameDecoders.openCvFlags, "depth image", &kDepthFrameDecoders);
     if (depth.channels() != 1)
         fail(file, fmt::format("a depth image has one channel, this one has {}", depth.channels()));
     if (depth.depth() != CV_16U && depth.depth() != CV_32F)

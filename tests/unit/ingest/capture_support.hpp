@@ -27,8 +27,8 @@ namespace fs = std::filesystem;
 
 inline std::string diningPath() { return std::string(SMQL_SHARED_DATA) + "/rgbd-dining"; }
 
-// What one of the frames' decoders made of `file` (png_decoder.hpp, pgm_decoder.hpp, jpeg_decoder.hpp) is
-// what OpenCV reads (cv::imdecode with `flags`): the same type, size and pixels.
+// What one of the frames' decoders made of `file` (frame_decoders.hpp) is what OpenCV reads (cv::imdecode
+// with `flags`): the same type, size and pixels.
 inline void requireAsOpenCvReads(const std::optional<cv::Mat>& ours, const std::vector<std::uint8_t>& file, int flags) {
     const cv::Mat theirs = cv::imdecode(file, flags);
     REQUIRE(ours);
