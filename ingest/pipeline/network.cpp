@@ -1,5 +1,7 @@
 #include "ingest/pipeline/network.hpp"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -1010,6 +1012,18 @@ private:
 
 }  // namespace
 
+// Buffers this large or larger are pages of their own, in 2 MiB pages where the kernel has them (madvise;
+// a 4 KiB page's first touch costs about 11 us on a virtual machine like the one docs/benchmarks.md was
+// measured on, and a stream's tensors are 42 MB), zeroed by the kernel as new[]() zeroes the others.
+constexpr std::size_t kHugePage = std::size_t{2} << 20;
+
+void detail::TensorPages::operator()(float* data) const {
+    if (bytes == 0)
+        delete[] data;
+    else
+        munmap(data, bytes);
+}
+
 std::size_t TensorArena::acquire(std::size_t n, bool reuse) {
     std::optional<std::size_t> best;
     for (std::size_t b = 0; b < buffers_.size() && reuse; ++b)
@@ -1020,7 +1034,15 @@ std::size_t TensorArena::acquire(std::size_t n, bool reuse) {
     }
     Buffer buffer;
     buffer.size = n;
-    buffer.data = std::make_unique<float[]>(n + XNN_EXTRA_BYTES / sizeof(float));
+    const std::size_t floats = n + XNN_EXTRA_BYTES / sizeof(float), bytes = floats * sizeof(float);
+    if (bytes < kHugePage) {
+        buffer.data.reset(new float[floats]());
+    } else {
+        void* pages = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (pages == MAP_FAILED) throw std::bad_alloc();
+        madvise(pages, bytes, MADV_HUGEPAGE);  // a hint: without it, 4 KiB pages
+        buffer.data = std::unique_ptr<float[], detail::TensorPages>(static_cast<float*>(pages), {bytes});
+    }
     buffers_.push_back(std::move(buffer));
     floats_ += n;
     return buffers_.size() - 1;

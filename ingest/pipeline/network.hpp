@@ -15,6 +15,14 @@
 
 namespace smql::ingest {
 
+namespace detail {
+// Frees a tensor buffer: `bytes` of pages mapped for it (TensorArena::acquire), or an array when 0.
+struct TensorPages {
+    void operator()(float* data) const;
+    std::size_t bytes = 0;
+};
+}  // namespace detail
+
 // The memory graphs plan their tensors in. Graphs one thread runs one after another (a stream's two
 // detectors and its segmenter) can share one: each plans into the buffers the graphs before it left, as a
 // graph's later steps reuse the buffers of its earlier steps' tensors, and asks for new memory only for
@@ -31,7 +39,7 @@ public:
 
 private:
     struct Buffer {
-        std::unique_ptr<float[]> data;
+        std::unique_ptr<float[], detail::TensorPages> data;
         std::size_t size = 0;
         bool free = false;
     };

@@ -5,10 +5,15 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 #include <onnx/onnx_pb.h>
@@ -395,4 +400,35 @@ TEST_CASE("graphs whose numbers make no tensor are refused by the runner, not ru
         CHECK(!loadXnnpackNetwork(g.write(dir.path / "broken.onnx"), {}, &whyNot));
         CHECK(!whyNot.empty());
     }
+}
+
+TEST_CASE("an arena's large buffers are zeroed pages of their own, advised for 2 MiB pages") {
+    TensorArena arena;
+    const std::size_t small = arena.acquire(1000), large = arena.acquire(4 << 20);  // 4 KB, 16 MB
+    for (std::size_t b : {small, large}) CHECK(arena.data(b)[0] == 0.0f);
+    CHECK(arena.data(large)[(4 << 20) - 1] == 0.0f);
+    // /proc/self/smaps: the mapping that holds the large buffer may take huge pages (THPeligible) wherever
+    // the kernel gives them to mappings that ask (madvise) or to all.
+    std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string setting((std::istreambuf_iterator<char>(mode)), std::istreambuf_iterator<char>());
+    if (setting.empty() || setting.find("[never]") != std::string::npos) {
+        WARN("skipped the huge pages' check: the kernel gives none");
+        return;
+    }
+    std::ifstream smaps("/proc/self/smaps");
+    const auto address = reinterpret_cast<std::uintptr_t>(arena.data(large));
+    std::string line;
+    bool inside = false;
+    std::optional<bool> eligible;
+    while (std::getline(smaps, line)) {
+        std::uintptr_t from = 0, to = 0;
+        if (std::sscanf(line.c_str(), "%lx-%lx ", &from, &to) == 2) {
+            inside = from <= address && address < to;
+        } else if (inside && line.rfind("THPeligible:", 0) == 0) {
+            eligible = line.find('1') != std::string::npos;
+            break;
+        }
+    }
+    REQUIRE(eligible.has_value());
+    CHECK(*eligible);
 }
