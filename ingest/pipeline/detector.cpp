@@ -119,11 +119,8 @@ std::vector<std::string> readClassNames(const fs::path& path) {
 
 class NanoDetDetector : public ObjectDetector {
 public:
-    NanoDetDetector(const DetectorFiles& files, double minScore, int threads,
-                    const std::shared_ptr<TensorArena>& tensors)
-        : minScore_(minScore),
-          file_(files.model.filename().string()),
-          net_(loadNetwork(files.model, {}, threads, tensors)) {
+    NanoDetDetector(const DetectorFiles& files, double minScore, const GraphPlacement& placement)
+        : minScore_(minScore), file_(files.model.filename().string()), net_(loadNetwork(files.model, {}, placement)) {
         classes_ = readClassNames(files.classes);
         for (const auto& name : classes_) categories_.push_back(memoryCategory(name));
         if (net_->outputs().size() != 2 * kStrides.size())
@@ -209,10 +206,10 @@ private:
 // and the suppression.
 class SsdDetector : public ObjectDetector {
 public:
-    SsdDetector(const DetectorFiles& files, double minScore, int threads, const std::shared_ptr<TensorArena>& tensors)
+    SsdDetector(const DetectorFiles& files, double minScore, const GraphPlacement& placement)
         : minScore_(minScore),
           file_(files.model.filename().string()),
-          net_(loadNetwork(files.model, {"boxes", "scores"}, threads, tensors)) {
+          net_(loadNetwork(files.model, {"boxes", "scores"}, placement)) {
         for (const auto& name : readClassNames(files.classes)) categories_.push_back(memoryCategory(name));
     }
 
@@ -362,26 +359,26 @@ std::optional<DetectorFiles> findDetectorFiles(const std::string& model, const s
     return files;
 }
 
-std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, double minScore, int threads,
-                                                    const std::shared_ptr<TensorArena>& tensors) {
-    return std::make_unique<NanoDetDetector>(files, minScore, threads, tensors);
+std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, double minScore,
+                                                    const GraphPlacement& placement) {
+    return std::make_unique<NanoDetDetector>(files, minScore, placement);
 }
 
-std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore, int threads,
-                                                const std::shared_ptr<TensorArena>& tensors) {
-    return std::make_unique<SsdDetector>(files, minScore, threads, tensors);
+std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore,
+                                                const GraphPlacement& placement) {
+    return std::make_unique<SsdDetector>(files, minScore, placement);
 }
 
 std::unique_ptr<ObjectDetector> makeDetectorEnsemble(std::vector<std::unique_ptr<ObjectDetector>> members) {
     return std::make_unique<DetectorEnsemble>(std::move(members));
 }
 
-std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged, int threads,
-                                             const std::shared_ptr<TensorArena>& tensors) {
+std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged,
+                                             const GraphPlacement& placement) {
     std::vector<std::unique_ptr<ObjectDetector>> members;
-    members.push_back(makeNanoDetDetector(files, kNanoDetMinScore, threads, tensors));
+    members.push_back(makeNanoDetDetector(files, kNanoDetMinScore, placement));
     if (packaged)
-        if (auto oid = installedModel("oid")) members.push_back(makeSsdDetector(*oid, kSsdMinScore, threads, tensors));
+        if (auto oid = installedModel("oid")) members.push_back(makeSsdDetector(*oid, kSsdMinScore, placement));
     if (members.size() == 1) return std::move(members.front());
     return makeDetectorEnsemble(std::move(members));
 }

@@ -59,18 +59,18 @@ public:
     virtual std::string describe() const = 0;
 };
 
-// The NanoDet detector, its graph run on `threads` threads, its tensors in `tensors` (loadNetwork). Throws
+// The NanoDet detector, its graph placed as `placement` says (loadNetwork). Throws
 // smql::Error(Input) when the model does not load or its outputs or class file do not have the shapes NanoDet's have.
 inline constexpr double kNanoDetMinScore = 0.35;
 std::unique_ptr<ObjectDetector> makeNanoDetDetector(const DetectorFiles& files, double minScore = kNanoDetMinScore,
-                                                    int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
+                                                    const GraphPlacement& placement = {});
 
 // An SSD with its boxes decoded in the graph (the Open Images detector, scripts/detector/oid_setup.sh):
 // a 1x3x300x300 RGB image in [-1, 1] gives boxes (N x 4: top, left, bottom, right, in shares of the image)
 // and class scores (N x classes, sigmoid).
 inline constexpr double kSsdMinScore = 0.4;
 std::unique_ptr<ObjectDetector> makeSsdDetector(const DetectorFiles& files, double minScore = kSsdMinScore,
-                                                int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
+                                                const GraphPlacement& placement = {});
 
 // One model's raw boxes (image pixels), scores and class indices (into `categories`) to its detections: those
 // scored at least minScore, one per thing per class (non-maximum suppression, and a box nested in a larger one
@@ -85,10 +85,10 @@ inline constexpr double kSameThingIou = 0.5;
 std::unique_ptr<ObjectDetector> makeDetectorEnsemble(std::vector<std::unique_ptr<ObjectDetector>> members);
 
 // The detector `--objects detect` runs: the model given by --detector (a NanoDet graph), else every
-// packaged detector that is installed, each on `threads` threads, their tensors in `tensors`. Throws smql::Error(Input)
-// as makeNanoDetDetector does.
-std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged, int threads = 1,
-                                             const std::shared_ptr<TensorArena>& tensors = {});
+// packaged detector that is installed, each placed as `placement` says. Throws smql::Error(Input) as
+// makeNanoDetDetector does.
+std::unique_ptr<ObjectDetector> makeDetector(const DetectorFiles& files, bool packaged,
+                                             const GraphPlacement& placement = {});
 
 // A model's class name (COCO, Open Images, PASCAL VOC) -> the memory's category ("couch" -> "sofa",
 // "Computer monitor" -> "monitor"); empty for classes that are not part of a room's memory.

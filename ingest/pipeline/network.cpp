@@ -159,9 +159,9 @@ struct Value {
 class XnnpackNetwork : public Network {
 public:
     XnnpackNetwork(const onnx::ModelProto& model, const std::string& file, const std::vector<std::string>& wanted,
-                   int threads, std::shared_ptr<TensorArena> tensors)
-        : leases_{tensors ? std::move(tensors) : std::make_shared<TensorArena>()} {
-        if (threads > 1) pool_.reset(pthreadpool_create(static_cast<std::size_t>(threads)));
+                   const GraphPlacement& placement)
+        : leases_{placement.tensors ? placement.tensors : std::make_shared<TensorArena>()} {
+        if (placement.threads > 1) pool_.reset(pthreadpool_create(static_cast<std::size_t>(placement.threads)));
         const auto& graph = model.graph();
         for (const auto& o : model.opset_import())
             if (o.domain().empty() || o.domain() == "ai.onnx") opset_ = o.version();
@@ -1049,8 +1049,7 @@ std::size_t TensorArena::acquire(std::size_t n, bool reuse) {
 }
 
 std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::vector<std::string>& outputs,
-                                            std::string* whyNot, int threads,
-                                            const std::shared_ptr<TensorArena>& tensors) {
+                                            std::string* whyNot, const GraphPlacement& placement) {
     const auto refuse = [&](std::string why) -> std::unique_ptr<Network> {
         if (whyNot) *whyNot = std::move(why);
         return nullptr;
@@ -1060,7 +1059,7 @@ std::unique_ptr<Network> loadXnnpackNetwork(const fs::path& model, const std::ve
     std::ifstream in(model, std::ios::binary);
     if (!in || !proto.ParseFromIstream(&in)) return refuse(fmt::format("{}: not an ONNX graph", model.string()));
     try {
-        return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs, threads, tensors);
+        return std::make_unique<XnnpackNetwork>(proto, model.string(), outputs, placement);
     } catch (const Unsupported& u) {
         return refuse(u.why);
     } catch (const Error&) {
@@ -1074,9 +1073,9 @@ std::unique_ptr<Network> loadOpenCvNetwork(const fs::path& model, const std::vec
     return std::make_unique<OpenCvNetwork>(model, outputs);
 }
 
-std::unique_ptr<Network> loadNetwork(const fs::path& model, const std::vector<std::string>& outputs, int threads,
-                                     const std::shared_ptr<TensorArena>& tensors) {
-    if (auto network = loadXnnpackNetwork(model, outputs, nullptr, threads, tensors)) return network;
+std::unique_ptr<Network> loadNetwork(const fs::path& model, const std::vector<std::string>& outputs,
+                                     const GraphPlacement& placement) {
+    if (auto network = loadXnnpackNetwork(model, outputs, nullptr, placement)) return network;
     return loadOpenCvNetwork(model, outputs);
 }
 

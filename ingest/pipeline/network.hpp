@@ -62,13 +62,19 @@ public:
     virtual std::string_view engine() const = 0;
 };
 
+// Where a graph on XNNPACK runs: each run on `threads` threads (the caller's and a pool of XNNPACK's; OpenCV's
+// DNN takes the process's count, cv::setNumThreads), its tensors in `tensors` when given, else in an arena of
+// its own (a shared one's graphs must never run at the same time).
+struct GraphPlacement {
+    int threads = 1;
+    std::shared_ptr<TensorArena> tensors;
+};
+
 // The graph in `model`, run up to `outputs` (the graph's own outputs when none are named): on XNNPACK
-// when it can, each run on `threads` threads (the caller's and a pool of XNNPACK's; OpenCV's DNN takes
-// the process's count, cv::setNumThreads), its tensors in `tensors` when given (else an arena of its
-// own; a shared one's graphs must never run at the same time), else on OpenCV's DNN. Throws smql::Error(Input) when
-// neither loads the file or an output is not in the graph.
+// when it can, as `placement` says, else on OpenCV's DNN. Throws smql::Error(Input) when neither loads the
+// file or an output is not in the graph.
 std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const std::vector<std::string>& outputs = {},
-                                     int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
+                                     const GraphPlacement& placement = {});
 
 // Each engine on its own (the tests hold one to the other). loadXnnpackNetwork gives nullptr, saying
 // why in `whyNot` when given, for a graph it does not run: an operator or attribute outside the ones
@@ -78,7 +84,7 @@ std::unique_ptr<Network> loadNetwork(const std::filesystem::path& model, const s
 //   Mul (broadcasting), Concat, Split, Slice (step 1), Reshape, Flatten, Transpose, Identity.
 std::unique_ptr<Network> loadXnnpackNetwork(const std::filesystem::path& model,
                                             const std::vector<std::string>& outputs = {}, std::string* whyNot = nullptr,
-                                            int threads = 1, const std::shared_ptr<TensorArena>& tensors = {});
+                                            const GraphPlacement& placement = {});
 std::unique_ptr<Network> loadOpenCvNetwork(const std::filesystem::path& model,
                                            const std::vector<std::string>& outputs = {});
 

@@ -545,12 +545,12 @@ private:
     // segmenter's first, the largest, whose buffers the detectors' tensors then fit in (the three planned
     // apart take 76 MB, together 42).
     static Models loadModels(const DetectorFiles& files, bool packaged, int threads) {
-        const auto tensors = std::make_shared<TensorArena>();
+        const GraphPlacement placement{threads, std::make_shared<TensorArena>()};
         Models models;
         if (packaged)
             if (auto segmenterFiles = installedModel("deeplab"))
-                models.segmenter = makeDeepLabSegmenter(*segmenterFiles, threads, tensors);
-        models.detector = makeDetector(files, packaged, threads, tensors);
+                models.segmenter = makeDeepLabSegmenter(*segmenterFiles, placement);
+        models.detector = makeDetector(files, packaged, placement);
         return models;
     }
     Models loadModels() const { return loadModels(files_, packaged_, coresPerStream_); }

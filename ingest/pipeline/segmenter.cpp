@@ -24,8 +24,8 @@ constexpr const char* kLowResolution = "logits_lowres";
 
 class DeepLabSegmenter : public SemanticSegmenter {
 public:
-    DeepLabSegmenter(const DetectorFiles& files, int threads, const std::shared_ptr<TensorArena>& tensors)
-        : file_(files.model.filename().string()), net_(loadNetwork(files.model, {kLowResolution}, threads, tensors)) {
+    DeepLabSegmenter(const DetectorFiles& files, const GraphPlacement& placement)
+        : file_(files.model.filename().string()), net_(loadNetwork(files.model, {kLowResolution}, placement)) {
         std::ifstream in(files.classes);
         if (!in) throw Error(ErrorKind::Input, fmt::format("{}: cannot read the class names", files.classes.string()));
         for (std::string line; std::getline(in, line);) {
@@ -75,9 +75,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files, int threads,
-                                                        const std::shared_ptr<TensorArena>& tensors) {
-    return std::make_unique<DeepLabSegmenter>(files, threads, tensors);
+std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files, const GraphPlacement& placement) {
+    return std::make_unique<DeepLabSegmenter>(files, placement);
 }
 
 namespace {

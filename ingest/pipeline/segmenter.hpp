@@ -27,10 +27,10 @@ public:
 };
 
 // DeepLab's graph: "image", 1x3x385x513 RGB in [-1, 1], gives "logits_lowres", 1 x classes x 25 x 33.
-// Its graph runs on `threads` threads, its tensors in `tensors` (loadNetwork). Throws smql::Error(Input) when the model
-// does not load or its outputs do not have that shape.
-std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files, int threads = 1,
-                                                        const std::shared_ptr<TensorArena>& tensors = {});
+// Its graph is placed as `placement` says (loadNetwork). Throws smql::Error(Input) when the model does not load
+// or its outputs do not have that shape.
+std::unique_ptr<SemanticSegmenter> makeDeepLabSegmenter(const DetectorFiles& files,
+                                                        const GraphPlacement& placement = {});
 
 // A detection's mask from the segmenter's labels: the pixels of its box whose class is the
 // detection's kind. Left as it is (the box) when the segmenter does not know the kind, or names it

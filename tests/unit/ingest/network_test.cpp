@@ -186,7 +186,7 @@ TEST_CASE("the packaged models give OpenCV's DNN's outputs on XNNPACK, on real f
         auto opencv = loadOpenCvNetwork(files->model, xnnpack->outputs());
         CHECK(xnnpack->outputs().size() == (m.outputs.empty() ? 6 : m.outputs.size()));
         // And on a pool of two threads, as a stream runs them on a machine of four cores.
-        auto pooled = loadXnnpackNetwork(files->model, m.outputs, nullptr, 2);
+        auto pooled = loadXnnpackNetwork(files->model, m.outputs, nullptr, {2});
         REQUIRE(pooled);
         for (const auto& frame : frames) {
             const cv::Mat blob = m.blob(frame, m.input);
@@ -218,8 +218,8 @@ TEST_CASE("a stream's packaged models planned into one arena run in turns as eac
             return;
         }
         const auto own = std::make_shared<TensorArena>();
-        pairs.push_back({m, loadXnnpackNetwork(files->model, m.outputs, nullptr, 1, shared),
-                         loadXnnpackNetwork(files->model, m.outputs, nullptr, 1, own)});
+        pairs.push_back({m, loadXnnpackNetwork(files->model, m.outputs, nullptr, {1, shared}),
+                         loadXnnpackNetwork(files->model, m.outputs, nullptr, {1, own})});
         REQUIRE(pairs.back().inShared);
         REQUIRE(pairs.back().inOwn);
         alone += own->floats();
@@ -321,7 +321,7 @@ TEST_CASE("a graph with an operator the runner lacks runs on OpenCV's DNN, which
     // Planned into a shared arena, the plan that fails at the Softmax leaves the buffers it took (the input's
     // 48 floats, the convolution's 32) to the graphs planned after it.
     const auto arena = std::make_shared<TensorArena>();
-    CHECK(!loadXnnpackNetwork(path, {}, nullptr, 1, arena));
+    CHECK(!loadXnnpackNetwork(path, {}, nullptr, {1, arena}));
     const std::size_t held = arena->floats();
     CHECK(held >= 48 + 32);
     arena->acquire(48);
