@@ -84,13 +84,14 @@ std::string nameOf(const std::map<std::string, double>& tally, const model::Box&
     return best.empty() ? anyBest : best;
 }
 
-// A thing's box: square to the walls when that costs at most kWallSlack more footprint (clusters.hpp:
-// wallAlignedBox), else the minimum-area upright box.
-constexpr double kWallSlack = 1.15;
-model::Box boxOf(const PointCloud& points) { return wallAlignedBox(points.points, kWallSlack); }
+// A thing's box: square to the walls when that costs at most FusionOptions::wallSlack more footprint
+// (clusters.hpp: wallAlignedBox), else the minimum-area upright box.
+model::Box boxOf(const PointCloud& points, const FusionOptions& options) {
+    return wallAlignedBox(points.points, options.wallSlack);
+}
 
-void fit(Thing& thing) {
-    thing.box = boxOf(thing.points);
+void fit(Thing& thing, const FusionOptions& options) {
+    thing.box = boxOf(thing.points, options);
     thing.category = nameOf(thing.tally, thing.box);
 }
 
@@ -111,7 +112,7 @@ std::vector<Thing> thingsOf(const InstanceMap& map, const std::vector<FusionCame
             continue;
         }
         Thing thing{{&instance}, std::move(points), {}, instance.tally(), {}, {}};
-        fit(thing);
+        fit(thing, options);
         out.push_back(std::move(thing));
     }
     return out;
@@ -164,7 +165,7 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
                 if (!pieceOf(seen[small], seen[large], touching, options)) continue;
                 Thing both = withPart(b, a);
                 for (const auto& [label, votes] : a.tally) both.tally[label] += votes;
-                fit(both);
+                fit(both, options);
                 if (!nameSuits(both.category, both.box)) continue;
                 b = std::move(both);
                 things.erase(things.begin() + static_cast<std::ptrdiff_t>(small));
@@ -189,7 +190,7 @@ std::size_t joinUprightEnds(std::vector<Thing>& things, const FusionOptions& opt
                 !uprightEndOf(things[p].box, things[w].box, options))
                 continue;
             Thing both = withPart(things[w], things[p]);
-            both.box = boxOf(both.points);
+            both.box = boxOf(both.points, options);
             if (!nameSuits(both.category, both.box)) continue;
             things[w] = std::move(both);
             things.erase(things.begin() + static_cast<std::ptrdiff_t>(p));

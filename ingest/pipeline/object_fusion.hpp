@@ -20,6 +20,8 @@ namespace smql::ingest {
 
 // What a fused instance needs to become a thing.
 struct FusionOptions {
+    double wallSlack = 1.15;         // a box square to the walls when its footprint is at most this many times the
+                                     // smallest one's: the orientation is then ill-determined (wallAlignedBox)
     double minHeight = 0.04;         // m: flatter instances are slivers of a surface (a table top seen as a "chair")
     double minLargest = 0.06;        // m: smaller instances are specks
     double thinShare = 0.06;         // ... and so are those whose thinnest side is under this share of the largest
