@@ -186,8 +186,6 @@ private:
     // voxel has about 12 within 2).
     static constexpr double kSpeckReach = 2;
     static constexpr int kSpeckNeighbours = 4;
-    // Photos' things square to the walls up to this much more footprint than the smallest box (fuseViews).
-    static constexpr double kPhotosWallSlack = 1.3;
 
     // A frame's detections lifted into tracks.
     void lift(const PosedFrame& frame, const FrameDetections& found) {
@@ -311,11 +309,6 @@ private:
                                        const std::vector<FusionCamera>& cameras, StageProgress& progress) const {
         FusionOptions fusion;
         fusion.voteLabels = voteLabels_;
-        // Photos' things are lifted on the dense points of the sides the photos saw, so their outline follows
-        // the views more than the thing: TUM fr1/rpy's desk, seen from the chair, came 44 deg off the walls
-        // at 1.51 x 1.35 m (its depth camera's memory: 1.90 x 1.75 m, square to them), and square to them
-        // at 1.65 x 1.48 m for a footprint 1.2 times the smallest. With depth, a thing is seen whole enough
-        // that its own orientation stands (1.25 there split fr1/rpy's desk in two).
         if (!hasDepth_) fusion.wallSlack = kPhotosWallSlack;
         return fuseTracks(std::move(tracks), viewFrame, roomSurfaces(room, &walls), cameras, fusion, progress);
     }

@@ -566,7 +566,7 @@ TEST_CASE("a thing's box is square to the walls up to FusionOptions::wallSlack m
         REQUIRE(things.size() == 1);
         return things[0].box;
     };
-    const model::Box turnedBox = fused(FusionOptions{}.wallSlack), square = fused(1.3);
+    const model::Box turnedBox = fused(FusionOptions{}.wallSlack), square = fused(kPhotosWallSlack);
     CHECK(std::abs(std::remainder(turnedBox.yaw, M_PI / 2)) == Approx(M_PI / 4).margin(0.05));
     CHECK(turnedBox.size.x == Approx(1.8).margin(0.06));
     CHECK(std::remainder(square.yaw, M_PI / 2) == Approx(0).margin(1e-9));
