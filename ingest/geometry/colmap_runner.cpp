@@ -463,27 +463,72 @@ private:
         if (!exhaustive_ && !loops_) closeLoops();
     }
 
+    // What the mapper's runs made: the largest model (none when no run made one), and how many frames
+    // the other models placed apart from it.
+    struct MapperOutcome {
+        std::optional<Capture> largest;
+        std::size_t placedApart = 0;
+    };
+
     // A long capture's features at the frames' own size place its frames in half the time; when they
     // leave more than a fifth of the frames out (too few features shared across a wide step), the
     // frames doubled give the finer features, found and matched again in a new database: 20 frames of
-    // a generated walk, 11 placed, then all 20 (tests/unit/ingest/colmap_test.cpp).
+    // a generated walk, 11 placed, then all 20 (tests/unit/ingest/colmap_test.cpp). Each pass that
+    // leaves them out matches its frames farther apart first (mapWithFartherPairs); the finer pass,
+    // after one that needed those pairs, matches them from the start.
     Capture placeFrames() {
-        const std::size_t frames = workFrames_.size();
-        if (fine_ || run_.reused) return accepted(mapLargestModel());
-        MapperOutcome outcome = mapLargestModel();
-        if (outcome.largest && 5 * outcome.largest->frames.size() >= 4 * frames) return std::move(*outcome.largest);
-        const std::size_t placed = outcome.largest ? outcome.largest->frames.size() : 0;
+        if (fine_ || run_.reused) return accepted(mapWithFartherPairs());
+        MapperOutcome outcome = mapWithFartherPairs();
+        if (mostPlaced(outcome)) return std::move(*outcome.largest);
         note(
             fmt::format("COLMAP placed {} of {} frames with features at their own size; it runs again with the "
                         "finer features of the frames doubled",
-                        placed, frames));
+                        placedBy(outcome), workFrames_.size()));
         fine_ = true;
         fs::remove(database_);
         fs::remove_all(sparse_);
         fs::create_directories(sparse_);
         run_.models = 0;
         findAndMatchFeatures();
-        return accepted(mapLargestModel());
+        return accepted(mapWithFartherPairs());
+    }
+
+    static constexpr const char* kFartherRound = "farther-";
+    bool roundRan(const std::string& round) const {
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(sparse_, ec))
+            if (entry.path().filename().string().starts_with(round)) return true;
+        return false;
+    }
+    static std::size_t placedBy(const MapperOutcome& outcome) {
+        return outcome.largest ? outcome.largest->frames.size() : 0;
+    }
+    bool mostPlaced(const MapperOutcome& outcome) const { return 5 * placedBy(outcome) >= 4 * workFrames_.size(); }
+
+    // The mapper on the pairs matched; when its largest model leaves more than a fifth of the frames out
+    // of frames matched with the few after each alone, each frame is matched again with those 2^k on
+    // (COLMAP's quadratic overlap: 8 and 16 on with the overlap 5; the pairs matched already are skipped)
+    // and the mapper runs again. A walk through an apartment (ScanNet scene0000_00, 300 of its frames): 123 of 300
+    // frames in one model with the neighbours alone, 286 with the farther pairs (docs/ingest.md,
+    // "Geometry from COLMAP").
+    MapperOutcome mapWithFartherPairs() {
+        MapperOutcome outcome = mapLargestModel("");
+        // A run read back went farther only if its folder holds that round.
+        if (mostPlaced(outcome) || exhaustive_ || farther_ || (run_.reused && !roundRan(kFartherRound))) return outcome;
+        // What COLMAP's quadratic overlap adds to the frames 1 to overlap - 1 on: those 2^k on, k < the overlap.
+        std::vector<std::string> reach;
+        for (int k = 0; k < std::min(options_.sequentialOverlap, 20); ++k)
+            if ((1 << k) >= options_.sequentialOverlap) reach.push_back(std::to_string(1 << k));
+        if (reach.empty()) return outcome;
+        note(
+            fmt::format("COLMAP placed {} of {} frames together with each frame matched with the {} after it; it "
+                        "matches each frame again with the frames {} on (COLMAP's quadratic overlap) and maps again",
+                        placedBy(outcome), workFrames_.size(), options_.sequentialOverlap - 1,
+                        model::listFirst(reach, reach.size())));
+        farther_ = true;
+        matchFeatures();
+        MapperOutcome farther = mapLargestModel(kFartherRound);
+        return placedBy(farther) > placedBy(outcome) ? std::move(farther) : std::move(outcome);
     }
 
     // One feature_extractor run per group, so that each image size gets a camera of its own even
@@ -539,8 +584,8 @@ private:
             "--SiftMatching.min_num_inliers {}",
             shellQuoted(database_.string()), threads_, options_.minMatches);
         if (!exhaustive_) {
-            matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap 0",
-                                    options_.sequentialOverlap);
+            matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap {}",
+                                    options_.sequentialOverlap, farther_ ? 1 : 0);
             if (loops_)
                 matching +=
                     fmt::format(" --SequentialMatching.loop_detection 1 --SequentialMatching.vocab_tree_path {}",
@@ -567,9 +612,9 @@ private:
                                 shellQuoted(database_.string()), shellQuoted(pairsFile.string()), threads_,
                                 options_.minMatches));
         note(fmt::format(
-            "COLMAP matched each frame with its {} neighbours in {} order; loop detection {}, so loops are closed by "
+            "COLMAP matched each frame with the {} after it in {} order; loop detection {}, so loops are closed by "
             "matching {} frames spread through the capture all against all",
-            options_.sequentialOverlap, ordered_ ? "capture" : "name",
+            options_.sequentialOverlap - 1, ordered_ ? "capture" : "name",
             options_.vocabularyTree.empty()
                 ? "needs a vocabulary tree (vocab_tree_*.bin from COLMAP's site, given with --vocab-tree; Debian ships "
                   "none)"
@@ -601,19 +646,13 @@ private:
                         std::nullopt, kRetryHint);
     }
 
-    // What the mapper's runs made: the largest model (none when no run made one), and how many frames
-    // the other models placed apart from it.
-    struct MapperOutcome {
-        std::optional<Capture> largest;
-        std::size_t placedApart = 0;
-    };
-
     // The mapper, with each of kMapperSettings in turn (video frames relaxed first) until a model
     // holds most of the frames; the largest model of all, joined with the models that share its frames,
     // is kept when it holds at least half of them.
     // Each run writes its models (sparse/<settings>/0, 1...) and says what it made in the notes.
     // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
-    MapperOutcome mapLargestModel() {
+    // `round` prefixes the folders (a second round of the mapper keeps the first one's models).
+    MapperOutcome mapLargestModel(const std::string& round) {
         const bool fixed =
             capture_.intrinsicsOrigin == IntrinsicsOrigin::Measured &&
             std::all_of(groups_.begin(), groups_.end(), [](const CameraGroup& g) { return g.known.has_value(); });
@@ -624,7 +663,7 @@ private:
         std::optional<Capture> best;
         std::set<std::string> placed;  // by any model of any run
         for (const MapperSettings* settings : order) {
-            const fs::path output = sparse_ / settings->folder;
+            const fs::path output = sparse_ / (round + settings->folder);
             if (!run_.reused) fs::create_directories(output);
             const bool finished = runStep(
                 "mapper",
@@ -647,7 +686,7 @@ private:
             for (const ColmapModel& model : models)
                 for (const CaptureFrame& f : model.capture.frames) placed.insert(f.colorPath);
             std::optional<Capture> joined =
-                joinModels(std::move(models), sparse_ / fmt::format("{}-joined", settings->folder));
+                joinModels(std::move(models), sparse_ / fmt::format("{}{}-joined", round, settings->folder));
             if (joined && (!best || joined->frames.size() > best->frames.size())) best = std::move(joined);
             if (best && 5 * best->frames.size() >= 4 * frames) break;
         }
@@ -794,7 +833,8 @@ private:
     std::size_t scaled_ = 0;
     std::string inputs_;
     bool ordered_ = false, exhaustive_ = false, loops_ = false;
-    bool fine_ = true;  // SIFT from the frames doubled (COLMAP's first_octave -1), else at their own size
+    bool fine_ = true;      // SIFT from the frames doubled (COLMAP's first_octave -1), else at their own size
+    bool farther_ = false;  // sequential matching reaches frames farther on (quadratic overlap)
     ColmapNotes notes_;
 };
 

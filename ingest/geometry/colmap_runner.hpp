@@ -20,7 +20,7 @@ struct ColmapOptions {
     int maxImageSize = 1024;         // frames with a longer side are scaled down to it for COLMAP (0: as stored)
     int exhaustiveUpTo = 60;         // unordered photo sets up to this many frames: exhaustive_matcher
     int exhaustiveOrderedUpTo = 40;  // frames in capture order (a short video) up to this many: the same
-    int sequentialOverlap = 5;       // sequential_matcher: the neighbours each frame is matched with
+    int sequentialOverlap = 5;       // COLMAP's overlap: each frame is matched with the overlap - 1 after it
     // Captures up to this many frames: SIFT starts an octave below the image (COLMAP's default, the frame
     // doubled for its finest features); longer ones start at the frame's own size, which halves the
     // extraction and leaves each frame's many neighbours enough features to be placed.

@@ -153,6 +153,49 @@ TEST_CASE(
     CHECK(run.registered >= 0.9 * capture.frames.size());
 }
 
+// Real photos of two places, their names interleaved (TUM's office photos, then a photo of the dining room,
+// in turn): the next photo of each place is two names on. Matched with the photo after each alone (COLMAP's
+// overlap 2), no two photos of one place are matched and no model starts; matched again with the photos two
+// on (its quadratic overlap), the office's six make a model, and the capture is placed by it.
+TEST_CASE("frames the pairs with the frames after them leave out are matched farther on, and mapped again") {
+    const std::filesystem::path shared(SMQL_SHARED_DATA);
+    auto firstPhotos = [](const std::filesystem::path& folder, std::size_t count) {
+        std::vector<std::filesystem::path> all;
+        for (const auto& entry : std::filesystem::directory_iterator(folder))
+            if (entry.path().extension() == ".png") all.push_back(entry.path());
+        std::sort(all.begin(), all.end());
+        all.resize(std::min(all.size(), count));
+        return all;
+    };
+    const auto office = firstPhotos(shared / "captures/tum-fr3-office-photos", 6);
+    const auto dining = firstPhotos(shared / "rgbd-dining/color", 5);
+    REQUIRE(office.size() == 6);
+    REQUIRE(dining.size() == 5);
+    ScratchDir dir;
+    const auto photos = dir.path / "photos";
+    std::filesystem::create_directories(photos);
+    for (std::size_t i = 0; i < office.size(); ++i) {
+        std::filesystem::copy_file(office[i], photos / fmt::format("{:02d}-office.png", 2 * i));
+        if (i < dining.size())
+            std::filesystem::copy_file(dining[i], photos / fmt::format("{:02d}-dining.png", 2 * i + 1));
+    }
+    Capture capture = readCapture(photos.string());
+    REQUIRE(capture.frames.size() == 11);
+    ColmapOptions options;
+    options.exhaustiveUpTo = 0;  // name order, as a folder of more photos is matched
+    options.sequentialOverlap = 2;
+    options.loopFrames = 0;
+    const ColmapRun run = runColmap(capture, options);
+    std::string notes;
+    for (const auto& n : run.notes) notes += n + "\n";
+    INFO(notes);
+    CHECK_THAT(notes, Catch::Contains("with each frame matched with the 1 after it; it matches each frame again with "
+                                      "the frames 2 on (COLMAP's quadratic overlap) and maps again"));
+    CHECK(run.registered == 6);
+    for (const auto& frame : capture.frames)
+        CHECK(frame.pose.has_value() == (frame.colorPath.find("office") != std::string::npos));
+}
+
 TEST_CASE("a missing colmap command gives a clear error") {
     ScratchDir dir;
     std::filesystem::create_directories(dir.path / "empty");
