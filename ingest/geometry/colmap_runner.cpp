@@ -534,7 +534,8 @@ private:
     // One feature_extractor run per group, so that each image size gets a camera of its own even
     // when the sizes share a folder of photos (COLMAP's single_camera would force one size on all).
     void extractFeatures() {
-        if (!fine_)
+        // A run read back says what its models hold, not what was run to make them (its colmap.log does).
+        if (!fine_ && !run_.reused)
             note(
                 fmt::format("COLMAP looks for features at the frames' own size, not doubled as for captures of up to "
                             "{} frames: half the time, and each frame has neighbours enough",
@@ -611,15 +612,16 @@ private:
                                 "--SiftMatching.num_threads {} --SiftMatching.min_num_inliers {}",
                                 shellQuoted(database_.string()), shellQuoted(pairsFile.string()), threads_,
                                 options_.minMatches));
-        note(fmt::format(
-            "COLMAP matched each frame with the {} after it in {} order; loop detection {}, so loops are closed by "
-            "matching {} frames spread through the capture all against all",
-            options_.sequentialOverlap - 1, ordered_ ? "capture" : "name",
-            options_.vocabularyTree.empty()
-                ? "needs a vocabulary tree (vocab_tree_*.bin from COLMAP's site, given with --vocab-tree; Debian ships "
-                  "none)"
-                : fmt::format("is off: the vocabulary tree {} is not a file", options_.vocabularyTree),
-            count));
+        if (!run_.reused)
+            note(fmt::format(
+                "COLMAP matched each frame with the {} after it in {} order; loop detection {}, so loops are closed by "
+                "matching {} frames spread through the capture all against all",
+                options_.sequentialOverlap - 1, ordered_ ? "capture" : "name",
+                options_.vocabularyTree.empty()
+                    ? "needs a vocabulary tree (vocab_tree_*.bin from COLMAP's site, given with --vocab-tree; "
+                      "Debian ships none)"
+                    : fmt::format("is off: the vocabulary tree {} is not a file", options_.vocabularyTree),
+                count));
     }
 
     void triangulateWithPoses() {
