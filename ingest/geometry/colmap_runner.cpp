@@ -507,9 +507,9 @@ private:
 
     // The mapper on the pairs matched; when its largest model leaves more than a fifth of the frames out
     // of frames matched with the few after each alone, each frame is matched again with those 2^k on
-    // (COLMAP's quadratic overlap: 8 and 16 on with the overlap 5; the pairs matched already are skipped)
-    // and the mapper runs again. A walk through an apartment (ScanNet scene0000_00, 300 of its frames): 123 of 300
-    // frames in one model with the neighbours alone, 286 with the farther pairs (docs/ingest.md,
+    // (COLMAP's quadratic overlap: 8 and 16 on with the overlap 5; the pairs matched already are
+    // skipped) and the mapper runs again. 300 frames of a walk through ScanNet's apartment: 123 in one
+    // model with the frames after each, 283 and 205 in two runs with those farther on (docs/ingest.md,
     // "Geometry from COLMAP").
     MapperOutcome mapWithFartherPairs() {
         MapperOutcome outcome = mapLargestModel("");
