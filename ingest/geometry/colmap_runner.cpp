@@ -479,7 +479,7 @@ private:
     Capture placeFrames() {
         if (fine_ || run_.reused) return accepted(mapWithFartherPairs());
         MapperOutcome outcome = mapWithFartherPairs();
-        if (mostPlaced(outcome)) return std::move(*outcome.largest);
+        if (mostPlaced(placedBy(outcome))) return std::move(*outcome.largest);
         note(
             fmt::format("COLMAP placed {} of {} frames with features at their own size; it runs again with the "
                         "finer features of the frames doubled",
@@ -503,7 +503,8 @@ private:
     static std::size_t placedBy(const MapperOutcome& outcome) {
         return outcome.largest ? outcome.largest->frames.size() : 0;
     }
-    bool mostPlaced(const MapperOutcome& outcome) const { return 5 * placedBy(outcome) >= 4 * workFrames_.size(); }
+    // The share of the frames a model must hold for the mapper's runs to stop (and no finer pass to follow).
+    bool mostPlaced(std::size_t placed) const { return 5 * placed >= 4 * workFrames_.size(); }
 
     // The mapper on the pairs matched; when its largest model leaves more than a fifth of the frames out
     // of frames matched with the few after each alone, each frame is matched again with those 2^k on
@@ -514,7 +515,8 @@ private:
     MapperOutcome mapWithFartherPairs() {
         MapperOutcome outcome = mapLargestModel("");
         // A run read back went farther only if its folder holds that round.
-        if (mostPlaced(outcome) || exhaustive_ || farther_ || (run_.reused && !roundRan(kFartherRound))) return outcome;
+        if (mostPlaced(placedBy(outcome)) || exhaustive_ || farther_ || (run_.reused && !roundRan(kFartherRound)))
+            return outcome;
         // What COLMAP's quadratic overlap adds to the frames 1 to overlap - 1 on: those 2^k on, k < the overlap.
         std::vector<std::string> reach;
         for (int k = 0; k < std::min(options_.sequentialOverlap, 20); ++k)
@@ -651,7 +653,7 @@ private:
     // The mapper, with each of kMapperSettings in turn (video frames relaxed first) until a model
     // holds most of the frames; the largest model of all, joined with the models that share its frames,
     // is kept when it holds at least half of them.
-    // Each run writes its models (sparse/<settings>/0, 1...) and says what it made in the notes.
+    // Each run writes its models (sparse/<round><settings>/0, 1...) and says what it made in the notes.
     // Measured intrinsics stay as given; approximate and guessed ones are refined (principal points stay).
     // `round` prefixes the folders (a second round of the mapper keeps the first one's models).
     MapperOutcome mapLargestModel(const std::string& round) {
@@ -690,7 +692,7 @@ private:
             std::optional<Capture> joined =
                 joinModels(std::move(models), sparse_ / fmt::format("{}{}-joined", round, settings->folder));
             if (joined && (!best || joined->frames.size() > best->frames.size())) best = std::move(joined);
-            if (best && 5 * best->frames.size() >= 4 * frames) break;
+            if (best && mostPlaced(best->frames.size())) break;
         }
         if (best)
             for (const CaptureFrame& f : best->frames) placed.erase(f.colorPath);
