@@ -330,6 +330,28 @@ std::int64_t voxelKey(const Eigen::Vector3d& p, double voxel) {
     return (index(p.x()) << (2 * kBits)) | (index(p.y()) << kBits) | index(p.z());
 }
 
+// One pair's points against the capture's sparse points, which COLMAP saw in several frames: those the
+// pair's first frame sees where the pair put a point (its points drawn as that frame's depth), and how many
+// lie within a tenth of that depth.
+void checkAgainstSparse(DensePoints& pair, const Capture& capture, const View& view) {
+    constexpr double kTolerance = 0.1;
+    const CaptureFrame& frame = capture.frames[view.frame];
+    const Intrinsics& k = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
+    std::vector<model::Vec3> positions;
+    for (const auto& p : pair.points) positions.push_back(p.position);
+    const cv::Mat depth = depthFromPoints(positions, *frame.pose, k, pair.voxel);
+    for (const auto& point : capture.points) {
+        const Eigen::Vector3d p = view.rotation.transpose() * (toEigen(point.position) - view.centre);
+        if (p.z() <= 0) continue;
+        const long u = std::lround(k.fx * p.x() / p.z() + k.cx), v = std::lround(k.fy * p.y() / p.z() + k.cy);
+        if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
+        const float z = depth.at<float>(static_cast<int>(v), static_cast<int>(u));
+        if (z <= 0) continue;
+        ++pair.sparseJudged;
+        if (std::abs(p.z() / z - 1) <= kTolerance) ++pair.sparseAgree;
+    }
+}
+
 }  // namespace
 
 DensePoints densePoints(const Capture& capture, const DenseOptions& options, const DenseProgress& progress) {
@@ -344,6 +366,7 @@ DensePoints densePoints(const Capture& capture, const DenseOptions& options, con
 
     std::unordered_map<std::int64_t, Cell> cells;
     std::set<std::pair<std::size_t, std::size_t>> matched;
+    std::size_t firstOfPair = 0;
     for (std::size_t a = 0; a < views.size(); ++a) {
         if (progress) progress(views[a].frame);
         auto b = neighbourOf(views, a, options);
@@ -359,6 +382,7 @@ DensePoints densePoints(const Capture& capture, const DenseOptions& options, con
             points = matchPair(views[a], ia, views[b->view], ib, options);
         }
         const std::size_t pair = out.pairs++;
+        firstOfPair = a;
         out.matched += points.positions.size();
         for (std::size_t i = 0; i < points.positions.size(); ++i) {
             Cell& cell = cells[voxelKey(points.positions[i], out.voxel)];
@@ -368,10 +392,16 @@ DensePoints densePoints(const Capture& capture, const DenseOptions& options, con
             cell.lastPair = pair;
         }
     }
+    // A single pair has no second pair to agree with: its points are checked against the capture's sparse
+    // points instead (below), beside SGBM's own checks (left to right, unique, in patches). Two or three of TUM's
+    // office photos make one pair, and were refused for want of a floor among COLMAP's 95-200 points; on the
+    // pair's points they were stored 0.92-1.09 times the true distances (docs/ingest.md, "Dense points from
+    // placed photos").
+    out.agreeing = out.pairs == 1 ? 1 : options.minPairs;
     // In voxel order, so that a run gives its points in the same order every time.
     std::vector<std::int64_t> agreed;
     for (const auto& [key, cell] : cells)
-        if (cell.pairs >= options.minPairs) agreed.push_back(key);
+        if (cell.pairs >= out.agreeing) agreed.push_back(key);
     std::sort(agreed.begin(), agreed.end());
     for (auto key : agreed) {
         const Cell& cell = cells.at(key);
@@ -380,6 +410,13 @@ DensePoints densePoints(const Capture& capture, const DenseOptions& options, con
         for (int k = 0; k < 3; ++k)
             point.color[k] = static_cast<std::uint8_t>(std::lround(cell.colour[k] / static_cast<double>(cell.count)));
         out.points.push_back(point);
+    }
+    if (out.agreeing == 1 && !out.points.empty()) {
+        checkAgainstSparse(out, capture, views[firstOfPair]);
+        out.pairDropped =
+            out.sparseJudged < options.minSparseJudged ||
+            static_cast<double>(out.sparseAgree) < options.minSparseAgreement * static_cast<double>(out.sparseJudged);
+        if (out.pairDropped) out.points.clear();
     }
     return out;
 }

@@ -50,6 +50,25 @@ bool needsDensePoints(const Capture& capture, const IngestOptions& options) {
                          [](const auto& f) { return f.pose.has_value(); }) >= 2;
 }
 
+namespace {
+
+// Which of the pairs' points were kept, and why: where pairs agree, or one pair's judged by the sparse points.
+std::string keptNote(const DensePoints& dense, const DenseOptions& options) {
+    if (dense.pairDropped)
+        return fmt::format(
+            "none kept: with no second pair to agree with, {} of the {} sparse points its first frame sees where "
+            "it put a point lie within a tenth of its depth, where it needs {:.0f}% of at least {}",
+            dense.sparseAgree, dense.sparseJudged, 100 * options.minSparseAgreement, options.minSparseJudged);
+    if (dense.agreeing == 1 && dense.sparseJudged > 0)
+        return fmt::format(
+            "{} of them kept with no second pair to agree with, as {} of the {} sparse points its first frame "
+            "sees where it put a point lie within a tenth of its depth",
+            dense.points.size(), dense.sparseAgree, dense.sparseJudged);
+    return fmt::format("{} of them where {} or more pairs agree", dense.points.size(), dense.agreeing);
+}
+
+}  // namespace
+
 Reconstruction DenseStage::run(StageProgress& progress) {
     Reconstruction out;
     out.capture = input;
@@ -62,10 +81,10 @@ Reconstruction DenseStage::run(StageProgress& progress) {
     out.capture.densePoints = out.dense.points;
     out.capture.denseSpacing = out.dense.voxel;
     out.points = input.points.size();
-    progress.note(
-        fmt::format("dense: {} pairs of frames matched, {} points, {} of them where two or more pairs agree "
-                    "(a {:.3g}-unit voxel); {} sparse points beside them",
-                    out.dense.pairs, out.dense.matched, out.dense.points.size(), out.dense.voxel, input.points.size()));
+    progress.note(fmt::format(
+        "dense: {} pairs of frames matched, {} points, {} (a {:.3g}-unit voxel); {} sparse "
+        "points beside them",
+        out.dense.pairs, out.dense.matched, keptNote(out.dense, options), out.dense.voxel, input.points.size()));
     return out;
 }
 
