@@ -605,7 +605,7 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     turn << std::cos(out.heading), -std::sin(out.heading), 0, std::sin(out.heading), std::cos(out.heading), 0, 0, 0, 1;
     Eigen::Matrix3d rotation = turn * level;
 
-    const std::size_t priors =
+    const std::size_t priors = out.scalePriors =
         chooseScale(out, options, unit, ceiling ? ceilingAbove : 0, floor != nullptr, cameras, up, things);
     if (floor && priors > 0) {
         out.floorUnconfirmed = leansFromEdges.empty() ? floorDoubt(choice.floorEvidence, priors) : leansFromEdges;

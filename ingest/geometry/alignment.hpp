@@ -88,6 +88,7 @@ struct Alignment {
     std::optional<double> ceilingHeight;  // aligned frame (metres above the floor), when found
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)
     double scaleSplit = 0;                // the factor between two priors that leave no majority (ScaleChoice)
+    std::size_t scalePriors = 0;          // the priors the scale was estimated from (0: given, or metric)
     std::vector<std::string> notes;       // how each choice was made, for SHOW SCENES and logs
 
     model::Vec3 apply(const model::Vec3& p) const;

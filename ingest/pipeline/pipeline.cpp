@@ -55,12 +55,13 @@ model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& optio
 // The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
 // --force, so that no wrong memory is stored with exit status 0.
 void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
-               const FramePass& frames, const Alignment& alignment, StageRunner& runner) {
+               const FramePass& frames, const Alignment& alignment, const DensePoints* dense, StageRunner& runner) {
     const bool depth = framesHaveDepth(capture) && !options.scale;
     const ScaleSource source{.depth = depth,
                              .depthScale = capture.depthScale,
                              .given = options.scale.has_value(),
-                             .metric = capture.metric && !depth && !options.scale};
+                             .metric = capture.metric && !depth && !options.scale,
+                             .onePairDepth = dense && dense->agreeing == 1 && !dense->points.empty()};
     std::vector<double> cameraHeights;
     for (const auto& [frame, centre] : result.cameraCentres) cameraHeights.push_back(centre.z);
     PlausibilityReport report = checkPlausibility(result.scene, source, std::move(cameraHeights));
@@ -113,7 +114,8 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     auto tracked = runner.run(ObjectsStage{capture, options, std::move(frames.tracks), aligned, walls, *finder, scene});
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
-    checkRoom(result, capture, options, frames, aligned.alignment, runner);
+    checkRoom(result, capture, options, frames, aligned.alignment, reconstruction ? &reconstruction->dense : nullptr,
+              runner);
     return result;
 }
 

@@ -244,6 +244,18 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                                    "top, and lengths may be off by as much",
                                    100 * alignment.scaleSpread),
                        priorsFix});
+    // Two photos a short step apart place each other loosely: COLMAP stored two of ScanNet's lounge frames 5 cm
+    // apart 3.6 times as far apart for their depth as they were, and one pair's dense points, drawn from those
+    // poses, agree with them. A second prior then shows whether the room's proportions hold: the cameras' height
+    // alone put that memory 4.4x too large, where TUM's office photos stored on two priors were right (docs/ingest.md,
+    // "One pair alone").
+    else if (source.onePairDepth && !scaled && alignment.scalePriors < 2)
+        out.push_back({"scale priors", true,
+                       "the dense points are one pair of photos' alone, drawn from two poses that nothing else "
+                       "checks (a short step between them leaves their depth loose), and the scale rests on one "
+                       "prior: nothing checks the room's proportions",
+                       "give --scale (metres per capture unit), or add photos of the room, whose pairs check each "
+                       "other's depth"});
     return out;
 }
 

@@ -48,6 +48,9 @@ struct ScaleSource {
     double depthScale = 0;
     bool given = false;   // --scale
     bool metric = false;  // poses in metres without depth (a sensor's, COLMAP triangulating with them)
+    // Photos without depth whose dense points are one pair's alone (dense_stereo.hpp): no second pair
+    // checked its depth, and its two poses may be loose (a short step between them).
+    bool onePairDepth = false;
 };
 
 // The checks on a scene in the upright floor frame (the floor at z = 0 when it was found).

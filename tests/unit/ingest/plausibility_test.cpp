@@ -184,6 +184,27 @@ TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[in
     CHECK(alignmentFindings(Alignment{}, {}).empty());
 }
 
+// Photos whose dense points are one pair's alone: COLMAP's two poses of ScanNet's lounge frames 5 cm apart
+// put them 3.6 times as far apart for their depth as they were, and the cameras' height alone stored that room
+// 4.4x too large; a second prior checks the proportions (TUM's office photos, stored on two, were right).
+TEST_CASE("plausibility: one pair's dense points and one prior of the scale are refused", "[ingest][plausibility]") {
+    Alignment onePrior;
+    onePrior.floorFound = true;
+    onePrior.scalePriors = 1;
+    auto refused = alignmentFindings(onePrior, {.onePairDepth = true});
+    REQUIRE(refused.size() == 1);
+    CHECK(refused.front().check == "scale priors");
+    CHECK(refused.front().refuse);
+    CHECK_THAT(refused.front().what, Catch::Contains("one pair of photos"));
+    CHECK_THAT(refused.front().fix, Catch::Contains("--scale"));
+    CHECK(alignmentFindings(onePrior, {}).empty());  // points two pairs agree on
+    CHECK(alignmentFindings(onePrior, {.given = true, .onePairDepth = true}).empty());
+    Alignment twoPriors = onePrior;
+    twoPriors.scalePriors = 2;
+    twoPriors.scaleSpread = 0.23;
+    CHECK(alignmentFindings(twoPriors, {.onePairDepth = true}).empty());
+}
+
 TEST_CASE("plausibility: a stored memory without a floor says what could not be checked", "[ingest][plausibility]") {
     model::SceneData scene = room(1.0);
     std::erase_if(scene.nodes, [](const model::Node& n) { return n.category == "floor"; });
