@@ -394,9 +394,9 @@ DensePoints densePoints(const Capture& capture, const DenseOptions& options, con
     }
     // A single pair has no second pair to agree with: its points are checked against the capture's sparse
     // points instead (below), beside SGBM's own checks (left to right, unique, in patches). Two or three of TUM's
-    // office photos make one pair, and were refused for want of a floor among COLMAP's 95-200 points; on the
-    // pair's points they were stored 0.92-1.09 times the true distances (docs/ingest.md, "Dense points from
-    // placed photos").
+    // office photos make one pair, and were refused for want of a floor among COLMAP's 95-450 points; on the
+    // pair's points, with a second prior of the scale to check them (plausibility.cpp), they were stored
+    // 0.92-0.99 times the true distances (docs/ingest.md, "Dense points from placed photos").
     out.agreeing = out.pairs == 1 ? 1 : options.minPairs;
     // In voxel order, so that a run gives its points in the same order every time.
     std::vector<std::int64_t> agreed;

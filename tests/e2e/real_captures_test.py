@@ -240,7 +240,7 @@ def desk_photos_three(smql, folder, work):
     """3 of the office photos (the 1st, 4th and 7th): their frames make one pair for the dense points, which
     has no second pair to agree with and is checked against COLMAP's points instead; its points hold the
     floor that COLMAP's 95 do not (before, none were kept and the photos were refused for want of a floor).
-    Stored with the true poses' scale (0.97-0.99x in 11 runs of 14), or refused, saying why (the cameras'
+    Stored with the true poses' scale (0.96-0.99x in 14 runs of 17), or refused, saying why (the cameras'
     height and the chairs' put the scale 21-26 % apart, about the 25 % that refuses)."""
     photos = work / "photos"
     photos.mkdir()
