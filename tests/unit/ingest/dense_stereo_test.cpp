@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -72,48 +73,6 @@ Agreement againstDepth(const Capture& capture, const std::vector<SparsePoint>& p
     return out;
 }
 
-}  // namespace
-
-// A rendered walk through a generated room, its poses exact: the dense points' depth against the
-// rendered depth, whose scale is the points' own (a ratio of 1).
-TEST_CASE("dense points of a rendered walk lie where the rendered depth says", "[dense]") {
-    ScratchDir dir;
-    synth::SynthOptions walk;
-    walk.seed = 3;
-    walk.frames = 30;
-    synth::writeSynth((dir.path / "walk").string(), walk);
-    const Capture rgbd = readCapture((dir.path / "walk").string());
-    Capture photos = rgbd;
-    std::vector<cv::Mat> depth;
-    for (auto& frame : photos.frames) {
-        depth.push_back(loadFrame(rgbd, frame, rgbd.intrinsics.width).depth);
-        const cv::Mat& d = depth.back();
-        for (int y = 40; y < d.rows; y += 80)
-            for (int x = 40; x < d.cols; x += 80)
-                if (d.at<float>(y, x) > 0)
-                    photos.points.push_back(
-                        {toWorld(*frame.pose, pixelRay(rgbd.intrinsics, x, y, d.at<float>(y, x))), {}});
-        frame.depthPath.clear();
-    }
-    const std::size_t sparse = photos.points.size();
-    // Rectified pairs where the neighbour is to the side (the default), and every pair swept with planes.
-    const bool swept = GENERATE(false, true);
-    DenseOptions options;
-    if (swept) options.maxForwardShare = 0;
-    DensePoints dense = densePoints(photos, options);
-    Agreement agreement = againstDepth(photos, dense.points, depth);
-    INFO((swept ? "swept" : "rectified") << ": " << dense.pairs << " pairs (" << dense.swept << " swept), "
-                                         << dense.points.size() << " dense points beside " << sparse << " sparse; "
-                                         << agreement.judged << " judged, " << agreement.within5 << " within 5%, "
-                                         << agreement.within10 << " within 10%");
-    CHECK(dense.pairs >= 10);
-    if (swept) CHECK(dense.swept == dense.pairs);
-    CHECK(dense.points.size() >= 2 * sparse);
-    CHECK(agreement.judged >= dense.points.size() * 9 / 10);
-    CHECK(agreement.within5 >= agreement.judged * (swept ? 75 : 85) / 100);
-    CHECK(agreement.within10 >= agreement.judged * 8 / 10);
-}
-
 // The frames `kept` of an RGB-D capture as photos: their depth set aside (returned, to judge by), the
 // capture's sparse points sampled from it every 80 pixels, as COLMAP's would lie.
 Capture asPhotos(const Capture& rgbd, const std::vector<std::size_t>& kept, std::vector<cv::Mat>& depth) {
@@ -134,6 +93,40 @@ Capture asPhotos(const Capture& rgbd, const std::vector<std::size_t>& kept, std:
         photos.frames.push_back(frame);
     }
     return photos;
+}
+
+}  // namespace
+
+// A rendered walk through a generated room, its poses exact: the dense points' depth against the
+// rendered depth, whose scale is the points' own (a ratio of 1).
+TEST_CASE("dense points of a rendered walk lie where the rendered depth says", "[dense]") {
+    ScratchDir dir;
+    synth::SynthOptions walk;
+    walk.seed = 3;
+    walk.frames = 30;
+    synth::writeSynth((dir.path / "walk").string(), walk);
+    const Capture rgbd = readCapture((dir.path / "walk").string());
+    std::vector<std::size_t> every(rgbd.frames.size());
+    std::iota(every.begin(), every.end(), 0);
+    std::vector<cv::Mat> depth;
+    const Capture photos = asPhotos(rgbd, every, depth);
+    const std::size_t sparse = photos.points.size();
+    // Rectified pairs where the neighbour is to the side (the default), and every pair swept with planes.
+    const bool swept = GENERATE(false, true);
+    DenseOptions options;
+    if (swept) options.maxForwardShare = 0;
+    DensePoints dense = densePoints(photos, options);
+    Agreement agreement = againstDepth(photos, dense.points, depth);
+    INFO((swept ? "swept" : "rectified") << ": " << dense.pairs << " pairs (" << dense.swept << " swept), "
+                                         << dense.points.size() << " dense points beside " << sparse << " sparse; "
+                                         << agreement.judged << " judged, " << agreement.within5 << " within 5%, "
+                                         << agreement.within10 << " within 10%");
+    CHECK(dense.pairs >= 10);
+    if (swept) CHECK(dense.swept == dense.pairs);
+    CHECK(dense.points.size() >= 2 * sparse);
+    CHECK(agreement.judged >= dense.points.size() * 9 / 10);
+    CHECK(agreement.within5 >= agreement.judged * (swept ? 75 : 85) / 100);
+    CHECK(agreement.within10 >= agreement.judged * 8 / 10);
 }
 
 // Two photos make one pair, whose points have no second pair to agree with (two or three of TUM's office
