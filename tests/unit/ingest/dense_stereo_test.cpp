@@ -73,6 +73,15 @@ Agreement againstDepth(const Capture& capture, const std::vector<SparsePoint>& p
     return out;
 }
 
+// A generated room's walk of 30 frames, rendered into `dir` and read back: exact poses and depth.
+Capture renderedWalk(const ScratchDir& dir) {
+    synth::SynthOptions walk;
+    walk.seed = 3;
+    walk.frames = 30;
+    synth::writeSynth((dir.path / "walk").string(), walk);
+    return readCapture((dir.path / "walk").string());
+}
+
 // The frames `kept` of an RGB-D capture as photos: their depth set aside (returned, to judge by), the
 // capture's sparse points sampled from it every 80 pixels, as COLMAP's would lie.
 Capture asPhotos(const Capture& rgbd, const std::vector<std::size_t>& kept, std::vector<cv::Mat>& depth) {
@@ -101,11 +110,7 @@ Capture asPhotos(const Capture& rgbd, const std::vector<std::size_t>& kept, std:
 // rendered depth, whose scale is the points' own (a ratio of 1).
 TEST_CASE("dense points of a rendered walk lie where the rendered depth says", "[dense]") {
     ScratchDir dir;
-    synth::SynthOptions walk;
-    walk.seed = 3;
-    walk.frames = 30;
-    synth::writeSynth((dir.path / "walk").string(), walk);
-    const Capture rgbd = readCapture((dir.path / "walk").string());
+    const Capture rgbd = renderedWalk(dir);
     std::vector<std::size_t> every(rgbd.frames.size());
     std::iota(every.begin(), every.end(), 0);
     std::vector<cv::Mat> depth;
@@ -136,11 +141,7 @@ TEST_CASE("dense points of a rendered walk lie where the rendered depth says", "
 // readings) agrees with few and keeps none.
 TEST_CASE("one pair of photos keeps its points where the sparse points agree with them", "[dense]") {
     ScratchDir dir;
-    synth::SynthOptions walk;
-    walk.seed = 3;
-    walk.frames = 30;
-    synth::writeSynth((dir.path / "walk").string(), walk);
-    const Capture rendered = readCapture((dir.path / "walk").string());
+    const Capture rendered = renderedWalk(dir);
     std::vector<cv::Mat> depth;
     Capture photos = asPhotos(rendered, {10, 11}, depth);
     const DensePoints pair = densePoints(photos);
