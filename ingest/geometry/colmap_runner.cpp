@@ -473,17 +473,24 @@ private:
     // A long capture's features at the frames' own size place its frames in half the time; when they
     // leave more than a fifth of the frames out (too few features shared across a wide step), the
     // frames doubled give the finer features, found and matched again in a new database: 20 frames of
-    // a generated walk, 11 placed, then all 20 (tests/unit/ingest/colmap_test.cpp). Each pass that
-    // leaves them out matches its frames farther apart first (mapWithFartherPairs); the finer pass,
-    // after one that needed those pairs, matches them from the start.
+    // a generated walk, 11 placed, then all 20 (tests/unit/ingest/colmap_test.cpp). The finer pass
+    // matches its frames farther apart too from the start (mapWithFartherPairs), as a pass at the frames'
+    // own size does before it gives up: its farther round placed no more on ScanNet's apartment and
+    // bathroom where the finer pass then placed 205-283 and 216 of 300, and cost 41 and 72 s.
     Capture placeFrames() {
         if (fine_ || run_.reused) return accepted(mapWithFartherPairs());
-        MapperOutcome outcome = mapWithFartherPairs();
+        MapperOutcome outcome = mapLargestModel("");
         if (mostPlaced(placedBy(outcome))) return std::move(*outcome.largest);
+        const auto reach = fartherReach();
+        farther_ = !exhaustive_ && !reach.empty();
         note(
             fmt::format("COLMAP placed {} of {} frames with features at their own size; it runs again with the "
-                        "finer features of the frames doubled",
-                        placedBy(outcome), workFrames_.size()));
+                        "finer features of the frames doubled{}",
+                        placedBy(outcome), workFrames_.size(),
+                        farther_ ? fmt::format(", each frame matched also with the frames {} on (COLMAP's "
+                                               "quadratic overlap)",
+                                               model::listFirst(reach, reach.size()))
+                                 : std::string()));
         fine_ = true;
         fs::remove(database_);
         fs::remove_all(sparse_);
@@ -506,6 +513,14 @@ private:
     // The share of the frames a model must hold for the mapper's runs to stop (and no finer pass to follow).
     bool mostPlaced(std::size_t placed) const { return 5 * placed >= 4 * workFrames_.size(); }
 
+    // What COLMAP's quadratic overlap adds to the frames 1 to overlap - 1 on: those 2^k on, k < the overlap.
+    std::vector<std::string> fartherReach() const {
+        std::vector<std::string> reach;
+        for (int k = 0; k < std::min(options_.sequentialOverlap, 20); ++k)
+            if ((1 << k) >= options_.sequentialOverlap) reach.push_back(std::to_string(1 << k));
+        return reach;
+    }
+
     // The mapper on the pairs matched; when its largest model leaves more than a fifth of the frames out
     // of frames matched with the few after each alone, each frame is matched again with those 2^k on
     // (COLMAP's quadratic overlap: 8 and 16 on with the overlap 5; the pairs matched already are
@@ -517,10 +532,7 @@ private:
         // A run read back went farther only if its folder holds that round.
         if (mostPlaced(placedBy(outcome)) || exhaustive_ || farther_ || (run_.reused && !roundRan(kFartherRound)))
             return outcome;
-        // What COLMAP's quadratic overlap adds to the frames 1 to overlap - 1 on: those 2^k on, k < the overlap.
-        std::vector<std::string> reach;
-        for (int k = 0; k < std::min(options_.sequentialOverlap, 20); ++k)
-            if ((1 << k) >= options_.sequentialOverlap) reach.push_back(std::to_string(1 << k));
+        const auto reach = fartherReach();
         if (reach.empty()) return outcome;
         note(
             fmt::format("COLMAP placed {} of {} frames together with each frame matched with the {} after it; it "
