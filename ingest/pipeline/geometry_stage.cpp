@@ -81,15 +81,17 @@ Reconstruction DenseStage::run(StageProgress& progress) {
     out.capture.densePoints = out.dense.points;
     out.capture.denseSpacing = out.dense.voxel;
     out.points = input.points.size();
-    progress.note(fmt::format(
-        "dense: {} pairs of frames matched, {} points, {} (a {:.3g}-unit voxel); {} sparse "
-        "points beside them",
-        out.dense.pairs, out.dense.matched, keptNote(out.dense, options), out.dense.voxel, input.points.size()));
+    progress.note(
+        fmt::format("dense: {} pair{} of frames matched, {} points, {} (a {:.3g}-unit voxel); {} sparse "
+                    "points beside them",
+                    out.dense.pairs, out.dense.pairs == 1 ? "" : "s", out.dense.matched, keptNote(out.dense, options),
+                    out.dense.voxel, input.points.size()));
     return out;
 }
 
 std::string DenseStage::summary(const Reconstruction& reconstruction) const {
-    return fmt::format("{} pairs, {} dense points", reconstruction.dense.pairs, reconstruction.dense.points.size());
+    return fmt::format("{} pair{}, {} dense points", reconstruction.dense.pairs,
+                       reconstruction.dense.pairs == 1 ? "" : "s", reconstruction.dense.points.size());
 }
 
 void requirePosesAndStructure(const Capture& capture) {
