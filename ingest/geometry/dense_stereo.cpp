@@ -35,18 +35,25 @@ struct View {
     double nearDepth = 0, medianDepth = 0, farDepth = 0;
 };
 
+// Where a point of the capture lies in the photo of a camera (rotation camera-to-world, centre) with
+// intrinsics k: its pixel (x, y) and depth (z), when it lies in front of the camera and inside the photo.
+std::optional<Eigen::Vector3d> inPhoto(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& centre,
+                                       const Intrinsics& k, const model::Vec3& point) {
+    const Eigen::Vector3d p = rotation.transpose() * (toEigen(point) - centre);
+    if (p.z() <= 0) return std::nullopt;
+    const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
+    if (!(u >= 0 && v >= 0 && u < k.width && v < k.height)) return std::nullopt;
+    return Eigen::Vector3d{u, v, p.z()};
+}
+
 std::optional<View> viewOf(const Capture& capture, std::size_t index, const DenseOptions& options) {
     const CaptureFrame& frame = capture.frames[index];
     if (!frame.pose) return std::nullopt;
     const Intrinsics& k = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
     View view{index, rotationOf(*frame.pose), toEigen(frame.pose->translation)};
     std::vector<double> depths;
-    for (const auto& point : capture.points) {
-        const Eigen::Vector3d p = view.rotation.transpose() * (toEigen(point.position) - view.centre);
-        if (p.z() <= 0) continue;
-        const double u = k.fx * p.x() / p.z() + k.cx, v = k.fy * p.y() / p.z() + k.cy;
-        if (u >= 0 && v >= 0 && u < k.width && v < k.height) depths.push_back(p.z());
-    }
+    for (const auto& point : capture.points)
+        if (const auto seen = inPhoto(view.rotation, view.centre, k, point.position)) depths.push_back(seen->z());
     if (depths.size() < options.minSparsePoints) return std::nullopt;
     std::sort(depths.begin(), depths.end());
     auto at = [&](double fraction) { return depths[static_cast<std::size_t>(fraction * double(depths.size() - 1))]; };
@@ -341,14 +348,15 @@ void checkAgainstSparse(DensePoints& pair, const Capture& capture, const View& v
     for (const auto& p : pair.points) positions.push_back(p.position);
     const cv::Mat depth = depthFromPoints(positions, *frame.pose, k, pair.voxel);
     for (const auto& point : capture.points) {
-        const Eigen::Vector3d p = view.rotation.transpose() * (toEigen(point.position) - view.centre);
-        if (p.z() <= 0) continue;
-        const long u = std::lround(k.fx * p.x() / p.z() + k.cx), v = std::lround(k.fy * p.y() / p.z() + k.cy);
-        if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
-        const float z = depth.at<float>(static_cast<int>(v), static_cast<int>(u));
+        const auto seen = inPhoto(view.rotation, view.centre, k, point.position);
+        if (!seen) continue;
+        // The pixel depthFromPoints draws a point at.
+        const int x = static_cast<int>(std::min<long>(std::lround(seen->x()), depth.cols - 1));
+        const int y = static_cast<int>(std::min<long>(std::lround(seen->y()), depth.rows - 1));
+        const float z = depth.at<float>(y, x);
         if (z <= 0) continue;
         ++pair.sparseJudged;
-        if (std::abs(p.z() / z - 1) <= kTolerance) ++pair.sparseAgree;
+        if (std::abs(seen->z() / z - 1) <= kTolerance) ++pair.sparseAgree;
     }
 }
 
