@@ -40,9 +40,9 @@ Statement prepare(sqlite3* db, const std::string& path, const char* sql) {
     return Statement(statement, sqlite3_finalize);
 }
 
-Connection openReadOnly(const std::string& path) {
+Connection open(const std::string& path, int flags = SQLITE_OPEN_READONLY) {
     sqlite3* raw = nullptr;
-    int opened = sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
+    int opened = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
     Connection db(raw, sqlite3_close);
     if (opened != SQLITE_OK)
         throw Error(ErrorKind::Input, fmt::format("{}: cannot open COLMAP's database: {}", path,
@@ -53,7 +53,7 @@ Connection openReadOnly(const std::string& path) {
 }  // namespace
 
 std::vector<ColmapDatabaseImage> readColmapImages(const std::string& path) {
-    Connection db = openReadOnly(path);
+    Connection db = open(path);
     std::vector<ColmapDatabaseImage> out;
     Statement images = prepare(db.get(), path, "SELECT image_id, camera_id, name FROM images ORDER BY image_id");
     while (sqlite3_step(images.get()) == SQLITE_ROW) {
@@ -64,8 +64,79 @@ std::vector<ColmapDatabaseImage> readColmapImages(const std::string& path) {
     return out;
 }
 
+std::vector<ColmapDescriptors> readColmapDescriptors(const std::string& path) {
+    Connection db = open(path);
+    std::vector<ColmapDescriptors> out;
+    Statement rows = prepare(db.get(), path, "SELECT image_id, rows, cols, data FROM descriptors ORDER BY image_id");
+    while (sqlite3_step(rows.get()) == SQLITE_ROW) {
+        ColmapDescriptors d{sqlite3_column_int64(rows.get(), 0),
+                            static_cast<std::size_t>(std::max<sqlite3_int64>(sqlite3_column_int64(rows.get(), 1), 0)),
+                            {}};
+        const auto bytes = static_cast<std::size_t>(sqlite3_column_bytes(rows.get(), 3));
+        if (sqlite3_column_int(rows.get(), 2) != 128 || bytes != d.rows * 128)
+            throw Error(ErrorKind::Input,
+                        fmt::format("{}: image {}'s descriptors are not {} rows of 128 bytes", path, d.image, d.rows));
+        const auto* blob = static_cast<const std::uint8_t*>(sqlite3_column_blob(rows.get(), 3));
+        d.data.assign(blob, blob + bytes);
+        out.push_back(std::move(d));
+    }
+    return out;
+}
+
+std::vector<ColmapPairMatches> readColmapMatches(const std::string& path) {
+    Connection db = open(path);
+    std::vector<ColmapPairMatches> out;
+    Statement rows = prepare(db.get(), path, "SELECT pair_id, rows, cols, data FROM matches ORDER BY pair_id");
+    while (sqlite3_step(rows.get()) == SQLITE_ROW) {
+        const sqlite3_int64 id = sqlite3_column_int64(rows.get(), 0);
+        ColmapPairMatches pair{id / kMaxImages, id % kMaxImages, {}};
+        const auto count = static_cast<std::size_t>(std::max<sqlite3_int64>(sqlite3_column_int64(rows.get(), 1), 0));
+        if (count > 0 && (sqlite3_column_int(rows.get(), 2) != 2 ||
+                          static_cast<std::size_t>(sqlite3_column_bytes(rows.get(), 3)) != count * 8))
+            throw Error(ErrorKind::Input, fmt::format("{}: the matches of images {} and {} are not {} pairs of indices",
+                                                      path, pair.first, pair.second, count));
+        const auto* data = static_cast<const std::uint32_t*>(sqlite3_column_blob(rows.get(), 3));
+        for (std::size_t k = 0; k < count; ++k) pair.matches.emplace_back(data[2 * k], data[2 * k + 1]);
+        out.push_back(std::move(pair));
+    }
+    return out;
+}
+
+void writeColmapMatches(const std::string& path, const std::vector<ColmapPairMatches>& pairs) {
+    Connection db = open(path, SQLITE_OPEN_READWRITE);
+    auto exec = [&](const char* sql) {
+        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
+            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
+    };
+    exec("BEGIN");
+    Statement insert =
+        prepare(db.get(), path, "INSERT OR IGNORE INTO matches (pair_id, rows, cols, data) VALUES (?1, ?2, 2, ?3)");
+    std::vector<std::uint32_t> data;
+    for (const auto& pair : pairs) {
+        // COLMAP keeps a pair under the smaller id first, its matches' columns in that order.
+        const bool swapped = pair.first > pair.second;
+        data.clear();
+        for (const auto& [a, b] : pair.matches) {
+            data.push_back(swapped ? b : a);
+            data.push_back(swapped ? a : b);
+        }
+        const sqlite3_int64 low = std::min(pair.first, pair.second), high = std::max(pair.first, pair.second);
+        sqlite3_bind_int64(insert.get(), 1, low * kMaxImages + high);
+        sqlite3_bind_int64(insert.get(), 2, static_cast<sqlite3_int64>(pair.matches.size()));
+        if (data.empty())
+            sqlite3_bind_zeroblob(insert.get(), 3, 0);
+        else
+            sqlite3_bind_blob(insert.get(), 3, data.data(), static_cast<int>(data.size() * sizeof(std::uint32_t)),
+                              SQLITE_TRANSIENT);
+        if (sqlite3_step(insert.get()) != SQLITE_DONE)
+            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
+        sqlite3_reset(insert.get());
+    }
+    exec("COMMIT");
+}
+
 ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches) {
-    Connection db = openReadOnly(path);
+    Connection db = open(path);
     ColmapDatabaseSummary out;
 
     Statement cameras = prepare(db.get(), path, "SELECT model, width, height, params FROM cameras ORDER BY camera_id");

@@ -1,0 +1,62 @@
+// SIFT features matched between images for COLMAP, exactly, on the CPU. COLMAP 3.8's CPU matcher
+// builds a FLANN forest for each image of each pair and searches it approximately: 296 frames at
+// twice their size (1,300 features a frame), matched with 6 frames each, took it 112 s of a 6.8-minute
+// ingest. Here each pair's descriptors are multiplied as one matrix product (Eigen), which gives every
+// dot product exactly (the bytes' products and sums are integers below 2^24, exact in floats), and
+// the best and second best of each row and column are read from it: COLMAP's own brute-force rule
+// (the distance and ratio tests on the angles between descriptors, mutual best), with the true nearest
+// neighbours where FLANN's search may miss them. The matches go into COLMAP's database, where its
+// matchers find them and only verify them (docs/ingest.md, "Geometry from COLMAP").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace smql::ingest {
+
+// COLMAP's SiftMatchingOptions, as its matcher runs by default.
+struct SiftMatchOptions {
+    float maxRatio = 0.8f;     // best angle under this times the second best
+    float maxDistance = 0.7f;  // best angle at most this (radians)
+    bool crossCheck = true;    // each the other's best
+};
+
+// Matches two images' descriptors (rows of 128 bytes, as COLMAP stores them), pair after pair: its
+// buffers grow to the largest pair and are kept. One a thread.
+class SiftMatcher {
+public:
+    explicit SiftMatcher(const SiftMatchOptions& options = {}) : options_(options) {}
+    // Pairs of row indices, in the order of `a`'s rows.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> match(const std::uint8_t* a, std::size_t rowsA,
+                                                               const std::uint8_t* b, std::size_t rowsB);
+
+private:
+    SiftMatchOptions options_;
+    std::vector<float> a_, b_, dots_;    // the descriptors as floats, and their dot products
+    std::vector<float> best_, second_;   // of each of b's rows, the largest dot products with a's
+    std::vector<std::int32_t> nearest_;  // and the row of a that gives the largest
+};
+
+// The pairs (indices into the images in name order) COLMAP's sequential_matcher matches: each image
+// with the `overlap - 1` after it and, with `quadratic`, those 2^k after it for k < overlap
+// (SequentialFeatureMatcher::RunSequentialMatching, COLMAP 3.8). The smaller index first, each once.
+std::vector<std::pair<std::size_t, std::size_t>> sequentialPairs(std::size_t images, int overlap, bool quadratic);
+
+// What matchColmapPairs did.
+struct ColmapMatching {
+    std::size_t pairs = 0;    // pairs matched here
+    std::size_t matched = 0;  // of them with at least one match
+    double seconds = 0;
+};
+
+// Matches the pairs of the database's images named (relative to its image folder) that the database
+// holds no matches of yet, on `threads` threads (0: every core), and writes them for COLMAP to verify.
+// A name the database does not hold is skipped (COLMAP's matcher then says so).
+ColmapMatching matchColmapPairs(const std::string& database,
+                                const std::vector<std::pair<std::string, std::string>>& pairs, int threads,
+                                const SiftMatchOptions& options = {});
+
+}  // namespace smql::ingest
