@@ -60,30 +60,42 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::match(const st
                                                                         const std::uint8_t* b, std::size_t rowsB) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
     if (rowsA == 0 || rowsB == 0) return out;
-    dots_.resize(std::max(dots_.size(), rowsA * rowsB));
-    Eigen::Map<Floats> dots(dots_.data(), static_cast<Eigen::Index>(rowsA), static_cast<Eigen::Index>(rowsB));
-    dots.noalias() = asFloats(a, rowsA, a_) * asFloats(b, rowsB, b_).transpose();
+    const Eigen::Map<Floats> floatsA = asFloats(a, rowsA, a_), floatsB = asFloats(b, rowsB, b_);
     if (options_.crossCheck) {
         best_.assign(rowsB, 0.0f);
         second_.assign(rowsB, 0.0f);
         nearest_.assign(rowsB, -1);
-        for (std::size_t i = 0; i < rowsA; ++i)
-            keepNearest(dots_.data() + i * rowsB, rowsB, static_cast<std::int32_t>(i), best_.data(), second_.data(),
-                        nearest_.data());
     }
-    for (Eigen::Index i = 0; i < dots.rows(); ++i) {
-        auto row = dots.row(i);
-        Eigen::Index j = 0;
-        const float best = row.maxCoeff(&j);
-        if (!(best > 0)) continue;  // no dot product above 0: no nearest (COLMAP's rule)
-        row(j) = -1;                // the second best: the largest of the others (a tie with the best is one)
-        const float second = std::max(row.maxCoeff(), 0.0f);
-        if (!passes(best, second, options_)) continue;
-        const auto column = static_cast<std::size_t>(j);
-        if (options_.crossCheck && !(nearest_[column] == i && passes(best_[column], second_[column], options_)))
-            continue;
-        out.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    // The dot products a block of a's rows at a time: two frames of 8,192 features (COLMAP's most) would
+    // take 268 MB at once. The rows' nearest are kept as candidates until the columns' are all known.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
+    constexpr std::size_t kBlockRows = 1024;
+    for (std::size_t first = 0; first < rowsA; first += kBlockRows) {
+        const std::size_t rows = std::min(kBlockRows, rowsA - first);
+        dots_.resize(std::max(dots_.size(), rows * rowsB));
+        Eigen::Map<Floats> dots(dots_.data(), static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(rowsB));
+        dots.noalias() =
+            floatsA.middleRows(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(rows)) * floatsB.transpose();
+        if (options_.crossCheck)
+            for (std::size_t r = 0; r < rows; ++r)
+                keepNearest(dots_.data() + r * rowsB, rowsB, static_cast<std::int32_t>(first + r), best_.data(),
+                            second_.data(), nearest_.data());
+        for (Eigen::Index r = 0; r < dots.rows(); ++r) {
+            auto row = dots.row(r);
+            Eigen::Index j = 0;
+            const float best = row.maxCoeff(&j);
+            if (!(best > 0)) continue;  // no dot product above 0: no nearest (COLMAP's rule)
+            row(j) = -1;                // the second best: the largest of the others (a tie with the best is one)
+            const float second = std::max(row.maxCoeff(), 0.0f);
+            if (passes(best, second, options_))
+                candidates.emplace_back(static_cast<std::uint32_t>(first + static_cast<std::size_t>(r)),
+                                        static_cast<std::uint32_t>(j));
+        }
     }
+    for (const auto& [i, j] : candidates)
+        if (!options_.crossCheck ||
+            (nearest_[j] == static_cast<std::int32_t>(i) && passes(best_[j], second_[j], options_)))
+            out.emplace_back(i, j);
     return out;
 }
 

@@ -66,7 +66,7 @@ std::vector<std::uint8_t> descriptors(cv::RNG& rng, int rows) {
 
 TEST_CASE("descriptors are matched by COLMAP's rule: nearest, unambiguous, each the other's") {
     cv::RNG rng(20261204);
-    const int rows = 40;
+    const int rows = 1100;  // more than a block of rows (1,024)
     const std::vector<std::uint8_t> a = descriptors(rng, rows);
     // b: a's rows in reverse order, each moved a little, and rows that resemble none of them.
     std::vector<std::uint8_t> b;
