@@ -150,6 +150,10 @@ TEST_CASE(
     INFO(notes);
     CHECK_THAT(notes, Catch::Contains("COLMAP looks for features at the frames' own size"));
     CHECK_THAT(notes, Catch::Contains("frames with features at their own size; it runs again with the finer features"));
+    // Each pass's features matched by smql, before COLMAP's matcher (20 frames: all against all) verifies them.
+    const auto matchedHere = std::count_if(run.steps.begin(), run.steps.end(),
+                                           [](const auto& step) { return step.first == "feature matching (smql)"; });
+    CHECK(matchedHere == 2);
     CHECK(run.registered >= 0.9 * capture.frames.size());
 }
 

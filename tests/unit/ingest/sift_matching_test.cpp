@@ -151,7 +151,13 @@ TEST_CASE("real photos' features matched here: COLMAP's own matches, and its ver
     CHECK(matched.matched >= 9);
     // Matched again, nothing is left to match.
     CHECK(matchColmapPairs(ours.string(), pairs, 0).pairs == 0);
+    const auto written = readColmapMatches(ours.string());
     runMatcher(ours, "exhaustive_matcher");
+    // COLMAP only verified them: the matches it keeps are ours (it empties a pair's under 15).
+    const auto kept = readColmapMatches(ours.string());
+    REQUIRE(kept.size() == written.size());
+    for (std::size_t p = 0; p < kept.size(); ++p)
+        if (written[p].matches.size() >= 15) CHECK(kept[p].matches == written[p].matches);
 
     // COLMAP's CPU matcher searches FLANN's trees, which may miss a nearest neighbour; the ingest's is
     // exact. So nearly all of its matches are among ours, and ours are about as many.
