@@ -244,18 +244,30 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                                    "top, and lengths may be off by as much",
                                    100 * alignment.scaleSpread),
                        priorsFix});
-    // Two photos a short step apart place each other loosely: COLMAP stored two of ScanNet's lounge frames 5 cm
-    // apart 3.6 times as far apart for their depth as they were, and one pair's dense points, drawn from those
-    // poses, agree with them. A second prior then shows whether the room's proportions hold: the cameras' height
-    // alone put that memory 4.4x too large, where TUM's office photos stored on two priors were right (docs/ingest.md,
-    // "One pair alone").
-    else if (source.onePairDepth && !scaled && alignment.scalePriors < 2)
-        out.push_back({"scale priors", true,
-                       "the dense points are one pair of photos' alone, drawn from two poses that nothing else "
-                       "checks (a short step between them leaves their depth loose), and the scale rests on one "
-                       "prior: nothing checks the room's proportions",
-                       "give --scale (metres per capture unit), or add photos of the room, whose pairs check each "
-                       "other's depth"});
+    // Photos without depth whose scale rests on one prior: in practice the cameras' assumed height, since the
+    // things' heights and the ceiling come only with a floor under the cameras. Real captures' cameras stand
+    // 1.19-1.70 m up (ScanNet's 1.19-1.36, 7-Scenes' 1.41, TUM's 1.50-1.70), so that prior alone leaves
+    // lengths a fifth off: a fresh COLMAP run of ScanNet's lounge was stored on it 1.19x too large. Two photos
+    // a short step apart whose dense points are one pair's alone are looser still: COLMAP stored two of the
+    // lounge's frames 5 cm apart 3.6 times as far apart for their depth as they were, and the cameras' height
+    // then put the room 4.4x too large (docs/ingest.md, "One pair alone"). A second prior checks the room's
+    // proportions.
+    // (A floor not seen or not confirmed is refused above, and says why.)
+    else if (!scaled && alignment.scalePriors < 2 &&
+             (source.onePairDepth || (alignment.floorNotSeen.empty() && alignment.floorUnconfirmed.empty())))
+        out.push_back(
+            {"scale priors", true,
+             source.onePairDepth
+                 ? std::string("the dense points are one pair of photos' alone, drawn from two poses that nothing "
+                               "else checks (a short step between them leaves their depth loose), and the scale "
+                               "rests on one prior: nothing checks the room's proportions")
+                 : std::string("the scale rests on one prior, the cameras' assumed height above the floor, where "
+                               "real captures' cameras stand 1.2-1.7 m up: lengths may be a fifth off, and no "
+                               "second prior (things of a known height standing on the floor, the ceiling) checks "
+                               "them"),
+             source.onePairDepth ? "give --scale (metres per capture unit), or add photos of the room, whose pairs "
+                                   "check each other's depth"
+                                 : priorsFix});
     return out;
 }
 

@@ -160,6 +160,7 @@ TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[in
     // 28 % apart, TUM's desk 1.8x and 2.4x from priors 39 % and 31 % apart (its top taken for the floor):
     // refused, naming --scale. Those of right memories (1-17 % apart) say nothing.
     Alignment rough;
+    rough.scalePriors = 2;
     rough.scaleSpread = 0.28;
     auto spread = alignmentFindings(rough, {});
     REQUIRE(spread.size() == 1);
@@ -181,7 +182,10 @@ TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[in
     CHECK_THAT(alone.front().what, Catch::Contains("the floor is not confirmed"));
     CHECK_THAT(alone.front().fix, Catch::Contains("--scale"));
     CHECK(alignmentFindings(unconfirmed, {.given = true}).empty());
-    CHECK(alignmentFindings(Alignment{}, {}).empty());
+    Alignment agreeing;
+    agreeing.floorFound = true;
+    agreeing.scalePriors = 2;
+    CHECK(alignmentFindings(agreeing, {}).empty());
 }
 
 // Photos whose dense points are one pair's alone: COLMAP's two poses of ScanNet's lounge frames 5 cm apart
@@ -197,12 +201,42 @@ TEST_CASE("plausibility: one pair's dense points and one prior of the scale are 
     CHECK(refused.front().refuse);
     CHECK_THAT(refused.front().what, Catch::Contains("one pair of photos"));
     CHECK_THAT(refused.front().fix, Catch::Contains("--scale"));
-    CHECK(alignmentFindings(onePrior, {}).empty());  // points two pairs agree on
     CHECK(alignmentFindings(onePrior, {.given = true, .onePairDepth = true}).empty());
     Alignment twoPriors = onePrior;
     twoPriors.scalePriors = 2;
     twoPriors.scaleSpread = 0.23;
     CHECK(alignmentFindings(twoPriors, {.onePairDepth = true}).empty());
+}
+
+// The cameras' assumed height alone: a fresh COLMAP run of 100 of ScanNet's lounge frames was stored on it 1.19x
+// too large (its cameras stand 1.19 m up, where 1.50 m is assumed).
+TEST_CASE("plausibility: photos without depth scaled by the cameras' height alone are refused",
+          "[ingest][plausibility]") {
+    Alignment onePrior;
+    onePrior.floorFound = true;
+    onePrior.scalePriors = 1;
+    auto refused = alignmentFindings(onePrior, {});
+    REQUIRE(refused.size() == 1);
+    CHECK(refused.front().check == "scale priors");
+    CHECK(refused.front().refuse);
+    CHECK_THAT(refused.front().what, Catch::Contains("the scale rests on one prior, the cameras' assumed height"));
+    CHECK_THAT(refused.front().fix, Catch::Contains("--scale"));
+    // Depth, a scale given, metric poses: nothing to refuse.
+    CHECK(alignmentFindings(onePrior, {.depth = true}).empty());
+    CHECK(alignmentFindings(onePrior, {.given = true}).empty());
+    CHECK(alignmentFindings(onePrior, {.metric = true}).empty());
+    // A second prior that agrees checks it.
+    Alignment twoPriors = onePrior;
+    twoPriors.scalePriors = 2;
+    twoPriors.scaleSpread = 0.05;
+    CHECK(alignmentFindings(twoPriors, {}).empty());
+    // A floor not seen is refused for that, once.
+    Alignment tableTop = onePrior;
+    tableTop.floorFound = false;
+    tableTop.floorNotSeen = "the lowest horizontal surface below the cameras is a table top";
+    auto floorOnly = alignmentFindings(tableTop, {});
+    REQUIRE(floorOnly.size() == 1);
+    CHECK(floorOnly.front().check == "floor");
 }
 
 TEST_CASE("plausibility: a stored memory without a floor says what could not be checked", "[ingest][plausibility]") {
