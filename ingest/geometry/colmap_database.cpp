@@ -73,7 +73,7 @@ std::vector<ColmapDescriptors> readColmapDescriptors(const std::string& path) {
                             static_cast<std::size_t>(std::max<sqlite3_int64>(sqlite3_column_int64(rows.get(), 1), 0)),
                             {}};
         const auto bytes = static_cast<std::size_t>(sqlite3_column_bytes(rows.get(), 3));
-        if (sqlite3_column_int(rows.get(), 2) != 128 || bytes != d.rows * 128)
+        if (d.rows > 0 && (sqlite3_column_int(rows.get(), 2) != 128 || bytes != d.rows * 128))
             throw Error(ErrorKind::Input,
                         fmt::format("{}: image {}'s descriptors are not {} rows of 128 bytes", path, d.image, d.rows));
         const auto* blob = static_cast<const std::uint8_t*>(sqlite3_column_blob(rows.get(), 3));

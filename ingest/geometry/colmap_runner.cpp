@@ -462,7 +462,7 @@ private:
     }
 
     // The pairs a COLMAP matcher is about to match, matched here first (sift_matching.hpp: the same rule,
-    // exactly, ten times faster), so that COLMAP only verifies them. Should the database not read as
+    // exactly, six times faster), so that COLMAP only verifies them. Should the database not read as
     // expected, COLMAP matches them itself, as it does the loops its vocabulary tree finds.
     void matchFirst(const std::function<std::vector<std::pair<std::string, std::string>>()>& pairs) {
         if (run_.reused) return;
