@@ -17,7 +17,9 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     // capture that names as many or more of another room's: one of the two names is wrong, so neither
     // measures the room. ScanNet's bathroom, its 296 frames without depth: two "fridges" (1.75 m) beside
     // two toilets put the scale 1.19x too large, and with the cameras' height, as wrong, the memory was
-    // stored 1.21x too large.
+    // stored 1.21x too large. Fusion's doubt of a name among another room's things (outOfPlace,
+    // object_fusion.cpp) needs the boxes in metres and the walls, which come after the scale; and it keeps a
+    // name on a tie, where a prior, to be trusted, leaves both out.
     std::map<RoomKind, std::size_t> rooms;
     for (const auto& thing : things) ++rooms[roomKind(thing.category)];
     auto doubted = [&](const std::string& category) {
