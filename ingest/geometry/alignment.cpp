@@ -169,6 +169,14 @@ model::Vec3 Alignment::apply(const model::Vec3& p) const {
             m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
 }
 
+model::Vec3 Alignment::unapply(const model::Vec3& q) const {
+    const auto& m = transform;
+    const model::Vec3 d{q.x - m[3], q.y - m[7], q.z - m[11]};
+    const double s2 = scale * scale;  // the rows of scale * R: R's transpose, over the scale once more
+    return {(m[0] * d.x + m[4] * d.y + m[8] * d.z) / s2, (m[1] * d.x + m[5] * d.y + m[9] * d.z) / s2,
+            (m[2] * d.x + m[6] * d.y + m[10] * d.z) / s2};
+}
+
 std::array<double, 9> Alignment::rotation() const {
     std::array<double, 9> r{};
     for (int i = 0; i < 3; ++i)
@@ -522,8 +530,10 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
                                  options.cameraHeight / medianHeight});
     }
     if (floorFound)
-        if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit))
-            estimates.push_back(*heights);
+        if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit)) {
+            heights->leads = options.thingsOnDepth;
+            estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
+        }
     if (estimates.empty()) {
         notes.push_back("scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");
         return 0;

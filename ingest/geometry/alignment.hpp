@@ -37,6 +37,11 @@ struct AlignOptions {
     // readings, COLMAP's features); the dense points after them find planes only, since a glossy
     // floor's reflection matches between photos as points below it.
     std::size_t evidencePoints = std::numeric_limits<std::size_t>::max();
+    // The named things were fused on depth (photos' things lifted on the dense points, as stored): their
+    // heights lead the scale, the cameras' assumed height only checks it. Things carved from sparse points
+    // do not lead (TUM's office photos: their hulls' heights 1.15x the true scale, the same things lifted
+    // 0.97-1.01x, the cameras' height 0.94x).
+    bool thingsOnDepth = false;
 
     double planeDistance = 0.03;       // RANSAC inlier distance for floor and ceiling
     double horizontalTolerance = 30;   // degrees a floor candidate may tilt from the up prior ...
@@ -92,7 +97,8 @@ struct Alignment {
     std::vector<std::string> notes;       // how each choice was made, for SHOW SCENES and logs
 
     model::Vec3 apply(const model::Vec3& p) const;
-    std::array<double, 9> rotation() const;  // R, row-major, without the scale
+    model::Vec3 unapply(const model::Vec3& q) const;  // the inverse: aligned -> capture
+    std::array<double, 9> rotation() const;           // R, row-major, without the scale
 };
 
 // Floor, heading and scale of a capture's world-frame cloud; `cameras` are

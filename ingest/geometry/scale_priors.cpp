@@ -67,13 +67,19 @@ ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {
     // Two priors a factor apart leave no majority: one of them measured something wrong (a table top
     // taken for the floor), and the more trusted one, listed first, is kept.
     const bool split = values.size() == 2 && *high > kDisagreement * *low;
-    out.scale = split ? values.front() : detail::median(values);
+    const bool leads = estimates.front().leads;
+    out.scale = split || leads ? values.front() : detail::median(values);
     out.spread = (*high - *low) / out.scale;
     if (split) out.split = *high / *low;
     std::string each;
     for (const auto& e : estimates) each += fmt::format("; {}: {:.4g}", e.prior, e.scale);
     if (estimates.size() == 1)
         out.note = fmt::format("scale: {:.4g} m per unit from one prior{}", out.scale, each);
+    else if (leads && !split)
+        out.note = fmt::format(
+            "scale: {:.4g} m per unit from the first of {} priors, which the others check: they "
+            "agree within {:.0f}%{}",
+            out.scale, estimates.size(), 100 * out.spread, each);
     else if (split)
         out.note = fmt::format(
             "scale: {:.4g} m per unit from the first of 2 priors that disagree by a factor of {:.1f}: check the "

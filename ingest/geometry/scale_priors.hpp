@@ -27,6 +27,9 @@ struct NamedThing {
 struct ScaleEstimate {
     std::string prior;  // "median camera height taken as 1.50 m"
     double scale = 1;
+    // Measured well enough to be the scale, which the other estimates only check (the heights of things
+    // fused on depth: AlignOptions::thingsOnDepth).
+    bool leads = false;
 };
 
 // The heights prior: each named thing of a typical height, its top (the
@@ -52,7 +55,8 @@ struct ScaleChoice {
 inline constexpr double kDisagreement = 1.5;
 
 // The median of the estimates (at least one), given the most trusted first;
-// of two that disagree, the first.
+// of two that disagree, the first; the first alone when it leads (ScaleEstimate::leads), the others
+// then measuring only how far they agree with it.
 ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates);
 
 }  // namespace smql::ingest

@@ -8,23 +8,34 @@
 
 namespace smql::ingest {
 
-AlignedCapture AlignStage::run(StageProgress& progress) {
-    AlignOptions align;
-    align.metric = capture.metric;
-    align.scale = options.scale;
-    align.evidencePoints = frames.measuredPoints;
-    std::vector<Pose> poses;
-    for (const auto& c : frames.cameras) poses.push_back(c.pose);
-    // Named things tell the floor from a table top (what stands on it), and those of a typical height
-    // are one of the scale's priors when there is a scale to find.
+namespace {
+
+// The frame pass's named things: each track's surface points, else its views' points.
+std::vector<NamedThing> trackedThings(const std::vector<ObjectTrack>& tracks) {
     std::vector<NamedThing> things;
-    for (const auto& track : frames.tracks) {
+    for (const auto& track : tracks) {
         if (track.kind != model::NodeKind::Object) continue;
         NamedThing thing{track.category, track.surface};
         if (thing.points.empty())
             for (const auto& v : track.views) thing.points.insert(thing.points.end(), v.points.begin(), v.points.end());
         things.push_back(std::move(thing));
     }
+    return things;
+}
+
+}  // namespace
+
+AlignedCapture AlignStage::run(StageProgress& progress) {
+    AlignOptions align;
+    align.metric = capture.metric;
+    align.scale = options.scale;
+    align.evidencePoints = frames.measuredPoints;
+    align.thingsOnDepth = storedThings != nullptr;
+    std::vector<Pose> poses;
+    for (const auto& c : frames.cameras) poses.push_back(c.pose);
+    // Named things tell the floor from a table top (what stands on it), and those of a typical height
+    // are one of the scale's priors when there is a scale to find.
+    const std::vector<NamedThing> things = storedThings ? *storedThings : trackedThings(frames.tracks);
     AlignedCapture out;
     out.alignment = alignCapture(frames.structure, poses, align, things, frames.lines);
     for (const auto& n : out.alignment.notes) progress.note(n);

@@ -5,8 +5,10 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "ingest/capture/capture.hpp"
+#include "ingest/geometry/scale_priors.hpp"
 #include "ingest/pipeline/pipeline.hpp"
 #include "ingest/pipeline/stage_data.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
@@ -18,6 +20,9 @@ struct AlignStage {
     const Capture& capture;
     const IngestOptions& options;
     const FramePass& frames;
+    // The named things measured instead of the frame pass's tracks: those the objects stage stored, when it
+    // lifted them on the dense points and the alignment is measured again on them (pipeline.cpp).
+    const std::vector<NamedThing>* storedThings = nullptr;
 
     std::size_t steps() const { return 1; }
     AlignedCapture run(StageProgress& progress);

@@ -294,7 +294,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                                    "image/jpeg", std::move(track.evidence.jpeg)});
         if (auto embedding = meanEmbedding(track.views); !embedding.empty())
             scene.blobs.push_back(model::embeddingBlob(node.id, embedding));
-        made.push_back({node.id, std::move(track.views)});
+        made.push_back({node.id, std::move(track.views), !track.fused.empty()});
     }
     finder.addStructureObjects(aligned, walls, scene, progress);
     if (framesHaveDepth(capture) && aligned.alignment.floorFound) renameFloating(scene, progress);

@@ -64,6 +64,7 @@ struct AlignedCapture {
 struct TrackedNode {
     model::NodeId node = model::kNoNode;
     std::vector<Observation> views;
+    bool fused = false;  // its box was fitted to its views' points fused in the aligned frame (ObjectTrack::fused)
 };
 
 }  // namespace smql::ingest
