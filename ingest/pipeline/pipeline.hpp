@@ -29,6 +29,11 @@ enum class DenseUse { Off, Room, All, Auto };
 // photos a wide step apart and 0.44-0.59 in generated walks, whose flat colours stereo cannot match
 // (docs/ingest.md, "Dense points from placed photos").
 inline constexpr double kDenseCoverToLift = 0.65;
+// ... and at least this share where the room the sparse points' things placed is not measured (its floor
+// unconfirmed, or its scale on one prior): the lifted things are then its one chance to be measured again. Below
+// half, most of a thing's box has no depth and its lift is a fragment: the five dining photos' (3 %) lifted
+// "chair" and "fridge" stood on the floor and stored them 1.7x too large.
+inline constexpr double kDenseCoverToMeasure = 0.5;
 
 struct IngestOptions {
     std::string sceneName;

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <future>
 #include <iostream>
 #include <map>
@@ -28,9 +30,11 @@
 #include "ingest/pipeline/segmenter.hpp"
 #include "model/error.hpp"
 #include "model/geometry.hpp"
+#include "scratch_dir.hpp"
 
 using namespace smql;
 using namespace smql::ingest;
+using smql::ingest::test::ScratchDir;
 
 namespace {
 
@@ -378,6 +382,50 @@ TEST_CASE("--objects detect on the real dining room without depth names chairs a
     CHECK(heights[heights.size() / 2] < 1.8);
     CHECK(std::any_of(result.notes.begin(), result.notes.end(),
                       [](const std::string& note) { return note.starts_with("up: no level surface; "); }));
+}
+
+TEST_CASE("the real dining photos without poses: their few dense points lift nothing, whatever COLMAP makes of them") {
+    // Five photos a wide step apart: the dense points between them cover 3 % of the detections' boxes. Where the
+    // room the sparse points' things placed is not measured (COLMAP's model in one run of two: a floor found and
+    // unconfirmed, the cameras' height the one prior), the things are lifted only where the points cover half
+    // of the boxes (kDenseCoverToMeasure): lifted on the 3 %, a "chair" and a "fridge" stood on the floor and
+    // stored the room 1.7x too large, its cameras 1.83 m up (1.40 by the depth's floor). Refused or stored, no
+    // lift, and the cameras where a person holds them.
+    if (!installedDetector()) return;
+    ScratchDir dir;
+    const auto photos = dir.path / "photos";
+    std::filesystem::create_directories(photos);
+    for (int n = 1; n <= 5; ++n) {
+        const std::string name = std::to_string(n) + ".png";
+        std::filesystem::copy_file(diningPath() + "/color/" + name, photos / name);
+    }
+    std::ofstream(photos / "camera.json") << R"({"width": 640, "height": 480, "fx": 518.0, "fy": 519.0,
+                                                 "cx": 325.5, "cy": 253.5})";
+    struct NoteSink : ProgressSink {
+        std::string notes;
+        void stageStarted(const std::string&, std::size_t) override {}
+        void advanced(std::size_t) override {}
+        void stageFinished(const std::string&, double, const std::string&) override {}
+        void note(const std::string& text) override { notes += text + "\n"; }
+    } sink;
+    IngestOptions options;
+    options.sceneName = "dining-photos";
+    std::optional<IngestResult> result;
+    try {
+        result = ingestCapture(readCapture(photos.string()), options, sink);
+    } catch (const Error& e) {
+        INFO(sink.notes);
+        CHECK(e.kind() == ErrorKind::Input);
+    }
+    INFO(sink.notes);
+    CHECK_THAT(sink.notes, !Catch::Contains("lifted again on the depth the dense points give them"));
+    if (!result) return;
+    std::vector<double> heights;
+    for (const auto& [frame, centre] : result->cameraCentres) heights.push_back(centre.z);
+    REQUIRE(!heights.empty());
+    std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+    CHECK(heights[heights.size() / 2] > 1.0);
+    CHECK(heights[heights.size() / 2] < 1.8);
 }
 
 TEST_CASE("a box nested in a better one of its class is that thing's part, not a second thing") {
