@@ -227,6 +227,26 @@ TEST_CASE("alignment levels a tilted, turned and shifted room", "[ingest][geomet
     }
 }
 
+namespace {
+
+// Two tables (tops 0.75 m) and a chair (0.9 m) standing on the room's floor, then the room and the things tilted,
+// shifted and shrunk to units of 0.4 m: their heights say 2.5 metres per unit.
+std::vector<NamedThing> tablesAndChair(Room& room) {
+    std::vector<NamedThing> things;
+    for (auto [category, top] : {std::pair{"table", 0.75}, std::pair{"table", 0.75}, std::pair{"chair", 0.9}}) {
+        NamedThing thing{category, {}};
+        for (double z = 0; z <= top + 1e-9; z += 0.05) thing.points.push_back({0.5, 3.0, z});
+        things.push_back(std::move(thing));
+    }
+    const Mat3 r = rotY(-15 * kDeg);
+    distort(room, r, {2.0, 0.0, 0.5}, 0.4);
+    for (auto& thing : things)
+        for (auto& p : thing.points) p = add(mul(0.4, r * p), {2.0, 0.0, 0.5});
+    return things;
+}
+
+}  // namespace
+
 TEST_CASE("a scale-free capture gets its scale from the camera height, the ceiling and typical heights",
           "[ingest][geometry]") {
     AlignOptions options;
@@ -261,16 +281,7 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         // Two tables (tops 0.75 m) and a chair (0.9 m) of the right heights in the same room: their
         // answer, 2.5 metres per unit, is the median of the three.
         Room room = syntheticRoom(2.8, 1.4);
-        std::vector<NamedThing> things;
-        for (auto [category, top] : {std::pair{"table", 0.75}, std::pair{"table", 0.75}, std::pair{"chair", 0.9}}) {
-            NamedThing thing{category, {}};
-            for (double z = 0; z <= top + 1e-9; z += 0.05) thing.points.push_back({0.5, 3.0, z});
-            things.push_back(std::move(thing));
-        }
-        const Mat3 r = rotY(-15 * kDeg);
-        distort(room, r, {2.0, 0.0, 0.5}, 0.4);
-        for (auto& thing : things)
-            for (auto& p : thing.points) p = add(mul(0.4, r * p), {2.0, 0.0, 0.5});
+        const std::vector<NamedThing> things = tablesAndChair(room);
         Alignment a = alignCapture(room.cloud, room.cameras, options, things);
         INFO(notesOf(a));
         CHECK(a.scale == Approx(2.5).epsilon(0.01));
@@ -283,16 +294,7 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         // The heights are the scale, not the median of the two: TUM's office photos' lifted things said 0.97-1.01x
         // the true scale where the cameras' height said 0.94x, ScanNet's lounge's 1.05x where it said 1.19x.
         Room room = syntheticRoom(std::nullopt, 1.4);
-        std::vector<NamedThing> things;
-        for (auto [category, top] : {std::pair{"table", 0.75}, std::pair{"table", 0.75}, std::pair{"chair", 0.9}}) {
-            NamedThing thing{category, {}};
-            for (double z = 0; z <= top + 1e-9; z += 0.05) thing.points.push_back({0.5, 3.0, z});
-            things.push_back(std::move(thing));
-        }
-        const Mat3 r = rotY(-15 * kDeg);
-        distort(room, r, {2.0, 0.0, 0.5}, 0.4);
-        for (auto& thing : things)
-            for (auto& p : thing.points) p = add(mul(0.4, r * p), {2.0, 0.0, 0.5});
+        const std::vector<NamedThing> things = tablesAndChair(room);
         options.thingsOnDepth = true;
         Alignment a = alignCapture(room.cloud, room.cameras, options, things);
         INFO(notesOf(a));
