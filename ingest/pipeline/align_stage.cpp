@@ -35,7 +35,8 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     for (const auto& c : frames.cameras) poses.push_back(c.pose);
     // Named things tell the floor from a table top (what stands on it), and those of a typical height
     // are one of the scale's priors when there is a scale to find.
-    const std::vector<NamedThing> things = storedThings ? *storedThings : trackedThings(frames.tracks);
+    const std::vector<NamedThing> tracked = storedThings ? std::vector<NamedThing>{} : trackedThings(frames.tracks);
+    const std::vector<NamedThing>& things = storedThings ? *storedThings : tracked;
     AlignedCapture out;
     out.alignment = alignCapture(frames.structure, poses, align, things, frames.lines);
     for (const auto& n : out.alignment.notes) progress.note(n);

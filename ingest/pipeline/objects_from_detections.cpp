@@ -290,8 +290,10 @@ private:
             cameras.push_back({pose, frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
         }
         const double cover = boxed > 0 ? covered / boxed : 0;
-        const bool unmeasured = alignment.floorFound && !options_.scale && !capture_.metric &&
-                                (!alignment.floorUnconfirmed.empty() || alignment.scalePriors < 2) &&
+        // (Both are the scale's estimate's: a floor is unconfirmed, and one prior counted, only where no scale was
+        // given and the poses are not metric.)
+        const bool unmeasured = alignment.floorFound &&
+                                (!alignment.floorUnconfirmed.empty() || alignment.scalePriors == 1) &&
                                 cover >= kDenseCoverToMeasure;
         const bool underCover = lift_ == DenseLift::WhereCovered && cover < kDenseCoverToLift && !liftedBefore_;
         if (underCover && !unmeasured) {

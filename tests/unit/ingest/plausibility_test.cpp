@@ -188,48 +188,36 @@ TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[in
     CHECK(alignmentFindings(agreeing, {}).empty());
 }
 
-// Photos whose dense points are one pair's alone: COLMAP's two poses of ScanNet's lounge frames 5 cm apart
-// put them 3.6 times as far apart for their depth as they were, and the cameras' height alone stored that room
-// 4.4x too large; a second prior checks the proportions (TUM's office photos, stored on two, were right).
-TEST_CASE("plausibility: one pair's dense points and one prior of the scale are refused", "[ingest][plausibility]") {
-    Alignment onePrior;
-    onePrior.floorFound = true;
-    onePrior.scalePriors = 1;
-    auto refused = alignmentFindings(onePrior, {.onePairDepth = true});
-    REQUIRE(refused.size() == 1);
-    CHECK(refused.front().check == "scale priors");
-    CHECK(refused.front().refuse);
-    CHECK_THAT(refused.front().what, Catch::Contains("one pair of photos"));
-    CHECK_THAT(refused.front().fix, Catch::Contains("--scale"));
-    CHECK(alignmentFindings(onePrior, {.given = true, .onePairDepth = true}).empty());
-    Alignment twoPriors = onePrior;
-    twoPriors.scalePriors = 2;
-    twoPriors.scaleSpread = 0.23;
-    CHECK(alignmentFindings(twoPriors, {.onePairDepth = true}).empty());
-}
-
-// The cameras' assumed height alone: a fresh COLMAP run of 100 of ScanNet's lounge frames was stored on it 1.19x
-// too large (its cameras stand 1.19 m up, where 1.50 m is assumed).
-TEST_CASE("plausibility: photos without depth scaled by the cameras' height alone are refused",
+// Photos without depth whose scale rests on one prior, the cameras' assumed height: a fresh COLMAP run of 100 of
+// ScanNet's lounge frames was stored on it 1.19x too large (its cameras stand 1.19 m up, where 1.50 m is
+// assumed). Looser still with dense points of one pair alone: COLMAP's two poses of lounge frames 5 cm apart put
+// them 3.6 times as far apart for their depth as they were, and that room was stored 4.4x too large. A second
+// prior checks the proportions (TUM's office photos, stored on two, were right).
+TEST_CASE("plausibility: photos without depth scaled on one prior are refused, saying which",
           "[ingest][plausibility]") {
     Alignment onePrior;
     onePrior.floorFound = true;
     onePrior.scalePriors = 1;
-    auto refused = alignmentFindings(onePrior, {});
-    REQUIRE(refused.size() == 1);
-    CHECK(refused.front().check == "scale priors");
-    CHECK(refused.front().refuse);
-    CHECK_THAT(refused.front().what, Catch::Contains("the scale rests on one prior, the cameras' assumed height"));
-    CHECK_THAT(refused.front().fix, Catch::Contains("--scale"));
-    // Depth, a scale given, metric poses: nothing to refuse.
-    CHECK(alignmentFindings(onePrior, {.depth = true}).empty());
-    CHECK(alignmentFindings(onePrior, {.given = true}).empty());
-    CHECK(alignmentFindings(onePrior, {.metric = true}).empty());
-    // A second prior that agrees checks it.
-    Alignment twoPriors = onePrior;
-    twoPriors.scalePriors = 2;
-    twoPriors.scaleSpread = 0.05;
-    CHECK(alignmentFindings(twoPriors, {}).empty());
+    for (const bool onePair : {false, true}) {
+        INFO("one pair's dense points: " << onePair);
+        auto refused = alignmentFindings(onePrior, {.onePairDepth = onePair});
+        REQUIRE(refused.size() == 1);
+        CHECK(refused.front().check == "scale priors");
+        CHECK(refused.front().refuse);
+        CHECK_THAT(refused.front().what, Catch::Contains(onePair ? "one pair of photos"
+                                                                 : "the scale rests on one prior, the cameras' "
+                                                                   "assumed height"));
+        CHECK_THAT(refused.front().fix, Catch::Contains("--scale"));
+        // Depth, a scale given, metric poses: nothing to refuse.
+        CHECK(alignmentFindings(onePrior, {.depth = true, .onePairDepth = onePair}).empty());
+        CHECK(alignmentFindings(onePrior, {.given = true, .onePairDepth = onePair}).empty());
+        CHECK(alignmentFindings(onePrior, {.metric = true, .onePairDepth = onePair}).empty());
+        // A second prior that agrees checks it.
+        Alignment twoPriors = onePrior;
+        twoPriors.scalePriors = 2;
+        twoPriors.scaleSpread = 0.23;
+        CHECK(alignmentFindings(twoPriors, {.onePairDepth = onePair}).empty());
+    }
     // A floor not seen is refused for that, once.
     Alignment tableTop = onePrior;
     tableTop.floorFound = false;
