@@ -160,7 +160,7 @@ class XnnpackNetwork : public Network {
 public:
     XnnpackNetwork(const onnx::ModelProto& model, const std::string& file, const std::vector<std::string>& wanted,
                    const GraphPlacement& placement)
-        : leases_{placement.tensors ? placement.tensors : std::make_shared<TensorArena>()} {
+        : leases_{placement.tensors ? placement.tensors : std::make_shared<TensorArena>(), {}, {}} {
         if (placement.threads > 1) pool_.reset(pthreadpool_create(static_cast<std::size_t>(placement.threads)));
         const auto& graph = model.graph();
         for (const auto& o : model.opset_import())

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <unordered_map>
 #include <utility>
 
 #include <fmt/format.h>
@@ -147,6 +148,7 @@ protected:
     struct FrameDetections {
         std::vector<Detection> detections;
         int storedWidth = 0;  // the width of the image the boxes are in
+        bool kept = false;    // the models' answers for the frame when the room was placed before (pipeline.cpp)
     };
     // A frame's detections, made with stream `stream`'s models (below streams()); streams never share models.
     virtual FrameDetections detectionsOf(const PosedFrame& frame, std::size_t stream) = 0;
@@ -270,6 +272,7 @@ private:
         // frame's own errors of depth, the things are fused from views that differ.
         Keyframes keyframes;
         double covered = 0, boxed = 0;  // the detections' box pixels with depth, and all of them
+        std::size_t kept = 0;           // keyframes whose models' answers were kept from the room placed before
         for (const auto position : denseFrames_) {
             progress.stopIfCancelled();
             const CaptureFrame& frame = capture_.frames[position];
@@ -278,6 +281,7 @@ private:
             FrameImages images = loadFrame(capture_, frame, options_.workingWidth);
             images.depth = depthFromPoints(points, pose, images.intrinsics, spacing);
             const FrameDetections found = keyframeDetectionsOf({position, frame, images, pose});
+            kept += found.kept;
             for (const auto& detection : found.detections) {
                 const cv::Rect box = detectionBounds(detection, images.intrinsics, found.storedWidth);
                 covered += box.area() > 0 ? cv::countNonZero(images.depth(box) > 0) : 0;
@@ -306,9 +310,11 @@ private:
         liftedBefore_ = true;
         progress.note(fmt::format(
             "objects: {} keyframes of {} photos lifted again on the depth the dense points give them, which covers "
-            "{:.0f}% of the detections' boxes ({} of {} points drawn: the floor's and the specks' left out){}",
+            "{:.0f}% of the detections' boxes ({} of {} points drawn: the floor's and the specks' left out){}{}",
             cameras.size(), denseFrames_.size(), 100 * cover, points.size(),
             capture_.densePoints.size() + capture_.points.size(),
+            kept > 0 ? fmt::format("; the models' answers on {} of them kept from the room placed before", kept)
+                     : std::string(),
             underCover ? fmt::format("; under the {:.0f}% that lifts them, lifted for the room the sparse points' "
                                      "things placed is not measured (its floor unconfirmed, or its scale on one "
                                      "prior)",
@@ -590,7 +596,7 @@ private:
     FrameDetections detectionsOf(const PosedFrame& frame, std::size_t stream) override {
         Models& models = models_[stream];
         auto start = std::chrono::steady_clock::now();
-        auto detections = detect(models, frame.images.color);
+        auto detections = masked(answer(models, frame.images.color), models);
         const double milliseconds =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         std::lock_guard lock(countMutex_);
@@ -600,26 +606,45 @@ private:
     }
 
     // Run again rather than kept from the frames pass: a frame's masks are images, and a long walk's
-    // would fill the memory; with the packaged models beside NanoDet, loaded the first time.
+    // would fill the memory; with the packaged models beside NanoDet, loaded the first time. Kept for the
+    // room placed again (pipeline.cpp), whose keyframes are mostly the same frames: the models' answers
+    // depend on the image alone.
     FrameDetections keyframeDetectionsOf(const PosedFrame& frame) override {
-        if (packaged_ == packagedOnDense_) return {detect(models_[0], frame.images.color), frame.images.color.cols};
+        Models& models = keyframeModels();
+        auto kept = keyframeAnswers_.find(frame.position);
+        const bool before = kept != keyframeAnswers_.end();
+        if (!before) kept = keyframeAnswers_.emplace(frame.position, answer(models, frame.images.color)).first;
+        return {masked(kept->second, models), frame.images.color.cols, before};
+    }
+    Models& keyframeModels() {
+        if (packaged_ == packagedOnDense_) return models_[0];
         if (!denseModels_.detector)  // they run alone, after the streams: on every core
             denseModels_ = loadModels(files_, packagedOnDense_,
                                       std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
-        return {detect(denseModels_, frame.images.color), frame.images.color.cols};
+        return denseModels_;
     }
 
-    // The segmenter runs on a frame only when it knows the kind of one of its detections (else its labels would
-    // cut nothing): the keyframes of beds, toilets, laptops or nothing skip it.
-    std::vector<Detection> detect(Models& models, const cv::Mat& color) {
-        auto detections = models.detector->detect(color);
-        if (models.segmenter && std::any_of(detections.begin(), detections.end(), [&](const Detection& d) {
-                return segmentable(d, models.segmenter->categories());
-            })) {
+    // What the models make of an image: the detector's boxes, and the segmenter's labels when it knows the kind
+    // of one of them (else its labels would cut nothing): the keyframes of beds, toilets, laptops or nothing
+    // skip it. A frame's labels are one image where the masks cut from them are one a detection.
+    struct ModelAnswer {
+        std::vector<Detection> detections;
+        cv::Mat1b labels;  // empty where the segmenter did not run
+    };
+    ModelAnswer answer(Models& models, const cv::Mat& color) {
+        ModelAnswer answer{models.detector->detect(color), {}};
+        if (models.segmenter &&
+            std::any_of(answer.detections.begin(), answer.detections.end(),
+                        [&](const Detection& d) { return segmentable(d, models.segmenter->categories()); })) {
             ++segmented_;
-            const cv::Mat1b labels = models.segmenter->segment(color);
-            for (auto& d : detections) maskBySegments(d, labels, models.segmenter->categories());
+            answer.labels = models.segmenter->segment(color);
         }
+        return answer;
+    }
+    static std::vector<Detection> masked(const ModelAnswer& answer, const Models& models) {
+        std::vector<Detection> detections = answer.detections;
+        if (!answer.labels.empty())
+            for (auto& d : detections) maskBySegments(d, answer.labels, models.segmenter->categories());
         return detections;
     }
 
@@ -636,7 +661,8 @@ private:
     std::mutex countMutex_;             // the streams' threads count below
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;
-    std::atomic<std::size_t> segmented_ = 0;  // frames the segmenter ran on
+    std::atomic<std::size_t> segmented_ = 0;                        // frames the segmenter ran on
+    std::unordered_map<std::size_t, ModelAnswer> keyframeAnswers_;  // by the keyframe's position in the capture
 };
 
 }  // namespace

@@ -143,8 +143,6 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     // stand on the floor and say 1.05x.
     const bool mayMeasureAgain =
         !framesHaveDepth(capture) && !options.scale && !capture.metric && !capture.densePoints.empty();
-    std::vector<ObjectTrack> frameTracks;
-    if (mayMeasureAgain) frameTracks = frames.tracks;
 
     model::SceneData& scene = result.scene;
     std::vector<WallSegment> walls;
@@ -165,7 +163,9 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
             runner.note(
                 fmt::format("align: measured again on the {} named things lifted on the dense points", things.size()));
             aligned = runner.run(AlignStage{capture, options, frames, &things});
-            placeRoom(std::move(frameTracks));
+            // No frame tracks: a finder that lifted its things on the dense points lifts them again, whatever
+            // the keyframes of the new placement cover (objects_from_detections.cpp), and the lift replaces them.
+            placeRoom({});
         }
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});

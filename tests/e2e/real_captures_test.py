@@ -180,6 +180,10 @@ def desk_photos(smql, folder, work):
         scale = [line for line in log.splitlines() if line.startswith("note: scale:")]
         assert len(scale) == 2, log
         print(f"  measured again on {again.group(1)} lifted things: {scale[-1][len('note: '):]}")
+        # The models do not look at a keyframe twice: the room placed again reuses their answers on the frames
+        # that are keyframes both times (the same images), so it costs the lift and the fusion alone.
+        kept = re.search(r"the models' answers on (\d+) of them kept from the room placed before", log)
+        assert kept and int(kept.group(1)) > 0, log
 
 
 def desk_photos_dense(smql, folder, work):
