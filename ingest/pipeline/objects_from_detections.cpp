@@ -159,6 +159,9 @@ protected:
     // The detections of a keyframe lifted on the dense points' depth (fuseOnDenseDepth), once the streams are
     // done; the frame's own by default.
     virtual FrameDetections keyframeDetectionsOf(const PosedFrame& frame) { return detectionsOf(frame, 0); }
+    // The keyframes about to be lifted on the dense points' depth, by position: a source whose detections take
+    // long makes them here, all at once, before the lift asks for each; nothing by default.
+    virtual void answerKeyframes(const std::vector<std::uint32_t>& /*positions*/, StageProgress& /*progress*/) {}
     // Whether the frame's detections are looked at (keyframes); every frame by default.
     virtual bool looksAt(const PosedFrame&) { return true; }
     // Waits for the detections still being made: a source whose detectionsOf uses its own members calls it from
@@ -167,6 +170,7 @@ protected:
         for (Detecting& d : detecting_) d.detections.wait();
     }
     const Capture& capture() const { return capture_; }
+    const IngestOptions& options() const { return options_; }
     bool hasDepth() const { return hasDepth_; }
 
 private:
@@ -271,13 +275,16 @@ private:
         // In metres now, the frames' moves pick the keyframes, as for a depth camera: each view a
         // frame's own errors of depth, the things are fused from views that differ.
         Keyframes keyframes;
+        std::vector<std::uint32_t> chosen;
+        for (const auto position : denseFrames_)
+            if (keyframes.take(transformed(*capture_.frames[position].pose, alignment))) chosen.push_back(position);
+        answerKeyframes(chosen, progress);
         double covered = 0, boxed = 0;  // the detections' box pixels with depth, and all of them
         std::size_t kept = 0;           // keyframes whose models' answers were kept from the room placed before
-        for (const auto position : denseFrames_) {
+        for (const auto position : chosen) {
             progress.stopIfCancelled();
             const CaptureFrame& frame = capture_.frames[position];
             const Pose pose = transformed(*frame.pose, alignment);
-            if (!keyframes.take(pose)) continue;
             FrameImages images = loadFrame(capture_, frame, options_.workingWidth);
             images.depth = depthFromPoints(points, pose, images.intrinsics, spacing);
             const FrameDetections found = keyframeDetectionsOf({position, frame, images, pose});
@@ -605,23 +612,74 @@ private:
         return {std::move(detections), frame.images.color.cols};
     }
 
-    // Run again rather than kept from the frames pass: a frame's masks are images, and a long walk's
-    // would fill the memory; with the packaged models beside NanoDet, loaded the first time. Kept for the
-    // room placed again (pipeline.cpp), whose keyframes are mostly the same frames: the models' answers
-    // depend on the image alone.
+    // Run again rather than kept from the frames pass: a frame's masks are images, and a long walk's would
+    // fill the memory. Made for all the keyframes at once (answerKeyframes), and kept for the room placed again
+    // (pipeline.cpp), whose keyframes are mostly the same frames: the models' answers depend on the image alone.
     FrameDetections keyframeDetectionsOf(const PosedFrame& frame) override {
-        Models& models = keyframeModels();
         auto kept = keyframeAnswers_.find(frame.position);
-        const bool before = kept != keyframeAnswers_.end();
-        if (!before) kept = keyframeAnswers_.emplace(frame.position, answer(models, frame.images.color)).first;
-        return {masked(kept->second, models), frame.images.color.cols, before};
+        if (kept == keyframeAnswers_.end())
+            kept = keyframeAnswers_.emplace(frame.position, KeptAnswer{answer(keyframeModels(0), frame.images.color)})
+                       .first;
+        const bool before = kept->second.lifted;
+        kept->second.lifted = true;
+        return {masked(kept->second.answer, keyframeModels(0)), frame.images.color.cols, before};
     }
-    Models& keyframeModels() {
-        if (packaged_ == packagedOnDense_) return models_[0];
-        if (!denseModels_.detector)  // they run alone, after the streams: on every core
-            denseModels_ = loadModels(files_, packagedOnDense_,
-                                      std::max(1, static_cast<int>(std::thread::hardware_concurrency())));
-        return denseModels_;
+    // The keyframes' answers not kept yet, made on the streams as the frame pass's are: a stream's models on
+    // one core each. One stream's models on every core (a thread pool) spin while they wait for each other:
+    // on a core another process holds, TUM fr1/rpy's 27 keyframes took 42 s instead of 3.
+    void answerKeyframes(const std::vector<std::uint32_t>& positions, StageProgress& progress) override {
+        std::vector<std::uint32_t> missing;
+        for (const auto p : positions)
+            if (!keyframeAnswers_.contains(p)) missing.push_back(p);
+        if (missing.empty()) return;
+        std::vector<ModelAnswer> answers(missing.size());
+        std::atomic<std::size_t> next = 0;
+        auto answerSome = [&](std::size_t stream) {
+            Models& models = keyframeModels(stream);
+            try {
+                for (std::size_t i = next++; i < missing.size(); i = next++) {
+                    if (stream == 0) progress.stopIfCancelled();  // the user's check, on the stage's own thread
+                    const FrameImages images =
+                        loadFrame(capture(), capture().frames[missing[i]], options().workingWidth);
+                    answers[i] = answer(models, images.color);
+                }
+            } catch (...) {
+                next = missing.size();  // the other streams stop at their next frame
+                throw;
+            }
+        };
+        keyframeModels(0);  // every stream's models loaded before the streams run
+        const OpenCvThreads threads(coresPerStream_);
+        std::vector<std::future<void>> others;
+        for (std::size_t s = 1; s < streams_; ++s) others.push_back(std::async(std::launch::async, answerSome, s));
+        std::exception_ptr failed;
+        try {
+            answerSome(0);
+        } catch (...) {
+            failed = std::current_exception();
+        }
+        for (auto& f : others) try {
+                f.get();
+            } catch (...) {
+                if (!failed) failed = std::current_exception();
+            }
+        if (failed) std::rethrow_exception(failed);
+        for (std::size_t i = 0; i < missing.size(); ++i)
+            keyframeAnswers_.emplace(missing[i], KeptAnswer{std::move(answers[i])});
+    }
+    // The models of the lift on the dense points: the frame pass's, or, where those differ (photos whose frame
+    // pass ran NanoDet alone), the packaged models, a set for each stream, loaded the first time.
+    Models& keyframeModels(std::size_t stream) {
+        if (packaged_ == packagedOnDense_) return models_[stream];
+        if (denseModels_.empty()) {
+            std::vector<std::future<Models>> loading;
+            for (std::size_t s = 1; s < streams_; ++s)
+                loading.push_back(std::async(std::launch::async,
+                                             [this] { return loadModels(files_, packagedOnDense_, coresPerStream_); }));
+            denseModels_.push_back(loadModels(files_, packagedOnDense_, coresPerStream_));
+            for (auto& l : loading) denseModels_.push_back(l.get());
+        }
+        return denseModels_[stream];
     }
 
     // What the models make of an image: the detector's boxes, and the segmenter's labels when it knows the kind
@@ -641,6 +699,10 @@ private:
         }
         return answer;
     }
+    struct KeptAnswer {
+        ModelAnswer answer;
+        bool lifted = false;  // lifted once already: the room is placed again
+    };
     static std::vector<Detection> masked(const ModelAnswer& answer, const Models& models) {
         std::vector<Detection> detections = answer.detections;
         if (!answer.labels.empty())
@@ -651,18 +713,19 @@ private:
     DetectorFiles files_;
     bool packaged_;         // the packaged models beside NanoDet on the frame pass (depth, or photos always lifted)
     bool packagedOnDense_;  // ... on the photos lifted on the dense points' depth (no --detector given)
-    Models denseModels_;    // the models of that lift when the frame pass's differ, loaded when it first runs
-    std::size_t streams_;   // kStreams, or one on a machine with one core
-    int coresPerStream_;    // the threads a stream's models and OpenCV's run on
-    std::vector<Models> models_;  // by stream; each touched only by its stream's frames, one at a time
+    std::vector<Models> denseModels_;  // the models of that lift by stream when the frame pass's differ, loaded
+                                       // when it first runs
+    std::size_t streams_;              // kStreams, or one on a machine with one core
+    int coresPerStream_;               // the threads a stream's models and OpenCV's run on
+    std::vector<Models> models_;       // by stream; each touched only by its stream's frames, one at a time
     std::optional<OpenCvThreads> threadsPerStream_;  // while the streams run
     Keyframes keyframes_;
     std::size_t frames_ = 0;            // every frame shown, keyframe or not
     std::mutex countMutex_;             // the streams' threads count below
     std::vector<double> milliseconds_;  // the detector's time on each frame
     std::size_t detections_ = 0;
-    std::atomic<std::size_t> segmented_ = 0;                        // frames the segmenter ran on
-    std::unordered_map<std::size_t, ModelAnswer> keyframeAnswers_;  // by the keyframe's position in the capture
+    std::atomic<std::size_t> segmented_ = 0;                       // frames the segmenter ran on
+    std::unordered_map<std::size_t, KeptAnswer> keyframeAnswers_;  // by the keyframe's position in the capture
 };
 
 }  // namespace
