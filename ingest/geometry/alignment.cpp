@@ -530,7 +530,7 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
                                  options.cameraHeight / medianHeight});
     }
     if (floorFound)
-        if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit)) {
+        if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth)) {
             heights->leads = options.thingsOnDepth;
             estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
         }

@@ -12,7 +12,7 @@
 namespace smql::ingest {
 
 std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
-                                              double floorHeight, double unit, std::size_t minThings) {
+                                              double floorHeight, double unit, bool seenWhole, std::size_t minThings) {
     // Kinds that stand in one kind of room (a fridge in a kitchen, a toilet in a bathroom) named in a
     // capture that names as many or more of another room's: one of the two names is wrong, so neither
     // measures the room. ScanNet's bathroom, its 296 frames without depth: two "fridges" (1.75 m) beside
@@ -28,8 +28,13 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
                    return other.first != RoomKind::Any && other.first != own && other.second >= rooms.at(own);
                });
     };
-    std::vector<double> estimates;
-    std::map<std::string, int> counted, left;
+    struct Top {
+        std::string_view category;
+        double height = 0;  // the kind's typical height, metres
+        double top = 0;     // the thing's, capture units above the floor
+    };
+    std::vector<Top> tops;
+    std::map<std::string, int> counted, left, partial;
     for (const auto& thing : things) {
         auto height = typicalHeight(thing.category);
         if (!height || thing.points.empty()) continue;
@@ -41,9 +46,21 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
         for (const auto& p : thing.points) above.push_back(up.x * p.x + up.y * p.y + up.z * p.z - floorHeight);
         if (reachesBelow(above, unit)) continue;
         double top = detail::robustRange(std::move(above)).second;
-        if (!(top > 0)) continue;
-        estimates.push_back(*height / top);
-        ++counted[thing.category];
+        if (top > 0) tops.push_back({thing.category, *height, top});
+    }
+    std::vector<double> estimates;
+    for (const auto& t : tops) {
+        if (seenWhole) {
+            double tallest = 0;
+            for (const auto& other : tops)
+                if (kindName(other.category) == kindName(t.category)) tallest = std::max(tallest, other.top);
+            if (t.top < kShortOfItsKind * tallest) {
+                ++partial[std::string(t.category)];
+                continue;
+            }
+        }
+        estimates.push_back(t.height / t.top);
+        ++counted[std::string(t.category)];
     }
     if (estimates.size() < std::max<std::size_t>(minThings, 1)) return std::nullopt;
     std::string kinds;
@@ -54,6 +71,10 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     for (const auto& [category, n] : left)
         doubts += fmt::format("{}{} {}{}", doubts.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
     if (!doubts.empty()) doubts = " (left out, named beside another room's things: " + doubts + ")";
+    std::string parts;
+    for (const auto& [category, n] : partial)
+        parts += fmt::format("{}{} {}{}", parts.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
+    if (!parts.empty()) doubts += " (left out, seen in part: " + parts + " short of the tallest of their kind)";
     return ScaleEstimate{fmt::format("the typical heights of {}{}", kinds, doubts),
                          detail::median(std::move(estimates))};
 }
