@@ -616,17 +616,15 @@ private:
     // fill the memory. Made for all the keyframes at once (answerKeyframes), and kept for the room placed again
     // (pipeline.cpp), whose keyframes are mostly the same frames: the models' answers depend on the image alone.
     FrameDetections keyframeDetectionsOf(const PosedFrame& frame) override {
-        auto kept = keyframeAnswers_.find(frame.position);
-        if (kept == keyframeAnswers_.end())
-            kept = keyframeAnswers_.emplace(frame.position, KeptAnswer{answer(keyframeModels(0), frame.images.color)})
-                       .first;
-        const bool before = kept->second.lifted;
-        kept->second.lifted = true;
-        return {masked(kept->second.answer, keyframeModels(0)), frame.images.color.cols, before};
+        KeptAnswer& kept = keyframeAnswers_.at(frame.position);
+        const bool before = kept.lifted;
+        kept.lifted = true;
+        return {masked(kept.answer, keyframeModels(0)), frame.images.color.cols, before};
     }
     // The keyframes' answers not kept yet, made on the streams as the frame pass's are: a stream's models on
     // one core each. One stream's models on every core (a thread pool) spin while they wait for each other:
-    // on a core another process holds, TUM fr1/rpy's 27 keyframes took 42 s instead of 3.
+    // on a machine busy with another process, or a process held to one core, TUM fr1/rpy's 27 keyframes took
+    // 37-42 s, and take 4 on the streams.
     void answerKeyframes(const std::vector<std::uint32_t>& positions, StageProgress& progress) override {
         std::vector<std::uint32_t> missing;
         for (const auto p : positions)
