@@ -584,16 +584,23 @@ TEST_CASE("scale priors: the median of three, and the more trusted of two that d
     CHECK_FALSE(typicalHeight("mug"));
 }
 
+namespace {
+
+// A thing as a column of points from `low` to `high` above the floor at the origin (capture units), for the
+// heights prior.
+NamedThing column(const char* category, double low, double high) {
+    NamedThing thing{category, {}};
+    for (double z = low; z <= high + 1e-9; z += 0.05) thing.points.push_back({0, 0, z});
+    return thing;
+}
+
+}  // namespace
+
 TEST_CASE("the heights prior leaves out a thing whose points reach under the floor", "[ingest][geometry]") {
     // Units of 0.5 m (2 units a metre). Two chairs whose tops stand 1.8 units up say 0.5 m a unit. A "table"
     // whose points hold the floor seen under and behind it (a fifth of them 0.5 m down, its highest the
     // monitor on it, 2.6 units up) would say 0.29 and pull the median down: TUM's office photos' desks and
     // tables did, half of their points under the floor and their tops 1.5-1.7x a table's height.
-    auto column = [](const char* category, double low, double high) {
-        NamedThing thing{category, {}};
-        for (double z = low; z <= high + 1e-9; z += 0.05) thing.points.push_back({0, 0, z});
-        return thing;
-    };
     std::vector<NamedThing> things{column("chair", 0, 1.8), column("chair", 0, 1.8)};
     const auto chairs = scaleFromHeights(things, {0, 0, 1}, 0, 2.0);
     REQUIRE(chairs);
@@ -622,26 +629,21 @@ TEST_CASE("the heights prior leaves out names of one room's things beside as man
           "[ingest][geometry]") {
     // ScanNet's bathroom without depth: two "fridges" (1.75 m) beside two toilets said 1.19x the true scale.
     // Units of 0.5 m: two chairs 1.8 units up say 0.5 m a unit; the "fridges" 2.8 units up would say 0.625.
-    auto column = [](const char* category, double high) {
-        NamedThing thing{category, {}};
-        for (double z = 0; z <= high + 1e-9; z += 0.05) thing.points.push_back({0, 0, z});
-        return thing;
-    };
-    std::vector<NamedThing> things{column("chair", 1.8),  column("chair", 1.8),  column("fridge", 2.8),
-                                   column("fridge", 2.8), column("toilet", 1.5), column("toilet", 1.5)};
+    std::vector<NamedThing> things{column("chair", 0, 1.8),  column("chair", 0, 1.8),  column("fridge", 0, 2.8),
+                                   column("fridge", 0, 2.8), column("toilet", 0, 1.5), column("toilet", 0, 1.5)};
     const auto tied = scaleFromHeights(things, {0, 0, 1}, 0, 2.0);
     REQUIRE(tied);
     CHECK(tied->scale == Approx(0.5));
     CHECK_THAT(tied->prior, Catch::Contains("2 chairs (0.90 m) (left out, named beside another room's things: 2 "
                                             "fridges, 2 toilets)"));
     // Outnumbered, only the fridges are in doubt: the toilets count.
-    things.push_back(column("toilet", 1.5));
+    things.push_back(column("toilet", 0, 1.5));
     const auto toilets = scaleFromHeights(things, {0, 0, 1}, 0, 2.0);
     REQUIRE(toilets);
     CHECK_THAT(toilets->prior, Catch::Contains("3 toilets") && Catch::Contains("left out") &&
                                    Catch::Contains("2 fridges") && !Catch::Contains("2 toilets"));
     // A kitchen's fridges alone are no doubt.
-    const auto kitchen = scaleFromHeights({column("fridge", 2.8), column("fridge", 2.8)}, {0, 0, 1}, 0, 2.0);
+    const auto kitchen = scaleFromHeights({column("fridge", 0, 2.8), column("fridge", 0, 2.8)}, {0, 0, 1}, 0, 2.0);
     REQUIRE(kitchen);
     CHECK(kitchen->scale == Approx(0.625));
     CHECK_THAT(kitchen->prior, !Catch::Contains("left out"));
@@ -653,14 +655,9 @@ TEST_CASE("the heights of things fused on depth leave out those short of the tal
     // 0.93 m and four 0.57-0.68 m, seen in part, and its heights said 1.19x the true scale. Units of 0.5 m: a
     // chair 1.8 units up, a sofa 1.7 and a desk 1.5 say 0.5 m a unit; three chairs 1.2-1.4 units up (a seat, its
     // back hidden) say 0.64-0.75, and a low table 1.0 units up, of the desk's kind, 0.75.
-    auto column = [](const char* category, double high) {
-        NamedThing thing{category, {}};
-        for (double z = 0; z <= high + 1e-9; z += 0.05) thing.points.push_back({0, 0, z});
-        return thing;
-    };
-    const std::vector<NamedThing> things{column("chair", 1.8), column("chair", 1.2), column("chair", 1.3),
-                                         column("chair", 1.4), column("sofa", 1.7),  column("desk", 1.5),
-                                         column("table", 1.0)};
+    const std::vector<NamedThing> things{column("chair", 0, 1.8), column("chair", 0, 1.2), column("chair", 0, 1.3),
+                                         column("chair", 0, 1.4), column("sofa", 0, 1.7),  column("desk", 0, 1.5),
+                                         column("table", 0, 1.0)};
     // Hulls carved without depth reach past their things as often as short of them: every one counts.
     const auto hulls = scaleFromHeights(things, {0, 0, 1}, 0, 2.0);
     REQUIRE(hulls);
