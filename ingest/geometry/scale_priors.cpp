@@ -48,16 +48,13 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
         double top = detail::robustRange(std::move(above)).second;
         if (top > 0) tops.push_back({thing.category, *height, top});
     }
+    std::map<std::string_view, double> tallest;  // by kindName
+    for (const auto& t : tops) tallest[kindName(t.category)] = std::max(tallest[kindName(t.category)], t.top);
     std::vector<double> estimates;
     for (const auto& t : tops) {
-        if (seenWhole) {
-            double tallest = 0;
-            for (const auto& other : tops)
-                if (kindName(other.category) == kindName(t.category)) tallest = std::max(tallest, other.top);
-            if (t.top < kShortOfItsKind * tallest) {
-                ++partial[std::string(t.category)];
-                continue;
-            }
+        if (seenWhole && t.top < kShortOfItsKind * tallest[kindName(t.category)]) {
+            ++partial[std::string(t.category)];
+            continue;
         }
         estimates.push_back(t.height / t.top);
         ++counted[std::string(t.category)];
@@ -67,14 +64,15 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     for (const auto& [category, n] : counted)
         kinds += fmt::format("{}{} {}{} ({:.2f} m)", kinds.empty() ? "" : ", ", n, category, n == 1 ? "" : "s",
                              *typicalHeight(category));
-    std::string doubts;
-    for (const auto& [category, n] : left)
-        doubts += fmt::format("{}{} {}{}", doubts.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
-    if (!doubts.empty()) doubts = " (left out, named beside another room's things: " + doubts + ")";
-    std::string parts;
-    for (const auto& [category, n] : partial)
-        parts += fmt::format("{}{} {}{}", parts.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
-    if (!parts.empty()) doubts += " (left out, seen in part: " + parts + " short of the tallest of their kind)";
+    // "2 fridges, 1 toilet", wrapped in why they were left out; nothing when none was.
+    auto leftOut = [](const std::map<std::string, int>& counts, std::string_view why) {
+        std::string listed;
+        for (const auto& [category, n] : counts)
+            listed += fmt::format("{}{} {}{}", listed.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
+        return listed.empty() ? listed : fmt::format(" (left out, {})", fmt::format(fmt::runtime(why), listed));
+    };
+    const std::string doubts = leftOut(left, "named beside another room's things: {}") +
+                               leftOut(partial, "seen in part: {} short of the tallest of their kind");
     return ScaleEstimate{fmt::format("the typical heights of {}{}", kinds, doubts),
                          detail::median(std::move(estimates))};
 }
