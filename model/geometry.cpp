@@ -61,16 +61,28 @@ bool footprintsSeparated(const std::array<Vec2, 4>& a, const std::array<Vec2, 4>
 
 }  // namespace
 
+BoxFrame::BoxFrame(const Box& box)
+    : x_(box.center.x),
+      y_(box.center.y),
+      c_(std::cos(box.yaw)),
+      s_(std::sin(box.yaw)),
+      halfX_(box.size.x / 2),
+      halfY_(box.size.y / 2) {}
+
+bool BoxFrame::contains(Vec2 world, double margin) const {
+    const Vec2 at = local(world);
+    return std::abs(at.x) <= halfX_ + margin && std::abs(at.y) <= halfY_ + margin;
+}
+
+double BoxFrame::gap(Vec2 world) const {
+    const Vec2 at = local(world);
+    return std::hypot(std::max(std::abs(at.x) - halfX_, 0.0), std::max(std::abs(at.y) - halfY_, 0.0));
+}
+
 std::array<Vec2, 4> footprint(const Box& box) {
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double hx = box.size.x / 2, hy = box.size.y / 2;
-    std::array<Vec2, 4> corners;
-    const double signs[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    for (int i = 0; i < 4; ++i) {
-        double lx = signs[i][0] * hx, ly = signs[i][1] * hy;
-        corners[i] = {box.center.x + c * lx - s * ly, box.center.y + s * lx + c * ly};
-    }
-    return corners;
+    const BoxFrame frame(box);
+    const double hx = box.size.x / 2, hy = box.size.y / 2;
+    return {frame.world({-hx, -hy}), frame.world({hx, -hy}), frame.world({hx, hy}), frame.world({-hx, hy})};
 }
 
 Aabb worldAabb(const Box& box) {
@@ -147,20 +159,8 @@ double fractionInside(const Box& a, const Box& b) {
     return std::clamp(footprintOverlap(a, b) * verticalOverlap(a, b) / va, 0.0, 1.0);
 }
 
-bool footprintContains(const Box& box, Vec2 point, double margin) {
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double dx = point.x - box.center.x, dy = point.y - box.center.y;
-    double lx = c * dx + s * dy, ly = -s * dx + c * dy;
-    return std::abs(lx) <= box.size.x / 2 + margin && std::abs(ly) <= box.size.y / 2 + margin;
-}
+bool footprintContains(const Box& box, Vec2 point, double margin) { return BoxFrame(box).contains(point, margin); }
 
-double footprintGap(const Box& box, Vec2 point) {
-    if (footprintContains(box, point)) return 0.0;
-    const auto corners = footprint(box);
-    double best = std::numeric_limits<double>::max();
-    for (int i = 0; i < 4; ++i)
-        best = std::min(best, pointSegmentSquaredDistance(point, corners[i], corners[(i + 1) % 4]));
-    return std::sqrt(best);
-}
+double footprintGap(const Box& box, Vec2 point) { return BoxFrame(box).gap(point); }
 
 }  // namespace smql::model

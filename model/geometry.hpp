@@ -21,6 +21,25 @@ struct Aabb {
     Vec3 min, max;
 };
 
+// An upright box's own frame in the floor plane: origin at its centre, x and y along its sides. Its
+// rotation is worked out once, for code that turns or tests many points.
+class BoxFrame {
+public:
+    explicit BoxFrame(const Box& box);
+    Vec2 local(Vec2 world) const {
+        const double dx = world.x - x_, dy = world.y - y_;
+        return {c_ * dx + s_ * dy, -s_ * dx + c_ * dy};
+    }
+    Vec2 world(Vec2 local) const { return {x_ + c_ * local.x - s_ * local.y, y_ + s_ * local.x + c_ * local.y}; }
+    // Is the point inside the footprint (grown by `margin` metres on each side)?
+    bool contains(Vec2 world, double margin = 0) const;
+    // Shortest distance in the floor plane from the point to the footprint; 0 inside it.
+    double gap(Vec2 world) const;
+
+private:
+    double x_, y_, c_, s_, halfX_, halfY_;
+};
+
 Aabb worldAabb(const Box& box);
 std::array<Vec2, 4> footprint(const Box& box);  // counter-clockwise corners
 double footprintArea(const Box& box);

@@ -645,12 +645,9 @@ bool flatWithin(const model::Aabb& a, const model::Aabb& b) {
 // Whether a's footprint lies within b's: then their overlap is a's own area, and the clipping of
 // the one by the other (model::footprintOverlap) gives that area up to its rounding.
 bool footprintWithin(const Box& a, const Box& b) {
-    const double c = std::cos(b.yaw), s = std::sin(b.yaw);
-    for (const model::Vec2& p : model::footprint(a)) {
-        const double dx = p.x - b.center.x, dy = p.y - b.center.y;
-        if (!(std::abs(c * dx + s * dy) <= b.size.x / 2 && std::abs(-s * dx + c * dy) <= b.size.y / 2)) return false;
-    }
-    return true;
+    const model::BoxFrame frame(b);
+    const auto corners = model::footprint(a);
+    return std::all_of(corners.begin(), corners.end(), [&](model::Vec2 p) { return frame.contains(p); });
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/geometry.hpp"
+
 namespace smql::relations {
 
 using model::Vec3;
@@ -13,10 +15,9 @@ double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * 
 Vec3 minus(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 
 // A world point in the box's own frame (origin at its centre, axes along its sides).
-Vec3 toBoxFrame(const Vec3& p, const model::Box& box) {
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    Vec3 d = minus(p, box.center);
-    return {c * d.x + s * d.y, -s * d.x + c * d.y, d.z};
+Vec3 toBoxFrame(const Vec3& p, const model::BoxFrame& frame, const model::Box& box) {
+    const model::Vec2 at = frame.local({p.x, p.y});
+    return {at.x, at.y, p.z - box.center.z};
 }
 
 }  // namespace
@@ -34,12 +35,13 @@ bool ViewCone::contains(const Vec3& eye, const Vec3& point) const {
 }
 
 bool pointInBox(const Vec3& point, const model::Box& box) {
-    Vec3 p = toBoxFrame(point, box);
+    Vec3 p = toBoxFrame(point, model::BoxFrame(box), box);
     return std::abs(p.x) <= box.size.x / 2 && std::abs(p.y) <= box.size.y / 2 && std::abs(p.z) <= box.size.z / 2;
 }
 
 bool segmentCrosses(const Vec3& p, const Vec3& q, const model::Box& box) {
-    Vec3 from = toBoxFrame(p, box), to = toBoxFrame(q, box);
+    const model::BoxFrame frame(box);
+    Vec3 from = toBoxFrame(p, frame, box), to = toBoxFrame(q, frame, box);
     const double start[3] = {from.x, from.y, from.z};
     const double delta[3] = {to.x - from.x, to.y - from.y, to.z - from.z};
     const double half[3] = {box.size.x / 2, box.size.y / 2, box.size.z / 2};
@@ -61,14 +63,14 @@ bool segmentCrosses(const Vec3& p, const Vec3& q, const model::Box& box) {
 double visibleShare(const Vec3& eye, const model::Node& target, std::span<const model::Node* const> obstacles,
                     const ViewCone* cone, const model::Node* viewer) {
     const model::Box& box = target.box;
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const model::BoxFrame frame(box);
     int seen = 0;
     for (int i = -1; i <= 1; ++i)
         for (int j = -1; j <= 1; ++j)
             for (int k = -1; k <= 1; ++k) {
-                double lx = i * kSampleFraction * box.size.x, ly = j * kSampleFraction * box.size.y;
-                Vec3 point{box.center.x + c * lx - s * ly, box.center.y + s * lx + c * ly,
-                           box.center.z + k * kSampleFraction * box.size.z};
+                const model::Vec2 at =
+                    frame.world({i * kSampleFraction * box.size.x, j * kSampleFraction * box.size.y});
+                Vec3 point{at.x, at.y, box.center.z + k * kSampleFraction * box.size.z};
                 if (cone && !cone->contains(eye, point)) continue;
                 bool blocked = std::any_of(obstacles.begin(), obstacles.end(), [&](const model::Node* o) {
                     if (o == &target || o == viewer || o->id == target.id || (viewer && o->id == viewer->id))

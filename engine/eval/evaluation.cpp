@@ -44,13 +44,6 @@ double centreDistance(const Node& a, const Node& b) {
                       a.box.center.z - b.box.center.z);
 }
 
-double footprintGap(const model::Box& box, guide::Point p) {
-    double dx = p.x - box.center.x, dy = p.y - box.center.y;
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double u = std::abs(c * dx + s * dy) - box.size.x / 2, v = std::abs(-s * dx + c * dy) - box.size.y / 2;
-    return std::hypot(std::max(u, 0.0), std::max(v, 0.0));
-}
-
 double median(std::vector<double> v) {
     if (v.empty()) return 0;
     std::sort(v.begin(), v.end());
@@ -267,10 +260,10 @@ public:
                 success.add(false);
                 stepCompletion.push_back(0);
                 spl.push_back(0);
-                failedErrors.push_back(footprintGap(to.box, origin));
+                failedErrors.push_back(model::footprintGap(to.box, {origin.x, origin.y}));
                 continue;
             }
-            double error = footprintGap(to.box, walk.back());
+            double error = model::footprintGap(to.box, {walk.back().x, walk.back().y});
             bool reached = error <= settings_.dThr;
             success.add(reached);
             std::size_t completed = 0;

@@ -24,15 +24,6 @@ using model::NodeKind;
 
 bool solid(const Node& n) { return !n.hidden && n.geometry != model::GeometryKind::None; }
 
-// Distance from p to the upright box's floor footprint (0 inside).
-double footprintDistance(const model::Box& box, Point p) {
-    double dx = p.x - box.center.x, dy = p.y - box.center.y;
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double u = std::abs(c * dx + s * dy) - box.size.x / 2;  // along the box's own x axis
-    double v = std::abs(-s * dx + c * dy) - box.size.y / 2;
-    return std::hypot(std::max(u, 0.0), std::max(v, 0.0));
-}
-
 double distance(Point a, Point b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 // The rectangle people walk in: the floor's boxes, else the walls', else every box's.
@@ -249,13 +240,14 @@ FreeSpace::FreeSpace(const std::vector<Node>& nodes, const GraphOptions& options
     // free again when `by` is kNoNode.
     auto mark = [&](const model::Box& box, double grow, model::NodeId by) {
         model::Aabb b = model::worldAabb(box);
+        const model::BoxFrame frame(box);
         int i0 = std::max(0, static_cast<int>(std::floor((b.min.x - grow - minX_) / cell_)));
         int i1 = std::min(width_ - 1, static_cast<int>(std::floor((b.max.x + grow - minX_) / cell_)));
         int j0 = std::max(0, static_cast<int>(std::floor((b.min.y - grow - minY_) / cell_)));
         int j1 = std::min(height_ - 1, static_cast<int>(std::floor((b.max.y + grow - minY_) / cell_)));
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i)
-                if (footprintDistance(box, {minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_}) <= grow) {
+                if (frame.gap({minX_ + (i + 0.5) * cell_, minY_ + (j + 0.5) * cell_}) <= grow) {
                     const std::size_t c = static_cast<std::size_t>(j) * width_ + i;
                     cells_[c] = by == model::kNoNode;
                     blockers_[c] = by;
@@ -429,7 +421,7 @@ std::vector<Point> outlinePoints(const model::Box& box, const FreeSpace& space, 
     constexpr double kSpacing = 0.2;
     const double away = options.bodyRadius + 0.1;
     const double hx = box.size.x / 2 + away, hy = box.size.y / 2 + away;
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const model::BoxFrame frame(box);
     std::vector<Point> out;
     const std::pair<double, double> corners[] = {{hx, hy}, {-hx, hy}, {-hx, -hy}, {hx, -hy}, {hx, hy}};
     for (std::size_t k = 0; k + 1 < std::size(corners); ++k) {
@@ -438,7 +430,8 @@ std::vector<Point> outlinePoints(const model::Box& box, const FreeSpace& space, 
         const int steps = std::max(1, static_cast<int>(std::ceil(std::hypot(u1 - u0, v1 - v0) / kSpacing)));
         for (int t = 0; t < steps; ++t) {
             double u = u0 + (u1 - u0) * t / steps, v = v0 + (v1 - v0) * t / steps;
-            Point p{box.center.x + c * u - s * v, box.center.y + s * u + c * v};
+            const model::Vec2 at = frame.world({u, v});
+            const Point p{at.x, at.y};
             if (space.open(p)) out.push_back(p);
         }
     }

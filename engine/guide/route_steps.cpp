@@ -53,13 +53,6 @@ bool landmarkLike(const Node& n, const Footing& footing) {
            model::bottom(n.box) - footing.floor() < kEyeLevel && !footing.walkedOver(n);
 }
 
-double footprintGap(const model::Box& box, Point p) {
-    double dx = p.x - box.center.x, dy = p.y - box.center.y;
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double u = std::abs(c * dx + s * dy) - box.size.x / 2, v = std::abs(-s * dx + c * dy) - box.size.y / 2;
-    return std::hypot(std::max(u, 0.0), std::max(v, 0.0));
-}
-
 // What no model named is stored as "object": a landmark only where no named thing is near.
 bool unnamed(const Node& n) { return n.category == "object"; }
 
@@ -75,7 +68,7 @@ const Node* landmarkAt(const std::vector<Node>& nodes, const Footing& footing, P
     double bestGap = kLandmarkReach;
     for (const Node& n : nodes) {
         if (std::find(skipped.begin(), skipped.end(), n.id) != skipped.end() || !landmarkLike(n, footing)) continue;
-        double gap = footprintGap(n.box, p);
+        double gap = model::footprintGap(n.box, {p.x, p.y});
         const bool better = !best || (unnamed(*best) && !unnamed(n)) || (unnamed(*best) == unnamed(n) && gap < bestGap);
         if (gap < kLandmarkReach && better) {
             bestGap = gap;

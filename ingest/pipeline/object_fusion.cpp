@@ -227,9 +227,7 @@ bool standOnFloor(SeenBox& thing, const std::vector<SeenBox>& all, const FusionO
         const model::Box& b = other.box;
         if (&other == &thing) continue;
         const double otherTop = b.center.z + b.size.z / 2;
-        const double c = std::cos(b.yaw), s = std::sin(b.yaw);
-        const double dx = box.center.x - b.center.x, dy = box.center.y - b.center.y;
-        const bool under = std::abs(c * dx + s * dy) <= b.size.x / 2 && std::abs(-s * dx + c * dy) <= b.size.y / 2;
+        const bool under = model::footprintContains(b, {box.center.x, box.center.y});
         if (under && otherTop <= bottom + options.restingGap && otherTop > 0) return false;
     }
     box.center.z = top / 2;
@@ -271,9 +269,8 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
     const double partBottom = p.center.z - p.size.z / 2, partTop = p.center.z + p.size.z / 2;
     const double wholeTop = w.center.z + w.size.z / 2;
     if (partBottom > wholeTop || partTop <= wholeTop) return false;
-    const double c = std::cos(w.yaw), s = std::sin(w.yaw);
-    const double dx = p.center.x - w.center.x, dy = p.center.y - w.center.y;
-    const double local[2] = {c * dx + s * dy, -s * dx + c * dy};
+    const model::Vec2 at = model::BoxFrame(w).local({p.center.x, p.center.y});
+    const double local[2] = {at.x, at.y};
     const double half[2] = {w.size.x / 2, w.size.y / 2};
     // The part's sides along the whole's axes (its yaw within 20 degrees of them, either way round).
     const double turn = std::remainder(p.yaw - w.yaw, M_PI);
@@ -358,16 +355,16 @@ bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOpt
 }
 
 void growToHold(model::Box& box, const std::vector<model::Vec3>& points) {
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const model::BoxFrame frame(box);
     double lo[3] = {-box.size.x / 2, -box.size.y / 2, -box.size.z / 2}, hi[3] = {-lo[0], -lo[1], -lo[2]};
     for (const auto& p : points) {
-        const double dx = p.x - box.center.x, dy = p.y - box.center.y;
-        const double local[3] = {c * dx + s * dy, -s * dx + c * dy, p.z - box.center.z};
+        const model::Vec2 at = frame.local({p.x, p.y});
+        const double local[3] = {at.x, at.y, p.z - box.center.z};
         for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], local[k]), hi[k] = std::max(hi[k], local[k]);
     }
     const double mid[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-    box.center = {box.center.x + c * mid[0] - s * mid[1], box.center.y + s * mid[0] + c * mid[1],
-                  box.center.z + mid[2]};
+    const model::Vec2 centre = frame.world({mid[0], mid[1]});
+    box.center = {centre.x, centre.y, box.center.z + mid[2]};
     box.size = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
 }
 
@@ -496,7 +493,7 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
 }
 
 SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options) {
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const model::BoxFrame frame(box);
     const int nx = std::max(1, static_cast<int>(std::ceil(box.size.x / options.topCell)));
     const int ny = std::max(1, static_cast<int>(std::ceil(box.size.y / options.topCell)));
     // Each point's cell and height step; then every band of topBand above the box's lowest quarter, where a top is
@@ -510,9 +507,9 @@ SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, c
     };
     std::vector<std::vector<Seen>> seenAt(static_cast<std::size_t>(steps));
     for (const auto& p : points) {
-        const double dx = p.x - box.center.x, dy = p.y - box.center.y;
-        const int ix = std::clamp(static_cast<int>((c * dx + s * dy + box.size.x / 2) / options.topCell), 0, nx - 1);
-        const int iy = std::clamp(static_cast<int>((-s * dx + c * dy + box.size.y / 2) / options.topCell), 0, ny - 1);
+        const model::Vec2 at = frame.local({p.x, p.y});
+        const int ix = std::clamp(static_cast<int>((at.x + box.size.x / 2) / options.topCell), 0, nx - 1);
+        const int iy = std::clamp(static_cast<int>((at.y + box.size.y / 2) / options.topCell), 0, ny - 1);
         const int iz = std::clamp(static_cast<int>((p.z - bottom) / options.topCell), 0, steps - 1);
         seenAt[static_cast<std::size_t>(iz)].push_back({ix * ny + iy, p.z});
     }

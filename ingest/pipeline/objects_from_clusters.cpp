@@ -26,10 +26,7 @@ namespace {
 bool inKnownThing(const model::Vec3& p, const model::SceneData& scene, double margin) {
     for (const auto& n : scene.nodes) {
         if (n.kind != model::NodeKind::Object || n.geometry != model::GeometryKind::Box) continue;
-        const double c = std::cos(n.box.yaw), s = std::sin(n.box.yaw);
-        const double dx = p.x - n.box.center.x, dy = p.y - n.box.center.y;
-        if (std::abs(c * dx + s * dy) <= n.box.size.x / 2 + margin &&
-            std::abs(-s * dx + c * dy) <= n.box.size.y / 2 + margin &&
+        if (model::footprintContains(n.box, {p.x, p.y}, margin) &&
             std::abs(p.z - n.box.center.z) <= n.box.size.z / 2 + margin)
             return true;
     }

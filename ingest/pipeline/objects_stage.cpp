@@ -15,6 +15,7 @@
 #include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
 #include "model/embedding.hpp"
+#include "model/geometry.hpp"
 
 namespace smql::ingest {
 
@@ -103,9 +104,9 @@ std::vector<model::Vec3> underTop(std::vector<model::Vec3> hull, const std::vect
     std::vector<model::Vec3> centres;
     for (const auto& [i, j] : cells) centres.push_back({(i + 0.5) * kCell, (j + 0.5) * kCell, top});
     const model::Box box = uprightBox(centres);
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    auto u = [&](double x, double y) { return c * (x - box.center.x) + s * (y - box.center.y); };
-    auto v = [&](double x, double y) { return -s * (x - box.center.x) + c * (y - box.center.y); };
+    const model::BoxFrame frame(box);
+    auto u = [&](double x, double y) { return frame.local({x, y}).x; };
+    auto v = [&](double x, double y) { return frame.local({x, y}).y; };
     double u0 = 1e18, u1 = -1e18, v0 = 1e18, v1 = -1e18;
     for (const auto& p : centres) {
         u0 = std::min(u0, u(p.x, p.y)), u1 = std::max(u1, u(p.x, p.y));

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "model/error.hpp"
+#include "model/geometry.hpp"
 #include "model/points.hpp"
 
 #include "ingest/pipeline/align_stage.hpp"
@@ -66,15 +67,13 @@ std::vector<NamedThing> storedThings(const model::SceneData& scene, const std::v
             node->category == "object")
             continue;
         const model::Box& box = node->box;
-        const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+        const model::BoxFrame frame(box);
         NamedThing thing{node->category, {}};
         for (int i = -1; i <= 1; ++i)
             for (int j = -1; j <= 1; ++j)
                 for (int k = -1; k <= 1; ++k) {
-                    const double x = i * box.size.x / 2, y = j * box.size.y / 2;
-                    thing.points.push_back(
-                        alignment.unapply({box.center.x + c * x - s * y, box.center.y + s * x + c * y,
-                                           box.center.z + k * box.size.z / 2}));
+                    const model::Vec2 at = frame.world({i * box.size.x / 2, j * box.size.y / 2});
+                    thing.points.push_back(alignment.unapply({at.x, at.y, box.center.z + k * box.size.z / 2}));
                 }
         things.push_back(std::move(thing));
     }

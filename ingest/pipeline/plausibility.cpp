@@ -350,13 +350,9 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
         for (const auto* t : things)
             inside = {inside.x + t->box.center.x / things.size(), inside.y + t->box.center.y / things.size(), 0};
     for (const auto* wall : walls) {
-        const double c = std::cos(wall->box.yaw), s = std::sin(wall->box.yaw);
-        auto across = [&](const model::Vec3& p) {
-            return -s * (p.x - wall->box.center.x) + c * (p.y - wall->box.center.y);
-        };
-        auto along = [&](const model::Vec3& p) {
-            return c * (p.x - wall->box.center.x) + s * (p.y - wall->box.center.y);
-        };
+        const model::BoxFrame frame(wall->box);
+        auto across = [&](const model::Vec3& p) { return frame.local({p.x, p.y}).y; };
+        auto along = [&](const model::Vec3& p) { return frame.local({p.x, p.y}).x; };
         const double roomSide = across(inside) >= 0 ? 1 : -1;
         for (std::size_t i = 0; i < things.size(); ++i) {
             const auto& p = things[i]->box.center;

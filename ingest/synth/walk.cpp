@@ -33,11 +33,10 @@ double unitFromSeed(std::uint64_t seed, std::uint64_t salt) {
 
 // Distance from a point to an upright box (0 inside).
 double pointBoxDistance(const Eigen::Vector3d& p, const model::Box& box) {
-    double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    double dx = p.x() - box.center.x, dy = p.y() - box.center.y, dz = p.z() - box.center.z;
-    double lx = c * dx + s * dy, ly = -s * dx + c * dy;
-    double ex = std::max(0.0, std::abs(lx) - box.size.x / 2), ey = std::max(0.0, std::abs(ly) - box.size.y / 2),
-           ez = std::max(0.0, std::abs(dz) - box.size.z / 2);
+    const model::Vec2 at = model::BoxFrame(box).local({p.x(), p.y()});
+    const double ex = std::max(0.0, std::abs(at.x) - box.size.x / 2),
+                 ey = std::max(0.0, std::abs(at.y) - box.size.y / 2),
+                 ez = std::max(0.0, std::abs(p.z() - box.center.z) - box.size.z / 2);
     return std::sqrt(ex * ex + ey * ey + ez * ez);
 }
 

@@ -56,7 +56,10 @@ std::vector<std::uint8_t> descriptors(cv::RNG& rng, int rows) {
     for (int r = 0; r < rows; ++r) {
         std::vector<double> v(128);
         double norm = 0;
-        for (auto& x : v) norm += (x = rng.uniform(0.0, 1.0)) * x;
+        for (auto& x : v) {
+            x = rng.uniform(0.0, 1.0);
+            norm += x * x;
+        }
         for (auto x : v) out.push_back(static_cast<std::uint8_t>(std::min(255.0, 512.0 * x / std::sqrt(norm))));
     }
     return out;
