@@ -42,6 +42,7 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     for (const auto& n : out.alignment.notes) progress.note(n);
     out.cloud = transformed(frames.structure, out.alignment);
     for (const auto& c : frames.cameras) out.cameraCentres.push_back(out.alignment.apply(c.pose.translation));
+    out.onLiftedThings = storedThings != nullptr;
     return out;
 }
 

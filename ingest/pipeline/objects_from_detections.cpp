@@ -306,7 +306,8 @@ private:
         const bool unmeasured = alignment.floorFound &&
                                 (!alignment.floorUnconfirmed.empty() || alignment.scalePriors == 1) &&
                                 cover >= kDenseCoverToMeasure;
-        const bool underCover = lift_ == DenseLift::WhereCovered && cover < kDenseCoverToLift && !liftedBefore_;
+        const bool underCover =
+            lift_ == DenseLift::WhereCovered && cover < kDenseCoverToLift && !aligned.onLiftedThings;
         if (underCover && !unmeasured) {
             progress.note(fmt::format(
                 "objects: the dense points cover {:.0f}% of the detections' boxes, under the {:.0f}% that lifts the "
@@ -314,7 +315,6 @@ private:
                 100 * cover, 100 * kDenseCoverToLift));
             return std::nullopt;
         }
-        liftedBefore_ = true;
         progress.note(fmt::format(
             "objects: {} keyframes of {} photos lifted again on the depth the dense points give them, which covers "
             "{:.0f}% of the detections' boxes ({} of {} points drawn: the floor's and the specks' left out){}{}",
@@ -451,10 +451,6 @@ private:
     const IngestOptions& options_;
     bool hasDepth_;
     DenseLift lift_;
-    // The things were lifted once: the room placed again on them (measured again, pipeline.cpp) lifts them
-    // again whatever the keyframes taken at its scale cover (ScanNet's lounge: 65 % at the first scale, 63 % at
-    // the second, whose things the sparse points alone would place).
-    bool liftedBefore_ = false;
     bool voteLabels_;
     DetectionTracker tracker_;
     std::vector<std::uint32_t> looked_;       // the frames whose detections were looked at

@@ -162,8 +162,8 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
             runner.note(
                 fmt::format("align: measured again on the {} named things lifted on the dense points", things.size()));
             aligned = runner.run(AlignStage{capture, options, frames, &things});
-            // No frame tracks: a finder that lifted its things on the dense points lifts them again, whatever
-            // the keyframes of the new placement cover (objects_from_detections.cpp), and the lift replaces them.
+            // No frame tracks: the finder lifts the things again, whatever the keyframes of the new placement
+            // cover (AlignedCapture::onLiftedThings), and the lift replaces them.
             placeRoom({});
         }
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});

@@ -56,6 +56,10 @@ struct AlignedCapture {
     Alignment alignment;
     PointCloud cloud;                        // the structure cloud in the aligned frame
     std::vector<model::Vec3> cameraCentres;  // of FramePass::cameras, aligned frame
+    // Measured again on the things lifted on the dense points and stored (pipeline.cpp): the objects stage
+    // lifts them again, whatever the keyframes taken at the new scale cover (ScanNet's lounge: 65 % at the
+    // first scale, 63 % at the second, whose things the sparse points alone would place).
+    bool onLiftedThings = false;
 };
 
 // A node the objects stage made from a track (an object, a door, a window),
