@@ -531,8 +531,12 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
     }
     if (floorFound)
         if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth)) {
-            heights->leads = options.thingsOnDepth;
-            estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
+            if (!heights->heldTogether) {
+                notes.push_back("scale: " + heights->prior);
+            } else {
+                heights->leads = options.thingsOnDepth;
+                estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
+            }
         }
     if (estimates.empty()) {
         notes.push_back("scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");

@@ -73,8 +73,17 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     };
     const std::string doubts = leftOut(left, "named beside another room's things: {}") +
                                leftOut(partial, "seen in part: {} short of the tallest of their kind");
-    return ScaleEstimate{fmt::format("the typical heights of {}{}", kinds, doubts),
-                         detail::median(std::move(estimates))};
+    std::sort(estimates.begin(), estimates.end());
+    bool heldTogether = !seenWhole;
+    for (std::size_t i = 1; i < estimates.size() && !heldTogether; ++i)
+        heldTogether = estimates[i] <= (1 + kThingsAgree) * estimates[i - 1];
+    const double median = detail::median(std::move(estimates));
+    if (!heldTogether)
+        return ScaleEstimate{fmt::format("the typical heights of {}{}: {:.4g} at their median, held by no two of them "
+                                         "within {:.0f}%, so they do not measure the room",
+                                         kinds, doubts, median, 100 * kThingsAgree),
+                             median, false, false};
+    return ScaleEstimate{fmt::format("the typical heights of {}{}", kinds, doubts), median};
 }
 
 ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {

@@ -304,6 +304,17 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         CHECK(a.scaleSpread == Approx((cameras - 2.5) / 2.5).epsilon(0.05));
         CHECK_THAT(notesOf(a), Catch::Contains("from the first of 2 priors, which the others check: they agree "
                                                "within 7%; the typical heights of 1 chair (0.90 m), 2 tables"));
+        // Things that do not agree are noted and not counted: the cameras' height is then the one prior.
+        std::vector<NamedThing> apart = things;
+        apart.resize(1);
+        NamedThing tall{"chair", {}};
+        for (const auto& p : things.back().points) tall.points.push_back({p.x, p.y, p.z * 1.5});
+        apart.push_back(tall);
+        const Alignment unheld = alignCapture(room.cloud, room.cameras, options, apart);
+        INFO(notesOf(unheld));
+        CHECK(unheld.scalePriors == 1);
+        CHECK(unheld.scale == Approx(1.5 / (1.4 * 0.4)).epsilon(0.01));
+        CHECK_THAT(notesOf(unheld), Catch::Contains("held by no two of them within 15%"));
         // The alignment's inverse takes the aligned frame back to the capture's.
         for (const auto& thing : things)
             for (const auto& p : thing.points) {
@@ -666,8 +677,32 @@ TEST_CASE("the heights of things fused on depth leave out those short of the tal
     const auto fused = scaleFromHeights(things, {0, 0, 1}, 0, 2.0, /*seenWhole=*/true);
     REQUIRE(fused);
     CHECK(fused->scale == Approx(0.5));
+    CHECK(fused->heldTogether);
     CHECK_THAT(fused->prior, Catch::Contains("1 chair (0.90 m), 1 desk (0.75 m), 1 sofa (0.85 m) (left out, seen "
                                              "in part: 3 chairs, 1 table short of the tallest of their kind)"));
+}
+
+TEST_CASE("the heights of things fused on depth measure the room only where two of them agree", "[ingest][geometry]") {
+    // TUM's office photos, one COLMAP run, lifted on the dense points (metres at the first look's scale, to the
+    // helper's 5 cm): a chair 0.95 m up, a 1.40 m "desk" (a shelf beside the desk) and the desk itself, a "table"
+    // 0.85 m up, left out as seen in part beside the "desk". The chair says 0.95, the "desk" 0.54: no two within 15 %.
+    const std::vector<NamedThing> office{column("chair", 0, 0.95), column("desk", 0, 1.4), column("table", 0, 0.85)};
+    const auto fused = scaleFromHeights(office, {0, 0, 1}, 0, 1.0, /*seenWhole=*/true);
+    REQUIRE(fused);
+    CHECK_FALSE(fused->heldTogether);
+    CHECK(fused->scale == Approx((0.9 / 0.95 + 0.75 / 1.4) / 2));
+    CHECK_THAT(fused->prior, Catch::Contains("held by no two of them within 15%, so they do not measure the room"));
+    // Hulls carved without depth are one prior among the others, whose median outvotes what they get wrong.
+    const auto hulls = scaleFromHeights(office, {0, 0, 1}, 0, 1.0);
+    REQUIRE(hulls);
+    CHECK(hulls->heldTogether);
+    // A second chair that agrees with the first: the chairs and the "desk" measure the room together.
+    std::vector<NamedThing> chairs = office;
+    chairs.push_back(column("chair", 0, 1.0));
+    const auto agreeing = scaleFromHeights(chairs, {0, 0, 1}, 0, 1.0, /*seenWhole=*/true);
+    REQUIRE(agreeing);
+    CHECK(agreeing->heldTogether);
+    CHECK(agreeing->scale == Approx(0.9));
 }
 
 namespace {
