@@ -61,24 +61,6 @@ bool footprintsSeparated(const std::array<Vec2, 4>& a, const std::array<Vec2, 4>
 
 }  // namespace
 
-BoxFrame::BoxFrame(const Box& box)
-    : x_(box.center.x),
-      y_(box.center.y),
-      c_(std::cos(box.yaw)),
-      s_(std::sin(box.yaw)),
-      halfX_(box.size.x / 2),
-      halfY_(box.size.y / 2) {}
-
-bool BoxFrame::contains(Vec2 world, double margin) const {
-    const Vec2 at = local(world);
-    return std::abs(at.x) <= halfX_ + margin && std::abs(at.y) <= halfY_ + margin;
-}
-
-double BoxFrame::gap(Vec2 world) const {
-    const Vec2 at = local(world);
-    return std::hypot(std::max(std::abs(at.x) - halfX_, 0.0), std::max(std::abs(at.y) - halfY_, 0.0));
-}
-
 std::array<Vec2, 4> footprint(const Box& box) {
     const BoxFrame frame(box);
     const double hx = box.size.x / 2, hy = box.size.y / 2;

@@ -3,7 +3,9 @@
 // and containment split into a 2D footprint part and a 1D vertical part.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <numbers>
 
 #include "model/types.hpp"
@@ -22,19 +24,32 @@ struct Aabb {
 };
 
 // An upright box's own frame in the floor plane: origin at its centre, x and y along its sides. Its
-// rotation is worked out once, for code that turns or tests many points.
+// rotation is worked out once, for code that turns or tests many points; all of it inline, since the
+// predicates' pair tests call it per pair (out of line, FIND on(table) AND near(chair) took 6 % longer).
 class BoxFrame {
 public:
-    explicit BoxFrame(const Box& box);
+    explicit BoxFrame(const Box& box)
+        : x_(box.center.x),
+          y_(box.center.y),
+          c_(std::cos(box.yaw)),
+          s_(std::sin(box.yaw)),
+          halfX_(box.size.x / 2),
+          halfY_(box.size.y / 2) {}
     Vec2 local(Vec2 world) const {
         const double dx = world.x - x_, dy = world.y - y_;
         return {c_ * dx + s_ * dy, -s_ * dx + c_ * dy};
     }
     Vec2 world(Vec2 local) const { return {x_ + c_ * local.x - s_ * local.y, y_ + s_ * local.x + c_ * local.y}; }
     // Is the point inside the footprint (grown by `margin` metres on each side)?
-    bool contains(Vec2 world, double margin = 0) const;
+    bool contains(Vec2 world, double margin = 0) const {
+        const Vec2 at = local(world);
+        return std::abs(at.x) <= halfX_ + margin && std::abs(at.y) <= halfY_ + margin;
+    }
     // Shortest distance in the floor plane from the point to the footprint; 0 inside it.
-    double gap(Vec2 world) const;
+    double gap(Vec2 world) const {
+        const Vec2 at = local(world);
+        return std::hypot(std::max(std::abs(at.x) - halfX_, 0.0), std::max(std::abs(at.y) - halfY_, 0.0));
+    }
 
 private:
     double x_, y_, c_, s_, halfX_, halfY_;
