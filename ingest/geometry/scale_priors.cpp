@@ -79,10 +79,12 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
         heldTogether = estimates[i] <= (1 + kThingsAgree) * estimates[i - 1];
     const double median = detail::median(std::move(estimates));
     if (!heldTogether)
-        return ScaleEstimate{fmt::format("the typical heights of {}{}: {:.4g} at their median, held by no two of them "
-                                         "within {:.0f}%, so they do not measure the room",
-                                         kinds, doubts, median, 100 * kThingsAgree),
-                             median, false, false};
+        return ScaleEstimate{
+            .prior = fmt::format("the typical heights of {}{}: {:.4g} at their median, held by no two of them "
+                                 "within {:.0f}%, so they do not measure the room",
+                                 kinds, doubts, median, 100 * kThingsAgree),
+            .scale = median,
+            .heldTogether = false};
     return ScaleEstimate{fmt::format("the typical heights of {}{}", kinds, doubts), median};
 }
 

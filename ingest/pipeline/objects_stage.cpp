@@ -105,18 +105,16 @@ std::vector<model::Vec3> underTop(std::vector<model::Vec3> hull, const std::vect
     for (const auto& [i, j] : cells) centres.push_back({(i + 0.5) * kCell, (j + 0.5) * kCell, top});
     const model::Box box = uprightBox(centres);
     const model::BoxFrame frame(box);
-    auto u = [&](double x, double y) { return frame.local({x, y}).x; };
-    auto v = [&](double x, double y) { return frame.local({x, y}).y; };
     double u0 = 1e18, u1 = -1e18, v0 = 1e18, v1 = -1e18;
     for (const auto& p : centres) {
-        u0 = std::min(u0, u(p.x, p.y)), u1 = std::max(u1, u(p.x, p.y));
-        v0 = std::min(v0, v(p.x, p.y)), v1 = std::max(v1, v(p.x, p.y));
+        const model::Vec2 at = frame.local({p.x, p.y});
+        u0 = std::min(u0, at.x), u1 = std::max(u1, at.x), v0 = std::min(v0, at.y), v1 = std::max(v1, at.y);
     }
     std::vector<model::Vec3> kept;
-    for (const auto& p : hull)
-        if (u(p.x, p.y) >= u0 - kCell && u(p.x, p.y) <= u1 + kCell && v(p.x, p.y) >= v0 - kCell &&
-            v(p.x, p.y) <= v1 + kCell)
-            kept.push_back(p);
+    for (const auto& p : hull) {
+        const model::Vec2 at = frame.local({p.x, p.y});
+        if (at.x >= u0 - kCell && at.x <= u1 + kCell && at.y >= v0 - kCell && at.y <= v1 + kCell) kept.push_back(p);
+    }
     return kept.size() >= 3 ? kept : hull;
 }
 

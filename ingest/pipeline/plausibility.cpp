@@ -350,17 +350,15 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
         for (const auto* t : things)
             inside = {inside.x + t->box.center.x / things.size(), inside.y + t->box.center.y / things.size(), 0};
     for (const auto* wall : walls) {
+        // In the wall's frame, x runs along it and y across it.
         const model::BoxFrame frame(wall->box);
-        auto across = [&](const model::Vec3& p) { return frame.local({p.x, p.y}).y; };
-        auto along = [&](const model::Vec3& p) { return frame.local({p.x, p.y}).x; };
-        const double roomSide = across(inside) >= 0 ? 1 : -1;
+        const double roomSide = frame.local({inside.x, inside.y}).y >= 0 ? 1 : -1;
         for (std::size_t i = 0; i < things.size(); ++i) {
-            const auto& p = things[i]->box.center;
-            if (std::abs(along(p)) <= wall->box.size.x / 2 &&
-                roomSide * across(p) < -(wall->box.size.y / 2 + kBehindWall))
+            const model::Vec2 at = frame.local({things[i]->box.center.x, things[i]->box.center.y});
+            if (std::abs(at.x) <= wall->box.size.x / 2 && roomSide * at.y < -(wall->box.size.y / 2 + kBehindWall))
                 flag(i, "behind a wall",
                      fmt::format("{} stands {:.2f} m behind {}: seen through it, or in a mirror", named(*things[i]),
-                                 -roomSide * across(p) - wall->box.size.y / 2, named(*wall)));
+                                 -roomSide * at.y - wall->box.size.y / 2, named(*wall)));
         }
     }
     // Two of a kind: one inside the other (a duplicate), or touching and together the size of one.
