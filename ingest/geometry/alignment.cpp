@@ -533,6 +533,7 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
         if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth)) {
             if (!heights->heldTogether) {
                 notes.push_back("scale: " + heights->prior);
+                out.scaleThingsApart = heights->things;
             } else {
                 heights->leads = options.thingsOnDepth;
                 estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);

@@ -94,7 +94,10 @@ struct Alignment {
     double scaleSpread = 0;               // how far the scale priors disagree ((largest - smallest) / scale)
     double scaleSplit = 0;                // the factor between two priors that leave no majority (ScaleChoice)
     std::size_t scalePriors = 0;          // the priors the scale was estimated from (0: given, or metric)
-    std::vector<std::string> notes;       // how each choice was made, for SHOW SCENES and logs
+    // The things whose heights were noted and not counted, no two of them agreeing (ScaleEstimate::heldTogether);
+    // empty when none were set aside.
+    std::string scaleThingsApart;
+    std::vector<std::string> notes;  // how each choice was made, for SHOW SCENES and logs
 
     model::Vec3 apply(const model::Vec3& p) const;
     model::Vec3 unapply(const model::Vec3& q) const;  // the inverse: aligned -> capture

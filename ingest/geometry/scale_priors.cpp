@@ -84,8 +84,10 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
                                  "within {:.0f}%, so they do not measure the room",
                                  kinds, doubts, median, 100 * kThingsAgree),
             .scale = median,
-            .heldTogether = false};
-    return ScaleEstimate{fmt::format("the typical heights of {}{}", kinds, doubts), median};
+            .heldTogether = false,
+            .things = kinds};
+    return ScaleEstimate{
+        .prior = fmt::format("the typical heights of {}{}", kinds, doubts), .scale = median, .things = kinds};
 }
 
 ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {

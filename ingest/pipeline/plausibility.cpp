@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "ingest/geometry/scale_priors.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
 #include "model/geometry.hpp"
 
@@ -261,10 +262,14 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                  ? std::string("the dense points are one pair of photos' alone, drawn from two poses that nothing "
                                "else checks (a short step between them leaves their depth loose), and the scale "
                                "rests on one prior: nothing checks the room's proportions")
-                 : std::string("the scale rests on one prior, the cameras' assumed height above the floor, where "
-                               "real captures' cameras stand 1.2-1.7 m up: lengths may be a fifth off, and no "
-                               "second prior (things of a known height standing on the floor, the ceiling) checks "
-                               "them"),
+                 : "the scale rests on one prior, the cameras' assumed height above the floor, where real "
+                   "captures' cameras stand 1.2-1.7 m up: lengths may be a fifth off, and " +
+                       (alignment.scaleThingsApart.empty()
+                            ? std::string("no second prior (things of a known height standing on the floor, the "
+                                          "ceiling) checks them")
+                            : fmt::format("the heights of {} standing on the floor do not check them: no two of them "
+                                          "give a scale within {:.0f}% of each other's",
+                                          alignment.scaleThingsApart, 100 * kThingsAgree)),
              source.onePairDepth ? "give --scale (metres per capture unit), or add photos of the room, whose pairs "
                                    "check each other's depth"
                                  : priorsFix});

@@ -315,6 +315,8 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         CHECK(unheld.scalePriors == 1);
         CHECK(unheld.scale == Approx(1.5 / (1.4 * 0.4)).epsilon(0.01));
         CHECK_THAT(notesOf(unheld), Catch::Contains("held by no two of them within 15%"));
+        CHECK_THAT(unheld.scaleThingsApart, Catch::Contains("chair"));
+        CHECK(a.scaleThingsApart.empty());
         // The alignment's inverse takes the aligned frame back to the capture's.
         for (const auto& thing : things)
             for (const auto& p : thing.points) {

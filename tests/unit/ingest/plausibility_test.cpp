@@ -218,6 +218,16 @@ TEST_CASE("plausibility: photos without depth scaled on one prior are refused, s
         twoPriors.scaleSpread = 0.23;
         CHECK(alignmentFindings(twoPriors, {.onePairDepth = onePair}).empty());
     }
+    // Things whose heights were set aside for disagreeing are named as such, not as missing (TUM's office photos,
+    // a COLMAP run whose lifted "desk" was a shelf beside the desk, 1.74 times a chair's scale).
+    Alignment thingsApart = onePrior;
+    thingsApart.scaleThingsApart = "1 chair (0.90 m), 1 desk (0.75 m)";
+    auto apart = alignmentFindings(thingsApart, {});
+    REQUIRE(apart.size() == 1);
+    CHECK_THAT(apart.front().what,
+               Catch::Contains("the heights of 1 chair (0.90 m), 1 desk (0.75 m) standing on the floor do not check "
+                               "them: no two of them give a scale within 15%"));
+    CHECK_THAT(apart.front().what, !Catch::Contains("no second prior"));
     // A floor not seen is refused for that, once.
     Alignment tableTop = onePrior;
     tableTop.floorFound = false;
