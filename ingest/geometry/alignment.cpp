@@ -535,7 +535,6 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
                 notes.push_back("scale: " + heights->prior);
                 out.scaleThingsApart = heights->things;
             } else {
-                heights->leads = options.thingsOnDepth;
                 estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
             }
         }

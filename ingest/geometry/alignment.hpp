@@ -38,8 +38,10 @@ struct AlignOptions {
     // floor's reflection matches between photos as points below it.
     std::size_t evidencePoints = std::numeric_limits<std::size_t>::max();
     // The named things were fused on depth (photos' things lifted on the dense points, as stored): their
-    // heights lead the scale, the cameras' assumed height only checks it. Things carved from sparse points
-    // do not lead (TUM's office photos: their hulls' heights 1.15x the true scale, the same things lifted
+    // tops are where their surfaces were seen, so one short of its kind was seen in part, and where no two
+    // agree they are set aside (scaleFromHeights: seenWhole). Hulls carved from sparse points reach past
+    // their things as often as short of them: all count, and they lead only where two agree, as lifted
+    // things do (TUM's office photos: their hulls' heights 1.15x the true scale, the same things lifted
     // 0.97-1.01x, the cameras' height 0.94x).
     bool thingsOnDepth = false;
 

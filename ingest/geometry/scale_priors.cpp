@@ -74,9 +74,10 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     const std::string doubts = leftOut(left, "named beside another room's things: {}") +
                                leftOut(partial, "seen in part: {} short of the tallest of their kind");
     std::sort(estimates.begin(), estimates.end());
-    bool heldTogether = !seenWhole;
-    for (std::size_t i = 1; i < estimates.size() && !heldTogether; ++i)
-        heldTogether = estimates[i] <= (1 + kThingsAgree) * estimates[i - 1];
+    bool twoAgree = false;
+    for (std::size_t i = 1; i < estimates.size() && !twoAgree; ++i)
+        twoAgree = estimates[i] <= (1 + kThingsAgree) * estimates[i - 1];
+    const bool heldTogether = !seenWhole || twoAgree;
     const double median = detail::median(std::move(estimates));
     if (!heldTogether)
         return ScaleEstimate{
@@ -86,8 +87,10 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
             .scale = median,
             .heldTogether = false,
             .things = kinds};
-    return ScaleEstimate{
-        .prior = fmt::format("the typical heights of {}{}", kinds, doubts), .scale = median, .things = kinds};
+    return ScaleEstimate{.prior = fmt::format("the typical heights of {}{}", kinds, doubts),
+                         .scale = median,
+                         .leads = twoAgree,
+                         .things = kinds};
 }
 
 ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {

@@ -277,16 +277,28 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         CHECK_THAT(notesOf(a), Catch::Contains("the median of 2 priors that agree within 14%"));
         CHECK(angleDeg(a.up, rotY(-15 * kDeg) * model::Vec3{0, 0, 1}) < 1.0);
     }
-    SECTION("things of a typical height are a third prior") {
-        // Two tables (tops 0.75 m) and a chair (0.9 m) of the right heights in the same room: their
-        // answer, 2.5 metres per unit, is the median of the three.
+    SECTION("things of a typical height are a third prior, which leads where two of them agree") {
+        // Two tables (tops 0.75 m) and a chair (0.9 m) of the right heights in the same room say 2.5 metres per
+        // unit, all three alike: they are the scale, the ceiling (2.32) and the cameras' height (2.68) check it.
+        // ScanNet's bathroom without depth: two toilets said 1.01x the true scale, the cameras' height 1.18x, and
+        // their median stored the room 1.10x.
         Room room = syntheticRoom(2.8, 1.4);
         const std::vector<NamedThing> things = tablesAndChair(room);
         Alignment a = alignCapture(room.cloud, room.cameras, options, things);
         INFO(notesOf(a));
         CHECK(a.scale == Approx(2.5).epsilon(0.01));
-        CHECK_THAT(notesOf(a), Catch::Contains("the median of 3 priors"));
-        CHECK_THAT(notesOf(a), Catch::Contains("the typical heights of 1 chair (0.90 m), 2 tables (0.75 m): 2.5"));
+        CHECK_THAT(notesOf(a), Catch::Contains("from the first of 3 priors, which the others check: they agree "
+                                               "within 14%; the typical heights of 1 chair (0.90 m), 2 tables (0.75 "
+                                               "m): 2.5"));
+        // A table and a chair 1.5 times too tall say 2.5 and 1.67: no two agree, and their median, 2.08, is one
+        // prior among three, whose median is the ceiling's 2.32.
+        std::vector<NamedThing> apart{things.front(), things.back()};
+        for (auto& p : apart.back().points) p.z = 0.5 + 1.5 * (p.z - 0.5);
+        Alignment b = alignCapture(room.cloud, room.cameras, options, apart);
+        INFO(notesOf(b));
+        CHECK(b.scale == Approx(2.6 / (2.8 * 0.4)).epsilon(0.01));
+        CHECK_THAT(notesOf(b), Catch::Contains("the median of 3 priors"));
+        CHECK(b.scaleThingsApart.empty());  // hulls that disagree still count, unlike things fused on depth
     }
     SECTION("the heights of things fused on depth lead the scale, and the cameras' height checks it") {
         // Photos' things lifted on the dense points and stored (pipeline.cpp measures the room again on them): two
@@ -694,10 +706,16 @@ TEST_CASE("the heights of things fused on depth measure the room only where two 
     CHECK_FALSE(fused->heldTogether);
     CHECK(fused->scale == Approx((0.9 / 0.95 + 0.75 / 1.4) / 2));
     CHECK_THAT(fused->prior, Catch::Contains("held by no two of them within 15%, so they do not measure the room"));
-    // Hulls carved without depth are one prior among the others, whose median outvotes what they get wrong.
+    // Hulls carved without depth all count, the "table" too: it and the chair agree, and they lead.
     const auto hulls = scaleFromHeights(office, {0, 0, 1}, 0, 1.0);
     REQUIRE(hulls);
     CHECK(hulls->heldTogether);
+    CHECK(hulls->leads);
+    // Hulls of which no two agree are one prior among the others, whose median outvotes what they get wrong.
+    const auto apart = scaleFromHeights({office[0], office[1]}, {0, 0, 1}, 0, 1.0);
+    REQUIRE(apart);
+    CHECK(apart->heldTogether);
+    CHECK_FALSE(apart->leads);
     // A second chair that agrees with the first: the chairs and the "desk" measure the room together.
     std::vector<NamedThing> chairs = office;
     chairs.push_back(column("chair", 0, 1.0));
