@@ -290,8 +290,8 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         CHECK_THAT(notesOf(a), Catch::Contains("from the first of 3 priors, which the others check: they agree "
                                                "within 14%; the typical heights of 1 chair (0.90 m), 2 tables (0.75 "
                                                "m): 2.5"));
-        // A table and a chair 1.5 times too tall say 2.5 and 1.67: no two agree, and their median, 2.08, is one
-        // prior among three, whose median is the ceiling's 2.32.
+        // A table and a chair stretched 1.5 times along the capture's z say 2.5 and about 1.7: no two agree, and
+        // their median, about 2.1, is one prior among three, whose median is the ceiling's 2.32.
         std::vector<NamedThing> apart{things.front(), things.back()};
         for (auto& p : apart.back().points) p.z = 0.5 + 1.5 * (p.z - 0.5);
         Alignment b = alignCapture(room.cloud, room.cameras, options, apart);
