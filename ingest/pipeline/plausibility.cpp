@@ -206,6 +206,25 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
         "(--depth-scale: depth units per metre)"};
 }
 
+namespace {
+
+// A scale on the cameras' assumed height alone, and why nothing checked it: no second prior, or things standing on
+// the floor whose heights were set aside for disagreeing (Alignment::scaleThingsApart).
+std::string restsOnCamerasHeight(const Alignment& alignment) {
+    const std::string unchecked =
+        alignment.scaleThingsApart.empty()
+            ? std::string("no second prior (things of a known height standing on the floor, the ceiling) checks them")
+            : fmt::format(
+                  "the heights of {} standing on the floor do not check them: no two of them give a scale "
+                  "within {:.0f}% of each other's",
+                  alignment.scaleThingsApart, 100 * kThingsAgree);
+    return "the scale rests on one prior, the cameras' assumed height above the floor, where real captures' cameras "
+           "stand 1.2-1.7 m up: lengths may be a fifth off, and " +
+           unchecked;
+}
+
+}  // namespace
+
 std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, const ScaleSource& source) {
     std::vector<PlausibilityFinding> out;
     const bool scaled = source.depth || source.given || source.metric;
@@ -262,14 +281,7 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                  ? std::string("the dense points are one pair of photos' alone, drawn from two poses that nothing "
                                "else checks (a short step between them leaves their depth loose), and the scale "
                                "rests on one prior: nothing checks the room's proportions")
-                 : "the scale rests on one prior, the cameras' assumed height above the floor, where real "
-                   "captures' cameras stand 1.2-1.7 m up: lengths may be a fifth off, and " +
-                       (alignment.scaleThingsApart.empty()
-                            ? std::string("no second prior (things of a known height standing on the floor, the "
-                                          "ceiling) checks them")
-                            : fmt::format("the heights of {} standing on the floor do not check them: no two of them "
-                                          "give a scale within {:.0f}% of each other's",
-                                          alignment.scaleThingsApart, 100 * kThingsAgree)),
+                 : restsOnCamerasHeight(alignment),
              source.onePairDepth ? "give --scale (metres per capture unit), or add photos of the room, whose pairs "
                                    "check each other's depth"
                                  : priorsFix});
