@@ -93,7 +93,7 @@ SurfaceEvidence weighSurface(const Surface& surface, const std::vector<NamedThin
     // there are the reconstruction's noise (a table's under a kitchen floor, in 100 photos).
     const bool seenBelow = out.pointsBelow >= kSeenBelow;
     for (const auto& thing : things) {
-        if (thing.points.size() < kMinPoints) continue;
+        if (!thing.measures || thing.points.size() < kMinPoints) continue;
         std::vector<double> heights;
         heights.reserve(thing.points.size());
         for (const auto& p : thing.points) heights.push_back(along(surface.up, p) - surface.height);

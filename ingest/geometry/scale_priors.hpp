@@ -21,6 +21,10 @@ namespace smql::ingest {
 struct NamedThing {
     std::string category;
     std::vector<model::Vec3> points;
+    // False for a name the objects stage did not keep (stored as "object" with detected_as, the name here): the
+    // thing measures nothing and weighs no surface, yet a detector saw a thing of that kind there, which puts
+    // the names of another room's things beside it in doubt (scaleFromHeights).
+    bool measures = true;
 };
 
 // One prior's answer: metres per capture unit.
@@ -46,7 +50,9 @@ struct ScaleEstimate {
 // kShortOfItsKind of the tallest of its kind (kindName) is left out as well: seen in
 // part, and no two of the rest within kThingsAgree make the estimate not heldTogether.
 // Two that agree within kThingsAgree, fused on depth or carved without it, make the
-// estimate lead. nullopt with fewer than `minThings` things.
+// estimate lead. Kinds of one room (a fridge, a toilet) standing in one room with another's
+// count only where more of their room's kinds are named there (scale_priors.cpp says how).
+// nullopt with fewer than `minThings` things.
 std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
                                               double floorHeight, double unit, bool seenWhole = false,
                                               std::size_t minThings = 2);

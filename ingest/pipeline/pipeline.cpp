@@ -54,21 +54,26 @@ model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& optio
                                              options.sceneName, options.structureVoxel))};
 }
 
-// The things the objects stage fused in the aligned frame and stored under a name (a name that did not fit
-// its box is stored as "object"), in the capture's frame and units: each box as the 27 points of its
-// corners, the middles of its edges and faces, and its centre, so that what weighs a surface and what
-// measures a height (floor_evidence.hpp, scale_priors.hpp) read the box's bottom and top.
+// The things the objects stage fused in the aligned frame and stored under a name, in the capture's frame and
+// units: each box as the 27 points of its corners, the middles of its edges and faces, and its centre, so that
+// what weighs a surface and what measures a height (floor_evidence.hpp, scale_priors.hpp) read the box's bottom
+// and top. A name that did not fit its box or its place is stored as "object" with detected_as: that thing
+// measures nothing, and comes under the detector's name to doubt another room's names beside it.
 std::vector<NamedThing> storedThings(const model::SceneData& scene, const std::vector<TrackedNode>& tracked,
                                      const Alignment& alignment) {
     std::vector<NamedThing> things;
     for (const auto& t : tracked) {
         auto node = std::find_if(scene.nodes.begin(), scene.nodes.end(), [&](const auto& n) { return n.id == t.node; });
-        if (!t.fused || node == scene.nodes.end() || node->kind != model::NodeKind::Object ||
-            node->category == "object")
-            continue;
+        if (!t.fused || node == scene.nodes.end() || node->kind != model::NodeKind::Object) continue;
+        NamedThing thing{node->category, {}};
+        if (node->category == "object") {
+            auto detected = std::find_if(node->attributes.begin(), node->attributes.end(),
+                                         [](const auto& a) { return a.name == "detected_as"; });
+            if (detected == node->attributes.end()) continue;
+            thing = NamedThing{detected->value, {}, /*measures=*/false};
+        }
         const model::Box& box = node->box;
         const model::BoxFrame frame(box);
-        NamedThing thing{node->category, {}};
         for (int i = -1; i <= 1; ++i)
             for (int j = -1; j <= 1; ++j)
                 for (int k = -1; k <= 1; ++k) {

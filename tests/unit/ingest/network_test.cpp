@@ -186,7 +186,7 @@ TEST_CASE("the packaged models give OpenCV's DNN's outputs on XNNPACK, on real f
         auto opencv = loadOpenCvNetwork(files->model, xnnpack->outputs());
         CHECK(xnnpack->outputs().size() == (m.outputs.empty() ? 6 : m.outputs.size()));
         // And on a pool of two threads, as a stream runs them on a machine of four cores.
-        auto pooled = loadXnnpackNetwork(files->model, m.outputs, nullptr, {2});
+        auto pooled = loadXnnpackNetwork(files->model, m.outputs, nullptr, {2, nullptr});
         REQUIRE(pooled);
         for (const auto& frame : frames) {
             const cv::Mat blob = m.blob(frame, m.input);
