@@ -529,15 +529,17 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
             estimates.push_back({"median camera height taken as " + fixed(options.cameraHeight) + " m",
                                  options.cameraHeight / medianHeight});
     }
-    if (floorFound)
-        if (auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth)) {
-            if (!heights->heldTogether) {
-                notes.push_back("scale: " + heights->prior);
-                out.scaleThingsApart = heights->things;
-            } else {
-                estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
-            }
+    if (floorFound) {
+        auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth);
+        if (!heights) {
+            out.scaleThingsDoubted = doubtedHeights(things, fromEigen(up), out.floorHeight);
+        } else if (!heights->heldTogether) {
+            notes.push_back("scale: " + heights->prior);
+            out.scaleThingsApart = heights->things;
+        } else {
+            estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
         }
+    }
     if (estimates.empty()) {
         notes.push_back("scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");
         return 0;

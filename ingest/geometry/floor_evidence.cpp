@@ -29,8 +29,6 @@ constexpr std::size_t kStandingOnFloor = 3;
 // Fewer points than this say nothing of where a thing ends.
 constexpr std::size_t kMinPoints = 20;
 
-double along(const model::Vec3& up, const model::Vec3& p) { return up.x * p.x + up.y * p.y + up.z * p.z; }
-
 std::string listed(const std::vector<std::string>& names) {
     std::string out;
     for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
@@ -38,6 +36,8 @@ std::string listed(const std::vector<std::string>& names) {
 }
 
 }  // namespace
+
+double along(const model::Vec3& up, const model::Vec3& p) { return up.x * p.x + up.y * p.y + up.z * p.z; }
 
 bool SurfaceEvidence::tableTop() const {
     // Things that stand on floors rising from a surface that nothing was seen below, and that nothing

@@ -13,6 +13,9 @@
 
 namespace smql::ingest {
 
+// A point's height along `up` (a unit normal), in the cloud's units.
+double along(const model::Vec3& up, const model::Vec3& p);
+
 // A horizontal surface: unit normal (up) and height along it, in the cloud's units.
 struct Surface {
     model::Vec3 up{0, 0, 1};

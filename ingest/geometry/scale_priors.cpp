@@ -13,8 +13,11 @@
 
 namespace smql::ingest {
 
-std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
-                                              double floorHeight, double unit, bool seenWhole, std::size_t minThings) {
+namespace {
+
+// Whether each thing's name is in doubt as a measure of the room (nothing in the capture's units is known in
+// metres yet).
+std::vector<bool> namesInDoubt(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight) {
     // Kinds that stand in one kind of room (a fridge in a kitchen, a toilet in a bathroom) named within
     // kOneRoom times the taller's height of things of another room's kinds stand in one room with them: one of
     // the two names is wrong. The room is the one of which more kinds are named there (a fridge, an oven and a
@@ -28,7 +31,6 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     // are both in capture units, so the test needs no scale; fusion's doubt (outOfPlace, object_fusion.cpp)
     // needs metres and the walls, which come after the scale.
     constexpr double kOneRoom = 2;  // a bathroom's or a kitchen's side, 1.5-4 m, is about twice a fridge's height
-    auto dot = [&](const model::Vec3& p) { return up.x * p.x + up.y * p.y + up.z * p.z; };
     struct Place {
         model::Vec3 centre;  // the medians of its points
         double top = 0;      // above the floor
@@ -41,28 +43,58 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
             xs.push_back(p.x);
             ys.push_back(p.y);
             zs.push_back(p.z);
-            above.push_back(dot(p) - floorHeight);
+            above.push_back(along(up, p) - floorHeight);
         }
         places[i] = Place{{detail::median(std::move(xs)), detail::median(std::move(ys)), detail::median(std::move(zs))},
                           std::max(0.0, detail::robustRange(std::move(above)).second)};
     }
     auto oneRoom = [&](const Place& a, const Place& b) {
         const model::Vec3 d{a.centre.x - b.centre.x, a.centre.y - b.centre.y, a.centre.z - b.centre.z};
-        const double along = dot(d);
-        const double apart = std::sqrt(std::max(0.0, d.x * d.x + d.y * d.y + d.z * d.z - along * along));
+        const double rise = along(up, d);
+        const double apart = std::sqrt(std::max(0.0, d.x * d.x + d.y * d.y + d.z * d.z - rise * rise));
         return apart <= kOneRoom * std::max(a.top, b.top);
     };
-    auto doubted = [&](std::size_t i) {
-        if (!places[i]) return false;
+    std::vector<bool> doubted(things.size());
+    for (std::size_t i = 0; i < things.size(); ++i) {
+        if (!places[i]) continue;
         std::map<RoomKind, std::set<std::string_view>> kinds;  // named in one room with thing i
         for (std::size_t j = 0; j < things.size(); ++j)
             if (places[j] && (j == i || oneRoom(*places[i], *places[j])))
                 kinds[roomKind(things[j].category)].insert(kindName(things[j].category));
         const std::size_t own = kinds.at(roomKind(things[i].category)).size();
-        return std::any_of(kinds.begin(), kinds.end(), [&](const auto& other) {
+        doubted[i] = std::any_of(kinds.begin(), kinds.end(), [&](const auto& other) {
             return other.first != roomKind(things[i].category) && other.second.size() >= own;
         });
-    };
+    }
+    return doubted;
+}
+
+// "2 fridges, 1 toilet".
+std::string listCounts(const std::map<std::string, int>& counts) {
+    std::string listed;
+    for (const auto& [category, n] : counts)
+        listed += fmt::format("{}{} {}{}", listed.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
+    return listed;
+}
+
+// Whether a thing's height would measure the room: a measure (NamedThing::measures) of a kind of a typical height.
+bool measuresHeight(const NamedThing& thing) {
+    return thing.measures && !thing.points.empty() && typicalHeight(thing.category);
+}
+
+}  // namespace
+
+std::string doubtedHeights(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight) {
+    const std::vector<bool> doubted = namesInDoubt(things, up, floorHeight);
+    std::map<std::string, int> left;
+    for (std::size_t i = 0; i < things.size(); ++i)
+        if (doubted[i] && measuresHeight(things[i])) ++left[things[i].category];
+    return listCounts(left);
+}
+
+std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
+                                              double floorHeight, double unit, bool seenWhole, std::size_t minThings) {
+    const std::vector<bool> doubted = namesInDoubt(things, up, floorHeight);
     struct Top {
         std::string_view category;
         double height = 0;  // the kind's typical height, metres
@@ -72,17 +104,17 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     std::map<std::string, int> counted, left, partial;
     for (std::size_t i = 0; i < things.size(); ++i) {
         const NamedThing& thing = things[i];
-        auto height = typicalHeight(thing.category);
-        if (!height || !thing.measures || thing.points.empty()) continue;
-        if (doubted(i)) {
+        if (!measuresHeight(thing)) continue;
+        const double height = *typicalHeight(thing.category);
+        if (doubted[i]) {
             ++left[thing.category];
             continue;
         }
         std::vector<double> above;
-        for (const auto& p : thing.points) above.push_back(dot(p) - floorHeight);
+        for (const auto& p : thing.points) above.push_back(along(up, p) - floorHeight);
         if (reachesBelow(above, unit)) continue;
         double top = detail::robustRange(std::move(above)).second;
-        if (top > 0) tops.push_back({thing.category, *height, top});
+        if (top > 0) tops.push_back({thing.category, height, top});
     }
     std::map<std::string_view, double> tallest;  // by kindName
     for (const auto& t : tops) tallest[kindName(t.category)] = std::max(tallest[kindName(t.category)], t.top);
@@ -102,9 +134,7 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
                              *typicalHeight(category));
     // "2 fridges, 1 toilet", wrapped in why they were left out; nothing when none was.
     auto leftOut = [](const std::map<std::string, int>& counts, std::string_view why) {
-        std::string listed;
-        for (const auto& [category, n] : counts)
-            listed += fmt::format("{}{} {}{}", listed.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
+        const std::string listed = listCounts(counts);
         return listed.empty() ? listed : fmt::format(" (left out, {})", fmt::format(fmt::runtime(why), listed));
     };
     const std::string doubts = leftOut(left, "named beside another room's things: {}") +

@@ -57,6 +57,10 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
                                               double floorHeight, double unit, bool seenWhole = false,
                                               std::size_t minThings = 2);
 
+// The things of a typical height whose names are in doubt as measures of the room, as scaleFromHeights leaves them
+// out ("3 fridges, 2 toilets"), empty when none is: for a refusal to say why they did not check the scale.
+std::string doubtedHeights(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight);
+
 // A thing fused on depth is measured only by what its views showed, so it is never taller than it is: one
 // whose top is under this share of the tallest of its kind was seen in part (a chair's seat with its back
 // hidden, a 0.25 x 0.25 m piece of one). ScanNet's apartment's 300 frames without depth, lifted on the dense

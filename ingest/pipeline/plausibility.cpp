@@ -208,16 +208,23 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
 
 namespace {
 
-// A scale on the cameras' assumed height alone, and why nothing checked it: no second prior, or things standing on
-// the floor whose heights were set aside for disagreeing (Alignment::scaleThingsApart).
+// A scale on the cameras' assumed height alone, and why nothing checked it: no second prior, things standing on
+// the floor whose heights were set aside for disagreeing (Alignment::scaleThingsApart), or things left out for
+// standing beside another room's things (Alignment::scaleThingsDoubted).
 std::string restsOnCamerasHeight(const Alignment& alignment) {
-    const std::string unchecked =
-        alignment.scaleThingsApart.empty()
-            ? std::string("no second prior (things of a known height standing on the floor, the ceiling) checks them")
-            : fmt::format(
-                  "the heights of {} standing on the floor do not check them: no two of them give a scale "
-                  "within {:.0f}% of each other's",
-                  alignment.scaleThingsApart, 100 * kThingsAgree);
+    std::string unchecked;
+    if (!alignment.scaleThingsApart.empty())
+        unchecked = fmt::format(
+            "the heights of {} standing on the floor do not check them: no two of them give a scale within {:.0f}% "
+            "of each other's",
+            alignment.scaleThingsApart, 100 * kThingsAgree);
+    else if (!alignment.scaleThingsDoubted.empty())
+        unchecked = fmt::format(
+            "the heights of {} standing on the floor do not check them: each stands by things of another kind "
+            "of room (a kitchen's by a bathroom's), and one of the two names is wrong",
+            alignment.scaleThingsDoubted);
+    else
+        unchecked = "no second prior (things of a known height standing on the floor, the ceiling) checks them";
     return "the scale rests on one prior, the cameras' assumed height above the floor, where real captures' cameras "
            "stand 1.2-1.7 m up: lengths may be a fifth off, and " +
            unchecked;

@@ -329,6 +329,18 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         CHECK_THAT(notesOf(unheld), Catch::Contains("held by no two of them within 15%"));
         CHECK_THAT(unheld.scaleThingsApart, Catch::Contains("chair"));
         CHECK(a.scaleThingsApart.empty());
+        CHECK(unheld.scaleThingsDoubted.empty());
+        // Things left out for standing beside another room's are named too: a toilet within reach of the tables
+        // and the chair, named "fridge", and the toilet beside it leave no heights prior.
+        std::vector<NamedThing> besideToilet = things;
+        for (auto& thing : besideToilet) thing.category = "fridge";
+        NamedThing toilet{"toilet", things.front().points};
+        besideToilet.push_back(toilet);
+        const Alignment doubted = alignCapture(room.cloud, room.cameras, options, besideToilet);
+        INFO(notesOf(doubted));
+        CHECK(doubted.scalePriors == 1);
+        CHECK(doubted.scaleThingsDoubted == "3 fridges, 1 toilet");
+        CHECK(a.scaleThingsDoubted.empty());
         // The alignment's inverse takes the aligned frame back to the capture's.
         for (const auto& thing : things)
             for (const auto& p : thing.points) {
@@ -678,6 +690,7 @@ TEST_CASE("the heights prior leaves out names of one room's things standing by a
         {0, 0, 1}, 0, 2.0);
     REQUIRE(doubted);
     CHECK(doubted->scale == Approx(0.5));
+    CHECK(doubtedHeights({column("fridge", 0, 2.8), column("fridge", 0, 2.8), notKept}, {0, 0, 1}, 0) == "2 fridges");
     CHECK_THAT(doubted->prior,
                Catch::Contains("2 chairs (0.90 m) (left out, named beside another room's things: 2 fridges)"));
     // Where more kinds of one room are named there, the room is that one: a fridge, an oven and a microwave
@@ -689,6 +702,8 @@ TEST_CASE("the heights prior leaves out names of one room's things standing by a
     REQUIRE(kitchen3);
     CHECK_THAT(kitchen3->prior, Catch::Contains("1 chair (0.90 m), 2 fridges (1.75 m) (left out, named beside "
                                                 "another room's things: 1 toilet)"));
+    CHECK(doubtedHeights({column("fridge", 0, 2.8), column("oven", 0, 1.8), column("toilet", 0, 1.5)}, {0, 0, 1}, 0) ==
+          "1 toilet");
     // Farther apart than twice the taller is high, they are rooms of one home (ScanNet's apartment: its toilet
     // 4.3 m from the fridge, 1.57 m high) and each counts: 6 units from the fridges 2.8 up, the toilets do not.
     const auto home = scaleFromHeights({column("fridge", 0, 2.8), column("fridge", 0, 2.8),

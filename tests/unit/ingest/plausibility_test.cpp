@@ -228,6 +228,17 @@ TEST_CASE("plausibility: photos without depth scaled on one prior are refused, s
                Catch::Contains("the heights of 1 chair (0.90 m), 1 desk (0.75 m) standing on the floor do not check "
                                "them: no two of them give a scale within 15%"));
     CHECK_THAT(apart.front().what, !Catch::Contains("no second prior"));
+    // So are things left out for standing beside another room's things (ScanNet's bathroom's 296 frames without
+    // depth: three "fridges" beside its toilets).
+    Alignment doubted = onePrior;
+    doubted.scaleThingsDoubted = "3 fridges";
+    auto beside = alignmentFindings(doubted, {});
+    REQUIRE(beside.size() == 1);
+    CHECK_THAT(beside.front().what,
+               Catch::Contains("the heights of 3 fridges standing on the floor do not check them: each stands by "
+                               "things of another kind of room (a kitchen's by a bathroom's), and one of the two "
+                               "names is wrong"));
+    CHECK_THAT(beside.front().what, !Catch::Contains("no second prior"));
     // A floor not seen is refused for that, once.
     Alignment tableTop = onePrior;
     tableTop.floorFound = false;
