@@ -1,5 +1,6 @@
 #include "ingest/pipeline/align_stage.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -24,6 +25,32 @@ std::vector<NamedThing> trackedThings(const std::vector<ObjectTrack>& tracks) {
 }
 
 }  // namespace
+
+std::vector<NamedThing> thingsAsStored(const model::SceneData& scene, const std::vector<TrackedNode>& tracked,
+                                       const Alignment& alignment) {
+    std::vector<NamedThing> things;
+    for (const auto& t : tracked) {
+        auto node = std::find_if(scene.nodes.begin(), scene.nodes.end(), [&](const auto& n) { return n.id == t.node; });
+        if (!t.fused || node == scene.nodes.end() || node->kind != model::NodeKind::Object) continue;
+        NamedThing thing{node->category, {}};
+        if (node->category == "object") {
+            auto detected = std::find_if(node->attributes.begin(), node->attributes.end(),
+                                         [](const auto& a) { return a.name == "detected_as"; });
+            if (detected == node->attributes.end()) continue;
+            thing = NamedThing{detected->value, {}, /*measures=*/false};
+        }
+        const model::Box& box = node->box;
+        const model::BoxFrame frame(box);
+        for (int i = -1; i <= 1; ++i)
+            for (int j = -1; j <= 1; ++j)
+                for (int k = -1; k <= 1; ++k) {
+                    const model::Vec2 at = frame.world({i * box.size.x / 2, j * box.size.y / 2});
+                    thing.points.push_back(alignment.unapply({at.x, at.y, box.center.z + k * box.size.z / 2}));
+                }
+        things.push_back(std::move(thing));
+    }
+    return things;
+}
 
 AlignedCapture AlignStage::run(StageProgress& progress) {
     AlignOptions align;

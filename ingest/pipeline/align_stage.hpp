@@ -29,4 +29,13 @@ struct AlignStage {
     std::string summary(const AlignedCapture& aligned) const;
 };
 
+// The things the objects stage fused in the aligned frame and stored under a name, in the capture's frame and
+// units, for the alignment measured again on them (pipeline.cpp): each box as the 27 points of its corners, the middles
+// of its edges and faces, and its centre, so that what weighs a surface and what measures a height (floor_evidence.hpp,
+// scale_priors.hpp) read the box's bottom and top. A name that did not fit its box or its place is stored as "object"
+// with detected_as: that thing measures nothing, and comes under the detector's name to doubt another room's names
+// beside it.
+std::vector<NamedThing> thingsAsStored(const model::SceneData& scene, const std::vector<TrackedNode>& tracked,
+                                       const Alignment& alignment);
+
 }  // namespace smql::ingest

@@ -54,37 +54,6 @@ model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& optio
                                              options.sceneName, options.structureVoxel))};
 }
 
-// The things the objects stage fused in the aligned frame and stored under a name, in the capture's frame and
-// units: each box as the 27 points of its corners, the middles of its edges and faces, and its centre, so that
-// what weighs a surface and what measures a height (floor_evidence.hpp, scale_priors.hpp) read the box's bottom
-// and top. A name that did not fit its box or its place is stored as "object" with detected_as: that thing
-// measures nothing, and comes under the detector's name to doubt another room's names beside it.
-std::vector<NamedThing> storedThings(const model::SceneData& scene, const std::vector<TrackedNode>& tracked,
-                                     const Alignment& alignment) {
-    std::vector<NamedThing> things;
-    for (const auto& t : tracked) {
-        auto node = std::find_if(scene.nodes.begin(), scene.nodes.end(), [&](const auto& n) { return n.id == t.node; });
-        if (!t.fused || node == scene.nodes.end() || node->kind != model::NodeKind::Object) continue;
-        NamedThing thing{node->category, {}};
-        if (node->category == "object") {
-            auto detected = std::find_if(node->attributes.begin(), node->attributes.end(),
-                                         [](const auto& a) { return a.name == "detected_as"; });
-            if (detected == node->attributes.end()) continue;
-            thing = NamedThing{detected->value, {}, /*measures=*/false};
-        }
-        const model::Box& box = node->box;
-        const model::BoxFrame frame(box);
-        for (int i = -1; i <= 1; ++i)
-            for (int j = -1; j <= 1; ++j)
-                for (int k = -1; k <= 1; ++k) {
-                    const model::Vec2 at = frame.world({i * box.size.x / 2, j * box.size.y / 2});
-                    thing.points.push_back(alignment.unapply({at.x, at.y, box.center.z + k * box.size.z / 2}));
-                }
-        things.push_back(std::move(thing));
-    }
-    return things;
-}
-
 // The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
 // --force, so that no wrong memory is stored with exit status 0.
 void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
@@ -163,9 +132,11 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     };
     placeRoom(std::move(frames.tracks));
     if (mayMeasureAgain)
-        if (const auto things = storedThings(scene, tracked, aligned.alignment); !things.empty()) {
-            runner.note(
-                fmt::format("align: measured again on the {} named things lifted on the dense points", things.size()));
+        if (const auto things = thingsAsStored(scene, tracked, aligned.alignment);
+            std::any_of(things.begin(), things.end(), [](const NamedThing& t) { return t.measures; })) {
+            const auto named =
+                std::count_if(things.begin(), things.end(), [](const NamedThing& t) { return t.measures; });
+            runner.note(fmt::format("align: measured again on the {} named things lifted on the dense points", named));
             aligned = runner.run(AlignStage{capture, options, frames, &things});
             // No frame tracks: the finder lifts the things again, whatever the keyframes of the new placement
             // cover (AlignedCapture::onLiftedThings), and the lift replaces them.

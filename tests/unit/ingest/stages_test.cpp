@@ -12,6 +12,7 @@
 
 #include "ingest/capture/capture.hpp"
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/pipeline/align_stage.hpp"
 #include "ingest/pipeline/anchors_stage.hpp"
 #include "ingest/pipeline/frames_stage.hpp"
 #include "ingest/pipeline/keyframes.hpp"
@@ -373,4 +374,39 @@ TEST_CASE("a table's footprint is held in the frame its top shows, not its hull'
     CHECK(box.size.x == Approx(2.1).margin(0.2));
     CHECK(box.size.y == Approx(1.0).margin(0.2));
     CHECK(std::remainder(box.yaw - yaw, std::numbers::pi / 2) == Approx(0).margin(5 * std::numbers::pi / 180));
+}
+
+TEST_CASE("the things as stored, for the alignment measured again: a name not kept comes back measuring nothing") {
+    // ScanNet's bathroom's 296 frames without depth: fusion stored its toilets as "object" among three "fridges";
+    // measured again, the toilets must still doubt the fridges beside them (scale_priors.hpp), not vanish.
+    model::SceneData scene;
+    auto add = [&](model::NodeId id, const char* category, model::Vec3 centre, std::vector<model::Attribute> attrs) {
+        model::Node node;
+        node.id = id;
+        node.category = category;
+        node.box.center = centre;
+        node.box.size = {0.5, 0.5, 1.0};
+        node.attributes = std::move(attrs);
+        scene.nodes.push_back(node);
+    };
+    add(1, "fridge", {0, 0, 0.5}, {});
+    add(2, "object", {1, 0, 0.5}, {{"detected_as", "toilet"}});
+    add(3, "object", {2, 0, 0.5}, {});  // no model named it: nothing to say
+    add(4, "chair", {3, 0, 0.5}, {});
+    std::vector<TrackedNode> tracked;
+    for (model::NodeId id : {1, 2, 3, 4}) tracked.push_back({id, {}, /*fused=*/id != 4});
+    Alignment alignment;
+    alignment.scale = 0.5;  // metres per capture unit: the things come back twice as large, in capture units
+    alignment.transform = {0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.5, 0};
+    const std::vector<NamedThing> things = thingsAsStored(scene, tracked, alignment);
+    REQUIRE(things.size() == 2);  // the chair's box was not fused on its views' points
+    CHECK(things[0].category == "fridge");
+    CHECK(things[0].measures);
+    CHECK(things[1].category == "toilet");
+    CHECK_FALSE(things[1].measures);
+    REQUIRE(things[0].points.size() == 27);
+    const auto [low, high] = std::minmax_element(things[0].points.begin(), things[0].points.end(),
+                                                 [](const auto& a, const auto& b) { return a.z < b.z; });
+    CHECK(low->z == Approx(0.0));
+    CHECK(high->z == Approx(2.0));
 }
