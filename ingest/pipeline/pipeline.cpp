@@ -131,17 +131,18 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
         tracked = runner.run(ObjectsStage{capture, options, std::move(tracks), aligned, walls, *finder, scene});
     };
     placeRoom(std::move(frames.tracks));
-    if (mayMeasureAgain)
-        if (const auto things = thingsAsStored(scene, tracked, aligned.alignment);
-            std::any_of(things.begin(), things.end(), [](const NamedThing& t) { return t.measures; })) {
-            const auto named =
+    if (mayMeasureAgain) {
+        const auto things = thingsAsStored(scene, tracked, aligned.alignment);
+        if (const auto named =
                 std::count_if(things.begin(), things.end(), [](const NamedThing& t) { return t.measures; });
+            named > 0) {
             runner.note(fmt::format("align: measured again on the {} named things lifted on the dense points", named));
             aligned = runner.run(AlignStage{capture, options, frames, &things});
             // No frame tracks: the finder lifts the things again, whatever the keyframes of the new placement
             // cover (AlignedCapture::onLiftedThings), and the lift replaces them.
             placeRoom({});
         }
+    }
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
     checkRoom(result, capture, options, frames, aligned.alignment, reconstruction ? &reconstruction->dense : nullptr,
