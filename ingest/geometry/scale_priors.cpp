@@ -69,11 +69,13 @@ std::vector<bool> namesInDoubt(const std::vector<NamedThing>& things, const mode
     return doubted;
 }
 
-// "2 fridges, 1 toilet".
-std::string listCounts(const std::map<std::string, int>& counts) {
+// "2 fridges, 1 toilet"; with `heights`, each kind's typical height after it: "2 fridges (1.75 m)".
+std::string listCounts(const std::map<std::string, int>& counts, bool heights = false) {
     std::string listed;
-    for (const auto& [category, n] : counts)
+    for (const auto& [category, n] : counts) {
         listed += fmt::format("{}{} {}{}", listed.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
+        if (heights) listed += fmt::format(" ({:.2f} m)", typicalHeight(category).value_or(0));
+    }
     return listed;
 }
 
@@ -128,10 +130,7 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
         ++counted[std::string(t.category)];
     }
     if (estimates.size() < std::max<std::size_t>(minThings, 1)) return std::nullopt;
-    std::string kinds;
-    for (const auto& [category, n] : counted)
-        kinds += fmt::format("{}{} {}{} ({:.2f} m)", kinds.empty() ? "" : ", ", n, category, n == 1 ? "" : "s",
-                             *typicalHeight(category));
+    const std::string kinds = listCounts(counted, /*heights=*/true);
     // "2 fridges, 1 toilet", wrapped in why they were left out; nothing when none was.
     auto leftOut = [](const std::map<std::string, int>& counts, std::string_view why) {
         const std::string listed = listCounts(counts);
