@@ -514,21 +514,27 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
     }
     if (options.metric) {
         out.scale = 1;
-        notes.push_back("scale: 1 (metric capture)");
+        notes.push_back(options.cameraHeightGiven ? "scale: 1 (metric capture: the cameras' height given, " +
+                                                        fixed(options.cameraHeight) + " m, is not needed)"
+                                                  : std::string("scale: 1 (metric capture)"));
         return 0;
     }
     std::vector<ScaleEstimate> estimates;
     if (ceilingAbove > 0)
         estimates.push_back(
             {"floor-to-ceiling taken as " + fixed(options.ceilingHeight) + " m", options.ceilingHeight / ceilingAbove});
+    std::optional<ScaleEstimate> byCameras;
     if (!cameras.empty()) {
         std::vector<double> heights = cameraHeights(cameras, up);
         for (auto& h : heights) h -= out.floorHeight;
         double medianHeight = detail::median(heights);
         if (medianHeight > 0)
-            estimates.push_back({"median camera height taken as " + fixed(options.cameraHeight) + " m",
-                                 options.cameraHeight / medianHeight});
+            byCameras =
+                ScaleEstimate{fmt::format("median camera height {} as {} m",
+                                          options.cameraHeightGiven ? "given" : "taken", fixed(options.cameraHeight)),
+                              options.cameraHeight / medianHeight, options.cameraHeightGiven};
     }
+    if (byCameras && !options.cameraHeightGiven) estimates.push_back(*byCameras);
     if (floorFound) {
         auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth);
         if (!heights) {
@@ -540,6 +546,8 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
             estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
         }
     }
+    // A height given is measured: it leads, the things' heights and the ceiling's only checking it.
+    if (byCameras && options.cameraHeightGiven) estimates.insert(estimates.begin(), *byCameras);
     if (estimates.empty()) {
         notes.push_back("scale: no camera above the floor, no ceiling and no things of a typical height; left at 1");
         return 0;

@@ -31,6 +31,7 @@ struct AlignOptions {
     bool metric = true;                  // Capture::metric: poses and points already in metres
     std::optional<double> scale;         // metres per cloud unit, overriding the estimate (and 1 for metric)
     double cameraHeight = 1.5;           // assumed median camera height above the floor (scale-free captures)
+    bool cameraHeightGiven = false;      // ... or measured (--camera-height): then it leads the scale
     double ceilingHeight = 2.6;          // assumed floor-to-ceiling height (scale-free, ceiling found)
     std::optional<model::Vec3> upPrior;  // used only when there are no cameras (default +z)
     // The cloud's leading points that weigh a surface (floor_evidence.hpp): the capture's own (depth

@@ -56,6 +56,10 @@ AlignedCapture AlignStage::run(StageProgress& progress) {
     AlignOptions align;
     align.metric = capture.metric;
     align.scale = options.scale;
+    if (options.cameraHeight) {
+        align.cameraHeight = *options.cameraHeight;
+        align.cameraHeightGiven = true;
+    }
     align.evidencePoints = frames.measuredPoints;
     align.thingsOnDepth = storedThings != nullptr;
     std::vector<Pose> poses;

@@ -41,10 +41,11 @@ struct IngestOptions {
     // Where the objects come from: a source of the table in object_finder.cpp by name ("masks",
     // "detections", "detect", "cluster"), or "auto", the first the capture can feed.
     std::string objects = "auto";
-    std::string detectorModel;    // --detector: the ONNX model (default: defaultModelDir()/nanodet.onnx)
-    std::string detectorClasses;  // --classes: its class names (default: coco.names beside the model)
-    std::optional<double> scale;  // metres per capture unit, overriding the alignment's estimate
-    bool force = false;           // keep a memory the plausibility checks refuse (plausibility.hpp)
+    std::string detectorModel;           // --detector: the ONNX model (default: defaultModelDir()/nanodet.onnx)
+    std::string detectorClasses;         // --classes: its class names (default: coco.names beside the model)
+    std::optional<double> scale;         // metres per capture unit, overriding the alignment's estimate
+    std::optional<double> cameraHeight;  // m: the cameras' median height above the floor, when known
+    bool force = false;                  // keep a memory the plausibility checks refuse (plausibility.hpp)
     int workingWidth = 640;
     int structureStride = 4;          // every n-th pixel of each frame feeds the structure cloud
     double structureVoxel = 0.05;     // m

@@ -256,7 +256,11 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
                          *alignment.edgesFromFloor),
              "give the photos' own camera (camera.json, --camera), or none for COLMAP to estimate it"});
     const std::string priorsFix =
-        "give --scale (metres per capture unit), or add photos that show the floor and the things standing on it";
+        source.cameraHeight
+            ? "the cameras' height given leads: the floor found may be a table top, or the things are misnamed; add "
+              "photos that show the floor and the things standing on it"
+            : "give --camera-height (the cameras' height above the floor in metres, when known) or --scale (metres "
+              "per capture unit), or add photos that show the floor and the things standing on it";
     if (alignment.scaleSplit > 0)
         out.push_back({"scale priors", true,
                        fmt::format("the scale's two priors disagree by a factor of {:.2g} (the cameras' height above "
@@ -280,8 +284,11 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
     // then put the room 4.4x too large (docs/ingest.md, "One pair alone"). A second prior checks the room's
     // proportions.
     // (A floor not seen or not confirmed is refused above, and says why.)
+    // The cameras' height given (--camera-height) is a measurement, not that assumption; one pair's depth is loose
+    // across the room whatever its scale.
     else if (!scaled && alignment.scalePriors < 2 &&
-             (source.onePairDepth || (alignment.floorNotSeen.empty() && alignment.floorUnconfirmed.empty())))
+             (source.onePairDepth ||
+              (!source.cameraHeight && alignment.floorNotSeen.empty() && alignment.floorUnconfirmed.empty())))
         out.push_back(
             {"scale priors", true,
              source.onePairDepth

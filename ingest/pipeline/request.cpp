@@ -164,6 +164,14 @@ const std::vector<IngestOption> kIngestOptions = {
      [](IngestRequest& r, const std::string& v) { r.dense = oneOf("dense", v, wordsOf(kDenseWords)); }},
     {"scale", "NUMBER", [] { return std::string("metres per capture unit, overriding the estimate"); },
      [](IngestRequest& r, const std::string& v) { r.scale = number("scale", v, false); }},
+    {"camera_height", "METRES",
+     [] {
+         return std::string(
+             "photos without depth: the cameras' median height above the floor, when known (a robot's mounted "
+             "camera, a tripod); the scale then stands on it, where a person's 1.50 m is assumed otherwise and "
+             "only checks the things' heights");
+     },
+     [](IngestRequest& r, const std::string& v) { r.cameraHeight = number("camera_height", v, false); }},
     {"depth_scale", "NUMBER",
      [] {
          return std::string(
@@ -224,6 +232,10 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     if (!request.camera.empty() && request.fov)
         throw Error(ErrorKind::Usage, "--camera and --fov both say what the camera is", std::nullopt,
                     "give one: --camera when the focal length is known, --fov when only the field of view is");
+    if (request.scale && request.cameraHeight)
+        throw Error(ErrorKind::Usage, "--scale and --camera-height both say what the scale is", std::nullopt,
+                    "give one: --camera-height when the cameras' height above the floor is known, --scale when the "
+                    "metres per capture unit are");
     CaptureOptions captureOptions;
     captureOptions.fps = request.fps;
     if (!request.camera.empty()) captureOptions.intrinsics = parseCameraOption(request.camera);
@@ -242,6 +254,7 @@ IngestRun runIngest(const IngestRequest& request, ProgressSink& progress, const 
     options.detectorModel = request.detector;
     options.detectorClasses = request.classes;
     options.scale = request.scale;
+    options.cameraHeight = request.cameraHeight;
     options.force = request.force;
     options.colmap.maxImageSize = request.maxSize;
     options.colmap.vocabularyTree = request.vocabularyTree;

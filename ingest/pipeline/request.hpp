@@ -15,24 +15,25 @@
 namespace smql::ingest {
 
 struct IngestRequest {
-    std::string capture;               // the capture folder or file
-    std::string scene;                 // the new scene's name (default: the capture's folder name)
-    std::string geometry = "auto";     // given | colmap | auto
-    std::string objects = "auto";      // a source of SMQL_OBJECT_SOURCES, or auto
-    std::string detector;              // --objects detect: the ONNX model (default: the installed one)
-    std::string classes;               // ... and its class names (default: coco.names beside the model)
-    double fps = 1.0;                  // frames per second kept from videos and TUM sequences (0: every frame)
-    std::string videoFrames;           // where a video's decoded frames go (default: a new temporary folder)
-    std::optional<double> scale;       // metres per capture unit, overriding the estimate
-    std::optional<double> depthScale;  // depth image units per metre, overriding the capture's
-    std::string camera;                // fx,fy,cx,cy in pixels of the images as stored
-    std::optional<double> fov;         // the horizontal field of view, degrees
-    int maxSize = 1024;                // the long side of the frames COLMAP sees (0: as stored)
-    std::string vocabularyTree;        // COLMAP's vocabulary tree, for loop detection
-    std::string colmapDir;             // COLMAP's kept work folder; a finished run there is read back
-    std::string dense = "auto";        // dense points of pairs of placed photos (no depth): auto | room | on | off
-    std::string update;                // a stored scene of the same place to make the next version of
-    bool force = false;                // store a memory the plausibility checks refuse
+    std::string capture;                 // the capture folder or file
+    std::string scene;                   // the new scene's name (default: the capture's folder name)
+    std::string geometry = "auto";       // given | colmap | auto
+    std::string objects = "auto";        // a source of SMQL_OBJECT_SOURCES, or auto
+    std::string detector;                // --objects detect: the ONNX model (default: the installed one)
+    std::string classes;                 // ... and its class names (default: coco.names beside the model)
+    double fps = 1.0;                    // frames per second kept from videos and TUM sequences (0: every frame)
+    std::string videoFrames;             // where a video's decoded frames go (default: a new temporary folder)
+    std::optional<double> scale;         // metres per capture unit, overriding the estimate
+    std::optional<double> depthScale;    // depth image units per metre, overriding the capture's
+    std::optional<double> cameraHeight;  // m: the cameras' median height above the floor, when known
+    std::string camera;                  // fx,fy,cx,cy in pixels of the images as stored
+    std::optional<double> fov;           // the horizontal field of view, degrees
+    int maxSize = 1024;                  // the long side of the frames COLMAP sees (0: as stored)
+    std::string vocabularyTree;          // COLMAP's vocabulary tree, for loop detection
+    std::string colmapDir;               // COLMAP's kept work folder; a finished run there is read back
+    std::string dense = "auto";          // dense points of pairs of placed photos (no depth): auto | room | on | off
+    std::string update;                  // a stored scene of the same place to make the next version of
+    bool force = false;                  // store a memory the plausibility checks refuse
 };
 
 // One option by name: `name` as the C API and Python spell it (`max_size`); the shell's flag is

@@ -300,6 +300,27 @@ TEST_CASE("a scale-free capture gets its scale from the camera height, the ceili
         CHECK_THAT(notesOf(b), Catch::Contains("the median of 3 priors"));
         CHECK(b.scaleThingsApart.empty());  // hulls that disagree still count, unlike things fused on depth
     }
+    SECTION("the cameras' height given leads the scale, and the things' heights and the ceiling check it") {
+        // --camera-height: a robot's camera mounted 1.2 m up is measured, where a person's 1.5 m is assumed. In
+        // the room of the section above (two tables and a chair saying 2.5 metres per unit, which would lead, and
+        // a ceiling saying 2.32), the height given says 1.2 / 0.56, and the cameras stand 1.2 m up.
+        Room room = syntheticRoom(2.8, 1.4);
+        const std::vector<NamedThing> things = tablesAndChair(room);
+        options.cameraHeight = 1.2;
+        options.cameraHeightGiven = true;
+        Alignment a = alignCapture(room.cloud, room.cameras, options, things);
+        INFO(notesOf(a));
+        CHECK(a.scale == Approx(1.2 / (1.4 * 0.4)).epsilon(0.01));
+        CHECK(a.scalePriors == 3);
+        CHECK(transformed(room.cameras[0], a).translation.z == Approx(1.2).margin(0.02));
+        CHECK_THAT(notesOf(a), Catch::Contains("from the first of 3 priors, which the others check: they agree "
+                                               "within 17%; median camera height given as 1.20 m"));
+        // A metric capture's scale is its own: the height given is not needed, and the note says so.
+        options.metric = true;
+        const Alignment metric = alignCapture(room.cloud, room.cameras, options, things);
+        CHECK(metric.scale == 1);
+        CHECK_THAT(notesOf(metric), Catch::Contains("the cameras' height given, 1.20 m, is not needed"));
+    }
     SECTION("the heights of things fused on depth lead the scale, and the cameras' height checks it") {
         // Photos' things lifted on the dense points and stored (pipeline.cpp measures the room again on them): two
         // tables and a chair say 2.5 metres per unit, the cameras' assumed 1.5 m (they stand 1.4 m up) says 2.68.

@@ -208,10 +208,14 @@ TEST_CASE("plausibility: photos without depth scaled on one prior are refused, s
                                                                  : "the scale rests on one prior, the cameras' "
                                                                    "assumed height"));
         CHECK_THAT(refused.front().fix, Catch::Contains("--scale"));
+        if (!onePair) CHECK_THAT(refused.front().fix, Catch::Contains("--camera-height"));
         // Depth, a scale given, metric poses: nothing to refuse.
         CHECK(alignmentFindings(onePrior, {.depth = true, .onePairDepth = onePair}).empty());
         CHECK(alignmentFindings(onePrior, {.given = true, .onePairDepth = onePair}).empty());
         CHECK(alignmentFindings(onePrior, {.metric = true, .onePairDepth = onePair}).empty());
+        // The cameras' height given (--camera-height) is measured, not assumed: the scale resting on it is known,
+        // but one pair's dense points are as loose across the room.
+        CHECK(alignmentFindings(onePrior, {.cameraHeight = true, .onePairDepth = onePair}).empty() == !onePair);
         // A second prior that agrees checks it.
         Alignment twoPriors = onePrior;
         twoPriors.scalePriors = 2;

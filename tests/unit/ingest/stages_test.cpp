@@ -19,6 +19,7 @@
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/objects_stage.hpp"
 #include "ingest/pipeline/pipeline.hpp"
+#include "ingest/pipeline/progress.hpp"
 #include "ingest/pipeline/request.hpp"
 #include "ingest/pipeline/stage_runner.hpp"
 #include "ingest/synth/synth.hpp"
@@ -200,6 +201,36 @@ TEST_CASE("ingest options: --dense is auto unless asked otherwise, and takes aut
     } catch (const Error& e) {
         CHECK(e.kind() == ErrorKind::Usage);
         CHECK_THAT(std::string(e.hint()), Catch::Contains("auto, room, on or off"));
+    }
+}
+
+// --camera-height METRES: the cameras' height above the floor when known, a number above 0; with --scale, which
+// also says what the scale is, the ingest is refused before any work.
+TEST_CASE("ingest options: --camera-height takes metres, and not beside --scale") {
+    IngestRequest request;
+    CHECK_FALSE(request.cameraHeight);
+    setIngestOption(request, "camera_height", "1.33");
+    REQUIRE(request.cameraHeight);
+    CHECK(*request.cameraHeight == 1.33);
+    for (const char* value : {"0", "-1.2", "tall"}) {
+        INFO(value);
+        try {
+            setIngestOption(request, "camera_height", value);
+            FAIL("--camera-height " << value << " was taken");
+        } catch (const Error& e) {
+            CHECK(e.kind() == ErrorKind::Usage);
+            CHECK_THAT(std::string(e.what()), Catch::Contains("--camera-height"));
+        }
+    }
+    request.capture = "no-such-capture";
+    request.scale = 0.5;
+    SilentProgress silent;
+    try {
+        runIngest(request, silent);
+        FAIL("--scale and --camera-height were both taken");
+    } catch (const Error& e) {
+        CHECK(e.kind() == ErrorKind::Usage);
+        CHECK_THAT(std::string(e.what()), Catch::Contains("--scale and --camera-height"));
     }
 }
 
