@@ -18,6 +18,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The highest --camera-height taken (m): above a person's reach on a pole, and far below a height in centimetres.
+constexpr double kHighestCamera = 5;
+
 [[noreturn]] void badValue(std::string_view name, const std::string& value, const std::string& takes) {
     throw Error(ErrorKind::Usage, fmt::format("{} {}: not a valid value", optionFlag(name), value), std::nullopt,
                 fmt::format("{} takes {}", optionFlag(name), takes));
@@ -166,12 +169,19 @@ const std::vector<IngestOption> kIngestOptions = {
      [](IngestRequest& r, const std::string& v) { r.scale = number("scale", v, false); }},
     {"camera_height", "METRES",
      [] {
-         return std::string(
+         return fmt::format(
              "photos without depth: the cameras' median height above the floor, when known (a robot's mounted "
-             "camera, a tripod); the scale then stands on it, where a person's 1.50 m is assumed otherwise and "
-             "only checks the things' heights");
+             "camera, a tripod; at most {:g}); the scale then stands on it, where a person's 1.50 m is assumed "
+             "otherwise and only checks the things' heights",
+             kHighestCamera);
      },
-     [](IngestRequest& r, const std::string& v) { r.cameraHeight = number("camera_height", v, false); }},
+     [](IngestRequest& r, const std::string& v) {
+         // Metres, as every length of the memory: 150 is a height in centimetres.
+         const double height = number("camera_height", v, false);
+         if (height > kHighestCamera)
+             badValue("camera_height", v, fmt::format("metres above the floor, at most {:g}", kHighestCamera));
+         r.cameraHeight = height;
+     }},
     {"depth_scale", "NUMBER",
      [] {
          return std::string(

@@ -212,7 +212,7 @@ TEST_CASE("ingest options: --camera-height takes metres, and not beside --scale"
     setIngestOption(request, "camera_height", "1.33");
     REQUIRE(request.cameraHeight);
     CHECK(*request.cameraHeight == 1.33);
-    for (const char* value : {"0", "-1.2", "tall"}) {
+    for (const char* value : {"0", "-1.2", "tall", "150"}) {
         INFO(value);
         try {
             setIngestOption(request, "camera_height", value);
