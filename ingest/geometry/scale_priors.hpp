@@ -32,7 +32,7 @@ struct ScaleEstimate {
     std::string prior;  // "median camera height taken as 1.50 m"
     double scale = 1;
     // Measured well enough to be the scale, which the other estimates only check: the heights of things of
-    // which two agree within kThingsAgree (scaleFromHeights).
+    // which two agree within kThingsAgree (scaleFromHeights), or the cameras' height given (AlignOptions).
     bool leads = false;
     // False for the heights of things fused on depth of which no two agree within kThingsAgree: each
     // measures something else (a shelf named "desk", a chair seen in part), and they are noted, not counted.
