@@ -204,8 +204,8 @@ TEST_CASE("ingest options: --dense is auto unless asked otherwise, and takes aut
     }
 }
 
-// --camera-height METRES: the cameras' height above the floor when known, a number above 0; with --scale, which
-// also says what the scale is, the ingest is refused before any work.
+// --camera-height METRES: the cameras' height above the floor when known, above 0 and at most 5 (150 is in
+// centimetres); with --scale, which also says what the scale is, the ingest is refused before any work.
 TEST_CASE("ingest options: --camera-height takes metres, and not beside --scale") {
     IngestRequest request;
     CHECK_FALSE(request.cameraHeight);
