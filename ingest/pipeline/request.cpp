@@ -171,8 +171,8 @@ const std::vector<IngestOption> kIngestOptions = {
      [] {
          return fmt::format(
              "photos without depth: the cameras' median height above the floor, when known (a robot's mounted "
-             "camera, a tripod; at most {:g}); the scale then stands on it, where a person's 1.50 m is assumed "
-             "otherwise and only checks the things' heights",
+             "camera, a tripod; at most {:g}); the scale then stands on it, the things' heights checking it, where "
+             "a person's 1.50 m is assumed otherwise",
              kHighestCamera);
      },
      [](IngestRequest& r, const std::string& v) {
