@@ -237,6 +237,10 @@ def test_ingest_with_progress(tmp_path):
     with pytest.raises(smql.ProgrammingError) as error:
         smql.ingest(DINING, tmp_path / "db", objcts="cluster")
     assert error.value.hint.startswith("did you mean objects?")
+    # The cameras' height in metres, as the shell's --camera-height: 150 is centimetres.
+    with pytest.raises(smql.ProgrammingError, match="--camera-height 150") as error:
+        smql.ingest(DINING, tmp_path / "db", scene="dining-2", camera_height=150)
+    assert "metres above the floor" in error.value.hint
     with pytest.raises(smql.DataError, match="already exists"):
         smql.ingest(DINING, tmp_path / "db", scene="dining")
 
