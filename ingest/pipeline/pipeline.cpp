@@ -62,7 +62,7 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
     const ScaleSource source{.depth = depth,
                              .depthScale = capture.depthScale,
                              .given = options.scale.has_value(),
-                             .cameraHeight = options.cameraHeight.has_value(),
+                             .cameraHeight = capture.metric ? std::nullopt : options.cameraHeight,
                              .metric = capture.metric && !depth && !options.scale,
                              .onePairDepth = dense && dense->agreeing == 1 && !dense->points.empty()};
     std::vector<double> cameraHeights;

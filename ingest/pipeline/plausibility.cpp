@@ -138,13 +138,18 @@ PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleS
                                    "capture again with views of the floor, or with --scale"});
     std::vector<double>& cameras = !cameraHeights.empty() ? cameraHeights : frames;
     if (cameras.empty() && scene.info.viewpoint.position != model::Vec3{}) cameras = {scene.info.viewpoint.position.z};
+    // A height given (--camera-height) set the scale: the cameras stand at it, and judging them would judge the
+    // user's measurement; it is what the other checks expect of them, a robot's low camera included.
+    const double usualCamera = source.cameraHeight.value_or(kUsualCamera);
     if (floor && !cameras.empty()) {
         report.cameraHeight = median(cameras);
-        judge(report, "camera height", *report.cameraHeight, kCameraWarn, kCameraRefuse,
-              fmt::format("the cameras are {:.2f} m above the floor (people and robots hold them {:g} to {:g} m up)",
-                          *report.cameraHeight, kCameraWarn[0], kCameraWarn[1]),
-              *report.cameraHeight > 0 ? scaleFix(*report.cameraHeight / kUsualCamera, source)
-                                       : std::string("the floor found is above the cameras: check the capture"));
+        if (!source.cameraHeight)
+            judge(report, "camera height", *report.cameraHeight, kCameraWarn, kCameraRefuse,
+                  fmt::format("the cameras are {:.2f} m above the floor (people and robots hold them {:g} to {:g} m "
+                              "up)",
+                              *report.cameraHeight, kCameraWarn[0], kCameraWarn[1]),
+                  *report.cameraHeight > 0 ? scaleFix(*report.cameraHeight / usualCamera, source)
+                                           : std::string("the floor found is above the cameras: check the capture"));
     }
     if (report.ceilingHeight)
         judge(report, "ceiling height", *report.ceilingHeight, kCeilingWarn, kCeilingRefuse,
@@ -155,8 +160,8 @@ PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleS
     if (ratios.size() >= kMinNamedThings) {
         report.sizeRatio = median(ratios);
         // Cameras at a person's height say the scale is right: sizes far off are the boxes' fault.
-        const bool camerasAgree = report.cameraHeight && *report.cameraHeight >= kUsualCamera / kCameraAgrees &&
-                                  *report.cameraHeight <= kUsualCamera * kCameraAgrees;
+        const bool camerasAgree = report.cameraHeight && *report.cameraHeight >= usualCamera / kCameraAgrees &&
+                                  *report.cameraHeight <= usualCamera * kCameraAgrees;
         judge(report, "sizes of named things", *report.sizeRatio, kRatioWarn, kRatioRefuse,
               fmt::format("the named things are {:.2f} times the largest of their kinds, at the median of {} "
                           "(real rooms: about {:g})",
@@ -177,7 +182,7 @@ PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleS
              "check them with DESCRIBE and their evidence crops; slivers, pieces and duplicates come from "
              "detections of parts of things"});
     if (report.cameraHeight && report.sizeRatio && *report.cameraHeight > 0) {
-        const double byCameras = *report.cameraHeight / kUsualCamera, bySizes = *report.sizeRatio / kUsualRatio;
+        const double byCameras = *report.cameraHeight / usualCamera, bySizes = *report.sizeRatio / kUsualRatio;
         const bool agree = (byCameras < 1) == (bySizes < 1);
         const double factor = std::sqrt(byCameras * bySizes);
         if (agree && (factor < kAgreedRefuse[0] || factor > kAgreedRefuse[1]))

@@ -46,9 +46,11 @@ struct ScaleSource {
     bool stored = false;  // a stored scene, whose capture is not at hand: the fix names every option
     bool depth = false;   // metric from depth images (depthScale units per metre)
     double depthScale = 0;
-    bool given = false;         // --scale
-    bool cameraHeight = false;  // --camera-height: a scale that rests on the cameras' height alone is known
-    bool metric = false;        // poses in metres without depth (a sensor's, COLMAP triangulating with them)
+    bool given = false;  // --scale
+    // --camera-height, where it set the scale (photos without depth): the cameras' height is measured, so a scale
+    // resting on it alone is known, and it is the height the checks expect rather than a person's.
+    std::optional<double> cameraHeight;
+    bool metric = false;  // poses in metres without depth (a sensor's, COLMAP triangulating with them)
     // Photos without depth whose dense points are one pair's alone (dense_stereo.hpp): no second pair
     // checked its depth, and its two poses may be loose (a short step between them).
     bool onePairDepth = false;

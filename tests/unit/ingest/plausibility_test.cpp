@@ -111,6 +111,27 @@ TEST_CASE("plausibility: a room made to measure passes, the same room at the wro
     CHECK_FALSE(low.refused());
 }
 
+// Photos without depth of a robot whose camera stands 0.25 m up, its things small for their kinds (0.6 times a
+// room's): the cameras' height and the sizes both say the scale is too small, which refuses the memory when the
+// height is a person's assumed one. Given (--camera-height 0.25), the height set the scale and is what the checks
+// expect: the sizes alone speak, and they are within what real rooms hold.
+TEST_CASE("plausibility: a robot's camera height given is the height the checks expect", "[ingest][plausibility]") {
+    auto robot = room(1.0);
+    for (auto& n : robot.nodes) {
+        if (n.kind == model::NodeKind::Frame) n.box.center.z = 0.25;
+        if (n.kind == model::NodeKind::Object)
+            n.box.size = {n.box.size.x * 0.6, n.box.size.y * 0.6, n.box.size.z * 0.6};
+    }
+    const auto assumed = checkPlausibility(robot, {});
+    CHECK(has(assumed, "camera height", false));
+    CHECK(has(assumed, "scale", true));
+    const auto given = checkPlausibility(robot, {.cameraHeight = 0.25});
+    CHECK_FALSE(has(given, "camera height", false));
+    CHECK_FALSE(given.refused());
+    REQUIRE(given.cameraHeight);
+    CHECK(*given.cameraHeight == Approx(0.25));
+}
+
 TEST_CASE("plausibility: names kept only as detected_as still count for the scale", "[ingest][plausibility]") {
     // A desk's photos at twice their scale: every box too large for its detector's name, so each
     // name was kept only as a guess. Those guesses are the evidence that the scale is off.
@@ -215,7 +236,7 @@ TEST_CASE("plausibility: photos without depth scaled on one prior are refused, s
         CHECK(alignmentFindings(onePrior, {.metric = true, .onePairDepth = onePair}).empty());
         // The cameras' height given (--camera-height) is measured, not assumed: the scale resting on it is known,
         // but one pair's dense points are as loose across the room.
-        CHECK(alignmentFindings(onePrior, {.cameraHeight = true, .onePairDepth = onePair}).empty() == !onePair);
+        CHECK(alignmentFindings(onePrior, {.cameraHeight = 1.5, .onePairDepth = onePair}).empty() == !onePair);
         // A second prior that agrees checks it.
         Alignment twoPriors = onePrior;
         twoPriors.scalePriors = 2;
