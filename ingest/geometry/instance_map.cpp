@@ -7,6 +7,8 @@
 #include <optional>
 #include <unordered_set>
 
+#include "ingest/geometry/typical_sizes.hpp"
+
 namespace smql::ingest {
 
 namespace {
@@ -184,7 +186,7 @@ void InstanceMap::integrate(std::vector<InstanceView> frameViews) {
                                               [&](const auto& other) { return instance.named(other.first); });
             if (category == view.label && instanceIn >= options_.fragmentShare) covered.push_back(k);
             const double needed = sameName ? options_.joinShare : options_.relabelShare;
-            if (!sameName && !options_.voteLabels) continue;
+            if (!sameName && (!options_.voteLabels || oneCarriesTheOther(view.label, category))) continue;
             if (std::max(viewIn, instanceIn) < needed) continue;
             if (viewIn + instanceIn > bestScore) bestScore = viewIn + instanceIn, best = k;
         }
@@ -247,11 +249,14 @@ void InstanceMap::consolidate() {
                          [](const Instance& a, const Instance& b) { return a.cells.size() > b.cells.size(); });
         for (std::size_t large = 0; large < instances_.size() && !changed; ++large) {
             std::optional<std::unordered_map<std::uint64_t, InstanceCell>> largeCore;  // made once it is needed
+            const std::string largeName = instances_[large].category();
             for (std::size_t small = large + 1; small < instances_.size(); ++small) {
                 Instance& a = instances_[small];
                 Instance& b = instances_[large];
                 if (boundsApart(b, a.lo, a.hi, options_.cell)) continue;
-                if (!options_.voteLabels && a.category() != b.category()) continue;
+                const std::string smallName = a.category();
+                if (smallName != largeName && (!options_.voteLabels || oneCarriesTheOther(smallName, largeName)))
+                    continue;
                 if (!largeCore) largeCore = core(b);
                 if (shareNear(a.cells, *largeCore) < options_.fragmentShare || restsOn(a, b)) continue;
                 absorb(b, std::move(a));

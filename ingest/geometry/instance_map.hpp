@@ -4,7 +4,9 @@
 // a view joins the instance whose cells its own lie among (3D overlap and
 // name), a frame's two views are two things, and, between frames, pieces of one
 // thing are merged while things that merely touch (a table and its chairs) or
-// rest on one another (a mug on a table) stay apart. The map is updated frame by
+// rest on one another (a mug on a table) stay apart, and so, by their names, do a
+// thing and what carries it (a monitor and its desk), however their points mix
+// where depth from photos smears one onto the other. The map is updated frame by
 // frame, so a live memory can run it as frames stream in; consolidate() can run
 // at any time (docs/ingest.md, "Objects from detections", gives the rules and
 // their thresholds).
@@ -35,7 +37,8 @@ struct InstanceMapOptions {
     double restingShare = 0.7;   // "rests on": this share of the larger's cells under its footprint lie below its
                                  // lowest cells (plus restingGap)
     double restingGap = 0.05;    // m
-    bool voteLabels = true;      // a closed-set detector: names differ from view to view, the votes decide
+    bool voteLabels = true;      // a closed-set detector: names differ from view to view, the votes decide, but
+                                 // a thing and what carries it (a monitor and its desk) are never joined
 };
 
 // One view of one thing: its points in the aligned frame, and what it was detected as.

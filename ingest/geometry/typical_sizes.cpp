@@ -136,6 +136,11 @@ bool holdsThings(std::string_view category) {
     return t && t->holdsThings;
 }
 
+bool oneCarriesTheOther(std::string_view a, std::string_view b) {
+    return (usualSupport(a) == Support::Surface && holdsThings(b)) ||
+           (usualSupport(b) == Support::Surface && holdsThings(a));
+}
+
 bool hasUprightEnds(std::string_view category) {
     const Typical* t = find(category);
     return t && t->uprightEnds;

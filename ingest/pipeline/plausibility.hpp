@@ -49,7 +49,7 @@ struct ScaleSource {
     bool given = false;  // --scale
     // --camera-height, where it set the scale (photos without depth): the cameras' height is measured, so a scale
     // resting on it alone is known, and it is the height the checks expect rather than a person's.
-    std::optional<double> cameraHeight;
+    std::optional<double> cameraHeight = std::nullopt;
     bool metric = false;  // poses in metres without depth (a sensor's, COLMAP triangulating with them)
     // Photos without depth whose dense points are one pair's alone (dense_stereo.hpp): no second pair
     // checked its depth, and its two poses may be loose (a short step between them).
