@@ -228,22 +228,50 @@ bool boundsTheRoom(const WallSegment& wall, const Candidate& c, const PointCloud
     return static_cast<double>(behind) <= options.maxBehindOfSurface * static_cast<double>(wall.inliers);
 }
 
-// Furniture standing against a wall (a cabinet front, a sideboard) makes a parallel plane just inside
-// it: of parallel segments that overlap along the wall and lie less than layerDistance apart, only the
-// outermost one is the wall. Strongest first.
+// How much of `front`'s length lies within `wall`'s extent at a signed distance from `wall`'s plane (into the
+// room) between `nearest` and `farthest`: distances are measured along the length of `front`, which may turn
+// from `wall` a little.
+double lengthAhead(const WallSegment& front, const WallSegment& wall, double nearest, double farthest) {
+    // `front`'s line p(t) = base + t * direction, t from along0 to along1; on it, `wall`'s signed distance and
+    // its position along `wall` are linear in t.
+    const model::Vec3 base{-front.offset * front.normal.x, -front.offset * front.normal.y, 0};
+    const model::Vec3 dir = front.direction(), wallDir = wall.direction();
+    double lo = front.along0, hi = front.along1;
+    // Keeps the t where a + b * t lies in [low, high].
+    auto clip = [&](double a, double b, double low, double high) {
+        if (std::abs(b) < 1e-12) {
+            if (a < low || a > high) hi = lo;
+            return;
+        }
+        double t0 = (low - a) / b, t1 = (high - a) / b;
+        if (t0 > t1) std::swap(t0, t1);
+        lo = std::max(lo, t0), hi = std::min(hi, t1);
+    };
+    clip(wallDir.x * base.x + wallDir.y * base.y, wallDir.x * dir.x + wallDir.y * dir.y, wall.along0, wall.along1);
+    clip(wall.signedDistance(base), wall.normal.x * dir.x + wall.normal.y * dir.y, nearest, farthest);
+    return std::max(0.0, hi - lo);
+}
+
+// Furniture standing against a wall (a cabinet front, a sideboard) makes a plane just inside it: parallel,
+// or turned a little where the fronts of several things in a row make it (ScanNet's bathroom: its vanity's,
+// toilet's and bathtub's fronts and the shower curtain made a 3.3 m plane 12 degrees from the wall behind
+// them, which cut the toilet and the vanity to slivers). Of two segments within layerAngle of each other, one
+// that lies in front of the other (by mergeOffset to layerDistance) for more than half the shorter one's
+// length is not the wall; one that lies on the other (within mergeOffset) for as much is the same wall seen
+// twice, and the weaker goes. Strongest first.
 std::vector<WallSegment> outermost(const std::vector<WallSegment>& walls, const WallOptions& options) {
-    const double parallelCos = std::cos(options.mergeAngle * kDegree);
+    const double layerCos = std::cos(options.layerAngle * kDegree);
     std::vector<char> inner(walls.size(), 0);
     for (std::size_t i = 0; i < walls.size(); ++i) {
         for (std::size_t j = 0; j < walls.size(); ++j) {
             const auto& a = walls[i];
             const auto& b = walls[j];
-            if (i == j || a.normal.x * b.normal.x + a.normal.y * b.normal.y < parallelCos) continue;
-            // b lies behind a (farther from the room) by less than layerDistance?
-            double depth = b.offset - a.offset;
-            if (depth <= options.mergeOffset || depth > options.layerDistance) continue;
-            double overlap = std::min(a.along1, b.along1) - std::max(a.along0, b.along0);
-            if (overlap > 0.5 * std::min(a.length(), b.length())) inner[i] = 1;
+            if (i == j || a.normal.x * b.normal.x + a.normal.y * b.normal.y < layerCos) continue;
+            const double half = 0.5 * std::min(a.length(), b.length());
+            const bool weaker = a.inliers < b.inliers || (a.inliers == b.inliers && i > j);
+            if (lengthAhead(a, b, options.mergeOffset, options.layerDistance) > half ||
+                (weaker && lengthAhead(a, b, -options.mergeOffset, options.mergeOffset) > half))
+                inner[i] = 1;
         }
     }
     std::vector<WallSegment> outer;

@@ -49,7 +49,8 @@ struct WallOptions {
     double maxGap = 1.0;            // inliers farther apart than this along the plane form separate segments
     double behindDistance = 0.3;    // a point this far behind a wall was seen through it (depth noise is less)
     double maxBehindShare = 0.2;    // walls bound the room: of the points over a segment, at most this share behind it
-    double layerDistance = 1.0;     // a parallel, overlapping segment up to this far in front of a wall is furniture
+    double layerDistance = 1.0;     // an overlapping segment up to this far in front of a wall is furniture ...
+    double layerAngle = 20;         // ... when it turns from the wall by at most this many degrees
     double coverageCell = 0.25;     // the extent is cut into cells of this side ...
     double minCoverage = 0.4;       // ... and a wall's inliers fill at least this share of them
     double maxBehindOfSurface = 0.3;  // ... and at most this many per inlier of the segment itself
