@@ -186,7 +186,7 @@ void InstanceMap::integrate(std::vector<InstanceView> frameViews) {
                                               [&](const auto& other) { return instance.named(other.first); });
             if (category == view.label && instanceIn >= options_.fragmentShare) covered.push_back(k);
             const double needed = sameName ? options_.joinShare : options_.relabelShare;
-            if (!sameName && (!options_.voteLabels || oneCarriesTheOther(view.label, category))) continue;
+            if (!sameName && !options_.voteLabels) continue;
             if (std::max(viewIn, instanceIn) < needed) continue;
             if (viewIn + instanceIn > bestScore) bestScore = viewIn + instanceIn, best = k;
         }

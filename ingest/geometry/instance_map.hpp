@@ -37,8 +37,8 @@ struct InstanceMapOptions {
     double restingShare = 0.7;   // "rests on": this share of the larger's cells under its footprint lie below its
                                  // lowest cells (plus restingGap)
     double restingGap = 0.05;    // m
-    bool voteLabels = true;      // a closed-set detector: names differ from view to view, the votes decide, but
-                                 // a thing and what carries it (a monitor and its desk) are never joined
+    bool voteLabels = true;      // a closed-set detector: names differ from view to view, the votes decide; but
+                                 // a thing and what carries it (a monitor and its desk) are no pieces of one
 };
 
 // One view of one thing: its points in the aligned frame, and what it was detected as.

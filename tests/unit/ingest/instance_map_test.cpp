@@ -116,10 +116,10 @@ TEST_CASE("instance map: a sofa's end a detector calls a chair is a piece of the
 
 TEST_CASE("instance map: a monitor on a desk stays a thing of its own where the desk's views take it in",
           "[ingest][instances]") {
-    // As TUM fr1/rpy's photos lifted on dense points placed them: each view the detector called the desk took in
-    // the monitor standing on it (a desk's box holds what stands on it), and each of the monitor's views took in
-    // the desk top around its foot. Its points then lie among the desk's in every frame, and under its
-    // footprint the desk's cells rise up its face: by their points alone it is a piece of the desk.
+    // As TUM fr1/rpy's photos lifted on dense points placed them: but for the first, each view the detector called
+    // the desk took in the monitor standing on it (a desk's box holds what stands on it), and each of the
+    // monitor's views took in the desk top around its foot. Its points then lie among the desk's core, and under
+    // its footprint the desk's cells rise up its face: by their points alone it is a piece of the desk.
     const model::Vec3 desk{0, 1, 0.375}, deskSize{1.6, 0.8, 0.75};
     const model::Vec3 monitor{0.2, 1.2, 0.975}, monitorSize{0.6, 0.2, 0.45};
     auto merged = [](PointCloud a, const PointCloud& b) {
@@ -131,7 +131,8 @@ TEST_CASE("instance map: a monitor on a desk stays a thing of its own where the 
         const model::Vec3 from{0.3 * frame - 0.75, 1, -0.6};
         const PointCloud monitorSeen = facesSeen(monitor, monitorSize, from);
         std::vector<InstanceView> views;
-        views.push_back(view(frame, "desk", merged(facesSeen(desk, deskSize, from), monitorSeen)));
+        const PointCloud deskSeen = facesSeen(desk, deskSize, from);
+        views.push_back(view(frame, "desk", frame == 0 ? deskSeen : merged(deskSeen, monitorSeen)));
         views.push_back(
             view(frame, "monitor", merged(monitorSeen, facesSeen({0.2, 1.2, 0.74}, {0.8, 0.4, 0.02}, from))));
         map.integrate(std::move(views));
