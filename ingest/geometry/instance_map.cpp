@@ -247,15 +247,18 @@ void InstanceMap::consolidate() {
         // The larger first: pieces are merged into the thing, not the thing into a piece.
         std::stable_sort(instances_.begin(), instances_.end(),
                          [](const Instance& a, const Instance& b) { return a.cells.size() > b.cells.size(); });
+        // Each instance's name, its votes' verdict, once a pass: a merge ends the pass.
+        std::vector<std::string> names;
+        names.reserve(instances_.size());
+        for (const Instance& instance : instances_) names.push_back(instance.category());
         for (std::size_t large = 0; large < instances_.size() && !changed; ++large) {
             std::optional<std::unordered_map<std::uint64_t, InstanceCell>> largeCore;  // made once it is needed
-            const std::string largeName = instances_[large].category();
             for (std::size_t small = large + 1; small < instances_.size(); ++small) {
                 Instance& a = instances_[small];
                 Instance& b = instances_[large];
                 if (boundsApart(b, a.lo, a.hi, options_.cell)) continue;
-                const std::string smallName = a.category();
-                if (smallName != largeName && (!options_.voteLabels || oneCarriesTheOther(smallName, largeName)))
+                if (names[small] != names[large] &&
+                    (!options_.voteLabels || oneCarriesTheOther(names[small], names[large])))
                     continue;
                 if (!largeCore) largeCore = core(b);
                 if (shareNear(a.cells, *largeCore) < options_.fragmentShare || restsOn(a, b)) continue;
