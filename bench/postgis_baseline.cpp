@@ -67,6 +67,12 @@ CREATE INDEX nodes_by_parent ON nodes(parent);
 constexpr const char* kPostgisNodeColumns =
     "n.id, n.kind, n.category, n.geometry, n.cx, n.cy, n.cz, n.sx, n.sy, n.sz, n.yaw, n.hidden";
 
+}  // namespace
+
+// A connection, named outside the file's anonymous namespace: PostgisBaseline::Impl, declared in the header,
+// holds one (GCC's -Wsubobject-linkage; sqlite_baseline.cpp's Statement says why).
+namespace postgis {
+
 struct Connection {
     PGconn* pg = nullptr;
     explicit Connection(const std::string& info) : pg(PQconnectdb(info.c_str())) {
@@ -80,6 +86,12 @@ struct Connection {
     Connection(const Connection&) = delete;
     Connection& operator=(const Connection&) = delete;
 };
+
+}  // namespace postgis
+
+using postgis::Connection;
+
+namespace {
 
 struct Result {
     PGresult* r;

@@ -80,6 +80,13 @@ constexpr double kLargestRadius = 1e4;
     throw std::runtime_error(fmt::format("sqlite: {}: {}", what, sqlite3_errmsg(db)));
 }
 
+}  // namespace
+
+// A prepared statement, named outside the file's anonymous namespace: SqliteBaseline::Impl, declared in
+// the header, holds some, and a field of an anonymous namespace's type would give it internal linkage
+// in part (GCC's -Wsubobject-linkage).
+namespace sqlite {
+
 class Statement {
 public:
     Statement(sqlite3* db, std::string_view sql) : db_(db) {
@@ -139,6 +146,12 @@ private:
     sqlite3* db_;
     sqlite3_stmt* stmt_ = nullptr;
 };
+
+}  // namespace sqlite
+
+using sqlite::Statement;
+
+namespace {
 
 void exec(sqlite3* db, const char* sql) {
     char* message = nullptr;

@@ -34,17 +34,19 @@ namespace {
 
 constexpr std::size_t kStatementCacheSize = 512;
 
-// Texts hashed and compared as views, so that looking one up copies nothing.
-struct TextHash {
-    using is_transparent = void;
-    std::size_t operator()(std::string_view text) const { return std::hash<std::string_view>{}(text); }
-};
 // Decoded scenes kept in memory; the least recently used one goes first.
 constexpr std::size_t kSnapshotCacheSize = 32;
 
 }  // namespace
 
 struct Engine::State {
+    // Texts hashed and compared as views, so that looking one up copies nothing. A member, not a type of the
+    // file's anonymous namespace: State is declared in engine.hpp, and a field of such a type would give it
+    // internal linkage in part (GCC's -Wsubobject-linkage).
+    struct TextHash {
+        using is_transparent = void;
+        std::size_t operator()(std::string_view text) const { return std::hash<std::string_view>{}(text); }
+    };
     std::unique_ptr<storage::Database> db;
     catalog::Session session;
     struct CachedSnapshot {

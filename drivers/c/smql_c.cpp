@@ -35,18 +35,15 @@
 #include "storage/output_guard.hpp"
 #include "view/view.hpp"
 
-namespace {
-
-struct LastError {
-    smql_status status = SMQL_OK;
-    std::string text;
-    int line = 0;
-    int column = 0;
-};
-
-}  // namespace
-
 struct smql_db {
+    // A type of the handle's own, not of the file's anonymous namespace: smql_db is declared in smql.h, and
+    // a field of such a type would give it internal linkage in part (GCC's -Wsubobject-linkage).
+    struct LastError {
+        smql_status status = SMQL_OK;
+        std::string text;
+        int line = 0;
+        int column = 0;
+    };
     std::unique_ptr<smql::Engine> engine;  // null when smql_open failed: the handle only reports why
     // A handle smql_open made of a postgresql:// URL: statements run in the fleet store's server
     // (docs/fleet.md), through the fleet module, which owns the session.
@@ -123,7 +120,7 @@ smql_type typeOf(smql::ValueType type) {
     return SMQL_INVALID;
 }
 
-const LastError* lastError(const smql_db* db) {
+const smql_db::LastError* lastError(const smql_db* db) {
     std::lock_guard lock(db->errorsMutex);
     auto it = db->errors.find(std::this_thread::get_id());
     // Only this thread writes its own entry, and unordered_map keeps element
@@ -139,7 +136,7 @@ void forgetError(smql_db* db) noexcept {
 
 smql_status recordError(smql_db* db, smql_status status, std::string text, int line = 0, int column = 0) {
     std::lock_guard lock(db->errorsMutex);
-    db->errors[std::this_thread::get_id()] = LastError{status, std::move(text), line, column};
+    db->errors[std::this_thread::get_id()] = smql_db::LastError{status, std::move(text), line, column};
     return status;
 }
 
@@ -326,23 +323,23 @@ void smql_close(smql_db* db) {
 
 const char* smql_errmsg(const smql_db* db) {
     if (!db) return kNullHandleMessage;
-    const LastError* error = lastError(db);
+    const smql_db::LastError* error = lastError(db);
     return error ? error->text.c_str() : "";
 }
 
 smql_status smql_errcode(const smql_db* db) {
     if (!db) return SMQL_ERROR_MISUSE;
-    const LastError* error = lastError(db);
+    const smql_db::LastError* error = lastError(db);
     return error ? error->status : SMQL_OK;
 }
 
 int smql_error_line(const smql_db* db) {
-    const LastError* error = db ? lastError(db) : nullptr;
+    const smql_db::LastError* error = db ? lastError(db) : nullptr;
     return error ? error->line : 0;
 }
 
 int smql_error_column(const smql_db* db) {
-    const LastError* error = db ? lastError(db) : nullptr;
+    const smql_db::LastError* error = db ? lastError(db) : nullptr;
     return error ? error->column : 0;
 }
 

@@ -143,7 +143,9 @@ TEST_CASE("spatial queries from the stored blocks answer as a look at every box 
     if (nanEvery == 0) {
         snapshot = catalog::SceneSnapshot::load(*room.read, room.info);
     } else {
-        model::SceneVersion version{.number = 1, .info = room.info};
+        model::SceneVersion version;
+        version.number = 1;
+        version.info = room.info;
         room.read->forEachNodeInScene(room.info.id, [&](const model::Node& n) { version.nodes.push_back(n); });
         for (std::size_t i = 1; i < version.nodes.size(); i += nanEvery)
             (i % 2 ? version.nodes[i].box.center.z : version.nodes[i].box.size.x) = std::nan("");
