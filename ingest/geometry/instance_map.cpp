@@ -187,6 +187,11 @@ void InstanceMap::integrate(std::vector<InstanceView> frameViews) {
             if (category == view.label && instanceIn >= options_.fragmentShare) covered.push_back(k);
             const double needed = sameName ? options_.joinShare : options_.relabelShare;
             if (!sameName && !options_.voteLabels) continue;
+            // A view named as a thing put on tables joins no instance named as what carries it: in a frame where
+            // the detector named a monitor and not the desk under it, the monitor's points lie within the desk's
+            // instance, whose views took it in. The other way round a view's name is one vote among the
+            // instance's (docs/ingest.md, "Objects from detections", step 3).
+            if (!sameName && carries(category, view.label)) continue;
             if (std::max(viewIn, instanceIn) < needed) continue;
             if (viewIn + instanceIn > bestScore) bestScore = viewIn + instanceIn, best = k;
         }

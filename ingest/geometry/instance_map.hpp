@@ -38,7 +38,8 @@ struct InstanceMapOptions {
                                  // lowest cells (plus restingGap)
     double restingGap = 0.05;    // m
     bool voteLabels = true;      // a closed-set detector: names differ from view to view, the votes decide; but
-                                 // a thing and what carries it (a monitor and its desk) are no pieces of one
+                                 // a thing and what carries it (a monitor and its desk) are no pieces of one, and
+                                 // a view of the thing joins no instance of what carries it
 };
 
 // One view of one thing: its points in the aligned frame, and what it was detected as.

@@ -136,10 +136,11 @@ bool holdsThings(std::string_view category) {
     return t && t->holdsThings;
 }
 
-bool oneCarriesTheOther(std::string_view a, std::string_view b) {
-    return (usualSupport(a) == Support::Surface && holdsThings(b)) ||
-           (usualSupport(b) == Support::Surface && holdsThings(a));
+bool carries(std::string_view carrier, std::string_view thing) {
+    return usualSupport(thing) == Support::Surface && holdsThings(carrier);
 }
+
+bool oneCarriesTheOther(std::string_view a, std::string_view b) { return carries(a, b) || carries(b, a); }
 
 bool hasUprightEnds(std::string_view category) {
     const Typical* t = find(category);

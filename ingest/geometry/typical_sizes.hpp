@@ -71,8 +71,10 @@ Support usualSupport(std::string_view category);
 // surface that is such a thing's top is not the floor.
 bool holdsThings(std::string_view category);
 
-// Whether things of one kind are put on the tops of things of the other, either way round (a monitor and the
-// desk it stands on, a mug and a table): two such are never one thing, however close their points lie.
+// Whether things of kind `thing` are put on the tops of things of kind `carrier` (a monitor on a desk, a mug on a
+// table): things usually put on a surface, and a kind that holds things.
+bool carries(std::string_view carrier, std::string_view thing);
+// The same either way round: two such are never one thing, however close their points lie.
 bool oneCarriesTheOther(std::string_view a, std::string_view b);
 
 // Whether things of a kind have a thin upright part at an end or side (a bed's headboard or footboard, a
