@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <map>
+#include <string>
 
 #include "ingest/geometry/instance_map.hpp"
 
@@ -114,32 +116,45 @@ TEST_CASE("instance map: a sofa's end a detector calls a chair is a piece of the
     CHECK(map.instances()[0].frames.size() == 8);
 }
 
+namespace {
+
+// A desk and the monitor standing on it, as TUM fr1/rpy's: the monitor's foot on the desk's top.
+const model::Vec3 kDesk{0, 1, 0.375}, kDeskSize{1.6, 0.8, 0.75};
+const model::Vec3 kMonitor{0.2, 1.2, 0.975}, kMonitorSize{0.6, 0.2, 0.45};
+
+PointCloud merged(PointCloud a, const PointCloud& b) {
+    for (std::size_t i = 0; i < b.size(); ++i) a.push(b.points[i], b.colors[i], 0);
+    return a;
+}
+
+// How many frames the instances of each name hold once the map is consolidated.
+std::map<std::string, std::size_t> framesByName(InstanceMap& map) {
+    map.consolidate();
+    std::map<std::string, std::size_t> frames;
+    for (const auto& instance : map.instances()) frames[instance.category()] += instance.frames.size();
+    return frames;
+}
+
+}  // namespace
+
 TEST_CASE("instance map: a monitor on a desk stays a thing of its own where the desk's views take it in",
           "[ingest][instances]") {
     // As TUM fr1/rpy's photos lifted on dense points placed them: but for the first, each view the detector called
     // the desk took in the monitor standing on it (a desk's box holds what stands on it), and each of the
     // monitor's views took in the desk top around its foot. Its points then lie among the desk's core, and under
     // its footprint the desk's cells rise up its face: by their points alone it is a piece of the desk.
-    const model::Vec3 desk{0, 1, 0.375}, deskSize{1.6, 0.8, 0.75};
-    const model::Vec3 monitor{0.2, 1.2, 0.975}, monitorSize{0.6, 0.2, 0.45};
-    auto merged = [](PointCloud a, const PointCloud& b) {
-        for (std::size_t i = 0; i < b.size(); ++i) a.push(b.points[i], b.colors[i], 0);
-        return a;
-    };
     InstanceMap map;
     for (std::uint32_t frame = 0; frame < 6; ++frame) {
         const model::Vec3 from{0.3 * frame - 0.75, 1, -0.6};
-        const PointCloud monitorSeen = facesSeen(monitor, monitorSize, from);
+        const PointCloud monitorSeen = facesSeen(kMonitor, kMonitorSize, from);
         std::vector<InstanceView> views;
-        const PointCloud deskSeen = facesSeen(desk, deskSize, from);
+        const PointCloud deskSeen = facesSeen(kDesk, kDeskSize, from);
         views.push_back(view(frame, "desk", frame == 0 ? deskSeen : merged(deskSeen, monitorSeen)));
         views.push_back(
             view(frame, "monitor", merged(monitorSeen, facesSeen({0.2, 1.2, 0.74}, {0.8, 0.4, 0.02}, from))));
         map.integrate(std::move(views));
     }
-    map.consolidate();
-    std::map<std::string, std::size_t> frames;
-    for (const auto& instance : map.instances()) frames[instance.category()] += instance.frames.size();
+    auto frames = framesByName(map);
     CHECK(frames["desk"] == 6);
     CHECK(frames["monitor"] == 6);
     CHECK(map.instances().size() == 2);
@@ -151,26 +166,18 @@ TEST_CASE("instance map: a monitor seen in frames where the desk under it was no
     // view took in the monitor standing on it; in the keyframes after, it named the monitor alone. Its views then
     // lie within the desk's instance, and by their points joined it as one more vote, where a person sees two
     // things.
-    const model::Vec3 desk{0, 1, 0.375}, deskSize{1.6, 0.8, 0.75};
-    const model::Vec3 monitor{0.2, 1.2, 0.975}, monitorSize{0.6, 0.2, 0.45};
     InstanceMap map;
     for (std::uint32_t frame = 0; frame < 6; ++frame) {
         const model::Vec3 from{0.3 * frame - 0.75, 1, -0.6};
-        const PointCloud monitorSeen = facesSeen(monitor, monitorSize, from);
+        const PointCloud monitorSeen = facesSeen(kMonitor, kMonitorSize, from);
         std::vector<InstanceView> views;
-        if (frame < 3) {
-            PointCloud deskSeen = facesSeen(desk, deskSize, from);
-            for (std::size_t i = 0; i < monitorSeen.size(); ++i)
-                deskSeen.push(monitorSeen.points[i], {128, 128, 128}, 0);
-            views.push_back(view(frame, "desk", std::move(deskSeen)));
-        } else {
+        if (frame < 3)
+            views.push_back(view(frame, "desk", merged(facesSeen(kDesk, kDeskSize, from), monitorSeen)));
+        else
             views.push_back(view(frame, "monitor", monitorSeen));
-        }
         map.integrate(std::move(views));
     }
-    map.consolidate();
-    std::map<std::string, std::size_t> frames;
-    for (const auto& instance : map.instances()) frames[instance.category()] += instance.frames.size();
+    auto frames = framesByName(map);
     CHECK(frames["desk"] == 3);
     CHECK(frames["monitor"] == 3);
     CHECK(map.instances().size() == 2);
