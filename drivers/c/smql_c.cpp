@@ -44,6 +44,7 @@ struct smql_db {
         int line = 0;
         int column = 0;
     };
+
     std::unique_ptr<smql::Engine> engine;  // null when smql_open failed: the handle only reports why
     // A handle smql_open made of a postgresql:// URL: statements run in the fleet store's server
     // (docs/fleet.md), through the fleet module, which owns the session.
@@ -58,6 +59,8 @@ struct smql_db {
     // smql_interrupt's word to a running smql_ingest, which asks between frames.
     std::atomic<bool> ingestInterrupted{false};
 };
+
+using LastError = smql_db::LastError;
 
 struct smql_result {
     smql::ResultSet set;                // the last statement's columns and rows
@@ -120,7 +123,7 @@ smql_type typeOf(smql::ValueType type) {
     return SMQL_INVALID;
 }
 
-const smql_db::LastError* lastError(const smql_db* db) {
+const LastError* lastError(const smql_db* db) {
     std::lock_guard lock(db->errorsMutex);
     auto it = db->errors.find(std::this_thread::get_id());
     // Only this thread writes its own entry, and unordered_map keeps element
@@ -136,7 +139,7 @@ void forgetError(smql_db* db) noexcept {
 
 smql_status recordError(smql_db* db, smql_status status, std::string text, int line = 0, int column = 0) {
     std::lock_guard lock(db->errorsMutex);
-    db->errors[std::this_thread::get_id()] = smql_db::LastError{status, std::move(text), line, column};
+    db->errors[std::this_thread::get_id()] = LastError{status, std::move(text), line, column};
     return status;
 }
 
@@ -323,23 +326,23 @@ void smql_close(smql_db* db) {
 
 const char* smql_errmsg(const smql_db* db) {
     if (!db) return kNullHandleMessage;
-    const smql_db::LastError* error = lastError(db);
+    const LastError* error = lastError(db);
     return error ? error->text.c_str() : "";
 }
 
 smql_status smql_errcode(const smql_db* db) {
     if (!db) return SMQL_ERROR_MISUSE;
-    const smql_db::LastError* error = lastError(db);
+    const LastError* error = lastError(db);
     return error ? error->status : SMQL_OK;
 }
 
 int smql_error_line(const smql_db* db) {
-    const smql_db::LastError* error = db ? lastError(db) : nullptr;
+    const LastError* error = db ? lastError(db) : nullptr;
     return error ? error->line : 0;
 }
 
 int smql_error_column(const smql_db* db) {
-    const smql_db::LastError* error = db ? lastError(db) : nullptr;
+    const LastError* error = db ? lastError(db) : nullptr;
     return error ? error->column : 0;
 }
 
