@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -127,9 +128,22 @@ PointCloud merged(PointCloud a, const PointCloud& b) {
     return a;
 }
 
-// How many frames the instances of each name hold once the map is consolidated.
-std::map<std::string, std::size_t> framesByName(InstanceMap& map) {
+// What a camera moving along the desk sees of the desk and of the monitor in each of six frames, which `views`
+// makes the frame's views of; the map consolidated after the last frame.
+using DeskViews = std::function<std::vector<InstanceView>(std::uint32_t frame, const model::Vec3& from,
+                                                          const PointCloud& desk, const PointCloud& monitor)>;
+InstanceMap deskAndMonitor(const DeskViews& views) {
+    InstanceMap map;
+    for (std::uint32_t frame = 0; frame < 6; ++frame) {
+        const model::Vec3 from{0.3 * frame - 0.75, 1, -0.6};
+        map.integrate(views(frame, from, facesSeen(kDesk, kDeskSize, from), facesSeen(kMonitor, kMonitorSize, from)));
+    }
     map.consolidate();
+    return map;
+}
+
+// How many frames the instances of each name hold.
+std::map<std::string, std::size_t> framesByName(const InstanceMap& map) {
     std::map<std::string, std::size_t> frames;
     for (const auto& instance : map.instances()) frames[instance.category()] += instance.frames.size();
     return frames;
@@ -143,17 +157,12 @@ TEST_CASE("instance map: a monitor on a desk stays a thing of its own where the 
     // the desk took in the monitor standing on it (a desk's box holds what stands on it), and each of the
     // monitor's views took in the desk top around its foot. Its points then lie among the desk's core, and under
     // its footprint the desk's cells rise up its face: by their points alone it is a piece of the desk.
-    InstanceMap map;
-    for (std::uint32_t frame = 0; frame < 6; ++frame) {
-        const model::Vec3 from{0.3 * frame - 0.75, 1, -0.6};
-        const PointCloud monitorSeen = facesSeen(kMonitor, kMonitorSize, from);
-        std::vector<InstanceView> views;
-        const PointCloud deskSeen = facesSeen(kDesk, kDeskSize, from);
-        views.push_back(view(frame, "desk", frame == 0 ? deskSeen : merged(deskSeen, monitorSeen)));
-        views.push_back(
-            view(frame, "monitor", merged(monitorSeen, facesSeen({0.2, 1.2, 0.74}, {0.8, 0.4, 0.02}, from))));
-        map.integrate(std::move(views));
-    }
+    const InstanceMap map = deskAndMonitor(
+        [](std::uint32_t frame, const model::Vec3& from, const PointCloud& desk, const PointCloud& monitor) {
+            return std::vector<InstanceView>{
+                view(frame, "desk", frame == 0 ? desk : merged(desk, monitor)),
+                view(frame, "monitor", merged(monitor, facesSeen({0.2, 1.2, 0.74}, {0.8, 0.4, 0.02}, from)))};
+        });
     auto frames = framesByName(map);
     CHECK(frames["desk"] == 6);
     CHECK(frames["monitor"] == 6);
@@ -166,17 +175,11 @@ TEST_CASE("instance map: a monitor seen in frames where the desk under it was no
     // view took in the monitor standing on it; in the keyframes after, it named the monitor alone. Its views then
     // lie within the desk's instance, and by their points joined it as one more vote, where a person sees two
     // things.
-    InstanceMap map;
-    for (std::uint32_t frame = 0; frame < 6; ++frame) {
-        const model::Vec3 from{0.3 * frame - 0.75, 1, -0.6};
-        const PointCloud monitorSeen = facesSeen(kMonitor, kMonitorSize, from);
-        std::vector<InstanceView> views;
-        if (frame < 3)
-            views.push_back(view(frame, "desk", merged(facesSeen(kDesk, kDeskSize, from), monitorSeen)));
-        else
-            views.push_back(view(frame, "monitor", monitorSeen));
-        map.integrate(std::move(views));
-    }
+    const InstanceMap map =
+        deskAndMonitor([](std::uint32_t frame, const model::Vec3&, const PointCloud& desk, const PointCloud& monitor) {
+            return std::vector<InstanceView>{frame < 3 ? view(frame, "desk", merged(desk, monitor))
+                                                       : view(frame, "monitor", monitor)};
+        });
     auto frames = framesByName(map);
     CHECK(frames["desk"] == 3);
     CHECK(frames["monitor"] == 3);
