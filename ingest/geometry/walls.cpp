@@ -235,7 +235,8 @@ double lengthAhead(const WallSegment& front, const WallSegment& wall, double nea
     // `front`'s line p(t) = base + t * direction, t from along0 to along1; on it, `wall`'s signed distance and
     // its position along `wall` are linear in t.
     const model::Vec3 base{-front.offset * front.normal.x, -front.offset * front.normal.y, 0};
-    const model::Vec3 dir = front.direction(), wallDir = wall.direction();
+    const model::Vec3 dir = front.direction();
+    const Eigen::Vector2d wallNormal{wall.normal.x, wall.normal.y};
     double lo = front.along0, hi = front.along1;
     // Keeps the t where a + b * t lies in [low, high].
     auto clip = [&](double a, double b, double low, double high) {
@@ -247,7 +248,7 @@ double lengthAhead(const WallSegment& front, const WallSegment& wall, double nea
         if (t0 > t1) std::swap(t0, t1);
         lo = std::max(lo, t0), hi = std::min(hi, t1);
     };
-    clip(wallDir.x * base.x + wallDir.y * base.y, wallDir.x * dir.x + wallDir.y * dir.y, wall.along0, wall.along1);
+    clip(alongOf(wallNormal, base), alongOf(wallNormal, dir), wall.along0, wall.along1);
     clip(wall.signedDistance(base), wall.normal.x * dir.x + wall.normal.y * dir.y, nearest, farthest);
     return std::max(0.0, hi - lo);
 }
