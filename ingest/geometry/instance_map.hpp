@@ -5,8 +5,9 @@
 // name), a frame's two views are two things, and, between frames, pieces of one
 // thing are merged while things that merely touch (a table and its chairs) or
 // rest on one another (a mug on a table) stay apart, and so, by their names, do a
-// thing and what carries it (a monitor and its desk), however their points mix
-// where depth from photos smears one onto the other. The map is updated frame by
+// thing and what carries it (a monitor and its desk), however their points mix (a
+// desk's views take in what stands on it, depth from photos smears one onto the
+// other). The map is updated frame by
 // frame, so a live memory can run it as frames stream in; consolidate() can run
 // at any time (docs/ingest.md, "Objects from detections", gives the rules and
 // their thresholds).
