@@ -177,17 +177,28 @@ std::size_t mergePieces(std::vector<Thing>& things, const FusionOptions& options
     return merged;
 }
 
+// A seat seen without its back: a thing of a seat's kind without upright ends in the kinds table (a chair), its top
+// lower than FusionOptions::seatShare of its kind's usual height.
+bool backlessSeat(const Thing& thing, const FusionOptions& options) {
+    const auto usual = typicalHeight(thing.category);
+    return role(thing.category) == Role::Seat && !hasUprightEnds(thing.category) && usual &&
+           model::top(thing.box) < options.seatShare * *usual;
+}
+
 // Upright ends stored as things of their own joined to their bed or sofa: its box then reaches the
-// headboard's top and the wall. The whole keeps its name and its votes. Returns how many were joined.
+// headboard's top and the wall; and a chair's back, stored as a chair beside its seat, joined to the seat. The
+// whole keeps its name and its votes. Returns how many were joined.
 std::size_t joinUprightEnds(std::vector<Thing>& things, const FusionOptions& options) {
     std::size_t joined = 0;
     for (std::size_t w = 0; w < things.size(); ++w) {
-        if (!hasUprightEnds(things[w].category)) continue;
+        const bool seat = backlessSeat(things[w], options);
+        if (!hasUprightEnds(things[w].category) && !seat) continue;
         for (std::size_t p = 0; p < things.size(); ++p) {
             // A thing named as one that holds others (a table, a counter) is a surface, not an upright end: the
-            // counter behind a sofa.
+            // counter behind a sofa. A chair's back rises to a chair's height: a seat as low as the seat is a
+            // second seat (two stools side by side).
             if (p == w || hasUprightEnds(things[p].category) || holdsThings(things[p].category) ||
-                !uprightEndOf(things[p].box, things[w].box, options))
+                (seat && backlessSeat(things[p], options)) || !uprightEndOf(things[p].box, things[w].box, options))
                 continue;
             Thing both = withPart(things[w], things[p]);
             both.box = boxOf(both.points, options);
@@ -704,9 +715,10 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
     }
     progress.note(fmt::format(
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
-        "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds or "
-        "sofas; {} slivers and {} things seen in too few of the frames that held them dropped; {} lowered to the top "
-        "they show; {} reaching down to the floor; {} cabinet(s) taken into the sink(s) set in them)",
+        "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds, "
+        "sofas or chairs' seats; {} slivers and {} things seen in too few of the frames that held them dropped; {} "
+        "lowered to the top they show; {} reaching down to the floor; {} cabinet(s) taken into the sink(s) set in "
+        "them)",
         counts.segmented, counts.views, out.size(), counts.mapMerged, counts.pieces, counts.ends, counts.slivers,
         counts.guesses, counts.lowered, counts.grounded, counts.cabinets));
     return out;

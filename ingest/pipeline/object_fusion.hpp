@@ -49,6 +49,9 @@ struct FusionOptions {
     double partReach = 0.3;          // sofa (its centre within this of the larger's footprint), as wide as
     double partWidth = 0.6;          // this share of that end or more, rising above its top, is its headboard
                                      // or back (typical_sizes.hpp: hasUprightEnds), whatever it was named
+    double seatShare = 0.6;          // a seat lower than this share of its kind's usual height (a chair's 0.54 m)
+                                     // is its seat seen without its back: the upright end at one of its ends
+                                     // (named as the seat or not, but no seat as low) is its back
     double roomReach = 1.0;          // m: things this close, no wall between them, stand in one room (outOfPlace)
     double lowTableSide = 0.5;       // m: luggage whose footprint sides are all this long or more, ...
     double lowTableTopMin = 0.35;    // m: its top between these heights above the floor, ...
