@@ -147,7 +147,7 @@ struct Engine::State {
                   const std::shared_ptr<const ast::Statement>& kept = nullptr) {
         const std::optional<CatalogQuery> catalog = catalogQuery(statement, values);
         if (catalog && catalog->countOnly)
-            if (auto rs = rememberedCount(catalog->name)) return std::move(*rs);
+            if (auto rs = rememberedCount(catalog->category())) return std::move(*rs);
         auto txn = db->beginRead();
         if (catalog && !catalog->countOnly)
             if (auto rs = rememberedFind(txn, *catalog)) return std::move(*rs);
@@ -244,9 +244,11 @@ struct Engine::State {
     // WHERE, VIEW, NEAREST TO, ORDER BY, SIMILAR TO, PATH, RETURN, one scene, a value missing or of
     // another type) is not answered early, and the binder words whatever is wrong with it.
     struct CatalogQuery {
-        std::string name;
+        std::string_view name;  // the statement's text or its bound value, which outlive the run
+        std::string folded;     // the bound value lower-cased, when it was not
         std::optional<std::int64_t> limit;
         bool countOnly = false;
+        std::string_view category() const { return folded.empty() ? name : std::string_view(folded); }
     };
 
     std::optional<CatalogQuery> catalogQuery(const ast::Statement& statement,
@@ -285,7 +287,10 @@ struct Engine::State {
         } else if (target->kind == ast::Ref::Kind::Param && target->side.empty()) {
             const auto* text = bound(target->placeholder, static_cast<const std::string*>(nullptr));
             if (!text || text->empty() || text->size() > parser::kMaxTextValue) return std::nullopt;
-            query.name = parser::lowerCase(*text);
+            if (std::any_of(text->begin(), text->end(), [](char c) { return c >= 'A' && c <= 'Z'; }))
+                query.folded = parser::lowerCase(*text);
+            else
+                query.name = *text;
         } else {
             return std::nullopt;
         }
@@ -297,9 +302,10 @@ struct Engine::State {
     std::optional<ResultSet> rememberedCount(std::string_view name) const {
         const binder::CategoryCount* kept = categoryCounts.find(name, db->lastCommittedTransaction());
         if (!kept) return std::nullopt;
-        ResultSet rs;
-        rs.columns = {{"count", ValueType::Integer}};
-        rs.rows.push_back({static_cast<std::int64_t>(kept->count)});
+        // Made in place, a column and a value at a time: the whole answer is these two allocations.
+        std::optional<ResultSet> rs(std::in_place);
+        rs->columns.push_back(Column{"count", ValueType::Integer});
+        rs->rows.emplace_back().emplace_back(static_cast<std::int64_t>(kept->count));
         return rs;
     }
 
@@ -307,7 +313,7 @@ struct Engine::State {
     // (so its label keys and count are the ones the binder would work out again), read from the label
     // index as the executor reads them; none when it was not.
     std::optional<ResultSet> rememberedFind(const storage::ReadTransaction& txn, const CatalogQuery& query) const {
-        const binder::CategoryCount* kept = categoryCounts.find(query.name, txn.transactionId());
+        const binder::CategoryCount* kept = categoryCounts.find(query.category(), txn.transactionId());
         if (!kept) return std::nullopt;
         return exec::catalogFind(txn, session, kept->keys.front(), kept->keys, query.limit, kept->count);
     }

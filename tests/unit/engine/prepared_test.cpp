@@ -190,6 +190,9 @@ TEST_CASE("a COUNT across all scenes prepared before another connection or proce
     CHECK(answer(count) == before);  // the second run answers as the first
     CHECK(answer(written) == before);
     CHECK(std::get<std::int64_t>(run(*engine, "COUNT book").rows.at(0).at(0)) == before);
+    count.bind(1, std::string("book"));  // written as stored: read as bound, not folded
+    CHECK(answer(count) == before);
+    count.bind(1, std::string("Book"));
     PreparedStatement find = engine->prepare("FIND ? LIMIT 1000");
     find.bind(1, std::string("Book"));
     CHECK(static_cast<std::int64_t>(find.execute().rows.size()) == before);
