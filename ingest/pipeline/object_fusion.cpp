@@ -131,8 +131,7 @@ std::size_t framesSeen(const Thing& thing) {
 Thing withPart(const Thing& whole, const Thing& part) {
     Thing both = whole;
     both.instances.insert(both.instances.end(), part.instances.begin(), part.instances.end());
-    for (std::size_t p = 0; p < part.points.size(); ++p)
-        both.points.push(part.points.points[p], part.points.colors[p], part.points.frames[p]);
+    append(both.points, part.points);
     return both;
 }
 

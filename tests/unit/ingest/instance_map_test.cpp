@@ -124,7 +124,7 @@ const model::Vec3 kDesk{0, 1, 0.375}, kDeskSize{1.6, 0.8, 0.75};
 const model::Vec3 kMonitor{0.2, 1.2, 0.975}, kMonitorSize{0.6, 0.2, 0.45};
 
 PointCloud merged(PointCloud a, const PointCloud& b) {
-    for (std::size_t i = 0; i < b.size(); ++i) a.push(b.points[i], b.colors[i], 0);
+    append(a, b);
     return a;
 }
 
