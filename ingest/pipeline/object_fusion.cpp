@@ -487,15 +487,15 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
                                                       options.besideBed)};
                 continue;
             }
-            if (shorter > options.deskDepth || model::top(box) < options.deskTopMin ||
-                !longSideAgainstWall(box, walls, options))
+            if (shorter > options.deskDepth || std::max(box.size.x, box.size.y) < options.deskSideMin ||
+                model::top(box) < options.deskTopMin || !longSideAgainstWall(box, walls, options))
                 continue;
             const auto chairs = std::count_if(things.begin(), things.end(), [&](const SeenBox& other) {
                 return other.category == "chair" && model::horizontalGap(box, other.box) <= options.chairAtDesk;
             });
-            if (chairs == 1)
-                names[t] = {"desk", fmt::format("stands against a wall with one chair at it (within {:.1f} m), as a "
-                                                "desk does",
+            if (chairs >= 1 && chairs <= options.deskChairsMax)
+                names[t] = {"desk", fmt::format("stands against a wall with {} at it (within {:.1f} m), as a desk does",
+                                                chairs == 1 ? "one chair" : fmt::format("{} chairs", chairs),
                                                 options.chairAtDesk)};
         }
     }
