@@ -298,36 +298,6 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
     return false;
 }
 
-std::vector<model::Vec3> cornersOf(const model::Box& box) {
-    std::vector<model::Vec3> corners;
-    for (const auto& corner : model::footprint(box))
-        for (const double z : {model::bottom(box), model::top(box)}) corners.push_back({corner.x, corner.y, z});
-    return corners;
-}
-
-// The cabinet a sink is set in, stored as a thing of its own (a vanity a detector called a table), joined to the
-// sink: the sink's box grows down to hold it and keeps its name. Returns how many were joined.
-std::size_t joinCabinets(std::vector<Thing>& things, const FusionOptions& options) {
-    std::size_t joined = 0;
-    for (std::size_t b = 0; b < things.size(); ++b) {
-        if (role(things[b].category) != Role::Basin) continue;
-        for (std::size_t c = 0; c < things.size(); ++c) {
-            if (c == b || role(things[c].category) == Role::Basin || role(things[c].category) == Role::Seat ||
-                !cabinetOf(things[c].box, things[b].box, options))
-                continue;
-            model::Box box = things[b].box;
-            growToHold(box, cornersOf(things[c].box));
-            things[b] = withPart(things[b], things[c]);
-            things[b].box = box;
-            things.erase(things.begin() + static_cast<std::ptrdiff_t>(c));
-            if (c < b) --b;
-            c = static_cast<std::size_t>(-1);  // the grown sink may reach another
-            ++joined;
-        }
-    }
-    return joined;
-}
-
 // Whether `small` is a piece of `large` the map kept apart, judged by their boxes:
 // - stored twice: one name (or two of one kind: a desk and a table, typical_sizes.hpp: kindName), a good share
 //   of the smaller's box inside the larger's (a corner sofa's two arms, a sofa seen whole from afar and in parts
@@ -362,20 +332,6 @@ bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOpt
     const double below = model::bottom(basin) - model::top(under);
     return below >= -options.cabinetAbove && below <= options.cabinetBelow &&
            model::footprintOverlap(under, basin) >= options.cabinetShare * model::footprintArea(under);
-}
-
-void growToHold(model::Box& box, const std::vector<model::Vec3>& points) {
-    const model::BoxFrame frame(box);
-    double lo[3] = {-box.size.x / 2, -box.size.y / 2, -box.size.z / 2}, hi[3] = {-lo[0], -lo[1], -lo[2]};
-    for (const auto& p : points) {
-        const model::Vec2 at = frame.local({p.x, p.y});
-        const double local[3] = {at.x, at.y, p.z - box.center.z};
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], local[k]), hi[k] = std::max(hi[k], local[k]);
-    }
-    const double mid[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-    const model::Vec2 centre = frame.world({mid[0], mid[1]});
-    box.center = {centre.x, centre.y, box.center.z + mid[2]};
-    box.size = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
 }
 
 std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, std::optional<double> tableTopHeight,
@@ -470,6 +426,17 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
     for (std::size_t t = 0; t < things.size(); ++t) {
         const model::Box& box = things[t].box;
         const double shorter = std::min(box.size.x, box.size.y);
+        if (role(things[t].category) != Role::Basin && role(things[t].category) != Role::Seat &&
+            things[t].category != "cabinet") {
+            const auto basin = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
+                return role(other.category) == Role::Basin && cabinetOf(box, other.box, options);
+            });
+            if (basin != things.end()) {
+                names[t] = {"cabinet",
+                            fmt::format("stands right under the {}, the cabinet it is set in", basin->category)};
+                continue;
+            }
+        }
         if (role(things[t].category) == Role::Luggage) {
             if (model::bottom(box) > options.restingGap || shorter < options.lowTableSide ||
                 model::top(box) < options.lowTableTopMin || model::top(box) > options.lowTableTopMax)
@@ -616,7 +583,6 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0, {}});
     made.grounded = reachDownToFloor(boxes, room_.floorFound, room_.tableTopHeight, options_);
     for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
-    made.cabinets = joinCabinets(things, options_);
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
     made.slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options_); });
 
@@ -716,10 +682,9 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds, "
         "sofas or chairs' seats; {} slivers and {} things seen in too few of the frames that held them dropped; {} "
-        "lowered to the top they show; {} reaching down to the floor; {} cabinet(s) taken into the sink(s) set in "
-        "them)",
+        "lowered to the top they show; {} reaching down to the floor)",
         counts.segmented, counts.views, out.size(), counts.mapMerged, counts.pieces, counts.ends, counts.slivers,
-        counts.guesses, counts.lowered, counts.grounded, counts.cabinets));
+        counts.guesses, counts.lowered, counts.grounded));
     return out;
 }
 

@@ -4,6 +4,7 @@
 // large things no detector named (a bed, a cabinet: PASCAL's and COCO's classes lack them) are kept.
 #include "ingest/pipeline/objects_from_clusters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -48,17 +49,11 @@ public:
 
 }  // namespace
 
-bool takenIntoBasin(const model::Box& cluster, const std::vector<model::Vec3>& points, model::SceneData& scene,
-                    const FusionOptions& options) {
-    for (auto& n : scene.nodes) {
-        if (n.kind != model::NodeKind::Object || n.geometry != model::GeometryKind::Box ||
-            role(n.category) != Role::Basin)
-            continue;
-        if (!cabinetOf(cluster, n.box, options)) continue;
-        growToHold(n.box, points);
-        return true;
-    }
-    return false;
+bool underBasin(const model::Box& cluster, const model::SceneData& scene, const FusionOptions& options) {
+    return std::any_of(scene.nodes.begin(), scene.nodes.end(), [&](const model::Node& n) {
+        return n.kind == model::NodeKind::Object && n.geometry == model::GeometryKind::Box &&
+               role(n.category) == Role::Basin && cabinetOf(cluster, n.box, options);
+    });
 }
 
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
@@ -88,11 +83,10 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
         if (box.size.x < options.minLonger || box.size.y < options.minShorter || box.size.z < options.minHeight ||
             box.size.x > options.maxLonger || frames.size() < options.minFrames)
             continue;
-        if (takenIntoBasin(box, points, scene)) {
-            ++counts.cabinets;
-            continue;
-        }
-        model::Node& node = addNode(scene, model::NodeKind::Object, "object", model::GeometryKind::Box, box);
+        const bool cabinet = underBasin(box, scene);
+        counts.cabinets += cabinet;
+        model::Node& node =
+            addNode(scene, model::NodeKind::Object, cabinet ? "cabinet" : "object", model::GeometryKind::Box, box);
         node.attributes.push_back({"color", nameColor(colors).name});
         node.attributes.push_back({"size", sizeWord(box)});
         node.attributes.push_back({"points", std::to_string(cluster.size())});

@@ -26,20 +26,18 @@ struct ClusterObjects {
 
 struct ClusterCounts {
     std::size_t added = 0;     // nodes added
-    std::size_t cabinets = 0;  // clusters taken into the basin set in them
+    std::size_t cabinets = 0;  // of them, the cabinets a basin is set in
 };
 
 // Adds a node for each cluster of the aligned structure's points that are not floor, ceiling or
 // wall (nor, with outsideKnown, in an object the scene holds) and whose box and views pass the
-// options. A cluster right under a basin (typical_sizes.hpp: Role::Basin; a sink), most of it under
-// the basin's footprint, is the cabinet the basin is set in (a vanity): people count the two as one
-// sink, so the basin's box grows down to hold it instead.
+// options, as an `object`; a cluster right under a basin (typical_sizes.hpp: Role::Basin; a sink), most
+// of it under the basin's footprint, is the cabinet the basin is set in (a vanity: object_fusion.hpp,
+// cabinetOf), and named so.
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                                 model::SceneData& scene, const ClusterObjects& options);
 
-// Whether the cluster (its box and points) is the cabinet a basin of the scene is set in (cabinetOf): then the
-// basin's box has grown down to hold the points (its yaw kept).
-bool takenIntoBasin(const model::Box& cluster, const std::vector<model::Vec3>& points, model::SceneData& scene,
-                    const FusionOptions& options = {});
+// Whether the cluster's box is the cabinet a basin of the scene is set in (cabinetOf).
+bool underBasin(const model::Box& cluster, const model::SceneData& scene, const FusionOptions& options = {});
 
 }  // namespace smql::ingest

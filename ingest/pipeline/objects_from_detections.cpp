@@ -136,12 +136,10 @@ public:
         const ClusterCounts counts = addClusterObjects(aligned, walls, scene, kUnnamedThings);
         const std::size_t added = counts.added;
         if (added > 0)
-            progress.note(fmt::format("objects: {} large {} no model named, stored as 'object' with {} size and colour",
-                                      added, added == 1 ? "thing" : "things", added == 1 ? "its" : "their"));
-        if (counts.cabinets > 0)
             progress.note(
-                fmt::format("objects: {} {} under a sink taken into the sink (a vanity, one sink to a person)",
-                            counts.cabinets, counts.cabinets == 1 ? "cabinet" : "cabinets"));
+                fmt::format("objects: {} large {} no model named, stored with {} size and colour as "
+                            "'object' ({} right under a sink as 'cabinet', the cabinet it is set in)",
+                            added, added == 1 ? "thing" : "things", added == 1 ? "its" : "their", counts.cabinets));
     }
 
 protected:
