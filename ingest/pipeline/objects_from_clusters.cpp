@@ -1,5 +1,6 @@
 // Class-agnostic objects: Euclidean clusters of the aligned structure cloud's points that are not
-// floor, ceiling or wall become objects of category `object`, named by the colour of their points.
+// floor, ceiling or wall become objects of category `object` (one right under a sink: `cabinet`, the cabinet
+// it is set in), named by the colour of their points.
 // The fallback source (--objects cluster) keeps every cluster but specks; beside detections, only the
 // large things no detector named (a bed, a cabinet: PASCAL's and COCO's classes lack them) are kept.
 #include "ingest/pipeline/objects_from_clusters.hpp"
