@@ -31,7 +31,7 @@ struct Typical {
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true},
     {"desk", 0.75, 1.9, Support::Floor, true},
-    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat, {}, {0.75, 0.2}},
+    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat, {}, {0.75, 0.2, 0.4, 0.25}},
     {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat, {0, 0.35}, {1.0, 0.3}},
     {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Any, Role::Other, {1.2, 0}, {1.0, 0.25}},
     {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}, {0.9, 0.25}},
@@ -126,9 +126,12 @@ bool smallerThanKind(std::string_view category, double largest, double height, d
     return least && (largest < least->largest || (bottom <= kStandingReach && height < least->height));
 }
 
-bool slenderForKind(std::string_view category, double longer, double shorter) {
+bool slenderForKind(std::string_view category, double longer, double shorter, double height) {
     const Typical* t = find(category);
-    return t && t->slender.length > 0 && longer >= t->slender.length && shorter < t->slender.depth;
+    if (!t) return false;
+    const Slender& s = t->slender;
+    return (s.length > 0 && longer >= s.length && shorter < s.depth) ||
+           (s.postHeight > 0 && height >= s.postHeight && longer < s.postSide);
 }
 
 bool holdsThings(std::string_view category) {

@@ -261,7 +261,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                 fmt::format("a {:.2f} x {:.2f} x {:.2f} m thing was detected as '{}', which is never that "
                             "{}: stored as 'object' with detected_as = {}",
                             box.size.x, box.size.y, box.size.z, category,
-                            fit == NameFit::TooSmall ? "small" : "long for its depth", category));
+                            fit == NameFit::TooSmall ? "small" : "slender", category));
         else if (fit == NameFit::TooTall)
             progress.note(
                 fmt::format("a {:.2f} m tall thing was detected as '{}', which stands about {:.2f} m: "

@@ -431,7 +431,7 @@ NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure m
     if (auto usual = typicalExtent(category); usual && largestSide(box) > beyond * *usual) return NameFit::TooLarge;
     if (smallerThanKind(category, largestSide(box), box.size.z, box.center.z - box.size.z / 2))
         return NameFit::TooSmall;
-    if (slenderForKind(category, std::max(box.size.x, box.size.y), std::min(box.size.x, box.size.y)))
+    if (slenderForKind(category, std::max(box.size.x, box.size.y), std::min(box.size.x, box.size.y), box.size.z))
         return NameFit::TooSlender;
     if (auto height = typicalHeight(category); measure == BoxMeasure::HullHeldToSurface && height &&
                                                !hasUprightEnds(category) &&

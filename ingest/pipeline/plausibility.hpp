@@ -97,8 +97,8 @@ enum class BoxMeasure { Depth, HullHeldToSurface, HullFromBoxes };
 // the thing along the views, to kBeyondTypicalHull, and, when its top was held to its surfaces, for a kind
 // of a standard height, to kTallerThanTypicalHull of that height. A hull from boxes alone bounds its thing's
 // height without measuring it: the dining photos' chair placed by its boxes' rays stands 1.35 m. A box
-// smaller than any thing of its name (typical_sizes.hpp: leastSize), or with a footprint too long for its depth
-// (slenderForKind), is not that thing either, however measured.
+// smaller than any thing of its name (typical_sizes.hpp: leastSize), or with a footprint too long for its depth or
+// too small for its height (slenderForKind), is not that thing either, however measured.
 enum class NameFit { Fits, TooLarge, TooSmall, TooSlender, TooTall };
 NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure measure = BoxMeasure::Depth);
 
