@@ -298,6 +298,38 @@ bool uprightEndOf(const model::Box& p, const model::Box& w, const FusionOptions&
     return false;
 }
 
+// A sink whose views took in the cabinet it is set in (its box reaching down to the floor, twice a basin's depth):
+// the points within basinDepth of its top stay the sink, those under them become a thing of their own, which
+// namedByUse names the sink's cabinet. Returns how many were parted.
+std::size_t partBasins(std::vector<Thing>& things, const FusionOptions& options) {
+    std::size_t parted = 0;
+    const std::size_t count = things.size();
+    for (std::size_t b = 0; b < count; ++b) {
+        Thing& sink = things[b];
+        if (role(sink.category) != Role::Basin || model::bottom(sink.box) > kStandingReach ||
+            sink.box.size.z < 2 * options.basinDepth)
+            continue;
+        // Its box ends at its rim or counter (lowerToTop); what its views took in above that is no part of either.
+        const double top = model::top(sink.box), cut = top - options.basinDepth;
+        PointCloud basin, under;
+        for (std::size_t i = 0; i < sink.points.size(); ++i) {
+            const double z = sink.points.points[i].z;
+            if (z > top) continue;
+            (z >= cut ? basin : under).push(sink.points.points[i], sink.points.colors[i], sink.points.frames[i]);
+        }
+        if (basin.size() < 3 || under.size() < 3) continue;
+        // The cabinet keeps the sink's footprint and turn (its points are mostly its front), up to the cut.
+        Thing cabinet{sink.instances, std::move(under), sink.box, {}, "cabinet", {}};
+        cabinet.box.size.z = cut - model::bottom(sink.box);
+        cabinet.box.center.z = model::bottom(sink.box) + cabinet.box.size.z / 2;
+        sink.points = std::move(basin);
+        sink.box = boxOf(sink.points, options);
+        things.push_back(std::move(cabinet));
+        ++parted;
+    }
+    return parted;
+}
+
 // Whether `small` is a piece of `large` the map kept apart, judged by their boxes:
 // - stored twice: one name (or two of one kind: a desk and a table, typical_sizes.hpp: kindName), a good share
 //   of the smaller's box inside the larger's (a corner sofa's two arms, a sofa seen whole from afar and in parts
@@ -583,6 +615,7 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     for (const auto& thing : things) boxes.push_back({thing.box, thing.category, 0, {}});
     made.grounded = reachDownToFloor(boxes, room_.floorFound, room_.tableTopHeight, options_);
     for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
+    made.basins = partBasins(things, options_);
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
     made.slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options_); });
 
@@ -682,9 +715,10 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
         "objects: {} of {} views showed a thing apart from the floor and walls; fused into {} thing(s) ({} pieces "
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds, "
         "sofas or chairs' seats; {} slivers and {} things seen in too few of the frames that held them dropped; {} "
-        "lowered to the top they show; {} reaching down to the floor)",
+        "lowered to the top they show; {} reaching down to the floor; {} sink(s) parted from the cabinet their views "
+        "took in)",
         counts.segmented, counts.views, out.size(), counts.mapMerged, counts.pieces, counts.ends, counts.slivers,
-        counts.guesses, counts.lowered, counts.grounded));
+        counts.guesses, counts.lowered, counts.grounded, counts.basins));
     return out;
 }
 

@@ -75,7 +75,10 @@ struct FusionOptions {
     double cabinetAbove = 0.1;    // m: a thing whose top lies from this above ...
     double cabinetBelow = 0.2;    // ... to this below a sink's bottom, ...
     double cabinetShare = 0.6;    // ... this share of its footprint under the sink's, is the cabinet the sink is set in
-    bool voteLabels = true;       // a closed-set detector (InstanceMapOptions::voteLabels)
+    double basinDepth = 0.35;  // m: a sink whose box reaches the floor, twice this tall or more, is this deep under its
+                               // rim, the rest the cabinet it is set in (ScanNet's 390 labelled sinks: 0.26 m tall
+                               // at the median, 0.33 m at the third quartile)
+    bool voteLabels = true;    // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
 // FusionOptions::wallSlack for photos' things, lifted on the dense points of the sides the photos saw: their
@@ -113,7 +116,9 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
 // (cabinetShare); a kitchen counter's run under a sink lies mostly beside it. People, and ScanNet's labels, keep the
 // two apart: the sink is the basin (of ScanNet's 390 labelled sinks in its training scans, 12 reach down to the
 // floor; the median is 0.26 m tall, its bottom 0.71 m up, and 261 have a cabinet or counter labelled under them).
-// Such a thing is named a cabinet by its use (namedByUse), and so is a cluster no model named (the objects stage).
+// Such a thing is named a cabinet by its use (namedByUse), and so is a cluster no model named (the objects stage);
+// a sink whose own views took in its cabinet, its box reaching down to the floor, is parted from it at
+// FusionOptions::basinDepth under its rim (object_fusion.cpp, partBasins).
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options = {});
 
 // Things of kinds that stand on floors whose legs or base the views did not see reach down to the floor: the
@@ -184,7 +189,7 @@ struct FusedThing {
 struct FusionCounts {
     std::size_t segmented = 0;  // views that showed a thing apart from the floor and walls
     std::size_t views = 0;      // views added
-    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, lowered = 0, grounded = 0;
+    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, lowered = 0, grounded = 0, basins = 0;
 };
 
 // Object fusion frame by frame: each frame's views go into the instance map as the frame comes (addFrame), and

@@ -241,11 +241,12 @@ TEST_CASE("fusion frame by frame: the things so far after each frame, the map le
     CHECK(fusion.views().size() == 3);
 }
 
-TEST_CASE("a sink ends at its counter: the wall the walls stage did not take, seen above it, is not the sink",
+TEST_CASE("a sink ends at its counter, above the cabinet its views took in: the wall above it is neither",
           "[ingest][fusion]") {
     // ScanNet scene0448_01: the bathroom's vanity, its counter 0.78 m up, stands in a nook whose side wall (0.6 m
     // long, seen only above the counter, so never a wall of its own) every view of the sink took in up to 1.47 m;
-    // the sink was stored 1.44 m tall. Views from two sides, the wall's sheet at the vanity's end in each.
+    // the sink was stored 1.44 m tall, then 0.80 m with the vanity under it (ScanNet: a 0.32 m basin over a cabinet).
+    // Views from two sides, the wall's sheet at the vanity's end in each.
     const model::Vec3 vanity{1.04, 1.81, 0.39}, size{0.95, 0.51, 0.78};
     auto withWall = [&](Observation view) {
         for (double y = vanity.y - size.y / 2; y <= vanity.y + size.y / 2; y += 0.02)
@@ -261,14 +262,31 @@ TEST_CASE("a sink ends at its counter: the wall the walls stage did not take, se
         ObjectFusion fusion(Alignment{}, RoomSurfaces{true, std::nullopt, nullptr, std::nullopt});
         fusion.addFrame({withWall(boxSeen(0, name, vanity, size, {1, 0, -0.5}))});
         fusion.addFrame({withWall(boxSeen(1, name, vanity, size, {-1, 0, -0.5}))});
-        const auto things = fusion.things();
-        REQUIRE(things.size() == 1);
+        FusionCounts counts;
+        auto things = fusion.things(&counts);
         INFO(name);
-        // The sink's box ends at its counter; a thing of another kind keeps what its views hold.
-        if (std::string(name) == "sink")
-            CHECK(model::top(things[0].box) == Approx(0.78).margin(0.03));
-        else
+        if (std::string(name) == "chair") {
+            // A thing of another kind keeps what its views hold.
+            REQUIRE(things.size() == 1);
             CHECK(model::top(things[0].box) == Approx(1.47).margin(0.03));
+            CHECK(counts.basins == 0);
+            continue;
+        }
+        // The sink's box ends at its counter, a basin's depth (FusionOptions::basinDepth) under it; what its views
+        // took in below, down to the floor, is the cabinet it is set in, with its footprint.
+        REQUIRE(things.size() == 2);
+        CHECK(counts.basins == 1);
+        std::sort(things.begin(), things.end(), [](const auto& a, const auto& b) { return a.category < b.category; });
+        const auto& cabinet = things[0];
+        const auto& sink = things[1];
+        CHECK(cabinet.category == "cabinet");
+        CHECK(sink.category == "sink");
+        CHECK(model::top(sink.box) == Approx(0.78).margin(0.03));
+        // (The points are the fused map's, one a 5 cm cell.)
+        CHECK(model::bottom(sink.box) == Approx(0.78 - FusionOptions{}.basinDepth).margin(0.05));
+        CHECK(model::bottom(cabinet.box) == Approx(0).margin(0.05));
+        CHECK(model::top(cabinet.box) == Approx(model::top(sink.box) - FusionOptions{}.basinDepth).margin(0.01));
+        CHECK(std::max(cabinet.box.size.x, cabinet.box.size.y) == Approx(0.95).margin(0.03));
     }
 }
 
