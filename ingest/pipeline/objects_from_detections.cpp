@@ -136,10 +136,12 @@ public:
         const ClusterCounts counts = addClusterObjects(aligned, walls, scene, kUnnamedThings);
         const std::size_t added = counts.added;
         if (added > 0)
-            progress.note(
-                fmt::format("objects: {} large {} no model named, stored with {} size and colour as "
-                            "'object' ({} right under a sink as 'cabinet', the cabinet it is set in)",
-                            added, added == 1 ? "thing" : "things", added == 1 ? "its" : "their", counts.cabinets));
+            progress.note(fmt::format(
+                "objects: {} large {} no model named, stored with {} size and colour as 'object'{}", added,
+                added == 1 ? "thing" : "things", added == 1 ? "its" : "their",
+                counts.cabinets > 0
+                    ? fmt::format(" ({} right under a sink as 'cabinet', the cabinet it is set in)", counts.cabinets)
+                    : ""));
     }
 
 protected:
