@@ -360,6 +360,19 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
            model::footprintContains(b, {a.center.x, a.center.y}, 0);
 }
 
+void reachUnder(model::Box& cabinet, const model::Box& basin) {
+    const model::BoxFrame frame(cabinet);
+    double lo[2] = {-cabinet.size.x / 2, -cabinet.size.y / 2}, hi[2] = {-lo[0], -lo[1]};
+    for (const model::Vec2& corner : model::footprint(basin)) {
+        const model::Vec2 at = frame.local(corner);
+        lo[0] = std::min(lo[0], at.x), lo[1] = std::min(lo[1], at.y);
+        hi[0] = std::max(hi[0], at.x), hi[1] = std::max(hi[1], at.y);
+    }
+    const model::Vec2 centre = frame.world({(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2});
+    cabinet.center.x = centre.x, cabinet.center.y = centre.y;
+    cabinet.size.x = hi[0] - lo[0], cabinet.size.y = hi[1] - lo[1];
+}
+
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
     const double below = model::bottom(basin) - model::top(under);
     return below >= -options.cabinetAbove && below <= options.cabinetBelow &&
@@ -637,6 +650,11 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     std::vector<FusedThing> out;
     for (std::size_t t = 0; t < things.size(); ++t) {
         FusedThing fused{things[t].box, things[t].category, "", "", std::move(things[t].points), {}};
+        // A sink's cabinet holds the basin set in it: its footprint reaches under the sink's.
+        if (doubts[t].empty() && uses[t].category == "cabinet")
+            for (const auto& basin : named)
+                if (role(basin.category) == Role::Basin && cabinetOf(named[t].box, basin.box, options_))
+                    reachUnder(fused.box, basin.box);
         if (!doubts[t].empty() || !uses[t].category.empty()) {
             fused.detectedAs = fused.category;
             fused.category = doubts[t].empty() ? uses[t].category : "object";

@@ -121,6 +121,10 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
 // FusionOptions::basinDepth under its rim (object_fusion.cpp, partBasins).
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options = {});
 
+// A sink's cabinet holds the basin set in it, though its views or points showed less of it (its front, a door):
+// its footprint grows, square to itself, to reach under the whole of the basin's; its height stays.
+void reachUnder(model::Box& cabinet, const model::Box& basin);
+
 // Things of kinds that stand on floors whose legs or base the views did not see reach down to the floor: the
 // one found; or one placed that the lowest thing reaches down to, or placed a table's height under a table top
 // (`tableTopHeight`, Alignment::tableTopHeight) that a table's box holds (object_fusion.cpp, standOnFloor).

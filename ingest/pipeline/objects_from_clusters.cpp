@@ -50,11 +50,12 @@ public:
 
 }  // namespace
 
-bool underBasin(const model::Box& cluster, const model::SceneData& scene, const FusionOptions& options) {
-    return std::any_of(scene.nodes.begin(), scene.nodes.end(), [&](const model::Node& n) {
-        return n.kind == model::NodeKind::Object && n.geometry == model::GeometryKind::Box &&
-               role(n.category) == Role::Basin && cabinetOf(cluster, n.box, options);
-    });
+const model::Node* basinOver(const model::Box& cluster, const model::SceneData& scene, const FusionOptions& options) {
+    for (const auto& n : scene.nodes)
+        if (n.kind == model::NodeKind::Object && n.geometry == model::GeometryKind::Box &&
+            role(n.category) == Role::Basin && cabinetOf(cluster, n.box, options))
+            return &n;
+    return nullptr;
 }
 
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
@@ -84,7 +85,9 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
         if (box.size.x < options.minLonger || box.size.y < options.minShorter || box.size.z < options.minHeight ||
             box.size.x > options.maxLonger || frames.size() < options.minFrames)
             continue;
-        const bool cabinet = underBasin(box, scene);
+        const model::Node* basin = basinOver(box, scene);
+        const bool cabinet = basin != nullptr;
+        if (basin) reachUnder(box, basin->box);
         counts.cabinets += cabinet;
         model::Node& node =
             addNode(scene, model::NodeKind::Object, cabinet ? "cabinet" : "object", model::GeometryKind::Box, box);

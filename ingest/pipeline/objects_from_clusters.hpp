@@ -33,11 +33,12 @@ struct ClusterCounts {
 // wall (nor, with outsideKnown, in an object the scene holds) and whose box and views pass the
 // options, as an `object`; a cluster right under a basin (typical_sizes.hpp: Role::Basin; a sink), most
 // of it under the basin's footprint, is the cabinet the basin is set in (a vanity: object_fusion.hpp,
-// cabinetOf), and named so.
+// cabinetOf), named so, its footprint reaching under the basin's (reachUnder).
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                                 model::SceneData& scene, const ClusterObjects& options);
 
-// Whether the cluster's box is the cabinet a basin of the scene is set in (cabinetOf).
-bool underBasin(const model::Box& cluster, const model::SceneData& scene, const FusionOptions& options = {});
+// The basin of the scene the cluster's box is the cabinet of (cabinetOf), or null.
+const model::Node* basinOver(const model::Box& cluster, const model::SceneData& scene,
+                             const FusionOptions& options = {});
 
 }  // namespace smql::ingest

@@ -318,6 +318,8 @@ TEST_CASE("one thing named two ways: a vanity called a table is a cabinet, a des
     CHECK(cabinet.detectedAs == "table");
     CHECK(cabinet.renamedWhy.find("under the sink") != std::string::npos);
     CHECK(model::bottom(cabinet.box) == Approx(0.005).margin(0.03));
+    // Its views showed its front; it holds the basin set in it, so its footprint reaches under the sink's.
+    CHECK(model::footprintOverlap(cabinet.box, sink.box) == Approx(model::footprintArea(sink.box)).epsilon(0.02));
     CHECK(sink.category == "sink");
     CHECK(model::bottom(sink.box) == Approx(0.72).margin(0.03));
     CHECK(model::top(sink.box) == Approx(0.88).margin(0.03));
@@ -440,23 +442,31 @@ TEST_CASE("a sink's cabinet: the cluster right under a sink is its cabinet; a co
     cabinet.center = {8.404, 0.595, 0.319};
     cabinet.size = {0.676, 0.312, 0.527};
     cabinet.yaw = 89.6 * M_PI / 180;
-    CHECK(underBasin(cabinet, scene));
+    const model::Node* over = basinOver(cabinet, scene);
+    REQUIRE(over);
+    CHECK(over->category == "sink");
+    // The cluster is the vanity's front: it reaches under the whole basin once named its cabinet.
+    model::Box reached = cabinet;
+    reachUnder(reached, basin);
+    CHECK(model::footprintOverlap(reached, basin) == Approx(model::footprintArea(basin)).epsilon(0.01));
+    CHECK(reached.size.z == cabinet.size.z);
+    CHECK(reached.yaw == cabinet.yaw);
     // A kitchen counter's 2.4 m run under a 0.8 m sink: most of it is not under the sink.
     model::Box counter = cabinet;
     counter.size = {2.4, 0.6, 0.55};
     counter.center = {8.394, 0.510, 0.30};
     counter.yaw = M_PI / 2;
-    CHECK_FALSE(underBasin(counter, scene));
+    CHECK_FALSE(basinOver(counter, scene));
     // Nor is a cluster beside the sink, or one a metre under it.
     model::Box beside = cabinet;
     beside.center.y += 0.8;
-    CHECK_FALSE(underBasin(beside, scene));
+    CHECK_FALSE(basinOver(beside, scene));
     model::Box far = cabinet;
     far.center.z -= 0.4;
-    CHECK_FALSE(underBasin(far, scene));
+    CHECK_FALSE(basinOver(far, scene));
     // A sink is a basin, not what it is set in.
     model::SceneData empty;
-    CHECK_FALSE(underBasin(cabinet, empty));
+    CHECK_FALSE(basinOver(cabinet, empty));
 }
 
 namespace {
