@@ -5,7 +5,6 @@
 // large things no detector named (a bed, a cabinet: PASCAL's and COCO's classes lack them) are kept.
 #include "ingest/pipeline/objects_from_clusters.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <set>
 
