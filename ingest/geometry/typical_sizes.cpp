@@ -34,7 +34,16 @@ constexpr Typical kTypical[] = {
     {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat, {}, {0.75, 0.2, 0.4, 0.25}},
     {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat, {0, 0.35}, {1.0, 0.3}},
     {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Any, Role::Other, {1.2, 0}, {1.0, 0.25}},
-    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}, {0.9, 0.25}},
+    {"fridge",
+     1.75,
+     2.0,
+     Support::Floor,
+     false,
+     false,
+     RoomKind::Kitchen,
+     Role::Other,
+     {0.5, 0.45},
+     {0.9, 0.25, 0, 0, 1.1}},
     {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},
     {"nightstand", 0.6, 0.8, Support::Floor, true},
@@ -130,7 +139,8 @@ bool slenderForKind(std::string_view category, double longer, double shorter, do
     const Typical* t = find(category);
     if (!t) return false;
     const Slender& s = t->slender;
-    return (s.length > 0 && longer >= s.length && shorter < s.depth) ||
+    return (s.length > 0 && longer >= s.length && shorter < s.depth &&
+            (s.frontHeight <= 0 || height < s.frontHeight)) ||
            (s.postHeight > 0 && height >= s.postHeight && longer < s.postSide);
 }
 
