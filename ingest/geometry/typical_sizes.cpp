@@ -28,22 +28,16 @@ struct Typical {
     LeastSize least{};
     Slender slender{};
 };
+// The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
+constexpr Slender kChairShape{.length = 0.75, .depth = 0.2, .postHeight = 0.4, .postSide = 0.25};
+constexpr Slender kFridgeShape{.length = 0.9, .depth = 0.25, .frontHeight = 1.1};
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true},
     {"desk", 0.75, 1.9, Support::Floor, true},
-    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat, {}, {0.75, 0.2, 0.4, 0.25}},
+    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat, {}, kChairShape},
     {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat, {0, 0.35}, {1.0, 0.3}},
     {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Any, Role::Other, {1.2, 0}, {1.0, 0.25}},
-    {"fridge",
-     1.75,
-     2.0,
-     Support::Floor,
-     false,
-     false,
-     RoomKind::Kitchen,
-     Role::Other,
-     {0.5, 0.45},
-     {0.9, 0.25, 0, 0, 1.1}},
+    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}, kFridgeShape},
     {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},
     {"nightstand", 0.6, 0.8, Support::Floor, true},

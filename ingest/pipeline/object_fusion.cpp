@@ -463,6 +463,14 @@ bool longSideAgainstWall(const model::Box& box, const std::vector<WallSegment>& 
     });
 }
 
+// The sink among `things` whose cabinet the box is (cabinetOf), or null.
+const SeenBox* sinkOver(const model::Box& box, const std::vector<SeenBox>& things, const FusionOptions& options) {
+    const auto sink = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
+        return role(other.category) == Role::Basin && cabinetOf(box, other.box, options);
+    });
+    return sink == things.end() ? nullptr : &*sink;
+}
+
 }  // namespace
 
 std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
@@ -472,16 +480,12 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
         const model::Box& box = things[t].box;
         const double shorter = std::min(box.size.x, box.size.y);
         if (role(things[t].category) != Role::Basin && role(things[t].category) != Role::Seat &&
-            things[t].category != "cabinet") {
-            const auto basin = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
-                return role(other.category) == Role::Basin && cabinetOf(box, other.box, options);
-            });
-            if (basin != things.end()) {
+            things[t].category != "cabinet")
+            if (const SeenBox* sink = sinkOver(box, things, options)) {
                 names[t] = {"cabinet",
-                            fmt::format("stands right under the {}, the cabinet it is set in", basin->category)};
+                            fmt::format("stands right under the {}, the cabinet it is set in", sink->category)};
                 continue;
             }
-        }
         if (role(things[t].category) == Role::Luggage) {
             if (model::bottom(box) > options.restingGap || shorter < options.lowTableSide ||
                 model::top(box) < options.lowTableTopMin || model::top(box) > options.lowTableTopMax)
@@ -652,9 +656,7 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
         FusedThing fused{things[t].box, things[t].category, "", "", std::move(things[t].points), {}};
         // A sink's cabinet holds the basin set in it: its footprint reaches under the sink's.
         if (doubts[t].empty() && uses[t].category == "cabinet")
-            for (const auto& basin : named)
-                if (role(basin.category) == Role::Basin && cabinetOf(named[t].box, basin.box, options_))
-                    reachUnder(fused.box, basin.box);
+            reachUnder(fused.box, sinkOver(named[t].box, named, options_)->box);
         if (!doubts[t].empty() || !uses[t].category.empty()) {
             fused.detectedAs = fused.category;
             fused.category = doubts[t].empty() ? uses[t].category : "object";
