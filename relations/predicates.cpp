@@ -276,35 +276,91 @@ bool openingIn(const Node& opening, const Node& wall, const Thresholds& t) {
            model::distance(opening.box, wall.box) <= t.attachedMaxGap;
 }
 
-// A wall stands between a and b when the line joining their centres passes through it, neither
-// centre lies in it and neither is an opening in it.
-bool wallBetween(const Node& a, const Node& b, const Thresholds& t, const Obstacles& obstacles) {
+// How far a way round the walls keeps off their corners: a few centimetres, so that a way along a
+// wall's face does not graze its box.
+constexpr double kStandOff = 0.05;
+
+// The shortest way from p to q that passes through none of `walls`, over the corners of their boxes stood
+// off by kStandOff, as long as it is at most `longest`; infinity when there is none as short. A few walls
+// stand around a pair, so the corners are few and Dijkstra's search over them, every pair of corners in
+// sight of each other, is small.
+double wayRound(const model::Vec3& p, const model::Vec3& q, std::span<const Node* const> walls, double longest) {
+    const double z = (p.z + q.z) / 2;
+    auto length = [](const model::Vec3& u, const model::Vec3& v) { return std::hypot(u.x - v.x, u.y - v.y); };
+    auto clear = [&](const model::Vec3& u, const model::Vec3& v) {
+        return std::none_of(walls.begin(), walls.end(), [&](const Node* w) { return segmentCrosses(u, v, w->box); });
+    };
+    std::vector<model::Vec3> points{p, q};
+    for (const Node* w : walls) {
+        const double c = std::cos(w->box.yaw), s = std::sin(w->box.yaw);
+        const double hx = w->box.size.x / 2 + kStandOff, hy = w->box.size.y / 2 + kStandOff;
+        for (const double u : {-hx, hx})
+            for (const double v : {-hy, hy}) {
+                const model::Vec3 corner{w->box.center.x + u * c - v * s, w->box.center.y + u * s + v * c, z};
+                const bool inWall =
+                    std::any_of(walls.begin(), walls.end(), [&](const Node* o) { return pointInBox(corner, o->box); });
+                if (!inWall && length(p, corner) + length(corner, q) <= longest) points.push_back(corner);
+            }
+    }
+    std::vector<double> way(points.size(), std::numeric_limits<double>::infinity());
+    std::vector<bool> done(points.size(), false);
+    way[0] = 0;
+    for (;;) {
+        std::size_t next = points.size();
+        for (std::size_t i = 0; i < points.size(); ++i)
+            if (!done[i] && way[i] <= longest && (next == points.size() || way[i] < way[next])) next = i;
+        if (next == points.size()) return std::numeric_limits<double>::infinity();
+        if (next == 1) return way[1];
+        done[next] = true;
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const double through = way[next] + length(points[next], points[i]);
+            if (!done[i] && through < way[i] && clear(points[next], points[i])) way[i] = through;
+        }
+    }
+}
+
+// A wall stands between a and b when the line joining their centres passes through it (neither centre
+// in it, neither a nor b an opening in it) and the way round the walls is longer than that line by more
+// than `reach`: a wall between two rooms parts what stands on either side of it, but the pillar between
+// two benches along one wall, or the corner of an L-shaped room, does not.
+bool wallBetween(const Node& a, const Node& b, double reach, const Thresholds& t, const Obstacles& obstacles) {
     model::Aabb span = obstacles.bounds(a);
     const model::Aabb other = obstacles.bounds(b);
     span.min = {std::min(span.min.x, other.min.x), std::min(span.min.y, other.min.y),
                 std::min(span.min.z, other.min.z)};
     span.max = {std::max(span.max.x, other.max.x), std::max(span.max.y, other.max.y),
                 std::max(span.max.z, other.max.z)};
-    std::vector<const Node*> around;
-    obstacles.wallsWithin(span, around);
-    return std::any_of(around.begin(), around.end(), [&](const Node* w) {
-        if (w->id == a.id || w->id == b.id || !isVerticalPlane(*w)) return false;
-        if (pointInBox(centre(a), w->box) || pointInBox(centre(b), w->box)) return false;
-        if (openingIn(a, *w, t) || openingIn(b, *w, t)) return false;
-        return segmentCrosses(centre(a), centre(b), w->box);
-    });
+    auto inTheWay = [&](const Node* w) {
+        return w->id != a.id && w->id != b.id && isVerticalPlane(*w) && !pointInBox(centre(a), w->box) &&
+               !pointInBox(centre(b), w->box) && !openingIn(a, *w, t) && !openingIn(b, *w, t);
+    };
+    std::vector<const Node*> walls;
+    obstacles.wallsWithin(span, walls);
+    if (std::none_of(walls.begin(), walls.end(),
+                     [&](const Node* w) { return segmentCrosses(centre(a), centre(b), w->box) && inTheWay(w); }))
+        return false;
+    // The walls a way round may pass: those within reach of the two.
+    walls.clear();
+    obstacles.wallsWithin(grown(span, reach), walls);
+    std::erase_if(walls, [&](const Node* w) { return !inTheWay(w); });
+    const double straight = std::hypot(centre(a).x - centre(b).x, centre(a).y - centre(b).y);
+    return wayRound(centre(a), centre(b), walls, straight + reach) > straight + reach;
 }
 
-// What stands around x for near's crowding: another object, visible, that x does not rest on or in and
-// that does not rest on or in x (the sofa under a cushion, the cushion on a chair are x's own).
+// What stands around x for near's crowding: another object of x's kind, visible, that x does not rest on or
+// in and that does not rest on or in x (the sofa under a cushion, the cushion on a chair are x's own). A
+// crowd is of like things (cushions in a row, chairs side by side): the table two chairs stand at, or a
+// picture on the wall behind one, does not keep them from being near each other.
 bool neighbourOf(const Node& x, const Node& c, const Thresholds& t) {
     if (c.id == x.id || c.hidden || c.kind != model::NodeKind::Object || !hasGeometry(c)) return false;
+    if (!sameCategory(c.category, x.category)) return false;
     if (supportScore(x, c, t) > 0 || supportScore(c, x, t) > 0) return false;
     return model::fractionInside(x.box, c.box) < t.inMinInside && model::fractionInside(c.box, x.box) < t.inMinInside;
 }
 
 // In a crowded spot a person calls near what is nearest: b is crowded out of a's nearness when other
-// things stand closer to a than b does by more than near.min_distance, and closer to b than a does.
+// things of a's kind stand closer to a than b does by more than near.min_distance, and things of b's kind
+// closer to b than a does (neighbourOf).
 bool crowdedOut(const Node& a, const Node& b, double gap, const Thresholds& t, const Obstacles& obstacles) {
     const double closer = gap - t.nearMinDistance;
     if (closer <= 0) return false;
@@ -323,7 +379,7 @@ bool crowdedOut(const Node& a, const Node& b, double gap, const Thresholds& t, c
 double nearScore(const PredicateInputs& in) {
     double limit = nearLimit(in.a, in.b, in.t, in.writtenDistance);
     double d = model::distance(in.a.box, in.b.box);
-    if (d > limit || wallBetween(in.a, in.b, in.t, in.obstacles)) return 0.0;
+    if (d > limit || wallBetween(in.a, in.b, limit, in.t, in.obstacles)) return 0.0;
     if (!in.writtenDistance && crowdedOut(in.a, in.b, d, in.t, in.obstacles)) return 0.0;
     return limit > 0 ? std::max(0.01, 1.0 - d / limit) : 1.0;
 }
@@ -673,7 +729,7 @@ bool holds(Predicate p, const Node& a, const Node& b, const Thresholds& t, const
     // written distance near also gives way in a crowd, which the exact score decides.
     if (p == Predicate::Near && writtenDistance && *writtenDistance >= 0 && hasGeometry(a) && hasGeometry(b) &&
         a.id != b.id && surelyWithin(a.box, b.box, *writtenDistance))
-        return !wallBetween(a, b, t, obstacles);
+        return !wallBetween(a, b, *writtenDistance, t, obstacles);
     return evaluate(p, a, b, t, frame, obstacles, c, writtenDistance) > 0;
 }
 

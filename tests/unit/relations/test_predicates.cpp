@@ -156,6 +156,73 @@ TEST_CASE("near: a wall between two things keeps them apart") {
     CHECK(evalAmong(Predicate::Near, here, there, Boxes({wallAt(10, 0.4)})) > 0);
 }
 
+// A box turned by yaw, as the scenes store them.
+Node turned(model::NodeId id, std::string category, model::Vec3 c, model::Vec3 size, double yaw,
+            model::NodeKind kind = model::NodeKind::Object, model::GeometryKind g = model::GeometryKind::Box) {
+    Node n = node(id, std::move(category), c.x, c.y, c.z, size.x, size.y, size.z, kind, g);
+    n.box.yaw = yaw;
+    return n;
+}
+Node wallFace(model::NodeId id, model::Vec3 c, model::Vec3 size, double yaw) {
+    return turned(id, "wall", c, size, yaw, model::NodeKind::Anchor, model::GeometryKind::Plane);
+}
+
+TEST_CASE("near: a pillar between two benches along one wall does not part them; a wall between rooms does") {
+    // Replica office_4 (its info_semantic.json as Replica ships it): benches 52 and 51 stand along one
+    // wall, 0.90 m apart, a pillar between them (wall faces 28, 47 and 41 over wall 35 and 54), and
+    // ReplicaSSG's annotators call them near. The line between their centres passes through face 28;
+    // the way round the pillar is 0.2 m longer.
+    const Node bench52 = turned(21, "bench", {4.9773, -0.4604, 0.2135}, {0.4730, 1.8711, 0.4734}, 0.1025);
+    const Node bench51 = turned(22, "bench", {4.6870, 2.2966, 0.1936}, {0.5022, 1.8645, 0.4671}, 0.0959);
+    const std::vector<Node> pillar{wallFace(51, {4.8634, 0.5474, 1.3332}, {0.0990, 0.4862, 2.7285}, 1.5687),
+                                   wallFace(26, {4.5761, 0.9366, 1.3345}, {0.0431, 0.8400, 2.7329}, 0.0788),
+                                   wallFace(28, {4.7709, 1.3710, 1.5498}, {0.0722, 0.4575, 2.2958}, 1.5633),
+                                   wallFace(65, {5.2115, -0.5536, 1.3391}, {0.0416, 2.2987, 2.7208}, 0.1035),
+                                   wallFace(19, {4.8814, 2.7873, 1.3299}, {0.0445, 2.7897, 2.7357}, 0.1031)};
+    CHECK(evalAmong(Predicate::Near, bench52, bench51, Boxes(pillar)) > 0);
+    CHECK(evalAmong(Predicate::Near, bench51, bench52, Boxes(pillar)) > 0);
+    // The same pillar reaching 3 m into the room is a wall between two rooms' parts: the way round
+    // it is 5 m longer than the way through.
+    std::vector<Node> partition = pillar;
+    partition[0].box.size.y = 6;
+    partition[0].box.center.x -= 2.76;
+    CHECK(evalAmong(Predicate::Near, bench52, bench51, Boxes(partition)) == 0);
+    // A written distance is the reach the way round may add: near(bench, 0.95 m) goes round the pillar,
+    // near(bench, 0.1 m) has the benches too far apart anyway, and no reach goes round the partition.
+    CHECK(evaluate(Predicate::Near, bench52, bench51, kT, kFrame, Boxes(pillar), nullptr, 0.95) > 0);
+    CHECK(evaluate(Predicate::Near, bench52, bench51, kT, kFrame, Boxes(pillar), nullptr, 0.1) == 0);
+    CHECK(evaluate(Predicate::Near, bench52, bench51, kT, kFrame, Boxes(partition), nullptr, 1.0) == 0);
+}
+
+TEST_CASE("near: a crowd is of like things") {
+    // Replica office_4 again: chairs 12 and 13 at the end of the table, 0.65 m apart, labelled near.
+    // Chair 12 has the table, the screen, the picture and chair 17 closer than that; chair 13 the screen
+    // and the picture. Only chair 17 is a chair: a crowd of one's own kind.
+    const Node chair12 = turned(36, "chair", {1.6681, -1.4316, 0.5064}, {0.6618, 0.6842, 1.0373}, 0.1277);
+    const Node chair13 = turned(40, "chair", {0.1187, -1.6394, 0.4442}, {1.1184, 1.1212, 0.9106}, 0.0752);
+    const Node chair17 = turned(54, "chair", {1.6071, -0.6377, 0.4421}, {0.6623, 0.6756, 0.9197}, 0.0781);
+    const std::vector<Node> room{chair12,
+                                 chair13,
+                                 chair17,
+                                 turned(32, "table", {2.1827, -0.1731, 0.3554}, {1.5693, 3.6967, 0.7707}, 0.1100),
+                                 turned(41, "tv-screen", {2.3629, -1.9294, 1.2782}, {0.4323, 2.4837, 1.1074}, 1.5496),
+                                 turned(53, "picture", {1.7419, -1.9326, 1.2264}, {0.1541, 1.1519, 0.6673}, 1.5457)};
+    const Boxes around(room);
+    CHECK(evalAmong(Predicate::Near, chair12, chair13, around) > 0);
+    CHECK(evalAmong(Predicate::Near, chair13, chair12, around) > 0);
+    CHECK(evalAmong(Predicate::Near, chair12, chair17, around) > 0);
+    // Four cushions in a row, 0.45 m each: the outer ones touch their neighbours, the middle two are 0.53 m
+    // apart. Each of the middle two has a cushion closer by more than near.min_distance: not near.
+    auto cushion = [](model::NodeId id, double x) { return node(id, "cushion", x, 0, 0.6, 0.45, 0.45, 0.2); };
+    const std::vector<Node> row{cushion(71, -0.96), cushion(18, -0.49), cushion(70, 0.49), cushion(8, 0.96)};
+    CHECK(evalAmong(Predicate::Near, row[1], row[2], Boxes(row)) == 0);
+    CHECK(evalAmong(Predicate::Near, row[0], row[1], Boxes(row)) > 0);
+    // The outer two a pair of books instead: no cushion crowds the middle two.
+    std::vector<Node> mixed = row;
+    mixed[0].category = mixed[3].category = "book";
+    CHECK(evalAmong(Predicate::Near, mixed[1], mixed[2], Boxes(mixed)) > 0);
+}
+
 // holds() settles on over a footprint within the carrier's, and near within a written distance,
 // without the exact overlap or distance: it must answer what the score does, on either side of
 // each line (things across the table's edge, at every distance, turned, behind a wall).
