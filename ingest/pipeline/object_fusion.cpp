@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -556,6 +557,68 @@ SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, c
     return best;
 }
 
+bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const FusionOptions& options) {
+    const model::BoxFrame frame(box);
+    const double cell = options.topCell;
+    const int nx = std::max(1, static_cast<int>(std::ceil(box.size.x / cell)));
+    const int ny = std::max(1, static_cast<int>(std::ceil(box.size.y / cell)));
+    std::vector<double> highest(static_cast<std::size_t>(nx * ny), -std::numeric_limits<double>::infinity());
+    for (const auto& p : points) {
+        const model::Vec2 at = frame.local({p.x, p.y});
+        const int ix = std::clamp(static_cast<int>((at.x + box.size.x / 2) / cell), 0, nx - 1);
+        const int iy = std::clamp(static_cast<int>((at.y + box.size.y / 2) / cell), 0, ny - 1);
+        double& h = highest[static_cast<std::size_t>(ix * ny + iy)];
+        h = std::max(h, p.z);
+    }
+    // The rim: the height most of the footprint's cells reach, the counter around the bowl (a backsplash or a tap
+    // rising over it are a few cells).
+    std::vector<double> seen;
+    for (const double h : highest)
+        if (std::isfinite(h)) seen.push_back(h);
+    if (seen.empty()) return false;
+    auto rimAt = seen.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(seen.size() - 1));
+    std::nth_element(seen.begin(), rimAt, seen.end());
+    const double under = *rimAt - options.basinDip;
+    auto bowl = [&](int ix, int iy) {
+        const double h = highest[static_cast<std::size_t>(ix * ny + iy)];
+        return std::isfinite(h) && h < under;
+    };
+    // The bowl: the largest run of such cells side by side (a counter's edge or a cabinet's side seen lower down
+    // makes runs of its own).
+    std::vector<int> run(static_cast<std::size_t>(nx * ny), -1);
+    int cells = 0, loX = 0, hiX = -1, loY = 0, hiY = -1;
+    for (int start = 0; start < nx * ny; ++start) {
+        if (run[static_cast<std::size_t>(start)] >= 0 || !bowl(start / ny, start % ny)) continue;
+        std::vector<int> open{start};
+        run[static_cast<std::size_t>(start)] = start;
+        int count = 0, x0 = nx, x1 = -1, y0 = ny, y1 = -1;
+        while (!open.empty()) {
+            const int at = open.back();
+            open.pop_back();
+            const int ix = at / ny, iy = at % ny;
+            ++count;
+            x0 = std::min(x0, ix), x1 = std::max(x1, ix), y0 = std::min(y0, iy), y1 = std::max(y1, iy);
+            for (const auto& [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
+                const int jx = ix + dx, jy = iy + dy;
+                if (jx < 0 || jy < 0 || jx >= nx || jy >= ny || !bowl(jx, jy)) continue;
+                int& mark = run[static_cast<std::size_t>(jx * ny + jy)];
+                if (mark < 0) mark = start, open.push_back(jx * ny + jy);
+            }
+        }
+        if (count > cells) cells = count, loX = x0, hiX = x1, loY = y0, hiY = y1;
+    }
+    if (cells < 4) return false;
+    const double x0 = std::max(-box.size.x / 2, loX * cell - box.size.x / 2 - options.basinRim);
+    const double x1 = std::min(box.size.x / 2, (hiX + 1) * cell - box.size.x / 2 + options.basinRim);
+    const double y0 = std::max(-box.size.y / 2, loY * cell - box.size.y / 2 - options.basinRim);
+    const double y1 = std::min(box.size.y / 2, (hiY + 1) * cell - box.size.y / 2 + options.basinRim);
+    if ((x1 - x0) * (y1 - y0) > options.basinShare * box.size.x * box.size.y) return false;
+    const model::Vec2 centre = frame.world({(x0 + x1) / 2, (y0 + y1) / 2});
+    box.center.x = centre.x, box.center.y = centre.y;
+    box.size.x = x1 - x0, box.size.y = y1 - y0;
+    return true;
+}
+
 bool lowerToTop(model::Box& box, const SeenTop& top, const FusionOptions& options) {
     const double bottom = model::bottom(box);
     if (top.cover < options.topCover || model::top(box) <= top.height + options.overTop || top.height <= bottom)
@@ -662,6 +725,8 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
             fused.category = doubts[t].empty() ? uses[t].category : "object";
             fused.renamedWhy = doubts[t].empty() ? uses[t].why : doubts[t];
         }
+        // The sink is its bowl, once its cabinet has been told by the box its views gave (cabinetOf, reachUnder).
+        if (role(fused.category) == Role::Basin) made.bowls += fitBasin(fused.points.points, fused.box, options_);
         for (const Instance* instance : things[t].instances)
             fused.views.insert(fused.views.end(), instance->sources.begin(), instance->sources.end());
         std::sort(fused.views.begin(), fused.views.end(),
@@ -736,9 +801,9 @@ std::vector<ObjectTrack> fuseTracks(std::vector<ObjectTrack> tracks, const Align
         "merged into the things they belong to, {} more merged by their boxes, {} upright ends joined to their beds, "
         "sofas or chairs' seats; {} slivers and {} things seen in too few of the frames that held them dropped; {} "
         "lowered to the top they show; {} reaching down to the floor; {} sink(s) parted from the cabinet their views "
-        "took in)",
+        "took in, {} fitted to the bowl they show)",
         counts.segmented, counts.views, out.size(), counts.mapMerged, counts.pieces, counts.ends, counts.slivers,
-        counts.guesses, counts.lowered, counts.grounded, counts.basins));
+        counts.guesses, counts.lowered, counts.grounded, counts.basins, counts.bowls));
     return out;
 }
 

@@ -78,6 +78,10 @@ struct FusionOptions {
     double basinDepth = 0.35;  // m: a sink whose box reaches the floor, twice this tall or more, is this deep under its
                                // rim, the rest the cabinet it is set in (ScanNet's 390 labelled sinks: 0.26 m tall
                                // at the median, 0.33 m at the third quartile)
+    double basinDip = 0.06;    // m: a sink's footprint cell whose highest point lies this far under its top is its bowl
+    double basinRim = 0.08;    // m: the bowl's cells grown by this on each side are the sink (ScanNet's labelled sinks:
+                               // 0.56 x 0.46 m at the median, a bowl of about 0.40 x 0.30 m and its rim)
+    double basinShare = 0.7;   // a bowl and rim over this share of the box's footprint is the box's own
     bool voteLabels = true;    // a closed-set detector (InstanceMapOptions::voteLabels)
 };
 
@@ -120,6 +124,13 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
 // a sink whose own views took in its cabinet, its box reaching down to the floor, is parted from it at
 // FusionOptions::basinDepth under its rim (object_fusion.cpp, partBasins).
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options = {});
+
+// A sink is its basin: where its views took in the counter or vanity top around the bowl, its box becomes the bowl
+// and its rim. The bowl shows as cells of the footprint (FusionOptions::topCell) whose highest point lies
+// FusionOptions::basinDip or more under the box's top, the counter around it and the rim being at the top; the box
+// keeps their bounds grown by FusionOptions::basinRim, within its own, where that is at most basinShare of its
+// footprint. Returns whether the box changed.
+bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const FusionOptions& options = {});
 
 // A sink's cabinet holds the basin set in it, though its views or points showed less of it (its front, a door):
 // its footprint grows, square to itself, to reach under the whole of the basin's; its height stays.
@@ -193,7 +204,8 @@ struct FusedThing {
 struct FusionCounts {
     std::size_t segmented = 0;  // views that showed a thing apart from the floor and walls
     std::size_t views = 0;      // views added
-    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, lowered = 0, grounded = 0, basins = 0;
+    std::size_t mapMerged = 0, pieces = 0, ends = 0, slivers = 0, guesses = 0, lowered = 0, grounded = 0, basins = 0,
+                bowls = 0;
 };
 
 // Object fusion frame by frame: each frame's views go into the instance map as the frame comes (addFrame), and
