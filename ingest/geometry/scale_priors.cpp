@@ -37,7 +37,8 @@ std::vector<bool> namesInDoubt(const std::vector<NamedThing>& things, const mode
     };
     std::vector<std::optional<Place>> places(things.size());  // of things that stand in one kind of room
     for (std::size_t i = 0; i < things.size(); ++i) {
-        if (roomKind(things[i].category) == RoomKind::Any || things[i].points.empty()) continue;
+        const RoomKind room = roomKind(things[i].category);
+        if (room == RoomKind::Any || room == RoomKind::Dry || things[i].points.empty()) continue;
         std::vector<double> xs, ys, zs, above;
         for (const auto& p : things[i].points) {
             xs.push_back(p.x);

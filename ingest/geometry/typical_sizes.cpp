@@ -11,7 +11,8 @@ namespace {
 // a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). Upright
 // ends: the kind has a thin upright part at an end or side (a bed's headboard, a sofa's back) that a detector may name
 // apart (object_fusion.cpp joins it back). Room: the one kind of room the kind stands in (a toilet in a bathroom, a
-// fridge or an oven in a kitchen; object_fusion.cpp doubts a name among another room's things). Role: what the kind is
+// fridge or an oven in a kitchen), or none but a bathroom (a bed, a sofa); object_fusion.cpp doubts a name among
+// another room's things. Role: what the kind is
 // for where fusion judges a thing by it (typical_sizes.hpp: Role). Least: the largest side and the height no thing of
 // the kind comes under (typical_sizes.hpp: LeastSize), where real rooms' labels show it; Slender: a footprint too long
 // for its depth for the kind (typical_sizes.hpp). The rows cover the memory's names for the detector's COCO classes
@@ -31,12 +32,13 @@ struct Typical {
 // The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
 constexpr Slender kChairShape{.length = 0.75, .depth = 0.2, .postHeight = 0.4, .postSide = 0.25};
 constexpr Slender kFridgeShape{.length = 0.9, .depth = 0.25, .frontHeight = 1.1};
+constexpr Slender kTableShape{.length = 0.75, .depth = 0.25};
 constexpr Typical kTypical[] = {
-    {"table", 0.75, 2.4, Support::Floor, true},
-    {"desk", 0.75, 1.9, Support::Floor, true},
-    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat, {}, kChairShape},
-    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Any, Role::Seat, {0, 0.35}, {1.0, 0.3}},
-    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Any, Role::Other, {1.2, 0}, {1.0, 0.25}},
+    {"table", 0.75, 2.4, Support::Floor, true, false, RoomKind::Any, Role::Other, {}, kTableShape},
+    {"desk", 0.75, 1.9, Support::Floor, true, false, RoomKind::Dry, Role::Other, {}, kTableShape},
+    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape},
+    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
+    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, {1.0, 0.25}},
     {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}, kFridgeShape},
     {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},
@@ -46,7 +48,7 @@ constexpr Typical kTypical[] = {
     {"counter", 0, 4.0, Support::Floor, true},
     {"wardrobe", 0, 2.6, Support::Floor},
     {"dresser", 0, 1.9, Support::Floor},
-    {"armchair", 0, 1.2, Support::Floor, false, false, RoomKind::Any, Role::Seat},
+    {"armchair", 0, 1.2, Support::Floor, false, false, RoomKind::Dry, Role::Seat},
     {"stool", 0, 0.9, Support::Floor, false, false, RoomKind::Any, Role::Seat},
     {"bench", 0, 2.2, Support::Floor, false, true, RoomKind::Any, Role::Seat},
     {"tv", 0, 2.0, Support::Either},

@@ -418,7 +418,9 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
         std::map<RoomKind, std::vector<std::string_view>> others;
         for (const auto& other : things) {
             const RoomKind room = roomKind(other.category);
-            if (room == RoomKind::Any || model::distance(things[t].box, other.box) > options.roomReach ||
+            // A bed or a chair beside a toilet is no measure of the toilet's room: a toilet's name is the surer.
+            if (room == RoomKind::Any || room == RoomKind::Dry ||
+                model::distance(things[t].box, other.box) > options.roomReach ||
                 wallBetween(things[t].box.center, other.box.center, walls))
                 continue;
             if (room == own)
@@ -426,8 +428,10 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
             else
                 others[room].push_back(other.category);
         }
+        // A kind that stands in any room but a bathroom is out of place beside one toilet; the others where
+        // another room's kinds outnumber their own.
         for (const auto& [room, names] : others)
-            if (names.size() > ownCount)
+            if (own == RoomKind::Dry ? room == RoomKind::Bathroom : names.size() > ownCount)
                 doubts[t] = fmt::format("in a {} (beside {} within {:.1f} m)", roomName(room), fmt::join(names, ", "),
                                         options.roomReach);
     }

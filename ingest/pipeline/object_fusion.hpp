@@ -146,7 +146,9 @@ std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, std:
 // Things of a kind that stands in one kind of room (typical_sizes.hpp: roomKind; a toilet) with more things of
 // another room's kinds (a fridge, an oven, a microwave) than of their own, themselves counted, within
 // FusionOptions::roomReach and no wall between: not of that kind (two white bins beside a fridge that a
-// detector calls a toilet in every view). Returns, per thing, why its name is doubted, or "".
+// detector calls a toilet in every view). And things of a kind that stands in any room but a bathroom (RoomKind::Dry:
+// a bed, a sofa, a desk, a chair) with a toilet that close: a bathtub its views called a bed, a chair or a desk.
+// Returns, per thing, why its name is doubted, or "".
 std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const std::vector<WallSegment>& walls,
                                     const FusionOptions& options = {});
 

@@ -181,6 +181,37 @@ TEST_CASE("out of place: a toilet among a kitchen's things is not a toilet; one 
     CHECK(pair[1].empty());
 }
 
+TEST_CASE("out of place: a bed, a chair or a desk beside a toilet is a bathtub; a bed behind the wall is a bed",
+          "[ingest][fusion]") {
+    // ScanNet scene0448_01, the bathroom from every second or third of its frames: the bathtub beside the toilet
+    // stored as a "bed" (1.28 x 0.88 x 1.17 m), a "chair" (0.86 x 0.86 x 1.11 m) or a "chair" 1.16 x 0.74 x 0.36 m
+    // with a towel rack called a desk beside it, where its every frame made it a thing no model named. Of ScanNet's
+    // labelled things, 4 of 388 beds, 0 of 503 sofas, 0 of 678 desks and 2 of 5,725 chairs stand within 1 m of a
+    // toilet (typical_sizes.hpp: RoomKind::Dry).
+    const SeenBox toilet = seen("toilet", {1.71, 1.85, 0.41}, {0.62, 0.44, 0.82}, 90, 20);
+    const SeenBox sink = seen("sink", {1.03, 1.77, 0.68}, {0.56, 0.48, 0.31}, 0, 12);
+    for (const SeenBox& tub : {seen("bed", {2.55, 2.18, 0.59}, {1.28, 0.88, 1.17}, 0, 4),
+                               seen("chair", {2.54, 2.39, 0.56}, {0.86, 0.86, 1.11}, 0, 3),
+                               seen("chair", {2.41, 2.25, 0.18}, {1.16, 0.74, 0.36}, 0, 3)}) {
+        const auto doubts = outOfPlace({toilet, sink, tub}, {});
+        INFO(tub.category);
+        CHECK(doubts[2].find("bathroom (beside toilet") != std::string::npos);
+        // The toilet's name is the surer: a bed beside it does not make it out of place.
+        CHECK(doubts[0].empty());
+        CHECK(doubts[1].empty());
+    }
+    // A bed against the wall its room shares with the bathroom stays a bed; and one with no toilet near it.
+    const SeenBox bed = seen("bed", {1.71, 3.20, 0.30}, {2.0, 1.5, 0.6}, 90, 20);
+    WallSegment shared;
+    shared.normal = {0, 1, 0};
+    shared.offset = -2.30;  // y = 2.3
+    shared.along0 = -4.0;   // along its direction (-x): x from 0 to 4
+    shared.along1 = 0.0;
+    CHECK(outOfPlace({toilet, bed}, {shared})[1].empty());
+    CHECK_FALSE(outOfPlace({toilet, bed}, {})[1].empty());
+    CHECK(outOfPlace({sink, bed}, {})[1].empty());
+}
+
 namespace {
 
 // A detection's view of these points (2 cm apart), each on a grid place of its own.
