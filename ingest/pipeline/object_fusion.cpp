@@ -684,6 +684,13 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     std::vector<Thing> things = thingsOf(map, cameras_, options_, made.guesses);
     made.pieces = mergePieces(things, options_);
     made.ends = joinUprightEnds(things, options_);
+    // A thing one frame saw, once its pieces are joined, where four or more held it in view: a closed-set
+    // detector's one-off guess. Detections a user gives (detections.json) are taken as what was seen.
+    if (options_.voteLabels)
+        made.guesses += std::erase_if(things, [&](const Thing& t) {
+            return framesSeen(t) < 2 &&
+                   framesInView(t.points, cameras_) >= static_cast<std::size_t>(options_.oneViewOf);
+        });
     // The tops of things that hold things, before their boxes reach down to the floor from them.
     for (auto& thing : things)
         if (holdsThings(thing.category) && !hasUprightEnds(thing.category)) {

@@ -27,7 +27,9 @@ struct FusionOptions {
     double thinShare = 0.06;         // ... and so are those whose thinnest side is under this share of the largest
                                      // side things of their kind have (a 6 cm thin "table" is a table's edge)
     double minViewShare = 0.1;       // of the frames whose view holds an instance, this share must have seen it ...
-    int viewsEnough = 3;             // ... up to this many views (a detector's one-off guess is no thing)
+    int viewsEnough = 3;             // ... up to this many views (a detector's one-off guess is no thing);
+    int oneViewOf = 4;               // and a thing seen in one frame, its pieces joined, where this many or more held
+                                     // it in view is one too (with voteLabels: a closed-set detector's)
     double groundReach = 0.5;        // m: a thing that stands on floors, its bottom up to this high with nothing
                                      // under it, reaches down to the floor (its legs were hidden) ...
     double topReach = 1.3;           // ... and so does one whose top is no higher than this share of its kind's
