@@ -11,12 +11,11 @@ namespace {
 // a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). Upright
 // ends: the kind has a thin upright part at an end or side (a bed's headboard, a sofa's back) that a detector may name
 // apart (object_fusion.cpp joins it back). Room: the one kind of room the kind stands in (a toilet in a bathroom, a
-// fridge or an oven in a kitchen), or none but a bathroom (a bed, a sofa); object_fusion.cpp doubts a name among
-// another room's things. Role: what the kind is
-// for where fusion judges a thing by it (typical_sizes.hpp: Role). Least: the largest side and the height no thing of
-// the kind comes under (typical_sizes.hpp: LeastSize), where real rooms' labels show it; Slender: a footprint too long
-// for its depth for the kind (typical_sizes.hpp). The rows cover the memory's names for the detector's COCO classes
-// (detector.cpp) and the kinds of labelled captures.
+// fridge or an oven in a kitchen), or any but a bathroom (a bed, a sofa); object_fusion.cpp doubts a name among
+// another room's things. Role: what the kind is for where fusion judges a thing by it (typical_sizes.hpp: Role).
+// Least: the largest side and the height no thing of the kind comes under (typical_sizes.hpp: LeastSize), where real
+// rooms' labels show it; Slender: a footprint too long for its depth for the kind (typical_sizes.hpp). The rows cover
+// the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;

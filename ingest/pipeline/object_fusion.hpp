@@ -80,7 +80,7 @@ struct FusionOptions {
     double basinDepth = 0.35;  // m: a sink whose box reaches the floor, twice this tall or more, is this deep under its
                                // rim, the rest the cabinet it is set in (ScanNet's 390 labelled sinks: 0.26 m tall
                                // at the median, 0.33 m at the third quartile)
-    double basinDip = 0.06;    // m: a sink's footprint cell whose highest point lies this far under its top is its bowl
+    double basinDip = 0.06;    // m: a sink's footprint cell whose highest point lies this far under its rim is its bowl
     double basinRim = 0.08;    // m: the bowl's cells grown by this on each side are the sink (ScanNet's labelled sinks:
                                // 0.56 x 0.46 m at the median, a bowl of about 0.40 x 0.30 m and its rim)
     double basinShare = 0.7;   // a bowl and rim over this share of the box's footprint is the box's own
@@ -129,8 +129,9 @@ bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOpt
 
 // A sink is its basin: where its views took in the counter or vanity top around the bowl, its box becomes the bowl
 // and its rim. The bowl shows as cells of the footprint (FusionOptions::topCell) whose highest point lies
-// FusionOptions::basinDip or more under the box's top, the counter around it and the rim being at the top; the box
-// keeps their bounds grown by FusionOptions::basinRim, within its own, where that is at most basinShare of its
+// FusionOptions::basinDip or more under the rim, the height nine in ten of the cells reach at most (the counter
+// around the bowl; a backsplash or a tap rise over it); the largest run of them side by side is the bowl, and the
+// box keeps its bounds grown by FusionOptions::basinRim, within its own, where that is at most basinShare of its
 // footprint. Returns whether the box changed.
 bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const FusionOptions& options = {});
 
