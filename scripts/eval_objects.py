@@ -4,7 +4,7 @@ against the truth"): each capture is ingested as a user would, its stored things
 truth's, and questions whose answers follow from the truth boxes asked in English.
 
     scripts/eval_objects.py SMQL CAPTURE... [--options "--objects detect"] [--json OUT]
-                            [--keep DIR] [--reuse]
+                            [--keep DIR] [--reuse] [--thinned EVERY:FROM ...]
 
 A CAPTURE is a folder smql ingests (rgbd, tum ...) holding truth.json:
     {"up": [0, 0, 1], "source": "ScanNet ...", "unlabelled": ["chair"],
@@ -36,6 +36,9 @@ there (seen, not hidden); a kind is first seen when its first thing is. Of the k
 each set of four (else three, else two) whose first sights lie 10 or more frames apart is asked
 "What will be the first-time appearance order of the following categories in the video: a, b, c,
 d?", and is right when the answer orders them as the truth does.
+
+--thinned EVERY:FROM scores each frames folder (color/, depth/, pose.txt) also from every EVERY-th of its
+frames from FROM on, a folder of links beside the databases: the same room walked at another pace.
 """
 import argparse
 import itertools
@@ -410,6 +413,31 @@ def evaluate(smql, capture, db, options, reuse):
     return row
 
 
+def thinned(capture, every, offset, work):
+    """The capture from every `every`-th frame from `offset` on, as a folder of links beside the work's databases
+    (a frames folder of color/, depth/ and pose.txt, frame i = line i in the frames' numeric order), or None."""
+    color, depth, poses = capture / "color", capture / "depth", capture / "pose.txt"
+    if not (color.is_dir() and depth.is_dir() and poses.exists()):
+        return None
+    frames = sorted(color.iterdir(), key=lambda f: int(f.stem) if f.stem.isdigit() else -1)
+    lines = poses.read_text().splitlines()
+    header, rows = [l for l in lines if l.startswith("#")], [l for l in lines if l.strip() and not l.startswith("#")]
+    if len(rows) != len(frames):
+        return None
+    out = work / f"{capture.name}-every{every}from{offset}"
+    shutil.rmtree(out, ignore_errors=True)
+    (out / "color").mkdir(parents=True)
+    (out / "depth").mkdir()
+    kept = list(range(offset, len(frames), every))
+    for j, i in enumerate(kept):
+        (out / "color" / f"{j}{frames[i].suffix}").symlink_to(frames[i].resolve())
+        (out / "depth" / f"{j}.png").symlink_to((depth / f"{frames[i].stem}.png").resolve())
+    (out / "pose.txt").write_text("\n".join(header + [rows[i] for i in kept]) + "\n")
+    for name in ("camera.json", "truth.json"):
+        (out / name).symlink_to((capture / name).resolve())
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("smql")
@@ -419,11 +447,17 @@ def main():
     parser.add_argument("--reuse", action="store_true", help="with --keep: score databases already there")
     parser.add_argument("--json")
     parser.add_argument("--verbose", action="store_true")
+    parser.add_argument("--thinned", nargs="*", default=[], metavar="EVERY:FROM",
+                        help="score each frames folder also from every EVERY-th frame from FROM on (2:0 2:1 3:0)")
     args = parser.parse_args()
     work = args.keep or pathlib.Path(tempfile.mkdtemp(prefix="smql-eval-objects-"))
     work.mkdir(parents=True, exist_ok=True)
+    captures = list(args.captures)
+    for spec in args.thinned:
+        every, offset = (int(v) for v in spec.split(":"))
+        captures += [t for t in (thinned(c, every, offset, work / "thinned") for c in args.captures) if t]
     rows = []
-    for capture in args.captures:
+    for capture in captures:
         if not (capture / "truth.json").exists():
             continue
         row = evaluate(args.smql, capture, work / capture.name, shlex.split(args.options), args.reuse)

@@ -566,12 +566,16 @@ bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const Fus
     const double cell = options.topCell;
     const int nx = std::max(1, static_cast<int>(std::ceil(box.size.x / cell)));
     const int ny = std::max(1, static_cast<int>(std::ceil(box.size.y / cell)));
-    std::vector<double> highest(static_cast<std::size_t>(nx * ny), -std::numeric_limits<double>::infinity());
+    auto cellAt = [ny](int ix, int iy) {
+        return static_cast<std::size_t>(ix) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(iy);
+    };
+    const std::size_t cellCount = cellAt(nx, 0);
+    std::vector<double> highest(cellCount, -std::numeric_limits<double>::infinity());
     for (const auto& p : points) {
         const model::Vec2 at = frame.local({p.x, p.y});
         const int ix = std::clamp(static_cast<int>((at.x + box.size.x / 2) / cell), 0, nx - 1);
         const int iy = std::clamp(static_cast<int>((at.y + box.size.y / 2) / cell), 0, ny - 1);
-        double& h = highest[static_cast<std::size_t>(ix * ny + iy)];
+        double& h = highest[cellAt(ix, iy)];
         h = std::max(h, p.z);
     }
     // The rim: the height most of the footprint's cells reach, the counter around the bowl (a backsplash or a tap
@@ -584,12 +588,12 @@ bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const Fus
     std::nth_element(seen.begin(), rimAt, seen.end());
     const double under = *rimAt - options.basinDip;
     auto bowl = [&](int ix, int iy) {
-        const double h = highest[static_cast<std::size_t>(ix * ny + iy)];
+        const double h = highest[cellAt(ix, iy)];
         return std::isfinite(h) && h < under;
     };
     // The bowl: the largest run of such cells side by side (a counter's edge or a cabinet's side seen lower down
     // makes runs of its own).
-    std::vector<int> run(static_cast<std::size_t>(nx * ny), -1);
+    std::vector<int> run(cellCount, -1);
     int cells = 0, loX = 0, hiX = -1, loY = 0, hiY = -1;
     for (int start = 0; start < nx * ny; ++start) {
         if (run[static_cast<std::size_t>(start)] >= 0 || !bowl(start / ny, start % ny)) continue;
@@ -605,7 +609,7 @@ bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const Fus
             for (const auto& [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
                 const int jx = ix + dx, jy = iy + dy;
                 if (jx < 0 || jy < 0 || jx >= nx || jy >= ny || !bowl(jx, jy)) continue;
-                int& mark = run[static_cast<std::size_t>(jx * ny + jy)];
+                int& mark = run[cellAt(jx, jy)];
                 if (mark < 0) mark = start, open.push_back(jx * ny + jy);
             }
         }
