@@ -372,6 +372,9 @@ void reachUnder(model::Box& cabinet, const model::Box& basin) {
     const model::Vec2 centre = frame.world({(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2});
     cabinet.center.x = centre.x, cabinet.center.y = centre.y;
     cabinet.size.x = hi[0] - lo[0], cabinet.size.y = hi[1] - lo[1];
+    const double bottom = model::bottom(cabinet), top = std::max(model::top(cabinet), model::bottom(basin));
+    cabinet.size.z = top - bottom;
+    cabinet.center.z = (top + bottom) / 2;
 }
 
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
@@ -595,16 +598,19 @@ bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const Fus
     // makes runs of its own).
     std::vector<int> run(cellCount, -1);
     int cells = 0, loX = 0, hiX = -1, loY = 0, hiY = -1;
+    double floor = model::bottom(box);  // the bowl's: the lowest of its cells' highest points
     for (int start = 0; start < nx * ny; ++start) {
         if (run[static_cast<std::size_t>(start)] >= 0 || !bowl(start / ny, start % ny)) continue;
         std::vector<int> open{start};
         run[static_cast<std::size_t>(start)] = start;
         int count = 0, x0 = nx, x1 = -1, y0 = ny, y1 = -1;
+        double lowest = std::numeric_limits<double>::infinity();
         while (!open.empty()) {
             const int at = open.back();
             open.pop_back();
             const int ix = at / ny, iy = at % ny;
             ++count;
+            lowest = std::min(lowest, highest[cellAt(ix, iy)]);
             x0 = std::min(x0, ix), x1 = std::max(x1, ix), y0 = std::min(y0, iy), y1 = std::max(y1, iy);
             for (const auto& [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
                 const int jx = ix + dx, jy = iy + dy;
@@ -613,7 +619,7 @@ bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const Fus
                 if (mark < 0) mark = start, open.push_back(jx * ny + jy);
             }
         }
-        if (count > cells) cells = count, loX = x0, hiX = x1, loY = y0, hiY = y1;
+        if (count > cells) cells = count, loX = x0, hiX = x1, loY = y0, hiY = y1, floor = lowest;
     }
     if (cells < 4) return false;
     const double x0 = std::max(-box.size.x / 2, loX * cell - box.size.x / 2 - options.basinRim);
@@ -624,6 +630,10 @@ bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const Fus
     const model::Vec2 centre = frame.world({(x0 + x1) / 2, (y0 + y1) / 2});
     box.center.x = centre.x, box.center.y = centre.y;
     box.size.x = x1 - x0, box.size.y = y1 - y0;
+    // From the bowl's floor to the rim: what its views took in under the bowl is the cabinet's front.
+    const double top = model::top(box), bottom = std::max(model::bottom(box), floor);
+    box.size.z = top - bottom;
+    box.center.z = (top + bottom) / 2;
     return true;
 }
 
@@ -728,20 +738,23 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
         if (!doubts[t].empty()) named[t].category = "object";
     }
     const std::vector<UseName> uses = namedByUse(named, walls_, options_);
+    // A sink is its bowl, once its cabinet has been told by the box its views gave (cabinetOf).
+    for (std::size_t t = 0; t < things.size(); ++t)
+        if (doubts[t].empty() && uses[t].category.empty() && role(things[t].category) == Role::Basin)
+            made.bowls += fitBasin(things[t].points.points, things[t].box, options_);
 
     std::vector<FusedThing> out;
     for (std::size_t t = 0; t < things.size(); ++t) {
         FusedThing fused{things[t].box, things[t].category, "", "", std::move(things[t].points), {}};
-        // A sink's cabinet holds the basin set in it: its footprint reaches under the sink's.
-        if (doubts[t].empty() && uses[t].category == "cabinet")
-            reachUnder(fused.box, sinkOver(named[t].box, named, options_)->box);
+        // A sink's cabinet, named so or parted from it, holds the basin set in it: it reaches under the sink.
+        if (doubts[t].empty() && (uses[t].category == "cabinet" || things[t].category == "cabinet"))
+            if (const SeenBox* sink = sinkOver(named[t].box, named, options_))
+                reachUnder(fused.box, things[static_cast<std::size_t>(sink - named.data())].box);
         if (!doubts[t].empty() || !uses[t].category.empty()) {
             fused.detectedAs = fused.category;
             fused.category = doubts[t].empty() ? uses[t].category : "object";
             fused.renamedWhy = doubts[t].empty() ? uses[t].why : doubts[t];
         }
-        // The sink is its bowl, once its cabinet has been told by the box its views gave (cabinetOf, reachUnder).
-        if (role(fused.category) == Role::Basin) made.bowls += fitBasin(fused.points.points, fused.box, options_);
         for (const Instance* instance : things[t].instances)
             fused.views.insert(fused.views.end(), instance->sources.begin(), instance->sources.end());
         std::sort(fused.views.begin(), fused.views.end(),

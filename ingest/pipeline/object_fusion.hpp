@@ -132,11 +132,13 @@ bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOpt
 // FusionOptions::basinDip or more under the rim, the height nine in ten of the cells reach at most (the counter
 // around the bowl; a backsplash or a tap rise over it); the largest run of them side by side is the bowl, and the
 // box keeps its bounds grown by FusionOptions::basinRim, within its own, where that is at most basinShare of its
-// footprint. Returns whether the box changed.
+// footprint, and reaches from the bowl's floor (the lowest of its cells' highest points) to the rim: what the views
+// took in under the bowl is the cabinet's front. Returns whether the box changed.
 bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const FusionOptions& options = {});
 
 // A sink's cabinet holds the basin set in it, though its views or points showed less of it (its front, a door):
-// its footprint grows, square to itself, to reach under the whole of the basin's; its height stays.
+// its footprint grows, square to itself, to reach under the whole of the basin's, and its top up to the basin's
+// bottom where it was lower (a sink fitted to its bowl, fitBasin, begins at the bowl's floor).
 void reachUnder(model::Box& cabinet, const model::Box& basin);
 
 // Things of kinds that stand on floors whose legs or base the views did not see reach down to the floor: the

@@ -345,7 +345,8 @@ TEST_CASE("a sink ends at its counter, above the cabinet its views took in: the 
         // (The points are the fused map's, one a 5 cm cell.)
         CHECK(model::bottom(sink.box) == Approx(0.78 - FusionOptions{}.basinDepth).margin(0.05));
         CHECK(model::bottom(cabinet.box) == Approx(0).margin(0.05));
-        CHECK(model::top(cabinet.box) == Approx(model::top(sink.box) - FusionOptions{}.basinDepth).margin(0.01));
+        // The sink rests on it (reachUnder: the cabinet's top meets the sink's bottom).
+        CHECK(model::top(cabinet.box) == Approx(model::bottom(sink.box)).margin(0.001));
         CHECK(std::max(cabinet.box.size.x, cabinet.box.size.y) == Approx(0.95).margin(0.03));
     }
 }
@@ -379,8 +380,9 @@ TEST_CASE("a sink is its bowl: the counter its views took in around it is left o
     CHECK(sink.size.x == Approx(0.56).margin(0.03));
     CHECK(sink.size.y == Approx(0.48).margin(0.03));
     CHECK(std::hypot(sink.center.x - 1.00, sink.center.y - 1.72) < 0.1);
-    CHECK(sink.center.z == counter.center.z);
-    CHECK(sink.size.z == counter.size.z);
+    // From the bowl's floor (its lowest cell, 0.60 m up, where ScanNet's basin begins) to the rim as it was.
+    CHECK(model::bottom(sink) == Approx(0.60).margin(0.001));
+    CHECK(model::top(sink) == Approx(model::top(counter)));
     // A box that is the bowl and its rim already stays as it is: the bowl is most of it.
     model::Box again = sink;
     CHECK_FALSE(fitBasin(points, again));
@@ -552,7 +554,9 @@ TEST_CASE("a sink's cabinet: the cluster right under a sink is its cabinet; a co
     model::Box reached = cabinet;
     reachUnder(reached, basin);
     CHECK(model::footprintOverlap(reached, basin) == Approx(model::footprintArea(basin)).epsilon(0.01));
-    CHECK(reached.size.z == cabinet.size.z);
+    // And up to the basin's bottom: the basin rests on it.
+    CHECK(model::bottom(reached) == Approx(model::bottom(cabinet)));
+    CHECK(model::top(reached) == Approx(model::bottom(basin)));
     CHECK(reached.yaw == cabinet.yaw);
     // A kitchen counter's 2.4 m run under a 0.8 m sink: most of it is not under the sink.
     model::Box counter = cabinet;
