@@ -377,6 +377,18 @@ void reachUnder(model::Box& cabinet, const model::Box& basin) {
     cabinet.center.z = (top + bottom) / 2;
 }
 
+const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& things, const FusionOptions& options) {
+    const auto seat = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
+        const std::optional<double> usual = typicalHeight(other.category);
+        return role(other.category) == Role::Seat &&
+               std::abs(model::top(other.box) - model::top(table)) <= options.seatAtTop &&
+               (!usual || model::top(other.box) <= *usual) &&
+               model::footprintOverlap(other.box, table) >= options.seatInside * model::footprintArea(other.box) &&
+               model::footprintArea(other.box) < model::footprintArea(table);
+    });
+    return seat == things.end() ? nullptr : &*seat;
+}
+
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
     const double below = model::bottom(basin) - model::top(under);
     return below >= -options.cabinetAbove && below <= options.cabinetBelow &&
@@ -734,6 +746,12 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
         if (things[t].top && things[t].top->cover < options_.topCover)
             doubts[t] = fmt::format("shows no top (its points cover at most {:.0f} % of its footprint at one height)",
                                     100 * things[t].top->cover);
+        if (doubts[t].empty() && things[t].top)
+            if (const SeenBox* seat = seatAtTop(named[t].box, named, options_))
+                doubts[t] = fmt::format(
+                    "holds a {} whose top is its top: the seat, seen as one with what stands "
+                    "around it",
+                    seat->category);
         if (doubts[t].empty() && !misplaced[t].empty()) doubts[t] = "stands " + misplaced[t];
         if (!doubts[t].empty()) named[t].category = "object";
     }

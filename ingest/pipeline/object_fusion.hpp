@@ -59,6 +59,8 @@ struct FusionOptions {
     double lowTableTopMin = 0.35;    // m: its top between these heights above the floor, ...
     double lowTableTopMax = 0.6;     //
     double seatReach = 0.6;          // m: ... with places for two to sit this close, is a low table
+    double seatAtTop = 0.05;         // m: a table whose top is this close to the top of a seat ...
+    double seatInside = 0.8;         // ... this share of whose footprint lies in its own is that seat (seatAtTop)
     double seatWidth = model::kSeatPlaceWidth;  // m: a seat's places: its longest side over this, one at least
     double deskDepth = 0.9;                     // m: a table no deeper than this, ...
     double deskSideMin = 1.0;                   // m: its long side this long or longer, ...
@@ -126,6 +128,14 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
 // a sink whose own views took in its cabinet, its box reaching down to the floor, is parted from it at
 // FusionOptions::basinDepth under its rim (object_fusion.cpp, partBasins).
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options = {});
+
+// A seat among `things` standing in a table's box, most of its footprint (FusionOptions::seatInside) within the
+// table's, whose top is the table's top (within FusionOptions::seatAtTop) and no higher than seats of its kind stand
+// (typicalHeight), or null: the table is that seat, seen as one with what stands around it, and its name is doubted.
+// A chair pushed under a table rises above its top or stays under it; bar stools in a row, which Open Images' SSD
+// frames as a "desk", are as high as the top it gives them.
+const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& things,
+                         const FusionOptions& options = {});
 
 // A sink is its basin: where its views took in the counter or vanity top around the bowl, its box becomes the bowl
 // and its rim. The bowl shows as cells of the footprint (FusionOptions::topCell) whose highest point lies

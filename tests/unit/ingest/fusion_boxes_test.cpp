@@ -533,6 +533,27 @@ TEST_CASE("named by use: a suitcase or a box as large as a low table among seats
     CHECK(namedByUse({seen("chair", {4.57, 4.93, 0.22}, {0.91, 0.60, 0.44}, 0, 6), sofa}, {})[0].category.empty());
 }
 
+TEST_CASE("a table whose top is a seat's top, the seat standing in it, is that seat", "[ingest][fusion]") {
+    // ScanNet scene0000_00 from every second frame: Open Images' SSD framed the bar stools under the kitchen's bar
+    // as a 0.99 x 0.64 x 0.77 m "desk", one stool (0.79 m) standing in it.
+    const SeenBox desk = seen("desk", {6.957, 5.538, 0.386}, {0.989, 0.638, 0.772}, 90, 5);
+    const SeenBox stool = seen("chair", {6.823, 5.819, 0.396}, {0.272, 0.256, 0.791}, 90, 6);
+    const SeenBox* seat = seatAtTop(desk.box, {desk, stool});
+    REQUIRE(seat);
+    CHECK(seat->category == "chair");
+    // The bar itself (1.18 m) with a 1.14 m "chair" in it, its end and a stool seen as one: no chair stands that
+    // high, so the bar stays a table.
+    const SeenBox bar = seen("table", {6.622, 4.996, 0.589}, {2.502, 0.504, 1.178}, 90, 30);
+    CHECK_FALSE(seatAtTop(bar.box, {bar, seen("chair", {6.702, 5.716, 0.572}, {1.069, 0.435, 1.143}, 90, 9)}));
+    // The dining frames' table and the chairs pushed in around it: their backs rise over its top.
+    std::vector<SeenBox> dining{seen("table", {1.175, 1.906, 0.349}, {1.848, 1.072, 0.699}, 90, 5),
+                                seen("chair", {0.584, 1.843, 0.502}, {0.449, 0.405, 1.005}, 90, 3),
+                                seen("chair", {0.559, 2.508, 0.478}, {0.468, 0.362, 0.956}, 90, 3),
+                                seen("chair", {1.860, 1.883, 0.463}, {0.479, 0.186, 0.925}, 90, 3),
+                                seen("chair", {1.828, 2.606, 0.451}, {0.549, 0.123, 0.901}, 82.3, 3)};
+    CHECK_FALSE(seatAtTop(dining[0].box, dining));
+}
+
 TEST_CASE("a sink's cabinet: the cluster right under a sink is its cabinet; a counter's run is not",
           "[ingest][fusion]") {
     // ScanNet scene0000_00: the bathroom's basin as detected (0.19 m tall) and the vanity cabinet under it that no
