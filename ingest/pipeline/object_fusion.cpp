@@ -94,6 +94,9 @@ model::Box boxOf(const PointCloud& points, const FusionOptions& options) {
 void fit(Thing& thing, const FusionOptions& options) {
     thing.box = boxOf(thing.points, options);
     thing.category = nameOf(thing.tally, thing.box);
+    // A kind that stands square to the walls takes their frame at more cost (a fridge between cabinets whose points
+    // hold a piece of them).
+    if (standsSquare(thing.category)) thing.box = wallAlignedBox(thing.points.points, options.squareSlack);
 }
 
 // The instances that are things: enough of their points agree (cells seen by two views, when it has

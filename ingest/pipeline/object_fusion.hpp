@@ -20,6 +20,8 @@ namespace smql::ingest {
 
 // What a fused instance needs to become a thing.
 struct FusionOptions {
+    double squareSlack = 1.35;       // the same for kinds that stand square to the walls (typical_sizes.hpp:
+                                     // standsSquare): the apartment's fridge, turned 18 degrees at 1.37 x 0.75 m
     double wallSlack = 1.15;         // a box square to the walls when its footprint is at most this many times the
                                      // smallest one's: the orientation is then ill-determined (wallAlignedBox)
     double minHeight = 0.04;         // m: flatter instances are slivers of a surface (a table top seen as a "chair")
