@@ -14,8 +14,7 @@ namespace {
 // fridge or an oven in a kitchen), or any but a bathroom (a bed, a sofa); object_fusion.cpp doubts a name among
 // another room's things. Role: what the kind is for where fusion judges a thing by it (typical_sizes.hpp: Role).
 // Least: the largest side and the height no thing of the kind comes under (typical_sizes.hpp: LeastSize), where real
-// rooms' labels show it; Slender: a footprint too long for its depth for the kind (typical_sizes.hpp); Square: the
-// kind stands square to the room's walls (typical_sizes.hpp: standsSquare). The rows cover
+// rooms' labels show it; Slender: a footprint too long for its depth for the kind (typical_sizes.hpp). The rows cover
 // the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
@@ -28,7 +27,6 @@ struct Typical {
     Role role = Role::Other;
     LeastSize least{};
     Slender slender{};
-    bool square = false;
 };
 // The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
 constexpr Slender kChairShape{.length = 0.75, .depth = 0.2, .postHeight = 0.4, .postSide = 0.25};
@@ -40,18 +38,8 @@ constexpr Typical kTypical[] = {
     {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape},
     {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
     {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, {1.0, 0.25}},
-    {"fridge",
-     1.75,
-     2.0,
-     Support::Floor,
-     false,
-     false,
-     RoomKind::Kitchen,
-     Role::Other,
-     {0.5, 0.45},
-     kFridgeShape,
-     true},
-    {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}, {}, true},
+    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}, kFridgeShape},
+    {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},
     {"nightstand", 0.6, 0.8, Support::Floor, true},
     {"shelf", 0, 2.4, Support::Floor},
@@ -78,7 +66,7 @@ constexpr Typical kTypical[] = {
     {"mug", 0, 0.2, Support::Surface},
     {"microwave", 0, 0.7, Support::Surface, false, false, RoomKind::Kitchen},
     {"sink", 0, 1.2, Support::Either, false, false, RoomKind::Any, Role::Basin},
-    {"oven", 0, 1.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {}, {}, true},
+    {"oven", 0, 1.0, Support::Floor, false, false, RoomKind::Kitchen},
     {"keyboard", 0, 0.55, Support::Surface},
     {"backpack", 0, 0.65, Support::Either},
     {"umbrella", 0, 1.2, Support::Either},
@@ -153,7 +141,7 @@ bool slenderForKind(std::string_view category, double longer, double shorter, do
 
 bool standsSquare(std::string_view category) {
     const Typical* t = find(category);
-    return t && t->square;
+    return t && t->support == Support::Floor && (t->room == RoomKind::Kitchen || t->room == RoomKind::Bathroom);
 }
 
 bool holdsThings(std::string_view category) {

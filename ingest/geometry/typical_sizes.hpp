@@ -78,9 +78,10 @@ constexpr double kTallerThanTypicalHull = 1.4;
 enum class Support { Floor, Surface, Either };
 Support usualSupport(std::string_view category);
 
-// Whether things of a kind stand square to the room's walls, built in or against them: a fridge, an oven, a toilet.
-// Of the people-drawn boxes of ARKitScenes' 150 rooms (../shared/data/real-layouts), 22 of 24 fridges, 25 of 28
-// stoves and 30 of 32 toilets turn less than 5 degrees from their room's furniture as a whole; chairs 59 %, sofas 73 %.
+// Whether things of a kind stand square to the room's walls, built in or against them: the kinds of a kitchen or a
+// bathroom that stand on the floor (roomKind, usualSupport: a fridge, an oven, a toilet). Of the people-drawn boxes
+// of ARKitScenes' 150 rooms (../shared/data/real-layouts), 22 of 24 fridges, 25 of 28 stoves and 30 of 32 toilets
+// turn less than 5 degrees from their room's furniture as a whole; chairs 59 %, sofas 73 %.
 bool standsSquare(std::string_view category);
 
 // Whether things are put on the top of things of a kind (a table, a desk, a bed): a horizontal
