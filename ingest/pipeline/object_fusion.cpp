@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "ingest/capture/detections.hpp"
 #include "ingest/geometry/clusters.hpp"
@@ -541,10 +542,33 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
     return names;
 }
 
+namespace {
+
+// A box's footprint in square cells along its own axes, row x and column y: the cell a point falls in (those
+// outside the footprint in the cell at its edge), and the cells' bounds in the box's frame.
+struct FootprintGrid {
+    FootprintGrid(const model::Box& box, double cell)
+        : frame(box),
+          cell(cell),
+          halfX(box.size.x / 2),
+          halfY(box.size.y / 2),
+          nx(std::max(1, static_cast<int>(std::ceil(box.size.x / cell)))),
+          ny(std::max(1, static_cast<int>(std::ceil(box.size.y / cell)))) {}
+    std::pair<int, int> at(const model::Vec3& p) const {
+        const model::Vec2 local = frame.local({p.x, p.y});
+        return {std::clamp(static_cast<int>((local.x + halfX) / cell), 0, nx - 1),
+                std::clamp(static_cast<int>((local.y + halfY) / cell), 0, ny - 1)};
+    }
+    model::BoxFrame frame;
+    double cell, halfX, halfY;
+    int nx, ny;
+};
+
+}  // namespace
+
 SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, const FusionOptions& options) {
-    const model::BoxFrame frame(box);
-    const int nx = std::max(1, static_cast<int>(std::ceil(box.size.x / options.topCell)));
-    const int ny = std::max(1, static_cast<int>(std::ceil(box.size.y / options.topCell)));
+    const FootprintGrid grid(box, options.topCell);
+    const int nx = grid.nx, ny = grid.ny;
     // Each point's cell and height step; then every band of topBand above the box's lowest quarter, where a top is
     // (legs and the floor around them lie below it).
     const double bottom = model::bottom(box);
@@ -556,9 +580,7 @@ SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, c
     };
     std::vector<std::vector<Seen>> seenAt(static_cast<std::size_t>(steps));
     for (const auto& p : points) {
-        const model::Vec2 at = frame.local({p.x, p.y});
-        const int ix = std::clamp(static_cast<int>((at.x + box.size.x / 2) / options.topCell), 0, nx - 1);
-        const int iy = std::clamp(static_cast<int>((at.y + box.size.y / 2) / options.topCell), 0, ny - 1);
+        const auto [ix, iy] = grid.at(p);
         const int iz = std::clamp(static_cast<int>((p.z - bottom) / options.topCell), 0, steps - 1);
         seenAt[static_cast<std::size_t>(iz)].push_back({ix * ny + iy, p.z});
     }
@@ -580,69 +602,43 @@ SeenTop seenTop(const std::vector<model::Vec3>& points, const model::Box& box, c
 }
 
 bool fitBasin(const std::vector<model::Vec3>& points, model::Box& box, const FusionOptions& options) {
-    const model::BoxFrame frame(box);
-    const double cell = options.topCell;
-    const int nx = std::max(1, static_cast<int>(std::ceil(box.size.x / cell)));
-    const int ny = std::max(1, static_cast<int>(std::ceil(box.size.y / cell)));
-    auto cellAt = [ny](int ix, int iy) {
-        return static_cast<std::size_t>(ix) * static_cast<std::size_t>(ny) + static_cast<std::size_t>(iy);
-    };
-    const std::size_t cellCount = cellAt(nx, 0);
-    std::vector<double> highest(cellCount, -std::numeric_limits<double>::infinity());
+    const FootprintGrid grid(box, options.topCell);
+    cv::Mat highest(grid.nx, grid.ny, CV_64F, cv::Scalar(-std::numeric_limits<double>::infinity()));
     for (const auto& p : points) {
-        const model::Vec2 at = frame.local({p.x, p.y});
-        const int ix = std::clamp(static_cast<int>((at.x + box.size.x / 2) / cell), 0, nx - 1);
-        const int iy = std::clamp(static_cast<int>((at.y + box.size.y / 2) / cell), 0, ny - 1);
-        double& h = highest[cellAt(ix, iy)];
+        const auto [ix, iy] = grid.at(p);
+        double& h = highest.at<double>(ix, iy);
         h = std::max(h, p.z);
     }
     // The rim: the height most of the footprint's cells reach, the counter around the bowl (a backsplash or a tap
     // rising over it are a few cells).
     std::vector<double> seen;
-    for (const double h : highest)
-        if (std::isfinite(h)) seen.push_back(h);
+    for (auto h = highest.begin<double>(); h != highest.end<double>(); ++h)
+        if (std::isfinite(*h)) seen.push_back(*h);
     if (seen.empty()) return false;
     auto rimAt = seen.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(seen.size() - 1));
     std::nth_element(seen.begin(), rimAt, seen.end());
-    const double under = *rimAt - options.basinDip;
-    auto bowl = [&](int ix, int iy) {
-        const double h = highest[cellAt(ix, iy)];
-        return std::isfinite(h) && h < under;
-    };
-    // The bowl: the largest run of such cells side by side (a counter's edge or a cabinet's side seen lower down
-    // makes runs of its own).
-    std::vector<int> run(cellCount, -1);
-    int cells = 0, loX = 0, hiX = -1, loY = 0, hiY = -1;
-    double floor = model::bottom(box);  // the bowl's: the lowest of its cells' highest points
-    for (int start = 0; start < nx * ny; ++start) {
-        if (run[static_cast<std::size_t>(start)] >= 0 || !bowl(start / ny, start % ny)) continue;
-        std::vector<int> open{start};
-        run[static_cast<std::size_t>(start)] = start;
-        int count = 0, x0 = nx, x1 = -1, y0 = ny, y1 = -1;
-        double lowest = std::numeric_limits<double>::infinity();
-        while (!open.empty()) {
-            const int at = open.back();
-            open.pop_back();
-            const int ix = at / ny, iy = at % ny;
-            ++count;
-            lowest = std::min(lowest, highest[cellAt(ix, iy)]);
-            x0 = std::min(x0, ix), x1 = std::max(x1, ix), y0 = std::min(y0, iy), y1 = std::max(y1, iy);
-            for (const auto& [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
-                const int jx = ix + dx, jy = iy + dy;
-                if (jx < 0 || jy < 0 || jx >= nx || jy >= ny || !bowl(jx, jy)) continue;
-                int& mark = run[cellAt(jx, jy)];
-                if (mark < 0) mark = start, open.push_back(jx * ny + jy);
-            }
-        }
-        if (count > cells) cells = count, loX = x0, hiX = x1, loY = y0, hiY = y1, floor = lowest;
-    }
-    if (cells < 4) return false;
-    const double x0 = std::max(-box.size.x / 2, loX * cell - box.size.x / 2 - options.basinRim);
-    const double x1 = std::min(box.size.x / 2, (hiX + 1) * cell - box.size.x / 2 + options.basinRim);
-    const double y0 = std::max(-box.size.y / 2, loY * cell - box.size.y / 2 - options.basinRim);
-    const double y1 = std::min(box.size.y / 2, (hiY + 1) * cell - box.size.y / 2 + options.basinRim);
+    // The bowl: the largest run of cells under the rim side by side (a counter's edge or a cabinet's side seen lower
+    // down makes runs of its own; cells no point fell in are at minus infinity, under nothing).
+    const cv::Mat bowl = (highest < *rimAt - options.basinDip) & (highest > -std::numeric_limits<double>::infinity());
+    cv::Mat labels, stats, centroids;
+    const int runs = cv::connectedComponentsWithStats(bowl, labels, stats, centroids, 4, CV_32S);
+    int largest = 0;
+    for (int r = 1; r < runs; ++r)
+        if (largest == 0 || stats.at<int>(r, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = r;
+    if (largest == 0 || stats.at<int>(largest, cv::CC_STAT_AREA) < 4) return false;
+    // Rows run along the box's x axis, columns along its y axis.
+    const int loX = stats.at<int>(largest, cv::CC_STAT_TOP), loY = stats.at<int>(largest, cv::CC_STAT_LEFT);
+    const int hiX = loX + stats.at<int>(largest, cv::CC_STAT_HEIGHT),
+              hiY = loY + stats.at<int>(largest, cv::CC_STAT_WIDTH);
+    const double x0 = std::max(-grid.halfX, loX * grid.cell - grid.halfX - options.basinRim);
+    const double x1 = std::min(grid.halfX, hiX * grid.cell - grid.halfX + options.basinRim);
+    const double y0 = std::max(-grid.halfY, loY * grid.cell - grid.halfY - options.basinRim);
+    const double y1 = std::min(grid.halfY, hiY * grid.cell - grid.halfY + options.basinRim);
     if ((x1 - x0) * (y1 - y0) > options.basinShare * box.size.x * box.size.y) return false;
-    const model::Vec2 centre = frame.world({(x0 + x1) / 2, (y0 + y1) / 2});
+    // The bowl's floor: the lowest of its cells' highest points.
+    double floor = 0;
+    cv::minMaxLoc(highest, &floor, nullptr, nullptr, nullptr, labels == largest);
+    const model::Vec2 centre = grid.frame.world({(x0 + x1) / 2, (y0 + y1) / 2});
     box.center.x = centre.x, box.center.y = centre.y;
     box.size.x = x1 - x0, box.size.y = y1 - y0;
     // From the bowl's floor to the rim: what its views took in under the bowl is the cabinet's front.
