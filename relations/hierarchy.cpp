@@ -49,18 +49,24 @@ std::vector<Indexed> meeting(const Index& index, const model::Aabb& region) {
     return found;
 }
 
-// The anchors through their R-tree, as the predicates ask for walls (on and in: a picture a wall
-// holds is on nothing).
-class AnchorObstacles final : public Obstacles {
+// The anchors and the things through their R-trees, as the predicates ask for them: walls (on and in: a picture
+// a wall holds is on nothing), and what stands where a lamp's loose box stands (on: restsWithinItsBound), as a
+// statement's own scene answers them, so that the tree and on() agree.
+class LayoutObstacles final : public Obstacles {
 public:
-    AnchorObstacles(const std::vector<const Node*>& anchors, const Index& index) : anchors_(anchors), index_(index) {}
+    LayoutObstacles(const std::vector<const Node*>& anchors, const Index& anchorIndex,
+                    const std::vector<const Node*>& objects, const Index& objectIndex)
+        : anchors_(anchors), anchorIndex_(anchorIndex), objects_(objects), objectIndex_(objectIndex) {}
     void within(const model::Aabb& region, std::vector<const Node*>& out) const override {
-        for (const auto& [bounds, k] : meeting(index_, region)) out.push_back(anchors_[k]);
+        for (const auto& [bounds, k] : meeting(anchorIndex_, region)) out.push_back(anchors_[k]);
+        for (const auto& [bounds, k] : meeting(objectIndex_, region)) out.push_back(objects_[k]);
     }
 
 private:
     const std::vector<const Node*>& anchors_;
-    const Index& index_;
+    const Index& anchorIndex_;
+    const std::vector<const Node*>& objects_;
+    const Index& objectIndex_;
 };
 
 // The nearest anchor; but a door or window set in a wall is no nearer, for this purpose, than the
@@ -153,7 +159,7 @@ private:
         const Node& a = scene_.nodes[i];
         if (a.kind == model::NodeKind::Object && a.parent == model::kNoNode &&
             a.geometry != model::GeometryKind::None) {
-            const AnchorObstacles walls(*anchors_, anchorIndex_);
+            const LayoutObstacles walls(*anchors_, anchorIndex_, objects_, objectIndex_);
             if (const Node* wall = wallHolding(a, walls, thresholds_)) {
                 parents_[i] = wall->id;
             } else if (const Node* carrier = carrierOf(a, walls)) {

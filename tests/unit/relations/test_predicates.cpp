@@ -194,6 +194,37 @@ TEST_CASE("near: a pillar between two benches along one wall does not part them;
     CHECK(evaluate(Predicate::Near, bench52, bench51, kT, kFrame, Boxes(partition), nullptr, 1.0) == 0);
 }
 
+TEST_CASE("on: a lamp's box whose floor other things take rests on the uppermost top within it") {
+    // Replica room 0 (../shared/data, in the floor frame smql imports it to): lamp 6's 0.90 x 2.55 m box from the
+    // floor to 1.35 m over sofa 9's end and the two nested side tables 7 and 27, labelled on table 7 (ReplicaSSG).
+    const double degree = M_PI / 180;
+    const Node lamp = turned(45, "lamp", {3.356, -0.583, 0.657}, {0.904, 2.548, 1.394}, 87.8 * degree);
+    const Node table7 = turned(28, "table", {2.237, -0.691, 0.307}, {0.493, 0.493, 0.677}, 29.8 * degree);
+    const Node table27 = turned(24, "table", {2.243, -0.436, 0.271}, {0.430, 0.583, 0.600}, 7.2 * degree);
+    const Node sofa = turned(50, "sofa", {3.700, -0.524, 0.422}, {2.404, 1.363, 0.908}, 5.8 * degree);
+    const Node rug = turned(77, "rug", {3.705, 0.991, -0.006}, {4.152, 2.888, 0.049}, 0.8 * degree);
+    const Boxes room({lamp, table7, table27, sofa, rug});
+    CHECK(evalAmong(Predicate::On, lamp, table7, room) > 0);
+    CHECK(holds(Predicate::On, lamp, table7, kT, kFrame, room));
+    CHECK(evalAmong(Predicate::On, lamp, table27, room) == 0);  // table 7's top is over it
+    CHECK(evalAmong(Predicate::On, lamp, sofa, room) == 0);     // 59 % of the sofa within the box, not 75 %
+    CHECK_FALSE(holds(Predicate::On, lamp, sofa, kT, kFrame, room));
+    // Without the sofa the floor under the box is free: a floor lamp standing beside the tables, on nothing.
+    // A rug takes no floor.
+    const Boxes noSofa({lamp, table7, table27, rug});
+    CHECK(evalAmong(Predicate::On, lamp, table7, noSofa) == 0);
+    CHECK_FALSE(holds(Predicate::On, lamp, table7, kT, kFrame, noSofa));
+    // A box of another kind there is as large as its box says (a cabinet's box over the tables is not on them).
+    Node cabinet = lamp;
+    cabinet.category = "cabinet";
+    CHECK(evalAmong(Predicate::On, cabinet, table7, Boxes({cabinet, table7, table27, sofa, rug})) == 0);
+    // The tree, asking on with the things around as a statement does, hangs the lamp below table 7.
+    model::SceneData scene;
+    scene.nodes = {lamp, table7, table27, sofa, rug};
+    assignParents(scene);
+    CHECK(scene.nodes[0].parent == 28);
+}
+
 TEST_CASE("near: a crowd is of like things") {
     // Replica office_4 again: chairs 12 and 13 at the end of the table, 0.65 m apart, labelled near.
     // Chair 12 has the table, the screen, the picture and chair 17 closer than that; chair 13 the screen
