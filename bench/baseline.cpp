@@ -38,8 +38,9 @@ bool intersects(const model::Aabb& a, const model::Aabb& b) {
            b.min.z <= a.max.z;
 }
 
-// The peers read the rows a query needs, not the walls between them: the benchmark's rooms have no
-// wall between the pairs it asks, and every answer is checked equal to smql's, which reads them.
+// The peers read the rows a query needs, not the nodes around them: the benchmark's rooms have no
+// wall between the pairs it asks and no lamp box whose floor other things take (relations' `on`), and
+// every answer is checked equal to smql's, which reads them.
 const relations::NodeObstacles kNoWallsRead{std::span<const model::Node>{}};
 
 bool holds(const PredicateTerm& term, const model::Node& a, const model::Node& b,

@@ -643,7 +643,7 @@ constexpr PredicateSpec kPredicates[] = {
     {P::On, "", 1, false, false, onScore, restingOnRegion, supportRegion, 2, "on(desk)",
      "on|on top of|onto|upon|atop|sitting on|lying on|resting on|standing on|placed on|kept on|piled on|supported "
      "by",
-     Occluders::Walls},
+     Occluders::All},
     {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)",
      "in|inside|inside of|within|stored in|kept in|contained in|into|built into|built in to", Occluders::Walls},
     {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)", "above|over|higher than"},

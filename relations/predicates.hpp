@@ -76,8 +76,9 @@ struct PredicateInputs {
     const Obstacles& obstacles;             // what may stand between
 };
 
-// What a predicate's formula asks of the nodes that may stand between (Obstacles): nothing, the
-// walls (near: a wall between two things breaks it), or everything (visible_from's line of sight).
+// What a predicate's formula asks of the nodes around (Obstacles): nothing, the walls (in: a wall holds
+// a picture), or everything (visible_from's line of sight, near's crowd, on's box whose floor other
+// things take).
 enum class Occluders { None, Walls, All };
 
 struct PredicateSpec {
