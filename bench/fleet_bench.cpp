@@ -77,6 +77,7 @@ void queryLatency(const std::string& url, const std::string& device, const fs::p
     const std::vector<Query> queries = {
         {"one scene: FIND chair", "room_0", "FIND chair"},
         {"one scene: FIND chair WHERE near(table)", "room_0", "FIND chair WHERE near(table)"},
+        {"one scene: FIND object WHERE on(table)", "room_0", "FIND object WHERE on(table)"},
         {"one scene: FIND object NEAREST TO door LIMIT 5", "room_0", "FIND object NEAREST TO door LIMIT 5"},
         {"all scenes: COUNT chair", "*", "COUNT chair"},
         {"all scenes: FIND chair LIMIT 100", "*", "FIND chair LIMIT 100"},
