@@ -305,17 +305,26 @@ private:
             "SELECT {0}, CASE WHEN {1} THEN 0 ELSE smql.\"{2}\"({3}, context.viewpoint, {10}{4}, {5}) END, "
             "smql.box_distance({6}, {7}) FROM {8} WHERE {6}.scene = ANY($1::int8[]) AND {9}",
             columns, same, spec.name(), arguments, spec.takesDistance ? distance.empty() ? ", NULL" : distance : "",
-            thresholds(), a, b, from, where, occluders(spec));
+            thresholds(), a, b, from, where, occluders(spec, a));
     }
 
     // The nodes that may stand between, as far as the predicate's formula asks (the table's
-    // occluders): every call gets them whole, so a predicate that asks nothing gets nothing.
-    static const char* occluders(const relations::PredicateSpec& spec) {
+    // occluders): every call gets them whole, so a predicate that asks nothing gets nothing. `on` reads
+    // the nodes around only for a subject of a spreading kind (relations::spreadingKinds), so `subject`
+    // of another kind gets the walls: PostgreSQL hands each call its array, and a FIND on(table) of 200
+    // objects took 8.3 ms with every node for every pair, 3.9-4.1 so (docs/benchmarks.md).
+    std::string occluders(const relations::PredicateSpec& spec, const std::string& subject) {
         switch (spec.occluders) {
             case relations::Occluders::Walls:
                 return "context.walls";
-            case relations::Occluders::All:
-                return "context.others";
+            case relations::Occluders::All: {
+                if (spec.predicate != relations::Predicate::On) return "context.others";
+                std::string kinds;
+                for (std::string_view kind : relations::spreadingKinds())
+                    kinds += fmt::format("{}\"{}\"", kinds.empty() ? "" : ",", kind);
+                return fmt::format("CASE WHEN {}.category = ANY({}::text[]) THEN context.others ELSE context.walls END",
+                                   subject, parameter("{" + kinds + "}"));
+            }
             case relations::Occluders::None:
                 break;
         }
@@ -541,7 +550,7 @@ private:
                 n, g);
         }
         return fmt::format("EXISTS (SELECT 1 FROM {} WHERE {} AND smql.\"{}\"({}, context.viewpoint, {}{}, {}) > 0)",
-                           from, where, spec->name(), arguments, occluders(*spec),
+                           from, where, spec->name(), arguments, occluders(*spec, n),
                            spec->takesDistance ? ", " + distance : "", thresholds());
     }
 

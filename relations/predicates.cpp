@@ -698,6 +698,8 @@ std::vector<const PredicateSpec*> relateOrder() {
 
 std::span<const PredicateSpec> predicates() { return kPredicates; }
 
+std::span<const std::string_view> spreadingKinds() { return kSpreading; }
+
 const PredicateSpec& spec(Predicate p) { return kPredicates[static_cast<std::size_t>(p)]; }
 
 const PredicateSpec* predicateNamed(std::string_view word) {

@@ -107,6 +107,10 @@ struct PredicateSpec {
 
 // Every predicate, in code order.
 std::span<const PredicateSpec> predicates();
+// The kinds whose boxes may spread over what stands beside them (a lamp, a plant): `on` reads the nodes
+// around a pair only when its subject is one of them (a box whose floor other things take), the walls for
+// every other (a slab a wall holds). Canonical names.
+std::span<const std::string_view> spreadingKinds();
 const PredicateSpec& spec(Predicate p);
 // By name or alias; null when no predicate has that word.
 const PredicateSpec* predicateNamed(std::string_view word);
