@@ -312,7 +312,8 @@ private:
     // occluders): every call gets them whole, so a predicate that asks nothing gets nothing. `on` reads
     // the nodes around only for a subject of a spreading kind (relations::spreadingKinds), so `subject`
     // of another kind gets the walls: PostgreSQL hands each call its array, and a FIND on(table) of 200
-    // objects took 8.3 ms with every node for every pair, 3.9-4.1 so (docs/benchmarks.md).
+    // objects took 8.3 ms with every node for every pair and 3.9-4.1 ms with them for lamps and plants alone
+    // (docs/benchmarks.md).
     std::string occluders(const relations::PredicateSpec& spec, const std::string& subject) {
         switch (spec.occluders) {
             case relations::Occluders::Walls:
