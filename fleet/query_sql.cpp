@@ -309,23 +309,23 @@ private:
     }
 
     // The nodes that may stand between, as far as the predicate's formula asks (the table's
-    // occluders): every call gets them whole, so a predicate that asks nothing gets nothing. `on` reads
-    // the nodes around only for a subject of a spreading kind (relations::spreadingKinds), so `subject`
-    // of another kind gets the walls: PostgreSQL hands each call its array, and a FIND on(table) of 200
-    // objects took 8.3 ms with every node for every pair and 3.9-4.1 ms with them for lamps and plants alone
-    // (docs/benchmarks.md).
+    // occluders): every call gets them whole, so a predicate that asks nothing gets nothing, and one that
+    // asks for every node only where `subject` is of a spreading kind gets the walls elsewhere: PostgreSQL
+    // hands each call its array, and a FIND on(table) of 200 objects took 8.3 ms with every node for every
+    // pair and 3.9-4.1 ms with them for lamps and plants alone (docs/benchmarks.md).
     std::string occluders(const relations::PredicateSpec& spec, const std::string& subject) {
         switch (spec.occluders) {
             case relations::Occluders::Walls:
                 return "context.walls";
-            case relations::Occluders::All: {
-                if (spec.predicate != relations::Predicate::On) return "context.others";
+            case relations::Occluders::WallsOrAllWhenSpreading: {
                 std::string kinds;
                 for (std::string_view kind : relations::spreadingKinds())
                     kinds += fmt::format("{}\"{}\"", kinds.empty() ? "" : ",", kind);
                 return fmt::format("CASE WHEN {}.category = ANY({}::text[]) THEN context.others ELSE context.walls END",
                                    subject, parameter("{" + kinds + "}"));
             }
+            case relations::Occluders::All:
+                return "context.others";
             case relations::Occluders::None:
                 break;
         }

@@ -363,11 +363,12 @@ double wayRound(const model::Vec3& p, const model::Vec3& q, std::span<const Node
     };
     std::vector<model::Vec3> points{p, q};
     for (const Node* w : walls) {
-        const double c = std::cos(w->box.yaw), s = std::sin(w->box.yaw);
+        const model::BoxFrame frame(w->box);
         const double hx = w->box.size.x / 2 + kStandOff, hy = w->box.size.y / 2 + kStandOff;
         for (const double u : {-hx, hx})
             for (const double v : {-hy, hy}) {
-                const model::Vec3 corner{w->box.center.x + u * c - v * s, w->box.center.y + u * s + v * c, z};
+                const model::Vec2 at = frame.world({u, v});
+                const model::Vec3 corner{at.x, at.y, z};
                 const bool inWall =
                     std::any_of(walls.begin(), walls.end(), [&](const Node* o) { return pointInBox(corner, o->box); });
                 if (!inWall && length(p, corner) + length(corner, q) <= longest) points.push_back(corner);
@@ -643,7 +644,7 @@ constexpr PredicateSpec kPredicates[] = {
     {P::On, "", 1, false, false, onScore, restingOnRegion, supportRegion, 2, "on(desk)",
      "on|on top of|onto|upon|atop|sitting on|lying on|resting on|standing on|placed on|kept on|piled on|supported "
      "by",
-     Occluders::All},
+     Occluders::WallsOrAllWhenSpreading},
     {P::In, "inside", 1, false, false, inScore, restingOnRegion, supportRegion, 1, "in(cabinet)",
      "in|inside|inside of|within|stored in|kept in|contained in|into|built into|built in to", Occluders::Walls},
     {P::Above, "", 1, false, false, aboveScore, columnAbove, columnBelow, 4, "above(bed)", "above|over|higher than"},

@@ -76,10 +76,10 @@ struct PredicateInputs {
     const Obstacles& obstacles;             // what may stand between
 };
 
-// What a predicate's formula asks of the nodes around (Obstacles): nothing, the walls (in: a wall holds
-// a picture), or everything (visible_from's line of sight, near's crowd, on's box whose floor other
-// things take).
-enum class Occluders { None, Walls, All };
+// What a predicate's formula asks of the nodes around (Obstacles): nothing; the walls (in: a wall holds a
+// picture); the walls, and everything where the subject is of a spreading kind (on: a lamp's box whose
+// floor other things take, spreadingKinds); or everything (visible_from's line of sight, near's crowd).
+enum class Occluders { None, Walls, WallsOrAllWhenSpreading, All };
 
 struct PredicateSpec {
     Predicate predicate;
@@ -107,9 +107,8 @@ struct PredicateSpec {
 
 // Every predicate, in code order.
 std::span<const PredicateSpec> predicates();
-// The kinds whose boxes may spread over what stands beside them (a lamp, a plant): `on` reads the nodes
-// around a pair only when its subject is one of them (a box whose floor other things take), the walls for
-// every other (a slab a wall holds). Canonical names.
+// The kinds whose boxes may spread over what stands beside them (a lamp, a plant), in canonical names: the
+// subjects for which Occluders::WallsOrAllWhenSpreading asks for every node around.
 std::span<const std::string_view> spreadingKinds();
 const PredicateSpec& spec(Predicate p);
 // By name or alias; null when no predicate has that word.

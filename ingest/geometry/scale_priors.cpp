@@ -37,8 +37,7 @@ std::vector<bool> namesInDoubt(const std::vector<NamedThing>& things, const mode
     };
     std::vector<std::optional<Place>> places(things.size());  // of things that stand in one kind of room
     for (std::size_t i = 0; i < things.size(); ++i) {
-        const RoomKind room = roomKind(things[i].category);
-        if (room == RoomKind::Any || room == RoomKind::Dry || things[i].points.empty()) continue;
+        if (!oneRoom(roomKind(things[i].category)) || things[i].points.empty()) continue;
         std::vector<double> xs, ys, zs, above;
         for (const auto& p : things[i].points) {
             xs.push_back(p.x);

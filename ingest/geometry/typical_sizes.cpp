@@ -141,7 +141,7 @@ bool slenderForKind(std::string_view category, double longer, double shorter, do
 
 bool standsSquare(std::string_view category) {
     const Typical* t = find(category);
-    return t && t->support == Support::Floor && (t->room == RoomKind::Kitchen || t->room == RoomKind::Bathroom);
+    return t && t->support == Support::Floor && oneRoom(t->room);
 }
 
 bool holdsThings(std::string_view category) {

@@ -104,6 +104,8 @@ bool hasUprightEnds(std::string_view category);
 // 678 desks and 2 of 5,725 chairs stand within 1 m of a toilet, walls aside); Any for the others (a sink, a table).
 enum class RoomKind { Any, Kitchen, Bathroom, Dry };
 RoomKind roomKind(std::string_view category);
+// Whether a kind of room is one room's own (a kitchen, a bathroom), whose kinds tell the room they stand in.
+inline bool oneRoom(RoomKind room) { return room == RoomKind::Kitchen || room == RoomKind::Bathroom; }
 
 // What things of a kind are for, where fusion judges a thing by it (object_fusion.hpp): a seat (a chair, a sofa, a
 // bench), luggage (a suitcase or a box, which as large as a low table and standing among seats is used as one:

@@ -438,8 +438,7 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
         for (const auto& other : things) {
             const RoomKind room = roomKind(other.category);
             // A bed or a chair beside a toilet is no measure of the toilet's room: a toilet's name is the surer.
-            if (room == RoomKind::Any || room == RoomKind::Dry ||
-                model::distance(things[t].box, other.box) > options.roomReach ||
+            if (!oneRoom(room) || model::distance(things[t].box, other.box) > options.roomReach ||
                 wallBetween(things[t].box.center, other.box.center, walls))
                 continue;
             if (room == own)
