@@ -52,8 +52,9 @@ struct OpenTimes {
 struct WorkloadResult {
     std::vector<ClassResult> classes;
     std::vector<std::string> baselineNames;  // "SQLite", then "PostGIS" when it took part
-    // The first FIND after USE SCENE: smql decodes the scene into memory then. One sample per scene
-    // visited; p50Low and p50High are the fastest and the slowest of them.
+    // The first FIND after USE SCENE: smql loads the scene into memory then. Over rounds that each
+    // visit every sampled scene cold, as the other classes' percentiles are over rounds; the
+    // baselines' one sample per scene (p50Low and p50High the fastest and the slowest of them).
     Percentiles smqlSceneSwitch;
     std::vector<Percentiles> baselineSceneSwitch;
     OpenTimes open;

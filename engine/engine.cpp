@@ -147,7 +147,8 @@ struct Engine::State {
                   const std::shared_ptr<const ast::Statement>& kept = nullptr) {
         const std::optional<CatalogQuery> catalog = catalogQuery(statement, values);
         if (catalog && catalog->countOnly)
-            if (auto rs = rememberedCount(catalog->category())) return std::move(*rs);
+            if (const auto* kept = categoryCounts.find(catalog->category(), db->lastCommittedTransaction()))
+                return countAnswer(kept->count);
         auto txn = db->beginRead();
         if (catalog && !catalog->countOnly)
             if (auto rs = rememberedFind(txn, *catalog)) return std::move(*rs);
@@ -297,16 +298,6 @@ struct Engine::State {
         // Every placeholder is one of these two (the others were ruled out above), each used once.
         if (placeholders != statement.parameterCount) return std::nullopt;
         return query;
-    }
-
-    std::optional<ResultSet> rememberedCount(std::string_view name) const {
-        const binder::CategoryCount* kept = categoryCounts.find(name, db->lastCommittedTransaction());
-        if (!kept) return std::nullopt;
-        // Made in place, a column and a value at a time: the whole answer is these two allocations.
-        std::optional<ResultSet> rs(std::in_place);
-        rs->columns.push_back(Column{"count", ValueType::Integer});
-        rs->rows.emplace_back().emplace_back(static_cast<std::int64_t>(kept->count));
-        return rs;
     }
 
     // The rows of a FIND across all scenes whose category was bound in `txn`'s own committed transaction

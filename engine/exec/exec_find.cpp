@@ -502,14 +502,10 @@ void Executor::orderByAttribute(const planner::FindPlan& plan, std::vector<Hit>&
 
 ResultSet Executor::run(const binder::BoundFind& f) {
     auto hits = find(*plan_.find);
-    ResultSet rs;
-    if (!f.countOnly) checkRows(hits.size());
-    if (f.countOnly) {
-        rs.columns = {{"count", ValueType::Integer}};
-        rs.rows.push_back({static_cast<std::int64_t>(hits.size())});
-        return rs;
-    }
+    if (f.countOnly) return countAnswer(hits.size());
+    checkRows(hits.size());
     if (!f.columns.empty()) return returned(f, hits);
+    ResultSet rs;
     rs.columns = {{"id", ValueType::Integer},
                   {"category", ValueType::Text},
                   {"source_id", ValueType::Integer},
@@ -567,10 +563,7 @@ ResultSet Executor::returned(const binder::BoundFind& f, const std::vector<Hit>&
 
 ResultSet Executor::run(const binder::BoundCatalogFind& f) {
     if (!f.countOnly) return catalogFind(txn_, session_, f.category, f.keys, f.limit, f.count);
-    ResultSet rs;
-    rs.columns = {{"count", ValueType::Integer}};
-    rs.rows.push_back({static_cast<std::int64_t>(f.count)});
-    return rs;
+    return countAnswer(f.count);
 }
 
 // Category search over every scene through the label index: no snapshot is loaded.
