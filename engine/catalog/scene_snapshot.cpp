@@ -178,7 +178,10 @@ const model::Node& SceneSnapshot::decode(Slot slot) const {
     const bool read = reader_->readNode(id, node);
     model::Aabb exact;
     if (read) {
-        canonicalise(node);
+        // The index's names are canonical already (the constructor folded them), so a record that
+        // names its category as the index does needs no fold: most do, and the fold's test of the
+        // word is a tenth of a node's decoding.
+        if (node.category != category(slot)) canonicalise(node);
         exact = model::worldAabb(node.box);
     }
     // The index's bounds must hold the record's: a search over them ruled out what they rule out.
