@@ -359,13 +359,15 @@ OpenTimes measureOpen(const DataSet& data, const Query& firstQuery, const std::s
 // The first FIND after USE SCENE in `rounds` rounds, each visiting every scene of `scenes` cold (a
 // newly opened engine has loaded none): before each, the scene's nodes are read and freed and the
 // FIND parsed with no scene in use, as for the first visit in runWorkload, so the time is the load
-// of the scene and the FIND's work. The answers are the ones checked against the baselines there.
+// of the scene and the FIND's work. Each answer must be `answers`' (the one checked against the
+// baselines there) for its scene.
 std::vector<std::vector<double>> measureColdScenes(const DataSet& data, const std::vector<SceneQueries>& scenes,
-                                                   int rounds) {
+                                                   const std::vector<Answer>& answers, int rounds) {
     std::vector<std::vector<double>> out(rounds);
     for (auto& round : out) {
         auto engine = Engine::open(data.smqlDirectory.string());
-        for (const auto& scene : scenes) {
+        for (std::size_t s = 0; s < scenes.size(); ++s) {
+            const SceneQueries& scene = scenes[s];
             const Query& find = scene.byClass[kFindWindow].front();
             {
                 std::vector<model::Node> nodes;
@@ -380,8 +382,13 @@ std::vector<std::vector<double>> measureColdScenes(const DataSet& data, const st
             }
             engine->execute(fmt::format("USE SCENE '{}'", scene.name));
             const auto t = Clock::now();
-            engine->execute(find.text);
+            auto results = engine->execute(find.text);
             round.push_back(microsecondsSince(t));
+            if (smqlAnswer(results.back(), find.column) != answers[s])
+                throw std::runtime_error(
+                    fmt::format("smql's `{}` in {} answers {} in a newly opened database, {} before", find.text,
+                                scene.name, showAnswer(smqlAnswer(results.back(), find.column), find.column),
+                                showAnswer(answers[s], find.column)));
         }
     }
     return out;
@@ -399,6 +406,7 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
     std::vector<SceneQueries> scenes;
     std::array<ClassSamples, kClassCount> samples;
     std::vector<std::vector<double>> baselineSwitch;
+    std::vector<Answer> firstAnswers;  // each scene's first FIND's
     {
         auto engine = Engine::open(data.smqlDirectory.string());
         Baselines baselines;
@@ -432,6 +440,7 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
             useScene(scene.name);
             std::string where = fmt::format("{} scene {}", data.spec.label, scene.name);
             auto first = check(*engine, baselines, find, where);
+            firstAnswers.push_back(first.answer);
             for (std::size_t b = 0; b < baselines.size(); ++b) baselineSwitch[b].push_back(first.baselineMicros[b]);
             for (int c = 0; c < kSingleSceneClasses; ++c) {
                 verify(*engine, baselines, scene.byClass[c], where, samples[c]);
@@ -466,7 +475,7 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
         result.shapes = engine->shapeCacheStats();
     }
     // smql and SQLite are closed now, so each open below starts from nothing but the OS page cache.
-    auto cold = measureColdScenes(data, scenes, rounds);
+    auto cold = measureColdScenes(data, scenes, firstAnswers, rounds);
     result.smqlSceneSwitch = overRounds(cold);
     result.open =
         measureOpen(data, scenes.front().byClass[kFindWindow].front(), scenes.front().name, options.openRepeats);
