@@ -538,7 +538,8 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
     if (floorFound) {
         auto heights = scaleFromHeights(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth);
         if (!heights) {
-            out.scaleThingsDoubted = doubtedHeights(things, fromEigen(up), out.floorHeight);
+            out.scaleThingsLeftOut =
+                heightsLeftOut(things, fromEigen(up), out.floorHeight, unit, options.thingsOnDepth);
         } else if (!heights->heldTogether) {
             notes.push_back("scale: " + heights->prior);
             out.scaleThingsApart = heights->things;

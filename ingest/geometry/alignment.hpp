@@ -100,9 +100,9 @@ struct Alignment {
     // The things whose heights were noted and not counted, no two of them agreeing (ScaleEstimate::heldTogether);
     // empty when none were set aside.
     std::string scaleThingsApart;
-    // The things of a typical height left out of the heights prior as named beside another room's things
-    // (doubtedHeights), where no heights prior was measured: "3 fridges"; empty otherwise.
-    std::string scaleThingsDoubted;
+    // Where no heights prior was measured, the things of a typical height it left out and those it took, too few
+    // (heightsLeftOut); empty lists otherwise.
+    HeightsLeftOut scaleThingsLeftOut;
     std::vector<std::string> notes;  // how each choice was made, for SHOW SCENES and logs
 
     model::Vec3 apply(const model::Vec3& p) const;

@@ -84,60 +84,82 @@ bool measuresHeight(const NamedThing& thing) {
     return thing.measures && !thing.points.empty() && typicalHeight(thing.category);
 }
 
+// How the heights prior takes each thing: no measure of height (measuresHeight), left out (its name in doubt, its
+// points reaching well below the floor, or, with `seenWhole`, its top short of the tallest of its kind: seen in
+// part), or counted, with its top in capture units above the floor.
+struct Taken {
+    enum class As { NoMeasure, Doubted, BelowFloor, Partial, Counted } as = As::NoMeasure;
+    double top = 0;
+};
+
+std::vector<Taken> takeHeights(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight,
+                               double unit, bool seenWhole) {
+    const std::vector<bool> doubted = namesInDoubt(things, up, floorHeight);
+    std::vector<Taken> out(things.size());
+    std::map<std::string_view, double> tallest;  // by kindName
+    for (std::size_t i = 0; i < things.size(); ++i) {
+        if (!measuresHeight(things[i])) continue;
+        if (doubted[i]) {
+            out[i].as = Taken::As::Doubted;
+            continue;
+        }
+        std::vector<double> above;
+        for (const auto& p : things[i].points) above.push_back(along(up, p) - floorHeight);
+        if (reachesBelow(above, unit)) {
+            out[i].as = Taken::As::BelowFloor;
+            continue;
+        }
+        const double top = detail::robustRange(std::move(above)).second;
+        if (top <= 0) continue;
+        out[i] = {Taken::As::Counted, top};
+        double& kindTallest = tallest[kindName(things[i].category)];
+        kindTallest = std::max(kindTallest, top);
+    }
+    if (seenWhole)
+        for (std::size_t i = 0; i < things.size(); ++i)
+            if (out[i].as == Taken::As::Counted && out[i].top < kShortOfItsKind * tallest[kindName(things[i].category)])
+                out[i].as = Taken::As::Partial;
+    return out;
+}
+
+// The things taken as `as`, by category.
+std::map<std::string, int> countTaken(const std::vector<NamedThing>& things, const std::vector<Taken>& taken,
+                                      Taken::As as) {
+    std::map<std::string, int> out;
+    for (std::size_t i = 0; i < things.size(); ++i)
+        if (taken[i].as == as) ++out[things[i].category];
+    return out;
+}
+
 }  // namespace
 
-std::string doubtedHeights(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight) {
-    const std::vector<bool> doubted = namesInDoubt(things, up, floorHeight);
-    std::map<std::string, int> left;
-    for (std::size_t i = 0; i < things.size(); ++i)
-        if (doubted[i] && measuresHeight(things[i])) ++left[things[i].category];
-    return listCounts(left);
+HeightsLeftOut heightsLeftOut(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight,
+                              double unit, bool seenWhole) {
+    const std::vector<Taken> taken = takeHeights(things, up, floorHeight, unit, seenWhole);
+    return {listCounts(countTaken(things, taken, Taken::As::Doubted)),
+            listCounts(countTaken(things, taken, Taken::As::BelowFloor)),
+            listCounts(countTaken(things, taken, Taken::As::Partial)),
+            listCounts(countTaken(things, taken, Taken::As::Counted))};
 }
 
 std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
                                               double floorHeight, double unit, bool seenWhole, std::size_t minThings) {
-    const std::vector<bool> doubted = namesInDoubt(things, up, floorHeight);
-    struct Top {
-        std::string_view category;
-        double height = 0;  // the kind's typical height, metres
-        double top = 0;     // the thing's, capture units above the floor
-    };
-    std::vector<Top> tops;
-    std::map<std::string, int> counted, left, partial;
-    for (std::size_t i = 0; i < things.size(); ++i) {
-        const NamedThing& thing = things[i];
-        if (!measuresHeight(thing)) continue;
-        const double height = *typicalHeight(thing.category);
-        if (doubted[i]) {
-            ++left[thing.category];
-            continue;
-        }
-        std::vector<double> above;
-        for (const auto& p : thing.points) above.push_back(along(up, p) - floorHeight);
-        if (reachesBelow(above, unit)) continue;
-        double top = detail::robustRange(std::move(above)).second;
-        if (top > 0) tops.push_back({thing.category, height, top});
-    }
-    std::map<std::string_view, double> tallest;  // by kindName
-    for (const auto& t : tops) tallest[kindName(t.category)] = std::max(tallest[kindName(t.category)], t.top);
+    const std::vector<Taken> taken = takeHeights(things, up, floorHeight, unit, seenWhole);
     std::vector<double> estimates;
-    for (const auto& t : tops) {
-        if (seenWhole && t.top < kShortOfItsKind * tallest[kindName(t.category)]) {
-            ++partial[std::string(t.category)];
-            continue;
-        }
-        estimates.push_back(t.height / t.top);
-        ++counted[std::string(t.category)];
-    }
+    for (std::size_t i = 0; i < things.size(); ++i)
+        if (taken[i].as == Taken::As::Counted) estimates.push_back(*typicalHeight(things[i].category) / taken[i].top);
     if (estimates.size() < std::max<std::size_t>(minThings, 1)) return std::nullopt;
+    const std::map<std::string, int> counted = countTaken(things, taken, Taken::As::Counted);
     const std::string kinds = listCounts(counted, /*heights=*/true);
     // "2 fridges, 1 toilet", wrapped in why they were left out; nothing when none was.
     auto leftOut = [](const std::map<std::string, int>& counts, std::string_view why) {
         const std::string listed = listCounts(counts);
         return listed.empty() ? listed : fmt::format(" (left out, {})", fmt::format(fmt::runtime(why), listed));
     };
-    const std::string doubts = leftOut(left, "named beside another room's things: {}") +
-                               leftOut(partial, "seen in part: {} short of the tallest of their kind");
+    const std::string doubts =
+        leftOut(countTaken(things, taken, Taken::As::Doubted), "named beside another room's things: {}") +
+        leftOut(countTaken(things, taken, Taken::As::BelowFloor), "their points reaching below the floor: {}") +
+        leftOut(countTaken(things, taken, Taken::As::Partial), "seen in part: {} short of the tallest of their kind");
     std::sort(estimates.begin(), estimates.end());
     bool twoAgree = false;
     for (std::size_t i = 1; i < estimates.size() && !twoAgree; ++i)

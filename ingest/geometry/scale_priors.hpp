@@ -57,9 +57,17 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
                                               double floorHeight, double unit, bool seenWhole = false,
                                               std::size_t minThings = 2);
 
-// The things of a typical height whose names are in doubt as measures of the room, as scaleFromHeights leaves them
-// out ("3 fridges, 2 toilets"), empty when none is: for a refusal to say why they did not check the scale.
-std::string doubtedHeights(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight);
+// The things of a typical height scaleFromHeights leaves out before measuring, listed as "3 fridges, 2 toilets"
+// (empty where none is): for a refusal to say why they did not check the scale.
+// `counted` lists those it takes, too few where it made no prior.
+struct HeightsLeftOut {
+    std::string doubted;     // named beside another room's things (their names in doubt as measures of the room)
+    std::string belowFloor;  // their points reaching well below the floor (reachesBelow)
+    std::string partial;     // seen in part (with `seenWhole`: kShortOfItsKind)
+    std::string counted;
+};
+HeightsLeftOut heightsLeftOut(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight,
+                              double unit, bool seenWhole = false);
 
 // A thing fused on depth is measured only by what its views showed, so it is never taller than it is: one
 // whose top is under this share of the tallest of its kind was seen in part (a chair's seat with its back

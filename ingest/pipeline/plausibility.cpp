@@ -213,23 +213,39 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
 
 namespace {
 
-// A scale on the cameras' assumed height alone, and why nothing checked it: no second prior, things standing on
-// the floor whose heights were set aside for disagreeing (Alignment::scaleThingsApart), or things left out for
-// standing beside another room's things (Alignment::scaleThingsDoubted).
+// A scale on the cameras' assumed height alone, and why nothing checked it: no second prior, or things standing on
+// the floor whose heights were set aside for disagreeing (Alignment::scaleThingsApart), or left out of the heights
+// prior (scaleThingsLeftOut: beside another room's things, reaching below the floor, seen in part), the rest too few.
 std::string restsOnCamerasHeight(const Alignment& alignment) {
-    std::string unchecked;
+    const HeightsLeftOut& left = alignment.scaleThingsLeftOut;
+    std::vector<std::string> why;
     if (!alignment.scaleThingsApart.empty())
-        unchecked = fmt::format(
+        why.push_back(fmt::format(
             "the heights of {} standing on the floor do not check them: no two of them give a scale within {:.0f}% "
             "of each other's",
-            alignment.scaleThingsApart, 100 * kThingsAgree);
-    else if (!alignment.scaleThingsDoubted.empty())
-        unchecked = fmt::format(
+            alignment.scaleThingsApart, 100 * kThingsAgree));
+    if (!left.doubted.empty())
+        why.push_back(fmt::format(
             "the heights of {} standing on the floor do not check them: each stands by things of another kind "
             "of room (a kitchen's by a bathroom's), and one of the two names is wrong",
-            alignment.scaleThingsDoubted);
-    else
-        unchecked = "no second prior (things of a known height standing on the floor, the ceiling) checks them";
+            left.doubted));
+    if (!left.belowFloor.empty())
+        why.push_back(fmt::format(
+            "the heights of {} do not check them: their points reach well below the floor found, so either that "
+            "floor is not the one they stand on or their points take in more than the things",
+            left.belowFloor));
+    if (!left.partial.empty())
+        why.push_back(fmt::format(
+            "the heights of {} do not check them: seen in part, short of the tallest of their kind", left.partial));
+    if (!left.counted.empty())
+        why.push_back(
+            fmt::format("{}, {}, is too few: the things' heights make a prior from two things on",
+                        why.empty() ? "the one thing of a known height standing on the floor" : "what is left of them",
+                        left.counted));
+    const std::string unchecked =
+        why.empty()
+            ? std::string("no second prior (things of a known height standing on the floor, the ceiling) checks them")
+            : fmt::format("{}", fmt::join(why, "; "));
     return "the scale rests on one prior, the cameras' assumed height above the floor, where real captures' cameras "
            "stand 1.2-1.7 m up: lengths may be a fifth off, and " +
            unchecked;

@@ -259,10 +259,31 @@ TEST_CASE("plausibility: photos without depth scaled on one prior are refused, s
                                "them: no two of them give a scale within 15%"));
     // Left out for standing beside another room's things (ScanNet's bathroom's 296 frames without depth: three
     // "fridges" beside its toilets).
-    CHECK_THAT(refusedFor([](Alignment& a) { a.scaleThingsDoubted = "3 fridges"; }),
+    CHECK_THAT(refusedFor([](Alignment& a) { a.scaleThingsLeftOut.doubted = "3 fridges"; }),
                Catch::Contains("the heights of 3 fridges standing on the floor do not check them: each stands by "
                                "things of another kind of room (a kitchen's by a bathroom's), and one of the two "
                                "names is wrong"));
+    // Left out for their points reaching below the floor found.
+    CHECK_THAT(refusedFor([](Alignment& a) { a.scaleThingsLeftOut.belowFloor = "1 table"; }),
+               Catch::Contains("the heights of 1 table do not check them: their points reach well below the floor "
+                               "found"));
+    // Seen in part, and the one left too few (ScanNet's bathroom's 100 frames without depth, a COLMAP run that
+    // placed 51: of its two "toilets" lifted on the dense points, one stood 0.50 m high and the other 0.95 m).
+    CHECK_THAT(refusedFor([](Alignment& a) {
+                   a.scaleThingsLeftOut.partial = "1 toilet";
+                   a.scaleThingsLeftOut.counted = "1 toilet";
+               }),
+               Catch::Contains("the heights of 1 toilet do not check them: seen in part, short of "
+                               "the tallest of their kind; what is left of them, 1 toilet, is too few"));
+    // One thing of a known height alone.
+    CHECK_THAT(refusedFor([](Alignment& a) { a.scaleThingsLeftOut.counted = "1 chair"; }),
+               Catch::Contains("the one thing of a known height standing on the floor, 1 chair, is too few"));
+    // Both at once, each named.
+    CHECK_THAT(refusedFor([](Alignment& a) {
+                   a.scaleThingsLeftOut.doubted = "3 fridges";
+                   a.scaleThingsLeftOut.belowFloor = "1 table";
+               }),
+               Catch::Contains("one of the two names is wrong; the heights of 1 table"));
     // A floor not seen is refused for that, once.
     Alignment tableTop = onePrior;
     tableTop.floorFound = false;
