@@ -37,8 +37,8 @@ struct ResultSet {
     int columnIndex(std::string_view name) const;  // -1 when absent
 };
 
-// What COUNT answers: one column, `count`, and one row. Built in place (two allocations): a COUNT the
-// engine remembers returns nothing else.
+// What COUNT answers: one column, `count`, and one row, built where the caller receives it: its two
+// allocations are the only ones of a COUNT the engine remembers.
 ResultSet countAnswer(std::uint64_t count);
 
 }  // namespace smql

@@ -180,7 +180,7 @@ const model::Node& SceneSnapshot::decode(Slot slot) const {
     if (read) {
         // The index's names are canonical already (the constructor folded them), so a record that
         // names its category as the index does needs no fold: most do, and the fold's test of the
-        // word is a tenth of a node's decoding.
+        // word was a seventh of a node's decoding.
         if (node.category != category(slot)) canonicalise(node);
         exact = model::worldAabb(node.box);
     }
