@@ -57,14 +57,13 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
                                               double floorHeight, double unit, bool seenWhole = false,
                                               std::size_t minThings = 2);
 
-// The things of a typical height scaleFromHeights leaves out before measuring, listed as "3 fridges, 2 toilets"
-// (empty where none is): for a refusal to say why they did not check the scale.
-// `counted` lists those it takes, too few where it made no prior.
+// The things of a typical height scaleFromHeights leaves out before measuring, and those it takes, each listed as
+// "3 fridges, 2 toilets" (empty where none is): for a refusal to say why they did not check the scale.
 struct HeightsLeftOut {
     std::string doubted;     // named beside another room's things (their names in doubt as measures of the room)
     std::string belowFloor;  // their points reaching well below the floor (reachesBelow)
     std::string partial;     // seen in part (with `seenWhole`: kShortOfItsKind)
-    std::string counted;
+    std::string counted;     // taken: fewer than two where no prior was made
 };
 HeightsLeftOut heightsLeftOut(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight,
                               double unit, bool seenWhole = false);
