@@ -123,19 +123,32 @@ struct SceneQueries {
     std::array<std::vector<Query>, kSingleSceneClasses> byClass;
 };
 
+// The nodes of scene `name` but its scene node, read from storage (not loaded into the engine).
+std::vector<model::Node> storedNodes(Engine& engine, const std::string& name) {
+    std::vector<model::Node> nodes;
+    auto txn = engine.database().beginRead();
+    txn.forEachNodeInScene(txn.sceneByName(name).value().id, [&](const model::Node& n) {
+        if (n.kind != model::NodeKind::Scene) nodes.push_back(n);
+    });
+    return nodes;
+}
+
+// Parses `find` with no scene in use: across all scenes a FIND with WHERE is refused after parsing, and the
+// engine keeps the parsed text, so the FIND run after a USE SCENE times the scene's load and its work.
+void parseAcrossScenes(Engine& engine, const Query& find) {
+    engine.execute("USE SCENE '*'");
+    try {
+        engine.execute(find.text);
+    } catch (const Error&) {
+    }
+}
+
 // The single-scene queries of one scene: its nodes decide the FIND's surface
 // and the RELATE pairs (half of them a small thing and what it rests on, half random).
 SceneQueries sceneQueries(Engine& engine, int sceneIndex) {
     SceneQueries out;
     out.name = sceneName(sceneIndex);
-    std::vector<model::Node> nodes;
-    {
-        auto txn = engine.database().beginRead();
-        auto info = txn.sceneByName(out.name).value();
-        txn.forEachNodeInScene(info.id, [&](const model::Node& n) {
-            if (n.kind != model::NodeKind::Scene) nodes.push_back(n);
-        });
-    }
+    const std::vector<model::Node> nodes = storedNodes(engine, out.name);
     auto has = [&](std::string_view category) {
         return std::any_of(nodes.begin(), nodes.end(), [&](const model::Node& n) { return n.category == category; });
     };
@@ -369,17 +382,8 @@ std::vector<std::vector<double>> measureColdScenes(const DataSet& data, const st
         for (std::size_t s = 0; s < scenes.size(); ++s) {
             const SceneQueries& scene = scenes[s];
             const Query& find = scene.byClass[kFindWindow].front();
-            {
-                std::vector<model::Node> nodes;
-                auto txn = engine->database().beginRead();
-                txn.forEachNodeInScene(txn.sceneByName(scene.name).value().id,
-                                       [&](const model::Node& n) { nodes.push_back(n); });
-            }
-            engine->execute("USE SCENE '*'");
-            try {
-                engine->execute(find.text);
-            } catch (const Error&) {
-            }
+            storedNodes(*engine, scene.name);  // read and freed, as sceneQueries does before the first visit
+            parseAcrossScenes(*engine, find);
             engine->execute(fmt::format("USE SCENE '{}'", scene.name));
             const auto t = Clock::now();
             auto results = engine->execute(find.text);
@@ -430,13 +434,7 @@ WorkloadResult runWorkload(const DataSet& data, const WorkloadOptions& options, 
             int index = static_cast<int>(static_cast<long long>(k) * data.spec.scenes / sampled);
             const auto& scene = scenes.emplace_back(sceneQueries(*engine, index));
             const Query& find = scene.byClass[kFindWindow].front();
-            // Parse the FIND once without loading a scene (across all scenes a FIND with WHERE is refused
-            // after parsing, and the engine keeps the parsed text), so the first FIND below times the scene load.
-            engine->execute("USE SCENE '*'");
-            try {
-                engine->execute(find.text);
-            } catch (const Error&) {
-            }
+            parseAcrossScenes(*engine, find);
             useScene(scene.name);
             std::string where = fmt::format("{} scene {}", data.spec.label, scene.name);
             auto first = check(*engine, baselines, find, where);

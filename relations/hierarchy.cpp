@@ -159,12 +159,12 @@ private:
         const Node& a = scene_.nodes[i];
         if (a.kind == model::NodeKind::Object && a.parent == model::kNoNode &&
             a.geometry != model::GeometryKind::None) {
-            const LayoutObstacles walls(*anchors_, anchorIndex_, objects_, objectIndex_);
-            if (const Node* wall = wallHolding(a, walls, thresholds_)) {
+            const LayoutObstacles around(*anchors_, anchorIndex_, objects_, objectIndex_);
+            if (const Node* wall = wallHolding(a, around, thresholds_)) {
                 parents_[i] = wall->id;
-            } else if (const Node* carrier = carrierOf(a, walls)) {
+            } else if (const Node* carrier = carrierOf(a, around)) {
                 parents_[i] = carrier->id;
-            } else if (const Node* ceiling = ceilingHolding(a, walls)) {
+            } else if (const Node* ceiling = ceilingHolding(a, around)) {
                 parents_[i] = ceiling->id;
             } else if (const Node* anchor = relations::nearestAnchor(a, *anchors_, anchorIndex_)) {
                 parents_[i] = anchor->id;
@@ -174,14 +174,14 @@ private:
     }
 
     // The ceiling a thing hangs from (attached: a light, a vent), of the scene's ceilings; null for none.
-    const Node* ceilingHolding(const Node& a, const Obstacles& walls) const {
+    const Node* ceilingHolding(const Node& a, const Obstacles& around) const {
         static const Frame frame{};
         for (const Node* ceiling : ceilings_)
-            if (evaluate(Predicate::Attached, a, *ceiling, thresholds_, frame, walls) > 0) return ceiling;
+            if (evaluate(Predicate::Attached, a, *ceiling, thresholds_, frame, around) > 0) return ceiling;
         return nullptr;
     }
 
-    const Node* carrierOf(const Node& a, const Obstacles& walls) {
+    const Node* carrierOf(const Node& a, const Obstacles& around) {
         static const Frame frame{};
         struct Carrier {
             const Node* node;
@@ -193,8 +193,8 @@ private:
         for (const auto& [bounds, k] : meeting(objectIndex_, within)) {
             const Node* b = objects_[k];
             if (b == &a || (b->hidden && !a.hidden)) continue;  // nothing visible hangs below a hidden part
-            const double score = std::max(evaluate(Predicate::On, a, *b, thresholds_, frame, walls),
-                                          evaluate(Predicate::In, a, *b, thresholds_, frame, walls));
+            const double score = std::max(evaluate(Predicate::On, a, *b, thresholds_, frame, around),
+                                          evaluate(Predicate::In, a, *b, thresholds_, frame, around));
             if (score <= 0) continue;
             const std::size_t at = position_.at(b->id);
             choose(at);  // its own parent first; one still being chosen (a cycle of containment) is passed over

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -37,13 +38,19 @@ namespace {
 constexpr double kLightnessWeight = 0.5;
 
 std::string nearestPaletteName(const cv::Vec3f& lab) {
+    // The palette's colours in Lab, worked out once.
+    static const std::vector<cv::Vec3f> paletteLab = [] {
+        std::vector<cv::Vec3f> out;
+        for (const auto& color : synth::namedColors()) out.push_back(labOf(color.rgb.b, color.rgb.g, color.rgb.r));
+        return out;
+    }();
     double best = std::numeric_limits<double>::max();
     std::string name;
-    for (const auto& color : synth::namedColors()) {
-        const cv::Vec3f p = labOf(color.rgb.b, color.rgb.g, color.rgb.r);
+    for (std::size_t i = 0; i < paletteLab.size(); ++i) {
+        const cv::Vec3f& p = paletteLab[i];
         double dl = kLightnessWeight * (lab[0] - p[0]), da = lab[1] - p[1], db = lab[2] - p[2];
         double d = dl * dl + da * da + db * db;
-        if (d < best) best = d, name = color.name;
+        if (d < best) best = d, name = synth::namedColors()[i].name;
     }
     return name;
 }
