@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,6 +50,11 @@ public:
         (void)aligned, (void)walls, (void)progress;
         return tracks;
     }
+    // Once the things were fused (fuse): the share of the detections' boxes that the dense points of photos
+    // without depth cover, where the finder measured it; nullopt for captures it did not (depth, no dense
+    // points, no detection). Few points under what the detectors saw is why such a room cannot be measured
+    // (plausibility.hpp: thinPointsFinding).
+    virtual std::optional<double> pointsCover() const { return std::nullopt; }
     // After the tracks became nodes: objects found in the aligned structure
     // cloud rather than in the frames, added to `scene`.
     virtual void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,

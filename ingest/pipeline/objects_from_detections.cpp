@@ -113,6 +113,8 @@ public:
             fewPoints_, uncarved_, placedByRays_);
     }
 
+    std::optional<double> pointsCover() const override { return cover_; }
+
     std::vector<ObjectTrack> fuse(std::vector<ObjectTrack> tracks, const AlignedCapture& aligned,
                                   const std::vector<WallSegment>& walls, StageProgress& progress) override {
         if (!denseFrames_.empty())
@@ -301,6 +303,7 @@ private:
             cameras.push_back({pose, frame.intrinsics ? *frame.intrinsics : capture_.intrinsics});
         }
         const double cover = boxed > 0 ? covered / boxed : 0;
+        if (boxed > 0) cover_ = cover;
         // (Both are the scale's estimate's: a floor is unconfirmed, and one prior counted, only where no scale was
         // given and the poses are not metric.)
         const bool unmeasured = alignment.floorFound &&
@@ -458,6 +461,7 @@ private:
     std::vector<MaskView> maskViews_;         // without depth: each frame's detections, for carving
     std::vector<UnplacedView> unplaced_;      // without depth: views too few sparse points placed
     std::vector<std::uint32_t> denseFrames_;  // with dense points: the frames looked at, for fuseOnDenseDepth
+    std::optional<double> cover_;             // ... and the share of the detections' boxes they cover (pointsCover)
     std::size_t fewPoints_ = 0;               // without depth: views with too few sparse points on them,
     std::size_t uncarved_ = 0;                // ... views of tracks whose points carved no hull,
     std::size_t placedByRays_ = 0;            // ... and how many of both their boxes' rays placed

@@ -56,8 +56,11 @@ model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& optio
 
 // The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
 // --force, so that no wrong memory is stored with exit status 0.
+// Photos without depth whose points cover little of what the detectors saw (thinPointsFinding) have that as the
+// cause beneath whatever refuses their room: a floor unconfirmed, priors that part.
 void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
-               const FramePass& frames, const Alignment& alignment, const DensePoints* dense, StageRunner& runner) {
+               const FramePass& frames, const Alignment& alignment, const DensePoints* dense,
+               std::optional<double> pointsCover, StageRunner& runner) {
     const bool depth = framesHaveDepth(capture) && !options.scale;
     const ScaleSource source{.depth = depth,
                              .depthScale = capture.depthScale,
@@ -72,6 +75,13 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
         report.findings.insert(report.findings.begin(), std::move(*views));
     auto aligned = alignmentFindings(alignment, source);
     report.findings.insert(report.findings.begin(), aligned.begin(), aligned.end());
+    std::optional<PlausibilityFinding> thin;
+    if (!depth && dense && pointsCover)
+        thin = thinPointsFinding({.photos = frames.cameras.size(),
+                                  .sparse = capture.points.size(),
+                                  .dense = dense->points.size(),
+                                  .cover = *pointsCover});
+    if (thin) report.findings.insert(report.findings.begin(), *thin);
     const PlausibilityFinding* refusal = nullptr;
     for (const auto& f : report.findings) {
         runner.note(fmt::format("{} {}: {}; {}", f.refuse ? "implausible" : "warning:", f.check, f.what, f.fix));
@@ -79,8 +89,12 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
     }
     for (const auto& o : report.objects) runner.note(fmt::format("warning: {}: {}", o.problem, o.what));
     if (refusal && !options.force)
-        throw Error(ErrorKind::Input, fmt::format("the memory would be wrong: {}", refusal->what), std::nullopt,
-                    refusal->fix + "; --force stores the memory anyway");
+        throw Error(
+            ErrorKind::Input,
+            fmt::format("the memory would be wrong: {}{}", refusal->what,
+                        thin ? "; beneath it, " + thin->what : std::string()),
+            std::nullopt,
+            fmt::format("{}{}; --force stores the memory anyway", thin ? thin->fix + "; or " : "", refusal->fix));
 }
 
 }  // namespace
@@ -147,7 +161,7 @@ IngestResult ingestCapture(const Capture& input, const IngestOptions& options, P
     runner.run(OpeningsStage{aligned, result.cameraCentres, walls, framesHaveDepth(capture), scene});
     runner.run(RelationsStage{capture, options, frames, aligned, tracked, scene});
     checkRoom(result, capture, options, frames, aligned.alignment, reconstruction ? &reconstruction->dense : nullptr,
-              runner);
+              finder->pointsCover(), runner);
     return result;
 }
 
