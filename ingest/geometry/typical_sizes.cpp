@@ -32,12 +32,13 @@ struct Typical {
 constexpr Slender kChairShape{.length = 0.75, .depth = 0.2, .postHeight = 0.4, .postSide = 0.25};
 constexpr Slender kFridgeShape{.length = 0.9, .depth = 0.25, .frontHeight = 1.1};
 constexpr Slender kTableShape{.length = 0.75, .depth = 0.25};
+constexpr Slender kBedShape{.length = 1.0, .depth = 0.6, .frontHeight = 1.0};
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, Support::Floor, true, false, RoomKind::Any, Role::Other, {}, kTableShape},
     {"desk", 0.75, 1.9, Support::Floor, true, false, RoomKind::Dry, Role::Other, {}, kTableShape},
     {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape},
     {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
-    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, {1.0, 0.25}},
+    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, kBedShape},
     {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}, kFridgeShape},
     {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},

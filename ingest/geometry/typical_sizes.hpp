@@ -41,8 +41,11 @@ bool smallerThanKind(std::string_view category, double largest, double height, d
 // what is that thin is a chair's back seen edge-on, narrower than that (of 235 labelled chairs in ARKitScenes'
 // rooms the thinnest footprint is 1.7 times as long as deep; of ScanNet's 370, scanned in part as many are, one
 // is 1.17 x 0.17 m and the next longest of those under 0.2 m deep 0.70 m). A 1.28 x 0.18 m "chair" stored in
-// ScanNet's lounge, where none stands, is not one, nor a "bed" (the shallowest of 74 labelled beds: 0.29 m, and
-// 0.86 m of those drawn whole) or a "sofa" (of 134: 0.36 m). A fridge lower than 1.1 m is never 0.9 m long and
+// ScanNet's lounge, where none stands, is not one, nor a "sofa" (of 134: 0.36 m). A bed lower than 1.0 m is never
+// 1.0 m long and under 0.6 m deep: of 74 labelled beds the shallowest drawn whole is 0.86 m deep, and the one
+// shallower, ScanNet's 2.03 x 0.29 m, stands 1.54 m tall (a headboard scanned alone); an ottoman of ScanNet's
+// lounge, its 100 frames without depth lifted on the dense points, was stored as a 2.30 x 0.58 x 0.83 m "bed" in
+// four COLMAP runs of four. A fridge lower than 1.1 m is never 0.9 m long and
 // under 0.25 m deep (of 39 labelled: 0.36 m the shallowest drawn whole, and ScanNet's scanned in part 0.83 x 0.18
 // and 1.01 x 0.30 m); ScanNet's bathroom had a 0.98 x 0.19 x 0.91 m "fridge" stored on its bathtub's side.
 // Nor is a box `postHeight` tall or taller whose footprint's longer side is under `postSide` a thing of the kind:
@@ -51,8 +54,9 @@ bool smallerThanKind(std::string_view category, double largest, double height, d
 // under 0.25 m; TUM fr1/rpy's RGB-D memory had a 0.23 x 0.08 x 0.86 m "chair" beside its desk, and ScanNet's
 // apartment a 0.20 x 0.18 x 0.55 m one.
 // A box `frontHeight` tall or taller is not held to `length` and `depth`: it is the front of such a thing, scanned
-// from before it alone. Of ScanNet's 243 labelled fridges (its training and validation scans), 9 are 0.90-1.09 m
-// long and 0.16-0.25 m deep, each 1.16-2.12 m tall, where the bathroom's "fridge" was 0.91 m tall.
+// from before it alone (a fridge's front, a bed's headboard). Of ScanNet's 243 labelled fridges (its training and
+// validation scans), 9 are 0.90-1.09 m long and 0.16-0.25 m deep, each 1.16-2.12 m tall, where the bathroom's "fridge"
+// was 0.91 m tall.
 struct Slender {
     double length = 0;
     double depth = 0;
