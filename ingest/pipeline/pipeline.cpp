@@ -55,9 +55,9 @@ model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& optio
 }
 
 // The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
-// --force, so that no wrong memory is stored with exit status 0.
-// Photos without depth whose points cover little of what the detectors saw (thinPointsFinding) have that as the
-// cause beneath whatever refuses their room: a floor unconfirmed, priors that part.
+// --force, so that no wrong memory is stored with exit status 0. Photos without depth whose points cover
+// little of what the detectors saw (thinPointsFinding) have that as the cause beneath whatever refuses their
+// room: a floor unconfirmed, priors that part.
 void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
                const FramePass& frames, const Alignment& alignment, const DensePoints* dense,
                std::optional<double> pointsCover, StageRunner& runner) {

@@ -221,7 +221,7 @@ TEST_CASE("plausibility: photos that give few points under what the detectors sa
     CHECK_THAT(thin->what, Catch::Contains("COLMAP's 149 and 786 dense ones from 5 photos cover 7% of what the "
                                            "detectors saw"));
     CHECK_THAT(thin->fix, Catch::Contains("a short step from the one before"));
-    CHECK_FALSE(thinPointsFinding({.photos = 3, .sparse = 95, .dense = 2000, .cover = 0.51}));
+    CHECK_FALSE(thinPointsFinding({.photos = 3, .sparse = 95, .dense = 2789, .cover = 0.51}));
     CHECK_FALSE(thinPointsFinding({.photos = 50, .sparse = 7977, .dense = 6107, .cover = 0.53}));
 }
 
