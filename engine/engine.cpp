@@ -147,8 +147,8 @@ struct Engine::State {
                   const std::shared_ptr<const ast::Statement>& kept = nullptr) {
         const std::optional<CatalogQuery> catalog = catalogQuery(statement, values);
         if (catalog && catalog->countOnly)
-            if (const auto* kept = categoryCounts.find(catalog->category(), db->lastCommittedTransaction()))
-                return countAnswer(kept->count);
+            if (const auto* remembered = categoryCounts.find(catalog->category(), db->lastCommittedTransaction()))
+                return countAnswer(remembered->count);
         auto txn = db->beginRead();
         if (catalog && !catalog->countOnly)
             if (auto rs = rememberedFind(txn, *catalog)) return std::move(*rs);
