@@ -382,6 +382,13 @@ void reachUnder(model::Box& cabinet, const model::Box& basin) {
 }
 
 const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& things, const FusionOptions& options) {
+    // Things put on tables resting on its top, over it: it is a table, whatever seat stands in it.
+    const bool carriesThings = std::any_of(things.begin(), things.end(), [&](const SeenBox& other) {
+        return usualSupport(other.category) == Support::Surface &&
+               std::abs(model::bottom(other.box) - model::top(table)) <= options.restingGap &&
+               model::footprintOverlap(other.box, table) >= 0.5 * model::footprintArea(other.box);
+    });
+    if (carriesThings) return nullptr;
     const auto seat = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
         const std::optional<double> usual = typicalHeight(other.category);
         return role(other.category) == Role::Seat &&

@@ -135,7 +135,10 @@ bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOpt
 // table's, whose top is the table's top (within FusionOptions::seatAtTop) and no higher than seats of its kind stand
 // (typicalHeight), or null: the table is that seat, seen as one with what stands around it, and its name is doubted.
 // A chair pushed under a table rises above its top or stays under it; bar stools in a row, which Open Images' SSD
-// frames as a "desk", are as high as the top it gives them.
+// frames as a "desk", are as high as the top it gives them. But a table with things put on tables resting on its top
+// (within FusionOptions::restingGap, half of each over it) is one, whatever seat stands in it: TUM's office photos,
+// lifted on their dense points, had an office chair tucked under the desk, its back at the desk's top, with two
+// bottles and a mug on the desk, and the desk was stored as an `object`.
 const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& things,
                          const FusionOptions& options = {});
 
