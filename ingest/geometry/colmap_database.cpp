@@ -3,6 +3,7 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -100,6 +101,109 @@ std::vector<ColmapPairMatches> readColmapMatches(const std::string& path) {
         out.push_back(std::move(pair));
     }
     return out;
+}
+
+void numberColmapImagesByName(const std::string& path) {
+    Connection db = open(path, SQLITE_OPEN_READWRITE);
+    auto exec = [&](const char* sql) {
+        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
+            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
+    };
+    auto count = [&](const char* sql) {
+        Statement rows = prepare(db.get(), path, sql);
+        return sqlite3_step(rows.get()) == SQLITE_ROW ? sqlite3_column_int64(rows.get(), 0) : 0;
+    };
+    if (count("SELECT count(*) FROM matches") + count("SELECT count(*) FROM two_view_geometries") > 0)
+        throw Error(ErrorKind::Input, fmt::format("{}: its images cannot be numbered again once matched", path));
+    if (count("SELECT count(*) FROM (SELECT image_id, row_number() OVER (ORDER BY name) AS n FROM images) "
+              "WHERE image_id <> n") == 0)
+        return;
+    exec("BEGIN");
+    // Moved out of the way first (COLMAP's ids stay under 2^31 - 1), so that no two rows share an id on the way.
+    exec(
+        "CREATE TEMP TABLE numbered AS SELECT image_id + 1000000000 AS moved, row_number() OVER (ORDER BY name) AS "
+        "number FROM images");
+    for (const char* table : {"images", "keypoints", "descriptors"}) {
+        exec(fmt::format("UPDATE {0} SET image_id = image_id + 1000000000", table).c_str());
+        exec(fmt::format("UPDATE {0} SET image_id = (SELECT number FROM numbered WHERE moved = {0}.image_id)", table)
+                 .c_str());
+    }
+    exec("DROP TABLE numbered");
+    exec("COMMIT");
+}
+
+namespace {
+
+// Whether VLFeat leaves the descriptor of a keypoint (COLMAP's x, y with its +0.5, and scale, in the pixels of
+// a `width` x `height` image) unwritten in an octave it may have been found in. Its octave is not stored: its
+// scale is sigma0 2^(o + s / S), the level s refined to within 1.5 of one of 0 .. S - 1 (vl_sift_detect), so
+// each octave that scale allows is tried.
+bool descriptorUnwritten(double x, double y, double scale, int width, int height, int octaveResolution) {
+    const double resolution = octaveResolution, sigma0 = 1.6 * std::pow(2.0, 1.0 / resolution);
+    const double octaves = std::log2(scale / sigma0);
+    x -= 0.5;
+    y -= 0.5;
+    for (int o = -1; o < 16; ++o) {
+        if (o <= octaves - (resolution + 0.5) / resolution || o >= octaves + 1.5 / resolution) continue;
+        const double per = std::ldexp(1.0, o);
+        const int w = o < 0 ? width * 2 : width >> o, h = o < 0 ? height * 2 : height >> o;
+        const double xi = std::floor(x / per + 0.5), yi = std::floor(y / per + 0.5);
+        if (xi < 0 || xi >= w || yi < 0 || yi >= h - 1) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+std::size_t clearUnwrittenDescriptors(const std::string& path, int octaveResolution) {
+    Connection db = open(path, SQLITE_OPEN_READWRITE);
+    auto exec = [&](const char* sql) {
+        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
+            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
+    };
+    Statement rows =
+        prepare(db.get(), path,
+                "SELECT k.image_id, k.rows, k.cols, k.data, d.rows, d.data, c.width, c.height FROM keypoints "
+                "k JOIN descriptors d USING (image_id) JOIN images i USING (image_id) JOIN cameras c "
+                "USING (camera_id)");
+    std::vector<std::pair<sqlite3_int64, std::vector<std::uint8_t>>> cleared;
+    std::size_t count = 0;
+    while (sqlite3_step(rows.get()) == SQLITE_ROW) {
+        const auto keypoints =
+            static_cast<std::size_t>(std::max<sqlite3_int64>(sqlite3_column_int64(rows.get(), 1), 0));
+        const int columns = sqlite3_column_int(rows.get(), 2);
+        // x, y, then a11 a12 a21 a22 (the scale the length of the first column) or scale and orientation.
+        if (keypoints == 0 || (columns != 4 && columns != 6) ||
+            static_cast<std::size_t>(sqlite3_column_int64(rows.get(), 4)) != keypoints ||
+            static_cast<std::size_t>(sqlite3_column_bytes(rows.get(), 3)) != keypoints * columns * sizeof(float) ||
+            static_cast<std::size_t>(sqlite3_column_bytes(rows.get(), 5)) != keypoints * 128)
+            continue;
+        const auto* k = static_cast<const float*>(sqlite3_column_blob(rows.get(), 3));
+        const auto* d = static_cast<const std::uint8_t*>(sqlite3_column_blob(rows.get(), 5));
+        const int width = sqlite3_column_int(rows.get(), 6), height = sqlite3_column_int(rows.get(), 7);
+        std::vector<std::uint8_t> descriptors;
+        for (std::size_t i = 0; i < keypoints; ++i) {
+            const float* p = k + i * static_cast<std::size_t>(columns);
+            const double scale = columns == 6 ? std::hypot(p[2], p[4]) : p[2];
+            if (!descriptorUnwritten(p[0], p[1], scale, width, height, octaveResolution)) continue;
+            if (descriptors.empty()) descriptors.assign(d, d + keypoints * 128);
+            std::fill_n(descriptors.begin() + static_cast<std::ptrdiff_t>(i * 128), 128, std::uint8_t{0});
+            ++count;
+        }
+        if (!descriptors.empty()) cleared.emplace_back(sqlite3_column_int64(rows.get(), 0), std::move(descriptors));
+    }
+    rows.reset();
+    exec("BEGIN");
+    Statement update = prepare(db.get(), path, "UPDATE descriptors SET data = ?2 WHERE image_id = ?1");
+    for (const auto& [image, data] : cleared) {
+        sqlite3_bind_int64(update.get(), 1, image);
+        sqlite3_bind_blob(update.get(), 2, data.data(), static_cast<int>(data.size()), SQLITE_STATIC);
+        if (sqlite3_step(update.get()) != SQLITE_DONE)
+            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
+        sqlite3_reset(update.get());
+    }
+    exec("COMMIT");
+    return count;
 }
 
 void writeColmapMatches(const std::string& path, const std::vector<ColmapPairMatches>& pairs) {

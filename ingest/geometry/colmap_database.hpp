@@ -42,6 +42,22 @@ struct ColmapDatabaseImage {
 };
 std::vector<ColmapDatabaseImage> readColmapImages(const std::string& path);
 
+// Numbers the images 1, 2, ... in the order of their names, their keypoints and descriptors with them.
+// COLMAP's feature_extractor numbers each image as its threads finish it, so the numbers change from run to
+// run, and with them the order the matcher and the mapper take the images in (TUM's 17 office photos: two
+// photos swapped in one run of three, and its model differed). Throws smql::Error(Input) when the database
+// holds matches already, whose pairs are named by those numbers.
+void numberColmapImagesByName(const std::string& path);
+
+// Zeroes the descriptors COLMAP 3.8's SIFT on the CPU leaves unwritten, and returns how many: VLFeat
+// describes no keypoint whose centre rounds onto its octave's last row or past its last column
+// (vl_sift_calc_keypoint_descriptor's bounds), and COLMAP keeps what the memory held there: bytes that look
+// like a descriptor, or a spike of 255. Of TUM fr1/rpy's 100 frames, 26 such keypoints of 160,888, 10 to 14 of
+// them different between any two of four extractions, and a pair matched from them kept 23 matches in one run
+// and 22 in the next. A zero descriptor matches nothing (sift_matching.hpp), so every run matches the same.
+// `octaveResolution`: COLMAP's SiftExtraction.octave_resolution.
+std::size_t clearUnwrittenDescriptors(const std::string& path, int octaveResolution = 3);
+
 // One image's SIFT descriptors as COLMAP stores them: `rows` of 128 bytes each.
 struct ColmapDescriptors {
     long long image = 0;

@@ -49,6 +49,16 @@ constexpr MapperSettings kMapperSettings[] = {
      "--Mapper.abs_pose_min_num_inliers 15 --Mapper.abs_pose_min_inlier_ratio 0.15"},
 };
 
+// COLMAP's steps that draw random samples or sum in parallel run on one thread, so that the same photos give the
+// same memory on every run (features are extracted on every core: colmap_database.hpp says what that takes). Its
+// verification of each pair's matches draws RANSAC's samples from a generator per thread, each seeded alike, so
+// on two threads the pairs a thread happens to take decide its draws: of four runs over the five dining photos,
+// one verified a pair to 65 inliers as a general scene where the others found 64 on a plane, and its model held
+// 155 points where theirs held 149. The mapper's bundle adjustment on two threads sums in the order they finish:
+// TUM fr1/rpy's 100 frames, mapped twice from one database, gave two models with the same points a few bits
+// apart, and one thread gave the same bytes twice, in 12.2 s where two took 10.8.
+constexpr int kRepeatableThreads = 1;
+
 // Bundle adjustment shorter and, over the whole model, less often than COLMAP's defaults (after
 // the model doubled rather than grew by 10 %; 15 and 10 iterations rather than 50 and 25): 300
 // frames' mapper 174 -> 146 s with every frame placed and the same reprojection error (docs/ingest.md,
@@ -606,6 +616,10 @@ private:
                                 shellQuoted(database_.string()), shellQuoted(images_.string()),
                                 shellQuoted(list.string()), camera, threads_, fine_ ? -1 : 0));
         }
+        if (!run_.reused) {
+            numberColmapImagesByName(database_.string());
+            clearUnwrittenDescriptors(database_.string());
+        }
         ColmapDatabaseSummary extracted = readColmapDatabase(database_.string(), options_.minMatches);
         if (extracted.imagesWithFeatures < 2)
             throw Error(ErrorKind::Input,
@@ -631,7 +645,7 @@ private:
         std::string matching = fmt::format(
             "--database_path {} --SiftMatching.use_gpu 0 --SiftMatching.num_threads {} "
             "--SiftMatching.min_num_inliers {}",
-            shellQuoted(database_.string()), threads_, options_.minMatches);
+            shellQuoted(database_.string()), kRepeatableThreads, options_.minMatches);
         if (!exhaustive_) {
             matching += fmt::format(" --SequentialMatching.overlap {} --SequentialMatching.quadratic_overlap {}",
                                     options_.sequentialOverlap, farther_ ? 1 : 0);
@@ -662,7 +676,7 @@ private:
             runStep("matches_importer",
                     fmt::format("--database_path {} --match_list_path {} --match_type pairs --SiftMatching.use_gpu 0 "
                                 "--SiftMatching.num_threads {} --SiftMatching.min_num_inliers {}",
-                                shellQuoted(database_.string()), shellQuoted(pairsFile.string()), threads_,
+                                shellQuoted(database_.string()), shellQuoted(pairsFile.string()), kRepeatableThreads,
                                 options_.minMatches));
         }
         if (!run_.reused)
@@ -686,7 +700,7 @@ private:
                             "--Mapper.num_threads {} --Mapper.ba_refine_focal_length 0 "
                             "--Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0",
                             shellQuoted(database_.string()), shellQuoted(images_.string()), shellQuoted(given.string()),
-                            shellQuoted(triangulated.string()), threads_));
+                            shellQuoted(triangulated.string()), kRepeatableThreads));
         CaptureOptions readOptions;
         readOptions.imageDirectory = images_.string();
         capture_.points = capture_detail::readColmap(triangulated, readOptions).points;
@@ -725,7 +739,7 @@ private:
                 fmt::format("--database_path {} --image_path {} --output_path {} --Mapper.num_threads {} "
                             "--Mapper.min_num_matches {} {} {}{}",
                             shellQuoted(database_.string()), shellQuoted(images_.string()),
-                            shellQuoted(output.string()), threads_, options_.minMatches, kMapperAdjustment,
+                            shellQuoted(output.string()), kRepeatableThreads, options_.minMatches, kMapperAdjustment,
                             settings->arguments,
                             fixed ? " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_extra_params 0" : ""),
                 true);

@@ -28,7 +28,7 @@ struct ColmapOptions {
     std::string vocabularyTree;      // COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection; empty: none
     int loopFrames = 20;             // without a tree: frames spread through the capture, matched all against all
     int minMatches = 15;             // verified matches that make two frames overlap (COLMAP's mapper default)
-    int threads = -1;                // COLMAP's num_threads (-1: all cores)
+    int threads = -1;                // cores for extraction and matching (-1: all); COLMAP's random steps take one
     bool keepWorkDirectory = false;  // keep the work folder (images, database, models, colmap.log) after a success too
     // A work folder of one's own, always kept (empty: a new one under /tmp). When it holds the finished run of
     // the same frames with the same options, COLMAP does not run again: its model is read back.

@@ -161,7 +161,8 @@ def refused_for_floor(status, log, db):
 
 def refused_or_right(smql, status, log, db, groundtruth, **judge):
     """Photos without depth whose floor or scale cannot be told are refused, saying why and what to
-    do; when they are stored (COLMAP differs from run to run, and so may what it shows of the floor),
+    do; when they are stored (COLMAP's model is the same in every run on one machine, not on every
+    machine, and so may what it shows of the floor be),
     the memory is judged by the true poses (judge_by_truth). Prints which."""
     if status == 1:
         refused_for_floor(status, log, db)
@@ -239,7 +240,7 @@ def desk_photos_dense(smql, folder, work):
     degrees) where they find up (docs/ingest.md, "Up from the photos' lines"). Or refused, saying why."""
     status, log = ingest(smql, folder, work / "db", "--dense", "on")
     if status == 1:
-        # Refused rather than stored askew or on an unchecked scale, saying why (COLMAP differs from run to run):
+        # Refused rather than stored askew or on an unchecked scale, saying why (COLMAP's model may differ by machine):
         # the plane found leaned from the photos' vertical edges and no surface level with them was the floor
         # (before the planes were looked for again, one run of five stood 14.4 degrees from TUM's up); or the
         # things lifted disagree, a "desk" and a chair 1.74 times apart where the desk is a shelf beside it, and

@@ -10,6 +10,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <sqlite3.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -24,14 +25,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// COLMAP's features of the images in `images` (one camera, as the ingest gives a known one), in `database`.
-void extractFeatures(const fs::path& images, const fs::path& database) {
+// COLMAP's features of the images in `images` (one camera, as the ingest gives a known one: the dining
+// photos' by default), in `database`; `options` are more of feature_extractor's.
+void extractFeatures(const fs::path& images, const fs::path& database,
+                     const std::string& camera = "518,519,325.5,253.5", const std::string& options = "") {
     const std::string command = fmt::format(
         "QT_QPA_PLATFORM=offscreen colmap feature_extractor --database_path '{}' --image_path '{}' "
-        "--ImageReader.single_camera 1 --ImageReader.camera_model PINHOLE --ImageReader.camera_params "
-        "518,519,325.5,253.5 --SiftExtraction.use_gpu 0 > '{}.log' 2>&1",
-        database.string(), images.string(), database.string());
+        "--ImageReader.single_camera 1 --ImageReader.camera_model PINHOLE --ImageReader.camera_params {} "
+        "--SiftExtraction.use_gpu 0 {} > '{}.log' 2>&1",
+        database.string(), images.string(), camera, options, database.string());
     REQUIRE(std::system(command.c_str()) == 0);
+}
+
+// The five real photos of ../shared/data/rgbd-dining, copied into `dir`'s images/, which is returned.
+fs::path diningPhotos(const ScratchDir& dir) {
+    const fs::path images = dir.path / "images";
+    fs::create_directories(images);
+    for (int n = 1; n <= 5; ++n)
+        fs::copy_file(fmt::format("{}/rgbd-dining/color/{}.png", SMQL_SHARED_DATA, n),
+                      images / fmt::format("{}.png", n));
+    return images;
 }
 
 // One of COLMAP's matchers run on the database (matching the pairs it holds no matches of, verifying all).
@@ -135,11 +148,7 @@ TEST_CASE("real photos' features matched here: COLMAP's own matches, and its ver
     // The five real photos of ../shared/data/rgbd-dining, matched all against all by COLMAP's
     // exhaustive_matcher, and by matchColmapPairs with COLMAP then verifying them.
     ScratchDir dir;
-    const fs::path images = dir.path / "images";
-    fs::create_directories(images);
-    for (int n = 1; n <= 5; ++n)
-        fs::copy_file(fmt::format("{}/rgbd-dining/color/{}.png", SMQL_SHARED_DATA, n),
-                      images / fmt::format("{}.png", n));
+    const fs::path images = diningPhotos(dir);
     const fs::path theirs = dir.path / "theirs.db", ours = dir.path / "ours.db";
     extractFeatures(images, theirs);
     fs::copy_file(theirs, ours);
@@ -185,4 +194,119 @@ TEST_CASE("real photos' features matched here: COLMAP's own matches, and its ver
     const auto theirSummary = readColmapDatabase(theirs.string()), ourSummary = readColmapDatabase(ours.string());
     CHECK(ourSummary.overlappingPairs == theirSummary.overlappingPairs);
     CHECK(ourSummary.largestOverlapGroup == theirSummary.largestOverlapGroup);
+}
+
+TEST_CASE("images are numbered by their names, their features with them, whatever order COLMAP's threads gave") {
+    // The five real dining photos' features, renumbered as two threads may leave them (the third photo
+    // finished last), then numbered again by name: each photo keeps its own keypoints and descriptors.
+    ScratchDir dir;
+    const fs::path images = diningPhotos(dir);
+    const fs::path database = dir.path / "database.db";
+    extractFeatures(images, database);
+    auto descriptorsByName = [&] {
+        std::map<long long, std::string> names;
+        for (const auto& image : readColmapImages(database.string())) names[image.id] = image.name;
+        std::map<std::string, std::vector<std::uint8_t>> out;
+        for (auto& d : readColmapDescriptors(database.string())) out[names.at(d.image)] = std::move(d.data);
+        return out;
+    };
+    const auto before = descriptorsByName();
+    REQUIRE(before.size() == 5);
+    sqlite3* db = nullptr;
+    REQUIRE(sqlite3_open(database.string().c_str(), &db) == SQLITE_OK);
+    for (const char* table : {"images", "keypoints", "descriptors"})
+        REQUIRE(sqlite3_exec(db, fmt::format("UPDATE {} SET image_id = image_id + 10", table).c_str(), nullptr, nullptr,
+                             nullptr) == SQLITE_OK);
+    for (const char* table : {"images", "keypoints", "descriptors"})
+        REQUIRE(sqlite3_exec(db, fmt::format("UPDATE {} SET image_id = 5 WHERE image_id = 13", table).c_str(), nullptr,
+                             nullptr, nullptr) == SQLITE_OK);
+    sqlite3_close(db);
+    REQUIRE(readColmapImages(database.string()).front().name == "3.png");
+
+    numberColmapImagesByName(database.string());
+    const auto numbered = readColmapImages(database.string());
+    REQUIRE(numbered.size() == 5);
+    for (std::size_t i = 0; i < numbered.size(); ++i) {
+        CHECK(numbered[i].id == static_cast<long long>(i + 1));
+        CHECK(numbered[i].name == fmt::format("{}.png", i + 1));
+    }
+    CHECK(descriptorsByName() == before);
+    CHECK(readColmapDatabase(database.string()).imagesWithFeatures == 5);
+
+    // Once pairs are matched under the numbers, they stay.
+    runMatcher(database, "exhaustive_matcher");
+    CHECK_THROWS_WITH(numberColmapImagesByName(database.string()), Catch::Contains("once matched"));
+}
+
+TEST_CASE("descriptors COLMAP's SIFT leaves unwritten, at an octave's last row, are zeroed and match nothing") {
+    // Ten real frames of TUM fr1/rpy: the keypoints on their bottom row (y within half a pixel of it, where the
+    // first octave, the frames doubled, ends) are among those VLFeat does not describe; those a few pixels up
+    // are described and keep their bytes.
+    ScratchDir dir;
+    const fs::path images = dir.path / "images";
+    fs::create_directories(images);
+    std::vector<fs::path> frames;
+    for (const auto& entry : fs::directory_iterator(fmt::format("{}/captures/tum-fr1-rpy/rgb", SMQL_SHARED_DATA)))
+        frames.push_back(entry.path());
+    std::sort(frames.begin(), frames.end());
+    REQUIRE(frames.size() >= 100);
+    for (std::size_t i = 0; i < 100; i += 10) fs::copy_file(frames[i], images / frames[i].filename());
+    const fs::path database = dir.path / "database.db";
+    extractFeatures(images, database, "517.3,516.5,319.1,255.8", "--SiftExtraction.first_octave -1");
+
+    // Each image's keypoints' (x, y) and descriptors, read with the sqlite3 C API.
+    auto read = [&] {
+        std::map<long long, std::pair<std::vector<float>, std::vector<std::uint8_t>>> out;
+        sqlite3* db = nullptr;
+        REQUIRE(sqlite3_open(database.string().c_str(), &db) == SQLITE_OK);
+        sqlite3_stmt* rows = nullptr;
+        REQUIRE(sqlite3_prepare_v2(db,
+                                   "SELECT k.image_id, k.rows, k.data, d.data FROM keypoints k JOIN descriptors d "
+                                   "USING (image_id) WHERE k.cols = 6",
+                                   -1, &rows, nullptr) == SQLITE_OK);
+        while (sqlite3_step(rows) == SQLITE_ROW) {
+            const auto n = static_cast<std::size_t>(sqlite3_column_int64(rows, 1));
+            const auto* k = static_cast<const float*>(sqlite3_column_blob(rows, 2));
+            const auto* d = static_cast<const std::uint8_t*>(sqlite3_column_blob(rows, 3));
+            auto& [keypoints, descriptors] = out[sqlite3_column_int64(rows, 0)];
+            for (std::size_t i = 0; i < n; ++i) {
+                keypoints.push_back(k[6 * i]);
+                keypoints.push_back(k[6 * i + 1]);
+            }
+            descriptors.assign(d, d + n * 128);
+        }
+        sqlite3_finalize(rows);
+        sqlite3_close(db);
+        return out;
+    };
+    const auto before = read();
+    REQUIRE(before.size() == 10);
+    const std::size_t cleared = clearUnwrittenDescriptors(database.string());
+    const auto after = read();
+    std::size_t bottom = 0, bottomKept = 0, inside = 0, insideChanged = 0, zeroed = 0;
+    for (const auto& [image, features] : after) {
+        const auto& [keypoints, descriptors] = features;
+        for (std::size_t i = 0; i < keypoints.size() / 2; ++i) {
+            const auto first = descriptors.begin() + static_cast<std::ptrdiff_t>(128 * i);
+            const bool zero = std::all_of(first, first + 128, [](std::uint8_t b) { return b == 0; });
+            zeroed += zero;
+            if (keypoints[2 * i + 1] > 479.5f) {
+                ++bottom;
+                bottomKept += !zero;
+            } else if (keypoints[2 * i + 1] < 470.0f && keypoints[2 * i] < 630.0f) {
+                ++inside;
+                insideChanged += !std::equal(first, first + 128,
+                                             before.at(image).second.begin() + static_cast<std::ptrdiff_t>(128 * i));
+            }
+        }
+    }
+    INFO(bottom << " keypoints on the bottom row, " << inside << " inside, " << cleared << " cleared");
+    CHECK(bottom > 0);
+    CHECK(bottomKept == 0);
+    CHECK(inside > 10000);
+    CHECK(insideChanged == 0);
+    CHECK(zeroed == cleared);
+    CHECK(cleared < 20);
+    // The same keypoints are found again: clearing is idempotent.
+    CHECK(clearUnwrittenDescriptors(database.string()) == cleared);
 }
