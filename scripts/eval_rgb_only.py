@@ -22,7 +22,7 @@ Each CAPTURE_DIR is
    compared with the motion capture (nearest pose within 0.02 s) for the scale;
 3. any other capture (photos, video, nerfstudio): ingested as is, with options from OPTIONS.json in
    its parent folder ({"name": ["--fps", "5"]}).
-The RGB-only ingests are repeated --runs times (COLMAP differs between runs). With --colmap-dir DIR,
+The RGB-only ingests are repeated --runs times (the same on one machine since COLMAP's runs repeat). With --colmap-dir DIR,
 run N keeps COLMAP's work folder in DIR/NAME/run-N (smql ingest --colmap-dir), and a later evaluation
 of the same frames with the same options reads that model back instead of running COLMAP again; the
 photo folders made from RGB-D captures are then DIR/NAME/photos, so that any --work finds them alike
