@@ -3,7 +3,9 @@
 // and which overlap. The COLMAP runner reads it to say why a reconstruction failed
 // ("only 2 of 8 photos overlap enough") from facts rather than guesses, and
 // matches the features itself (sift_matching.hpp): the descriptors read, the
-// matches written for COLMAP to verify.
+// matches written for COLMAP to verify. Once the features are extracted, it
+// settles what COLMAP leaves to chance (the images' numbers, descriptors never
+// written), so that the same photos are matched alike on every run.
 #pragma once
 
 #include <cstddef>
