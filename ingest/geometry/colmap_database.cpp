@@ -51,6 +51,12 @@ Connection open(const std::string& path, int flags = SQLITE_OPEN_READONLY) {
     return db;
 }
 
+// Runs `sql` (no rows) on the database at `path`.
+void exec(sqlite3* db, const std::string& path, const std::string& sql) {
+    if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK)
+        throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db)));
+}
+
 }  // namespace
 
 std::vector<ColmapDatabaseImage> readColmapImages(const std::string& path) {
@@ -105,10 +111,6 @@ std::vector<ColmapPairMatches> readColmapMatches(const std::string& path) {
 
 void numberColmapImagesByName(const std::string& path) {
     Connection db = open(path, SQLITE_OPEN_READWRITE);
-    auto exec = [&](const char* sql) {
-        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
-            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
-    };
     auto count = [&](const char* sql) {
         Statement rows = prepare(db.get(), path, sql);
         return sqlite3_step(rows.get()) == SQLITE_ROW ? sqlite3_column_int64(rows.get(), 0) : 0;
@@ -118,18 +120,18 @@ void numberColmapImagesByName(const std::string& path) {
     if (count("SELECT count(*) FROM (SELECT image_id, row_number() OVER (ORDER BY name) AS n FROM images) "
               "WHERE image_id <> n") == 0)
         return;
-    exec("BEGIN");
+    exec(db.get(), path, "BEGIN");
     // Moved out of the way first (COLMAP's ids stay under 2^31 - 1), so that no two rows share an id on the way.
-    exec(
-        "CREATE TEMP TABLE numbered AS SELECT image_id + 1000000000 AS moved, row_number() OVER (ORDER BY name) AS "
-        "number FROM images");
+    exec(db.get(), path,
+         "CREATE TEMP TABLE numbered AS SELECT image_id + 1000000000 AS moved, row_number() OVER (ORDER BY name) AS "
+         "number FROM images");
     for (const char* table : {"images", "keypoints", "descriptors"}) {
-        exec(fmt::format("UPDATE {0} SET image_id = image_id + 1000000000", table).c_str());
-        exec(fmt::format("UPDATE {0} SET image_id = (SELECT number FROM numbered WHERE moved = {0}.image_id)", table)
-                 .c_str());
+        exec(db.get(), path, fmt::format("UPDATE {0} SET image_id = image_id + 1000000000", table));
+        exec(db.get(), path,
+             fmt::format("UPDATE {0} SET image_id = (SELECT number FROM numbered WHERE moved = {0}.image_id)", table));
     }
-    exec("DROP TABLE numbered");
-    exec("COMMIT");
+    exec(db.get(), path, "DROP TABLE numbered");
+    exec(db.get(), path, "COMMIT");
 }
 
 namespace {
@@ -157,10 +159,6 @@ bool descriptorUnwritten(double x, double y, double scale, int width, int height
 
 std::size_t clearUnwrittenDescriptors(const std::string& path, int octaveResolution) {
     Connection db = open(path, SQLITE_OPEN_READWRITE);
-    auto exec = [&](const char* sql) {
-        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
-            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
-    };
     Statement rows =
         prepare(db.get(), path,
                 "SELECT k.image_id, k.rows, k.cols, k.data, d.rows, d.data, c.width, c.height FROM keypoints "
@@ -193,7 +191,7 @@ std::size_t clearUnwrittenDescriptors(const std::string& path, int octaveResolut
         if (!descriptors.empty()) cleared.emplace_back(sqlite3_column_int64(rows.get(), 0), std::move(descriptors));
     }
     rows.reset();
-    exec("BEGIN");
+    exec(db.get(), path, "BEGIN");
     Statement update = prepare(db.get(), path, "UPDATE descriptors SET data = ?2 WHERE image_id = ?1");
     for (const auto& [image, data] : cleared) {
         sqlite3_bind_int64(update.get(), 1, image);
@@ -202,17 +200,13 @@ std::size_t clearUnwrittenDescriptors(const std::string& path, int octaveResolut
             throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
         sqlite3_reset(update.get());
     }
-    exec("COMMIT");
+    exec(db.get(), path, "COMMIT");
     return count;
 }
 
 void writeColmapMatches(const std::string& path, const std::vector<ColmapPairMatches>& pairs) {
     Connection db = open(path, SQLITE_OPEN_READWRITE);
-    auto exec = [&](const char* sql) {
-        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
-            throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
-    };
-    exec("BEGIN");
+    exec(db.get(), path, "BEGIN");
     Statement insert =
         prepare(db.get(), path, "INSERT OR IGNORE INTO matches (pair_id, rows, cols, data) VALUES (?1, ?2, 2, ?3)");
     std::vector<std::uint32_t> data;
@@ -236,7 +230,7 @@ void writeColmapMatches(const std::string& path, const std::vector<ColmapPairMat
             throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db.get())));
         sqlite3_reset(insert.get());
     }
-    exec("COMMIT");
+    exec(db.get(), path, "COMMIT");
 }
 
 ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches) {
