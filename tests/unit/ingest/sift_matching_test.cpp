@@ -238,7 +238,8 @@ TEST_CASE("images are numbered by their names, their features with them, whateve
     CHECK_THROWS_WITH(numberColmapImagesByName(database.string()), Catch::Contains("once matched"));
 }
 
-TEST_CASE("descriptors COLMAP's SIFT leaves unwritten, at an octave's last row, are zeroed and match nothing") {
+TEST_CASE(
+    "descriptors COLMAP's SIFT leaves unwritten, at an octave's last row, are zeroed; the others keep their bytes") {
     // Ten real frames of TUM fr1/rpy: the keypoints on their bottom row (y within half a pixel of it, where the
     // first octave, the frames doubled, ends) are among those VLFeat does not describe; those a few pixels up
     // are described and keep their bytes.
