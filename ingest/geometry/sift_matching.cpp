@@ -9,6 +9,8 @@
 #include <set>
 #include <thread>
 
+#include <immintrin.h>
+
 #include <Eigen/Core>
 
 #include "ingest/geometry/colmap_database.hpp"
@@ -54,7 +56,73 @@ keepNearest(const float* row, std::size_t n, std::int32_t i, float* best, float*
     }
 }
 
+// The dot products, a tile of R rows of `a` by C rows of `b` at a time (`n` to a row of `out`), in eight lanes of
+// fused multiply-adds for processors with AVX2 and FMA. Debian builds for SSE2, where Eigen's product of the
+// Mip-NeRF kitchen photos' descriptors ran at 0.6 times this speed (20.0 s against 12.1 for four pairs of
+// 11,752-31,354 features). The products and their sums are integers under 2^24, exact in floats, so this
+// gives Eigen's bytes whatever the order of the additions. The tile's loops are unrolled so that its sums stay
+// in registers (GCC's -O2 left them in memory, and the products took longer than Eigen's).
+template <int R, int C>
+__attribute__((target("avx2,fma"))) inline void dotTile(const float* a, const float* b, std::size_t n, float* out) {
+    __m256 sum[R][C];
+#pragma GCC unroll 4
+    for (int i = 0; i < R; ++i)
+#pragma GCC unroll 4
+        for (int c = 0; c < C; ++c) sum[i][c] = _mm256_setzero_ps();
+#pragma GCC unroll 16
+    for (int k = 0; k < 128; k += 8) {
+        __m256 bk[C];
+#pragma GCC unroll 4
+        for (int c = 0; c < C; ++c) bk[c] = _mm256_loadu_ps(b + c * 128 + k);
+#pragma GCC unroll 4
+        for (int i = 0; i < R; ++i) {
+            const __m256 ak = _mm256_loadu_ps(a + i * 128 + k);
+#pragma GCC unroll 4
+            for (int c = 0; c < C; ++c) sum[i][c] = _mm256_fmadd_ps(ak, bk[c], sum[i][c]);
+        }
+    }
+#pragma GCC unroll 4
+    for (int i = 0; i < R; ++i)
+#pragma GCC unroll 4
+        for (int c = 0; c < C; ++c) {
+            __m128 half = _mm_add_ps(_mm256_castps256_ps128(sum[i][c]), _mm256_extractf128_ps(sum[i][c], 1));
+            half = _mm_add_ps(half, _mm_movehl_ps(half, half));
+            half = _mm_add_ss(half, _mm_movehdup_ps(half));
+            out[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(c)] = _mm_cvtss_f32(half);
+        }
+}
+
+// Row tiles of `a` against the `width` rows of `b` from `b`'s row `from` on (`n` columns to a row of `out`).
+template <int R>
+__attribute__((target("avx2,fma"))) inline void dotRows(const float* a, const float* b, std::size_t from,
+                                                        std::size_t width, std::size_t n, float* out) {
+    constexpr std::size_t kColumns = 3;
+    std::size_t j = from;
+    for (; j + kColumns <= from + width; j += kColumns) dotTile<R, kColumns>(a, b + j * 128, n, out + j);
+    for (; j < from + width; ++j) dotTile<R, 1>(a, b + j * 128, n, out + j);
+}
+
+// `b` a slice at a time, each slice's 48 KB held in the first-level cache while every row of `a` meets it.
+__attribute__((target("avx2,fma"))) void dotProductsAvx2(const float* a, std::size_t rows, const float* b,
+                                                         std::size_t n, float* out) {
+    constexpr std::size_t kRows = 4, kSlice = 96;
+    for (std::size_t from = 0; from < n; from += kSlice) {
+        const std::size_t width = std::min(kSlice, n - from);
+        std::size_t r = 0;
+        for (; r + kRows <= rows; r += kRows) dotRows<kRows>(a + r * 128, b, from, width, n, out + r * n);
+        for (; r < rows; ++r) dotRows<1>(a + r * 128, b, from, width, n, out + r * n);
+    }
+}
+
 }  // namespace
+
+void descriptorDots(const float* a, std::size_t rows, const float* b, std::size_t n, float* out, bool portable) {
+    static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (avx2 && !portable) return dotProductsAvx2(a, rows, b, n, out);
+    const Eigen::Map<const Floats> A(a, static_cast<Eigen::Index>(rows), 128), B(b, static_cast<Eigen::Index>(n), 128);
+    Eigen::Map<Floats>(out, static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(n)).noalias() =
+        A * B.transpose();
+}
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::match(const std::uint8_t* a, std::size_t rowsA,
                                                                         const std::uint8_t* b, std::size_t rowsB) {
@@ -74,8 +142,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::match(const st
         const std::size_t rows = std::min(kBlockRows, rowsA - first);
         dots_.resize(std::max(dots_.size(), rows * rowsB));
         Eigen::Map<Floats> dots(dots_.data(), static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(rowsB));
-        dots.noalias() =
-            floatsA.middleRows(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(rows)) * floatsB.transpose();
+        descriptorDots(floatsA.data() + first * 128, rows, floatsB.data(), rowsB, dots_.data());
         if (options_.crossCheck)
             for (std::size_t r = 0; r < rows; ++r)
                 keepNearest(dots_.data() + r * rowsB, rowsB, static_cast<std::int32_t>(first + r), best_.data(),

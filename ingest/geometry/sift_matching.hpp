@@ -40,6 +40,11 @@ private:
     std::vector<std::int32_t> nearest_;  // and the row of a that gives the largest
 };
 
+// The dot products of `rows` descriptors of `a` with each of `n` of `b` (128 floats each, COLMAP's bytes as
+// floats) into `out`, row after row: with AVX2 and FMA where the processor has them, else (or `portable`)
+// Eigen's product. The two give the same bytes (sift_matching.cpp says why).
+void descriptorDots(const float* a, std::size_t rows, const float* b, std::size_t n, float* out, bool portable = false);
+
 // The pairs (indices into the images in name order) COLMAP's sequential_matcher matches: each image
 // with the `overlap - 1` after it and, with `quadratic`, those 2^k after it for k < overlap
 // (SequentialFeatureMatcher::RunSequentialMatching, COLMAP 3.8). The smaller index first, each once.

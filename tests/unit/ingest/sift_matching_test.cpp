@@ -311,3 +311,25 @@ TEST_CASE(
     // The same keypoints are found again: clearing is idempotent.
     CHECK(clearUnwrittenDescriptors(database.string()) == cleared);
 }
+
+TEST_CASE("the descriptors' dot products on the processor's fast path are Eigen's, byte for byte") {
+    // Descriptors as COLMAP stores them, in blocks whose sizes leave every tile's remainder (rows not a
+    // multiple of four, columns not of three, more than one slice of the second).
+    cv::RNG rng(7);
+    for (const auto& [rows, n] : {std::pair{1, 1}, {7, 13}, {4, 3}, {37, 250}, {130, 1001}}) {
+        std::vector<float> a, b;
+        for (std::uint8_t v : descriptors(rng, rows)) a.push_back(v);
+        for (std::uint8_t v : descriptors(rng, n)) b.push_back(v);
+        std::vector<float> fast(static_cast<std::size_t>(rows * n), -1), portable(fast.size(), -2);
+        descriptorDots(a.data(), static_cast<std::size_t>(rows), b.data(), static_cast<std::size_t>(n), fast.data());
+        descriptorDots(a.data(), static_cast<std::size_t>(rows), b.data(), static_cast<std::size_t>(n), portable.data(),
+                       true);
+        INFO(rows << " x " << n);
+        CHECK(fast == portable);
+        // And each is the dot product itself.
+        const std::size_t i = static_cast<std::size_t>(rows - 1), j = static_cast<std::size_t>(n / 2);
+        double dot = 0;
+        for (std::size_t k = 0; k < 128; ++k) dot += a[i * 128 + k] * b[j * 128 + k];
+        CHECK(fast[i * static_cast<std::size_t>(n) + j] == static_cast<float>(dot));
+    }
+}
