@@ -7,7 +7,7 @@ PREFIX ?= /usr/local
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build debug test demo bench bench-startup bench-similar bench-python bench-fleet bench-import fuzz stress format lint install clean
+.PHONY: all setup configure build debug test demo bench bench-startup bench-similar bench-python bench-fleet bench-import bench-matching fuzz stress format lint install clean
 
 all: build
 
@@ -54,6 +54,11 @@ bench-import: build
 # Push throughput into a fleet store in a private PostgreSQL cluster (docs/fleet.md, "Measured").
 bench-fleet: build
 	@$(BUILD)/bench/smql_bench_fleet
+
+# The ingest's feature matching against COLMAP's matcher on ../shared's real photos (docs/benchmarks.md,
+# "Feature matching").
+bench-matching: build
+	@bench/matching.sh $(BUILD)
 
 # libFuzzer targets, built with clang in build-fuzz, each run FUZZ_SECONDS seconds; fails on a crash.
 fuzz: setup

@@ -1,9 +1,9 @@
 // SIFT features matched between images for COLMAP, exactly, on the CPU. COLMAP 3.8's CPU matcher
 // builds a FLANN forest for each image of each pair and searches it approximately: 296 frames at
 // twice their size (1,300 features a frame), matched with 6 frames each, took it 112 s of a 6.8-minute
-// ingest. Here each pair's descriptors are multiplied as one matrix product (Eigen), which gives every
-// dot product exactly (the bytes' products and sums are integers below 2^24, exact in floats), and
-// the best and second best of each row and column are read from it: COLMAP's own brute-force rule
+// ingest. Here every dot product of a pair's descriptors is taken, exactly (the bytes' products and sums
+// are integers below 2^24: as integers, or as floats in a matrix product), and the best and second best
+// of each row and column are kept: COLMAP's own brute-force rule
 // (the distance and ratio tests on the angles between descriptors, mutual best), with the true nearest
 // neighbours where FLANN's search may miss them. The matches go into COLMAP's database, where its
 // matchers find them and only verify them (docs/ingest.md, "Geometry from COLMAP").
@@ -17,11 +17,18 @@
 
 namespace smql::ingest {
 
+// How the matcher finds each descriptor's nearest; each way gives the same matches. `Fastest` takes the
+// bytes' own dot products in AVX-512 VNNI where the processor has it, each row's and column's nearest kept as
+// the products come, else `Floats`: the products as floats (AVX2 and FMA where the processor has them, else
+// Eigen's), then searched. `Portable` is Eigen's product, then searched.
+enum class MatchKernel { Fastest, Floats, Portable };
+
 // COLMAP's SiftMatchingOptions, as its matcher runs by default.
 struct SiftMatchOptions {
     float maxRatio = 0.8f;     // best angle under this times the second best
     float maxDistance = 0.7f;  // best angle at most this (radians)
     bool crossCheck = true;    // each the other's best
+    MatchKernel kernel = MatchKernel::Fastest;
 };
 
 // Matches two images' descriptors (rows of 128 bytes, as COLMAP stores them), pair after pair: its
@@ -34,10 +41,18 @@ public:
                                                                const std::uint8_t* b, std::size_t rowsB);
 
 private:
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> matchFloats(const std::uint8_t* a, std::size_t rowsA,
+                                                                     const std::uint8_t* b, std::size_t rowsB);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> matchBytes(const std::uint8_t* a, std::size_t rowsA,
+                                                                    const std::uint8_t* b, std::size_t rowsB);
+
     SiftMatchOptions options_;
     std::vector<float> a_, b_, dots_;    // the descriptors as floats, and their dot products
     std::vector<float> best_, second_;   // of each of b's rows, the largest dot products with a's
     std::vector<std::int32_t> nearest_;  // and the row of a that gives the largest
+    std::vector<std::int8_t> packed_;    // the bytes' way: b's rows packed for the processor's byte products,
+    std::vector<std::int32_t> columns_;  // ... each of b's rows' best, second best and nearest row of a,
+    std::vector<std::int32_t> rows_;     // ... and a block of a's rows' best, second best and nearest, by lane
 };
 
 // The dot products of `rows` descriptors of `a` with each of `n` of `b` (128 floats each, COLMAP's bytes as

@@ -333,3 +333,54 @@ TEST_CASE("the descriptors' dot products on the processor's fast path are Eigen'
         CHECK(fast[i * static_cast<std::size_t>(n) + j] == static_cast<float>(dot));
     }
 }
+
+TEST_CASE("each way of finding the nearest gives the same matches: the bytes' products, the floats', Eigen's") {
+    const auto matchesBy = [](MatchKernel kernel, bool crossCheck, const std::vector<std::uint8_t>& a,
+                              const std::vector<std::uint8_t>& b) {
+        SiftMatcher matcher({.crossCheck = crossCheck, .kernel = kernel});
+        return matcher.match(a.data(), a.size() / 128, b.data(), b.size() / 128);
+    };
+    const auto sameByEach = [&](const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+        std::size_t matched = 0;
+        for (const bool crossCheck : {true, false}) {
+            const auto portable = matchesBy(MatchKernel::Portable, crossCheck, a, b);
+            CHECK(matchesBy(MatchKernel::Floats, crossCheck, a, b) == portable);
+            CHECK(matchesBy(MatchKernel::Fastest, crossCheck, a, b) == portable);
+            matched += portable.size();
+        }
+        return matched;
+    };
+
+    // Made descriptors, in sizes that leave every remainder of the bytes' way (blocks of 256 of a's rows, four
+    // at a time; b's in groups of 16, four groups at a time, 32 to a slice): b holds a's rows moved a little,
+    // in another order, some twice (ties), and rows like none of them.
+    cv::RNG rng(20261206);
+    for (const auto& [rows, n] : {std::pair{1, 1}, {5, 17}, {70, 300}, {1030, 530}}) {
+        const std::vector<std::uint8_t> a = descriptors(rng, rows);
+        std::vector<std::uint8_t> b = descriptors(rng, n);
+        for (int j = 0; j < n; ++j) {
+            if (j < rows && j % 5 != 4) {  // a's row (j * 11) % rows, moved a little: a row of its own each
+                const int from = (j * 11) % rows;
+                for (int k = 0; k < 128; ++k)
+                    b[j * 128 + k] =
+                        static_cast<std::uint8_t>(std::clamp(a[from * 128 + k] + rng.uniform(-4, 5), 0, 255));
+            } else if (j >= rows && j % 3 == 0) {  // a row of b again, further on: a tie
+                std::copy_n(b.begin() + (j - rows) * 128, 128, b.begin() + j * 128);
+            }
+        }
+        INFO(rows << " x " << n);
+        const std::size_t matched = sameByEach(a, b);
+        if (rows > 1) CHECK(matched > 0);
+    }
+
+    // Real features: the five dining photos', every pair of them.
+    ScratchDir dir;
+    const fs::path database = dir.path / "features.db";
+    extractFeatures(diningPhotos(dir), database);
+    const auto features = readColmapDescriptors(database.string());
+    REQUIRE(features.size() == 5);
+    std::size_t matched = 0;
+    for (std::size_t p = 0; p < features.size(); ++p)
+        for (std::size_t q = p + 1; q < features.size(); ++q) matched += sameByEach(features[p].data, features[q].data);
+    CHECK(matched > 1000);
+}
