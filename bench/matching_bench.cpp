@@ -43,10 +43,9 @@ struct Way {
 
 const std::vector<Way> kWays = {
     {"COLMAP's exhaustive_matcher (FLANN), matching and verifying on every core", std::nullopt},
-    {"smql, the bytes' products (AVX-512 VNNI where the processor has it), then COLMAP verifying on one core",
+    {"smql, AVX-512 VNNI's products (where the processor has it), then COLMAP verifying on one core",
      MatchKernel::Fastest},
-    {"smql, the floats' products (AVX2 and FMA where the processor has them), then COLMAP verifying on one core",
-     MatchKernel::Floats},
+    {"smql, AVX2's products (where the processor has it), then COLMAP verifying on one core", MatchKernel::Avx2},
     {"smql, Eigen's product, then COLMAP verifying on one core", MatchKernel::Portable},
 };
 

@@ -59,237 +59,294 @@ keepNearest(const float* row, std::size_t n, std::int32_t i, float* best, float*
     }
 }
 
-// The dot products, a tile of R rows of `a` by C rows of `b` at a time (`n` to a row of `out`), in eight lanes of
-// fused multiply-adds for processors with AVX2 and FMA and without AVX-512 VNNI (the bytes' way, below). Debian
-// builds for SSE2, where Eigen's product held the matching of Mip-NeRF 360's 25 kitchen photos (13,700 features
-// each at the mean) to 320 s; this path matched them in 214 s, and TUM fr1/rpy's 100 frames in 4.2 s where they
-// took 7.8, the same model to the byte (the ingest's "feature matching (smql)" step). The products and their sums are
-// integers under 2^24, exact in floats, so this gives Eigen's bytes whatever the order of the additions. The tile's
-// loops are unrolled so that its sums stay in registers (GCC's -O2 left them in memory, and the products took longer
-// than Eigen's).
-template <int R, int C>
-__attribute__((target("avx2,fma"))) inline void dotTile(const float* a, const float* b, std::size_t n, float* out) {
-    __m256 sum[R][C];
-#pragma GCC unroll 4
-    for (int i = 0; i < R; ++i)
-#pragma GCC unroll 4
-        for (int c = 0; c < C; ++c) sum[i][c] = _mm256_setzero_ps();
-#pragma GCC unroll 16
-    for (int k = 0; k < 128; k += 8) {
-        __m256 bk[C];
-#pragma GCC unroll 4
-        for (int c = 0; c < C; ++c) bk[c] = _mm256_loadu_ps(b + c * 128 + k);
-#pragma GCC unroll 4
-        for (int i = 0; i < R; ++i) {
-            const __m256 ak = _mm256_loadu_ps(a + i * 128 + k);
-#pragma GCC unroll 4
-            for (int c = 0; c < C; ++c) sum[i][c] = _mm256_fmadd_ps(ak, bk[c], sum[i][c]);
-        }
-    }
-#pragma GCC unroll 4
-    for (int i = 0; i < R; ++i)
-#pragma GCC unroll 4
-        for (int c = 0; c < C; ++c) {
-            __m128 half = _mm_add_ps(_mm256_castps256_ps128(sum[i][c]), _mm256_extractf128_ps(sum[i][c], 1));
-            half = _mm_add_ps(half, _mm_movehl_ps(half, half));
-            half = _mm_add_ss(half, _mm_movehdup_ps(half));
-            out[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(c)] = _mm_cvtss_f32(half);
-        }
-}
-
-// Row tiles of `a` against the `width` rows of `b` from `b`'s row `from` on (`n` columns to a row of `out`).
-template <int R>
-__attribute__((target("avx2,fma"))) inline void dotRows(const float* a, const float* b, std::size_t from,
-                                                        std::size_t width, std::size_t n, float* out) {
-    constexpr std::size_t kColumns = 3;
-    std::size_t j = from;
-    for (; j + kColumns <= from + width; j += kColumns) dotTile<R, kColumns>(a, b + j * 128, n, out + j);
-    for (; j < from + width; ++j) dotTile<R, 1>(a, b + j * 128, n, out + j);
-}
-
-// `b` a slice at a time, each slice's 48 KB held in the first-level cache while every row of `a` meets it.
-__attribute__((target("avx2,fma"))) void dotProductsAvx2(const float* a, std::size_t rows, const float* b,
-                                                         std::size_t n, float* out) {
-    constexpr std::size_t kRows = 4, kSlice = 96;
-    for (std::size_t from = 0; from < n; from += kSlice) {
-        const std::size_t width = std::min(kSlice, n - from);
-        std::size_t r = 0;
-        for (; r + kRows <= rows; r += kRows) dotRows<kRows>(a + r * 128, b, from, width, n, out + r * n);
-        for (; r < rows; ++r) dotRows<1>(a + r * 128, b, from, width, n, out + r * n);
-    }
-}
-
-// The bytes' own way, for processors with AVX-512 VNNI, whose vpdpbusd multiplies 64 bytes by 64 and sums them
-// four at a time into sixteen integers in one instruction, four times the products of a float fused
-// multiply-add of that width. Its second operand is signed, so b's bytes go in less 128 (packColumns) and
-// each product of a's row gets 128 times the row's sum back (`corrections`): a.b = a.(b - 128) + 128 sum(a).
-// The integers are the dot products themselves, as the floats are, so the matches are the same.
-constexpr std::size_t kGroupLanes = 16;           // b's rows side by side in a product
-constexpr std::size_t kQuads = 128 / 4;           // a descriptor's bytes, four to a lane
-constexpr std::size_t kGroupBytes = kQuads * 64;  // a group of 16 of b's rows, packed
+// The integer ways. The descriptors' bytes are multiplied as integers, the products summed into sixteen
+// (AVX-512) or eight (AVX2) lanes of 32 bits, each lane one of b's rows, and each row's and column's nearest
+// two are kept as the products come: no matrix of them is written, where the portable way writes a block of
+// 1,024 of a's rows by all of b's (56 MB for Mip-NeRF 360's kitchen photos, 13,700 features each) and reads
+// it three times. The sums are the dot products themselves, so every way gives the same matches.
+//   - AVX-512 VNNI: vpdpbusd multiplies 64 bytes by 64 and sums them four at a time into sixteen lanes in one
+//     instruction, four times the products of a float fused multiply-add of that width. Its second operand
+//     is signed, so b's bytes go in less 128 and each product of a's row gets 128 times the row's sum back
+//     (`corrections`): a.b = a.(b - 128) + 128 sum(a).
+//   - AVX2: the bytes widened to 16 bits, vpmaddwd multiplies 16 by 16 and sums them two at a time into
+//     eight lanes (products under 2^16, their sums exact).
+// Either way b's rows are packed in groups, a row to a lane, each step's bytes of the group's rows side by side
+// (64 or 32 bytes a step, 2,048 a group); rows past b's last are zeros, and their products are left out.
+constexpr std::size_t kGroupBytes = 2048;
 constexpr std::int32_t kNone = std::numeric_limits<std::int32_t>::min();
-// Every lane: GCC 12's _mm512_max_epi32 starts from an undefined vector, which its own warnings then flag.
-constexpr __mmask16 kAllLanes = 0xFFFF;
 
-// b's rows in groups of sixteen, each group's quads one after another, a quad's 64 bytes the sixteen rows'
-// four bytes side by side; rows past b's last are zeros (their products are left out).
-void packColumns(const std::uint8_t* b, std::size_t rowsB, std::vector<std::int8_t>& packed) {
-    const std::size_t groups = (rowsB + kGroupLanes - 1) / kGroupLanes;
-    packed.assign(groups * kGroupBytes, 0);
-    for (std::size_t j = 0; j < rowsB; ++j) {
-        std::int8_t* lane = packed.data() + (j / kGroupLanes) * kGroupBytes + (j % kGroupLanes) * 4;
-        for (std::size_t q = 0; q < kQuads; ++q)
-            for (std::size_t t = 0; t < 4; ++t)
-                lane[q * 64 + t] = static_cast<std::int8_t>(b[j * 128 + q * 4 + t] ^ 0x80);
-    }
-}
+}  // namespace
+
+// The types below are those of the ways' table (IntegerWay, which the header declares), so they are outside
+// the file's anonymous namespace.
 
 // Where the products go as they come: each of b's rows' best, second best and nearest of a's rows so far
 // (keepNearest's rule, a's rows in order), and each of a block of a's rows' best, second best and nearest
-// of b's rows so far in each of sixteen lanes (lane l sees b's rows l, l + 16, ... in order).
+// of b's rows so far in each lane (lane l of L sees b's rows l, l + L, ... in order).
 struct NearestSoFar {
     std::int32_t* columnBest;
     std::int32_t* columnSecond;
     std::int32_t* columnNearest;
-    std::int32_t* rowBest;  // 16 a row
+    std::int32_t* rowBest;  // a lane's worth a row
     std::int32_t* rowSecond;
     std::int32_t* rowNearest;
+    void nextRows(std::size_t lanes) {
+        rowBest += lanes;
+        rowSecond += lanes;
+        rowNearest += lanes;
+    }
 };
 
-// The products of R of a's rows (`first` the first's index, `corrections` theirs) with C groups of b's rows
-// from group `group` on, kept in `kept`; `rowsB` of b's rows are real.
+// A block of a's rows, as a way's products read them: `data` a row every `stride` bytes, and what each
+// row's products get back (`corrections`); `first` the first row's index in a.
+struct RowBlock {
+    const std::uint8_t* data;
+    std::size_t stride;
+    const std::int32_t* corrections;
+    std::int32_t first;
+};
+
+namespace {
+
+// AVX-512 VNNI: the products of R of a's rows with C groups of b's rows from group `group` on, into `kept`;
+// `rowsB` of b's rows are real. GCC 12's _mm512_max_epi32 starts from an undefined vector, which its own
+// warnings then flag: the masked max over every lane is the same.
 template <int R, int C>
-__attribute__((target("avx512f,avx512bw,avx512vnni"))) inline void byteTile(const std::uint8_t* a, std::int32_t first,
-                                                                            const std::int32_t* corrections,
-                                                                            const std::int8_t* packed,
-                                                                            std::size_t group, std::size_t rowsB,
-                                                                            const NearestSoFar& kept) {
-    __m512i sum[R][C];
+struct VnniTile {
+    __attribute__((target("avx512f,avx512bw,avx512vnni"))) static void run(const RowBlock& a, const std::int8_t* packed,
+                                                                           std::size_t group, std::size_t rowsB,
+                                                                           const NearestSoFar& kept) {
+        constexpr std::size_t kLanes = 16;
+        constexpr __mmask16 kAll = 0xFFFF;
+        __m512i sum[R][C];
 #pragma GCC unroll 4
-    for (int i = 0; i < R; ++i)
+        for (int i = 0; i < R; ++i)
 #pragma GCC unroll 4
-        for (int c = 0; c < C; ++c) sum[i][c] = _mm512_setzero_si512();
-    const std::int8_t* groups = packed + group * kGroupBytes;
+            for (int c = 0; c < C; ++c) sum[i][c] = _mm512_setzero_si512();
+        const std::int8_t* groups = packed + group * kGroupBytes;
 #pragma GCC unroll 8
-    for (std::size_t q = 0; q < kQuads; ++q) {
-        __m512i bq[C];
+        for (std::size_t step = 0; step < 32; ++step) {
+            __m512i bs[C];
 #pragma GCC unroll 4
-        for (int c = 0; c < C; ++c) bq[c] = _mm512_loadu_si512(groups + c * kGroupBytes + q * 64);
+            for (int c = 0; c < C; ++c) bs[c] = _mm512_loadu_si512(groups + c * kGroupBytes + step * 64);
 #pragma GCC unroll 4
-        for (int i = 0; i < R; ++i) {
-            std::int32_t quad;
-            std::memcpy(&quad, a + i * 128 + q * 4, 4);
-            const __m512i aq = _mm512_set1_epi32(quad);
+            for (int i = 0; i < R; ++i) {
+                std::int32_t four;
+                std::memcpy(&four, a.data + i * a.stride + step * 4, 4);
+                const __m512i as = _mm512_set1_epi32(four);
 #pragma GCC unroll 4
-            for (int c = 0; c < C; ++c) sum[i][c] = _mm512_dpbusd_epi32(sum[i][c], aq, bq[c]);
+                for (int c = 0; c < C; ++c) sum[i][c] = _mm512_dpbusd_epi32(sum[i][c], as, bs[c]);
+            }
+        }
+        const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+#pragma GCC unroll 4
+        for (int c = 0; c < C; ++c) {
+            const std::size_t column = (group + static_cast<std::size_t>(c)) * kLanes;
+            const __mmask16 real =
+                column + kLanes <= rowsB ? kAll : static_cast<__mmask16>((1u << (rowsB - column)) - 1);
+            const __m512i columns = _mm512_add_epi32(_mm512_set1_epi32(static_cast<std::int32_t>(column)), lanes);
+            __m512i best = _mm512_loadu_si512(kept.columnBest + column);
+            __m512i second = _mm512_loadu_si512(kept.columnSecond + column);
+            __m512i nearest = _mm512_loadu_si512(kept.columnNearest + column);
+#pragma GCC unroll 4
+            for (int i = 0; i < R; ++i) {
+                const __m512i dot = _mm512_add_epi32(sum[i][c], _mm512_set1_epi32(a.corrections[i]));
+                __mmask16 better = _mm512_cmpgt_epi32_mask(dot, best);
+                second = _mm512_mask_mov_epi32(_mm512_maskz_max_epi32(kAll, second, dot), better, best);
+                nearest = _mm512_mask_mov_epi32(nearest, better, _mm512_set1_epi32(a.first + i));
+                best = _mm512_mask_mov_epi32(best, better, dot);
+
+                std::int32_t* rowBest = kept.rowBest + i * kLanes;
+                std::int32_t* rowSecond = kept.rowSecond + i * kLanes;
+                const __m512i rowDot = _mm512_mask_mov_epi32(_mm512_set1_epi32(kNone), real, dot);
+                const __m512i before = _mm512_loadu_si512(rowBest);
+                better = _mm512_cmpgt_epi32_mask(rowDot, before);
+                _mm512_storeu_si512(rowSecond, _mm512_mask_mov_epi32(
+                                                   _mm512_maskz_max_epi32(kAll, _mm512_loadu_si512(rowSecond), rowDot),
+                                                   better, before));
+                _mm512_mask_storeu_epi32(kept.rowNearest + i * kLanes, better, columns);
+                _mm512_mask_storeu_epi32(rowBest, better, rowDot);
+            }
+            _mm512_storeu_si512(kept.columnBest + column, best);
+            _mm512_storeu_si512(kept.columnSecond + column, second);
+            _mm512_storeu_si512(kept.columnNearest + column, nearest);
         }
     }
-    const __m512i lanes = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m512i none = _mm512_set1_epi32(kNone);
-#pragma GCC unroll 4
-    for (int c = 0; c < C; ++c) {
-        const std::size_t column = (group + static_cast<std::size_t>(c)) * kGroupLanes;
-        const __mmask16 real =
-            column + kGroupLanes <= rowsB ? kAllLanes : static_cast<__mmask16>((1u << (rowsB - column)) - 1);
-        const __m512i columns = _mm512_add_epi32(_mm512_set1_epi32(static_cast<std::int32_t>(column)), lanes);
-        __m512i best = _mm512_loadu_si512(kept.columnBest + column);
-        __m512i second = _mm512_loadu_si512(kept.columnSecond + column);
-        __m512i nearest = _mm512_loadu_si512(kept.columnNearest + column);
-#pragma GCC unroll 4
-        for (int i = 0; i < R; ++i) {
-            const __m512i dot = _mm512_add_epi32(sum[i][c], _mm512_set1_epi32(corrections[i]));
-            __mmask16 better = _mm512_cmpgt_epi32_mask(dot, best);
-            second = _mm512_mask_mov_epi32(_mm512_maskz_max_epi32(kAllLanes, second, dot), better, best);
-            nearest = _mm512_mask_mov_epi32(nearest, better, _mm512_set1_epi32(first + i));
-            best = _mm512_mask_mov_epi32(best, better, dot);
+};
 
-            std::int32_t* row = kept.rowBest + i * kGroupLanes;
-            const __m512i rowDot = _mm512_mask_mov_epi32(none, real, dot);
-            const __m512i rowBest = _mm512_loadu_si512(row);
-            better = _mm512_cmpgt_epi32_mask(rowDot, rowBest);
-            std::int32_t* rowSecond = kept.rowSecond + i * kGroupLanes;
-            std::int32_t* rowNearest = kept.rowNearest + i * kGroupLanes;
-            _mm512_storeu_si512(rowSecond, _mm512_mask_mov_epi32(
-                                               _mm512_maskz_max_epi32(kAllLanes, _mm512_loadu_si512(rowSecond), rowDot),
-                                               better, rowBest));
-            _mm512_mask_storeu_epi32(rowNearest, better, columns);
-            _mm512_mask_storeu_epi32(row, better, rowDot);
+// Eight lanes of 32 bits, read and written where they lie.
+__attribute__((target("avx2"))) inline __m256i load(const std::int32_t* p) {
+    return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+__attribute__((target("avx2"))) inline void store(std::int32_t* p, __m256i v) {
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v);
+}
+
+// AVX2: as VnniTile, eight lanes, the bytes as 16-bit words.
+template <int R, int C>
+struct Avx2Tile {
+    __attribute__((target("avx2"))) static void run(const RowBlock& a, const std::int8_t* packed, std::size_t group,
+                                                    std::size_t rowsB, const NearestSoFar& kept) {
+        constexpr std::size_t kLanes = 8;
+        __m256i sum[R][C];
+#pragma GCC unroll 4
+        for (int i = 0; i < R; ++i)
+#pragma GCC unroll 4
+            for (int c = 0; c < C; ++c) sum[i][c] = _mm256_setzero_si256();
+        const std::int8_t* groups = packed + group * kGroupBytes;
+#pragma GCC unroll 8
+        for (std::size_t step = 0; step < 64; ++step) {
+            __m256i bs[C];
+#pragma GCC unroll 4
+            for (int c = 0; c < C; ++c)
+                bs[c] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(groups + c * kGroupBytes + step * 32));
+#pragma GCC unroll 4
+            for (int i = 0; i < R; ++i) {
+                std::int32_t two;
+                std::memcpy(&two, a.data + i * a.stride + step * 4, 4);
+                const __m256i as = _mm256_set1_epi32(two);
+#pragma GCC unroll 4
+                for (int c = 0; c < C; ++c) sum[i][c] = _mm256_add_epi32(sum[i][c], _mm256_madd_epi16(as, bs[c]));
+            }
         }
-        _mm512_storeu_si512(kept.columnBest + column, best);
-        _mm512_storeu_si512(kept.columnSecond + column, second);
-        _mm512_storeu_si512(kept.columnNearest + column, nearest);
+        const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+#pragma GCC unroll 4
+        for (int c = 0; c < C; ++c) {
+            const std::size_t column = (group + static_cast<std::size_t>(c)) * kLanes;
+            const __m256i real =
+                _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<std::int32_t>(rowsB - column)), lanes);
+            const __m256i columns = _mm256_add_epi32(_mm256_set1_epi32(static_cast<std::int32_t>(column)), lanes);
+            __m256i best = load(kept.columnBest + column);
+            __m256i second = load(kept.columnSecond + column);
+            __m256i nearest = load(kept.columnNearest + column);
+#pragma GCC unroll 4
+            for (int i = 0; i < R; ++i) {
+                const __m256i dot = sum[i][c];
+                __m256i better = _mm256_cmpgt_epi32(dot, best);
+                second = _mm256_blendv_epi8(_mm256_max_epi32(second, dot), best, better);
+                nearest = _mm256_blendv_epi8(nearest, _mm256_set1_epi32(a.first + i), better);
+                best = _mm256_blendv_epi8(best, dot, better);
+
+                std::int32_t* rowBest = kept.rowBest + i * kLanes;
+                std::int32_t* rowSecond = kept.rowSecond + i * kLanes;
+                std::int32_t* rowNearest = kept.rowNearest + i * kLanes;
+                const __m256i rowDot = _mm256_blendv_epi8(_mm256_set1_epi32(kNone), dot, real);
+                const __m256i before = load(rowBest);
+                better = _mm256_cmpgt_epi32(rowDot, before);
+                store(rowSecond, _mm256_blendv_epi8(_mm256_max_epi32(load(rowSecond), rowDot), before, better));
+                store(rowNearest, _mm256_blendv_epi8(load(rowNearest), columns, better));
+                store(rowBest, _mm256_blendv_epi8(before, rowDot, better));
+            }
+            store(kept.columnBest + column, best);
+            store(kept.columnSecond + column, second);
+            store(kept.columnNearest + column, nearest);
+        }
     }
-}
+};
 
-// R of a's rows against b's groups [from, to), four groups at a time.
-template <int R>
-__attribute__((target("avx512f,avx512bw,avx512vnni"))) inline void byteRows(const std::uint8_t* a, std::int32_t first,
-                                                                            const std::int32_t* corrections,
-                                                                            const std::int8_t* packed, std::size_t from,
-                                                                            std::size_t to, std::size_t rowsB,
-                                                                            const NearestSoFar& kept) {
-    constexpr std::size_t kGroups = 4;
-    std::size_t g = from;
-    for (; g + kGroups <= to; g += kGroups) byteTile<R, kGroups>(a, first, corrections, packed, g, rowsB, kept);
-    for (; g < to; ++g) byteTile<R, 1>(a, first, corrections, packed, g, rowsB, kept);
-}
-
-// A block of `rows` of a's rows (`first` the first's index) against all of b's, 32 groups (64 KB, held in
-// the second-level cache) at a time, four of a's rows at a time.
-__attribute__((target("avx512f,avx512bw,avx512vnni"))) void byteProducts(const std::uint8_t* a, std::size_t rows,
-                                                                         std::int32_t first,
-                                                                         const std::int32_t* corrections,
-                                                                         const std::int8_t* packed, std::size_t rowsB,
-                                                                         NearestSoFar kept) {
+// A way's tiles over a block of a's rows against all of b's: 32 groups of b's rows (64 KB, held in the
+// second-level cache) at a time, four of a's rows by `kGroups` groups a tile.
+template <std::size_t kLanes, std::size_t kGroups, template <int, int> class Tile>
+inline void products(RowBlock a, std::size_t rows, const std::int8_t* packed, std::size_t rowsB, NearestSoFar kept) {
     constexpr std::size_t kRows = 4, kSliceGroups = 32;
-    const std::size_t groups = (rowsB + kGroupLanes - 1) / kGroupLanes;
+    const std::size_t groups = (rowsB + kLanes - 1) / kLanes;
     for (std::size_t from = 0; from < groups; from += kSliceGroups) {
         const std::size_t to = std::min(groups, from + kSliceGroups);
-        NearestSoFar at = kept;
+        RowBlock at = a;
+        NearestSoFar into = kept;
+        const auto tiles = [&](auto rowsAtOnce) {
+            constexpr int kR = decltype(rowsAtOnce)::value;
+            std::size_t g = from;
+            for (; g + kGroups <= to; g += kGroups) Tile<kR, kGroups>::run(at, packed, g, rowsB, into);
+            for (; g < to; ++g) Tile<kR, 1>::run(at, packed, g, rowsB, into);
+            at.data += kR * at.stride;
+            at.corrections += kR;
+            at.first += kR;
+            for (int r = 0; r < kR; ++r) into.nextRows(kLanes);
+        };
         std::size_t r = 0;
-        for (; r + kRows <= rows; r += kRows) {
-            byteRows<kRows>(a + r * 128, first + static_cast<std::int32_t>(r), corrections + r, packed, from, to, rowsB,
-                            at);
-            at.rowBest += kRows * kGroupLanes;
-            at.rowSecond += kRows * kGroupLanes;
-            at.rowNearest += kRows * kGroupLanes;
-        }
-        for (; r < rows; ++r) {
-            byteRows<1>(a + r * 128, first + static_cast<std::int32_t>(r), corrections + r, packed, from, to, rowsB,
-                        at);
-            at.rowBest += kGroupLanes;
-            at.rowSecond += kGroupLanes;
-            at.rowNearest += kGroupLanes;
+        for (; r + kRows <= rows; r += kRows) tiles(std::integral_constant<int, kRows>{});
+        for (; r < rows; ++r) tiles(std::integral_constant<int, 1>{});
+    }
+}
+
+// b's rows packed for VnniTile: 16 to a group, a step the rows' next four bytes, each less 128.
+void packForVnni(const std::uint8_t* b, std::size_t rowsB, std::vector<std::int8_t>& packed) {
+    packed.assign((rowsB + 15) / 16 * kGroupBytes, 0);
+    for (std::size_t j = 0; j < rowsB; ++j) {
+        std::int8_t* lane = packed.data() + j / 16 * kGroupBytes + j % 16 * 4;
+        for (std::size_t k = 0; k < 128; ++k)
+            lane[k / 4 * 64 + k % 4] = static_cast<std::int8_t>(b[j * 128 + k] ^ 0x80);
+    }
+}
+
+// b's rows packed for Avx2Tile: 8 to a group, a step the rows' next two bytes as 16-bit words.
+void packForAvx2(const std::uint8_t* b, std::size_t rowsB, std::vector<std::int8_t>& packed) {
+    packed.assign((rowsB + 7) / 8 * kGroupBytes, 0);
+    for (std::size_t j = 0; j < rowsB; ++j) {
+        std::int8_t* lane = packed.data() + j / 8 * kGroupBytes + j % 8 * 4;
+        for (std::size_t k = 0; k < 128; ++k) {
+            const std::int16_t word = b[j * 128 + k];
+            std::memcpy(lane + k / 2 * 32 + k % 2 * 2, &word, 2);
         }
     }
 }
 
-bool hasByteProducts() {
-    static const bool has =
-        __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vnni");
-    return has;
+// A block of a's rows as VnniTile reads them: the bytes, each row's products getting 128 times its sum back.
+RowBlock vnniRows(const std::uint8_t* a, std::size_t rows, std::int32_t first, std::vector<std::int16_t>&,
+                  std::vector<std::int32_t>& corrections) {
+    corrections.resize(rows);
+    for (std::size_t r = 0; r < rows; ++r) corrections[r] = 128 * std::accumulate(a + r * 128, a + r * 128 + 128, 0);
+    return {a, 128, corrections.data(), first};
+}
+
+// ... as Avx2Tile reads them: widened to 16-bit words, nothing to get back.
+RowBlock avx2Rows(const std::uint8_t* a, std::size_t rows, std::int32_t first, std::vector<std::int16_t>& words,
+                  std::vector<std::int32_t>& corrections) {
+    words.assign(a, a + rows * 128);
+    corrections.assign(rows, 0);
+    return {reinterpret_cast<const std::uint8_t*>(words.data()), 256, corrections.data(), first};
 }
 
 }  // namespace
 
-void descriptorDots(const float* a, std::size_t rows, const float* b, std::size_t n, float* out, bool portable) {
-    static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    if (avx2 && !portable) return dotProductsAvx2(a, rows, b, n, out);
-    const Eigen::Map<const Floats> A(a, static_cast<Eigen::Index>(rows), 128), B(b, static_cast<Eigen::Index>(n), 128);
-    Eigen::Map<Floats>(out, static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(n)).noalias() =
-        A * B.transpose();
+// The integer ways, one table: lanes, how b's rows are packed and a's read, and the tiles.
+struct IntegerWay {
+    std::size_t lanes;
+    void (*pack)(const std::uint8_t* b, std::size_t rowsB, std::vector<std::int8_t>& packed);
+    RowBlock (*rowsOf)(const std::uint8_t* a, std::size_t rows, std::int32_t first, std::vector<std::int16_t>& words,
+                       std::vector<std::int32_t>& corrections);
+    void (*products)(RowBlock a, std::size_t rows, const std::int8_t* packed, std::size_t rowsB, NearestSoFar kept);
+};
+
+namespace {
+
+const IntegerWay kVnniWay{16, packForVnni, vnniRows, products<16, 4, VnniTile>};
+const IntegerWay kAvx2Way{8, packForAvx2, avx2Rows, products<8, 2, Avx2Tile>};
+
+// The way `kernel` asks for on this processor; none for Eigen's.
+const IntegerWay* integerWay(MatchKernel kernel) {
+    static const bool vnni =
+        __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vnni");
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (kernel == MatchKernel::Fastest && vnni) return &kVnniWay;
+    if (kernel != MatchKernel::Portable && avx2) return &kAvx2Way;
+    return nullptr;
 }
+
+}  // namespace
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::match(const std::uint8_t* a, std::size_t rowsA,
                                                                         const std::uint8_t* b, std::size_t rowsB) {
     if (rowsA == 0 || rowsB == 0) return {};
-    if (options_.kernel == MatchKernel::Fastest && hasByteProducts()) return matchBytes(a, rowsA, b, rowsB);
-    return matchFloats(a, rowsA, b, rowsB);
+    if (const IntegerWay* way = integerWay(options_.kernel)) return matchIntegers(*way, a, rowsA, b, rowsB);
+    return matchPortable(a, rowsA, b, rowsB);
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchFloats(const std::uint8_t* a, std::size_t rowsA,
-                                                                              const std::uint8_t* b,
-                                                                              std::size_t rowsB) {
+std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchPortable(const std::uint8_t* a,
+                                                                                std::size_t rowsA,
+                                                                                const std::uint8_t* b,
+                                                                                std::size_t rowsB) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
     const Eigen::Map<Floats> floatsA = asFloats(a, rowsA, a_), floatsB = asFloats(b, rowsB, b_);
     if (options_.crossCheck) {
@@ -305,8 +362,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchFloats(co
         const std::size_t rows = std::min(kBlockRows, rowsA - first);
         dots_.resize(std::max(dots_.size(), rows * rowsB));
         Eigen::Map<Floats> dots(dots_.data(), static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(rowsB));
-        descriptorDots(floatsA.data() + first * 128, rows, floatsB.data(), rowsB, dots_.data(),
-                       options_.kernel == MatchKernel::Portable);
+        dots.noalias() =
+            floatsA.middleRows(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(rows)) * floatsB.transpose();
         if (options_.crossCheck)
             for (std::size_t r = 0; r < rows; ++r)
                 keepNearest(dots_.data() + r * rowsB, rowsB, static_cast<std::int32_t>(first + r), best_.data(),
@@ -330,47 +387,38 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchFloats(co
     return out;
 }
 
-// Each of a's rows' nearest found as the products come (byteProducts), a block of rows at a time: the products
-// are never written out, where the floats' way writes and reads a block of 1,024 rows by all of b's (56 MB for
-// Mip-NeRF 360's kitchen photos, 13,700 features each).
-std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchBytes(const std::uint8_t* a, std::size_t rowsA,
-                                                                             const std::uint8_t* b, std::size_t rowsB) {
-    packColumns(b, rowsB, packed_);
-    const std::size_t columns = packed_.size() / kGroupBytes * kGroupLanes;
+// Each block of a's rows' products with all of b's, their nearest kept as they come, then each row's lanes
+// into its nearest.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchIntegers(
+    const IntegerWay& way, const std::uint8_t* a, std::size_t rowsA, const std::uint8_t* b, std::size_t rowsB) {
+    way.pack(b, rowsB, packed_);
+    const std::size_t columns = packed_.size() / kGroupBytes * way.lanes;
     columns_.assign(3 * columns, 0);
     std::fill(columns_.begin() + static_cast<std::ptrdiff_t>(2 * columns), columns_.end(), -1);
     constexpr std::size_t kBlockRows = 256;
-    rows_.resize(3 * kBlockRows * kGroupLanes);
-    const NearestSoFar kept{columns_.data(),
-                            columns_.data() + columns,
-                            columns_.data() + 2 * columns,
-                            rows_.data(),
-                            rows_.data() + kBlockRows * kGroupLanes,
-                            rows_.data() + 2 * kBlockRows * kGroupLanes};
-    std::vector<std::int32_t> corrections(kBlockRows);
+    const std::size_t lanes = kBlockRows * way.lanes;
+    rows_.resize(3 * lanes);
+    const NearestSoFar kept{columns_.data(), columns_.data() + columns, columns_.data() + 2 * columns,
+                            rows_.data(),    rows_.data() + lanes,      rows_.data() + 2 * lanes};
     std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
     for (std::size_t first = 0; first < rowsA; first += kBlockRows) {
         const std::size_t rows = std::min(kBlockRows, rowsA - first);
-        for (std::size_t r = 0; r < rows; ++r) {
-            const std::uint8_t* row = a + (first + r) * 128;
-            corrections[r] = 128 * std::accumulate(row, row + 128, 0);
-        }
-        std::fill(rows_.begin(), rows_.begin() + static_cast<std::ptrdiff_t>(2 * kBlockRows * kGroupLanes), kNone);
-        std::fill(rows_.begin() + static_cast<std::ptrdiff_t>(2 * kBlockRows * kGroupLanes), rows_.end(), -1);
-        byteProducts(a + first * 128, rows, static_cast<std::int32_t>(first), corrections.data(), packed_.data(), rowsB,
-                     kept);
-        // Each row's lanes into its best (the first of b's rows to give it, as the floats' search takes) and the
+        std::fill(rows_.begin(), rows_.begin() + static_cast<std::ptrdiff_t>(2 * lanes), kNone);
+        std::fill(rows_.begin() + static_cast<std::ptrdiff_t>(2 * lanes), rows_.end(), -1);
+        way.products(way.rowsOf(a + first * 128, rows, static_cast<std::int32_t>(first), words_, corrections_), rows,
+                     packed_.data(), rowsB, kept);
+        // Each row's lanes into its best (the first of b's rows to give it, as the portable search takes) and the
         // largest of the rest: the other lanes' best and every lane's second.
         for (std::size_t r = 0; r < rows; ++r) {
-            const std::int32_t* best = kept.rowBest + r * kGroupLanes;
-            const std::int32_t* second = kept.rowSecond + r * kGroupLanes;
-            const std::int32_t* nearest = kept.rowNearest + r * kGroupLanes;
+            const std::int32_t* best = kept.rowBest + r * way.lanes;
+            const std::int32_t* second = kept.rowSecond + r * way.lanes;
+            const std::int32_t* nearest = kept.rowNearest + r * way.lanes;
             std::size_t lane = 0;
-            for (std::size_t l = 1; l < kGroupLanes; ++l)
+            for (std::size_t l = 1; l < way.lanes; ++l)
                 if (best[l] > best[lane] || (best[l] == best[lane] && nearest[l] < nearest[lane])) lane = l;
             if (!(best[lane] > 0)) continue;  // no dot product above 0: no nearest (COLMAP's rule)
             std::int32_t rest = 0;
-            for (std::size_t l = 0; l < kGroupLanes; ++l) rest = std::max({rest, second[l], l == lane ? 0 : best[l]});
+            for (std::size_t l = 0; l < way.lanes; ++l) rest = std::max({rest, second[l], l == lane ? 0 : best[l]});
             if (passes(static_cast<float>(best[lane]), static_cast<float>(rest), options_))
                 candidates.emplace_back(static_cast<std::uint32_t>(first + r),
                                         static_cast<std::uint32_t>(nearest[lane]));

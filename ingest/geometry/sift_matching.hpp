@@ -17,11 +17,11 @@
 
 namespace smql::ingest {
 
-// How the matcher finds each descriptor's nearest; each way gives the same matches. `Fastest` takes the
-// bytes' own dot products in AVX-512 VNNI where the processor has it, each row's and column's nearest kept as
-// the products come, else `Floats`: the products as floats (AVX2 and FMA where the processor has them, else
-// Eigen's), then searched. `Portable` is Eigen's product, then searched.
-enum class MatchKernel { Fastest, Floats, Portable };
+// How the matcher finds each descriptor's nearest; each way gives the same matches. The integer ways take
+// the bytes' products as integers and keep each row's and column's nearest two as the products come:
+// `Fastest` in AVX-512 VNNI where the processor has it, else as `Avx2`; `Avx2` in AVX2 where the processor has
+// it, else as `Portable`. `Portable` is Eigen's product of the bytes as floats, then searched.
+enum class MatchKernel { Fastest, Avx2, Portable };
 
 // COLMAP's SiftMatchingOptions, as its matcher runs by default.
 struct SiftMatchOptions {
@@ -30,6 +30,9 @@ struct SiftMatchOptions {
     bool crossCheck = true;    // each the other's best
     MatchKernel kernel = MatchKernel::Fastest;
 };
+
+// One of the matcher's integer ways (sift_matching.cpp).
+struct IntegerWay;
 
 // Matches two images' descriptors (rows of 128 bytes, as COLMAP stores them), pair after pair: its
 // buffers grow to the largest pair and are kept. One a thread.
@@ -41,24 +44,25 @@ public:
                                                                const std::uint8_t* b, std::size_t rowsB);
 
 private:
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> matchFloats(const std::uint8_t* a, std::size_t rowsA,
-                                                                     const std::uint8_t* b, std::size_t rowsB);
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> matchBytes(const std::uint8_t* a, std::size_t rowsA,
-                                                                    const std::uint8_t* b, std::size_t rowsB);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> matchIntegers(const IntegerWay& way, const std::uint8_t* a,
+                                                                       std::size_t rowsA, const std::uint8_t* b,
+                                                                       std::size_t rowsB);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> matchPortable(const std::uint8_t* a, std::size_t rowsA,
+                                                                       const std::uint8_t* b, std::size_t rowsB);
 
     SiftMatchOptions options_;
-    std::vector<float> a_, b_, dots_;    // the descriptors as floats, and their dot products
-    std::vector<float> best_, second_;   // of each of b's rows, the largest dot products with a's
-    std::vector<std::int32_t> nearest_;  // and the row of a that gives the largest
-    std::vector<std::int8_t> packed_;    // the bytes' way: b's rows packed for the processor's byte products,
-    std::vector<std::int32_t> columns_;  // ... each of b's rows' best, second best and nearest row of a,
-    std::vector<std::int32_t> rows_;     // ... and a block of a's rows' best, second best and nearest, by lane
+    // The integer ways: b's rows packed for the processor's products, a block of a's rows as 16-bit words
+    // (AVX2) and what each row's products get back; each of b's rows' best, second best and nearest row of
+    // a; a block of a's rows' best, second best and nearest of b's, by lane.
+    std::vector<std::int8_t> packed_;
+    std::vector<std::int16_t> words_;
+    std::vector<std::int32_t> corrections_, columns_, rows_;
+    // The portable way: the descriptors as floats, and their dot products; of each of b's rows, the largest
+    // dot products with a's and the row of a that gives the largest.
+    std::vector<float> a_, b_, dots_;
+    std::vector<float> best_, second_;
+    std::vector<std::int32_t> nearest_;
 };
-
-// The dot products of `rows` descriptors of `a` with each of `n` of `b` (128 floats each, COLMAP's bytes as
-// floats) into `out`, row after row: with AVX2 and FMA where the processor has them, else (or `portable`)
-// Eigen's product. The two give the same bytes (sift_matching.cpp says why).
-void descriptorDots(const float* a, std::size_t rows, const float* b, std::size_t n, float* out, bool portable = false);
 
 // The pairs (indices into the images in name order) COLMAP's sequential_matcher matches: each image
 // with the `overlap - 1` after it and, with `quadratic`, those 2^k after it for k < overlap
