@@ -45,6 +45,17 @@ wait_until() {
   done
   return 1
 }
+# Until a line matching PATTERN comes after the screen's last line that is LINE: the answer to that statement,
+# not an earlier one's of the same text.
+wait_after() {
+  local deadline=$((SECONDS + ${3:-10}))
+  while ((SECONDS < deadline)); do
+    screen | awk -v line="$1" '$0 == line { seen = 1; after = ""; next } seen { after = after $0 "\n" } END { printf "%s", after }' |
+      grep -Eq "$2" && return 0
+    sleep 0.1
+  done
+  return 1
+}
 alive() { tmux -L "$socket" list-panes -t shell -F '#{pane_dead}' 2>/dev/null | grep -qx 0; }
 
 # 400 objects on a circle 9 km across: no object lies between two others, so
@@ -89,8 +100,10 @@ press C-c
 if wait_for '^smql>$' 5 && screen | grep -q '^interrupted: the statement was interrupted$' && [ "$(screen | grep -c '^(1 row)$')" -lt 10 ] && alive; then pass
 else fail "Ctrl-C while statements run cancels them, not the shell"; fi
 
+# COUNT lamp's answer is 133 too: the 133 must come after this statement's line.
 type_keys 'COUNT sofa;'; press Enter
-if wait_until '^133$' 10 && wait_for '^smql>$' 10 && [ "$(screen | grep -v '^$' | tail -3 | head -1)" = 133 ] && alive; then pass
+if wait_after 'smql> COUNT sofa;' '^133$' 10 && wait_for '^smql>$' 10 &&
+  [ "$(screen | grep -v '^$' | tail -3 | head -1)" = 133 ] && alive; then pass
 else fail "the shell answers after an interrupt"; fi
 
 # SHOW SETTINGS' meaning column alone is about 90 characters: rows are cut to the 100 columns. Its last row,
