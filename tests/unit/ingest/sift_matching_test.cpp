@@ -330,7 +330,7 @@ TEST_CASE("each way of finding the nearest gives the same matches: AVX-512 VNNI'
     };
 
     // Made descriptors, in sizes that leave every remainder of the integer ways (blocks of 256 of a's rows, four
-    // at a time; b's in groups of 16 or 8, four or two groups at a time, 32 to a slice): b holds a's rows moved a
+    // at a time; b's in groups of 16 or 8, four or two groups at a time, 16 to a slice): b holds a's rows moved a
     // little, in another order, some twice (ties), and rows like none of them.
     cv::RNG rng(20261206);
     for (const auto& [rows, n] : {std::pair{1, 1}, {5, 17}, {70, 300}, {1030, 530}}) {
