@@ -59,6 +59,21 @@ keepNearest(const float* row, std::size_t n, std::int32_t i, float* best, float*
     }
 }
 
+// Of each row's nearest (a's row, b's row), in a's order, those that are also their column's nearest and pass
+// there too (COLMAP's cross-check), or all of them without it. `best`, `second`, `nearest`: each of b's rows'.
+template <typename Dot>
+std::vector<std::pair<std::uint32_t, std::uint32_t>> crossChecked(
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates, const Dot* best, const Dot* second,
+    const std::int32_t* nearest, const SiftMatchOptions& options) {
+    if (!options.crossCheck) return candidates;
+    std::erase_if(candidates, [&](const auto& match) {
+        const auto [i, j] = match;
+        return nearest[j] != static_cast<std::int32_t>(i) ||
+               !passes(static_cast<float>(best[j]), static_cast<float>(second[j]), options);
+    });
+    return candidates;
+}
+
 // The integer ways. The descriptors' bytes are multiplied as integers, the products summed into sixteen
 // (AVX-512) or eight (AVX2) lanes of 32 bits, each lane one of b's rows, and each row's and column's nearest
 // two are kept as the products come: no matrix of them is written, where the portable way writes a block of
@@ -118,11 +133,7 @@ struct VnniTile {
                                                                            const NearestSoFar& kept) {
         constexpr std::size_t kLanes = 16;
         constexpr __mmask16 kAll = 0xFFFF;
-        __m512i sum[R][C];
-#pragma GCC unroll 4
-        for (int i = 0; i < R; ++i)
-#pragma GCC unroll 4
-            for (int c = 0; c < C; ++c) sum[i][c] = _mm512_setzero_si512();
+        __m512i sum[R][C] = {};  // zeros
         const std::int8_t* groups = packed + group * kGroupBytes;
 #pragma GCC unroll 8
         for (std::size_t step = 0; step < 32; ++step) {
@@ -188,11 +199,7 @@ struct Avx2Tile {
     __attribute__((target("avx2"))) static void run(const RowBlock& a, const std::int8_t* packed, std::size_t group,
                                                     std::size_t rowsB, const NearestSoFar& kept) {
         constexpr std::size_t kLanes = 8;
-        __m256i sum[R][C];
-#pragma GCC unroll 4
-        for (int i = 0; i < R; ++i)
-#pragma GCC unroll 4
-            for (int c = 0; c < C; ++c) sum[i][c] = _mm256_setzero_si256();
+        __m256i sum[R][C] = {};  // zeros
         const std::int8_t* groups = packed + group * kGroupBytes;
 #pragma GCC unroll 8
         for (std::size_t step = 0; step < 64; ++step) {
@@ -349,7 +356,6 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchPortable(
                                                                                 std::size_t rowsA,
                                                                                 const std::uint8_t* b,
                                                                                 std::size_t rowsB) {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
     const Eigen::Map<Floats> floatsA = asFloats(a, rowsA, a_), floatsB = asFloats(b, rowsB, b_);
     if (options_.crossCheck) {
         best_.assign(rowsB, 0.0f);
@@ -382,11 +388,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchPortable(
                                         static_cast<std::uint32_t>(j));
         }
     }
-    for (const auto& [i, j] : candidates)
-        if (!options_.crossCheck ||
-            (nearest_[j] == static_cast<std::int32_t>(i) && passes(best_[j], second_[j], options_)))
-            out.emplace_back(i, j);
-    return out;
+    return crossChecked(std::move(candidates), best_.data(), second_.data(), nearest_.data(), options_);
 }
 
 // Each block of a's rows' products with all of b's, their nearest kept as they come, then each row's lanes
@@ -426,13 +428,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> SiftMatcher::matchIntegers(
                                         static_cast<std::uint32_t>(nearest[lane]));
         }
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
-    for (const auto& [i, j] : candidates)
-        if (!options_.crossCheck ||
-            (kept.columnNearest[j] == static_cast<std::int32_t>(i) &&
-             passes(static_cast<float>(kept.columnBest[j]), static_cast<float>(kept.columnSecond[j]), options_)))
-            out.emplace_back(i, j);
-    return out;
+    return crossChecked(std::move(candidates), kept.columnBest, kept.columnSecond, kept.columnNearest, options_);
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> sequentialPairs(std::size_t images, int overlap, bool quadratic) {
