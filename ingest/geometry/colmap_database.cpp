@@ -109,6 +109,21 @@ std::vector<ColmapPairMatches> readColmapMatches(const std::string& path) {
     return out;
 }
 
+std::vector<ColmapPairCount> readUnverifiedPairs(const std::string& path, std::size_t minMatches) {
+    Connection db = open(path);
+    std::vector<ColmapPairCount> out;
+    Statement rows = prepare(db.get(), path,
+                             "SELECT pair_id, rows FROM matches WHERE rows >= ?1 AND pair_id NOT IN "
+                             "(SELECT pair_id FROM two_view_geometries) ORDER BY pair_id");
+    sqlite3_bind_int64(rows.get(), 1, static_cast<sqlite3_int64>(minMatches));
+    while (sqlite3_step(rows.get()) == SQLITE_ROW) {
+        const sqlite3_int64 id = sqlite3_column_int64(rows.get(), 0);
+        out.push_back(
+            {id / kMaxImages, id % kMaxImages, static_cast<std::size_t>(sqlite3_column_int64(rows.get(), 1))});
+    }
+    return out;
+}
+
 void numberColmapImagesByName(const std::string& path) {
     Connection db = open(path, SQLITE_OPEN_READWRITE);
     auto count = [&](const char* sql) {

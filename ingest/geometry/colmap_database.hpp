@@ -75,6 +75,14 @@ struct ColmapPairMatches {
 };
 // The `matches` table: every pair a matcher matched (the smaller id first), with its matches.
 std::vector<ColmapPairMatches> readColmapMatches(const std::string& path);
+// A pair of images the `matches` table holds (the smaller id first), and how many matches it has.
+struct ColmapPairCount {
+    long long first = 0, second = 0;
+    std::size_t matches = 0;
+};
+// The pairs of the `matches` table with `minMatches` matches or more and no verified geometry yet (no row in
+// `two_view_geometries`), in the table's order.
+std::vector<ColmapPairCount> readUnverifiedPairs(const std::string& path, std::size_t minMatches);
 // Written to the `matches` table in one transaction (a pair it holds already is left as it is), where
 // COLMAP's matchers find them and only verify them: its matcher skips the features of a pair
 // with matches and no verified geometry (SiftFeatureMatcher::Match, COLMAP 3.8).

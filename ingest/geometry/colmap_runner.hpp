@@ -25,8 +25,15 @@ struct ColmapOptions {
     // doubled for its finest features); longer ones start at the frame's own size, which halves the
     // extraction and leaves each frame's many neighbours enough features to be placed.
     int fineFeaturesUpTo = 100;
-    std::string vocabularyTree;      // COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection; empty: none
-    int loopFrames = 20;             // without a tree: frames spread through the capture, matched all against all
+    std::string vocabularyTree;  // COLMAP vocabulary tree (vocab_tree_*.bin) for loop detection; empty: none
+    // Without a tree, captures of up to `everyPairUpTo` frames close their loops by matching every pair of
+    // frames here (sift_matching.hpp, a few seconds for 100 frames) and verifying the pairs with `loopMatches`
+    // matches or more that are among the `loopsPerFrame` with the most of either frame; longer ones by matching
+    // `loopFrames` frames spread through the capture all against all.
+    int everyPairUpTo = 400;
+    int loopMatches = 30;
+    int loopsPerFrame = 10;
+    int loopFrames = 20;
     int minMatches = 15;             // verified matches that make two frames overlap (COLMAP's mapper default)
     int threads = -1;                // cores for extraction and matching (-1: all); COLMAP's random steps take one
     bool keepWorkDirectory = false;  // keep the work folder (images, database, models, colmap.log) after a success too

@@ -158,10 +158,9 @@ TEST_CASE(
 }
 
 // Real photos of two places, their names interleaved (TUM's office photos, then a photo of the dining room,
-// in turn): the next photo of each place is two names on. Matched with the photo after each alone (COLMAP's
-// overlap 2), no two photos of one place are matched and no model starts; matched again with the photos two
-// on (its quadratic overlap), the office's six make a model, and the capture is placed by it.
-TEST_CASE("frames the pairs with the frames after them leave out are matched farther on, and mapped again") {
+// in turn): the next photo of each place is two names on.
+namespace {
+Capture interleavedPlaces(const ScratchDir& dir) {
     const std::filesystem::path shared(SMQL_SHARED_DATA);
     auto firstPhotos = [](const std::filesystem::path& folder, std::size_t count) {
         std::vector<std::filesystem::path> all;
@@ -175,7 +174,6 @@ TEST_CASE("frames the pairs with the frames after them leave out are matched far
     const auto dining = firstPhotos(shared / "rgbd-dining/color", 5);
     REQUIRE(office.size() == 6);
     REQUIRE(dining.size() == 5);
-    ScratchDir dir;
     const auto photos = dir.path / "photos";
     std::filesystem::create_directories(photos);
     for (std::size_t i = 0; i < office.size(); ++i) {
@@ -185,9 +183,20 @@ TEST_CASE("frames the pairs with the frames after them leave out are matched far
     }
     Capture capture = readCapture(photos.string());
     REQUIRE(capture.frames.size() == 11);
+    return capture;
+}
+}  // namespace
+
+// Matched with the photo after each alone (COLMAP's overlap 2), no two photos of one place are matched and no
+// model starts; matched again with the photos two on (its quadratic overlap), the office's six make a model, and
+// the capture is placed by it.
+TEST_CASE("frames the pairs with the frames after them leave out are matched farther on, and mapped again") {
+    ScratchDir dir;
+    Capture capture = interleavedPlaces(dir);
     ColmapOptions options;
     options.exhaustiveUpTo = 0;  // name order, as a folder of more photos is matched
     options.sequentialOverlap = 2;
+    options.everyPairUpTo = 0;  // loops closed by the frames spread through the capture: none here
     options.loopFrames = 0;
     const ColmapRun run = runColmap(capture, options);
     std::string notes;
@@ -195,6 +204,31 @@ TEST_CASE("frames the pairs with the frames after them leave out are matched far
     INFO(notes);
     CHECK_THAT(notes, Catch::Contains("with each frame matched with the 1 after it; it matches each frame again with "
                                       "the frames 2 on (COLMAP's quadratic overlap) and maps again"));
+    CHECK(run.registered == 6);
+    for (const auto& frame : capture.frames)
+        CHECK(frame.pose.has_value() == (frame.colorPath.find("office") != std::string::npos));
+}
+
+// The same photos with every pair matched to close loops: the office's photos two names apart share 30 matches or
+// more, so they are verified with the pairs in name order, and the first mapping places the six (the five dining
+// photos, which none of them overlaps, still send the mapper farther on, to no avail).
+TEST_CASE("frames far apart in name order that share many features are verified, and placed at once") {
+    ScratchDir dir;
+    Capture capture = interleavedPlaces(dir);
+    ColmapOptions options;
+    options.exhaustiveUpTo = 0;
+    options.sequentialOverlap = 2;
+    options.loopFrames = 0;  // no frames spread through the capture: the pairs found by matching every pair alone
+    const ColmapRun run = runColmap(capture, options);
+    std::string notes;
+    for (const auto& n : run.notes) notes += n + "\n";
+    INFO(notes);
+    CHECK_THAT(notes, Catch::Contains("loops are closed by matching every pair of frames and verifying the"));
+    CHECK_THAT(notes, Catch::Contains("others with 30 matches or more"));
+    CHECK_THAT(notes, !Catch::Contains("verifying the 0 others"));
+    const auto firstModel = notes.find("the largest with ");
+    REQUIRE(firstModel != std::string::npos);
+    CHECK(notes.compare(firstModel, 24, "the largest with 6 of 11") == 0);
     CHECK(run.registered == 6);
     for (const auto& frame : capture.frames)
         CHECK(frame.pose.has_value() == (frame.colorPath.find("office") != std::string::npos));
