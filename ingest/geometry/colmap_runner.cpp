@@ -221,6 +221,20 @@ std::optional<Intrinsics> knownCamera(const Capture& capture, const CaptureFrame
     return capture_detail::scaleIntrinsics(k, size.width, size.height);
 }
 
+// Every pair of the names, each once, in their order.
+std::vector<std::pair<std::string, std::string>> allPairs(const std::vector<std::string>& names) {
+    std::vector<std::pair<std::string, std::string>> pairs;
+    for (std::size_t a = 0; a < names.size(); ++a)
+        for (std::size_t b = a + 1; b < names.size(); ++b) pairs.emplace_back(names[a], names[b]);
+    return pairs;
+}
+
+// The pairs with `least` matches or more.
+std::vector<ColmapPairCount> withMatches(std::vector<ColmapPairCount> pairs, std::size_t least) {
+    std::erase_if(pairs, [&](const ColmapPairCount& pair) { return pair.matches < least; });
+    return pairs;
+}
+
 // Of the pairs, those among the `perFrame` with the most matches of either of their frames (of pairs with as many,
 // the first in the table's order).
 std::vector<ColmapPairCount> strongestPerFrame(const std::vector<ColmapPairCount>& pairs, std::size_t perFrame) {
@@ -512,18 +526,20 @@ private:
     // The pairs COLMAP's matcher matches (in the database's name order, as it orders them): all of them,
     // or each frame's next ones (and with `farther_`, those 2^k on).
     std::vector<std::pair<std::string, std::string>> matcherPairs() const {
+        const std::vector<std::string> names = databaseNames();
+        if (exhaustive_) return allPairs(names);
+        std::vector<std::pair<std::string, std::string>> pairs;
+        for (const auto& [a, b] : sequentialPairs(names.size(), options_.sequentialOverlap, farther_))
+            pairs.emplace_back(names[a], names[b]);
+        return pairs;
+    }
+
+    // The database's images' names, in name order.
+    std::vector<std::string> databaseNames() const {
         std::vector<std::string> names;
         for (const auto& image : readColmapImages(database_.string())) names.push_back(image.name);
         std::sort(names.begin(), names.end());
-        std::vector<std::pair<std::string, std::string>> pairs;
-        if (exhaustive_) {
-            for (std::size_t a = 0; a < names.size(); ++a)
-                for (std::size_t b = a + 1; b < names.size(); ++b) pairs.emplace_back(names[a], names[b]);
-        } else {
-            for (const auto& [a, b] : sequentialPairs(names.size(), options_.sequentialOverlap, farther_))
-                pairs.emplace_back(names[a], names[b]);
-        }
-        return pairs;
+        return names;
     }
 
     void findAndMatchFeatures() {
@@ -702,12 +718,7 @@ private:
         std::vector<std::pair<std::string, std::string>> loops;
         const bool again = !loopCandidates_.empty();
         const bool everyPair = static_cast<int>(frames) <= options_.everyPairUpTo && matchFirst([this, again] {
-                                   if (again) return loopCandidates_;
-                                   std::vector<std::pair<std::string, std::string>> all;
-                                   for (std::size_t a = 0; a < workFrames_.size(); ++a)
-                                       for (std::size_t b = a + 1; b < workFrames_.size(); ++b)
-                                           all.emplace_back(workFrames_[a].name, workFrames_[b].name);
-                                   return all;
+                                   return again ? loopCandidates_ : allPairs(databaseNames());
                                });
         std::size_t count = 0;
         if (everyPair) {
@@ -718,17 +729,18 @@ private:
                 for (const auto& pair : pairs) out.emplace_back(names.at(pair.first), names.at(pair.second));
                 return out;
             };
-            loops = named(strongestPerFrame(
-                readUnverifiedPairs(database_.string(), static_cast<std::size_t>(std::max(options_.loopMatches, 0))),
-                static_cast<std::size_t>(std::max(options_.loopsPerFrame, 0))));
-            if (!again && !fine_)
-                loopCandidates_ = named(readUnverifiedPairs(
-                    database_.string(), static_cast<std::size_t>(std::max(options_.minMatches, 0))));
+            const auto loopMatches = static_cast<std::size_t>(std::max(options_.loopMatches, 0));
+            const auto minMatches = static_cast<std::size_t>(std::max(options_.minMatches, 0));
+            const std::vector<ColmapPairCount> overlapping =
+                readUnverifiedPairs(database_.string(), std::min(loopMatches, minMatches));
+            loops = named(strongestPerFrame(withMatches(overlapping, loopMatches),
+                                            static_cast<std::size_t>(std::max(options_.loopsPerFrame, 0))));
+            if (!again && !fine_) loopCandidates_ = named(withMatches(overlapping, minMatches));
         } else {
             count = std::min<std::size_t>(frames, std::max(options_.loopFrames, 0));
-            for (std::size_t a = 0; a < count; ++a)
-                for (std::size_t b = a + 1; b < count; ++b)
-                    loops.emplace_back(workFrames_[a * frames / count].name, workFrames_[b * frames / count].name);
+            std::vector<std::string> spread;
+            for (std::size_t a = 0; a < count; ++a) spread.push_back(workFrames_[a * frames / count].name);
+            loops = allPairs(spread);
             if (count >= 2) matchFirst([&loops] { return loops; });
         }
         const fs::path pairsFile = work_ / "loop-pairs.txt";

@@ -73,6 +73,19 @@ Measured ingestRegistered(const Capture& reconstructed, const Capture& truth, co
     return {registration.scale, registration.residual, compareToTruth(registration.mapped, synth.scene.truth, quality)};
 }
 
+// The run's notes, a line each.
+std::string notesOf(const ColmapRun& run) {
+    std::string notes;
+    for (const auto& n : run.notes) notes += n + "\n";
+    return notes;
+}
+
+// Whether exactly the frames whose photos' paths hold `place` got a pose.
+void checkOnlyPlaced(const Capture& capture, const std::string& place) {
+    for (const auto& frame : capture.frames)
+        CHECK(frame.pose.has_value() == (frame.colorPath.find(place) != std::string::npos));
+}
+
 }  // namespace
 
 // COLMAP runs once; its poses and sparse points then place the masks, the detections with their
@@ -145,8 +158,7 @@ TEST_CASE(
     ColmapOptions options;
     options.fineFeaturesUpTo = 10;
     ColmapRun run = runColmap(capture, options);
-    std::string notes;
-    for (const auto& n : run.notes) notes += n + "\n";
+    const std::string notes = notesOf(run);
     INFO(notes);
     CHECK_THAT(notes, Catch::Contains("COLMAP looks for features at the frames' own size"));
     CHECK_THAT(notes, Catch::Contains("frames with features at their own size; it runs again with the finer features"));
@@ -199,8 +211,7 @@ TEST_CASE("frames the pairs with the frames after them leave out are matched far
     options.everyPairUpTo = 0;  // loops closed by the frames spread through the capture: none here
     options.loopFrames = 0;
     const ColmapRun run = runColmap(capture, options);
-    std::string notes;
-    for (const auto& n : run.notes) notes += n + "\n";
+    const std::string notes = notesOf(run);
     INFO(notes);
     CHECK_THAT(notes, Catch::Contains("with each frame matched with the 1 after it; it matches each frame again with "
                                       "the frames 2 on (COLMAP's quadratic overlap) and maps again"));
@@ -210,8 +221,7 @@ TEST_CASE("frames the pairs with the frames after them leave out are matched far
     const std::string relaxed = "COLMAP's mapper with a relaxed start";
     CHECK(notes.compare(nextMapping, relaxed.size(), relaxed) == 0);
     CHECK(run.registered == 6);
-    for (const auto& frame : capture.frames)
-        CHECK(frame.pose.has_value() == (frame.colorPath.find("office") != std::string::npos));
+    checkOnlyPlaced(capture, "office");
 }
 
 // The same photos with every pair matched to close loops: the office's photos two names apart share 30 matches or
@@ -225,8 +235,7 @@ TEST_CASE("frames far apart in name order that share many features are verified,
     options.sequentialOverlap = 2;
     options.loopFrames = 0;  // no frames spread through the capture: the pairs found by matching every pair alone
     const ColmapRun run = runColmap(capture, options);
-    std::string notes;
-    for (const auto& n : run.notes) notes += n + "\n";
+    const std::string notes = notesOf(run);
     INFO(notes);
     CHECK_THAT(notes, Catch::Contains("loops are closed by matching every pair of frames and verifying the"));
     CHECK_THAT(notes, Catch::Contains("others with 30 matches or more"));
@@ -236,8 +245,7 @@ TEST_CASE("frames far apart in name order that share many features are verified,
     const std::string six = "the largest with 6 of 11";
     CHECK(notes.compare(firstModel, six.size(), six) == 0);
     CHECK(run.registered == 6);
-    for (const auto& frame : capture.frames)
-        CHECK(frame.pose.has_value() == (frame.colorPath.find("office") != std::string::npos));
+    checkOnlyPlaced(capture, "office");
 }
 
 TEST_CASE("a missing colmap command gives a clear error") {
@@ -304,12 +312,10 @@ TEST_CASE("a small real photo set with a group of photos of elsewhere: the large
         WARN("COLMAP's mapper did not join the five room photos in this run: " << e.message());
         return;
     }
-    std::string notes;
-    for (const auto& n : run.notes) notes += n + "\n";
+    const std::string notes = notesOf(run);
     INFO(notes);
     CHECK(run.registered == 5);
-    for (const auto& frame : capture.frames)
-        CHECK(frame.pose.has_value() == (frame.colorPath.find("room-") != std::string::npos));
+    checkOnlyPlaced(capture, "room-");
     CHECK_THAT(notes, Catch::Contains("COLMAP registered 5 of 8 frames; left out: elsewhere-1.png, elsewhere-2.png, "
                                       "elsewhere-3.png"));
     CHECK_THAT(notes, Catch::Contains("COLMAP's mapper with its default settings"));
@@ -350,8 +356,7 @@ TEST_CASE("a real capture with lens distortion: COLMAP places its frames undisto
     ColmapOptions options;
     options.workDirectory = (dir.path / "colmap").string();
     ColmapRun placed = runColmap(capture, options);
-    std::string notes;
-    for (const auto& n : placed.notes) notes += n + "\n";
+    const std::string notes = notesOf(placed);
     INFO(notes);
     CHECK(capture.intrinsics == lens);  // kept fixed, distortion and all
     // COLMAP's copy of the first frame is the frame undistorted.
