@@ -57,17 +57,21 @@ void exec(sqlite3* db, const std::string& path, const std::string& sql) {
         throw Error(ErrorKind::Storage, fmt::format("{}: {}", path, sqlite3_errmsg(db)));
 }
 
+// A text column, "" for NULL.
+std::string columnText(sqlite3_stmt* row, int column) {
+    const auto* text = sqlite3_column_text(row, column);
+    return text ? reinterpret_cast<const char*>(text) : "";
+}
+
 }  // namespace
 
 std::vector<ColmapDatabaseImage> readColmapImages(const std::string& path) {
     Connection db = open(path);
     std::vector<ColmapDatabaseImage> out;
     Statement images = prepare(db.get(), path, "SELECT image_id, camera_id, name FROM images ORDER BY image_id");
-    while (sqlite3_step(images.get()) == SQLITE_ROW) {
-        const auto* name = sqlite3_column_text(images.get(), 2);
+    while (sqlite3_step(images.get()) == SQLITE_ROW)
         out.push_back({sqlite3_column_int64(images.get(), 0), sqlite3_column_int64(images.get(), 1),
-                       name ? reinterpret_cast<const char*>(name) : ""});
-    }
+                       columnText(images.get(), 2)});
     return out;
 }
 
@@ -268,12 +272,20 @@ ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches
         out.cameras.push_back(std::move(camera));
     }
 
-    Statement images = prepare(db.get(), path, "SELECT COUNT(*) FROM images");
-    if (sqlite3_step(images.get()) == SQLITE_ROW)
-        out.images = static_cast<std::size_t>(sqlite3_column_int64(images.get(), 0));
-    Statement keypoints = prepare(db.get(), path, "SELECT COUNT(*) FROM keypoints WHERE rows > 0");
-    if (sqlite3_step(keypoints.get()) == SQLITE_ROW)
-        out.imagesWithFeatures = static_cast<std::size_t>(sqlite3_column_int64(keypoints.get(), 0));
+    // An image without a keypoints row had none written (COLMAP writes an empty one for a blank image).
+    Statement named = prepare(db.get(), path,
+                              "SELECT images.image_id, images.name, COALESCE(keypoints.rows, 0) FROM images "
+                              "LEFT JOIN keypoints ON keypoints.image_id = images.image_id");
+    std::map<sqlite3_int64, std::string> names;
+    while (sqlite3_step(named.get()) == SQLITE_ROW) {
+        const sqlite3_int64 id = sqlite3_column_int64(named.get(), 0);
+        names[id] = columnText(named.get(), 1);
+        if (sqlite3_column_int64(named.get(), 2) > 0)
+            ++out.imagesWithFeatures;
+        else
+            out.featureless.push_back(names[id]);
+    }
+    out.images = names.size();
 
     // A pair overlaps when geometric verification kept enough inlier matches (config 0 is "undefined",
     // 1 "degenerate": the matcher found no valid geometry).
@@ -298,8 +310,11 @@ ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches
     }
     out.overlappingImages = parent.size();
     std::map<sqlite3_int64, std::size_t> groups;
-    for (const auto& [image, up] : parent)
-        out.largestOverlapGroup = std::max(out.largestOverlapGroup, ++groups[root(image)]);
+    for (const auto& [image, up] : parent) {
+        const sqlite3_int64 group = root(image);
+        out.largestOverlapGroup = std::max(out.largestOverlapGroup, ++groups[group]);
+        if (auto name = names.find(image); name != names.end()) out.overlapGroup[name->second] = group;
+    }
     return out;
 }
 

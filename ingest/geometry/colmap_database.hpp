@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,10 @@ struct ColmapDatabaseSummary {
     std::size_t overlappingPairs = 0;     // image pairs with at least `minMatches` verified matches
     std::size_t overlappingImages = 0;    // images in at least one such pair
     std::size_t largestOverlapGroup = 0;  // images in the largest group linked through such pairs
+    // Each image in such a pair, by name, with its group (any number that is the same for the images of one
+    // group): where a walk taken in order parts, the images before and after lie in different groups.
+    std::map<std::string, std::int64_t> overlapGroup;
+    std::vector<std::string> featureless;  // images without a keypoint (a blank wall; a dark or blurred photo)
 };
 
 // Throws smql::Error(Input) naming the file when it is not a COLMAP database.

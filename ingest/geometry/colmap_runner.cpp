@@ -268,11 +268,51 @@ const char* originWords(IntrinsicsOrigin origin) {
     return "";
 }
 
+// "7.jpg, 17.jpg, 19.jpg, 20.jpg, 40.jpg and 8 more": the first few of `names`.
+std::string firstFew(const std::vector<std::string>& names) {
+    constexpr std::size_t kShown = 5;
+    if (names.size() <= 2) return fmt::format("{}", fmt::join(names, " and "));
+    const std::size_t shown = std::min(names.size(), kShown);
+    const std::string first = fmt::format("{}", fmt::join(names.begin(), names.begin() + shown, ", "));
+    return names.size() == shown ? first : fmt::format("{} and {} more", first, names.size() - shown);
+}
+
+// Where photos taken in order part, and which of them gave no features, by their own file names: a walk
+// through plain rooms (RTAB-Map's corridor: a blank wall, a door seen close up) breaks where it turned to a
+// view that the one before does not share. Each parting is a frame in no overlapping group with the frame before
+// it (ColmapDatabaseSummary::overlapGroup), in the capture's order: the order taken.
+std::string wherePhotosPart(const ColmapDatabaseSummary& s, const std::vector<WorkFrame>& frames) {
+    auto group = [&](const WorkFrame& f) {
+        auto g = s.overlapGroup.find(f.name);
+        return g == s.overlapGroup.end() ? std::optional<std::int64_t>() : g->second;
+    };
+    std::vector<std::string> partings, featureless;
+    for (std::size_t i = 1; i < frames.size(); ++i) {
+        const auto before = group(frames[i - 1]), after = group(frames[i]);
+        if (!before || !after || *before != *after) partings.push_back(frames[i].source.filename().string());
+    }
+    for (const auto& f : frames)
+        if (std::find(s.featureless.begin(), s.featureless.end(), f.name) != s.featureless.end())
+            featureless.push_back(f.source.filename().string());
+    std::string out;
+    if (!partings.empty())
+        out = fmt::format(
+            "; in the order taken they part {} {}, at {}, each sharing too few matches with the photo "
+            "before it",
+            partings.size(), partings.size() == 1 ? "time" : "times", firstFew(partings));
+    if (!featureless.empty())
+        out +=
+            fmt::format("; {} gave no features (a plain surface, or a dark or blurred photo)", firstFew(featureless));
+    return out;
+}
+
 // "only 2 of 8 photos overlap enough ...": what the database says, for an error. `started`: the
 // mapper grew a model, too small, rather than none.
-std::string diagnosis(const fs::path& database, std::size_t frames, int minMatches, bool started = false) {
+std::string diagnosis(const fs::path& database, const std::vector<WorkFrame>& workFrames, int minMatches,
+                      bool started = false) {
     std::error_code ec;
     if (!fs::exists(database, ec)) return {};
+    const std::size_t frames = workFrames.size();
     try {
         ColmapDatabaseSummary s = readColmapDatabase(database.string(), minMatches);
         // A cause is named only when it is most of the story: two photos of 84 without features do
@@ -294,8 +334,8 @@ std::string diagnosis(const fs::path& database, std::size_t frames, int minMatch
         if (!most(s.largestOverlapGroup, frames))
             return fmt::format(
                 "every photo overlaps with another, but they fall apart into separate groups: the largest holds only "
-                "{} of {} photos ({}): take views that link the groups, with overlap",
-                s.largestOverlapGroup, frames, overlap);
+                "{} of {} photos ({}){}: take views that link the groups, with overlap",
+                s.largestOverlapGroup, frames, overlap, wherePhotosPart(s, workFrames));
         if (started)
             return fmt::format(
                 "{} of {} photos are linked by overlap ({}), but most would not join the model: the camera may have "
@@ -493,7 +533,7 @@ private:
         if (code == 0) return true;
         if (failureIsAnswer) return false;
         std::string facts =
-            step == "feature_extractor" ? std::string() : diagnosis(database_, workFrames_.size(), options_.minMatches);
+            step == "feature_extractor" ? std::string() : diagnosis(database_, workFrames_, options_.minMatches);
         throw Error(ErrorKind::Input,
                     fmt::format("colmap {} failed (exit status {}){}{}; its output is in {}", step, code,
                                 facts.empty() ? "" : ": ", facts, run_.logPath),
@@ -790,7 +830,7 @@ private:
         if (run_.points == 0)
             throw Error(ErrorKind::Input,
                         fmt::format("colmap point_triangulator found no 3D point: {}; its output is in {}",
-                                    diagnosis(database_, workFrames_.size(), options_.minMatches), run_.logPath),
+                                    diagnosis(database_, workFrames_, options_.minMatches), run_.logPath),
                         std::nullopt, kRetryHint);
     }
 
@@ -854,7 +894,7 @@ private:
         if (!best)
             throw Error(ErrorKind::Input,
                         fmt::format("colmap mapper made no model: {}; its output is in {}",
-                                    diagnosis(database_, frames, options_.minMatches), run_.logPath),
+                                    diagnosis(database_, workFrames_, options_.minMatches), run_.logPath),
                         std::nullopt, kRetryHint);
         if (2 * best->frames.size() < frames)
             throw Error(
@@ -867,7 +907,7 @@ private:
                                 : fmt::format("; {} more are placed in other models that share too "
                                               "few frames with it to be joined",
                                               outcome.placedApart),
-                            diagnosis(database_, frames, options_.minMatches, true), run_.logPath),
+                            diagnosis(database_, workFrames_, options_.minMatches, true), run_.logPath),
                 std::nullopt, kRetryHint);
         return std::move(*best);
     }

@@ -326,10 +326,13 @@ TEST_CASE("two COLMAP models that share frames are joined into one", "[colmap]")
 }
 
 // Three places, five neighbouring photos of each: a walk through a generated room, the real dining
-// room of ../shared/data/rgbd-dining and TUM's real office (../shared/data/captures). COLMAP places each
-// five in a model of its own, which share no frame, so no model holds half of the 15; the refusal says
-// that the rest are placed apart, in models that could not be joined.
-TEST_CASE("frames placed in models that share no frame are refused, saying where the rest are", "[colmap]") {
+// room of ../shared/data/rgbd-dining and TUM's real office (../shared/data/captures), and a plain grey photo
+// between the office's and the walk's. COLMAP places each five in a model of its own, which share no frame, so no
+// model holds half of the 16; the refusal says that the rest are placed apart, in models that could not be joined,
+// and where, in the order taken, the photos part, by their names: at the first of each place, and at the plain
+// photo, which gave no features.
+TEST_CASE("frames placed in models that share no frame are refused, saying where the rest are and where they part",
+          "[colmap]") {
     const fs::path office = fs::path(SMQL_SHARED_DATA) / "captures" / "tum-fr3-office-photos";
     if (!fs::is_directory(office)) {
         WARN("skipped: " << office.string() << " is absent");
@@ -348,6 +351,7 @@ TEST_CASE("frames placed in models that share no frame are refused, saying where
     std::sort(shots.begin(), shots.end());
     REQUIRE(shots.size() >= 5);
     for (int i = 0; i < 5; ++i) fs::copy_file(shots[i], photos / fmt::format("office-{}.png", i + 1));
+    REQUIRE(cv::imwrite((photos / "plain.png").string(), cv::Mat(480, 640, CV_8UC3, cv::Scalar(128, 128, 128))));
     Capture capture = readCapture(photos.string());
     KeptWork work;
     try {
@@ -359,8 +363,13 @@ TEST_CASE("frames placed in models that share no frame are refused, saying where
         if (std::size_t at = message.find("/tmp/smql-colmap-"); at != std::string::npos)
             work.path = message.substr(at, std::string("/tmp/smql-colmap-XXXXXX").size());
         CHECK(e.kind() == ErrorKind::Input);
-        CHECK_THAT(message, Catch::Matches(".*placed only [1-7] of 15 frames together \\(its largest model\\); "
+        CHECK_THAT(message, Catch::Matches(".*placed only [1-7] of 16 frames together \\(its largest model\\); "
                                            "[0-9]+ more are placed in other models that share too few "
                                            "frames with it to be joined: .*"));
+        CHECK_THAT(message, Catch::Contains("they fall apart into separate groups: the largest holds only 5 of 16 "
+                                            "photos"));
+        CHECK_THAT(message, Catch::Contains("; in the order taken they part 3 times, at office-1.png, plain.png, "
+                                            "walk-1.png, each sharing too few matches with the photo before it; "
+                                            "plain.png gave no features"));
     }
 }
