@@ -277,6 +277,15 @@ std::string firstFew(const std::vector<std::string>& names) {
     return names.size() == shown ? first : fmt::format("{} and {} more", first, names.size() - shown);
 }
 
+// The file names of the frames that `kept` holds, in the capture's order.
+template <class Kept>
+std::vector<std::string> fileNames(const std::vector<WorkFrame>& frames, Kept kept) {
+    std::vector<std::string> out;
+    for (const auto& f : frames)
+        if (kept(f)) out.push_back(f.source.filename().string());
+    return out;
+}
+
 // Where photos taken in order part, and which of them gave no features, by their own file names: a walk
 // through plain rooms (RTAB-Map's corridor: a blank wall, a door seen close up) breaks where it turned to a
 // view that the one before does not share. Each parting is a frame in no overlapping group with the frame before
@@ -286,14 +295,14 @@ std::string wherePhotosPart(const ColmapDatabaseSummary& s, const std::vector<Wo
         auto g = s.overlapGroup.find(f.name);
         return g == s.overlapGroup.end() ? std::optional<std::int64_t>() : g->second;
     };
-    std::vector<std::string> partings, featureless;
+    std::vector<std::string> partings;
     for (std::size_t i = 1; i < frames.size(); ++i) {
         const auto before = group(frames[i - 1]), after = group(frames[i]);
         if (!before || !after || *before != *after) partings.push_back(frames[i].source.filename().string());
     }
-    for (const auto& f : frames)
-        if (std::find(s.featureless.begin(), s.featureless.end(), f.name) != s.featureless.end())
-            featureless.push_back(f.source.filename().string());
+    const std::vector<std::string> featureless = fileNames(frames, [&](const WorkFrame& f) {
+        return std::find(s.featureless.begin(), s.featureless.end(), f.name) != s.featureless.end();
+    });
     std::string out;
     if (!partings.empty())
         out = fmt::format(
@@ -326,11 +335,14 @@ std::string diagnosis(const fs::path& database, const std::vector<WorkFrame>& wo
         std::string overlap = fmt::format("{} {} of photos {} {} or more verified matches", s.overlappingPairs,
                                           s.overlappingPairs == 1 ? "pair" : "pairs",
                                           s.overlappingPairs == 1 ? "shares" : "share", minMatches);
-        if (!most(s.overlappingImages, frames))
+        if (!most(s.overlappingImages, frames)) {
+            const auto alone =
+                fileNames(workFrames, [&](const WorkFrame& f) { return !s.overlapGroup.contains(f.name); });
             return fmt::format(
-                "only {} of {} photos overlap enough with another ({}): take more views with overlap, each "
-                "neighbouring photo seeing much of what the last one saw",
-                s.overlappingImages, frames, overlap);
+                "only {} of {} photos overlap enough with another ({}); {} {} with none: take more views with "
+                "overlap, each neighbouring photo seeing much of what the last one saw",
+                s.overlappingImages, frames, overlap, firstFew(alone), alone.size() == 1 ? "overlaps" : "overlap");
+        }
         if (!most(s.largestOverlapGroup, frames))
             return fmt::format(
                 "every photo overlaps with another, but they fall apart into separate groups: the largest holds only "

@@ -119,6 +119,7 @@ TEST_CASE("photos that do not overlap fail at the mapper, saying how many overla
         const std::string& message = e.message();
         CHECK(message.find("colmap mapper") != std::string::npos);
         CHECK(message.find("only 2 of 8 photos overlap enough") != std::string::npos);
+        CHECK_THAT(message, Catch::Contains("; p3.png, p4.png, p5.png, p6.png, p7.png and 1 more overlap with none"));
         CHECK(message.find("take more views with overlap") != std::string::npos);
         CHECK(message.find("colmap.log") != std::string::npos);
         // The failed run's folder stays for its log; it goes with the test.
