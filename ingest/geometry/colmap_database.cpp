@@ -283,7 +283,7 @@ ColmapDatabaseSummary readColmapDatabase(const std::string& path, int minMatches
         if (sqlite3_column_int64(named.get(), 2) > 0)
             ++out.imagesWithFeatures;
         else
-            out.featureless.push_back(names[id]);
+            out.featureless.insert(names[id]);
     }
     out.images = names.size();
 

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,7 +33,7 @@ struct ColmapDatabaseSummary {
     // Each image in such a pair, by name, with its group (any number that is the same for the images of one
     // group): where a walk taken in order parts, the images before and after lie in different groups.
     std::map<std::string, std::int64_t> overlapGroup;
-    std::vector<std::string> featureless;  // images without a keypoint (a blank wall; a dark or blurred photo)
+    std::set<std::string> featureless;  // images without a keypoint (a blank wall; a dark or blurred photo)
 };
 
 // Throws smql::Error(Input) naming the file when it is not a COLMAP database.

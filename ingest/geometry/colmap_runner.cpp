@@ -300,9 +300,8 @@ std::string wherePhotosPart(const ColmapDatabaseSummary& s, const std::vector<Wo
         const auto before = group(frames[i - 1]), after = group(frames[i]);
         if (!before || !after || *before != *after) partings.push_back(frames[i].source.filename().string());
     }
-    const std::vector<std::string> featureless = fileNames(frames, [&](const WorkFrame& f) {
-        return std::find(s.featureless.begin(), s.featureless.end(), f.name) != s.featureless.end();
-    });
+    const std::vector<std::string> featureless =
+        fileNames(frames, [&](const WorkFrame& f) { return s.featureless.contains(f.name); });
     std::string out;
     if (!partings.empty())
         out = fmt::format(
@@ -586,10 +585,17 @@ private:
         return pairs;
     }
 
+    // The database's images' names by their ids.
+    std::map<long long, std::string> namesById() const {
+        std::map<long long, std::string> names;
+        for (const auto& image : readColmapImages(database_.string())) names.emplace(image.id, image.name);
+        return names;
+    }
+
     // The database's images' names, in name order.
     std::vector<std::string> databaseNames() const {
         std::vector<std::string> names;
-        for (const auto& image : readColmapImages(database_.string())) names.push_back(image.name);
+        for (auto& [id, name] : namesById()) names.push_back(std::move(name));
         std::sort(names.begin(), names.end());
         return names;
     }
@@ -774,8 +780,7 @@ private:
                                });
         std::size_t count = 0;
         if (everyPair) {
-            std::map<long long, std::string> names;
-            for (const auto& image : readColmapImages(database_.string())) names.emplace(image.id, image.name);
+            const std::map<long long, std::string> names = namesById();
             auto named = [&](const std::vector<ColmapPairCount>& pairs) {
                 std::vector<std::pair<std::string, std::string>> out;
                 for (const auto& pair : pairs) out.emplace_back(names.at(pair.first), names.at(pair.second));

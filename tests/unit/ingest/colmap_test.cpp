@@ -86,6 +86,34 @@ void checkOnlyPlaced(const Capture& capture, const std::string& place) {
         CHECK(frame.pose.has_value() == (frame.colorPath.find(place) != std::string::npos));
 }
 
+// Real photos of two places, their names interleaved (TUM's office photos, then a photo of the dining room,
+// in turn): the next photo of each place is two names on.
+Capture interleavedPlaces(const ScratchDir& dir) {
+    const std::filesystem::path shared(SMQL_SHARED_DATA);
+    auto firstPhotos = [](const std::filesystem::path& folder, std::size_t count) {
+        std::vector<std::filesystem::path> all;
+        for (const auto& entry : std::filesystem::directory_iterator(folder))
+            if (entry.path().extension() == ".png") all.push_back(entry.path());
+        std::sort(all.begin(), all.end());
+        all.resize(std::min(all.size(), count));
+        return all;
+    };
+    const auto office = firstPhotos(shared / "captures/tum-fr3-office-photos", 6);
+    const auto dining = firstPhotos(shared / "rgbd-dining/color", 5);
+    REQUIRE(office.size() == 6);
+    REQUIRE(dining.size() == 5);
+    const auto photos = dir.path / "photos";
+    std::filesystem::create_directories(photos);
+    for (std::size_t i = 0; i < office.size(); ++i) {
+        std::filesystem::copy_file(office[i], photos / fmt::format("{:02d}-office.png", 2 * i));
+        if (i < dining.size())
+            std::filesystem::copy_file(dining[i], photos / fmt::format("{:02d}-dining.png", 2 * i + 1));
+    }
+    Capture capture = readCapture(photos.string());
+    REQUIRE(capture.frames.size() == 11);
+    return capture;
+}
+
 }  // namespace
 
 // COLMAP runs once; its poses and sparse points then place the masks, the detections with their
@@ -168,36 +196,6 @@ TEST_CASE(
     CHECK(matchedHere == 2);
     CHECK(run.registered >= 0.9 * capture.frames.size());
 }
-
-// Real photos of two places, their names interleaved (TUM's office photos, then a photo of the dining room,
-// in turn): the next photo of each place is two names on.
-namespace {
-Capture interleavedPlaces(const ScratchDir& dir) {
-    const std::filesystem::path shared(SMQL_SHARED_DATA);
-    auto firstPhotos = [](const std::filesystem::path& folder, std::size_t count) {
-        std::vector<std::filesystem::path> all;
-        for (const auto& entry : std::filesystem::directory_iterator(folder))
-            if (entry.path().extension() == ".png") all.push_back(entry.path());
-        std::sort(all.begin(), all.end());
-        all.resize(std::min(all.size(), count));
-        return all;
-    };
-    const auto office = firstPhotos(shared / "captures/tum-fr3-office-photos", 6);
-    const auto dining = firstPhotos(shared / "rgbd-dining/color", 5);
-    REQUIRE(office.size() == 6);
-    REQUIRE(dining.size() == 5);
-    const auto photos = dir.path / "photos";
-    std::filesystem::create_directories(photos);
-    for (std::size_t i = 0; i < office.size(); ++i) {
-        std::filesystem::copy_file(office[i], photos / fmt::format("{:02d}-office.png", 2 * i));
-        if (i < dining.size())
-            std::filesystem::copy_file(dining[i], photos / fmt::format("{:02d}-dining.png", 2 * i + 1));
-    }
-    Capture capture = readCapture(photos.string());
-    REQUIRE(capture.frames.size() == 11);
-    return capture;
-}
-}  // namespace
 
 // Matched with the photo after each alone (COLMAP's overlap 2), no two photos of one place are matched and no
 // model starts; matched again with the photos two on (its quadratic overlap), the office's six make a model, and
