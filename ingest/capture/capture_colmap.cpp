@@ -418,6 +418,7 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
     std::stable_sort(images.begin(), images.end(),
                      [](const Image& a, const Image& b) { return naturalLess(a.name, b.name); });
     bool distorted = false, perFrame = false;
+    ImageFileChecks checks(kColmapHint);
     for (std::size_t i = 0; i < images.size(); ++i) {
         const Image& image = images[i];
         auto camera = cameras.find(image.camera);
@@ -433,7 +434,7 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
         fs::path colorPath = imageDir / image.name;
         if (!fs::exists(colorPath, ec))
             fail(image.where, fmt::format("image '{}' is not in {}", image.name, imageDir.string()), kColmapHint);
-        checkImageFile(colorPath, "colour image", kColmapHint);
+        checks.check(colorPath, "colour image");
 
         CaptureFrame frame;
         frame.index = static_cast<int>(i);
@@ -447,6 +448,7 @@ Capture readColmap(const fs::path& modelDir, const CaptureOptions& options) {
         }
         capture.frames.push_back(std::move(frame));
     }
+    checks.refuseUnreadable();
 
     takeOptionIntrinsics(capture, options, camerasFile.string());
     if (distorted && !hasOptionIntrinsics(options))

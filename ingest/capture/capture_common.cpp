@@ -289,11 +289,54 @@ void refuseHugeImage(const fs::path& file, std::string_view what) {
 
 }  // namespace
 
-void checkImageFile(const fs::path& file, std::string_view what, std::string_view hint) {
+std::optional<std::string> cutShort(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
+    const std::streamoff size = in.tellg();
+    if (!in || size <= 0) return std::nullopt;
+    // `count` bytes from `at`, fewer past the end.
+    auto bytesAt = [&](std::streamoff at, std::streamoff count) {
+        std::string bytes(static_cast<std::size_t>(std::max<std::streamoff>(0, std::min(count, size - at))), '\0');
+        in.seekg(at);
+        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        bytes.resize(static_cast<std::size_t>(in.gcount()));
+        return bytes;
+    };
+    const std::string head = bytesAt(0, 1024);
+    if (head.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) {
+        constexpr std::streamoff kTail = 4096;
+        if (bytesAt(std::max<std::streamoff>(0, size - kTail), kTail).find("IEND") == std::string::npos)
+            return "a PNG without its end chunk";
+        return std::nullopt;
+    }
+    if (head.compare(0, 2, "\xFF\xD8") == 0) {
+        if (bytesAt(size - 2, 2) == "\xFF\xD9") return std::nullopt;
+        // A trailer after the end-of-image marker, or no marker: the marker looked for after the first scan's
+        // start, where a 0xFF byte is followed by 0x00 (stuffing), a restart marker or another marker.
+        const std::string bytes = bytesAt(0, size);
+        const std::size_t scan = bytes.find("\xFF\xDA");
+        if (scan != std::string::npos && bytes.find("\xFF\xD9", scan) != std::string::npos) return std::nullopt;
+        return "a JPEG without its end-of-image marker";
+    }
+    if (const auto pgm = readPgmHeader({reinterpret_cast<const std::uint8_t*>(head.data()), head.size()})) {
+        const auto expected = static_cast<std::streamoff>(pgm->dataOffset) +
+                              static_cast<std::streamoff>(pgm->width) * pgm->height * (pgm->maxValue > 255 ? 2 : 1);
+        if (size < expected)
+            return fmt::format("a PGM of {} x {} pixels with {} of its {} bytes", pgm->width, pgm->height, size,
+                               expected);
+    }
+    return std::nullopt;
+}
+
+bool ImageFileChecks::check(const fs::path& file, std::string_view what) {
     std::error_code ec;
     auto status = fs::status(file, ec);
-    if (!fs::exists(status)) fail(file.string(), fmt::format("{} is missing", what), hint);
-    if (!fs::is_regular_file(status)) fail(file.string(), fmt::format("{} is not a regular file", what), hint);
+    auto unreadable = [&](std::string why) {
+        unreadable_.emplace_back(file.string(), std::move(why));
+        return false;
+    };
+    if (!fs::exists(status)) return unreadable(fmt::format("{} is missing", what));
+    if (!fs::is_regular_file(status)) return unreadable(fmt::format("{} is not a regular file", what));
+    if (fs::file_size(file, ec) == 0 && !ec) return unreadable(fmt::format("{} is empty", what));
     refuseHugeImage(file, what);
     bool readable = false;
     try {
@@ -302,8 +345,24 @@ void checkImageFile(const fs::path& file, std::string_view what, std::string_vie
         readable = false;
     }
     if (!readable)
-        fail(file.string(), fmt::format("{}: not an image OpenCV can read (unknown or damaged file signature)", what),
-             hint);
+        return unreadable(fmt::format("{}: not an image OpenCV can read (unknown or damaged file signature)", what));
+    if (const auto cut = cutShort(file))
+        return unreadable(fmt::format("{} cut short, {}: a copy or a download that stopped", what, *cut));
+    return true;
+}
+
+void ImageFileChecks::refuseUnreadable() const {
+    if (unreadable_.empty()) return;
+    const std::string hint = hint_ + "; copy the files named again, or remove them";
+    if (unreadable_.size() == 1) fail(unreadable_.front().first, unreadable_.front().second, hint);
+    // The reasons hold commas: the files are parted by semicolons.
+    constexpr std::size_t kNamed = 5;
+    std::string named;
+    for (std::size_t i = 0; i < std::min(kNamed, unreadable_.size()); ++i)
+        named += fmt::format("{}{} ({})", i == 0 ? "" : "; ", unreadable_[i].first, unreadable_[i].second);
+    if (unreadable_.size() > kNamed) named += fmt::format("; and {} more", unreadable_.size() - kNamed);
+    throw Error(ErrorKind::Input, fmt::format("{} image files cannot be read: {}", unreadable_.size(), named),
+                std::nullopt, hint);
 }
 
 namespace {

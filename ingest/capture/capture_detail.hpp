@@ -123,9 +123,29 @@ Intrinsics intrinsicsFrom35mm(double focal35mm, int width, int height);
 // rotation's determinant is not positive) or a focal length is not positive.
 void refuseMirroredCameras(const Capture& capture);
 
-// The image must exist and have a signature OpenCV recognises (a cheap check
-// reading the file's first bytes). `what` names its role ("colour image").
-void checkImageFile(const fs::path& file, std::string_view what, std::string_view hint);
+// A capture's image files, checked before anything is decoded by a cheap look at each file's bytes: each
+// must exist, have a signature OpenCV recognises, and end where its format says it ends (cutShort). An image
+// cut short decodes in part without an error (libjpeg fills the rest grey), so it would be taken as it is; and
+// a capture copied or downloaded in part has many such, so one error names every one (refuseUnreadable).
+// An image past kMaxImagePixels is refused at once, with its own hint.
+class ImageFileChecks {
+public:
+    explicit ImageFileChecks(std::string_view hint) : hint_(hint) {}
+    // `what` names the file's role ("colour image"). Whether it can be read.
+    bool check(const fs::path& file, std::string_view what);
+    // Throws smql::Error(Input) naming each file that cannot be read, and why, when any cannot.
+    void refuseUnreadable() const;
+
+private:
+    std::string hint_;
+    std::vector<std::pair<std::string, std::string>> unreadable_;  // the file, why
+};
+
+// Why a file with a PNG's, a JPEG's or a binary PGM's signature ends before its format says it ends: a PNG
+// without its end chunk (IEND) in its last 4 KiB, a JPEG with no end-of-image marker after its first scan (a
+// trailer after that marker, as a phone's motion photo has, is no damage), a PGM shorter than its header's
+// pixels; nullopt otherwise (other formats are left to their decoders).
+std::optional<std::string> cutShort(const fs::path& file);
 
 // The most pixels an image may have (docs/ingest.md, "Bounds"): 100 megapixels, 300 MB decoded.
 // Checked on the file's header before anything is decoded.

@@ -66,14 +66,16 @@ Capture readImageFolder(const fs::path& dir, const CaptureOptions& options) {
     Capture capture;
     capture.layout = "images";
     capture.metric = false;
+    ImageFileChecks checks(kImagesHint);
     for (std::size_t i = 0; i < images.size(); ++i) {
-        checkImageFile(images[i], "image", kImagesHint);
+        checks.check(images[i], "image");
         CaptureFrame frame;
         frame.index = static_cast<int>(i);
         frame.time = options.fps > 0 ? i / options.fps : static_cast<double>(i);
         frame.colorPath = images[i].string();
         capture.frames.push_back(std::move(frame));
     }
+    checks.refuseUnreadable();
     RawFrame first = readRawFrame(capture.frames.front());
     const int width = first.color.cols, height = first.color.rows;
     const fs::path cameraFile = dir / "camera.json";

@@ -176,6 +176,7 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
     bool distorted = false, fisheye = false;
     std::size_t withDepth = 0;
     std::vector<std::string> absent;  // frames listed whose image is not in the folder: skipped
+    ImageFileChecks images(kNerfstudioHint);
     for (std::size_t i = 0; i < frames.size(); ++i) {
         Field f = frames[i];
         FrameEntry entry;
@@ -187,12 +188,12 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
             continue;
         }
         const fs::path& color = *found;
-        checkImageFile(color, "colour image", kNerfstudioHint);
+        if (!images.check(color, "colour image")) continue;  // named with the others after the loop
         entry.frame.colorPath = color.string();
         entry.frame.pose = readTransform(f.at("transform_matrix"), entry.filePath);
         if (std::optional<Field> depth = f.find("depth_file_path")) {
             fs::path depthPath = resolveImage(base, *depth);
-            checkImageFile(depthPath, "depth image", kNerfstudioHint);
+            images.check(depthPath, "depth image");
             entry.frame.depthPath = depthPath.string();
             ++withDepth;
         }
@@ -206,6 +207,7 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
         distorted = distorted || entry.intrinsics.distorted();
         entries.push_back(std::move(entry));
     }
+    images.refuseUnreadable();
 
     if (entries.empty())
         frames.fail(fmt::format("none of its {} frames' images is in the folder (the first: {})", frames.size(),

@@ -201,14 +201,15 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
     std::vector<Pose> poses = readPoseFile(poseFile);
     const std::map<long long, Pose> poseOf = posesByFrame(poses, colors, depths, poseFile, capture.notes);
 
+    ImageFileChecks images(kRgbdHint);
     for (std::size_t i = 0; i < colors.size(); ++i) {
         const auto& [number, colorPath] = colors[i];
         auto depth = depths.find(number);
         if (depth == depths.end())
             fail(depthDir.string(), fmt::format("no depth image for frame {} ({})", number, colorPath.string()),
                  kRgbdHint);
-        checkImageFile(colorPath, "colour image", kRgbdHint);
-        checkImageFile(depth->second, "depth image", kRgbdHint);
+        images.check(colorPath, "colour image");
+        images.check(depth->second, "depth image");
         CaptureFrame frame;
         frame.index = static_cast<int>(i);
         frame.time = frameTime(frame.index, options.fps);
@@ -221,12 +222,13 @@ Capture readRgbd(const fs::path& dir, const CaptureOptions& options) {
                      fmt::format("no instance mask for frame {} ({}): with instance/, every frame needs one", number,
                                  colorPath.string()),
                      kRgbdHint);
-            checkImageFile(mask->second, "instance mask", kRgbdHint);
+            images.check(mask->second, "instance mask");
             frame.instancePath = mask->second.string();
         }
         frame.pose = poseOf.at(number);
         capture.frames.push_back(std::move(frame));
     }
+    images.refuseUnreadable();
     std::vector<long long> colourless;
     for (const auto& depth : depths)
         if (std::none_of(colors.begin(), colors.end(), [&](const auto& c) { return c.first == depth.first; }))
@@ -381,20 +383,22 @@ Capture readTum(const fs::path& dir, const CaptureOptions& options) {
     Sampler sampler(options.fps, 1e-3);
     double start = pairs.front().first->time;
     int withoutPose = 0;
+    ImageFileChecks images(kTumHint);
     for (const auto& [colour, depthImage] : pairs) {
         if (!sampler.take(colour->time)) continue;
         CaptureFrame frame;
         frame.index = static_cast<int>(capture.frames.size());
         frame.time = colour->time - start;
         fs::path colorPath = dir / colour->file, depthPath = dir / depthImage->file;
-        checkImageFile(colorPath, "colour image", kTumHint);
-        checkImageFile(depthPath, "depth image", kTumHint);
+        images.check(colorPath, "colour image");
+        images.check(depthPath, "depth image");
         frame.colorPath = colorPath.string();
         frame.depthPath = depthPath.string();
         if (!groundTruth.empty()) frame.pose = poseAt(groundTruth, colour->time);
         if (!frame.pose) ++withoutPose;
         capture.frames.push_back(std::move(frame));
     }
+    images.refuseUnreadable();
     if (capture.frames.size() < pairs.size())
         capture.notes.push_back(fmt::format("{} of {} frames kept, {:g} a second (--fps; --fps 0 keeps every frame)",
                                             capture.frames.size(), pairs.size(), options.fps));

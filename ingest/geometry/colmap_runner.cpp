@@ -1010,9 +1010,10 @@ private:
         capture_.metric = false;
         run_.points = capture_.points.size();
         if (run_.registered < capture_.frames.size()) {
+            // Every frame without a pose, those whose image could not be read for COLMAP too.
             std::vector<std::string> left;
-            for (const WorkFrame& w : workFrames_)
-                if (!capture_.frames[w.frame].pose) left.push_back(w.source.filename().string());
+            for (const CaptureFrame& frame : capture_.frames)
+                if (!frame.pose) left.push_back(fs::path(frame.colorPath).filename().string());
             note(fmt::format("COLMAP registered {} of {} frames; left out: {}", run_.registered, capture_.frames.size(),
                              model::listFirst(left, 12)));
         }

@@ -2,6 +2,7 @@
 // text files) and is an Input error.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "capture_support.hpp"
@@ -119,6 +120,57 @@ TEST_CASE("a PGM depth image past 100 megapixels is refused on its header's word
     requireError([&] { readCapture(dir.path()); }, {dir.path("depth/2.pgm"), "20000 x 20000 pixels", "100 megapixels"});
 }
 
+namespace {
+
+// The first `bytes` of a file: a copy or a download that stopped.
+std::string cutCopy(const TempDir& dir, const fs::path& from, const std::string& name, std::size_t bytes) {
+    std::ifstream in(from, std::ios::binary);
+    std::string content(bytes, '\0');
+    in.read(content.data(), static_cast<std::streamsize>(bytes));
+    content.resize(static_cast<std::size_t>(in.gcount()));
+    return dir.write(name, content);
+}
+
+}  // namespace
+
+TEST_CASE("image files that cannot be read are named together, before any is decoded", "[capture][errors]") {
+    TempDir dir;
+    const fs::path office = fs::path(SMQL_SHARED_DATA) / "captures" / "tum-fr3-office-photos";
+    const std::string photo = (office / "1341847985.746954.png").string();
+    SECTION("a folder of photos: empty, not an image, cut short") {
+        for (const char* name : {"1341847980.722988.png", "1341847981.726650.png", "1341847982.730674.png"})
+            fs::copy_file(office / name, dir.root() / name);
+        const std::string empty = dir.write("empty.png", "");
+        const std::string text = dir.write("notes.jpg", "not an image");
+        const std::string cut = cutCopy(dir, photo, "half.png", fs::file_size(photo) / 2);
+        requireError([&] { readCapture(dir.path()); }, {"3 image files cannot be read", empty + " (image is empty)",
+                                                        text + " (image: not an image OpenCV can read",
+                                                        cut + " (image cut short, a PNG without its end chunk"});
+    }
+    SECTION("a JPEG cut short is refused; one with a trailer after its end, as a phone's motion photo, is read") {
+        std::vector<std::uint8_t> jpeg;
+        cv::imencode(".jpg", cv::imread(photo), jpeg);
+        const std::string whole(jpeg.begin(), jpeg.end());
+        REQUIRE(whole.substr(whole.size() - 2) == "\xFF\xD9");
+        const std::string cut = dir.write("cut.jpg", whole.substr(0, whole.size() / 2));
+        CHECK(capture_detail::cutShort(cut) == "a JPEG without its end-of-image marker");
+        const std::string motion = dir.write("motion.jpg", whole + "\0\0\0\x18" + "ftypmp42" + std::string(4096, 'v'));
+        CHECK(capture_detail::cutShort(motion) == std::nullopt);
+        CHECK(capture_detail::cutShort(photo) == std::nullopt);
+        // OpenCV reads the cut one without an error, its lost half grey: it would be taken as it is.
+        CHECK(!cv::imread(cut).empty());
+    }
+    SECTION("an RGB-D capture's colour and depth images cut short, named in one error") {
+        for (const char* folder : {"color", "depth"}) fs::copy(fs::path(diningPath()) / folder, dir.root() / folder);
+        fs::copy_file(fs::path(diningPath()) / "pose.txt", dir.root() / "pose.txt");
+        const std::string colour = cutCopy(dir, diningPath() + "/color/3.png", "color/3.png", 20000);
+        const std::string depth = cutCopy(dir, diningPath() + "/depth/4.pgm", "depth/4.pgm", 20000);
+        requireError([&] { readCapture(dir.path()); },
+                     {"2 image files cannot be read", colour + " (colour image cut short, a PNG without its end chunk",
+                      depth + " (depth image cut short, a PGM of 640 x 480 pixels with 20000 of its"});
+    }
+}
+
 TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
     TempDir dir;
     writeRgbd(dir, 2);
@@ -157,9 +209,13 @@ TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
         dir.write("color/2.png", "this is not a PNG");
         requireError([&] { readCapture(dir.path()); }, {dir.path("color/2.png"), "not an image OpenCV can read"});
     }
-    SECTION("a damaged first image (valid signature, broken data)") {
-        dir.write("color/1.png", std::string("\x89PNG\r\n\x1a\n", 8) + "truncated");
+    SECTION("a damaged first image (a PNG's signature and end, broken data between)") {
+        dir.write("color/1.png", std::string("\x89PNG\r\n\x1a\n", 8) + "damaged" + std::string("\0\0\0\0IEND", 8));
         requireError([&] { readCapture(dir.path()); }, {dir.path("color/1.png"), "cannot decode"});
+    }
+    SECTION("a first image cut short (a PNG's signature, no end)") {
+        dir.write("color/1.png", std::string("\x89PNG\r\n\x1a\n", 8) + "truncated");
+        requireError([&] { readCapture(dir.path()); }, {dir.path("color/1.png"), "cut short"});
     }
     SECTION("a depth image of the wrong size: readCapture checks the first frame") {
         writeDepth(dir, "depth/1.png", 32, 24);
