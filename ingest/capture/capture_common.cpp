@@ -310,8 +310,8 @@ std::optional<std::string> cutShort(const fs::path& file) {
     }
     if (head.compare(0, 2, "\xFF\xD8") == 0) {
         if (bytesAt(size - 2, 2) == "\xFF\xD9") return std::nullopt;
-        // A trailer after the end-of-image marker, or no marker: the marker looked for after the first scan's
-        // start, where a 0xFF byte is followed by 0x00 (stuffing), a restart marker or another marker.
+        // A trailer after the end-of-image marker, or no marker. In a scan's coded data a 0xFF byte is followed
+        // by 0x00 (stuffing) or a marker, so the first 0xFF 0xD9 after the first scan's start is that marker.
         const std::string bytes = bytesAt(0, size);
         const std::size_t scan = bytes.find("\xFF\xDA");
         if (scan != std::string::npos && bytes.find("\xFF\xD9", scan) != std::string::npos) return std::nullopt;
