@@ -167,6 +167,34 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
     return widestAtTop ? underTop(std::move(kept), surface, high) : kept;
 }
 
+std::size_t mergeHullsStoredTwice(std::vector<PlacedTrack>& placed, std::vector<ObjectTrack>& tracks) {
+    std::stable_sort(placed.begin(), placed.end(), [](const PlacedTrack& a, const PlacedTrack& b) {
+        return model::volume(a.box) > model::volume(b.box);
+    });
+    std::size_t merged = 0;
+    for (std::size_t small = placed.size(); small-- > 0;) {
+        ObjectTrack& smaller = tracks[placed[small].track];
+        if (!smaller.carved || isOpening(smaller.category)) continue;
+        for (std::size_t large = 0; large < small; ++large) {
+            ObjectTrack& larger = tracks[placed[large].track];
+            if (!larger.carved || kindName(larger.category) != kindName(smaller.category) ||
+                !storedTwice(placed[small].box, placed[large].box))
+                continue;
+            larger.views.insert(larger.views.end(), std::make_move_iterator(smaller.views.begin()),
+                                std::make_move_iterator(smaller.views.end()));
+            cv::Mat colors = placed[large].colors;
+            colors.push_back(placed[small].colors);
+            placed[large].colors = colors;
+            placed.erase(placed.begin() + static_cast<std::ptrdiff_t>(small));
+            ++merged;
+            break;
+        }
+    }
+    std::sort(placed.begin(), placed.end(),
+              [](const PlacedTrack& a, const PlacedTrack& b) { return a.track < b.track; });
+    return merged;
+}
+
 namespace {
 
 // With depth, a thing of a kind that always stands on the floor (those with a typical height: a fridge, a
@@ -201,6 +229,9 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
     std::vector<TrackedNode> made;
     const std::size_t steps = this->steps();
     tracks = finder.fuse(std::move(tracks), aligned, walls, progress);
+    // Each track's points and box first, then its node: hulls carved without depth are judged against each other
+    // before any is stored.
+    std::vector<PlacedTrack> placed;
     for (std::size_t t = 0; t < tracks.size(); ++t) {
         auto& track = tracks[t];
         progress.advanced((t + 1) * steps / tracks.size());
@@ -240,6 +271,18 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
+        placed.push_back({t, std::move(colors), box});
+    }
+    if (const std::size_t merged = mergeHullsStoredTwice(placed, tracks))
+        progress.note(fmt::format(
+            "objects: {} hull(s) carved without depth lay mostly inside another of their kind: one thing stored "
+            "twice, merged into it",
+            merged));
+
+    for (auto& [t, colors, box] : placed) {
+        auto& track = tracks[t];
+        const auto& category = track.category;
+        const bool opening = isOpening(category);
         // A name far too small for its box (a detector's 1.8 m "cake") or too large for it (a 16 cm slab of a
         // "bed"), or, for a hull whose top was held to its surfaces, of a kind that stands far lower than the hull
         // (a counter's hull named "table"), is kept only as a guess, as is one fusion did not keep (a toilet in a

@@ -33,6 +33,20 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
                                        const std::vector<model::Vec3>& cameras, bool widestAtTop,
                                        std::optional<double> tableTop = std::nullopt);
 
+// A track's place once the room is aligned: its colour samples and its box.
+struct PlacedTrack {
+    std::size_t track;  // in ObjectsStage::tracks
+    cv::Mat colors;
+    model::Box box;
+};
+
+// Hulls carved without depth of one kind, the smaller mostly inside the larger (plausibility.hpp: storedTwice),
+// are one thing stored twice: its views went to two tracks that share frames, so they were not joined as one
+// thing split in two (ray_tracks.hpp: mergeSplitTracks). The smaller's views join the larger's; the larger's
+// box stays. ScanNet's apartment as 100 photos stored a toilet, a book and a sofa twice each, the plausibility
+// check warning of each. Returns how many were merged.
+std::size_t mergeHullsStoredTwice(std::vector<PlacedTrack>& placed, std::vector<ObjectTrack>& tracks);
+
 struct ObjectsStage {
     static constexpr std::string_view kName = "objects";
     const Capture& capture;

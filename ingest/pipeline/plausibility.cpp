@@ -367,6 +367,10 @@ const model::Node* restingOn(const model::Node& n, const std::vector<const model
 
 }  // namespace
 
+bool storedTwice(const model::Box& smaller, const model::Box& larger) {
+    return insideShare(smaller, larger) >= kDuplicateShare;
+}
+
 bool floatsOverNothing(const model::Node& n, const std::vector<const model::Node*>& things) {
     // By the stored name: a thing stored as 'object' (its detector's name kept as a guess) claims no support.
     return usualSupport(n.category) == Support::Floor && model::bottom(n.box) > kFloating && !restingOn(n, things);
@@ -434,7 +438,7 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
             const bool smaller =
                 model::volume(a.box) < model::volume(b.box) || (model::volume(a.box) == model::volume(b.box) && i > j);
             if (!smaller) continue;
-            if (insideShare(a.box, b.box) >= kDuplicateShare) {
+            if (storedTwice(a.box, b.box)) {
                 flag(i, "duplicate",
                      fmt::format("{} lies mostly inside {}: one {} stored twice", named(a), named(b), a.category));
                 continue;

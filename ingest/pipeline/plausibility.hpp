@@ -107,6 +107,10 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
 // touch and together are the size of one).
 std::vector<ObjectFinding> objectFindings(const model::SceneData& scene);
 
+// Whether the smaller of two boxes of one kind lies mostly inside the larger (half its volume or more, by their upright
+// bounds): one thing stored twice, objectFindings' "duplicate".
+bool storedTwice(const model::Box& smaller, const model::Box& larger);
+
 // Whether `n`, of a kind that stands on floors, has its bottom in the air (more than 0.3 m up) with no box of
 // `things` under it: objectFindings' "floating".
 bool floatsOverNothing(const model::Node& n, const std::vector<const model::Node*>& things);

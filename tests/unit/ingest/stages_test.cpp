@@ -287,6 +287,41 @@ TEST_CASE("the frames stage names the frames without a pose in one note") {
 // the table projects into the table's outline in every view. The shape below is 7-Scenes' red kitchen
 // table as 100 of its photos give it (docs/ingest.md, "Detections without depth"): its sparse points on
 // the top at 0.73-0.77 m, a few on what stands there up to 1.03 m, the hull carved up to 1.56 m.
+TEST_CASE("the objects stage merges a hull carved without depth that lies mostly inside a larger one of its kind") {
+    auto trackOf = [](const std::string& category, bool carved, std::uint32_t frame) {
+        ObjectTrack track;
+        track.category = category;
+        track.carved = carved;
+        Observation view;
+        view.frame = frame;
+        track.views.push_back(view);
+        return track;
+    };
+    auto boxOf = [](double x, double y, double side) { return model::Box{{x, y, side / 2}, {side, side, side}, 0}; };
+    const cv::Mat white(1, 1, CV_8UC3, cv::Scalar(255, 255, 255));
+    // A toilet carved twice from views of the same frames, a "table" hull inside a "desk" (one kind), a chair
+    // inside the larger toilet's hull (another kind), and a toilet fused on depth inside it (not carved).
+    std::vector<ObjectTrack> tracks{trackOf("toilet", true, 1),  trackOf("toilet", true, 2), trackOf("chair", true, 3),
+                                    trackOf("toilet", false, 4), trackOf("desk", true, 5),   trackOf("table", true, 6)};
+    std::vector<PlacedTrack> placed{{0, white, boxOf(0, 0, 1.0)},    {1, white, boxOf(0.1, 0, 0.6)},
+                                    {2, white, boxOf(-0.1, 0, 0.5)}, {3, white, boxOf(0, 0.1, 0.5)},
+                                    {4, white, boxOf(5, 5, 1.2)},    {5, white, boxOf(5.3, 5, 0.7)}};
+    CHECK(mergeHullsStoredTwice(placed, tracks) == 2);
+    std::vector<std::size_t> kept;
+    for (const auto& p : placed) kept.push_back(p.track);
+    CHECK(kept == std::vector<std::size_t>{0, 2, 3, 4});
+    REQUIRE(tracks[0].views.size() == 2);
+    CHECK(tracks[0].views[1].frame == 2);
+    CHECK(placed[0].colors.rows == 2);
+    CHECK(placed[0].box.size.x == 1.0);  // the larger's box stays
+    CHECK(tracks[4].views.size() == 2);
+    // Side by side, the smaller's half outside the larger: two things.
+    std::vector<ObjectTrack> apart{trackOf("chair", true, 1), trackOf("chair", true, 1)};
+    std::vector<PlacedTrack> sideBySide{{0, white, boxOf(0, 0, 0.6)}, {1, white, boxOf(0.35, 0, 0.5)}};
+    CHECK(mergeHullsStoredTwice(sideBySide, apart) == 0);
+    CHECK(sideBySide.size() == 2);
+}
+
 TEST_CASE("the objects stage holds a carved hull's top, and a table's footprint, to where its surfaces were seen") {
     auto hullOf = [](double length, double width, double height) {
         std::vector<model::Vec3> hull;
