@@ -1,7 +1,12 @@
 #include "ingest/geometry/colmap_runner.hpp"
 
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
+#include <cstring>
+#include <thread>
 
 #include <algorithm>
 #include <chrono>
@@ -399,13 +404,20 @@ void writePosedModel(const fs::path& folder, const fs::path& database, const Cap
     }
 }
 
+// Signals that stop a process from outside (the kernel out of memory, a user, a supervisor), as opposed to
+// COLMAP's own crashes (an abort on a failed check, a fault), which may come of what it read.
+bool stoppedFromOutside(int signal) {
+    return signal == SIGKILL || signal == SIGTERM || signal == SIGINT || signal == SIGHUP || signal == SIGQUIT;
+}
+
 // One run of COLMAP over a capture, phase by phase: the frames into its image folder, features,
 // matches (and loops closed), then points triangulated with the capture's own poses, or a model
 // made by the mapper and the largest one read back. Each phase is a method; the state they share
 // is the run's.
 class ColmapSession {
 public:
-    ColmapSession(Capture& capture, const ColmapOptions& options, std::string colmap, ColmapNotes notes)
+    ColmapSession(Capture& capture, const ColmapOptions& options, std::string colmap, ColmapNotes notes,
+                  ColmapStop stop)
         : capture_(capture),
           options_(options),
           colmap_(std::move(colmap)),
@@ -415,7 +427,8 @@ public:
           sparse_(work_ / "sparse"),
           record_(work_ / "smql-run.txt"),
           threads_(fmt::format("{}", options.threads)),
-          notes_(std::move(notes)) {
+          notes_(std::move(notes)),
+          stop_(std::move(stop)) {
         run_.workDirectory = work_.string();
         run_.logPath = (work_ / "colmap.log").string();
     }
@@ -436,7 +449,13 @@ public:
             else
                 adoptModel(placeFrames());
         } catch (const Error&) {
-            noteSteps();  // a failed run says where its time went too
+            // A run the user stopped leaves no folder of its own behind; a failed one keeps it for its log, and
+            // says where its time went.
+            std::error_code removeError;
+            if (stopped_ && options_.workDirectory.empty() && !options_.keepWorkDirectory)
+                fs::remove_all(work_, removeError);
+            else
+                noteSteps();
             throw;
         }
         leaveWorkFolder();
@@ -538,9 +557,17 @@ private:
                         shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run_.logPath),
                         shellQuoted(colmap_), step, arguments, shellQuoted(run_.logPath));
         auto start = std::chrono::steady_clock::now();
-        int status = std::system(line.c_str());
+        const int status = runShell(line);
         countStep(step, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        // The shell reports a command killed by signal n as exit status 128 + n, or dies of it itself.
+        const int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        if (const int signal = code - 128; stoppedFromOutside(signal))
+            throw Error(ErrorKind::Input,
+                        fmt::format("colmap {} was stopped by signal {} ({}), not by what it read; its output is in {}",
+                                    step, signal, strsignal(signal), run_.logPath),
+                        std::nullopt,
+                        "something outside the ingest stopped COLMAP: the kernel stops a process with signal 9 when "
+                        "memory runs out (dmesg says so); fewer frames or a smaller --max-size need less");
         if (code == 0) return true;
         if (failureIsAnswer) return false;
         std::string facts =
@@ -549,6 +576,37 @@ private:
                     fmt::format("colmap {} failed (exit status {}){}{}; its output is in {}", step, code,
                                 facts.empty() ? "" : ": ", facts, run_.logPath),
                     std::nullopt, kRetryHint);
+    }
+
+    // The command line run by /bin/sh in a process group of its own (a terminal's Ctrl-C reaches the ingest
+    // alone, which may stop it: stop_), waited for; its wait status, or -1 when it could not be started.
+    // std::system would hold the ingest deaf to SIGINT while it waits.
+    int runShell(const std::string& line) {
+        posix_spawnattr_t attributes;
+        posix_spawnattr_init(&attributes);
+        posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+        posix_spawnattr_setpgroup(&attributes, 0);
+        const char* argv[] = {"sh", "-c", line.c_str(), nullptr};
+        pid_t child = 0;
+        const int spawned =
+            posix_spawn(&child, "/bin/sh", nullptr, &attributes, const_cast<char* const*>(argv), environ);
+        posix_spawnattr_destroy(&attributes);
+        if (spawned != 0) return -1;
+        for (;;) {
+            int status = 0;
+            const pid_t done = waitpid(child, &status, WNOHANG);
+            if (done == child) return status;
+            if (done == -1 && errno != EINTR) return -1;
+            try {
+                if (stop_) stop_();
+            } catch (...) {
+                stopped_ = true;
+                kill(-child, SIGTERM);
+                waitpid(child, &status, 0);
+                throw;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
     }
 
     void countStep(const std::string& step, double seconds) {
@@ -1049,6 +1107,8 @@ private:
     std::vector<std::pair<std::string, std::string>> loopCandidates_;
     bool farther_ = false;  // sequential matching reaches frames farther on (quadratic overlap)
     ColmapNotes notes_;
+    ColmapStop stop_;
+    bool stopped_ = false;  // by stop_, while a command ran
 };
 
 }  // namespace
@@ -1091,7 +1151,7 @@ std::optional<ColmapModel> joinColmapModels(std::vector<ColmapModel> models, con
     return joined;
 }
 
-ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes notes) {
+ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes notes, ColmapStop stop) {
     auto colmap = findExecutable(options.command);
     if (!colmap)
         throw Error(ErrorKind::Input,
@@ -1104,7 +1164,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes 
             ErrorKind::Input,
             fmt::format("{}: COLMAP needs at least 2 frames, the capture has {}", capture.path, capture.frames.size()),
             std::nullopt, kRetryHint);
-    return ColmapSession(capture, options, *colmap, std::move(notes)).run();
+    return ColmapSession(capture, options, *colmap, std::move(notes), std::move(stop)).run();
 }
 
 }  // namespace smql::ingest

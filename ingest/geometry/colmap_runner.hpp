@@ -58,6 +58,9 @@ struct ColmapRun {
 
 // Receives each of the run's notes as it is made (they are also in ColmapRun::notes).
 using ColmapNotes = std::function<void(const std::string&)>;
+// Called while a COLMAP command runs; throws to stop the run (the user's Ctrl-C: StageProgress::stopIfCancelled).
+// The command is stopped first, and a work folder of the run's own is removed.
+using ColmapStop = std::function<void()>;
 
 // A COLMAP model read back, and the folder it was read from.
 struct ColmapModel {
@@ -91,7 +94,8 @@ std::optional<ColmapModel> joinColmapModels(std::vector<ColmapModel> models, con
 // smql::Error(Input) when `colmap` is missing (naming how to install it) or a
 // step fails or no model comes out (naming the step, what the database shows:
 // photos with features, photos that overlap, and what to do); the notes made
-// until then have reached `notes`.
-ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {}, ColmapNotes notes = {});
+// until then have reached `notes`. Each COLMAP command runs in a process group of its own, so that a
+// terminal's Ctrl-C reaches the ingest, which stops it through `stop`.
+ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {}, ColmapNotes notes = {}, ColmapStop stop = {});
 
 }  // namespace smql::ingest

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -372,5 +373,84 @@ TEST_CASE("frames placed in models that share no frame are refused, saying where
         CHECK_THAT(message, Catch::Contains("; in the order taken they part 3 times, at office-1.png, plain.png, "
                                             "walk-1.png, each sharing too few matches with the photo before it; "
                                             "plain.png gave no features"));
+    }
+}
+
+namespace {
+
+// An executable shell script standing in for COLMAP.
+std::string fakeColmap(const ScratchDir& dir, const std::string& name, const std::string& body) {
+    const fs::path script = dir.path / name;
+    std::ofstream(script) << "#!/bin/sh\n" << body << "\n";
+    fs::permissions(script, fs::perms::owner_all);
+    return script.string();
+}
+
+// TMPDIR set to `dir` while it lives, so that a run's work folder of its own goes there.
+struct TempDirAt {
+    std::optional<std::string> before;
+    explicit TempDirAt(const fs::path& dir) {
+        if (const char* was = std::getenv("TMPDIR")) before = was;
+        setenv("TMPDIR", dir.c_str(), 1);
+    }
+    ~TempDirAt() {
+        if (before)
+            setenv("TMPDIR", before->c_str(), 1);
+        else
+            unsetenv("TMPDIR");
+    }
+};
+
+}  // namespace
+
+TEST_CASE("a COLMAP command stops when the ingest is stopped; one stopped from outside is not blamed on the photos",
+          "[colmap]") {
+    ScratchDir dir;
+    const fs::path office = fs::path(SMQL_SHARED_DATA) / "captures" / "tum-fr3-office-photos";
+    for (const char* name : {"1341847980.722988.png", "1341847981.726650.png", "1341847982.730674.png"})
+        fs::copy_file(office / name, dir.path / name);
+    ColmapOptions options;
+    SECTION("stopped by the ingest (the user's Ctrl-C): the command ends, its work folder goes") {
+        // A COLMAP that would take 30 s; the stop comes after 0.3 s.
+        options.command = fakeColmap(dir, "slow-colmap", "exec sleep 29.75");
+        fs::create_directories(dir.path / "tmp");
+        const TempDirAt tmp(dir.path / "tmp");
+        Capture capture = readCapture(dir.path.string());
+        const auto start = std::chrono::steady_clock::now();
+        auto stop = [&] {
+            if (std::chrono::steady_clock::now() - start > std::chrono::milliseconds(300))
+                throw Error(ErrorKind::Usage, "cancelled; nothing was written");
+        };
+        CHECK_THROWS_WITH(runColmap(capture, options, {}, stop), Catch::Contains("cancelled"));
+        CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));
+        CHECK(std::system("pgrep -f '^sleep 29.75$' > /dev/null") != 0);
+        CHECK(fs::is_empty(dir.path / "tmp"));
+    }
+    SECTION("killed from outside (as the kernel kills a process when memory runs out)") {
+        options.command = fakeColmap(dir, "killed-colmap", "kill -9 $$");
+        KeptWork kept;
+        Capture capture = readCapture(dir.path.string());
+        try {
+            runColmap(capture, options);
+            FAIL("runColmap did not throw");
+        } catch (const Error& e) {
+            CHECK_THAT(e.message(), Catch::Contains("colmap feature_extractor was stopped by signal 9 (Killed), "
+                                                    "not by what it read"));
+            CHECK_THAT(e.hint(), Catch::Contains("memory runs out"));
+            const std::string log = e.message().substr(e.message().rfind(' ') + 1);
+            kept.path = fs::path(log).parent_path().string();
+        }
+    }
+    SECTION("a crash of its own (an abort) is COLMAP's failure, as before") {
+        options.command = fakeColmap(dir, "aborting-colmap", "kill -6 $$");
+        KeptWork kept;
+        Capture capture = readCapture(dir.path.string());
+        try {
+            runColmap(capture, options);
+            FAIL("runColmap did not throw");
+        } catch (const Error& e) {
+            CHECK_THAT(e.message(), Catch::Contains("colmap feature_extractor failed (exit status 134)"));
+            kept.path = fs::path(e.message().substr(e.message().rfind(' ') + 1)).parent_path().string();
+        }
     }
 }
