@@ -552,14 +552,13 @@ private:
     // a failure when it grows no model, which the next settings may.
     bool runStep(const std::string& step, const std::string& arguments, bool failureIsAnswer = false) {
         if (run_.reused) return true;
-        std::string line =
-            fmt::format("echo {} >> {}; QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
-                        shellQuoted(fmt::format("$ colmap {} {}", step, arguments)), shellQuoted(run_.logPath),
-                        shellQuoted(colmap_), step, arguments, shellQuoted(run_.logPath));
+        std::ofstream(run_.logPath, std::ios::app) << fmt::format("$ colmap {} {}\n", step, arguments);
+        // The shell becomes COLMAP (exec), so that stopping the command stops COLMAP.
+        const std::string line = fmt::format("exec env QT_QPA_PLATFORM=offscreen {} {} {} >> {} 2>&1",
+                                             shellQuoted(colmap_), step, arguments, shellQuoted(run_.logPath));
         auto start = std::chrono::steady_clock::now();
-        const int status = runShell(line);
+        const int status = runCommand(line);
         countStep(step, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        // The shell reports a command killed by signal n as exit status 128 + n, or dies of it itself.
         const int code = status == -1 ? -1 : WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         if (const int signal = code - 128; stoppedFromOutside(signal))
             throw Error(ErrorKind::Input,
@@ -578,35 +577,33 @@ private:
                     std::nullopt, kRetryHint);
     }
 
-    // The command line run by /bin/sh in a process group of its own (a terminal's Ctrl-C reaches the ingest
-    // alone, which may stop it: stop_), waited for; its wait status, or -1 when it could not be started.
-    // std::system would hold the ingest deaf to SIGINT while it waits.
-    int runShell(const std::string& line) {
-        posix_spawnattr_t attributes;
-        posix_spawnattr_init(&attributes);
-        posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-        posix_spawnattr_setpgroup(&attributes, 0);
+    // The command line run by /bin/sh, waited for, the ingest still hearing SIGINT meanwhile (std::system would
+    // hold it deaf until the command ends): every 50 ms, and once the command has ended, stop_ may stop the run,
+    // and then the command. The command stays in the ingest's process group, so a terminal's Ctrl-C or a
+    // supervisor's signal to the group reaches it too, as before. The command's wait status, or -1 when it could not
+    // be started.
+    int runCommand(const std::string& line) {
         const char* argv[] = {"sh", "-c", line.c_str(), nullptr};
         pid_t child = 0;
-        const int spawned =
-            posix_spawn(&child, "/bin/sh", nullptr, &attributes, const_cast<char* const*>(argv), environ);
-        posix_spawnattr_destroy(&attributes);
-        if (spawned != 0) return -1;
-        for (;;) {
-            int status = 0;
+        if (posix_spawn(&child, "/bin/sh", nullptr, nullptr, const_cast<char* const*>(argv), environ) != 0) return -1;
+        int status = 0;
+        for (bool ended = false; !ended;) {
             const pid_t done = waitpid(child, &status, WNOHANG);
-            if (done == child) return status;
             if (done == -1 && errno != EINTR) return -1;
+            ended = done == child;
             try {
                 if (stop_) stop_();
             } catch (...) {
                 stopped_ = true;
-                kill(-child, SIGTERM);
-                waitpid(child, &status, 0);
+                if (!ended) {
+                    kill(child, SIGTERM);
+                    waitpid(child, &status, 0);
+                }
                 throw;
             }
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(50));
         }
+        return status;
     }
 
     void countStep(const std::string& step, double seconds) {

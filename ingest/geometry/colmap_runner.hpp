@@ -94,8 +94,8 @@ std::optional<ColmapModel> joinColmapModels(std::vector<ColmapModel> models, con
 // smql::Error(Input) when `colmap` is missing (naming how to install it) or a
 // step fails or no model comes out (naming the step, what the database shows:
 // photos with features, photos that overlap, and what to do); the notes made
-// until then have reached `notes`. Each COLMAP command runs in a process group of its own, so that a
-// terminal's Ctrl-C reaches the ingest, which stops it through `stop`.
+// until then have reached `notes`. While a COLMAP command runs, and when it has ended, `stop` may stop the run
+// (the command first): a terminal's Ctrl-C, which reaches COLMAP too, is then the user's, not COLMAP's failure.
 ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {}, ColmapNotes notes = {}, ColmapStop stop = {});
 
 }  // namespace smql::ingest

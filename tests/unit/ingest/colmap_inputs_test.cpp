@@ -441,6 +441,23 @@ TEST_CASE("a COLMAP command stops when the ingest is stopped; one stopped from o
             kept.path = fs::path(log).parent_path().string();
         }
     }
+    SECTION("a terminal's Ctrl-C, which reaches COLMAP too: the user's stop where the ingest heard it") {
+        options.command = fakeColmap(dir, "interrupted-colmap", "kill -INT $$");
+        fs::create_directories(dir.path / "tmp");
+        const TempDirAt tmp(dir.path / "tmp");
+        Capture capture = readCapture(dir.path.string());
+        auto heard = [] { throw Error(ErrorKind::Usage, "cancelled; nothing was written"); };
+        CHECK_THROWS_WITH(runColmap(capture, options, {}, heard), Catch::Contains("cancelled"));
+        CHECK(fs::is_empty(dir.path / "tmp"));
+        // An embedding program that does not stop the ingest is told what stopped COLMAP.
+        Capture again = readCapture(dir.path.string());
+        try {
+            runColmap(again, options);
+            FAIL("runColmap did not throw");
+        } catch (const Error& e) {
+            CHECK_THAT(e.message(), Catch::Contains("was stopped by signal 2 (Interrupt), not by what it read"));
+        }
+    }
     SECTION("a crash of its own (an abort) is COLMAP's failure, as before") {
         options.command = fakeColmap(dir, "aborting-colmap", "kill -6 $$");
         KeptWork kept;
