@@ -120,6 +120,9 @@ public:
         std::vector<model::ObjectChange> changes;
         // "updated scene 'den' as of ...: 17 objects seen again where they were, 1 moved, ..."
         std::string summary() const;
+        // When no stored object was seen again in place and most captured ones are new (three or more stored and
+        // new): the capture may be of another place, or started from another origin.
+        std::optional<std::string> warning() const;
     };
     // Merges a new capture of a place into its stored scene `name` (the current one when empty):
     // objects are matched to the stored ones (docs/history.md), the scene becomes the next

@@ -59,7 +59,9 @@ int importCommand(const std::string& format, const std::string& file, const std:
     auto engine = Engine::open(dbDir);
     std::string report;
     if (!update.empty()) {
-        report = engine->updateScene(update, scenes.front()).summary() + "\n";
+        const auto updated = engine->updateScene(update, scenes.front());
+        report = updated.summary() + "\n";
+        if (const auto warning = updated.warning()) std::cerr << "warning: " << *warning << "\n";
     } else {
         for (const model::SceneData& scene : scenes) {
             engine->importScene(scene);

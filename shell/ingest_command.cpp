@@ -130,7 +130,10 @@ int ingestInto(const IngestArguments& args) {
         progress->stageFinished(
             "write", writeSeconds(),
             fmt::format("scene '{}' updated: version {} is in its history", update.scene, update.version));
-        if (args.log != "quiet") std::cout << update.summary() << "\n";
+        if (args.log != "quiet") {
+            std::cout << update.summary() << "\n";
+            if (const auto warning = update.warning()) std::cerr << "warning: " << *warning << "\n";
+        }
         return 0;
     }
     engine->importScene(run.result.scene);

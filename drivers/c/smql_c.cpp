@@ -471,7 +471,9 @@ smql_status smql_ingest(smql_db* db, const char* capture, const char* options, s
             db->engine->importScene(std::move(call.scene));
             summary = "one transaction";
         } else {
-            summary = db->engine->updateScene(call.update, call.scene).summary();
+            const auto updated = db->engine->updateScene(call.update, call.scene);
+            summary = updated.summary();
+            if (const auto warning = updated.warning()) summary += "; warning: " + *warning;
         }
         if (call.progress) {
             double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

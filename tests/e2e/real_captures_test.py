@@ -47,6 +47,18 @@ def desk_rgbd(smql, folder, work):
     assert "frame#" not in fields.get("children", ""), summary.stdout
     things = len(query_rows(smql, work / "db", "FIND object RETURN id"))
     assert re.search(rf"\ntum-fr1-rpy: a floor of .* walls, .*; {things} things: ", summary.stdout), summary.stdout
+    # The desk's scene updated with the dining frames, another room: nothing is seen again where it was, and the
+    # update says the capture may be of another place; the same frames again find their things in place.
+    dining = pathlib.Path(sys.argv[2]).parent / "rgbd-dining"  # beside ../shared/data/captures
+    if not dining.is_dir():
+        print(f"  {dining} absent: the update by another room not tried")
+        return
+    status, log = ingest(smql, dining, work / "db", "--update", "tum-fr1-rpy")
+    assert status == 0, log
+    assert re.search(r"\nwarning: none of the \d+ stored objects was seen again where it was, and \d+ of the \d+ "
+                     r"captured are new: a capture of another place", log), log
+    status, log = ingest(smql, dining, work / "db", "--update", "tum-fr1-rpy")
+    assert status == 0 and "warning: none of the" not in log, log
 
 
 def true_positions(groundtruth):

@@ -290,3 +290,30 @@ TEST_CASE("RENAME SCENE and DROP SCENE carry and remove the history, one transac
     CHECK(errorOf(*readOnly, "DROP SCENE den").kind() == ErrorKind::Storage);
     CHECK(run(*readOnly, "SHOW SCENES").rows.size() == 1);
 }
+
+TEST_CASE("an update that finds none of the stored objects again warns that it may be of another place") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    auto stored = room("2026-11-20T10:00:00Z");
+    stored.nodes.push_back(box(4, model::NodeKind::Object, "lamp", {5, 5, 0.8}, {0.3, 0.3, 1.6}));
+    engine->importScene(stored);
+
+    // The same room a day later, one chair moved a little: no warning.
+    auto sameRoom = stored;
+    sameRoom.info.captureTime = "2026-11-21T10:00:00Z";
+    sameRoom.nodes[1].box.center = {2.1, 1.05, 0.45};
+    CHECK(!engine->updateScene("den", sameRoom).warning());
+
+    // Another room: a sofa, a desk and a bed, where none of the stored things is.
+    auto elsewhere = room("2026-11-22T10:00:00Z");
+    elsewhere.nodes.resize(1);
+    elsewhere.nodes.push_back(box(2, model::NodeKind::Object, "sofa", {1, 5, 0.4}, {2, 0.9, 0.8}));
+    elsewhere.nodes.push_back(box(3, model::NodeKind::Object, "desk", {5, 3, 0.375}, {1.4, 0.7, 0.75}));
+    elsewhere.nodes.push_back(box(4, model::NodeKind::Object, "bed", {2, 3, 0.3}, {2, 1.6, 0.6}));
+    const auto report = engine->updateScene("den", elsewhere);
+    CHECK(report.unchanged == 0);
+    CHECK(report.added == 3);
+    REQUIRE(report.warning());
+    CHECK_THAT(*report.warning(), Catch::StartsWith("none of the 3 stored objects was seen again where it was, and 3 "
+                                                    "of the 3 captured are new: a capture of another place"));
+}
