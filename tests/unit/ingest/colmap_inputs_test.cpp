@@ -26,6 +26,7 @@
 #include "ingest/geometry/colmap_runner.hpp"
 #include "ingest/synth/synth.hpp"
 #include "model/error.hpp"
+#include "scoped_env.hpp"
 #include "scratch_dir.hpp"
 
 using namespace smql;
@@ -386,20 +387,18 @@ std::string fakeColmap(const ScratchDir& dir, const std::string& name, const std
     return script.string();
 }
 
-// TMPDIR set to `dir` while it lives, so that a run's work folder of its own goes there.
-struct TempDirAt {
-    std::optional<std::string> before;
-    explicit TempDirAt(const fs::path& dir) {
-        if (const char* was = std::getenv("TMPDIR")) before = was;
-        setenv("TMPDIR", dir.c_str(), 1);
+// The error a run of `dir`'s photos that fails throws, if it throws one; the work folder it keeps for its log
+// (named at the message's end) goes at the end of the test.
+std::optional<Error> failureOf(const ScratchDir& dir, const ColmapOptions& options, KeptWork& kept) {
+    Capture capture = readCapture(dir.path.string());
+    try {
+        runColmap(capture, options);
+    } catch (const Error& e) {
+        kept.path = fs::path(e.message().substr(e.message().rfind(' ') + 1)).parent_path().string();
+        return e;
     }
-    ~TempDirAt() {
-        if (before)
-            setenv("TMPDIR", before->c_str(), 1);
-        else
-            unsetenv("TMPDIR");
-    }
-};
+    return std::nullopt;
+}
 
 }  // namespace
 
@@ -414,7 +413,7 @@ TEST_CASE("a COLMAP command stops when the ingest is stopped; one stopped from o
         // A COLMAP that would take 30 s; the stop comes after 0.3 s.
         options.command = fakeColmap(dir, "slow-colmap", "exec sleep 29.75");
         fs::create_directories(dir.path / "tmp");
-        const TempDirAt tmp(dir.path / "tmp");
+        const smql::testing::ScopedEnv tmp("TMPDIR", (dir.path / "tmp").string());  // the run's own work folder
         Capture capture = readCapture(dir.path.string());
         const auto start = std::chrono::steady_clock::now();
         auto stop = [&] {
@@ -429,45 +428,31 @@ TEST_CASE("a COLMAP command stops when the ingest is stopped; one stopped from o
     SECTION("killed from outside (as the kernel kills a process when memory runs out)") {
         options.command = fakeColmap(dir, "killed-colmap", "kill -9 $$");
         KeptWork kept;
-        Capture capture = readCapture(dir.path.string());
-        try {
-            runColmap(capture, options);
-            FAIL("runColmap did not throw");
-        } catch (const Error& e) {
-            CHECK_THAT(e.message(), Catch::Contains("colmap feature_extractor was stopped by signal 9 (Killed), "
-                                                    "not by what it read"));
-            CHECK_THAT(e.hint(), Catch::Contains("memory runs out"));
-            const std::string log = e.message().substr(e.message().rfind(' ') + 1);
-            kept.path = fs::path(log).parent_path().string();
-        }
+        const auto failure = failureOf(dir, options, kept);
+        REQUIRE(failure);
+        CHECK_THAT(failure->message(),
+                   Catch::Contains("colmap feature_extractor was stopped by signal 9 (Killed), not by what it read"));
+        CHECK_THAT(failure->hint(), Catch::Contains("memory runs out"));
     }
     SECTION("a terminal's Ctrl-C, which reaches COLMAP too: the user's stop where the ingest heard it") {
         options.command = fakeColmap(dir, "interrupted-colmap", "kill -INT $$");
         fs::create_directories(dir.path / "tmp");
-        const TempDirAt tmp(dir.path / "tmp");
+        const smql::testing::ScopedEnv tmp("TMPDIR", (dir.path / "tmp").string());  // the run's own work folder
         Capture capture = readCapture(dir.path.string());
         auto heard = [] { throw Error(ErrorKind::Usage, "cancelled; nothing was written"); };
         CHECK_THROWS_WITH(runColmap(capture, options, {}, heard), Catch::Contains("cancelled"));
         CHECK(fs::is_empty(dir.path / "tmp"));
         // An embedding program that does not stop the ingest is told what stopped COLMAP.
-        Capture again = readCapture(dir.path.string());
-        try {
-            runColmap(again, options);
-            FAIL("runColmap did not throw");
-        } catch (const Error& e) {
-            CHECK_THAT(e.message(), Catch::Contains("was stopped by signal 2 (Interrupt), not by what it read"));
-        }
+        KeptWork kept;
+        const auto failure = failureOf(dir, options, kept);
+        REQUIRE(failure);
+        CHECK_THAT(failure->message(), Catch::Contains("was stopped by signal 2 (Interrupt), not by what it read"));
     }
     SECTION("a crash of its own (an abort) is COLMAP's failure, as before") {
         options.command = fakeColmap(dir, "aborting-colmap", "kill -6 $$");
         KeptWork kept;
-        Capture capture = readCapture(dir.path.string());
-        try {
-            runColmap(capture, options);
-            FAIL("runColmap did not throw");
-        } catch (const Error& e) {
-            CHECK_THAT(e.message(), Catch::Contains("colmap feature_extractor failed (exit status 134)"));
-            kept.path = fs::path(e.message().substr(e.message().rfind(' ') + 1)).parent_path().string();
-        }
+        const auto failure = failureOf(dir, options, kept);
+        REQUIRE(failure);
+        CHECK_THAT(failure->message(), Catch::Contains("colmap feature_extractor failed (exit status 134)"));
     }
 }

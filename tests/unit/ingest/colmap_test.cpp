@@ -30,6 +30,7 @@
 #include "ingest/pipeline/quality.hpp"
 #include "ingest/synth/synth.hpp"
 #include "model/error.hpp"
+#include "scoped_env.hpp"
 #include "scratch_dir.hpp"
 
 using namespace smql;
@@ -37,17 +38,6 @@ using namespace smql::ingest;
 using smql::ingest::test::ScratchDir;
 
 namespace {
-
-// PATH replaced for one scope.
-struct PathOverride {
-    std::string saved;
-    explicit PathOverride(const std::string& path) {
-        const char* old = std::getenv("PATH");
-        saved = old ? old : "";
-        setenv("PATH", path.c_str(), 1);
-    }
-    ~PathOverride() { setenv("PATH", saved.c_str(), 1); }
-};
 
 // One object source's ingest of the reconstructed capture, registered to the truth.
 struct Measured {
@@ -249,7 +239,7 @@ TEST_CASE("frames far apart in name order that share many features are verified,
 TEST_CASE("a missing colmap command gives a clear error") {
     ScratchDir dir;
     std::filesystem::create_directories(dir.path / "empty");
-    PathOverride path((dir.path / "empty").string());
+    const smql::testing::ScopedEnv path("PATH", (dir.path / "empty").string());
     Capture capture;
     capture.path = "frames";
     capture.frames.resize(3);

@@ -4,37 +4,12 @@
 
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <string>
 
 #include "model/module.hpp"
-
-namespace {
-
-// SMQL_MODULE_DIR set for the test's length, as it was after.
-class ModuleDir {
-public:
-    explicit ModuleDir(const std::filesystem::path& dir) {
-        if (const char* was = std::getenv("SMQL_MODULE_DIR")) before_ = was;
-        setenv("SMQL_MODULE_DIR", dir.c_str(), 1);
-    }
-    ~ModuleDir() {
-        if (before_)
-            setenv("SMQL_MODULE_DIR", before_->c_str(), 1);
-        else
-            unsetenv("SMQL_MODULE_DIR");
-    }
-    ModuleDir(const ModuleDir&) = delete;
-    ModuleDir& operator=(const ModuleDir&) = delete;
-
-private:
-    std::optional<std::string> before_;
-};
-
-}  // namespace
+#include "scoped_env.hpp"
 
 TEST_CASE("module: a module found nowhere says so") {
     const int anchor = 0;
@@ -48,7 +23,7 @@ TEST_CASE("module: a damaged module is named with the loader's reason, and no en
     std::filesystem::create_directories(dir);
     const auto file = dir / "libsmql_damaged.so";
     std::ofstream(file) << "not a shared library";
-    const ModuleDir moduleDir(dir);
+    const smql::testing::ScopedEnv moduleDir("SMQL_MODULE_DIR", dir.string());
     const int anchor = 0;
     const smql::Module opened = smql::openModule("libsmql_damaged.so", &anchor, nullptr, "smql_entry");
     CHECK(opened.entry == nullptr);
