@@ -182,9 +182,7 @@ std::size_t mergeHullsStoredTwice(std::vector<PlacedTrack>& placed, std::vector<
                 continue;
             larger.views.insert(larger.views.end(), std::make_move_iterator(smaller.views.begin()),
                                 std::make_move_iterator(smaller.views.end()));
-            cv::Mat colors = placed[large].colors;
-            colors.push_back(placed[small].colors);
-            placed[large].colors = colors;
+            if (!placed[small].colors.empty()) placed[large].colors.push_back(placed[small].colors);
             placed.erase(placed.begin() + static_cast<std::ptrdiff_t>(small));
             ++merged;
             break;
