@@ -1105,7 +1105,7 @@ private:
     bool farther_ = false;  // sequential matching reaches frames farther on (quadratic overlap)
     ColmapNotes notes_;
     ColmapStop stop_;
-    bool stopped_ = false;  // by stop_, while a command ran
+    bool stopped_ = false;  // the run stopped by stop_
 };
 
 }  // namespace
