@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <thread>
 
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -410,14 +412,51 @@ bool stoppedFromOutside(int signal) {
     return signal == SIGKILL || signal == SIGTERM || signal == SIGINT || signal == SIGHUP || signal == SIGQUIT;
 }
 
+// How far a running COLMAP command is, from the lines it adds to its log: "Processed file [12/100]" (the feature
+// extractor), "Matching image [12/100]" (the sequential matcher), "Matching block [3/9, ..." (the exhaustive
+// matcher, by blocks of images), "Registering image #31 (12)" (the mapper: 12 registered so far), each read as
+// frames of the capture's `frames`.
+struct LogProgress {
+    std::string path;
+    std::uintmax_t offset = 0;  // where the command's lines begin
+    std::size_t frames = 0;
+    std::size_t reported = 0;
+
+    // The frames done, when more than reported before.
+    std::optional<std::size_t> read() {
+        std::ifstream in(path, std::ios::binary);
+        in.seekg(static_cast<std::streamoff>(offset));
+        std::string added((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        // Only whole lines: the last may still be written.
+        const std::size_t end = added.rfind('\n');
+        if (end == std::string::npos) return std::nullopt;
+        offset += end + 1;
+        std::size_t done = reported;
+        std::istringstream lines(added.substr(0, end));
+        for (std::string text; std::getline(lines, text);) {
+            unsigned long part = 0, whole = 0, id = 0;
+            if (std::sscanf(text.c_str(), "Processed file [%lu/%lu]", &part, &whole) == 2 ||
+                std::sscanf(text.c_str(), "Matching image [%lu/%lu]", &part, &whole) == 2 ||
+                std::sscanf(text.c_str(), "Matching block [%lu/%lu", &part, &whole) == 2) {
+                if (whole > 0) done = frames * part / whole;
+            } else if (std::sscanf(text.c_str(), "Registering image #%lu (%lu)", &id, &part) == 2) {
+                done = part;
+            }
+        }
+        done = std::min(done, frames);
+        if (done <= reported) return std::nullopt;
+        reported = done;
+        return done;
+    }
+};
+
 // One run of COLMAP over a capture, phase by phase: the frames into its image folder, features,
 // matches (and loops closed), then points triangulated with the capture's own poses, or a model
 // made by the mapper and the largest one read back. Each phase is a method; the state they share
 // is the run's.
 class ColmapSession {
 public:
-    ColmapSession(Capture& capture, const ColmapOptions& options, std::string colmap, ColmapNotes notes,
-                  ColmapStop stop)
+    ColmapSession(Capture& capture, const ColmapOptions& options, std::string colmap, ColmapWatch watch)
         : capture_(capture),
           options_(options),
           colmap_(std::move(colmap)),
@@ -427,8 +466,7 @@ public:
           sparse_(work_ / "sparse"),
           record_(work_ / "smql-run.txt"),
           threads_(fmt::format("{}", options.threads)),
-          notes_(std::move(notes)),
-          stop_(std::move(stop)) {
+          watch_(std::move(watch)) {
         run_.workDirectory = work_.string();
         run_.logPath = (work_ / "colmap.log").string();
     }
@@ -466,7 +504,7 @@ private:
     // Each note is kept in the run and passed on as it comes, so that a run that fails has said
     // what COLMAP did up to there.
     void note(std::string text) {
-        if (notes_) notes_(text);
+        if (watch_.notes) watch_.notes(text);
         run_.notes.push_back(std::move(text));
     }
 
@@ -578,12 +616,14 @@ private:
     }
 
     // The command line run by /bin/sh, waited for, the ingest still hearing SIGINT meanwhile (std::system would
-    // hold it deaf until the command ends): every 50 ms, and once the command has ended, stop_ may stop the run,
-    // and then the command. The command stays in the ingest's process group, so a terminal's Ctrl-C or a
-    // supervisor's signal to the group reaches it too, as before. The command's wait status, or -1 when it could not
-    // be started.
+    // hold it deaf until the command ends). Every 50 ms, and once the command has ended, the log's new lines tell
+    // how far it is (watch_.progress) and watch_.stop may stop the run, and then the command. The command stays in
+    // the ingest's process group, so a terminal's Ctrl-C or a supervisor's signal to the group reaches it too, as
+    // before. The command's wait status, or -1 when it could not be started.
     int runCommand(const std::string& line) {
         const char* argv[] = {"sh", "-c", line.c_str(), nullptr};
+        std::error_code ec;
+        LogProgress log{run_.logPath, fs::file_size(run_.logPath, ec), capture_.frames.size()};
         pid_t child = 0;
         if (posix_spawn(&child, "/bin/sh", nullptr, nullptr, const_cast<char* const*>(argv), environ) != 0) return -1;
         int status = 0;
@@ -592,7 +632,8 @@ private:
             if (done == -1 && errno != EINTR) return -1;
             ended = done == child;
             try {
-                if (stop_) stop_();
+                if (const auto frames = log.read(); frames && watch_.progress) watch_.progress(*frames);
+                if (watch_.stop) watch_.stop();
             } catch (...) {
                 stopped_ = true;
                 if (!ended) {
@@ -1103,9 +1144,8 @@ private:
     // The pairs of frames found overlapping with the features at their own size, matched again with the finer ones.
     std::vector<std::pair<std::string, std::string>> loopCandidates_;
     bool farther_ = false;  // sequential matching reaches frames farther on (quadratic overlap)
-    ColmapNotes notes_;
-    ColmapStop stop_;
-    bool stopped_ = false;  // the run stopped by stop_
+    ColmapWatch watch_;
+    bool stopped_ = false;  // the run stopped by watch_.stop
 };
 
 }  // namespace
@@ -1148,7 +1188,7 @@ std::optional<ColmapModel> joinColmapModels(std::vector<ColmapModel> models, con
     return joined;
 }
 
-ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes notes, ColmapStop stop) {
+ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapWatch watch) {
     auto colmap = findExecutable(options.command);
     if (!colmap)
         throw Error(ErrorKind::Input,
@@ -1161,7 +1201,7 @@ ColmapRun runColmap(Capture& capture, const ColmapOptions& options, ColmapNotes 
             ErrorKind::Input,
             fmt::format("{}: COLMAP needs at least 2 frames, the capture has {}", capture.path, capture.frames.size()),
             std::nullopt, kRetryHint);
-    return ColmapSession(capture, options, *colmap, std::move(notes), std::move(stop)).run();
+    return ColmapSession(capture, options, *colmap, std::move(watch)).run();
 }
 
 }  // namespace smql::ingest

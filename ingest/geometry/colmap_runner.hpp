@@ -58,9 +58,19 @@ struct ColmapRun {
 
 // Receives each of the run's notes as it is made (they are also in ColmapRun::notes).
 using ColmapNotes = std::function<void(const std::string&)>;
-// Called while a COLMAP command runs; throws to stop the run (the user's Ctrl-C: StageProgress::stopIfCancelled).
-// The command is stopped first, and a work folder of the run's own is removed.
-using ColmapStop = std::function<void()>;
+
+// What a run says, and is asked, as it goes (each may be empty):
+// - `notes`: each note as it is made;
+// - `stop`: asked every 50 ms while a COLMAP command runs, and once it has ended; it throws to stop the run (the
+//   user's Ctrl-C: StageProgress::stopIfCancelled), the command stopped first and a work folder of the run's own
+//   removed;
+// - `progress`: how many of the capture's frames the running command has done, as its log counts them (the
+//   files extracted, the images or blocks matched, the images registered), each time the count grows.
+struct ColmapWatch {
+    ColmapNotes notes{};
+    std::function<void()> stop{};
+    std::function<void(std::size_t)> progress{};
+};
 
 // A COLMAP model read back, and the folder it was read from.
 struct ColmapModel {
@@ -94,8 +104,8 @@ std::optional<ColmapModel> joinColmapModels(std::vector<ColmapModel> models, con
 // smql::Error(Input) when `colmap` is missing (naming how to install it) or a
 // step fails or no model comes out (naming the step, what the database shows:
 // photos with features, photos that overlap, and what to do); the notes made
-// until then have reached `notes`. While a COLMAP command runs, and when it has ended, `stop` may stop the run
-// (the command first): a terminal's Ctrl-C, which reaches COLMAP too, is then the user's, not COLMAP's failure.
-ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {}, ColmapNotes notes = {}, ColmapStop stop = {});
+// until then have reached `watch.notes`. While a COLMAP command runs, and when it has ended, `watch.stop` may stop
+// the run: a terminal's Ctrl-C, which reaches COLMAP too, is then the user's, not COLMAP's failure.
+ColmapRun runColmap(Capture& capture, const ColmapOptions& options = {}, ColmapWatch watch = {});
 
 }  // namespace smql::ingest

@@ -32,10 +32,11 @@ Reconstruction ColmapStage::run(StageProgress& progress) {
         progress.note(framesHavePoses(out.capture)
                           ? "--geometry colmap: depth images are ignored; COLMAP triangulates with the given poses"
                           : "--geometry colmap: depth images are ignored (COLMAP's poses are up to scale)");
-    ColmapRun run = runColmap(
-        out.capture, options, [&](const std::string& note) { progress.note(note); },
-        [&] { progress.stopIfCancelled(); });
-    progress.advanced(1);
+    ColmapRun run = runColmap(out.capture, options,
+                              {.notes = [&](const std::string& note) { progress.note(note); },
+                               .stop = [&] { progress.stopIfCancelled(); },
+                               .progress = [&](std::size_t frames) { progress.advanced(frames); }});
+    progress.advanced(steps());
     out.registered = run.registered;
     out.points = run.points;
     return out;

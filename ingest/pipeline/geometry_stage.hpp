@@ -25,7 +25,8 @@ struct ColmapStage {
     const Capture& input;
     const ColmapOptions& options;
 
-    std::size_t steps() const { return 1; }
+    // The frames: each COLMAP command's bar counts them as its log does (ColmapWatch::progress).
+    std::size_t steps() const { return input.frames.size(); }
     Reconstruction run(StageProgress& progress);
     std::string summary(const Reconstruction& reconstruction) const;
 };

@@ -420,7 +420,7 @@ TEST_CASE("a COLMAP command stops when the ingest is stopped; one stopped from o
             if (std::chrono::steady_clock::now() - start > std::chrono::milliseconds(300))
                 throw Error(ErrorKind::Usage, "cancelled; nothing was written");
         };
-        CHECK_THROWS_WITH(runColmap(capture, options, {}, stop), Catch::Contains("cancelled"));
+        CHECK_THROWS_WITH(runColmap(capture, options, {.stop = stop}), Catch::Contains("cancelled"));
         CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));
         CHECK(std::system("pgrep -f '^sleep 29.75$' > /dev/null") != 0);
         CHECK(fs::is_empty(dir.path / "tmp"));
@@ -440,13 +440,28 @@ TEST_CASE("a COLMAP command stops when the ingest is stopped; one stopped from o
         const smql::testing::ScopedEnv tmp("TMPDIR", (dir.path / "tmp").string());  // the run's own work folder
         Capture capture = readCapture(dir.path.string());
         auto heard = [] { throw Error(ErrorKind::Usage, "cancelled; nothing was written"); };
-        CHECK_THROWS_WITH(runColmap(capture, options, {}, heard), Catch::Contains("cancelled"));
+        CHECK_THROWS_WITH(runColmap(capture, options, {.stop = heard}), Catch::Contains("cancelled"));
         CHECK(fs::is_empty(dir.path / "tmp"));
         // An embedding program that does not stop the ingest is told what stopped COLMAP.
         KeptWork kept;
         const auto failure = failureOf(dir, options, kept);
         REQUIRE(failure);
         CHECK_THAT(failure->message(), Catch::Contains("was stopped by signal 2 (Interrupt), not by what it read"));
+    }
+    SECTION("the stage's bar follows the lines the command logs") {
+        // As the extractor, a matcher and the mapper write them; then a failure, which ends the run.
+        options.command = fakeColmap(dir, "logging-colmap",
+                                     "echo 'Processed file [1/3]'; sleep 0.3; echo 'Matching image [2/3]'; sleep 0.3; "
+                                     "echo 'Registering image #31 (3)'; sleep 0.3; exit 1");
+        fs::create_directories(dir.path / "tmp");
+        const smql::testing::ScopedEnv tmp("TMPDIR", (dir.path / "tmp").string());  // the failed run's folder
+        Capture capture = readCapture(dir.path.string());
+        std::vector<std::size_t> frames;
+        CHECK_THROWS_WITH(runColmap(capture, options, {.progress = [&](std::size_t done) { frames.push_back(done); }}),
+                          Catch::Contains("colmap feature_extractor failed (exit status 1)"));
+        REQUIRE(!frames.empty());
+        CHECK(frames.back() == 3);
+        CHECK(std::adjacent_find(frames.begin(), frames.end(), std::greater_equal<>()) == frames.end());
     }
     SECTION("a crash of its own (an abort) is COLMAP's failure, as before") {
         options.command = fakeColmap(dir, "aborting-colmap", "kill -6 $$");
