@@ -258,6 +258,28 @@ def test_progress_stops_and_raises(tmp_path):
         assert connection.execute("SHOW SCENES").fetchall() == []
 
 
+def test_progress_counts_colmap_frames_and_stops_a_running_command(tmp_path):
+    """COLMAP's bar counts the frames its command has done; a stop asked there stops the command at once."""
+    photos = DATA / "captures" / "tum-fr3-office-photos"
+    if not photos.is_dir():
+        pytest.skip(f"{photos} is absent")
+    events = []
+
+    def stop_at_third(event):
+        events.append(event)
+        return event.stage == "colmap" and event.kind == "advanced" and event.done >= 3
+
+    with smql.connect(tmp_path / "db") as connection:
+        with pytest.raises(smql.OperationalError, match="stopped"):
+            connection.ingest(photos, progress=stop_at_third)
+        assert connection.execute("SHOW SCENES").fetchall() == []
+    counted = [e.done for e in events if e.stage == "colmap" and e.kind == "advanced"]
+    assert counted and counted[-1] >= 3 and counted == sorted(counted)
+    assert all(e.total == 17 for e in events if e.stage == "colmap")
+    # Stopped while the extractor ran: the frames, placing and finding things never started.
+    assert not any(e.stage == "frames" for e in events)
+
+
 def test_ingest_releases_the_gil_and_can_be_interrupted(tmp_path):
     with smql.connect(tmp_path / "db") as connection:
         started = threading.Event()
