@@ -149,7 +149,8 @@ public:
     }
 
     // progress(kind, stage, done, total, seconds, text) -> truthy to stop. An exception it raises
-    // stops the ingest and is raised again here.
+    // stops the ingest and is raised again here, and so does Ctrl-C (KeyboardInterrupt): Python's
+    // signal handlers run at each event, with or without `progress`, as a long C call should let them.
     void ingest(const std::string& capture, const std::string& options, py::object progress) {
         struct Context {
             py::object progress;
@@ -159,6 +160,8 @@ public:
             auto* c = static_cast<Context*>(user);
             py::gil_scoped_acquire acquire;
             try {
+                if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+                if (c->progress.is_none()) return 0;
                 return py::bool_(
                            c->progress(static_cast<int>(p->kind), p->stage, p->done, p->total, p->seconds, p->text))
                            ? 1
@@ -171,8 +174,8 @@ public:
         smql_status status;
         {
             py::gil_scoped_release release;
-            status = smql_ingest(handle(), capture.c_str(), options.empty() ? nullptr : options.c_str(),
-                                 context.progress.is_none() ? nullptr : +callback, &context);
+            status = smql_ingest(handle(), capture.c_str(), options.empty() ? nullptr : options.c_str(), +callback,
+                                 &context);
         }
         if (context.raised) throw std::move(*context.raised);
         check(db_, status);

@@ -4,7 +4,9 @@ import contextlib
 import json
 import os
 import pathlib
+import signal
 import threading
+import time
 
 import numpy
 import pytest
@@ -278,6 +280,22 @@ def test_progress_counts_colmap_frames_and_stops_a_running_command(tmp_path):
     assert all(e.total == 17 for e in events if e.stage == "colmap")
     # Stopped while the extractor ran: the frames, placing and finding things never started.
     assert not any(e.stage == "frames" for e in events)
+
+
+def test_ctrl_c_stops_an_ingest_without_a_progress_callback(tmp_path):
+    """Ctrl-C (SIGINT) during a long ingest raises KeyboardInterrupt within a moment, nothing written."""
+    photos = DATA / "captures" / "tum-fr3-office-photos"
+    if not photos.is_dir():
+        pytest.skip(f"{photos} is absent")
+    timer = threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        smql.ingest(photos, tmp_path / "db")  # COLMAP alone takes several seconds here
+    timer.join()
+    assert time.monotonic() - started < 5
+    with contextlib.closing(smql.connect(tmp_path / "db", read_only=True)) as connection:
+        assert connection.execute("SHOW SCENES").fetchall() == []
 
 
 def test_ingest_releases_the_gil_and_can_be_interrupted(tmp_path):
