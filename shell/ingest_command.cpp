@@ -74,13 +74,21 @@ private:
     std::size_t frames_ = 0;
 };
 
-// One JSON object per line on standard error, for scripts.
+// One JSON object per line on standard error, for scripts. A stage's progress is told at each tenth of its steps
+// it reaches (a COLMAP command's count, which starts again with each command, too), so that a script sees a long
+// stage move without a line per frame.
 class JsonProgress : public ingest::ProgressSink {
 public:
     void stageStarted(const std::string& stage, std::size_t steps) override {
+        stage_ = stage, steps_ = steps, tenth_ = 0;
         emit({{"event", "stage_started"}, {"stage", stage}, {"steps", steps}});
     }
-    void advanced(std::size_t) override {}
+    void advanced(std::size_t done) override {
+        const std::size_t tenth = steps_ > 0 ? 10 * std::min(done, steps_) / steps_ : 0;
+        if (tenth == tenth_) return;
+        tenth_ = tenth;
+        emit({{"event", "stage_progress"}, {"stage", stage_}, {"done", done}, {"steps", steps_}});
+    }
     void captureRead(std::size_t frames) override { frames_ = frames; }
     void stageFinished(const std::string& stage, double seconds, const std::string& summary) override {
         nlohmann::json event{{"event", "stage_finished"}, {"stage", stage}, {"seconds", seconds}, {"summary", summary}};
@@ -92,6 +100,9 @@ public:
 private:
     static void emit(const nlohmann::json& j) { std::cerr << j.dump() << "\n"; }
     std::size_t frames_ = 0;
+    std::string stage_;
+    std::size_t steps_ = 0;
+    std::size_t tenth_ = 0;  // of the stage's steps, last told
 };
 
 int ingestInto(const IngestArguments& args) {

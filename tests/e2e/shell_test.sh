@@ -174,6 +174,8 @@ names = [e[\"stage\"] for e in stages if e[\"event\"] == \"stage_finished\"]
 assert names == [\"frames\", \"align\", \"anchors\", \"objects\", \"openings\", \"relations\", \"write\"], names
 frames = next(e for e in stages if e[\"event\"] == \"stage_finished\" and e[\"stage\"] == \"frames\")
 assert abs(frames[\"frames_per_second\"] * frames[\"seconds\"] - 12) < 1e-6, frames
+moved = [e[\"done\"] for e in stages if e[\"event\"] == \"stage_progress\" and e[\"stage\"] == \"frames\"]
+assert 1 <= len(moved) <= 10 and moved == sorted(moved) and moved[-1] == 12, moved
 ' '$work/log'"
 check "ingest prints each stage's rate in frames a second" bash -c "'$smql' ingest '$work/capture' --db '$work/rated' 2>&1 >/dev/null | grep -Eq '^frames +[0-9.]+ s +[0-9]+ frames/s  12 frames'"
 check "check-ingest reports F1 as JSON" bash -c "'$smql' check-ingest '$work/memory' --truth '$work/capture/truth.json' --format json | python3 -c '
