@@ -624,8 +624,8 @@ std::string Engine::SceneUpdateReport::summary() const {
 std::optional<std::string> Engine::SceneUpdateReport::warning() const {
     // Matching compares positions in the scene's frame (docs/history.md, "Frames"): a capture of another place, or
     // one started from another origin, finds nothing again where it was however little changed, and takes a thing
-    // of the same kind, size and colour anywhere for one that moved. the five dining frames'
-    // scene updated with TUM's office photos found 0 again in place, 2 "moved" (chairs), 10 new.
+    // of the same kind, size and colour anywhere for one that moved: the five dining frames' scene updated with
+    // TUM's office photos found 0 again in place, 2 "moved" (chairs), 10 new.
     constexpr std::size_t kFewest = 3;
     const std::size_t stored = moved + missing + unseen;
     if (unchanged > 0 || stored < kFewest || added < kFewest || added <= moved) return std::nullopt;

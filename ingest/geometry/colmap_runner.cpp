@@ -275,14 +275,8 @@ const char* originWords(IntrinsicsOrigin origin) {
     return "";
 }
 
-// "7.jpg, 17.jpg, 19.jpg, 20.jpg, 40.jpg and 8 more": the first few of `names`.
-std::string firstFew(const std::vector<std::string>& names) {
-    constexpr std::size_t kShown = 5;
-    if (names.size() <= 2) return fmt::format("{}", fmt::join(names, " and "));
-    const std::size_t shown = std::min(names.size(), kShown);
-    const std::string first = fmt::format("{}", fmt::join(names.begin(), names.begin() + shown, ", "));
-    return names.size() == shown ? first : fmt::format("{} and {} more", first, names.size() - shown);
-}
+// How many photos a refusal names before "and N more".
+constexpr std::size_t kPhotosNamed = 5;
 
 // The file names of the frames that `kept` holds, in the capture's order.
 template <class Kept>
@@ -314,10 +308,10 @@ std::string wherePhotosPart(const ColmapDatabaseSummary& s, const std::vector<Wo
         out = fmt::format(
             "; in the order taken they part {} {}, at {}, each sharing too few matches with the photo "
             "before it",
-            partings.size(), partings.size() == 1 ? "time" : "times", firstFew(partings));
+            partings.size(), partings.size() == 1 ? "time" : "times", model::listFirst(partings, kPhotosNamed));
     if (!featureless.empty())
-        out +=
-            fmt::format("; {} gave no features (a plain surface, or a dark or blurred photo)", firstFew(featureless));
+        out += fmt::format("; {} gave no features (a plain surface, or a dark or blurred photo)",
+                           model::listFirst(featureless, kPhotosNamed));
     return out;
 }
 
@@ -347,7 +341,8 @@ std::string diagnosis(const fs::path& database, const std::vector<WorkFrame>& wo
             return fmt::format(
                 "only {} of {} photos overlap enough with another ({}); {} {} with none: take more views with "
                 "overlap, each neighbouring photo seeing much of what the last one saw",
-                s.overlappingImages, frames, overlap, firstFew(alone), alone.size() == 1 ? "overlaps" : "overlap");
+                s.overlappingImages, frames, overlap, model::listFirst(alone, kPhotosNamed),
+                alone.size() == 1 ? "overlaps" : "overlap");
         }
         if (!most(s.largestOverlapGroup, frames))
             return fmt::format(
