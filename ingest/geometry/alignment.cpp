@@ -502,9 +502,10 @@ std::string floorDoubt(const SurfaceEvidence& evidence, std::size_t priors) {
 }
 
 // Scale: as given, 1 for a metric capture, else the priors that apply (floor to ceiling, the
-// cameras' height, the heights of named things) combined. Returns how many priors were measured.
+// cameras' height, the heights of named things above the floor, or above the table top the floor was placed
+// under: `tableTop`, its height along `up`) combined. Returns how many priors were measured.
 std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit, double ceilingAbove, bool floorFound,
-                        const std::vector<Pose>& cameras, const Eigen::Vector3d& up,
+                        std::optional<double> tableTop, const std::vector<Pose>& cameras, const Eigen::Vector3d& up,
                         const std::vector<NamedThing>& things) {
     auto& notes = out.notes;
     if (options.scale) {
@@ -546,6 +547,9 @@ std::size_t chooseScale(Alignment& out, const AlignOptions& options, double unit
         } else {
             estimates.insert(heights->leads ? estimates.begin() : estimates.end(), *heights);
         }
+    } else if (tableTop) {
+        if (auto onTop = scaleFromHeightsOnTop(things, fromEigen(up), *tableTop, unit))
+            estimates.insert(onTop->leads ? estimates.begin() : estimates.end(), *onTop);
     }
     // A height given is measured: it leads, the things' heights and the ceiling's only checking it.
     if (byCameras && options.cameraHeightGiven) estimates.insert(estimates.begin(), *byCameras);
@@ -630,8 +634,15 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     turn << std::cos(out.heading), -std::sin(out.heading), 0, std::sin(out.heading), std::cos(out.heading), 0, 0, 0, 1;
     Eigen::Matrix3d rotation = turn * level;
 
-    const std::size_t priors = out.scalePriors =
-        chooseScale(out, options, unit, ceiling ? ceilingAbove : 0, floor != nullptr, cameras, up, things);
+    // The table top the floor was placed under, measured along the up its placement ended with.
+    std::optional<double> tableTopAlong;
+    if (!floor && choice.tableTop) {
+        std::vector<double> heights;
+        for (auto i : choice.tableTop->inliers) heights.push_back(up.dot(toEigen(world.points[i])));
+        tableTopAlong = detail::median(std::move(heights));
+    }
+    const std::size_t priors = out.scalePriors = chooseScale(out, options, unit, ceiling ? ceilingAbove : 0,
+                                                             floor != nullptr, tableTopAlong, cameras, up, things);
     if (floor && priors > 0) {
         out.floorUnconfirmed = leansFromEdges.empty() ? floorDoubt(choice.floorEvidence, priors) : leansFromEdges;
         if (!out.floorUnconfirmed.empty()) notes.push_back("floor: not confirmed; " + out.floorUnconfirmed);

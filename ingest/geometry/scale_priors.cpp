@@ -69,42 +69,49 @@ std::vector<bool> namesInDoubt(const std::vector<NamedThing>& things, const mode
     return doubted;
 }
 
-// "2 fridges, 1 toilet"; with `heights`, each kind's typical height after it: "2 fridges (1.75 m)".
-std::string listCounts(const std::map<std::string, int>& counts, bool heights = false) {
+// What the heights are measured above: the floor (typicalHeight) or a table top (typicalHeightOnTop).
+enum class Above { Floor, TableTop };
+
+std::optional<double> usualHeight(std::string_view category, Above above) {
+    return above == Above::Floor ? typicalHeight(category) : typicalHeightOnTop(category);
+}
+
+// "2 fridges, 1 toilet"; with `heights`, each kind's typical height above that after it: "2 fridges (1.75 m)".
+std::string listCounts(const std::map<std::string, int>& counts, std::optional<Above> heights = std::nullopt) {
     std::string listed;
     for (const auto& [category, n] : counts) {
         listed += fmt::format("{}{} {}{}", listed.empty() ? "" : ", ", n, category, n == 1 ? "" : "s");
-        if (heights) listed += fmt::format(" ({:.2f} m)", typicalHeight(category).value_or(0));
+        if (heights) listed += fmt::format(" ({:.2f} m)", usualHeight(category, *heights).value_or(0));
     }
     return listed;
 }
 
 // Whether a thing's height would measure the room: a measure (NamedThing::measures) of a kind of a typical height.
-bool measuresHeight(const NamedThing& thing) {
-    return thing.measures && !thing.points.empty() && typicalHeight(thing.category);
+bool measuresHeight(const NamedThing& thing, Above above) {
+    return thing.measures && !thing.points.empty() && usualHeight(thing.category, above);
 }
 
 // How the heights prior takes each thing: no measure of height (measuresHeight), left out (its name in doubt, its
-// points reaching well below the floor, or, with `seenWhole`, its top short of the tallest of its kind: seen in
-// part), or counted, with its top in capture units above the floor.
+// points reaching well below the floor or top `base`, or, with `seenWhole`, its top short of the tallest of its kind:
+// seen in part), or counted, with its top in capture units above `base`.
 struct Taken {
     enum class As { NoMeasure, Doubted, BelowFloor, Partial, Counted } as = As::NoMeasure;
     double top = 0;
 };
 
-std::vector<Taken> takeHeights(const std::vector<NamedThing>& things, const model::Vec3& up, double floorHeight,
-                               double unit, bool seenWhole) {
-    const std::vector<bool> doubted = namesInDoubt(things, up, floorHeight);
+std::vector<Taken> takeHeights(const std::vector<NamedThing>& things, const model::Vec3& up, double base, double unit,
+                               bool seenWhole, Above over = Above::Floor) {
+    const std::vector<bool> doubted = namesInDoubt(things, up, base);
     std::vector<Taken> out(things.size());
     std::map<std::string_view, double> tallest;  // by kindName
     for (std::size_t i = 0; i < things.size(); ++i) {
-        if (!measuresHeight(things[i])) continue;
+        if (!measuresHeight(things[i], over)) continue;
         if (doubted[i]) {
             out[i].as = Taken::As::Doubted;
             continue;
         }
         std::vector<double> above;
-        for (const auto& p : things[i].points) above.push_back(along(up, p) - floorHeight);
+        for (const auto& p : things[i].points) above.push_back(along(up, p) - base);
         if (reachesBelow(above, unit)) {
             out[i].as = Taken::As::BelowFloor;
             continue;
@@ -142,15 +149,20 @@ HeightsLeftOut heightsLeftOut(const std::vector<NamedThing>& things, const model
             listCounts(countTaken(things, taken, Taken::As::Counted))};
 }
 
-std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
-                                              double floorHeight, double unit, bool seenWhole, std::size_t minThings) {
-    const std::vector<Taken> taken = takeHeights(things, up, floorHeight, unit, seenWhole);
+namespace {
+
+// scaleFromHeights above the floor or a table top; `where` follows the things in the prior's name.
+std::optional<ScaleEstimate> heightsPrior(const std::vector<NamedThing>& things, const model::Vec3& up, double base,
+                                          double unit, bool seenWhole, std::size_t minThings, Above over,
+                                          std::string_view where) {
+    const std::vector<Taken> taken = takeHeights(things, up, base, unit, seenWhole, over);
     std::vector<double> estimates;
     for (std::size_t i = 0; i < things.size(); ++i)
-        if (taken[i].as == Taken::As::Counted) estimates.push_back(*typicalHeight(things[i].category) / taken[i].top);
+        if (taken[i].as == Taken::As::Counted)
+            estimates.push_back(*usualHeight(things[i].category, over) / taken[i].top);
     if (estimates.size() < std::max<std::size_t>(minThings, 1)) return std::nullopt;
     const std::map<std::string, int> counted = countTaken(things, taken, Taken::As::Counted);
-    const std::string kinds = listCounts(counted, /*heights=*/true);
+    const std::string kinds = listCounts(counted, over) + std::string(where);
     // "2 fridges, 1 toilet", wrapped in why they were left out; nothing when none was.
     auto leftOut = [](const std::map<std::string, int>& counts, std::string_view why) {
         const std::string listed = listCounts(counts);
@@ -158,7 +170,9 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
     };
     const std::string doubts =
         leftOut(countTaken(things, taken, Taken::As::Doubted), "named beside another room's things: {}") +
-        leftOut(countTaken(things, taken, Taken::As::BelowFloor), "their points reaching below the floor: {}") +
+        leftOut(countTaken(things, taken, Taken::As::BelowFloor), over == Above::Floor
+                                                                      ? "their points reaching below the floor: {}"
+                                                                      : "their points reaching below the top: {}") +
         leftOut(countTaken(things, taken, Taken::As::Partial), "seen in part: {} short of the tallest of their kind");
     std::sort(estimates.begin(), estimates.end());
     bool twoAgree = false;
@@ -178,6 +192,19 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
                          .scale = median,
                          .leads = twoAgree,
                          .things = kinds};
+}
+
+}  // namespace
+
+std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& things, const model::Vec3& up,
+                                              double floorHeight, double unit, bool seenWhole, std::size_t minThings) {
+    return heightsPrior(things, up, floorHeight, unit, seenWhole, minThings, Above::Floor, "");
+}
+
+std::optional<ScaleEstimate> scaleFromHeightsOnTop(const std::vector<NamedThing>& things, const model::Vec3& up,
+                                                   double topHeight, double unit) {
+    return heightsPrior(things, up, topHeight, unit, /*seenWhole=*/false, /*minThings=*/1, Above::TableTop,
+                        " above the table top");
 }
 
 ScaleChoice combineScales(const std::vector<ScaleEstimate>& estimates) {

@@ -10,8 +10,13 @@
 namespace smql::ingest {
 
 // A standing thing's usual height above the floor in metres (its top), for the
-// kinds whose height varies little: nullopt for the others.
+// kinds whose height varies little: nullopt for the others, and for things that stand on tables.
 std::optional<double> typicalHeight(std::string_view category);
+
+// A thing's usual height above the table, desk or counter top it stands on (usualSupport: Surface), for the
+// kinds whose height varies little: nullopt for the others. It measures a capture whose floor does not show, its
+// lowest surface a table top (scale_priors.hpp: scaleFromHeightsOnTop).
+std::optional<double> typicalHeightOnTop(std::string_view category);
 
 // The largest side (height included) things of a kind commonly have, in metres; nullopt for kinds
 // the table lacks. A box named so that is several times longer is not that thing, or the

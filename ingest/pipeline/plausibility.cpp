@@ -268,11 +268,20 @@ std::optional<PlausibilityFinding> thinPointsFinding(const PointsGiven& given) {
 std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, const ScaleSource& source) {
     std::vector<PlausibilityFinding> out;
     const bool scaled = source.depth || source.given || source.metric;
+    // Photos without depth whose floor was placed under a table top by the cameras' assumed height and a table's,
+    // where the heights of things standing on the top measure it too (scale_priors.hpp: scaleFromHeightsOnTop):
+    // the priors' spread, refused below when wide, says whether the placement holds.
+    const bool placedOnTop = !scaled && alignment.tableTopHeight && alignment.scalePriors >= 2;
     if (!alignment.floorNotSeen.empty())
-        out.push_back({"floor", !scaled, "the floor is not seen: " + alignment.floorNotSeen,
-                       scaled
-                           ? fmt::format("the floor is placed {}; views that also show the floor place it where it is",
-                                         alignment.floorPlaced)
+        out.push_back({"floor", !scaled && !placedOnTop, "the floor is not seen: " + alignment.floorNotSeen,
+                       scaled ? fmt::format("the floor is placed {}; views that also show the floor place it where "
+                                            "it is",
+                                            alignment.floorPlaced)
+                       : placedOnTop
+                           ? fmt::format("the floor is placed {}, which the cameras' assumed height and the things on "
+                                         "the top agree on within {:.0f}%; photos that also show the floor place it "
+                                         "where it is",
+                                         alignment.floorPlaced, 100 * alignment.scaleSpread)
                            : std::string("photos without depth take their scale from the floor: give --scale "
                                          "(metres per capture unit), or add photos that show the floor")});
     if (!alignment.floorUnconfirmed.empty() && !scaled)

@@ -852,7 +852,9 @@ struct Desk {
     std::vector<NamedThing> things;
 };
 
-Desk deskScene(bool floorPatch) {
+// A desk 0.75 m high, a mug, a keyboard and a laptop on it (and a 0.44 m monitor with `monitor`), a chair beside
+// it, three cameras 1.45 m up (`cameraHeight`) pitched down at it; the floor under it shows with `floorPatch`.
+Desk deskScene(bool floorPatch, bool monitor = false, double cameraHeight = 1.45) {
     Desk desk;
     std::mt19937 rng(11);
     std::normal_distribution<double> noise(0, 0.005);
@@ -878,7 +880,8 @@ Desk deskScene(bool floorPatch) {
     thing("keyboard", {0.8, 0.2, 0.75}, {1.25, 0.36, 0.78});
     thing("laptop", {1.4, 0.3, 0.75}, {1.74, 0.54, 0.95});
     thing("chair", {0.8, -0.6, 0.0}, {1.2, -0.2, 0.9});
-    for (double x : {0.5, 1.0, 1.5}) desk.cameras.push_back(camera({x, -0.4, 1.45}, 90 * kDeg, 50 * kDeg));
+    if (monitor) thing("monitor", {0.2, 0.7, 0.75}, {0.7, 0.9, 1.19});
+    for (double x : {0.5, 1.0, 1.5}) desk.cameras.push_back(camera({x, -0.4, cameraHeight}, 90 * kDeg, 50 * kDeg));
     return desk;
 }
 
@@ -1043,6 +1046,48 @@ TEST_CASE("a table top is not taken for the floor: what stands on it says so", "
         options.scale = 0.5;
         CHECK(alignCapture(top, desk.cameras, options, {}).floorUnconfirmed.empty());
     }
+}
+
+// Photos without depth of a desk whose floor does not show: the floor is placed a table's height under the top, the
+// cameras' assumed height giving the scale through it. A monitor standing on the top measures the scale as well
+// (scaleFromHeightsOnTop): it agrees with cameras held as a person stands at a desk, and parts from cameras held
+// low over the top, as from a chair, where the two assumed heights put the room 2.5 times too large.
+TEST_CASE("photos of a desk whose floor does not show: a monitor on the top checks the cameras' height",
+          "[ingest][geometry]") {
+    AlignOptions photos;
+    photos.metric = false;
+    const Desk bare = deskScene(false);
+    Alignment alone = alignCapture(bare.cloud, bare.cameras, photos, bare.things);
+    INFO(notesOf(alone));
+    CHECK_FALSE(alone.floorFound);
+    REQUIRE(alone.tableTopHeight);
+    CHECK(alone.scalePriors == 1);
+
+    const Desk desk = deskScene(false, /*monitor=*/true);
+    Alignment checked = alignCapture(desk.cloud, desk.cameras, photos, desk.things);
+    INFO(notesOf(checked));
+    CHECK_FALSE(checked.floorFound);
+    REQUIRE(checked.tableTopHeight);
+    CHECK(checked.scalePriors == 2);
+    CHECK_THAT(notesOf(checked), Catch::Contains("the typical heights of 1 monitor (0.44 m) above the table top"));
+    // The cameras 0.70 m over the top, 1.40 m over the floor placed 0.70 m under it: 1.07; the monitor 1.00.
+    CHECK(checked.scale == Approx(1.036).margin(0.01));
+    CHECK(checked.scaleSpread == Approx(0.07).margin(0.01));
+    CHECK(checked.scaleSplit == 0);
+    CHECK(*checked.tableTopHeight == Approx(0.725).margin(0.02));
+
+    // The scale is known: the monitor measures nothing, and a thing reaching under the top is no measure of it.
+    CHECK(alignCapture(desk.cloud, desk.cameras, AlignOptions{}, desk.things).scalePriors == 0);
+    const auto onTop = scaleFromHeightsOnTop(desk.things, {0, 0, 1}, 0.75, 1.0);
+    REQUIRE(onTop);
+    CHECK(onTop->scale == Approx(1.0).margin(0.01));
+    CHECK_FALSE(scaleFromHeightsOnTop(desk.things, {0, 0, 1}, 1.0, 1.0));  // its points reach under a top at 1.0
+
+    const Desk low = deskScene(false, /*monitor=*/true, /*cameraHeight=*/1.05);
+    Alignment split = alignCapture(low.cloud, low.cameras, photos, low.things);
+    INFO(notesOf(split));
+    CHECK(split.scalePriors == 2);
+    CHECK(split.scaleSplit == Approx(2.5).margin(0.1));
 }
 
 TEST_CASE("rgbd-dining: the views' depths agree through the poses; mirrored or in another unit they do not",

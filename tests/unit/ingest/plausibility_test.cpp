@@ -207,6 +207,30 @@ TEST_CASE("plausibility: a floor not seen, and scale priors that disagree", "[in
     agreeing.floorFound = true;
     agreeing.scalePriors = 2;
     CHECK(alignmentFindings(agreeing, {}).empty());
+
+    // The floor placed under a desk top by the cameras' assumed height alone: refused, as any floor not seen. With a
+    // monitor on the top measuring it too (geometry_test: scaleFromHeightsOnTop), the placement is said, not
+    // refused; the priors' spread refuses it when wide.
+    Alignment underTop;
+    underTop.floorNotSeen =
+        "the lowest horizontal surface below the cameras is a table top: 1 thing that stands on "
+        "tables rests on it (monitor)";
+    underTop.floorPlaced = "a table's usual height (0.75 m) below the table top";
+    underTop.tableTopHeight = 0.75;
+    underTop.scalePriors = 1;
+    REQUIRE(alignmentFindings(underTop, {}).size() == 1);
+    CHECK(alignmentFindings(underTop, {}).front().refuse);
+    CHECK_THAT(alignmentFindings(underTop, {}).front().fix, Catch::Contains("--scale"));
+    underTop.scalePriors = 2;
+    underTop.scaleSpread = 0.08;
+    auto placed = alignmentFindings(underTop, {});
+    REQUIRE(placed.size() == 1);
+    CHECK(placed.front().check == "floor");
+    CHECK_FALSE(placed.front().refuse);
+    CHECK_THAT(placed.front().fix, Catch::Contains("which the cameras' assumed height and the things on the top agree "
+                                                   "on within 8%"));
+    underTop.scaleSpread = 0.4;
+    CHECK(alignmentFindings(underTop, {}).back().refuse);
 }
 
 // Photos whose points cover little of what the detectors saw: the five dining photos of ../shared/data/rgbd-dining
@@ -532,6 +556,21 @@ TEST_CASE("plausibility: the typical heights of the scale's priors are real room
         CHECK(measured.size() >= 20);
         CHECK(std::abs(*typicalHeight(kind) - median) <= 0.1 * median);
     }
+}
+
+// A monitor's height above its desk measures photos whose floor does not show (typicalHeightOnTop): ScanNet's
+// labelled monitors, their boxes fitted to the scans, stand within a tenth of it at the median.
+TEST_CASE("plausibility: the typical heights on a table top are real rooms' medians", "[ingest][plausibility]") {
+    std::vector<double> monitors;
+    for (const RealThing& thing : realThings())
+        if (thing.source.starts_with("scannet") && thing.kind == "monitor") monitors.push_back(thing.height);
+    REQUIRE(monitors.size() >= 40);
+    std::nth_element(monitors.begin(), monitors.begin() + monitors.size() / 2, monitors.end());
+    const double median = monitors[monitors.size() / 2];
+    INFO(fmt::format("monitor: typical {:.2f} m above its desk, the median of {} real ones {:.2f} m",
+                     *typicalHeightOnTop("monitor"), monitors.size(), median));
+    CHECK(std::abs(*typicalHeightOnTop("monitor") - median) <= 0.1 * median);
+    CHECK_FALSE(typicalHeight("monitor"));  // a monitor's top stands above a desk, not the floor
 }
 
 TEST_CASE("plausibility: real RGB-D frames in their unit pass, in another unit are refused with the fix",
