@@ -132,6 +132,28 @@ TEST_CASE("plausibility: a robot's camera height given is the height the checks 
     CHECK(*given.cameraHeight == Approx(0.25));
 }
 
+// Photos without depth whose estimated scale puts the cameras higher than a person holds one: TUM's office photos, the
+// last 8 of 17, stored 1.245x too large with their cameras 1.94 m up (two chairs and a "fridge" leading the scale).
+// Refused, naming --scale; with depth, or the scale given, the same height is a tall robot's, and passes.
+TEST_CASE("plausibility: photos whose estimated scale lifts the cameras above a person's reach are refused",
+          "[ingest][plausibility]") {
+    auto high = room(1.0);
+    for (auto& n : high.nodes)
+        if (n.kind == model::NodeKind::Frame) n.box.center.z = 1.94;
+    const auto photos = checkPlausibility(high, {});
+    CHECK(has(photos, "camera height", true));
+    const auto& finding = *std::find_if(photos.findings.begin(), photos.findings.end(),
+                                        [](const auto& f) { return f.check == "camera height"; });
+    CHECK_THAT(finding.what, Catch::Contains("1.94 m above the floor, where a person holds one at most 1.8 m up"));
+    CHECK_THAT(finding.fix, Catch::Contains("--scale"));
+    CHECK(checkPlausibility(high, {.depth = true, .depthScale = 1000}).findings.empty());
+    CHECK(checkPlausibility(high, {.given = true}).findings.empty());
+    CHECK(checkPlausibility(high, {.cameraHeight = 1.94}).findings.empty());
+    for (auto& n : high.nodes)
+        if (n.kind == model::NodeKind::Frame) n.box.center.z = 1.70;  // TUM's tallest, stored right
+    CHECK(checkPlausibility(high, {}).findings.empty());
+}
+
 TEST_CASE("plausibility: names kept only as detected_as still count for the scale", "[ingest][plausibility]") {
     // A desk's photos at twice their scale: every box too large for its detector's name, so each
     // name was kept only as a guess. Those guesses are the evidence that the scale is off.
