@@ -62,8 +62,9 @@ std::optional<ScaleEstimate> scaleFromHeights(const std::vector<NamedThing>& thi
 // its top above `topHeight`, gives one estimate, as scaleFromHeights takes those above the floor (hulls as
 // carved: seenWhole off), from one thing on. It checks the cameras' assumed height, which reaches the top only
 // through a table's assumed height under it: those two placed the floor under TUM fr1/rpy's desk (its 100 colour
-// frames without depth) at 1.04-1.09x the true scale in seven COLMAP runs, yet a camera held 0.45 m over a table
-// (from a chair) rather than a standing person's 0.75 m makes them 1.7x off, and nothing but such a thing tells.
+// frames without depth) at 1.04-1.09x the true scale in every COLMAP run forced to store, yet a camera held 0.45 m over
+// a table (from a chair) rather than a standing person's 0.75 m makes them 1.7x off, and nothing but such a thing
+// tells.
 std::optional<ScaleEstimate> scaleFromHeightsOnTop(const std::vector<NamedThing>& things, const model::Vec3& up,
                                                    double topHeight, double unit);
 

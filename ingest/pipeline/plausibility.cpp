@@ -20,7 +20,7 @@ constexpr double kCameraRefuse[2] = {0.12, 3.2};
 constexpr double kUsualCamera = 1.4;  // a phone held by a standing person
 // Photos without depth whose scale the ingest estimated: their cameras' height is one of the scale's priors, a
 // person's assumed, and the things' heights lead it where two agree. Cameras those put higher than a person holds
-// one were measured with things short of their kind together (seen in part), and the memory is refused. Real
+// one say the scale is too large, the things that led it short of their kinds together, and the memory is refused. Real
 // captures' cameras stand 1.19-1.70 m up (ScanNet's 1.19-1.36, 7-Scenes' 1.41, TUM's 1.50-1.70); TUM's office
 // photos, the last 8 of 17, were stored 1.245x too large with their cameras 1.94 m up, two chairs and a "fridge"
 // leading the scale 22 % from the cameras' height, and ScanNet's bathroom once 1.36x with its cameras 1.82 m up.
