@@ -634,7 +634,8 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
     turn << std::cos(out.heading), -std::sin(out.heading), 0, std::sin(out.heading), std::cos(out.heading), 0, 0, 0, 1;
     Eigen::Matrix3d rotation = turn * level;
 
-    // The table top the floor was placed under, measured along the up its placement ended with.
+    // The table top the floor was placed under, measured along the up its placement ended with (the edges' where they
+    // levelled the room, as the floor's height is).
     std::optional<double> tableTopAlong;
     if (!floor && choice.tableTop) {
         std::vector<double> heights;
@@ -647,7 +648,7 @@ Alignment alignCapture(const PointCloud& world, const std::vector<Pose>& cameras
         out.floorUnconfirmed = leansFromEdges.empty() ? floorDoubt(choice.floorEvidence, priors) : leansFromEdges;
         if (!out.floorUnconfirmed.empty()) notes.push_back("floor: not confirmed; " + out.floorUnconfirmed);
     }
-    if (!floor && choice.tableTop) out.tableTopHeight = out.scale * (choice.tableTop->height - out.floorHeight);
+    if (tableTopAlong) out.tableTopHeight = out.scale * (*tableTopAlong - out.floorHeight);
     if (ceiling) {
         out.ceilingHeight = out.scale * ceilingAbove;
         notes.push_back("ceiling: plane with " + std::to_string(ceiling->plane.inliers) + " points, " +

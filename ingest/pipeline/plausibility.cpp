@@ -150,7 +150,7 @@ PlausibilityReport checkPlausibility(const model::SceneData& scene, const ScaleS
     const double usualCamera = source.cameraHeight.value_or(kUsualCamera);
     if (floor && !cameras.empty()) {
         report.cameraHeight = median(cameras);
-        const bool estimated = !source.stored && !source.depth && !source.given && !source.metric;
+        const bool estimated = !source.stored && !source.scaled();
         const double photosWarn[2] = {kCameraWarn[0], kPhotosCameraTop};
         const double photosRefuse[2] = {kCameraRefuse[0], kPhotosCameraTop};
         if (!source.cameraHeight)
@@ -282,7 +282,7 @@ std::optional<PlausibilityFinding> thinPointsFinding(const PointsGiven& given) {
 
 std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, const ScaleSource& source) {
     std::vector<PlausibilityFinding> out;
-    const bool scaled = source.depth || source.given || source.metric;
+    const bool scaled = source.scaled();
     // Photos without depth whose floor was placed under a table top by the cameras' assumed height and a table's,
     // where the heights of things standing on the top measure it too (scale_priors.hpp: scaleFromHeightsOnTop):
     // the priors' spread, refused below when wide, says whether the placement holds.

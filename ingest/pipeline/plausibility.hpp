@@ -55,6 +55,9 @@ struct ScaleSource {
     // Photos without depth whose dense points are one pair's alone (dense_stereo.hpp): no second pair
     // checked its depth, and its two poses may be loose (a short step between them).
     bool onePairDepth = false;
+
+    // Whether the scale was measured (depth, --scale, poses in metres) rather than estimated from priors.
+    bool scaled() const { return depth || given || metric; }
 };
 
 // The checks on a scene in the upright floor frame (the floor at z = 0 when it was found).
