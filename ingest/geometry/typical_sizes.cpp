@@ -18,7 +18,10 @@ namespace {
 // fridge or an oven in a kitchen), or any but a bathroom (a bed, a sofa); object_fusion.cpp doubts a name among
 // another room's things. Role: what the kind is for where fusion judges a thing by it (typical_sizes.hpp: Role).
 // Least: the largest side and the height no thing of the kind comes under (typical_sizes.hpp: LeastSize), where real
-// rooms' labels show it; Slender: a footprint too long for its depth for the kind (typical_sizes.hpp). The rows cover
+// rooms' labels show it; Slender: a footprint too long for its depth for the kind (typical_sizes.hpp). Tallest: the
+// height no thing of the kind stands over, above what it stands on, where its make bounds it (a laptop: the lid of the
+// largest, a 17.3-inch 16:9 panel 0.215 m tall in a lid of about 0.27 m, opened upright on a base of 2-3 cm stands
+// about 0.3 m; 0.35 leaves a depth camera's few centimetres). The rows cover
 // the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
@@ -31,6 +34,7 @@ struct Typical {
     Role role = Role::Other;
     LeastSize least{};
     Slender slender{};
+    double tallest = 0;
 };
 // The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
 constexpr Slender kChairShape{.length = 0.75, .depth = 0.2, .postHeight = 0.4, .postSide = 0.25};
@@ -62,7 +66,7 @@ constexpr Typical kTypical[] = {
     {"lamp", 0, 2.0, Support::Either},
     {"plant", 0, 2.2, Support::Either},
     {"cushion", 0, 0.8, Support::Either},
-    {"laptop", 0, 0.5, Support::Surface},
+    {"laptop", 0, 0.5, Support::Surface, false, false, RoomKind::Any, Role::Other, {}, {}, 0.35},
     {"book", 0, 0.5, Support::Surface},
     {"clock", 0, 0.6, Support::Either},
     {"vase", 0, 0.8, Support::Surface},
@@ -128,6 +132,12 @@ std::optional<double> typicalExtent(std::string_view category) {
     const Typical* t = find(category);
     if (!t) return std::nullopt;
     return t->extent;
+}
+
+std::optional<double> tallestHeight(std::string_view category) {
+    const Typical* t = find(category);
+    if (!t || t->tallest <= 0) return std::nullopt;
+    return t->tallest;
 }
 
 std::optional<LeastSize> leastSize(std::string_view category) {

@@ -23,6 +23,11 @@ std::optional<double> typicalHeightOnTop(std::string_view category);
 // capture's scale is wrong (plausibility.hpp).
 std::optional<double> typicalExtent(std::string_view category);
 
+// The height no thing of a kind stands over, above what it stands on, where the kind's make bounds it (a laptop's
+// open lid); nullopt for the others. A desk's monitor seen with its keyboard in front is often detected as a
+// "laptop": at 0.41-0.48 m tall, it is not one (TUM fr1/rpy's second monitor, with depth and without).
+std::optional<double> tallestHeight(std::string_view category);
+
 // The least things of a kind measure, in metres, where every labelled thing of the kind in 238 real rooms
 // measures more (VSI-Bench's ScanNet and ARKitScenes boxes, tests/unit/ingest/plausibility_test.cpp): the
 // largest side (a bed's 1.2 m, where the shortest of 74 beds is 1.73 m) and the height (a sofa's 0.35 m);

@@ -303,12 +303,14 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                             "{}: stored as 'object' with detected_as = {}",
                             box.size.x, box.size.y, box.size.z, category,
                             fit == NameFit::TooSmall ? "small" : "slender", category));
-        else if (fit == NameFit::TooTall)
+        else if (fit == NameFit::TooTall) {
+            const auto usual = typicalHeight(category);
             progress.note(
-                fmt::format("a {:.2f} m tall thing was detected as '{}', which stands about {:.2f} m: "
+                fmt::format("a {:.2f} m tall thing was detected as '{}', which stands {} {:.2f} m: "
                             "stored as 'object' with detected_as = {}",
-                            box.size.z, category, typicalHeight(category).value_or(0), category));
-        else if (!detectedAs.empty())
+                            box.size.z, category, usual ? "about" : "at most",
+                            usual ? *usual : tallestHeight(category).value_or(0), category));
+        } else if (!detectedAs.empty())
             progress.note(fmt::format("a thing detected as '{}' {}: stored as '{}' with detected_as = {}", detectedAs,
                                       track.renamedWhy, stored, detectedAs));
         model::Node& node = addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, stored,

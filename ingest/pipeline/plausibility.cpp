@@ -493,6 +493,12 @@ NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure m
                                                !hasUprightEnds(category) &&
                                                box.size.z > kTallerThanTypicalHull * *height)
         return NameFit::TooTall;
+    // A hull from boxes alone bounds its height without measuring it; one held to its surfaces reaches past them as
+    // it does past a standard height.
+    if (auto tallest = tallestHeight(category);
+        tallest && measure != BoxMeasure::HullFromBoxes &&
+        box.size.z > (measure == BoxMeasure::Depth ? 1.0 : kTallerThanTypicalHull) * *tallest)
+        return NameFit::TooTall;
     return NameFit::Fits;
 }
 
