@@ -598,8 +598,11 @@ private:
                         fmt::format("colmap {} was stopped by signal {} ({}), not by what it read; its output is in {}",
                                     step, signal, strsignal(signal), run_.logPath),
                         std::nullopt,
-                        "something outside the ingest stopped COLMAP: the kernel stops a process with signal 9 when "
-                        "memory runs out (dmesg says so); fewer frames or a smaller --max-size need less");
+                        signal == SIGKILL
+                            ? "something outside the ingest stopped COLMAP: the kernel stops a process with signal 9 "
+                              "when memory runs out (dmesg says so); fewer frames or a smaller --max-size need less"
+                            : "something outside the ingest stopped COLMAP (a user, a closed terminal, a service "
+                              "manager): run the ingest again; the photos were not at fault");
         if (code == 0) return true;
         if (failureIsAnswer) return false;
         std::string facts =
