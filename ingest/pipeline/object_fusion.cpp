@@ -400,6 +400,18 @@ const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& th
     return seat == things.end() ? nullptr : &*seat;
 }
 
+const SeenBox* carrierUnder(const SeenBox& thing, const std::vector<SeenBox>& things, const FusionOptions& options) {
+    const auto usual = typicalHeight(thing.category);
+    if (usualSupport(thing.category) != Support::Floor || !usual || thing.box.size.z >= options.smallOnTop * *usual)
+        return nullptr;
+    const auto carrier = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
+        return &other != &thing && holdsThings(other.category) &&
+               std::abs(model::bottom(thing.box) - model::top(other.box)) <= options.restingGap &&
+               model::footprintContains(other.box, {thing.box.center.x, thing.box.center.y});
+    });
+    return carrier == things.end() ? nullptr : &*carrier;
+}
+
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
     const double below = model::bottom(basin) - model::top(under);
     return below >= -options.cabinetAbove && below <= options.cabinetBelow &&
@@ -758,6 +770,13 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
                     "around it",
                     seat->category);
         if (doubts[t].empty() && !misplaced[t].empty()) doubts[t] = "stands " + misplaced[t];
+        if (doubts[t].empty())
+            if (const SeenBox* carrier = carrierUnder(named[t], named, options_))
+                doubts[t] = fmt::format(
+                    "rests on a {}'s top, {:.2f} m tall where a {} stands about {:.2f} m on the "
+                    "floor",
+                    carrier->category, named[t].box.size.z, named[t].category,
+                    typicalHeight(named[t].category).value_or(0));
         if (!doubts[t].empty()) named[t].category = "object";
     }
     const std::vector<UseName> uses = namedByUse(named, walls_, options_);

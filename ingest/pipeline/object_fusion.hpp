@@ -61,6 +61,8 @@ struct FusionOptions {
     double lowTableTopMin = 0.35;    // m: its top between these heights above the floor, ...
     double lowTableTopMax = 0.6;     //
     double seatReach = 0.6;          // m: ... with places for two to sit this close, is a low table
+    double smallOnTop = 0.5;         // a thing of a kind that stands on floors, resting on a top and lower than this
+                                     // share of its kind's usual height, is no such thing (carrierUnder)
     double seatAtTop = 0.05;         // m: a table whose top is this close to the top of a seat ...
     double seatInside = 0.8;         // ... this share of whose footprint lies in its own is that seat (seatAtTop)
     double seatWidth = model::kSeatPlaceWidth;  // m: a seat's places: its longest side over this, one at least
@@ -141,6 +143,15 @@ bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOpt
 // bottles and a mug on the desk, and the desk was stored as an `object`.
 const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& things,
                          const FusionOptions& options = {});
+
+// The thing among `things` whose top carries `thing`, of a kind that stands on floors with a usual height
+// (typicalHeight: a chair, a table, a fridge) and lower than FusionOptions::smallOnTop of it, or null: its bottom
+// within FusionOptions::restingGap of the top of a thing that holds things (holdsThings: a table, a desk, a bed),
+// over that top (its centre inside its footprint). Such a thing is no such kind: a toy, a picture, a box or a part
+// of what stands on the top. A chair put on a table, whole, keeps its name. TUM fr1/rpy's colour frames stored a
+// 0.24 x 0.08 x 0.07 m "chair" on the desk, among its papers.
+const SeenBox* carrierUnder(const SeenBox& thing, const std::vector<SeenBox>& things,
+                            const FusionOptions& options = {});
 
 // A sink is its basin: where its views took in the counter or vanity top around the bowl, its box becomes the bowl
 // and its rim. The bowl shows as cells of the footprint (FusionOptions::topCell) whose highest point lies
