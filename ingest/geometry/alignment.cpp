@@ -433,7 +433,7 @@ Eigen::Vector3d placeFloor(Alignment& out, const FloorChoice& choice, const Poin
         out.floorHeight = detail::quantile(heights, 0.02);
         out.floorPlaced = fmt::format("under the lowest 2% of the points, level with {}", along);
     }
-    notes.push_back("floor: not seen; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
+    notes.push_back("floor: not measured; " + out.floorNotSeen + "; the floor taken " + out.floorPlaced);
     return up;
 }
 

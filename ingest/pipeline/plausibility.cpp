@@ -287,8 +287,12 @@ std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, c
     // where the heights of things standing on the top measure it too (scale_priors.hpp: scaleFromHeightsOnTop):
     // the priors' spread, refused below when wide, says whether the placement holds.
     const bool placedOnTop = !scaled && alignment.tableTopHeight && alignment.scalePriors >= 2;
+    // Under a table top the floor may truly be out of view; where the points hold no level surface at all, the photos
+    // may well show the floor (the five dining photos' carpet) without their points measuring it.
     if (!alignment.floorNotSeen.empty())
-        out.push_back({"floor", !scaled && !placedOnTop, "the floor is not seen: " + alignment.floorNotSeen,
+        out.push_back({"floor", !scaled && !placedOnTop,
+                       (alignment.tableTopHeight ? "the floor is not seen: " : "the floor is not measured: ") +
+                           alignment.floorNotSeen,
                        scaled ? fmt::format("the floor is placed {}; views that also show the floor place it where "
                                             "it is",
                                             alignment.floorPlaced)
