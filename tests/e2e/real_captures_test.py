@@ -46,11 +46,11 @@ def desk_rgbd(smql, folder, work):
     fields = dict(re.findall(r"^\d+\s+(\w+)\s+(.*?)\s*$", summary.stdout, re.M))
     assert re.fullmatch(r"\d+ camera frames", fields.get("frames", "")), summary.stdout
     assert "frame#" not in fields.get("children", ""), summary.stdout
-    things = query_rows(smql, work / "db", "FIND object RETURN id, category")
+    rows = query_rows(smql, work / "db", "FIND object RETURN id, category")
     # The desk holds two monitors and a keyboard, no laptop (its photos); the second monitor, its keyboard in
     # front, was stored as a 0.41 m tall "laptop".
-    assert not [t for t in things if t["category"] == "laptop"], things
-    things = len(things)
+    assert not [r for r in rows if r["category"] == "laptop"], rows
+    things = len(rows)
     assert re.search(rf"\ntum-fr1-rpy: a floor of .* walls, .*; {things} things: ", summary.stdout), summary.stdout
     # The desk's scene updated with the dining frames, another room: nothing is seen again where it was, and the
     # update says the capture may be of another place; the same frames again find their things in place.

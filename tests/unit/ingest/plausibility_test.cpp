@@ -409,8 +409,9 @@ TEST_CASE("plausibility: a name far smaller than its box, or a hull far taller t
 }
 
 TEST_CASE("plausibility: a desk's monitor called a laptop stands taller than any laptop", "[ingest][plausibility]") {
-    // TUM fr1/rpy's second monitor, its keyboard in front: with depth 0.49 x 0.10 x 0.41 m, lifted on ten colour
-    // frames' dense points 0.50 x 0.50 x 0.48 m, both voted "laptop". A 15-inch laptop opened upright keeps its name.
+    // TUM fr1/rpy's desk, a keyboard in front of each monitor: the second monitor from the depth frames 0.49 x 0.10 x
+    // 0.41 m, and a monitor lifted on ten colour frames' dense points 0.50 x 0.50 x 0.48 m, both voted "laptop". A
+    // 15-inch laptop opened upright keeps its name.
     CHECK(tallestHeight("laptop").value_or(0) == Approx(0.35));
     CHECK(nameFit("laptop", {{0.44, 1.41, 0.91}, {0.49, 0.10, 0.41}, 0}) == NameFit::TooTall);
     CHECK(nameFit("laptop", {{0, 0, 1.0}, {0.50, 0.50, 0.48}, 0}) == NameFit::TooTall);
