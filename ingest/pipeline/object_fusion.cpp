@@ -412,6 +412,21 @@ const SeenBox* carrierUnder(const SeenBox& thing, const std::vector<SeenBox>& th
     return carrier == things.end() ? nullptr : &*carrier;
 }
 
+const SeenBox* seatUnder(const SeenBox& thing, const std::vector<SeenBox>& things, const FusionOptions& options) {
+    const Role kind = role(thing.category);
+    const bool neverOnSeats = kind == Role::Basin || (usualSupport(thing.category) == Support::Floor &&
+                                                      kind != Role::Seat && kind != Role::Luggage);
+    if (!neverOnSeats) return nullptr;
+    const double bottom = model::bottom(thing.box);
+    const auto seat = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
+        return &other != &thing && role(other.category) == Role::Seat &&
+               bottom >= model::bottom(other.box) + options.restingGap &&
+               bottom <= model::top(other.box) + options.restingGap &&
+               model::footprintContains(other.box, {thing.box.center.x, thing.box.center.y});
+    });
+    return seat == things.end() ? nullptr : &*seat;
+}
+
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
     const double below = model::bottom(basin) - model::top(under);
     return below >= -options.cabinetAbove && below <= options.cabinetBelow &&
@@ -777,6 +792,11 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
                     "floor",
                     carrier->category, named[t].box.size.z, named[t].category,
                     typicalHeight(named[t].category).value_or(0));
+        if (doubts[t].empty())
+            if (const SeenBox* seat = seatUnder(named[t], named, options_))
+                doubts[t] = fmt::format("rests on a {}, where a {} {}", seat->category, named[t].category,
+                                        role(named[t].category) == Role::Basin ? "is set in a counter or hung on a wall"
+                                                                               : "stands on the floor");
         if (!doubts[t].empty()) named[t].category = "object";
     }
     const std::vector<UseName> uses = namedByUse(named, walls_, options_);

@@ -153,6 +153,15 @@ const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& th
 const SeenBox* carrierUnder(const SeenBox& thing, const std::vector<SeenBox>& things,
                             const FusionOptions& options = {});
 
+// The seat among `things` that `thing` rests on or sinks into, where things of its kind are never put on seats, or
+// null: a kind that stands on floors (a table, a fridge; not a seat or luggage, which are stacked and left on
+// seats) or a basin, set in a counter or hung on a wall. It rests on the seat when its centre is over the seat's
+// footprint and its bottom lies between FusionOptions::restingGap over the seat's bottom (not standing on the floor
+// beside it) and restingGap over the seat's top. Such a thing is a part of the seat or of what lies on it: ScanNet's
+// lounge, its 100 colour frames lifted on their dense points, stored a 0.53 x 0.18 x 0.15 m "sink" in an
+// armchair's back, 0.74 m up where the chair's box ends at 0.88 m.
+const SeenBox* seatUnder(const SeenBox& thing, const std::vector<SeenBox>& things, const FusionOptions& options = {});
+
 // A sink is its basin: where its views took in the counter or vanity top around the bowl, its box becomes the bowl
 // and its rim. The bowl shows as cells of the footprint (FusionOptions::topCell) whose highest point lies
 // FusionOptions::basinDip or more under the rim, the height nine in ten of the cells reach at most (the counter

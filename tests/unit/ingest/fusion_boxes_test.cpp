@@ -620,6 +620,28 @@ TEST_CASE("a small thing of a floor-standing kind resting on a table's top is no
     CHECK_FALSE(carrierUnder(seen("chair", {2.0, 2.0, 0.95}, {0.3, 0.3, 0.1}, 0, 2), {seat}));
 }
 
+TEST_CASE("a thing of a kind never put on seats resting in a seat is no such kind", "[ingest][fusion]") {
+    // ScanNet's lounge, its 100 colour frames lifted on their dense points: a 0.53 x 0.18 x 0.15 m "sink" in an
+    // armchair's back (the chair as stored, 0.91 x 0.90 x 0.88 m), where the lounge has no sink.
+    const SeenBox armchair = seen("chair", {0.94, -0.73, 0.44}, {0.91, 0.90, 0.88}, 90, 40);
+    const SeenBox inBack = seen("sink", {1.04, -1.06, 0.81}, {0.53, 0.18, 0.15}, -15, 6);
+    const SeenBox* seat = seatUnder(inBack, {armchair, inBack});
+    REQUIRE(seat);
+    CHECK(seat->category == "chair");
+    // A small table on the seat is not a table; one standing on the floor by the chair, its centre under the
+    // chair's footprint's edge, is left to the other checks, and so is a sink over a stool tucked under its counter.
+    CHECK(seatUnder(seen("table", {0.94, -0.73, 0.50}, {0.40, 0.40, 0.20}, 0, 3), {armchair}));
+    CHECK_FALSE(seatUnder(seen("table", {0.94, -0.35, 0.25}, {0.60, 0.60, 0.50}, 0, 3), {armchair}));
+    const SeenBox stool = seen("chair", {3.0, 3.0, 0.25}, {0.35, 0.35, 0.50}, 0, 5);
+    CHECK_FALSE(seatUnder(seen("sink", {3.0, 3.1, 0.82}, {0.55, 0.45, 0.18}, 0, 5), {stool}));
+    // Things people leave on seats keep their names: a suitcase, a chair stacked on a chair, a laptop, a sink's
+    // basin far from any seat.
+    CHECK_FALSE(seatUnder(seen("suitcase", {0.94, -0.73, 0.70}, {0.50, 0.30, 0.35}, 0, 3), {armchair}));
+    CHECK_FALSE(seatUnder(seen("chair", {0.94, -0.73, 1.20}, {0.50, 0.50, 0.80}, 0, 3), {armchair}));
+    CHECK_FALSE(seatUnder(seen("laptop", {0.94, -0.73, 0.55}, {0.35, 0.25, 0.03}, 0, 3), {armchair}));
+    CHECK_FALSE(seatUnder(seen("sink", {5.0, 1.0, 0.82}, {0.55, 0.45, 0.18}, 0, 5), {armchair}));
+}
+
 TEST_CASE("a sink's cabinet: the cluster right under a sink is its cabinet; a counter's run is not",
           "[ingest][fusion]") {
     // ScanNet scene0000_00: the bathroom's basin as detected (0.19 m tall) and the vanity cabinet under it that no
