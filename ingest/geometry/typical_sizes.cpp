@@ -37,7 +37,8 @@ struct Typical {
     double tallest = 0;
 };
 // The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
-constexpr Slender kChairShape{.length = 0.75, .depth = 0.2, .postHeight = 0.4, .postSide = 0.25};
+constexpr Slender kChairShape{
+    .length = 0.75, .depth = 0.2, .longLength = 0.9, .longDepth = 0.35, .postHeight = 0.4, .postSide = 0.25};
 constexpr Slender kFridgeShape{.length = 0.9, .depth = 0.25, .frontHeight = 1.1};
 constexpr Slender kTableShape{.length = 0.75, .depth = 0.25};
 constexpr Slender kBedShape{.length = 1.0, .depth = 0.6, .frontHeight = 1.0};
@@ -155,8 +156,9 @@ bool slenderForKind(std::string_view category, double longer, double shorter, do
     const Typical* t = find(category);
     if (!t) return false;
     const Slender& s = t->slender;
-    return (s.length > 0 && longer >= s.length && shorter < s.depth &&
-            (s.frontHeight <= 0 || height < s.frontHeight)) ||
+    const bool thin = (s.length > 0 && longer >= s.length && shorter < s.depth) ||
+                      (s.longLength > 0 && longer >= s.longLength && shorter < s.longDepth);
+    return (thin && (s.frontHeight <= 0 || height < s.frontHeight)) ||
            (s.postHeight > 0 && height >= s.postHeight && longer < s.postSide);
 }
 

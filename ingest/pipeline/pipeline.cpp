@@ -56,8 +56,8 @@ model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& optio
 
 // The plausibility checks: each failure a note with its fix; a refusal ends the ingest unless
 // --force, so that no wrong memory is stored with exit status 0. Photos without depth whose points cover
-// little of what the detectors saw (thinPointsFinding) have that as the cause beneath whatever refuses their
-// room: a floor unconfirmed, priors that part.
+// under half of what the detectors saw are refused for it (thinPointsFinding), and where they cover far less,
+// that is the cause beneath whatever else refuses their room: a floor unconfirmed, priors that part.
 void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
                const FramePass& frames, const Alignment& alignment, const DensePoints* dense,
                std::optional<double> pointsCover, StageRunner& runner) {
@@ -80,21 +80,32 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
         thin = thinPointsFinding({.photos = frames.cameras.size(),
                                   .sparse = capture.points.size(),
                                   .dense = dense->points.size(),
-                                  .cover = *pointsCover});
-    if (thin) report.findings.insert(report.findings.begin(), *thin);
+                                  .cover = *pointsCover,
+                                  .scaled = source.scaled()});
+    if (thin)
+        runner.note(fmt::format("{} {}: {}; {}", thin->refuse ? "implausible" : "warning:", thin->check, thin->what,
+                                thin->fix));
     const PlausibilityFinding* refusal = nullptr;
     for (const auto& f : report.findings) {
         runner.note(fmt::format("{} {}: {}; {}", f.refuse ? "implausible" : "warning:", f.check, f.what, f.fix));
         if (f.refuse && !refusal) refusal = &f;
     }
     for (const auto& o : report.objects) runner.note(fmt::format("warning: {}: {}", o.problem, o.what));
-    if (refusal && !options.force)
+    if (options.force) return;
+    // Points far too few are the cause beneath whatever else refuses; a little too few refuse where nothing else
+    // does, and leave another refusal its own reason (ten of TUM's desk frames, 25-38 %: the desk top that fills
+    // them).
+    const bool beneath = thin && *pointsCover < kThinCover;
+    if (refusal)
         throw Error(
             ErrorKind::Input,
             fmt::format("the memory would be wrong: {}{}", refusal->what,
-                        thin ? "; beneath it, " + thin->what : std::string()),
+                        beneath ? "; beneath it, " + thin->what : std::string()),
             std::nullopt,
-            fmt::format("{}{}; --force stores the memory anyway", thin ? thin->fix + "; or " : "", refusal->fix));
+            fmt::format("{}{}; --force stores the memory anyway", beneath ? thin->fix + "; or " : "", refusal->fix));
+    if (thin && thin->refuse)
+        throw Error(ErrorKind::Input, "the memory would be wrong: " + thin->what, std::nullopt,
+                    thin->fix + "; or give --scale; --force stores the memory anyway");
 }
 
 }  // namespace

@@ -269,14 +269,15 @@ std::string restsOnCamerasHeight(const Alignment& alignment) {
 }  // namespace
 
 std::optional<PlausibilityFinding> thinPointsFinding(const PointsGiven& given) {
-    if (given.cover >= kThinCover) return std::nullopt;
+    if (given.cover >= kCoverToStore) return std::nullopt;
     return PlausibilityFinding{
-        "points", false,
+        "points", !given.scaled,
         fmt::format("the photos give few points to measure the room on: COLMAP's {} and {} dense ones from {} photo{} "
                     "cover {:.0f}% of what the detectors saw (those of rooms stored right cover more than half), so "
                     "the floor and the things standing on it were placed on too few points to be told",
                     given.sparse, given.dense, given.photos, given.photos == 1 ? "" : "s", 100 * given.cover),
-        "photos that are dark, plain or far apart match in few places: take more, each a short step from the one "
+        "photos that are dark, blurred, plain or far apart match in few places: take more, each a short step from the "
+        "one "
         "before, in more light"};
 }
 

@@ -172,7 +172,8 @@ def refused_for_floor(status, log, db):
                                             "the floor is not confirmed",
                                             "scale's two priors disagree", "the scale's priors are",
                                             "the dense points are one pair of photos' alone",
-                                            "the scale rests on one prior")), log
+                                            "the scale rests on one prior",
+                                            "the photos give few points to measure the room on")), log
     assert "--scale" in log and "--force" in log, log
     assert not db.exists(), "a refused ingest left a database"
 
