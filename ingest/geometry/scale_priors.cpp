@@ -22,8 +22,8 @@ std::vector<bool> namesInDoubt(const std::vector<NamedThing>& things, const mode
     // kOneRoom times the taller's height of things of another room's kinds stand in one room with them: one of
     // the two names is wrong. The room is the one of which more kinds are named there (a fridge, an oven and a
     // microwave beside one "toilet": ScanNet's apartment's kitchen), counted by kind, since one thing is often
-    // named twice; where neither has more, neither name measures the room. A name fusion did not keep (a
-    // toilet stored as "object") counts among them. ScanNet's bathroom, its 296 frames without depth: three
+    // named twice; where neither has more, the bathroom's (roomOutweighs, typical_sizes.hpp). A name fusion did not
+    // keep (a toilet stored as "object") counts among them. ScanNet's bathroom, its 296 frames without depth: three
     // "fridges" beside two toilets outnumbered them, here and in fusion, which stored the toilets as "object",
     // and the fridges' heights, with a chair's and a table's, led the scale 1.36x and 1.30x too large, the
     // cameras' assumed height, as wrong, checking it. Farther apart they are rooms of one home (the
@@ -62,8 +62,9 @@ std::vector<bool> namesInDoubt(const std::vector<NamedThing>& things, const mode
             if (places[j] && (j == i || oneRoom(*places[i], *places[j])))
                 kinds[roomKind(things[j].category)].insert(kindName(things[j].category));
         const std::size_t own = kinds.at(roomKind(things[i].category)).size();
+        const RoomKind ownRoom = roomKind(things[i].category);
         doubted[i] = std::any_of(kinds.begin(), kinds.end(), [&](const auto& other) {
-            return other.first != roomKind(things[i].category) && other.second.size() >= own;
+            return other.first != ownRoom && roomOutweighs(other.first, other.second.size(), ownRoom, own);
         });
     }
     return doubted;

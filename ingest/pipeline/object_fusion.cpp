@@ -481,9 +481,9 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
                 others[room].push_back(other.category);
         }
         // A kind that stands in any room but a bathroom is out of place beside one toilet; the others where
-        // another room's kinds outnumber their own.
+        // another room's kinds outweigh their own (roomOutweighs).
         for (const auto& [room, names] : others)
-            if (own == RoomKind::Dry ? room == RoomKind::Bathroom : names.size() > ownCount)
+            if (own == RoomKind::Dry ? room == RoomKind::Bathroom : roomOutweighs(room, names.size(), own, ownCount))
                 doubts[t] = fmt::format("in a {} (beside {} within {:.1f} m)", roomName(room), fmt::join(names, ", "),
                                         options.roomReach);
     }
