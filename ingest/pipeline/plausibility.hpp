@@ -83,23 +83,25 @@ struct PointsGiven {
     bool scaled = false;  // the scale given or the poses metric (ScaleSource::scaled): then the finding warns
 };
 
-// Photos without depth whose points cover less than this share of what the detectors saw: their floor, and the
-// things standing on it that confirm it and measure the scale, were placed on a few points. The photos of rooms
-// stored right cover 51-78 % (TUM's office photos 72-73 %, three of them 51 %; ScanNet's lounge, 100 frames,
-// 66-68 % in three COLMAP runs, its bathroom 53 %; TUM's desk, 100 frames, 78 %); the five dining photos of
-// ../shared/data/rgbd-dining 7-15 % in four COLMAP runs (149-155 of COLMAP's points, 694-786 dense ones), which a
-// person sees as dim photos of a dark carpet taken far apart, while their refusals named only the floor that the
-// few points left unconfirmed or unseen. Ten frames of TUM's desk as photos cover 25-38 % (three runs): refused
-// for the desk top that fills them, the floor barely in view, which is their cause, not the points.
+// Photos without depth whose points cover less than this share of what the detectors saw have that as the cause
+// beneath whatever else refuses them: their floor, and the things standing on it that confirm it and measure the
+// scale, were placed on a few points. The photos of rooms stored right cover 51-78 % (TUM's office photos 72-73 %,
+// three of them 51 %; ScanNet's lounge, 100 frames, 66-68 % in three COLMAP runs, its bathroom 53 %; TUM's desk, 100
+// frames, 78 %); the five dining photos of ../shared/data/rgbd-dining 7-15 % in four COLMAP runs (149-155 of
+// COLMAP's points, 694-786 dense ones), which a person sees as dim photos of a dark carpet taken far apart, while
+// their refusals named only the floor that the few points left unconfirmed or unseen. Ten frames of TUM's desk as
+// photos cover 25-38 % (three runs): refused for the desk top that fills them, the floor barely in view, which is
+// their cause, not the points.
 inline constexpr double kThinCover = 0.2;
 
 // Photos without depth whose points cover less than this share of what the detectors saw are refused where no
 // other check refuses them: the floor, the things' heights and the cameras' height are then measured on too little
 // to catch one error that moves them all. ScanNet's apartment, 100 of its frames in two COLMAP runs, covered 31 %
-// and 38 %: stored 1.242x and 1.098x too large, each passing every other check, the two priors agreeing within 4 %
-// because both were measured from one floor that COLMAP's bent model put 10 cm too high, its things carved around
-// COLMAP's points (a 5.6 m "bed", a 3.8 m "sofa"; docs/ingest.md, "The apartment's 1.25x"). The rooms stored right
-// cover 51-89 % (three of TUM's office photos 51 %, the apartment's and the lounge's every frame 72-89 %).
+// and 38 % (35 % in a third): stored 1.242x and 1.098x too large, each passing every other check, its two priors
+// agreeing within 4 % and 8 % because both were measured from one floor that COLMAP's bent model put 10 cm too high,
+// its things carved around COLMAP's points (a 5.6 m "bed", a 3.8 m "sofa"; docs/ingest.md, "The apartment's 1.25x").
+// The rooms stored right cover 51-89 % (three of TUM's office photos 51 %, the apartment's and the lounge's every
+// frame 72-89 %).
 inline constexpr double kCoverToStore = 0.45;
 
 // A refusal for photos that gave too few points to measure their room on (kCoverToStore), with what to do about
