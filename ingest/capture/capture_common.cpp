@@ -245,32 +245,44 @@ void checkDepthScale(double scale, const std::string& from) {
 }
 
 std::optional<std::pair<int, int>> storedImageSize(const fs::path& file) {
-    // The header, and in a JPEG the segments before its frame header (EXIF may take 64 KB).
-    constexpr std::size_t kHeaderBytes = 1 << 20;
+    // A PNG's and a PGM's header lie in the first bytes; a JPEG's frame header follows the segments before it
+    // (EXIF may take 64 KB) within its first MiB, which are stepped over, not read: the whole file is read once,
+    // to decode it.
+    constexpr std::size_t kHeadBytes = 4096;
+    constexpr std::streamoff kSegmentsReach = 1 << 20;
     std::ifstream in(file, std::ios::binary);
-    std::string head(kHeaderBytes, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    head.resize(static_cast<std::size_t>(in.gcount()));
-    auto byte = [&](std::size_t i) { return static_cast<unsigned>(static_cast<unsigned char>(head[i])); };
-    auto big16 = [&](std::size_t i) { return (byte(i) << 8) | byte(i + 1); };
-    auto big32 = [&](std::size_t i) { return (big16(i) << 16) | big16(i + 2); };
+    auto bytesAt = [&](std::streamoff at, std::size_t count) {
+        std::string bytes(count, '\0');
+        in.clear();
+        in.seekg(at);
+        in.read(bytes.data(), static_cast<std::streamsize>(count));
+        bytes.resize(static_cast<std::size_t>(in.gcount()));
+        return bytes;
+    };
+    const std::string head = bytesAt(0, kHeadBytes);
+    auto byte = [](const std::string& bytes, std::size_t i) {
+        return static_cast<unsigned>(static_cast<unsigned char>(bytes[i]));
+    };
+    auto big16 = [&](const std::string& bytes, std::size_t i) { return (byte(bytes, i) << 8) | byte(bytes, i + 1); };
+    auto big32 = [&](const std::string& bytes, std::size_t i) { return (big16(bytes, i) << 16) | big16(bytes, i + 2); };
     if (head.size() >= 24 && head.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 && head.compare(12, 4, "IHDR") == 0)
-        return std::pair{static_cast<int>(std::min(big32(16), 1u << 30)),
-                         static_cast<int>(std::min(big32(20), 1u << 30))};
+        return std::pair{static_cast<int>(std::min(big32(head, 16), 1u << 30)),
+                         static_cast<int>(std::min(big32(head, 20), 1u << 30))};
     if (const auto pgm = readPgmHeader({reinterpret_cast<const std::uint8_t*>(head.data()), head.size()}))
         return std::pair{pgm->width, pgm->height};
-    if (head.size() < 4 || byte(0) != 0xFF || byte(1) != 0xD8) return std::nullopt;
-    for (std::size_t at = 2; at + 9 < head.size();) {
-        if (byte(at) != 0xFF) return std::nullopt;
-        const unsigned marker = byte(at + 1);
+    if (head.size() < 4 || byte(head, 0) != 0xFF || byte(head, 1) != 0xD8) return std::nullopt;
+    for (std::streamoff at = 2; at < kSegmentsReach;) {
+        const std::string segment = bytesAt(at, 9);
+        if (segment.size() < 9 || byte(segment, 0) != 0xFF) return std::nullopt;
+        const unsigned marker = byte(segment, 1);
         if (marker == 0xFF) {  // fill byte
             ++at;
             continue;
         }
         // SOF0 to SOF15, less DHT (C4), JPG (C8) and DAC (CC): the frame header, height then width.
         if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC)
-            return std::pair{static_cast<int>(big16(at + 7)), static_cast<int>(big16(at + 5))};
-        at += 2 + big16(at + 2);
+            return std::pair{static_cast<int>(big16(segment, 7)), static_cast<int>(big16(segment, 5))};
+        at += 2 + big16(segment, 2);
     }
     return std::nullopt;
 }

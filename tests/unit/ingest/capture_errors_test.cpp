@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "capture_support.hpp"
@@ -109,6 +110,17 @@ TEST_CASE("images past 100 megapixels are refused on their header's word, before
     cv::imwrite(dir.path("photo.jpg"), colorImage(320, 200));
     CHECK(storedImageSize(dir.path("photo.jpg")) == std::pair{320, 200});
     CHECK(storedImageSize(diningPath() + "/color/1.png") == std::pair{640, 480});
+    // A JPEG's frame header after an EXIF segment of 60 KB, stepped over: a phone's photo.
+    std::ifstream jpeg(dir.path("photo.jpg"), std::ios::binary);
+    const std::string plain((std::istreambuf_iterator<char>(jpeg)), std::istreambuf_iterator<char>());
+    std::string exif("\xFF\xE1", 2);
+    const unsigned length = 60000;
+    exif += static_cast<char>(length >> 8);
+    exif += static_cast<char>(length & 0xFF);
+    exif += std::string(length - 2, 'x');
+    dir.write("exif.jpg", plain.substr(0, 2) + exif + plain.substr(2));
+    CHECK(storedImageSize(dir.path("exif.jpg")) == std::pair{320, 200});
+    CHECK(cv::imread(dir.path("exif.jpg")).size() == cv::Size(320, 200));
 }
 
 TEST_CASE("a PGM depth image past 100 megapixels is refused on its header's word", "[capture][errors][pgm]") {
