@@ -244,6 +244,20 @@ void checkDepthScale(double scale, const std::string& from) {
                     std::nullopt, "the depth scale is depth image units per metre: 1000 for millimetres");
 }
 
+namespace {
+
+// `count` bytes of `in` from `at`, fewer past the end.
+std::string bytesAt(std::ifstream& in, std::streamoff at, std::size_t count) {
+    std::string bytes(count, '\0');
+    in.clear();
+    in.seekg(at);
+    in.read(bytes.data(), static_cast<std::streamsize>(count));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
+    return bytes;
+}
+
+}  // namespace
+
 std::optional<std::pair<int, int>> storedImageSize(const fs::path& file) {
     // A PNG's and a PGM's header lie in the first bytes; a JPEG's frame header follows the segments before it
     // (EXIF may take 64 KB) within its first MiB, which are stepped over, not read: the whole file is read once,
@@ -251,15 +265,7 @@ std::optional<std::pair<int, int>> storedImageSize(const fs::path& file) {
     constexpr std::size_t kHeadBytes = 4096;
     constexpr std::streamoff kSegmentsReach = 1 << 20;
     std::ifstream in(file, std::ios::binary);
-    auto bytesAt = [&](std::streamoff at, std::size_t count) {
-        std::string bytes(count, '\0');
-        in.clear();
-        in.seekg(at);
-        in.read(bytes.data(), static_cast<std::streamsize>(count));
-        bytes.resize(static_cast<std::size_t>(in.gcount()));
-        return bytes;
-    };
-    const std::string head = bytesAt(0, kHeadBytes);
+    const std::string head = bytesAt(in, 0, kHeadBytes);
     auto byte = [](const std::string& bytes, std::size_t i) {
         return static_cast<unsigned>(static_cast<unsigned char>(bytes[i]));
     };
@@ -272,7 +278,7 @@ std::optional<std::pair<int, int>> storedImageSize(const fs::path& file) {
         return std::pair{pgm->width, pgm->height};
     if (head.size() < 4 || byte(head, 0) != 0xFF || byte(head, 1) != 0xD8) return std::nullopt;
     for (std::streamoff at = 2; at < kSegmentsReach;) {
-        const std::string segment = bytesAt(at, 9);
+        const std::string segment = bytesAt(in, at, 9);
         if (segment.size() < 9 || byte(segment, 0) != 0xFF) return std::nullopt;
         const unsigned marker = byte(segment, 1);
         if (marker == 0xFF) {  // fill byte
@@ -305,26 +311,18 @@ std::optional<std::string> cutShort(const fs::path& file) {
     std::ifstream in(file, std::ios::binary | std::ios::ate);
     const std::streamoff size = in.tellg();
     if (!in || size <= 0) return std::nullopt;
-    // `count` bytes from `at`, fewer past the end.
-    auto bytesAt = [&](std::streamoff at, std::streamoff count) {
-        std::string bytes(static_cast<std::size_t>(std::max<std::streamoff>(0, std::min(count, size - at))), '\0');
-        in.seekg(at);
-        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        bytes.resize(static_cast<std::size_t>(in.gcount()));
-        return bytes;
-    };
-    const std::string head = bytesAt(0, 1024);
+    const std::string head = bytesAt(in, 0, 1024);
     if (head.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) {
         constexpr std::streamoff kTail = 4096;
-        if (bytesAt(std::max<std::streamoff>(0, size - kTail), kTail).find("IEND") == std::string::npos)
+        if (bytesAt(in, std::max<std::streamoff>(0, size - kTail), kTail).find("IEND") == std::string::npos)
             return "a PNG without its end chunk";
         return std::nullopt;
     }
     if (head.compare(0, 2, "\xFF\xD8") == 0) {
-        if (bytesAt(size - 2, 2) == "\xFF\xD9") return std::nullopt;
+        if (bytesAt(in, size - 2, 2) == "\xFF\xD9") return std::nullopt;
         // A trailer after the end-of-image marker, or no marker. In a scan's coded data a 0xFF byte is followed
         // by 0x00 (stuffing) or a marker, so the first 0xFF 0xD9 after the first scan's start is that marker.
-        const std::string bytes = bytesAt(0, size);
+        const std::string bytes = bytesAt(in, 0, static_cast<std::size_t>(size));
         const std::size_t scan = bytes.find("\xFF\xDA");
         if (scan != std::string::npos && bytes.find("\xFF\xD9", scan) != std::string::npos) return std::nullopt;
         return "a JPEG without its end-of-image marker";

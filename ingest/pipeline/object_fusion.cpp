@@ -400,16 +400,31 @@ const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& th
     return seat == things.end() ? nullptr : &*seat;
 }
 
+namespace {
+
+// The first of `things` but `thing` that `holds`, with `thing`'s centre over its footprint and `thing`'s bottom from
+// `lowest` of its box up to FusionOptions::restingGap over its top; or null.
+template <class Holds, class Lowest>
+const SeenBox* thingUnder(const SeenBox& thing, const std::vector<SeenBox>& things, const FusionOptions& options,
+                          Holds holds, Lowest lowest) {
+    const double bottom = model::bottom(thing.box);
+    const auto under = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
+        return &other != &thing && holds(other) && bottom >= lowest(other.box) &&
+               bottom <= model::top(other.box) + options.restingGap &&
+               model::footprintContains(other.box, {thing.box.center.x, thing.box.center.y});
+    });
+    return under == things.end() ? nullptr : &*under;
+}
+
+}  // namespace
+
 const SeenBox* carrierUnder(const SeenBox& thing, const std::vector<SeenBox>& things, const FusionOptions& options) {
     const auto usual = typicalHeight(thing.category);
     if (usualSupport(thing.category) != Support::Floor || !usual || thing.box.size.z >= options.smallOnTop * *usual)
         return nullptr;
-    const auto carrier = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
-        return &other != &thing && holdsThings(other.category) &&
-               std::abs(model::bottom(thing.box) - model::top(other.box)) <= options.restingGap &&
-               model::footprintContains(other.box, {thing.box.center.x, thing.box.center.y});
-    });
-    return carrier == things.end() ? nullptr : &*carrier;
+    return thingUnder(
+        thing, things, options, [](const SeenBox& other) { return holdsThings(other.category); },
+        [&](const model::Box& carrier) { return model::top(carrier) - options.restingGap; });
 }
 
 const SeenBox* seatUnder(const SeenBox& thing, const std::vector<SeenBox>& things, const FusionOptions& options) {
@@ -417,14 +432,9 @@ const SeenBox* seatUnder(const SeenBox& thing, const std::vector<SeenBox>& thing
     const bool neverOnSeats = kind == Role::Basin || (usualSupport(thing.category) == Support::Floor &&
                                                       kind != Role::Seat && kind != Role::Luggage);
     if (!neverOnSeats) return nullptr;
-    const double bottom = model::bottom(thing.box);
-    const auto seat = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
-        return &other != &thing && role(other.category) == Role::Seat &&
-               bottom >= model::bottom(other.box) + options.restingGap &&
-               bottom <= model::top(other.box) + options.restingGap &&
-               model::footprintContains(other.box, {thing.box.center.x, thing.box.center.y});
-    });
-    return seat == things.end() ? nullptr : &*seat;
+    return thingUnder(
+        thing, things, options, [](const SeenBox& other) { return role(other.category) == Role::Seat; },
+        [&](const model::Box& seat) { return model::bottom(seat) + options.restingGap; });
 }
 
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {

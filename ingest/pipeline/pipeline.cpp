@@ -82,30 +82,22 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
                                   .dense = dense->points.size(),
                                   .cover = *pointsCover,
                                   .scaled = source.scaled()});
-    if (thin)
-        runner.note(fmt::format("{} {}: {}; {}", thin->refuse ? "implausible" : "warning:", thin->check, thin->what,
-                                thin->fix));
+    // Last among the findings: another refusal keeps its own reason, the points named beneath it only where far too
+    // few (kThinCover); ten of TUM's desk frames, 25-38 %, are refused for the desk top that fills them.
+    if (thin) report.findings.push_back(*thin);
     const PlausibilityFinding* refusal = nullptr;
     for (const auto& f : report.findings) {
         runner.note(fmt::format("{} {}: {}; {}", f.refuse ? "implausible" : "warning:", f.check, f.what, f.fix));
         if (f.refuse && !refusal) refusal = &f;
     }
     for (const auto& o : report.objects) runner.note(fmt::format("warning: {}: {}", o.problem, o.what));
-    if (options.force) return;
-    // Points far too few are the cause beneath whatever else refuses; a little too few refuse where nothing else
-    // does, and leave another refusal its own reason (ten of TUM's desk frames, 25-38 %: the desk top that fills
-    // them).
-    const bool beneath = thin && *pointsCover < kThinCover;
-    if (refusal)
-        throw Error(
-            ErrorKind::Input,
-            fmt::format("the memory would be wrong: {}{}", refusal->what,
-                        beneath ? "; beneath it, " + thin->what : std::string()),
-            std::nullopt,
-            fmt::format("{}{}; --force stores the memory anyway", beneath ? thin->fix + "; or " : "", refusal->fix));
-    if (thin && thin->refuse)
-        throw Error(ErrorKind::Input, "the memory would be wrong: " + thin->what, std::nullopt,
-                    thin->fix + "; or give --scale; --force stores the memory anyway");
+    if (!refusal || options.force) return;
+    const bool beneath = thin && refusal != &report.findings.back() && *pointsCover < kThinCover;
+    throw Error(
+        ErrorKind::Input,
+        fmt::format("the memory would be wrong: {}{}", refusal->what, beneath ? "; beneath it, " + thin->what : ""),
+        std::nullopt,
+        fmt::format("{}{}; --force stores the memory anyway", beneath ? thin->fix + "; or " : "", refusal->fix));
 }
 
 }  // namespace

@@ -276,8 +276,9 @@ std::optional<PlausibilityFinding> thinPointsFinding(const PointsGiven& given) {
                     "cover {:.0f}% of what the detectors saw (those of rooms stored right cover more than half), so "
                     "the floor and the things standing on it were placed on too few points to be told",
                     given.sparse, given.dense, given.photos, given.photos == 1 ? "" : "s", 100 * given.cover),
-        "photos that are dark, blurred, plain or far apart match in few places: take more, each a short step "
-        "from the one before, in more light"};
+        std::string("photos that are dark, blurred, plain or far apart match in few places: take more, each a short "
+                    "step from the one before, in more light") +
+            (given.scaled ? "" : ", or give --scale (metres per capture unit)")};
 }
 
 std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, const ScaleSource& source) {
