@@ -21,7 +21,8 @@ namespace {
 // rooms' labels show it; Slender: a footprint too long for its depth for the kind (typical_sizes.hpp). Tallest: the
 // height no thing of the kind stands over, above what it stands on, where its make bounds it (a laptop: the lid of the
 // largest, a 17.3-inch 16:9 panel 0.215 m tall in a lid of about 0.27 m, opened upright on a base of 2-3 cm stands
-// about 0.3 m; 0.35 leaves a depth camera's few centimetres). The rows cover
+// about 0.3 m; 0.35 leaves a depth camera's few centimetres). Deepest: the footprint's shorter side no thing of the
+// kind exceeds, where its make bounds it (typical_sizes.hpp: deepestFootprint). The rows cover
 // the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
@@ -35,10 +36,12 @@ struct Typical {
     LeastSize least{};
     Slender slender{};
     double tallest = 0;
+    double deepest = 0;
 };
 // The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
 constexpr Slender kChairShape{
     .length = 0.75, .depth = 0.2, .longLength = 0.9, .longDepth = 0.35, .postHeight = 0.4, .postSide = 0.25};
+constexpr LeastSize kFridgeLeast{0.5, 0.45};
 constexpr Slender kFridgeShape{.length = 0.9, .depth = 0.25, .frontHeight = 1.1};
 constexpr Slender kTableShape{.length = 0.75, .depth = 0.25};
 constexpr Slender kBedShape{.length = 1.0, .depth = 0.6, .frontHeight = 1.0};
@@ -48,7 +51,8 @@ constexpr Typical kTypical[] = {
     {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape},
     {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
     {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, kBedShape},
-    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, {0.5, 0.45}, kFridgeShape},
+    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, kFridgeLeast, kFridgeShape, 0,
+     1.2},
     {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
     {"door", 2.03, 2.4, Support::Floor},
     {"nightstand", 0.6, 0.8, Support::Floor, true},
@@ -139,6 +143,12 @@ std::optional<double> tallestHeight(std::string_view category) {
     const Typical* t = find(category);
     if (!t || t->tallest <= 0) return std::nullopt;
     return t->tallest;
+}
+
+std::optional<double> deepestFootprint(std::string_view category) {
+    const Typical* t = find(category);
+    if (!t || t->deepest <= 0) return std::nullopt;
+    return t->deepest;
 }
 
 std::optional<LeastSize> leastSize(std::string_view category) {

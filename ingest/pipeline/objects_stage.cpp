@@ -297,6 +297,11 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                 fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
                             "'object' with detected_as = {}",
                             std::max({box.size.x, box.size.y, box.size.z}), category, category));
+        else if (fit == NameFit::TooDeep)
+            progress.note(
+                fmt::format("a {:.2f} x {:.2f} m footprint was detected as '{}', which is never deeper than "
+                            "{:.2f} m: stored as 'object' with detected_as = {}",
+                            box.size.x, box.size.y, category, deepestFootprint(category).value_or(0), category));
         else if (fit == NameFit::TooSmall || fit == NameFit::TooSlender)
             progress.note(
                 fmt::format("a {:.2f} x {:.2f} x {:.2f} m thing was detected as '{}', which is never that "

@@ -490,6 +490,9 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
 NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure measure) {
     const double beyond = measure == BoxMeasure::Depth ? kBeyondTypicalExtent : kBeyondTypicalHull;
     if (auto usual = typicalExtent(category); usual && largestSide(box) > beyond * *usual) return NameFit::TooLarge;
+    if (auto deepest = deepestFootprint(category);
+        deepest && measure == BoxMeasure::Depth && std::min(box.size.x, box.size.y) > *deepest)
+        return NameFit::TooDeep;
     if (smallerThanKind(category, largestSide(box), box.size.z, box.center.z - box.size.z / 2))
         return NameFit::TooSmall;
     if (slenderForKind(category, std::max(box.size.x, box.size.y), std::min(box.size.x, box.size.y), box.size.z))

@@ -137,7 +137,8 @@ enum class BoxMeasure { Depth, HullHeldToSurface, HullFromBoxes };
 
 // A thing named by a detector whose box is far larger than things of that name ever are (a 1.8 m
 // cake): not that thing. The name is kept only as the guess `detected_as`. A box measured from depth
-// is held to kBeyondTypicalExtent of its kind's extent; a hull carved without depth, which reaches past
+// is held to kBeyondTypicalExtent of its kind's extent, and its footprint to its kind's depth (typical_sizes.hpp:
+// deepestFootprint); a hull carved without depth, which reaches past
 // the thing along the views, to kBeyondTypicalHull, and, when its top was held to its surfaces, for a kind
 // of a standard height, to kTallerThanTypicalHull of that height; a kind whose make bounds its height
 // (typical_sizes.hpp: tallestHeight), measured from depth, to that height, and as a hull held to its surfaces, to
@@ -145,7 +146,7 @@ enum class BoxMeasure { Depth, HullHeldToSurface, HullFromBoxes };
 // photos' chair placed by its boxes' rays stands 1.35 m. A box smaller than any thing of its name (typical_sizes.hpp:
 // leastSize), or with a footprint too long for its depth or too small for its height (slenderForKind), is not that
 // thing either, however measured.
-enum class NameFit { Fits, TooLarge, TooSmall, TooSlender, TooTall };
+enum class NameFit { Fits, TooLarge, TooDeep, TooSmall, TooSlender, TooTall };
 NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure measure = BoxMeasure::Depth);
 
 }  // namespace smql::ingest
