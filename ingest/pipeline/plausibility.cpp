@@ -278,7 +278,7 @@ std::optional<PlausibilityFinding> thinPointsFinding(const PointsGiven& given) {
                     given.sparse, given.dense, given.photos, given.photos == 1 ? "" : "s", 100 * given.cover),
         std::string("photos that are dark, blurred, plain or far apart match in few places: take more, each a short "
                     "step from the one before, in more light") +
-            (given.scaled ? "" : ", or give --scale (metres per capture unit)")};
+            (given.scaled || given.scaleOffered ? "" : ", or give --scale (metres per capture unit)")};
 }
 
 std::vector<PlausibilityFinding> alignmentFindings(const Alignment& alignment, const ScaleSource& source) {

@@ -80,7 +80,8 @@ struct PointsGiven {
     std::size_t sparse = 0;
     std::size_t dense = 0;
     double cover = 0;
-    bool scaled = false;  // the scale given or the poses metric (ScaleSource::scaled): then the finding warns
+    bool scaled = false;        // the scale given or the poses metric (ScaleSource::scaled): then the finding warns
+    bool scaleOffered = false;  // the fix it is named beneath offers --scale already: its own fix leaves it out
 };
 
 // Photos without depth whose points cover less than this share of what the detectors saw have that as the cause

@@ -431,6 +431,11 @@ TEST_CASE(
             CHECK_THAT(e.message(), Catch::Contains("the photos give few points to measure the room on"));
             CHECK_THAT(e.hint(),
                        Catch::StartsWith("photos that are dark, blurred, plain or far apart match in few places"));
+            // --scale is offered once, whichever finding's fix offers it.
+            std::size_t scales = 0;
+            for (auto at = e.hint().find("--scale"); at != std::string::npos; at = e.hint().find("--scale", at + 1))
+                ++scales;
+            CHECK(scales == 1);
             outcome = e.message();
         }
         INFO(sink.notes);

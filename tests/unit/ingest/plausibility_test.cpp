@@ -279,6 +279,12 @@ TEST_CASE("plausibility: photos that give few points under what the detectors sa
     CHECK_THAT(thin->what, Catch::Contains("COLMAP's 149 and 786 dense ones from 5 photos cover 7% of what the "
                                            "detectors saw"));
     CHECK_THAT(thin->fix, Catch::Contains("a short step from the one before"));
+    CHECK_THAT(thin->fix, Catch::Contains("give --scale"));
+    // Beneath a refusal whose fix gives --scale already, its own does not.
+    const auto beneath =
+        thinPointsFinding({.photos = 5, .sparse = 149, .dense = 786, .cover = 0.07, .scaleOffered = true});
+    REQUIRE(beneath);
+    CHECK_THAT(beneath->fix, !Catch::Contains("--scale"));
     CHECK(thinPointsFinding({.photos = 5, .sparse = 155, .dense = 694, .cover = 0.15}));
     const auto apartment = thinPointsFinding({.photos = 76, .sparse = 3169, .dense = 15281, .cover = 0.31});
     REQUIRE(apartment);
