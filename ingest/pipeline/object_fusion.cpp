@@ -739,6 +739,34 @@ void ObjectFusion::addSegmentedFrame(std::vector<Observation> frameViews, std::v
     map_.integrate(std::move(frame));
 }
 
+namespace {
+
+// Why a thing's name is doubted, the first rule that holds, or nothing: a thing that holds things on its top (a table;
+// not a bed, whose headboard rises over its top) that shows no top, or whose top is a seat's standing in it; a name
+// out of place (outOfPlace: `misplaced`); a kind that stands on floors resting on a table's top (carrierUnder), or
+// one never put on seats resting in a seat (seatUnder).
+std::string doubtOf(const Thing& thing, const SeenBox& seen, const std::vector<SeenBox>& named,
+                    const std::string& misplaced, const FusionOptions& options) {
+    if (thing.top && thing.top->cover < options.topCover)
+        return fmt::format("shows no top (its points cover at most {:.0f} % of its footprint at one height)",
+                           100 * thing.top->cover);
+    if (thing.top)
+        if (const SeenBox* seat = seatAtTop(seen.box, named, options))
+            return fmt::format("holds a {} whose top is its top: the seat, seen as one with what stands around it",
+                               seat->category);
+    if (!misplaced.empty()) return "stands " + misplaced;
+    if (const SeenBox* carrier = carrierUnder(seen, named, options))
+        return fmt::format("rests on a {}'s top, {:.2f} m tall where a {} stands about {:.2f} m on the floor",
+                           carrier->category, seen.box.size.z, seen.category, typicalHeight(seen.category).value_or(0));
+    if (const SeenBox* seat = seatUnder(seen, named, options))
+        return fmt::format(
+            "rests on a {}, where a {} {}", seat->category, seen.category,
+            role(seen.category) == Role::Basin ? "is set in a counter or hung on a wall" : "stands on the floor");
+    return {};
+}
+
+}  // namespace
+
 std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     // The map keeps taking frames: its pieces are merged in a copy.
     InstanceMap map = map_;
@@ -780,33 +808,11 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
 
     std::vector<SeenBox> named;
     for (const auto& thing : things) named.push_back({thing.box, thing.category, 0, {}});
-    // Names doubted: a thing that holds things on its top (a table; not a bed, whose headboard rises over its top)
-    // that shows no top, then a name out of place. A doubted thing is no seat, table or luggage to namedByUse.
+    // Names doubted (doubtOf); a doubted thing is no seat, table or luggage to the rules after it, nor to namedByUse.
     std::vector<std::string> doubts(things.size());
     const std::vector<std::string> misplaced = outOfPlace(named, walls_, options_);
     for (std::size_t t = 0; t < things.size(); ++t) {
-        if (things[t].top && things[t].top->cover < options_.topCover)
-            doubts[t] = fmt::format("shows no top (its points cover at most {:.0f} % of its footprint at one height)",
-                                    100 * things[t].top->cover);
-        if (doubts[t].empty() && things[t].top)
-            if (const SeenBox* seat = seatAtTop(named[t].box, named, options_))
-                doubts[t] = fmt::format(
-                    "holds a {} whose top is its top: the seat, seen as one with what stands "
-                    "around it",
-                    seat->category);
-        if (doubts[t].empty() && !misplaced[t].empty()) doubts[t] = "stands " + misplaced[t];
-        if (doubts[t].empty())
-            if (const SeenBox* carrier = carrierUnder(named[t], named, options_))
-                doubts[t] = fmt::format(
-                    "rests on a {}'s top, {:.2f} m tall where a {} stands about {:.2f} m on the "
-                    "floor",
-                    carrier->category, named[t].box.size.z, named[t].category,
-                    typicalHeight(named[t].category).value_or(0));
-        if (doubts[t].empty())
-            if (const SeenBox* seat = seatUnder(named[t], named, options_))
-                doubts[t] = fmt::format("rests on a {}, where a {} {}", seat->category, named[t].category,
-                                        role(named[t].category) == Role::Basin ? "is set in a counter or hung on a wall"
-                                                                               : "stands on the floor");
+        doubts[t] = doubtOf(things[t], named[t], named, misplaced[t], options_);
         if (!doubts[t].empty()) named[t].category = "object";
     }
     const std::vector<UseName> uses = namedByUse(named, walls_, options_);
