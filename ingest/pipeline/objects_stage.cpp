@@ -195,6 +195,35 @@ std::size_t mergeHullsStoredTwice(std::vector<PlacedTrack>& placed, std::vector<
 
 namespace {
 
+// What a note says of a name its box does not fit (nameFit), the name kept as detected_as.
+std::string misnamedNote(NameFit fit, const std::string& category, const model::Box& box) {
+    const std::string stored = fmt::format("stored as 'object' with detected_as = {}", category);
+    switch (fit) {
+        case NameFit::TooLarge:
+            return fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: {}",
+                               std::max({box.size.x, box.size.y, box.size.z}), category, stored);
+        case NameFit::TooDeep:
+            return fmt::format(
+                "a {:.2f} x {:.2f} m footprint was detected as '{}', which is never deeper than "
+                "{:.2f} m: {}",
+                box.size.x, box.size.y, category, deepestFootprint(category).value_or(0), stored);
+        case NameFit::TooSmall:
+        case NameFit::TooSlender:
+            return fmt::format("a {:.2f} x {:.2f} x {:.2f} m thing was detected as '{}', which is never that {}: {}",
+                               box.size.x, box.size.y, box.size.z, category,
+                               fit == NameFit::TooSmall ? "small" : "slender", stored);
+        case NameFit::TooTall: {
+            const auto usual = typicalHeight(category);
+            return fmt::format("a {:.2f} m tall thing was detected as '{}', which stands {} {:.2f} m: {}", box.size.z,
+                               category, usual ? "about" : "at most",
+                               usual ? *usual : tallestHeight(category).value_or(0), stored);
+        }
+        case NameFit::Fits:
+            break;
+    }
+    return {};
+}
+
 // With depth, a thing of a kind that always stands on the floor (those with a typical height: a fridge, a
 // bed, a chair, a table) whose box hangs in the air with nothing under it is something else a detector gave
 // that name: ScanNet's bathroom had a 13 cm deep shelf 0.78 m up on the wall stored as a "fridge". Kinds that
@@ -292,30 +321,9 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         const bool misnamed = fit != NameFit::Fits;
         const std::string detectedAs = misnamed ? category : track.detectedAs;
         const std::string stored = misnamed ? std::string("object") : category;
-        if (fit == NameFit::TooLarge)
-            progress.note(
-                fmt::format("a {:.2f} m thing was detected as '{}', which is never that large: stored as "
-                            "'object' with detected_as = {}",
-                            std::max({box.size.x, box.size.y, box.size.z}), category, category));
-        else if (fit == NameFit::TooDeep)
-            progress.note(
-                fmt::format("a {:.2f} x {:.2f} m footprint was detected as '{}', which is never deeper than "
-                            "{:.2f} m: stored as 'object' with detected_as = {}",
-                            box.size.x, box.size.y, category, deepestFootprint(category).value_or(0), category));
-        else if (fit == NameFit::TooSmall || fit == NameFit::TooSlender)
-            progress.note(
-                fmt::format("a {:.2f} x {:.2f} x {:.2f} m thing was detected as '{}', which is never that "
-                            "{}: stored as 'object' with detected_as = {}",
-                            box.size.x, box.size.y, box.size.z, category,
-                            fit == NameFit::TooSmall ? "small" : "slender", category));
-        else if (fit == NameFit::TooTall) {
-            const auto usual = typicalHeight(category);
-            progress.note(
-                fmt::format("a {:.2f} m tall thing was detected as '{}', which stands {} {:.2f} m: "
-                            "stored as 'object' with detected_as = {}",
-                            box.size.z, category, usual ? "about" : "at most",
-                            usual ? *usual : tallestHeight(category).value_or(0), category));
-        } else if (!detectedAs.empty())
+        if (misnamed)
+            progress.note(misnamedNote(fit, category, box));
+        else if (!detectedAs.empty())
             progress.note(fmt::format("a thing detected as '{}' {}: stored as '{}' with detected_as = {}", detectedAs,
                                       track.renamedWhy, stored, detectedAs));
         model::Node& node = addNode(scene, opening ? NodeKind::Anchor : NodeKind::Object, stored,
