@@ -193,6 +193,8 @@ void InstanceMap::integrate(std::vector<InstanceView> frameViews) {
             // instance's (docs/ingest.md, "Objects from detections", step 3).
             if (!sameName && carries(category, view.label)) continue;
             if (std::max(viewIn, instanceIn) < needed) continue;
+            // A view of another name lying against the instance with few of its own cells is a neighbour's.
+            if (!sameName && std::min(viewIn, instanceIn) < options_.relabelLeast) continue;
             if (viewIn + instanceIn > bestScore) bestScore = viewIn + instanceIn, best = k;
         }
         ++viewsAdded_;

@@ -31,6 +31,8 @@ struct InstanceMapOptions {
                                  // instance's) lie next to the other's cells
     double relabelShare = 0.6;   // ... of another name (voteLabels), when this share of the view's cells or of the
                                  // instance's lie next to the other's
+    double relabelLeast = 0.2;   // ... and this share of both: a view that lies against an instance with few of its
+                                 // own cells (a nightstand's, called "tv", beside a desk's end seen alone) is another
     double fragmentShare = 0.5;  // an instance with this share of its cells next to a larger one's core is a
                                  // piece of it (consolidate), unless it rests on it ...
     double coreShare = 0.15;     // ... the core: its cells seen by this share of its views (and two), not those a

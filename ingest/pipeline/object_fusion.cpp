@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <utility>
 
 #include <fmt/format.h>
@@ -477,7 +478,9 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
     for (std::size_t t = 0; t < things.size(); ++t) {
         const RoomKind own = roomKind(things[t].category);
         if (own == RoomKind::Any) continue;
-        std::size_t ownCount = 0;
+        // The kinds of each room named there, counted by kind as the scale's priors count them (scale_priors.cpp:
+        // namesInDoubt): one thing is often named twice, and a bathroom's tall white boxes are "fridges" in turn.
+        std::map<RoomKind, std::set<std::string_view>> kinds;
         std::map<RoomKind, std::vector<std::string_view>> others;
         for (const auto& other : things) {
             const RoomKind room = roomKind(other.category);
@@ -485,15 +488,15 @@ std::vector<std::string> outOfPlace(const std::vector<SeenBox>& things, const st
             if (!oneRoom(room) || model::distance(things[t].box, other.box) > options.roomReach ||
                 wallBetween(things[t].box.center, other.box.center, walls))
                 continue;
-            if (room == own)
-                ++ownCount;
-            else
-                others[room].push_back(other.category);
+            kinds[room].insert(kindName(other.category));
+            if (room != own) others[room].push_back(other.category);
         }
+        const std::size_t ownKinds = kinds[own].size();
         // A kind that stands in any room but a bathroom is out of place beside one toilet; the others where
         // another room's kinds outweigh their own (roomOutweighs).
         for (const auto& [room, names] : others)
-            if (own == RoomKind::Dry ? room == RoomKind::Bathroom : roomOutweighs(room, names.size(), own, ownCount))
+            if (own == RoomKind::Dry ? room == RoomKind::Bathroom
+                                     : roomOutweighs(room, kinds[room].size(), own, ownKinds))
                 doubts[t] = fmt::format("in a {} (beside {} within {:.1f} m)", roomName(room), fmt::join(names, ", "),
                                         options.roomReach);
     }

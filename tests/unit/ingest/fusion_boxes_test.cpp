@@ -183,6 +183,12 @@ TEST_CASE(
     const auto pair = outOfPlace({toilet, fridge}, {});
     CHECK(pair[0].empty());
     CHECK_THAT(pair[1], Catch::Contains("in a bathroom"));
+    // Kinds are counted, not things: two "fridges" beside one toilet (ScanNet's bathroom from every third frame: a
+    // shelf on its wall and a shower's side) are one kind against one, and each fridge stands in the bathroom.
+    const auto twoFridges = outOfPlace({toilet, fridge, seen("fridge", {0.2, 0.9, 0.9}, {0.5, 0.2, 0.85}, 0, 4)}, {});
+    CHECK(twoFridges[0].empty());
+    CHECK_THAT(twoFridges[1], Catch::Contains("in a bathroom"));
+    CHECK_THAT(twoFridges[2], Catch::Contains("in a bathroom"));
 }
 
 TEST_CASE("out of place: a bed, a chair or a desk beside a toilet is a bathtub; a bed behind the wall is a bed",
