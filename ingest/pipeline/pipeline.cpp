@@ -75,14 +75,21 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
         report.findings.insert(report.findings.begin(), std::move(*views));
     auto aligned = alignmentFindings(alignment, source);
     report.findings.insert(report.findings.begin(), aligned.begin(), aligned.end());
-    const PointsGiven points{.photos = frames.cameras.size(),
-                             .sparse = capture.points.size(),
-                             .dense = dense ? dense->points.size() : 0,
-                             .cover = pointsCover.value_or(1),
-                             .scaled = source.scaled()};
-    const auto thin = !depth && dense && pointsCover ? thinPointsFinding(points) : std::nullopt;
-    // Last among the findings: another refusal keeps its own reason, the points named beneath it only where far too
-    // few (kThinCover); ten of TUM's desk frames, 25-38 %, are refused for the desk top that fills them.
+    // The points' finding comes last: another refusal keeps its own reason, the points named beneath it only where
+    // far too few (kThinCover); ten of TUM's desk frames, 25-38 %, are refused for the desk top that fills them.
+    // Beneath a refusal whose fix gives --scale (the floor's), the points' fix does not give it again.
+    const bool measured = !depth && dense && pointsCover;
+    const auto leading =
+        std::find_if(report.findings.begin(), report.findings.end(), [](const auto& f) { return f.refuse; });
+    const bool beneath = measured && *pointsCover < kThinCover && leading != report.findings.end();
+    const auto thin =
+        measured ? thinPointsFinding({.photos = frames.cameras.size(),
+                                      .sparse = capture.points.size(),
+                                      .dense = dense->points.size(),
+                                      .cover = *pointsCover,
+                                      .scaled = source.scaled(),
+                                      .scaleOffered = beneath && leading->fix.find("--scale") != std::string::npos})
+                 : std::nullopt;
     if (thin) report.findings.push_back(*thin);
     const PlausibilityFinding* refusal = nullptr;
     for (const auto& f : report.findings) {
@@ -91,18 +98,12 @@ void checkRoom(const IngestResult& result, const Capture& capture, const IngestO
     }
     for (const auto& o : report.objects) runner.note(fmt::format("warning: {}: {}", o.problem, o.what));
     if (!refusal || options.force) return;
-    const bool beneath = thin && refusal != &report.findings.back() && *pointsCover < kThinCover;
-    std::string hint = refusal->fix;
-    if (beneath) {
-        // Beneath a refusal whose fix gives --scale (the floor's), the points' fix does not give it again.
-        auto given = points;
-        given.scaleOffered = refusal->fix.find("--scale") != std::string::npos;
-        hint = thinPointsFinding(given)->fix + "; or " + hint;
-    }
+    // beneath: the points cover under kThinCover < kCoverToStore, so their finding is made.
     throw Error(
         ErrorKind::Input,
         fmt::format("the memory would be wrong: {}{}", refusal->what, beneath ? "; beneath it, " + thin->what : ""),
-        std::nullopt, hint + "; --force stores the memory anyway");
+        std::nullopt,
+        fmt::format("{}{}; --force stores the memory anyway", beneath ? thin->fix + "; or " : "", refusal->fix));
 }
 
 }  // namespace
