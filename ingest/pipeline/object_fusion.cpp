@@ -444,6 +444,16 @@ bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOpt
            model::footprintOverlap(under, basin) >= options.cabinetShare * model::footprintArea(under);
 }
 
+const SeenBox* sinkOverTable(const SeenBox& table, const std::vector<SeenBox>& things, const FusionOptions& options) {
+    if (!holdsThings(table.category) || hasUprightEnds(table.category)) return nullptr;
+    const auto sink = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
+        return role(other.category) == Role::Basin &&
+               model::bottom(other.box) - model::top(table.box) > options.cabinetBelow &&
+               model::footprintOverlap(table.box, other.box) >= options.cabinetShare * model::footprintArea(table.box);
+    });
+    return sink == things.end() ? nullptr : &*sink;
+}
+
 std::size_t reachDownToFloor(std::vector<SeenBox>& things, bool floorFound, std::optional<double> tableTopHeight,
                              const FusionOptions& options) {
     if (!floorFound && !lowestReachesFloor(things, options) &&
@@ -746,8 +756,8 @@ namespace {
 
 // Why a thing's name is doubted, the first rule that holds, or nothing: a thing that holds things on its top (a table;
 // not a bed, whose headboard rises over its top) that shows no top, or whose top is a seat's standing in it; a name
-// out of place (outOfPlace: `misplaced`); a kind that stands on floors resting on a table's top (carrierUnder), or
-// one never put on seats resting in a seat (seatUnder).
+// out of place (outOfPlace: `misplaced`); a table standing under a sink's bowl (sinkOverTable); a kind that stands on
+// floors resting on a table's top (carrierUnder), or one never put on seats resting in a seat (seatUnder).
 std::string doubtOf(const Thing& thing, const SeenBox& seen, const std::vector<SeenBox>& named,
                     const std::string& misplaced, const FusionOptions& options) {
     if (thing.top && thing.top->cover < options.topCover)
@@ -758,6 +768,9 @@ std::string doubtOf(const Thing& thing, const SeenBox& seen, const std::vector<S
             return fmt::format("holds a {} whose top is its top: the seat, seen as one with what stands around it",
                                seat->category);
     if (!misplaced.empty()) return "stands " + misplaced;
+    if (const SeenBox* sink = sinkOverTable(seen, named, options))
+        return fmt::format("stands under a {}'s bowl, {:.2f} m under it: what holds the {}, not a {}", sink->category,
+                           model::bottom(sink->box) - model::top(seen.box), sink->category, seen.category);
     if (const SeenBox* carrier = carrierUnder(seen, named, options))
         return fmt::format("rests on a {}'s top, {:.2f} m tall where a {} stands about {:.2f} m on the floor",
                            carrier->category, seen.box.size.z, seen.category, typicalHeight(seen.category).value_or(0));

@@ -133,6 +133,16 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
 // FusionOptions::basinDepth under its rim (object_fusion.cpp, partBasins).
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options = {});
 
+// The sink among `things` a table stands under, or null: a thing that holds things on its top (holdsThings; not a
+// bed, whose headboard rises over its top) whose footprint lies mostly under a sink's (FusionOptions::cabinetShare) and
+// whose top lies farther under the sink's bottom than a cabinet's does (cabinetBelow; that is the sink's cabinet:
+// cabinetOf). Nothing put under a sink's bowl holds things: it is what holds the sink, a pedestal or a vanity's lower
+// part, and its name is doubted. ScanNet's apartment, from every second and every third of its frames, stored its
+// pedestal sink's column, seen in two frames, as a 0.31 x 0.22 x 0.28 m and a 0.48 x 0.46 x 0.38 m "table" under the
+// bowl (ScanNet's label keeps the column in the sink's box, 0.90 m tall).
+const SeenBox* sinkOverTable(const SeenBox& table, const std::vector<SeenBox>& things,
+                             const FusionOptions& options = {});
+
 // A seat among `things` standing in a table's box, most of its footprint (FusionOptions::seatInside) within the
 // table's, whose top is the table's top (within FusionOptions::seatAtTop) and no higher than seats of its kind stand
 // (typicalHeight), or null: the table is that seat, seen as one with what stands around it, and its name is doubted.

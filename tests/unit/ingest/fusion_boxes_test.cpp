@@ -707,6 +707,39 @@ TEST_CASE("a sink's cabinet: the cluster right under a sink is its cabinet; a co
     CHECK_FALSE(basinOver(cabinet, empty));
 }
 
+TEST_CASE("a table under a sink's bowl, well under it, is what holds the sink; one beside it is a table",
+          "[ingest][fusion]") {
+    // ScanNet scene0000_00 from every third of its frames: the pedestal sink's bowl, and its column, seen in two
+    // frames and named a table.
+    const SeenBox bowl = seen("sink", {8.40, 0.52, 0.79}, {0.71, 0.35, 0.16}, 90, 6);
+    const SeenBox column = seen("table", {8.36, 0.63, 0.19}, {0.48, 0.46, 0.38}, 90, 2);
+    const SeenBox* sink = sinkOverTable(column, {bowl, column});
+    REQUIRE(sink);
+    CHECK(sink->category == "sink");
+    // From every second frame from the second: the column's foot, 0.28 m tall.
+    CHECK(sinkOverTable(seen("table", {8.36, 0.76, 0.14}, {0.31, 0.22, 0.28}, -36, 2),
+                        {seen("sink", {8.37, 0.55, 0.79}, {0.71, 0.37, 0.16}, 90, 7)}));
+    // A vanity whose top is right under the bowl is its cabinet (cabinetOf, named by use), not doubted here; a table
+    // beside the sink and a bed are left to the other rules, as is a sink-high table with no sink over it.
+    CHECK_FALSE(sinkOverTable(seen("table", {8.40, 0.55, 0.33}, {0.60, 0.35, 0.66}, 90, 4), {bowl}));
+    CHECK_FALSE(sinkOverTable(seen("table", {8.40, 1.40, 0.19}, {0.48, 0.46, 0.38}, 90, 4), {bowl}));
+    CHECK_FALSE(sinkOverTable(seen("bed", {8.36, 0.63, 0.19}, {2.0, 1.6, 0.38}, 90, 9), {bowl}));
+    CHECK_FALSE(sinkOverTable(column, {column}));
+    // Fused, the column is stored as an object, its name doubted; the bowl stays the sink.
+    ObjectFusion fusion(Alignment{}, RoomSurfaces{true, std::nullopt, nullptr, std::nullopt});
+    for (std::uint32_t frame = 0; frame < 4; ++frame)
+        fusion.addFrame({boxSeen(frame, "sink", bowl.box.center, {0.35, 0.71, 0.16}, {1, 0, -0.5}),
+                         boxSeen(frame, "table", column.box.center, {0.46, 0.48, 0.38}, {1, 0, -0.5})});
+    const auto things = fusion.things();
+    REQUIRE(things.size() == 2);
+    const auto stand =
+        std::find_if(things.begin(), things.end(), [](const auto& t) { return t.detectedAs == "table"; });
+    REQUIRE(stand != things.end());
+    CHECK(stand->category == "object");
+    CHECK(stand->renamedWhy.find("under a sink's bowl") != std::string::npos);
+    CHECK(std::count_if(things.begin(), things.end(), [](const auto& t) { return t.category == "sink"; }) == 1);
+}
+
 namespace {
 
 // "x,y,z x,y,z ..." -> points.
