@@ -392,10 +392,13 @@ const SeenBox* seatAtTop(const model::Box& table, const std::vector<SeenBox>& th
     if (carriesThings) return nullptr;
     const auto seat = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
         const std::optional<double> usual = typicalHeight(other.category);
+        const bool stoolBeside = std::max(other.box.size.x, other.box.size.y) <= options.stoolSide &&
+                                 model::horizontalGap(other.box, table) <= options.stoolBeside;
         return role(other.category) == Role::Seat &&
                std::abs(model::top(other.box) - model::top(table)) <= options.seatAtTop &&
                (!usual || model::top(other.box) <= *usual) &&
-               model::footprintOverlap(other.box, table) >= options.seatInside * model::footprintArea(other.box) &&
+               (stoolBeside ||
+                model::footprintOverlap(other.box, table) >= options.seatInside * model::footprintArea(other.box)) &&
                model::footprintArea(other.box) < model::footprintArea(table);
     });
     return seat == things.end() ? nullptr : &*seat;

@@ -64,7 +64,9 @@ struct FusionOptions {
     double smallOnTop = 0.5;         // a thing of a kind that stands on floors, resting on a top and lower than this
                                      // share of its kind's usual height, is no such thing (carrierUnder)
     double seatAtTop = 0.05;         // m: a table whose top is this close to the top of a seat ...
-    double seatInside = 0.8;         // ... this share of whose footprint lies in its own is that seat (seatAtTop)
+    double seatInside = 0.8;         // ... this share of whose footprint lies in its own is that seat (seatAtTop),
+    double stoolSide = 0.45;         // m: as is a seat no longer than this (a stool) ...
+    double stoolBeside = 0.3;        // ... standing this close beside it
     double seatWidth = model::kSeatPlaceWidth;  // m: a seat's places: its longest side over this, one at least
     double deskDepth = 0.9;                     // m: a table no deeper than this, ...
     double deskSideMin = 1.0;                   // m: its long side this long or longer, ...
@@ -144,10 +146,12 @@ const SeenBox* sinkOverTable(const SeenBox& table, const std::vector<SeenBox>& t
                              const FusionOptions& options = {});
 
 // A seat among `things` standing in a table's box, most of its footprint (FusionOptions::seatInside) within the
-// table's, whose top is the table's top (within FusionOptions::seatAtTop) and no higher than seats of its kind stand
-// (typicalHeight), or null: the table is that seat, seen as one with what stands around it, and its name is doubted.
-// A chair pushed under a table rises above its top or stays under it; bar stools in a row, which Open Images' SSD
-// frames as a "desk", are as high as the top it gives them. But a table with things put on tables resting on its top
+// table's, or a stool (no side longer than FusionOptions::stoolSide) beside it (within stoolBeside), whose top is the
+// table's top (within FusionOptions::seatAtTop) and no higher than seats of its kind stand (typicalHeight), or null:
+// the table is that seat, or the row of stools it stands in, seen as one with what stands around it, and its name is
+// doubted. A chair pushed under a table rises above its top or stays under it, and a stool at a table sits lower
+// than its top (a bar's 1.0-1.1 m over stools of 0.75 m); bar stools in a row, which Open Images' SSD frames as a
+// "desk", are as high as the top it gives them. But a table with things put on tables resting on its top
 // (within FusionOptions::restingGap, half of each over it) is one, whatever seat stands in it: TUM's office photos,
 // lifted on their dense points, had an office chair tucked under the desk, its back at the desk's top, with two
 // bottles and a mug on the desk, and the desk was stored as an `object`.

@@ -591,7 +591,8 @@ TEST_CASE("named by use: a suitcase or a box as large as a low table among seats
     CHECK(namedByUse({seen("chair", {4.57, 4.93, 0.22}, {0.91, 0.60, 0.44}, 0, 6), sofa}, {})[0].category.empty());
 }
 
-TEST_CASE("a table whose top is a seat's top, the seat standing in it, is that seat", "[ingest][fusion]") {
+TEST_CASE("a table whose top is a seat's top, the seat standing in it or a stool beside it, is that seat",
+          "[ingest][fusion]") {
     // ScanNet scene0000_00 from every second frame: Open Images' SSD framed the bar stools under the kitchen's bar
     // as a 0.99 x 0.64 x 0.77 m "desk", one stool (0.79 m) standing in it.
     const SeenBox desk = seen("desk", {6.957, 5.538, 0.386}, {0.989, 0.638, 0.772}, 90, 5);
@@ -621,6 +622,17 @@ TEST_CASE("a table whose top is a seat's top, the seat standing in it, is that s
                                       seen("mug", {2.556, 0.868, 0.757}, {0.127, 0.088, 0.099}, 0, 3)};
     CHECK_FALSE(seatAtTop(officeDesk.box, office));
     CHECK(seatAtTop(officeDesk.box, {officeDesk, tucked}));
+    // From every third frame the SSD framed two stools of the row as a 0.74 x 0.63 x 0.77 m "desk"; the stool
+    // beside it, 0.26 m away, is as high: the row of stools, framed as one.
+    const SeenBox rowDesk = seen("desk", {6.949, 5.511, 0.385}, {0.742, 0.630, 0.770}, 90, 4);
+    const SeenBox besideStool = seen("chair", {6.78, 4.75, 0.38}, {0.29, 0.26, 0.76}, 0, 3);
+    CHECK(seatAtTop(rowDesk.box, {rowDesk, besideStool}));
+    // A stool farther along the row is no part of it; nor is a lounge chair beside a side table as high as its
+    // back (ScanNet scene0113_00 from every third frame: a 0.53 x 0.17 x 0.76 m table, the chair 0.80 x 0.70 x
+    // 0.77 m): a chair that wide is no stool.
+    CHECK_FALSE(seatAtTop(rowDesk.box, {rowDesk, seen("chair", {6.74, 4.25, 0.38}, {0.34, 0.33, 0.75}, 90, 3)}));
+    const SeenBox sideTable = seen("table", {4.049, 2.196, 0.381}, {0.533, 0.174, 0.763}, 90, 3);
+    CHECK_FALSE(seatAtTop(sideTable.box, {sideTable, seen("chair", {3.72, 2.12, 0.39}, {0.80, 0.70, 0.77}, 0, 9)}));
 }
 
 TEST_CASE("a small thing of a floor-standing kind resting on a table's top is no such kind", "[ingest][fusion]") {
