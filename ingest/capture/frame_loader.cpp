@@ -19,18 +19,26 @@ namespace capture_detail {
 RawFrame readRawFrame(const CaptureFrame& frame) {
     RawFrame raw;
     raw.color = readColorImage(frame.colorPath);
-    auto checkSize = [&](const cv::Mat& image, const std::string& file, std::string_view what) {
+    auto checkSize = [&](const cv::Mat& image, const std::string& file, std::string_view what, std::string_view other) {
         if (image.size() != raw.color.size())
-            fail(file, fmt::format("{} is {}x{} but the colour image {} is {}x{}", what, image.cols, image.rows,
-                                   frame.colorPath, raw.color.cols, raw.color.rows));
+            fail(file, fmt::format("{} is {}x{} but the colour image {} is {}x{}{}", what, image.cols, image.rows,
+                                   frame.colorPath, raw.color.cols, raw.color.rows, other));
     };
     if (!frame.depthPath.empty()) {
         raw.depth = readDepthImage(frame.depthPath);
-        checkSize(raw.depth, frame.depthPath, "the depth image");
+        raw.depthRead = raw.depth.size();
+        if (raw.depth.size() != raw.color.size() &&
+            std::abs(static_cast<double>(raw.depth.rows) * raw.color.cols / raw.depth.cols - raw.color.rows) <= 1.0) {
+            cv::Mat resized;
+            cv::resize(raw.depth, resized, raw.color.size(), 0, 0, cv::INTER_NEAREST);
+            raw.depth = resized;
+        }
+        checkSize(raw.depth, frame.depthPath, "the depth image",
+                  ", another aspect ratio: depth registered to the colour camera has its aspect ratio");
     }
     if (!frame.instancePath.empty()) {
         raw.instances = readMaskImage(frame.instancePath);
-        checkSize(raw.instances, frame.instancePath, "the instance mask");
+        checkSize(raw.instances, frame.instancePath, "the instance mask", "");
     }
     return raw;
 }

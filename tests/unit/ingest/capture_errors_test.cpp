@@ -229,10 +229,16 @@ TEST_CASE("capture errors: rgbd", "[capture][errors][rgbd]") {
         dir.write("color/1.png", std::string("\x89PNG\r\n\x1a\n", 8) + "truncated");
         requireError([&] { readCapture(dir.path()); }, {dir.path("color/1.png"), "cut short"});
     }
-    SECTION("a depth image of the wrong size: readCapture checks the first frame") {
-        writeDepth(dir, "depth/1.png", 32, 24);
+    SECTION("a depth image of another aspect ratio: readCapture checks the first frame") {
+        writeDepth(dir, "depth/1.png", 32, 30);
         requireError([&] { readCapture(dir.path()); },
-                     {dir.path("depth/1.png"), "32x24", "64x48", dir.path("color/1.png")});
+                     {dir.path("depth/1.png"), "32x30", "64x48", dir.path("color/1.png"), "another aspect ratio"});
+    }
+    SECTION("a depth image of the colour's aspect ratio at half its size is registered to it") {
+        writeDepth(dir, "depth/1.png", 32, 24);
+        const Capture capture = readCapture(dir.path());
+        CHECK(hasNote(capture, "32x24 images beside 64x48 colour"));
+        CHECK(loadFrame(capture, capture.frames[0], 640).depth.size() == cv::Size(64, 48));
     }
     SECTION("a depth image of the wrong size: loadFrame checks every frame") {
         writeDepth(dir, "depth/2.png", 64, 40);

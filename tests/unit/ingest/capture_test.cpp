@@ -128,6 +128,39 @@ TEST_CASE("rgbd-dining: loadFrame gives colour and depth in metres", "[capture][
     }
 }
 
+TEST_CASE("rgbd-dining with its depth at a quarter of the pixels, as a phone's LiDAR gives it, registered",
+          "[capture][rgbd][load]") {
+    // The five real frames, their depth subsampled to 320 x 240 beside the 640 x 480 colour (an iPhone's LiDAR
+    // depth is 256 x 192 beside colour of 1920 x 1440: the same aspect ratio, registered to the colour camera).
+    TempDir dir;
+    const Capture full = readCapture(diningPath());
+    std::string poses;
+    for (const CaptureFrame& frame : full.frames) {
+        const std::string name = std::to_string(frame.index + 1);
+        fs::create_directories(dir.root() / "color");
+        fs::copy_file(frame.colorPath, dir.path("color/" + name + ".png"));
+        cv::Mat depth = cv::imread(frame.depthPath, cv::IMREAD_UNCHANGED), small;
+        cv::resize(depth, small, {320, 240}, 0, 0, cv::INTER_NEAREST);
+        fs::create_directories(dir.root() / "depth");
+        REQUIRE(cv::imwrite(dir.path("depth/" + name + ".png"), small));
+    }
+    fs::copy_file(diningPath() + "/pose.txt", dir.path("pose.txt"));
+    const Capture capture = readCapture(dir.path());
+    CHECK(hasNote(capture, "320x240 images beside 640x480 colour"));
+    CHECK(capture.intrinsics == full.intrinsics);
+
+    // Each colour pixel takes the reading of the depth pixel it lies in.
+    const FrameImages images = loadFrame(capture, capture.frames[2], 640);
+    const cv::Mat small = cv::imread(dir.path("depth/3.png"), cv::IMREAD_UNCHANGED);
+    REQUIRE(images.depth.size() == images.color.size());
+    for (cv::Point p : {cv::Point(320, 240), cv::Point(101, 401), cv::Point(600, 50), cv::Point(17, 33)})
+        CHECK(images.depth.at<float>(p) == Approx(small.at<std::uint16_t>(p.y / 2, p.x / 2) / 1000.0).epsilon(1e-6));
+
+    // Another aspect ratio is no registered depth: an error naming both images.
+    writeDepth(dir, "depth/1.png", 320, 200);
+    requireError([&] { readCapture(dir.path()); }, {dir.path("depth/1.png"), "320x200", "another aspect ratio"});
+}
+
 TEST_CASE("rgbd: camera.json, options, instance masks, labels and detections", "[capture][rgbd]") {
     TempDir dir;
     writeRgbd(dir, 3);
