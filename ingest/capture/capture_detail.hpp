@@ -162,18 +162,16 @@ cv::Mat readColorImage(const std::string& file);
 cv::Mat readDepthImage(const std::string& file);  // CV_16U or CV_32F, one channel
 cv::Mat readMaskImage(const std::string& file);   // CV_16U, one channel (8-bit masks are widened)
 
-// A frame's images as stored, decoded, with depth and mask sizes checked
-// against the colour image (errors name the file and both sizes).
+// A frame's images as stored, decoded, with depth and mask sizes checked against the colour image (errors name the
+// file and both sizes). A depth image of another size with the colour image's aspect ratio (within a pixel) is
+// registered to the colour camera at another resolution (a phone's LiDAR depth of 256 x 192 beside colour of
+// 1920 x 1440): it is resized to the colour image's size, each pixel the nearest reading.
 struct RawFrame {
     cv::Mat color;       // CV_8UC3
     cv::Mat depth;       // CV_16U or CV_32F at the colour image's size, empty without depth
     cv::Mat instances;   // CV_16U, empty without masks
     cv::Size depthRead;  // the depth image's own size, as read
 };
-// A frame's images as read. A depth image of another size than the colour image, with the same aspect ratio (within
-// a pixel), is registered to the colour camera at another resolution (a phone's LiDAR depth of 256 x 192 beside
-// colour of 1920 x 1440): it is resized to the colour image's size, each pixel the nearest reading. Another aspect
-// ratio, or an instance mask of another size, is an error naming both files.
 RawFrame readRawFrame(const CaptureFrame& frame);
 
 // Intrinsics for an image of width x height: scaled when they were given for
