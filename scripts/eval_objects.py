@@ -348,6 +348,8 @@ def first_sights(capture):
         if depth_file is None:
             continue
         depth = cv2.imread(str(depth_file), cv2.IMREAD_UNCHANGED).astype(float) / camera.get("depth_scale", 1000)
+        if depth.shape[:2] != (camera["height"], camera["width"]):  # registered at another resolution, as smql reads it
+            depth = cv2.resize(depth, (camera["width"], camera["height"]), interpolation=cv2.INTER_NEAREST)
         t = np.array([float(v) for v in line[:3]])
         qx, qy, qz, qw = (float(v) for v in line[3:7])
         r = np.array([[1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)],
