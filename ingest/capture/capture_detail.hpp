@@ -173,6 +173,9 @@ struct RawFrame {
     cv::Size depthRead;  // the depth image's own size, as read
 };
 RawFrame readRawFrame(const CaptureFrame& frame);
+// The capture's note for depth read at another resolution than the colour (readRawFrame), from a frame with depth;
+// nothing when the two have one size.
+std::optional<std::string> depthResolutionNote(const RawFrame& frame);
 
 // Intrinsics for an image of width x height: scaled when they were given for
 // another size with the same aspect ratio, else an error naming the image.

@@ -244,6 +244,10 @@ Capture readNerfstudio(const fs::path& transformsFile, const CaptureOptions& opt
                         "edges will be off",
                         file));
     capture.metric = withDepth > 0;
+    const auto firstWithDepth = std::find_if(capture.frames.begin(), capture.frames.end(),
+                                             [](const CaptureFrame& f) { return !f.depthPath.empty(); });
+    if (firstWithDepth != capture.frames.end())
+        if (auto note = depthResolutionNote(readRawFrame(*firstWithDepth))) capture.notes.push_back(*note);
     if (withDepth > 0 && withDepth < capture.frames.size())
         capture.notes.push_back(fmt::format("{}: {} of {} frames have depth", file, withDepth, capture.frames.size()));
     if (withDepth == 0)

@@ -37,11 +37,7 @@ void chooseCamera(Capture& capture, const CaptureOptions& options, const fs::pat
     if (pathExists(cameraFile)) camera = readCameraJson(cameraFile, hint);
     RawFrame first = readRawFrame(capture.frames.front());
     const int width = first.color.cols, height = first.color.rows;
-    if (!first.depth.empty() && first.depthRead != first.color.size())
-        capture.notes.push_back(fmt::format(
-            "depth: {}x{} images beside {}x{} colour, the same aspect ratio: taken as registered to the colour "
-            "camera, each resized to the colour image's size (the nearest reading)",
-            first.depthRead.width, first.depthRead.height, width, height));
+    if (auto note = depthResolutionNote(first)) capture.notes.push_back(*note);
     if (std::optional<Intrinsics> given = optionIntrinsics(options, width, height)) {
         capture.intrinsics = *given;
         capture.intrinsicsOrigin = optionOrigin(options);

@@ -43,6 +43,14 @@ RawFrame readRawFrame(const CaptureFrame& frame) {
     return raw;
 }
 
+std::optional<std::string> depthResolutionNote(const RawFrame& frame) {
+    if (frame.depth.empty() || frame.depthRead == frame.color.size()) return std::nullopt;
+    return fmt::format(
+        "depth: {}x{} images beside {}x{} colour, the same aspect ratio: taken as registered to the colour camera, "
+        "each resized to the colour image's size (the nearest reading)",
+        frame.depthRead.width, frame.depthRead.height, frame.color.cols, frame.color.rows);
+}
+
 Intrinsics fitIntrinsics(const Intrinsics& in, int width, int height, const std::string& imageFile,
                          std::string_view source) {
     if (in.width == width && in.height == height) return in;

@@ -432,6 +432,15 @@ TEST_CASE("nerfstudio: depth makes it metric, per-frame intrinsics, camera_angle
     CHECK(loadFrame(capture, capture.frames[1], 640).intrinsics.fx == 30);
     FrameImages images = loadFrame(capture, capture.frames[0], 640);
     CHECK(images.depth.at<float>(0, 3) == Approx(1.03));
+    CHECK_FALSE(hasNote(capture, "registered to the colour camera"));
+
+    // Depth at half the colour's resolution (as nerfstudio's record3d data gives it): read at the colour's size.
+    writeDepth(dir, "depth/0.png", 20, 15, 100);
+    const Capture half = readCapture(dir.path("data/transforms.json"));
+    CHECK(hasNote(half, "20x15 images beside 40x30 colour"));
+    const FrameImages halfImages = loadFrame(half, half.frames[0], 640);
+    REQUIRE(halfImages.depth.size() == cv::Size(40, 30));
+    CHECK(halfImages.depth.at<float>(0, 3) == Approx(1.01));  // the reading of depth pixel 1, which holds 100 + 1
 }
 
 // ---------------------------------------------------------------------------
