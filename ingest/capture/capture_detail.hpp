@@ -162,15 +162,17 @@ cv::Mat readColorImage(const std::string& file);
 cv::Mat readDepthImage(const std::string& file);  // CV_16U or CV_32F, one channel
 cv::Mat readMaskImage(const std::string& file);   // CV_16U, one channel (8-bit masks are widened)
 
+// Whether two images have one aspect ratio: the second's height within a pixel of the first's scaled to its width.
+bool sameAspect(cv::Size a, cv::Size b);
+
 // A frame's images as stored, decoded, with depth and mask sizes checked against the colour image (errors name the
-// file and both sizes). A depth image of another size with the colour image's aspect ratio (within a pixel) is
+// file and both sizes). A depth image of another size with the colour image's aspect ratio (sameAspect) is
 // registered to the colour camera at another resolution (a phone's LiDAR depth of 256 x 192 beside colour of
-// 1920 x 1440): it is resized to the colour image's size, each pixel the nearest reading.
+// 1920 x 1440); loadFrame resizes it once, to the size it gives the colour, each pixel the nearest reading.
 struct RawFrame {
-    cv::Mat color;       // CV_8UC3
-    cv::Mat depth;       // CV_16U or CV_32F at the colour image's size, empty without depth
-    cv::Mat instances;   // CV_16U, empty without masks
-    cv::Size depthRead;  // the depth image's own size, as read
+    cv::Mat color;      // CV_8UC3
+    cv::Mat depth;      // CV_16U or CV_32F, the colour image's aspect ratio; empty without depth
+    cv::Mat instances;  // CV_16U, the colour image's size; empty without masks
 };
 RawFrame readRawFrame(const CaptureFrame& frame);
 // The capture's note for depth read at another resolution than the colour (readRawFrame), from a frame with depth;

@@ -16,39 +16,37 @@ using namespace capture_detail;
 
 namespace capture_detail {
 
+bool sameAspect(cv::Size a, cv::Size b) {
+    return a.width > 0 && a.height > 0 && std::abs(static_cast<double>(a.height) * b.width / a.width - b.height) <= 1.0;
+}
+
 RawFrame readRawFrame(const CaptureFrame& frame) {
     RawFrame raw;
     raw.color = readColorImage(frame.colorPath);
-    auto checkSize = [&](const cv::Mat& image, const std::string& file, std::string_view what, std::string_view other) {
-        if (image.size() != raw.color.size())
-            fail(file, fmt::format("{} is {}x{} but the colour image {} is {}x{}{}", what, image.cols, image.rows,
-                                   frame.colorPath, raw.color.cols, raw.color.rows, other));
+    auto sizeError = [&](const cv::Mat& image, const std::string& file, std::string_view what, std::string_view why) {
+        fail(file, fmt::format("{} is {}x{} but the colour image {} is {}x{}{}", what, image.cols, image.rows,
+                               frame.colorPath, raw.color.cols, raw.color.rows, why));
     };
     if (!frame.depthPath.empty()) {
         raw.depth = readDepthImage(frame.depthPath);
-        raw.depthRead = raw.depth.size();
-        if (raw.depth.size() != raw.color.size() &&
-            std::abs(static_cast<double>(raw.depth.rows) * raw.color.cols / raw.depth.cols - raw.color.rows) <= 1.0) {
-            cv::Mat resized;
-            cv::resize(raw.depth, resized, raw.color.size(), 0, 0, cv::INTER_NEAREST);
-            raw.depth = resized;
-        }
-        checkSize(raw.depth, frame.depthPath, "the depth image",
-                  ", another aspect ratio: depth registered to the colour camera has its aspect ratio");
+        if (!sameAspect(raw.depth.size(), raw.color.size()))
+            sizeError(raw.depth, frame.depthPath, "the depth image",
+                      ", another aspect ratio: depth registered to the colour camera has its aspect ratio");
     }
     if (!frame.instancePath.empty()) {
         raw.instances = readMaskImage(frame.instancePath);
-        checkSize(raw.instances, frame.instancePath, "the instance mask", "");
+        if (raw.instances.size() != raw.color.size())
+            sizeError(raw.instances, frame.instancePath, "the instance mask", "");
     }
     return raw;
 }
 
 std::optional<std::string> depthResolutionNote(const RawFrame& frame) {
-    if (frame.depth.empty() || frame.depthRead == frame.color.size()) return std::nullopt;
+    if (frame.depth.empty() || frame.depth.size() == frame.color.size()) return std::nullopt;
     return fmt::format(
         "depth: {}x{} images beside {}x{} colour, the same aspect ratio: taken as registered to the colour camera, "
         "each resized to the colour image's size (the nearest reading)",
-        frame.depthRead.width, frame.depthRead.height, frame.color.cols, frame.color.rows);
+        frame.depth.cols, frame.depth.rows, frame.color.cols, frame.color.rows);
 }
 
 Intrinsics fitIntrinsics(const Intrinsics& in, int width, int height, const std::string& imageFile,
@@ -56,8 +54,7 @@ Intrinsics fitIntrinsics(const Intrinsics& in, int width, int height, const std:
     if (in.width == width && in.height == height) return in;
     // The same camera with the image resized (COLMAP run on full-size photos,
     // nerfstudio's downscaled images/): same aspect ratio within a pixel.
-    if (in.width > 0 && in.height > 0 && std::abs(static_cast<double>(in.height) * width / in.width - height) <= 1.0)
-        return scaleIntrinsics(in, width, height);
+    if (sameAspect({in.width, in.height}, {width, height})) return scaleIntrinsics(in, width, height);
     fail(imageFile, fmt::format("the image is {}x{} but the intrinsics ({}) are for {}x{}, another aspect ratio", width,
                                 height, source, in.width, in.height));
 }
@@ -88,7 +85,7 @@ FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int wor
     const int width = raw.color.cols, height = raw.color.rows;
     const Intrinsics& stored = frame.intrinsics ? *frame.intrinsics : capture.intrinsics;
     if (capture.layout == "images" && !frame.intrinsics &&
-        std::abs(static_cast<double>(stored.height) * width / std::max(1, stored.width) - height) > 1.0) {
+        !sameAspect({stored.width, stored.height}, {width, height})) {
         // A folder of photos may mix portrait and landscape: the guess follows each image.
         out.intrinsics = guessedIntrinsics(width, height);
     } else {
@@ -108,7 +105,16 @@ FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int wor
     }
     out.instances = raw.instances;
     out.color = raw.color;
+    // Depth of another resolution is resized once: to the colour's size where the lens is undone on its pixels,
+    // else at the end, to the size the colour is given.
+    auto resizeDepth = [&](cv::Size size) {
+        if (out.depth.empty() || out.depth.size() == size) return;
+        cv::Mat resized;
+        cv::resize(out.depth, resized, size, 0, 0, cv::INTER_NEAREST);
+        out.depth = resized;
+    };
     if (out.intrinsics.distorted()) {
+        resizeDepth({width, height});
         out.color = undistorted(out.color, out.intrinsics, cv::INTER_LINEAR);
         if (!out.depth.empty()) out.depth = undistorted(out.depth, out.intrinsics, cv::INTER_NEAREST);
         if (!out.instances.empty()) out.instances = undistorted(out.instances, out.intrinsics, cv::INTER_NEAREST);
@@ -121,11 +127,6 @@ FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int wor
         cv::Mat small;
         cv::resize(out.color, small, size, 0, 0, cv::INTER_AREA);
         out.color = small;
-        if (!out.depth.empty()) {
-            cv::Mat small;
-            cv::resize(out.depth, small, size, 0, 0, cv::INTER_NEAREST);
-            out.depth = small;
-        }
         if (!out.instances.empty()) {
             cv::Mat small;
             cv::resize(out.instances, small, size, 0, 0, cv::INTER_NEAREST);
@@ -133,6 +134,7 @@ FrameImages loadFrame(const Capture& capture, const CaptureFrame& frame, int wor
         }
         out.intrinsics = scaleIntrinsics(out.intrinsics, workingWidth, newHeight);
     }
+    resizeDepth(out.color.size());
     return out;
 }
 

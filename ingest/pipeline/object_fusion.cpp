@@ -441,18 +441,27 @@ const SeenBox* seatUnder(const SeenBox& thing, const std::vector<SeenBox>& thing
         [&](const model::Box& seat) { return model::bottom(seat) + options.restingGap; });
 }
 
+namespace {
+
+// How far under a basin's bottom the top of a thing lies that stands under it, most of its footprint
+// (FusionOptions::cabinetShare) under the basin's; nothing for a thing that does not.
+std::optional<double> underBasin(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
+    if (model::footprintOverlap(under, basin) < options.cabinetShare * model::footprintArea(under)) return std::nullopt;
+    return model::bottom(basin) - model::top(under);
+}
+
+}  // namespace
+
 bool cabinetOf(const model::Box& under, const model::Box& basin, const FusionOptions& options) {
-    const double below = model::bottom(basin) - model::top(under);
-    return below >= -options.cabinetAbove && below <= options.cabinetBelow &&
-           model::footprintOverlap(under, basin) >= options.cabinetShare * model::footprintArea(under);
+    const std::optional<double> below = underBasin(under, basin, options);
+    return below && *below >= -options.cabinetAbove && *below <= options.cabinetBelow;
 }
 
 const SeenBox* sinkOverTable(const SeenBox& table, const std::vector<SeenBox>& things, const FusionOptions& options) {
     if (!holdsThings(table.category) || hasUprightEnds(table.category)) return nullptr;
     const auto sink = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
-        return role(other.category) == Role::Basin &&
-               model::bottom(other.box) - model::top(table.box) > options.cabinetBelow &&
-               model::footprintOverlap(table.box, other.box) >= options.cabinetShare * model::footprintArea(table.box);
+        const std::optional<double> below = underBasin(table.box, other.box, options);
+        return role(other.category) == Role::Basin && below && *below > options.cabinetBelow;
     });
     return sink == things.end() ? nullptr : &*sink;
 }
