@@ -37,6 +37,13 @@ each set of four (else three, else two) whose first sights lie 10 or more frames
 "What will be the first-time appearance order of the following categories in the video: a, b, c,
 d?", and is right when the answer orders them as the truth does.
 
+VSI-Bench's relative questions, in its words, also counted apart: relative distance ("Measuring from the
+closest point of each object, which of these objects (a, b, c, d) is the closest to the x?", x one of its kind,
+the other scored kinds offered four at a time, right when the answer names the kind whose nearest thing's box
+lies closest to x's; not asked when the next lies within 0.15 m as close) and relative direction ("If I am
+standing by the x and facing the y, is the z to my front-left, front-right, back-left, or back-right?", each of
+three kinds one of its kind, by their boxes' centres; not asked within 15 degrees of a quadrant's edge).
+
 --thinned EVERY:FROM scores each frames folder (color/, depth/, pose.txt) also from every EVERY-th of its
 frames from FROM on, a folder of links beside the databases: the same room walked at another pace.
 """
@@ -77,6 +84,12 @@ FITS = {
     "bottle": {"bottle"},
     "book": {"book"},
 }
+# VSI-Bench's relative questions: at most this many kinds offered a question; the closest kind's gap this much
+# (metres) under the next one's, else the question is not asked; a direction this many degrees off every
+# quadrant's edge, else not asked (both as VSI-Bench leaves out ambiguous questions).
+RELATIVE_OPTIONS = 4
+RELATIVE_MARGIN = 0.15
+RELATIVE_BOUNDARY = 15
 # The word a person uses for a truth class in a question.
 WORD = {"refrigerator": "fridge", "couch": "sofa"}
 # Label sets of the truth's sources: a stored thing whose name fits none of these is not counted.
@@ -328,6 +341,53 @@ def questions(smql, db, truth, labels):
     return asked
 
 
+def relative_questions(smql, db, truth, labels):
+    """VSI-Bench's relative distance and relative direction questions, in its words, about the scored kinds
+    (module docstring), their truth from the true boxes."""
+    asked = []
+    kinds = sorted({t["category"] for t in truth if t["category"] in FITS and t["category"] in labels
+                    and not t["structural"]})
+    by_kind = {k: [t for t in truth if t["category"] == k] for k in kinds}
+    singles = [k for k in kinds if len(by_kind[k]) == 1]
+    word = lambda k: WORD.get(k, k)
+
+    def record(kind, question, truth_answer, answer, message):
+        asked.append({"kind": kind, "question": question, "truth": truth_answer, "answer": answer,
+                      "right": answer == truth_answer, "message": message.split("\n")[-1]})
+
+    for target in singles:
+        others = [k for k in kinds if k != target]
+        for start in range(0, len(others), RELATIVE_OPTIONS):
+            options = others[start:start + RELATIVE_OPTIONS]
+            if len(options) < 2:
+                continue
+            nearest = sorted((min(gap(by_kind[target][0], t) for t in by_kind[k]), k) for k in options)
+            if nearest[1][0] - nearest[0][0] < RELATIVE_MARGIN:
+                continue
+            question = (f"Measuring from the closest point of each object, which of these objects "
+                        f"({', '.join(word(k) for k in options)}) is the closest to the {word(target)}?")
+            rows, message = ask(smql, db, question)
+            named = rows[0].get("category") if len(rows) == 1 else None
+            answer = next((k for k in options if named in FITS[k]), named)
+            gaps = ", ".join(f"{word(k)} {g:.2f} m" for g, k in nearest)
+            record("relative distance", f"{question} (truth {gaps})", nearest[0][1], answer, message)
+    for standing, facing, other in itertools.combinations(singles, 3):
+        at = by_kind[standing][0]["center"][:2]
+        ahead = by_kind[facing][0]["center"][:2] - at
+        there = by_kind[other][0]["center"][:2] - at
+        angle = math.degrees(math.atan2(ahead[0] * there[1] - ahead[1] * there[0], ahead @ there))
+        # Counter-clockwise (z up) is to the left; ambiguous within RELATIVE_BOUNDARY degrees of a quadrant's edge.
+        if min(abs(angle - edge) for edge in (-180, -90, 0, 90, 180)) < RELATIVE_BOUNDARY:
+            continue
+        truth_answer = ("front" if abs(angle) < 90 else "back") + "-" + ("left" if angle > 0 else "right")
+        question = (f"If I am standing by the {word(standing)} and facing the {word(facing)}, is the "
+                    f"{word(other)} to my front-left, front-right, back-left, or back-right?")
+        rows, message = ask(smql, db, question)
+        said = re.search(r"to your (front-left|front-right|back-left|back-right)\b", message)
+        record("relative direction", question, truth_answer, said.group(1) if said else None, message)
+    return asked
+
+
 def first_sights(capture):
     """Truth category -> the first frame number in which a thing of it is seen (module docstring), for a
     capture of several frames with depth and poses; {} otherwise."""
@@ -412,6 +472,7 @@ def evaluate(smql, capture, db, options, reuse):
     row["questions"] = questions(smql, db, truth, labels)
     row["questions_right"] = sum(q["right"] for q in row["questions"])
     row["order"] = appearance_order(smql, db, capture, truth, labels)
+    row["relative"] = relative_questions(smql, db, truth, labels)
     return row
 
 
@@ -465,7 +526,7 @@ def main():
         row = evaluate(args.smql, capture, work / capture.name, shlex.split(args.options), args.reuse)
         rows.append(row)
         brief = {k: v for k, v in row.items()
-                 if args.verbose or k not in ("questions", "missed_things", "extra_things", "order")}
+                 if args.verbose or k not in ("questions", "missed_things", "extra_things", "order", "relative")}
         print(json.dumps(brief), flush=True)
     scored = [r for r in rows if "f1" in r]
     matched = sum(r["matched"] for r in scored)
@@ -474,6 +535,7 @@ def main():
     precision, recall = (matched / stored if stored else 0), (matched / truth if truth else 0)
     asked = [q for r in scored for q in r["questions"]]
     ordered = [q for r in scored for q in r.get("order", [])]
+    relative = [q for r in scored for q in r.get("relative", [])]
     kinds = sorted({q["kind"] for q in asked})
     total = {
         "captures": len(rows), "scored": len(scored), "truth": truth, "stored": stored, "matched": matched,
@@ -484,6 +546,9 @@ def main():
         "by_kind": {k: f"{sum(q['right'] for q in asked if q['kind'] == k)}/"
                        f"{sum(1 for q in asked if q['kind'] == k)}" for k in kinds},
         "appearance_order": f"{sum(q['right'] for q in ordered)}/{len(ordered)}",
+        **{k.replace(" ", "_"): f"{sum(q['right'] for q in relative if q['kind'] == k)}/"
+                                f"{sum(1 for q in relative if q['kind'] == k)}"
+           for k in ("relative distance", "relative direction")},
     }
     print(json.dumps({"total": total}))
     if args.json:

@@ -398,7 +398,7 @@ std::string superlative(const Translation& t, const ResultSet& rs) {
 
 std::string direction(const Translation& t, const ResultSet& rs) {
     int id = rs.columnIndex("id"), category = rs.columnIndex("category"), box = rs.columnIndex("box");
-    const std::array<std::string_view, 3> roleNames{"thing you stand by", "thing you face", "thing asked about"};
+    const std::array<std::string_view, 3> roleNames{" to stand by", " to face", ""};
     std::array<const Row*, 3> pickedRows{};
     std::vector<const Row*> asked;  // the things asked about, the one answered for first
     std::string notes;
@@ -410,7 +410,7 @@ std::string direction(const Translation& t, const ResultSet& rs) {
             if (std::holds_alternative<model::Box>(row[box]) &&
                 std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
                 found.push_back(&row);
-        if (found.empty()) return fmt::format("There is no {} here.", roleNames[role]);
+        if (found.empty()) return fmt::format("There is no {} here{}.", listed(t.roles[role], " or "), roleNames[role]);
         if (role == 2) {
             // The thing asked about is another than the one stood by or faced ("the other chair"); every one asked
             // about leaves those out.
@@ -420,7 +420,8 @@ std::string direction(const Translation& t, const ResultSet& rs) {
         }
         pickedRows[role] = found.front();
         if (found.size() > 1 && !(role == 2 && t.everyAsked))
-            notes += fmt::format(" There are {} of the {}; this takes {}#{}.", found.size(), roleNames[role],
+            notes += fmt::format(" There are {} {}{}; this takes {}#{}.", found.size(),
+                                 pluralOf(text((*found.front())[category])), roleNames[role],
                                  text((*found.front())[category]), text((*found.front())[id]));
     }
     auto boxOf = [&](const Row* row) { return std::get<model::Box>((*row)[box]); };

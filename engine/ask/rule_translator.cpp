@@ -369,13 +369,16 @@ private:
         }
         if (out.choices.empty()) out.choices = {"left", "right"};
         out.kind = QuestionKind::Direction;
-        out.roles = {at.categories, facing.categories, asked.categories};
+        // A thing the scene does not hold keeps its word as its role, which no row then matches: the answer says
+        // it is not here, where an empty role would stand for the middle of the scene (situation.cpp).
+        auto names = [](const Phrase& ph) {
+            return ph.categories.empty() ? std::vector<std::string>{model::categoryName(ph.noun)} : ph.categories;
+        };
+        out.roles = {names(at), names(facing), names(asked)};
         std::vector<std::string> all;
-        for (const auto* ph : {&at, &facing, &asked}) {
-            const auto names = ph->categories.empty() ? std::vector<std::string>{ph->noun} : ph->categories;
-            for (const auto& n : names)
+        for (const auto& role : out.roles)
+            for (const auto& n : role)
                 if (std::find(all.begin(), all.end(), n) == all.end()) all.push_back(n);
-        }
         std::string any;
         for (const auto& n : all) any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(n));
         out.smql = fmt::format("FIND thing WHERE {} RETURN id, category, box", all.size() > 1 ? "(" + any + ")" : any);

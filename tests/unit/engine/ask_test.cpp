@@ -171,6 +171,28 @@ TEST_CASE("ASK on Replica room 0: the acceptance questions", "[ask]") {
     CHECK(picture.message.ends_with(" is on " + wall + "."));
 }
 
+// A direction question names three things; where the room holds no thing of one of them, the answer says so. The
+// thing faced was taken for the middle of the room when its word named nothing here (ScanNet's bathroom from its
+// RGB-D frames, its small table not stored: "standing by the sink and facing the table" answered a side).
+TEST_CASE("ASK: a direction from or toward a thing the room does not hold says it is not here", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'replica-room0'");
+    const auto answer = [&](const std::string& question) {
+        const std::string message = run(*engine, askStatement(question)).message;
+        return message.substr(message.rfind('\n') + 1);
+    };
+    CHECK(answer("If I am standing by the door and facing the piano, is the basket to my left or right?") ==
+          "There is no piano here to face.");
+    CHECK(answer("If I am standing by the piano and facing the door, is the basket to my left or right?") ==
+          "There is no piano here to stand by.");
+    CHECK(answer("If I am standing by the door and facing the rug, is the piano to my front-left, front-right, "
+                 "back-left, or back-right?") == "There is no piano here.");
+    // The same room's things are still placed: the question of the set, with the basket there.
+    CHECK(answer("If I am standing by the door and facing the rug, is the basket to my left or right?")
+              .starts_with("The basket is to your left"));
+}
+
 // What rests on a thing is on it, not next to it: the Replica room's cushions lie on its two sofas, and a person
 // asked what is beside the sofa names the side tables, the lamps and the basket, not those cushions.
 TEST_CASE("ASK on Replica room 0: what is next to the sofa leaves out what lies on it", "[ask]") {
