@@ -42,7 +42,10 @@ closest point of each object, which of these objects (a, b, c, d) is the closest
 the other scored kinds offered four at a time, right when the answer names the kind whose nearest thing's box
 lies closest to x's; not asked when the next lies within 0.15 m as close) and relative direction ("If I am
 standing by the x and facing the y, is the z to my front-left, front-right, back-left, or back-right?", each of
-three kinds one of its kind, by their boxes' centres; not asked within 15 degrees of a quadrant's edge).
+three kinds one of its kind, by their boxes' centres; not asked within 15 degrees of a quadrant's edge), and
+route plans in its fill-in form (from a thing facing a second, forward to it, then by a third to a fourth, each
+one of its kind: the two turns, back from 135 degrees, not asked where a turn lies within 15 degrees of straight
+ahead or of 135; the first 10 so asked, the kinds taken in name order).
 
 --thinned EVERY:FROM scores each frames folder (color/, depth/, pose.txt) also from every EVERY-th of its
 frames from FROM on, a folder of links beside the databases: the same room walked at another pace.
@@ -90,6 +93,8 @@ FITS = {
 RELATIVE_OPTIONS = 4
 RELATIVE_MARGIN = 0.15
 RELATIVE_BOUNDARY = 15
+# Route plans asked of a capture at most (the first unambiguous ones, the kinds in name order).
+ROUTES = 10
 # The word a person uses for a truth class in a question.
 WORD = {"refrigerator": "fridge", "couch": "sofa"}
 # Label sets of the truth's sources: a stored thing whose name fits none of these is not counted.
@@ -282,7 +287,8 @@ def inside_oriented(points, box):
 
 
 def ask(smql, db, question):
-    result = query(smql, db, f"ASK '{question}'")
+    escaped = question.replace("'", "''")  # SMQL's string literal, as SQL's
+    result = query(smql, db, f"ASK '{escaped}'")
     return result.get("rows", []), result.get("message", "")
 
 
@@ -385,6 +391,32 @@ def relative_questions(smql, db, truth, labels):
         rows, message = ask(smql, db, question)
         said = re.search(r"to your (front-left|front-right|back-left|back-right)\b", message)
         record("relative direction", question, truth_answer, said.group(1) if said else None, message)
+    routes = 0
+    for start, facing, via, goal in itertools.permutations(singles, 4):
+        if routes == ROUTES:
+            break
+        at = {k: by_kind[k][0]["center"][:2] for k in (start, facing, via, goal)}
+        turns, heading, pos = [], at[facing] - at[start], at[facing]
+        for target in (via, goal):
+            ahead = at[target] - pos
+            angle = math.degrees(math.atan2(heading[0] * ahead[1] - heading[1] * ahead[0], heading @ ahead))
+            # Ahead, or at the edge of back (135 degrees), within RELATIVE_BOUNDARY: ambiguous.
+            if min(abs(abs(angle) - edge) for edge in (0, 135)) < RELATIVE_BOUNDARY:
+                break
+            turns.append("Turn Back" if abs(angle) >= 135 else ("Turn Left" if angle > 0 else "Turn Right"))
+            heading, pos = ahead, at[target]
+        if len(turns) < 2:
+            continue
+        routes += 1
+        question = (f"You are a robot beginning at the {word(start)} facing the {word(facing)}. You want to navigate "
+                    f"to the {word(goal)}. You will perform the following actions (Note: for each [please fill in], "
+                    f"choose either 'turn back,' 'turn left,' or 'turn right.'): 1. Go forward until the "
+                    f"{word(facing)} 2. [please fill in] 3. Go forward until the {word(via)} 4. [please fill in] "
+                    f"5. Go forward until the {word(goal)}. You have reached the final destination.")
+        rows, message = ask(smql, db, question)
+        said = re.match(r"(Turn (?:Left|Right|Back)), (Turn (?:Left|Right|Back))", message.split("\n")[-1])
+        record("route plan", f"from the {word(start)} facing the {word(facing)}, by the {word(via)} to the "
+               f"{word(goal)}", ", ".join(turns), ", ".join(said.groups()) if said else None, message)
     return asked
 
 
@@ -548,7 +580,7 @@ def main():
         "appearance_order": f"{sum(q['right'] for q in ordered)}/{len(ordered)}",
         **{k.replace(" ", "_"): f"{sum(q['right'] for q in relative if q['kind'] == k)}/"
                                 f"{sum(1 for q in relative if q['kind'] == k)}"
-           for k in ("relative distance", "relative direction")},
+           for k in ("relative distance", "relative direction", "route plan")},
     }
     print(json.dumps({"total": total}))
     if args.json:
