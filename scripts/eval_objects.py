@@ -348,8 +348,9 @@ def questions(smql, db, truth, labels):
 
 
 def relative_questions(smql, db, truth, labels):
-    """VSI-Bench's relative distance and relative direction questions, in its words, about the scored kinds
-    (module docstring), their truth from the true boxes."""
+    """VSI-Bench's relative distance, relative direction and route plan questions, in its words, about the scored
+    kinds (module docstring), their truth from the true boxes. A kind the answer names fits an option by FITS (a
+    stored desk answers "table"; of two options it fits, the first)."""
     asked = []
     kinds = sorted({t["category"] for t in truth if t["category"] in FITS and t["category"] in labels
                     and not t["structural"]})

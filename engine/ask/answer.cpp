@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -399,32 +400,51 @@ std::string superlative(const Translation& t, const ResultSet& rs) {
 std::string direction(const Translation& t, const ResultSet& rs) {
     int id = rs.columnIndex("id"), category = rs.columnIndex("category"), box = rs.columnIndex("box");
     const std::array<std::string_view, 3> roleNames{" to stand by", " to face", ""};
+    if (t.roles.size() < 3) return "There is nothing to place.";
     std::array<const Row*, 3> pickedRows{};
+    std::array<std::vector<const Row*>, 3> found;
     std::vector<const Row*> asked;  // the things asked about, the one answered for first
-    std::string notes;
-    for (std::size_t role = 0; role < 3 && role < t.roles.size(); ++role) {
+    auto boxOf = [&](const Row* row) { return std::get<model::Box>((*row)[box]); };
+    for (std::size_t role = 0; role < 3; ++role) {
         if (role == 1 && t.roles[1].empty()) continue;  // facing the middle of the scene
-        std::vector<const Row*> found;
         // Only things with a box have a place to stand by or face.
         for (const auto& row : rs.rows)
             if (std::holds_alternative<model::Box>(row[box]) &&
                 std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
-                found.push_back(&row);
-        if (found.empty()) return fmt::format("There is no {} here{}.", listed(t.roles[role], " or "), roleNames[role]);
-        if (role == 2) {
-            // The thing asked about is another than the one stood by or faced ("the other chair"); every one asked
-            // about leaves those out.
-            auto other = [&](const Row* row) { return row != pickedRows[0] && row != pickedRows[1]; };
-            const auto others = std::stable_partition(found.begin(), found.end(), other);
-            asked.assign(found.begin(), others == found.begin() ? found.end() : others);
-        }
-        pickedRows[role] = found.front();
-        if (found.size() > 1 && !(role == 2 && t.everyAsked))
-            notes += fmt::format(" There are {} {}{}; this takes {}#{}.", found.size(),
-                                 pluralOf(text((*found.front())[category])), roleNames[role],
-                                 text((*found.front())[category]), text((*found.front())[id]));
+                found[role].push_back(&row);
+        if (found[role].empty())
+            return fmt::format("There is no {} here{}.", listed(t.roles[role], " or "), roleNames[role]);
     }
-    auto boxOf = [&](const Row* row) { return std::get<model::Box>((*row)[box]); };
+    // Of several things to stand by or to face, the two nearest each other: standing by a chair facing the desk is
+    // standing by the desk's chair, not one across the room (the first of the rows where one of them is alone).
+    pickedRows[0] = found[0].front();
+    if (!found[1].empty()) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const Row* at : found[0])
+            for (const Row* faced : found[1])
+                if (at != faced)
+                    if (const double gap = model::distance(boxOf(at), boxOf(faced)); gap < nearest) {
+                        nearest = gap;
+                        pickedRows[0] = at, pickedRows[1] = faced;
+                    }
+        if (!pickedRows[1]) return fmt::format("There is no other {} here to face.", listed(t.roles[1], " or "));
+    }
+    // The thing asked about is another than the one stood by or faced ("the other chair"); every one asked about
+    // leaves those out.
+    auto other = [&](const Row* row) { return row != pickedRows[0] && row != pickedRows[1]; };
+    const auto others = std::stable_partition(found[2].begin(), found[2].end(), other);
+    asked.assign(found[2].begin(), others == found[2].begin() ? found[2].end() : others);
+    pickedRows[2] = asked.front();
+    std::string notes;
+    for (std::size_t role = 0; role < 3; ++role) {
+        if (found[role].size() < 2 || (role == 2 && t.everyAsked)) continue;
+        const Row* picked = pickedRows[role];
+        const Row* by = role == 0 ? pickedRows[1] : role == 1 ? pickedRows[0] : nullptr;
+        notes += fmt::format(" There are {} {}{}; this takes {}#{}{}.", found[role].size(),
+                             pluralOf(text((*picked)[category])), roleNames[role], text((*picked)[category]),
+                             text((*picked)[id]),
+                             by ? fmt::format(", the nearest to {}#{}", text((*by)[category]), text((*by)[id])) : "");
+    }
     const model::Vec3 at = boxOf(pickedRows[0]).center;
     model::Vec3 facing{};
     if (pickedRows[1]) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <set>
@@ -26,6 +27,7 @@
 #include "ingest/generate/room_generator.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/import/registry.hpp"
+#include "model/geometry.hpp"
 
 using namespace smql;
 using smql::testing::run;
@@ -191,6 +193,42 @@ TEST_CASE("ASK: a direction from or toward a thing the room does not hold says i
     // The same room's things are still placed: the question of the set, with the basket there.
     CHECK(answer("If I am standing by the door and facing the rug, is the basket to my left or right?")
               .starts_with("The basket is to your left"));
+}
+
+// Of several things to stand by and several to face, the question means the two nearest each other: standing by a
+// chair and facing the table is standing at the table's chair. Replica room 0 has 2 chairs and 5 tables; the first of
+// the rows was taken before, whichever table it was.
+TEST_CASE("ASK: standing by one of several things facing one of several, the two nearest each other", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'replica-room0'");
+    const auto things =
+        run(*engine, "FIND thing WHERE category = 'chair' OR category = 'table' RETURN id, category, box");
+    const int id = things.columnIndex("id"), category = things.columnIndex("category"), box = things.columnIndex("box");
+    double nearest = std::numeric_limits<double>::infinity();
+    std::string chair, table;
+    for (const auto& a : things.rows)
+        for (const auto& b : things.rows)
+            if (std::get<std::string>(a[category]) == "chair" && std::get<std::string>(b[category]) == "table")
+                if (const double gap = model::distance(std::get<model::Box>(a[box]), std::get<model::Box>(b[box]));
+                    gap < nearest) {
+                    nearest = gap;
+                    chair = fmt::format("chair#{}", std::get<std::int64_t>(a[id]));
+                    table = fmt::format("table#{}", std::get<std::int64_t>(b[id]));
+                }
+    REQUIRE(!chair.empty());
+    const std::string answer =
+        run(*engine,
+            askStatement("If I am standing by the chair and facing the table, is the sofa to my left or right?"))
+            .message;
+    CHECK(answer.find(fmt::format("of the way from {} to {})", chair, table)) != std::string::npos);
+    CHECK(answer.find(fmt::format("There are 2 chairs to stand by; this takes {}, the nearest to {}.", chair, table)) !=
+          std::string::npos);
+    // One thing of a kind to stand by and to face: there is no other to face.
+    CHECK_THAT(run(*engine, askStatement("If I am standing by the rug and facing the rug, is the lamp to my left or "
+                                         "right?"))
+                   .message,
+               Catch::EndsWith("There is no other rug here to face."));
 }
 
 // What rests on a thing is on it, not next to it: the Replica room's cushions lie on its two sofas, and a person
