@@ -221,6 +221,10 @@ std::string count(const Translation& t, const ResultSet& rs) {
 
 std::string existence(const Translation& t, const ResultSet& rs) {
     std::size_t n = rs.rows.size();
+    // "is there a sink between the toilet and the table?" where there is no table: that is why.
+    if (const std::string absent = absentWords(t);
+        n == 0 && !t.condition.empty() && !absent.empty() && absent != t.subject)
+        return fmt::format("No: there is no {} here.", absent);
     if (n == 0 && t.subject == "thing" && !t.condition.empty()) return fmt::format("No, nothing is {}.", t.condition);
     if (n == 0) return fmt::format("No, there is no {}{}.", t.subject, withCondition(t));
     if (const WordMapping* widened = widenedSubject(t))
@@ -393,8 +397,13 @@ std::string superlative(const Translation& t, const ResultSet& rs) {
                       t.measure.starts_with("farthest") || t.measure.starts_with("furthest");
     std::string path;
     if (int p = rs.columnIndex("path"); p >= 0) path = fmt::format(" ({})", text(row[p]));
-    if (byDistance) return fmt::format("{} is the {}{} {}{}{}.", name, ordinal, t.subject, t.measure, detail, path);
-    return fmt::format("{} is the {}{} {}{}{}.", name, ordinal, t.measure, t.subject, detail, path);
+    // "which is closer to the toilet, the table or the sink?" where there is no table: the answer is among what is
+    // here, and says what is not.
+    const std::string absent = absentWords(t);
+    const std::string missing = absent.empty() ? "" : fmt::format(" There is no {} here.", absent);
+    if (byDistance)
+        return fmt::format("{} is the {}{} {}{}{}.{}", name, ordinal, t.subject, t.measure, detail, path, missing);
+    return fmt::format("{} is the {}{} {}{}{}.{}", name, ordinal, t.measure, t.subject, detail, path, missing);
 }
 
 std::string direction(const Translation& t, const ResultSet& rs) {
@@ -1302,6 +1311,11 @@ std::string message(const Translation& t, const std::string& answerText) {
     for (const auto& note : t.notes)
         if (t.kind != QuestionKind::UnknownWord) out += "\nNote: " + note;
     return out + "\n" + answerText;
+}
+
+std::optional<std::string> absentAnswer(const Translation& t) {
+    if (const std::string absent = absentWords(t); !absent.empty()) return fmt::format("There is no {} here.", absent);
+    return std::nullopt;
 }
 
 Error failedTranslation(const Error& error, const std::string& smql, std::optional<SourceLocation> question) {

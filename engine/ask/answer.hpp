@@ -2,6 +2,7 @@
 // "2 cushions are on the sofa: cushion#12, cushion#14", "No, there is no piano", "3".
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "engine/ask/translator.hpp"
@@ -20,6 +21,11 @@ ResultSet answeredRows(const Translation& translation, ResultSet rows);
 
 // The whole message ASK shows: the SMQL, the words it mapped, then the answer.
 std::string message(const Translation& translation, const std::string& answerText);
+
+// The answer when the translated statement failed as it ran and the question names a thing the scene holds none
+// of ("how do I get to the table?" in a bathroom without one): that is the reason a person is told, as other
+// questions about it are answered ("There is no table here."); nullopt when every word names something here.
+std::optional<std::string> absentAnswer(const Translation& translation);
 
 // An error of the translated statement (when it was bound or when it ran), said of the question:
 // its location is in the SMQL, which the message quotes, not in the text the user typed.

@@ -12,6 +12,11 @@ ResultSet Executor::run(const binder::BoundAsk& ask) {
         try {
             rs = Executor(txn_, session_, *plan_.asked, interrupt_).run();
         } catch (const Error& e) {
+            if (auto reply = ask::absentAnswer(ask.translation)) {
+                ResultSet none;
+                none.message = ask::message(ask.translation, *reply);
+                return none;
+            }
             throw ask::failedTranslation(e, ask.translation.smql, std::nullopt);
         }
     }
