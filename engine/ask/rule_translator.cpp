@@ -1430,6 +1430,15 @@ private:
                 thing.colour = colour;
                 colourAlone = c.i + 1 == c.w.size();
                 ++c.i;
+            } else if (c.i + 3 == c.w.size() && !thing.colour && thing.kind == "object" && c.peek() == "the" &&
+                       isOneOf(c.w[c.i + 2],
+                               {"thing", "things", "object", "objects", "one", "ones", "item", "items"})) {
+                // "what is the red thing?", "what are the black objects?": the things of that colour.
+                if (auto colour = colourOf(c.w[c.i + 1])) {
+                    thing.colour = colour;
+                    colourAlone = true;
+                    c.i += 3;
+                }
             }
             // "what doors are open to the right of the bunk beds?": the memory keeps no such state.
             if (isOneOf(c.peek(), {"open", "opened", "closed", "shut", "empty", "full", "lit"}) &&
