@@ -439,16 +439,18 @@ std::string direction(const Translation& t, const ResultSet& rs) {
         if (!pickedRows[1]) return fmt::format("There is no other {} here to face.", listed(t.roles[1], " or "));
     }
     // The thing asked about is another than the one stood by or faced ("the other chair"); every one asked about
-    // leaves those out.
+    // leaves those out. Of several, the nearest to where the person stands is the one meant, and answered first.
     auto other = [&](const Row* row) { return row != pickedRows[0] && row != pickedRows[1]; };
     const auto others = std::stable_partition(found[2].begin(), found[2].end(), other);
     asked.assign(found[2].begin(), others == found[2].begin() ? found[2].end() : others);
+    auto gapTo = [&](const Row* row) { return model::distance(boxOf(row), boxOf(pickedRows[0])); };
+    std::stable_sort(asked.begin(), asked.end(), [&](const Row* a, const Row* b) { return gapTo(a) < gapTo(b); });
     pickedRows[2] = asked.front();
     std::string notes;
     for (std::size_t role = 0; role < 3; ++role) {
         if (found[role].size() < 2 || (role == 2 && t.everyAsked)) continue;
         const Row* picked = pickedRows[role];
-        const Row* by = role == 0 ? pickedRows[1] : role == 1 ? pickedRows[0] : nullptr;
+        const Row* by = role == 0 ? pickedRows[1] : pickedRows[0];
         notes += fmt::format(" There are {} {}{}; this takes {}#{}{}.", found[role].size(),
                              pluralOf(text((*picked)[category])), roleNames[role], text((*picked)[category]),
                              text((*picked)[id]),
@@ -496,8 +498,7 @@ std::string direction(const Translation& t, const ResultSet& rs) {
             word = side;
         return Way{angle, side, word};
     };
-    // How far: between the closest points of the boxes of the thing stood by and the thing asked about.
-    auto gapTo = [&](const Row* row) { return model::distance(boxOf(row), boxOf(pickedRows[0])); };
+    // How far: between the closest points of the boxes of the thing stood by and the thing asked about (gapTo).
     auto away = [&](const Row* row) {
         const double gap = gapTo(row);
         return gap < 0.05 ? fmt::format("beside {}", label(pickedRows[0]))
@@ -505,7 +506,6 @@ std::string direction(const Translation& t, const ResultSet& rs) {
     };
     if (t.everyAsked && asked.size() > 1) {
         // "where is the lamp?" where there are several: each, nearest first.
-        std::stable_sort(asked.begin(), asked.end(), [&](const Row* a, const Row* b) { return gapTo(a) < gapTo(b); });
         std::vector<std::string> each;
         for (const Row* row : asked)
             each.push_back(fmt::format("{} to your {}, {}", label(row), wayTo(row).word, away(row)));

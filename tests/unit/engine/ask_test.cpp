@@ -203,33 +203,48 @@ TEST_CASE("ASK: a question about a thing the room does not hold says it is not h
 }
 
 // Of several things to stand by and several to face, the question means the two nearest each other: standing by a
-// chair and facing the table is standing at the table's chair. Replica room 0 has 2 chairs and 5 tables; the first of
-// the rows was taken before, whichever table it was.
+// chair and facing the table is standing at the table's chair; of several asked about, the one nearest where the
+// person stands. Replica room 0 has 2 chairs, 5 tables and 2 sofas; the first of the rows was taken before, whichever
+// it was.
 TEST_CASE("ASK: standing by one of several things facing one of several, the two nearest each other", "[ask]") {
     TempDir dir;
     auto engine = openWithTheRooms(dir);
     run(*engine, "USE SCENE 'replica-room0'");
-    const auto things =
-        run(*engine, "FIND thing WHERE category = 'chair' OR category = 'table' RETURN id, category, box");
+    const auto things = run(*engine,
+                            "FIND thing WHERE category = 'chair' OR category = 'table' OR category = 'sofa' "
+                            "RETURN id, category, box");
     const int id = things.columnIndex("id"), category = things.columnIndex("category"), box = things.columnIndex("box");
-    double nearest = std::numeric_limits<double>::infinity();
-    std::string chair, table;
-    for (const auto& a : things.rows)
-        for (const auto& b : things.rows)
-            if (std::get<std::string>(a[category]) == "chair" && std::get<std::string>(b[category]) == "table")
-                if (const double gap = model::distance(std::get<model::Box>(a[box]), std::get<model::Box>(b[box]));
+    // The pair of kinds `a` and `b` nearest each other, of `a` only `from` when given: "chair#90", "table#52".
+    auto nearestPair = [&](const std::string& a, const std::string& b, const std::string& from = "") {
+        double nearest = std::numeric_limits<double>::infinity();
+        std::pair<std::string, std::string> pair;
+        for (const auto& x : things.rows)
+            for (const auto& y : things.rows) {
+                const std::string nx =
+                    fmt::format("{}#{}", std::get<std::string>(x[category]), std::get<std::int64_t>(x[id]));
+                const std::string ny =
+                    fmt::format("{}#{}", std::get<std::string>(y[category]), std::get<std::int64_t>(y[id]));
+                if (!nx.starts_with(a + "#") || !ny.starts_with(b + "#") || (!from.empty() && nx != from)) continue;
+                if (const double gap = model::distance(std::get<model::Box>(x[box]), std::get<model::Box>(y[box]));
                     gap < nearest) {
                     nearest = gap;
-                    chair = fmt::format("chair#{}", std::get<std::int64_t>(a[id]));
-                    table = fmt::format("table#{}", std::get<std::int64_t>(b[id]));
+                    pair = {nx, ny};
                 }
+            }
+        return pair;
+    };
+    const auto [chair, table] = nearestPair("chair", "table");
     REQUIRE(!chair.empty());
+    // Of the 2 sofas asked about, the one nearest the chair stood by.
+    const std::string sofa = nearestPair("chair", "sofa", chair).second;
     const std::string answer =
         run(*engine,
             askStatement("If I am standing by the chair and facing the table, is the sofa to my left or right?"))
             .message;
     CHECK(answer.find(fmt::format("of the way from {} to {})", chair, table)) != std::string::npos);
     CHECK(answer.find(fmt::format("There are 2 chairs to stand by; this takes {}, the nearest to {}.", chair, table)) !=
+          std::string::npos);
+    CHECK(answer.find(fmt::format("There are 2 sofas; this takes {}, the nearest to {}.", sofa, chair)) !=
           std::string::npos);
     // One thing of a kind to stand by and to face: there is no other to face.
     CHECK_THAT(run(*engine, askStatement("If I am standing by the rug and facing the rug, is the lamp to my left or "
