@@ -958,9 +958,54 @@ std::string roomPlace(const Translation& t, const ResultSet& rs) {
     auto standing = [&](const Thing& thing) { return model::bottom(thing.box) - floor <= kOnFloor; };
     const std::string room =
         fmt::format("{:.1f} x {:.1f} m by {}", 2 * outline->halfX, 2 * outline->halfY, outline->how);
+    const double reach = std::max(0.3, std::min(outline->halfX, outline->halfY) / 4);
+    auto gap = [&](const Thing& thing) { return model::footprintGap(thing.box, outline->centre); };
+    // The corners, counter-clockwise from the outline's own first.
+    const double c = std::cos(outline->yaw), s = std::sin(outline->yaw);
+    std::array<model::Vec2, 4> corners;
+    const std::array<std::pair<double, double>, 4> signs{{{1, 1}, {-1, 1}, {-1, -1}, {1, -1}}};
+    for (std::size_t k = 0; k < 4; ++k) {
+        const double u = signs[k].first * outline->halfX, v = signs[k].second * outline->halfY;
+        corners[k] = {outline->centre.x + c * u - s * v, outline->centre.y + s * u + c * v};
+    }
+    auto cornerGap = [&](const Thing& thing) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const auto& corner : corners) nearest = std::min(nearest, model::footprintGap(thing.box, corner));
+        return nearest;
+    };
+    if (!t.roles.empty()) {
+        // "Is the table in the middle of the room?": each thing of the kind asked about, in it or not, as the
+        // listing below measures it (a corner holds what stands on the floor within kCornerReach of it).
+        std::vector<std::string> in, out;
+        for (const auto& row : rs.rows) {
+            const auto* b = std::get_if<model::Box>(&row[box]);
+            if (!b || std::find(t.roles[0].begin(), t.roles[0].end(), text(row[category])) == t.roles[0].end())
+                continue;
+            const Thing thing{text(row[category]) + "#" + text(row[id]), *b};
+            const bool middle = t.measure == "middle";
+            const double metres = middle ? gap(thing) : cornerGap(thing);
+            const bool holds = middle ? metres <= reach : metres <= kCornerReach && standing(thing);
+            const std::string where = middle ? "its centre" : "the nearest corner";
+            (holds ? in : out)
+                .push_back(metres < 0.05 ? fmt::format("{} (over {})", thing.label, where)
+                                         : fmt::format("{} ({:.1f} m from {})", thing.label, metres, where));
+        }
+        const std::string place = t.measure == "middle" ? "in the middle of the room" : "in a corner";
+        const std::string measure =
+            t.measure == "middle"
+                ? fmt::format("{}; the middle within {:.1f} m of its centre", room, reach)
+                : fmt::format("{}; a corner holds what stands on the floor within {:.1f} m of it", room, kCornerReach);
+        if (in.empty() && out.empty()) return fmt::format("There is no {} here.", listed(t.roles[0], " or "));
+        if (out.empty())
+            return fmt::format("Yes: {} {} {} ({}).", listedWithAnd(in), in.size() == 1 ? "is" : "are", place, measure);
+        if (in.empty())
+            return fmt::format("No: {} {} not {} ({}).", listedWithAnd(out), out.size() == 1 ? "is" : "are", place,
+                               measure);
+        return fmt::format("{} of the {} {}: {}; not {} ({}).", in.size(), in.size() + out.size(), t.subjectPlural,
+                           in.size() == 1 ? "is " + place : "are " + place, listedWithAnd(in), listedWithAnd(out),
+                           measure);
+    }
     if (t.measure == "middle") {
-        const double reach = std::max(0.3, std::min(outline->halfX, outline->halfY) / 4);
-        auto gap = [&](const Thing& thing) { return model::footprintGap(thing.box, outline->centre); };
         std::stable_sort(things.begin(), things.end(), [&](const Thing& a, const Thing& b) { return gap(a) < gap(b); });
         std::vector<std::string> onFloor, onThose, overhead;
         for (const auto& thing : things) {
@@ -980,14 +1025,6 @@ std::string roomPlace(const Translation& t, const ResultSet& rs) {
         }
         return fmt::format("In the middle of the room ({}; within {:.1f} m of its centre, nearest first): {}.", room,
                            reach, listed(parts, "; "));
-    }
-    // The corners, counter-clockwise from the outline's own first.
-    const double c = std::cos(outline->yaw), s = std::sin(outline->yaw);
-    std::array<model::Vec2, 4> corners;
-    const std::array<std::pair<double, double>, 4> signs{{{1, 1}, {-1, 1}, {-1, -1}, {1, -1}}};
-    for (std::size_t k = 0; k < 4; ++k) {
-        const double u = signs[k].first * outline->halfX, v = signs[k].second * outline->halfY;
-        corners[k] = {outline->centre.x + c * u - s * v, outline->centre.y + s * u + c * v};
     }
     std::array<std::vector<std::string>, 4> held;
     for (const auto& thing : things) {

@@ -1716,14 +1716,25 @@ private:
 
     // What is in the middle of the room? What stands in the corners? The things by where they stand in the room's
     // outline (answer.cpp: roomPlace measures it from the floor, else from the things' boxes), so every thing's box.
+    // "Is the table in the middle of the room?", "are the chairs in the corners?": the things of the kind asked about
+    // (Translation::roles), each in it or not.
     bool roomPlace(Cursor& c, PhraseParser& p, Translation& out) {
-        if (!c.accept({"what|which"})) return false;
-        c.accept({"things|objects|furniture|thing|object|item|items"});
-        if (!c.accept({"is|are|stands|stand|sits|sit|lies|lie"})) return false;
-        c.accept({"there"});
+        std::optional<Phrase> asked;
+        if (c.accept({"is|are"})) {
+            const std::size_t at = c.i;
+            asked = p.phrase(c.w, c.i, false);
+            if (c.i == at || !asked->conditions.empty() || asked->colour || !asked->filters.empty() ||
+                !asked->excluded.empty())
+                return false;
+        } else {
+            if (!c.accept({"what|which"})) return false;
+            c.accept({"things|objects|furniture|thing|object|item|items"});
+            if (!c.accept({"is|are|stands|stand|sits|sit|lies|lie"})) return false;
+            c.accept({"there"});
+        }
         c.skip(kPlacedBy);
         if (!c.accept({"in|at|near|around|by"})) return false;
-        c.accept({"the"});
+        c.accept({"the|a|one"});
         if (c.accept({"middle|centre|center|midst"}))
             out.measure = "middle";
         else if (c.accept({"corner|corners"}))
@@ -1743,6 +1754,12 @@ private:
         out.smql = "FIND thing RETURN id, category, kind, box";
         out.subject = "thing";
         out.subjectPlural = "things";
+        if (asked) {
+            // A kind the scene holds none of keeps its word, which no row matches: the answer says it is not here.
+            out.roles = {asked->categories.empty() ? std::vector<std::string>{model::categoryName(asked->noun)}
+                                                   : asked->categories};
+            describeSubject(*asked, out);
+        }
         return true;
     }
 

@@ -196,6 +196,7 @@ TEST_CASE("ASK: a question about a thing the room does not hold says it is not h
     CHECK_THAT(answer("which is closer to the door, the piano or the basket?"),
                Catch::StartsWith("basket#") && Catch::EndsWith(" There is no piano here."));
     CHECK(answer("how do I get to the piano from the door?") == "There is no piano here.");
+    CHECK(answer("is the piano in the middle of the room?") == "There is no piano here.");
     CHECK(answer("how do I get to the door from the piano?") == "There is no piano here.");
     // The same room's things are still placed: the question of the set, with the basket there.
     CHECK(answer("If I am standing by the door and facing the rug, is the basket to my left or right?")
@@ -251,6 +252,28 @@ TEST_CASE("ASK: standing by one of several things facing one of several, the two
                                          "right?"))
                    .message,
                Catch::EndsWith("There is no other rug here to face."));
+}
+
+// "Is the rug in the middle of the room?": each thing of the kind asked about, in the middle (or a corner) as "what is
+// in the middle of the room?" lists it, or not, with how far it is.
+TEST_CASE("ASK on Replica room 0: whether a thing is in the middle of the room or in a corner", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'replica-room0'");
+    const auto answer = [&](const std::string& question) {
+        const std::string message = run(*engine, askStatement(question)).message;
+        return message.substr(message.rfind('\n') + 1);
+    };
+    // The listing names the rug in the middle; asked of the rug, the answer agrees.
+    const std::string middle = answer("what is in the middle of the room?");
+    REQUIRE(middle.find("rug#") != std::string::npos);
+    const std::string rug = middle.substr(
+        middle.find("rug#"), middle.find_first_not_of("0123456789", middle.find("rug#") + 4) - middle.find("rug#"));
+    CHECK_THAT(answer("is the rug in the middle of the room?"), Catch::StartsWith("Yes: " + rug + " ("));
+    // The sofas stand along the walls, away from the corners and the middle.
+    CHECK_THAT(answer("are the sofas in the corners?"),
+               Catch::StartsWith("No: sofa#") && Catch::Contains("are not in a corner"));
+    CHECK_THAT(answer("is the sofa in the centre of the room?"), Catch::Contains("not in the middle of the room"));
 }
 
 // What rests on a thing is on it, not next to it: the Replica room's cushions lie on its two sofas, and a person
