@@ -902,6 +902,9 @@ const std::vector<std::vector<std::string>>& PhraseParser::roomMarks() const {
     return *roomMarks_;
 }
 
+// Words after a kind of room that name the same place: "the kitchen area".
+const std::initializer_list<std::string_view> kAreaWords{"area", "part", "section", "space", "side"};
+
 const RoomMarks* PhraseParser::roomAreaAt(const Words& w, std::size_t at) const {
     const RoomMarks* asked = roomNamedAt(w, at);
     if (!asked) return nullptr;
@@ -932,6 +935,8 @@ bool PhraseParser::roomArea(const Words& w, std::size_t at, std::size_t& i,
     area.words = fmt::format("the {}'s things", asked->room);
     p.conditions.push_back({"within", {std::move(area)}, kRoomAreaReach, fmt::format("in the {}", asked->room)});
     i = after + words(std::string(asked->room)).size();
+    // "in the kitchen area", "in the bedroom part": the same area.
+    if (i < w.size() && isOneOf(w[i], kAreaWords)) ++i;
     return true;
 }
 
@@ -1147,7 +1152,8 @@ std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
                     name.find(std::string(kind.substr(0, kind.find(' ')))) != std::string::npos;
         if (!fits) return 0;
         out_.notes.push_back(fmt::format("'{}' is the scene '{}'", kind, scene_));
-        return parts.size();
+        const std::size_t end = i + parts.size();
+        return parts.size() + (end < w.size() && isOneOf(w[end], kAreaWords) ? 1 : 0);
     }
     return 0;
 }

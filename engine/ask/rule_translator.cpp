@@ -1684,7 +1684,9 @@ private:
             c.accept({"which|what", "part", "of", "the", "house|home|flat|apartment", "is|are"})) {
             if (end == 0 || c.w[end - 1] != "in") return false;  // "which room is the largest?" is not asked here
             --end;
-        } else if (!c.accept({"in", "which|what", "room|part", "is|are"})) {
+        } else if (!c.accept({"in", "which|what", "room|part", "is|are"}) &&
+                   !c.accept({"which|what", "room", "has|holds|contains|houses"})) {
+            // "which room has the toilet?": the room is the one its thing is in.
             return false;
         }
         if (isOneOf(c.peek(), {"this", "it", "here", "i", "we"})) return false;
