@@ -216,6 +216,7 @@ public:
     Translation read(const std::string& text) {
         words_ = words(text);
         takeUnit();
+        takeHeightAboveFloor();
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
@@ -286,6 +287,32 @@ private:
             words_.insert(words_.begin() + static_cast<std::ptrdiff_t>(k + 1), {side, "wall"});
             if (!wall && k > 0 && isOneOf(words_[k - 1], {"on", "in", "at"})) words_[k - 1] = "near";
         }
+    }
+
+    // How high a thing is up, not how tall it is: "at what height is the tv?", "what height is the tv at?", "how high
+    // up is the shelf?", "how high is the tv mounted?" read as "how high off the floor is the tv?" (the size form's
+    // height above the floor).
+    void takeHeightAboveFloor() {
+        auto at = [&](std::size_t k, std::initializer_list<std::string_view> options) {
+            return k < words_.size() && isOneOf(words_[k], options);
+        };
+        std::size_t lead = 0;  // the words before "is|are"
+        bool trailing = false;
+        if (at(0, {"at"}) && at(1, {"what", "which"}) && at(2, {"height"}))
+            lead = 3;
+        else if (at(0, {"what"}) && at(1, {"height"}) && words_.size() > 3 && words_.back() == "at")
+            lead = 2, trailing = true;
+        else if (at(0, {"how"}) && at(1, {"high"}) && at(2, {"up"}))
+            lead = 3;
+        else if (at(0, {"how"}) && at(1, {"high"}) && words_.size() > 3 &&
+                 isOneOf(words_.back(), {"hung", "mounted", "placed", "hanging", "installed", "located", "positioned",
+                                         "set", "fixed", "attached", "put"}))
+            lead = 2, trailing = true;
+        if (lead == 0 || !at(lead, {"is", "are"})) return;
+        Words rewritten{"how", "high", "off", "the", "floor", words_[lead]};
+        rewritten.insert(rewritten.end(), words_.begin() + static_cast<std::ptrdiff_t>(lead + 1),
+                         words_.end() - (trailing ? 1 : 0));
+        if (rewritten.size() > 6) words_ = std::move(rewritten);
     }
 
     // The answer's unit, however the question names it: "(in meters)", "(cm)" (RuleTranslator
