@@ -1345,8 +1345,10 @@ std::string message(const Translation& t, const std::string& answerText) {
         words += fmt::format("{}{} -> {} ({})", words.empty() ? "" : "; ", m.word, to.empty() ? "nothing" : to, m.how);
     }
     if (!words.empty()) out += "\nWords: " + words;
+    // A note made twice (a phrase read twice, by two forms that tried it) is said once.
+    std::set<std::string> said;
     for (const auto& note : t.notes)
-        if (t.kind != QuestionKind::UnknownWord) out += "\nNote: " + note;
+        if (t.kind != QuestionKind::UnknownWord && said.insert(note).second) out += "\nNote: " + note;
     return out + "\n" + answerText;
 }
 

@@ -1142,11 +1142,10 @@ std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
     for (std::string_view kind : kRoomKinds) {
         Words parts = words(std::string(kind));
         if (i + parts.size() > w.size() || !std::equal(parts.begin(), parts.end(), w.begin() + i)) continue;
-        // A room kind the scene has as a thing ("closet", "study") is that thing.
+        // A room kind the scene has as a thing ("closet", "study") is that thing; not a thing WordNet gives as one of
+        // its senses (a bathroom's "toilet"), in a scene of that room.
         const WordMatch match = lexicon_.lookUp(joined(w, i, i + parts.size()));
-        if (match.how == WordMatch::How::Category || match.how == WordMatch::How::Plural ||
-            match.how == WordMatch::How::Synonym)
-            return 0;
+        if (match.how == WordMatch::How::Category || match.how == WordMatch::How::Plural) return 0;
         const std::string name = model::categoryName(scene_), word = model::categoryName(kind);
         bool fits = sceneCount_ <= 1 || name.find(word) != std::string::npos ||
                     name.find(std::string(kind.substr(0, kind.find(' ')))) != std::string::npos;

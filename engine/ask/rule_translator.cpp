@@ -977,10 +977,24 @@ private:
             ++c.i;
         }
         c.skip({"is", "are", "there", "altogether", "total", "in", "the", "room"});
+        // "how many chairs face the table?" reads in the answer as "facing the table", as a listing does.
+        for (auto& cond : thing.conditions) participleFirst(cond);
         out.kind = QuestionKind::Count;
         out.smql = countText(thing);
         describeSubject(thing, out);
         return true;
+    }
+
+    // A condition said with a verb ("face the table") in the words of its predicate's first phrase where that is a
+    // participle ("facing the table"), so that "1 chair is facing the table" reads.
+    static void participleFirst(Condition& cond) {
+        const auto* spec = relations::predicateNamed(cond.predicate);
+        if (!spec) return;
+        const std::string front(relations::englishPhrases(*spec).front());
+        const Words said = words(cond.words);
+        const auto at = PhraseParser::predicateAt(said, 0);
+        if (!at || !words(front).front().ends_with("ing") || said.front() == words(front).front()) return;
+        cond.words = front + " " + joined(said, at->second, said.size());
     }
 
     // "what is to the left of the sofa?": everything on that side of the room holds left_of, and a person means

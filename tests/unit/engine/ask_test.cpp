@@ -276,6 +276,23 @@ TEST_CASE("ASK on Replica room 0: whether a thing is in the middle of the room o
     CHECK_THAT(answer("is the sofa in the centre of the room?"), Catch::Contains("not in the middle of the room"));
 }
 
+// A scene of one room is the room a question names: in ARKitScenes' bathroom 41069048 (a toilet and a bathtub) "in the
+// bathroom" is the whole scene. WordNet gives "toilet" as a sense of "bathroom", and the question had counted the
+// things inside the toilet: 0.
+TEST_CASE("ASK: in a scene of a bathroom, the things in the bathroom are the scene's", "[ask]") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(import::readVsiBench(
+        std::string(SMQL_SHARED_DATA) + "/real-layouts/arkitscenes_meta_info_val.json", "41069048"));
+    run(*engine, "USE SCENE '41069048'");
+    const auto count = run(*engine, askStatement("how many things are in the bathroom?"));
+    CHECK(count.message.starts_with("SMQL: COUNT object\n"));
+    CHECK(count.message.ends_with("\n2 things."));
+    // A verb's condition reads as its participle: "1 chair is facing ...", not "is face".
+    CHECK_THAT(run(*engine, askStatement("how many things face the toilet?")).message,
+               Catch::Contains("facing the toilet."));
+}
+
 // What rests on a thing is on it, not next to it: the Replica room's cushions lie on its two sofas, and a person
 // asked what is beside the sofa names the side tables, the lamps and the basket, not those cushions.
 TEST_CASE("ASK on Replica room 0: what is next to the sofa leaves out what lies on it", "[ask]") {
