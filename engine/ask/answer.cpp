@@ -254,6 +254,28 @@ std::string yesNo(const Translation& t, const ResultSet& rs) {
     return fmt::format("No, the {} is not {} ({}).", t.subject, t.condition, first);
 }
 
+// "Is the sink to the left or right of the toilet?": which of the two sides (Translation::choices, predicates) holds
+// between the things asked of, by RELATE's rows, with what RELATE found of them.
+std::string eitherSide(const Translation& t, const ResultSet& rs) {
+    const int relation = rs.columnIndex("relation");
+    auto words = [](std::string predicate) {
+        if (predicate == "left_of" || predicate == "right_of")
+            return "to the " + predicate.substr(0, predicate.find('_')) + " of";
+        std::replace(predicate.begin(), predicate.end(), '_', ' ');
+        return predicate;
+    };
+    std::vector<std::string> holding;
+    for (const auto& choice : t.choices)
+        if (std::any_of(rs.rows.begin(), rs.rows.end(),
+                        [&](const Row& row) { return relation >= 0 && text(row[relation]) == choice; }))
+            holding.push_back(words(choice));
+    const std::string found = rs.message.substr(0, rs.message.find('\n'));
+    if (holding.empty())
+        return fmt::format("Neither: the {} is not {} the {} or {} it ({}).", t.subject, words(t.choices[0]), t.object,
+                           words(t.choices[1]), found);
+    return fmt::format("The {} is {} the {} ({}).", t.subject, listedWithAnd(holding), t.object, found);
+}
+
 std::optional<double> number(const Value& v) {
     if (const auto* d = std::get_if<double>(&v)) return *d;
     if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
@@ -1279,6 +1301,7 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
         case QuestionKind::YesNo:
             return yesNo(t, rs);
         case QuestionKind::RelativePosition:
+            if (!t.choices.empty() && !rs.message.empty()) return eitherSide(t, rs);
             if (!rs.message.empty()) return rs.message;
             if (auto absent = absentWords(t); !absent.empty())
                 return fmt::format("There is no {} in scene '{}'.", absent, scene);

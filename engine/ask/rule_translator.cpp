@@ -220,14 +220,15 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,  &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
-            &QuestionReader::direction, &QuestionReader::guidance,    &QuestionReader::distance,
-            &QuestionReader::size,      &QuestionReader::attribute,   &QuestionReader::affordance,
-            &QuestionReader::seating,   &QuestionReader::visibility,  &QuestionReader::changes,
-            &QuestionReader::count,     &QuestionReader::existence,   &QuestionReader::side,
-            &QuestionReader::relative,  &QuestionReader::superlative, &QuestionReader::reverse,
-            &QuestionReader::locate,    &QuestionReader::relational,  &QuestionReader::comparison,
-            &QuestionReader::yesNo,     &QuestionReader::description, &QuestionReader::state,
+            &QuestionReader::roomKind,   &QuestionReader::roomPlace,  &QuestionReader::whereAmI,
+            &QuestionReader::direction,  &QuestionReader::guidance,   &QuestionReader::distance,
+            &QuestionReader::size,       &QuestionReader::attribute,  &QuestionReader::affordance,
+            &QuestionReader::seating,    &QuestionReader::visibility, &QuestionReader::changes,
+            &QuestionReader::count,      &QuestionReader::existence,  &QuestionReader::side,
+            &QuestionReader::eitherSide, &QuestionReader::relative,   &QuestionReader::superlative,
+            &QuestionReader::reverse,    &QuestionReader::locate,     &QuestionReader::relational,
+            &QuestionReader::comparison, &QuestionReader::yesNo,      &QuestionReader::description,
+            &QuestionReader::state,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -1098,6 +1099,41 @@ private:
         }
         out.kind = QuestionKind::RelativePosition;
         out.smql = fmt::format("RELATE {} TO {}", reference(a), reference(b));
+        describeSubject(a, out);
+        out.object = b.words;
+        return true;
+    }
+
+    // "Is the sink to the left or right of the toilet?", "is the lamp in front of or behind the sofa?": RELATE, and the
+    // answer says which of the two sides holds (Translation::choices: their predicates), or neither.
+    bool eitherSide(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"is|are"})) return false;
+        const auto orAt = std::find(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), "or");
+        if (orAt == c.w.end()) return false;
+        const std::size_t o = static_cast<std::size_t>(orAt - c.w.begin());
+        static const std::map<std::string, std::string, std::less<>> sides{
+            {"left", "left_of"},  {"right", "right_of"}, {"front", "in_front_of"},
+            {"behind", "behind"}, {"above", "above"},    {"below", "below"}};
+        // The first side: "left", "in front of" (its "of" before the "or").
+        std::size_t first = o - 1;
+        if (c.w[first] == "of" && first > c.i && c.w[first - 1] == "front") --first;
+        if (first <= c.i || !sides.contains(c.w[first])) return false;
+        std::size_t subjectEnd = first;
+        while (subjectEnd > c.i && isOneOf(c.w[subjectEnd - 1], {"the", "to", "on", "in", "at", "directly"}))
+            --subjectEnd;
+        Phrase a;
+        if (!phraseWithin(c, p, subjectEnd, a)) return false;
+        std::size_t k = o + 1;
+        while (k < c.w.size() && isOneOf(c.w[k], {"the", "to", "on", "in", "at", "directly"})) ++k;
+        if (k >= c.w.size() || !sides.contains(c.w[k])) return false;
+        const std::string second = c.w[k++];
+        while (k < c.w.size() && isOneOf(c.w[k], {"side", "hand", "of"})) ++k;
+        if (k >= c.w.size()) return false;
+        c.i = k;
+        Phrase b = p.phrase(c.w, c.i, true);
+        out.kind = QuestionKind::RelativePosition;
+        out.smql = fmt::format("RELATE {} TO {}", reference(a), reference(b));
+        out.choices = {sides.find(c.w[first])->second, sides.find(second)->second};
         describeSubject(a, out);
         out.object = b.words;
         return true;

@@ -293,6 +293,26 @@ TEST_CASE("ASK: in a scene of a bathroom, the things in the bathroom are the sce
                Catch::Contains("facing the toilet."));
 }
 
+// "Is the basket to the left or right of the door?": which of the two sides RELATE finds, or neither, with what it
+// found; the question was not read before.
+TEST_CASE("ASK on Replica room 0: which of two sides a thing is on", "[ask]") {
+    TempDir dir;
+    auto engine = openWithTheRooms(dir);
+    run(*engine, "USE SCENE 'replica-room0'");
+    const auto answer = [&](const std::string& question) {
+        const std::string message = run(*engine, askStatement(question)).message;
+        return message.substr(message.rfind('\n') + 1);
+    };
+    const std::string relations = run(*engine, "ASK 'where is the basket relative to the door?'").message;
+    REQUIRE(relations.find(" is left of door#") != std::string::npos);
+    REQUIRE(relations.find("behind door#") != std::string::npos);
+    CHECK_THAT(answer("is the basket to the left or right of the door?"),
+               Catch::StartsWith("The basket is to the left of the door (basket#"));
+    CHECK_THAT(answer("is the basket in front of or behind the door?"),
+               Catch::StartsWith("The basket is behind the door (basket#"));
+    CHECK_THAT(answer("is the basket above or below the door?"), Catch::StartsWith("Neither: the basket is not above"));
+}
+
 // What rests on a thing is on it, not next to it: the Replica room's cushions lie on its two sofas, and a person
 // asked what is beside the sofa names the side tables, the lamps and the basket, not those cushions.
 TEST_CASE("ASK on Replica room 0: what is next to the sofa leaves out what lies on it", "[ask]") {
