@@ -1307,12 +1307,9 @@ std::vector<std::string> categoriesNamed(const Lexicon& lexicon, std::string_vie
     for (std::size_t at = 0; at < things.size();) {
         const std::size_t space = things.find(' ', at);
         const WordMatch m = lexicon.lookUp(things.substr(at, space - at));
-        // A synonym names the same thing for a use ("television", the scene's tv, to watch), not a room's mark, where
-        // WordNet's senses stray (a toilet's "pot" and "stool").
-        const bool named =
-            m.how == WordMatch::How::Category || m.how == WordMatch::How::Plural ||
-            (as != WordsAs::Names && (m.how == WordMatch::How::Kind || m.how == WordMatch::How::Synonym)) ||
-            (as == WordsAs::Broader && m.how == WordMatch::How::Broader);
+        const bool named = m.how == WordMatch::How::Category || m.how == WordMatch::How::Plural ||
+                           (as != WordsAs::Names && m.how == WordMatch::How::Kind) ||
+                           (as == WordsAs::Broader && m.how == WordMatch::How::Broader);
         if (named)
             for (const auto& cat : m.categories)
                 if (std::find(categories.begin(), categories.end(), cat) == categories.end()) categories.push_back(cat);

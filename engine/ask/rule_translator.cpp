@@ -97,7 +97,7 @@ constexpr AffordanceRow kAffordances[] = {
     {"eat", "table counter", "eat at"},
     {"cook", "stove oven microwave", "cook with"},
     {"wash", "sink bathtub shower", "wash at"},
-    {"watch", "television monitor", "watch"},
+    {"watch", "tv television monitor", "watch"},
     {"read", "book lamp", "read with"},
     {"throw", "wastebasket", "throw things in"},
     {"dispose", "wastebasket", "throw things in"},
@@ -425,6 +425,8 @@ private:
             c.accept({"show", "me|us", "the", "way|route|path"}) ||
             c.accept({"what|which", "is", "the", "way|route|path"}) ||
             c.accept({"i", "want|need", "to", "go|get|walk"}) ||
+            // "can I walk from the bed to the fridge?": the way, if there is one.
+            c.accept({"can|could", "i|we|you", "get|go|walk|reach|move"}) ||
             // "navigate to the sink", "go to the bed from the door", "directions to the fridge".
             // Not "go to sleep": the goal is a thing, named with an article or by its kind.
             (isOneOf(c.peek(), {"navigate", "go", "walk", "head", "move"}) && isOneOf(c.peek(1), {"to", "from"}) &&
