@@ -1643,12 +1643,16 @@ private:
         if (!isOneOf(word, {"open", "opened", "closed", "shut", "on", "off", "lit", "empty", "full", "locked",
                             "unlocked", "broken", "clean", "dirty", "running", "working"}))
             return false;
+        // "is the monitor turned on?", "are the lights switched off?": the state, said with its verb.
+        std::size_t end = c.w.size() - 1;
+        const bool turned = end > c.i + 1 && isOneOf(c.w[end - 1], {"turned", "switched", "left", "kept", "still"});
+        if (turned) --end;
         Phrase thing;
-        if (!phraseWithin(c, p, c.w.size() - 1, thing)) return false;
+        if (!phraseWithin(c, p, end, thing)) return false;
         const std::string& verb = c.w.front();  // is | are, as the question has it
         throw Error(ErrorKind::Binding,
-                    fmt::format("the memory keeps no state of the {}: not whether {} {} {}", thing.words,
-                                verb == "are" ? "they" : "it", verb, word),
+                    fmt::format("the memory keeps no state of the {}: not whether {} {} {}{}", thing.words,
+                                verb == "are" ? "they" : "it", verb, turned ? c.w[end] + " " : "", word),
                     std::nullopt,
                     fmt::format("it keeps where things are, their size, colour and kind: ask as in: where {} the {}? "
                                 "what is near the {}?",
