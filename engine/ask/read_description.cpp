@@ -50,6 +50,20 @@ bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, model
         describeSubject(thing, out);
         return true;
     }
+    // "what is object#7?": a thing named by its id (an `object` its models could not name among them), all the
+    // memory holds of it.
+    if (i + 2 < w.size() && w[i] == "what" && isOneOf(w[i + 1], {"is", "'s"}) &&
+        w[i + 2].find('#') != std::string::npos) {
+        std::size_t k = i + 2;
+        Phrase thing = parser.phrase(w, k, true);
+        if (k == w.size() && !thing.id.empty()) {
+            i = k;
+            out.kind = QuestionKind::Statement;
+            out.smql = "DESCRIBE " + reference(thing);
+            describeSubject(thing, out);
+            return true;
+        }
+    }
     // "what is the room like?", "what's this place like?"
     if (i + 3 < w.size() && w[i] == "what" && isOneOf(w[i + 1], {"is", "'s"}) && w.back() == "like" &&
         describesScene(w, i + 2, w.size() - 1, parser, sceneRoot, out)) {

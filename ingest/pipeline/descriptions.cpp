@@ -71,14 +71,19 @@ void describeObjects(model::SceneData& scene, const std::vector<TrackedNode>& tr
                 support = fmt::format(" {} the {}", model::toString(r.type), nodeById(scene, r.object).category);
                 break;
             }
-        // Without views (clusters), the colour named from the object's points.
+        // The colour the object keeps (named from its fused points), said where its views agree on it: the text
+        // and the colour a question reads never name two colours (TUM fr1/rpy's scissors were "gray" and "white
+        // scissors"); without views (clusters), as the points name it.
         std::optional<std::string> color;
-        if (viewColors.empty()) {
-            if (auto attribute = n.attribute("color")) color = std::string(*attribute);
-        } else {
-            color = agreedColor(viewColors[n.id], options);
+        if (auto attribute = n.attribute("color")) {
+            if (viewColors.empty() || agreedColor(viewColors[n.id], options) == *attribute)
+                color = std::string(*attribute);
         }
-        std::string head = (color ? *color + " " : std::string()) + n.category;
+        // The category in words: "sports ball", not the name's "sports_ball".
+        std::string noun = n.category;
+        std::replace_if(
+            noun.begin(), noun.end(), [](char ch) { return ch == '_' || ch == '-'; }, ' ');
+        std::string head = (color ? *color + " " : std::string()) + noun;
         std::string scenePhrase = head + support;
         if (auto it = lateral.find(n.id); it != lateral.end()) scenePhrase += ", " + it->second.front();
         n.text = scenePhrase;
@@ -86,6 +91,8 @@ void describeObjects(model::SceneData& scene, const std::vector<TrackedNode>& tr
     // Layer 1: a phrase per object per view, as description nodes below each object.
     for (const auto& [id, views] : viewColors) {
         std::string category = nodeById(scene, id).category;
+        std::replace_if(
+            category.begin(), category.end(), [](char ch) { return ch == '_' || ch == '-'; }, ' ');
         for (const auto& [frame, colorName] : views) {
             Node& d = addNode(scene, NodeKind::Description, "description", model::GeometryKind::None, {});
             d.parent = id;

@@ -265,6 +265,14 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
             INFO("chair#" << n.id << " at " << n.box.center.x << ", " << n.box.center.y);
             CHECK(model::fractionInside(n.box, table->box) < 0.5);
         }
+    // An object's text names the colour the object keeps or none: the sofa, brown by its points, was a "black sofa"
+    // by most of its views.
+    for (const auto& n : result.scene.nodes)
+        if (n.kind == model::NodeKind::Object) {
+            INFO(n.category << "#" << n.id << ": " << n.text);
+            const std::string* color = n.attribute("color");
+            CHECK((n.text.starts_with(n.category) || (color && n.text.starts_with(*color + " " + n.category))));
+        }
     // The user is told the detectors' time per frame.
     CHECK(std::any_of(result.notes.begin(), result.notes.end(), [](const std::string& note) {
         return note.starts_with("detector: nanodet.onnx") && note.find(" keyframes of 5,") != std::string::npos &&
