@@ -89,6 +89,12 @@ std::string smqlOf(const std::string& message) {
     return colon == std::string::npos ? line : line.substr(colon + 2);
 }
 
+// The last line of ASK's message: the answer itself.
+std::string answerOf(Engine& engine, const std::string& question) {
+    const std::string message = run(engine, askStatement(question)).message;
+    return message.substr(message.rfind('\n') + 1);
+}
+
 }  // namespace
 
 TEST_CASE("ASK answers the English question set", "[ask]") {
@@ -182,24 +188,21 @@ TEST_CASE("ASK: a question about a thing the room does not hold says it is not h
     TempDir dir;
     auto engine = openWithTheRooms(dir);
     run(*engine, "USE SCENE 'replica-room0'");
-    const auto answer = [&](const std::string& question) {
-        const std::string message = run(*engine, askStatement(question)).message;
-        return message.substr(message.rfind('\n') + 1);
-    };
-    CHECK(answer("If I am standing by the door and facing the piano, is the basket to my left or right?") ==
+    CHECK(answerOf(*engine, "If I am standing by the door and facing the piano, is the basket to my left or right?") ==
           "There is no piano here to face.");
-    CHECK(answer("If I am standing by the piano and facing the door, is the basket to my left or right?") ==
+    CHECK(answerOf(*engine, "If I am standing by the piano and facing the door, is the basket to my left or right?") ==
           "There is no piano here to stand by.");
-    CHECK(answer("If I am standing by the door and facing the rug, is the piano to my front-left, front-right, "
-                 "back-left, or back-right?") == "There is no piano here.");
-    CHECK(answer("is there a lamp between the door and the piano?") == "No: there is no piano here.");
-    CHECK_THAT(answer("which is closer to the door, the piano or the basket?"),
+    CHECK(answerOf(*engine,
+                   "If I am standing by the door and facing the rug, is the piano to my front-left, front-right, "
+                   "back-left, or back-right?") == "There is no piano here.");
+    CHECK(answerOf(*engine, "is there a lamp between the door and the piano?") == "No: there is no piano here.");
+    CHECK_THAT(answerOf(*engine, "which is closer to the door, the piano or the basket?"),
                Catch::StartsWith("basket#") && Catch::EndsWith(" There is no piano here."));
-    CHECK(answer("how do I get to the piano from the door?") == "There is no piano here.");
-    CHECK(answer("is the piano in the middle of the room?") == "There is no piano here.");
-    CHECK(answer("how do I get to the door from the piano?") == "There is no piano here.");
+    CHECK(answerOf(*engine, "how do I get to the piano from the door?") == "There is no piano here.");
+    CHECK(answerOf(*engine, "is the piano in the middle of the room?") == "There is no piano here.");
+    CHECK(answerOf(*engine, "how do I get to the door from the piano?") == "There is no piano here.");
     // The same room's things are still placed: the question of the set, with the basket there.
-    CHECK(answer("If I am standing by the door and facing the rug, is the basket to my left or right?")
+    CHECK(answerOf(*engine, "If I am standing by the door and facing the rug, is the basket to my left or right?")
               .starts_with("The basket is to your left"));
 }
 
@@ -260,20 +263,17 @@ TEST_CASE("ASK on Replica room 0: whether a thing is in the middle of the room o
     TempDir dir;
     auto engine = openWithTheRooms(dir);
     run(*engine, "USE SCENE 'replica-room0'");
-    const auto answer = [&](const std::string& question) {
-        const std::string message = run(*engine, askStatement(question)).message;
-        return message.substr(message.rfind('\n') + 1);
-    };
     // The listing names the rug in the middle; asked of the rug, the answer agrees.
-    const std::string middle = answer("what is in the middle of the room?");
+    const std::string middle = answerOf(*engine, "what is in the middle of the room?");
     REQUIRE(middle.find("rug#") != std::string::npos);
     const std::string rug = middle.substr(
         middle.find("rug#"), middle.find_first_not_of("0123456789", middle.find("rug#") + 4) - middle.find("rug#"));
-    CHECK_THAT(answer("is the rug in the middle of the room?"), Catch::StartsWith("Yes: " + rug + " ("));
+    CHECK_THAT(answerOf(*engine, "is the rug in the middle of the room?"), Catch::StartsWith("Yes: " + rug + " ("));
     // The sofas stand along the walls, away from the corners and the middle.
-    CHECK_THAT(answer("are the sofas in the corners?"),
+    CHECK_THAT(answerOf(*engine, "are the sofas in the corners?"),
                Catch::StartsWith("No: sofa#") && Catch::Contains("are not in a corner"));
-    CHECK_THAT(answer("is the sofa in the centre of the room?"), Catch::Contains("not in the middle of the room"));
+    CHECK_THAT(answerOf(*engine, "is the sofa in the centre of the room?"),
+               Catch::Contains("not in the middle of the room"));
 }
 
 // A scene of one room is the room a question names: in ARKitScenes' bathroom 41069048 (a toilet and a bathtub) "in the
@@ -301,18 +301,15 @@ TEST_CASE("ASK on Replica room 0: which of two sides a thing is on", "[ask]") {
     TempDir dir;
     auto engine = openWithTheRooms(dir);
     run(*engine, "USE SCENE 'replica-room0'");
-    const auto answer = [&](const std::string& question) {
-        const std::string message = run(*engine, askStatement(question)).message;
-        return message.substr(message.rfind('\n') + 1);
-    };
     const std::string relations = run(*engine, "ASK 'where is the basket relative to the door?'").message;
     REQUIRE(relations.find(" is left of door#") != std::string::npos);
     REQUIRE(relations.find("behind door#") != std::string::npos);
-    CHECK_THAT(answer("is the basket to the left or right of the door?"),
+    CHECK_THAT(answerOf(*engine, "is the basket to the left or right of the door?"),
                Catch::StartsWith("The basket is to the left of the door (basket#"));
-    CHECK_THAT(answer("is the basket in front of or behind the door?"),
+    CHECK_THAT(answerOf(*engine, "is the basket in front of or behind the door?"),
                Catch::StartsWith("The basket is behind the door (basket#"));
-    CHECK_THAT(answer("is the basket above or below the door?"), Catch::StartsWith("Neither: the basket is not above"));
+    CHECK_THAT(answerOf(*engine, "is the basket above or below the door?"),
+               Catch::StartsWith("Neither: the basket is not above"));
 }
 
 // What rests on a thing is on it, not next to it: the Replica room's cushions lie on its two sofas, and a person
