@@ -70,6 +70,13 @@ std::string singularWord(std::string_view word) {
     return out.append(singular.stem).append(singular.ending);
 }
 
+std::string categoryWords(std::string_view category) {
+    std::string words(category);
+    std::replace_if(
+        words.begin(), words.end(), [](char c) { return c == '-' || c == '_'; }, ' ');
+    return words;
+}
+
 std::string categoryName(std::string_view written) {
     std::string out;
     out.reserve(written.size());

@@ -23,6 +23,9 @@ std::string categoryName(std::string_view written);
 // wildcards (% and _, which matches a hyphen too) and plurals stay as written.
 std::string categoryPattern(std::string_view pattern);
 
+// A category as words say it: each hyphen or underscore a space ("sports-ball", "sports_ball" -> "sports ball").
+std::string categoryWords(std::string_view category);
+
 // Whether `written` is already in canonical form (categoryName(written) == written), without
 // building a string in the common case.
 bool isCategoryName(std::string_view written);

@@ -62,8 +62,7 @@ std::optional<std::string> sharedCategory(const ResultSet& rs) {
     for (const auto& row : rs.rows)
         if (text(row[category]) != first) return std::nullopt;
     // In words, as the subject is said: "1 trash bin is between ...".
-    std::replace(first.begin(), first.end(), '-', ' ');
-    return first;
+    return model::categoryWords(first);
 }
 
 std::string withCondition(const Translation& t) { return t.condition.empty() ? "" : " " + t.condition; }

@@ -1356,8 +1356,8 @@ bool phraseUpTo(const Words& w, std::size_t& i, std::size_t end, PhraseParser& p
 
 void describeSubject(const Phrase& p, Translation& out) {
     std::string adjectives = p.colour ? *p.colour + " " : "";
-    std::string noun = !p.side.empty() ? p.side + " " + p.noun : p.noun;
-    std::replace(noun.begin(), noun.end(), '-', ' ');  // "trash-bin" is a trash bin in words
+    // "trash-bin" is a trash bin in words.
+    const std::string noun = model::categoryWords(!p.side.empty() ? p.side + " " + p.noun : p.noun);
     out.subject = adjectives + noun;
     out.subjectPlural = adjectives + pluralOf(noun);
     // A kind of room read as its things (resolveNoun): several of them are the room's things, not several rooms.

@@ -467,8 +467,7 @@ std::optional<Translation> situatedDirection(const std::string& question, const 
     out.choices = choices;
     // The thing as asked ("arm chair"), and its plural for an answer about each ("arm chairs"), also when asked in
     // the plural ("where are the lamps?": its noun is "lamp").
-    std::string noun = asked->noun;
-    std::replace(noun.begin(), noun.end(), '-', ' ');
+    const std::string noun = model::categoryWords(asked->noun);
     const std::string& said = asked->words;
     const std::size_t lastWord = said.rfind(' ');
     const std::string before = said.ends_with(noun)            ? said.substr(0, said.size() - noun.size())

@@ -9,6 +9,7 @@
 
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
+#include "model/category.hpp"
 
 namespace smql::ingest {
 
@@ -80,19 +81,14 @@ void describeObjects(model::SceneData& scene, const std::vector<TrackedNode>& tr
                 color = std::string(*attribute);
         }
         // The category in words: "sports ball", not the name's "sports_ball".
-        std::string noun = n.category;
-        std::replace_if(
-            noun.begin(), noun.end(), [](char ch) { return ch == '_' || ch == '-'; }, ' ');
-        std::string head = (color ? *color + " " : std::string()) + noun;
+        std::string head = (color ? *color + " " : std::string()) + model::categoryWords(n.category);
         std::string scenePhrase = head + support;
         if (auto it = lateral.find(n.id); it != lateral.end()) scenePhrase += ", " + it->second.front();
         n.text = scenePhrase;
     }
     // Layer 1: a phrase per object per view, as description nodes below each object.
     for (const auto& [id, views] : viewColors) {
-        std::string category = nodeById(scene, id).category;
-        std::replace_if(
-            category.begin(), category.end(), [](char ch) { return ch == '_' || ch == '-'; }, ' ');
+        const std::string category = model::categoryWords(nodeById(scene, id).category);
         for (const auto& [frame, colorName] : views) {
             Node& d = addNode(scene, NodeKind::Description, "description", model::GeometryKind::None, {});
             d.parent = id;

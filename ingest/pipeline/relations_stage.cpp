@@ -10,6 +10,7 @@
 
 #include "ingest/pipeline/descriptions.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
+#include "model/category.hpp"
 #include "relations/hierarchy.hpp"
 #include "relations/predicates.hpp"
 
@@ -92,7 +93,10 @@ void RelationsStage::run(StageProgress&) {
         auto p = vote.first > 0 ? relations::Predicate::LeftOf : relations::Predicate::RightOf;
         scene.relations.push_back(
             {a, b, p, static_cast<float>(double(agree) / vote.second), static_cast<std::uint32_t>(agree), 0});
-        lateral[a].push_back(fmt::format("{} the {}", words(p), nodeById(scene, b).category));
+        // "left of the other mug" where both are mugs; the category in words ("the wall plug").
+        const bool alike = nodeById(scene, a).category == nodeById(scene, b).category;
+        lateral[a].push_back(fmt::format("{} the {}{}", words(p), alike ? "other " : "",
+                                         model::categoryWords(nodeById(scene, b).category)));
     }
 
     describeObjects(scene, tracked, lateral, capture, options);

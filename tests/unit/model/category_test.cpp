@@ -5,6 +5,7 @@
 #include "model/types.hpp"
 
 using smql::model::categoryName;
+using smql::model::categoryWords;
 using smql::model::singularWord;
 
 TEST_CASE("case, spaces, hyphens, underscores and plurals fold to one name", "[category]") {
@@ -72,4 +73,11 @@ TEST_CASE("a LIKE pattern over categories folds case and spaces, not its wildcar
     CHECK(smql::model::categoryPattern("wall  plug") == "wall-plug");
     CHECK(smql::model::categoryPattern("%Plant_Stand") == "%plant_stand");
     CHECK(smql::model::categoryPattern("Chairs") == "chairs");
+}
+
+TEST_CASE("a category in words: its hyphens and underscores spaces", "[category]") {
+    CHECK(categoryWords("sports-ball") == "sports ball");
+    CHECK(categoryWords("sports_ball") == "sports ball");
+    CHECK(categoryWords("chair") == "chair");
+    CHECK(categoryWords(categoryName("Trash Bins")) == "trash bin");
 }
