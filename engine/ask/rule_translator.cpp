@@ -1806,6 +1806,7 @@ private:
     bool roomPlace(Cursor& c, PhraseParser& p, Translation& out) {
         std::optional<Phrase> asked;
         if (c.accept({"is|are"})) {
+            c.accept({"there"});  // "is there a chair in the corner?"
             const std::size_t at = c.i;
             asked = p.phrase(c.w, c.i, false);
             if (c.i == at || !asked->conditions.empty() || asked->colour || !asked->filters.empty() ||
@@ -1839,6 +1840,8 @@ private:
         out.smql = "FIND thing RETURN id, category, kind, box";
         out.subject = "thing";
         out.subjectPlural = "things";
+        // "Is there anything in the middle of the room?": what is there, listed.
+        if (asked && asked->kind) asked.reset();
         if (asked) {
             // A kind the scene holds none of keeps its word, which no row matches: the answer says it is not here.
             out.roles = {asked->categories.empty() ? std::vector<std::string>{model::categoryName(asked->noun)}
