@@ -297,12 +297,18 @@ def numbers_in(message):
     return sorted({float(v) for v in re.findall(r"(\d+(?:\.\d+)?) m\b", message.split("\n")[-1])})
 
 
+def scored_kinds(truth, labels):
+    """Truth class -> its true things, for the classes the questions ask about: a packaged model can name them
+    (FITS), the truth labels them, and they are no part of the room's structure."""
+    kinds = {t["category"] for t in truth if t["category"] in FITS and t["category"] in labels and not t["structural"]}
+    return {k: [t for t in truth if t["category"] == k] for k in sorted(kinds)}
+
+
 def questions(smql, db, truth, labels):
     asked = []
-    kinds = sorted({t["category"] for t in truth if t["category"] in FITS and t["category"] in labels
-                    and not t["structural"]})
+    by_kind = scored_kinds(truth, labels)
+    kinds = sorted(by_kind)
     absent = sorted(c for c in labels if c in FITS and c not in kinds and c not in ("couch", "fridge"))
-    by_kind = {k: [t for t in truth if t["category"] == k] for k in kinds}
 
     def record(kind, question, right, answer):
         asked.append({"kind": kind, "question": question, "right": bool(right), "answer": answer.split("\n")[-1]})
@@ -352,9 +358,8 @@ def relative_questions(smql, db, truth, labels):
     kinds (module docstring), their truth from the true boxes. A kind the answer names fits an option by FITS (a
     stored desk answers "table"; of two options it fits, the first)."""
     asked = []
-    kinds = sorted({t["category"] for t in truth if t["category"] in FITS and t["category"] in labels
-                    and not t["structural"]})
-    by_kind = {k: [t for t in truth if t["category"] == k] for k in kinds}
+    by_kind = scored_kinds(truth, labels)
+    kinds = sorted(by_kind)
     singles = [k for k in kinds if len(by_kind[k]) == 1]
     word = lambda k: WORD.get(k, k)
 

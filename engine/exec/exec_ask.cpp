@@ -12,7 +12,9 @@ ResultSet Executor::run(const binder::BoundAsk& ask) {
         try {
             rs = Executor(txn_, session_, *plan_.asked, interrupt_).run();
         } catch (const Error& e) {
-            if (auto reply = ask::absentAnswer(ask.translation)) {
+            // A name that resolves to nothing (a GUIDE's goal) is the absent thing's doing; an interrupt or a limit
+            // is not, and stays the question's error.
+            if (auto reply = e.kind() == ErrorKind::Binding ? ask::absentAnswer(ask.translation) : std::nullopt) {
                 ResultSet none;
                 none.message = ask::message(ask.translation, *reply);
                 return none;
