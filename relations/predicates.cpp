@@ -164,21 +164,22 @@ model::Node viewerAt(const Frame& frame) {
     return viewer;
 }
 
+// A slab at most this thick, three times as tall as thick and at least kHungFace across its face, that a wall
+// holds hangs on it. A book standing on an unseen shelf (ScanNet's apartment: 0.19 x 0.06 x 0.20 m) is a slab
+// too, smaller than what people hang.
+constexpr double kHungThickness = 0.1;
+constexpr double kHungFace = 0.25;
+bool hungShape(const model::Box& box) {
+    const double thickness = std::min(box.size.x, box.size.y);
+    const double face = std::max({box.size.x, box.size.y, box.size.z});
+    return thickness <= kHungThickness && box.size.z >= 3 * thickness && face >= kHungFace;
+}
+
 namespace {
 
-// A slab at most this thick, and three times as tall as thick, that a wall holds hangs on it.
-constexpr double kHungThickness = 0.1;
-bool hungShape(const Node& a) {
-    const double thickness = std::min(a.box.size.x, a.box.size.y);
-    return thickness <= kHungThickness && a.box.size.z >= 3 * thickness;
-}
 // A supporter's footprint is at least half that of what it carries: a sofa does not rest on the
 // blanket lying on it.
 constexpr double kMinSupporterArea = 0.5;
-
-}  // namespace
-
-namespace {
 
 // supportScore with the overlap of a's footprint and b's measured by the caller: on measures it
 // first, and the clipping is the dearest part of the test.
@@ -482,7 +483,7 @@ double attachedScore(const PredicateInputs& in) {
     // wall (a picture just over a sofa's back) hangs whatever is under it (on asks the wall first: wallHolding).
     if (!isVerticalPlane(in.a) && sameCategory(in.b.category, kWall) &&
         (model::bottom(in.a.box) < model::bottom(in.b.box) + in.t.attachedMinRise ||
-         (!hungShape(in.a) && restsOnSomething(in))))
+         (!hungShape(in.a.box) && restsOnSomething(in))))
         return 0.0;
     double d = model::distance(in.a.box, in.b.box);
     double limit = in.t.attachedMaxGap;
@@ -804,7 +805,7 @@ bool holds(Predicate p, const Node& a, const Node& b, const Thresholds& t, const
 }
 
 const Node* wallHolding(const Node& a, const Obstacles& obstacles, const Thresholds& t) {
-    if (!hungShape(a)) return nullptr;
+    if (!hungShape(a.box)) return nullptr;
     std::vector<const Node*> walls;
     obstacles.wallsWithin(spec(Predicate::Attached).referenceRegion(obstacles.bounds(a), 0, t), walls);
     static const Frame frame{};

@@ -134,6 +134,9 @@ bool hasFront(std::string_view category);
 // The direction a box's front faces: its own +x axis (the yaw direction), in the floor plane.
 model::Vec2 frontDirection(const model::Box& box);
 
+// The shape of what hangs on a wall: a slab standing upright (a picture, a screen, a clock). Anything else a wall
+// is the nearest anchor of, off the floor, rests on something the scene does not hold (a mug on a shelf).
+bool hungShape(const model::Box& box);
 // A vertical plane anchor: a wall, door, window or the like.
 bool isVerticalPlane(const model::Node& node);
 // A ceiling anchor: what a ceiling light or a vent hangs from (attached).

@@ -16,6 +16,7 @@
 #include "model/category.hpp"
 #include "model/geometry.hpp"
 #include "model/seating.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ask {
 
@@ -93,16 +94,20 @@ constexpr double kOnFloor = 0.15;
 
 // How a node stands to its parent in the tree, in words: what it rests on or in is where it is at ("mug#27 is at
 // desk#23"); a wall, a door or a window is the parent of what stands on the floor nearest it, which stands by it
-// ("sofa#50 stands by wall#19"), and of what is raised off the floor there: on a wall, it hangs on it ("picture#80
-// is on wall#19"); by a door or a window it may hang on the wall beside, so it is at it.
-std::string placeWord(const ResultSet& rs, std::size_t row, const std::string& parent) {
+// ("sofa#50 stands by wall#19"), and of what is raised off the floor there. On a wall, a slab standing upright
+// hangs on it ("picture#80 is on wall#19"); anything else rests on something the memory does not hold (a mug on an
+// unseen shelf), so it is by the wall, at its height ("mug#11 is by wall#3, 1.28 m above the floor"). By a door or
+// a window it may hang on the wall beside, so it is at it.
+std::string placeWords(const Translation& t, const ResultSet& rs, std::size_t row, const std::string& parent) {
     const std::string kind = parent.substr(0, parent.find('#'));
-    if (!isOneOf(kind, {"wall", "door", "window"})) return "is at";
+    if (!isOneOf(kind, {"wall", "door", "window"})) return "is at " + parent;
     const int box = rs.columnIndex("box");
     const auto* b = box >= 0 ? std::get_if<model::Box>(&rs.rows[row][box]) : nullptr;
-    if (!b) return "is at";
-    if (model::bottom(*b) <= kOnFloor) return "stands by";
-    return kind == "wall" ? "is on" : "is at";
+    if (!b) return "is at " + parent;
+    if (model::bottom(*b) <= kOnFloor) return "stands by " + parent;
+    if (kind != "wall") return "is at " + parent;
+    if (relations::hungShape(*b)) return "is on " + parent;
+    return fmt::format("is by {}, {} above the floor", parent, formatLength(model::bottom(*b), t.unit));
 }
 
 std::string locate(const Translation& t, const ResultSet& rs, const std::string& scene) {
@@ -122,7 +127,7 @@ std::string locate(const Translation& t, const ResultSet& rs, const std::string&
             continue;
         }
         places.push_back(parent.empty() ? names[r]
-                                        : fmt::format("{} {} {} ({})", names[r], placeWord(rs, r, parent), parent, p));
+                                        : fmt::format("{} {} ({})", names[r], placeWords(t, rs, r, parent), p));
     }
     std::string head = rs.rows.size() == 1 ? "" : fmt::format("{} {}: ", rs.rows.size(), t.subjectPlural);
     return head + listed(places, "; ");

@@ -11,12 +11,15 @@ namespace {
 
 constexpr std::size_t kListed = 10;
 
-// "window#12 (on wall#3 at 1.2, 0.4, 1.5 m)": enough to tell the candidates apart.
+// "window#12 (by wall#3 at 1.2, 0.4, 1.5 m)", "mug#4 (on desk#2 at ...)": enough to tell the candidates apart. A
+// thing is by the anchor it hangs below in the tree, on the thing it rests on.
 std::string candidate(const catalog::SceneSnapshot& scene, catalog::Slot slot) {
     const model::Node& n = scene.node(slot);
     std::string where;
-    if (auto parent = scene.slotOf(n.parent); parent && scene.node(*parent).kind != model::NodeKind::Scene)
-        where = "on " + catalog::SceneSnapshot::label(scene.node(*parent));
+    if (auto parent = scene.slotOf(n.parent); parent && scene.node(*parent).kind != model::NodeKind::Scene) {
+        const model::Node& p = scene.node(*parent);
+        where = (p.kind == model::NodeKind::Anchor ? "by " : "on ") + catalog::SceneSnapshot::label(p);
+    }
     if (n.geometry != model::GeometryKind::None)
         where += fmt::format("{}at {:.1f}, {:.1f}, {:.1f} m", where.empty() ? "" : " ", n.box.center.x, n.box.center.y,
                              n.box.center.z);

@@ -52,6 +52,7 @@ def desk_rgbd(smql, folder, work):
     assert not [r for r in rows if r["category"] == "laptop"], rows
     things = len(rows)
     assert re.search(rf"\ntum-fr1-rpy: a floor of .* walls, .*; {things} things: ", summary.stdout), summary.stdout
+    where_placed(smql, work / "db")
     # The desk's scene updated with the dining frames, another room: nothing is seen again where it was, and the
     # update says the capture may be of another place; the same frames again find their things in place.
     dining = pathlib.Path(sys.argv[2]).parent / "rgbd-dining"  # beside ../shared/data/captures
@@ -64,6 +65,24 @@ def desk_rgbd(smql, folder, work):
                      r"captured are new: a capture of another place", log), log
     status, log = ingest(smql, dining, work / "db", "--update", "tum-fr1-rpy")
     assert status == 0 and "warning: none of the" not in log, log
+
+
+def where_placed(smql, db):
+    """"Where is the X?" of every kind the memory holds: a thing said to be on a wall is a slab standing upright that
+    hangs there (a picture, a screen: relations::hungShape), and one by a wall is said at its bottom's height. The
+    desk's mugs, on shelves the memory does not hold, were said to be "on wall#3"."""
+    things = {f"{r['category']}#{r['id']}": r["box"] for r in query_rows(smql, db, "FIND object RETURN id, category, box")}
+    for category in sorted({name.split("#")[0] for name in things}):
+        out = subprocess.run([smql, str(db), "-json", f"ASK 'where is the {category.replace('-', ' ')}?'"],
+                             capture_output=True, text=True)
+        answer = json.loads(out.stdout)[-1]["message"]
+        for name in re.findall(r"([\w-]+#\d+) is on wall#\d+ \(", answer):
+            size = things[name]["size"]
+            thickness = min(size[0], size[1])
+            assert thickness <= 0.1 and size[2] >= 3 * thickness and max(size) >= 0.25, (answer, size)
+        for name, height in re.findall(r"([\w-]+#\d+) is by wall#\d+, ([\d.]+) m above the floor", answer):
+            box = things[name]
+            assert abs(float(height) - (box["center"][2] - box["size"][2] / 2)) < 0.006, (answer, box)
 
 
 def true_positions(groundtruth):
