@@ -12,6 +12,10 @@ namespace smql::model {
 
 struct SceneData;
 
+// The category of a thing the ingest found but could not name (a cluster of points, a name its box or its place
+// did not fit, kept as `detected_as`).
+inline constexpr std::string_view kUnnamedCategory = "object";
+
 // The canonical form of a category: lower case (ASCII letters; other bytes as written); every run
 // of spaces, tabs, hyphens and underscores one hyphen, none at either end; the last word singular
 // (English endings, with a table of irregular plurals and of words that end in s but are singular

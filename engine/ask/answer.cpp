@@ -82,6 +82,29 @@ std::string absentWords(const Translation& t) {
     return out;
 }
 
+// "a bed", "an oven".
+std::string withArticle(const std::string& noun) {
+    return (std::string_view("aeiou").find(noun.front()) == std::string_view::npos ? "a " : "an ") + noun;
+}
+
+// Whether `m` is the word the subject names: "mug" of "red mug", "mugs" of "red mugs".
+bool namesSubject(const Translation& t, const WordMapping& m) {
+    return t.subject == m.word || t.subject.ends_with(" " + m.word) || t.subjectPlural == m.word ||
+           t.subjectPlural.ends_with(" " + m.word);
+}
+
+// The subject is of a kind the scene has none of, and the scene holds things the ingest could not name: one of them
+// may be of it, so the answer does not say there is none ("is there a bathtub?" of a bathroom whose tub is stored as
+// object#9). Empty otherwise.
+std::string unnamedMayBe(const Translation& t) {
+    if (!t.unnamedThings || t.subject == "thing") return "";
+    for (const auto& m : t.mappings)
+        if (m.categories.empty() && namesSubject(t, m))
+            return fmt::format(" The memory holds things it could not name ({}): one of them may be {}.",
+                               pluralOf(std::string(model::kUnnamedCategory)), withArticle(t.subject));
+    return "";
+}
+
 // Nothing answers: a word that names nothing in the scene is why ("which is closer to the door" where there is no
 // door), else nothing meets the condition.
 std::string noneFound(const Translation& t) {
@@ -111,7 +134,11 @@ std::string placeWords(const Translation& t, const ResultSet& rs, std::size_t ro
 }
 
 std::string locate(const Translation& t, const ResultSet& rs, const std::string& scene) {
-    if (rs.rows.empty()) return fmt::format("There is no {}{} in scene '{}'.", t.subject, withCondition(t), scene);
+    if (rs.rows.empty()) {
+        if (const std::string may = unnamedMayBe(t); !may.empty())
+            return fmt::format("No {}{} is stored in scene '{}'.{}", t.subject, withCondition(t), scene, may);
+        return fmt::format("There is no {}{} in scene '{}'.", t.subject, withCondition(t), scene);
+    }
     int path = rs.columnIndex("path");
     auto names = labels(rs);
     std::vector<std::string> places;
@@ -170,10 +197,7 @@ std::string relational(const Translation& t, const ResultSet& rs) {
 // is stored and names what is. Null when the subject was not widened so.
 const WordMapping* widenedSubject(const Translation& t) {
     for (const auto& m : t.mappings)
-        if (m.how == describe(WordMatch::How::Broader) && !m.categories.empty() &&
-            (t.subject == m.word || t.subject.ends_with(" " + m.word) || t.subjectPlural == m.word ||
-             t.subjectPlural.ends_with(" " + m.word)))
-            return &m;
+        if (m.how == describe(WordMatch::How::Broader) && !m.categories.empty() && namesSubject(t, m)) return &m;
     return nullptr;
 }
 
@@ -219,7 +243,8 @@ std::string count(const Translation& t, const ResultSet& rs) {
         return fmt::format("0 stored as {}{}; {}.", t.subjectPlural, withCondition(t),
                            broaderKind(t, *widened, static_cast<std::size_t>(n)));
     if (t.condition.empty() || t.condition.starts_with("besides "))
-        return fmt::format("{} {}{}.", n, n == 1 ? t.subject : t.subjectPlural, withCondition(t));
+        return fmt::format("{} {}{}.{}", n, n == 1 ? t.subject : t.subjectPlural, withCondition(t),
+                           n == 0 ? unnamedMayBe(t) : "");
     return fmt::format("{} {} {} {}.", n, n == 1 ? t.subject : t.subjectPlural, n == 1 ? "is" : "are", t.condition);
 }
 
@@ -230,6 +255,8 @@ std::string existence(const Translation& t, const ResultSet& rs) {
         n == 0 && !t.condition.empty() && !absent.empty() && absent != t.subject)
         return fmt::format("No: there is no {} here.", absent);
     if (n == 0 && t.subject == "thing" && !t.condition.empty()) return fmt::format("No, nothing is {}.", t.condition);
+    if (const std::string may = unnamedMayBe(t); n == 0 && !may.empty())
+        return fmt::format("No {}{} is stored.{}", t.subject, withCondition(t), may);
     if (n == 0) return fmt::format("No, there is no {}{}.", t.subject, withCondition(t));
     if (const WordMapping* widened = widenedSubject(t))
         return fmt::format("None is stored as a {}{}; {}: {}", t.subject, withCondition(t), broaderKind(t, *widened, n),
@@ -586,11 +613,6 @@ std::string seating(const Translation& t, const ResultSet& rs) {
     const std::string where = t.object.empty() ? "" : fmt::format(" {} the {}", t.condition, t.object);
     return fmt::format("About {} {} can sit{}: {} ({}).", total, total == 1 ? "person" : "people", where,
                        listed(several, "; "), how);
-}
-
-// "a bed", "an oven".
-std::string withArticle(const std::string& noun) {
-    return (std::string_view("aeiou").find(noun.front()) == std::string_view::npos ? "a " : "an ") + noun;
 }
 
 // "a bed", "an oven", "2 microwaves".

@@ -120,6 +120,9 @@ struct Translation {
     // Route: the steps in order, "forward" (to the next of `roles` after the start and the thing
     // faced) or "turn" (a turn to fill in).
     std::vector<std::string> steps;
+    // The scene holds things the ingest could not name (model::kUnnamedCategory): a kind it has none of may be
+    // one of them. Set by the binder from the scene, whichever translator read the question.
+    bool unnamedThings = false;
 };
 
 // A translator that cannot answer now (an endpoint absent, failing, or replying with no

@@ -5,6 +5,7 @@
 // answer, or its repair fails too, the built-in reader answers, and a note says so.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include "engine/ask/answer.hpp"
@@ -13,6 +14,7 @@
 #include "engine/catalog/attributes.hpp"
 #include "engine/catalog/scene_snapshot.hpp"
 #include "engine/parser/parser.hpp"
+#include "model/category.hpp"
 #include "model/error.hpp"
 #include "relations/predicates.hpp"
 #include "storage/database.hpp"
@@ -139,8 +141,14 @@ void Binder::bindStatement(const ast::AskStmt& ask, BoundStatement& out) {
     } catch (const Error& e) {
         throw Error(e.kind(), e.message(), ask.where, e.hint());
     }
-    if (!bound.translation.runnable) {
+    // Whatever translated it, the answer may say that a kind the scene has none of may be a thing it could not name.
+    auto finish = [&] {
+        bound.translation.unnamedThings = std::find(question.categories.begin(), question.categories.end(),
+                                                    model::kUnnamedCategory) != question.categories.end();
         out.body = std::move(bound);
+    };
+    if (!bound.translation.runnable) {
+        finish();
         return;
     }
     try {
@@ -180,7 +188,7 @@ void Binder::bindStatement(const ast::AskStmt& ask, BoundStatement& out) {
             }
         }
     }
-    out.body = std::move(bound);
+    finish();
 }
 
 }  // namespace smql::binder

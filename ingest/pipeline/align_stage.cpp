@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "model/category.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::ingest {
@@ -33,7 +34,7 @@ std::vector<NamedThing> thingsAsStored(const model::SceneData& scene, const std:
         auto node = std::find_if(scene.nodes.begin(), scene.nodes.end(), [&](const auto& n) { return n.id == t.node; });
         if (!t.fused || node == scene.nodes.end() || node->kind != model::NodeKind::Object) continue;
         NamedThing thing{node->category, {}};
-        if (node->category == "object") {
+        if (node->category == model::kUnnamedCategory) {
             auto detected = std::find_if(node->attributes.begin(), node->attributes.end(),
                                          [](const auto& a) { return a.name == "detected_as"; });
             if (detected == node->attributes.end()) continue;

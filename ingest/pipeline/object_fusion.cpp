@@ -16,6 +16,7 @@
 #include "ingest/geometry/instance_map.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/pipeline/plausibility.hpp"
+#include "model/category.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::ingest {
@@ -841,7 +842,7 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     const std::vector<std::string> misplaced = outOfPlace(named, walls_, options_);
     for (std::size_t t = 0; t < things.size(); ++t) {
         doubts[t] = doubtOf(things[t], named[t], named, misplaced[t], options_);
-        if (!doubts[t].empty()) named[t].category = "object";
+        if (!doubts[t].empty()) named[t].category = model::kUnnamedCategory;
     }
     const std::vector<UseName> uses = namedByUse(named, walls_, options_);
     // A sink is its bowl, once its cabinet has been told by the box its views gave (cabinetOf).
@@ -858,7 +859,7 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
                 reachUnder(fused.box, things[static_cast<std::size_t>(sink - named.data())].box);
         if (!doubts[t].empty() || !uses[t].category.empty()) {
             fused.detectedAs = fused.category;
-            fused.category = doubts[t].empty() ? uses[t].category : "object";
+            fused.category = doubts[t].empty() ? uses[t].category : std::string(model::kUnnamedCategory);
             fused.renamedWhy = doubts[t].empty() ? uses[t].why : doubts[t];
         }
         for (const Instance* instance : things[t].instances)

@@ -17,6 +17,7 @@
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
+#include "model/category.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::ingest {
@@ -89,7 +90,8 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
         if (basin) reachUnder(box, basin->box);
         counts.cabinets += cabinet;
         model::Node& node =
-            addNode(scene, model::NodeKind::Object, cabinet ? "cabinet" : "object", model::GeometryKind::Box, box);
+            addNode(scene, model::NodeKind::Object, std::string(cabinet ? "cabinet" : model::kUnnamedCategory),
+                    model::GeometryKind::Box, box);
         node.attributes.push_back({"color", nameColor(colors).name});
         node.attributes.push_back({"size", sizeWord(box)});
         node.attributes.push_back({"points", std::to_string(cluster.size())});

@@ -14,6 +14,7 @@
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
+#include "model/category.hpp"
 #include "model/embedding.hpp"
 #include "model/geometry.hpp"
 
@@ -245,7 +246,7 @@ void renameFloating(model::SceneData& scene, StageProgress& progress) {
         n->attributes.push_back({"detected_as", n->category});
         std::sort(n->attributes.begin(), n->attributes.end(),
                   [](const auto& a, const auto& b) { return a.name < b.name; });
-        n->category = "object";
+        n->category = model::kUnnamedCategory;
         n->confidence *= 0.5f;
     }
 }
@@ -320,7 +321,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         const NameFit fit = opening ? NameFit::Fits : nameFit(category, box, measure);
         const bool misnamed = fit != NameFit::Fits;
         const std::string detectedAs = misnamed ? category : track.detectedAs;
-        const std::string stored = misnamed ? std::string("object") : category;
+        const std::string stored = misnamed ? std::string(model::kUnnamedCategory) : category;
         if (misnamed)
             progress.note(misnamedNote(fit, category, box));
         else if (!detectedAs.empty())

@@ -7,6 +7,7 @@
 
 #include "ingest/geometry/scale_priors.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
+#include "model/category.hpp"
 #include "model/geometry.hpp"
 
 namespace smql::ingest {
@@ -461,7 +462,8 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
     // Two of a kind: one inside the other (a duplicate), or touching and together the size of one.
     for (std::size_t i = 0; i < things.size(); ++i)
         for (std::size_t j = 0; j < things.size(); ++j) {
-            if (i == j || things[i]->category != things[j]->category || things[i]->category == "object") continue;
+            if (i == j || things[i]->category != things[j]->category || things[i]->category == model::kUnnamedCategory)
+                continue;
             const model::Node& a = *things[i];
             const model::Node& b = *things[j];
             const bool smaller =
