@@ -50,13 +50,16 @@ bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, model
         describeSubject(thing, out);
         return true;
     }
-    // "what is object#7?": a thing named by its id (an `object` its models could not name among them), all the
-    // memory holds of it.
-    if (i + 2 < w.size() && w[i] == "what" && isOneOf(w[i + 1], {"is", "'s"}) &&
-        w[i + 2].find('#') != std::string::npos) {
+    // "what is object#7?" (an `object` its models could not name among them), "what is the black table?", "what are
+    // the boxes?": a thing named by its id, or by its kind and nothing more than its colour, is asked for all the
+    // memory holds of it. Every other "what is ...?" form was tried before this one.
+    if (i + 2 < w.size() && w[i] == "what" && isOneOf(w[i + 1], {"is", "'s", "are"})) {
         std::size_t k = i + 2;
         Phrase thing = parser.phrase(w, k, true);
-        if (k == w.size() && !thing.id.empty()) {
+        const bool named = !thing.id.empty() || (!thing.categories.empty() && !thing.kind && thing.conditions.empty() &&
+                                                 !thing.order && thing.excluded.empty() && thing.filters.empty() &&
+                                                 !thing.room && !thing.self && !thing.here);
+        if (k == w.size() && named) {
             i = k;
             out.kind = QuestionKind::Statement;
             out.smql = "DESCRIBE " + reference(thing);
