@@ -1289,6 +1289,35 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
     return out + ".";
 }
 
+// "what kinds of things are there?": the categories of the rows, most first, and the things the memory could not name
+// apart ("3 kinds of things: 4 tables, 2 chairs and a sofa; and 2 things it could not name").
+std::string kinds(const Translation& t, const ResultSet& rs) {
+    const auto category = static_cast<std::size_t>(rs.columnIndex("category"));
+    std::map<std::string, std::size_t> tally;
+    std::size_t unnamed = 0;
+    for (const auto& row : rs.rows) {
+        const std::string c = text(row[category]);
+        if (c == model::kUnnamedCategory)
+            ++unnamed;
+        else
+            ++tally[c];
+    }
+    std::vector<std::pair<std::string, std::size_t>> byCount(tally.begin(), tally.end());
+    std::stable_sort(byCount.begin(), byCount.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<std::string> parts;
+    for (const auto& [c, n] : byCount) parts.push_back(counted(model::categoryWords(c), n));
+    // "kinds of furniture", not "of pieces of furniture" (a mass noun's plural).
+    const std::string noun = t.subjectPlural.starts_with("pieces of ")
+                                 ? t.subjectPlural.substr(std::string("pieces of ").size())
+                                 : t.subjectPlural;
+    const std::string things = noun + withCondition(t);
+    const std::string rest = unnamed ? fmt::format("{}{} {} it could not name", parts.empty() ? "" : "; and ", unnamed,
+                                                   unnamed == 1 ? "thing" : "things")
+                                     : "";
+    return fmt::format("{} {} of {}{}{}{}.", byCount.size(), byCount.size() == 1 ? "kind" : "kinds", things,
+                       parts.empty() ? "" : ": ", listedWithAnd(parts), rest);
+}
+
 std::string changes(const ResultSet& rs) {
     if (rs.rows.empty()) return "Nothing has changed since the scene was first captured.";
     int change = rs.columnIndex("change"), category = rs.columnIndex("category"), id = rs.columnIndex("id");
@@ -1315,6 +1344,9 @@ ResultSet answeredRows(const Translation& translation, ResultSet rows) {
 }
 
 std::string answer(const Translation& t, const ResultSet& rs, const std::string& scene) {
+    if (t.byKind && !rs.rows.empty() && rs.columnIndex("category") >= 0 &&
+        (t.kind == QuestionKind::Locate || t.kind == QuestionKind::Relational || t.kind == QuestionKind::Count))
+        return kinds(t, rs);
     switch (t.kind) {
         case QuestionKind::Locate:
             return locate(t, rs, scene);

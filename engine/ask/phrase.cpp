@@ -578,10 +578,13 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         }
         if (describing(w, i, nounWords, side, wordsStart)) continue;
         if (endsPhrase(word) && !(word == "right" && nounWords.empty())) break;
-        // "pieces of furniture", "a pair of shoes": the thing is what follows "of".
+        // "pieces of furniture", "a pair of shoes": the thing is what follows "of"; "kinds of things" asks for their
+        // kinds.
         if (word == "of" && nounWords.size() == 1 &&
-            isOneOf(nounWords.front(), {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type",
-                                        "types", "bunch", "stack", "pile", "group", "groups", "cluster"})) {
+            isOneOf(nounWords.front(),
+                    {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type", "types", "sort",
+                     "sorts", "bunch", "stack", "pile", "group", "groups", "cluster"})) {
+            p.kinds = isOneOf(nounWords.front(), {"kind", "kinds", "type", "types", "sort", "sorts"});
             nounWords.clear();
             continue;
         }
@@ -1368,6 +1371,7 @@ void describeSubject(const Phrase& p, Translation& out) {
     // "on the bed besides the pillows"
     for (const auto& e : p.excluded) condition += std::string(condition.empty() ? "" : " ") + "besides the " + e.words;
     if (out.condition.empty()) out.condition = condition;
+    out.byKind = p.kinds;
 }
 
 bool locateAnswer(const Phrase& thing, Translation& out) {

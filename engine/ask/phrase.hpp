@@ -83,6 +83,7 @@ struct Phrase {
     bool self = false;     // "me": the thing the person stands at (PhraseParser::setSelf)
     bool here = false;     // "me", "here" with no situation: where the viewer stands, HERE in SMQL (distances only)
     bool room = false;     // a kind of room read as the things that mark it ("the kitchen": its fridge and oven)
+    bool kinds = false;    // "what kinds of things are there?": the kinds of the things asked for, not each thing
 };
 
 // The person who asks, where a situation placed them (situation.hpp): "me" is the thing they stand

@@ -983,7 +983,8 @@ private:
         // "how many chairs face the table?" reads in the answer as "facing the table", as a listing does.
         for (auto& cond : thing.conditions) participleFirst(cond);
         out.kind = QuestionKind::Count;
-        out.smql = countText(thing);
+        // "how many kinds of furniture are there?": the things' categories, which the answer tallies.
+        out.smql = thing.kinds ? findText(thing, false) + " RETURN id, category" : countText(thing);
         describeSubject(thing, out);
         return true;
     }
@@ -1570,6 +1571,7 @@ private:
             }
         } else if (c.accept({"show|list|give|tell|name|find|locate|get|fetch|bring"})) {
             c.accept({"me|us"});
+            c.accept({"a|the", "list|rundown|inventory", "of"});  // "give me a list of all the chairs"
             // "tell me about the desk" asks for all the memory holds of it (readDescription).
             if (c.peek() == "about" || c.accept({"more", "about"})) return false;
             c.accept({"all|every"});
@@ -2080,9 +2082,10 @@ private:
             {std::regex(R"(^what (?:is|are) (?:the |a |an )?(.+?) (closest|nearest) to$)"),
              "what is $2 to the $1 besides the $1"},
             // "what type of toilet is it?", "what type of door is there?" (read as "which ..."): the
-            // thing itself, where it is. "what kind of room is this?" asks what the things make of it (roomKind).
+            // thing itself, where it is. "what kind of room is this?" asks what the things make of it (roomKind), and
+            // "what kinds of things are there?" the kinds of the scene's things (Translation::byKind).
             {std::regex(
-                 R"(^what (?:type|kind|sort|types|kinds) of (?!(?:room|place|space) )(.+?) (?:is|are) (?:it|this|that|there|they|these|those)$)"),
+                 R"(^what (?:type|kind|sort|types|kinds) of (?!(?:room|place|space|things?|objects?|items?|furniture|stuff) )(.+?) (?:is|are) (?:it|this|that|there|they|these|those)$)"),
              "where is the $1"},
             // "what is the location of the piano in relation to the desk?": where it is relative to it.
             {std::regex(
@@ -2472,9 +2475,10 @@ public:
         plain = thingByUse(plain);
         std::optional<std::string> stateWords;
         plain = readAsAsked(plain, stateWords);
-        // "what type of chair ..." asks which chair.
-        static const std::regex kindOf("^what (?:type|kind|sort|types|kinds) of "), please(" please$"),
-            myClock(R"(\bmy (?:\w+ )?o clock\b)");
+        // "what type of chair ..." asks which chair; "what kinds of things ..." their kinds (Translation::byKind).
+        static const std::regex kindOf(
+            "^what (?:type|kind|sort|types|kinds) of (?!(?:things?|objects?|items?|furniture|stuff) )"),
+            please(" please$"), myClock(R"(\bmy (?:\w+ )?o clock\b)");
         plain = std::regex_replace(plain, kindOf, "which ");
         plain = std::regex_replace(plain, please, "");
         if (plain.empty()) throw cannotTranslate(question.text, "", "");

@@ -165,11 +165,16 @@ std::optional<Situated> splitSituation(const std::string& text) {
     // "standing at the stove, where is the table?". Only a clause of the person's own place (if, when, while or as
     // I ...; sitting, standing, lying or seated at a place): "measuring from the closest point of each object, ..."
     // is no situation, and "if I am standing by the stove and facing the sofa, is the tv to my left?" is VSI-Bench's
-    // direction question, which its reader takes whole.
+    // direction question, which its reader takes whole. A clause that faces something sets the person so before a
+    // question of what or where ("if I sit on the sofa facing the tv, what is on my left?").
     static const std::regex placeClause(
         R"(^\s*((?:(?:if|when|while|as|once) i(?:'m| am)? [a-z]+(?: down)?|(?:sitting|standing|lying|seated|sat)(?: down)?) (?:on|at|by|in|near|next to|beside|in front of) (?![^,]*\b(?:facing|and)\b)[^,]+),\s*(\S.*)$)",
         std::regex::icase);
-    if (std::smatch m; sentences.size() == 1 && std::regex_match(sentences.front(), m, placeClause))
+    static const std::regex facingClause(
+        R"(^\s*((?:(?:if|when|while|as|once) i(?:'m| am)? [a-z]+(?: down)?|(?:sitting|standing|lying|seated|sat)(?: down)?) (?:on|at|by|in|near|next to|beside|in front of) [^,]+),\s*((?:what|where|which|how|who)\b.*)$)",
+        std::regex::icase);
+    if (std::smatch m; sentences.size() == 1 && (std::regex_match(sentences.front(), m, placeClause) ||
+                                                 std::regex_match(sentences.front(), m, facingClause)))
         sentences = {m.str(1) + ".", m.str(2)};
     if (sentences.size() < 2) return std::nullopt;
     std::string situation;

@@ -123,6 +123,9 @@ struct Translation {
     // The scene holds things the ingest could not name (model::kUnnamedCategory): a kind it has none of may be
     // one of them. Set by the binder from the scene, whichever translator read the question.
     bool unnamedThings = false;
+    // Locate, Relational, Count: the question asks for the kinds of the things found ("what kinds of things are
+    // there?", "how many types of furniture are in the room?"), which the rows' categories tally.
+    bool byKind = false;
 };
 
 // A translator that cannot answer now (an endpoint absent, failing, or replying with no
