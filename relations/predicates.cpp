@@ -164,15 +164,18 @@ model::Node viewerAt(const Frame& frame) {
     return viewer;
 }
 
-// A slab at most this thick, three times as tall as thick and at least kHungFace across its face, that a wall
-// holds hangs on it. A book standing on an unseen shelf (ScanNet's apartment: 0.19 x 0.06 x 0.20 m) is a slab
-// too, smaller than what people hang.
+// A slab at most kHungThickness thick and three times as tall as thick, that a wall holds hangs on it: at least
+// kHungFace across (a picture, a board), or flush with the wall, at most kFlushThickness thick (a switch, a wall
+// plug: Replica room 0's are 0-2 cm). A book standing on a shelf the memory does not hold (ScanNet's apartment: 0.19
+// x 0.06 x 0.20 m) is a slab too, smaller than what people hang and thicker than a fitting.
 constexpr double kHungThickness = 0.1;
 constexpr double kHungFace = 0.25;
+constexpr double kFlushThickness = 0.03;
 bool hungShape(const model::Box& box) {
     const double thickness = std::min(box.size.x, box.size.y);
     const double face = std::max({box.size.x, box.size.y, box.size.z});
-    return thickness <= kHungThickness && box.size.z >= 3 * thickness && face >= kHungFace;
+    return thickness <= kHungThickness && box.size.z >= 3 * thickness &&
+           (face >= kHungFace || thickness <= kFlushThickness);
 }
 
 namespace {
