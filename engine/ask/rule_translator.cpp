@@ -424,6 +424,8 @@ private:
             c.accept({"take|guide|lead|bring|direct|navigate|walk", "me|us"}) ||
             c.accept({"show", "me|us", "the", "way|route|path"}) ||
             c.accept({"what|which", "is", "the", "way|route|path"}) ||
+            // "which way to the sofa?", "which way is it to the door?"
+            (c.peek(2) == "to" && c.accept({"which|what", "way"})) || c.accept({"which|what", "way", "is", "it"}) ||
             c.accept({"i", "want|need", "to", "go|get|walk"}) ||
             // "can I walk from the bed to the fridge?": the way, if there is one.
             c.accept({"can|could", "i|we|you", "get|go|walk|reach|move"}) ||
@@ -451,12 +453,14 @@ private:
         if (!to) return false;
         out.kind = QuestionKind::Guidance;
         std::string goal = reference(*to);
-        // Several things of the goal's kind: a person means the nearest one, to where they start or stand.
+        // Several things of the goal's kind: a person means the nearest one, to where they start or stand, of the
+        // colour named ("guide me to the black table").
         if (to->conditions.empty() && to->filters.empty() && !to->order && to->categories.size() == 1 &&
-            to->side.empty() && repeated(to->categories.front()))
-            goal = from ? fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", smqlName(to->categories.front()),
-                                      reference(*from))
-                        : fmt::format("(FIND {} ORDER BY distance(HERE) LIMIT 1)", smqlName(to->categories.front()));
+            to->side.empty() && repeated(to->categories.front())) {
+            const std::string kind = smqlName(to->categories.front()) + whereText(*to);
+            goal = from ? fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", kind, reference(*from))
+                        : fmt::format("(FIND {} ORDER BY distance(HERE) LIMIT 1)", kind);
+        }
         out.smql = fmt::format("GUIDE FROM {} TO {}", from ? reference(*from) : "HERE", goal);
         out.subject = to->words;
         out.object = from ? from->words : "here";
