@@ -2155,6 +2155,10 @@ private:
             {std::regex(R"(^(?:are )?(?:the )?(.+?) (?:are )?(?:odd|even) or (?:odd|even)(?: in number)?$)"),
              "how many $1"},
         };
+        // "is the monitor on the desk or on the chair?": what it is on answers which.
+        static const std::regex onWhich(
+            R"(^(?:is|are) ((?:the |a |an )?[a-z][a-z ]*?) (on|in|inside|under|below|above|attached to) (?:the |a |an )?(?!(?:my|your|me|front|left|right|back|top|bottom|or)\b)[a-z][a-z ]*? or (?:\2 )?(?:the |a |an )?(?!(?:my|your|me|front|left|right|back|behind|off)\b)[a-z][a-z ]*$)");
+        plain = std::regex_replace(plain, onWhich, "what is $1 $2");
         static const std::pair<std::regex, std::string> more[] = {
             {std::regex(R"(^(?:are|is) there (?:more|less|fewer) than (?:one|two|three|four|five|\d+) (.+)$)"),
              "how many $1"},
