@@ -93,22 +93,30 @@ bool namesSubject(const Translation& t, const WordMapping& m) {
            t.subjectPlural.ends_with(" " + m.word);
 }
 
-// The subject is of a kind the scene has none of, and the scene holds things the ingest could not name: one of them
-// may be of it, so the answer does not say there is none ("is there a bathtub?" of a bathroom whose tub is stored as
-// object#9). Empty otherwise.
+// Where the scene holds things the ingest could not name, a kind it has none of may be one of them (ScanNet's
+// bathroom stores its tub as object#9): said after an answer that finds none of `what`. Empty otherwise.
+std::string mayBeUnnamed(const Translation& t, const std::string& what) {
+    if (!t.unnamedThings || what.empty() || what == "thing") return "";
+    return fmt::format(" The memory holds things it could not name ({}): one of them may be {}.",
+                       pluralOf(std::string(model::kUnnamedCategory)), withArticle(what));
+}
+
+// The subject is of a kind the scene has none of ("is there a bathtub?"): mayBeUnnamed of it, else empty.
 std::string unnamedMayBe(const Translation& t) {
-    if (!t.unnamedThings || t.subject == "thing") return "";
     for (const auto& m : t.mappings)
-        if (m.categories.empty() && namesSubject(t, m))
-            return fmt::format(" The memory holds things it could not name ({}): one of them may be {}.",
-                               pluralOf(std::string(model::kUnnamedCategory)), withArticle(t.subject));
+        if (m.categories.empty() && namesSubject(t, m)) return mayBeUnnamed(t, t.subject);
     return "";
+}
+
+// "There is no piano here.", words the scene has none of; and that one of the things it could not name may be one.
+std::string noneHere(const Translation& t, const std::string& absent) {
+    return fmt::format("There is no {} here.{}", absent, mayBeUnnamed(t, absent));
 }
 
 // Nothing answers: a word that names nothing in the scene is why ("which is closer to the door" where there is no
 // door), else nothing meets the condition.
 std::string noneFound(const Translation& t) {
-    if (std::string absent = absentWords(t); !absent.empty()) return fmt::format("There is no {} here.", absent);
+    if (std::string absent = absentWords(t); !absent.empty()) return noneHere(t, absent);
     return fmt::format("There is no {}{}.", t.subject, withCondition(t));
 }
 
@@ -166,7 +174,8 @@ std::string relational(const Translation& t, const ResultSet& rs) {
     // "what is in the room?": the whole scene, no condition to say.
     if (t.condition.empty()) {
         if (n == 0)
-            return t.subject == "thing" ? "There is nothing here." : fmt::format("There is no {} here.", t.subject);
+            return t.subject == "thing" ? "There is nothing here."
+                                        : fmt::format("There is no {} here.{}", t.subject, unnamedMayBe(t));
         std::string nouns = t.subject == "thing" && shared ? pluralOf(*shared) : t.subjectPlural;
         std::string noun = t.subject == "thing" && shared ? *shared : t.subject;
         return n == 1 ? fmt::format("There is 1 {}: {}", noun, listed(labels(rs)))
@@ -174,7 +183,7 @@ std::string relational(const Translation& t, const ResultSet& rs) {
     }
     if (n == 0) {
         // "what is on the bed?" where the scene holds no bed: say so, not that nothing is on it.
-        if (std::string absent = absentWords(t); !absent.empty()) return fmt::format("There is no {} here.", absent);
+        if (std::string absent = absentWords(t); !absent.empty()) return noneHere(t, absent);
         if (t.subject == "thing") return fmt::format("Nothing is {}.", t.condition);
         return fmt::format("No {} is {}.", t.subject, t.condition);
     }
@@ -332,7 +341,7 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     if (parts.empty()) {
         std::string absent = absentWords(t);
         return absent.empty() ? fmt::format("There is no {} or no {} to measure between.", t.subject, t.object)
-                              : fmt::format("There is no {} here.", absent);
+                              : noneHere(t, absent);
     }
     std::string how = fromYou ? " (along the floor, from where you stand: the scene's viewpoint)"
                               : " (measured between the closest points of their boxes)";
@@ -453,7 +462,7 @@ std::string superlative(const Translation& t, const ResultSet& rs) {
     // "which is closer to the toilet, the table or the sink?" where there is no table: the answer is among what is
     // here, and says what is not.
     const std::string absent = absentWords(t);
-    const std::string missing = absent.empty() ? "" : fmt::format(" There is no {} here.", absent);
+    const std::string missing = absent.empty() ? "" : " " + noneHere(t, absent);
     if (byDistance)
         return fmt::format("{} is the {}{} {}{}{}.{}", name, ordinal, t.subject, t.measure, detail, path, missing);
     return fmt::format("{} is the {}{} {}{}{}.{}", name, ordinal, t.measure, t.subject, detail, path, missing);
@@ -475,7 +484,8 @@ std::string direction(const Translation& t, const ResultSet& rs) {
                 std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
                 found[role].push_back(&row);
         if (found[role].empty())
-            return fmt::format("There is no {} here{}.", listed(t.roles[role], " or "), roleNames[role]);
+            return fmt::format("There is no {} here{}.{}", listed(t.roles[role], " or "), roleNames[role],
+                               mayBeUnnamed(t, listed(t.roles[role], " or ")));
     }
     // Of several things to stand by or to face, the two nearest each other: standing by a chair facing the desk is
     // standing by the desk's chair, not one across the room (the first of the rows where one of them is alone).
@@ -601,8 +611,7 @@ std::string seating(const Translation& t, const ResultSet& rs) {
             several.push_back(fmt::format("{} on {}, {} long", places, names[r], length(*longest, t.unit)));
     }
     if (total == 0) {
-        if (const std::string absent = absentWords(t); !absent.empty())
-            return fmt::format("There is no {} here.", absent);
+        if (const std::string absent = absentWords(t); !absent.empty()) return noneHere(t, absent);
         return t.object.empty() || t.condition == "on"
                    ? "There is nothing to sit on here."
                    : fmt::format("There is nothing to sit on {} the {}.", t.condition, t.object);
@@ -835,7 +844,7 @@ std::string reverse(const Translation& t, const ResultSet& rs) {
         held[s].push_back(text(rs.rows[i][object]));
     }
     if (order.empty()) {
-        if (rs.rows.empty()) return fmt::format("There is no {} here.", t.subject);
+        if (rs.rows.empty()) return fmt::format("There is no {} here.{}", t.subject, unnamedMayBe(t));
         return fmt::format("Nothing: the {} is not {} anything here.", t.subject, t.condition);
     }
     std::vector<std::string> parts;
@@ -863,8 +872,10 @@ std::string comparison(const Translation& t, const ResultSet& rs) {
                 sides[s].nodes.emplace_back(cat + node, *v);
         }
     }
-    if (sides[0].nodes.empty()) return fmt::format("There is no {} here to compare.", t.subject);
-    if (sides[1].nodes.empty()) return fmt::format("There is no {} here to compare.", t.object);
+    if (sides[0].nodes.empty())
+        return fmt::format("There is no {} here to compare.{}", t.subject, mayBeUnnamed(t, t.subject));
+    if (sides[1].nodes.empty())
+        return fmt::format("There is no {} here to compare.{}", t.object, mayBeUnnamed(t, t.object));
     std::size_t holds = 0, pairs = 0;
     for (const auto& [a, va] : sides[0].nodes)
         for (const auto& [b, vb] : sides[1].nodes) {
@@ -1043,7 +1054,7 @@ std::string roomPlace(const Translation& t, const ResultSet& rs) {
             t.measure == "middle"
                 ? fmt::format("{}; the middle within {:.1f} m of its centre", room, reach)
                 : fmt::format("{}; a corner holds what stands on the floor within {:.1f} m of it", room, kCornerReach);
-        if (in.empty() && out.empty()) return fmt::format("There is no {} here.", listed(t.roles[0], " or "));
+        if (in.empty() && out.empty()) return noneHere(t, listed(t.roles[0], " or "));
         if (out.empty())
             return fmt::format("Yes: {} {} {} ({}).", listedWithAnd(in), in.size() == 1 ? "is" : "are", place, measure);
         if (in.empty())
@@ -1237,7 +1248,7 @@ std::string statement(const Translation& t, const ResultSet& rs) {
         flush();
         if (nodes.empty()) {
             const std::string absent = absentWords(t);
-            return absent.empty() ? "Nothing of the kind is here." : fmt::format("There is no {} here.", absent);
+            return absent.empty() ? "Nothing of the kind is here." : noneHere(t, absent);
         }
         return listed(nodes, "; ") + ".";
     }
@@ -1434,7 +1445,7 @@ std::string message(const Translation& t, const std::string& answerText) {
 }
 
 std::optional<std::string> absentAnswer(const Translation& t) {
-    if (const std::string absent = absentWords(t); !absent.empty()) return fmt::format("There is no {} here.", absent);
+    if (const std::string absent = absentWords(t); !absent.empty()) return noneHere(t, absent);
     return std::nullopt;
 }
 

@@ -314,6 +314,9 @@ TEST_CASE("ASK: a kind the scene has none of may be a thing the memory could not
     CHECK(answerOf(*engine, "is there a toilet?") == "No toilet is stored." + may);
     CHECK(answerOf(*engine, "how many toilets are there?") == "0 toilets." + may);
     CHECK(answerOf(*engine, "where is the toilet?") == "No toilet is stored in scene 'unnamed-toilet'." + may);
+    // And wherever a word names nothing here: a thing near it, the way to it.
+    CHECK(answerOf(*engine, "what is near the toilet?") == "There is no toilet here." + may);
+    CHECK(answerOf(*engine, "how do I get to the toilet?") == "There is no toilet here." + may);
     // Where every thing is named, none of a kind is none.
     run(*engine, "USE SCENE '41069048'");
     CHECK(answerOf(*engine, "is there a piano?") == "No, there is no piano.");
