@@ -128,13 +128,20 @@ constexpr double kOnFloor = 0.15;
 // ("sofa#50 stands by wall#19"), and of what is raised off the floor there. On a wall, a slab standing upright
 // hangs on it ("picture#80 is on wall#19"); anything else rests on something the memory does not hold (a mug on an
 // unseen shelf), so it is by the wall, at its height ("mug#11 is by wall#3, 1.28 m above the floor"). By a door or
-// a window it may hang on the wall beside, so it is at it.
+// a window it may hang on the wall beside, so it is at it. Below a floor (a scene without walls), a thing on it is on
+// it, and one off it is that high above it (TUM's office photos: a bottle on a shelf the memory does not hold was
+// "at floor#2").
 std::string placeWords(const Translation& t, const ResultSet& rs, std::size_t row, const std::string& parent) {
     const std::string kind = parent.substr(0, parent.find('#'));
-    if (!isOneOf(kind, {"wall", "door", "window"})) return "is at " + parent;
+    const bool floor = kind == "floor";
+    if (!floor && !isOneOf(kind, {"wall", "door", "window"})) return "is at " + parent;
     const int box = rs.columnIndex("box");
     const auto* b = box >= 0 ? std::get_if<model::Box>(&rs.rows[row][box]) : nullptr;
     if (!b) return "is at " + parent;
+    if (floor)
+        return model::bottom(*b) <= kOnFloor
+                   ? "is on " + parent
+                   : fmt::format("is {} above {}", formatLength(model::bottom(*b), t.unit), parent);
     if (model::bottom(*b) <= kOnFloor) return "stands by " + parent;
     if (kind != "wall") return "is at " + parent;
     if (relations::hungShape(*b)) return "is on " + parent;

@@ -73,8 +73,9 @@ def desk_rgbd(smql, folder, work):
 
 def where_placed(smql, db):
     """"Where is the X?" of every kind the memory holds: a thing said to be on a wall is a slab standing upright that
-    hangs there (a picture, a screen: relations::hungShape), and one by a wall is said at its bottom's height. The
-    desk's mugs, on shelves the memory does not hold, were said to be "on wall#3"."""
+    hangs there (a picture, a screen: relations::hungShape), and one by a wall or above a floor is said at its
+    bottom's height. The desk's mugs, on shelves the memory does not hold, were said to be "on wall#3", and bottles
+    1.1 m up in the office photos' memory, which holds no wall, "at floor#2"."""
     things = {f"{r['category']}#{r['id']}": r["box"] for r in query_rows(smql, db, "FIND object RETURN id, category, box")}
     for category in sorted({name.split("#")[0] for name in things}):
         out = subprocess.run([smql, str(db), "-json", f"ASK 'where is the {category.replace('-', ' ')}?'"],
@@ -85,9 +86,15 @@ def where_placed(smql, db):
             thickness = min(size[0], size[1])
             assert thickness <= 0.1 and size[2] >= 3 * thickness and (max(size) >= 0.25 or thickness <= 0.03), \
                 (answer, size)
-        for name, height in re.findall(r"([\w-]+#\d+) is by wall#\d+, ([\d.]+) m above the floor", answer):
+        said = re.findall(r"([\w-]+#\d+) is by wall#\d+, ([\d.]+) m above the floor", answer) + \
+            re.findall(r"([\w-]+#\d+) is ([\d.]+) m above floor#\d+", answer)
+        for name, height in said:
             box = things[name]
             assert abs(float(height) - (box["center"][2] - box["size"][2] / 2)) < 0.006, (answer, box)
+        for name in re.findall(r"([\w-]+#\d+) is on floor#\d+", answer):
+            box = things[name]
+            assert box["center"][2] - box["size"][2] / 2 <= 0.15, (answer, box)
+        assert not re.search(r"is at (?:floor|wall)#", answer), answer
 
 
 def true_positions(groundtruth):
@@ -244,6 +251,7 @@ def desk_photos(smql, folder, work):
         # that are keyframes both times (the same images), so it costs the lift and the fusion alone.
         kept = re.search(r"the models' answers on (\d+) of them kept from the room placed before", log)
         assert kept and int(kept.group(1)) > 0, log
+        where_placed(smql, work / "db")
 
 
 def camera_height_given(smql, folder, work):
