@@ -43,7 +43,9 @@ std::string listed(const std::vector<std::string>& items, std::string_view separ
                    std::size_t named = kNamedInAnswer) {
     std::string out;
     for (std::size_t i = 0; i < items.size() && i < named; ++i) out += (i ? std::string(separator) : "") + items[i];
-    if (items.size() > named) out += fmt::format("{}and {} more", separator, items.size() - named);
+    // "a, b and 3 more"; "a and b and 3 more", not "and and".
+    if (items.size() > named)
+        out += fmt::format("{}and {} more", separator == " and " ? " " : separator, items.size() - named);
     return out;
 }
 
@@ -817,7 +819,10 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
     };
     std::set<std::string> resting, onThings;  // subjects resting on something; on a thing, not an anchor
     std::set<std::string> onWall;             // subjects attached to a wall
+    // What each subject rests on or in: "what is the mug next to?" asks what stands beside it, not the table it is on.
+    std::set<std::pair<std::string, std::string>> carriers;
     for (const auto& row : rs.rows) {
+        if (isOneOf(text(row[relation]), {"on", "in"})) carriers.emplace(text(row[subject]), text(row[object]));
         if (text(row[relation]) == t.predicate) {
             resting.insert(text(row[subject]));
             if (!isBackground(text(row[object]))) onThings.insert(text(row[subject]));
@@ -834,7 +839,8 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
         // A thing on nothing that a wall holds hangs on the wall, not on the window beside it or the floor
         // its lower edge meets ("what is the door on?").
         const bool hangs = t.predicate == "on" && r == "attached" && !resting.count(s) && (!onWall.count(s) || toWall);
-        bool match = r == t.predicate || hangs || inWall;
+        const bool carrier = !isOneOf(t.predicate, {"on", "in"}) && carriers.count({s, text(row[object])});
+        bool match = (r == t.predicate && !carrier) || hangs || inWall;
         // On the rug, not on the floor and the rug.
         if (match && !(onThings.count(s) && isBackground(text(row[object])))) out.push_back(i);
     }

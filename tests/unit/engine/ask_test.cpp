@@ -374,6 +374,12 @@ TEST_CASE("ASK on Replica room 0: what is next to the sofa leaves out what lies 
     auto within = run(*engine, "ASK 'what is within 1 m of the sofa?'");
     CHECK(smqlOf(within.message) == "FIND object WHERE near(sofa, 1 m)");
     for (auto id : onSofa) CHECK(idsOf(within).count(id) == 1);
+    // Asked the other way, what a thing is next to leaves out what it rests on: the blanket lies on the rug, and was
+    // "next to ... rug#77 and plate#83 and and 1 more".
+    const std::string blanket = answerOf(*engine, "what is the blanket next to?");
+    CHECK_THAT(blanket, Catch::Contains("cushion#"));
+    CHECK_THAT(blanket, !Catch::Contains("rug#"));
+    CHECK_THAT(answerOf(*engine, "what is the lamp next to?"), !Catch::Contains("and and"));
 }
 
 // Which room a thing is in: in a real space of several rooms (ScanNet's scene0207_02: a bed, a sofa, a fridge and a
