@@ -617,6 +617,10 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
                 fmt::format("'{}' asks of the {}: the memory keeps it where recorded", word, w[i + 1]));
             continue;
         }
+        // "how many different kinds of things": the kinds are different anyway.
+        if (nounWords.empty() && isOneOf(word, {"different", "distinct", "various"}) && i + 1 < w.size() &&
+            isOneOf(w[i + 1], {"kind", "kinds", "type", "types", "sort", "sorts"}))
+            continue;
         if (nounWords.empty() && (isIgnoredAdjective(word) || wordnet::isAdjectiveOnly(word))) {
             out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such attribute", word));
             continue;
