@@ -17,6 +17,7 @@
 #include "model/category.hpp"
 #include "model/embedding.hpp"
 #include "model/geometry.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ingest {
 
@@ -39,6 +40,45 @@ void setInWall(model::Box& box, const PointCloud& cloud, const std::vector<WallS
         along0 = std::min(along0, a), along1 = std::max(along1, a);
     }
     box.size = {along1 - along0, 0.05, box.size.z};
+}
+
+// A thing with a front (relations::hasFront: a sofa, a tv, a toilet, a bed) that stands square against a wall, a
+// side within kAgainstWall of its plane, faces away from it: the box's +x axis, its front, is turned to point into
+// the room. A box's axes come from its points and say nothing of which side is its front; of the RGB-D memories'
+// fronted things against a wall, ScanNet's apartment's toilet and chair faced the wall and its fridge, oven and
+// desk faced along it. A bed's front is its foot, so a bed turns only where a short side is against the wall.
+constexpr double kAgainstWall = 0.25;   // m, from the box's side to the wall's plane
+constexpr double kSquareToWall = 15.0;  // degrees, between the box's axes and the wall
+void faceAwayFromWall(model::Box& box, const std::string& category, const std::vector<WallSegment>& walls) {
+    const WallSegment* against = nullptr;
+    double nearest = kAgainstWall;
+    for (const auto& wall : walls) {
+        const model::Vec3 d = wall.direction();
+        const double t = d.x * box.center.x + d.y * box.center.y;
+        const double turn = std::remainder(box.yaw - std::atan2(d.y, d.x), M_PI / 2);
+        if (t < wall.along0 || t > wall.along1 || std::abs(turn) > kSquareToWall * model::kDegree) continue;
+        // The box's half extent along the wall's normal.
+        const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+        const double across = std::abs(c * wall.normal.x + s * wall.normal.y) * box.size.x / 2 +
+                              std::abs(-s * wall.normal.x + c * wall.normal.y) * box.size.y / 2;
+        const double gap = std::abs(wall.signedDistance(box.center)) - across;
+        if (gap <= nearest) nearest = gap, against = &wall;
+    }
+    if (!against) return;
+    const double side = against->signedDistance(box.center) >= 0 ? 1.0 : -1.0;
+    const model::Vec3 away{side * against->normal.x, side * against->normal.y, 0};
+    int best = 0;
+    double most = -2;
+    for (int k = 0; k < 4; ++k) {
+        const double yaw = box.yaw + k * M_PI / 2;
+        if (const double ahead = std::cos(yaw) * away.x + std::sin(yaw) * away.y; ahead > most) most = ahead, best = k;
+    }
+    // A bed's foot is a short side: the front found must be along its length.
+    const bool swapped = best % 2 == 1;
+    const double length = swapped ? box.size.y : box.size.x, width = swapped ? box.size.x : box.size.y;
+    if (category == "bed" && length < width) return;
+    box.yaw = std::remainder(box.yaw + best * M_PI / 2, 2 * M_PI);
+    if (swapped) std::swap(box.size.x, box.size.y);
 }
 
 // Nothing stands below the floor or above the ceiling: a hull carved from views that all look
@@ -299,6 +339,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         }
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
+        if (!opening && relations::hasFront(category)) faceAwayFromWall(box, category, walls);
         placed.push_back({t, std::move(colors), box});
     }
     if (const std::size_t merged = mergeHullsStoredTwice(placed, tracks))

@@ -273,6 +273,27 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
             const std::string* color = n.attribute("color");
             CHECK((n.text.starts_with(n.category) || (color && n.text.starts_with(*color + " " + n.category))));
         }
+    // The sofa stands with its back to a wall and faces into the room, as its front says (its +x axis: what
+    // `facing` and `at_front_of` read); its box's axes alone had it face along the wall.
+    const model::Node* sofa = nullptr;
+    for (const auto& n : result.scene.nodes)
+        if (n.kind == model::NodeKind::Object && n.category == "sofa") sofa = &n;
+    REQUIRE(sofa);
+    const model::Node* wall = nullptr;
+    double nearest = 1e9;
+    auto across = [&](const model::Node& w) {  // the sofa's centre from the wall's plane, along its normal
+        return -std::sin(w.box.yaw) * (sofa->box.center.x - w.box.center.x) +
+               std::cos(w.box.yaw) * (sofa->box.center.y - w.box.center.y);
+    };
+    for (const auto& n : result.scene.nodes)
+        if (n.category == "wall" && std::abs(across(n)) < nearest) nearest = std::abs(across(n)), wall = &n;
+    REQUIRE(wall);
+    const double side = across(*wall) >= 0 ? 1.0 : -1.0;
+    const double intoRoom = std::cos(sofa->box.yaw) * -std::sin(wall->box.yaw) * side +
+                            std::sin(sofa->box.yaw) * std::cos(wall->box.yaw) * side;
+    INFO("sofa yaw " << sofa->box.yaw << ", wall#" << wall->id << " yaw " << wall->box.yaw << ", " << nearest
+                     << " m from it");
+    CHECK(intoRoom > 0.9);
     // The user is told the detectors' time per frame.
     CHECK(std::any_of(result.notes.begin(), result.notes.end(), [](const std::string& note) {
         return note.starts_with("detector: nanodet.onnx") && note.find(" keyframes of 5,") != std::string::npos &&
