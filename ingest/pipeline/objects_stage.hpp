@@ -38,6 +38,7 @@ struct PlacedTrack {
     std::size_t track;  // in ObjectsStage::tracks
     cv::Mat colors;
     model::Box box;
+    bool againstWall = false;  // a thing with a front turned to face away from the wall it stands against
 };
 
 // Hulls carved without depth of one kind, the smaller mostly inside the larger (plausibility.hpp: storedTwice),

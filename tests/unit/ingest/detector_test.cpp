@@ -264,6 +264,12 @@ TEST_CASE("--objects detect ingests the real dining room with named objects") {
         if (n.kind == model::NodeKind::Object && n.category == "chair") {
             INFO("chair#" << n.id << " at " << n.box.center.x << ", " << n.box.center.y);
             CHECK(model::fractionInside(n.box, table->box) < 0.5);
+            // A chair at the table faces it (its front, +x, towards the table's centre); by its box's axes alone, half
+            // of them faced along it or away.
+            if (model::horizontalGap(n.box, table->box) <= 0.5) {
+                const double dx = table->box.center.x - n.box.center.x, dy = table->box.center.y - n.box.center.y;
+                CHECK((std::cos(n.box.yaw) * dx + std::sin(n.box.yaw) * dy) / std::hypot(dx, dy) > 0.7);
+            }
         }
     // An object's text names the colour the object keeps or none: the sofa, brown by its points, was a "black sofa"
     // by most of its views.
