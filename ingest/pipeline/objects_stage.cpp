@@ -42,13 +42,6 @@ void setInWall(model::Box& box, const PointCloud& cloud, const std::vector<WallS
     box.size = {along1 - along0, 0.05, box.size.z};
 }
 
-// A thing with a front (relations::hasFront: a sofa, a tv, a toilet, a bed) that stands square against a wall, a
-// side within kAgainstWall of its plane, faces away from it: the box's +x axis, its front, is turned to point into
-// the room. A box's axes come from its points and say nothing of which side is its front; of the RGB-D memories'
-// fronted things against a wall, ScanNet's apartment's toilet and chair faced the wall and its fridge, oven and
-// desk faced along it. A bed's front is its foot, so a bed turns only where a short side is against the wall.
-constexpr double kAgainstWall = 0.25;   // m, from the box's side to the wall's plane
-constexpr double kSquareToWall = 15.0;  // degrees, between the box's axes and the wall
 // Turns the box by quarter turns so that its front (+x) points most nearly along `way`, swapping its sides with each
 // quarter; none where `lengthwise` and that front would not run along its longer side. Whether it faces so now.
 bool turnToFace(model::Box& box, const model::Vec3& way, bool lengthwise) {
@@ -66,6 +59,13 @@ bool turnToFace(model::Box& box, const model::Vec3& way, bool lengthwise) {
     return true;
 }
 
+// A thing with a front (relations::hasFront: a sofa, a tv, a fridge, a bed) that stands square against a wall, a
+// side within kAgainstWall of its plane, faces away from it: the box's +x axis, its front, is turned to point into
+// the room. A box's axes come from its points and say nothing of which side is its front; of the RGB-D memories'
+// fronted things against a wall, ScanNet's apartment's fridge, oven and desk faced along their wall and a chair
+// faced it. A bed's front is its foot, so a bed turns only where a short side is against the wall.
+constexpr double kAgainstWall = 0.25;   // m, from the box's side to the wall's plane
+constexpr double kSquareToWall = 15.0;  // degrees, between the box's axes and the wall
 bool faceAwayFromWall(model::Box& box, const std::string& category, const std::vector<WallSegment>& walls) {
     const WallSegment* against = nullptr;
     double nearest = kAgainstWall;
