@@ -31,6 +31,14 @@ bool isDeterminer(const std::string& w) {
 
 bool isSideWord(const std::string& w) { return isOneOf(w, {"left", "right", "front", "back"}); }
 
+// A word that counts or sorts the things named after "of": "pieces of furniture", "a pair of shoes", "kinds of things".
+bool isMeasureWord(const std::string& w) {
+    return isOneOf(w, {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type", "types", "sort",
+                       "sorts", "bunch", "stack", "pile", "group", "groups", "cluster"});
+}
+// "kinds of things" asks for their kinds ("different kinds" too: an adjective before one asks nothing of its own).
+bool isKindWord(const std::string& w) { return isOneOf(w, {"kind", "kinds", "type", "types", "sort", "sorts"}); }
+
 // Adjectives the memory has no attribute for: left out of the query, and said so.
 bool isIgnoredAdjective(const std::string& w) {
     return isOneOf(w, {"big",   "small",  "large", "little", "tall", "short", "long", "old",  "new",   "wooden",
@@ -578,13 +586,9 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
         }
         if (describing(w, i, nounWords, side, wordsStart)) continue;
         if (endsPhrase(word) && !(word == "right" && nounWords.empty())) break;
-        // "pieces of furniture", "a pair of shoes": the thing is what follows "of"; "kinds of things" asks for their
-        // kinds.
-        if (word == "of" && nounWords.size() == 1 &&
-            isOneOf(nounWords.front(),
-                    {"piece", "pieces", "pair", "pairs", "set", "sets", "kind", "kinds", "type", "types", "sort",
-                     "sorts", "bunch", "stack", "pile", "group", "groups", "cluster"})) {
-            p.kinds = isOneOf(nounWords.front(), {"kind", "kinds", "type", "types", "sort", "sorts"});
+        // "pieces of furniture": the thing is what follows "of"; "kinds of things" asks for their kinds.
+        if (word == "of" && nounWords.size() == 1 && isMeasureWord(nounWords.front())) {
+            p.kinds = isKindWord(nounWords.front());
             nounWords.clear();
             continue;
         }
@@ -617,12 +621,9 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
                 fmt::format("'{}' asks of the {}: the memory keeps it where recorded", word, w[i + 1]));
             continue;
         }
-        // "how many different kinds of things": the kinds are different anyway.
-        if (nounWords.empty() && isOneOf(word, {"different", "distinct", "various"}) && i + 1 < w.size() &&
-            isOneOf(w[i + 1], {"kind", "kinds", "type", "types", "sort", "sorts"}))
-            continue;
         if (nounWords.empty() && (isIgnoredAdjective(word) || wordnet::isAdjectiveOnly(word))) {
-            out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such attribute", word));
+            if (i + 1 == w.size() || !isKindWord(w[i + 1]))  // "different kinds": no attribute asked
+                out_.notes.push_back(fmt::format("'{}' is left out: the memory keeps no such attribute", word));
             continue;
         }
         // "the towel hanged on the door", "the monitor sits on the desk", "the radiator affixed": a
