@@ -839,7 +839,9 @@ std::vector<std::size_t> reverseRows(const Translation& t, const ResultSet& rs) 
         // A thing on nothing that a wall holds hangs on the wall, not on the window beside it or the floor
         // its lower edge meets ("what is the door on?").
         const bool hangs = t.predicate == "on" && r == "attached" && !resting.count(s) && (!onWall.count(s) || toWall);
-        const bool carrier = !isOneOf(t.predicate, {"on", "in"}) && carriers.count({s, text(row[object])});
+        // Beside it, not under it: "what is the lamp above?" may well be the table it stands on.
+        const bool carrier = isOneOf(t.predicate, {"near", "left_of", "right_of", "in_front_of", "behind"}) &&
+                             carriers.count({s, text(row[object])});
         bool match = (r == t.predicate && !carrier) || hangs || inWall;
         // On the rug, not on the floor and the rug.
         if (match && !(onThings.count(s) && isBackground(text(row[object])))) out.push_back(i);
