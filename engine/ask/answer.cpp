@@ -104,7 +104,7 @@ std::string mayBeUnnamed(const Translation& t, const std::string& what) {
 }
 
 // The subject is of a kind the scene has none of ("is there a bathtub?"): mayBeUnnamed of it, else empty.
-std::string unnamedMayBe(const Translation& t) {
+std::string subjectMayBeUnnamed(const Translation& t) {
     for (const auto& m : t.mappings)
         if (m.categories.empty() && namesSubject(t, m)) return mayBeUnnamed(t, t.subject);
     return "";
@@ -152,7 +152,7 @@ std::string placeWords(const Translation& t, const ResultSet& rs, std::size_t ro
 
 std::string locate(const Translation& t, const ResultSet& rs, const std::string& scene) {
     if (rs.rows.empty()) {
-        if (const std::string may = unnamedMayBe(t); !may.empty())
+        if (const std::string may = subjectMayBeUnnamed(t); !may.empty())
             return fmt::format("No {}{} is stored in scene '{}'.{}", t.subject, withCondition(t), scene, may);
         return fmt::format("There is no {}{} in scene '{}'.", t.subject, withCondition(t), scene);
     }
@@ -184,7 +184,7 @@ std::string relational(const Translation& t, const ResultSet& rs) {
     if (t.condition.empty()) {
         if (n == 0)
             return t.subject == "thing" ? "There is nothing here."
-                                        : fmt::format("There is no {} here.{}", t.subject, unnamedMayBe(t));
+                                        : fmt::format("There is no {} here.{}", t.subject, subjectMayBeUnnamed(t));
         std::string nouns = t.subject == "thing" && shared ? pluralOf(*shared) : t.subjectPlural;
         std::string noun = t.subject == "thing" && shared ? *shared : t.subject;
         return n == 1 ? fmt::format("There is 1 {}: {}", noun, listed(labels(rs)))
@@ -262,7 +262,7 @@ std::string count(const Translation& t, const ResultSet& rs) {
                            broaderKind(t, *widened, static_cast<std::size_t>(n)));
     if (t.condition.empty() || t.condition.starts_with("besides "))
         return fmt::format("{} {}{}.{}", n, n == 1 ? t.subject : t.subjectPlural, withCondition(t),
-                           n == 0 ? unnamedMayBe(t) : "");
+                           n == 0 ? subjectMayBeUnnamed(t) : "");
     return fmt::format("{} {} {} {}.", n, n == 1 ? t.subject : t.subjectPlural, n == 1 ? "is" : "are", t.condition);
 }
 
@@ -273,7 +273,7 @@ std::string existence(const Translation& t, const ResultSet& rs) {
         n == 0 && !t.condition.empty() && !absent.empty() && absent != t.subject)
         return fmt::format("No: there is no {} here.", absent);
     if (n == 0 && t.subject == "thing" && !t.condition.empty()) return fmt::format("No, nothing is {}.", t.condition);
-    if (const std::string may = unnamedMayBe(t); n == 0 && !may.empty())
+    if (const std::string may = subjectMayBeUnnamed(t); n == 0 && !may.empty())
         return fmt::format("No {}{} is stored.{}", t.subject, withCondition(t), may);
     if (n == 0) return fmt::format("No, there is no {}{}.", t.subject, withCondition(t));
     if (const WordMapping* widened = widenedSubject(t))
@@ -638,6 +638,15 @@ std::string counted(const std::string& category, std::size_t n) {
     return n == 1 ? withArticle(category) : fmt::format("{} {}", n, pluralOf(category));
 }
 
+// A tally of kinds in words, in its order ("5 chairs", "a bed"), and the things no model named last ("6 other
+// things"): how DESCRIBE's room and "what kinds of things are there?" say what a place holds.
+std::vector<std::string> tallied(const std::vector<std::pair<std::string, std::size_t>>& kinds, std::size_t unnamed) {
+    std::vector<std::string> out;
+    for (const auto& [category, n] : kinds) out.push_back(counted(model::categoryWords(category), n));
+    if (unnamed) out.push_back(unnamed == 1 ? "1 other thing" : fmt::format("{} other things", unnamed));
+    return out;
+}
+
 std::string roomKind(const Translation& t, const ResultSet& rs);
 
 // Which room a thing is in (QuestionKind::RoomOf): for each thing asked about (the last of Translation::roles), the
@@ -859,7 +868,7 @@ std::string reverse(const Translation& t, const ResultSet& rs) {
         held[s].push_back(text(rs.rows[i][object]));
     }
     if (order.empty()) {
-        if (rs.rows.empty()) return fmt::format("There is no {} here.{}", t.subject, unnamedMayBe(t));
+        if (rs.rows.empty()) return fmt::format("There is no {} here.{}", t.subject, subjectMayBeUnnamed(t));
         return fmt::format("Nothing: the {} is not {} anything here.", t.subject, t.condition);
     }
     std::vector<std::string> parts;
@@ -1211,22 +1220,23 @@ std::string place(const std::string& name, const std::map<std::string, std::stri
     const std::string things = field("things");
     const auto colon = things.find(": ");
     if (colon == std::string::npos) return out + "; nothing in it";
-    std::vector<std::string> kinds;
-    std::string unnamed;
+    std::vector<std::pair<std::string, std::size_t>> kinds;
+    std::size_t unnamed = 0;
     for (std::size_t at = colon + 2; at < things.size();) {
         const std::size_t end = std::min(things.find(", ", at), things.size());
         const std::string entry = things.substr(at, end - at);
         const std::size_t space = entry.rfind(' ');
-        const std::string category = entry.substr(0, space), count = entry.substr(space + 1);
-        if (category == "object")
-            unnamed = count == "1" ? "1 other thing" : count + " other things";
+        const std::string category = entry.substr(0, space);
+        const std::size_t count = std::stoul(entry.substr(space + 1));
+        if (category == model::kUnnamedCategory)
+            unnamed = count;
         else
-            kinds.push_back(counted(category, std::stoul(count)));
+            kinds.emplace_back(category, count);
         at = end + 2;
     }
-    if (!unnamed.empty()) kinds.push_back(unnamed);
     const std::string total = things.substr(0, colon);
-    return fmt::format("{}; {} {}: {}", out, total, total == "1" ? "thing" : "things", listedWithAnd(kinds));
+    return fmt::format("{}; {} {}: {}", out, total, total == "1" ? "thing" : "things",
+                       listedWithAnd(tallied(kinds, unnamed)));
 }
 
 // A plugged-in translator's statement: its rows said as they are.
@@ -1316,7 +1326,7 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
 }
 
 // "what kinds of things are there?": the categories of the rows, most first, and the things the memory could not name
-// apart ("3 kinds of things: 4 tables, 2 chairs and a sofa; and 2 things it could not name").
+// last ("3 kinds of things: 4 tables, 2 chairs, a sofa and 2 other things").
 std::string kinds(const Translation& t, const ResultSet& rs) {
     const auto category = static_cast<std::size_t>(rs.columnIndex("category"));
     std::map<std::string, std::size_t> tally;
@@ -1330,18 +1340,12 @@ std::string kinds(const Translation& t, const ResultSet& rs) {
     }
     std::vector<std::pair<std::string, std::size_t>> byCount(tally.begin(), tally.end());
     std::stable_sort(byCount.begin(), byCount.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-    std::vector<std::string> parts;
-    for (const auto& [c, n] : byCount) parts.push_back(counted(model::categoryWords(c), n));
     // "kinds of furniture", not "of pieces of furniture" (a mass noun's plural).
     const std::string noun = t.subjectPlural.starts_with("pieces of ")
                                  ? t.subjectPlural.substr(std::string("pieces of ").size())
                                  : t.subjectPlural;
-    const std::string things = noun + withCondition(t);
-    const std::string rest = unnamed ? fmt::format("{}{} {} it could not name", parts.empty() ? "" : "; and ", unnamed,
-                                                   unnamed == 1 ? "thing" : "things")
-                                     : "";
-    return fmt::format("{} {} of {}{}{}{}.", byCount.size(), byCount.size() == 1 ? "kind" : "kinds", things,
-                       parts.empty() ? "" : ": ", listedWithAnd(parts), rest);
+    return fmt::format("{} {} of {}{}: {}.", byCount.size(), byCount.size() == 1 ? "kind" : "kinds", noun,
+                       withCondition(t), listedWithAnd(tallied(byCount, unnamed)));
 }
 
 std::string changes(const ResultSet& rs) {

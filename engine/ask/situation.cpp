@@ -168,13 +168,12 @@ std::optional<Situated> splitSituation(const std::string& text) {
     // direction question, which its reader takes whole. A clause that faces something sets the person so before a
     // question of what or where ("if I sit on the sofa facing the tv, what is on my left?").
     static const std::regex placeClause(
-        R"(^\s*((?:(?:if|when|while|as|once) i(?:'m| am)? [a-z]+(?: down)?|(?:sitting|standing|lying|seated|sat)(?: down)?) (?:on|at|by|in|near|next to|beside|in front of) (?![^,]*\b(?:facing|and)\b)[^,]+),\s*(\S.*)$)",
+        R"(^\s*((?:(?:if|when|while|as|once) i(?:'m| am)? [a-z]+(?: down)?|(?:sitting|standing|lying|seated|sat)(?: down)?) (?:on|at|by|in|near|next to|beside|in front of) [^,]+),\s*(\S.*)$)",
         std::regex::icase);
-    static const std::regex facingClause(
-        R"(^\s*((?:(?:if|when|while|as|once) i(?:'m| am)? [a-z]+(?: down)?|(?:sitting|standing|lying|seated|sat)(?: down)?) (?:on|at|by|in|near|next to|beside|in front of) [^,]+),\s*((?:what|where|which|how|who)\b.*)$)",
-        std::regex::icase);
-    if (std::smatch m; sentences.size() == 1 && (std::regex_match(sentences.front(), m, placeClause) ||
-                                                 std::regex_match(sentences.front(), m, facingClause)))
+    static const std::regex faces(R"(\b(?:facing|and)\b)", std::regex::icase),
+        whQuestion(R"(^(?:what|where|which|how|who)\b)", std::regex::icase);
+    if (std::smatch m; sentences.size() == 1 && std::regex_match(sentences.front(), m, placeClause) &&
+                       (!std::regex_search(m.str(1), faces) || std::regex_search(m.str(2), whQuestion)))
         sentences = {m.str(1) + ".", m.str(2)};
     if (sentences.size() < 2) return std::nullopt;
     std::string situation;

@@ -83,6 +83,25 @@ model::Box WallSegment::box() const {
     return b;
 }
 
+const WallSegment* wallAgainst(const model::Box& box, const std::vector<WallSegment>& walls, double within,
+                               bool longSide) {
+    const WallSegment* nearest = nullptr;
+    double least = within;
+    for (const auto& wall : walls) {
+        const model::Vec3 d = wall.direction();
+        const double wallYaw = std::atan2(d.y, d.x);
+        if (std::abs(std::remainder(box.yaw - wallYaw, M_PI / 2)) > kSquareToWall * model::kDegree) continue;
+        // Which of the box's axes runs along the wall: its x within 45 degrees of the wall's direction, or its y.
+        const bool xAlong = std::abs(std::remainder(box.yaw - wallYaw, M_PI)) < M_PI / 4;
+        const double along = xAlong ? box.size.x : box.size.y, across = xAlong ? box.size.y : box.size.x;
+        const double t = d.x * box.center.x + d.y * box.center.y;
+        if ((longSide && along < across) || t < wall.along0 || t > wall.along1) continue;
+        const double gap = std::abs(std::abs(wall.signedDistance(box.center)) - across / 2);
+        if (gap <= least) least = gap, nearest = &wall;
+    }
+    return nearest;
+}
+
 namespace {
 
 // Iterated RANSAC: take the strongest vertical plane, remove its inliers, repeat; each plane split

@@ -36,6 +36,15 @@ struct WallSegment {
     model::Box box() const;
 };
 
+// What stands against a wall: a box square to it (its axes within kSquareToWall degrees of the wall's), its centre in
+// front of the wall's extent, the face of its side towards the wall within `within` metres of the wall's plane
+// (either way: a box fitted to points may reach a little into a thick wall). Of several, the nearest; with
+// `longSide`, only a wall its longer side runs along (a desk's, a sofa's). Null for none.
+inline constexpr double kSquareToWall = 15.0;  // degrees
+inline constexpr double kAgainstWall = 0.2;    // m: a side this close to a wall's plane stands against it
+const WallSegment* wallAgainst(const model::Box& box, const std::vector<WallSegment>& walls,
+                               double within = kAgainstWall, bool longSide = false);
+
 struct WallOptions {
     double minPointHeight = 0.1;    // only points above this (metres over the floor) take part
     double distance = 0.04;         // RANSAC inlier distance

@@ -541,21 +541,6 @@ std::string seatsAround(const model::Box& box, const std::vector<SeenBox>& thing
     return places >= 2 ? fmt::format("beside {} within {:.1f} m", fmt::join(names, ", "), options.seatReach) : "";
 }
 
-// Whether a long side of the box lies against a wall: the wall parallel to it (within 15 degrees), the side within
-// FusionOptions::againstWall of the wall's plane, the box's centre in front of the wall's extent.
-bool longSideAgainstWall(const model::Box& box, const std::vector<WallSegment>& walls, const FusionOptions& options) {
-    const bool xLonger = box.size.x >= box.size.y;
-    const double depth = xLonger ? box.size.y : box.size.x;
-    const double alongYaw = box.yaw + (xLonger ? 0.0 : M_PI / 2);
-    return std::any_of(walls.begin(), walls.end(), [&](const WallSegment& wall) {
-        const model::Vec3 along = wall.direction();
-        const double turn = std::remainder(alongYaw - std::atan2(along.y, along.x), M_PI);
-        const double t = along.x * box.center.x + along.y * box.center.y;
-        return std::abs(turn) <= 15 * model::kDegree && t >= wall.along0 && t <= wall.along1 &&
-               std::abs(std::abs(wall.signedDistance(box.center)) - depth / 2) <= options.againstWall;
-    });
-}
-
 // The sink among `things` whose cabinet the box is (cabinetOf), or null.
 const SeenBox* sinkOver(const model::Box& box, const std::vector<SeenBox>& things, const FusionOptions& options) {
     const auto sink = std::find_if(things.begin(), things.end(), [&](const SeenBox& other) {
@@ -597,7 +582,7 @@ std::vector<UseName> namedByUse(const std::vector<SeenBox>& things, const std::v
                 continue;
             }
             if (shorter > options.deskDepth || std::max(box.size.x, box.size.y) < options.deskSideMin ||
-                model::top(box) < options.deskTopMin || !longSideAgainstWall(box, walls, options))
+                model::top(box) < options.deskTopMin || !wallAgainst(box, walls, options.againstWall, true))
                 continue;
             const auto chairs = std::count_if(things.begin(), things.end(), [&](const SeenBox& other) {
                 return other.category == "chair" && model::horizontalGap(box, other.box) <= options.chairAtDesk;

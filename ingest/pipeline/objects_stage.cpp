@@ -59,37 +59,22 @@ bool turnToFace(model::Box& box, const model::Vec3& way, bool lengthwise) {
     return true;
 }
 
-// A thing with a front (relations::hasFront: a sofa, a tv, a fridge, a bed) that stands square against a wall, a
-// side within kAgainstWall of its plane, faces away from it: the box's +x axis, its front, is turned to point into
-// the room. A box's axes come from its points and say nothing of which side is its front; of the RGB-D memories'
-// fronted things against a wall, ScanNet's apartment's fridge, oven and desk faced along their wall and a chair
-// faced it. A bed's front is its foot, so a bed turns only where a short side is against the wall.
-constexpr double kAgainstWall = 0.25;   // m, from the box's side to the wall's plane
-constexpr double kSquareToWall = 15.0;  // degrees, between the box's axes and the wall
+// A thing with a front (relations::hasFront: a sofa, a tv, a fridge, a bed) that stands against a wall (wallAgainst)
+// faces away from it: the box's +x axis, its front, is turned to point into the room. A box's axes come from its
+// points and say nothing of which side is its front; of the RGB-D memories' fronted things against a wall, ScanNet's
+// apartment's fridge, oven and desk faced along their wall and a chair faced it. A bed's front is its foot, so a bed
+// turns only where a short side is against the wall.
 bool faceAwayFromWall(model::Box& box, const std::string& category, const std::vector<WallSegment>& walls) {
-    const WallSegment* against = nullptr;
-    double nearest = kAgainstWall;
-    for (const auto& wall : walls) {
-        const model::Vec3 d = wall.direction();
-        const double t = d.x * box.center.x + d.y * box.center.y;
-        const double turn = std::remainder(box.yaw - std::atan2(d.y, d.x), M_PI / 2);
-        if (t < wall.along0 || t > wall.along1 || std::abs(turn) > kSquareToWall * model::kDegree) continue;
-        // The box's half extent along the wall's normal.
-        const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-        const double across = std::abs(c * wall.normal.x + s * wall.normal.y) * box.size.x / 2 +
-                              std::abs(-s * wall.normal.x + c * wall.normal.y) * box.size.y / 2;
-        const double gap = std::abs(wall.signedDistance(box.center)) - across;
-        if (gap <= nearest) nearest = gap, against = &wall;
-    }
+    const WallSegment* against = wallAgainst(box, walls);
     if (!against) return false;
     const double side = against->signedDistance(box.center) >= 0 ? 1.0 : -1.0;
-    // A bed's foot is a short side: the front found must be along its length.
     return turnToFace(box, {side * against->normal.x, side * against->normal.y, 0}, category == "bed");
 }
 
 // A chair within kAtTable of a table or a desk, and against no wall, faces the nearest of them (its centre): people
-// sit at tables. Of the chairs so near one in the RGB-D memories of ScanNet's apartment, lounge and bathroom, TUM
-// fr1/rpy and the dining frames, 7 of 14 faced it by their boxes' axes.
+// sit at tables. Wider than FusionOptions::chairAtDesk (0.3 m), which names a desk by the chair pushed in at it:
+// ScanNet's lounge's armchairs stand 0.3-0.5 m from their low table. Of the chairs so near one in the RGB-D memories of
+// ScanNet's apartment, lounge and bathroom, TUM fr1/rpy and the dining frames, 7 of 14 faced it by their boxes' axes.
 constexpr double kAtTable = 0.5;  // m, between the footprints
 bool faceTable(model::Box& box, const std::vector<const model::Box*>& tables) {
     const model::Box* nearest = nullptr;
