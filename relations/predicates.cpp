@@ -101,7 +101,23 @@ constexpr auto kFronted = inShortFirstOrder(std::array<std::string_view, 24>{
     "tv-screen",  "monitor",  "desk",      "cabinet",      "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
     "nightstand", "bookcase", "bookshelf", "refrigerator", "fridge",       "oven",     "dishwasher", "fireplace"});
 
+// The kinds of usualSupport, as the detectors' classes and the labelled captures name them; any other kind stands on
+// either or is unknown.
+constexpr auto kStandsOnFloor = inShortFirstOrder(std::array<std::string_view, 20>{
+    "table",   "desk",    "chair",    "sofa",    "bed",      "fridge", "toilet", "door", "nightstand", "shelf",
+    "cabinet", "counter", "wardrobe", "dresser", "armchair", "stool",  "bench",  "oven", "suitcase",   "skateboard"});
+constexpr auto kStandsOnTops = inShortFirstOrder(std::array<std::string_view, 31>{
+    "monitor",   "camera",   "laptop",     "book",    "vase",     "bowl",       "bottle",    "mug",
+    "microwave", "keyboard", "wine-glass", "fork",    "knife",    "spoon",      "banana",    "apple",
+    "orange",    "sandwich", "broccoli",   "carrot",  "hot-dog",  "pizza",      "donut",     "cake",
+    "mouse",     "remote",   "phone",      "toaster", "scissors", "hair-dryer", "toothbrush"});
+
 }  // namespace
+
+Support usualSupport(std::string_view category) {
+    if (listed(kStandsOnFloor, category)) return Support::Floor;
+    return listed(kStandsOnTops, category) ? Support::Surface : Support::Either;
+}
 
 Affordance affordanceOf(std::string_view category) {
     // A statement asks again and again of the same few categories (on(table) of every candidate):
@@ -484,9 +500,10 @@ double attachedScore(const PredicateInputs& in) {
     // What a wall holds hangs there: a sofa pushed against the wall stands on the floor beside it (its bottom at
     // the wall's foot), a microwave on a counter against it is on the counter. A flat thing upright against the
     // wall (a picture just over a sofa's back) hangs whatever is under it (on asks the wall first: wallHolding).
+    // What stands on tops and is no hung slab (a mug, a book) rests on a top the scene may not hold.
     if (!isVerticalPlane(in.a) && sameCategory(in.b.category, kWall) &&
         (model::bottom(in.a.box) < model::bottom(in.b.box) + in.t.attachedMinRise ||
-         (!hungShape(in.a.box) && restsOnSomething(in))))
+         (!hungShape(in.a.box) && (usualSupport(in.a.category) == Support::Surface || restsOnSomething(in)))))
         return 0.0;
     double d = model::distance(in.a.box, in.b.box);
     double limit = in.t.attachedMaxGap;

@@ -128,6 +128,12 @@ inline std::string_view toString(Predicate p) { return model::toString(p); }
 enum class Affordance { Surface, Holder, Enclosure, Nothing };
 Affordance affordanceOf(std::string_view category);
 
+// What things of a kind usually stand on: the floor (chairs, beds, doors), a table, desk or counter top (mugs,
+// laptops, keyboards), or either or unknown. The ingest tells a floor from a table top by it; attached does not hang
+// on a wall what stands on tops (a mug by a wall, off the floor, rests on a shelf the scene does not hold).
+enum class Support { Floor, Surface, Either };
+Support usualSupport(std::string_view category);
+
 // Whether things of this category have a front (a sofa, a chair, a tv; docs/relations.md lists
 // them): only those can face something or have things at their front or back.
 bool hasFront(std::string_view category);

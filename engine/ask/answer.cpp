@@ -869,6 +869,9 @@ std::string reverse(const Translation& t, const ResultSet& rs) {
     }
     if (order.empty()) {
         if (rs.rows.empty()) return fmt::format("There is no {} here.{}", t.subject, subjectMayBeUnnamed(t));
+        // Off the floor, a thing rests on something, which the capture may not have shown (a mug on a shelf).
+        if (t.predicate == "on")
+            return fmt::format("Nothing stored: the {} is on nothing the memory holds.", t.subject);
         return fmt::format("Nothing: the {} is not {} anything here.", t.subject, t.condition);
     }
     std::vector<std::string> parts;

@@ -6,8 +6,12 @@
 
 #include "ingest/geometry/robust.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ingest {
+
+using relations::Support;
+using relations::usualSupport;
 
 namespace {
 

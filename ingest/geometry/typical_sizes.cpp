@@ -1,6 +1,11 @@
 #include "ingest/geometry/typical_sizes.hpp"
 
+#include "relations/predicates.hpp"
+
 namespace smql::ingest {
+
+using relations::Support;
+using relations::usualSupport;
 
 namespace {
 
@@ -11,8 +16,9 @@ namespace {
 // one measure of a desk whose floor does not show besides the cameras' assumed height, which is looser still there
 // (scale_priors.hpp: scaleFromHeightsOnTop). Extents: the largest side, height included, things of the kind
 // commonly have (a floor lamp's 1.9 m, a bookcase's 2.2 m): what a box named so may reach before its name is doubted.
-// Support: what things of the kind usually stand on (the floor, or a table, desk or counter), which tells a floor from
-// a table top (floor_evidence.hpp), as does whether things are put on the kind's top (a table's, a bed's). Upright
+// What things of the kind usually stand on is the relations library's (relations::usualSupport, shared with the
+// predicates); whether things are put on the kind's top (a table's, a bed's) tells a floor from a table top with it
+// (floor_evidence.hpp). Upright
 // ends: the kind has a thin upright part at an end or side (a bed's headboard, a sofa's back) that a detector may name
 // apart (object_fusion.cpp joins it back). Room: the one kind of room the kind stands in (a toilet in a bathroom, a
 // fridge or an oven in a kitchen), or any but a bathroom (a bed, a sofa); object_fusion.cpp doubts a name among
@@ -28,7 +34,6 @@ struct Typical {
     std::string_view category;
     double height;
     double extent;
-    Support support;
     bool holdsThings = false;
     bool uprightEnds = false;
     RoomKind room = RoomKind::Any;
@@ -46,71 +51,70 @@ constexpr Slender kFridgeShape{.length = 0.9, .depth = 0.25, .frontHeight = 1.1}
 constexpr Slender kTableShape{.length = 0.75, .depth = 0.25};
 constexpr Slender kBedShape{.length = 1.0, .depth = 0.6, .frontHeight = 1.0};
 constexpr Typical kTypical[] = {
-    {"table", 0.75, 2.4, Support::Floor, true, false, RoomKind::Any, Role::Other, {}, kTableShape},
-    {"desk", 0.75, 1.9, Support::Floor, true, false, RoomKind::Dry, Role::Other, {}, kTableShape},
-    {"chair", 0.9, 1.2, Support::Floor, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape},
-    {"sofa", 0.85, 2.8, Support::Floor, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
-    {"bed", 0.55, 2.3, Support::Floor, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, kBedShape},
-    {"fridge", 1.75, 2.0, Support::Floor, false, false, RoomKind::Kitchen, Role::Other, kFridgeLeast, kFridgeShape, 0,
-     1.2},
-    {"toilet", 0.75, 0.9, Support::Floor, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
-    {"door", 2.03, 2.4, Support::Floor},
-    {"nightstand", 0.6, 0.8, Support::Floor, true},
-    {"shelf", 0, 2.4, Support::Floor},
-    {"cabinet", 0, 2.4, Support::Floor},
-    {"counter", 0, 4.0, Support::Floor, true},
-    {"wardrobe", 0, 2.6, Support::Floor},
-    {"dresser", 0, 1.9, Support::Floor},
-    {"armchair", 0, 1.2, Support::Floor, false, false, RoomKind::Dry, Role::Seat},
-    {"stool", 0, 0.9, Support::Floor, false, false, RoomKind::Any, Role::Seat},
-    {"bench", 0, 2.2, Support::Floor, false, true, RoomKind::Any, Role::Seat},
-    {"tv", 0, 2.0, Support::Either},
-    {"monitor", 0.44, 0.9, Support::Surface},
-    {"box", 0, 1.0, Support::Either, false, false, RoomKind::Any, Role::Luggage},
-    {"camera", 0, 0.3, Support::Surface},
-    {"lamp", 0, 2.0, Support::Either},
-    {"plant", 0, 2.2, Support::Either},
-    {"cushion", 0, 0.8, Support::Either},
-    {"laptop", 0, 0.5, Support::Surface, false, false, RoomKind::Any, Role::Other, {}, {}, 0.35},
-    {"book", 0, 0.5, Support::Surface},
-    {"clock", 0, 0.6, Support::Either},
-    {"vase", 0, 0.8, Support::Surface},
-    {"bowl", 0, 0.45, Support::Surface},
-    {"bottle", 0, 0.45, Support::Surface},
-    {"mug", 0, 0.2, Support::Surface},
-    {"microwave", 0, 0.7, Support::Surface, false, false, RoomKind::Kitchen},
-    {"sink", 0, 1.2, Support::Either, false, false, RoomKind::Any, Role::Basin},
-    {"oven", 0, 1.0, Support::Floor, false, false, RoomKind::Kitchen},
-    {"keyboard", 0, 0.55, Support::Surface},
-    {"backpack", 0, 0.65, Support::Either},
-    {"umbrella", 0, 1.2, Support::Either},
-    {"handbag", 0, 0.55, Support::Either},
-    {"suitcase", 0, 0.9, Support::Floor, false, false, RoomKind::Any, Role::Luggage},
-    {"sports_ball", 0, 0.35, Support::Either},
-    {"tennis_racket", 0, 0.75, Support::Either},
-    {"wine_glass", 0, 0.3, Support::Surface},
-    {"fork", 0, 0.3, Support::Surface},
-    {"knife", 0, 0.4, Support::Surface},
-    {"spoon", 0, 0.3, Support::Surface},
-    {"banana", 0, 0.3, Support::Surface},
-    {"apple", 0, 0.15, Support::Surface},
-    {"orange", 0, 0.15, Support::Surface},
-    {"sandwich", 0, 0.3, Support::Surface},
-    {"broccoli", 0, 0.35, Support::Surface},
-    {"carrot", 0, 0.35, Support::Surface},
-    {"hot_dog", 0, 0.3, Support::Surface},
-    {"pizza", 0, 0.55, Support::Surface},
-    {"donut", 0, 0.2, Support::Surface},
-    {"cake", 0, 0.5, Support::Surface},
-    {"mouse", 0, 0.2, Support::Surface},
-    {"remote", 0, 0.3, Support::Surface},
-    {"phone", 0, 0.25, Support::Surface},
-    {"toaster", 0, 0.5, Support::Surface, false, false, RoomKind::Kitchen},
-    {"scissors", 0, 0.35, Support::Surface},
-    {"toy", 0, 1.0, Support::Either},
-    {"hair_dryer", 0, 0.4, Support::Surface},
-    {"toothbrush", 0, 0.3, Support::Surface},
-    {"skateboard", 0, 0.9, Support::Floor},
+    {"table", 0.75, 2.4, true, false, RoomKind::Any, Role::Other, {}, kTableShape},
+    {"desk", 0.75, 1.9, true, false, RoomKind::Dry, Role::Other, {}, kTableShape},
+    {"chair", 0.9, 1.2, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape},
+    {"sofa", 0.85, 2.8, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
+    {"bed", 0.55, 2.3, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, kBedShape},
+    {"fridge", 1.75, 2.0, false, false, RoomKind::Kitchen, Role::Other, kFridgeLeast, kFridgeShape, 0, 1.2},
+    {"toilet", 0.75, 0.9, false, false, RoomKind::Bathroom, Role::Other, {0.45, 0.35}},
+    {"door", 2.03, 2.4},
+    {"nightstand", 0.6, 0.8, true},
+    {"shelf", 0, 2.4},
+    {"cabinet", 0, 2.4},
+    {"counter", 0, 4.0, true},
+    {"wardrobe", 0, 2.6},
+    {"dresser", 0, 1.9},
+    {"armchair", 0, 1.2, false, false, RoomKind::Dry, Role::Seat},
+    {"stool", 0, 0.9, false, false, RoomKind::Any, Role::Seat},
+    {"bench", 0, 2.2, false, true, RoomKind::Any, Role::Seat},
+    {"tv", 0, 2.0},
+    {"monitor", 0.44, 0.9},
+    {"box", 0, 1.0, false, false, RoomKind::Any, Role::Luggage},
+    {"camera", 0, 0.3},
+    {"lamp", 0, 2.0},
+    {"plant", 0, 2.2},
+    {"cushion", 0, 0.8},
+    {"laptop", 0, 0.5, false, false, RoomKind::Any, Role::Other, {}, {}, 0.35},
+    {"book", 0, 0.5},
+    {"clock", 0, 0.6},
+    {"vase", 0, 0.8},
+    {"bowl", 0, 0.45},
+    {"bottle", 0, 0.45},
+    {"mug", 0, 0.2},
+    {"microwave", 0, 0.7, false, false, RoomKind::Kitchen},
+    {"sink", 0, 1.2, false, false, RoomKind::Any, Role::Basin},
+    {"oven", 0, 1.0, false, false, RoomKind::Kitchen},
+    {"keyboard", 0, 0.55},
+    {"backpack", 0, 0.65},
+    {"umbrella", 0, 1.2},
+    {"handbag", 0, 0.55},
+    {"suitcase", 0, 0.9, false, false, RoomKind::Any, Role::Luggage},
+    {"sports_ball", 0, 0.35},
+    {"tennis_racket", 0, 0.75},
+    {"wine_glass", 0, 0.3},
+    {"fork", 0, 0.3},
+    {"knife", 0, 0.4},
+    {"spoon", 0, 0.3},
+    {"banana", 0, 0.3},
+    {"apple", 0, 0.15},
+    {"orange", 0, 0.15},
+    {"sandwich", 0, 0.3},
+    {"broccoli", 0, 0.35},
+    {"carrot", 0, 0.35},
+    {"hot_dog", 0, 0.3},
+    {"pizza", 0, 0.55},
+    {"donut", 0, 0.2},
+    {"cake", 0, 0.5},
+    {"mouse", 0, 0.2},
+    {"remote", 0, 0.3},
+    {"phone", 0, 0.25},
+    {"toaster", 0, 0.5, false, false, RoomKind::Kitchen},
+    {"scissors", 0, 0.35},
+    {"toy", 0, 1.0},
+    {"hair_dryer", 0, 0.4},
+    {"toothbrush", 0, 0.3},
+    {"skateboard", 0, 0.9},
 };
 
 const Typical* find(std::string_view category) {
@@ -123,13 +127,13 @@ const Typical* find(std::string_view category) {
 
 std::optional<double> typicalHeight(std::string_view category) {
     const Typical* t = find(category);
-    if (!t || t->height <= 0 || t->support == Support::Surface) return std::nullopt;
+    if (!t || t->height <= 0 || usualSupport(t->category) == Support::Surface) return std::nullopt;
     return t->height;
 }
 
 std::optional<double> typicalHeightOnTop(std::string_view category) {
     const Typical* t = find(category);
-    if (!t || t->height <= 0 || t->support != Support::Surface) return std::nullopt;
+    if (!t || t->height <= 0 || usualSupport(t->category) != Support::Surface) return std::nullopt;
     return t->height;
 }
 
@@ -174,7 +178,7 @@ bool slenderForKind(std::string_view category, double longer, double shorter, do
 
 bool standsSquare(std::string_view category) {
     const Typical* t = find(category);
-    return t && t->support == Support::Floor && oneRoom(t->room);
+    return t && usualSupport(t->category) == Support::Floor && oneRoom(t->room);
 }
 
 bool holdsThings(std::string_view category) {
@@ -209,11 +213,6 @@ Role role(std::string_view category) {
 RoomKind roomKind(std::string_view category) {
     const Typical* t = find(category);
     return t ? t->room : RoomKind::Any;
-}
-
-Support usualSupport(std::string_view category) {
-    const Typical* t = find(category);
-    return t ? t->support : Support::Either;
 }
 
 }  // namespace smql::ingest

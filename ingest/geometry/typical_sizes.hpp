@@ -14,7 +14,7 @@ namespace smql::ingest {
 // kinds whose height varies little: nullopt for the others, and for things that stand on tables.
 std::optional<double> typicalHeight(std::string_view category);
 
-// A thing's usual height above the table, desk or counter top it stands on (usualSupport: Surface), for the
+// A thing's usual height above the table, desk or counter top it stands on (relations::usualSupport: Surface), for the
 // kinds whose height varies little: nullopt for the others. It measures a capture whose floor does not show, its
 // lowest surface a table top (scale_priors.hpp: scaleFromHeightsOnTop).
 std::optional<double> typicalHeightOnTop(std::string_view category);
@@ -101,15 +101,10 @@ constexpr double kBeyondTypicalHull = 2.5;
 // so its height is what such a hull measures best (a kitchen counter's, named "table", 1.06-1.27 m).
 constexpr double kTallerThanTypicalHull = 1.4;
 
-// What things of a kind usually stand on: the floor (chairs, beds, doors), a table, desk or counter
-// (mugs, laptops, keyboards), or either or unknown.
-enum class Support { Floor, Surface, Either };
-Support usualSupport(std::string_view category);
-
 // Whether things of a kind stand square to the room's walls, built in or against them: the kinds of a kitchen or a
-// bathroom that stand on the floor (roomKind, usualSupport: a fridge, an oven, a toilet). Of the people-drawn boxes
-// of ARKitScenes' 150 rooms (../shared/data/real-layouts), 22 of 24 fridges, 25 of 28 stoves and 30 of 32 toilets
-// turn less than 5 degrees from their room's furniture as a whole; chairs 59 %, sofas 73 %.
+// bathroom that stand on the floor (roomKind, relations::usualSupport: a fridge, an oven, a toilet). Of the
+// people-drawn boxes of ARKitScenes' 150 rooms (../shared/data/real-layouts), 22 of 24 fridges, 25 of 28 stoves and 30
+// of 32 toilets turn less than 5 degrees from their room's furniture as a whole; chairs 59 %, sofas 73 %.
 bool standsSquare(std::string_view category);
 
 // Whether things are put on the top of things of a kind (a table, a desk, a bed): a horizontal

@@ -18,8 +18,12 @@
 #include "ingest/pipeline/plausibility.hpp"
 #include "model/category.hpp"
 #include "model/geometry.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ingest {
+
+using relations::Support;
+using relations::usualSupport;
 
 namespace {
 

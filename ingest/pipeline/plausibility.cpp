@@ -9,8 +9,12 @@
 #include "ingest/geometry/typical_sizes.hpp"
 #include "model/category.hpp"
 #include "model/geometry.hpp"
+#include "relations/predicates.hpp"
 
 namespace smql::ingest {
+
+using relations::Support;
+using relations::usualSupport;
 
 namespace {
 

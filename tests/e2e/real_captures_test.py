@@ -75,17 +75,31 @@ def where_placed(smql, db):
     """"Where is the X?" of every kind the memory holds: a thing said to be on a wall is a slab standing upright that
     hangs there (a picture, a screen: relations::hungShape), and one by a wall or above a floor is said at its
     bottom's height. The desk's mugs, on shelves the memory does not hold, were said to be "on wall#3", and bottles
-    1.1 m up in the office photos' memory, which holds no wall, "at floor#2"."""
+    1.1 m up in the office photos' memory, which holds no wall, "at floor#2". "What is the X on?" and "what is on the
+    wall?" hold to the same: a mug is not on a wall (it was, by the attached predicate)."""
     things = {f"{r['category']}#{r['id']}": r["box"] for r in query_rows(smql, db, "FIND object RETURN id, category, box")}
+
+    def ask(question):
+        out = subprocess.run([smql, str(db), "-json", f"ASK '{question}'"], capture_output=True, text=True)
+        return json.loads(out.stdout)[-1]["message"]
+
+    def hung(name, answer):
+        size = things[name]["size"]
+        thickness = min(size[0], size[1])
+        assert thickness <= 0.1 and size[2] >= 3 * thickness and (max(size) >= 0.25 or thickness <= 0.03), \
+            (answer, size)
+
+    on_walls = ask("what is on the wall?")
+    for name in re.findall(r"[\w-]+#\d+", on_walls):
+        if name in things:
+            hung(name, on_walls)
     for category in sorted({name.split("#")[0] for name in things}):
-        out = subprocess.run([smql, str(db), "-json", f"ASK 'where is the {category.replace('-', ' ')}?'"],
-                             capture_output=True, text=True)
-        answer = json.loads(out.stdout)[-1]["message"]
+        answer = ask(f"where is the {category.replace('-', ' ')}?")
         for name in re.findall(r"([\w-]+#\d+) is on wall#\d+ \(", answer):
-            size = things[name]["size"]
-            thickness = min(size[0], size[1])
-            assert thickness <= 0.1 and size[2] >= 3 * thickness and (max(size) >= 0.25 or thickness <= 0.03), \
-                (answer, size)
+            hung(name, answer)
+        carrier = ask(f"what is the {category.replace('-', ' ')} on?")
+        for name in re.findall(r"([\w-]+#\d+) is on wall#\d+", carrier):
+            hung(name, carrier)
         said = re.findall(r"([\w-]+#\d+) is by wall#\d+, ([\d.]+) m above the floor", answer) + \
             re.findall(r"([\w-]+#\d+) is ([\d.]+) m above floor#\d+", answer)
         for name, height in said:

@@ -421,6 +421,20 @@ TEST_CASE("attached to a wall: what it holds hangs there, what stands by it or r
     CHECK(evalAmong(Predicate::Attached, socket, wall, room) > 0);
     // A flat thing upright against the wall hangs on it whatever its lower edge touches.
     CHECK(evalAmong(Predicate::Attached, lowPicture, wall, room) > 0);
+    // Off the floor by the wall with nothing stored under it: what stands on tops rests on a shelf the scene does not
+    // hold (TUM fr1/rpy's mug 1.28 m up, ScanNet's apartment's books); what may hang is held by the wall.
+    Node mug = node(28, "mug", -1, 1.9, 1.33, 0.1, 0.1, 0.1);
+    Node book = node(29, "book", -1.4, 1.92, 1.38, 0.19, 0.06, 0.2);
+    Node clock = node(30, "clock", 1, 1.9, 1.8, 0.1, 0.1, 0.1);
+    const std::vector<Node> unshelved{wall, mug, book, clock};
+    const NodeObstacles shelfless{unshelved};
+    CHECK(usualSupport("mug") == Support::Surface);
+    CHECK(usualSupport("wine_glass") == Support::Surface);
+    CHECK(usualSupport("clock") == Support::Either);
+    CHECK(usualSupport("sofa") == Support::Floor);
+    CHECK(evalAmong(Predicate::Attached, mug, wall, shelfless) == 0);
+    CHECK(evalAmong(Predicate::Attached, book, wall, shelfless) == 0);
+    CHECK(evalAmong(Predicate::Attached, clock, wall, shelfless) > 0);
     // The rule is the wall's: by a window or a door, touching is enough, as before.
     Node window = node(27, "window", 1.5, 2, 1.2, 1, 0.05, 1.2, model::NodeKind::Anchor, model::GeometryKind::Plane);
     CHECK(evalAmong(Predicate::Attached, microwave, window, room) > 0);
