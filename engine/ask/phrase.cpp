@@ -809,7 +809,9 @@ bool PhraseParser::onSameWallAs(const Words& w, std::size_t at, std::size_t& i, 
 // thing closest to) is on or in it, not beside it: a person asked what is next to the sofa names the side table and the
 // lamp, not the cushions on it (those are "on the sofa", as RELATE names the most specific relation), so the condition
 // on a list of things of any kind comes with NOT on and NOT in of the same thing, as far as that kind carries things on
-// or holds them (docs/ask.md, "Near and next to"). A written distance ("within 1 m of the sofa") is a distance and
+// or holds them (docs/ask.md, "Near and next to"). What the thing itself stands on is under it, not beside it either:
+// for a kind put on tops (a monitor, a mug: relations::usualSupport), NOT below the thing too, so that "what is next
+// to the monitor?" does not name the desk it stands on. A written distance ("within 1 m of the sofa") is a distance and
 // keeps everything within it; a named kind ("the chairs near the table") is left as asked, and nothing rests on the
 // room's walls, floor or ceiling in this sense.
 void PhraseParser::leaveOutResting(Phrase& p) const {
@@ -843,6 +845,13 @@ void PhraseParser::leaveOutRestingOn(Phrase& p, const Phrase& thing) const {
         c.args = {thing};
         c.negated = true;
         p.conditions.push_back(std::move(c));
+    }
+    if (relations::usualSupport(thing.categories.front()) == relations::Support::Surface) {
+        Condition carrier;
+        carrier.predicate = "below";
+        carrier.args = {thing};
+        carrier.negated = true;
+        p.conditions.push_back(std::move(carrier));
     }
 }
 
