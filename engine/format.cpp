@@ -1,6 +1,7 @@
 #include "engine/format.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -20,8 +21,10 @@ std::string valueText(const Value& value) {
             return std::get<std::string>(value);
         case ValueType::Box: {
             const auto& b = std::get<model::Box>(value);
+            // Whole degrees, a turn a hair under zero written 0, not -0.
+            const double yaw = std::round(b.yaw / model::kDegree) + 0.0;
             return fmt::format("({:.2f}, {:.2f}, {:.2f}) {:.2f}x{:.2f}x{:.2f} yaw {:.0f}", b.center.x, b.center.y,
-                               b.center.z, b.size.x, b.size.y, b.size.z, b.yaw / model::kDegree);
+                               b.center.z, b.size.x, b.size.y, b.size.z, yaw);
         }
     }
     return "";

@@ -28,7 +28,8 @@ namespace {
 // height no thing of the kind stands over, above what it stands on, where its make bounds it (a laptop: the lid of the
 // largest, a 17.3-inch 16:9 panel 0.215 m tall in a lid of about 0.27 m, opened upright on a base of 2-3 cm stands
 // about 0.3 m; 0.35 leaves a depth camera's few centimetres). Deepest: the footprint's shorter side no thing of the
-// kind exceeds, where its make bounds it (typical_sizes.hpp: deepestFootprint). The rows cover
+// kind exceeds, where its make bounds it (typical_sizes.hpp: deepestFootprint); shallowest: the one no thing of the
+// kind comes under (typical_sizes.hpp: shallowestFootprint). The rows cover
 // the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
@@ -42,6 +43,7 @@ struct Typical {
     Slender slender{};
     double tallest = 0;
     double deepest = 0;
+    double shallowest = 0;
 };
 // The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
 constexpr Slender kChairShape{
@@ -53,7 +55,7 @@ constexpr Slender kBedShape{.length = 1.0, .depth = 0.6, .frontHeight = 1.0};
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, true, false, RoomKind::Any, Role::Other, {}, kTableShape},
     {"desk", 0.75, 1.9, true, false, RoomKind::Dry, Role::Other, {}, kTableShape},
-    {"chair", 0.9, 1.2, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape},
+    {"chair", 0.9, 1.2, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape, 0, 0, 0.33},
     {"sofa", 0.85, 2.8, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
     {"bed", 0.55, 2.3, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, kBedShape},
     {"fridge", 1.75, 2.0, false, false, RoomKind::Kitchen, Role::Other, kFridgeLeast, kFridgeShape, 0, 1.2},
@@ -153,6 +155,12 @@ std::optional<double> deepestFootprint(std::string_view category) {
     const Typical* t = find(category);
     if (!t || t->deepest <= 0) return std::nullopt;
     return t->deepest;
+}
+
+std::optional<double> shallowestFootprint(std::string_view category) {
+    const Typical* t = find(category);
+    if (!t || t->shallowest <= 0) return std::nullopt;
+    return t->shallowest;
 }
 
 std::optional<LeastSize> leastSize(std::string_view category) {

@@ -71,20 +71,70 @@ bool faceAwayFromWall(model::Box& box, const std::string& category, const std::v
     return turnToFace(box, {side * against->normal.x, side * against->normal.y, 0}, category == "bed");
 }
 
-// A chair within kAtTable of a table or a desk, and against no wall, faces the nearest of them (its centre): people
+// A chair within kAtTable of a table or a desk, and against no wall, stands at the nearest of them (tableAt): people
 // sit at tables. Wider than FusionOptions::chairAtDesk (0.3 m), which names a desk by the chair pushed in at it:
-// ScanNet's lounge's armchairs stand 0.3-0.5 m from their low table. Of the chairs so near one in the RGB-D memories of
-// ScanNet's apartment, lounge and bathroom, TUM fr1/rpy and the dining frames, 7 of 14 faced it by their boxes' axes.
+// ScanNet's lounge's armchairs stand 0.3-0.5 m from their low table.
 constexpr double kAtTable = 0.5;  // m, between the footprints
-bool faceTable(model::Box& box, const std::vector<const model::Box*>& tables) {
+const model::Box* tableAt(const model::Box& box, const std::vector<const model::Box*>& tables) {
     const model::Box* nearest = nullptr;
     double gap = kAtTable;
     for (const model::Box* table : tables)
         if (const double g = model::horizontalGap(box, *table); g <= gap) gap = g, nearest = table;
-    if (!nearest) return false;
-    const double dx = nearest->center.x - box.center.x, dy = nearest->center.y - box.center.y;
+    return nearest;
+}
+
+// A chair at a table faces its centre. Of the chairs at one in the RGB-D memories of ScanNet's apartment, lounge and
+// bathroom, TUM fr1/rpy and the dining frames, 7 of 14 faced it by their boxes' axes.
+bool faceTable(model::Box& box, const model::Box& table) {
+    const double dx = table.center.x - box.center.x, dy = table.center.y - box.center.y;
     const double length = std::hypot(dx, dy);
     return length > 0 && turnToFace(box, {dx / length, dy / length, 0}, false);
+}
+
+// A chair pushed in at a table shows the cameras its back alone, its seat under the table's top: its box is a slab,
+// shallower than any chair (shallowestFootprint) and at most half as deep as it is wide. The dining frames' four
+// chairs at the table were 0.11-0.19 m deep, their slabs' axes turned up to 30 degrees from the table's. Such a chair
+// stands square to the table's nearest side and faces it, its back along that side where it was seen, and reaches
+// as deep as the shallowest chairs towards the table. Whether it was one.
+bool pushInAt(model::Box& box, std::string_view category, const model::Box& table) {
+    const auto shallowest = shallowestFootprint(category);
+    const double thin = std::min(box.size.x, box.size.y), wide = std::max(box.size.x, box.size.y);
+    if (!shallowest || thin >= *shallowest || 2 * thin > wide) return false;
+    // The chair's centre in the table's own axes: the side it stands beyond the most is the one it is at.
+    const double c = std::cos(table.yaw), s = std::sin(table.yaw);
+    const double ox = box.center.x - table.center.x, oy = box.center.y - table.center.y;
+    const double u = c * ox + s * oy, v = -s * ox + c * oy;
+    const bool endOn = std::abs(u) - table.size.x / 2 >= std::abs(v) - table.size.y / 2;
+    // Towards the table: against the table's x axis beyond its +x end, and so on.
+    const double sign = (endOn ? u : v) >= 0 ? -1.0 : 1.0;
+    box.yaw = endOn ? std::atan2(sign * s, sign * c) : std::atan2(sign * c, -sign * s);
+    const double grow = *shallowest - thin;
+    box.size = {*shallowest, wide, box.size.z};
+    box.center.x += std::cos(box.yaw) * grow / 2;
+    box.center.y += std::sin(box.yaw) * grow / 2;
+    return true;
+}
+
+// Chairs face the table they stand at (faceTable), pushed in where their backs alone were seen (pushInAt). How many
+// were pushed in.
+std::size_t seatAtTables(std::vector<PlacedTrack>& placed, const std::vector<ObjectTrack>& tracks) {
+    const auto kindOf = [&](const PlacedTrack& p, std::initializer_list<std::string_view> kinds) {
+        return std::find(kinds.begin(), kinds.end(), tracks[p.track].category) != kinds.end();
+    };
+    std::vector<const model::Box*> tables;
+    for (const auto& p : placed)
+        if (kindOf(p, {"table", "desk"})) tables.push_back(&p.box);
+    std::size_t pushedIn = 0;
+    for (auto& p : placed) {
+        if (p.againstWall || !kindOf(p, {"chair", "armchair", "office-chair"})) continue;
+        if (const model::Box* table = tableAt(p.box, tables); !table)
+            continue;
+        else if (pushInAt(p.box, tracks[p.track].category, *table))
+            ++pushedIn;
+        else
+            faceTable(p.box, *table);
+    }
+    return pushedIn;
 }
 
 // Nothing stands below the floor or above the ceiling: a hull carved from views that all look
@@ -348,15 +398,11 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         const bool againstWall = !opening && relations::hasFront(category) && faceAwayFromWall(box, category, walls);
         placed.push_back({t, std::move(colors), box, againstWall});
     }
-    // Chairs face the table they stand at (faceTable).
-    const auto kindOf = [&](const PlacedTrack& p, std::initializer_list<std::string_view> kinds) {
-        return std::find(kinds.begin(), kinds.end(), tracks[p.track].category) != kinds.end();
-    };
-    std::vector<const model::Box*> tables;
-    for (const auto& p : placed)
-        if (kindOf(p, {"table", "desk"})) tables.push_back(&p.box);
-    for (auto& p : placed)
-        if (!p.againstWall && kindOf(p, {"chair", "armchair", "office-chair"})) faceTable(p.box, tables);
+    if (const std::size_t pushedIn = seatAtTables(placed, tracks))
+        progress.note(
+            fmt::format("objects: {} chair(s) at a table seen by their backs alone: square to it, reaching "
+                        "under it as deep as the shallowest chairs",
+                        pushedIn));
     if (const std::size_t merged = mergeHullsStoredTwice(placed, tracks))
         progress.note(fmt::format(
             "objects: {} hull(s) carved without depth lay mostly inside another of their kind: one thing stored "
