@@ -50,6 +50,12 @@ bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, model
         describeSubject(thing, out);
         return true;
     }
+    // "what is the room like?", "what's this place like?", before a thing is looked for in "the room like"
+    if (i + 3 < w.size() && w[i] == "what" && isOneOf(w[i + 1], {"is", "'s"}) && w.back() == "like" &&
+        describesScene(w, i + 2, w.size() - 1, parser, sceneRoot, out)) {
+        i = w.size();
+        return true;
+    }
     // "what is object#7?" (an `object` its models could not name among them), "what is the black table?", "what are
     // the boxes?": a thing named by its id, or by its kind and nothing more than its colour, is asked for all the
     // memory holds of it. Every other "what is ...?" form was tried before this one.
@@ -66,12 +72,6 @@ bool readDescription(const Words& w, std::size_t& i, PhraseParser& parser, model
             describeSubject(thing, out);
             return true;
         }
-    }
-    // "what is the room like?", "what's this place like?"
-    if (i + 3 < w.size() && w[i] == "what" && isOneOf(w[i + 1], {"is", "'s"}) && w.back() == "like" &&
-        describesScene(w, i + 2, w.size() - 1, parser, sceneRoot, out)) {
-        i = w.size();
-        return true;
     }
     if (i + 2 > w.size() || !isOneOf(w[i], {"what", "how"}) || !isOneOf(w[i + 1], {"does", "do"})) return false;
     i += 2;

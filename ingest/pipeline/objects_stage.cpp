@@ -130,7 +130,7 @@ std::size_t seatAtTables(std::vector<PlacedTrack>& placed, const std::vector<Obj
         if (const model::Box* table = tableAt(p.box, tables); !table)
             continue;
         else if (pushInAt(p.box, tracks[p.track].category, *table))
-            ++pushedIn;
+            p.pushedIn = true, ++pushedIn;
         else
             faceTable(p.box, *table);
     }
@@ -264,19 +264,41 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
     return widestAtTop ? underTop(std::move(kept), surface, high) : kept;
 }
 
-std::size_t mergeHullsStoredTwice(std::vector<PlacedTrack>& placed, std::vector<ObjectTrack>& tracks) {
+namespace {
+
+// `box` grown in its own axes to take in `other`'s footprint and heights.
+void takeIn(model::Box& box, const model::Box& other) {
+    const model::BoxFrame frame(box);
+    double lo[2] = {-box.size.x / 2, -box.size.y / 2}, hi[2] = {-lo[0], -lo[1]};
+    for (const model::Vec2& corner : model::footprint(other)) {
+        const model::Vec2 at = frame.local(corner);
+        lo[0] = std::min(lo[0], at.x), lo[1] = std::min(lo[1], at.y);
+        hi[0] = std::max(hi[0], at.x), hi[1] = std::max(hi[1], at.y);
+    }
+    const model::Vec2 centre = frame.world({(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2});
+    const double bottom = std::min(model::bottom(box), model::bottom(other));
+    const double top = std::max(model::top(box), model::top(other));
+    box.center = {centre.x, centre.y, (bottom + top) / 2};
+    box.size = {hi[0] - lo[0], hi[1] - lo[1], top - bottom};
+}
+
+}  // namespace
+
+std::size_t mergeStoredTwice(std::vector<PlacedTrack>& placed, std::vector<ObjectTrack>& tracks) {
     std::stable_sort(placed.begin(), placed.end(), [](const PlacedTrack& a, const PlacedTrack& b) {
         return model::volume(a.box) > model::volume(b.box);
     });
     std::size_t merged = 0;
     for (std::size_t small = placed.size(); small-- > 0;) {
         ObjectTrack& smaller = tracks[placed[small].track];
-        if (!smaller.carved || isOpening(smaller.category)) continue;
+        if (!(smaller.carved || placed[small].pushedIn) || isOpening(smaller.category)) continue;
         for (std::size_t large = 0; large < small; ++large) {
             ObjectTrack& larger = tracks[placed[large].track];
-            if (!larger.carved || kindName(larger.category) != kindName(smaller.category) ||
+            const bool alike = placed[small].pushedIn ? placed[large].pushedIn : larger.carved;
+            if (!alike || kindName(larger.category) != kindName(smaller.category) ||
                 !storedTwice(placed[small].box, placed[large].box))
                 continue;
+            if (placed[small].pushedIn) takeIn(placed[large].box, placed[small].box);
             larger.views.insert(larger.views.end(), std::make_move_iterator(smaller.views.begin()),
                                 std::make_move_iterator(smaller.views.end()));
             if (!placed[small].colors.empty()) placed[large].colors.push_back(placed[small].colors);
@@ -403,13 +425,13 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             fmt::format("objects: {} chair(s) at a table seen by their backs alone: square to it, reaching "
                         "under it as deep as the shallowest chairs",
                         pushedIn));
-    if (const std::size_t merged = mergeHullsStoredTwice(placed, tracks))
-        progress.note(fmt::format(
-            "objects: {} hull(s) carved without depth lay mostly inside another of their kind: one thing stored "
-            "twice, merged into it",
-            merged));
+    if (const std::size_t merged = mergeStoredTwice(placed, tracks))
+        progress.note(
+            fmt::format("objects: {} hull(s) carved without depth or chair(s) pushed in lay mostly inside "
+                        "another of their kind: one thing stored twice, merged into it",
+                        merged));
 
-    for (auto& [t, colors, box, againstWall] : placed) {
+    for (auto& [t, colors, box, againstWall, pushedIn] : placed) {
         auto& track = tracks[t];
         const auto& category = track.category;
         const bool opening = isOpening(category);

@@ -540,11 +540,13 @@ TEST_CASE("ASK 'describe the room' sums the scene up: floor, walls, openings and
     TempDir dir;
     auto engine = openWithTheRooms(dir);
     run(*engine, "USE SCENE 'replica-room0'");
-    for (const char* question :
-         {"describe the room", "what is the room like?", "what does this room look like?", "tell me about the room"}) {
+    for (const char* question : {"describe the room", "what is the room like?", "what does this room look like?",
+                                 "tell me about the room", "what is this room like"}) {
         auto answer = run(*engine, fmt::format("ASK '{}'", question));
         INFO(question << "\n" << answer.message);
         CHECK_THAT(answer.message, Catch::Contains("SMQL: DESCRIBE #"));
+        // No thing is looked for in "room like" first ("Words: room like -> nothing" before the summary).
+        CHECK_THAT(answer.message, !Catch::Contains("Words:"));
         CHECK_THAT(answer.message, Catch::Contains("\nreplica-room0: "));
         CHECK_THAT(answer.message, Catch::Contains(" walls, "));
     }

@@ -287,7 +287,9 @@ TEST_CASE("the frames stage names the frames without a pose in one note") {
 // the table projects into the table's outline in every view. The shape below is 7-Scenes' red kitchen
 // table as 100 of its photos give it (docs/ingest.md, "Detections without depth"): its sparse points on
 // the top at 0.73-0.77 m, a few on what stands there up to 1.03 m, the hull carved up to 1.56 m.
-TEST_CASE("the objects stage merges a hull carved without depth that lies mostly inside a larger one of its kind") {
+TEST_CASE(
+    "the objects stage merges a hull carved without depth, or a chair pushed in, that lies mostly inside a larger one "
+    "of its kind") {
     auto trackOf = [](const std::string& category, bool carved, std::uint32_t frame) {
         ObjectTrack track;
         track.category = category;
@@ -306,7 +308,7 @@ TEST_CASE("the objects stage merges a hull carved without depth that lies mostly
     std::vector<PlacedTrack> placed{{0, white, boxOf(0, 0, 1.0)},    {1, white, boxOf(0.1, 0, 0.6)},
                                     {2, white, boxOf(-0.1, 0, 0.5)}, {3, white, boxOf(0, 0.1, 0.5)},
                                     {4, white, boxOf(5, 5, 1.2)},    {5, white, boxOf(5.3, 5, 0.7)}};
-    CHECK(mergeHullsStoredTwice(placed, tracks) == 2);
+    CHECK(mergeStoredTwice(placed, tracks) == 2);
     std::vector<std::size_t> kept;
     for (const auto& p : placed) kept.push_back(p.track);
     CHECK(kept == std::vector<std::size_t>{0, 2, 3, 4});
@@ -318,8 +320,22 @@ TEST_CASE("the objects stage merges a hull carved without depth that lies mostly
     // Side by side, the smaller's half outside the larger: two things.
     std::vector<ObjectTrack> apart{trackOf("chair", true, 1), trackOf("chair", true, 1)};
     std::vector<PlacedTrack> sideBySide{{0, white, boxOf(0, 0, 0.6)}, {1, white, boxOf(0.35, 0, 0.5)}};
-    CHECK(mergeHullsStoredTwice(sideBySide, apart) == 0);
+    CHECK(mergeStoredTwice(sideBySide, apart) == 0);
     CHECK(sideBySide.size() == 2);
+    // Two pieces of one chair's back, measured on depth and pushed in at a table (the dining frames'): one chair, its
+    // box taking in both; a pushed-in chair and one that was not are left apart.
+    auto chairAt = [](double y, double width) { return model::Box{{0.62, y, 0.49}, {0.33, width, 0.98}, 0}; };
+    std::vector<ObjectTrack> pieces{trackOf("chair", false, 1), trackOf("chair", false, 2), trackOf("chair", false, 3)};
+    std::vector<PlacedTrack> pushed{{0, white, chairAt(1.16, 0.39), false, true},
+                                    {1, white, chairAt(0.98, 0.32), false, true},
+                                    {2, white, chairAt(1.30, 0.39), false, false}};
+    CHECK(mergeStoredTwice(pushed, pieces) == 1);
+    REQUIRE(pushed.size() == 2);
+    CHECK(pushed[0].track == 0);
+    CHECK(pushed[0].box.size.y == Approx(1.355 - 0.82));
+    CHECK(pushed[0].box.center.y == Approx((1.355 + 0.82) / 2));
+    CHECK(pushed[0].box.size.x == Approx(0.33));
+    CHECK(pieces[0].views.size() == 2);
 }
 
 TEST_CASE("the objects stage holds a carved hull's top, and a table's footprint, to where its surfaces were seen") {
