@@ -96,10 +96,11 @@ constexpr auto kCarryNothing = inShortFirstOrder(std::array<std::string_view, 16
 // arm or cord, a plant's leaves): restsWithinItsBound.
 constexpr auto kSpreading = inShortFirstOrder(
     std::array<std::string_view, 6>{"lamp", "floor-lamp", "table-lamp", "desk-lamp", "plant", "indoor-plant"});
-constexpr auto kFronted = inShortFirstOrder(std::array<std::string_view, 24>{
+constexpr auto kFronted = inShortFirstOrder(std::array<std::string_view, 25>{
     "sofa",       "couch",    "armchair",  "chair",        "office-chair", "bed",      "tv",         "television",
     "tv-screen",  "monitor",  "desk",      "cabinet",      "cupboard",     "wardrobe", "dresser",    "chest-of-drawers",
-    "nightstand", "bookcase", "bookshelf", "refrigerator", "fridge",       "oven",     "dishwasher", "fireplace"});
+    "nightstand", "bookcase", "bookshelf", "refrigerator", "fridge",       "oven",     "dishwasher", "fireplace",
+    "toilet"});
 
 // The kinds of usualSupport, as the detectors' classes and the labelled captures name them; any other kind stands on
 // either or is unknown.

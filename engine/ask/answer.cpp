@@ -43,9 +43,8 @@ std::string listed(const std::vector<std::string>& items, std::string_view separ
                    std::size_t named = kNamedInAnswer) {
     std::string out;
     for (std::size_t i = 0; i < items.size() && i < named; ++i) out += (i ? std::string(separator) : "") + items[i];
-    // "a, b and 3 more"; "a and b and 3 more", not "and and".
-    if (items.size() > named)
-        out += fmt::format("{}and {} more", separator == " and " ? " " : separator, items.size() - named);
+    // "a, b and 3 more".
+    if (items.size() > named) out += fmt::format("{}and {} more", separator, items.size() - named);
     return out;
 }
 
@@ -55,6 +54,12 @@ std::string listedWithAnd(const std::vector<std::string>& items) {
     for (std::size_t i = 0; i < items.size(); ++i)
         out += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
     return out;
+}
+
+// The things a subject stands so to, as a sentence lists them: "bed#8, desk#12 and table#13", or the first
+// kNamedInAnswer and how many more.
+std::string listedThings(const std::vector<std::string>& items) {
+    return items.size() <= kNamedInAnswer ? listedWithAnd(items) : listed(items);
 }
 
 // When every row has one category, the answer names it ("2 cushions"), else "things".
@@ -875,7 +880,7 @@ std::string reverse(const Translation& t, const ResultSet& rs) {
         return fmt::format("Nothing: the {} is not {} anything here.", t.subject, t.condition);
     }
     std::vector<std::string> parts;
-    for (const auto& s : order) parts.push_back(fmt::format("{} is {} {}", s, t.condition, listed(held[s], " and ")));
+    for (const auto& s : order) parts.push_back(fmt::format("{} is {} {}", s, t.condition, listedThings(held[s])));
     return listed(parts, "; ") + ".";
 }
 

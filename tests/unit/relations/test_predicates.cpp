@@ -353,6 +353,8 @@ TEST_CASE("facing and the intrinsic front and back") {
     Node stool = chair;
     stool.category = "stool";
     CHECK_FALSE(hasFront("stool"));
+    // A toilet faces away from the wall its tank stands against: "what is in front of the toilet?".
+    CHECK(hasFront("toilet"));
     CHECK(eval(Predicate::Facing, stool, kTable) == 0);
     // The section widens 10 degrees beyond the chair's sides: a 0.1 m lamp 2 m ahead whose farther
     // corner is just inside is faced, just outside is not. That corner lies 2 - 0.25 + 0.05 = 1.8 m past
