@@ -145,4 +145,17 @@ bool footprintContains(const Box& box, Vec2 point, double margin) { return BoxFr
 
 double footprintGap(const Box& box, Vec2 point) { return BoxFrame(box).gap(point); }
 
+void takeInFootprint(Box& box, const Box& other) {
+    const BoxFrame frame(box);
+    double lo[2] = {-box.size.x / 2, -box.size.y / 2}, hi[2] = {-lo[0], -lo[1]};
+    for (const Vec2& corner : footprint(other)) {
+        const Vec2 at = frame.local(corner);
+        lo[0] = std::min(lo[0], at.x), lo[1] = std::min(lo[1], at.y);
+        hi[0] = std::max(hi[0], at.x), hi[1] = std::max(hi[1], at.y);
+    }
+    const Vec2 centre = frame.world({(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2});
+    box.center.x = centre.x, box.center.y = centre.y;
+    box.size.x = hi[0] - lo[0], box.size.y = hi[1] - lo[1];
+}
+
 }  // namespace smql::model

@@ -79,5 +79,7 @@ double fractionInside(const Box& a, const Box& b);
 bool footprintContains(const Box& box, Vec2 point, double margin = 0);
 // Shortest distance in the floor plane from the point to the box's footprint; 0 inside it.
 double footprintGap(const Box& box, Vec2 point);
+// Grows the box's footprint in its own axes, its turn kept, to take in `other`'s footprint (its heights as they were).
+void takeInFootprint(Box& box, const Box& other);
 
 }  // namespace smql::model

@@ -372,16 +372,7 @@ bool pieceOf(const SeenBox& small, const SeenBox& large, double touching, const 
 }
 
 void reachUnder(model::Box& cabinet, const model::Box& basin) {
-    const model::BoxFrame frame(cabinet);
-    double lo[2] = {-cabinet.size.x / 2, -cabinet.size.y / 2}, hi[2] = {-lo[0], -lo[1]};
-    for (const model::Vec2& corner : model::footprint(basin)) {
-        const model::Vec2 at = frame.local(corner);
-        lo[0] = std::min(lo[0], at.x), lo[1] = std::min(lo[1], at.y);
-        hi[0] = std::max(hi[0], at.x), hi[1] = std::max(hi[1], at.y);
-    }
-    const model::Vec2 centre = frame.world({(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2});
-    cabinet.center.x = centre.x, cabinet.center.y = centre.y;
-    cabinet.size.x = hi[0] - lo[0], cabinet.size.y = hi[1] - lo[1];
+    model::takeInFootprint(cabinet, basin);
     const double bottom = model::bottom(cabinet), top = std::max(model::top(cabinet), model::bottom(basin));
     cabinet.size.z = top - bottom;
     cabinet.center.z = (top + bottom) / 2;

@@ -268,18 +268,11 @@ namespace {
 
 // `box` grown in its own axes to take in `other`'s footprint and heights.
 void takeIn(model::Box& box, const model::Box& other) {
-    const model::BoxFrame frame(box);
-    double lo[2] = {-box.size.x / 2, -box.size.y / 2}, hi[2] = {-lo[0], -lo[1]};
-    for (const model::Vec2& corner : model::footprint(other)) {
-        const model::Vec2 at = frame.local(corner);
-        lo[0] = std::min(lo[0], at.x), lo[1] = std::min(lo[1], at.y);
-        hi[0] = std::max(hi[0], at.x), hi[1] = std::max(hi[1], at.y);
-    }
-    const model::Vec2 centre = frame.world({(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2});
     const double bottom = std::min(model::bottom(box), model::bottom(other));
     const double top = std::max(model::top(box), model::top(other));
-    box.center = {centre.x, centre.y, (bottom + top) / 2};
-    box.size = {hi[0] - lo[0], hi[1] - lo[1], top - bottom};
+    model::takeInFootprint(box, other);
+    box.center.z = (bottom + top) / 2;
+    box.size.z = top - bottom;
 }
 
 }  // namespace

@@ -47,6 +47,25 @@ TEST_CASE("containment and world bounds") {
     CHECK(footprintGap(box(0, 0, 0, 2, 1, 1, M_PI / 2), {0.0, 3.0}) == Approx(2.0));
 }
 
+TEST_CASE("a box's footprint grown in its own axes to take in another's") {
+    // Two pieces of one chair's back side by side: the first grows along y to take in the second, its turn and
+    // heights kept.
+    Box back = box(0.62, 1.16, 0.49, 0.33, 0.39, 0.98);
+    takeInFootprint(back, box(0.62, 0.98, 0.2, 0.33, 0.32, 0.4));
+    CHECK(back.center.y == Approx((1.355 + 0.82) / 2));
+    CHECK(back.size.y == Approx(1.355 - 0.82));
+    CHECK(back.size.x == Approx(0.33));
+    CHECK(back.center.z == 0.49);
+    CHECK(back.size.z == 0.98);
+    // A turned box takes in the corners of one turned otherwise, in its own axes: a unit square turned 45 degrees
+    // at its centre reaches sqrt(2) / 2 along each of its axes.
+    Box turned = box(0, 0, 0, 0.2, 0.2, 1, M_PI / 2);
+    takeInFootprint(turned, box(0, 0, 0, 1, 1, 1, M_PI / 4));
+    CHECK(turned.size.x == Approx(std::sqrt(2.0)));
+    CHECK(turned.size.y == Approx(std::sqrt(2.0)));
+    CHECK(turned.yaw == Approx(M_PI / 2));
+}
+
 TEST_CASE("nearest names for did-you-mean hints") {
     CHECK(editDistance("sofa", "sopha") == 2);
     auto close = nearestNames("cushon", {"cushion", "chair", "table"});
