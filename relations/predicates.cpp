@@ -649,9 +649,9 @@ model::Aabb supportRegion(const model::Aabb& a, double, const Thresholds& t) {
     b.max.z = kUnbounded;
     return b;
 }
-// The column over a box (from just under its top) and the column under it (to just over its bottom).
-// What rests on a box may sink into its top, so the column over it starts at its bottom (restingOnRegion's), and
-// the one under a box reaches up as far as supportRegion's: the whole column.
+// The column over a box and the column under it. What rests on a box may sink into its top, so the column over it
+// starts at its bottom (restingOnRegion's), and the one under a box reaches up as far as supportRegion's: the whole
+// column.
 model::Aabb columnAbove(const model::Aabb& around, double, const Thresholds&) {
     model::Aabb b = around;
     b.max.z = kUnbounded;

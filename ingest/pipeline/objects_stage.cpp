@@ -127,10 +127,11 @@ std::size_t seatAtTables(std::vector<PlacedTrack>& placed, const std::vector<Obj
     std::size_t pushedIn = 0;
     for (auto& p : placed) {
         if (p.againstWall || !kindOf(p, {"chair", "armchair", "office-chair"})) continue;
-        if (const model::Box* table = tableAt(p.box, tables); !table)
-            continue;
-        else if (pushInAt(p.box, tracks[p.track].category, *table))
-            p.pushedIn = true, ++pushedIn;
+        const model::Box* table = tableAt(p.box, tables);
+        if (!table) continue;
+        p.pushedIn = pushInAt(p.box, tracks[p.track].category, *table);
+        if (p.pushedIn)
+            ++pushedIn;
         else
             faceTable(p.box, *table);
     }
