@@ -497,9 +497,8 @@ std::string direction(const Translation& t, const ResultSet& rs) {
             if (std::holds_alternative<model::Box>(row[box]) &&
                 std::find(t.roles[role].begin(), t.roles[role].end(), text(row[category])) != t.roles[role].end())
                 found[role].push_back(&row);
-        if (found[role].empty())
-            return fmt::format("There is no {} here{}.{}", listed(t.roles[role], " or "), roleNames[role],
-                               mayBeUnnamed(t, listed(t.roles[role], " or ")));
+        if (const std::string kinds = listed(t.roles[role], " or "); found[role].empty())
+            return fmt::format("There is no {} here{}.{}", kinds, roleNames[role], mayBeUnnamed(t, kinds));
     }
     // Of several things to stand by or to face, the two nearest each other: standing by a chair facing the desk is
     // standing by the desk's chair, not one across the room (the first of the rows where one of them is alone).

@@ -55,16 +55,16 @@ def desk_rgbd(smql, folder, work):
     where_placed(smql, work / "db")
     # What a monitor stands on is under it, not next to it: the monitor's box sinks into the desk's top, and "what is
     # under the monitor?" was nothing, "what is next to the monitor?" the desk among the things beside it.
-    carried = query_rows(smql, work / "db", "FIND monitor WHERE on(desk) RETURN id")
-    if carried:
-        desks = {f"desk#{r['id']}" for r in query_rows(smql, work / "db", "FIND desk RETURN id")}
-        under = subprocess.run([smql, str(work / "db"), "-json", "ASK 'what is under the monitor?'"],
-                               capture_output=True, text=True)
-        beside = subprocess.run([smql, str(work / "db"), "-json", "ASK 'what is next to the monitor?'"],
-                                capture_output=True, text=True)
-        under, beside = (json.loads(out.stdout)[-1]["message"] for out in (under, beside))
-        assert desks & set(re.findall(r"desk#\d+", under)), under
-        assert not desks & set(re.findall(r"desk#\d+", beside)), beside
+    # The desk's monitor stands on it (its photos).
+    assert query_rows(smql, work / "db", "FIND monitor WHERE on(desk) RETURN id"), log
+    desks = {f"desk#{r['id']}" for r in query_rows(smql, work / "db", "FIND desk RETURN id")}
+    under = subprocess.run([smql, str(work / "db"), "-json", "ASK 'what is under the monitor?'"],
+                           capture_output=True, text=True)
+    beside = subprocess.run([smql, str(work / "db"), "-json", "ASK 'what is next to the monitor?'"],
+                            capture_output=True, text=True)
+    under, beside = (json.loads(out.stdout)[-1]["message"] for out in (under, beside))
+    assert desks & set(re.findall(r"desk#\d+", under)), under
+    assert not desks & set(re.findall(r"desk#\d+", beside)), beside
     # Things it could not name are kept as "object": a kind it has none of may be one of them, not said to be absent.
     if any(r["category"] == "object" for r in rows):
         out = subprocess.run([smql, str(work / "db"), "ASK 'is there a bookcase?'"], capture_output=True, text=True)
