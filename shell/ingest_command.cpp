@@ -136,11 +136,16 @@ int ingestInto(const IngestArguments& args) {
     auto writeSeconds = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - writeStart).count();
     };
+    // The things the checks flagged, by the ids they are stored under (the ingest's own are not those).
+    auto listFlagged = [&](const std::string& scene) {
+        for (const auto& warning : ingest::objectWarnings(engine->readScene(scene))) progress->note(warning);
+    };
     if (!request.update.empty()) {
         auto update = engine->updateScene(request.update, run.result.scene);
         progress->stageFinished(
             "write", writeSeconds(),
             fmt::format("scene '{}' updated: version {} is in its history", update.scene, update.version));
+        listFlagged(update.scene);
         if (args.log != "quiet") {
             std::cout << update.summary() << "\n";
             if (const auto warning = update.warning()) std::cerr << "warning: " << *warning << "\n";
@@ -149,6 +154,7 @@ int ingestInto(const IngestArguments& args) {
     }
     engine->importScene(run.result.scene);
     progress->stageFinished("write", writeSeconds(), fmt::format("one transaction into {}", args.db));
+    listFlagged(run.result.scene.info.name);
 
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::size_t objects = 0, anchors = 0;

@@ -466,7 +466,7 @@ smql_status smql_ingest(smql_db* db, const char* capture, const char* options, s
         runStep(module.run, call);
 
         auto start = std::chrono::steady_clock::now();
-        std::string summary;
+        std::string summary, stored = call.sceneName;
         if (call.update.empty()) {
             db->engine->importScene(std::move(call.scene));
             summary = "one transaction";
@@ -474,10 +474,17 @@ smql_status smql_ingest(smql_db* db, const char* capture, const char* options, s
             const auto updated = db->engine->updateScene(call.update, call.scene);
             summary = updated.summary();
             if (const auto warning = updated.warning()) summary += "; warning: " + *warning;
+            stored = updated.scene;
         }
         if (call.progress) {
             double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             call.progress({SMQL_PROGRESS_STAGE_FINISHED, "write", 1, 1, seconds, summary.c_str()});
+            // The things the checks flagged, by the ids they are stored under (the ingest's own are not those).
+            smql::capi::CheckCall check;
+            check.stored = db->engine->readScene(stored);
+            runStep(module.check, check);
+            for (const auto& warning : check.warnings)
+                call.progress({SMQL_PROGRESS_NOTE, "", 0, 0, 0.0, warning.c_str()});
         }
     });
 }

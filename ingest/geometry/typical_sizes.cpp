@@ -29,8 +29,9 @@ namespace {
 // largest, a 17.3-inch 16:9 panel 0.215 m tall in a lid of about 0.27 m, opened upright on a base of 2-3 cm stands
 // about 0.3 m; 0.35 leaves a depth camera's few centimetres). Deepest: the footprint's shorter side no thing of the
 // kind exceeds, where its make bounds it (typical_sizes.hpp: deepestFootprint); shallowest: the one no thing of the
-// kind comes under (typical_sizes.hpp: shallowestFootprint). The rows cover
-// the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
+// kind comes under (typical_sizes.hpp: shallowestFootprint). Thinnest: the side no thing of the kind is thinner
+// than, where it is flat by make and thinner than a share of its extent (typical_sizes.hpp: thinnestSide). The rows
+// cover the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
     std::string_view category;
     double height;
@@ -44,8 +45,11 @@ struct Typical {
     double tallest = 0;
     double deepest = 0;
     double shallowest = 0;
+    double thinnest = 0;
 };
 // The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
+// The thinnest side of a kind not flat by make, as a share of its extent (thinnestSide).
+constexpr double kThinShare = 0.06;
 constexpr Slender kChairShape{
     .length = 0.75, .depth = 0.2, .longLength = 0.9, .longDepth = 0.35, .postHeight = 0.4, .postSide = 0.25};
 constexpr LeastSize kFridgeLeast{0.5, 0.45};
@@ -70,15 +74,15 @@ constexpr Typical kTypical[] = {
     {"armchair", 0, 1.2, false, false, RoomKind::Dry, Role::Seat},
     {"stool", 0, 0.9, false, false, RoomKind::Any, Role::Seat},
     {"bench", 0, 2.2, false, true, RoomKind::Any, Role::Seat},
-    {"tv", 0, 2.0},
-    {"monitor", 0.44, 0.9},
+    {"tv", 0, 2.0, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.025},
+    {"monitor", 0.44, 0.9, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.015},
     {"box", 0, 1.0, false, false, RoomKind::Any, Role::Luggage},
     {"camera", 0, 0.3},
     {"lamp", 0, 2.0},
     {"plant", 0, 2.2},
     {"cushion", 0, 0.8},
-    {"laptop", 0, 0.5, false, false, RoomKind::Any, Role::Other, {}, {}, 0.35},
-    {"book", 0, 0.5},
+    {"laptop", 0, 0.5, false, false, RoomKind::Any, Role::Other, {}, {}, 0.35, 0, 0, 0.01},
+    {"book", 0, 0.5, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.01},
     {"clock", 0, 0.6},
     {"vase", 0, 0.8},
     {"bowl", 0, 0.45},
@@ -87,7 +91,7 @@ constexpr Typical kTypical[] = {
     {"microwave", 0, 0.7, false, false, RoomKind::Kitchen},
     {"sink", 0, 1.2, false, false, RoomKind::Any, Role::Basin},
     {"oven", 0, 1.0, false, false, RoomKind::Kitchen},
-    {"keyboard", 0, 0.55},
+    {"keyboard", 0, 0.55, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.01},
     {"backpack", 0, 0.65},
     {"umbrella", 0, 1.2},
     {"handbag", 0, 0.55},
@@ -109,10 +113,10 @@ constexpr Typical kTypical[] = {
     {"donut", 0, 0.2},
     {"cake", 0, 0.5},
     {"mouse", 0, 0.2},
-    {"remote", 0, 0.3},
-    {"phone", 0, 0.25},
+    {"remote", 0, 0.3, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.01},
+    {"phone", 0, 0.25, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.006},
     {"toaster", 0, 0.5, false, false, RoomKind::Kitchen},
-    {"scissors", 0, 0.35},
+    {"scissors", 0, 0.35, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.006},
     {"toy", 0, 1.0},
     {"hair_dryer", 0, 0.4},
     {"toothbrush", 0, 0.3},
@@ -161,6 +165,17 @@ std::optional<double> shallowestFootprint(std::string_view category) {
     const Typical* t = find(category);
     if (!t || t->shallowest <= 0) return std::nullopt;
     return t->shallowest;
+}
+
+std::optional<double> thinnestSide(std::string_view category) {
+    const Typical* t = find(category);
+    if (!t) return std::nullopt;
+    return t->thinnest > 0 ? t->thinnest : kThinShare * t->extent;
+}
+
+bool madeFlat(std::string_view category) {
+    const Typical* t = find(category);
+    return t && t->thinnest > 0;
 }
 
 std::optional<LeastSize> leastSize(std::string_view category) {

@@ -42,6 +42,16 @@ std::optional<double> deepestFootprint(std::string_view category);
 // (the shallowest 0.27, the median 0.45); ScanNet's labels, often of a chair's visible part, say less.
 std::optional<double> shallowestFootprint(std::string_view category);
 
+// The side no thing of a kind is thinner than; nullopt for kinds the table lacks. A thinner box of the name is a
+// sliver: the edge or the top of something else (a 6 cm thin "table" is a table's edge). Most kinds' is 6 % of
+// their typicalExtent; the kinds flat by make have their own, thinner (a closed laptop, a book, a remote: 1 cm; a
+// flat tv 2.5 cm): a depth camera measured ScanNet's apartment's remotes 1.4 cm and a book 2.7 cm thin, both
+// dropped as slivers before.
+std::optional<double> thinnestSide(std::string_view category);
+// Whether a kind is flat by make (thinnestSide is its own, not a share of its extent): a thing of it may lie flatter
+// than a sliver of a surface (object_fusion.hpp: FusionOptions::minHeight).
+bool madeFlat(std::string_view category);
+
 // The least things of a kind measure, in metres, where every labelled thing of the kind in 238 real rooms
 // measures more (VSI-Bench's ScanNet and ARKitScenes boxes, tests/unit/ingest/plausibility_test.cpp): the
 // largest side (a bed's 1.2 m, where the shortest of 74 beds is 1.73 m) and the height (a sofa's 0.35 m);

@@ -195,6 +195,17 @@ bool backlessSeat(const Thing& thing, const FusionOptions& options) {
            model::top(thing.box) < options.seatShare * *usual;
 }
 
+// A thing lying flatter than FusionOptions::minHeight (its kind made so: thinnestSide) on the top of one of `backs`,
+// the boxes of seats that reach their backs (not backlessSeat), its centre over the seat: the back's edge, not a
+// thing. A remote or a book left on a seat lies on its cushion, under its box's top. ScanNet's lounge: the top of an
+// armchair's back, 0.74 m up, called a remote in three frames.
+bool onSeatsBack(const model::Box& box, const std::vector<model::Box>& backs, const FusionOptions& options) {
+    return box.size.z < options.minHeight && std::any_of(backs.begin(), backs.end(), [&](const model::Box& seat) {
+               return std::abs(model::bottom(box) - model::top(seat)) <= options.restingGap &&
+                      model::footprintContains(seat, {box.center.x, box.center.y}, 0);
+           });
+}
+
 // Upright ends stored as things of their own joined to their bed or sofa: its box then reaches the
 // headboard's top and the wall; and a chair's back, stored as a chair beside its seat, joined to the seat. The
 // whole keeps its name and its votes. Returns how many were joined.
@@ -223,14 +234,15 @@ std::size_t joinUprightEnds(std::vector<Thing>& things, const FusionOptions& opt
     return joined;
 }
 
-// Slivers: flatter than minHeight, smaller than minLargest, or thinner than thinShare of the largest
-// side things of their kind have (a 6 cm thin "table" is a table's edge).
+// Slivers: smaller than minLargest, or thinner than things of their kind are (typical_sizes.hpp: thinnestSide; a 6
+// cm thin "table" is a table's edge), or flatter than minHeight unless their kind is made flatter (a remote lying
+// on a table is 1.5 cm tall).
 bool sliver(const Thing& thing, const FusionOptions& options) {
     const model::Box& box = thing.box;
     const double thinnest = std::min({box.size.x, box.size.y, box.size.z});
-    const auto usual = typicalExtent(thing.category);
-    return box.size.z < options.minHeight || std::max({box.size.x, box.size.y, box.size.z}) < options.minLargest ||
-           (usual && thinnest < options.thinShare * *usual);
+    const auto made = thinnestSide(thing.category);
+    return box.size.z < (madeFlat(thing.category) ? std::min(options.minHeight, *made) : options.minHeight) ||
+           std::max({box.size.x, box.size.y, box.size.z}) < options.minLargest || (made && thinnest < *made);
 }
 
 // A thing of a kind that stands on floors (a table, a chair, a bed) whose legs or base the views did
@@ -813,7 +825,12 @@ std::vector<FusedThing> ObjectFusion::things(FusionCounts* counts) const {
     for (std::size_t t = 0; t < things.size(); ++t) things[t].box = boxes[t].box;
     made.basins = partBasins(things, options_);
     // Slivers after the floor: a table whose top alone was seen is a table, not a sliver.
-    made.slivers = std::erase_if(things, [&](const Thing& t) { return sliver(t, options_); });
+    std::vector<model::Box> backs;
+    for (const auto& thing : things)
+        if (role(thing.category) == Role::Seat && typicalHeight(thing.category) && !backlessSeat(thing, options_))
+            backs.push_back(thing.box);
+    made.slivers = std::erase_if(
+        things, [&](const Thing& t) { return sliver(t, options_) || onSeatsBack(t.box, backs, options_); });
 
     std::vector<SeenBox> named;
     for (const auto& thing : things) named.push_back({thing.box, thing.category, 0, {}});

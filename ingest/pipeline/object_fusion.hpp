@@ -25,10 +25,9 @@ struct FusionOptions {
                                      // standsSquare): the apartment's fridge, turned 18 degrees at 1.37 x 0.75 m
     double wallSlack = 1.15;         // a box square to the walls when its footprint is at most this many times the
                                      // smallest one's: the orientation is then ill-determined (wallAlignedBox)
-    double minHeight = 0.04;         // m: flatter instances are slivers of a surface (a table top seen as a "chair")
+    double minHeight = 0.04;         // m: flatter instances are slivers of a surface (a table top seen as a "chair"),
+                                     // unless their kind is made flatter (typical_sizes.hpp: thinnestSide)
     double minLargest = 0.06;        // m: smaller instances are specks
-    double thinShare = 0.06;         // ... and so are those whose thinnest side is under this share of the largest
-                                     // side things of their kind have (a 6 cm thin "table" is a table's edge)
     double minViewShare = 0.1;       // of the frames whose view holds an instance, this share must have seen it ...
     int viewsEnough = 3;             // ... up to this many views (a detector's one-off guess is no thing);
     int oneViewOf = 4;               // and a thing seen in one frame, its pieces joined, where this many or more held

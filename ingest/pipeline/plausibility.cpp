@@ -59,9 +59,8 @@ constexpr double kSpreadRefuse = 0.25;
 // Real captures with their camera right: 0.4-1.6 (the dining photos, ScanNet's lounge and bathroom); 7-Scenes'
 // red kitchen's colour photos given its depth camera's 585 px for their 526: 5.3.
 constexpr double kBentEdges = 4;
-// The object checks (objectFindings), metres but where said. A sliver: its thinnest side under this
-// share of the largest side things of its kind have (the share object fusion drops at ingest).
-constexpr double kSliverShare = 0.06;
+// The object checks (objectFindings), metres but where said. A sliver: its thinnest side under the side no thing of
+// its kind is thinner than (typical_sizes.hpp: thinnestSide, which object fusion drops at ingest).
 // Floating: a thing that stands on floors with its bottom this high, nothing under it within kRests.
 constexpr double kFloating = 0.3;
 constexpr double kRests = 0.1;
@@ -401,6 +400,12 @@ const model::Node* restingOn(const model::Node& n, const std::vector<const model
 
 }  // namespace
 
+std::vector<std::string> objectWarnings(const model::SceneData& stored) {
+    std::vector<std::string> out;
+    for (const auto& o : objectFindings(stored)) out.push_back(fmt::format("warning: {}: {}", o.problem, o.what));
+    return out;
+}
+
 bool storedTwice(const model::Box& smaller, const model::Box& larger) {
     return insideShare(smaller, larger) >= kDuplicateShare;
 }
@@ -430,13 +435,13 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
     };
     for (std::size_t i = 0; i < things.size(); ++i) {
         const model::Node& n = *things[i];
-        const auto usual = typicalExtent(sizedName(n));
+        const auto made = thinnestSide(sizedName(n));
         const double thinnest = std::min({n.box.size.x, n.box.size.y, n.box.size.z});
-        if (usual && thinnest < kSliverShare * *usual) {
+        if (made && thinnest < *made) {
             const model::Node* under = restingOn(n, things);
             flag(
                 i, "sliver",
-                fmt::format("{} ({}) is {:.0f} cm thin, no {} is{}", named(n), measures(n.box), 100 * thinnest,
+                fmt::format("{} ({}) is {:.2g} cm thin, no {} is{}", named(n), measures(n.box), 100 * thinnest,
                             sizedName(n), under ? fmt::format(": a piece of {}'s top it lies on", named(*under)) : ""));
         }
         if (floor && floatsOverNothing(n, things))

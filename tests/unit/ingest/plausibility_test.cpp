@@ -16,6 +16,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "engine/engine.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/import/importers.hpp"
 #include "ingest/pipeline/detector.hpp"
@@ -823,6 +824,18 @@ TEST_CASE("plausibility: slivers, duplicates and pieces are flagged; right camer
     CHECK(has(report, "objects", false));
     CHECK_FALSE(report.refused());
 
+    // Things flat by make (typical_sizes.hpp: thinnestSide): a remote lying on the table, 1.4 cm tall, is a remote;
+    // a "table" as thin is a sliver.
+    add(model::NodeKind::Object, "remote", {2.2, 1.8, 0.757}, {0.25, 0.06, 0.014});
+    add(model::NodeKind::Object, "table", {3.2, 3.0, 0.757}, {0.5, 0.4, 0.014});
+    auto flat = checkPlausibility(scene, {.stored = true});
+    std::vector<std::string> slivers;
+    for (const auto& o : flat.objects)
+        if (o.problem == "sliver") slivers.push_back(o.what);
+    INFO(nlohmann::json(slivers).dump(1));
+    REQUIRE(slivers.size() == 2);
+    CHECK(slivers[1].starts_with("table#20 (0.50 x 0.40 x 0.01 m) is 1.4 cm thin, no table is"));
+
     // Every named thing at a quarter of its size (slabs of the things): the sizes check fails, and
     // with the cameras 1.45 m up it blames the boxes, never the depth unit.
     for (auto& n : scene.nodes)
@@ -834,4 +847,37 @@ TEST_CASE("plausibility: slivers, duplicates and pieces are flagged; right camer
         CHECK(f.fix.find("--depth-scale") == std::string::npos);
     }
     CHECK_FALSE(small.refused());
+}
+
+// An ingest lists the things the checks flag after its write, by the ids the database gave them: DESCRIBE #id reads
+// the thing the warning names. The ingest's own ids (1..n) are not those once the database holds a scene before it.
+TEST_CASE("plausibility: the things flagged are named by the ids the database stores them under",
+          "[ingest][plausibility]") {
+    model::SceneData scene = room(1);
+    scene.info.name = "flagged";
+    scene.nodes.push_back(node(model::NodeKind::Object, "chair", {2.2, 2.1, 0.76}, {0.5, 0.4, 0.02}));
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) scene.nodes[i].id = static_cast<model::NodeId>(i + 1);
+    ScratchDir database;
+    auto engine = Engine::open((database.path / "db").string());
+    model::SceneData before = room(1);
+    before.info.name = "before";
+    for (std::size_t i = 0; i < before.nodes.size(); ++i) before.nodes[i].id = static_cast<model::NodeId>(i + 1);
+    engine->importScene(before);
+    engine->importScene(scene);
+
+    const model::SceneData stored = engine->readScene("flagged");
+    const auto warnings = objectWarnings(stored);
+    INFO(nlohmann::json(warnings).dump(1));
+    REQUIRE(warnings.size() == 1);
+    // The flat chair and the table, as stored.
+    auto storedNamed = [&](const std::string& category, double height) {
+        const auto n = std::find_if(stored.nodes.begin(), stored.nodes.end(), [&](const model::Node& n) {
+            return n.category == category && std::abs(n.box.size.z - height) < 1e-6;
+        });
+        REQUIRE(n != stored.nodes.end());
+        return fmt::format("{}#{}", category, n->id);
+    };
+    CHECK(warnings[0].starts_with("warning: sliver: " + storedNamed("chair", 0.02) + " ("));
+    CHECK(warnings[0].ends_with("a piece of " + storedNamed("table", 0.75) + "'s top it lies on"));
+    CHECK_FALSE(warnings[0].starts_with(fmt::format("warning: sliver: chair#{} ", scene.nodes.size())));
 }
