@@ -95,6 +95,13 @@ TEST_CASE("in: holders take what they support, enclosures what they contain, sur
     Node chair = node(10, "chair", 0, 0, 0.5, 0.5, 0.5, 1);
     CHECK(eval(Predicate::In, node(11, "cushion", 0, 0, 0.55, 0.4, 0.4, 0.1), chair) == 0);
     CHECK(eval(Predicate::On, node(11, "cushion", 0, 0, 0.55, 0.4, 0.4, 0.1), chair) > 0);
+    // A fridge keeps food: a bottle its box takes in is in it, but not the oven beside it nor the microwave on that
+    // (ScanNet's apartment: the fridge's box 1.34 m deep took in the cabinet beside it, named an oven).
+    Node fridge = node(12, "fridge", 0, 0, 0.79, 0.89, 1.34, 1.58);
+    CHECK(eval(Predicate::In, node(13, "bottle", 0, 0.2, 0.9, 0.08, 0.08, 0.25), fridge) > 0);
+    CHECK(eval(Predicate::In, node(14, "oven", 0.1, 0.4, 0.54, 0.44, 0.9, 1.07), fridge) == 0);
+    CHECK(eval(Predicate::In, node(15, "microwave", 0.1, 0.4, 1.2, 0.48, 0.25, 0.25), fridge) == 0);
+    CHECK(eval(Predicate::In, node(16, "microwave", 0, 0, 0.5, 0.48, 0.25, 0.25), cabinet) > 0);
 }
 
 TEST_CASE("on: a graze or a large thing over a small one is not on it") {
