@@ -96,10 +96,27 @@ bool faceTable(model::Box& box, const model::Box& table) {
 // chairs at the table were 0.11-0.19 m deep, their slabs' axes turned up to 30 degrees from the table's. Such a chair
 // stands square to the table's nearest side and faces it, its back along that side where it was seen, and reaches
 // as deep as the shallowest chairs towards the table. Whether it was one.
-bool pushInAt(model::Box& box, std::string_view category, const model::Box& table) {
+// A chair's box that holds its back alone: shallower than any chair (shallowestFootprint) and at most half as deep
+// as it is wide. The shallowest depth of its kind, or nullopt when the box is no such slab.
+std::optional<double> backAlone(const model::Box& box, std::string_view category) {
     const auto shallowest = shallowestFootprint(category);
     const double thin = std::min(box.size.x, box.size.y), wide = std::max(box.size.x, box.size.y);
-    if (!shallowest || thin >= *shallowest || 2 * thin > wide) return false;
+    if (!shallowest || thin >= *shallowest || 2 * thin > wide) return std::nullopt;
+    return shallowest;
+}
+
+// The back's slab turned to face `yaw` and reaching `depth` deep ahead of the back, where the seat is.
+void seatAhead(model::Box& box, double yaw, double depth) {
+    const double thin = std::min(box.size.x, box.size.y), wide = std::max(box.size.x, box.size.y);
+    box.yaw = yaw;
+    box.size = {depth, wide, box.size.z};
+    box.center.x += std::cos(yaw) * (depth - thin) / 2;
+    box.center.y += std::sin(yaw) * (depth - thin) / 2;
+}
+
+bool pushInAt(model::Box& box, std::string_view category, const model::Box& table) {
+    const auto shallowest = backAlone(box, category);
+    if (!shallowest) return false;
     // The chair's centre in the table's own axes: the side it stands beyond the most is the one it is at.
     const double c = std::cos(table.yaw), s = std::sin(table.yaw);
     const double ox = box.center.x - table.center.x, oy = box.center.y - table.center.y;
@@ -107,36 +124,52 @@ bool pushInAt(model::Box& box, std::string_view category, const model::Box& tabl
     const bool endOn = std::abs(u) - table.size.x / 2 >= std::abs(v) - table.size.y / 2;
     // Towards the table: against the table's x axis beyond its +x end, and so on.
     const double sign = (endOn ? u : v) >= 0 ? -1.0 : 1.0;
-    box.yaw = endOn ? std::atan2(sign * s, sign * c) : std::atan2(sign * c, -sign * s);
-    const double grow = *shallowest - thin;
-    box.size = {*shallowest, wide, box.size.z};
-    box.center.x += std::cos(box.yaw) * grow / 2;
-    box.center.y += std::sin(box.yaw) * grow / 2;
+    seatAhead(box, endOn ? std::atan2(sign * s, sign * c) : std::atan2(sign * c, -sign * s), *shallowest);
     return true;
 }
 
-// Chairs face the table they stand at (faceTable), pushed in where their backs alone were seen (pushInAt). How many
-// were pushed in.
-std::size_t seatAtTables(std::vector<PlacedTrack>& placed, const std::vector<ObjectTrack>& tracks) {
+// A chair at no table whose back alone was seen (backAlone) was seen from behind: a chair seen from before or
+// from a side shows its seat. It faces away from the cameras that saw it (`seenFrom`, their mean centre), across its
+// back, and reaches as deep as the shallowest chairs ahead of it. The dining frames' wing chair, seen from behind in
+// three frames in the middle of the room, was a 0.51 x 0.17 m slab facing no way in particular. Whether it was one.
+bool seatAwayFrom(model::Box& box, std::string_view category, const model::Vec3& seenFrom) {
+    const auto shallowest = backAlone(box, category);
+    if (!shallowest) return false;
+    // Across the back: the box's thinner horizontal axis, turned to point away from the cameras.
+    const double yaw = box.size.x <= box.size.y ? box.yaw : box.yaw + M_PI / 2;
+    const double away = std::cos(yaw) * (box.center.x - seenFrom.x) + std::sin(yaw) * (box.center.y - seenFrom.y);
+    seatAhead(box, std::remainder(away >= 0 ? yaw : yaw + M_PI, 2 * M_PI), *shallowest);
+    return true;
+}
+
+}  // namespace
+
+std::pair<std::size_t, std::size_t> seatChairs(std::vector<PlacedTrack>& placed,
+                                               const std::vector<ObjectTrack>& tracks) {
     const auto kindOf = [&](const PlacedTrack& p, std::initializer_list<std::string_view> kinds) {
         return std::find(kinds.begin(), kinds.end(), tracks[p.track].category) != kinds.end();
     };
     std::vector<const model::Box*> tables;
     for (const auto& p : placed)
         if (kindOf(p, {"table", "desk"})) tables.push_back(&p.box);
-    std::size_t pushedIn = 0;
+    std::size_t pushedIn = 0, turned = 0;
     for (auto& p : placed) {
         if (p.againstWall || !kindOf(p, {"chair", "armchair", "office-chair"})) continue;
         const model::Box* table = tableAt(p.box, tables);
-        if (!table) continue;
+        if (!table) {
+            turned += seatAwayFrom(p.box, tracks[p.track].category, p.seenFrom);
+            continue;
+        }
         p.pushedIn = pushInAt(p.box, tracks[p.track].category, *table);
         if (p.pushedIn)
             ++pushedIn;
         else
             faceTable(p.box, *table);
     }
-    return pushedIn;
+    return {pushedIn, turned};
 }
+
+namespace {
 
 // Nothing stands below the floor or above the ceiling: a hull carved from views that all look
 // down at a thing reaches under the floor, and the floor and ceiling bound it (a little slack for
@@ -147,6 +180,22 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
     constexpr double kSlack = 0.02;  // m
     if ((alignment.floorFound || alignment.tableTopHeight) && p.z < -kSlack) return false;
     return !alignment.ceilingHeight || p.z <= *alignment.ceilingHeight + kSlack;
+}
+
+// Where the cameras that saw a track stood: the mean of their centres in the aligned frame (the origin when none has a
+// pose).
+model::Vec3 seenFrom(const ObjectTrack& track, const Capture& capture, const Alignment& alignment) {
+    model::Vec3 sum{0, 0, 0};
+    std::size_t cameras = 0;
+    for (const auto& v : track.views)
+        if (const auto& pose = capture.frames[v.frame].pose) {
+            const model::Vec3 c = alignment.apply(pose->translation);
+            sum = {sum.x + c.x, sum.y + c.y, sum.z + c.z};
+            ++cameras;
+        }
+    if (cameras == 0) return sum;
+    const double n = static_cast<double>(cameras);
+    return {sum.x / n, sum.y / n, sum.z / n};
 }
 
 // What the views' embeddings agree on: the mean of their unit vectors, at unit length. Empty when
@@ -412,20 +461,26 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         const bool againstWall = !opening && relations::hasFront(category) && faceAwayFromWall(box, category, walls);
-        placed.push_back({t, std::move(colors), box, againstWall});
+        placed.push_back({t, std::move(colors), box, againstWall, false, seenFrom(track, capture, aligned.alignment)});
     }
-    if (const std::size_t pushedIn = seatAtTables(placed, tracks))
+    const auto [pushedIn, turned] = seatChairs(placed, tracks);
+    if (pushedIn)
         progress.note(
             fmt::format("objects: {} chair(s) at a table seen by their backs alone: square to it, reaching "
                         "under it as deep as the shallowest chairs",
                         pushedIn));
+    if (turned)
+        progress.note(
+            fmt::format("objects: {} chair(s) at no table seen by their backs alone: facing away from the "
+                        "cameras, as deep as the shallowest chairs",
+                        turned));
     if (const std::size_t merged = mergeStoredTwice(placed, tracks))
         progress.note(
             fmt::format("objects: {} hull(s) carved without depth or chair(s) pushed in lay mostly inside "
                         "another of their kind: one thing stored twice, merged into it",
                         merged));
 
-    for (auto& [t, colors, box, againstWall, pushedIn] : placed) {
+    for (auto& [t, colors, box, againstWall, pushedIn, seenFrom] : placed) {
         auto& track = tracks[t];
         const auto& category = track.category;
         const bool opening = isOpening(category);

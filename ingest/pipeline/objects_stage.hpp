@@ -40,6 +40,7 @@ struct PlacedTrack {
     model::Box box;
     bool againstWall = false;  // a thing with a front turned to face away from the wall it stands against
     bool pushedIn = false;     // a chair seen by its back alone, pushed in square to its table
+    model::Vec3 seenFrom{};    // the mean centre of the cameras that saw it
 };
 
 // Two things of one kind, the smaller mostly inside the larger (plausibility.hpp: storedTwice), are one thing stored
@@ -50,6 +51,15 @@ struct PlacedTrack {
 // tall slabs 0.18 m apart. The smaller's views join the larger's; the larger's box stays, or for chairs takes in the
 // smaller's footprint (two pieces of one back). Returns how many were merged.
 std::size_t mergeStoredTwice(std::vector<PlacedTrack>& placed, std::vector<ObjectTrack>& tracks);
+
+// Chairs seated as people leave them. A chair within 0.5 m of a table or a desk faces it; one whose box holds its
+// back alone (shallower than any chair, at most half as deep as wide) is pushed in, square to the table's nearest
+// side, as deep as the shallowest chairs towards it (the dining frames' four at the table, 0.11-0.19 m deep slabs).
+// One whose back alone was seen at no table was seen from behind, and faces away from the cameras that saw it
+// (PlacedTrack::seenFrom), as deep as the shallowest chairs ahead of its back. Chairs against a wall are left as
+// they were turned. How many were pushed in, and how many turned from the cameras.
+std::pair<std::size_t, std::size_t> seatChairs(std::vector<PlacedTrack>& placed,
+                                               const std::vector<ObjectTrack>& tracks);
 
 struct ObjectsStage {
     static constexpr std::string_view kName = "objects";

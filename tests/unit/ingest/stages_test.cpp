@@ -338,6 +338,38 @@ TEST_CASE(
     CHECK(pieces[0].views.size() == 2);
 }
 
+TEST_CASE("chairs seen by their backs alone: pushed in at a table, facing away from the cameras at none") {
+    const cv::Mat white(1, 1, CV_8UC3, cv::Scalar(255, 255, 255));
+    auto trackOf = [](const std::string& category) {
+        ObjectTrack track;
+        track.category = category;
+        return track;
+    };
+    std::vector<ObjectTrack> tracks{trackOf("table"), trackOf("chair"), trackOf("chair"), trackOf("chair")};
+    // A table along y; a back 0.17 m deep beyond its +x side; a back 0.17 m deep 2 m from it, its thin side along x,
+    // seen from cameras at x = -1 (so from behind, the chair facing +x); and a chair seen whole, 0.5 m deep.
+    const model::Vec3 cameras{-1, 0, 1.4};
+    std::vector<PlacedTrack> placed{{0, white, {{0, 0, 0.37}, {1.0, 1.8, 0.75}, 0}, false, false, cameras},
+                                    {1, white, {{0.7, 0.2, 0.49}, {0.17, 0.5, 0.98}, 0.3}, false, false, cameras},
+                                    {2, white, {{2.5, 0, 0.49}, {0.17, 0.51, 0.98}, M_PI}, false, false, cameras},
+                                    {3, white, {{2.5, 2.0, 0.45}, {0.5, 0.55, 0.9}, 0.2}, false, false, cameras}};
+    CHECK(seatChairs(placed, tracks) == std::pair<std::size_t, std::size_t>{1, 1});
+    // Pushed in: square to the table's +x side, facing it (-x), 0.33 deep towards it from its back.
+    CHECK(placed[1].pushedIn);
+    CHECK(std::cos(placed[1].box.yaw) == Approx(-1).margin(1e-9));
+    CHECK(placed[1].box.size.x == Approx(0.33));
+    CHECK(placed[1].box.center.x == Approx(0.7 - 0.08));
+    // Seen from behind: facing away from the cameras (+x), its seat ahead of the back.
+    CHECK_FALSE(placed[2].pushedIn);
+    CHECK(std::cos(placed[2].box.yaw) == Approx(1).margin(1e-9));
+    CHECK(placed[2].box.size.x == Approx(0.33));
+    CHECK(placed[2].box.size.y == Approx(0.51));
+    CHECK(placed[2].box.center.x == Approx(2.5 + 0.08));
+    // Seen whole: left as it was.
+    CHECK(placed[3].box.yaw == 0.2);
+    CHECK(placed[3].box.size.x == 0.5);
+}
+
 TEST_CASE("the objects stage holds a carved hull's top, and a table's footprint, to where its surfaces were seen") {
     auto hullOf = [](double length, double width, double height) {
         std::vector<model::Vec3> hull;
