@@ -47,9 +47,9 @@ struct Typical {
     double shallowest = 0;
     double thinnest = 0;
 };
-// The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
 // The thinnest side of a kind not flat by make, as a share of its extent (thinnestSide).
 constexpr double kThinShare = 0.06;
+// The kinds whose shapes are held to more than a footprint's length and depth (typical_sizes.hpp: Slender).
 constexpr Slender kChairShape{
     .length = 0.75, .depth = 0.2, .longLength = 0.9, .longDepth = 0.35, .postHeight = 0.4, .postSide = 0.25};
 constexpr LeastSize kFridgeLeast{0.5, 0.45};

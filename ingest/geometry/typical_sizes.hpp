@@ -80,21 +80,21 @@ bool smallerThanKind(std::string_view category, double largest, double height, d
 // are 0.90 m deep or more, and the shallower ones (0.66-0.86 m) stand 1.19 m tall or more, as does ScanNet's
 // 2.03 x 0.29 m headboard scanned alone (1.54 m); an ottoman of ScanNet's lounge, its 100 frames without depth
 // lifted on the dense points, was stored as a 2.30 x 0.58 x 0.83 m "bed" in four COLMAP runs of four, and an armless
-// chair of it, from every second of its depth frames, as a 1.47 x 0.60 x 0.66 m one. A fridge lower than 1.1 m is never 0.9 m long and
-// under 0.25 m deep (of 39 labelled: 0.36 m the shallowest drawn whole, and ScanNet's scanned in part 0.83 x 0.18
-// and 1.01 x 0.30 m); ScanNet's bathroom had a 0.98 x 0.19 x 0.91 m "fridge" stored on its bathtub's side.
-// Nor is a footprint `longLength` long or longer and shallower than `longDepth` a thing of the kind: of the labelled
-// chairs under 0.35 m deep, the longest is 0.84 m (ScanNet's; ARKitScenes' 0.41 m), the 1.17 x 0.17 m one above
-// aside; of the 5,725 of ScanNet's training and validation scans, one is (0.98 x 0.30 m). ScanNet's lounge from its 300
-// depth frames stored a 1.30 x 0.26 x 0.61 m "chair" by the wall behind an armchair, where none stands (the same thing
-// as the 1.28 x 0.18 m one above, from colour resampled anew). Nor is a box `postHeight` tall or taller whose
-// footprint's longer side is under `postSide` a thing of the kind: it is a post. Of 6,330 labelled chairs (ScanNet's
-// 370 and ARKitScenes' 235 in the real layouts, and the 5,725 of ScanNet's training and validation scans, many scanned
-// in part), none 0.4 m tall or taller stands on a footprint under 0.25 m; TUM fr1/rpy's RGB-D memory had a 0.23 x 0.08
-// x 0.86 m "chair" beside its desk, and ScanNet's apartment a 0.20 x 0.18 x 0.55 m one. A box `frontHeight` tall or
-// taller is not held to those footprints: it is the front of such a thing, scanned from before it alone (a fridge's
-// front, a bed's headboard). Of ScanNet's 243 labelled fridges (its training and validation scans), 9 are 0.90-1.09 m
-// long and 0.16-0.25 m deep, each 1.16-2.12 m tall, where the bathroom's "fridge" was 0.91 m tall.
+// chair of it, from every second of its depth frames, as a 1.47 x 0.60 x 0.66 m one. A fridge lower than 1.1 m is
+// never 0.9 m long and under 0.25 m deep (of 39 labelled: 0.36 m the shallowest drawn whole, and ScanNet's scanned in
+// part 0.83 x 0.18 and 1.01 x 0.30 m); ScanNet's bathroom had a 0.98 x 0.19 x 0.91 m "fridge" stored on its bathtub's
+// side. Nor is a footprint `longLength` long or longer and shallower than `longDepth` a thing of the kind: of the
+// labelled chairs under 0.35 m deep, the longest is 0.84 m (ScanNet's; ARKitScenes' 0.41 m), the 1.17 x 0.17 m one
+// above aside; of the 5,725 of ScanNet's training and validation scans, one is (0.98 x 0.30 m). ScanNet's lounge from
+// its 300 depth frames stored a 1.30 x 0.26 x 0.61 m "chair" by the wall behind an armchair, where none stands (the
+// same thing as the 1.28 x 0.18 m one above, from colour resampled anew). Nor is a box `postHeight` tall or taller
+// whose footprint's longer side is under `postSide` a thing of the kind: it is a post. Of 6,330 labelled chairs
+// (ScanNet's 370 and ARKitScenes' 235 in the real layouts, and the 5,725 of ScanNet's training and validation scans,
+// many scanned in part), none 0.4 m tall or taller stands on a footprint under 0.25 m; TUM fr1/rpy's RGB-D memory had a
+// 0.23 x 0.08 x 0.86 m "chair" beside its desk, and ScanNet's apartment a 0.20 x 0.18 x 0.55 m one. A box `frontHeight`
+// tall or taller is not held to those footprints: it is the front of such a thing, scanned from before it alone (a
+// fridge's front, a bed's headboard). Of ScanNet's 243 labelled fridges (its training and validation scans), 9 are
+// 0.90-1.09 m long and 0.16-0.25 m deep, each 1.16-2.12 m tall, where the bathroom's "fridge" was 0.91 m tall.
 struct Slender {
     double length = 0;
     double depth = 0;

@@ -91,11 +91,6 @@ bool faceTable(model::Box& box, const model::Box& table) {
     return length > 0 && turnToFace(box, {dx / length, dy / length, 0}, false);
 }
 
-// A chair pushed in at a table shows the cameras its back alone, its seat under the table's top: its box is a slab,
-// shallower than any chair (shallowestFootprint) and at most half as deep as it is wide. The dining frames' four
-// chairs at the table were 0.11-0.19 m deep, their slabs' axes turned up to 30 degrees from the table's. Such a chair
-// stands square to the table's nearest side and faces it, its back along that side where it was seen, and reaches
-// as deep as the shallowest chairs towards the table. Whether it was one.
 // A chair's box that holds its back alone: shallower than any chair (shallowestFootprint) and at most half as deep
 // as it is wide. The shallowest depth of its kind, or nullopt when the box is no such slab.
 std::optional<double> backAlone(const model::Box& box, std::string_view category) {
@@ -114,6 +109,10 @@ void seatAhead(model::Box& box, double yaw, double depth) {
     box.center.y += std::sin(yaw) * (depth - thin) / 2;
 }
 
+// A chair pushed in at a table shows the cameras its back alone, its seat under the table's top: its box is a slab
+// (backAlone). The dining frames' four chairs at the table were 0.11-0.19 m deep, their slabs' axes turned up to 30
+// degrees from the table's. Such a chair stands square to the table's nearest side and faces it, its back along that
+// side where it was seen, and reaches as deep as the shallowest chairs towards the table. Whether it was one.
 bool pushInAt(model::Box& box, std::string_view category, const model::Box& table) {
     const auto shallowest = backAlone(box, category);
     if (!shallowest) return false;
@@ -130,8 +129,8 @@ bool pushInAt(model::Box& box, std::string_view category, const model::Box& tabl
 
 // A chair at no table whose back alone was seen (backAlone) was seen from behind: a chair seen from before or
 // from a side shows its seat. It faces away from the cameras that saw it (`seenFrom`, their mean centre), across its
-// back, and reaches as deep as the shallowest chairs ahead of it. The dining frames' wing chair, seen from behind in
-// three frames in the middle of the room, was a 0.51 x 0.17 m slab facing no way in particular. Whether it was one.
+// back, and reaches as deep as the shallowest chairs ahead of it. The dining frames' slat-backed chair 1 m beyond the
+// table's end, seen in three frames, was a 0.51 x 0.17 m slab facing the wall beside it. Whether it was one.
 bool seatAwayFrom(model::Box& box, std::string_view category, const model::Vec3& seenFrom) {
     const auto shallowest = backAlone(box, category);
     if (!shallowest) return false;
