@@ -130,8 +130,9 @@ std::string noneFound(const Translation& t) {
 // m above the floor (height 0, or the floor's top): a thing whose bottom is this low stands on it.
 constexpr double kOnFloor = 0.15;
 
-// How a node stands to its parent in the tree, in words: what it rests on or in is where it is at ("mug#27 is at
-// desk#23"); a wall, a door or a window is the parent of what stands on the floor nearest it, which stands by it
+// How a node stands to its parent in the tree, in words: a thing is on the surface it rests on ("mug#27 is on
+// desk#23"), in the holder it rests in ("apple#5 is in bowl#4"), and at the enclosure it rests on or in ("vase#3 is
+// at cabinet#2"); a wall, a door or a window is the parent of what stands on the floor nearest it, which stands by it
 // ("sofa#50 stands by wall#19"), and of what is raised off the floor there. On a wall, a slab standing upright
 // hangs on it ("picture#80 is on wall#19"); anything else rests on something the memory does not hold (a mug on an
 // unseen shelf), so it is by the wall, at its height ("mug#11 is by wall#3, 1.28 m above the floor"). By a door or
@@ -141,7 +142,13 @@ constexpr double kOnFloor = 0.15;
 std::string placeWords(const Translation& t, const ResultSet& rs, std::size_t row, const std::string& parent) {
     const std::string kind = parent.substr(0, parent.find('#'));
     const bool floor = kind == "floor";
-    if (!floor && !isOneOf(kind, {"wall", "door", "window"})) return "is at " + parent;
+    if (!floor && !isOneOf(kind, {"wall", "door", "window"})) {
+        const relations::Affordance carrier = relations::affordanceOf(kind);
+        return (carrier == relations::Affordance::Surface  ? "is on "
+                : carrier == relations::Affordance::Holder ? "is in "
+                                                           : "is at ") +
+               parent;
+    }
     const int box = rs.columnIndex("box");
     const auto* b = box >= 0 ? std::get_if<model::Box>(&rs.rows[row][box]) : nullptr;
     if (!b) return "is at " + parent;
