@@ -138,7 +138,8 @@ int ingestInto(const IngestArguments& args) {
     };
     // The things the checks flagged, by the ids they are stored under (the ingest's own are not those).
     auto listFlagged = [&](const std::string& scene) {
-        for (const auto& warning : ingest::objectWarnings(engine->readScene(scene))) progress->note(warning);
+        for (const auto& finding : ingest::objectFindings(engine->readScene(scene)))
+            progress->note(ingest::objectWarning(finding));
     };
     if (!request.update.empty()) {
         auto update = engine->updateScene(request.update, run.result.scene);

@@ -110,6 +110,6 @@ extern "C" SMQL_API void smql_ingest_module_check(smql::capi::CheckCall& call) n
         call.figures.emplace_back("warnings", static_cast<double>(report.findings.size()));
         call.figures.emplace_back("objects_flagged", static_cast<double>(report.objects.size()));
         call.figures.emplace_back("refused", report.refused() ? 1.0 : 0.0);
-        call.warnings = smql::ingest::objectWarnings(call.stored);
+        for (const auto& o : report.objects) call.warnings.push_back(smql::ingest::objectWarning(o));
     });
 }

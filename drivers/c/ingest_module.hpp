@@ -45,7 +45,7 @@ struct CheckCall {
     model::SceneData stored;  // in
     std::string truth;        // in: the truth.json path; "" for the plausibility checks alone
     std::vector<std::pair<std::string, double>> figures;  // out
-    std::vector<std::string> warnings;  // out, without a truth: the things flagged, by `stored`'s ids (objectWarnings)
+    std::vector<std::string> warnings;  // out, without a truth: the things flagged, by `stored`'s ids (objectWarning)
     std::optional<Error> error;
 };
 

@@ -129,6 +129,13 @@ const Typical* find(std::string_view category) {
     return nullptr;
 }
 
+// A column the table gives for some kinds only (above zero there), nullopt for the others and for kinds it lacks.
+std::optional<double> given(std::string_view category, double Typical::*column) {
+    const Typical* t = find(category);
+    if (!t || t->*column <= 0) return std::nullopt;
+    return t->*column;
+}
+
 }  // namespace
 
 std::optional<double> typicalHeight(std::string_view category) {
@@ -149,23 +156,11 @@ std::optional<double> typicalExtent(std::string_view category) {
     return t->extent;
 }
 
-std::optional<double> tallestHeight(std::string_view category) {
-    const Typical* t = find(category);
-    if (!t || t->tallest <= 0) return std::nullopt;
-    return t->tallest;
-}
+std::optional<double> tallestHeight(std::string_view category) { return given(category, &Typical::tallest); }
 
-std::optional<double> deepestFootprint(std::string_view category) {
-    const Typical* t = find(category);
-    if (!t || t->deepest <= 0) return std::nullopt;
-    return t->deepest;
-}
+std::optional<double> deepestFootprint(std::string_view category) { return given(category, &Typical::deepest); }
 
-std::optional<double> shallowestFootprint(std::string_view category) {
-    const Typical* t = find(category);
-    if (!t || t->shallowest <= 0) return std::nullopt;
-    return t->shallowest;
-}
+std::optional<double> shallowestFootprint(std::string_view category) { return given(category, &Typical::shallowest); }
 
 std::optional<double> thinnestSide(std::string_view category) {
     const Typical* t = find(category);
@@ -173,10 +168,7 @@ std::optional<double> thinnestSide(std::string_view category) {
     return t->thinnest > 0 ? t->thinnest : kThinShare * t->extent;
 }
 
-bool madeFlat(std::string_view category) {
-    const Typical* t = find(category);
-    return t && t->thinnest > 0;
-}
+bool madeFlat(std::string_view category) { return given(category, &Typical::thinnest).has_value(); }
 
 std::optional<LeastSize> leastSize(std::string_view category) {
     const Typical* t = find(category);

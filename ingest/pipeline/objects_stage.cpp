@@ -181,19 +181,19 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
     return !alignment.ceilingHeight || p.z <= *alignment.ceilingHeight + kSlack;
 }
 
-// Where the cameras that saw a track stood: the mean of their centres in the aligned frame (the origin when none has a
-// pose).
-model::Vec3 seenFrom(const ObjectTrack& track, const Capture& capture, const Alignment& alignment) {
-    model::Vec3 sum{0, 0, 0};
-    std::size_t cameras = 0;
+// The centres of the cameras that saw a track, in the aligned frame.
+std::vector<model::Vec3> camerasOf(const ObjectTrack& track, const Capture& capture, const Alignment& alignment) {
+    std::vector<model::Vec3> cameras;
     for (const auto& v : track.views)
-        if (const auto& pose = capture.frames[v.frame].pose) {
-            const model::Vec3 c = alignment.apply(pose->translation);
-            sum = {sum.x + c.x, sum.y + c.y, sum.z + c.z};
-            ++cameras;
-        }
-    if (cameras == 0) return sum;
-    const double n = static_cast<double>(cameras);
+        if (const auto& pose = capture.frames[v.frame].pose) cameras.push_back(alignment.apply(pose->translation));
+    return cameras;
+}
+
+// Their mean: where the track was seen from (the origin when no camera has a pose).
+model::Vec3 meanOf(const std::vector<model::Vec3>& points) {
+    model::Vec3 sum{0, 0, 0};
+    for (const auto& p : points) sum = {sum.x + p.x, sum.y + p.y, sum.z + p.z};
+    const double n = static_cast<double>(std::max<std::size_t>(points.size(), 1));
     return {sum.x / n, sum.y / n, sum.z / n};
 }
 
@@ -444,12 +444,10 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             for (const auto& v : track.views) colors.push_back(v.colors);
         }
         if (cloud.empty()) continue;
+        const std::vector<model::Vec3> cameras = camerasOf(track, capture, aligned.alignment);
         if (track.carved) {
-            std::vector<model::Vec3> surface, cameras;
+            std::vector<model::Vec3> surface;
             for (const auto& p : track.surface) surface.push_back(aligned.alignment.apply(p));
-            for (const auto& v : track.views)
-                if (const auto& pose = capture.frames[v.frame].pose)
-                    cameras.push_back(aligned.alignment.apply(pose->translation));
             PointCloud held;
             const bool widestAtTop = holdsThings(category) && !hasUprightEnds(category);
             for (const auto& p :
@@ -460,7 +458,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         model::Box box = track.fusedBox ? *track.fusedBox : uprightBox(cloud.points);
         if (opening && !walls.empty()) setInWall(box, cloud, walls);
         const bool againstWall = !opening && relations::hasFront(category) && faceAwayFromWall(box, category, walls);
-        placed.push_back({t, std::move(colors), box, againstWall, false, seenFrom(track, capture, aligned.alignment)});
+        placed.push_back({t, std::move(colors), box, againstWall, false, meanOf(cameras)});
     }
     const auto [pushedIn, turned] = seatChairs(placed, tracks);
     if (pushedIn)

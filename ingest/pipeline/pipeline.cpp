@@ -58,7 +58,7 @@ model::Blob pointsBlob(const AlignedCapture& aligned, const IngestOptions& optio
 // --force, so that no wrong memory is stored with exit status 0. Photos without depth whose points cover
 // under half of what the detectors saw are refused for it (thinPointsFinding), and where they cover far less,
 // that is the cause beneath whatever else refuses their room: a floor unconfirmed, priors that part.
-// The things flagged (report.objects) are listed by whoever writes the memory, by its ids (objectWarnings).
+// The things flagged (report.objects) are listed by whoever writes the memory, by its ids (objectWarning).
 void checkRoom(const IngestResult& result, const Capture& capture, const IngestOptions& options,
                const FramePass& frames, const Alignment& alignment, const DensePoints* dense,
                std::optional<double> pointsCover, StageRunner& runner) {

@@ -400,10 +400,8 @@ const model::Node* restingOn(const model::Node& n, const std::vector<const model
 
 }  // namespace
 
-std::vector<std::string> objectWarnings(const model::SceneData& stored) {
-    std::vector<std::string> out;
-    for (const auto& o : objectFindings(stored)) out.push_back(fmt::format("warning: {}: {}", o.problem, o.what));
-    return out;
+std::string objectWarning(const ObjectFinding& finding) {
+    return fmt::format("warning: {}: {}", finding.problem, finding.what);
 }
 
 bool storedTwice(const model::Box& smaller, const model::Box& larger) {

@@ -123,9 +123,9 @@ std::optional<PlausibilityFinding> viewAgreementFinding(const ViewAgreement& agr
 // touch and together are the size of one).
 std::vector<ObjectFinding> objectFindings(const model::SceneData& scene);
 
-// objectFindings of a stored scene as the ingest's notes ("warning: sliver: laptop#21 ..."), by the ids the database
-// gave its things: an ingest lists them after the write, since its own ids (1..n) are not the ones DESCRIBE reads.
-std::vector<std::string> objectWarnings(const model::SceneData& stored);
+// A finding of objectFindings as the ingest's note ("warning: sliver: laptop#21 ..."). An ingest lists them after the
+// write, found on the scene as stored: its own ids (1..n) are not the ones the database gave, which DESCRIBE reads.
+std::string objectWarning(const ObjectFinding& finding);
 
 // Whether the smaller of two boxes of one kind lies mostly inside the larger (half its volume or more, by their upright
 // bounds): one thing stored twice, objectFindings' "duplicate".
