@@ -43,7 +43,9 @@ struct FusionOptions {
                                      // and the nightstand beside it): one top read twice lies within a band and
                                      // a cell (topBand + topCell)
     double namedTwiceShare = 0.45;   // two things each with this share of its box inside the other's are one
-                                     // place named twice (a side table seen as a "bed" and as a "table"); ...
+                                     // place named twice (a side table seen as a "bed" and as a "table"); of
+                                     // its footprint, for two kinds that stand on floors (their boxes reach
+                                     // down to it later, so their heights do not tell yet); ...
     double glimpseInside = 0.6;      // ... and one with this share inside a larger one's, seen in at most
     double glimpseShare = 0.25;      // this share of the frames that saw the larger, is a glimpse of it ...
     double glimpseTouching = 0.5;    // ... when this share of its points lie within touchReach of the larger's
