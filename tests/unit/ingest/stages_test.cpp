@@ -338,6 +338,35 @@ TEST_CASE(
     CHECK(pieces[0].views.size() == 2);
 }
 
+TEST_CASE("a sink on a pedestal reaches the floor; one on a vanity or hung on a wall does not") {
+    // A basin fitted to its bowl, 0.60 x 0.45 m, its rim 0.88 m up, against a wall at x = 0.55 (facing -x).
+    const model::Box basin{{0.3, 0, 0.8}, {0.45, 0.6, 0.16}, 0};
+    WallSegment wall;
+    wall.normal = {-1, 0, 0}, wall.offset = 0.55, wall.along0 = -2, wall.along1 = 2, wall.z1 = 2.5;
+    const std::vector<WallSegment> walls{wall};
+    auto cloudOf = [&](double x0, double x1, double y0, double y1, double z0, double z1) {
+        PointCloud cloud;
+        // The wall behind, from the floor up: its own points, never the sink's.
+        for (double y = -0.6; y <= 0.6; y += 0.05)
+            for (double z = 0; z <= 1.2; z += 0.05) cloud.push({0.55, y, z}, {0, 0, 0}, 0);
+        for (double x = x0; x <= x1 + 1e-9; x += 0.04)
+            for (double y = y0; y <= y1 + 1e-9; y += 0.04)
+                for (double z = z0; z <= z1 + 1e-9; z += 0.05) cloud.push({x, y, z}, {0, 0, 0}, 0);
+        return cloud;
+    };
+    // ScanNet's apartment's pedestal: a column about 0.2 m across from the floor to the bowl.
+    CHECK(onPedestal(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {}));
+    // A vanity's front, as wide as the basin or wider, its cabinet not stored apart: its points fill the footprint.
+    CHECK_FALSE(onPedestal(basin, cloudOf(0.1, 0.1, -0.32, 0.32, 0, 0.7), walls, {}));
+    // A bin standing under it, a thing of its own: its points are the bin's.
+    const model::Box bin{{0.3, 0, 0.35}, {0.3, 0.3, 0.7}, 0};
+    CHECK_FALSE(onPedestal(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {bin}));
+    // A sink hung on the wall: its drain, from the bowl into the wall 0.45 m over the floor.
+    CHECK_FALSE(onPedestal(basin, cloudOf(0.3, 0.35, -0.02, 0.02, 0.45, 0.7), walls, {}));
+    // Nothing under it but the wall.
+    CHECK_FALSE(onPedestal(basin, cloudOf(0, -1, 0, -1, 0, -1), walls, {}));
+}
+
 TEST_CASE("chairs seen by their backs alone: pushed in at a table, facing away from the cameras at none") {
     const cv::Mat white(1, 1, CV_8UC3, cv::Scalar(255, 255, 255));
     auto trackOf = [](const std::string& category) {
