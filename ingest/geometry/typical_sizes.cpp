@@ -55,7 +55,7 @@ constexpr Slender kChairShape{
 constexpr LeastSize kFridgeLeast{0.5, 0.45};
 constexpr Slender kFridgeShape{.length = 0.9, .depth = 0.25, .frontHeight = 1.1};
 constexpr Slender kTableShape{.length = 0.75, .depth = 0.25};
-constexpr Slender kBedShape{.length = 1.0, .depth = 0.65, .frontHeight = 1.0};
+constexpr Slender kBedShape{.length = 1.0, .depth = 0.8, .frontHeight = 1.0};
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, true, false, RoomKind::Any, Role::Other, {}, kTableShape},
     {"desk", 0.75, 1.9, true, false, RoomKind::Dry, Role::Other, {}, kTableShape},
