@@ -82,7 +82,7 @@ bool smallerThanKind(std::string_view category, double largest, double height, d
 // than 1.0 m, scanned in part as many are, three are under 0.65 m deep and the next 0.88 m. An ottoman of ScanNet's
 // lounge, its 100 frames without depth lifted on the dense points, was stored as a 2.30 x 0.58 x 0.83 m "bed" in four
 // COLMAP runs of four, and an armless chair of it, from every second of its depth frames, as a 1.47 x 0.60 x 0.66 m
-// one and a 1.46 x 0.69 x 0.67 m one (from the first and the second). A fridge lower than 1.1 m is
+// one (from its first frame on) and as a 1.46 x 0.69 x 0.67 m one (from its second). A fridge lower than 1.1 m is
 // never 0.9 m long and under 0.25 m deep (of 39 labelled: 0.36 m the shallowest drawn whole, and ScanNet's scanned in
 // part 0.83 x 0.18 and 1.01 x 0.30 m); ScanNet's bathroom had a 0.98 x 0.19 x 0.91 m "fridge" stored on its bathtub's
 // side. Nor is a footprint `longLength` long or longer and shallower than `longDepth` a thing of the kind: of the

@@ -33,10 +33,11 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
                                        const std::vector<model::Vec3>& cameras, bool widestAtTop,
                                        std::optional<double> tableTop = std::nullopt);
 
-// Whether a sink's box (`basin`, fitted to its bowl: object_fusion.hpp, fitBasin) stands on a pedestal: under its
-// footprint, the room's own points (`cloud`, aligned; those of its walls and of the `others` things' boxes left out)
-// rise from the floor to the bowl in one column narrower than half the basin, at most heights. A vanity's front is as
-// wide as the basin; a sink hung on a wall has nothing under it but its drain, which ends in the wall above the floor.
+// Whether a sink's box (`basin`, as fusion left it: its bowl, fitBasin in object_fusion.hpp) stands on a pedestal:
+// under its footprint, the room's own points (`cloud`, aligned; those of its walls and of the `others` things' boxes
+// left out) rise from the floor to the bowl in one column narrower than half the basin, at most heights. A vanity's
+// front is as wide as the basin; a sink hung on a wall has nothing under it but its drain, which ends in the wall above
+// the floor.
 bool onPedestal(const model::Box& basin, const PointCloud& cloud, const std::vector<WallSegment>& walls,
                 const std::vector<model::Box>& others);
 
