@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "ingest/geometry/clusters.hpp"
+#include "ingest/geometry/robust.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/pipeline/colors.hpp"
 #include "ingest/pipeline/plausibility.hpp"
@@ -183,22 +184,13 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
 
 // The pedestal's column: each band of kPedestalBand m from kPedestalFrom over the floor to kPedestalGap under the
 // bowl holds kPedestalPoints points or more under the basin's footprint, whose middle 80 % lie within kPedestalWidth
-// of the basin's longer side along it and across it; kPedestalShare of the bands do. Points within kPedestalWall of a
-// wall's plane are the wall's. A vanity's front under it fills the footprint from side to side. ScanNet's apartment's
+// of the basin's longer side along it and across it; kPedestalShare of the bands do. The walls' points are theirs
+// (nonStructuralPoints). A vanity's front under it fills the footprint from side to side. ScanNet's apartment's
 // pedestal sink: 0.27-0.41 m in the bands of its 0.70 m basin, 0.08-0.14 m in those of its 0.34 m one from every
 // third frame; its bathroom's vanity from every third frame 0.40 m along a 0.51 m basin.
-constexpr double kPedestalBand = 0.1, kPedestalFrom = 0.1, kPedestalGap = 0.05, kPedestalWall = 0.1;
+constexpr double kPedestalBand = 0.1, kPedestalFrom = 0.1, kPedestalGap = 0.05;
 constexpr double kPedestalShare = 0.75, kPedestalWidth = 0.5;
 constexpr std::size_t kPedestalPoints = 3;
-
-// The spread of the middle 80 % of `values`.
-double middleSpread(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const auto at = [&](double q) {
-        return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1))];
-    };
-    return at(0.9) - at(0.1);
-}
 
 }  // namespace
 
@@ -209,12 +201,10 @@ bool onPedestal(const model::Box& basin, const PointCloud& cloud, const std::vec
     if (bands < 2) return false;
     const double c = std::cos(basin.yaw), s = std::sin(basin.yaw);
     std::vector<std::vector<double>> along(static_cast<std::size_t>(bands)), across(static_cast<std::size_t>(bands));
-    for (const auto& p : cloud.points) {
+    for (const std::size_t i : nonStructuralPoints(cloud, walls)) {
+        const model::Vec3& p = cloud.points[i];
         if (p.z < kPedestalFrom || p.z >= kPedestalFrom + bands * kPedestalBand) continue;
         if (!model::footprintContains(basin, {p.x, p.y})) continue;
-        if (std::any_of(walls.begin(), walls.end(),
-                        [&](const WallSegment& w) { return std::abs(w.signedDistance(p)) < kPedestalWall; }))
-            continue;
         if (std::any_of(others.begin(), others.end(), [&](const model::Box& other) {
                 return model::footprintContains(other, {p.x, p.y}) && p.z >= model::bottom(other) &&
                        p.z <= model::top(other);
@@ -226,10 +216,10 @@ bool onPedestal(const model::Box& basin, const PointCloud& cloud, const std::vec
         across[band].push_back(-s * dx + c * dy);
     }
     const double narrow = kPedestalWidth * std::max(basin.size.x, basin.size.y);
+    const auto spread = [](const std::vector<double>& values) { return detail::quantileSpread(values, 0.1, 0.9); };
     int column = 0;
     for (std::size_t b = 0; b < along.size(); ++b)
-        column +=
-            along[b].size() >= kPedestalPoints && middleSpread(along[b]) <= narrow && middleSpread(across[b]) <= narrow;
+        column += along[b].size() >= kPedestalPoints && spread(along[b]) <= narrow && spread(across[b]) <= narrow;
     return column >= kPedestalShare * bands;
 }
 
@@ -532,7 +522,9 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         const bool againstWall = !opening && relations::hasFront(category) && faceAwayFromWall(box, category, walls);
         placed.push_back({t, std::move(colors), box, againstWall, false, meanOf(cameras)});
     }
-    if (framesHaveDepth(capture) && aligned.alignment.floorFound)
+    // Depth and a floor found: heights of things measured from the floor the views showed.
+    const bool measuredFloor = framesHaveDepth(capture) && aligned.alignment.floorFound;
+    if (measuredFloor)
         if (const std::size_t pedestals = standOnPedestals(placed, tracks, aligned.cloud, walls))
             progress.note(fmt::format("objects: {} sink(s) on a pedestal: from the floor up to the bowl", pedestals));
     const auto [pushedIn, turned] = seatChairs(placed, tracks);
@@ -598,7 +590,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
         made.push_back({node.id, std::move(track.views), !track.fused.empty()});
     }
     finder.addStructureObjects(aligned, walls, scene, progress);
-    if (framesHaveDepth(capture) && aligned.alignment.floorFound) renameFloating(scene, progress);
+    if (measuredFloor) renameFloating(scene, progress);
     return made;
 }
 
