@@ -183,65 +183,81 @@ bool withinRoom(const model::Vec3& p, const Alignment& alignment) {
 }
 
 // The pedestal's column: each band of kPedestalBand m from kPedestalFrom over the floor to kPedestalGap under the
-// bowl holds kPedestalPoints points or more under the basin's footprint, whose middle 80 % lie within kPedestalWidth
-// of the basin's longer side along it and across it; kPedestalShare of the bands do. The walls' points are theirs
-// (nonStructuralPoints). A vanity's front under it fills the footprint from side to side. ScanNet's apartment's
-// pedestal sink: 0.27-0.41 m in the bands of its 0.70 m basin, 0.08-0.14 m in those of its 0.34 m one from every
-// third frame; its bathroom's vanity from every third frame 0.40 m along a 0.51 m basin.
+// thing (a sink's bowl) holds kPedestalPoints points or more under its footprint, whose middle 80 % lie within
+// kPedestalWidth of the thing's longer side along it and across it; kPedestalShare of the bands do. The walls' points
+// are theirs (nonStructuralPoints). A vanity's front under a basin fills the footprint from side to side. ScanNet's
+// apartment's pedestal sink: 0.27-0.41 m in the bands of its 0.70 m basin, 0.08-0.14 m in those of its 0.34 m one from
+// every third frame; its bathroom's vanity from every third frame 0.40 m along a 0.51 m basin; its bathroom's towel
+// stand under the towels' 0.34 m box, 0.01-0.15 m.
 constexpr double kPedestalBand = 0.1, kPedestalFrom = 0.1, kPedestalGap = 0.05;
 constexpr double kPedestalShare = 0.75, kPedestalWidth = 0.5;
 constexpr std::size_t kPedestalPoints = 3;
 
 }  // namespace
 
-bool onPedestal(const model::Box& basin, const PointCloud& cloud, const std::vector<WallSegment>& walls,
-                const std::vector<model::Box>& others) {
-    const double under = model::bottom(basin) - kPedestalGap;
+std::vector<std::size_t> pedestalUnder(const model::Box& top, const PointCloud& cloud,
+                                       const std::vector<WallSegment>& walls, const std::vector<model::Box>& others) {
+    const double under = model::bottom(top) - kPedestalGap;
     const int bands = static_cast<int>(std::floor((under - kPedestalFrom) / kPedestalBand));
-    if (bands < 2) return false;
-    const double c = std::cos(basin.yaw), s = std::sin(basin.yaw);
+    if (bands < 2) return {};
+    const double c = std::cos(top.yaw), s = std::sin(top.yaw);
+    std::vector<std::size_t> points;
     std::vector<std::vector<double>> along(static_cast<std::size_t>(bands)), across(static_cast<std::size_t>(bands));
     for (const std::size_t i : nonStructuralPoints(cloud, walls)) {
         const model::Vec3& p = cloud.points[i];
         if (p.z < kPedestalFrom || p.z >= kPedestalFrom + bands * kPedestalBand) continue;
-        if (!model::footprintContains(basin, {p.x, p.y})) continue;
+        if (!model::footprintContains(top, {p.x, p.y})) continue;
         if (std::any_of(others.begin(), others.end(), [&](const model::Box& other) {
                 return model::footprintContains(other, {p.x, p.y}) && p.z >= model::bottom(other) &&
                        p.z <= model::top(other);
             }))
             continue;
-        const double dx = p.x - basin.center.x, dy = p.y - basin.center.y;
+        const double dx = p.x - top.center.x, dy = p.y - top.center.y;
         const auto band = static_cast<std::size_t>((p.z - kPedestalFrom) / kPedestalBand);
         along[band].push_back(c * dx + s * dy);
         across[band].push_back(-s * dx + c * dy);
+        points.push_back(i);
     }
-    const double narrow = kPedestalWidth * std::max(basin.size.x, basin.size.y);
+    const double narrow = kPedestalWidth * std::max(top.size.x, top.size.y);
     const auto spread = [](const std::vector<double>& values) { return detail::quantileSpread(values, 0.1, 0.9); };
     int column = 0;
     for (std::size_t b = 0; b < along.size(); ++b)
         column += along[b].size() >= kPedestalPoints && spread(along[b]) <= narrow && spread(across[b]) <= narrow;
-    return column >= kPedestalShare * bands;
+    if (column < kPedestalShare * bands) return {};
+    return points;
 }
 
-namespace {
-
-// The sinks on a pedestal (onPedestal) reach down to the floor. Returns how many.
-std::size_t standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<ObjectTrack>& tracks,
-                             const PointCloud& cloud, const std::vector<WallSegment>& walls) {
-    std::size_t pedestals = 0;
+Pedestals standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<ObjectTrack>& tracks,
+                           const PointCloud& cloud, const std::vector<WallSegment>& walls) {
+    Pedestals found;
     for (auto& thing : placed) {
-        if (role(tracks[thing.track].category) != Role::Basin) continue;
+        const std::string& category = tracks[thing.track].category;
+        const bool basin = role(category) == Role::Basin;
+        if (!basin && relations::usualSupport(category) == relations::Support::Floor) continue;
         std::vector<model::Box> others;
         for (const auto& other : placed)
             if (&other != &thing) others.push_back(other.box);
-        if (onPedestal(thing.box, cloud, walls, others)) {
+        const std::vector<std::size_t> column = pedestalUnder(thing.box, cloud, walls, others);
+        if (column.empty()) continue;
+        const double bottom = model::bottom(thing.box);
+        if (basin) {
             const double top = model::top(thing.box);
             thing.box.center.z = top / 2, thing.box.size.z = top;
-            ++pedestals;
+            ++found.sinks;
+            continue;
         }
+        Stand stand{thing.box, {}};
+        stand.box.center.z = bottom / 2, stand.box.size.z = bottom;
+        for (const std::size_t i : column) {
+            const auto& rgb = cloud.colors[i];
+            stand.colors.push_back(cv::Vec3b(rgb[2], rgb[1], rgb[0]));
+        }
+        found.stands.push_back(std::move(stand));
     }
-    return pedestals;
+    return found;
 }
+
+namespace {
 
 // The centres of the cameras that saw a track, in the aligned frame.
 std::vector<model::Vec3> camerasOf(const ObjectTrack& track, const Capture& capture, const Alignment& alignment) {
@@ -473,6 +489,22 @@ void renameFloating(model::SceneData& scene, StageProgress& progress) {
     }
 }
 
+// The stands standOnPedestals found, as tables no model named (as a cluster under a sink is its cabinet).
+void addStands(const std::vector<Stand>& stands, model::SceneData& scene, StageProgress& progress) {
+    for (const Stand& stand : stands) {
+        model::Node& node = addNode(scene, NodeKind::Object, "table", GeometryKind::Box, stand.box);
+        node.attributes.push_back({"color", nameColor(stand.colors).name});
+        node.attributes.push_back({"points", std::to_string(stand.colors.rows)});
+        node.attributes.push_back({"size", sizeWord(stand.box)});
+        node.confidence = 0.5f;
+    }
+    if (!stands.empty())
+        progress.note(
+            fmt::format("objects: {} thing(s) held up by a column no model named: the column stored as a "
+                        "'table' from the floor up to the thing",
+                        stands.size()));
+}
+
 }  // namespace
 
 std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
@@ -524,9 +556,9 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
     }
     // Depth and a floor found: heights of things measured from the floor the views showed.
     const bool measuredFloor = framesHaveDepth(capture) && aligned.alignment.floorFound;
-    if (measuredFloor)
-        if (const std::size_t pedestals = standOnPedestals(placed, tracks, aligned.cloud, walls))
-            progress.note(fmt::format("objects: {} sink(s) on a pedestal: from the floor up to the bowl", pedestals));
+    const Pedestals pedestals = measuredFloor ? standOnPedestals(placed, tracks, aligned.cloud, walls) : Pedestals{};
+    if (pedestals.sinks)
+        progress.note(fmt::format("objects: {} sink(s) on a pedestal: from the floor up to the bowl", pedestals.sinks));
     const auto [pushedIn, turned] = seatChairs(placed, tracks);
     if (pushedIn)
         progress.note(
@@ -589,6 +621,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             scene.blobs.push_back(model::embeddingBlob(node.id, embedding));
         made.push_back({node.id, std::move(track.views), !track.fused.empty()});
     }
+    addStands(pedestals.stands, scene, progress);
     finder.addStructureObjects(aligned, walls, scene, progress);
     if (measuredFloor) renameFloating(scene, progress);
     return made;

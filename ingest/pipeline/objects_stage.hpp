@@ -33,13 +33,14 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
                                        const std::vector<model::Vec3>& cameras, bool widestAtTop,
                                        std::optional<double> tableTop = std::nullopt);
 
-// Whether a sink's box (`basin`, as fusion left it: its bowl, fitBasin in object_fusion.hpp) stands on a pedestal:
-// under its footprint, the room's own points (`cloud`, aligned; those of its walls and of the `others` things' boxes
-// left out) rise from the floor to the bowl in one column narrower than half the basin, at most heights. A vanity's
-// front is as wide as the basin; a sink hung on a wall has nothing under it but its drain, which ends in the wall above
-// the floor.
-bool onPedestal(const model::Box& basin, const PointCloud& cloud, const std::vector<WallSegment>& walls,
-                const std::vector<model::Box>& others);
+// The column a thing stands on (`top`, its box, aligned): under its footprint, the room's own points (`cloud`,
+// aligned; those of its walls and of the `others` things' boxes left out) rising from the floor to it in one column
+// narrower than half the thing, at most heights. Returns the column's points (indices into `cloud`), none when they
+// make no column. A sink's pedestal (its box as fusion left it: its bowl, fitBasin in object_fusion.hpp) passes; a
+// vanity's front is as wide as the basin, and a sink hung on a wall has nothing under it but its drain, which ends in
+// the wall above the floor.
+std::vector<std::size_t> pedestalUnder(const model::Box& top, const PointCloud& cloud,
+                                       const std::vector<WallSegment>& walls, const std::vector<model::Box>& others);
 
 // A track's place once the room is aligned: its colour samples and its box.
 struct PlacedTrack {
@@ -50,6 +51,25 @@ struct PlacedTrack {
     bool pushedIn = false;     // a chair seen by its back alone, pushed in square to its table
     model::Vec3 seenFrom{};    // the mean centre of the cameras that saw it
 };
+
+// A stand no model named, under a thing it holds up (standOnPedestals): its box and its points' colours.
+struct Stand {
+    model::Box box;
+    cv::Mat colors;
+};
+
+// What stands on a pedestal (pedestalUnder), with depth and a floor found. A sink whose views gave its bowl alone is
+// one thing with its pedestal: its box reaches down to the floor (`sinks` counts them). A thing of a kind that is not
+// always on the floor (a floor's kind, a chair or a bed, holds its own legs) that is held up by a column no model named
+// stands on it: the column is a stand (a pedestal table, a towel stand), returned to be stored as a table from the
+// floor up to the thing, as wide as the thing. ScanNet's bathroom's towels on a tripod stand were a "toy" 0.49 m over
+// the floor with nothing stored under it; ScanNet labels the stand a table.
+struct Pedestals {
+    std::size_t sinks = 0;
+    std::vector<Stand> stands;
+};
+Pedestals standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<ObjectTrack>& tracks,
+                           const PointCloud& cloud, const std::vector<WallSegment>& walls);
 
 // Two things of one kind, the smaller mostly inside the larger (plausibility.hpp: storedTwice), are one thing stored
 // twice, where both are hulls carved without depth or both chairs pushed in at a table. A hull's views went to two

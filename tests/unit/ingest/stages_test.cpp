@@ -24,6 +24,7 @@
 #include "ingest/pipeline/stage_runner.hpp"
 #include "ingest/synth/synth.hpp"
 #include "model/error.hpp"
+#include "model/geometry.hpp"
 #include "scratch_dir.hpp"
 
 using namespace smql;
@@ -355,16 +356,61 @@ TEST_CASE("a sink on a pedestal reaches the floor; one on a vanity or hung on a 
         return cloud;
     };
     // ScanNet's apartment's pedestal: a column about 0.2 m across from the floor to the bowl.
-    CHECK(onPedestal(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {}));
+    CHECK_FALSE(pedestalUnder(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {}).empty());
     // A vanity's front, as wide as the basin or wider, its cabinet not stored apart: its points fill the footprint.
-    CHECK_FALSE(onPedestal(basin, cloudOf(0.1, 0.1, -0.32, 0.32, 0, 0.7), walls, {}));
+    CHECK(pedestalUnder(basin, cloudOf(0.1, 0.1, -0.32, 0.32, 0, 0.7), walls, {}).empty());
     // A bin standing under it, a thing of its own: its points are the bin's.
     const model::Box bin{{0.3, 0, 0.35}, {0.3, 0.3, 0.7}, 0};
-    CHECK_FALSE(onPedestal(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {bin}));
+    CHECK(pedestalUnder(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {bin}).empty());
     // A sink hung on the wall: its drain, from the bowl into the wall 0.45 m over the floor.
-    CHECK_FALSE(onPedestal(basin, cloudOf(0.3, 0.35, -0.02, 0.02, 0.45, 0.7), walls, {}));
+    CHECK(pedestalUnder(basin, cloudOf(0.3, 0.35, -0.02, 0.02, 0.45, 0.7), walls, {}).empty());
     // Nothing under it but the wall.
-    CHECK_FALSE(onPedestal(basin, cloudOf(0, -1, 0, -1, 0, -1), walls, {}));
+    CHECK(pedestalUnder(basin, cloudOf(0, -1, 0, -1, 0, -1), walls, {}).empty());
+}
+
+TEST_CASE(
+    "a thing held up by a column no model named stands on a table; a chair or a thing on a stored table does not") {
+    // ScanNet's bathroom: towels stored as a 0.34 x 0.32 x 0.18 m "toy", its bottom 0.49 m up, on a tripod stand whose
+    // column is 0.01-0.15 m across; a sink's bowl beside it on a pedestal of the same kind.
+    const cv::Mat white(1, 1, CV_8UC3, cv::Scalar(255, 255, 255));
+    PointCloud cloud;
+    auto column = [&](double x, double y, double half, double z1) {
+        for (double dx = -half; dx <= half + 1e-9; dx += 0.02)
+            for (double dy = -half; dy <= half + 1e-9; dy += 0.02)
+                for (double z = 0; z <= z1 + 1e-9; z += 0.03) cloud.push({x + dx, y + dy, z}, {90, 60, 40}, 0);
+    };
+    column(0, 0, 0.04, 0.48);
+    column(2, 0, 0.06, 0.72);
+    column(4, 0, 0.04, 0.48);
+    auto trackOf = [](const std::string& category) {
+        ObjectTrack track;
+        track.category = category;
+        return track;
+    };
+    const std::vector<ObjectTrack> tracks{trackOf("toy"), trackOf("sink"), trackOf("chair")};
+    std::vector<PlacedTrack> placed{{0, white, {{0, 0, 0.58}, {0.34, 0.32, 0.18}, 0}},
+                                    {1, white, {{2, 0, 0.81}, {0.6, 0.45, 0.16}, 0}},
+                                    {2, white, {{4, 0, 0.7}, {0.5, 0.5, 0.4}, 0}}};
+    const Pedestals found = standOnPedestals(placed, tracks, cloud, {});
+    // The towels stay where they were, on a stand from the floor up to them, as wide as they are.
+    REQUIRE(found.stands.size() == 1);
+    CHECK(found.stands[0].box.center.x == Approx(0));
+    CHECK(found.stands[0].box.size.x == Approx(0.34));
+    CHECK(model::bottom(found.stands[0].box) == Approx(0).margin(1e-9));
+    CHECK(model::top(found.stands[0].box) == Approx(0.49));
+    CHECK(found.stands[0].colors.rows > 0);
+    CHECK(placed[0].box.center.z == Approx(0.58));
+    // The sink is one thing with its pedestal: its box reaches the floor, and no stand is added under it.
+    CHECK(found.sinks == 1);
+    CHECK(model::bottom(placed[1].box) == Approx(0).margin(1e-9));
+    // A chair's box holds its own legs: a floating "chair" is something else, judged by its name (renameFloating).
+    CHECK(model::bottom(placed[2].box) == Approx(0.5));
+
+    // The towels on a stored table: the column's points are the table's, and no stand is added.
+    std::vector<PlacedTrack> onTable{{0, white, {{0, 0, 0.58}, {0.34, 0.32, 0.18}, 0}},
+                                     {2, white, {{0, 0, 0.245}, {0.5, 0.5, 0.49}, 0}}};
+    const std::vector<ObjectTrack> towelsAndTable{trackOf("toy"), trackOf("sink"), trackOf("table")};
+    CHECK(standOnPedestals(onTable, towelsAndTable, cloud, {}).stands.empty());
 }
 
 TEST_CASE("chairs seen by their backs alone: pushed in at a table, facing away from the cameras at none") {
