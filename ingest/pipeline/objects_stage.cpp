@@ -73,7 +73,7 @@ bool faceAwayFromWall(model::Box& box, const std::string& category, const std::v
 }
 
 // A chair within kAtTable of a table or a desk, and against no wall, stands at the nearest of them (tableAt): people
-// sit at tables. Wider than FusionOptions::chairAtDesk (0.3 m), which names a desk by the chair pushed in at it:
+// sit at tables. Wider than FusionOptions::chairAtDesk (0.4 m), which names a desk by the chair pushed in at it:
 // ScanNet's lounge's armchairs stand 0.3-0.5 m from their low table.
 constexpr double kAtTable = 0.5;  // m, between the footprints
 const model::Box* tableAt(const model::Box& box, const std::vector<const model::Box*>& tables) {

@@ -918,6 +918,16 @@ TEST_CASE("named by use: a table against a wall with one or two chairs at it is 
     // ScanNet's), and stays a table.
     const SeenBox side = seen("table", {3.17, -0.29, 0.37}, {0.80, 0.63, 0.73}, 0, 33);
     CHECK(namedByUse({side, front}, {wall})[0].category.empty());
+
+    // From every third frame: the desk 0.56 m deep (ScanNet's 0.69 m) with the nightstand beside it, and its office
+    // chair 0.33 m deep (0.39 m from every frame), so 0.32 m of floor between their boxes where the desk's front and
+    // the chair stand 0.2 m apart. Boxes measured from a capture are a few centimetres short on each side: the chair
+    // at it is one within 0.4 m. A chair 0.5 m away is at no desk.
+    const SeenBox thirds = seen("table", {3.44, -0.26, 0.37}, {1.85, 0.56, 0.74}, 0, 16);
+    const SeenBox shallowChair = seen("chair", {3.27, 0.50, 0.48}, {0.33, 0.49, 0.97}, -90, 11);
+    CHECK(namedByUse({thirds, shallowChair}, {wall})[0].category == "desk");
+    const SeenBox awayChair = seen("chair", {3.27, 0.70, 0.48}, {0.33, 0.49, 0.97}, -90, 11);
+    CHECK(namedByUse({thirds, awayChair}, {wall})[0].category.empty());
 }
 
 TEST_CASE("named by use: a small low table beside a bed is a nightstand", "[ingest][fusion]") {
