@@ -201,15 +201,15 @@ constexpr std::size_t kPedestalPoints = 3;
 }  // namespace
 
 std::vector<std::size_t> pedestalUnder(const model::Box& top, const PointCloud& cloud,
-                                       const std::vector<WallSegment>& walls, const std::vector<model::Box>& others,
-                                       double narrowest) {
+                                       const std::vector<std::size_t>& roomPoints,
+                                       const std::vector<model::Box>& others, double narrowest) {
     const double under = model::bottom(top) - kPedestalGap;
     const int bands = static_cast<int>(std::floor((under - kPedestalFrom) / kPedestalBand));
     if (bands < 2) return {};
     const double c = std::cos(top.yaw), s = std::sin(top.yaw);
     std::vector<std::size_t> points;
     std::vector<std::vector<double>> along(static_cast<std::size_t>(bands)), across(static_cast<std::size_t>(bands));
-    for (const std::size_t i : nonStructuralPoints(cloud, walls)) {
+    for (const std::size_t i : roomPoints) {
         const model::Vec3& p = cloud.points[i];
         if (p.z < kPedestalFrom || p.z >= kPedestalFrom + bands * kPedestalBand) continue;
         if (!model::footprintContains(top, {p.x, p.y})) continue;
@@ -236,6 +236,7 @@ std::vector<std::size_t> pedestalUnder(const model::Box& top, const PointCloud& 
 Pedestals standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<ObjectTrack>& tracks,
                            const PointCloud& cloud, const std::vector<WallSegment>& walls) {
     Pedestals found;
+    const std::vector<std::size_t> roomPoints = nonStructuralPoints(cloud, walls);
     for (auto& thing : placed) {
         const std::string& category = tracks[thing.track].category;
         const bool basin = role(category) == Role::Basin;
@@ -244,7 +245,7 @@ Pedestals standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<O
         for (const auto& other : placed)
             if (&other != &thing) others.push_back(other.box);
         const std::vector<std::size_t> column =
-            pedestalUnder(thing.box, cloud, walls, others, basin ? kBowlPedestal : 0.0);
+            pedestalUnder(thing.box, cloud, roomPoints, others, basin ? kBowlPedestal : 0.0);
         if (column.empty()) continue;
         const double bottom = model::bottom(thing.box);
         if (basin) {

@@ -33,15 +33,16 @@ std::vector<model::Vec3> holdToSurface(const std::vector<model::Vec3>& hull, con
                                        const std::vector<model::Vec3>& cameras, bool widestAtTop,
                                        std::optional<double> tableTop = std::nullopt);
 
-// The column a thing stands on (`top`, its box, aligned): under its footprint, the room's own points (`cloud`,
-// aligned; those of its walls and of the `others` things' boxes left out) rising from the floor to it in one column
+// The column a thing stands on (`top`, its box, aligned): under its footprint, the room's own points (`roomPoints`,
+// indices into the aligned `cloud` without its walls' points: nonStructuralPoints in walls.hpp; those in the `others`
+// things' boxes left out) rising from the floor to it in one column
 // narrower than half the thing (or than `narrowest`, where that is wider), at most heights. Returns the column's
 // points (indices into `cloud`), none when they make no column. A sink's pedestal (its box as fusion left it: its bowl,
 // fitBasin in object_fusion.hpp) passes; a vanity's front is as wide as the basin, and a sink hung on a wall has
 // nothing under it but its drain, which ends in the wall above the floor.
 std::vector<std::size_t> pedestalUnder(const model::Box& top, const PointCloud& cloud,
-                                       const std::vector<WallSegment>& walls, const std::vector<model::Box>& others,
-                                       double narrowest = 0);
+                                       const std::vector<std::size_t>& roomPoints,
+                                       const std::vector<model::Box>& others, double narrowest = 0);
 
 // A track's place once the room is aligned: its colour samples and its box.
 struct PlacedTrack {

@@ -345,7 +345,10 @@ TEST_CASE("a sink on a pedestal reaches the floor; one on a vanity or hung on a 
     WallSegment wall;
     wall.normal = {-1, 0, 0}, wall.offset = 0.55, wall.along0 = -2, wall.along1 = 2, wall.z1 = 2.5;
     const std::vector<WallSegment> walls{wall};
-    auto cloudOf = [&](double x0, double x1, double y0, double y1, double z0, double z1) {
+    // Whether a column is found under the basin among the room's points and those of a block from (x0, y0, z0) to
+    // (x1, y1, z1), the `others` things' boxes left out.
+    auto onPedestal = [&](double x0, double x1, double y0, double y1, double z0, double z1,
+                          const std::vector<model::Box>& others) {
         PointCloud cloud;
         // The wall behind, from the floor up: its own points, never the sink's.
         for (double y = -0.6; y <= 0.6; y += 0.05)
@@ -353,19 +356,19 @@ TEST_CASE("a sink on a pedestal reaches the floor; one on a vanity or hung on a 
         for (double x = x0; x <= x1 + 1e-9; x += 0.04)
             for (double y = y0; y <= y1 + 1e-9; y += 0.04)
                 for (double z = z0; z <= z1 + 1e-9; z += 0.05) cloud.push({x, y, z}, {0, 0, 0}, 0);
-        return cloud;
+        return !pedestalUnder(basin, cloud, nonStructuralPoints(cloud, walls), others).empty();
     };
     // ScanNet's apartment's pedestal: a column about 0.2 m across from the floor to the bowl.
-    CHECK_FALSE(pedestalUnder(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {}).empty());
+    CHECK(onPedestal(0.2, 0.4, -0.1, 0.1, 0, 0.7, {}));
     // A vanity's front, as wide as the basin or wider, its cabinet not stored apart: its points fill the footprint.
-    CHECK(pedestalUnder(basin, cloudOf(0.1, 0.1, -0.32, 0.32, 0, 0.7), walls, {}).empty());
+    CHECK_FALSE(onPedestal(0.1, 0.1, -0.32, 0.32, 0, 0.7, {}));
     // A bin standing under it, a thing of its own: its points are the bin's.
     const model::Box bin{{0.3, 0, 0.35}, {0.3, 0.3, 0.7}, 0};
-    CHECK(pedestalUnder(basin, cloudOf(0.2, 0.4, -0.1, 0.1, 0, 0.7), walls, {bin}).empty());
+    CHECK_FALSE(onPedestal(0.2, 0.4, -0.1, 0.1, 0, 0.7, {bin}));
     // A sink hung on the wall: its drain, from the bowl into the wall 0.45 m over the floor.
-    CHECK(pedestalUnder(basin, cloudOf(0.3, 0.35, -0.02, 0.02, 0.45, 0.7), walls, {}).empty());
+    CHECK_FALSE(onPedestal(0.3, 0.35, -0.02, 0.02, 0.45, 0.7, {}));
     // Nothing under it but the wall.
-    CHECK(pedestalUnder(basin, cloudOf(0, -1, 0, -1, 0, -1), walls, {}).empty());
+    CHECK_FALSE(onPedestal(0, -1, 0, -1, 0, -1, {}));
 }
 
 TEST_CASE(
