@@ -92,13 +92,22 @@ bool faceTable(model::Box& box, const model::Box& table) {
     return length > 0 && turnToFace(box, {dx / length, dy / length, 0}, false);
 }
 
-// A chair's box that holds its back alone: shallower than any chair (shallowestFootprint) and at most half as deep
-// as it is wide. The shallowest depth of its kind, or nullopt when the box is no such slab.
+// A chair is as deep as kChairDepthShare of its width or deeper, and no wider than kWidestChair: of ARKitScenes' 235
+// labelled chairs (../shared/data/real-layouts) one in a hundred is shallower than 0.65 of its width, one in twenty
+// than 0.71, and the widest is 1.02 m. The dining frames' wingback armchair, seen from behind, was a 0.74 x 0.36 m
+// slab, 1.21 m tall: deeper than the shallowest chairs, yet half as deep as a chair so wide is.
+constexpr double kChairDepthShare = 0.65, kWidestChair = 1.0;
+
+// A chair's box that holds its back alone: shallower than any chair of its width (shallowestFootprint, and
+// kChairDepthShare of its width) and at most half as deep as it is wide. That depth, or nullopt when the box is no
+// such slab.
 std::optional<double> backAlone(const model::Box& box, std::string_view category) {
     const auto shallowest = shallowestFootprint(category);
     const double thin = std::min(box.size.x, box.size.y), wide = std::max(box.size.x, box.size.y);
-    if (!shallowest || thin >= *shallowest || 2 * thin > wide) return std::nullopt;
-    return shallowest;
+    if (!shallowest || wide > kWidestChair || 2 * thin > wide) return std::nullopt;
+    const double depth = std::max(*shallowest, kChairDepthShare * wide);
+    if (thin >= depth) return std::nullopt;
+    return depth;
 }
 
 // The back's slab turned to face `yaw` and reaching `depth` deep ahead of the back, where the seat is.
@@ -113,7 +122,8 @@ void seatAhead(model::Box& box, double yaw, double depth) {
 // A chair pushed in at a table shows the cameras its back alone, its seat under the table's top: its box is a slab
 // (backAlone). The dining frames' four chairs at the table were 0.11-0.19 m deep, their slabs' axes turned up to 30
 // degrees from the table's. Such a chair stands square to the table's nearest side and faces it, its back along that
-// side where it was seen, and reaches as deep as the shallowest chairs towards the table. Whether it was one.
+// side where it was seen, and reaches as deep as the shallowest chairs of its width towards the table. Whether it was
+// one.
 bool pushInAt(model::Box& box, std::string_view category, const model::Box& table) {
     const auto shallowest = backAlone(box, category);
     if (!shallowest) return false;
@@ -130,8 +140,8 @@ bool pushInAt(model::Box& box, std::string_view category, const model::Box& tabl
 
 // A chair at no table whose back alone was seen (backAlone) was seen from behind: a chair seen from before or
 // from a side shows its seat. It faces away from the cameras that saw it (`seenFrom`, their mean centre), across its
-// back, and reaches as deep as the shallowest chairs ahead of it. The dining frames' slat-backed chair 1 m beyond the
-// table's end, seen in three frames, was a 0.51 x 0.17 m slab facing the wall beside it. Whether it was one.
+// back, and reaches as deep as the shallowest chairs of its width ahead of it. The dining frames' slat-backed chair 1 m
+// beyond the table's end, seen in three frames, was a 0.51 x 0.17 m slab facing the wall beside it. Whether it was one.
 bool seatAwayFrom(model::Box& box, std::string_view category, const model::Vec3& seenFrom) {
     const auto shallowest = backAlone(box, category);
     if (!shallowest) return false;
@@ -571,12 +581,12 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
     if (pushedIn)
         progress.note(
             fmt::format("objects: {} chair(s) at a table seen by their backs alone: square to it, reaching "
-                        "under it as deep as the shallowest chairs",
+                        "under it as deep as the shallowest chairs of their width",
                         pushedIn));
     if (turned)
         progress.note(
             fmt::format("objects: {} chair(s) at no table seen by their backs alone: facing away from the "
-                        "cameras, as deep as the shallowest chairs",
+                        "cameras, as deep as the shallowest chairs of their width",
                         turned));
     if (const std::size_t merged = mergeStoredTwice(placed, tracks))
         progress.note(

@@ -83,11 +83,11 @@ Pedestals standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<O
 std::size_t mergeStoredTwice(std::vector<PlacedTrack>& placed, std::vector<ObjectTrack>& tracks);
 
 // Chairs seated as people leave them. A chair within 0.5 m of a table or a desk faces it; one whose box holds its
-// back alone (shallower than any chair, at most half as deep as wide) is pushed in, square to the table's nearest
-// side, as deep as the shallowest chairs towards it (the dining frames' four at the table, 0.11-0.19 m deep slabs).
-// One whose back alone was seen at no table was seen from behind, and faces away from the cameras that saw it
-// (PlacedTrack::seenFrom), as deep as the shallowest chairs ahead of its back. Chairs against a wall are left as
-// they were turned. How many were pushed in, and how many turned from the cameras.
+// back alone (shallower than any chair of its width, at most half as deep as wide) is pushed in, square to the table's
+// nearest side, as deep as the shallowest chairs of its width towards it (the dining frames' four at the table,
+// 0.11-0.19 m deep slabs). One whose back alone was seen at no table was seen from behind, and faces away from the
+// cameras that saw it (PlacedTrack::seenFrom), as deep as the shallowest chairs of its width ahead of its back. Chairs
+// against a wall are left as they were turned. How many were pushed in, and how many turned from the cameras.
 std::pair<std::size_t, std::size_t> seatChairs(std::vector<PlacedTrack>& placed,
                                                const std::vector<ObjectTrack>& tracks);
 

@@ -428,29 +428,43 @@ TEST_CASE("chairs seen by their backs alone: pushed in at a table, facing away f
         track.category = category;
         return track;
     };
-    std::vector<ObjectTrack> tracks{trackOf("table"), trackOf("chair"), trackOf("chair"), trackOf("chair")};
+    std::vector<ObjectTrack> tracks{trackOf("table"), trackOf("chair"), trackOf("chair"),
+                                    trackOf("chair"), trackOf("chair"), trackOf("chair")};
     // A table along y; a back 0.17 m deep beyond its +x side; a back 0.17 m deep 2 m from it, its thin side along x,
-    // seen from cameras at x = -1 (so from behind, the chair facing +x); and a chair seen whole, 0.5 m deep.
+    // seen from cameras at x = -1 (so from behind, the chair facing +x); a chair seen whole, 0.5 m deep; the dining
+    // frames' wingback armchair seen from behind, a 0.74 x 0.36 m slab 1.21 m tall; and a 1.46 x 0.69 m "chair",
+    // wider than any chair is.
     const model::Vec3 cameras{-1, 0, 1.4};
     std::vector<PlacedTrack> placed{{0, white, {{0, 0, 0.37}, {1.0, 1.8, 0.75}, 0}, false, false, cameras},
                                     {1, white, {{0.7, 0.2, 0.49}, {0.17, 0.5, 0.98}, 0.3}, false, false, cameras},
                                     {2, white, {{2.5, 0, 0.49}, {0.17, 0.51, 0.98}, M_PI}, false, false, cameras},
-                                    {3, white, {{2.5, 2.0, 0.45}, {0.5, 0.55, 0.9}, 0.2}, false, false, cameras}};
-    CHECK(seatChairs(placed, tracks) == std::pair<std::size_t, std::size_t>{1, 1});
+                                    {3, white, {{2.5, 2.0, 0.45}, {0.5, 0.55, 0.9}, 0.2}, false, false, cameras},
+                                    {4, white, {{2.5, -2.0, 0.6}, {0.36, 0.74, 1.21}, 0}, false, false, cameras},
+                                    {5, white, {{2.5, 4.0, 0.34}, {0.69, 1.46, 0.67}, 0}, false, false, cameras}};
+    CHECK(seatChairs(placed, tracks) == std::pair<std::size_t, std::size_t>{1, 2});
     // Pushed in: square to the table's +x side, facing it (-x), 0.33 deep towards it from its back.
     CHECK(placed[1].pushedIn);
     CHECK(std::cos(placed[1].box.yaw) == Approx(-1).margin(1e-9));
     CHECK(placed[1].box.size.x == Approx(0.33));
     CHECK(placed[1].box.center.x == Approx(0.7 - 0.08));
-    // Seen from behind: facing away from the cameras (+x), its seat ahead of the back.
+    // Seen from behind: facing away from the cameras (+x), its seat ahead of the back, as deep as 0.65 of its width.
     CHECK_FALSE(placed[2].pushedIn);
     CHECK(std::cos(placed[2].box.yaw) == Approx(1).margin(1e-9));
-    CHECK(placed[2].box.size.x == Approx(0.33));
+    CHECK(placed[2].box.size.x == Approx(0.65 * 0.51));
     CHECK(placed[2].box.size.y == Approx(0.51));
-    CHECK(placed[2].box.center.x == Approx(2.5 + 0.08));
+    CHECK(placed[2].box.center.x == Approx(2.5 + (0.65 * 0.51 - 0.17) / 2));
     // Seen whole: left as it was.
     CHECK(placed[3].box.yaw == 0.2);
     CHECK(placed[3].box.size.x == 0.5);
+    // The wingback: deeper than the shallowest chairs, yet half as deep as a chair 0.74 m wide is; it reaches 0.65 of
+    // its width (0.48 m), facing away from the cameras.
+    CHECK(std::cos(placed[4].box.yaw) == Approx(1).margin(1e-9));
+    CHECK(placed[4].box.size.x == Approx(0.65 * 0.74));
+    CHECK(placed[4].box.size.y == Approx(0.74));
+    CHECK(placed[4].box.center.x == Approx(2.5 + (0.65 * 0.74 - 0.36) / 2));
+    // Wider than any chair: no chair's back alone, left as it was.
+    CHECK(placed[5].box.size.x == 0.69);
+    CHECK(placed[5].box.size.y == 1.46);
 }
 
 TEST_CASE("the objects stage holds a carved hull's top, and a table's footprint, to where its surfaces were seen") {
