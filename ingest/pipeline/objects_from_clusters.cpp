@@ -43,12 +43,34 @@ public:
 
     void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                              model::SceneData& scene, StageProgress& progress) override {
-        const std::size_t clusters = addClusterObjects(aligned, walls, scene, {}).added;
-        progress.note(fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'", clusters));
+        const ClusterCounts counts = addClusterObjects(aligned, walls, scene, {});
+        progress.note(fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'{}", counts.added,
+                                  counts.cabinets + counts.wallCabinets > 0
+                                      ? fmt::format(" ({} under a sink or hung on a wall as 'cabinet')",
+                                                    counts.cabinets + counts.wallCabinets)
+                                      : ""));
     }
 };
 
 }  // namespace
+
+bool hungOnWall(const model::Box& box, const std::vector<WallSegment>& walls) {
+    if (model::bottom(box) < kWallCabinetBottom) return false;
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    for (const double u : {-0.5, 0.5})
+        for (const double v : {-0.5, 0.5}) {
+            const model::Vec3 corner{box.center.x + c * u * box.size.x - s * v * box.size.y,
+                                     box.center.y + s * u * box.size.x + c * v * box.size.y, box.center.z};
+            for (const auto& wall : walls) {
+                const model::Vec3 d = wall.direction();
+                const double along = d.x * corner.x + d.y * corner.y;
+                if (std::abs(wall.signedDistance(corner)) <= kAgainstWall && along >= wall.along0 &&
+                    along <= wall.along1)
+                    return true;
+            }
+        }
+    return false;
+}
 
 const model::Node* basinOver(const model::Box& cluster, const model::SceneData& scene, const FusionOptions& options) {
     for (const auto& n : scene.nodes)
@@ -86,9 +108,14 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
             box.size.x > options.maxLonger || frames.size() < options.minFrames)
             continue;
         const model::Node* basin = basinOver(box, scene);
-        const bool cabinet = basin != nullptr;
+        const bool wallCabinet = !basin && aligned.alignment.floorFound && hungOnWall(box, walls);
+        const bool cabinet = basin != nullptr || wallCabinet;
         if (basin) reachUnder(box, basin->box);
-        counts.cabinets += cabinet;
+        // Built in, as the kinds of a kitchen that stand on its floor are (typical_sizes.hpp: standsSquare): a few
+        // points of the wall or of what stands under turned the apartment's wall cabinet 30 degrees off its wall.
+        if (wallCabinet) box = wallAlignedBox(points, FusionOptions{}.squareSlack);
+        counts.cabinets += basin != nullptr;
+        counts.wallCabinets += wallCabinet;
         model::Node& node =
             addNode(scene, model::NodeKind::Object, std::string(cabinet ? "cabinet" : model::kUnnamedCategory),
                     model::GeometryKind::Box, box);

@@ -139,10 +139,14 @@ public:
         const std::size_t added = counts.added;
         if (added > 0)
             progress.note(fmt::format(
-                "objects: {} large {} no model named, stored with {} size and colour as 'object'{}", added,
+                "objects: {} large {} no model named, stored with {} size and colour as 'object'{}{}", added,
                 added == 1 ? "thing" : "things", added == 1 ? "its" : "their",
                 counts.cabinets > 0
                     ? fmt::format(" ({} right under a sink as 'cabinet', the cabinet it is set in)", counts.cabinets)
+                    : "",
+                counts.wallCabinets > 0
+                    ? fmt::format(" ({} hung on a wall, {:g} m or more above the floor, as 'cabinet', a wall cabinet)",
+                                  counts.wallCabinets, kWallCabinetBottom)
                     : ""));
     }
 

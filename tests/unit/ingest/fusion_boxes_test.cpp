@@ -751,6 +751,39 @@ TEST_CASE("a sink's cabinet: the cluster right under a sink is its cabinet; a co
     CHECK_FALSE(basinOver(cabinet, empty));
 }
 
+TEST_CASE("a wall cabinet: a cluster hung on a wall, 1.2 m or more above the floor, is a cabinet",
+          "[ingest][fusion]") {
+    // ScanNet scene0000_00: the kitchen's wall cabinet over the counter, as the clusters gave it (no model names a
+    // cabinet), and the wall behind it (wall#4 of its memory, square to the x axis, facing into the room).
+    WallSegment wall;
+    wall.normal = {-1, 0, 0};
+    wall.offset = 8.70;
+    wall.along0 = -6.10, wall.along1 = 0.72;  // along its direction (0, -1): y from -0.72 m to 6.10 m
+    wall.z0 = 0.1, wall.z1 = 2.8;
+    model::Box cabinet;
+    cabinet.center = {8.11, 3.86, 2.00};
+    cabinet.size = {1.05, 0.54, 0.65};
+    cabinet.yaw = -60 * M_PI / 180;  // turned off its wall by a few points of the wall's
+    CHECK(hungOnWall(cabinet, {wall}));
+    // Standing on the floor, a thing of that size no model named may be anything tall (a door, a bookcase, a
+    // curtain): it keeps no name.
+    model::Box standing = cabinet;
+    standing.center.z = standing.size.z / 2;
+    CHECK_FALSE(hungOnWall(standing, {wall}));
+    // Just under 1.2 m: a counter's top with what stands on it, not a cabinet on the wall.
+    model::Box low = cabinet;
+    low.center.z = 1.15 + low.size.z / 2;
+    CHECK_FALSE(hungOnWall(low, {wall}));
+    // Hung as high in the middle of the room (a lamp, a fan), or beyond the wall's end: on no wall.
+    model::Box middle = cabinet;
+    middle.center.x = 5.0;
+    CHECK_FALSE(hungOnWall(middle, {wall}));
+    model::Box beyond = cabinet;
+    beyond.center.y = -1.6;
+    CHECK_FALSE(hungOnWall(beyond, {wall}));
+    CHECK_FALSE(hungOnWall(cabinet, {}));
+}
+
 TEST_CASE("a table under a sink's bowl, well under it, is what holds the sink; one beside it is a table",
           "[ingest][fusion]") {
     // ScanNet scene0000_00 from every third of its frames: the pedestal sink's bowl, and its column, seen in two
