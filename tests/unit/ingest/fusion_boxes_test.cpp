@@ -751,8 +751,7 @@ TEST_CASE("a sink's cabinet: the cluster right under a sink is its cabinet; a co
     CHECK_FALSE(basinOver(cabinet, empty));
 }
 
-TEST_CASE("a wall cabinet: a cluster hung on a wall, 1.2 m or more above the floor, is a cabinet",
-          "[ingest][fusion]") {
+TEST_CASE("a wall cabinet: a cluster hung on a wall, 1.2 m or more above the floor, is a cabinet", "[ingest][fusion]") {
     // ScanNet scene0000_00: the kitchen's wall cabinet over the counter, as the clusters gave it (no model names a
     // cabinet), and the wall behind it (wall#4 of its memory, square to the x axis, facing into the room).
     WallSegment wall;
