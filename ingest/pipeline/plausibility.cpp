@@ -7,6 +7,7 @@
 
 #include "ingest/geometry/scale_priors.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
+#include "ingest/geometry/walls.hpp"
 #include "model/category.hpp"
 #include "model/geometry.hpp"
 #include "relations/predicates.hpp"
@@ -408,6 +409,18 @@ bool storedTwice(const model::Box& smaller, const model::Box& larger) {
     return insideShare(smaller, larger) >= kDuplicateShare;
 }
 
+namespace {
+
+// A cabinet beside a wall with nothing under it hangs on the wall: the objects stage names a thing no model named that
+// hangs so a cabinet (objects_from_clusters.hpp: hungOnWall), a wall cabinet, which is held up, not floating.
+bool cabinetOnWall(const model::Node& n, const std::vector<const model::Node*>& walls) {
+    return n.category == "cabinet" && std::any_of(walls.begin(), walls.end(), [&](const model::Node* wall) {
+               return model::distance(n.box, wall->box) <= kAgainstWall;
+           });
+}
+
+}  // namespace
+
 bool floatsOverNothing(const model::Node& n, const std::vector<const model::Node*>& things) {
     // By the stored name: a thing stored as 'object' (its detector's name kept as a guess) claims no support.
     return usualSupport(n.category) == Support::Floor && model::bottom(n.box) > kFloating && !restingOn(n, things);
@@ -442,7 +455,7 @@ std::vector<ObjectFinding> objectFindings(const model::SceneData& scene) {
                 fmt::format("{} ({}) is {:.2g} cm thin, no {} is{}", named(n), measures(n.box), 100 * thinnest,
                             sizedName(n), under ? fmt::format(": a piece of {}'s top it lies on", named(*under)) : ""));
         }
-        if (floor && floatsOverNothing(n, things))
+        if (floor && floatsOverNothing(n, things) && !cabinetOnWall(n, walls))
             flag(i, "floating",
                  fmt::format("{} ({}) stands on floors, but its bottom is {:.2f} m up with nothing under it", named(n),
                              measures(n.box), model::bottom(n.box)));

@@ -811,6 +811,10 @@ TEST_CASE("plausibility: slivers, duplicates and pieces are flagged; right camer
     add(model::NodeKind::Object, "chair", {2, 4.9, 0.45}, {0.5, 0.5, 0.9});     // behind it
     add(model::NodeKind::Object, "plant", {0.3, 0.5, 0.3}, {0.3, 0.3, 0.6});
     add(model::NodeKind::Object, "plant", {0.3, 0.81, 0.3}, {0.3, 0.3, 0.6});  // its other piece
+    // A wall cabinet (objects_from_clusters.hpp: hungOnWall), its back against the far wall, hangs there; the same
+    // cabinet hung in the middle of the room floats.
+    add(model::NodeKind::Object, "cabinet", {2, 4.0, 2.0}, {1.0, 0.5, 0.6});
+    add(model::NodeKind::Object, "cabinet", {2, 1.0, 2.0}, {1.0, 0.5, 0.6});
     auto report = checkPlausibility(scene, {.stored = true});
     std::map<std::string, std::vector<std::string>> problems;
     for (const auto& o : report.objects) problems[o.problem].push_back(o.what);
@@ -820,13 +824,14 @@ TEST_CASE("plausibility: slivers, duplicates and pieces are flagged; right camer
     CHECK(problems["sliver"][0].find("table#6's top") != std::string::npos);
     REQUIRE(problems["duplicate"].size() == 1);
     CHECK(problems["duplicate"][0].starts_with("table#12 lies mostly inside table#6"));
-    REQUIRE(problems["floating"].size() == 1);
+    REQUIRE(problems["floating"].size() == 2);
     CHECK(problems["floating"][0].starts_with("bed#13 "));
+    CHECK(problems["floating"][1].starts_with("cabinet#20 "));
     REQUIRE(problems["behind a wall"].size() == 1);
     CHECK(problems["behind a wall"][0].starts_with("chair#16 "));
     REQUIRE(problems["in pieces"].size() == 1);
     CHECK(problems["in pieces"][0].find("plant#") != std::string::npos);
-    CHECK(report.objects.size() == 5);  // the stool, the room's own things: nothing
+    CHECK(report.objects.size() == 6);  // the stool, the wall cabinet, the room's own things: nothing
     CHECK(has(report, "objects", false));
     CHECK_FALSE(report.refused());
 
@@ -840,7 +845,7 @@ TEST_CASE("plausibility: slivers, duplicates and pieces are flagged; right camer
         if (o.problem == "sliver") slivers.push_back(o.what);
     INFO(nlohmann::json(slivers).dump(1));
     REQUIRE(slivers.size() == 2);
-    CHECK(slivers[1].starts_with("table#20 (0.50 x 0.40 x 0.01 m) is 1.4 cm thin, no table is"));
+    CHECK(slivers[1].starts_with("table#22 (0.50 x 0.40 x 0.01 m) is 1.4 cm thin, no table is"));
 
     // Every named thing at a quarter of its size (slabs of the things): the sizes check fails, and
     // with the cameras 1.45 m up it blames the boxes, never the depth unit.
