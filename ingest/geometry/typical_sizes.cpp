@@ -1,5 +1,7 @@
 #include "ingest/geometry/typical_sizes.hpp"
 
+#include <algorithm>
+
 #include "relations/predicates.hpp"
 
 namespace smql::ingest {
@@ -29,7 +31,8 @@ namespace {
 // largest, a 17.3-inch 16:9 panel 0.215 m tall in a lid of about 0.27 m, opened upright on a base of 2-3 cm stands
 // about 0.3 m; 0.35 leaves a depth camera's few centimetres). Deepest: the footprint's shorter side no thing of the
 // kind exceeds, where its make bounds it (typical_sizes.hpp: deepestFootprint); shallowest: the one no thing of the
-// kind comes under (typical_sizes.hpp: shallowestFootprint). Thinnest: the side no thing of the kind is thinner
+// kind comes under, and shallowShare: the share of its longer side no thing of the kind's is shallower than
+// (typical_sizes.hpp: shallowestFootprint). Thinnest: the side no thing of the kind is thinner
 // than, where it is flat by make and thinner than a share of its extent (typical_sizes.hpp: thinnestSide). The rows
 // cover the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
@@ -46,6 +49,7 @@ struct Typical {
     double deepest = 0;
     double shallowest = 0;
     double thinnest = 0;
+    double shallowShare = 0;
 };
 // The thinnest side of a kind not flat by make, as a share of its extent (thinnestSide).
 constexpr double kThinShare = 0.06;
@@ -59,7 +63,7 @@ constexpr Slender kBedShape{.length = 1.0, .depth = 0.8, .frontHeight = 1.0};
 constexpr Typical kTypical[] = {
     {"table", 0.75, 2.4, true, false, RoomKind::Any, Role::Other, {}, kTableShape},
     {"desk", 0.75, 1.9, true, false, RoomKind::Dry, Role::Other, {}, kTableShape},
-    {"chair", 0.9, 1.2, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape, 0, 0, 0.33},
+    {"chair", 0.9, 1.2, false, false, RoomKind::Dry, Role::Seat, {}, kChairShape, 0, 0, 0.33, 0, 0.65},
     {"sofa", 0.85, 2.8, false, true, RoomKind::Dry, Role::Seat, {0, 0.35}, {1.0, 0.3}},
     {"bed", 0.55, 2.3, true, true, RoomKind::Dry, Role::Other, {1.2, 0}, kBedShape},
     {"fridge", 1.75, 2.0, false, false, RoomKind::Kitchen, Role::Other, kFridgeLeast, kFridgeShape, 0, 1.2},
@@ -160,7 +164,11 @@ std::optional<double> tallestHeight(std::string_view category) { return given(ca
 
 std::optional<double> deepestFootprint(std::string_view category) { return given(category, &Typical::deepest); }
 
-std::optional<double> shallowestFootprint(std::string_view category) { return given(category, &Typical::shallowest); }
+std::optional<double> shallowestFootprint(std::string_view category, double width) {
+    const Typical* t = find(category);
+    if (!t || t->shallowest <= 0) return std::nullopt;
+    return std::max(t->shallowest, t->shallowShare * width);
+}
 
 std::optional<double> thinnestSide(std::string_view category) {
     const Typical* t = find(category);

@@ -37,10 +37,12 @@ std::optional<double> tallestHeight(std::string_view category);
 // a "fridge" by its votes.
 std::optional<double> deepestFootprint(std::string_view category);
 
-// The footprint's shorter side no thing of a kind comes under, where real rooms' labels show it; nullopt for the
-// others. Of ARKitScenes' 235 labelled chairs (../shared/data/real-layouts) one in a hundred is shallower than 0.33 m
-// (the shallowest 0.27, the median 0.45); ScanNet's labels, often of a chair's visible part, say less.
-std::optional<double> shallowestFootprint(std::string_view category);
+// The footprint's shorter side no thing of a kind `width` wide (its longer side) comes under, where real rooms' labels
+// show it; nullopt for the others. Of ARKitScenes' 235 labelled chairs (../shared/data/real-layouts) one in a hundred
+// is shallower than 0.33 m (the shallowest 0.27, the median 0.45), and one in a hundred shallower than 0.65 of its
+// width (one in twenty than 0.71), 6 of them shallower than one or the other: a chair 0.74 m wide, a wingback
+// armchair, is 0.48 m deep or more. ScanNet's labels, often of a chair's visible part, say less.
+std::optional<double> shallowestFootprint(std::string_view category, double width = 0);
 
 // The side no thing of a kind is thinner than; nullopt for kinds the table lacks. A thinner box of the name is a
 // sliver: the edge or the top of something else (a 6 cm thin "table" is a table's edge). Most kinds' is 6 % of

@@ -55,21 +55,24 @@ public:
 }  // namespace
 
 bool hungOnWall(const model::Box& box, const std::vector<WallSegment>& walls) {
-    if (model::bottom(box) < kWallCabinetBottom) return false;
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    for (const double u : {-0.5, 0.5})
-        for (const double v : {-0.5, 0.5}) {
-            const model::Vec3 corner{box.center.x + c * u * box.size.x - s * v * box.size.y,
-                                     box.center.y + s * u * box.size.x + c * v * box.size.y, box.center.z};
-            for (const auto& wall : walls) {
-                const model::Vec3 d = wall.direction();
-                const double along = d.x * corner.x + d.y * corner.y;
-                if (std::abs(wall.signedDistance(corner)) <= kAgainstWall && along >= wall.along0 &&
-                    along <= wall.along1)
-                    return true;
-            }
-        }
-    return false;
+    return model::bottom(box) >= kWallCabinetBottom && std::any_of(walls.begin(), walls.end(), [&](const auto& wall) {
+               return model::horizontalGap(box, wall.box()) <= kAgainstWall;
+           });
+}
+
+model::Node& addUnnamedThing(model::SceneData& scene, std::string category, const model::Box& box,
+                             const PointCloud& cloud, const std::vector<std::size_t>& indices) {
+    cv::Mat colors;  // BGR, as nameColor takes them
+    for (const auto i : indices) {
+        const auto& c = cloud.colors[i];
+        colors.push_back(cv::Vec3b(c[2], c[1], c[0]));
+    }
+    model::Node& node = addNode(scene, model::NodeKind::Object, std::move(category), model::GeometryKind::Box, box);
+    node.attributes.push_back({"color", nameColor(colors).name});
+    node.attributes.push_back({"size", sizeWord(box)});
+    node.attributes.push_back({"points", std::to_string(indices.size())});
+    node.confidence = 0.5f;
+    return node;
 }
 
 const model::Node* basinOver(const model::Box& cluster, const model::SceneData& scene, const FusionOptions& options) {
@@ -95,12 +98,9 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
     ClusterCounts counts;
     for (const auto& cluster : clusters) {
         std::vector<model::Vec3> points;
-        cv::Mat colors;
         std::set<std::uint32_t> frames;
         for (auto i : cluster) {
             points.push_back(cloud.points[i]);
-            const auto& c = cloud.colors[i];
-            colors.push_back(cv::Vec3b(c[2], c[1], c[0]));
             frames.insert(cloud.frames[i]);
         }
         model::Box box = uprightBox(points);
@@ -116,13 +116,7 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
         if (wallCabinet) box = wallAlignedBox(points, FusionOptions{}.squareSlack);
         counts.cabinets += basin != nullptr;
         counts.wallCabinets += wallCabinet;
-        model::Node& node =
-            addNode(scene, model::NodeKind::Object, std::string(cabinet ? "cabinet" : model::kUnnamedCategory),
-                    model::GeometryKind::Box, box);
-        node.attributes.push_back({"color", nameColor(colors).name});
-        node.attributes.push_back({"size", sizeWord(box)});
-        node.attributes.push_back({"points", std::to_string(cluster.size())});
-        node.confidence = 0.5f;
+        addUnnamedThing(scene, std::string(cabinet ? "cabinet" : model::kUnnamedCategory), box, cloud, cluster);
         ++counts.added;
     }
     return counts;

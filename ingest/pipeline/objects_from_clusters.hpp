@@ -39,8 +39,8 @@ struct ClusterCounts {
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                                 model::SceneData& scene, const ClusterObjects& options);
 
-// Whether a cluster's box hangs on a wall: its bottom kWallCabinetBottom or more above the floor (z = 0), a corner of
-// its footprint within kAgainstWall of a wall's plane and along the wall's extent. A box of a thing no model named
+// Whether a cluster's box hangs on a wall: its bottom kWallCabinetBottom or more above the floor (z = 0), its
+// footprint within kAgainstWall of a wall's (model::horizontalGap to WallSegment::box). A box of a thing no model named
 // hung so, at least ClusterObjects' least size (0.5 x 0.3 x 0.3 m), is a wall cabinet: of the things of ScanNet's 18
 // labelled classes that size whose bottom is 1.2 m or more above their room's floor (its scans' boxes in
 // mmdetection3d's scannet_infos_train.pkl and _val.pkl, 1,513 scans), 215 of 274 are cabinets, 37 windows (an
@@ -48,6 +48,12 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
 // does not hang.
 inline constexpr double kWallCabinetBottom = 1.2;  // m
 bool hungOnWall(const model::Box& box, const std::vector<WallSegment>& walls);
+
+// A thing no model named, stored from the points of the aligned `cloud` that make it (`indices`): as `category` with
+// `box`, the colour its points show, its size and how many points it holds, at half confidence (nothing named it).
+// The clusters here and the stands under things (objects_stage.hpp: standOnPedestals) are stored so.
+model::Node& addUnnamedThing(model::SceneData& scene, std::string category, const model::Box& box,
+                             const PointCloud& cloud, const std::vector<std::size_t>& indices);
 
 // The basin of the scene the cluster's box is the cabinet of (cabinetOf), or null.
 const model::Node* basinOver(const model::Box& cluster, const model::SceneData& scene,

@@ -13,6 +13,7 @@
 #include "ingest/geometry/robust.hpp"
 #include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/pipeline/colors.hpp"
+#include "ingest/pipeline/objects_from_clusters.hpp"
 #include "ingest/pipeline/plausibility.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
 #include "model/category.hpp"
@@ -92,22 +93,18 @@ bool faceTable(model::Box& box, const model::Box& table) {
     return length > 0 && turnToFace(box, {dx / length, dy / length, 0}, false);
 }
 
-// A chair is as deep as kChairDepthShare of its width or deeper, and no wider than kWidestChair: of ARKitScenes' 235
-// labelled chairs (../shared/data/real-layouts) one in a hundred is shallower than 0.65 of its width, one in twenty
-// than 0.71, and the widest is 1.02 m. The dining frames' wingback armchair, seen from behind, was a 0.74 x 0.36 m
-// slab, 1.21 m tall: deeper than the shallowest chairs, yet half as deep as a chair so wide is.
-constexpr double kChairDepthShare = 0.65, kWidestChair = 1.0;
+// m: no chair is wider (ARKitScenes' 235 labelled chairs in ../shared/data/real-layouts: the widest 1.02 m).
+constexpr double kWidestChair = 1.0;
 
-// A chair's box that holds its back alone: shallower than any chair of its width (shallowestFootprint, and
-// kChairDepthShare of its width) and at most half as deep as it is wide. That depth, or nullopt when the box is no
-// such slab.
+// A chair's box that holds its back alone: shallower than any chair of its width (shallowestFootprint), at most half
+// as deep as it is wide, and no wider than kWidestChair. That depth, or nullopt when the box is no such slab. The
+// dining frames' wingback armchair, seen from behind, was a 0.74 x 0.36 m slab, 1.21 m tall: deeper than the
+// shallowest chairs, yet half as deep as a chair so wide is.
 std::optional<double> backAlone(const model::Box& box, std::string_view category) {
-    const auto shallowest = shallowestFootprint(category);
     const double thin = std::min(box.size.x, box.size.y), wide = std::max(box.size.x, box.size.y);
-    if (!shallowest || wide > kWidestChair || 2 * thin > wide) return std::nullopt;
-    const double depth = std::max(*shallowest, kChairDepthShare * wide);
-    if (thin >= depth) return std::nullopt;
-    return depth;
+    const auto shallowest = shallowestFootprint(category, wide);
+    if (!shallowest || wide > kWidestChair || 2 * thin > wide || thin >= *shallowest) return std::nullopt;
+    return shallowest;
 }
 
 // The back's slab turned to face `yaw` and reaching `depth` deep ahead of the back, where the seat is.
@@ -264,12 +261,8 @@ Pedestals standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<O
             ++found.sinks;
             continue;
         }
-        Stand stand{thing.box, {}};
+        Stand stand{thing.box, column};
         stand.box.center.z = bottom / 2, stand.box.size.z = bottom;
-        for (const std::size_t i : column) {
-            const auto& rgb = cloud.colors[i];
-            stand.colors.push_back(cv::Vec3b(rgb[2], rgb[1], rgb[0]));
-        }
         found.stands.push_back(std::move(stand));
     }
     return found;
@@ -508,14 +501,9 @@ void renameFloating(model::SceneData& scene, StageProgress& progress) {
 }
 
 // The stands standOnPedestals found, as tables no model named (as a cluster under a sink is its cabinet).
-void addStands(const std::vector<Stand>& stands, model::SceneData& scene, StageProgress& progress) {
-    for (const Stand& stand : stands) {
-        model::Node& node = addNode(scene, NodeKind::Object, "table", GeometryKind::Box, stand.box);
-        node.attributes.push_back({"color", nameColor(stand.colors).name});
-        node.attributes.push_back({"points", std::to_string(stand.colors.rows)});
-        node.attributes.push_back({"size", sizeWord(stand.box)});
-        node.confidence = 0.5f;
-    }
+void addStands(const std::vector<Stand>& stands, const PointCloud& cloud, model::SceneData& scene,
+               StageProgress& progress) {
+    for (const Stand& stand : stands) addUnnamedThing(scene, "table", stand.box, cloud, stand.points);
     if (!stands.empty())
         progress.note(
             fmt::format("objects: {} thing(s) held up by a column no model named: the column stored as a "
@@ -639,7 +627,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             scene.blobs.push_back(model::embeddingBlob(node.id, embedding));
         made.push_back({node.id, std::move(track.views), !track.fused.empty()});
     }
-    addStands(pedestals.stands, scene, progress);
+    addStands(pedestals.stands, aligned.cloud, scene, progress);
     finder.addStructureObjects(aligned, walls, scene, progress);
     if (measuredFloor) renameFloating(scene, progress);
     return made;

@@ -54,10 +54,11 @@ struct PlacedTrack {
     model::Vec3 seenFrom{};    // the mean centre of the cameras that saw it
 };
 
-// A stand no model named, under a thing it holds up (standOnPedestals): its box and its points' colours.
+// A stand no model named, under a thing it holds up (standOnPedestals): its box and its points (indices into the
+// aligned cloud).
 struct Stand {
     model::Box box;
-    cv::Mat colors;
+    std::vector<std::size_t> points;
 };
 
 // What stands on a pedestal (pedestalUnder), with depth and a floor found. A sink whose views gave its bowl alone is

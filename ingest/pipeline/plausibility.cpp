@@ -412,10 +412,11 @@ bool storedTwice(const model::Box& smaller, const model::Box& larger) {
 namespace {
 
 // A cabinet beside a wall with nothing under it hangs on the wall: the objects stage names a thing no model named that
-// hangs so a cabinet (objects_from_clusters.hpp: hungOnWall), a wall cabinet, which is held up, not floating.
+// hangs so a cabinet (objects_from_clusters.hpp: hungOnWall, by the same gap to the wall's box), a wall cabinet, which
+// is held up, not floating.
 bool cabinetOnWall(const model::Node& n, const std::vector<const model::Node*>& walls) {
     return n.category == "cabinet" && std::any_of(walls.begin(), walls.end(), [&](const model::Node* wall) {
-               return model::distance(n.box, wall->box) <= kAgainstWall;
+               return model::horizontalGap(n.box, wall->box) <= kAgainstWall;
            });
 }
 

@@ -577,6 +577,26 @@ TEST_CASE("plausibility: no labelled fridge of 238 real rooms is deeper than its
     CHECK(checked["arkitscenes_meta_info_val.json"] >= 20);
 }
 
+// A chair is no shallower than its kind's bound for its width (typical_sizes.hpp: shallowestFootprint), which the
+// objects stage reaches a chair seen by its back alone to: of ARKitScenes' 235 chairs, drawn whole by people, 6 are
+// shallower (0.33 m, or 0.65 of their width, one in a hundred each), and none is wider than 1.02 m.
+TEST_CASE("plausibility: of ARKitScenes' chairs, one in thirty or fewer is shallower than a chair of its width",
+          "[ingest][plausibility]") {
+    std::size_t checked = 0, shallower = 0;
+    for (const RealThing& thing : realThings()) {
+        if (thing.kind != "chair" || !thing.source.starts_with("arkitscenes")) continue;
+        ++checked;
+        shallower += thing.shorter < *shallowestFootprint("chair", thing.longer);
+        CHECK(thing.longer <= 1.05);
+    }
+    INFO(fmt::format("{} of {} chairs shallower than the bound for their width", shallower, checked));
+    CHECK(checked >= 200);
+    CHECK(shallower * 30 <= checked);
+    // The bound grows with the width: a 0.74 m wingback armchair's is 0.48 m, a 0.45 m dining chair's the least, 0.33.
+    CHECK(*shallowestFootprint("chair", 0.74) == Approx(0.65 * 0.74));
+    CHECK(*shallowestFootprint("chair", 0.45) == Approx(0.33));
+}
+
 // A footprint too long for its depth, or too small for its height (typical_sizes.hpp: Slender), is no real thing's:
 // of ARKitScenes' chairs, beds, sofas, fridges, tables and desks, drawn whole by people, none; of ScanNet's, fitted
 // to scans that leave many in part, one chair (1.17 x 0.17 m) and two tables of scene0412_00 (2.29 x 0.15 and
