@@ -257,6 +257,10 @@ Pedestals standOnPedestals(std::vector<PlacedTrack>& placed, const std::vector<O
         const double bottom = model::bottom(thing.box);
         if (basin) {
             const double top = model::top(thing.box);
+            // No counter lies around a pedestal sink's bowl: its rim is its own edge, and the basin all its points,
+            // square to the wall it stands against (its bowl is often fitted short of it and turned off it).
+            if (const auto& points = tracks[thing.track].fused; !points.empty())
+                thing.box = wallAlignedBox(points, FusionOptions{}.squareSlack);
             thing.box.center.z = top / 2, thing.box.size.z = top;
             ++found.sinks;
             continue;
@@ -422,13 +426,15 @@ std::size_t mergeStoredTwice(std::vector<PlacedTrack>& placed, std::vector<Objec
     std::size_t merged = 0;
     for (std::size_t small = placed.size(); small-- > 0;) {
         ObjectTrack& smaller = tracks[placed[small].track];
-        if (!(smaller.carved || placed[small].pushedIn) || isOpening(smaller.category)) continue;
+        const bool unnamed = smaller.category == model::kUnnamedCategory;
+        if (!(smaller.carved || placed[small].pushedIn || unnamed) || isOpening(smaller.category)) continue;
         for (std::size_t large = 0; large < small; ++large) {
             ObjectTrack& larger = tracks[placed[large].track];
-            const bool alike = placed[small].pushedIn ? placed[large].pushedIn : larger.carved;
-            if (!alike || kindName(larger.category) != kindName(smaller.category) ||
-                !storedTwice(placed[small].box, placed[large].box))
-                continue;
+            const bool alike = placed[small].pushedIn ? placed[large].pushedIn : smaller.carved && larger.carved;
+            const bool sameKind = alike && kindName(larger.category) == kindName(smaller.category);
+            const bool holdsSink =
+                unnamed && role(larger.category) == Role::Basin && model::bottom(placed[large].box) <= kStandingReach;
+            if (!(sameKind || holdsSink) || !storedTwice(placed[small].box, placed[large].box)) continue;
             if (placed[small].pushedIn) takeIn(placed[large].box, placed[small].box);
             larger.views.insert(larger.views.end(), std::make_move_iterator(smaller.views.begin()),
                                 std::make_move_iterator(smaller.views.end()));
@@ -578,8 +584,8 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
                         turned));
     if (const std::size_t merged = mergeStoredTwice(placed, tracks))
         progress.note(
-            fmt::format("objects: {} hull(s) carved without depth or chair(s) pushed in lay mostly inside "
-                        "another of their kind: one thing stored twice, merged into it",
+            fmt::format("objects: {} thing(s) stored twice, merged into the one they lie mostly inside (hulls "
+                        "without depth or chairs pushed in, of one kind; what holds a sink on its pedestal)",
                         merged));
 
     for (auto& [t, colors, box, againstWall, pushedIn, seenFrom] : placed) {
