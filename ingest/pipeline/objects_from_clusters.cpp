@@ -5,6 +5,7 @@
 // large things no detector named (a bed, a cabinet: PASCAL's and COCO's classes lack them) are kept.
 #include "ingest/pipeline/objects_from_clusters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -15,6 +16,7 @@
 #include "ingest/geometry/typical_sizes.hpp"
 #include "ingest/geometry/view_segment.hpp"
 #include "ingest/pipeline/colors.hpp"
+#include "ingest/pipeline/geometry_stage.hpp"
 #include "ingest/pipeline/object_finder.hpp"
 #include "ingest/pipeline/scene_nodes.hpp"
 #include "model/category.hpp"
@@ -37,19 +39,23 @@ bool inKnownThing(const model::Vec3& p, const model::SceneData& scene, double ma
 
 class ClusterFinder : public ObjectFinder {
 public:
+    explicit ClusterFinder(const Capture& capture) : capture_(capture) {}
     // Clusters come from the aligned structure, which the frame pass builds anyway.
     void observe(const PosedFrame&) override {}
     std::vector<ObjectTrack> takeTracks() override { return {}; }
 
     void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                              model::SceneData& scene, StageProgress& progress) override {
-        const ClusterCounts counts = addClusterObjects(aligned, walls, scene, {});
+        const ClusterCounts counts = addClusterObjects(aligned, walls, scene, {}, capture_);
         progress.note(fmt::format("objects by 3D clustering (no masks): {} clusters, category 'object'{}", counts.added,
                                   counts.cabinets + counts.wallCabinets > 0
                                       ? fmt::format(" ({} under a sink or hung on a wall as 'cabinet')",
                                                     counts.cabinets + counts.wallCabinets)
                                       : ""));
     }
+
+private:
+    const Capture& capture_;
 };
 
 }  // namespace
@@ -61,7 +67,7 @@ bool hungOnWall(const model::Box& box, const std::vector<WallSegment>& walls) {
 }
 
 model::Node& addUnnamedThing(model::SceneData& scene, std::string category, const model::Box& box,
-                             const PointCloud& cloud, const std::vector<std::size_t>& indices) {
+                             const PointCloud& cloud, const std::vector<std::size_t>& indices, const Capture& capture) {
     cv::Mat colors;  // BGR, as nameColor takes them
     for (const auto i : indices) {
         const auto& c = cloud.colors[i];
@@ -71,6 +77,16 @@ model::Node& addUnnamedThing(model::SceneData& scene, std::string category, cons
     node.attributes.push_back({"color", nameColor(colors).name});
     node.attributes.push_back({"size", sizeWord(box)});
     node.attributes.push_back({"points", std::to_string(indices.size())});
+    // A depth frame's points carry the frame they were seen in; photos' points (COLMAP's, the dense ones) carry none.
+    if (!indices.empty() && framesHaveDepth(capture)) {
+        const auto [first, last] =
+            std::minmax_element(indices.begin(), indices.end(),
+                                [&](std::size_t a, std::size_t b) { return cloud.frames[a] < cloud.frames[b]; });
+        node.attributes.push_back({"first_seen", std::to_string(capture.frames[cloud.frames[*first]].index)});
+        node.attributes.push_back({"last_seen", std::to_string(capture.frames[cloud.frames[*last]].index)});
+    }
+    std::sort(node.attributes.begin(), node.attributes.end(),
+              [](const auto& a, const auto& b) { return a.name < b.name; });
     node.confidence = 0.5f;
     return node;
 }
@@ -84,7 +100,7 @@ const model::Node* basinOver(const model::Box& cluster, const model::SceneData& 
 }
 
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
-                                model::SceneData& scene, const ClusterObjects& options) {
+                                model::SceneData& scene, const ClusterObjects& options, const Capture& capture) {
     StructureOptions structureOptions;
     structureOptions.ceilingHeight = aligned.alignment.ceilingHeight;
     const PointCloud& cloud = aligned.cloud;
@@ -116,7 +132,8 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
         if (wallCabinet) box = wallAlignedBox(points, FusionOptions{}.squareSlack);
         counts.cabinets += basin != nullptr;
         counts.wallCabinets += wallCabinet;
-        addUnnamedThing(scene, std::string(cabinet ? "cabinet" : model::kUnnamedCategory), box, cloud, cluster);
+        addUnnamedThing(scene, std::string(cabinet ? "cabinet" : model::kUnnamedCategory), box, cloud, cluster,
+                        capture);
         ++counts.added;
     }
     return counts;
@@ -124,8 +141,8 @@ ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector
 
 bool clustersUsable(const Capture&, const IngestOptions&) { return true; }
 
-std::unique_ptr<ObjectFinder> makeClusterFinder(const Capture&, const IngestOptions&) {
-    return std::make_unique<ClusterFinder>();
+std::unique_ptr<ObjectFinder> makeClusterFinder(const Capture& capture, const IngestOptions&) {
+    return std::make_unique<ClusterFinder>(capture);
 }
 
 extern const ObjectSourceSpec kClusterSource{"cluster", "clusters of the points off the walls and floor",

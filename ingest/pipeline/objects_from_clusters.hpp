@@ -37,7 +37,7 @@ struct ClusterCounts {
 // cabinetOf), named so, its footprint reaching under the basin's (reachUnder); one hung on a wall
 // (hungOnWall) is a wall cabinet, named so too.
 ClusterCounts addClusterObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
-                                model::SceneData& scene, const ClusterObjects& options);
+                                model::SceneData& scene, const ClusterObjects& options, const Capture& capture);
 
 // Whether a cluster's box hangs on a wall: its bottom kWallCabinetBottom or more above the floor (z = 0), its
 // footprint within kAgainstWall of a wall's (model::horizontalGap to WallSegment::box). A box of a thing no model named
@@ -50,10 +50,12 @@ inline constexpr double kWallCabinetBottom = 1.2;  // m
 bool hungOnWall(const model::Box& box, const std::vector<WallSegment>& walls);
 
 // A thing no model named, stored from the points of the aligned `cloud` that make it (`indices`): as `category` with
-// `box`, the colour its points show, its size and how many points it holds, at half confidence (nothing named it).
-// The clusters here and the stands under things (objects_stage.hpp: standOnPedestals) are stored so.
+// `box`, the colour its points show, its size and how many points it holds, at half confidence (nothing named it),
+// and, where the capture's frames have depth, the first and last of its frames its points were seen in (first_seen,
+// last_seen, as the named things have them: what "which did I see first?" orders by). The clusters here and the
+// stands under things (objects_stage.hpp: standOnPedestals) are stored so.
 model::Node& addUnnamedThing(model::SceneData& scene, std::string category, const model::Box& box,
-                             const PointCloud& cloud, const std::vector<std::size_t>& indices);
+                             const PointCloud& cloud, const std::vector<std::size_t>& indices, const Capture& capture);
 
 // The basin of the scene the cluster's box is the cabinet of (cabinetOf), or null.
 const model::Node* basinOver(const model::Box& cluster, const model::SceneData& scene,

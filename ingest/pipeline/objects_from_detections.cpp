@@ -135,7 +135,7 @@ public:
     void addStructureObjects(const AlignedCapture& aligned, const std::vector<WallSegment>& walls,
                              model::SceneData& scene, StageProgress& progress) override {
         if (!hasDepth_) return;
-        const ClusterCounts counts = addClusterObjects(aligned, walls, scene, kUnnamedThings);
+        const ClusterCounts counts = addClusterObjects(aligned, walls, scene, kUnnamedThings, capture_);
         const std::size_t added = counts.added;
         if (added > 0)
             progress.note(fmt::format(

@@ -507,9 +507,9 @@ void renameFloating(model::SceneData& scene, StageProgress& progress) {
 }
 
 // The stands standOnPedestals found, as tables no model named (as a cluster under a sink is its cabinet).
-void addStands(const std::vector<Stand>& stands, const PointCloud& cloud, model::SceneData& scene,
-               StageProgress& progress) {
-    for (const Stand& stand : stands) addUnnamedThing(scene, "table", stand.box, cloud, stand.points);
+void addStands(const std::vector<Stand>& stands, const PointCloud& cloud, const Capture& capture,
+               model::SceneData& scene, StageProgress& progress) {
+    for (const Stand& stand : stands) addUnnamedThing(scene, "table", stand.box, cloud, stand.points, capture);
     if (!stands.empty())
         progress.note(
             fmt::format("objects: {} thing(s) held up by a column no model named: the column stored as a "
@@ -633,7 +633,7 @@ std::vector<TrackedNode> ObjectsStage::run(StageProgress& progress) {
             scene.blobs.push_back(model::embeddingBlob(node.id, embedding));
         made.push_back({node.id, std::move(track.views), !track.fused.empty()});
     }
-    addStands(pedestals.stands, aligned.cloud, scene, progress);
+    addStands(pedestals.stands, aligned.cloud, capture, scene, progress);
     finder.addStructureObjects(aligned, walls, scene, progress);
     if (measuredFloor) renameFloating(scene, progress);
     return made;

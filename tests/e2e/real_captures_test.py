@@ -65,6 +65,9 @@ def desk_rgbd(smql, folder, work):
     under, beside = (json.loads(out.stdout)[-1]["message"] for out in (under, beside))
     assert desks & set(re.findall(r"desk#\d+", under)), under
     assert not desks & set(re.findall(r"desk#\d+", beside)), beside
+    # Every thing says which frame first saw it, those no model named too: "which did I see first?" orders by it.
+    seen = query_rows(smql, work / "db", "FIND object RETURN id, category, first_seen")
+    assert all(r.get("first_seen") not in (None, "") for r in seen), seen
     # Things it could not name are kept as "object": a kind it has none of may be one of them, not said to be absent.
     if any(r["category"] == "object" for r in rows):
         out = subprocess.run([smql, str(work / "db"), "ASK 'is there a bookcase?'"], capture_output=True, text=True)

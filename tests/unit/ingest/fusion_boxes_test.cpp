@@ -783,6 +783,40 @@ TEST_CASE("a wall cabinet: a cluster hung on a wall, 1.2 m or more above the flo
     CHECK_FALSE(hungOnWall(cabinet, {}));
 }
 
+TEST_CASE("a thing no model named says which frames first and last saw it, where its points carry their frames",
+          "[ingest][fusion]") {
+    // Three depth frames, numbered as a capture thinned to every tenth frame numbers them; the thing's points were
+    // seen in the second and the third. "Which did I see first?" orders things by first_seen, named or not (ScanNet's
+    // bathroom's towel stand, a table no model named, left out of its appearance order before).
+    Capture capture;
+    for (int index : {10, 20, 30}) {
+        CaptureFrame frame;
+        frame.index = index;
+        frame.depthPath = "depth.png";
+        capture.frames.push_back(frame);
+    }
+    PointCloud cloud;
+    cloud.push({0, 0, 0.1}, {90, 60, 40}, 2);
+    cloud.push({0, 0, 0.2}, {90, 60, 40}, 1);
+    cloud.push({0, 0, 0.3}, {90, 60, 40}, 2);
+    const model::Box box{{0, 0, 0.2}, {0.3, 0.3, 0.4}, 0};
+    auto attribute = [](const model::Node& node, const std::string& name) {
+        const auto it =
+            std::find_if(node.attributes.begin(), node.attributes.end(), [&](const auto& a) { return a.name == name; });
+        return it == node.attributes.end() ? std::string("(none)") : it->value;
+    };
+    model::SceneData scene;
+    const model::Node& stand = addUnnamedThing(scene, "table", box, cloud, {0, 1, 2}, capture);
+    CHECK(attribute(stand, "first_seen") == "20");
+    CHECK(attribute(stand, "last_seen") == "30");
+    CHECK(attribute(stand, "points") == "3");
+    // Photos' points (COLMAP's, the dense ones) carry no frame: nothing is said.
+    for (auto& frame : capture.frames) frame.depthPath.clear();
+    const model::Node& photographed = addUnnamedThing(scene, "object", box, cloud, {0, 1, 2}, capture);
+    CHECK(attribute(photographed, "first_seen") == "(none)");
+    CHECK(attribute(photographed, "last_seen") == "(none)");
+}
+
 TEST_CASE("a table under a sink's bowl, well under it, is what holds the sink; one beside it is a table",
           "[ingest][fusion]") {
     // ScanNet scene0000_00 from every third of its frames: the pedestal sink's bowl, and its column, seen in two
