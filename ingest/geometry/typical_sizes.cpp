@@ -32,7 +32,8 @@ namespace {
 // about 0.3 m; 0.35 leaves a depth camera's few centimetres). Deepest: the footprint's shorter side no thing of the
 // kind exceeds, where its make bounds it (typical_sizes.hpp: deepestFootprint); shallowest: the one no thing of the
 // kind comes under, and shallowShare: the share of its longer side no thing of the kind's is shallower than
-// (typical_sizes.hpp: shallowestFootprint). Thinnest: the side no thing of the kind is thinner
+// (typical_sizes.hpp: shallowestFootprint); lowest top: the height over the floor no thing of the kind has its top
+// under (typical_sizes.hpp: lowestTop). Thinnest: the side no thing of the kind is thinner
 // than, where it is flat by make and thinner than a share of its extent (typical_sizes.hpp: thinnestSide). The rows
 // cover the memory's names for the detector's COCO classes (detector.cpp) and the kinds of labelled captures.
 struct Typical {
@@ -50,6 +51,7 @@ struct Typical {
     double shallowest = 0;
     double thinnest = 0;
     double shallowShare = 0;
+    double lowestTop = 0;
 };
 // The thinnest side of a kind not flat by make, as a share of its extent (thinnestSide).
 constexpr double kThinShare = 0.06;
@@ -93,7 +95,7 @@ constexpr Typical kTypical[] = {
     {"bottle", 0, 0.45},
     {"mug", 0, 0.2},
     {"microwave", 0, 0.7, false, false, RoomKind::Kitchen},
-    {"sink", 0, 1.2, false, false, RoomKind::Any, Role::Basin},
+    {"sink", 0, 1.2, false, false, RoomKind::Any, Role::Basin, {}, {}, 0, 0, 0, 0, 0, 0.7},
     {"oven", 0, 1.0, false, false, RoomKind::Kitchen},
     {"keyboard", 0, 0.55, false, false, RoomKind::Any, Role::Other, {}, {}, 0, 0, 0, 0.01},
     {"backpack", 0, 0.65},
@@ -163,6 +165,8 @@ std::optional<double> typicalExtent(std::string_view category) {
 std::optional<double> tallestHeight(std::string_view category) { return given(category, &Typical::tallest); }
 
 std::optional<double> deepestFootprint(std::string_view category) { return given(category, &Typical::deepest); }
+
+std::optional<double> lowestTop(std::string_view category) { return given(category, &Typical::lowestTop); }
 
 std::optional<double> shallowestFootprint(std::string_view category, double width) {
     const Typical* t = find(category);

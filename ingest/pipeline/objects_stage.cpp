@@ -474,6 +474,11 @@ std::string misnamedNote(NameFit fit, const std::string& category, const model::
                                category, usual ? "about" : "at most",
                                usual ? *usual : tallestHeight(category).value_or(0), stored);
         }
+        case NameFit::TooLow:
+            return fmt::format(
+                "a thing detected as '{}' has its top {:.2f} m over the floor, where things of the kind "
+                "reach {:.2f} m or more: {}",
+                category, model::top(box), lowestTop(category).value_or(0), stored);
         case NameFit::Fits:
             break;
     }

@@ -520,6 +520,8 @@ NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure m
         return NameFit::TooSmall;
     if (slenderForKind(category, std::max(box.size.x, box.size.y), std::min(box.size.x, box.size.y), box.size.z))
         return NameFit::TooSlender;
+    if (auto lowest = lowestTop(category); lowest && measure == BoxMeasure::Depth && model::top(box) < *lowest)
+        return NameFit::TooLow;
     if (auto height = typicalHeight(category); measure == BoxMeasure::HullHeldToSurface && height &&
                                                !hasUprightEnds(category) &&
                                                box.size.z > kTallerThanTypicalHull * *height)

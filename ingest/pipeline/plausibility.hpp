@@ -150,8 +150,9 @@ enum class BoxMeasure { Depth, HullHeldToSurface, HullFromBoxes };
 // kTallerThanTypicalHull of it. A hull from boxes alone bounds its thing's height without measuring it: the dining
 // photos' chair placed by its boxes' rays stands 1.35 m. A box smaller than any thing of its name (typical_sizes.hpp:
 // leastSize), or with a footprint too long for its depth or too small for its height (slenderForKind), is not that
-// thing either, however measured.
-enum class NameFit { Fits, TooLarge, TooDeep, TooSmall, TooSlender, TooTall };
+// thing either, however measured; nor is one measured from depth whose top lies lower over the floor than any thing
+// of its name's (typical_sizes.hpp: lowestTop, a sink's rim).
+enum class NameFit { Fits, TooLarge, TooDeep, TooSmall, TooSlender, TooTall, TooLow };
 NameFit nameFit(const std::string& category, const model::Box& box, BoxMeasure measure = BoxMeasure::Depth);
 
 }  // namespace smql::ingest

@@ -401,6 +401,13 @@ TEST_CASE("plausibility: a name far smaller than its box, or a hull far taller t
     CHECK(nameFit("spaceship", {{0, 0, 0}, {40, 40, 40}, 0}) == NameFit::Fits);
     // SUN RGB-D 000001's sleigh bed: its headboard, measured from depth 1.82 m wide, called "suitcase".
     CHECK(nameFit("suitcase", {{0.56, 4.93, 1.29}, {1.82, 0.99, 1.10}, 0}) == NameFit::TooLarge);
+    // ScanNet's lounge from every third depth frame: a round pedestal side table named "sink" in two views, its top
+    // 0.66 m over the floor, under every labelled sink's rim. The apartment's pedestal sink (0.87 m) and its bathroom's
+    // bowl (0.74-0.87 m) are sinks; a hull carved without depth is not judged by where its top lies.
+    CHECK(nameFit("sink", {{0.72, 1.20, 0.33}, {0.42, 0.39, 0.66}, 0}) == NameFit::TooLow);
+    CHECK(nameFit("sink", {{8.41, 0.50, 0.435}, {0.75, 0.44, 0.87}, 0}) == NameFit::Fits);
+    CHECK(nameFit("sink", {{1.01, 1.77, 0.805}, {0.51, 0.46, 0.13}, 0}) == NameFit::Fits);
+    CHECK(nameFit("sink", {{0.72, 1.20, 0.33}, {0.42, 0.39, 0.66}, 0}, BoxMeasure::HullHeldToSurface) == NameFit::Fits);
     // A chair of the dining photos, its hull carved without depth 2.2 m long along the views: still a chair;
     // measured so from depth it would not be.
     const model::Box hull{{0, 0, 0.45}, {2.24, 0.89, 0.79}, 0};
