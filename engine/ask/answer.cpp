@@ -1328,6 +1328,22 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
     }
     if (firsts.empty()) return "None of them was seen.";
     std::stable_sort(firsts.begin(), firsts.end());
+    // "did I see the bed before the sofa?": whether the first asked was seen first.
+    if (t.predicate == "before" && t.choices.size() == 2) {
+        if (!unseen.empty()) return fmt::format("No: {} was never seen.", listed(unseen, ", ", unseen.size()));
+        const auto [firstFrame, first] = firsts.front();
+        const auto [secondFrame, second] = firsts.back();
+        if (firstFrame == secondFrame)
+            return fmt::format("Both at once: {} and {} were first seen in frame {:.0f}.", t.choices[0], t.choices[1],
+                               firstFrame);
+        return fmt::format("{}: {} was first seen in frame {:.0f}, {} in frame {:.0f}.", first == 0 ? "Yes" : "No",
+                           t.choices[first], firstFrame, t.choices[second], secondFrame);
+    }
+    if (t.choices.size() == 1) {
+        std::string out = fmt::format("{} was first seen in frame {:.0f}.", t.choices[0], firsts.front().first);
+        out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
+        return out;
+    }
     std::vector<std::string> order, frames;
     for (const auto& [frame, k] : firsts) {
         order.push_back(t.choices[k]);

@@ -10,18 +10,57 @@
 
 namespace smql::ask {
 
-// VSI-Bench's appearance order: "What will be the first-time appearance order of the following
-// categories in the video: chair, sofa, tv, table?" The nodes of those categories ordered by the
-// frame that first saw each (ingest's `first_seen`); the answer lists the categories in that order.
-std::optional<Translation> appearanceOrder(const Question& question, const Lexicon& lexicon) {
-    static const std::regex asked(
+namespace {
+
+// The list of things a question asks the order of first sight of, and whether it asks if the first came before the
+// second. VSI-Bench's form: "What will be the first-time appearance order of the following categories in the video:
+// chair, sofa, tv, table?"; a person's: "which did I see first, the bed or the sofa?", "what came first: ...", "which
+// of the bed and the sofa did I see first?", "in what order did I see the bed, the sofa and the fridge?", "what order
+// did the bed and the sofa appear in?", "when did I first see the fridge?" (a list of one), "did I see the bed before
+// the sofa?" (`before`).
+struct AskedOrder {
+    std::string list;
+    bool before = false;
+};
+
+std::optional<AskedOrder> askedOrder(const std::string& text) {
+    static const std::regex vsiBench(
         R"((?:appearance order|order of (?:first )?appearance|order (?:were|are|did) .*?(?:first )?(?:seen|appear))[^:]*:\s*([^?]+))",
         std::regex::icase);
+    static const std::regex whichFirst(
+        R"(^\s*(?:which|what)(?: one| thing)? (?:did (?:i|we) (?:see|notice|spot|come across|pass)|came|appeared|showed up|was seen) first\s*[,:]?\s*(?:of\s+|between\s+)?([^?]+?)\s*\??\s*$)",
+        std::regex::icase);
+    static const std::regex whichOfFirst(
+        R"(^\s*which of\s+([^?]+?)\s+(?:did (?:i|we) (?:see|notice|spot|come across|pass)|came|appeared|showed up|was seen) first\s*\??\s*$)",
+        std::regex::icase);
+    static const std::regex inWhatOrder(
+        R"(^\s*(?:in )?(?:what|which) order (?:did (?:i|we) (?:see|notice|spot|come across|pass)|were|did|do)\s+([^?]+?)(?:\s+(?:seen|appear|show up|come up))?(?:\s+in)?\s*\??\s*$)",
+        std::regex::icase);
+    static const std::regex when(
+        R"(^\s*when did (?:i|we) first (?:see|notice|spot|come across|pass)\s+([^?]+?)\s*\??\s*$)", std::regex::icase);
+    static const std::regex before(
+        R"(^\s*did (?:i|we) (?:see|notice|spot|come across|pass)\s+([^?]+?)\s+before\s+([^?]+?)\s*\??\s*$)",
+        std::regex::icase);
     std::smatch m;
-    if (!std::regex_search(question.text, m, asked)) return std::nullopt;
-    std::string list = std::regex_replace(m.str(1), std::regex(R"(\s+and\s+)"), ", ");
+    if (std::regex_search(text, m, vsiBench) || std::regex_search(text, m, whichFirst) ||
+        std::regex_search(text, m, whichOfFirst) || std::regex_search(text, m, inWhatOrder) ||
+        std::regex_search(text, m, when))
+        return AskedOrder{m.str(1)};
+    if (std::regex_search(text, m, before)) return AskedOrder{m.str(1) + ", " + m.str(2), true};
+    return std::nullopt;
+}
+
+}  // namespace
+
+// The nodes of the kinds asked ordered by the frame that first saw each (ingest's `first_seen`); the answer lists
+// the kinds in that order, or says whether the first came before the second.
+std::optional<Translation> appearanceOrder(const Question& question, const Lexicon& lexicon) {
+    const std::optional<AskedOrder> asked = askedOrder(question.text);
+    if (!asked) return std::nullopt;
+    std::string list = std::regex_replace(asked->list, std::regex(R"(\s+(?:and|or)\s+)", std::regex::icase), ", ");
     Translation out;
     out.kind = QuestionKind::Appearance;
+    if (asked->before) out.predicate = "before";
     PhraseParser parser(lexicon, out, question.planeCategories, question.scene, question.sceneCount);
     std::vector<std::string> all;
     for (std::size_t at = 0; at <= list.size();) {

@@ -74,6 +74,9 @@ Phrase anyThing(const char* kind) {
 // question is a sentence, not a document.
 constexpr std::size_t kMaxQuestionWords = 60;
 
+// Words without which a question asks no order of first sight (read_appearance.cpp): the rest skip its patterns.
+constexpr std::array<std::string_view, 5> kOrderWords{"appear", "seen", "first", "order", "before"};
+
 // What a person can do with things, and the words for the things that afford it: each word goes
 // through the Lexicon like a noun of the question ("seat" -> chair, sofa, stool). The verbs' forms
 // ("sitting", "sat") reach them through WordNet's base forms.
@@ -1971,6 +1974,7 @@ constexpr Example kExamples[] = {
     {"is there a sofa", "is there a X?"},
     {"is the lamp left of the window", "is the X left of the Y?"},
     {"how far is the sofa from the door", "how far is the X from the Y?"},
+    {"which did I see first, the bed or the sofa", "which did I see first, the X or the Y?"},
     {"how big is the table", "how big is the X?"},
     {"which is the largest object", "which is the largest X?"},
     {"which chair is closest to the window", "which X is closest to the Y?"},
@@ -2390,7 +2394,8 @@ public:
             Lexicon lexicon(question.categories);
             if (auto route = routePlan(question, lexicon)) return *route;
         }
-        if (question.text.find("appear") != std::string::npos || question.text.find("seen") != std::string::npos) {
+        if (std::any_of(kOrderWords.begin(), kOrderWords.end(),
+                        [&](std::string_view word) { return question.text.find(word) != std::string::npos; })) {
             Lexicon lexicon(question.categories);
             if (auto order = appearanceOrder(question, lexicon)) return *order;
         }

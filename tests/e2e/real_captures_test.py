@@ -68,6 +68,16 @@ def desk_rgbd(smql, folder, work):
     # Every thing says which frame first saw it, those no model named too: "which did I see first?" orders by it.
     seen = query_rows(smql, work / "db", "FIND object RETURN id, category, first_seen")
     assert all(r.get("first_seen") not in (None, "") for r in seen), seen
+    first = {}
+    for r in seen:
+        if r["category"] in ("desk", "monitor", "chair", "mug", "keyboard"):
+            first[r["category"]] = min(first.get(r["category"], 1e9), float(r["first_seen"]))
+    earliest, latest = min(first, key=first.get), max(first, key=first.get)
+    assert first[earliest] < first[latest], first
+    answer = subprocess.run([smql, str(work / "db"), f"ASK 'which did I see first, the {latest} or the {earliest}?'"],
+                            capture_output=True, text=True).stdout
+    assert f"\nthe {earliest}, the {latest} (first seen: the {earliest} in frame {first[earliest]:.0f}" in answer, \
+        (first, answer)
     # Things it could not name are kept as "object": a kind it has none of may be one of them, not said to be absent.
     if any(r["category"] == "object" for r in rows):
         out = subprocess.run([smql, str(work / "db"), "ASK 'is there a bookcase?'"], capture_output=True, text=True)

@@ -585,7 +585,9 @@ TEST_CASE("ASK 'describe the room' sums the scene up: floor, walls, openings and
     CHECK_THAT(run(*engine, "ASK 'describe the room'").message, Catch::Contains("(not run)"));
 }
 
-TEST_CASE("ASK reads VSI-Bench's appearance order from the frame that first saw each thing", "[ask]") {
+TEST_CASE(
+    "ASK reads the order of first sight, in VSI-Bench's words and a person's, from the frame that first saw each thing",
+    "[ask]") {
     TempDir dir;
     auto engine = Engine::open(dir.path.string());
     // A capture's objects carry the frame that first saw them (ingest's `first_seen`): here later
@@ -612,6 +614,27 @@ TEST_CASE("ASK reads VSI-Bench's appearance order from the frame that first saw 
                   "sofa, lamp, chair?'");
     CHECK(rs.message.find("ORDER BY first_seen") != std::string::npos);
     CHECK(rs.message.find("\n" + order) != std::string::npos);
+    // As a person asks it: which of two came first, in what order several came, whether one came before another,
+    // and when one was first seen.
+    const std::string firstTwo = fmt::format("\nthe {}, the {} (first seen: the {} in frame {}", expected[0],
+                                             expected[1], expected[0], first[expected[0]]);
+    for (const std::string& question :
+         {fmt::format("which did I see first, the {} or the {}?", expected[1], expected[0]),
+          fmt::format("what came first: the {} or the {}?", expected[0], expected[1]),
+          fmt::format("which of the {} and the {} did we see first?", expected[1], expected[0]),
+          fmt::format("in what order did I see the {} and the {}?", expected[1], expected[0])})
+        CHECK_THAT(run(*engine, "ASK '" + question + "'").message, Catch::Contains(firstTwo));
+    CHECK_THAT(run(*engine,
+                   fmt::format("ASK 'what order did {}, {} and {} appear in?'", expected[2], expected[0], expected[1]))
+                   .message,
+               Catch::Contains(fmt::format("\n{}, {}, {} (first seen:", expected[0], expected[1], expected[2])));
+    CHECK_THAT(run(*engine, fmt::format("ASK 'did I see the {} before the {}?'", expected[0], expected[3])).message,
+               Catch::Contains(fmt::format("\nYes: the {} was first seen in frame {}, the {} in frame {}.", expected[0],
+                                           first[expected[0]], expected[3], first[expected[3]])));
+    CHECK_THAT(run(*engine, fmt::format("ASK 'did I see the {} before the {}?'", expected[3], expected[0])).message,
+               Catch::Contains("\nNo: "));
+    CHECK_THAT(run(*engine, fmt::format("ASK 'when did I first see the {}?'", expected[2])).message,
+               Catch::Contains(fmt::format("was first seen in frame {}.", first[expected[2]])));
 
     // A layout has no frames: the question says so rather than guessing.
     engine->importScene(import::readVsiBench(std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json",
