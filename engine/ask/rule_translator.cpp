@@ -473,6 +473,7 @@ private:
     // How far is the sofa from the tv? What is the distance between the bed and the door?
     bool distance(Cursor& c, PhraseParser& p, Translation& out) {
         std::optional<Phrase> a, b;
+        bool fromOrder = false;  // b is what a is ordered by the distance to: a keeps its order
         // The thing measured from: "me" or "here" is the person (PhraseParser::person).
         auto from = [&] {
             Phrase person;
@@ -481,9 +482,11 @@ private:
         auto pair = [&](std::initializer_list<std::string_view> link) {
             a = p.phrase(c.w, c.i, true);
             c.accept({"away"});
-            // "how far away is the door?": from the person.
+            // "how far away is the door?": from the person; "how far is the nearest chair from the sofa?": from what
+            // the thing is nearest to (the phrase took the sofa in as its order).
             if (c.done() && !a->kind) {
-                b = p.person();
+                fromOrder = a->order && a->order->measure == "distance" && a->order->to.size() == 1;
+                b = fromOrder ? a->order->to.front() : p.person();
                 return true;
             }
             if (!c.accept(link)) return false;
@@ -548,8 +551,13 @@ private:
         }
         out.kind = QuestionKind::Distance;
         Phrase subject = *a;
-        subject.order = Order{"distance", false, {*b}, ""};
-        out.smql = findText(subject, false);
+        if (subject.order && !fromOrder) {
+            // "how far is the largest chair from the sofa?": the largest chair, and how far it is.
+            out.smql = fmt::format("FIND ({}) ORDER BY distance({})", findText(subject, false), reference(*b));
+        } else {
+            if (!fromOrder) subject.order = Order{"distance", false, {*b}, ""};
+            out.smql = findText(subject, false);
+        }
         describeSubject(*a, out);
         out.object = b->words;
         return true;
