@@ -1728,7 +1728,16 @@ private:
         }
         Phrase checked;
         checked.noun = subject.noun;
+        const std::size_t place = c.i;
         p.posts(c.w, c.i, checked);
+        // "is the fridge in the room?", "... in the kitchen" of a scene that is one: the place is the whole scene (no
+        // condition), which holds such a thing or not.
+        if (checked.conditions.empty() && c.i > place && c.done()) {
+            out.kind = QuestionKind::Existence;
+            out.smql = findText(subject, false);
+            describeSubject(subject, out);
+            return true;
+        }
         if (checked.conditions.size() != 1) return false;
         const Condition& cond = checked.conditions.front();
         describeSubject(subject, out);
