@@ -238,7 +238,65 @@ std::string broaderKind(const Translation& t, const WordMapping& widened, std::s
                        n == 1 ? kind : pluralOf(kind), t.subject, n == 1 ? "one" : t.subjectPlural);
 }
 
+// Things counted by the holder they are on or in (Translation::measure "each", "most", "fewest"; the rows the things
+// and every holder, roles the kinds of each): each thing goes to the holder its box lies nearest (on a bed's pillows,
+// the bed under them), and each holder says how many it holds, most first, or the one that holds the most or fewest.
+std::string countByHolder(const Translation& t, const ResultSet& rs) {
+    const int category = rs.columnIndex("category"), box = rs.columnIndex("box");
+    if (category < 0 || box < 0 || t.roles.size() != 2 || t.choices.size() != 2) return noneFound(t);
+    const auto names = labels(rs);
+    auto isOf = [&](std::size_t r, std::size_t role) {
+        const std::string c = text(rs.rows[r][static_cast<std::size_t>(category)]);
+        return std::find(t.roles[role].begin(), t.roles[role].end(), c) != t.roles[role].end();
+    };
+    auto boxOf = [&](std::size_t r) -> const model::Box* {
+        return std::get_if<model::Box>(&rs.rows[r][static_cast<std::size_t>(box)]);
+    };
+    std::vector<std::size_t> holders;
+    std::vector<std::size_t> things;
+    for (std::size_t r = 0; r < rs.rows.size(); ++r) {
+        if (!boxOf(r)) continue;
+        if (isOf(r, 1))
+            holders.push_back(r);
+        else if (t.roles[0].empty() || isOf(r, 0))  // no kinds: things of any kind ("how many things ...")
+            things.push_back(r);
+    }
+    const std::string holderWord = t.choices[1], thingWord = t.choices[0];
+    if (holders.empty()) return fmt::format("There is no {} here.", holderWord);
+    std::vector<std::size_t> held(holders.size(), 0);
+    for (const std::size_t r : things) {
+        std::size_t best = 0;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (std::size_t h = 0; h < holders.size(); ++h) {
+            const model::Box &a = *boxOf(r), &b = *boxOf(holders[h]);
+            const double gap = model::distance(a, b) + 1e-3 * model::centerDistance(a, b);
+            if (gap < nearest) nearest = gap, best = h;
+        }
+        ++held[best];
+    }
+    std::vector<std::size_t> order(holders.size());
+    for (std::size_t h = 0; h < order.size(); ++h) order[h] = h;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return held[a] > held[b]; });
+    const std::string preposition = t.predicate == "in" ? "in" : "on";
+    std::vector<std::string> each;  // "5 on bed#2"
+    for (const std::size_t h : order) each.push_back(fmt::format("{} {} {}", held[h], preposition, names[holders[h]]));
+    std::string plural = pluralOf(thingWord);
+    plural.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(plural.front())));
+    if (t.measure == "each")
+        return fmt::format("{} {} each {}: {} ({} in all).", plural, preposition, holderWord, listed(each),
+                           things.size());
+    const bool most = t.measure == "most";
+    const std::size_t pick = most ? order.front() : order.back();
+    if (holders.size() == 1) return fmt::format("There is one {}: {}.", holderWord, each.front());
+    if (std::count(held.begin(), held.end(), held[pick]) > 1)
+        return fmt::format("No {} has {} {} than the others: {}.", holderWord, most ? "more" : "fewer",
+                           pluralOf(thingWord), listed(each));
+    return fmt::format("{} has the {} {}: {}.", names[holders[pick]], most ? "most" : "fewest", pluralOf(thingWord),
+                       listed(each));
+}
+
 std::string count(const Translation& t, const ResultSet& rs) {
+    if (t.measure == "each" || t.measure == "most" || t.measure == "fewest") return countByHolder(t, rs);
     // Several kinds asked at once: the rows found, tallied by the kinds in the order asked.
     if (const int category = rs.columnIndex("category"); category >= 0 && !t.roles.empty()) {
         std::vector<std::string> counts;

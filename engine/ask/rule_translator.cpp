@@ -924,8 +924,73 @@ private:
         return true;
     }
 
+    // The things of `thing` that hold its one condition, and every thing of the kind the condition names (`holder`), in
+    // one FIND: the answer counts them by holder ("how many pillows are on each bed?", "which bed has the most
+    // pillows?"). `measure` is "each", "most" or "fewest".
+    static bool countByHolder(const Phrase& thing, const std::string& measure, Translation& out) {
+        if (thing.conditions.size() != 1 || !thing.id.empty()) return false;
+        const Condition& held = thing.conditions.front();
+        if (held.negated || held.args.size() != 1 || held.metres) return false;
+        const Phrase& holder = held.args.front();
+        if (holder.kind || !holder.id.empty() || holder.order || !holder.conditions.empty() || holder.here)
+            return false;
+        auto kindsOf = [](const Phrase& ph) {
+            const std::vector<std::string> categories =
+                ph.categories.empty() ? std::vector<std::string>{hyphenated(ph.noun)} : ph.categories;
+            std::string any;
+            for (const auto& c : categories)
+                any += (any.empty() ? "" : " OR ") + fmt::format("category = {}", smqlString(c));
+            return std::pair{categories, categories.size() > 1 ? "(" + any + ")" : any};
+        };
+        // "things", "objects": any thing but a holder (no kinds of its own).
+        const auto [thingKinds, thingClause] =
+            thing.kind ? std::pair{std::vector<std::string>{}, fmt::format("kind = {}", smqlString(*thing.kind))}
+                       : kindsOf(thing);
+        const auto [holderKinds, holderClause] = kindsOf(holder);
+        Phrase onHolder = thing;
+        onHolder.categories.clear();
+        onHolder.kind = "thing";
+        out.kind = QuestionKind::Count;
+        out.measure = measure;
+        out.smql = fmt::format("FIND thing WHERE {} OR ({}{}) RETURN id, category, box", holderClause, thingClause,
+                               " AND" + whereText(onHolder).substr(std::string(" WHERE").size()));
+        out.roles = {thingKinds, holderKinds};
+        out.choices = {thing.noun, holder.noun};
+        out.predicate = held.predicate;
+        describeSubject(thing, out);
+        return true;
+    }
+
     // How many chairs are near the table? How many cushions do the sofas have?
     bool count(Cursor& c, PhraseParser& p, Translation& out) {
+        // "which bed has the most pillows (on it)?", "what table holds more books?": the things counted by holder.
+        const auto verb = std::find_if(c.w.begin(), c.w.end(), [](const std::string& w) {
+            return isOneOf(w, {"has", "have", "holds", "hold", "carries", "contains"});
+        });
+        const auto most = verb == c.w.end() ? verb : verb + 1 + (verb + 1 != c.w.end() && *(verb + 1) == "the");
+        if (most != c.w.end() && isOneOf(*most, {"most", "more", "fewest", "fewer", "least", "less"}) &&
+            c.accept({"which|what"})) {
+            Phrase holder;
+            if (!phraseWithin(c, p, static_cast<std::size_t>(verb - c.w.begin()), holder)) return false;
+            const bool contains = *verb == "contains";
+            ++c.i;
+            c.accept({"the"});
+            if (!c.accept({"most|more|fewest|fewer|least|less"})) return false;
+            const std::string measure = isOneOf(c.w[c.i - 1], {"most", "more"}) ? "most" : "fewest";
+            // "... pillows on it": the holder said again.
+            std::size_t end = c.w.size();
+            if (end >= c.i + 3 && isOneOf(c.w[end - 2], {"on", "in"}) && isOneOf(c.w[end - 1], {"it", "them"}))
+                end -= 2;
+            Phrase thing;
+            if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
+            c.i = c.w.size();
+            Condition held;
+            held.predicate = contains ? "in" : "on";
+            held.args.push_back(holder);
+            held.words = (contains ? "in the " : "on the ") + holder.words;
+            thing.conditions.push_back(held);
+            return countByHolder(thing, measure, out);
+        }
         // "are there more chairs than tables?", "are there more books or cushions?": both kinds counted, the
         // answer compares them.
         if (c.accept({"are|is", "there", "more|fewer|less"})) {
@@ -995,6 +1060,13 @@ private:
             ++c.i;
         }
         c.skip({"is", "are", "there", "altogether", "total", "in", "the", "room"});
+        // "how many pillows are on each bed?": counted by bed.
+        if (std::any_of(c.w.begin(), c.w.end(),
+                        [](const std::string& w) {
+                            return isOneOf(w, {"each", "every"});
+                        }) &&
+            countByHolder(thing, "each", out))
+            return true;
         // "how many chairs face the table?" reads in the answer as "facing the table", as a listing does.
         for (auto& cond : thing.conditions) participleFirst(cond);
         out.kind = QuestionKind::Count;
