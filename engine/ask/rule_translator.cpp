@@ -380,15 +380,32 @@ private:
         c.accept({"at|toward|towards"});
         Phrase facing = p.phrase(c.w, c.i, false);
         if (!c.accept({"is|are"})) return false;
-        Phrase asked = p.phrase(c.w, c.i, false);
+        auto choice = [](const std::string& w) {
+            return isOneOf(w, {"left", "right", "back", "front", "behind", "front-left", "front-right", "back-left",
+                               "back-right", "left-hand", "right-hand"});
+        };
+        // The thing asked about ends where the choices begin ("is the toilet on the left or right?": not "the toilet
+        // on the left").
+        std::size_t choices = c.i;
+        while (choices < c.w.size() &&
+               !(isOneOf(c.w[choices], {"to", "on", "at"}) && choices + 1 < c.w.size() &&
+                 (choice(c.w[choices + 1]) || (isOneOf(c.w[choices + 1], {"my", "the", "your"}) &&
+                                               choices + 2 < c.w.size() && choice(c.w[choices + 2])))))
+            ++choices;
+        Phrase asked;
+        if (choices < c.w.size()) {
+            if (!phraseUpTo(c.w, c.i, choices, p, asked)) return false;
+        } else {
+            asked = p.phrase(c.w, c.i, false);
+        }
         c.accept({"to|on|at"});
         c.accept({"my|the"});
+        // "... or the right of me", "on my left or on my right", "on my left-hand side".
         for (; !c.done(); ++c.i) {
             const std::string& w = c.peek();
-            if (isOneOf(w, {"left", "right", "back", "front", "behind", "front-left", "front-right", "back-left",
-                            "back-right"}))
-                out.choices.push_back(w == "behind" ? "back" : w);
-            else if (!isOneOf(w, {"or", "the", "of", "to", "my", "side", "and"}) &&
+            if (choice(w))
+                out.choices.push_back(w == "behind" ? "back" : w.ends_with("-hand") ? w.substr(0, w.find('-')) : w);
+            else if (!isOneOf(w, {"or", "the", "of", "to", "on", "my", "your", "me", "you", "side", "hand", "and"}) &&
                      !(!facing.categories.empty() && isOneOf(w, {facing.noun})))
                 break;
         }
