@@ -444,9 +444,12 @@ private:
             c.accept({"take|guide|lead|bring|direct|navigate|walk", "me|us"}) ||
             c.accept({"show", "me|us", "the", "way|route|path"}) ||
             c.accept({"what|which", "is", "the", "way|route|path"}) ||
-            // "which way to the sofa?", "which way is it to the door?"
+            // "what's the shortest way to the bed?", "the best route from the desk to the sink"
+            c.accept({"what|which", "is", "the", "shortest|quickest|fastest|best|easiest", "way|route|path"}) ||
+            c.accept({"show", "me|us", "the", "shortest|quickest|fastest|best|easiest", "way|route|path"}) ||
+            // "which way to the sofa?", "which way is it to the door?", "which way is the kitchen?"
             (c.peek(2) == "to" && c.accept({"which|what", "way"})) || c.accept({"which|what", "way", "is", "it"}) ||
-            c.accept({"i", "want|need", "to", "go|get|walk"}) ||
+            c.accept({"which", "way", "is|are"}) || c.accept({"i", "want|need", "to", "go|get|walk"}) ||
             // "can I walk from the bed to the fridge?": the way, if there is one.
             c.accept({"can|could", "i|we|you", "get|go|walk|reach|move"}) ||
             // "navigate to the sink", "go to the bed from the door", "directions to the fridge".
@@ -481,6 +484,10 @@ private:
             goal = from ? fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", kind, reference(*from))
                         : fmt::format("(FIND {} ORDER BY distance(HERE) LIMIT 1)", kind);
         }
+        // "which way is the kitchen?": to the nearest of the things that mark it.
+        if (to->room && !to->order)
+            goal = fmt::format("({}{} LIMIT 1)", findText(*to, false),
+                               from ? " NEAREST TO " + reference(*from) : std::string(" ORDER BY distance(HERE)"));
         out.smql = fmt::format("GUIDE FROM {} TO {}", from ? reference(*from) : "HERE", goal);
         out.subject = to->words;
         out.object = from ? from->words : "here";
