@@ -1420,7 +1420,10 @@ private:
         // What the subject is on or by may be an anchor too (a wall, the floor).
         Phrase other = placed ? *placed : answerKind ? *answerKind : anyThing("thing");
         relateBack(*subject, other, answerKind, pred->first, out);
-        out.condition = joined(c.w, predAt, predAt + pred->second);
+        // "what does the sofa face?" reads in the answer as "facing", as "how many chairs face the table?" does.
+        Condition said{pred->first, {}, std::nullopt, joined(c.w, predAt, predAt + pred->second), false};
+        participleFirst(said);
+        out.condition = said.words.substr(0, said.words.find_last_not_of(' ') + 1);
         return true;
     }
 
@@ -2184,6 +2187,10 @@ private:
             {std::regex(
                  R"(^(?:the |a |an )?(.+?) (?:is|are) ((?:dark |light |olive |bright |pale )?(?:red|green|blue|white|black|gray|grey|brown|yellow|orange|pink|purple|beige|silver|gold)) and what (colou?r|shape|material)$)"),
              "what $3 is the $2 $1"},
+            // "which way is the sofa facing?", "which direction does the chair face?": what it faces.
+            {std::regex(R"(^(?:which|what) (?:way|direction) (?:is|are) (.+?) (?:facing|turned|pointing|pointed)$)"),
+             "what is $1 facing"},
+            {std::regex(R"(^(?:which|what) (?:way|direction) (?:does|do) (.+?) (?:face|point)$)"), "what does $1 face"},
             // "the door is left of a row of what?": what the door is left of.
             {std::regex(R"(^(.+ )(?:a|an|the) (?:row|group|line|pile|stack|set|collection|cluster) of what$)"),
              "$1what"},
