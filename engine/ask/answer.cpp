@@ -354,6 +354,14 @@ std::string existence(const Translation& t, const ResultSet& rs) {
 }
 
 std::string yesNo(const Translation& t, const ResultSet& rs) {
+    // Of every one of them (Translation::measure "every"): the rows are those it does not hold of.
+    if (t.measure == "every") {
+        if (std::string absent = absentWords(t); !absent.empty())
+            return fmt::format("No: there is no {} here.", absent);
+        if (rs.rows.empty()) return fmt::format("Yes: every {} is {}.", t.subject, t.condition);
+        return fmt::format("No: {} {} not {}.", listedWithAnd(labels(rs)), rs.rows.size() == 1 ? "is" : "are",
+                           t.condition);
+    }
     int relation = rs.columnIndex("relation"), subject = rs.columnIndex("subject"), object = rs.columnIndex("object");
     std::string words = t.predicate;
     std::replace(words.begin(), words.end(), '_', ' ');  // "left of", as RELATE says it

@@ -1797,6 +1797,7 @@ private:
         } else {
             subject = p.phrase(c.w, c.i, false);
         }
+        const std::size_t subjectEnd = c.i;
         // "is the table on my left black?": whether there is such a thing where it is said to be.
         if (!does && c.i + 1 < c.w.size() && !subject.colour && colourOf(c.w.back())) {
             Words head(c.w.begin(), c.w.end() - 1);
@@ -1855,6 +1856,21 @@ private:
             return true;
         }
         out.object = cond.args.front().words;
+        // "are all the cushions on the sofa?", "is every cushion on a sofa?": of every one of them, so the ones it does
+        // not hold of answer (none: yes). Without "all", one that holds says yes ("are the cushions on the sofa?").
+        const bool every =
+            !does && subject.id.empty() && !subject.pick &&
+            std::any_of(c.w.begin(), c.w.begin() + static_cast<std::ptrdiff_t>(subjectEnd), [](const std::string& w) {
+                return isOneOf(w, {"all", "every", "each"});
+            });
+        if (every) {
+            Condition notHeld = cond;
+            notHeld.negated = true;
+            subject.conditions.push_back(notHeld);
+            out.measure = "every";
+            out.smql = findText(subject, false);
+            return true;
+        }
         out.smql = fmt::format("RELATE {} TO {}", reference(subject), reference(cond.args.front()));
         return true;
     }
