@@ -311,6 +311,20 @@ std::string count(const Translation& t, const ResultSet& rs) {
         }
         // "are there more chairs than tables?"; "are there more books or cushions?" (Translation::predicate "or"):
         // which of the two.
+        // "how many more cushions than tables are there?": by how many.
+        if (t.measure.starts_with("how many") && tallies.size() == 2) {
+            const bool more = t.measure == "how many more";
+            const std::ptrdiff_t by = more ? tallies[0] - tallies[1] : tallies[1] - tallies[0];
+            if (by == 0)
+                return fmt::format("None: there are as many {} as {}: {}.", pluralOf(t.choices[0]),
+                                   pluralOf(t.choices[1]), listedWithAnd(counts));
+            if (by < 0)
+                return fmt::format("None: there are {} {} than {}: {}.", more ? "fewer" : "more",
+                                   pluralOf(t.choices[0]), pluralOf(t.choices[1]), listedWithAnd(counts));
+            return fmt::format("{} {} {} than {}: {}.", by, more ? "more" : "fewer",
+                               by == 1 ? t.choices[0] : pluralOf(t.choices[0]), pluralOf(t.choices[1]),
+                               listedWithAnd(counts));
+        }
         if (!t.measure.empty() && tallies.size() == 2) {
             const bool holds = t.measure == "more" ? tallies[0] > tallies[1] : tallies[0] < tallies[1];
             if (t.predicate == "or" && tallies[0] == tallies[1])

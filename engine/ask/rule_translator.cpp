@@ -1015,6 +1015,14 @@ private:
             thing.conditions.push_back(held);
             return countByHolder(thing, measure, out);
         }
+        // "how many more cushions than tables are there?": both kinds counted, the answer says by how many.
+        if (c.accept({"how", "many", "more|fewer|less"})) {
+            out.measure = c.w[c.i - 1] == "more" ? "how many more" : "how many fewer";
+            c.skip({"of", "the"});
+            Phrase first = p.phrase(c.w, c.i, true);
+            if (c.peek() != "than") return false;
+            return countKinds(c, p, std::move(first), {"in", "here", "there", "are", "is"}, out, "than");
+        }
         // "are there more chairs than tables?", "are there more books or cushions?": both kinds counted, the
         // answer compares them.
         if (c.accept({"are|is", "there", "more|fewer|less"})) {
@@ -1027,7 +1035,9 @@ private:
             return countKinds(c, p, std::move(first), {"in", "here", "there"}, out, link);
         }
         bool lead = c.accept({"how", "many"}) || c.accept({"count"}) || c.accept({"number", "of"}) ||
-                    c.accept({"what", "is", "the", "number", "of"}) || c.accept({"tell", "me", "how", "many"});
+                    c.accept({"what", "is", "the", "number", "of"}) || c.accept({"tell", "me", "how", "many"}) ||
+                    c.accept({"what", "is", "the", "total", "number|count", "of"}) ||
+                    c.accept({"what", "is", "the", "count", "of"});
         if (!lead) return false;
         c.accept({"all|the"});
         c.accept({"the"});
@@ -1035,6 +1045,8 @@ private:
         static const std::initializer_list<std::string_view> filler{
             "is", "are", "there", "here", "altogether", "total", "exactly", "currently", "right", "now"};
         if (c.peek() == "and") return countKinds(c, p, std::move(thing), filler, out);
+        c.skip(filler);
+        c.accept({"in", "total|all"});  // "how many cushions are there in total on both sofas?"
         c.skip(filler);
         // "how many chairs can I see?" counts from where the person is; "do you see" counts what the memory holds.
         const bool iSee = c.accept({"do|can|could", "i|we", "see"});
