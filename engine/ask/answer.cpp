@@ -1010,6 +1010,24 @@ std::string comparison(const Translation& t, const ResultSet& rs) {
     for (const auto& side : sides)
         for (const auto& [label, v] : side.nodes) values.push_back(fmt::format("{} is {}", label, said(v)));
     const std::string than = fmt::format("{} than the {}", t.predicate, t.object);
+    // By how much: the first of each side in the rows' order (the tallest of each, for "taller").
+    if (t.byHowMuch) {
+        const auto& [a, va] = sides[0].nodes.front();
+        const auto& [b, vb] = sides[1].nodes.front();
+        const double by = t.greater ? va - vb : vb - va;
+        const std::string amount =
+            t.measure == "volume" ? fmt::format("{:.3f} m³", std::abs(by)) : formatLength(std::abs(by), t.unit);
+        std::vector<std::string> picked;  // "chair#20 of 4 chairs"
+        const std::array<std::string, 2> plurals{t.subjectPlural, pluralOf(t.object)};
+        for (std::size_t side = 0; side < 2; ++side)
+            if (sides[side].nodes.size() > 1)
+                picked.push_back(fmt::format("{} of {} {}", sides[side].nodes.front().first, sides[side].nodes.size(),
+                                             plurals[side]));
+        const std::string several =
+            picked.empty() ? "" : fmt::format(" ({}, the first by {})", listedWithAnd(picked), t.measure);
+        if (by <= 0) return fmt::format("It is not: {} is {}; {} is {}{}.", a, said(va), b, said(vb), several);
+        return fmt::format("{} is {} {} ({}): {} against {}{}.", a, amount, than, b, said(va), said(vb), several);
+    }
     std::string verdict;
     if (pairs == 0)
         verdict = fmt::format("There is nothing but the {} itself to compare", t.subject);

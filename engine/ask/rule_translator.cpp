@@ -1720,14 +1720,28 @@ private:
     // Is the sofa longer than the bed? Is the chair closer to the door than the bed? Are the
     // cushions smaller than the lamp?
     bool comparison(Cursor& c, PhraseParser& p, Translation& out) {
-        if (!c.accept({"is|are|was|were"})) return false;
-        Phrase a = p.phrase(c.w, c.i, true);
-        c.accept({"any|much|a|lot|bit|little|even|still"});
-        c.accept({"lot|bit|little"});
-        std::optional<Comparative> cmp = comparativeOf(c.peek());
-        if (!cmp) return false;
-        std::string word = c.peek();
-        ++c.i;
+        // "how much taller is the lamp than the table?": by how much.
+        const bool byHowMuch = c.accept({"how", "much"});
+        std::optional<Comparative> cmp;
+        std::string word;
+        Phrase a;
+        if (byHowMuch) {
+            cmp = comparativeOf(c.peek());
+            if (!cmp || cmp->measure == "distance") return false;
+            word = c.peek();
+            ++c.i;
+            if (!c.accept({"is|are|was|were"})) return false;
+            a = p.phrase(c.w, c.i, true);
+        } else {
+            if (!c.accept({"is|are|was|were"})) return false;
+            a = p.phrase(c.w, c.i, true);
+            c.accept({"any|much|a|lot|bit|little|even|still"});
+            c.accept({"lot|bit|little"});
+            cmp = comparativeOf(c.peek());
+            if (!cmp) return false;
+            word = c.peek();
+            ++c.i;
+        }
         // "longer or shorter than": the first is asked, the answer says which.
         if (c.peek() == "or" && comparativeOf(c.peek(1))) c.i += 2;
         std::optional<Phrase> to;
@@ -1748,6 +1762,7 @@ private:
             return ph.categories.empty() ? std::vector<std::string>{ph.noun} : ph.categories;
         };
         out.kind = QuestionKind::Comparison;
+        out.byHowMuch = byHowMuch;
         out.roles = {side(a), side(b)};
         out.measure = cmp->measure;
         out.greater = cmp->descending;

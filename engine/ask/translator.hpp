@@ -117,6 +117,7 @@ struct Translation {
     // two sides (categories, or "#id" for a node named by id), `condition` how a value is said
     // ("long", "from the door").
     bool greater = true;
+    bool byHowMuch = false;  // Comparison: "how much taller is the lamp than the table?": the difference
     // Route: the steps in order, "forward" (to the next of `roles` after the start and the thing
     // faced) or "turn" (a turn to fill in).
     std::vector<std::string> steps;
