@@ -430,7 +430,11 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     int d = rs.columnIndex("distance");
     auto names = labels(rs);
     // Measured from where the person stands (distance(HERE): the statement's viewpoint), or from a thing.
-    const bool fromYou = t.smql.find("distance(HERE)") != std::string::npos;
+    // Outside a sub-query: "(FIND table ORDER BY distance(HERE) LIMIT 1)" is a thing measured from.
+    const std::size_t here = t.smql.find("distance(HERE)");
+    const bool fromYou = here != std::string::npos &&
+                         std::count(t.smql.begin(), t.smql.begin() + static_cast<std::ptrdiff_t>(here), '(') ==
+                             std::count(t.smql.begin(), t.smql.begin() + static_cast<std::ptrdiff_t>(here), ')');
     std::string from = fromYou ? "you" : "the " + t.object;
     // "how far apart are the chairs?": each from the nearest other of its kind.
     if (!fromYou && (t.object == t.subject || t.object == t.subjectPlural))

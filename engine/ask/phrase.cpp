@@ -695,7 +695,7 @@ void PhraseParser::orderByDistanceFrom(const Words& w, std::size_t& i, Phrase& p
     std::size_t k = linked ? i + 1 : i;
     // "the nearest chair to me", and "the nearest chair" with no "to" after it: from where the person is.
     if (Phrase to; !linked || personAt(w, k, to)) {
-        p.order = Order{"distance", farthest, {linked ? std::move(to) : person()}, youWords(word, farthest)};
+        p.order = Order{"distance", farthest, {linked ? std::move(to) : person()}, youWords(word, farthest), !linked};
         i = k;
         return;
     }

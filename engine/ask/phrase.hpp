@@ -64,6 +64,7 @@ struct Order {
     bool descending = false;
     std::vector<Phrase> to;  // distance's reference (one phrase)
     std::string words;       // "largest", "closest to the window"
+    bool unsaid = false;     // "the nearest chair": from the person, though no reference was said
 };
 
 struct Phrase {

@@ -573,6 +573,10 @@ private:
                 return false;
             }
         }
+        // "the distance from the sofa to the nearest table": the table nearest the sofa, which distance(table) measures
+        // to (the nearest box of the kind), not the one nearest the viewer.
+        if (b->order && b->order->unsaid && !b->order->descending && b->pick == 1 && !a->here)
+            b->order.reset(), b->pick = 0;
         out.kind = QuestionKind::Distance;
         Phrase subject = *a;
         if (subject.order && !fromOrder) {
