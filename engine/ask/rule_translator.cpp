@@ -223,15 +223,15 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,   &QuestionReader::roomPlace,  &QuestionReader::whereAmI,
-            &QuestionReader::direction,  &QuestionReader::guidance,   &QuestionReader::distance,
-            &QuestionReader::size,       &QuestionReader::attribute,  &QuestionReader::affordance,
-            &QuestionReader::seating,    &QuestionReader::visibility, &QuestionReader::changes,
-            &QuestionReader::count,      &QuestionReader::existence,  &QuestionReader::side,
-            &QuestionReader::eitherSide, &QuestionReader::relative,   &QuestionReader::superlative,
-            &QuestionReader::reverse,    &QuestionReader::locate,     &QuestionReader::relational,
-            &QuestionReader::comparison, &QuestionReader::yesNo,      &QuestionReader::description,
-            &QuestionReader::state,
+            &QuestionReader::roomKind,    &QuestionReader::roomPlace,  &QuestionReader::whereAmI,
+            &QuestionReader::direction,   &QuestionReader::guidance,   &QuestionReader::distance,
+            &QuestionReader::size,        &QuestionReader::attribute,  &QuestionReader::affordance,
+            &QuestionReader::seating,     &QuestionReader::visibility, &QuestionReader::changes,
+            &QuestionReader::mostHeld,    &QuestionReader::count,      &QuestionReader::existence,
+            &QuestionReader::side,        &QuestionReader::eitherSide, &QuestionReader::relative,
+            &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
+            &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
+            &QuestionReader::description, &QuestionReader::state,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -989,36 +989,38 @@ private:
         return true;
     }
 
-    // How many chairs are near the table? How many cushions do the sofas have?
-    bool count(Cursor& c, PhraseParser& p, Translation& out) {
-        // "which bed has the most pillows (on it)?", "what table holds more books?": the things counted by holder.
+    // Which bed has the most pillows (on it)? What table holds more books? The things counted by holder.
+    bool mostHeld(Cursor& c, PhraseParser& p, Translation& out) {
         const auto verb = std::find_if(c.w.begin(), c.w.end(), [](const std::string& w) {
             return isOneOf(w, {"has", "have", "holds", "hold", "carries", "contains"});
         });
         const auto most = verb == c.w.end() ? verb : verb + 1 + (verb + 1 != c.w.end() && *(verb + 1) == "the");
-        if (most != c.w.end() && isOneOf(*most, {"most", "more", "fewest", "fewer", "least", "less"}) &&
-            c.accept({"which|what"})) {
-            Phrase holder;
-            if (!phraseWithin(c, p, static_cast<std::size_t>(verb - c.w.begin()), holder)) return false;
-            const bool contains = *verb == "contains";
-            ++c.i;
-            c.accept({"the"});
-            if (!c.accept({"most|more|fewest|fewer|least|less"})) return false;
-            const std::string measure = isOneOf(c.w[c.i - 1], {"most", "more"}) ? "most" : "fewest";
-            // "... pillows on it": the holder said again.
-            std::size_t end = c.w.size();
-            if (end >= c.i + 3 && isOneOf(c.w[end - 2], {"on", "in"}) && isOneOf(c.w[end - 1], {"it", "them"}))
-                end -= 2;
-            Phrase thing;
-            if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
-            c.i = c.w.size();
-            Condition held;
-            held.predicate = contains ? "in" : "on";
-            held.args.push_back(holder);
-            held.words = (contains ? "in the " : "on the ") + holder.words;
-            thing.conditions.push_back(held);
-            return countByHolder(thing, measure, out);
-        }
+        if (most == c.w.end() || !isOneOf(*most, {"most", "more", "fewest", "fewer", "least", "less"}) ||
+            !c.accept({"which|what"}))
+            return false;
+        Phrase holder;
+        if (!phraseWithin(c, p, static_cast<std::size_t>(verb - c.w.begin()), holder)) return false;
+        const bool contains = *verb == "contains";
+        ++c.i;
+        c.accept({"the"});
+        if (!c.accept({"most|more|fewest|fewer|least|less"})) return false;
+        const std::string measure = isOneOf(c.w[c.i - 1], {"most", "more"}) ? "most" : "fewest";
+        // "... pillows on it": the holder said again.
+        std::size_t end = c.w.size();
+        if (end >= c.i + 3 && isOneOf(c.w[end - 2], {"on", "in"}) && isOneOf(c.w[end - 1], {"it", "them"})) end -= 2;
+        Phrase thing;
+        if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
+        c.i = c.w.size();
+        Condition held;
+        held.predicate = contains ? "in" : "on";
+        held.args.push_back(holder);
+        held.words = (contains ? "in the " : "on the ") + holder.words;
+        thing.conditions.push_back(held);
+        return countByHolder(thing, measure, out);
+    }
+
+    // How many chairs are near the table? How many cushions do the sofas have?
+    bool count(Cursor& c, PhraseParser& p, Translation& out) {
         // "how many more cushions than tables are there?": both kinds counted, the answer says by how many.
         if (c.accept({"how", "many", "more|fewer|less"})) {
             out.measure = c.w[c.i - 1] == "more" ? "how many more" : "how many fewer";
@@ -1114,6 +1116,14 @@ private:
         out.smql = thing.kinds ? findText(thing, false) + " RETURN id, category" : countText(thing);
         describeSubject(thing, out);
         return true;
+    }
+
+    // A predicate's words as said in the words of its first phrase where that is a participle: "what does the sofa
+    // face?" reads in the answer as "sofa#7 is facing ...", as "how many chairs face the table?" does.
+    static std::string participleSaid(const std::string& predicate, const std::string& said) {
+        Condition cond{predicate, {}, std::nullopt, said, false};
+        participleFirst(cond);
+        return cond.words.substr(0, cond.words.find_last_not_of(' ') + 1);
     }
 
     // A condition said with a verb ("face the table") in the words of its predicate's first phrase where that is a
@@ -1436,10 +1446,7 @@ private:
         // What the subject is on or by may be an anchor too (a wall, the floor).
         Phrase other = placed ? *placed : answerKind ? *answerKind : anyThing("thing");
         relateBack(*subject, other, answerKind, pred->first, out);
-        // "what does the sofa face?" reads in the answer as "facing", as "how many chairs face the table?" does.
-        Condition said{pred->first, {}, std::nullopt, joined(c.w, predAt, predAt + pred->second), false};
-        participleFirst(said);
-        out.condition = said.words.substr(0, said.words.find_last_not_of(' ') + 1);
+        out.condition = participleSaid(pred->first, joined(c.w, predAt, predAt + pred->second));
         return true;
     }
 
