@@ -1164,8 +1164,12 @@ std::size_t PhraseParser::scenePlaceAt(const Words& w, std::size_t i) const {
         const WordMatch match = lexicon_.lookUp(joined(w, i, i + parts.size()));
         if (match.how == WordMatch::How::Category || match.how == WordMatch::How::Plural) return 0;
         const std::string name = model::categoryName(scene_), word = model::categoryName(kind);
+        // A scene of one room whose things mark the kind asked (a sofa: a living room) is that room too, of several
+        // scenes whose names say nothing (VSI-Bench's "41069025").
+        const RoomMarks* marked = roomNamedAt(w, i);
         bool fits = sceneCount_ <= 1 || name.find(word) != std::string::npos ||
-                    name.find(std::string(kind.substr(0, kind.find(' ')))) != std::string::npos;
+                    name.find(std::string(kind.substr(0, kind.find(' ')))) != std::string::npos ||
+                    (marked && !roomMarks()[static_cast<std::size_t>(marked - kRoomMarks)].empty());
         if (!fits) return 0;
         out_.notes.push_back(fmt::format("'{}' is the scene '{}'", kind, scene_));
         const std::size_t end = i + parts.size();
