@@ -24,23 +24,21 @@ struct AskedOrder {
 };
 
 std::optional<AskedOrder> askedOrder(const std::string& text) {
-    static const std::regex vsiBench(
-        R"((?:appearance order|order of (?:first )?appearance|order (?:were|are|did) .*?(?:first )?(?:seen|appear))[^:]*:\s*([^?]+))",
-        std::regex::icase);
-    static const std::regex whichFirst(
-        R"(^\s*(?:which|what)(?: one| thing)? (?:did (?:i|we) (?:see|notice|spot|come across|pass)|came|appeared|showed up|was seen) first\s*[,:]?\s*(?:of\s+|between\s+)?([^?]+?)\s*\??\s*$)",
-        std::regex::icase);
-    static const std::regex whichOfFirst(
-        R"(^\s*which of\s+([^?]+?)\s+(?:did (?:i|we) (?:see|notice|spot|come across|pass)|came|appeared|showed up|was seen) first\s*\??\s*$)",
-        std::regex::icase);
-    static const std::regex inWhatOrder(
-        R"(^\s*(?:in )?(?:what|which) order (?:did (?:i|we) (?:see|notice|spot|come across|pass)|were|did|do)\s+([^?]+?)(?:\s+(?:seen|appear|show up|come up))?(?:\s+in)?\s*\??\s*$)",
-        std::regex::icase);
-    static const std::regex when(
-        R"(^\s*when did (?:i|we) first (?:see|notice|spot|come across|pass)\s+([^?]+?)\s*\??\s*$)", std::regex::icase);
-    static const std::regex before(
-        R"(^\s*did (?:i|we) (?:see|notice|spot|come across|pass)\s+([^?]+?)\s+before\s+([^?]+?)\s*\??\s*$)",
-        std::regex::icase);
+    // "did I see", "did we notice": the person's sight, said as such.
+    static const std::string saw = R"(did (?:i|we) (?:see|notice|spot|come across|pass))";
+    static const std::string came = "(?:" + saw + "|came|appeared|showed up|was seen) first";
+    auto pattern = [](const std::string& source) { return std::regex(source, std::regex::icase); };
+    static const std::regex vsiBench = pattern(
+        R"((?:appearance order|order of (?:first )?appearance|order (?:were|are|did) .*?(?:first )?(?:seen|appear))[^:]*:\s*([^?]+))");
+    static const std::regex whichFirst = pattern(R"(^\s*(?:which|what)(?: one| thing)? )" + came +
+                                                 R"(\s*[,:]?\s*(?:of\s+|between\s+)?([^?]+?)\s*\??\s*$)");
+    static const std::regex whichOfFirst = pattern(R"(^\s*which of\s+([^?]+?)\s+)" + came + R"(\s*\??\s*$)");
+    static const std::regex inWhatOrder =
+        pattern(R"(^\s*(?:in )?(?:what|which) order (?:)" + saw +
+                R"(|were|did|do)\s+([^?]+?)(?:\s+(?:seen|appear|show up|come up))?(?:\s+in)?\s*\??\s*$)");
+    static const std::regex when =
+        pattern(R"(^\s*when did (?:i|we) first (?:see|notice|spot|come across|pass)\s+([^?]+?)\s*\??\s*$)");
+    static const std::regex before = pattern(R"(^\s*)" + saw + R"(\s+([^?]+?)\s+before\s+([^?]+?)\s*\??\s*$)");
     std::smatch m;
     if (std::regex_search(text, m, vsiBench) || std::regex_search(text, m, whichFirst) ||
         std::regex_search(text, m, whichOfFirst) || std::regex_search(text, m, inWhatOrder) ||
