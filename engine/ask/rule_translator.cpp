@@ -601,6 +601,8 @@ private:
             aboveFloor = true;
         } else if (c.accept({"how"}) && sizeMeasure(c.peek()) && isOneOf(c.peek(1), {"is", "are"})) {
             measure = std::string(*sizeMeasure(c.peek()));
+            // "how high is the sink?": how tall, and where its top is when it stands above the floor.
+            if (c.peek() == "high") out.predicate = "high";
             c.i += 2;
         } else {
             c.i = 0;
@@ -662,8 +664,10 @@ private:
         out.measure = measure;
         out.smql = findText(thing, false) + " RETURN id, category, width, depth, height, volume";
         // "how high is the ceiling?": how far above the floor it is, not how thick its box.
-        if (measure == "height" && (aboveFloor || thing.categories == std::vector<std::string>{"ceiling"}))
+        if (measure == "height" &&
+            (aboveFloor || out.predicate == "high" || thing.categories == std::vector<std::string>{"ceiling"}))
             out.smql += ", z";
+        if (aboveFloor || thing.categories == std::vector<std::string>{"ceiling"}) out.predicate.clear();
         describeSubject(thing, out);
         return true;
     }
