@@ -309,8 +309,6 @@ std::string count(const Translation& t, const ResultSet& rs) {
             counts.push_back(fmt::format("{} {}", n, n == 1 ? t.choices[k] : pluralOf(t.choices[k])));
             tallies.push_back(n);
         }
-        // "are there more chairs than tables?"; "are there more books or cushions?" (Translation::predicate "or"):
-        // which of the two.
         // "how many more cushions than tables are there?": by how many.
         if (t.measure.starts_with("how many") && tallies.size() == 2) {
             const bool more = t.measure == "how many more";
@@ -325,6 +323,8 @@ std::string count(const Translation& t, const ResultSet& rs) {
                                by == 1 ? t.choices[0] : pluralOf(t.choices[0]), pluralOf(t.choices[1]),
                                listedWithAnd(counts));
         }
+        // "are there more chairs than tables?"; "are there more books or cushions?" (Translation::predicate "or"):
+        // which of the two.
         if (!t.measure.empty() && tallies.size() == 2) {
             const bool holds = t.measure == "more" ? tallies[0] > tallies[1] : tallies[0] < tallies[1];
             if (t.predicate == "or" && tallies[0] == tallies[1])
