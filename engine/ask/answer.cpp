@@ -462,9 +462,6 @@ bool widthAcrossLength(const std::string& category) {
     return isOneOf(category, {"bed", "bunk-bed", "crib", "mattress", "bathtub"});
 }
 
-// m: a thing whose bottom is this far above the floor stands on something or hangs, not on the floor.
-constexpr double kRaisedAboveFloor = 0.1;
-
 std::string size(const Translation& t, const ResultSet& rs) {
     int w = rs.columnIndex("width"), dp = rs.columnIndex("depth"), h = rs.columnIndex("height"),
         v = rs.columnIndex("volume"), category = rs.columnIndex("category");
@@ -483,7 +480,7 @@ std::string size(const Translation& t, const ResultSet& rs) {
         const double centre = placed ? *number(rs.rows[r][z]) : 0, bottom = centre - *height / 2;
         // "how high is the sink?": how tall, and its top above the floor where it stands above the floor (a basin, a
         // shelf), as a person means a sink's or a counter's height.
-        if (m == "height" && t.predicate == "high" && placed && bottom > kRaisedAboveFloor)
+        if (m == "height" && t.predicate == "high" && placed && bottom > kOnFloor)
             parts.push_back(fmt::format("{} is {} tall, its top {} above the floor", names[r], length(*height, t.unit),
                                         length(centre + *height / 2, t.unit)));
         // A ceiling's height is how far above the floor it is (its box's bottom; the translator asks for z).

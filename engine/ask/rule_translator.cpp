@@ -386,12 +386,13 @@ private:
         };
         // The thing asked about ends where the choices begin ("is the toilet on the left or right?": not "the toilet
         // on the left").
+        auto choicesAt = [&](std::size_t k) {  // "to", "on" or "at", maybe "my", "the" or "your", then a side
+            if (!isOneOf(c.w[k], {"to", "on", "at"})) return false;
+            if (++k < c.w.size() && isOneOf(c.w[k], {"my", "the", "your"})) ++k;
+            return k < c.w.size() && choice(c.w[k]);
+        };
         std::size_t choices = c.i;
-        while (choices < c.w.size() &&
-               !(isOneOf(c.w[choices], {"to", "on", "at"}) && choices + 1 < c.w.size() &&
-                 (choice(c.w[choices + 1]) || (isOneOf(c.w[choices + 1], {"my", "the", "your"}) &&
-                                               choices + 2 < c.w.size() && choice(c.w[choices + 2])))))
-            ++choices;
+        while (choices < c.w.size() && !choicesAt(choices)) ++choices;
         Phrase asked;
         if (choices < c.w.size()) {
             if (!phraseUpTo(c.w, c.i, choices, p, asked)) return false;
@@ -595,14 +596,14 @@ private:
     bool size(Cursor& c, PhraseParser& p, Translation& out) {
         std::string measure;
         bool aboveFloor = false;  // "how high off the ground is the tv?"
+        bool saidHigh = false;    // "how high is the sink?"
         if (c.accept({"how", "high|tall", "above|off|over|from", "the", "floor|ground", "is|are"}) ||
             c.accept({"how", "high|tall", "above|off|over|from", "floor|ground", "is|are"})) {
             measure = "height";
             aboveFloor = true;
         } else if (c.accept({"how"}) && sizeMeasure(c.peek()) && isOneOf(c.peek(1), {"is", "are"})) {
             measure = std::string(*sizeMeasure(c.peek()));
-            // "how high is the sink?": how tall, and where its top is when it stands above the floor.
-            if (c.peek() == "high") out.predicate = "high";
+            saidHigh = c.peek() == "high";
             c.i += 2;
         } else {
             c.i = 0;
@@ -664,10 +665,10 @@ private:
         out.measure = measure;
         out.smql = findText(thing, false) + " RETURN id, category, width, depth, height, volume";
         // "how high is the ceiling?": how far above the floor it is, not how thick its box.
-        if (measure == "height" &&
-            (aboveFloor || out.predicate == "high" || thing.categories == std::vector<std::string>{"ceiling"}))
-            out.smql += ", z";
-        if (aboveFloor || thing.categories == std::vector<std::string>{"ceiling"}) out.predicate.clear();
+        const bool ceiling = thing.categories == std::vector<std::string>{"ceiling"};
+        // "how high is the sink?": how tall, and where its top is when it stands above the floor.
+        if (saidHigh && !aboveFloor && !ceiling) out.predicate = "high";
+        if (measure == "height" && (aboveFloor || saidHigh || ceiling)) out.smql += ", z";
         describeSubject(thing, out);
         return true;
     }
