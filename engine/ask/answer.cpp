@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <set>
 
@@ -277,7 +278,7 @@ std::string countByHolder(const Translation& t, const ResultSet& rs) {
     std::vector<std::size_t> order(holders.size());
     for (std::size_t h = 0; h < order.size(); ++h) order[h] = h;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return held[a] > held[b]; });
-    const std::string preposition = t.predicate == "in" ? "in" : "on";
+    const std::string preposition = t.predicate == "in" || t.predicate == "near" ? t.predicate : "on";
     std::vector<std::string> each;  // "5 on bed#2"
     for (const std::size_t h : order) each.push_back(fmt::format("{} {} {}", held[h], preposition, names[holders[h]]));
     std::string plural = pluralOf(thingWord);
@@ -462,7 +463,54 @@ bool widthAcrossLength(const std::string& category) {
     return isOneOf(category, {"bed", "bunk-bed", "crib", "mattress", "bathtub"});
 }
 
+// "The average height of the tables": the mean of the measure over the rows with a box, with its range.
+std::string averageSize(const Translation& t, const ResultSet& rs) {
+    const int w = rs.columnIndex("width"), dp = rs.columnIndex("depth"), h = rs.columnIndex("height"),
+              v = rs.columnIndex("volume"), category = rs.columnIndex("category"), z = rs.columnIndex("z");
+    const std::string& m = t.measure;
+    // The sides each row is measured by: one for a measure, the three for "size".
+    std::vector<std::vector<double>> sides(m == "size" ? 3 : 1);
+    for (const auto& row : rs.rows) {
+        auto width = number(row[w]), depth = number(row[dp]), height = number(row[h]), volume = number(row[v]);
+        if (!width || !depth || !height) continue;
+        const bool across = category >= 0 && widthAcrossLength(text(row[category]));
+        const auto centre = z >= 0 ? number(row[z]) : std::nullopt;
+        if (m == "size") {
+            sides[0].push_back(*width), sides[1].push_back(*depth), sides[2].push_back(*height);
+        } else if (m == "height") {  // above the floor where the translator asked for z (a ceiling, "off the floor")
+            sides[0].push_back(centre && t.predicate != "high" ? *centre - *height / 2 : *height);
+        } else if (m == "width") {
+            sides[0].push_back(across ? *depth : *width);
+        } else if (m == "depth") {
+            sides[0].push_back(*depth);
+        } else if (m == "longest") {
+            sides[0].push_back(std::max({*width, *depth, *height}));
+        } else if (m == "volume" && volume) {
+            sides[0].push_back(*volume);
+        }
+    }
+    const std::size_t n = sides[0].size();
+    if (n == 0) return noneFound(t);
+    auto mean = [n](const std::vector<double>& values) {
+        return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(n);
+    };
+    auto said = [&](double value) { return m == "volume" ? fmt::format("{:.3f} m³", value) : length(value, t.unit); };
+    const auto [low, high] = std::minmax_element(sides[0].begin(), sides[0].end());
+    const std::string range = n > 1 && m != "size" ? fmt::format(" ({} to {})", said(*low), said(*high)) : "";
+    const std::string things = n == 1 ? "The one " + t.subject : fmt::format("The {} {}", n, t.subjectPlural);
+    const std::string onAverage = n > 1 ? " on average" : "";
+    if (m == "size")
+        return fmt::format("{} {} {} wide, {} deep and {} tall{}.", things, n == 1 ? "is" : "are", said(mean(sides[0])),
+                           said(mean(sides[1])), said(mean(sides[2])), onAverage);
+    static const std::map<std::string, std::string, std::less<>> kSaid{
+        {"height", "tall"}, {"width", "wide"}, {"depth", "deep"}, {"longest", "long"}, {"volume", "in volume"}};
+    const bool above = m == "height" && z >= 0 && t.predicate != "high";
+    return fmt::format("{} {} {} {}{}{}.", things, n == 1 ? "is" : "are", said(mean(sides[0])),
+                       above ? "above the floor" : kSaid.at(m), onAverage, range);
+}
+
 std::string size(const Translation& t, const ResultSet& rs) {
+    if (t.average) return averageSize(t, rs);
     int w = rs.columnIndex("width"), dp = rs.columnIndex("depth"), h = rs.columnIndex("height"),
         v = rs.columnIndex("volume"), category = rs.columnIndex("category");
     auto names = labels(rs);

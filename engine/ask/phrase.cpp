@@ -291,7 +291,10 @@ std::vector<std::string> conditionsOf(const Phrase& p) {
     }
     if (p.colour) where.push_back(fmt::format("color = {}", smqlString(*p.colour)));
     where.insert(where.end(), p.filters.begin(), p.filters.end());
-    for (const auto& c : p.conditions) where.push_back(conditionText(c));
+    // A condition said twice ("near the sofa but not on it", where "near" leaves out what is on it) is one.
+    for (const auto& c : p.conditions)
+        if (std::string text = conditionText(c); std::find(where.begin(), where.end(), text) == where.end())
+            where.push_back(std::move(text));
     return where;
 }
 
@@ -963,7 +966,10 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
         bool joinedByAnd = false;
         if (isOneOf(w[i], {"that", "which", "who"}) && i + 1 < w.size() && isOneOf(w[i + 1], {"is", "are"}))
             at += 2;
-        else if (w[i] == "and" && (!p.conditions.empty() || p.order || !p.excluded.empty())) {
+        else if ((w[i] == "and" && (!p.conditions.empty() || p.order || !p.excluded.empty())) ||
+                 (w[i] == "but" && !p.conditions.empty() && i + 2 < w.size() && w[i + 1] == "not" &&
+                  predicateAt(w, i + 2))) {
+            // "near the sofa but not on it": "but" joins the negated condition as "and" does.
             at += 1;
             joinedByAnd = true;
         }
@@ -1023,7 +1029,7 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
         i = at;
         if (roomArea(w, at, i, *pred, p)) continue;
         if (roomPlaceLeftOut(w, at, i, *pred)) continue;
-        p.conditions.push_back(condition(w, i, *pred));
+        if (also || !onThatThing(w, at, i, *pred, p)) p.conditions.push_back(condition(w, i, *pred));
         // What is near the person comes nearest first.
         if (const auto& args = p.conditions.back().args; !p.order && args.size() == 1 && args.front().here)
             p.order = Order{"distance", false, {args.front()}, "nearest to you"};
@@ -1043,7 +1049,7 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
         }
         // "near the curtain and the door": the same relation to each.
         while (i + 1 < w.size() && w[i] == "and" && !predicateAt(w, i + 1) && !exclusionAt(w, i + 1) &&
-               !isOneOf(w[i + 1], {"is", "are", "that", "which"})) {
+               !isOneOf(w[i + 1], {"is", "are", "that", "which", "not"})) {
             std::size_t k = i + 1;
             Condition again = p.conditions.back();
             ++nested_;
@@ -1062,6 +1068,18 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             i = k;
         }
     }
+}
+
+bool PhraseParser::onThatThing(const Words& w, std::size_t at, std::size_t& i,
+                               const std::pair<std::string, std::size_t>& pred, Phrase& p) {
+    const std::size_t pronoun = at + pred.second;
+    if (pronoun >= w.size() || !isOneOf(w[pronoun], {"it", "them"}) || p.conditions.empty() ||
+        p.conditions.back().args.size() != 1 || pred.first == "within" || pred.first == "between")
+        return false;
+    const Phrase& thing = p.conditions.back().args.front();
+    p.conditions.push_back({pred.first, {thing}, std::nullopt, joined(w, at, pronoun) + " the " + thing.words, false});
+    i = pronoun + 1;
+    return true;
 }
 
 Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pair<std::string, std::size_t>& pred) {

@@ -168,6 +168,10 @@ public:
     bool amongThem(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool onSameWallAs(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p);
+    // "near the sofa but not on it": a predicate at w[at] whose argument is "it" or "them", the thing of the
+    // condition before it, as a condition of `p`.
+    bool onThatThing(const Words& w, std::size_t at, std::size_t& i, const std::pair<std::string, std::size_t>& pred,
+                     Phrase& p);
     void leaveOutResting(Phrase& p) const;
     void leaveOutRestingOn(Phrase& p, const Phrase& thing) const;
     static std::size_t pastVerbOfPlace(const Words& w, std::size_t at);

@@ -109,6 +109,11 @@ constexpr AffordanceRow kAffordances[] = {
     {"hang", "hook coat-rack coat-hanger hanger wardrobe closet", "hang things on"},
 };
 
+const AffordanceRow& affordanceOf(std::string_view verb) {
+    return *std::find_if(std::begin(kAffordances), std::end(kAffordances),
+                         [verb](const AffordanceRow& r) { return r.verb == verb; });
+}
+
 // "the object used for disposing of waste", "a container used to throw away trash": the thing the
 // use names (kAffordances), as a noun the phrase grammar reads; the text as it was when the verb
 // affords nothing.
@@ -615,7 +620,8 @@ private:
             } else {
                 c.accept({"is|are"});
                 c.accept({"the"});
-                c.accept({"floor|total|overall"});  // "the floor area of the room"
+                c.accept({"floor|total|overall"});                 // "the floor area of the room"
+                out.average = c.accept({"average|mean|typical"});  // "the average height of the tables"
                 if (c.accept({"length", "of", "the", "longest|largest", "dimension|side"})) {
                     measure = "longest";
                     // "(length, width, or height)"
@@ -653,6 +659,12 @@ private:
         // "how high is the tv above the floor?", "... off the ground": how far its bottom is from the floor, the
         // thing's place, not its size (the floor is the scene's height 0, with a floor node or without).
         std::size_t end = c.w.size();
+        // "how tall are the tables on average?"
+        if (const std::size_t on = end >= c.i + 4 && c.w[end - 2] == "the" ? end - 3 : end - 2;
+            end >= c.i + 3 && c.w[end - 1] == "average" && c.w[on] == "on") {
+            end = on;
+            out.average = true;
+        }
         if (!aboveFloor && measure == "height" && end >= c.i + 3 && isOneOf(c.w[end - 1], {"floor", "ground"})) {
             const std::size_t the = c.w[end - 2] == "the" ? 1 : 0;
             aboveFloor = isOneOf(c.w[end - 2 - the], {"above", "off", "from", "over"});
@@ -825,6 +837,14 @@ private:
         return categories.size() > 1 ? "(" + any + ")" : any;
     }
 
+    // Whether every kind `thing` names is a seat (a chair, a stool; those "where can I sit?" finds).
+    bool isSeat(const Phrase& thing) const {
+        const std::vector<std::string> seats = categoriesNamed(lexicon_, affordanceOf("sit").things, WordsAs::Broader);
+        return !thing.categories.empty() && std::all_of(thing.categories.begin(), thing.categories.end(), [&](auto& c) {
+            return std::find(seats.begin(), seats.end(), c) != seats.end();
+        });
+    }
+
     // How many people can sit here? How many of us can sit on the sofa? How many people can be seated at the table?
     // The seats (those "where can I sit?" finds) with their lengths; the answer counts their places
     // (model/seating.hpp).
@@ -836,9 +856,7 @@ private:
         if (!c.accept({"sit"}) && !c.accept({"be", "seated"})) return false;
         c.skip({"down", "comfortably", "together"});
         c.accept({"at", "once"});
-        const AffordanceRow& sit = *std::find_if(std::begin(kAffordances), std::end(kAffordances),
-                                                 [](const AffordanceRow& r) { return r.verb == "sit"; });
-        const std::string seats = affordedBy(sit);
+        const std::string seats = affordedBy(affordanceOf("sit"));
         const std::string columns = " RETURN id, category, width";
         out.kind = QuestionKind::Seating;
         out.subject = "seat";
@@ -1010,16 +1028,28 @@ private:
         c.accept({"the"});
         if (!c.accept({"most|more|fewest|fewer|least|less"})) return false;
         const std::string measure = isOneOf(c.w[c.i - 1], {"most", "more"}) ? "most" : "fewest";
-        // "... pillows on it": the holder said again.
+        // "... pillows on it": the holder said again; "... chairs around it": the things near it.
         std::size_t end = c.w.size();
-        if (end >= c.i + 3 && isOneOf(c.w[end - 2], {"on", "in"}) && isOneOf(c.w[end - 1], {"it", "them"})) end -= 2;
+        std::string predicate = contains ? "in" : "on";
+        if (end >= c.i + 3 && isOneOf(c.w[end - 1], {"it", "them"})) {
+            const bool nextTo = end >= c.i + 4 && c.w[end - 3] == "next" && c.w[end - 2] == "to";
+            if (nextTo || isOneOf(c.w[end - 2], {"around", "near", "beside", "by", "at"}))
+                predicate = "near";
+            else if (isOneOf(c.w[end - 2], {"on", "in"}))
+                predicate = c.w[end - 2];
+            else
+                return false;
+            end -= nextTo ? 3 : 2;
+        }
         Phrase thing;
         if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
         c.i = c.w.size();
+        // "which table has the most chairs?": seats stand at a table, not on it.
+        if (end == c.w.size() && !contains && isSeat(thing)) predicate = "near";
         Condition held;
-        held.predicate = contains ? "in" : "on";
+        held.predicate = predicate;
         held.args.push_back(holder);
-        held.words = (contains ? "in the " : "on the ") + holder.words;
+        held.words = predicate + " the " + holder.words;
         thing.conditions.push_back(held);
         return countByHolder(thing, measure, out);
     }
