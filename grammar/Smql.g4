@@ -81,7 +81,8 @@ andExpr      : notExpr ( AND notExpr )* ;
 notExpr      : NOT notExpr | atom ;
 atom         : LPAREN orExpr RPAREN | predicate | comparison | changedSince ;
 predicate    : name LPAREN placeRef ( COMMA placeRef )* ( COMMA distance )? RPAREN ;
-comparison   : measure ( compareOp quantityOrString | BETWEEN quantity AND quantity ) ;
+// `detected_as IS NOT NULL`: whether the node has the attribute at all.
+comparison   : measure ( compareOp quantityOrString | BETWEEN quantity AND quantity | IS NOT? NULL_ ) ;
 // `moved SINCE '2026-11-20'`, `added SINCE ...`, `seen SINCE ...`: the walker checks the word.
 changedSince : name SINCE STRING ;
 compareOp    : EQ | NE | LT | LE | GT | GE | LIKE ;
@@ -147,6 +148,8 @@ AS       : A S ;
 OF       : O F ;
 HERE     : H E R E ;
 GRAPH    : G R A P H ;
+IS       : I S ;
+NULL_    : N U L L ;
 AND      : A N D ;
 OR       : O R ;
 NOT      : N O T ;

@@ -73,7 +73,8 @@ const std::string& grammarSummary() {
             "<target>: a category (sofa), object, anchor or thing. <ref>: a category, wall.left (a side), "
             "sofa#12 or #12 (a node by id), or a sub-query (FIND ...).\n"
             "<condition>: a predicate, <attribute> <op> <value> (=, !=, <, <=, >, >=, LIKE; lengths with m or cm), "
-            "category = 'name', NOT <condition>, <condition> AND <condition>, <condition> OR <condition>, (...).\n"
+            "<attribute> IS [NOT] NULL, category = 'name', NOT <condition>, <condition> AND <condition>, "
+            "<condition> OR <condition>, (...).\n"
             "<measure>: an attribute, or distance(<ref>).\n"
             "Predicates:\n";
         for (const auto& p : relations::predicates()) out += fmt::format("  {}\n", p.usage);

@@ -304,6 +304,10 @@ BoundExpr Binder::bindExpr(const ast::Expr& expr) {
             if (expr.distanceTo) {
                 out.distanceTo = bindRef(*expr.distanceTo);
                 catalog::checkLiteral(catalog::AttributeMeasure::Length, literalForm(expr), "distance()", expr.where);
+            } else if (expr.op == ast::CompareOp::IsNull || expr.op == ast::CompareOp::IsNotNull) {
+                // Whether a node has it asks no literal, of any attribute the scene knows (a box too).
+                if (!catalog::attributeIn(scene(), expr.attribute)) comparable(expr.attribute, expr.where);
+                out.builtIn = catalog::builtInAttribute(expr.attribute);
             } else {
                 catalog::checkLiteral(comparable(expr.attribute, expr.where).measure, literalForm(expr), expr.attribute,
                                       expr.where);

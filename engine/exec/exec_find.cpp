@@ -114,6 +114,8 @@ bool ordered(ast::CompareOp op, const T& a, const T& b) {
         case ast::CompareOp::Ge:
             return a >= b;
         case ast::CompareOp::Like:
+        case ast::CompareOp::IsNull:
+        case ast::CompareOp::IsNotNull:
             return false;
     }
     return false;
@@ -153,6 +155,11 @@ model::Aabb Executor::standingLine(const relations::Frame& frame) {
 }
 
 bool Executor::compare(const BoundExpr& expr, catalog::Slot slot, const relations::Frame& frame) {
+    if (expr.op == ast::CompareOp::IsNull || expr.op == ast::CompareOp::IsNotNull) {
+        const Value have = catalog::attributeValue(
+            scene(), slot, expr.builtIn ? *expr.builtIn : catalog::storedAttribute(expr.attribute));
+        return std::holds_alternative<std::monostate>(have) == (expr.op == ast::CompareOp::IsNull);
+    }
     std::optional<std::variant<double, std::string>> value;
     if (expr.distanceTo) {
         if (scene().node(slot).geometry == model::GeometryKind::None) return false;

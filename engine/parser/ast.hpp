@@ -87,9 +87,10 @@ struct Distance {
 
 using Literal = std::variant<std::int64_t, double, std::string>;
 
-enum class CompareOp { Eq, Ne, Lt, Le, Gt, Ge, Like };
+// IsNull, IsNotNull: whether the node has the attribute at all (no literal).
+enum class CompareOp { Eq, Ne, Lt, Le, Gt, Ge, Like, IsNull, IsNotNull };
 
-// As SMQL writes it (and SQL reads it): =, !=, <, <=, >, >=, LIKE.
+// As SMQL writes it (and SQL reads it): =, !=, <, <=, >, >=, LIKE, IS NULL, IS NOT NULL.
 constexpr std::string_view toString(CompareOp op) {
     switch (op) {
         case CompareOp::Eq:
@@ -106,6 +107,10 @@ constexpr std::string_view toString(CompareOp op) {
             return ">=";
         case CompareOp::Like:
             return "LIKE";
+        case CompareOp::IsNull:
+            return "IS NULL";
+        case CompareOp::IsNotNull:
+            return "IS NOT NULL";
     }
     return "?";
 }

@@ -572,6 +572,13 @@ private:
             both.where = compare.where;
             return both;
         }
+        if (context.IS()) {
+            compare.op = context.NOT() ? ast::CompareOp::IsNotNull : ast::CompareOp::IsNull;
+            if (compare.distanceTo)
+                fail(compare.where, "IS NULL takes an attribute, not a distance",
+                     "write it of an attribute, as in detected_as IS NOT NULL");
+            return compare;
+        }
         SmqlParser::CompareOpContext& op = *context.compareOp();
         compare.op = op.EQ()   ? ast::CompareOp::Eq
                      : op.NE() ? ast::CompareOp::Ne

@@ -73,6 +73,8 @@ std::string describeToken(std::size_t type, bool afterNumber) {
     switch (type) {
         case SmqlLexer::VIEW:
             return "VIEW FROM";
+        case SmqlLexer::IS:
+            return "IS [NOT] NULL";
         case SmqlLexer::NEAREST:
             return "NEAREST TO";
         case SmqlLexer::SIMILAR:

@@ -12,7 +12,11 @@ const std::string& tokenName(std::size_t type) {
         SmqlLexer lexer(&empty);
         const antlr4::dfa::Vocabulary& vocabulary = lexer.getVocabulary();
         std::vector<std::string> all(vocabulary.getMaxTokenType() + 1);
-        for (std::size_t t = 0; t < all.size(); ++t) all[t] = vocabulary.getSymbolicName(t);
+        for (std::size_t t = 0; t < all.size(); ++t) {
+            all[t] = vocabulary.getSymbolicName(t);
+            // A keyword C++ cannot name a token after (NULL, a macro) is declared with a '_' after it.
+            if (all[t].ends_with('_')) all[t].pop_back();
+        }
         return all;
     }();
     static const std::string endOfInput = "EOF";

@@ -17,7 +17,7 @@ using grammar::SmqlLexer;
 
 inline bool isKeyword(std::size_t type) { return type >= SmqlLexer::FIND && type <= SmqlLexer::LIKE; }
 
-// The keywords a name may also be (grammar rule `name`): all but the logical ones.
+// The keywords a name may also be (grammar rule `name`): all but IS, NULL and the logical ones.
 inline bool isSoftKeyword(std::size_t type) { return type >= SmqlLexer::FIND && type <= SmqlLexer::GRAPH; }
 
 // Keywords that begin a command (the grammar declares them first, FIND .. GUIDE).

@@ -220,6 +220,8 @@ std::string describe(const BoundExpr& expr) {
             if (expr.distanceTo)
                 return fmt::format("distance({}) {} {} m", expr.distanceTo->description, ast::toString(expr.op),
                                    literalText(expr.literal));
+            if (expr.op == ast::CompareOp::IsNull || expr.op == ast::CompareOp::IsNotNull)
+                return fmt::format("{} {}", expr.attribute, ast::toString(expr.op));
             return fmt::format("{} {} {}", expr.attribute, ast::toString(expr.op), literalText(expr.literal));
     }
     return {};

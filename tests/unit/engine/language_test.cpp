@@ -266,6 +266,42 @@ TEST_CASE("Replica room 0: RELATE window TO sofa lists the windows; COUNT piano 
     CHECK(std::get<std::int64_t>(run(*engine, "COUNT piano").rows[0][0]) == 0);
 }
 
+// A node without an attribute matches no comparison, as NULL in SQL; IS [NOT] NULL asks whether it has one, of
+// any attribute (a box too), on Replica room 0's nodes and the generated room's colours.
+TEST_CASE("IS NULL and IS NOT NULL ask whether a node has the attribute at all") {
+    TempDir dir;
+    auto engine = Engine::open(dir.path.string());
+    engine->importScene(import::readReplica(replicaRoom0(), "room0"));
+    auto count = [&](Engine& e, const std::string& statement) {
+        return std::get<std::int64_t>(run(e, statement).rows.at(0).at(0));
+    };
+    auto boxes = run(*engine, "FIND node RETURN id, box");
+    const auto boxless = std::count_if(boxes.rows.begin(), boxes.rows.end(),
+                                       [](const auto& row) { return std::holds_alternative<std::monostate>(row[1]); });
+    CHECK(count(*engine, "COUNT node WHERE box IS NULL") == boxless);
+    CHECK(count(*engine, "COUNT node WHERE box is not null") == static_cast<std::int64_t>(boxes.rows.size()) - boxless);
+    CHECK(count(*engine, "COUNT node WHERE NOT box IS NULL") == count(*engine, "COUNT node WHERE box IS NOT NULL"));
+
+    Room room;
+    auto colours = room.q("FIND node RETURN id, color");
+    const auto coloured = std::count_if(colours.rows.begin(), colours.rows.end(),
+                                        [](const auto& row) { return std::holds_alternative<std::string>(row[1]); });
+    REQUIRE(coloured > 0);
+    REQUIRE(coloured < static_cast<std::int64_t>(colours.rows.size()));  // walls and the floor carry none
+    CHECK(count(*room.engine, "COUNT node WHERE color IS NOT NULL") == coloured);
+    CHECK(count(*room.engine, "COUNT node WHERE color IS NULL") ==
+          static_cast<std::int64_t>(colours.rows.size()) - coloured);
+    // Neither = nor != holds for a node without a colour.
+    CHECK(count(*room.engine, "COUNT node WHERE color != 'no such colour'") == coloured);
+    auto plan = room.q("EXPLAIN FIND object WHERE color IS NOT NULL");
+    CHECK(std::any_of(plan.rows.begin(), plan.rows.end(), [](const auto& row) {
+        return std::get<std::string>(row[0]).find("Filter color IS NOT NULL") != std::string::npos;
+    }));
+    CHECK_THAT(errorOf(room, "FIND object WHERE colr IS NULL"), Catch::Contains("did you mean color?"));
+    CHECK_THAT(errorOf(room, "FIND object WHERE distance(desk) IS NULL"), Catch::Contains("takes an attribute"));
+    CHECK_THAT(errorOf(room, "FIND object WHERE color IS"), Catch::Contains("expected NULL or NOT"));
+}
+
 // LIKE matches as SQL's does, and no pattern makes it backtrack: forty %s before a letter that never
 // comes took hours on the Replica room before (every way to split the text was tried); now at most
 // text x pattern steps.
