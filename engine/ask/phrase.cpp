@@ -579,8 +579,11 @@ Phrase PhraseParser::phrase(const Words& w, std::size_t& i, bool withPosts) {
             ++i;
             break;
         }
-        // "the chairs not near the window", "the sofa longer than the bed": the noun ends there.
-        if (!nounWords.empty() && (word == "not" || comparativeOf(word))) break;
+        // "the chairs not near the window", "the sofa longer than the bed", "anything more than 2 m long": the noun
+        // ends there.
+        if (!nounWords.empty() && (word == "not" || comparativeOf(word) ||
+                                   (isOneOf(word, {"more", "less"}) && i + 1 < w.size() && w[i + 1] == "than")))
+            break;
         // "can" ends a phrase as a verb ("what can I see"), but a trash can is a thing.
         if (word == "can" && !nounWords.empty() &&
             (i + 1 == w.size() || !isOneOf(w[i + 1], {"i", "you", "we", "one", "be", "see", "find"}))) {
@@ -1018,6 +1021,7 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             negated = true;
             at = k;
         }
+        if (!negated && measuredAt(w, at, i, p)) continue;
         if (sideAfterVerb(w, at, i, p)) continue;
         if (amongThem(w, at, i, p)) continue;
         if (onSameWallAs(w, at, i, p)) continue;
@@ -1068,6 +1072,58 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
             i = k;
         }
     }
+}
+
+bool PhraseParser::measuredAt(const Words& w, std::size_t at, std::size_t& i, Phrase& p) {
+    // The sizes a comparison says, by its comparative ("taller") or after the length ("2 m long").
+    static constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kSized{{{"taller", "height"},
+                                                                                           {"shorter", "height"},
+                                                                                           {"tall", "height"},
+                                                                                           {"high", "height"},
+                                                                                           {"longer", "width"},
+                                                                                           {"wider", "width"},
+                                                                                           {"narrower", "width"},
+                                                                                           {"long", "width"},
+                                                                                           {"wide", "width"},
+                                                                                           {"deep", "depth"}}};
+    auto sized = [](const std::string& word) -> std::optional<std::string_view> {
+        for (const auto& [said, measure] : kSized)
+            if (word == said) return measure;
+        return std::nullopt;
+    };
+    auto length = [&](std::size_t k) -> std::optional<double> {  // "1.5 m", "one metre" at w[k]
+        static const std::regex number("[0-9]+(\\.[0-9]+)?");
+        if (k + 1 >= w.size() || !lengthUnitNamed(w[k + 1])) return std::nullopt;
+        const double value = std::regex_match(w[k], number) ? std::stod(w[k])
+                             : cardinalOf(w[k])             ? static_cast<double>(*cardinalOf(w[k]))
+                                                            : -1;
+        if (value < 0) return std::nullopt;
+        return value * lengthUnitNamed(w[k + 1])->metres;
+    };
+    std::optional<std::string_view> measure;
+    std::optional<double> metres;
+    bool greater = true;
+    std::size_t end = at;
+    if (at + 3 < w.size() && w[at + 1] == "than" && comparativeOf(w[at])) {
+        // "taller than 1 m", "shorter than 50 cm"
+        measure = sized(w[at]);
+        metres = length(at + 2);
+        greater = comparativeOf(w[at])->descending;
+        end = at + 4;
+    } else if (at + 3 < w.size() && (isOneOf(w[at], {"over", "under", "above", "below"}) ||
+                                     (isOneOf(w[at], {"more", "less"}) && w[at + 1] == "than"))) {
+        // "more than 2 m long", "under 50 cm wide"
+        const std::size_t k = isOneOf(w[at], {"more", "less"}) ? at + 2 : at + 1;
+        metres = length(k);
+        measure = k + 2 < w.size() ? sized(w[k + 2]) : std::nullopt;
+        greater = isOneOf(w[at], {"over", "above", "more"});
+        end = k + 3;
+    }
+    if (!measure || !metres) return false;
+    p.filters.push_back(fmt::format("{} {} {} m", *measure, greater ? ">" : "<", smqlMetres(*metres)));
+    p.measured += (p.measured.empty() ? "" : " and ") + joined(w, at, end);
+    i = end;
+    return true;
 }
 
 bool PhraseParser::onThatThing(const Words& w, std::size_t at, std::size_t& i,
@@ -1401,7 +1457,7 @@ void describeSubject(const Phrase& p, Translation& out) {
     out.subjectPlural = adjectives + pluralOf(noun);
     // A kind of room read as its things (resolveNoun): several of them are the room's things, not several rooms.
     if (p.room) out.subjectPlural = "things of the " + noun;
-    std::string condition;
+    std::string condition = p.measured;
     for (const auto& c : p.conditions)
         if (!c.words.empty()) condition += (condition.empty() ? "" : " and ") + c.words;
     // "on the bed besides the pillows"

@@ -77,6 +77,7 @@ struct Phrase {
     std::optional<std::string> colour;
     std::vector<Condition> conditions;
     std::vector<std::string> filters;  // comparisons the noun itself implies: "coffee table" is height < 0.55 m
+    std::string measured;              // a comparison of its own size, as said: "taller than 1 m" (in `filters`)
     std::vector<Phrase> excluded;      // things left out: "besides the cushions"
     std::optional<Order> order;
     std::size_t pick = 0;  // an ordinal or a superlative: the pick-th in `order` (1 = first)
@@ -168,6 +169,8 @@ public:
     bool amongThem(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool onSameWallAs(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     bool sideLeftOut(const Words& w, std::size_t at, std::size_t& i, const Phrase& p);
+    // "taller than 1 m", "more than 2 metres long", "under 50 cm wide": a comparison of the thing's own size.
+    static bool measuredAt(const Words& w, std::size_t at, std::size_t& i, Phrase& p);
     // "near the sofa but not on it": a predicate at w[at] whose argument is "it" or "them", the thing of the
     // condition before it, as a condition of `p`.
     bool onThatThing(const Words& w, std::size_t at, std::size_t& i, const std::pair<std::string, std::size_t>& pred,

@@ -224,6 +224,7 @@ public:
     Translation read(const std::string& text) {
         words_ = words(text);
         takeUnit();
+        takeOnAverage();
         takeHeightAboveFloor();
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
@@ -256,6 +257,11 @@ public:
                     firstError = e;
                 continue;
             }
+            // "how tall are the tables on average?": the mean of a size; of anything else, each answer.
+            if (averageAsked_ && out.kind == QuestionKind::Size)
+                out.average = true;
+            else if (averageAsked_)
+                out.notes.push_back("'on average' is left out: ASK averages sizes only");
             if (!parser.unknownWords().empty()) {
                 out.kind = QuestionKind::UnknownWord;
                 out.runnable = false;
@@ -328,6 +334,18 @@ private:
     // moves a unit in parentheses to the end), "measured in centimeters", "in feet", "how far in
     // metres is ...", "how many centimeters long is ...", "in square meters". The words go; the
     // unit is the translation's (units.hpp).
+    // "on average", "on the average" anywhere: the mean of what is asked (averageAsked_), not a thing.
+    void takeOnAverage() {
+        for (std::size_t k = 0; k + 1 < words_.size(); ++k) {
+            const std::size_t the = words_[k + 1] == "the" ? 1 : 0;
+            if (words_[k] != "on" || k + 1 + the >= words_.size() || words_[k + 1 + the] != "average") continue;
+            words_.erase(words_.begin() + static_cast<std::ptrdiff_t>(k),
+                         words_.begin() + static_cast<std::ptrdiff_t>(k + 2 + the));
+            averageAsked_ = true;
+            return;
+        }
+    }
+
     void takeUnit() {
         auto unitAt = [&](std::size_t k) { return k < words_.size() ? lengthUnitNamed(words_[k]) : nullptr; };
         // "in [square] <unit>" anywhere: "how far in metres is the sofa from the door?"
@@ -659,12 +677,6 @@ private:
         // "how high is the tv above the floor?", "... off the ground": how far its bottom is from the floor, the
         // thing's place, not its size (the floor is the scene's height 0, with a floor node or without).
         std::size_t end = c.w.size();
-        // "how tall are the tables on average?"
-        if (const std::size_t on = end >= c.i + 4 && c.w[end - 2] == "the" ? end - 3 : end - 2;
-            end >= c.i + 3 && c.w[end - 1] == "average" && c.w[on] == "on") {
-            end = on;
-            out.average = true;
-        }
         if (!aboveFloor && measure == "height" && end >= c.i + 3 && isOneOf(c.w[end - 1], {"floor", "ground"})) {
             const std::size_t the = c.w[end - 2] == "the" ? 1 : 0;
             aboveFloor = isOneOf(c.w[end - 2 - the], {"above", "off", "from", "over"});
@@ -1127,12 +1139,12 @@ private:
             Phrase holder;
             if (verb == c.w.end() || !phraseWithin(c, p, static_cast<std::size_t>(verb - c.w.begin()), holder))
                 return false;
-            // Things a cabinet contains are in it; things a sofa has are on it.
-            bool contains = *verb == "contain";
+            // Things a cabinet contains are in it; things a sofa has are on it; the chairs a table has stand at it.
+            const std::string predicate = *verb == "contain" ? "in" : isSeat(thing) ? "near" : "on";
             Condition held;
-            held.predicate = contains ? "in" : "on";
+            held.predicate = predicate;
             held.args.push_back(holder);
-            held.words = (contains ? "in the " : "on the ") + holder.words;
+            held.words = predicate + " the " + holder.words;
             thing.conditions.push_back(held);
             ++c.i;
         }
@@ -1641,6 +1653,27 @@ private:
 
     // What is on the desk near the left wall? Which chairs are near the table? Show me everything
     // on the counter.
+    // The verb of place between a subject and its predicate, which says no more than the predicate: "what is located
+    // on ...", "what is stacked up on ...", "what is leaning against ...", "what is set above ...", "what is thrown
+    // over ..." (an irregular form is one WordNet takes back to another base: thrown, built).
+    static void skipVerbOfPlace(Cursor& c) {
+        const std::size_t verbAt = c.i;
+        c.skip({"present", "seen", "found", "hanged", "hung", "directly", "just", "located", "placed", "sitting",
+                "lying", "standing", "kept", "hanging", "positioned", "situated"});
+        auto verbForm = [](const std::string& w) {
+            if (w.ends_with("ing") || w.ends_with("ed") || isOneOf(w, {"set", "put"})) return true;
+            const auto bases = wordnet::baseForms(w);
+            return std::any_of(bases.begin(), bases.end(), [&](const std::string& b) { return b != w; });
+        };
+        if (c.i == verbAt && !c.done() && verbForm(c.peek()) && !PhraseParser::predicateAt(c.w, c.i)) {
+            std::size_t k = c.i + 1;
+            if (k < c.w.size() && isOneOf(c.w[k], {"up", "down", "out", "around", "sideways", "together"}) &&
+                !PhraseParser::predicateAt(c.w, k))
+                ++k;
+            if (PhraseParser::predicateAt(c.w, k)) c.i = k;
+        }
+    }
+
     bool relational(Cursor& c, PhraseParser& p, Translation& out) {
         Phrase thing;
         if (c.accept({"what|which"})) {
@@ -1699,25 +1732,9 @@ private:
                 ++c.i;
             }
             std::size_t verbAt = c.i;
-            c.skip({"present", "seen", "found", "hanged", "hung", "directly", "just", "located", "placed", "sitting",
-                    "lying", "standing", "kept", "hanging", "positioned", "situated"});
-            // "what is stacked up on ...", "what is leaning against ...", "what is set above ...",
-            // "what is thrown over ...": a verb of place before the predicate says no more than the
-            // predicate (an irregular form is one WordNet takes back to another base: thrown, built).
-            auto verbForm = [](const std::string& w) {
-                if (w.ends_with("ing") || w.ends_with("ed") || isOneOf(w, {"set", "put"})) return true;
-                const auto bases = wordnet::baseForms(w);
-                return std::any_of(bases.begin(), bases.end(), [&](const std::string& b) { return b != w; });
-            };
-            if (c.i == verbAt && !c.done() && verbForm(c.peek()) && !PhraseParser::predicateAt(c.w, c.i)) {
-                std::size_t k = c.i + 1;
-                if (k < c.w.size() && isOneOf(c.w[k], {"up", "down", "out", "around", "sideways", "together"}) &&
-                    !PhraseParser::predicateAt(c.w, k))
-                    ++k;
-                if (PhraseParser::predicateAt(c.w, k)) c.i = k;
-            }
+            skipVerbOfPlace(c);
             std::size_t before = thing.conditions.size();
-            const std::size_t postsAt = c.i;
+            const std::size_t postsAt = c.i, filtersBefore = thing.filters.size();
             p.posts(c.w, c.i, thing);
             // "what is in the room?", "what objects are in here?", "what is in the kitchen?" (the scene a
             // kitchen): the whole scene, read without a condition (not "in the corner", a part of the room the
@@ -1730,7 +1747,10 @@ private:
                 return place > 0 && k + place == c.w.size();
             };
             const bool wholeScene = thereAlone || colourAlone || (c.done() && namesScene(postsAt));
-            if (thing.conditions.size() == before && thing.excluded.empty() && !wholeScene) return false;
+            // "what is taller than 1 m?": a measure of its own is a condition too.
+            if (thing.conditions.size() == before && thing.filters.size() == filtersBefore && thing.excluded.empty() &&
+                !wholeScene)
+                return false;
             if (verbIsPredicate && thing.conditions.size() > before) {
                 // "face the table" reads in the answer as "facing the table": the table's first phrase.
                 auto& cond = thing.conditions[before];
@@ -1904,8 +1924,10 @@ private:
         const std::size_t place = c.i;
         p.posts(c.w, c.i, checked);
         // "is the fridge in the room?", "... in the kitchen" of a scene that is one: the place is the whole scene (no
-        // condition), which holds such a thing or not.
+        // condition), which holds such a thing or not; "is the sofa longer than 2 m?": whether there is one that is.
         if (checked.conditions.empty() && c.i > place && c.done()) {
+            subject.filters.insert(subject.filters.end(), checked.filters.begin(), checked.filters.end());
+            subject.measured = checked.measured;
             out.kind = QuestionKind::Existence;
             out.smql = findText(subject, false);
             describeSubject(subject, out);
@@ -2157,6 +2179,7 @@ private:
     const Lexicon& lexicon_;
     Words words_;
     std::string unit_ = "m";
+    bool averageAsked_ = false;
     std::vector<std::string> choices_;
     std::optional<Self> self_;
 };
