@@ -1463,8 +1463,38 @@ std::string statement(const Translation& t, const ResultSet& rs) {
 }
 
 // VSI-Bench's appearance order: the categories asked, by the first frame that saw a thing of each.
+// A frame number stored as an attribute (text) or a number; none where the node has none.
+std::optional<double> frameOf(const Value& v) {
+    if (std::optional<double> frame = number(v)) return frame;
+    if (const auto* s = std::get_if<std::string>(&v); s && !s->empty()) return std::strtod(s->c_str(), nullptr);
+    return std::nullopt;
+}
+
+// "what did I see first?": the things first seen in the frame of the first row (the rows in order of first sight, from
+// the end for "last").
+std::string firstThingSeen(const Translation& t, const ResultSet& rs) {
+    const int seen = rs.columnIndex("first_seen");
+    const auto names = labels(rs);
+    std::vector<std::string> those;
+    std::optional<double> frame;
+    for (std::size_t r = 0; r < rs.rows.size() && seen >= 0; ++r) {
+        const std::optional<double> f = frameOf(rs.rows[r][static_cast<std::size_t>(seen)]);
+        if (!f || (frame && *f != *frame)) break;
+        frame = f;
+        those.push_back(names[r]);
+    }
+    if (those.empty()) return "Nothing here was dated by a frame.";
+    const bool one = those.size() == 1;
+    return fmt::format("{} {} the {} {} to come into view, first seen in frame {:.0f}.", listedThings(those),
+                       one ? "was" : "were", t.measure, one ? "thing" : "things", *frame);
+}
+
 std::string appearance(const Translation& t, const ResultSet& rs) {
+    if (t.roles.empty()) return firstThingSeen(t, rs);
     const int category = rs.columnIndex("category"), seen = rs.columnIndex("first_seen");
+    // "when did I last see the mug?": the frame that last saw it.
+    const int lastSeen = rs.columnIndex("last_seen");
+    const bool last = t.measure == "last";
     std::vector<std::pair<double, std::size_t>> firsts;  // frame, choice
     std::vector<std::string> unseen;
     for (std::size_t k = 0; k < t.roles.size() && k < t.choices.size(); ++k) {
@@ -1472,11 +1502,8 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
         for (const auto& row : rs.rows) {
             if (category < 0 || seen < 0) break;
             if (std::find(t.roles[k].begin(), t.roles[k].end(), text(row[category])) == t.roles[k].end()) continue;
-            std::optional<double> frame = number(row[seen]);
-            if (!frame)
-                if (const auto* s = std::get_if<std::string>(&row[seen]); s && !s->empty())
-                    frame = std::strtod(s->c_str(), nullptr);
-            if (frame && (!first || *frame < *first)) first = frame;
+            std::optional<double> frame = frameOf(row[lastSeen >= 0 ? lastSeen : seen]);
+            if (frame && (!first || (lastSeen >= 0 ? *frame > *first : *frame < *first))) first = frame;
         }
         if (first)
             firsts.emplace_back(*first, k);
@@ -1497,9 +1524,22 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
                            t.choices[first], firstFrame, t.choices[second], secondFrame);
     }
     if (t.choices.size() == 1) {
-        std::string out = fmt::format("{} was first seen in frame {:.0f}.", t.choices[0], firsts.front().first);
+        std::string out =
+            fmt::format("{} was {} seen in frame {:.0f}.", t.choices[0], last ? "last" : "first", firsts.front().first);
         out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
         return out;
+    }
+    // "which did I see last, the bed or the sofa?": the one that came into view last.
+    if (last) {
+        std::vector<std::string> before;
+        for (auto it = firsts.begin(); it + 1 < firsts.end(); ++it)
+            before.push_back(fmt::format("{} in frame {:.0f}", t.choices[it->second], it->first));
+        std::string out =
+            fmt::format("{} came into view last, first seen in frame {:.0f} (before it: {})",
+                        t.choices[firsts.back().second], firsts.back().first, listed(before, ", ", before.size()));
+        out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
+        if (!unseen.empty()) out += fmt::format("; never seen: {}", listed(unseen, ", ", unseen.size()));
+        return out + ".";
     }
     std::vector<std::string> order, frames;
     for (const auto& [frame, k] : firsts) {

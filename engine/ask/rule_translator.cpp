@@ -75,7 +75,7 @@ Phrase anyThing(const char* kind) {
 constexpr std::size_t kMaxQuestionWords = 60;
 
 // Words without which a question asks no order of first sight (read_appearance.cpp): the rest skip its patterns.
-constexpr std::array<std::string_view, 5> kOrderWords{"appear", "seen", "first", "order", "before"};
+constexpr std::array<std::string_view, 6> kOrderWords{"appear", "seen", "first", "last", "order", "before"};
 
 // What a person can do with things, and the words for the things that afford it: each word goes
 // through the Lexicon like a noun of the question ("seat" -> chair, sofa, stool). The verbs' forms
@@ -1103,8 +1103,9 @@ private:
         c.skip(filler);
         // "how many chairs can I see?" counts from where the person is; "do you see" counts what the memory holds.
         const bool iSee = c.accept({"do|can|could", "i|we", "see"});
-        const bool see = iSee || c.accept({"do|can|could", "you", "see"});
-        if (!see) c.accept({"do|can|could", "you|i|we", "have|find|count"});
+        // "how many chairs did I see?": in the capture, what the memory holds.
+        const bool see = iSee || c.accept({"do|can|could|did", "you", "see"}) || c.accept({"did", "i|we", "see"});
+        if (!see) c.accept({"do|can|could|did", "you|i|we", "have|find|count|spot|notice|detect"});
         c.skip(filler);
         if (see && c.accept({"from"})) {
             // "how many windows can I see from the door?"

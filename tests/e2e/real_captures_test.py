@@ -78,6 +78,15 @@ def desk_rgbd(smql, folder, work):
                             capture_output=True, text=True).stdout
     assert f"\nthe {earliest}, the {latest} (first seen: the {earliest} in frame {first[earliest]:.0f}" in answer, \
         (first, answer)
+    # From the end too: the frame that last saw one, and the things that came into view first.
+    last = max(float(r["last_seen"]) for r in query_rows(smql, work / "db", f"FIND {earliest} RETURN id, last_seen"))
+    answer = subprocess.run([smql, str(work / "db"), f"ASK 'when did I last see the {earliest}?'"],
+                            capture_output=True, text=True).stdout
+    assert f"was last seen in frame {last:.0f}." in answer, (last, answer)
+    opening = min(float(r["first_seen"]) for r in seen)
+    answer = subprocess.run([smql, str(work / "db"), "ASK 'what did I see first?'"], capture_output=True, text=True).stdout
+    assert f"to come into view, first seen in frame {opening:.0f}." in answer, (opening, answer)
+    assert all(f"#{r['id']}" in answer for r in seen if float(r["first_seen"]) == opening), (seen, answer)
     # Things it could not name are kept as "object": a kind it has none of may be one of them, not said to be absent.
     if any(r["category"] == "object" for r in rows):
         out = subprocess.run([smql, str(work / "db"), "ASK 'is there a bookcase?'"], capture_output=True, text=True)

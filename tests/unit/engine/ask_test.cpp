@@ -593,13 +593,15 @@ TEST_CASE(
     // A capture's objects carry the frame that first saw them (ingest's `first_seen`): here later
     // objects of the generated room are seen first.
     auto room = generate::generateRoom({.seed = 7, .objectCount = 36, .name = "walk"});
-    std::map<std::string, int> first;
+    std::map<std::string, int> first, last;
     int frame = 200;
     for (auto& node : room.nodes) {
         if (node.kind != model::NodeKind::Object) continue;
         node.attributes.push_back({"first_seen", std::to_string(frame)});
+        node.attributes.push_back({"last_seen", std::to_string(frame + 30)});
         first.try_emplace(node.category, frame);
         first[node.category] = std::min(first[node.category], frame);
+        last[node.category] = std::max(last[node.category], frame + 30);
         frame -= 5;
     }
     engine->importScene(std::move(room));
@@ -635,6 +637,21 @@ TEST_CASE(
                Catch::Contains("\nNo: "));
     CHECK_THAT(run(*engine, fmt::format("ASK 'when did I first see the {}?'", expected[2])).message,
                Catch::Contains(fmt::format("was first seen in frame {}.", first[expected[2]])));
+    CHECK_THAT(run(*engine, fmt::format("ASK 'was the {} seen before the {}?'", expected[0], expected[1])).message,
+               Catch::Contains("\nYes: "));
+    // From the end: the frame that last saw one; of several, the one that came into view last.
+    CHECK_THAT(run(*engine, fmt::format("ASK 'when did I last see the {}?'", expected[2])).message,
+               Catch::Contains(fmt::format("was last seen in frame {}.", last[expected[2]])));
+    CHECK_THAT(
+        run(*engine, fmt::format("ASK 'which did I see last, the {} or the {}?'", expected[3], expected[0])).message,
+        Catch::Contains(fmt::format("\nThe {} came into view last, first seen in frame {} (before it: the {}",
+                                    expected[3], first[expected[3]], expected[0])));
+    // Of every thing: the first and the last to come into view (the frames given above run down from 200).
+    CHECK_THAT(
+        run(*engine, "ASK 'what did I see first?'").message,
+        Catch::Contains(fmt::format("was the first thing to come into view, first seen in frame {}.", frame + 5)));
+    CHECK_THAT(run(*engine, "ASK 'what was the last thing I saw?'").message,
+               Catch::Contains("was the last thing to come into view, first seen in frame 200."));
 
     // A layout has no frames: the question says so rather than guessing.
     engine->importScene(import::readVsiBench(std::string(SMQL_SHARED_DATA) + "/real-layouts/scannet_meta_info_val.json",
