@@ -529,6 +529,13 @@ PhraseParser::Quantifier PhraseParser::quantifierAt(const Words& w, std::size_t&
         p.pick = std::max<std::size_t>(p.pick, 1);
         return Quantifier::Read;
     }
+    // "which is the bigger bed?": of two, the comparative is the superlative.
+    if (auto more = comparativeOf(word); more && more->measure != "distance" && i > 0 && w[i - 1] == "the" &&
+                                         i + 1 < w.size() && w[i + 1] != "than" && !predicateAt(w, i + 1)) {
+        p.order = Order{more->measure, more->descending, {}, more->superlative};
+        p.pick = std::max<std::size_t>(p.pick, 1);
+        return Quantifier::Read;
+    }
     if (auto far = distanceOrderWord(word); far && i + 1 < w.size() && !isOneOf(w[i + 1], {"to", "from"})) {
         pendingDistance = *far;
         pendingWord = word;

@@ -237,7 +237,7 @@ public:
             &QuestionReader::side,        &QuestionReader::eitherSide, &QuestionReader::relative,
             &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
             &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
-            &QuestionReader::description, &QuestionReader::state,
+            &QuestionReader::description, &QuestionReader::state,      &QuestionReader::named,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -1845,6 +1845,14 @@ private:
         return true;
     }
 
+    // "vase?", "cushions on the sofa", "red mug": a thing named alone, as a search is typed, asks where it is. Only
+    // words that name the scene's kinds (an unknown word stays a question nothing reads).
+    bool named(Cursor& c, PhraseParser& p, Translation& out) {
+        Phrase thing = p.phrase(c.w, c.i, true);
+        if (!c.done() || thing.categories.empty() || !p.unknownWords().empty()) return false;
+        return locateAnswer(thing, out);
+    }
+
     // Is the door open? Is the lamp on? Are the windows closed? The memory keeps no state of a
     // thing: the question is refused saying so, not answered by a guess.
     bool state(Cursor& c, PhraseParser& p, Translation&) {
@@ -2562,6 +2570,19 @@ private:
         return text;
     }
 
+    // "the vase, where is it?", "the cushions: how many are there?": the thing said first is the pronoun's, or the
+    // noun the question leaves out.
+    static std::string topicAsSubject(const std::string& text) {
+        static const std::regex topic(R"(^\s*((?:the|my|a|an) [^,:?]+)\s*[,:]\s*(.+?)\b(it|they|them)\b(.*)$)",
+                                      std::regex::icase);
+        static const std::regex countFirst(
+            R"(^\s*((?:the|my) [^,:?]+)\s*[,:]\s*how many( are there| do you see)?\s*\??\s*$)", std::regex::icase);
+        std::smatch m;
+        if (std::regex_match(text, m, topic)) return m.str(2) + m.str(1) + m.str(4);
+        if (std::regex_match(text, m, countFirst)) return "how many " + m.str(1).substr(m.str(1).find(' ') + 1) + "?";
+        return text;
+    }
+
     // The pose a situation before the question says; `text` becomes the question alone.
     static std::optional<Pose> situationOf(const Question& question, const Lexicon& lexicon, std::string& text,
                                            std::vector<std::string>& notes) {
@@ -2635,7 +2656,7 @@ public:
         // A situation before the question ("I am sitting on the bed facing the window. What is to my
         // left?"): the pose it says, against which "my left" and "which way" are read. "When you
         // enter the room, what is on the right?" says one too, as "I am entering the room" does.
-        std::string text = enteringAsSituation(question.text);
+        std::string text = topicAsSubject(enteringAsSituation(question.text));
         Lexicon lexicon(question.categories);
         std::vector<std::string> situationNotes;
         std::optional<Pose> pose = situationOf(question, lexicon, text, situationNotes);
