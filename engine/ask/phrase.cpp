@@ -372,25 +372,16 @@ Words words(const std::string& text) {
             s.replace(at, from.size(), to);
     // Contractions typed without their apostrophe, as chat writes them ("whats on the table",
     // "wheres the lamp"); not "its", "ill" or "were", which are words of their own. And chat's letters for
-    // words ("how many chairs r there", "can u see a lamp"), which name no thing.
-    static const std::array<std::pair<std::string_view, std::string_view>, 17> bare{{
-        {"r", "are"},
-        {"u", "you"},
-        {"whats", "what is"},
-        {"wheres", "where is"},
-        {"hows", "how is"},
-        {"whos", "who is"},
-        {"thats", "that is"},
-        {"theres", "there is"},
-        {"heres", "here is"},
-        {"isnt", "is not"},
-        {"arent", "are not"},
-        {"dont", "do not"},
-        {"doesnt", "does not"},
-        {"cant", "can not"},
-        {"wont", "will not"},
-        {"im", "i am"},
-        {"ive", "i have"},
+    // words ("how many chairs r there", "can u see a lamp"), which name no thing; the question's own small words as
+    // they are often mistyped ("is ther a vase", "wat is on the desk"), which the spelling of things does not mend.
+    static const std::array<std::pair<std::string_view, std::string_view>, 27> bare{{
+        {"r", "are"},           {"u", "you"},        {"whats", "what is"}, {"wheres", "where is"},
+        {"hows", "how is"},     {"whos", "who is"},  {"thats", "that is"}, {"theres", "there is"},
+        {"heres", "here is"},   {"isnt", "is not"},  {"arent", "are not"}, {"dont", "do not"},
+        {"doesnt", "does not"}, {"cant", "can not"}, {"wont", "will not"}, {"im", "i am"},
+        {"ive", "i have"},      {"ther", "there"},   {"wher", "where"},    {"whre", "where"},
+        {"wat", "what"},        {"wht", "what"},     {"waht", "what"},     {"whcih", "which"},
+        {"teh", "the"},         {"hte", "the"},      {"hw", "how"},
     }};
     Words out;
     std::istringstream in(s);
