@@ -163,12 +163,12 @@ std::optional<Situated> splitSituation(const std::string& text) {
     if (current.find_first_not_of(" \t\n") != std::string::npos) sentences.push_back(current);
     // One sentence whose opening clause sets the person somewhere: "if I sit on the sofa, what is in front of me?",
     // "standing at the stove, where is the table?". Only a clause of the person's own place (if, when, while or as
-    // I ...; sitting, standing, lying or seated at a place): "measuring from the closest point of each object, ..."
-    // is no situation, and "if I am standing by the stove and facing the sofa, is the tv to my left?" is VSI-Bench's
-    // direction question, which its reader takes whole. A clause that faces something sets the person so before a
-    // question of what or where ("if I sit on the sofa facing the tv, what is on my left?").
+    // I ...; sitting, standing, lying or seated at a place; "I'm at the sofa, ..."): "measuring from the closest point
+    // of each object, ..." is no situation, and "if I am standing by the stove and facing the sofa, is the tv to my
+    // left?" is VSI-Bench's direction question, which its reader takes whole. A clause that faces something sets the
+    // person so before a question of what or where ("if I sit on the sofa facing the tv, what is on my left?").
     static const std::regex placeClause(
-        R"(^\s*((?:(?:if|when|while|as|once) i(?:'m| am)? [a-z]+(?: down)?|(?:sitting|standing|lying|seated|sat)(?: down)?) (?:on|at|by|in|near|next to|beside|in front of) [^,]+),\s*(\S.*)$)",
+        R"(^\s*((?:(?:if|when|while|as|once) i(?:'m| am)? [a-z]+(?: down)?|(?:sitting|standing|lying|seated|sat)(?: down)?|i(?:'m| am)(?: (?:sitting|standing|lying|seated))?(?: down)?) (?:on|at|by|in|near|next to|beside|in front of) [^,]+),\s*(\S.*)$)",
         std::regex::icase);
     static const std::regex faces(R"(\b(?:facing|and)\b)", std::regex::icase),
         whQuestion(R"(^(?:what|where|which|how|who)\b)", std::regex::icase);
