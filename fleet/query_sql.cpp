@@ -558,6 +558,14 @@ private:
     // `color = 'red'`, `height > 80 cm`, `distance(sofa) < 2 m`: false where the node has no such
     // value, as in the engine (and never NULL, so NOT reads it as the engine does).
     std::string comparison(const ast::Expr& expr, const std::string& n) {
+        // `color IS NULL`: whether the node has it, of any attribute (a box too), as in the engine.
+        if (expr.op == ast::CompareOp::IsNull || expr.op == ast::CompareOp::IsNotNull) {
+            const catalog::AttributeInfo* builtIn = catalog::builtInAttribute(expr.attribute);
+            const std::string value = builtIn && builtIn->measure == catalog::AttributeMeasure::None
+                                          ? builtInSql(expr.attribute, n)->value
+                                          : attribute(expr.attribute, n, expr.where).value;
+            return fmt::format("({}) {}", value, ast::toString(expr.op));
+        }
         if (expr.literalParam) throw notYet("placeholders");
         const catalog::LiteralForm form{std::holds_alternative<std::string>(expr.literal), expr.literalHasUnit,
                                         expr.literalBound};

@@ -1629,6 +1629,8 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
                 if (column >= 0)
                     if (const auto* text = std::get_if<std::string>(&row[column]))
                         out += (out.empty() ? "" : " ") + *text;
+            // "how far do I have to walk ...?": the way's length first ("3.6 m from sofa#7 to toilet#18 in 3 steps").
+            if (t.measure == "length" && !out.empty() && !rs.message.empty()) return rs.message + ": " + out;
             return out.empty() ? rs.message : out;
         }
         case QuestionKind::Distance:

@@ -484,6 +484,12 @@ private:
              c.accept({"navigate|go|walk|head|move"})) ||
             c.accept({"give|show|get", "me|us", "directions"}) ||
             c.accept({"give|show|get", "me|us", "the", "directions"}) || c.accept({"directions"});
+        // "how far do I have to walk from the bed to the fridge?", "what's the walking distance ...?", "how long is
+        // the walk ...?": the way, and how long it is.
+        if (!lead && (c.accept({"how", "far", "do|would|will|must", "i|we|you", "have|need", "to", "walk|go"}) ||
+                      c.accept({"what", "is", "the", "walking", "distance"}) ||
+                      c.accept({"how", "long", "is", "the", "walk|route|path|way"})))
+            lead = true, out.measure = "length";
         if (!lead) return false;
         c.accept({"the", "way"});
         std::optional<Phrase> from, to;
