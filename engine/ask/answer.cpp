@@ -799,6 +799,69 @@ std::vector<std::string> tallied(const std::vector<std::pair<std::string, std::s
 
 std::string roomKind(const Translation& t, const ResultSet& rs);
 
+// A thing that marks a kind of room (a bed: the bedroom), by its row.
+struct RoomMark {
+    std::size_t row;
+    std::string room;
+};
+// A kind of room by its mark nearest a box.
+struct RoomNear {
+    std::string room;
+    std::size_t row;
+    double metres;
+};
+
+// Each kind of room once, by its mark nearest `own`, nearest first.
+std::vector<RoomNear> roomsNear(const model::Box& own, const std::vector<RoomMark>& marks, const ResultSet& rs,
+                                int box) {
+    std::vector<RoomNear> near;
+    for (const auto& m : marks) {
+        const double metres = model::distance(own, std::get<model::Box>(rs.rows[m.row][box]));
+        auto same = std::find_if(near.begin(), near.end(), [&](const RoomNear& n) { return n.room == m.room; });
+        if (same == near.end())
+            near.push_back({m.room, m.row, metres});
+        else if (metres < same->metres)
+            *same = {m.room, m.row, metres};
+    }
+    std::sort(near.begin(), near.end(), [](const RoomNear& a, const RoomNear& b) { return a.metres < b.metres; });
+    return near;
+}
+
+// "which room has the most chairs?": each thing in the kind of room whose mark stands nearest it within a room's
+// area (or that it marks), the rooms by how many they hold.
+std::string roomWithMost(const Translation& t, const ResultSet& rs, const std::vector<std::size_t>& things,
+                         const std::vector<RoomMark>& marks) {
+    const int box = rs.columnIndex("box");
+    std::map<std::string, std::size_t> held;
+    for (const auto& m : marks) held.try_emplace(m.room, 0);  // a room that holds none of them counts 0
+    for (const std::size_t r : things) {
+        const auto own = std::find_if(marks.begin(), marks.end(), [&](const RoomMark& m) { return m.row == r; });
+        if (own != marks.end()) {
+            ++held[own->room];
+            continue;
+        }
+        const auto near = roomsNear(std::get<model::Box>(rs.rows[r][box]), marks, rs, box);
+        if (near.front().metres <= kRoomAreaReach) ++held[near.front().room];
+    }
+    std::vector<std::pair<std::string, std::size_t>> order(held.begin(), held.end());
+    std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<std::string> each;
+    for (const auto& [room, n] : order) each.push_back(fmt::format("the {} {}", room, n));
+    const std::size_t outside =
+        things.size() - std::accumulate(order.begin(), order.end(), std::size_t{0},
+                                        [](std::size_t sum, const auto& o) { return sum + o.second; });
+    if (outside) each.push_back(fmt::format("{} in no room's area", outside));
+    const bool most = t.measure == "most";
+    const auto& [room, n] = most ? order.front() : order.back();
+    if (std::count_if(order.begin(), order.end(), [&](const auto& o) { return o.second == n; }) > 1)
+        return fmt::format("No room has {} {} than the others: {}.", most ? "more" : "fewer", t.subjectPlural,
+                           listed(each, ", ", each.size()));
+    std::string out =
+        fmt::format("the {} has the {} {}: {}.", room, t.measure, t.subjectPlural, listed(each, ", ", each.size()));
+    out.front() = 'T';
+    return out;
+}
+
 // Which room a thing is in (QuestionKind::RoomOf): for each thing asked about (the last of Translation::roles), the
 // kinds of room (choices, marked by the other roles) whose marks stand within a room's area of it (kRoomAreaReach),
 // the nearest first; a thing that marks a room is in that room.
@@ -812,12 +875,8 @@ std::string roomOf(const Translation& t, const ResultSet& rs) {
             if (std::find(t.roles[k].begin(), t.roles[k].end(), c) != t.roles[k].end()) return t.choices[k];
         return std::nullopt;
     };
-    struct Mark {
-        std::size_t row;
-        std::string room;
-    };
     std::vector<std::size_t> things;
-    std::vector<Mark> marks;
+    std::vector<RoomMark> marks;
     for (std::size_t r = 0; r < rs.rows.size(); ++r) {
         if (!std::holds_alternative<model::Box>(rs.rows[r][box])) continue;
         const std::string c = text(rs.rows[r][category]);
@@ -847,22 +906,8 @@ std::string roomOf(const Translation& t, const ResultSet& rs) {
         if (auto room = roomMarkedBy(text(rs.rows[thing][category])))
             return fmt::format("in the {}{}", *room,
                                one ? fmt::format(": {} marks it", names[thing]) : ", which it marks");
-        struct Near {
-            std::string room;
-            std::size_t row;
-            double metres;
-        };
-        std::vector<Near> near;  // each kind of room once, by its nearest mark
-        for (const auto& m : marks) {
-            const double metres = model::distance(own, std::get<model::Box>(rs.rows[m.row][box]));
-            auto same = std::find_if(near.begin(), near.end(), [&](const Near& n) { return n.room == m.room; });
-            if (same == near.end())
-                near.push_back({m.room, m.row, metres});
-            else if (metres < same->metres)
-                *same = {m.room, m.row, metres};
-        }
-        std::sort(near.begin(), near.end(), [](const Near& a, const Near& b) { return a.metres < b.metres; });
-        const Near& first = near.front();
+        const std::vector<RoomNear> near = roomsNear(own, marks, rs, box);
+        const RoomNear& first = near.front();
         if (first.metres > kRoomAreaReach)
             return fmt::format("in no room's area ({}, {} the nearest mark of one, is {} away)", names[first.row],
                                withArticle(first.room), length(first.metres, t.unit));
@@ -876,6 +921,7 @@ std::string roomOf(const Translation& t, const ResultSet& rs) {
         if (!also.empty()) out += fmt::format("{} by {} too", one ? ";" : ",", listedWithAnd(also));
         return out;
     };
+    if (t.measure == "most" || t.measure == "fewest") return roomWithMost(t, rs, things, marks);
     if (things.size() == 1) return fmt::format("The {} is {}.", t.subject, placeOf(things.front(), true));
     std::vector<std::string> each;
     for (std::size_t thing : things) each.push_back(fmt::format("{} is {}", names[thing], placeOf(thing, false)));

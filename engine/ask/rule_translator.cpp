@@ -2024,6 +2024,10 @@ private:
             return false;
         }
         if (isOneOf(c.peek(), {"this", "it", "here", "i", "we"})) return false;
+        // "which room has the most chairs?": the rooms by how many they hold.
+        if (c.w[c.i - 1] != "is" && c.w[c.i - 1] != "are" &&
+            (c.accept({"the", "most|fewest"}) || c.accept({"most|fewest"})))
+            out.measure = c.w[c.i - 1];
         Phrase thing;
         if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
         // A kind of thing, as it is named: the answer measures each of them.
