@@ -345,6 +345,10 @@ std::string count(const Translation& t, const ResultSet& rs) {
     if (const WordMapping* widened = widenedSubject(t); widened && n > 0)
         return fmt::format("0 stored as {}{}; {}.", t.subjectPlural, withCondition(t),
                            broaderKind(t, *widened, static_cast<std::size_t>(n)));
+    // "how many books are on the piano?" where there is no piano: that is why, as existence says it.
+    if (const std::string absent = absentWords(t);
+        n == 0 && !t.condition.empty() && !absent.empty() && absent != t.subject)
+        return fmt::format("0 {}: there is no {} here.", t.subjectPlural, absent);
     if (t.condition.empty() || t.condition.starts_with("besides "))
         return fmt::format("{} {}{}.{}", n, n == 1 ? t.subject : t.subjectPlural, withCondition(t),
                            n == 0 ? subjectMayBeUnnamed(t) : "");
