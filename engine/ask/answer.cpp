@@ -856,14 +856,12 @@ std::string roomWithMost(const Translation& t, const ResultSet& rs, const std::v
                                         [](std::size_t sum, const auto& o) { return sum + o.second; });
     if (outside) each.push_back(fmt::format("{} in no room's area", outside));
     const bool most = t.measure == "most";
-    const auto& [room, n] = most ? order.front() : order.back();
-    if (std::count_if(order.begin(), order.end(), [&](const auto& o) { return o.second == n; }) > 1)
+    const auto& picked = most ? order.front() : order.back();
+    if (std::count_if(order.begin(), order.end(), [&](const auto& o) { return o.second == picked.second; }) > 1)
         return fmt::format("No room has {} {} than the others: {}.", most ? "more" : "fewer", t.subjectPlural,
                            listed(each, ", ", each.size()));
-    std::string out =
-        fmt::format("the {} has the {} {}: {}.", room, t.measure, t.subjectPlural, listed(each, ", ", each.size()));
-    out.front() = 'T';
-    return out;
+    return fmt::format("The {} has the {} {}: {}.", picked.first, t.measure, t.subjectPlural,
+                       listed(each, ", ", each.size()));
 }
 
 // Which room a thing is in (QuestionKind::RoomOf): for each thing asked about (the last of Translation::roles), the
