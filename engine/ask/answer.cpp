@@ -1582,9 +1582,9 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
         std::vector<std::string> before;
         for (auto it = firsts.begin(); it + 1 < firsts.end(); ++it)
             before.push_back(fmt::format("{} in frame {:.0f}", t.choices[it->second], it->first));
-        std::string out =
-            fmt::format("{} came into view last, first seen in frame {:.0f} (before it: {})",
-                        t.choices[firsts.back().second], firsts.back().first, listed(before, ", ", before.size()));
+        std::string out = fmt::format("{} came into view last, first seen in frame {:.0f}",
+                                      t.choices[firsts.back().second], firsts.back().first);
+        if (!before.empty()) out += fmt::format(" (before it: {})", listed(before, ", ", before.size()));
         out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
         if (!unseen.empty()) out += fmt::format("; never seen: {}", listed(unseen, ", ", unseen.size()));
         return out + ".";

@@ -1073,20 +1073,12 @@ void PhraseParser::posts(const Words& w, std::size_t& i, Phrase& p) {
 }
 
 bool PhraseParser::measuredAt(const Words& w, std::size_t at, std::size_t& i, Phrase& p) {
-    // The sizes a comparison says, by its comparative ("taller") or after the length ("2 m long").
-    static constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kSized{{{"taller", "height"},
-                                                                                           {"shorter", "height"},
-                                                                                           {"tall", "height"},
-                                                                                           {"high", "height"},
-                                                                                           {"longer", "width"},
-                                                                                           {"wider", "width"},
-                                                                                           {"narrower", "width"},
-                                                                                           {"long", "width"},
-                                                                                           {"wide", "width"},
-                                                                                           {"deep", "depth"}}};
+    // The size a word says, as a comparative ("taller") or the adjective after a length ("2 m long"): kSuperlatives'
+    // rows of a box's own sides (not a distance, a volume or a height over the floor).
     auto sized = [](const std::string& word) -> std::optional<std::string_view> {
-        for (const auto& [said, measure] : kSized)
-            if (word == said) return measure;
+        for (const auto& s : kSuperlatives)
+            if ((s.comparative == word || s.adjective == word) && (s.measure == "height" || s.measure == "width"))
+                return s.measure;
         return std::nullopt;
     };
     auto length = [&](std::size_t k) -> std::optional<double> {  // "1.5 m", "one metre" at w[k]

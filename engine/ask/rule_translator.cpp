@@ -1658,8 +1658,6 @@ private:
         return locateAnswer(thing, out);
     }
 
-    // What is on the desk near the left wall? Which chairs are near the table? Show me everything
-    // on the counter.
     // The verb of place between a subject and its predicate, which says no more than the predicate: "what is located
     // on ...", "what is stacked up on ...", "what is leaning against ...", "what is set above ...", "what is thrown
     // over ..." (an irregular form is one WordNet takes back to another base: thrown, built).
@@ -1681,6 +1679,8 @@ private:
         }
     }
 
+    // What is on the desk near the left wall? Which chairs are near the table? Show me everything
+    // on the counter.
     bool relational(Cursor& c, PhraseParser& p, Translation& out) {
         Phrase thing;
         if (c.accept({"what|which"})) {
