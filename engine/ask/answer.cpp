@@ -467,31 +467,53 @@ bool widthAcrossLength(const std::string& category) {
     return isOneOf(category, {"bed", "bunk-bed", "crib", "mattress", "bathtub"});
 }
 
+// One row's box as a question of size reads it.
+struct RowSize {
+    double width = 0, depth = 0, height = 0;
+    std::optional<double> volume, centre;  // centre: z, where the translator asked for it (a height over the floor)
+    bool across = false;                   // its kind's width is across its length (widthAcrossLength)
+    // The one number a measure asks: a height over the floor where z was asked, unless "how high" asks of the thing
+    // itself (`high`); none for "size" (three numbers), or a volume the row lacks.
+    std::optional<double> asked(const std::string& m, bool high) const {
+        if (m == "height") return centre && !high ? *centre - height / 2 : height;
+        if (m == "width") return across ? depth : width;
+        if (m == "depth") return depth;
+        if (m == "longest") return std::max({width, depth, height});
+        if (m == "volume") return volume;
+        return std::nullopt;
+    }
+};
+
+// The size of row `r` of a size question's rows (id, category, width, depth, height, volume[, z]); none without a box.
+std::optional<RowSize> rowSize(const ResultSet& rs, std::size_t r) {
+    const auto& row = rs.rows[r];
+    auto at = [&](const char* column) -> std::optional<double> {
+        const int c = rs.columnIndex(column);
+        return c >= 0 ? number(row[static_cast<std::size_t>(c)]) : std::nullopt;
+    };
+    const auto width = at("width"), depth = at("depth"), height = at("height");
+    if (!width || !depth || !height) return std::nullopt;
+    const int category = rs.columnIndex("category");
+    return RowSize{*width,  *depth,
+                   *height, at("volume"),
+                   at("z"), category >= 0 && widthAcrossLength(text(row[static_cast<std::size_t>(category)]))};
+}
+
 // "The average height of the tables": the mean of the measure over the rows with a box, with its range.
 std::string averageSize(const Translation& t, const ResultSet& rs) {
-    const int w = rs.columnIndex("width"), dp = rs.columnIndex("depth"), h = rs.columnIndex("height"),
-              v = rs.columnIndex("volume"), category = rs.columnIndex("category"), z = rs.columnIndex("z");
     const std::string& m = t.measure;
+    const bool high = t.predicate == "high";
     // The sides each row is measured by: one for a measure, the three for "size".
     std::vector<std::vector<double>> sides(m == "size" ? 3 : 1);
-    for (const auto& row : rs.rows) {
-        auto width = number(row[w]), depth = number(row[dp]), height = number(row[h]), volume = number(row[v]);
-        if (!width || !depth || !height) continue;
-        const bool across = category >= 0 && widthAcrossLength(text(row[category]));
-        const auto centre = z >= 0 ? number(row[z]) : std::nullopt;
-        if (m == "size") {
-            sides[0].push_back(*width), sides[1].push_back(*depth), sides[2].push_back(*height);
-        } else if (m == "height") {  // above the floor where the translator asked for z (a ceiling, "off the floor")
-            sides[0].push_back(centre && t.predicate != "high" ? *centre - *height / 2 : *height);
-        } else if (m == "width") {
-            sides[0].push_back(across ? *depth : *width);
-        } else if (m == "depth") {
-            sides[0].push_back(*depth);
-        } else if (m == "longest") {
-            sides[0].push_back(std::max({*width, *depth, *height}));
-        } else if (m == "volume" && volume) {
-            sides[0].push_back(*volume);
-        }
+    bool above = false;  // a height over the floor
+    for (std::size_t r = 0; r < rs.rows.size(); ++r) {
+        const auto box = rowSize(rs, r);
+        if (!box) continue;
+        above = above || (m == "height" && box->centre && !high);
+        if (m == "size")
+            sides[0].push_back(box->width), sides[1].push_back(box->depth), sides[2].push_back(box->height);
+        else if (auto value = box->asked(m, high))
+            sides[0].push_back(*value);
     }
     const std::size_t n = sides[0].size();
     if (n == 0) return noneFound(t);
@@ -499,8 +521,8 @@ std::string averageSize(const Translation& t, const ResultSet& rs) {
         return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(n);
     };
     auto said = [&](double value) { return m == "volume" ? fmt::format("{:.3f} m³", value) : length(value, t.unit); };
-    const auto [low, high] = std::minmax_element(sides[0].begin(), sides[0].end());
-    const std::string range = n > 1 && m != "size" ? fmt::format(" ({} to {})", said(*low), said(*high)) : "";
+    const auto [low, highest] = std::minmax_element(sides[0].begin(), sides[0].end());
+    const std::string range = n > 1 && m != "size" ? fmt::format(" ({} to {})", said(*low), said(*highest)) : "";
     const std::string things = n == 1 ? "The one " + t.subject : fmt::format("The {} {}", n, t.subjectPlural);
     const std::string onAverage = n > 1 ? " on average" : "";
     if (m == "size")
@@ -508,52 +530,42 @@ std::string averageSize(const Translation& t, const ResultSet& rs) {
                            said(mean(sides[1])), said(mean(sides[2])), onAverage);
     static const std::map<std::string, std::string, std::less<>> kSaid{
         {"height", "tall"}, {"width", "wide"}, {"depth", "deep"}, {"longest", "long"}, {"volume", "in volume"}};
-    const bool above = m == "height" && z >= 0 && t.predicate != "high";
     return fmt::format("{} {} {} {}{}{}.", things, n == 1 ? "is" : "are", said(mean(sides[0])),
                        above ? "above the floor" : kSaid.at(m), onAverage, range);
 }
 
 std::string size(const Translation& t, const ResultSet& rs) {
     if (t.average) return averageSize(t, rs);
-    int w = rs.columnIndex("width"), dp = rs.columnIndex("depth"), h = rs.columnIndex("height"),
-        v = rs.columnIndex("volume"), category = rs.columnIndex("category");
+    const std::string& m = t.measure;
+    const bool high = t.predicate == "high";
     auto names = labels(rs);
     std::vector<std::string> parts;
     for (std::size_t r = 0; r < rs.rows.size(); ++r) {
-        auto width = number(rs.rows[r][w]), depth = number(rs.rows[r][dp]), height = number(rs.rows[r][h]),
-             volume = number(rs.rows[r][v]);
-        if (!width || !depth || !height) {
+        const auto box = rowSize(rs, r);
+        if (!box) {
             parts.push_back(names[r] + " has no box");
             continue;
         }
-        const std::string& m = t.measure;
-        const int z = rs.columnIndex("z");
-        const bool placed = z >= 0 && number(rs.rows[r][z]).has_value();
-        const double centre = placed ? *number(rs.rows[r][z]) : 0, bottom = centre - *height / 2;
+        const std::optional<double> value = box->asked(m, high);
         // "how high is the sink?": how tall, and its top above the floor where it stands above the floor (a basin, a
         // shelf), as a person means a sink's or a counter's height.
-        if (m == "height" && t.predicate == "high" && placed && bottom > kOnFloor)
-            parts.push_back(fmt::format("{} is {} tall, its top {} above the floor", names[r], length(*height, t.unit),
-                                        length(centre + *height / 2, t.unit)));
+        if (m == "height" && high && box->centre && *box->centre - box->height / 2 > kOnFloor)
+            parts.push_back(fmt::format("{} is {} tall, its top {} above the floor", names[r],
+                                        length(box->height, t.unit), length(*box->centre + box->height / 2, t.unit)));
         // A ceiling's height is how far above the floor it is (its box's bottom; the translator asks for z).
-        else if (m == "height" && t.predicate != "high" && placed)
-            parts.push_back(fmt::format("{} is {} above the floor", names[r], length(bottom, t.unit)));
         else if (m == "height")
-            parts.push_back(fmt::format("{} is {} tall", names[r], length(*height, t.unit)));
-        else if (m == "width")
-            parts.push_back(fmt::format(
-                "{} is {} wide", names[r],
-                length(category >= 0 && widthAcrossLength(text(rs.rows[r][category])) ? *depth : *width, t.unit)));
-        else if (m == "depth")
-            parts.push_back(fmt::format("{} is {} deep", names[r], length(*depth, t.unit)));
+            parts.push_back(fmt::format("{} is {} {}", names[r], length(*value, t.unit),
+                                        box->centre && !high ? "above the floor" : "tall"));
+        else if (m == "width" || m == "depth")
+            parts.push_back(
+                fmt::format("{} is {} {}", names[r], length(*value, t.unit), m == "width" ? "wide" : "deep"));
         else if (m == "longest")
-            parts.push_back(fmt::format("the longest side of {} is {}", names[r],
-                                        length(std::max({*width, *depth, *height}), t.unit)));
-        else if (m == "volume" && volume)
-            parts.push_back(fmt::format("{} takes {:.3f} m³", names[r], *volume));
+            parts.push_back(fmt::format("the longest side of {} is {}", names[r], length(*value, t.unit)));
+        else if (m == "volume" && value)
+            parts.push_back(fmt::format("{} takes {:.3f} m³", names[r], *value));
         else
-            parts.push_back(fmt::format("{} is {} wide, {} deep and {} tall", names[r], length(*width, t.unit),
-                                        length(*depth, t.unit), length(*height, t.unit)));
+            parts.push_back(fmt::format("{} is {} wide, {} deep and {} tall", names[r], length(box->width, t.unit),
+                                        length(box->depth, t.unit), length(box->height, t.unit)));
     }
     if (parts.empty()) return noneFound(t);
     std::string out = listed(parts, "; ");

@@ -406,11 +406,24 @@ std::string joined(const Words& w, std::size_t from, std::size_t to) {
     return out;
 }
 
+namespace {
+
+// A length written at w[k] and its unit at w[k + 1] ("1.5 m", "30 cm", "one metre"), in metres.
+std::optional<double> lengthAt(const Words& w, std::size_t k) {
+    static const std::regex number("[0-9]+(\\.[0-9]+)?");
+    if (k + 1 >= w.size() || !lengthUnitNamed(w[k + 1])) return std::nullopt;
+    const std::optional<double> value = std::regex_match(w[k], number) ? std::optional<double>(std::stod(w[k]))
+                                        : cardinalOf(w[k])             ? std::optional<double>(*cardinalOf(w[k]))
+                                                                       : std::nullopt;
+    if (!value) return std::nullopt;
+    return *value * lengthUnitNamed(w[k + 1])->metres;
+}
+
+}  // namespace
+
 std::optional<std::pair<std::string, std::size_t>> PhraseParser::predicateAt(const Words& w, std::size_t i) {
     // within 1.5 m of x / within 30 cm of x
-    static const std::regex number("[0-9]+(\\.[0-9]+)?");
-    if (i + 3 < w.size() && w[i] == "within" && std::regex_match(w[i + 1], number) && lengthUnitNamed(w[i + 2]) &&
-        w[i + 3] == "of")
+    if (i + 3 < w.size() && w[i] == "within" && lengthAt(w, i + 1) && w[i + 3] == "of")
         return std::pair{std::string("near"), std::size_t{4}};
     for (const auto& row : predicatePhrases()) {
         if (i + row.words.size() > w.size()) continue;
@@ -1081,15 +1094,6 @@ bool PhraseParser::measuredAt(const Words& w, std::size_t at, std::size_t& i, Ph
                 return s.measure;
         return std::nullopt;
     };
-    auto length = [&](std::size_t k) -> std::optional<double> {  // "1.5 m", "one metre" at w[k]
-        static const std::regex number("[0-9]+(\\.[0-9]+)?");
-        if (k + 1 >= w.size() || !lengthUnitNamed(w[k + 1])) return std::nullopt;
-        const double value = std::regex_match(w[k], number) ? std::stod(w[k])
-                             : cardinalOf(w[k])             ? static_cast<double>(*cardinalOf(w[k]))
-                                                            : -1;
-        if (value < 0) return std::nullopt;
-        return value * lengthUnitNamed(w[k + 1])->metres;
-    };
     std::optional<std::string_view> measure;
     std::optional<double> metres;
     bool greater = true;
@@ -1097,14 +1101,14 @@ bool PhraseParser::measuredAt(const Words& w, std::size_t at, std::size_t& i, Ph
     if (at + 3 < w.size() && w[at + 1] == "than" && comparativeOf(w[at])) {
         // "taller than 1 m", "shorter than 50 cm"
         measure = sized(w[at]);
-        metres = length(at + 2);
+        metres = lengthAt(w, at + 2);
         greater = comparativeOf(w[at])->descending;
         end = at + 4;
     } else if (at + 3 < w.size() && (isOneOf(w[at], {"over", "under", "above", "below"}) ||
                                      (isOneOf(w[at], {"more", "less"}) && w[at + 1] == "than"))) {
         // "more than 2 m long", "under 50 cm wide"
         const std::size_t k = isOneOf(w[at], {"more", "less"}) ? at + 2 : at + 1;
-        metres = length(k);
+        metres = lengthAt(w, k);
         measure = k + 2 < w.size() ? sized(w[k + 2]) : std::nullopt;
         greater = isOneOf(w[at], {"over", "above", "more"});
         end = k + 3;
@@ -1132,10 +1136,7 @@ Condition PhraseParser::condition(const Words& w, std::size_t& i, const std::pai
     Condition c;
     c.predicate = pred.first;
     std::size_t start = i;
-    if (w[i] == "within" && pred.second == 4) {
-        double value = std::stod(w[i + 1]);
-        c.metres = value * lengthUnitNamed(w[i + 2])->metres;
-    }
+    if (w[i] == "within" && pred.second == 4) c.metres = lengthAt(w, i + 1);
     i += pred.second;
     if (c.predicate == "between") {
         ++nested_;

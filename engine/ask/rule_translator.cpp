@@ -855,12 +855,15 @@ private:
         return categories.size() > 1 ? "(" + any + ")" : any;
     }
 
-    // Whether every kind `thing` names is a seat (a chair, a stool; those "where can I sit?" finds).
-    bool isSeat(const Phrase& thing) const {
+    // How a holder has the things it is said to have or hold: what a cabinet contains is in it, what a sofa has is on
+    // it, and the seats a table has (those "where can I sit?" finds: chairs, stools) stand at it.
+    std::string heldAs(const Phrase& thing, bool contains) const {
+        if (contains) return "in";
         const std::vector<std::string> seats = categoriesNamed(lexicon_, affordanceOf("sit").things, WordsAs::Broader);
-        return !thing.categories.empty() && std::all_of(thing.categories.begin(), thing.categories.end(), [&](auto& c) {
-            return std::find(seats.begin(), seats.end(), c) != seats.end();
-        });
+        const bool seat = !thing.categories.empty() &&
+                          std::all_of(thing.categories.begin(), thing.categories.end(),
+                                      [&](auto& c) { return std::find(seats.begin(), seats.end(), c) != seats.end(); });
+        return seat ? "near" : "on";
     }
 
     // How many people can sit here? How many of us can sit on the sofa? How many people can be seated at the table?
@@ -1062,13 +1065,9 @@ private:
         Phrase thing;
         if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
         c.i = c.w.size();
-        // "which table has the most chairs?": seats stand at a table, not on it.
-        if (end == c.w.size() && !contains && isSeat(thing)) predicate = "near";
-        Condition held;
-        held.predicate = predicate;
-        held.args.push_back(holder);
-        held.words = predicate + " the " + holder.words;
-        thing.conditions.push_back(held);
+        // "which table has the most chairs?": as "how many chairs does the table have?".
+        if (end == c.w.size()) predicate = heldAs(thing, contains);
+        thing.conditions.push_back({predicate, {holder}, std::nullopt, predicate + " the " + holder.words, false});
         return countByHolder(thing, measure, out);
     }
 
@@ -1146,13 +1145,8 @@ private:
             Phrase holder;
             if (verb == c.w.end() || !phraseWithin(c, p, static_cast<std::size_t>(verb - c.w.begin()), holder))
                 return false;
-            // Things a cabinet contains are in it; things a sofa has are on it; the chairs a table has stand at it.
-            const std::string predicate = *verb == "contain" ? "in" : isSeat(thing) ? "near" : "on";
-            Condition held;
-            held.predicate = predicate;
-            held.args.push_back(holder);
-            held.words = predicate + " the " + holder.words;
-            thing.conditions.push_back(held);
+            const std::string predicate = heldAs(thing, *verb == "contain");
+            thing.conditions.push_back({predicate, {holder}, std::nullopt, predicate + " the " + holder.words, false});
             ++c.i;
         }
         c.skip({"is", "are", "there", "altogether", "total", "in", "the", "room"});
@@ -2018,16 +2012,14 @@ private:
             c.accept({"which|what", "part", "of", "the", "house|home|flat|apartment", "is|are"})) {
             if (end == 0 || c.w[end - 1] != "in") return false;  // "which room is the largest?" is not asked here
             --end;
-        } else if (!c.accept({"in", "which|what", "room|part", "is|are"}) &&
-                   !c.accept({"which|what", "room", "has|holds|contains|houses"})) {
-            // "which room has the toilet?": the room is the one its thing is in.
+        } else if (c.accept({"which|what", "room", "has|holds|contains|houses"})) {
+            // "which room has the toilet?": the room is the one its thing is in; "which room has the most chairs?": the
+            // rooms by how many they hold.
+            if (c.accept({"the", "most|fewest"}) || c.accept({"most|fewest"})) out.measure = c.w[c.i - 1];
+        } else if (!c.accept({"in", "which|what", "room|part", "is|are"})) {
             return false;
         }
         if (isOneOf(c.peek(), {"this", "it", "here", "i", "we"})) return false;
-        // "which room has the most chairs?": the rooms by how many they hold.
-        if (c.w[c.i - 1] != "is" && c.w[c.i - 1] != "are" &&
-            (c.accept({"the", "most|fewest"}) || c.accept({"most|fewest"})))
-            out.measure = c.w[c.i - 1];
         Phrase thing;
         if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
         // A kind of thing, as it is named: the answer measures each of them.
