@@ -445,9 +445,12 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     if (!fromYou && (t.object == t.subject || t.object == t.subjectPlural))
         from = (rs.rows.size() == 2 ? "the other " : "the nearest other ") + t.subject;
     std::vector<std::string> parts;
+    std::vector<double> each;
     for (std::size_t r = 0; r < rs.rows.size() && d >= 0; ++r)
-        if (auto metres = number(rs.rows[r][d]); metres && std::isfinite(*metres))
+        if (auto metres = number(rs.rows[r][d]); metres && std::isfinite(*metres)) {
             parts.push_back(fmt::format("{} is {} from {}", names[r], length(*metres, t.unit), from));
+            each.push_back(*metres);
+        }
     if (parts.empty()) {
         std::string absent = absentWords(t);
         return absent.empty() ? fmt::format("There is no {} or no {} to measure between.", t.subject, t.object)
@@ -455,6 +458,16 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     }
     std::string how = fromYou ? " (along the floor, from where you stand: the scene's viewpoint)"
                               : " (measured between the closest points of their boxes)";
+    // "the average distance between the chairs": the mean over the things of each one's distance, with its range.
+    if (t.average && each.size() > 1) {
+        const auto [low, high] = std::minmax_element(each.begin(), each.end());
+        const double mean = std::accumulate(each.begin(), each.end(), 0.0) / static_cast<double>(each.size());
+        const std::string range = length(*low, t.unit) == length(*high, t.unit)
+                                      ? ""
+                                      : fmt::format(", {} to {}", length(*low, t.unit), length(*high, t.unit));
+        return fmt::format("The {} {} are {} from {} on average{}{}: {}.", each.size(), t.subjectPlural,
+                           length(mean, t.unit), from, range, how, listed(parts, "; "));
+    }
     if (parts.size() == 1)
         return fmt::format("The {} is {} from {}{}: {}.", t.subject, length(*number(rs.rows.front()[d]), t.unit), from,
                            how, parts.front());
@@ -843,8 +856,8 @@ std::vector<RoomNear> roomsNear(const model::Box& own, const std::vector<RoomMar
     return near;
 }
 
-// "which room has the most chairs?": each thing in the kind of room whose mark stands nearest it within a room's
-// area (or that it marks), the rooms by how many they hold.
+// "which room has the most chairs?", "how many chairs are in each room?": each thing in the kind of room whose mark
+// stands nearest it within a room's area (or that it marks), the rooms by how many they hold.
 std::string roomWithMost(const Translation& t, const ResultSet& rs, const std::vector<std::size_t>& things,
                          const std::vector<RoomMark>& marks) {
     const int box = rs.columnIndex("box");
@@ -867,6 +880,9 @@ std::string roomWithMost(const Translation& t, const ResultSet& rs, const std::v
         things.size() - std::accumulate(order.begin(), order.end(), std::size_t{0},
                                         [](std::size_t sum, const auto& o) { return sum + o.second; });
     if (outside) each.push_back(fmt::format("{} in no room's area", outside));
+    if (t.measure == "each")
+        return fmt::format("{} {} by room: {}.", things.size(), things.size() == 1 ? t.subject : t.subjectPlural,
+                           listed(each, ", ", each.size()));
     const bool most = t.measure == "most";
     const auto& picked = most ? order.front() : order.back();
     if (std::count_if(order.begin(), order.end(), [&](const auto& o) { return o.second == picked.second; }) > 1)
@@ -876,9 +892,9 @@ std::string roomWithMost(const Translation& t, const ResultSet& rs, const std::v
                        listed(each, ", ", each.size()));
 }
 
-// Which room a thing is in (QuestionKind::RoomOf): for each thing asked about (the last of Translation::roles), the
-// kinds of room (choices, marked by the other roles) whose marks stand within a room's area of it (kRoomAreaReach),
-// the nearest first; a thing that marks a room is in that room.
+// Which room a thing is in (QuestionKind::RoomOf): for each thing asked about (the last of Translation::roles; empty:
+// every thing), the kinds of room (choices, marked by the other roles) whose marks stand within a room's area of it
+// (kRoomAreaReach), the nearest first; a thing that marks a room is in that room.
 std::string roomOf(const Translation& t, const ResultSet& rs) {
     const int category = rs.columnIndex("category"), box = rs.columnIndex("box");
     if (category < 0 || box < 0 || t.roles.empty()) return noneFound(t);
@@ -894,7 +910,7 @@ std::string roomOf(const Translation& t, const ResultSet& rs) {
     for (std::size_t r = 0; r < rs.rows.size(); ++r) {
         if (!std::holds_alternative<model::Box>(rs.rows[r][box])) continue;
         const std::string c = text(rs.rows[r][category]);
-        if (std::find(asked.begin(), asked.end(), c) != asked.end()) things.push_back(r);
+        if (asked.empty() || std::find(asked.begin(), asked.end(), c) != asked.end()) things.push_back(r);
         if (auto room = roomMarkedBy(c)) marks.push_back({r, *room});
     }
     if (things.empty()) return noneFound(t);
@@ -935,7 +951,7 @@ std::string roomOf(const Translation& t, const ResultSet& rs) {
         if (!also.empty()) out += fmt::format("{} by {} too", one ? ";" : ",", listedWithAnd(also));
         return out;
     };
-    if (t.measure == "most" || t.measure == "fewest") return roomWithMost(t, rs, things, marks);
+    if (t.measure == "most" || t.measure == "fewest" || t.measure == "each") return roomWithMost(t, rs, things, marks);
     if (things.size() == 1) return fmt::format("The {} is {}.", t.subject, placeOf(things.front(), true));
     std::vector<std::string> each;
     for (std::size_t thing : things) each.push_back(fmt::format("{} is {}", names[thing], placeOf(thing, false)));
@@ -1144,6 +1160,11 @@ std::string comparison(const Translation& t, const ResultSet& rs) {
                                              plurals[side]));
         const std::string several =
             picked.empty() ? "" : fmt::format(" ({}, the first by {})", listedWithAnd(picked), t.measure);
+        if (t.eitherWay) {
+            if (by == 0) return fmt::format("{} and {} are alike: each is {}{}.", a, b, said(va), several);
+            return fmt::format("{} is {}: {} {} than {}, {}{}.", a, said(va), amount, (va > vb) ? "more" : "less", b,
+                               said(vb), several);
+        }
         if (by <= 0) return fmt::format("It is not: {} is {}; {} is {}{}.", a, said(va), b, said(vb), several);
         return fmt::format("{} is {} {} ({}): {} against {}{}.", a, amount, than, b, said(va), said(vb), several);
     }

@@ -229,15 +229,16 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,    &QuestionReader::roomPlace,  &QuestionReader::whereAmI,
-            &QuestionReader::direction,   &QuestionReader::guidance,   &QuestionReader::distance,
-            &QuestionReader::size,        &QuestionReader::attribute,  &QuestionReader::affordance,
-            &QuestionReader::seating,     &QuestionReader::visibility, &QuestionReader::changes,
-            &QuestionReader::mostHeld,    &QuestionReader::count,      &QuestionReader::existence,
-            &QuestionReader::side,        &QuestionReader::eitherSide, &QuestionReader::relative,
-            &QuestionReader::superlative, &QuestionReader::reverse,    &QuestionReader::locate,
-            &QuestionReader::relational,  &QuestionReader::comparison, &QuestionReader::yesNo,
-            &QuestionReader::description, &QuestionReader::state,      &QuestionReader::named,
+            &QuestionReader::roomKind,   &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
+            &QuestionReader::direction,  &QuestionReader::guidance,    &QuestionReader::distance,
+            &QuestionReader::size,       &QuestionReader::attribute,   &QuestionReader::affordance,
+            &QuestionReader::seating,    &QuestionReader::visibility,  &QuestionReader::changes,
+            &QuestionReader::mostHeld,   &QuestionReader::perRoom,     &QuestionReader::count,
+            &QuestionReader::existence,  &QuestionReader::side,        &QuestionReader::eitherSide,
+            &QuestionReader::relative,   &QuestionReader::superlative, &QuestionReader::reverse,
+            &QuestionReader::locate,     &QuestionReader::relational,  &QuestionReader::comparedTo,
+            &QuestionReader::comparison, &QuestionReader::yesNo,       &QuestionReader::description,
+            &QuestionReader::state,      &QuestionReader::named,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -257,11 +258,11 @@ public:
                     firstError = e;
                 continue;
             }
-            // "how tall are the tables on average?": the mean of a size; of anything else, each answer.
-            if (averageAsked_ && out.kind == QuestionKind::Size)
+            // "how tall are the tables on average?": the mean of a size or a distance; of anything else, each answer.
+            if (averageAsked_ && (out.kind == QuestionKind::Size || out.kind == QuestionKind::Distance))
                 out.average = true;
             else if (averageAsked_)
-                out.notes.push_back("'on average' is left out: ASK averages sizes only");
+                out.notes.push_back("'on average' is left out: ASK averages sizes and distances only");
             if (!parser.unknownWords().empty()) {
                 out.kind = QuestionKind::UnknownWord;
                 out.runnable = false;
@@ -330,13 +331,15 @@ private:
         if (rewritten.size() > 6) words_ = std::move(rewritten);
     }
 
-    // The answer's unit, however the question names it: "(in meters)", "(cm)" (RuleTranslator
-    // moves a unit in parentheses to the end), "measured in centimeters", "in feet", "how far in
-    // metres is ...", "how many centimeters long is ...", "in square meters". The words go; the
-    // unit is the translation's (units.hpp).
-    // "on average", "on the average" anywhere: the mean of what is asked (averageAsked_), not a thing.
+    // "on average", "on the average" anywhere, "the average distance": the mean of what is asked (averageAsked_), not
+    // a thing.
     void takeOnAverage() {
         for (std::size_t k = 0; k + 1 < words_.size(); ++k) {
+            if (isOneOf(words_[k], {"average", "mean"}) && words_[k + 1] == "distance") {
+                words_.erase(words_.begin() + static_cast<std::ptrdiff_t>(k));
+                averageAsked_ = true;
+                return;
+            }
             const std::size_t the = words_[k + 1] == "the" ? 1 : 0;
             if (words_[k] != "on" || k + 1 + the >= words_.size() || words_[k + 1 + the] != "average") continue;
             words_.erase(words_.begin() + static_cast<std::ptrdiff_t>(k),
@@ -346,6 +349,10 @@ private:
         }
     }
 
+    // The answer's unit, however the question names it: "(in meters)", "(cm)" (RuleTranslator
+    // moves a unit in parentheses to the end), "measured in centimeters", "in feet", "how far in
+    // metres is ...", "how many centimeters long is ...", "in square meters". The words go; the
+    // unit is the translation's (units.hpp).
     void takeUnit() {
         auto unitAt = [&](std::size_t k) { return k < words_.size() ? lengthUnitNamed(words_[k]) : nullptr; };
         // "in [square] <unit>" anywhere: "how far in metres is the sofa from the door?"
@@ -1104,6 +1111,11 @@ private:
             "is", "are", "there", "here", "altogether", "total", "exactly", "currently", "right", "now"};
         if (c.peek() == "and") return countKinds(c, p, std::move(thing), filler, out);
         c.skip(filler);
+        // "how many chairs are in each room?", "... does each room have?", "... per room": by the kind of room.
+        if ((c.accept({"in|for", "each|every", "room"}) || c.accept({"per|by", "room"}) ||
+             c.accept({"does|do", "each|every", "room", "have|has|hold|contain"})) &&
+            c.done())
+            return roomTally(thing, "each", p, out);
         c.accept({"in", "total|all"});  // "how many cushions are there in total on both sofas?"
         c.skip(filler);
         // "how many chairs can I see?" counts from where the person is; "do you see" counts what the memory holds.
@@ -1824,25 +1836,58 @@ private:
         Phrase b = p.phrase(c.w, c.i, true);
         c.accept({"is|are|does|do"});
         c.accept({"to|from", "it|them"});
+        compared(a, b, *cmp, toWords.empty() ? word : word + " " + toWords, to, out);
+        out.byHowMuch = byHowMuch;
+        return true;
+    }
+
+    // How tall is the lamp compared to the nightstand? How big is the bed in comparison with the sofa? By how much,
+    // whichever way it goes (Translation::eitherWay): the comparative of the size asked ("taller") orders the rows.
+    bool comparedTo(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"how"}) || c.peek().empty()) return false;
+        const std::string& adjective = c.peek();
+        std::optional<Comparative> cmp;
+        std::string word;
+        for (const std::string& more : {adjective + "er", adjective + "r", adjective + adjective.back() + "er"})
+            if (!cmp && (cmp = comparativeOf(more))) word = more;
+        if (!cmp || cmp->measure == "distance") return false;
+        ++c.i;
+        if (!c.accept({"is|are|was|were"})) return false;
+        std::size_t said = c.i;
+        while (said < c.w.size() && !isOneOf(c.w[said], {"compared", "relative", "against", "versus", "vs"}) &&
+               !(c.w[said] == "in" && said + 1 < c.w.size() && c.w[said + 1] == "comparison"))
+            ++said;
+        Phrase a;
+        if (said == c.w.size() || !phraseWithin(c, p, said, a)) return false;
+        if (!c.accept({"compared|relative", "to|with"}) && !c.accept({"in", "comparison", "to|with"}) &&
+            !c.accept({"against|versus|vs"}))
+            return false;
+        const Phrase b = p.phrase(c.w, c.i, true);
+        compared(a, b, *cmp, word, std::nullopt, out);
+        out.byHowMuch = out.eitherWay = true;
+        return true;
+    }
+
+    // The two sides of a comparison and the measure the comparative orders them by (or the distance to `to`).
+    static void compared(const Phrase& a, const Phrase& b, const Comparative& cmp, const std::string& predicate,
+                         const std::optional<Phrase>& to, Translation& out) {
         auto side = [](const Phrase& ph) {
             if (!ph.id.empty()) return std::vector<std::string>{ph.id.substr(ph.id.find('#'))};
             return ph.categories.empty() ? std::vector<std::string>{ph.noun} : ph.categories;
         };
         out.kind = QuestionKind::Comparison;
-        out.byHowMuch = byHowMuch;
         out.roles = {side(a), side(b)};
-        out.measure = cmp->measure;
-        out.greater = cmp->descending;
-        out.predicate = toWords.empty() ? word : word + " " + toWords;
-        std::string order = cmp->measure == "distance" ? "distance(" + reference(*to) + ")" : cmp->measure;
-        std::string columns = cmp->measure == "distance" ? "id, category, distance" : "id, category, " + cmp->measure;
+        out.measure = cmp.measure;
+        out.greater = cmp.descending;
+        out.predicate = predicate;
+        std::string order = cmp.measure == "distance" ? "distance(" + reference(*to) + ")" : cmp.measure;
+        std::string columns = cmp.measure == "distance" ? "id, category, distance" : "id, category, " + cmp.measure;
         out.smql = fmt::format("FIND thing WHERE {} OR {} ORDER BY {}{} RETURN {}", matchText(a), matchText(b), order,
-                               cmp->descending ? " DESC" : "", columns);
+                               cmp.descending ? " DESC" : "", columns);
         describeSubject(a, out);
         out.object = b.words;
         out.condition =
-            cmp->measure == "distance" ? (to->words.empty() ? "away" : "from the " + to->words) : cmp->adjective;
-        return true;
+            cmp.measure == "distance" ? (to->words.empty() ? "away" : "from the " + to->words) : cmp.adjective;
     }
 
     // "vase?", "cushions on the sofa", "red mug": a thing named alone, as a search is typed, asks where it is. Only
@@ -2022,13 +2067,37 @@ private:
         if (isOneOf(c.peek(), {"this", "it", "here", "i", "we"})) return false;
         Phrase thing;
         if (!phraseUpTo(c.w, c.i, end, p, thing)) return false;
-        // A kind of thing, as it is named: the answer measures each of them.
-        if (!thing.id.empty() || thing.kind || !thing.side.empty() || thing.colour || !thing.conditions.empty() ||
-            !thing.filters.empty() || !thing.excluded.empty() || thing.order)
-            return false;
         c.i = c.w.size();
-        std::vector<std::string> asked =
-            thing.categories.empty() ? std::vector<std::string>{hyphenated(thing.noun)} : thing.categories;
+        return roomTally(thing, out.measure, p, out);
+    }
+
+    // How many chairs per room? How many things are there by room? Counted by the kind of room (roomTally).
+    bool perRoom(Cursor& c, PhraseParser& p, Translation& out) {
+        if (c.w.size() < 5 || c.w.back() != "room" || !isOneOf(c.w[c.w.size() - 2], {"per", "by"}) ||
+            !c.accept({"how", "many"}))
+            return false;
+        const Words head(c.w.begin(), c.w.end() - 2);
+        const Phrase thing = p.phrase(head, c.i, true);
+        while (c.i < head.size() && isOneOf(head[c.i], {"is", "are", "there", "here", "in", "the", "house", "home"}))
+            ++c.i;
+        if (c.i != head.size()) return false;
+        c.i = c.w.size();
+        return roomTally(thing, "each", p, out);
+    }
+
+    // The things of a kind (or every thing: "which room has the most things?") and every mark of a kind of room
+    // (kRoomMarks), with their boxes: the answer puts each thing in the kind of room whose mark stands nearest it
+    // (answer.cpp, roomOf). `measure` is "" (which room is each in), "each" (how many in each), "most" or "fewest".
+    static bool roomTally(const Phrase& thing, const std::string& measure, PhraseParser& p, Translation& out) {
+        // A kind of thing, as it is named: the answer measures each of them.
+        const bool everyThing = thing.categories.empty() && (thing.kind == "object" || thing.kind == "thing");
+        if (!thing.id.empty() || (thing.kind && !everyThing) || !thing.side.empty() || thing.colour ||
+            !thing.conditions.empty() || !thing.filters.empty() || !thing.excluded.empty() || thing.order)
+            return false;
+        // Every thing: an empty list of kinds asked (answer.cpp).
+        std::vector<std::string> asked = everyThing                 ? std::vector<std::string>{}
+                                         : thing.categories.empty() ? std::vector<std::string>{hyphenated(thing.noun)}
+                                                                    : thing.categories;
         // The things asked about and every mark, one query: FIND's category alternatives (conditionsOf).
         Phrase both;
         both.noun = "thing";
@@ -2038,7 +2107,8 @@ private:
                 if (std::find(both.categories.begin(), both.categories.end(), category) == both.categories.end())
                     both.categories.push_back(category);
         out.kind = QuestionKind::RoomOf;
-        out.smql = findText(both, false) + " RETURN id, category, box";
+        out.measure = measure;
+        out.smql = (everyThing ? std::string("FIND object") : findText(both, false)) + " RETURN id, category, box";
         for (const auto& row : kRoomMarks) out.choices.emplace_back(row.room);
         out.roles = p.roomMarks();
         out.roles.push_back(asked);  // after the rooms' marks: the things asked about
@@ -2464,14 +2534,18 @@ private:
         static const std::regex seen(
             R"(^(?:what|which things|what things|what objects) (?:did|do|have|can) you (?:see|seen|find|found|spot|spotted|capture|captured|record|recorded|remember)(?: here| in (?:the|this) (?:room|scene|video|capture|place))?$)");
         plain = std::regex_replace(plain, seen, "what is in the room");
+        // "how far apart, on average, are the lamps?": "on average" last, where the reader takes it from
+        // (takeOnAverage), so that the forms below read the question as they read it without.
+        static const std::regex onAverage(R"(^(.+?),? on (?:the )?average,?( .+)$)");
+        plain = std::regex_replace(plain, onAverage, "$1$2 on average");
         // "the distance between the two chairs", "how far apart are both lamps?": between one of
         // them and the other.
         static const std::regex bothOf(
-            R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+)$)");
-        plain = std::regex_replace(plain, bothOf, "$1 the $2 and the $2");
+            R"(^(.*\b(?:distance between|apart are|apart is)) (?:the )?(?:two|2|both)(?: of the)? ([a-z]+)( on average)?$)");
+        plain = std::regex_replace(plain, bothOf, "$1 the $2 and the $2$3");
         // "the distance between the sofas", "how far apart are the sofas?": the same, of a kind named in the plural.
-        static const std::regex amongThem(R"(^(.*\b(?:distance between|apart are)) the ([a-z]+s)$)");
-        plain = std::regex_replace(plain, amongThem, "$1 the $2 and the $2");
+        static const std::regex amongThem(R"(^(.*\b(?:distance between|apart are)) the ([a-z]+s)( on average)?$)");
+        plain = std::regex_replace(plain, amongThem, "$1 the $2 and the $2$3");
         // "which chair is bigger?", "which lamp is closer to the door?": of them, the one that is most so.
         static const std::regex compared(R"(^(which|what) ([a-z][a-z ]*?) (is|are) ([a-z]+er)( (?:to|from) .+)?$)");
         if (std::smatch m; std::regex_match(plain, m, compared) && plain.find(" than ") == std::string::npos)
