@@ -513,19 +513,31 @@ private:
         if (!to) return false;
         out.kind = QuestionKind::Guidance;
         std::string goal = reference(*to);
+        // Several things of a kind, plainly named: which one the words do not say.
+        auto several = [&](const Phrase& ph) {
+            return ph.conditions.empty() && ph.filters.empty() && !ph.order && ph.categories.size() == 1 &&
+                   ph.side.empty() && repeated(ph.categories.front());
+        };
         // Several things of the goal's kind: a person means the nearest one, to where they start or stand, of the
         // colour named ("guide me to the black table").
-        if (to->conditions.empty() && to->filters.empty() && !to->order && to->categories.size() == 1 &&
-            to->side.empty() && repeated(to->categories.front())) {
+        if (several(*to)) {
             const std::string kind = smqlName(to->categories.front()) + whereText(*to);
             goal = from ? fmt::format("(FIND {} NEAREST TO {} LIMIT 1)", kind, reference(*from))
                         : fmt::format("(FIND {} ORDER BY distance(HERE) LIMIT 1)", kind);
+        }
+        // "from the sofa to the door" where two sofas stand: the one nearest the goal's kind.
+        std::string start = from ? reference(*from) : "HERE";
+        if (from && several(*from)) {
+            start = fmt::format("(FIND {}{} NEAREST TO {} LIMIT 1)", smqlName(from->categories.front()),
+                                whereText(*from), reference(*to));
+            out.notes.push_back(fmt::format("the scene holds several of '{}': the way starts at the one nearest the {}",
+                                            from->words, to->words));
         }
         // "which way is the kitchen?": to the nearest of the things that mark it.
         if (to->room && !to->order)
             goal = fmt::format("({}{} LIMIT 1)", findText(*to, false),
                                from ? " NEAREST TO " + reference(*from) : std::string(" ORDER BY distance(HERE)"));
-        out.smql = fmt::format("GUIDE FROM {} TO {}", from ? reference(*from) : "HERE", goal);
+        out.smql = fmt::format("GUIDE FROM {} TO {}", start, goal);
         out.subject = to->words;
         out.object = from ? from->words : "here";
         return true;
@@ -2455,6 +2467,14 @@ private:
         // "the lamp nearest the sofa": nearest as a preposition is nearest to.
         static const std::regex nearestAsPreposition(R"(\b(nearest|closest)(?= (?:the|a|an|this|that|my|your|our)\b))");
         plain = std::regex_replace(plain, nearestAsPreposition, "$1 to");
+        // "what is closest to the centre of the room?": what stands in its middle, nearest the centre first.
+        static const std::regex nearestMiddle(
+            R"(^(?:what|which)(?: object| thing| item)? is (?:the )?(?:(?:object|thing|item|one) )?(?:closest|nearest) to the (?:center|centre|middle) of (?:the|this) room$)");
+        plain = std::regex_replace(plain, nearestMiddle, "what is in the middle of the room");
+        // "how many plants are there and where are they?": where they are, which names each and so counts them.
+        static const std::regex howManyAndWhere(
+            R"(^how many (.+?) (?:are|is)(?: there| here)?(?: in (?:the|this) room)?,? and where (?:are|is) (?:they|it)$)");
+        plain = std::regex_replace(plain, howManyAndWhere, "where are the $1");
         // "how many cushions are there in total?": a count is of all of them anyway.
         static const std::regex inTotal(R"(^(how many .+?) (?:in total|in all|altogether|overall)$)");
         plain = std::regex_replace(plain, inTotal, "$1");
