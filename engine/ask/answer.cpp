@@ -458,6 +458,18 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     }
     std::string how = fromYou ? " (along the floor, from where you stand: the scene's viewpoint)"
                               : " (measured between the closest points of their boxes)";
+    // "is there room to walk between the bed and the wall?": the narrowest gap against the width a person needs.
+    // The rows come nearest first: the first is the narrowest gap, the way between them a person would take.
+    if (t.predicate == "walk") {
+        const double needed = 2 * model::kBodyRadius;
+        // Two of one kind ("between the two sofas") are one pair, said once.
+        const bool onePair = (t.object == t.subject || t.object == t.subjectPlural) && parts.size() == 2;
+        const std::string others = parts.size() > 1 && !onePair
+                                       ? fmt::format(" Farther: {}.", listed({parts.begin() + 1, parts.end()}, "; "))
+                                       : "";
+        return fmt::format("{}: {}, where a person needs about {} to walk between them{}.{}",
+                           each.front() >= needed ? "Yes" : "No", parts.front(), length(needed, t.unit), how, others);
+    }
     // "the average distance between the chairs": the mean over the things of each one's distance, with its range.
     if (t.average && each.size() > 1) {
         const auto [low, high] = std::minmax_element(each.begin(), each.end());

@@ -229,16 +229,16 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,   &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
-            &QuestionReader::direction,  &QuestionReader::guidance,    &QuestionReader::distance,
-            &QuestionReader::size,       &QuestionReader::attribute,   &QuestionReader::affordance,
-            &QuestionReader::seating,    &QuestionReader::visibility,  &QuestionReader::changes,
-            &QuestionReader::mostHeld,   &QuestionReader::perRoom,     &QuestionReader::count,
-            &QuestionReader::existence,  &QuestionReader::side,        &QuestionReader::eitherSide,
-            &QuestionReader::relative,   &QuestionReader::superlative, &QuestionReader::reverse,
-            &QuestionReader::locate,     &QuestionReader::relational,  &QuestionReader::comparedTo,
-            &QuestionReader::comparison, &QuestionReader::yesNo,       &QuestionReader::description,
-            &QuestionReader::state,      &QuestionReader::named,
+            &QuestionReader::roomKind,    &QuestionReader::roomPlace,  &QuestionReader::whereAmI,
+            &QuestionReader::direction,   &QuestionReader::guidance,   &QuestionReader::roomToWalk,
+            &QuestionReader::distance,    &QuestionReader::size,       &QuestionReader::attribute,
+            &QuestionReader::affordance,  &QuestionReader::seating,    &QuestionReader::visibility,
+            &QuestionReader::changes,     &QuestionReader::mostHeld,   &QuestionReader::perRoom,
+            &QuestionReader::count,       &QuestionReader::existence,  &QuestionReader::side,
+            &QuestionReader::eitherSide,  &QuestionReader::relative,   &QuestionReader::superlative,
+            &QuestionReader::reverse,     &QuestionReader::locate,     &QuestionReader::relational,
+            &QuestionReader::comparedTo,  &QuestionReader::comparison, &QuestionReader::yesNo,
+            &QuestionReader::description, &QuestionReader::state,      &QuestionReader::named,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -637,6 +637,42 @@ private:
         }
         describeSubject(*a, out);
         out.object = b->words;
+        return true;
+    }
+
+    // Is there enough room to walk between the bed and the wall? Can I pass between the table and the sofa? The gap
+    // between the two (Distance, predicate "walk"), which the answer weighs against the room a person needs.
+    bool roomToWalk(Cursor& c, PhraseParser& p, Translation& out) {
+        if (c.accept({"is", "there"}) || c.accept({"do", "i", "have"})) {
+            c.accept({"enough|sufficient"});
+            if (!c.accept({"room|space|clearance"})) return false;
+            if (!c.accept({"for", "a", "person"})) c.accept({"for", "me|someone|people"});
+            if (!c.accept({"to"})) return false;
+        } else if (!c.accept({"can|could", "i|we|someone|one"}) && !c.accept({"can|could", "a", "person"})) {
+            return false;
+        }
+        if (!c.accept({"walk|pass|get|go|fit|squeeze|move"})) return false;
+        c.skip({"through", "past", "by"});
+        if (!c.accept({"between"})) return false;
+        const auto link = std::find(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), "and");
+        Phrase a, b;
+        if (link == c.w.end()) {
+            // "between the two sofas": one of them and the other.
+            if (!c.accept({"the", "two"}) && !c.accept({"both"})) return false;
+            c.accept({"the"});
+            a = b = p.phrase(c.w, c.i, true);
+        } else {
+            if (!phraseWithin(c, p, static_cast<std::size_t>(link - c.w.begin()), a)) return false;
+            ++c.i;
+            b = p.phrase(c.w, c.i, true);
+        }
+        Phrase subject = a;
+        subject.order = Order{"distance", false, {b}, ""};
+        out.kind = QuestionKind::Distance;
+        out.predicate = "walk";
+        out.smql = findText(subject, false);
+        describeSubject(a, out);
+        out.object = b.words;
         return true;
     }
 

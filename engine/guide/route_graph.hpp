@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "model/seating.hpp"
 #include "model/types.hpp"
 
 namespace smql::guide {
@@ -21,10 +22,10 @@ struct Point {
 };
 
 struct GraphOptions {
-    double bodyRadius = 0.2;  // metres kept from every obstacle
-    double cell = 0.05;       // the free-space grid's resolution (m)
-    double lattice = 1.0;     // spacing of the junction points laid over the free space (m)
-    double maxEdge = 4.0;     // the longest straight segment an edge may be (m)
+    double bodyRadius = model::kBodyRadius;  // metres kept from every obstacle
+    double cell = 0.05;                      // the free-space grid's resolution (m)
+    double lattice = 1.0;                    // spacing of the junction points laid over the free space (m)
+    double maxEdge = 4.0;                    // the longest straight segment an edge may be (m)
     // Things whose bottom is this close to the floor stand on it and block the way; higher ones
     // (a mug on a table, a picture on a wall) do not.
     double standingHeight = 0.3;
