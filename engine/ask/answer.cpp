@@ -1664,8 +1664,17 @@ std::string kinds(const Translation& t, const ResultSet& rs) {
     const std::string noun = t.subjectPlural.starts_with("pieces of ")
                                  ? t.subjectPlural.substr(std::string("pieces of ").size())
                                  : t.subjectPlural;
-    return fmt::format("{} {} of {}{}: {}.", byCount.size(), byCount.size() == 1 ? "kind" : "kinds", noun,
-                       withCondition(t), listedWithAnd(tallied(byCount, unnamed)));
+    const std::string all = fmt::format("{} {} of {}{}: {}.", byCount.size(), byCount.size() == 1 ? "kind" : "kinds",
+                                        noun, withCondition(t), listedWithAnd(tallied(byCount, unnamed)));
+    // "what is the most common object?": the kinds with the most of them first, then all.
+    if (t.measure != "most" || byCount.empty()) return all;
+    std::vector<std::string> most;
+    for (const auto& [category, n] : byCount)
+        if (n == byCount.front().second) most.push_back(pluralOf(model::categoryWords(category)));
+    std::string lead = listedWithAnd(most);
+    lead.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(lead.front())));
+    return fmt::format("{} {} the most common ({} {}): {}", lead, most.size() == 1 ? "are" : "are, alike,",
+                       byCount.front().second, most.size() == 1 ? "of them" : "each", all);
 }
 
 std::string changes(const ResultSet& rs) {

@@ -229,16 +229,17 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,    &QuestionReader::roomPlace,  &QuestionReader::whereAmI,
-            &QuestionReader::direction,   &QuestionReader::guidance,   &QuestionReader::roomToWalk,
-            &QuestionReader::distance,    &QuestionReader::size,       &QuestionReader::attribute,
-            &QuestionReader::affordance,  &QuestionReader::seating,    &QuestionReader::visibility,
-            &QuestionReader::changes,     &QuestionReader::mostHeld,   &QuestionReader::perRoom,
-            &QuestionReader::count,       &QuestionReader::existence,  &QuestionReader::side,
-            &QuestionReader::eitherSide,  &QuestionReader::relative,   &QuestionReader::superlative,
-            &QuestionReader::reverse,     &QuestionReader::locate,     &QuestionReader::relational,
-            &QuestionReader::comparedTo,  &QuestionReader::comparison, &QuestionReader::yesNo,
-            &QuestionReader::description, &QuestionReader::state,      &QuestionReader::named,
+            &QuestionReader::roomKind,    &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
+            &QuestionReader::direction,   &QuestionReader::guidance,    &QuestionReader::roomToWalk,
+            &QuestionReader::distance,    &QuestionReader::size,        &QuestionReader::attribute,
+            &QuestionReader::affordance,  &QuestionReader::seating,     &QuestionReader::visibility,
+            &QuestionReader::changes,     &QuestionReader::mostHeld,    &QuestionReader::mostCommon,
+            &QuestionReader::perRoom,     &QuestionReader::count,       &QuestionReader::existence,
+            &QuestionReader::side,        &QuestionReader::eitherSide,  &QuestionReader::relative,
+            &QuestionReader::superlative, &QuestionReader::reverse,     &QuestionReader::locate,
+            &QuestionReader::relational,  &QuestionReader::comparedTo,  &QuestionReader::comparison,
+            &QuestionReader::yesNo,       &QuestionReader::description, &QuestionReader::state,
+            &QuestionReader::named,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -637,6 +638,43 @@ private:
         }
         describeSubject(*a, out);
         out.object = b->words;
+        return true;
+    }
+
+    // What is the most common object? What kind of furniture is there most of? Which thing appears most often? The
+    // things' kinds tallied (Translation::byKind), the most numerous first (measure "most").
+    bool mostCommon(Cursor& c, PhraseParser& p, Translation& out) {
+        std::size_t end = c.w.size();  // "... in the room", "... here": the scene, said or not
+        while (end > c.i + 2 && isOneOf(c.w[end - 1], {"here", "room", "scene", "place", "the", "this", "in"})) --end;
+        std::size_t nounFrom = 0, nounTo = 0;
+        if (c.accept({"what|which", "is|are", "the", "most", "common|frequent|numerous"}) ||
+            c.accept({"what|which", "is|are", "the", "commonest"})) {
+            nounFrom = c.i, nounTo = end;  // "... object (in the room)"
+        } else if (c.accept({"what|which"})) {
+            c.accept({"kind|type|sort", "of"});  // "what kind of object is there most of?"
+            nounFrom = c.i;
+            while (c.i < end && !isOneOf(c.w[c.i], {"is", "are", "appears", "appear", "occurs", "occur"})) ++c.i;
+            nounTo = c.i;
+            const bool thereMost =
+                c.accept({"is|are", "there"}) && (c.accept({"the", "most", "of"}) || c.accept({"most", "of"}));
+            if (!thereMost && !c.accept({"appears|appear|occurs|occur", "most", "often|frequently"})) return false;
+            if (c.i != end) return false;
+        } else {
+            return false;
+        }
+        Phrase thing = anyThing("object");
+        if (nounTo > nounFrom) {
+            std::size_t k = nounFrom;
+            if (!phraseUpTo(c.w, k, nounTo, p, thing)) return false;
+            // "object", "thing", "item": any thing; a kind named ("piece of furniture"): things of it.
+            if (thing.categories.empty() && !thing.kind) return false;
+        }
+        c.i = c.w.size();
+        out.kind = QuestionKind::Locate;
+        out.measure = "most";
+        out.smql = findText(thing, false);
+        describeSubject(thing, out);
+        out.byKind = true;  // after describeSubject, which takes it from the words ("what kinds of ...")
         return true;
     }
 
@@ -2493,6 +2531,28 @@ private:
         return plain;
     }
 
+    // Questions that ask what another question asks, read as that one: "what is closest to the centre of the room?",
+    // "are the cushions all on the sofa?", "what is the room's floor area?", "how many plants are there and where are
+    // they?".
+    static std::string readAsAnother(std::string plain) {
+        // "what is closest to the centre of the room?": what stands in its middle, nearest the centre first.
+        static const std::regex nearestMiddle(
+            R"(^(?:what|which)(?: object| thing| item)? is (?:the )?(?:(?:object|thing|item|one) )?(?:closest|nearest) to the (?:center|centre|middle) of (?:the|this) room$)");
+        plain = std::regex_replace(plain, nearestMiddle, "what is in the middle of the room");
+        // "are the cushions all on the sofa?": as "are all the cushions on the sofa?".
+        static const std::regex allAfter(R"(^(are|were) the ([a-z ]+?) all (.+)$)");
+        plain = std::regex_replace(plain, allAfter, "$1 all the $2 $3");
+        // "what is the room's floor area?" (the words' "'s" is " is"): the floor area of the room.
+        static const std::regex roomsOwn(
+            R"(^what is (?:the|this) room is ((?:total |overall )?(?:floor area|floor space|area|size|dimensions))$)");
+        plain = std::regex_replace(plain, roomsOwn, "what is the $1 of the room");
+        // "how many plants are there and where are they?": where they are, which names each and so counts them.
+        static const std::regex howManyAndWhere(
+            R"(^how many (.+?) (?:are|is)(?: there| here)?(?: in (?:the|this) room)?,? and where (?:are|is) (?:they|it)$)");
+        plain = std::regex_replace(plain, howManyAndWhere, "where are the $1");
+        return plain;
+    }
+
     // SQA3D's ways of asking what the memory answers another way: "is the number of chairs odd or
     // even?" (a count), "is the door open or closed?" (the door; `stateWords` say what is left
     // out), "is the table small or large?" (its size), "what can I use in front of me to ...?"
@@ -2503,14 +2563,7 @@ private:
         // "the lamp nearest the sofa": nearest as a preposition is nearest to.
         static const std::regex nearestAsPreposition(R"(\b(nearest|closest)(?= (?:the|a|an|this|that|my|your|our)\b))");
         plain = std::regex_replace(plain, nearestAsPreposition, "$1 to");
-        // "what is closest to the centre of the room?": what stands in its middle, nearest the centre first.
-        static const std::regex nearestMiddle(
-            R"(^(?:what|which)(?: object| thing| item)? is (?:the )?(?:(?:object|thing|item|one) )?(?:closest|nearest) to the (?:center|centre|middle) of (?:the|this) room$)");
-        plain = std::regex_replace(plain, nearestMiddle, "what is in the middle of the room");
-        // "how many plants are there and where are they?": where they are, which names each and so counts them.
-        static const std::regex howManyAndWhere(
-            R"(^how many (.+?) (?:are|is)(?: there| here)?(?: in (?:the|this) room)?,? and where (?:are|is) (?:they|it)$)");
-        plain = std::regex_replace(plain, howManyAndWhere, "where are the $1");
+        plain = readAsAnother(std::move(plain));
         // "how many cushions are there in total?": a count is of all of them anyway.
         static const std::regex inTotal(R"(^(how many .+?) (?:in total|in all|altogether|overall)$)");
         plain = std::regex_replace(plain, inTotal, "$1");
