@@ -1051,6 +1051,35 @@ std::string attribute(const Translation& t, const ResultSet& rs) {
     return listed(parts, "; ") + ".";
 }
 
+// "How many colours are there?": the attribute's values over the things, the most common first, and how many things
+// have none recorded; "what is the most common colour?" (predicate "most") leads with it.
+std::string attributeTally(const Translation& t, const ResultSet& rs) {
+    const int column = rs.columnIndex(t.measure);
+    std::map<std::string, std::size_t> tally;
+    std::size_t none = 0;
+    for (const auto& row : rs.rows) {
+        const std::string value = column >= 0 ? text(row[static_cast<std::size_t>(column)]) : "";
+        if (value.empty())
+            ++none;
+        else
+            ++tally[value];
+    }
+    if (tally.empty())
+        return fmt::format("No {} is recorded for the {} things here (their capture gave none).", t.measure,
+                           rs.rows.size());
+    std::vector<std::pair<std::string, std::size_t>> byCount(tally.begin(), tally.end());
+    std::stable_sort(byCount.begin(), byCount.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<std::string> each;
+    for (const auto& [value, n] : byCount) each.push_back(fmt::format("{} ({})", value, n));
+    const std::string all = fmt::format(
+        "{} {} among {} things: {}{}.", byCount.size(), byCount.size() == 1 ? t.measure : pluralOf(t.measure),
+        rs.rows.size(), listedWithAnd(each), none ? fmt::format("; {} with none recorded", none) : std::string());
+    if (t.predicate != "most") return all;
+    std::string lead = byCount.front().first;
+    lead.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(lead.front())));
+    return fmt::format("{} is the most common {} ({} things): {}", lead, t.measure, byCount.front().second, all);
+}
+
 // "what is the lamp on?": the things the subject stands in that relation to.
 // The rows of RELATE subject TO thing that answer "what is the subject on?": those of the
 // question's relation, and "attached" for "on" where the subject rests on nothing.
@@ -1748,7 +1777,7 @@ std::string answer(const Translation& t, const ResultSet& rs, const std::string&
         case QuestionKind::Seating:
             return seating(t, rs);
         case QuestionKind::Attribute:
-            return attribute(t, rs);
+            return t.byKind ? attributeTally(t, rs) : attribute(t, rs);
         case QuestionKind::Changes:
             return changes(rs);
         case QuestionKind::Reverse:

@@ -229,17 +229,17 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,    &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
-            &QuestionReader::direction,   &QuestionReader::guidance,    &QuestionReader::roomToWalk,
-            &QuestionReader::distance,    &QuestionReader::size,        &QuestionReader::attribute,
-            &QuestionReader::affordance,  &QuestionReader::seating,     &QuestionReader::visibility,
-            &QuestionReader::changes,     &QuestionReader::mostHeld,    &QuestionReader::mostCommon,
-            &QuestionReader::perRoom,     &QuestionReader::count,       &QuestionReader::existence,
-            &QuestionReader::side,        &QuestionReader::eitherSide,  &QuestionReader::relative,
-            &QuestionReader::superlative, &QuestionReader::reverse,     &QuestionReader::locate,
-            &QuestionReader::relational,  &QuestionReader::comparedTo,  &QuestionReader::comparison,
-            &QuestionReader::yesNo,       &QuestionReader::description, &QuestionReader::state,
-            &QuestionReader::named,
+            &QuestionReader::roomKind,   &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
+            &QuestionReader::direction,  &QuestionReader::guidance,    &QuestionReader::roomToWalk,
+            &QuestionReader::distance,   &QuestionReader::size,        &QuestionReader::attributeTally,
+            &QuestionReader::attribute,  &QuestionReader::affordance,  &QuestionReader::seating,
+            &QuestionReader::visibility, &QuestionReader::changes,     &QuestionReader::mostHeld,
+            &QuestionReader::mostCommon, &QuestionReader::perRoom,     &QuestionReader::count,
+            &QuestionReader::existence,  &QuestionReader::side,        &QuestionReader::eitherSide,
+            &QuestionReader::relative,   &QuestionReader::superlative, &QuestionReader::reverse,
+            &QuestionReader::locate,     &QuestionReader::relational,  &QuestionReader::comparedTo,
+            &QuestionReader::comparison, &QuestionReader::yesNo,       &QuestionReader::description,
+            &QuestionReader::state,      &QuestionReader::named,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -852,6 +852,38 @@ private:
         // Without colours in the scene the rows still name the things, and the answer says so.
         out.smql = findText(thing, false) + (kept ? " RETURN id, category, " + measure : "");
         describeSubject(thing, out);
+        return true;
+    }
+
+    // How many colours are there? What materials are there? What is the most common colour? The values of an attribute
+    // over the things, tallied (Attribute, byKind).
+    bool attributeTally(Cursor& c, PhraseParser&, Translation& out) {
+        std::string measure;
+        auto valueWord = [&] {
+            if (!c.accept({"color|colour|colors|colours|material|materials"})) return false;
+            measure = c.w[c.i - 1].starts_with("colo") ? "color" : "material";
+            return true;
+        };
+        const bool most = c.accept({"what|which", "is", "the", "most", "common|frequent"});
+        if (most) {
+            if (!valueWord()) return false;
+        } else if (c.accept({"how", "many"}) || c.accept({"what|which"})) {
+            c.accept({"different|distinct"});
+            if (!valueWord() || !c.accept({"are|is", "there"})) return false;
+        } else {
+            return false;
+        }
+        // "... in the room", "... among the things": the scene's things, said or not.
+        while (!c.done() && isOneOf(c.peek(), {"in", "the", "this", "room", "here", "scene", "among", "things"})) ++c.i;
+        if (!c.done()) return false;
+        out.kind = QuestionKind::Attribute;
+        out.measure = measure;
+        const auto& known = question_.attributes;
+        const bool kept = std::find(known.begin(), known.end(), measure) != known.end();
+        out.smql = "FIND object" + (kept ? " RETURN id, category, " + measure : std::string());
+        describeSubject(anyThing("object"), out);
+        out.byKind = true;
+        if (most) out.predicate = "most";
         return true;
     }
 

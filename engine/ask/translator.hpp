@@ -88,7 +88,8 @@ struct Translation {
     std::string subjectPlural;  // "red mugs", "things"
     std::string condition;      // "on the sofa", empty without one
     std::string predicate;      // YesNo: the relation the answer checks ("left_of"); Count of two kinds: "or" when
-                                // the question asks which has more ("are there more books or cushions?")
+                                // the question asks which has more ("are there more books or cushions?");
+                                // Attribute tallied (byKind): "most" when the most common value is asked
     std::string object;         // YesNo: what it is checked against ("the window")
 
     // Size: the measure asked ("height", "longest", "size"); Attribute: the attribute ("color"); Count of two
@@ -127,7 +128,8 @@ struct Translation {
     // one of them. Set by the binder from the scene, whichever translator read the question.
     bool unnamedThings = false;
     // Locate, Relational, Count: the question asks for the kinds of the things found ("what kinds of things are
-    // there?", "how many types of furniture are in the room?"), which the rows' categories tally.
+    // there?", "how many types of furniture are in the room?"), which the rows' categories tally; Attribute: the
+    // values of the attribute ("what colours are there?"), which the rows' values tally.
     bool byKind = false;
 };
 

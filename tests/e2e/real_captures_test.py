@@ -87,6 +87,17 @@ def desk_rgbd(smql, folder, work):
     answer = subprocess.run([smql, str(work / "db"), "ASK 'what did I see first?'"], capture_output=True, text=True).stdout
     assert f"to come into view, first seen in frame {opening:.0f}." in answer, (opening, answer)
     assert all(f"#{r['id']}" in answer for r in seen if float(r["first_seen"]) == opening), (seen, answer)
+    # Its colours tallied, as the stored things have them: "how many colours are there?", the most common first.
+    colours = {}
+    for r in query_rows(smql, work / "db", "FIND object RETURN id, color"):
+        if r.get("color"):
+            colours[r["color"]] = colours.get(r["color"], 0) + 1
+    answer = subprocess.run([smql, str(work / "db"), "ASK 'what is the most common colour?'"], capture_output=True,
+                            text=True).stdout
+    top = max(colours.values())
+    assert f"colors among {len(seen)} things: " in answer or len(colours) == 1, (colours, answer)
+    assert any(answer.split("\n")[-2].startswith(f"{c.capitalize()} is the most common color ({top} things)")
+               for c, n in colours.items() if n == top), (colours, answer)
     # Things it could not name are kept as "object": a kind it has none of may be one of them, not said to be absent.
     if any(r["category"] == "object" for r in rows):
         out = subprocess.run([smql, str(work / "db"), "ASK 'is there a bookcase?'"], capture_output=True, text=True)
