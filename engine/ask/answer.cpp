@@ -638,6 +638,10 @@ std::string superlative(const Translation& t, const ResultSet& rs) {
         return fmt::format("There are only {} {}{}.", rs.rows.size(), rs.rows.size() == 1 ? t.subject : t.subjectPlural,
                            withCondition(t));
     }
+    // "list the tables from largest to smallest": all of them, in order.
+    if (t.top == std::numeric_limits<std::size_t>::max())
+        return fmt::format("The {} {}, {}: {}.", rs.rows.size(), rs.rows.size() == 1 ? t.subject : t.subjectPlural,
+                           t.measure, listed(labels(rs), ", ", rs.rows.size()));
     if (t.top > 1) {
         // "the two largest objects": each, in order.
         auto names = labels(rs);

@@ -24,6 +24,8 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <limits>
+#include <map>
 #include <optional>
 #include <regex>
 
@@ -229,17 +231,17 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,   &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
-            &QuestionReader::direction,  &QuestionReader::guidance,    &QuestionReader::roomToWalk,
-            &QuestionReader::distance,   &QuestionReader::size,        &QuestionReader::attributeTally,
-            &QuestionReader::attribute,  &QuestionReader::affordance,  &QuestionReader::seating,
-            &QuestionReader::visibility, &QuestionReader::changes,     &QuestionReader::mostHeld,
-            &QuestionReader::mostCommon, &QuestionReader::perRoom,     &QuestionReader::count,
-            &QuestionReader::existence,  &QuestionReader::side,        &QuestionReader::eitherSide,
-            &QuestionReader::relative,   &QuestionReader::superlative, &QuestionReader::reverse,
-            &QuestionReader::locate,     &QuestionReader::relational,  &QuestionReader::comparedTo,
-            &QuestionReader::comparison, &QuestionReader::yesNo,       &QuestionReader::description,
-            &QuestionReader::state,      &QuestionReader::named,
+            &QuestionReader::roomKind,    &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
+            &QuestionReader::direction,   &QuestionReader::guidance,    &QuestionReader::roomToWalk,
+            &QuestionReader::distance,    &QuestionReader::size,        &QuestionReader::attributeTally,
+            &QuestionReader::attribute,   &QuestionReader::affordance,  &QuestionReader::seating,
+            &QuestionReader::visibility,  &QuestionReader::changes,     &QuestionReader::mostHeld,
+            &QuestionReader::mostCommon,  &QuestionReader::perRoom,     &QuestionReader::count,
+            &QuestionReader::existence,   &QuestionReader::side,        &QuestionReader::eitherSide,
+            &QuestionReader::relative,    &QuestionReader::superlative, &QuestionReader::sorted,
+            &QuestionReader::reverse,     &QuestionReader::locate,      &QuestionReader::relational,
+            &QuestionReader::comparedTo,  &QuestionReader::comparison,  &QuestionReader::yesNo,
+            &QuestionReader::description, &QuestionReader::state,       &QuestionReader::named,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -638,6 +640,49 @@ private:
         }
         describeSubject(*a, out);
         out.object = b->words;
+        return true;
+    }
+
+    // List the furniture from largest to smallest; sort the objects by height. Every thing of the kind in the order
+    // asked (a Superlative of them all): the superlative said first ("largest") orders them, as in "the largest
+    // table"; "by size" is by the largest first.
+    bool sorted(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"list|sort|order|rank|show|name|arrange"})) return false;
+        c.accept({"me|us"});
+        c.accept({"all"});
+        c.accept({"the"});
+        std::size_t k = c.i;
+        while (k < c.w.size() && !isOneOf(c.w[k], {"from", "by"})) ++k;
+        if (k == c.i || k == c.w.size()) return false;
+        std::string first;
+        if (c.w[k] == "from" && k + 4 == c.w.size() && c.w[k + 2] == "to") {
+            first = c.w[k + 1];  // "from largest to smallest"
+            out.measure = joined(c.w, k, c.w.size());
+        } else if (c.w[k] == "by" && k + 2 == c.w.size()) {
+            static const std::map<std::string, std::string> byMeasure{{"size", "largest"},
+                                                                      {"volume", "largest"},
+                                                                      {"height", "tallest"},
+                                                                      {"width", "widest"},
+                                                                      {"length", "longest"}};
+            const auto at = byMeasure.find(c.w[k + 1]);
+            if (at == byMeasure.end()) return false;
+            first = at->second;
+            out.measure = "by " + c.w[k + 1] + ", the " + first + " first";
+        } else {
+            return false;
+        }
+        Words said{"the", first};
+        said.insert(said.end(), c.w.begin() + static_cast<std::ptrdiff_t>(c.i),
+                    c.w.begin() + static_cast<std::ptrdiff_t>(k));
+        std::size_t at = 0;
+        Phrase things = p.phrase(said, at, true);
+        if (at != said.size() || !things.order || things.order->measure == "distance") return false;
+        things.pick = 0;  // all of them, in order
+        c.i = c.w.size();
+        out.kind = QuestionKind::Superlative;
+        out.top = std::numeric_limits<std::size_t>::max();
+        out.smql = findText(things, false);
+        describeSubject(things, out);
         return true;
     }
 
