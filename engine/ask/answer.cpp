@@ -441,8 +441,9 @@ std::string distance(const Translation& t, const ResultSet& rs) {
                          std::count(t.smql.begin(), t.smql.begin() + static_cast<std::ptrdiff_t>(here), '(') ==
                              std::count(t.smql.begin(), t.smql.begin() + static_cast<std::ptrdiff_t>(here), ')');
     std::string from = fromYou ? "you" : "the " + t.object;
-    // "how far apart are the chairs?": each from the nearest other of its kind.
-    if (!fromYou && (t.object == t.subject || t.object == t.subjectPlural))
+    // "how far apart are the chairs?": each from the nearest other of its kind ("the objects": of any).
+    const bool anyThing = t.subject == "thing" && isOneOf(t.object, {"objects", "things", "items"});
+    if (!fromYou && (t.object == t.subject || t.object == t.subjectPlural || anyThing))
         from = (rs.rows.size() == 2 ? "the other " : "the nearest other ") + t.subject;
     std::vector<std::string> parts;
     std::vector<double> each;

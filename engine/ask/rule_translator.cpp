@@ -2623,6 +2623,15 @@ private:
         static const std::regex roomsOwn(
             R"(^what is (?:the|this) room is ((?:total |overall )?(?:floor area|floor space|area|size|dimensions))$)");
         plain = std::regex_replace(plain, roomsOwn, "what is the $1 of the room");
+        // "how far is the farthest object from the door?": the farthest thing, which the answer says how far away is (a
+        // kind named, "the farthest chair", reads as it is).
+        static const std::regex howFarFarthest(
+            R"(^how far (?:away )?is the (farthest|furthest) ((?:object|thing|item) from .+)$)");
+        plain = std::regex_replace(plain, howFarFarthest, "what is the $1 $2");
+        // "which two chairs are closest together?": how far apart they are, the nearest first (the closest two lead).
+        static const std::regex closestTogether(
+            R"(^(?:which|what) (?:two |2 )?([a-z ]+?) (?:are|stand|sit) (?:the )?(?:closest|nearest) (?:together|to each other|to one another)$)");
+        plain = std::regex_replace(plain, closestTogether, "how far apart are the $1");
         // "how many plants are there and where are they?": where they are, which names each and so counts them.
         static const std::regex howManyAndWhere(
             R"(^how many (.+?) (?:are|is)(?: there| here)?(?: in (?:the|this) room)?,? and where (?:are|is) (?:they|it)$)");
