@@ -1194,18 +1194,29 @@ std::string comparison(const Translation& t, const ResultSet& rs) {
     // By how much: the first of each side in the rows' order (the tallest of each, for "taller").
     if (t.byHowMuch) {
         const auto& [a, va] = sides[0].nodes.front();
-        const auto& [b, vb] = sides[1].nodes.front();
+        // Two of one kind ("are the two beds the same size?"): the first and the next.
+        const bool oneKind = sides[1].nodes.front().first == a;
+        if (oneKind && sides[1].nodes.size() < 2) return fmt::format("There is only one {} here.", t.subject);
+        const auto& [b, vb] = sides[1].nodes[oneKind ? 1 : 0];
         const double by = t.greater ? va - vb : vb - va;
         const std::string amount =
             t.measure == "volume" ? fmt::format("{:.3f} m³", std::abs(by)) : formatLength(std::abs(by), t.unit);
         std::vector<std::string> picked;  // "chair#20 of 4 chairs"
         const std::array<std::string, 2> plurals{t.subjectPlural, pluralOf(t.object)};
-        for (std::size_t side = 0; side < 2; ++side)
+        for (std::size_t side = 0; side < (oneKind ? 0 : 2); ++side)
             if (sides[side].nodes.size() > 1)
                 picked.push_back(fmt::format("{} of {} {}", sides[side].nodes.front().first, sides[side].nodes.size(),
                                              plurals[side]));
         const std::string several =
             picked.empty() ? "" : fmt::format(" ({}, the first by {})", listedWithAnd(picked), t.measure);
+        if (t.eitherWay && t.predicate == "the same") {
+            // Alike within what a person would not tell apart by eye: 5 cm or 5 % of a length, 10 % of a volume.
+            const double larger = std::max(std::abs(va), std::abs(vb));
+            const bool alike = t.measure == "volume" ? std::abs(va - vb) <= 0.1 * larger
+                                                     : std::abs(va - vb) <= std::max(0.05, 0.05 * larger);
+            return fmt::format("{}: {} is {}; {} is {} ({} apart){}.", alike ? "Yes, about the same" : "No", a,
+                               said(va), b, said(vb), amount, several);
+        }
         if (t.eitherWay) {
             if (by == 0) return fmt::format("{} and {} are alike: each is {}{}.", a, b, said(va), several);
             return fmt::format("{} is {}: {} {} than {}, {}{}.", a, said(va), amount, (va > vb) ? "more" : "less", b,

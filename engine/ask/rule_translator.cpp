@@ -231,17 +231,18 @@ public:
         takeRoomSides();
         using Form = bool (QuestionReader::*)(Cursor&, PhraseParser&, Translation&);
         static constexpr Form forms[] = {
-            &QuestionReader::roomKind,    &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
-            &QuestionReader::direction,   &QuestionReader::guidance,    &QuestionReader::roomToWalk,
-            &QuestionReader::distance,    &QuestionReader::size,        &QuestionReader::attributeTally,
-            &QuestionReader::attribute,   &QuestionReader::affordance,  &QuestionReader::seating,
-            &QuestionReader::visibility,  &QuestionReader::changes,     &QuestionReader::mostHeld,
-            &QuestionReader::mostCommon,  &QuestionReader::perRoom,     &QuestionReader::count,
-            &QuestionReader::existence,   &QuestionReader::side,        &QuestionReader::eitherSide,
-            &QuestionReader::relative,    &QuestionReader::superlative, &QuestionReader::sorted,
-            &QuestionReader::reverse,     &QuestionReader::locate,      &QuestionReader::relational,
-            &QuestionReader::comparedTo,  &QuestionReader::comparison,  &QuestionReader::yesNo,
-            &QuestionReader::description, &QuestionReader::state,       &QuestionReader::named,
+            &QuestionReader::roomKind,   &QuestionReader::roomPlace,   &QuestionReader::whereAmI,
+            &QuestionReader::direction,  &QuestionReader::guidance,    &QuestionReader::roomToWalk,
+            &QuestionReader::distance,   &QuestionReader::size,        &QuestionReader::attributeTally,
+            &QuestionReader::attribute,  &QuestionReader::affordance,  &QuestionReader::seating,
+            &QuestionReader::visibility, &QuestionReader::changes,     &QuestionReader::mostHeld,
+            &QuestionReader::mostCommon, &QuestionReader::perRoom,     &QuestionReader::count,
+            &QuestionReader::existence,  &QuestionReader::side,        &QuestionReader::eitherSide,
+            &QuestionReader::relative,   &QuestionReader::superlative, &QuestionReader::sorted,
+            &QuestionReader::reverse,    &QuestionReader::locate,      &QuestionReader::relational,
+            &QuestionReader::comparedTo, &QuestionReader::sameAs,      &QuestionReader::comparison,
+            &QuestionReader::yesNo,      &QuestionReader::description, &QuestionReader::state,
+            &QuestionReader::named,
         };
         // A form whose words fit but whose phrases do not read says why, unless a later form reads
         // the question.
@@ -2008,12 +2009,9 @@ private:
     // whichever way it goes (Translation::eitherWay): the comparative of the size asked ("taller") orders the rows.
     bool comparedTo(Cursor& c, PhraseParser& p, Translation& out) {
         if (!c.accept({"how"}) || c.peek().empty()) return false;
-        const std::string& adjective = c.peek();
-        std::optional<Comparative> cmp;
         std::string word;
-        for (const std::string& more : {adjective + "er", adjective + "r", adjective + adjective.back() + "er"})
-            if (!cmp && (cmp = comparativeOf(more))) word = more;
-        if (!cmp || cmp->measure == "distance") return false;
+        const std::optional<Comparative> cmp = comparativeOfSize(c.peek(), word);
+        if (!cmp) return false;
         ++c.i;
         if (!c.accept({"is|are|was|were"})) return false;
         std::size_t said = c.i;
@@ -2031,6 +2029,62 @@ private:
         return true;
     }
 
+    // The comparative of a size's adjective ("tall": "taller", "big": "bigger"), its word in `word`; none for a
+    // distance or a word that is no size.
+    static std::optional<Comparative> comparativeOfSize(const std::string& adjective, std::string& word) {
+        if (adjective.empty()) return std::nullopt;
+        for (const std::string& more : {adjective + "er", adjective + "r", adjective + adjective.back() + "er"})
+            if (auto cmp = comparativeOf(more); cmp && cmp->measure != "distance") {
+                word = more;
+                return cmp;
+            }
+        return std::nullopt;
+    }
+
+    // Are the two nightstands the same height? Is the sofa the same size as the bed? Is the lamp as tall as the
+    // table? By how much, either way (comparedTo), and whether they are alike (predicate "the same").
+    bool sameAs(Cursor& c, PhraseParser& p, Translation& out) {
+        if (!c.accept({"is|are"})) return false;
+        const Words& w = c.w;
+        std::size_t k = c.i;
+        while (k + 2 < w.size() && !(w[k] == "the" && w[k + 1] == "same") && !(w[k] == "as" && w[k + 2] == "as")) ++k;
+        if (k + 2 >= w.size()) return false;
+        static const std::map<std::string, std::string> adjectiveOf{
+            {"size", "big"}, {"height", "tall"}, {"width", "wide"}, {"length", "long"}};
+        const auto named = adjectiveOf.find(w[k + 2]);
+        if (w[k] == "the" && named == adjectiveOf.end()) return false;
+        std::string word;
+        const auto cmp = comparativeOfSize(w[k] == "the" ? named->second : w[k + 1], word);
+        if (!cmp) return false;
+        const bool same = w[k] == "the";
+        Phrase a, b;
+        if (same && k + 3 == w.size()) {
+            // "are the sofa and the bed the same size?", "are the two nightstands the same height?"
+            const auto end = w.begin() + static_cast<std::ptrdiff_t>(k);
+            const auto link = std::find(w.begin() + static_cast<std::ptrdiff_t>(c.i), end, "and");
+            if (link != end) {
+                if (!phraseWithin(c, p, static_cast<std::size_t>(link - w.begin()), a)) return false;
+                ++c.i;
+                if (!phraseWithin(c, p, k, b)) return false;
+            } else {
+                if (!c.accept({"the", "two"}) && !c.accept({"both"}) && !c.accept({"all", "the"})) return false;
+                if (!phraseWithin(c, p, k, a)) return false;
+                b = a;
+            }
+            c.i = w.size();
+        } else {
+            // "is the sofa the same size as the bed?", "is the lamp as tall as the table?"
+            const std::size_t other = same ? k + 4 : k + 3;
+            if (other > w.size() || w[other - 1] != "as" || !phraseWithin(c, p, k, a)) return false;
+            c.i = other;
+            b = p.phrase(w, c.i, true);
+        }
+        compared(a, b, *cmp, word, std::nullopt, out);
+        out.byHowMuch = out.eitherWay = true;
+        out.predicate = "the same";
+        return true;
+    }
+
     // The two sides of a comparison and the measure the comparative orders them by (or the distance to `to`).
     static void compared(const Phrase& a, const Phrase& b, const Comparative& cmp, const std::string& predicate,
                          const std::optional<Phrase>& to, Translation& out) {
@@ -2045,7 +2099,8 @@ private:
         out.predicate = predicate;
         std::string order = cmp.measure == "distance" ? "distance(" + reference(*to) + ")" : cmp.measure;
         std::string columns = cmp.measure == "distance" ? "id, category, distance" : "id, category, " + cmp.measure;
-        out.smql = fmt::format("FIND thing WHERE {} OR {} ORDER BY {}{} RETURN {}", matchText(a), matchText(b), order,
+        const std::string both = matchText(a) == matchText(b) ? matchText(a) : matchText(a) + " OR " + matchText(b);
+        out.smql = fmt::format("FIND thing WHERE {} ORDER BY {}{} RETURN {}", both, order,
                                cmp.descending ? " DESC" : "", columns);
         describeSubject(a, out);
         out.object = b.words;

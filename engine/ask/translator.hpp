@@ -119,7 +119,8 @@ struct Translation {
     // ("long", "from the door").
     bool greater = true;
     bool byHowMuch = false;  // Comparison: "how much taller is the lamp than the table?": the difference
-    bool eitherWay = false;  // ... and "how tall is the lamp compared to the table?": more or less, whichever holds
+    bool eitherWay = false;  // ... and "how tall is the lamp compared to the table?": more or less, whichever holds;
+                             // with `predicate` "the same", whether they are alike ("are the two beds the same size?")
     bool average = false;    // Size: the mean of the measure over the things found ("the average height of the tables")
     // Route: the steps in order, "forward" (to the next of `roles` after the start and the thing
     // faced) or "turn" (a turn to fill in).
