@@ -2663,34 +2663,33 @@ private:
         return plain;
     }
 
-    // Questions that ask what another question asks, read as that one: "what is closest to the centre of the room?",
-    // "are the cushions all on the sofa?", "what is the room's floor area?", "how many plants are there and where are
-    // they?".
+    // Questions that ask what another question asks, read as that one, one table of them in the order they apply.
     static std::string readAsAnother(std::string plain) {
-        // "what is closest to the centre of the room?": what stands in its middle, nearest the centre first.
-        static const std::regex nearestMiddle(
-            R"(^(?:what|which)(?: object| thing| item)? is (?:the )?(?:(?:object|thing|item|one) )?(?:closest|nearest) to the (?:center|centre|middle) of (?:the|this) room$)");
-        plain = std::regex_replace(plain, nearestMiddle, "what is in the middle of the room");
-        // "are the cushions all on the sofa?": as "are all the cushions on the sofa?".
-        static const std::regex allAfter(R"(^(are|were) the ([a-z ]+?) all (.+)$)");
-        plain = std::regex_replace(plain, allAfter, "$1 all the $2 $3");
-        // "what is the room's floor area?" (the words' "'s" is " is"): the floor area of the room.
-        static const std::regex roomsOwn(
-            R"(^what is (?:the|this) room is ((?:total |overall )?(?:floor area|floor space|area|size|dimensions))$)");
-        plain = std::regex_replace(plain, roomsOwn, "what is the $1 of the room");
-        // "how far is the farthest object from the door?": the farthest thing, which the answer says how far away is (a
-        // kind named, "the farthest chair", reads as it is).
-        static const std::regex howFarFarthest(
-            R"(^how far (?:away )?is the (farthest|furthest) ((?:object|thing|item) from .+)$)");
-        plain = std::regex_replace(plain, howFarFarthest, "what is the $1 $2");
-        // "which two chairs are closest together?": how far apart they are, the nearest first (the closest two lead).
-        static const std::regex closestTogether(
-            R"(^(?:which|what) (?:two |2 )?([a-z ]+?) (?:are|stand|sit) (?:the )?(?:closest|nearest) (?:together|to each other|to one another)$)");
-        plain = std::regex_replace(plain, closestTogether, "how far apart are the $1");
-        // "how many plants are there and where are they?": where they are, which names each and so counts them.
-        static const std::regex howManyAndWhere(
-            R"(^how many (.+?) (?:are|is)(?: there| here)?(?: in (?:the|this) room)?,? and where (?:are|is) (?:they|it)$)");
-        plain = std::regex_replace(plain, howManyAndWhere, "where are the $1");
+        static const std::pair<std::regex, std::string> others[] = {
+            // "what is closest to the centre of the room?": what stands in its middle, nearest the centre first.
+            {std::regex(
+                 R"(^(?:what|which)(?: object| thing| item)? is (?:the )?(?:(?:object|thing|item|one) )?(?:closest|nearest) to the (?:center|centre|middle) of (?:the|this) room$)"),
+             "what is in the middle of the room"},
+            // "are the cushions all on the sofa?": as "are all the cushions on the sofa?".
+            {std::regex(R"(^(are|were) the ([a-z ]+?) all (.+)$)"), "$1 all the $2 $3"},
+            // "what is the room's floor area?" (the words' "'s" is " is"): the floor area of the room.
+            {std::regex(
+                 R"(^what is (?:the|this) room is ((?:total |overall )?(?:floor area|floor space|area|size|dimensions))$)"),
+             "what is the $1 of the room"},
+            // "how far is the farthest object from the door?": the farthest thing, which the answer says how far away
+            // is (a kind named, "the farthest chair", reads as it is).
+            {std::regex(R"(^how far (?:away )?is the (farthest|furthest) ((?:object|thing|item) from .+)$)"),
+             "what is the $1 $2"},
+            // "which two chairs are closest together?": how far apart they are, the closest two first.
+            {std::regex(
+                 R"(^(?:which|what) (?:two |2 )?([a-z ]+?) (?:are|stand|sit) (?:the )?(?:closest|nearest) (?:together|to each other|to one another)$)"),
+             "how far apart are the $1"},
+            // "how many plants are there and where are they?": where they are, which names each and so counts them.
+            {std::regex(
+                 R"(^how many (.+?) (?:are|is)(?: there| here)?(?: in (?:the|this) room)?,? and where (?:are|is) (?:they|it)$)"),
+             "where are the $1"},
+        };
+        for (const auto& [asked, as] : others) plain = std::regex_replace(plain, asked, as);
         return plain;
     }
 
