@@ -25,6 +25,19 @@ namespace {
 
 constexpr std::size_t kNamedInAnswer = 12;  // more rows than this are counted, not named
 
+// The words with their first letter a capital, as a sentence begins.
+std::string capitalised(std::string words) {
+    if (!words.empty()) words.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(words.front())));
+    return words;
+}
+
+// A tally, the most counted first (ties in the tally's order).
+std::vector<std::pair<std::string, std::size_t>> mostFirst(const std::map<std::string, std::size_t>& tally) {
+    std::vector<std::pair<std::string, std::size_t>> order(tally.begin(), tally.end());
+    std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    return order;
+}
+
 std::string text(const Value& v) {
     if (const auto* s = std::get_if<std::string>(&v)) return *s;
     if (const auto* i = std::get_if<std::int64_t>(&v)) return std::to_string(*i);
@@ -281,8 +294,7 @@ std::string countByHolder(const Translation& t, const ResultSet& rs) {
     const std::string preposition = t.predicate == "in" || t.predicate == "near" ? t.predicate : "on";
     std::vector<std::string> each;  // "5 on bed#2"
     for (const std::size_t h : order) each.push_back(fmt::format("{} {} {}", held[h], preposition, names[holders[h]]));
-    std::string plural = pluralOf(thingWord);
-    plural.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(plural.front())));
+    const std::string plural = capitalised(pluralOf(thingWord));
     if (t.measure == "each")
         return fmt::format("{} {} each {}: {} ({} in all).", plural, preposition, holderWord, listed(each),
                            things.size());
@@ -459,8 +471,8 @@ std::string distance(const Translation& t, const ResultSet& rs) {
     }
     std::string how = fromYou ? " (along the floor, from where you stand: the scene's viewpoint)"
                               : " (measured between the closest points of their boxes)";
-    // "is there room to walk between the bed and the wall?": the narrowest gap against the width a person needs.
-    // The rows come nearest first: the first is the narrowest gap, the way between them a person would take.
+    // "is there room to walk between the bed and the wall?": the narrowest gap (the rows come nearest first) against
+    // the width a person needs.
     if (t.predicate == "walk") {
         const double needed = 2 * model::kBodyRadius;
         // Two of one kind ("between the two sofas") are one pair, said once.
@@ -597,8 +609,7 @@ std::string size(const Translation& t, const ResultSet& rs) {
     std::string out = listed(parts, "; ");
     // A sentence opens with a capital, unless it opens with a node's label, which is written as FIND takes it
     // ("tv#27 is 0.52 m tall", not "Tv#27").
-    if (out.substr(0, out.find(' ')).find('#') == std::string::npos)
-        out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
+    if (out.substr(0, out.find(' ')).find('#') == std::string::npos) out = capitalised(std::move(out));
     return out + ".";
 }
 
@@ -889,8 +900,7 @@ std::string roomWithMost(const Translation& t, const ResultSet& rs, const std::v
         const auto near = roomsNear(std::get<model::Box>(rs.rows[r][box]), marks, rs, box);
         if (near.front().metres <= kRoomAreaReach) ++held[near.front().room];
     }
-    std::vector<std::pair<std::string, std::size_t>> order(held.begin(), held.end());
-    std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    const auto order = mostFirst(held);
     std::vector<std::string> each;
     for (const auto& [room, n] : order) each.push_back(fmt::format("the {} {}", room, n));
     const std::size_t outside =
@@ -1038,9 +1048,7 @@ std::string roomKind(const Translation& t, const ResultSet& rs) {
         if (it != marked.end()) return fmt::format("Yes: it holds {}.", listedWithAnd(it->things));
         return fmt::format("No: nothing here marks {}; {}.", withArticle(t.predicate), looks());
     }
-    std::string out = looks();
-    out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
-    return out + ".";
+    return capitalised(looks()) + ".";
 }
 
 std::string attribute(const Translation& t, const ResultSet& rs) {
@@ -1072,17 +1080,15 @@ std::string attributeTally(const Translation& t, const ResultSet& rs) {
     if (tally.empty())
         return fmt::format("No {} is recorded for the {} things here (their capture gave none).", t.measure,
                            rs.rows.size());
-    std::vector<std::pair<std::string, std::size_t>> byCount(tally.begin(), tally.end());
-    std::stable_sort(byCount.begin(), byCount.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    const auto byCount = mostFirst(tally);
     std::vector<std::string> each;
     for (const auto& [value, n] : byCount) each.push_back(fmt::format("{} ({})", value, n));
     const std::string all = fmt::format(
         "{} {} among {} things: {}{}.", byCount.size(), byCount.size() == 1 ? t.measure : pluralOf(t.measure),
         rs.rows.size(), listedWithAnd(each), none ? fmt::format("; {} with none recorded", none) : std::string());
     if (t.predicate != "most") return all;
-    std::string lead = byCount.front().first;
-    lead.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(lead.front())));
-    return fmt::format("{} is the most common {} ({} things): {}", lead, t.measure, byCount.front().second, all);
+    return fmt::format("{} is the most common {} ({} things): {}", capitalised(byCount.front().first), t.measure,
+                       byCount.front().second, all);
 }
 
 // "what is the lamp on?": the things the subject stands in that relation to.
@@ -1662,10 +1668,8 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
                            t.choices[first], firstFrame, t.choices[second], secondFrame);
     }
     if (t.choices.size() == 1) {
-        std::string out =
-            fmt::format("{} was {} seen in frame {:.0f}.", t.choices[0], last ? "last" : "first", firsts.front().first);
-        out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
-        return out;
+        return capitalised(fmt::format("{} was {} seen in frame {:.0f}.", t.choices[0], last ? "last" : "first",
+                                       firsts.front().first));
     }
     // "which did I see last, the bed or the sofa?": the one that came into view last.
     if (last) {
@@ -1675,7 +1679,7 @@ std::string appearance(const Translation& t, const ResultSet& rs) {
         std::string out = fmt::format("{} came into view last, first seen in frame {:.0f}",
                                       t.choices[firsts.back().second], firsts.back().first);
         if (!before.empty()) out += fmt::format(" (before it: {})", listed(before, ", ", before.size()));
-        out.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(out.front())));
+        out = capitalised(std::move(out));
         if (!unseen.empty()) out += fmt::format("; never seen: {}", listed(unseen, ", ", unseen.size()));
         return out + ".";
     }
@@ -1703,8 +1707,7 @@ std::string kinds(const Translation& t, const ResultSet& rs) {
         else
             ++tally[c];
     }
-    std::vector<std::pair<std::string, std::size_t>> byCount(tally.begin(), tally.end());
-    std::stable_sort(byCount.begin(), byCount.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    const auto byCount = mostFirst(tally);
     // "kinds of furniture", not "of pieces of furniture" (a mass noun's plural).
     const std::string noun = t.subjectPlural.starts_with("pieces of ")
                                  ? t.subjectPlural.substr(std::string("pieces of ").size())
@@ -1716,10 +1719,9 @@ std::string kinds(const Translation& t, const ResultSet& rs) {
     std::vector<std::string> most;
     for (const auto& [category, n] : byCount)
         if (n == byCount.front().second) most.push_back(pluralOf(model::categoryWords(category)));
-    std::string lead = listedWithAnd(most);
-    lead.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(lead.front())));
-    return fmt::format("{} {} the most common ({} {}): {}", lead, most.size() == 1 ? "are" : "are, alike,",
-                       byCount.front().second, most.size() == 1 ? "of them" : "each", all);
+    return fmt::format("{} {} the most common ({} {}): {}", capitalised(listedWithAnd(most)),
+                       most.size() == 1 ? "are" : "are, alike,", byCount.front().second,
+                       most.size() == 1 ? "of them" : "each", all);
 }
 
 std::string changes(const ResultSet& rs) {

@@ -660,14 +660,10 @@ private:
             first = c.w[k + 1];  // "from largest to smallest"
             out.measure = joined(c.w, k, c.w.size());
         } else if (c.w[k] == "by" && k + 2 == c.w.size()) {
-            static const std::map<std::string, std::string> byMeasure{{"size", "largest"},
-                                                                      {"volume", "largest"},
-                                                                      {"height", "tallest"},
-                                                                      {"width", "widest"},
-                                                                      {"length", "longest"}};
-            const auto at = byMeasure.find(c.w[k + 1]);
-            if (at == byMeasure.end()) return false;
-            first = at->second;
+            std::string word;
+            const auto cmp = comparativeOfSize(adjectiveOfMeasure(c.w[k + 1]), word);
+            if (!cmp) return false;
+            first = cmp->superlative;  // "by height": the tallest first
             out.measure = "by " + c.w[k + 1] + ", the " + first + " first";
         } else {
             return false;
@@ -2029,6 +2025,14 @@ private:
         return true;
     }
 
+    // The adjective of a size named by its noun ("height": "tall"), or "" for a noun that names none.
+    static std::string adjectiveOfMeasure(const std::string& noun) {
+        static const std::map<std::string, std::string> adjectives{
+            {"size", "large"}, {"volume", "large"}, {"height", "tall"}, {"width", "wide"}, {"length", "long"}};
+        const auto at = adjectives.find(noun);
+        return at == adjectives.end() ? std::string() : at->second;
+    }
+
     // The comparative of a size's adjective ("tall": "taller", "big": "bigger"), its word in `word`; none for a
     // distance or a word that is no size.
     static std::optional<Comparative> comparativeOfSize(const std::string& adjective, std::string& word) {
@@ -2049,12 +2053,8 @@ private:
         std::size_t k = c.i;
         while (k + 2 < w.size() && !(w[k] == "the" && w[k + 1] == "same") && !(w[k] == "as" && w[k + 2] == "as")) ++k;
         if (k + 2 >= w.size()) return false;
-        static const std::map<std::string, std::string> adjectiveOf{
-            {"size", "big"}, {"height", "tall"}, {"width", "wide"}, {"length", "long"}};
-        const auto named = adjectiveOf.find(w[k + 2]);
-        if (w[k] == "the" && named == adjectiveOf.end()) return false;
         std::string word;
-        const auto cmp = comparativeOfSize(w[k] == "the" ? named->second : w[k + 1], word);
+        const auto cmp = comparativeOfSize(w[k] == "the" ? adjectiveOfMeasure(w[k + 2]) : w[k + 1], word);
         if (!cmp) return false;
         const bool same = w[k] == "the";
         Phrase a, b;
