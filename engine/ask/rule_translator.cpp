@@ -683,11 +683,39 @@ private:
         return true;
     }
 
+    // Whether the words from `from` to the end only name the scene ("in the room", "in this apartment", "here", or
+    // nothing), which a question about all its things may add.
+    static bool namesSceneFrom(const Words& w, std::size_t from, PhraseParser& p) {
+        if (from == w.size() || (from + 1 == w.size() && w[from] == "here")) return true;
+        if (w[from] != "in") return false;
+        std::size_t k = from + 1;
+        while (k < w.size() && isOneOf(w[k], {"the", "this", "our", "my"})) ++k;
+        const std::size_t place = p.scenePlaceAt(w, k);
+        return place > 0 && k + place == w.size();
+    }
+
+    // "A and B" in the words from the cursor up to `end`, or one kind twice ("the two sofas", "both lamps", "all the
+    // beds"): the two sides of a question about a pair.
+    static bool twoSides(Cursor& c, PhraseParser& p, std::size_t end, Phrase& a, Phrase& b) {
+        const auto last = c.w.begin() + static_cast<std::ptrdiff_t>(end);
+        const auto link = std::find(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), last, "and");
+        if (link == last) {
+            if (!c.accept({"the", "two"}) && !c.accept({"both"}) && !c.accept({"all", "the"})) return false;
+            c.accept({"the"});
+            if (!phraseWithin(c, p, end, a)) return false;
+            b = a;
+            return true;
+        }
+        if (!phraseWithin(c, p, static_cast<std::size_t>(link - c.w.begin()), a)) return false;
+        ++c.i;
+        return phraseWithin(c, p, end, b);
+    }
+
     // What is the most common object? What kind of furniture is there most of? Which thing appears most often? The
     // things' kinds tallied (Translation::byKind), the most numerous first (measure "most").
     bool mostCommon(Cursor& c, PhraseParser& p, Translation& out) {
-        std::size_t end = c.w.size();  // "... in the room", "... here": the scene, said or not
-        while (end > c.i + 2 && isOneOf(c.w[end - 1], {"here", "room", "scene", "place", "the", "this", "in"})) --end;
+        std::size_t end = c.i;  // "... in the room", "... here": the scene, said or not
+        while (!namesSceneFrom(c.w, end, p)) ++end;
         std::size_t nounFrom = 0, nounTo = 0;
         if (c.accept({"what|which", "is|are", "the", "most", "common|frequent|numerous"}) ||
             c.accept({"what|which", "is|are", "the", "commonest"})) {
@@ -733,19 +761,8 @@ private:
         }
         if (!c.accept({"walk|pass|get|go|fit|squeeze|move"})) return false;
         c.skip({"through", "past", "by"});
-        if (!c.accept({"between"})) return false;
-        const auto link = std::find(c.w.begin() + static_cast<std::ptrdiff_t>(c.i), c.w.end(), "and");
         Phrase a, b;
-        if (link == c.w.end()) {
-            // "between the two sofas": one of them and the other.
-            if (!c.accept({"the", "two"}) && !c.accept({"both"})) return false;
-            c.accept({"the"});
-            a = b = p.phrase(c.w, c.i, true);
-        } else {
-            if (!phraseWithin(c, p, static_cast<std::size_t>(link - c.w.begin()), a)) return false;
-            ++c.i;
-            b = p.phrase(c.w, c.i, true);
-        }
+        if (!c.accept({"between"}) || !twoSides(c, p, c.w.size(), a, b)) return false;
         Phrase subject = a;
         subject.order = Order{"distance", false, {b}, ""};
         out.kind = QuestionKind::Distance;
@@ -899,7 +916,7 @@ private:
 
     // How many colours are there? What materials are there? What is the most common colour? The values of an attribute
     // over the things, tallied (Attribute, byKind).
-    bool attributeTally(Cursor& c, PhraseParser&, Translation& out) {
+    bool attributeTally(Cursor& c, PhraseParser& p, Translation& out) {
         std::string measure;
         auto valueWord = [&] {
             if (!c.accept({"color|colour|colors|colours|material|materials"})) return false;
@@ -915,9 +932,8 @@ private:
         } else {
             return false;
         }
-        // "... in the room", "... among the things": the scene's things, said or not.
-        while (!c.done() && isOneOf(c.peek(), {"in", "the", "this", "room", "here", "scene", "among", "things"})) ++c.i;
-        if (!c.done()) return false;
+        if (!namesSceneFrom(c.w, c.i, p)) return false;  // "... in the room"
+        c.i = c.w.size();
         out.kind = QuestionKind::Attribute;
         out.measure = measure;
         const auto& known = question_.attributes;
@@ -1912,14 +1928,8 @@ private:
             // "what is in the room?", "what objects are in here?", "what is in the kitchen?" (the scene a
             // kitchen): the whole scene, read without a condition (not "in the corner", a part of the room the
             // memory keeps nothing of).
-            auto namesScene = [&](std::size_t from) {
-                if (from >= c.w.size() || c.w[from] != "in") return false;
-                std::size_t k = from + 1;
-                while (k < c.w.size() && isOneOf(c.w[k], {"the", "this", "our", "my"})) ++k;
-                const std::size_t place = p.scenePlaceAt(c.w, k);
-                return place > 0 && k + place == c.w.size();
-            };
-            const bool wholeScene = thereAlone || colourAlone || (c.done() && namesScene(postsAt));
+            const bool wholeScene =
+                thereAlone || colourAlone || (c.done() && postsAt < c.w.size() && namesSceneFrom(c.w, postsAt, p));
             // "what is taller than 1 m?": a measure of its own is a condition too.
             if (thing.conditions.size() == before && thing.filters.size() == filtersBefore && thing.excluded.empty() &&
                 !wholeScene)
@@ -2060,17 +2070,7 @@ private:
         Phrase a, b;
         if (same && k + 3 == w.size()) {
             // "are the sofa and the bed the same size?", "are the two nightstands the same height?"
-            const auto end = w.begin() + static_cast<std::ptrdiff_t>(k);
-            const auto link = std::find(w.begin() + static_cast<std::ptrdiff_t>(c.i), end, "and");
-            if (link != end) {
-                if (!phraseWithin(c, p, static_cast<std::size_t>(link - w.begin()), a)) return false;
-                ++c.i;
-                if (!phraseWithin(c, p, k, b)) return false;
-            } else {
-                if (!c.accept({"the", "two"}) && !c.accept({"both"}) && !c.accept({"all", "the"})) return false;
-                if (!phraseWithin(c, p, k, a)) return false;
-                b = a;
-            }
+            if (!twoSides(c, p, k, a, b)) return false;
             c.i = w.size();
         } else {
             // "is the sofa the same size as the bed?", "is the lamp as tall as the table?"

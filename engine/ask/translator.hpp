@@ -89,7 +89,8 @@ struct Translation {
     std::string condition;      // "on the sofa", empty without one
     std::string predicate;      // YesNo: the relation the answer checks ("left_of"); Count of two kinds: "or" when
                                 // the question asks which has more ("are there more books or cushions?");
-                                // Attribute tallied (byKind): "most" when the most common value is asked
+                                // Attribute tallied (byKind): "most" when the most common value is asked;
+                                // Distance: "walk" when it asks whether a person can walk between the two
     std::string object;         // YesNo: what it is checked against ("the window")
 
     // Size: the measure asked ("height", "longest", "size"); Attribute: the attribute ("color"); Count of two
